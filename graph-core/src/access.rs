@@ -1,0 +1,217 @@
+//! Access roles: how a pass touches a resource. The compiler derives usages, load/store
+//! operations and ordering from these and nothing else.
+
+use serde::Serialize;
+use wgpu_types::{BufferUsages, TextureUsages};
+
+use crate::handle::ResourceId;
+
+/// How a color attachment begins.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ColorLoad {
+    /// Clear to this RGBA value: the previous contents are not read.
+    Clear([f64; 4]),
+    /// Keep the previous contents (the pass reads the version it writes over).
+    Load,
+}
+
+/// How a pass uses one aspect (depth or stencil) of a depth-stencil attachment.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AspectAccess<T> {
+    /// Tested against, never written: the pass reads the incoming version.
+    ReadOnly,
+    /// Written after a clear to this value: the incoming contents are not read.
+    Clear(T),
+    /// Written on top of the incoming contents.
+    Load,
+}
+
+impl<T> AspectAccess<T> {
+    pub fn writes(&self) -> bool {
+        !matches!(self, AspectAccess::ReadOnly)
+    }
+    pub fn reads(&self) -> bool {
+        !matches!(self, AspectAccess::Clear(_))
+    }
+}
+
+/// Which aspect of a depth-stencil texture a sampled view shows.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Aspect {
+    #[default]
+    All,
+    DepthOnly,
+    StencilOnly,
+}
+
+/// A pass's use of a texture.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TextureRole {
+    /// Color attachment at this location.
+    Color {
+        location: u32,
+        load: ColorLoad,
+    },
+    /// Resolve target of the multisampled color attachment at this location.
+    Resolve {
+        location: u32,
+    },
+    /// The depth-stencil attachment.
+    DepthStencil {
+        depth: AspectAccess<f32>,
+        stencil: AspectAccess<u32>,
+    },
+    /// Bound for sampling or `textureLoad` (multisampled textures included).
+    Sampled {
+        aspect: Aspect,
+    },
+    /// Bound as a storage texture.
+    Storage {
+        read: bool,
+        write: bool,
+    },
+    CopySrc,
+    CopyDst,
+}
+
+/// A pass's use of a buffer.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BufferRole {
+    Vertex,
+    Index,
+    Uniform,
+    Indirect,
+    Storage { read: bool, write: bool },
+    CopySrc,
+    CopyDst,
+}
+
+/// A role of either kind.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum Role {
+    Texture(TextureRole),
+    Buffer(BufferRole),
+}
+
+impl Role {
+    /// Whether the pass depends on the version it was given.
+    pub fn reads(&self) -> bool {
+        match *self {
+            Role::Texture(TextureRole::Color { load, .. }) => load == ColorLoad::Load,
+            Role::Texture(TextureRole::Resolve { .. }) => false,
+            Role::Texture(TextureRole::DepthStencil { depth, stencil }) => {
+                depth.reads() || stencil.reads()
+            }
+            Role::Texture(TextureRole::Sampled { .. }) => true,
+            Role::Texture(TextureRole::Storage { read, .. }) => read,
+            Role::Texture(TextureRole::CopySrc) => true,
+            Role::Texture(TextureRole::CopyDst) => false,
+            Role::Buffer(BufferRole::Storage { read, .. }) => read,
+            Role::Buffer(BufferRole::CopyDst) => false,
+            Role::Buffer(_) => true,
+        }
+    }
+
+    /// Whether the pass produces a new version.
+    pub fn writes(&self) -> bool {
+        match *self {
+            Role::Texture(TextureRole::Color { .. })
+            | Role::Texture(TextureRole::Resolve { .. })
+            | Role::Texture(TextureRole::CopyDst)
+            | Role::Buffer(BufferRole::CopyDst) => true,
+            Role::Texture(TextureRole::DepthStencil { depth, stencil }) => {
+                depth.writes() || stencil.writes()
+            }
+            Role::Texture(TextureRole::Storage { write, .. })
+            | Role::Buffer(BufferRole::Storage { write, .. }) => write,
+            _ => false,
+        }
+    }
+
+    /// Whether this role binds the texture as a render-pass attachment.
+    pub fn is_attachment(&self) -> bool {
+        matches!(
+            self,
+            Role::Texture(
+                TextureRole::Color { .. }
+                    | TextureRole::Resolve { .. }
+                    | TextureRole::DepthStencil { .. }
+            )
+        )
+    }
+
+    /// The texture usage this role needs (empty for buffer roles).
+    pub fn texture_usage(&self) -> TextureUsages {
+        match self {
+            Role::Texture(TextureRole::Color { .. })
+            | Role::Texture(TextureRole::Resolve { .. })
+            | Role::Texture(TextureRole::DepthStencil { .. }) => TextureUsages::RENDER_ATTACHMENT,
+            Role::Texture(TextureRole::Sampled { .. }) => TextureUsages::TEXTURE_BINDING,
+            Role::Texture(TextureRole::Storage { .. }) => TextureUsages::STORAGE_BINDING,
+            Role::Texture(TextureRole::CopySrc) => TextureUsages::COPY_SRC,
+            Role::Texture(TextureRole::CopyDst) => TextureUsages::COPY_DST,
+            Role::Buffer(_) => TextureUsages::empty(),
+        }
+    }
+
+    /// The buffer usage this role needs (empty for texture roles).
+    pub fn buffer_usage(&self) -> BufferUsages {
+        match self {
+            Role::Buffer(BufferRole::Vertex) => BufferUsages::VERTEX,
+            Role::Buffer(BufferRole::Index) => BufferUsages::INDEX,
+            Role::Buffer(BufferRole::Uniform) => BufferUsages::UNIFORM,
+            Role::Buffer(BufferRole::Indirect) => BufferUsages::INDIRECT,
+            Role::Buffer(BufferRole::Storage { .. }) => BufferUsages::STORAGE,
+            Role::Buffer(BufferRole::CopySrc) => BufferUsages::COPY_SRC,
+            Role::Buffer(BufferRole::CopyDst) => BufferUsages::COPY_DST,
+            Role::Texture(_) => BufferUsages::empty(),
+        }
+    }
+
+    /// A short role name for messages: "color attachment", "sampled", ...
+    pub fn describe(&self) -> &'static str {
+        match self {
+            Role::Texture(TextureRole::Color { .. }) => "color attachment",
+            Role::Texture(TextureRole::Resolve { .. }) => "resolve target",
+            Role::Texture(TextureRole::DepthStencil { .. }) => "depth-stencil attachment",
+            Role::Texture(TextureRole::Sampled { .. }) => "sampled texture",
+            Role::Texture(TextureRole::Storage { .. }) => "storage texture",
+            Role::Texture(TextureRole::CopySrc) | Role::Buffer(BufferRole::CopySrc) => {
+                "copy source"
+            }
+            Role::Texture(TextureRole::CopyDst) | Role::Buffer(BufferRole::CopyDst) => {
+                "copy destination"
+            }
+            Role::Buffer(BufferRole::Vertex) => "vertex buffer",
+            Role::Buffer(BufferRole::Index) => "index buffer",
+            Role::Buffer(BufferRole::Uniform) => "uniform buffer",
+            Role::Buffer(BufferRole::Indirect) => "indirect buffer",
+            Role::Buffer(BufferRole::Storage { .. }) => "storage buffer",
+        }
+    }
+}
+
+/// One declared access: a pass used `resource` in `role`, reading version `read` (if the
+/// role reads) and producing version `written` (if the role writes).
+#[derive(Copy, Clone, Debug, PartialEq, Serialize)]
+pub struct Access {
+    pub resource: ResourceId,
+    pub role: Role,
+    /// The version the pass was handed.
+    pub version: u32,
+    /// The version the pass produces, when the role writes.
+    pub written: Option<u32>,
+}
+
+impl Access {
+    /// The version this access depends on, if it reads.
+    pub fn read_version(&self) -> Option<u32> {
+        self.role.reads().then_some(self.version)
+    }
+}

@@ -1,0 +1,301 @@
+//! Declaring a graph: resources first, then passes that access them through handles.
+
+use std::collections::HashMap;
+
+use crate::access::{Access, Aspect, AspectAccess, BufferRole, ColorLoad, Role, TextureRole};
+use crate::error::GraphError;
+use crate::handle::{
+    BufferHandle, Handle, PassId, ResourceId, ResourceKind, Texture, TextureHandle,
+};
+use crate::pass::{PassKind, PassNode};
+use crate::resource::{BufferDesc, Origin, ResourceDesc, ResourceNode, TextureDesc};
+
+/// A graph being declared. Declaring never fails and never touches a GPU: mistakes are
+/// recorded and reported, all together, by [`Graph::compile`](crate::Graph::compile).
+#[derive(Default)]
+pub struct GraphBuilder {
+    pub(crate) resources: Vec<ResourceNode>,
+    pub(crate) passes: Vec<PassNode>,
+    /// Which pass wrote over each (resource, version): a second writer is an error.
+    overwritten_by: HashMap<(ResourceId, u32), PassId>,
+    pub(crate) errors: Vec<GraphError>,
+}
+
+impl GraphBuilder {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// A graph-owned texture. Its contents are undefined until a pass writes it, and its
+    /// memory may be shared with other textures whose lifetimes do not overlap.
+    pub fn create_texture(&mut self, name: impl Into<String>, desc: TextureDesc) -> TextureHandle {
+        self.add_resource(name.into(), ResourceDesc::Texture(desc), Origin::Transient)
+    }
+
+    /// A graph-owned buffer.
+    pub fn create_buffer(&mut self, name: impl Into<String>, desc: BufferDesc) -> BufferHandle {
+        self.add_resource(name.into(), ResourceDesc::Buffer(desc), Origin::Transient)
+    }
+
+    /// An engine-owned texture, bound by name or id when the graph executes. The engine
+    /// keeps ownership; the description must match what it binds (checked at execution).
+    pub fn import_texture(&mut self, name: impl Into<String>, desc: TextureDesc) -> TextureHandle {
+        self.add_resource(name.into(), ResourceDesc::Texture(desc), Origin::Imported)
+    }
+
+    /// An engine-owned buffer.
+    pub fn import_buffer(&mut self, name: impl Into<String>, desc: BufferDesc) -> BufferHandle {
+        self.add_resource(name.into(), ResourceDesc::Buffer(desc), Origin::Imported)
+    }
+
+    /// Keeps the resource's final contents past the frame (readback, history): it is a
+    /// culling root, its memory is never lent to another resource, and it can be copied
+    /// from after execution.
+    pub fn export<K: ResourceKind>(&mut self, handle: Handle<K>) {
+        if let Some(node) = self.resources.get_mut(handle.id.index()) {
+            node.exported = true;
+        }
+    }
+
+    /// Starts a render pass. Attachments are declared on the returned builder; the
+    /// executor begins the wgpu render pass with them before calling the record callback.
+    pub fn add_render_pass(&mut self, name: impl Into<String>) -> PassBuilder<'_> {
+        self.add_pass(name.into(), PassKind::Render)
+    }
+
+    /// Starts a compute pass.
+    pub fn add_compute_pass(&mut self, name: impl Into<String>) -> PassBuilder<'_> {
+        self.add_pass(name.into(), PassKind::Compute)
+    }
+
+    /// Starts a transfer pass (copies; the callback gets the command encoder).
+    pub fn add_transfer_pass(&mut self, name: impl Into<String>) -> PassBuilder<'_> {
+        self.add_pass(name.into(), PassKind::Transfer)
+    }
+
+    /// The declared resource behind a handle.
+    pub fn resource<K: ResourceKind>(&self, handle: Handle<K>) -> &ResourceNode {
+        &self.resources[handle.id.index()]
+    }
+
+    /// Finishes declaring. The graph can then be compiled (and recompiled for other
+    /// output sizes or profiles) without a GPU.
+    pub fn build(self) -> crate::Graph {
+        crate::Graph::from_builder(self)
+    }
+
+    fn add_resource<K: ResourceKind>(
+        &mut self,
+        name: String,
+        desc: ResourceDesc,
+        origin: Origin,
+    ) -> Handle<K> {
+        let id = ResourceId(self.resources.len() as u32);
+        self.resources.push(ResourceNode {
+            name,
+            desc,
+            origin,
+            exported: false,
+            versions: 1,
+        });
+        Handle::new(id, 0)
+    }
+
+    fn add_pass(&mut self, name: String, kind: PassKind) -> PassBuilder<'_> {
+        let id = PassId(self.passes.len() as u32);
+        self.passes.push(PassNode::new(name, kind));
+        PassBuilder { graph: self, id }
+    }
+}
+
+/// Declares one pass's accesses. Role-named verbs return the handle of the version the
+/// pass produces; keep using the handle they were given only to read older contents.
+pub struct PassBuilder<'g> {
+    graph: &'g mut GraphBuilder,
+    id: PassId,
+}
+
+impl PassBuilder<'_> {
+    /// This pass's id.
+    pub fn id(&self) -> PassId {
+        self.id
+    }
+
+    /// Keeps the pass even when nothing reads what it writes.
+    pub fn side_effect(&mut self) -> &mut Self {
+        self.node().side_effect = true;
+        self
+    }
+
+    /// The declared resource behind a handle.
+    pub fn resource<K: ResourceKind>(&self, handle: Handle<K>) -> &ResourceNode {
+        self.graph.resource(handle)
+    }
+
+    /// Binds `target` as the next color attachment (locations count up from 0).
+    pub fn color_output(&mut self, target: TextureHandle, load: ColorLoad) -> TextureHandle {
+        let location = self.count(|r| matches!(r, TextureRole::Color { .. }));
+        self.texture(target, TextureRole::Color { location, load })
+    }
+
+    /// Resolves the multisampled color attachment written as `color` (a handle this pass
+    /// returned from [`color_output`](Self::color_output)) into `target` at the end of the pass.
+    pub fn resolve_output(&mut self, color: TextureHandle, target: TextureHandle) -> TextureHandle {
+        let location = self
+            .node()
+            .accesses
+            .iter()
+            .find_map(|a| match a.role {
+                Role::Texture(TextureRole::Color { location, .. })
+                    if a.resource == color.id && a.written == Some(color.version) =>
+                {
+                    Some(location)
+                }
+                _ => None,
+            })
+            .unwrap_or(u32::MAX);
+        self.texture(target, TextureRole::Resolve { location })
+    }
+
+    /// Binds the depth-stencil attachment. Returns a new version when either aspect is
+    /// written, else `target` itself. To sample the same texture in this pass, both
+    /// aspects must be [`AspectAccess::ReadOnly`].
+    pub fn depth_stencil(
+        &mut self,
+        target: TextureHandle,
+        depth: AspectAccess<f32>,
+        stencil: AspectAccess<u32>,
+    ) -> TextureHandle {
+        self.texture(target, TextureRole::DepthStencil { depth, stencil })
+    }
+
+    /// Binds a texture for sampling or `textureLoad` (multisampled textures included).
+    pub fn sampled(&mut self, texture: TextureHandle) -> TextureHandle {
+        self.sampled_aspect(texture, Aspect::All)
+    }
+
+    /// Binds one aspect of a depth-stencil texture for sampling.
+    pub fn sampled_aspect(&mut self, texture: TextureHandle, aspect: Aspect) -> TextureHandle {
+        self.texture(texture, TextureRole::Sampled { aspect })
+    }
+
+    /// Binds a storage texture that the pass only reads.
+    pub fn storage_read(&mut self, texture: TextureHandle) -> TextureHandle {
+        self.texture(
+            texture,
+            TextureRole::Storage {
+                read: true,
+                write: false,
+            },
+        )
+    }
+
+    /// Binds a storage texture that the pass overwrites without reading.
+    pub fn storage_write(&mut self, texture: TextureHandle) -> TextureHandle {
+        self.texture(
+            texture,
+            TextureRole::Storage {
+                read: false,
+                write: true,
+            },
+        )
+    }
+
+    /// Binds a storage texture that the pass reads and writes.
+    pub fn storage_read_write(&mut self, texture: TextureHandle) -> TextureHandle {
+        self.texture(
+            texture,
+            TextureRole::Storage {
+                read: true,
+                write: true,
+            },
+        )
+    }
+
+    /// A texture copied from.
+    pub fn copy_src(&mut self, texture: TextureHandle) -> TextureHandle {
+        self.texture(texture, TextureRole::CopySrc)
+    }
+
+    /// A texture copied into (its previous contents are not read).
+    pub fn copy_dst(&mut self, texture: TextureHandle) -> TextureHandle {
+        self.texture(texture, TextureRole::CopyDst)
+    }
+
+    /// A buffer accessed in `role`. Returns the new version when the role writes.
+    pub fn buffer(&mut self, buffer: BufferHandle, role: BufferRole) -> BufferHandle {
+        self.access(buffer, Role::Buffer(role))
+    }
+
+    /// Records the pass's commands. The render pass is already begun with the declared
+    /// attachments and inferred load/store operations; the callback runs once per frame.
+    #[cfg(feature = "gpu")]
+    pub fn render(&mut self, record: impl FnMut(&mut crate::gpu::RenderContext<'_, '_>) + 'static) {
+        self.node().record = Some(crate::pass::Record::Render(Box::new(record)));
+    }
+
+    /// Records a compute pass's commands into the already begun compute pass.
+    #[cfg(feature = "gpu")]
+    pub fn compute(
+        &mut self,
+        record: impl FnMut(&mut crate::gpu::ComputeContext<'_, '_>) + 'static,
+    ) {
+        self.node().record = Some(crate::pass::Record::Compute(Box::new(record)));
+    }
+
+    /// Records a transfer pass's commands into the command encoder.
+    #[cfg(feature = "gpu")]
+    pub fn transfer(&mut self, record: impl FnMut(&mut crate::gpu::TransferContext<'_>) + 'static) {
+        self.node().record = Some(crate::pass::Record::Transfer(Box::new(record)));
+    }
+
+    fn node(&mut self) -> &mut PassNode {
+        &mut self.graph.passes[self.id.index()]
+    }
+
+    fn count(&mut self, pred: impl Fn(&TextureRole) -> bool) -> u32 {
+        self.node()
+            .accesses
+            .iter()
+            .filter(|a| matches!(a.role, Role::Texture(ref r) if pred(r)))
+            .count() as u32
+    }
+
+    fn texture(&mut self, handle: Handle<Texture>, role: TextureRole) -> Handle<Texture> {
+        self.access(handle, Role::Texture(role))
+    }
+
+    fn access<K: ResourceKind>(&mut self, handle: Handle<K>, role: Role) -> Handle<K> {
+        let Some(resource) = self.graph.resources.get_mut(handle.id.index()) else {
+            let pass = self.node().name.clone();
+            self.graph.errors.push(GraphError::ForeignHandle {
+                pass,
+                resource: format!("{handle:?}"),
+            });
+            return handle;
+        };
+        let written = role.writes().then(|| {
+            resource.versions += 1;
+            resource.versions - 1
+        });
+        if written.is_some() {
+            let key = (handle.id, handle.version);
+            if let Some(first) = self.graph.overwritten_by.insert(key, self.id) {
+                let error = GraphError::ConflictingWriters {
+                    first: self.graph.passes[first.index()].name.clone(),
+                    second: self.graph.passes[self.id.index()].name.clone(),
+                    resource: self.graph.resources[handle.id.index()].name.clone(),
+                    version: handle.version,
+                };
+                self.graph.errors.push(error);
+            }
+        }
+        self.node().accesses.push(Access {
+            resource: handle.id,
+            role,
+            version: handle.version,
+            written,
+        });
+        Handle::new(handle.id, written.unwrap_or(handle.version))
+    }
+}

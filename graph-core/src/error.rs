@@ -1,0 +1,210 @@
+//! Graph errors. Every message names the pass and the resource involved, so that a RON
+//! loader can point at both and an engine log reads without a debugger.
+
+use thiserror::Error;
+
+/// Something wrong with a graph, found while declaring or compiling it (no GPU involved).
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum GraphError {
+    #[error("pass \"{pass}\" reads \"{resource}\", which no pass writes")]
+    ReadBeforeWrite { pass: String, resource: String },
+
+    #[error(
+        "passes \"{first}\" and \"{second}\" both write over version {version} of \"{resource}\"; \
+         a version has one writer (write through the handle \"{first}\" returned)"
+    )]
+    ConflictingWriters {
+        first: String,
+        second: String,
+        resource: String,
+        version: u32,
+    },
+
+    #[error("pass \"{pass}\" uses \"{resource}\", which belongs to another graph")]
+    ForeignHandle { pass: String, resource: String },
+
+    #[error("{kind} pass \"{pass}\" cannot use \"{resource}\" as a {role}")]
+    RoleNotAllowed {
+        pass: String,
+        kind: String,
+        role: &'static str,
+        resource: String,
+    },
+
+    #[error("pass \"{pass}\" uses \"{resource}\" both as a {first} and as a {second}")]
+    UsageConflict {
+        pass: String,
+        resource: String,
+        first: &'static str,
+        second: &'static str,
+    },
+
+    #[error(
+        "pass \"{pass}\" samples depth-stencil texture \"{resource}\" while writing it; \
+         attach it read-only in both aspects to sample it in the same pass"
+    )]
+    SampledWhileWritable { pass: String, resource: String },
+
+    #[error("texture \"{resource}\" is zero-sized ({width}x{height})")]
+    ZeroSize {
+        resource: String,
+        width: u32,
+        height: u32,
+    },
+
+    #[error("buffer \"{resource}\" has size 0")]
+    ZeroSizedBuffer { resource: String },
+
+    #[error("\"{resource}\": {what}")]
+    InvalidResource { resource: String, what: String },
+
+    #[error(
+        "texture \"{resource}\" ({width}x{height}) exceeds the maximum dimension {max} of {profile}"
+    )]
+    TooLarge {
+        resource: String,
+        width: u32,
+        height: u32,
+        max: u32,
+        profile: String,
+    },
+
+    #[error(
+        "texture \"{resource}\": {format} does not support {samples}x multisampling on {profile} \
+         (supported: {supported})"
+    )]
+    UnsupportedSampleCount {
+        resource: String,
+        format: String,
+        samples: u32,
+        supported: String,
+        profile: String,
+    },
+
+    #[error("pass \"{pass}\": \"{resource}\" ({format}) cannot be a {role}: {why}")]
+    FormatRole {
+        pass: String,
+        resource: String,
+        format: String,
+        role: &'static str,
+        why: String,
+    },
+
+    #[error(
+        "pass \"{pass}\": color attachments ({resources}) take {bytes} bytes per sample, over \
+         the limit of {limit} on {profile}"
+    )]
+    ColorBytesPerSample {
+        pass: String,
+        resources: String,
+        bytes: u32,
+        limit: u32,
+        profile: String,
+    },
+
+    #[error(
+        "pass \"{pass}\" has {count} color attachments, over the limit of {limit} on {profile}"
+    )]
+    TooManyColorAttachments {
+        pass: String,
+        count: u32,
+        limit: u32,
+        profile: String,
+    },
+
+    #[error(
+        "pass \"{pass}\": attachment \"{resource}\" is {this}, but \"{other}\" is {that}; the \
+         attachments of one pass must agree in size and sample count"
+    )]
+    AttachmentMismatch {
+        pass: String,
+        resource: String,
+        this: String,
+        other: String,
+        that: String,
+    },
+
+    #[error("pass \"{pass}\" resolves into \"{resource}\": {why}")]
+    BadResolve {
+        pass: String,
+        resource: String,
+        why: String,
+    },
+
+    #[error("render pass \"{pass}\" has no attachment")]
+    NoAttachment { pass: String },
+
+    #[error(
+        "cycle: passes {} must each run before the other (through \"{resource}\")",
+        quote_list(passes)
+    )]
+    Cycle {
+        passes: Vec<String>,
+        resource: String,
+    },
+}
+
+fn quote_list(names: &[String]) -> String {
+    names
+        .iter()
+        .map(|n| format!("\"{n}\""))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+impl GraphError {
+    /// The pass the error is about, when there is one.
+    pub fn pass(&self) -> Option<&str> {
+        use GraphError::*;
+        match self {
+            ReadBeforeWrite { pass, .. }
+            | ForeignHandle { pass, .. }
+            | RoleNotAllowed { pass, .. }
+            | UsageConflict { pass, .. }
+            | SampledWhileWritable { pass, .. }
+            | FormatRole { pass, .. }
+            | ColorBytesPerSample { pass, .. }
+            | TooManyColorAttachments { pass, .. }
+            | AttachmentMismatch { pass, .. }
+            | BadResolve { pass, .. }
+            | NoAttachment { pass } => Some(pass),
+            ConflictingWriters { second, .. } => Some(second),
+            Cycle { passes, .. } => passes.first().map(String::as_str),
+            ZeroSize { .. }
+            | ZeroSizedBuffer { .. }
+            | InvalidResource { .. }
+            | TooLarge { .. }
+            | UnsupportedSampleCount { .. } => None,
+        }
+    }
+
+    /// The resource the error is about, when there is one.
+    pub fn resource(&self) -> Option<&str> {
+        use GraphError::*;
+        match self {
+            ReadBeforeWrite { resource, .. }
+            | ConflictingWriters { resource, .. }
+            | ForeignHandle { resource, .. }
+            | RoleNotAllowed { resource, .. }
+            | UsageConflict { resource, .. }
+            | SampledWhileWritable { resource, .. }
+            | ZeroSize { resource, .. }
+            | ZeroSizedBuffer { resource }
+            | InvalidResource { resource, .. }
+            | TooLarge { resource, .. }
+            | UnsupportedSampleCount { resource, .. }
+            | FormatRole { resource, .. }
+            | AttachmentMismatch { resource, .. }
+            | BadResolve { resource, .. }
+            | Cycle { resource, .. } => Some(resource),
+            ColorBytesPerSample { .. } | TooManyColorAttachments { .. } | NoAttachment { .. } => {
+                None
+            }
+        }
+    }
+}
+
+/// All the errors one compile found, in the order found.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("{}", self.0.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n"))]
+pub struct GraphErrors(pub Vec<GraphError>);

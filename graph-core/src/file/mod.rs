@@ -1,0 +1,1 @@
+//! RON graph files: schema, plugin registry, loader with file:line:col errors.

@@ -1,0 +1,5 @@
+//! Execution on a wgpu device (feature `gpu`).
+
+mod context;
+
+pub use context::{ComputeContext, FrameResources, RenderContext, TransferContext};

@@ -1,0 +1,53 @@
+//! A render graph on wgpu.
+//!
+//! Three phases, as in the best frame graphs:
+//! 1. **Declare** with [`GraphBuilder`]: resources are virtual, handles are typed and
+//!    versioned, and passes state how they access each resource.
+//! 2. **Compile** with [`Graph::compile`], without a GPU: validation against a
+//!    [`DeviceProfile`], culling, ordering, lifetimes, usages, load/store, physical plan.
+//!    The resulting [`Plan`] is plain data that explains itself.
+//! 3. **Execute** (feature `gpu`) with [`gpu::Executor`]: pooled allocation, the inferred
+//!    render-pass setup, per-pass timings.
+//!
+//! Graphs can also be declared in RON files through registered [`file::Plugin`]s.
+
+mod access;
+mod builder;
+mod compile;
+mod error;
+mod graph;
+mod handle;
+mod pass;
+mod plan;
+mod profile;
+mod resource;
+
+pub mod explain;
+pub mod file;
+#[cfg(feature = "gpu")]
+pub mod gpu;
+pub mod plugins;
+pub mod shader;
+
+pub use access::{Access, Aspect, AspectAccess, BufferRole, ColorLoad, Role, TextureRole};
+pub use builder::{GraphBuilder, PassBuilder};
+pub use compile::CompileOptions;
+pub use error::{GraphError, GraphErrors};
+pub use graph::Graph;
+pub use handle::{
+    Buffer, BufferHandle, Handle, Kind, PassId, ResourceId, ResourceKind, Texture, TextureHandle,
+};
+pub use pass::PassKind;
+pub use pass::PassNode;
+#[cfg(feature = "gpu")]
+pub use pass::Record;
+pub use plan::{
+    ColorAttachment, CulledPass, DepthStencilAttachment, Load, MemoryReport, Ops, PhysicalBuffer,
+    PhysicalTexture, Plan, PlannedPass, PlannedResource, Store, TextureShape,
+};
+pub use profile::{color_target_cost, DeviceProfile};
+pub use resource::{
+    texel_bytes, BufferDesc, Origin, ResourceDesc, ResourceNode, Size, TextureDesc,
+};
+
+pub use wgpu_types as types;

@@ -1,0 +1,72 @@
+//! Declared passes: a name, a kind, the accesses it declared and the callback that records it.
+
+use serde::Serialize;
+
+use crate::access::Access;
+
+/// What kind of GPU work a pass records. The executor begins the matching wgpu pass.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PassKind {
+    /// A render pass: the executor begins it with the attachments the pass declared and
+    /// the load/store operations the compiler inferred.
+    Render,
+    /// A compute pass.
+    Compute,
+    /// Copies and other encoder-level commands.
+    Transfer,
+}
+
+impl std::fmt::Display for PassKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            PassKind::Render => "render",
+            PassKind::Compute => "compute",
+            PassKind::Transfer => "transfer",
+        })
+    }
+}
+
+/// The callback that records a pass's commands. It runs once per executed frame, so it
+/// may keep pipelines and other device objects it creates on the first call.
+#[cfg(feature = "gpu")]
+pub enum Record {
+    Render(Box<dyn FnMut(&mut crate::gpu::RenderContext<'_, '_>)>),
+    Compute(Box<dyn FnMut(&mut crate::gpu::ComputeContext<'_, '_>)>),
+    Transfer(Box<dyn FnMut(&mut crate::gpu::TransferContext<'_>)>),
+}
+
+#[cfg(feature = "gpu")]
+impl Record {
+    pub fn kind(&self) -> PassKind {
+        match self {
+            Record::Render(_) => PassKind::Render,
+            Record::Compute(_) => PassKind::Compute,
+            Record::Transfer(_) => PassKind::Transfer,
+        }
+    }
+}
+
+/// A pass as declared.
+pub struct PassNode {
+    pub name: String,
+    pub kind: PassKind,
+    pub accesses: Vec<Access>,
+    /// Kept even when nothing reads what it writes (e.g. it writes outside the graph).
+    pub side_effect: bool,
+    #[cfg(feature = "gpu")]
+    pub(crate) record: Option<Record>,
+}
+
+impl PassNode {
+    pub(crate) fn new(name: String, kind: PassKind) -> Self {
+        Self {
+            name,
+            kind,
+            accesses: Vec::new(),
+            side_effect: false,
+            #[cfg(feature = "gpu")]
+            record: None,
+        }
+    }
+}

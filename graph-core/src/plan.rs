@@ -1,0 +1,164 @@
+//! The compiled plan: plain, serializable data saying what runs, in what order, with which
+//! load/store operations, on which physical textures, and why anything was left out.
+//! `rgraph explain` prints it; the executor follows it.
+
+use serde::Serialize;
+use wgpu_types::{BufferUsages, TextureFormat, TextureUsages};
+
+use crate::handle::{Kind, PassId, ResourceId};
+use crate::pass::PassKind;
+use crate::resource::Origin;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Plan {
+    /// The output size relative sizes were resolved against.
+    pub output_size: (u32, u32),
+    /// The device profile the graph was validated against.
+    pub profile: String,
+    /// Passes that run, in execution order.
+    pub passes: Vec<PlannedPass>,
+    /// Passes that do not run, with the reason, in declaration order.
+    pub culled: Vec<CulledPass>,
+    /// Every declared resource, indexed by [`ResourceId`].
+    pub resources: Vec<PlannedResource>,
+    /// Textures the executor allocates; several resources may share one.
+    pub textures: Vec<PhysicalTexture>,
+    /// Buffers the executor allocates.
+    pub buffers: Vec<PhysicalBuffer>,
+    pub memory: MemoryReport,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct PlannedPass {
+    pub id: PassId,
+    pub name: String,
+    pub kind: PassKind,
+    /// Versions read, as `(resource, version)`.
+    pub reads: Vec<(ResourceId, u32)>,
+    /// Versions produced, as `(resource, version)`.
+    pub writes: Vec<(ResourceId, u32)>,
+    /// Color attachments by location (render passes only).
+    pub color: Vec<ColorAttachment>,
+    pub depth_stencil: Option<DepthStencilAttachment>,
+}
+
+/// How an attachment aspect begins.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Load<T> {
+    Clear(T),
+    Load,
+}
+
+/// Whether an attachment's contents are kept after the pass.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Store {
+    Store,
+    Discard,
+}
+
+/// Load and store of one written attachment aspect.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize)]
+pub struct Ops<T> {
+    pub load: Load<T>,
+    pub store: Store,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ColorAttachment {
+    pub resource: ResourceId,
+    pub ops: Ops<[f64; 4]>,
+    pub resolve_target: Option<ResourceId>,
+}
+
+/// `None` for an aspect means it is attached read-only.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DepthStencilAttachment {
+    pub resource: ResourceId,
+    pub depth: Option<Ops<f32>>,
+    pub stencil: Option<Ops<u32>>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct CulledPass {
+    pub id: PassId,
+    pub name: String,
+    pub reason: String,
+}
+
+/// The resolved description of a texture.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize)]
+pub struct TextureShape {
+    pub format: TextureFormat,
+    pub width: u32,
+    pub height: u32,
+    pub samples: u32,
+    pub mips: u32,
+    pub layers: u32,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct PlannedResource {
+    pub id: ResourceId,
+    pub name: String,
+    pub kind: Kind,
+    pub origin: Origin,
+    pub exported: bool,
+    /// Set for textures.
+    pub texture: Option<TextureShape>,
+    /// Set for buffers: the size in bytes.
+    pub buffer_size: Option<u64>,
+    pub texture_usage: TextureUsages,
+    pub buffer_usage: BufferUsages,
+    /// First and last position in [`Plan::passes`] that use it; `None` when unused.
+    pub lifetime: Option<(usize, usize)>,
+    /// Index into [`Plan::textures`] or [`Plan::buffers`]; `None` for imported or unused
+    /// resources.
+    pub physical: Option<usize>,
+    /// Why the resource is not allocated, when it is not.
+    pub culled: Option<String>,
+    /// Bytes the resource would take on its own.
+    pub bytes: u64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct PhysicalTexture {
+    pub shape: TextureShape,
+    pub usage: TextureUsages,
+    pub bytes: u64,
+    /// The resources that live in it, in lifetime order.
+    pub holds: Vec<ResourceId>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct PhysicalBuffer {
+    pub size: u64,
+    pub usage: BufferUsages,
+    pub holds: Vec<ResourceId>,
+}
+
+/// Memory of graph-owned resources before and after sharing.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct MemoryReport {
+    /// Every live graph-owned resource on its own.
+    pub logical_bytes: u64,
+    /// What the executor allocates.
+    pub physical_bytes: u64,
+}
+
+impl Plan {
+    pub fn resource(&self, id: ResourceId) -> &PlannedResource {
+        &self.resources[id.index()]
+    }
+
+    /// The resource called `name`.
+    pub fn find(&self, name: &str) -> Option<&PlannedResource> {
+        self.resources.iter().find(|r| r.name == name)
+    }
+
+    /// The planned pass called `name`, if it runs.
+    pub fn pass(&self, name: &str) -> Option<&PlannedPass> {
+        self.passes.iter().find(|p| p.name == name)
+    }
+}

@@ -1,0 +1,1 @@
+//! Built-in generic plugins: clear, copy, blit, full-screen WGSL, compute WGSL.

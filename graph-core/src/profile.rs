@@ -1,0 +1,81 @@
+//! Device profiles: the limits and format capabilities a graph is validated against, as
+//! plain data. A profile can come from the WebGPU defaults, a real adapter, or a file an
+//! engine recorded from its target hardware, so CI validates without the GPU.
+
+use serde::{Deserialize, Serialize};
+use wgpu_types::{
+    Features, Limits, TextureFormat, TextureFormatFeatureFlags, TextureFormatFeatures,
+    TextureUsages,
+};
+
+/// What a device can do, as far as graph validation cares.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct DeviceProfile {
+    /// Shown in error messages: "webgpu defaults", "llvmpipe (LLVM 15.0.6, 256 bits)".
+    pub name: String,
+    pub limits: Limits,
+    pub features: Features,
+    /// Capabilities of the formats the device reports; formats not listed fall back to
+    /// what WebGPU guarantees for `features`.
+    pub formats: Vec<(TextureFormat, TextureFormatFeatures)>,
+    /// Whether `TextureUsages::TRANSIENT_ATTACHMENT` may be used.
+    pub transient_attachments: bool,
+}
+
+impl DeviceProfile {
+    /// What every WebGPU device guarantees: default limits, no optional features.
+    pub fn webgpu() -> Self {
+        Self {
+            name: "webgpu defaults".into(),
+            limits: Limits::default(),
+            features: Features::empty(),
+            formats: Vec::new(),
+            transient_attachments: true,
+        }
+    }
+
+    /// The capabilities of `format` on this device.
+    pub fn format(&self, format: TextureFormat) -> TextureFormatFeatures {
+        self.formats
+            .iter()
+            .find(|(f, _)| *f == format)
+            .map(|(_, caps)| *caps)
+            .unwrap_or_else(|| format.guaranteed_format_features(self.features))
+    }
+
+    /// Sample counts `format` supports as a render target or sampled texture, ascending.
+    pub fn sample_counts(&self, format: TextureFormat) -> Vec<u32> {
+        let flags = self.format(format).flags;
+        [1, 2, 4, 8, 16]
+            .into_iter()
+            .filter(|&n| n == 1 || flags.sample_count_supported(n))
+            .collect()
+    }
+
+    pub fn can_render(&self, format: TextureFormat) -> bool {
+        self.format(format)
+            .allowed_usages
+            .contains(TextureUsages::RENDER_ATTACHMENT)
+    }
+
+    pub fn can_store(&self, format: TextureFormat) -> bool {
+        self.format(format)
+            .allowed_usages
+            .contains(TextureUsages::STORAGE_BINDING)
+    }
+
+    pub fn can_resolve(&self, format: TextureFormat) -> bool {
+        self.format(format)
+            .flags
+            .contains(TextureFormatFeatureFlags::MULTISAMPLE_RESOLVE)
+    }
+}
+
+/// Bytes a color attachment of `format` counts against
+/// `max_color_attachment_bytes_per_sample`, per the WebGPU rule: each target starts at a
+/// multiple of its component alignment.
+pub fn color_target_cost(format: TextureFormat) -> (u32, u32) {
+    let bytes = format.target_pixel_byte_cost().unwrap_or(0);
+    let align = format.target_component_alignment().unwrap_or(1);
+    (bytes, align)
+}

@@ -1,0 +1,178 @@
+//! Resource descriptions: what a texture or buffer is, before any GPU object exists.
+
+use serde::{Deserialize, Serialize};
+use wgpu_types::{BufferUsages, TextureFormat};
+
+/// A texture's width and height, fixed or relative to the graph's output size.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Size {
+    /// Exactly this many texels.
+    Absolute(u32, u32),
+    /// The output size times this scale, rounded down (at least 1 texel when the scale is
+    /// positive). `Relative(1.0)` is the output size.
+    Relative(f32),
+}
+
+impl Default for Size {
+    fn default() -> Self {
+        Size::Relative(1.0)
+    }
+}
+
+impl Size {
+    /// Width and height for an output of `output` texels. A zero or non-finite scale
+    /// resolves to 0, which validation reports as a zero-sized texture.
+    pub fn resolve(self, output: (u32, u32)) -> (u32, u32) {
+        match self {
+            Size::Absolute(w, h) => (w, h),
+            Size::Relative(s) if s.is_finite() && s > 0.0 => {
+                let scale = |v: u32| ((v as f64 * s as f64).floor() as u32).max(1);
+                (scale(output.0), scale(output.1))
+            }
+            Size::Relative(_) => (0, 0),
+        }
+    }
+}
+
+/// Everything the graph needs to know to create a texture, except its usages, which the
+/// compiler derives from the passes that access it.
+#[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TextureDesc {
+    pub format: TextureFormat,
+    #[serde(default)]
+    pub size: Size,
+    #[serde(default = "one")]
+    pub samples: u32,
+    #[serde(default = "one")]
+    pub mips: u32,
+    #[serde(default = "one")]
+    pub layers: u32,
+}
+
+fn one() -> u32 {
+    1
+}
+
+impl TextureDesc {
+    /// A single-sampled, single-mip texture the size of the output.
+    pub fn new(format: TextureFormat) -> Self {
+        Self {
+            format,
+            size: Size::Relative(1.0),
+            samples: 1,
+            mips: 1,
+            layers: 1,
+        }
+    }
+    pub fn size(mut self, size: Size) -> Self {
+        self.size = size;
+        self
+    }
+    pub fn samples(mut self, samples: u32) -> Self {
+        self.samples = samples;
+        self
+    }
+    pub fn mips(mut self, mips: u32) -> Self {
+        self.mips = mips;
+        self
+    }
+    pub fn layers(mut self, layers: u32) -> Self {
+        self.layers = layers;
+        self
+    }
+
+    /// Bytes the texture occupies at `extent`: every mip, layer and sample.
+    pub fn bytes(&self, extent: (u32, u32)) -> u64 {
+        let block = texel_bytes(self.format);
+        (0..self.mips)
+            .map(|m| {
+                let w = (extent.0 >> m).max(1) as u64;
+                let h = (extent.1 >> m).max(1) as u64;
+                w * h * block
+            })
+            .sum::<u64>()
+            * self.layers as u64
+            * self.samples as u64
+    }
+}
+
+/// Bytes per texel, counting both aspects of combined depth-stencil formats as a driver
+/// typically lays them out (D24S8 and D32S8 take 4 and 8 bytes).
+pub fn texel_bytes(format: TextureFormat) -> u64 {
+    match format {
+        TextureFormat::Depth24PlusStencil8 | TextureFormat::Depth24Plus => 4,
+        TextureFormat::Depth32FloatStencil8 => 8,
+        f => f
+            .block_copy_size(None)
+            .or_else(|| f.block_copy_size(Some(wgpu_types::TextureAspect::DepthOnly)))
+            .unwrap_or(4) as u64,
+    }
+}
+
+/// A buffer's size and any usages the graph cannot see from pass accesses (for example
+/// `MAP_READ` on a readback buffer).
+#[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BufferDesc {
+    pub size: u64,
+    #[serde(default = "BufferUsages::empty")]
+    pub extra_usage: BufferUsages,
+}
+
+impl BufferDesc {
+    pub fn new(size: u64) -> Self {
+        Self {
+            size,
+            extra_usage: BufferUsages::empty(),
+        }
+    }
+}
+
+/// Who owns a resource and how long it lives.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Origin {
+    /// Created by the graph from its pool; contents undefined before the first write.
+    Transient,
+    /// Owned by the engine and bound at execution; version 0 holds the engine's contents
+    /// and the final version is kept.
+    Imported,
+}
+
+/// A resource's description, by kind.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum ResourceDesc {
+    Texture(TextureDesc),
+    Buffer(BufferDesc),
+}
+
+/// A declared resource.
+#[derive(Clone, Debug)]
+pub struct ResourceNode {
+    pub name: String,
+    pub desc: ResourceDesc,
+    pub origin: Origin,
+    /// Exported: the final version outlives the frame (readback, history). Exports are
+    /// culling roots, like imports.
+    pub exported: bool,
+    /// Versions handed out so far; the next write creates `versions`.
+    pub(crate) versions: u32,
+}
+
+impl ResourceNode {
+    pub fn texture(&self) -> Option<&TextureDesc> {
+        match &self.desc {
+            ResourceDesc::Texture(t) => Some(t),
+            ResourceDesc::Buffer(_) => None,
+        }
+    }
+    pub fn buffer(&self) -> Option<&BufferDesc> {
+        match &self.desc {
+            ResourceDesc::Buffer(b) => Some(b),
+            ResourceDesc::Texture(_) => None,
+        }
+    }
+    /// Kept past the graph's last pass: its final contents matter to someone outside.
+    pub fn is_root(&self) -> bool {
+        self.exported || self.origin == Origin::Imported
+    }
+}

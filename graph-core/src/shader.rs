@@ -1,0 +1,1 @@
+//! WGSL validation and binding reflection with naga.
