@@ -1,9 +1,29 @@
-//! Compiling a graph into a [`Plan`], without a GPU.
+//! Compiling a graph into a [`Plan`], without a GPU. [`Graph::compile`] reads as the list
+//! of phases; each phase is one file.
 
-use crate::error::GraphErrors;
+mod cull;
+mod lifetimes;
+mod load_store;
+mod order;
+mod physical;
+mod usage;
+mod validate;
+mod versions;
+
+pub(crate) use validate::format_name;
+
+use crate::error::{GraphError, GraphErrors};
 use crate::graph::Graph;
-use crate::plan::Plan;
+use crate::handle::{PassId, ResourceId};
+use crate::plan::{CulledPass, MemoryReport, Plan, PlannedPass, PlannedResource, TextureShape};
 use crate::profile::DeviceProfile;
+use crate::resource::ResourceDesc;
+
+use cull::Live;
+use load_store::Attachments;
+use physical::Physical;
+use usage::Usages;
+use versions::Versions;
 
 /// What a compile is for: the output size relative textures resolve against, and the
 /// device whose limits and formats the graph must fit.
@@ -14,6 +34,7 @@ pub struct CompileOptions {
 }
 
 impl Default for CompileOptions {
+    /// 1920x1080 against the WebGPU defaults: what a graph file must fit to run anywhere.
     fn default() -> Self {
         Self {
             output_size: (1920, 1080),
@@ -25,9 +46,165 @@ impl Default for CompileOptions {
 impl Graph {
     /// Compiles the graph for `options`. Returns every error found, each naming its pass
     /// and resource; a graph that compiles is one the executor can run on a device that
-    /// matches the profile.
+    /// matches the profile. The graph itself is not changed.
     pub fn compile(&self, options: &CompileOptions) -> Result<Plan, GraphErrors> {
-        let _ = options;
-        todo!("compile phases")
+        let shapes = self.resolve_shapes(options.output_size);
+        let versions = Versions::index(self);
+        self.validate(&shapes, &versions, &options.profile)?;
+        let live = cull::cull(self, &versions);
+        let order = order::order(self, &versions, &live).map_err(|e| GraphErrors(vec![e]))?;
+        let lifetimes = lifetimes::lifetimes(self, &order);
+        let attachments = load_store::infer(self, &versions, &live);
+        let usages = usage::derive(self, &versions, &live, &attachments, &options.profile);
+        let physical = physical::plan(self, &shapes, &lifetimes, &usages);
+        Ok(self.assemble(
+            options,
+            Assembly {
+                shapes,
+                live,
+                order,
+                lifetimes,
+                attachments,
+                usages,
+                physical,
+            },
+        ))
     }
+
+    fn resolve_shapes(&self, output: (u32, u32)) -> Vec<Option<TextureShape>> {
+        self.resources
+            .iter()
+            .map(|r| match &r.desc {
+                ResourceDesc::Texture(t) => {
+                    let (width, height) = t.size.resolve(output);
+                    Some(TextureShape {
+                        format: t.format,
+                        width,
+                        height,
+                        samples: t.samples,
+                        mips: t.mips,
+                        layers: t.layers,
+                    })
+                }
+                ResourceDesc::Buffer(_) => None,
+            })
+            .collect()
+    }
+
+    fn validate(
+        &self,
+        shapes: &[Option<TextureShape>],
+        versions: &Versions,
+        profile: &DeviceProfile,
+    ) -> Result<(), GraphErrors> {
+        let mut errors: Vec<GraphError> = self.declare_errors.clone();
+        validate::resources(self, shapes, profile, &mut errors);
+        validate::passes(self, shapes, versions, profile, &mut errors);
+        if errors.is_empty() {
+            Ok(())
+        } else {
+            Err(GraphErrors(errors))
+        }
+    }
+
+    fn assemble(&self, options: &CompileOptions, a: Assembly) -> Plan {
+        let passes = a
+            .order
+            .iter()
+            .map(|&id| {
+                let pass = &self.passes[id.index()];
+                let Attachments {
+                    color,
+                    depth_stencil,
+                } = &a.attachments[id.index()];
+                PlannedPass {
+                    id,
+                    name: pass.name.clone(),
+                    kind: pass.kind,
+                    reads: pass
+                        .accesses
+                        .iter()
+                        .filter_map(|x| x.read_version().map(|v| (x.resource, v)))
+                        .collect(),
+                    writes: pass
+                        .accesses
+                        .iter()
+                        .filter_map(|x| x.written.map(|v| (x.resource, v)))
+                        .collect(),
+                    color: color.clone(),
+                    depth_stencil: depth_stencil.clone(),
+                }
+            })
+            .collect();
+        let culled = a
+            .live
+            .pass_reasons
+            .iter()
+            .enumerate()
+            .filter_map(|(i, reason)| {
+                reason.as_ref().map(|reason| CulledPass {
+                    id: PassId(i as u32),
+                    name: self.passes[i].name.clone(),
+                    reason: reason.clone(),
+                })
+            })
+            .collect();
+        let resources: Vec<PlannedResource> = self
+            .resources
+            .iter()
+            .enumerate()
+            .map(|(r, node)| PlannedResource {
+                id: ResourceId(r as u32),
+                name: node.name.clone(),
+                kind: match node.desc {
+                    ResourceDesc::Texture(_) => crate::handle::Kind::Texture,
+                    ResourceDesc::Buffer(_) => crate::handle::Kind::Buffer,
+                },
+                origin: node.origin,
+                exported: node.exported,
+                texture: a.shapes[r],
+                buffer_size: node.buffer().map(|b| b.size),
+                texture_usage: a.usages.texture[r],
+                buffer_usage: a.usages.buffer[r],
+                lifetime: a.lifetimes[r],
+                physical: a.physical.assignment[r],
+                culled: a.live.resource_reasons[r].clone(),
+                bytes: match (a.shapes[r], node.buffer()) {
+                    (Some(shape), _) => physical::shape_bytes(&shape),
+                    (None, Some(b)) => b.size,
+                    (None, None) => 0,
+                },
+            })
+            .collect();
+        let memory = MemoryReport {
+            logical_bytes: resources
+                .iter()
+                .filter(|r| r.physical.is_some())
+                .map(|r| r.bytes)
+                .sum(),
+            physical_bytes: a.physical.textures.iter().map(|t| t.bytes).sum::<u64>()
+                + a.physical.buffers.iter().map(|b| b.size).sum::<u64>(),
+        };
+        Plan {
+            output_size: options.output_size,
+            profile: options.profile.name.clone(),
+            passes,
+            culled,
+            resources,
+            textures: a.physical.textures,
+            buffers: a.physical.buffers,
+            memory,
+        }
+    }
+}
+
+/// Everything the phases computed, handed to [`Graph::assemble`].
+struct Assembly {
+    shapes: Vec<Option<TextureShape>>,
+    live: Live,
+    order: Vec<PassId>,
+    lifetimes: Vec<Option<(usize, usize)>>,
+    attachments: Vec<Attachments>,
+    usages: Usages,
+    physical: Physical,
 }
