@@ -1,1 +1,266 @@
-//! Rendering a plan for people: text, Graphviz dot, JSON.
+//! Rendering a plan for people: a text report, a Graphviz drawing, JSON.
+
+use std::fmt::Write;
+
+use wgpu_types::{BufferUsages, TextureUsages};
+
+use crate::compile::format_name;
+use crate::plan::{Load, Ops, Plan, Store, TextureShape};
+use crate::resource::Origin;
+
+/// The plan as a report: order and attachments, what was culled and why, every resource's
+/// lifetime, usages and physical texture, and the memory saved by sharing.
+pub fn text(plan: &Plan) -> String {
+    let mut out = String::new();
+    let (w, h) = plan.output_size;
+    let _ = writeln!(out, "plan at {w}x{h} for {}", plan.profile);
+    let _ = writeln!(out, "\npasses, in execution order:");
+    for (i, pass) in plan.passes.iter().enumerate() {
+        let _ = writeln!(out, "  {i:>3}. {} ({})", pass.name, pass.kind);
+        let list = |versions: &[(crate::ResourceId, u32)]| {
+            versions
+                .iter()
+                .map(|(r, v)| format!("{}@{v}", plan.resource(*r).name))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        if !pass.reads.is_empty() {
+            let _ = writeln!(out, "         reads   {}", list(&pass.reads));
+        }
+        if !pass.writes.is_empty() {
+            let _ = writeln!(out, "         writes  {}", list(&pass.writes));
+        }
+        for (location, c) in pass.color.iter().enumerate() {
+            let resolve = c
+                .resolve_target
+                .map(|t| format!(", resolves into {}", plan.resource(t).name))
+                .unwrap_or_default();
+            let _ = writeln!(
+                out,
+                "         color {location}: {} {}{resolve}",
+                plan.resource(c.resource).name,
+                ops(&c.ops, |c| format!(
+                    "({}, {}, {}, {})",
+                    c[0], c[1], c[2], c[3]
+                ))
+            );
+        }
+        if let Some(ds) = &pass.depth_stencil {
+            let aspect = |o: Option<String>| o.unwrap_or_else(|| "read-only".into());
+            let _ = writeln!(
+                out,
+                "         depth-stencil: {} depth {}, stencil {}",
+                plan.resource(ds.resource).name,
+                aspect(ds.depth.as_ref().map(|o| ops(o, |d| d.to_string()))),
+                aspect(ds.stencil.as_ref().map(|o| ops(o, |s| format!("{s:#04x}")))),
+            );
+        }
+    }
+    if !plan.culled.is_empty() {
+        let _ = writeln!(out, "\nculled passes:");
+        for c in &plan.culled {
+            let _ = writeln!(out, "  - {}: {}", c.name, c.reason);
+        }
+    }
+    let _ = writeln!(out, "\nresources:");
+    for r in &plan.resources {
+        let what = match (&r.texture, r.buffer_size) {
+            (Some(shape), _) => describe_shape(shape),
+            (None, Some(size)) => format!("buffer {}", bytes(size)),
+            (None, None) => String::new(),
+        };
+        let origin = match (r.origin, r.exported) {
+            (Origin::Imported, _) => " imported",
+            (Origin::Transient, true) => " exported",
+            (Origin::Transient, false) => "",
+        };
+        let _ = writeln!(out, "  {}{origin}: {what}", r.name);
+        if let Some(reason) = &r.culled {
+            let _ = writeln!(out, "      not allocated: {reason}");
+            continue;
+        }
+        if let Some((first, last)) = r.lifetime {
+            let _ = writeln!(
+                out,
+                "      lives {} .. {}",
+                plan.passes[first].name, plan.passes[last].name
+            );
+        }
+        let usage = if r.texture.is_some() {
+            texture_usages(r.texture_usage)
+        } else {
+            buffer_usages(r.buffer_usage)
+        };
+        let _ = writeln!(out, "      usage {usage}");
+        if let Some(p) = r.physical {
+            let kind = if r.texture.is_some() {
+                "texture"
+            } else {
+                "buffer"
+            };
+            let _ = writeln!(out, "      physical {kind} #{p}");
+        }
+    }
+    let _ = writeln!(out, "\nphysical textures:");
+    for (i, t) in plan.textures.iter().enumerate() {
+        let holds: Vec<&str> = t
+            .holds
+            .iter()
+            .map(|r| plan.resource(*r).name.as_str())
+            .collect();
+        let _ = writeln!(
+            out,
+            "  #{i} {} {} [{}] holds {}",
+            describe_shape(&t.shape),
+            bytes(t.bytes),
+            texture_usages(t.usage),
+            holds.join(", ")
+        );
+    }
+    if !plan.buffers.is_empty() {
+        let _ = writeln!(out, "\nphysical buffers:");
+        for (i, b) in plan.buffers.iter().enumerate() {
+            let holds: Vec<&str> = b
+                .holds
+                .iter()
+                .map(|r| plan.resource(*r).name.as_str())
+                .collect();
+            let _ = writeln!(
+                out,
+                "  #{i} {} [{}] holds {}",
+                bytes(b.size),
+                buffer_usages(b.usage),
+                holds.join(", ")
+            );
+        }
+    }
+    let m = &plan.memory;
+    let saved = m.logical_bytes.saturating_sub(m.physical_bytes);
+    let percent = if m.logical_bytes > 0 {
+        100.0 * saved as f64 / m.logical_bytes as f64
+    } else {
+        0.0
+    };
+    let _ = writeln!(
+        out,
+        "\nmemory: {} logical, {} physical ({} saved, {percent:.0}%)",
+        bytes(m.logical_bytes),
+        bytes(m.physical_bytes),
+        bytes(saved)
+    );
+    out
+}
+
+/// The plan as a Graphviz digraph: passes are boxes, resource versions ellipses, culled
+/// passes and the versions only they touch drawn grey.
+pub fn dot(plan: &Plan) -> String {
+    let mut out = String::from("digraph plan {\n  rankdir=LR;\n  node [fontname=\"Helvetica\"];\n");
+    let version = |r: crate::ResourceId, v: u32| {
+        format!("\"{}@{v}\"", plan.resource(r).name.replace('"', "'"))
+    };
+    let mut live_versions = std::collections::BTreeSet::new();
+    for (i, p) in plan.passes.iter().enumerate() {
+        let _ = writeln!(out, "  \"pass:{}\" [shape=box, style=filled, fillcolor=\"#cfe3ff\", label=\"{}. {}\\n{}\"];", p.name, i, p.name, p.kind);
+        for &(r, v) in &p.reads {
+            live_versions.insert((r, v));
+            let _ = writeln!(out, "  {} -> \"pass:{}\";", version(r, v), p.name);
+        }
+        for &(r, v) in &p.writes {
+            live_versions.insert((r, v));
+            let _ = writeln!(out, "  \"pass:{}\" -> {};", p.name, version(r, v));
+        }
+    }
+    for c in &plan.culled {
+        let reason = c.reason.replace('"', "'");
+        let _ = writeln!(out, "  \"pass:{}\" [shape=box, style=\"filled,dashed\", fillcolor=\"#dddddd\", fontcolor=\"#777777\", label=\"{}\\nculled\", tooltip=\"{reason}\"];", c.name, c.name);
+        for &(r, v) in &c.reads {
+            let _ = writeln!(
+                out,
+                "  {} -> \"pass:{}\" [color=\"#aaaaaa\"];",
+                version(r, v),
+                c.name
+            );
+        }
+        for &(r, v) in &c.writes {
+            let _ = writeln!(
+                out,
+                "  \"pass:{}\" -> {} [color=\"#aaaaaa\"];",
+                c.name,
+                version(r, v)
+            );
+            if !live_versions.contains(&(r, v)) {
+                let _ = writeln!(
+                    out,
+                    "  {} [color=\"#aaaaaa\", fontcolor=\"#777777\"];",
+                    version(r, v)
+                );
+            }
+        }
+    }
+    out.push_str("}\n");
+    out
+}
+
+/// The plan as pretty-printed JSON: the same data, for tools.
+pub fn json(plan: &Plan) -> String {
+    serde_json::to_string_pretty(plan).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+}
+
+fn ops<T: Copy>(ops: &Ops<T>, value: impl Fn(T) -> String) -> String {
+    let load = match ops.load {
+        Load::Clear(v) => format!("clear {}", value(v)),
+        Load::Load => "load".into(),
+    };
+    let store = match ops.store {
+        Store::Store => "store",
+        Store::Discard => "discard",
+    };
+    format!("{load} -> {store}")
+}
+
+fn describe_shape(s: &TextureShape) -> String {
+    let mut out = format!("{} {}x{}", format_name(s.format), s.width, s.height);
+    if s.samples > 1 {
+        let _ = write!(out, " {}x MSAA", s.samples);
+    }
+    if s.mips > 1 {
+        let _ = write!(out, " {} mips", s.mips);
+    }
+    if s.layers > 1 {
+        let _ = write!(out, " {} layers", s.layers);
+    }
+    out
+}
+
+fn texture_usages(u: TextureUsages) -> String {
+    flag_names(u.iter_names().map(|(n, _)| n))
+}
+
+fn buffer_usages(u: BufferUsages) -> String {
+    flag_names(u.iter_names().map(|(n, _)| n))
+}
+
+fn flag_names<'a>(names: impl Iterator<Item = &'a str>) -> String {
+    let names: Vec<&str> = names.collect();
+    if names.is_empty() {
+        "none".into()
+    } else {
+        names.join(" | ")
+    }
+}
+
+/// Bytes in binary units, one decimal.
+pub fn bytes(n: u64) -> String {
+    const UNITS: [&str; 4] = ["B", "KiB", "MiB", "GiB"];
+    let mut value = n as f64;
+    let mut unit = 0;
+    while value >= 1024.0 && unit < UNITS.len() - 1 {
+        value /= 1024.0;
+        unit += 1;
+    }
+    if unit == 0 {
+        format!("{n} B")
+    } else {
+        format!("{value:.1} {}", UNITS[unit])
+    }
+}

@@ -58,7 +58,25 @@ pub struct PassNode {
     pub(crate) record: Option<Record>,
 }
 
+/// `(resource, version)` pairs.
+pub type VersionList = Vec<(crate::handle::ResourceId, u32)>;
+
 impl PassNode {
+    /// The versions the pass depends on and the versions it produces.
+    pub fn versions(&self) -> (VersionList, VersionList) {
+        let reads = self
+            .accesses
+            .iter()
+            .filter_map(|a| a.read_version().map(|v| (a.resource, v)))
+            .collect();
+        let writes = self
+            .accesses
+            .iter()
+            .filter_map(|a| a.written.map(|v| (a.resource, v)))
+            .collect();
+        (reads, writes)
+    }
+
     pub(crate) fn new(name: String, kind: PassKind) -> Self {
         Self {
             name,

@@ -84,7 +84,11 @@ pub struct DepthStencilAttachment {
 pub struct CulledPass {
     pub id: PassId,
     pub name: String,
+    pub kind: PassKind,
     pub reason: String,
+    /// What it would have read and written, so drawings can show the dead branch.
+    pub reads: Vec<(ResourceId, u32)>,
+    pub writes: Vec<(ResourceId, u32)>,
 }
 
 /// The resolved description of a texture.

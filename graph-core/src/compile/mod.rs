@@ -117,20 +117,13 @@ impl Graph {
                     color,
                     depth_stencil,
                 } = &a.attachments[id.index()];
+                let (reads, writes) = pass.versions();
                 PlannedPass {
                     id,
                     name: pass.name.clone(),
                     kind: pass.kind,
-                    reads: pass
-                        .accesses
-                        .iter()
-                        .filter_map(|x| x.read_version().map(|v| (x.resource, v)))
-                        .collect(),
-                    writes: pass
-                        .accesses
-                        .iter()
-                        .filter_map(|x| x.written.map(|v| (x.resource, v)))
-                        .collect(),
+                    reads,
+                    writes,
                     color: color.clone(),
                     depth_stencil: depth_stencil.clone(),
                 }
@@ -142,10 +135,15 @@ impl Graph {
             .iter()
             .enumerate()
             .filter_map(|(i, reason)| {
+                let pass = &self.passes[i];
+                let (reads, writes) = pass.versions();
                 reason.as_ref().map(|reason| CulledPass {
                     id: PassId(i as u32),
-                    name: self.passes[i].name.clone(),
+                    name: pass.name.clone(),
+                    kind: pass.kind,
                     reason: reason.clone(),
+                    reads,
+                    writes,
                 })
             })
             .collect();
