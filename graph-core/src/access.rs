@@ -26,14 +26,19 @@ pub enum AspectAccess<T> {
     Clear(T),
     /// Written on top of the incoming contents.
     Load,
+    /// The format has no such aspect (the stencil of `depth32float`, the depth of
+    /// `stencil8`): neither read nor written, so it orders nothing.
+    /// [`PassBuilder::depth_stencil`](crate::PassBuilder::depth_stencil) turns a `ReadOnly`
+    /// access to a missing aspect into this, which is what wgpu's `None` ops mean there.
+    Absent,
 }
 
 impl<T> AspectAccess<T> {
     pub fn writes(&self) -> bool {
-        !matches!(self, AspectAccess::ReadOnly)
+        matches!(self, AspectAccess::Clear(_) | AspectAccess::Load)
     }
     pub fn reads(&self) -> bool {
-        !matches!(self, AspectAccess::Clear(_))
+        matches!(self, AspectAccess::ReadOnly | AspectAccess::Load)
     }
 }
 

@@ -160,12 +160,29 @@ impl PassBuilder<'_> {
     /// Binds the depth-stencil attachment. Returns a new version when either aspect is
     /// written, else `target` itself. To sample the same texture in this pass, both
     /// aspects must be [`AspectAccess::ReadOnly`].
+    ///
+    /// An aspect the format lacks is declared `ReadOnly` (as wgpu's `None` ops) and
+    /// recorded as [`AspectAccess::Absent`]: a depth prepass on `depth32float` clears depth
+    /// without depending on stencil contents that do not exist.
     pub fn depth_stencil(
         &mut self,
         target: TextureHandle,
         depth: AspectAccess<f32>,
         stencil: AspectAccess<u32>,
     ) -> TextureHandle {
+        let format = self
+            .graph
+            .resources
+            .get(target.id.index())
+            .and_then(ResourceNode::texture)
+            .map(|desc| desc.format);
+        let (depth, stencil) = match format {
+            Some(f) => (
+                absent_unless(depth, f.has_depth_aspect()),
+                absent_unless(stencil, f.has_stencil_aspect()),
+            ),
+            None => (depth, stencil),
+        };
         self.texture(target, TextureRole::DepthStencil { depth, stencil })
     }
 
@@ -297,5 +314,13 @@ impl PassBuilder<'_> {
             written,
         });
         Handle::new(handle.id, written.unwrap_or(handle.version))
+    }
+}
+
+/// A read-only access to an aspect the format does not have is no access at all.
+fn absent_unless<T>(access: AspectAccess<T>, present: bool) -> AspectAccess<T> {
+    match access {
+        AspectAccess::ReadOnly if !present => AspectAccess::Absent,
+        other => other,
     }
 }

@@ -135,6 +135,16 @@ pub enum GraphError {
     NoAttachment { pass: String },
 
     #[error(
+        "render pass \"{pass}\" attaches both \"{first}\" and \"{second}\" as depth-stencil; \
+         a render pass has one depth-stencil attachment"
+    )]
+    TwoDepthStencil {
+        pass: String,
+        first: String,
+        second: String,
+    },
+
+    #[error(
         "cycle: passes {} must each run before the other (through \"{resource}\")",
         quote_list(passes)
     )]
@@ -167,7 +177,8 @@ impl GraphError {
             | TooManyColorAttachments { pass, .. }
             | AttachmentMismatch { pass, .. }
             | BadResolve { pass, .. }
-            | NoAttachment { pass } => Some(pass),
+            | NoAttachment { pass }
+            | TwoDepthStencil { pass, .. } => Some(pass),
             ConflictingWriters { second, .. } => Some(second),
             Cycle { passes, .. } => passes.first().map(String::as_str),
             ZeroSize { .. }
@@ -197,6 +208,7 @@ impl GraphError {
             | AttachmentMismatch { resource, .. }
             | BadResolve { resource, .. }
             | Cycle { resource, .. } => Some(resource),
+            TwoDepthStencil { second, .. } => Some(second),
             ColorBytesPerSample { .. } | TooManyColorAttachments { .. } | NoAttachment { .. } => {
                 None
             }

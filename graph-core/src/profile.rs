@@ -64,6 +64,16 @@ impl DeviceProfile {
             .contains(TextureUsages::STORAGE_BINDING)
     }
 
+    /// Whether a storage binding of `format` may be read, written or both, as declared.
+    pub fn storage_access(&self, format: TextureFormat, read: bool, write: bool) -> bool {
+        let flag = match (read, write) {
+            (true, true) => TextureFormatFeatureFlags::STORAGE_READ_WRITE,
+            (true, false) => TextureFormatFeatureFlags::STORAGE_READ_ONLY,
+            _ => TextureFormatFeatureFlags::STORAGE_WRITE_ONLY,
+        };
+        self.format(format).flags.contains(flag)
+    }
+
     pub fn can_resolve(&self, format: TextureFormat) -> bool {
         self.format(format)
             .flags

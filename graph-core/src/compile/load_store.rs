@@ -74,7 +74,7 @@ pub(super) fn infer(graph: &Graph, versions: &Versions, live: &Live) -> Vec<Atta
 
 fn aspect_ops<T>(access: AspectAccess<T>, store: Store) -> Option<Ops<T>> {
     match access {
-        AspectAccess::ReadOnly => None,
+        AspectAccess::ReadOnly | AspectAccess::Absent => None,
         AspectAccess::Clear(v) => Some(Ops {
             load: Load::Clear(v),
             store,

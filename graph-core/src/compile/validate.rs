@@ -47,8 +47,22 @@ pub(super) fn resources(
                         profile: profile.name.clone(),
                     });
                 }
+                let missing = s.format.required_features() - profile.features;
+                if !missing.is_empty() {
+                    errors.push(invalid(format!(
+                        "{} needs {missing}, which {} lacks",
+                        format_name(s.format),
+                        profile.name
+                    )));
+                }
+                let max_mips = 32 - s.width.max(s.height).leading_zeros();
                 if s.mips == 0 || s.layers == 0 {
                     errors.push(invalid("mip and layer counts must be at least 1".into()));
+                } else if s.mips > max_mips && max_mips > 0 {
+                    errors.push(invalid(format!(
+                        "{}x{} has at most {max_mips} mips, {} were asked for",
+                        s.width, s.height, s.mips
+                    )));
                 }
                 if s.layers > profile.limits.max_texture_array_layers {
                     errors.push(invalid(format!(
@@ -58,6 +72,11 @@ pub(super) fn resources(
                 }
                 if s.samples > 1 && s.mips > 1 {
                     errors.push(invalid("a multisampled texture has exactly one mip".into()));
+                }
+                if s.samples > 1 && s.layers > 1 {
+                    errors.push(invalid(
+                        "a multisampled texture has exactly one layer".into(),
+                    ));
                 }
                 let supported = profile.sample_counts(s.format);
                 if !supported.contains(&s.samples) {
@@ -174,48 +193,75 @@ impl PassCheck<'_> {
         let (Role::Texture(role), Some(shape)) = (access.role, self.shape(access)) else {
             return;
         };
-        let f = shape.format;
-        let why = match role {
-            TextureRole::Color { .. } | TextureRole::Resolve { .. }
-                if f.is_depth_stencil_format() =>
-            {
-                Some("it is a depth-stencil format".to_string())
-            }
-            TextureRole::Color { .. } | TextureRole::Resolve { .. }
-                if !self.profile.can_render(f) =>
-            {
-                Some(format!("it is not renderable on {}", self.profile.name))
-            }
-            TextureRole::DepthStencil { .. } if !f.is_depth_stencil_format() => {
-                Some("it is not a depth-stencil format".to_string())
-            }
-            TextureRole::DepthStencil { stencil, .. }
-                if stencil.writes() && !f.has_stencil_aspect() =>
-            {
-                Some("the format has no stencil aspect to write".to_string())
-            }
-            TextureRole::DepthStencil { depth, .. } if depth.writes() && !f.has_depth_aspect() => {
-                Some("the format has no depth aspect to write".to_string())
-            }
-            TextureRole::Sampled {
-                aspect: Aspect::DepthOnly | Aspect::StencilOnly,
-            } if !f.is_depth_stencil_format() => {
-                Some("only depth-stencil formats have depth or stencil aspects".to_string())
-            }
-            TextureRole::Storage { .. } if !self.profile.can_store(f) => Some(format!(
-                "it is not a storage format on {}",
-                self.profile.name
-            )),
-            _ => None,
-        };
-        if let Some(why) = why {
+        if let Some(why) = self.role_misfit(role, &shape) {
             errors.push(GraphError::FormatRole {
                 pass: self.pass.name.clone(),
                 resource: self.name(access),
-                format: format_name(f),
+                format: format_name(shape.format),
                 role: access.role.describe(),
                 why,
             });
+        }
+    }
+
+    /// Why a texture of `shape` cannot serve in `role`, if it cannot.
+    fn role_misfit(&self, role: TextureRole, shape: &TextureShape) -> Option<String> {
+        let f = shape.format;
+        let profile = &self.profile.name;
+        match role {
+            TextureRole::Color { .. } | TextureRole::Resolve { .. } => {
+                if f.is_depth_stencil_format() {
+                    Some("it is a depth-stencil format".into())
+                } else if !self.profile.can_render(f) {
+                    Some(format!("it is not renderable on {profile}"))
+                } else {
+                    None
+                }
+            }
+            TextureRole::DepthStencil { depth, stencil } => {
+                if !f.is_depth_stencil_format() {
+                    Some("it is not a depth-stencil format".into())
+                } else {
+                    aspect_misfit(stencil, f.has_stencil_aspect(), "stencil")
+                        .or_else(|| aspect_misfit(depth, f.has_depth_aspect(), "depth"))
+                }
+            }
+            TextureRole::Sampled { aspect } => match aspect {
+                Aspect::DepthOnly | Aspect::StencilOnly if !f.is_depth_stencil_format() => {
+                    Some("only depth-stencil formats have depth or stencil aspects".into())
+                }
+                Aspect::DepthOnly if !f.has_depth_aspect() => {
+                    Some("the format has no depth aspect".into())
+                }
+                Aspect::StencilOnly if !f.has_stencil_aspect() => {
+                    Some("the format has no stencil aspect".into())
+                }
+                Aspect::All if f.is_combined_depth_stencil_format() => Some(
+                    "sample one aspect of a combined depth-stencil format \
+                     (Aspect::DepthOnly or Aspect::StencilOnly)"
+                        .into(),
+                ),
+                _ => None,
+            },
+            TextureRole::Storage { read, write } => {
+                if !self.profile.can_store(f) {
+                    Some(format!("it is not a storage format on {profile}"))
+                } else if shape.samples > 1 {
+                    Some("it is multisampled".into())
+                } else if !self.profile.storage_access(f, read, write) {
+                    let access = match (read, write) {
+                        (true, true) => "read-write",
+                        (true, false) => "read-only",
+                        _ => "write-only",
+                    };
+                    Some(format!(
+                        "it does not support {access} storage access on {profile}"
+                    ))
+                } else {
+                    None
+                }
+            }
+            TextureRole::CopySrc | TextureRole::CopyDst => None,
         }
     }
 
@@ -238,10 +284,7 @@ impl PassCheck<'_> {
                     Role::Texture(TextureRole::Sampled { .. }),
                     Role::Texture(TextureRole::DepthStencil { depth, stencil }),
                 ) => {
-                    let read_only = matches!(
-                        (depth, stencil),
-                        (AspectAccess::ReadOnly, AspectAccess::ReadOnly)
-                    );
+                    let read_only = !depth.writes() && !stencil.writes();
                     (!read_only).then(|| GraphError::SampledWhileWritable {
                         pass: self.pass.name.clone(),
                         resource: self.name(access),
@@ -263,6 +306,8 @@ impl PassCheck<'_> {
         let pass = || self.pass.name.clone();
         let mut colors: Vec<(&Access, TextureShape)> = Vec::new();
         let mut all: Vec<(&Access, TextureShape)> = Vec::new();
+        let mut depth_stencil: Option<&Access> = None;
+        let mut resolved: HashMap<u32, &Access> = HashMap::new();
         for access in &self.pass.accesses {
             let Some(shape) = self.shape(access) else {
                 continue;
@@ -272,13 +317,33 @@ impl PassCheck<'_> {
                     colors.push((access, shape));
                     all.push((access, shape));
                 }
-                Role::Texture(TextureRole::DepthStencil { .. }) => all.push((access, shape)),
-                Role::Texture(TextureRole::Resolve { location }) => self.resolve(
-                    access,
-                    shape,
-                    colors.get(location as usize).copied(),
-                    errors,
-                ),
+                Role::Texture(TextureRole::DepthStencil { .. }) => {
+                    if let Some(first) = depth_stencil {
+                        errors.push(GraphError::TwoDepthStencil {
+                            pass: pass(),
+                            first: self.name(first),
+                            second: self.name(access),
+                        });
+                    }
+                    depth_stencil.get_or_insert(access);
+                    all.push((access, shape));
+                }
+                Role::Texture(TextureRole::Resolve { location }) => {
+                    let source = colors.get(location as usize).copied();
+                    match (source, resolved.get(&location)) {
+                        (Some((color, _)), Some(&first)) => errors.push(GraphError::BadResolve {
+                            pass: pass(),
+                            resource: self.name(access),
+                            why: format!(
+                                "\"{}\" already resolves into \"{}\"",
+                                self.name(color),
+                                self.name(first)
+                            ),
+                        }),
+                        _ => self.resolve(access, shape, source, errors),
+                    }
+                    resolved.entry(location).or_insert(access);
+                }
                 _ => {}
             }
         }
@@ -368,6 +433,17 @@ impl PassCheck<'_> {
                 why,
             });
         }
+    }
+}
+
+/// Why an aspect access does not fit a format that has (`present`) or lacks the aspect.
+fn aspect_misfit<T>(access: AspectAccess<T>, present: bool, aspect: &str) -> Option<String> {
+    match access {
+        AspectAccess::Absent if present => Some(format!(
+            "the format has a {aspect} aspect; attach it read-only instead"
+        )),
+        a if a.writes() && !present => Some(format!("the format has no {aspect} aspect to write")),
+        _ => None,
     }
 }
 

@@ -1,0 +1,219 @@
+//! Resource errors: descriptions no device could create, or that the profile cannot.
+
+mod common;
+
+use common::{errors, errors_with, only_error, tex};
+use graph_core::types::Features;
+use graph_core::types::TextureFormat::{Bc1RgbaUnorm, Rgba16Float, Rgba8Unorm};
+use graph_core::{
+    BufferDesc, CompileOptions, DeviceProfile, GraphBuilder, GraphError, Size, TextureDesc,
+};
+
+/// The error a graph holding nothing but `desc`, imported as "t", reports.
+fn texture_error(desc: TextureDesc) -> GraphError {
+    let mut g = GraphBuilder::new();
+    g.import_texture("t", desc);
+    only_error(&g.build())
+}
+
+#[test]
+fn an_absolute_size_with_a_zero_side_is_zero_sized() {
+    let error = texture_error(TextureDesc::new(Rgba8Unorm).size(Size::Absolute(0, 4)));
+    assert_eq!(
+        error,
+        GraphError::ZeroSize {
+            resource: "t".into(),
+            width: 0,
+            height: 4,
+        }
+    );
+    assert_eq!(error.to_string(), r#"texture "t" is zero-sized (0x4)"#);
+}
+
+#[test]
+fn a_zero_relative_scale_is_zero_sized() {
+    let error = texture_error(TextureDesc::new(Rgba8Unorm).size(Size::Relative(0.0)));
+    assert_eq!(error.to_string(), r#"texture "t" is zero-sized (0x0)"#);
+}
+
+#[test]
+fn a_side_over_the_profile_maximum_is_too_large() {
+    let error = texture_error(TextureDesc::new(Rgba8Unorm).size(Size::Absolute(8193, 16)));
+    assert_eq!(
+        error,
+        GraphError::TooLarge {
+            resource: "t".into(),
+            width: 8193,
+            height: 16,
+            max: 8192,
+            profile: "webgpu defaults".into(),
+        }
+    );
+    assert_eq!(
+        error.to_string(),
+        r#"texture "t" (8193x16) exceeds the maximum dimension 8192 of webgpu defaults"#
+    );
+}
+
+/// A relative size is checked at the output size it is compiled for.
+#[test]
+fn a_relative_size_is_too_large_only_for_large_outputs() {
+    let mut g = GraphBuilder::new();
+    g.import_texture("t", TextureDesc::new(Rgba8Unorm).size(Size::Relative(2.0)));
+    let graph = g.build();
+    let at = |w, h| CompileOptions {
+        output_size: (w, h),
+        ..CompileOptions::default()
+    };
+
+    assert!(graph.compile(&at(4096, 2160)).is_ok());
+    assert_eq!(
+        errors_with(&graph, &at(4097, 2160))[0].to_string(),
+        r#"texture "t" (8194x4320) exceeds the maximum dimension 8192 of webgpu defaults"#
+    );
+}
+
+#[test]
+fn three_samples_are_never_supported() {
+    let error = texture_error(TextureDesc::new(Rgba8Unorm).samples(3));
+    assert_eq!(
+        error,
+        GraphError::UnsupportedSampleCount {
+            resource: "t".into(),
+            format: "rgba8unorm".into(),
+            samples: 3,
+            supported: "1x, 4x".into(),
+            profile: "webgpu defaults".into(),
+        }
+    );
+    assert_eq!(
+        error.to_string(),
+        r#"texture "t": rgba8unorm does not support 3x multisampling on webgpu defaults (supported: 1x, 4x)"#
+    );
+}
+
+#[test]
+fn eight_samples_of_rgba16float_need_more_than_webgpu_guarantees() {
+    let error = texture_error(TextureDesc::new(Rgba16Float).samples(8));
+    assert_eq!(
+        error.to_string(),
+        r#"texture "t": rgba16float does not support 8x multisampling on webgpu defaults (supported: 1x, 4x)"#
+    );
+}
+
+#[test]
+fn mip_and_layer_counts_must_fit_the_texture_and_the_profile() {
+    let cases = [
+        (
+            tex(Rgba8Unorm).mips(0),
+            "mip and layer counts must be at least 1",
+        ),
+        (
+            tex(Rgba8Unorm).mips(8),
+            "64x64 has at most 7 mips, 8 were asked for",
+        ),
+        (
+            tex(Rgba8Unorm).layers(257),
+            "257 layers exceed the limit of 256 on webgpu defaults",
+        ),
+        (
+            tex(Rgba8Unorm).samples(4).mips(2),
+            "a multisampled texture has exactly one mip",
+        ),
+        (
+            tex(Rgba8Unorm).samples(4).layers(2),
+            "a multisampled texture has exactly one layer",
+        ),
+    ];
+    for (desc, what) in cases {
+        assert_eq!(
+            texture_error(desc),
+            GraphError::InvalidResource {
+                resource: "t".into(),
+                what: what.into(),
+            },
+            "{desc:?}"
+        );
+    }
+    assert_eq!(
+        texture_error(tex(Rgba8Unorm).mips(0)).to_string(),
+        r#""t": mip and layer counts must be at least 1"#
+    );
+}
+
+#[test]
+fn a_zero_sized_buffer_is_rejected() {
+    let mut g = GraphBuilder::new();
+    g.create_buffer("lights", BufferDesc::new(0));
+    let error = only_error(&g.build());
+    assert_eq!(
+        error,
+        GraphError::ZeroSizedBuffer {
+            resource: "lights".into()
+        }
+    );
+    assert_eq!(error.to_string(), r#"buffer "lights" has size 0"#);
+}
+
+#[test]
+fn a_buffer_over_the_profile_limit_is_rejected() {
+    let mut g = GraphBuilder::new();
+    g.create_buffer("huge", BufferDesc::new((256 << 20) + 1));
+    assert_eq!(
+        only_error(&g.build()).to_string(),
+        r#""huge": 268435457 bytes exceed the buffer size limit of 268435456 on webgpu defaults"#
+    );
+}
+
+/// Every problem is reported at once, in declaration order, so a graph file is fixed in
+/// one round.
+#[test]
+fn all_resource_errors_are_reported_together() {
+    let mut g = GraphBuilder::new();
+    g.import_texture("a", tex(Rgba8Unorm).samples(3));
+    g.import_texture("b", TextureDesc::new(Rgba8Unorm).size(Size::Absolute(0, 0)));
+    g.import_texture("c", tex(Bc1RgbaUnorm));
+    let names: Vec<_> = errors(&g.build())
+        .iter()
+        .map(|e| e.resource().map(str::to_owned))
+        .collect();
+    assert_eq!(
+        names,
+        [Some("a".into()), Some("b".into()), Some("c".into())]
+    );
+}
+
+#[test]
+fn a_format_needs_the_features_it_requires() {
+    let error = texture_error(tex(Bc1RgbaUnorm));
+    assert_eq!(
+        error.to_string(),
+        r#""t": bc1-rgba-unorm needs TEXTURE_COMPRESSION_BC, which webgpu defaults lacks"#
+    );
+    let mut g = GraphBuilder::new();
+    g.import_texture("t", tex(Bc1RgbaUnorm));
+    let mut profile = DeviceProfile::webgpu();
+    profile.features = Features::TEXTURE_COMPRESSION_BC;
+    let options = CompileOptions {
+        profile,
+        ..CompileOptions::default()
+    };
+    assert!(g.build().compile(&options).is_ok());
+}
+
+/// A profile recorded from an adapter that does more than WebGPU guarantees.
+#[test]
+fn a_profile_with_larger_limits_accepts_what_webgpu_rejects() {
+    let mut g = GraphBuilder::new();
+    g.import_texture(
+        "t",
+        TextureDesc::new(Rgba8Unorm).size(Size::Absolute(16384, 16)),
+    );
+    let mut profile = DeviceProfile::webgpu();
+    profile.limits.max_texture_dimension_2d = 16384;
+    let options = CompileOptions {
+        profile,
+        ..CompileOptions::default()
+    };
+    assert!(g.build().compile(&options).is_ok());
+}
