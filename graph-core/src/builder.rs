@@ -283,7 +283,14 @@ impl PassBuilder<'_> {
     }
 
     fn access<K: ResourceKind>(&mut self, handle: Handle<K>, role: Role) -> Handle<K> {
-        let Some(resource) = self.graph.resources.get_mut(handle.id.index()) else {
+        // Handles carry no graph identity: one naming a resource or version this graph
+        // never handed out is the detectable part of a handle from another graph.
+        let resource = self
+            .graph
+            .resources
+            .get_mut(handle.id.index())
+            .filter(|r| handle.version < r.versions);
+        let Some(resource) = resource else {
             let pass = self.node().name.clone();
             self.graph.errors.push(GraphError::ForeignHandle {
                 pass,

@@ -145,12 +145,14 @@ pub enum GraphError {
     },
 
     #[error(
-        "cycle: passes {} must each run before the other (through \"{resource}\")",
-        quote_list(passes)
+        "cycle: passes {} must each run before the other (through {})",
+        quote_list(passes),
+        quote_list(resources)
     )]
     Cycle {
         passes: Vec<String>,
-        resource: String,
+        /// Every resource whose versions order one pass of the cycle against another.
+        resources: Vec<String>,
     },
 }
 
@@ -206,8 +208,8 @@ impl GraphError {
             | UnsupportedSampleCount { resource, .. }
             | FormatRole { resource, .. }
             | AttachmentMismatch { resource, .. }
-            | BadResolve { resource, .. }
-            | Cycle { resource, .. } => Some(resource),
+            | BadResolve { resource, .. } => Some(resource),
+            Cycle { resources, .. } => resources.first().map(String::as_str),
             TwoDepthStencil { second, .. } => Some(second),
             ColorBytesPerSample { .. } | TooManyColorAttachments { .. } | NoAttachment { .. } => {
                 None

@@ -123,3 +123,23 @@ fn a_handle_from_another_graph_is_rejected() {
         r#"pass "cs" uses "Texture#1@v0", which belongs to another graph"#
     );
 }
+
+/// A foreign handle whose index happens to exist here is caught by its version, when this
+/// graph never handed that version out.
+#[test]
+fn a_foreign_handle_to_a_version_this_graph_never_made_is_rejected() {
+    let mut other = GraphBuilder::new();
+    let t = other.create_texture("t", tex(Rgba8Unorm));
+    let newer = clear_pass(&mut other, "fill", t);
+
+    let mut g = GraphBuilder::new();
+    g.create_texture("mine", tex(Rgba8Unorm));
+    let mut copy = g.add_transfer_pass("copy");
+    copy.copy_dst(newer);
+    copy.side_effect();
+
+    assert_eq!(
+        only_error(&g.build()).to_string(),
+        r#"pass "copy" uses "Texture#0@v1", which belongs to another graph"#
+    );
+}

@@ -54,7 +54,8 @@ pub(super) fn order(
 }
 
 /// Edges between live passes: read-after-write, write-after-write and write-after-read,
-/// each weighted with the resource that forces it. Parallel edges are harmless here.
+/// each weighted with the resource that forces it. Parallel edges are harmless (the sort
+/// counts and removes each one), so edges are added without looking for duplicates.
 fn dependency_graph(
     graph: &Graph,
     versions: &Versions,
@@ -69,25 +70,29 @@ fn dependency_graph(
         }
     }
     let live_node = |p: PassId| live.pass(p).then(|| nodes[p.index()]);
+    let bases = live_bases(graph, versions, live);
     for (i, pass) in graph.passes.iter().enumerate() {
         let Some(this) = live_node(PassId(i as u32)) else {
             continue;
         };
         for access in &pass.accesses {
-            let incoming = (access.resource, access.version);
-            let producer = versions.writer.get(&incoming).copied().and_then(live_node);
-            // Any use of a version, read or overwrite, follows its producer.
-            if let Some(producer) = producer {
-                deps.update_edge(producer, this, access.resource);
+            let r = access.resource;
+            if let Some(v) = access.read_version() {
+                if let Some(producer) = versions.writer.get(&(r, v)).copied().and_then(live_node) {
+                    deps.add_edge(producer, this, r);
+                }
             }
-            if access.written.is_some() {
-                for reader in versions.readers(incoming) {
-                    match live_node(*reader) {
-                        Some(reader) if reader != this => {
-                            deps.update_edge(reader, this, access.resource);
-                        }
-                        _ => {}
-                    }
+            if access.written.is_none() {
+                continue;
+            }
+            // A write lands on the memory that last held a live version: it follows that
+            // version's producer and every live pass that still reads it.
+            let base = (r, bases[r.index()][access.version as usize]);
+            let producer = versions.writer.get(&base).copied().and_then(live_node);
+            let readers = versions.readers(base).iter().copied().filter_map(live_node);
+            for before in producer.into_iter().chain(readers) {
+                if before != this {
+                    deps.add_edge(before, this, r);
                 }
             }
         }
@@ -95,16 +100,41 @@ fn dependency_graph(
     deps
 }
 
+/// For each resource and version, the latest version at or before it that a live pass
+/// produced, or 0. Versions between two live writes come from culled passes, and only
+/// culled passes read them, so a live write orders itself against that base version.
+fn live_bases(graph: &Graph, versions: &Versions, live: &Live) -> Vec<Vec<u32>> {
+    graph
+        .resources
+        .iter()
+        .enumerate()
+        .map(|(r, resource)| {
+            let r = ResourceId(r as u32);
+            let mut base = 0;
+            (0..resource.versions)
+                .map(|v| {
+                    if versions.writer.get(&(r, v)).is_some_and(|&p| live.pass(p)) {
+                        base = v;
+                    }
+                    base
+                })
+                .collect()
+        })
+        .collect()
+}
+
 fn cycle_error(graph: &Graph, deps: &DiGraph<PassId, ResourceId>) -> GraphError {
     let component = tarjan_scc(deps)
         .into_iter()
         .find(|c| c.len() > 1)
         .unwrap_or_default();
-    let resource = deps
+    let mut resources: Vec<ResourceId> = deps
         .edge_references()
-        .find(|e| component.contains(&e.source()) && component.contains(&e.target()))
-        .map(|e| graph.resources[e.weight().index()].name.clone())
-        .unwrap_or_default();
+        .filter(|e| component.contains(&e.source()) && component.contains(&e.target()))
+        .map(|e| *e.weight())
+        .collect();
+    resources.sort();
+    resources.dedup();
     let mut passes: Vec<PassId> = component.iter().map(|&n| deps[n]).collect();
     passes.sort();
     GraphError::Cycle {
@@ -112,6 +142,9 @@ fn cycle_error(graph: &Graph, deps: &DiGraph<PassId, ResourceId>) -> GraphError 
             .iter()
             .map(|p| graph.passes[p.index()].name.clone())
             .collect(),
-        resource,
+        resources: resources
+            .iter()
+            .map(|r| graph.resources[r.index()].name.clone())
+            .collect(),
     }
 }
