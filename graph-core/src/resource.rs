@@ -81,13 +81,15 @@ impl TextureDesc {
         self
     }
 
-    /// Bytes the texture occupies at `extent`: every mip, layer and sample.
+    /// Bytes the texture occupies at `extent`: every mip, layer and sample. Compressed
+    /// formats count whole blocks, as a mip smaller than a block still takes one.
     pub fn bytes(&self, extent: (u32, u32)) -> u64 {
         let block = texel_bytes(self.format);
+        let (bw, bh) = self.format.block_dimensions();
         (0..self.mips)
             .map(|m| {
-                let w = (extent.0 >> m).max(1) as u64;
-                let h = (extent.1 >> m).max(1) as u64;
+                let w = (extent.0 >> m).max(1).div_ceil(bw) as u64;
+                let h = (extent.1 >> m).max(1).div_ceil(bh) as u64;
                 w * h * block
             })
             .sum::<u64>()
@@ -96,8 +98,9 @@ impl TextureDesc {
     }
 }
 
-/// Bytes per texel, counting both aspects of combined depth-stencil formats as a driver
-/// typically lays them out (D24S8 and D32S8 take 4 and 8 bytes).
+/// Bytes per texel block (per texel for uncompressed formats), counting both aspects of
+/// combined depth-stencil formats as a driver typically lays them out (D24S8 and D32S8
+/// take 4 and 8 bytes).
 pub fn texel_bytes(format: TextureFormat) -> u64 {
     match format {
         TextureFormat::Depth24PlusStencil8 | TextureFormat::Depth24Plus => 4,

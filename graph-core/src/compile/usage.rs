@@ -51,7 +51,7 @@ pub(super) fn derive(
     }
     if profile.transient_attachments {
         for (r, usage) in texture.iter_mut().enumerate() {
-            if never_leaves_its_pass(graph, versions, attachments, r) {
+            if never_leaves_its_pass(graph, versions, live, attachments, r) {
                 *usage |= TextureUsages::TRANSIENT_ATTACHMENT;
             }
         }
@@ -59,18 +59,20 @@ pub(super) fn derive(
     Usages { texture, buffer }
 }
 
-/// A graph-owned attachment used by one pass only, cleared there and discarded at its end
-/// (typically a multisampled target resolved in the same pass): its memory can stay on
+/// A graph-owned attachment used by one live pass only, cleared there and discarded at its
+/// end (typically a multisampled target resolved in the same pass): its memory can stay on
 /// chip. wgpu allows `TRANSIENT_ATTACHMENT` only with `RENDER_ATTACHMENT`, a clear and a
-/// discard.
+/// discard. Culled passes do not count: they never run.
 fn never_leaves_its_pass(
     graph: &Graph,
     versions: &Versions,
+    live: &Live,
     attachments: &[Attachments],
     r: usize,
 ) -> bool {
     let resource = &graph.resources[r];
-    let (Some(desc), [pass]) = (resource.texture(), versions.users[r].as_slice()) else {
+    let mut users = versions.users[r].iter().filter(|&&p| live.pass(p));
+    let (Some(desc), Some(pass), None) = (resource.texture(), users.next(), users.next()) else {
         return false;
     };
     if resource.origin != Origin::Transient || resource.exported {
