@@ -58,7 +58,14 @@ fn five_rgba16float_targets_fit_an_adapter_with_128_bytes_per_sample() {
 /// targets take 31 bytes unaligned but 33 aligned, over the limit of 32.
 #[test]
 fn color_bytes_count_alignment_padding() {
-    let fits = [R8Unorm, Rgba16Float, Rgba16Float, Rgba16Float, R8Unorm, R32Float];
+    let fits = [
+        R8Unorm,
+        Rgba16Float,
+        Rgba16Float,
+        Rgba16Float,
+        R8Unorm,
+        R32Float,
+    ];
     assert!(mrt(&fits).compile(&CompileOptions::default()).is_ok());
 
     let over = [fits.as_slice(), &[R8Unorm]].concat();
