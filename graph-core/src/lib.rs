@@ -28,6 +28,7 @@ pub mod file;
 pub mod gpu;
 pub mod plugins;
 pub mod shader;
+pub mod synthetic;
 
 pub use access::{Access, Aspect, AspectAccess, BufferRole, ColorLoad, Role, TextureRole};
 pub use builder::{GraphBuilder, PassBuilder};
