@@ -45,11 +45,14 @@ impl DeviceProfile {
 
     /// Sample counts `format` supports as a render target or sampled texture, ascending.
     pub fn sample_counts(&self, format: TextureFormat) -> Vec<u32> {
-        let flags = self.format(format).flags;
         [1, 2, 4, 8, 16]
             .into_iter()
-            .filter(|&n| n == 1 || flags.sample_count_supported(n))
+            .filter(|&n| self.supports_samples(format, n))
             .collect()
+    }
+
+    pub fn supports_samples(&self, format: TextureFormat, samples: u32) -> bool {
+        samples == 1 || self.format(format).flags.sample_count_supported(samples)
     }
 
     pub fn can_render(&self, format: TextureFormat) -> bool {

@@ -61,7 +61,7 @@ impl Frame {
     }
 
     fn render(&mut self, i: usize) {
-        let format = if i % 2 == 0 {
+        let format = if i.is_multiple_of(2) {
             TextureFormat::Rgba16Float
         } else {
             TextureFormat::Rgba8Unorm
@@ -75,7 +75,7 @@ impl Frame {
         );
         let older = self.older(i);
         let blend = older
-            .filter(|&o| i % 3 == 0 && self.outputs[o].blendable)
+            .filter(|&o| i.is_multiple_of(3) && self.outputs[o].blendable)
             .map(|o| (o, self.outputs[o].handle));
         let sampled: Vec<TextureHandle> = self.inputs(older, blend.map(|b| b.0));
         let buffer = self.buffer.take();

@@ -52,7 +52,7 @@ fn mark_live_passes(graph: &Graph, versions: &Versions) -> Vec<bool> {
         let id = ResourceId(r as u32);
         if resource.is_root() {
             let last = (id, Versions::final_version(graph, id));
-            work.extend(versions.writer.get(&last));
+            work.extend(versions.writer(last));
         }
     }
     while let Some(pass) = work.pop() {
@@ -61,7 +61,7 @@ fn mark_live_passes(graph: &Graph, versions: &Versions) -> Vec<bool> {
         }
         for access in &graph.passes[pass.index()].accesses {
             if let Some(v) = access.read_version() {
-                work.extend(versions.writer.get(&(access.resource, v)));
+                work.extend(versions.writer((access.resource, v)));
             }
         }
     }
@@ -83,10 +83,10 @@ fn why_culled(graph: &Graph, versions: &Versions, pass: PassId) -> String {
                     "\"{resource}\" is read only by culled passes ({})",
                     names.join(", ")
                 )
-            } else if let Some(next) = versions.overwriter.get(&(r, w)) {
+            } else if let Some(next) = versions.overwriter((r, w)) {
                 format!(
                     "\"{resource}\" is overwritten by {} before anything reads it",
-                    name(next)
+                    name(&next)
                 )
             } else {
                 format!("nothing reads \"{resource}\" and it is not an output")

@@ -14,7 +14,7 @@ use crate::graph::Graph;
 use crate::handle::{PassId, ResourceId};
 
 use super::cull::Live;
-use super::versions::Versions;
+use super::versions::{Version, Versions};
 
 /// Live passes in execution order, or the cycle that prevents one.
 pub(super) fn order(
@@ -70,7 +70,6 @@ fn dependency_graph(
         }
     }
     let live_node = |p: PassId| live.pass(p).then(|| nodes[p.index()]);
-    let bases = live_bases(graph, versions, live);
     for (i, pass) in graph.passes.iter().enumerate() {
         let Some(this) = live_node(PassId(i as u32)) else {
             continue;
@@ -78,7 +77,7 @@ fn dependency_graph(
         for access in &pass.accesses {
             let r = access.resource;
             if let Some(v) = access.read_version() {
-                if let Some(producer) = versions.writer.get(&(r, v)).copied().and_then(live_node) {
+                if let Some(producer) = versions.writer((r, v)).and_then(live_node) {
                     deps.add_edge(producer, this, r);
                 }
             }
@@ -87,8 +86,8 @@ fn dependency_graph(
             }
             // A write lands on the memory that last held a live version: it follows that
             // version's producer and every live pass that still reads it.
-            let base = (r, bases[r.index()][access.version as usize]);
-            let producer = versions.writer.get(&base).copied().and_then(live_node);
+            let base = live_base(versions, live, (r, access.version));
+            let producer = versions.writer(base).and_then(live_node);
             let readers = versions.readers(base).iter().copied().filter_map(live_node);
             for before in producer.into_iter().chain(readers) {
                 if before != this {
@@ -100,27 +99,15 @@ fn dependency_graph(
     deps
 }
 
-/// For each resource and version, the latest version at or before it that a live pass
-/// produced, or 0. Versions between two live writes come from culled passes, and only
-/// culled passes read them, so a live write orders itself against that base version.
-fn live_bases(graph: &Graph, versions: &Versions, live: &Live) -> Vec<Vec<u32>> {
-    graph
-        .resources
-        .iter()
-        .enumerate()
-        .map(|(r, resource)| {
-            let r = ResourceId(r as u32);
-            let mut base = 0;
-            (0..resource.versions)
-                .map(|v| {
-                    if versions.writer.get(&(r, v)).is_some_and(|&p| live.pass(p)) {
-                        base = v;
-                    }
-                    base
-                })
-                .collect()
-        })
-        .collect()
+/// The latest version at or before `version` that a live pass produced, or version 0.
+/// Versions between two live writes come from culled passes, and only culled passes read
+/// them (a live read keeps its producer alive), so a live write orders itself against that
+/// base. Each culled stretch is walked once, by the one live write that ends it.
+fn live_base(versions: &Versions, live: &Live, (r, mut v): Version) -> Version {
+    while v > 0 && !versions.writer((r, v)).is_some_and(|p| live.pass(p)) {
+        v -= 1;
+    }
+    (r, v)
 }
 
 fn cycle_error(graph: &Graph, deps: &DiGraph<PassId, ResourceId>) -> GraphError {

@@ -2,7 +2,8 @@
 //! or buffer when their lifetimes do not overlap. wgpu has no placed resources, so
 //! sharing by descriptor is the memory saving available (see the README).
 
-use std::collections::HashMap;
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, HashMap};
 use std::hash::Hash;
 
 use wgpu_types::{BufferUsages, TextureUsages};
@@ -18,14 +19,6 @@ pub(super) struct Physical {
     pub buffers: Vec<PhysicalBuffer>,
     /// For each resource, its index into `textures` or `buffers`.
     pub assignment: Vec<Option<usize>>,
-}
-
-/// One physical object being filled, and when it is next free.
-struct Slot {
-    index: usize,
-    free_after: usize,
-    /// Exported contents must survive the frame: nothing may move in after them.
-    sealed: bool,
 }
 
 pub(super) fn plan(
@@ -99,11 +92,13 @@ pub(super) fn plan(
     out
 }
 
-/// Free-lists of physical objects by key.
-type Slots<K> = HashMap<K, Vec<Slot>>;
+/// For each key, the physical objects that may take another holder, as
+/// `(last position used, index)`: the one free earliest comes first, then the lowest index.
+type Slots<K> = HashMap<K, BinaryHeap<Reverse<(usize, usize)>>>;
 
-/// The index of the first physical object with this key that is free before `first`, or
-/// `fresh` (the next new index) when none is.
+/// The index of a physical object with this key that is free before `first`, or `fresh`
+/// (the next new index) when none is. Taking the one free earliest keeps the search
+/// logarithmic however many objects of one key are alive at once.
 fn assign<K: Hash + Eq>(
     slots: &mut Slots<K>,
     key: K,
@@ -111,22 +106,19 @@ fn assign<K: Hash + Eq>(
     (first, last): (usize, usize),
     exported: bool,
 ) -> usize {
-    let list = slots.entry(key).or_default();
-    match list.iter_mut().find(|s| !s.sealed && s.free_after < first) {
-        Some(slot) => {
-            slot.free_after = last;
-            slot.sealed = exported;
-            slot.index
+    let free = slots.entry(key).or_default();
+    let index = match free.peek() {
+        Some(&Reverse((free_after, index))) if free_after < first => {
+            free.pop();
+            index
         }
-        None => {
-            list.push(Slot {
-                index: fresh,
-                free_after: last,
-                sealed: exported,
-            });
-            fresh
-        }
+        _ => fresh,
+    };
+    // Exported contents must survive the frame: nothing may move in after them.
+    if !exported {
+        free.push(Reverse((last, index)));
     }
+    index
 }
 
 pub(super) fn shape_bytes(shape: &TextureShape) -> u64 {

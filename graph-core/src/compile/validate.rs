@@ -1,8 +1,6 @@
 //! Validation: everything that would make wgpu reject the graph, or make it read garbage,
 //! reported before any GPU work with the pass and resource named.
 
-use std::collections::HashMap;
-
 use wgpu_types::TextureFormat;
 
 use crate::access::{Access, Aspect, AspectAccess, BufferRole, Role, TextureRole};
@@ -78,8 +76,8 @@ pub(super) fn resources(
                         "a multisampled texture has exactly one layer".into(),
                     ));
                 }
-                let supported = profile.sample_counts(s.format);
-                if !supported.contains(&s.samples) {
+                if !profile.supports_samples(s.format, s.samples) {
+                    let supported = profile.sample_counts(s.format);
                     errors.push(GraphError::UnsupportedSampleCount {
                         resource: name(),
                         format: format_name(s.format),
@@ -181,7 +179,7 @@ impl PassCheck<'_> {
             return;
         };
         let imported = self.graph.resources[access.resource.index()].origin == Origin::Imported;
-        if !versions.writer.contains_key(&(access.resource, v)) && !(v == 0 && imported) {
+        if versions.writer((access.resource, v)).is_none() && !(v == 0 && imported) {
             errors.push(GraphError::ReadBeforeWrite {
                 pass: self.pass.name.clone(),
                 resource: self.name(access),
@@ -267,11 +265,11 @@ impl PassCheck<'_> {
 
     /// One resource in two incompatible roles in the same pass. The one combination wgpu
     /// allows is a depth-stencil attachment read-only in both aspects plus sampling.
+    /// Passes declare a handful of accesses, so a scan of the earlier ones beats a map.
     fn no_conflicts(&self, errors: &mut Vec<GraphError>) {
-        let mut first_role: HashMap<_, &Access> = HashMap::new();
-        for access in &self.pass.accesses {
-            let Some(first) = first_role.get(&access.resource).copied() else {
-                first_role.insert(access.resource, access);
+        let accesses = &self.pass.accesses;
+        for (i, access) in accesses.iter().enumerate() {
+            let Some(first) = accesses[..i].iter().find(|a| a.resource == access.resource) else {
                 continue;
             };
             let pair = (first.role, access.role);
@@ -307,7 +305,7 @@ impl PassCheck<'_> {
         let mut colors: Vec<(&Access, TextureShape)> = Vec::new();
         let mut all: Vec<(&Access, TextureShape)> = Vec::new();
         let mut depth_stencil: Option<&Access> = None;
-        let mut resolved: HashMap<u32, &Access> = HashMap::new();
+        let mut resolved: Vec<(u32, &Access)> = Vec::new();
         for access in &self.pass.accesses {
             let Some(shape) = self.shape(access) else {
                 continue;
@@ -330,19 +328,22 @@ impl PassCheck<'_> {
                 }
                 Role::Texture(TextureRole::Resolve { location }) => {
                     let source = colors.get(location as usize).copied();
-                    match (source, resolved.get(&location)) {
-                        (Some((color, _)), Some(&first)) => errors.push(GraphError::BadResolve {
-                            pass: pass(),
-                            resource: self.name(access),
-                            why: format!(
-                                "\"{}\" already resolves into \"{}\"",
-                                self.name(color),
-                                self.name(first)
-                            ),
-                        }),
+                    let earlier = resolved.iter().find(|(l, _)| *l == location);
+                    match (source, earlier) {
+                        (Some((color, _)), Some(&(_, first))) => {
+                            errors.push(GraphError::BadResolve {
+                                pass: pass(),
+                                resource: self.name(access),
+                                why: format!(
+                                    "\"{}\" already resolves into \"{}\"",
+                                    self.name(color),
+                                    self.name(first)
+                                ),
+                            })
+                        }
                         _ => self.resolve(access, shape, source, errors),
                     }
-                    resolved.entry(location).or_insert(access);
+                    resolved.push((location, access));
                 }
                 _ => {}
             }

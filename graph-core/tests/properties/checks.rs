@@ -90,7 +90,9 @@ fn check_roots_and_inputs(graph: &Graph, versions: &Versions, position: &HashMap
 /// On each resource, running accesses happen in version order: a read of version `v` comes
 /// after every running write up to `v` and before every running write past it.
 fn check_version_order(graph: &Graph, position: &HashMap<PassId, usize>) {
-    let mut events: HashMap<ResourceId, Vec<(usize, Option<u32>, Option<u32>)>> = HashMap::new();
+    // Per resource: (position, version read, version written) of each running access.
+    type Event = (usize, Option<u32>, Option<u32>);
+    let mut events: HashMap<ResourceId, Vec<Event>> = HashMap::new();
     for (i, pass) in graph.passes().iter().enumerate() {
         let Some(&at) = position.get(&PassId(i as u32)) else {
             continue;

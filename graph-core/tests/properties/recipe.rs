@@ -96,7 +96,7 @@ fn resource(sloppy: bool, samples: u32) -> impl Strategy<Value = ResourceSpec> {
     };
     let imported = prop::bool::weighted(0.5);
     let exported = prop::bool::weighted(0.2);
-    let texture = (format, size, samples, imported.clone(), exported.clone()).prop_map(
+    let texture = (format, size, samples, imported, exported).prop_map(
         |(format, size, samples, imported, exported)| ResourceSpec::Texture {
             format,
             size,
