@@ -1,0 +1,58 @@
+//! World-space bounding volumes.
+
+use glam::DVec3;
+
+/// An axis-aligned box in world space. Always non-empty: `min <= max` per axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: DVec3,
+    pub max: DVec3,
+}
+
+/// A sphere in world space, `radius >= 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoundingSphere {
+    pub center: DVec3,
+    pub radius: f64,
+}
+
+impl Aabb {
+    /// The smallest box holding every point, or `None` when there are none.
+    pub fn from_points(points: impl IntoIterator<Item = DVec3>) -> Option<Aabb> {
+        points.into_iter().fold(None, |acc, p| {
+            Some(match acc {
+                None => Aabb { min: p, max: p },
+                Some(b) => Aabb {
+                    min: b.min.min(p),
+                    max: b.max.max(p),
+                },
+            })
+        })
+    }
+
+    /// The smallest box holding both.
+    pub fn union(&self, other: &Aabb) -> Aabb {
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    pub fn center(&self) -> DVec3 {
+        (self.min + self.max) * 0.5
+    }
+
+    /// Edge lengths per axis.
+    pub fn size(&self) -> DVec3 {
+        self.max - self.min
+    }
+
+    /// The sphere through the box's corners (center = box center, radius = half diagonal): not
+    /// the tightest sphere around the geometry, but stable and cheap.
+    pub fn bounding_sphere(&self) -> BoundingSphere {
+        BoundingSphere {
+            center: self.center(),
+            radius: self.size().length() * 0.5,
+        }
+    }
+}

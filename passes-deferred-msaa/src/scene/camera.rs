@@ -1,0 +1,147 @@
+//! Cameras: an f64 world pose plus a glTF projection, turned into wgpu-convention matrices.
+
+use glam::{DMat4, DQuat, DVec3, Mat4};
+
+use super::bounds::Aabb;
+
+/// Vertical field of view of the camera made by [`Camera::framing`] (45°).
+pub const FRAMING_YFOV: f32 = std::f32::consts::FRAC_PI_4;
+
+/// Direction from the scene center towards the camera made by [`Camera::framing`] (before
+/// normalizing): from the front right and somewhat above, so the ground and three sides of
+/// boxes show.
+pub const FRAMING_DIRECTION: DVec3 = DVec3::new(1.0, 0.6, 1.4);
+
+/// A glTF projection. Angles in radians, distances in world units along the view axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// `zfar: None` is an infinite far plane.
+    Perspective {
+        yfov: f32,
+        znear: f32,
+        zfar: Option<f32>,
+    },
+    /// `xmag`/`ymag` are half the view's width/height in world units.
+    Orthographic {
+        xmag: f32,
+        ymag: f32,
+        znear: f32,
+        zfar: f32,
+    },
+}
+
+/// Where the near and far planes land in wgpu's `[0, 1]` depth range.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DepthConvention {
+    /// Near → 0, far → 1 (depth test `Less`, clear to 1).
+    Standard,
+    /// Near → 1, far (or infinity) → 0 (depth test `Greater`, clear to 0): float depth then
+    /// keeps its precision where perspective squeezes distant geometry.
+    ReversedZ,
+}
+
+/// A camera. View space is glTF's: right-handed, looking down -Z with +Y up.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    pub name: String,
+    /// Eye position in world space; f64 so camera-relative rendering of scenes far from the
+    /// origin subtracts it exactly.
+    pub position: DVec3,
+    /// Rotation from view space to world space (unit quaternion).
+    pub orientation: DQuat,
+    pub projection: Projection,
+}
+
+impl Projection {
+    /// Clip-from-view matrix for a viewport of `aspect = width / height`, in wgpu's conventions
+    /// (clip depth in `[0, 1]`).
+    ///
+    /// Orthographic projections keep `ymag` and use `ymag * aspect` as the half width so pixels
+    /// stay square; with `aspect == xmag / ymag` that is exactly glTF's `xmag`.
+    pub fn matrix(&self, aspect: f32, depth: DepthConvention) -> Mat4 {
+        let reversed = depth == DepthConvention::ReversedZ;
+        match *self {
+            Projection::Perspective { yfov, znear, zfar } => match (zfar, reversed) {
+                (None, false) => Mat4::perspective_infinite_rh(yfov, aspect, znear),
+                (None, true) => Mat4::perspective_infinite_reverse_rh(yfov, aspect, znear),
+                (Some(zfar), false) => Mat4::perspective_rh(yfov, aspect, znear, zfar),
+                // Swapping the planes maps near to 1 and far to 0.
+                (Some(zfar), true) => Mat4::perspective_rh(yfov, aspect, zfar, znear),
+            },
+            Projection::Orthographic {
+                ymag, znear, zfar, ..
+            } => {
+                let xmag = ymag * aspect;
+                let (near, far) = if reversed {
+                    (zfar, znear)
+                } else {
+                    (znear, zfar)
+                };
+                Mat4::orthographic_rh(-xmag, xmag, -ymag, ymag, near, far)
+            }
+        }
+    }
+}
+
+impl Camera {
+    /// A camera at `eye` looking at `target`, `up` roughly up (must not be parallel to the view
+    /// direction, and `eye != target`).
+    pub fn look_at(
+        name: impl Into<String>,
+        eye: DVec3,
+        target: DVec3,
+        up: DVec3,
+        projection: Projection,
+    ) -> Camera {
+        let world_to_view = DMat4::look_at_rh(eye, target, up);
+        Camera {
+            name: name.into(),
+            position: eye,
+            orientation: DQuat::from_mat4(&world_to_view).inverse(),
+            projection,
+        }
+    }
+
+    /// The camera a scene without one gets: perspective with [`FRAMING_YFOV`], looking at the
+    /// center `c` of the bounds' sphere (radius `r`) from direction [`FRAMING_DIRECTION`], at
+    /// distance `d = r / sin(yfov / 2)` so the sphere exactly fits the vertical field of view.
+    /// Near plane `(d - r) / 2` (half way to the closest possible geometry), far plane infinite.
+    /// A zero-size box is framed as a sphere of radius 1.
+    pub fn framing(bounds: &Aabb) -> Camera {
+        let sphere = bounds.bounding_sphere();
+        let radius = if sphere.radius > 0.0 {
+            sphere.radius
+        } else {
+            1.0
+        };
+        let distance = radius / (f64::from(FRAMING_YFOV) * 0.5).sin();
+        let eye = sphere.center + FRAMING_DIRECTION.normalize() * distance;
+        let projection = Projection::Perspective {
+            yfov: FRAMING_YFOV,
+            znear: (0.5 * (distance - radius)) as f32,
+            zfar: None,
+        };
+        Camera::look_at("default", eye, sphere.center, DVec3::Y, projection)
+    }
+
+    /// World-to-view matrix.
+    pub fn view_matrix(&self) -> DMat4 {
+        DMat4::from_quat(self.orientation.inverse()) * DMat4::from_translation(-self.position)
+    }
+
+    /// World-to-view rotation only, for camera-relative rendering: transform
+    /// `world_position - self.position` (computed in f64) with it.
+    pub fn view_rotation(&self) -> Mat4 {
+        DMat4::from_quat(self.orientation.inverse()).as_mat4()
+    }
+
+    /// Unit view direction in world space.
+    pub fn forward(&self) -> DVec3 {
+        self.orientation * DVec3::NEG_Z
+    }
+
+    /// Shorthand for `self.projection.matrix(aspect, depth)`.
+    pub fn projection_matrix(&self, aspect: f32, depth: DepthConvention) -> Mat4 {
+        self.projection.matrix(aspect, depth)
+    }
+}

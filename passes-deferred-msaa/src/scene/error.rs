@@ -1,0 +1,144 @@
+//! Everything that can go wrong while loading or generating a scene.
+
+use std::path::PathBuf;
+
+/// Why a scene could not be loaded. Every variant names the file (or built-in scene) and, where
+/// there is one, the mesh, primitive, material, light or camera at fault, so the message alone
+/// is enough to find the problem.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// The file (or a buffer or image it references) could not be read.
+    #[error("cannot read {file}: {source}")]
+    Io {
+        file: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+
+    /// The `gltf` crate rejected the file: not JSON / GLB, or it fails glTF validation.
+    #[error("{file}: not a valid glTF 2.0 file: {source}")]
+    Gltf {
+        file: PathBuf,
+        #[source]
+        source: gltf::Error,
+    },
+
+    /// The file lists an extension in `extensionsRequired` that this loader does not implement,
+    /// so any rendering of it would be wrong.
+    #[error(
+        "{file}: requires glTF extension {extension}, which is not implemented \
+         (implemented: {implemented})"
+    )]
+    UnsupportedRequiredExtension {
+        file: PathBuf,
+        extension: String,
+        implemented: String,
+    },
+
+    /// A buffer's data is missing, unreachable or shorter than declared.
+    #[error("{file}: buffer {buffer}: {reason}")]
+    InvalidBuffer {
+        file: PathBuf,
+        buffer: usize,
+        reason: String,
+    },
+
+    /// An accessor's type, layout or bounds are inconsistent with its buffer view or its use.
+    #[error("{file}: {mesh} primitive {primitive}: {attribute} accessor {accessor}: {reason}")]
+    InvalidAccessor {
+        file: PathBuf,
+        mesh: String,
+        primitive: usize,
+        attribute: &'static str,
+        accessor: usize,
+        reason: String,
+    },
+
+    /// A vertex attribute holds NaN or infinity.
+    #[error(
+        "{file}: {mesh} primitive {primitive}: vertex {vertex} has a non-finite {attribute} \
+         {value:?}"
+    )]
+    NonFiniteVertex {
+        file: PathBuf,
+        mesh: String,
+        primitive: usize,
+        vertex: usize,
+        attribute: &'static str,
+        value: Vec<f32>,
+    },
+
+    /// An index refers past the end of the primitive's vertex array.
+    #[error(
+        "{file}: {mesh} primitive {primitive}: index #{position} is {index}, but there are only \
+         {vertex_count} vertices"
+    )]
+    IndexOutOfRange {
+        file: PathBuf,
+        mesh: String,
+        primitive: usize,
+        position: usize,
+        index: u32,
+        vertex_count: usize,
+    },
+
+    /// A primitive's index count is not what its mode needs (e.g. TRIANGLES not a multiple of 3).
+    #[error("{file}: {mesh} primitive {primitive}: {reason}")]
+    InvalidPrimitive {
+        file: PathBuf,
+        mesh: String,
+        primitive: usize,
+        reason: String,
+    },
+
+    /// A base-color image could not be located or decoded.
+    #[error("{file}: {image} (base color of {material}): {reason}")]
+    InvalidImage {
+        file: PathBuf,
+        image: String,
+        material: String,
+        reason: String,
+    },
+
+    /// A light's parameters are outside what KHR_lights_punctual allows.
+    #[error("{file}: {light}: {reason}")]
+    InvalidLight {
+        file: PathBuf,
+        light: String,
+        reason: String,
+    },
+
+    /// A camera's parameters cannot make a projection.
+    #[error("{file}: {camera}: {reason}")]
+    InvalidCamera {
+        file: PathBuf,
+        camera: String,
+        reason: String,
+    },
+
+    /// A node is reached twice from the scene's roots: a cycle or a shared child, both of which
+    /// glTF forbids (the hierarchy must be a forest).
+    #[error("{file}: {node} is reached twice in the node hierarchy (cycle or shared child)")]
+    NodeHierarchy { file: PathBuf, node: String },
+
+    /// Nothing to draw: no triangle survived loading.
+    #[error("{scene}: the scene contains no triangles")]
+    EmptyScene { scene: String },
+
+    /// `builtin:NAME` with a NAME that is not a built-in scene.
+    #[error("unknown built-in scene `{name}`; available: {available}")]
+    UnknownBuiltin { name: String, available: String },
+
+    /// A `builtin:NAME?key=value` parameter that the scene does not take or cannot parse.
+    #[error("builtin:{scene}: {reason}")]
+    BuiltinParameter { scene: String, reason: String },
+}
+
+/// How errors and warnings name a glTF object: its kind and index, plus its name when it has one
+/// (names are optional and not unique, indices are what a glTF validator reports).
+pub(crate) fn label(kind: &str, index: usize, name: Option<&str>) -> String {
+    match name {
+        Some(name) => format!("{kind} {index} \"{name}\""),
+        None => format!("{kind} {index}"),
+    }
+}

@@ -1,0 +1,77 @@
+//! glTF cameras to [`Camera`]s.
+
+use std::path::Path;
+
+use glam::DMat4;
+use gltf::json::camera::Type;
+use gltf::json::validation::Checked;
+
+use crate::scene::error::label;
+use crate::scene::{Camera, Projection, SceneError};
+
+/// Converts a camera placed at `world`. The node's scale is dropped (glTF cameras look down
+/// their node's -Z with +Y up whatever the scale). Rejects projections that cannot make a
+/// matrix: yfov outside (0, π), znear <= 0 for perspective (< 0 for orthographic),
+/// zfar <= znear, zero xmag or ymag.
+pub(super) fn convert(
+    file: &Path,
+    document: &gltf::Document,
+    camera: &gltf::Camera,
+    world: &DMat4,
+) -> Result<Camera, SceneError> {
+    let name = label("camera", camera.index(), camera.name());
+    let invalid = |reason: &str| SceneError::InvalidCamera {
+        file: file.to_owned(),
+        camera: name.clone(),
+        reason: reason.to_owned(),
+    };
+    // The JSON is read directly: gltf's `Camera::projection` unwraps the object named by
+    // `type`, which a malformed file may lack.
+    let json = &document.as_json().cameras[camera.index()];
+    let projection = match (&json.type_, &json.perspective, &json.orthographic) {
+        (Checked::Valid(Type::Perspective), Some(p), _) => {
+            if p.yfov <= 0.0 || p.yfov >= std::f32::consts::PI {
+                return Err(invalid("yfov must be in (0, π)"));
+            }
+            if p.znear <= 0.0 || p.zfar.is_some_and(|zfar| zfar <= p.znear) {
+                return Err(invalid("perspective needs 0 < znear < zfar"));
+            }
+            Projection::Perspective {
+                yfov: p.yfov,
+                znear: p.znear,
+                zfar: p.zfar,
+            }
+        }
+        (Checked::Valid(Type::Orthographic), _, Some(o)) => {
+            if o.xmag == 0.0 || o.ymag == 0.0 {
+                return Err(invalid("xmag and ymag must not be zero"));
+            }
+            if o.znear < 0.0 || o.zfar <= o.znear {
+                return Err(invalid("orthographic needs 0 <= znear < zfar"));
+            }
+            Projection::Orthographic {
+                xmag: o.xmag,
+                ymag: o.ymag,
+                znear: o.znear,
+                zfar: o.zfar,
+            }
+        }
+        _ => {
+            return Err(invalid(
+                "`type` does not match a perspective or orthographic object",
+            ))
+        }
+    };
+    let (_, orientation, position) = world.to_scale_rotation_translation();
+    if !orientation.is_finite() {
+        return Err(invalid(
+            "its node's transform has zero scale, so it has no orientation",
+        ));
+    }
+    Ok(Camera {
+        name,
+        position,
+        orientation,
+        projection,
+    })
+}

@@ -1,0 +1,60 @@
+//! Base-color images, decoded to RGBA8.
+
+use super::{accessor, uri, Loader};
+use crate::scene::error::label;
+use crate::scene::{SceneError, TextureImage};
+
+impl Loader<'_> {
+    /// The scene texture index of glTF image `index`, decoding it (PNG or JPEG, from a buffer
+    /// view, a data URI or a file) on first use. `material` names the user in errors.
+    pub(super) fn base_color_image(
+        &mut self,
+        index: usize,
+        material: &str,
+    ) -> Result<usize, SceneError> {
+        if let Some(&texture) = self.images.get(&index) {
+            return Ok(texture);
+        }
+        // The JSON is read directly: gltf's `Image::source` unwraps fields a malformed file
+        // may lack.
+        let json = &self.document.as_json().images[index];
+        // A data URI is no name: it is the whole image.
+        let file_name = json.uri.as_deref().filter(|uri| !uri.starts_with("data:"));
+        let name = label("image", index, json.name.as_deref().or(file_name));
+        let invalid = |reason: String| SceneError::InvalidImage {
+            file: self.file.to_owned(),
+            image: name.clone(),
+            material: material.to_owned(),
+            reason,
+        };
+        let encoded = match (&json.buffer_view, &json.uri) {
+            (Some(view), _) => {
+                let view = self
+                    .document
+                    .views()
+                    .nth(view.value())
+                    .ok_or_else(|| invalid(format!("no buffer view {}", view.value())))?;
+                accessor::view_bytes(&self.buffers, &view)
+                    .map_err(invalid)?
+                    .to_vec()
+            }
+            (None, Some(uri)) => {
+                uri::read(self.base, uri).map_err(|e| e.into_scene_error(invalid))?
+            }
+            (None, None) => return Err(invalid("has neither uri nor bufferView".to_owned())),
+        };
+        let decoded = ::image::load_from_memory(&encoded)
+            .map_err(|e| invalid(format!("cannot decode: {e}")))?
+            .into_rgba8();
+        self.builder.textures.push(TextureImage {
+            name,
+            width: decoded.width(),
+            height: decoded.height(),
+            rgba8: decoded.into_raw(),
+            srgb: true,
+        });
+        let texture = self.builder.textures.len() - 1;
+        self.images.insert(index, texture);
+        Ok(texture)
+    }
+}

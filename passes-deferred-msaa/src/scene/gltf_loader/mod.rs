@@ -1,0 +1,128 @@
+//! glTF 2.0 (`.gltf` with external or embedded buffers, `.glb`) to [`Scene`].
+//!
+//! What is read: the default scene (else the first) with its node hierarchy; triangle
+//! primitives (TRIANGLES, and strips and fans converted to lists) with POSITION, NORMAL (flat
+//! normals generated when missing) and TEXCOORD_0; metallic-roughness materials with their
+//! base-color texture, emissive, alpha OPAQUE/MASK, double-sided and the extensions in
+//! [`extensions::IMPLEMENTED`]; cameras; KHR_lights_punctual lights. What is not: other
+//! textures, BLEND (drawn opaque), points and lines, skins, morph targets and animations, each
+//! with a warning in [`Scene::warnings`].
+
+mod accessor;
+mod camera;
+mod extensions;
+mod image;
+mod light;
+mod material;
+mod nodes;
+mod primitive;
+mod uri;
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use super::builder::SceneBuilder;
+use super::{Scene, SceneError};
+
+/// Loads `file`; see the module documentation for what is kept.
+pub(crate) fn load(file: &Path) -> Result<Scene, SceneError> {
+    let bytes = std::fs::read(file).map_err(|source| SceneError::Io {
+        file: file.to_owned(),
+        source,
+    })?;
+    let gltf_error = |source| SceneError::Gltf {
+        file: file.to_owned(),
+        source,
+    };
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::from_slice_without_validation(&bytes).map_err(gltf_error)?;
+    let warnings = extensions::check(file, &document)?;
+    let document = extensions::validate(document).map_err(gltf_error)?;
+    let base = file.parent().unwrap_or(Path::new(""));
+    let mut loader = Loader {
+        file,
+        base,
+        buffers: uri::load_buffers(file, base, &document, blob)?,
+        document: &document,
+        builder: SceneBuilder::new(file.display().to_string()),
+        materials: HashMap::new(),
+        images: HashMap::new(),
+    };
+    loader.builder.warnings = warnings;
+    loader.builder.warnings.extend(ignored_features(&document));
+    if let Some(scene) = document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+    {
+        for placed in nodes::flatten(file, &document, &scene)? {
+            loader.place(&placed)?;
+        }
+    }
+    loader.builder.finish()
+}
+
+/// State shared by the per-object conversions in this module's files.
+struct Loader<'a> {
+    file: &'a Path,
+    /// Directory that relative URIs are resolved against.
+    base: &'a Path,
+    document: &'a gltf::Document,
+    buffers: Vec<Vec<u8>>,
+    builder: SceneBuilder,
+    /// glTF material index (`None` = the default material) to scene material index, so each is
+    /// converted once and only if some primitive uses it.
+    materials: HashMap<Option<usize>, usize>,
+    /// glTF image index to scene texture index: each image is decoded once.
+    images: HashMap<usize, usize>,
+}
+
+impl Loader<'_> {
+    /// Adds what one placed node carries: mesh primitives, its camera if no camera was found
+    /// yet, its light.
+    fn place(&mut self, placed: &nodes::Placed) -> Result<(), SceneError> {
+        if let Some(mesh) = placed.node.mesh() {
+            for primitive in mesh.primitives() {
+                self.primitive(&mesh, &primitive, placed.world)?;
+            }
+        }
+        if let (None, Some(camera)) = (&self.builder.camera, placed.node.camera()) {
+            self.builder.camera = Some(camera::convert(
+                self.file,
+                self.document,
+                &camera,
+                &placed.world,
+            )?);
+        }
+        if let Some(light) = placed.node.light() {
+            let light = light::convert(self.file, &light, &placed.world)?;
+            self.builder.lights.push(light);
+        }
+        Ok(())
+    }
+}
+
+/// Warnings for core glTF features that are present but not drawn.
+fn ignored_features(document: &gltf::Document) -> Vec<String> {
+    let morph_targets = document
+        .meshes()
+        .flat_map(|m| m.primitives())
+        .any(|p| p.morph_targets().next().is_some());
+    [
+        (
+            document.animations().next().is_some(),
+            "animations are ignored: nodes keep their static transforms",
+        ),
+        (
+            document.skins().next().is_some(),
+            "skins are ignored: skinned meshes are drawn in their bind pose",
+        ),
+        (
+            morph_targets,
+            "morph targets are ignored: meshes are drawn with their base shape",
+        ),
+    ]
+    .into_iter()
+    .filter(|(present, _)| *present)
+    .map(|(_, warning)| warning.to_owned())
+    .collect()
+}

@@ -1,0 +1,123 @@
+//! Punctual lights (KHR_lights_punctual) and the volumes a deferred renderer draws for them.
+
+use glam::{DVec3, Vec3};
+
+use super::bounds::BoundingSphere;
+
+/// Default illuminance (lux, the unit of `intensity / distance²`) below which a light without a
+/// glTF `range` is treated as contributing nothing; see [`Light::effective_range`].
+pub const DEFAULT_CUTOFF_ILLUMINANCE: f32 = 0.01;
+
+/// The three KHR_lights_punctual types.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightKind {
+    Point,
+    /// Cone half-angles in radians from the axis, `0 <= inner_cone < outer_cone <= π/2`: full
+    /// intensity inside `inner_cone`, none outside `outer_cone`.
+    Spot {
+        inner_cone: f32,
+        outer_cone: f32,
+    },
+    Directional,
+}
+
+/// A light in world space, in glTF units.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Light {
+    pub name: String,
+    pub kind: LightKind,
+    /// Linear RGB.
+    pub color: [f32; 3],
+    /// Candela (lm/sr) for point and spot lights, lux (lm/m²) for directional lights.
+    pub intensity: f32,
+    /// World position (f64 like every world position); unused by directional lights.
+    pub position: DVec3,
+    /// Unit direction the light travels (the node's -Z); unused by point lights.
+    pub direction: Vec3,
+    /// glTF `range`: distance where the light's windowed falloff reaches zero; `None` = infinite.
+    pub range: Option<f32>,
+}
+
+/// The geometry a deferred renderer rasterizes to find the pixels a light may reach.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightVolume {
+    /// Directional lights reach every pixel: draw a full-screen triangle.
+    FullScreen,
+    /// Point lights: a sphere.
+    Sphere(BoundingSphere),
+    /// Spot lights: a cone with its apex at the light, `height` along `axis` to a base disc of
+    /// `base_radius`. It contains the spherical sector the light reaches (`height` is the
+    /// effective range, `base_radius = height * tan(outer_cone)`); a tessellated cone must
+    /// circumscribe this one (scale its base by `1 / cos(π / segments)`).
+    Cone {
+        apex: DVec3,
+        axis: Vec3,
+        height: f32,
+        base_radius: f32,
+    },
+}
+
+impl Light {
+    /// Distance beyond which a point or spot light is ignored; `None` for directional lights.
+    ///
+    /// Without falloff windowing, illuminance at distance `d` is `intensity * max(color) / d²`;
+    /// it drops below `cutoff` (lux, see [`DEFAULT_CUTOFF_ILLUMINANCE`]) at
+    /// `d = sqrt(intensity * max(color) / cutoff)`. With a glTF `range` the light is zero beyond
+    /// it anyway, so the result is the smaller of the two. A light with zero intensity or color
+    /// has range 0.
+    pub fn effective_range(&self, cutoff: f32) -> Option<f32> {
+        (self.kind != LightKind::Directional).then(|| self.local_range(cutoff))
+    }
+
+    /// The sphere this crate puts around the lit region: centered on a point light with radius
+    /// [`Self::effective_range`] `r`; for a spot light of outer half-angle θ, the sphere through
+    /// the apex and the rim of the cone's cap when θ ≤ 45° (center `r / (2 cos θ)` along the
+    /// axis, radius the same), else the sphere around the rim's disc (center `r cos θ` along the
+    /// axis, radius `r sin θ`); both contain the whole spherical sector. `None` for directional
+    /// lights. Meant for culling and light clustering.
+    pub fn bounding_sphere(&self, cutoff: f32) -> Option<BoundingSphere> {
+        let range = f64::from(self.local_range(cutoff));
+        let (offset, radius) = match self.kind {
+            LightKind::Directional => return None,
+            LightKind::Point => (0.0, range),
+            LightKind::Spot { outer_cone, .. } => {
+                let theta = f64::from(outer_cone);
+                if theta <= std::f64::consts::FRAC_PI_4 {
+                    let t = range / (2.0 * theta.cos());
+                    (t, t)
+                } else {
+                    (range * theta.cos(), range * theta.sin())
+                }
+            }
+        };
+        Some(BoundingSphere {
+            center: self.position + self.direction.as_dvec3() * offset,
+            radius,
+        })
+    }
+
+    /// The light volume to rasterize; see [`LightVolume`].
+    pub fn volume(&self, cutoff: f32) -> LightVolume {
+        let range = self.local_range(cutoff);
+        match self.kind {
+            LightKind::Directional => LightVolume::FullScreen,
+            LightKind::Point => LightVolume::Sphere(BoundingSphere {
+                center: self.position,
+                radius: f64::from(range),
+            }),
+            LightKind::Spot { outer_cone, .. } => LightVolume::Cone {
+                apex: self.position,
+                axis: self.direction,
+                height: range,
+                base_radius: range * outer_cone.tan(),
+            },
+        }
+    }
+
+    /// [`Self::effective_range`]'s formula, whatever the kind.
+    fn local_range(&self, cutoff: f32) -> f32 {
+        let brightest = self.color.into_iter().fold(0.0f32, f32::max);
+        let cutoff_radius = (self.intensity.max(0.0) * brightest / cutoff).sqrt();
+        self.range.map_or(cutoff_radius, |r| r.min(cutoff_radius))
+    }
+}

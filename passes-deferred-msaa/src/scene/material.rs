@@ -1,0 +1,64 @@
+//! Metallic-roughness materials as the G-buffer pass consumes them.
+
+use super::texture::TextureRef;
+
+/// How alpha affects coverage. glTF BLEND is not supported by a deferred G-buffer; the loader
+/// turns it into `Opaque` with a warning.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AlphaMode {
+    Opaque,
+    /// Fragments with `alpha < cutoff` are discarded.
+    Mask {
+        cutoff: f32,
+    },
+}
+
+/// A glTF 2.0 metallic-roughness material, with the extensions this crate implements folded in.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    pub name: String,
+    /// Linear RGBA, multiplied with the base-color texture.
+    pub base_color_factor: [f32; 4],
+    /// sRGB texture sampled with TEXCOORD_0.
+    pub base_color_texture: Option<TextureRef>,
+    pub metallic_factor: f32,
+    pub roughness_factor: f32,
+    /// Linear RGB emitted radiance before `emissive_strength`.
+    pub emissive_factor: [f32; 3],
+    /// KHR_materials_emissive_strength multiplier (1 without the extension).
+    pub emissive_strength: f32,
+    pub alpha_mode: AlphaMode,
+    /// Back faces are drawn (and lit with the flipped normal) instead of culled.
+    pub double_sided: bool,
+    /// KHR_materials_unlit: output is `base color`, no lighting.
+    pub unlit: bool,
+}
+
+impl Material {
+    /// The glTF default material (white, fully metallic and rough), used by primitives that
+    /// name no material.
+    pub fn gltf_default() -> Material {
+        Material {
+            name: "default".to_owned(),
+            base_color_factor: [1.0; 4],
+            base_color_texture: None,
+            metallic_factor: 1.0,
+            roughness_factor: 1.0,
+            emissive_factor: [0.0; 3],
+            emissive_strength: 1.0,
+            alpha_mode: AlphaMode::Opaque,
+            double_sided: false,
+            unlit: false,
+        }
+    }
+
+    /// Emitted radiance, `emissive_factor * emissive_strength`.
+    pub fn emission(&self) -> [f32; 3] {
+        self.emissive_factor.map(|c| c * self.emissive_strength)
+    }
+
+    /// Whether the material emits light at all.
+    pub fn is_emissive(&self) -> bool {
+        self.emission().iter().any(|&c| c > 0.0)
+    }
+}

@@ -1,0 +1,61 @@
+//! Triangle meshes: object-space vertex data plus a world transform.
+
+use glam::{DMat3, DMat4, DVec3, Vec3};
+
+use super::bounds::Aabb;
+
+/// One vertex as the G-buffer pass reads it: 32 bytes, no padding, uploadable as is.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct Vertex {
+    /// Object space.
+    pub position: [f32; 3],
+    /// Object space, unit length.
+    pub normal: [f32; 3],
+    /// TEXCOORD_0; `[0, 0]` when the source has none.
+    pub uv: [f32; 2],
+}
+
+/// An indexed triangle list with one material.
+///
+/// Vertex data stays in object space and the world transform is kept apart, in f64, so a renderer
+/// can build camera-relative matrices for scenes far from the origin without losing precision.
+/// Contract: every index is `< vertices.len()`, `indices.len()` is a multiple of 3, and triangles
+/// are counter-clockwise when seen from their front side *after* `transform` (loaders reverse
+/// the winding of mirroring transforms so renderers need not).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    /// `mesh name/primitive index` for glTF, a description for built-in scenes.
+    pub name: String,
+    pub vertices: Vec<Vertex>,
+    pub indices: Vec<u32>,
+    /// Index into `Scene::materials`.
+    pub material: usize,
+    /// Object space to world space.
+    pub transform: DMat4,
+}
+
+impl Mesh {
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+
+    /// Object-space normals to world space: the inverse transpose of the transform's 3x3 part,
+    /// so non-uniform scale keeps normals perpendicular to surfaces. Renormalize after use.
+    pub fn normal_matrix(&self) -> DMat3 {
+        DMat3::from_mat4(self.transform).inverse().transpose()
+    }
+
+    /// World-space positions of all vertices.
+    pub fn world_positions(&self) -> impl Iterator<Item = DVec3> + '_ {
+        self.vertices.iter().map(|v| {
+            self.transform
+                .transform_point3(Vec3::from_array(v.position).as_dvec3())
+        })
+    }
+
+    /// Exact world-space bounds (every vertex transformed), `None` without vertices.
+    pub fn world_bounds(&self) -> Option<Aabb> {
+        Aabb::from_points(self.world_positions())
+    }
+}

@@ -1,0 +1,81 @@
+//! The CPU-side scene model and its sources: glTF 2.0 files and built-in procedural scenes.
+//!
+//! A [`Scene`] is plain data ready for upload: object-space vertex arrays with f64 world
+//! transforms, metallic-roughness materials, decoded RGBA8 textures, punctual lights in world
+//! space and one camera. [`Scene::load`] takes either a path to a `.gltf` / `.glb` file or
+//! `builtin:NAME` (see [`builtin_names`]), optionally with parameters: `builtin:lights?count=1024`.
+//!
+//! Nothing here touches the GPU or prints: problems that still allow rendering come back as
+//! [`Scene::warnings`], problems that do not as a [`SceneError`].
+
+mod bounds;
+mod builder;
+mod camera;
+mod error;
+mod gltf_loader;
+mod light;
+mod material;
+mod mesh;
+mod normals;
+mod procedural;
+mod stats;
+mod texture;
+
+use std::path::Path;
+
+pub use bounds::{Aabb, BoundingSphere};
+pub use camera::{Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_YFOV};
+pub use error::SceneError;
+pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE};
+pub use material::{AlphaMode, Material};
+pub use mesh::{Mesh, Vertex};
+pub use normals::flat_shaded;
+pub use procedural::{builtin_names, BuiltinScene, BUILTIN_PREFIX};
+pub use stats::SceneStats;
+pub use texture::{FilterMode, Sampler, TextureImage, TextureRef, WrapMode};
+
+/// Everything a renderer needs to draw one view of a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// The spec it was loaded from: the file path or `builtin:NAME[?params]`.
+    pub name: String,
+    /// At least one, each with at least one triangle.
+    pub meshes: Vec<Mesh>,
+    /// Indexed by `Mesh::material`.
+    pub materials: Vec<Material>,
+    /// Indexed by `TextureRef::image`.
+    pub textures: Vec<TextureImage>,
+    pub lights: Vec<Light>,
+    /// Linear RGB ambient radiance multiplied with base color (glTF has none: zero for files).
+    pub ambient: [f32; 3],
+    /// The file's first camera in scene order, else [`Camera::framing`] of the bounds.
+    pub camera: Camera,
+    /// Exact world-space bounds of all vertices.
+    pub bounds: Aabb,
+    /// Things the loader ignored or changed, each naming the object concerned.
+    pub warnings: Vec<String>,
+}
+
+impl Scene {
+    /// Loads `builtin:NAME[?key=value&...]` or a `.gltf` / `.glb` file path.
+    pub fn load(spec: &str) -> Result<Scene, SceneError> {
+        match spec.strip_prefix(BUILTIN_PREFIX) {
+            Some(builtin) => Scene::builtin(builtin),
+            None => Scene::from_gltf(Path::new(spec)),
+        }
+    }
+
+    /// Loads a glTF 2.0 file (`.gltf` with embedded or external buffers, or `.glb`).
+    pub fn from_gltf(path: &Path) -> Result<Scene, SceneError> {
+        gltf_loader::load(path)
+    }
+
+    /// Generates a built-in scene from `NAME[?key=value&...]` (without the `builtin:` prefix).
+    pub fn builtin(spec: &str) -> Result<Scene, SceneError> {
+        procedural::build(spec)
+    }
+
+    pub fn stats(&self) -> SceneStats {
+        SceneStats::of(self)
+    }
+}

@@ -1,0 +1,84 @@
+//! Built-in procedural scenes, selected with `builtin:NAME[?key=value&...]`.
+//!
+//! Every scene is generated without I/O and is bit-identical for the same spec: fixed
+//! constants plus, where randomness helps, a seeded [`rng::Pcg32`]. Each scene's module
+//! documents what it contains and why it exists.
+
+mod dense;
+mod lights;
+mod params;
+mod parts;
+mod rng;
+mod shapes;
+mod spheres;
+mod unlit;
+
+use params::Params;
+
+use super::builder::SceneBuilder;
+use super::{Scene, SceneError};
+
+/// What [`super::Scene::load`] strips to find a built-in scene name.
+pub const BUILTIN_PREFIX: &str = "builtin:";
+
+/// A built-in scene: its name, a one-line description and the parameters it takes.
+pub struct BuiltinScene {
+    pub name: &'static str,
+    pub description: &'static str,
+    /// `(key, meaning and default)` for each `?key=value` parameter accepted.
+    pub params: &'static [(&'static str, &'static str)],
+    build: fn(&Params, &mut SceneBuilder) -> Result<(), SceneError>,
+}
+
+const BUILTINS: &[BuiltinScene] = &[
+    BuiltinScene {
+        name: "spheres",
+        description: "few edges: five large smooth spheres on a ground plane, 1 directional + 4 point lights",
+        params: &[],
+        build: spheres::build,
+    },
+    BuiltinScene {
+        name: "dense",
+        description: "many edges: grass blades, a wire fence, thin poles and interpenetrating boxes and spheres; 4 point + 2 spot lights",
+        params: &[],
+        build: dense::build,
+    },
+    BuiltinScene {
+        name: "lights",
+        description: "many lights: 256 point + 64 spot lights (seeded) over a floor with a grid of boxes and spheres",
+        params: lights::PARAMS,
+        build: lights::build,
+    },
+    BuiltinScene {
+        name: "unlit",
+        description: "analytic: four flat-colored UNLIT shapes at documented positions under an orthographic camera",
+        params: &[],
+        build: unlit::build,
+    },
+];
+
+/// All built-in scenes, in a stable order.
+pub fn builtin_names() -> &'static [BuiltinScene] {
+    BUILTINS
+}
+
+/// Builds `NAME[?params]` (the spec after `builtin:`).
+pub(crate) fn build(spec: &str) -> Result<Scene, SceneError> {
+    let (name, query) = spec.split_once('?').unwrap_or((spec, ""));
+    let builtin =
+        BUILTINS
+            .iter()
+            .find(|b| b.name == name)
+            .ok_or_else(|| SceneError::UnknownBuiltin {
+                name: name.to_owned(),
+                available: BUILTINS
+                    .iter()
+                    .map(|b| b.name)
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            })?;
+    let params = Params::parse(name, query, builtin.params)?;
+    let mut builder = SceneBuilder::new(format!("{BUILTIN_PREFIX}{spec}"));
+    (builtin.build)(&params, &mut builder)?;
+    builder.finish()
+}

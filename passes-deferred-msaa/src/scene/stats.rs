@@ -1,0 +1,76 @@
+//! Counts that characterize a scene, for reports and scene analysis.
+
+use std::fmt;
+
+use super::light::LightKind;
+use super::material::AlphaMode;
+use super::Scene;
+
+/// What a scene holds. Material counts overlap: one material can be emissive and textured.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneStats {
+    pub meshes: usize,
+    pub triangles: usize,
+    pub vertices: usize,
+    pub point_lights: usize,
+    pub spot_lights: usize,
+    pub directional_lights: usize,
+    pub materials: usize,
+    pub unlit_materials: usize,
+    pub emissive_materials: usize,
+    pub mask_materials: usize,
+    pub textured_materials: usize,
+    pub double_sided_materials: usize,
+    pub textures: usize,
+}
+
+impl SceneStats {
+    pub fn of(scene: &Scene) -> SceneStats {
+        let lights =
+            |kind: fn(&LightKind) -> bool| scene.lights.iter().filter(|l| kind(&l.kind)).count();
+        let materials =
+            |has: fn(&super::Material) -> bool| scene.materials.iter().filter(|m| has(m)).count();
+        SceneStats {
+            meshes: scene.meshes.len(),
+            triangles: scene.meshes.iter().map(|m| m.triangle_count()).sum(),
+            vertices: scene.meshes.iter().map(|m| m.vertices.len()).sum(),
+            point_lights: lights(|k| matches!(k, LightKind::Point)),
+            spot_lights: lights(|k| matches!(k, LightKind::Spot { .. })),
+            directional_lights: lights(|k| matches!(k, LightKind::Directional)),
+            materials: scene.materials.len(),
+            unlit_materials: materials(|m| m.unlit),
+            emissive_materials: materials(|m| m.is_emissive()),
+            mask_materials: materials(|m| matches!(m.alpha_mode, AlphaMode::Mask { .. })),
+            textured_materials: materials(|m| m.base_color_texture.is_some()),
+            double_sided_materials: materials(|m| m.double_sided),
+            textures: scene.textures.len(),
+        }
+    }
+}
+
+impl fmt::Display for SceneStats {
+    /// One line, e.g. `12 meshes, 20480 triangles, 9000 vertices; lights: 4 point, 0 spot,
+    /// 1 directional; 6 materials (0 unlit, 1 emissive, 0 mask, 2 textured, 0 double-sided),
+    /// 2 textures`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} meshes, {} triangles, {} vertices; lights: {} point, {} spot, {} directional; \
+             {} materials ({} unlit, {} emissive, {} mask, {} textured, {} double-sided), \
+             {} textures",
+            self.meshes,
+            self.triangles,
+            self.vertices,
+            self.point_lights,
+            self.spot_lights,
+            self.directional_lights,
+            self.materials,
+            self.unlit_materials,
+            self.emissive_materials,
+            self.mask_materials,
+            self.textured_materials,
+            self.double_sided_materials,
+            self.textures
+        )
+    }
+}

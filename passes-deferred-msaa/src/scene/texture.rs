@@ -1,0 +1,62 @@
+//! Decoded texture images and how they are sampled.
+
+/// A decoded image, tightly packed RGBA8 rows, top row first (as glTF and wgpu expect).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureImage {
+    /// The glTF image name or URI, or a description for generated images; for messages only.
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    /// `width * height * 4` bytes.
+    pub rgba8: Vec<u8>,
+    /// Whether the bytes are sRGB-encoded (color data) rather than linear (data maps).
+    pub srgb: bool,
+}
+
+/// How texture coordinates outside `[0, 1]` wrap (glTF sampler `wrapS` / `wrapT`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WrapMode {
+    Repeat,
+    MirroredRepeat,
+    ClampToEdge,
+}
+
+/// Texel filtering between texels or between mip levels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FilterMode {
+    Nearest,
+    Linear,
+}
+
+/// A glTF sampler, split the way wgpu's `SamplerDescriptor` is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sampler {
+    pub wrap_u: WrapMode,
+    pub wrap_v: WrapMode,
+    pub mag_filter: FilterMode,
+    pub min_filter: FilterMode,
+    /// `None` when the glTF minification filter uses no mipmaps (NEAREST or LINEAR).
+    pub mipmap_filter: Option<FilterMode>,
+}
+
+impl Default for Sampler {
+    /// glTF leaves missing filters to the implementation: trilinear with repeat, the common
+    /// choice of viewers.
+    fn default() -> Self {
+        Sampler {
+            wrap_u: WrapMode::Repeat,
+            wrap_v: WrapMode::Repeat,
+            mag_filter: FilterMode::Linear,
+            min_filter: FilterMode::Linear,
+            mipmap_filter: Some(FilterMode::Linear),
+        }
+    }
+}
+
+/// A material's use of a texture: which image and how to sample it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureRef {
+    /// Index into `Scene::textures`.
+    pub image: usize,
+    pub sampler: Sampler,
+}
