@@ -218,7 +218,7 @@ fn ops<T: Copy>(ops: &Ops<T>, value: impl Fn(T) -> String) -> String {
     format!("{load} -> {store}")
 }
 
-fn describe_shape(s: &TextureShape) -> String {
+pub(crate) fn describe_shape(s: &TextureShape) -> String {
     let mut out = format!("{} {}x{}", format_name(s.format), s.width, s.height);
     if s.samples > 1 {
         let _ = write!(out, " {}x MSAA", s.samples);
@@ -232,11 +232,11 @@ fn describe_shape(s: &TextureShape) -> String {
     out
 }
 
-fn texture_usages(u: TextureUsages) -> String {
+pub(crate) fn texture_usages(u: TextureUsages) -> String {
     flag_names(u.iter_names().map(|(n, _)| n))
 }
 
-fn buffer_usages(u: BufferUsages) -> String {
+pub(crate) fn buffer_usages(u: BufferUsages) -> String {
     flag_names(u.iter_names().map(|(n, _)| n))
 }
 

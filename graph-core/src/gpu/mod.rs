@@ -1,5 +1,21 @@
-//! Execution on a wgpu device (feature `gpu`).
+//! Execution on a wgpu device (feature `gpu`): opening a headless device
+//! ([`Gpu::open`]), running compiled plans ([`Executor`]) with engine-owned resources
+//! ([`Imports`]), and reading results back ([`read_texture`]).
 
 mod context;
+mod device;
+mod executor;
+mod imports;
+mod pool;
+mod readback;
+mod timing;
 
 pub use context::{ComputeContext, FrameResources, RenderContext, TransferContext};
+pub use device::{
+    is_lavapipe, list_adapters, AdapterChoice, AdapterSummary, DeviceError, EmptyChoice, Gpu,
+    COMMON_FORMATS,
+};
+pub use executor::{ExecuteError, Executor, FrameReport, PassTiming};
+pub use imports::{ImportError, ImportKey, Imports};
+pub use pool::{PoolStats, KEEP_FRAMES};
+pub use readback::{read_buffer, read_rgba16f, read_rgba8, read_texture, ReadbackError};

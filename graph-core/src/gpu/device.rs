@@ -1,0 +1,410 @@
+//! Opening a headless device: the one place that decides which adapter runs the graph.
+//!
+//! The default is lavapipe (Mesa's software Vulkan driver) unless `RGRAPH_ADAPTER` says
+//! otherwise, so tests and CI produce the same pixels on any machine; a `--adapter` flag,
+//! passed to [`AdapterChoice::resolve`], overrides the variable.
+
+use std::fmt;
+use std::str::FromStr;
+use std::sync::{Arc, Mutex, Once};
+
+use wgpu::{Backends, DeviceType, Features, TextureFormat};
+
+use crate::profile::DeviceProfile;
+
+/// Which adapter to open.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum AdapterChoice {
+    /// Mesa's software rasterizer (`DeviceType::Cpu`, or a name containing "llvmpipe").
+    Lavapipe,
+    /// The first adapter that is not a CPU one.
+    FirstGpu,
+    /// The first adapter whose name contains this text (case-insensitive).
+    Named(String),
+}
+
+impl AdapterChoice {
+    /// The environment variable that picks the adapter when no flag does.
+    pub const ENV: &'static str = "RGRAPH_ADAPTER";
+
+    /// `flag` when given and not empty (a CLI `--adapter`), else `RGRAPH_ADAPTER`, else lavapipe.
+    pub fn resolve(flag: Option<&str>) -> Self {
+        flag.and_then(|text| text.parse().ok())
+            .unwrap_or_else(Self::from_env)
+    }
+
+    /// `RGRAPH_ADAPTER` when set and not empty, else lavapipe.
+    pub fn from_env() -> Self {
+        std::env::var(Self::ENV)
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(AdapterChoice::Lavapipe)
+    }
+
+    /// Whether the adapter described by `info` is the one asked for.
+    pub fn matches(&self, info: &wgpu::AdapterInfo) -> bool {
+        match self {
+            AdapterChoice::Lavapipe => is_lavapipe(info),
+            AdapterChoice::FirstGpu => !is_lavapipe(info) && info.device_type != DeviceType::Cpu,
+            AdapterChoice::Named(part) => info.name.to_lowercase().contains(&part.to_lowercase()),
+        }
+    }
+}
+
+/// `"lavapipe"` and `"gpu"` (any case) are the keywords; any other text is part of an
+/// adapter name. Empty text is no choice at all, so callers fall back to the default.
+impl FromStr for AdapterChoice {
+    type Err = EmptyChoice;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let text = text.trim();
+        match text.to_lowercase().as_str() {
+            "" => Err(EmptyChoice),
+            "lavapipe" => Ok(AdapterChoice::Lavapipe),
+            "gpu" => Ok(AdapterChoice::FirstGpu),
+            _ => Ok(AdapterChoice::Named(text.to_string())),
+        }
+    }
+}
+
+/// The adapter choice was empty text.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("empty adapter choice: expected lavapipe, gpu, or part of an adapter's name")]
+pub struct EmptyChoice;
+
+impl fmt::Display for AdapterChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            AdapterChoice::Lavapipe => f.write_str("lavapipe"),
+            AdapterChoice::FirstGpu => f.write_str("gpu"),
+            AdapterChoice::Named(name) => write!(f, "\"{name}\""),
+        }
+    }
+}
+
+/// lavapipe reports `DeviceType::Cpu`; the name check also catches builds that do not.
+pub fn is_lavapipe(info: &wgpu::AdapterInfo) -> bool {
+    info.device_type == DeviceType::Cpu || info.name.to_lowercase().contains("llvmpipe")
+}
+
+/// Why no device could be opened.
+#[derive(Debug, thiserror::Error)]
+pub enum DeviceError {
+    #[error(
+        "no Vulkan adapter found: install the lavapipe driver with \
+         `apt-get install mesa-vulkan-drivers`, or pick one with --adapter / RGRAPH_ADAPTER"
+    )]
+    NoAdapter,
+
+    #[error(
+        "no Vulkan adapter matches {wanted}; available: {}. Pick one with --adapter / \
+         RGRAPH_ADAPTER (lavapipe, gpu, or part of an adapter's name){}",
+        available.join(", "),
+        if *wanted == AdapterChoice::Lavapipe {
+            "; lavapipe comes with `apt-get install mesa-vulkan-drivers`"
+        } else {
+            ""
+        }
+    )]
+    NotFound {
+        wanted: AdapterChoice,
+        available: Vec<String>,
+    },
+
+    #[error("adapter \"{adapter}\" refused to open a device: {source}")]
+    RequestDevice {
+        adapter: String,
+        source: wgpu::RequestDeviceError,
+    },
+}
+
+/// Device errors nobody captured in an error scope, kept instead of panicking (wgpu's
+/// default handler panics) so that the executor can return them.
+#[derive(Clone, Default)]
+pub(crate) struct ErrorLog(Arc<Mutex<Vec<String>>>);
+
+impl ErrorLog {
+    fn push(&self, message: String) {
+        // A poisoned lock only means another thread panicked while pushing: keep logging.
+        self.0
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(message);
+    }
+
+    pub(crate) fn take(&self) -> Vec<String> {
+        std::mem::take(&mut *self.0.lock().unwrap_or_else(|e| e.into_inner()))
+    }
+}
+
+/// An open device and what it was opened from.
+///
+/// The `Gpu` owns nothing the graph allocates: an [`Executor`](super::Executor) created
+/// from it keeps its own clones of the device and queue.
+pub struct Gpu {
+    pub instance: wgpu::Instance,
+    pub adapter: wgpu::Adapter,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub info: wgpu::AdapterInfo,
+    pub(crate) errors: ErrorLog,
+}
+
+impl Gpu {
+    /// Optional features requested whenever the adapter has them: GPU timestamps
+    /// everywhere, `Depth32FloatStencil8`, and the adapter's real format capabilities
+    /// (MSAA and resolve for formats WebGPU does not guarantee).
+    pub const DEFAULT_FEATURES: Features = Features::TIMESTAMP_QUERY
+        .union(Features::TIMESTAMP_QUERY_INSIDE_ENCODERS)
+        .union(Features::TIMESTAMP_QUERY_INSIDE_PASSES)
+        .union(Features::DEPTH32FLOAT_STENCIL8)
+        .union(Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES);
+
+    /// Opens the chosen adapter with [`Self::DEFAULT_FEATURES`] (those it has) and all its
+    /// limits. Blocks until the device exists.
+    pub fn open(choice: &AdapterChoice) -> Result<Gpu, DeviceError> {
+        Self::open_with(choice, Self::DEFAULT_FEATURES)
+    }
+
+    /// Opens the chosen adapter requesting `wanted & adapter.features()`.
+    ///
+    /// The device gets `adapter.limits()`, not the WebGPU defaults: a G-buffer needs more
+    /// than the default 32 color bytes per sample. Choosing lavapipe also narrows the
+    /// Vulkan loader to the lavapipe driver when no driver list is set (the first open in
+    /// a process decides that for the whole process).
+    pub fn open_with(choice: &AdapterChoice, wanted: Features) -> Result<Gpu, DeviceError> {
+        prepare_environment(choice);
+        let instance = new_instance();
+        let adapters = pollster::block_on(instance.enumerate_adapters(Backends::VULKAN));
+        if adapters.is_empty() {
+            return Err(DeviceError::NoAdapter);
+        }
+        let Some(adapter) = adapters
+            .iter()
+            .find(|a| choice.matches(&a.get_info()))
+            .cloned()
+        else {
+            return Err(DeviceError::NotFound {
+                wanted: choice.clone(),
+                available: adapters.iter().map(|a| describe(&a.get_info())).collect(),
+            });
+        };
+        let info = adapter.get_info();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("rgraph"),
+            required_features: wanted & adapter.features(),
+            required_limits: adapter.limits(),
+            ..Default::default()
+        }))
+        .map_err(|source| DeviceError::RequestDevice {
+            adapter: describe(&info),
+            source,
+        })?;
+        let errors = ErrorLog::default();
+        let log = errors.clone();
+        device.on_uncaptured_error(Arc::new(move |e| log.push(e.to_string())));
+        Ok(Gpu {
+            instance,
+            adapter,
+            device,
+            queue,
+            info,
+            errors,
+        })
+    }
+
+    /// What this device can do, for compiling graphs that must run on it: the device's
+    /// own limits and features (not the adapter's), and the adapter's format
+    /// capabilities only when `TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES` is enabled.
+    pub fn profile(&self) -> DeviceProfile {
+        let features = self.device.features();
+        let formats = if features.contains(Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES) {
+            format_features(&self.adapter)
+        } else {
+            Vec::new()
+        };
+        DeviceProfile {
+            name: describe(&self.info),
+            limits: self.device.limits(),
+            features,
+            formats,
+            transient_attachments: true,
+        }
+    }
+
+    /// Device errors reported outside any error scope since the last call (the executor
+    /// drains these after each frame too).
+    pub fn take_errors(&self) -> Vec<String> {
+        self.errors.take()
+    }
+}
+
+impl DeviceProfile {
+    /// Everything the adapter can do with every optional feature enabled: its limits,
+    /// features and the capabilities of every uncompressed format.
+    pub fn from_adapter(adapter: &wgpu::Adapter) -> Self {
+        DeviceProfile {
+            name: describe(&adapter.get_info()),
+            limits: adapter.limits(),
+            features: adapter.features(),
+            formats: format_features(adapter),
+            transient_attachments: true,
+        }
+    }
+}
+
+/// One adapter as `rgraph adapters` shows it.
+#[derive(Clone, Debug)]
+pub struct AdapterSummary {
+    pub info: wgpu::AdapterInfo,
+    pub lavapipe: bool,
+    /// Its limits, features and format capabilities (see [`DeviceProfile::from_adapter`]).
+    pub profile: DeviceProfile,
+    /// Supported sample counts of [`COMMON_FORMATS`], in that order.
+    pub sample_counts: Vec<(TextureFormat, Vec<u32>)>,
+}
+
+/// The formats render graphs use most, for a short capability table.
+pub const COMMON_FORMATS: &[TextureFormat] = &[
+    TextureFormat::Rgba8Unorm,
+    TextureFormat::Rgba8UnormSrgb,
+    TextureFormat::Bgra8Unorm,
+    TextureFormat::Rgb10a2Unorm,
+    TextureFormat::Rg16Float,
+    TextureFormat::Rgba16Float,
+    TextureFormat::R32Float,
+    TextureFormat::Rgba32Float,
+    TextureFormat::Rgba8Uint,
+    TextureFormat::Depth24PlusStencil8,
+    TextureFormat::Depth32Float,
+    TextureFormat::Depth32FloatStencil8,
+];
+
+/// Every Vulkan adapter the loader finds, in the loader's order. Does not narrow the
+/// loader to lavapipe, so the list shows everything `--adapter` could pick.
+pub fn list_adapters() -> Vec<AdapterSummary> {
+    prepare_environment(&AdapterChoice::FirstGpu);
+    let instance = new_instance();
+    pollster::block_on(instance.enumerate_adapters(Backends::VULKAN))
+        .iter()
+        .map(|adapter| {
+            let info = adapter.get_info();
+            let profile = DeviceProfile::from_adapter(adapter);
+            let sample_counts = COMMON_FORMATS
+                .iter()
+                .map(|&f| (f, profile.sample_counts(f)))
+                .collect();
+            AdapterSummary {
+                lavapipe: is_lavapipe(&info),
+                info,
+                profile,
+                sample_counts,
+            }
+        })
+        .collect()
+}
+
+/// "name (driver driver_info)", e.g. "llvmpipe (LLVM 15.0.6, 256 bits) (llvmpipe Mesa 22.3.6)".
+fn describe(info: &wgpu::AdapterInfo) -> String {
+    let driver = format!("{} {}", info.driver, info.driver_info);
+    match driver.trim() {
+        "" => info.name.clone(),
+        driver => format!("{} ({driver})", info.name),
+    }
+}
+
+fn new_instance() -> wgpu::Instance {
+    wgpu::Instance::new(wgpu::InstanceDescriptor {
+        backends: Backends::VULKAN,
+        // WGPU_VALIDATION=1 and friends still work.
+        flags: wgpu::InstanceFlags::default().with_env(),
+        ..wgpu::InstanceDescriptor::new_without_display_handle()
+    })
+}
+
+const LAVAPIPE_ICD: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+
+/// Sets the variables the Vulkan loader reads, once per process and before any instance
+/// exists: changing the environment while another thread reads it is undefined, and the
+/// loader reads it only when an instance is created anyway.
+fn prepare_environment(choice: &AdapterChoice) {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // Without it the loader warns on every instance in containers and CI.
+        if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+            std::env::set_var("XDG_RUNTIME_DIR", "/tmp");
+        }
+        let driver_list_set = std::env::var_os("VK_DRIVER_FILES").is_some()
+            || std::env::var_os("VK_ICD_FILENAMES").is_some();
+        // Loading only lavapipe skips probing (and sometimes crashing in) other drivers.
+        if *choice == AdapterChoice::Lavapipe
+            && !driver_list_set
+            && std::path::Path::new(LAVAPIPE_ICD).exists()
+        {
+            std::env::set_var("VK_DRIVER_FILES", LAVAPIPE_ICD);
+        }
+    });
+}
+
+/// Capabilities of every uncompressed format the adapter knows.
+fn format_features(adapter: &wgpu::Adapter) -> Vec<(TextureFormat, wgpu::TextureFormatFeatures)> {
+    UNCOMPRESSED_FORMATS
+        .iter()
+        .map(|&f| (f, adapter.get_texture_format_features(f)))
+        .collect()
+}
+
+/// Every uncompressed, single-plane format of wgpu 30: what a graph can render to,
+/// sample, store or copy.
+const UNCOMPRESSED_FORMATS: &[TextureFormat] = &[
+    TextureFormat::R8Unorm,
+    TextureFormat::R8Snorm,
+    TextureFormat::R8Uint,
+    TextureFormat::R8Sint,
+    TextureFormat::R16Uint,
+    TextureFormat::R16Sint,
+    TextureFormat::R16Unorm,
+    TextureFormat::R16Snorm,
+    TextureFormat::R16Float,
+    TextureFormat::Rg8Unorm,
+    TextureFormat::Rg8Snorm,
+    TextureFormat::Rg8Uint,
+    TextureFormat::Rg8Sint,
+    TextureFormat::R32Uint,
+    TextureFormat::R32Sint,
+    TextureFormat::R32Float,
+    TextureFormat::Rg16Uint,
+    TextureFormat::Rg16Sint,
+    TextureFormat::Rg16Unorm,
+    TextureFormat::Rg16Snorm,
+    TextureFormat::Rg16Float,
+    TextureFormat::Rgba8Unorm,
+    TextureFormat::Rgba8UnormSrgb,
+    TextureFormat::Rgba8Snorm,
+    TextureFormat::Rgba8Uint,
+    TextureFormat::Rgba8Sint,
+    TextureFormat::Bgra8Unorm,
+    TextureFormat::Bgra8UnormSrgb,
+    TextureFormat::Rgb9e5Ufloat,
+    TextureFormat::Rgb10a2Uint,
+    TextureFormat::Rgb10a2Unorm,
+    TextureFormat::Rg11b10Ufloat,
+    TextureFormat::R64Uint,
+    TextureFormat::Rg32Uint,
+    TextureFormat::Rg32Sint,
+    TextureFormat::Rg32Float,
+    TextureFormat::Rgba16Uint,
+    TextureFormat::Rgba16Sint,
+    TextureFormat::Rgba16Unorm,
+    TextureFormat::Rgba16Snorm,
+    TextureFormat::Rgba16Float,
+    TextureFormat::Rgba32Uint,
+    TextureFormat::Rgba32Sint,
+    TextureFormat::Rgba32Float,
+    TextureFormat::Stencil8,
+    TextureFormat::Depth16Unorm,
+    TextureFormat::Depth24Plus,
+    TextureFormat::Depth24PlusStencil8,
+    TextureFormat::Depth32Float,
+    TextureFormat::Depth32FloatStencil8,
+];

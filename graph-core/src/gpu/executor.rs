@@ -1,0 +1,652 @@
+//! Executing a compiled [`Plan`]: physical resources from the pool, each pass begun with
+//! the planned attachments and load/store operations, the record callbacks, one submit,
+//! GPU timestamps per pass. wgpu inserts the barriers; the plan's usages and order are
+//! what make them right.
+
+use std::collections::HashMap;
+use std::time::Instant;
+
+use crate::access::{Aspect, Role, TextureRole};
+use crate::graph::Graph;
+use crate::handle::ResourceId;
+use crate::pass::{PassKind, Record};
+use crate::plan::{Load, Ops, Plan, PlannedPass, Store, TextureShape};
+use crate::resource::Origin;
+
+use super::context::{ComputeContext, FrameResources, RenderContext, TransferContext};
+use super::device::{ErrorLog, Gpu};
+use super::imports::{Binding, ImportError, Imports};
+use super::pool::{make_view, Pool, PoolStats, ViewKey};
+use super::timing::Timestamps;
+
+/// Timings of one executed pass.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PassTiming {
+    pub name: String,
+    pub kind: PassKind,
+    /// GPU time between the pass's begin and end stamps; `None` when the device cannot
+    /// time it (no `TIMESTAMP_QUERY`, or a transfer pass without
+    /// `TIMESTAMP_QUERY_INSIDE_ENCODERS`, or past the 2048 passes a query set holds).
+    pub gpu_ns: Option<u64>,
+    /// CPU time to begin the pass, run its record callback and end it.
+    pub cpu_ns: u64,
+}
+
+/// What one [`Executor::execute`] did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameReport {
+    /// Executed passes, in execution order.
+    pub passes: Vec<PassTiming>,
+    /// From the first timed pass's begin stamp to the last one's end stamp (gaps between
+    /// passes included); `None` when no pass was timed.
+    pub gpu_total_ns: Option<u64>,
+    /// Textures this frame had to create (0 when the pool already held them all).
+    pub textures_allocated: u32,
+    /// Buffers this frame had to create.
+    pub buffers_allocated: u32,
+}
+
+/// Why a frame could not execute.
+#[derive(Debug, thiserror::Error)]
+pub enum ExecuteError {
+    #[error("the plan was not compiled from this graph ({0}); compile the graph again")]
+    PlanMismatch(String),
+
+    #[error("pass \"{pass}\" is a {kind} pass but its callback records {record} commands")]
+    RecordKind {
+        pass: String,
+        kind: PassKind,
+        record: PassKind,
+    },
+
+    #[error(transparent)]
+    Import(#[from] ImportError),
+
+    /// A validation or out-of-memory error wgpu reported while the frame was built or
+    /// submitted: in the pass named (its recording, callback included), or outside any
+    /// pass. Nothing of the frame was submitted when a pass failed.
+    #[error("{}", device_message(pass.as_deref(), message))]
+    Device {
+        pass: Option<String>,
+        message: String,
+    },
+}
+
+/// Executes plans on one device, keeping physical resources and timestamp queries
+/// across frames.
+///
+/// Textures and buffers of the last frame stay alive until the next
+/// [`execute`](Self::execute): that is how exported resources are read after a frame. The
+/// engine owns what it imports; the executor only borrows it for the frame.
+pub struct Executor {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    pool: Pool,
+    timestamps: Option<Timestamps>,
+    /// Errors outside any scope, when the device was opened by [`Gpu`].
+    uncaptured: Option<ErrorLog>,
+    /// Pool indices of the last frame's physical textures and buffers, by plan index.
+    frame_textures: Vec<usize>,
+    frame_buffers: Vec<usize>,
+}
+
+impl Executor {
+    /// An executor on a device opened by [`Gpu::open`]; device errors raised outside the
+    /// frame's error scopes (other threads, internal errors) are reported too.
+    pub fn new(gpu: &Gpu) -> Self {
+        let mut executor = Self::from_device(&gpu.device, &gpu.queue);
+        executor.uncaptured = Some(gpu.errors.clone());
+        executor
+    }
+
+    /// An executor on an engine's device. The engine keeps handling errors that fall
+    /// outside the frame's error scopes.
+    pub fn from_device(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
+        Self {
+            device: device.clone(),
+            queue: queue.clone(),
+            pool: Pool::default(),
+            timestamps: Timestamps::new(device, queue),
+            uncaptured: None,
+            frame_textures: Vec::new(),
+            frame_buffers: Vec::new(),
+        }
+    }
+
+    /// Runs one frame of `plan`, which must have been compiled from `graph`, and waits
+    /// for the GPU to finish it.
+    ///
+    /// Checks the plan against the graph and `imports` against the plan before touching
+    /// the device. Validation and out-of-memory errors while recording (record callbacks
+    /// included) or submitting come back as [`ExecuteError::Device`], not as panics.
+    /// Invalidates what [`texture`](Self::texture) and [`buffer`](Self::buffer) returned
+    /// for the previous frame: the pool may hand those objects to this frame's resources.
+    pub fn execute(
+        &mut self,
+        graph: &mut Graph,
+        plan: &Plan,
+        imports: &Imports,
+    ) -> Result<FrameReport, ExecuteError> {
+        check_plan(graph, plan)?;
+        let bound = imports.resolve(graph, plan)?;
+        // Scopes are per thread and capture everything below: resource creation, each
+        // pass (which pushes its own scopes too), the submission.
+        let scopes = ErrorScopes::push(&self.device);
+        let recorded = self.acquire(graph, plan, &bound).and_then(|objects| {
+            let slots = self.timing_slots(plan);
+            let (buffers, cpu_ns) = self.record(graph, plan, &objects, &slots)?;
+            self.queue.submit(buffers);
+            Ok((slots, cpu_ns))
+        });
+        let mut messages: Vec<String> = scopes.pop().into_iter().collect();
+        let (slots, cpu_ns) = recorded?;
+        if let Some(log) = &self.uncaptured {
+            messages.extend(log.take());
+        }
+        if !messages.is_empty() {
+            return Err(ExecuteError::Device {
+                pass: None,
+                message: messages.join("\n"),
+            });
+        }
+        let stamps = self.read_timestamps(&slots)?;
+        let stats = self.pool.stats();
+        Ok(FrameReport {
+            passes: plan
+                .passes
+                .iter()
+                .zip(cpu_ns)
+                .zip(&slots)
+                .map(|((pass, cpu_ns), slot)| PassTiming {
+                    name: pass.name.clone(),
+                    kind: pass.kind,
+                    gpu_ns: slot.and_then(|s| stamps.get(s as usize)).map(|&(b, e)| {
+                        self.timestamps
+                            .as_ref()
+                            .map_or(0, |t| t.nanoseconds(e.saturating_sub(b)))
+                    }),
+                    cpu_ns,
+                })
+                .collect(),
+            gpu_total_ns: self.timestamps.as_ref().and_then(|t| {
+                let begin = stamps.iter().map(|s| s.0).min()?;
+                let end = stamps.iter().map(|s| s.1).max()?;
+                Some(t.nanoseconds(end.saturating_sub(begin)))
+            }),
+            textures_allocated: stats.frame_textures_allocated,
+            buffers_allocated: stats.frame_buffers_allocated,
+        })
+    }
+
+    /// The physical texture of an exported, graph-created texture of the last executed
+    /// frame, for readback. `plan` must be the plan that frame executed. `None` for
+    /// resources that are not exported (their memory may hold another resource by the
+    /// end of the frame), imported (the engine has them) or were not used.
+    pub fn texture(&self, plan: &Plan, id: ResourceId) -> Option<&wgpu::Texture> {
+        let physical = exported_physical(plan, id)?;
+        plan.resources[id.index()].texture?;
+        Some(self.pool.texture(*self.frame_textures.get(physical)?))
+    }
+
+    /// The physical buffer of an exported, graph-created buffer of the last executed
+    /// frame. Same rules as [`texture`](Self::texture).
+    pub fn buffer(&self, plan: &Plan, id: ResourceId) -> Option<&wgpu::Buffer> {
+        let physical = exported_physical(plan, id)?;
+        plan.resources[id.index()].buffer_size?;
+        Some(self.pool.buffer(*self.frame_buffers.get(physical)?))
+    }
+
+    /// Pool counters: allocations so far and in the last frame, objects alive.
+    pub fn pool_stats(&self) -> PoolStats {
+        self.pool.stats()
+    }
+
+    /// Takes this frame's physical objects from the pool and makes every view the live
+    /// passes declared.
+    fn acquire(
+        &mut self,
+        graph: &Graph,
+        plan: &Plan,
+        bound: &HashMap<ResourceId, Binding>,
+    ) -> Result<FrameObjects, ExecuteError> {
+        self.pool.begin_frame();
+        let label = |holds: &[ResourceId]| {
+            let names: Vec<&str> = holds
+                .iter()
+                .filter_map(|id| plan.resources.get(id.index()))
+                .map(|r| r.name.as_str())
+                .collect();
+            names.join(" | ")
+        };
+        self.frame_textures = plan
+            .textures
+            .iter()
+            .map(|t| {
+                self.pool
+                    .acquire_texture(&self.device, t.shape, t.usage, &label(&t.holds))
+            })
+            .collect();
+        self.frame_buffers = plan
+            .buffers
+            .iter()
+            .map(|b| {
+                self.pool
+                    .acquire_buffer(&self.device, b.size, b.usage, &label(&b.holds))
+            })
+            .collect();
+
+        let mut objects = FrameObjects::default();
+        for planned_pass in &plan.passes {
+            let pass = &graph.passes[planned_pass.id.index()];
+            for access in &pass.accesses {
+                let id = access.resource;
+                let planned = &plan.resources[id.index()];
+                let pooled = match planned.origin {
+                    Origin::Transient => planned.physical,
+                    Origin::Imported => None,
+                };
+                let mismatch = || {
+                    ExecuteError::PlanMismatch(format!(
+                        "pass \"{}\" uses \"{}\", which the plan does not allocate",
+                        pass.name, planned.name
+                    ))
+                };
+                let Role::Texture(role) = access.role else {
+                    let buffer = match (pooled, bound.get(&id)) {
+                        (Some(i), _) => self
+                            .pool
+                            .buffer(*self.frame_buffers.get(i).ok_or_else(mismatch)?)
+                            .clone(),
+                        (None, Some(Binding::Buffer(b))) => b.clone(),
+                        _ => return Err(mismatch()),
+                    };
+                    objects.buffers.insert(id, buffer);
+                    continue;
+                };
+                let shape = planned.texture.ok_or_else(mismatch)?;
+                let aspect = match role {
+                    TextureRole::Sampled { aspect } => aspect,
+                    _ => Aspect::All,
+                };
+                let mut keys = vec![ViewKey::Aspect(Aspect::All), ViewKey::Aspect(aspect)];
+                if access.role.is_attachment() {
+                    keys.push(ViewKey::Attachment);
+                }
+                let source = match (pooled, bound.get(&id)) {
+                    (Some(i), _) => {
+                        Source::Pooled(*self.frame_textures.get(i).ok_or_else(mismatch)?)
+                    }
+                    (None, Some(Binding::Texture(t))) => Source::Texture(t),
+                    (None, Some(Binding::View(v))) => Source::View(v),
+                    _ => return Err(mismatch()),
+                };
+                let texture = match source {
+                    Source::Pooled(i) => self.pool.texture(i).clone(),
+                    Source::Texture(t) => t.clone(),
+                    Source::View(v) => v.texture().clone(),
+                };
+                objects.textures.insert(id, (texture, shape));
+                for key in keys {
+                    if objects.views.contains_key(&(id, key)) {
+                        continue;
+                    }
+                    let view = match source {
+                        Source::Pooled(i) => self.pool.view(i, key),
+                        Source::Texture(t) => make_view(t, key),
+                        Source::View(v) => match key {
+                            ViewKey::Aspect(Aspect::All) | ViewKey::Attachment => v.clone(),
+                            ViewKey::Aspect(Aspect::DepthOnly | Aspect::StencilOnly) => {
+                                return Err(ImportError::ViewAspect {
+                                    pass: pass.name.clone(),
+                                    resource: planned.name.clone(),
+                                    aspect: if aspect == Aspect::DepthOnly {
+                                        "depth"
+                                    } else {
+                                        "stencil"
+                                    },
+                                }
+                                .into());
+                            }
+                        },
+                    };
+                    objects.views.insert((id, key), view);
+                }
+            }
+        }
+        Ok(objects)
+    }
+
+    /// The timestamp slot of each planned pass, `None` for passes that are not timed.
+    fn timing_slots(&mut self, plan: &Plan) -> Vec<Option<u32>> {
+        let Some(timestamps) = &mut self.timestamps else {
+            return vec![None; plan.passes.len()];
+        };
+        let inside_encoders = timestamps.inside_encoders;
+        let timeable = |p: &PlannedPass| p.kind != PassKind::Transfer || inside_encoders;
+        let wanted = plan.passes.iter().filter(|p| timeable(p)).count();
+        let capacity = timestamps.reserve(&self.device, wanted) as u32;
+        let mut next = 0;
+        plan.passes
+            .iter()
+            .map(|p| {
+                (timeable(p) && next < capacity).then(|| {
+                    next += 1;
+                    next - 1
+                })
+            })
+            .collect()
+    }
+
+    /// Records each pass into its own command encoder, under its own error scopes, so a
+    /// device error names the pass that caused it. Returns the command buffers (the last
+    /// one resolves the timestamps) and each pass's CPU time; nothing is submitted.
+    fn record(
+        &self,
+        graph: &mut Graph,
+        plan: &Plan,
+        objects: &FrameObjects,
+        slots: &[Option<u32>],
+    ) -> Result<(Vec<wgpu::CommandBuffer>, Vec<u64>), ExecuteError> {
+        let resources = objects.resources(self, plan.output_size);
+        let timestamps = self.timestamps.as_ref();
+        let mut buffers = Vec::with_capacity(plan.passes.len() + 1);
+        let mut cpu_ns = Vec::with_capacity(plan.passes.len());
+        for (planned, &slot) in plan.passes.iter().zip(slots) {
+            let start = Instant::now();
+            let scopes = ErrorScopes::push(&self.device);
+            let mut encoder = self
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some(&planned.name),
+                });
+            let record = &mut graph.passes[planned.id.index()].record;
+            let recorded = record_pass(
+                &mut encoder,
+                planned,
+                record.as_mut(),
+                objects,
+                &resources,
+                timestamps.zip(slot),
+            );
+            // wgpu reports errors inside passes when the encoder finishes.
+            let buffer = encoder.finish();
+            let errors = scopes.pop();
+            recorded?;
+            if let Some(message) = errors {
+                return Err(ExecuteError::Device {
+                    pass: Some(planned.name.clone()),
+                    message,
+                });
+            }
+            buffers.push(buffer);
+            cpu_ns.push(start.elapsed().as_nanos() as u64);
+        }
+        if let Some(t) = timestamps {
+            let mut encoder = self
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("rgraph timestamps"),
+                });
+            t.resolve(&mut encoder, slots.iter().flatten().count() as u32);
+            buffers.push(encoder.finish());
+        }
+        Ok((buffers, cpu_ns))
+    }
+
+    /// Waits for the frame and reads the begin and end ticks of each timed pass.
+    fn read_timestamps(&self, slots: &[Option<u32>]) -> Result<Vec<(u64, u64)>, ExecuteError> {
+        let device_error = |e: super::readback::ReadbackError| ExecuteError::Device {
+            pass: None,
+            message: format!("reading the pass timestamps: {e}"),
+        };
+        match &self.timestamps {
+            Some(t) => t
+                .read(&self.device, slots.iter().flatten().count() as u32)
+                .map_err(device_error),
+            None => {
+                self.device
+                    .poll(wgpu::PollType::wait_indefinitely())
+                    .map_err(|e| device_error(e.into()))?;
+                Ok(Vec::new())
+            }
+        }
+    }
+}
+
+/// The plan's index into its physical textures or buffers for an exported, graph-created
+/// resource.
+fn exported_physical(plan: &Plan, id: ResourceId) -> Option<usize> {
+    let planned = plan.resources.get(id.index())?;
+    (planned.exported && planned.origin == Origin::Transient)
+        .then_some(planned.physical)
+        .flatten()
+}
+
+/// Where a texture of this frame comes from.
+#[derive(Copy, Clone)]
+enum Source<'b> {
+    Pooled(usize),
+    Texture(&'b wgpu::Texture),
+    View(&'b wgpu::TextureView),
+}
+
+/// This frame's objects by resource, owned here (cheap reference-counted clones) so that
+/// [`FrameResources`] can borrow them while the executor's own fields stay borrowable.
+#[derive(Default)]
+struct FrameObjects {
+    textures: HashMap<ResourceId, (wgpu::Texture, TextureShape)>,
+    views: HashMap<(ResourceId, ViewKey), wgpu::TextureView>,
+    buffers: HashMap<ResourceId, wgpu::Buffer>,
+}
+
+impl FrameObjects {
+    /// What record callbacks see: borrowed from here, so valid for this frame only.
+    fn resources<'f>(
+        &'f self,
+        executor: &'f Executor,
+        output_size: (u32, u32),
+    ) -> FrameResources<'f> {
+        FrameResources {
+            device: &executor.device,
+            queue: &executor.queue,
+            output_size,
+            textures: self
+                .textures
+                .iter()
+                .map(|(id, (t, shape))| (*id, (t, *shape)))
+                .collect(),
+            views: self
+                .views
+                .iter()
+                .filter_map(|((id, key), view)| match key {
+                    ViewKey::Aspect(aspect) => Some(((*id, *aspect), view)),
+                    ViewKey::Attachment => None,
+                })
+                .collect(),
+            buffers: self.buffers.iter().map(|(id, b)| (*id, b)).collect(),
+        }
+    }
+
+    fn attachment(
+        &self,
+        pass: &PlannedPass,
+        id: ResourceId,
+    ) -> Result<&wgpu::TextureView, ExecuteError> {
+        self.views.get(&(id, ViewKey::Attachment)).ok_or_else(|| {
+            ExecuteError::PlanMismatch(format!(
+                "pass \"{}\" attaches resource #{}, which it does not declare",
+                pass.name, id.0
+            ))
+        })
+    }
+}
+
+/// Validation and out-of-memory scopes, pushed and popped together.
+struct ErrorScopes {
+    validation: wgpu::ErrorScopeGuard,
+    out_of_memory: wgpu::ErrorScopeGuard,
+}
+
+impl ErrorScopes {
+    fn push(device: &wgpu::Device) -> Self {
+        let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        Self {
+            validation,
+            out_of_memory,
+        }
+    }
+
+    /// The errors caught, one per line, if any. Native futures are ready at once.
+    fn pop(self) -> Option<String> {
+        let errors: Vec<String> = [
+            pollster::block_on(self.validation.pop()),
+            pollster::block_on(self.out_of_memory.pop()),
+        ]
+        .into_iter()
+        .flatten()
+        .map(|e| e.to_string())
+        .collect();
+        (!errors.is_empty()).then(|| errors.join("\n"))
+    }
+}
+
+fn device_message(pass: Option<&str>, message: &str) -> String {
+    match pass {
+        Some(pass) => format!("pass \"{pass}\" failed on the device:\n{message}"),
+        None => format!("device error while executing the frame:\n{message}"),
+    }
+}
+
+/// Begins the planned pass in `encoder`, runs its callback and ends it.
+fn record_pass(
+    encoder: &mut wgpu::CommandEncoder,
+    planned: &PlannedPass,
+    record: Option<&mut Record>,
+    objects: &FrameObjects,
+    resources: &FrameResources<'_>,
+    timed: Option<(&Timestamps, u32)>,
+) -> Result<(), ExecuteError> {
+    match planned.kind {
+        PassKind::Render => {
+            let color = planned
+                .color
+                .iter()
+                .map(|c| {
+                    Ok(Some(wgpu::RenderPassColorAttachment {
+                        view: objects.attachment(planned, c.resource)?,
+                        depth_slice: None,
+                        resolve_target: c
+                            .resolve_target
+                            .map(|r| objects.attachment(planned, r))
+                            .transpose()?,
+                        ops: operations(&c.ops, |[r, g, b, a]| wgpu::Color { r, g, b, a }),
+                    }))
+                })
+                .collect::<Result<Vec<_>, ExecuteError>>()?;
+            let depth_stencil = match &planned.depth_stencil {
+                Some(ds) => Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: objects.attachment(planned, ds.resource)?,
+                    // None: the aspect is attached read-only.
+                    depth_ops: ds.depth.as_ref().map(|o| operations(o, |v| v)),
+                    stencil_ops: ds.stencil.as_ref().map(|o| operations(o, |v| v)),
+                }),
+                None => None,
+            };
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(&planned.name),
+                color_attachments: &color,
+                depth_stencil_attachment: depth_stencil,
+                timestamp_writes: timed.map(|(t, s)| t.render_writes(s)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            // No callback: the pass is its load/store operations (a clear).
+            if let Some(Record::Render(f)) = record {
+                f(&mut RenderContext {
+                    pass: &mut pass,
+                    resources,
+                });
+            }
+        }
+        PassKind::Compute => {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(&planned.name),
+                timestamp_writes: timed.map(|(t, s)| t.compute_writes(s)),
+            });
+            if let Some(Record::Compute(f)) = record {
+                f(&mut ComputeContext {
+                    pass: &mut pass,
+                    resources,
+                });
+            }
+        }
+        PassKind::Transfer => {
+            if let Some((t, s)) = timed {
+                t.write(encoder, s, false);
+            }
+            if let Some(Record::Transfer(f)) = record {
+                f(&mut TransferContext { encoder, resources });
+            }
+            if let Some((t, s)) = timed {
+                t.write(encoder, s, true);
+            }
+        }
+    }
+    Ok(())
+}
+
+fn operations<T: Copy, V>(ops: &Ops<T>, value: impl Fn(T) -> V) -> wgpu::Operations<V> {
+    wgpu::Operations {
+        load: match ops.load {
+            Load::Clear(v) => wgpu::LoadOp::Clear(value(v)),
+            Load::Load => wgpu::LoadOp::Load,
+        },
+        store: match ops.store {
+            Store::Store => wgpu::StoreOp::Store,
+            Store::Discard => wgpu::StoreOp::Discard,
+        },
+    }
+}
+
+/// The plan must name this graph's resources and passes, and each pass's callback must
+/// record the kind of commands the pass begins.
+fn check_plan(graph: &Graph, plan: &Plan) -> Result<(), ExecuteError> {
+    let mismatch = |what: String| Err(ExecuteError::PlanMismatch(what));
+    if plan.resources.len() != graph.resources.len() {
+        return mismatch(format!(
+            "the plan has {} resources, the graph {}",
+            plan.resources.len(),
+            graph.resources.len()
+        ));
+    }
+    for (planned, node) in plan.resources.iter().zip(&graph.resources) {
+        if planned.name != node.name {
+            return mismatch(format!(
+                "resource #{} is \"{}\" in the plan but \"{}\" in the graph",
+                planned.id.0, planned.name, node.name
+            ));
+        }
+    }
+    for planned in &plan.passes {
+        let Some(node) = graph.passes.get(planned.id.index()) else {
+            return mismatch(format!("the graph has no pass \"{}\"", planned.name));
+        };
+        if node.name != planned.name || node.kind != planned.kind {
+            return mismatch(format!(
+                "pass #{} is {} pass \"{}\" in the plan but {} pass \"{}\" in the graph",
+                planned.id.0, planned.kind, planned.name, node.kind, node.name
+            ));
+        }
+        if let Some(record) = &node.record {
+            if record.kind() != node.kind {
+                return Err(ExecuteError::RecordKind {
+                    pass: node.name.clone(),
+                    kind: node.kind,
+                    record: record.kind(),
+                });
+            }
+        }
+    }
+    Ok(())
+}

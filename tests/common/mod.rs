@@ -1,0 +1,114 @@
+//! Helpers shared by the GPU tests: the one way they open a device, compile against it,
+//! and build the small pipelines their passes draw with.
+
+// Each test crate uses its own subset of these helpers.
+#![allow(dead_code)]
+
+use graph_core::gpu::{AdapterChoice, Gpu};
+use graph_core::{CompileOptions, Graph, Plan};
+
+/// Test textures are this size: small enough for lavapipe to run every test in a blink.
+pub const SIZE: (u32, u32) = (64, 64);
+
+/// Opens the adapter `RGRAPH_ADAPTER` names (lavapipe when unset). A machine without one
+/// fails the test with the reason and the fix: GPU tests never skip silently.
+pub fn gpu() -> Gpu {
+    Gpu::open(&AdapterChoice::from_env())
+        .unwrap_or_else(|e| panic!("this test needs a Vulkan adapter: {e}"))
+}
+
+/// Compiles at [`SIZE`] against the opened device's own profile.
+pub fn plan(graph: &Graph, gpu: &Gpu) -> Plan {
+    graph
+        .compile(&CompileOptions {
+            output_size: SIZE,
+            profile: gpu.profile(),
+        })
+        .unwrap_or_else(|e| panic!("expected the graph to compile, got:\n{e}"))
+}
+
+/// A vertex stage drawing one triangle that covers the whole target (3 vertices, no
+/// buffers); fragment shaders are appended to it.
+pub const FULLSCREEN_VS: &str = r#"
+@vertex
+fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4f {
+    let uv = vec2f(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4f(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+"#;
+
+/// A render pipeline with the vertex stage `vs` and fragment stage `fs` from `wgsl`,
+/// writing one target of `format` with `samples` samples, layout derived from the shader.
+pub fn render_pipeline(
+    device: &wgpu::Device,
+    wgsl: &str,
+    format: wgpu::TextureFormat,
+    samples: u32,
+) -> wgpu::RenderPipeline {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: None,
+        source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: None,
+        layout: None,
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: None,
+        multisample: wgpu::MultisampleState {
+            count: samples,
+            ..Default::default()
+        },
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs"),
+            compilation_options: Default::default(),
+            targets: &[Some(format.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// A compute pipeline with the entry point `main`, layout derived from the shader.
+pub fn compute_pipeline(device: &wgpu::Device, wgsl: &str) -> wgpu::ComputePipeline {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: None,
+        source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: None,
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+/// A bind group with `layout`, binding `resources` at
+/// bindings 0, 1, ...
+pub fn bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[wgpu::BindingResource<'_>],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+        .iter()
+        .enumerate()
+        .map(|(i, r)| wgpu::BindGroupEntry {
+            binding: i as u32,
+            resource: r.clone(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout,
+        entries: &entries,
+    })
+}

@@ -1,0 +1,564 @@
+//! Executing graphs on a real device (lavapipe unless RGRAPH_ADAPTER says otherwise) and
+//! checking the pixels: clears, compute, sampling, copies, MSAA resolve, the pool across
+//! frames, imports, and device errors surfacing as errors.
+
+mod common;
+
+use common::{bind_group, compute_pipeline, gpu, plan, render_pipeline, FULLSCREEN_VS, SIZE};
+use graph_core::gpu::{
+    read_rgba8, read_texture, AdapterChoice, DeviceError, ExecuteError, Executor, Gpu, ImportError,
+    Imports, ReadbackError,
+};
+use graph_core::{
+    BufferDesc, BufferHandle, BufferRole, ColorLoad, Graph, GraphBuilder, Plan, Size, TextureDesc,
+    TextureHandle,
+};
+use wgpu::{Features, TextureFormat, TextureUsages};
+
+fn tex(format: TextureFormat) -> TextureDesc {
+    TextureDesc::new(format).size(Size::Absolute(SIZE.0, SIZE.1))
+}
+
+/// Texel `(x, y)` of tightly packed RGBA8 rows.
+fn texel(pixels: &[u8], x: u32, y: u32) -> [u8; 4] {
+    let i = ((y * SIZE.0 + x) * 4) as usize;
+    [pixels[i], pixels[i + 1], pixels[i + 2], pixels[i + 3]]
+}
+
+/// Executes one frame and reads back the exported texture `out`.
+fn execute_and_read(gpu: &Gpu, graph: &mut Graph, plan: &Plan, out: TextureHandle) -> Vec<u8> {
+    let mut executor = Executor::new(gpu);
+    executor
+        .execute(graph, plan, &Imports::new())
+        .unwrap_or_else(|e| panic!("execution failed: {e}"));
+    let texture = executor
+        .texture(plan, out.id())
+        .expect("an exported texture is readable after the frame");
+    read_texture(&gpu.device, &gpu.queue, texture).expect("readback")
+}
+
+/// A compute pass writing `(x, y)` into every texel of `target`: as integers into an
+/// `Rgba8Uint` texture (blue `x ^ y`, alpha 7), as `x / 255, y / 255` into an
+/// `Rgba8Unorm` one (blue 0, alpha 1), so both read back as exact bytes.
+fn gradient(g: &mut GraphBuilder, target: TextureHandle, integer: bool) -> TextureHandle {
+    let wgsl = if integer {
+        "@group(0) @binding(0) var out: texture_storage_2d<rgba8uint, write>;
+         fn value(p: vec2u) -> vec4u { return vec4u(p.x, p.y, p.x ^ p.y, 7u); }"
+    } else {
+        "@group(0) @binding(0) var out: texture_storage_2d<rgba8unorm, write>;
+         fn value(p: vec2u) -> vec4f { return vec4f(vec2f(p) / 255.0, 0.0, 1.0); }"
+    }
+    .to_string()
+        + "
+        @compute @workgroup_size(8, 8)
+        fn main(@builtin(global_invocation_id) id: vec3u) {
+            if (any(id.xy >= textureDimensions(out))) { return; }
+            textureStore(out, id.xy, value(id.xy));
+        }";
+    let mut pass = g.add_compute_pass("gradient");
+    let out = pass.storage_write(target);
+    let mut pipeline = None;
+    pass.compute(move |ctx| {
+        let device = ctx.resources.device;
+        let pipeline = pipeline.get_or_insert_with(|| compute_pipeline(device, &wgsl));
+        let bind = bind_group(
+            device,
+            &pipeline.get_bind_group_layout(0),
+            &[wgpu::BindingResource::TextureView(ctx.resources.view(out))],
+        );
+        let shape = ctx.resources.shape(out);
+        ctx.pass.set_pipeline(pipeline);
+        ctx.pass.set_bind_group(0, &bind, &[]);
+        ctx.pass
+            .dispatch_workgroups(shape.width.div_ceil(8), shape.height.div_ceil(8), 1);
+    });
+    out
+}
+
+/// A full-screen render pass writing texel `(x, y)` of `src` into `target`, plus the
+/// first `vec4f` of `offset` when given (a uniform buffer).
+fn copy_pass(
+    g: &mut GraphBuilder,
+    name: &str,
+    src: TextureHandle,
+    target: TextureHandle,
+    offset: Option<BufferHandle>,
+) -> TextureHandle {
+    let wgsl = format!(
+        "{FULLSCREEN_VS}
+        @group(0) @binding(0) var src: texture_2d<f32>;
+        {}
+        @fragment
+        fn fs(@builtin(position) p: vec4f) -> @location(0) vec4f {{
+            return textureLoad(src, vec2i(p.xy), 0){};
+        }}",
+        if offset.is_some() {
+            "@group(0) @binding(1) var<uniform> offset: vec4f;"
+        } else {
+            ""
+        },
+        if offset.is_some() { " + offset" } else { "" },
+    );
+    let mut pass = g.add_render_pass(name);
+    pass.sampled(src);
+    if let Some(buffer) = offset {
+        pass.buffer(buffer, BufferRole::Uniform);
+    }
+    let out = pass.color_output(target, ColorLoad::Clear([0.0; 4]));
+    let mut pipeline = None;
+    pass.render(move |ctx| {
+        let device = ctx.resources.device;
+        let format = ctx.resources.shape(out).format;
+        let pipeline = pipeline.get_or_insert_with(|| render_pipeline(device, &wgsl, format, 1));
+        let mut resources = vec![wgpu::BindingResource::TextureView(ctx.resources.view(src))];
+        if let Some(buffer) = offset {
+            resources.push(ctx.resources.buffer(buffer).as_entire_binding());
+        }
+        let bind = bind_group(device, &pipeline.get_bind_group_layout(0), &resources);
+        ctx.pass.set_pipeline(pipeline);
+        ctx.pass.set_bind_group(0, &bind, &[]);
+        ctx.pass.draw(0..3, 0..1);
+    });
+    out
+}
+
+#[test]
+fn a_clear_pass_without_callback_fills_the_exported_texture() {
+    let gpu = gpu();
+    let mut g = GraphBuilder::new();
+    let target = g.create_texture("target", tex(TextureFormat::Rgba8Unorm));
+    let out = g
+        .add_render_pass("clear")
+        .color_output(target, ColorLoad::Clear([0.2, 0.6, 1.0, 1.0]));
+    g.export(out);
+    let mut graph = g.build();
+    let plan = plan(&graph, &gpu);
+
+    let pixels = execute_and_read(&gpu, &mut graph, &plan, out);
+    assert_eq!(pixels.len(), (SIZE.0 * SIZE.1 * 4) as usize);
+    assert!(
+        pixels.chunks_exact(4).all(|p| p == [51, 153, 255, 255]),
+        "first texel {:?}",
+        &pixels[..4]
+    );
+}
+
+#[test]
+fn a_compute_pass_writes_a_storage_texture() {
+    let gpu = gpu();
+    let mut g = GraphBuilder::new();
+    let target = g.create_texture("gradient", tex(TextureFormat::Rgba8Uint));
+    let out = gradient(&mut g, target, true);
+    g.export(out);
+    let mut graph = g.build();
+    let plan = plan(&graph, &gpu);
+
+    let pixels = execute_and_read(&gpu, &mut graph, &plan, out);
+    for (x, y) in [(0, 0), (1, 0), (0, 1), (17, 42), (63, 63)] {
+        assert_eq!(
+            texel(&pixels, x, y),
+            [x as u8, y as u8, (x ^ y) as u8, 7],
+            "texel ({x}, {y})"
+        );
+    }
+    let wrong = (0..SIZE.1)
+        .flat_map(|y| (0..SIZE.0).map(move |x| (x, y)))
+        .filter(|&(x, y)| texel(&pixels, x, y) != [x as u8, y as u8, (x ^ y) as u8, 7])
+        .count();
+    assert_eq!(wrong, 0, "texels that differ from the gradient");
+}
+
+#[test]
+fn a_fullscreen_pass_samples_another_texture() {
+    let gpu = gpu();
+    let mut g = GraphBuilder::new();
+    let source = g.create_texture("source", tex(TextureFormat::Rgba8Unorm));
+    let source = gradient(&mut g, source, false);
+    let target = g.create_texture("swizzled", tex(TextureFormat::Rgba8Unorm));
+    let shader = format!(
+        "{FULLSCREEN_VS}
+        @group(0) @binding(0) var src: texture_2d<f32>;
+        @group(0) @binding(1) var nearest: sampler;
+        @fragment
+        fn fs(@builtin(position) p: vec4f) -> @location(0) vec4f {{
+            let c = textureSample(src, nearest, p.xy / vec2f(textureDimensions(src)));
+            return vec4f(c.g, c.r, 0.0, 1.0);
+        }}"
+    );
+    let mut pass = g.add_render_pass("swizzle");
+    pass.sampled(source);
+    let out = pass.color_output(target, ColorLoad::Clear([0.0; 4]));
+    let mut state = None;
+    pass.render(move |ctx| {
+        let device = ctx.resources.device;
+        let (pipeline, sampler) = state.get_or_insert_with(|| {
+            (
+                render_pipeline(device, &shader, TextureFormat::Rgba8Unorm, 1),
+                // The default sampler filters nearest: texel centers come back exactly.
+                device.create_sampler(&wgpu::SamplerDescriptor::default()),
+            )
+        });
+        let bind = bind_group(
+            device,
+            &pipeline.get_bind_group_layout(0),
+            &[
+                wgpu::BindingResource::TextureView(ctx.resources.view(source)),
+                wgpu::BindingResource::Sampler(sampler),
+            ],
+        );
+        ctx.pass.set_pipeline(pipeline);
+        ctx.pass.set_bind_group(0, &bind, &[]);
+        ctx.pass.draw(0..3, 0..1);
+    });
+    g.export(out);
+    let mut graph = g.build();
+    let plan = plan(&graph, &gpu);
+
+    let pixels = execute_and_read(&gpu, &mut graph, &plan, out);
+    for y in 0..SIZE.1 {
+        for x in 0..SIZE.0 {
+            assert_eq!(
+                texel(&pixels, x, y),
+                [y as u8, x as u8, 0, 255],
+                "texel ({x}, {y})"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_transfer_pass_copies_a_texture_and_every_pass_is_timed() {
+    let gpu = gpu();
+    let mut g = GraphBuilder::new();
+    let source = g.create_texture("source", tex(TextureFormat::Rgba8Unorm));
+    let source = gradient(&mut g, source, false);
+    let copy = g.create_texture("copy", tex(TextureFormat::Rgba8Unorm));
+    let mut pass = g.add_transfer_pass("copy");
+    pass.copy_src(source);
+    let out = pass.copy_dst(copy);
+    pass.transfer(move |ctx| {
+        let (from, to) = (ctx.resources.texture(source), ctx.resources.texture(out));
+        ctx.encoder
+            .copy_texture_to_texture(from.as_image_copy(), to.as_image_copy(), from.size());
+    });
+    g.export(out);
+    let mut graph = g.build();
+    let plan = plan(&graph, &gpu);
+
+    let mut executor = Executor::new(&gpu);
+    let report = executor
+        .execute(&mut graph, &plan, &Imports::new())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let texture = executor.texture(&plan, out.id()).expect("exported");
+    let pixels = read_texture(&gpu.device, &gpu.queue, texture).expect("readback");
+    for (x, y) in [(0, 0), (5, 9), (63, 0), (0, 63), (63, 63)] {
+        assert_eq!(
+            texel(&pixels, x, y),
+            [x as u8, y as u8, 0, 255],
+            "texel ({x}, {y})"
+        );
+    }
+
+    let names: Vec<&str> = report.passes.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(names, ["gradient", "copy"]);
+    let timestamps = Features::TIMESTAMP_QUERY | Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
+    if gpu.device.features().contains(timestamps) {
+        assert!(
+            report.passes.iter().all(|p| p.gpu_ns.is_some()),
+            "{report:#?}"
+        );
+        let longest = report.passes.iter().filter_map(|p| p.gpu_ns).max();
+        assert!(report.gpu_total_ns >= longest, "{report:#?}");
+    }
+}
+
+#[test]
+fn msaa_resolve_shows_partial_coverage_on_the_edge() {
+    let gpu = gpu();
+    let mut g = GraphBuilder::new();
+    let msaa = g.create_texture("msaa", tex(TextureFormat::Rgba8Unorm).samples(4));
+    let resolved = g.create_texture("resolved", tex(TextureFormat::Rgba8Unorm));
+    // Top-left, bottom-right, bottom-left: covers the texels below the diagonal y = x
+    // (framebuffer y points down). Texel (i, i) has two of its four standard sample
+    // positions on each side of the edge.
+    let shader = "
+        @vertex
+        fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4f {
+            var corners = array(vec2f(-1.0, 1.0), vec2f(1.0, -1.0), vec2f(-1.0, -1.0));
+            return vec4f(corners[i], 0.0, 1.0);
+        }
+        @fragment
+        fn fs() -> @location(0) vec4f { return vec4f(1.0); }";
+    let mut pass = g.add_render_pass("triangle");
+    let color = pass.color_output(msaa, ColorLoad::Clear([0.0; 4]));
+    let out = pass.resolve_output(color, resolved);
+    let mut pipeline = None;
+    pass.render(move |ctx| {
+        let device = ctx.resources.device;
+        let pipeline = pipeline
+            .get_or_insert_with(|| render_pipeline(device, shader, TextureFormat::Rgba8Unorm, 4));
+        ctx.pass.set_pipeline(pipeline);
+        ctx.pass.draw(0..3, 0..1);
+    });
+    g.export(out);
+    let mut graph = g.build();
+    let plan = plan(&graph, &gpu);
+    // The multisampled target never leaves its pass: the executor must create it with
+    // the transient usage the plan asks for.
+    assert!(plan
+        .resource(msaa.id())
+        .texture_usage
+        .contains(TextureUsages::TRANSIENT_ATTACHMENT));
+
+    let pixels = execute_and_read(&gpu, &mut graph, &plan, out);
+    assert_eq!(texel(&pixels, 5, 50), [255; 4], "covered texel");
+    assert_eq!(texel(&pixels, 50, 5), [0; 4], "uncovered texel");
+    for i in 0..SIZE.0 {
+        let [r, g, b, a] = texel(&pixels, i, i);
+        assert!(
+            (1..255).contains(&r) && r == g && g == b && b == a,
+            "edge texel ({i}, {i}) should resolve strictly between black and white, got {:?}",
+            [r, g, b, a]
+        );
+    }
+}
+
+#[test]
+fn the_pool_reuses_everything_from_the_second_frame_on() {
+    let gpu = gpu();
+    let mut g = GraphBuilder::new();
+    let rgba = tex(TextureFormat::Rgba8Unorm);
+    let params = g.create_buffer("params", BufferDesc::new(16));
+    let mut clear = g.add_transfer_pass("zero params");
+    let params = clear.buffer(params, BufferRole::CopyDst);
+    clear.transfer(move |ctx| {
+        ctx.encoder
+            .clear_buffer(ctx.resources.buffer(params), 0, None)
+    });
+    let first = g.create_texture("first", rgba);
+    let second = g.create_texture("second", rgba);
+    let third = g.create_texture("third", rgba);
+    let last = g.create_texture("last", rgba);
+    let a = g
+        .add_render_pass("fill")
+        .color_output(first, ColorLoad::Clear([0.2, 0.4, 0.6, 0.8]));
+    let b = copy_pass(&mut g, "first to second", a, second, Some(params));
+    let c = copy_pass(&mut g, "second to third", b, third, None);
+    let out = copy_pass(&mut g, "third to last", c, last, None);
+    g.export(out);
+    let mut graph = g.build();
+    let plan = plan(&graph, &gpu);
+
+    // "first" dies where "third" is born, and both have the same descriptor and usages:
+    // they share one texture; "second" overlaps both, and "last" is exported.
+    assert_eq!(
+        plan.resource(first.id()).physical,
+        plan.resource(third.id()).physical,
+        "{}",
+        graph_core::explain::text(&plan)
+    );
+    assert_eq!(plan.textures.len(), 3);
+    assert_eq!(plan.buffers.len(), 1);
+
+    let mut executor = Executor::new(&gpu);
+    for frame in 1..=3 {
+        let report = executor
+            .execute(&mut graph, &plan, &Imports::new())
+            .unwrap_or_else(|e| panic!("frame {frame}: {e}"));
+        let (textures, buffers) = if frame == 1 { (3, 1) } else { (0, 0) };
+        assert_eq!(
+            (report.textures_allocated, report.buffers_allocated),
+            (textures, buffers),
+            "allocations in frame {frame}"
+        );
+        let texture = executor.texture(&plan, out.id()).expect("exported");
+        let pixels = read_texture(&gpu.device, &gpu.queue, texture).expect("readback");
+        assert_eq!(texel(&pixels, 10, 20), [51, 102, 153, 204], "frame {frame}");
+    }
+    let stats = executor.pool_stats();
+    assert_eq!((stats.textures_allocated, stats.buffers_allocated), (3, 1));
+    assert_eq!((stats.textures_alive, stats.buffers_alive), (3, 1));
+}
+
+/// A graph that clears the engine's texture "backbuffer".
+fn clear_import() -> (Graph, TextureHandle) {
+    let mut g = GraphBuilder::new();
+    let backbuffer = g.import_texture("backbuffer", tex(TextureFormat::Rgba8Unorm));
+    g.add_render_pass("clear")
+        .color_output(backbuffer, ColorLoad::Clear([1.0, 0.0, 0.2, 1.0]));
+    (g.build(), backbuffer)
+}
+
+fn engine_texture(gpu: &Gpu, size: (u32, u32)) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("engine backbuffer"),
+        size: wgpu::Extent3d {
+            width: size.0,
+            height: size.1,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: TextureFormat::Rgba8Unorm,
+        usage: TextureUsages::RENDER_ATTACHMENT | TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
+#[test]
+fn an_imported_texture_is_written_by_the_graph() {
+    let gpu = gpu();
+    let (mut graph, backbuffer) = clear_import();
+    let plan = plan(&graph, &gpu);
+    let mut executor = Executor::new(&gpu);
+    let engine = engine_texture(&gpu, SIZE);
+
+    executor
+        .execute(
+            &mut graph,
+            &plan,
+            Imports::new().texture("backbuffer", &engine),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+    let pixels = read_rgba8(&gpu.device, &gpu.queue, &engine).expect("readback");
+    assert!(
+        pixels.iter().all(|&p| p == [255, 0, 51, 255]),
+        "{:?}",
+        pixels[0]
+    );
+    assert!(
+        executor.texture(&plan, backbuffer.id()).is_none(),
+        "the engine owns it"
+    );
+
+    // A ready-made view (a swap-chain image, say) works the same, bound by handle.
+    let other = engine_texture(&gpu, SIZE);
+    let view = other.create_view(&Default::default());
+    executor
+        .execute(&mut graph, &plan, Imports::new().view(backbuffer, &view))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let pixels = read_rgba8(&gpu.device, &gpu.queue, &other).expect("readback");
+    assert_eq!(pixels[100], [255, 0, 51, 255]);
+}
+
+#[test]
+fn a_missing_or_mismatched_import_is_a_clear_error() {
+    let gpu = gpu();
+    let (mut graph, _) = clear_import();
+    let plan = plan(&graph, &gpu);
+    let mut executor = Executor::new(&gpu);
+
+    let missing = executor
+        .execute(&mut graph, &plan, &Imports::new())
+        .expect_err("nothing is bound");
+    assert!(
+        matches!(&missing, ExecuteError::Import(ImportError::Missing { resource, pass })
+            if resource == "backbuffer" && pass == "clear"),
+        "{missing:?}"
+    );
+    assert!(missing.to_string().contains("\"backbuffer\""), "{missing}");
+
+    let small = engine_texture(&gpu, (32, 32));
+    let wrong = executor
+        .execute(
+            &mut graph,
+            &plan,
+            Imports::new().texture("backbuffer", &small),
+        )
+        .expect_err("wrong size");
+    assert!(
+        matches!(&wrong, ExecuteError::Import(ImportError::Shape { resource, .. }) if resource == "backbuffer"),
+        "{wrong:?}"
+    );
+    assert!(wrong.to_string().contains("32x32"), "{wrong}");
+
+    let unknown = executor
+        .execute(
+            &mut graph,
+            &plan,
+            Imports::new().texture("frontbuffer", &small),
+        )
+        .expect_err("no such resource");
+    assert!(unknown.to_string().contains("\"frontbuffer\""), "{unknown}");
+}
+
+#[test]
+fn a_validation_error_in_a_callback_is_an_error_not_a_panic() {
+    let gpu = gpu();
+    let mut g = GraphBuilder::new();
+    let target = g.create_texture("target", tex(TextureFormat::Rgba8Unorm));
+    let mut pass = g.add_render_pass("broken");
+    let out = pass.color_output(target, ColorLoad::Clear([0.0; 4]));
+    // Drawing without a pipeline is invalid.
+    pass.render(|ctx| ctx.pass.draw(0..3, 0..1));
+    g.export(out);
+    let mut graph = g.build();
+    let plan = plan(&graph, &gpu);
+    let mut executor = Executor::new(&gpu);
+
+    let error = executor
+        .execute(&mut graph, &plan, &Imports::new())
+        .expect_err("the draw is invalid");
+    assert!(
+        matches!(&error, ExecuteError::Device { pass: Some(p), .. } if p == "broken"),
+        "{error:?}"
+    );
+    assert!(error.to_string().contains("pass \"broken\""), "{error}");
+    assert!(gpu.take_errors().is_empty(), "the frame's scope caught it");
+}
+
+#[test]
+fn readback_refuses_multisampled_textures() {
+    let gpu = gpu();
+    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: 4,
+            height: 4,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 4,
+        dimension: wgpu::TextureDimension::D2,
+        format: TextureFormat::Rgba8Unorm,
+        usage: TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    });
+    let error = read_texture(&gpu.device, &gpu.queue, &texture).expect_err("multisampled");
+    assert!(
+        matches!(error, ReadbackError::Multisampled { samples: 4 }),
+        "{error:?}"
+    );
+}
+
+#[test]
+fn an_unknown_adapter_is_an_error_listing_the_available_ones() {
+    let choice = AdapterChoice::Named("no such adapter anywhere".into());
+    let error = match Gpu::open(&choice) {
+        Ok(gpu) => panic!("opened {:?}", gpu.info),
+        Err(e) => e,
+    };
+    let message = error.to_string();
+    assert!(message.contains("RGRAPH_ADAPTER"), "{message}");
+    if let DeviceError::NotFound { available, .. } = &error {
+        assert!(!available.is_empty());
+        assert!(message.contains(&available[0]), "{message}");
+    }
+}
+
+#[test]
+fn the_default_adapter_is_listed_with_its_sample_counts() {
+    let gpu = gpu();
+    let adapters = graph_core::gpu::list_adapters();
+    let listed = adapters
+        .iter()
+        .find(|a| a.info.name == gpu.info.name)
+        .unwrap_or_else(|| panic!("{} is not listed", gpu.info.name));
+    let (_, counts) = listed
+        .sample_counts
+        .iter()
+        .find(|(f, _)| *f == TextureFormat::Rgba8Unorm)
+        .expect("Rgba8Unorm is a common format");
+    assert!(counts.contains(&1) && counts.contains(&4), "{counts:?}");
+}
