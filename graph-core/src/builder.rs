@@ -304,7 +304,10 @@ impl PassBuilder<'_> {
         });
         if written.is_some() {
             let key = (handle.id, handle.version);
-            if let Some(first) = self.graph.overwritten_by.insert(key, self.id) {
+            // One pass writing a texture twice is a usage conflict, which validation
+            // names with both roles; two passes are two writers, the first one named.
+            let first = *self.graph.overwritten_by.entry(key).or_insert(self.id);
+            if first != self.id {
                 let error = GraphError::ConflictingWriters {
                     first: self.graph.passes[first.index()].name.clone(),
                     second: self.graph.passes[self.id.index()].name.clone(),

@@ -107,6 +107,21 @@ fn sampling_the_color_target_of_the_same_pass_is_a_usage_conflict() {
 }
 
 #[test]
+fn writing_one_texture_twice_in_a_pass_is_a_usage_conflict() {
+    let mut g = GraphBuilder::new();
+    let t = g.create_texture("t", tex(Rgba8Unorm));
+    let mut p = g.add_render_pass("p");
+    p.color_output(t, CLEAR);
+    let t = p.storage_write(t);
+    g.export(t);
+
+    assert_eq!(
+        only_error(&g.build()).to_string(),
+        r#"pass "p" uses "t" both as a color attachment and as a storage texture"#
+    );
+}
+
+#[test]
 fn sampling_a_writable_depth_stencil_attachment_is_rejected() {
     let mut g = GraphBuilder::new();
     let depth = g.create_texture("depth", tex(Depth24PlusStencil8));
