@@ -1,1 +1,36 @@
-fn main() {}
+//! `rgraph`: validate, explain and run render graphs from the command line.
+
+mod cli;
+mod commands;
+mod registry;
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+use cli::{Cli, Command};
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Validate { files, target } => commands::validate::run(files, target),
+        Command::Explain {
+            pipeline,
+            format,
+            target,
+        } => commands::explain::run(pipeline, *format, target),
+        Command::Adapters {
+            save_profile,
+            adapter,
+        } => commands::adapters::run(save_profile.as_deref(), adapter.as_deref()),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            if let commands::CommandError::Usage(message) = &error {
+                eprintln!("error: {message}");
+            }
+            error.exit_code()
+        }
+    }
+}

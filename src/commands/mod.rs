@@ -1,0 +1,51 @@
+//! One module per subcommand, and what they share: errors with exit codes, atomic writes.
+
+pub mod adapters;
+pub mod explain;
+pub mod target;
+pub mod validate;
+
+use std::io::Write;
+use std::path::Path;
+use std::process::ExitCode;
+
+/// How a command failed, which decides the exit status.
+#[derive(Debug, thiserror::Error)]
+pub enum CommandError {
+    /// The inputs were read and are wrong; the details were already printed. Exit 1.
+    #[error("{0}")]
+    Invalid(String),
+    /// Usage, I/O or environment problems. Exit 2.
+    #[error("{0}")]
+    Usage(String),
+}
+
+impl CommandError {
+    pub fn exit_code(&self) -> ExitCode {
+        match self {
+            CommandError::Invalid(_) => ExitCode::from(1),
+            CommandError::Usage(_) => ExitCode::from(2),
+        }
+    }
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same directory and a rename,
+/// so a failure never leaves a partial file behind under the real name.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CommandError> {
+    let io = |e: std::io::Error| CommandError::Usage(format!("cannot write {}: {e}", path.display()));
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .ok_or_else(|| CommandError::Usage(format!("{} is not a file path", path.display())))?;
+    let temp = dir.join(format!(".{}.partial", name.to_string_lossy()));
+    let result = std::fs::File::create(&temp)
+        .and_then(|mut f| f.write_all(bytes).and_then(|_| f.sync_all()))
+        .and_then(|_| std::fs::rename(&temp, path));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&temp);
+    }
+    result.map_err(io)
+}
