@@ -37,6 +37,7 @@ impl Size {
 /// Everything the graph needs to know to create a texture, except its usages, which the
 /// compiler derives from the passes that access it.
 #[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct TextureDesc {
     pub format: TextureFormat,
     #[serde(default)]
@@ -115,6 +116,7 @@ pub fn texel_bytes(format: TextureFormat) -> u64 {
 /// A buffer's size and any usages the graph cannot see from pass accesses (for example
 /// `MAP_READ` on a readback buffer).
 #[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct BufferDesc {
     pub size: u64,
     #[serde(default = "BufferUsages::empty")]

@@ -1,1 +1,54 @@
-//! RON graph files: schema, plugin registry, loader with file:line:col errors.
+//! Graph files: render graphs declared in RON, loaded through the same builder and
+//! compile as graphs declared in code.
+//!
+//! ```ron
+//! Graph(
+//!     resources: {
+//!         "hdr": Texture(format: "rgba16float", size: Relative(1.0), samples: 1),
+//!         "target": ImportedTexture(format: "rgba8unorm-srgb"),
+//!     },
+//!     passes: [
+//!         (name: "sky", plugin: "fullscreen",
+//!          params: (shader: "../shaders/sky.wgsl"),
+//!          outputs: { "color": "hdr" }),
+//!         (name: "present", plugin: "blit",
+//!          inputs: { "src": "hdr" }, outputs: { "dst": "target" }),
+//!     ],
+//!     outputs: ["target"],
+//! )
+//! ```
+//!
+//! Each name denotes one version of one resource and has exactly one writer. A declared
+//! resource's name is the version its writer produces (for an import nobody writes, the
+//! engine's contents). A slot listed in both `inputs` and `outputs` modifies what it
+//! reads, and its output name names the new version. Passes may be listed in any order:
+//! each is declared after the passes whose outputs it reads, file order breaking ties.
+//!
+//! Errors read `FILE:LINE:COL: error: MESSAGE` and name the pass and the resource.
+
+mod any_handle;
+mod declare;
+mod error;
+mod load;
+mod loaded;
+mod names;
+mod order;
+mod pairs;
+mod plugin;
+mod position;
+mod registry;
+mod schema;
+mod slots;
+mod source;
+mod spans;
+mod validate;
+
+pub use any_handle::AnyHandle;
+pub use error::{ErrorKind, FileError, FileErrors, Location};
+pub use load::{load_file, load_str};
+pub use loaded::{LoadedGraph, Names};
+pub use plugin::{Plugin, PluginError};
+pub use position::Position;
+pub use registry::Registry;
+pub use slots::{Slots, Target};
+pub use validate::{validate_dir, validate_file, validate_shader, Validated};

@@ -1,1 +1,34 @@
-//! Built-in generic plugins: clear, copy, blit, full-screen WGSL, compute WGSL.
+//! Built-in generic plugins, enough for graph files to be useful on their own:
+//! [`Clear`], [`Copy`], [`Blit`], [`Fullscreen`] (a WGSL fragment shader over the whole
+//! target) and [`Compute`] (a WGSL compute shader). The shader plugins check the bindings
+//! a file declares against the shader by reflection when the file loads, without a GPU.
+
+mod binding;
+mod blit;
+mod clear;
+mod compute;
+mod copy;
+mod draw;
+mod fullscreen;
+#[cfg(feature = "gpu")]
+mod gpu;
+
+pub use binding::{BindingDecl, Filter};
+pub use blit::{Blit, BlitParams};
+pub use clear::{Clear, ClearParams};
+pub use compute::{Compute, ComputeParams, Dispatch};
+pub use copy::{Copy, CopyParams};
+pub use draw::Blend;
+pub use fullscreen::{Fullscreen, FullscreenParams};
+
+use crate::file::Registry;
+
+/// Adds every built-in plugin to `registry`.
+pub fn register(registry: &mut Registry) {
+    registry
+        .register(Clear)
+        .register(Copy)
+        .register(Blit)
+        .register(Fullscreen)
+        .register(Compute);
+}

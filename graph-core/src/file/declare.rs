@@ -1,0 +1,123 @@
+//! Declaring a checked, ordered graph file through the same [`GraphBuilder`] code uses:
+//! resources in file order, then each pass's plugin with the handles of its slots.
+
+use std::collections::HashMap;
+
+use super::any_handle::AnyHandle;
+use super::error::{ErrorKind, FileError, FileErrors};
+use super::loaded::{LoadedGraph, Names};
+use super::plugin::{PluginError, Prepared};
+use super::schema::{GraphFile, PassDecl};
+use super::slots::Slots;
+use super::source::Source;
+use super::spans::Spans;
+use crate::builder::GraphBuilder;
+use crate::pass::PassKind;
+
+/// Declares `file` with passes in `order`. `prepared` holds each pass's plugin with its
+/// parameters, by file index; names were resolved without errors.
+pub(super) fn declare<'f>(
+    source: &Source<'f>,
+    file: &'f GraphFile<'_>,
+    mut prepared: Vec<Option<Box<dyn Prepared + '_>>>,
+    order: &[usize],
+) -> Result<LoadedGraph, FileErrors> {
+    let mut graph = GraphBuilder::new();
+    let mut handles: HashMap<&'f str, AnyHandle> = HashMap::new();
+    for (name, decl) in &file.resources.0 {
+        handles.insert(name.as_str(), decl.declare(&mut graph, name.as_str()));
+    }
+    let mut spans = Spans::new(source, file);
+    let mut errors = Vec::new();
+    for &p in order {
+        let decl = &file.passes[p];
+        // A pass whose inputs a failed pass should have written is skipped: the failure
+        // is reported already, and its consequences would only repeat it.
+        let plugin = prepared.get_mut(p).and_then(Option::take);
+        let slots = Slots::new(decl, &handles, source.dir());
+        let (Some(plugin), Some(mut slots)) = (plugin, slots) else {
+            continue;
+        };
+        record_uses(source, decl, &handles, &graph, &mut spans);
+        let name = decl.name.as_str();
+        let mut pass = match plugin.kind() {
+            PassKind::Render => graph.add_render_pass(name),
+            PassKind::Compute => graph.add_compute_pass(name),
+            PassKind::Transfer => graph.add_transfer_pass(name),
+        };
+        if let Err(error) = plugin.setup(&mut pass, &mut slots) {
+            errors.push(plugin_error(source, decl, error));
+            continue;
+        }
+        let finished = slots.finish();
+        for (slot, resource) in finished.unused {
+            let kind = ErrorKind::UnusedSlot {
+                pass: name.to_owned(),
+                plugin: decl.plugin.as_str().to_owned(),
+                slot: slot.to_owned(),
+                resource: resource.to_owned(),
+            };
+            let at = decl.input(slot).or_else(|| decl.output(slot));
+            errors.extend(at.map(|n| source.error(n, kind)));
+        }
+        handles.extend(finished.written);
+    }
+    for out in &file.outputs {
+        match handles.get(out.as_str()) {
+            Some(AnyHandle::Texture(h)) => graph.export(*h),
+            Some(AnyHandle::Buffer(h)) => graph.export(*h),
+            None => {}
+        }
+    }
+    if !errors.is_empty() {
+        return Err(FileErrors::sorted(errors));
+    }
+    Ok(LoadedGraph {
+        graph: graph.build(),
+        names: Names(
+            handles
+                .into_iter()
+                .map(|(n, h)| (n.to_owned(), h))
+                .collect(),
+        ),
+        spans,
+    })
+}
+
+/// Remembers where the pass names each resource, for placing compile errors.
+fn record_uses(
+    source: &Source<'_>,
+    decl: &PassDecl<'_>,
+    handles: &HashMap<&str, AnyHandle>,
+    graph: &GraphBuilder,
+    spans: &mut Spans,
+) {
+    for (slot, name) in decl.inputs.0.iter().chain(&decl.outputs.0) {
+        let read = decl.input(slot.as_str()).unwrap_or(name);
+        if let Some(h) = handles.get(read.as_str()) {
+            let resource = &graph.resources[h.id().index()].name;
+            spans.record_use(decl.name.as_str(), resource, source.position(name));
+        }
+    }
+}
+
+/// Places a plugin error at the slot it is about, else at the parameters, else at the
+/// pass's name.
+fn plugin_error(source: &Source<'_>, decl: &PassDecl<'_>, error: PluginError) -> FileError {
+    let slot = error
+        .slot()
+        .and_then(|slot| decl.input(slot).or_else(|| decl.output(slot)));
+    let at = match (slot, &decl.params) {
+        (Some(name), _) => source.position(name),
+        (None, Some(params)) => source.raw_position(params.0),
+        (None, None) => source.position(&decl.name),
+    };
+    FileError {
+        location: source.location(at),
+        kind: ErrorKind::Plugin {
+            pass: decl.name.as_str().to_owned(),
+            plugin: decl.plugin.as_str().to_owned(),
+            error,
+        },
+    }
+}

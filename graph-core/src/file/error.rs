@@ -1,0 +1,158 @@
+//! Errors in graph files: each one positioned (`FILE:LINE:COL`) and naming the pass and
+//! the resource it is about, so a build log reads like a compiler's.
+
+use std::fmt;
+
+use thiserror::Error;
+
+use super::plugin::PluginError;
+use super::position::Position;
+use crate::error::GraphError;
+
+/// A position in a named file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Location {
+    /// The path as the caller gave it (relative paths stay relative).
+    pub path: String,
+    pub at: Position,
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}", self.path, self.at)
+    }
+}
+
+/// What is wrong, in words that name the pass and resource involved.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ErrorKind {
+    #[error("cannot read the file: {reason}")]
+    Unreadable { reason: String },
+
+    /// Malformed RON, an unknown field, a value of the wrong type: `ron`'s message.
+    #[error("{message}")]
+    Syntax { message: String },
+
+    #[error("resource \"{resource}\" is declared twice")]
+    DuplicateResource { resource: String },
+
+    #[error("two passes are called \"{pass}\"")]
+    DuplicatePass { pass: String },
+
+    #[error("pass \"{pass}\" lists slot \"{slot}\" twice in its {side}")]
+    DuplicateSlot {
+        pass: String,
+        slot: String,
+        side: &'static str,
+    },
+
+    #[error("pass \"{pass}\" uses plugin \"{plugin}\", which is not registered (known: {known})")]
+    UnknownPlugin {
+        pass: String,
+        plugin: String,
+        known: String,
+    },
+
+    #[error("pass \"{pass}\": parameters of plugin \"{plugin}\": {message}")]
+    Params {
+        pass: String,
+        plugin: String,
+        message: String,
+    },
+
+    #[error("pass \"{pass}\" writes \"{resource}\", which is not declared in resources")]
+    Undeclared { pass: String, resource: String },
+
+    #[error(
+        "pass \"{pass}\" names the version it writes \"{resource}\", which is a declared \
+         resource; a modified version needs a new name"
+    )]
+    VersionNameTaken { pass: String, resource: String },
+
+    #[error(
+        "passes \"{first}\" and \"{second}\" both write \"{resource}\"; a name has one writer"
+    )]
+    TwoWriters {
+        first: String,
+        second: String,
+        resource: String,
+    },
+
+    #[error(
+        "passes \"{first}\" and \"{second}\" both modify \"{resource}\"; a version has one \
+         writer (let \"{second}\" modify the version \"{first}\" writes)"
+    )]
+    ModifiedTwice {
+        first: String,
+        second: String,
+        resource: String,
+    },
+
+    #[error(
+        "pass \"{pass}\" reads \"{resource}\" and writes it too; to modify a resource, list \
+         the slot in both inputs and outputs and give the new version a new name"
+    )]
+    SelfModify { pass: String, resource: String },
+
+    #[error("output \"{resource}\" is not written by any pass")]
+    UnwrittenOutput { resource: String },
+
+    #[error(
+        "output \"{resource}\" is not the final version: pass \"{pass}\" modifies it into \
+         \"{next}\"; list \"{next}\" instead"
+    )]
+    OutputNotFinal {
+        resource: String,
+        pass: String,
+        next: String,
+    },
+
+    #[error("pass \"{pass}\" ({plugin}): {error}")]
+    Plugin {
+        pass: String,
+        plugin: String,
+        error: PluginError,
+    },
+
+    #[error(
+        "pass \"{pass}\": plugin \"{plugin}\" has no use for slot \"{slot}\" (\"{resource}\")"
+    )]
+    UnusedSlot {
+        pass: String,
+        plugin: String,
+        slot: String,
+        resource: String,
+    },
+
+    /// Declaration and compile errors, the same as a graph built in code reports.
+    #[error(transparent)]
+    Graph(GraphError),
+
+    /// A WGSL file that naga rejects (positioned in the shader itself).
+    #[error("{message}")]
+    Shader { message: String },
+}
+
+/// One positioned error.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("{location}: error: {kind}")]
+pub struct FileError {
+    pub location: Location,
+    pub kind: ErrorKind,
+}
+
+/// Every error found, in file order where there is one; displayed one per line.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("{}", self.0.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n"))]
+pub struct FileErrors(pub Vec<FileError>);
+
+impl FileErrors {
+    /// Errors with the same location and message are reported once.
+    pub(crate) fn sorted(mut errors: Vec<FileError>) -> FileErrors {
+        errors.sort_by(|a, b| {
+            (&a.location.path, a.location.at).cmp(&(&b.location.path, b.location.at))
+        });
+        errors.dedup();
+        FileErrors(errors)
+    }
+}

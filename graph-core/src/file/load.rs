@@ -1,0 +1,95 @@
+//! Loading a graph file: parse, look up plugins and their parameters, resolve names,
+//! order passes, declare. Every error found before declaring is reported together.
+
+use std::path::Path;
+
+use super::declare::declare;
+use super::error::{ErrorKind, FileError, FileErrors};
+use super::loaded::LoadedGraph;
+use super::plugin::Prepared;
+use super::position::Position;
+use super::registry::Registry;
+use super::schema::{self, GraphFile};
+use super::source::Source;
+use super::{names, order};
+
+/// Reads and declares the graph file at `path`. Shader paths in it resolve against the
+/// file's directory; messages show `path` as given. Compile the result with
+/// [`LoadedGraph::compile`].
+pub fn load_file(path: impl AsRef<Path>, registry: &Registry) -> Result<LoadedGraph, FileErrors> {
+    let path = path.as_ref();
+    match std::fs::read_to_string(path) {
+        Ok(text) => load_str(path, &text, registry),
+        Err(e) => Err(FileErrors(vec![FileError {
+            location: Source::new(path, "").location(Position::START),
+            kind: ErrorKind::Unreadable {
+                reason: e.to_string(),
+            },
+        }])),
+    }
+}
+
+/// Declares the graph file whose text is `text`, as if read from `path`.
+pub fn load_str(
+    path: impl AsRef<Path>,
+    text: &str,
+    registry: &Registry,
+) -> Result<LoadedGraph, FileErrors> {
+    let source = Source::new(path.as_ref(), text);
+    let file = schema::parse(text).map_err(|e| FileErrors(vec![source.syntax(&e)]))?;
+    let mut errors = Vec::new();
+    let prepared = prepare(&source, &file, registry, &mut errors);
+    let edges = names::resolve(&source, &file, &mut errors);
+    let order = order::sort(&source, &file, &edges, &mut errors);
+    if !errors.is_empty() {
+        return Err(FileErrors::sorted(errors));
+    }
+    declare(&source, &file, prepared, &order)
+}
+
+/// Each pass's plugin with its parameters, by file index (`None` where that failed).
+fn prepare<'r>(
+    source: &Source<'_>,
+    file: &GraphFile<'_>,
+    registry: &'r Registry,
+    errors: &mut Vec<FileError>,
+) -> Vec<Option<Box<dyn Prepared + 'r>>> {
+    file.passes
+        .iter()
+        .map(|pass| {
+            let plugin_name = pass.plugin.as_str();
+            let Some(plugin) = registry.get(plugin_name) else {
+                let kind = ErrorKind::UnknownPlugin {
+                    pass: pass.name.as_str().to_owned(),
+                    plugin: plugin_name.to_owned(),
+                    known: registry.names().collect::<Vec<_>>().join(", "),
+                };
+                errors.push(source.error(&pass.plugin, kind));
+                return None;
+            };
+            // A pass without `params` gets `()`: plugins without parameters accept it,
+            // others report their first missing field at the pass.
+            let (text, base) = match &pass.params {
+                Some(raw) => (raw.0.get_ron(), Some(source.raw_position(raw.0))),
+                None => ("()", None),
+            };
+            plugin
+                .prepare(text)
+                .map_err(|e| {
+                    let at = base.map_or_else(
+                        || source.position(&pass.name),
+                        |base| Position::from(e.span.start).within(base),
+                    );
+                    errors.push(FileError {
+                        location: source.location(at),
+                        kind: ErrorKind::Params {
+                            pass: pass.name.as_str().to_owned(),
+                            plugin: plugin_name.to_owned(),
+                            message: e.code.to_string(),
+                        },
+                    });
+                })
+                .ok()
+        })
+        .collect()
+}

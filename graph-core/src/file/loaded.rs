@@ -1,0 +1,55 @@
+//! A graph loaded from a file: the graph itself, its names, and where everything was
+//! written, so compiling it reports errors at file positions.
+
+use std::collections::BTreeMap;
+
+use super::any_handle::AnyHandle;
+use super::error::FileErrors;
+use super::spans::Spans;
+use crate::compile::CompileOptions;
+use crate::graph::Graph;
+use crate::handle::{BufferHandle, TextureHandle};
+use crate::plan::Plan;
+
+/// A graph file, declared: compile it (as often as needed, for any output size or
+/// profile) with [`LoadedGraph::compile`], and execute its plans like any graph's.
+pub struct LoadedGraph {
+    pub graph: Graph,
+    /// The handle each name in the file denotes.
+    pub names: Names,
+    pub(crate) spans: Spans,
+}
+
+impl LoadedGraph {
+    /// [`Graph::compile`], with each error placed in the file: at the slot where the
+    /// pass names the resource, at the pass, or at the resource's declaration.
+    pub fn compile(&self, options: &CompileOptions) -> Result<Plan, FileErrors> {
+        self.graph.compile(options).map_err(|errors| {
+            FileErrors::sorted(errors.0.into_iter().map(|e| self.spans.locate(e)).collect())
+        })
+    }
+}
+
+/// Names in a graph file and the handles they denote: declared resources (the version
+/// their writer produces, or version 0 of an import nobody writes) and version names.
+#[derive(Clone, Debug, Default)]
+pub struct Names(pub(crate) BTreeMap<String, AnyHandle>);
+
+impl Names {
+    pub fn get(&self, name: &str) -> Option<AnyHandle> {
+        self.0.get(name).copied()
+    }
+
+    pub fn texture(&self, name: &str) -> Option<TextureHandle> {
+        self.get(name).and_then(|h| h.typed())
+    }
+
+    pub fn buffer(&self, name: &str) -> Option<BufferHandle> {
+        self.get(name).and_then(|h| h.typed())
+    }
+
+    /// Every name, sorted.
+    pub fn iter(&self) -> impl Iterator<Item = (&str, AnyHandle)> {
+        self.0.iter().map(|(n, h)| (n.as_str(), *h))
+    }
+}

@@ -1,0 +1,145 @@
+//! The graph file format, as serde reads it. Every name borrows from the file's text, so
+//! its position in the file is where its bytes are; plugin parameters stay raw RON until
+//! the plugin named next to them deserializes them into its own type.
+
+use std::borrow::Cow;
+
+use ron::extensions::Extensions;
+use ron::value::RawValue;
+use serde::{Deserialize, Deserializer};
+
+use super::pairs::Pairs;
+use crate::builder::GraphBuilder;
+use crate::resource::{BufferDesc, TextureDesc};
+
+use super::any_handle::AnyHandle;
+
+/// A whole graph file: `Graph(resources: {..}, passes: [..], outputs: [..])`.
+#[derive(Debug, Deserialize)]
+#[serde(rename = "Graph", deny_unknown_fields)]
+pub(crate) struct GraphFile<'a> {
+    #[serde(borrow, default)]
+    pub resources: Pairs<Name<'a>, ResourceDecl>,
+    #[serde(borrow, default)]
+    pub passes: Vec<PassDecl<'a>>,
+    /// Names of the versions kept past the frame.
+    #[serde(borrow, default)]
+    pub outputs: Vec<Name<'a>>,
+}
+
+/// A declared resource; its name (the map key) names the version its one writer produces.
+#[derive(Debug, Deserialize)]
+pub(crate) enum ResourceDecl {
+    Texture(TextureDesc),
+    ImportedTexture(TextureDesc),
+    Buffer(BufferDesc),
+    ImportedBuffer(BufferDesc),
+}
+
+impl ResourceDecl {
+    /// Declares the resource in `graph`, returning its version-0 handle.
+    pub fn declare(&self, graph: &mut GraphBuilder, name: &str) -> AnyHandle {
+        match *self {
+            ResourceDecl::Texture(desc) => graph.create_texture(name, desc).into(),
+            ResourceDecl::ImportedTexture(desc) => graph.import_texture(name, desc).into(),
+            ResourceDecl::Buffer(desc) => graph.create_buffer(name, desc).into(),
+            ResourceDecl::ImportedBuffer(desc) => graph.import_buffer(name, desc).into(),
+        }
+    }
+
+    /// Whether version 0 holds the engine's contents, so reading it needs no writer.
+    pub fn imported(&self) -> bool {
+        matches!(
+            self,
+            ResourceDecl::ImportedTexture(_) | ResourceDecl::ImportedBuffer(_)
+        )
+    }
+}
+
+/// One pass: `(name: "..", plugin: "..", params: (..), inputs: {..}, outputs: {..})`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PassDecl<'a> {
+    #[serde(borrow)]
+    pub name: Name<'a>,
+    #[serde(borrow)]
+    pub plugin: Name<'a>,
+    #[serde(borrow, default)]
+    pub params: Option<Params<'a>>,
+    /// Slot name -> name of the version read.
+    #[serde(borrow, default)]
+    pub inputs: Pairs<Name<'a>, Name<'a>>,
+    /// Slot name -> name of the version written. A slot also in `inputs` modifies what it
+    /// reads, and this names the new version.
+    #[serde(borrow, default)]
+    pub outputs: Pairs<Name<'a>, Name<'a>>,
+}
+
+impl<'a> PassDecl<'a> {
+    /// The name a slot reads, if it is an input.
+    pub fn input(&self, slot: &str) -> Option<&Name<'a>> {
+        find(&self.inputs, slot)
+    }
+
+    /// The name a slot writes, if it is an output.
+    pub fn output(&self, slot: &str) -> Option<&Name<'a>> {
+        find(&self.outputs, slot)
+    }
+}
+
+fn find<'p, 'a>(pairs: &'p Pairs<Name<'a>, Name<'a>>, slot: &str) -> Option<&'p Name<'a>> {
+    pairs
+        .0
+        .iter()
+        .find(|(k, _)| k.as_str() == slot)
+        .map(|(_, v)| v)
+}
+
+/// A name as written in the file. Plain strings borrow from the file's text, which is how
+/// their position is found; a string with escapes is a copy and has no position of its own.
+#[derive(Debug, Deserialize)]
+#[serde(transparent)]
+pub(crate) struct Name<'a>(#[serde(borrow)] Cow<'a, str>);
+
+impl Name<'_> {
+    pub fn as_str(&self) -> &str {
+        &self.0
+    }
+
+    /// Where the name's text starts in `text`, if it borrows from it.
+    pub fn offset(&self, text: &str) -> Option<usize> {
+        match &self.0 {
+            Cow::Borrowed(s) => offset_in(text, s),
+            Cow::Owned(_) => None,
+        }
+    }
+}
+
+/// A plugin's parameters, still as RON text borrowed from the file.
+#[derive(Debug)]
+pub(crate) struct Params<'a>(pub &'a RawValue);
+
+impl<'de: 'a, 'a> Deserialize<'de> for Params<'a> {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        <&RawValue>::deserialize(deserializer).map(Params)
+    }
+}
+
+/// Byte offset of `part` in `text`, when `part` is a slice of it.
+pub(crate) fn offset_in(text: &str, part: &str) -> Option<usize> {
+    let start = text.as_ptr() as usize;
+    let at = part.as_ptr() as usize;
+    (at >= start && at + part.len() <= start + text.len()).then(|| at - start)
+}
+
+/// The RON dialect of graph files and plugin parameters: `Texture(format: ..)` for a
+/// variant holding a struct, and optional fields written without `Some(..)`.
+pub(crate) fn options() -> ron::Options {
+    ron::Options::default()
+        .with_default_extension(Extensions::UNWRAP_VARIANT_NEWTYPES | Extensions::IMPLICIT_SOME)
+}
+
+/// Reads a graph file.
+pub(crate) fn parse(text: &str) -> Result<GraphFile<'_>, ron::error::SpannedError> {
+    options().from_str(text)
+}

@@ -1,0 +1,229 @@
+//! Slots: a pass's named connections to resources, as the graph file lists them in
+//! `inputs` and `outputs`. Plugins take their handles by slot name.
+
+use std::collections::HashMap;
+use std::path::{Component, Path, PathBuf};
+
+use super::any_handle::AnyHandle;
+use super::plugin::PluginError;
+use super::schema::PassDecl;
+use crate::access::ColorLoad;
+use crate::handle::{Handle, Kind, ResourceKind, Texture};
+
+/// The slots of the pass being set up. A slot only in `inputs` is read; a slot in
+/// `outputs` is written, and when it is also in `inputs` it modifies the version it
+/// reads (the written version gets the name from `outputs`). Every slot must be taken
+/// exactly as listed, or loading fails naming it.
+pub struct Slots<'s> {
+    /// Output slots in file order (their color-attachment order), then input-only slots.
+    slots: Vec<Slot<'s>>,
+    dir: &'s Path,
+}
+
+struct Slot<'s> {
+    name: &'s str,
+    /// The version read, when the slot is an input.
+    input: Option<&'s str>,
+    /// The version written, when the slot is an output.
+    output: Option<&'s str>,
+    /// What the plugin gets: the version read, or version 0 of a freshly written resource.
+    handle: AnyHandle,
+    used: bool,
+    written: Option<AnyHandle>,
+}
+
+/// An output slot's resource, as the plugin writes it.
+#[derive(Copy, Clone, Debug)]
+pub struct Target<K: ResourceKind> {
+    pub handle: Handle<K>,
+    /// The slot is also an input: the pass draws over (or updates) the version it reads,
+    /// rather than replacing the contents.
+    pub modifies: bool,
+}
+
+impl Target<Texture> {
+    /// Load what is there when modifying, else clear to `clear`.
+    pub fn color_load(&self, clear: [f64; 4]) -> ColorLoad {
+        if self.modifies {
+            ColorLoad::Load
+        } else {
+            ColorLoad::Clear(clear)
+        }
+    }
+}
+
+/// What a pass's setup produced, for the loader.
+pub(crate) struct Finished<'s> {
+    /// Output names and the handles written under them.
+    pub written: Vec<(&'s str, AnyHandle)>,
+    /// Slots the plugin never took, with the name each holds.
+    pub unused: Vec<(&'s str, &'s str)>,
+}
+
+impl<'s> Slots<'s> {
+    /// The slots of `decl`, with handles from `handles` (by the name each slot reads, or
+    /// writes when it only writes). `None` when a name has no handle, which happens only
+    /// when the pass writing it failed and was reported already.
+    pub(crate) fn new(
+        decl: &'s PassDecl<'_>,
+        handles: &HashMap<&str, AnyHandle>,
+        dir: &'s Path,
+    ) -> Option<Self> {
+        let outputs = decl.outputs.0.iter().map(|(slot, out)| {
+            let input = decl.input(slot.as_str()).map(|n| n.as_str());
+            (slot.as_str(), input, Some(out.as_str()))
+        });
+        let inputs = decl
+            .inputs
+            .0
+            .iter()
+            .filter(|(slot, _)| decl.output(slot.as_str()).is_none())
+            .map(|(slot, name)| (slot.as_str(), Some(name.as_str()), None));
+        let slots = outputs
+            .chain(inputs)
+            .map(|(name, input, output)| {
+                let handle = *handles.get(input.or(output)?)?;
+                Some(Slot {
+                    name,
+                    input,
+                    output,
+                    handle,
+                    used: false,
+                    written: None,
+                })
+            })
+            .collect::<Option<Vec<_>>>()?;
+        Some(Slots { slots, dir })
+    }
+
+    /// The handle of an input-only slot.
+    pub fn input<K: ResourceKind>(&mut self, slot: &str) -> Result<Handle<K>, PluginError> {
+        let s = self.find(slot, "inputs")?;
+        if let Some(output) = s.output {
+            return Err(PluginError::NotAnInput {
+                slot: slot.to_owned(),
+                resource: output.to_owned(),
+            });
+        }
+        s.used = true;
+        s.typed()
+    }
+
+    /// Writes an output slot: `write` declares the access on the pass builder and returns
+    /// the handle the builder gave back, which becomes the slot's output name.
+    pub fn write<K: ResourceKind>(
+        &mut self,
+        slot: &str,
+        write: impl FnOnce(Target<K>) -> Handle<K>,
+    ) -> Result<Handle<K>, PluginError> {
+        let s = self.find(slot, "outputs")?;
+        if s.output.is_none() {
+            return Err(PluginError::NotAnOutput {
+                slot: slot.to_owned(),
+                resource: s.shown().to_owned(),
+            });
+        }
+        let target = Target {
+            handle: s.typed()?,
+            modifies: s.input.is_some(),
+        };
+        s.used = true;
+        let written = write(target);
+        s.written = Some(written.into());
+        Ok(written)
+    }
+
+    /// The kind of resource a slot holds, if the file lists the slot.
+    pub fn kind(&self, slot: &str) -> Option<Kind> {
+        self.get(slot).map(|s| s.handle.kind())
+    }
+
+    /// Whether the file lists the slot in `outputs`.
+    pub fn is_output(&self, slot: &str) -> bool {
+        self.get(slot).is_some_and(|s| s.output.is_some())
+    }
+
+    /// The output slots, in file order.
+    pub fn outputs(&self) -> Vec<&'s str> {
+        self.slots
+            .iter()
+            .filter(|s| s.output.is_some())
+            .map(|s| s.name)
+            .collect()
+    }
+
+    /// The file's name for what a slot holds: the name written for an output, else the
+    /// name read. For messages.
+    pub fn resource(&self, slot: &str) -> Option<&'s str> {
+        self.get(slot).map(|s| s.shown())
+    }
+
+    /// `relative` resolved against the graph file's directory, with `..` folded away
+    /// where it can be, so messages show short paths.
+    pub fn path(&self, relative: &str) -> PathBuf {
+        let mut path = PathBuf::new();
+        for component in self.dir.join(relative).components() {
+            match component {
+                Component::CurDir => {}
+                Component::ParentDir
+                    if matches!(path.components().next_back(), Some(Component::Normal(_))) =>
+                {
+                    path.pop();
+                }
+                other => path.push(other),
+            }
+        }
+        path
+    }
+
+    pub(crate) fn finish(self) -> Finished<'s> {
+        let mut finished = Finished {
+            written: Vec::new(),
+            unused: Vec::new(),
+        };
+        for s in self.slots {
+            match (s.used, s.output, s.written) {
+                (false, _, _) => finished.unused.push((s.name, s.shown())),
+                (true, Some(output), Some(handle)) => finished.written.push((output, handle)),
+                (true, _, _) => {}
+            }
+        }
+        finished
+    }
+
+    fn get(&self, slot: &str) -> Option<&Slot<'s>> {
+        self.slots.iter().find(|s| s.name == slot)
+    }
+
+    fn find(&mut self, slot: &str, side: &'static str) -> Result<&mut Slot<'s>, PluginError> {
+        self.slots
+            .iter_mut()
+            .find(|s| s.name == slot)
+            .ok_or_else(|| PluginError::MissingSlot {
+                slot: slot.to_owned(),
+                side,
+            })
+    }
+}
+
+impl<'s> Slot<'s> {
+    fn shown(&self) -> &'s str {
+        self.output.or(self.input).unwrap_or(self.name)
+    }
+
+    fn typed<K: ResourceKind>(&self) -> Result<Handle<K>, PluginError> {
+        self.handle.typed().ok_or_else(|| PluginError::SlotKind {
+            slot: self.name.to_owned(),
+            resource: self.shown().to_owned(),
+            found: kind_name(self.handle.kind()),
+            expected: kind_name(K::KIND),
+        })
+    }
+}
+
+fn kind_name(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Texture => "texture",
+        Kind::Buffer => "buffer",
+    }
+}

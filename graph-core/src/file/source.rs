@@ -1,0 +1,69 @@
+//! A graph file's text and path: turns names and raw values that borrow from the text,
+//! and `ron`'s spans, into positioned errors.
+
+use std::path::Path;
+
+use ron::value::RawValue;
+
+use super::error::{ErrorKind, FileError, Location};
+use super::position::Position;
+use super::schema::{offset_in, Name};
+
+pub(crate) struct Source<'a> {
+    path: &'a Path,
+    text: &'a str,
+}
+
+impl<'a> Source<'a> {
+    pub fn new(path: &'a Path, text: &'a str) -> Self {
+        Source { path, text }
+    }
+
+    /// The directory relative paths in the file are resolved against.
+    pub fn dir(&self) -> &'a Path {
+        self.path.parent().unwrap_or(Path::new(""))
+    }
+
+    pub fn location(&self, at: Position) -> Location {
+        Location {
+            path: self.path.display().to_string(),
+            at,
+        }
+    }
+
+    /// Where a name is written: its opening quote. A name with escapes (a copy, not a
+    /// slice of the text) is placed at the start of the file.
+    pub fn position(&self, name: &Name<'_>) -> Position {
+        name.offset(self.text).map_or(Position::START, |offset| {
+            let quote = offset
+                .checked_sub(1)
+                .filter(|&q| self.text.as_bytes()[q] == b'"');
+            Position::of_offset(self.text, quote.unwrap_or(offset))
+        })
+    }
+
+    /// An error pointing at `name`.
+    pub fn error(&self, name: &Name<'_>, kind: ErrorKind) -> FileError {
+        FileError {
+            location: self.location(self.position(name)),
+            kind,
+        }
+    }
+
+    /// Where a raw value starts.
+    pub fn raw_position(&self, raw: &RawValue) -> Position {
+        offset_in(self.text, raw.get_ron()).map_or(Position::START, |offset| {
+            Position::of_offset(self.text, offset)
+        })
+    }
+
+    /// A `ron` error in the whole file.
+    pub fn syntax(&self, error: &ron::error::SpannedError) -> FileError {
+        FileError {
+            location: self.location(error.span.start.into()),
+            kind: ErrorKind::Syntax {
+                message: error.code.to_string(),
+            },
+        }
+    }
+}

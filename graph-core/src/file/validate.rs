@@ -1,0 +1,112 @@
+//! Validation without a GPU, for build scripts, CI and `rgraph validate`: graph files are
+//! loaded and compiled, WGSL files are parsed and validated by naga.
+
+use std::path::{Path, PathBuf};
+
+use super::error::{ErrorKind, FileError, FileErrors, Location};
+use super::load::load_file;
+use super::position::Position;
+use super::registry::Registry;
+use crate::compile::CompileOptions;
+use crate::plan::Plan;
+use crate::shader::{Shader, ShaderError};
+
+/// What [`validate_dir`] checked, sorted: graph files and shaders.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Validated {
+    pub graphs: Vec<PathBuf>,
+    pub shaders: Vec<PathBuf>,
+}
+
+/// Loads and compiles one graph file for `options` (its device profile and output size).
+pub fn validate_file(
+    path: impl AsRef<Path>,
+    registry: &Registry,
+    options: &CompileOptions,
+) -> Result<Plan, FileErrors> {
+    load_file(path, registry)?.compile(options)
+}
+
+/// Parses and validates one WGSL file with naga.
+pub fn validate_shader(path: impl AsRef<Path>) -> Result<(), FileError> {
+    Shader::load(path).map(drop).map_err(shader_error)
+}
+
+/// Validates every `.ron` file under `pipelines` as a graph and every `.wgsl` file under
+/// `shaders` (both searched recursively), reporting every error of every file.
+pub fn validate_dir(
+    pipelines: impl AsRef<Path>,
+    shaders: impl AsRef<Path>,
+    registry: &Registry,
+    options: &CompileOptions,
+) -> Result<Validated, FileErrors> {
+    let mut errors = Vec::new();
+    let validated = Validated {
+        graphs: files(pipelines.as_ref(), "ron", &mut errors),
+        shaders: files(shaders.as_ref(), "wgsl", &mut errors),
+    };
+    for shader in &validated.shaders {
+        errors.extend(validate_shader(shader).err());
+    }
+    for graph in &validated.graphs {
+        if let Err(e) = validate_file(graph, registry, options) {
+            errors.extend(e.0);
+        }
+    }
+    if errors.is_empty() {
+        Ok(validated)
+    } else {
+        Err(FileErrors(errors))
+    }
+}
+
+/// A shader error as a file error, placed where naga points.
+pub(crate) fn shader_error(error: ShaderError) -> FileError {
+    match error {
+        ShaderError::Unreadable { path, reason } => FileError {
+            location: Location {
+                path,
+                at: Position::START,
+            },
+            kind: ErrorKind::Unreadable { reason },
+        },
+        ShaderError::Invalid {
+            path, at, message, ..
+        } => FileError {
+            location: Location { path, at },
+            kind: ErrorKind::Shader { message },
+        },
+    }
+}
+
+/// Files under `dir` whose extension is `extension`, sorted.
+fn files(dir: &Path, extension: &str, errors: &mut Vec<FileError>) -> Vec<PathBuf> {
+    let mut found = Vec::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(dir) = pending.pop() {
+        let entries = match std::fs::read_dir(&dir) {
+            Ok(entries) => entries,
+            Err(e) => {
+                errors.push(FileError {
+                    location: Location {
+                        path: dir.display().to_string(),
+                        at: Position::START,
+                    },
+                    kind: ErrorKind::Unreadable {
+                        reason: e.to_string(),
+                    },
+                });
+                continue;
+            }
+        };
+        for path in entries.filter_map(|e| e.ok()).map(|e| e.path()) {
+            if path.is_dir() {
+                pending.push(path);
+            } else if path.extension().is_some_and(|e| e == extension) {
+                found.push(path);
+            }
+        }
+    }
+    found.sort();
+    found
+}

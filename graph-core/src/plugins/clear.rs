@@ -1,0 +1,79 @@
+//! `clear`: clears output slot `target` (color, or depth and stencil for depth-stencil
+//! formats) and draws nothing.
+//!
+//! ```ron
+//! (name: "clear", plugin: "clear",
+//!  params: (color: (0.0, 0.0, 0.0, 1.0), depth: 1.0, stencil: 0),   // these defaults
+//!  outputs: { "target": "hdr" })
+//! ```
+
+use serde::Deserialize;
+
+use crate::access::{AspectAccess, ColorLoad};
+use crate::builder::PassBuilder;
+use crate::file::{Plugin, PluginError, Slots};
+use crate::handle::{Texture, TextureHandle};
+use crate::pass::PassKind;
+
+pub struct Clear;
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ClearParams {
+    #[serde(default = "opaque_black")]
+    pub color: [f64; 4],
+    #[serde(default = "far")]
+    pub depth: f32,
+    #[serde(default)]
+    pub stencil: u32,
+}
+
+fn opaque_black() -> [f64; 4] {
+    [0.0, 0.0, 0.0, 1.0]
+}
+
+fn far() -> f32 {
+    1.0
+}
+
+impl Plugin for Clear {
+    const NAME: &'static str = "clear";
+    type Params = ClearParams;
+
+    fn kind(&self, _: &ClearParams) -> PassKind {
+        PassKind::Render
+    }
+
+    fn setup(
+        &self,
+        params: ClearParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        slots.write::<Texture>("target", |t| declare(pass, t.handle, &params))?;
+        Ok(())
+    }
+}
+
+fn declare(
+    pass: &mut PassBuilder<'_>,
+    target: TextureHandle,
+    params: &ClearParams,
+) -> TextureHandle {
+    match pass.resource(target).texture().map(|d| d.format) {
+        Some(format) if format.is_depth_stencil_format() => {
+            // An aspect the format lacks is declared read-only, which the builder records
+            // as absent.
+            let depth = match format.has_depth_aspect() {
+                true => AspectAccess::Clear(params.depth),
+                false => AspectAccess::ReadOnly,
+            };
+            let stencil = match format.has_stencil_aspect() {
+                true => AspectAccess::Clear(params.stencil),
+                false => AspectAccess::ReadOnly,
+            };
+            pass.depth_stencil(target, depth, stencil)
+        }
+        _ => pass.color_output(target, ColorLoad::Clear(params.color)),
+    }
+}

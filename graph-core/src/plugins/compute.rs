@@ -1,0 +1,170 @@
+//! `compute`: a compute pass running a WGSL entry point from a file.
+//!
+//! ```ron
+//! (name: "exposure", plugin: "compute",
+//!  params: (
+//!      shader: "../shaders/exposure.wgsl",   // relative to the graph file
+//!      entry: "main",                        // the default
+//!      dispatch: PerTexel("out"),            // or Workgroups(8, 8, 1)
+//!      bindings: [Slot(binding: 0, slot: "in"), Slot(binding: 1, slot: "out")],
+//!  ),
+//!  inputs: { "in": "hdr" },
+//!  outputs: { "out": "hdr_exposed" })
+//! ```
+//!
+//! `PerTexel(slot)` runs one invocation per texel of the texture bound to `slot`: the
+//! workgroup counts are its size divided by the entry point's `@workgroup_size`, rounded
+//! up (layers count as depth). Every slot must be bound (see [`BindingDecl`]).
+
+use serde::Deserialize;
+
+use super::binding::{bind, BindingDecl, Source};
+use crate::builder::PassBuilder;
+use crate::file::{Plugin, PluginError, Slots};
+use crate::handle::TextureHandle;
+use crate::pass::PassKind;
+use crate::shader::{Shader, Stage};
+
+pub struct Compute;
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ComputeParams {
+    /// WGSL file, relative to the graph file.
+    pub shader: String,
+    #[serde(default = "main")]
+    pub entry: String,
+    pub dispatch: Dispatch,
+    #[serde(default)]
+    pub bindings: Vec<BindingDecl>,
+}
+
+fn main() -> String {
+    "main".into()
+}
+
+/// How many workgroups a dispatch runs.
+#[derive(Clone, Debug, Deserialize)]
+pub enum Dispatch {
+    /// Enough to cover every texel of the texture bound to this slot.
+    PerTexel(String),
+    /// Exactly these counts.
+    Workgroups(u32, u32, u32),
+}
+
+/// [`Dispatch`] with the slot resolved to the texture bound there.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))] // Only the record callback reads it.
+#[derive(Copy, Clone, Debug)]
+enum Workgroups {
+    PerTexel(TextureHandle, [u32; 3]),
+    Fixed([u32; 3]),
+}
+
+impl Plugin for Compute {
+    const NAME: &'static str = "compute";
+    type Params = ComputeParams;
+
+    fn kind(&self, _: &ComputeParams) -> PassKind {
+        PassKind::Compute
+    }
+
+    fn setup(
+        &self,
+        params: ComputeParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let shader = Shader::load(slots.path(&params.shader))?;
+        let entry = shader.entry(&params.entry, Stage::Compute).ok_or_else(|| {
+            PluginError::MissingEntry {
+                shader: shader.path().to_owned(),
+                stage: Stage::Compute,
+                entry: params.entry.clone(),
+                found: shader.entry_names(Stage::Compute).join(", "),
+            }
+        })?;
+        let bound = bind(&shader, &entry, &params.bindings, pass, slots)?;
+        let workgroups = match params.dispatch {
+            Dispatch::Workgroups(x, y, z) => Workgroups::Fixed([x, y, z]),
+            Dispatch::PerTexel(slot) => {
+                let texture = bound.iter().find_map(|b| match b.source {
+                    Source::Texture(handle, _) if b.slot.as_deref() == Some(&slot) => Some(handle),
+                    _ => None,
+                });
+                let Some(texture) = texture else {
+                    return Err(PluginError::Invalid(format!(
+                        "dispatch is PerTexel(\"{slot}\"), but no binding binds a texture \
+                         from slot \"{slot}\""
+                    )));
+                };
+                Workgroups::PerTexel(texture, entry.workgroup_size())
+            }
+        };
+        #[cfg(feature = "gpu")]
+        pass.compute(gpu::record(
+            shader.source().to_owned(),
+            params.entry,
+            bound,
+            workgroups,
+        ));
+        // Without a device nothing records; the dispatch was checked all the same.
+        #[cfg(not(feature = "gpu"))]
+        let _ = workgroups;
+        Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    use super::Workgroups;
+    use crate::gpu::ComputeContext;
+    use crate::plugins::binding::Bound;
+    use crate::plugins::gpu::GpuBindings;
+
+    /// Device objects, made on the first frame and kept.
+    struct State {
+        bindings: GpuBindings,
+        pipeline: wgpu::ComputePipeline,
+    }
+
+    pub(super) fn record(
+        source: String,
+        entry: String,
+        bound: Vec<Bound>,
+        workgroups: Workgroups,
+    ) -> impl FnMut(&mut ComputeContext<'_, '_>) + 'static {
+        let mut state: Option<State> = None;
+        move |ctx| {
+            let device = ctx.resources.device;
+            let state = state.get_or_insert_with(|| {
+                let bindings = GpuBindings::new(device, &bound, wgpu::ShaderStages::COMPUTE);
+                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: None,
+                    source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
+                });
+                let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: None,
+                    layout: Some(&bindings.pipeline_layout(device)),
+                    module: &module,
+                    entry_point: Some(&entry),
+                    compilation_options: Default::default(),
+                    cache: None,
+                });
+                State { bindings, pipeline }
+            });
+            ctx.pass.set_pipeline(&state.pipeline);
+            for (group, index) in state.bindings.bind_groups(ctx.resources).iter().zip(0u32..) {
+                ctx.pass.set_bind_group(index, group, &[]);
+            }
+            let [x, y, z] = match workgroups {
+                Workgroups::Fixed(counts) => counts,
+                Workgroups::PerTexel(texture, size) => {
+                    let shape = ctx.resources.shape(texture);
+                    let texels = [shape.width, shape.height, shape.layers];
+                    [0, 1, 2].map(|i| texels[i].div_ceil(size[i]))
+                }
+            };
+            ctx.pass.dispatch_workgroups(x, y, z);
+        }
+    }
+}

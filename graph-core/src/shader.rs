@@ -1,1 +1,0 @@
-//! WGSL validation and binding reflection with naga.

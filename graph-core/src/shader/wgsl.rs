@@ -1,0 +1,117 @@
+//! Loading a WGSL shader: naga parses and validates it once, and plugins reflect on the
+//! result at graph-load time and compile the same source on the device at execution.
+
+use std::path::Path;
+
+use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
+
+use super::error::ShaderError;
+use crate::file::Position;
+
+/// A WGSL module that naga parsed and validated with its default capabilities (those of
+/// WebGPU plus multisampled shading), which is what wgpu checks again at pipeline creation.
+#[derive(Debug)]
+pub struct Shader {
+    path: String,
+    source: String,
+    module: naga::Module,
+    info: ModuleInfo,
+}
+
+impl Shader {
+    /// Reads and validates the WGSL file at `path`; messages name it as given.
+    pub fn load(path: impl AsRef<Path>) -> Result<Shader, ShaderError> {
+        let path = path.as_ref();
+        let shown = path.display().to_string();
+        match std::fs::read_to_string(path) {
+            Ok(source) => Shader::parse(shown, source),
+            Err(e) => Err(ShaderError::Unreadable {
+                path: shown,
+                reason: e.to_string(),
+            }),
+        }
+    }
+
+    /// Validates WGSL `source`; `path` names it in messages.
+    pub fn parse(
+        path: impl Into<String>,
+        source: impl Into<String>,
+    ) -> Result<Shader, ShaderError> {
+        let path = path.into();
+        let source = source.into();
+        let module = naga::front::wgsl::parse_str(&source).map_err(|e| {
+            invalid(
+                &path,
+                &source,
+                e.location(&source),
+                e.message().to_owned(),
+                e.emit_to_string_with_path(&source, &path),
+            )
+        })?;
+        let info = Validator::new(ValidationFlags::all(), Capabilities::default())
+            .validate(&module)
+            .map_err(|e| {
+                invalid(
+                    &path,
+                    &source,
+                    e.location(&source),
+                    with_causes(e.as_inner()),
+                    e.emit_to_string_with_path(&source, &path),
+                )
+            })?;
+        Ok(Shader {
+            path,
+            source,
+            module,
+            info,
+        })
+    }
+
+    /// The path the shader was loaded from, as given.
+    pub fn path(&self) -> &str {
+        &self.path
+    }
+
+    /// The WGSL text, for creating the device's shader module.
+    pub fn source(&self) -> &str {
+        &self.source
+    }
+
+    pub fn module(&self) -> &naga::Module {
+        &self.module
+    }
+
+    pub fn info(&self) -> &ModuleInfo {
+        &self.info
+    }
+}
+
+fn invalid(
+    path: &str,
+    source: &str,
+    location: Option<naga::SourceLocation>,
+    message: String,
+    report: String,
+) -> ShaderError {
+    ShaderError::Invalid {
+        path: path.to_owned(),
+        // Whole-module errors (no span) are reported at the top of the file.
+        at: location.map_or(Position::START, |l| {
+            Position::of_offset(source, l.offset as usize)
+        }),
+        message,
+        report,
+    }
+}
+
+/// A validation error's own message says which function failed; its causes say why.
+fn with_causes(error: &dyn std::error::Error) -> String {
+    let mut message = error.to_string();
+    let mut cause = error.source();
+    while let Some(c) = cause {
+        message.push_str(": ");
+        message.push_str(&c.to_string());
+        cause = c.source();
+    }
+    message
+}
