@@ -4,14 +4,17 @@
 
 mod common;
 
-use common::{bind_group, compute_pipeline, gpu, plan, render_pipeline, FULLSCREEN_VS, SIZE};
+use common::{
+    bind_group, compute_pipeline, gpu, plan, render_pipeline, render_pipeline_with, FULLSCREEN_VS,
+    SIZE,
+};
 use graph_core::gpu::{
     read_rgba8, read_texture, AdapterChoice, DeviceError, ExecuteError, Executor, Gpu, ImportError,
     Imports, ReadbackError,
 };
 use graph_core::{
-    BufferDesc, BufferHandle, BufferRole, ColorLoad, Graph, GraphBuilder, Plan, Size, TextureDesc,
-    TextureHandle,
+    Aspect, AspectAccess, BufferDesc, BufferHandle, BufferRole, ColorLoad, Graph, GraphBuilder,
+    Plan, Size, TextureDesc, TextureHandle,
 };
 use wgpu::{Features, TextureFormat, TextureUsages};
 
@@ -321,6 +324,118 @@ fn msaa_resolve_shows_partial_coverage_on_the_edge() {
             [r, g, b, a]
         );
     }
+}
+
+/// A triangle at `z` over the texels below the diagonal y = x (framebuffer y down), or
+/// a full-screen one; fragments write `vec4f(depth of src at the texel, 0, 0, 1)`.
+fn depth_shaders(z: f32, fullscreen: bool) -> String {
+    let corners = if fullscreen {
+        "vec2f(-1.0, -1.0), vec2f(3.0, -1.0), vec2f(-1.0, 3.0)"
+    } else {
+        "vec2f(-1.0, 1.0), vec2f(1.0, -1.0), vec2f(-1.0, -1.0)"
+    };
+    format!(
+        "@group(0) @binding(0) var depth: texture_depth_2d;
+        @vertex
+        fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4f {{
+            var corners = array({corners});
+            return vec4f(corners[i], {z:?}, 1.0);
+        }}
+        @fragment
+        fn fs(@builtin(position) p: vec4f) -> @location(0) vec4f {{
+            return vec4f(textureLoad(depth, vec2i(p.xy), 0), 0.0, 0.0, 1.0);
+        }}"
+    )
+}
+
+#[test]
+fn a_read_only_depth_attachment_is_tested_against_and_sampled_in_one_pass() {
+    let gpu = gpu();
+    let mut g = GraphBuilder::new();
+    let format = TextureFormat::Depth24PlusStencil8;
+    let depth = g.create_texture("depth", tex(format));
+    let color = g.create_texture("color", tex(TextureFormat::Rgba8Unorm));
+
+    // Depth 0.25 where the half triangle covers, the 1.0 clear elsewhere. The stencil is
+    // not touched: its clear is the only thing that makes it defined.
+    let mut prepass = g.add_render_pass("depth prepass");
+    let depth = prepass.depth_stencil(depth, AspectAccess::Clear(1.0), AspectAccess::Clear(0));
+    let mut pipeline = None;
+    prepass.render(move |ctx| {
+        let device = ctx.resources.device;
+        let pipeline = pipeline.get_or_insert_with(|| {
+            let state = wgpu::DepthStencilState {
+                format,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            };
+            // No color target: only the vertex stage of the module is used.
+            render_pipeline_with(device, &depth_shaders(0.25, false), None, 1, Some(state))
+        });
+        ctx.pass.set_pipeline(pipeline);
+        ctx.pass.draw(0..3, 0..1);
+    });
+
+    // Full screen at z = 0.5 with `Greater`: only where the prepass left 0.25 passes, and
+    // there the shader writes the sampled depth. Both aspects read-only, so the same
+    // texture can be attached and sampled.
+    let mut shade = g.add_render_pass("shade");
+    shade.depth_stencil(depth, AspectAccess::ReadOnly, AspectAccess::ReadOnly);
+    shade.sampled_aspect(depth, Aspect::DepthOnly);
+    let out = shade.color_output(color, ColorLoad::Clear([0.0; 4]));
+    let mut pipeline = None;
+    shade.render(move |ctx| {
+        let device = ctx.resources.device;
+        let pipeline = pipeline.get_or_insert_with(|| {
+            let state = wgpu::DepthStencilState {
+                format,
+                depth_write_enabled: Some(false),
+                depth_compare: Some(wgpu::CompareFunction::Greater),
+                stencil: Default::default(),
+                bias: Default::default(),
+            };
+            let wgsl = depth_shaders(0.5, true);
+            render_pipeline_with(
+                device,
+                &wgsl,
+                Some(TextureFormat::Rgba8Unorm),
+                1,
+                Some(state),
+            )
+        });
+        let bind = bind_group(
+            device,
+            &pipeline.get_bind_group_layout(0),
+            &[wgpu::BindingResource::TextureView(
+                ctx.resources.aspect_view(depth, Aspect::DepthOnly),
+            )],
+        );
+        ctx.pass.set_pipeline(pipeline);
+        ctx.pass.set_bind_group(0, &bind, &[]);
+        ctx.pass.draw(0..3, 0..1);
+    });
+    g.export(out);
+    let mut graph = g.build();
+    let plan = plan(&graph, &gpu);
+    let attached = plan.pass("shade").and_then(|p| p.depth_stencil.as_ref());
+    assert!(
+        attached.is_some_and(|ds| ds.depth.is_none() && ds.stencil.is_none()),
+        "{attached:?}"
+    );
+
+    let pixels = execute_and_read(&gpu, &mut graph, &plan, out);
+    assert_eq!(
+        texel(&pixels, 5, 50),
+        [64, 0, 0, 255],
+        "covered: depth 0.25"
+    );
+    assert_eq!(
+        texel(&pixels, 50, 5),
+        [0; 4],
+        "uncovered: depth test failed"
+    );
 }
 
 #[test]

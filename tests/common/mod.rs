@@ -45,10 +45,23 @@ pub fn render_pipeline(
     format: wgpu::TextureFormat,
     samples: u32,
 ) -> wgpu::RenderPipeline {
+    render_pipeline_with(device, wgsl, Some(format), samples, None)
+}
+
+/// Like [`render_pipeline`], with an optional color target (without one, `wgsl` needs no
+/// `fs`: the pipeline only writes depth) and an optional depth-stencil state.
+pub fn render_pipeline_with(
+    device: &wgpu::Device,
+    wgsl: &str,
+    format: Option<wgpu::TextureFormat>,
+    samples: u32,
+    depth_stencil: Option<wgpu::DepthStencilState>,
+) -> wgpu::RenderPipeline {
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: None,
         source: wgpu::ShaderSource::Wgsl(wgsl.into()),
     });
+    let targets = [format.map(Into::into)];
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: None,
         layout: None,
@@ -59,16 +72,16 @@ pub fn render_pipeline(
             buffers: &[],
         },
         primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: None,
+        depth_stencil,
         multisample: wgpu::MultisampleState {
             count: samples,
             ..Default::default()
         },
-        fragment: Some(wgpu::FragmentState {
+        fragment: format.map(|_| wgpu::FragmentState {
             module: &module,
             entry_point: Some("fs"),
             compilation_options: Default::default(),
-            targets: &[Some(format.into())],
+            targets: &targets,
         }),
         multiview_mask: None,
         cache: None,

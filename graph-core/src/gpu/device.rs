@@ -304,12 +304,13 @@ pub fn list_adapters() -> Vec<AdapterSummary> {
         .collect()
 }
 
-/// "name (driver driver_info)", e.g. "llvmpipe (LLVM 15.0.6, 256 bits) (llvmpipe Mesa 22.3.6)".
+/// "name [driver driver_info]", e.g.
+/// "llvmpipe (LLVM 15.0.6, 256 bits) [llvmpipe Mesa 22.3.6 (LLVM 15.0.6)]".
 fn describe(info: &wgpu::AdapterInfo) -> String {
     let driver = format!("{} {}", info.driver, info.driver_info);
     match driver.trim() {
         "" => info.name.clone(),
-        driver => format!("{} ({driver})", info.name),
+        driver => format!("{} [{driver}]", info.name),
     }
 }
 
@@ -408,3 +409,60 @@ const UNCOMPRESSED_FORMATS: &[TextureFormat] = &[
     TextureFormat::Depth32Float,
     TextureFormat::Depth32FloatStencil8,
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::AdapterChoice;
+
+    #[test]
+    fn choices_parse_keywords_and_name_parts() {
+        let parse = |s: &str| s.parse::<AdapterChoice>().ok();
+        assert_eq!(parse("lavapipe"), Some(AdapterChoice::Lavapipe));
+        assert_eq!(parse(" GPU "), Some(AdapterChoice::FirstGpu));
+        assert_eq!(
+            parse("RTX 4090"),
+            Some(AdapterChoice::Named("RTX 4090".into()))
+        );
+        assert_eq!(parse("  "), None);
+    }
+
+    #[test]
+    fn a_flag_overrides_the_environment() {
+        assert_eq!(AdapterChoice::resolve(Some("gpu")), AdapterChoice::FirstGpu);
+        assert_eq!(
+            AdapterChoice::resolve(Some("H100")),
+            AdapterChoice::Named("H100".into())
+        );
+    }
+
+    #[test]
+    fn names_match_case_insensitively() {
+        let info = wgpu::AdapterInfo {
+            name: "NVIDIA H100 80GB HBM3".into(),
+            device_type: wgpu::DeviceType::DiscreteGpu,
+            ..lavapipe()
+        };
+        assert!(AdapterChoice::Named("h100".into()).matches(&info));
+        assert!(AdapterChoice::FirstGpu.matches(&info));
+        assert!(!AdapterChoice::Lavapipe.matches(&info));
+        assert!(AdapterChoice::Lavapipe.matches(&lavapipe()));
+        assert!(!AdapterChoice::FirstGpu.matches(&lavapipe()));
+    }
+
+    fn lavapipe() -> wgpu::AdapterInfo {
+        wgpu::AdapterInfo {
+            name: "llvmpipe (LLVM 15.0.6, 256 bits)".into(),
+            vendor: 0x10005,
+            device: 0,
+            device_type: wgpu::DeviceType::Cpu,
+            device_pci_bus_id: String::new(),
+            driver: "llvmpipe".into(),
+            driver_info: "Mesa 22.3.6 (LLVM 15.0.6)".into(),
+            backend: wgpu::Backend::Vulkan,
+            subgroup_min_size: 8,
+            subgroup_max_size: 8,
+            transient_saves_memory: None,
+            limit_bucket: None,
+        }
+    }
+}
