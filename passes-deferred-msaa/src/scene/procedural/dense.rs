@@ -1,7 +1,7 @@
 //! `builtin:dense`: as many geometric edges as possible, the hard case for edge detection.
 //!
 //! - A 30 x 30 ground plane at y = 0.
-//! - Grass: 120 x 120 blades (3 triangles each, 43 200 in all) jittered over x, z in
+//! - Grass: 160 x 160 blades (3 triangles each, 76 800 in all) jittered over x, z in
 //!   [-12, 12], 0.25–0.6 tall and 2.5–5 cm wide, random yaw and lean, merged into one
 //!   double-sided mesh: thousands of sub-pixel-wide silhouettes.
 //! - A wire fence along z = -6 from x = -10 to 10: 11 posts (4 cm radius, 1.2 tall) and four
@@ -27,7 +27,7 @@ use super::shapes::Shape;
 use crate::scene::builder::SceneBuilder;
 use crate::scene::SceneError;
 
-const GRASS_PER_SIDE: u32 = 120;
+const GRASS_PER_SIDE: u32 = 160;
 const GRASS_EXTENT: f32 = 12.0;
 const SEED: u64 = 0x00de_75e0;
 

@@ -1,7 +1,7 @@
 //! `builtin:spheres`: few geometric edges, the easy case for edge detection.
 //!
 //! - A 40 x 40 ground plane at y = 0 (grey, rough), 2 triangles.
-//! - Five smooth spheres (64 x 32 tessellation, 3968 triangles each) resting on the ground and
+//! - Five smooth spheres (48 x 24 tessellation, 2208 triangles each) resting on the ground and
 //!   touching nothing else, so the only edges are silhouettes against the ground and sky:
 //!   radius 1.5 at (0, 1.5, 0) red dielectric, 1.0 at (-3.5, 1, 1) gold metal, 1.2 at
 //!   (3.2, 1.2, -0.5) glossy blue, 0.8 at (-1.5, 0.8, 3.2) rough green, 0.7 at (1.8, 0.7, 3)
@@ -20,11 +20,46 @@ use crate::scene::builder::SceneBuilder;
 use crate::scene::SceneError;
 
 const SPHERES: [Solid; 5] = [
-    Solid::sphere("red", [0.0, 1.5, 0.0], 1.5, [0.8, 0.15, 0.1], 0.0, 0.4),
-    Solid::sphere("gold", [-3.5, 1.0, 1.0], 1.0, [1.0, 0.78, 0.34], 1.0, 0.3),
-    Solid::sphere("blue", [3.2, 1.2, -0.5], 1.2, [0.1, 0.3, 0.8], 0.0, 0.2),
-    Solid::sphere("green", [-1.5, 0.8, 3.2], 0.8, [0.2, 0.7, 0.25], 0.0, 0.7),
-    Solid::sphere("white", [1.8, 0.7, 3.0], 0.7, [0.9, 0.9, 0.9], 0.5, 0.5),
+    Solid::sphere(
+        "red sphere",
+        [0.0, 1.5, 0.0],
+        1.5,
+        [0.8, 0.15, 0.1],
+        0.0,
+        0.4,
+    ),
+    Solid::sphere(
+        "gold sphere",
+        [-3.5, 1.0, 1.0],
+        1.0,
+        [1.0, 0.78, 0.34],
+        1.0,
+        0.3,
+    ),
+    Solid::sphere(
+        "blue sphere",
+        [3.2, 1.2, -0.5],
+        1.2,
+        [0.1, 0.3, 0.8],
+        0.0,
+        0.2,
+    ),
+    Solid::sphere(
+        "green sphere",
+        [-1.5, 0.8, 3.2],
+        0.8,
+        [0.2, 0.7, 0.25],
+        0.0,
+        0.7,
+    ),
+    Solid::sphere(
+        "white sphere",
+        [1.8, 0.7, 3.0],
+        0.7,
+        [0.9, 0.9, 0.9],
+        0.5,
+        0.5,
+    ),
 ];
 
 pub(super) fn build(_: &Params, builder: &mut SceneBuilder) -> Result<(), SceneError> {
@@ -36,7 +71,7 @@ pub(super) fn build(_: &Params, builder: &mut SceneBuilder) -> Result<(), SceneE
         ground,
         DMat4::from_scale(DVec3::new(40.0, 1.0, 40.0)),
     );
-    let sphere = Shape::uv_sphere(64, 32);
+    let sphere = Shape::uv_sphere(48, 24);
     for solid in &SPHERES {
         solid.add_to(builder, &sphere);
     }

@@ -1,0 +1,307 @@
+//! glTF features exercised with files written by the test: GLB with an embedded PNG texture,
+//! samplers, cameras, strips and fans, mirrored transforms, quantized and sparse accessors,
+//! URIs, and the warnings for what is not implemented.
+
+mod common;
+
+use common::{temp_dir, Gltf, SHORT};
+use glam::{DQuat, DVec3};
+use passes_deferred_msaa::scene::{
+    FilterMode, Material, Projection, Sampler, Scene, TextureRef, WrapMode,
+};
+use serde_json::json;
+
+/// Writes `gltf` as `name` (embedded buffer) in a fresh directory and loads it.
+fn load_embedded(test: &str, gltf: &Gltf) -> Scene {
+    let path = temp_dir(test).join("scene.gltf");
+    gltf.write_embedded(&path);
+    Scene::from_gltf(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// A 2 x 1 RGBA PNG: one opaque red texel, one half-transparent blue one.
+fn png_2x1() -> Vec<u8> {
+    let image = image::RgbaImage::from_raw(2, 1, vec![255, 0, 0, 255, 0, 0, 255, 128]).unwrap();
+    let mut png = Vec::new();
+    image
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    png
+}
+
+#[test]
+fn glb_with_png_in_buffer_view_and_sampler() {
+    let mut gltf = Gltf::default();
+    let view = gltf.view(&png_2x1());
+    gltf.push(
+        "images",
+        json!({ "bufferView": view, "mimeType": "image/png" }),
+    );
+    // NEAREST, LINEAR_MIPMAP_LINEAR, CLAMP_TO_EDGE, MIRRORED_REPEAT.
+    gltf.push(
+        "samplers",
+        json!({ "magFilter": 9728, "minFilter": 9987, "wrapS": 33071, "wrapT": 33648 }),
+    );
+    gltf.push("textures", json!({ "source": 0, "sampler": 0 }));
+    let material = gltf.push(
+        "materials",
+        json!({ "name": "textured", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } } }),
+    );
+    gltf.triangle(Some(material));
+    let path = temp_dir("glb_texture").join("scene.glb");
+    gltf.write_glb(&path);
+
+    let scene = Scene::from_gltf(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.textures.len(), 1);
+    let texture = &scene.textures[0];
+    assert_eq!((texture.width, texture.height, texture.srgb), (2, 1, true));
+    assert_eq!(texture.rgba8, [255, 0, 0, 255, 0, 0, 255, 128]);
+    assert_eq!(
+        scene.materials[0].base_color_texture,
+        Some(TextureRef {
+            image: 0,
+            sampler: Sampler {
+                wrap_u: WrapMode::ClampToEdge,
+                wrap_v: WrapMode::MirroredRepeat,
+                mag_filter: FilterMode::Nearest,
+                min_filter: FilterMode::Linear,
+                mipmap_filter: Some(FilterMode::Linear),
+            },
+        })
+    );
+    assert_eq!(scene.stats().textured_materials, 1);
+}
+
+#[test]
+fn image_file_next_to_gltf_is_decoded_once_for_two_materials() {
+    let dir = temp_dir("image_file");
+    std::fs::write(dir.join("base color.png"), png_2x1()).unwrap();
+    let mut gltf = Gltf::default();
+    gltf.push("images", json!({ "uri": "base%20color.png" }));
+    gltf.push("textures", json!({ "source": 0 }));
+    for name in ["a", "b"] {
+        let material = gltf.push(
+            "materials",
+            json!({ "name": name, "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } } }),
+        );
+        gltf.triangle(Some(material));
+    }
+    let path = dir.join("scene.gltf");
+    gltf.write_external(&path, "data buffer.bin", "data%20buffer.bin");
+
+    let scene = Scene::from_gltf(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.textures.len(), 1);
+    assert_eq!(scene.textures[0].name, "image 0 \"base%20color.png\"");
+    let sampler = Sampler::default();
+    for material in &scene.materials {
+        assert_eq!(
+            material.base_color_texture,
+            Some(TextureRef { image: 0, sampler })
+        );
+    }
+}
+
+#[test]
+fn orthographic_camera_with_rotated_node() {
+    let mut gltf = Gltf::default();
+    gltf.triangle(None);
+    let camera = gltf.push(
+        "cameras",
+        json!({ "type": "orthographic", "orthographic": { "xmag": 4, "ymag": 3, "znear": 0.25, "zfar": 40 } }),
+    );
+    // 90° about +Y: the camera looks along -X.
+    let s = 0.5f32.sqrt();
+    gltf.root(json!({ "camera": camera, "translation": [7, 0, 0], "rotation": [0, s, 0, s] }));
+    let scene = load_embedded("ortho_camera", &gltf);
+    let camera = &scene.camera;
+    assert_eq!(
+        camera.projection,
+        Projection::Orthographic {
+            xmag: 4.0,
+            ymag: 3.0,
+            znear: 0.25,
+            zfar: 40.0
+        }
+    );
+    assert_eq!(camera.position, DVec3::new(7.0, 0.0, 0.0));
+    let expected = DQuat::from_rotation_y(std::f64::consts::FRAC_PI_2);
+    assert!(camera.orientation.abs_diff_eq(expected, 1e-7));
+    assert!(camera.forward().abs_diff_eq(DVec3::NEG_X, 1e-7));
+}
+
+#[test]
+fn primitive_without_material_gets_the_gltf_default_once() {
+    let mut gltf = Gltf::default();
+    gltf.triangle(None);
+    gltf.triangle(None);
+    let scene = load_embedded("default_material", &gltf);
+    assert_eq!(scene.materials.len(), 1);
+    assert_eq!(
+        scene.materials[0],
+        Material {
+            name: "default material".into(),
+            ..Material::gltf_default()
+        }
+    );
+    assert!(scene.meshes.iter().all(|m| m.material == 0));
+}
+
+/// Four vertices of a unit square, counter-clockwise seen from +Z.
+const SQUARE: [[f32; 3]; 4] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [1.0, 1.0, 0.0],
+    [0.0, 1.0, 0.0],
+];
+
+#[test]
+fn strips_and_fans_become_counter_clockwise_lists() {
+    let mut gltf = Gltf::default();
+    let strip = gltf.floats(&[SQUARE[0], SQUARE[1], SQUARE[3], SQUARE[2]]);
+    let normals = gltf.floats(&[[0.0, 0.0, 1.0]; 4]);
+    gltf.mesh(
+        "strip",
+        json!({ "attributes": { "POSITION": strip, "NORMAL": normals }, "mode": 5 }),
+    );
+    let fan = gltf.floats(&SQUARE);
+    gltf.mesh(
+        "fan",
+        json!({ "attributes": { "POSITION": fan, "NORMAL": normals }, "mode": 6 }),
+    );
+    let scene = load_embedded("strip_fan", &gltf);
+    assert_eq!(scene.meshes[0].indices, [0, 1, 2, 2, 1, 3]);
+    assert_eq!(scene.meshes[1].indices, [0, 1, 2, 0, 2, 3]);
+    for mesh in &scene.meshes {
+        for tri in mesh.indices.chunks(3) {
+            let [a, b, c] =
+                [0, 1, 2].map(|k| glam::Vec3::from(mesh.vertices[tri[k] as usize].position));
+            assert!(
+                (b - a).cross(c - a).z > 0.0,
+                "{}: {tri:?} is clockwise",
+                mesh.name
+            );
+        }
+    }
+}
+
+#[test]
+fn mirroring_transform_reverses_winding() {
+    let mut gltf = Gltf::default();
+    let positions = gltf.floats(&SQUARE[..3]);
+    let mesh = gltf.push(
+        "meshes",
+        json!({ "primitives": [{ "attributes": { "POSITION": positions } }] }),
+    );
+    gltf.root(json!({ "mesh": mesh, "scale": [-1, 1, 1] }));
+    let scene = load_embedded("mirror", &gltf);
+    assert_eq!(scene.meshes[0].indices, [0, 2, 1]);
+    // The flat normal is computed before the flip, in object space: still +Z there.
+    assert_eq!(scene.meshes[0].vertices[0].normal, [0.0, 0.0, 1.0]);
+}
+
+#[test]
+fn quantized_positions_and_u32_indices() {
+    let mut gltf = Gltf::default();
+    gltf.json["extensionsUsed"] = json!(["KHR_mesh_quantization"]);
+    gltf.json["extensionsRequired"] = json!(["KHR_mesh_quantization"]);
+    let values: [i16; 9] = [0, 0, 0, 32767, 0, 0, -32768, -16384, 0];
+    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+    let positions = gltf.accessor(&bytes, SHORT, 3, "VEC3", true);
+    let indices = gltf.indices_u32(&[0, 1, 2]);
+    gltf.mesh(
+        "quantized",
+        json!({ "attributes": { "POSITION": positions }, "indices": indices }),
+    );
+    let scene = load_embedded("quantized", &gltf);
+    let positions: Vec<[f32; 3]> = scene.meshes[0]
+        .vertices
+        .iter()
+        .map(|v| v.position)
+        .collect();
+    // Normalized SHORT: c / 32767, clamped to -1.
+    assert_eq!(
+        positions,
+        [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [-1.0, (-16384.0f64 / 32767.0) as f32, 0.0]
+        ]
+    );
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+}
+
+#[test]
+fn sparse_accessor_substitutes_values() {
+    let mut gltf = Gltf::default();
+    let base = gltf.floats(&[[0.0, 0.0, 0.0], [9.0, 9.0, 9.0], [0.0, 1.0, 0.0]]);
+    let index_view = gltf.view(&1u16.to_le_bytes());
+    let value_view = gltf.view(
+        &[1.0f32, 0.0, 0.0]
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect::<Vec<_>>(),
+    );
+    gltf.json["accessors"][base]["sparse"] = json!({
+        "count": 1,
+        "indices": { "bufferView": index_view, "componentType": 5123 },
+        "values": { "bufferView": value_view },
+    });
+    gltf.mesh("sparse", json!({ "attributes": { "POSITION": base } }));
+    let scene = load_embedded("sparse", &gltf);
+    let positions: Vec<[f32; 3]> = scene.meshes[0]
+        .vertices
+        .iter()
+        .map(|v| v.position)
+        .collect();
+    assert_eq!(
+        positions,
+        [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+    );
+}
+
+#[test]
+fn unsupported_features_are_warnings_naming_them() {
+    let mut gltf = Gltf::default();
+    gltf.json["extensionsUsed"] = json!(["KHR_texture_transform", "KHR_materials_unlit"]);
+    // The image file does not exist: ignored textures are never decoded.
+    gltf.push("images", json!({ "uri": "missing.png" }));
+    gltf.push("textures", json!({ "source": 0 }));
+    let glass = gltf.push(
+        "materials",
+        json!({ "name": "glass", "alphaMode": "BLEND" }),
+    );
+    let bumpy = gltf.push(
+        "materials",
+        json!({
+            "name": "bumpy",
+            "normalTexture": { "index": 0 },
+            "occlusionTexture": { "index": 0 },
+            "emissiveTexture": { "index": 0 },
+            "pbrMetallicRoughness": { "metallicRoughnessTexture": { "index": 0 } },
+        }),
+    );
+    gltf.triangle(Some(glass));
+    gltf.triangle(Some(bumpy));
+    let points = gltf.floats(&[[0.0, 0.0, 0.0]]);
+    gltf.mesh(
+        "dots",
+        json!({ "attributes": { "POSITION": points }, "mode": 0 }),
+    );
+    let scene = load_embedded("warnings", &gltf);
+
+    assert_eq!(
+        scene.warnings,
+        [
+            "glTF extension KHR_texture_transform is not implemented; its effect is ignored",
+            "material 0 \"glass\": alphaMode BLEND is not supported (a G-buffer holds one surface \
+             per sample); rendered as OPAQUE",
+            "material 1 \"bumpy\": normal, occlusion, metallicRoughness, emissive texture(s) \
+             ignored; only base color textures are implemented",
+            "mesh 2 \"dots\" primitive 0: mode Points is not triangles; skipped",
+        ]
+    );
+    assert_eq!(scene.meshes.len(), 2, "the POINTS primitive is skipped");
+    assert_eq!(
+        scene.materials[0].alpha_mode,
+        passes_deferred_msaa::scene::AlphaMode::Opaque
+    );
+}
