@@ -10,11 +10,11 @@ use common::{
 };
 use graph_core::gpu::{
     read_rgba8, read_texture, AdapterChoice, DeviceError, ExecuteError, Executor, Gpu, ImportError,
-    Imports, ReadbackError,
+    Imports, ReadbackError, KEEP_FRAMES,
 };
 use graph_core::{
-    Aspect, AspectAccess, BufferDesc, BufferHandle, BufferRole, ColorLoad, Graph, GraphBuilder,
-    Plan, Size, TextureDesc, TextureHandle,
+    Aspect, AspectAccess, BufferDesc, BufferHandle, BufferRole, ColorLoad, CompileOptions, Graph,
+    GraphBuilder, Plan, Size, TextureDesc, TextureHandle,
 };
 use wgpu::{Features, TextureFormat, TextureUsages};
 
@@ -493,6 +493,44 @@ fn the_pool_reuses_everything_from_the_second_frame_on() {
     let stats = executor.pool_stats();
     assert_eq!((stats.textures_allocated, stats.buffers_allocated), (3, 1));
     assert_eq!((stats.textures_alive, stats.buffers_alive), (3, 1));
+}
+
+#[test]
+fn the_pool_frees_what_no_frame_used_for_a_while() {
+    let gpu = gpu();
+    let mut g = GraphBuilder::new();
+    // Output-sized, so compiling at another size changes its descriptor.
+    let target = g.create_texture("target", TextureDesc::new(TextureFormat::Rgba8Unorm));
+    let out = g
+        .add_render_pass("clear")
+        .color_output(target, ColorLoad::Clear([0.0; 4]));
+    g.export(out);
+    let mut graph = g.build();
+    let compile = |size| {
+        graph
+            .compile(&CompileOptions {
+                output_size: size,
+                profile: gpu.profile(),
+            })
+            .unwrap_or_else(|e| panic!("{e}"))
+    };
+    let (large, small) = (compile(SIZE), compile((16, 16)));
+
+    let mut executor = Executor::new(&gpu);
+    let mut run = |plan: &Plan| {
+        executor
+            .execute(&mut graph, plan, &Imports::new())
+            .unwrap_or_else(|e| panic!("{e}"));
+        executor.pool_stats()
+    };
+    assert_eq!(run(&large).textures_alive, 1);
+    // After a resize the old size lingers for a few frames, in case it comes back.
+    assert_eq!(run(&small).textures_alive, 2);
+    let mut stats = run(&small);
+    for _ in 0..KEEP_FRAMES {
+        stats = run(&small);
+    }
+    assert_eq!((stats.textures_alive, stats.textures_allocated), (1, 2));
 }
 
 /// A graph that clears the engine's texture "backbuffer".

@@ -3,6 +3,7 @@
 //! GPU timestamps per pass. wgpu inserts the barriers; the plan's usages and order are
 //! what make them right.
 
+use std::collections::hash_map::Entry;
 use std::collections::HashMap;
 use std::time::Instant;
 
@@ -150,32 +151,7 @@ impl Executor {
             });
         }
         let stamps = self.read_timestamps(&slots)?;
-        let stats = self.pool.stats();
-        Ok(FrameReport {
-            passes: plan
-                .passes
-                .iter()
-                .zip(cpu_ns)
-                .zip(&slots)
-                .map(|((pass, cpu_ns), slot)| PassTiming {
-                    name: pass.name.clone(),
-                    kind: pass.kind,
-                    gpu_ns: slot.and_then(|s| stamps.get(s as usize)).map(|&(b, e)| {
-                        self.timestamps
-                            .as_ref()
-                            .map_or(0, |t| t.nanoseconds(e.saturating_sub(b)))
-                    }),
-                    cpu_ns,
-                })
-                .collect(),
-            gpu_total_ns: self.timestamps.as_ref().and_then(|t| {
-                let begin = stamps.iter().map(|s| s.0).min()?;
-                let end = stamps.iter().map(|s| s.1).max()?;
-                Some(t.nanoseconds(end.saturating_sub(begin)))
-            }),
-            textures_allocated: stats.frame_textures_allocated,
-            buffers_allocated: stats.frame_buffers_allocated,
-        })
+        Ok(self.report(plan, &slots, cpu_ns, &stamps))
     }
 
     /// The physical texture of an exported, graph-created texture of the last executed
@@ -201,8 +177,8 @@ impl Executor {
         self.pool.stats()
     }
 
-    /// Takes this frame's physical objects from the pool and makes every view the live
-    /// passes declared.
+    /// Takes this frame's physical objects from the pool and gathers, for every resource a
+    /// live pass accesses, its object and the views its accesses need.
     fn acquire(
         &mut self,
         graph: &Graph,
@@ -210,6 +186,7 @@ impl Executor {
         bound: &HashMap<ResourceId, Binding>,
     ) -> Result<FrameObjects, ExecuteError> {
         self.pool.begin_frame();
+        // Labels name every resource an object holds, so wgpu's messages name them too.
         let label = |holds: &[ResourceId]| {
             let names: Vec<&str> = holds
                 .iter()
@@ -223,7 +200,7 @@ impl Executor {
             .iter()
             .map(|t| {
                 self.pool
-                    .acquire_texture(&self.device, t.shape, t.usage, &label(&t.holds))
+                    .acquire_texture(&self.device, t.shape, t.usage, || label(&t.holds))
             })
             .collect();
         self.frame_buffers = plan
@@ -231,7 +208,7 @@ impl Executor {
             .iter()
             .map(|b| {
                 self.pool
-                    .acquire_buffer(&self.device, b.size, b.usage, &label(&b.holds))
+                    .acquire_buffer(&self.device, b.size, b.usage, || label(&b.holds))
             })
             .collect();
 
@@ -239,81 +216,86 @@ impl Executor {
         for planned_pass in &plan.passes {
             let pass = &graph.passes[planned_pass.id.index()];
             for access in &pass.accesses {
-                let id = access.resource;
-                let planned = &plan.resources[id.index()];
-                let pooled = match planned.origin {
-                    Origin::Transient => planned.physical,
-                    Origin::Imported => None,
-                };
+                let planned = &plan.resources[access.resource.index()];
                 let mismatch = || {
                     ExecuteError::PlanMismatch(format!(
                         "pass \"{}\" uses \"{}\", which the plan does not allocate",
                         pass.name, planned.name
                     ))
                 };
-                let Role::Texture(role) = access.role else {
-                    let buffer = match (pooled, bound.get(&id)) {
-                        (Some(i), _) => self
-                            .pool
-                            .buffer(*self.frame_buffers.get(i).ok_or_else(mismatch)?)
-                            .clone(),
-                        (None, Some(Binding::Buffer(b))) => b.clone(),
-                        _ => return Err(mismatch()),
-                    };
-                    objects.buffers.insert(id, buffer);
-                    continue;
+                // Imported resources have no physical index; the plan's is the pool's.
+                let pooled = match planned.origin {
+                    Origin::Transient => planned.physical,
+                    Origin::Imported => None,
                 };
-                let shape = planned.texture.ok_or_else(mismatch)?;
-                let aspect = match role {
-                    TextureRole::Sampled { aspect } => aspect,
-                    _ => Aspect::All,
-                };
-                let mut keys = vec![ViewKey::Aspect(Aspect::All), ViewKey::Aspect(aspect)];
-                if access.role.is_attachment() {
-                    keys.push(ViewKey::Attachment);
-                }
-                let source = match (pooled, bound.get(&id)) {
-                    (Some(i), _) => {
-                        Source::Pooled(*self.frame_textures.get(i).ok_or_else(mismatch)?)
+                let bound = bound.get(&planned.id);
+                match access.role {
+                    Role::Buffer(_) => {
+                        let buffer = match (pooled, bound) {
+                            (Some(i), _) => self
+                                .pool
+                                .buffer(*self.frame_buffers.get(i).ok_or_else(mismatch)?)
+                                .clone(),
+                            (None, Some(Binding::Buffer(b))) => b.clone(),
+                            _ => return Err(mismatch()),
+                        };
+                        objects.buffers.insert(planned.id, buffer);
                     }
-                    (None, Some(Binding::Texture(t))) => Source::Texture(t),
-                    (None, Some(Binding::View(v))) => Source::View(v),
-                    _ => return Err(mismatch()),
-                };
-                let texture = match source {
-                    Source::Pooled(i) => self.pool.texture(i).clone(),
-                    Source::Texture(t) => t.clone(),
-                    Source::View(v) => v.texture().clone(),
-                };
-                objects.textures.insert(id, (texture, shape));
-                for key in keys {
-                    if objects.views.contains_key(&(id, key)) {
-                        continue;
-                    }
-                    let view = match source {
-                        Source::Pooled(i) => self.pool.view(i, key),
-                        Source::Texture(t) => make_view(t, key),
-                        Source::View(v) => match key {
-                            ViewKey::Aspect(Aspect::All) | ViewKey::Attachment => v.clone(),
-                            ViewKey::Aspect(Aspect::DepthOnly | Aspect::StencilOnly) => {
-                                return Err(ImportError::ViewAspect {
-                                    pass: pass.name.clone(),
-                                    resource: planned.name.clone(),
-                                    aspect: if aspect == Aspect::DepthOnly {
-                                        "depth"
-                                    } else {
-                                        "stencil"
-                                    },
-                                }
-                                .into());
+                    Role::Texture(role) => {
+                        let source = match (pooled, bound) {
+                            (Some(i), _) => {
+                                Source::Pooled(*self.frame_textures.get(i).ok_or_else(mismatch)?)
                             }
-                        },
-                    };
-                    objects.views.insert((id, key), view);
+                            (None, Some(Binding::Texture(t))) => Source::Texture(t),
+                            (None, Some(Binding::View(v))) => Source::View(v),
+                            _ => return Err(mismatch()),
+                        };
+                        let shape = planned.texture.ok_or_else(mismatch)?;
+                        let texture = match source {
+                            Source::Pooled(i) => self.pool.texture(i).clone(),
+                            Source::Texture(t) => t.clone(),
+                            Source::View(v) => v.texture().clone(),
+                        };
+                        objects.textures.insert(planned.id, (texture, shape));
+                        // Every texture gets its whole view, so callbacks can always ask.
+                        let mut keys = vec![ViewKey::Aspect(Aspect::All)];
+                        match role {
+                            TextureRole::Sampled { aspect } => keys.push(ViewKey::Aspect(aspect)),
+                            _ if access.role.is_attachment() => keys.push(ViewKey::Attachment),
+                            _ => {}
+                        }
+                        for key in keys {
+                            if let Entry::Vacant(slot) = objects.views.entry((planned.id, key)) {
+                                slot.insert(self.view(source, key).map_err(|aspect| {
+                                    ImportError::ViewAspect {
+                                        pass: pass.name.clone(),
+                                        resource: planned.name.clone(),
+                                        aspect,
+                                    }
+                                })?);
+                            }
+                        }
+                    }
                 }
             }
         }
         Ok(objects)
+    }
+
+    /// The view `key` of a texture. A view bound by the engine serves every key except a
+    /// single aspect: `Err` names that aspect.
+    fn view(
+        &mut self,
+        source: Source<'_>,
+        key: ViewKey,
+    ) -> Result<wgpu::TextureView, &'static str> {
+        match (source, key) {
+            (Source::Pooled(i), _) => Ok(self.pool.view(i, key)),
+            (Source::Texture(t), _) => Ok(make_view(t, key)),
+            (Source::View(_), ViewKey::Aspect(Aspect::DepthOnly)) => Err("depth"),
+            (Source::View(_), ViewKey::Aspect(Aspect::StencilOnly)) => Err("stencil"),
+            (Source::View(v), _) => Ok(v.clone()),
+        }
     }
 
     /// The timestamp slot of each planned pass, `None` for passes that are not timed.
@@ -391,6 +373,40 @@ impl Executor {
             buffers.push(encoder.finish());
         }
         Ok((buffers, cpu_ns))
+    }
+
+    /// Timings per pass from the CPU times and the timestamp ticks of the timed passes.
+    fn report(
+        &self,
+        plan: &Plan,
+        slots: &[Option<u32>],
+        cpu_ns: Vec<u64>,
+        stamps: &[(u64, u64)],
+    ) -> FrameReport {
+        let ns = |ticks: u64| self.timestamps.as_ref().map_or(0, |t| t.nanoseconds(ticks));
+        let passes = plan
+            .passes
+            .iter()
+            .zip(cpu_ns)
+            .zip(slots)
+            .map(|((pass, cpu_ns), slot)| PassTiming {
+                name: pass.name.clone(),
+                kind: pass.kind,
+                gpu_ns: slot
+                    .and_then(|s| stamps.get(s as usize))
+                    .map(|&(begin, end)| ns(end.saturating_sub(begin))),
+                cpu_ns,
+            })
+            .collect();
+        let begin = stamps.iter().map(|s| s.0).min();
+        let end = stamps.iter().map(|s| s.1).max();
+        let stats = self.pool.stats();
+        FrameReport {
+            passes,
+            gpu_total_ns: begin.zip(end).map(|(b, e)| ns(e.saturating_sub(b))),
+            textures_allocated: stats.frame_textures_allocated,
+            buffers_allocated: stats.frame_buffers_allocated,
+        }
     }
 
     /// Waits for the frame and reads the begin and end ticks of each timed pass.

@@ -79,13 +79,14 @@ impl Pool {
         self.update_alive();
     }
 
-    /// A texture of this shape and usage that no one else holds this frame.
+    /// A texture of this shape and usage that no one else holds this frame; `label` names
+    /// it if it has to be created.
     pub fn acquire_texture(
         &mut self,
         device: &wgpu::Device,
         shape: TextureShape,
         usage: TextureUsages,
-        label: &str,
+        label: impl FnOnce() -> String,
     ) -> usize {
         let key = (shape, usage);
         let frame = self.frame;
@@ -98,7 +99,7 @@ impl Pool {
             return i;
         }
         let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
+            label: Some(&label()),
             size: wgpu::Extent3d {
                 width: shape.width,
                 height: shape.height,
@@ -129,7 +130,7 @@ impl Pool {
         device: &wgpu::Device,
         size: u64,
         usage: BufferUsages,
-        label: &str,
+        label: impl FnOnce() -> String,
     ) -> usize {
         let key = (size, usage);
         let frame = self.frame;
@@ -142,7 +143,7 @@ impl Pool {
             return i;
         }
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some(label),
+            label: Some(&label()),
             size,
             usage,
             mapped_at_creation: false,
