@@ -214,6 +214,35 @@ fn accessor_past_its_buffer_view() {
 }
 
 #[test]
+fn huge_accessor_without_buffer_view_is_refused_not_allocated() {
+    let mut gltf = Gltf::default();
+    let index_view = gltf.view(&0u16.to_le_bytes());
+    let value_view = gltf.view(&[0u8; 12]);
+    let positions = gltf.push(
+        "accessors",
+        json!({
+            "componentType": 5126, "count": 1_000_000_000u64, "type": "VEC3",
+            "min": [0, 0, 0], "max": [0, 0, 0],
+            "sparse": {
+                "count": 1,
+                "indices": { "bufferView": index_view, "componentType": 5123 },
+                "values": { "bufferView": value_view },
+            },
+        }),
+    );
+    gltf.mesh(
+        "phantom",
+        json!({ "attributes": { "POSITION": positions } }),
+    );
+    let (error, message) = load_error("viewless", &gltf);
+    assert!(
+        matches!(error, SceneError::InvalidAccessor { .. }),
+        "{error:?}"
+    );
+    assert!(message.contains("without a buffer view"), "{message}");
+}
+
+#[test]
 fn node_cycle() {
     let mut gltf = Gltf::default();
     gltf.triangle(None);

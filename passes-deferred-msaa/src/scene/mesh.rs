@@ -10,7 +10,8 @@ use super::bounds::Aabb;
 pub struct Vertex {
     /// Object space.
     pub position: [f32; 3],
-    /// Object space, unit length.
+    /// Object space. Unit length when generated; as stored when loaded (glTF requires unit
+    /// length, quantized normals only approximate it), so shaders should renormalize.
     pub normal: [f32; 3],
     /// TEXCOORD_0; `[0, 0]` when the source has none.
     pub uv: [f32; 2],

@@ -7,6 +7,9 @@
 
 use gltf::accessor::{sparse::IndexType, DataType};
 
+/// Most elements an accessor without a buffer view (all zeros plus sparse values) may have.
+const MAX_VIEWLESS_ELEMENTS: usize = 1 << 24;
+
 /// The bytes of a buffer view, or why they are not there.
 pub(super) fn view_bytes<'b>(
     buffers: &'b [Vec<u8>],
@@ -82,6 +85,14 @@ fn components(buffers: &[Vec<u8>], accessor: &gltf::Accessor) -> Result<Vec<f64>
             )?
         }
         // glTF: an accessor without a buffer view is all zeros (before sparse substitution).
+        // No bytes back its count, so it is capped: a tiny file must not be able to ask for an
+        // arbitrarily large allocation.
+        None if accessor.count() > MAX_VIEWLESS_ELEMENTS => {
+            return Err(format!(
+                "{} elements without a buffer view (at most {MAX_VIEWLESS_ELEMENTS})",
+                accessor.count()
+            ))
+        }
         None => vec![0.0; accessor.count() * dims],
     };
     if let Some(sparse) = accessor.sparse() {

@@ -34,12 +34,3 @@ pub(super) fn check(file: &Path, document: &gltf::Document) -> Result<Vec<String
         .map(|e| format!("glTF extension {e} is not implemented; its effect is ignored"))
         .collect())
 }
-
-/// Runs the `gltf` crate's validation. Call after [`check`]: the crate rejects required
-/// extensions it does not know itself (like KHR_mesh_quantization) even when this loader
-/// implements them, so the list, already vetted, is emptied first.
-pub(super) fn validate(document: gltf::Document) -> Result<gltf::Document, gltf::Error> {
-    let mut json = document.into_json();
-    json.extensions_required.clear();
-    gltf::Document::from_json(json)
-}

@@ -17,6 +17,7 @@ mod material;
 mod nodes;
 mod primitive;
 mod uri;
+mod validate;
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -37,7 +38,7 @@ pub(crate) fn load(file: &Path) -> Result<Scene, SceneError> {
     let gltf::Gltf { document, blob } =
         gltf::Gltf::from_slice_without_validation(&bytes).map_err(gltf_error)?;
     let warnings = extensions::check(file, &document)?;
-    let document = extensions::validate(document).map_err(gltf_error)?;
+    let document = validate::validate(document).map_err(gltf_error)?;
     let base = file.parent().unwrap_or(Path::new(""));
     let mut loader = Loader {
         file,
