@@ -8,9 +8,6 @@ use wgpu::Features;
 
 use super::readback::{map_read, ReadbackError};
 
-/// wgpu's limit on queries in one query set.
-const MAX_QUERIES: u32 = 4096;
-
 /// The query set and buffers, grown to the largest frame seen and kept across frames.
 pub(crate) struct Timestamps {
     query_set: wgpu::QuerySet,
@@ -41,7 +38,9 @@ impl Timestamps {
     /// Makes room for `passes` timed passes (two queries each), up to wgpu's limit.
     /// Returns how many passes can be timed.
     pub fn reserve(&mut self, device: &wgpu::Device, passes: usize) -> usize {
-        let wanted = (passes as u32).saturating_mul(2).min(MAX_QUERIES);
+        let wanted = (passes as u32)
+            .saturating_mul(2)
+            .min(wgpu::QUERY_SET_MAX_QUERIES);
         if wanted > self.capacity {
             *self = Self::allocate(device, wanted, self.inside_encoders, self.period);
         }
