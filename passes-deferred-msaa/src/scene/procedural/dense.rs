@@ -21,9 +21,10 @@ use std::f32::consts::{FRAC_PI_2, TAU};
 use glam::{DMat4, DVec3, Mat4, Quat, Vec3};
 
 use super::params::Params;
-use super::parts::{add_shape, lit, perspective_camera, point, spot, Solid};
+use super::parts::{add_ground, add_shape, corner_lights, lit, perspective_camera, spot};
 use super::rng::Pcg32;
 use super::shapes::Shape;
+use super::solid::Solid;
 use crate::scene::builder::SceneBuilder;
 use crate::scene::SceneError;
 
@@ -32,14 +33,7 @@ const GRASS_EXTENT: f32 = 12.0;
 const SEED: u64 = 0x00de_75e0;
 
 pub(super) fn build(_: &Params, builder: &mut SceneBuilder) -> Result<(), SceneError> {
-    let ground = builder.add_material(lit("ground", [0.35, 0.3, 0.25], 0.0, 0.95));
-    add_shape(
-        builder,
-        "ground",
-        Shape::plane(),
-        ground,
-        DMat4::from_scale(DVec3::new(30.0, 1.0, 30.0)),
-    );
+    add_ground(builder, "ground", 30.0, [0.35, 0.3, 0.25], 0.95);
     let grass = builder.add_material(crate::scene::Material {
         double_sided: true,
         ..lit("grass", [0.25, 0.55, 0.12], 0.0, 0.8)
@@ -64,18 +58,9 @@ pub(super) fn build(_: &Params, builder: &mut SceneBuilder) -> Result<(), SceneE
         [1.0, 0.5, 0.7],
         [0.6, 1.0, 0.6],
     ];
-    for (i, (x, z)) in [(-2.5, -2.5), (2.5, -2.5), (-2.5, 2.5), (2.5, 2.5)]
-        .into_iter()
-        .enumerate()
-    {
-        builder.lights.push(point(
-            format!("point {i}"),
-            DVec3::new(x, 1.8, z),
-            colors[i],
-            8.0,
-            8.0,
-        ));
-    }
+    builder
+        .lights
+        .extend(corner_lights(2.5, 1.8, colors, 8.0, 8.0));
     for (i, (from, to)) in [
         ([-4.0, 6.0, 4.0], [0.0, 0.5, 0.0]),
         ([4.0, 6.0, -2.0], [2.8, 0.5, 2.0]),

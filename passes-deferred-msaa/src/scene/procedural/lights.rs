@@ -17,7 +17,7 @@ use std::f32::consts::TAU;
 use glam::{DMat4, DVec3, Vec3};
 
 use super::params::Params;
-use super::parts::{add_shape, lit, perspective_camera, point, spot};
+use super::parts::{add_ground, add_shape, lit, perspective_camera, point, spot};
 use super::rng::Pcg32;
 use super::shapes::Shape;
 use crate::scene::builder::SceneBuilder;
@@ -35,14 +35,7 @@ pub(super) const PARAMS: &[(&str, &str)] = &[
 pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), SceneError> {
     let count = params.u32("count", 320)?;
     let mut rng = Pcg32::new(u64::from(params.u32("seed", 1)?));
-    let floor = builder.add_material(lit("floor", [0.6, 0.6, 0.6], 0.0, 0.7));
-    add_shape(
-        builder,
-        "floor",
-        Shape::plane(),
-        floor,
-        DMat4::from_scale(DVec3::new(40.0, 1.0, 40.0)),
-    );
+    add_ground(builder, "floor", 40.0, [0.6, 0.6, 0.6], 0.7);
     add_solids(builder);
     let spots = count / 5;
     for i in 0..count - spots {

@@ -10,6 +10,7 @@ mod params;
 mod parts;
 mod rng;
 mod shapes;
+mod solid;
 mod spheres;
 mod unlit;
 

@@ -1,6 +1,6 @@
 //! Small constructors shared by the built-in scenes.
 
-use glam::{DMat4, DQuat, DVec3, Vec3};
+use glam::{DMat4, DVec3, Vec3};
 
 use super::shapes::Shape;
 use crate::scene::builder::SceneBuilder;
@@ -32,6 +32,38 @@ pub(super) fn add_shape(
         material,
         transform,
     });
+}
+
+/// A `size` x `size` ground plane at y = 0 facing up, with a material of `rgb` and `roughness`.
+pub(super) fn add_ground(
+    builder: &mut SceneBuilder,
+    name: &str,
+    size: f64,
+    rgb: [f32; 3],
+    roughness: f32,
+) {
+    let material = builder.add_material(lit(name, rgb, 0.0, roughness));
+    let transform = DMat4::from_scale(DVec3::new(size, 1.0, size));
+    add_shape(builder, name, Shape::plane(), material, transform);
+}
+
+/// Four point lights at (±offset, height, ±offset), one per color, named `point 0..3`.
+pub(super) fn corner_lights(
+    offset: f64,
+    height: f64,
+    colors: [[f32; 3]; 4],
+    intensity: f32,
+    range: f32,
+) -> impl Iterator<Item = Light> {
+    let corners = [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)];
+    corners
+        .into_iter()
+        .zip(colors)
+        .enumerate()
+        .map(move |(i, ((x, z), color))| {
+            let position = DVec3::new(x * offset, height, z * offset);
+            point(format!("point {i}"), position, color, intensity, range)
+        })
 }
 
 /// A point light with a glTF range.
@@ -100,83 +132,4 @@ pub(super) fn perspective_camera(
         zfar: None,
     };
     Camera::look_at(name, eye, target, DVec3::Y, projection)
-}
-
-/// A box or sphere with its own opaque material, placed in a built-in scene.
-pub(super) struct Solid {
-    name: &'static str,
-    kind: SolidKind,
-    center: [f64; 3],
-    /// Box edge lengths or sphere radii, per axis.
-    size: [f64; 3],
-    yaw_degrees: f64,
-    color: [f32; 3],
-    metallic: f32,
-    roughness: f32,
-}
-
-enum SolidKind {
-    Box,
-    Sphere,
-}
-
-impl Solid {
-    /// A sphere of `radius` at `center`.
-    pub const fn sphere(
-        name: &'static str,
-        center: [f64; 3],
-        radius: f64,
-        color: [f32; 3],
-        metallic: f32,
-        roughness: f32,
-    ) -> Solid {
-        Solid {
-            name,
-            kind: SolidKind::Sphere,
-            center,
-            size: [radius; 3],
-            yaw_degrees: 0.0,
-            color,
-            metallic,
-            roughness,
-        }
-    }
-
-    /// A box with edge lengths `size`, turned `yaw_degrees` about +Y.
-    pub const fn cuboid(
-        name: &'static str,
-        center: [f64; 3],
-        size: [f64; 3],
-        yaw_degrees: f64,
-        color: [f32; 3],
-        metallic: f32,
-        roughness: f32,
-    ) -> Solid {
-        Solid {
-            name,
-            kind: SolidKind::Box,
-            center,
-            size,
-            yaw_degrees,
-            color,
-            metallic,
-            roughness,
-        }
-    }
-
-    /// Adds the solid and its material; `sphere` is the unit sphere tessellation to use.
-    pub fn add_to(&self, builder: &mut SceneBuilder, sphere: &Shape) {
-        let material =
-            builder.add_material(lit(self.name, self.color, self.metallic, self.roughness));
-        let shape = match self.kind {
-            SolidKind::Box => Shape::cuboid(),
-            SolidKind::Sphere => sphere.clone(),
-        };
-        let transform = DMat4::from_scale_rotation_translation(
-            DVec3::from_array(self.size),
-            DQuat::from_rotation_y(self.yaw_degrees.to_radians()),
-            DVec3::from_array(self.center),
-        );
-        add_shape(builder, self.name, shape, material, transform);
-    }
 }

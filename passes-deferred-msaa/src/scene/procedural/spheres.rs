@@ -11,11 +11,12 @@
 //! - Camera: perspective, 45° vertical FOV, eye (0, 4.5, 11) looking at (0, 1, 0), near 0.1,
 //!   infinite far. Ambient 0.03.
 
-use glam::{DMat4, DVec3, Vec3};
+use glam::{DVec3, Vec3};
 
 use super::params::Params;
-use super::parts::{add_shape, directional, lit, perspective_camera, point, Solid};
+use super::parts::{add_ground, corner_lights, directional, perspective_camera};
 use super::shapes::Shape;
+use super::solid::Solid;
 use crate::scene::builder::SceneBuilder;
 use crate::scene::SceneError;
 
@@ -63,14 +64,7 @@ const SPHERES: [Solid; 5] = [
 ];
 
 pub(super) fn build(_: &Params, builder: &mut SceneBuilder) -> Result<(), SceneError> {
-    let ground = builder.add_material(lit("ground", [0.5, 0.5, 0.5], 0.0, 0.9));
-    add_shape(
-        builder,
-        "ground",
-        Shape::plane(),
-        ground,
-        DMat4::from_scale(DVec3::new(40.0, 1.0, 40.0)),
-    );
+    add_ground(builder, "ground", 40.0, [0.5, 0.5, 0.5], 0.9);
     let sphere = Shape::uv_sphere(48, 24);
     for solid in &SPHERES {
         solid.add_to(builder, &sphere);
@@ -87,18 +81,9 @@ pub(super) fn build(_: &Params, builder: &mut SceneBuilder) -> Result<(), SceneE
         [1.0, 0.6, 0.8],
         [0.7, 1.0, 0.7],
     ];
-    for (i, (x, z)) in [(-4.0, -4.0), (4.0, -4.0), (-4.0, 4.0), (4.0, 4.0)]
-        .into_iter()
-        .enumerate()
-    {
-        builder.lights.push(point(
-            format!("point {i}"),
-            DVec3::new(x, 2.5, z),
-            colors[i],
-            15.0,
-            10.0,
-        ));
-    }
+    builder
+        .lights
+        .extend(corner_lights(4.0, 2.5, colors, 15.0, 10.0));
     builder.ambient = [0.03; 3];
     builder.camera = Some(perspective_camera(
         "spheres",
