@@ -28,15 +28,42 @@ fn postprocess_twin() -> Graph {
     g.build()
 }
 
+/// `pipelines/msaa_demo.ron`: a clear, a pass modifying its output, a sampled 4x input.
+fn msaa_twin() -> Graph {
+    let mut g = GraphBuilder::new();
+    let msaa = g.create_texture(
+        "msaa",
+        TextureDesc::new(TextureFormat::Rgba8Unorm).samples(4),
+    );
+    let resolved = g.create_texture("resolved", TextureDesc::new(TextureFormat::Rgba8Unorm));
+
+    let msaa = g
+        .add_render_pass("clear")
+        .color_output(msaa, ColorLoad::Clear([0.05, 0.05, 0.1, 1.0]));
+    let msaa_rings = g
+        .add_render_pass("rings")
+        .color_output(msaa, ColorLoad::Load);
+    let mut average = g.add_render_pass("average");
+    average.sampled(msaa_rings);
+    let resolved = average.color_output(resolved, ColorLoad::Clear([0.0; 4]));
+    g.export(resolved);
+    g.build()
+}
+
+fn assert_same_plan(file: &str, twin: Graph) {
+    let options = CompileOptions::default();
+    let loaded = load_file(file, &Registry::with_builtins()).unwrap_or_else(|e| panic!("{e}"));
+    let from_file = loaded.compile(&options).unwrap_or_else(|e| panic!("{e}"));
+    let from_code = twin.compile(&options).expect("the twin compiles");
+    assert_eq!(plan_json(&from_file), plan_json(&from_code));
+}
+
 #[test]
 fn postprocess_demo_compiles_to_the_plan_of_its_code_twin() {
-    let registry = Registry::with_builtins();
-    let options = CompileOptions::default();
-    let loaded =
-        load_file("../pipelines/postprocess_demo.ron", &registry).unwrap_or_else(|e| panic!("{e}"));
-    let from_file = loaded.compile(&options).unwrap_or_else(|e| panic!("{e}"));
-    let from_code = postprocess_twin()
-        .compile(&options)
-        .expect("the twin compiles");
-    assert_eq!(plan_json(&from_file), plan_json(&from_code));
+    assert_same_plan("../pipelines/postprocess_demo.ron", postprocess_twin());
+}
+
+#[test]
+fn msaa_demo_compiles_to_the_plan_of_its_code_twin() {
+    assert_same_plan("../pipelines/msaa_demo.ron", msaa_twin());
 }

@@ -78,7 +78,11 @@ fn prepare<'r>(
                 .map_err(|e| {
                     let at = base.map_or_else(
                         || source.position(&pass.name),
-                        |base| Position::from(e.span.start).within(base),
+                        |base| {
+                            Position::from(e.span.start)
+                                .skip_whitespace(text)
+                                .within(base)
+                        },
                     );
                     errors.push(FileError {
                         location: source.location(at),

@@ -25,6 +25,27 @@ impl Position {
         }
     }
 
+    /// The next position in `text` that is not whitespace: `ron` places some errors at
+    /// the whitespace before the token at fault.
+    pub fn skip_whitespace(self, text: &str) -> Position {
+        let line_start: usize = text
+            .split_inclusive('\n')
+            .take(self.line.saturating_sub(1))
+            .map(str::len)
+            .sum();
+        let offset = text[line_start..]
+            .char_indices()
+            .nth(self.column.saturating_sub(1))
+            .map(|(i, _)| line_start + i);
+        let token = offset.and_then(|o| {
+            text[o..]
+                .char_indices()
+                .find(|(_, c)| !c.is_whitespace())
+                .map(|(i, _)| o + i)
+        });
+        token.map_or(self, |t| Position::of_offset(text, t))
+    }
+
     /// This position seen from a text that embeds the text it was counted in at `base`:
     /// the first line shifts by the base column, later lines only by the base line.
     pub fn within(self, base: Position) -> Position {
@@ -74,6 +95,19 @@ mod tests {
             Position::of_offset(text, 6),
             Position { line: 2, column: 3 }
         );
+    }
+
+    #[test]
+    fn whitespace_is_skipped_up_to_the_next_token() {
+        let text = "(a: \n   b)";
+        let after_colon = Position { line: 1, column: 4 };
+        assert_eq!(
+            after_colon.skip_whitespace(text),
+            Position { line: 2, column: 4 }
+        );
+        assert_eq!(Position::START.skip_whitespace(text), Position::START);
+        let past_end = Position { line: 9, column: 1 };
+        assert_eq!(past_end.skip_whitespace(text), past_end);
     }
 
     #[test]

@@ -60,7 +60,7 @@ impl<'a> Source<'a> {
     /// A `ron` error in the whole file.
     pub fn syntax(&self, error: &ron::error::SpannedError) -> FileError {
         FileError {
-            location: self.location(error.span.start.into()),
+            location: self.location(Position::from(error.span.start).skip_whitespace(self.text)),
             kind: ErrorKind::Syntax {
                 message: error.code.to_string(),
             },

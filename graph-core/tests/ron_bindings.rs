@@ -1,0 +1,220 @@
+//! Shader bindings declared in graph files are checked against the shader by naga
+//! reflection when the file loads, without a GPU. Shaders are in `tests/fixtures/shaders/`.
+
+mod ron_support;
+
+use graph_core::file::{ErrorKind, PluginError};
+use ron_support::{assert_error, compile_str, only_error};
+
+const PATH: &str = "tests/fixtures/inline.ron";
+const SHADER: &str = "tests/fixtures/shaders/bindings.wgsl";
+
+/// A graph with one textured input "src" (rgba16float) and one full-screen pass `entry`
+/// with `bindings`, writing "out".
+fn fullscreen(entry: &str, bindings: &str) -> String {
+    format!(
+        r#"Graph(
+resources: {{ "src": ImportedTexture(format: "rgba16float"), "out": Texture(format: "rgba8unorm") }},
+passes: [
+    (name: "draw", plugin: "fullscreen",
+     params: (shader: "shaders/bindings.wgsl", entry: "{entry}", bindings: [{bindings}]),
+     inputs: {{ "src": "src" }},
+     outputs: {{ "color": "out" }}),
+],
+outputs: ["out"],
+)"#
+    )
+}
+
+fn binding_error(error: &ErrorKind) -> bool {
+    matches!(
+        error,
+        ErrorKind::Plugin {
+            error: PluginError::Binding { .. },
+            ..
+        }
+    )
+}
+
+#[test]
+fn a_matching_binding_compiles() {
+    compile_str(&fullscreen(
+        "sample_color",
+        r#"Slot(binding: 0, slot: "src")"#,
+    ))
+    .unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn a_binding_the_shader_does_not_use_is_an_error() {
+    let text = fullscreen(
+        "sample_color",
+        r#"Slot(binding: 0, slot: "src"), Sampler(binding: 7)"#,
+    );
+    let error = only_error(compile_str(&text));
+    assert!(binding_error(&error.kind));
+    assert_error(&error, PATH, 5, 14, &["draw", SHADER, "sample_color"]);
+    assert!(error
+        .to_string()
+        .contains("@group(0) @binding(7): declared in the graph file"));
+}
+
+#[test]
+fn a_binding_the_graph_file_does_not_declare_is_an_error() {
+    let error = only_error(compile_str(&fullscreen("sample_color", "")));
+    assert!(binding_error(&error.kind));
+    assert_error(&error, PATH, 5, 14, &["draw", SHADER]);
+    let text = error.to_string();
+    assert!(
+        text.contains("@group(0) @binding(0): the shader's `color` (texture_2d<f32>) is not bound")
+    );
+}
+
+#[test]
+fn a_float_texture_where_the_shader_wants_depth_is_an_error() {
+    let text = fullscreen("sample_depth", r#"Slot(binding: 1, slot: "src")"#);
+    let error = only_error(compile_str(&text));
+    assert!(binding_error(&error.kind));
+    assert_error(&error, PATH, 6, 23, &["draw", "src", SHADER]);
+    assert!(error.to_string().contains(
+        "slot \"src\" binds \"src\" (rgba16float, 1 sample), but the shader's `depth` is texture_depth_2d"
+    ));
+}
+
+#[test]
+fn a_depth_texture_binds_as_texture_depth_2d() {
+    compile_str(
+        r#"Graph(
+resources: { "depth": Texture(format: "depth32float"), "out": Texture(format: "rgba8unorm") },
+passes: [
+    (name: "clear", plugin: "clear", outputs: { "target": "depth" }),
+    (name: "show", plugin: "fullscreen",
+     params: (shader: "shaders/bindings.wgsl", entry: "sample_depth",
+              bindings: [Slot(binding: 1, slot: "depth")]),
+     inputs: { "depth": "depth" },
+     outputs: { "color": "out" }),
+],
+outputs: ["out"],
+)"#,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// A compute pass running `store` (a write-only rgba8unorm storage texture at binding 2)
+/// with slot "dst" declared as `slots`.
+fn store(resources: &str, slots: &str) -> String {
+    format!(
+        r#"Graph(
+resources: {{ {resources} }},
+passes: [
+    (name: "fill", plugin: "compute",
+     params: (shader: "shaders/bindings.wgsl", entry: "store", dispatch: PerTexel("dst"),
+              bindings: [Slot(binding: 2, slot: "dst")]),
+     {slots}),
+],
+outputs: ["done"],
+)"#
+    )
+}
+
+#[test]
+fn a_storage_texture_compiles_when_written_through_an_output_slot() {
+    let text = store(
+        r#""out": Texture(format: "rgba8unorm")"#,
+        r#"outputs: { "dst": "out" }"#,
+    );
+    compile_str(&text.replace(r#"["done"]"#, r#"["out"]"#)).unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn a_storage_binding_through_an_input_only_slot_is_an_error() {
+    let text = store(
+        r#""out": ImportedTexture(format: "rgba8unorm")"#,
+        r#"inputs: { "dst": "out" }"#,
+    );
+    let error = only_error(compile_str(&text.replace(r#"["done"]"#, r#"["out"]"#)));
+    assert!(binding_error(&error.kind));
+    assert_error(&error, PATH, 7, 23, &["fill", "dst", "out", SHADER]);
+    assert!(
+        error.to_string().contains("so the slot belongs in outputs"),
+        "{error}"
+    );
+}
+
+#[test]
+fn a_storage_texture_of_another_format_is_an_error() {
+    let text = store(
+        r#""out": Texture(format: "rgba16float")"#,
+        r#"outputs: { "dst": "done" }"#,
+    );
+    let error = only_error(compile_str(&text.replace(r#""out""#, r#""done""#)));
+    assert!(binding_error(&error.kind));
+    assert_error(&error, PATH, 7, 24, &["fill", "dst", "done", SHADER]);
+    assert!(error
+        .to_string()
+        .contains("but the shader's `stored` is texture_storage_2d<rgba8unorm, write>"));
+}
+
+#[test]
+fn uniform_values_must_fill_the_uniform_exactly() {
+    let text = fullscreen("tinted", "Uniform(binding: 3, values: [1.0, 0.5, 0.25])")
+        .replace(r#"inputs: { "src": "src" },"#, "");
+    let error = only_error(compile_str(&text));
+    assert!(binding_error(&error.kind));
+    assert_error(&error, PATH, 5, 14, &["draw", SHADER]);
+    assert!(error.to_string().contains(
+        "3 values (12 bytes) are given, but the shader's `tint` is var<uniform> of 16 bytes"
+    ));
+}
+
+#[test]
+fn every_color_attachment_needs_a_fragment_output() {
+    let text = fullscreen(
+        "tinted",
+        "Uniform(binding: 3, values: [1.0, 0.5, 0.25, 1.0])",
+    )
+    .replace(r#"inputs: { "src": "src" },"#, "")
+    .replace(
+        r#"outputs: { "color": "out" }"#,
+        r#"outputs: { "color": "out", "extra": "src" }"#,
+    );
+    let error = only_error(compile_str(&text));
+    assert_error(&error, PATH, 7, 42, &["draw", "extra", "src", "tinted"]);
+    assert!(
+        error.to_string().contains("is color attachment 1"),
+        "{error}"
+    );
+}
+
+#[test]
+fn fragment_inputs_must_come_from_the_full_screen_vertex_stage() {
+    let text = fullscreen("needs_normal", "").replace(r#"inputs: { "src": "src" },"#, "");
+    let error = only_error(compile_str(&text));
+    assert_error(&error, PATH, 5, 14, &["draw", "needs_normal"]);
+    assert!(
+        error.to_string().contains("fragment input @location(1)"),
+        "{error}"
+    );
+}
+
+#[test]
+fn a_missing_entry_point_lists_the_shader_s_entry_points() {
+    let text = fullscreen("fs_mian", r#"Slot(binding: 0, slot: "src")"#);
+    let error = only_error(compile_str(&text));
+    assert_error(&error, PATH, 5, 14, &["draw", SHADER, "fs_mian"]);
+    assert!(error
+        .to_string()
+        .contains("(it has: sample_color, sample_depth, tinted, needs_normal)"));
+}
+
+#[test]
+fn a_dispatch_following_an_unbound_slot_is_an_error() {
+    let text = store(
+        r#""out": Texture(format: "rgba8unorm")"#,
+        r#"outputs: { "dst": "out" }"#,
+    )
+    .replace(r#"PerTexel("dst")"#, r#"PerTexel("nope")"#)
+    .replace(r#"["done"]"#, r#"["out"]"#);
+    let error = only_error(compile_str(&text));
+    assert_error(&error, PATH, 5, 14, &["fill", "nope"]);
+}

@@ -1,0 +1,143 @@
+//! Bad graph files: each is a clear error at the right line and column that names the
+//! pass and the resource, never a panic. Fixtures are in `tests/fixtures/`.
+
+mod ron_support;
+
+use graph_core::file::ErrorKind;
+use graph_core::GraphError;
+use ron_support::{assert_error, compile_file, only_error};
+
+fn fixture(name: &str) -> String {
+    format!("tests/fixtures/{name}.ron")
+}
+
+#[test]
+fn malformed_ron_points_at_the_token_after_the_missing_comma() {
+    let path = fixture("malformed");
+    let error = only_error(compile_file(&path));
+    assert!(matches!(error.kind, ErrorKind::Syntax { .. }));
+    assert_error(&error, &path, 5, 9, &[]);
+    assert!(error.to_string().ends_with("Expected comma"), "{error}");
+}
+
+#[test]
+fn an_unknown_plugin_is_named_with_the_registered_ones() {
+    let path = fixture("unknown_plugin");
+    let error = only_error(compile_file(&path));
+    assert_error(&error, &path, 9, 21, &["sky", "fullscren"]);
+    assert!(error
+        .to_string()
+        .contains("known: blit, clear, compute, copy, fullscreen"));
+}
+
+#[test]
+fn a_parameter_of_the_wrong_type_points_into_the_parameters() {
+    let path = fixture("wrong_param_type");
+    let error = only_error(compile_file(&path));
+    assert!(matches!(error.kind, ErrorKind::Params { .. }));
+    assert_error(&error, &path, 10, 29, &["clear_depth", "clear"]);
+    assert!(error.to_string().ends_with("Expected float"), "{error}");
+}
+
+#[test]
+fn a_missing_shader_names_its_path_and_the_pass() {
+    let path = fixture("missing_shader");
+    let error = only_error(compile_file(&path));
+    assert_error(
+        &error,
+        &path,
+        10,
+        21,
+        &["sky", "tests/fixtures/shaders/no_such_shader.wgsl"],
+    );
+    assert!(error.to_string().contains("cannot read shader"));
+}
+
+#[test]
+fn an_invalid_shader_carries_naga_s_position_in_the_shader() {
+    let path = fixture("invalid_shader");
+    let error = only_error(compile_file(&path));
+    assert_error(&error, &path, 10, 21, &["sky"]);
+    assert!(
+        error
+            .to_string()
+            .contains("tests/fixtures/shaders/invalid.wgsl:4:12: no definition in scope"),
+        "{error}"
+    );
+}
+
+#[test]
+fn a_binding_mismatch_names_slot_resource_shader_and_binding() {
+    let path = fixture("binding_mismatch");
+    let error = only_error(compile_file(&path));
+    assert_error(
+        &error,
+        &path,
+        20,
+        34,
+        &[
+            "average",
+            "samples",
+            "hdr",
+            "tests/fixtures/shaders/sample_average.wgsl",
+        ],
+    );
+    let text = error.to_string();
+    assert!(text.contains("@group(0) @binding(0)"), "{text}");
+    assert!(text.contains("(rgba16float, 1 sample)"), "{text}");
+    assert!(text.contains("texture_multisampled_2d<f32>"), "{text}");
+}
+
+#[test]
+fn a_cycle_lists_its_passes_and_resources_at_the_first_pass() {
+    let path = fixture("cycle");
+    let error = only_error(compile_file(&path));
+    assert!(matches!(
+        error.kind,
+        ErrorKind::Graph(GraphError::Cycle { .. })
+    ));
+    assert_error(&error, &path, 8, 16, &["a", "b", "x", "y"]);
+}
+
+#[test]
+fn a_zero_sized_texture_points_at_its_declaration() {
+    let path = fixture("zero_size");
+    let error = only_error(compile_file(&path));
+    assert!(matches!(
+        error.kind,
+        ErrorKind::Graph(GraphError::ZeroSize { .. })
+    ));
+    assert_error(&error, &path, 4, 9, &["tiny"]);
+}
+
+#[test]
+fn an_unsupported_sample_count_points_at_the_declaration() {
+    let path = fixture("sample_count");
+    let error = only_error(compile_file(&path));
+    assert!(matches!(
+        error.kind,
+        ErrorKind::Graph(GraphError::UnsupportedSampleCount { .. })
+    ));
+    assert_error(&error, &path, 4, 9, &["msaa"]);
+    assert!(error.to_string().contains("8x"), "{error}");
+}
+
+#[test]
+fn reading_what_no_pass_writes_points_at_the_input() {
+    let path = fixture("read_before_write");
+    let error = only_error(compile_file(&path));
+    assert_eq!(
+        error.to_string(),
+        format!(
+            "{path}:11:30: error: pass \"light\" reads \"gbuffer.normal\", which no pass writes"
+        )
+    );
+}
+
+#[test]
+fn an_unreadable_file_is_an_error_not_a_panic() {
+    let path = fixture("no_such_file");
+    let error = only_error(compile_file(&path));
+    assert!(matches!(error.kind, ErrorKind::Unreadable { .. }));
+    assert_error(&error, &path, 1, 1, &[]);
+}

@@ -1,0 +1,49 @@
+//! Helpers shared by the graph-file tests: loading and compiling files against the
+//! built-in plugins and checking where each error points and what it names.
+
+// Each test crate uses its own subset of these helpers.
+#![allow(dead_code)]
+
+use graph_core::file::{load_file, load_str, FileError, FileErrors, Registry};
+use graph_core::{CompileOptions, Plan};
+
+/// Loads and compiles `path` for the WebGPU defaults at 1080p.
+pub fn compile_file(path: &str) -> Result<Plan, FileErrors> {
+    load_file(path, &Registry::with_builtins())?.compile(&CompileOptions::default())
+}
+
+/// Loads and compiles `text` as if read from `tests/fixtures/inline.ron`.
+pub fn compile_str(text: &str) -> Result<Plan, FileErrors> {
+    load_str(
+        "tests/fixtures/inline.ron",
+        text,
+        &Registry::with_builtins(),
+    )?
+    .compile(&CompileOptions::default())
+}
+
+/// The one error `result` is expected to hold.
+pub fn only_error(result: Result<Plan, FileErrors>) -> FileError {
+    match result {
+        Ok(_) => panic!("expected the graph to be rejected"),
+        Err(errors) if errors.0.len() == 1 => errors.0.into_iter().next().unwrap(),
+        Err(errors) => panic!("expected exactly one error, got:\n{errors}"),
+    }
+}
+
+/// Asserts the error's rendering: `path:line:col: error: ` and then a message containing
+/// every one of `names` (quoted, as messages quote names).
+pub fn assert_error(error: &FileError, path: &str, line: usize, column: usize, names: &[&str]) {
+    let text = error.to_string();
+    let prefix = format!("{path}:{line}:{column}: error: ");
+    assert!(
+        text.starts_with(&prefix),
+        "expected {prefix:?}..., got {text:?}"
+    );
+    for name in names {
+        assert!(
+            text.contains(&format!("\"{name}\"")),
+            "{text:?} does not name \"{name}\""
+        );
+    }
+}
