@@ -10,7 +10,7 @@ fn main() {
     println!("cargo:rerun-if-changed=pipelines");
     println!("cargo:rerun-if-changed=shaders");
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry);
+    passes_deferred_msaa::register(&mut registry, None);
     // Graph files must fit every WebGPU device at 1080p; `rgraph validate --target`
     // checks them against other profiles and sizes.
     let options = CompileOptions::default();

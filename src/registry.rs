@@ -4,6 +4,6 @@ use graph_core::file::Registry;
 
 pub fn registry() -> Registry {
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry);
+    passes_deferred_msaa::register(&mut registry, None);
     registry
 }
