@@ -51,10 +51,10 @@ fn a_directory_of_bad_files_reports_every_file_s_errors() {
 
 #[test]
 fn an_invalid_shader_is_placed_where_naga_points() {
-    let error = validate_shader("tests/fixtures/shaders/invalid.wgsl").expect_err("invalid");
-    assert!(matches!(error.kind, ErrorKind::Shader { .. }));
+    let errors = validate_shader("tests/fixtures/shaders/invalid.wgsl").expect_err("invalid");
+    assert!(matches!(errors.0[0].kind, ErrorKind::Shader { .. }));
     assert_eq!(
-        error.to_string(),
+        errors.to_string(),
         "tests/fixtures/shaders/invalid.wgsl:4:12: error: no definition in scope for identifier: `colour`"
     );
 }

@@ -16,7 +16,7 @@ pub fn run(files: &[PathBuf], target: &Target) -> Result<(), CommandError> {
     let mut invalid = 0;
     for file in files {
         let errors = match file.extension().and_then(|e| e.to_str()) {
-            Some("wgsl") => validate_shader(file).err().map(|e| FileErrors(vec![e])),
+            Some("wgsl") => validate_shader(file).err(),
             Some("ron") => validate_file(file, &registry, &options).err(),
             _ => {
                 return Err(CommandError::Usage(format!(

@@ -28,8 +28,10 @@ pub fn validate_file(
 }
 
 /// Parses and validates one WGSL file with naga.
-pub fn validate_shader(path: impl AsRef<Path>) -> Result<(), FileError> {
-    Shader::load(path).map(drop).map_err(shader_error)
+pub fn validate_shader(path: impl AsRef<Path>) -> Result<(), FileErrors> {
+    Shader::load(path)
+        .map(drop)
+        .map_err(|e| FileErrors(vec![shader_error(e)]))
 }
 
 /// Validates every `.ron` file under `pipelines` as a graph and every `.wgsl` file under
@@ -46,12 +48,15 @@ pub fn validate_dir(
         shaders: files(shaders.as_ref(), "wgsl", &mut errors),
     };
     for shader in &validated.shaders {
-        errors.extend(validate_shader(shader).err());
+        errors.extend(validate_shader(shader).err().into_iter().flat_map(|e| e.0));
     }
     for graph in &validated.graphs {
-        if let Err(e) = validate_file(graph, registry, options) {
-            errors.extend(e.0);
-        }
+        errors.extend(
+            validate_file(graph, registry, options)
+                .err()
+                .into_iter()
+                .flat_map(|e| e.0),
+        );
     }
     if errors.is_empty() {
         Ok(validated)
@@ -61,7 +66,7 @@ pub fn validate_dir(
 }
 
 /// A shader error as a file error, placed where naga points.
-pub(crate) fn shader_error(error: ShaderError) -> FileError {
+fn shader_error(error: ShaderError) -> FileError {
     match error {
         ShaderError::Unreadable { path, reason } => FileError {
             location: Location {
