@@ -14,8 +14,8 @@ impl Position {
     /// The start of a file.
     pub const START: Position = Position { line: 1, column: 1 };
 
-    /// The position of byte `offset` in `text`. An offset past the end, or inside a
-    /// character, counts the characters that start before it.
+    /// The position of byte `offset` in `text`. An offset past the end, or one that is not
+    /// a character boundary, is counted as the end of the text.
     pub fn of_offset(text: &str, offset: usize) -> Position {
         let before = text.get(..offset).unwrap_or(text);
         let line_start = before.rfind('\n').map_or(0, |i| i + 1);

@@ -8,11 +8,10 @@ use ron::extensions::Extensions;
 use ron::value::RawValue;
 use serde::{Deserialize, Deserializer};
 
+use super::any_handle::AnyHandle;
 use super::pairs::Pairs;
 use crate::builder::GraphBuilder;
 use crate::resource::{BufferDesc, TextureDesc};
-
-use super::any_handle::AnyHandle;
 
 /// A whole graph file: `Graph(resources: {..}, passes: [..], outputs: [..])`.
 #[derive(Debug, Deserialize)]

@@ -19,6 +19,7 @@
 use serde::Deserialize;
 
 use super::binding::{bind, BindingDecl, Source};
+use super::entry::entry_point;
 use crate::builder::PassBuilder;
 use crate::file::{Plugin, PluginError, Slots};
 use crate::handle::TextureHandle;
@@ -75,14 +76,7 @@ impl Plugin for Compute {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         let shader = Shader::load(slots.path(&params.shader))?;
-        let entry = shader.entry(&params.entry, Stage::Compute).ok_or_else(|| {
-            PluginError::MissingEntry {
-                shader: shader.path().to_owned(),
-                stage: Stage::Compute,
-                entry: params.entry.clone(),
-                found: shader.entry_names(Stage::Compute).join(", "),
-            }
-        })?;
+        let entry = entry_point(&shader, &params.entry, Stage::Compute)?;
         let bound = bind(&shader, &entry, &params.bindings, pass, slots)?;
         let workgroups = match params.dispatch {
             Dispatch::Workgroups(x, y, z) => Workgroups::Fixed([x, y, z]),
@@ -119,7 +113,7 @@ mod gpu {
     use super::Workgroups;
     use crate::gpu::ComputeContext;
     use crate::plugins::binding::Bound;
-    use crate::plugins::gpu::GpuBindings;
+    use crate::plugins::gpu::{module, GpuBindings};
 
     /// Device objects, made on the first frame and kept.
     struct State {
@@ -138,10 +132,7 @@ mod gpu {
             let device = ctx.resources.device;
             let state = state.get_or_insert_with(|| {
                 let bindings = GpuBindings::new(device, &bound, wgpu::ShaderStages::COMPUTE);
-                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: None,
-                    source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
-                });
+                let module = module(device, &source);
                 let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                     label: None,
                     layout: Some(&bindings.pipeline_layout(device)),

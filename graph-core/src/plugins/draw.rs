@@ -5,6 +5,7 @@
 use serde::Deserialize;
 
 use super::binding::{bind, texture_desc, BindingDecl};
+use super::entry::entry_point;
 use crate::builder::PassBuilder;
 use crate::file::{PluginError, Slots};
 use crate::handle::{Texture, TextureHandle};
@@ -47,15 +48,7 @@ impl Draw<'_> {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         let shader = &self.shader;
-        let entry =
-            shader
-                .entry(self.entry, Stage::Fragment)
-                .ok_or_else(|| PluginError::MissingEntry {
-                    shader: shader.path().to_owned(),
-                    stage: Stage::Fragment,
-                    entry: self.entry.to_owned(),
-                    found: shader.entry_names(Stage::Fragment).join(", "),
-                })?;
+        let entry = entry_point(shader, self.entry, Stage::Fragment)?;
         check_inputs(&entry)?;
         let bound = bind(shader, &entry, self.bindings, pass, slots)?;
         let mut targets = Vec::new();
@@ -156,7 +149,7 @@ mod gpu {
     use crate::gpu::RenderContext;
     use crate::handle::TextureHandle;
     use crate::plugins::binding::Bound;
-    use crate::plugins::gpu::GpuBindings;
+    use crate::plugins::gpu::{module, GpuBindings};
 
     /// Target formats and sample counts a pipeline was made for.
     type Key = Vec<(wgpu::TextureFormat, u32)>;
@@ -209,13 +202,6 @@ mod gpu {
             }
             ctx.pass.draw(0..3, 0..1);
         }
-    }
-
-    fn module(device: &wgpu::Device, wgsl: &str) -> wgpu::ShaderModule {
-        device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: None,
-            source: wgpu::ShaderSource::Wgsl(wgsl.into()),
-        })
     }
 
     fn pipeline(

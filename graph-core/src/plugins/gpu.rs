@@ -126,3 +126,11 @@ impl Object {
         }
     }
 }
+
+/// A shader module from WGSL that naga already validated when the graph loaded.
+pub(crate) fn module(device: &wgpu::Device, wgsl: &str) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: None,
+        source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+    })
+}

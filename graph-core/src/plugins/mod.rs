@@ -9,6 +9,7 @@ mod clear;
 mod compute;
 mod copy;
 mod draw;
+mod entry;
 mod fullscreen;
 #[cfg(feature = "gpu")]
 mod gpu;
