@@ -60,7 +60,7 @@ pub(super) fn declare<'f>(
             let at = decl.input(slot).or_else(|| decl.output(slot));
             errors.extend(at.map(|n| source.error(n, kind)));
         }
-        handles.extend(finished.written);
+        handles.extend(finished.written.into_iter().map(|(_, out, h)| (out, h)));
     }
     for out in &file.outputs {
         match handles.get(out.as_str()) {

@@ -52,10 +52,20 @@ impl Target<Texture> {
     }
 }
 
+/// One slot as the caller lists it: its name, the name of the version it reads (inputs),
+/// the name of the version it writes (outputs), and the handle the plugin gets (the
+/// version read, else the resource written).
+pub(crate) struct SlotPart<'s> {
+    pub name: &'s str,
+    pub input: Option<&'s str>,
+    pub output: Option<&'s str>,
+    pub handle: AnyHandle,
+}
+
 /// What a pass's setup produced, for the loader.
 pub(crate) struct Finished<'s> {
-    /// Output names and the handles written under them.
-    pub written: Vec<(&'s str, AnyHandle)>,
+    /// Slot names, output names and the handles written under them.
+    pub written: Vec<(&'s str, &'s str, AnyHandle)>,
     /// Slots the plugin never took, with the name each holds.
     pub unused: Vec<(&'s str, &'s str)>,
 }
@@ -79,21 +89,35 @@ impl<'s> Slots<'s> {
             .iter()
             .filter(|(slot, _)| decl.output(slot.as_str()).is_none())
             .map(|(slot, name)| (slot.as_str(), Some(name.as_str()), None));
-        let slots = outputs
+        let parts = outputs
             .chain(inputs)
             .map(|(name, input, output)| {
                 let handle = *handles.get(input.or(output)?)?;
-                Some(Slot {
+                Some(SlotPart {
                     name,
                     input,
                     output,
                     handle,
-                    used: false,
-                    written: None,
                 })
             })
             .collect::<Option<Vec<_>>>()?;
-        Some(Slots { slots, dir })
+        Some(Self::from_parts(parts, dir))
+    }
+
+    /// Slots from their parts, outputs first and in attachment order.
+    pub(crate) fn from_parts(parts: Vec<SlotPart<'s>>, dir: &'s Path) -> Self {
+        let slots = parts
+            .into_iter()
+            .map(|p| Slot {
+                name: p.name,
+                input: p.input,
+                output: p.output,
+                handle: p.handle,
+                used: false,
+                written: None,
+            })
+            .collect();
+        Slots { slots, dir }
     }
 
     /// The handle of an input-only slot.
@@ -184,7 +208,9 @@ impl<'s> Slots<'s> {
         for s in self.slots {
             match (s.used, s.output, s.written) {
                 (false, _, _) => finished.unused.push((s.name, s.shown())),
-                (true, Some(output), Some(handle)) => finished.written.push((output, handle)),
+                (true, Some(output), Some(handle)) => {
+                    finished.written.push((s.name, output, handle))
+                }
                 (true, _, _) => {}
             }
         }
