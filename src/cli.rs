@@ -13,7 +13,7 @@ use clap::{Parser, Subcommand, ValueEnum};
                   pass order, culled passes with reasons, texture lifetimes, usages, load/store \
                   operations and pooled memory. Validation and explanation need no GPU; rendering \
                   runs headless on any Vulkan adapter, lavapipe included.",
-    after_help = "Examples:\n  rgraph validate pipelines/*.ron shaders/*.wgsl\n  rgraph explain --pipeline pipelines/postprocess_demo.ron --format dot | dot -Tpng > plan.png\n  rgraph adapters"
+    after_help = "Examples:\n  rgraph render --out frame.png\n  rgraph validate pipelines/*.ron shaders/*.wgsl\n  rgraph explain --pipeline pipelines/postprocess_demo.ron --format dot | dot -Tpng > plan.png\n  rgraph adapters"
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -45,6 +45,22 @@ pub enum Command {
         #[command(flatten)]
         target: Target,
     },
+    /// Render one frame headless and write it as an 8-bit sRGB PNG.
+    ///
+    /// Loads the scene, loads the pipeline and keeps only the passes the chosen view needs,
+    /// opens the adapter, compiles for it, renders, reads back and writes the PNG
+    /// atomically (never a partial file). Progress and a per-pass timing table go to
+    /// stderr; stdout gets only the written path.
+    ///
+    /// Exit status: 0 when the PNG was written, 1 when the pipeline, scene or view is
+    /// invalid or the frame fails on the device (each problem named), 2 for usage, I/O
+    /// and adapter problems.
+    #[command(after_long_help = "Examples:\n  \
+        rgraph render --out frame.png\n  \
+        rgraph render --scene builtin:spheres --width 640 --height 360 --view edges --out edges.png\n  \
+        rgraph render --pipeline pipelines/deferred_msaa_4x.ron --scene model.glb \\\n      \
+        --tonemap aces --exposure 1.5 --adapter gpu --out model.png")]
+    Render(RenderArgs),
     /// List the GPU adapters wgpu can use, with their features and sample counts.
     Adapters {
         /// Also write the profile (limits, features, format capabilities) of the adapter
@@ -56,6 +72,75 @@ pub enum Command {
         #[arg(long)]
         adapter: Option<String>,
     },
+}
+
+/// What `rgraph render` draws, how, and where it writes it.
+#[derive(clap::Args)]
+pub struct RenderArgs {
+    /// The graph file. It must export "color" (the final image) and may export debug
+    /// views as "debug.NAME"; both rgba8unorm-srgb.
+    #[arg(
+        long,
+        value_name = "FILE",
+        default_value = "pipelines/deferred_msaa_4x.ron"
+    )]
+    pub pipeline: PathBuf,
+    /// A glTF 2.0 file (.gltf or .glb), or builtin:NAME[?key=value&...] for a built-in
+    /// procedural scene.
+    #[arg(
+        long,
+        value_name = "PATH|builtin:NAME",
+        default_value = "builtin:spheres"
+    )]
+    pub scene: String,
+    /// Image width in pixels, at least 1 and at most the device's largest 2D texture.
+    #[arg(long, value_name = "W", default_value_t = 1280, value_parser = parse_dimension)]
+    pub width: u32,
+    /// Image height in pixels, at least 1 and at most the device's largest 2D texture.
+    #[arg(long, value_name = "H", default_value_t = 720, value_parser = parse_dimension)]
+    pub height: u32,
+    /// What to write: final (the pipeline's "color" output) or a debug view NAME (its
+    /// "debug.NAME" output): edges, albedo, normals, depth or lights in the deferred
+    /// pipelines. Only the passes this view needs run.
+    #[arg(long, value_name = "VIEW", default_value = "final")]
+    pub view: String,
+    /// Tone mapping in the resolve pass, replacing the pipeline's choice (default: the
+    /// pipeline's).
+    #[arg(long, value_enum)]
+    pub tonemap: Option<Tonemap>,
+    /// Exposure multiplier before tone mapping, finite and above 0, replacing the
+    /// pipeline's (default: the pipeline's).
+    #[arg(long, value_name = "E", value_parser = parse_exposure)]
+    pub exposure: Option<f32>,
+    /// Adapter to render on: lavapipe, gpu, or part of an adapter's name (default:
+    /// $RGRAPH_ADAPTER, else lavapipe).
+    #[arg(long)]
+    pub adapter: Option<String>,
+    /// The PNG to write (its directory must exist); replaced atomically.
+    #[arg(long, value_name = "FILE.png")]
+    pub out: PathBuf,
+}
+
+/// Tone-mapping operators of the resolve pass.
+#[derive(Copy, Clone, PartialEq, Eq, ValueEnum)]
+pub enum Tonemap {
+    /// Clamp to [0, 1].
+    None,
+    /// x / (1 + x).
+    Reinhard,
+    /// The ACES filmic curve.
+    Aces,
+}
+
+impl Tonemap {
+    /// The name the resolve plugin reads from its overrides.
+    pub fn name(self) -> &'static str {
+        match self {
+            Tonemap::None => "none",
+            Tonemap::Reinhard => "reinhard",
+            Tonemap::Aces => "aces",
+        }
+    }
 }
 
 /// What the graph is compiled for.
@@ -80,6 +165,25 @@ pub enum Format {
     Text,
     Dot,
     Json,
+}
+
+/// A width or height: a whole number of at least 1 (the device's maximum is checked once
+/// the device is open).
+fn parse_dimension(text: &str) -> Result<u32, String> {
+    match text.trim().parse::<u32>() {
+        Ok(0) => Err("must be at least 1".into()),
+        Ok(v) => Ok(v),
+        Err(_) => Err("expected a whole number of pixels".into()),
+    }
+}
+
+/// An exposure multiplier: finite and above 0.
+fn parse_exposure(text: &str) -> Result<f32, String> {
+    match text.trim().parse::<f32>() {
+        Ok(e) if e.is_finite() && e > 0.0 => Ok(e),
+        Ok(_) => Err("must be a finite number above 0".into()),
+        Err(_) => Err("expected a number, e.g. 1.5".into()),
+    }
 }
 
 /// Parses `WIDTHxHEIGHT` with both at least 1.

@@ -19,6 +19,7 @@ fn main() -> ExitCode {
             format,
             target,
         } => commands::explain::run(pipeline, *format, target),
+        Command::Render(args) => commands::render::run(args),
         Command::Adapters {
             save_profile,
             adapter,

@@ -2,6 +2,7 @@
 
 pub mod adapters;
 pub mod explain;
+pub mod render;
 pub mod target;
 pub mod validate;
 
@@ -32,7 +33,8 @@ impl CommandError {
 /// Writes `bytes` to `path` through a temporary file in the same directory and a rename,
 /// so a failure never leaves a partial file behind under the real name.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CommandError> {
-    let io = |e: std::io::Error| CommandError::Usage(format!("cannot write {}: {e}", path.display()));
+    let io =
+        |e: std::io::Error| CommandError::Usage(format!("cannot write {}: {e}", path.display()));
     let dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())

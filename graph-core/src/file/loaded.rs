@@ -28,6 +28,50 @@ impl LoadedGraph {
             FileErrors::sorted(errors.0.into_iter().map(|e| self.spans.locate(e)).collect())
         })
     }
+
+    /// The file's outputs, sorted: for each exported resource, the name of the version it
+    /// keeps (its final one).
+    pub fn outputs(&self) -> Vec<&str> {
+        self.names
+            .iter()
+            .filter(|(_, handle)| {
+                let resource = &self.graph.resources[handle.id().index()];
+                resource.exported && handle.version() + 1 == resource.versions
+            })
+            .map(|(name, _)| name)
+            .collect()
+    }
+
+    /// Keeps only the outputs named in `keep` exported, so that compiling culls the passes
+    /// only the other outputs need (a tool showing one of several debug views runs just
+    /// that view's passes). Changes nothing when a name is not an output.
+    pub fn keep_outputs(&mut self, keep: &[&str]) -> Result<(), NotAnOutput> {
+        let outputs = self.outputs();
+        if let Some(missing) = keep.iter().find(|name| !outputs.contains(name)) {
+            return Err(NotAnOutput {
+                name: missing.to_string(),
+                outputs: outputs.iter().map(|o| o.to_string()).collect(),
+            });
+        }
+        let kept: Vec<usize> = keep
+            .iter()
+            .filter_map(|name| self.names.get(name))
+            .map(|handle| handle.id().index())
+            .collect();
+        for (index, resource) in self.graph.resources.iter_mut().enumerate() {
+            resource.exported &= kept.contains(&index);
+        }
+        Ok(())
+    }
+}
+
+/// [`LoadedGraph::keep_outputs`] was asked to keep a name that is not an output.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("\"{name}\" is not an output of the graph (outputs: {})", outputs.join(", "))]
+pub struct NotAnOutput {
+    pub name: String,
+    /// The graph's outputs, sorted.
+    pub outputs: Vec<String>,
 }
 
 /// Names in a graph file and the handles they denote: declared resources (the version

@@ -1,0 +1,60 @@
+//! The table printed after a frame: each executed pass with its GPU and CPU time, the
+//! totals, the textures and memory the plan asked for, and what was culled.
+
+use graph_core::explain::bytes;
+use graph_core::gpu::FrameReport;
+use graph_core::Plan;
+
+/// The summary, one line each, for stderr.
+pub fn text(plan: &Plan, report: &FrameReport) -> String {
+    let ms = |ns: Option<u64>| ns.map_or("-".to_string(), |ns| format!("{:.3}", ns as f64 / 1e6));
+    let width = report
+        .passes
+        .iter()
+        .map(|p| p.name.len())
+        .chain(["pass".len(), "total".len()])
+        .max()
+        .unwrap_or(0);
+    let mut lines = vec![format!(
+        "{:<width$}  {:<8}  {:>9}  {:>9}",
+        "pass", "kind", "GPU ms", "CPU ms"
+    )];
+    for pass in &report.passes {
+        lines.push(format!(
+            "{:<width$}  {:<8}  {:>9}  {:>9}",
+            pass.name,
+            pass.kind.to_string(),
+            ms(pass.gpu_ns),
+            ms(Some(pass.cpu_ns))
+        ));
+    }
+    let cpu_total = report.passes.iter().map(|p| p.cpu_ns).sum();
+    lines.push(format!(
+        "{:<width$}  {:<8}  {:>9}  {:>9}",
+        "total",
+        "",
+        ms(report.gpu_total_ns),
+        ms(Some(cpu_total))
+    ));
+    if report.gpu_total_ns.is_none() {
+        lines.push("(no GPU times: the device has no timestamp queries)".into());
+    }
+    let resources = plan
+        .resources
+        .iter()
+        .filter(|r| r.physical.is_some() && r.texture.is_some())
+        .count();
+    lines.push(format!(
+        "textures: {} physical for {resources} resources, {} allocated this frame; memory: \
+         {} logical, {} physical",
+        plan.textures.len(),
+        report.textures_allocated,
+        bytes(plan.memory.logical_bytes),
+        bytes(plan.memory.physical_bytes),
+    ));
+    if !plan.culled.is_empty() {
+        let names: Vec<&str> = plan.culled.iter().map(|c| c.name.as_str()).collect();
+        lines.push(format!("culled: {}", names.join(", ")));
+    }
+    lines.join("\n")
+}
