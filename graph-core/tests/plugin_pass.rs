@@ -95,10 +95,7 @@ fn a_missing_slot_names_the_pass_plugin_and_slot() {
     assert!(
         matches!(
             &error,
-            PluginPassError::Setup {
-                error: PluginError::MissingSlot { .. },
-                ..
-            }
+            PluginPassError::Setup { error, .. } if matches!(**error, PluginError::MissingSlot { .. })
         ),
         "{error:?}"
     );

@@ -19,7 +19,8 @@ pub enum PluginPassError {
     Setup {
         pass: String,
         plugin: &'static str,
-        error: PluginError,
+        // Boxed: plugin errors are large, and results of this type are returned often.
+        error: Box<PluginError>,
     },
 
     #[error(
@@ -115,7 +116,7 @@ impl GraphBuilder {
             .map_err(|error| PluginPassError::Setup {
                 pass: name.clone(),
                 plugin: P::NAME,
-                error,
+                error: Box::new(error),
             })?;
         let finished = slots.finish();
         if let Some((slot, resource)) = finished.unused.first() {
