@@ -28,7 +28,12 @@ pub fn run(files: &[PathBuf], target: &Target) -> Result<(), CommandError> {
         match errors {
             None => eprintln!("{}: ok", file.display()),
             Some(errors) if is_unreadable(file, &errors) => {
-                return Err(CommandError::Usage(errors.to_string()))
+                let reason = errors.0.iter().map(|e| e.kind.to_string()).collect::<Vec<_>>();
+                return Err(CommandError::Usage(format!(
+                    "{}: {}",
+                    file.display(),
+                    reason.join("; ")
+                )));
             }
             Some(errors) => {
                 invalid += 1;
