@@ -110,7 +110,9 @@ pub struct RenderArgs {
     pub tonemap: Option<Tonemap>,
     /// Exposure multiplier before tone mapping, finite and above 0, replacing the
     /// pipeline's (default: the pipeline's).
-    #[arg(long, value_name = "E", value_parser = parse_exposure)]
+    // Negative numbers reach the parser, which explains the rule, instead of clap
+    // taking "-1" for an unknown flag.
+    #[arg(long, value_name = "E", value_parser = parse_exposure, allow_negative_numbers = true)]
     pub exposure: Option<f32>,
     /// Adapter to render on: lavapipe, gpu, or part of an adapter's name (default:
     /// $RGRAPH_ADAPTER, else lavapipe).

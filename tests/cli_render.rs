@@ -1,0 +1,296 @@
+//! `rgraph render` as a user runs it: the built binary on lavapipe (unless RGRAPH_ADAPTER
+//! says otherwise), checked by exit status, stdout, stderr and the PNG's pixels. A machine
+//! without a Vulkan adapter fails the rendering tests with the binary's own explanation.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use tempfile::TempDir;
+
+/// The generic stand-in for the deferred pipelines: "color" is a vertical gradient from
+/// red to blue, "debug.edges" solid green.
+const FIXTURE: &str = "tests/fixtures/render_generic.ron";
+
+struct Run {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+impl Run {
+    /// Fails with everything the binary said when it did not exit with `code`.
+    fn expect(self, code: i32) -> Self {
+        assert_eq!(
+            self.code, code,
+            "expected exit {code}\nstdout:\n{}\nstderr:\n{}",
+            self.stdout, self.stderr
+        );
+        self
+    }
+
+    fn stderr_has(&self, text: &str) -> &Self {
+        assert!(
+            self.stderr.contains(text),
+            "expected stderr to contain {text:?}, got:\n{}",
+            self.stderr
+        );
+        self
+    }
+}
+
+fn render(args: &[&str]) -> Run {
+    let output = Command::new(env!("CARGO_BIN_EXE_rgraph"))
+        .arg("render")
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the rgraph binary runs");
+    Run {
+        // A signal (a crash) has no code: -1 never matches an expected status.
+        code: output.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+    }
+}
+
+/// `--pipeline FIXTURE --out OUT`, then `extra`, then 64x48 unless `extra` sets a size.
+fn render_fixture(out: &Path, extra: &[&str]) -> Run {
+    let out = out.to_str().expect("temp paths are UTF-8");
+    let mut args = vec!["--pipeline", FIXTURE, "--out", out];
+    args.extend_from_slice(extra);
+    for (flag, value) in [("--width", "64"), ("--height", "48")] {
+        if !extra.contains(&flag) {
+            args.extend([flag, value]);
+        }
+    }
+    render(&args)
+}
+
+fn temp_dir() -> TempDir {
+    tempfile::tempdir().expect("a temporary directory")
+}
+
+/// After a failure the directory holds nothing: no PNG, no partial file.
+fn assert_nothing_written(dir: &TempDir) {
+    let left: Vec<PathBuf> = std::fs::read_dir(dir.path())
+        .expect("readable temp dir")
+        .map(|e| e.expect("dir entry").path())
+        .collect();
+    assert!(left.is_empty(), "a failed render left files: {left:?}");
+}
+
+fn read_png(path: &Path) -> image::RgbaImage {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{} is not a readable PNG: {e}", path.display()))
+        .into_rgba8()
+}
+
+#[test]
+fn renders_the_final_view_as_an_srgb_png() {
+    let dir = temp_dir();
+    let out = dir.path().join("frame.png");
+    let run = render_fixture(&out, &[]).expect(0);
+    assert_eq!(
+        run.stdout,
+        format!("{}\n", out.display()),
+        "stdout: the path only"
+    );
+    let image = read_png(&out);
+    assert_eq!(image.dimensions(), (64, 48));
+    // Row centres sit 1/96 from the ends of the gradient: nearly pure red at the top,
+    // nearly pure blue at the bottom, sRGB-encoded, opaque.
+    let top = image.get_pixel(10, 0).0;
+    let bottom = image.get_pixel(50, 47).0;
+    assert!(
+        top[0] >= 250 && top[1] == 0 && top[2] <= 30 && top[3] == 255,
+        "{top:?}"
+    );
+    assert!(
+        bottom[0] <= 30 && bottom[1] == 0 && bottom[2] >= 250,
+        "{bottom:?}"
+    );
+    // Halfway is linear 0.5 of each, which sRGB encodes as 188 (not 128).
+    let middle = image.get_pixel(32, 24).0;
+    assert!((180..=192).contains(&middle[0]), "{middle:?}");
+    // The stages and the timing table, with the debug pass culled.
+    run.stderr_has("load scene builtin:spheres")
+        .stderr_has("write ")
+        .stderr_has("GPU ms")
+        .stderr_has("\nsky ")
+        .stderr_has("\ntotal ")
+        .stderr_has("logical")
+        .stderr_has("culled: edges");
+}
+
+#[test]
+fn a_debug_view_runs_only_its_passes() {
+    let dir = temp_dir();
+    let out = dir.path().join("edges.png");
+    let run = render_fixture(&out, &["--view", "edges"]).expect(0);
+    let image = read_png(&out);
+    assert_eq!(image.dimensions(), (64, 48));
+    assert!(
+        image.pixels().all(|p| p.0 == [0, 255, 0, 255]),
+        "solid green expected"
+    );
+    run.stderr_has("\nedges ").stderr_has("culled: sky");
+}
+
+#[test]
+fn a_view_the_pipeline_lacks_lists_the_views_it_has() {
+    let dir = temp_dir();
+    render_fixture(&dir.path().join("a.png"), &["--view", "albedo"])
+        .expect(1)
+        .stderr_has("--view albedo")
+        .stderr_has("no output \"debug.albedo\"")
+        .stderr_has("its views: final, edges");
+    assert_nothing_written(&dir);
+}
+
+#[test]
+fn sizes_must_be_at_least_one_pixel() {
+    let dir = temp_dir();
+    let out = dir.path().join("a.png");
+    for flag in ["--width", "--height"] {
+        render_fixture(&out, &[flag, "0"])
+            .expect(2)
+            .stderr_has(flag)
+            .stderr_has("at least 1");
+    }
+    assert_nothing_written(&dir);
+}
+
+#[test]
+fn sizes_above_the_device_limit_fail_before_rendering() {
+    let dir = temp_dir();
+    render_fixture(&dir.path().join("a.png"), &["--height", "1000000"])
+        .expect(2)
+        .stderr_has("--height 1000000 is above")
+        .stderr_has("largest 2D texture");
+    assert_nothing_written(&dir);
+}
+
+#[test]
+fn exposure_must_be_finite_and_positive() {
+    let dir = temp_dir();
+    for exposure in ["0", "-1", "nan", "inf", "bright"] {
+        render_fixture(&dir.path().join("a.png"), &["--exposure", exposure])
+            .expect(2)
+            .stderr_has("--exposure");
+    }
+    assert_nothing_written(&dir);
+}
+
+#[test]
+fn tonemap_and_exposure_are_accepted_by_any_pipeline() {
+    let dir = temp_dir();
+    let out = dir.path().join("a.png");
+    render_fixture(&out, &["--tonemap", "aces", "--exposure", "1.5"]).expect(0);
+    assert_eq!(read_png(&out).dimensions(), (64, 48));
+}
+
+#[test]
+fn an_unreadable_pipeline_is_a_usage_error_naming_it() {
+    let dir = temp_dir();
+    let out = dir.path().join("a.png");
+    let out = out.to_str().unwrap();
+    render(&["--pipeline", "pipelines/no_such.ron", "--out", out])
+        .expect(2)
+        .stderr_has("pipelines/no_such.ron")
+        .stderr_has("cannot read");
+    assert_nothing_written(&dir);
+}
+
+#[test]
+fn an_invalid_pipeline_reports_file_line_and_column() {
+    let dir = temp_dir();
+    let pipeline = dir.path().join("bad.ron");
+    std::fs::write(
+        &pipeline,
+        "Graph(\n  resources: { \"color\": Texture(format: \"rgba8unorm-srgb\") },\n  passes: [\n    (name: \"p\", plugin: \"no_such_plugin\", outputs: { \"color\": \"color\" }),\n  ],\n  outputs: [\"color\"],\n)\n",
+    )
+    .unwrap();
+    let out = dir.path().join("a.png");
+    render(&[
+        "--pipeline",
+        pipeline.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ])
+    .expect(1)
+    .stderr_has(&format!("{}:4:", pipeline.display()))
+    .stderr_has("error: pass \"p\" uses plugin \"no_such_plugin\"");
+    assert!(!out.exists());
+}
+
+#[test]
+fn scene_errors_are_reported_with_their_source() {
+    let dir = temp_dir();
+    let gltf = dir.path().join("broken.gltf");
+    std::fs::write(&gltf, "{ this is not glTF").unwrap();
+    let out = dir.path().join("a.png");
+    render_fixture(&out, &["--scene", gltf.to_str().unwrap()])
+        .expect(1)
+        .stderr_has(&format!("{}: not a valid glTF 2.0 file", gltf.display()));
+    render_fixture(&out, &["--scene", "builtin:no_such_scene"])
+        .expect(1)
+        .stderr_has("unknown built-in scene `no_such_scene`");
+    render_fixture(&out, &["--scene", "no/such/file.glb"])
+        .expect(2)
+        .stderr_has("no/such/file.glb");
+    assert!(!out.exists());
+}
+
+#[test]
+fn the_output_must_be_a_png_in_an_existing_directory() {
+    let dir = temp_dir();
+    render_fixture(&dir.path().join("missing").join("a.png"), &[])
+        .expect(2)
+        .stderr_has("does not exist");
+    render_fixture(&dir.path().join("a.jpg"), &[])
+        .expect(2)
+        .stderr_has("must be a .png file");
+    assert_nothing_written(&dir);
+}
+
+#[test]
+fn a_device_error_names_the_pass_and_keeps_the_old_file() {
+    let dir = temp_dir();
+    let out = dir.path().join("a.png");
+    std::fs::write(&out, b"the previous frame").unwrap();
+    let out_arg = out.to_str().unwrap();
+    render(&[
+        "--pipeline",
+        "tests/fixtures/render_device_error.ron",
+        "--width",
+        "64",
+        "--height",
+        "48",
+        "--out",
+        out_arg,
+    ])
+    .expect(1)
+    .stderr_has("pass \"overdispatch\" failed on the device");
+    assert_eq!(std::fs::read(&out).unwrap(), b"the previous frame");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+}
+
+#[test]
+fn help_teaches_defaults_and_examples() {
+    let output = Command::new(env!("CARGO_BIN_EXE_rgraph"))
+        .args(["render", "--help"])
+        .output()
+        .expect("the rgraph binary runs");
+    assert!(output.status.success());
+    let help = String::from_utf8_lossy(&output.stdout);
+    for text in [
+        "pipelines/deferred_msaa_4x.ron",
+        "builtin:spheres",
+        "[default: 1280]",
+        "[default: 720]",
+        "[default: final]",
+        "Examples:",
+    ] {
+        assert!(help.contains(text), "help lacks {text:?}:\n{help}");
+    }
+}
