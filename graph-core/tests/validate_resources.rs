@@ -217,3 +217,22 @@ fn a_profile_with_larger_limits_accepts_what_webgpu_rejects() {
     };
     assert!(g.build().compile(&options).is_ok());
 }
+
+/// A graph-owned texture holds nothing until a pass writes it; an import holds the
+/// engine's contents, so exporting one unwritten is fine.
+#[test]
+fn exporting_a_texture_no_pass_writes_is_an_error_unless_imported() {
+    let mut g = GraphBuilder::new();
+    let t = g.create_texture("history", tex(Rgba8Unorm));
+    g.export(t);
+    let error = only_error(&g.build());
+    assert_eq!(
+        error.to_string(),
+        r#""history": is exported, but no pass writes it, so its contents would be undefined"#
+    );
+
+    let mut g = GraphBuilder::new();
+    let t = g.import_texture("engine", tex(Rgba8Unorm));
+    g.export(t);
+    assert!(g.build().compile(&CompileOptions::default()).is_ok());
+}

@@ -103,6 +103,13 @@ pub(super) fn resources(
             }
             (ResourceDesc::Texture(_), None) => {}
         }
+        // An import holds the engine's contents; a graph-owned resource holds nothing
+        // until a pass writes it, so exporting it unwritten hands out garbage.
+        if resource.exported && resource.origin == Origin::Transient && resource.versions == 1 {
+            errors.push(invalid(
+                "is exported, but no pass writes it, so its contents would be undefined".into(),
+            ));
+        }
     }
 }
 
