@@ -97,3 +97,56 @@ impl Names {
         self.0.iter().map(|(n, h)| (n.as_str(), *h))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::NotAnOutput;
+    use crate::compile::CompileOptions;
+    use crate::file::{load_str, LoadedGraph, Registry};
+
+    /// Two outputs, each cleared by its own pass.
+    fn two_outputs() -> LoadedGraph {
+        let text = r#"Graph(
+            resources: {
+                "a": Texture(format: "rgba8unorm"),
+                "b": Texture(format: "rgba8unorm"),
+            },
+            passes: [
+                (name: "clear_a", plugin: "clear", outputs: { "target": "a" }),
+                (name: "clear_b", plugin: "clear", outputs: { "target": "b" }),
+            ],
+            outputs: ["a", "b"],
+        )"#;
+        load_str("two.ron", text, &Registry::with_builtins()).expect("the graph loads")
+    }
+
+    #[test]
+    fn keeping_one_output_culls_the_passes_of_the_others() {
+        let mut loaded = two_outputs();
+        assert_eq!(loaded.outputs(), ["a", "b"]);
+        loaded.keep_outputs(&["b"]).unwrap();
+        assert_eq!(loaded.outputs(), ["b"]);
+        let plan = loaded.compile(&CompileOptions::default()).unwrap();
+        let passes: Vec<&str> = plan.passes.iter().map(|p| p.name.as_str()).collect();
+        assert_eq!(passes, ["clear_b"]);
+        assert_eq!(plan.culled[0].name, "clear_a");
+    }
+
+    #[test]
+    fn keeping_a_name_that_is_not_an_output_changes_nothing() {
+        let mut loaded = two_outputs();
+        let error = loaded.keep_outputs(&["b", "c"]).unwrap_err();
+        assert_eq!(
+            error,
+            NotAnOutput {
+                name: "c".into(),
+                outputs: vec!["a".into(), "b".into()],
+            }
+        );
+        assert_eq!(
+            error.to_string(),
+            "\"c\" is not an output of the graph (outputs: a, b)"
+        );
+        assert_eq!(loaded.outputs(), ["a", "b"]);
+    }
+}
