@@ -47,7 +47,7 @@ mod validate;
 pub use any_handle::AnyHandle;
 pub use error::{ErrorKind, FileError, FileErrors, Location};
 pub use load::{load_file, load_str};
-pub use loaded::{LoadedGraph, Names};
+pub use loaded::{LoadedGraph, Names, NotAnOutput};
 pub use plugin::{Plugin, PluginError};
 pub use plugin_pass::{PluginPassError, Written};
 pub use position::Position;
