@@ -294,3 +294,17 @@ fn help_teaches_defaults_and_examples() {
         assert!(help.contains(text), "help lacks {text:?}:\n{help}");
     }
 }
+
+#[test]
+fn a_pipeline_importing_engine_textures_is_refused_before_rendering() {
+    let dir = temp_dir();
+    render(&[
+        "--pipeline",
+        "tests/fixtures/render_import.ron",
+        "--out",
+        dir.path().join("a.png").to_str().unwrap(),
+    ])
+    .expect(1)
+    .stderr_has("imports \"engine\", which an engine binds");
+    assert_nothing_written(&dir);
+}

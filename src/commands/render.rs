@@ -38,24 +38,13 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     let mut progress = Progress::new(7);
 
     progress.stage(format!("load scene {}", args.scene));
-    let scene = Scene::load(&args.scene).map_err(RenderError::Scene)?;
-    progress.note(format!("scene {}: {}", args.scene, scene.stats()));
-    for warning in &scene.warnings {
-        progress.note(format!("warning: {warning}"));
-    }
-    let host = Host {
-        scene: Arc::new(scene),
-        overrides: Overrides {
-            tonemap: args.tonemap.map(|t| t.name().to_string()),
-            exposure: args.exposure,
-        },
-    };
-    let registry = registry_for(Some(Arc::new(host)));
+    let registry = registry_for(Some(host(args, &progress)?));
 
     progress.stage(format!("load pipeline {}", args.pipeline.display()));
     let mut loaded =
         load_file(&args.pipeline, &registry).map_err(|e| pipeline_error(&args.pipeline, e))?;
     view::select(&mut loaded, &args.view, &args.pipeline)?;
+    let output = view::output_name(&args.view);
 
     let choice = AdapterChoice::resolve(args.adapter.as_deref());
     progress.stage(format!("open device ({choice})"));
@@ -64,15 +53,14 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     check_size(args, &profile)?;
 
     progress.stage(format!("compile for {}", profile.name));
-    let size = (args.width, args.height);
     let plan = loaded
         .compile(&CompileOptions {
-            output_size: size,
+            output_size: (args.width, args.height),
             profile,
         })
         .map_err(RenderError::Pipeline)?;
-    let output = view::output_name(&args.view);
     let id = readable_output(&loaded, &plan, &output, &args.pipeline)?;
+    no_imports(&plan, &args.pipeline)?;
 
     progress.stage("upload and render");
     let mut executor = Executor::new(&gpu);
@@ -84,29 +72,56 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
         })?;
 
     progress.stage(format!("read back \"{output}\""));
-    let readback = |source| RenderError::Readback {
-        pipeline: args.pipeline.clone(),
-        output: output.clone(),
-        source,
-    };
     let texture = executor.texture(&plan, id).ok_or_else(|| {
         RenderError::unreadable(&output, &args.pipeline, "not kept after the frame")
     })?;
-    let texture_size = (texture.width(), texture.height());
-    let texels = read_rgba8(&gpu.device, &gpu.queue, texture).map_err(readback)?;
-    let late = gpu.take_errors();
-    if !late.is_empty() {
-        return Err(RenderError::LateDevice {
-            pipeline: args.pipeline.clone(),
-            messages: late.join("\n"),
-        });
-    }
+    let texels = read_back(&gpu, texture, &output, &args.pipeline)?;
 
     progress.stage(format!("write {}", args.out.display()));
-    output::write_png(&args.out, texture_size, &texels)?;
+    output::write_png(&args.out, (texture.width(), texture.height()), &texels)?;
     drop(progress);
     eprintln!("{}", summary::text(&plan, &report));
     Ok(())
+}
+
+/// The scene and the overrides, for the deferred plugins. Scene statistics and the
+/// loader's warnings go to stderr.
+fn host(args: &RenderArgs, progress: &Progress) -> Result<Arc<Host>, RenderError> {
+    let scene = Scene::load(&args.scene).map_err(RenderError::Scene)?;
+    progress.note(format!("scene {}: {}", args.scene, scene.stats()));
+    for warning in &scene.warnings {
+        progress.note(format!("warning: {warning}"));
+    }
+    Ok(Arc::new(Host {
+        scene: Arc::new(scene),
+        overrides: Overrides {
+            tonemap: args.tonemap.map(|t| t.name().to_string()),
+            exposure: args.exposure,
+        },
+    }))
+}
+
+/// The output's texels, and any device error the readback raised outside the frame.
+fn read_back(
+    gpu: &Gpu,
+    texture: &wgpu::Texture,
+    output: &str,
+    pipeline: &Path,
+) -> Result<Vec<[u8; 4]>, RenderError> {
+    let texels =
+        read_rgba8(&gpu.device, &gpu.queue, texture).map_err(|source| RenderError::Readback {
+            pipeline: pipeline.to_path_buf(),
+            output: output.to_string(),
+            source,
+        })?;
+    let late = gpu.take_errors();
+    if !late.is_empty() {
+        return Err(RenderError::LateDevice {
+            pipeline: pipeline.to_path_buf(),
+            messages: late.join("\n"),
+        });
+    }
+    Ok(texels)
 }
 
 /// An unreadable file is an I/O problem (exit 2); anything else in it makes it invalid.
@@ -170,5 +185,21 @@ fn readable_output(
             "{format:?} with {} sample(s)",
             shape.samples
         ))),
+    }
+}
+
+/// The command line has no engine to bind imported resources from: say so before
+/// executing, rather than with the executor's advice to call `Imports::texture`.
+fn no_imports(plan: &Plan, pipeline: &Path) -> Result<(), RenderError> {
+    let used = plan
+        .resources
+        .iter()
+        .find(|r| r.origin == Origin::Imported && r.lifetime.is_some());
+    match used {
+        Some(import) => Err(RenderError::Imports {
+            pipeline: pipeline.to_path_buf(),
+            resource: import.name.clone(),
+        }),
+        None => Ok(()),
     }
 }

@@ -42,6 +42,12 @@ pub enum RenderError {
     },
 
     #[error(
+        "{pipeline} imports \"{resource}\", which an engine binds; rgraph render runs \
+         pipelines whose resources the graph creates"
+    )]
+    Imports { pipeline: PathBuf, resource: String },
+
+    #[error(
         "--{flag} {value} is above {max}, the largest 2D texture of {adapter}; choose a \
          smaller size or another --adapter"
     )]
