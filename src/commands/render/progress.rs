@@ -17,9 +17,12 @@ impl Progress {
     pub fn new(stages: usize) -> Self {
         let spinner = std::io::stderr().is_terminal().then(|| {
             let bar = ProgressBar::new_spinner();
-            // The template is a constant: it parses, or this line never shipped.
-            let style = ProgressStyle::with_template("{spinner} [{pos}/{len}] {msg} ({elapsed})")
-                .expect("valid progress template");
+            // `wide_msg` cuts long stage names (adapter names) to the terminal's width
+            // instead of wrapping, which would leave stale lines behind. The template is
+            // a constant: it parses, or this line never shipped.
+            let style =
+                ProgressStyle::with_template("{spinner} [{pos}/{len}] {elapsed:>3} {wide_msg}")
+                    .expect("valid progress template");
             bar.set_style(style);
             bar.set_length(stages as u64);
             bar.enable_steady_tick(Duration::from_millis(100));
