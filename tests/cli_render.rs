@@ -308,3 +308,16 @@ fn a_pipeline_importing_engine_textures_is_refused_before_rendering() {
     .stderr_has("imports \"engine\", which an engine binds");
     assert_nothing_written(&dir);
 }
+
+#[test]
+fn an_adapter_that_does_not_exist_is_a_usage_error_listing_the_others() {
+    let dir = temp_dir();
+    render_fixture(
+        &dir.path().join("a.png"),
+        &["--adapter", "no such adapter 9000"],
+    )
+    .expect(2)
+    .stderr_has("no Vulkan adapter matches \"no such adapter 9000\"")
+    .stderr_has("available:");
+    assert_nothing_written(&dir);
+}

@@ -36,6 +36,8 @@ pub fn text(plan: &Plan, report: &FrameReport) -> String {
         ms(report.gpu_total_ns),
         ms(Some(cpu_total))
     ));
+    // One frame is all render draws, so its callbacks also create their pipelines.
+    lines.push("(a cold frame: CPU times include creating pipelines and uploading the scene)".into());
     if report.gpu_total_ns.is_none() {
         lines.push("(no GPU times: the device has no timestamp queries)".into());
     }
@@ -45,8 +47,8 @@ pub fn text(plan: &Plan, report: &FrameReport) -> String {
         .filter(|r| r.physical.is_some() && r.texture.is_some())
         .count();
     lines.push(format!(
-        "textures: {} physical for {resources} resources, {} allocated this frame; memory: \
-         {} logical, {} physical",
+        "textures: {} physical for {resources} resource(s), {} allocated this frame; \
+         memory: {} logical, {} physical",
         plan.textures.len(),
         report.textures_allocated,
         bytes(plan.memory.logical_bytes),
