@@ -1,7 +1,22 @@
 //! Deferred shading with MSAA as rgraph pass plugins, and the scenes they render.
+//!
+//! - [`scene`]: the CPU scene model and its loaders.
+//! - [`plugins`]: the pass plugins graph files name (`gbuffer`, `edge_stencil`,
+//!   `light_edge`, `light_nonedge`, `resolve`, `tonemap`, `debug_view`).
+//! - [`gpu_scene`] (feature `gpu`): the scene on the device, shared by the plugins and
+//!   reusable by other passes that draw it.
+//!
+//! Known gaps: scene textures are uploaded without mipmaps, and light volumes whose back
+//! faces lie beyond a finite far plane lose the part behind it.
 
+#[cfg(feature = "gpu")]
+mod gpu;
+#[cfg(feature = "gpu")]
+pub mod gpu_scene;
 pub mod host;
+pub mod plugins;
 pub mod scene;
+mod shaders;
 
 use std::sync::Arc;
 
@@ -12,5 +27,5 @@ pub use host::{Host, Overrides};
 /// Adds this crate's pass plugins to `registry`, so graph files can name them. With
 /// `host: None` the plugins declare and validate passes but draw nothing (see [`host`]).
 pub fn register(registry: &mut Registry, host: Option<Arc<Host>>) {
-    let _ = (registry, host);
+    plugins::register(registry, host);
 }

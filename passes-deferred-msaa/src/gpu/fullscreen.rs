@@ -1,0 +1,121 @@
+//! Recording a full-screen draw of a deferred shader: the edge pass (stencil only), the
+//! resolve, the tone mapper and the debug views.
+
+use std::sync::Arc;
+
+use graph_core::gpu::RenderContext;
+use graph_core::TextureHandle;
+
+use super::{PipelineDesc, Pipelines, TextureBindings};
+use crate::gpu_scene::SceneCache;
+use crate::plugins::fullscreen::Fullscreen;
+use crate::scene::DepthConvention;
+
+/// The stencil bit edge pixels carry (seed 000's 0x80).
+pub(crate) const EDGE_STENCIL: u32 = 0x80;
+
+/// Attachment formats and sample count, as the plan made them.
+#[derive(Clone, PartialEq)]
+struct Key {
+    target: Option<wgpu::TextureFormat>,
+    depth_stencil: Option<wgpu::TextureFormat>,
+    samples: u32,
+}
+
+struct State {
+    device: wgpu::Device,
+    module: wgpu::ShaderModule,
+    inputs: TextureBindings,
+    layout: wgpu::PipelineLayout,
+    pipelines: Pipelines<Key>,
+}
+
+pub(crate) fn record(
+    draw: Fullscreen,
+    scenes: Arc<SceneCache>,
+) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+    let mut state: Option<State> = None;
+    Box::new(move |ctx| {
+        let resources = ctx.resources;
+        let device = resources.device;
+        let scene = match draw.reads_scene {
+            true => match scenes.get(device, resources.queue) {
+                Some(scene) => Some(scene),
+                None => return,
+            },
+            false => None,
+        };
+        if let Some(scene) = &scene {
+            scene.prepare(resources.queue, resources.output_size());
+        }
+        if state.as_ref().is_none_or(|s| s.device != *device) {
+            let inputs = TextureBindings::new(resources, &draw.inputs);
+            let layouts = [scene.as_ref().map(|s| s.layout()), Some(&inputs.layout)];
+            state = Some(State {
+                device: device.clone(),
+                module: super::module(device, draw.label, &draw.source),
+                layout: super::pipeline_layout(device, &layouts),
+                inputs,
+                pipelines: Pipelines::default(),
+            });
+        }
+        let Some(state) = state.as_mut() else { return };
+        let shape = |h: TextureHandle| resources.shape(h);
+        let key = Key {
+            target: draw.target.map(|h| shape(h).format),
+            depth_stencil: draw.stencil_mark.map(|h| shape(h).format),
+            samples: draw
+                .target
+                .or(draw.stencil_mark)
+                .map_or(1, |h| shape(h).samples),
+        };
+        let pipeline = state.pipelines.get(key, |key| {
+            let targets = [key.target.map(wgpu::ColorTargetState::from)];
+            PipelineDesc {
+                label: draw.label,
+                layout: &state.layout,
+                module: &state.module,
+                vertex: "vs_fullscreen",
+                buffers: &[],
+                fragment: draw.entry,
+                constants: &draw.constants,
+                targets: if key.target.is_some() { &targets } else { &[] },
+                cull: None,
+                depth_stencil: key.depth_stencil.map(stencil_mark),
+                samples: key.samples,
+                mask: !0,
+            }
+            .build(device)
+        });
+        ctx.pass.set_pipeline(pipeline);
+        if let Some(scene) = &scene {
+            ctx.pass
+                .set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
+        }
+        ctx.pass
+            .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+        ctx.pass.set_stencil_reference(EDGE_STENCIL);
+        ctx.pass.draw(0..3, 0..1);
+    })
+}
+
+fn stencil_mark(format: wgpu::TextureFormat) -> wgpu::DepthStencilState {
+    let mark = wgpu::StencilFaceState {
+        compare: wgpu::CompareFunction::Always,
+        fail_op: wgpu::StencilOperation::Keep,
+        depth_fail_op: wgpu::StencilOperation::Keep,
+        pass_op: wgpu::StencilOperation::Replace,
+    };
+    wgpu::DepthStencilState {
+        format,
+        depth_write_enabled: Some(false),
+        depth_compare: Some(wgpu::CompareFunction::Always),
+        stencil: wgpu::StencilState {
+            front: mark,
+            back: mark,
+            read_mask: 0xff,
+            write_mask: EDGE_STENCIL,
+        },
+        bias: Default::default(),
+    }
+}

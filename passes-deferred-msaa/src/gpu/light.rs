@@ -1,0 +1,201 @@
+//! Recording a light pass: the full-screen draw for directional lights and ambient, then
+//! each point or spot light's volume, once (per pixel or `sample_index`) or once per
+//! sample with the multisample mask (`sample_mask`).
+
+use std::sync::Arc;
+
+use graph_core::gpu::RenderContext;
+
+use super::{additive, PipelineDesc, Pipelines, TextureBindings, EDGE_STENCIL};
+use crate::gpu_scene::{volumes, GpuScene, SceneCache};
+use crate::plugins::light::{EdgeMode, Frequency, LightDraw};
+use crate::scene::DepthConvention;
+
+/// What a light draw rasterizes, and so its depth test and culling.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Geometry {
+    /// A full-screen triangle at the far plane: passes wherever geometry was drawn.
+    FarPlane,
+    /// A volume's front faces, in front of the surface.
+    FrontFaces,
+    /// A volume's back faces, behind the surface (the camera may be inside).
+    BackFaces,
+}
+
+#[derive(Clone, PartialEq)]
+struct Key {
+    hdr: wgpu::TextureFormat,
+    depth: wgpu::TextureFormat,
+    samples: u32,
+    geometry: Geometry,
+    /// `sample_mask` mode: the one sample the pipeline shades and writes.
+    sample: Option<u32>,
+}
+
+struct State {
+    scene: Arc<GpuScene>,
+    module: wgpu::ShaderModule,
+    inputs: TextureBindings,
+    layout: wgpu::PipelineLayout,
+    pipelines: Pipelines<Key>,
+}
+
+pub(crate) fn record(
+    draw: LightDraw,
+    scenes: Arc<SceneCache>,
+) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+    let mut state: Option<State> = None;
+    Box::new(move |ctx| {
+        let resources = ctx.resources;
+        let device = resources.device;
+        let Some(scene) = scenes.get(device, resources.queue) else {
+            return;
+        };
+        let size = resources.output_size();
+        scene.prepare(resources.queue, size);
+        if state
+            .as_ref()
+            .is_none_or(|s| !Arc::ptr_eq(&s.scene, &scene))
+        {
+            let inputs = TextureBindings::new(resources, &draw.inputs);
+            let layouts = [Some(scene.layout()), Some(&inputs.layout)];
+            state = Some(State {
+                module: super::module(device, "light", &draw.source),
+                layout: super::pipeline_layout(device, &layouts),
+                inputs,
+                scene: scene.clone(),
+                pipelines: Pipelines::default(),
+            });
+        }
+        let Some(state) = state.as_mut() else { return };
+        let (hdr, depth) = (resources.shape(draw.hdr), resources.shape(draw.depth));
+        let passes: Vec<Option<u32>> = match draw.frequency {
+            Frequency::Sample(EdgeMode::SampleMask) => (0..hdr.samples).map(Some).collect(),
+            Frequency::Pixel | Frequency::Sample(EdgeMode::SampleIndex) => vec![None],
+        };
+        ctx.pass
+            .set_bind_group(0, scene.bind_group(draw.convention), &[]);
+        ctx.pass
+            .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+        ctx.pass.set_stencil_reference(EDGE_STENCIL);
+        let (module, layout) = (&state.module, &state.layout);
+        let mut use_pipeline = |pass: &mut wgpu::RenderPass<'_>, geometry, sample| {
+            let key = Key {
+                hdr: hdr.format,
+                depth: depth.format,
+                samples: hdr.samples,
+                geometry,
+                sample,
+            };
+            let pipeline = state.pipelines.get(key, |key| {
+                let constants = [
+                    ("FAR_DEPTH", far_depth(draw.convention)),
+                    ("SAMPLE", f64::from(key.sample.unwrap_or(0))),
+                ];
+                let volume_buffers = [Some(volumes::VERTEX_LAYOUT)];
+                PipelineDesc {
+                    label: "light",
+                    layout,
+                    module,
+                    vertex: match key.geometry {
+                        Geometry::FarPlane => "vs_directional",
+                        Geometry::FrontFaces | Geometry::BackFaces => "vs_volume",
+                    },
+                    buffers: match key.geometry {
+                        Geometry::FarPlane => &[],
+                        Geometry::FrontFaces | Geometry::BackFaces => &volume_buffers,
+                    },
+                    fragment: match (draw.frequency, key.sample) {
+                        (Frequency::Pixel, _) => "fs_pixel",
+                        (Frequency::Sample(_), None) => "fs_sample",
+                        (Frequency::Sample(_), Some(_)) => "fs_one_sample",
+                    },
+                    constants: &constants,
+                    targets: &[Some(additive(key.hdr))],
+                    cull: match key.geometry {
+                        Geometry::FarPlane => None,
+                        Geometry::FrontFaces => Some(wgpu::Face::Back),
+                        Geometry::BackFaces => Some(wgpu::Face::Front),
+                    },
+                    depth_stencil: Some(depth_stencil(key, draw.convention, draw.frequency)),
+                    samples: key.samples,
+                    mask: key.sample.map_or(!0, |s| 1 << s),
+                }
+                .build(device)
+            });
+            pass.set_pipeline(pipeline);
+        };
+        for sample in passes {
+            if scene.has_fullscreen_lights() {
+                use_pipeline(ctx.pass, Geometry::FarPlane, sample);
+                ctx.pass.draw(0..3, 0..1);
+            }
+            for light in scene.volume_lights() {
+                let geometry = match scene.camera_may_be_inside(light, size) {
+                    true => Geometry::BackFaces,
+                    false => Geometry::FrontFaces,
+                };
+                use_pipeline(ctx.pass, geometry, sample);
+                let mesh = scene.volume_mesh(light.shape);
+                ctx.pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                ctx.pass
+                    .set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                ctx.pass
+                    .draw_indexed(0..mesh.index_count, 0, light.index..light.index + 1);
+            }
+        }
+    })
+}
+
+fn far_depth(convention: DepthConvention) -> f64 {
+    match convention {
+        DepthConvention::ReversedZ => 0.0,
+        DepthConvention::Standard => 1.0,
+    }
+}
+
+/// Read-only depth and stencil: the depth test per [`Geometry`], and the stencil test
+/// that splits edge pixels (0x80) from the rest.
+fn depth_stencil(
+    key: &Key,
+    convention: DepthConvention,
+    frequency: Frequency,
+) -> wgpu::DepthStencilState {
+    use wgpu::CompareFunction as C;
+    let reversed = convention == DepthConvention::ReversedZ;
+    // "In front of" is Greater with reversed Z, Less without.
+    let (in_front, behind) = match reversed {
+        true => (C::GreaterEqual, C::LessEqual),
+        false => (C::LessEqual, C::GreaterEqual),
+    };
+    let depth_compare = match key.geometry {
+        // The far plane is behind every drawn surface, and no surface is behind it.
+        Geometry::FarPlane => match reversed {
+            true => C::Less,
+            false => C::Greater,
+        },
+        Geometry::FrontFaces => in_front,
+        Geometry::BackFaces => behind,
+    };
+    let test = wgpu::StencilFaceState {
+        compare: match frequency {
+            Frequency::Pixel => C::NotEqual,
+            Frequency::Sample(_) => C::Equal,
+        },
+        fail_op: wgpu::StencilOperation::Keep,
+        depth_fail_op: wgpu::StencilOperation::Keep,
+        pass_op: wgpu::StencilOperation::Keep,
+    };
+    wgpu::DepthStencilState {
+        format: key.depth,
+        depth_write_enabled: Some(false),
+        depth_compare: Some(depth_compare),
+        stencil: wgpu::StencilState {
+            front: test,
+            back: test,
+            read_mask: EDGE_STENCIL,
+            write_mask: 0,
+        },
+        bias: Default::default(),
+    }
+}

@@ -1,0 +1,218 @@
+//! Lights on the device: every light in one storage buffer (directional lights first), the
+//! ambient term, and per point or spot light the volume to rasterize and whether the
+//! camera may be inside it.
+
+use glam::{DMat4, DQuat, DVec3};
+use wgpu::util::DeviceExt;
+
+use super::mesh::camera_relative;
+use super::volumes::{VolumeMesh, VolumeShape};
+use crate::scene::{
+    BoundingSphere, Camera, Light, LightKind, LightVolume, Projection, Scene,
+    DEFAULT_CUTOFF_ILLUMINANCE,
+};
+
+/// `LIGHT_*` in scene.wgsl.
+const DIRECTIONAL: u32 = 0;
+const POINT: u32 = 1;
+const SPOT: u32 = 2;
+
+/// `LightData` in scene.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct LightData {
+    volume: [[f32; 4]; 4],
+    position: [f32; 3],
+    range: f32,
+    direction: [f32; 3],
+    kind: u32,
+    radiance: [f32; 3],
+    spot_scale: f32,
+    spot_offset: f32,
+    _pad: [f32; 3],
+}
+
+/// `LightInfo` in scene.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct LightInfo {
+    ambient: [f32; 3],
+    directional_count: u32,
+    light_count: u32,
+    _pad: [u32; 3],
+}
+
+/// A point or spot light to draw as a volume.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VolumeLight {
+    /// Index into the light buffer, drawn as the instance index.
+    pub index: u32,
+    pub shape: VolumeShape,
+    /// A sphere around the rasterized volume mesh (camera-relative), for deciding whether
+    /// the camera's near plane may cut the volume.
+    pub bounds: BoundingSphere,
+}
+
+pub(super) struct LightBuffers {
+    pub data: wgpu::Buffer,
+    pub info: wgpu::Buffer,
+    pub directional_count: u32,
+    pub ambient: bool,
+    pub volumes: Vec<VolumeLight>,
+}
+
+impl LightBuffers {
+    pub fn new(
+        device: &wgpu::Device,
+        scene: &Scene,
+        sphere: &VolumeMesh,
+        cone: &VolumeMesh,
+    ) -> LightBuffers {
+        let eye = scene.camera.position;
+        // Directional lights first: the full-screen draw loops over them.
+        let (directional, local): (Vec<&Light>, Vec<&Light>) = scene
+            .lights
+            .iter()
+            .partition(|l| l.kind == LightKind::Directional);
+        let mut data = Vec::new();
+        let mut volumes = Vec::new();
+        for light in directional.iter().chain(&local) {
+            let index = data.len() as u32;
+            let (kind, volume) = match light.volume(DEFAULT_CUTOFF_ILLUMINANCE) {
+                LightVolume::FullScreen => (DIRECTIONAL, DMat4::IDENTITY),
+                LightVolume::Sphere(sphere_volume) => {
+                    let m = DMat4::from_scale_rotation_translation(
+                        DVec3::splat(sphere_volume.radius),
+                        DQuat::IDENTITY,
+                        sphere_volume.center,
+                    );
+                    volumes.push(volume_light(index, VolumeShape::Sphere, m, sphere, eye));
+                    (POINT, m)
+                }
+                LightVolume::Cone {
+                    apex,
+                    axis,
+                    height,
+                    base_radius,
+                } => {
+                    let m = DMat4::from_scale_rotation_translation(
+                        DVec3::new(
+                            f64::from(base_radius),
+                            f64::from(base_radius),
+                            f64::from(height),
+                        ),
+                        DQuat::from_rotation_arc(DVec3::Z, axis.as_dvec3().normalize()),
+                        apex,
+                    );
+                    volumes.push(volume_light(index, VolumeShape::Cone, m, cone, eye));
+                    (SPOT, m)
+                }
+            };
+            data.push(light_data(light, kind, volume, eye));
+        }
+        let info = LightInfo {
+            ambient: scene.ambient,
+            directional_count: directional.len() as u32,
+            light_count: data.len() as u32,
+            _pad: [0; 3],
+        };
+        // Storage bindings cannot be empty.
+        if data.is_empty() {
+            data.push(bytemuck::Zeroable::zeroed());
+        }
+        // A light whose range is zero reaches nothing.
+        volumes.retain(|v| v.bounds.radius > 0.0);
+        let init = |label, contents: &[u8], usage| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+        };
+        LightBuffers {
+            data: init(
+                "scene lights",
+                bytemuck::cast_slice(&data),
+                wgpu::BufferUsages::STORAGE,
+            ),
+            info: init(
+                "scene light info",
+                bytemuck::bytes_of(&info),
+                wgpu::BufferUsages::UNIFORM,
+            ),
+            directional_count: info.directional_count,
+            ambient: scene.ambient.iter().any(|&c| c > 0.0),
+            volumes,
+        }
+    }
+}
+
+fn light_data(light: &Light, kind: u32, volume: DMat4, eye: DVec3) -> LightData {
+    let (spot_scale, spot_offset) = match light.kind {
+        LightKind::Spot {
+            inner_cone,
+            outer_cone,
+        } => {
+            let (cos_inner, cos_outer) = (inner_cone.cos(), outer_cone.cos());
+            let scale = 1.0 / (cos_inner - cos_outer).max(1e-3);
+            (scale, -cos_outer * scale)
+        }
+        // No angular falloff: clamp(0 * cos + 1) = 1.
+        LightKind::Point | LightKind::Directional => (0.0, 1.0),
+    };
+    LightData {
+        volume: camera_relative(volume, eye),
+        position: (light.position - eye).as_vec3().to_array(),
+        range: light
+            .effective_range(DEFAULT_CUTOFF_ILLUMINANCE)
+            .unwrap_or(0.0),
+        direction: light.direction.normalize_or_zero().to_array(),
+        kind,
+        radiance: light.color.map(|c| c * light.intensity.max(0.0)),
+        spot_scale,
+        spot_offset,
+        _pad: [0.0; 3],
+    }
+}
+
+fn volume_light(
+    index: u32,
+    shape: VolumeShape,
+    m: DMat4,
+    mesh: &VolumeMesh,
+    eye: DVec3,
+) -> VolumeLight {
+    let placed: Vec<DVec3> = mesh
+        .positions
+        .iter()
+        .map(|p| m.transform_point3(p.as_dvec3()) - eye)
+        .collect();
+    let center = placed.iter().sum::<DVec3>() / placed.len().max(1) as f64;
+    let radius = placed
+        .iter()
+        .map(|p| p.distance(center))
+        .fold(0.0, f64::max);
+    VolumeLight {
+        index,
+        shape,
+        bounds: BoundingSphere { center, radius },
+    }
+}
+
+/// Whether the near plane of `camera` (at the origin: bounds are camera-relative) may cut
+/// a volume inside `bounds`, for an output of `aspect`. Conservative: true whenever the
+/// sphere reaches within the distance of the near plane's farthest corner, so front faces
+/// are only used when no part of them can be clipped away.
+pub fn camera_may_be_inside(camera: &Camera, aspect: f64, bounds: &BoundingSphere) -> bool {
+    let margin = match camera.projection {
+        Projection::Perspective { yfov, znear, .. } => {
+            let t = (f64::from(yfov) * 0.5).tan();
+            f64::from(znear) * (1.0 + t * t * (1.0 + aspect * aspect)).sqrt()
+        }
+        Projection::Orthographic { ymag, znear, .. } => {
+            let (y, z) = (f64::from(ymag), f64::from(znear));
+            (z * z + y * y * (1.0 + aspect * aspect)).sqrt()
+        }
+    };
+    bounds.center.length() < bounds.radius + margin
+}

@@ -1,0 +1,35 @@
+//! A full-screen draw of a deferred shader, as the edge, resolve, tone-mapping and debug
+//! plugins set it up; `gpu::fullscreen` records it.
+
+use graph_core::TextureHandle;
+
+use super::textures::Input;
+use super::Recording;
+
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct Fullscreen {
+    pub label: &'static str,
+    /// The composed WGSL; its vertex entry point is `vs_fullscreen` (common.wgsl).
+    pub source: String,
+    pub entry: &'static str,
+    pub constants: Vec<(&'static str, f64)>,
+    /// Group 1.
+    pub inputs: Vec<Input>,
+    /// The shader reads the scene (group 0); without a host such a pass draws nothing.
+    pub reads_scene: bool,
+    /// The color attachment, if any.
+    pub target: Option<TextureHandle>,
+    /// A depth-stencil attachment whose stencil the pass marks: `Replace` with the
+    /// reference 0x80 through write mask 0x80, wherever the shader does not discard.
+    pub stencil_mark: Option<TextureHandle>,
+}
+
+impl Recording for Fullscreen {
+    #[cfg(feature = "gpu")]
+    fn record(
+        self,
+        scenes: std::sync::Arc<crate::gpu_scene::SceneCache>,
+    ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)> {
+        crate::gpu::fullscreen::record(self, scenes)
+    }
+}

@@ -1,0 +1,139 @@
+//! `gbuffer`: draws the host's scene into the (multisampled) G-buffer.
+//!
+//! ```ron
+//! (name: "gbuffer", plugin: "gbuffer",
+//!  params: (reversed_z: true, background: (0.0, 0.0, 0.0, 1.0)),   // these defaults
+//!  outputs: {
+//!      "albedo": "albedo",          // rgba8unorm(-srgb): base color
+//!      "normal": "normal",          // rg16float: octahedral world-space normal
+//!      "material": "material",      // rgba8unorm: metallic, roughness, flags, edge bits
+//!      "view_depth": "view_depth",  // r32float: linear view depth, 0 where nothing was drawn
+//!      "hdr": "hdr",                // rgba16float: emission and unlit color, else background
+//!      "depth": "depth",            // depth24plus-stencil8 or depth32float-stencil8
+//!  })
+//! ```
+//!
+//! All six must have the depth-stencil's sample count; 1 works too. The color targets
+//! cost 32 bytes per sample (8 + 4 + 8 + 4 + 8 in wgpu's accounting), the WebGPU default
+//! limit. `view_depth` exists because later passes attach the depth-stencil and so
+//! cannot sample its depth aspect while they write the stencil (notes/wgpu30.md).
+//!
+//! With `reversed_z` depth is cleared to 0 and tested with `Greater` (near is 1), else
+//! cleared to 1 and tested with `Less`; the light passes' `reversed_z` must agree.
+//! Stencil is cleared to 0. Double-sided materials are drawn without culling and their
+//! back faces get the flipped normal; alpha MASK materials discard below the cutoff.
+//! The material target's alpha records per-sample edge evidence for the `centroid` and
+//! `coverage` detectors of [`edge_stencil`](super::edge_stencil).
+
+use serde::Deserialize;
+
+use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
+
+use super::textures::{self, Want};
+use super::{convention, yes, Recording, Shared};
+use crate::scene::DepthConvention;
+use crate::shaders;
+
+pub struct GBuffer(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GBufferParams {
+    #[serde(default = "yes")]
+    pub reversed_z: bool,
+    /// The HDR target's value where no geometry is drawn (linear RGBA).
+    #[serde(default = "opaque_black")]
+    pub background: [f64; 4],
+}
+
+fn opaque_black() -> [f64; 4] {
+    [0.0, 0.0, 0.0, 1.0]
+}
+
+/// The G-buffer pass as set up: what `gpu::gbuffer` records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct GBufferDraw {
+    pub source: String,
+    pub convention: DepthConvention,
+    /// albedo, normal, material, view_depth, hdr: color attachments 0 to 4.
+    pub targets: Vec<TextureHandle>,
+    pub depth: TextureHandle,
+}
+
+impl Recording for GBufferDraw {
+    #[cfg(feature = "gpu")]
+    fn record(
+        self,
+        scenes: std::sync::Arc<crate::gpu_scene::SceneCache>,
+    ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)> {
+        crate::gpu::gbuffer::record(self, scenes)
+    }
+}
+
+impl Plugin for GBuffer {
+    const NAME: &'static str = "gbuffer";
+    type Params = GBufferParams;
+
+    fn kind(&self, _: &GBufferParams) -> PassKind {
+        PassKind::Render
+    }
+
+    fn setup(
+        &self,
+        params: GBufferParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let convention = convention(params.reversed_z);
+        let far = match convention {
+            DepthConvention::ReversedZ => 0.0,
+            DepthConvention::Standard => 1.0,
+        };
+        let depth_want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
+        let (depth, desc) = textures::output(slots, pass, "depth", depth_want, |pass, h, _| {
+            pass.depth_stencil(h, AspectAccess::Clear(far), AspectAccess::Clear(0))
+        })?;
+        let samples = desc.samples;
+        let colors = [
+            (
+                "albedo",
+                "the G-buffer's albedo",
+                textures::ALBEDO,
+                [0.0; 4],
+            ),
+            (
+                "normal",
+                "the G-buffer's normals",
+                textures::NORMAL,
+                [0.0; 4],
+            ),
+            (
+                "material",
+                "the G-buffer's material",
+                textures::MATERIAL,
+                [0.0; 4],
+            ),
+            (
+                "view_depth",
+                "the G-buffer's view depth",
+                textures::VIEW_DEPTH,
+                [0.0; 4],
+            ),
+            ("hdr", "the HDR target", textures::HDR, params.background),
+        ];
+        let mut targets = Vec::with_capacity(colors.len());
+        for (slot, what, formats, clear) in colors {
+            let want = Want::new(what, formats).samples(samples);
+            targets.push(textures::color_output(slots, pass, slot, want, clear)?.0);
+        }
+        let draw = GBufferDraw {
+            source: shaders::GBUFFER.compose(samples)?.source().to_owned(),
+            convention,
+            targets,
+            depth,
+        };
+        self.0.render(pass, draw);
+        Ok(())
+    }
+}

@@ -1,0 +1,193 @@
+//! `light_nonedge` and `light_edge`: add every light's contribution to the multisampled
+//! HDR target, once per pixel where the edge pass left the stencil clear and once per
+//! sample where it marked 0x80 (seed 000's two shading passes).
+//!
+//! ```ron
+//! (name: "light_edge", plugin: "light_edge",
+//!  params: (mode: sample_index, reversed_z: true),   // these defaults; or mode: sample_mask
+//!  inputs: {
+//!      "albedo": "albedo", "normal": "normal", "material": "material",
+//!      "view_depth": "view_depth",
+//!      "depth": "depth_edges",   // the depth-stencil: attached read-only, both aspects
+//!      "hdr": "hdr",             // also an output: the pass adds to it
+//!  },
+//!  outputs: { "hdr": "hdr_edges" })
+//! (name: "light_nonedge", plugin: "light_nonedge",
+//!  params: (reversed_z: true),
+//!  inputs: { /* the same slots */ "hdr": "hdr_edges" },
+//!  outputs: { "hdr": "hdr_lit" })
+//! ```
+//!
+//! Directional lights and the scene's ambient term are one full-screen triangle at the far
+//! plane, depth-tested so pixels without geometry are skipped. Point lights draw a sphere
+//! and spot lights a cone circumscribing their reach; from outside, front faces with the
+//! normal depth test, and when the camera's near plane may cut the volume (a conservative
+//! test with the near plane's corner distance as margin), back faces with the depth test
+//! reversed. Shading is Lambert plus GGX metallic-roughness; unlit pixels are skipped (the
+//! G-buffer put their color in `hdr`). Every contribution is finite and at most the
+//! half-float maximum.
+//!
+//! `light_nonedge` shades from sample 0 and writes every covered sample. `light_edge`
+//! shades each sample: `sample_index` runs the fragment shader per sample
+//! (`@builtin(sample_index)`); `sample_mask` draws everything once per sample with the
+//! pipeline's multisample mask `1 << i` and the sample to read as a pipeline constant
+//! (DX10.0's method; writing `@builtin(sample_mask)` is avoided, gfx-rs/wgpu#7311). Both
+//! give bit-identical images: every mode reconstructs positions at the pixel center.
+
+use serde::Deserialize;
+
+use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::{AspectAccess, ColorLoad, PassBuilder, PassKind, TextureHandle};
+
+use super::textures::{self, Input, Want};
+use super::{convention, yes, Recording, Shared};
+use crate::scene::DepthConvention;
+use crate::shaders;
+
+pub struct LightNonEdge(pub(crate) Shared);
+pub struct LightEdge(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LightNonEdgeParams {
+    #[serde(default = "yes")]
+    pub reversed_z: bool,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LightEdgeParams {
+    #[serde(default)]
+    pub mode: EdgeMode,
+    #[serde(default = "yes")]
+    pub reversed_z: bool,
+}
+
+/// How `light_edge` shades each sample.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EdgeMode {
+    #[default]
+    SampleIndex,
+    SampleMask,
+}
+
+/// Which pixels a light pass shades, and how often.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Frequency {
+    /// Stencil without 0x80, once per pixel from sample 0.
+    Pixel,
+    /// Stencil 0x80, once per sample.
+    Sample(EdgeMode),
+}
+
+/// A light pass as set up: what `gpu::light` records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct LightDraw {
+    pub source: String,
+    pub convention: DepthConvention,
+    pub frequency: Frequency,
+    pub hdr: TextureHandle,
+    pub depth: TextureHandle,
+    pub inputs: Vec<Input>,
+}
+
+impl Recording for LightDraw {
+    #[cfg(feature = "gpu")]
+    fn record(
+        self,
+        scenes: std::sync::Arc<crate::gpu_scene::SceneCache>,
+    ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)> {
+        crate::gpu::light::record(self, scenes)
+    }
+}
+
+impl Plugin for LightNonEdge {
+    const NAME: &'static str = "light_nonedge";
+    type Params = LightNonEdgeParams;
+
+    fn kind(&self, _: &LightNonEdgeParams) -> PassKind {
+        PassKind::Render
+    }
+
+    fn setup(
+        &self,
+        params: LightNonEdgeParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let draw = setup(Frequency::Pixel, params.reversed_z, pass, slots)?;
+        self.0.render(pass, draw);
+        Ok(())
+    }
+}
+
+impl Plugin for LightEdge {
+    const NAME: &'static str = "light_edge";
+    type Params = LightEdgeParams;
+
+    fn kind(&self, _: &LightEdgeParams) -> PassKind {
+        PassKind::Render
+    }
+
+    fn setup(
+        &self,
+        params: LightEdgeParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let draw = setup(
+            Frequency::Sample(params.mode),
+            params.reversed_z,
+            pass,
+            slots,
+        )?;
+        self.0.render(pass, draw);
+        Ok(())
+    }
+}
+
+/// The G-buffer textures a light pass reads, by slot and group-1 binding (gbuffer_read.wgsl).
+pub(crate) const GBUFFER_INPUTS: [(&str, &str, &[graph_core::types::TextureFormat], u32); 4] = [
+    ("albedo", "the G-buffer's albedo", textures::ALBEDO, 0),
+    ("normal", "the G-buffer's normals", textures::NORMAL, 1),
+    ("material", "the G-buffer's material", textures::MATERIAL, 2),
+    (
+        "view_depth",
+        "the G-buffer's view depth",
+        textures::VIEW_DEPTH,
+        3,
+    ),
+];
+
+fn setup(
+    frequency: Frequency,
+    reversed_z: bool,
+    pass: &mut PassBuilder<'_>,
+    slots: &mut Slots<'_>,
+) -> Result<LightDraw, PluginError> {
+    let want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
+    let (depth, desc) = textures::input(slots, pass, "depth", want)?;
+    pass.depth_stencil(depth, AspectAccess::ReadOnly, AspectAccess::ReadOnly);
+    let samples = desc.samples;
+    let mut inputs = Vec::new();
+    for (slot, what, formats, binding) in GBUFFER_INPUTS {
+        let want = Want::new(what, formats).samples(samples);
+        inputs.push(textures::sampled(slots, pass, slot, want, binding)?.0);
+    }
+    let want = Want::new("the HDR target", textures::HDR).samples(samples);
+    let mut modifies = true;
+    let (hdr, _) = textures::output(slots, pass, "hdr", want, |pass, h, m| {
+        modifies = m;
+        pass.color_output(h, ColorLoad::Load)
+    })?;
+    textures::must_modify(slots, "hdr", modifies, "adds light to it")?;
+    Ok(LightDraw {
+        source: shaders::LIGHT.compose(samples)?.source().to_owned(),
+        convention: convention(reversed_z),
+        frequency,
+        hdr,
+        depth,
+        inputs,
+    })
+}

@@ -1,0 +1,96 @@
+//! The deferred-shading pass plugins. A graph file chains them as
+//! `gbuffer` → `edge_stencil` → `light_edge` + `light_nonedge` → `resolve` → `tonemap`,
+//! with `debug_view` passes reading the G-buffer beside them; `pipelines/deferred_*.ron`
+//! are complete examples. Each plugin's module documents its parameters and slots.
+//!
+//! The G-buffer slots every pass uses the same names for: `albedo`, `normal`,
+//! `material`, `view_depth`, `hdr` and `depth` (the multisampled depth-stencil).
+
+pub(crate) mod debug_view;
+pub(crate) mod edge_stencil;
+pub(crate) mod fullscreen;
+pub(crate) mod gbuffer;
+pub(crate) mod light;
+pub(crate) mod resolve;
+pub(crate) mod textures;
+pub(crate) mod tonemap;
+
+use std::sync::Arc;
+
+use graph_core::file::Registry;
+use graph_core::PassBuilder;
+
+use crate::host::{Host, Overrides};
+
+pub use debug_view::{DebugView, DebugViewParams, View};
+pub use edge_stencil::{Detector, EdgeStencil, EdgeStencilParams};
+pub use gbuffer::{GBuffer, GBufferParams};
+pub use light::{EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams};
+pub use resolve::{Resolve, ResolveMode, ResolveParams};
+pub use tonemap::{Operator, Tonemap, TonemapParams};
+
+/// What every plugin of one registry shares: the host's overrides and, with feature
+/// `gpu`, the scene's upload.
+#[derive(Clone)]
+pub(crate) struct Shared {
+    pub overrides: Overrides,
+    #[cfg(feature = "gpu")]
+    pub scenes: Arc<crate::gpu_scene::SceneCache>,
+}
+
+impl Shared {
+    fn new(host: Option<Arc<Host>>) -> Shared {
+        Shared {
+            overrides: host
+                .as_ref()
+                .map(|h| h.overrides.clone())
+                .unwrap_or_default(),
+            #[cfg(feature = "gpu")]
+            scenes: Arc::new(crate::gpu_scene::SceneCache::new(host)),
+        }
+    }
+
+    /// Gives the pass its record callback. Without feature `gpu` graphs are only declared
+    /// and validated, and `recording` is dropped.
+    pub fn render(&self, pass: &mut PassBuilder<'_>, recording: impl Recording) {
+        #[cfg(feature = "gpu")]
+        pass.render(recording.record(self.scenes.clone()));
+        #[cfg(not(feature = "gpu"))]
+        let _ = (pass, recording);
+    }
+}
+
+/// A pass as its plugin set it up, ready to be recorded on a device.
+pub(crate) trait Recording: 'static {
+    #[cfg(feature = "gpu")]
+    fn record(
+        self,
+        scenes: Arc<crate::gpu_scene::SceneCache>,
+    ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)>;
+}
+
+/// Adds every deferred plugin, sharing `host`.
+pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>) {
+    let shared = Shared::new(host);
+    registry
+        .register(GBuffer(shared.clone()))
+        .register(EdgeStencil(shared.clone()))
+        .register(LightNonEdge(shared.clone()))
+        .register(LightEdge(shared.clone()))
+        .register(Resolve(shared.clone()))
+        .register(Tonemap(shared.clone()))
+        .register(DebugView(shared));
+}
+
+/// `true`, for `#[serde(default = "yes")]`.
+fn yes() -> bool {
+    true
+}
+
+/// The depth convention a `reversed_z` parameter names.
+fn convention(reversed_z: bool) -> crate::scene::DepthConvention {
+    match reversed_z {
+        true => crate::scene::DepthConvention::ReversedZ,
+        false => crate::scene::DepthConvention::Standard,
+    }
+}

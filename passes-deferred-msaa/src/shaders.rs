@@ -1,0 +1,80 @@
+//! The passes' WGSL, composed from the fragments in `wgsl/` behind a generated prelude
+//! that fixes the G-buffer sample count (so one source serves 1x and MSAA graphs), and
+//! validated by naga when a graph file is loaded: shader mistakes fail `cargo build`
+//! (build.rs loads every pipeline) rather than the first frame.
+
+use graph_core::file::PluginError;
+use graph_core::shader::Shader;
+
+const COMMON: &str = include_str!("wgsl/common.wgsl");
+const SCENE: &str = include_str!("wgsl/scene.wgsl");
+const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
+const BRDF: &str = include_str!("wgsl/brdf.wgsl");
+
+/// A pass's shader: a name for messages and its own fragment, composed after the shared
+/// fragments it needs.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct Source {
+    name: &'static str,
+    parts: &'static [&'static str],
+}
+
+pub(crate) const GBUFFER: Source = Source {
+    name: "gbuffer.wgsl",
+    parts: &[COMMON, SCENE, include_str!("wgsl/gbuffer.wgsl")],
+};
+pub(crate) const EDGE: Source = Source {
+    name: "edge.wgsl",
+    parts: &[COMMON, GBUFFER_READ, include_str!("wgsl/edge.wgsl")],
+};
+pub(crate) const LIGHT: Source = Source {
+    name: "light.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        GBUFFER_READ,
+        BRDF,
+        include_str!("wgsl/light.wgsl"),
+    ],
+};
+pub(crate) const RESOLVE: Source = Source {
+    name: "resolve.wgsl",
+    parts: &[COMMON, include_str!("wgsl/resolve.wgsl")],
+};
+pub(crate) const TONEMAP: Source = Source {
+    name: "tonemap.wgsl",
+    parts: &[COMMON, include_str!("wgsl/tonemap.wgsl")],
+};
+pub(crate) const DEBUG: Source = Source {
+    name: "debug.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        GBUFFER_READ,
+        BRDF,
+        include_str!("wgsl/debug.wgsl"),
+    ],
+};
+
+impl Source {
+    /// The source for G-buffer textures of `samples` samples, validated.
+    pub fn compose(self, samples: u32) -> Result<Shader, PluginError> {
+        let textures = if samples > 1 {
+            "texture_multisampled_2d"
+        } else {
+            "texture_2d"
+        };
+        let mut text = format!(
+            "// Generated: the G-buffer's sample count and texture types.\n\
+             const SAMPLES: u32 = {samples}u;\n\
+             alias GTexF = {textures}<f32>;\n\
+             alias GTexU = {textures}<u32>;\n\n"
+        );
+        for part in self.parts {
+            text.push_str(part);
+            text.push('\n');
+        }
+        let name = format!("passes-deferred-msaa {} ({samples} sample(s))", self.name);
+        Ok(Shader::parse(name, text)?)
+    }
+}

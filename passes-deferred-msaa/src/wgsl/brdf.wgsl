@@ -1,0 +1,65 @@
+// Lambert diffuse plus GGX / height-correlated Smith / Schlick specular (glTF
+// metallic-roughness), and the KHR_lights_punctual falloffs. Every denominator is kept
+// positive, so no input produces NaN or Inf.
+
+struct Surface {
+    // Camera-relative world position; the camera is at the origin.
+    position: vec3<f32>,
+    normal: vec3<f32>,
+    view: vec3<f32>,
+    albedo: vec3<f32>,
+    metallic: f32,
+    roughness: f32,
+}
+
+fn brdf_times_cosine(s: Surface, l: vec3<f32>) -> vec3<f32> {
+    let n_l = dot(s.normal, l);
+    if n_l <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let h = safe_normalize(l + s.view);
+    let n_v = max(dot(s.normal, s.view), 1e-4);
+    let n_h = clamp(dot(s.normal, h), 0.0, 1.0);
+    let v_h = clamp(dot(s.view, h), 0.0, 1.0);
+    let alpha = max(s.roughness, 0.045);
+    let a2 = alpha * alpha * alpha * alpha;
+    let d_denominator = n_h * n_h * (a2 - 1.0) + 1.0;
+    let distribution = a2 / (PI * d_denominator * d_denominator);
+    let visibility = 0.5 / (n_l * sqrt(n_v * n_v * (1.0 - a2) + a2) + n_v * sqrt(n_l * n_l * (1.0 - a2) + a2));
+    let f0 = mix(vec3<f32>(0.04), s.albedo, s.metallic);
+    let fresnel = f0 + (1.0 - f0) * pow(1.0 - v_h, 5.0);
+    let diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo / PI;
+    return (diffuse + distribution * visibility * fresnel) * n_l;
+}
+
+// Radiance arriving from `light` at the surface, times the BRDF and cosine.
+fn shade_light(s: Surface, light: LightData) -> vec3<f32> {
+    if light.kind == LIGHT_DIRECTIONAL {
+        return brdf_times_cosine(s, -light.direction) * light.radiance;
+    }
+    let to_light = light.position - s.position;
+    let distance2 = max(dot(to_light, to_light), 1e-8);
+    let distance = sqrt(distance2);
+    let l = to_light / distance;
+    // glTF's recommended window: smooth, and exactly zero at the range.
+    let ratio = distance / max(light.range, 1e-20);
+    let window = clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
+    var attenuation = window * window / distance2;
+    if light.kind == LIGHT_SPOT {
+        let cone = clamp(dot(light.direction, -l) * light.spot_scale + light.spot_offset, 0.0, 1.0);
+        attenuation *= cone * cone;
+    }
+    return brdf_times_cosine(s, l) * light.radiance * attenuation;
+}
+
+// Whether `light` reaches point `p` at all (the `lights` debug view counts these).
+fn reaches(light: LightData, p: vec3<f32>) -> bool {
+    if light.kind == LIGHT_DIRECTIONAL {
+        return true;
+    }
+    let to_light = light.position - p;
+    if dot(to_light, to_light) >= light.range * light.range {
+        return false;
+    }
+    return light.kind != LIGHT_SPOT || dot(light.direction, -safe_normalize(to_light)) * light.spot_scale + light.spot_offset > 0.0;
+}

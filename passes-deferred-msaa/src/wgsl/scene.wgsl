@@ -1,0 +1,88 @@
+// The shared GPU scene (gpu_scene/ uploads it; group 0 of every pass that draws it).
+// Positions are camera-relative world space: world minus the camera position, computed
+// in f64 on the CPU, so scenes far from the origin keep their precision.
+
+struct Camera {
+    // Camera-relative world to clip space, for the output's aspect ratio.
+    view_proj: mat4x4<f32>,
+    inv_view_proj: mat4x4<f32>,
+    // Unit view direction: a point's view depth is dot(position, forward).
+    forward: vec3<f32>,
+    _pad0: f32,
+    // Output size in pixels.
+    viewport: vec2<f32>,
+    _pad1: vec2<f32>,
+}
+
+struct MeshData {
+    model: mat4x4<f32>,
+    normal_matrix: mat3x3<f32>,
+    material: u32,
+}
+
+struct MaterialData {
+    base_color: vec4<f32>,
+    emission: vec3<f32>,
+    // Fragments with base alpha below this are discarded (alpha MASK only).
+    alpha_cutoff: f32,
+    metallic: f32,
+    roughness: f32,
+    flags: u32,
+    _pad: u32,
+}
+
+const LIGHT_DIRECTIONAL: u32 = 0u;
+const LIGHT_POINT: u32 = 1u;
+const LIGHT_SPOT: u32 = 2u;
+
+struct LightData {
+    // Unit volume mesh to camera-relative world (point and spot lights).
+    volume: mat4x4<f32>,
+    position: vec3<f32>,
+    // Distance where the light's windowed falloff reaches zero.
+    range: f32,
+    // Unit direction the light travels (spot and directional lights).
+    direction: vec3<f32>,
+    kind: u32,
+    // Color times intensity.
+    radiance: vec3<f32>,
+    // Spot cone falloff: clamp(cos_angle * spot_scale + spot_offset, 0, 1)^2.
+    spot_scale: f32,
+    spot_offset: f32,
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
+}
+
+struct LightInfo {
+    ambient: vec3<f32>,
+    // Directional lights come first in `lights`.
+    directional_count: u32,
+    // `lights` holds at least one entry, so this may be less than its length.
+    light_count: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+@group(0) @binding(0) var<uniform> camera: Camera;
+@group(0) @binding(1) var<storage, read> meshes: array<MeshData>;
+@group(0) @binding(2) var<storage, read> materials: array<MaterialData>;
+@group(0) @binding(3) var<storage, read> lights: array<LightData>;
+@group(0) @binding(4) var<uniform> light_info: LightInfo;
+
+fn clip_to_ndc(h: vec4<f32>) -> vec3<f32> {
+    return h.xyz / h.w;
+}
+
+// The camera-relative position of the surface seen through pixel coordinate `pixel` at
+// view depth `depth`: the ray through the pixel, unprojected at two clip depths that are
+// finite for every projection and convention, meets the plane of that view depth.
+fn surface_position(pixel: vec2<f32>, depth: f32) -> vec3<f32> {
+    let ndc = vec2<f32>(pixel.x / camera.viewport.x * 2.0 - 1.0, 1.0 - pixel.y / camera.viewport.y * 2.0);
+    let a = clip_to_ndc(camera.inv_view_proj * vec4<f32>(ndc, 0.5, 1.0));
+    let b = clip_to_ndc(camera.inv_view_proj * vec4<f32>(ndc, 0.25, 1.0));
+    let along = dot(b - a, camera.forward);
+    let t = (depth - dot(a, camera.forward)) / select(along, 1e-20, abs(along) < 1e-20);
+    return a + (b - a) * t;
+}

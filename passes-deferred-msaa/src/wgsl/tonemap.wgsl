@@ -1,0 +1,25 @@
+// The tone-mapping pass: exposure, then an operator, into an sRGB target (the format
+// encodes; the shader writes linear values in [0, 1]). Composed after common.wgsl;
+// inputs are group 1, like every deferred pass's.
+
+@group(1) @binding(0) var hdr_tex: texture_2d<f32>;
+
+// 0: none (clamp), 1: Reinhard per channel, 2: ACES filmic (Narkowicz's fit).
+override OPERATOR: u32 = 0u;
+override EXPOSURE: f32 = 1.0;
+
+fn aces(x: vec3<f32>) -> vec3<f32> {
+    return (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
+}
+
+@fragment
+fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let c = max(textureLoad(hdr_tex, pixel_of(position), 0).rgb * EXPOSURE, vec3<f32>(0.0));
+    var mapped = c;
+    if OPERATOR == 1u {
+        mapped = c / (1.0 + c);
+    } else if OPERATOR == 2u {
+        mapped = aces(c);
+    }
+    return vec4<f32>(clamp(mapped, vec3<f32>(0.0), vec3<f32>(1.0)), 1.0);
+}
