@@ -79,6 +79,31 @@ fn assert_nothing_written(dir: &TempDir) {
     assert!(left.is_empty(), "a failed render left files: {left:?}");
 }
 
+/// The defaults (pipelines/deferred_msaa_4x.ron on builtin:spheres) at 64x48, plus `extra`.
+fn render_default(out: &Path, extra: &[&str]) -> Run {
+    let out = out.to_str().expect("temp paths are UTF-8");
+    let mut args = vec!["--width", "64", "--height", "48", "--out", out];
+    args.extend_from_slice(extra);
+    render(&args)
+}
+
+/// How many different colors an image has: a real render of a scene has many.
+fn distinct_colors(image: &image::RgbaImage) -> usize {
+    let mut colors: Vec<[u8; 4]> = image.pixels().map(|p| p.0).collect();
+    colors.sort_unstable();
+    colors.dedup();
+    colors.len()
+}
+
+/// Mean of the RGB channels over the image, 0 to 255.
+fn mean_brightness(image: &image::RgbaImage) -> f64 {
+    let sum: u64 = image
+        .pixels()
+        .map(|p| p.0[..3].iter().map(|&c| c as u64).sum::<u64>())
+        .sum();
+    sum as f64 / (3 * image.pixels().len()) as f64
+}
+
 fn read_png(path: &Path) -> image::RgbaImage {
     image::open(path)
         .unwrap_or_else(|e| panic!("{} is not a readable PNG: {e}", path.display()))
@@ -320,4 +345,57 @@ fn an_adapter_that_does_not_exist_is_a_usage_error_listing_the_others() {
     .stderr_has("no Vulkan adapter matches \"no such adapter 9000\"")
     .stderr_has("available:");
     assert_nothing_written(&dir);
+}
+
+#[test]
+fn the_defaults_render_the_spheres_with_deferred_msaa() {
+    let dir = temp_dir();
+    let out = dir.path().join("frame.png");
+    let run = render_default(&out, &[]).expect(0);
+    let image = read_png(&out);
+    assert_eq!(image.dimensions(), (64, 48));
+    let colors = distinct_colors(&image);
+    assert!(colors > 100, "a lit scene has many colors, got {colors}");
+    run.stderr_has("\ngbuffer ")
+        .stderr_has("\ntonemap ")
+        .stderr_has("culled: debug edges");
+}
+
+#[test]
+fn every_debug_view_of_the_default_pipeline_renders_without_the_lighting() {
+    let dir = temp_dir();
+    for view in ["edges", "albedo", "normals", "depth", "lights"] {
+        let out = dir.path().join(format!("{view}.png"));
+        let run = render_default(&out, &["--view", view]).expect(0);
+        let image = read_png(&out);
+        assert_eq!(image.dimensions(), (64, 48), "--view {view}");
+        assert!(
+            distinct_colors(&image) > 1,
+            "--view {view} is one flat color"
+        );
+        run.stderr_has(&format!("\ndebug {view} "))
+            .stderr_has("tonemap");
+        assert!(
+            !run.stderr.contains("\ntonemap "),
+            "--view {view} ran the tone mapping:\n{}",
+            run.stderr
+        );
+    }
+}
+
+#[test]
+fn exposure_reaches_the_tone_mapping() {
+    let dir = temp_dir();
+    let dark = dir.path().join("dark.png");
+    let bright = dir.path().join("bright.png");
+    render_default(&dark, &["--tonemap", "reinhard", "--exposure", "0.25"]).expect(0);
+    render_default(&bright, &["--tonemap", "reinhard", "--exposure", "4"]).expect(0);
+    let (dark, bright) = (
+        mean_brightness(&read_png(&dark)),
+        mean_brightness(&read_png(&bright)),
+    );
+    assert!(
+        bright > dark + 20.0,
+        "exposure 4 ({bright:.1}) vs 0.25 ({dark:.1})"
+    );
 }
