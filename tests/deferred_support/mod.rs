@@ -2,17 +2,19 @@
 //! `pipelines/` with a scene on lavapipe (or the adapter `RGRAPH_ADAPTER` names) and
 //! reading its exported outputs back.
 //!
-//! Set `DEFERRED_PNG_DIR` to also write every image read back there as a PNG.
+//! Set `DEFERRED_PNG_DIR` to also write every RGBA8 image read back there as a PNG.
 
 // Each test crate uses its own subset of these helpers.
 #![allow(dead_code)]
 
-use std::path::Path;
+pub mod unlit;
+
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use graph_core::file::{load_file, Registry};
-use graph_core::gpu::{read_rgba8, AdapterChoice, Executor, Gpu, Imports};
-use graph_core::CompileOptions;
+use graph_core::file::{load_str, LoadedGraph, Registry};
+use graph_core::gpu::{read_rgba16f, read_rgba8, AdapterChoice, Executor, Gpu, Imports};
+use graph_core::{CompileOptions, Plan};
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Host, Overrides};
 
@@ -23,9 +25,26 @@ pub fn gpu() -> Gpu {
         .unwrap_or_else(|e| panic!("this test needs a Vulkan adapter: {e}"))
 }
 
+/// One render: which pipeline, scene, overrides and size, and text edits to the
+/// pipeline file (each `(from, to)` must match) for variants no file needs to exist for.
+pub struct Render<'a> {
+    pub pipeline: &'a str,
+    pub scene: &'a str,
+    pub overrides: Overrides,
+    pub size: (u32, u32),
+    pub edits: Vec<(&'a str, &'a str)>,
+}
+
+/// An executed frame, whose exported textures can be read back.
+pub struct Frame {
+    label: String,
+    loaded: LoadedGraph,
+    plan: Plan,
+    executor: Executor,
+}
+
 /// An RGBA8 image as read back (raw bytes, sRGB-encoded for sRGB formats).
 pub struct Image {
-    pub name: String,
     pub width: u32,
     pub height: u32,
     pub pixels: Vec<[u8; 4]>,
@@ -35,41 +54,57 @@ impl Image {
     pub fn at(&self, x: u32, y: u32) -> [u8; 4] {
         self.pixels[(y * self.width + x) as usize]
     }
+
+    /// How many pixels are exactly `rgba`.
+    pub fn count(&self, rgba: [u8; 4]) -> usize {
+        self.pixels.iter().filter(|&&p| p == rgba).count()
+    }
 }
 
-/// One render: which pipeline, scene, overrides and size.
-pub struct Render<'a> {
-    pub pipeline: &'a str,
-    pub scene: &'a str,
-    pub overrides: Overrides,
-    pub size: (u32, u32),
-}
-
-impl Render<'_> {
+impl<'a> Render<'a> {
     /// `pipeline` (a file name in `pipelines/`) with `scene` at `size`, default overrides.
-    pub fn new<'a>(pipeline: &'a str, scene: &'a str, size: (u32, u32)) -> Render<'a> {
+    pub fn new(pipeline: &'a str, scene: &'a str, size: (u32, u32)) -> Render<'a> {
         Render {
             pipeline,
             scene,
             overrides: Overrides::default(),
             size,
+            edits: Vec::new(),
         }
     }
 
-    /// Executes one frame and reads back each of `outputs` (names the file exports).
-    pub fn read(&self, gpu: &Gpu, outputs: &[&str]) -> Vec<Image> {
+    pub fn edit(mut self, from: &'a str, to: &'a str) -> Render<'a> {
+        self.edits.push((from, to));
+        self
+    }
+
+    pub fn overrides(mut self, overrides: Overrides) -> Render<'a> {
+        self.overrides = overrides;
+        self
+    }
+
+    /// Loads, compiles for `gpu` and executes one frame.
+    pub fn run(&self, gpu: &Gpu) -> Frame {
         let scene = Scene::load(self.scene)
             .unwrap_or_else(|e| panic!("cannot load scene {}: {e}", self.scene));
-        let mut registry = Registry::with_builtins();
         let host = Host {
             scene: Arc::new(scene),
             overrides: self.overrides.clone(),
         };
+        let mut registry = Registry::with_builtins();
         passes_deferred_msaa::register(&mut registry, Some(Arc::new(host)));
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("pipelines")
-            .join(self.pipeline);
-        let mut loaded = load_file(&path, &registry)
+        let path = pipelines().join(self.pipeline);
+        let mut text = std::fs::read_to_string(&path)
+            .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+        for (from, to) in &self.edits {
+            assert!(
+                text.contains(from),
+                "{} has no \"{from}\" to edit",
+                self.pipeline
+            );
+            text = text.replace(from, to);
+        }
+        let mut loaded = load_str(&path, &text, &registry)
             .unwrap_or_else(|e| panic!("cannot load {}:\n{e}", path.display()));
         let options = CompileOptions {
             output_size: self.size,
@@ -82,48 +117,81 @@ impl Render<'_> {
         executor
             .execute(&mut loaded.graph, &plan, &Imports::new())
             .unwrap_or_else(|e| panic!("{} failed on the device: {e}", self.pipeline));
-        outputs
-            .iter()
-            .map(|&name| {
-                let handle = loaded
-                    .names
-                    .texture(name)
-                    .unwrap_or_else(|| panic!("{} has no texture named {name}", self.pipeline));
-                let texture = executor.texture(&plan, handle.id()).unwrap_or_else(|| {
-                    panic!("{name} is not an exported texture of {}", self.pipeline)
-                });
-                let pixels = read_rgba8(&gpu.device, &gpu.queue, texture)
-                    .unwrap_or_else(|e| panic!("cannot read {name} back: {e}"));
-                let image = Image {
-                    name: name.to_owned(),
-                    width: texture.width(),
-                    height: texture.height(),
-                    pixels,
-                };
-                save_if_asked(&image, self);
-                image
-            })
-            .collect()
+        let edited = if self.edits.is_empty() { "" } else { "-edited" };
+        Frame {
+            label: format!(
+                "{}{edited}-{}",
+                self.pipeline.trim_end_matches(".ron"),
+                self.scene.replace([':', '?', '/', '=', '&'], "_")
+            ),
+            loaded,
+            plan,
+            executor,
+        }
+    }
+
+    /// Runs one frame and reads back each of `outputs`.
+    pub fn read(&self, gpu: &Gpu, outputs: &[&str]) -> Vec<Image> {
+        let frame = self.run(gpu);
+        outputs.iter().map(|name| frame.image(gpu, name)).collect()
     }
 }
 
-fn save_if_asked(image: &Image, render: &Render<'_>) {
-    let Some(dir) = std::env::var_os("DEFERRED_PNG_DIR") else {
-        return;
+impl Frame {
+    fn texture(&self, name: &str) -> &wgpu::Texture {
+        let handle = self
+            .loaded
+            .names
+            .texture(name)
+            .unwrap_or_else(|| panic!("{} has no texture named {name}", self.label));
+        self.executor
+            .texture(&self.plan, handle.id())
+            .unwrap_or_else(|| panic!("{name} is not an exported texture of {}", self.label))
+    }
+
+    /// An exported RGBA8 texture.
+    pub fn image(&self, gpu: &Gpu, name: &str) -> Image {
+        let texture = self.texture(name);
+        let pixels = read_rgba8(&gpu.device, &gpu.queue, texture)
+            .unwrap_or_else(|e| panic!("cannot read {name} back: {e}"));
+        let image = Image {
+            width: texture.width(),
+            height: texture.height(),
+            pixels,
+        };
+        if let Some(dir) = std::env::var_os("DEFERRED_PNG_DIR") {
+            let file = Path::new(&dir).join(format!("{}-{name}.png", self.label));
+            let bytes: Vec<u8> = image.pixels.iter().flatten().copied().collect();
+            image::save_buffer(
+                &file,
+                &bytes,
+                image.width,
+                image.height,
+                image::ColorType::Rgba8,
+            )
+            .unwrap_or_else(|e| panic!("cannot write {}: {e}", file.display()));
+        }
+        image
+    }
+
+    /// An exported RGBA16Float texture, widened to f32.
+    pub fn hdr(&self, gpu: &Gpu, name: &str) -> Vec<[f32; 4]> {
+        read_rgba16f(&gpu.device, &gpu.queue, self.texture(name))
+            .unwrap_or_else(|e| panic!("cannot read {name} back: {e}"))
+    }
+}
+
+fn pipelines() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines")
+}
+
+/// The sRGB encoding of a linear value, as an 8-bit unorm.
+pub fn srgb8(linear: f64) -> u8 {
+    let c = linear.clamp(0.0, 1.0);
+    let encoded = if c <= 0.0031308 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
     };
-    let scene = render.scene.replace([':', '?', '/', '='], "_");
-    let file = Path::new(&dir).join(format!(
-        "{}-{scene}-{}.png",
-        render.pipeline.trim_end_matches(".ron"),
-        image.name
-    ));
-    let bytes: Vec<u8> = image.pixels.iter().flatten().copied().collect();
-    image::save_buffer(
-        &file,
-        &bytes,
-        image.width,
-        image.height,
-        image::ColorType::Rgba8,
-    )
-    .unwrap_or_else(|e| panic!("cannot write {}: {e}", file.display()));
+    (encoded * 255.0).round() as u8
 }
