@@ -56,6 +56,20 @@ pub(crate) const DEBUG: Source = Source {
     ],
 };
 
+pub(crate) const FORWARD: Source = Source {
+    name: "forward.wgsl",
+    parts: &[COMMON, SCENE, BRDF, include_str!("wgsl/forward.wgsl")],
+};
+pub(crate) const GBUFFER_RESOLVE: Source = Source {
+    name: "gbuffer_resolve.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        GBUFFER_READ,
+        include_str!("wgsl/gbuffer_resolve.wgsl"),
+    ],
+};
+
 impl Source {
     /// The source for G-buffer textures of `samples` samples, validated.
     pub fn compose(self, samples: u32) -> Result<Shader, PluginError> {

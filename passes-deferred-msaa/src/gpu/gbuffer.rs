@@ -94,7 +94,10 @@ pub(crate) fn record(
 
 /// Nearer fragments win: `Greater` with reversed Z, `Less` without. Stencil is left alone
 /// (cleared to 0 by the pass; the edge pass marks it).
-fn depth_test(format: wgpu::TextureFormat, convention: DepthConvention) -> wgpu::DepthStencilState {
+pub(crate) fn depth_test(
+    format: wgpu::TextureFormat,
+    convention: DepthConvention,
+) -> wgpu::DepthStencilState {
     wgpu::DepthStencilState {
         format,
         depth_write_enabled: Some(true),

@@ -4,8 +4,10 @@
 //! recording of full-screen passes.
 
 mod bindings;
+pub(crate) mod forward;
 pub(crate) mod fullscreen;
 pub(crate) mod gbuffer;
+pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
 mod pipeline;
 

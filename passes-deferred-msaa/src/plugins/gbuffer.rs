@@ -47,7 +47,7 @@ pub struct GBufferParams {
     pub background: [f64; 4],
 }
 
-fn opaque_black() -> [f64; 4] {
+pub(crate) fn opaque_black() -> [f64; 4] {
     [0.0, 0.0, 0.0, 1.0]
 }
 

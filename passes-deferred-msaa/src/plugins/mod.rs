@@ -8,8 +8,10 @@
 
 pub(crate) mod debug_view;
 pub(crate) mod edge_stencil;
+pub(crate) mod forward;
 pub(crate) mod fullscreen;
 pub(crate) mod gbuffer;
+pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
 pub(crate) mod resolve;
 pub(crate) mod textures;
@@ -24,7 +26,9 @@ use crate::host::{Host, Overrides};
 
 pub use debug_view::{DebugView, DebugViewParams, View};
 pub use edge_stencil::{Detector, EdgeStencil, EdgeStencilParams};
+pub use forward::{Forward, ForwardParams, Shading};
 pub use gbuffer::{GBuffer, GBufferParams};
+pub use gbuffer_resolve::{GBufferResolve, GBufferResolveParams};
 pub use light::{EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams};
 pub use resolve::{Resolve, ResolveMode, ResolveParams};
 pub use tonemap::{Operator, Tonemap, TonemapParams};
@@ -79,7 +83,9 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>) {
         .register(LightEdge(shared.clone()))
         .register(Resolve(shared.clone()))
         .register(Tonemap(shared.clone()))
-        .register(DebugView(shared));
+        .register(DebugView(shared.clone()))
+        .register(Forward(shared.clone()))
+        .register(GBufferResolve(shared));
 }
 
 /// `true`, for `#[serde(default = "yes")]`.
@@ -92,5 +98,13 @@ fn convention(reversed_z: bool) -> crate::scene::DepthConvention {
     match reversed_z {
         true => crate::scene::DepthConvention::ReversedZ,
         false => crate::scene::DepthConvention::Standard,
+    }
+}
+
+/// The depth a depth-stencil is cleared to, and the clip depth of the far plane.
+fn far_depth(convention: crate::scene::DepthConvention) -> f32 {
+    match convention {
+        crate::scene::DepthConvention::ReversedZ => 0.0,
+        crate::scene::DepthConvention::Standard => 1.0,
     }
 }

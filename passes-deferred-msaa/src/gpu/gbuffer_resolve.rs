@@ -1,0 +1,99 @@
+//! Recording the G-buffer resolve: one full-screen triangle writing the four resolved
+//! targets and, through `frag_depth`, the depth.
+
+use std::sync::Arc;
+
+use graph_core::gpu::RenderContext;
+
+use super::{PipelineDesc, Pipelines, TextureBindings};
+use crate::gpu_scene::{GpuScene, SceneCache};
+use crate::plugins::gbuffer_resolve::GBufferResolveDraw;
+
+#[derive(Clone, PartialEq)]
+struct Key {
+    targets: Vec<wgpu::TextureFormat>,
+    depth: wgpu::TextureFormat,
+}
+
+struct State {
+    scene: Arc<GpuScene>,
+    module: wgpu::ShaderModule,
+    inputs: TextureBindings,
+    layout: wgpu::PipelineLayout,
+    pipelines: Pipelines<Key>,
+}
+
+pub(crate) fn record(
+    draw: GBufferResolveDraw,
+    scenes: Arc<SceneCache>,
+) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+    let mut state: Option<State> = None;
+    Box::new(move |ctx| {
+        let resources = ctx.resources;
+        let device = resources.device;
+        // The camera turns the averaged view depth into depth.
+        let Some(scene) = scenes.get(device, resources.queue) else {
+            return;
+        };
+        scene.prepare(resources.queue, resources.output_size());
+        if state
+            .as_ref()
+            .is_none_or(|s| !Arc::ptr_eq(&s.scene, &scene))
+        {
+            let inputs = TextureBindings::new(resources, &draw.inputs);
+            let layouts = [Some(scene.layout()), Some(&inputs.layout)];
+            state = Some(State {
+                module: super::module(device, "gbuffer resolve", &draw.source),
+                layout: super::pipeline_layout(device, &layouts),
+                inputs,
+                scene: scene.clone(),
+                pipelines: Pipelines::default(),
+            });
+        }
+        let Some(state) = state.as_mut() else { return };
+        let key = Key {
+            targets: draw
+                .targets
+                .iter()
+                .map(|&h| resources.shape(h).format)
+                .collect(),
+            depth: resources.shape(draw.depth).format,
+        };
+        let pipeline = state.pipelines.get(key, |key| {
+            let targets: Vec<Option<wgpu::ColorTargetState>> =
+                key.targets.iter().map(|&f| Some(f.into())).collect();
+            PipelineDesc {
+                label: "gbuffer resolve",
+                layout: &state.layout,
+                module: &state.module,
+                vertex: "vs_fullscreen",
+                buffers: &[],
+                fragment: "fs_resolve_gbuffer",
+                constants: &[("FAR_DEPTH", f64::from(draw.far))],
+                targets: &targets,
+                cull: None,
+                depth_stencil: Some(write_depth(key.depth)),
+                samples: 1,
+                mask: !0,
+            }
+            .build(device)
+        });
+        ctx.pass.set_pipeline(pipeline);
+        ctx.pass
+            .set_bind_group(0, scene.bind_group(draw.convention), &[]);
+        ctx.pass
+            .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+        ctx.pass.draw(0..3, 0..1);
+    })
+}
+
+/// Every fragment writes its depth; stencil stays as cleared.
+fn write_depth(format: wgpu::TextureFormat) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format,
+        depth_write_enabled: Some(true),
+        depth_compare: Some(wgpu::CompareFunction::Always),
+        stencil: wgpu::StencilState::default(),
+        bias: Default::default(),
+    }
+}

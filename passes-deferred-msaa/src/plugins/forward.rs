@@ -1,0 +1,125 @@
+//! `forward`: draws the host's scene straight into a (multisampled) HDR target, every
+//! light evaluated per fragment: what users pick instead of deferred + MSAA, and the image
+//! MSAA should give. The baselines and the supersampled reference are built on it.
+//!
+//! ```ron
+//! (name: "forward", plugin: "forward",
+//!  params: (shading: pixel,          // the default; or sample (one invocation per sample)
+//!           reversed_z: true, background: (0.0, 0.0, 0.0, 1.0)),   // these defaults
+//!  outputs: {
+//!      "hdr": "hdr",       // rgba16float, the depth's sample count
+//!      "depth": "depth",   // depth24plus(-stencil8) or depth32float(-stencil8)
+//!  })
+//! ```
+//!
+//! Shading is brdf.wgsl's, as in the deferred light passes: Lambert plus GGX
+//! metallic-roughness, the ambient term times albedo, and every directional, point and spot
+//! light of the scene (point and spot lights windowed to zero at their range, which the
+//! deferred passes' volumes circumscribe). Emission is added once; unlit materials show
+//! base color plus emission, exactly what the `gbuffer` pass writes into its HDR target.
+//! Alpha MASK and double-sided materials behave as there.
+//!
+//! `pixel` shades once per pixel and triangle at the centroid of the covered samples (the
+//! G-buffer pass's interpolation, so a deferred pipeline that shades every sample gives the
+//! same image); `sample` shades every covered sample at its own position
+//! (`@interpolate(sample)`), which is supersampling: the reference uses it.
+
+use serde::Deserialize;
+
+use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::types::TextureFormat;
+use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
+
+use super::gbuffer::opaque_black;
+use super::textures::{self, Want};
+use super::{convention, far_depth, yes, Recording, Shared};
+use crate::scene::DepthConvention;
+use crate::shaders;
+
+pub struct Forward(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ForwardParams {
+    #[serde(default)]
+    pub shading: Shading,
+    #[serde(default = "yes")]
+    pub reversed_z: bool,
+    /// The HDR target's value where no geometry is drawn (linear RGBA).
+    #[serde(default = "opaque_black")]
+    pub background: [f64; 4],
+}
+
+/// How often the forward pass runs its fragment shader.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Shading {
+    /// Once per pixel and triangle; the result is written to every covered sample.
+    #[default]
+    Pixel,
+    /// Once per covered sample.
+    Sample,
+}
+
+use TextureFormat as F;
+/// Forward shading needs no stencil, so depth-only formats do too.
+const DEPTH: &[TextureFormat] = &[
+    F::Depth24Plus,
+    F::Depth32Float,
+    F::Depth24PlusStencil8,
+    F::Depth32FloatStencil8,
+];
+
+/// The forward pass as set up: what `gpu::forward` records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct ForwardDraw {
+    pub source: String,
+    pub convention: DepthConvention,
+    pub shading: Shading,
+    pub hdr: TextureHandle,
+    pub depth: TextureHandle,
+}
+
+impl Recording for ForwardDraw {
+    #[cfg(feature = "gpu")]
+    fn record(
+        self,
+        scenes: std::sync::Arc<crate::gpu_scene::SceneCache>,
+    ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)> {
+        crate::gpu::forward::record(self, scenes)
+    }
+}
+
+impl Plugin for Forward {
+    const NAME: &'static str = "forward";
+    type Params = ForwardParams;
+
+    fn kind(&self, _: &ForwardParams) -> PassKind {
+        PassKind::Render
+    }
+
+    fn setup(
+        &self,
+        params: ForwardParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let convention = convention(params.reversed_z);
+        let far = far_depth(convention);
+        let want = Want::new("the forward pass's depth", DEPTH);
+        let (depth, desc) = textures::output(slots, pass, "depth", want, |pass, h, _| {
+            pass.depth_stencil(h, AspectAccess::Clear(far), AspectAccess::Clear(0))
+        })?;
+        let want = Want::new("the HDR target", textures::HDR).samples(desc.samples);
+        let (hdr, _) = textures::color_output(slots, pass, "hdr", want, params.background)?;
+        let draw = ForwardDraw {
+            source: shaders::FORWARD.compose(desc.samples)?.source().to_owned(),
+            convention,
+            shading: params.shading,
+            hdr,
+            depth,
+        };
+        self.0.render(pass, draw);
+        Ok(())
+    }
+}

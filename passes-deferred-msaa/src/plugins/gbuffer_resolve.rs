@@ -1,0 +1,122 @@
+//! `gbuffer_resolve`: averages a multisampled G-buffer into a single-sampled one plus a
+//! depth-stencil, so `light_nonedge` can light it once per pixel: the wrong way to combine
+//! deferred shading with MSAA that seed 000 warns about (figure 2.8.3), kept as a baseline
+//! to measure against.
+//!
+//! ```ron
+//! (name: "resolve gbuffer", plugin: "gbuffer_resolve",
+//!  params: (reversed_z: true),   // the default; must agree with the light passes'
+//!  inputs: {                      // the multisampled G-buffer
+//!      "albedo": "albedo", "normal": "normal", "material": "material",
+//!      "view_depth": "view_depth",
+//!  },
+//!  outputs: {                     // the same formats, 1 sample
+//!      "resolved_albedo": "albedo_1x", "resolved_normal": "normal_1x",
+//!      "resolved_material": "material_1x", "resolved_view_depth": "view_depth_1x",
+//!      "depth": "depth_1x",       // depth24plus-stencil8 or depth32float-stencil8, 1 sample
+//!  })
+//! ```
+//!
+//! A full-screen pass; gbuffer_resolve.wgsl says what each target's resolve is. The depth
+//! written is the averaged view depth projected by the scene's camera (far where no sample
+//! has geometry), so the light passes' depth tests see the same averaged surface as their
+//! shading; stencil is cleared to 0, so `light_nonedge` shades every pixel. Emission and
+//! unlit colors are in the G-buffer's HDR target: resolve that with `resolve`.
+
+use serde::Deserialize;
+
+use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
+
+use super::light::GBUFFER_INPUTS;
+use super::textures::{self, Input, Want};
+use super::{convention, far_depth, yes, Recording, Shared};
+use crate::scene::DepthConvention;
+use crate::shaders;
+
+pub struct GBufferResolve(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GBufferResolveParams {
+    #[serde(default = "yes")]
+    pub reversed_z: bool,
+}
+
+/// The resolve as set up: what `gpu::gbuffer_resolve` records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct GBufferResolveDraw {
+    pub source: String,
+    pub convention: DepthConvention,
+    /// The clip depth of the far plane, written where no sample has geometry.
+    pub far: f32,
+    /// The multisampled G-buffer, group 1.
+    pub inputs: Vec<Input>,
+    /// albedo, normal, material, view_depth: color attachments 0 to 3.
+    pub targets: Vec<TextureHandle>,
+    pub depth: TextureHandle,
+}
+
+impl Recording for GBufferResolveDraw {
+    #[cfg(feature = "gpu")]
+    fn record(
+        self,
+        scenes: std::sync::Arc<crate::gpu_scene::SceneCache>,
+    ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)> {
+        crate::gpu::gbuffer_resolve::record(self, scenes)
+    }
+}
+
+impl Plugin for GBufferResolve {
+    const NAME: &'static str = "gbuffer_resolve";
+    type Params = GBufferResolveParams;
+
+    fn kind(&self, _: &GBufferResolveParams) -> PassKind {
+        PassKind::Render
+    }
+
+    fn setup(
+        &self,
+        params: GBufferResolveParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let convention = convention(params.reversed_z);
+        let far = far_depth(convention);
+        let mut inputs = Vec::new();
+        let mut samples = None;
+        for (slot, what, formats, binding) in GBUFFER_INPUTS {
+            let want = Want {
+                samples,
+                ..Want::new(what, formats)
+            };
+            let (input, desc) = textures::sampled(slots, pass, slot, want, binding)?;
+            samples = Some(desc.samples);
+            inputs.push(input);
+        }
+        let samples = samples.unwrap_or(1);
+        let want = Want::new("the resolved depth-stencil", textures::DEPTH_STENCIL).samples(1);
+        let (depth, _) = textures::output(slots, pass, "depth", want, |pass, h, _| {
+            pass.depth_stencil(h, AspectAccess::Clear(far), AspectAccess::Clear(0))
+        })?;
+        let mut targets = Vec::new();
+        for (slot, what, formats, _) in GBUFFER_INPUTS {
+            let want = Want::new(what, formats).samples(1);
+            let slot = format!("resolved_{slot}");
+            targets.push(textures::color_output(slots, pass, &slot, want, [0.0; 4])?.0);
+        }
+        let draw = GBufferResolveDraw {
+            source: shaders::GBUFFER_RESOLVE
+                .compose(samples)?
+                .source()
+                .to_owned(),
+            convention,
+            far,
+            inputs,
+            targets,
+            depth,
+        };
+        self.0.render(pass, draw);
+        Ok(())
+    }
+}

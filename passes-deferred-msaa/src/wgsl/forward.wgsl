@@ -1,0 +1,96 @@
+// The forward pass of the baselines: the scene drawn straight into the multisampled HDR
+// target, every light evaluated per fragment with brdf.wgsl's `shade_light` (the code the
+// deferred light passes run), so forward and deferred images agree. Emission and unlit
+// colors are what gbuffer.wgsl writes into the HDR target; lit surfaces add the ambient
+// term and every light, as light.wgsl's draws add them.
+// Composed after common.wgsl, scene.wgsl and brdf.wgsl.
+
+@group(1) @binding(0) var base_color_tex: texture_2d<f32>;
+@group(1) @binding(1) var base_color_sampler: sampler;
+
+// Alpha MASK materials: discard below the cutoff (one pipeline per material state).
+override MASKED: bool = false;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+}
+
+// What shading needs, however it was interpolated.
+struct Attributes {
+    // Camera-relative world position.
+    position: vec3<f32>,
+    normal: vec3<f32>,
+    uv: vec2<f32>,
+    material: u32,
+}
+
+// `shading: pixel`: once per pixel, at the centroid of the covered samples as the
+// G-buffer pass interpolates (the pixel center may lie outside a partly covering triangle).
+struct PixelVaryings {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) @interpolate(perspective, centroid) position: vec3<f32>,
+    @location(1) @interpolate(perspective, centroid) normal: vec3<f32>,
+    @location(2) @interpolate(perspective, centroid) uv: vec2<f32>,
+    @location(3) @interpolate(flat) material: u32,
+}
+
+// `shading: sample`: `sample` interpolation runs the fragment shader once per covered
+// sample, with attributes at that sample's position (supersampling).
+struct SampleVaryings {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) @interpolate(perspective, sample) position: vec3<f32>,
+    @location(1) @interpolate(perspective, sample) normal: vec3<f32>,
+    @location(2) @interpolate(perspective, sample) uv: vec2<f32>,
+    @location(3) @interpolate(flat) material: u32,
+}
+
+fn transform(v: VertexIn, mesh_index: u32) -> Attributes {
+    let mesh = meshes[mesh_index];
+    let p = (mesh.model * vec4<f32>(v.position, 1.0)).xyz;
+    return Attributes(p, mesh.normal_matrix * v.normal, v.uv, mesh.material);
+}
+
+@vertex
+fn vs_pixel(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> PixelVaryings {
+    let a = transform(v, mesh_index);
+    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material);
+}
+
+@vertex
+fn vs_sample(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> SampleVaryings {
+    let a = transform(v, mesh_index);
+    return SampleVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material);
+}
+
+fn shade(a: Attributes, front: bool) -> vec4<f32> {
+    let material = materials[a.material];
+    let base = material.base_color * textureSample(base_color_tex, base_color_sampler, a.uv);
+    if MASKED && base.a < material.alpha_cutoff {
+        discard;
+    }
+    var color = material.emission;
+    if (material.flags & FLAG_UNLIT) != 0u {
+        color += base.rgb;
+    } else {
+        // Back faces reach here only for double-sided materials: light their other side.
+        let n = safe_normalize(select(-a.normal, a.normal, front));
+        let s = Surface(a.position, n, safe_normalize(-a.position), base.rgb, material.metallic, material.roughness);
+        color += light_info.ambient * base.rgb;
+        for (var i = 0u; i < light_info.light_count; i++) {
+            color += shade_light(s, lights[i]);
+        }
+    }
+    return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), 1.0);
+}
+
+@fragment
+fn fs_pixel(in: PixelVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    return shade(Attributes(in.position, in.normal, in.uv, in.material), front);
+}
+
+@fragment
+fn fs_sample(in: SampleVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    return shade(Attributes(in.position, in.normal, in.uv, in.material), front);
+}
