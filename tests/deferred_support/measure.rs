@@ -1,0 +1,93 @@
+//! Image measurements the baseline tests share: differences in 8-bit units, edge masks
+//! from the `debug.edges` view, and mean luminance over a mask.
+//!
+//! Included by path next to `mod deferred_support;` (`#[path = "deferred_support/measure.rs"]
+//! mod measure;`), so the shared helpers' module list stays as it is.
+
+// Each test crate uses its own subset.
+#![allow(dead_code)]
+
+use crate::deferred_support::Image;
+
+/// The red of an edge pixel in `debug.edges` (stencil 0x80: shaded per sample).
+pub const EDGE_RED: [u8; 4] = [255, 0, 0, 255];
+
+/// How two images differ over the pixels of a mask, in 8-bit units of the RGB channels.
+#[derive(Copy, Clone, Debug, Default)]
+pub struct Diff {
+    /// The largest channel difference.
+    pub max: u8,
+    /// Where it is.
+    pub at: (u32, u32),
+    /// The mean over the masked pixels' channels.
+    pub mean: f64,
+    /// How many pixels were compared.
+    pub pixels: usize,
+}
+
+impl std::fmt::Display for Diff {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "max {} at ({}, {}), mean {:.3} over {} pixels",
+            self.max, self.at.0, self.at.1, self.mean, self.pixels
+        )
+    }
+}
+
+/// The largest RGB channel difference between two pixels.
+pub fn pixel_diff(a: [u8; 4], b: [u8; 4]) -> u8 {
+    (0..3).map(|c| a[c].abs_diff(b[c])).max().unwrap_or(0)
+}
+
+/// How `a` and `b` differ where `mask` is true (everywhere for `None`).
+pub fn diff(a: &Image, b: &Image, mask: Option<&[bool]>) -> Diff {
+    assert_eq!(
+        (a.width, a.height),
+        (b.width, b.height),
+        "compared images differ in size"
+    );
+    let mut d = Diff::default();
+    let mut sum = 0u64;
+    for (i, (pa, pb)) in a.pixels.iter().zip(&b.pixels).enumerate() {
+        if mask.is_some_and(|m| !m[i]) {
+            continue;
+        }
+        d.pixels += 1;
+        sum += (0..3)
+            .map(|c| u64::from(pa[c].abs_diff(pb[c])))
+            .sum::<u64>();
+        let worst = pixel_diff(*pa, *pb);
+        if worst > d.max {
+            d.max = worst;
+            d.at = (i as u32 % a.width, i as u32 / a.width);
+        }
+    }
+    d.mean = sum as f64 / (3 * d.pixels.max(1)) as f64;
+    d
+}
+
+/// Where `debug.edges` is red: the pixels the edge detector marked.
+pub fn marked(edges: &Image) -> Vec<bool> {
+    edges.pixels.iter().map(|&p| p == EDGE_RED).collect()
+}
+
+/// Pixel coordinates of the true entries, for messages (the first `limit`).
+pub fn where_true(mask: &[bool], width: u32, limit: usize) -> Vec<(u32, u32)> {
+    mask.iter()
+        .enumerate()
+        .filter(|(_, &m)| m)
+        .take(limit)
+        .map(|(i, _)| (i as u32 % width, i as u32 / width))
+        .collect()
+}
+
+/// Rec. 709 luma of the 8-bit (sRGB-encoded) RGB values, averaged over `mask`.
+pub fn mean_luma(image: &Image, mask: &[bool]) -> f64 {
+    let (mut sum, mut n) = (0.0, 0usize);
+    for (p, _) in image.pixels.iter().zip(mask).filter(|(_, &m)| m) {
+        sum += 0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2]);
+        n += 1;
+    }
+    sum / n.max(1) as f64
+}
