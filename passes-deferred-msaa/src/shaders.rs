@@ -70,19 +70,63 @@ pub(crate) const GBUFFER_RESOLVE: Source = Source {
     ],
 };
 
+/// Sample positions within a pixel (y down) by sample count: Vulkan's
+/// standardSampleLocations (D3D's), which WebGPU prescribes for its one multisampled
+/// count, 4. Per-sample shading reconstructs each sample's surface point there, where
+/// the rasterizer tested the sample against the light volumes.
+const SAMPLE_POSITIONS: [(u32, &[(f32, f32)]); 4] = [
+    (1, &[(0.5, 0.5)]),
+    (2, &[(0.75, 0.75), (0.25, 0.25)]),
+    (
+        4,
+        &[
+            (0.375, 0.125),
+            (0.875, 0.375),
+            (0.125, 0.625),
+            (0.625, 0.875),
+        ],
+    ),
+    (
+        8,
+        &[
+            (0.5625, 0.3125),
+            (0.4375, 0.6875),
+            (0.8125, 0.5625),
+            (0.3125, 0.1875),
+            (0.1875, 0.8125),
+            (0.0625, 0.4375),
+            (0.6875, 0.9375),
+            (0.9375, 0.0625),
+        ],
+    ),
+];
+
 impl Source {
     /// The source for G-buffer textures of `samples` samples, validated.
     pub fn compose(self, samples: u32) -> Result<Shader, PluginError> {
-        let textures = if samples > 1 {
-            "texture_multisampled_2d"
+        let (textures, depth) = if samples > 1 {
+            ("texture_multisampled_2d", "texture_depth_multisampled_2d")
         } else {
-            "texture_2d"
+            ("texture_2d", "texture_depth_2d")
         };
+        let Some((_, positions)) = SAMPLE_POSITIONS.iter().find(|(n, _)| *n == samples) else {
+            return Err(PluginError::Invalid(format!(
+                "{samples} samples per pixel: the deferred passes know the sample positions \
+                 of 1, 2, 4 and 8 samples only"
+            )));
+        };
+        let positions: Vec<String> = positions
+            .iter()
+            .map(|(x, y)| format!("vec2<f32>({x:?}, {y:?})"))
+            .collect();
         let mut text = format!(
-            "// Generated: the G-buffer's sample count and texture types.\n\
+            "// Generated: the G-buffer's sample count, texture types and sample positions.\n\
              const SAMPLES: u32 = {samples}u;\n\
              alias GTexF = {textures}<f32>;\n\
-             alias GTexU = {textures}<u32>;\n\n"
+             alias GTexU = {textures}<u32>;\n\
+             alias GTexD = {depth};\n\
+             const SAMPLE_POSITIONS = array<vec2<f32>, {samples}>({});\n\n",
+            positions.join(", ")
         );
         for part in self.parts {
             text.push_str(part);

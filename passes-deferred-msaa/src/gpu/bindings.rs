@@ -3,7 +3,7 @@
 
 use graph_core::gpu::FrameResources;
 
-use crate::plugins::textures::Input;
+use crate::plugins::textures::{Input, Texels};
 
 pub(crate) struct TextureBindings {
     pub layout: wgpu::BindGroupLayout,
@@ -19,11 +19,12 @@ impl TextureBindings {
                 binding: b.binding,
                 visibility: wgpu::ShaderStages::FRAGMENT,
                 ty: wgpu::BindingType::Texture {
-                    // textureLoad only: nothing is filtered, and r32float is not filterable.
-                    sample_type: if b.uint {
-                        wgpu::TextureSampleType::Uint
-                    } else {
-                        wgpu::TextureSampleType::Float { filterable: false }
+                    sample_type: match b.texels {
+                        // textureLoad only: nothing is filtered, and r32float is not
+                        // filterable.
+                        Texels::Float => wgpu::TextureSampleType::Float { filterable: false },
+                        Texels::Uint => wgpu::TextureSampleType::Uint,
+                        Texels::Depth => wgpu::TextureSampleType::Depth,
                     },
                     view_dimension: wgpu::TextureViewDimension::D2,
                     multisampled: resources.shape(b.texture).samples > 1,

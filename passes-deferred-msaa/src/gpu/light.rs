@@ -8,14 +8,16 @@ use graph_core::gpu::RenderContext;
 
 use super::{additive, PipelineDesc, Pipelines, TextureBindings, EDGE_STENCIL};
 use crate::gpu_scene::{volumes, GpuScene, SceneCache};
+use crate::plugins::far_depth;
 use crate::plugins::light::{EdgeMode, Frequency, LightDraw};
 use crate::scene::DepthConvention;
 
 /// What a light draw rasterizes, and so its depth test and culling.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum Geometry {
-    /// A full-screen triangle at the far plane: passes wherever geometry was drawn.
-    FarPlane,
+    /// A full-screen triangle at the far plane: passes wherever geometry was drawn. For
+    /// directional lights and ambient, or (`light` true) one point or spot light.
+    FarPlane { light: bool },
     /// A volume's front faces, in front of the surface.
     FrontFaces,
     /// A volume's back faces, behind the surface (the camera may be inside).
@@ -89,7 +91,7 @@ pub(crate) fn record(
             };
             let pipeline = state.pipelines.get(key, |key| {
                 let constants = [
-                    ("FAR_DEPTH", far_depth(draw.convention)),
+                    ("FAR_DEPTH", f64::from(far_depth(draw.convention))),
                     ("SAMPLE", f64::from(key.sample.unwrap_or(0))),
                 ];
                 let volume_buffers = [Some(volumes::VERTEX_LAYOUT)];
@@ -98,11 +100,12 @@ pub(crate) fn record(
                     layout,
                     module,
                     vertex: match key.geometry {
-                        Geometry::FarPlane => "vs_directional",
+                        Geometry::FarPlane { light: false } => "vs_directional",
+                        Geometry::FarPlane { light: true } => "vs_fullscreen_light",
                         Geometry::FrontFaces | Geometry::BackFaces => "vs_volume",
                     },
                     buffers: match key.geometry {
-                        Geometry::FarPlane => &[],
+                        Geometry::FarPlane { .. } => &[],
                         Geometry::FrontFaces | Geometry::BackFaces => &volume_buffers,
                     },
                     fragment: match (draw.frequency, key.sample) {
@@ -113,7 +116,7 @@ pub(crate) fn record(
                     constants: &constants,
                     targets: &[Some(additive(key.hdr))],
                     cull: match key.geometry {
-                        Geometry::FarPlane => None,
+                        Geometry::FarPlane { .. } => None,
                         Geometry::FrontFaces => Some(wgpu::Face::Back),
                         Geometry::BackFaces => Some(wgpu::Face::Front),
                     },
@@ -127,10 +130,16 @@ pub(crate) fn record(
         };
         for sample in passes {
             if scene.has_fullscreen_lights() {
-                use_pipeline(ctx.pass, Geometry::FarPlane, sample);
+                use_pipeline(ctx.pass, Geometry::FarPlane { light: false }, sample);
                 ctx.pass.draw(0..3, 0..1);
             }
             for light in scene.volume_lights() {
+                let instance = light.index..light.index + 1;
+                if !draw.volumes {
+                    use_pipeline(ctx.pass, Geometry::FarPlane { light: true }, sample);
+                    ctx.pass.draw(0..3, instance);
+                    continue;
+                }
                 let geometry = match scene.camera_may_be_inside(light, size) {
                     true => Geometry::BackFaces,
                     false => Geometry::FrontFaces,
@@ -145,13 +154,6 @@ pub(crate) fn record(
             }
         }
     })
-}
-
-fn far_depth(convention: DepthConvention) -> f64 {
-    match convention {
-        DepthConvention::ReversedZ => 0.0,
-        DepthConvention::Standard => 1.0,
-    }
 }
 
 /// Read-only depth and stencil: the depth test per [`Geometry`], and the stencil test
@@ -170,7 +172,7 @@ fn depth_stencil(
     };
     let depth_compare = match key.geometry {
         // The far plane is behind every drawn surface, and no surface is behind it.
-        Geometry::FarPlane => match reversed {
+        Geometry::FarPlane { .. } => match reversed {
             true => C::Less,
             false => C::Greater,
         },

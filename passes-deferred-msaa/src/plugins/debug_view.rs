@@ -28,7 +28,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{Aspect, PassBuilder, PassKind};
 
 use super::fullscreen::Fullscreen;
-use super::textures::{self, Input, Want};
+use super::textures::{self, Input, Texels, Want};
 use super::Shared;
 use crate::shaders;
 
@@ -120,7 +120,7 @@ impl Plugin for DebugView {
                 binding: 4,
                 texture: handle,
                 aspect: Aspect::StencilOnly,
-                uint: true,
+                texels: Texels::Uint,
             });
             samples = Some(desc.samples);
         }

@@ -31,7 +31,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
 use super::textures::{self, Want};
-use super::{convention, yes, Recording, Shared};
+use super::{convention, far_depth, yes, Recording, Shared};
 use crate::scene::DepthConvention;
 use crate::shaders;
 
@@ -86,10 +86,7 @@ impl Plugin for GBuffer {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         let convention = convention(params.reversed_z);
-        let far = match convention {
-            DepthConvention::ReversedZ => 0.0,
-            DepthConvention::Standard => 1.0,
-        };
+        let far = far_depth(convention);
         let depth_want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
         let (depth, desc) = textures::output(slots, pass, "depth", depth_want, |pass, h, _| {
             pass.depth_stencil(h, AspectAccess::Clear(far), AspectAccess::Clear(0))

@@ -4,7 +4,8 @@
 //!
 //! ```ron
 //! (name: "light_edge", plugin: "light_edge",
-//!  params: (mode: sample_index, reversed_z: true),   // these defaults; or mode: sample_mask
+//!  params: (mode: sample_index, reversed_z: true, volumes: true),   // these defaults
+//!                                      // (or mode: sample_mask; volumes: false)
 //!  inputs: {
 //!      "albedo": "albedo", "normal": "normal", "material": "material",
 //!      "view_depth": "view_depth",
@@ -13,7 +14,7 @@
 //!  },
 //!  outputs: { "hdr": "hdr_edges" })
 //! (name: "light_nonedge", plugin: "light_nonedge",
-//!  params: (reversed_z: true),
+//!  params: (reversed_z: true, volumes: true),
 //!  inputs: { /* the same slots */ "hdr": "hdr_edges" },
 //!  outputs: { "hdr": "hdr_lit" })
 //! ```
@@ -23,23 +24,27 @@
 //! and spot lights a cone circumscribing their reach; from outside, front faces with the
 //! normal depth test, and when the camera's near plane may cut the volume (a conservative
 //! test with the near plane's corner distance as margin), back faces with the depth test
-//! reversed. Shading is Lambert plus GGX metallic-roughness; unlit pixels are skipped (the
-//! G-buffer put their color in `hdr`). Every contribution is finite and at most the
+//! reversed. With `volumes: false` every light is a full-screen triangle instead: slower,
+//! and the reference the volumes must match (the falloff window is exactly zero outside
+//! a volume: shaded per sample the two are bit-identical, tests/deferred_lit.rs). Shading
+//! is Lambert plus GGX metallic-roughness; unlit pixels are skipped (the G-buffer put
+//! their color in `hdr`). Every contribution is finite and at most the
 //! half-float maximum.
 //!
-//! `light_nonedge` shades from sample 0 and writes every covered sample. `light_edge`
-//! shades each sample: `sample_index` runs the fragment shader per sample
-//! (`@builtin(sample_index)`); `sample_mask` draws everything once per sample with the
+//! `light_nonedge` shades from sample 0 at the pixel center and writes every sample the
+//! volume covers. `light_edge` shades each sample at its own position and depth (read
+//! from the read-only depth attachment, as the volume test saw it): `sample_index` runs
+//! the fragment shader per sample (`@builtin(sample_index)`); `sample_mask` draws everything once per sample with the
 //! pipeline's multisample mask `1 << i` and the sample to read as a pipeline constant
 //! (DX10.0's method; writing `@builtin(sample_mask)` is avoided, gfx-rs/wgpu#7311). Both
-//! give bit-identical images: every mode reconstructs positions at the pixel center.
+//! give bit-identical images.
 
 use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{AspectAccess, ColorLoad, PassBuilder, PassKind, TextureHandle};
+use graph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, TextureHandle};
 
-use super::textures::{self, Input, Want};
+use super::textures::{self, Input, Texels, Want};
 use super::{convention, yes, Recording, Shared};
 use crate::scene::DepthConvention;
 use crate::shaders;
@@ -52,6 +57,10 @@ pub struct LightEdge(pub(crate) Shared);
 pub struct LightNonEdgeParams {
     #[serde(default = "yes")]
     pub reversed_z: bool,
+    /// Draw point and spot lights as volumes; `false` draws each full screen, the exact
+    /// (and slow) reference the volumes must match.
+    #[serde(default = "yes")]
+    pub volumes: bool,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -61,6 +70,9 @@ pub struct LightEdgeParams {
     pub mode: EdgeMode,
     #[serde(default = "yes")]
     pub reversed_z: bool,
+    /// As for `light_nonedge`.
+    #[serde(default = "yes")]
+    pub volumes: bool,
 }
 
 /// How `light_edge` shades each sample.
@@ -87,6 +99,7 @@ pub(crate) struct LightDraw {
     pub source: String,
     pub convention: DepthConvention,
     pub frequency: Frequency,
+    pub volumes: bool,
     pub hdr: TextureHandle,
     pub depth: TextureHandle,
     pub inputs: Vec<Input>,
@@ -116,7 +129,13 @@ impl Plugin for LightNonEdge {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        let draw = setup(Frequency::Pixel, params.reversed_z, pass, slots)?;
+        let draw = setup(
+            Frequency::Pixel,
+            params.reversed_z,
+            params.volumes,
+            pass,
+            slots,
+        )?;
         self.0.render(pass, draw);
         Ok(())
     }
@@ -136,12 +155,8 @@ impl Plugin for LightEdge {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        let draw = setup(
-            Frequency::Sample(params.mode),
-            params.reversed_z,
-            pass,
-            slots,
-        )?;
+        let frequency = Frequency::Sample(params.mode);
+        let draw = setup(frequency, params.reversed_z, params.volumes, pass, slots)?;
         self.0.render(pass, draw);
         Ok(())
     }
@@ -163,6 +178,7 @@ pub(crate) const GBUFFER_INPUTS: [(&str, &str, &[graph_core::types::TextureForma
 fn setup(
     frequency: Frequency,
     reversed_z: bool,
+    volumes: bool,
     pass: &mut PassBuilder<'_>,
     slots: &mut Slots<'_>,
 ) -> Result<LightDraw, PluginError> {
@@ -171,6 +187,17 @@ fn setup(
     pass.depth_stencil(depth, AspectAccess::ReadOnly, AspectAccess::ReadOnly);
     let samples = desc.samples;
     let mut inputs = Vec::new();
+    if let Frequency::Sample(_) = frequency {
+        // Per-sample shading reads each sample's depth, which the read-only attachment
+        // allows in the same pass (notes/wgpu30.md).
+        pass.sampled_aspect(depth, Aspect::DepthOnly);
+        inputs.push(Input {
+            binding: 5,
+            texture: depth,
+            aspect: Aspect::DepthOnly,
+            texels: Texels::Depth,
+        });
+    }
     for (slot, what, formats, binding) in GBUFFER_INPUTS {
         let want = Want::new(what, formats).samples(samples);
         inputs.push(textures::sampled(slots, pass, slot, want, binding)?.0);
@@ -186,6 +213,7 @@ fn setup(
         source: shaders::LIGHT.compose(samples)?.source().to_owned(),
         convention: convention(reversed_z),
         frequency,
+        volumes,
         hdr,
         depth,
         inputs,

@@ -102,7 +102,7 @@ fn convention(reversed_z: bool) -> crate::scene::DepthConvention {
 }
 
 /// The depth a depth-stencil is cleared to, and the clip depth of the far plane.
-fn far_depth(convention: crate::scene::DepthConvention) -> f32 {
+pub(crate) fn far_depth(convention: crate::scene::DepthConvention) -> f32 {
     match convention {
         crate::scene::DepthConvention::ReversedZ => 0.0,
         crate::scene::DepthConvention::Standard => 1.0,

@@ -152,8 +152,19 @@ pub(crate) struct Input {
     pub binding: u32,
     pub texture: TextureHandle,
     pub aspect: Aspect,
-    /// `u32` texels (the stencil aspect) rather than `f32`.
-    pub uint: bool,
+    pub texels: Texels,
+}
+
+/// What a shader reads from an input texture.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) enum Texels {
+    /// `f32` color (`GTexF`), never filtered.
+    Float,
+    /// `u32` (`GTexU`): the stencil aspect.
+    Uint,
+    /// The depth aspect (`GTexD`).
+    Depth,
 }
 
 impl Input {
@@ -163,7 +174,7 @@ impl Input {
             binding,
             texture,
             aspect: Aspect::All,
-            uint: false,
+            texels: Texels::Float,
         }
     }
 }

@@ -1,7 +1,8 @@
 // Definitions every deferred shader shares. Composed after a generated prelude that
-// defines `SAMPLES` (the G-buffer sample count) and the aliases `GTexF` / `GTexU` (the
-// G-buffer texture types: multisampled when SAMPLES > 1, else plain 2D, both read with
-// `textureLoad(t, pixel, sample)`), and before the pass's own source.
+// defines `SAMPLES` (the G-buffer sample count), the aliases `GTexF` / `GTexU` / `GTexD`
+// (the G-buffer texture types: multisampled when SAMPLES > 1, else plain 2D, all read
+// with `textureLoad(t, pixel, sample)`) and `SAMPLE_POSITIONS` (each sample's position within
+// its pixel), and before the pass's own source.
 
 // The material target's blue channel holds these flags (times 1/255).
 const FLAG_LIT: u32 = 1u;     // a surface the light passes shade
@@ -51,6 +52,12 @@ fn luminance(c: vec3<f32>) -> f32 {
 // The integer pixel of a fragment position (per-sample positions included).
 fn pixel_of(position: vec4<f32>) -> vec2<i32> {
     return vec2<i32>(floor(position.xy));
+}
+
+// Where sample `s` of `pixel` lies, in pixel coordinates.
+fn sample_position(pixel: vec2<i32>, s: u32) -> vec2<f32> {
+    var positions = SAMPLE_POSITIONS;
+    return vec2<f32>(pixel) + positions[min(s, SAMPLES - 1u)];
 }
 
 // One triangle covering the target, for full-screen passes.

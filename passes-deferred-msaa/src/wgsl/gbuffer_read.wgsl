@@ -6,6 +6,8 @@
 @group(1) @binding(2) var material_tex: GTexF;
 @group(1) @binding(3) var view_depth_tex: GTexF;
 @group(1) @binding(4) var stencil_tex: GTexU;
+// The depth aspect, where the pass attaches the depth-stencil read-only.
+@group(1) @binding(5) var depth_tex: GTexD;
 
 struct GSample {
     albedo: vec3<f32>,

@@ -24,20 +24,25 @@ fn vs_directional(@builtin(vertex_index) index: u32) -> LightVaryings {
     return LightVaryings(fullscreen_position(index, FAR_DEPTH), ALL_DIRECTIONAL);
 }
 
+// A point or spot light drawn full screen instead of as its volume (`volumes: false`):
+// the exact reference the volumes must match.
+@vertex
+fn vs_fullscreen_light(@builtin(vertex_index) index: u32, @builtin(instance_index) light: u32) -> LightVaryings {
+    return LightVaryings(fullscreen_position(index, FAR_DEPTH), light);
+}
+
 @vertex
 fn vs_volume(@location(0) position: vec3<f32>, @builtin(instance_index) light: u32) -> LightVaryings {
     let world = lights[light].volume * vec4<f32>(position, 1.0);
     return LightVaryings(camera.view_proj * world, light);
 }
 
-fn shade_sample(pixel: vec2<i32>, s: u32, light: u32) -> vec4<f32> {
+// Shades G-buffer sample `s` of `pixel` as the surface point `p` (camera-relative).
+fn shade_sample(pixel: vec2<i32>, s: u32, p: vec3<f32>, light: u32) -> vec4<f32> {
     let g = load_gsample(pixel, s);
     if (g.flags & FLAG_LIT) == 0u {
         return vec4<f32>(0.0);
     }
-    // The pixel center, not the sample position, for every shading frequency: the
-    // per-sample modes then give bit-identical results.
-    let p = surface_position(vec2<f32>(pixel) + 0.5, g.view_depth);
     let surface = Surface(p, g.normal, safe_normalize(-p), g.albedo, g.metallic, g.roughness);
     var color = vec3<f32>(0.0);
     if light == ALL_DIRECTIONAL {
@@ -53,15 +58,29 @@ fn shade_sample(pixel: vec2<i32>, s: u32, light: u32) -> vec4<f32> {
 
 @fragment
 fn fs_pixel(in: LightVaryings) -> @location(0) vec4<f32> {
-    return shade_sample(pixel_of(in.clip), 0u, in.light);
+    let pixel = pixel_of(in.clip);
+    let center = vec2<f32>(pixel) + 0.5;
+    let depth = textureLoad(view_depth_tex, pixel, 0u).r;
+    return shade_sample(pixel, 0u, surface_position(center, depth), in.light);
+}
+
+// Per-sample shading: the sample's surface point is where the rasterizer tested it
+// against the light volume, the sample's depth at the sample's position. (The G-buffer's
+// view depth is the fragment's, interpolated at its centroid: on steep surfaces it can
+// lie far from a sample the volume test rejected.) Both modes take the position from the
+// same table, so they agree bit for bit.
+fn sample_surface(pixel: vec2<i32>, s: u32) -> vec3<f32> {
+    return unproject(sample_position(pixel, s), textureLoad(depth_tex, pixel, s));
 }
 
 @fragment
 fn fs_sample(in: LightVaryings, @builtin(sample_index) s: u32) -> @location(0) vec4<f32> {
-    return shade_sample(pixel_of(in.clip), s, in.light);
+    let pixel = pixel_of(in.clip);
+    return shade_sample(pixel, s, sample_surface(pixel, s), in.light);
 }
 
 @fragment
 fn fs_one_sample(in: LightVaryings) -> @location(0) vec4<f32> {
-    return shade_sample(pixel_of(in.clip), SAMPLE, in.light);
+    let pixel = pixel_of(in.clip);
+    return shade_sample(pixel, SAMPLE, sample_surface(pixel, SAMPLE), in.light);
 }

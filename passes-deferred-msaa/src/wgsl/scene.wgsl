@@ -75,13 +75,19 @@ fn clip_to_ndc(h: vec4<f32>) -> vec3<f32> {
     return h.xyz / h.w;
 }
 
+// The camera-relative position of the point at pixel coordinate `pixel` and clip depth
+// `depth` (a depth buffer's value).
+fn unproject(pixel: vec2<f32>, depth: f32) -> vec3<f32> {
+    let ndc = vec2<f32>(pixel.x / camera.viewport.x * 2.0 - 1.0, 1.0 - pixel.y / camera.viewport.y * 2.0);
+    return clip_to_ndc(camera.inv_view_proj * vec4<f32>(ndc, depth, 1.0));
+}
+
 // The camera-relative position of the surface seen through pixel coordinate `pixel` at
 // view depth `depth`: the ray through the pixel, unprojected at two clip depths that are
 // finite for every projection and convention, meets the plane of that view depth.
 fn surface_position(pixel: vec2<f32>, depth: f32) -> vec3<f32> {
-    let ndc = vec2<f32>(pixel.x / camera.viewport.x * 2.0 - 1.0, 1.0 - pixel.y / camera.viewport.y * 2.0);
-    let a = clip_to_ndc(camera.inv_view_proj * vec4<f32>(ndc, 0.5, 1.0));
-    let b = clip_to_ndc(camera.inv_view_proj * vec4<f32>(ndc, 0.25, 1.0));
+    let a = unproject(pixel, 0.5);
+    let b = unproject(pixel, 0.25);
     let along = dot(b - a, camera.forward);
     let t = (depth - dot(a, camera.forward)) / select(along, 1e-20, abs(along) < 1e-20);
     return a + (b - a) * t;
