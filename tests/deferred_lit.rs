@@ -133,3 +133,55 @@ fn light_volumes_match_full_screen_lights() {
         );
     }
 }
+
+/// Rendering is camera-relative: model matrices and light positions are made relative to
+/// the camera in f64 before they become f32, so a scene moved millions of units from the
+/// origin (where f32 steps are 0.25) renders as it does at the origin (on lavapipe:
+/// bit-identically).
+#[test]
+fn a_scene_far_from_the_origin_renders_as_at_the_origin() {
+    let gpu = gpu();
+    fn far_away(scene: &mut passes_deferred_msaa::scene::Scene) {
+        let offset = [3.0e6, 1.0e6, -2.0e6];
+        for mesh in &mut scene.meshes {
+            // Affine transforms: the last column holds the translation.
+            mesh.transform.w_axis.x += offset[0];
+            mesh.transform.w_axis.y += offset[1];
+            mesh.transform.w_axis.z += offset[2];
+        }
+        for light in &mut scene.lights {
+            light.position.x += offset[0];
+            light.position.y += offset[1];
+            light.position.z += offset[2];
+        }
+        scene.camera.position.x += offset[0];
+        scene.camera.position.y += offset[1];
+        scene.camera.position.z += offset[2];
+    }
+    let resolved = |moved: bool| {
+        let mut render = Render::new("deferred_msaa_4x.ron", "builtin:spheres", SIZE)
+            .edit(EXPORT_RESOLVED.0, EXPORT_RESOLVED.1);
+        if moved {
+            render = render.scene_edit(far_away);
+        }
+        render.run(&gpu).hdr(&gpu, "resolved")
+    };
+    let (near, far) = (resolved(false), resolved(true));
+    let (mut differing, mut worst) = (0, (0.0f32, 0));
+    for (i, (a, b)) in near.iter().zip(&far).enumerate() {
+        let diff = (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max);
+        differing += usize::from(diff > 0.0);
+        if diff > worst.0 {
+            worst = (diff, i);
+        }
+    }
+    let (x, y) = (worst.1 as u32 % SIZE.0, worst.1 as u32 / SIZE.0);
+    assert!(
+        worst.0 <= 1e-3,
+        "{differing} pixels differ once the scene is moved far away, the worst at ({x}, {y}) \
+         by {}: {:?} at the origin, {:?} far away",
+        worst.0,
+        near[worst.1],
+        far[worst.1]
+    );
+}

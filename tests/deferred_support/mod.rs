@@ -33,6 +33,8 @@ pub struct Render<'a> {
     pub overrides: Overrides,
     pub size: (u32, u32),
     pub edits: Vec<(&'a str, &'a str)>,
+    /// Changes to the loaded scene before it is handed to the plugins.
+    pub scene_edit: Option<fn(&mut Scene)>,
 }
 
 /// An executed frame, whose exported textures can be read back.
@@ -70,7 +72,13 @@ impl<'a> Render<'a> {
             overrides: Overrides::default(),
             size,
             edits: Vec::new(),
+            scene_edit: None,
         }
+    }
+
+    pub fn scene_edit(mut self, edit: fn(&mut Scene)) -> Render<'a> {
+        self.scene_edit = Some(edit);
+        self
     }
 
     pub fn edit(mut self, from: &'a str, to: &'a str) -> Render<'a> {
@@ -85,8 +93,11 @@ impl<'a> Render<'a> {
 
     /// Loads, compiles for `gpu` and executes one frame.
     pub fn run(&self, gpu: &Gpu) -> Frame {
-        let scene = Scene::load(self.scene)
+        let mut scene = Scene::load(self.scene)
             .unwrap_or_else(|e| panic!("cannot load scene {}: {e}", self.scene));
+        if let Some(edit) = self.scene_edit {
+            edit(&mut scene);
+        }
         let host = Host {
             scene: Arc::new(scene),
             overrides: self.overrides.clone(),
@@ -117,7 +128,11 @@ impl<'a> Render<'a> {
         executor
             .execute(&mut loaded.graph, &plan, &Imports::new())
             .unwrap_or_else(|e| panic!("{} failed on the device: {e}", self.pipeline));
-        let edited = if self.edits.is_empty() { "" } else { "-edited" };
+        let edited = if self.edits.is_empty() && self.scene_edit.is_none() {
+            ""
+        } else {
+            "-edited"
+        };
         Frame {
             label: format!(
                 "{}{edited}-{}",
