@@ -37,7 +37,9 @@ pub fn text(plan: &Plan, report: &FrameReport) -> String {
         ms(Some(cpu_total))
     ));
     // One frame is all render draws, so its callbacks also create their pipelines.
-    lines.push("(a cold frame: CPU times include creating pipelines and uploading the scene)".into());
+    lines.push(
+        "(a cold frame: CPU times include creating pipelines and uploading the scene)".into(),
+    );
     if report.gpu_total_ns.is_none() {
         lines.push("(no GPU times: the device has no timestamp queries)".into());
     }
