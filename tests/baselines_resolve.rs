@@ -1,0 +1,86 @@
+//! The two wrong ways of seeds 000 and 004, measured at edges against per-sample shading
+//! (deferred_per_sample_4x) on lavapipe at 96x64: resolving the G-buffer before lighting
+//! gives wrong light at edges, and an on-the-fly resolve darkens them. Edge pixels are the
+//! ones deferred_msaa_4x's `compare` detector marks (its `debug.edges` view): partly
+//! covered pixels and surfaces that meet inside a pixel.
+
+mod deferred_support;
+#[path = "deferred_support/measure.rs"]
+mod measure;
+
+use deferred_support::{gpu, Image, Render};
+use graph_core::gpu::Gpu;
+use measure::{diff, marked};
+
+const SIZE: (u32, u32) = (96, 64);
+const SCENES: [&str; 2] = ["builtin:spheres", "builtin:dense"];
+
+/// deferred_gbuffer_resolve_4x's mean edge error against per-sample shading is at least
+/// this many times deferred_msaa_4x's, and at least `GBUFFER_RESOLVE_STEPS` 8-bit steps
+/// (deferred_msaa_4x shades the marked pixels per sample, so its own error there is 0).
+const GBUFFER_RESOLVE_FACTOR: f64 = 5.0;
+const GBUFFER_RESOLVE_STEPS: f64 = 5.0;
+/// Against reference_ssaa16, where deferred_msaa_4x has an error of its own (4 samples
+/// are not 16), the resolved G-buffer's mean edge error is at least this many times it.
+const GBUFFER_RESOLVE_REFERENCE_FACTOR: f64 = 1.5;
+
+fn color(gpu: &Gpu, pipeline: &str, scene: &str) -> Image {
+    Render::new(pipeline, scene, SIZE)
+        .read(gpu, &["color"])
+        .remove(0)
+}
+
+/// The per-sample image and the edge mask of `scene`.
+fn truth(gpu: &Gpu, scene: &str) -> (Image, Vec<bool>) {
+    let edges = Render::new("deferred_msaa_4x.ron", scene, SIZE)
+        .read(gpu, &["debug.edges"])
+        .remove(0);
+    (
+        color(gpu, "deferred_per_sample_4x.ron", scene),
+        marked(&edges),
+    )
+}
+
+#[test]
+fn gbuffer_resolve_gives_wrong_light_at_edges() {
+    let gpu = gpu();
+    for scene in SCENES {
+        let (per_sample, edges) = truth(&gpu, scene);
+        let reference = color(&gpu, "reference_ssaa16.ron", scene);
+        let msaa = color(&gpu, "deferred_msaa_4x.ron", scene);
+        let resolved = color(&gpu, "deferred_gbuffer_resolve_4x.ron", scene);
+        for (truth, name, factor, steps) in [
+            (
+                &per_sample,
+                "deferred_per_sample_4x",
+                GBUFFER_RESOLVE_FACTOR,
+                GBUFFER_RESOLVE_STEPS,
+            ),
+            (
+                &reference,
+                "reference_ssaa16",
+                GBUFFER_RESOLVE_REFERENCE_FACTOR,
+                0.0,
+            ),
+        ] {
+            let right = diff(&msaa, truth, Some(&edges));
+            let wrong = diff(&resolved, truth, Some(&edges));
+            println!(
+                "{scene} {}x{}: edge error vs {name}: deferred_msaa_4x {right}; \
+                 deferred_gbuffer_resolve_4x {wrong}",
+                SIZE.0, SIZE.1
+            );
+            let needed = (factor * right.mean).max(steps);
+            assert!(
+                wrong.mean >= needed,
+                "{scene}: over the {} edge pixels, deferred_gbuffer_resolve_4x's mean error \
+                 against {name} is {:.2}, less than the {needed:.2} (max({factor} x \
+                 deferred_msaa_4x's {:.2}, {steps})) that lighting a resolved G-buffer should \
+                 cost",
+                wrong.pixels,
+                wrong.mean,
+                right.mean
+            );
+        }
+    }
+}
