@@ -163,6 +163,13 @@ impl Coverage {
         (y * self.n + x) as usize
     }
 
+    /// Each sample's linear color (black for the background), by pixel.
+    pub fn sample_colors(&self) -> impl Fn(u32, u32) -> [[f64; 3]; 4] + '_ {
+        move |x, y| {
+            self.hits[self.index(x, y)].map(|hit| hit.mesh.map_or([0.0; 3], |m| self.colors[m]))
+        }
+    }
+
     /// The resolved linear color: the average of the samples' colors (black background).
     pub fn resolved(&self, x: u32, y: u32) -> [f64; 3] {
         let mut sum = [0.0; 3];
