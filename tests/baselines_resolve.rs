@@ -10,7 +10,7 @@ mod measure;
 
 use deferred_support::{gpu, Image, Render};
 use graph_core::gpu::Gpu;
-use measure::{diff, marked};
+use measure::{diff, marked, mean_luma};
 
 const SIZE: (u32, u32) = (96, 64);
 const SCENES: [&str; 2] = ["builtin:spheres", "builtin:dense"];
@@ -23,6 +23,15 @@ const GBUFFER_RESOLVE_STEPS: f64 = 5.0;
 /// Against reference_ssaa16, where deferred_msaa_4x has an error of its own (4 samples
 /// are not 16), the resolved G-buffer's mean edge error is at least this many times it.
 const GBUFFER_RESOLVE_REFERENCE_FACTOR: f64 = 1.5;
+
+/// How much darker deferred_onthefly_resolve_4x's mean edge luma (Rec. 709 on the 8-bit
+/// sRGB values) must be than per-sample shading's, per scene. The darkening is where a
+/// pixel holds a surface and the background (or a light volume's border): builtin:spheres
+/// has long silhouettes against the black sky, builtin:dense's edges are mostly between
+/// two lit surfaces, which the on-the-fly average gets right.
+const ONTHEFLY_DARKER: [(&str, f64); 2] = [("builtin:spheres", 3.0), ("builtin:dense", 0.25)];
+/// Away from edges it shades like per-sample shading: mean difference at most this.
+const ONTHEFLY_NONEDGE_MEAN: f64 = 0.5;
 
 fn color(gpu: &Gpu, pipeline: &str, scene: &str) -> Image {
     Render::new(pipeline, scene, SIZE)
@@ -82,5 +91,35 @@ fn gbuffer_resolve_gives_wrong_light_at_edges() {
                 right.mean
             );
         }
+    }
+}
+
+#[test]
+fn onthefly_resolve_darkens_edges() {
+    let gpu = gpu();
+    for (scene, darker) in ONTHEFLY_DARKER {
+        let (per_sample, edges) = truth(&gpu, scene);
+        let onthefly = color(&gpu, "deferred_onthefly_resolve_4x.ron", scene);
+        let (right, dark) = (mean_luma(&per_sample, &edges), mean_luma(&onthefly, &edges));
+        let nonedges: Vec<bool> = edges.iter().map(|e| !e).collect();
+        let elsewhere = diff(&onthefly, &per_sample, Some(&nonedges));
+        println!(
+            "{scene} {}x{}: mean edge luma over {} pixels: deferred_per_sample_4x {right:.2}, \
+             deferred_onthefly_resolve_4x {dark:.2}; off edges: {elsewhere}",
+            SIZE.0,
+            SIZE.1,
+            edges.iter().filter(|&&e| e).count(),
+        );
+        assert!(
+            dark <= right - darker,
+            "{scene}: deferred_onthefly_resolve_4x's mean luma over the edge pixels is {dark:.2}, \
+             not {darker} below per-sample shading's {right:.2}: the on-the-fly \
+             resolve should darken edges (seed 004)"
+        );
+        assert!(
+            elsewhere.mean <= ONTHEFLY_NONEDGE_MEAN,
+            "{scene}: deferred_onthefly_resolve_4x differs from per-sample shading away from \
+             edges by {elsewhere}; allowed mean {ONTHEFLY_NONEDGE_MEAN}"
+        );
     }
 }

@@ -9,7 +9,7 @@ use graph_core::gpu::RenderContext;
 use super::{additive, PipelineDesc, Pipelines, TextureBindings, EDGE_STENCIL};
 use crate::gpu_scene::{volumes, GpuScene, SceneCache};
 use crate::plugins::far_depth;
-use crate::plugins::light::{EdgeMode, Frequency, LightDraw};
+use crate::plugins::light::{EdgeMode, Frequency, LightDraw, PixelSamples};
 use crate::scene::DepthConvention;
 
 /// What a light draw rasterizes, and so its depth test and culling.
@@ -73,7 +73,7 @@ pub(crate) fn record(
         let (hdr, depth) = (resources.shape(draw.hdr), resources.shape(draw.depth));
         let passes: Vec<Option<u32>> = match draw.frequency {
             Frequency::Sample(EdgeMode::SampleMask) => (0..hdr.samples).map(Some).collect(),
-            Frequency::Pixel | Frequency::Sample(EdgeMode::SampleIndex) => vec![None],
+            Frequency::Pixel(_) | Frequency::Sample(EdgeMode::SampleIndex) => vec![None],
         };
         ctx.pass
             .set_bind_group(0, scene.bind_group(draw.convention), &[]);
@@ -109,7 +109,8 @@ pub(crate) fn record(
                         Geometry::FrontFaces | Geometry::BackFaces => &volume_buffers,
                     },
                     fragment: match (draw.frequency, key.sample) {
-                        (Frequency::Pixel, _) => "fs_pixel",
+                        (Frequency::Pixel(PixelSamples::First), _) => "fs_pixel",
+                        (Frequency::Pixel(PixelSamples::Average), _) => "fs_pixel_average",
                         (Frequency::Sample(_), None) => "fs_sample",
                         (Frequency::Sample(_), Some(_)) => "fs_one_sample",
                     },
@@ -181,7 +182,7 @@ fn depth_stencil(
     };
     let test = wgpu::StencilFaceState {
         compare: match frequency {
-            Frequency::Pixel => C::NotEqual,
+            Frequency::Pixel(_) => C::NotEqual,
             Frequency::Sample(_) => C::Equal,
         },
         fail_op: wgpu::StencilOperation::Keep,

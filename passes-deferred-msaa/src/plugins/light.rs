@@ -14,7 +14,7 @@
 //!  },
 //!  outputs: { "hdr": "hdr_edges" })
 //! (name: "light_nonedge", plugin: "light_nonedge",
-//!  params: (reversed_z: true, volumes: true),
+//!  params: (reversed_z: true, volumes: true, samples: first),   // or samples: average
 //!  inputs: { /* the same slots */ "hdr": "hdr_edges" },
 //!  outputs: { "hdr": "hdr_lit" })
 //! ```
@@ -32,7 +32,9 @@
 //! half-float maximum.
 //!
 //! `light_nonedge` shades from sample 0 at the pixel center and writes every sample the
-//! volume covers. `light_edge` shades each sample at its own position and depth (read
+//! volume covers. With `samples: average` it shades every sample and writes their
+//! average instead: seed 004's on-the-fly resolve, a baseline that darkens edges
+//! (pipelines/deferred_onthefly_resolve_4x.ron). `light_edge` shades each sample at its own position and depth (read
 //! from the read-only depth attachment, as the volume test saw it): `sample_index` runs
 //! the fragment shader per sample (`@builtin(sample_index)`); `sample_mask` draws everything once per sample with the
 //! pipeline's multisample mask `1 << i` and the sample to read as a pipeline constant
@@ -61,6 +63,19 @@ pub struct LightNonEdgeParams {
     /// (and slow) reference the volumes must match.
     #[serde(default = "yes")]
     pub volumes: bool,
+    #[serde(default)]
+    pub samples: PixelSamples,
+}
+
+/// Which G-buffer samples `light_nonedge` shades a pixel from.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PixelSamples {
+    /// Sample 0 (seed 000's per-pixel pass).
+    #[default]
+    First,
+    /// All of them, averaged after shading (seed 004's on-the-fly resolve).
+    Average,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -87,8 +102,8 @@ pub enum EdgeMode {
 /// Which pixels a light pass shades, and how often.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(crate) enum Frequency {
-    /// Stencil without 0x80, once per pixel from sample 0.
-    Pixel,
+    /// Stencil without 0x80, once per pixel from the given samples.
+    Pixel(PixelSamples),
     /// Stencil 0x80, once per sample.
     Sample(EdgeMode),
 }
@@ -130,7 +145,7 @@ impl Plugin for LightNonEdge {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         let draw = setup(
-            Frequency::Pixel,
+            Frequency::Pixel(params.samples),
             params.reversed_z,
             params.volumes,
             pass,

@@ -29,7 +29,9 @@ pub use edge_stencil::{Detector, EdgeStencil, EdgeStencilParams};
 pub use forward::{Forward, ForwardParams, Shading};
 pub use gbuffer::{GBuffer, GBufferParams};
 pub use gbuffer_resolve::{GBufferResolve, GBufferResolveParams};
-pub use light::{EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams};
+pub use light::{
+    EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams, PixelSamples,
+};
 pub use resolve::{Resolve, ResolveMode, ResolveParams};
 pub use tonemap::{Operator, Tonemap, TonemapParams};
 

@@ -64,6 +64,22 @@ fn fs_pixel(in: LightVaryings) -> @location(0) vec4<f32> {
     return shade_sample(pixel, 0u, surface_position(center, depth), in.light);
 }
 
+// `light_nonedge` with `samples: average`: Killzone 2's on-the-fly resolve (seed 004).
+// Every sample of the pixel is shaded and the average written once, to the samples the
+// draw covers; samples of no surface (or one the light misses) count as black, so edge
+// pixels darken. A baseline to measure, not a way to shade.
+@fragment
+fn fs_pixel_average(in: LightVaryings) -> @location(0) vec4<f32> {
+    let pixel = pixel_of(in.clip);
+    let center = vec2<f32>(pixel) + 0.5;
+    var sum = vec4<f32>(0.0);
+    for (var s = 0u; s < SAMPLES; s++) {
+        let depth = textureLoad(view_depth_tex, pixel, s).r;
+        sum += shade_sample(pixel, s, surface_position(center, depth), in.light);
+    }
+    return sum / f32(SAMPLES);
+}
+
 // Per-sample shading: the sample's surface point is where the rasterizer tested it
 // against the light volume, the sample's depth at the sample's position. (The G-buffer's
 // view depth is the fragment's, interpolated at its centroid: on steep surfaces it can
