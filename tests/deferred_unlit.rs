@@ -94,6 +94,8 @@ fn unlit_pixels_are_the_average_of_their_covered_samples() {
 /// samples see different surfaces, `coverage` exactly the pixels with a visible sample
 /// from a triangle that does not cover the whole pixel (triangle edges inside a shape
 /// included; the yellow-blue intersection excluded), and `centroid` no more than those.
+/// Measured on lavapipe at 64x64: all 4096, none 0, compare 238, coverage 255, centroid
+/// 255 (lavapipe moves the centroid off the center whenever a sample is uncovered).
 #[test]
 fn edge_detectors_mark_the_known_pixels() {
     let gpu = gpu();
@@ -152,7 +154,7 @@ fn edge_detectors_mark_the_known_pixels() {
          visible triangle; differences:\n{}",
         wrong.join("\n")
     );
-    let ambiguous = coverage.count(|_, _, _| true).1;
+    let ambiguous = coverage.ambiguous_count();
     assert!(
         centroid <= coverage_image.count(RED),
         "centroid marked {centroid} pixels, more than the {} partially covered ones",

@@ -123,27 +123,18 @@ impl Coverage {
             let [(e0, d0), (e1, d1), (e2, d2)] = [edge(a, b), edge(b, c), edge(c, a)];
             let inside =
                 (e0 >= 0.0 && e1 >= 0.0 && e2 >= 0.0) || (e0 <= 0.0 && e1 <= 0.0 && e2 <= 0.0);
-            let near_edge = d0.min(d1).min(d2) < AMBIGUOUS_PX;
+            unsure |= d0.min(d1).min(d2) < AMBIGUOUS_PX;
             if !inside {
-                unsure |= near_edge;
                 continue;
             }
-            unsure |= near_edge;
-            let area = e0 + e1 + e2;
             // Barycentric weights: each edge function weighs the opposite corner.
-            let z = (e1 * a.z + e2 * b.z + e0 * c.z) / area;
+            let z = (e1 * a.z + e2 * b.z + e0 * c.z) / (e0 + e1 + e2);
             let hit = Hit {
                 mesh: Some(t.mesh),
                 triangle: t.first,
             };
-            match best {
-                Some((best_z, _))
-                    if (z - best_z).abs() < AMBIGUOUS_DEPTH
-                        && best.is_some_and(|(_, h)| h.mesh != hit.mesh) =>
-                {
-                    unsure = true;
-                }
-                _ => {}
+            if let Some((best_z, best_hit)) = best {
+                unsure |= best_hit.mesh != hit.mesh && (z - best_z).abs() < AMBIGUOUS_DEPTH;
             }
             if best.is_none_or(|(best_z, _)| z > best_z) {
                 best = Some((z, hit));
@@ -223,18 +214,8 @@ impl Coverage {
         })
     }
 
-    /// Pixels where `judge` holds, not counting ambiguous ones, and the ambiguous count.
-    pub fn count(&self, judge: impl Fn(&Coverage, u32, u32) -> bool) -> (usize, usize) {
-        let (mut count, mut ambiguous) = (0, 0);
-        for y in 0..self.n {
-            for x in 0..self.n {
-                if self.is_ambiguous(x, y) {
-                    ambiguous += 1;
-                } else if judge(self, x, y) {
-                    count += 1;
-                }
-            }
-        }
-        (count, ambiguous)
+    /// How many pixels are ambiguous.
+    pub fn ambiguous_count(&self) -> usize {
+        self.ambiguous.iter().filter(|&&a| a).count()
     }
 }
