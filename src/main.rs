@@ -2,6 +2,7 @@
 
 mod cli;
 mod commands;
+mod frame;
 mod registry;
 
 use std::process::ExitCode;

@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use image::codecs::png::PngEncoder;
-use image::{ExtendedColorType, ImageEncoder};
+use image::{ExtendedColorType, ImageEncoder, RgbaImage};
 
 use super::error::RenderError;
 use crate::commands::write_atomically;
@@ -38,19 +38,15 @@ pub fn check(path: &Path) -> Result<(), RenderError> {
     Ok(())
 }
 
-/// Encodes the texels (sRGB-encoded RGBA8, top row first) as a PNG and writes it through
-/// a temporary file and a rename.
-pub fn write_png(
-    path: &Path,
-    (width, height): (u32, u32),
-    texels: &[[u8; 4]],
-) -> Result<(), RenderError> {
+/// Encodes the image (sRGB-encoded RGBA8) as a PNG and writes it through a temporary file
+/// and a rename.
+pub fn write_png(path: &Path, image: &RgbaImage) -> Result<(), RenderError> {
     let mut png = Vec::new();
     PngEncoder::new(&mut png)
         .write_image(
-            texels.as_flattened(),
-            width,
-            height,
+            image.as_raw(),
+            image.width(),
+            image.height(),
             ExtendedColorType::Rgba8,
         )
         .map_err(|e| RenderError::Output(format!("cannot encode {}: {e}", path.display())))?;

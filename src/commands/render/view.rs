@@ -1,11 +1,8 @@
 //! Views and graph outputs: `final` is the pipeline's "color" output, any other view NAME
 //! its "debug.NAME" output (the contract every deferred pipeline keeps).
 
-use std::path::Path;
-
-use graph_core::file::LoadedGraph;
-
 use super::error::RenderError;
+use crate::frame::FrameError;
 
 const FINAL: &str = "final";
 const FINAL_OUTPUT: &str = "color";
@@ -20,18 +17,18 @@ pub fn output_name(view: &str) -> String {
     }
 }
 
-/// Keeps only `view`'s output exported, so compiling culls the passes only the other
-/// views need. An output the pipeline lacks is an error listing the views it has.
-pub fn select(loaded: &mut LoadedGraph, view: &str, pipeline: &Path) -> Result<(), RenderError> {
-    let output = output_name(view);
-    loaded
-        .keep_outputs(&[output.as_str()])
-        .map_err(|e| RenderError::UnknownView {
+/// A view the pipeline lacks becomes an error listing the views it has; other errors
+/// pass through.
+pub fn unknown(error: FrameError, view: &str) -> RenderError {
+    match error {
+        FrameError::NotAnOutput { pipeline, source } => RenderError::UnknownView {
             view: view.to_string(),
-            pipeline: pipeline.to_path_buf(),
-            output: output.clone(),
-            offered: offered(e.outputs.iter().map(String::as_str)),
-        })
+            pipeline,
+            output: source.name,
+            offered: offered(source.outputs.iter().map(String::as_str)),
+        },
+        other => RenderError::Frame(other),
+    }
 }
 
 /// The views among a pipeline's outputs, `final` first.

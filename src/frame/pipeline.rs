@@ -1,0 +1,64 @@
+//! A pipeline file loaded for one scene, keeping only the outputs a command reads.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use graph_core::file::{load_file, ErrorKind, FileErrors, LoadedGraph};
+use passes_deferred_msaa::scene::Scene;
+use passes_deferred_msaa::{Host, Overrides};
+
+use super::FrameError;
+use crate::registry::registry_for;
+
+/// What the deferred plugins draw: `scene` with `overrides`.
+pub fn host(scene: Arc<Scene>, overrides: Overrides) -> Arc<Host> {
+    Arc::new(Host { scene, overrides })
+}
+
+/// A loaded graph file whose exports are exactly the outputs asked for, so compiling it
+/// culls the passes only the other outputs need.
+pub struct Pipeline {
+    pub path: PathBuf,
+    pub loaded: LoadedGraph,
+    /// The outputs kept, in the order asked for.
+    pub outputs: Vec<String>,
+}
+
+impl Pipeline {
+    /// Loads `path` with the plugins drawing `host`'s scene.
+    pub fn load(path: &Path, host: Arc<Host>, outputs: &[&str]) -> Result<Self, FrameError> {
+        let loaded = load_file(path, &registry_for(Some(host))).map_err(|e| file_error(path, e))?;
+        Self::keep(path, loaded, outputs)
+    }
+
+    fn keep(path: &Path, mut loaded: LoadedGraph, outputs: &[&str]) -> Result<Self, FrameError> {
+        loaded
+            .keep_outputs(outputs)
+            .map_err(|source| FrameError::NotAnOutput {
+                pipeline: path.to_path_buf(),
+                source,
+            })?;
+        Ok(Pipeline {
+            path: path.to_path_buf(),
+            loaded,
+            outputs: outputs.iter().map(|o| o.to_string()).collect(),
+        })
+    }
+}
+
+/// An unreadable file is an I/O problem; anything else in it makes it invalid.
+fn file_error(path: &Path, errors: FileErrors) -> FrameError {
+    let unreadable = errors.0.iter().find_map(|e| match &e.kind {
+        ErrorKind::Unreadable { reason } if Path::new(&e.location.path) == path => {
+            Some(reason.clone())
+        }
+        _ => None,
+    });
+    match unreadable {
+        Some(reason) => FrameError::PipelineUnreadable {
+            path: path.to_path_buf(),
+            reason,
+        },
+        None => FrameError::Pipeline(errors),
+    }
+}

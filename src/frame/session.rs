@@ -1,0 +1,120 @@
+//! An open device, and pipelines compiled for it.
+
+use graph_core::file::LoadedGraph;
+use graph_core::gpu::{AdapterChoice, Executor, Gpu};
+use graph_core::types::TextureFormat;
+use graph_core::{CompileOptions, DeviceProfile, Origin, Plan, ResourceId};
+
+use super::{FrameError, Pipeline, Prepared};
+
+/// The device every frame of a command runs on, and what it can do.
+pub struct Session {
+    pub gpu: Gpu,
+    pub profile: DeviceProfile,
+}
+
+impl Session {
+    pub fn open(choice: &AdapterChoice) -> Result<Self, FrameError> {
+        let gpu = Gpu::open(choice)?;
+        let profile = gpu.profile();
+        Ok(Session { gpu, profile })
+    }
+
+    /// Compiles `pipeline` for this device at `size` and checks, before any GPU work,
+    /// that the command line can run it: nothing imported, every kept output readable.
+    pub fn prepare(
+        &self,
+        pipeline: Pipeline,
+        size: (u32, u32),
+    ) -> Result<Prepared<'_>, FrameError> {
+        self.check_size(size)?;
+        let plan = pipeline
+            .loaded
+            .compile(&CompileOptions {
+                output_size: size,
+                profile: self.profile.clone(),
+            })
+            .map_err(FrameError::Pipeline)?;
+        no_imports(&plan, &pipeline)?;
+        let outputs = pipeline
+            .outputs
+            .iter()
+            .map(|o| {
+                Ok((
+                    o.clone(),
+                    readable_output(&pipeline.loaded, &plan, o, &pipeline)?,
+                ))
+            })
+            .collect::<Result<_, FrameError>>()?;
+        Ok(Prepared::new(
+            &self.gpu,
+            pipeline,
+            plan,
+            Executor::new(&self.gpu),
+            outputs,
+        ))
+    }
+
+    /// Both dimensions must fit the device.
+    fn check_size(&self, (width, height): (u32, u32)) -> Result<(), FrameError> {
+        let max = self.profile.limits.max_texture_dimension_2d;
+        for (flag, value) in [("width", width), ("height", height)] {
+            if value > max {
+                return Err(FrameError::TooLarge {
+                    flag,
+                    value,
+                    max,
+                    adapter: self.profile.name.clone(),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The resource behind `output`, when it is an 8-bit RGBA texture the graph creates (the
+/// executor keeps those for readback; imported ones belong to an engine the CLI is not).
+fn readable_output(
+    loaded: &LoadedGraph,
+    plan: &Plan,
+    output: &str,
+    pipeline: &Pipeline,
+) -> Result<ResourceId, FrameError> {
+    let unreadable = |found: String| FrameError::unreadable(output, &pipeline.path, found);
+    let handle = loaded
+        .names
+        .get(output)
+        .ok_or_else(|| unreadable("not declared".into()))?;
+    let planned = plan.resource(handle.id());
+    let shape = planned
+        .texture
+        .ok_or_else(|| unreadable("a buffer".into()))?;
+    if planned.origin == Origin::Imported {
+        return Err(unreadable("an imported texture".into()));
+    }
+    match shape.format {
+        TextureFormat::Rgba8UnormSrgb | TextureFormat::Rgba8Unorm if shape.samples == 1 => {
+            Ok(handle.id())
+        }
+        format => Err(unreadable(format!(
+            "{format:?} with {} sample(s)",
+            shape.samples
+        ))),
+    }
+}
+
+/// The command line has no engine to bind imported resources from: say so before
+/// executing, rather than with the executor's advice to call `Imports::texture`.
+fn no_imports(plan: &Plan, pipeline: &Pipeline) -> Result<(), FrameError> {
+    let used = plan
+        .resources
+        .iter()
+        .find(|r| r.origin == Origin::Imported && r.lifetime.is_some());
+    match used {
+        Some(import) => Err(FrameError::Imports {
+            pipeline: pipeline.path.clone(),
+            resource: import.name.clone(),
+        }),
+        None => Ok(()),
+    }
+}
