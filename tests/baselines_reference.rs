@@ -55,10 +55,10 @@ fn downsample_averages_exactly_four_texels() {
     for y in 0..h {
         for x in 0..w {
             let texel = |dx: u32, dy: u32| big[((2 * y + dy) * 2 * w + 2 * x + dx) as usize];
-            for c in 0..3 {
+            let blitted = small[(y * w + x) as usize];
+            for (c, got) in blitted.into_iter().enumerate().take(3) {
                 let average =
                     (texel(0, 0)[c] + texel(1, 0)[c] + texel(0, 1)[c] + texel(1, 1)[c]) / 4.0;
-                let got = small[(y * w + x) as usize][c];
                 // An exact average rounded to half float is off by half an ulp (2^-11
                 // relative); lavapipe's filter rounds once more. Allow 2 ulps: weights off
                 // by one 8-bit filter step (1/256) would miss by several at edges.
