@@ -55,6 +55,11 @@ impl DeviceProfile {
         samples == 1 || self.format(format).flags.sample_count_supported(samples)
     }
 
+    /// Whether the device has the features `format` needs and supports it with `samples`.
+    pub fn can_make(&self, format: TextureFormat, samples: u32) -> bool {
+        self.features.contains(format.required_features()) && self.supports_samples(format, samples)
+    }
+
     pub fn can_render(&self, format: TextureFormat) -> bool {
         self.format(format)
             .allowed_usages

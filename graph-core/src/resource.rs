@@ -40,6 +40,11 @@ impl Size {
 #[serde(deny_unknown_fields)]
 pub struct TextureDesc {
     pub format: TextureFormat,
+    /// Used instead of `format` on devices that cannot make `format` with this sample
+    /// count (`depth32float-stencil8` needs a feature, say). Plugins must accept both, so
+    /// the fallback should be of the same kind (aspects and sample type).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fallback: Option<TextureFormat>,
     #[serde(default)]
     pub size: Size,
     #[serde(default = "one")]
@@ -59,11 +64,21 @@ impl TextureDesc {
     pub fn new(format: TextureFormat) -> Self {
         Self {
             format,
+            fallback: None,
             size: Size::Relative(1.0),
             samples: 1,
             mips: 1,
             layers: 1,
         }
+    }
+    /// See [`TextureDesc::fallback`].
+    pub fn or(mut self, fallback: TextureFormat) -> Self {
+        self.fallback = Some(fallback);
+        self
+    }
+    /// The formats the texture may have: `format`, then the fallback.
+    pub fn formats(&self) -> impl Iterator<Item = TextureFormat> {
+        std::iter::once(self.format).chain(self.fallback)
     }
     pub fn size(mut self, size: Size) -> Self {
         self.size = size;

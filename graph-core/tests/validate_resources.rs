@@ -236,3 +236,44 @@ fn exporting_a_texture_no_pass_writes_is_an_error_unless_imported() {
     g.export(t);
     assert!(g.build().compile(&CompileOptions::default()).is_ok());
 }
+
+/// `depth32float-stencil8` needs a feature the WebGPU defaults lack: with a fallback the
+/// graph compiles everywhere and gets the better format where the device has it.
+#[test]
+fn a_fallback_format_is_used_only_where_the_first_choice_is_missing() {
+    use graph_core::types::TextureFormat::{Depth24PlusStencil8, Depth32FloatStencil8};
+    let format_on = |profile: DeviceProfile| {
+        let mut g = GraphBuilder::new();
+        g.import_texture(
+            "depth",
+            TextureDesc::new(Depth32FloatStencil8)
+                .or(Depth24PlusStencil8)
+                .samples(4),
+        );
+        let options = CompileOptions {
+            profile,
+            ..CompileOptions::default()
+        };
+        let plan = g
+            .build()
+            .compile(&options)
+            .expect("compiles with the fallback");
+        plan.find("depth").and_then(|r| r.texture).map(|s| s.format)
+    };
+    assert_eq!(
+        format_on(DeviceProfile::webgpu()),
+        Some(Depth24PlusStencil8)
+    );
+    let mut capable = DeviceProfile::webgpu();
+    capable.features = Features::DEPTH32FLOAT_STENCIL8;
+    assert_eq!(format_on(capable), Some(Depth32FloatStencil8));
+}
+
+#[test]
+fn a_fallback_of_another_kind_is_an_error() {
+    let error = texture_error(tex(Rgba16Float).or(graph_core::types::TextureFormat::Rgba8Uint));
+    assert_eq!(
+        error.to_string(),
+        r#""t": fallback rgba8uint is not the same kind of format as rgba16float (aspects and sample type must agree, since passes are written for both)"#
+    );
+}

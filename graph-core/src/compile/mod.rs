@@ -48,7 +48,7 @@ impl Graph {
     /// and resource; a graph that compiles is one the executor can run on a device that
     /// matches the profile. The graph itself is not changed.
     pub fn compile(&self, options: &CompileOptions) -> Result<Plan, GraphErrors> {
-        let shapes = self.resolve_shapes(options.output_size);
+        let shapes = self.resolve_shapes(options.output_size, &options.profile);
         let versions = Versions::index(self);
         self.validate(&shapes, &versions, &options.profile)?;
         let live = cull::cull(self, &versions);
@@ -71,14 +71,25 @@ impl Graph {
         ))
     }
 
-    fn resolve_shapes(&self, output: (u32, u32)) -> Vec<Option<TextureShape>> {
+    /// Sizes resolved against the output, and each texture's format: the first of its
+    /// formats the profile can make with its sample count (else the first, which
+    /// validation then rejects with the reason).
+    fn resolve_shapes(
+        &self,
+        output: (u32, u32),
+        profile: &DeviceProfile,
+    ) -> Vec<Option<TextureShape>> {
         self.resources
             .iter()
             .map(|r| match &r.desc {
                 ResourceDesc::Texture(t) => {
                     let (width, height) = t.size.resolve(output);
+                    let format = t
+                        .formats()
+                        .find(|&f| profile.can_make(f, t.samples))
+                        .unwrap_or(t.format);
                     Some(TextureShape {
-                        format: t.format,
+                        format,
                         width,
                         height,
                         samples: t.samples,

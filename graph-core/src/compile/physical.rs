@@ -122,12 +122,9 @@ fn assign<K: Hash + Eq>(
 }
 
 pub(super) fn shape_bytes(shape: &TextureShape) -> u64 {
-    crate::resource::TextureDesc {
-        format: shape.format,
-        size: crate::resource::Size::Absolute(shape.width, shape.height),
-        samples: shape.samples,
-        mips: shape.mips,
-        layers: shape.layers,
-    }
-    .bytes((shape.width, shape.height))
+    crate::resource::TextureDesc::new(shape.format)
+        .samples(shape.samples)
+        .mips(shape.mips)
+        .layers(shape.layers)
+        .bytes((shape.width, shape.height))
 }

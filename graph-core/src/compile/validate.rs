@@ -27,7 +27,15 @@ pub(super) fn resources(
             what,
         };
         match (&resource.desc, shape) {
-            (ResourceDesc::Texture(_), Some(s)) => {
+            (ResourceDesc::Texture(t), Some(s)) => {
+                if let Some(fallback) = t.fallback.filter(|&f| !same_kind(f, t.format)) {
+                    errors.push(invalid(format!(
+                        "fallback {} is not the same kind of format as {} (aspects and \
+                         sample type must agree, since passes are written for both)",
+                        format_name(fallback),
+                        format_name(t.format)
+                    )));
+                }
                 if s.width == 0 || s.height == 0 {
                     errors.push(GraphError::ZeroSize {
                         resource: name(),
@@ -111,6 +119,14 @@ pub(super) fn resources(
             ));
         }
     }
+}
+
+/// Whether passes written for one format can use the other: same aspects, same sample
+/// type.
+fn same_kind(a: TextureFormat, b: TextureFormat) -> bool {
+    a.has_depth_aspect() == b.has_depth_aspect()
+        && a.has_stencil_aspect() == b.has_stencil_aspect()
+        && a.sample_type(None, None) == b.sample_type(None, None)
 }
 
 /// Checks every pass's accesses: roles its kind allows, data that exists, formats that fit
