@@ -20,6 +20,7 @@ mod measure;
 use deferred_support::{gpu, Image, Render};
 use graph_core::gpu::Gpu;
 use measure::{diff, marked, pixel_diff, where_true};
+use passes_deferred_msaa::Overrides;
 
 const SIZE: (u32, u32) = (96, 64);
 const SCENES: [&str; 2] = ["builtin:spheres", "builtin:dense"];
@@ -149,6 +150,42 @@ fn compare_detector_differs_only_where_it_marked_nothing() {
              pixels its detector marked (shaded per sample): {:?}",
             PER_PIXEL.max,
             where_true(&beyond_marked, SIZE.0, 12)
+        );
+    }
+}
+
+/// Unlit and emissive surfaces take the deferred path's route: their color is what the
+/// G-buffer pass writes into the HDR target, per covered sample, so on builtin:unlit
+/// (flat unlit shapes, tests/deferred_unlit.rs ties deferred_msaa_4x to the exact
+/// coverage) forward MSAA gives the same linear output, in both shading modes.
+#[test]
+fn unlit_scene_matches_deferred() {
+    let gpu = gpu();
+    let linear = Overrides {
+        tonemap: Some("none".into()),
+        exposure: Some(1.0),
+    };
+    let scene = "builtin:unlit";
+    let deferred = Render::new("deferred_msaa_4x.ron", scene, SIZE)
+        .overrides(linear.clone())
+        .read(&gpu, &["color"])
+        .remove(0);
+    for shading in ["pixel", "sample"] {
+        let to = format!("shading: {shading}");
+        let forward = Render::new("forward_msaa_4x.ron", scene, SIZE)
+            .edit("shading: pixel", &to)
+            .overrides(linear.clone())
+            .read(&gpu, &["color"])
+            .remove(0);
+        let d = diff(&deferred, &forward, None);
+        println!(
+            "{scene} {}x{}: forward per {shading} vs deferred_msaa_4x: {d}",
+            SIZE.0, SIZE.1
+        );
+        assert!(
+            d.max <= 1,
+            "{scene}: forward_msaa_4x (shading: {shading}) differs from deferred_msaa_4x by {d}, \
+             more than 1 step: unlit colors must reach the output the same way"
         );
     }
 }
