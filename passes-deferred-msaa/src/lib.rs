@@ -2,7 +2,8 @@
 //!
 //! - [`scene`]: the CPU scene model and its loaders.
 //! - [`plugins`]: the pass plugins graph files name (`gbuffer`, `edge_stencil`,
-//!   `light_edge`, `light_nonedge`, `resolve`, `tonemap`, `debug_view`).
+//!   `light_edge`, `light_nonedge`, `resolve`, `tonemap`, `debug_view`), and the
+//!   baselines' `forward` and `gbuffer_resolve`.
 //! - [`gpu_scene`] (feature `gpu`): the scene on the device, shared by the plugins and
 //!   reusable by other passes that draw it.
 //!

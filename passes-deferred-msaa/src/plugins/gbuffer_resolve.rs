@@ -43,6 +43,14 @@ pub struct GBufferResolveParams {
     pub reversed_z: bool,
 }
 
+/// The output slots, in the order of [`GBUFFER_INPUTS`] (and of the shader's locations).
+const OUTPUTS: [(&str, &str); 4] = [
+    ("resolved_albedo", "the resolved albedo"),
+    ("resolved_normal", "the resolved normals"),
+    ("resolved_material", "the resolved material"),
+    ("resolved_view_depth", "the resolved view depth"),
+];
+
 /// The resolve as set up: what `gpu::gbuffer_resolve` records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct GBufferResolveDraw {
@@ -100,10 +108,9 @@ impl Plugin for GBufferResolve {
             pass.depth_stencil(h, AspectAccess::Clear(far), AspectAccess::Clear(0))
         })?;
         let mut targets = Vec::new();
-        for (slot, what, formats, _) in GBUFFER_INPUTS {
+        for ((slot, what), (_, _, formats, _)) in OUTPUTS.into_iter().zip(GBUFFER_INPUTS) {
             let want = Want::new(what, formats).samples(1);
-            let slot = format!("resolved_{slot}");
-            targets.push(textures::color_output(slots, pass, &slot, want, [0.0; 4])?.0);
+            targets.push(textures::color_output(slots, pass, slot, want, [0.0; 4])?.0);
         }
         let draw = GBufferResolveDraw {
             source: shaders::GBUFFER_RESOLVE

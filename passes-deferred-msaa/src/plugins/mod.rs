@@ -2,6 +2,9 @@
 //! `gbuffer` → `edge_stencil` → `light_edge` + `light_nonedge` → `resolve` → `tonemap`,
 //! with `debug_view` passes reading the G-buffer beside them; `pipelines/deferred_*.ron`
 //! are complete examples. Each plugin's module documents its parameters and slots.
+//! The baselines add `forward` (the scene lit per fragment, pipelines/forward_msaa_4x.ron
+//! and reference_ssaa16.ron) and `gbuffer_resolve` (the G-buffer averaged before
+//! lighting, pipelines/deferred_gbuffer_resolve_4x.ron).
 //!
 //! The G-buffer slots every pass uses the same names for: `albedo`, `normal`,
 //! `material`, `view_depth`, `hdr` and `depth` (the multisampled depth-stencil).

@@ -131,7 +131,7 @@ fn check(
     }
     match want.samples {
         Some(samples) if samples != desc.samples => Err(error(format!(
-            "has {} sample(s), but {} must have {samples} like the G-buffer's depth-stencil",
+            "has {} sample(s), but {} must have {samples}",
             desc.samples, want.what
         ))),
         _ => Ok(desc),
