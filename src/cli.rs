@@ -61,6 +61,24 @@ pub enum Command {
         rgraph render --pipeline pipelines/deferred_msaa_4x.ron --scene model.glb \\\n      \
         --tonemap aces --exposure 1.5 --adapter gpu --out model.png")]
     Render(RenderArgs),
+    /// Measure every pipeline on every scene: GPU time per pass and frame, memory, edge
+    /// work, and image error against a supersampled reference.
+    ///
+    /// For each scene and pipeline: warmup frames, then measured frames (median and spread
+    /// of GPU and CPU times), the plan's memory, the edge mask's share of pixels and the
+    /// shading work it implies, and FLIP and PSNR against the reference, on all pixels and
+    /// on edge pixels. Writes results.json, results.md, charts and images to --out-dir.
+    /// A row that cannot be measured (unknown pipeline or scene, a compile or device
+    /// failure) is an error row; the rest are still measured.
+    ///
+    /// Exit status: 0 when at least one row was measured, 1 when none could be, 2 for
+    /// usage, I/O and adapter problems.
+    #[command(after_long_help = "Examples:\n  \
+        rgraph bench --out-dir bench/out\n  \
+        rgraph bench --scene builtin:dense --pipeline pipelines/deferred_noaa.ron \\\n      \
+        --pipeline pipelines/deferred_msaa_4x.ron --width 640 --height 360 --out-dir out\n  \
+        rgraph bench --sweep lights --scene builtin:lights --out-dir out/lights")]
+    Bench(BenchArgs),
     /// List the GPU adapters wgpu can use, with their features and sample counts.
     Adapters {
         /// Also write the profile (limits, features, format capabilities) of the adapter
@@ -123,6 +141,65 @@ pub struct RenderArgs {
     pub out: PathBuf,
 }
 
+/// What `rgraph bench` measures and where it writes the results.
+#[derive(clap::Args)]
+pub struct BenchArgs {
+    /// A scene to measure on (repeat for several): a glTF file or builtin:NAME[?params]
+    /// (default: every built-in scene).
+    #[arg(long = "scene", value_name = "PATH|builtin:NAME")]
+    pub scenes: Vec<String>,
+    /// A pipeline to measure (repeat for several; default: every file in pipelines/ that
+    /// exports "color").
+    #[arg(long = "pipeline", value_name = "FILE")]
+    pub pipelines: Vec<PathBuf>,
+    /// Image width in pixels.
+    #[arg(long, value_name = "W", default_value_t = 1280, value_parser = parse_dimension)]
+    pub width: u32,
+    /// Image height in pixels.
+    #[arg(long, value_name = "H", default_value_t = 720, value_parser = parse_dimension)]
+    pub height: u32,
+    /// Measured frames per scene and pipeline, after the warmup.
+    #[arg(long, value_name = "N", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..))]
+    pub frames: u32,
+    /// Frames run and discarded first (the first uploads the scene and creates pipelines).
+    #[arg(long, value_name = "M", default_value_t = 2)]
+    pub warmup: u32,
+    /// The supersampled reference errors are measured against.
+    #[arg(
+        long,
+        value_name = "FILE",
+        default_value = "pipelines/reference_ssaa16.ron"
+    )]
+    pub reference: PathBuf,
+    /// Shading samples per pixel of the reference: 16 runs --reference as written (4x MSAA
+    /// at twice the size, every sample shaded), 4 the same at the output size.
+    #[arg(long, value_name = "SPP", default_value_t = 16, value_parser = parse_spp)]
+    pub reference_spp: u32,
+    /// Measure how cost grows instead: lights 1..1024 (builtin:lights?count=N), resolution
+    /// 720p..2160p, or samples 1, 2, 4, 8 (those the device lacks become error rows).
+    #[arg(long, value_enum)]
+    pub sweep: Option<Sweep>,
+    /// Adapter to measure on: lavapipe, gpu, or part of an adapter's name (default:
+    /// $RGRAPH_ADAPTER, else lavapipe).
+    #[arg(long)]
+    pub adapter: Option<String>,
+    /// Where results.json, results.md, the charts and the images go (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: PathBuf,
+}
+
+/// What `rgraph bench --sweep` varies.
+#[derive(Copy, Clone, PartialEq, Eq, ValueEnum, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Sweep {
+    /// builtin:lights?count=N for N = 1, 4, 16, 64, 256, 1024.
+    Lights,
+    /// 1280x720, 1920x1080, 2560x1440, 3840x2160.
+    Resolution,
+    /// Each pipeline's multisampled targets at 1, 2, 4 and 8 samples.
+    Samples,
+}
+
 /// Tone-mapping operators of the resolve pass.
 #[derive(Copy, Clone, PartialEq, Eq, ValueEnum)]
 pub enum Tonemap {
@@ -176,6 +253,15 @@ fn parse_dimension(text: &str) -> Result<u32, String> {
         Ok(0) => Err("must be at least 1".into()),
         Ok(v) => Ok(v),
         Err(_) => Err("expected a whole number of pixels".into()),
+    }
+}
+
+/// Shading samples per pixel of the reference: the two the reference file can make.
+fn parse_spp(text: &str) -> Result<u32, String> {
+    match text.trim() {
+        "16" => Ok(16),
+        "4" => Ok(4),
+        _ => Err("expected 16 (the reference file as written) or 4 (at the output size)".into()),
     }
 }
 

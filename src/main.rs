@@ -21,6 +21,7 @@ fn main() -> ExitCode {
             target,
         } => commands::explain::run(pipeline, *format, target),
         Command::Render(args) => commands::render::run(args),
+        Command::Bench(args) => commands::bench::run(args),
         Command::Adapters {
             save_profile,
             adapter,

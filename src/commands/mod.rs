@@ -1,6 +1,7 @@
 //! One module per subcommand, and what they share: errors with exit codes, atomic writes.
 
 pub mod adapters;
+pub mod bench;
 pub mod explain;
 pub mod render;
 pub mod target;

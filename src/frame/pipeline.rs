@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use graph_core::file::{load_file, ErrorKind, FileErrors, LoadedGraph};
+use graph_core::file::{load_file, load_str, ErrorKind, FileErrors, LoadedGraph};
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Host, Overrides};
 
@@ -22,6 +22,8 @@ pub struct Pipeline {
     pub loaded: LoadedGraph,
     /// The outputs kept, in the order asked for.
     pub outputs: Vec<String>,
+    /// Every output the file declares, sorted.
+    pub offered: Vec<String>,
 }
 
 impl Pipeline {
@@ -31,7 +33,21 @@ impl Pipeline {
         Self::keep(path, loaded, outputs)
     }
 
+    /// Loads `text` as if it were the file `path` (relative shader paths resolve from
+    /// there): for variants of a file made by rewriting it.
+    pub fn from_text(
+        path: &Path,
+        text: &str,
+        host: Arc<Host>,
+        outputs: &[&str],
+    ) -> Result<Self, FrameError> {
+        let loaded =
+            load_str(path, text, &registry_for(Some(host))).map_err(FrameError::Pipeline)?;
+        Self::keep(path, loaded, outputs)
+    }
+
     fn keep(path: &Path, mut loaded: LoadedGraph, outputs: &[&str]) -> Result<Self, FrameError> {
+        let offered = loaded.outputs().iter().map(|o| o.to_string()).collect();
         loaded
             .keep_outputs(outputs)
             .map_err(|source| FrameError::NotAnOutput {
@@ -42,6 +58,7 @@ impl Pipeline {
             path: path.to_path_buf(),
             loaded,
             outputs: outputs.iter().map(|o| o.to_string()).collect(),
+            offered,
         })
     }
 }

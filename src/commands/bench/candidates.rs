@@ -1,0 +1,107 @@
+//! What a bench measures: the scenes and the pipelines, from the arguments or the defaults.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use graph_core::file::load_file;
+use passes_deferred_msaa::scene::{builtin_names, BUILTIN_PREFIX};
+use passes_deferred_msaa::Host;
+
+use crate::frame::{FrameError, Pipeline};
+use crate::registry::registry;
+
+/// The directory the default pipelines come from.
+pub const PIPELINE_DIR: &str = "pipelines";
+/// The output every measured pipeline exports: its final image.
+pub const COLOR: &str = "color";
+
+/// A pipeline to measure: a file, or a variant of one made by rewriting its text.
+#[derive(Clone, Debug)]
+pub struct Candidate {
+    /// The name rows and charts show: the file stem, plus the variant.
+    pub name: String,
+    pub path: PathBuf,
+    /// The rewritten text of a variant; `None` to read the file.
+    pub text: Option<String>,
+}
+
+impl Candidate {
+    pub fn file(path: &Path) -> Candidate {
+        Candidate {
+            name: stem(path),
+            path: path.to_path_buf(),
+            text: None,
+        }
+    }
+
+    /// The file stem, without any variant suffix.
+    pub fn stem(&self) -> String {
+        stem(&self.path)
+    }
+
+    pub fn load(&self, host: Arc<Host>, outputs: &[&str]) -> Result<Pipeline, FrameError> {
+        match &self.text {
+            Some(text) => Pipeline::from_text(&self.path, text, host, outputs),
+            None => Pipeline::load(&self.path, host, outputs),
+        }
+    }
+}
+
+/// `--scene` values, else every built-in scene.
+pub fn scenes(asked: &[String]) -> Vec<String> {
+    if !asked.is_empty() {
+        return asked.to_vec();
+    }
+    builtin_names()
+        .iter()
+        .map(|b| format!("{BUILTIN_PREFIX}{}", b.name))
+        .collect()
+}
+
+/// `--pipeline` values, else every file in `pipelines/` that exports "color", sorted; the
+/// second list says which files were left out and why.
+pub fn pipelines(asked: &[PathBuf]) -> (Vec<Candidate>, Vec<String>) {
+    if !asked.is_empty() {
+        return (
+            asked.iter().map(|p| Candidate::file(p)).collect(),
+            Vec::new(),
+        );
+    }
+    let mut files: Vec<PathBuf> = std::fs::read_dir(PIPELINE_DIR)
+        .into_iter()
+        .flatten()
+        .filter_map(|e| Some(e.ok()?.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    files.sort();
+    let mut notes = Vec::new();
+    let mut kept = Vec::new();
+    for file in files {
+        // Loading without a scene checks the outputs without a device; a file that fails
+        // to load stays in the list and becomes an error row with the loader's message.
+        let exports_color = load_file(&file, &registry())
+            .map(|g| g.outputs().contains(&COLOR))
+            .unwrap_or(true);
+        if exports_color {
+            kept.push(Candidate::file(&file));
+        } else {
+            notes.push(format!(
+                "{} skipped: a generic demo, it exports no \"{COLOR}\" output",
+                file.display()
+            ));
+        }
+    }
+    if kept.is_empty() {
+        notes.push(format!(
+            "no pipeline in {PIPELINE_DIR}/ (run from the repository root, or pass --pipeline)"
+        ));
+    }
+    (kept, notes)
+}
+
+fn stem(path: &Path) -> String {
+    path.file_stem().map_or_else(
+        || path.display().to_string(),
+        |s| s.to_string_lossy().into_owned(),
+    )
+}

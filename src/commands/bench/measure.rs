@@ -1,0 +1,116 @@
+//! Measuring one pipeline on one scene: warmup frames, measured frames, the plan's memory,
+//! the final image, and the edge mask rendered in the same setup.
+
+use std::sync::Arc;
+
+use graph_core::gpu::FrameReport;
+use image::RgbaImage;
+use passes_deferred_msaa::Host;
+
+use super::candidates::{Candidate, COLOR};
+use super::memory::Memory;
+use super::results::{Figures, PassFigures};
+use super::stats::Spread;
+use super::work::{sampling, EdgeMask, Work, EDGES_OUTPUT};
+use crate::frame::{FrameError, Session};
+
+/// What every measurement of one run shares.
+pub struct Setup<'a> {
+    pub session: &'a Session,
+    pub size: (u32, u32),
+    pub frames: u32,
+    pub warmup: u32,
+}
+
+/// The figures, the last measured frame's image, and the edge mask when there is one.
+pub struct Measured {
+    pub figures: Figures,
+    pub color: RgbaImage,
+    pub edges: Option<EdgeMask>,
+}
+
+impl Setup<'_> {
+    /// Times `candidate`'s "color" (only the passes it needs run), then renders its
+    /// "debug.edges", when it has one, in a second graph of the same size.
+    pub fn measure(&self, candidate: &Candidate, host: &Arc<Host>) -> Result<Measured, FrameError> {
+        let pipeline = candidate.load(host.clone(), &[COLOR])?;
+        let has_edges = pipeline.offered.iter().any(|o| o == EDGES_OUTPUT);
+        let mut prepared = self.session.prepare(pipeline, self.size)?;
+        prepared.run(self.warmup as usize)?;
+        let reports = prepared.run(self.frames as usize)?;
+        let color = prepared.read(COLOR)?;
+        let (samples, supersampling) = sampling(&prepared.plan);
+        let memory = Memory::of(&prepared.plan);
+        drop(prepared);
+
+        let edges = if has_edges {
+            Some(self.edges(candidate, host)?)
+        } else {
+            None
+        };
+        let work = match &edges {
+            Some(mask) => Work::from_edges(mask, samples),
+            None => Work::from_kind(&candidate.stem(), samples, supersampling),
+        };
+        Ok(Measured {
+            figures: figures(&reports, samples, memory, work),
+            color,
+            edges,
+        })
+    }
+
+    /// The final image of one frame: for the reference.
+    pub fn render(&self, candidate: &Candidate, host: &Arc<Host>) -> Result<RgbaImage, FrameError> {
+        self.one_frame(candidate, host, COLOR)
+    }
+
+    fn edges(&self, candidate: &Candidate, host: &Arc<Host>) -> Result<EdgeMask, FrameError> {
+        let image = self.one_frame(candidate, host, EDGES_OUTPUT)?;
+        Ok(EdgeMask::from_debug_view(&image))
+    }
+
+    fn one_frame(
+        &self,
+        candidate: &Candidate,
+        host: &Arc<Host>,
+        output: &str,
+    ) -> Result<RgbaImage, FrameError> {
+        let pipeline = candidate.load(host.clone(), &[output])?;
+        let mut prepared = self.session.prepare(pipeline, self.size)?;
+        prepared.run(1)?;
+        prepared.read(output)
+    }
+}
+
+/// Per-frame and per-pass spreads over the measured frames.
+fn figures(reports: &[FrameReport], samples: u32, memory: Memory, work: Work) -> Figures {
+    let passes = reports.first().map_or(Vec::new(), |first| {
+        first
+            .passes
+            .iter()
+            .enumerate()
+            .map(|(i, pass)| {
+                let timings = || reports.iter().filter_map(move |r| r.passes.get(i));
+                PassFigures {
+                    name: pass.name.clone(),
+                    kind: pass.kind.to_string(),
+                    gpu_ms: Spread::of_ns(timings().filter_map(|t| t.gpu_ns)),
+                    cpu_ms: Spread::of_ns(timings().map(|t| t.cpu_ns)),
+                }
+            })
+            .collect()
+    });
+    Figures {
+        samples,
+        gpu_frame_ms: Spread::of_ns(reports.iter().filter_map(|r| r.gpu_total_ns)),
+        cpu_record_ms: Spread::of_ns(
+            reports
+                .iter()
+                .map(|r| r.passes.iter().map(|p| p.cpu_ns).sum()),
+        ),
+        ratio_to_noaa: None,
+        passes,
+        memory,
+        work,
+    }
+}

@@ -1,0 +1,40 @@
+//! Memory a pipeline's plan asks for: every graph texture on its own and after pooling,
+//! and the G-buffer's bytes per sample.
+
+use graph_core::{color_target_cost, Plan};
+use serde::Serialize;
+
+/// The pass whose color attachments are the G-buffer, in every deferred pipeline.
+const GBUFFER_PASS: &str = "gbuffer";
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Memory {
+    /// Every live graph texture and buffer on its own.
+    pub logical_bytes: u64,
+    /// What the executor allocates after textures of equal shape share memory.
+    pub physical_bytes: u64,
+    /// Bytes per sample of the "gbuffer" pass's color attachments, counted as WebGPU's
+    /// `maxColorAttachmentBytesPerSample` counts them (each target aligned to its
+    /// component size); `None` without a "gbuffer" pass (forward pipelines).
+    pub gbuffer_bytes_per_sample: Option<u32>,
+}
+
+impl Memory {
+    pub fn of(plan: &Plan) -> Memory {
+        Memory {
+            logical_bytes: plan.memory.logical_bytes,
+            physical_bytes: plan.memory.physical_bytes,
+            gbuffer_bytes_per_sample: gbuffer_bytes_per_sample(plan),
+        }
+    }
+}
+
+fn gbuffer_bytes_per_sample(plan: &Plan) -> Option<u32> {
+    let pass = plan.pass(GBUFFER_PASS)?;
+    let total = pass.color.iter().fold(0, |total: u32, attachment| {
+        let format = plan.resource(attachment.resource).texture.map(|t| t.format);
+        let (bytes, align) = format.map_or((0, 1), color_target_cost);
+        total.next_multiple_of(align.max(1)) + bytes
+    });
+    Some(total)
+}

@@ -1,0 +1,93 @@
+//! Everything a bench measured, as written to results.json (and read by the table and the
+//! charts). Figures that could not be measured are `null`, with the reason nearby.
+
+use serde::Serialize;
+
+use super::machine::{Adapter, Machine};
+use super::memory::Memory;
+use super::stats::Spread;
+use super::work::Work;
+
+/// Bumped when a field changes meaning or moves.
+pub const SCHEMA: u32 = 1;
+
+#[derive(Debug, Serialize)]
+pub struct Results {
+    pub schema: u32,
+    /// The command line that produced this file.
+    pub command: String,
+    pub machine: Machine,
+    pub adapter: Adapter,
+    pub git_commit: String,
+    /// UTC, RFC 3339.
+    pub timestamp: String,
+    pub resolution: [u32; 2],
+    pub frames: u32,
+    pub warmup: u32,
+    /// Things the reader should know: skipped files, substitutes, unmeasured figures.
+    pub notes: Vec<String>,
+    /// One per scene and pipeline (and sweep value), error rows included.
+    pub rows: Vec<Row>,
+}
+
+#[derive(Debug, Serialize)]
+pub struct Row {
+    /// The scene spec, e.g. "builtin:dense".
+    pub scene: String,
+    /// The pipeline's name: its file stem (and variant).
+    pub pipeline: String,
+    pub file: String,
+    /// "ok", or "error" with `message` set and `figures` null.
+    pub status: &'static str,
+    pub message: Option<String>,
+    pub figures: Option<Figures>,
+}
+
+#[derive(Debug, Serialize)]
+pub struct Figures {
+    /// The most samples of any texture the pipeline uses.
+    pub samples: u32,
+    /// From the first pass's begin timestamp to the last one's end, per measured frame;
+    /// `null` when the device has no timestamp queries.
+    pub gpu_frame_ms: Option<Spread>,
+    /// CPU time to record all passes (callbacks included), per measured frame.
+    pub cpu_record_ms: Option<Spread>,
+    /// Median GPU frame time over deferred_noaa's on the same scene in this run.
+    pub ratio_to_noaa: Option<f64>,
+    /// Executed passes in order.
+    pub passes: Vec<PassFigures>,
+    pub memory: Memory,
+    pub work: Work,
+}
+
+#[derive(Debug, Serialize)]
+pub struct PassFigures {
+    pub name: String,
+    pub kind: String,
+    pub gpu_ms: Option<Spread>,
+    pub cpu_ms: Option<Spread>,
+}
+
+impl Row {
+    pub fn ok(scene: &str, pipeline: &str, file: &str, figures: Figures) -> Row {
+        Row {
+            scene: scene.into(),
+            pipeline: pipeline.into(),
+            file: file.into(),
+            status: "ok",
+            message: None,
+            figures: Some(figures),
+        }
+    }
+
+    pub fn error(scene: &str, pipeline: &str, file: &str, message: String) -> Row {
+        Row {
+            scene: scene.into(),
+            pipeline: pipeline.into(),
+            file: file.into(),
+            status: "error",
+            message: Some(message),
+            figures: None,
+        }
+    }
+}
