@@ -111,7 +111,7 @@ fn noaa_has_more_edge_error_than_msaa() {
             noaa_error.mean >= NOAA_FACTOR * msaa_error.mean,
             "{scene}: over the {} edge pixels deferred_msaa_4x marks, deferred_noaa's mean \
              error against reference_ssaa16 ({:.2}) is not {NOAA_FACTOR}x deferred_msaa_4x's \
-             ({:.2})",
+             ({:.2}); noaa: {noaa_error}; msaa: {msaa_error}",
             msaa_error.pixels,
             noaa_error.mean,
             msaa_error.mean
