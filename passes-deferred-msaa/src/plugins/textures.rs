@@ -120,11 +120,12 @@ fn check(
     let Some(desc) = pass.resource(handle).texture().copied() else {
         return Err(error("is not a texture".to_owned()));
     };
-    if !want.formats.contains(&desc.format) {
+    // A fallback format must fit as well: the device decides which one the pass gets.
+    if let Some(format) = desc.formats().find(|f| !want.formats.contains(f)) {
         let expected: Vec<String> = want.formats.iter().map(|f| format_name(*f)).collect();
         return Err(error(format!(
             "is {}, but {} must be {}",
-            format_name(desc.format),
+            format_name(format),
             want.what,
             expected.join(" or ")
         )));
