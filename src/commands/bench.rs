@@ -6,32 +6,35 @@
 //! the rest go on; the command fails (exit 1) only when no row could be measured.
 
 mod candidates;
+mod edge_pixels;
 mod error;
+mod image_error;
+mod images;
 mod machine;
 mod measure;
 mod memory;
 mod progress;
+mod reference;
 mod results;
+mod scene;
 mod stats;
 mod table;
 mod work;
 
-use std::path::Path;
-use std::sync::Arc;
+use std::path::{Path, PathBuf};
 
 use graph_core::gpu::AdapterChoice;
-use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::Overrides;
 
 use super::{write_atomically, CommandError};
 use crate::cli::BenchArgs;
-use crate::frame::{host, Session};
-use candidates::Candidate;
-use error::{BenchError, RowError};
+use crate::frame::Session;
+use error::BenchError;
 use machine::{Adapter, Machine};
 use measure::Setup;
 use progress::Progress;
+use reference::Reference;
 use results::{Results, Row, SCHEMA};
+use scene::bench_scene;
 
 /// The pipeline every frame time is compared with.
 const BASELINE: &str = "deferred_noaa";
@@ -43,7 +46,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CommandError> {
 }
 
 /// Measures, writes the results, and returns the path of results.json.
-fn bench(args: &BenchArgs) -> Result<std::path::PathBuf, BenchError> {
+fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
     let out = &args.out_dir;
     std::fs::create_dir_all(out).map_err(|e| BenchError::OutDir {
         path: out.clone(),
@@ -60,10 +63,22 @@ fn bench(args: &BenchArgs) -> Result<std::path::PathBuf, BenchError> {
         warmup: args.warmup,
     };
 
-    let mut progress = Progress::new(scenes.len() * pipelines.len());
+    let reference = Reference::choose(args, &mut notes);
+
+    let mut progress = Progress::new(scenes.len() * (pipelines.len() + 1));
     let mut rows = Vec::new();
+    let mut summaries = Vec::new();
     for scene in &scenes {
-        rows.extend(bench_scene(&setup, scene, &pipelines, &mut progress));
+        let (scene_rows, summary) = bench_scene(
+            &setup,
+            scene,
+            &pipelines,
+            reference.as_ref(),
+            out,
+            &mut progress,
+        )?;
+        rows.extend(scene_rows);
+        summaries.push(summary);
     }
     drop(progress);
     ratios_to_baseline(&mut rows);
@@ -83,7 +98,9 @@ fn bench(args: &BenchArgs) -> Result<std::path::PathBuf, BenchError> {
         resolution: [args.width, args.height],
         frames: args.frames,
         warmup: args.warmup,
+        reference,
         notes,
+        scenes: summaries,
         rows,
     };
     let json_path = out.join("results.json");
@@ -99,48 +116,6 @@ fn bench(args: &BenchArgs) -> Result<std::path::PathBuf, BenchError> {
         });
     }
     Ok(json_path)
-}
-
-/// Every pipeline on one scene; a scene that fails to load makes every row an error.
-fn bench_scene(
-    setup: &Setup,
-    spec: &str,
-    pipelines: &[Candidate],
-    progress: &mut Progress,
-) -> Vec<Row> {
-    let scene = match Scene::load(spec) {
-        Ok(scene) => Arc::new(scene),
-        Err(source) => {
-            let message = RowError::Scene {
-                scene: spec.to_string(),
-                source,
-            }
-            .to_string();
-            progress.note(format!("error: {message}"));
-            // One row for the scene: no pipeline ran on it.
-            return vec![Row::error(spec, "-", "", message)];
-        }
-    };
-    let host = host(scene, Overrides::default());
-    pipelines
-        .iter()
-        .map(|candidate| {
-            progress.item(format!("{spec} {}", candidate.name));
-            match setup.measure(candidate, &host) {
-                Ok(measured) => Row::ok(spec, &candidate.name, &file(candidate), measured.figures),
-                Err(source) => {
-                    let message = RowError::Frame {
-                        pipeline: candidate.name.clone(),
-                        scene: spec.to_string(),
-                        source,
-                    }
-                    .to_string();
-                    progress.note(format!("error: {message}"));
-                    Row::error(spec, &candidate.name, &file(candidate), message)
-                }
-            }
-        })
-        .collect()
 }
 
 /// Each measured row's median GPU frame time over the baseline's on the same scene.
@@ -164,10 +139,6 @@ fn ratios_to_baseline(rows: &mut [Row]) {
             figures.ratio_to_noaa = ratio.filter(|r| r.is_finite());
         }
     }
-}
-
-fn file(candidate: &Candidate) -> String {
-    candidate.path.display().to_string()
 }
 
 fn write(path: &Path, bytes: &[u8]) -> Result<(), BenchError> {

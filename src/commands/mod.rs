@@ -1,4 +1,5 @@
-//! One module per subcommand, and what they share: errors with exit codes, atomic writes.
+//! One module per subcommand, and what they share: errors with exit codes, atomic writes
+//! of files and PNGs.
 
 pub mod adapters;
 pub mod bench;
@@ -10,6 +11,9 @@ pub mod validate;
 use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
+
+use image::codecs::png::PngEncoder;
+use image::{ExtendedColorType, ImageEncoder, RgbaImage};
 
 /// How a command failed, which decides the exit status.
 #[derive(Debug, thiserror::Error)]
@@ -51,4 +55,19 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CommandError> {
         let _ = std::fs::remove_file(&temp);
     }
     result.map_err(io)
+}
+
+/// Encodes the image (sRGB-encoded RGBA8) as a PNG and writes it through a temporary file
+/// and a rename.
+pub fn write_png(path: &Path, image: &RgbaImage) -> Result<(), CommandError> {
+    let mut png = Vec::new();
+    PngEncoder::new(&mut png)
+        .write_image(
+            image.as_raw(),
+            image.width(),
+            image.height(),
+            ExtendedColorType::Rgba8,
+        )
+        .map_err(|e| CommandError::Usage(format!("cannot encode {}: {e}", path.display())))?;
+    write_atomically(path, &png)
 }

@@ -11,7 +11,7 @@ use super::candidates::{Candidate, COLOR};
 use super::memory::Memory;
 use super::results::{Figures, PassFigures};
 use super::stats::Spread;
-use super::work::{sampling, EdgeMask, Work, EDGES_OUTPUT};
+use super::work::{edge_share, sampling, Work, EDGES_OUTPUT};
 use crate::frame::{FrameError, Session};
 
 /// What every measurement of one run shares.
@@ -22,11 +22,12 @@ pub struct Setup<'a> {
     pub warmup: u32,
 }
 
-/// The figures, the last measured frame's image, and the edge mask when there is one.
+/// The figures, the last measured frame's image, and the debug.edges view when there is
+/// one.
 pub struct Measured {
     pub figures: Figures,
     pub color: RgbaImage,
-    pub edges: Option<EdgeMask>,
+    pub edges: Option<RgbaImage>,
 }
 
 impl Setup<'_> {
@@ -44,12 +45,12 @@ impl Setup<'_> {
         drop(prepared);
 
         let edges = if has_edges {
-            Some(self.edges(candidate, host)?)
+            Some(self.one_frame(candidate, host, EDGES_OUTPUT)?)
         } else {
             None
         };
         let work = match &edges {
-            Some(mask) => Work::from_edges(mask, samples),
+            Some(view) => Work::from_edges(edge_share(view), samples),
             None => Work::from_kind(&candidate.stem(), samples, supersampling),
         };
         Ok(Measured {
@@ -62,11 +63,6 @@ impl Setup<'_> {
     /// The final image of one frame: for the reference.
     pub fn render(&self, candidate: &Candidate, host: &Arc<Host>) -> Result<RgbaImage, FrameError> {
         self.one_frame(candidate, host, COLOR)
-    }
-
-    fn edges(&self, candidate: &Candidate, host: &Arc<Host>) -> Result<EdgeMask, FrameError> {
-        let image = self.one_frame(candidate, host, EDGES_OUTPUT)?;
-        Ok(EdgeMask::from_debug_view(&image))
     }
 
     fn one_frame(
@@ -112,5 +108,6 @@ fn figures(reports: &[FrameReport], samples: u32, memory: Memory, work: Work) ->
         passes,
         memory,
         work,
+        image_error: None,
     }
 }

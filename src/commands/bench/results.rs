@@ -3,8 +3,11 @@
 
 use serde::Serialize;
 
+use super::image_error::ImageError;
 use super::machine::{Adapter, Machine};
 use super::memory::Memory;
+use super::reference::Reference;
+use super::scene::SceneSummary;
 use super::stats::Spread;
 use super::work::Work;
 
@@ -24,8 +27,12 @@ pub struct Results {
     pub resolution: [u32; 2],
     pub frames: u32,
     pub warmup: u32,
+    /// What errors are measured against; `null` when nothing could be.
+    pub reference: Option<Reference>,
     /// Things the reader should know: skipped files, substitutes, unmeasured figures.
     pub notes: Vec<String>,
+    /// Per scene: its images folder and its edge pixels.
+    pub scenes: Vec<SceneSummary>,
     /// One per scene and pipeline (and sweep value), error rows included.
     pub rows: Vec<Row>,
 }
@@ -58,6 +65,8 @@ pub struct Figures {
     pub passes: Vec<PassFigures>,
     pub memory: Memory,
     pub work: Work,
+    /// Against the reference; `null` without one.
+    pub image_error: Option<ImageError>,
 }
 
 #[derive(Debug, Serialize)]

@@ -31,6 +31,13 @@ pub fn markdown(results: &Results) -> String {
         r.git_commit,
         r.timestamp,
     );
+    if let Some(reference) = &r.reference {
+        let _ = writeln!(
+            md,
+            "- reference: {} ({}, {} shaded samples per pixel)",
+            reference.pipeline, reference.file, reference.spp
+        );
+    }
     for note in &r.notes {
         let _ = writeln!(md, "- note: {note}");
     }
@@ -39,6 +46,15 @@ pub fn markdown(results: &Results) -> String {
     for scene in scenes {
         let rows: Vec<&Row> = r.rows.iter().filter(|row| row.scene == scene).collect();
         let _ = writeln!(md, "\n## {scene}\n");
+        if let Some(summary) = r.scenes.iter().find(|s| s.scene == scene) {
+            if let Some(edges) = &summary.edge_pixels {
+                let share = edges.share * 100.0;
+                let _ = writeln!(md, "Edge pixels: {share:.1}% ({}).\n", edges.definition);
+            }
+            if let Some(error) = &summary.reference_error {
+                let _ = writeln!(md, "Reference failed: {error}\n");
+            }
+        }
         md.push_str(&scene_table(&rows));
         if rows.iter().any(|row| row.figures.is_some()) {
             md.push_str(&pass_table(&rows));
@@ -49,8 +65,9 @@ pub fn markdown(results: &Results) -> String {
 }
 
 const HEADER: &str = "| pipeline | GPU ms | p10–p90 | × noaa | CPU rec. ms | memory | pooled | \
-                      G-buf B/sample | edge px | shaded/px |\n\
-                      |---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+                      G-buf B/sample | edge px | shaded/px | FLIP | edge FLIP | PSNR dB | \
+                      edge PSNR dB |\n\
+                      |---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
 
 fn scene_table(rows: &[&Row]) -> String {
     let mut md = String::from(HEADER);
@@ -69,7 +86,7 @@ fn scene_table(rows: &[&Row]) -> String {
 
 fn figure_cells(f: &Figures) -> Vec<String> {
     let gpu = f.gpu_frame_ms.as_ref();
-    vec![
+    let mut cells = vec![
         gpu.map_or("-".into(), |s| ms(s.median)),
         gpu.map_or("-".into(), |s| format!("{}–{}", ms(s.p10), ms(s.p90))),
         f.ratio_to_noaa.map_or("-".into(), |r| format!("{r:.2}")),
@@ -87,7 +104,22 @@ fn figure_cells(f: &Figures) -> Vec<String> {
         f.work
             .shaded_samples_per_pixel
             .map_or("-".into(), |s| format!("{s:.2}")),
-    ]
+    ];
+    let e = f.image_error.as_ref();
+    cells.extend([
+        e.map_or("-".into(), |e| format!("{:.4}", e.flip_mean)),
+        e.and_then(|e| e.edge_flip_mean)
+            .map_or("-".into(), |v| format!("{v:.4}")),
+        e.map_or("-".into(), |e| psnr(e.psnr_db)),
+        e.and_then(|e| e.edge_mse.map(|_| e.edge_psnr_db))
+            .map_or("-".into(), psnr),
+    ]);
+    cells
+}
+
+/// Identical images have no finite PSNR.
+fn psnr(db: Option<f64>) -> String {
+    db.map_or("∞".into(), |db| format!("{db:.1}"))
 }
 
 /// Median GPU ms of each pass, one line per pipeline.
@@ -126,4 +158,8 @@ bytes of the graph's textures on their own and after sharing. G-buf B/sample: by
 sample of the gbuffer pass's color targets. edge px: pixels the pipeline's debug.edges \
 marks; shaded/px: shading invocations per pixel (edge pixels once per sample, others once; \
 pipelines without debug.edges by their kind, see results.json). On lavapipe times are CPU \
-rasterisation: compare ratios within one run only.\n";
+rasterisation: compare ratios within one run only. FLIP: mean of NVIDIA's FLIP error \
+(0 = identical, 1 = maximal) against the reference on the tone-mapped 8-bit images; PSNR \
+on the sRGB channels; edge: both restricted to the scene's edge pixels. Images per scene \
+are in the folder next to this file: reference.png, edge_pixels.png, PIPELINE.png, \
+PIPELINE_error.png (FLIP heat map), PIPELINE_edges.png (debug.edges).\n";

@@ -25,9 +25,9 @@ pub struct Work {
 }
 
 impl Work {
-    /// From an edge mask of a pipeline whose multisampled targets have `samples` samples.
-    pub fn from_edges(mask: &EdgeMask, samples: u32) -> Work {
-        let share = mask.share();
+    /// From the edge share of a pipeline whose multisampled targets have `samples`
+    /// samples.
+    pub fn from_edges(share: f64, samples: u32) -> Work {
         Work {
             edge_pixel_share: Some(share),
             shaded_samples_per_pixel: Some(1.0 + share * (samples as f64 - 1.0)),
@@ -108,47 +108,28 @@ const KINDS: &[(&str, Rate, &str)] = &[
     ),
 ];
 
-/// Which pixels a pipeline's "debug.edges" output marks as edges.
-pub struct EdgeMask {
-    pub width: u32,
-    pub height: u32,
-    /// Row by row, top row first.
-    pub edge: Vec<bool>,
-}
-
-impl EdgeMask {
-    /// Red pixels are edges; the debug view writes pure red, blue or black.
-    pub fn from_debug_view(image: &RgbaImage) -> EdgeMask {
-        EdgeMask {
-            width: image.width(),
-            height: image.height(),
-            edge: image
-                .pixels()
-                .map(|p| p.0[0] > 127 && p.0[2] <= 127)
-                .collect(),
-        }
-    }
-
-    pub fn share(&self) -> f64 {
-        let edges = self.edge.iter().filter(|e| **e).count();
-        edges as f64 / self.edge.len().max(1) as f64
-    }
+/// The share of pixels a pipeline's "debug.edges" view marks as edges: red ones (the
+/// view writes pure red, blue or black).
+pub fn edge_share(view: &RgbaImage) -> f64 {
+    let edges = view
+        .pixels()
+        .filter(|p| p.0[0] > 127 && p.0[2] <= 127)
+        .count();
+    edges as f64 / (view.width() as usize * view.height() as usize).max(1) as f64
 }
 
 #[cfg(test)]
 mod tests {
     use image::{Rgba, RgbaImage};
 
-    use super::{EdgeMask, Work};
+    use super::{edge_share, Work};
 
     #[test]
     fn red_pixels_are_edges_and_cost_a_shading_per_sample() {
         let mut image = RgbaImage::from_pixel(4, 1, Rgba([0, 0, 255, 255]));
         image.put_pixel(0, 0, Rgba([255, 0, 0, 255]));
         image.put_pixel(1, 0, Rgba([0, 0, 0, 255]));
-        let mask = EdgeMask::from_debug_view(&image);
-        assert_eq!(mask.edge, [true, false, false, false]);
-        let work = Work::from_edges(&mask, 4);
+        let work = Work::from_edges(edge_share(&image), 4);
         assert_eq!(work.edge_pixel_share, Some(0.25));
         assert_eq!(work.shaded_samples_per_pixel, Some(1.75));
     }

@@ -2,11 +2,9 @@
 
 use std::path::Path;
 
-use image::codecs::png::PngEncoder;
-use image::{ExtendedColorType, ImageEncoder, RgbaImage};
+use image::RgbaImage;
 
 use super::error::RenderError;
-use crate::commands::write_atomically;
 
 /// A `.png` path in an existing directory, so a long render never ends in an
 /// unwritable path.
@@ -38,17 +36,7 @@ pub fn check(path: &Path) -> Result<(), RenderError> {
     Ok(())
 }
 
-/// Encodes the image (sRGB-encoded RGBA8) as a PNG and writes it through a temporary file
-/// and a rename.
+/// Writes the image as a PNG, atomically.
 pub fn write_png(path: &Path, image: &RgbaImage) -> Result<(), RenderError> {
-    let mut png = Vec::new();
-    PngEncoder::new(&mut png)
-        .write_image(
-            image.as_raw(),
-            image.width(),
-            image.height(),
-            ExtendedColorType::Rgba8,
-        )
-        .map_err(|e| RenderError::Output(format!("cannot encode {}: {e}", path.display())))?;
-    write_atomically(path, &png).map_err(|e| RenderError::Output(e.to_string()))
+    crate::commands::write_png(path, image).map_err(|e| RenderError::Output(e.to_string()))
 }
