@@ -45,6 +45,13 @@ pub fn text(plan: &Plan) -> String {
                 ))
             );
         }
+        if !pass.color.is_empty() {
+            let _ = writeln!(
+                out,
+                "         color bytes per sample: {}",
+                pass.color_bytes_per_sample
+            );
+        }
         if let Some(ds) = &pass.depth_stencil {
             let aspect = |o: Option<String>| o.unwrap_or_else(|| "read-only".into());
             let _ = writeln!(

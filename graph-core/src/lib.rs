@@ -46,7 +46,7 @@ pub use plan::{
     ColorAttachment, CulledPass, DepthStencilAttachment, Load, MemoryReport, Ops, PhysicalBuffer,
     PhysicalTexture, Plan, PlannedPass, PlannedResource, Store, TextureShape,
 };
-pub use profile::{color_target_cost, DeviceProfile};
+pub use profile::{color_bytes_per_sample, color_target_cost, DeviceProfile};
 pub use resource::{
     texel_bytes, BufferDesc, Origin, ResourceDesc, ResourceNode, Size, TextureDesc,
 };

@@ -39,6 +39,9 @@ pub struct PlannedPass {
     pub writes: Vec<(ResourceId, u32)>,
     /// Color attachments by location (render passes only).
     pub color: Vec<ColorAttachment>,
+    /// What the color attachments cost per sample against the device's
+    /// `max_color_attachment_bytes_per_sample` (a G-buffer's size per sample).
+    pub color_bytes_per_sample: u32,
     pub depth_stencil: Option<DepthStencilAttachment>,
 }
 

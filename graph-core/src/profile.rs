@@ -89,6 +89,15 @@ impl DeviceProfile {
     }
 }
 
+/// The bytes per sample a render pass with color attachments of `formats` (in location
+/// order) counts against `max_color_attachment_bytes_per_sample`.
+pub fn color_bytes_per_sample(formats: impl IntoIterator<Item = TextureFormat>) -> u32 {
+    formats.into_iter().fold(0, |total, format| {
+        let (cost, align) = color_target_cost(format);
+        total.next_multiple_of(align.max(1)) + cost
+    })
+}
+
 /// Bytes a color attachment of `format` counts against
 /// `max_color_attachment_bytes_per_sample`, per the WebGPU rule: each target starts at a
 /// multiple of its component alignment.

@@ -68,6 +68,13 @@ fn color_bytes_count_alignment_padding() {
     ];
     assert!(mrt(&fits).compile(&CompileOptions::default()).is_ok());
 
+    // The plan reports what a pass that fits costs, for G-buffer economy.
+    let plan = mrt(&fits)
+        .compile(&CompileOptions::default())
+        .expect("fits");
+    assert_eq!(plan.passes[0].color_bytes_per_sample, 32);
+    assert!(graph_core::explain::text(&plan).contains("color bytes per sample: 32"));
+
     let over = [fits.as_slice(), &[R8Unorm]].concat();
     let error = only_error(&mrt(&over));
     let GraphError::ColorBytesPerSample { bytes, .. } = error else {

@@ -16,7 +16,7 @@ use crate::error::{GraphError, GraphErrors};
 use crate::graph::Graph;
 use crate::handle::{PassId, ResourceId};
 use crate::plan::{CulledPass, MemoryReport, Plan, PlannedPass, PlannedResource, TextureShape};
-use crate::profile::DeviceProfile;
+use crate::profile::{color_bytes_per_sample, DeviceProfile};
 use crate::resource::ResourceDesc;
 
 use cull::Live;
@@ -135,6 +135,11 @@ impl Graph {
                     kind: pass.kind,
                     reads,
                     writes,
+                    color_bytes_per_sample: color_bytes_per_sample(
+                        color
+                            .iter()
+                            .filter_map(|c| a.shapes[c.resource.index()].map(|s| s.format)),
+                    ),
                     color: color.clone(),
                     depth_stencil: depth_stencil.clone(),
                 }

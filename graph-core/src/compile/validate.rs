@@ -8,7 +8,7 @@ use crate::error::GraphError;
 use crate::graph::Graph;
 use crate::pass::{PassKind, PassNode};
 use crate::plan::TextureShape;
-use crate::profile::{color_target_cost, DeviceProfile};
+use crate::profile::{color_bytes_per_sample, DeviceProfile};
 use crate::resource::{Origin, ResourceDesc};
 
 use super::versions::Versions;
@@ -396,10 +396,7 @@ impl PassCheck<'_> {
                 profile: self.profile.name.clone(),
             });
         }
-        let bytes = colors.iter().fold(0u32, |total, (_, shape)| {
-            let (cost, align) = color_target_cost(shape.format);
-            total.next_multiple_of(align.max(1)) + cost
-        });
+        let bytes = color_bytes_per_sample(colors.iter().map(|(_, shape)| shape.format));
         if bytes > limits.max_color_attachment_bytes_per_sample {
             errors.push(GraphError::ColorBytesPerSample {
                 pass: pass(),
