@@ -6,6 +6,7 @@
 //! the rest go on; the command fails (exit 1) only when no row could be measured.
 
 mod candidates;
+mod charts;
 mod edge_pixels;
 mod error;
 mod image_error;
@@ -106,6 +107,7 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
     let json_path = out.join("results.json");
     let json = serde_json::to_string_pretty(&results).expect("results serialize");
     write(&json_path, json.as_bytes())?;
+    charts::write_all(&results, out)?;
     let table = table::markdown(&results);
     write(&out.join("results.md"), table.as_bytes())?;
     eprintln!("{table}");

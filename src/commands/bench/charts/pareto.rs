@@ -1,0 +1,166 @@
+//! pareto.png: GPU frame time against mean FLIP, one panel per scene, one numbered point
+//! per pipeline (the legend on the right names the numbers), and the Pareto front: the
+//! pipelines no other pipeline beats on both time and error.
+
+use plotters::prelude::*;
+
+use super::{color, font, grid, scenes, text, Area, DrawResult};
+use crate::commands::bench::results::Results;
+
+const PANEL: (u32, u32) = (760, 520);
+const LEGEND_WIDTH: u32 = 330;
+const TITLE_HEIGHT: u32 = 40;
+
+pub fn size(results: &Results) -> (u32, u32) {
+    let (rows, columns) = grid(scenes(results).len());
+    (
+        PANEL.0 * columns as u32 + LEGEND_WIDTH,
+        PANEL.1 * rows as u32 + TITLE_HEIGHT,
+    )
+}
+
+/// One point: (pipeline index, GPU ms, mean FLIP).
+type Point = (usize, f64, f64);
+
+pub fn pareto(results: &Results, area: &Area) -> DrawResult {
+    let names = pipelines(results);
+    let (title, body) = area.split_vertically(TITLE_HEIGHT);
+    title.titled(&heading(results), font(22.0)).map_err(text)?;
+    let (panels, legend) = body.split_horizontally(body.dim_in_pixel().0 - LEGEND_WIDTH);
+    let scenes = scenes(results);
+    let (rows, columns) = grid(scenes.len());
+    for (scene, panel) in scenes.iter().zip(panels.split_evenly((rows, columns))) {
+        let points: Vec<Point> = results
+            .rows
+            .iter()
+            .filter(|r| r.scene == *scene)
+            .filter_map(|r| {
+                let f = r.figures.as_ref()?;
+                let ms = f.gpu_frame_ms.as_ref()?.median;
+                let flip = f.image_error.as_ref()?.flip_mean;
+                let index = names.iter().position(|n| *n == r.pipeline)?;
+                Some((index, ms, flip))
+            })
+            .collect();
+        scene_panel(&panel, scene, &points)?;
+    }
+    legend_panel(&legend, &names)
+}
+
+fn heading(results: &Results) -> String {
+    format!(
+        "Speed vs error: {} at {}x{} (lower left is better)",
+        results.adapter.name, results.resolution[0], results.resolution[1]
+    )
+}
+
+/// Pipelines in the order they first appear; their number is their index plus one.
+fn pipelines(results: &Results) -> Vec<&str> {
+    let mut names: Vec<&str> = Vec::new();
+    for row in results.rows.iter().filter(|r| r.figures.is_some()) {
+        if !names.contains(&row.pipeline.as_str()) {
+            names.push(&row.pipeline);
+        }
+    }
+    names
+}
+
+fn scene_panel(area: &Area, scene: &str, points: &[Point]) -> DrawResult {
+    if points.is_empty() {
+        area.titled(&format!("{scene}: no time and error measured"), font(18.0))
+            .map_err(text)?;
+        return Ok(());
+    }
+    let (lo, hi) = points.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+        (lo.min(p.1), hi.max(p.1))
+    });
+    let top = points.iter().map(|p| p.2).fold(0.0, f64::max).max(1e-3) * 1.15;
+    let mut chart = ChartBuilder::on(area)
+        .caption(scene, font(18.0))
+        .margin(12)
+        .x_label_area_size(46)
+        .y_label_area_size(64)
+        .build_cartesian_2d((lo / 1.3..hi * 1.3).log_scale(), 0.0..top)
+        .map_err(text)?;
+    chart
+        .configure_mesh()
+        .x_desc("GPU frame time, ms (median; log scale)")
+        .y_desc("mean FLIP vs reference")
+        .label_style(font(14.0))
+        .axis_desc_style(font(15.0))
+        .x_labels(8)
+        .x_label_formatter(&|v| ms(*v))
+        .y_label_formatter(&|v| format!("{v:.3}"))
+        .draw()
+        .map_err(text)?;
+    chart
+        .draw_series(LineSeries::new(
+            front_steps(points),
+            ShapeStyle::from(&RGBColor(150, 150, 150)).stroke_width(2),
+        ))
+        .map_err(text)?;
+    chart
+        .draw_series(points.iter().map(|&(i, ms, flip)| {
+            let label = font(15.0).color(color(i));
+            EmptyElement::at((ms, flip))
+                + Circle::new((0, 0), 6, color(i).filled())
+                + Text::new(format!("{}", i + 1), (8, -16), label)
+        }))
+        .map_err(text)?;
+    Ok(())
+}
+
+/// Milliseconds with the digits that matter at their size.
+fn ms(v: f64) -> String {
+    match v {
+        v if v >= 10.0 => format!("{v:.0}"),
+        v if v >= 1.0 => format!("{v:.1}"),
+        v => format!("{v:.2}"),
+    }
+}
+
+/// The Pareto front as a staircase: from the fastest point, each next point that has less
+/// error than every faster one, joined by horizontal-then-vertical steps.
+fn front_steps(points: &[Point]) -> Vec<(f64, f64)> {
+    let mut sorted = points.to_vec();
+    sorted.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.2.total_cmp(&b.2)));
+    let mut steps: Vec<(f64, f64)> = Vec::new();
+    let mut best = f64::MAX;
+    for (_, ms, flip) in sorted {
+        if flip < best {
+            if let Some(&(_, last)) = steps.last() {
+                steps.push((ms, last));
+            }
+            steps.push((ms, flip));
+            best = flip;
+        }
+    }
+    steps
+}
+
+fn legend_panel(area: &Area, names: &[&str]) -> DrawResult {
+    area.draw(&Text::new("pipelines", (10, 20), font(17.0)))
+        .map_err(text)?;
+    for (i, name) in names.iter().enumerate() {
+        let y = 50 + 24 * i as i32;
+        area.draw(&Circle::new((18, y + 8), 6, color(i).filled()))
+            .map_err(text)?;
+        area.draw(&Text::new(format!("{} {name}", i + 1), (32, y), font(15.0)))
+            .map_err(text)?;
+    }
+    let y = 60 + 24 * names.len() as i32;
+    area.draw(&Text::new("grey: Pareto front", (10, y), font(15.0)))
+        .map_err(text)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::front_steps;
+
+    #[test]
+    fn the_front_keeps_points_no_other_beats_on_both() {
+        // b is beaten by a (faster and better); c is slower but better than a.
+        let points = [(0, 1.0, 0.5), (1, 2.0, 0.6), (2, 3.0, 0.1)];
+        assert_eq!(front_steps(&points), [(1.0, 0.5), (3.0, 0.5), (3.0, 0.1)]);
+    }
+}

@@ -1,0 +1,139 @@
+//! passes.png: per scene, one horizontal bar per pipeline, stacked from its passes' median
+//! GPU times in execution order; a pass name keeps its color across pipelines and scenes.
+
+use plotters::prelude::*;
+
+use super::{color, font, grid, scenes, text, Area, DrawResult};
+use crate::commands::bench::results::{Results, Row};
+
+const PANEL_WIDTH: u32 = 900;
+const ROW_HEIGHT: u32 = 30;
+const PANEL_EXTRA: u32 = 150;
+const TITLE_HEIGHT: u32 = 40;
+const LEGEND_WIDTH: u32 = 220;
+
+pub fn size(results: &Results) -> (u32, u32) {
+    let scenes = scenes(results);
+    let (rows, columns) = grid(scenes.len());
+    let bars = scenes
+        .iter()
+        .map(|s| measured(results, s).len())
+        .max()
+        .unwrap_or(1) as u32;
+    (
+        PANEL_WIDTH * columns as u32 + LEGEND_WIDTH,
+        (ROW_HEIGHT * bars + PANEL_EXTRA) * rows as u32 + TITLE_HEIGHT,
+    )
+}
+
+pub fn passes(results: &Results, area: &Area) -> DrawResult {
+    let names = pass_names(results);
+    let (title, body) = area.split_vertically(TITLE_HEIGHT);
+    title
+        .titled(
+            &format!(
+                "GPU time per pass (median ms): {} at {}x{}",
+                results.adapter.name, results.resolution[0], results.resolution[1]
+            ),
+            font(22.0),
+        )
+        .map_err(text)?;
+    let (panels, legend) = body.split_horizontally(body.dim_in_pixel().0 - LEGEND_WIDTH);
+    let scenes = scenes(results);
+    let (rows, columns) = grid(scenes.len());
+    for (scene, panel) in scenes.iter().zip(panels.split_evenly((rows, columns))) {
+        scene_panel(&panel, scene, &measured(results, scene), &names)?;
+    }
+    legend_panel(&legend, &names)
+}
+
+/// The pass colors, shared by every panel.
+fn legend_panel(area: &Area, names: &[&str]) -> DrawResult {
+    area.draw(&Text::new("passes", (10, 20), font(17.0)))
+        .map_err(text)?;
+    for (i, name) in names.iter().enumerate() {
+        let y = 50 + 24 * i as i32;
+        area.draw(&Rectangle::new([(10, y), (26, y + 16)], color(i).filled()))
+            .map_err(text)?;
+        area.draw(&Text::new(name.to_string(), (34, y), font(15.0)))
+            .map_err(text)?;
+    }
+    Ok(())
+}
+
+fn measured<'a>(results: &'a Results, scene: &str) -> Vec<&'a Row> {
+    results
+        .rows
+        .iter()
+        .filter(|r| r.scene == scene && r.figures.is_some())
+        .collect()
+}
+
+/// Every pass name in order of first appearance: its index picks its color.
+fn pass_names(results: &Results) -> Vec<&str> {
+    let mut names: Vec<&str> = Vec::new();
+    for f in results.rows.iter().filter_map(|r| r.figures.as_ref()) {
+        for pass in &f.passes {
+            if !names.contains(&pass.name.as_str()) {
+                names.push(&pass.name);
+            }
+        }
+    }
+    names
+}
+
+fn scene_panel(area: &Area, scene: &str, rows: &[&Row], names: &[&str]) -> DrawResult {
+    // (bar index, pass name index, start ms, end ms) of every bar segment; the first
+    // pipeline's bar is the top one (bar index 0 is at the bottom).
+    let mut segments = Vec::new();
+    let mut longest: f64 = 0.0;
+    for (row_index, row) in rows.iter().enumerate() {
+        let i = rows.len() - 1 - row_index;
+        let mut at = 0.0;
+        for pass in row.figures.iter().flat_map(|f| &f.passes) {
+            let ms = pass.gpu_ms.as_ref().map_or(0.0, |s| s.median);
+            let name = names.iter().position(|n| *n == pass.name).unwrap_or(0);
+            segments.push((i, name, at, at + ms));
+            at += ms;
+        }
+        longest = longest.max(at);
+    }
+    let labels: Vec<&str> = rows.iter().rev().map(|r| r.pipeline.as_str()).collect();
+    let mut chart = ChartBuilder::on(area)
+        .caption(scene, font(18.0))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(250)
+        .build_cartesian_2d(
+            0.0..longest.max(1e-3) * 1.05,
+            (0..rows.len()).into_segmented(),
+        )
+        .map_err(text)?;
+    chart
+        .configure_mesh()
+        .disable_y_mesh()
+        .x_desc("GPU ms (median)")
+        .label_style(font(14.0))
+        .axis_desc_style(font(15.0))
+        .y_labels(rows.len().max(1))
+        .y_label_formatter(&|v| match v {
+            SegmentValue::CenterOf(i) => labels.get(*i).map_or(String::new(), |s| s.to_string()),
+            _ => String::new(),
+        })
+        .draw()
+        .map_err(text)?;
+    chart
+        .draw_series(segments.iter().map(|&(i, n, x0, x1)| {
+            let mut bar = Rectangle::new(
+                [
+                    (x0, SegmentValue::Exact(i)),
+                    (x1, SegmentValue::Exact(i + 1)),
+                ],
+                color(n).filled(),
+            );
+            bar.set_margin(4, 4, 0, 0);
+            bar
+        }))
+        .map_err(text)?;
+    Ok(())
+}
