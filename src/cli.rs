@@ -189,7 +189,7 @@ pub struct BenchArgs {
 }
 
 /// What `rgraph bench --sweep` varies.
-#[derive(Copy, Clone, PartialEq, Eq, ValueEnum, serde::Serialize)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Sweep {
     /// builtin:lights?count=N for N = 1, 4, 16, 64, 256, 1024.

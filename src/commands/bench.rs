@@ -19,6 +19,7 @@ mod reference;
 mod results;
 mod scene;
 mod stats;
+mod sweep;
 mod table;
 mod work;
 
@@ -57,29 +58,47 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
     let (pipelines, mut notes) = candidates::pipelines(&args.pipelines);
     let session = Session::open(&AdapterChoice::resolve(args.adapter.as_deref()))
         .map_err(BenchError::Device)?;
-    let setup = Setup {
-        session: &session,
-        size: (args.width, args.height),
-        frames: args.frames,
-        warmup: args.warmup,
+    let size = (args.width, args.height);
+    let steps = sweep::steps(args.sweep, scenes, pipelines, size, &mut notes);
+    // Sweeps measure cost only: a reference per sweep value would dominate the run.
+    let reference = match args.sweep {
+        None => Reference::choose(args, &mut notes),
+        Some(_) => None,
     };
 
-    let reference = Reference::choose(args, &mut notes);
-
-    let mut progress = Progress::new(scenes.len() * (pipelines.len() + 1));
+    let items = steps
+        .iter()
+        .map(|s| s.scenes.len() * (s.pipelines.len() + usize::from(reference.is_some())))
+        .sum();
+    let mut progress = Progress::new(items);
     let mut rows = Vec::new();
     let mut summaries = Vec::new();
-    for scene in &scenes {
-        let (scene_rows, summary) = bench_scene(
-            &setup,
-            scene,
-            &pipelines,
-            reference.as_ref(),
-            out,
-            &mut progress,
-        )?;
-        rows.extend(scene_rows);
-        summaries.push(summary);
+    for step in &steps {
+        let setup = Setup {
+            session: &session,
+            size: step.size,
+            frames: args.frames,
+            warmup: args.warmup,
+        };
+        // Images only outside sweeps, where one folder per scene is unambiguous.
+        let images = step.point.is_none().then_some(out.as_path());
+        for scene in &step.scenes {
+            let (scene_rows, summary) = bench_scene(
+                &setup,
+                scene,
+                &step.pipelines,
+                reference.as_ref(),
+                images,
+                &mut progress,
+            )?;
+            rows.extend(scene_rows.into_iter().map(|mut row| {
+                row.sweep = step.point.clone();
+                row
+            }));
+            if images.is_some() {
+                summaries.push(summary);
+            }
+        }
     }
     drop(progress);
     ratios_to_baseline(&mut rows);
@@ -97,6 +116,7 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         git_commit: machine::git_commit(),
         timestamp: machine::timestamp(),
         resolution: [args.width, args.height],
+        sweep: args.sweep,
         frames: args.frames,
         warmup: args.warmup,
         reference,

@@ -9,7 +9,9 @@ use super::memory::Memory;
 use super::reference::Reference;
 use super::scene::SceneSummary;
 use super::stats::Spread;
+use super::sweep::SweepPoint;
 use super::work::Work;
+use crate::cli::Sweep;
 
 /// Bumped when a field changes meaning or moves.
 pub const SCHEMA: u32 = 1;
@@ -24,7 +26,10 @@ pub struct Results {
     pub git_commit: String,
     /// UTC, RFC 3339.
     pub timestamp: String,
+    /// The size asked for (a resolution sweep replaces it: see each row's `sweep`).
     pub resolution: [u32; 2],
+    /// What `--sweep` varied, if anything.
+    pub sweep: Option<Sweep>,
     pub frames: u32,
     pub warmup: u32,
     /// What errors are measured against; `null` when nothing could be.
@@ -46,6 +51,8 @@ pub struct Row {
     pub file: String,
     /// "ok", or "error" with `message` set and `figures` null.
     pub status: &'static str,
+    /// The sweep value this row was measured at; `null` outside sweeps.
+    pub sweep: Option<SweepPoint>,
     pub message: Option<String>,
     pub figures: Option<Figures>,
 }
@@ -84,6 +91,7 @@ impl Row {
             pipeline: pipeline.into(),
             file: file.into(),
             status: "ok",
+            sweep: None,
             message: None,
             figures: Some(figures),
         }
@@ -95,6 +103,7 @@ impl Row {
             pipeline: pipeline.into(),
             file: file.into(),
             status: "error",
+            sweep: None,
             message: Some(message),
             figures: None,
         }

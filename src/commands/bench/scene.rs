@@ -30,21 +30,23 @@ pub struct SceneSummary {
     pub reference_error: Option<String>,
 }
 
-/// Every pipeline on the scene `spec`. A scene that fails to load is one error row; a
-/// pipeline that fails is an error row and the others go on. Only writing images fails
-/// the whole bench.
+/// Every pipeline on the scene `spec`, with images written under `out` when it is given.
+/// A scene that fails to load is one error row; a pipeline that fails is an error row and
+/// the others go on. Only writing images fails the whole bench.
 pub fn bench_scene(
     setup: &Setup,
     spec: &str,
     pipelines: &[Candidate],
     reference: Option<&Reference>,
-    out: &Path,
+    out: Option<&Path>,
     progress: &mut Progress,
 ) -> Result<(Vec<Row>, SceneSummary), BenchError> {
-    let images = SceneImages::create(out, spec)?;
+    let images = out.map(|out| SceneImages::create(out, spec)).transpose()?;
     let mut summary = SceneSummary {
         scene: spec.to_string(),
-        images: images.dir.display().to_string(),
+        images: images
+            .as_ref()
+            .map_or(String::new(), |i| i.dir.display().to_string()),
         edge_pixels: None,
         reference_error: None,
     };
@@ -62,12 +64,16 @@ pub fn bench_scene(
     };
     let host = host(scene, Overrides::default());
 
-    progress.item(format!("{spec} reference"));
+    if reference.is_some() {
+        progress.item(format!("{spec} reference"));
+    }
     let reference = match reference.map(|r| r.render(setup, &host)) {
         Some(Ok(reference)) => {
-            images.write("reference", &reference.image)?;
-            let (w, h) = reference.image.dimensions();
-            images.write("edge_pixels", &reference.edges.image(w, h))?;
+            if let Some(images) = &images {
+                images.write("reference", &reference.image)?;
+                let (w, h) = reference.image.dimensions();
+                images.write("edge_pixels", &reference.edges.image(w, h))?;
+            }
             summary.edge_pixels = Some(reference.edges.clone());
             Some(reference)
         }
@@ -85,7 +91,12 @@ pub fn bench_scene(
         let file = candidate.path.display().to_string();
         let row = match setup.measure(candidate, &host) {
             Ok(measured) => {
-                let figures = record(measured, &candidate.name, reference.as_ref(), &images)?;
+                let figures = record(
+                    measured,
+                    &candidate.name,
+                    reference.as_ref(),
+                    images.as_ref(),
+                )?;
                 Row::ok(spec, &candidate.name, &file, figures)
             }
             Err(source) => {
@@ -108,21 +119,26 @@ fn record(
     measured: Measured,
     name: &str,
     reference: Option<&SceneReference>,
-    images: &SceneImages,
+    images: Option<&SceneImages>,
 ) -> Result<Figures, BenchError> {
     let Measured {
         mut figures,
         color,
         edges,
     } = measured;
-    images.write(name, &color)?;
-    if let Some(edges) = &edges {
-        images.write(&format!("{name}_edges"), edges)?;
-    }
-    if let Some(reference) = reference {
+    let heat = reference.map(|reference| {
         let (error, heat) = compare(&reference.image, &color, &reference.edges);
-        images.write(&format!("{name}_error"), &heat)?;
         figures.image_error = Some(error);
+        heat
+    });
+    if let Some(images) = images {
+        images.write(name, &color)?;
+        if let Some(edges) = &edges {
+            images.write(&format!("{name}_edges"), edges)?;
+        }
+        if let Some(heat) = &heat {
+            images.write(&format!("{name}_error"), heat)?;
+        }
     }
     Ok(figures)
 }

@@ -74,12 +74,9 @@ fn scene_table(rows: &[&Row]) -> String {
     for row in rows {
         let cells = match (&row.figures, &row.message) {
             (Some(f), _) => figure_cells(f),
-            (None, message) => vec![format!(
-                "error: {}",
-                message.as_deref().unwrap_or("?").replace('\n', " ")
-            )],
+            (None, message) => vec![error_cell(message.as_deref().unwrap_or("?"))],
         };
-        let _ = writeln!(md, "| {} | {} |", row.pipeline, cells.join(" | "));
+        let _ = writeln!(md, "| {} | {} |", name(row), cells.join(" | "));
     }
     md
 }
@@ -135,9 +132,27 @@ fn pass_table(rows: &[&Row]) -> String {
                 format!("{} {t}", p.name)
             })
             .collect();
-        let _ = writeln!(md, "| {} | {} |", row.pipeline, passes.join(", "));
+        let _ = writeln!(md, "| {} | {} |", name(row), passes.join(", "));
     }
     md
+}
+
+/// An error's first line (compile errors list every texture at fault; the JSON has all).
+fn error_cell(message: &str) -> String {
+    let mut lines = message.lines();
+    let first = lines.next().unwrap_or("").replace('|', "\\|");
+    match lines.count() {
+        0 => format!("error: {first}"),
+        more => format!("error: {first} (+{more} more in results.json)"),
+    }
+}
+
+/// The pipeline, with the sweep value in a sweep.
+fn name(row: &Row) -> String {
+    match &row.sweep {
+        Some(point) => format!("{} ({})", row.pipeline, point.label),
+        None => row.pipeline.clone(),
+    }
 }
 
 fn ms(value: f64) -> String {

@@ -4,6 +4,7 @@
 
 mod pareto;
 mod passes;
+mod scaling;
 
 use std::path::Path;
 use std::sync::Once;
@@ -17,8 +18,9 @@ use super::error::BenchError;
 use super::results::Results;
 use crate::commands::write_png;
 
-pub use pareto::pareto;
-pub use passes::passes;
+use pareto::pareto;
+use passes::passes;
+use scaling::scaling;
 
 static FONT: &[u8] = include_bytes!("../../../../assets/fonts/DejaVuSans.ttf");
 
@@ -31,8 +33,14 @@ pub type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
 /// Any drawing error, as text: plotters' errors are generic over the backend.
 pub type DrawResult = Result<(), String>;
 
-/// Writes every chart of `results` into `out`: pareto.png and passes.png.
+/// Writes the charts of `results` into `out`: pareto.png and passes.png, or scaling.png
+/// for a sweep.
 pub fn write_all(results: &Results, out: &Path) -> Result<(), BenchError> {
+    if let Some(sweep) = results.sweep {
+        return draw_png(&out.join("scaling.png"), scaling::size(results), |area| {
+            scaling(results, sweep, area)
+        });
+    }
     draw_png(&out.join("pareto.png"), pareto::size(results), |area| {
         pareto(results, area)
     })?;

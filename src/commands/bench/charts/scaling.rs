@@ -1,0 +1,188 @@
+//! scaling.png: how the median GPU frame time grows with the swept parameter, one panel
+//! per scene (the lights sweep's scenes differ only in their light count: one panel),
+//! one line per pipeline, both axes logarithmic (resolution in megapixels).
+
+use plotters::prelude::*;
+
+use super::{color, font, grid, text, Area, DrawResult};
+use crate::cli::Sweep;
+use crate::commands::bench::results::{Results, Row};
+
+const PANEL: (u32, u32) = (760, 520);
+const LEGEND_WIDTH: u32 = 330;
+const TITLE_HEIGHT: u32 = 40;
+
+pub fn size(results: &Results) -> (u32, u32) {
+    let (rows, columns) = grid(panels(results).len());
+    (
+        PANEL.0 * columns as u32 + LEGEND_WIDTH,
+        PANEL.1 * rows as u32 + TITLE_HEIGHT,
+    )
+}
+
+pub fn scaling(results: &Results, sweep: Sweep, area: &Area) -> DrawResult {
+    let (title, body) = area.split_vertically(TITLE_HEIGHT);
+    title
+        .titled(
+            &match sweep {
+                Sweep::Resolution => format!(
+                    "GPU frame time vs {}: {}",
+                    parameter(sweep),
+                    results.adapter.name
+                ),
+                _ => format!(
+                    "GPU frame time vs {}: {} at {}x{}",
+                    parameter(sweep),
+                    results.adapter.name,
+                    results.resolution[0],
+                    results.resolution[1]
+                ),
+            },
+            font(22.0),
+        )
+        .map_err(text)?;
+    let (panel_area, legend) = body.split_horizontally(body.dim_in_pixel().0 - LEGEND_WIDTH);
+    let names = pipelines(results);
+    let panels = panels(results);
+    let (rows, columns) = grid(panels.len());
+    for (group, panel) in panels.iter().zip(panel_area.split_evenly((rows, columns))) {
+        let lines: Vec<Vec<(f64, f64)>> = names
+            .iter()
+            .map(|name| {
+                results
+                    .rows
+                    .iter()
+                    .filter(|r| r.pipeline == *name && scene_group(r) == *group)
+                    .filter_map(|r| Some((x(r, sweep)?, y(r)?)))
+                    .collect()
+            })
+            .collect();
+        panel_chart(&panel, group, sweep, &lines)?;
+    }
+    legend_panel(&legend, &names)
+}
+
+fn parameter(sweep: Sweep) -> &'static str {
+    match sweep {
+        Sweep::Lights => "light count",
+        Sweep::Resolution => "resolution",
+        Sweep::Samples => "MSAA samples",
+    }
+}
+
+/// The scene without its parameters: "builtin:lights?count=64" → "builtin:lights".
+fn scene_group(row: &Row) -> &str {
+    row.scene.split('?').next().unwrap_or(&row.scene)
+}
+
+fn panels(results: &Results) -> Vec<&str> {
+    let mut groups: Vec<&str> = Vec::new();
+    for row in &results.rows {
+        if !groups.contains(&scene_group(row)) {
+            groups.push(scene_group(row));
+        }
+    }
+    groups
+}
+
+fn pipelines(results: &Results) -> Vec<&str> {
+    let mut names: Vec<&str> = Vec::new();
+    for row in results.rows.iter().filter(|r| r.figures.is_some()) {
+        if !names.contains(&row.pipeline.as_str()) {
+            names.push(&row.pipeline);
+        }
+    }
+    names
+}
+
+/// Lights and samples as counts, resolution as megapixels.
+fn x(row: &Row, sweep: Sweep) -> Option<f64> {
+    let point = row.sweep.as_ref()?;
+    Some(match sweep {
+        Sweep::Resolution => {
+            let (w, h) = point.label.split_once('x')?;
+            w.parse::<f64>().ok()? * h.parse::<f64>().ok()? / 1e6
+        }
+        _ => point.value as f64,
+    })
+}
+
+fn y(row: &Row) -> Option<f64> {
+    Some(row.figures.as_ref()?.gpu_frame_ms.as_ref()?.median)
+}
+
+fn panel_chart(area: &Area, group: &str, sweep: Sweep, lines: &[Vec<(f64, f64)>]) -> DrawResult {
+    let points = || lines.iter().flatten();
+    if points().next().is_none() {
+        area.titled(&format!("{group}: nothing measured"), font(18.0))
+            .map_err(text)?;
+        return Ok(());
+    }
+    let bounds = |values: Vec<f64>| {
+        let lo = values.iter().copied().fold(f64::MAX, f64::min);
+        let hi = values.iter().copied().fold(f64::MIN, f64::max);
+        (lo / 1.3)..(hi * 1.3)
+    };
+    let xs = bounds(points().map(|p| p.0).collect());
+    let ys = bounds(points().map(|p| p.1).collect());
+    let mut chart = ChartBuilder::on(area)
+        .caption(group, font(18.0))
+        .margin(12)
+        .x_label_area_size(46)
+        .y_label_area_size(64)
+        .build_cartesian_2d(xs.log_scale(), ys.log_scale())
+        .map_err(text)?;
+    let x_desc = match sweep {
+        Sweep::Lights => "lights (log scale)",
+        Sweep::Resolution => "megapixels (log scale)",
+        Sweep::Samples => "samples per pixel (log scale)",
+    };
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc("GPU frame time, ms (median; log scale)")
+        .label_style(font(14.0))
+        .axis_desc_style(font(15.0))
+        .x_label_formatter(&|v| {
+            format!("{v:.3}")
+                .trim_end_matches('0')
+                .trim_end_matches('.')
+                .to_string()
+        })
+        .y_label_formatter(&|v| {
+            format!("{v:.3}")
+                .trim_end_matches('0')
+                .trim_end_matches('.')
+                .to_string()
+        })
+        .draw()
+        .map_err(text)?;
+    for (i, line) in lines.iter().enumerate() {
+        chart
+            .draw_series(LineSeries::new(
+                line.iter().copied(),
+                color(i).stroke_width(2),
+            ))
+            .map_err(text)?;
+        chart
+            .draw_series(line.iter().map(|&p| Circle::new(p, 4, color(i).filled())))
+            .map_err(text)?;
+    }
+    Ok(())
+}
+
+fn legend_panel(area: &Area, names: &[&str]) -> DrawResult {
+    area.draw(&Text::new("pipelines", (10, 20), font(17.0)))
+        .map_err(text)?;
+    for (i, name) in names.iter().enumerate() {
+        let y = 50 + 24 * i as i32;
+        area.draw(&Rectangle::new(
+            [(10, y + 6), (28, y + 10)],
+            color(i).filled(),
+        ))
+        .map_err(text)?;
+        area.draw(&Text::new(name.to_string(), (34, y), font(15.0)))
+            .map_err(text)?;
+    }
+    Ok(())
+}
