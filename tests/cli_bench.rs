@@ -1,0 +1,373 @@
+//! `rgraph bench` as a user runs it: the built binary on lavapipe (unless RGRAPH_ADAPTER
+//! says otherwise) at 64x48 with one frame, checked through its exit status, results.json,
+//! and the charts and images it writes. A machine without a Vulkan adapter fails these
+//! tests with the binary's own explanation: they never skip.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+use serde_json::Value;
+use tempfile::TempDir;
+
+const NOAA: &str = "pipelines/deferred_noaa.ron";
+const PER_SAMPLE: &str = "pipelines/deferred_per_sample_4x.ron";
+const REFERENCE: &str = "pipelines/reference_ssaa16.ron";
+const MISSING: &str = "pipelines/no_such_pipeline.ron";
+
+struct Run {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+fn bench(args: &[&str]) -> Run {
+    let output = Command::new(env!("CARGO_BIN_EXE_rgraph"))
+        .arg("bench")
+        .args([
+            "--width", "64", "--height", "48", "--frames", "1", "--warmup", "0",
+        ])
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the rgraph binary runs");
+    Run {
+        // A signal (a crash) has no code: -1 never matches an expected status.
+        code: output.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+    }
+}
+
+impl Run {
+    fn expect(self, code: i32) -> Self {
+        assert_eq!(
+            self.code, code,
+            "expected exit {code}\nstdout:\n{}\nstderr:\n{}",
+            self.stdout, self.stderr
+        );
+        self
+    }
+}
+
+/// The main run, shared by the tests that read it: builtin:dense with no-AA, per-sample
+/// shading, the reference itself, and a pipeline file that does not exist.
+struct Bench {
+    dir: TempDir,
+    json: Value,
+}
+
+fn main_run() -> &'static Bench {
+    static RUN: OnceLock<Bench> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let out = dir
+            .path()
+            .to_str()
+            .expect("temp paths are UTF-8")
+            .to_string();
+        let run = bench(&[
+            "--scene",
+            "builtin:dense",
+            "--pipeline",
+            NOAA,
+            "--pipeline",
+            PER_SAMPLE,
+            "--pipeline",
+            REFERENCE,
+            "--pipeline",
+            MISSING,
+            "--out-dir",
+            &out,
+        ])
+        .expect(0);
+        let json_path = dir.path().join("results.json");
+        assert_eq!(run.stdout.trim(), json_path.display().to_string());
+        let json = read_json(&json_path);
+        Bench { dir, json }
+    })
+}
+
+fn read_json(path: &Path) -> Value {
+    let text = std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{} is not readable: {e}", path.display()));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{} is not JSON: {e}", path.display()))
+}
+
+/// The row of `pipeline` (a file stem).
+fn row<'a>(json: &'a Value, pipeline: &str) -> &'a Value {
+    json["rows"]
+        .as_array()
+        .expect("rows is an array")
+        .iter()
+        .find(|r| r["pipeline"] == pipeline)
+        .unwrap_or_else(|| panic!("no row for {pipeline} in {json:#}"))
+}
+
+fn number(value: &Value, path: &str) -> f64 {
+    let field = path.split('.').fold(value, |v, key| &v[key]);
+    field
+        .as_f64()
+        .unwrap_or_else(|| panic!("{path} is not a number: {field} in {value:#}"))
+}
+
+/// Checks that every key of `keys` is present in `value` and of the kind named.
+fn assert_fields(value: &Value, keys: &[(&str, &str)]) {
+    for (key, kind) in keys {
+        let field = value
+            .get(key)
+            .unwrap_or_else(|| panic!("missing field {key} in {value:#}"));
+        let ok = match *kind {
+            "string" => field.is_string(),
+            "number" => field.is_number(),
+            "array" => field.is_array(),
+            "object" => field.is_object(),
+            "spread" => ["median", "p10", "p90", "min", "max"]
+                .iter()
+                .all(|k| field[k].is_number()),
+            "number|null" => field.is_number() || field.is_null(),
+            "string|null" => field.is_string() || field.is_null(),
+            "object|null" => field.is_object() || field.is_null(),
+            other => panic!("unknown kind {other}"),
+        };
+        assert!(ok, "field {key} should be {kind}, is {field}");
+    }
+}
+
+#[test]
+fn results_json_has_every_figure_with_its_type() {
+    let json = &main_run().json;
+    assert_fields(
+        json,
+        &[
+            ("schema", "number"),
+            ("command", "string"),
+            ("machine", "object"),
+            ("adapter", "object"),
+            ("git_commit", "string"),
+            ("timestamp", "string"),
+            ("resolution", "array"),
+            ("frames", "number"),
+            ("warmup", "number"),
+            ("reference", "object"),
+            ("notes", "array"),
+            ("scenes", "array"),
+            ("rows", "array"),
+        ],
+    );
+    assert_eq!(json["resolution"], serde_json::json!([64, 48]));
+    assert_fields(
+        &json["machine"],
+        &[
+            ("hostname", "string"),
+            ("cpu", "string"),
+            ("cpu_cores", "number"),
+        ],
+    );
+    assert_fields(
+        &json["adapter"],
+        &[
+            ("name", "string"),
+            ("driver", "string"),
+            ("driver_info", "string"),
+            ("backend", "string"),
+            ("device_type", "string"),
+        ],
+    );
+    let timestamp = json["timestamp"].as_str().unwrap();
+    assert!(
+        timestamp.len() == 20 && timestamp.ends_with('Z') && timestamp.contains('T'),
+        "{timestamp}"
+    );
+    assert_eq!(json["reference"]["spp"], 16);
+    assert_fields(
+        &json["scenes"][0]["edge_pixels"],
+        &[("share", "number"), ("definition", "string")],
+    );
+
+    let noaa = row(json, "deferred_noaa");
+    assert_eq!(noaa["status"], "ok");
+    let figures = &noaa["figures"];
+    assert_fields(
+        figures,
+        &[
+            ("samples", "number"),
+            ("gpu_frame_ms", "spread"),
+            ("cpu_record_ms", "spread"),
+            ("ratio_to_noaa", "number"),
+            ("passes", "array"),
+            ("memory", "object"),
+            ("work", "object"),
+            ("image_error", "object"),
+        ],
+    );
+    assert_eq!(number(figures, "ratio_to_noaa"), 1.0);
+    for pass in figures["passes"].as_array().unwrap() {
+        assert_fields(
+            pass,
+            &[
+                ("name", "string"),
+                ("kind", "string"),
+                ("gpu_ms", "spread"),
+                ("cpu_ms", "spread"),
+            ],
+        );
+    }
+    assert_fields(
+        &figures["memory"],
+        &[
+            ("logical_bytes", "number"),
+            ("physical_bytes", "number"),
+            ("gbuffer_bytes_per_sample", "number"),
+        ],
+    );
+    assert!(number(figures, "memory.physical_bytes") > 0.0);
+    assert_fields(
+        &figures["work"],
+        &[
+            ("edge_pixel_share", "number"),
+            ("shaded_samples_per_pixel", "number"),
+            ("source", "string"),
+            ("unique_surface_bound", "number|null"),
+        ],
+    );
+    assert_fields(
+        &figures["image_error"],
+        &[
+            ("flip_mean", "number"),
+            ("mse", "number"),
+            ("psnr_db", "number|null"),
+            ("edge_flip_mean", "number|null"),
+            ("edge_mse", "number|null"),
+            ("edge_psnr_db", "number|null"),
+        ],
+    );
+}
+
+#[test]
+fn the_reference_against_itself_has_no_error() {
+    let error = &row(&main_run().json, "reference_ssaa16")["figures"]["image_error"];
+    assert_eq!(number(error, "flip_mean"), 0.0, "{error:#}");
+    assert_eq!(number(error, "mse"), 0.0, "{error:#}");
+    assert!(error["psnr_db"].is_null(), "identical images: {error:#}");
+}
+
+#[test]
+fn per_sample_shading_has_no_more_error_than_no_aa() {
+    let json = &main_run().json;
+    let noaa = &row(json, "deferred_noaa")["figures"];
+    let per_sample = &row(json, "deferred_per_sample_4x")["figures"];
+    for figure in [
+        "image_error.flip_mean",
+        "image_error.edge_flip_mean",
+        "image_error.mse",
+    ] {
+        let (ps, na) = (number(per_sample, figure), number(noaa, figure));
+        assert!(ps <= na, "{figure}: per-sample {ps} > no-AA {na}");
+    }
+    // Per-sample shading shades every sample; no-AA once per pixel.
+    assert_eq!(number(per_sample, "work.shaded_samples_per_pixel"), 4.0);
+    assert_eq!(number(noaa, "work.shaded_samples_per_pixel"), 1.0);
+}
+
+#[test]
+fn an_unknown_pipeline_is_an_error_row_and_the_rest_are_measured() {
+    let json = &main_run().json;
+    let missing = row(json, "no_such_pipeline");
+    assert_eq!(missing["status"], "error");
+    assert!(missing["figures"].is_null());
+    let message = missing["message"].as_str().unwrap();
+    assert!(
+        message.contains(MISSING) && message.contains("builtin:dense"),
+        "{message}"
+    );
+    let measured = json["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| r["status"] == "ok");
+    assert_eq!(measured.count(), 3);
+}
+
+#[test]
+fn charts_images_and_the_table_are_written() {
+    let dir = main_run().dir.path();
+    let scene = dir.join("builtin_dense");
+    let pngs: Vec<PathBuf> = [
+        dir.join("pareto.png"),
+        dir.join("passes.png"),
+        scene.join("reference.png"),
+        scene.join("edge_pixels.png"),
+        scene.join("deferred_noaa.png"),
+        scene.join("deferred_noaa_error.png"),
+        scene.join("deferred_noaa_edges.png"),
+        scene.join("deferred_per_sample_4x_error.png"),
+    ]
+    .into();
+    for png in &pngs {
+        let image = image::open(png)
+            .unwrap_or_else(|e| panic!("{} is not a readable PNG: {e}", png.display()));
+        assert!(image.width() > 0 && image.height() > 0);
+    }
+    let reference = image::open(scene.join("reference.png")).unwrap();
+    assert_eq!((reference.width(), reference.height()), (64, 48));
+    let table = std::fs::read_to_string(dir.join("results.md")).unwrap();
+    assert!(table.contains("| deferred_per_sample_4x |"), "{table}");
+    assert!(table.contains("| no_such_pipeline | error:"), "{table}");
+}
+
+#[test]
+fn nothing_measurable_exits_1_and_still_writes_the_error_rows() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = bench(&[
+        "--scene",
+        "builtin:no_such_scene",
+        "--pipeline",
+        NOAA,
+        "--out-dir",
+        dir.path().to_str().unwrap(),
+    ])
+    .expect(1);
+    assert!(
+        run.stderr.contains("nothing could be measured"),
+        "{}",
+        run.stderr
+    );
+    let json = read_json(&dir.path().join("results.json"));
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 1);
+    assert_eq!(rows[0]["status"], "error");
+    let message = rows[0]["message"].as_str().unwrap();
+    assert!(
+        message.contains("unknown built-in scene `no_such_scene`"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_sample_count_the_device_lacks_is_an_error_row_of_the_sweep() {
+    let dir = tempfile::tempdir().unwrap();
+    bench(&[
+        "--sweep",
+        "samples",
+        "--scene",
+        "builtin:unlit",
+        "--pipeline",
+        "pipelines/forward_msaa_4x.ron",
+        "--out-dir",
+        dir.path().to_str().unwrap(),
+    ])
+    .expect(0);
+    let json = read_json(&dir.path().join("results.json"));
+    assert_eq!(json["sweep"], "samples");
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 4, "one row per sample count: {json:#}");
+    let four = rows.iter().find(|r| r["sweep"]["value"] == 4).unwrap();
+    assert_eq!(four["status"], "ok", "{four:#}");
+    // lavapipe has 1x and 4x only; a device with 2x and 8x measures those too.
+    for row in rows.iter().filter(|r| r["status"] == "error") {
+        let message = row["message"].as_str().unwrap();
+        assert!(message.contains("multisampling"), "{message}");
+    }
+    assert!(dir.path().join("scaling.png").is_file());
+}
