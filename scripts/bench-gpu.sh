@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# rgraph bench on an NVIDIA server (H100/H200, no network, no display) in one command, at
+# 3840x2160, writing results.json, results.md, charts and images.
+#
+#   scripts/bench-gpu.sh [OUT_DIR]       default: $OUT if set, else bench/results/gpu
+#
+# The server has no network and no Rust: build the release binary on an x86_64
+# development machine (`cargo build --release`) and bring it along, as .gl/bin/rgraph
+# (with the Vulkan loader .debs in .gl/, see ../shared/notes/gpu.md) or target/release/rgraph,
+# or name it with RGRAPH_BIN. The commit the binary was built from goes in
+# RGRAPH_GIT_COMMIT when the server has no git checkout.
+#
+# What runs (BENCH_PARTS picks a subset, e.g. BENCH_PARTS="main lights"):
+#   main        every pipeline in pipelines/ on builtin:dense and builtin:lights?count=256
+#               (the issue's "dense scene with 256 lights": builtin:dense has 6 lights and
+#               no light-count parameter, so the 256-light case is builtin:lights)
+#   lights      the light sweep (1..1024) for noaa, MSAA 4x, per-sample 4x and forward MSAA
+#   samples     the sample-count sweep (1, 2, 4, 8) of the same pipelines on builtin:dense
+#   resolution  720p..2160p of the same pipelines on builtin:dense
+# Each part writes to OUT_DIR/PART. Frames: BENCH_FRAMES (default 10) after BENCH_WARMUP
+# (default 2); BENCH_SIZE (default 3840x2160) for a quick try elsewhere.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+out="${1:-${OUT:-bench/results/gpu}}"
+parts="${BENCH_PARTS:-main lights samples resolution}"
+frames="${BENCH_FRAMES:-10}"
+warmup="${BENCH_WARMUP:-2}"
+size="${BENCH_SIZE:-3840x2160}"
+width="${size%x*}"
+height="${size#*x}"
+
+bin="${RGRAPH_BIN:-}"
+if [ -z "$bin" ]; then
+  for candidate in .gl/bin/rgraph target/release/rgraph; do
+    if [ -x "$candidate" ]; then bin="$candidate"; break; fi
+  done
+fi
+if [ -z "$bin" ] || [ ! -x "$bin" ]; then
+  echo "bench-gpu: no rgraph binary: build it with \`cargo build --release\` on a development" \
+       "machine and bring it as .gl/bin/rgraph or target/release/rgraph (or set RGRAPH_BIN)" >&2
+  exit 2
+fi
+
+# The Vulkan loader: servers without it get the Debian packages unpacked into /.
+if ! ldconfig -p | grep -q libvulkan; then
+  debs=(.gl/*.deb)
+  if [ ! -e "${debs[0]}" ]; then
+    echo "bench-gpu: no Vulkan loader (libvulkan) and no .debs in .gl/ to unpack;" \
+         "see ../shared/notes/gpu.md" >&2
+    exit 2
+  fi
+  for deb in "${debs[@]}"; do dpkg -x "$deb" /; done
+  ldconfig
+fi
+nvidia_icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+if [ -z "${VK_DRIVER_FILES:-}" ] && [ -f "$nvidia_icd" ]; then
+  export VK_DRIVER_FILES="$nvidia_icd"
+fi
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
+export RGRAPH_ADAPTER="${RGRAPH_ADAPTER:-gpu}"
+if [ -z "${RGRAPH_GIT_COMMIT:-}" ] && git rev-parse HEAD >/dev/null 2>&1; then
+  export RGRAPH_GIT_COMMIT="$(git rev-parse HEAD)"
+fi
+
+mkdir -p "$out"
+# Which adapters the server has, for the record (the bench prints the one it used).
+"$bin" adapters >"$out/adapters.txt" 2>&1 || true
+
+core=(--pipeline pipelines/deferred_noaa.ron --pipeline pipelines/deferred_msaa_4x.ron
+      --pipeline pipelines/deferred_per_sample_4x.ron --pipeline pipelines/forward_msaa_4x.ron)
+common=(--frames "$frames" --warmup "$warmup")
+status=0
+for part in $parts; do
+  echo "bench-gpu: $part -> $out/$part" >&2
+  case "$part" in
+    main)
+      "$bin" bench --scene builtin:dense --scene 'builtin:lights?count=256' \
+        --width "$width" --height "$height" "${common[@]}" --out-dir "$out/main" || status=$?
+      ;;
+    lights)
+      "$bin" bench --sweep lights "${core[@]}" --width "$width" --height "$height" "${common[@]}" \
+        --out-dir "$out/lights" || status=$?
+      ;;
+    samples)
+      "$bin" bench --sweep samples --scene builtin:dense "${core[@]}" --width "$width" --height "$height" \
+        "${common[@]}" --out-dir "$out/samples" || status=$?
+      ;;
+    resolution)
+      "$bin" bench --sweep resolution --scene builtin:dense "${core[@]}" "${common[@]}" \
+        --out-dir "$out/resolution" || status=$?
+      ;;
+    *)
+      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution)" >&2
+      status=2
+      ;;
+  esac
+done
+exit "$status"
