@@ -271,6 +271,18 @@ fn per_sample_shading_has_no_more_error_than_no_aa() {
 }
 
 #[test]
+fn the_unique_surface_bound_lies_between_one_and_the_sample_count() {
+    let json = &main_run().json;
+    let bound = number(&json["scenes"][0], "unique_surfaces.per_pixel");
+    // builtin:dense has many edges: more than one surface in some pixels.
+    assert!(bound > 1.0 && bound < 4.0, "{bound}");
+    let per_sample = &row(json, "deferred_per_sample_4x")["figures"];
+    assert_eq!(number(per_sample, "work.unique_surface_bound"), bound);
+    // Counted at 4x: no bound for a 1-sample pipeline.
+    assert!(row(json, "deferred_noaa")["figures"]["work"]["unique_surface_bound"].is_null());
+}
+
+#[test]
 fn an_unknown_pipeline_is_an_error_row_and_the_rest_are_measured() {
     let json = &main_run().json;
     let missing = row(json, "no_such_pipeline");

@@ -45,7 +45,7 @@ impl Setup<'_> {
         drop(prepared);
 
         let edges = if has_edges {
-            Some(self.one_frame(candidate, host, EDGES_OUTPUT)?)
+            Some(self.render(candidate, host, EDGES_OUTPUT)?)
         } else {
             None
         };
@@ -60,12 +60,8 @@ impl Setup<'_> {
         })
     }
 
-    /// The final image of one frame: for the reference.
-    pub fn render(&self, candidate: &Candidate, host: &Arc<Host>) -> Result<RgbaImage, FrameError> {
-        self.one_frame(candidate, host, COLOR)
-    }
-
-    fn one_frame(
+    /// `output` of one frame of `candidate`: the reference, edge masks, measurements.
+    pub fn render(
         &self,
         candidate: &Candidate,
         host: &Arc<Host>,

@@ -8,7 +8,7 @@ use image::RgbaImage;
 use passes_deferred_msaa::Host;
 use serde::Serialize;
 
-use super::candidates::{Candidate, PIPELINE_DIR};
+use super::candidates::{Candidate, COLOR, PIPELINE_DIR};
 use super::edge_pixels::EdgePixels;
 use super::measure::Setup;
 use crate::cli::BenchArgs;
@@ -92,9 +92,9 @@ impl Reference {
 
     /// Renders the reference and the 1-sample image on the scene of `host`.
     pub fn render(&self, setup: &Setup, host: &Arc<Host>) -> Result<SceneReference, FrameError> {
-        let image = setup.render(&self.candidate, host)?;
+        let image = setup.render(&self.candidate, host, COLOR)?;
         let pixels = image.width() as usize * image.height() as usize;
-        let edges = match setup.render(&self.aliased, host) {
+        let edges = match setup.render(&self.aliased, host, COLOR) {
             Ok(aliased) => EdgePixels::between(&image, &aliased, ALIASED),
             Err(e) => EdgePixels::none(pixels, format!("not measured: {e}")),
         };

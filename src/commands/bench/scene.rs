@@ -17,6 +17,7 @@ use super::measure::{Measured, Setup};
 use super::progress::Progress;
 use super::reference::{Reference, SceneReference};
 use super::results::{Figures, Row};
+use super::surfaces::{self, UniqueSurfaces};
 use crate::frame::host;
 
 /// What a scene's rows share: where its images are and how its edge pixels were found.
@@ -28,11 +29,16 @@ pub struct SceneSummary {
     pub edge_pixels: Option<EdgePixels>,
     /// Why the reference could not be rendered, when it could not.
     pub reference_error: Option<String>,
+    /// The lower bound of shading work; `null` in sweeps or when it failed.
+    pub unique_surfaces: Option<UniqueSurfaces>,
+    /// Why the bound could not be measured, when it could not.
+    pub unique_surfaces_error: Option<String>,
 }
 
-/// Every pipeline on the scene `spec`, with images written under `out` when it is given.
-/// A scene that fails to load is one error row; a pipeline that fails is an error row and
-/// the others go on. Only writing images fails the whole bench.
+/// Every pipeline on the scene `spec`. When `out` is given (outside sweeps), also the
+/// images under it and the unique-surface bound. A scene that fails to load is one error
+/// row; a pipeline that fails is an error row and the others go on. Only writing images
+/// fails the whole bench.
 pub fn bench_scene(
     setup: &Setup,
     spec: &str,
@@ -49,6 +55,8 @@ pub fn bench_scene(
             .map_or(String::new(), |i| i.dir.display().to_string()),
         edge_pixels: None,
         reference_error: None,
+        unique_surfaces: None,
+        unique_surfaces_error: None,
     };
     let scene = match Scene::load(spec) {
         Ok(scene) => Arc::new(scene),
@@ -85,18 +93,34 @@ pub fn bench_scene(
         None => None,
     };
 
+    if out.is_some() {
+        progress.item(format!("{spec} unique surfaces"));
+        match surfaces::measure(setup, &host) {
+            Ok(bound) => summary.unique_surfaces = Some(bound),
+            Err(e) => {
+                progress.note(format!("error: unique surfaces on {spec}: {e}"));
+                summary.unique_surfaces_error = Some(e.to_string());
+            }
+        }
+    }
+
     let mut rows = Vec::new();
     for candidate in pipelines {
         progress.item(format!("{spec} {}", candidate.name));
         let file = candidate.path.display().to_string();
         let row = match setup.measure(candidate, &host) {
             Ok(measured) => {
-                let figures = record(
+                let mut figures = record(
                     measured,
                     &candidate.name,
                     reference.as_ref(),
                     images.as_ref(),
                 )?;
+                // The bound holds for pipelines at the sample count it was counted at.
+                let bound = summary.unique_surfaces.as_ref();
+                figures.work.unique_surface_bound = bound
+                    .filter(|b| b.samples == figures.samples)
+                    .map(|b| b.per_pixel);
                 Row::ok(spec, &candidate.name, &file, figures)
             }
             Err(source) => {

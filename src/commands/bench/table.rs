@@ -51,6 +51,17 @@ pub fn markdown(results: &Results) -> String {
                 let share = edges.share * 100.0;
                 let _ = writeln!(md, "Edge pixels: {share:.1}% ({}).\n", edges.definition);
             }
+            if let Some(bound) = &summary.unique_surfaces {
+                let _ = writeln!(
+                    md,
+                    "Lower bound at {}x: {:.3} shadings per pixel (one per distinct surface \
+                     among a pixel's samples, from {}).\n",
+                    bound.samples, bound.per_pixel, bound.graph
+                );
+            }
+            if let Some(error) = &summary.unique_surfaces_error {
+                let _ = writeln!(md, "Lower bound failed: {error}\n");
+            }
             if let Some(error) = &summary.reference_error {
                 let _ = writeln!(md, "Reference failed: {error}\n");
             }

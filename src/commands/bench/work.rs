@@ -19,8 +19,9 @@ pub struct Work {
     /// Where the figure comes from: "debug.edges", or "kind: ..." for pipelines without
     /// an edge mask, or why it is missing.
     pub source: String,
-    /// The least shading a pixel needs: one per distinct surface covering its samples.
-    /// Not measured: it needs per-sample primitive identity, which no pipeline exports.
+    /// The least shading a pixel needs, one per distinct surface among its samples
+    /// (see surfaces.rs), for pipelines at the sample count it was counted at; `null`
+    /// otherwise and in sweeps.
     pub unique_surface_bound: Option<f64>,
 }
 
