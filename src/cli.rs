@@ -175,6 +175,9 @@ pub struct BenchArgs {
     /// at twice the size, every sample shaded), 4 the same at the output size.
     #[arg(long, value_name = "SPP", default_value_t = 16, value_parser = parse_spp)]
     pub reference_spp: u32,
+    /// Skip the reference: no image error, for quick time and work tables.
+    #[arg(long)]
+    pub no_reference: bool,
     /// Measure how cost grows instead: lights 1..1024 (builtin:lights?count=N), resolution
     /// 720p..2160p, or samples 1, 2, 4, 8 (those the device lacks become error rows).
     #[arg(long, value_enum)]

@@ -62,9 +62,13 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
     let size = (args.width, args.height);
     let steps = sweep::steps(args.sweep, scenes, pipelines, size, &mut notes);
     // Sweeps measure cost only: a reference per sweep value would dominate the run.
-    let reference = match args.sweep {
-        None => Reference::choose(args, &mut notes),
-        Some(_) => None,
+    let reference = match (args.sweep, args.no_reference) {
+        (None, false) => Reference::choose(args, &mut notes),
+        (None, true) => {
+            notes.push("--no-reference: image error is not measured".into());
+            None
+        }
+        (Some(_), _) => None,
     };
 
     let items = steps
