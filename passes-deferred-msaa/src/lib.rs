@@ -23,6 +23,9 @@ use std::sync::Arc;
 
 use graph_core::file::Registry;
 
+/// The math crate of the scene API (`DVec3` positions, `DMat4` transforms), so callers
+/// building a [`scene::Scene`] in code use the same version.
+pub use glam;
 pub use host::{Host, Overrides};
 
 /// Adds this crate's pass plugins to `registry`, so graph files can name them. With

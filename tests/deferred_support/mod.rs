@@ -7,6 +7,7 @@
 // Each test crate uses its own subset of these helpers.
 #![allow(dead_code)]
 
+pub mod scenes;
 pub mod unlit;
 
 use std::path::{Path, PathBuf};
@@ -35,6 +36,9 @@ pub struct Render<'a> {
     pub edits: Vec<(&'a str, &'a str)>,
     /// Changes to the loaded scene before it is handed to the plugins.
     pub scene_edit: Option<fn(&mut Scene)>,
+    /// A scene built in code, rendered instead of loading `scene` (which then only
+    /// names the frame in messages and PNG file names).
+    pub given_scene: Option<Scene>,
 }
 
 /// An executed frame, whose exported textures can be read back.
@@ -73,7 +77,14 @@ impl<'a> Render<'a> {
             size,
             edits: Vec::new(),
             scene_edit: None,
+            given_scene: None,
         }
+    }
+
+    /// Renders `scene` (built in code) instead of loading `self.scene`.
+    pub fn with_scene(mut self, scene: Scene) -> Render<'a> {
+        self.given_scene = Some(scene);
+        self
     }
 
     pub fn scene_edit(mut self, edit: fn(&mut Scene)) -> Render<'a> {
@@ -93,8 +104,11 @@ impl<'a> Render<'a> {
 
     /// Loads, compiles for `gpu` and executes one frame.
     pub fn run(&self, gpu: &Gpu) -> Frame {
-        let mut scene = Scene::load(self.scene)
-            .unwrap_or_else(|e| panic!("cannot load scene {}: {e}", self.scene));
+        let mut scene = match &self.given_scene {
+            Some(scene) => scene.clone(),
+            None => Scene::load(self.scene)
+                .unwrap_or_else(|e| panic!("cannot load scene {}: {e}", self.scene)),
+        };
         if let Some(edit) = self.scene_edit {
             edit(&mut scene);
         }
