@@ -9,9 +9,10 @@
 //! volume, inside it, exactly on its boundary (the sphere of the effective range; the
 //! cone's side, on the line where the tessellated cone touches the exact one), at the
 //! cone's apex, and beside the cone within its bounding sphere (back faces from outside).
-//! Also spot cones of 0.3° (a footprint far below a pixel), 89.5° and exactly 90° (glTF's
-//! largest), and a point light whose range is a twentieth of a pixel. Every render is
-//! 64x64, 4x MSAA, the resolved linear HDR read back.
+//! Also an orthographic camera outside and with its near plane cutting the sphere, spot
+//! cones of 0.3° (a footprint far below a pixel), 89.5° and exactly 90° (glTF's largest),
+//! and a point light whose range is a twentieth of a pixel. Every render is 64x64, 4x
+//! MSAA, the resolved linear HDR read back.
 //!
 //! Two bounds, both against the same pipeline with `volumes: false` (every light a
 //! full-screen triangle: the reference):
@@ -89,16 +90,25 @@ fn world() -> Parts {
     parts
 }
 
-fn camera(eye: DVec3, target: DVec3) -> Camera {
+/// The perspective camera of most cases.
+const PERSPECTIVE: Projection = Projection::Perspective {
+    yfov: 50f32.to_radians(),
+    znear: 0.05,
+    zfar: None,
+};
+/// An orthographic camera 6 units wide and high, near plane 0.5 ahead of the eye.
+const ORTHOGRAPHIC: Projection = Projection::Orthographic {
+    xmag: 3.0,
+    ymag: 3.0,
+    znear: 0.5,
+    zfar: 30.0,
+};
+
+fn camera(eye: DVec3, target: DVec3, projection: Projection) -> Camera {
     let forward = (target - eye).normalize();
     let up = match forward.dot(DVec3::Y).abs() > 0.99 {
         true => DVec3::Z,
         false => DVec3::Y,
-    };
-    let projection = Projection::Perspective {
-        yfov: 50f32.to_radians(),
-        znear: 0.05,
-        zfar: None,
     };
     Camera::look_at("test", eye, target, up, projection)
 }
@@ -170,6 +180,7 @@ struct Case {
     min_lit: usize,
     /// A pixel that must receive light, where the light is aimed at one sample.
     lit_pixel: Option<(u32, u32)>,
+    projection: Projection,
 }
 
 impl Case {
@@ -182,7 +193,13 @@ impl Case {
             back_faces: None,
             min_lit: 200,
             lit_pixel: None,
+            projection: PERSPECTIVE,
         }
+    }
+
+    fn orthographic(mut self) -> Case {
+        self.projection = ORTHOGRAPHIC;
+        self
     }
 
     fn back_faces(mut self, back: bool) -> Case {
@@ -197,7 +214,8 @@ impl Case {
     }
 
     fn scene(&self) -> Scene {
-        self.parts().scene(self.name, camera(self.eye, self.target))
+        let camera = camera(self.eye, self.target, self.projection);
+        self.parts().scene(self.name, camera)
     }
 }
 
@@ -482,7 +500,7 @@ fn assert_cases(cases: &[Case]) {
     let failures = run_cases(cases);
     assert!(
         failures.is_empty(),
-        "{} of {} light-volume cases fail:\n{}",
+        "{} failures in {} light-volume cases:\n{}",
         failures.len(),
         cases.len(),
         failures.join("\n")
@@ -491,7 +509,9 @@ fn assert_cases(cases: &[Case]) {
 
 /// A point light (sphere volume of the effective range, 3 units, around (0, 2, 0)) with
 /// the camera well outside, inside, and exactly on the range sphere looking in and
-/// looking along it. Bounds: see the module documentation.
+/// looking 15° in from along it; and an orthographic camera (6 x 6 units, near plane 0.5
+/// ahead) well outside and with its near plane cutting the sphere though the eye is
+/// outside. Bounds: see the module documentation.
 #[test]
 fn point_light_volume_matches_full_screen_from_every_camera_position() {
     let light = || point_light(POINT_AT, POINT_RANGE, 20.0);
@@ -532,6 +552,24 @@ fn point_light_volume_matches_full_screen_from_every_camera_position() {
             on_sphere_2 + grazing,
         )
         .back_faces(true),
+        Case::new(
+            "point, orthographic camera well outside",
+            light(),
+            DVec3::new(5.0, 6.0, 9.0),
+            DVec3::new(0.5, 0.3, 0.0),
+        )
+        .orthographic()
+        .back_faces(false),
+        // The eye 3.2 from the light, outside the sphere, but the near plane 0.5 ahead
+        // and 6 wide cuts it.
+        Case::new(
+            "point, orthographic camera whose near plane cuts the sphere",
+            light(),
+            POINT_AT + DVec3::new(1.0, 1.0, 3.0).normalize() * 3.2,
+            DVec3::new(0.5, 0.0, 0.0),
+        )
+        .orthographic()
+        .back_faces(true),
     ];
     assert_cases(&cases);
 }
@@ -543,14 +581,7 @@ fn point_light_volume_matches_full_screen_from_every_camera_position() {
 /// (back faces seen from outside), and behind the apex.
 #[test]
 fn spot_light_volume_matches_full_screen_from_every_camera_position() {
-    let light = || {
-        spot_light(
-            SPOT_AT,
-            spot_axis(),
-            (SPOT_INNER, SPOT_OUTER),
-            SPOT_RANGE,
-        )
-    };
+    let light = || spot_light(SPOT_AT, spot_axis(), (SPOT_INNER, SPOT_OUTER), SPOT_RANGE);
     let axis = spot_axis();
     let ground_spot = SPOT_AT + axis * 4.2;
     // 50° from the axis towards the ground below the apex: the cone's edge crosses the view.
@@ -621,7 +652,7 @@ fn spot_light_volume_matches_full_screen_from_every_camera_position() {
 /// The ground point sample 0 of pixel (x, y) sees from the "well outside" camera.
 fn ground_seen_by(x: u32, y: u32) -> DVec3 {
     let parts = world();
-    let rays = Rays::new(&camera(OUTSIDE_EYE, OUTSIDE_TARGET));
+    let rays = Rays::new(&camera(OUTSIDE_EYE, OUTSIDE_TARGET, PERSPECTIVE));
     let (dx, dy) = SAMPLES_4X[0];
     let (origin, dir) = rays.at(f64::from(x) + dx, f64::from(y) + dy);
     let hit = parts.cast(origin, dir).expect("the pixel sees the scene");
