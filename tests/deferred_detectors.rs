@@ -17,7 +17,7 @@
 //!   (-0.5, 0.85): ordinary silhouette edges, where fragments cover part of a pixel.
 //!
 //! Lit by one directional light travelling along (1, -0.3, -0.4) and a little ambient,
-//! so the wall and the tilted square shade differently (cosines 0.36 and 0.87).
+//! so the wall and the tilted square shade differently (cosines 0.36 and 0.88).
 //!
 //! Everything stays inside the view on purpose: lavapipe clips a triangle reaching far
 //! beyond it into a fan whose inner edges (here once a diagonal of the whole view) cut
@@ -156,15 +156,15 @@ fn intersection_pixels(coverage: &Coverage) -> Vec<(u32, u32)> {
 /// Asserted on the intersection line's pixels (every sample on the wall or the tilted
 /// square, both seen, every visible triangle covering the whole pixel, none within 1/64
 /// pixel or 1e-4 depth of a tie), at least 30 of them: `compare` marks every one;
-/// `coverage` none; `centroid` none or at least 90%. And what it costs: shaded once per pixel, those
-/// pixels take one surface's light for all samples, so the `coverage` pipeline's resolved
-/// HDR differs from per-sample shading (`deferred_per_sample_4x`) on at least 90% of them,
+/// `coverage` none; `centroid` none or at least 90%. And what it costs: shaded once per
+/// pixel, those pixels take one surface's light for all samples, so the `coverage`
+/// pipeline's resolved HDR differs from per-sample shading (`deferred_per_sample_4x`) on at least 90% of them,
 /// by more than 1e-3, while the `compare` pipeline's equals it bit for bit there.
 /// Measured on lavapipe at 64x64: 39 such pixels (24 pixels of the image too close to
 /// call); compare marks 39, coverage 0, centroid 39; the coverage pipeline differs from
 /// per-sample shading on all 39 (by up to 0.24), the centroid and compare pipelines on 0.
 #[test]
-fn coverage_and_centroid_miss_intersection_edges_that_compare_marks() {
+fn coverage_misses_intersection_edges_that_compare_marks() {
     let coverage = Coverage::of(&scene(), N);
     let line = intersection_pixels(&coverage);
     assert!(
