@@ -7,8 +7,7 @@
 //! - [`gpu_scene`] (feature `gpu`): the scene on the device, shared by the plugins and
 //!   reusable by other passes that draw it.
 //!
-//! Known gaps: scene textures are uploaded without mipmaps, and light volumes whose back
-//! faces lie beyond a finite far plane lose the part behind it.
+//! Known gap: scene textures are uploaded without mipmaps.
 
 #[cfg(feature = "gpu")]
 mod gpu;

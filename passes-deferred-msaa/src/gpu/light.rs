@@ -20,7 +20,8 @@ enum Geometry {
     FarPlane { light: bool },
     /// A volume's front faces, in front of the surface.
     FrontFaces,
-    /// A volume's back faces, behind the surface (the camera may be inside).
+    /// A volume's back faces, behind the surface (the camera may be inside). Never where
+    /// they may reach beyond a finite far plane: the light is drawn full screen there.
     BackFaces,
 }
 
@@ -136,16 +137,21 @@ pub(crate) fn record(
             }
             for light in scene.volume_lights() {
                 let instance = light.index..light.index + 1;
-                if !draw.volumes {
-                    use_pipeline(ctx.pass, Geometry::FarPlane { light: true }, sample);
+                let geometry = if !draw.volumes {
+                    Geometry::FarPlane { light: true }
+                } else if !scene.camera_may_be_inside(light, size) {
+                    Geometry::FrontFaces
+                } else if scene.far_plane_may_cut(light) {
+                    // Its back faces would be clipped away beyond the far plane.
+                    Geometry::FarPlane { light: true }
+                } else {
+                    Geometry::BackFaces
+                };
+                use_pipeline(ctx.pass, geometry, sample);
+                if geometry == (Geometry::FarPlane { light: true }) {
                     ctx.pass.draw(0..3, instance);
                     continue;
                 }
-                let geometry = match scene.camera_may_be_inside(light, size) {
-                    true => Geometry::BackFaces,
-                    false => Geometry::FrontFaces,
-                };
-                use_pipeline(ctx.pass, geometry, sample);
                 let mesh = scene.volume_mesh(light.shape);
                 ctx.pass.set_vertex_buffer(0, mesh.vertices.slice(..));
                 ctx.pass

@@ -216,3 +216,19 @@ pub fn camera_may_be_inside(camera: &Camera, aspect: f64, bounds: &BoundingSpher
     };
     bounds.center.length() < bounds.radius + margin
 }
+
+/// Whether a volume inside `bounds` (camera-relative) may reach beyond the finite far
+/// plane of `camera`: its back faces would then be clipped there and the pixels behind
+/// the cut lose the light, so the light passes draw such a volume's light full screen
+/// instead when they would draw its back faces. Conservative by a relative 1e-3; never
+/// for an infinite far plane.
+pub fn far_plane_may_cut(camera: &Camera, bounds: &BoundingSphere) -> bool {
+    let zfar = match camera.projection {
+        Projection::Perspective { zfar: None, .. } => return false,
+        Projection::Perspective {
+            zfar: Some(zfar), ..
+        }
+        | Projection::Orthographic { zfar, .. } => f64::from(zfar),
+    };
+    bounds.center.dot(camera.forward()) + bounds.radius >= zfar * (1.0 - 1e-3)
+}

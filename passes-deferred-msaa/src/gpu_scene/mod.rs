@@ -26,7 +26,7 @@ pub mod volumes;
 use std::sync::{Arc, Mutex};
 
 pub use camera::view_projection;
-pub use lights::{camera_may_be_inside, VolumeLight};
+pub use lights::{camera_may_be_inside, far_plane_may_cut, VolumeLight};
 pub use materials::MaterialState;
 pub use mesh::MeshDraw;
 pub use volumes::{VolumeMesh, VolumeShape};
@@ -185,6 +185,12 @@ impl GpuScene {
     pub fn camera_may_be_inside(&self, light: &VolumeLight, size: (u32, u32)) -> bool {
         let aspect = f64::from(size.0.max(1)) / f64::from(size.1.max(1));
         camera_may_be_inside(&self.camera, aspect, &light.bounds)
+    }
+
+    /// Whether `light`'s volume may reach beyond the camera's finite far plane (see
+    /// [`far_plane_may_cut`]).
+    pub fn far_plane_may_cut(&self, light: &VolumeLight) -> bool {
+        far_plane_may_cut(&self.camera, &light.bounds)
     }
 
     pub fn volume_mesh(&self, shape: VolumeShape) -> &VolumeMesh {

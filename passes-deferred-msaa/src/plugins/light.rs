@@ -24,7 +24,9 @@
 //! and spot lights a cone circumscribing their reach; from outside, front faces with the
 //! normal depth test, and when the camera's near plane may cut the volume (a conservative
 //! test with the near plane's corner distance as margin), back faces with the depth test
-//! reversed. With `volumes: false` every light is a full-screen triangle instead: slower,
+//! reversed; when those back faces may reach beyond a finite far plane, where they would
+//! be clipped, the light is drawn full screen (tests/deferred_volumes_gpu.rs covers every
+//! case). With `volumes: false` every light is a full-screen triangle instead: slower,
 //! and the reference the volumes must match (the falloff window is exactly zero outside
 //! a volume: shaded per sample the two are bit-identical, tests/deferred_lit.rs). Shading
 //! is Lambert plus GGX metallic-roughness; unlit pixels are skipped (the G-buffer put
