@@ -29,6 +29,9 @@
 //!   with margins for what f32 cannot decide), and there the volume's value is the
 //!   full-screen one times (covered samples) / 4: never more than it.
 //!
+//! - `deferred_msaa_4x_sample_mask` (edge samples drawn once per sample with the
+//!   multisample mask), with volumes: bit-identical to `deferred_msaa_4x` with volumes.
+//!
 //! The tests also check which path the light passes take ([`Path`]: front faces, back
 //! faces with the depth test reversed, or full screen), and that the light reaches enough
 //! pixels for the comparison to mean something. Run with `--nocapture` for the numbers.
@@ -497,6 +500,28 @@ fn run_cases(cases: &[Case]) -> Vec<String> {
                     "({x}, {y}): volume {a:?}, full screen {b:?}: {why}"
                 ));
             }
+        }
+        // DX10.0's way (one draw per sample, multisample mask 1 << i) draws the same
+        // volumes: bit-identical to the sample_index pipeline.
+        let mask = "deferred_msaa_4x_sample_mask.ron";
+        let by_mask = resolved(&gpu, &scene, &label, mask, true);
+        let mask_differs: Vec<String> = with
+            .iter()
+            .zip(&by_mask)
+            .enumerate()
+            .filter(|(_, (a, b))| a.map(f32::to_bits) != b.map(f32::to_bits))
+            .map(|(i, (a, b))| {
+                let (x, y) = xy(i);
+                format!("({x}, {y}): sample_index {a:?}, sample_mask {b:?}")
+            })
+            .collect();
+        if !mask_differs.is_empty() {
+            failures.push(format!(
+                "{name}: with light volumes, {mask} differs from {compare} at {} pixels (must \
+                 be bit-identical), e.g.:\n  {}",
+                mask_differs.len(),
+                mask_differs[..mask_differs.len().min(8)].join("\n  ")
+            ));
         }
         if !wrong.is_empty() {
             failures.push(format!(
