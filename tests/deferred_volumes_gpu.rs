@@ -9,15 +9,15 @@
 //! volume, inside it, exactly on its boundary (the sphere of the effective range; the
 //! cone's side, on the line where the tessellated cone touches the exact one), at the
 //! cone's apex, and beside the cone within its bounding sphere (back faces from outside).
-//! Also a camera inside with a finite far plane cutting the volume (its back faces would be
-//! clipped: the light is then drawn full screen; before that fix 637 of 2283 lit pixels
-//! went dark), an orthographic camera outside and with its near plane cutting the sphere, spot
-//! cones of 0.3° (a footprint far below a pixel), 89.5° and exactly 90° (glTF's largest),
-//! and a point light whose range is a twentieth of a pixel. Every render is 64x64, 4x
+//! Also a camera inside with a finite far plane cutting the volume (its back faces would
+//! be clipped: the light is then drawn full screen; before that fix 637 of 2283 lit
+//! pixels went dark), an orthographic camera outside and with its near plane cutting the
+//! sphere, spot cones of 0.3° (a footprint far below a pixel), 89.5° and exactly 90°
+//! (glTF's largest), and a point light whose range is a twentieth of a pixel. Every render is 64x64, 4x
 //! MSAA, the resolved linear HDR read back.
 //!
-//! Two bounds, both against the same pipeline with `volumes: false` (every light a
-//! full-screen triangle: the reference):
+//! Two bounds against the same pipeline with `volumes: false` (every light a full-screen
+//! triangle: the reference), and one between pipelines:
 //! - `deferred_per_sample_4x` (detector `all`: every sample shaded at its own position and
 //!   depth): **bit-identical**. The falloff window and the spot cone factor are exactly 0
 //!   outside the light's reach, and the tessellated volumes circumscribe that reach, so
@@ -28,7 +28,6 @@
 //!   where the light reaches its center but not all its samples (computed on the CPU,
 //!   with margins for what f32 cannot decide), and there the volume's value is the
 //!   full-screen one times (covered samples) / 4: never more than it.
-//!
 //! - `deferred_msaa_4x_sample_mask` (edge samples drawn once per sample with the
 //!   multisample mask), with volumes: bit-identical to `deferred_msaa_4x` with volumes.
 //!
