@@ -158,8 +158,9 @@ fn intersection_pixels(coverage: &Coverage) -> Vec<(u32, u32)> {
 /// pixel or 1e-4 depth of a tie), at least 30 of them: `compare` marks every one;
 /// `coverage` none; `centroid` none or at least 90%. And what it costs: shaded once per
 /// pixel, those pixels take one surface's light for all samples, so the `coverage`
-/// pipeline's resolved HDR differs from per-sample shading (`deferred_per_sample_4x`) on at least 90% of them,
-/// by more than 1e-3, while the `compare` pipeline's equals it bit for bit there.
+/// pipeline's resolved HDR differs from per-sample shading (`deferred_per_sample_4x`) on
+/// at least 90% of them, by more than 1e-3, while the `compare` pipeline's equals it bit
+/// for bit there.
 /// Measured on lavapipe at 64x64: 39 such pixels (24 pixels of the image too close to
 /// call); compare marks 39, coverage 0, centroid 39; the coverage pipeline differs from
 /// per-sample shading on all 39 (by up to 0.24), the centroid and compare pipelines on 0.

@@ -13,8 +13,8 @@
 //! be clipped: the light is then drawn full screen; before that fix 637 of 2283 lit
 //! pixels went dark), an orthographic camera outside and with its near plane cutting the
 //! sphere, spot cones of 0.3° (a footprint far below a pixel), 89.5° and exactly 90°
-//! (glTF's largest), and a point light whose range is a twentieth of a pixel. Every render is 64x64, 4x
-//! MSAA, the resolved linear HDR read back.
+//! (glTF's largest), and a point light whose range is a twentieth of a pixel. Every
+//! render is 64x64, 4x MSAA, the resolved linear HDR read back.
 //!
 //! Two bounds against the same pipeline with `volumes: false` (every light a full-screen
 //! triangle: the reference), and one between pipelines:
