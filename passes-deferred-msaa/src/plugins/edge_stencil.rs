@@ -24,7 +24,10 @@
 //!   material flags (lit, unlit, background);
 //! - `centroid`: some sample's fragment had its centroid away from the pixel center
 //!   (seed 000's centroid trick, recorded by the G-buffer pass; an implementation may
-//!   put the centroid at the center whenever that is covered, so it can miss edges);
+//!   put the centroid at the center whenever that is covered, so it can miss edges;
+//!   whether it sees intersection edges is the implementation's too: lavapipe takes the
+//!   centroid from the coverage left after its early depth test and marks them,
+//!   tests/deferred_detectors.rs);
 //! - `coverage`: some sample's fragment covered only part of the pixel
 //!   (`@builtin(sample_mask)` as a G-buffer input; misses intersection edges, where both
 //!   surfaces cover every sample);
