@@ -7,6 +7,7 @@
 // Each test crate uses its own subset of these helpers.
 #![allow(dead_code)]
 
+pub mod samples;
 pub mod scenes;
 pub mod unlit;
 
