@@ -55,6 +55,8 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         path: out.clone(),
         reason: e.to_string(),
     })?;
+    // Taken before measuring: the commit and time the run started from.
+    let (git_commit, timestamp) = (machine::git_commit(), machine::timestamp());
     let scenes = candidates::scenes(&args.scenes);
     let (pipelines, mut notes) = candidates::pipelines(&args.pipelines);
     let session = Session::open(&AdapterChoice::resolve(args.adapter.as_deref()))
@@ -117,8 +119,8 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         command: std::env::args().collect::<Vec<_>>().join(" "),
         machine: Machine::this(),
         adapter: Adapter::of(&session.gpu),
-        git_commit: machine::git_commit(),
-        timestamp: machine::timestamp(),
+        git_commit,
+        timestamp,
         resolution: [args.width, args.height],
         sweep: args.sweep,
         frames: args.frames,

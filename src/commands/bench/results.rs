@@ -24,7 +24,7 @@ pub struct Results {
     pub machine: Machine,
     pub adapter: Adapter,
     pub git_commit: String,
-    /// UTC, RFC 3339.
+    /// When the run started: UTC, RFC 3339.
     pub timestamp: String,
     /// The size asked for (a resolution sweep replaces it: see each row's `sweep`).
     pub resolution: [u32; 2],

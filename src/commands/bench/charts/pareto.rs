@@ -75,6 +75,8 @@ fn scene_panel(area: &Area, scene: &str, points: &[Point]) -> DrawResult {
         (lo.min(p.1), hi.max(p.1))
     });
     let top = points.iter().map(|p| p.2).fold(0.0, f64::max).max(1e-3) * 1.15;
+    // Enough decimals that labels a tenth of the axis apart differ (at least 3).
+    let digits = (-(top / 10.0).log10()).ceil().max(3.0) as usize;
     let mut chart = ChartBuilder::on(area)
         .caption(scene, font(18.0))
         .margin(12)
@@ -90,7 +92,7 @@ fn scene_panel(area: &Area, scene: &str, points: &[Point]) -> DrawResult {
         .axis_desc_style(font(15.0))
         .x_labels(8)
         .x_label_formatter(&|v| ms(*v))
-        .y_label_formatter(&|v| format!("{v:.3}"))
+        .y_label_formatter(&|v| format!("{v:.digits$}"))
         .draw()
         .map_err(text)?;
     chart
@@ -104,7 +106,8 @@ fn scene_panel(area: &Area, scene: &str, points: &[Point]) -> DrawResult {
             let label = font(15.0).color(color(i));
             EmptyElement::at((ms, flip))
                 + Circle::new((0, 0), 6, color(i).filled())
-                + Text::new(format!("{}", i + 1), (8, -16), label)
+                // Alternating above and below keeps neighbours' numbers apart.
+                + Text::new(format!("{}", i + 1), (8, if i % 2 == 0 { -18 } else { 4 }), label)
         }))
         .map_err(text)?;
     Ok(())

@@ -2,6 +2,7 @@
 //! GPU times in execution order; a pass name keeps its color across pipelines and scenes.
 
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::{color, font, grid, scenes, text, Area, DrawResult};
 use crate::commands::bench::results::{Results, Row};
@@ -86,7 +87,7 @@ fn scene_panel(area: &Area, scene: &str, rows: &[&Row], names: &[&str]) -> DrawR
     // (bar index, pass name index, start ms, end ms) of every bar segment; the first
     // pipeline's bar is the top one (bar index 0 is at the bottom).
     let mut segments = Vec::new();
-    let mut longest: f64 = 0.0;
+    let mut totals = Vec::new();
     for (row_index, row) in rows.iter().enumerate() {
         let i = rows.len() - 1 - row_index;
         let mut at = 0.0;
@@ -96,23 +97,22 @@ fn scene_panel(area: &Area, scene: &str, rows: &[&Row], names: &[&str]) -> DrawR
             segments.push((i, name, at, at + ms));
             at += ms;
         }
-        longest = longest.max(at);
+        totals.push((i, at));
     }
+    let end = axis_end(totals.iter().map(|t| t.1).collect());
     let labels: Vec<&str> = rows.iter().rev().map(|r| r.pipeline.as_str()).collect();
     let mut chart = ChartBuilder::on(area)
         .caption(scene, font(18.0))
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(250)
-        .build_cartesian_2d(
-            0.0..longest.max(1e-3) * 1.05,
-            (0..rows.len()).into_segmented(),
-        )
+        .build_cartesian_2d(0.0..end, (0..rows.len()).into_segmented())
         .map_err(text)?;
     chart
         .configure_mesh()
         .disable_y_mesh()
         .x_desc("GPU ms (median)")
+        .x_label_formatter(&|v| format!("{v:.0}"))
         .label_style(font(14.0))
         .axis_desc_style(font(15.0))
         .y_labels(rows.len().max(1))
@@ -123,17 +123,59 @@ fn scene_panel(area: &Area, scene: &str, rows: &[&Row], names: &[&str]) -> DrawR
         .draw()
         .map_err(text)?;
     chart
-        .draw_series(segments.iter().map(|&(i, n, x0, x1)| {
-            let mut bar = Rectangle::new(
-                [
-                    (x0, SegmentValue::Exact(i)),
-                    (x1, SegmentValue::Exact(i + 1)),
-                ],
-                color(n).filled(),
-            );
-            bar.set_margin(4, 4, 0, 0);
-            bar
+        .draw_series(
+            segments
+                .iter()
+                .filter(|s| s.2 < end)
+                .map(|&(i, n, x0, x1)| {
+                    let mut bar = Rectangle::new(
+                        [
+                            (x0, SegmentValue::Exact(i)),
+                            (x1.min(end), SegmentValue::Exact(i + 1)),
+                        ],
+                        color(n).filled(),
+                    );
+                    bar.set_margin(4, 4, 0, 0);
+                    bar
+                }),
+        )
+        .map_err(text)?;
+    // Bars cut at the axis end say how long they are.
+    let label = font(14.0)
+        .color(&WHITE)
+        .pos(Pos::new(HPos::Right, VPos::Center));
+    chart
+        .draw_series(totals.iter().filter(|t| t.1 > end).map(|&(i, total)| {
+            Text::new(
+                format!("{total:.0} ms >"),
+                (end * 0.99, SegmentValue::CenterOf(i)),
+                label.clone(),
+            )
         }))
         .map_err(text)?;
     Ok(())
+}
+
+/// Where the time axis ends: past the longest bar, unless one bar is more than 3 times
+/// the next (the reference usually), which is then cut so the others stay readable.
+fn axis_end(mut totals: Vec<f64>) -> f64 {
+    totals.sort_by(|a, b| b.total_cmp(a));
+    match totals.as_slice() {
+        [first, second, ..] if *first > 3.0 * second => second * 1.4,
+        [first, ..] => first * 1.05,
+        [] => 1.0,
+    }
+    .max(1e-3)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::axis_end;
+
+    #[test]
+    fn one_bar_far_longer_than_the_rest_is_cut() {
+        assert_eq!(axis_end(vec![10.0, 100.0, 20.0]), 20.0 * 1.4);
+        assert_eq!(axis_end(vec![10.0, 20.0]), 20.0 * 1.05);
+        assert_eq!(axis_end(vec![]), 1.0);
+    }
 }
