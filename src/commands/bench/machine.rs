@@ -59,22 +59,31 @@ impl Adapter {
     }
 }
 
-/// `$RGRAPH_GIT_COMMIT`, else `git rev-parse HEAD`, else "unknown".
+/// `$RGRAPH_GIT_COMMIT`, else `git rev-parse HEAD` with "-dirty" appended when tracked
+/// files differ from it (the binary may hold uncommitted work), else "unknown".
 pub fn git_commit() -> String {
     let from_env = std::env::var(COMMIT_ENV)
         .ok()
         .filter(|c| !c.trim().is_empty());
     from_env
         .or_else(|| {
-            let out = std::process::Command::new("git")
-                .args(["rev-parse", "HEAD"])
-                .output()
-                .ok()?;
-            out.status
-                .success()
-                .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
+            let head = git(&["rev-parse", "HEAD"])?;
+            let changed = git(&["status", "--porcelain", "--untracked-files=no"])?;
+            Some(if changed.is_empty() {
+                head
+            } else {
+                format!("{head}-dirty")
+            })
         })
         .unwrap_or_else(|| "unknown".into())
+}
+
+/// What `git ARGS` prints, trimmed, when it succeeds.
+fn git(args: &[&str]) -> Option<String> {
+    let out = std::process::Command::new("git").args(args).output().ok()?;
+    out.status
+        .success()
+        .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
 /// Now, in UTC, as RFC 3339 (`2026-11-23T09:41:07Z`).
