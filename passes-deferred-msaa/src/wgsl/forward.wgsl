@@ -75,7 +75,7 @@ fn shade(a: Attributes, front: bool) -> vec4<f32> {
         color += base.rgb;
     } else {
         // Back faces reach here only for double-sided materials: light their other side.
-        let n = safe_normalize(select(-a.normal, a.normal, front));
+        let n = unit_normal(select(-a.normal, a.normal, front));
         let s = Surface(a.position, n, safe_normalize(-a.position), base.rgb, material.metallic, material.roughness);
         color += light_info.ambient * base.rgb;
         for (var i = 0u; i < light_info.light_count; i++) {

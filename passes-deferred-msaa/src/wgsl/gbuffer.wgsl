@@ -57,7 +57,7 @@ fn base_color(in: Varyings) -> vec4<f32> {
 fn surface(in: Varyings, base: vec4<f32>, front: bool, coverage: u32) -> GBufferOut {
     let material = materials[in.material];
     // Back faces reach here only for double-sided materials: light their other side.
-    let n = safe_normalize(select(-in.normal, in.normal, front));
+    let n = unit_normal(select(-in.normal, in.normal, front));
     var edge = 0u;
     if any(in.at_centroid != in.at_center) {
         edge |= EDGE_CENTROID;
