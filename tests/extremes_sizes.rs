@@ -121,7 +121,7 @@ fn compile_error(gpu: &Gpu, size: (u32, u32), edit: (&str, &str)) -> String {
         .expect("the pipeline exists")
         .replace(edit.0, edit.1);
     // Counts the plugins cannot shade are refused at load, the rest by the compile.
-    let mut loaded = match load_str(&path, &text, &registry) {
+    let loaded = match load_str(&path, &text, &registry) {
         Ok(loaded) => loaded,
         Err(e) => return e.to_string(),
     };
