@@ -77,7 +77,6 @@ fn frame(gpu: &Gpu, render: Render) -> Frame {
 /// Per pixel: (whether its samples differ in what `compare` looks at, whether they
 /// differ in material flags). What it looks at: albedo, view depth, flags, and normals
 /// whose octahedral encodings differ by more than [`NORMAL_RESOLUTION`].
-
 fn sample_differences(gpu: &Gpu, scene: &str) -> Vec<(bool, bool)> {
     let frame = Render::new("deferred_msaa_4x.ron", scene, SIZE)
         .edit(
