@@ -365,6 +365,8 @@ fn a_sample_count_the_device_lacks_is_an_error_row_of_the_sweep() {
         "--scene",
         "builtin:unlit",
         "--pipeline",
+        NOAA,
+        "--pipeline",
         "pipelines/forward_msaa_4x.ron",
         "--out-dir",
         dir.path().to_str().unwrap(),
@@ -373,9 +375,21 @@ fn a_sample_count_the_device_lacks_is_an_error_row_of_the_sweep() {
     let json = read_json(&dir.path().join("results.json"));
     assert_eq!(json["sweep"], "samples");
     let rows = json["rows"].as_array().unwrap();
-    assert_eq!(rows.len(), 4, "one row per sample count: {json:#}");
-    let four = rows.iter().find(|r| r["sweep"]["value"] == 4).unwrap();
-    assert_eq!(four["status"], "ok", "{four:#}");
+    assert_eq!(
+        rows.len(),
+        8,
+        "one row per pipeline and sample count: {json:#}"
+    );
+    let forward = |value: u32| {
+        rows.iter()
+            .find(|r| r["pipeline"] == "forward_msaa_4x" && r["sweep"]["value"] == value)
+            .unwrap()
+    };
+    assert_eq!(forward(4)["status"], "ok", "{:#}", forward(4));
+    // Ratios pair rows of the same sweep value: the baseline's is 1 at every value.
+    for row in rows.iter().filter(|r| r["pipeline"] == "deferred_noaa") {
+        assert_eq!(number(&row["figures"], "ratio_to_noaa"), 1.0, "{row:#}");
+    }
     // lavapipe has 1x and 4x only; a device with 2x and 8x measures those too.
     for row in rows.iter().filter(|r| r["status"] == "error") {
         let message = row["message"].as_str().unwrap();

@@ -146,7 +146,8 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
     Ok(json_path)
 }
 
-/// Each measured row's median GPU frame time over the baseline's on the same scene.
+/// Each measured row's median GPU frame time over the baseline's on the same scene and
+/// at the same sweep value.
 fn ratios_to_baseline(rows: &mut [Row]) {
     let median = |row: &Row| {
         row.figures
@@ -155,13 +156,14 @@ fn ratios_to_baseline(rows: &mut [Row]) {
             .as_ref()
             .map(|s| s.median)
     };
-    let baselines: Vec<(String, f64)> = rows
+    let key = |row: &Row| (row.scene.clone(), row.sweep.as_ref().map(|p| p.value));
+    let baselines: Vec<_> = rows
         .iter()
         .filter(|r| r.pipeline == BASELINE)
-        .filter_map(|r| Some((r.scene.clone(), median(r)?)))
+        .filter_map(|r| Some((key(r), median(r)?)))
         .collect();
     for row in rows.iter_mut() {
-        let base = baselines.iter().find(|(s, _)| *s == row.scene).map(|b| b.1);
+        let base = baselines.iter().find(|(k, _)| *k == key(row)).map(|b| b.1);
         let ratio = base.zip(median(row)).map(|(b, m)| m / b);
         if let Some(figures) = &mut row.figures {
             figures.ratio_to_noaa = ratio.filter(|r| r.is_finite());
