@@ -13,7 +13,7 @@ use clap::{Parser, Subcommand, ValueEnum};
                   pass order, culled passes with reasons, texture lifetimes, usages, load/store \
                   operations and pooled memory. Validation and explanation need no GPU; rendering \
                   runs headless on any Vulkan adapter, lavapipe included.",
-    after_help = "Examples:\n  rgraph render --out frame.png\n  rgraph validate pipelines/*.ron shaders/*.wgsl\n  rgraph explain --pipeline pipelines/postprocess_demo.ron --format dot | dot -Tpng > plan.png\n  rgraph adapters"
+    after_help = "Examples:\n  rgraph render --out frame.png\n  rgraph bench --out-dir bench/out\n  rgraph validate pipelines/*.ron shaders/*.wgsl\n  rgraph explain --pipeline pipelines/postprocess_demo.ron --format dot | dot -Tpng > plan.png\n  rgraph adapters"
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -77,7 +77,7 @@ pub enum Command {
         rgraph bench --out-dir bench/out\n  \
         rgraph bench --scene builtin:dense --pipeline pipelines/deferred_noaa.ron \\\n      \
         --pipeline pipelines/deferred_msaa_4x.ron --width 640 --height 360 --out-dir out\n  \
-        rgraph bench --sweep lights --scene builtin:lights --out-dir out/lights")]
+        rgraph bench --sweep lights --pipeline pipelines/deferred_msaa_4x.ron --out-dir out/lights")]
     Bench(BenchArgs),
     /// List the GPU adapters wgpu can use, with their features and sample counts.
     Adapters {
