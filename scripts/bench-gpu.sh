@@ -19,6 +19,12 @@
 #   resolution  720p..2160p of the same pipelines on builtin:dense
 # Each part writes to OUT_DIR/PART. Frames: BENCH_FRAMES (default 10) after BENCH_WARMUP
 # (default 2); BENCH_SIZE (default 3840x2160) for a quick try elsewhere.
+#
+# BENCH_ARCHIVE=FILE.tar.gz also packs what gets committed (each part's results.json,
+# results.md and charts, and adapters.txt) into one file, for machines that hand back only a
+# few files: e.g. BENCH_ARCHIVE=$OUT/bench-gpu.tar.gz scripts/bench-gpu.sh /tmp/bench-gpu,
+# then `tar xzf bench-gpu.tar.gz -C bench/results/gpu`. The per-scene images (large at
+# 2160p) stay in OUT_DIR.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -96,4 +102,11 @@ for part in $parts; do
       ;;
   esac
 done
+if [ -n "${BENCH_ARCHIVE:-}" ]; then
+  archive="$(realpath -m "$BENCH_ARCHIVE")"
+  (cd "$out" && find . -maxdepth 2 \( -name results.json -o -name results.md \
+     -o -name pareto.png -o -name passes.png -o -name scaling.png -o -name adapters.txt \) \
+     -print0 | tar czf "$archive" --null -T -)
+  echo "bench-gpu: packed $BENCH_ARCHIVE" >&2
+fi
 exit "$status"
