@@ -1,11 +1,11 @@
-//! One scene of a bench: its reference and edge pixels, then every pipeline measured,
-//! compared with the reference, and its images written.
+//! One scene of a bench: its reference, edge pixels and unique-surface bound, then every
+//! pipeline measured, compared with the reference, and its images written.
 
 use std::path::Path;
 use std::sync::Arc;
 
 use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::Overrides;
+use passes_deferred_msaa::{Host, Overrides};
 use serde::Serialize;
 
 use super::candidates::Candidate;
@@ -20,10 +20,12 @@ use super::results::{Figures, Row};
 use super::surfaces::{self, UniqueSurfaces};
 use crate::frame::host;
 
-/// What a scene's rows share: where its images are and how its edge pixels were found.
+/// What a scene's rows share: where its images are, how its edge pixels were found and
+/// the least shading it needs.
 #[derive(Debug, Serialize)]
 pub struct SceneSummary {
     pub scene: String,
+    /// The folder of its images; empty in sweeps, which write none.
     pub images: String,
     /// The pixels edge errors are measured on; `null` without a reference.
     pub edge_pixels: Option<EdgePixels>,
@@ -47,12 +49,9 @@ pub fn bench_scene(
     out: Option<&Path>,
     progress: &mut Progress,
 ) -> Result<(Vec<Row>, SceneSummary), BenchError> {
-    let images = out.map(|out| SceneImages::create(out, spec)).transpose()?;
     let mut summary = SceneSummary {
         scene: spec.to_string(),
-        images: images
-            .as_ref()
-            .map_or(String::new(), |i| i.dir.display().to_string()),
+        images: String::new(),
         edge_pixels: None,
         reference_error: None,
         unique_surfaces: None,
@@ -70,99 +69,138 @@ pub fn bench_scene(
             return Ok((vec![Row::error(spec, "-", "", error.to_string())], summary));
         }
     };
-    let host = host(scene, Overrides::default());
-
-    if reference.is_some() {
-        progress.item(format!("{spec} reference"));
+    let images = out.map(|out| SceneImages::create(out, spec)).transpose()?;
+    if let Some(images) = &images {
+        summary.images = images.dir.display().to_string();
     }
-    let reference = match reference.map(|r| r.render(setup, &host)) {
-        Some(Ok(reference)) => {
-            if let Some(images) = &images {
-                images.write("reference", &reference.image)?;
-                let (w, h) = reference.image.dimensions();
-                images.write("edge_pixels", &reference.edges.image(w, h))?;
-            }
-            summary.edge_pixels = Some(reference.edges.clone());
-            Some(reference)
-        }
-        Some(Err(e)) => {
-            progress.note(format!("error: reference on {spec}: {e}"));
-            summary.reference_error = Some(e.to_string());
-            None
-        }
+    let run = SceneRun {
+        setup,
+        spec,
+        host: host(scene, Overrides::default()),
+        images,
+    };
+    let reference = match reference {
+        Some(reference) => run.reference(reference, &mut summary, progress)?,
         None => None,
     };
-
     if out.is_some() {
-        progress.item(format!("{spec} unique surfaces"));
-        match surfaces::measure(setup, &host) {
+        run.unique_surfaces(&mut summary, progress);
+    }
+    let rows = pipelines
+        .iter()
+        .map(|candidate| run.row(candidate, reference.as_ref(), &summary, progress))
+        .collect::<Result<_, _>>()?;
+    Ok((rows, summary))
+}
+
+/// One loaded scene being measured.
+struct SceneRun<'a> {
+    setup: &'a Setup<'a>,
+    spec: &'a str,
+    host: Arc<Host>,
+    /// `None` in sweeps.
+    images: Option<SceneImages>,
+}
+
+impl SceneRun<'_> {
+    /// The reference image and edge pixels; a reference that fails is noted in the
+    /// summary and leaves the rows without error figures.
+    fn reference(
+        &self,
+        reference: &Reference,
+        summary: &mut SceneSummary,
+        progress: &mut Progress,
+    ) -> Result<Option<SceneReference>, BenchError> {
+        progress.item(format!("{} reference", self.spec));
+        let rendered = match reference.render(self.setup, &self.host) {
+            Ok(rendered) => rendered,
+            Err(e) => {
+                progress.note(format!("error: reference on {}: {e}", self.spec));
+                summary.reference_error = Some(e.to_string());
+                return Ok(None);
+            }
+        };
+        if let Some(images) = &self.images {
+            images.write("reference", &rendered.image)?;
+            let (w, h) = rendered.image.dimensions();
+            images.write("edge_pixels", &rendered.edges.image(w, h))?;
+        }
+        summary.edge_pixels = Some(rendered.edges.clone());
+        Ok(Some(rendered))
+    }
+
+    /// The lower bound of shading work, or why it could not be measured.
+    fn unique_surfaces(&self, summary: &mut SceneSummary, progress: &mut Progress) {
+        progress.item(format!("{} unique surfaces", self.spec));
+        match surfaces::measure(self.setup, &self.host) {
             Ok(bound) => summary.unique_surfaces = Some(bound),
             Err(e) => {
-                progress.note(format!("error: unique surfaces on {spec}: {e}"));
+                progress.note(format!("error: unique surfaces on {}: {e}", self.spec));
                 summary.unique_surfaces_error = Some(e.to_string());
             }
         }
     }
 
-    let mut rows = Vec::new();
-    for candidate in pipelines {
-        progress.item(format!("{spec} {}", candidate.name));
+    /// One pipeline's row: measured, compared and its images written, or an error row.
+    fn row(
+        &self,
+        candidate: &Candidate,
+        reference: Option<&SceneReference>,
+        summary: &SceneSummary,
+        progress: &mut Progress,
+    ) -> Result<Row, BenchError> {
+        let (spec, name) = (self.spec, candidate.name.as_str());
+        progress.item(format!("{spec} {name}"));
         let file = candidate.path.display().to_string();
-        let row = match setup.measure(candidate, &host) {
+        match self.setup.measure(candidate, &self.host) {
             Ok(measured) => {
-                let mut figures = record(
-                    measured,
-                    &candidate.name,
-                    reference.as_ref(),
-                    images.as_ref(),
-                )?;
+                let mut figures = self.record(measured, name, reference)?;
                 // The bound holds for pipelines at the sample count it was counted at.
-                let bound = summary.unique_surfaces.as_ref();
-                figures.work.unique_surface_bound = bound
+                figures.work.unique_surface_bound = summary
+                    .unique_surfaces
+                    .as_ref()
                     .filter(|b| b.samples == figures.samples)
                     .map(|b| b.per_pixel);
-                Row::ok(spec, &candidate.name, &file, figures)
+                Ok(Row::ok(spec, name, &file, figures))
             }
             Err(source) => {
                 let error = RowError::Frame {
-                    pipeline: candidate.name.clone(),
+                    pipeline: name.to_string(),
                     scene: spec.to_string(),
                     source,
                 };
                 progress.note(format!("error: {error}"));
-                Row::error(spec, &candidate.name, &file, error.to_string())
+                Ok(Row::error(spec, name, &file, error.to_string()))
             }
-        };
-        rows.push(row);
+        }
     }
-    Ok((rows, summary))
-}
 
-/// Compares a measured image with the reference and writes the pipeline's images.
-fn record(
-    measured: Measured,
-    name: &str,
-    reference: Option<&SceneReference>,
-    images: Option<&SceneImages>,
-) -> Result<Figures, BenchError> {
-    let Measured {
-        mut figures,
-        color,
-        edges,
-    } = measured;
-    let heat = reference.map(|reference| {
-        let (error, heat) = compare(&reference.image, &color, &reference.edges);
-        figures.image_error = Some(error);
-        heat
-    });
-    if let Some(images) = images {
-        images.write(name, &color)?;
-        if let Some(edges) = &edges {
-            images.write(&format!("{name}_edges"), edges)?;
+    /// Compares a measured image with the reference and writes the pipeline's images.
+    fn record(
+        &self,
+        measured: Measured,
+        name: &str,
+        reference: Option<&SceneReference>,
+    ) -> Result<Figures, BenchError> {
+        let Measured {
+            mut figures,
+            color,
+            edges,
+        } = measured;
+        let heat = reference.map(|reference| {
+            let (error, heat) = compare(&reference.image, &color, &reference.edges);
+            figures.image_error = Some(error);
+            heat
+        });
+        if let Some(images) = &self.images {
+            images.write(name, &color)?;
+            if let Some(edges) = &edges {
+                images.write(&format!("{name}_edges"), edges)?;
+            }
+            if let Some(heat) = &heat {
+                images.write(&format!("{name}_error"), heat)?;
+            }
         }
-        if let Some(heat) = &heat {
-            images.write(&format!("{name}_error"), heat)?;
-        }
+        Ok(figures)
     }
-    Ok(figures)
 }
