@@ -37,7 +37,8 @@ use measure::Setup;
 use progress::Progress;
 use reference::Reference;
 use results::{Results, Row, SCHEMA};
-use scene::bench_scene;
+use scene::{bench_scene, SceneSummary};
+use sweep::Step;
 
 /// The pipeline every frame time is compared with.
 const BASELINE: &str = "deferred_noaa";
@@ -73,46 +74,8 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         (Some(_), _) => None,
     };
 
-    let items = steps
-        .iter()
-        .map(|s| {
-            // The reference and the unique-surface count are items of their own.
-            let extra = usize::from(reference.is_some()) + usize::from(s.point.is_none());
-            s.scenes.len() * (s.pipelines.len() + extra)
-        })
-        .sum();
-    let mut progress = Progress::new(items);
-    let mut rows = Vec::new();
-    let mut summaries = Vec::new();
-    for step in &steps {
-        let setup = Setup {
-            session: &session,
-            size: step.size,
-            frames: args.frames,
-            warmup: args.warmup,
-        };
-        // Images only outside sweeps, where one folder per scene is unambiguous.
-        let images = step.point.is_none().then_some(out.as_path());
-        for scene in &step.scenes {
-            let (scene_rows, summary) = bench_scene(
-                &setup,
-                scene,
-                &step.pipelines,
-                reference.as_ref(),
-                images,
-                &mut progress,
-            )?;
-            rows.extend(scene_rows.into_iter().map(|mut row| {
-                row.sweep = step.point.clone();
-                row
-            }));
-            if images.is_some() {
-                summaries.push(summary);
-            }
-        }
-    }
-    drop(progress);
-    ratios_to_baseline(&mut rows);
+    let (mut rows, summaries) = measure(&session, args, &steps, reference.as_ref())?;
+    results::ratios_to_baseline(&mut rows, BASELINE);
 
     let results = Results {
         schema: SCHEMA,
@@ -130,13 +93,7 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         scenes: summaries,
         rows,
     };
-    let json_path = out.join("results.json");
-    let json = serde_json::to_string_pretty(&results).expect("results serialize");
-    write(&json_path, json.as_bytes())?;
-    charts::write_all(&results, out)?;
-    let table = table::markdown(&results);
-    write(&out.join("results.md"), table.as_bytes())?;
-    eprintln!("{table}");
+    let json_path = write_results(&results, out)?;
     if results.rows.iter().all(|r| r.figures.is_none()) {
         return Err(BenchError::NothingMeasured {
             rows: results.rows.len(),
@@ -146,29 +103,67 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
     Ok(json_path)
 }
 
-/// Each measured row's median GPU frame time over the baseline's on the same scene and
-/// at the same sweep value.
-fn ratios_to_baseline(rows: &mut [Row]) {
-    let median = |row: &Row| {
-        row.figures
-            .as_ref()?
-            .gpu_frame_ms
-            .as_ref()
-            .map(|s| s.median)
-    };
-    let key = |row: &Row| (row.scene.clone(), row.sweep.as_ref().map(|p| p.value));
-    let baselines: Vec<_> = rows
+/// Every step's scenes, with a progress bar over all their items: the rows, and each
+/// scene's summary outside sweeps.
+fn measure(
+    session: &Session,
+    args: &BenchArgs,
+    steps: &[Step],
+    reference: Option<&Reference>,
+) -> Result<(Vec<Row>, Vec<SceneSummary>), BenchError> {
+    let items = steps
         .iter()
-        .filter(|r| r.pipeline == BASELINE)
-        .filter_map(|r| Some((key(r), median(r)?)))
-        .collect();
-    for row in rows.iter_mut() {
-        let base = baselines.iter().find(|(k, _)| *k == key(row)).map(|b| b.1);
-        let ratio = base.zip(median(row)).map(|(b, m)| m / b);
-        if let Some(figures) = &mut row.figures {
-            figures.ratio_to_noaa = ratio.filter(|r| r.is_finite());
+        .map(|s| {
+            // The reference and the unique-surface count are items of their own.
+            let extra = usize::from(reference.is_some()) + usize::from(s.point.is_none());
+            s.scenes.len() * (s.pipelines.len() + extra)
+        })
+        .sum();
+    let mut progress = Progress::new(items);
+    let mut rows = Vec::new();
+    let mut summaries = Vec::new();
+    for step in steps {
+        let setup = Setup {
+            session,
+            size: step.size,
+            frames: args.frames,
+            warmup: args.warmup,
+        };
+        // Images only outside sweeps, where one folder per scene is unambiguous.
+        let images = step.point.is_none().then_some(args.out_dir.as_path());
+        for scene in &step.scenes {
+            let (scene_rows, summary) = bench_scene(
+                &setup,
+                scene,
+                &step.pipelines,
+                reference,
+                images,
+                &mut progress,
+            )?;
+            rows.extend(scene_rows.into_iter().map(|mut row| {
+                row.sweep = step.point.clone();
+                row
+            }));
+            if images.is_some() {
+                summaries.push(summary);
+            }
         }
     }
+    Ok((rows, summaries))
+}
+
+/// results.json, the charts and results.md (also printed on stderr); returns the JSON's
+/// path.
+fn write_results(results: &Results, out: &Path) -> Result<PathBuf, BenchError> {
+    let json_path = out.join("results.json");
+    // Plain structs of numbers and strings: serializing them cannot fail.
+    let json = serde_json::to_string_pretty(results).expect("results serialize");
+    write(&json_path, json.as_bytes())?;
+    charts::write_all(results, out)?;
+    let table = table::markdown(results);
+    write(&out.join("results.md"), table.as_bytes())?;
+    eprintln!("{table}");
+    Ok(json_path)
 }
 
 fn write(path: &Path, bytes: &[u8]) -> Result<(), BenchError> {

@@ -109,3 +109,28 @@ impl Row {
         }
     }
 }
+
+/// Each measured row's median GPU frame time over the `baseline` pipeline's on the same
+/// scene and at the same sweep value.
+pub fn ratios_to_baseline(rows: &mut [Row], baseline: &str) {
+    let median = |row: &Row| {
+        row.figures
+            .as_ref()?
+            .gpu_frame_ms
+            .as_ref()
+            .map(|s| s.median)
+    };
+    let key = |row: &Row| (row.scene.clone(), row.sweep.as_ref().map(|p| p.value));
+    let baselines: Vec<_> = rows
+        .iter()
+        .filter(|r| r.pipeline == baseline)
+        .filter_map(|r| Some((key(r), median(r)?)))
+        .collect();
+    for row in rows.iter_mut() {
+        let base = baselines.iter().find(|(k, _)| *k == key(row)).map(|b| b.1);
+        let ratio = base.zip(median(row)).map(|(b, m)| m / b);
+        if let Some(figures) = &mut row.figures {
+            figures.ratio_to_noaa = ratio.filter(|r| r.is_finite());
+        }
+    }
+}
