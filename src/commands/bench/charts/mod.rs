@@ -15,7 +15,7 @@ use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
 
 use super::error::BenchError;
-use super::results::Results;
+use super::results::{Results, Row};
 use crate::commands::write_png;
 
 use pareto::pareto;
@@ -105,13 +105,49 @@ pub fn color(i: usize) -> &'static RGBColor {
 
 /// The scenes of the measured rows, in run order.
 pub fn scenes(results: &Results) -> Vec<&str> {
-    let mut scenes: Vec<&str> = Vec::new();
-    for row in results.rows.iter().filter(|r| r.figures.is_some()) {
-        if !scenes.contains(&row.scene.as_str()) {
-            scenes.push(&row.scene);
+    distinct(measured(results).map(|r| r.scene.as_str()))
+}
+
+/// The measured pipelines in the order they first appear: the index picks the color.
+pub fn pipelines(results: &Results) -> Vec<&str> {
+    distinct(measured(results).map(|r| r.pipeline.as_str()))
+}
+
+fn measured(results: &Results) -> impl Iterator<Item = &Row> {
+    results.rows.iter().filter(|r| r.figures.is_some())
+}
+
+/// `items` without repeats, in the order they first appear.
+pub fn distinct<'a>(items: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
+    let mut seen: Vec<&str> = Vec::new();
+    for item in items {
+        if !seen.contains(&item) {
+            seen.push(item);
         }
     }
-    scenes
+    seen
+}
+
+/// A legend column: `title`, then a square of the `i`th color before each label, then
+/// `footer` when given.
+pub fn legend(area: &Area, title: &str, labels: &[String], footer: Option<&str>) -> DrawResult {
+    area.draw(&Text::new(title.to_string(), (10, 20), font(17.0)))
+        .map_err(text)?;
+    for (i, label) in labels.iter().enumerate() {
+        let y = 50 + 24 * i as i32;
+        area.draw(&Rectangle::new([(10, y), (26, y + 16)], color(i).filled()))
+            .map_err(text)?;
+        area.draw(&Text::new(label.clone(), (34, y), font(15.0)))
+            .map_err(text)?;
+    }
+    match footer {
+        Some(footer) => {
+            let y = 60 + 24 * labels.len() as i32;
+            area.draw(&Text::new(footer.to_string(), (10, y), font(15.0)))
+                .map_err(text)
+        }
+        None => Ok(()),
+    }
 }
 
 /// `n` panels in a grid of at most two columns.

@@ -4,7 +4,7 @@
 
 use plotters::prelude::*;
 
-use super::{color, font, grid, scenes, text, Area, DrawResult};
+use super::{color, font, grid, legend, pipelines, scenes, text, Area, DrawResult};
 use crate::commands::bench::results::Results;
 
 const PANEL: (u32, u32) = (760, 520);
@@ -26,7 +26,7 @@ pub fn pareto(results: &Results, area: &Area) -> DrawResult {
     let names = pipelines(results);
     let (title, body) = area.split_vertically(TITLE_HEIGHT);
     title.titled(&heading(results), font(22.0)).map_err(text)?;
-    let (panels, legend) = body.split_horizontally(body.dim_in_pixel().0 - LEGEND_WIDTH);
+    let (panels, legend_area) = body.split_horizontally(body.dim_in_pixel().0 - LEGEND_WIDTH);
     let scenes = scenes(results);
     let (rows, columns) = grid(scenes.len());
     for (scene, panel) in scenes.iter().zip(panels.split_evenly((rows, columns))) {
@@ -44,7 +44,17 @@ pub fn pareto(results: &Results, area: &Area) -> DrawResult {
             .collect();
         scene_panel(&panel, scene, &points)?;
     }
-    legend_panel(&legend, &names)
+    let labels: Vec<String> = names
+        .iter()
+        .enumerate()
+        .map(|(i, name)| format!("{} {name}", i + 1))
+        .collect();
+    legend(
+        &legend_area,
+        "pipelines",
+        &labels,
+        Some("grey: Pareto front"),
+    )
 }
 
 fn heading(results: &Results) -> String {
@@ -52,17 +62,6 @@ fn heading(results: &Results) -> String {
         "Speed vs error: {} at {}x{} (lower left is better)",
         results.adapter.name, results.resolution[0], results.resolution[1]
     )
-}
-
-/// Pipelines in the order they first appear; their number is their index plus one.
-fn pipelines(results: &Results) -> Vec<&str> {
-    let mut names: Vec<&str> = Vec::new();
-    for row in results.rows.iter().filter(|r| r.figures.is_some()) {
-        if !names.contains(&row.pipeline.as_str()) {
-            names.push(&row.pipeline);
-        }
-    }
-    names
 }
 
 fn scene_panel(area: &Area, scene: &str, points: &[Point]) -> DrawResult {
@@ -139,21 +138,6 @@ fn front_steps(points: &[Point]) -> Vec<(f64, f64)> {
         }
     }
     steps
-}
-
-fn legend_panel(area: &Area, names: &[&str]) -> DrawResult {
-    area.draw(&Text::new("pipelines", (10, 20), font(17.0)))
-        .map_err(text)?;
-    for (i, name) in names.iter().enumerate() {
-        let y = 50 + 24 * i as i32;
-        area.draw(&Circle::new((18, y + 8), 6, color(i).filled()))
-            .map_err(text)?;
-        area.draw(&Text::new(format!("{} {name}", i + 1), (32, y), font(15.0)))
-            .map_err(text)?;
-    }
-    let y = 60 + 24 * names.len() as i32;
-    area.draw(&Text::new("grey: Pareto front", (10, y), font(15.0)))
-        .map_err(text)
 }
 
 #[cfg(test)]

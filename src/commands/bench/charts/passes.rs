@@ -4,7 +4,7 @@
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::{color, font, grid, scenes, text, Area, DrawResult};
+use super::{color, distinct, font, grid, legend, scenes, text, Area, DrawResult};
 use crate::commands::bench::results::{Results, Row};
 
 const PANEL_WIDTH: u32 = 900;
@@ -39,27 +39,14 @@ pub fn passes(results: &Results, area: &Area) -> DrawResult {
             font(22.0),
         )
         .map_err(text)?;
-    let (panels, legend) = body.split_horizontally(body.dim_in_pixel().0 - LEGEND_WIDTH);
+    let (panels, legend_area) = body.split_horizontally(body.dim_in_pixel().0 - LEGEND_WIDTH);
     let scenes = scenes(results);
     let (rows, columns) = grid(scenes.len());
     for (scene, panel) in scenes.iter().zip(panels.split_evenly((rows, columns))) {
         scene_panel(&panel, scene, &measured(results, scene), &names)?;
     }
-    legend_panel(&legend, &names)
-}
-
-/// The pass colors, shared by every panel.
-fn legend_panel(area: &Area, names: &[&str]) -> DrawResult {
-    area.draw(&Text::new("passes", (10, 20), font(17.0)))
-        .map_err(text)?;
-    for (i, name) in names.iter().enumerate() {
-        let y = 50 + 24 * i as i32;
-        area.draw(&Rectangle::new([(10, y), (26, y + 16)], color(i).filled()))
-            .map_err(text)?;
-        area.draw(&Text::new(name.to_string(), (34, y), font(15.0)))
-            .map_err(text)?;
-    }
-    Ok(())
+    let labels: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+    legend(&legend_area, "passes", &labels, None)
 }
 
 fn measured<'a>(results: &'a Results, scene: &str) -> Vec<&'a Row> {
@@ -72,15 +59,8 @@ fn measured<'a>(results: &'a Results, scene: &str) -> Vec<&'a Row> {
 
 /// Every pass name in order of first appearance: its index picks its color.
 fn pass_names(results: &Results) -> Vec<&str> {
-    let mut names: Vec<&str> = Vec::new();
-    for f in results.rows.iter().filter_map(|r| r.figures.as_ref()) {
-        for pass in &f.passes {
-            if !names.contains(&pass.name.as_str()) {
-                names.push(&pass.name);
-            }
-        }
-    }
-    names
+    let figures = results.rows.iter().filter_map(|r| r.figures.as_ref());
+    distinct(figures.flat_map(|f| f.passes.iter().map(|p| p.name.as_str())))
 }
 
 fn scene_panel(area: &Area, scene: &str, rows: &[&Row], names: &[&str]) -> DrawResult {

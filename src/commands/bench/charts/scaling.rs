@@ -4,7 +4,7 @@
 
 use plotters::prelude::*;
 
-use super::{color, font, grid, text, Area, DrawResult};
+use super::{color, distinct, font, grid, legend, pipelines, text, Area, DrawResult};
 use crate::cli::Sweep;
 use crate::commands::bench::results::{Results, Row};
 
@@ -41,7 +41,7 @@ pub fn scaling(results: &Results, sweep: Sweep, area: &Area) -> DrawResult {
             font(22.0),
         )
         .map_err(text)?;
-    let (panel_area, legend) = body.split_horizontally(body.dim_in_pixel().0 - LEGEND_WIDTH);
+    let (panel_area, legend_area) = body.split_horizontally(body.dim_in_pixel().0 - LEGEND_WIDTH);
     let names = pipelines(results);
     let panels = panels(results);
     let (rows, columns) = grid(panels.len());
@@ -59,7 +59,8 @@ pub fn scaling(results: &Results, sweep: Sweep, area: &Area) -> DrawResult {
             .collect();
         panel_chart(&panel, group, sweep, &lines)?;
     }
-    legend_panel(&legend, &names)
+    let labels: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+    legend(&legend_area, "pipelines", &labels, None)
 }
 
 fn parameter(sweep: Sweep) -> &'static str {
@@ -76,23 +77,7 @@ fn scene_group(row: &Row) -> &str {
 }
 
 fn panels(results: &Results) -> Vec<&str> {
-    let mut groups: Vec<&str> = Vec::new();
-    for row in &results.rows {
-        if !groups.contains(&scene_group(row)) {
-            groups.push(scene_group(row));
-        }
-    }
-    groups
-}
-
-fn pipelines(results: &Results) -> Vec<&str> {
-    let mut names: Vec<&str> = Vec::new();
-    for row in results.rows.iter().filter(|r| r.figures.is_some()) {
-        if !names.contains(&row.pipeline.as_str()) {
-            names.push(&row.pipeline);
-        }
-    }
-    names
+    distinct(results.rows.iter().map(scene_group))
 }
 
 /// Lights and samples as counts, resolution as megapixels.
@@ -166,22 +151,6 @@ fn panel_chart(area: &Area, group: &str, sweep: Sweep, lines: &[Vec<(f64, f64)>]
             .map_err(text)?;
         chart
             .draw_series(line.iter().map(|&p| Circle::new(p, 4, color(i).filled())))
-            .map_err(text)?;
-    }
-    Ok(())
-}
-
-fn legend_panel(area: &Area, names: &[&str]) -> DrawResult {
-    area.draw(&Text::new("pipelines", (10, 20), font(17.0)))
-        .map_err(text)?;
-    for (i, name) in names.iter().enumerate() {
-        let y = 50 + 24 * i as i32;
-        area.draw(&Rectangle::new(
-            [(10, y + 6), (28, y + 10)],
-            color(i).filled(),
-        ))
-        .map_err(text)?;
-        area.draw(&Text::new(name.to_string(), (34, y), font(15.0)))
             .map_err(text)?;
     }
     Ok(())
