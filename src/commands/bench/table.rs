@@ -72,6 +72,10 @@ pub fn markdown(results: &Results) -> String {
         }
     }
     md.push_str(LEGEND);
+    if r.sweep.is_none() {
+        md.push_str(IMAGES);
+    }
+    md.push('\n');
     md
 }
 
@@ -179,13 +183,16 @@ fn ms(value: f64) -> String {
 const LEGEND: &str = "\n\
 GPU ms: median GPU frame time from timestamps (first pass's begin to last pass's end), with \
 the 10th–90th percentile over the measured frames. × noaa: median over deferred_noaa's on \
-the same scene in this run. CPU rec.: CPU time to record all passes. memory / pooled: \
+the same scene (and sweep value) in this run. CPU rec.: CPU time to record all passes. memory / pooled: \
 bytes of the graph's textures on their own and after sharing. G-buf B/sample: bytes per \
 sample of the gbuffer pass's color targets. edge px: pixels the pipeline's debug.edges \
 marks; shaded/px: shading invocations per pixel (edge pixels once per sample, others once; \
 pipelines without debug.edges by their kind, see results.json). On lavapipe times are CPU \
 rasterisation: compare ratios within one run only. FLIP: mean of NVIDIA's FLIP error \
 (0 = identical, 1 = maximal) against the reference on the tone-mapped 8-bit images; PSNR \
-on the sRGB channels; edge: both restricted to the scene's edge pixels. Images per scene \
-are in the folder next to this file: reference.png, edge_pixels.png, PIPELINE.png, \
-PIPELINE_error.png (FLIP heat map), PIPELINE_edges.png (debug.edges).\n";
+on the sRGB channels; edge: both restricted to the scene's edge pixels.";
+
+/// Outside sweeps, which write no images.
+const IMAGES: &str = " Images per scene are in the folder next to this file: reference.png, \
+edge_pixels.png, PIPELINE.png, PIPELINE_error.png (FLIP heat map), PIPELINE_edges.png \
+(debug.edges).";
