@@ -1,8 +1,7 @@
 //! Declaring a graph: resources first, then passes that access them through handles.
 
-use std::collections::HashMap;
-
 use crate::access::{Access, Aspect, AspectAccess, BufferRole, ColorLoad, Role, TextureRole};
+use crate::condition::{Condition, Features};
 use crate::error::GraphError;
 use crate::handle::{
     BufferHandle, Handle, PassId, ResourceId, ResourceKind, Texture, TextureHandle,
@@ -16,8 +15,8 @@ use crate::resource::{BufferDesc, Origin, ResourceDesc, ResourceNode, TextureDes
 pub struct GraphBuilder {
     pub(crate) resources: Vec<ResourceNode>,
     pub(crate) passes: Vec<PassNode>,
-    /// Which pass wrote over each (resource, version): a second writer is an error.
-    overwritten_by: HashMap<(ResourceId, u32), PassId>,
+    /// The feature names conditions may use.
+    pub(crate) features: Features,
     pub(crate) errors: Vec<GraphError>,
 }
 
@@ -54,6 +53,24 @@ impl GraphBuilder {
     pub fn export<K: ResourceKind>(&mut self, handle: Handle<K>) {
         if let Some(node) = self.resources.get_mut(handle.id.index()) {
             node.exported = true;
+        }
+    }
+
+    /// Declares feature names that conditions ([`when`](Self::when),
+    /// [`PassBuilder::when`]) may use. A condition naming any other feature is a compile
+    /// error, so a misspelt feature cannot silently drop a pass.
+    pub fn declare_features<S: Into<String>>(&mut self, features: impl IntoIterator<Item = S>) {
+        for feature in features {
+            self.features.insert(feature);
+        }
+    }
+
+    /// Makes the resource exist only where `condition` holds for the features the graph
+    /// is compiled for. Passes that use it must not be in the graph without it: give
+    /// them a condition that implies this one.
+    pub fn when<K: ResourceKind>(&mut self, handle: Handle<K>, condition: Condition) {
+        if let Some(node) = self.resources.get_mut(handle.id.index()) {
+            node.condition = Some(condition);
         }
     }
 
@@ -96,6 +113,7 @@ impl GraphBuilder {
             desc,
             origin,
             exported: false,
+            condition: None,
             versions: 1,
         });
         Handle::new(id, 0)
@@ -119,6 +137,15 @@ impl PassBuilder<'_> {
     /// This pass's id.
     pub fn id(&self) -> PassId {
         self.id
+    }
+
+    /// Runs the pass only where `condition` holds for the features the graph is compiled
+    /// for. Where it does not, the pass is dropped: what it modifies passes through
+    /// unchanged (readers of its output read its input), and passes writing the same
+    /// version under an exclusive condition stand in for it.
+    pub fn when(&mut self, condition: Condition) -> &mut Self {
+        self.node().condition = Some(condition);
+        self
     }
 
     /// Keeps the pass even when nothing reads what it writes.
@@ -302,21 +329,6 @@ impl PassBuilder<'_> {
             resource.versions += 1;
             resource.versions - 1
         });
-        if written.is_some() {
-            let key = (handle.id, handle.version);
-            // One pass writing a texture twice is a usage conflict, which validation
-            // names with both roles; two passes are two writers, the first one named.
-            let first = *self.graph.overwritten_by.entry(key).or_insert(self.id);
-            if first != self.id {
-                let error = GraphError::ConflictingWriters {
-                    first: self.graph.passes[first.index()].name.clone(),
-                    second: self.graph.passes[self.id.index()].name.clone(),
-                    resource: self.graph.resources[handle.id.index()].name.clone(),
-                    version: handle.version,
-                };
-                self.graph.errors.push(error);
-            }
-        }
         self.node().accesses.push(Access {
             resource: handle.id,
             role,

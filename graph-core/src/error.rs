@@ -145,6 +145,60 @@ pub enum GraphError {
     },
 
     #[error(
+        "pass \"{pass}\": condition \"{condition}\" names feature \"{feature}\", which the \
+         graph does not declare (declared: {declared})"
+    )]
+    UnknownPassFeature {
+        pass: String,
+        condition: String,
+        feature: String,
+        declared: String,
+    },
+
+    #[error(
+        "resource \"{resource}\": condition \"{condition}\" names feature \"{feature}\", \
+         which the graph does not declare (declared: {declared})"
+    )]
+    UnknownResourceFeature {
+        resource: String,
+        condition: String,
+        feature: String,
+        declared: String,
+    },
+
+    #[error(
+        "pass \"{pass}\" uses \"{resource}\", which is dropped ({why}); give \"{pass}\" a \
+         condition that implies the resource's"
+    )]
+    UsesDroppedResource {
+        pass: String,
+        resource: String,
+        why: String,
+    },
+
+    #[error(
+        "pass \"{reader}\" reads \"{resource}\" as pass \"{dropped}\" writes it, but \
+         \"{dropped}\" is dropped ({why}); give \"{reader}\" a condition that implies \
+         \"{dropped}\"'s, or write \"{resource}\" in a pass that stays"
+    )]
+    DroppedWriter {
+        reader: String,
+        dropped: String,
+        resource: String,
+        why: String,
+    },
+
+    #[error(
+        "output \"{resource}\" is written by pass \"{dropped}\", which is dropped ({why}); \
+         give \"{resource}\" the same condition"
+    )]
+    DroppedOutput {
+        resource: String,
+        dropped: String,
+        why: String,
+    },
+
+    #[error(
         "cycle: passes {} must each run before the other (through {})",
         quote_list(passes),
         quote_list(resources)
@@ -180,14 +234,19 @@ impl GraphError {
             | AttachmentMismatch { pass, .. }
             | BadResolve { pass, .. }
             | NoAttachment { pass }
-            | TwoDepthStencil { pass, .. } => Some(pass),
+            | TwoDepthStencil { pass, .. }
+            | UnknownPassFeature { pass, .. }
+            | UsesDroppedResource { pass, .. } => Some(pass),
             ConflictingWriters { second, .. } => Some(second),
+            DroppedWriter { reader, .. } => Some(reader),
             Cycle { passes, .. } => passes.first().map(String::as_str),
             ZeroSize { .. }
             | ZeroSizedBuffer { .. }
             | InvalidResource { .. }
             | TooLarge { .. }
-            | UnsupportedSampleCount { .. } => None,
+            | UnsupportedSampleCount { .. }
+            | UnknownResourceFeature { .. }
+            | DroppedOutput { .. } => None,
         }
     }
 
@@ -208,12 +267,17 @@ impl GraphError {
             | UnsupportedSampleCount { resource, .. }
             | FormatRole { resource, .. }
             | AttachmentMismatch { resource, .. }
-            | BadResolve { resource, .. } => Some(resource),
+            | BadResolve { resource, .. }
+            | UnknownResourceFeature { resource, .. }
+            | UsesDroppedResource { resource, .. }
+            | DroppedWriter { resource, .. }
+            | DroppedOutput { resource, .. } => Some(resource),
             Cycle { resources, .. } => resources.first().map(String::as_str),
             TwoDepthStencil { second, .. } => Some(second),
-            ColorBytesPerSample { .. } | TooManyColorAttachments { .. } | NoAttachment { .. } => {
-                None
-            }
+            ColorBytesPerSample { .. }
+            | TooManyColorAttachments { .. }
+            | NoAttachment { .. }
+            | UnknownPassFeature { .. } => None,
         }
     }
 }

@@ -14,6 +14,9 @@ pub fn text(plan: &Plan) -> String {
     let mut out = String::new();
     let (w, h) = plan.output_size;
     let _ = writeln!(out, "plan at {w}x{h} for {}", plan.profile);
+    if !plan.features.is_empty() {
+        let _ = writeln!(out, "features: {}", plan.features.join(", "));
+    }
     let _ = writeln!(out, "\npasses, in execution order:");
     for (i, pass) in plan.passes.iter().enumerate() {
         let _ = writeln!(out, "  {i:>3}. {} ({})", pass.name, pass.kind);
@@ -63,9 +66,16 @@ pub fn text(plan: &Plan) -> String {
             );
         }
     }
-    if !plan.culled.is_empty() {
-        let _ = writeln!(out, "\nculled passes:");
-        for c in &plan.culled {
+    for (dropped, title) in [(true, "dropped passes"), (false, "culled passes")] {
+        let mut passes = plan
+            .culled
+            .iter()
+            .filter(|c| c.dropped == dropped)
+            .peekable();
+        if passes.peek().is_some() {
+            let _ = writeln!(out, "\n{title}:");
+        }
+        for c in passes {
             let _ = writeln!(out, "  - {}: {}", c.name, c.reason);
         }
     }
@@ -179,7 +189,8 @@ pub fn dot(plan: &Plan) -> String {
     }
     for c in &plan.culled {
         let reason = c.reason.replace('"', "'");
-        let _ = writeln!(out, "  \"pass:{}\" [shape=box, style=\"filled,dashed\", fillcolor=\"#dddddd\", fontcolor=\"#777777\", label=\"{}\\nculled\", tooltip=\"{reason}\"];", c.name, c.name);
+        let what = if c.dropped { "dropped" } else { "culled" };
+        let _ = writeln!(out, "  \"pass:{}\" [shape=box, style=\"filled,dashed\", fillcolor=\"#dddddd\", fontcolor=\"#777777\", label=\"{}\\n{what}\", tooltip=\"{reason}\"];", c.name, c.name);
         for &(r, v) in &c.reads {
             let _ = writeln!(
                 out,

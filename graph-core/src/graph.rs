@@ -1,5 +1,6 @@
 //! A declared graph, ready to compile.
 
+use crate::condition::Features;
 use crate::error::GraphError;
 use crate::handle::{Handle, ResourceKind};
 use crate::pass::PassNode;
@@ -11,6 +12,8 @@ use crate::resource::ResourceNode;
 pub struct Graph {
     pub(crate) resources: Vec<ResourceNode>,
     pub(crate) passes: Vec<PassNode>,
+    /// The feature names conditions may use.
+    pub(crate) features: Features,
     /// Mistakes found while declaring, reported by the first compile.
     pub(crate) declare_errors: Vec<GraphError>,
 }
@@ -20,6 +23,7 @@ impl Graph {
         Self {
             resources: builder.resources,
             passes: builder.passes,
+            features: builder.features,
             declare_errors: builder.errors,
         }
     }
@@ -30,6 +34,36 @@ impl Graph {
 
     pub fn passes(&self) -> &[PassNode] {
         &self.passes
+    }
+
+    /// The feature names the graph's conditions may use.
+    pub fn declared_features(&self) -> &Features {
+        &self.features
+    }
+
+    /// The part of `features` this graph's conditions can see: plans for feature sets
+    /// that differ only in undeclared features are the same plan.
+    pub fn relevant(&self, features: &Features) -> Features {
+        features.intersection(&self.features)
+    }
+
+    /// Feature sets that between them keep every pass and resource in the graph: none,
+    /// and for each distinct condition the features it requires. Compiling for each
+    /// validates what any single feature set would drop.
+    pub fn witnesses(&self) -> Vec<Features> {
+        let conditions = self
+            .passes
+            .iter()
+            .map(|p| &p.condition)
+            .chain(self.resources.iter().map(|r| &r.condition));
+        let mut sets = vec![Features::new()];
+        for condition in conditions.flatten() {
+            let witness = condition.witness();
+            if !sets.contains(&witness) {
+                sets.push(witness);
+            }
+        }
+        sets
     }
 
     pub fn resource<K: ResourceKind>(&self, handle: Handle<K>) -> &ResourceNode {

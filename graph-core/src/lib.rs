@@ -14,11 +14,13 @@
 mod access;
 mod builder;
 mod compile;
+mod condition;
 mod error;
 mod graph;
 mod handle;
 mod pass;
 mod plan;
+mod plan_cache;
 mod profile;
 mod resource;
 
@@ -33,6 +35,7 @@ pub mod synthetic;
 pub use access::{Access, Aspect, AspectAccess, BufferRole, ColorLoad, Role, TextureRole};
 pub use builder::{GraphBuilder, PassBuilder};
 pub use compile::CompileOptions;
+pub use condition::{Condition, ConditionError, Features, Literal};
 pub use error::{GraphError, GraphErrors};
 pub use graph::Graph;
 pub use handle::{
@@ -46,6 +49,7 @@ pub use plan::{
     ColorAttachment, CulledPass, DepthStencilAttachment, Load, MemoryReport, Ops, PhysicalBuffer,
     PhysicalTexture, Plan, PlannedPass, PlannedResource, Store, TextureShape,
 };
+pub use plan_cache::{Compile, PlanCache, PlanKey};
 pub use profile::{color_bytes_per_sample, color_target_cost, DeviceProfile};
 pub use resource::{
     texel_bytes, BufferDesc, Origin, ResourceDesc, ResourceNode, Size, TextureDesc,

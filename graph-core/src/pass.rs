@@ -3,6 +3,7 @@
 use serde::Serialize;
 
 use crate::access::Access;
+use crate::condition::Condition;
 
 /// What kind of GPU work a pass records. The executor begins the matching wgpu pass.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize)]
@@ -54,6 +55,8 @@ pub struct PassNode {
     pub accesses: Vec<Access>,
     /// Kept even when nothing reads what it writes (e.g. it writes outside the graph).
     pub side_effect: bool,
+    /// The pass runs only where this holds for the compiled features.
+    pub condition: Option<Condition>,
     #[cfg(feature = "gpu")]
     pub(crate) record: Option<Record>,
 }
@@ -83,8 +86,19 @@ impl PassNode {
             kind,
             accesses: Vec::new(),
             side_effect: false,
+            condition: None,
             #[cfg(feature = "gpu")]
             record: None,
+        }
+    }
+
+    /// The pass as declared, without its record callback: what compile phases read.
+    pub(crate) fn declaration(&self) -> Self {
+        Self {
+            accesses: self.accesses.clone(),
+            side_effect: self.side_effect,
+            condition: self.condition.clone(),
+            ..Self::new(self.name.clone(), self.kind)
         }
     }
 }

@@ -15,9 +15,13 @@ pub struct Plan {
     pub output_size: (u32, u32),
     /// The device profile the graph was validated against.
     pub profile: String,
+    /// The declared features the plan was compiled for: conditions over them decided
+    /// which passes and resources are in it.
+    pub features: Vec<String>,
     /// Passes that run, in execution order.
     pub passes: Vec<PlannedPass>,
-    /// Passes that do not run, with the reason, in declaration order.
+    /// Passes that do not run, with the reason (a false condition, or nothing needing
+    /// what they write), in declaration order.
     pub culled: Vec<CulledPass>,
     /// Every declared resource, indexed by [`ResourceId`].
     pub resources: Vec<PlannedResource>,
@@ -89,6 +93,9 @@ pub struct CulledPass {
     pub name: String,
     pub kind: PassKind,
     pub reason: String,
+    /// Dropped because its condition is false for the plan's features, rather than
+    /// culled because nothing needs what it writes.
+    pub dropped: bool,
     /// What it would have read and written, so drawings can show the dead branch.
     pub reads: Vec<(ResourceId, u32)>,
     pub writes: Vec<(ResourceId, u32)>,

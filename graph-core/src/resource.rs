@@ -174,6 +174,8 @@ pub struct ResourceNode {
     /// Exported: the final version outlives the frame (readback, history). Exports are
     /// culling roots, like imports.
     pub exported: bool,
+    /// The resource exists only where this holds for the compiled features.
+    pub condition: Option<crate::condition::Condition>,
     /// Versions handed out so far; the next write creates `versions`.
     pub(crate) versions: u32,
 }

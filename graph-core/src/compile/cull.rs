@@ -51,7 +51,7 @@ fn mark_live_passes(graph: &Graph, versions: &Versions) -> Vec<bool> {
     for (r, resource) in graph.resources.iter().enumerate() {
         let id = ResourceId(r as u32);
         if resource.is_root() {
-            let last = (id, Versions::final_version(graph, id));
+            let last = (id, versions.final_version(id));
             work.extend(versions.writer(last));
         }
     }

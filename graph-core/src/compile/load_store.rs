@@ -100,7 +100,6 @@ fn is_needed_after(
         .readers((resource, v))
         .iter()
         .any(|&reader| reader != pass && live.pass(reader));
-    let kept = graph.resources[resource.index()].is_root()
-        && v == Versions::final_version(graph, resource);
+    let kept = graph.resources[resource.index()].is_root() && v == versions.final_version(resource);
     read_later || kept
 }

@@ -1,6 +1,7 @@
-//! Compiling a graph into a [`Plan`], without a GPU. [`Graph::compile`] reads as the list
-//! of phases; each phase is one file.
+//! Compiling a graph into a [`Plan`], without a GPU. [`Graph::compile_for`] reads as the
+//! list of phases; each phase is one file.
 
+mod conditions;
 mod cull;
 mod lifetimes;
 mod load_store;
@@ -12,6 +13,7 @@ mod versions;
 
 pub(crate) use validate::format_name;
 
+use crate::condition::Features;
 use crate::error::{GraphError, GraphErrors};
 use crate::graph::Graph;
 use crate::handle::{PassId, ResourceId};
@@ -19,6 +21,7 @@ use crate::plan::{CulledPass, MemoryReport, Plan, PlannedPass, PlannedResource, 
 use crate::profile::{color_bytes_per_sample, DeviceProfile};
 use crate::resource::ResourceDesc;
 
+use conditions::Conditioned;
 use cull::Live;
 use load_store::Attachments;
 use physical::Physical;
@@ -26,7 +29,9 @@ use usage::Usages;
 use versions::Versions;
 
 /// What a compile is for: the output size relative textures resolve against, and the
-/// device whose limits and formats the graph must fit.
+/// device whose limits and formats the graph must fit. The scene's features are the
+/// other input, an argument of [`Graph::compile_for`]: a field here would break every
+/// caller that writes these options out in full.
 #[derive(Clone, Debug)]
 pub struct CompileOptions {
     pub output_size: (u32, u32),
@@ -44,22 +49,41 @@ impl Default for CompileOptions {
 }
 
 impl Graph {
-    /// Compiles the graph for `options`. Returns every error found, each naming its pass
-    /// and resource; a graph that compiles is one the executor can run on a device that
-    /// matches the profile. The graph itself is not changed.
+    /// Compiles the graph for `options` with no feature set: every `!feature` condition
+    /// holds and no `feature` condition does. See [`compile_for`](Self::compile_for).
     pub fn compile(&self, options: &CompileOptions) -> Result<Plan, GraphErrors> {
-        let shapes = self.resolve_shapes(options.output_size, &options.profile);
-        let versions = Versions::index(self);
-        self.validate(&shapes, &versions, &options.profile)?;
-        let live = cull::cull(self, &versions);
-        let order = order::order(self, &versions, &live).map_err(|e| GraphErrors(vec![e]))?;
-        let lifetimes = lifetimes::lifetimes(self, &order);
-        let attachments = load_store::infer(self, &versions, &live);
-        let usages = usage::derive(self, &versions, &live, &attachments, &options.profile);
-        let physical = physical::plan(self, &shapes, &lifetimes, &usages);
+        self.compile_for(options, &Features::new())
+    }
+
+    /// Compiles the graph for `options` as `features` make it. Returns every error found,
+    /// each naming its pass and resource; a graph that compiles is one the executor can
+    /// run on a device that matches the profile. The graph itself is not changed.
+    ///
+    /// Features the graph does not declare are ignored, so a caller can pass everything
+    /// its scene has and each graph sees the features it cares about; the plan records
+    /// the ones it saw.
+    pub fn compile_for(
+        &self,
+        options: &CompileOptions,
+        features: &Features,
+    ) -> Result<Plan, GraphErrors> {
+        let features = self.relevant(features);
+        let conditioned = conditions::apply(self, &features);
+        let graph = &conditioned.graph;
+        let shapes = graph.resolve_shapes(options.output_size, &options.profile);
+        let versions = Versions::index(graph);
+        self.validate(&conditioned, &shapes, &versions, &options.profile)?;
+        let live = cull::cull(graph, &versions);
+        let order = order::order(graph, &versions, &live).map_err(|e| GraphErrors(vec![e]))?;
+        let lifetimes = lifetimes::lifetimes(graph, &order);
+        let attachments = load_store::infer(graph, &versions, &live);
+        let usages = usage::derive(graph, &versions, &live, &attachments, &options.profile);
+        let physical = physical::plan(graph, &shapes, &lifetimes, &usages);
         Ok(self.assemble(
             options,
+            features,
             Assembly {
+                conditioned,
                 shapes,
                 live,
                 order,
@@ -102,15 +126,21 @@ impl Graph {
             .collect()
     }
 
+    /// Mistakes in declaring and in conditions come first and alone: the checks of the
+    /// conditioned graph would only repeat them in other words.
     fn validate(
         &self,
+        conditioned: &Conditioned,
         shapes: &[Option<TextureShape>],
         versions: &Versions,
         profile: &DeviceProfile,
     ) -> Result<(), GraphErrors> {
         let mut errors: Vec<GraphError> = self.declare_errors.clone();
-        validate::resources(self, shapes, profile, &mut errors);
-        validate::passes(self, shapes, versions, profile, &mut errors);
+        errors.extend(conditioned.errors.iter().cloned());
+        if errors.is_empty() {
+            validate::resources(conditioned, shapes, profile, &mut errors);
+            validate::passes(conditioned, shapes, versions, profile, &mut errors);
+        }
         if errors.is_empty() {
             Ok(())
         } else {
@@ -118,12 +148,15 @@ impl Graph {
         }
     }
 
-    fn assemble(&self, options: &CompileOptions, a: Assembly) -> Plan {
+    /// The plan, from the conditioned graph (live passes read through dropped ones)
+    /// and the declared one (dropped passes show what they would have read and written).
+    fn assemble(&self, options: &CompileOptions, features: Features, a: Assembly) -> Plan {
+        let graph = &a.conditioned.graph;
         let passes = a
             .order
             .iter()
             .map(|&id| {
-                let pass = &self.passes[id.index()];
+                let pass = &graph.passes[id.index()];
                 let Attachments {
                     color,
                     depth_stencil,
@@ -146,24 +179,32 @@ impl Graph {
             })
             .collect();
         let culled = a
-            .live
-            .pass_reasons
+            .conditioned
+            .passes
             .iter()
+            .zip(&a.live.pass_reasons)
             .enumerate()
-            .filter_map(|(i, reason)| {
-                let pass = &self.passes[i];
+            .filter_map(|(i, (dropped, culled))| {
+                let pass = match dropped {
+                    Some(_) => &self.passes[i],
+                    None => &graph.passes[i],
+                };
                 let (reads, writes) = pass.versions();
-                reason.as_ref().map(|reason| CulledPass {
-                    id: PassId(i as u32),
-                    name: pass.name.clone(),
-                    kind: pass.kind,
-                    reason: reason.clone(),
-                    reads,
-                    writes,
-                })
+                dropped
+                    .as_ref()
+                    .or(culled.as_ref())
+                    .map(|reason| CulledPass {
+                        id: PassId(i as u32),
+                        name: pass.name.clone(),
+                        kind: pass.kind,
+                        reason: reason.clone(),
+                        dropped: dropped.is_some(),
+                        reads,
+                        writes,
+                    })
             })
             .collect();
-        let resources: Vec<PlannedResource> = self
+        let resources: Vec<PlannedResource> = graph
             .resources
             .iter()
             .enumerate()
@@ -182,7 +223,9 @@ impl Graph {
                 buffer_usage: a.usages.buffer[r],
                 lifetime: a.lifetimes[r],
                 physical: a.physical.assignment[r],
-                culled: a.live.resource_reasons[r].clone(),
+                culled: a.conditioned.resources[r]
+                    .clone()
+                    .or_else(|| a.live.resource_reasons[r].clone()),
                 bytes: match (a.shapes[r], node.buffer()) {
                     (Some(shape), _) => physical::shape_bytes(&shape),
                     (None, Some(b)) => b.size,
@@ -202,6 +245,7 @@ impl Graph {
         Plan {
             output_size: options.output_size,
             profile: options.profile.name.clone(),
+            features: features.iter().map(str::to_owned).collect(),
             passes,
             culled,
             resources,
@@ -214,6 +258,7 @@ impl Graph {
 
 /// Everything the phases computed, handed to [`Graph::assemble`].
 struct Assembly {
+    conditioned: Conditioned,
     shapes: Vec<Option<TextureShape>>,
     live: Live,
     order: Vec<PassId>,

@@ -11,16 +11,19 @@ use crate::plan::TextureShape;
 use crate::profile::{color_bytes_per_sample, DeviceProfile};
 use crate::resource::{Origin, ResourceDesc};
 
+use super::conditions::Conditioned;
 use super::versions::Versions;
 
-/// Checks every texture and buffer description against the profile.
+/// Checks every texture and buffer description against the profile. Dropped resources
+/// are not in this graph and are not checked.
 pub(super) fn resources(
-    graph: &Graph,
+    conditioned: &Conditioned,
     shapes: &[Option<TextureShape>],
     profile: &DeviceProfile,
     errors: &mut Vec<GraphError>,
 ) {
-    for (resource, shape) in graph.resources.iter().zip(shapes) {
+    let resources = conditioned.graph.resources.iter().zip(shapes).enumerate();
+    for (_, (resource, shape)) in resources.filter(|(r, _)| !conditioned.resource_dropped(*r)) {
         let name = || resource.name.clone();
         let invalid = |what: String| GraphError::InvalidResource {
             resource: resource.name.clone(),
@@ -130,15 +133,17 @@ fn same_kind(a: TextureFormat, b: TextureFormat) -> bool {
 }
 
 /// Checks every pass's accesses: roles its kind allows, data that exists, formats that fit
-/// their roles, and render-pass attachment rules.
+/// their roles, and render-pass attachment rules. Dropped passes are not checked.
 pub(super) fn passes(
-    graph: &Graph,
+    conditioned: &Conditioned,
     shapes: &[Option<TextureShape>],
     versions: &Versions,
     profile: &DeviceProfile,
     errors: &mut Vec<GraphError>,
 ) {
-    for pass in &graph.passes {
+    let graph = &conditioned.graph;
+    let passes = graph.passes.iter().enumerate();
+    for (_, pass) in passes.filter(|(p, _)| !conditioned.pass_dropped(*p)) {
         let check = PassCheck {
             graph,
             pass,

@@ -25,6 +25,8 @@ pub(super) struct Versions {
     rows: Vec<Row>,
     /// The passes that access each resource, in declaration order.
     pub users: Vec<Vec<PassId>>,
+    /// The last version of each resource a pass writes (0 when none does).
+    finals: Vec<u32>,
 }
 
 impl Versions {
@@ -38,6 +40,7 @@ impl Versions {
             rows: vec![Row::default(); start[start.len() - 1]],
             start,
             users: vec![Vec::new(); graph.resources.len()],
+            finals: vec![0; graph.resources.len()],
         };
         for (i, pass) in graph.passes.iter().enumerate() {
             let id = PassId(i as u32);
@@ -57,6 +60,8 @@ impl Versions {
                 if let Some(written) = access.written {
                     if let Some(row) = v.row_mut((access.resource, written)) {
                         row.writer = Some(id);
+                        let last = &mut v.finals[access.resource.index()];
+                        *last = (*last).max(written);
                     }
                     if let Some(row) = v.row_mut(incoming) {
                         row.overwriter.get_or_insert(id);
@@ -95,8 +100,10 @@ impl Versions {
         self.row(version).and_then(|row| row.overwriter)
     }
 
-    /// The last version of a resource: the one roots keep.
-    pub fn final_version(graph: &Graph, resource: ResourceId) -> u32 {
-        graph.resources[resource.index()].versions - 1
+    /// The last version of a resource a pass writes: the one roots keep. In a graph
+    /// without dropped passes that is the last version handed out; with them, versions
+    /// only dropped passes wrote have no writer and are passed over.
+    pub fn final_version(&self, resource: ResourceId) -> u32 {
+        self.finals[resource.index()]
     }
 }

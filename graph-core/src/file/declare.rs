@@ -4,6 +4,7 @@
 use std::collections::HashMap;
 
 use super::any_handle::AnyHandle;
+use super::conditions::FileConditions;
 use super::error::{ErrorKind, FileError, FileErrors};
 use super::loaded::{LoadedGraph, Names};
 use super::plugin::{PluginError, Prepared};
@@ -15,18 +16,28 @@ use crate::builder::GraphBuilder;
 use crate::pass::PassKind;
 
 /// Declares `file` with passes in `order`. `prepared` holds each pass's plugin with its
-/// parameters, by file index; names were resolved without errors.
+/// parameters, by file index; conditions were read and names resolved without errors.
 pub(super) fn declare<'f>(
     source: &Source<'f>,
     file: &'f GraphFile<'_>,
     mut prepared: Vec<Option<Box<dyn Prepared + '_>>>,
+    mut conditions: FileConditions,
     order: &[usize],
 ) -> Result<LoadedGraph, FileErrors> {
     let mut graph = GraphBuilder::new();
+    graph.declare_features(conditions.features.iter());
     let mut handles: HashMap<&'f str, AnyHandle> = HashMap::new();
-    for (name, decl) in &file.resources.0 {
-        handles.insert(name.as_str(), decl.declare(&mut graph, name.as_str()));
+    for ((name, decl), condition) in file.resources.0.iter().zip(&mut conditions.resources) {
+        let handle = decl.declare(&mut graph, name.as_str());
+        if let Some(condition) = condition.take() {
+            match handle {
+                AnyHandle::Texture(h) => graph.when(h, condition),
+                AnyHandle::Buffer(h) => graph.when(h, condition),
+            }
+        }
+        handles.insert(name.as_str(), handle);
     }
+    let declared = handles.clone();
     let mut spans = Spans::new(source, file);
     let mut errors = Vec::new();
     for &p in order {
@@ -34,7 +45,7 @@ pub(super) fn declare<'f>(
         // A pass whose inputs a failed pass should have written is skipped: the failure
         // is reported already, and its consequences would only repeat it.
         let plugin = prepared.get_mut(p).and_then(Option::take);
-        let slots = Slots::new(decl, &handles, source.dir());
+        let slots = Slots::new(decl, &handles, &declared, source.dir());
         let (Some(plugin), Some(mut slots)) = (plugin, slots) else {
             continue;
         };
@@ -45,6 +56,9 @@ pub(super) fn declare<'f>(
             PassKind::Compute => graph.add_compute_pass(name),
             PassKind::Transfer => graph.add_transfer_pass(name),
         };
+        if let Some(condition) = conditions.passes[p].take() {
+            pass.when(condition);
+        }
         if let Err(error) = plugin.setup(&mut pass, &mut slots) {
             errors.push(plugin_error(source, decl, error));
             continue;
@@ -60,6 +74,8 @@ pub(super) fn declare<'f>(
             let at = decl.input(slot).or_else(|| decl.output(slot));
             errors.extend(at.map(|n| source.error(n, kind)));
         }
+        // Of alternatives writing one name, readers get the last one declared; where it
+        // is dropped, compiling stands the live one in for it.
         handles.extend(finished.written.into_iter().map(|(_, out, h)| (out, h)));
     }
     for out in &file.outputs {

@@ -7,6 +7,7 @@ use thiserror::Error;
 
 use super::plugin::PluginError;
 use super::position::Position;
+use crate::condition::ConditionError;
 use crate::error::GraphError;
 
 /// A position in a named file.
@@ -105,6 +106,33 @@ pub enum ErrorKind {
         resource: String,
         pass: String,
         next: String,
+    },
+
+    #[error("{owner}: condition \"{condition}\": {error}")]
+    BadCondition {
+        /// `pass "NAME"` or `resource "NAME"`.
+        owner: String,
+        condition: String,
+        error: ConditionError,
+    },
+
+    #[error("\"{feature}\" is not a feature name: {why}")]
+    BadFeature { feature: String, why: String },
+
+    #[error("feature \"{feature}\" is declared twice")]
+    DuplicateFeature { feature: String },
+
+    #[error(
+        "passes \"{first}\" and \"{second}\" both write \"{resource}\" and their conditions \
+         (\"{first_when}\", \"{second_when}\") are not exclusive; a name has one writer, or \
+         one per exclusive condition"
+    )]
+    WritersNotExclusive {
+        first: String,
+        second: String,
+        resource: String,
+        first_when: String,
+        second_when: String,
     },
 
     #[error("pass \"{pass}\" ({plugin}): {error}")]

@@ -1,5 +1,5 @@
-//! Loading a graph file: parse, look up plugins and their parameters, resolve names,
-//! order passes, declare. Every error found before declaring is reported together.
+//! Loading a graph file: parse, look up plugins and their parameters, read conditions,
+//! resolve names, order passes, declare. Every error found before declaring is reported together.
 
 use std::path::Path;
 
@@ -11,7 +11,7 @@ use super::position::Position;
 use super::registry::Registry;
 use super::schema::{self, GraphFile};
 use super::source::Source;
-use super::{names, order};
+use super::{conditions, names, order};
 
 /// Reads and declares the graph file at `path`. Shader paths in it resolve against the
 /// file's directory; messages show `path` as given. Compile the result with
@@ -39,12 +39,13 @@ pub fn load_str(
     let file = schema::parse(text).map_err(|e| FileErrors(vec![source.syntax(&e)]))?;
     let mut errors = Vec::new();
     let prepared = prepare(&source, &file, registry, &mut errors);
-    let edges = names::resolve(&source, &file, &mut errors);
+    let conditions = conditions::read(&source, &file, &mut errors);
+    let edges = names::resolve(&source, &file, &conditions, &mut errors);
     let order = order::sort(&source, &file, &edges, &mut errors);
     if !errors.is_empty() {
         return Err(FileErrors::sorted(errors));
     }
-    declare(&source, &file, prepared, &order)
+    declare(&source, &file, prepared, conditions, &order)
 }
 
 /// Each pass's plugin with its parameters, by file index (`None` where that failed).

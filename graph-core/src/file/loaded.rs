@@ -7,6 +7,7 @@ use super::any_handle::AnyHandle;
 use super::error::FileErrors;
 use super::spans::Spans;
 use crate::compile::CompileOptions;
+use crate::condition::Features;
 use crate::graph::Graph;
 use crate::handle::{BufferHandle, TextureHandle};
 use crate::plan::Plan;
@@ -24,7 +25,16 @@ impl LoadedGraph {
     /// [`Graph::compile`], with each error placed in the file: at the slot where the
     /// pass names the resource, at the pass, or at the resource's declaration.
     pub fn compile(&self, options: &CompileOptions) -> Result<Plan, FileErrors> {
-        self.graph.compile(options).map_err(|errors| {
+        self.compile_for(options, &Features::new())
+    }
+
+    /// [`Graph::compile_for`], with errors placed as by [`compile`](Self::compile).
+    pub fn compile_for(
+        &self,
+        options: &CompileOptions,
+        features: &Features,
+    ) -> Result<Plan, FileErrors> {
+        self.graph.compile_for(options, features).map_err(|errors| {
             FileErrors::sorted(errors.0.into_iter().map(|e| self.spans.locate(e)).collect())
         })
     }
@@ -62,6 +72,22 @@ impl LoadedGraph {
             resource.exported &= kept.contains(&index);
         }
         Ok(())
+    }
+}
+
+impl crate::Compile for LoadedGraph {
+    type Error = FileErrors;
+
+    fn compile_for(
+        &self,
+        options: &CompileOptions,
+        features: &Features,
+    ) -> Result<Plan, FileErrors> {
+        LoadedGraph::compile_for(self, options, features)
+    }
+
+    fn relevant(&self, features: &Features) -> Features {
+        self.graph.relevant(features)
     }
 }
 

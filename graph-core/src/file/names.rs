@@ -1,9 +1,9 @@
 //! Name resolution: every name in a graph file denotes one version with exactly one
 //! writer. Checks that, and finds which pass each pass waits for.
 
-use std::collections::hash_map::Entry;
 use std::collections::{HashMap, HashSet};
 
+use super::conditions::FileConditions;
 use super::error::{ErrorKind, FileError};
 use super::schema::{GraphFile, ResourceDecl};
 use super::source::Source;
@@ -17,9 +17,12 @@ pub(super) struct Edge<'f> {
 }
 
 /// Checks names and returns the dependencies between passes (indices in file order).
+/// Passes with exclusive conditions may write the same name: they are alternatives, and
+/// its readers wait for all of them.
 pub(super) fn resolve<'f>(
     source: &Source<'_>,
     file: &'f GraphFile<'_>,
+    conditions: &FileConditions,
     errors: &mut Vec<FileError>,
 ) -> Vec<Edge<'f>> {
     let declared = declared(source, file, errors);
@@ -27,9 +30,9 @@ pub(super) fn resolve<'f>(
     let imported = |name: &str| declared.get(name).is_some_and(|d| d.imported());
     let pass_name = |p: usize| file.passes[p].name.as_str().to_owned();
 
-    let mut writers: HashMap<&str, usize> = HashMap::new();
-    // Version name -> the pass modifying it and the name of the version it makes.
-    let mut modifiers: HashMap<&str, (usize, &str)> = HashMap::new();
+    let mut writers: HashMap<&str, Vec<usize>> = HashMap::new();
+    // Version name -> the passes modifying it and the name of the version each makes.
+    let mut modifiers: HashMap<&str, Vec<(usize, &str)>> = HashMap::new();
     for (p, pass) in file.passes.iter().enumerate() {
         for (slot, out) in &pass.outputs.0 {
             let name = out.as_str();
@@ -44,19 +47,18 @@ pub(super) fn resolve<'f>(
                         };
                         errors.push(source.error(out, kind));
                     }
-                    match modifiers.entry(input.as_str()) {
-                        Entry::Occupied(first) => {
-                            let kind = ErrorKind::ModifiedTwice {
-                                first: pass_name(first.get().0),
-                                second: pass_name(p),
-                                resource: input.as_str().to_owned(),
-                            };
-                            errors.push(source.error(input, kind));
-                        }
-                        Entry::Vacant(v) => {
-                            v.insert((p, name));
-                        }
+                    let earlier = modifiers.entry(input.as_str()).or_default();
+                    if let Some(&(first, _)) =
+                        earlier.iter().find(|(q, _)| !conditions.exclusive(*q, p))
+                    {
+                        let kind = ErrorKind::ModifiedTwice {
+                            first: pass_name(first),
+                            second: pass_name(p),
+                            resource: input.as_str().to_owned(),
+                        };
+                        errors.push(source.error(input, kind));
                     }
+                    earlier.push((p, name));
                 }
                 None if !declared.contains_key(name) => {
                     let kind = ErrorKind::Undeclared {
@@ -67,19 +69,25 @@ pub(super) fn resolve<'f>(
                 }
                 None => {}
             }
-            match writers.entry(name) {
-                Entry::Occupied(first) => {
-                    let kind = ErrorKind::TwoWriters {
-                        first: pass_name(*first.get()),
+            let earlier = writers.entry(name).or_default();
+            if let Some(&first) = earlier.iter().find(|&&q| !conditions.exclusive(q, p)) {
+                let kind = match (&conditions.passes[first], &conditions.passes[p]) {
+                    (None, None) => ErrorKind::TwoWriters {
+                        first: pass_name(first),
                         second: pass_name(p),
                         resource: name.to_owned(),
-                    };
-                    errors.push(source.error(out, kind));
-                }
-                Entry::Vacant(v) => {
-                    v.insert(p);
-                }
+                    },
+                    _ => ErrorKind::WritersNotExclusive {
+                        first: pass_name(first),
+                        second: pass_name(p),
+                        resource: name.to_owned(),
+                        first_when: conditions.shown(first),
+                        second_when: conditions.shown(p),
+                    },
+                };
+                errors.push(source.error(out, kind));
             }
+            earlier.push(p);
         }
     }
 
@@ -87,21 +95,22 @@ pub(super) fn resolve<'f>(
     for (p, pass) in file.passes.iter().enumerate() {
         for (_, input) in &pass.inputs.0 {
             let name = input.as_str();
-            let kind = match writers.get(name) {
-                Some(&w) if w == p => ErrorKind::SelfModify {
+            let found = writers.get(name).map_or(&[][..], Vec::as_slice);
+            let kind = match found {
+                found if found.contains(&p) => ErrorKind::SelfModify {
                     pass: pass_name(p),
                     resource: name.to_owned(),
                 },
-                Some(&writer) => {
-                    edges.push(Edge {
+                [_, ..] => {
+                    edges.extend(found.iter().map(|&writer| Edge {
                         writer,
                         reader: p,
                         name,
-                    });
+                    }));
                     continue;
                 }
-                None if imported(name) => continue,
-                None => ErrorKind::Graph(GraphError::ReadBeforeWrite {
+                [] if imported(name) => continue,
+                [] => ErrorKind::Graph(GraphError::ReadBeforeWrite {
                     pass: pass_name(p),
                     resource: name.to_owned(),
                 }),
@@ -118,7 +127,7 @@ pub(super) fn resolve<'f>(
             };
             errors.push(source.error(out, kind));
         }
-        if let Some(&(p, next)) = modifiers.get(name) {
+        if let Some(&(p, next)) = modifiers.get(name).and_then(|m| m.first()) {
             let kind = ErrorKind::OutputNotFinal {
                 resource: name.to_owned(),
                 pass: pass_name(p),
@@ -132,9 +141,9 @@ pub(super) fn resolve<'f>(
 
 fn declared<'f>(
     source: &Source<'_>,
-    file: &'f GraphFile<'_>,
+    file: &'f GraphFile<'f>,
     errors: &mut Vec<FileError>,
-) -> HashMap<&'f str, &'f ResourceDecl> {
+) -> HashMap<&'f str, &'f ResourceDecl<'f>> {
     let mut declared = HashMap::new();
     for (name, decl) in &file.resources.0 {
         if declared.insert(name.as_str(), decl).is_some() {

@@ -7,18 +7,23 @@ use std::borrow::Cow;
 use ron::extensions::Extensions;
 use ron::value::RawValue;
 use serde::{Deserialize, Deserializer};
+use wgpu_types::{BufferUsages, TextureFormat};
 
 use super::any_handle::AnyHandle;
 use super::pairs::Pairs;
 use crate::builder::GraphBuilder;
-use crate::resource::{BufferDesc, TextureDesc};
+use crate::resource::{BufferDesc, Size, TextureDesc};
 
-/// A whole graph file: `Graph(resources: {..}, passes: [..], outputs: [..])`.
+/// A whole graph file:
+/// `Graph(features: [..], resources: {..}, passes: [..], outputs: [..])`.
 #[derive(Debug, Deserialize)]
 #[serde(rename = "Graph", deny_unknown_fields)]
 pub(crate) struct GraphFile<'a> {
+    /// The feature names `when` conditions may use.
     #[serde(borrow, default)]
-    pub resources: Pairs<Name<'a>, ResourceDecl>,
+    pub features: Vec<Name<'a>>,
+    #[serde(borrow, default)]
+    pub resources: Pairs<Name<'a>, ResourceDecl<'a>>,
     #[serde(borrow, default)]
     pub passes: Vec<PassDecl<'a>>,
     /// Names of the versions kept past the frame.
@@ -28,21 +33,83 @@ pub(crate) struct GraphFile<'a> {
 
 /// A declared resource; its name (the map key) names the version its one writer produces.
 #[derive(Debug, Deserialize)]
-pub(crate) enum ResourceDecl {
-    Texture(TextureDesc),
-    ImportedTexture(TextureDesc),
-    Buffer(BufferDesc),
-    ImportedBuffer(BufferDesc),
+pub(crate) enum ResourceDecl<'a> {
+    #[serde(borrow)]
+    Texture(TextureDecl<'a>),
+    #[serde(borrow)]
+    ImportedTexture(TextureDecl<'a>),
+    #[serde(borrow)]
+    Buffer(BufferDecl<'a>),
+    #[serde(borrow)]
+    ImportedBuffer(BufferDecl<'a>),
 }
 
-impl ResourceDecl {
+/// A [`TextureDesc`] as a file writes it, with its condition. The fields repeat
+/// `TextureDesc`'s because serde cannot flatten into a struct that denies unknown
+/// fields, and unknown fields must stay errors.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct TextureDecl<'a> {
+    format: TextureFormat,
+    #[serde(default)]
+    fallback: Option<TextureFormat>,
+    #[serde(default)]
+    size: Size,
+    #[serde(default = "one")]
+    samples: u32,
+    #[serde(default = "one")]
+    mips: u32,
+    #[serde(default = "one")]
+    layers: u32,
+    #[serde(borrow, default)]
+    when: Option<Name<'a>>,
+}
+
+/// A [`BufferDesc`] as a file writes it, with its condition.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BufferDecl<'a> {
+    size: u64,
+    #[serde(default = "BufferUsages::empty")]
+    extra_usage: BufferUsages,
+    #[serde(borrow, default)]
+    when: Option<Name<'a>>,
+}
+
+fn one() -> u32 {
+    1
+}
+
+impl TextureDecl<'_> {
+    fn desc(&self) -> TextureDesc {
+        TextureDesc {
+            format: self.format,
+            fallback: self.fallback,
+            size: self.size,
+            samples: self.samples,
+            mips: self.mips,
+            layers: self.layers,
+        }
+    }
+}
+
+impl BufferDecl<'_> {
+    fn desc(&self) -> BufferDesc {
+        BufferDesc {
+            size: self.size,
+            extra_usage: self.extra_usage,
+        }
+    }
+}
+
+impl<'a> ResourceDecl<'a> {
     /// Declares the resource in `graph`, returning its version-0 handle.
     pub fn declare(&self, graph: &mut GraphBuilder, name: &str) -> AnyHandle {
-        match *self {
-            ResourceDecl::Texture(desc) => graph.create_texture(name, desc).into(),
-            ResourceDecl::ImportedTexture(desc) => graph.import_texture(name, desc).into(),
-            ResourceDecl::Buffer(desc) => graph.create_buffer(name, desc).into(),
-            ResourceDecl::ImportedBuffer(desc) => graph.import_buffer(name, desc).into(),
+        match self {
+            ResourceDecl::Texture(t) => graph.create_texture(name, t.desc()).into(),
+            ResourceDecl::ImportedTexture(t) => graph.import_texture(name, t.desc()).into(),
+            ResourceDecl::Buffer(b) => graph.create_buffer(name, b.desc()).into(),
+            ResourceDecl::ImportedBuffer(b) => graph.import_buffer(name, b.desc()).into(),
         }
     }
 
@@ -52,6 +119,14 @@ impl ResourceDecl {
             self,
             ResourceDecl::ImportedTexture(_) | ResourceDecl::ImportedBuffer(_)
         )
+    }
+
+    /// The resource's `when` condition, as written.
+    pub fn when(&self) -> Option<&Name<'a>> {
+        match self {
+            ResourceDecl::Texture(t) | ResourceDecl::ImportedTexture(t) => t.when.as_ref(),
+            ResourceDecl::Buffer(b) | ResourceDecl::ImportedBuffer(b) => b.when.as_ref(),
+        }
     }
 }
 
@@ -63,6 +138,9 @@ pub(crate) struct PassDecl<'a> {
     pub name: Name<'a>,
     #[serde(borrow)]
     pub plugin: Name<'a>,
+    /// The features under which the pass runs: `"spot_lights & !unlit_only"`.
+    #[serde(borrow, default)]
+    pub when: Option<Name<'a>>,
     #[serde(borrow, default)]
     pub params: Option<Params<'a>>,
     /// Slot name -> name of the version read.

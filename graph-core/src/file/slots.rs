@@ -71,12 +71,15 @@ pub(crate) struct Finished<'s> {
 }
 
 impl<'s> Slots<'s> {
-    /// The slots of `decl`, with handles from `handles` (by the name each slot reads, or
-    /// writes when it only writes). `None` when a name has no handle, which happens only
-    /// when the pass writing it failed and was reported already.
+    /// The slots of `decl`, with handles from `handles` by the name each slot reads, or
+    /// from `declared` (version 0 of each declared resource) by the name a slot only
+    /// writes: alternatives writing one resource under exclusive conditions all write
+    /// over its first version. `None` when a name has no handle, which happens only when
+    /// the pass writing it failed and was reported already.
     pub(crate) fn new(
         decl: &'s PassDecl<'_>,
         handles: &HashMap<&str, AnyHandle>,
+        declared: &HashMap<&str, AnyHandle>,
         dir: &'s Path,
     ) -> Option<Self> {
         let outputs = decl.outputs.0.iter().map(|(slot, out)| {
@@ -92,7 +95,10 @@ impl<'s> Slots<'s> {
         let parts = outputs
             .chain(inputs)
             .map(|(name, input, output)| {
-                let handle = *handles.get(input.or(output)?)?;
+                let handle = match input {
+                    Some(read) => *handles.get(read)?,
+                    None => *declared.get(output?)?,
+                };
                 Some(SlotPart {
                     name,
                     input,

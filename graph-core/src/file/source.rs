@@ -42,6 +42,20 @@ impl<'a> Source<'a> {
         })
     }
 
+    /// Where the character `column` (counted from 0) of `name`'s text is, when the name
+    /// borrows from the file; else where the name is.
+    pub fn position_in(&self, name: &Name<'_>, column: usize) -> Position {
+        let within = name
+            .as_str()
+            .char_indices()
+            .nth(column)
+            .map_or(name.as_str().len(), |(i, _)| i);
+        name.offset(self.text)
+            .map_or(self.position(name), |offset| {
+                Position::of_offset(self.text, offset + within)
+            })
+    }
+
     /// An error pointing at `name`.
     pub fn error(&self, name: &Name<'_>, kind: ErrorKind) -> FileError {
         FileError {

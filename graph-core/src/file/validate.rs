@@ -18,13 +18,30 @@ pub struct Validated {
     pub shaders: Vec<PathBuf>,
 }
 
-/// Loads and compiles one graph file for `options` (its device profile and output size).
+/// Loads and compiles one graph file for `options` (its device profile and output size),
+/// returning the plan for no features. A file with conditions is compiled for each of
+/// its [witnesses](crate::Graph::witnesses) too, so that every pass and resource is
+/// checked in some graph; their errors are reported together.
 pub fn validate_file(
     path: impl AsRef<Path>,
     registry: &Registry,
     options: &CompileOptions,
 ) -> Result<Plan, FileErrors> {
-    load_file(path, registry)?.compile(options)
+    let loaded = load_file(path, registry)?;
+    let errors: Vec<FileError> = loaded
+        .graph
+        .witnesses()
+        .iter()
+        .skip(1)
+        .filter_map(|features| loaded.compile_for(options, features).err())
+        .flat_map(|e| e.0)
+        .collect();
+    // Sorting drops the errors several feature sets found alike.
+    match (loaded.compile(options), errors.is_empty()) {
+        (Ok(plan), true) => Ok(plan),
+        (Ok(_), false) => Err(FileErrors::sorted(errors)),
+        (Err(e), _) => Err(FileErrors::sorted(errors.into_iter().chain(e.0).collect())),
+    }
 }
 
 /// Parses and validates one WGSL file with naga.

@@ -1,0 +1,107 @@
+//! Plans cached by what decides them, so a scene change that keeps the features a graph
+//! sees recompiles nothing.
+
+use std::collections::HashMap;
+
+use crate::compile::CompileOptions;
+use crate::condition::Features;
+use crate::graph::Graph;
+use crate::plan::Plan;
+
+/// A graph that compiles for a feature set: [`Graph`], or a
+/// [`LoadedGraph`](crate::file::LoadedGraph), whose errors carry file positions.
+pub trait Compile {
+    type Error;
+
+    /// See [`Graph::compile_for`].
+    fn compile_for(
+        &self,
+        options: &CompileOptions,
+        features: &Features,
+    ) -> Result<Plan, Self::Error>;
+
+    /// The features among `features` that the graph's conditions can see.
+    fn relevant(&self, features: &Features) -> Features;
+}
+
+impl Compile for Graph {
+    type Error = crate::GraphErrors;
+
+    fn compile_for(
+        &self,
+        options: &CompileOptions,
+        features: &Features,
+    ) -> Result<Plan, Self::Error> {
+        Graph::compile_for(self, options, features)
+    }
+
+    fn relevant(&self, features: &Features) -> Features {
+        Graph::relevant(self, features)
+    }
+}
+
+/// What a plan depends on besides its graph. Profiles are told apart by name, as
+/// [`DeviceProfile`](crate::DeviceProfile)s are made for one device each; features are
+/// the graph's relevant ones, so undeclared features do not split the cache.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct PlanKey {
+    pub features: Features,
+    pub output_size: (u32, u32),
+    pub profile: String,
+}
+
+/// Compiled plans of one graph by [`PlanKey`], with hit and miss counts. Use one cache
+/// per graph: the key does not name the graph. Failed compiles are not kept.
+#[derive(Default)]
+pub struct PlanCache {
+    plans: HashMap<PlanKey, Plan>,
+    hits: u64,
+    misses: u64,
+}
+
+impl PlanCache {
+    pub fn new() -> PlanCache {
+        PlanCache::default()
+    }
+
+    /// The plan for `options` and `features`, compiled on the first request for its key.
+    pub fn get_or_compile<G: Compile>(
+        &mut self,
+        graph: &G,
+        options: &CompileOptions,
+        features: &Features,
+    ) -> Result<&Plan, G::Error> {
+        let key = PlanKey {
+            features: graph.relevant(features),
+            output_size: options.output_size,
+            profile: options.profile.name.clone(),
+        };
+        if self.plans.contains_key(&key) {
+            self.hits += 1;
+        } else {
+            let plan = graph.compile_for(options, &key.features)?;
+            self.misses += 1;
+            self.plans.insert(key.clone(), plan);
+        }
+        Ok(&self.plans[&key])
+    }
+
+    /// Requests answered from the cache.
+    pub fn hits(&self) -> u64 {
+        self.hits
+    }
+
+    /// Requests that compiled (successfully).
+    pub fn misses(&self) -> u64 {
+        self.misses
+    }
+
+    /// Plans held.
+    pub fn len(&self) -> usize {
+        self.plans.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.plans.is_empty()
+    }
+}
