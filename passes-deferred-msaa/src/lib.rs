@@ -1,6 +1,7 @@
 //! Deferred shading with MSAA as rgraph pass plugins, and the scenes they render.
 //!
 //! - [`scene`]: the CPU scene model and its loaders.
+//! - [`analysis`]: what a scene needs, as the feature names pipeline conditions test.
 //! - [`plugins`]: the pass plugins graph files name (`gbuffer`, `edge_stencil`,
 //!   `light_edge`, `light_nonedge`, `resolve`, `tonemap`, `debug_view`), and the
 //!   baselines' `forward` and `gbuffer_resolve`.
@@ -9,6 +10,7 @@
 //!
 //! Known gap: scene textures are uploaded without mipmaps.
 
+pub mod analysis;
 #[cfg(feature = "gpu")]
 mod gpu;
 #[cfg(feature = "gpu")]

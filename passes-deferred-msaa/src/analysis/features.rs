@@ -1,0 +1,113 @@
+//! The features a scene uses, under the names graph-file conditions test.
+
+use crate::scene::{AlphaMode, LightKind, Material, Scene};
+
+/// Which features a scene uses. Only what can change a rendered pixel counts: materials
+/// that some mesh draws with, and lights that emit something.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Features {
+    pub point_lights: bool,
+    pub spot_lights: bool,
+    pub directional_lights: bool,
+    /// A nonzero ambient term.
+    pub ambient: bool,
+    /// Some mesh is drawn with an unlit material (KHR_materials_unlit).
+    pub unlit: bool,
+    /// Some mesh is drawn with a lit material.
+    pub lit: bool,
+    pub emissive: bool,
+    pub alpha_mask: bool,
+    /// Some mesh's material samples a base-color texture.
+    pub textures: bool,
+    pub double_sided: bool,
+}
+
+impl Features {
+    /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
+    pub const NAMES: [&'static str; 11] = [
+        "point_lights",
+        "spot_lights",
+        "directional_lights",
+        "ambient",
+        "unlit",
+        "lit",
+        "unlit_only",
+        "emissive",
+        "alpha_mask",
+        "textures",
+        "double_sided",
+    ];
+
+    pub fn of(scene: &Scene) -> Features {
+        let drawn: Vec<&Material> = scene
+            .meshes
+            .iter()
+            .filter_map(|m| scene.materials.get(m.material))
+            .collect();
+        let material = |has: fn(&Material) -> bool| drawn.iter().any(|m| has(m));
+        let light = |kind: fn(&LightKind) -> bool| {
+            scene.lights.iter().any(|l| {
+                let emits = l.intensity > 0.0 && l.color.iter().any(|&c| c > 0.0);
+                emits && kind(&l.kind)
+            })
+        };
+        Features {
+            point_lights: light(|k| matches!(k, LightKind::Point)),
+            spot_lights: light(|k| matches!(k, LightKind::Spot { .. })),
+            directional_lights: light(|k| matches!(k, LightKind::Directional)),
+            ambient: scene.ambient.iter().any(|&c| c > 0.0),
+            unlit: material(|m| m.unlit),
+            lit: material(|m| !m.unlit),
+            emissive: material(Material::is_emissive),
+            alpha_mask: material(|m| matches!(m.alpha_mode, AlphaMode::Mask { .. })),
+            textures: material(|m| m.base_color_texture.is_some()),
+            double_sided: material(|m| m.double_sided),
+        }
+    }
+
+    /// A scene that uses every feature a scene can use at once: what a pipeline that
+    /// knows nothing of its scene must render. Its plan is the unspecialised one.
+    pub fn general() -> Features {
+        Features {
+            point_lights: true,
+            spot_lights: true,
+            directional_lights: true,
+            ambient: true,
+            unlit: true,
+            lit: true,
+            emissive: true,
+            alpha_mask: true,
+            textures: true,
+            double_sided: true,
+        }
+    }
+
+    /// Every material drawn is unlit: nothing needs normals, material parameters or
+    /// lights.
+    pub fn unlit_only(&self) -> bool {
+        self.unlit && !self.lit
+    }
+
+    /// The features set, by the names in [`NAMES`](Self::NAMES).
+    pub fn names(&self) -> graph_core::Features {
+        let set = [
+            self.point_lights,
+            self.spot_lights,
+            self.directional_lights,
+            self.ambient,
+            self.unlit,
+            self.lit,
+            self.unlit_only(),
+            self.emissive,
+            self.alpha_mask,
+            self.textures,
+            self.double_sided,
+        ];
+        Self::NAMES
+            .iter()
+            .zip(set)
+            .filter(|(_, set)| *set)
+            .map(|(name, _)| *name)
+            .collect()
+    }
+}

@@ -1,0 +1,36 @@
+//! Scene analysis: what a scene needs from a pipeline, found on the CPU before anything
+//! is uploaded. [`Features::of`] names the features graph-file conditions test (a
+//! pipeline compiled for them drops the passes and G-buffer channels the scene does not
+//! use); [`DepthRange::of`] and [`SmallestFeature::of`] measure the depth and detail
+//! the scene puts on screen.
+
+mod depth;
+mod feature_size;
+mod features;
+
+pub use depth::DepthRange;
+pub use feature_size::SmallestFeature;
+pub use features::Features;
+
+use crate::scene::Scene;
+
+/// Everything analysis finds about one scene at one output size.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Analysis {
+    pub features: Features,
+    /// `None` when no geometry lies between the camera's planes.
+    pub depth: Option<DepthRange>,
+    /// `None` when no triangle edge lies between the camera's planes.
+    pub smallest: Option<SmallestFeature>,
+}
+
+impl Analysis {
+    /// Analyses `scene` as rendered at `output` (width, height) pixels.
+    pub fn of(scene: &Scene, output: (u32, u32)) -> Analysis {
+        Analysis {
+            features: Features::of(scene),
+            depth: DepthRange::of(scene),
+            smallest: SmallestFeature::of(scene, output),
+        }
+    }
+}
