@@ -104,6 +104,12 @@ const SAMPLE_POSITIONS: [(u32, &[(f32, f32)]); 4] = [
 impl Source {
     /// The source for G-buffer textures of `samples` samples, validated.
     pub fn compose(self, samples: u32) -> Result<Shader, PluginError> {
+        self.compose_with(samples, "")
+    }
+
+    /// [`compose`](Self::compose) with generated WGSL after the fragments: the part of a
+    /// shader that varies with the pass's slots.
+    pub fn compose_with(self, samples: u32, generated: &str) -> Result<Shader, PluginError> {
         let (textures, depth) = if samples > 1 {
             ("texture_multisampled_2d", "texture_depth_multisampled_2d")
         } else {
@@ -132,6 +138,7 @@ impl Source {
             text.push_str(part);
             text.push('\n');
         }
+        text.push_str(generated);
         let name = format!("passes-deferred-msaa {} ({samples} sample(s))", self.name);
         Ok(Shader::parse(name, text)?)
     }

@@ -16,7 +16,7 @@ use std::sync::Arc;
 
 use graph_core::file::{load_str, LoadedGraph, Registry};
 use graph_core::gpu::{read_rgba16f, read_rgba8, AdapterChoice, Executor, Gpu, Imports};
-use graph_core::{CompileOptions, Plan};
+use graph_core::{CompileOptions, Features, Plan};
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Host, Overrides};
 
@@ -40,6 +40,8 @@ pub struct Render<'a> {
     /// A scene built in code, rendered instead of loading `scene` (which then only
     /// names the frame in messages and PNG file names).
     pub given_scene: Option<Scene>,
+    /// The features the pipeline is compiled for (none by default).
+    pub features: Features,
 }
 
 /// An executed frame, whose exported textures can be read back.
@@ -79,7 +81,14 @@ impl<'a> Render<'a> {
             edits: Vec::new(),
             scene_edit: None,
             given_scene: None,
+            features: Features::new(),
         }
+    }
+
+    /// Compiles the pipeline for `features` (scene analysis's names).
+    pub fn features(mut self, features: Features) -> Render<'a> {
+        self.features = features;
+        self
     }
 
     /// Renders `scene` (built in code) instead of loading `self.scene`.
@@ -137,7 +146,7 @@ impl<'a> Render<'a> {
             profile: gpu.profile(),
         };
         let plan = loaded
-            .compile(&options)
+            .compile_for(&options, &self.features)
             .unwrap_or_else(|e| panic!("cannot compile {}:\n{e}", self.pipeline));
         let mut executor = Executor::new(gpu);
         executor
@@ -168,6 +177,11 @@ impl<'a> Render<'a> {
 }
 
 impl Frame {
+    /// The plan the frame executed.
+    pub fn plan(&self) -> &Plan {
+        &self.plan
+    }
+
     fn texture(&self, name: &str) -> &wgpu::Texture {
         let handle = self
             .loaded

@@ -15,7 +15,9 @@
 //!
 //! All six must have the depth-stencil's sample count; 1 works too. The color targets
 //! cost 32 bytes per sample (8 + 4 + 8 + 4 + 8 in wgpu's accounting), the WebGPU default
-//! limit. `view_depth` exists because later passes attach the depth-stencil and so
+//! limit. `normal` and `material` may be left out, and then are not written: only
+//! lighting reads them, so a pipeline's G-buffer pass for unlit-only scenes (under a
+//! `when: "unlit_only"` condition, pipelines/deferred_msaa_4x.ron) goes without. `view_depth` exists because later passes attach the depth-stencil and so
 //! cannot sample its depth aspect while they write the stencil (notes/wgpu30.md).
 //!
 //! With `reversed_z` depth is cleared to 0 and tested with `Greater` (near is 1), else
@@ -120,12 +122,21 @@ impl Plugin for GBuffer {
             ("hdr", "the HDR target", textures::HDR, params.background),
         ];
         let mut targets = Vec::with_capacity(colors.len());
+        let mut written = Vec::with_capacity(colors.len());
         for (slot, what, formats, clear) in colors {
+            if OPTIONAL.contains(&slot) && !slots.is_output(slot) {
+                continue;
+            }
             let want = Want::new(what, formats).samples(samples);
             targets.push(textures::color_output(slots, pass, slot, want, clear)?.0);
+            written.push(slot);
         }
+        let outputs = outputs_wgsl(&written);
         let draw = GBufferDraw {
-            source: shaders::GBUFFER.compose(samples)?.source().to_owned(),
+            source: shaders::GBUFFER
+                .compose_with(samples, &outputs)?
+                .source()
+                .to_owned(),
             convention,
             targets,
             depth,
@@ -133,4 +144,24 @@ impl Plugin for GBuffer {
         self.0.render(pass, draw);
         Ok(())
     }
+}
+
+/// The channels only lighting reads: an unlit-only scene's G-buffer goes without them.
+const OPTIONAL: [&str; 2] = ["normal", "material"];
+
+/// `gbuffer.wgsl`'s fragment output: the `channels` written, at locations counting up
+/// from 0 as the pass attaches them.
+fn outputs_wgsl(channels: &[&str]) -> String {
+    let fields: String = channels
+        .iter()
+        .enumerate()
+        .map(|(location, c)| format!("    @location({location}) {c}: vec4<f32>,\n"))
+        .collect();
+    let values: Vec<String> = channels.iter().map(|c| format!("g.{c}")).collect();
+    format!(
+        "// Generated: the channels this G-buffer pass writes.\n\
+         struct GBufferOut {{\n{fields}}}\n\n\
+         fn gbuffer_out(g: GBuffer) -> GBufferOut {{\n    return GBufferOut({});\n}}\n",
+        values.join(", ")
+    )
 }

@@ -1,7 +1,9 @@
 // The G-buffer pass: one draw per mesh (instance index = mesh index), writing
 // albedo, octahedral normal, material, linear view depth and the HDR target (emission,
 // or the whole color of unlit materials, so that it is added exactly once).
-// Composed after common.wgsl and scene.wgsl.
+// Composed after common.wgsl and scene.wgsl, and before the generated `GBufferOut` and
+// `gbuffer_out`, which keep the channels the pass writes (an unlit-only scene's G-buffer
+// has no normal or material) at consecutive locations.
 
 @group(1) @binding(0) var base_color_tex: texture_2d<f32>;
 @group(1) @binding(1) var base_color_sampler: sampler;
@@ -27,12 +29,13 @@ struct Varyings {
     @location(5) @interpolate(perspective, center) at_center: vec2<f32>,
 }
 
-struct GBufferOut {
-    @location(0) albedo: vec4<f32>,
-    @location(1) normal: vec4<f32>,
-    @location(2) material: vec4<f32>,
-    @location(3) view_depth: vec4<f32>,
-    @location(4) hdr: vec4<f32>,
+// Every channel the pass can write; `gbuffer_out` picks those it does.
+struct GBuffer {
+    albedo: vec4<f32>,
+    normal: vec4<f32>,
+    material: vec4<f32>,
+    view_depth: vec4<f32>,
+    hdr: vec4<f32>,
 }
 
 @vertex
@@ -54,7 +57,7 @@ fn base_color(in: Varyings) -> vec4<f32> {
     return materials[in.material].base_color * textureSample(base_color_tex, base_color_sampler, in.uv);
 }
 
-fn surface(in: Varyings, base: vec4<f32>, front: bool, coverage: u32) -> GBufferOut {
+fn surface(in: Varyings, base: vec4<f32>, front: bool, coverage: u32) -> GBuffer {
     let material = materials[in.material];
     // Back faces reach here only for double-sided materials: light their other side.
     let n = unit_normal(select(-in.normal, in.normal, front));
@@ -66,7 +69,7 @@ fn surface(in: Varyings, base: vec4<f32>, front: bool, coverage: u32) -> GBuffer
         edge |= EDGE_COVERAGE;
     }
     let unlit = (material.flags & FLAG_UNLIT) != 0u;
-    var out: GBufferOut;
+    var out: GBuffer;
     out.albedo = vec4<f32>(base.rgb, 1.0);
     out.normal = vec4<f32>(oct_encode(n), 0.0, 0.0);
     out.material = vec4<f32>(material.metallic, material.roughness, f32(material.flags), f32(edge)) / vec4<f32>(1.0, 1.0, 255.0, 255.0);
@@ -82,7 +85,7 @@ fn fs_opaque(
     @builtin(front_facing) front: bool,
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
-    return surface(in, base_color(in), front, coverage);
+    return gbuffer_out(surface(in, base_color(in), front, coverage));
 }
 
 // Alpha MASK: coverage is decided per pixel by the base color's alpha.
@@ -96,5 +99,5 @@ fn fs_masked(
     if base.a < materials[in.material].alpha_cutoff {
         discard;
     }
-    return surface(in, base, front, coverage);
+    return gbuffer_out(surface(in, base, front, coverage));
 }
