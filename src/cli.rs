@@ -35,10 +35,17 @@ pub enum Command {
     },
     /// Print the compiled plan of a graph file: order, lifetimes, usages, load/store,
     /// physical textures and memory, culled passes with the reason. No GPU needed.
+    ///
+    /// With --scene, the plan is the one for that scene: the scene is analysed, the file
+    /// compiled for its features, and (as text) what that drops and saves against the
+    /// plan for a scene using every feature is printed after it.
     Explain {
         /// The graph file.
         #[arg(long, value_name = "FILE")]
         pipeline: PathBuf,
+        /// Specialise the plan to this scene: a glTF file or builtin:NAME[?params].
+        #[arg(long, value_name = "PATH|builtin:NAME")]
+        scene: Option<String>,
         /// text for people, dot for Graphviz (culled parts grey), json for tools.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,

@@ -17,9 +17,10 @@ fn main() -> ExitCode {
         Command::Validate { files, target } => commands::validate::run(files, target),
         Command::Explain {
             pipeline,
+            scene,
             format,
             target,
-        } => commands::explain::run(pipeline, *format, target),
+        } => commands::explain::run(pipeline, scene.as_deref(), *format, target),
         Command::Render(args) => commands::render::run(args),
         Command::Bench(args) => commands::bench::run(args),
         Command::Adapters {

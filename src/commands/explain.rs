@@ -1,28 +1,103 @@
-//! `rgraph explain`: the compiled plan of a graph file, for people or tools.
+//! `rgraph explain`: the compiled plan of a graph file, for people or tools, optionally
+//! specialised to a scene.
 
 use std::path::Path;
 
 use graph_core::explain;
-use graph_core::file::load_file;
+use graph_core::file::{load_file, LoadedGraph};
+use graph_core::{CompileOptions, Features, Plan};
+use passes_deferred_msaa::analysis::{Analysis, Features as SceneFeatures};
+use passes_deferred_msaa::scene::Scene;
 
 use super::target::compile_options;
 use super::CommandError;
 use crate::cli::{Format, Target};
 use crate::registry::registry;
 
-pub fn run(pipeline: &Path, format: Format, target: &Target) -> Result<(), CommandError> {
+pub fn run(
+    pipeline: &Path,
+    scene: Option<&str>,
+    format: Format,
+    target: &Target,
+) -> Result<(), CommandError> {
     let options = compile_options(target)?;
-    let plan = load_file(pipeline, &registry())
-        .and_then(|loaded| loaded.compile(&options))
-        .map_err(|errors| {
-            println!("{errors}");
-            CommandError::Invalid(format!("{} is invalid", pipeline.display()))
-        })?;
+    let loaded = load_file(pipeline, &registry()).map_err(|e| invalid(pipeline, e))?;
+    let analysis = scene
+        .map(|spec| analyse(spec, options.output_size))
+        .transpose()?;
+    let features = analysis
+        .as_ref()
+        .map_or_else(Features::new, |(_, a)| a.features.names());
+    let plan = compile(&loaded, &options, &features, pipeline)?;
     let text = match format {
         Format::Text => explain::text(&plan),
         Format::Dot => explain::dot(&plan),
         Format::Json => explain::json(&plan),
     };
-    print!("{text}");
+    match (&analysis, format) {
+        (Some((spec, analysis)), Format::Text) => {
+            // The plan for a scene using everything: what the file does unspecialised.
+            let general = compile(
+                &loaded,
+                &options,
+                &SceneFeatures::general().names(),
+                pipeline,
+            )?;
+            print!(
+                "{}\n{text}\n{}",
+                describe(spec, analysis, &options),
+                explain::compare(&plan, &general, "a scene using every feature")
+            );
+        }
+        _ => print!("{text}"),
+    }
     Ok(())
+}
+
+fn compile(
+    loaded: &LoadedGraph,
+    options: &CompileOptions,
+    features: &Features,
+    pipeline: &Path,
+) -> Result<Plan, CommandError> {
+    loaded
+        .compile_for(options, features)
+        .map_err(|e| invalid(pipeline, e))
+}
+
+fn invalid(pipeline: &Path, errors: impl std::fmt::Display) -> CommandError {
+    println!("{errors}");
+    CommandError::Invalid(format!("{} is invalid", pipeline.display()))
+}
+
+fn analyse(spec: &str, output: (u32, u32)) -> Result<(String, Analysis), CommandError> {
+    let scene = Scene::load(spec).map_err(|e| {
+        eprintln!("error: scene {spec}: {e}");
+        CommandError::Invalid(format!("scene {spec} cannot be loaded"))
+    })?;
+    Ok((spec.to_owned(), Analysis::of(&scene, output)))
+}
+
+/// What analysis found, as the first lines of the report.
+fn describe(spec: &str, analysis: &Analysis, options: &CompileOptions) -> String {
+    let (w, h) = options.output_size;
+    let depth = analysis.depth.map_or_else(
+        || "no geometry between the camera's planes".to_owned(),
+        |d| {
+            format!(
+                "depth {:.3} .. {:.3} (far/near {:.1})",
+                d.near,
+                d.far,
+                d.ratio()
+            )
+        },
+    );
+    let detail = analysis.smallest.as_ref().map_or_else(
+        || "no visible edge".to_owned(),
+        |s| format!("smallest edge {:.2} px at {w}x{h} ({})", s.pixels, s.mesh),
+    );
+    format!(
+        "scene {spec}: features {}\n{depth}; {detail}\n",
+        analysis.features.names()
+    )
 }

@@ -1,4 +1,9 @@
-//! Rendering a plan for people: a text report, a Graphviz drawing, JSON.
+//! Rendering a plan for people: a text report, a Graphviz drawing, JSON, and a
+//! comparison of two plans of one graph.
+
+mod compare;
+
+pub use compare::compare;
 
 use std::fmt::Write;
 

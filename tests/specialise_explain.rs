@@ -1,0 +1,91 @@
+//! `rgraph explain --scene`: the plan specialised to a scene, what it drops and why, and
+//! the memory it saves against the plan for a scene using every feature. No GPU.
+
+use std::process::{Command, Output};
+
+fn rgraph(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rgraph"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the rgraph binary runs")
+}
+
+fn explain(scene: &str, format: &str) -> (Option<i32>, String, String) {
+    let out = rgraph(&[
+        "explain",
+        "--pipeline",
+        "pipelines/deferred_msaa_4x.ron",
+        "--scene",
+        scene,
+        "--size",
+        "64x64",
+        "--format",
+        format,
+    ]);
+    let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
+    (out.status.code(), text(&out.stdout), text(&out.stderr))
+}
+
+#[test]
+fn an_unlit_scene_s_plan_says_what_it_drops_and_saves() {
+    let (code, stdout, stderr) = explain("builtin:unlit", "text");
+    assert_eq!(code, Some(0), "{stderr}");
+    for expected in [
+        "scene builtin:unlit: features double_sided, unlit, unlit_only\n",
+        "depth 9.500 .. 10.500 (far/near 1.1); smallest edge 12.80 px at 64x64 (yellow tilted square)",
+        "features: unlit_only\n",
+        "    0. gbuffer (unlit) (render)",
+        "dropped passes:\n  - gbuffer: condition \"!unlit_only\" is false\n",
+        "against the plan for a scene using every feature (features: none):\n  passes: 6 instead of 11\n",
+        "    - light edges: condition \"!unlit_only\" is false\n",
+        "    not allocated: normal (64.0 KiB): condition \"!unlit_only\" is false\n",
+        "  memory: 416.0 KiB physical instead of 576.0 KiB (160.0 KiB saved, 28%)\n",
+    ] {
+        assert!(stdout.contains(expected), "no {expected:?} in:\n{stdout}");
+    }
+}
+
+#[test]
+fn a_lit_scene_keeps_the_general_plan() {
+    let (code, stdout, _) = explain("builtin:spheres", "text");
+    assert_eq!(code, Some(0));
+    assert!(stdout.contains("features ambient, directional_lights, lit, point_lights\n"));
+    assert!(stdout.contains("  passes: 11 instead of 11\n  memory: 576.0 KiB physical instead of 576.0 KiB (0 B saved, 0%)\n"), "{stdout}");
+}
+
+#[test]
+fn json_carries_the_features_and_the_dropped_passes() {
+    let (code, stdout, _) = explain("builtin:unlit", "json");
+    assert_eq!(code, Some(0));
+    let plan: serde_json::Value = serde_json::from_str(&stdout).expect("explain emits JSON");
+    assert_eq!(plan["features"], serde_json::json!(["unlit_only"]));
+    let dropped: Vec<&str> = plan["culled"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["dropped"] == true)
+        .map(|c| c["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        dropped,
+        [
+            "gbuffer",
+            "edges",
+            "light edges",
+            "light the rest",
+            "debug normals",
+            "debug lights"
+        ]
+    );
+}
+
+#[test]
+fn a_scene_that_does_not_load_exits_1_naming_it() {
+    let (code, _, stderr) = explain("builtin:nope", "text");
+    assert_eq!(code, Some(1));
+    assert!(
+        stderr.contains("error: scene builtin:nope: unknown built-in scene `nope`"),
+        "{stderr}"
+    );
+}
