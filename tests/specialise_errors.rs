@@ -1,0 +1,103 @@
+//! Bad conditions in a real pipeline: a misspelt feature in deferred_msaa_4x.ron is a
+//! validation error at the feature's line and column, naming the pass or resource, from
+//! the library and from `rgraph validate`. No GPU.
+
+use std::process::Command;
+
+use graph_core::file::{load_str, FileErrors, Registry};
+
+const PIPELINE: &str = "pipelines/deferred_msaa_4x.ron";
+
+fn edited(from: &str, to: &str) -> String {
+    let path = format!("{}/{PIPELINE}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(path).expect("the pipeline reads");
+    assert_eq!(
+        text.matches(from).count(),
+        1,
+        "{from:?} is in the file once"
+    );
+    text.replace(from, to)
+}
+
+fn load(text: &str) -> FileErrors {
+    let mut registry = Registry::with_builtins();
+    passes_deferred_msaa::register(&mut registry, None);
+    match load_str(PIPELINE, text, &registry) {
+        Ok(_) => panic!("expected the edited pipeline to be rejected"),
+        Err(errors) => errors,
+    }
+}
+
+/// `FILE:LINE:COL` of the first `needle` in `text`, plus `skip` characters.
+fn at(text: &str, needle: &str, skip: usize) -> String {
+    let offset = text.find(needle).expect("the needle is in the text");
+    let before = &text[..offset];
+    let line = 1 + before.matches('\n').count();
+    let column = 1
+        + before[before.rfind('\n').map_or(0, |i| i + 1)..]
+            .chars()
+            .count()
+        + skip;
+    format!("{PIPELINE}:{line}:{column}")
+}
+
+#[test]
+fn a_misspelt_feature_in_a_pass_condition_is_an_error_at_the_feature() {
+    let text = edited(
+        "name: \"light edges\",\n            plugin: \"light_edge\",\n            when: \"!unlit_only\",",
+        "name: \"light edges\",\n            plugin: \"light_edge\",\n            when: \"!unlitonly\",",
+    );
+    let errors = load(&text);
+    assert_eq!(
+        errors.to_string(),
+        format!(
+            "{}: error: pass \"light edges\": condition \"!unlitonly\" names feature \"unlitonly\", which the graph does not declare (declared: unlit_only)",
+            at(&text, "unlitonly\"", 0)
+        )
+    );
+}
+
+#[test]
+fn a_misspelt_feature_in_a_resource_condition_is_an_error_at_the_feature() {
+    let text = edited(
+        "\"material\": Texture(format: \"rgba8unorm\", samples: 4, when: \"!unlit_only\")",
+        "\"material\": Texture(format: \"rgba8unorm\", samples: 4, when: \"!unlit-only\")",
+    );
+    let errors = load(&text);
+    // "unlit-only" is not a name: the condition stops parsing at the '-'.
+    assert_eq!(
+        errors.to_string(),
+        format!(
+            "{}: error: resource \"material\": condition \"!unlit-only\": expected a feature name, found '-' after a feature; conditions read `a & !b` (only `&` and `!`)",
+            at(&text, "-only\")", 0)
+        )
+    );
+}
+
+#[test]
+fn rgraph_validate_reports_it_with_exit_status_1() {
+    let text = edited(
+        "when: \"unlit_only\",",
+        "when: \"unlit_only & spot_lights\",",
+    );
+    let dir = std::env::temp_dir().join(format!("specialise-errors-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // The deferred plugins embed their shaders, so the file may live anywhere.
+    let path = dir.join("deferred_msaa_4x.ron");
+    std::fs::write(&path, &text).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_rgraph"))
+        .args(["validate", path.to_str().unwrap()])
+        .output()
+        .expect("rgraph runs");
+    std::fs::remove_dir_all(&dir).unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    let column = at(&text, "spot_lights\"", 0);
+    let column = column.trim_start_matches(PIPELINE);
+    assert!(
+        stdout.contains(&format!(
+            "deferred_msaa_4x.ron{column}: error: pass \"gbuffer (unlit)\": condition \"unlit_only & spot_lights\" names feature \"spot_lights\""
+        )),
+        "{stdout}"
+    );
+}
