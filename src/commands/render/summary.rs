@@ -56,9 +56,17 @@ pub fn text(plan: &Plan, report: &FrameReport) -> String {
         bytes(plan.memory.logical_bytes),
         bytes(plan.memory.physical_bytes),
     ));
-    if !plan.culled.is_empty() {
-        let names: Vec<&str> = plan.culled.iter().map(|c| c.name.as_str()).collect();
-        lines.push(format!("culled: {}", names.join(", ")));
+    // Passes a false condition dropped are the file's other variants, not waste.
+    for (dropped, label) in [(false, "culled"), (true, "dropped by conditions")] {
+        let names: Vec<&str> = plan
+            .culled
+            .iter()
+            .filter(|c| c.dropped == dropped)
+            .map(|c| c.name.as_str())
+            .collect();
+        if !names.is_empty() {
+            lines.push(format!("{label}: {}", names.join(", ")));
+        }
     }
     lines.join("\n")
 }
