@@ -26,7 +26,10 @@ fn each_built_in_scene_names_the_features_it_uses() {
             "ambient, double_sided, lit, point_lights, spot_lights",
         ),
         ("builtin:lights", "ambient, lit, point_lights, spot_lights"),
-        ("builtin:unlit", "double_sided, unlit, unlit_only"),
+        (
+            "builtin:unlit",
+            "double_sided, no_lights, unlit, unlit_only",
+        ),
     ];
     for (name, features) in expected {
         assert_eq!(names(&scene(name)), features, "{name}");
@@ -34,15 +37,23 @@ fn each_built_in_scene_names_the_features_it_uses() {
 }
 
 #[test]
-fn the_general_scene_uses_every_feature_but_unlit_only() {
+fn the_general_scene_uses_every_feature_and_lacks_nothing() {
     let general = Features::general().names();
-    let all: Vec<&str> = Features::NAMES
+    let mut present: Vec<&str> = Features::NAMES
         .into_iter()
-        .filter(|&n| n != "unlit_only")
+        .filter(|&n| n != "unlit_only" && n != "no_lights")
         .collect();
-    let mut sorted = all.clone();
-    sorted.sort();
-    assert_eq!(general.iter().collect::<Vec<_>>(), sorted);
+    present.sort();
+    assert_eq!(general.iter().collect::<Vec<_>>(), present);
+}
+
+#[test]
+fn a_scene_without_lights_or_ambient_has_no_lights() {
+    let mut spheres = scene("builtin:spheres");
+    spheres.lights.clear();
+    assert_eq!(names(&spheres), "ambient, lit");
+    spheres.ambient = [0.0; 3];
+    assert_eq!(names(&spheres), "lit, no_lights");
 }
 
 #[test]

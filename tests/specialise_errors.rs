@@ -44,15 +44,15 @@ fn at(text: &str, needle: &str, skip: usize) -> String {
 #[test]
 fn a_misspelt_feature_in_a_pass_condition_is_an_error_at_the_feature() {
     let text = edited(
-        "name: \"light edges\",\n            plugin: \"light_edge\",\n            when: \"!unlit_only\",",
-        "name: \"light edges\",\n            plugin: \"light_edge\",\n            when: \"!unlitonly\",",
+        "name: \"light edges\",\n            plugin: \"light_edge\",\n            when: \"!unlit_only & !no_lights\",",
+        "name: \"light edges\",\n            plugin: \"light_edge\",\n            when: \"!unlitonly & !no_lights\",",
     );
     let errors = load(&text);
     assert_eq!(
         errors.to_string(),
         format!(
-            "{}: error: pass \"light edges\": condition \"!unlitonly\" names feature \"unlitonly\", which the graph does not declare (declared: unlit_only)",
-            at(&text, "unlitonly\"", 0)
+            "{}: error: pass \"light edges\": condition \"!unlitonly & !no_lights\" names feature \"unlitonly\", which the graph does not declare (declared: no_lights, unlit_only)",
+            at(&text, "unlitonly &", 0)
         )
     );
 }

@@ -32,13 +32,13 @@ fn an_unlit_scene_s_plan_says_what_it_drops_and_saves() {
     let (code, stdout, stderr) = explain("builtin:unlit", "text");
     assert_eq!(code, Some(0), "{stderr}");
     for expected in [
-        "scene builtin:unlit: features double_sided, unlit, unlit_only\n",
+        "scene builtin:unlit: features double_sided, no_lights, unlit, unlit_only\n",
         "depth 9.500 .. 10.500 (far/near 1.1); smallest edge 12.80 px at 64x64 (yellow tilted square)",
-        "features: unlit_only\n",
+        "features: no_lights, unlit_only\n",
         "    0. gbuffer (unlit) (render)",
         "dropped passes:\n  - gbuffer: condition \"!unlit_only\" is false\n",
         "against the plan for a scene using every feature (features: none):\n  passes: 6 instead of 11\n",
-        "    - light edges: condition \"!unlit_only\" is false\n",
+        "    - light edges: condition \"!unlit_only & !no_lights\" is false (\"unlit_only\" is set, \"no_lights\" is set)\n",
         "    not allocated: normal (64.0 KiB): condition \"!unlit_only\" is false\n",
         "  memory: 416.0 KiB physical instead of 576.0 KiB (160.0 KiB saved, 28%)\n",
     ] {
@@ -59,7 +59,10 @@ fn json_carries_the_features_and_the_dropped_passes() {
     let (code, stdout, _) = explain("builtin:unlit", "json");
     assert_eq!(code, Some(0));
     let plan: serde_json::Value = serde_json::from_str(&stdout).expect("explain emits JSON");
-    assert_eq!(plan["features"], serde_json::json!(["unlit_only"]));
+    assert_eq!(
+        plan["features"],
+        serde_json::json!(["no_lights", "unlit_only"])
+    );
     let dropped: Vec<&str> = plan["culled"]
         .as_array()
         .unwrap()

@@ -66,13 +66,15 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
         .map(|c| (c.name.as_str(), c.reason.as_str()))
         .collect();
     let not_lit = r#"condition "!unlit_only" is false"#;
+    // builtin:unlit has no lights either.
+    let no_light = r#"condition "!unlit_only & !no_lights" is false ("unlit_only" is set, "no_lights" is set)"#;
     assert_eq!(
         dropped,
         [
             ("gbuffer", not_lit),
-            ("edges", not_lit),
-            ("light edges", not_lit),
-            ("light the rest", not_lit),
+            ("edges", no_light),
+            ("light edges", no_light),
+            ("light the rest", no_light),
             ("debug normals", not_lit),
             ("debug lights", not_lit),
         ]

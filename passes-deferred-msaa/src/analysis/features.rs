@@ -24,11 +24,12 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 11] = [
+    pub const NAMES: [&'static str; 12] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
         "ambient",
+        "no_lights",
         "unlit",
         "lit",
         "unlit_only",
@@ -66,7 +67,10 @@ impl Features {
     }
 
     /// A scene that uses every feature a scene can use at once: what a pipeline that
-    /// knows nothing of its scene must render. Its plan is the unspecialised one.
+    /// knows nothing of its scene must render. Its plan is the unspecialised one. The
+    /// names of absences (`no_lights`, `unlit_only`) are not set for it, which is why
+    /// pipelines drop work only under those: compiled for no features at all, a
+    /// pipeline is the general one too.
     pub fn general() -> Features {
         Features {
             point_lights: true,
@@ -82,6 +86,11 @@ impl Features {
         }
     }
 
+    /// No light emits and there is no ambient term: lighting adds nothing.
+    pub fn no_lights(&self) -> bool {
+        !(self.point_lights || self.spot_lights || self.directional_lights || self.ambient)
+    }
+
     /// Every material drawn is unlit: nothing needs normals, material parameters or
     /// lights.
     pub fn unlit_only(&self) -> bool {
@@ -95,6 +104,7 @@ impl Features {
             self.spot_lights,
             self.directional_lights,
             self.ambient,
+            self.no_lights(),
             self.unlit,
             self.lit,
             self.unlit_only(),
