@@ -22,8 +22,8 @@ pub(super) fn resources(
     profile: &DeviceProfile,
     errors: &mut Vec<GraphError>,
 ) {
-    let resources = conditioned.graph.resources.iter().zip(shapes).enumerate();
-    for (_, (resource, shape)) in resources.filter(|(r, _)| !conditioned.resource_dropped(*r)) {
+    let kept = (0..shapes.len()).filter(|&r| !conditioned.resource_dropped(r));
+    for (resource, shape) in kept.map(|r| (&conditioned.graph.resources[r], &shapes[r])) {
         let name = || resource.name.clone();
         let invalid = |what: String| GraphError::InvalidResource {
             resource: resource.name.clone(),
@@ -142,8 +142,8 @@ pub(super) fn passes(
     errors: &mut Vec<GraphError>,
 ) {
     let graph = &conditioned.graph;
-    let passes = graph.passes.iter().enumerate();
-    for (_, pass) in passes.filter(|(p, _)| !conditioned.pass_dropped(*p)) {
+    let kept = (0..graph.passes.len()).filter(|&p| !conditioned.pass_dropped(p));
+    for pass in kept.map(|p| &graph.passes[p]) {
         let check = PassCheck {
             graph,
             pass,
