@@ -1,6 +1,7 @@
 //! Specialisation to an unlit-only scene: pipelines/deferred_msaa_4x.ron compiled for
 //! builtin:unlit's features drops the normal and material channels, the edge pass and
-//! the light passes, and renders the same image (GPU, lavapipe by default).
+//! the light passes, and renders the same image, as do the other deferred pipelines
+//! that specialise (GPU, lavapipe by default).
 
 mod deferred_support;
 
@@ -98,32 +99,52 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
     );
 }
 
+/// The deferred pipelines that specialise to unlit-only scenes as this one does.
+const SPECIALISED: [&str; 8] = [
+    "deferred_msaa_4x.ron",
+    "deferred_msaa_4x_centroid.ron",
+    "deferred_msaa_4x_coverage.ron",
+    "deferred_msaa_4x_sample_mask.ron",
+    "deferred_msaa_4x_tonemapped_resolve.ron",
+    "deferred_noaa.ron",
+    "deferred_onthefly_resolve_4x.ron",
+    "deferred_per_sample_4x.ron",
+];
+
 /// The image is what the light passes would have left: they skip unlit pixels.
 #[test]
 fn the_specialised_unlit_image_equals_the_unspecialised_one() {
     let gpu = gpu();
-    let render = |features: Features| {
-        let frame = Render::new(PIPELINE, "builtin:unlit", (N, N))
-            .features(features)
-            .run(&gpu);
-        (frame.plan().passes.len(), frame.image(&gpu, "color"))
-    };
-    let (general_passes, general) = render(SceneFeatures::general().names());
-    let (special_passes, special) = render(SceneFeatures::of(&unlit()).names());
-    assert!(special_passes < general_passes);
-    let worst = general
-        .pixels
-        .iter()
-        .zip(&special.pixels)
-        .flat_map(|(a, b)| (0..4).map(move |c| a[c].abs_diff(b[c])))
-        .max()
-        .unwrap();
-    assert!(worst <= 1, "a channel differs by {worst}/255");
-    let identical = general.pixels == special.pixels;
-    println!("builtin:unlit at {N}x{N}: worst difference {worst}/255, identical: {identical}");
-    // Not a blank frame: the shapes cover about a fifth of it.
-    let drawn = special.pixels.len() - special.count([0, 0, 0, 255]);
-    assert!(drawn > special.pixels.len() / 10, "{drawn} pixels drawn");
+    for pipeline in SPECIALISED {
+        let render = |features: Features| {
+            let frame = Render::new(pipeline, "builtin:unlit", (N, N))
+                .features(features)
+                .run(&gpu);
+            (frame.plan().passes.len(), frame.image(&gpu, "color"))
+        };
+        let (general_passes, general) = render(SceneFeatures::general().names());
+        let (special_passes, special) = render(SceneFeatures::of(&unlit()).names());
+        assert!(special_passes < general_passes, "{pipeline}");
+        let worst = general
+            .pixels
+            .iter()
+            .zip(&special.pixels)
+            .flat_map(|(a, b)| (0..4).map(move |c| a[c].abs_diff(b[c])))
+            .max()
+            .unwrap();
+        assert!(worst <= 1, "{pipeline}: a channel differs by {worst}/255");
+        // Not a blank frame: the shapes cover about a fifth of it.
+        let drawn = special.pixels.len() - special.count([0, 0, 0, 255]);
+        assert!(
+            drawn > special.pixels.len() / 10,
+            "{pipeline}: {drawn} pixels drawn"
+        );
+        println!(
+            "{pipeline} on builtin:unlit at {N}x{N}: {special_passes} instead of \
+             {general_passes} passes, worst difference {worst}/255, identical: {}",
+            general.pixels == special.pixels
+        );
+    }
 }
 
 #[test]

@@ -5,7 +5,9 @@
 //!    versioned, and passes state how they access each resource.
 //! 2. **Compile** with [`Graph::compile`], without a GPU: validation against a
 //!    [`DeviceProfile`], culling, ordering, lifetimes, usages, load/store, physical plan.
-//!    The resulting [`Plan`] is plain data that explains itself.
+//!    The resulting [`Plan`] is plain data that explains itself. Passes and resources
+//!    may carry a [`Condition`] over named features; [`Graph::compile_for`] a feature
+//!    set drops what does not apply first, and a [`PlanCache`] keeps one plan per set.
 //! 3. **Execute** (feature `gpu`) with [`gpu::Executor`]: pooled allocation, the inferred
 //!    render-pass setup, per-pass timings.
 //!
