@@ -45,7 +45,11 @@ pub fn run(save_profile: Option<&Path>, adapter: Option<&str>) -> Result<(), Com
         let json = serde_json::to_string_pretty(&chosen.profile)
             .map_err(|e| CommandError::Usage(format!("cannot encode the profile: {e}")))?;
         write_atomically(path, json.as_bytes())?;
-        eprintln!("wrote the profile of {} to {}", chosen.info.name, path.display());
+        eprintln!(
+            "wrote the profile of {} to {}",
+            chosen.info.name,
+            path.display()
+        );
     }
     Ok(())
 }

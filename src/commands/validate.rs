@@ -28,7 +28,11 @@ pub fn run(files: &[PathBuf], target: &Target) -> Result<(), CommandError> {
         match errors {
             None => eprintln!("{}: ok", file.display()),
             Some(errors) if is_unreadable(file, &errors) => {
-                let reason = errors.0.iter().map(|e| e.kind.to_string()).collect::<Vec<_>>();
+                let reason = errors
+                    .0
+                    .iter()
+                    .map(|e| e.kind.to_string())
+                    .collect::<Vec<_>>();
                 return Err(CommandError::Usage(format!(
                     "{}: {}",
                     file.display(),
@@ -59,6 +63,8 @@ fn report(invalid: usize, total: usize, options: &CompileOptions) -> Result<(), 
         );
         Ok(())
     } else {
-        Err(CommandError::Invalid(format!("{invalid} of {total} file(s) invalid")))
+        Err(CommandError::Invalid(format!(
+            "{invalid} of {total} file(s) invalid"
+        )))
     }
 }
