@@ -1,111 +1,33 @@
-//! Recording the G-buffer pass: one draw per mesh, with a pipeline per material state
-//! (culling, alpha mask) and attachment formats.
+//! Recording the G-buffer pass: the scene into the G-buffer's color targets, masked
+//! materials through the fragment entry point that discards.
 
 use std::sync::Arc;
 
 use graph_core::gpu::RenderContext;
 
-use super::{PipelineDesc, Pipelines};
-use crate::gpu_scene::{mesh, GpuScene, MaterialState, SceneCache};
+use super::scene_draw::{self, SceneDraw, Stages};
+use crate::gpu_scene::SceneCache;
 use crate::plugins::gbuffer::GBufferDraw;
-use crate::scene::DepthConvention;
-
-#[derive(Clone, PartialEq)]
-struct Key {
-    targets: Vec<wgpu::TextureFormat>,
-    depth: wgpu::TextureFormat,
-    samples: u32,
-    material: MaterialState,
-}
-
-struct State {
-    scene: Arc<GpuScene>,
-    module: wgpu::ShaderModule,
-    layout: wgpu::PipelineLayout,
-    pipelines: Pipelines<Key>,
-}
 
 pub(crate) fn record(
     draw: GBufferDraw,
     scenes: Arc<SceneCache>,
 ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-    let mut state: Option<State> = None;
-    Box::new(move |ctx| {
-        let resources = ctx.resources;
-        let device = resources.device;
-        let Some(scene) = scenes.get(device, resources.queue) else {
-            return;
-        };
-        scene.prepare(resources.queue, resources.output_size());
-        if state
-            .as_ref()
-            .is_none_or(|s| !Arc::ptr_eq(&s.scene, &scene))
-        {
-            let layouts = [Some(scene.layout()), Some(scene.material_layout())];
-            state = Some(State {
-                module: super::module(device, "gbuffer", &draw.source),
-                layout: super::pipeline_layout(device, &layouts),
-                scene: scene.clone(),
-                pipelines: Pipelines::default(),
-            });
-        }
-        let Some(state) = state.as_mut() else { return };
-        let depth = resources.shape(draw.depth);
-        let targets: Vec<wgpu::TextureFormat> = draw
-            .targets
-            .iter()
-            .map(|&h| resources.shape(h).format)
-            .collect();
-        ctx.pass
-            .set_bind_group(0, scene.bind_group(draw.convention), &[]);
-        scene.draw_meshes(ctx.pass, 1, |pass, _, material| {
-            let key = Key {
-                targets: targets.clone(),
-                depth: depth.format,
-                samples: depth.samples,
-                material,
-            };
-            let (module, layout) = (&state.module, &state.layout);
-            let pipeline = state.pipelines.get(key, |key| {
-                let targets: Vec<Option<wgpu::ColorTargetState>> =
-                    key.targets.iter().map(|&f| Some(f.into())).collect();
-                let masked = key.material.masked;
-                PipelineDesc {
-                    label: "gbuffer",
-                    layout,
-                    module,
-                    vertex: "vs_main",
-                    buffers: &[Some(mesh::VERTEX_LAYOUT)],
-                    fragment: if masked { "fs_masked" } else { "fs_opaque" },
-                    constants: &[],
-                    targets: &targets,
-                    cull: (!key.material.double_sided).then_some(wgpu::Face::Back),
-                    depth_stencil: Some(depth_test(key.depth, draw.convention)),
-                    samples: key.samples,
-                    mask: !0,
-                }
-                .build(device)
-            });
-            pass.set_pipeline(pipeline);
-            true
-        });
-    })
-}
-
-/// Nearer fragments win: `Greater` with reversed Z, `Less` without. Stencil is left alone
-/// (cleared to 0 by the pass; the edge pass marks it).
-pub(crate) fn depth_test(
-    format: wgpu::TextureFormat,
-    convention: DepthConvention,
-) -> wgpu::DepthStencilState {
-    wgpu::DepthStencilState {
-        format,
-        depth_write_enabled: Some(true),
-        depth_compare: Some(match convention {
-            DepthConvention::ReversedZ => wgpu::CompareFunction::Greater,
-            DepthConvention::Standard => wgpu::CompareFunction::Less,
+    let draw = SceneDraw {
+        label: "gbuffer",
+        source: draw.source,
+        convention: draw.convention,
+        targets: draw.targets,
+        depth: draw.depth,
+        stages: Box::new(|material| Stages {
+            vertex: "vs_main",
+            fragment: if material.masked {
+                "fs_masked"
+            } else {
+                "fs_opaque"
+            },
+            constants: Vec::new(),
         }),
-        stencil: wgpu::StencilState::default(),
-        bias: Default::default(),
-    }
+    };
+    scene_draw::record(draw, scenes)
 }

@@ -10,6 +10,7 @@ pub(crate) mod gbuffer;
 pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
 mod pipeline;
+mod scene_draw;
 
 pub(crate) use bindings::TextureBindings;
 use fullscreen::EDGE_STENCIL;

@@ -1,0 +1,131 @@
+//! Recording a pass that draws the scene's meshes (the G-buffer and forward passes): one
+//! draw per mesh, with a pipeline per material state (culling, alpha mask) and
+//! attachment formats. The two passes differ only in shader, color targets and the entry
+//! points and constants a material state takes.
+
+use std::sync::Arc;
+
+use graph_core::gpu::RenderContext;
+use graph_core::TextureHandle;
+
+use super::{PipelineDesc, Pipelines};
+use crate::gpu_scene::{mesh, GpuScene, MaterialState, SceneCache};
+use crate::scene::DepthConvention;
+
+/// What a material state draws with.
+pub(crate) struct Stages {
+    pub vertex: &'static str,
+    pub fragment: &'static str,
+    /// Pipeline-overridable constants, given to both stages.
+    pub constants: Vec<(&'static str, f64)>,
+}
+
+/// One scene-drawing pass.
+pub(crate) struct SceneDraw {
+    pub label: &'static str,
+    pub source: String,
+    pub convention: DepthConvention,
+    /// Color attachments in location order.
+    pub targets: Vec<TextureHandle>,
+    pub depth: TextureHandle,
+    pub stages: Box<dyn Fn(MaterialState) -> Stages>,
+}
+
+#[derive(Clone, PartialEq)]
+struct Key {
+    targets: Vec<wgpu::TextureFormat>,
+    depth: wgpu::TextureFormat,
+    samples: u32,
+    material: MaterialState,
+}
+
+struct State {
+    scene: Arc<GpuScene>,
+    module: wgpu::ShaderModule,
+    layout: wgpu::PipelineLayout,
+    pipelines: Pipelines<Key>,
+}
+
+pub(crate) fn record(
+    draw: SceneDraw,
+    scenes: Arc<SceneCache>,
+) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+    let mut state: Option<State> = None;
+    Box::new(move |ctx| {
+        let resources = ctx.resources;
+        let device = resources.device;
+        let Some(scene) = scenes.get(device, resources.queue) else {
+            return;
+        };
+        // The camera depends only on the aspect ratio, and the shaders never read the
+        // viewport, so a target at a multiple of the output size (the reference) is fine.
+        scene.prepare(resources.queue, resources.output_size());
+        if state
+            .as_ref()
+            .is_none_or(|s| !Arc::ptr_eq(&s.scene, &scene))
+        {
+            let layouts = [Some(scene.layout()), Some(scene.material_layout())];
+            state = Some(State {
+                module: super::module(device, draw.label, &draw.source),
+                layout: super::pipeline_layout(device, &layouts),
+                scene: scene.clone(),
+                pipelines: Pipelines::default(),
+            });
+        }
+        let Some(state) = state.as_mut() else { return };
+        let depth = resources.shape(draw.depth);
+        let targets: Vec<wgpu::TextureFormat> = draw
+            .targets
+            .iter()
+            .map(|&h| resources.shape(h).format)
+            .collect();
+        ctx.pass
+            .set_bind_group(0, scene.bind_group(draw.convention), &[]);
+        scene.draw_meshes(ctx.pass, 1, |pass, _, material| {
+            let key = Key {
+                targets: targets.clone(),
+                depth: depth.format,
+                samples: depth.samples,
+                material,
+            };
+            let (module, layout) = (&state.module, &state.layout);
+            let pipeline = state.pipelines.get(key, |key| {
+                let targets: Vec<Option<wgpu::ColorTargetState>> =
+                    key.targets.iter().map(|&f| Some(f.into())).collect();
+                let stages = (draw.stages)(key.material);
+                PipelineDesc {
+                    label: draw.label,
+                    layout,
+                    module,
+                    vertex: stages.vertex,
+                    buffers: &[Some(mesh::VERTEX_LAYOUT)],
+                    fragment: stages.fragment,
+                    constants: &stages.constants,
+                    targets: &targets,
+                    cull: (!key.material.double_sided).then_some(wgpu::Face::Back),
+                    depth_stencil: Some(depth_test(key.depth, draw.convention)),
+                    samples: key.samples,
+                    mask: !0,
+                }
+                .build(device)
+            });
+            pass.set_pipeline(pipeline);
+            true
+        });
+    })
+}
+
+/// Nearer fragments win: `Greater` with reversed Z, `Less` without. Stencil is left alone
+/// (cleared to 0 by the G-buffer pass; the edge pass marks it).
+fn depth_test(format: wgpu::TextureFormat, convention: DepthConvention) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format,
+        depth_write_enabled: Some(true),
+        depth_compare: Some(match convention {
+            DepthConvention::ReversedZ => wgpu::CompareFunction::Greater,
+            DepthConvention::Standard => wgpu::CompareFunction::Less,
+        }),
+        stencil: wgpu::StencilState::default(),
+        bias: Default::default(),
+    }
+}
