@@ -139,6 +139,12 @@ pub struct RenderArgs {
     // taking "-1" for an unknown flag.
     #[arg(long, value_name = "E", value_parser = parse_exposure, allow_negative_numbers = true)]
     pub exposure: Option<f32>,
+    /// Compile the pipeline as for a scene using every feature, instead of dropping the
+    /// passes and channels this scene does not use (`rgraph explain --scene` shows what
+    /// those are). The image is the same; the point is comparing, or a debug view the
+    /// scene's plan drops.
+    #[arg(long)]
+    pub no_specialise: bool,
     /// Adapter to render on: lavapipe, gpu, or part of an adapter's name (default:
     /// $RGRAPH_ADAPTER, else lavapipe).
     #[arg(long)]

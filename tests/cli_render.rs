@@ -399,3 +399,67 @@ fn exposure_reaches_the_tone_mapping() {
         "exposure 4 ({bright:.1}) vs 0.25 ({dark:.1})"
     );
 }
+
+/// builtin:unlit at 64x48 with the default pipeline, plus `extra`.
+fn render_unlit(out: &Path, extra: &[&str]) -> Run {
+    let mut args = vec!["--scene", "builtin:unlit"];
+    args.extend_from_slice(extra);
+    render_default(out, &args)
+}
+
+#[test]
+fn an_unlit_scene_renders_with_the_specialised_plan_and_the_same_image() {
+    let dir = temp_dir();
+    let (special, general) = (dir.path().join("s.png"), dir.path().join("g.png"));
+    render_unlit(&special, &[])
+        .expect(0)
+        .stderr_has("specialised to the scene's features: no_lights, unlit_only")
+        .stderr_has("\ngbuffer (unlit) ")
+        .stderr_has("dropped by conditions: gbuffer, edges, light edges, light the rest");
+    let run = render_unlit(&general, &["--no-specialise"]).expect(0);
+    run.stderr_has("\nlight edges ");
+    assert!(
+        !run.stderr.contains("specialised to"),
+        "--no-specialise still specialised:\n{}",
+        run.stderr
+    );
+    let (special, general) = (read_png(&special), read_png(&general));
+    let worst = special
+        .pixels()
+        .zip(general.pixels())
+        .flat_map(|(a, b)| (0..4).map(move |c| a.0[c].abs_diff(b.0[c])))
+        .max()
+        .unwrap();
+    // As tests/specialise_unlit.rs states for the library: within 1/255.
+    assert!(worst <= 1, "a channel differs by {worst}/255");
+    assert!(distinct_colors(&special) > 2, "a blank frame");
+}
+
+#[test]
+fn a_view_the_scene_does_not_need_is_refused_with_the_reason() {
+    let dir = temp_dir();
+    let out = dir.path().join("normals.png");
+    render_unlit(&out, &["--view", "normals"])
+        .expect(1)
+        .stderr_has(
+            "output \"debug.normals\" of pipelines/deferred_msaa_4x.ron is not made for this \
+             scene: condition \"!unlit_only\" is false (features: no_lights, unlit_only); \
+             --no-specialise",
+        );
+    assert_nothing_written(&dir);
+    render_unlit(&out, &["--view", "normals", "--no-specialise"]).expect(0);
+    assert_eq!(read_png(&out).dimensions(), (64, 48));
+}
+
+#[test]
+fn a_scene_using_lights_and_lit_materials_is_not_specialised() {
+    let dir = temp_dir();
+    let run = render_default(&dir.path().join("f.png"), &[]).expect(0);
+    assert!(
+        !run.stderr.contains("specialised to"),
+        "builtin:spheres uses what the pipeline's conditions test for:\n{}",
+        run.stderr
+    );
+    // Only the unlit alternative of the G-buffer pass is left out.
+    run.stderr_has("dropped by conditions: gbuffer (unlit)\n");
+}

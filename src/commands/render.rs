@@ -42,8 +42,11 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
 
     progress.stage(format!("load pipeline {}", args.pipeline.display()));
     let output = view::output_name(&args.view);
-    let pipeline = Pipeline::load(&args.pipeline, host(scene, overrides), &[&output])
+    let mut pipeline = Pipeline::load(&args.pipeline, host(scene, overrides), &[&output])
         .map_err(|e| view::unknown(e, &args.view))?;
+    if args.no_specialise {
+        pipeline = pipeline.unspecialised();
+    }
 
     let choice = AdapterChoice::resolve(args.adapter.as_deref());
     progress.stage(format!("open device ({choice})"));

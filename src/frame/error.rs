@@ -37,6 +37,17 @@ pub enum FrameError {
     },
 
     #[error(
+        "output \"{output}\" of {pipeline} is not made for this scene: {why} (features: \
+         {features}); --no-specialise renders the pipeline as for a scene using every feature"
+    )]
+    NotForScene {
+        output: String,
+        pipeline: PathBuf,
+        why: String,
+        features: String,
+    },
+
+    #[error(
         "{pipeline} imports \"{resource}\", which an engine binds; the command line runs \
          pipelines whose resources the graph creates"
     )]

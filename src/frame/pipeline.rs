@@ -1,9 +1,12 @@
-//! A pipeline file loaded for one scene, keeping only the outputs a command reads.
+//! A pipeline file loaded for one scene, keeping only the outputs a command reads, and
+//! compiled for that scene's features.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use graph_core::file::{load_file, load_str, ErrorKind, FileErrors, LoadedGraph};
+use graph_core::Features;
+use passes_deferred_msaa::analysis::Features as SceneFeatures;
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Host, Overrides};
 
@@ -16,7 +19,8 @@ pub fn host(scene: Arc<Scene>, overrides: Overrides) -> Arc<Host> {
 }
 
 /// A loaded graph file whose exports are exactly the outputs asked for, so compiling it
-/// culls the passes only the other outputs need.
+/// culls the passes only the other outputs need, and the features it compiles for: its
+/// scene's, so the file's conditions drop what the scene does not use.
 pub struct Pipeline {
     pub path: PathBuf,
     pub loaded: LoadedGraph,
@@ -24,13 +28,16 @@ pub struct Pipeline {
     pub outputs: Vec<String>,
     /// Every output the file declares, sorted.
     pub offered: Vec<String>,
+    /// What [`Session::prepare`](super::Session::prepare) compiles for.
+    pub features: Features,
 }
 
 impl Pipeline {
     /// Loads `path` with the plugins drawing `host`'s scene.
     pub fn load(path: &Path, host: Arc<Host>, outputs: &[&str]) -> Result<Self, FrameError> {
+        let features = SceneFeatures::of(&host.scene).names();
         let loaded = load_file(path, &registry_for(Some(host))).map_err(|e| file_error(path, e))?;
-        Self::keep(path, loaded, outputs)
+        Self::keep(path, loaded, outputs, features)
     }
 
     /// Loads `text` as if it were the file `path` (relative shader paths resolve from
@@ -41,12 +48,25 @@ impl Pipeline {
         host: Arc<Host>,
         outputs: &[&str],
     ) -> Result<Self, FrameError> {
+        let features = SceneFeatures::of(&host.scene).names();
         let loaded =
             load_str(path, text, &registry_for(Some(host))).map_err(FrameError::Pipeline)?;
-        Self::keep(path, loaded, outputs)
+        Self::keep(path, loaded, outputs, features)
     }
 
-    fn keep(path: &Path, mut loaded: LoadedGraph, outputs: &[&str]) -> Result<Self, FrameError> {
+    /// Compiles as for a scene using every feature: the file's general pipeline, which
+    /// measures what specialising saves (and shows a view the scene's plan drops).
+    pub fn unspecialised(mut self) -> Self {
+        self.features = SceneFeatures::general().names();
+        self
+    }
+
+    fn keep(
+        path: &Path,
+        mut loaded: LoadedGraph,
+        outputs: &[&str],
+        features: Features,
+    ) -> Result<Self, FrameError> {
         let offered = loaded.outputs().iter().map(|o| o.to_string()).collect();
         loaded
             .keep_outputs(outputs)
@@ -59,6 +79,7 @@ impl Pipeline {
             loaded,
             outputs: outputs.iter().map(|o| o.to_string()).collect(),
             offered,
+            features,
         })
     }
 }

@@ -20,20 +20,22 @@ impl Session {
         Ok(Session { gpu, profile })
     }
 
-    /// Compiles `pipeline` for this device at `size` and checks, before any GPU work,
-    /// that the command line can run it: nothing imported, every kept output readable.
+    /// Compiles `pipeline` for this device at `size` and its features, and checks,
+    /// before any GPU work, that the command line can run it: nothing imported, every
+    /// kept output made for these features and readable.
     pub fn prepare(
         &self,
         pipeline: Pipeline,
         size: (u32, u32),
     ) -> Result<Prepared<'_>, FrameError> {
         self.check_size(size)?;
+        let options = CompileOptions {
+            output_size: size,
+            profile: self.profile.clone(),
+        };
         let plan = pipeline
             .loaded
-            .compile(&CompileOptions {
-                output_size: size,
-                profile: self.profile.clone(),
-            })
+            .compile_for(&options, &pipeline.features)
             .map_err(FrameError::Pipeline)?;
         no_imports(&plan, &pipeline)?;
         let outputs = pipeline
@@ -86,6 +88,18 @@ fn readable_output(
         .get(output)
         .ok_or_else(|| unreadable("not declared".into()))?;
     let planned = plan.resource(handle.id());
+    if let Some(why) = &planned.culled {
+        // Kept outputs are never culled as unneeded: a condition dropped this one.
+        return Err(FrameError::NotForScene {
+            output: output.to_string(),
+            pipeline: pipeline.path.clone(),
+            why: why.clone(),
+            features: match plan.features.is_empty() {
+                true => "none the file tests".into(),
+                false => plan.features.join(", "),
+            },
+        });
+    }
     let shape = planned
         .texture
         .ok_or_else(|| unreadable("a buffer".into()))?;

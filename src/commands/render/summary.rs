@@ -56,6 +56,13 @@ pub fn text(plan: &Plan, report: &FrameReport) -> String {
         bytes(plan.memory.logical_bytes),
         bytes(plan.memory.physical_bytes),
     ));
+    if !plan.features.is_empty() {
+        lines.push(format!(
+            "specialised to the scene's features: {} (--no-specialise compiles for every \
+             feature)",
+            plan.features.join(", ")
+        ));
+    }
     // Passes a false condition dropped are the file's other variants, not waste.
     for (dropped, label) in [(false, "culled"), (true, "dropped by conditions")] {
         let names: Vec<&str> = plan
