@@ -199,6 +199,7 @@ fn results_json_has_every_figure_with_its_type() {
             ("memory", "object"),
             ("work", "object"),
             ("image_error", "object"),
+            ("specialisation", "object|null"),
         ],
     );
     assert_eq!(number(figures, "ratio_to_noaa"), 1.0);
@@ -396,4 +397,56 @@ fn a_sample_count_the_device_lacks_is_an_error_row_of_the_sweep() {
         assert!(message.contains("multisampling"), "{message}");
     }
     assert!(dir.path().join("scaling.png").is_file());
+}
+
+#[test]
+fn a_specialised_plan_is_measured_beside_the_general_one() {
+    let dir = tempfile::tempdir().unwrap();
+    bench(&[
+        "--scene",
+        "builtin:unlit",
+        "--pipeline",
+        NOAA,
+        "--no-reference",
+        "--out-dir",
+        dir.path().to_str().unwrap(),
+    ])
+    .expect(0);
+    let json = read_json(&dir.path().join("results.json"));
+    let figures = &row(&json, "deferred_noaa")["figures"];
+    let special = &figures["specialisation"];
+    assert_fields(
+        special,
+        &[
+            ("features", "array"),
+            ("passes", "number"),
+            ("general_passes", "number"),
+            ("general_memory", "object"),
+            ("general_gpu_frame_ms", "spread"),
+        ],
+    );
+    assert!(
+        special["features"]
+            .as_array()
+            .unwrap()
+            .contains(&"unlit_only".into()),
+        "{special:#}"
+    );
+    // The unlit G-buffer pass and the tone mapping, instead of the light pass too.
+    assert_eq!(
+        (number(special, "passes"), number(special, "general_passes")),
+        (2.0, 3.0)
+    );
+    assert_eq!(figures["passes"].as_array().unwrap().len(), 2);
+    // Normal and material (4 bytes each) are not allocated at 64x48.
+    assert_eq!(
+        number(special, "general_memory.physical_bytes") - number(figures, "memory.physical_bytes"),
+        64.0 * 48.0 * 8.0
+    );
+    assert_eq!(number(figures, "memory.gbuffer_bytes_per_sample"), 20.0);
+    let table = std::fs::read_to_string(dir.path().join("results.md")).unwrap();
+    assert!(
+        table.contains("| deferred_noaa | no_lights, unlit_only | 3 → 2 |"),
+        "{table}"
+    );
 }

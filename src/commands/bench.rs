@@ -18,6 +18,7 @@ mod progress;
 mod reference;
 mod results;
 mod scene;
+mod specialisation;
 mod stats;
 mod surfaces;
 mod sweep;

@@ -10,9 +10,10 @@ use passes_deferred_msaa::Host;
 use super::candidates::{Candidate, COLOR};
 use super::memory::Memory;
 use super::results::{Figures, PassFigures};
+use super::specialisation::{PlanShape, Specialisation};
 use super::stats::Spread;
 use super::work::{edge_share, sampling, Work, EDGES_OUTPUT};
-use crate::frame::{FrameError, Session};
+use crate::frame::{FrameError, Prepared, Session};
 
 /// What every measurement of one run shares.
 pub struct Setup<'a> {
@@ -31,18 +32,21 @@ pub struct Measured {
 }
 
 impl Setup<'_> {
-    /// Times `candidate`'s "color" (only the passes it needs run), then renders its
-    /// "debug.edges", when it has one, in a second graph of the same size.
+    /// Times `candidate`'s "color" (only the passes it needs run) as compiled for the
+    /// scene, and as compiled for every feature when that plan differs; then renders its
+    /// "debug.edges", when it has one, in another graph of the same size.
     pub fn measure(&self, candidate: &Candidate, host: &Arc<Host>) -> Result<Measured, FrameError> {
         let pipeline = candidate.load(host.clone(), &[COLOR])?;
         let has_edges = pipeline.offered.iter().any(|o| o == EDGES_OUTPUT);
         let mut prepared = self.session.prepare(pipeline, self.size)?;
-        prepared.run(self.warmup as usize)?;
-        let reports = prepared.run(self.frames as usize)?;
+        let reports = self.time(&mut prepared)?;
         let color = prepared.read(COLOR)?;
         let (samples, supersampling) = sampling(&prepared.plan);
         let memory = Memory::of(&prepared.plan);
+        let shape = PlanShape::of(&prepared.plan);
+        let features = prepared.plan.features.clone();
         drop(prepared);
+        let specialisation = self.general(candidate, host, shape, features)?;
 
         let edges = if has_edges {
             Some(self.render(candidate, host, EDGES_OUTPUT)?)
@@ -53,11 +57,44 @@ impl Setup<'_> {
             Some(view) => Work::from_edges(edge_share(view), samples),
             None => Work::from_kind(&candidate.stem(), samples, supersampling),
         };
+        let mut figures = figures(&reports, samples, memory, work);
+        figures.specialisation = specialisation;
         Ok(Measured {
-            figures: figures(&reports, samples, memory, work),
+            figures,
             color,
             edges,
         })
+    }
+
+    /// The warmup frames, then the measured ones' reports.
+    fn time(&self, prepared: &mut Prepared<'_>) -> Result<Vec<FrameReport>, FrameError> {
+        prepared.run(self.warmup as usize)?;
+        prepared.run(self.frames as usize)
+    }
+
+    /// `candidate` compiled for every feature and timed like the scene's plan, unless
+    /// the scene's plan (`special`, compiled for `features`) is the same.
+    fn general(
+        &self,
+        candidate: &Candidate,
+        host: &Arc<Host>,
+        special: PlanShape,
+        features: Vec<String>,
+    ) -> Result<Option<Specialisation>, FrameError> {
+        let pipeline = candidate.load(host.clone(), &[COLOR])?.unspecialised();
+        let mut prepared = self.session.prepare(pipeline, self.size)?;
+        let general = PlanShape::of(&prepared.plan);
+        if general == special {
+            return Ok(None);
+        }
+        let reports = self.time(&mut prepared)?;
+        Ok(Some(Specialisation {
+            features,
+            passes: special.passes(),
+            general_passes: general.passes(),
+            general_memory: Memory::of(&prepared.plan),
+            general_gpu_frame_ms: Spread::of_ns(reports.iter().filter_map(|r| r.gpu_total_ns)),
+        }))
     }
 
     /// `output` of one frame of `candidate`: the reference, edge masks, measurements.
@@ -105,5 +142,6 @@ fn figures(reports: &[FrameReport], samples: u32, memory: Memory, work: Work) ->
         memory,
         work,
         image_error: None,
+        specialisation: None,
     }
 }

@@ -1,10 +1,11 @@
 //! Memory a pipeline's plan asks for: every graph texture on its own and after pooling,
 //! and the G-buffer's bytes per sample.
 
-use graph_core::{color_target_cost, Plan};
+use graph_core::Plan;
 use serde::Serialize;
 
-/// The pass whose color attachments are the G-buffer, in every deferred pipeline.
+/// The pass whose color attachments are the G-buffer, in every deferred pipeline (its
+/// alternatives under conditions are named "gbuffer (...)").
 const GBUFFER_PASS: &str = "gbuffer";
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -13,7 +14,7 @@ pub struct Memory {
     pub logical_bytes: u64,
     /// What the executor allocates after textures of equal shape share memory.
     pub physical_bytes: u64,
-    /// Bytes per sample of the "gbuffer" pass's color attachments, counted as WebGPU's
+    /// Bytes per sample of the G-buffer pass's color attachments, counted as WebGPU's
     /// `maxColorAttachmentBytesPerSample` counts them (each target aligned to its
     /// component size); `None` without a "gbuffer" pass (forward pipelines).
     pub gbuffer_bytes_per_sample: Option<u32>,
@@ -30,11 +31,14 @@ impl Memory {
 }
 
 fn gbuffer_bytes_per_sample(plan: &Plan) -> Option<u32> {
-    let pass = plan.pass(GBUFFER_PASS)?;
-    let total = pass.color.iter().fold(0, |total: u32, attachment| {
-        let format = plan.resource(attachment.resource).texture.map(|t| t.format);
-        let (bytes, align) = format.map_or((0, 1), color_target_cost);
-        total.next_multiple_of(align.max(1)) + bytes
-    });
-    Some(total)
+    plan.passes
+        .iter()
+        .find(|p| is_gbuffer(&p.name))
+        .map(|p| p.color_bytes_per_sample)
+}
+
+/// "gbuffer", or one of its alternatives under a condition, "gbuffer (unlit)".
+fn is_gbuffer(pass: &str) -> bool {
+    pass.strip_prefix(GBUFFER_PASS)
+        .is_some_and(|rest| rest.is_empty() || rest.starts_with(" ("))
 }

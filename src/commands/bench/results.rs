@@ -8,13 +8,14 @@ use super::machine::{Adapter, Machine};
 use super::memory::Memory;
 use super::reference::Reference;
 use super::scene::SceneSummary;
+use super::specialisation::Specialisation;
 use super::stats::Spread;
 use super::sweep::SweepPoint;
 use super::work::Work;
 use crate::cli::Sweep;
 
 /// Bumped when a field changes meaning or moves.
-pub const SCHEMA: u32 = 1;
+pub const SCHEMA: u32 = 2;
 
 #[derive(Debug, Serialize)]
 pub struct Results {
@@ -74,6 +75,9 @@ pub struct Figures {
     pub work: Work,
     /// Against the reference; `null` without one.
     pub image_error: Option<ImageError>,
+    /// The general plan's figures, when the scene's plan is specialised (all other
+    /// figures are the scene's plan's).
+    pub specialisation: Option<Specialisation>,
 }
 
 #[derive(Debug, Serialize)]

@@ -6,6 +6,7 @@ use std::fmt::Write;
 use graph_core::explain::bytes;
 
 use super::results::{Figures, Results, Row};
+use super::specialisation::Specialisation;
 
 pub fn markdown(results: &Results) -> String {
     let mut md = String::new();
@@ -70,6 +71,7 @@ pub fn markdown(results: &Results) -> String {
         if rows.iter().any(|row| row.figures.is_some()) {
             md.push_str(&pass_table(&rows));
         }
+        md.push_str(&specialisation_table(&rows));
     }
     md.push_str(LEGEND);
     if r.sweep.is_none() {
@@ -152,6 +154,57 @@ fn pass_table(rows: &[&Row]) -> String {
     md
 }
 
+/// What compiling for the scene's features saved, for the rows whose plans it changed;
+/// nothing when it changed none.
+fn specialisation_table(rows: &[&Row]) -> String {
+    let special: Vec<(&Row, &Figures, &Specialisation)> = rows
+        .iter()
+        .filter_map(|row| {
+            let f = row.figures.as_ref()?;
+            Some((*row, f, f.specialisation.as_ref()?))
+        })
+        .collect();
+    if special.is_empty() {
+        return String::new();
+    }
+    let mut md = String::from(
+        "\nSpecialised to the scene (the rows above) against the general plan:\n\n\
+         | pipeline | features | passes | pooled memory | saved | GPU ms | saved |\n\
+         |---|---|--:|--:|--:|--:|--:|\n",
+    );
+    for (row, f, s) in special {
+        let (general, special) = (s.general_memory.physical_bytes, f.memory.physical_bytes);
+        let gpu = s
+            .general_gpu_frame_ms
+            .as_ref()
+            .zip(f.gpu_frame_ms.as_ref())
+            .map(|(g, f)| (g.median, f.median));
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} → {} | {} → {} | {} | {} | {} |",
+            name(row),
+            s.features.join(", "),
+            s.general_passes,
+            s.passes,
+            bytes(general),
+            bytes(special),
+            share_saved(general as f64, special as f64),
+            gpu.map_or("-".into(), |(g, f)| format!("{} → {}", ms(g), ms(f))),
+            gpu.map_or("-".into(), |(g, f)| share_saved(g, f)),
+        );
+    }
+    md
+}
+
+/// How much less `special` is than `general`, in percent of `general`.
+fn share_saved(general: f64, special: f64) -> String {
+    if general > 0.0 {
+        format!("{:.0}%", (general - special) / general * 100.0)
+    } else {
+        "-".into()
+    }
+}
+
 /// An error's first line (compile errors list every texture at fault; the JSON has all).
 fn error_cell(message: &str) -> String {
     let mut lines = message.lines();
@@ -190,7 +243,9 @@ marks; shaded/px: shading invocations per pixel (edge pixels once per sample, ot
 pipelines without debug.edges by their kind, see results.json). On lavapipe times are CPU \
 rasterisation: compare ratios within one run only. FLIP: mean of NVIDIA's FLIP error \
 (0 = identical, 1 = maximal) against the reference on the tone-mapped 8-bit images; PSNR \
-on the sRGB channels; edge: both restricted to the scene's edge pixels.";
+on the sRGB channels; edge: both restricted to the scene's edge pixels. Every pipeline is \
+compiled for its scene's features (rgraph explain --scene shows what that drops); where that \
+changes the plan, the general plan is timed too and a table per scene shows what was saved.";
 
 /// Outside sweeps, which write no images.
 const IMAGES: &str = " Images per scene are in the folder next to this file: reference.png, \
