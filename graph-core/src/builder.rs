@@ -148,6 +148,16 @@ impl PassBuilder<'_> {
         self
     }
 
+    /// Leaves the pass out of every plan, as a false condition would (what it modifies
+    /// passes through; explain shows `reason`), with its accesses still declared and
+    /// checked. For a plugin that finds at setup that its work is empty, such as edge
+    /// detection with one sample per pixel, so a pipeline file serves every sample
+    /// count without running passes that do nothing.
+    pub fn omit(&mut self, reason: impl Into<String>) -> &mut Self {
+        self.node().omitted = Some(reason.into());
+        self
+    }
+
     /// Keeps the pass even when nothing reads what it writes.
     pub fn side_effect(&mut self) -> &mut Self {
         self.node().side_effect = true;

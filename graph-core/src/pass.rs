@@ -57,6 +57,9 @@ pub struct PassNode {
     pub side_effect: bool,
     /// The pass runs only where this holds for the compiled features.
     pub condition: Option<Condition>,
+    /// Why the pass is left out of every plan, when its plugin found at setup that it
+    /// has nothing to do: compiled as if its condition were false.
+    pub omitted: Option<String>,
     #[cfg(feature = "gpu")]
     pub(crate) record: Option<Record>,
 }
@@ -87,6 +90,7 @@ impl PassNode {
             accesses: Vec::new(),
             side_effect: false,
             condition: None,
+            omitted: None,
             #[cfg(feature = "gpu")]
             record: None,
         }
@@ -98,6 +102,7 @@ impl PassNode {
             accesses: self.accesses.clone(),
             side_effect: self.side_effect,
             condition: self.condition.clone(),
+            omitted: self.omitted.clone(),
             ..Self::new(self.name.clone(), self.kind)
         }
     }

@@ -304,3 +304,38 @@ fn every_pass_is_in_some_witness_feature_set() {
     seen.dedup();
     assert_eq!(seen, ["gbuffer", "gbuffer unlit", "resolve"]);
 }
+
+#[test]
+fn a_pass_its_plugin_omits_is_dropped_for_every_feature_set_with_the_reason() {
+    let mut g = GraphBuilder::new();
+    let hdr = g.create_texture("hdr", tex(Rgba16Float));
+    let color = g.create_texture("color", tex(Rgba8Unorm));
+    let hdr = g.add_render_pass("base").color_output(hdr, CLEAR);
+    let mut edges = g.add_render_pass("edges");
+    edges.omit("one sample per pixel");
+    let hdr = edges.color_output(hdr, ColorLoad::Load);
+    let mut tonemap = g.add_render_pass("tonemap");
+    tonemap.sampled(hdr);
+    let color = tonemap.color_output(color, CLEAR);
+    g.export(color);
+    let graph = g.build();
+    let plan = compile(&graph, &[]);
+    assert_eq!(live(&plan), ["base", "tonemap"]);
+    let omitted = &plan.culled[0];
+    assert_eq!(
+        (
+            omitted.name.as_str(),
+            omitted.reason.as_str(),
+            omitted.dropped
+        ),
+        ("edges", "one sample per pixel", true)
+    );
+    // What it modified passes through: tonemap reads base's version.
+    let hdr = graph.resource_id("hdr").unwrap();
+    assert_eq!(plan.pass("tonemap").unwrap().reads, [(hdr, 1)]);
+    assert!(
+        explain::text(&plan).contains("dropped passes:\n  - edges: one sample per pixel"),
+        "{}",
+        explain::text(&plan)
+    );
+}

@@ -1,6 +1,7 @@
 //! Applying conditions, the first phase: passes and resources whose condition is false
-//! for the compiled features are dropped, and the later phases see the graph these
-//! features make.
+//! for the compiled features are dropped, as are passes their plugin omitted
+//! ([`PassBuilder::omit`](crate::PassBuilder::omit)), and the later phases see the graph
+//! these features make.
 //!
 //! Dropping keeps every id: a dropped pass stays as a node without accesses (the
 //! culling phase never reaches it) and a dropped resource stays unexported and unused.
@@ -45,7 +46,11 @@ pub(super) fn apply(graph: &Graph, features: &Features) -> Conditioned {
     undeclared_features(graph, &mut errors);
     alternatives_exclusive(graph, &mut errors);
     let why = |c: &Option<Condition>| c.as_ref().and_then(|c| c.why_false(features));
-    let passes: Vec<Option<String>> = graph.passes.iter().map(|p| why(&p.condition)).collect();
+    let passes: Vec<Option<String>> = graph
+        .passes
+        .iter()
+        .map(|p| p.omitted.clone().or_else(|| why(&p.condition)))
+        .collect();
     let resources: Vec<Option<String>> =
         graph.resources.iter().map(|r| why(&r.condition)).collect();
     let mut conditioned = Conditioned {

@@ -32,6 +32,11 @@
 //!   (`@builtin(sample_mask)` as a G-buffer input; misses intersection edges, where both
 //!   surfaces cover every sample);
 //! - `all`: every pixel, i.e. per-sample shading everywhere; `none`: no pixel.
+//!
+//! With one sample per pixel the pass is omitted from every plan (`explain` says so): a
+//! pixel then holds one surface, so no detector has an edge to find, and `all`'s
+//! per-sample shading is `light_nonedge`'s per-pixel shading. One pipeline file thus
+//! serves every sample count (bench --sweep samples) without idle passes.
 
 use serde::Deserialize;
 
@@ -163,6 +168,10 @@ impl Plugin for EdgeStencil {
             // The stencil stays as the G-buffer pass cleared it.
             Detector::None => return Ok(()),
         };
+        if desc.samples == 1 {
+            pass.omit(super::ONE_SAMPLE);
+            return Ok(());
+        }
         let draw = Fullscreen {
             label: "edge_stencil",
             source: shaders::EDGE.compose(desc.samples)?.source().to_owned(),

@@ -41,7 +41,9 @@
 //! the fragment shader per sample (`@builtin(sample_index)`); `sample_mask` draws everything once per sample with the
 //! pipeline's multisample mask `1 << i` and the sample to read as a pipeline constant
 //! (DX10.0's method; writing `@builtin(sample_mask)` is avoided, gfx-rs/wgpu#7311). Both
-//! give bit-identical images.
+//! give bit-identical images. With one sample per pixel `light_edge` is omitted from
+//! every plan, as `edge_stencil` is: there are no edge pixels, and `light_nonedge`
+//! shades every pixel.
 
 use serde::Deserialize;
 
@@ -146,7 +148,7 @@ impl Plugin for LightNonEdge {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        let draw = setup(
+        let (draw, _) = setup(
             Frequency::Pixel(params.samples),
             params.reversed_z,
             params.volumes,
@@ -173,7 +175,11 @@ impl Plugin for LightEdge {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         let frequency = Frequency::Sample(params.mode);
-        let draw = setup(frequency, params.reversed_z, params.volumes, pass, slots)?;
+        let (draw, samples) = setup(frequency, params.reversed_z, params.volumes, pass, slots)?;
+        if samples == 1 {
+            pass.omit(super::ONE_SAMPLE);
+            return Ok(());
+        }
         self.0.render(pass, draw);
         Ok(())
     }
@@ -198,7 +204,7 @@ fn setup(
     volumes: bool,
     pass: &mut PassBuilder<'_>,
     slots: &mut Slots<'_>,
-) -> Result<LightDraw, PluginError> {
+) -> Result<(LightDraw, u32), PluginError> {
     let want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
     let (depth, desc) = textures::input(slots, pass, "depth", want)?;
     pass.depth_stencil(depth, AspectAccess::ReadOnly, AspectAccess::ReadOnly);
@@ -226,7 +232,7 @@ fn setup(
         pass.color_output(h, ColorLoad::Load)
     })?;
     textures::must_modify(slots, "hdr", modifies, "adds light to it")?;
-    Ok(LightDraw {
+    let draw = LightDraw {
         source: shaders::LIGHT.compose(samples)?.source().to_owned(),
         convention: convention(reversed_z),
         frequency,
@@ -234,5 +240,6 @@ fn setup(
         hdr,
         depth,
         inputs,
-    })
+    };
+    Ok((draw, samples))
 }

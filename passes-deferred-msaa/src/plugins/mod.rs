@@ -93,6 +93,11 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>) {
         .register(GBufferResolve(shared));
 }
 
+/// Why `edge_stencil` and `light_edge` leave themselves out of plans with one sample
+/// per pixel (`PassBuilder::omit`).
+const ONE_SAMPLE: &str = "one sample per pixel: a pixel holds one surface, so there are \
+                          no edge pixels to find or to shade per sample";
+
 /// `true`, for `#[serde(default = "yes")]`.
 fn yes() -> bool {
     true
