@@ -17,6 +17,9 @@
 #   lights      the light sweep (1..1024) for noaa, MSAA 4x, per-sample 4x and forward MSAA
 #   samples     the sample-count sweep (1, 2, 4, 8) of the same pipelines on builtin:dense
 #   resolution  720p..2160p of the same pipelines on builtin:dense
+#   specialise  the same pipelines on every built-in scene without a reference: each
+#               compiled for its scene and, where that differs, for every feature (the
+#               savings table in results.md)
 # Each part writes to OUT_DIR/PART. Frames: BENCH_FRAMES (default 10) after BENCH_WARMUP
 # (default 2); BENCH_SIZE (default 3840x2160) for a quick try elsewhere.
 #
@@ -29,7 +32,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 out="${1:-${OUT:-bench/results/gpu}}"
-parts="${BENCH_PARTS:-main lights samples resolution}"
+parts="${BENCH_PARTS:-main lights samples resolution specialise}"
 frames="${BENCH_FRAMES:-10}"
 warmup="${BENCH_WARMUP:-2}"
 size="${BENCH_SIZE:-3840x2160}"
@@ -96,8 +99,12 @@ for part in $parts; do
       "$bin" bench --sweep resolution --scene builtin:dense "${core[@]}" "${common[@]}" \
         --out-dir "$out/resolution" || status=$?
       ;;
+    specialise)
+      "$bin" bench "${core[@]}" --no-reference --width "$width" --height "$height" "${common[@]}" \
+        --out-dir "$out/specialise" || status=$?
+      ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise)" >&2
       status=2
       ;;
   esac
