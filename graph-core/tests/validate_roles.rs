@@ -121,8 +121,10 @@ fn writing_one_texture_twice_in_a_pass_is_a_usage_conflict() {
     );
 }
 
-#[test]
-fn sampling_a_writable_depth_stencil_attachment_is_rejected() {
+/// A prepass clears "depth"; then pass `name` draws into the exported "out" while it
+/// samples the depth aspect of "depth" and attaches it, depth read-only and stencil
+/// with `stencil`.
+fn sample_attached_depth(name: &str, stencil: AspectAccess<u32>) -> graph_core::Graph {
     let mut g = GraphBuilder::new();
     let depth = g.create_texture("depth", tex(Depth24PlusStencil8));
     let out = g.create_texture("out", tex(Rgba8Unorm));
@@ -131,13 +133,17 @@ fn sampling_a_writable_depth_stencil_attachment_is_rejected() {
         AspectAccess::Clear(1.0),
         AspectAccess::Clear(0),
     );
-    let mut p = g.add_render_pass("decals");
+    let mut p = g.add_render_pass(name);
     let out = p.color_output(out, CLEAR);
-    p.depth_stencil(depth, AspectAccess::ReadOnly, AspectAccess::Load);
+    p.depth_stencil(depth, AspectAccess::ReadOnly, stencil);
     p.sampled_aspect(depth, Aspect::DepthOnly);
     g.export(out);
+    g.build()
+}
 
-    let error = only_error(&g.build());
+#[test]
+fn sampling_a_writable_depth_stencil_attachment_is_rejected() {
+    let error = only_error(&sample_attached_depth("decals", AspectAccess::Load));
     assert_eq!(
         error,
         GraphError::SampledWhileWritable {
@@ -153,21 +159,8 @@ fn sampling_a_writable_depth_stencil_attachment_is_rejected() {
 
 #[test]
 fn sampling_a_depth_stencil_attachment_read_only_in_both_aspects_is_allowed() {
-    let mut g = GraphBuilder::new();
-    let depth = g.create_texture("depth", tex(Depth24PlusStencil8));
-    let out = g.create_texture("out", tex(Rgba8Unorm));
-    let depth = g.add_render_pass("prepass").depth_stencil(
-        depth,
-        AspectAccess::Clear(1.0),
-        AspectAccess::Clear(0),
-    );
-    let mut p = g.add_render_pass("fog");
-    let out = p.color_output(out, CLEAR);
-    p.sampled_aspect(depth, Aspect::DepthOnly);
-    p.depth_stencil(depth, AspectAccess::ReadOnly, AspectAccess::ReadOnly);
-    g.export(out);
-
-    assert_eq!(plan(&g.build()).passes.len(), 2);
+    let graph = sample_attached_depth("fog", AspectAccess::ReadOnly);
+    assert_eq!(plan(&graph).passes.len(), 2);
 }
 
 /// Imports a 64x64 texture "t" of `format`, lets `bind` declare a pass "p" that uses it,
