@@ -3,10 +3,12 @@
 //! and the charts and images it writes. A machine without a Vulkan adapter fails these
 //! tests with the binary's own explanation: they never skip.
 
+mod cli_support;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::sync::OnceLock;
 
+use cli_support::{rgraph, Run};
 use serde_json::Value;
 use tempfile::TempDir;
 
@@ -15,39 +17,11 @@ const PER_SAMPLE: &str = "pipelines/deferred_per_sample_4x.ron";
 const REFERENCE: &str = "pipelines/reference_ssaa16.ron";
 const MISSING: &str = "pipelines/no_such_pipeline.ron";
 
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
 fn bench(args: &[&str]) -> Run {
-    let output = Command::new(env!("CARGO_BIN_EXE_rgraph"))
-        .arg("bench")
-        .args([
-            "--width", "64", "--height", "48", "--frames", "1", "--warmup", "0",
-        ])
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the rgraph binary runs");
-    Run {
-        // A signal (a crash) has no code: -1 never matches an expected status.
-        code: output.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
-    }
-}
-
-impl Run {
-    fn expect(self, code: i32) -> Self {
-        assert_eq!(
-            self.code, code,
-            "expected exit {code}\nstdout:\n{}\nstderr:\n{}",
-            self.stdout, self.stderr
-        );
-        self
-    }
+    let size = [
+        "bench", "--width", "64", "--height", "48", "--frames", "1", "--warmup", "0",
+    ];
+    rgraph(&[&size[..], args].concat())
 }
 
 /// The main run, shared by the tests that read it: builtin:dense with no-AA, per-sample

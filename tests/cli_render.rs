@@ -2,55 +2,19 @@
 //! says otherwise), checked by exit status, stdout, stderr and the PNG's pixels. A machine
 //! without a Vulkan adapter fails the rendering tests with the binary's own explanation.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod cli_support;
 
+use std::path::{Path, PathBuf};
+
+use cli_support::{rgraph, Run};
 use tempfile::TempDir;
 
 /// The generic stand-in for the deferred pipelines: "color" is a vertical gradient from
 /// red to blue, "debug.edges" solid green.
 const FIXTURE: &str = "tests/fixtures/render_generic.ron";
 
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-impl Run {
-    /// Fails with everything the binary said when it did not exit with `code`.
-    fn expect(self, code: i32) -> Self {
-        assert_eq!(
-            self.code, code,
-            "expected exit {code}\nstdout:\n{}\nstderr:\n{}",
-            self.stdout, self.stderr
-        );
-        self
-    }
-
-    fn stderr_has(&self, text: &str) -> &Self {
-        assert!(
-            self.stderr.contains(text),
-            "expected stderr to contain {text:?}, got:\n{}",
-            self.stderr
-        );
-        self
-    }
-}
-
 fn render(args: &[&str]) -> Run {
-    let output = Command::new(env!("CARGO_BIN_EXE_rgraph"))
-        .arg("render")
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the rgraph binary runs");
-    Run {
-        // A signal (a crash) has no code: -1 never matches an expected status.
-        code: output.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
-    }
+    rgraph(&[&["render"], args].concat())
 }
 
 /// `--pipeline FIXTURE --out OUT`, then `extra`, then 64x48 unless `extra` sets a size.
@@ -302,12 +266,7 @@ fn a_device_error_names_the_pass_and_keeps_the_old_file() {
 
 #[test]
 fn help_teaches_defaults_and_examples() {
-    let output = Command::new(env!("CARGO_BIN_EXE_rgraph"))
-        .args(["render", "--help"])
-        .output()
-        .expect("the rgraph binary runs");
-    assert!(output.status.success());
-    let help = String::from_utf8_lossy(&output.stdout);
+    let help = render(&["--help"]).expect(0).stdout;
     for text in [
         "pipelines/deferred_msaa_4x.ron",
         "builtin:spheres",
@@ -315,6 +274,7 @@ fn help_teaches_defaults_and_examples() {
         "[default: 720]",
         "[default: final]",
         "Examples:",
+        "--no-specialise",
     ] {
         assert!(help.contains(text), "help lacks {text:?}:\n{help}");
     }

@@ -1,0 +1,49 @@
+//! The built `rgraph` binary run as a user runs it, from the repository root, for the
+//! command-line tests: exit status, stdout and stderr.
+
+// Each test crate uses its own subset.
+#![allow(dead_code)]
+
+use std::process::Command;
+
+pub struct Run {
+    /// A signal (a crash) has no code: -1, which never matches an expected status.
+    pub code: i32,
+    pub stdout: String,
+    pub stderr: String,
+}
+
+/// Runs `rgraph` with `args`.
+pub fn rgraph(args: &[&str]) -> Run {
+    let output = Command::new(env!("CARGO_BIN_EXE_rgraph"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the rgraph binary runs");
+    Run {
+        code: output.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+    }
+}
+
+impl Run {
+    /// Fails with everything the binary said when it did not exit with `code`.
+    pub fn expect(self, code: i32) -> Self {
+        assert_eq!(
+            self.code, code,
+            "expected exit {code}\nstdout:\n{}\nstderr:\n{}",
+            self.stdout, self.stderr
+        );
+        self
+    }
+
+    pub fn stderr_has(&self, text: &str) -> &Self {
+        assert!(
+            self.stderr.contains(text),
+            "expected stderr to contain {text:?}, got:\n{}",
+            self.stderr
+        );
+        self
+    }
+}
