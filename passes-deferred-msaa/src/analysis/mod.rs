@@ -1,14 +1,14 @@
 //! Scene analysis: what a scene needs from a pipeline, found on the CPU before anything
 //! is uploaded. [`Features::of`] names the features graph-file conditions test (a
 //! pipeline compiled for them drops the passes and G-buffer channels the scene does not
-//! use); [`DepthRange::of`] and [`SmallestFeature::of`] measure the depth and detail
-//! the scene puts on screen.
+//! use, and `shallow_depth` picks the smaller depth format); [`DepthRange::of`] and
+//! [`SmallestFeature::of`] measure the depth and detail the scene puts on screen.
 
 mod depth;
 mod feature_size;
 mod features;
 
-pub use depth::DepthRange;
+pub use depth::{DepthRange, SHALLOW_STEP};
 pub use feature_size::SmallestFeature;
 pub use features::Features;
 
