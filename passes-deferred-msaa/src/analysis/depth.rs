@@ -132,5 +132,4 @@ mod tests {
     fn the_threshold_is_2_to_the_minus_14() {
         assert_eq!(SHALLOW_STEP, 2f64.powi(-14));
     }
-
 }
