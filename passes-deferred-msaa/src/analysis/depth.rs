@@ -44,9 +44,9 @@ impl DepthRange {
         self.far / self.near
     }
 
-    /// Whether a 24-bit unorm depth buffer with standard Z separates surfaces as finely
-    /// as [`SHALLOW_STEP`] of their distance everywhere in the range, seen through
-    /// `projection` (the camera the range was measured with).
+    /// The coarsest step of a 24-bit unorm depth buffer with standard Z over the range,
+    /// relative to the distance it is at, seen through `projection` (the camera the
+    /// range was measured with).
     ///
     /// Why these measures: a unorm depth buffer steps by 2^-24 of the clip depth.
     /// - Perspective, standard Z: the clip depth at distance `z` is about `1 - znear/z`,
@@ -55,17 +55,24 @@ impl DepthRange {
     ///   camera's near plane, not the nearest geometry's distance) decides.
     /// - Orthographic: the clip depth is linear, one step is `(zfar - znear) / 2^24`
     ///   everywhere, and relative to the distance it is coarsest at the nearest geometry.
+    pub fn unorm24_step(&self, projection: &Projection) -> f64 {
+        let (znear, zfar) = planes(projection);
+        let span = match projection {
+            Projection::Perspective { .. } => self.far / znear,
+            Projection::Orthographic { .. } => (zfar - znear) / self.near,
+        };
+        span * UNORM24_STEP
+    }
+
+    /// Whether 24-bit unorm depth with standard Z separates surfaces as finely as
+    /// [`SHALLOW_STEP`] of their distance everywhere in the range
+    /// ([`unorm24_step`](Self::unorm24_step)).
     ///
     /// Reversed-Z buys nothing in a unorm format (its steps are uniform either way); it
     /// is float depth (`depth32float`) that it evens out. So where this holds, the
     /// smaller unorm format with standard Z renders what float reversed-Z does.
     pub fn shallow(&self, projection: &Projection) -> bool {
-        let (znear, zfar) = planes(projection);
-        let relative_step = match projection {
-            Projection::Perspective { .. } => self.far / znear,
-            Projection::Orthographic { .. } => (zfar - znear) / self.near,
-        } * UNORM24_STEP;
-        relative_step <= SHALLOW_STEP
+        self.unorm24_step(projection) <= SHALLOW_STEP
     }
 }
 

@@ -20,6 +20,9 @@ pub struct Analysis {
     pub features: Features,
     /// `None` when no geometry lies between the camera's planes.
     pub depth: Option<DepthRange>,
+    /// [`DepthRange::unorm24_step`] for the scene's camera: what decides
+    /// `shallow_depth`.
+    pub unorm24_step: Option<f64>,
     /// `None` when no triangle edge lies between the camera's planes.
     pub smallest: Option<SmallestFeature>,
 }
@@ -27,9 +30,11 @@ pub struct Analysis {
 impl Analysis {
     /// Analyses `scene` as rendered at `output` (width, height) pixels.
     pub fn of(scene: &Scene, output: (u32, u32)) -> Analysis {
+        let depth = DepthRange::of(scene);
         Analysis {
             features: Features::of(scene),
-            depth: DepthRange::of(scene),
+            depth,
+            unorm24_step: depth.map(|range| range.unorm24_step(&scene.camera.projection)),
             smallest: SmallestFeature::of(scene, output),
         }
     }
