@@ -40,7 +40,6 @@ fn graph() -> graph_core::Graph {
         AspectAccess::ClearByFormat(ByFormat(far)),
         AspectAccess::Clear(0),
     );
-    drop(p);
     g.export(depth);
     g.build()
 }
@@ -130,7 +129,6 @@ fn a_conditional_format_of_another_kind_is_an_error_for_every_feature_set() {
     );
     let mut p = g.add_render_pass("prepass");
     let depth = p.depth_stencil(depth, AspectAccess::Clear(1.0), AspectAccess::Clear(0));
-    drop(p);
     g.export(depth);
     let graph = g.build();
     for features in [Features::new(), Features::from_iter(["shallow"])] {
