@@ -98,7 +98,8 @@ impl Graph {
 
     /// Sizes resolved against the output, and each texture's format: the first of its
     /// formats the profile can make with its sample count (else the first, which
-    /// validation then rejects with the reason).
+    /// validation then rejects with the reason). Called on the conditioned graph, where
+    /// conditional formats are settled: a chosen one replaced format and fallback.
     fn resolve_shapes(
         &self,
         output: (u32, u32),
