@@ -44,7 +44,7 @@ pub struct ForwardParams {
     #[serde(default)]
     pub shading: Shading,
     /// Fixes the depth convention; left out, it follows the depth format the compile
-    /// picks (see [`depth`](super::depth)).
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
     #[serde(default)]
     pub reversed_z: Option<bool>,
     /// The HDR target's value where no geometry is drawn (linear RGBA).

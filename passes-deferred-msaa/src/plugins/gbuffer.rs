@@ -22,7 +22,7 @@
 //!
 //! With reversed-Z depth is cleared to 0 and tested with `Greater` (near is 1), else
 //! cleared to 1 and tested with `Less`. Without `reversed_z` the convention follows the
-//! depth format (reversed for float depth, [`depth`](super::depth)), as the light
+//! depth format (reversed for float depth, see `plugins/depth.rs`), as the light
 //! passes' does; a `reversed_z` given here must be given to them too.
 //! Stencil is cleared to 0. Double-sided materials are drawn without culling and their
 //! back faces get the flipped normal; alpha MASK materials discard below the cutoff.
@@ -45,7 +45,7 @@ pub struct GBuffer(pub(crate) Shared);
 #[serde(deny_unknown_fields)]
 pub struct GBufferParams {
     /// Fixes the depth convention; left out, it follows the depth format the compile
-    /// picks (see [`depth`](super::depth)).
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
     #[serde(default)]
     pub reversed_z: Option<bool>,
     /// The HDR target's value where no geometry is drawn (linear RGBA).

@@ -40,7 +40,7 @@ pub struct GBufferResolve(pub(crate) Shared);
 #[serde(deny_unknown_fields)]
 pub struct GBufferResolveParams {
     /// Fixes the depth convention; left out, it follows the depth format the compile
-    /// picks (see [`depth`](super::depth)).
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
     #[serde(default)]
     pub reversed_z: Option<bool>,
 }

@@ -61,7 +61,7 @@ pub struct LightEdge(pub(crate) Shared);
 #[serde(deny_unknown_fields)]
 pub struct LightNonEdgeParams {
     /// Fixes the depth convention; left out, it follows the depth format the compile
-    /// picks (see [`depth`](super::depth)).
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
     #[serde(default)]
     pub reversed_z: Option<bool>,
     /// Draw point and spot lights as volumes; `false` draws each full screen, the exact
@@ -89,7 +89,7 @@ pub struct LightEdgeParams {
     #[serde(default)]
     pub mode: EdgeMode,
     /// Fixes the depth convention; left out, it follows the depth format the compile
-    /// picks (see [`depth`](super::depth)).
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
     #[serde(default)]
     pub reversed_z: Option<bool>,
     /// As for `light_nonedge`.

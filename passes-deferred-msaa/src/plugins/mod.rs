@@ -12,7 +12,7 @@
 //! The passes that test or write depth (`gbuffer`, `forward`, `gbuffer_resolve`,
 //! `light_edge`, `light_nonedge`) take an optional `reversed_z`. Left out, the depth
 //! convention follows the depth format the compile picks: reversed-Z for float depth,
-//! standard Z for unorm depth (see [`depth`]), so the passes agree whichever format a
+//! standard Z for unorm depth (see `plugins/depth.rs`), so the passes agree whichever format a
 //! device or a scene gets. Given, it holds for any format, and passes sharing a depth
 //! buffer must give the same.
 
