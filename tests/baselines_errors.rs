@@ -49,17 +49,18 @@ fn forward_hdr_with_another_sample_count_than_its_depth() {
 
 #[test]
 fn forward_depth_of_a_color_format() {
-    // The whole declaration, whatever depth format (and fallback) the file picks.
+    // The whole declaration, whatever depth formats (fallback, conditional ones) the
+    // file picks and however many lines it takes: up to the `),` that closes it.
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines/forward_msaa_4x.ron");
     let text = std::fs::read_to_string(&path).expect("forward_msaa_4x.ron is readable");
-    let line = text
-        .lines()
-        .find(|l| l.trim_start().starts_with("\"depth\": Texture("))
+    let start = text
+        .find("\"depth\": Texture(")
         .expect("forward_msaa_4x.ron declares \"depth\"");
+    let end = start + text[start..].find("),\n").expect("the declaration closes") + 2;
     let message = error(
         "forward_msaa_4x.ron",
-        line,
-        r#"        "depth": Texture(format: "rgba8unorm", samples: 4),"#,
+        &text[start..end],
+        r#""depth": Texture(format: "rgba8unorm", samples: 4),"#,
     );
     assert_names(&message, &["slot \"depth\"", "rgba8unorm", "depth24plus"]);
 }

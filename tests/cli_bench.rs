@@ -412,15 +412,16 @@ fn a_specialised_plan_is_measured_beside_the_general_one() {
         (2.0, 3.0)
     );
     assert_eq!(figures["passes"].as_array().unwrap().len(), 2);
-    // Normal and material (4 bytes each) are not allocated at 64x48.
+    // Normal and material (4 bytes each) are not allocated at 64x48, and the depth-stencil
+    // is depth24plus-stencil8 (4 bytes) instead of depth32float-stencil8 (8, padded).
     assert_eq!(
         number(special, "general_memory.physical_bytes") - number(figures, "memory.physical_bytes"),
-        64.0 * 48.0 * 8.0
+        64.0 * 48.0 * (4.0 + 4.0 + 4.0)
     );
     assert_eq!(number(figures, "memory.gbuffer_bytes_per_sample"), 20.0);
     let table = std::fs::read_to_string(dir.path().join("results.md")).unwrap();
     assert!(
-        table.contains("| deferred_noaa | no_lights, unlit_only | 3 → 2 |"),
+        table.contains("| deferred_noaa | no_lights, shallow_depth, unlit_only | 3 → 2 |"),
         "{table}"
     );
 }

@@ -450,9 +450,9 @@ fn the_pool_reuses_everything_from_the_second_frame_on() {
         ctx.encoder
             .clear_buffer(ctx.resources.buffer(params), 0, None)
     });
-    let first = g.create_texture("first", rgba);
-    let second = g.create_texture("second", rgba);
-    let third = g.create_texture("third", rgba);
+    let first = g.create_texture("first", rgba.clone());
+    let second = g.create_texture("second", rgba.clone());
+    let third = g.create_texture("third", rgba.clone());
     let last = g.create_texture("last", rgba);
     let a = g
         .add_render_pass("fill")

@@ -4,7 +4,7 @@
 
 use passes_deferred_msaa::analysis::{Analysis, DepthRange, Features, SmallestFeature};
 use passes_deferred_msaa::glam::DVec3;
-use passes_deferred_msaa::scene::{LightKind, Material, Scene};
+use passes_deferred_msaa::scene::{LightKind, Material, Projection, Scene};
 
 fn scene(name: &str) -> Scene {
     Scene::load(name).unwrap_or_else(|e| panic!("{name} loads: {e}"))
@@ -19,16 +19,19 @@ fn each_built_in_scene_names_the_features_it_uses() {
     let expected = [
         (
             "builtin:spheres",
-            "ambient, directional_lights, lit, point_lights",
+            "ambient, directional_lights, lit, point_lights, shallow_depth",
         ),
         (
             "builtin:dense",
-            "ambient, double_sided, lit, point_lights, spot_lights",
+            "ambient, double_sided, lit, point_lights, shallow_depth, spot_lights",
         ),
-        ("builtin:lights", "ambient, lit, point_lights, spot_lights"),
+        (
+            "builtin:lights",
+            "ambient, lit, point_lights, shallow_depth, spot_lights",
+        ),
         (
             "builtin:unlit",
-            "double_sided, no_lights, unlit, unlit_only",
+            "double_sided, no_lights, shallow_depth, unlit, unlit_only",
         ),
     ];
     for (name, features) in expected {
@@ -41,7 +44,7 @@ fn the_general_scene_uses_every_feature_and_lacks_nothing() {
     let general = Features::general().names();
     let mut present: Vec<&str> = Features::NAMES
         .into_iter()
-        .filter(|&n| n != "unlit_only" && n != "no_lights")
+        .filter(|&n| !["unlit_only", "no_lights", "shallow_depth"].contains(&n))
         .collect();
     present.sort();
     assert_eq!(general.iter().collect::<Vec<_>>(), present);
@@ -51,9 +54,9 @@ fn the_general_scene_uses_every_feature_and_lacks_nothing() {
 fn a_scene_without_lights_or_ambient_has_no_lights() {
     let mut spheres = scene("builtin:spheres");
     spheres.lights.clear();
-    assert_eq!(names(&spheres), "ambient, lit");
+    assert_eq!(names(&spheres), "ambient, lit, shallow_depth");
     spheres.ambient = [0.0; 3];
-    assert_eq!(names(&spheres), "lit, no_lights");
+    assert_eq!(names(&spheres), "lit, no_lights, shallow_depth");
 }
 
 #[test]
@@ -69,7 +72,10 @@ fn lights_that_emit_nothing_and_materials_nothing_draws_do_not_count() {
         double_sided: true,
         ..Material::gltf_default()
     });
-    assert_eq!(names(&spheres), "ambient, directional_lights, lit");
+    assert_eq!(
+        names(&spheres),
+        "ambient, directional_lights, lit, shallow_depth"
+    );
 }
 
 #[test]
@@ -126,4 +132,22 @@ fn perspective_detail_grows_with_the_output_height() {
     assert!((large.pixels / small.pixels - 2.0).abs() < 1e-9);
     // Sub-pixel detail: the spheres' tessellation is finer than a 64x64 pixel.
     assert!(small.pixels < 1.0, "{small:?}");
+}
+
+#[test]
+fn the_built_in_scenes_are_shallow_until_the_near_plane_shrinks() {
+    for name in ["builtin:spheres", "builtin:dense", "builtin:lights?count=8"] {
+        let mut deep = scene(name);
+        let range = DepthRange::of(&deep).unwrap();
+        let Projection::Perspective { znear, .. } = &mut deep.camera.projection else {
+            panic!("{name} has a perspective camera");
+        };
+        let ratio = range.far / f64::from(*znear);
+        assert!(ratio <= 1024.0, "{name}: far / znear {ratio}");
+        println!("{name}: far / znear {ratio:.1}");
+        // Geometry 1024 near planes away and farther needs float depth.
+        *znear = (range.far / 1025.0) as f32;
+        assert!(Features::of(&scene(name)).shallow_depth, "{name}");
+        assert!(!Features::of(&deep).shallow_depth, "{name}");
+    }
 }

@@ -1,6 +1,7 @@
-//! Bad conditions in a real pipeline: a misspelt feature in deferred_msaa_4x.ron is a
-//! validation error at the feature's line and column, naming the pass or resource, from
-//! the library and from `rgraph validate`. No GPU.
+//! Bad conditions in a real pipeline: a misspelt feature in deferred_msaa_4x.ron (in a
+//! pass's or resource's `when`, or in a conditional format) is a validation error at the
+//! feature's line and column, naming the pass or resource, from the library and from
+//! `rgraph validate`. No GPU.
 
 use std::process::Command;
 
@@ -51,7 +52,7 @@ fn a_misspelt_feature_in_a_pass_condition_is_an_error_at_the_feature() {
     assert_eq!(
         errors.to_string(),
         format!(
-            "{}: error: pass \"light edges\": condition \"!unlitonly & !no_lights\" names feature \"unlitonly\", which the graph does not declare (declared: no_lights, unlit_only)",
+            "{}: error: pass \"light edges\": condition \"!unlitonly & !no_lights\" names feature \"unlitonly\", which the graph does not declare (declared: no_lights, shallow_depth, unlit_only)",
             at(&text, "unlitonly &", 0)
         )
     );
@@ -70,6 +71,22 @@ fn a_misspelt_feature_in_a_resource_condition_is_an_error_at_the_feature() {
         format!(
             "{}: error: resource \"material\": condition \"!unlit-only\": expected a feature name, found '-' after a feature; conditions read `a & !b` (only `&` and `!`)",
             at(&text, "-only\")", 0)
+        )
+    );
+}
+
+#[test]
+fn a_misspelt_feature_in_a_conditional_format_is_an_error_at_the_feature() {
+    let text = edited(
+        "format_if: [(\"shallow_depth\", \"depth24plus-stencil8\")]",
+        "format_if: [(\"shallow_dept\", \"depth24plus-stencil8\")]",
+    );
+    let errors = load(&text);
+    assert_eq!(
+        errors.to_string(),
+        format!(
+            "{}: error: resource \"depth\": the condition \"shallow_dept\" of a conditional format names feature \"shallow_dept\", which the graph does not declare (declared: no_lights, shallow_depth, unlit_only)",
+            at(&text, "shallow_dept\"", 0)
         )
     );
 }

@@ -1,5 +1,6 @@
-//! `rgraph explain --scene`: the plan specialised to a scene, what it drops and why, and
-//! the memory it saves against the plan for a scene using every feature. No GPU.
+//! `rgraph explain --scene`: the plan specialised to a scene, what it drops and why, the
+//! depth format it picks, and the memory it saves against the plan for a scene using
+//! every feature. No GPU, but for one `--profile adapter` (lavapipe's formats).
 
 use std::process::{Command, Output};
 
@@ -12,6 +13,11 @@ fn rgraph(args: &[&str]) -> Output {
 }
 
 fn explain(scene: &str, format: &str) -> (Option<i32>, String, String) {
+    explain_on(scene, format, "webgpu")
+}
+
+/// As on a device with `profile` (`webgpu` or `adapter`).
+fn explain_on(scene: &str, format: &str, profile: &str) -> (Option<i32>, String, String) {
     let out = rgraph(&[
         "explain",
         "--pipeline",
@@ -22,6 +28,8 @@ fn explain(scene: &str, format: &str) -> (Option<i32>, String, String) {
         "64x64",
         "--format",
         format,
+        "--profile",
+        profile,
     ]);
     let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
     (out.status.code(), text(&out.stdout), text(&out.stderr))
@@ -32,9 +40,9 @@ fn an_unlit_scene_s_plan_says_what_it_drops_and_saves() {
     let (code, stdout, stderr) = explain("builtin:unlit", "text");
     assert_eq!(code, Some(0), "{stderr}");
     for expected in [
-        "scene builtin:unlit: features double_sided, no_lights, unlit, unlit_only\n",
+        "scene builtin:unlit: features double_sided, no_lights, shallow_depth, unlit, unlit_only\n",
         "depth 9.500 .. 10.500 (far/near 1.1); smallest edge 12.80 px at 64x64 (yellow tilted square)",
-        "features: no_lights, unlit_only\n",
+        "features: no_lights, shallow_depth, unlit_only\n",
         "    0. gbuffer (unlit) (render)",
         "dropped passes:\n  - gbuffer: condition \"!unlit_only\" is false\n",
         "against the plan for a scene using every feature (features: none):\n  passes: 6 instead of 11\n",
@@ -50,7 +58,9 @@ fn an_unlit_scene_s_plan_says_what_it_drops_and_saves() {
 fn a_lit_scene_keeps_the_general_plan() {
     let (code, stdout, _) = explain("builtin:spheres", "text");
     assert_eq!(code, Some(0));
-    assert!(stdout.contains("features ambient, directional_lights, lit, point_lights\n"));
+    assert!(
+        stdout.contains("features ambient, directional_lights, lit, point_lights, shallow_depth\n")
+    );
     assert!(stdout.contains("  passes: 11 instead of 11\n  memory: 576.0 KiB physical instead of 576.0 KiB (0 B saved, 0%)\n"), "{stdout}");
 }
 
@@ -61,7 +71,7 @@ fn json_carries_the_features_and_the_dropped_passes() {
     let plan: serde_json::Value = serde_json::from_str(&stdout).expect("explain emits JSON");
     assert_eq!(
         plan["features"],
-        serde_json::json!(["no_lights", "unlit_only"])
+        serde_json::json!(["no_lights", "shallow_depth", "unlit_only"])
     );
     let dropped: Vec<&str> = plan["culled"]
         .as_array()
@@ -81,6 +91,31 @@ fn json_carries_the_features_and_the_dropped_passes() {
             "debug lights"
         ]
     );
+}
+
+#[test]
+fn a_shallow_scene_s_plan_says_which_depth_format_it_picks_and_why() {
+    // On the WebGPU defaults depth32float-stencil8 falls back anyway: nothing is saved.
+    let (code, stdout, stderr) = explain("builtin:spheres", "text");
+    assert_eq!(code, Some(0), "{stderr}");
+    for expected in [
+        "depth format: a 24-bit unorm step is 1.8e-5 of the distance, within 6.1e-5: \
+         shallow_depth, 24-bit unorm depth with standard Z\n",
+        "  depth: depth24plus-stencil8 64x64 4x MSAA\n      format depth24plus-stencil8 \
+         instead of depth32float-stencil8: condition \"shallow_depth\" holds\n",
+    ] {
+        assert!(stdout.contains(expected), "no {expected:?} in:\n{stdout}");
+    }
+    // lavapipe has depth32float-stencil8: the specialised plan saves half the depth.
+    let (code, stdout, stderr) = explain_on("builtin:spheres", "text", "adapter");
+    assert_eq!(code, Some(0), "{stderr}");
+    for expected in [
+        "    format of depth: depth24plus-stencil8 instead of depth32float-stencil8: \
+         condition \"shallow_depth\" holds\n",
+        "  memory: 576.0 KiB physical instead of 640.0 KiB (64.0 KiB saved, 10%)\n",
+    ] {
+        assert!(stdout.contains(expected), "no {expected:?} in:\n{stdout}");
+    }
 }
 
 #[test]

@@ -26,7 +26,10 @@ fn a_lit_scene_without_lights_drops_the_light_passes_and_renders_the_same() {
     let gpu = gpu();
     let scene = dark_spheres();
     let features = SceneFeatures::of(&scene).names();
-    assert_eq!(features.to_string(), "emissive, lit, no_lights");
+    assert_eq!(
+        features.to_string(),
+        "emissive, lit, no_lights, shallow_depth"
+    );
     let render = |features: Features| {
         let frame = Render::new("deferred_msaa_4x.ron", "dark spheres", (N, N))
             .with_scene(scene.clone())

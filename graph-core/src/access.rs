@@ -1,8 +1,10 @@
 //! Access roles: how a pass touches a resource. The compiler derives usages, load/store
 //! operations and ordering from these and nothing else.
 
-use serde::Serialize;
-use wgpu_types::{BufferUsages, TextureUsages};
+use std::fmt;
+
+use serde::{Serialize, Serializer};
+use wgpu_types::{BufferUsages, TextureFormat, TextureUsages};
 
 use crate::handle::ResourceId;
 
@@ -24,6 +26,8 @@ pub enum AspectAccess<T> {
     ReadOnly,
     /// Written after a clear to this value: the incoming contents are not read.
     Clear(T),
+    /// As `Clear`, to the value [`ByFormat`] gives for the format the compile picks.
+    ClearByFormat(ByFormat<T>),
     /// Written on top of the incoming contents.
     Load,
     /// The format has no such aspect (the stencil of `depth32float`, the depth of
@@ -35,10 +39,50 @@ pub enum AspectAccess<T> {
 
 impl<T> AspectAccess<T> {
     pub fn writes(&self) -> bool {
-        matches!(self, AspectAccess::Clear(_) | AspectAccess::Load)
+        matches!(
+            self,
+            AspectAccess::Clear(_) | AspectAccess::ClearByFormat(_) | AspectAccess::Load
+        )
     }
     pub fn reads(&self) -> bool {
         matches!(self, AspectAccess::ReadOnly | AspectAccess::Load)
+    }
+}
+
+/// A clear value that depends on the texture's format, resolved when the graph is
+/// compiled (load/store inference). Why: at declaration a pass cannot know the format it
+/// will get, since a fallback (the device decides) or a conditional format (the scene's
+/// features decide) may replace the declared one; and what "cleared" means can depend on
+/// the format: a depth buffer whose depth convention follows its format (reversed-Z for
+/// float depth) clears to that convention's far value.
+///
+/// A plain function, so that accesses stay `Copy` and comparable.
+#[derive(Copy, Clone)]
+pub struct ByFormat<T>(pub fn(TextureFormat) -> T);
+
+impl<T> ByFormat<T> {
+    pub fn value(&self, format: TextureFormat) -> T {
+        (self.0)(format)
+    }
+}
+
+impl<T> PartialEq for ByFormat<T> {
+    /// The same function.
+    fn eq(&self, other: &Self) -> bool {
+        std::ptr::fn_addr_eq(self.0, other.0)
+    }
+}
+
+impl<T> fmt::Debug for ByFormat<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("ByFormat(..)")
+    }
+}
+
+impl<T> Serialize for ByFormat<T> {
+    /// As `"by_format"`: the value is known only once the format is.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str("by_format")
     }
 }
 

@@ -167,6 +167,17 @@ pub enum GraphError {
     },
 
     #[error(
+        "resource \"{resource}\": the condition \"{condition}\" of a conditional format names \
+         feature \"{feature}\", which the graph does not declare (declared: {declared})"
+    )]
+    UnknownFormatFeature {
+        resource: String,
+        condition: String,
+        feature: String,
+        declared: String,
+    },
+
+    #[error(
         "pass \"{pass}\" uses \"{resource}\", which is dropped ({why}); give \"{pass}\" a \
          condition that implies the resource's"
     )]
@@ -246,6 +257,7 @@ impl GraphError {
             | TooLarge { .. }
             | UnsupportedSampleCount { .. }
             | UnknownResourceFeature { .. }
+            | UnknownFormatFeature { .. }
             | DroppedOutput { .. } => None,
         }
     }
@@ -269,6 +281,7 @@ impl GraphError {
             | AttachmentMismatch { resource, .. }
             | BadResolve { resource, .. }
             | UnknownResourceFeature { resource, .. }
+            | UnknownFormatFeature { resource, .. }
             | UsesDroppedResource { resource, .. }
             | DroppedWriter { resource, .. }
             | DroppedOutput { resource, .. } => Some(resource),

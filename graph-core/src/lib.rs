@@ -34,7 +34,9 @@ pub mod plugins;
 pub mod shader;
 pub mod synthetic;
 
-pub use access::{Access, Aspect, AspectAccess, BufferRole, ColorLoad, Role, TextureRole};
+pub use access::{
+    Access, Aspect, AspectAccess, BufferRole, ByFormat, ColorLoad, Role, TextureRole,
+};
 pub use builder::{GraphBuilder, PassBuilder};
 pub use compile::CompileOptions;
 pub use condition::{Condition, ConditionError, Features, Literal};

@@ -132,6 +132,11 @@ pub struct PlannedResource {
     pub physical: Option<usize>,
     /// Why the resource is not allocated, when it is not.
     pub culled: Option<String>,
+    /// Why the texture has a conditional format rather than the one declared
+    /// (`depth24plus-stencil8 instead of depth32float-stencil8: condition "shallow_depth"
+    /// holds`), when it has.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub format_because: Option<String>,
     /// Bytes the resource would take on its own.
     pub bytes: u64,
 }

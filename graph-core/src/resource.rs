@@ -3,6 +3,8 @@
 use serde::{Deserialize, Serialize};
 use wgpu_types::{BufferUsages, TextureFormat};
 
+use crate::condition::Condition;
+
 /// A texture's width and height, fixed or relative to the graph's output size.
 #[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Size {
@@ -36,7 +38,7 @@ impl Size {
 
 /// Everything the graph needs to know to create a texture, except its usages, which the
 /// compiler derives from the passes that access it.
-#[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TextureDesc {
     pub format: TextureFormat,
@@ -45,6 +47,14 @@ pub struct TextureDesc {
     /// the fallback should be of the same kind (aspects and sample type).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fallback: Option<TextureFormat>,
+    /// Formats that depend on the compiled features: the first entry whose condition
+    /// holds replaces `format` and `fallback`. A pipeline states what its passes need
+    /// (`depth32float-stencil8` with reversed-Z for any scene) and what suffices where
+    /// the scene allows it (`depth24plus-stencil8` under `shallow_depth`); the plan says
+    /// which was chosen and why. Each must be the same kind of format as `format`, as a
+    /// fallback must.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub format_if: Vec<(Condition, TextureFormat)>,
     #[serde(default)]
     pub size: Size,
     #[serde(default = "one")]
@@ -65,6 +75,7 @@ impl TextureDesc {
         Self {
             format,
             fallback: None,
+            format_if: Vec::new(),
             size: Size::Relative(1.0),
             samples: 1,
             mips: 1,
@@ -76,9 +87,18 @@ impl TextureDesc {
         self.fallback = Some(fallback);
         self
     }
-    /// The formats the texture may have: `format`, then the fallback.
-    pub fn formats(&self) -> impl Iterator<Item = TextureFormat> {
-        std::iter::once(self.format).chain(self.fallback)
+    /// See [`TextureDesc::format_if`]: adds a format used where `condition` holds and
+    /// no earlier one's does.
+    pub fn format_if(mut self, condition: Condition, format: TextureFormat) -> Self {
+        self.format_if.push((condition, format));
+        self
+    }
+    /// The formats the texture may have: `format`, the fallback, then the conditional
+    /// formats. Passes must accept each.
+    pub fn formats(&self) -> impl Iterator<Item = TextureFormat> + '_ {
+        std::iter::once(self.format)
+            .chain(self.fallback)
+            .chain(self.format_if.iter().map(|&(_, f)| f))
     }
     pub fn size(mut self, size: Size) -> Self {
         self.size = size;
@@ -159,7 +179,7 @@ pub enum Origin {
 }
 
 /// A resource's description, by kind.
-#[derive(Copy, Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum ResourceDesc {
     Texture(TextureDesc),
     Buffer(BufferDesc),
@@ -175,7 +195,7 @@ pub struct ResourceNode {
     /// culling roots, like imports.
     pub exported: bool,
     /// The resource exists only where this holds for the compiled features.
-    pub condition: Option<crate::condition::Condition>,
+    pub condition: Option<Condition>,
     /// Versions handed out so far; the next write creates `versions`.
     pub(crate) versions: u32,
 }

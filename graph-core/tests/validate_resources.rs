@@ -127,7 +127,7 @@ fn mip_and_layer_counts_must_fit_the_texture_and_the_profile() {
     ];
     for (desc, what) in cases {
         assert_eq!(
-            texture_error(desc),
+            texture_error(desc.clone()),
             GraphError::InvalidResource {
                 resource: "t".into(),
                 what: what.into(),

@@ -6,7 +6,7 @@ use std::path::Path;
 use graph_core::explain;
 use graph_core::file::{load_file, LoadedGraph};
 use graph_core::{CompileOptions, Features, Plan};
-use passes_deferred_msaa::analysis::{Analysis, Features as SceneFeatures};
+use passes_deferred_msaa::analysis::{Analysis, Features as SceneFeatures, SHALLOW_STEP};
 use passes_deferred_msaa::scene::Scene;
 
 use super::target::compile_options;
@@ -96,8 +96,26 @@ fn describe(spec: &str, analysis: &Analysis, options: &CompileOptions) -> String
         || "no visible edge".to_owned(),
         |s| format!("smallest edge {:.2} px at {w}x{h} ({})", s.pixels, s.mesh),
     );
+    // The depth decision: whether 24-bit unorm depth with standard Z resolves the scene
+    // (`shallow_depth`), and by how much.
+    let depth_format = analysis.unorm24_step.map_or_else(
+        || "depth format: as declared (nothing to depth-test)".to_owned(),
+        |step| {
+            let (verdict, outcome) = match analysis.features.shallow_depth {
+                true => (
+                    "within",
+                    "shallow_depth, 24-bit unorm depth with standard Z",
+                ),
+                false => ("beyond", "float depth with reversed-Z, as declared"),
+            };
+            format!(
+                "depth format: a 24-bit unorm step is {step:.1e} of the distance, {verdict} \
+                 {SHALLOW_STEP:.1e}: {outcome}"
+            )
+        },
+    );
     format!(
-        "scene {spec}: features {}\n{depth}; {detail}\n",
+        "scene {spec}: features {}\n{depth}; {detail}\n{depth_format}\n",
         analysis.features.names()
     )
 }

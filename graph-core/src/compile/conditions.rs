@@ -12,6 +12,9 @@
 //!   modification passes through, and readers of `n + 1` read `n`;
 //! - a version a dropped pass wrote fresh is lost: reading it is an error naming both
 //!   passes, and writing over it writes over what the dropped pass would have.
+//!
+//! Textures with conditional formats get the one the features pick (see
+//! [`formats`](super::formats)).
 
 use crate::access::Access;
 use crate::condition::{Condition, Features};
@@ -27,6 +30,8 @@ pub(super) struct Conditioned {
     pub passes: Vec<Option<String>>,
     /// Why each resource is dropped, `None` where it stays.
     pub resources: Vec<Option<String>>,
+    /// Why each texture's format is a conditional one, `None` where it is as declared.
+    pub formats: Vec<Option<String>>,
     pub errors: Vec<GraphError>,
 }
 
@@ -45,6 +50,7 @@ pub(super) fn apply(graph: &Graph, features: &Features) -> Conditioned {
     let mut errors = Vec::new();
     undeclared_features(graph, &mut errors);
     alternatives_exclusive(graph, &mut errors);
+    super::formats::check(graph, &mut errors);
     let why = |c: &Option<Condition>| c.as_ref().and_then(|c| c.why_false(features));
     let passes: Vec<Option<String>> = graph
         .passes
@@ -53,15 +59,21 @@ pub(super) fn apply(graph: &Graph, features: &Features) -> Conditioned {
         .collect();
     let resources: Vec<Option<String>> =
         graph.resources.iter().map(|r| why(&r.condition)).collect();
+    let mut chosen = graph.resources.clone();
+    let formats = chosen
+        .iter_mut()
+        .map(|r| super::formats::choose(r, features))
+        .collect();
     let mut conditioned = Conditioned {
         graph: Graph {
-            resources: graph.resources.clone(),
+            resources: chosen,
             passes: graph.passes.iter().map(|p| p.declaration()).collect(),
             features: graph.features.clone(),
             declare_errors: Vec::new(),
         },
         passes,
         resources,
+        formats,
         errors,
     };
     // Misspelt features or clashing alternatives make what is dropped meaningless:

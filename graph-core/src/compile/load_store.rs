@@ -1,12 +1,17 @@
 //! Load/store inference: each attachment clears on a fresh write, loads when the pass
 //! builds on earlier contents, and stores only what a later pass or the outside world
-//! reads.
+//! reads. A clear value that depends on the format ([`ByFormat`]) is resolved here,
+//! against the format the compile picked.
 
+use wgpu_types::TextureFormat;
+
+#[cfg(doc)]
+use crate::access::ByFormat;
 use crate::access::{AspectAccess, ColorLoad, Role, TextureRole};
 use crate::graph::Graph;
 use crate::handle::{PassId, ResourceId};
 use crate::pass::PassKind;
-use crate::plan::{ColorAttachment, DepthStencilAttachment, Load, Ops, Store};
+use crate::plan::{ColorAttachment, DepthStencilAttachment, Load, Ops, Store, TextureShape};
 
 use super::cull::Live;
 use super::versions::Versions;
@@ -19,7 +24,13 @@ pub(super) struct Attachments {
 }
 
 /// Attachments for every pass, indexed by pass id (empty for non-render passes).
-pub(super) fn infer(graph: &Graph, versions: &Versions, live: &Live) -> Vec<Attachments> {
+/// `shapes` are the textures' resolved shapes, for clear values that depend on the format.
+pub(super) fn infer(
+    graph: &Graph,
+    versions: &Versions,
+    live: &Live,
+    shapes: &[Option<TextureShape>],
+) -> Vec<Attachments> {
     graph
         .passes
         .iter()
@@ -58,10 +69,14 @@ pub(super) fn infer(graph: &Graph, versions: &Versions, live: &Live) -> Vec<Atta
                     }
                     TextureRole::DepthStencil { depth, stencil } => {
                         let stored = store(r, access.written);
+                        // Validation has rejected a depth-stencil role on a buffer.
+                        let Some(shape) = shapes[r.index()] else {
+                            continue;
+                        };
                         out.depth_stencil = Some(DepthStencilAttachment {
                             resource: r,
-                            depth: aspect_ops(depth, stored),
-                            stencil: aspect_ops(stencil, stored),
+                            depth: aspect_ops(depth, shape.format, stored),
+                            stencil: aspect_ops(stencil, shape.format, stored),
                         });
                     }
                     _ => {}
@@ -72,11 +87,15 @@ pub(super) fn infer(graph: &Graph, versions: &Versions, live: &Live) -> Vec<Atta
         .collect()
 }
 
-fn aspect_ops<T>(access: AspectAccess<T>, store: Store) -> Option<Ops<T>> {
+fn aspect_ops<T>(access: AspectAccess<T>, format: TextureFormat, store: Store) -> Option<Ops<T>> {
     match access {
         AspectAccess::ReadOnly | AspectAccess::Absent => None,
         AspectAccess::Clear(v) => Some(Ops {
             load: Load::Clear(v),
+            store,
+        }),
+        AspectAccess::ClearByFormat(by) => Some(Ops {
+            load: Load::Clear(by.value(format)),
             store,
         }),
         AspectAccess::Load => Some(Ops {

@@ -3,6 +3,7 @@
 
 mod conditions;
 mod cull;
+mod formats;
 mod lifetimes;
 mod load_store;
 mod order;
@@ -76,7 +77,7 @@ impl Graph {
         let live = cull::cull(graph, &versions);
         let order = order::order(graph, &versions, &live).map_err(|e| GraphErrors(vec![e]))?;
         let lifetimes = lifetimes::lifetimes(graph, &order);
-        let attachments = load_store::infer(graph, &versions, &live);
+        let attachments = load_store::infer(graph, &versions, &live, &shapes);
         let usages = usage::derive(graph, &versions, &live, &attachments, &options.profile);
         let physical = physical::plan(graph, &shapes, &lifetimes, &usages);
         Ok(self.assemble(
@@ -97,7 +98,8 @@ impl Graph {
 
     /// Sizes resolved against the output, and each texture's format: the first of its
     /// formats the profile can make with its sample count (else the first, which
-    /// validation then rejects with the reason).
+    /// validation then rejects with the reason). Called on the conditioned graph, where
+    /// conditional formats are settled: a chosen one replaced format and fallback.
     fn resolve_shapes(
         &self,
         output: (u32, u32),
@@ -226,6 +228,7 @@ impl Graph {
                 culled: a.conditioned.resources[r]
                     .clone()
                     .or_else(|| a.live.resource_reasons[r].clone()),
+                format_because: a.conditioned.formats[r].clone(),
                 bytes: match (a.shapes[r], node.buffer()) {
                     (Some(shape), _) => physical::shape_bytes(&shape),
                     (None, Some(b)) => b.size,

@@ -126,7 +126,7 @@ pub(super) fn resources(
 
 /// Whether passes written for one format can use the other: same aspects, same sample
 /// type.
-fn same_kind(a: TextureFormat, b: TextureFormat) -> bool {
+pub(super) fn same_kind(a: TextureFormat, b: TextureFormat) -> bool {
     a.has_depth_aspect() == b.has_depth_aspect()
         && a.has_stencil_aspect() == b.has_stencil_aspect()
         && a.sample_type(None, None) == b.sample_type(None, None)

@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::features::Features;
 
@@ -30,8 +30,8 @@ impl fmt::Display for Literal {
 /// Literals that must all hold, in the order written: `spot_lights & !unlit_only`.
 /// Parse one with [`Condition::parse`], or build it with [`Condition::feature`],
 /// [`Condition::not`] and [`Condition::and`].
-#[derive(Clone, Debug, PartialEq, Eq, Hash, Serialize)]
-#[serde(into = "String")]
+#[derive(Clone, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(into = "String", try_from = "String")]
 pub struct Condition {
     pub(super) literals: Vec<Literal>,
 }
@@ -135,6 +135,15 @@ impl fmt::Display for Condition {
             write!(f, "{literal}")?;
         }
         Ok(())
+    }
+}
+
+/// Parses, as [`Condition::parse`]: how serde reads a condition written as text.
+impl TryFrom<String> for Condition {
+    type Error = super::ConditionError;
+
+    fn try_from(text: String) -> Result<Condition, Self::Error> {
+        Condition::parse(&text)
     }
 }
 

@@ -4,12 +4,14 @@
 use std::fmt::Write;
 
 use super::bytes;
+use crate::compile::format_name;
 use crate::plan::Plan;
 
 /// What `plan` runs and allocates against `base` (called `base_name`, as in "the general
 /// scene"): the passes that run in `base` only, each with the reason `plan` gives, the
-/// resources `base` allocates and `plan` does not, and the memory and pass counts of
-/// both.
+/// resources `base` allocates and `plan` does not, the textures whose format differs
+/// (with the reason `plan` gives, where a conditional format made it differ), and the
+/// memory and pass counts of both.
 pub fn compare(plan: &Plan, base: &Plan, base_name: &str) -> String {
     let mut out = String::new();
     let features = match base.features.is_empty() {
@@ -45,6 +47,27 @@ pub fn compare(plan: &Plan, base: &Plan, base_name: &str) -> String {
                 bytes(resource.bytes)
             );
         }
+    }
+    for (resource, shape) in plan
+        .resources
+        .iter()
+        .filter(|r| r.physical.is_some())
+        .filter_map(|r| r.texture.map(|t| (r, t)))
+    {
+        let Some(before) = base.find(&resource.name).and_then(|r| r.texture) else {
+            continue;
+        };
+        if before.format == shape.format {
+            continue;
+        }
+        let why = resource.format_because.clone().unwrap_or_else(|| {
+            format!(
+                "{} instead of {}",
+                format_name(shape.format),
+                format_name(before.format)
+            )
+        });
+        let _ = writeln!(out, "    format of {}: {why}", resource.name);
     }
     let (now, then) = (plan.memory.physical_bytes, base.memory.physical_bytes);
     let saved = then.saturating_sub(now);

@@ -97,6 +97,9 @@ pub fn text(plan: &Plan) -> String {
             (Origin::Transient, false) => "",
         };
         let _ = writeln!(out, "  {}{origin}: {what}", r.name);
+        if let Some(because) = &r.format_because {
+            let _ = writeln!(out, "      format {because}");
+        }
         if let Some(reason) = &r.culled {
             let _ = writeln!(out, "      not allocated: {reason}");
             continue;

@@ -1,6 +1,8 @@
-//! The `features` a graph file declares and the `when` conditions of its passes and
-//! resources: parsed, and checked against the declaration, each error at the character
-//! at fault.
+//! The `features` a graph file declares, the `when` conditions of its passes and
+//! resources and the conditions of its textures' `format_if`: parsed, and checked
+//! against the declaration, each error at the character at fault.
+
+use wgpu_types::TextureFormat;
 
 use super::error::{ErrorKind, FileError};
 use super::schema::{GraphFile, Name};
@@ -14,6 +16,8 @@ pub(super) struct FileConditions {
     pub features: Features,
     pub passes: Vec<Option<Condition>>,
     pub resources: Vec<Option<Condition>>,
+    /// Each resource's conditional formats (those whose condition is not in error).
+    pub formats: Vec<Vec<(Condition, TextureFormat)>>,
 }
 
 impl FileConditions {
@@ -57,10 +61,26 @@ pub(super) fn read(
             condition(source, &features, owner, decl.when()?, errors)
         })
         .collect();
+    let formats = file
+        .resources
+        .0
+        .iter()
+        .map(|(name, decl)| {
+            let owner = Owner::Format(name.as_str());
+            decl.format_if()
+                .iter()
+                .filter_map(|(when, format)| {
+                    let condition = condition(source, &features, owner, when, errors)?;
+                    Some((condition, *format))
+                })
+                .collect()
+        })
+        .collect();
     FileConditions {
         features,
         passes,
         resources,
+        formats,
     }
 }
 
@@ -94,9 +114,11 @@ fn declared(source: &Source<'_>, file: &GraphFile<'_>, errors: &mut Vec<FileErro
 enum Owner<'f> {
     Pass(&'f str),
     Resource(&'f str),
+    /// A conditional format of the resource.
+    Format(&'f str),
 }
 
-/// Parses one `when`, and checks that it names declared features only.
+/// Parses one condition, and checks that it names declared features only.
 fn condition(
     source: &Source<'_>,
     features: &Features,
@@ -114,6 +136,7 @@ fn condition(
                     owner: match owner {
                         Owner::Pass(name) => format!("pass \"{name}\""),
                         Owner::Resource(name) => format!("resource \"{name}\""),
+                        Owner::Format(name) => format!("resource \"{name}\" (format_if)"),
                     },
                     condition: text.to_owned(),
                     error,
@@ -139,6 +162,12 @@ fn condition(
                 declared,
             },
             Owner::Resource(resource) => GraphError::UnknownResourceFeature {
+                resource: resource.to_owned(),
+                condition,
+                feature,
+                declared,
+            },
+            Owner::Format(resource) => GraphError::UnknownFormatFeature {
                 resource: resource.to_owned(),
                 condition,
                 feature,

@@ -27,8 +27,9 @@ pub(super) fn declare<'f>(
     let mut graph = GraphBuilder::new();
     graph.declare_features(conditions.features.iter());
     let mut handles: HashMap<&'f str, AnyHandle> = HashMap::new();
-    for ((name, decl), condition) in file.resources.0.iter().zip(&mut conditions.resources) {
-        let handle = decl.declare(&mut graph, name.as_str());
+    let resources = file.resources.0.iter().zip(&mut conditions.resources);
+    for (((name, decl), condition), formats) in resources.zip(&mut conditions.formats) {
+        let handle = decl.declare(&mut graph, name.as_str(), std::mem::take(formats));
         if let Some(condition) = condition.take() {
             match handle {
                 AnyHandle::Texture(h) => graph.when(h, condition),

@@ -12,6 +12,7 @@ use wgpu_types::{BufferUsages, TextureFormat};
 use super::any_handle::AnyHandle;
 use super::pairs::Pairs;
 use crate::builder::GraphBuilder;
+use crate::condition::Condition;
 use crate::resource::{BufferDesc, Size, TextureDesc};
 
 /// A whole graph file:
@@ -53,6 +54,9 @@ pub(crate) struct TextureDecl<'a> {
     format: TextureFormat,
     #[serde(default)]
     fallback: Option<TextureFormat>,
+    /// `[(condition, format), ..]`: see [`TextureDesc::format_if`].
+    #[serde(borrow, default)]
+    pub format_if: Vec<(Name<'a>, TextureFormat)>,
     #[serde(default)]
     size: Size,
     #[serde(default = "one")]
@@ -81,10 +85,12 @@ fn one() -> u32 {
 }
 
 impl TextureDecl<'_> {
-    fn desc(&self) -> TextureDesc {
+    /// The description, with the conditional formats as read (and checked) apart.
+    fn desc(&self, format_if: Vec<(Condition, TextureFormat)>) -> TextureDesc {
         TextureDesc {
             format: self.format,
             fallback: self.fallback,
+            format_if,
             size: self.size,
             samples: self.samples,
             mips: self.mips,
@@ -103,11 +109,19 @@ impl BufferDecl<'_> {
 }
 
 impl<'a> ResourceDecl<'a> {
-    /// Declares the resource in `graph`, returning its version-0 handle.
-    pub fn declare(&self, graph: &mut GraphBuilder, name: &str) -> AnyHandle {
+    /// Declares the resource in `graph`, returning its version-0 handle. `format_if` are
+    /// a texture's conditional formats, their conditions parsed.
+    pub fn declare(
+        &self,
+        graph: &mut GraphBuilder,
+        name: &str,
+        format_if: Vec<(Condition, TextureFormat)>,
+    ) -> AnyHandle {
         match self {
-            ResourceDecl::Texture(t) => graph.create_texture(name, t.desc()).into(),
-            ResourceDecl::ImportedTexture(t) => graph.import_texture(name, t.desc()).into(),
+            ResourceDecl::Texture(t) => graph.create_texture(name, t.desc(format_if)).into(),
+            ResourceDecl::ImportedTexture(t) => {
+                graph.import_texture(name, t.desc(format_if)).into()
+            }
             ResourceDecl::Buffer(b) => graph.create_buffer(name, b.desc()).into(),
             ResourceDecl::ImportedBuffer(b) => graph.import_buffer(name, b.desc()).into(),
         }
@@ -119,6 +133,14 @@ impl<'a> ResourceDecl<'a> {
             self,
             ResourceDecl::ImportedTexture(_) | ResourceDecl::ImportedBuffer(_)
         )
+    }
+
+    /// A texture's conditional formats, as written (none for a buffer).
+    pub fn format_if(&self) -> &[(Name<'a>, TextureFormat)] {
+        match self {
+            ResourceDecl::Texture(t) | ResourceDecl::ImportedTexture(t) => &t.format_if,
+            ResourceDecl::Buffer(_) | ResourceDecl::ImportedBuffer(_) => &[],
+        }
     }
 
     /// The resource's `when` condition, as written.

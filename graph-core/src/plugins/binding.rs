@@ -378,8 +378,8 @@ pub(crate) fn texture_desc(
     pass: &PassBuilder<'_>,
     handle: TextureHandle,
 ) -> Result<TextureDesc, PluginError> {
-    match pass.resource(handle).desc {
-        ResourceDesc::Texture(desc) => Ok(desc),
+    match &pass.resource(handle).desc {
+        ResourceDesc::Texture(desc) => Ok(desc.clone()),
         ResourceDesc::Buffer(_) => Err(PluginError::Invalid(format!(
             "\"{}\" is a buffer",
             pass.resource(handle).name

@@ -1,5 +1,6 @@
 //! The features a scene uses, under the names graph-file conditions test.
 
+use super::DepthRange;
 use crate::scene::{AlphaMode, LightKind, Material, Scene};
 
 /// Which features a scene uses. Only what can change a rendered pixel counts: materials
@@ -20,11 +21,15 @@ pub struct Features {
     /// Some mesh's material samples a base-color texture.
     pub textures: bool,
     pub double_sided: bool,
+    /// A 24-bit unorm depth buffer with standard Z resolves the geometry's depth range
+    /// as finely as [`DepthRange::shallow`] asks. A reduction, like `unlit_only`: only a
+    /// scene that is measured gets it.
+    pub shallow_depth: bool,
 }
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 12] = [
+    pub const NAMES: [&'static str; 13] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -37,6 +42,7 @@ impl Features {
         "alpha_mask",
         "textures",
         "double_sided",
+        "shallow_depth",
     ];
 
     pub fn of(scene: &Scene) -> Features {
@@ -63,12 +69,17 @@ impl Features {
             alpha_mask: material(|m| matches!(m.alpha_mode, AlphaMode::Mask { .. })),
             textures: material(|m| m.base_color_texture.is_some()),
             double_sided: material(|m| m.double_sided),
+            // With no geometry between the planes nothing is depth-tested: the general
+            // pipeline is as good as any.
+            shallow_depth: DepthRange::of(scene)
+                .is_some_and(|range| range.shallow(&scene.camera.projection)),
         }
     }
 
     /// A scene that uses every feature a scene can use at once: what a pipeline that
     /// knows nothing of its scene must render. Its plan is the unspecialised one. The
-    /// names of absences (`no_lights`, `unlit_only`) are not set for it, which is why
+    /// names of absences and reductions (`no_lights`, `unlit_only`, `shallow_depth`) are
+    /// not set for it, which is why
     /// pipelines drop work only under those: compiled for no features at all, a
     /// pipeline is the general one too.
     pub fn general() -> Features {
@@ -83,6 +94,7 @@ impl Features {
             alpha_mask: true,
             textures: true,
             double_sided: true,
+            shallow_depth: false,
         }
     }
 
@@ -112,6 +124,7 @@ impl Features {
             self.alpha_mask,
             self.textures,
             self.double_sided,
+            self.shallow_depth,
         ];
         Self::NAMES
             .iter()

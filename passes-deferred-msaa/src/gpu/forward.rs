@@ -20,7 +20,7 @@ pub(crate) fn record(
     let draw = SceneDraw {
         label: "forward",
         source: draw.source,
-        convention: draw.convention,
+        depth_rule: draw.depth_rule,
         targets: vec![draw.hdr],
         depth: draw.depth,
         stages: Box::new(move |material| Stages {

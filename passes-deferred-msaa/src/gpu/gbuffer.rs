@@ -16,7 +16,7 @@ pub(crate) fn record(
     let draw = SceneDraw {
         label: "gbuffer",
         source: draw.source,
-        convention: draw.convention,
+        depth_rule: draw.depth_rule,
         targets: draw.targets,
         depth: draw.depth,
         stages: Box::new(|material| Stages {

@@ -7,6 +7,7 @@ use graph_core::gpu::RenderContext;
 
 use super::{PipelineDesc, Pipelines, TextureBindings};
 use crate::gpu_scene::{GpuScene, SceneCache};
+use crate::plugins::depth::far_depth;
 use crate::plugins::gbuffer_resolve::GBufferResolveDraw;
 
 #[derive(Clone, PartialEq)]
@@ -59,6 +60,7 @@ pub(crate) fn record(
                 .collect(),
             depth: resources.shape(draw.depth).format,
         };
+        let convention = draw.depth_rule.convention(key.depth);
         let pipeline = state.pipelines.get(key, |key| {
             let targets: Vec<Option<wgpu::ColorTargetState>> =
                 key.targets.iter().map(|&f| Some(f.into())).collect();
@@ -69,7 +71,7 @@ pub(crate) fn record(
                 vertex: "vs_fullscreen",
                 buffers: &[],
                 fragment: "fs_resolve_gbuffer",
-                constants: &[("FAR_DEPTH", f64::from(draw.far))],
+                constants: &[("FAR_DEPTH", f64::from(far_depth(convention)))],
                 targets: &targets,
                 cull: None,
                 depth_stencil: Some(write_depth(key.depth)),
@@ -80,7 +82,7 @@ pub(crate) fn record(
         });
         ctx.pass.set_pipeline(pipeline);
         ctx.pass
-            .set_bind_group(0, scene.bind_group(draw.convention), &[]);
+            .set_bind_group(0, scene.bind_group(convention), &[]);
         ctx.pass
             .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
         ctx.pass.draw(0..3, 0..1);

@@ -8,7 +8,7 @@ use graph_core::gpu::RenderContext;
 
 use super::{additive, PipelineDesc, Pipelines, TextureBindings, EDGE_STENCIL};
 use crate::gpu_scene::{volumes, GpuScene, SceneCache};
-use crate::plugins::far_depth;
+use crate::plugins::depth::far_depth;
 use crate::plugins::light::{EdgeMode, Frequency, LightDraw, PixelSamples};
 use crate::scene::DepthConvention;
 
@@ -76,8 +76,9 @@ pub(crate) fn record(
             Frequency::Sample(EdgeMode::SampleMask) => (0..hdr.samples).map(Some).collect(),
             Frequency::Pixel(_) | Frequency::Sample(EdgeMode::SampleIndex) => vec![None],
         };
+        let convention = draw.depth_rule.convention(depth.format);
         ctx.pass
-            .set_bind_group(0, scene.bind_group(draw.convention), &[]);
+            .set_bind_group(0, scene.bind_group(convention), &[]);
         ctx.pass
             .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
         ctx.pass.set_stencil_reference(EDGE_STENCIL);
@@ -92,7 +93,7 @@ pub(crate) fn record(
             };
             let pipeline = state.pipelines.get(key, |key| {
                 let constants = [
-                    ("FAR_DEPTH", f64::from(far_depth(draw.convention))),
+                    ("FAR_DEPTH", f64::from(far_depth(convention))),
                     ("SAMPLE", f64::from(key.sample.unwrap_or(0))),
                 ];
                 let volume_buffers = [Some(volumes::VERTEX_LAYOUT)];
@@ -122,7 +123,7 @@ pub(crate) fn record(
                         Geometry::FrontFaces => Some(wgpu::Face::Back),
                         Geometry::BackFaces => Some(wgpu::Face::Front),
                     },
-                    depth_stencil: Some(depth_stencil(key, draw.convention, draw.frequency)),
+                    depth_stencil: Some(depth_stencil(key, convention, draw.frequency)),
                     samples: key.samples,
                     mask: key.sample.map_or(!0, |s| 1 << s),
                 }

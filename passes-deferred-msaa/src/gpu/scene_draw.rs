@@ -10,6 +10,7 @@ use graph_core::TextureHandle;
 
 use super::{PipelineDesc, Pipelines};
 use crate::gpu_scene::{mesh, GpuScene, MaterialState, SceneCache};
+use crate::plugins::depth::DepthRule;
 use crate::scene::DepthConvention;
 
 /// What a material state draws with.
@@ -24,7 +25,8 @@ pub(crate) struct Stages {
 pub(crate) struct SceneDraw {
     pub label: &'static str,
     pub source: String,
-    pub convention: DepthConvention,
+    /// Resolved against the depth attachment's format when recording.
+    pub depth_rule: DepthRule,
     /// Color attachments in location order.
     pub targets: Vec<TextureHandle>,
     pub depth: TextureHandle,
@@ -79,8 +81,9 @@ pub(crate) fn record(
             .iter()
             .map(|&h| resources.shape(h).format)
             .collect();
+        let convention = draw.depth_rule.convention(depth.format);
         ctx.pass
-            .set_bind_group(0, scene.bind_group(draw.convention), &[]);
+            .set_bind_group(0, scene.bind_group(convention), &[]);
         scene.draw_meshes(ctx.pass, 1, |pass, _, material| {
             let key = Key {
                 targets: targets.clone(),
@@ -103,7 +106,7 @@ pub(crate) fn record(
                     constants: &stages.constants,
                     targets: &targets,
                     cull: (!key.material.double_sided).then_some(wgpu::Face::Back),
-                    depth_stencil: Some(depth_test(key.depth, draw.convention)),
+                    depth_stencil: Some(depth_test(key.depth, convention)),
                     samples: key.samples,
                     mask: !0,
                 }

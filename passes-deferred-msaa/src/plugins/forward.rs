@@ -5,7 +5,7 @@
 //! ```ron
 //! (name: "forward", plugin: "forward",
 //!  params: (shading: pixel,          // the default; or sample (one invocation per sample)
-//!           reversed_z: true, background: (0.0, 0.0, 0.0, 1.0)),   // these defaults
+//!           background: (0.0, 0.0, 0.0, 1.0)),   // these defaults; reversed_z optional
 //!  outputs: {
 //!      "hdr": "hdr",       // rgba16float, the depth's sample count
 //!      "depth": "depth",   // depth24plus(-stencil8) or depth32float(-stencil8)
@@ -30,10 +30,10 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::types::TextureFormat;
 use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
+use super::depth::DepthRule;
 use super::gbuffer::opaque_black;
 use super::textures::{self, Want};
-use super::{convention, far_depth, yes, Recording, Shared};
-use crate::scene::DepthConvention;
+use super::{Recording, Shared};
 use crate::shaders;
 
 pub struct Forward(pub(crate) Shared);
@@ -43,8 +43,10 @@ pub struct Forward(pub(crate) Shared);
 pub struct ForwardParams {
     #[serde(default)]
     pub shading: Shading,
-    #[serde(default = "yes")]
-    pub reversed_z: bool,
+    /// Fixes the depth convention; left out, it follows the depth format the compile
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
+    #[serde(default)]
+    pub reversed_z: Option<bool>,
     /// The HDR target's value where no geometry is drawn (linear RGBA).
     #[serde(default = "opaque_black")]
     pub background: [f64; 4],
@@ -74,7 +76,7 @@ const DEPTH: &[TextureFormat] = &[
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct ForwardDraw {
     pub source: String,
-    pub convention: DepthConvention,
+    pub depth_rule: DepthRule,
     pub shading: Shading,
     pub hdr: TextureHandle,
     pub depth: TextureHandle,
@@ -104,17 +106,16 @@ impl Plugin for Forward {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        let convention = convention(params.reversed_z);
-        let far = far_depth(convention);
+        let depth_rule = DepthRule::new(params.reversed_z);
         let want = Want::new("the forward pass's depth", DEPTH);
         let (depth, desc) = textures::output(slots, pass, "depth", want, |pass, h, _| {
-            pass.depth_stencil(h, AspectAccess::Clear(far), AspectAccess::Clear(0))
+            pass.depth_stencil(h, depth_rule.clear(), AspectAccess::Clear(0))
         })?;
         let want = Want::new("the HDR target", textures::HDR).samples(desc.samples);
         let (hdr, _) = textures::color_output(slots, pass, "hdr", want, params.background)?;
         let draw = ForwardDraw {
             source: shaders::FORWARD.compose(desc.samples)?.source().to_owned(),
-            convention,
+            depth_rule,
             shading: params.shading,
             hdr,
             depth,

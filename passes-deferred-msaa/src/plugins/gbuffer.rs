@@ -2,7 +2,7 @@
 //!
 //! ```ron
 //! (name: "gbuffer", plugin: "gbuffer",
-//!  params: (reversed_z: true, background: (0.0, 0.0, 0.0, 1.0)),   // these defaults
+//!  params: (background: (0.0, 0.0, 0.0, 1.0)),   // the default; reversed_z optional
 //!  outputs: {
 //!      "albedo": "albedo",          // rgba8unorm(-srgb): base color
 //!      "normal": "normal",          // rg16float: octahedral world-space normal
@@ -20,8 +20,10 @@
 //! `when: "unlit_only"` condition, pipelines/deferred_msaa_4x.ron) goes without. `view_depth` exists because later passes attach the depth-stencil and so
 //! cannot sample its depth aspect while they write the stencil (notes/wgpu30.md).
 //!
-//! With `reversed_z` depth is cleared to 0 and tested with `Greater` (near is 1), else
-//! cleared to 1 and tested with `Less`; the light passes' `reversed_z` must agree.
+//! With reversed-Z depth is cleared to 0 and tested with `Greater` (near is 1), else
+//! cleared to 1 and tested with `Less`. Without `reversed_z` the convention follows the
+//! depth format (reversed for float depth, see `plugins/depth.rs`), as the light
+//! passes' does; a `reversed_z` given here must be given to them too.
 //! Stencil is cleared to 0. Double-sided materials are drawn without culling and their
 //! back faces get the flipped normal; alpha MASK materials discard below the cutoff.
 //! The material target's alpha records per-sample edge evidence for the `centroid` and
@@ -32,9 +34,9 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
+use super::depth::DepthRule;
 use super::textures::{self, Want};
-use super::{convention, far_depth, yes, Recording, Shared};
-use crate::scene::DepthConvention;
+use super::{Recording, Shared};
 use crate::shaders;
 
 pub struct GBuffer(pub(crate) Shared);
@@ -42,8 +44,10 @@ pub struct GBuffer(pub(crate) Shared);
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GBufferParams {
-    #[serde(default = "yes")]
-    pub reversed_z: bool,
+    /// Fixes the depth convention; left out, it follows the depth format the compile
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
+    #[serde(default)]
+    pub reversed_z: Option<bool>,
     /// The HDR target's value where no geometry is drawn (linear RGBA).
     #[serde(default = "opaque_black")]
     pub background: [f64; 4],
@@ -57,7 +61,7 @@ pub(crate) fn opaque_black() -> [f64; 4] {
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct GBufferDraw {
     pub source: String,
-    pub convention: DepthConvention,
+    pub depth_rule: DepthRule,
     /// albedo, normal, material, view_depth, hdr: color attachments 0 to 4.
     pub targets: Vec<TextureHandle>,
     pub depth: TextureHandle,
@@ -87,11 +91,10 @@ impl Plugin for GBuffer {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        let convention = convention(params.reversed_z);
-        let far = far_depth(convention);
+        let depth_rule = DepthRule::new(params.reversed_z);
         let depth_want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
         let (depth, desc) = textures::output(slots, pass, "depth", depth_want, |pass, h, _| {
-            pass.depth_stencil(h, AspectAccess::Clear(far), AspectAccess::Clear(0))
+            pass.depth_stencil(h, depth_rule.clear(), AspectAccess::Clear(0))
         })?;
         let samples = desc.samples;
         let colors = [
@@ -137,7 +140,7 @@ impl Plugin for GBuffer {
                 .compose_with(samples, &outputs)?
                 .source()
                 .to_owned(),
-            convention,
+            depth_rule,
             targets,
             depth,
         };

@@ -5,7 +5,7 @@
 //!
 //! ```ron
 //! (name: "resolve gbuffer", plugin: "gbuffer_resolve",
-//!  params: (reversed_z: true),   // the default; must agree with the light passes'
+//!  params: (reversed_z: true),   // optional: left out, it follows the depth format
 //!  inputs: {                      // the multisampled G-buffer
 //!      "albedo": "albedo", "normal": "normal", "material": "material",
 //!      "view_depth": "view_depth",
@@ -28,10 +28,10 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
+use super::depth::DepthRule;
 use super::light::GBUFFER_INPUTS;
 use super::textures::{self, Input, Want};
-use super::{convention, far_depth, yes, Recording, Shared};
-use crate::scene::DepthConvention;
+use super::{Recording, Shared};
 use crate::shaders;
 
 pub struct GBufferResolve(pub(crate) Shared);
@@ -39,8 +39,10 @@ pub struct GBufferResolve(pub(crate) Shared);
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GBufferResolveParams {
-    #[serde(default = "yes")]
-    pub reversed_z: bool,
+    /// Fixes the depth convention; left out, it follows the depth format the compile
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
+    #[serde(default)]
+    pub reversed_z: Option<bool>,
 }
 
 /// The output slots, in the order of [`GBUFFER_INPUTS`] (and of the shader's locations).
@@ -55,9 +57,8 @@ const OUTPUTS: [(&str, &str); 4] = [
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct GBufferResolveDraw {
     pub source: String,
-    pub convention: DepthConvention,
-    /// The clip depth of the far plane, written where no sample has geometry.
-    pub far: f32,
+    /// Also gives the clip depth of the far plane, written where no sample has geometry.
+    pub depth_rule: DepthRule,
     /// The multisampled G-buffer, group 1.
     pub inputs: Vec<Input>,
     /// albedo, normal, material, view_depth: color attachments 0 to 3.
@@ -89,8 +90,7 @@ impl Plugin for GBufferResolve {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        let convention = convention(params.reversed_z);
-        let far = far_depth(convention);
+        let depth_rule = DepthRule::new(params.reversed_z);
         let mut inputs = Vec::new();
         let mut samples = None;
         for (slot, what, formats, binding) in GBUFFER_INPUTS {
@@ -105,7 +105,7 @@ impl Plugin for GBufferResolve {
         let samples = samples.unwrap_or(1);
         let want = Want::new("the resolved depth-stencil", textures::DEPTH_STENCIL).samples(1);
         let (depth, _) = textures::output(slots, pass, "depth", want, |pass, h, _| {
-            pass.depth_stencil(h, AspectAccess::Clear(far), AspectAccess::Clear(0))
+            pass.depth_stencil(h, depth_rule.clear(), AspectAccess::Clear(0))
         })?;
         let mut targets = Vec::new();
         for ((slot, what), (_, _, formats, _)) in OUTPUTS.into_iter().zip(GBUFFER_INPUTS) {
@@ -117,8 +117,7 @@ impl Plugin for GBufferResolve {
                 .compose(samples)?
                 .source()
                 .to_owned(),
-            convention,
-            far,
+            depth_rule,
             inputs,
             targets,
             depth,

@@ -4,8 +4,9 @@
 //!
 //! ```ron
 //! (name: "light_edge", plugin: "light_edge",
-//!  params: (mode: sample_index, reversed_z: true, volumes: true),   // these defaults
-//!                                      // (or mode: sample_mask; volumes: false)
+//!  params: (mode: sample_index, volumes: true),   // these defaults
+//!                     // (or mode: sample_mask; volumes: false; reversed_z: true or false,
+//!                     // which left out follows the depth format)
 //!  inputs: {
 //!      "albedo": "albedo", "normal": "normal", "material": "material",
 //!      "view_depth": "view_depth",
@@ -14,7 +15,7 @@
 //!  },
 //!  outputs: { "hdr": "hdr_edges" })
 //! (name: "light_nonedge", plugin: "light_nonedge",
-//!  params: (reversed_z: true, volumes: true, samples: first),   // or samples: average
+//!  params: (volumes: true, samples: first),   // or samples: average; reversed_z
 //!  inputs: { /* the same slots */ "hdr": "hdr_edges" },
 //!  outputs: { "hdr": "hdr_lit" })
 //! ```
@@ -50,9 +51,9 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, TextureHandle};
 
+use super::depth::DepthRule;
 use super::textures::{self, Input, Texels, Want};
-use super::{convention, yes, Recording, Shared};
-use crate::scene::DepthConvention;
+use super::{yes, Recording, Shared};
 use crate::shaders;
 
 pub struct LightNonEdge(pub(crate) Shared);
@@ -61,8 +62,10 @@ pub struct LightEdge(pub(crate) Shared);
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LightNonEdgeParams {
-    #[serde(default = "yes")]
-    pub reversed_z: bool,
+    /// Fixes the depth convention; left out, it follows the depth format the compile
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
+    #[serde(default)]
+    pub reversed_z: Option<bool>,
     /// Draw point and spot lights as volumes; `false` draws each full screen, the exact
     /// (and slow) reference the volumes must match.
     #[serde(default = "yes")]
@@ -87,8 +90,10 @@ pub enum PixelSamples {
 pub struct LightEdgeParams {
     #[serde(default)]
     pub mode: EdgeMode,
-    #[serde(default = "yes")]
-    pub reversed_z: bool,
+    /// Fixes the depth convention; left out, it follows the depth format the compile
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
+    #[serde(default)]
+    pub reversed_z: Option<bool>,
     /// As for `light_nonedge`.
     #[serde(default = "yes")]
     pub volumes: bool,
@@ -116,7 +121,7 @@ pub(crate) enum Frequency {
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct LightDraw {
     pub source: String,
-    pub convention: DepthConvention,
+    pub depth_rule: DepthRule,
     pub frequency: Frequency,
     pub volumes: bool,
     pub hdr: TextureHandle,
@@ -200,7 +205,7 @@ pub(crate) const GBUFFER_INPUTS: [(&str, &str, &[graph_core::types::TextureForma
 
 fn setup(
     frequency: Frequency,
-    reversed_z: bool,
+    reversed_z: Option<bool>,
     volumes: bool,
     pass: &mut PassBuilder<'_>,
     slots: &mut Slots<'_>,
@@ -234,7 +239,7 @@ fn setup(
     textures::must_modify(slots, "hdr", modifies, "adds light to it")?;
     let draw = LightDraw {
         source: shaders::LIGHT.compose(samples)?.source().to_owned(),
-        convention: convention(reversed_z),
+        depth_rule: DepthRule::new(reversed_z),
         frequency,
         volumes,
         hdr,

@@ -8,8 +8,16 @@
 //!
 //! The G-buffer slots every pass uses the same names for: `albedo`, `normal`,
 //! `material`, `view_depth`, `hdr` and `depth` (the multisampled depth-stencil).
+//!
+//! The passes that test or write depth (`gbuffer`, `forward`, `gbuffer_resolve`,
+//! `light_edge`, `light_nonedge`) take an optional `reversed_z`. Left out, the depth
+//! convention follows the depth format the compile picks: reversed-Z for float depth,
+//! standard Z for unorm depth (see `plugins/depth.rs`), so the passes agree whichever format a
+//! device or a scene gets. Given, it holds for any format, and passes sharing a depth
+//! buffer must give the same.
 
 pub(crate) mod debug_view;
+pub(crate) mod depth;
 pub(crate) mod edge_stencil;
 pub(crate) mod forward;
 pub(crate) mod fullscreen;
@@ -101,20 +109,4 @@ const ONE_SAMPLE: &str = "one sample per pixel: a pixel holds one surface, so th
 /// `true`, for `#[serde(default = "yes")]`.
 fn yes() -> bool {
     true
-}
-
-/// The depth convention a `reversed_z` parameter names.
-fn convention(reversed_z: bool) -> crate::scene::DepthConvention {
-    match reversed_z {
-        true => crate::scene::DepthConvention::ReversedZ,
-        false => crate::scene::DepthConvention::Standard,
-    }
-}
-
-/// The depth a depth-stencil is cleared to, and the clip depth of the far plane.
-pub(crate) fn far_depth(convention: crate::scene::DepthConvention) -> f32 {
-    match convention {
-        crate::scene::DepthConvention::ReversedZ => 0.0,
-        crate::scene::DepthConvention::Standard => 1.0,
-    }
 }

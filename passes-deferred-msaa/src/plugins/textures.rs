@@ -117,7 +117,7 @@ fn check(
         resource: slots.resource(slot).unwrap_or(slot).to_owned(),
         why,
     };
-    let Some(desc) = pass.resource(handle).texture().copied() else {
+    let Some(desc) = pass.resource(handle).texture().cloned() else {
         return Err(error("is not a texture".to_owned()));
     };
     // A fallback format must fit as well: the device decides which one the pass gets.

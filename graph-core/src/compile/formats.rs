@@ -1,0 +1,153 @@
+//! Conditional formats ([`TextureDesc::format_if`]), part of the conditions phase: each
+//! texture gets the format its first holding condition names, and the plan keeps why.
+//!
+//! Checked on the declared graph, like the other conditions, so that every feature set
+//! reports the same mistakes: a conditional format names declared features only, and is
+//! the same kind of format as the one it replaces (passes are written for both).
+
+use crate::condition::Features;
+use crate::error::GraphError;
+use crate::graph::Graph;
+use crate::resource::{ResourceDesc, ResourceNode, TextureDesc};
+
+use super::validate::{format_name, same_kind};
+
+/// Gives `resource` the format its conditions pick for `features`, leaving no
+/// conditional formats behind. Returns why the format changed (`None` where none holds
+/// and the declared format and fallback stay).
+pub(super) fn choose(resource: &mut ResourceNode, features: &Features) -> Option<String> {
+    let ResourceDesc::Texture(texture) = &mut resource.desc else {
+        return None;
+    };
+    let conditional = std::mem::take(&mut texture.format_if);
+    let (condition, format) = conditional
+        .into_iter()
+        .find(|(condition, _)| condition.holds(features))?;
+    let why = format!(
+        "{} instead of {}: condition \"{condition}\" holds",
+        format_name(format),
+        format_name(texture.format)
+    );
+    texture.format = format;
+    texture.fallback = None;
+    Some(why)
+}
+
+/// The checks of the module documentation, on the declared graph.
+pub(super) fn check(graph: &Graph, errors: &mut Vec<GraphError>) {
+    for resource in &graph.resources {
+        let Some(texture) = resource.texture() else {
+            continue;
+        };
+        for (condition, format) in &texture.format_if {
+            for feature in condition.features().filter(|f| !graph.features.contains(f)) {
+                errors.push(GraphError::UnknownFormatFeature {
+                    resource: resource.name.clone(),
+                    condition: condition.to_string(),
+                    feature: feature.to_owned(),
+                    declared: graph.features.to_string(),
+                });
+            }
+            if !same_kind(*format, texture.format) {
+                errors.push(misfit(&resource.name, texture, *format));
+            }
+        }
+    }
+}
+
+fn misfit(resource: &str, texture: &TextureDesc, format: wgpu_types::TextureFormat) -> GraphError {
+    GraphError::InvalidResource {
+        resource: resource.to_owned(),
+        what: format!(
+            "conditional format {} is not the same kind of format as {} (aspects and \
+             sample type must agree, since passes are written for both)",
+            format_name(format),
+            format_name(texture.format)
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use wgpu_types::TextureFormat as F;
+
+    use super::{check, choose};
+    use crate::builder::GraphBuilder;
+    use crate::condition::{Condition, Features};
+    use crate::error::GraphError;
+    use crate::resource::{ResourceNode, TextureDesc};
+
+    fn depth() -> TextureDesc {
+        TextureDesc::new(F::Depth32FloatStencil8)
+            .or(F::Depth24PlusStencil8)
+            .format_if(Condition::feature("tiny"), F::Depth16Unorm)
+            .format_if(Condition::feature("shallow"), F::Depth24PlusStencil8)
+    }
+
+    fn node(desc: TextureDesc) -> ResourceNode {
+        let mut graph = GraphBuilder::new();
+        graph.create_texture("depth", desc);
+        graph.build().resources.remove(0)
+    }
+
+    #[test]
+    fn the_first_holding_condition_replaces_format_and_fallback() {
+        let mut resource = node(depth());
+        let why = choose(&mut resource, &Features::from_iter(["shallow"]));
+        assert_eq!(
+            why.as_deref(),
+            Some(
+                "depth24plus-stencil8 instead of depth32float-stencil8: condition \
+                 \"shallow\" holds"
+            )
+        );
+        let texture = resource.texture().unwrap();
+        assert_eq!(
+            (texture.format, texture.fallback),
+            (F::Depth24PlusStencil8, None)
+        );
+        assert!(texture.format_if.is_empty());
+    }
+
+    #[test]
+    fn without_a_holding_condition_the_declared_formats_stay() {
+        let mut resource = node(depth());
+        assert_eq!(choose(&mut resource, &Features::new()), None);
+        let texture = resource.texture().unwrap();
+        assert_eq!(
+            (texture.format, texture.fallback),
+            (F::Depth32FloatStencil8, Some(F::Depth24PlusStencil8))
+        );
+        assert!(texture.format_if.is_empty());
+    }
+
+    #[test]
+    fn undeclared_features_and_other_kinds_of_format_are_errors() {
+        let mut graph = GraphBuilder::new();
+        graph.declare_features(["shallow"]);
+        graph.create_texture(
+            "depth",
+            TextureDesc::new(F::Depth32FloatStencil8)
+                .format_if(Condition::feature("shalow"), F::Depth24PlusStencil8)
+                .format_if(Condition::feature("shallow"), F::Depth32Float),
+        );
+        let mut errors = Vec::new();
+        check(&graph.build(), &mut errors);
+        assert_eq!(
+            errors[0],
+            GraphError::UnknownFormatFeature {
+                resource: "depth".into(),
+                condition: "shalow".into(),
+                feature: "shalow".into(),
+                declared: "shallow".into(),
+            }
+        );
+        assert_eq!(
+            errors[1].to_string(),
+            "\"depth\": conditional format depth32float is not the same kind of \
+             format as depth32float-stencil8 (aspects and sample type must agree, since \
+             passes are written for both)"
+        );
+        assert_eq!(errors.len(), 2);
+    }
+}
