@@ -1,6 +1,7 @@
 //! `rgraph explain --scene`: the plan specialised to a scene, what it drops and why, the
-//! depth format it picks, and the memory it saves against the plan for a scene using
-//! every feature. No GPU, but for one `--profile adapter` (lavapipe's formats).
+//! depth format it picks, the memory it saves against the plan for a scene using every
+//! feature, and the shader variants it builds. No GPU, but for one `--profile adapter`
+//! (lavapipe's formats).
 
 use std::process::{Command, Output};
 
@@ -62,6 +63,30 @@ fn a_lit_scene_keeps_the_general_plan() {
         stdout.contains("features ambient, directional_lights, lit, point_lights, shallow_depth\n")
     );
     assert!(stdout.contains("  passes: 11 instead of 11\n  memory: 576.0 KiB physical instead of 576.0 KiB (0 B saved, 0%)\n"), "{stdout}");
+}
+
+/// The shaders with feature-gated code, compiled for the scene's features only.
+#[test]
+fn a_scene_s_plan_lists_the_shader_variants_it_builds() {
+    let (code, stdout, _) = explain("builtin:spheres", "text");
+    assert_eq!(code, Some(0));
+    let expected = "\nshader variants built:\n\
+        \x20 gbuffer.wgsl {} instead of {textures, double_sided, emissive}: gbuffer\n\
+        \x20 light.wgsl {directional_lights, point_lights} instead of \
+        {directional_lights, point_lights, spot_lights}: light edges, light the rest\n";
+    assert!(
+        stdout.ends_with(expected),
+        "no {expected:?} at the end of:\n{stdout}"
+    );
+    // builtin:unlit has no lights: the light passes and their variant are dropped.
+    let (_, stdout, _) = explain("builtin:unlit", "text");
+    let expected = "\nshader variants built:\n\
+        \x20 gbuffer.wgsl {double_sided} instead of {textures, double_sided, emissive}: \
+        gbuffer (unlit)\n";
+    assert!(
+        stdout.ends_with(expected),
+        "no {expected:?} at the end of:\n{stdout}"
+    );
 }
 
 #[test]

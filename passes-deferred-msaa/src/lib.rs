@@ -31,6 +31,18 @@ pub use host::{Host, Overrides};
 
 /// Adds this crate's pass plugins to `registry`, so graph files can name them. With
 /// `host: None` the plugins declare and validate passes but draw nothing (see [`host`]).
+/// Shaders are compiled for the scene's features ([`analysis::Variant`]).
 pub fn register(registry: &mut Registry, host: Option<Arc<Host>>) {
-    plugins::register(registry, host);
+    register_with(registry, host, analysis::Variants::Scene);
+}
+
+/// [`register`], choosing which shader variants the plugins compile:
+/// [`Variants::General`](analysis::Variants::General) renders the same images with the
+/// general shaders, to check or compare specialisation against.
+pub fn register_with(
+    registry: &mut Registry,
+    host: Option<Arc<Host>>,
+    variants: analysis::Variants,
+) {
+    plugins::register(registry, host, variants);
 }

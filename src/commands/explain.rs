@@ -1,6 +1,8 @@
 //! `rgraph explain`: the compiled plan of a graph file, for people or tools, optionally
 //! specialised to a scene.
 
+mod variants;
+
 use std::path::Path;
 
 use graph_core::explain;
@@ -44,9 +46,10 @@ pub fn run(
                 pipeline,
             )?;
             print!(
-                "{}\n{text}\n{}",
+                "{}\n{text}\n{}\n{}",
                 describe(spec, analysis, &options),
-                explain::compare(&plan, &general, "a scene using every feature")
+                explain::compare(&plan, &general, "a scene using every feature"),
+                variants::text(&plan, &loaded, &analysis.features)
             );
         }
         _ => print!("{text}"),

@@ -17,6 +17,7 @@ use std::sync::Arc;
 use graph_core::file::{load_str, LoadedGraph, Registry};
 use graph_core::gpu::{read_rgba16f, read_rgba8, AdapterChoice, Executor, Gpu, Imports};
 use graph_core::{CompileOptions, Features, Plan};
+use passes_deferred_msaa::analysis::Variants;
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Host, Overrides};
 
@@ -42,6 +43,8 @@ pub struct Render<'a> {
     pub given_scene: Option<Scene>,
     /// The features the pipeline is compiled for (none by default).
     pub features: Features,
+    /// Which shader variants the plugins compile (the scene's by default).
+    pub variants: Variants,
 }
 
 /// An executed frame, whose exported textures can be read back.
@@ -82,6 +85,7 @@ impl<'a> Render<'a> {
             scene_edit: None,
             given_scene: None,
             features: Features::new(),
+            variants: Variants::Scene,
         }
     }
 
@@ -94,6 +98,12 @@ impl<'a> Render<'a> {
     /// Renders `scene` (built in code) instead of loading `self.scene`.
     pub fn with_scene(mut self, scene: Scene) -> Render<'a> {
         self.given_scene = Some(scene);
+        self
+    }
+
+    /// Compiles the shaders as `variants` says (`General`: whatever the scene).
+    pub fn variants(mut self, variants: Variants) -> Render<'a> {
+        self.variants = variants;
         self
     }
 
@@ -127,7 +137,7 @@ impl<'a> Render<'a> {
             overrides: self.overrides.clone(),
         };
         let mut registry = Registry::with_builtins();
-        passes_deferred_msaa::register(&mut registry, Some(Arc::new(host)));
+        passes_deferred_msaa::register_with(&mut registry, Some(Arc::new(host)), self.variants);
         let path = pipelines().join(self.pipeline);
         let mut text = std::fs::read_to_string(&path)
             .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));

@@ -1,7 +1,7 @@
 //! Declaring a checked, ordered graph file through the same [`GraphBuilder`] code uses:
 //! resources in file order, then each pass's plugin with the handles of its slots.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 use super::any_handle::AnyHandle;
 use super::conditions::FileConditions;
@@ -41,6 +41,7 @@ pub(super) fn declare<'f>(
     let declared = handles.clone();
     let mut spans = Spans::new(source, file);
     let mut errors = Vec::new();
+    let mut plugins = BTreeMap::new();
     for &p in order {
         let decl = &file.passes[p];
         // A pass whose inputs a failed pass should have written is skipped: the failure
@@ -64,6 +65,7 @@ pub(super) fn declare<'f>(
             errors.push(plugin_error(source, decl, error));
             continue;
         }
+        plugins.insert(name.to_owned(), decl.plugin.as_str().to_owned());
         let finished = slots.finish();
         for (slot, resource) in finished.unused {
             let kind = ErrorKind::UnusedSlot {
@@ -97,6 +99,7 @@ pub(super) fn declare<'f>(
                 .map(|(n, h)| (n.to_owned(), h))
                 .collect(),
         ),
+        plugins,
         spans,
     })
 }

@@ -18,6 +18,8 @@ pub struct LoadedGraph {
     pub graph: Graph,
     /// The handle each name in the file denotes.
     pub names: Names,
+    /// The plugin each declared pass names, by pass name.
+    pub(crate) plugins: BTreeMap<String, String>,
     pub(crate) spans: Spans,
 }
 
@@ -37,6 +39,12 @@ impl LoadedGraph {
         self.graph.compile_for(options, features).map_err(|errors| {
             FileErrors::sorted(errors.0.into_iter().map(|e| self.spans.locate(e)).collect())
         })
+    }
+
+    /// The plugin the file names for the pass called `pass` (a plan's passes carry
+    /// their names): what tools that know the plugins say about a plan's passes.
+    pub fn plugin(&self, pass: &str) -> Option<&str> {
+        self.plugins.get(pass).map(String::as_str)
     }
 
     /// The file's outputs, sorted: for each exported resource, the name of the version it
@@ -174,5 +182,12 @@ mod tests {
             "\"c\" is not an output of the graph (outputs: a, b)"
         );
         assert_eq!(loaded.outputs(), ["a", "b"]);
+    }
+
+    #[test]
+    fn each_pass_knows_its_plugin() {
+        let loaded = two_outputs();
+        assert_eq!(loaded.plugin("clear_a"), Some("clear"));
+        assert_eq!(loaded.plugin("present"), None);
     }
 }

@@ -52,12 +52,8 @@ impl Features {
             .filter_map(|m| scene.materials.get(m.material))
             .collect();
         let material = |has: fn(&Material) -> bool| drawn.iter().any(|m| has(m));
-        let light = |kind: fn(&LightKind) -> bool| {
-            scene.lights.iter().any(|l| {
-                let emits = l.intensity > 0.0 && l.color.iter().any(|&c| c > 0.0);
-                emits && kind(&l.kind)
-            })
-        };
+        let light =
+            |kind: fn(&LightKind) -> bool| scene.lights.iter().any(|l| l.emits() && kind(&l.kind));
         Features {
             point_lights: light(|k| matches!(k, LightKind::Point)),
             spot_lights: light(|k| matches!(k, LightKind::Spot { .. })),

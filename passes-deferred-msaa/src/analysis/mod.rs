@@ -2,15 +2,19 @@
 //! is uploaded. [`Features::of`] names the features graph-file conditions test (a
 //! pipeline compiled for them drops the passes and G-buffer channels the scene does not
 //! use, and `shallow_depth` picks the smaller depth format); [`DepthRange::of`] and
-//! [`SmallestFeature::of`] measure the depth and detail the scene puts on screen.
+//! [`SmallestFeature::of`] measure the depth and detail the scene puts on screen;
+//! [`shader_variants`] lists the shader variants a plan builds for a scene's features
+//! (only the code paths it uses, see [`Variant`]).
 
 mod depth;
 mod feature_size;
 mod features;
+mod variant;
 
 pub use depth::{DepthRange, SHALLOW_STEP};
 pub use feature_size::SmallestFeature;
 pub use features::Features;
+pub use variant::{shader_variants, Gate, GatedShader, ShaderVariant, Variant, Variants};
 
 use crate::scene::Scene;
 

@@ -6,6 +6,7 @@ use std::sync::Arc;
 use graph_core::gpu::RenderContext;
 
 use super::scene_draw::{self, SceneDraw, Stages};
+use crate::analysis::GatedShader;
 use crate::gpu_scene::SceneCache;
 use crate::plugins::forward::{ForwardDraw, Shading};
 
@@ -19,6 +20,7 @@ pub(crate) fn record(
     };
     let draw = SceneDraw {
         label: "forward",
+        shader: GatedShader::Forward,
         source: draw.source,
         depth_rule: draw.depth_rule,
         targets: vec![draw.hdr],

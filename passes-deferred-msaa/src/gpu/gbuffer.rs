@@ -6,6 +6,7 @@ use std::sync::Arc;
 use graph_core::gpu::RenderContext;
 
 use super::scene_draw::{self, SceneDraw, Stages};
+use crate::analysis::GatedShader;
 use crate::gpu_scene::SceneCache;
 use crate::plugins::gbuffer::GBufferDraw;
 
@@ -15,6 +16,7 @@ pub(crate) fn record(
 ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
     let draw = SceneDraw {
         label: "gbuffer",
+        shader: GatedShader::GBuffer,
         source: draw.source,
         depth_rule: draw.depth_rule,
         targets: draw.targets,

@@ -1,12 +1,19 @@
 //! Recording a light pass: the full-screen draw for directional lights and ambient, then
 //! each point or spot light's volume, once (per pixel or `sample_index`) or once per
 //! sample with the multisample mask (`sample_mask`).
+//!
+//! Pipelines are made on first use, so a pass builds the full-screen one only when some
+//! directional light emits or there is ambient, and volume ones only when a point or
+//! spot light does ([`GpuScene::has_fullscreen_lights`], [`GpuScene::volume_lights`]);
+//! each is compiled for the scene's light kinds (its shader variant, analysis/variant.rs),
+//! which the key holds.
 
 use std::sync::Arc;
 
 use graph_core::gpu::RenderContext;
 
 use super::{additive, PipelineDesc, Pipelines, TextureBindings, EDGE_STENCIL};
+use crate::analysis::{GatedShader, Variant};
 use crate::gpu_scene::{volumes, GpuScene, SceneCache};
 use crate::plugins::depth::far_depth;
 use crate::plugins::light::{EdgeMode, Frequency, LightDraw, PixelSamples};
@@ -33,6 +40,7 @@ struct Key {
     geometry: Geometry,
     /// `sample_mask` mode: the one sample the pipeline shades and writes.
     sample: Option<u32>,
+    variant: Variant,
 }
 
 struct State {
@@ -83,6 +91,7 @@ pub(crate) fn record(
             .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
         ctx.pass.set_stencil_reference(EDGE_STENCIL);
         let (module, layout) = (&state.module, &state.layout);
+        let variant = scenes.variant(GatedShader::Light);
         let mut use_pipeline = |pass: &mut wgpu::RenderPass<'_>, geometry, sample| {
             let key = Key {
                 hdr: hdr.format,
@@ -90,12 +99,14 @@ pub(crate) fn record(
                 samples: hdr.samples,
                 geometry,
                 sample,
+                variant: variant.clone(),
             };
             let pipeline = state.pipelines.get(key, |key| {
-                let constants = [
+                let mut constants = vec![
                     ("FAR_DEPTH", f64::from(far_depth(convention))),
                     ("SAMPLE", f64::from(key.sample.unwrap_or(0))),
                 ];
+                constants.extend(key.variant.constants());
                 let volume_buffers = [Some(volumes::VERTEX_LAYOUT)];
                 PipelineDesc {
                     label: "light",

@@ -1,7 +1,8 @@
 //! Recording a pass that draws the scene's meshes (the G-buffer and forward passes): one
 //! draw per mesh, with a pipeline per material state (culling, alpha mask) and
 //! attachment formats. The two passes differ only in shader, color targets and the entry
-//! points and constants a material state takes.
+//! points and constants a material state takes. Pipelines are compiled for the scene's
+//! shader variant (analysis/variant.rs), which their key holds.
 
 use std::sync::Arc;
 
@@ -9,6 +10,7 @@ use graph_core::gpu::RenderContext;
 use graph_core::TextureHandle;
 
 use super::{PipelineDesc, Pipelines};
+use crate::analysis::{GatedShader, Variant};
 use crate::gpu_scene::{mesh, GpuScene, MaterialState, SceneCache};
 use crate::plugins::depth::DepthRule;
 use crate::scene::DepthConvention;
@@ -24,6 +26,7 @@ pub(crate) struct Stages {
 /// One scene-drawing pass.
 pub(crate) struct SceneDraw {
     pub label: &'static str,
+    pub shader: GatedShader,
     pub source: String,
     /// Resolved against the depth attachment's format when recording.
     pub depth_rule: DepthRule,
@@ -39,6 +42,7 @@ struct Key {
     depth: wgpu::TextureFormat,
     samples: u32,
     material: MaterialState,
+    variant: Variant,
 }
 
 struct State {
@@ -75,6 +79,7 @@ pub(crate) fn record(
             });
         }
         let Some(state) = state.as_mut() else { return };
+        let variant = scenes.variant(draw.shader);
         let depth = resources.shape(draw.depth);
         let targets: Vec<wgpu::TextureFormat> = draw
             .targets
@@ -90,12 +95,15 @@ pub(crate) fn record(
                 depth: depth.format,
                 samples: depth.samples,
                 material,
+                variant: variant.clone(),
             };
             let (module, layout) = (&state.module, &state.layout);
             let pipeline = state.pipelines.get(key, |key| {
                 let targets: Vec<Option<wgpu::ColorTargetState>> =
                     key.targets.iter().map(|&f| Some(f.into())).collect();
                 let stages = (draw.stages)(key.material);
+                let mut constants = stages.constants;
+                constants.extend(key.variant.constants());
                 PipelineDesc {
                     label: draw.label,
                     layout,
@@ -103,7 +111,7 @@ pub(crate) fn record(
                     vertex: stages.vertex,
                     buffers: &[Some(mesh::VERTEX_LAYOUT)],
                     fragment: stages.fragment,
-                    constants: &stages.constants,
+                    constants: &constants,
                     targets: &targets,
                     cull: (!key.material.double_sided).then_some(wgpu::Face::Back),
                     depth_stencil: Some(depth_test(key.depth, convention)),

@@ -56,8 +56,9 @@ pub struct VolumeLight {
 pub(super) struct LightBuffers {
     pub data: wgpu::Buffer,
     pub info: wgpu::Buffer,
-    pub directional_count: u32,
-    pub ambient: bool,
+    /// Some directional light emits, or the ambient term is nonzero: the full-screen
+    /// light draw adds something.
+    pub fullscreen: bool,
     pub volumes: Vec<VolumeLight>,
 }
 
@@ -140,8 +141,8 @@ impl LightBuffers {
                 bytemuck::bytes_of(&info),
                 wgpu::BufferUsages::UNIFORM,
             ),
-            directional_count: info.directional_count,
-            ambient: scene.ambient.iter().any(|&c| c > 0.0),
+            fullscreen: directional.iter().any(|l| l.emits())
+                || scene.ambient.iter().any(|&c| c > 0.0),
             volumes,
         }
     }
@@ -168,7 +169,13 @@ fn light_data(light: &Light, kind: u32, volume: DMat4, eye: DVec3) -> LightData 
             .unwrap_or(0.0),
         direction: light.direction.normalize_or_zero().to_array(),
         kind,
-        radiance: light.color.map(|c| c * light.intensity.max(0.0)),
+        // A light that emits nothing adds exactly nothing (not, through a negative
+        // color, something negative): the shader variants of scenes without its kind
+        // compile its code out (analysis/variant.rs), and the volumes skip it.
+        radiance: match light.emits() {
+            true => light.color.map(|c| c * light.intensity),
+            false => [0.0; 3],
+        },
         spot_scale,
         spot_offset,
         _pad: [0.0; 3],

@@ -31,23 +31,35 @@ pub use materials::MaterialState;
 pub use mesh::MeshDraw;
 pub use volumes::{VolumeMesh, VolumeShape};
 
+use crate::analysis::{Features, GatedShader, Variant, Variants};
 use crate::host::Host;
 use crate::scene::{DepthConvention, Scene};
 
 /// Uploads of one host's scene, one per device, made on first use.
 pub struct SceneCache {
     host: Option<Arc<Host>>,
+    features: Features,
     uploaded: Mutex<Vec<(wgpu::Device, Arc<GpuScene>)>>,
 }
 
 impl SceneCache {
-    /// A cache for `host`'s scene; without a host, [`get`](Self::get) returns `None` and
-    /// plugins draw nothing.
-    pub fn new(host: Option<Arc<Host>>) -> SceneCache {
+    /// A cache for `host`'s scene, whose shaders compile as `variants` says; without a
+    /// host, [`get`](Self::get) returns `None` and plugins draw nothing.
+    pub fn new(host: Option<Arc<Host>>, variants: Variants) -> SceneCache {
+        let features = host
+            .as_ref()
+            .map_or_else(Features::general, |h| variants.features(&h.scene));
         SceneCache {
             host,
+            features,
             uploaded: Mutex::new(Vec::new()),
         }
+    }
+
+    /// The variant of `shader` that draws the scene: the code its features need (every
+    /// feature's with [`Variants::General`]). A pipeline key part.
+    pub fn variant(&self, shader: GatedShader) -> Variant {
+        Variant::of(shader, &self.features)
     }
 
     /// The scene on `device`, uploaded through `queue` the first time.
@@ -171,12 +183,15 @@ impl GpuScene {
         }
     }
 
-    /// Whether a full-screen light draw has anything to add: directional lights or ambient.
+    /// Whether a full-screen light draw has anything to add: a directional light that
+    /// emits, or ambient. Without one the light passes build no full-screen pipeline.
     pub fn has_fullscreen_lights(&self) -> bool {
-        self.lights.directional_count > 0 || self.lights.ambient
+        self.lights.fullscreen
     }
 
-    /// Point and spot lights, each with the instance index its volume is drawn with.
+    /// Point and spot lights that reach something (so emit), each with the instance
+    /// index its volume is drawn with. The light passes build volume pipelines only
+    /// when there are some.
     pub fn volume_lights(&self) -> &[VolumeLight] {
         &self.lights.volumes
     }

@@ -33,6 +33,7 @@ use std::sync::Arc;
 use graph_core::file::Registry;
 use graph_core::PassBuilder;
 
+use crate::analysis::Variants;
 use crate::host::{Host, Overrides};
 
 pub use debug_view::{DebugView, DebugViewParams, View};
@@ -56,14 +57,15 @@ pub(crate) struct Shared {
 }
 
 impl Shared {
-    fn new(host: Option<Arc<Host>>) -> Shared {
+    #[cfg_attr(not(feature = "gpu"), allow(unused_variables))]
+    fn new(host: Option<Arc<Host>>, variants: Variants) -> Shared {
         Shared {
             overrides: host
                 .as_ref()
                 .map(|h| h.overrides.clone())
                 .unwrap_or_default(),
             #[cfg(feature = "gpu")]
-            scenes: Arc::new(crate::gpu_scene::SceneCache::new(host)),
+            scenes: Arc::new(crate::gpu_scene::SceneCache::new(host, variants)),
         }
     }
 
@@ -86,9 +88,9 @@ pub(crate) trait Recording: 'static {
     ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)>;
 }
 
-/// Adds every deferred plugin, sharing `host`.
-pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>) {
-    let shared = Shared::new(host);
+/// Adds every deferred plugin, sharing `host`, compiling shaders as `variants` says.
+pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variants: Variants) {
+    let shared = Shared::new(host, variants);
     registry
         .register(GBuffer(shared.clone()))
         .register(EdgeStencil(shared.clone()))

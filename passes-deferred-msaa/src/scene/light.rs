@@ -58,6 +58,12 @@ pub enum LightVolume {
 }
 
 impl Light {
+    /// Whether the light adds anything: positive intensity and some positive color
+    /// channel. Scene analysis counts only these, and the light passes draw only these.
+    pub fn emits(&self) -> bool {
+        self.intensity > 0.0 && self.color.iter().any(|&c| c > 0.0)
+    }
+
     /// Distance beyond which a point or spot light is ignored; `None` for directional lights.
     ///
     /// Without falloff windowing, illuminance at distance `d` is `intensity * max(color) / d²`;

@@ -32,10 +32,21 @@ fn brdf_times_cosine(s: Surface, l: vec3<f32>) -> vec3<f32> {
     return (diffuse + distribution * visibility * fresnel) * n_l;
 }
 
+// Which light kinds the scene has (analysis/variant.rs): a pipeline for a scene without
+// a kind sets its constant false and the driver compiles that kind's code out. A light
+// of an absent kind emits nothing (zero radiance), so it adds zero through either code.
+// The defaults are the general shader.
+override DIRECTIONAL_LIGHTS: bool = true;
+override POINT_LIGHTS: bool = true;
+override SPOT_LIGHTS: bool = true;
+
 // Radiance arriving from `light` at the surface, times the BRDF and cosine.
 fn shade_light(s: Surface, light: LightData) -> vec3<f32> {
-    if light.kind == LIGHT_DIRECTIONAL {
+    if DIRECTIONAL_LIGHTS && light.kind == LIGHT_DIRECTIONAL {
         return brdf_times_cosine(s, -light.direction) * light.radiance;
+    }
+    if !(POINT_LIGHTS || SPOT_LIGHTS) {
+        return vec3<f32>(0.0);
     }
     let to_light = light.position - s.position;
     let distance2 = max(dot(to_light, to_light), 1e-8);
@@ -45,7 +56,7 @@ fn shade_light(s: Surface, light: LightData) -> vec3<f32> {
     let ratio = distance / max(light.range, 1e-20);
     let window = clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
     var attenuation = window * window / distance2;
-    if light.kind == LIGHT_SPOT {
+    if SPOT_LIGHTS && light.kind == LIGHT_SPOT {
         let cone = clamp(dot(light.direction, -l) * light.spot_scale + light.spot_offset, 0.0, 1.0);
         attenuation *= cone * cone;
     }

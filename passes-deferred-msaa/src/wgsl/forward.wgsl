@@ -10,6 +10,11 @@
 
 // Alpha MASK materials: discard below the cutoff (one pipeline per material state).
 override MASKED: bool = false;
+// Which material features the scene has, as in gbuffer.wgsl (analysis/variant.rs);
+// the light kinds are brdf.wgsl's. The defaults are the general shader.
+override TEXTURES: bool = true;
+override DOUBLE_SIDED: bool = true;
+override EMISSIVE: bool = true;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -66,16 +71,22 @@ fn vs_sample(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> SampleVar
 
 fn shade(a: Attributes, front: bool) -> vec4<f32> {
     let material = materials[a.material];
-    let base = material.base_color * textureSample(base_color_tex, base_color_sampler, a.uv);
+    var base = material.base_color;
+    if TEXTURES {
+        base *= textureSample(base_color_tex, base_color_sampler, a.uv);
+    }
     if MASKED && base.a < material.alpha_cutoff {
         discard;
     }
-    var color = material.emission;
+    var color = vec3<f32>(0.0);
+    if EMISSIVE {
+        color = material.emission;
+    }
     if (material.flags & FLAG_UNLIT) != 0u {
         color += base.rgb;
     } else {
         // Back faces reach here only for double-sided materials: light their other side.
-        let n = unit_normal(select(-a.normal, a.normal, front));
+        let n = unit_normal(select(-a.normal, a.normal, front || !DOUBLE_SIDED));
         let s = Surface(a.position, n, safe_normalize(-a.position), base.rgb, material.metallic, material.roughness);
         color += light_info.ambient * base.rgb;
         for (var i = 0u; i < light_info.light_count; i++) {

@@ -8,6 +8,14 @@
 @group(1) @binding(0) var base_color_tex: texture_2d<f32>;
 @group(1) @binding(1) var base_color_sampler: sampler;
 
+// Which material features the scene has (analysis/variant.rs); the defaults are the
+// general shader. Without textures every material's is white, without double-sided
+// materials back faces are culled, without emission it is zero: the gated code would
+// change nothing.
+override TEXTURES: bool = true;
+override DOUBLE_SIDED: bool = true;
+override EMISSIVE: bool = true;
+
 struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
@@ -54,13 +62,17 @@ fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
 }
 
 fn base_color(in: Varyings) -> vec4<f32> {
-    return materials[in.material].base_color * textureSample(base_color_tex, base_color_sampler, in.uv);
+    var base = materials[in.material].base_color;
+    if TEXTURES {
+        base *= textureSample(base_color_tex, base_color_sampler, in.uv);
+    }
+    return base;
 }
 
 fn surface(in: Varyings, base: vec4<f32>, front: bool, coverage: u32) -> GBuffer {
     let material = materials[in.material];
     // Back faces reach here only for double-sided materials: light their other side.
-    let n = unit_normal(select(-in.normal, in.normal, front));
+    let n = unit_normal(select(-in.normal, in.normal, front || !DOUBLE_SIDED));
     var edge = 0u;
     if any(in.at_centroid != in.at_center) {
         edge |= EDGE_CENTROID;
@@ -74,7 +86,11 @@ fn surface(in: Varyings, base: vec4<f32>, front: bool, coverage: u32) -> GBuffer
     out.normal = vec4<f32>(oct_encode(n), 0.0, 0.0);
     out.material = vec4<f32>(material.metallic, material.roughness, f32(material.flags), f32(edge)) / vec4<f32>(1.0, 1.0, 255.0, 255.0);
     out.view_depth = vec4<f32>(in.view_depth, 0.0, 0.0, 0.0);
-    let emitted = select(material.emission, base.rgb + material.emission, unlit);
+    var emission = vec3<f32>(0.0);
+    if EMISSIVE {
+        emission = material.emission;
+    }
+    let emitted = select(emission, base.rgb + emission, unlit);
     out.hdr = vec4<f32>(min(emitted, vec3<f32>(HALF_MAX)), 1.0);
     return out;
 }

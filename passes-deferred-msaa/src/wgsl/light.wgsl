@@ -47,8 +47,12 @@ fn shade_sample(pixel: vec2<i32>, s: u32, p: vec3<f32>, light: u32) -> vec4<f32>
     var color = vec3<f32>(0.0);
     if light == ALL_DIRECTIONAL {
         color = light_info.ambient * g.albedo;
-        for (var i = 0u; i < light_info.directional_count; i++) {
-            color += shade_light(surface, lights[i]);
+        // brdf.wgsl's DIRECTIONAL_LIGHTS: without directional lights that emit, the
+        // loop would add zeros.
+        if DIRECTIONAL_LIGHTS {
+            for (var i = 0u; i < light_info.directional_count; i++) {
+                color += shade_light(surface, lights[i]);
+            }
         }
     } else {
         color = shade_light(surface, lights[light]);

@@ -1,0 +1,289 @@
+//! Shader variants: which of a shader's feature-gated code paths a scene needs.
+//!
+//! The G-buffer, light and forward shaders gate the code of scene features behind WGSL
+//! `override` bool constants (`override SPOT_LIGHTS: bool = true;`). Their pipelines
+//! set each constant to whether the scene uses the feature, so the driver compiles out
+//! what the scene lacks; the defaults (all true) are the general shader. A gated path is
+//! one a scene without the feature never takes, or takes with no effect (a light that
+//! emits nothing adds exactly zero, an absent texture is white, an absent emission is
+//! zero), so the variant renders the scene bit-identically to the general shader
+//! (tests/specialise_variants.rs checks it).
+//!
+//! Alpha MASK is not a gate: masked materials already draw through a pipeline (and, in
+//! the G-buffer pass, an entry point) of their own, built only when a mesh uses one. The
+//! other deferred shaders (edge, resolve, tone mapping, debug views) gate nothing.
+
+use std::fmt;
+
+use super::Features;
+use crate::scene::Scene;
+
+/// A scene feature whose code a shader can compile out.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Gate {
+    DirectionalLights,
+    PointLights,
+    SpotLights,
+    /// Sampling the base-color texture (without one a material's texture is white).
+    Textures,
+    /// Flipping back faces' normals (without double-sided materials back faces are
+    /// culled).
+    DoubleSided,
+    /// Adding material emission (zero for materials that do not emit).
+    Emissive,
+}
+
+impl Gate {
+    /// The feature's name, as [`Features::names`] spells it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Gate::DirectionalLights => "directional_lights",
+            Gate::PointLights => "point_lights",
+            Gate::SpotLights => "spot_lights",
+            Gate::Textures => "textures",
+            Gate::DoubleSided => "double_sided",
+            Gate::Emissive => "emissive",
+        }
+    }
+
+    /// The WGSL `override` that gates the feature's code.
+    pub fn constant(self) -> &'static str {
+        match self {
+            Gate::DirectionalLights => "DIRECTIONAL_LIGHTS",
+            Gate::PointLights => "POINT_LIGHTS",
+            Gate::SpotLights => "SPOT_LIGHTS",
+            Gate::Textures => "TEXTURES",
+            Gate::DoubleSided => "DOUBLE_SIDED",
+            Gate::Emissive => "EMISSIVE",
+        }
+    }
+
+    /// Whether `features` use it.
+    pub fn used_by(self, features: &Features) -> bool {
+        match self {
+            Gate::DirectionalLights => features.directional_lights,
+            Gate::PointLights => features.point_lights,
+            Gate::SpotLights => features.spot_lights,
+            Gate::Textures => features.textures,
+            Gate::DoubleSided => features.double_sided,
+            Gate::Emissive => features.emissive,
+        }
+    }
+}
+
+/// The shaders with gated code.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum GatedShader {
+    /// gbuffer.wgsl, of the `gbuffer` plugin.
+    GBuffer,
+    /// light.wgsl, of `light_edge` and `light_nonedge`.
+    Light,
+    /// forward.wgsl, of `forward`.
+    Forward,
+}
+
+impl GatedShader {
+    /// The shader a pass of `plugin` runs, if it has gated code.
+    pub fn of_plugin(plugin: &str) -> Option<GatedShader> {
+        match plugin {
+            "gbuffer" => Some(GatedShader::GBuffer),
+            "light_edge" | "light_nonedge" => Some(GatedShader::Light),
+            "forward" => Some(GatedShader::Forward),
+            _ => None,
+        }
+    }
+
+    pub fn file(self) -> &'static str {
+        match self {
+            GatedShader::GBuffer => "gbuffer.wgsl",
+            GatedShader::Light => "light.wgsl",
+            GatedShader::Forward => "forward.wgsl",
+        }
+    }
+
+    /// The gates the shader's code has (brdf.wgsl's light kinds in the shaders that
+    /// light).
+    pub fn gates(self) -> &'static [Gate] {
+        use Gate::*;
+        match self {
+            GatedShader::GBuffer => &[Textures, DoubleSided, Emissive],
+            GatedShader::Light => &[DirectionalLights, PointLights, SpotLights],
+            GatedShader::Forward => &[
+                DirectionalLights,
+                PointLights,
+                SpotLights,
+                Textures,
+                DoubleSided,
+                Emissive,
+            ],
+        }
+    }
+}
+
+/// One shader compiled with the code of some of its gates: a pipeline-cache key part.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Variant {
+    pub shader: GatedShader,
+    /// The gates whose code is compiled in, in [`GatedShader::gates`] order.
+    pub compiled: Vec<Gate>,
+}
+
+impl Variant {
+    /// The variant for a scene with `features`.
+    pub fn of(shader: GatedShader, features: &Features) -> Variant {
+        Variant {
+            shader,
+            compiled: shader
+                .gates()
+                .iter()
+                .copied()
+                .filter(|g| g.used_by(features))
+                .collect(),
+        }
+    }
+
+    /// Every gate compiled in: what the shader is without specialisation.
+    pub fn general(shader: GatedShader) -> Variant {
+        Variant::of(shader, &Features::general())
+    }
+
+    pub fn is_general(&self) -> bool {
+        self.compiled.len() == self.shader.gates().len()
+    }
+
+    /// The pipeline-overridable constants that select it, one per gate (1 compiled in,
+    /// 0 compiled out).
+    pub fn constants(&self) -> Vec<(&'static str, f64)> {
+        self.shader
+            .gates()
+            .iter()
+            .map(|g| (g.constant(), f64::from(u8::from(self.compiled.contains(g)))))
+            .collect()
+    }
+
+    /// The compiled-in gates by feature name: `{point_lights, spot_lights}`.
+    pub fn feature_list(&self) -> String {
+        let names: Vec<&str> = self.compiled.iter().map(|g| g.name()).collect();
+        format!("{{{}}}", names.join(", "))
+    }
+}
+
+/// `light.wgsl {point_lights, spot_lights}`.
+impl fmt::Display for Variant {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} {}", self.shader.file(), self.feature_list())
+    }
+}
+
+/// Which variants the deferred plugins compile (see [`crate::register_with`]).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Variants {
+    /// The scene's: only the gated code its features need.
+    #[default]
+    Scene,
+    /// The general shaders, whatever the scene: the same images, compiled for more
+    /// (for checking that specialising changes no pixel, and for comparing).
+    General,
+}
+
+impl Variants {
+    /// The features shaders are compiled for when drawing `scene`.
+    pub fn features(self, scene: &Scene) -> Features {
+        match self {
+            Variants::Scene => Features::of(scene),
+            Variants::General => Features::general(),
+        }
+    }
+}
+
+/// A variant a plan builds, and the passes that use it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ShaderVariant {
+    pub variant: Variant,
+    /// In plan order.
+    pub passes: Vec<String>,
+}
+
+/// Which shader variants executing a plan builds for a scene with `features`, given the
+/// plan's passes in order as `(pass name, plugin name)`: one per gated shader that some
+/// pass runs, in order of first use. Needs no GPU (`rgraph explain` shows it).
+pub fn shader_variants(features: &Features, passes: &[(&str, &str)]) -> Vec<ShaderVariant> {
+    let mut variants: Vec<ShaderVariant> = Vec::new();
+    for &(pass, plugin) in passes {
+        let Some(shader) = GatedShader::of_plugin(plugin) else {
+            continue;
+        };
+        match variants.iter_mut().find(|v| v.variant.shader == shader) {
+            Some(used) => used.passes.push(pass.to_owned()),
+            None => variants.push(ShaderVariant {
+                variant: Variant::of(shader, features),
+                passes: vec![pass.to_owned()],
+            }),
+        }
+    }
+    variants
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_general_variant_sets_every_constant() {
+        let general = Variant::general(GatedShader::Forward);
+        assert!(general.is_general());
+        assert!(general.constants().iter().all(|&(_, v)| v == 1.0));
+        assert_eq!(general.constants().len(), 6);
+    }
+
+    #[test]
+    fn a_variant_names_its_compiled_features_and_zeroes_the_rest() {
+        let features = Features {
+            point_lights: true,
+            spot_lights: true,
+            ..Features::default()
+        };
+        let light = Variant::of(GatedShader::Light, &features);
+        assert_eq!(light.to_string(), "light.wgsl {point_lights, spot_lights}");
+        assert_eq!(
+            light.constants(),
+            [
+                ("DIRECTIONAL_LIGHTS", 0.0),
+                ("POINT_LIGHTS", 1.0),
+                ("SPOT_LIGHTS", 1.0)
+            ]
+        );
+        let gbuffer = Variant::of(GatedShader::GBuffer, &features);
+        assert_eq!(gbuffer.to_string(), "gbuffer.wgsl {}");
+        assert!(!gbuffer.is_general());
+    }
+
+    #[test]
+    fn passes_of_one_shader_share_its_variant() {
+        let passes = [
+            ("gbuffer", "gbuffer"),
+            ("edges", "edge_stencil"),
+            ("light edges", "light_edge"),
+            ("light the rest", "light_nonedge"),
+            ("resolve", "resolve"),
+        ];
+        let variants = shader_variants(&Features::general(), &passes);
+        let shown: Vec<(String, Vec<String>)> = variants
+            .iter()
+            .map(|v| (v.variant.to_string(), v.passes.clone()))
+            .collect();
+        assert_eq!(
+            shown,
+            [
+                (
+                    "gbuffer.wgsl {textures, double_sided, emissive}".to_owned(),
+                    vec!["gbuffer".to_owned()]
+                ),
+                (
+                    "light.wgsl {directional_lights, point_lights, spot_lights}".to_owned(),
+                    vec!["light edges".to_owned(), "light the rest".to_owned()]
+                ),
+            ]
+        );
+    }
+}
