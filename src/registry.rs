@@ -3,16 +3,18 @@
 use std::sync::Arc;
 
 use graph_core::file::Registry;
+use passes_deferred_msaa::analysis::Variants;
 use passes_deferred_msaa::Host;
 
 /// For commands that only declare and compile: the deferred plugins draw nothing.
 pub fn registry() -> Registry {
-    registry_for(None)
+    registry_for(None, Variants::Scene)
 }
 
-/// With a host, the deferred plugins draw its scene with its overrides.
-pub fn registry_for(host: Option<Arc<Host>>) -> Registry {
+/// With a host, the deferred plugins draw its scene with its overrides, compiling the
+/// shader `variants`.
+pub fn registry_for(host: Option<Arc<Host>>, variants: Variants) -> Registry {
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, host);
+    passes_deferred_msaa::register_with(&mut registry, host, variants);
     registry
 }

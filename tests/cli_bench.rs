@@ -393,6 +393,7 @@ fn a_specialised_plan_is_measured_beside_the_general_one() {
         special,
         &[
             ("features", "array"),
+            ("shader_variants", "array"),
             ("passes", "number"),
             ("general_passes", "number"),
             ("general_memory", "object"),
@@ -421,7 +422,7 @@ fn a_specialised_plan_is_measured_beside_the_general_one() {
     assert_eq!(number(figures, "memory.gbuffer_bytes_per_sample"), 20.0);
     let table = std::fs::read_to_string(dir.path().join("results.md")).unwrap();
     assert!(
-        table.contains("| deferred_noaa | no_lights, shallow_depth, unlit_only | 3 → 2 |"),
+        table.contains("| deferred_noaa | no_lights, shallow_depth, unlit_only | gbuffer.wgsl {double_sided} | 3 → 2 |"),
         "{table}"
     );
 }

@@ -18,7 +18,7 @@ use passes_deferred_msaa::Overrides;
 
 use super::CommandError;
 use crate::cli::RenderArgs;
-use crate::frame::{host, FrameError, Pipeline, Session};
+use crate::frame::{host, FrameError, Pipeline, Session, Specialise};
 use error::RenderError;
 use progress::Progress;
 
@@ -42,11 +42,13 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
 
     progress.stage(format!("load pipeline {}", args.pipeline.display()));
     let output = view::output_name(&args.view);
-    let mut pipeline = Pipeline::load(&args.pipeline, host(scene, overrides), &[&output])
+    let specialise = match args.no_specialise {
+        true => Specialise::General,
+        false => Specialise::ToScene,
+    };
+    let host = host(scene, overrides);
+    let pipeline = Pipeline::load(&args.pipeline, host, &[&output], specialise)
         .map_err(|e| view::unknown(e, &args.view))?;
-    if args.no_specialise {
-        pipeline = pipeline.unspecialised();
-    }
 
     let choice = AdapterChoice::resolve(args.adapter.as_deref());
     progress.stage(format!("open device ({choice})"));

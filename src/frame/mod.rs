@@ -11,6 +11,6 @@ mod prepared;
 mod session;
 
 pub use error::FrameError;
-pub use pipeline::{host, Pipeline};
+pub use pipeline::{host, Pipeline, Specialise};
 pub use prepared::Prepared;
 pub use session::Session;

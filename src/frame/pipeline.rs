@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use graph_core::file::{load_file, load_str, ErrorKind, FileErrors, LoadedGraph};
 use graph_core::Features;
-use passes_deferred_msaa::analysis::Features as SceneFeatures;
+use passes_deferred_msaa::analysis::{Features as SceneFeatures, Variants};
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Host, Overrides};
 
@@ -30,13 +30,42 @@ pub struct Pipeline {
     pub offered: Vec<String>,
     /// What [`Session::prepare`](super::Session::prepare) compiles for.
     pub features: Features,
+    /// What the deferred plugins compile their shader variants for.
+    pub shader_features: SceneFeatures,
+}
+
+/// What a pipeline is compiled for.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Specialise {
+    /// The scene's features: the file's conditions drop what the scene does not use,
+    /// and the shaders are the scene's variants.
+    ToScene,
+    /// A scene using every feature, with the general shaders: the file's general
+    /// pipeline, which measures what specialising saves (and shows a view the scene's
+    /// plan drops).
+    General,
+}
+
+impl Specialise {
+    fn variants(self) -> Variants {
+        match self {
+            Specialise::ToScene => Variants::Scene,
+            Specialise::General => Variants::General,
+        }
+    }
 }
 
 impl Pipeline {
     /// Loads `path` with the plugins drawing `host`'s scene.
-    pub fn load(path: &Path, host: Arc<Host>, outputs: &[&str]) -> Result<Self, FrameError> {
-        let features = SceneFeatures::of(&host.scene).names();
-        let loaded = load_file(path, &registry_for(Some(host))).map_err(|e| file_error(path, e))?;
+    pub fn load(
+        path: &Path,
+        host: Arc<Host>,
+        outputs: &[&str],
+        specialise: Specialise,
+    ) -> Result<Self, FrameError> {
+        let features = specialise.variants().features(&host.scene);
+        let registry = registry_for(Some(host), specialise.variants());
+        let loaded = load_file(path, &registry).map_err(|e| file_error(path, e))?;
         Self::keep(path, loaded, outputs, features)
     }
 
@@ -47,25 +76,19 @@ impl Pipeline {
         text: &str,
         host: Arc<Host>,
         outputs: &[&str],
+        specialise: Specialise,
     ) -> Result<Self, FrameError> {
-        let features = SceneFeatures::of(&host.scene).names();
-        let loaded =
-            load_str(path, text, &registry_for(Some(host))).map_err(FrameError::Pipeline)?;
+        let features = specialise.variants().features(&host.scene);
+        let registry = registry_for(Some(host), specialise.variants());
+        let loaded = load_str(path, text, &registry).map_err(FrameError::Pipeline)?;
         Self::keep(path, loaded, outputs, features)
-    }
-
-    /// Compiles as for a scene using every feature: the file's general pipeline, which
-    /// measures what specialising saves (and shows a view the scene's plan drops).
-    pub fn unspecialised(mut self) -> Self {
-        self.features = SceneFeatures::general().names();
-        self
     }
 
     fn keep(
         path: &Path,
         mut loaded: LoadedGraph,
         outputs: &[&str],
-        features: Features,
+        shader_features: SceneFeatures,
     ) -> Result<Self, FrameError> {
         let offered = loaded.outputs().iter().map(|o| o.to_string()).collect();
         loaded
@@ -79,7 +102,8 @@ impl Pipeline {
             loaded,
             outputs: outputs.iter().map(|o| o.to_string()).collect(),
             offered,
-            features,
+            features: shader_features.names(),
+            shader_features,
         })
     }
 }

@@ -7,7 +7,7 @@ use graph_core::file::load_file;
 use passes_deferred_msaa::scene::{builtin_names, BUILTIN_PREFIX};
 use passes_deferred_msaa::Host;
 
-use crate::frame::{FrameError, Pipeline};
+use crate::frame::{FrameError, Pipeline, Specialise};
 use crate::registry::registry;
 
 /// The directory the default pipelines come from.
@@ -39,10 +39,15 @@ impl Candidate {
         stem(&self.path)
     }
 
-    pub fn load(&self, host: Arc<Host>, outputs: &[&str]) -> Result<Pipeline, FrameError> {
+    pub fn load(
+        &self,
+        host: Arc<Host>,
+        outputs: &[&str],
+        specialise: Specialise,
+    ) -> Result<Pipeline, FrameError> {
         match &self.text {
-            Some(text) => Pipeline::from_text(&self.path, text, host, outputs),
-            None => Pipeline::load(&self.path, host, outputs),
+            Some(text) => Pipeline::from_text(&self.path, text, host, outputs, specialise),
+            None => Pipeline::load(&self.path, host, outputs, specialise),
         }
     }
 }

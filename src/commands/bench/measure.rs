@@ -13,7 +13,7 @@ use super::results::{Figures, PassFigures};
 use super::specialisation::{PlanShape, Specialisation};
 use super::stats::Spread;
 use super::work::{edge_share, sampling, Work, EDGES_OUTPUT};
-use crate::frame::{FrameError, Prepared, Session};
+use crate::frame::{FrameError, Prepared, Session, Specialise};
 
 /// What every measurement of one run shares.
 pub struct Setup<'a> {
@@ -36,14 +36,14 @@ impl Setup<'_> {
     /// scene, and as compiled for every feature when that plan differs; then renders its
     /// "debug.edges", when it has one, in another graph of the same size.
     pub fn measure(&self, candidate: &Candidate, host: &Arc<Host>) -> Result<Measured, FrameError> {
-        let pipeline = candidate.load(host.clone(), &[COLOR])?;
+        let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::ToScene)?;
         let has_edges = pipeline.offered.iter().any(|o| o == EDGES_OUTPUT);
         let mut prepared = self.session.prepare(pipeline, self.size)?;
         let reports = self.time(&mut prepared)?;
         let color = prepared.read(COLOR)?;
         let (samples, supersampling) = sampling(&prepared.plan);
         let memory = Memory::of(&prepared.plan);
-        let shape = PlanShape::of(&prepared.plan);
+        let shape = PlanShape::of(&prepared);
         let features = prepared.plan.features.clone();
         drop(prepared);
         let specialisation = self.general(candidate, host, shape, features)?;
@@ -72,8 +72,9 @@ impl Setup<'_> {
         prepared.run(self.frames as usize)
     }
 
-    /// `candidate` compiled for every feature and timed like the scene's plan, unless
-    /// the scene's plan (`special`, compiled for `features`) is the same.
+    /// `candidate` compiled for every feature with the general shaders and timed like
+    /// the scene's plan, unless the scene's plan (`special`, compiled for `features`)
+    /// is the same.
     fn general(
         &self,
         candidate: &Candidate,
@@ -81,15 +82,16 @@ impl Setup<'_> {
         special: PlanShape,
         features: Vec<String>,
     ) -> Result<Option<Specialisation>, FrameError> {
-        let pipeline = candidate.load(host.clone(), &[COLOR])?.unspecialised();
+        let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::General)?;
         let mut prepared = self.session.prepare(pipeline, self.size)?;
-        let general = PlanShape::of(&prepared.plan);
+        let general = PlanShape::of(&prepared);
         if general == special {
             return Ok(None);
         }
         let reports = self.time(&mut prepared)?;
         Ok(Some(Specialisation {
             features,
+            shader_variants: special.variants().to_vec(),
             passes: special.passes(),
             general_passes: general.passes(),
             general_memory: Memory::of(&prepared.plan),
@@ -104,7 +106,7 @@ impl Setup<'_> {
         host: &Arc<Host>,
         output: &str,
     ) -> Result<RgbaImage, FrameError> {
-        let pipeline = candidate.load(host.clone(), &[output])?;
+        let pipeline = candidate.load(host.clone(), &[output], Specialise::ToScene)?;
         let mut prepared = self.session.prepare(pipeline, self.size)?;
         prepared.run(1)?;
         prepared.read(output)

@@ -1,11 +1,13 @@
 //! What specialising a pipeline to its scene saves: the general plan (compiled as for a
 //! scene using every feature) measured beside the scene's, wherever the two differ.
 
-use graph_core::{Plan, TextureShape};
+use graph_core::TextureShape;
+use passes_deferred_msaa::analysis::shader_variants;
 use serde::Serialize;
 
 use super::memory::Memory;
 use super::stats::Spread;
+use crate::frame::Prepared;
 
 /// The general plan's figures beside the scene's. Only rows whose plans differ have
 /// one, so a `null` means the scene uses everything the file's conditions test.
@@ -13,6 +15,9 @@ use super::stats::Spread;
 pub struct Specialisation {
     /// The features the scene's plan was compiled for, among those the file tests.
     pub features: Vec<String>,
+    /// The shader variants the scene's plan builds (`rgraph explain --scene` lists them
+    /// with the general ones they replace).
+    pub shader_variants: Vec<String>,
     /// Executed passes of the scene's plan and of the general one.
     pub passes: usize,
     pub general_passes: usize,
@@ -21,25 +26,40 @@ pub struct Specialisation {
     pub general_gpu_frame_ms: Option<Spread>,
 }
 
-/// What decides whether two plans of one file do different work: the passes they run
-/// and the textures they allocate.
+/// What decides whether two plans of one file do different work: the passes they run,
+/// the textures they allocate and the shader variants they build.
 #[derive(Debug, PartialEq)]
 pub struct PlanShape {
     passes: Vec<String>,
     textures: Vec<TextureShape>,
     memory: Memory,
+    variants: Vec<String>,
 }
 
 impl PlanShape {
-    pub fn of(plan: &Plan) -> PlanShape {
+    pub fn of(prepared: &Prepared<'_>) -> PlanShape {
+        let (plan, pipeline) = (&prepared.plan, &prepared.pipeline);
+        let plugins: Vec<(&str, &str)> = plan
+            .passes
+            .iter()
+            .filter_map(|p| Some((p.name.as_str(), pipeline.loaded.plugin(&p.name)?)))
+            .collect();
         PlanShape {
             passes: plan.passes.iter().map(|p| p.name.clone()).collect(),
             textures: plan.textures.iter().map(|t| t.shape).collect(),
             memory: Memory::of(plan),
+            variants: shader_variants(&pipeline.shader_features, &plugins)
+                .into_iter()
+                .map(|v| v.variant.to_string())
+                .collect(),
         }
     }
 
     pub fn passes(&self) -> usize {
         self.passes.len()
+    }
+
+    pub fn variants(&self) -> &[String] {
+        &self.variants
     }
 }

@@ -169,8 +169,8 @@ fn specialisation_table(rows: &[&Row]) -> String {
     }
     let mut md = String::from(
         "\nSpecialised to the scene (the rows above) against the general plan:\n\n\
-         | pipeline | features | passes | pooled memory | saved | GPU ms | saved |\n\
-         |---|---|--:|--:|--:|--:|--:|\n",
+         | pipeline | features | shader variants | passes | pooled memory | saved | GPU ms | \
+         saved |\n|---|---|---|--:|--:|--:|--:|--:|\n",
     );
     for (row, f, s) in special {
         let (general, special) = (s.general_memory.physical_bytes, f.memory.physical_bytes);
@@ -181,9 +181,10 @@ fn specialisation_table(rows: &[&Row]) -> String {
             .map(|(g, f)| (g.median, f.median));
         let _ = writeln!(
             md,
-            "| {} | {} | {} → {} | {} → {} | {} | {} | {} |",
+            "| {} | {} | {} | {} → {} | {} → {} | {} | {} | {} |",
             name(row),
             s.features.join(", "),
+            s.shader_variants.join(", "),
             s.general_passes,
             s.passes,
             bytes(general),
