@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use graph_core::file::{load_file, load_str, ErrorKind, FileErrors, LoadedGraph};
+use graph_core::file::{load_file, load_str, ErrorKind, FileErrors, LoadedGraph, Registry};
 use graph_core::Features;
 use passes_deferred_msaa::analysis::{Features as SceneFeatures, Variants};
 use passes_deferred_msaa::scene::Scene;
@@ -63,10 +63,9 @@ impl Pipeline {
         outputs: &[&str],
         specialise: Specialise,
     ) -> Result<Self, FrameError> {
-        let features = specialise.variants().features(&host.scene);
-        let registry = registry_for(Some(host), specialise.variants());
-        let loaded = load_file(path, &registry).map_err(|e| file_error(path, e))?;
-        Self::keep(path, loaded, outputs, features)
+        Self::load_with(path, host, outputs, specialise, |registry| {
+            load_file(path, registry).map_err(|e| file_error(path, e))
+        })
     }
 
     /// Loads `text` as if it were the file `path` (relative shader paths resolve from
@@ -78,9 +77,21 @@ impl Pipeline {
         outputs: &[&str],
         specialise: Specialise,
     ) -> Result<Self, FrameError> {
+        Self::load_with(path, host, outputs, specialise, |registry| {
+            load_str(path, text, registry).map_err(FrameError::Pipeline)
+        })
+    }
+
+    /// `load` with the registry `specialise` calls for.
+    fn load_with(
+        path: &Path,
+        host: Arc<Host>,
+        outputs: &[&str],
+        specialise: Specialise,
+        load: impl FnOnce(&Registry) -> Result<LoadedGraph, FrameError>,
+    ) -> Result<Self, FrameError> {
         let features = specialise.variants().features(&host.scene);
-        let registry = registry_for(Some(host), specialise.variants());
-        let loaded = load_str(path, text, &registry).map_err(FrameError::Pipeline)?;
+        let loaded = load(&registry_for(Some(host), specialise.variants()))?;
         Self::keep(path, loaded, outputs, features)
     }
 
