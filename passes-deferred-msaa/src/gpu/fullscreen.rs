@@ -6,7 +6,7 @@ use std::sync::Arc;
 use graph_core::gpu::RenderContext;
 use graph_core::TextureHandle;
 
-use super::{PipelineDesc, Pipelines, TextureBindings};
+use super::{InputPass, PipelineDesc};
 use crate::gpu_scene::SceneCache;
 use crate::plugins::fullscreen::Fullscreen;
 use crate::scene::DepthConvention;
@@ -22,44 +22,35 @@ struct Key {
     samples: u32,
 }
 
-struct State {
-    device: wgpu::Device,
-    module: wgpu::ShaderModule,
-    inputs: TextureBindings,
-    layout: wgpu::PipelineLayout,
-    pipelines: Pipelines<Key>,
-}
-
 pub(crate) fn record(
     draw: Fullscreen,
     scenes: Arc<SceneCache>,
 ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-    let mut state: Option<State> = None;
+    // Built per device: the scene's group 0 layout is the same for every upload.
+    let mut state: Option<(wgpu::Device, InputPass<Key>)> = None;
     Box::new(move |ctx| {
         let resources = ctx.resources;
         let device = resources.device;
         let scene = match draw.reads_scene {
-            true => match scenes.get(device, resources.queue) {
+            true => match scenes.for_frame(resources) {
                 Some(scene) => Some(scene),
                 None => return,
             },
             false => None,
         };
-        if let Some(scene) = &scene {
-            scene.prepare(resources.queue, resources.output_size());
+        if state.as_ref().is_some_and(|(built, _)| built != device) {
+            state = None;
         }
-        if state.as_ref().is_none_or(|s| s.device != *device) {
-            let inputs = TextureBindings::new(resources, &draw.inputs);
-            let layouts = [scene.as_ref().map(|s| s.layout()), Some(&inputs.layout)];
-            state = Some(State {
-                device: device.clone(),
-                module: super::module(device, draw.label, &draw.source),
-                layout: super::pipeline_layout(device, &layouts),
-                inputs,
-                pipelines: Pipelines::default(),
-            });
-        }
-        let Some(state) = state.as_mut() else { return };
+        let (_, state) = state.get_or_insert_with(|| {
+            let pass = InputPass::new(
+                resources,
+                draw.label,
+                &draw.source,
+                scene.as_deref(),
+                &draw.inputs,
+            );
+            (device.clone(), pass)
+        });
         let shape = |h: TextureHandle| resources.shape(h);
         let key = Key {
             target: draw.target.map(|h| shape(h).format),

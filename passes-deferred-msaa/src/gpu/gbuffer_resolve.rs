@@ -5,8 +5,8 @@ use std::sync::Arc;
 
 use graph_core::gpu::RenderContext;
 
-use super::{PipelineDesc, Pipelines, TextureBindings};
-use crate::gpu_scene::{GpuScene, SceneCache};
+use super::{InputPass, PipelineDesc};
+use crate::gpu_scene::SceneCache;
 use crate::plugins::depth::far_depth;
 use crate::plugins::gbuffer_resolve::GBufferResolveDraw;
 
@@ -16,42 +16,22 @@ struct Key {
     depth: wgpu::TextureFormat,
 }
 
-struct State {
-    scene: Arc<GpuScene>,
-    module: wgpu::ShaderModule,
-    inputs: TextureBindings,
-    layout: wgpu::PipelineLayout,
-    pipelines: Pipelines<Key>,
-}
-
 pub(crate) fn record(
     draw: GBufferResolveDraw,
     scenes: Arc<SceneCache>,
 ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-    let mut state: Option<State> = None;
+    let mut state = None;
     Box::new(move |ctx| {
         let resources = ctx.resources;
         let device = resources.device;
         // The camera turns the averaged view depth into depth.
-        let Some(scene) = scenes.get(device, resources.queue) else {
+        let Some(scene) = scenes.for_frame(resources) else {
             return;
         };
-        scene.prepare(resources.queue, resources.output_size());
-        if state
-            .as_ref()
-            .is_none_or(|s| !Arc::ptr_eq(&s.scene, &scene))
-        {
-            let inputs = TextureBindings::new(resources, &draw.inputs);
-            let layouts = [Some(scene.layout()), Some(&inputs.layout)];
-            state = Some(State {
-                module: super::module(device, "gbuffer resolve", &draw.source),
-                layout: super::pipeline_layout(device, &layouts),
-                inputs,
-                scene: scene.clone(),
-                pipelines: Pipelines::default(),
-            });
-        }
-        let Some(state) = state.as_mut() else { return };
+        let state = super::per_scene(&mut state, &scene, || {
+            let label = "gbuffer resolve";
+            InputPass::new(resources, label, &draw.source, Some(&scene), &draw.inputs)
+        });
         let key = Key {
             targets: draw
                 .targets

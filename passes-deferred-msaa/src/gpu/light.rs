@@ -12,9 +12,9 @@ use std::sync::Arc;
 
 use graph_core::gpu::RenderContext;
 
-use super::{additive, PipelineDesc, Pipelines, TextureBindings, EDGE_STENCIL};
+use super::{additive, InputPass, PipelineDesc, EDGE_STENCIL};
 use crate::analysis::{GatedShader, Variant};
-use crate::gpu_scene::{volumes, GpuScene, SceneCache};
+use crate::gpu_scene::{volumes, SceneCache};
 use crate::plugins::depth::far_depth;
 use crate::plugins::light::{EdgeMode, Frequency, LightDraw, PixelSamples};
 use crate::scene::DepthConvention;
@@ -43,42 +43,21 @@ struct Key {
     variant: Variant,
 }
 
-struct State {
-    scene: Arc<GpuScene>,
-    module: wgpu::ShaderModule,
-    inputs: TextureBindings,
-    layout: wgpu::PipelineLayout,
-    pipelines: Pipelines<Key>,
-}
-
 pub(crate) fn record(
     draw: LightDraw,
     scenes: Arc<SceneCache>,
 ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-    let mut state: Option<State> = None;
+    let mut state = None;
     Box::new(move |ctx| {
         let resources = ctx.resources;
         let device = resources.device;
-        let Some(scene) = scenes.get(device, resources.queue) else {
+        let Some(scene) = scenes.for_frame(resources) else {
             return;
         };
         let size = resources.output_size();
-        scene.prepare(resources.queue, size);
-        if state
-            .as_ref()
-            .is_none_or(|s| !Arc::ptr_eq(&s.scene, &scene))
-        {
-            let inputs = TextureBindings::new(resources, &draw.inputs);
-            let layouts = [Some(scene.layout()), Some(&inputs.layout)];
-            state = Some(State {
-                module: super::module(device, "light", &draw.source),
-                layout: super::pipeline_layout(device, &layouts),
-                inputs,
-                scene: scene.clone(),
-                pipelines: Pipelines::default(),
-            });
-        }
-        let Some(state) = state.as_mut() else { return };
+        let state = super::per_scene(&mut state, &scene, || {
+            InputPass::new(resources, "light", &draw.source, Some(&scene), &draw.inputs)
+        });
         let (hdr, depth) = (resources.shape(draw.hdr), resources.shape(draw.depth));
         let passes: Vec<Option<u32>> = match draw.frequency {
             Frequency::Sample(EdgeMode::SampleMask) => (0..hdr.samples).map(Some).collect(),

@@ -11,7 +11,7 @@ use graph_core::TextureHandle;
 
 use super::{PipelineDesc, Pipelines};
 use crate::analysis::{GatedShader, Variant};
-use crate::gpu_scene::{mesh, GpuScene, MaterialState, SceneCache};
+use crate::gpu_scene::{mesh, MaterialState, SceneCache};
 use crate::plugins::depth::DepthRule;
 use crate::scene::DepthConvention;
 
@@ -46,7 +46,6 @@ struct Key {
 }
 
 struct State {
-    scene: Arc<GpuScene>,
     module: wgpu::ShaderModule,
     layout: wgpu::PipelineLayout,
     pipelines: Pipelines<Key>,
@@ -56,29 +55,21 @@ pub(crate) fn record(
     draw: SceneDraw,
     scenes: Arc<SceneCache>,
 ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-    let mut state: Option<State> = None;
+    let mut state = None;
     Box::new(move |ctx| {
         let resources = ctx.resources;
         let device = resources.device;
-        let Some(scene) = scenes.get(device, resources.queue) else {
+        let Some(scene) = scenes.for_frame(resources) else {
             return;
         };
-        // The camera depends only on the aspect ratio, and the shaders never read the
-        // viewport, so a target at a multiple of the output size (the reference) is fine.
-        scene.prepare(resources.queue, resources.output_size());
-        if state
-            .as_ref()
-            .is_none_or(|s| !Arc::ptr_eq(&s.scene, &scene))
-        {
+        let state = super::per_scene(&mut state, &scene, || {
             let layouts = [Some(scene.layout()), Some(scene.material_layout())];
-            state = Some(State {
+            State {
                 module: super::module(device, draw.label, &draw.source),
                 layout: super::pipeline_layout(device, &layouts),
-                scene: scene.clone(),
                 pipelines: Pipelines::default(),
-            });
-        }
-        let Some(state) = state.as_mut() else { return };
+            }
+        });
         let variant = scenes.variant(draw.shader);
         let depth = resources.shape(draw.depth);
         let targets: Vec<wgpu::TextureFormat> = draw

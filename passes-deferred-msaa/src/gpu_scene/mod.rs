@@ -62,6 +62,19 @@ impl SceneCache {
         Variant::of(shader, &self.features)
     }
 
+    /// The scene for a frame: on the frame's device (uploaded the first time) with its
+    /// camera set for the output size. The camera depends only on the aspect ratio, and
+    /// the shaders never read the viewport, so a target at a multiple of the output size
+    /// (the reference) is fine. `None` without a host: the pass records nothing.
+    pub fn for_frame(
+        &self,
+        resources: &graph_core::gpu::FrameResources<'_>,
+    ) -> Option<Arc<GpuScene>> {
+        let scene = self.get(resources.device, resources.queue)?;
+        scene.prepare(resources.queue, resources.output_size());
+        Some(scene)
+    }
+
     /// The scene on `device`, uploaded through `queue` the first time.
     pub fn get(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Option<Arc<GpuScene>> {
         let host = self.host.as_ref()?;

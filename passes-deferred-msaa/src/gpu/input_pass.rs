@@ -1,0 +1,39 @@
+//! The device objects of a pass that reads G-buffer textures (light, G-buffer resolve,
+//! full-screen passes): its shader module, the bind group layout of its inputs, a
+//! pipeline layout of the scene's group 0 (when it reads the scene) and the inputs' group
+//! 1, and its pipelines. Built on the first frame of a device or scene upload, kept after.
+
+use graph_core::gpu::FrameResources;
+
+use super::{module, pipeline_layout, Pipelines, TextureBindings};
+use crate::gpu_scene::GpuScene;
+use crate::plugins::textures::Input;
+
+pub(crate) struct InputPass<K> {
+    pub module: wgpu::ShaderModule,
+    pub inputs: TextureBindings,
+    pub layout: wgpu::PipelineLayout,
+    pub pipelines: Pipelines<K>,
+}
+
+impl<K> InputPass<K> {
+    /// For `source`'s shader reading `inputs` as the plan shapes them, and `scene`'s
+    /// group 0 when given.
+    pub fn new(
+        resources: &FrameResources<'_>,
+        label: &str,
+        source: &str,
+        scene: Option<&GpuScene>,
+        inputs: &[Input],
+    ) -> Self {
+        let device = resources.device;
+        let inputs = TextureBindings::new(resources, inputs);
+        let layouts = [scene.map(GpuScene::layout), Some(&inputs.layout)];
+        InputPass {
+            module: module(device, label, source),
+            layout: pipeline_layout(device, &layouts),
+            inputs,
+            pipelines: Pipelines::default(),
+        }
+    }
+}
