@@ -22,13 +22,17 @@ impl Default for Size {
 }
 
 impl Size {
-    /// Width and height for an output of `output` texels. A zero or non-finite scale
-    /// resolves to 0, which validation reports as a zero-sized texture.
+    /// Width and height for an output of `output` texels. A zero or non-finite scale,
+    /// or an empty output, resolves to 0, which validation reports as a zero-sized
+    /// texture; a small scale of a real output keeps at least one texel.
     pub fn resolve(self, output: (u32, u32)) -> (u32, u32) {
         match self {
             Size::Absolute(w, h) => (w, h),
             Size::Relative(s) if s.is_finite() && s > 0.0 => {
-                let scale = |v: u32| ((v as f64 * s as f64).floor() as u32).max(1);
+                let scale = |v: u32| match v {
+                    0 => 0,
+                    v => ((v as f64 * s as f64).floor() as u32).max(1),
+                };
                 (scale(output.0), scale(output.1))
             }
             Size::Relative(_) => (0, 0),

@@ -37,6 +37,22 @@ fn a_zero_relative_scale_is_zero_sized() {
 }
 
 #[test]
+fn a_relative_texture_of_an_empty_output_is_zero_sized() {
+    let mut g = GraphBuilder::new();
+    g.import_texture("t", TextureDesc::new(Rgba8Unorm).size(Size::Relative(0.5)));
+    let options = CompileOptions {
+        output_size: (0, 1080),
+        ..CompileOptions::default()
+    };
+    // Not one texel, as a tiny scale of a real output would give.
+    let errors = errors_with(&g.build(), &options);
+    assert_eq!(
+        errors.iter().map(ToString::to_string).collect::<Vec<_>>(),
+        [r#"texture "t" is zero-sized (0x540)"#]
+    );
+}
+
+#[test]
 fn a_side_over_the_profile_maximum_is_too_large() {
     let error = texture_error(TextureDesc::new(Rgba8Unorm).size(Size::Absolute(8193, 16)));
     assert_eq!(
