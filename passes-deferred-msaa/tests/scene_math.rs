@@ -216,6 +216,25 @@ fn light_volumes_by_kind() {
 }
 
 #[test]
+fn spots_wider_than_45_degrees_get_their_bounding_sphere_not_a_cone() {
+    // At 90° the cone's base radius, 10 * tan(pi/2) in f32, would be about 2e8.
+    for outer in [0.8f32, 1.2, std::f32::consts::FRAC_PI_2] {
+        let spot = light(
+            LightKind::Spot {
+                inner_cone: 0.1,
+                outer_cone: outer,
+            },
+            Some(10.0),
+        );
+        let LightVolume::Sphere(sphere) = spot.volume(0.01) else {
+            panic!("{outer}: a wide spot gets a sphere");
+        };
+        assert_eq!(Some(sphere), spot.bounding_sphere(0.01), "{outer}");
+        assert!(sphere.radius <= 10.0 + 1e-9, "{outer}: {}", sphere.radius);
+    }
+}
+
+#[test]
 fn aabb_union_and_sphere() {
     let a = Aabb::from_points([DVec3::new(1.0, 2.0, 3.0), DVec3::new(-1.0, 0.0, 5.0)]).unwrap();
     assert_eq!(

@@ -79,8 +79,13 @@ impl LightBuffers {
         let mut volumes = Vec::new();
         for light in directional.iter().chain(&local) {
             let index = data.len() as u32;
-            let (kind, volume) = match light.volume(DEFAULT_CUTOFF_ILLUMINANCE) {
-                LightVolume::FullScreen => (DIRECTIONAL, DMat4::IDENTITY),
+            let kind = match light.kind {
+                LightKind::Directional => DIRECTIONAL,
+                LightKind::Point => POINT,
+                LightKind::Spot { .. } => SPOT,
+            };
+            let volume = match light.volume(DEFAULT_CUTOFF_ILLUMINANCE) {
+                LightVolume::FullScreen => DMat4::IDENTITY,
                 LightVolume::Sphere(sphere_volume) => {
                     let m = DMat4::from_scale_rotation_translation(
                         DVec3::splat(sphere_volume.radius),
@@ -88,7 +93,7 @@ impl LightBuffers {
                         sphere_volume.center,
                     );
                     volumes.push(volume_light(index, VolumeShape::Sphere, m, sphere, eye));
-                    (POINT, m)
+                    m
                 }
                 LightVolume::Cone {
                     apex,
@@ -106,7 +111,7 @@ impl LightBuffers {
                         apex,
                     );
                     volumes.push(volume_light(index, VolumeShape::Cone, m, cone, eye));
-                    (SPOT, m)
+                    m
                 }
             };
             data.push(light_data(light, kind, volume, eye));

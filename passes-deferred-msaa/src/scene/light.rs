@@ -43,9 +43,10 @@ pub struct Light {
 pub enum LightVolume {
     /// Directional lights reach every pixel: draw a full-screen triangle.
     FullScreen,
-    /// Point lights: a sphere.
+    /// Point lights, and spot lights wider than 45° (whose cone would be wider than
+    /// their range): a sphere.
     Sphere(BoundingSphere),
-    /// Spot lights: a cone with its apex at the light, `height` along `axis` to a base disc of
+    /// Spot lights up to 45°: a cone with its apex at the light, `height` along `axis` to a base disc of
     /// `base_radius`. It contains the spherical sector the light reaches (`height` is the
     /// effective range, `base_radius = height * tan(outer_cone)`); a tessellated cone must
     /// circumscribe this one (scale its base by `1 / cos(π / segments)`).
@@ -83,23 +84,30 @@ impl Light {
     /// lights. Meant for culling and light clustering.
     pub fn bounding_sphere(&self, cutoff: f32) -> Option<BoundingSphere> {
         let range = f64::from(self.local_range(cutoff));
-        let (offset, radius) = match self.kind {
-            LightKind::Directional => return None,
-            LightKind::Point => (0.0, range),
-            LightKind::Spot { outer_cone, .. } => {
-                let theta = f64::from(outer_cone);
-                if theta <= std::f64::consts::FRAC_PI_4 {
-                    let t = range / (2.0 * theta.cos());
-                    (t, t)
-                } else {
-                    (range * theta.cos(), range * theta.sin())
-                }
-            }
+        match self.kind {
+            LightKind::Directional => None,
+            LightKind::Point => Some(BoundingSphere {
+                center: self.position,
+                radius: range,
+            }),
+            LightKind::Spot { outer_cone, .. } => Some(self.sector_sphere(range, outer_cone)),
+        }
+    }
+
+    /// [`Self::bounding_sphere`] of a spot light's sector of `range` and outer half-angle
+    /// `outer_cone`.
+    fn sector_sphere(&self, range: f64, outer_cone: f32) -> BoundingSphere {
+        let theta = f64::from(outer_cone);
+        let (offset, radius) = if theta <= std::f64::consts::FRAC_PI_4 {
+            let t = range / (2.0 * theta.cos());
+            (t, t)
+        } else {
+            (range * theta.cos(), range * theta.sin())
         };
-        Some(BoundingSphere {
+        BoundingSphere {
             center: self.position + self.direction.as_dvec3() * offset,
             radius,
-        })
+        }
     }
 
     /// The light volume to rasterize; see [`LightVolume`].
@@ -111,6 +119,11 @@ impl Light {
                 center: self.position,
                 radius: f64::from(range),
             }),
+            // Wider than 45°, the cone's base outgrows the range (at 90° tan overflows
+            // f32 to a mesh 1e8 wide): the bounding sphere is the tighter volume.
+            LightKind::Spot { outer_cone, .. } if outer_cone > std::f32::consts::FRAC_PI_4 => {
+                LightVolume::Sphere(self.sector_sphere(f64::from(range), outer_cone))
+            }
             LightKind::Spot { outer_cone, .. } => LightVolume::Cone {
                 apex: self.position,
                 axis: self.direction,
