@@ -22,7 +22,8 @@
 //!
 //! Directional lights and the scene's ambient term are one full-screen triangle at the far
 //! plane, depth-tested so pixels without geometry are skipped. Point lights draw a sphere
-//! and spot lights a cone circumscribing their reach (a sphere past 45°, where the cone grows wider than the range); from outside, front faces with the
+//! and spot lights a cone circumscribing their reach (a sphere past 45°, where the cone
+//! grows wider than the range); from outside, front faces with the
 //! normal depth test, and when the camera's near plane may cut the volume (a conservative
 //! test with the near plane's corner distance as margin), back faces with the depth test
 //! reversed; when those back faces may reach beyond a finite far plane, where they would
