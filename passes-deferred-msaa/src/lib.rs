@@ -8,7 +8,8 @@
 //! - [`gpu_scene`] (feature `gpu`): the scene on the device, shared by the plugins and
 //!   reusable by other passes that draw it.
 //!
-//! Known gap: scene textures are uploaded without mipmaps.
+//! Scene textures are uploaded with a full mip chain made on the CPU (sRGB-correct box
+//! filter), and sampled as their glTF sampler says.
 
 pub mod analysis;
 #[cfg(feature = "gpu")]

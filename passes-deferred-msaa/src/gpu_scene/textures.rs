@@ -4,7 +4,7 @@ use wgpu::util::DeviceExt;
 
 use crate::scene::{FilterMode, Sampler, TextureImage, WrapMode};
 
-/// Uploads one decoded image (one mip level: minified textures alias, see the crate docs).
+/// Uploads one decoded image with its mip chain (scene/mips.rs).
 pub(super) fn upload(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -15,32 +15,27 @@ pub(super) fn upload(
     } else {
         wgpu::TextureFormat::Rgba8Unorm
     };
-    create(
-        device,
-        queue,
-        &image.name,
-        image.width,
-        image.height,
-        format,
-        &image.rgba8,
-    )
+    let mut texels = image.rgba8.clone();
+    texels.extend(image.mip_chain().into_iter().flatten());
+    let size = (image.width, image.height, image.mip_levels());
+    create(device, queue, &image.name, size, format, &texels)
 }
 
 /// The texture of materials without a base-color texture: one white texel, so every
 /// material samples the same way.
 pub(super) fn white(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::TextureView {
     let format = wgpu::TextureFormat::Rgba8UnormSrgb;
-    create(device, queue, "white", 1, 1, format, &[255; 4])
+    create(device, queue, "white", (1, 1, 1), format, &[255; 4])
 }
 
+/// A texture of `(width, height, mip levels)` from `texels`, every level in order.
 fn create(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     label: &str,
-    width: u32,
-    height: u32,
+    (width, height, mip_level_count): (u32, u32, u32),
     format: wgpu::TextureFormat,
-    rgba8: &[u8],
+    texels: &[u8],
 ) -> wgpu::TextureView {
     device
         .create_texture_with_data(
@@ -52,7 +47,7 @@ fn create(
                     height,
                     depth_or_array_layers: 1,
                 },
-                mip_level_count: 1,
+                mip_level_count,
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
                 format,
@@ -60,11 +55,12 @@ fn create(
                 view_formats: &[],
             },
             wgpu::util::TextureDataOrder::LayerMajor,
-            rgba8,
+            texels,
         )
         .create_view(&wgpu::TextureViewDescriptor::default())
 }
 
+/// How a material samples its texture: glTF's sampler, mipmaps included.
 pub(super) fn sampler(device: &wgpu::Device, sampler: &Sampler) -> wgpu::Sampler {
     let address = |w: WrapMode| match w {
         WrapMode::Repeat => wgpu::AddressMode::Repeat,
@@ -75,12 +71,24 @@ pub(super) fn sampler(device: &wgpu::Device, sampler: &Sampler) -> wgpu::Sampler
         FilterMode::Nearest => wgpu::FilterMode::Nearest,
         FilterMode::Linear => wgpu::FilterMode::Linear,
     };
+    let mip_filter = |f: FilterMode| match f {
+        FilterMode::Nearest => wgpu::MipmapFilterMode::Nearest,
+        FilterMode::Linear => wgpu::MipmapFilterMode::Linear,
+    };
     device.create_sampler(&wgpu::SamplerDescriptor {
         label: None,
         address_mode_u: address(sampler.wrap_u),
         address_mode_v: address(sampler.wrap_v),
         mag_filter: filter(sampler.mag_filter),
         min_filter: filter(sampler.min_filter),
+        mipmap_filter: sampler
+            .mipmap_filter
+            .map_or(wgpu::MipmapFilterMode::Nearest, mip_filter),
+        // A glTF minification filter without mipmaps (NEAREST, LINEAR) reads level 0 only.
+        lod_max_clamp: match sampler.mipmap_filter {
+            Some(_) => 32.0,
+            None => 0.0,
+        },
         ..Default::default()
     })
 }

@@ -16,6 +16,7 @@ mod gltf_loader;
 mod light;
 mod material;
 mod mesh;
+mod mips;
 mod normals;
 mod procedural;
 mod stats;
