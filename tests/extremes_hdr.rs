@@ -312,3 +312,76 @@ fn the_tonemapped_resolve_beats_box_on_high_contrast_edges() {
          resolve's ({box_error})"
     );
 }
+
+/// A device whose blending overflows half floats to Inf (lavapipe saturates instead, so
+/// the Inf is written directly here): the tone mapping reads it as the half-float maximum
+/// and maps it to white, where inf / inf would have made NaN. Texels: +Inf, 65504, 1, 0.
+#[test]
+fn tone_mapping_maps_an_infinite_hdr_texel_to_white() {
+    use graph_core::file::{load_str, Registry};
+    use graph_core::gpu::{read_rgba8, Executor, Imports};
+    use graph_core::CompileOptions;
+
+    let gpu = gpu();
+    let hdr = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("hdr with Inf"),
+        size: wgpu::Extent3d {
+            width: 4,
+            height: 1,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba16Float,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    let halves: [u16; 4] = [0x7c00, 0x7bff, 0x3c00, 0x0000];
+    let texels: Vec<u8> = halves
+        .iter()
+        .flat_map(|&h| [h, h, h, 0x3c00])
+        .flat_map(u16::to_le_bytes)
+        .collect();
+    gpu.queue.write_texture(
+        hdr.as_image_copy(),
+        &texels,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * 8),
+            rows_per_image: None,
+        },
+        hdr.size(),
+    );
+    let graph = r#"Graph(
+        resources: {
+            "hdr": ImportedTexture(format: "rgba16float", size: Absolute(4, 1)),
+            "color": Texture(format: "rgba8unorm-srgb", size: Absolute(4, 1)),
+        },
+        passes: [(name: "tonemap", plugin: "tonemap", params: (operator: aces),
+                  inputs: { "hdr": "hdr" }, outputs: { "color": "color" })],
+        outputs: ["color"],
+    )"#;
+    let mut registry = Registry::with_builtins();
+    passes_deferred_msaa::register(&mut registry, None);
+    let mut loaded = load_str("inf.ron", graph, &registry).unwrap_or_else(|e| panic!("{e}"));
+    let options = CompileOptions {
+        output_size: (4, 1),
+        profile: gpu.profile(),
+    };
+    let plan = loaded.compile(&options).unwrap_or_else(|e| panic!("{e}"));
+    let mut imports = Imports::new();
+    imports.texture("hdr", &hdr);
+    let mut executor = Executor::new(&gpu);
+    executor
+        .execute(&mut loaded.graph, &plan, &imports)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let color = loaded.names.texture("color").unwrap();
+    let texture = executor.texture(&plan, color.id()).unwrap();
+    let pixels = read_rgba8(&gpu.device, &gpu.queue, texture).unwrap();
+    let red: Vec<u8> = pixels.iter().flatten().step_by(4).copied().collect();
+    // ACES of 65504 clamps to 1; of 1, about 0.80 (231 in sRGB); of 0, 0.
+    assert_eq!(red[..2], [255, 255], "Inf and 65504 map to white: {red:?}");
+    assert!((225..=235).contains(&red[2]), "{red:?}");
+    assert_eq!(red[3], 0, "{red:?}");
+}

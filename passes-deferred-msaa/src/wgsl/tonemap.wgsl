@@ -14,7 +14,11 @@ fn aces(x: vec3<f32>) -> vec3<f32> {
 
 @fragment
 fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let c = max(textureLoad(hdr_tex, pixel_of(position), 0).rgb * EXPOSURE, vec3<f32>(0.0));
+    // An additive blend past the half-float range may store infinity (devices differ:
+    // lavapipe saturates); clamped first, it maps to white instead of inf / inf = NaN.
+    let texel = textureLoad(hdr_tex, pixel_of(position), 0).rgb;
+    let stored = clamp(texel, vec3<f32>(0.0), vec3<f32>(HALF_MAX));
+    let c = stored * EXPOSURE;
     var mapped = c;
     if OPERATOR == 1u {
         mapped = c / (1.0 + c);
