@@ -1,5 +1,5 @@
 //! Built-in generic plugins, enough for graph files to be useful on their own:
-//! [`Clear`], [`Copy`], [`Blit`], [`Fullscreen`] (a WGSL fragment shader over the whole
+//! [`Clear`], [`Copy`](struct@Copy), [`Blit`], [`Fullscreen`] (a WGSL fragment shader over the whole
 //! target) and [`Compute`] (a WGSL compute shader). The shader plugins check the bindings
 //! a file declares against the shader by reflection when the file loads, without a GPU.
 

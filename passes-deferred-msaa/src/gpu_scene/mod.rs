@@ -1,7 +1,7 @@
 //! The scene on the device, shared by every deferred plugin of one registry (and meant
 //! for other passes that draw the same scene: forward baselines, references).
 //!
-//! [`SceneCache`] uploads the [`Host`](crate::Host)'s scene once per device, on the first
+//! [`SceneCache`] uploads the [`Host`]'s scene once per device, on the first
 //! frame that needs it, and hands out an `Arc<GpuScene>`. A [`GpuScene`] holds:
 //! - group 0 ([`GpuScene::layout`], [`GpuScene::bind_group`]), as `scene.wgsl` declares
 //!   it: camera uniform, per-mesh data, materials, lights, light info;
