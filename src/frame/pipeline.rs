@@ -5,7 +5,6 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use graph_core::file::{load_file, load_str, ErrorKind, FileErrors, LoadedGraph, Registry};
-use graph_core::Features;
 use passes_deferred_msaa::analysis::{Features as SceneFeatures, Variants};
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Host, Overrides};
@@ -28,10 +27,10 @@ pub struct Pipeline {
     pub outputs: Vec<String>,
     /// Every output the file declares, sorted.
     pub offered: Vec<String>,
-    /// What [`Session::prepare`](super::Session::prepare) compiles for.
-    pub features: Features,
-    /// What the deferred plugins compile their shader variants for.
-    pub shader_features: SceneFeatures,
+    /// What it is compiled for: [`Session::prepare`](super::Session::prepare) compiles
+    /// the file for these features' names, and the deferred plugins build their shader
+    /// variants for them.
+    pub features: SceneFeatures,
 }
 
 /// What a pipeline is compiled for.
@@ -99,7 +98,7 @@ impl Pipeline {
         path: &Path,
         mut loaded: LoadedGraph,
         outputs: &[&str],
-        shader_features: SceneFeatures,
+        features: SceneFeatures,
     ) -> Result<Self, FrameError> {
         let offered = loaded.outputs().iter().map(|o| o.to_string()).collect();
         loaded
@@ -113,8 +112,7 @@ impl Pipeline {
             loaded,
             outputs: outputs.iter().map(|o| o.to_string()).collect(),
             offered,
-            features: shader_features.names(),
-            shader_features,
+            features,
         })
     }
 }

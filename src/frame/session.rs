@@ -35,7 +35,7 @@ impl Session {
         };
         let plan = pipeline
             .loaded
-            .compile_for(&options, &pipeline.features)
+            .compile_for(&options, &pipeline.features.names())
             .map_err(FrameError::Pipeline)?;
         no_imports(&plan, &pipeline)?;
         let outputs = pipeline
