@@ -14,7 +14,9 @@ mod variant;
 pub use depth::{DepthRange, SHALLOW_STEP};
 pub use feature_size::SmallestFeature;
 pub use features::Features;
-pub use variant::{shader_variants, Gate, GatedShader, ShaderVariant, Variant, Variants};
+pub use variant::{
+    plan_shader_variants, shader_variants, Gate, GatedShader, ShaderVariant, Variant, Variants,
+};
 
 use crate::scene::Scene;
 

@@ -15,6 +15,9 @@
 
 use std::fmt;
 
+use graph_core::file::LoadedGraph;
+use graph_core::Plan;
+
 use super::Features;
 use crate::scene::Scene;
 
@@ -222,6 +225,21 @@ pub fn shader_variants(features: &Features, passes: &[(&str, &str)]) -> Vec<Shad
         }
     }
     variants
+}
+
+/// [`shader_variants`] of a plan compiled from `loaded`, which knows each pass's plugin
+/// (passes added in code, without one, run no gated shader).
+pub fn plan_shader_variants(
+    features: &Features,
+    plan: &Plan,
+    loaded: &LoadedGraph,
+) -> Vec<ShaderVariant> {
+    let passes: Vec<(&str, &str)> = plan
+        .passes
+        .iter()
+        .filter_map(|p| Some((p.name.as_str(), loaded.plugin(&p.name)?)))
+        .collect();
+    shader_variants(features, &passes)
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! scene using every feature) measured beside the scene's, wherever the two differ.
 
 use graph_core::TextureShape;
-use passes_deferred_msaa::analysis::shader_variants;
+use passes_deferred_msaa::analysis::plan_shader_variants;
 use serde::Serialize;
 
 use super::memory::Memory;
@@ -39,16 +39,11 @@ pub struct PlanShape {
 impl PlanShape {
     pub fn of(prepared: &Prepared<'_>) -> PlanShape {
         let (plan, pipeline) = (&prepared.plan, &prepared.pipeline);
-        let plugins: Vec<(&str, &str)> = plan
-            .passes
-            .iter()
-            .filter_map(|p| Some((p.name.as_str(), pipeline.loaded.plugin(&p.name)?)))
-            .collect();
         PlanShape {
             passes: plan.passes.iter().map(|p| p.name.clone()).collect(),
             textures: plan.textures.iter().map(|t| t.shape).collect(),
             memory: Memory::of(plan),
-            variants: shader_variants(&pipeline.shader_features, &plugins)
+            variants: plan_shader_variants(&pipeline.features, plan, &pipeline.loaded)
                 .into_iter()
                 .map(|v| v.variant.to_string())
                 .collect(),

@@ -4,17 +4,12 @@
 
 use graph_core::file::LoadedGraph;
 use graph_core::Plan;
-use passes_deferred_msaa::analysis::{shader_variants, Features, Variant};
+use passes_deferred_msaa::analysis::{plan_shader_variants, Features, Variant};
 
 /// One line per variant, e.g.
 /// `  light.wgsl {point_lights} instead of {directional_lights, point_lights, spot_lights}: light edges, light the rest`.
 pub(super) fn text(plan: &Plan, loaded: &LoadedGraph, features: &Features) -> String {
-    let passes: Vec<(&str, &str)> = plan
-        .passes
-        .iter()
-        .filter_map(|p| Some((p.name.as_str(), loaded.plugin(&p.name)?)))
-        .collect();
-    let variants = shader_variants(features, &passes);
+    let variants = plan_shader_variants(features, plan, loaded);
     if variants.is_empty() {
         return "shader variants built: none (no pass runs a shader with feature-gated code)\n"
             .to_owned();
