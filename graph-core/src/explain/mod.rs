@@ -10,6 +10,7 @@ use std::fmt::Write;
 use wgpu_types::{BufferUsages, TextureUsages};
 
 use crate::compile::format_name;
+use crate::handle::ResourceId;
 use crate::plan::{Load, Ops, Plan, Store, TextureShape};
 use crate::resource::Origin;
 
@@ -128,34 +129,24 @@ pub fn text(plan: &Plan) -> String {
     }
     let _ = writeln!(out, "\nphysical textures:");
     for (i, t) in plan.textures.iter().enumerate() {
-        let holds: Vec<&str> = t
-            .holds
-            .iter()
-            .map(|r| plan.resource(*r).name.as_str())
-            .collect();
         let _ = writeln!(
             out,
             "  #{i} {} {} [{}] holds {}",
             describe_shape(&t.shape),
             bytes(t.bytes),
             texture_usages(t.usage),
-            holds.join(", ")
+            names(plan, &t.holds)
         );
     }
     if !plan.buffers.is_empty() {
         let _ = writeln!(out, "\nphysical buffers:");
         for (i, b) in plan.buffers.iter().enumerate() {
-            let holds: Vec<&str> = b
-                .holds
-                .iter()
-                .map(|r| plan.resource(*r).name.as_str())
-                .collect();
             let _ = writeln!(
                 out,
                 "  #{i} {} [{}] holds {}",
                 bytes(b.size),
                 buffer_usages(b.usage),
-                holds.join(", ")
+                names(plan, &b.holds)
             );
         }
     }
@@ -242,6 +233,15 @@ fn ops<T: Copy>(ops: &Ops<T>, value: impl Fn(T) -> String) -> String {
         Store::Discard => "discard",
     };
     format!("{load} -> {store}")
+}
+
+/// The names of `resources`, comma-separated.
+fn names(plan: &Plan, resources: &[ResourceId]) -> String {
+    let names: Vec<&str> = resources
+        .iter()
+        .map(|&r| plan.resource(r).name.as_str())
+        .collect();
+    names.join(", ")
 }
 
 pub(crate) fn describe_shape(s: &TextureShape) -> String {
