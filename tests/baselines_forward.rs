@@ -13,9 +13,8 @@
 //! triangle that moves narrow specular highlights, so its bound is looser where
 //! highlights are and as tight as the other's on average.
 
-mod deferred_support;
-#[path = "deferred_support/measure.rs"]
-mod measure;
+use crate::deferred_support;
+use crate::deferred_support::measure;
 
 use deferred_support::{gpu, Image, Render};
 use graph_core::gpu::Gpu;

@@ -2,9 +2,8 @@
 //! deterministic, its 2x2 downsample is the exact average of 4 texels, and it ranks
 //! deferred shading without anti-aliasing below deferred MSAA at edges.
 
-mod deferred_support;
-#[path = "deferred_support/measure.rs"]
-mod measure;
+use crate::deferred_support;
+use crate::deferred_support::measure;
 
 use deferred_support::{gpu, Render};
 use measure::{diff, marked};

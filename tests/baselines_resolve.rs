@@ -4,9 +4,8 @@
 //! ones deferred_msaa_4x's `compare` detector marks (its `debug.edges` view): partly
 //! covered pixels and surfaces that meet inside a pixel.
 
-mod deferred_support;
-#[path = "deferred_support/measure.rs"]
-mod measure;
+use crate::deferred_support;
+use crate::deferred_support::measure;
 
 use deferred_support::{gpu, Image, Render};
 use graph_core::gpu::Gpu;

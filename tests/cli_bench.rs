@@ -3,7 +3,7 @@
 //! and the charts and images it writes. A machine without a Vulkan adapter fails these
 //! tests with the binary's own explanation: they never skip.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;

@@ -2,7 +2,7 @@
 //! says otherwise), checked by exit status, stdout, stderr and the PNG's pixels. A machine
 //! without a Vulkan adapter fails the rendering tests with the binary's own explanation.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 

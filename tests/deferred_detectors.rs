@@ -24,7 +24,7 @@
 //! fragments, so the `coverage` and `centroid` detectors mark them though the surface is
 //! flat; the CPU model knows only the scene's own triangles.
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::unlit::Coverage;

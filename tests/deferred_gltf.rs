@@ -5,7 +5,7 @@
 //! MASK cutoff 0.3 with base alpha 1, double-sided; no lights; the framing camera looks
 //! at its front from +z).
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::{gpu, Render};
 use passes_deferred_msaa::scene::Scene;

@@ -1,6 +1,6 @@
 //! Lit scenes through the deferred pipelines: finite HDR, light where there should be.
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::{gpu, Render};
 

@@ -3,7 +3,7 @@
 //! pipeline's multisample mask (DX10.0's method). Both read the same G-buffer sample and
 //! reconstruct positions at the pixel center, so the lit HDR is bit-identical.
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::{gpu, Render};
 

@@ -3,7 +3,7 @@
 //! checker's mean, sRGB 188 (linear 0.5), through its mipmaps; a glTF sampler without
 //! mipmaps (min filter LINEAR) reads level 0 only, and aliases (GPU, lavapipe by default).
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};

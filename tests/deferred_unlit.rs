@@ -2,7 +2,7 @@
 //! computed on the CPU (tests/deferred_support/unlit.rs): resolved colors, and how many
 //! pixels each edge detector marks.
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::unlit::Coverage;
 use deferred_support::{gpu, srgb8, Render};

@@ -2,7 +2,7 @@
 //! is known (tests/deferred_support/unlit.rs): exact values for the operators, the
 //! luminance-weighted resolve, host overrides and the G-buffer debug views.
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::unlit::Coverage;
 use deferred_support::{gpu, srgb8, Image, Render};

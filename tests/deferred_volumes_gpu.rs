@@ -37,7 +37,7 @@
 //! Measured on lavapipe: every case bit-identical per sample; under compare at most 13
 //! pixels differ per case, by at most 4.8e-4 (linear HDR), all where allowed.
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::scenes::{Parts, RayHit};
 use deferred_support::unlit::SAMPLES_4X;

@@ -24,7 +24,7 @@
 //! same pixels for a scene scaled by 10 and by 10,000 (camera, near and far planes
 //! included): 0 pixels differ.
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};

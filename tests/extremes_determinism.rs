@@ -8,7 +8,7 @@
 //!   and the half-float HDR targets) are bit-identical.
 //! - Bound asserted: 0 differing bytes.
 
-mod deferred_support;
+use crate::deferred_support;
 
 use std::process::Command;
 

@@ -12,9 +12,8 @@
 //! - Bound asserted: every channel of every pixel within 1/255 (measured on lavapipe:
 //!   identical, 0 of 3,072 pixels differ).
 
-mod deferred_support;
-#[path = "deferred_support/measure.rs"]
-mod measure;
+use crate::deferred_support;
+use crate::deferred_support::measure;
 
 use deferred_support::{gpu, Render};
 use passes_deferred_msaa::glam::DVec3;

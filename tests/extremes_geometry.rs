@@ -19,7 +19,7 @@
 //! `infinite_normal_before_nan_position_is_reported_first`), and damaged numbers never
 //! panic the loader (passes-deferred-msaa/tests/robustness.rs).
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};

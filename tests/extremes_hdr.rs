@@ -12,9 +12,8 @@
 //! Also: on a high-contrast edge scene, the luminance-weighted ("tone-mapped") resolve's
 //! mean edge error against the supersampled reference is lower than the box resolve's.
 
-mod deferred_support;
-#[path = "deferred_support/measure.rs"]
-mod measure;
+use crate::deferred_support;
+use crate::deferred_support::measure;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};

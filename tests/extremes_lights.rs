@@ -21,7 +21,7 @@
 //! lavapipe. Lights below the cutoff illuminance (0.01 lux) are zero by design
 //! (`Light::effective_range`), however many there are.
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};

@@ -12,7 +12,7 @@
 //!   depth targets and the resolved image, HDR within [0, 65504]; the huge +X normal
 //!   stored as exactly the octahedral (1, 0) in every sample it covers.
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};

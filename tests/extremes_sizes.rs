@@ -15,7 +15,7 @@
 //! (`sizes_must_be_at_least_one_pixel`, `sizes_above_the_device_limit_fail_before_rendering`)
 //! and tests/cli_render_samples.rs (8x on lavapipe lists the counts it has).
 
-mod deferred_support;
+use crate::deferred_support;
 
 use std::path::Path;
 use std::sync::Arc;

@@ -25,9 +25,8 @@
 //! 2008, 1903, 1885, 1878, 1826, 442, 64; builtin:spheres 1159, 1122, 1036, 650, 291,
 //! 225, 218, 215, 130, 62.
 
-mod deferred_support;
-#[path = "deferred_support/measure.rs"]
-mod measure;
+use crate::deferred_support;
+use crate::deferred_support::measure;
 
 use deferred_support::{gpu, Render};
 use graph_core::gpu::Gpu;

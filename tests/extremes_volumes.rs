@@ -13,7 +13,7 @@
 //!   bit-identical with `volumes: true` and `volumes: false`, and the light reaches most
 //!   of the floor.
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};

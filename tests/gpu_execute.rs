@@ -2,7 +2,7 @@
 //! checking the pixels: clears, compute, sampling, copies, MSAA resolve, the pool across
 //! frames, imports, and device errors surfacing as errors.
 
-mod common;
+use crate::common;
 
 use common::{
     bind_group, compute_pipeline, gpu, plan, render_pipeline, render_pipeline_with, FULLSCREEN_VS,

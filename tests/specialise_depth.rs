@@ -12,7 +12,7 @@
 //! in at most 16 pixels. Depth memory halves: 64 KiB saved at 4x MSAA, 256 KiB for the
 //! reference (2x the size).
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::{gpu, Image, Render};
 use graph_core::gpu::Gpu;

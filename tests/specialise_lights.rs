@@ -2,7 +2,7 @@
 //! compiled for it drops the edge and light passes and renders the same image, the
 //! G-buffer's emission (GPU, lavapipe by default).
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::{gpu, Render};
 use graph_core::Features;

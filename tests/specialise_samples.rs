@@ -3,9 +3,8 @@
 //! and render what the 1x pipeline without edge passes renders (GPU, lavapipe by
 //! default).
 
-mod deferred_support;
-#[path = "deferred_support/measure.rs"]
-mod measure;
+use crate::deferred_support;
+use crate::deferred_support::measure;
 
 use deferred_support::{gpu, Render};
 use measure::diff;

@@ -3,7 +3,7 @@
 //! the light passes, and renders the same image, as do the other deferred pipelines
 //! that specialise (GPU, lavapipe by default).
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::{gpu, Render};
 use graph_core::file::{load_file, Registry};

@@ -3,7 +3,7 @@
 //! shaders render (GPU, lavapipe by default), and which variants a plan builds is known
 //! without a GPU.
 
-mod deferred_support;
+use crate::deferred_support;
 
 use deferred_support::{gpu, Render};
 use graph_core::file::{load_file, LoadedGraph, Registry};

@@ -3,7 +3,7 @@
 //! features, the plan and `explain::compare` say why, and a depth clear declared before
 //! the format is known gets the value for the format picked.
 
-mod ron_support;
+use crate::ron_support;
 
 use graph_core::file::{load_str, Registry};
 use graph_core::types::{Features as DeviceFeatures, TextureFormat as F};

@@ -1,7 +1,7 @@
 //! Conditions in code: passes and resources that exist only for some features, dropped
 //! by the first compile phase with the reason, and read through where they modified.
 
-mod common;
+use crate::common;
 
 use common::{tex, CLEAR};
 use graph_core::types::TextureFormat::{Rgba16Float, Rgba8Unorm};

@@ -2,7 +2,7 @@
 //! condition naming anything else is an error at the character at fault, and passes with
 //! exclusive conditions may write the same name.
 
-mod ron_support;
+use crate::ron_support;
 
 use graph_core::file::{load_str, validate_file, ErrorKind, FileErrors, Registry};
 use graph_core::{CompileOptions, Features, GraphError, Plan, PlanCache};

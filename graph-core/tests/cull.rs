@@ -1,7 +1,7 @@
 //! Culling: only passes that contribute to an export, an import or a side effect run, and
 //! everything dropped says why.
 
-mod common;
+use crate::common;
 
 use common::{clear_pass, plan, tex, CLEAR};
 use graph_core::types::TextureFormat::Rgba8Unorm;

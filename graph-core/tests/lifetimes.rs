@@ -1,6 +1,6 @@
 //! Lifetimes: the span of execution positions over which each resource must exist.
 
-mod common;
+use crate::common;
 
 use common::{plan, tex, CLEAR};
 use graph_core::types::TextureFormat::Rgba8Unorm;

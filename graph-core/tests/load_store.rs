@@ -1,7 +1,7 @@
 //! Load/store inference: clear on a fresh write, load to build on earlier contents, store
 //! only what a later pass or the world outside reads.
 
-mod common;
+use crate::common;
 
 use common::{plan, tex, CLEAR};
 use graph_core::types::TextureFormat::{Depth24PlusStencil8, Depth32Float, Rgba8Unorm};

@@ -1,7 +1,7 @@
 //! The physical plan: which graph-owned resources share one texture or buffer, and what the
 //! frame costs in bytes before and after sharing.
 
-mod common;
+use crate::common;
 
 use common::{plan, tex, CLEAR};
 use graph_core::types::Features;

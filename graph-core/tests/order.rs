@@ -2,7 +2,7 @@
 //! what they read over, in declaration order otherwise; a graph that allows no such order
 //! is a cycle, reported with its passes.
 
-mod common;
+use crate::common;
 
 use common::{clear_pass, errors, plan, tex, CLEAR};
 use graph_core::types::TextureFormat::Rgba8Unorm;

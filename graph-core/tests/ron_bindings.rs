@@ -1,7 +1,7 @@
 //! Shader bindings declared in graph files are checked against the shader by naga
 //! reflection when the file loads, without a GPU. Shaders are in `tests/fixtures/shaders/`.
 
-mod ron_support;
+use crate::ron_support;
 
 use graph_core::file::{ErrorKind, PluginError};
 use ron_support::{assert_error, compile_str, only_error};

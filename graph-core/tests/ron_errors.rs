@@ -1,7 +1,7 @@
 //! Bad graph files: each is a clear error at the right line and column that names the
 //! pass and the resource, never a panic. Fixtures are in `tests/fixtures/`.
 
-mod ron_support;
+use crate::ron_support;
 
 use graph_core::file::ErrorKind;
 use graph_core::GraphError;

@@ -2,7 +2,7 @@
 //! names of modified resources are new, passes are ordered by what they read. Each
 //! violation is reported where it is written, naming the passes and resources involved.
 
-mod ron_support;
+use crate::ron_support;
 
 use graph_core::file::{load_str, ErrorKind, Registry};
 use graph_core::{CompileOptions, GraphError};

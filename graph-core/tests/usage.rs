@@ -1,6 +1,6 @@
 //! Usage derivation: each resource gets exactly the usages its live accesses need.
 
-mod common;
+use crate::common;
 
 use common::{plan, tex, CLEAR};
 use graph_core::types::TextureFormat::{Depth24PlusStencil8, Rgba16Float, Rgba8Unorm};

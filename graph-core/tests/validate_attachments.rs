@@ -1,6 +1,6 @@
 //! Render-pass attachment rules: how many, how large, how multisampled, and how resolved.
 
-mod common;
+use crate::common;
 
 use common::{only_error, tex, CLEAR};
 use graph_core::types::TextureFormat::{

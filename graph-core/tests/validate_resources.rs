@@ -1,6 +1,6 @@
 //! Resource errors: descriptions no device could create, or that the profile cannot.
 
-mod common;
+use crate::common;
 
 use common::{errors, errors_with, only_error, tex};
 use graph_core::types::Features;

@@ -1,7 +1,7 @@
 //! Role errors: a pass kind that cannot use a role, one texture in two incompatible roles,
 //! and formats that cannot serve the role they were given.
 
-mod common;
+use crate::common;
 
 use common::{clear_pass, only_error, plan, tex, CLEAR};
 use graph_core::types::TextureFormat::{

@@ -1,7 +1,7 @@
 //! Version errors found while declaring: data read before anything wrote it, two writers
 //! of one version, handles from another graph.
 
-mod common;
+use crate::common;
 
 use common::{clear_pass, only_error, plan, tex, CLEAR};
 use graph_core::types::TextureFormat::{Rgba16Float, Rgba8Unorm};

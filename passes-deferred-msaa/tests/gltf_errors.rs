@@ -1,6 +1,6 @@
 //! Bad input gives a `SceneError` that names the file and the object at fault, never a panic.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

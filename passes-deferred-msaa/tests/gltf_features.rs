@@ -2,7 +2,7 @@
 //! samplers, cameras, strips and fans, mirrored transforms, quantized and sparse accessors,
 //! URIs, and the warnings for what is not implemented.
 
-mod common;
+use crate::common;
 
 use common::{temp_dir, Gltf, SHORT};
 use glam::{DQuat, DVec3};

@@ -1,7 +1,7 @@
 //! The committed fixtures (see tests/fixtures/README.md): an embedded-buffer .gltf and an
 //! external-buffer .gltf, with exact expected values.
 
-mod common;
+use crate::common;
 
 use glam::{DMat4, DQuat, DVec3, Vec3};
 use passes_deferred_msaa::scene::{

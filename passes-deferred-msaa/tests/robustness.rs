@@ -2,7 +2,7 @@
 //! JSON replaced by hostile values, every byte of the binary chunk overwritten, and the file
 //! truncated at every length.
 
-mod common;
+use crate::common;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;

@@ -1,9 +1,6 @@
 //! The built `rgraph` binary run as a user runs it, from the repository root, for the
 //! command-line tests: exit status, stdout and stderr.
 
-// Each test crate uses its own subset.
-#![allow(dead_code)]
-
 use std::process::Command;
 
 pub struct Run {

@@ -1,9 +1,6 @@
 //! Helpers shared by the GPU tests: the one way they open a device, compile against it,
 //! and build the small pipelines their passes draw with.
 
-// Each test crate uses its own subset of these helpers.
-#![allow(dead_code)]
-
 use graph_core::gpu::{AdapterChoice, Gpu};
 use graph_core::{CompileOptions, Graph, Plan};
 

@@ -1,11 +1,5 @@
 //! Image measurements the baseline tests share: differences in 8-bit units, edge masks
 //! from the `debug.edges` view, and mean luminance over a mask.
-//!
-//! Included by path next to `mod deferred_support;` (`#[path = "deferred_support/measure.rs"]
-//! mod measure;`), so the shared helpers' module list stays as it is.
-
-// Each test crate uses its own subset.
-#![allow(dead_code)]
 
 use crate::deferred_support::Image;
 

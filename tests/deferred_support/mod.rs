@@ -4,9 +4,7 @@
 //!
 //! Set `DEFERRED_PNG_DIR` to also write every RGBA8 image read back there as a PNG.
 
-// Each test crate uses its own subset of these helpers.
-#![allow(dead_code)]
-
+pub mod measure;
 pub mod samples;
 pub mod scenes;
 pub mod unlit;
@@ -15,18 +13,13 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use graph_core::file::{load_str, LoadedGraph, Registry};
-use graph_core::gpu::{read_rgba16f, read_rgba8, AdapterChoice, Executor, Gpu, Imports};
+use graph_core::gpu::{read_rgba16f, read_rgba8, Executor, Gpu, Imports};
 use graph_core::{CompileOptions, Features, Plan};
 use passes_deferred_msaa::analysis::Variants;
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Host, Overrides};
 
-/// Opens the adapter `RGRAPH_ADAPTER` names (lavapipe when unset). A machine without one
-/// fails the test with the reason: GPU tests never skip silently.
-pub fn gpu() -> Gpu {
-    Gpu::open(&AdapterChoice::from_env())
-        .unwrap_or_else(|e| panic!("this test needs a Vulkan adapter: {e}"))
-}
+pub use crate::common::gpu;
 
 /// One render: which pipeline, scene, overrides and size, and text edits to the
 /// pipeline file (each `(from, to)` must match) for variants no file needs to exist for.

@@ -7,11 +7,10 @@
 use passes_deferred_msaa::glam::{DMat4, DVec3};
 use passes_deferred_msaa::scene::{Aabb, Camera, Light, Material, Mesh, Scene, Vertex};
 
-/// A flat convex polygon as drawn: its mesh and world corners, counter-clockwise seen
-/// from the side its normal points to (the front).
+/// A flat convex polygon as drawn: its world corners, counter-clockwise seen from the
+/// side its normal points to (the front).
 #[derive(Clone, Debug)]
 pub struct Polygon {
-    pub mesh: usize,
     pub corners: Vec<DVec3>,
     pub normal: DVec3,
 }
@@ -75,7 +74,6 @@ impl Parts {
                 indices.extend([first, first + i, first + i + 1]);
             }
             self.polygons.push(Polygon {
-                mesh,
                 corners: corners.clone(),
                 normal,
             });

@@ -1,9 +1,6 @@
 //! Helpers shared by the compile tests: compiling against the WebGPU defaults and pulling
 //! out the one error a broken graph is expected to report.
 
-// Each test crate uses its own subset of these helpers.
-#![allow(dead_code)]
-
 use graph_core::types::TextureFormat;
 use graph_core::{
     ColorLoad, CompileOptions, Graph, GraphBuilder, GraphError, Plan, Size, TextureDesc,

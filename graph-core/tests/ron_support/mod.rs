@@ -1,9 +1,6 @@
 //! Helpers shared by the graph-file tests: loading and compiling files against the
 //! built-in plugins and checking where each error points and what it names.
 
-// Each test crate uses its own subset of these helpers.
-#![allow(dead_code)]
-
 use graph_core::file::{load_file, load_str, FileError, FileErrors, Registry};
 use graph_core::{CompileOptions, Plan};
 

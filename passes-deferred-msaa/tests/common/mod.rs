@@ -1,9 +1,6 @@
 //! A tiny glTF writer for tests: builds the JSON and one binary buffer, then writes the asset
 //! as `.gltf` with an embedded data URI, `.gltf` with an external `.bin`, or `.glb`.
 
-// Each test binary compiles this module and uses a different part of it.
-#![allow(dead_code)]
-
 use std::path::{Path, PathBuf};
 
 use base64::Engine;

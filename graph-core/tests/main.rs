@@ -1,0 +1,26 @@
+//! graph-core's tests, one binary: compiling graphs built in code and loaded from RON,
+//! and the properties every compiled plan keeps.
+
+mod common;
+mod ron_support;
+
+mod conditional_formats;
+mod conditions;
+mod conditions_file;
+mod cull;
+mod lifetimes;
+mod load_store;
+mod memory;
+mod order;
+mod plugin_pass;
+mod properties;
+mod ron_bindings;
+mod ron_errors;
+mod ron_names;
+mod ron_roundtrip;
+mod ron_validate;
+mod usage;
+mod validate_attachments;
+mod validate_resources;
+mod validate_roles;
+mod validate_versions;

@@ -1,0 +1,12 @@
+//! The deferred MSAA plugins' CPU tests, one binary: scenes from glTF and the built-ins,
+//! and the math they share with the shaders.
+
+mod common;
+
+mod builtin_scenes;
+mod extremes_normals;
+mod gltf_errors;
+mod gltf_features;
+mod gltf_fixtures;
+mod robustness;
+mod scene_math;

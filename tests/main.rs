@@ -1,0 +1,46 @@
+//! The root package's tests, one binary: GPU tests on lavapipe (or the adapter
+//! `RGRAPH_ADAPTER` names) and the `rgraph` command run as a user runs it.
+//!
+//! One binary rather than one per file: each test binary links wgpu and naga, and 36 of
+//! them cost CI minutes of linking and gigabytes of disk.
+
+mod cli_support;
+mod common;
+mod deferred_support;
+
+mod baselines_errors;
+mod baselines_forward;
+mod baselines_reference;
+mod baselines_resolve;
+mod cli_bench;
+mod cli_render;
+mod cli_render_samples;
+mod cli_validate;
+mod deferred_detectors;
+mod deferred_gltf;
+mod deferred_lit;
+mod deferred_sample_mask;
+mod deferred_textures;
+mod deferred_unlit;
+mod deferred_views;
+mod deferred_volumes;
+mod deferred_volumes_gpu;
+mod extremes_depth;
+mod extremes_determinism;
+mod extremes_far;
+mod extremes_geometry;
+mod extremes_hdr;
+mod extremes_lights;
+mod extremes_normals;
+mod extremes_sizes;
+mod extremes_thresholds;
+mod extremes_volumes;
+mod gpu_execute;
+mod specialise_analysis;
+mod specialise_depth;
+mod specialise_errors;
+mod specialise_explain;
+mod specialise_lights;
+mod specialise_samples;
+mod specialise_unlit;
+mod specialise_variants;
