@@ -27,7 +27,7 @@
 use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
-use deferred_support::unlit::Coverage;
+use deferred_support::unlit::{Coverage, Judged};
 use deferred_support::{gpu, Image, Render};
 use passes_deferred_msaa::glam::{DVec3, Vec3};
 use passes_deferred_msaa::scene::{Camera, Light, LightKind, Projection, Scene};
@@ -45,9 +45,6 @@ const COMPARE_EDGES: &str = r#"params: (detector: compare),
             },"#;
 const NO_EDGES: &str = r#"params: (detector: none),
             inputs: { "depth": "depth" },"#;
-/// Also exports the resolved HDR target.
-const EXPORT_RESOLVED: (&str, &str) =
-    ("outputs: [\"color\",", "outputs: [\"resolved\", \"color\",");
 
 fn tilted_z(x: f64, y: f64) -> f64 {
     0.8 * (x - 0.35 * y) - 0.1
@@ -112,7 +109,7 @@ fn resolved(pipeline: &str) -> Vec<[f32; 4]> {
     let gpu = gpu();
     Render::new(pipeline, "intersection", (N, N))
         .with_scene(scene())
-        .edit(EXPORT_RESOLVED.0, EXPORT_RESOLVED.1)
+        .export_resolved()
         .run(&gpu)
         .hdr(&gpu, "resolved")
 }
@@ -280,26 +277,12 @@ fn edge_masks_of_every_detector_on_a_lit_scene() {
     assert_eq!(all, (N * N) as usize, "detector all must mark every pixel");
     assert_eq!(none, 0, "detector none must mark no pixel");
 
-    let judge = |image: &Image, expect: fn(&Coverage, u32, u32) -> bool| {
-        let mut wrong = Vec::new();
-        let (mut marked, mut expected) = (0, 0);
-        for y in 0..N {
-            for x in 0..N {
-                if coverage.is_ambiguous(x, y) {
-                    continue;
-                }
-                let (is, should) = (image.at(x, y) == RED, expect(&coverage, x, y));
-                marked += usize::from(is);
-                expected += usize::from(should);
-                if is != should {
-                    wrong.push(format!("({x}, {y}) marked {is}, expected {should}"));
-                }
-            }
-        }
-        (marked, expected, wrong)
-    };
     let compare = edges("deferred_msaa_4x.ron", None);
-    let (marked, expected, wrong) = judge(&compare, Coverage::is_mixed);
+    let Judged {
+        marked,
+        expected,
+        wrong,
+    } = coverage.judge(&compare, RED, Coverage::is_mixed);
     assert!(
         wrong.is_empty(),
         "compare marked {marked} unambiguous pixels, {expected} see several surfaces; \
@@ -307,7 +290,11 @@ fn edge_masks_of_every_detector_on_a_lit_scene() {
         wrong.join("\n")
     );
     let by_coverage = edges("deferred_msaa_4x_coverage.ron", None);
-    let (covered, partial, wrong) = judge(&by_coverage, Coverage::is_partially_covered);
+    let Judged {
+        marked: covered,
+        expected: partial,
+        wrong,
+    } = coverage.judge(&by_coverage, RED, Coverage::is_partially_covered);
     assert!(
         partial > 20,
         "only {partial} partially covered pixels: the test proves little"

@@ -17,15 +17,10 @@ const FIXTURE: &str = concat!(
 );
 const EMISSION: [f32; 3] = [2.0, 1.0, 0.0];
 
-/// Also exports the resolved HDR target.
-const EXPORT_RESOLVED: (&str, &str) =
-    ("outputs: [\"color\",", "outputs: [\"resolved\", \"color\",");
-
 /// Pixels whose resolved HDR is exactly the emission, and whether any pixel exceeds it.
 fn emitting(edit: Option<fn(&mut Scene)>) -> (usize, bool) {
     let gpu = gpu();
-    let mut render = Render::new("deferred_msaa_4x.ron", FIXTURE, SIZE)
-        .edit(EXPORT_RESOLVED.0, EXPORT_RESOLVED.1);
+    let mut render = Render::new("deferred_msaa_4x.ron", FIXTURE, SIZE).export_resolved();
     if let Some(edit) = edit {
         render = render.scene_edit(edit);
     }

@@ -2,13 +2,9 @@
 
 use crate::deferred_support;
 
-use deferred_support::{gpu, Render};
+use deferred_support::{gpu, hdr_differences, Render};
 
 const SIZE: (u32, u32) = (64, 64);
-
-/// Also exports the resolved HDR target.
-const EXPORT_RESOLVED: (&str, &str) =
-    ("outputs: [\"color\",", "outputs: [\"resolved\", \"color\",");
 
 /// Every lit scene, in every pipeline that resolves: the resolved HDR is finite and
 /// within the half-float range everywhere, and not black.
@@ -30,7 +26,7 @@ fn lit_scenes_are_finite_and_not_black() {
             "builtin:lights?count=64",
         ] {
             let frame = Render::new(pipeline, scene, SIZE)
-                .edit(EXPORT_RESOLVED.0, EXPORT_RESOLVED.1)
+                .export_resolved()
                 .run(&gpu);
             let hdr = frame.hdr(&gpu, "resolved");
             let bad = hdr
@@ -94,32 +90,15 @@ fn light_volumes_match_full_screen_lights() {
         "builtin:dense",
     ] {
         let resolved = |volumes: bool| {
-            let mut render = Render::new("deferred_per_sample_4x.ron", scene, SIZE)
-                .edit(EXPORT_RESOLVED.0, EXPORT_RESOLVED.1);
+            let mut render =
+                Render::new("deferred_per_sample_4x.ron", scene, SIZE).export_resolved();
             if !volumes {
-                render = render
-                    .edit(
-                        "(mode: sample_index)",
-                        "(mode: sample_index, volumes: false)",
-                    )
-                    .edit(
-                        "plugin: \"light_nonedge\",",
-                        "plugin: \"light_nonedge\", params: (volumes: false),",
-                    );
+                render = render.full_screen_lights();
             }
             render.run(&gpu).hdr(&gpu, "resolved")
         };
         let (with, without) = (resolved(true), resolved(false));
-        let differing: Vec<String> = with
-            .iter()
-            .zip(&without)
-            .enumerate()
-            .filter(|(_, (a, b))| a != b)
-            .map(|(i, (a, b))| {
-                let (x, y) = (i as u32 % SIZE.0, i as u32 / SIZE.0);
-                format!("({x}, {y}): volumes {a:?}, full screen {b:?}")
-            })
-            .collect();
+        let differing = hdr_differences(&with, &without, SIZE.0, ("volumes", "full screen"));
         assert!(
             differing.is_empty(),
             "{scene}: {} pixels differ between light volumes and full-screen lights, e.g.:\n{}",
@@ -159,8 +138,8 @@ fn a_scene_far_from_the_origin_renders_as_at_the_origin() {
         scene.camera.position.z += offset[2];
     }
     let resolved = |moved: bool| {
-        let mut render = Render::new("deferred_msaa_4x.ron", "builtin:spheres", SIZE)
-            .edit(EXPORT_RESOLVED.0, EXPORT_RESOLVED.1);
+        let mut render =
+            Render::new("deferred_msaa_4x.ron", "builtin:spheres", SIZE).export_resolved();
         if moved {
             render = render.scene_edit(far_away);
         }

@@ -5,14 +5,12 @@
 
 use crate::deferred_support;
 
-use deferred_support::{gpu, Render};
+use deferred_support::{gpu, hdr_differences, Render};
 
 const SIZE: (u32, u32) = (64, 64);
 const RED: [u8; 4] = [255, 0, 0, 255];
 
 /// Also exports the resolved HDR target, to compare before tone mapping.
-const EXPORT_RESOLVED: (&str, &str) =
-    ("outputs: [\"color\",", "outputs: [\"resolved\", \"color\",");
 
 #[test]
 fn sample_mask_and_sample_index_light_edges_identically() {
@@ -24,7 +22,7 @@ fn sample_mask_and_sample_index_light_edges_identically() {
     ] {
         let render = |pipeline| {
             let frame = Render::new(pipeline, scene, SIZE)
-                .edit(EXPORT_RESOLVED.0, EXPORT_RESOLVED.1)
+                .export_resolved()
                 .run(&gpu);
             let edges = frame.image(&gpu, "debug.edges").count(RED);
             (frame.hdr(&gpu, "resolved"), edges)
@@ -35,16 +33,8 @@ fn sample_mask_and_sample_index_light_edges_identically() {
             edges > 20,
             "{scene}: only {edges} edge pixels, the comparison proves little"
         );
-        let differing: Vec<String> = by_index
-            .iter()
-            .zip(&by_mask)
-            .enumerate()
-            .filter(|(_, (a, b))| a != b)
-            .map(|(i, (a, b))| {
-                let (x, y) = (i as u32 % SIZE.0, i as u32 / SIZE.0);
-                format!("({x}, {y}): sample_index {a:?}, sample_mask {b:?}")
-            })
-            .collect();
+        let differing =
+            hdr_differences(&by_index, &by_mask, SIZE.0, ("sample_index", "sample_mask"));
         assert!(
             differing.is_empty(),
             "{scene}: {} of {} resolved pixels differ ({edges} edge pixels), e.g.:\n{}",

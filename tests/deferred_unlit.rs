@@ -4,7 +4,7 @@
 
 use crate::deferred_support;
 
-use deferred_support::unlit::Coverage;
+use deferred_support::unlit::{Coverage, Judged};
 use deferred_support::{gpu, srgb8, Render};
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::Overrides;
@@ -122,32 +122,22 @@ fn edge_detectors_mark_the_known_pixels() {
     assert_eq!(all, (N * N) as usize, "detector all must mark every pixel");
     assert_eq!(none, 0, "detector none must mark no pixel");
 
-    let judge = |image: &deferred_support::Image, expect: fn(&Coverage, u32, u32) -> bool| {
-        let mut wrong = Vec::new();
-        let (mut marked, mut expected) = (0, 0);
-        for y in 0..N {
-            for x in 0..N {
-                if coverage.is_ambiguous(x, y) {
-                    continue;
-                }
-                let (is, should) = (image.at(x, y) == RED, expect(&coverage, x, y));
-                marked += usize::from(is);
-                expected += usize::from(should);
-                if is != should {
-                    wrong.push(format!("({x}, {y}) marked {is}, expected {should}"));
-                }
-            }
-        }
-        (marked, expected, wrong)
-    };
-    let (marked, expected, wrong) = judge(&compare, Coverage::is_mixed);
+    let Judged {
+        marked,
+        expected,
+        wrong,
+    } = coverage.judge(&compare, RED, Coverage::is_mixed);
     assert!(
         wrong.is_empty(),
         "compare marked {marked} unambiguous pixels, {expected} see several surfaces; \
          differences:\n{}",
         wrong.join("\n")
     );
-    let (covered, partial, wrong) = judge(&coverage_image, Coverage::is_partially_covered);
+    let Judged {
+        marked: covered,
+        expected: partial,
+        wrong,
+    } = coverage.judge(&coverage_image, RED, Coverage::is_partially_covered);
     assert!(
         wrong.is_empty(),
         "coverage marked {covered} unambiguous pixels, {partial} have a partially covering \

@@ -51,19 +51,6 @@ use passes_deferred_msaa::scene::{
 
 const SIZE: (u32, u32) = (64, 64);
 
-/// Also exports the resolved HDR target.
-const EXPORT_RESOLVED: (&str, &str) =
-    ("outputs: [\"color\",", "outputs: [\"resolved\", \"color\",");
-/// Both light passes draw every light full screen.
-const EDGE_FULL_SCREEN: (&str, &str) = (
-    "(mode: sample_index)",
-    "(mode: sample_index, volumes: false)",
-);
-const NONEDGE_FULL_SCREEN: (&str, &str) = (
-    "plugin: \"light_nonedge\",",
-    "plugin: \"light_nonedge\", params: (volumes: false),",
-);
-
 const POINT_AT: DVec3 = DVec3::new(0.0, 2.0, 0.0);
 const POINT_RANGE: f32 = 3.0;
 const SPOT_AT: DVec3 = DVec3::new(0.0, 4.0, 0.0);
@@ -378,11 +365,9 @@ fn may_differ(light: &Light, parts: &Parts, view: &PixelView) -> bool {
 fn resolved(gpu: &Gpu, scene: &Scene, label: &str, pipeline: &str, volumes: bool) -> Vec<[f32; 4]> {
     let mut render = Render::new(pipeline, label, SIZE)
         .with_scene(scene.clone())
-        .edit(EXPORT_RESOLVED.0, EXPORT_RESOLVED.1);
+        .export_resolved();
     if !volumes {
-        render = render
-            .edit(EDGE_FULL_SCREEN.0, EDGE_FULL_SCREEN.1)
-            .edit(NONEDGE_FULL_SCREEN.0, NONEDGE_FULL_SCREEN.1);
+        render = render.full_screen_lights();
     }
     render.run(gpu).hdr(gpu, "resolved")
 }

@@ -27,9 +27,6 @@ use graph_core::CompileOptions;
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Host, Overrides};
 
-const EXPORT_RESOLVED: (&str, &str) =
-    ("outputs: [\"color\",", "outputs: [\"resolved\", \"color\",");
-
 /// The deferred pipeline's formats, each at the sample count the pipeline gives it.
 const FORMATS: [wgpu::TextureFormat; 6] = [
     wgpu::TextureFormat::Rgba8UnormSrgb,
@@ -44,8 +41,7 @@ const FORMATS: [wgpu::TextureFormat; 6] = [
 /// the resolved image.
 fn render_checked(gpu: &Gpu, size: (u32, u32), samples: u32) {
     let count = format!("samples: {samples}");
-    let mut render = Render::new("deferred_msaa_4x.ron", "builtin:spheres", size)
-        .edit(EXPORT_RESOLVED.0, EXPORT_RESOLVED.1);
+    let mut render = Render::new("deferred_msaa_4x.ron", "builtin:spheres", size).export_resolved();
     if samples != 4 {
         render = render.edit("samples: 4", &count);
     }

@@ -78,17 +78,9 @@ fn a_light_of_range_1e6_matches_its_full_screen_evaluation() {
         let resolved = |volumes: bool| {
             let mut render = Render::new("deferred_per_sample_4x.ron", "huge-light", SIZE)
                 .with_scene(scene(kind))
-                .edit("outputs: [\"color\",", "outputs: [\"resolved\", \"color\",");
+                .export_resolved();
             if !volumes {
-                render = render
-                    .edit(
-                        "(mode: sample_index)",
-                        "(mode: sample_index, volumes: false)",
-                    )
-                    .edit(
-                        "plugin: \"light_nonedge\",",
-                        "plugin: \"light_nonedge\", params: (volumes: false),",
-                    );
+                render = render.full_screen_lights();
             }
             render.run(&gpu).hdr(&gpu, "resolved")
         };

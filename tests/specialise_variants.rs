@@ -29,21 +29,18 @@ const SCENES: [&str; 4] = [
 ];
 const PIPELINES: [&str; 2] = ["deferred_msaa_4x.ron", "forward_msaa_4x.ron"];
 
-/// Both pipelines export only "color"; the resolved HDR target shows any difference
-/// before tone mapping and 8-bit rounding could hide it.
-const EXPORT_RESOLVED: (&str, &str) = ("outputs: [\"color\"", "outputs: [\"resolved\", \"color\"");
-
 fn features(scene: &str) -> SceneFeatures {
     let scene = Scene::load(scene).unwrap_or_else(|e| panic!("{scene}: {e}"));
     SceneFeatures::of(&scene)
 }
 
 /// The resolved HDR target's bits and the color image, rendered with the plan for the
-/// scene's features and shaders compiled as `variants` says.
+/// scene's features and shaders compiled as `variants` says. The resolved target shows
+/// any difference before tone mapping and 8-bit rounding could hide it.
 fn render(pipeline: &str, scene: &str, variants: Variants) -> (Vec<[u32; 4]>, Vec<[u8; 4]>) {
     let gpu = gpu();
     let frame = Render::new(pipeline, scene, SIZE)
-        .edit(EXPORT_RESOLVED.0, EXPORT_RESOLVED.1)
+        .export_resolved()
         .features(features(scene).names())
         .variants(variants)
         .run(&gpu);

@@ -110,6 +110,23 @@ impl<'a> Render<'a> {
         self
     }
 
+    /// Also exports the resolved HDR target, for [`Frame::hdr`]`(gpu, "resolved")`.
+    pub fn export_resolved(self) -> Render<'a> {
+        self.edit("outputs: [\"color\"", "outputs: [\"resolved\", \"color\"")
+    }
+
+    /// Both light passes draw every light full screen instead of as a volume.
+    pub fn full_screen_lights(self) -> Render<'a> {
+        self.edit(
+            "(mode: sample_index)",
+            "(mode: sample_index, volumes: false)",
+        )
+        .edit(
+            "plugin: \"light_nonedge\",",
+            "plugin: \"light_nonedge\", params: (volumes: false),",
+        )
+    }
+
     pub fn overrides(mut self, overrides: Overrides) -> Render<'a> {
         self.overrides = overrides;
         self
@@ -230,6 +247,25 @@ impl Frame {
 
 fn pipelines() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines")
+}
+
+/// One line per pixel where two HDR images of `width` differ in any bit, naming each
+/// image's value by `names`.
+pub fn hdr_differences(
+    a: &[[f32; 4]],
+    b: &[[f32; 4]],
+    width: u32,
+    names: (&str, &str),
+) -> Vec<String> {
+    a.iter()
+        .zip(b)
+        .enumerate()
+        .filter(|(_, (a, b))| a.map(f32::to_bits) != b.map(f32::to_bits))
+        .map(|(i, (a, b))| {
+            let (x, y) = (i as u32 % width, i as u32 / width);
+            format!("({x}, {y}): {} {a:?}, {} {b:?}", names.0, names.1)
+        })
+        .collect()
 }
 
 /// The sRGB encoding of a linear value, as an 8-bit unorm.

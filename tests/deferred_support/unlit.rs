@@ -6,6 +6,8 @@
 
 use passes_deferred_msaa::scene::Scene;
 
+use super::Image;
+
 /// The 4x sample positions within a pixel (y down): Vulkan's standardSampleLocations,
 /// which are D3D's. wgpu cannot query them, but every Vulkan driver that reports
 /// `standardSampleLocations` (lavapipe does) must use these.
@@ -29,6 +31,16 @@ pub struct Hit {
     pub mesh: Option<usize>,
     /// The triangle within the mesh, as its first index's position.
     pub triangle: usize,
+}
+
+/// How an edge mask agrees with the model, over the pixels the model can call.
+pub struct Judged {
+    /// Pixels the mask marks.
+    pub marked: usize,
+    /// Pixels the model expects marked.
+    pub expected: usize,
+    /// One line per pixel where the two disagree.
+    pub wrong: Vec<String>,
 }
 
 pub struct Coverage {
@@ -172,6 +184,37 @@ impl Coverage {
             }
         }
         sum.map(|s| s / 4.0)
+    }
+
+    /// Compares the pixels of `mark` in `mask` with the pixels where `expect` holds,
+    /// skipping those too close to call.
+    pub fn judge(
+        &self,
+        mask: &Image,
+        mark: [u8; 4],
+        expect: fn(&Self, u32, u32) -> bool,
+    ) -> Judged {
+        let mut judged = Judged {
+            marked: 0,
+            expected: 0,
+            wrong: Vec::new(),
+        };
+        for y in 0..self.n {
+            for x in 0..self.n {
+                if self.is_ambiguous(x, y) {
+                    continue;
+                }
+                let (is, should) = (mask.at(x, y) == mark, expect(self, x, y));
+                judged.marked += usize::from(is);
+                judged.expected += usize::from(should);
+                if is != should {
+                    judged
+                        .wrong
+                        .push(format!("({x}, {y}) marked {is}, expected {should}"));
+                }
+            }
+        }
+        judged
     }
 
     pub fn is_ambiguous(&self, x: u32, y: u32) -> bool {
