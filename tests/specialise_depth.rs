@@ -14,6 +14,7 @@
 
 use crate::deferred_support;
 
+use deferred_support::measure::{diff, Diff};
 use deferred_support::{gpu, Image, Render};
 use graph_core::gpu::Gpu;
 use graph_core::types::TextureFormat as F;
@@ -52,17 +53,6 @@ fn depth_format(plan: &Plan) -> F {
 fn depth_clear(plan: &Plan) -> Load<f32> {
     let ds = plan.passes[0].depth_stencil.as_ref().unwrap();
     ds.depth.unwrap().load
-}
-
-/// The largest channel difference (in 1/255) and how many pixels differ at all.
-fn difference(a: &Image, b: &Image) -> (u8, usize) {
-    let pairs = a.pixels.iter().zip(&b.pixels);
-    let worst = pairs
-        .clone()
-        .flat_map(|(p, q)| (0..4).map(move |c| p[c].abs_diff(q[c])))
-        .max()
-        .unwrap();
-    (worst, pairs.filter(|(p, q)| p != q).count())
 }
 
 fn render(gpu: &Gpu, pipeline: &str, scene: &str, features: Features) -> (Plan, Image) {
@@ -106,7 +96,11 @@ fn shallow_scenes_get_24_bit_depth_and_the_image_of_float_depth() {
                 )
             );
             let saved = general_plan.memory.physical_bytes - special_plan.memory.physical_bytes;
-            let (worst, differing) = difference(&general, &special);
+            let Diff {
+                max: worst,
+                differing,
+                ..
+            } = diff(&general, &special, None);
             report.push(format!(
                 "{name:<24} {pipeline:<40} {saved:>7} B saved, worst {worst}/255 in \
                  {differing} px"
@@ -172,7 +166,11 @@ fn an_explicit_reversed_z_holds_whatever_the_format() {
         assert_eq!(depth_format(plan), format);
         let far = if reversed_z == "true" { 0.0 } else { 1.0 };
         assert_eq!(depth_clear(plan), Load::Clear(far));
-        let (worst, differing) = difference(&general, &frame.image(&gpu, "color"));
+        let Diff {
+            max: worst,
+            differing,
+            ..
+        } = diff(&general, &frame.image(&gpu, "color"), None);
         println!("reversed_z: {reversed_z} on {format:?}: worst {worst}/255 in {differing} px");
         assert!(worst <= 1, "reversed_z: {reversed_z}: {worst}/255");
     }

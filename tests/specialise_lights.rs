@@ -4,6 +4,7 @@
 
 use crate::deferred_support;
 
+use deferred_support::measure::diff;
 use deferred_support::{gpu, Render};
 use graph_core::Features;
 use passes_deferred_msaa::analysis::Features as SceneFeatures;
@@ -44,13 +45,7 @@ fn a_lit_scene_without_lights_drops_the_light_passes_and_renders_the_same() {
         assert!(general_passes.iter().any(|p| p == pass), "{pass}");
         assert!(!special_passes.iter().any(|p| p == pass), "{pass}");
     }
-    let worst = general
-        .pixels
-        .iter()
-        .zip(&special.pixels)
-        .flat_map(|(a, b)| (0..4).map(move |c| a[c].abs_diff(b[c])))
-        .max()
-        .unwrap();
+    let worst = diff(&general, &special, None).max;
     assert!(worst <= 1, "a channel differs by {worst}/255");
     let glowing = special.pixels.iter().filter(|p| p[0] > 0).count();
     assert!(glowing > 100, "only {glowing} pixels glow");

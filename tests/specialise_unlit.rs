@@ -5,6 +5,7 @@
 
 use crate::deferred_support;
 
+use deferred_support::measure::diff;
 use deferred_support::{gpu, Render};
 use graph_core::file::{load_file, Registry};
 use graph_core::{CompileOptions, Features, Plan, PlanCache};
@@ -125,13 +126,7 @@ fn the_specialised_unlit_image_equals_the_unspecialised_one() {
         let (general_passes, general) = render(SceneFeatures::general().names());
         let (special_passes, special) = render(SceneFeatures::of(&unlit()).names());
         assert!(special_passes < general_passes, "{pipeline}");
-        let worst = general
-            .pixels
-            .iter()
-            .zip(&special.pixels)
-            .flat_map(|(a, b)| (0..4).map(move |c| a[c].abs_diff(b[c])))
-            .max()
-            .unwrap();
+        let worst = diff(&general, &special, None).max;
         assert!(worst <= 1, "{pipeline}: a channel differs by {worst}/255");
         // Not a blank frame: the shapes cover about a fifth of it.
         let drawn = special.pixels.len() - special.count([0, 0, 0, 255]);

@@ -17,6 +17,8 @@ pub struct Diff {
     pub mean: f64,
     /// How many pixels were compared.
     pub pixels: usize,
+    /// How many of them differ at all.
+    pub differing: usize,
 }
 
 impl std::fmt::Display for Diff {
@@ -52,6 +54,7 @@ pub fn diff(a: &Image, b: &Image, mask: Option<&[bool]>) -> Diff {
             .map(|c| u64::from(pa[c].abs_diff(pb[c])))
             .sum::<u64>();
         let worst = pixel_diff(*pa, *pb);
+        d.differing += usize::from(worst > 0);
         if worst > d.max {
             d.max = worst;
             d.at = (i as u32 % a.width, i as u32 / a.width);
