@@ -43,7 +43,7 @@ use deferred_support::scenes::{Parts, RayHit};
 use deferred_support::unlit::SAMPLES_4X;
 use deferred_support::{gpu, Render};
 use graph_core::gpu::Gpu;
-use passes_deferred_msaa::glam::{DMat4, DQuat, DVec3, DVec4, Vec3};
+use passes_deferred_msaa::glam::{DMat4, DQuat, DVec3, DVec4};
 use passes_deferred_msaa::gpu_scene::{view_projection, GpuScene};
 use passes_deferred_msaa::scene::{
     Camera, DepthConvention, Light, LightKind, Projection, Scene, DEFAULT_CUTOFF_ILLUMINANCE,
@@ -107,15 +107,7 @@ fn camera(eye: DVec3, target: DVec3, projection: Projection) -> Camera {
 }
 
 fn point_light(position: DVec3, range: f32, intensity: f32) -> Light {
-    Light {
-        name: "point".into(),
-        kind: LightKind::Point,
-        color: [1.0, 0.9, 0.8],
-        intensity,
-        position,
-        direction: Vec3::NEG_Z,
-        range: Some(range),
-    }
+    Light::point("point", position, [1.0, 0.9, 0.8], intensity, Some(range))
 }
 
 /// A spot light; angles in degrees.

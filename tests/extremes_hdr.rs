@@ -25,15 +25,13 @@ const SIZE: (u32, u32) = (48, 48);
 const HALF_MAX: f32 = 65504.0;
 
 fn point(position: DVec3, intensity: f32) -> Light {
-    Light {
-        name: format!("point {intensity:e}"),
-        kind: LightKind::Point,
-        color: [1.0, 1.0, 1.0],
-        intensity,
+    Light::point(
+        format!("point {intensity:e}"),
         position,
-        direction: Vec3::NEG_Z,
-        range: None,
-    }
+        [1.0; 3],
+        intensity,
+        None,
+    )
 }
 
 /// A floor lit by lights of every magnitude from 1e-6 to 1e6, and a glowing box.

@@ -26,23 +26,15 @@ use crate::deferred_support;
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
 use graph_core::gpu::Gpu;
-use passes_deferred_msaa::glam::{DVec3, Vec3};
-use passes_deferred_msaa::scene::{Camera, Light, LightKind, Projection, Scene};
+use passes_deferred_msaa::glam::DVec3;
+use passes_deferred_msaa::scene::{Camera, Light, Projection, Scene};
 
 const SIZE: (u32, u32) = (48, 48);
 /// How far the image of all 10,000 lights may be from the sum of its halves' images.
 const MAX_RELATIVE: f32 = 0.025;
 
 fn point(position: DVec3, intensity: f32, range: f32) -> Light {
-    Light {
-        name: "point".into(),
-        kind: LightKind::Point,
-        color: [1.0, 0.9, 0.8],
-        intensity,
-        position,
-        direction: Vec3::NEG_Z,
-        range: Some(range),
-    }
+    Light::point("point", position, [1.0, 0.9, 0.8], intensity, Some(range))
 }
 
 fn floor_with(lights: Vec<Light>) -> Scene {

@@ -55,15 +55,13 @@ fn odd_normals() -> Scene {
         ]],
         grey,
     );
-    parts.lights.push(Light {
-        name: "point".into(),
-        kind: LightKind::Point,
-        color: [1.0, 1.0, 1.0],
-        intensity: 20.0,
-        position: d(0.0, 1.5, 2.0),
-        direction: Vec3::NEG_Z,
-        range: None,
-    });
+    parts.lights.push(Light::point(
+        "point",
+        d(0.0, 1.5, 2.0),
+        [1.0; 3],
+        20.0,
+        None,
+    ));
     parts.lights.push(Light {
         name: "sun".into(),
         kind: LightKind::Directional,

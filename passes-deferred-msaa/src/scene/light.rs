@@ -59,6 +59,27 @@ pub enum LightVolume {
 }
 
 impl Light {
+    /// A point light of `intensity` candela and linear RGB `color` at `position`. `range`
+    /// is glTF's: where its windowed falloff reaches zero (`None`: infinite, cut off by
+    /// [`Self::effective_range`]).
+    pub fn point(
+        name: impl Into<String>,
+        position: DVec3,
+        color: [f32; 3],
+        intensity: f32,
+        range: Option<f32>,
+    ) -> Light {
+        Light {
+            name: name.into(),
+            kind: LightKind::Point,
+            color,
+            intensity,
+            position,
+            direction: Vec3::NEG_Z,
+            range,
+        }
+    }
+
     /// Whether the light adds anything: positive intensity and some positive color
     /// channel. Scene analysis counts only these, and the light passes draw only these.
     pub fn emits(&self) -> bool {

@@ -17,11 +17,11 @@ use std::f32::consts::TAU;
 use glam::{DMat4, DVec3, Vec3};
 
 use super::params::Params;
-use super::parts::{add_ground, add_shape, lit, perspective_camera, point, spot};
+use super::parts::{add_ground, add_shape, lit, perspective_camera, spot};
 use super::rng::Pcg32;
 use super::shapes::Shape;
 use crate::scene::builder::SceneBuilder;
-use crate::scene::SceneError;
+use crate::scene::{Light, SceneError};
 
 /// The parameters `builtin:lights?...` takes.
 pub(super) const PARAMS: &[(&str, &str)] = &[
@@ -45,12 +45,12 @@ pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), S
             f64::from(rng.range(-20.0, 20.0)),
         );
         let color = hue(&mut rng);
-        builder.lights.push(point(
+        builder.lights.push(Light::point(
             format!("point {i}"),
             position,
             color,
             rng.range(2.0, 6.0),
-            rng.range(4.0, 7.0),
+            Some(rng.range(4.0, 7.0)),
         ));
     }
     for i in 0..spots {

@@ -62,27 +62,14 @@ pub(super) fn corner_lights(
         .enumerate()
         .map(move |(i, ((x, z), color))| {
             let position = DVec3::new(x * offset, height, z * offset);
-            point(format!("point {i}"), position, color, intensity, range)
+            Light::point(
+                format!("point {i}"),
+                position,
+                color,
+                intensity,
+                Some(range),
+            )
         })
-}
-
-/// A point light with a glTF range.
-pub(super) fn point(
-    name: String,
-    position: DVec3,
-    color: [f32; 3],
-    intensity: f32,
-    range: f32,
-) -> Light {
-    Light {
-        name,
-        kind: LightKind::Point,
-        color,
-        intensity,
-        position,
-        direction: Vec3::NEG_Z,
-        range: Some(range),
-    }
 }
 
 /// A spot light with a glTF range; `direction` need not be normalized.
@@ -101,7 +88,7 @@ pub(super) fn spot(
             outer_cone: cones.1,
         },
         direction: direction.normalize(),
-        ..point(name, position, color, intensity, range)
+        ..Light::point(name, position, color, intensity, Some(range))
     }
 }
 
