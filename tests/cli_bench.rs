@@ -398,6 +398,8 @@ fn a_specialised_plan_is_measured_beside_the_general_one() {
             ("general_passes", "number"),
             ("general_memory", "object"),
             ("general_gpu_frame_ms", "spread"),
+            // Both the plan and the shaders differ, so the plan is timed with each.
+            ("plan_only_gpu_frame_ms", "spread"),
         ],
     );
     assert!(
@@ -425,4 +427,9 @@ fn a_specialised_plan_is_measured_beside_the_general_one() {
         table.contains("| deferred_noaa | no_lights, shallow_depth, unlit_only | gbuffer.wgsl {double_sided} | 3 → 2 |"),
         "{table}"
     );
+    let row = table
+        .lines()
+        .find(|l| l.starts_with("| deferred_noaa | no_lights"))
+        .unwrap();
+    assert!(row.ends_with(" ms |"), "no time saved by shaders: {row}");
 }

@@ -28,9 +28,11 @@ pub struct Pipeline {
     /// Every output the file declares, sorted.
     pub offered: Vec<String>,
     /// What it is compiled for: [`Session::prepare`](super::Session::prepare) compiles
-    /// the file for these features' names, and the deferred plugins build their shader
-    /// variants for them.
+    /// the file for these features' names.
     pub features: SceneFeatures,
+    /// What the deferred plugins build their shader variants for: `features`, except
+    /// for [`Specialise::PlanOnly`].
+    pub shader_features: SceneFeatures,
 }
 
 /// What a pipeline is compiled for.
@@ -39,6 +41,9 @@ pub enum Specialise {
     /// The scene's features: the file's conditions drop what the scene does not use,
     /// and the shaders are the scene's variants.
     ToScene,
+    /// The scene's plan with the general shaders: it tells what the shader variants
+    /// save apart from what the plan's changes (passes, formats) save.
+    PlanOnly,
     /// A scene using every feature, with the general shaders: the file's general
     /// pipeline, which measures what specialising saves (and shows a view the scene's
     /// plan drops).
@@ -49,7 +54,14 @@ impl Specialise {
     fn variants(self) -> Variants {
         match self {
             Specialise::ToScene => Variants::Scene,
-            Specialise::General => Variants::General,
+            Specialise::PlanOnly | Specialise::General => Variants::General,
+        }
+    }
+
+    fn plan_features(self, scene: &Scene) -> SceneFeatures {
+        match self {
+            Specialise::ToScene | Specialise::PlanOnly => SceneFeatures::of(scene),
+            Specialise::General => SceneFeatures::general(),
         }
     }
 }
@@ -89,9 +101,10 @@ impl Pipeline {
         specialise: Specialise,
         load: impl FnOnce(&Registry) -> Result<LoadedGraph, FrameError>,
     ) -> Result<Self, FrameError> {
-        let features = specialise.variants().features(&host.scene);
+        let features = specialise.plan_features(&host.scene);
+        let shader_features = specialise.variants().features(&host.scene);
         let loaded = load(&registry_for(Some(host), specialise.variants()))?;
-        Self::keep(path, loaded, outputs, features)
+        Self::keep(path, loaded, outputs, features, shader_features)
     }
 
     fn keep(
@@ -99,6 +112,7 @@ impl Pipeline {
         mut loaded: LoadedGraph,
         outputs: &[&str],
         features: SceneFeatures,
+        shader_features: SceneFeatures,
     ) -> Result<Self, FrameError> {
         let offered = loaded.outputs().iter().map(|o| o.to_string()).collect();
         loaded
@@ -113,6 +127,7 @@ impl Pipeline {
             outputs: outputs.iter().map(|o| o.to_string()).collect(),
             offered,
             features,
+            shader_features,
         })
     }
 }

@@ -74,7 +74,8 @@ impl Setup<'_> {
 
     /// `candidate` compiled for every feature with the general shaders and timed like
     /// the scene's plan, unless the scene's plan (`special`, compiled for `features`)
-    /// is the same.
+    /// is the same; and the scene's plan with the general shaders, when both the plan
+    /// and the shaders differ.
     fn general(
         &self,
         candidate: &Candidate,
@@ -88,15 +89,32 @@ impl Setup<'_> {
         if general == special {
             return Ok(None);
         }
-        let reports = self.time(&mut prepared)?;
+        let general_gpu_frame_ms = self.gpu_frame_ms(&mut prepared)?;
+        let general_memory = Memory::of(&prepared.plan);
+        drop(prepared);
+        let plan_only_gpu_frame_ms =
+            match special.same_plan(&general) || special.variants() == general.variants() {
+                true => None,
+                false => {
+                    let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::PlanOnly)?;
+                    self.gpu_frame_ms(&mut self.session.prepare(pipeline, self.size)?)?
+                }
+            };
         Ok(Some(Specialisation {
             features,
             shader_variants: special.variants().to_vec(),
             passes: special.passes(),
             general_passes: general.passes(),
-            general_memory: Memory::of(&prepared.plan),
-            general_gpu_frame_ms: Spread::of_ns(reports.iter().filter_map(|r| r.gpu_total_ns)),
+            general_memory,
+            general_gpu_frame_ms,
+            plan_only_gpu_frame_ms,
         }))
+    }
+
+    /// The median and spread of `prepared`'s measured frames, `None` without timestamps.
+    fn gpu_frame_ms(&self, prepared: &mut Prepared<'_>) -> Result<Option<Spread>, FrameError> {
+        let reports = self.time(prepared)?;
+        Ok(Spread::of_ns(reports.iter().filter_map(|r| r.gpu_total_ns)))
     }
 
     /// `output` of one frame of `candidate`: the reference, edge masks, measurements.

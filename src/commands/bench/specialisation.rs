@@ -24,6 +24,10 @@ pub struct Specialisation {
     pub general_memory: Memory,
     /// `null` when the device has no timestamp queries.
     pub general_gpu_frame_ms: Option<Spread>,
+    /// The scene's plan with the general shaders, which splits the time saved between
+    /// the plan's changes and the shader variants. `null` when only one of the two
+    /// differs from the general pipeline (it saved all there is), or without timestamps.
+    pub plan_only_gpu_frame_ms: Option<Spread>,
 }
 
 /// What decides whether two plans of one file do different work: the passes they run,
@@ -43,11 +47,17 @@ impl PlanShape {
             passes: plan.passes.iter().map(|p| p.name.clone()).collect(),
             textures: plan.textures.iter().map(|t| t.shape).collect(),
             memory: Memory::of(plan),
-            variants: plan_shader_variants(&pipeline.features, plan, &pipeline.loaded)
+            variants: plan_shader_variants(&pipeline.shader_features, plan, &pipeline.loaded)
                 .into_iter()
                 .map(|v| v.variant.to_string())
                 .collect(),
         }
+    }
+
+    /// Whether both plans run the same passes on the same textures, whatever their
+    /// shaders.
+    pub fn same_plan(&self, other: &PlanShape) -> bool {
+        (&self.passes, &self.textures) == (&other.passes, &other.textures)
     }
 
     pub fn passes(&self) -> usize {
