@@ -92,14 +92,12 @@ impl Setup<'_> {
         let general_gpu_frame_ms = self.gpu_frame_ms(&mut prepared)?;
         let general_memory = Memory::of(&prepared.plan);
         drop(prepared);
-        let plan_only_gpu_frame_ms =
-            match special.same_plan(&general) || special.variants() == general.variants() {
-                true => None,
-                false => {
-                    let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::PlanOnly)?;
-                    self.gpu_frame_ms(&mut self.session.prepare(pipeline, self.size)?)?
-                }
-            };
+        let both_differ = !special.same_plan(&general) && special.variants() != general.variants();
+        let plan_only_gpu_frame_ms = if both_differ {
+            self.plan_only(candidate, host)?
+        } else {
+            None
+        };
         Ok(Some(Specialisation {
             features,
             shader_variants: special.variants().to_vec(),
@@ -109,6 +107,16 @@ impl Setup<'_> {
             general_gpu_frame_ms,
             plan_only_gpu_frame_ms,
         }))
+    }
+
+    /// The GPU frame time of `candidate` compiled for the scene with the general shaders.
+    fn plan_only(
+        &self,
+        candidate: &Candidate,
+        host: &Arc<Host>,
+    ) -> Result<Option<Spread>, FrameError> {
+        let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::PlanOnly)?;
+        self.gpu_frame_ms(&mut self.session.prepare(pipeline, self.size)?)
     }
 
     /// The median and spread of `prepared`'s measured frames, `None` without timestamps.

@@ -187,7 +187,7 @@ fn specialisation_table(rows: &[&Row]) -> String {
             .as_ref()
             .zip(f.gpu_frame_ms.as_ref())
             .map_or("-".into(), |(p, f)| {
-                format!("{} ms", ms(p.median - f.median))
+                format!("{} ms", ms(difference(p.median, f.median)))
             });
         let _ = writeln!(
             md,
@@ -206,6 +206,16 @@ fn specialisation_table(rows: &[&Row]) -> String {
         );
     }
     md
+}
+
+/// `a - b`, with differences that would print as "-0.00" printed as 0.
+fn difference(a: f64, b: f64) -> f64 {
+    let d = a - b;
+    if d.abs() < 0.005 {
+        0.0
+    } else {
+        d
+    }
 }
 
 /// How much less `special` is than `general`, in percent of `general`.
