@@ -58,10 +58,17 @@ impl Specialise {
         }
     }
 
-    fn plan_features(self, scene: &Scene) -> SceneFeatures {
+    /// The features the file is compiled for, and those its shaders are built for
+    /// (what [`Self::variants`] makes of the scene), analysing the scene at most once.
+    fn features(self, scene: &Scene) -> (SceneFeatures, SceneFeatures) {
+        let general = SceneFeatures::general();
         match self {
-            Specialise::ToScene | Specialise::PlanOnly => SceneFeatures::of(scene),
-            Specialise::General => SceneFeatures::general(),
+            Specialise::ToScene => {
+                let of_scene = SceneFeatures::of(scene);
+                (of_scene, of_scene)
+            }
+            Specialise::PlanOnly => (SceneFeatures::of(scene), general),
+            Specialise::General => (general, general),
         }
     }
 }
@@ -101,8 +108,7 @@ impl Pipeline {
         specialise: Specialise,
         load: impl FnOnce(&Registry) -> Result<LoadedGraph, FrameError>,
     ) -> Result<Self, FrameError> {
-        let features = specialise.plan_features(&host.scene);
-        let shader_features = specialise.variants().features(&host.scene);
+        let (features, shader_features) = specialise.features(&host.scene);
         let loaded = load(&registry_for(Some(host), specialise.variants()))?;
         Self::keep(path, loaded, outputs, features, shader_features)
     }
