@@ -88,7 +88,7 @@ pub(super) fn apply(graph: &Graph, features: &Features) -> Conditioned {
 }
 
 /// Conditions may name only the features the graph declares: a misspelt feature would
-/// otherwise drop a pass for every scene.
+/// otherwise drop a pass, or keep a format, for every scene.
 fn undeclared_features(graph: &Graph, errors: &mut Vec<GraphError>) {
     let declared = graph.features.to_string();
     let unknown = |c: &Condition| -> Vec<String> {
@@ -111,16 +111,26 @@ fn undeclared_features(graph: &Graph, errors: &mut Vec<GraphError>) {
         }
     }
     for resource in &graph.resources {
-        let Some(condition) = &resource.condition else {
-            continue;
-        };
-        for feature in unknown(condition) {
-            errors.push(GraphError::UnknownResourceFeature {
-                resource: resource.name.clone(),
-                condition: condition.to_string(),
-                feature,
-                declared: declared.clone(),
-            });
+        if let Some(condition) = &resource.condition {
+            for feature in unknown(condition) {
+                errors.push(GraphError::UnknownResourceFeature {
+                    resource: resource.name.clone(),
+                    condition: condition.to_string(),
+                    feature,
+                    declared: declared.clone(),
+                });
+            }
+        }
+        let format_conditions = resource.texture().map(|t| t.format_if.as_slice());
+        for (condition, _) in format_conditions.unwrap_or_default() {
+            for feature in unknown(condition) {
+                errors.push(GraphError::UnknownFormatFeature {
+                    resource: resource.name.clone(),
+                    condition: condition.to_string(),
+                    feature,
+                    declared: declared.clone(),
+                });
+            }
         }
     }
 }

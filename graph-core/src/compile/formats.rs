@@ -2,8 +2,9 @@
 //! texture gets the format its first holding condition names, and the plan keeps why.
 //!
 //! Checked on the declared graph, like the other conditions, so that every feature set
-//! reports the same mistakes: a conditional format names declared features only, and is
-//! the same kind of format as the one it replaces (passes are written for both).
+//! reports the same mistakes: a conditional format is the same kind of format as the one
+//! it replaces (passes are written for both). That it names declared features only is
+//! checked with every other condition's features (`conditions::undeclared_features`).
 
 use crate::condition::Features;
 use crate::error::GraphError;
@@ -39,15 +40,7 @@ pub(super) fn check(graph: &Graph, errors: &mut Vec<GraphError>) {
         let Some(texture) = resource.texture() else {
             continue;
         };
-        for (condition, format) in &texture.format_if {
-            for feature in condition.features().filter(|f| !graph.features.contains(f)) {
-                errors.push(GraphError::UnknownFormatFeature {
-                    resource: resource.name.clone(),
-                    condition: condition.to_string(),
-                    feature: feature.to_owned(),
-                    declared: graph.features.to_string(),
-                });
-            }
+        for (_, format) in &texture.format_if {
             if !same_kind(*format, texture.format) {
                 errors.push(misfit(&resource.name, texture, *format));
             }
@@ -71,8 +64,9 @@ fn misfit(resource: &str, texture: &TextureDesc, format: wgpu_types::TextureForm
 mod tests {
     use wgpu_types::TextureFormat as F;
 
-    use super::{check, choose};
+    use super::choose;
     use crate::builder::GraphBuilder;
+    use crate::compile::conditions;
     use crate::condition::{Condition, Features};
     use crate::error::GraphError;
     use crate::resource::{ResourceNode, TextureDesc};
@@ -131,8 +125,7 @@ mod tests {
                 .format_if(Condition::feature("shalow"), F::Depth24PlusStencil8)
                 .format_if(Condition::feature("shallow"), F::Depth32Float),
         );
-        let mut errors = Vec::new();
-        check(&graph.build(), &mut errors);
+        let errors = conditions::apply(&graph.build(), &Features::new()).errors;
         assert_eq!(
             errors[0],
             GraphError::UnknownFormatFeature {
