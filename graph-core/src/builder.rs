@@ -158,6 +158,15 @@ impl PassBuilder<'_> {
         self
     }
 
+    /// Declares what the pass's compute entry point asks of the device
+    /// ([`Entry::workgroup`](crate::shader::Entry::workgroup)): compiling checks it
+    /// against the profile's `max_compute_workgroup_storage_size`, invocations and
+    /// workgroup dimensions, and fails naming the pass and the entry point.
+    pub fn workgroup(&mut self, workgroup: crate::pass::Workgroup) -> &mut Self {
+        self.node().workgroup = Some(workgroup);
+        self
+    }
+
     /// Keeps the pass even when nothing reads what it writes.
     pub fn side_effect(&mut self) -> &mut Self {
         self.node().side_effect = true;

@@ -58,6 +58,14 @@ pub enum GraphError {
     #[error("\"{resource}\": {what}")]
     InvalidResource { resource: String, what: String },
 
+    #[error("pass \"{pass}\": compute entry point \"{entry}\" {what} on {profile}")]
+    WorkgroupLimit {
+        pass: String,
+        entry: String,
+        what: String,
+        profile: String,
+    },
+
     #[error(
         "texture \"{resource}\" ({width}x{height}) exceeds the maximum dimension {max} of {profile}"
     )]
@@ -247,7 +255,8 @@ impl GraphError {
             | NoAttachment { pass }
             | TwoDepthStencil { pass, .. }
             | UnknownPassFeature { pass, .. }
-            | UsesDroppedResource { pass, .. } => Some(pass),
+            | UsesDroppedResource { pass, .. }
+            | WorkgroupLimit { pass, .. } => Some(pass),
             ConflictingWriters { second, .. } => Some(second),
             DroppedWriter { reader, .. } => Some(reader),
             Cycle { passes, .. } => passes.first().map(String::as_str),
@@ -289,6 +298,7 @@ impl GraphError {
             TwoDepthStencil { second, .. } => Some(second),
             ColorBytesPerSample { .. }
             | TooManyColorAttachments { .. }
+            | WorkgroupLimit { .. }
             | NoAttachment { .. }
             | UnknownPassFeature { .. } => None,
         }

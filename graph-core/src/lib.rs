@@ -46,9 +46,9 @@ pub use handle::{
     Buffer, BufferHandle, Handle, Kind, PassId, ResourceId, ResourceKind, Texture, TextureHandle,
 };
 pub use pass::PassKind;
-pub use pass::PassNode;
 #[cfg(feature = "gpu")]
 pub use pass::Record;
+pub use pass::{PassNode, Workgroup};
 pub use plan::{
     ColorAttachment, CulledPass, DepthStencilAttachment, Load, MemoryReport, Ops, PhysicalBuffer,
     PhysicalTexture, Plan, PlannedPass, PlannedResource, Store, TextureShape,

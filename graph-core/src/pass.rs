@@ -48,6 +48,19 @@ impl Record {
     }
 }
 
+/// What a compute pass's entry point asks of the device: checked against the profile's
+/// compute limits when compiling, so a shader too big for a device is a graph error
+/// naming the pass, not a pipeline-creation failure on the first frame.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Workgroup {
+    /// The entry point, for messages.
+    pub entry: String,
+    /// `@workgroup_size`.
+    pub size: [u32; 3],
+    /// Bytes of `var<workgroup>` memory, as WebGPU counts them.
+    pub memory_bytes: u32,
+}
+
 /// A pass as declared.
 pub struct PassNode {
     pub name: String,
@@ -60,6 +73,8 @@ pub struct PassNode {
     /// Why the pass is left out of every plan, when its plugin found at setup that it
     /// has nothing to do: compiled as if its condition were false.
     pub omitted: Option<String>,
+    /// A compute pass's workgroup shape and memory, where its plugin declared them.
+    pub workgroup: Option<Workgroup>,
     #[cfg(feature = "gpu")]
     pub(crate) record: Option<Record>,
 }
@@ -91,6 +106,7 @@ impl PassNode {
             side_effect: false,
             condition: None,
             omitted: None,
+            workgroup: None,
             #[cfg(feature = "gpu")]
             record: None,
         }
@@ -103,6 +119,7 @@ impl PassNode {
             side_effect: self.side_effect,
             condition: self.condition.clone(),
             omitted: self.omitted.clone(),
+            workgroup: self.workgroup.clone(),
             ..Self::new(self.name.clone(), self.kind)
         }
     }

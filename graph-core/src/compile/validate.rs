@@ -6,7 +6,7 @@ use wgpu_types::TextureFormat;
 use crate::access::{Access, Aspect, AspectAccess, BufferRole, Role, TextureRole};
 use crate::error::GraphError;
 use crate::graph::Graph;
-use crate::pass::{PassKind, PassNode};
+use crate::pass::{PassKind, PassNode, Workgroup};
 use crate::plan::TextureShape;
 use crate::profile::{color_bytes_per_sample, DeviceProfile};
 use crate::resource::{Origin, ResourceDesc};
@@ -159,6 +159,9 @@ pub(super) fn passes(
         if pass.kind == PassKind::Render {
             check.attachments(errors);
         }
+        if let Some(workgroup) = &pass.workgroup {
+            check.workgroup(workgroup, errors);
+        }
     }
 }
 
@@ -170,6 +173,45 @@ struct PassCheck<'a> {
 }
 
 impl PassCheck<'_> {
+    /// The compute limits a workgroup needs: its memory, its invocations and each
+    /// dimension of its size.
+    fn workgroup(&self, workgroup: &Workgroup, errors: &mut Vec<GraphError>) {
+        let limits = &self.profile.limits;
+        let [x, y, z] = workgroup.size;
+        let invocations = u64::from(x) * u64::from(y) * u64::from(z);
+        let mut fail = |what: String| {
+            errors.push(GraphError::WorkgroupLimit {
+                pass: self.pass.name.clone(),
+                entry: workgroup.entry.clone(),
+                what,
+                profile: self.profile.name.clone(),
+            })
+        };
+        if workgroup.memory_bytes > limits.max_compute_workgroup_storage_size {
+            fail(format!(
+                "uses {} bytes of workgroup memory, more than the limit of {}",
+                workgroup.memory_bytes, limits.max_compute_workgroup_storage_size
+            ));
+        }
+        if invocations > u64::from(limits.max_compute_invocations_per_workgroup) {
+            fail(format!(
+                "runs {invocations} invocations per workgroup ({x}x{y}x{z}), more than the \
+                 limit of {}",
+                limits.max_compute_invocations_per_workgroup
+            ));
+        }
+        let dims = [
+            ("x", x, limits.max_compute_workgroup_size_x),
+            ("y", y, limits.max_compute_workgroup_size_y),
+            ("z", z, limits.max_compute_workgroup_size_z),
+        ];
+        for (axis, size, max) in dims.into_iter().filter(|(_, size, max)| size > max) {
+            fail(format!(
+                "has a workgroup size of {size} in {axis}, more than the limit of {max}"
+            ));
+        }
+    }
+
     fn name(&self, access: &Access) -> String {
         self.graph.resources[access.resource.index()].name.clone()
     }

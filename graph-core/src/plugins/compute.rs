@@ -78,6 +78,7 @@ impl Plugin for Compute {
         let shader = Shader::load(slots.path(&params.shader))?;
         let entry = entry_point(&shader, &params.entry, Stage::Compute)?;
         let bound = bind(&shader, &entry, &params.bindings, pass, slots)?;
+        pass.workgroup(entry.workgroup());
         let workgroups = match params.dispatch {
             Dispatch::Workgroups(x, y, z) => Workgroups::Fixed([x, y, z]),
             Dispatch::PerTexel(slot) => {

@@ -215,6 +215,37 @@ impl Entry<'_> {
         self.point().workgroup_size.map(|n| n.max(1))
     }
 
+    /// The bytes of workgroup memory this entry point uses: every `var<workgroup>` it
+    /// touches, each rounded up to 16 bytes as WebGPU counts them against
+    /// `max_compute_workgroup_storage_size`.
+    pub fn workgroup_memory(&self) -> u32 {
+        let module = self.shader.module();
+        let uses = self.shader.info().get_entry_point(self.index);
+        let mut layouter = naga::proc::Layouter::default();
+        // The module passed validation, so every type has a layout.
+        if layouter.update(module.to_ctx()).is_err() {
+            return 0;
+        }
+        module
+            .global_variables
+            .iter()
+            .filter(|(handle, var)| {
+                var.space == AddressSpace::WorkGroup && !uses[*handle].is_empty()
+            })
+            .map(|(_, var)| layouter[var.ty].size.next_multiple_of(16))
+            .sum()
+    }
+
+    /// What the entry point needs of a device's compute limits, for
+    /// [`PassBuilder::workgroup`](crate::PassBuilder::workgroup).
+    pub fn workgroup(&self) -> crate::pass::Workgroup {
+        crate::pass::Workgroup {
+            entry: self.name().to_owned(),
+            size: self.workgroup_size(),
+            memory_bytes: self.workgroup_memory(),
+        }
+    }
+
     /// The `@location` inputs, by location.
     pub fn inputs(&self) -> Vec<Io> {
         let module = self.shader.module();
