@@ -10,6 +10,8 @@ const COMMON: &str = include_str!("wgsl/common.wgsl");
 const SCENE: &str = include_str!("wgsl/scene.wgsl");
 const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
 const BRDF: &str = include_str!("wgsl/brdf.wgsl");
+const SURFACE: &str = include_str!("wgsl/surface.wgsl");
+const EDGE_DETECT: &str = include_str!("wgsl/edge_detect.wgsl");
 
 /// A pass's shader: a name for messages and its own fragment, composed after the shared
 /// fragments it needs.
@@ -25,7 +27,12 @@ pub(crate) const GBUFFER: Source = Source {
 };
 pub(crate) const EDGE: Source = Source {
     name: "edge.wgsl",
-    parts: &[COMMON, GBUFFER_READ, include_str!("wgsl/edge.wgsl")],
+    parts: &[
+        COMMON,
+        GBUFFER_READ,
+        EDGE_DETECT,
+        include_str!("wgsl/edge.wgsl"),
+    ],
 };
 pub(crate) const LIGHT: Source = Source {
     name: "light.wgsl",
@@ -34,7 +41,21 @@ pub(crate) const LIGHT: Source = Source {
         SCENE,
         GBUFFER_READ,
         BRDF,
+        SURFACE,
         include_str!("wgsl/light.wgsl"),
+    ],
+};
+/// Needs a generated block after it: see [`crate::plugins::LightTiled`].
+pub(crate) const LIGHT_TILED: Source = Source {
+    name: "light_tiled.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        GBUFFER_READ,
+        BRDF,
+        SURFACE,
+        EDGE_DETECT,
+        include_str!("wgsl/light_tiled.wgsl"),
     ],
 };
 pub(crate) const RESOLVE: Source = Source {

@@ -81,6 +81,8 @@ pub enum GatedShader {
     GBuffer,
     /// light.wgsl, of `light_edge` and `light_nonedge`.
     Light,
+    /// light_tiled.wgsl, of `light_tiled`.
+    LightTiled,
     /// forward.wgsl, of `forward`.
     Forward,
 }
@@ -91,6 +93,7 @@ impl GatedShader {
         match plugin {
             "gbuffer" => Some(GatedShader::GBuffer),
             "light_edge" | "light_nonedge" => Some(GatedShader::Light),
+            "light_tiled" => Some(GatedShader::LightTiled),
             "forward" => Some(GatedShader::Forward),
             _ => None,
         }
@@ -100,6 +103,7 @@ impl GatedShader {
         match self {
             GatedShader::GBuffer => "gbuffer.wgsl",
             GatedShader::Light => "light.wgsl",
+            GatedShader::LightTiled => "light_tiled.wgsl",
             GatedShader::Forward => "forward.wgsl",
         }
     }
@@ -110,7 +114,9 @@ impl GatedShader {
         use Gate::*;
         match self {
             GatedShader::GBuffer => &[Textures, DoubleSided, Emissive],
-            GatedShader::Light => &[DirectionalLights, PointLights, SpotLights],
+            GatedShader::Light | GatedShader::LightTiled => {
+                &[DirectionalLights, PointLights, SpotLights]
+            }
             GatedShader::Forward => &[
                 DirectionalLights,
                 PointLights,

@@ -1,5 +1,5 @@
-//! A pass's input textures as one bind group (group 1 of the deferred shaders), made
-//! again every frame because the pool may lend a slot different memory.
+//! A pass's textures as one bind group (group 1 of the deferred shaders, render or
+//! compute), made again every frame because the pool may lend a slot different memory.
 
 use graph_core::gpu::FrameResources;
 
@@ -15,21 +15,32 @@ impl TextureBindings {
     pub fn new(resources: &FrameResources<'_>, bindings: &[Input]) -> TextureBindings {
         let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
             .iter()
-            .map(|b| wgpu::BindGroupLayoutEntry {
-                binding: b.binding,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: match b.texels {
+            .map(|b| {
+                let shape = resources.shape(b.texture);
+                let sampled = |sample_type| wgpu::BindingType::Texture {
+                    sample_type,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: shape.samples > 1,
+                };
+                wgpu::BindGroupLayoutEntry {
+                    binding: b.binding,
+                    visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
+                    ty: match b.texels {
                         // textureLoad only: nothing is filtered, and r32float is not
                         // filterable.
-                        Texels::Float => wgpu::TextureSampleType::Float { filterable: false },
-                        Texels::Uint => wgpu::TextureSampleType::Uint,
-                        Texels::Depth => wgpu::TextureSampleType::Depth,
+                        Texels::Float => {
+                            sampled(wgpu::TextureSampleType::Float { filterable: false })
+                        }
+                        Texels::Uint => sampled(wgpu::TextureSampleType::Uint),
+                        Texels::Depth => sampled(wgpu::TextureSampleType::Depth),
+                        Texels::Store => wgpu::BindingType::StorageTexture {
+                            access: wgpu::StorageTextureAccess::WriteOnly,
+                            format: shape.format,
+                            view_dimension: wgpu::TextureViewDimension::D2,
+                        },
                     },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: resources.shape(b.texture).samples > 1,
-                },
-                count: None,
+                    count: None,
+                }
             })
             .collect();
         let layout = resources

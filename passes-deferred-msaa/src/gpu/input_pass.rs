@@ -1,5 +1,5 @@
-//! The device objects of a pass that reads G-buffer textures (light, G-buffer resolve,
-//! full-screen passes): its shader module, the bind group layout of its inputs, a
+//! The device objects of a pass that reads G-buffer textures (light, tiled light,
+//! G-buffer resolve, full-screen passes): its shader module, the bind group layout of its inputs, a
 //! pipeline layout of the scene's group 0 (when it reads the scene) and the inputs' group
 //! 1, and its pipelines. Built on the first frame of a device or scene upload, kept after.
 
@@ -9,14 +9,14 @@ use super::{module, pipeline_layout, Pipelines, TextureBindings};
 use crate::gpu_scene::GpuScene;
 use crate::plugins::textures::Input;
 
-pub(crate) struct InputPass<K> {
+pub(crate) struct InputPass<K, P = wgpu::RenderPipeline> {
     pub module: wgpu::ShaderModule,
     pub inputs: TextureBindings,
     pub layout: wgpu::PipelineLayout,
-    pub pipelines: Pipelines<K>,
+    pub pipelines: Pipelines<K, P>,
 }
 
-impl<K> InputPass<K> {
+impl<K, P> InputPass<K, P> {
     /// For `source`'s shader reading `inputs` as the plan shapes them, and `scene`'s
     /// group 0 when given.
     pub fn new(

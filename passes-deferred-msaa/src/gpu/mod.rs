@@ -10,6 +10,7 @@ pub(crate) mod gbuffer;
 pub(crate) mod gbuffer_resolve;
 mod input_pass;
 pub(crate) mod light;
+pub(crate) mod light_tiled;
 mod pipeline;
 mod scene_draw;
 

@@ -1,4 +1,5 @@
-//! Building render pipelines from the deferred shaders, and keeping them.
+//! Building render pipelines from the deferred shaders, and keeping pipelines (render or
+//! compute).
 
 /// Everything that varies between the deferred passes' pipelines.
 pub(crate) struct PipelineDesc<'a> {
@@ -74,22 +75,18 @@ pub(crate) fn additive(format: wgpu::TextureFormat) -> wgpu::ColorTargetState {
 
 /// Pipelines made on first use, by key. Keys hold what the plan decides (formats, sample
 /// counts) and the pass's own variants; plans rarely change, so a list is enough.
-pub(crate) struct Pipelines<K> {
-    built: Vec<(K, wgpu::RenderPipeline)>,
+pub(crate) struct Pipelines<K, P = wgpu::RenderPipeline> {
+    built: Vec<(K, P)>,
 }
 
-impl<K> Default for Pipelines<K> {
+impl<K, P> Default for Pipelines<K, P> {
     fn default() -> Self {
         Pipelines { built: Vec::new() }
     }
 }
 
-impl<K: PartialEq> Pipelines<K> {
-    pub fn get(
-        &mut self,
-        key: K,
-        build: impl FnOnce(&K) -> wgpu::RenderPipeline,
-    ) -> &wgpu::RenderPipeline {
+impl<K: PartialEq, P> Pipelines<K, P> {
+    pub fn get(&mut self, key: K, build: impl FnOnce(&K) -> P) -> &P {
         let index = match self.built.iter().position(|(k, _)| *k == key) {
             Some(index) => index,
             None => {

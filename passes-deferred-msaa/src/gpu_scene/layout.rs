@@ -1,10 +1,11 @@
-//! The scene's bind group (group 0 of every deferred pass that reads the scene): camera,
+//! The scene's bind group (group 0 of every deferred pass that reads the scene, render
+//! or compute): camera,
 //! meshes, materials, lights and light info, bound at bindings 0 to 4 as in scene.wgsl.
 
 pub(super) fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
+        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
         ty,
         count: None,
     };

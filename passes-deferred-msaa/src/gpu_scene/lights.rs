@@ -29,7 +29,9 @@ struct LightData {
     radiance: [f32; 3],
     spot_scale: f32,
     spot_offset: f32,
-    _pad: [f32; 3],
+    bound_offset: f32,
+    bound_radius: f32,
+    _pad: f32,
 }
 
 /// `LightInfo` in scene.wgsl.
@@ -154,6 +156,15 @@ impl LightBuffers {
 }
 
 fn light_data(light: &Light, kind: u32, volume: DMat4, eye: DVec3) -> LightData {
+    // The tiled pass culls with the light's bounding sphere, whose centre lies along
+    // the light's direction (on its position for point lights).
+    let (bound_offset, bound_radius) = match light.bounding_sphere(DEFAULT_CUTOFF_ILLUMINANCE) {
+        Some(sphere) if light.emits() => (
+            (sphere.center - light.position).length() as f32,
+            sphere.radius as f32,
+        ),
+        _ => (0.0, -1.0),
+    };
     let (spot_scale, spot_offset) = match light.kind {
         LightKind::Spot {
             inner_cone,
@@ -183,7 +194,9 @@ fn light_data(light: &Light, kind: u32, volume: DMat4, eye: DVec3) -> LightData 
         },
         spot_scale,
         spot_offset,
-        _pad: [0.0; 3],
+        bound_offset,
+        bound_radius,
+        _pad: 0.0,
     }
 }
 

@@ -151,7 +151,7 @@ impl Plugin for DebugView {
             target: Some(target),
             stencil_mark: None,
         };
-        self.0.render(pass, draw);
+        self.0.record(pass, draw);
         Ok(())
     }
 }

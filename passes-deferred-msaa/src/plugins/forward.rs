@@ -84,11 +84,8 @@ pub(crate) struct ForwardDraw {
 
 impl Recording for ForwardDraw {
     #[cfg(feature = "gpu")]
-    fn record(
-        self,
-        scenes: std::sync::Arc<crate::gpu_scene::SceneCache>,
-    ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)> {
-        crate::gpu::forward::record(self, scenes)
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Render(crate::gpu::forward::record(self, scenes))
     }
 }
 
@@ -120,7 +117,7 @@ impl Plugin for Forward {
             hdr,
             depth,
         };
-        self.0.render(pass, draw);
+        self.0.record(pass, draw);
         Ok(())
     }
 }

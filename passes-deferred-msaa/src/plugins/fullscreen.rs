@@ -26,10 +26,7 @@ pub(crate) struct Fullscreen {
 
 impl Recording for Fullscreen {
     #[cfg(feature = "gpu")]
-    fn record(
-        self,
-        scenes: std::sync::Arc<crate::gpu_scene::SceneCache>,
-    ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)> {
-        crate::gpu::fullscreen::record(self, scenes)
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Render(crate::gpu::fullscreen::record(self, scenes))
     }
 }

@@ -69,11 +69,8 @@ pub(crate) struct GBufferDraw {
 
 impl Recording for GBufferDraw {
     #[cfg(feature = "gpu")]
-    fn record(
-        self,
-        scenes: std::sync::Arc<crate::gpu_scene::SceneCache>,
-    ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)> {
-        crate::gpu::gbuffer::record(self, scenes)
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Render(crate::gpu::gbuffer::record(self, scenes))
     }
 }
 
@@ -144,7 +141,7 @@ impl Plugin for GBuffer {
             targets,
             depth,
         };
-        self.0.render(pass, draw);
+        self.0.record(pass, draw);
         Ok(())
     }
 }

@@ -68,11 +68,8 @@ pub(crate) struct GBufferResolveDraw {
 
 impl Recording for GBufferResolveDraw {
     #[cfg(feature = "gpu")]
-    fn record(
-        self,
-        scenes: std::sync::Arc<crate::gpu_scene::SceneCache>,
-    ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)> {
-        crate::gpu::gbuffer_resolve::record(self, scenes)
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Render(crate::gpu::gbuffer_resolve::record(self, scenes))
     }
 }
 
@@ -122,7 +119,7 @@ impl Plugin for GBufferResolve {
             targets,
             depth,
         };
-        self.0.render(pass, draw);
+        self.0.record(pass, draw);
         Ok(())
     }
 }

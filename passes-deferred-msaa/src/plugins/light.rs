@@ -132,11 +132,8 @@ pub(crate) struct LightDraw {
 
 impl Recording for LightDraw {
     #[cfg(feature = "gpu")]
-    fn record(
-        self,
-        scenes: std::sync::Arc<crate::gpu_scene::SceneCache>,
-    ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)> {
-        crate::gpu::light::record(self, scenes)
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Render(crate::gpu::light::record(self, scenes))
     }
 }
 
@@ -161,7 +158,7 @@ impl Plugin for LightNonEdge {
             pass,
             slots,
         )?;
-        self.0.render(pass, draw);
+        self.0.record(pass, draw);
         Ok(())
     }
 }
@@ -186,7 +183,7 @@ impl Plugin for LightEdge {
             pass.omit(super::ONE_SAMPLE);
             return Ok(());
         }
-        self.0.render(pass, draw);
+        self.0.record(pass, draw);
         Ok(())
     }
 }

@@ -1,5 +1,7 @@
 //! The deferred-shading pass plugins. A graph file chains them as
-//! `gbuffer` → `edge_stencil` → `light_edge` + `light_nonedge` → `resolve` → `tonemap`,
+//! `gbuffer` → `edge_stencil` → `light_edge` + `light_nonedge` → `resolve` → `tonemap`
+//! (the seeds' fragment path), or `gbuffer` → `light_tiled` → `tonemap` (lighting and
+//! resolve in one compute pass),
 //! with `debug_view` passes reading the G-buffer beside them; `pipelines/deferred_*.ron`
 //! are complete examples. Each plugin's module documents its parameters and slots.
 //! The baselines add `forward` (the scene lit per fragment, pipelines/forward_msaa_4x.ron
@@ -18,12 +20,14 @@
 
 pub(crate) mod debug_view;
 pub(crate) mod depth;
+pub(crate) mod edge_detection;
 pub(crate) mod edge_stencil;
 pub(crate) mod forward;
 pub(crate) mod fullscreen;
 pub(crate) mod gbuffer;
 pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
+pub(crate) mod light_tiled;
 pub(crate) mod resolve;
 pub(crate) mod textures;
 pub(crate) mod tonemap;
@@ -37,13 +41,15 @@ use crate::analysis::Variants;
 use crate::host::{Host, Overrides};
 
 pub use debug_view::{DebugView, DebugViewParams, View};
-pub use edge_stencil::{Detector, EdgeStencil, EdgeStencilParams};
+pub use edge_detection::{Detector, EdgeDetection};
+pub use edge_stencil::EdgeStencil;
 pub use forward::{Forward, ForwardParams, Shading};
 pub use gbuffer::{GBuffer, GBufferParams};
 pub use gbuffer_resolve::{GBufferResolve, GBufferResolveParams};
 pub use light::{
     EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams, PixelSamples,
 };
+pub use light_tiled::{EdgeShading, LightTiled, LightTiledParams, TiledView};
 pub use resolve::{Resolve, ResolveMode, ResolveParams};
 pub use tonemap::{Operator, Tonemap, TonemapParams};
 
@@ -71,21 +77,23 @@ impl Shared {
 
     /// Gives the pass its record callback. Without feature `gpu` graphs are only declared
     /// and validated, and `recording` is dropped.
-    pub fn render(&self, pass: &mut PassBuilder<'_>, recording: impl Recording) {
+    pub fn record(&self, pass: &mut PassBuilder<'_>, recording: impl Recording) {
         #[cfg(feature = "gpu")]
-        pass.render(recording.record(self.scenes.clone()));
+        match recording.record(self.scenes.clone()) {
+            graph_core::Record::Render(record) => pass.render(record),
+            graph_core::Record::Compute(record) => pass.compute(record),
+            graph_core::Record::Transfer(record) => pass.transfer(record),
+        }
         #[cfg(not(feature = "gpu"))]
         let _ = (pass, recording);
     }
 }
 
-/// A pass as its plugin set it up, ready to be recorded on a device.
+/// A pass as its plugin set it up, ready to be recorded on a device: its record
+/// callback, of the kind the plugin declared the pass.
 pub(crate) trait Recording: 'static {
     #[cfg(feature = "gpu")]
-    fn record(
-        self,
-        scenes: Arc<crate::gpu_scene::SceneCache>,
-    ) -> Box<dyn FnMut(&mut graph_core::gpu::RenderContext<'_, '_>)>;
+    fn record(self, scenes: Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record;
 }
 
 /// Adds every deferred plugin, sharing `host`, compiling shaders as `variants` says.
@@ -96,6 +104,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(EdgeStencil(shared.clone()))
         .register(LightNonEdge(shared.clone()))
         .register(LightEdge(shared.clone()))
+        .register(LightTiled(shared.clone()))
         .register(Resolve(shared.clone()))
         .register(Tonemap(shared.clone()))
         .register(DebugView(shared.clone()))

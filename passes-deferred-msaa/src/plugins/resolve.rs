@@ -92,7 +92,7 @@ impl Plugin for Resolve {
             target: Some(target),
             stencil_mark: None,
         };
-        self.0.render(pass, draw);
+        self.0.record(pass, draw);
         Ok(())
     }
 }

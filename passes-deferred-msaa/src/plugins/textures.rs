@@ -146,7 +146,7 @@ pub(crate) fn format_name(format: TextureFormat) -> String {
         .unwrap_or_else(|_| format!("{format:?}"))
 }
 
-/// A texture a pass's shader reads (group 1), as the plugin declared it.
+/// A texture a pass's shader binds (group 1), as the plugin declared it.
 #[derive(Copy, Clone, Debug)]
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct Input {
@@ -166,6 +166,8 @@ pub(crate) enum Texels {
     Uint,
     /// The depth aspect (`GTexD`).
     Depth,
+    /// Written as a write-only storage texture of its planned format (compute passes).
+    Store,
 }
 
 impl Input {

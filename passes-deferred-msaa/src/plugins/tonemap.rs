@@ -96,7 +96,7 @@ impl Plugin for Tonemap {
             target: Some(target),
             stencil_mark: None,
         };
-        self.0.render(pass, draw);
+        self.0.record(pass, draw);
         Ok(())
     }
 }

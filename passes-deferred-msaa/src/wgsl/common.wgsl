@@ -91,6 +91,12 @@ fn unit_normal(v: vec3<f32>) -> vec3<f32> {
     return safe_normalize(select(v / largest, vec3<f32>(0.0), largest == 0.0));
 }
 
+// A heat-map colour for `t` in [0, 1]: blue through cyan, green and yellow to red.
+fn heat(t: f32) -> vec3<f32> {
+    let x = clamp(t, 0.0, 1.0) * 4.0;
+    return clamp(vec3<f32>(x - 2.0, min(x, 4.0 - x), 2.0 - x), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
 fn luminance(c: vec3<f32>) -> f32 {
     return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
 }

@@ -42,14 +42,9 @@ fn fs_depth(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     return vec4<f32>(vec3<f32>(shade), 1.0);
 }
 
-// Blue (1 light) through cyan, green and yellow to red (HEAT_MAX or more).
-fn heat(t: f32) -> vec3<f32> {
-    let x = clamp(t, 0.0, 1.0) * 4.0;
-    return clamp(vec3<f32>(x - 2.0, min(x, 4.0 - x), 2.0 - x), vec3<f32>(0.0), vec3<f32>(1.0));
-}
-
 // How many lights reach each lit surface point (directional lights included): what a
-// light pass with exact volumes shades there. Black: no geometry or no light.
+// light pass with exact volumes shades there, blue for 1 through red for HEAT_MAX or
+// more. Black: no geometry or no light.
 @fragment
 fn fs_lights(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let pixel = pixel_of(position);

@@ -2,7 +2,7 @@
 // multisampled HDR target, shaded once per pixel (non-edge pixels, from sample 0) or
 // once per sample (edge pixels). Directional lights and ambient are one full-screen draw;
 // each point or spot light is a draw of its volume with instance index = light index.
-// Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl and brdf.wgsl.
+// Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl, brdf.wgsl and surface.wgsl.
 
 // Clip depth of the far plane: 0 with reversed Z, 1 without.
 override FAR_DEPTH: f32 = 0.0;
@@ -43,17 +43,10 @@ fn shade_sample(pixel: vec2<i32>, s: u32, p: vec3<f32>, light: u32) -> vec4<f32>
     if (g.flags & FLAG_LIT) == 0u {
         return vec4<f32>(0.0);
     }
-    let surface = Surface(p, g.normal, safe_normalize(-p), g.albedo, g.metallic, g.roughness);
+    let surface = surface_of(g, p);
     var color = vec3<f32>(0.0);
     if light == ALL_DIRECTIONAL {
-        color = light_info.ambient * g.albedo;
-        // brdf.wgsl's DIRECTIONAL_LIGHTS: without directional lights that emit, the
-        // loop would add zeros.
-        if DIRECTIONAL_LIGHTS {
-            for (var i = 0u; i < light_info.directional_count; i++) {
-                color += shade_light(surface, lights[i]);
-            }
-        }
+        color = ambient_and_directional(surface);
     } else {
         color = shade_light(surface, lights[light]);
     }
@@ -63,9 +56,7 @@ fn shade_sample(pixel: vec2<i32>, s: u32, p: vec3<f32>, light: u32) -> vec4<f32>
 @fragment
 fn fs_pixel(in: LightVaryings) -> @location(0) vec4<f32> {
     let pixel = pixel_of(in.clip);
-    let center = vec2<f32>(pixel) + 0.5;
-    let depth = textureLoad(view_depth_tex, pixel, 0u).r;
-    return shade_sample(pixel, 0u, surface_position(center, depth), in.light);
+    return shade_sample(pixel, 0u, center_surface(pixel, 0u), in.light);
 }
 
 // `light_nonedge` with `samples: average`: Killzone 2's on-the-fly resolve (seed 004).
@@ -75,24 +66,15 @@ fn fs_pixel(in: LightVaryings) -> @location(0) vec4<f32> {
 @fragment
 fn fs_pixel_average(in: LightVaryings) -> @location(0) vec4<f32> {
     let pixel = pixel_of(in.clip);
-    let center = vec2<f32>(pixel) + 0.5;
     var sum = vec4<f32>(0.0);
     for (var s = 0u; s < SAMPLES; s++) {
-        let depth = textureLoad(view_depth_tex, pixel, s).r;
-        sum += shade_sample(pixel, s, surface_position(center, depth), in.light);
+        sum += shade_sample(pixel, s, center_surface(pixel, s), in.light);
     }
     return sum / f32(SAMPLES);
 }
 
-// Per-sample shading: the sample's surface point is where the rasterizer tested it
-// against the light volume, the sample's depth at the sample's position. (The G-buffer's
-// view depth is the fragment's, interpolated at its centroid: on steep surfaces it can
-// lie far from a sample the volume test rejected.) Both modes take the position from the
-// same table, so they agree bit for bit.
-fn sample_surface(pixel: vec2<i32>, s: u32) -> vec3<f32> {
-    return unproject(sample_position(pixel, s), textureLoad(depth_tex, pixel, s));
-}
-
+// Per-sample shading at the sample's own position and depth (surface.wgsl). Both modes
+// take the position from the same table, so they agree bit for bit.
 @fragment
 fn fs_sample(in: LightVaryings, @builtin(sample_index) s: u32) -> @location(0) vec4<f32> {
     let pixel = pixel_of(in.clip);

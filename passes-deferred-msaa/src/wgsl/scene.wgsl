@@ -49,9 +49,12 @@ struct LightData {
     // Spot cone falloff: clamp(cos_angle * spot_scale + spot_offset, 0, 1)^2.
     spot_scale: f32,
     spot_offset: f32,
-    _pad0: f32,
-    _pad1: f32,
-    _pad2: f32,
+    // A sphere around everything a point or spot light reaches, for culling: centered
+    // `bound_offset` along `direction` from `position`, of radius `bound_radius`
+    // (negative for a light that reaches nothing).
+    bound_offset: f32,
+    bound_radius: f32,
+    _pad: f32,
 }
 
 struct LightInfo {

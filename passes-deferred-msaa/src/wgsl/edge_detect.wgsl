@@ -1,0 +1,41 @@
+// Edge detection: whether a pixel's samples hold different surfaces. One definition for
+// the fragment path (edge.wgsl, which marks the stencil) and the tiled compute pass
+// (light_tiled.wgsl), so both classify every pixel alike.
+// Composed after common.wgsl and gbuffer_read.wgsl.
+
+// `compare`: samples differ when their view depths differ by more than this fraction of
+// the larger one, ...
+override DEPTH_THRESHOLD: f32 = 0.01;
+// ... when the cosine between their normals is below this, ...
+override NORMAL_THRESHOLD: f32 = 0.95;
+// ... when an albedo channel differs by more than this, or when their flags differ.
+override ALBEDO_THRESHOLD: f32 = 0.05;
+// `centroid` / `coverage`: the edge bit of the material target's alpha to look for.
+override EDGE_BIT: u32 = 0x80u;
+
+// Whether two samples hold different surfaces, by the `compare` thresholds.
+fn differ(a: GSample, b: GSample) -> bool {
+    let depth_step = abs(a.view_depth - b.view_depth) > DEPTH_THRESHOLD * max(a.view_depth, b.view_depth);
+    let bend = dot(a.normal, b.normal) < NORMAL_THRESHOLD;
+    let tint = any(abs(a.albedo - b.albedo) > vec3<f32>(ALBEDO_THRESHOLD));
+    return depth_step || bend || tint || a.flags != b.flags;
+}
+
+// `compare`: some sample of `pixel` differs from sample 0.
+fn samples_differ(pixel: vec2<i32>) -> bool {
+    let first = load_gsample(pixel, 0u);
+    var edge = false;
+    for (var s = 1u; s < SAMPLES; s++) {
+        edge = edge || differ(first, load_gsample(pixel, s));
+    }
+    return edge;
+}
+
+// `centroid` / `coverage`: some sample's fragment recorded EDGE_BIT.
+fn edge_bit_set(pixel: vec2<i32>) -> bool {
+    var edge = false;
+    for (var s = 0u; s < SAMPLES; s++) {
+        edge = edge || (material_flags(pixel, s).y & EDGE_BIT) != 0u;
+    }
+    return edge;
+}

@@ -1,0 +1,338 @@
+// The tiled lighting pass (Lauritzen, "Deferred Rendering for Current and Future
+// Rendering Pipelines", SIGGRAPH 2010): one compute workgroup per TILE x TILE pixels,
+// one invocation per pixel, classifies, culls, shades and resolves in one dispatch.
+//
+// 1. Classify: each invocation reads its pixel's samples and finds whether they hold
+//    different surfaces (edge_detect.wgsl, as the fragment path's edge pass does). An
+//    edge pixel's surfaces other than sample 0's are appended to a workgroup list: every
+//    other sample, or with ADAPTIVE each distinct surface once (seed 002).
+// 2. Cull: the tile's depth bounds come from the points it shades; point and spot
+//    lights are tested against the tile's four side planes and those bounds, in batches
+//    of THREADS lights (one per invocation), so any number of lights fits.
+// 3. Shade: each invocation lights its pixel's sample 0 (at the pixel center when not an
+//    edge) and its share of the edge list, so a few edge pixels spread their extra
+//    samples over the whole workgroup instead of stalling it.
+// 4. Resolve: each sample's light plus the G-buffer's HDR (emission, unlit colour),
+//    averaged (box, or resolve.wgsl's tone-mapped weights), stored in the 1x output.
+//
+// Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl, brdf.wgsl, surface.wgsl
+// and edge_detect.wgsl, then a generated block defining TILE (the tile's side in
+// pixels), EDGE_SLOTS (max(SAMPLES - 1, 1): the most edge-list entries one invocation
+// shades) and OutTex (the output's storage texture type).
+
+@group(1) @binding(6) var hdr_tex: GTexF;
+@group(1) @binding(7) var out_tex: OutTex;
+
+// How edge pixels are found: 0 `compare`, 1 EDGE_BIT in the material (`centroid`,
+// `coverage`), 2 every pixel (`all`), 3 none.
+override DETECTOR: u32 = 0u;
+// Edge pixels shade each distinct surface once, weighted by the samples it covers,
+// instead of every sample.
+override ADAPTIVE: bool = false;
+// Cull lights per tile; false lists every light in every tile (the reference culling
+// must match).
+override CULL: bool = true;
+// What the pass writes: 0 the lit, resolved HDR; 1 edge pixels (red, blue elsewhere,
+// black without geometry); 2 lights per tile as a heat map; 3 distinct surfaces per
+// pixel (green 2, blue 3, red 4 or more, dark grey 1, black without geometry).
+override VIEW: u32 = 0u;
+// 0: box resolve. 1: each sample weighted by 1 / (1 + EXPOSURE * luminance).
+override RESOLVE: u32 = 0u;
+override EXPOSURE: f32 = 1.0;
+// The lights-per-tile view: blue for 1 light, red for HEAT_MAX or more.
+override HEAT_MAX: f32 = 64.0;
+
+const THREADS: u32 = TILE * TILE;
+const EDGE_CAPACITY: u32 = THREADS * EDGE_SLOTS;
+const VIEW_SHADED: u32 = 0u;
+const VIEW_EDGES: u32 = 1u;
+const VIEW_TILE_LIGHTS: u32 = 2u;
+const VIEW_FRAGMENTS: u32 = 3u;
+
+// The tile's depth bounds as order-preserving keys (depth_key): the largest key of the
+// negated depth is the nearest, the largest key of the depth the farthest. 0 (below
+// every key) until a lit sample is seen.
+var<workgroup> nearest_key: atomic<u32>;
+var<workgroup> farthest_key: atomic<u32>;
+var<workgroup> edge_count: atomic<u32>;
+var<workgroup> batch_light_count: atomic<u32>;
+// The lights of this batch that reach the tile.
+var<workgroup> batch_lights: array<u32, THREADS>;
+// Edge-list entries: the pixel's index in the tile << 4 | the sample.
+var<workgroup> edge_samples: array<u32, EDGE_CAPACITY>;
+// Their light, red, green and blue of entry i at 3i, 3i + 1 and 3i + 2 (an array of
+// vec3 would pad each to 16 bytes).
+var<workgroup> edge_light: array<f32, 3u * EDGE_CAPACITY>;
+// The tile's side planes (inward normal, offset), camera-relative.
+var<workgroup> tile_planes: array<vec4<f32>, 4>;
+
+// Order-preserving: depth_key(a) < depth_key(b) exactly when a < b, negative depths too.
+fn depth_key(d: f32) -> u32 {
+    let bits = bitcast<u32>(d);
+    return select(bits | 0x80000000u, ~bits, (bits & 0x80000000u) != 0u);
+}
+
+fn key_depth(key: u32) -> f32 {
+    return bitcast<f32>(select(~key, key & 0x7fffffffu, (key & 0x80000000u) != 0u));
+}
+
+fn include_depth(p: vec3<f32>) {
+    let depth = dot(p, camera.forward);
+    atomicMax(&nearest_key, depth_key(-depth));
+    atomicMax(&farthest_key, depth_key(depth));
+}
+
+// The plane through the camera rays of pixel coordinates `a` and `b`, facing `inside`.
+// Each ray is unprojected at two clip depths that are finite for every projection and
+// convention (scene.wgsl's surface_position does the same).
+fn side_plane(a: vec2<f32>, b: vec2<f32>, inside: vec3<f32>) -> vec4<f32> {
+    let pa = unproject(a, 0.5);
+    let along = unproject(a, 0.25) - pa;
+    var n = safe_normalize(cross(unproject(b, 0.5) - pa, along));
+    n = select(n, -n, dot(n, inside - pa) < 0.0);
+    return vec4<f32>(n, -dot(n, pa));
+}
+
+// Whether point or spot light `light` may reach a point of the tile between view depths
+// `nearest` and `farthest`: its bounding sphere (scene.wgsl's LightData) against the
+// side planes and the depth bounds, with a relative margin for rounding.
+fn reaches_tile(light: LightData, nearest: f32, farthest: f32) -> bool {
+    if light.bound_radius < 0.0 {
+        return false;
+    }
+    let center = light.position + light.direction * light.bound_offset;
+    let depth = dot(center, camera.forward);
+    let radius = light.bound_radius * 1.001 + 1e-6 * abs(depth);
+    var inside = depth + radius >= nearest && depth - radius <= farthest;
+    for (var i = 0u; i < 4u; i++) {
+        inside = inside && dot(tile_planes[i].xyz, center) + tile_planes[i].w >= -radius;
+    }
+    return inside;
+}
+
+fn is_edge(g: ptr<function, array<GSample, SAMPLES>>) -> bool {
+    if SAMPLES == 1u {
+        return false;
+    }
+    var edge = false;
+    switch DETECTOR {
+        case 0u: {
+            for (var s = 1u; s < SAMPLES; s++) {
+                edge = edge || differ((*g)[0], (*g)[s]);
+            }
+        }
+        case 1u: {
+            for (var s = 0u; s < SAMPLES; s++) {
+                edge = edge || ((*g)[s].edge_bits & EDGE_BIT) != 0u;
+            }
+        }
+        case 2u: {
+            edge = true;
+        }
+        default: {}
+    }
+    return edge;
+}
+
+@compute @workgroup_size(TILE, TILE, 1)
+fn cs_light_tiled(
+    @builtin(workgroup_id) tile: vec3<u32>,
+    @builtin(local_invocation_id) local_id: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+) {
+    let origin = tile.xy * TILE;
+    let pixel = vec2<i32>(origin + local_id.xy);
+    let inside = all(pixel < vec2<i32>(textureDimensions(out_tex)));
+
+    if local == 0u {
+        atomicStore(&nearest_key, 0u);
+        atomicStore(&farthest_key, 0u);
+        atomicStore(&edge_count, 0u);
+        atomicStore(&batch_light_count, 0u);
+    }
+    workgroupBarrier();
+
+    // 1. Classify. `group[s]` is the first sample showing the same surface as sample s
+    // (found where ADAPTIVE or the fragments view needs it); `source[s]` the sample
+    // whose light sample s takes: 0 on a non-edge pixel, else itself, or with ADAPTIVE
+    // its group's first sample.
+    var g: array<GSample, SAMPLES>;
+    var group: array<u32, SAMPLES>;
+    var source: array<u32, SAMPLES>;
+    var edge = false;
+    var fragments = 0u;
+    if inside {
+        for (var s = 0u; s < SAMPLES; s++) {
+            g[s] = load_gsample(pixel, s);
+        }
+        edge = is_edge(&g);
+        for (var s = 0u; s < SAMPLES; s++) {
+            group[s] = s;
+            if ADAPTIVE || VIEW == VIEW_FRAGMENTS {
+                for (var j = 0u; j < s; j++) {
+                    if group[j] == j && !differ(g[j], g[s]) {
+                        group[s] = j;
+                        break;
+                    }
+                }
+            }
+            fragments += u32(group[s] == s);
+            source[s] = select(0u, select(s, group[s], ADAPTIVE), edge);
+        }
+    }
+    let lit0 = inside && (g[0].flags & FLAG_LIT) != 0u;
+    var p0 = vec3<f32>(0.0);
+    if lit0 {
+        p0 = select(center_surface(pixel, 0u), sample_surface(pixel, 0u), edge);
+        include_depth(p0);
+    }
+    var base = 0u;
+    if edge {
+        var extra = 0u;
+        for (var s = 1u; s < SAMPLES; s++) {
+            extra += u32(source[s] == s);
+        }
+        base = atomicAdd(&edge_count, extra);
+        var next = base;
+        for (var s = 1u; s < SAMPLES; s++) {
+            if source[s] == s {
+                edge_samples[next] = (local << 4u) | s;
+                next++;
+                if (g[s].flags & FLAG_LIT) != 0u {
+                    include_depth(sample_surface(pixel, s));
+                }
+            }
+        }
+    }
+    if local == 0u {
+        let o = vec2<f32>(origin);
+        let t = f32(TILE);
+        let center = unproject(o + 0.5 * t, 0.5);
+        tile_planes[0] = side_plane(o, o + vec2<f32>(t, 0.0), center);
+        tile_planes[1] = side_plane(o + vec2<f32>(t, 0.0), o + vec2<f32>(t, t), center);
+        tile_planes[2] = side_plane(o + vec2<f32>(t, t), o + vec2<f32>(0.0, t), center);
+        tile_planes[3] = side_plane(o + vec2<f32>(0.0, t), o, center);
+    }
+    workgroupBarrier();
+
+    // The edge-list entries this invocation shades, as surfaces.
+    let edges = atomicLoad(&edge_count);
+    // A tile without lit samples has no bounds (its keys are still 0): nothing to cull for.
+    let tile_lit = atomicLoad(&farthest_key) != 0u;
+    let nearest = -key_depth(atomicLoad(&nearest_key));
+    let farthest = key_depth(atomicLoad(&farthest_key));
+    var extra_surface: array<Surface, EDGE_SLOTS>;
+    var extra_lit: array<bool, EDGE_SLOTS>;
+    var extra_light: array<vec3<f32>, EDGE_SLOTS>;
+    for (var i = 0u; i < EDGE_SLOTS; i++) {
+        let entry = local + i * THREADS;
+        extra_lit[i] = false;
+        if VIEW == VIEW_SHADED && entry < edges {
+            let code = edge_samples[entry];
+            let at = code >> 4u;
+            let p = vec2<i32>(origin + vec2<u32>(at % TILE, at / TILE));
+            let s = code & 15u;
+            let gs = load_gsample(p, s);
+            extra_lit[i] = (gs.flags & FLAG_LIT) != 0u;
+            extra_surface[i] = surface_of(gs, sample_surface(p, s));
+            extra_light[i] = select(vec3<f32>(0.0), ambient_and_directional(extra_surface[i]), extra_lit[i]);
+        }
+    }
+    let surface0 = surface_of(g[0], p0);
+    var light0 = vec3<f32>(0.0);
+    if VIEW == VIEW_SHADED && lit0 {
+        light0 = ambient_and_directional(surface0);
+    }
+
+    // 2 and 3. Point and spot lights (after the directional ones), a batch at a time.
+    var tile_lights = light_info.directional_count;
+    if VIEW == VIEW_SHADED || VIEW == VIEW_TILE_LIGHTS {
+        for (var batch = light_info.directional_count; batch < light_info.light_count; batch += THREADS) {
+            let index = batch + local;
+            if index < light_info.light_count && (!CULL || (tile_lit && reaches_tile(lights[index], nearest, farthest))) {
+                batch_lights[atomicAdd(&batch_light_count, 1u)] = index;
+            }
+            workgroupBarrier();
+            let count = atomicLoad(&batch_light_count);
+            tile_lights += count;
+            if VIEW == VIEW_SHADED {
+                for (var l = 0u; l < count; l++) {
+                    let light = lights[batch_lights[l]];
+                    if lit0 {
+                        light0 += shade_light(surface0, light);
+                    }
+                    for (var i = 0u; i < EDGE_SLOTS; i++) {
+                        if extra_lit[i] {
+                            extra_light[i] += shade_light(extra_surface[i], light);
+                        }
+                    }
+                }
+            }
+            workgroupBarrier();
+            if local == 0u {
+                atomicStore(&batch_light_count, 0u);
+            }
+            workgroupBarrier();
+        }
+    }
+    for (var i = 0u; i < EDGE_SLOTS; i++) {
+        let entry = local + i * THREADS;
+        if VIEW == VIEW_SHADED && entry < edges {
+            let c = min(extra_light[i], vec3<f32>(HALF_MAX));
+            edge_light[3u * entry] = c.r;
+            edge_light[3u * entry + 1u] = c.g;
+            edge_light[3u * entry + 2u] = c.b;
+        }
+    }
+    workgroupBarrier();
+    if !inside {
+        return;
+    }
+
+    let covered = g[0].view_depth > 0.0;
+    switch VIEW {
+        case VIEW_EDGES: {
+            let color = select(select(vec3<f32>(0.0), vec3<f32>(0.0, 0.0, 1.0), covered), vec3<f32>(1.0, 0.0, 0.0), edge);
+            textureStore(out_tex, pixel, vec4<f32>(color, 1.0));
+        }
+        case VIEW_TILE_LIGHTS: {
+            let color = select(heat(f32(tile_lights - 1u) / max(HEAT_MAX - 1.0, 1.0)), vec3<f32>(0.0), tile_lights == 0u);
+            textureStore(out_tex, pixel, vec4<f32>(color, 1.0));
+        }
+        case VIEW_FRAGMENTS: {
+            var color = select(vec3<f32>(0.0), vec3<f32>(0.1), covered);
+            if fragments == 2u {
+                color = vec3<f32>(0.0, 1.0, 0.0);
+            } else if fragments == 3u {
+                color = vec3<f32>(0.0, 0.0, 1.0);
+            } else if fragments >= 4u {
+                color = vec3<f32>(1.0, 0.0, 0.0);
+            }
+            textureStore(out_tex, pixel, vec4<f32>(color, 1.0));
+        }
+        default: {
+            // 4. Each sample's light is its source sample's: sample 0's in registers, the
+            // others' in the edge list from `base` on, in sample order.
+            var light: array<vec3<f32>, SAMPLES>;
+            light[0] = min(light0, vec3<f32>(HALF_MAX));
+            var next = base;
+            for (var s = 1u; s < SAMPLES; s++) {
+                if source[s] == s {
+                    light[s] = vec3<f32>(edge_light[3u * next], edge_light[3u * next + 1u], edge_light[3u * next + 2u]);
+                    next++;
+                } else {
+                    light[s] = light[source[s]];
+                }
+            }
+            var sum = vec3<f32>(0.0);
+            var weights = 0.0;
+            for (var s = 0u; s < SAMPLES; s++) {
+                let c = clamp(textureLoad(hdr_tex, pixel, s).rgb + light[s], vec3<f32>(0.0), vec3<f32>(HALF_MAX));
+                let w = select(1.0, 1.0 / (1.0 + EXPOSURE * luminance(c)), RESOLVE == 1u);
+                sum += w * c;
+                weights += w;
+            }
+            textureStore(out_tex, pixel, vec4<f32>(sum / weights, 1.0));
+        }
+    }
+}

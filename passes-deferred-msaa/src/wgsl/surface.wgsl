@@ -1,0 +1,34 @@
+// G-buffer samples as surfaces to light, for the fragment light passes (light.wgsl) and
+// the tiled compute pass (light_tiled.wgsl), so both place and light a sample alike.
+// Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl and brdf.wgsl.
+
+// Per-sample shading: the sample's surface point is where the rasterizer tested it
+// against the light volume, the sample's depth at the sample's position. (The G-buffer's
+// view depth is the fragment's, interpolated at its centroid: on steep surfaces it can
+// lie far from a sample the volume test rejected.)
+fn sample_surface(pixel: vec2<i32>, s: u32) -> vec3<f32> {
+    return unproject(sample_position(pixel, s), textureLoad(depth_tex, pixel, s));
+}
+
+// Per-pixel shading: the surface at the pixel center, at sample `s`'s view depth.
+fn center_surface(pixel: vec2<i32>, s: u32) -> vec3<f32> {
+    return surface_position(vec2<f32>(pixel) + 0.5, textureLoad(view_depth_tex, pixel, s).r);
+}
+
+// G-buffer sample `g` as the surface point `p` (camera-relative) seen from the camera.
+fn surface_of(g: GSample, p: vec3<f32>) -> Surface {
+    return Surface(p, g.normal, safe_normalize(-p), g.albedo, g.metallic, g.roughness);
+}
+
+// The light that reaches every surface: ambient plus every directional light.
+fn ambient_and_directional(s: Surface) -> vec3<f32> {
+    var color = light_info.ambient * s.albedo;
+    // brdf.wgsl's DIRECTIONAL_LIGHTS: without directional lights that emit, the loop
+    // would add zeros.
+    if DIRECTIONAL_LIGHTS {
+        for (var i = 0u; i < light_info.directional_count; i++) {
+            color += shade_light(s, lights[i]);
+        }
+    }
+    return color;
+}
