@@ -14,7 +14,8 @@
 #   main        every pipeline in pipelines/ on builtin:dense and builtin:lights?count=256
 #               (the "dense scene with 256 lights": builtin:dense has 6 lights and
 #               no light-count parameter, so the 256-light case is builtin:lights)
-#   lights      the light sweep (1..1024) for noaa, MSAA 4x, per-sample 4x and forward MSAA
+#   lights      the light sweep (1..1024) for noaa, MSAA 4x, per-sample 4x (each with its
+#               fragment light passes and its tiled compute pass) and forward MSAA
 #   samples     the sample-count sweep (1, 2, 4, 8) of the same pipelines on builtin:dense
 #   resolution  720p..2160p of the same pipelines on builtin:dense
 #   specialise  the same pipelines on every built-in scene without a reference: each
@@ -77,7 +78,9 @@ mkdir -p "$out"
 "$bin" adapters >"$out/adapters.txt" 2>&1 || true
 
 core=(--pipeline pipelines/deferred_noaa.ron --pipeline pipelines/deferred_msaa_4x.ron
-      --pipeline pipelines/deferred_per_sample_4x.ron --pipeline pipelines/forward_msaa_4x.ron)
+      --pipeline pipelines/deferred_per_sample_4x.ron --pipeline pipelines/deferred_noaa_tiled.ron
+      --pipeline pipelines/deferred_msaa_4x_tiled.ron --pipeline pipelines/deferred_per_sample_4x_tiled.ron
+      --pipeline pipelines/forward_msaa_4x.ron)
 common=(--frames "$frames" --warmup "$warmup")
 status=0
 for part in $parts; do
