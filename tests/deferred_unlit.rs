@@ -43,9 +43,20 @@ fn linear() -> Overrides {
 /// edge to call are skipped, and there must be few of them.
 #[test]
 fn unlit_pixels_are_the_average_of_their_covered_samples() {
+    unlit_pixels_average_their_samples("deferred_msaa_4x.ron");
+}
+
+/// The same through the tiled compute pass, which resolves as it lights (compiled for
+/// no features, so the pass runs although the scene is unlit).
+#[test]
+fn unlit_pixels_through_the_tiled_pass_are_the_average_of_their_covered_samples() {
+    unlit_pixels_average_their_samples("deferred_msaa_4x_tiled.ron");
+}
+
+fn unlit_pixels_average_their_samples(pipeline: &str) {
     let gpu = gpu();
     let coverage = coverage();
-    let image = Render::new("deferred_msaa_4x.ron", "builtin:unlit", (N, N))
+    let image = Render::new(pipeline, "builtin:unlit", (N, N))
         .overrides(linear())
         .read(&gpu, &["color"])
         .remove(0);
@@ -77,8 +88,8 @@ fn unlit_pixels_are_the_average_of_their_covered_samples() {
     );
     assert!(
         wrong.is_empty(),
-        "{} of {judged} pixels differ from the sample average by more than 1/255 ({partial} are \
-         partially covered), e.g.:\n{}",
+        "{pipeline}: {} of {judged} pixels differ from the sample average by more than 1/255 \
+         ({partial} are partially covered), e.g.:\n{}",
         wrong.len(),
         wrong
             .iter()

@@ -21,6 +21,7 @@ mod deferred_gltf;
 mod deferred_lit;
 mod deferred_sample_mask;
 mod deferred_textures;
+mod deferred_tiled;
 mod deferred_unlit;
 mod deferred_views;
 mod deferred_volumes;

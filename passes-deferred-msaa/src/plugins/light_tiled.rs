@@ -8,7 +8,7 @@
 //!  params: (
 //!      edges: (detector: compare),   // edge_detection.rs: the same detectors and
 //!                                    // thresholds as edge_stencil
-//!      shading: per_sample,          // or adaptive: each distinct surface once
+//!      shading: per_sample,          // or adaptive: each fragment once
 //!      resolve: box, exposure: 1.0,  // or resolve: tonemapped (resolve.rs)
 //!      tile: 16,                     // pixels per tile side
 //!      cull: true,                   // false: every light in every tile
@@ -28,7 +28,7 @@
 //! [`EdgeDetection`], culls point and spot lights against the tile's side planes and
 //! depth bounds in batches of one light per invocation (so any number of lights is
 //! correct), shades non-edge pixels once and the other samples (or, with `adaptive`,
-//! the other distinct surfaces, weighted by the samples they cover: seed 002) of edge
+//! the other fragments, weighted by the samples they cover: seed 002) of edge
 //! pixels spread over the whole workgroup, and resolves into the single-sampled output.
 //! No multisampled HDR accumulation, no stencil, no resolve pass.
 //!
@@ -40,7 +40,7 @@
 //! Debug views write an `rgba8unorm` output named `color` instead of `resolved`:
 //! `edges` (red edge pixels, blue others, black without geometry, as debug_view's),
 //! `tile_lights` (lights each tile shades, directional ones included, as a heat map from
-//! blue for 1 to red for 64 or more) and `fragments` (distinct surfaces per pixel: dark
+//! blue for 1 to red for 64 or more) and `fragments` (fragments per pixel: dark
 //! grey 1, green 2, blue 3, red 4 or more).
 
 use serde::Deserialize;
@@ -90,9 +90,10 @@ pub enum EdgeShading {
     /// Every sample (seed 000's per-sample shading).
     #[default]
     PerSample,
-    /// Each distinct surface among the samples once, weighted by the samples it covers
-    /// (seed 002's adaptive shading): samples that `compare` would not tell apart are
-    /// one surface.
+    /// Each fragment among the samples once, weighted by the samples it covers (seed
+    /// 002's adaptive shading by unique fragments): samples whose G-buffer values are
+    /// identical are one fragment, as the G-buffer pass shades once per pixel and
+    /// triangle.
     Adaptive,
 }
 

@@ -4,8 +4,8 @@
 //
 // 1. Classify: each invocation reads its pixel's samples and finds whether they hold
 //    different surfaces (edge_detect.wgsl, as the fragment path's edge pass does). An
-//    edge pixel's surfaces other than sample 0's are appended to a workgroup list: every
-//    other sample, or with ADAPTIVE each distinct surface once (seed 002).
+//    edge pixel's samples other than sample 0 are appended to a workgroup list: every
+//    one, or with ADAPTIVE each other fragment once (seed 002's unique fragments).
 // 2. Cull: the tile's depth bounds come from the points it shades; point and spot
 //    lights are tested against the tile's four side planes and those bounds, in batches
 //    of THREADS lights (one per invocation), so any number of lights fits.
@@ -26,15 +26,15 @@
 // How edge pixels are found: 0 `compare`, 1 EDGE_BIT in the material (`centroid`,
 // `coverage`), 2 every pixel (`all`), 3 none.
 override DETECTOR: u32 = 0u;
-// Edge pixels shade each distinct surface once, weighted by the samples it covers,
-// instead of every sample.
+// Edge pixels shade each fragment once, weighted by the samples it covers, instead of
+// every sample.
 override ADAPTIVE: bool = false;
 // Cull lights per tile; false lists every light in every tile (the reference culling
 // must match).
 override CULL: bool = true;
 // What the pass writes: 0 the lit, resolved HDR; 1 edge pixels (red, blue elsewhere,
-// black without geometry); 2 lights per tile as a heat map; 3 distinct surfaces per
-// pixel (green 2, blue 3, red 4 or more, dark grey 1, black without geometry).
+// black without geometry); 2 lights per tile as a heat map; 3 fragments per pixel
+// (green 2, blue 3, red 4 or more, dark grey 1, black without geometry).
 override VIEW: u32 = 0u;
 // 0: box resolve. 1: each sample weighted by 1 / (1 + EXPOSURE * luminance).
 override RESOLVE: u32 = 0u;
@@ -58,7 +58,8 @@ var<workgroup> edge_count: atomic<u32>;
 var<workgroup> batch_light_count: atomic<u32>;
 // The lights of this batch that reach the tile.
 var<workgroup> batch_lights: array<u32, THREADS>;
-// Edge-list entries: the pixel's index in the tile << 4 | the sample.
+// Edge-list entries: the pixel's index in the tile << 12 | the samples its fragment
+// covers (a mask) << 4 | its first sample.
 var<workgroup> edge_samples: array<u32, EDGE_CAPACITY>;
 // Their light, red, green and blue of entry i at 3i, 3i + 1 and 3i + 2 (an array of
 // vec3 would pad each to 16 bytes).
@@ -110,6 +111,32 @@ fn reaches_tile(light: LightData, nearest: f32, farthest: f32) -> bool {
     return inside;
 }
 
+// Whether two samples hold what one fragment wrote: the G-buffer pass shades once per
+// pixel and triangle, so the samples a fragment covers hold identical values (seed
+// 002's unique fragments). Samples of two triangles differ in something, if only in
+// their interpolated view depth.
+fn same_fragment(a: GSample, b: GSample) -> bool {
+    return all(a.albedo == b.albedo) && all(a.normal == b.normal) && a.metallic == b.metallic
+        && a.roughness == b.roughness && a.flags == b.flags && a.view_depth == b.view_depth;
+}
+
+// Where a fragment covering the samples of `mask` is shaded: at the mean of their
+// positions and depths, which lies on the fragment's plane (clip depth is affine in
+// screen space across a triangle). One sample's own position for a mask of one.
+fn fragment_surface(pixel: vec2<i32>, mask: u32) -> vec3<f32> {
+    var xy = vec2<f32>(0.0);
+    var depth = 0.0;
+    var n = 0.0;
+    for (var s = 0u; s < SAMPLES; s++) {
+        if (mask & (1u << s)) != 0u {
+            xy += sample_position(pixel, s);
+            depth += textureLoad(depth_tex, pixel, s);
+            n += 1.0;
+        }
+    }
+    return unproject(xy / n, depth / n);
+}
+
 fn is_edge(g: ptr<function, array<GSample, SAMPLES>>) -> bool {
     if SAMPLES == 1u {
         return false;
@@ -152,13 +179,15 @@ fn cs_light_tiled(
     }
     workgroupBarrier();
 
-    // 1. Classify. `group[s]` is the first sample showing the same surface as sample s
+    // 1. Classify. `group[s]` is the first sample holding the same fragment as sample s
     // (found where ADAPTIVE or the fragments view needs it); `source[s]` the sample
     // whose light sample s takes: 0 on a non-edge pixel, else itself, or with ADAPTIVE
-    // its group's first sample.
+    // its fragment's first sample.
     var g: array<GSample, SAMPLES>;
     var group: array<u32, SAMPLES>;
     var source: array<u32, SAMPLES>;
+    // By source sample: the samples that take its light.
+    var masks: array<u32, SAMPLES>;
     var edge = false;
     var fragments = 0u;
     if inside {
@@ -170,7 +199,7 @@ fn cs_light_tiled(
             group[s] = s;
             if ADAPTIVE || VIEW == VIEW_FRAGMENTS {
                 for (var j = 0u; j < s; j++) {
-                    if group[j] == j && !differ(g[j], g[s]) {
+                    if group[j] == j && same_fragment(g[j], g[s]) {
                         group[s] = j;
                         break;
                     }
@@ -178,12 +207,13 @@ fn cs_light_tiled(
             }
             fragments += u32(group[s] == s);
             source[s] = select(0u, select(s, group[s], ADAPTIVE), edge);
+            masks[source[s]] |= 1u << s;
         }
     }
     let lit0 = inside && (g[0].flags & FLAG_LIT) != 0u;
     var p0 = vec3<f32>(0.0);
     if lit0 {
-        p0 = select(center_surface(pixel, 0u), sample_surface(pixel, 0u), edge);
+        p0 = select(center_surface(pixel, 0u), fragment_surface(pixel, masks[0]), edge);
         include_depth(p0);
     }
     var base = 0u;
@@ -196,10 +226,10 @@ fn cs_light_tiled(
         var next = base;
         for (var s = 1u; s < SAMPLES; s++) {
             if source[s] == s {
-                edge_samples[next] = (local << 4u) | s;
+                edge_samples[next] = (local << 12u) | (masks[s] << 4u) | s;
                 next++;
                 if (g[s].flags & FLAG_LIT) != 0u {
-                    include_depth(sample_surface(pixel, s));
+                    include_depth(fragment_surface(pixel, masks[s]));
                 }
             }
         }
@@ -229,12 +259,11 @@ fn cs_light_tiled(
         extra_lit[i] = false;
         if VIEW == VIEW_SHADED && entry < edges {
             let code = edge_samples[entry];
-            let at = code >> 4u;
+            let at = code >> 12u;
             let p = vec2<i32>(origin + vec2<u32>(at % TILE, at / TILE));
-            let s = code & 15u;
-            let gs = load_gsample(p, s);
+            let gs = load_gsample(p, code & 15u);
             extra_lit[i] = (gs.flags & FLAG_LIT) != 0u;
-            extra_surface[i] = surface_of(gs, sample_surface(p, s));
+            extra_surface[i] = surface_of(gs, fragment_surface(p, (code >> 4u) & 0xffu));
             extra_light[i] = select(vec3<f32>(0.0), ambient_and_directional(extra_surface[i]), extra_lit[i]);
         }
     }

@@ -1,0 +1,238 @@
+//! The tiled compute lighting pass (`light_tiled`) against the fragment light passes it
+//! stands beside: the same images, the same edges, culling that drops no light that
+//! contributes, adaptive shading close to per-sample shading, and workgroup memory
+//! checked when compiling.
+
+use crate::deferred_support;
+
+use deferred_support::measure::{diff, marked, Diff};
+use deferred_support::{gpu, Image, Render};
+use graph_core::file::{load_str, Registry};
+use graph_core::{CompileOptions, DeviceProfile};
+
+const SIZE: (u32, u32) = (96, 64);
+
+/// Lit built-in scenes and the unlit analytic one (compiled for no features, so the
+/// light passes run on it too).
+const SCENES: [&str; 4] = [
+    "builtin:unlit",
+    "builtin:spheres",
+    "builtin:dense",
+    "builtin:lights?count=64",
+];
+
+fn color(render: Render<'_>) -> Image {
+    render.read(&gpu(), &["color"]).remove(0)
+}
+
+/// The share of pixels whose channels all lie within `tolerance` 8-bit steps.
+fn within(a: &Image, b: &Image, tolerance: u8) -> (f64, Diff) {
+    let close = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .filter(|(p, q)| (0..3).all(|c| p[c].abs_diff(q[c]) <= tolerance))
+        .count();
+    (close as f64 / a.pixels.len() as f64, diff(a, b, None))
+}
+
+/// Each tiled pipeline renders its fragment twin's image within 1/255 on at least 99.5%
+/// of the pixels, on every scene.
+#[test]
+fn tiled_pipelines_match_their_fragment_twins() {
+    let twins = [
+        ("deferred_msaa_4x_tiled.ron", "deferred_msaa_4x.ron"),
+        ("deferred_noaa_tiled.ron", "deferred_noaa.ron"),
+        (
+            "deferred_per_sample_4x_tiled.ron",
+            "deferred_per_sample_4x.ron",
+        ),
+    ];
+    for (tiled, fragment) in twins {
+        for scene in SCENES {
+            let a = color(Render::new(tiled, scene, SIZE));
+            let b = color(Render::new(fragment, scene, SIZE));
+            let (share, d) = within(&a, &b, 1);
+            println!(
+                "{tiled} vs {fragment} on {scene}: {:.3}% within 1/255, {d}",
+                share * 100.0
+            );
+            assert!(
+                share >= 0.995,
+                "{tiled} vs {fragment} on {scene}: only {:.3}% of pixels within 1/255 ({d})",
+                share * 100.0
+            );
+        }
+    }
+}
+
+/// With 1,024 lights, culling per tile changes no pixel by more than 1/255 against the
+/// same pass listing every light in every tile, and the image is lit.
+#[test]
+fn culling_drops_no_light_that_contributes() {
+    let scene = "builtin:lights?count=1024";
+    let pipeline = "deferred_msaa_4x_tiled.ron";
+    let lights = r#"params: (edges: (detector: compare)),"#;
+    let culled = color(Render::new(pipeline, scene, SIZE));
+    let everything = color(Render::new(pipeline, scene, SIZE).edit(
+        lights,
+        r#"params: (edges: (detector: compare), cull: false),"#,
+    ));
+    let d = diff(&culled, &everything, None);
+    assert!(d.max <= 1, "culling changed the image: {d}");
+    let lit = culled.pixels.iter().filter(|p| p[..3] != [0, 0, 0]).count();
+    assert!(lit > culled.pixels.len() / 2, "only {lit} pixels lit");
+    let fragment = color(Render::new("deferred_msaa_4x.ron", scene, SIZE));
+    let (share, d) = within(&culled, &fragment, 1);
+    assert!(
+        share >= 0.995,
+        "1,024 lights: only {:.3}% of pixels within 1/255 of the fragment path ({d})",
+        share * 100.0
+    );
+}
+
+/// Adaptive shading (each fragment of an edge pixel once, weighted by its samples) is
+/// within 2/255 of per-sample shading of the edge pixels (deferred_msaa_4x_tiled, which
+/// shades the rest once per pixel as the adaptive pipeline does) on at least 99% of the
+/// pixels.
+#[test]
+fn adaptive_shading_is_close_to_per_sample_shading() {
+    for scene in ["builtin:dense", "builtin:lights?count=64"] {
+        let adaptive = color(Render::new("deferred_msaa_4x_adaptive.ron", scene, SIZE));
+        let per_sample = color(Render::new("deferred_msaa_4x_tiled.ron", scene, SIZE));
+        let (share, d) = within(&adaptive, &per_sample, 2);
+        println!(
+            "adaptive vs per-sample edges on {scene}: {:.3}% within 2/255, {d}",
+            share * 100.0
+        );
+        assert!(
+            share >= 0.99,
+            "{scene}: only {:.3}% of pixels within 2/255 ({d})",
+            share * 100.0
+        );
+    }
+}
+
+/// The tiled pass and the edge pass share one detector: the tiled "debug.edges" view
+/// marks exactly the pixels the fragment path's stencil does, and there are some.
+#[test]
+fn tiled_and_stencil_edges_are_the_same_pixels() {
+    for scene in ["builtin:dense", "builtin:spheres"] {
+        let tiled = Render::new("deferred_msaa_4x_tiled.ron", scene, SIZE)
+            .read(&gpu(), &["debug.edges"])
+            .remove(0);
+        let stencil = Render::new("deferred_msaa_4x.ron", scene, SIZE)
+            .read(&gpu(), &["debug.edges"])
+            .remove(0);
+        let (a, b) = (marked(&tiled), marked(&stencil));
+        let edges = a.iter().filter(|&&e| e).count();
+        assert!(edges > 20, "{scene}: only {edges} edge pixels");
+        assert_eq!(a, b, "{scene}: the tiled and stencil edge masks differ");
+        assert_eq!(
+            diff(&tiled, &stencil, None).max,
+            0,
+            "{scene}: the views differ off the edges (blue and black)"
+        );
+    }
+}
+
+/// "debug.fragments" marks every edge pixel as holding several fragments (green 2, blue
+/// 3, red 4: samples the detector tells apart are never one fragment), and
+/// "debug.tile_lights" is a heat map that is constant over each 16x16 tile and lit
+/// where lights reach.
+#[test]
+fn fragment_and_tile_light_views() {
+    let gpu = gpu();
+    let scene = "builtin:lights?count=64";
+    let frame = Render::new("deferred_msaa_4x_adaptive.ron", scene, SIZE).run(&gpu);
+    let edges = marked(&frame.image(&gpu, "debug.edges"));
+    let fragments = frame.image(&gpu, "debug.fragments");
+    let several = |p: &[u8; 4]| [[0, 255, 0, 255], [0, 0, 255, 255], [255, 0, 0, 255]].contains(p);
+    let split: Vec<bool> = fragments.pixels.iter().map(several).collect();
+    let count = split.iter().filter(|&&s| s).count();
+    assert!(count > 20, "only {count} pixels with several fragments");
+    let single = (0..split.len()).find(|&i| edges[i] && !split[i]);
+    assert_eq!(single, None, "an edge pixel (index) with one fragment");
+    let heat = frame.image(&gpu, "debug.tile_lights");
+    for y in 0..SIZE.1 {
+        for x in 0..SIZE.0 {
+            let corner = heat.at(x / 16 * 16, y / 16 * 16);
+            assert_eq!(heat.at(x, y), corner, "({x}, {y}) differs from its tile");
+        }
+    }
+    let hot = heat.pixels.iter().filter(|p| p[..3] != [0, 0, 0]).count();
+    assert!(
+        hot > heat.pixels.len() / 2,
+        "only {hot} pixels in tiles with lights"
+    );
+}
+
+/// A tile too big for the device's workgroup memory is a compile error naming the pass
+/// and the entry point; the same pass with a smaller tile compiles.
+#[test]
+fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
+    let mut registry = Registry::with_builtins();
+    passes_deferred_msaa::register(&mut registry, None);
+    let path = format!(
+        "{}/pipelines/deferred_msaa_4x_tiled.ron",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).expect("the pipeline exists");
+    let mut profile = DeviceProfile::webgpu();
+    profile.limits.max_compute_workgroup_storage_size = 8192;
+    profile.name = "a device with 8 KiB of workgroup memory".into();
+    let options = CompileOptions {
+        output_size: (64, 64),
+        profile,
+    };
+    let errors = load_str(&path, &text, &registry)
+        .expect("the file loads")
+        .compile(&options)
+        .expect_err("16x16 tiles at 4x need more than 8 KiB")
+        .to_string();
+    assert!(
+        errors.contains(
+            "pass \"light tiled\": compute entry point \"cs_light_tiled\" uses 13440 bytes of \
+             workgroup memory, more than the limit of 8192 on a device with 8 KiB of workgroup \
+             memory"
+        ),
+        "{errors}"
+    );
+    let smaller = text.replace(
+        "params: (edges: (detector: compare)),",
+        "params: (edges: (detector: compare), tile: 8),",
+    );
+    let debug_views = smaller
+        .replace(
+            "params: (edges: (detector: compare), view: edges),",
+            "params: (view: edges, tile: 8),",
+        )
+        .replace(
+            "params: (view: tile_lights),",
+            "params: (view: tile_lights, tile: 8),",
+        )
+        .replace(
+            "params: (view: fragments),",
+            "params: (view: fragments, tile: 8),",
+        );
+    load_str(&path, &debug_views, &registry)
+        .expect("the file loads")
+        .compile(&options)
+        .unwrap_or_else(|e| panic!("8x8 tiles fit in 8 KiB: {e}"));
+    let huge = text.replace(
+        "params: (edges: (detector: compare)),",
+        "params: (edges: (detector: compare), tile: 32),",
+    );
+    let errors = load_str(&path, &huge, &registry)
+        .expect("the file loads")
+        .compile(&CompileOptions::default())
+        .expect_err("32x32 invocations exceed WebGPU's 256")
+        .to_string();
+    assert!(
+        errors.contains(
+            "pass \"light tiled\": compute entry point \"cs_light_tiled\" runs 1024 invocations \
+             per workgroup (32x32x1), more than the limit of 256"
+        ),
+        "{errors}"
+    );
+}
