@@ -137,6 +137,20 @@ fn fragment_surface(pixel: vec2<i32>, mask: u32) -> vec3<f32> {
     return unproject(xy / n, depth / n);
 }
 
+struct EntrySurface {
+    lit: bool,
+    surface: Surface,
+}
+
+// The surface an edge-list entry (`edge_samples`) of the tile at `origin` shades.
+fn entry_surface(origin: vec2<u32>, code: u32) -> EntrySurface {
+    let at = code >> 12u;
+    let pixel = vec2<i32>(origin + vec2<u32>(at % TILE, at / TILE));
+    let g = load_gsample(pixel, code & 15u);
+    let lit = (g.flags & FLAG_LIT) != 0u;
+    return EntrySurface(lit, surface_of(g, fragment_surface(pixel, (code >> 4u) & 0xffu)));
+}
+
 fn is_edge(g: ptr<function, array<GSample, SAMPLES>>) -> bool {
     if SAMPLES == 1u {
         return false;
@@ -234,14 +248,12 @@ fn cs_light_tiled(
             }
         }
     }
-    if local == 0u {
+    // One side plane per invocation of the first four, corners clockwise from the top left.
+    if local < 4u {
+        let corners = array<vec2<f32>, 5>(vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0), vec2<f32>(0.0, 0.0));
         let o = vec2<f32>(origin);
         let t = f32(TILE);
-        let center = unproject(o + 0.5 * t, 0.5);
-        tile_planes[0] = side_plane(o, o + vec2<f32>(t, 0.0), center);
-        tile_planes[1] = side_plane(o + vec2<f32>(t, 0.0), o + vec2<f32>(t, t), center);
-        tile_planes[2] = side_plane(o + vec2<f32>(t, t), o + vec2<f32>(0.0, t), center);
-        tile_planes[3] = side_plane(o + vec2<f32>(0.0, t), o, center);
+        tile_planes[local] = side_plane(o + corners[local] * t, o + corners[local + 1u] * t, unproject(o + 0.5 * t, 0.5));
     }
     workgroupBarrier();
 
@@ -251,20 +263,17 @@ fn cs_light_tiled(
     let tile_lit = atomicLoad(&farthest_key) != 0u;
     let nearest = -key_depth(atomicLoad(&nearest_key));
     let farthest = key_depth(atomicLoad(&farthest_key));
-    var extra_surface: array<Surface, EDGE_SLOTS>;
-    var extra_lit: array<bool, EDGE_SLOTS>;
+    // Light accumulates in registers; the surfaces are loaded again for each batch
+    // rather than held through it, so that invocations keep few registers.
     var extra_light: array<vec3<f32>, EDGE_SLOTS>;
     for (var i = 0u; i < EDGE_SLOTS; i++) {
         let entry = local + i * THREADS;
-        extra_lit[i] = false;
+        extra_light[i] = vec3<f32>(0.0);
         if VIEW == VIEW_SHADED && entry < edges {
-            let code = edge_samples[entry];
-            let at = code >> 12u;
-            let p = vec2<i32>(origin + vec2<u32>(at % TILE, at / TILE));
-            let gs = load_gsample(p, code & 15u);
-            extra_lit[i] = (gs.flags & FLAG_LIT) != 0u;
-            extra_surface[i] = surface_of(gs, fragment_surface(p, (code >> 4u) & 0xffu));
-            extra_light[i] = select(vec3<f32>(0.0), ambient_and_directional(extra_surface[i]), extra_lit[i]);
+            let e = entry_surface(origin, edge_samples[entry]);
+            if e.lit {
+                extra_light[i] = ambient_and_directional(e.surface);
+            }
         }
     }
     let surface0 = surface_of(g[0], p0);
@@ -285,14 +294,19 @@ fn cs_light_tiled(
             let count = atomicLoad(&batch_light_count);
             tile_lights += count;
             if VIEW == VIEW_SHADED {
-                for (var l = 0u; l < count; l++) {
-                    let light = lights[batch_lights[l]];
-                    if lit0 {
-                        light0 += shade_light(surface0, light);
+                if lit0 {
+                    for (var l = 0u; l < count; l++) {
+                        light0 += shade_light(surface0, lights[batch_lights[l]]);
                     }
-                    for (var i = 0u; i < EDGE_SLOTS; i++) {
-                        if extra_lit[i] {
-                            extra_light[i] += shade_light(extra_surface[i], light);
+                }
+                for (var i = 0u; i < EDGE_SLOTS; i++) {
+                    let entry = local + i * THREADS;
+                    if entry < edges {
+                        let e = entry_surface(origin, edge_samples[entry]);
+                        if e.lit {
+                            for (var l = 0u; l < count; l++) {
+                                extra_light[i] += shade_light(e.surface, lights[batch_lights[l]]);
+                            }
                         }
                     }
                 }
