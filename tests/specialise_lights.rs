@@ -1,6 +1,7 @@
 //! Specialisation to a lit scene without lights or ambient: pipelines/deferred_msaa_4x.ron
-//! compiled for it drops the edge and light passes and renders the same image, the
-//! G-buffer's emission (GPU, lavapipe by default).
+//! compiled for it drops the edge and light passes, deferred_msaa_4x_tiled.ron its tiled
+//! pass, and both render the same image, the G-buffer's emission (GPU, lavapipe by
+//! default).
 
 use crate::deferred_support;
 
@@ -24,6 +25,20 @@ fn dark_spheres() -> Scene {
 
 #[test]
 fn a_lit_scene_without_lights_drops_the_light_passes_and_renders_the_same() {
+    drops_passes_and_renders_the_same(
+        "deferred_msaa_4x.ron",
+        &["edges", "light edges", "light the rest"],
+    );
+}
+
+/// The tiled pipeline drops its compute pass, and a plain resolve of the G-buffer's HDR
+/// stands in for it.
+#[test]
+fn a_lit_scene_without_lights_drops_the_tiled_pass_and_renders_the_same() {
+    drops_passes_and_renders_the_same("deferred_msaa_4x_tiled.ron", &["light tiled"]);
+}
+
+fn drops_passes_and_renders_the_same(pipeline: &str, dropped: &[&str]) {
     let gpu = gpu();
     let scene = dark_spheres();
     let features = SceneFeatures::of(&scene).names();
@@ -32,7 +47,7 @@ fn a_lit_scene_without_lights_drops_the_light_passes_and_renders_the_same() {
         "emissive, lit, no_lights, shallow_depth"
     );
     let render = |features: Features| {
-        let frame = Render::new("deferred_msaa_4x.ron", "dark spheres", (N, N))
+        let frame = Render::new(pipeline, "dark spheres", (N, N))
             .with_scene(scene.clone())
             .features(features)
             .run(&gpu);
@@ -41,16 +56,22 @@ fn a_lit_scene_without_lights_drops_the_light_passes_and_renders_the_same() {
     };
     let (general_passes, general) = render(SceneFeatures::general().names());
     let (special_passes, special) = render(features);
-    for pass in ["edges", "light edges", "light the rest"] {
-        assert!(general_passes.iter().any(|p| p == pass), "{pass}");
-        assert!(!special_passes.iter().any(|p| p == pass), "{pass}");
+    for pass in dropped {
+        assert!(
+            general_passes.iter().any(|p| p == pass),
+            "{pipeline}: {pass}"
+        );
+        assert!(
+            !special_passes.iter().any(|p| p == pass),
+            "{pipeline}: {pass}"
+        );
     }
     let worst = diff(&general, &special, None).max;
     assert!(worst <= 1, "a channel differs by {worst}/255");
     let glowing = special.pixels.iter().filter(|p| p[0] > 0).count();
     assert!(glowing > 100, "only {glowing} pixels glow");
     println!(
-        "spheres without lights at {N}x{N}: {} instead of {} passes, worst difference \
+        "{pipeline}: spheres without lights at {N}x{N}: {} instead of {} passes, worst difference \
          {worst}/255, identical: {}",
         special_passes.len(),
         general_passes.len(),

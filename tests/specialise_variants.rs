@@ -27,7 +27,11 @@ const SCENES: [&str; 4] = [
     "builtin:unlit",
     GLTF,
 ];
-const PIPELINES: [&str; 2] = ["deferred_msaa_4x.ron", "forward_msaa_4x.ron"];
+const PIPELINES: [&str; 3] = [
+    "deferred_msaa_4x.ron",
+    "deferred_msaa_4x_tiled.ron",
+    "forward_msaa_4x.ron",
+];
 
 fn features(scene: &str) -> SceneFeatures {
     let scene = Scene::load(scene).unwrap_or_else(|e| panic!("{scene}: {e}"));
