@@ -43,7 +43,8 @@ fn assert_nothing_written(dir: &TempDir) {
     assert!(left.is_empty(), "a failed render left files: {left:?}");
 }
 
-/// The defaults (pipelines/deferred_msaa_4x.ron on builtin:spheres) at 64x48, plus `extra`.
+/// The defaults (pipelines/deferred_msaa_4x_tiled.ron on builtin:spheres) at 64x48, plus
+/// `extra`.
 fn render_default(out: &Path, extra: &[&str]) -> Run {
     let out = out.to_str().expect("temp paths are UTF-8");
     let mut args = vec!["--width", "64", "--height", "48", "--out", out];
@@ -324,7 +325,16 @@ fn the_defaults_render_the_spheres_with_deferred_msaa() {
 #[test]
 fn every_debug_view_of_the_default_pipeline_renders_without_the_lighting() {
     let dir = temp_dir();
-    for view in ["edges", "albedo", "normals", "depth", "lights"] {
+    let views = [
+        "edges",
+        "albedo",
+        "normals",
+        "depth",
+        "lights",
+        "tile_lights",
+        "fragments",
+    ];
+    for view in views {
         let out = dir.path().join(format!("{view}.png"));
         let run = render_default(&out, &["--view", view]).expect(0);
         let image = read_png(&out);
@@ -333,7 +343,7 @@ fn every_debug_view_of_the_default_pipeline_renders_without_the_lighting() {
             distinct_colors(&image) > 1,
             "--view {view} is one flat color"
         );
-        run.stderr_has(&format!("\ndebug {view} "))
+        run.stderr_has(&format!("\ndebug {} ", view.replace('_', " ")))
             .stderr_has("tonemap");
         assert!(
             !run.stderr.contains("\ntonemap "),
@@ -375,9 +385,12 @@ fn an_unlit_scene_renders_with_the_specialised_plan_and_the_same_image() {
         .expect(0)
         .stderr_has("specialised to the scene's features: no_lights, shallow_depth, unlit_only")
         .stderr_has("\ngbuffer (unlit) ")
-        .stderr_has("dropped by conditions: gbuffer, edges, light edges, light the rest");
+        .stderr_has(
+            "dropped by conditions: gbuffer, light tiled, resolve (no lights), debug edges, \
+             debug tile lights, debug fragments, debug normals, debug lights",
+        );
     let run = render_unlit(&general, &["--no-specialise"]).expect(0);
-    run.stderr_has("\nlight edges ");
+    run.stderr_has("\nlight tiled ");
     assert!(
         !run.stderr.contains("specialised to"),
         "--no-specialise still specialised:\n{}",
@@ -402,7 +415,7 @@ fn a_view_the_scene_does_not_need_is_refused_with_the_reason() {
     render_unlit(&out, &["--view", "normals"])
         .expect(1)
         .stderr_has(
-            "output \"debug.normals\" of pipelines/deferred_msaa_4x.ron is not made for this \
+            "output \"debug.normals\" of pipelines/deferred_msaa_4x_tiled.ron is not made for this \
              scene: condition \"!unlit_only\" is false (features: no_lights, shallow_depth, unlit_only); \
              --no-specialise",
         );
@@ -417,5 +430,7 @@ fn a_lit_scene_is_specialised_only_in_its_depth_format() {
     let run = render_default(&dir.path().join("f.png"), &[]).expect(0);
     // builtin:spheres uses lights and lit materials; its depth spans 309 near planes.
     run.stderr_has("specialised to the scene's features: shallow_depth (")
-        .stderr_has("dropped by conditions: gbuffer (unlit)\n");
+        .stderr_has(
+            "dropped by conditions: gbuffer (unlit), resolve (unlit), resolve (no lights)\n",
+        );
 }
