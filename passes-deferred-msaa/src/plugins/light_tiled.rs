@@ -33,7 +33,7 @@
 //! No multisampled HDR accumulation, no stencil, no resolve pass.
 //!
 //! The workgroup memory the shader needs grows with the tile and the sample count
-//! (`tile`² x (samples − 1) edge entries of 12 bytes): the graph checks it against the
+//! (`tile`² x (samples − 1) edge entries of 16 bytes): the graph checks it against the
 //! device profile when compiling, so a tile too big for a device (16 at 8x against the
 //! WebGPU default of 16 KiB) is an error naming the pass, and `tile: 8` fits.
 //!
