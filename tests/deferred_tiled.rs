@@ -236,3 +236,28 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
         "{errors}"
     );
 }
+
+/// A tile side outside 2 to 32 is refused at load, naming the parameter.
+#[test]
+fn a_tile_of_one_pixel_is_refused() {
+    let mut registry = Registry::with_builtins();
+    passes_deferred_msaa::register(&mut registry, None);
+    let path = format!(
+        "{}/pipelines/deferred_msaa_4x_tiled.ron",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path)
+        .expect("the pipeline exists")
+        .replace(
+            "params: (edges: (detector: compare)),",
+            "params: (edges: (detector: compare), tile: 1),",
+        );
+    let error = load_str(&path, &text, &registry)
+        .expect_err("a 1x1 tile has no room for its four side planes")
+        .to_string();
+    assert!(
+        error.contains("pass \"light tiled\"")
+            && error.contains("tile must be 2 to 32 pixels, got 1"),
+        "{error}"
+    );
+}

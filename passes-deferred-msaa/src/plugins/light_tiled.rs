@@ -133,8 +133,9 @@ impl TiledView {
     }
 }
 
-/// The largest tile side: 32 x 32 invocations is more than any device's workgroup.
-const MAX_TILE: u32 = 32;
+/// Tile sides allowed: the four side planes are set up by four invocations, and 32 x 32
+/// invocations is more than any device's workgroup.
+const TILES: std::ops::RangeInclusive<u32> = 2..=32;
 
 /// The tiled pass as set up: what `gpu::light_tiled` records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
@@ -170,9 +171,11 @@ impl Plugin for LightTiled {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         params.edges.check()?;
-        if !(1..=MAX_TILE).contains(&params.tile) {
+        if !TILES.contains(&params.tile) {
             return Err(PluginError::Invalid(format!(
-                "tile must be 1 to {MAX_TILE} pixels, got {}",
+                "tile must be {} to {} pixels, got {}",
+                TILES.start(),
+                TILES.end(),
                 params.tile
             )));
         }
