@@ -332,7 +332,6 @@ fn every_debug_view_of_the_default_pipeline_renders_without_the_lighting() {
         "depth",
         "lights",
         "tile_lights",
-        "fragments",
     ];
     for view in views {
         let out = dir.path().join(format!("{view}.png"));
@@ -387,7 +386,7 @@ fn an_unlit_scene_renders_with_the_specialised_plan_and_the_same_image() {
         .stderr_has("\ngbuffer (unlit) ")
         .stderr_has(
             "dropped by conditions: gbuffer, light tiled, resolve (no lights), debug edges, \
-             debug tile lights, debug fragments, debug normals, debug lights",
+             debug tile lights, debug normals, debug lights",
         );
     let run = render_unlit(&general, &["--no-specialise"]).expect(0);
     run.stderr_has("\nlight tiled ");

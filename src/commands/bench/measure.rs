@@ -12,7 +12,7 @@ use super::memory::Memory;
 use super::results::{Figures, PassFigures};
 use super::specialisation::{PlanShape, Specialisation};
 use super::stats::Spread;
-use super::work::{edge_share, sampling, Work, EDGES_OUTPUT};
+use super::work::{edge_share, sampling, Work, EDGES_OUTPUT, FRAGMENTS_OUTPUT};
 use crate::frame::{FrameError, Prepared, Session, Specialise};
 
 /// What every measurement of one run shares.
@@ -34,10 +34,12 @@ pub struct Measured {
 impl Setup<'_> {
     /// Times `candidate`'s "color" (only the passes it needs run) as compiled for the
     /// scene, and as compiled for every feature when that plan differs; then renders its
-    /// "debug.edges", when it has one, in another graph of the same size.
+    /// "debug.edges", when it has one, in another graph of the same size (and its
+    /// "debug.fragments", for a pipeline that shades edge pixels per fragment).
     pub fn measure(&self, candidate: &Candidate, host: &Arc<Host>) -> Result<Measured, FrameError> {
         let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::ToScene)?;
-        let has_edges = pipeline.offered.iter().any(|o| o == EDGES_OUTPUT);
+        let offers = |output: &str| pipeline.offered.iter().any(|o| o == output);
+        let (has_edges, has_fragments) = (offers(EDGES_OUTPUT), offers(FRAGMENTS_OUTPUT));
         let mut prepared = self.session.prepare(pipeline, self.size)?;
         let reports = self.time(&mut prepared)?;
         let color = prepared.read(COLOR)?;
@@ -54,6 +56,9 @@ impl Setup<'_> {
             None
         };
         let work = match &edges {
+            Some(view) if has_fragments => {
+                Work::from_fragments(view, &self.render(candidate, host, FRAGMENTS_OUTPUT)?)
+            }
             Some(view) => Work::from_edges(edge_share(view), samples),
             None => Work::from_kind(&candidate.stem(), samples, supersampling),
         };

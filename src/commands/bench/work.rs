@@ -1,6 +1,8 @@
 //! Shading work: the edge mask's share of the pixels and the shaded samples per pixel it
 //! implies, from a pipeline's "debug.edges" output (red where lighting runs per sample,
 //! blue where once per pixel, black without geometry), or from its kind when it has none.
+//! A pipeline that shades an edge pixel once per fragment (adaptive shading) exports
+//! "debug.fragments" too, and its edge pixels count their fragments instead of samples.
 
 use graph_core::Plan;
 use image::RgbaImage;
@@ -8,6 +10,9 @@ use serde::Serialize;
 
 /// The output every deferred pipeline with an edge pass exports.
 pub const EDGES_OUTPUT: &str = "debug.edges";
+/// The output of pipelines that shade an edge pixel once per fragment: fragments per
+/// pixel, green 2, blue 3, red 4 or more (light_tiled's `fragments` view).
+pub const FRAGMENTS_OUTPUT: &str = "debug.fragments";
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Work {
@@ -33,6 +38,26 @@ impl Work {
             edge_pixel_share: Some(share),
             shaded_samples_per_pixel: Some(1.0 + share * (samples as f64 - 1.0)),
             source: EDGES_OUTPUT.into(),
+            unique_surface_bound: None,
+        }
+    }
+
+    /// From an edge mask and a fragments view of the same frame (adaptive shading): edge
+    /// pixels shaded once per fragment, the rest once.
+    pub fn from_fragments(edges: &RgbaImage, fragments: &RgbaImage) -> Work {
+        let pixels = (edges.width() as usize * edges.height() as usize).max(1);
+        let shaded: u64 = edges
+            .pixels()
+            .zip(fragments.pixels())
+            .map(|(e, f)| match is_edge(e.0) {
+                true => fragment_count(f.0),
+                false => 1,
+            })
+            .sum();
+        Work {
+            edge_pixel_share: Some(edge_share(edges)),
+            shaded_samples_per_pixel: Some(shaded as f64 / pixels as f64),
+            source: format!("{EDGES_OUTPUT} and {FRAGMENTS_OUTPUT}"),
             unique_surface_bound: None,
         }
     }
@@ -112,11 +137,23 @@ const KINDS: &[(&str, Rate, &str)] = &[
 /// The share of pixels a pipeline's "debug.edges" view marks as edges: red ones (the
 /// view writes pure red, blue or black).
 pub fn edge_share(view: &RgbaImage) -> f64 {
-    let edges = view
-        .pixels()
-        .filter(|p| p.0[0] > 127 && p.0[2] <= 127)
-        .count();
+    let edges = view.pixels().filter(|p| is_edge(p.0)).count();
     edges as f64 / (view.width() as usize * view.height() as usize).max(1) as f64
+}
+
+fn is_edge(p: [u8; 4]) -> bool {
+    p[0] > 127 && p[2] <= 127
+}
+
+/// Fragments of a pixel as [`FRAGMENTS_OUTPUT`] colours it: green 2, blue 3, red 4 (or
+/// more), anything else 1.
+fn fragment_count(p: [u8; 4]) -> u64 {
+    match (p[0] > 127, p[1] > 127, p[2] > 127) {
+        (false, true, false) => 2,
+        (false, false, true) => 3,
+        (true, false, false) => 4,
+        _ => 1,
+    }
 }
 
 #[cfg(test)]
@@ -124,6 +161,25 @@ mod tests {
     use image::{Rgba, RgbaImage};
 
     use super::{edge_share, Work};
+
+    #[test]
+    fn adaptive_edge_pixels_cost_a_shading_per_fragment() {
+        let red = Rgba([255, 0, 0, 255]);
+        let mut edges = RgbaImage::from_pixel(4, 1, Rgba([0, 0, 255, 255]));
+        edges.put_pixel(0, 0, red);
+        edges.put_pixel(1, 0, red);
+        let mut fragments = RgbaImage::from_pixel(4, 1, Rgba([26, 26, 26, 255]));
+        fragments.put_pixel(0, 0, Rgba([0, 255, 0, 255]));
+        fragments.put_pixel(1, 0, Rgba([0, 0, 255, 255]));
+        // Several fragments off the edge mask are shaded once: the pixel is not an edge.
+        fragments.put_pixel(2, 0, red);
+        let work = Work::from_fragments(&edges, &fragments);
+        assert_eq!(work.edge_pixel_share, Some(0.5));
+        assert_eq!(
+            work.shaded_samples_per_pixel,
+            Some((2.0 + 3.0 + 1.0 + 1.0) / 4.0)
+        );
+    }
 
     #[test]
     fn red_pixels_are_edges_and_cost_a_shading_per_sample() {
