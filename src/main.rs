@@ -20,7 +20,8 @@ fn main() -> ExitCode {
             scene,
             format,
             target,
-        } => commands::explain::run(pipeline, scene.as_deref(), *format, target),
+            assets,
+        } => commands::explain::run(pipeline, scene.as_deref(), *format, target, assets),
         Command::Render(args) => commands::render::run(args),
         Command::Bench(args) => commands::bench::run(args),
         Command::Adapters {

@@ -200,3 +200,72 @@ fn explain_of_an_invalid_file_exits_1_with_positions() {
         "{all}"
     );
 }
+
+#[test]
+fn validate_checks_every_argument_and_exits_2_when_one_is_unusable() {
+    let out = rgraph(&[
+        "validate",
+        "README.md",
+        "no/such/graph.ron",
+        "pipelines/postprocess_demo.ron",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = text(&out.stderr);
+    for expected in [
+        "error: README.md: not a graph file (.ron) or shader (.wgsl)\n",
+        "error: no/such/graph.ron: cannot read the file: ",
+        "pipelines/postprocess_demo.ron: ok\n",
+        "error: 2 of 3 file(s) could not be checked, 0 invalid\n",
+    ] {
+        assert!(stderr.contains(expected), "{expected:?} not in:\n{stderr}");
+    }
+    assert_eq!(text(&out.stdout), "");
+}
+
+#[test]
+fn explain_exits_2_for_io_errors_and_writes_errors_only_to_stderr() {
+    let out = rgraph(&[
+        "explain",
+        "--pipeline",
+        "no/such/graph.ron",
+        "--format",
+        "dot",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(text(&out.stdout), "", "errors must not reach `| dot`");
+    assert!(
+        text(&out.stderr).contains("no/such/graph.ron:1:1: error: cannot read the file: "),
+        "{}",
+        text(&out.stderr)
+    );
+
+    let out = rgraph(&[
+        "explain",
+        "--pipeline",
+        "graph-core/tests/fixtures/cycle.ron",
+        "--format",
+        "dot",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(text(&out.stdout), "");
+    assert!(
+        text(&out.stderr).contains("graph-core/tests/fixtures/cycle.ron:8:16: error: cycle"),
+        "{}",
+        text(&out.stderr)
+    );
+
+    let out = rgraph(&[
+        "explain",
+        "--pipeline",
+        "pipelines/deferred_msaa_4x.ron",
+        "--scene",
+        "no/such/scene.glb",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(text(&out.stdout), "");
+    assert!(
+        text(&out.stderr).contains("error: scene no/such/scene.glb: cannot read no/such/scene.glb"),
+        "{}",
+        text(&out.stderr)
+    );
+}

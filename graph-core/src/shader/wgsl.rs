@@ -6,6 +6,7 @@ use std::path::Path;
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
 use super::error::ShaderError;
+use crate::bounded_read;
 use crate::file::Position;
 
 /// A WGSL module that naga parsed and validated with its default capabilities (those of
@@ -19,11 +20,12 @@ pub struct Shader {
 }
 
 impl Shader {
-    /// Reads and validates the WGSL file at `path`; messages name it as given.
+    /// Reads and validates the WGSL file at `path` (a regular file of at most
+    /// [`bounded_read::MAX_SHADER_BYTES`]); messages name it as given.
     pub fn load(path: impl AsRef<Path>) -> Result<Shader, ShaderError> {
         let path = path.as_ref();
         let shown = path.display().to_string();
-        match std::fs::read_to_string(path) {
+        match bounded_read::read_text(path, bounded_read::MAX_SHADER_BYTES) {
             Ok(source) => Shader::parse(shown, source),
             Err(e) => Err(ShaderError::Unreadable {
                 path: shown,

@@ -7,12 +7,13 @@ use std::path::PathBuf;
 /// is enough to find the problem.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
-    /// The file (or a buffer or image it references) could not be read.
+    /// The file (or a buffer or image it references) could not be read: missing,
+    /// unreadable, not a regular file, or over the size cap.
     #[error("cannot read {file}: {source}")]
     Io {
         file: PathBuf,
         #[source]
-        source: std::io::Error,
+        source: graph_core::bounded_read::ReadError,
     },
 
     /// The `gltf` crate rejected the file: not JSON / GLB, or it fails glTF validation.

@@ -39,7 +39,7 @@ impl Loader<'_> {
                     .to_vec()
             }
             (None, Some(uri)) => {
-                uri::read(self.base, uri).map_err(|e| e.into_scene_error(invalid))?
+                uri::read(&self.sandbox, uri).map_err(|e| e.into_named_error(invalid))?
             }
             (None, None) => return Err(invalid("has neither uri nor bufferView".to_owned())),
         };

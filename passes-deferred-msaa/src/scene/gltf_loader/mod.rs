@@ -16,18 +16,22 @@ mod light;
 mod material;
 mod nodes;
 mod primitive;
+mod sandbox;
 mod uri;
 mod validate;
 
 use std::collections::HashMap;
 use std::path::Path;
 
-use super::builder::SceneBuilder;
-use super::{Scene, SceneError};
+use graph_core::bounded_read;
 
-/// Loads `file`; see the module documentation for what is kept.
-pub(crate) fn load(file: &Path) -> Result<Scene, SceneError> {
-    let bytes = std::fs::read(file).map_err(|source| SceneError::Io {
+use super::builder::SceneBuilder;
+use super::{AssetPolicy, Scene, SceneError};
+
+/// Loads `file`, reading it and the files its URIs name as `policy` allows; see the module
+/// documentation for what is kept.
+pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneError> {
+    let bytes = bounded_read::read(file, policy.max_bytes).map_err(|source| SceneError::Io {
         file: file.to_owned(),
         source,
     })?;
@@ -39,11 +43,11 @@ pub(crate) fn load(file: &Path) -> Result<Scene, SceneError> {
         gltf::Gltf::from_slice_without_validation(&bytes).map_err(gltf_error)?;
     let warnings = extensions::check(file, &document)?;
     let document = validate::validate(document).map_err(gltf_error)?;
-    let base = file.parent().unwrap_or(Path::new(""));
+    let sandbox = sandbox::Sandbox::new(file, policy)?;
     let mut loader = Loader {
         file,
-        base,
-        buffers: uri::load_buffers(file, base, &document, blob)?,
+        buffers: uri::load_buffers(file, &sandbox, &document, blob)?,
+        sandbox,
         document: &document,
         builder: SceneBuilder::new(file.display().to_string()),
         materials: HashMap::new(),
@@ -65,8 +69,8 @@ pub(crate) fn load(file: &Path) -> Result<Scene, SceneError> {
 /// State shared by the per-object conversions in this module's files.
 struct Loader<'a> {
     file: &'a Path,
-    /// Directory that relative URIs are resolved against.
-    base: &'a Path,
+    /// Where URIs may point, and how large a file they name may be.
+    sandbox: sandbox::Sandbox,
     document: &'a gltf::Document,
     buffers: Vec<Vec<u8>>,
     builder: SceneBuilder,
