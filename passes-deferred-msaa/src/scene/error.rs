@@ -117,6 +117,29 @@ pub enum SceneError {
         reason: String,
     },
 
+    /// A node's transform is not finite, or puts it beyond
+    /// [`MAX_COORDINATE`](super::MAX_COORDINATE).
+    #[error("{file}: {node}: {reason}")]
+    InvalidNode {
+        file: PathBuf,
+        node: String,
+        reason: String,
+    },
+
+    /// Something of the scene lies beyond [`MAX_COORDINATE`](super::MAX_COORDINATE) from the
+    /// origin, or its bounds are not finite.
+    #[error(
+        "{scene}: {what} reaches {value:e}, beyond ±{max:e} (the largest coordinate a scene \
+         may have: f64 still resolves 1/8000 unit there, and f32 camera-relative math stays \
+         finite)"
+    )]
+    TooFar {
+        scene: String,
+        what: String,
+        value: f64,
+        max: f64,
+    },
+
     /// A node is reached twice from the scene's roots: a cycle or a shared child, both of which
     /// glTF forbids (the hierarchy must be a forest).
     #[error("{file}: {node} is reached twice in the node hierarchy (cycle or shared child)")]

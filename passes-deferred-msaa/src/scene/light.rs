@@ -157,7 +157,13 @@ impl Light {
     /// [`Self::effective_range`]'s formula, whatever the kind.
     fn local_range(&self, cutoff: f32) -> f32 {
         let brightest = self.color.into_iter().fold(0.0f32, f32::max);
-        let cutoff_radius = (self.intensity.max(0.0) * brightest / cutoff).sqrt();
+        // In f64: `intensity * brightest / cutoff` overflows f32 from an intensity of about
+        // 3.4e36 (at the default cutoff), and an infinite range gave an empty frame. Its
+        // square root is clamped to f32's range, which only a cutoff below 1e-7 needs.
+        let illuminance = f64::from(self.intensity.max(0.0)) * f64::from(brightest);
+        let cutoff_radius = (illuminance / f64::from(cutoff))
+            .sqrt()
+            .min(f64::from(f32::MAX)) as f32;
         self.range.map_or(cutoff_radius, |r| r.min(cutoff_radius))
     }
 }

@@ -17,6 +17,7 @@ mod material;
 mod nodes;
 mod primitive;
 mod sandbox;
+mod transforms;
 mod uri;
 mod validate;
 
@@ -59,7 +60,8 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         .default_scene()
         .or_else(|| document.scenes().next())
     {
-        for placed in nodes::flatten(file, &document, &scene)? {
+        let local = transforms::read(file, &bytes, &document)?;
+        for placed in nodes::flatten(file, &document, &scene, &local)? {
             loader.place(&placed)?;
         }
     }
