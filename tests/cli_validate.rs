@@ -269,3 +269,26 @@ fn explain_exits_2_for_io_errors_and_writes_errors_only_to_stderr() {
         text(&out.stderr)
     );
 }
+
+#[test]
+fn explain_refuses_a_built_in_scene_parameter_beyond_its_limit_at_once() {
+    let started = std::time::Instant::now();
+    let out = rgraph(&[
+        "explain",
+        "--pipeline",
+        "pipelines/deferred_msaa_4x.ron",
+        "--scene",
+        "builtin:lights?count=100000000",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        text(&out.stderr).contains(
+            "error: scene builtin:lights?count=100000000: builtin:lights: `count=100000000`: a \
+             whole number from 0 to 16384"
+        ),
+        "{}",
+        text(&out.stderr)
+    );
+    // It once took 24 s and 12.5 GB: the limit is checked before anything is allocated.
+    assert!(started.elapsed().as_secs() < 5, "took {:?}", started.elapsed());
+}

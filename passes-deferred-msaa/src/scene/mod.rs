@@ -33,7 +33,7 @@ pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE};
 pub use material::{AlphaMode, Material};
 pub use mesh::{Mesh, Vertex};
 pub use normals::flat_shaded;
-pub use procedural::{builtin_names, BuiltinScene, BUILTIN_PREFIX};
+pub use procedural::{builtin_names, BuiltinParam, BuiltinScene, BUILTIN_PREFIX, MAX_LIGHTS};
 pub use stats::SceneStats;
 pub use texture::{FilterMode, Sampler, TextureImage, TextureRef, WrapMode};
 
