@@ -30,6 +30,7 @@ mod any_handle;
 mod conditions;
 mod declare;
 mod error;
+mod line_index;
 mod load;
 mod loaded;
 mod names;
