@@ -290,5 +290,9 @@ fn explain_refuses_a_built_in_scene_parameter_beyond_its_limit_at_once() {
         text(&out.stderr)
     );
     // It once took 24 s and 12.5 GB: the limit is checked before anything is allocated.
-    assert!(started.elapsed().as_secs() < 5, "took {:?}", started.elapsed());
+    assert!(
+        started.elapsed().as_secs() < 5,
+        "took {:?}",
+        started.elapsed()
+    );
 }

@@ -11,7 +11,7 @@ use super::position::Position;
 use super::registry::Registry;
 use super::schema::{self, GraphFile};
 use super::source::Source;
-use super::{conditions, names, order};
+use super::{conditions, names, order, ron_message};
 use crate::bounded_read;
 
 /// Reads and declares the graph file at `path` (a regular file of at most
@@ -37,6 +37,9 @@ pub fn load_str(
     text: &str,
     registry: &Registry,
 ) -> Result<LoadedGraph, FileErrors> {
+    // Editors on Windows may start UTF-8 files with a byte-order mark, which `ron` reads as
+    // an unexpected character. It is invisible in the editor, so columns do not count it.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let source = Source::new(path.as_ref(), text);
     let file = schema::parse(text).map_err(|e| FileErrors(vec![source.syntax(&e)]))?;
     let mut errors = Vec::new();
@@ -92,7 +95,7 @@ fn prepare<'r>(
                         kind: ErrorKind::Params {
                             pass: pass.name.as_str().to_owned(),
                             plugin: plugin_name.to_owned(),
-                            message: e.code.to_string(),
+                            message: ron_message::describe(&e.code),
                         },
                     });
                 })

@@ -40,6 +40,7 @@ mod plugin;
 mod plugin_pass;
 mod position;
 mod registry;
+mod ron_message;
 mod schema;
 mod slots;
 mod source;

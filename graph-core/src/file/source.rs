@@ -8,6 +8,7 @@ use ron::value::RawValue;
 use super::error::{ErrorKind, FileError, Location};
 use super::line_index::LineIndex;
 use super::position::Position;
+use super::ron_message;
 use super::schema::{offset_in, Name};
 
 pub(crate) struct Source<'a> {
@@ -82,7 +83,7 @@ impl<'a> Source<'a> {
         FileError {
             location: self.location(Position::from(error.span.start).skip_whitespace(self.text)),
             kind: ErrorKind::Syntax {
-                message: error.code.to_string(),
+                message: ron_message::describe(&error.code),
             },
         }
     }

@@ -40,7 +40,12 @@ impl Shader {
         source: impl Into<String>,
     ) -> Result<Shader, ShaderError> {
         let path = path.into();
-        let source = source.into();
+        let source: String = source.into();
+        // A byte-order mark from a Windows editor is invisible there, and not WGSL.
+        let source = match source.strip_prefix('\u{feff}') {
+            Some(rest) => rest.to_owned(),
+            None => source,
+        };
         let module = naga::front::wgsl::parse_str(&source).map_err(|e| {
             invalid(
                 &path,
