@@ -62,6 +62,19 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
 
     progress.stage(format!("read back \"{output}\""));
     let image = prepared.read(&output)?;
+    if image.dimensions() != (args.width, args.height) {
+        // A pipeline may give its output a fixed size: the flags then do nothing, and the
+        // user should hear so rather than wonder why the PNG has another size.
+        progress.note(format!(
+            "warning: --width {} --height {} do not apply: {} gives \"{output}\" a fixed \
+             size of {}x{}, which is what was written",
+            args.width,
+            args.height,
+            args.pipeline.display(),
+            image.width(),
+            image.height()
+        ));
+    }
 
     progress.stage(format!("write {}", args.out.display()));
     output::write_png(&args.out, &image)?;
