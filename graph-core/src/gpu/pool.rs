@@ -10,6 +10,7 @@ use std::collections::HashMap;
 
 use wgpu::{BufferUsages, TextureUsages};
 
+use super::error_scopes::ErrorScopes;
 use crate::access::Aspect;
 use crate::plan::TextureShape;
 
@@ -80,14 +81,15 @@ impl Pool {
     }
 
     /// A texture of this shape and usage that no one else holds this frame; `label` names
-    /// it if it has to be created.
+    /// it if it has to be created. When creating it fails (out of memory, or beyond what
+    /// the device allows), the error is wgpu's message and the pool keeps nothing.
     pub fn acquire_texture(
         &mut self,
         device: &wgpu::Device,
         shape: TextureShape,
         usage: TextureUsages,
         label: impl FnOnce() -> String,
-    ) -> usize {
+    ) -> Result<usize, String> {
         let key = (shape, usage);
         let frame = self.frame;
         if let Some(i) = self
@@ -96,8 +98,9 @@ impl Pool {
             .position(|t| t.key == key && t.last_used != frame)
         {
             self.textures[i].last_used = frame;
-            return i;
+            return Ok(i);
         }
+        let scopes = ErrorScopes::push(device);
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some(&label()),
             size: wgpu::Extent3d {
@@ -112,6 +115,9 @@ impl Pool {
             usage,
             view_formats: &[],
         });
+        if let Some(error) = scopes.pop() {
+            return Err(error);
+        }
         self.textures.push(PooledTexture {
             key,
             texture,
@@ -121,17 +127,18 @@ impl Pool {
         self.stats.textures_allocated += 1;
         self.stats.frame_textures_allocated += 1;
         self.update_alive();
-        self.textures.len() - 1
+        Ok(self.textures.len() - 1)
     }
 
-    /// A buffer of this size and usage that no one else holds this frame.
+    /// A buffer of this size and usage that no one else holds this frame. Failures as
+    /// for [`Pool::acquire_texture`].
     pub fn acquire_buffer(
         &mut self,
         device: &wgpu::Device,
         size: u64,
         usage: BufferUsages,
         label: impl FnOnce() -> String,
-    ) -> usize {
+    ) -> Result<usize, String> {
         let key = (size, usage);
         let frame = self.frame;
         if let Some(i) = self
@@ -140,14 +147,18 @@ impl Pool {
             .position(|b| b.key == key && b.last_used != frame)
         {
             self.buffers[i].last_used = frame;
-            return i;
+            return Ok(i);
         }
+        let scopes = ErrorScopes::push(device);
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(&label()),
             size,
             usage,
             mapped_at_creation: false,
         });
+        if let Some(error) = scopes.pop() {
+            return Err(error);
+        }
         self.buffers.push(PooledBuffer {
             key,
             buffer,
@@ -156,7 +167,7 @@ impl Pool {
         self.stats.buffers_allocated += 1;
         self.stats.frame_buffers_allocated += 1;
         self.update_alive();
-        self.buffers.len() - 1
+        Ok(self.buffers.len() - 1)
     }
 
     pub fn texture(&self, index: usize) -> &wgpu::Texture {
