@@ -2,8 +2,9 @@
 //!
 //! Each frame the executor acquires one object per physical texture and buffer of its
 //! plan; an object acquired this frame is never handed out twice in it. Objects are keyed
-//! by exactly what wgpu creates them from, so a plan executed again reuses everything and
-//! allocates nothing. Objects no frame has used for [`KEEP_FRAMES`] frames are dropped
+//! by exactly what wgpu creates them from, so a plan executed again reuses every texture,
+//! view and buffer and creates none. (Bind groups are not pooled: pass callbacks create
+//! theirs each frame, small descriptor objects pointing at this memory.) Objects no frame has used for [`KEEP_FRAMES`] frames are dropped
 //! (wgpu frees the memory once the GPU is done with them).
 
 use std::collections::HashMap;
