@@ -12,6 +12,7 @@ mod baselines_errors;
 mod baselines_forward;
 mod baselines_reference;
 mod baselines_resolve;
+mod cli_anywhere;
 mod cli_assets;
 mod cli_bench;
 mod cli_render;

@@ -27,6 +27,7 @@ mod profile;
 mod resource;
 
 pub mod bounded_read;
+pub mod embedded;
 pub mod explain;
 pub mod file;
 #[cfg(feature = "gpu")]

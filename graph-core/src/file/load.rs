@@ -12,15 +12,16 @@ use super::registry::Registry;
 use super::schema::{self, GraphFile};
 use super::source::Source;
 use super::{conditions, names, order, ron_message};
-use crate::bounded_read;
+use crate::{bounded_read, embedded};
 
 /// Reads and declares the graph file at `path` (a regular file of at most
-/// [`bounded_read::MAX_GRAPH_FILE_BYTES`]). Shader paths in it resolve against the
+/// [`bounded_read::MAX_GRAPH_FILE_BYTES`]; a built-in file when a relative `path` is not on
+/// disk, see [`embedded`]). Shader paths in it resolve against the
 /// file's directory; messages show `path` as given. Compile the result with
 /// [`LoadedGraph::compile`].
 pub fn load_file(path: impl AsRef<Path>, registry: &Registry) -> Result<LoadedGraph, FileErrors> {
     let path = path.as_ref();
-    match bounded_read::read_text(path, bounded_read::MAX_GRAPH_FILE_BYTES) {
+    match embedded::read_text(path, bounded_read::MAX_GRAPH_FILE_BYTES) {
         Ok(text) => load_str(path, &text, registry),
         Err(e) => Err(FileErrors(vec![FileError {
             location: Source::new(path, "").location(Position::START),

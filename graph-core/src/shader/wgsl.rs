@@ -6,8 +6,8 @@ use std::path::Path;
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
 use super::error::ShaderError;
-use crate::bounded_read;
 use crate::file::Position;
+use crate::{bounded_read, embedded};
 
 /// A WGSL module that naga parsed and validated with its default capabilities (those of
 /// WebGPU plus multisampled shading), which is what wgpu checks again at pipeline creation.
@@ -21,11 +21,12 @@ pub struct Shader {
 
 impl Shader {
     /// Reads and validates the WGSL file at `path` (a regular file of at most
-    /// [`bounded_read::MAX_SHADER_BYTES`]); messages name it as given.
+    /// [`bounded_read::MAX_SHADER_BYTES`]; a built-in file when a relative `path` is not on
+    /// disk, see [`embedded`]); messages name it as given.
     pub fn load(path: impl AsRef<Path>) -> Result<Shader, ShaderError> {
         let path = path.as_ref();
         let shown = path.display().to_string();
-        match bounded_read::read_text(path, bounded_read::MAX_SHADER_BYTES) {
+        match embedded::read_text(path, bounded_read::MAX_SHADER_BYTES) {
             Ok(source) => Shader::parse(shown, source),
             Err(e) => Err(ShaderError::Unreadable {
                 path: shown,
