@@ -7,6 +7,7 @@
 mod cli_support;
 mod common;
 mod deferred_support;
+mod fuzz_support;
 
 mod baselines_errors;
 mod baselines_forward;
@@ -37,6 +38,7 @@ mod extremes_normals;
 mod extremes_sizes;
 mod extremes_thresholds;
 mod extremes_volumes;
+mod fuzz;
 mod gpu_execute;
 mod specialise_analysis;
 mod specialise_depth;
