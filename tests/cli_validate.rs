@@ -296,3 +296,23 @@ fn explain_refuses_a_built_in_scene_parameter_beyond_its_limit_at_once() {
         started.elapsed()
     );
 }
+
+#[cfg(unix)]
+#[test]
+fn a_profile_that_is_a_device_is_refused_without_reading_it() {
+    let out = rgraph(&[
+        "validate",
+        "pipelines/msaa_demo.ron",
+        "--profile",
+        "/dev/zero",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains(
+            "--profile: \"/dev/zero\" is not webgpu, adapter or a readable profile file: not a \
+             regular file (it is a character device)"
+        ),
+        "{}",
+        text(&out.stderr)
+    );
+}

@@ -24,6 +24,11 @@ pub enum SceneError {
         source: gltf::Error,
     },
 
+    /// A `.glb` whose container (header or chunks) is inconsistent in a way the `gltf`
+    /// crate does not catch itself.
+    #[error("{file}: not a valid GLB file: {reason}")]
+    InvalidGlb { file: PathBuf, reason: String },
+
     /// The file lists an extension in `extensionsRequired` that this loader does not implement,
     /// so any rendering of it would be wrong.
     #[error(

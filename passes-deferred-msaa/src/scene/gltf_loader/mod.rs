@@ -11,6 +11,7 @@
 mod accessor;
 mod camera;
 mod extensions;
+mod glb;
 mod image;
 mod light;
 mod material;
@@ -40,6 +41,7 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         file: file.to_owned(),
         source,
     };
+    glb::check_header(file, &bytes)?;
     let gltf::Gltf { document, blob } =
         gltf::Gltf::from_slice_without_validation(&bytes).map_err(gltf_error)?;
     let warnings = extensions::check(file, &document)?;
