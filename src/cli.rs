@@ -182,6 +182,7 @@ impl AssetArgs {
         AssetPolicy {
             root: self.asset_root.clone(),
             max_bytes: self.max_asset_bytes,
+            ..AssetPolicy::default()
         }
     }
 }

@@ -240,3 +240,34 @@ fn an_image_uri_outside_the_folder_names_the_image_and_the_material() {
         "{error}"
     );
 }
+
+#[test]
+fn a_mesh_placed_by_many_nodes_stops_at_the_geometry_limit() {
+    use passes_deferred_msaa::scene::{AssetPolicy, DEFAULT_MAX_GEOMETRY_BYTES};
+    assert_eq!(DEFAULT_MAX_GEOMETRY_BYTES, 4 << 30);
+    let mut gltf = Gltf::default();
+    let mesh = gltf.triangle(None);
+    // One triangle without normals: 3 flat-shaded vertices of 32 bytes and 3 indices of 4,
+    // 108 bytes a placement; ten more nodes place it again.
+    for _ in 0..10 {
+        gltf.root(json!({ "mesh": mesh }));
+    }
+    let path = temp_dir("geometry_limit").join("scene.gltf");
+    gltf.write_embedded(&path);
+    let policy = |max_geometry_bytes| AssetPolicy {
+        max_geometry_bytes,
+        ..AssetPolicy::default()
+    };
+    let scene = Scene::from_gltf_with(&path, &policy(11 * 108)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.meshes.len(), 11);
+    let error = Scene::from_gltf_with(&path, &policy(11 * 108 - 1)).expect_err("one too many");
+    assert_eq!(
+        error.to_string(),
+        format!(
+            "{}: mesh 0 \"triangle\" primitive 0: placing it here would take the scene's \
+             vertices and indices past 1187 bytes (the geometry limit): every node placing a \
+             mesh gets its own copy",
+            path.display()
+        )
+    );
+}

@@ -51,6 +51,10 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         file,
         buffers: uri::load_buffers(file, &sandbox, &document, blob)?,
         sandbox,
+        geometry: GeometryBudget {
+            left: policy.max_geometry_bytes,
+            max: policy.max_geometry_bytes,
+        },
         document: &document,
         builder: SceneBuilder::new(file.display().to_string()),
         materials: HashMap::new(),
@@ -83,6 +87,14 @@ struct Loader<'a> {
     materials: HashMap<Option<usize>, usize>,
     /// glTF image index to scene texture index: each image is decoded once.
     images: HashMap<usize, usize>,
+    /// What is left of [`AssetPolicy::max_geometry_bytes`].
+    geometry: GeometryBudget,
+}
+
+/// The vertex and index bytes a scene may still build.
+struct GeometryBudget {
+    left: u64,
+    max: u64,
 }
 
 impl Loader<'_> {
