@@ -243,8 +243,8 @@ fn an_image_uri_outside_the_folder_names_the_image_and_the_material() {
 
 #[test]
 fn a_mesh_placed_by_many_nodes_stops_at_the_geometry_limit() {
-    use passes_deferred_msaa::scene::{AssetPolicy, DEFAULT_MAX_GEOMETRY_BYTES};
-    assert_eq!(DEFAULT_MAX_GEOMETRY_BYTES, 4 << 30);
+    use passes_deferred_msaa::scene::{AssetPolicy, DEFAULT_MAX_SCENE_BYTES};
+    assert_eq!(DEFAULT_MAX_SCENE_BYTES, 4 << 30);
     let mut gltf = Gltf::default();
     let mesh = gltf.triangle(None);
     // One triangle without normals: 3 flat-shaded vertices of 32 bytes and 3 indices of 4,
@@ -254,8 +254,8 @@ fn a_mesh_placed_by_many_nodes_stops_at_the_geometry_limit() {
     }
     let path = temp_dir("geometry_limit").join("scene.gltf");
     gltf.write_embedded(&path);
-    let policy = |max_geometry_bytes| AssetPolicy {
-        max_geometry_bytes,
+    let policy = |max_scene_bytes| AssetPolicy {
+        max_scene_bytes,
         ..AssetPolicy::default()
     };
     let scene = Scene::from_gltf_with(&path, &policy(11 * 108)).unwrap_or_else(|e| panic!("{e}"));
@@ -264,9 +264,47 @@ fn a_mesh_placed_by_many_nodes_stops_at_the_geometry_limit() {
     assert_eq!(
         error.to_string(),
         format!(
-            "{}: mesh 0 \"triangle\" primitive 0: placing it here would take the scene's \
-             vertices and indices past 1187 bytes (the geometry limit): every node placing a \
-             mesh gets its own copy",
+            "{}: mesh 0 \"triangle\" primitive 0: placing it here (every node placing a mesh \
+             gets its own copy) would take the scene past 1187 bytes of vertices, indices and \
+             textures (the scene memory limit)",
+            path.display()
+        )
+    );
+}
+
+#[test]
+fn images_are_counted_against_the_scene_memory_limit_before_decoding() {
+    use passes_deferred_msaa::scene::AssetPolicy;
+    // A 64x64 PNG: 64 * 64 * 4 bytes, and a third more for mips, 21,844 bytes.
+    let mut png = Vec::new();
+    image::RgbaImage::new(64, 64)
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    let mut gltf = Gltf::default();
+    let view = gltf.view(&png);
+    gltf.push(
+        "images",
+        json!({ "bufferView": view, "mimeType": "image/png" }),
+    );
+    gltf.push("textures", json!({ "source": 0 }));
+    let material = gltf.push(
+        "materials",
+        json!({ "name": "painted", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } } }),
+    );
+    gltf.triangle(Some(material));
+    let path = temp_dir("image_budget").join("scene.gltf");
+    gltf.write_embedded(&path);
+    let policy = AssetPolicy {
+        max_scene_bytes: 20_000,
+        ..AssetPolicy::default()
+    };
+    let error = Scene::from_gltf_with(&path, &policy).expect_err("the image is over the limit");
+    assert_eq!(
+        error.to_string(),
+        format!(
+            "{}: image 0 (base color of material 0 \"painted\"): decoding it (64x64) would take \
+             the scene past 20000 bytes of vertices, indices and textures (the scene memory \
+             limit)",
             path.display()
         )
     );

@@ -8,11 +8,12 @@ use std::path::PathBuf;
 /// glTF sample set with room for scanned assets.
 pub const DEFAULT_MAX_ASSET_BYTES: u64 = 1 << 30;
 
-/// The most vertex and index bytes a glTF scene may build unless
-/// [`AssetPolicy::max_geometry_bytes`] says otherwise: 4 GiB. Each node that places a mesh
-/// gets its own copy of the mesh's vertices, so a small file placing one large mesh from
-/// many nodes would otherwise ask for any amount of memory.
-pub const DEFAULT_MAX_GEOMETRY_BYTES: u64 = 4 << 30;
+/// The most memory a glTF scene may hold (vertices, indices, decoded textures with their
+/// mips) unless [`AssetPolicy::max_scene_bytes`] says otherwise: 4 GiB. Each node that
+/// places a mesh gets its own copy of the mesh's vertices, and each image is decoded on its
+/// own (a few kilobytes of PNG can hold 400 MB of pixels), so a small file would otherwise
+/// be able to ask for any amount of memory.
+pub const DEFAULT_MAX_SCENE_BYTES: u64 = 4 << 30;
 
 /// Where a glTF file's URIs may point, and the size cap on every file a scene reads.
 ///
@@ -27,9 +28,9 @@ pub struct AssetPolicy {
     pub root: Option<PathBuf>,
     /// The largest file read, in bytes.
     pub max_bytes: u64,
-    /// The most bytes of vertices and indices the scene may hold, over every placement of
-    /// every mesh; checked before each primitive is decoded.
-    pub max_geometry_bytes: u64,
+    /// The most bytes of vertices, indices and decoded textures the scene may hold, over
+    /// every placement of every mesh and every image; checked before each is built.
+    pub max_scene_bytes: u64,
 }
 
 impl Default for AssetPolicy {
@@ -37,7 +38,7 @@ impl Default for AssetPolicy {
         AssetPolicy {
             root: None,
             max_bytes: DEFAULT_MAX_ASSET_BYTES,
-            max_geometry_bytes: DEFAULT_MAX_GEOMETRY_BYTES,
+            max_scene_bytes: DEFAULT_MAX_SCENE_BYTES,
         }
     }
 }

@@ -25,7 +25,7 @@ mod texture;
 
 use std::path::Path;
 
-pub use assets::{AssetPolicy, DEFAULT_MAX_ASSET_BYTES, DEFAULT_MAX_GEOMETRY_BYTES};
+pub use assets::{AssetPolicy, DEFAULT_MAX_ASSET_BYTES, DEFAULT_MAX_SCENE_BYTES};
 pub use bounds::{Aabb, BoundingSphere, MAX_COORDINATE};
 pub use camera::{Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_YFOV};
 pub use error::SceneError;

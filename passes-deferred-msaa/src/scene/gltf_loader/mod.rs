@@ -51,9 +51,9 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         file,
         buffers: uri::load_buffers(file, &sandbox, &document, blob)?,
         sandbox,
-        geometry: GeometryBudget {
-            left: policy.max_geometry_bytes,
-            max: policy.max_geometry_bytes,
+        budget: Budget {
+            left: policy.max_scene_bytes,
+            max: policy.max_scene_bytes,
         },
         document: &document,
         builder: SceneBuilder::new(file.display().to_string()),
@@ -87,14 +87,29 @@ struct Loader<'a> {
     materials: HashMap<Option<usize>, usize>,
     /// glTF image index to scene texture index: each image is decoded once.
     images: HashMap<usize, usize>,
-    /// What is left of [`AssetPolicy::max_geometry_bytes`].
-    geometry: GeometryBudget,
+    /// What is left of [`AssetPolicy::max_scene_bytes`].
+    budget: Budget,
 }
 
-/// The vertex and index bytes a scene may still build.
-struct GeometryBudget {
+/// The bytes of vertices, indices and textures a scene may still build.
+struct Budget {
     left: u64,
     max: u64,
+}
+
+impl Budget {
+    /// Takes `bytes`, or says (as the end of a sentence about `what`) why it cannot.
+    fn take(&mut self, bytes: u64, why: &str) -> Result<(), String> {
+        if bytes > self.left {
+            return Err(format!(
+                "{why} would take the scene past {} bytes of vertices, indices and textures \
+                 (the scene memory limit)",
+                self.max
+            ));
+        }
+        self.left -= bytes;
+        Ok(())
+    }
 }
 
 impl Loader<'_> {

@@ -46,7 +46,7 @@ impl Loader<'_> {
         site.check_indices(&indices, positions.len())?;
         // What is decoded so far is bounded by the file's size; what is kept for every
         // placement is not.
-        self.reserve_geometry(&site, primitive)?;
+        self.reserve_memory(&site, primitive)?;
         let indices = triangle_list(mode, indices).map_err(|reason| site.invalid(reason))?;
         let uvs = uvs.unwrap_or_default();
         let (vertices, mut indices) = match normals {
@@ -69,10 +69,10 @@ impl Loader<'_> {
         Ok(())
     }
 
-    /// Takes from the geometry budget what this primitive will keep, before building it:
+    /// Takes from the scene's memory budget what this primitive will keep, before building it:
     /// its vertices (one per index when flat normals are generated) and its indices (up to
     /// three per index when a strip or fan becomes a list).
-    fn reserve_geometry(
+    fn reserve_memory(
         &mut self,
         site: &Site,
         primitive: &gltf::Primitive,
@@ -96,15 +96,12 @@ impl Loader<'_> {
         let bytes = vertices
             .saturating_mul(vertex_bytes)
             .saturating_add(indices.saturating_mul(4));
-        if bytes > self.geometry.left {
-            return Err(site.invalid(format!(
-                "placing it here would take the scene's vertices and indices past {} bytes \
-                 (the geometry limit): every node placing a mesh gets its own copy",
-                self.geometry.max
-            )));
-        }
-        self.geometry.left -= bytes;
-        Ok(())
+        self.budget
+            .take(
+                bytes,
+                "placing it here (every node placing a mesh gets its own copy)",
+            )
+            .map_err(|reason| site.invalid(reason))
     }
 
     /// Reads an optional vertex attribute (`None` when the primitive has none). Its length is
