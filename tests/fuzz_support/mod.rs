@@ -21,6 +21,9 @@ use mutate::{mutate, Rng};
 /// (a full deferred pipeline compiled in a debug build takes well under a second).
 pub const HANG_LIMIT: Duration = Duration::from_secs(20);
 
+/// The function that takes one input, made on the worker thread.
+pub type Target = Box<dyn FnMut(&[u8])>;
+
 /// A run stops after this many crashes: they are usually one bug, and each prints its
 /// panic.
 pub const MAX_CRASHES: usize = 5;
@@ -94,7 +97,7 @@ pub fn fuzz(
     target: &'static str,
     seeds: Vec<Vec<u8>>,
     iterations: usize,
-    setup: fn() -> Box<dyn FnMut(&[u8])>,
+    setup: fn() -> Target,
 ) -> Report {
     assert!(!seeds.is_empty(), "fuzz {target}: no seeds");
     let seed = std::env::var("RGRAPH_FUZZ_SEED")

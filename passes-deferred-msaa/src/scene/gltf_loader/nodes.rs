@@ -49,8 +49,8 @@ pub(super) fn flatten<'a>(
             .into_iter()
             .map(f64::abs)
             .fold(0.0, f64::max);
-        // `!(<=)` so NaN is refused too.
-        if !(largest <= MAX_COORDINATE) {
+        // `f64::max` skips NaN, hence the finiteness test (inf * 0 composes to NaN).
+        if !world.is_finite() || largest > MAX_COORDINATE {
             return Err(SceneError::InvalidNode {
                 file: file.to_owned(),
                 node: label("node", node.index(), node.name()),
