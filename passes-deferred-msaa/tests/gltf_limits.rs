@@ -309,3 +309,37 @@ fn images_are_counted_against_the_scene_memory_limit_before_decoding() {
         )
     );
 }
+
+#[test]
+fn a_light_placed_by_more_nodes_than_the_light_limit_is_an_error() {
+    use passes_deferred_msaa::scene::MAX_LIGHTS;
+    assert_eq!(MAX_LIGHTS, 16_384);
+    let with_lights = |count: u32| {
+        let mut gltf = Gltf::default();
+        gltf.triangle(None);
+        gltf.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+        gltf.json["extensions"] =
+            json!({ "KHR_lights_punctual": { "lights": [{ "type": "point", "intensity": 1.0 }] } });
+        for _ in 0..count {
+            gltf.root(json!({ "extensions": { "KHR_lights_punctual": { "light": 0 } } }));
+        }
+        let path = temp_dir("light_limit").join("scene.gltf");
+        gltf.write_embedded(&path);
+        (path.clone(), Scene::from_gltf(&path))
+    };
+    let (path, loaded) = with_lights(MAX_LIGHTS);
+    assert_eq!(
+        loaded.unwrap_or_else(|e| panic!("{e}")).lights.len(),
+        16_384
+    );
+    let (path2, loaded) = with_lights(MAX_LIGHTS + 1);
+    assert_eq!(path, path2);
+    assert_eq!(
+        loaded.expect_err("one light too many").to_string(),
+        format!(
+            "{}: more than 16384 lights (the most a scene may have: each is drawn as its own \
+             volume)",
+            path.display()
+        )
+    );
+}

@@ -150,6 +150,10 @@ pub enum SceneError {
     #[error("{file}: {node} is reached twice in the node hierarchy (cycle or shared child)")]
     NodeHierarchy { file: PathBuf, node: String },
 
+    /// More lights than [`MAX_LIGHTS`](super::MAX_LIGHTS).
+    #[error("{scene}: more than {max} lights (the most a scene may have: each is drawn as its own volume)")]
+    TooManyLights { scene: String, max: u32 },
+
     /// Nothing to draw: no triangle survived loading.
     #[error("{scene}: the scene contains no triangles")]
     EmptyScene { scene: String },

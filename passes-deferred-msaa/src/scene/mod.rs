@@ -29,11 +29,11 @@ pub use assets::{AssetPolicy, DEFAULT_MAX_ASSET_BYTES, DEFAULT_MAX_SCENE_BYTES};
 pub use bounds::{Aabb, BoundingSphere, MAX_COORDINATE};
 pub use camera::{Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_YFOV};
 pub use error::SceneError;
-pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE};
+pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE, MAX_LIGHTS};
 pub use material::{AlphaMode, Material};
 pub use mesh::{Mesh, Vertex};
 pub use normals::flat_shaded;
-pub use procedural::{builtin_names, BuiltinParam, BuiltinScene, BUILTIN_PREFIX, MAX_LIGHTS};
+pub use procedural::{builtin_names, BuiltinParam, BuiltinScene, BUILTIN_PREFIX};
 pub use stats::SceneStats;
 pub use texture::{FilterMode, Sampler, TextureImage, TextureRef, WrapMode};
 

@@ -28,7 +28,7 @@ use std::path::Path;
 use graph_core::bounded_read;
 
 use super::builder::SceneBuilder;
-use super::{AssetPolicy, Scene, SceneError};
+use super::{AssetPolicy, Scene, SceneError, MAX_LIGHTS};
 
 /// Loads `file`, reading it and the files its URIs name as `policy` allows; see the module
 /// documentation for what is kept.
@@ -130,6 +130,13 @@ impl Loader<'_> {
             )?);
         }
         if let Some(light) = placed.node.light() {
+            // Checked as each is placed: a light placed by many nodes counts each time.
+            if self.builder.lights.len() >= MAX_LIGHTS as usize {
+                return Err(SceneError::TooManyLights {
+                    scene: self.file.display().to_string(),
+                    max: MAX_LIGHTS,
+                });
+            }
             let light = light::convert(self.file, &light, &placed.world)?;
             self.builder.lights.push(light);
         }

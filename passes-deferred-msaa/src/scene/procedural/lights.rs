@@ -21,12 +21,7 @@ use super::parts::{add_ground, add_shape, lit, perspective_camera, spot};
 use super::rng::Pcg32;
 use super::shapes::Shape;
 use crate::scene::builder::SceneBuilder;
-use crate::scene::{Light, SceneError};
-
-/// The most lights `builtin:lights?count=N` makes: 16,384, 51 times the default. Each light
-/// is drawn as its own volume: 16,384 render at 320x180 in 12 s and 1 GB on lavapipe (debug
-/// build), 65,536 took 57 s and 2.4 GB, and a hundred million aborted the process.
-pub const MAX_LIGHTS: u32 = 1 << 14;
+use crate::scene::{Light, SceneError, MAX_LIGHTS};
 
 /// The parameters `builtin:lights?...` takes.
 pub(super) const PARAMS: &[BuiltinParam] = &[

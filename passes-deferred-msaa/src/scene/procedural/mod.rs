@@ -14,7 +14,6 @@ mod solid;
 mod spheres;
 mod unlit;
 
-pub use lights::MAX_LIGHTS;
 pub use params::BuiltinParam;
 use params::Params;
 
