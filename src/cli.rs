@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use passes_deferred_msaa::scene::{AssetPolicy, DEFAULT_MAX_ASSET_BYTES};
 
 #[derive(Parser)]
 #[command(
@@ -24,8 +25,9 @@ pub struct Cli {
 pub enum Command {
     /// Check graph files (.ron) and shaders (.wgsl) without a GPU.
     ///
-    /// Exit status: 0 when every file is valid, 1 when any is not (each problem printed as
-    /// FILE:LINE:COL: error: MESSAGE), 2 for usage or I/O errors.
+    /// Exit status: 0 when every file is valid, 1 when any is not (each problem printed on
+    /// stdout as FILE:LINE:COL: error: MESSAGE), 2 for usage or I/O errors (a file that is
+    /// not .ron or .wgsl, or cannot be read: named on stderr, the other files still checked).
     Validate {
         /// Graph files (.ron) or WGSL shaders (.wgsl).
         #[arg(required = true, value_name = "FILE")]
@@ -39,6 +41,9 @@ pub enum Command {
     /// With --scene, the plan is the one for that scene: the scene is analysed, the file
     /// compiled for its features, and (as text) what that drops and saves against the
     /// plan for a scene using every feature is printed after it.
+    ///
+    /// Exit status: 0 with the plan on stdout (nothing else goes there), 1 when the file or
+    /// scene is invalid, 2 for usage or I/O errors (as validate); errors go to stderr.
     Explain {
         /// The graph file.
         #[arg(long, value_name = "FILE")]
@@ -51,6 +56,8 @@ pub enum Command {
         format: Format,
         #[command(flatten)]
         target: Target,
+        #[command(flatten)]
+        assets: AssetArgs,
     },
     /// Render one frame headless and write it as an 8-bit sRGB PNG.
     ///
@@ -153,6 +160,32 @@ pub struct RenderArgs {
     /// The PNG to write (its directory must exist); replaced atomically.
     #[arg(long, value_name = "FILE.png")]
     pub out: PathBuf,
+    #[command(flatten)]
+    pub assets: AssetArgs,
+}
+
+/// What a glTF scene may read besides itself.
+#[derive(clap::Args)]
+pub struct AssetArgs {
+    /// A folder the glTF file's buffer and image URIs may also point into. Without it, a
+    /// URI that is an absolute path or climbs out of the glTF file's folder is an error.
+    #[arg(long, value_name = "DIR")]
+    pub asset_root: Option<PathBuf>,
+    /// The largest file a scene reads (the glTF file, each buffer, each image), in bytes.
+    #[arg(long, value_name = "BYTES", default_value_t = DEFAULT_MAX_ASSET_BYTES,
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_asset_bytes: u64,
+}
+
+impl AssetArgs {
+    /// The loader's policy these flags ask for.
+    pub fn policy(&self) -> AssetPolicy {
+        AssetPolicy {
+            root: self.asset_root.clone(),
+            max_bytes: self.max_asset_bytes,
+            ..AssetPolicy::default()
+        }
+    }
 }
 
 /// What `rgraph bench` measures and where it writes the results.

@@ -11,7 +11,13 @@ use clap::Parser;
 
 use cli::{Cli, Command};
 
+/// `pipelines/`, `shaders/` and `bench/graphs/` as built (see build.rs): read when a
+/// relative path to one of them is missing from disk.
+static EMBEDDED: &[graph_core::embedded::EmbeddedFile] =
+    include!(concat!(env!("OUT_DIR"), "/embedded.rs"));
+
 fn main() -> ExitCode {
+    graph_core::embedded::provide(EMBEDDED);
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Validate { files, target } => commands::validate::run(files, target),
@@ -20,7 +26,8 @@ fn main() -> ExitCode {
             scene,
             format,
             target,
-        } => commands::explain::run(pipeline, scene.as_deref(), *format, target),
+            assets,
+        } => commands::explain::run(pipeline, scene.as_deref(), *format, target, assets),
         Command::Render(args) => commands::render::run(args),
         Command::Bench(args) => commands::bench::run(args),
         Command::Adapters {

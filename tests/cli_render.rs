@@ -433,3 +433,47 @@ fn a_lit_scene_is_specialised_only_in_its_depth_format() {
             "dropped by conditions: gbuffer (unlit), resolve (unlit), resolve (no lights)\n",
         );
 }
+
+#[test]
+fn a_fixed_size_output_says_that_width_and_height_do_not_apply() {
+    let dir = temp_dir();
+    let text = std::fs::read_to_string(FIXTURE).unwrap().replace(
+        "\"color\": Texture(format: \"rgba8unorm-srgb\"),",
+        "\"color\": Texture(format: \"rgba8unorm-srgb\", size: Absolute(32, 16)),",
+    );
+    // Next to the fixture, so its relative shader path still resolves.
+    let pipeline =
+        Path::new("tests/fixtures").join(format!(".fixed_size_{}.ron", std::process::id()));
+    std::fs::write(&pipeline, text).unwrap();
+    let out = dir.path().join("a.png");
+    let run = render(&[
+        "--pipeline",
+        pipeline.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--width",
+        "64",
+        "--height",
+        "48",
+    ]);
+    let _ = std::fs::remove_file(&pipeline);
+    run.expect(0).stderr_has(&format!(
+        "warning: --width 64 --height 48 do not apply: {} gives \"color\" a fixed size of \
+         32x16, which is what was written",
+        pipeline.display()
+    ));
+    assert_eq!(read_png(&out).dimensions(), (32, 16));
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn an_unwritable_output_is_refused_before_any_rendering() {
+    // /sys refuses new files even to root, who ignores permission bits.
+    let run = render_fixture(Path::new("/sys/rgraph-test.png"), &[]).expect(2);
+    run.stderr_has("--out /sys/rgraph-test.png: cannot write in /sys: ");
+    assert!(
+        !run.stderr.contains("open device") && !run.stderr.contains("load scene"),
+        "it rendered before checking --out:\n{}",
+        run.stderr
+    );
+}

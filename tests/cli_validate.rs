@@ -200,3 +200,119 @@ fn explain_of_an_invalid_file_exits_1_with_positions() {
         "{all}"
     );
 }
+
+#[test]
+fn validate_checks_every_argument_and_exits_2_when_one_is_unusable() {
+    let out = rgraph(&[
+        "validate",
+        "README.md",
+        "no/such/graph.ron",
+        "pipelines/postprocess_demo.ron",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = text(&out.stderr);
+    for expected in [
+        "error: README.md: not a graph file (.ron) or shader (.wgsl)\n",
+        "error: no/such/graph.ron: cannot read the file: ",
+        "pipelines/postprocess_demo.ron: ok\n",
+        "error: 2 of 3 file(s) could not be checked, 0 invalid\n",
+    ] {
+        assert!(stderr.contains(expected), "{expected:?} not in:\n{stderr}");
+    }
+    assert_eq!(text(&out.stdout), "");
+}
+
+#[test]
+fn explain_exits_2_for_io_errors_and_writes_errors_only_to_stderr() {
+    let out = rgraph(&[
+        "explain",
+        "--pipeline",
+        "no/such/graph.ron",
+        "--format",
+        "dot",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(text(&out.stdout), "", "errors must not reach `| dot`");
+    assert!(
+        text(&out.stderr).contains("no/such/graph.ron:1:1: error: cannot read the file: "),
+        "{}",
+        text(&out.stderr)
+    );
+
+    let out = rgraph(&[
+        "explain",
+        "--pipeline",
+        "graph-core/tests/fixtures/cycle.ron",
+        "--format",
+        "dot",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(text(&out.stdout), "");
+    assert!(
+        text(&out.stderr).contains("graph-core/tests/fixtures/cycle.ron:8:16: error: cycle"),
+        "{}",
+        text(&out.stderr)
+    );
+
+    let out = rgraph(&[
+        "explain",
+        "--pipeline",
+        "pipelines/deferred_msaa_4x.ron",
+        "--scene",
+        "no/such/scene.glb",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(text(&out.stdout), "");
+    assert!(
+        text(&out.stderr).contains("error: scene no/such/scene.glb: cannot read no/such/scene.glb"),
+        "{}",
+        text(&out.stderr)
+    );
+}
+
+#[test]
+fn explain_refuses_a_built_in_scene_parameter_beyond_its_limit_at_once() {
+    let started = std::time::Instant::now();
+    let out = rgraph(&[
+        "explain",
+        "--pipeline",
+        "pipelines/deferred_msaa_4x.ron",
+        "--scene",
+        "builtin:lights?count=100000000",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        text(&out.stderr).contains(
+            "error: scene builtin:lights?count=100000000: builtin:lights: `count=100000000`: a \
+             whole number from 0 to 16384"
+        ),
+        "{}",
+        text(&out.stderr)
+    );
+    // It once took 24 s and 12.5 GB: the limit is checked before anything is allocated.
+    assert!(
+        started.elapsed().as_secs() < 5,
+        "took {:?}",
+        started.elapsed()
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn a_profile_that_is_a_device_is_refused_without_reading_it() {
+    let out = rgraph(&[
+        "validate",
+        "pipelines/msaa_demo.ron",
+        "--profile",
+        "/dev/zero",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains(
+            "--profile: \"/dev/zero\" is not webgpu, adapter or a readable profile file: not a \
+             regular file (it is a character device)"
+        ),
+        "{}",
+        text(&out.stderr)
+    );
+}

@@ -178,3 +178,27 @@ fn ten_thousand_colocated_dim_lights_lose_precision_in_half_floats() {
         "10,000 co-located lights reach {fraction} of one light"
     );
 }
+
+/// A point light of intensity 3.5e36 without `range`: its derived range once overflowed f32
+/// (`intensity * max(color) / cutoff`), the light volume became infinite and the frame black.
+#[test]
+fn a_light_too_bright_for_an_f32_range_still_lights_the_floor() {
+    let gpu = gpu();
+    let light = Light::point(
+        "blinding",
+        DVec3::new(0.0, 1.0, 0.0),
+        [1.0; 3],
+        3.5e36,
+        None,
+    );
+    let color = Render::new("deferred_msaa_4x.ron", "floor", SIZE)
+        .with_scene(floor_with(vec![light]))
+        .read(&gpu, &["color"])
+        .remove(0);
+    let lit = color.pixels.iter().filter(|p| p[..3] != [0, 0, 0]).count();
+    assert!(
+        lit > color.pixels.len() / 2,
+        "only {lit} of {} pixels are lit",
+        color.pixels.len()
+    );
+}

@@ -715,3 +715,44 @@ fn the_default_adapter_is_listed_with_its_sample_counts() {
         .expect("Rgba8Unorm is a common format");
     assert!(counts.contains(&1) && counts.contains(&4), "{counts:?}");
 }
+
+/// A texture the device cannot create (here wider than its largest 2D texture, in a plan
+/// compiled for a profile that claimed more) fails naming the resource, its size and
+/// format, before any pass runs; the pool keeps nothing of it.
+#[test]
+fn a_texture_the_device_cannot_create_is_named_with_its_size_and_format() {
+    let gpu = gpu();
+    let mut g = GraphBuilder::new();
+    let width = gpu.profile().limits.max_texture_dimension_2d + 1;
+    let desc = TextureDesc::new(TextureFormat::Rgba16Float).size(Size::Absolute(width, 4));
+    let target = g.create_texture("too_wide", desc);
+    let out = g
+        .add_render_pass("clear")
+        .color_output(target, ColorLoad::Clear([0.0; 4]));
+    g.export(out);
+    let mut graph = g.build();
+    let mut profile = gpu.profile();
+    profile.limits.max_texture_dimension_2d = width;
+    let plan = graph
+        .compile(&CompileOptions {
+            output_size: SIZE,
+            profile,
+        })
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut executor = Executor::new(&gpu);
+    let error = executor
+        .execute(&mut graph, &plan, &Imports::new())
+        .expect_err("the texture is too wide for the device");
+    assert!(
+        matches!(error, ExecuteError::Allocation { .. }),
+        "{error:?}"
+    );
+    let expected = format!(
+        "cannot allocate texture \"too_wide\" ({width}x4, 1 sample(s), 1 mip(s), rgba16float, \
+         {:.1} MiB for mip 0) on the device: ",
+        f64::from(width * 4 * 8) / f64::from(1u32 << 20)
+    );
+    assert!(error.to_string().starts_with(&expected), "{error}");
+    assert_eq!(executor.pool_stats().textures_alive, 0);
+    assert!(executor.texture(&plan, out.id()).is_none());
+}

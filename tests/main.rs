@@ -7,11 +7,14 @@
 mod cli_support;
 mod common;
 mod deferred_support;
+mod fuzz_support;
 
 mod baselines_errors;
 mod baselines_forward;
 mod baselines_reference;
 mod baselines_resolve;
+mod cli_anywhere;
+mod cli_assets;
 mod cli_bench;
 mod cli_render;
 mod cli_render_samples;
@@ -36,6 +39,7 @@ mod extremes_normals;
 mod extremes_sizes;
 mod extremes_thresholds;
 mod extremes_volumes;
+mod fuzz;
 mod gpu_execute;
 mod specialise_analysis;
 mod specialise_depth;

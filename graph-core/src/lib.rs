@@ -26,6 +26,8 @@ mod plan_cache;
 mod profile;
 mod resource;
 
+pub mod bounded_read;
+pub mod embedded;
 pub mod explain;
 pub mod file;
 #[cfg(feature = "gpu")]

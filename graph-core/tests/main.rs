@@ -18,6 +18,7 @@ mod ron_bindings;
 mod ron_errors;
 mod ron_names;
 mod ron_roundtrip;
+mod ron_scale;
 mod ron_validate;
 mod usage;
 mod validate_attachments;

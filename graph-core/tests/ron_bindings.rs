@@ -218,3 +218,85 @@ fn a_dispatch_following_an_unbound_slot_is_an_error() {
     let error = only_error(compile_str(&text));
     assert_error(&error, PATH, 5, 14, &["fill", "nope"]);
 }
+
+#[test]
+fn uniform_values_must_be_finite() {
+    for (value, shown) in [("NaN", "NaN"), ("inf", "inf"), ("-inf", "-inf")] {
+        let values = format!("Uniform(binding: 3, values: [1.0, {value}, 0.25, 1.0])");
+        let text = fullscreen("tinted", &values).replace(r#"inputs: { "src": "src" },"#, "");
+        let error = only_error(compile_str(&text));
+        assert_error(&error, PATH, 5, 14, &["draw", SHADER]);
+        assert!(
+            error.to_string().contains(&format!(
+                "uniform value #1 is {shown}; values must be finite"
+            )),
+            "{error}"
+        );
+    }
+}
+
+#[test]
+fn fixed_dispatch_counts_must_be_from_1_to_65535() {
+    let fill = |dispatch: &str| {
+        store(
+            r#""out": Texture(format: "rgba8unorm")"#,
+            r#"outputs: { "dst": "out" }"#,
+        )
+        .replace(r#"["done"]"#, r#"["out"]"#)
+        .replace(r#"PerTexel("dst")"#, dispatch)
+    };
+    compile_str(&fill("Workgroups(65535, 1, 1)")).unwrap_or_else(|e| panic!("{e}"));
+    for (dispatch, count, axis) in [
+        ("Workgroups(65536, 1, 1)", 65536, "x"),
+        ("Workgroups(0, 0, 0)", 0, "x"),
+        ("Workgroups(4, 4, 0)", 0, "z"),
+    ] {
+        let error = only_error(compile_str(&fill(dispatch)));
+        assert!(
+            error.to_string().ends_with(&format!(
+                "dispatch {dispatch} has {count} in {axis}: each count must be from 1 to 65535"
+            )),
+            "{error}"
+        );
+        assert!(error.to_string().contains("\"fill\""), "{error}");
+    }
+}
+
+#[test]
+fn clear_colors_must_be_finite_and_depths_within_0_and_1() {
+    let clear = |params: &str, format: &str| {
+        format!(
+            r#"Graph(
+resources: {{ "t": Texture(format: "{format}") }},
+passes: [(name: "wipe", plugin: "clear", params: ({params}), outputs: {{ "target": "t" }})],
+outputs: ["t"],
+)"#
+        )
+    };
+    for (params, format, expected) in [
+        (
+            "color: (NaN, 0.0, 0.0, 1.0)",
+            "rgba8unorm",
+            "clear color [NaN, 0.0, 0.0, 1.0] is not finite",
+        ),
+        (
+            "color: (0.0, inf, 0.0, 1.0)",
+            "rgba8unorm",
+            "clear color [0.0, inf, 0.0, 1.0] is not finite",
+        ),
+        (
+            "depth: 2.0",
+            "depth32float",
+            "clear depth 2 is not within 0.0 ..= 1.0",
+        ),
+        (
+            "depth: NaN",
+            "depth32float",
+            "clear depth NaN is not within 0.0 ..= 1.0",
+        ),
+    ] {
+        let error = only_error(compile_str(&clear(params, format)));
+        assert!(error.to_string().ends_with(expected), "{error}");
+        assert!(error.to_string().contains("\"wipe\""), "{error}");
+    }
+}

@@ -141,3 +141,46 @@ fn an_unreadable_file_is_an_error_not_a_panic() {
     assert!(matches!(error.kind, ErrorKind::Unreadable { .. }));
     assert_error(&error, &path, 1, 1, &[]);
 }
+
+/// A valid graph: one clear of one exported texture.
+const CLEAR: &str = r#"Graph(
+    resources: { "c": Texture(format: "rgba8unorm") },
+    passes: [(name: "fill", plugin: "clear", params: (color: (0.0, 0.0, 0.0, 1.0)), outputs: { "target": "c" })],
+    outputs: ["c"],
+)"#;
+
+#[test]
+fn a_utf8_byte_order_mark_is_skipped_and_not_counted() {
+    ron_support::compile_str(&format!("\u{feff}{CLEAR}")).unwrap_or_else(|e| panic!("{e}"));
+    let error = only_error(ron_support::compile_str(&format!(
+        "\u{feff}{}",
+        CLEAR.replace("passes:", "passes")
+    )));
+    assert_eq!(error.location.at.line, 3, "{error}");
+    assert_eq!(error.location.at.column, 12, "{error}");
+}
+
+#[test]
+fn parser_messages_do_not_leak_ron_s_api() {
+    let deep = format!("{}{}", "[".repeat(200), "]".repeat(200));
+    let nested = CLEAR.replace("params: (color:", &format!("params: (x: {deep}, color:"));
+    for (text, expected) in [
+        (nested, "values are nested more than 128 levels deep"),
+        (
+            CLEAR.replace("plugin:", "3: 1, plugin:"),
+            "`3` is not a valid field or variant name",
+        ),
+    ] {
+        let message = only_error(ron_support::compile_str(&text)).to_string();
+        assert!(message.ends_with(expected), "{message}");
+        for internal in ["ron::", "serde_stacker", "r#"] {
+            assert!(!message.contains(internal), "{message}");
+        }
+    }
+}
+
+#[test]
+fn a_shader_s_byte_order_mark_is_skipped() {
+    let source = "\u{feff}@compute @workgroup_size(1) fn main() {}";
+    graph_core::shader::Shader::parse("bom.wgsl", source).unwrap_or_else(|e| panic!("{e}"));
+}

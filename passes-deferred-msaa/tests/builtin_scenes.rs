@@ -2,7 +2,7 @@
 
 use glam::{DVec3, Vec3};
 use passes_deferred_msaa::scene::{
-    builtin_names, DepthConvention, LightKind, Mesh, Projection, Scene, SceneError,
+    builtin_names, DepthConvention, LightKind, Mesh, Projection, Scene, SceneError, MAX_LIGHTS,
 };
 
 fn builtin(spec: &str) -> Scene {
@@ -179,12 +179,43 @@ fn builtin_spec_errors_list_what_is_available() {
         "{error}"
     );
     let error = Scene::load("builtin:lights?count=-1").unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "builtin:lights: `count=-1`: expected a whole number from 0 to 16384"
+    );
+}
+
+#[test]
+fn every_builtin_parameter_has_a_limit_checked_before_building() {
+    // A hundred million lights once allocated until the process aborted.
+    let error = Scene::load("builtin:lights?count=100000000").unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "builtin:lights: `count=100000000`: a whole number from 0 to 16384 (total number of \
+         lights, 4/5 point and 1/5 spot (default 320, at most 16384))"
+    );
+    let error = Scene::load("builtin:lights?count=16385").unwrap_err();
+    assert!(error.to_string().contains("from 0 to 16384"), "{error}");
+    let error = Scene::load("builtin:lights?seed=4294967296").unwrap_err();
     assert!(
         error
             .to_string()
-            .contains("`count=-1`: expected a non-negative integer"),
+            .contains("`seed=4294967296`: a whole number from 0 to 4294967295"),
         "{error}"
     );
+    assert_eq!(MAX_LIGHTS, 16_384);
+    let most = builtin(&format!("builtin:lights?count={MAX_LIGHTS}"));
+    assert_eq!(most.lights.len(), MAX_LIGHTS as usize);
+    for scene in builtin_names() {
+        for param in scene.params {
+            assert!(
+                param.meaning.contains(&format!("at most {}", param.max)) || param.max == u32::MAX,
+                "builtin:{} `{}` does not document its limit",
+                scene.name,
+                param.key
+            );
+        }
+    }
 }
 
 /// A documented unlit shape: name, base color, corners.

@@ -360,3 +360,24 @@ fn undecodable_base_color_image_names_image_and_material() {
         "{message}"
     );
 }
+
+/// Found by tests/fuzz.rs: gltf 1.4 panicked on a GLB header declaring fewer bytes than
+/// the header itself.
+#[test]
+fn a_glb_header_declaring_less_than_itself_is_an_error() {
+    let path = temp_dir("glb_short_header").join("short.glb");
+    let mut glb = b"glTF".to_vec();
+    glb.extend_from_slice(&2u32.to_le_bytes());
+    glb.extend_from_slice(&4u32.to_le_bytes());
+    glb.extend_from_slice(b"\x10\0\0\0JSON{}      ");
+    std::fs::write(&path, glb).unwrap();
+    let (error, message) = expect_error(&path);
+    assert!(matches!(error, SceneError::InvalidGlb { .. }), "{error:?}");
+    assert!(
+        message.ends_with(
+            "not a valid GLB file: the header declares a length of 4 bytes, less than the \
+             header's own 12"
+        ),
+        "{message}"
+    );
+}

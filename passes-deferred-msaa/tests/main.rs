@@ -8,5 +8,7 @@ mod extremes_normals;
 mod gltf_errors;
 mod gltf_features;
 mod gltf_fixtures;
+mod gltf_limits;
+mod gltf_sandbox;
 mod robustness;
 mod scene_math;

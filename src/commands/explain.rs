@@ -6,14 +6,14 @@ mod variants;
 use std::path::Path;
 
 use graph_core::explain;
-use graph_core::file::{load_file, LoadedGraph};
+use graph_core::file::{load_file, FileErrors, LoadedGraph};
 use graph_core::{CompileOptions, Features, Plan};
 use passes_deferred_msaa::analysis::{Analysis, Features as SceneFeatures, SHALLOW_STEP};
-use passes_deferred_msaa::scene::Scene;
+use passes_deferred_msaa::scene::{AssetPolicy, Scene, SceneError};
 
 use super::target::compile_options;
 use super::CommandError;
-use crate::cli::{Format, Target};
+use crate::cli::{AssetArgs, Format, Target};
 use crate::registry::registry;
 
 pub fn run(
@@ -21,11 +21,12 @@ pub fn run(
     scene: Option<&str>,
     format: Format,
     target: &Target,
+    assets: &AssetArgs,
 ) -> Result<(), CommandError> {
     let options = compile_options(target)?;
     let loaded = load_file(pipeline, &registry()).map_err(|e| invalid(pipeline, e))?;
     let analysis = scene
-        .map(|spec| analyse(spec, options.output_size))
+        .map(|spec| analyse(spec, &assets.policy(), options.output_size))
         .transpose()?;
     let features = analysis
         .as_ref()
@@ -68,15 +69,30 @@ fn compile(
         .map_err(|e| invalid(pipeline, e))
 }
 
-fn invalid(pipeline: &Path, errors: impl std::fmt::Display) -> CommandError {
-    println!("{errors}");
+/// The file's errors go to stderr, so stdout (piped into `dot` or a JSON reader) only ever
+/// holds a plan. A file that cannot be read at all is an I/O error (exit 2), as in
+/// `validate`; one that is wrong exits 1.
+fn invalid(pipeline: &Path, errors: FileErrors) -> CommandError {
+    eprintln!("{errors}");
+    if errors.is_unreadable(pipeline) {
+        return CommandError::Usage(format!("cannot read {}", pipeline.display()));
+    }
     CommandError::Invalid(format!("{} is invalid", pipeline.display()))
 }
 
-fn analyse(spec: &str, output: (u32, u32)) -> Result<(String, Analysis), CommandError> {
-    let scene = Scene::load(spec).map_err(|e| {
+fn analyse(
+    spec: &str,
+    policy: &AssetPolicy,
+    output: (u32, u32),
+) -> Result<(String, Analysis), CommandError> {
+    let scene = Scene::load_with(spec, policy).map_err(|e| {
         eprintln!("error: scene {spec}: {e}");
-        CommandError::Invalid(format!("scene {spec} cannot be loaded"))
+        let message = format!("scene {spec} cannot be loaded");
+        // As `render` and `validate`: a file that cannot be read is an I/O error.
+        match e {
+            SceneError::Io { .. } => CommandError::Usage(message),
+            _ => CommandError::Invalid(message),
+        }
     })?;
     Ok((spec.to_owned(), Analysis::of(&scene, output)))
 }

@@ -40,14 +40,8 @@ impl CommandError {
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CommandError> {
     let io =
         |e: std::io::Error| CommandError::Usage(format!("cannot write {}: {e}", path.display()));
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
+    let temp = partial_path(path)
         .ok_or_else(|| CommandError::Usage(format!("{} is not a file path", path.display())))?;
-    let temp = dir.join(format!(".{}.partial", name.to_string_lossy()));
     let result = std::fs::File::create(&temp)
         .and_then(|mut f| f.write_all(bytes).and_then(|_| f.sync_all()))
         .and_then(|_| std::fs::rename(&temp, path));
@@ -55,6 +49,17 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CommandError> {
         let _ = std::fs::remove_file(&temp);
     }
     result.map_err(io)
+}
+
+/// The temporary file [`write_atomically`] writes `path` through: `.NAME.partial` in the
+/// same directory (so the rename stays on one file system). `None` when `path` names no file.
+pub fn partial_path(path: &Path) -> Option<std::path::PathBuf> {
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path.file_name()?;
+    Some(dir.join(format!(".{}.partial", name.to_string_lossy())))
 }
 
 /// Encodes the image (sRGB-encoded RGBA8) as a PNG and writes it through a temporary file

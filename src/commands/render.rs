@@ -13,7 +13,7 @@ mod view;
 use std::sync::Arc;
 
 use graph_core::gpu::AdapterChoice;
-use passes_deferred_msaa::scene::Scene;
+use passes_deferred_msaa::scene::{AssetPolicy, Scene};
 use passes_deferred_msaa::Overrides;
 
 use super::CommandError;
@@ -34,7 +34,7 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     let mut progress = Progress::new(7);
 
     progress.stage(format!("load scene {}", args.scene));
-    let scene = load_scene(&args.scene, &progress)?;
+    let scene = load_scene(&args.scene, &args.assets.policy(), &progress)?;
     let overrides = Overrides {
         tonemap: args.tonemap.map(|t| t.name().to_string()),
         exposure: args.exposure,
@@ -62,6 +62,19 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
 
     progress.stage(format!("read back \"{output}\""));
     let image = prepared.read(&output)?;
+    if image.dimensions() != (args.width, args.height) {
+        // A pipeline may give its output a fixed size: the flags then do nothing, and the
+        // user should hear so rather than wonder why the PNG has another size.
+        progress.note(format!(
+            "warning: --width {} --height {} do not apply: {} gives \"{output}\" a fixed \
+             size of {}x{}, which is what was written",
+            args.width,
+            args.height,
+            args.pipeline.display(),
+            image.width(),
+            image.height()
+        ));
+    }
 
     progress.stage(format!("write {}", args.out.display()));
     output::write_png(&args.out, &image)?;
@@ -71,8 +84,12 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
 }
 
 /// The scene; its statistics and the loader's warnings go to stderr.
-fn load_scene(spec: &str, progress: &Progress) -> Result<Arc<Scene>, FrameError> {
-    let scene = Scene::load(spec).map_err(FrameError::Scene)?;
+fn load_scene(
+    spec: &str,
+    policy: &AssetPolicy,
+    progress: &Progress,
+) -> Result<Arc<Scene>, FrameError> {
+    let scene = Scene::load_with(spec, policy).map_err(FrameError::Scene)?;
     progress.note(format!("scene {spec}: {}", scene.stats()));
     for warning in &scene.warnings {
         progress.note(format!("warning: {warning}"));

@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use graph_core::bounded_read;
 use graph_core::gpu::{AdapterChoice, Gpu};
 use graph_core::{CompileOptions, DeviceProfile};
 
@@ -27,8 +28,11 @@ pub fn compile_options(target: &Target) -> Result<CompileOptions, CommandError> 
     })
 }
 
+/// The largest profile file read: 1 MiB, a hundred times a saved profile.
+const MAX_PROFILE_BYTES: u64 = 1 << 20;
+
 fn read_profile(path: &Path) -> Result<DeviceProfile, CommandError> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let text = bounded_read::read_text(path, MAX_PROFILE_BYTES).map_err(|e| {
         CommandError::Usage(format!(
             "--profile: \"{}\" is not webgpu, adapter or a readable profile file: {e}",
             path.display()

@@ -1,8 +1,8 @@
 //! `rgraph validate`: graph files compiled and shaders checked, without a GPU.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use graph_core::file::{validate_file, validate_shader, ErrorKind, FileErrors};
+use graph_core::file::{validate_file, validate_shader};
 use graph_core::CompileOptions;
 
 use super::target::compile_options;
@@ -10,34 +10,36 @@ use super::CommandError;
 use crate::cli::Target;
 use crate::registry::registry;
 
+/// Checks every file, whatever the others give: a file that is not .ron or .wgsl, or
+/// cannot be read, is reported on stderr (`error: FILE: REASON`) and the rest are still
+/// checked; the exit status is then 2. Each invalid file's errors go to stdout.
 pub fn run(files: &[PathBuf], target: &Target) -> Result<(), CommandError> {
     let options = compile_options(target)?;
     let registry = registry();
-    let mut invalid = 0;
+    let (mut invalid, mut unusable) = (0, 0);
     for file in files {
         let errors = match file.extension().and_then(|e| e.to_str()) {
             Some("wgsl") => validate_shader(file).err(),
             Some("ron") => validate_file(file, &registry, &options).err(),
             _ => {
-                return Err(CommandError::Usage(format!(
-                    "{}: not a graph file (.ron) or shader (.wgsl)",
+                unusable += 1;
+                eprintln!(
+                    "error: {}: not a graph file (.ron) or shader (.wgsl)",
                     file.display()
-                )))
+                );
+                continue;
             }
         };
         match errors {
             None => eprintln!("{}: ok", file.display()),
-            Some(errors) if is_unreadable(file, &errors) => {
-                let reason = errors
+            Some(errors) if errors.is_unreadable(file) => {
+                unusable += 1;
+                let reasons = errors
                     .0
                     .iter()
                     .map(|e| e.kind.to_string())
                     .collect::<Vec<_>>();
-                return Err(CommandError::Usage(format!(
-                    "{}: {}",
-                    file.display(),
-                    reason.join("; ")
-                )));
+                eprintln!("error: {}: {}", file.display(), reasons.join("; "));
             }
             Some(errors) => {
                 invalid += 1;
@@ -45,26 +47,28 @@ pub fn run(files: &[PathBuf], target: &Target) -> Result<(), CommandError> {
             }
         }
     }
-    report(invalid, files.len(), &options)
+    report(invalid, unusable, files.len(), &options)
 }
 
-/// The file itself could not be read: an I/O problem (exit 2), not an invalid file.
-fn is_unreadable(file: &Path, errors: &FileErrors) -> bool {
-    errors.0.iter().any(|e| {
-        matches!(e.kind, ErrorKind::Unreadable { .. }) && Path::new(&e.location.path) == file
-    })
-}
-
-fn report(invalid: usize, total: usize, options: &CompileOptions) -> Result<(), CommandError> {
-    if invalid == 0 {
-        eprintln!(
-            "{total} file(s) valid for {} at {}x{}",
-            options.profile.name, options.output_size.0, options.output_size.1
-        );
-        Ok(())
-    } else {
-        Err(CommandError::Invalid(format!(
+fn report(
+    invalid: usize,
+    unusable: usize,
+    total: usize,
+    options: &CompileOptions,
+) -> Result<(), CommandError> {
+    match (invalid, unusable) {
+        (0, 0) => {
+            eprintln!(
+                "{total} file(s) valid for {} at {}x{}",
+                options.profile.name, options.output_size.0, options.output_size.1
+            );
+            Ok(())
+        }
+        (_, 0) => Err(CommandError::Invalid(format!(
             "{invalid} of {total} file(s) invalid"
-        )))
+        ))),
+        _ => Err(CommandError::Usage(format!(
+            "{unusable} of {total} file(s) could not be checked, {invalid} invalid"
+        ))),
     }
 }

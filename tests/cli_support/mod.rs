@@ -1,6 +1,7 @@
-//! The built `rgraph` binary run as a user runs it, from the repository root, for the
-//! command-line tests: exit status, stdout and stderr.
+//! The built `rgraph` binary run as a user runs it, from the repository root (or another
+//! directory), for the command-line tests: exit status, stdout and stderr.
 
+use std::path::Path;
 use std::process::Command;
 
 pub struct Run {
@@ -12,9 +13,14 @@ pub struct Run {
 
 /// Runs `rgraph` with `args`.
 pub fn rgraph(args: &[&str]) -> Run {
+    rgraph_in(Path::new(env!("CARGO_MANIFEST_DIR")), args)
+}
+
+/// Runs `rgraph` with `args` in directory `dir`.
+pub fn rgraph_in(dir: &Path, args: &[&str]) -> Run {
     let output = Command::new(env!("CARGO_BIN_EXE_rgraph"))
         .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(dir)
         .output()
         .expect("the rgraph binary runs");
     Run {

@@ -2,6 +2,7 @@
 //! the resource it is about, so a build log reads like a compiler's.
 
 use std::fmt;
+use std::path::Path;
 
 use thiserror::Error;
 
@@ -182,5 +183,14 @@ impl FileErrors {
         });
         errors.dedup();
         FileErrors(errors)
+    }
+
+    /// Whether `file` itself could not be read (missing, not a regular file, too large):
+    /// an I/O problem for the caller, not a wrong file. Unreadable shaders the file names
+    /// do not count: those are mistakes in the file.
+    pub fn is_unreadable(&self, file: &Path) -> bool {
+        self.0.iter().any(|e| {
+            matches!(e.kind, ErrorKind::Unreadable { .. }) && Path::new(&e.location.path) == file
+        })
     }
 }

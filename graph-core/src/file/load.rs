@@ -11,14 +11,17 @@ use super::position::Position;
 use super::registry::Registry;
 use super::schema::{self, GraphFile};
 use super::source::Source;
-use super::{conditions, names, order};
+use super::{conditions, names, order, ron_message};
+use crate::{bounded_read, embedded};
 
-/// Reads and declares the graph file at `path`. Shader paths in it resolve against the
+/// Reads and declares the graph file at `path` (a regular file of at most
+/// [`bounded_read::MAX_GRAPH_FILE_BYTES`]; a built-in file when a relative `path` is not on
+/// disk, see [`embedded`]). Shader paths in it resolve against the
 /// file's directory; messages show `path` as given. Compile the result with
 /// [`LoadedGraph::compile`].
 pub fn load_file(path: impl AsRef<Path>, registry: &Registry) -> Result<LoadedGraph, FileErrors> {
     let path = path.as_ref();
-    match std::fs::read_to_string(path) {
+    match embedded::read_text(path, bounded_read::MAX_GRAPH_FILE_BYTES) {
         Ok(text) => load_str(path, &text, registry),
         Err(e) => Err(FileErrors(vec![FileError {
             location: Source::new(path, "").location(Position::START),
@@ -35,6 +38,9 @@ pub fn load_str(
     text: &str,
     registry: &Registry,
 ) -> Result<LoadedGraph, FileErrors> {
+    // Editors on Windows may start UTF-8 files with a byte-order mark, which `ron` reads as
+    // an unexpected character. It is invisible in the editor, so columns do not count it.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let source = Source::new(path.as_ref(), text);
     let file = schema::parse(text).map_err(|e| FileErrors(vec![source.syntax(&e)]))?;
     let mut errors = Vec::new();
@@ -90,7 +96,7 @@ fn prepare<'r>(
                         kind: ErrorKind::Params {
                             pass: pass.name.as_str().to_owned(),
                             plugin: plugin_name.to_owned(),
-                            message: e.code.to_string(),
+                            message: ron_message::describe(&e.code),
                         },
                     });
                 })

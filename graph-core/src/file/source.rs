@@ -6,17 +6,25 @@ use std::path::Path;
 use ron::value::RawValue;
 
 use super::error::{ErrorKind, FileError, Location};
+use super::line_index::LineIndex;
 use super::position::Position;
+use super::ron_message;
 use super::schema::{offset_in, Name};
 
 pub(crate) struct Source<'a> {
     path: &'a Path,
     text: &'a str,
+    /// Built once: every name of the file is placed through it.
+    lines: LineIndex<'a>,
 }
 
 impl<'a> Source<'a> {
     pub fn new(path: &'a Path, text: &'a str) -> Self {
-        Source { path, text }
+        Source {
+            path,
+            text,
+            lines: LineIndex::new(text),
+        }
     }
 
     /// The directory relative paths in the file are resolved against.
@@ -38,7 +46,7 @@ impl<'a> Source<'a> {
             let quote = offset
                 .checked_sub(1)
                 .filter(|&q| self.text.as_bytes()[q] == b'"');
-            Position::of_offset(self.text, quote.unwrap_or(offset))
+            self.lines.position(quote.unwrap_or(offset))
         })
     }
 
@@ -52,7 +60,7 @@ impl<'a> Source<'a> {
             .map_or(name.as_str().len(), |(i, _)| i);
         name.offset(self.text)
             .map_or(self.position(name), |offset| {
-                Position::of_offset(self.text, offset + within)
+                self.lines.position(offset + within)
             })
     }
 
@@ -66,9 +74,8 @@ impl<'a> Source<'a> {
 
     /// Where a raw value starts.
     pub fn raw_position(&self, raw: &RawValue) -> Position {
-        offset_in(self.text, raw.get_ron()).map_or(Position::START, |offset| {
-            Position::of_offset(self.text, offset)
-        })
+        offset_in(self.text, raw.get_ron())
+            .map_or(Position::START, |offset| self.lines.position(offset))
     }
 
     /// A `ron` error in the whole file.
@@ -76,7 +83,7 @@ impl<'a> Source<'a> {
         FileError {
             location: self.location(Position::from(error.span.start).skip_whitespace(self.text)),
             kind: ErrorKind::Syntax {
-                message: error.code.to_string(),
+                message: ron_message::describe(&error.code),
             },
         }
     }

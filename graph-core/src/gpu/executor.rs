@@ -8,14 +8,16 @@ use std::collections::HashMap;
 use std::time::Instant;
 
 use crate::access::{Aspect, Role, TextureRole};
+use crate::compile::format_name;
 use crate::graph::Graph;
 use crate::handle::ResourceId;
 use crate::pass::{PassKind, Record};
 use crate::plan::{Load, Ops, Plan, PlannedPass, Store, TextureShape};
-use crate::resource::Origin;
+use crate::resource::{texel_bytes, Origin};
 
 use super::context::{ComputeContext, FrameResources, RenderContext, TransferContext};
 use super::device::{ErrorLog, Gpu};
+use super::error_scopes::ErrorScopes;
 use super::imports::{Binding, ImportError, Imports};
 use super::pool::{make_view, Pool, PoolStats, ViewKey};
 use super::timing::Timestamps;
@@ -62,6 +64,12 @@ pub enum ExecuteError {
 
     #[error(transparent)]
     Import(#[from] ImportError),
+
+    /// The device could not create a texture or buffer of the plan (out of memory, or
+    /// beyond a limit the profile it was compiled for did not have). `what` names the
+    /// resources it holds, its size, format and bytes.
+    #[error("cannot allocate {what} on the device: {message}")]
+    Allocation { what: String, message: String },
 
     /// A validation or out-of-memory error wgpu reported while the frame was built or
     /// submitted: in the pass named (its recording, callback included), or outside any
@@ -195,22 +203,37 @@ impl Executor {
                 .collect();
             names.join(" | ")
         };
-        self.frame_textures = plan
+        // Cleared first: after a failed allocation, nothing of an earlier frame is readable.
+        self.frame_textures.clear();
+        self.frame_buffers.clear();
+        let frame_textures = plan
             .textures
             .iter()
             .map(|t| {
+                let resources = label(&t.holds);
                 self.pool
-                    .acquire_texture(&self.device, t.shape, t.usage, || label(&t.holds))
+                    .acquire_texture(&self.device, t.shape, t.usage, || resources.clone())
+                    .map_err(|message| ExecuteError::Allocation {
+                        what: format!("texture \"{resources}\" ({})", describe_shape(&t.shape)),
+                        message,
+                    })
             })
-            .collect();
-        self.frame_buffers = plan
+            .collect::<Result<_, _>>()?;
+        let frame_buffers = plan
             .buffers
             .iter()
             .map(|b| {
+                let resources = label(&b.holds);
                 self.pool
-                    .acquire_buffer(&self.device, b.size, b.usage, || label(&b.holds))
+                    .acquire_buffer(&self.device, b.size, b.usage, || resources.clone())
+                    .map_err(|message| ExecuteError::Allocation {
+                        what: format!("buffer \"{resources}\" ({} bytes)", b.size),
+                        message,
+                    })
             })
-            .collect();
+            .collect::<Result<_, _>>()?;
+        self.frame_textures = frame_textures;
+        self.frame_buffers = frame_buffers;
 
         let mut objects = FrameObjects::default();
         for planned_pass in &plan.passes {
@@ -497,34 +520,27 @@ impl FrameObjects {
     }
 }
 
-/// Validation and out-of-memory scopes, pushed and popped together.
-struct ErrorScopes {
-    validation: wgpu::ErrorScopeGuard,
-    out_of_memory: wgpu::ErrorScopeGuard,
-}
-
-impl ErrorScopes {
-    fn push(device: &wgpu::Device) -> Self {
-        let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        Self {
-            validation,
-            out_of_memory,
-        }
-    }
-
-    /// The errors caught, one per line, if any. Native futures are ready at once.
-    fn pop(self) -> Option<String> {
-        let errors: Vec<String> = [
-            pollster::block_on(self.validation.pop()),
-            pollster::block_on(self.out_of_memory.pop()),
-        ]
-        .into_iter()
-        .flatten()
-        .map(|e| e.to_string())
-        .collect();
-        (!errors.is_empty()).then(|| errors.join("\n"))
-    }
+/// `16384x16384, 4 sample(s), 1 mip(s), rgba16float, 8192.0 MiB for mip 0`: what a failed
+/// allocation asked for.
+fn describe_shape(shape: &TextureShape) -> String {
+    let layers = match shape.layers {
+        1 => String::new(),
+        n => format!(" x {n} layers"),
+    };
+    let bytes = u64::from(shape.width)
+        * u64::from(shape.height)
+        * u64::from(shape.layers)
+        * u64::from(shape.samples)
+        * texel_bytes(shape.format);
+    format!(
+        "{}x{}{layers}, {} sample(s), {} mip(s), {}, {:.1} MiB for mip 0",
+        shape.width,
+        shape.height,
+        shape.samples,
+        shape.mips,
+        format_name(shape.format),
+        bytes as f64 / f64::from(1u32 << 20)
+    )
 }
 
 fn device_message(pass: Option<&str>, message: &str) -> String {

@@ -4,6 +4,7 @@
 
 mod context;
 mod device;
+mod error_scopes;
 mod executor;
 mod imports;
 mod pool;

@@ -2,14 +2,16 @@
 //!
 //! Each frame the executor acquires one object per physical texture and buffer of its
 //! plan; an object acquired this frame is never handed out twice in it. Objects are keyed
-//! by exactly what wgpu creates them from, so a plan executed again reuses everything and
-//! allocates nothing. Objects no frame has used for [`KEEP_FRAMES`] frames are dropped
+//! by exactly what wgpu creates them from, so a plan executed again reuses every texture,
+//! view and buffer and creates none. (Bind groups are not pooled: pass callbacks create
+//! theirs each frame, small descriptor objects pointing at this memory.) Objects no frame has used for [`KEEP_FRAMES`] frames are dropped
 //! (wgpu frees the memory once the GPU is done with them).
 
 use std::collections::HashMap;
 
 use wgpu::{BufferUsages, TextureUsages};
 
+use super::error_scopes::ErrorScopes;
 use crate::access::Aspect;
 use crate::plan::TextureShape;
 
@@ -80,14 +82,15 @@ impl Pool {
     }
 
     /// A texture of this shape and usage that no one else holds this frame; `label` names
-    /// it if it has to be created.
+    /// it if it has to be created. When creating it fails (out of memory, or beyond what
+    /// the device allows), the error is wgpu's message and the pool keeps nothing.
     pub fn acquire_texture(
         &mut self,
         device: &wgpu::Device,
         shape: TextureShape,
         usage: TextureUsages,
         label: impl FnOnce() -> String,
-    ) -> usize {
+    ) -> Result<usize, String> {
         let key = (shape, usage);
         let frame = self.frame;
         if let Some(i) = self
@@ -96,8 +99,9 @@ impl Pool {
             .position(|t| t.key == key && t.last_used != frame)
         {
             self.textures[i].last_used = frame;
-            return i;
+            return Ok(i);
         }
+        let scopes = ErrorScopes::push(device);
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some(&label()),
             size: wgpu::Extent3d {
@@ -112,6 +116,9 @@ impl Pool {
             usage,
             view_formats: &[],
         });
+        if let Some(error) = scopes.pop() {
+            return Err(error);
+        }
         self.textures.push(PooledTexture {
             key,
             texture,
@@ -121,17 +128,18 @@ impl Pool {
         self.stats.textures_allocated += 1;
         self.stats.frame_textures_allocated += 1;
         self.update_alive();
-        self.textures.len() - 1
+        Ok(self.textures.len() - 1)
     }
 
-    /// A buffer of this size and usage that no one else holds this frame.
+    /// A buffer of this size and usage that no one else holds this frame. Failures as
+    /// for [`Pool::acquire_texture`].
     pub fn acquire_buffer(
         &mut self,
         device: &wgpu::Device,
         size: u64,
         usage: BufferUsages,
         label: impl FnOnce() -> String,
-    ) -> usize {
+    ) -> Result<usize, String> {
         let key = (size, usage);
         let frame = self.frame;
         if let Some(i) = self
@@ -140,14 +148,18 @@ impl Pool {
             .position(|b| b.key == key && b.last_used != frame)
         {
             self.buffers[i].last_used = frame;
-            return i;
+            return Ok(i);
         }
+        let scopes = ErrorScopes::push(device);
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(&label()),
             size,
             usage,
             mapped_at_creation: false,
         });
+        if let Some(error) = scopes.pop() {
+            return Err(error);
+        }
         self.buffers.push(PooledBuffer {
             key,
             buffer,
@@ -156,7 +168,7 @@ impl Pool {
         self.stats.buffers_allocated += 1;
         self.stats.frame_buffers_allocated += 1;
         self.update_alive();
-        self.buffers.len() - 1
+        Ok(self.buffers.len() - 1)
     }
 
     pub fn texture(&self, index: usize) -> &wgpu::Texture {

@@ -28,7 +28,7 @@ use crate::shader::{BindingKind, Entry, SampleKind, Shader, ShaderBinding};
 ///
 /// A slot's role follows the shader: a sampled texture or read-only buffer is read (the
 /// slot is an input); a writable storage texture or buffer is written (an output slot,
-/// which modifies when it is also an input). `values` are the uniform's bytes as `f32`s,
+/// which modifies when it is also an input). `values` (finite) are the uniform's bytes as `f32`s,
 /// padding included, so their count times 4 must equal the shader's uniform size.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -188,6 +188,10 @@ fn bind_one(
             Ok((BindingType::Sampler(ty), Source::Sampler(*filter)))
         }
         (BindingDecl::Uniform { values, .. }, BindingKind::Uniform { size }) => {
+            // NaN and infinity in a uniform poison every result that uses it, silently.
+            if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+                return Err(format!("uniform value #{i} is {v}; values must be finite"));
+            }
             let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
             if bytes.len() as u64 != *size {
                 return Err(format!(

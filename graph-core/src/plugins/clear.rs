@@ -6,6 +6,8 @@
 //!  params: (color: (0.0, 0.0, 0.0, 1.0), depth: 1.0, stencil: 0),   // these defaults
 //!  outputs: { "target": "hdr" })
 //! ```
+//!
+//! The color must be finite and the depth within `0.0 ..= 1.0`.
 
 use serde::Deserialize;
 
@@ -50,6 +52,20 @@ impl Plugin for Clear {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
+        // A NaN or infinite clear reaches the device as is and leaves the target undefined
+        // (black on most drivers): refused here, where the file can be named.
+        if !params.color.iter().all(|c| c.is_finite()) {
+            return Err(PluginError::Invalid(format!(
+                "clear color {:?} is not finite",
+                params.color
+            )));
+        }
+        if !(0.0..=1.0).contains(&params.depth) {
+            return Err(PluginError::Invalid(format!(
+                "clear depth {} is not within 0.0 ..= 1.0",
+                params.depth
+            )));
+        }
         slots.write::<Texture>("target", |t| declare(pass, t.handle, &params))?;
         Ok(())
     }

@@ -49,7 +49,7 @@ fn main() -> String {
 pub enum Dispatch {
     /// Enough to cover every texel of the texture bound to this slot.
     PerTexel(String),
-    /// Exactly these counts.
+    /// Exactly these counts, each from 1 to [`MAX_WORKGROUPS_PER_DIMENSION`].
     Workgroups(u32, u32, u32),
 }
 
@@ -80,7 +80,7 @@ impl Plugin for Compute {
         let bound = bind(&shader, &entry, &params.bindings, pass, slots)?;
         pass.workgroup(entry.workgroup());
         let workgroups = match params.dispatch {
-            Dispatch::Workgroups(x, y, z) => Workgroups::Fixed([x, y, z]),
+            Dispatch::Workgroups(x, y, z) => Workgroups::Fixed(fixed_counts([x, y, z])?),
             Dispatch::PerTexel(slot) => {
                 let texture = bound.iter().find_map(|b| match b.source {
                     Source::Texture(handle, _) if b.slot.as_deref() == Some(&slot) => Some(handle),
@@ -107,6 +107,26 @@ impl Plugin for Compute {
         let _ = workgroups;
         Ok(())
     }
+}
+
+/// The most workgroups a dispatch may run per dimension: WebGPU's default
+/// `max_compute_workgroups_per_dimension`, which every device offers (a graph file that
+/// needs more would not be portable).
+pub const MAX_WORKGROUPS_PER_DIMENSION: u32 = 65_535;
+
+/// `Workgroups(x, y, z)` checked: at least 1 (a dispatch of none draws nothing, silently)
+/// and at most [`MAX_WORKGROUPS_PER_DIMENSION`] (more fails on the device).
+fn fixed_counts(counts: [u32; 3]) -> Result<[u32; 3], PluginError> {
+    for (axis, count) in ["x", "y", "z"].into_iter().zip(counts) {
+        if count == 0 || count > MAX_WORKGROUPS_PER_DIMENSION {
+            return Err(PluginError::Invalid(format!(
+                "dispatch Workgroups({}, {}, {}) has {count} in {axis}: each count must be \
+                 from 1 to {MAX_WORKGROUPS_PER_DIMENSION}",
+                counts[0], counts[1], counts[2]
+            )));
+        }
+    }
+    Ok(counts)
 }
 
 #[cfg(feature = "gpu")]

@@ -7,6 +7,7 @@ use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
 use super::error::ShaderError;
 use crate::file::Position;
+use crate::{bounded_read, embedded};
 
 /// A WGSL module that naga parsed and validated with its default capabilities (those of
 /// WebGPU plus multisampled shading), which is what wgpu checks again at pipeline creation.
@@ -19,11 +20,13 @@ pub struct Shader {
 }
 
 impl Shader {
-    /// Reads and validates the WGSL file at `path`; messages name it as given.
+    /// Reads and validates the WGSL file at `path` (a regular file of at most
+    /// [`bounded_read::MAX_SHADER_BYTES`]; a built-in file when a relative `path` is not on
+    /// disk, see [`embedded`]); messages name it as given.
     pub fn load(path: impl AsRef<Path>) -> Result<Shader, ShaderError> {
         let path = path.as_ref();
         let shown = path.display().to_string();
-        match std::fs::read_to_string(path) {
+        match embedded::read_text(path, bounded_read::MAX_SHADER_BYTES) {
             Ok(source) => Shader::parse(shown, source),
             Err(e) => Err(ShaderError::Unreadable {
                 path: shown,
@@ -38,7 +41,12 @@ impl Shader {
         source: impl Into<String>,
     ) -> Result<Shader, ShaderError> {
         let path = path.into();
-        let source = source.into();
+        let source: String = source.into();
+        // A byte-order mark from a Windows editor is invisible there, and not WGSL.
+        let source = match source.strip_prefix('\u{feff}') {
+            Some(rest) => rest.to_owned(),
+            None => source,
+        };
         let module = naga::front::wgsl::parse_str(&source).map_err(|e| {
             invalid(
                 &path,

@@ -2,6 +2,11 @@
 
 use glam::DVec3;
 
+/// The largest world coordinate a scene may have, in magnitude: vertex positions, node
+/// transform entries, light and camera positions. f64 still resolves 1/8000 unit at 1e12, and
+/// differences of such coordinates stay far inside f32's range on the way to the GPU.
+pub const MAX_COORDINATE: f64 = 1e12;
+
 /// An axis-aligned box in world space. Always non-empty: `min <= max` per axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
@@ -36,6 +41,11 @@ impl Aabb {
             min: self.min.min(other.min),
             max: self.max.max(other.max),
         }
+    }
+
+    /// The largest coordinate magnitude of its corners (NaN when a corner is NaN).
+    pub fn largest_coordinate(&self) -> f64 {
+        self.min.abs().max(self.max.abs()).max_element()
     }
 
     pub fn center(&self) -> DVec3 {

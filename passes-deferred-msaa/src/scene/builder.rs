@@ -1,6 +1,6 @@
 //! Assembly shared by the glTF loader and the built-in scenes.
 
-use super::{Camera, Light, Material, Mesh, Scene, SceneError, TextureImage};
+use super::{Camera, Light, Material, Mesh, Scene, SceneError, TextureImage, MAX_COORDINATE};
 
 /// A scene under construction: loaders push parts, [`SceneBuilder::finish`] derives the rest.
 pub(crate) struct SceneBuilder {
@@ -36,7 +36,9 @@ impl SceneBuilder {
 
     /// Drops meshes without triangles, computes the bounds and, when no camera was set, frames
     /// them with [`Camera::framing`]. Fails with [`SceneError::EmptyScene`] when no triangle is
-    /// left, since nothing downstream can render or frame an empty scene.
+    /// left, since nothing downstream can render or frame an empty scene, and with
+    /// [`SceneError::TooFar`] when the bounds, a light or the camera lie beyond
+    /// ±[`MAX_COORDINATE`] (or are not finite), which would otherwise render an empty frame.
     pub fn finish(mut self) -> Result<Scene, SceneError> {
         self.meshes.retain(|m| m.triangle_count() > 0);
         let bounds = self
@@ -47,6 +49,15 @@ impl SceneBuilder {
         let Some(bounds) = bounds else {
             return Err(SceneError::EmptyScene { scene: self.name });
         };
+        self.check_extent("the geometry", bounds.largest_coordinate())?;
+        for light in &self.lights {
+            let what = format!("the position of {}", light.name);
+            self.check_extent(&what, light.position.abs().max_element())?;
+        }
+        if let Some(camera) = &self.camera {
+            let what = format!("the position of the camera ({})", camera.name);
+            self.check_extent(&what, camera.position.abs().max_element())?;
+        }
         Ok(Scene {
             camera: self.camera.unwrap_or_else(|| Camera::framing(&bounds)),
             name: self.name,
@@ -57,6 +68,19 @@ impl SceneBuilder {
             ambient: self.ambient,
             bounds,
             warnings: self.warnings,
+        })
+    }
+
+    /// Fails when `value` (a largest coordinate magnitude) is beyond [`MAX_COORDINATE`] or NaN.
+    fn check_extent(&self, what: &str, value: f64) -> Result<(), SceneError> {
+        if value <= MAX_COORDINATE {
+            return Ok(());
+        }
+        Err(SceneError::TooFar {
+            scene: self.name.clone(),
+            what: what.to_owned(),
+            value,
+            max: MAX_COORDINATE,
         })
     }
 }

@@ -7,12 +7,13 @@ use std::path::PathBuf;
 /// is enough to find the problem.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
-    /// The file (or a buffer or image it references) could not be read.
+    /// The file (or a buffer or image it references) could not be read: missing,
+    /// unreadable, not a regular file, or over the size cap.
     #[error("cannot read {file}: {source}")]
     Io {
         file: PathBuf,
         #[source]
-        source: std::io::Error,
+        source: graph_core::bounded_read::ReadError,
     },
 
     /// The `gltf` crate rejected the file: not JSON / GLB, or it fails glTF validation.
@@ -22,6 +23,11 @@ pub enum SceneError {
         #[source]
         source: gltf::Error,
     },
+
+    /// A `.glb` whose container (header or chunks) is inconsistent in a way the `gltf`
+    /// crate does not catch itself.
+    #[error("{file}: not a valid GLB file: {reason}")]
+    InvalidGlb { file: PathBuf, reason: String },
 
     /// The file lists an extension in `extensionsRequired` that this loader does not implement,
     /// so any rendering of it would be wrong.
@@ -116,10 +122,37 @@ pub enum SceneError {
         reason: String,
     },
 
+    /// A node's transform is not finite, or puts it beyond
+    /// [`MAX_COORDINATE`](super::MAX_COORDINATE).
+    #[error("{file}: {node}: {reason}")]
+    InvalidNode {
+        file: PathBuf,
+        node: String,
+        reason: String,
+    },
+
+    /// Something of the scene lies beyond [`MAX_COORDINATE`](super::MAX_COORDINATE) from the
+    /// origin, or its bounds are not finite.
+    #[error(
+        "{scene}: {what} reaches {value:e}, beyond ±{max:e} (the largest coordinate a scene \
+         may have: f64 still resolves 1/8000 unit there, and f32 camera-relative math stays \
+         finite)"
+    )]
+    TooFar {
+        scene: String,
+        what: String,
+        value: f64,
+        max: f64,
+    },
+
     /// A node is reached twice from the scene's roots: a cycle or a shared child, both of which
     /// glTF forbids (the hierarchy must be a forest).
     #[error("{file}: {node} is reached twice in the node hierarchy (cycle or shared child)")]
     NodeHierarchy { file: PathBuf, node: String },
+
+    /// More lights than [`MAX_LIGHTS`](super::MAX_LIGHTS).
+    #[error("{scene}: more than {max} lights (the most a scene may have: each is drawn as its own volume)")]
+    TooManyLights { scene: String, max: u32 },
 
     /// Nothing to draw: no triangle survived loading.
     #[error("{scene}: the scene contains no triangles")]

@@ -8,6 +8,7 @@
 //! Nothing here touches the GPU or prints: problems that still allow rendering come back as
 //! [`Scene::warnings`], problems that do not as a [`SceneError`].
 
+mod assets;
 mod bounds;
 mod builder;
 mod camera;
@@ -24,14 +25,15 @@ mod texture;
 
 use std::path::Path;
 
-pub use bounds::{Aabb, BoundingSphere};
+pub use assets::{AssetPolicy, DEFAULT_MAX_ASSET_BYTES, DEFAULT_MAX_SCENE_BYTES};
+pub use bounds::{Aabb, BoundingSphere, MAX_COORDINATE};
 pub use camera::{Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_YFOV};
 pub use error::SceneError;
-pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE};
+pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE, MAX_LIGHTS};
 pub use material::{AlphaMode, Material};
 pub use mesh::{Mesh, Vertex};
 pub use normals::flat_shaded;
-pub use procedural::{builtin_names, BuiltinScene, BUILTIN_PREFIX};
+pub use procedural::{builtin_names, BuiltinParam, BuiltinScene, BUILTIN_PREFIX};
 pub use stats::SceneStats;
 pub use texture::{FilterMode, Sampler, TextureImage, TextureRef, WrapMode};
 
@@ -58,17 +60,29 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Loads `builtin:NAME[?key=value&...]` or a `.gltf` / `.glb` file path.
+    /// Loads `builtin:NAME[?key=value&...]` or a `.gltf` / `.glb` file path, with the
+    /// default [`AssetPolicy`].
     pub fn load(spec: &str) -> Result<Scene, SceneError> {
+        Scene::load_with(spec, &AssetPolicy::default())
+    }
+
+    /// [`Scene::load`], with a glTF file's reads limited by `policy`.
+    pub fn load_with(spec: &str, policy: &AssetPolicy) -> Result<Scene, SceneError> {
         match spec.strip_prefix(BUILTIN_PREFIX) {
             Some(builtin) => Scene::builtin(builtin),
-            None => Scene::from_gltf(Path::new(spec)),
+            None => Scene::from_gltf_with(Path::new(spec), policy),
         }
     }
 
-    /// Loads a glTF 2.0 file (`.gltf` with embedded or external buffers, or `.glb`).
+    /// Loads a glTF 2.0 file (`.gltf` with embedded or external buffers, or `.glb`), with
+    /// the default [`AssetPolicy`].
     pub fn from_gltf(path: &Path) -> Result<Scene, SceneError> {
-        gltf_loader::load(path)
+        Scene::from_gltf_with(path, &AssetPolicy::default())
+    }
+
+    /// [`Scene::from_gltf`], reading only what `policy` allows.
+    pub fn from_gltf_with(path: &Path, policy: &AssetPolicy) -> Result<Scene, SceneError> {
+        gltf_loader::load(path, policy)
     }
 
     /// Generates a built-in scene from `NAME[?key=value&...]` (without the `builtin:` prefix).

@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use graph_core::embedded;
 use graph_core::file::load_file;
 use passes_deferred_msaa::scene::{builtin_names, BUILTIN_PREFIX};
 use passes_deferred_msaa::Host;
@@ -72,12 +73,15 @@ pub fn pipelines(asked: &[PathBuf]) -> (Vec<Candidate>, Vec<String>) {
             Vec::new(),
         );
     }
-    let mut files: Vec<PathBuf> = std::fs::read_dir(PIPELINE_DIR)
-        .into_iter()
-        .flatten()
-        .filter_map(|e| Some(e.ok()?.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
-        .collect();
+    let mut files: Vec<PathBuf> = match std::fs::read_dir(PIPELINE_DIR) {
+        Ok(entries) => entries.filter_map(|e| Some(e.ok()?.path())).collect(),
+        // Away from the repository: the pipelines built into the binary.
+        Err(_) => embedded::list(PIPELINE_DIR)
+            .into_iter()
+            .map(PathBuf::from)
+            .collect(),
+    };
+    files.retain(|p| p.extension().is_some_and(|e| e == "ron"));
     files.sort();
     let mut notes = Vec::new();
     let mut kept = Vec::new();

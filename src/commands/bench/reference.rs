@@ -4,6 +4,9 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use graph_core::bounded_read::MAX_GRAPH_FILE_BYTES;
+use graph_core::embedded;
+
 use image::RgbaImage;
 use passes_deferred_msaa::Host;
 use serde::Serialize;
@@ -43,12 +46,12 @@ impl Reference {
     /// so; `None` (with a note) when there is nothing to compare against.
     pub fn choose(args: &BenchArgs, notes: &mut Vec<String>) -> Option<Reference> {
         let aliased = Candidate::file(&Path::new(PIPELINE_DIR).join(format!("{ALIASED}.ron")));
-        if args.reference.is_file() {
+        if embedded::exists(&args.reference) {
             let mut candidate = Candidate::file(&args.reference);
             if args.reference_spp == 4 {
                 // The file shades 4 samples of a target twice the output's size; at the
                 // output's size it shades 4 per pixel and the blit copies 1:1.
-                let text = match std::fs::read_to_string(&args.reference) {
+                let text = match embedded::read_text(&args.reference, MAX_GRAPH_FILE_BYTES) {
                     Ok(text) => text,
                     Err(e) => {
                         let file = args.reference.display();
@@ -68,7 +71,7 @@ impl Reference {
             });
         }
         let fallback = Path::new(PIPELINE_DIR).join(format!("{FALLBACK}.ron"));
-        if fallback.is_file() {
+        if embedded::exists(&fallback) {
             notes.push(format!(
                 "{} is missing: the reference is {FALLBACK} (4 shaded samples per pixel), \
                  the best pipeline available",

@@ -9,6 +9,8 @@
 //!
 //! Sweeps measure time and work only: no reference, no image error, no images.
 
+use graph_core::bounded_read::MAX_GRAPH_FILE_BYTES;
+use graph_core::embedded;
 use serde::Serialize;
 
 use super::candidates::Candidate;
@@ -99,7 +101,7 @@ pub fn steps(
 /// `candidate` with every 4-sample texture at `samples` samples. A file that cannot be
 /// read stays as it is: loading it reports the error in its row.
 fn with_samples(candidate: &Candidate, samples: u32) -> Candidate {
-    let Ok(text) = std::fs::read_to_string(&candidate.path) else {
+    let Ok(text) = embedded::read_text(&candidate.path, MAX_GRAPH_FILE_BYTES) else {
         return candidate.clone();
     };
     Candidate {

@@ -5,9 +5,10 @@ use std::path::Path;
 use image::RgbaImage;
 
 use super::error::RenderError;
+use crate::commands::partial_path;
 
-/// A `.png` path in an existing directory, so a long render never ends in an
-/// unwritable path.
+/// A `.png` path in an existing directory that can be written, so a long render never
+/// ends in an unwritable path.
 pub fn check(path: &Path) -> Result<(), RenderError> {
     let shown = path.display();
     let is_png = path
@@ -33,7 +34,18 @@ pub fn check(path: &Path) -> Result<(), RenderError> {
             dir.display()
         )));
     }
-    Ok(())
+    // Creating the temporary file the PNG is written through is the only sure test that
+    // it can be written (permissions, read-only or full file systems, ACLs).
+    let probe = partial_path(path)
+        .ok_or_else(|| RenderError::Output(format!("--out {shown}: is not a file path")))?;
+    std::fs::File::create(&probe)
+        .and_then(|_| std::fs::remove_file(&probe))
+        .map_err(|e| {
+            RenderError::Output(format!(
+                "--out {shown}: cannot write in {}: {e}",
+                dir.display()
+            ))
+        })
 }
 
 /// Writes the image as a PNG, atomically.

@@ -11,8 +11,8 @@ use crate::scene::{Camera, Projection, SceneError};
 
 /// Converts a camera placed at `world`. The node's scale is dropped (glTF cameras look down
 /// their node's -Z with +Y up whatever the scale). Rejects projections that cannot make a
-/// matrix: yfov outside (0, π), znear <= 0 for perspective (< 0 for orthographic),
-/// zfar <= znear, zero xmag or ymag.
+/// matrix: a value that is not a finite f32 (`1e39` in the file), yfov outside (0, π),
+/// znear <= 0 for perspective (< 0 for orthographic), zfar <= znear, zero xmag or ymag.
 pub(super) fn convert(
     file: &Path,
     document: &gltf::Document,
@@ -28,8 +28,25 @@ pub(super) fn convert(
     // The JSON is read directly: gltf's `Camera::projection` unwraps the object named by
     // `type`, which a malformed file may lack.
     let json = &document.as_json().cameras[camera.index()];
+    // `gltf` parses these as f32: anything beyond f32's range arrives as infinity.
+    let finite = |values: &[(&str, Option<f32>)]| match values
+        .iter()
+        .find(|(_, v)| v.is_some_and(|v| !v.is_finite()))
+    {
+        Some((field, _)) => Err(invalid(&format!(
+            "{field} is beyond the largest f32 ({:e})",
+            f32::MAX
+        ))),
+        None => Ok(()),
+    };
     let projection = match (&json.type_, &json.perspective, &json.orthographic) {
         (Checked::Valid(Type::Perspective), Some(p), _) => {
+            finite(&[
+                ("yfov", Some(p.yfov)),
+                ("znear", Some(p.znear)),
+                ("zfar", p.zfar),
+                ("aspectRatio", p.aspect_ratio),
+            ])?;
             if p.yfov <= 0.0 || p.yfov >= std::f32::consts::PI {
                 return Err(invalid("yfov must be in (0, π)"));
             }
@@ -43,6 +60,12 @@ pub(super) fn convert(
             }
         }
         (Checked::Valid(Type::Orthographic), _, Some(o)) => {
+            finite(&[
+                ("xmag", Some(o.xmag)),
+                ("ymag", Some(o.ymag)),
+                ("znear", Some(o.znear)),
+                ("zfar", Some(o.zfar)),
+            ])?;
             if o.xmag == 0.0 || o.ymag == 0.0 {
                 return Err(invalid("xmag and ymag must not be zero"));
             }

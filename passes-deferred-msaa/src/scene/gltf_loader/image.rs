@@ -39,10 +39,21 @@ impl Loader<'_> {
                     .to_vec()
             }
             (None, Some(uri)) => {
-                uri::read(self.base, uri).map_err(|e| e.into_scene_error(invalid))?
+                uri::read(&self.sandbox, uri).map_err(|e| e.into_named_error(invalid))?
             }
             (None, None) => return Err(invalid("has neither uri nor bufferView".to_owned())),
         };
+        // Reserved from the header's size before decoding: a few kilobytes of PNG can hold
+        // hundreds of megabytes of pixels. RGBA8 plus a third for the mip chain.
+        let size = ::image::ImageReader::new(std::io::Cursor::new(&encoded))
+            .with_guessed_format()
+            .ok()
+            .and_then(|reader| reader.into_dimensions().ok());
+        if let Some((width, height)) = size {
+            let bytes = u64::from(width) * u64::from(height) * 4 / 3 * 4;
+            let why = format!("decoding it ({width}x{height})");
+            self.budget.take(bytes, &why).map_err(invalid)?;
+        }
         let decoded = ::image::load_from_memory(&encoded)
             .map_err(|e| invalid(format!("cannot decode: {e}")))?
             .into_rgba8();

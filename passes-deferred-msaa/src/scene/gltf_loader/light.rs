@@ -11,7 +11,8 @@ use crate::scene::{Light, LightKind, SceneError};
 
 /// Converts a light placed at `world`: position from the translation, direction from the
 /// node's -Z axis. Rejects values the extension forbids (negative intensity, range <= 0, cone
-/// angles outside `0 <= inner <= outer <= π/2`), which would break light volumes.
+/// angles outside `0 <= inner <= outer <= π/2`), which would break light volumes, and values
+/// beyond f32's range (`1e39` in the file), which would light the frame with infinities.
 pub(super) fn convert(
     file: &Path,
     light: &gltf::khr_lights_punctual::Light,
@@ -23,6 +24,22 @@ pub(super) fn convert(
         light: name.clone(),
         reason,
     };
+    // `gltf` parses these as f32: anything beyond f32's range arrives as infinity.
+    let color = light.color();
+    let values = [
+        ("intensity", Some(light.intensity())),
+        ("range", light.range()),
+    ]
+    .into_iter()
+    .chain(color.map(|c| ("color", Some(c))));
+    for (field, value) in values {
+        if value.is_some_and(|v| !v.is_finite()) {
+            return Err(invalid(format!(
+                "{field} is beyond the largest f32 ({:e})",
+                f32::MAX
+            )));
+        }
+    }
     if light.intensity() < 0.0 {
         return Err(invalid(format!(
             "intensity {} is negative",
@@ -56,7 +73,7 @@ pub(super) fn convert(
     };
     Ok(Light {
         kind,
-        color: light.color(),
+        color,
         intensity: light.intensity(),
         position: world.transform_point3(DVec3::ZERO),
         direction: world

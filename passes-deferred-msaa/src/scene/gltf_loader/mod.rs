@@ -11,23 +11,29 @@
 mod accessor;
 mod camera;
 mod extensions;
+mod glb;
 mod image;
 mod light;
 mod material;
 mod nodes;
 mod primitive;
+mod sandbox;
+mod transforms;
 mod uri;
 mod validate;
 
 use std::collections::HashMap;
 use std::path::Path;
 
-use super::builder::SceneBuilder;
-use super::{Scene, SceneError};
+use graph_core::bounded_read;
 
-/// Loads `file`; see the module documentation for what is kept.
-pub(crate) fn load(file: &Path) -> Result<Scene, SceneError> {
-    let bytes = std::fs::read(file).map_err(|source| SceneError::Io {
+use super::builder::SceneBuilder;
+use super::{AssetPolicy, Scene, SceneError, MAX_LIGHTS};
+
+/// Loads `file`, reading it and the files its URIs name as `policy` allows; see the module
+/// documentation for what is kept.
+pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneError> {
+    let bytes = bounded_read::read(file, policy.max_bytes).map_err(|source| SceneError::Io {
         file: file.to_owned(),
         source,
     })?;
@@ -35,15 +41,20 @@ pub(crate) fn load(file: &Path) -> Result<Scene, SceneError> {
         file: file.to_owned(),
         source,
     };
+    glb::check_header(file, &bytes)?;
     let gltf::Gltf { document, blob } =
         gltf::Gltf::from_slice_without_validation(&bytes).map_err(gltf_error)?;
     let warnings = extensions::check(file, &document)?;
     let document = validate::validate(document).map_err(gltf_error)?;
-    let base = file.parent().unwrap_or(Path::new(""));
+    let sandbox = sandbox::Sandbox::new(file, policy)?;
     let mut loader = Loader {
         file,
-        base,
-        buffers: uri::load_buffers(file, base, &document, blob)?,
+        buffers: uri::load_buffers(file, &sandbox, &document, blob)?,
+        sandbox,
+        budget: Budget {
+            left: policy.max_scene_bytes,
+            max: policy.max_scene_bytes,
+        },
         document: &document,
         builder: SceneBuilder::new(file.display().to_string()),
         materials: HashMap::new(),
@@ -55,7 +66,8 @@ pub(crate) fn load(file: &Path) -> Result<Scene, SceneError> {
         .default_scene()
         .or_else(|| document.scenes().next())
     {
-        for placed in nodes::flatten(file, &document, &scene)? {
+        let local = transforms::read(file, &bytes, &document)?;
+        for placed in nodes::flatten(file, &document, &scene, &local)? {
             loader.place(&placed)?;
         }
     }
@@ -65,8 +77,8 @@ pub(crate) fn load(file: &Path) -> Result<Scene, SceneError> {
 /// State shared by the per-object conversions in this module's files.
 struct Loader<'a> {
     file: &'a Path,
-    /// Directory that relative URIs are resolved against.
-    base: &'a Path,
+    /// Where URIs may point, and how large a file they name may be.
+    sandbox: sandbox::Sandbox,
     document: &'a gltf::Document,
     buffers: Vec<Vec<u8>>,
     builder: SceneBuilder,
@@ -75,6 +87,29 @@ struct Loader<'a> {
     materials: HashMap<Option<usize>, usize>,
     /// glTF image index to scene texture index: each image is decoded once.
     images: HashMap<usize, usize>,
+    /// What is left of [`AssetPolicy::max_scene_bytes`].
+    budget: Budget,
+}
+
+/// The bytes of vertices, indices and textures a scene may still build.
+struct Budget {
+    left: u64,
+    max: u64,
+}
+
+impl Budget {
+    /// Takes `bytes`, or says (as the end of a sentence about `what`) why it cannot.
+    fn take(&mut self, bytes: u64, why: &str) -> Result<(), String> {
+        if bytes > self.left {
+            return Err(format!(
+                "{why} would take the scene past {} bytes of vertices, indices and textures \
+                 (the scene memory limit)",
+                self.max
+            ));
+        }
+        self.left -= bytes;
+        Ok(())
+    }
 }
 
 impl Loader<'_> {
@@ -95,6 +130,13 @@ impl Loader<'_> {
             )?);
         }
         if let Some(light) = placed.node.light() {
+            // Checked as each is placed: a light placed by many nodes counts each time.
+            if self.builder.lights.len() >= MAX_LIGHTS as usize {
+                return Err(SceneError::TooManyLights {
+                    scene: self.file.display().to_string(),
+                    max: MAX_LIGHTS,
+                });
+            }
             let light = light::convert(self.file, &light, &placed.world)?;
             self.builder.lights.push(light);
         }

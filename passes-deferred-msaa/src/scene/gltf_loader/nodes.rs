@@ -2,10 +2,10 @@
 
 use std::path::Path;
 
-use glam::{DMat4, DQuat, DVec3, DVec4};
+use glam::DMat4;
 
 use crate::scene::error::label;
-use crate::scene::SceneError;
+use crate::scene::{SceneError, MAX_COORDINATE};
 
 /// A node reached from a scene root, with its object-to-world transform.
 pub(super) struct Placed<'a> {
@@ -14,8 +14,14 @@ pub(super) struct Placed<'a> {
 }
 
 /// Every node of `scene`, depth first, parents before children, siblings in file order (so
-/// "the first camera in the scene" means the first in this order). Transforms are composed in
-/// f64 so large translations survive. Iterative, so deep hierarchies cannot overflow the stack.
+/// "the first camera in the scene" means the first in this order). `local` is each node's
+/// transform relative to its parent, by index (see [`super::transforms`]); they are composed
+/// in f64 so large translations survive. Iterative, so deep hierarchies cannot overflow the
+/// stack.
+///
+/// A world transform with an entry beyond ±[`MAX_COORDINATE`] (a translation or scale of
+/// 1e39, or many large scales multiplied) is an error naming the node, rather than a frame
+/// that is empty because f32 overflowed on the way to the GPU.
 ///
 /// glTF requires the hierarchy to be a forest; a node reached twice (a cycle or a shared child)
 /// is an error rather than an endless or duplicated traversal.
@@ -23,6 +29,7 @@ pub(super) fn flatten<'a>(
     file: &Path,
     document: &'a gltf::Document,
     scene: &gltf::Scene<'a>,
+    local: &[DMat4],
 ) -> Result<Vec<Placed<'a>>, SceneError> {
     let mut seen = vec![false; document.nodes().len()];
     let mut stack: Vec<(gltf::Node<'a>, DMat4)> =
@@ -36,35 +43,26 @@ pub(super) fn flatten<'a>(
                 node: label("node", node.index(), node.name()),
             });
         }
-        let world = parent * local_transform(&node);
+        let world = parent * local[node.index()];
+        let largest = world
+            .to_cols_array()
+            .into_iter()
+            .map(f64::abs)
+            .fold(0.0, f64::max);
+        // `f64::max` skips NaN, hence the finiteness test (inf * 0 composes to NaN).
+        if !world.is_finite() || largest > MAX_COORDINATE {
+            return Err(SceneError::InvalidNode {
+                file: file.to_owned(),
+                node: label("node", node.index(), node.name()),
+                reason: format!(
+                    "its world transform has an entry of {largest:e}, beyond ±{MAX_COORDINATE:e} \
+                     (the largest coordinate a scene may have)"
+                ),
+            });
+        }
         let children: Vec<_> = node.children().collect();
         stack.extend(children.into_iter().rev().map(|child| (child, world)));
         placed.push(Placed { node, world });
     }
     Ok(placed)
-}
-
-/// The node's transform relative to its parent.
-fn local_transform(node: &gltf::Node) -> DMat4 {
-    match node.transform() {
-        gltf::scene::Transform::Matrix { matrix } => {
-            DMat4::from_cols_array_2d(&matrix.map(|c| c.map(f64::from)))
-        }
-        gltf::scene::Transform::Decomposed {
-            translation,
-            rotation,
-            scale,
-        } => {
-            // Exporters write slightly unnormalized quaternions; an all-zero one (invalid) is
-            // taken as no rotation rather than filling every position with NaN.
-            let rotation = DVec4::from_array(rotation.map(f64::from))
-                .try_normalize()
-                .map_or(DQuat::IDENTITY, DQuat::from_vec4);
-            DMat4::from_scale_rotation_translation(
-                DVec3::from_array(scale.map(f64::from)),
-                rotation,
-                DVec3::from_array(translation.map(f64::from)),
-            )
-        }
-    }
 }

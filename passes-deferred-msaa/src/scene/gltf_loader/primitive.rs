@@ -44,6 +44,9 @@ impl Loader<'_> {
             None => (0..positions.len() as u32).collect(),
         };
         site.check_indices(&indices, positions.len())?;
+        // What is decoded so far is bounded by the file's size; what is kept for every
+        // placement is not.
+        self.reserve_memory(&site, primitive)?;
         let indices = triangle_list(mode, indices).map_err(|reason| site.invalid(reason))?;
         let uvs = uvs.unwrap_or_default();
         let (vertices, mut indices) = match normals {
@@ -64,6 +67,41 @@ impl Loader<'_> {
             transform: world,
         });
         Ok(())
+    }
+
+    /// Takes from the scene's memory budget what this primitive will keep, before building it:
+    /// its vertices (one per index when flat normals are generated) and its indices (up to
+    /// three per index when a strip or fan becomes a list).
+    fn reserve_memory(
+        &mut self,
+        site: &Site,
+        primitive: &gltf::Primitive,
+    ) -> Result<(), SceneError> {
+        let positions = primitive
+            .get(&Semantic::Positions)
+            .map_or(0, |a| a.count() as u64);
+        let per_index = match primitive.mode() {
+            Mode::Triangles => 1,
+            _ => 3,
+        };
+        let indices = primitive
+            .indices()
+            .map_or(positions, |a| a.count() as u64)
+            .saturating_mul(per_index);
+        let vertices = match primitive.get(&Semantic::Normals) {
+            Some(_) => positions,
+            None => indices,
+        };
+        let vertex_bytes = std::mem::size_of::<crate::scene::Vertex>() as u64;
+        let bytes = vertices
+            .saturating_mul(vertex_bytes)
+            .saturating_add(indices.saturating_mul(4));
+        self.budget
+            .take(
+                bytes,
+                "placing it here (every node placing a mesh gets its own copy)",
+            )
+            .map_err(|reason| site.invalid(reason))
     }
 
     /// Reads an optional vertex attribute (`None` when the primitive has none). Its length is

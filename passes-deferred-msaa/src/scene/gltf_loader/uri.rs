@@ -1,15 +1,17 @@
-//! Bytes behind glTF URIs and buffers: base64 data URIs, files relative to the glTF file, and
-//! the GLB binary chunk.
+//! Bytes behind glTF URIs and buffers: base64 data URIs, files inside the asset's folder
+//! (see [`Sandbox`]), and the GLB binary chunk.
 
 use std::path::Path;
 
 use base64::Engine;
 
+use super::sandbox::Sandbox;
 use crate::scene::SceneError;
 
-/// Reads what `uri` names, relative to `base` (the glTF file's directory). Errors are either a
-/// reason (bad URI) or an I/O error naming the file that could not be read.
-pub(super) fn read(base: &Path, uri: &str) -> Result<Vec<u8>, UriError> {
+/// Reads what `uri` names: a data URI's payload, or a file relative to the glTF file's folder
+/// that `sandbox` allows. Errors are either a reason (bad URI, or one leaving the folder) or
+/// an I/O error naming the file that could not be read.
+pub(super) fn read(sandbox: &Sandbox, uri: &str) -> Result<Vec<u8>, UriError> {
     if let Some(data) = uri.strip_prefix("data:") {
         let (_, payload) = data
             .split_once(";base64,")
@@ -32,8 +34,7 @@ pub(super) fn read(base: &Path, uri: &str) -> Result<Vec<u8>, UriError> {
     let relative = urlencoding::decode(uri).map_err(|_| {
         UriError::Invalid(format!("URI `{uri}` is not valid percent-encoded UTF-8"))
     })?;
-    let file = base.join(&*relative);
-    std::fs::read(&file).map_err(|source| UriError::Io(SceneError::Io { file, source }))
+    sandbox.read(uri, Path::new(&*relative))
 }
 
 /// Why [`read`] failed.
@@ -52,6 +53,15 @@ impl UriError {
             UriError::Io(error) => error,
         }
     }
+
+    /// The scene error, with `invalid` naming the object whose URI failed either way: an
+    /// image's user needs the glTF file and the material, not only the missing file.
+    pub(super) fn into_named_error(self, invalid: impl FnOnce(String) -> SceneError) -> SceneError {
+        match self {
+            UriError::Invalid(reason) => invalid(reason),
+            UriError::Io(error) => invalid(error.to_string()),
+        }
+    }
 }
 
 /// Loads every buffer of the document, in order: the GLB chunk for a buffer without URI, else
@@ -59,7 +69,7 @@ impl UriError {
 /// only bounds-checked against what is there.
 pub(super) fn load_buffers(
     file: &Path,
-    base: &Path,
+    sandbox: &Sandbox,
     document: &gltf::Document,
     mut blob: Option<Vec<u8>>,
 ) -> Result<Vec<Vec<u8>>, SceneError> {
@@ -79,7 +89,7 @@ pub(super) fn load_buffers(
                     )
                 })?,
                 gltf::buffer::Source::Uri(uri) => {
-                    read(base, uri).map_err(|e| e.into_scene_error(invalid))?
+                    read(sandbox, uri).map_err(|e| e.into_scene_error(invalid))?
                 }
             };
             if data.len() < buffer.length() {

@@ -2,7 +2,7 @@
 //!
 //! - A 40 x 40 floor at y = 0 and a 6 x 6 grid of solids (spacing 6, x and z in -15..15),
 //!   alternating 1.5 x 2.5 x 1.5 boxes and radius-1 spheres standing on the floor.
-//! - `count` lights (default 320): `count - count / 5` point lights (256 by default) and
+//! - `count` lights (default 320, at most [`MAX_LIGHTS`]): `count - count / 5` point lights (256 by default) and
 //!   `count / 5` spot lights (64), no directional light. Placement comes from [`Pcg32`] seeded
 //!   with `seed` (default 1), so each (count, seed) gives one fixed scene:
 //!   - point lights at x, z in [-20, 20), y in [0.3, 3), 2–6 cd, range 4–7;
@@ -16,25 +16,32 @@ use std::f32::consts::TAU;
 
 use glam::{DMat4, DVec3, Vec3};
 
-use super::params::Params;
+use super::params::{BuiltinParam, Params};
 use super::parts::{add_ground, add_shape, lit, perspective_camera, spot};
 use super::rng::Pcg32;
 use super::shapes::Shape;
 use crate::scene::builder::SceneBuilder;
-use crate::scene::{Light, SceneError};
+use crate::scene::{Light, SceneError, MAX_LIGHTS};
 
 /// The parameters `builtin:lights?...` takes.
-pub(super) const PARAMS: &[(&str, &str)] = &[
-    (
-        "count",
-        "total number of lights, 4/5 point and 1/5 spot (default 320)",
-    ),
-    ("seed", "PCG32 seed for light placement (default 1)"),
+pub(super) const PARAMS: &[BuiltinParam] = &[
+    BuiltinParam {
+        key: "count",
+        meaning: "total number of lights, 4/5 point and 1/5 spot (default 320, at most 16384)",
+        default: 320,
+        max: MAX_LIGHTS,
+    },
+    BuiltinParam {
+        key: "seed",
+        meaning: "PCG32 seed for light placement (default 1, any u32)",
+        default: 1,
+        max: u32::MAX,
+    },
 ];
 
 pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), SceneError> {
-    let count = params.u32("count", 320)?;
-    let mut rng = Pcg32::new(u64::from(params.u32("seed", 1)?));
+    let count = params.u32("count")?;
+    let mut rng = Pcg32::new(u64::from(params.u32("seed")?));
     add_ground(builder, "floor", 40.0, [0.6, 0.6, 0.6], 0.7);
     add_solids(builder);
     let spots = count / 5;

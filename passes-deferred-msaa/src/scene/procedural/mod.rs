@@ -14,6 +14,7 @@ mod solid;
 mod spheres;
 mod unlit;
 
+pub use params::BuiltinParam;
 use params::Params;
 
 use super::builder::SceneBuilder;
@@ -26,8 +27,8 @@ pub const BUILTIN_PREFIX: &str = "builtin:";
 pub struct BuiltinScene {
     pub name: &'static str,
     pub description: &'static str,
-    /// `(key, meaning and default)` for each `?key=value` parameter accepted.
-    pub params: &'static [(&'static str, &'static str)],
+    /// Each `?key=value` parameter accepted, with its default and largest value.
+    pub params: &'static [BuiltinParam],
     build: fn(&Params, &mut SceneBuilder) -> Result<(), SceneError>,
 }
 

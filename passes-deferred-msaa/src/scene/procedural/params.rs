@@ -2,9 +2,21 @@
 
 use crate::scene::SceneError;
 
+/// One parameter a built-in scene takes: a whole number with a default and a documented
+/// range, checked before the scene allocates anything.
+pub struct BuiltinParam {
+    pub key: &'static str,
+    /// What it means, for help and errors.
+    pub meaning: &'static str,
+    pub default: u32,
+    /// The largest value accepted (the smallest is 0).
+    pub max: u32,
+}
+
 /// The parameters given to one built-in scene, checked against the keys it declares.
 pub(crate) struct Params<'a> {
     scene: &'a str,
+    known: &'static [BuiltinParam],
     pairs: Vec<(&'a str, &'a str)>,
 }
 
@@ -14,7 +26,7 @@ impl<'a> Params<'a> {
     pub fn parse(
         scene: &'a str,
         query: &'a str,
-        known: &[(&str, &str)],
+        known: &'static [BuiltinParam],
     ) -> Result<Params<'a>, SceneError> {
         let error = |reason: String| SceneError::BuiltinParameter {
             scene: scene.to_owned(),
@@ -30,9 +42,9 @@ impl<'a> Params<'a> {
             .collect::<Result<Vec<_>, _>>()?;
         if let Some((key, _)) = pairs
             .iter()
-            .find(|(key, _)| !known.iter().any(|(k, _)| k == key))
+            .find(|(key, _)| !known.iter().any(|p| p.key == *key))
         {
-            let keys: Vec<&str> = known.iter().map(|(k, _)| *k).collect();
+            let keys: Vec<&str> = known.iter().map(|p| p.key).collect();
             return Err(error(format!(
                 "unknown parameter `{key}`; this scene takes: {}",
                 if keys.is_empty() {
@@ -42,17 +54,34 @@ impl<'a> Params<'a> {
                 }
             )));
         }
-        Ok(Params { scene, pairs })
+        Ok(Params {
+            scene,
+            known,
+            pairs,
+        })
     }
 
-    /// The last value given for `key` as an unsigned integer, or `default`.
-    pub fn u32(&self, key: &str, default: u32) -> Result<u32, SceneError> {
-        match self.pairs.iter().rev().find(|(k, _)| *k == key) {
-            None => Ok(default),
-            Some((_, value)) => value.parse().map_err(|_| SceneError::BuiltinParameter {
-                scene: self.scene.to_owned(),
-                reason: format!("`{key}={value}`: expected a non-negative integer"),
-            }),
+    /// The last value given for `key` (one of the scene's declared parameters), or its
+    /// default. Fails on anything but a whole number from 0 to the parameter's `max`.
+    pub fn u32(&self, key: &str) -> Result<u32, SceneError> {
+        let spec = self
+            .known
+            .iter()
+            .find(|p| p.key == key)
+            .expect("scenes only ask for the parameters they declare");
+        let Some((_, value)) = self.pairs.iter().rev().find(|(k, _)| *k == key) else {
+            return Ok(spec.default);
+        };
+        let error = |reason: String| SceneError::BuiltinParameter {
+            scene: self.scene.to_owned(),
+            reason: format!("`{key}={value}`: {reason}"),
+        };
+        let range = format!("a whole number from 0 to {}", spec.max);
+        // Parsed as u64 so a number just past u32 still gets the range, not "not a number".
+        match value.parse::<u64>() {
+            Ok(v) if v <= u64::from(spec.max) => Ok(v as u32),
+            Ok(_) => Err(error(format!("{range} ({})", spec.meaning))),
+            Err(_) => Err(error(format!("expected {range}"))),
         }
     }
 }
