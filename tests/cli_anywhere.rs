@@ -66,6 +66,8 @@ fn a_file_on_disk_overrides_the_built_in_one() {
         dir.path(),
         &[
             "render",
+            "--pipeline",
+            "pipelines/deferred_msaa_4x.ron",
             "--width",
             "8",
             "--height",

@@ -244,14 +244,14 @@ fn the_output_must_be_a_png_in_an_existing_directory() {
 }
 
 #[test]
-fn a_device_error_names_the_pass_and_keeps_the_old_file() {
+fn an_over_dispatch_is_refused_before_the_device_and_keeps_the_old_file() {
     let dir = temp_dir();
     let out = dir.path().join("a.png");
     std::fs::write(&out, b"the previous frame").unwrap();
     let out_arg = out.to_str().unwrap();
     render(&[
         "--pipeline",
-        "tests/fixtures/render_device_error.ron",
+        "tests/fixtures/render_overdispatch.ron",
         "--width",
         "64",
         "--height",
@@ -260,7 +260,10 @@ fn a_device_error_names_the_pass_and_keeps_the_old_file() {
         out_arg,
     ])
     .expect(1)
-    .stderr_has("pass \"overdispatch\" failed on the device");
+    .stderr_has(
+        "tests/fixtures/render_overdispatch.ron:12:21: error: pass \"overdispatch\" (compute): \
+         dispatch Workgroups(1000000, 1, 1) has 1000000 in x: each count must be from 1 to 65535",
+    );
     assert_eq!(std::fs::read(&out).unwrap(), b"the previous frame");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
 }
