@@ -236,6 +236,8 @@ pub struct BenchArgs {
     /// Where results.json, results.md, the charts and the images go (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
+    #[command(flatten)]
+    pub assets: AssetArgs,
 }
 
 /// What `rgraph bench --sweep` varies.

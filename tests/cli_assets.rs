@@ -70,3 +70,37 @@ fn max_asset_bytes_caps_each_file_read() {
         .expect(2)
         .stderr_has("--max-asset-bytes");
 }
+
+#[test]
+fn bench_takes_the_same_asset_flags() {
+    let dir = tempfile::tempdir().unwrap();
+    let gltf = asset_reaching_out(dir.path());
+    let bench = |extra: &[&str]| {
+        let out = dir.path().join("out");
+        let args = [
+            "bench",
+            "--scene",
+            gltf.to_str().unwrap(),
+            "--pipeline",
+            "pipelines/deferred_noaa.ron",
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "--frames",
+            "1",
+            "--warmup",
+            "0",
+            "--no-reference",
+            "--out-dir",
+            out.to_str().unwrap(),
+        ];
+        rgraph(&[&args[..], extra].concat())
+    };
+    // The only row cannot be measured: exit 1, the reason in the row.
+    bench(&[])
+        .expect(1)
+        .stderr_has("URI `../lights_cameras.bin` points to ");
+    let root = dir.path().to_str().unwrap();
+    bench(&["--asset-root", root]).expect(0);
+}

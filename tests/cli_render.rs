@@ -480,3 +480,51 @@ fn an_unwritable_output_is_refused_before_any_rendering() {
         run.stderr
     );
 }
+
+/// A glTF file with a `65537 x 1` base-color image, wider than any device's largest 2D
+/// texture, on a triangle.
+fn gltf_with_a_wide_texture(dir: &Path) -> PathBuf {
+    let png = dir.join("wide.png");
+    image::RgbaImage::from_pixel(65_537, 1, image::Rgba([255, 0, 0, 255]))
+        .save(&png)
+        .unwrap();
+    let floats: Vec<u8> = [0f32, 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 1.]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    std::fs::write(dir.join("triangle.bin"), &floats).unwrap();
+    let gltf = serde_json::json!({
+        "asset": { "version": "2.0" }, "scene": 0, "scenes": [{ "nodes": [0] }],
+        "nodes": [{ "mesh": 0 }],
+        "meshes": [{ "primitives": [{ "attributes": { "POSITION": 0, "TEXCOORD_0": 1 }, "material": 0 }] }],
+        "materials": [{ "name": "wide", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } } }],
+        "textures": [{ "source": 0 }], "images": [{ "uri": "wide.png" }],
+        "buffers": [{ "byteLength": 60, "uri": "triangle.bin" }],
+        "bufferViews": [
+            { "buffer": 0, "byteOffset": 0, "byteLength": 36 },
+            { "buffer": 0, "byteOffset": 36, "byteLength": 24 }
+        ],
+        "accessors": [
+            { "bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+              "min": [0, 0, 0], "max": [1, 1, 0] },
+            { "bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2" }
+        ]
+    });
+    let path = dir.join("wide.gltf");
+    std::fs::write(&path, gltf.to_string()).unwrap();
+    path
+}
+
+#[test]
+fn a_scene_texture_larger_than_the_device_is_named_before_any_upload() {
+    let dir = temp_dir();
+    let gltf = gltf_with_a_wide_texture(dir.path());
+    let out = dir.path().join("a.png");
+    let run = render_default(&out, &["--scene", gltf.to_str().unwrap()]).expect(2);
+    run.stderr_has(&format!(
+        "{}: texture image 0 \"wide.png\" is 65537x1, larger than ",
+        gltf.display()
+    ));
+    assert!(!run.stderr.contains("upload and render"), "{}", run.stderr);
+    assert!(!out.exists());
+}

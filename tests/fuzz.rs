@@ -1,6 +1,7 @@
-//! Fuzzing, a fixed budget on every test run (CI included): the RON loader and compile,
-//! the glTF loader and the scene analysis, and the command-line parser, each on mutations
-//! of committed files. No input may panic or hang; every one ends in a value or an error.
+//! Fuzzing, a fixed budget on every test run (CI included): the RON loader, compile and
+//! explain, the glTF loader, scene analysis and statistics, and the command-line parser,
+//! each on mutations of committed files. No input may panic or hang; every one ends in a
+//! value or an error.
 //! See `fuzz_support` for the harness and README "Fuzzing" for a longer run's counts.
 
 use crate::fuzz_support;
@@ -9,7 +10,7 @@ use std::path::PathBuf;
 
 use fuzz_support::{fuzz, iterations, seeds};
 use graph_core::file::{load_str, Registry};
-use graph_core::CompileOptions;
+use graph_core::{explain, CompileOptions};
 use passes_deferred_msaa::analysis::Analysis;
 use passes_deferred_msaa::scene::{AssetPolicy, Scene};
 
@@ -38,7 +39,14 @@ fn graph_files_load_and_compile_or_fail_with_errors() {
         Box::new(move |input| {
             let text = String::from_utf8_lossy(input);
             if let Ok(loaded) = load_str(&path, &text, &registry) {
-                let _ = loaded.compile(&CompileOptions::default());
+                // What `explain` prints of a plan, in every format.
+                if let Ok(plan) = loaded.compile(&CompileOptions::default()) {
+                    let _ = (
+                        explain::text(&plan),
+                        explain::dot(&plan),
+                        explain::json(&plan),
+                    );
+                }
             }
         })
     })
@@ -74,7 +82,8 @@ fn gltf_files_load_and_analyse_or_fail_with_errors() {
         Box::new(move |input| {
             std::fs::write(&file, input).expect("the input is written");
             if let Ok(scene) = Scene::from_gltf_with(&file, &policy) {
-                let _ = Analysis::of(&scene, (64, 48));
+                // What `explain --scene` and `render` print of it.
+                let _ = (Analysis::of(&scene, (64, 48)), scene.stats().to_string());
             }
         })
     })

@@ -129,6 +129,7 @@ fn measure(
             size: step.size,
             frames: args.frames,
             warmup: args.warmup,
+            assets: args.assets.policy(),
         };
         // Images only outside sweeps, where one folder per scene is unambiguous.
         let images = step.point.is_none().then_some(args.out_dir.as_path());

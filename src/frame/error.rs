@@ -64,6 +64,20 @@ pub enum FrameError {
         adapter: String,
     },
 
+    /// A scene texture larger than the device's largest 2D texture.
+    #[error(
+        "{scene}: texture {texture} is {width}x{height}, larger than {max}, the largest 2D \
+         texture of {adapter}"
+    )]
+    SceneTextureTooLarge {
+        scene: String,
+        texture: String,
+        width: u32,
+        height: u32,
+        max: u32,
+        adapter: String,
+    },
+
     #[error("{0}")]
     Device(#[from] DeviceError),
 
@@ -102,6 +116,7 @@ impl FrameError {
             self,
             FrameError::PipelineUnreadable { .. }
                 | FrameError::TooLarge { .. }
+                | FrameError::SceneTextureTooLarge { .. }
                 | FrameError::Device(_)
                 | FrameError::Scene(SceneError::Io { .. })
         )

@@ -33,6 +33,9 @@ pub struct Pipeline {
     /// What the deferred plugins build their shader variants for: `features`, except
     /// for [`Specialise::PlanOnly`].
     pub shader_features: SceneFeatures,
+    /// The scene the plugins draw, whose textures
+    /// [`Session::prepare`](super::Session::prepare) checks against the device.
+    pub scene: Arc<Scene>,
 }
 
 /// What a pipeline is compiled for.
@@ -109,16 +112,17 @@ impl Pipeline {
         load: impl FnOnce(&Registry) -> Result<LoadedGraph, FrameError>,
     ) -> Result<Self, FrameError> {
         let (features, shader_features) = specialise.features(&host.scene);
+        let scene = host.scene.clone();
         let loaded = load(&registry_for(Some(host), specialise.variants()))?;
-        Self::keep(path, loaded, outputs, features, shader_features)
+        Self::keep(path, loaded, outputs, (features, shader_features), scene)
     }
 
     fn keep(
         path: &Path,
         mut loaded: LoadedGraph,
         outputs: &[&str],
-        features: SceneFeatures,
-        shader_features: SceneFeatures,
+        (features, shader_features): (SceneFeatures, SceneFeatures),
+        scene: Arc<Scene>,
     ) -> Result<Self, FrameError> {
         let offered = loaded.outputs().iter().map(|o| o.to_string()).collect();
         loaded
@@ -134,6 +138,7 @@ impl Pipeline {
             offered,
             features,
             shader_features,
+            scene,
         })
     }
 }

@@ -29,6 +29,7 @@ impl Session {
         size: (u32, u32),
     ) -> Result<Prepared<'_>, FrameError> {
         self.check_size(size)?;
+        self.check_textures(&pipeline)?;
         let options = CompileOptions {
             output_size: size,
             profile: self.profile.clone(),
@@ -55,6 +56,28 @@ impl Session {
             Executor::new(&self.gpu),
             outputs,
         ))
+    }
+
+    /// Every scene texture must fit the device: checked before anything is uploaded, so
+    /// the error names the texture instead of the pass whose upload failed.
+    fn check_textures(&self, pipeline: &Pipeline) -> Result<(), FrameError> {
+        let max = self.profile.limits.max_texture_dimension_2d;
+        match pipeline
+            .scene
+            .textures
+            .iter()
+            .find(|t| t.width > max || t.height > max)
+        {
+            Some(texture) => Err(FrameError::SceneTextureTooLarge {
+                scene: pipeline.scene.name.clone(),
+                texture: texture.name.clone(),
+                width: texture.width,
+                height: texture.height,
+                max,
+                adapter: self.profile.name.clone(),
+            }),
+            None => Ok(()),
+        }
     }
 
     /// Both dimensions must fit the device.

@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use graph_core::gpu::FrameReport;
 use image::RgbaImage;
+use passes_deferred_msaa::scene::AssetPolicy;
 use passes_deferred_msaa::Host;
 
 use super::candidates::{Candidate, COLOR};
@@ -21,6 +22,8 @@ pub struct Setup<'a> {
     pub size: (u32, u32),
     pub frames: u32,
     pub warmup: u32,
+    /// What glTF scenes may read (`--asset-root`, `--max-asset-bytes`).
+    pub assets: AssetPolicy,
 }
 
 /// The figures, the last measured frame's image, and the debug.edges view when there is

@@ -57,7 +57,7 @@ pub fn bench_scene(
         unique_surfaces: None,
         unique_surfaces_error: None,
     };
-    let scene = match Scene::load(spec) {
+    let scene = match Scene::load_with(spec, &setup.assets) {
         Ok(scene) => Arc::new(scene),
         Err(source) => {
             let error = RowError::Scene {
