@@ -210,15 +210,25 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
         .replace(
             "params: (view: tile_lights),",
             "params: (view: tile_lights, tile: 8),",
-        )
-        .replace(
-            "params: (view: fragments),",
-            "params: (view: fragments, tile: 8),",
         );
-    load_str(&path, &debug_views, &registry)
+    // Edge entries (4 + 12 bytes for each of 64 x 3), the light batch (4 x 64), the
+    // four side planes (64) and four atomics (16 each).
+    let plan = load_str(&path, &debug_views, &registry)
         .expect("the file loads")
         .compile(&options)
         .unwrap_or_else(|e| panic!("8x8 tiles fit in 8 KiB: {e}"));
+    let planned = plan
+        .passes
+        .iter()
+        .find(|p| p.name == "light tiled")
+        .and_then(|p| p.workgroup.clone())
+        .expect("the plan has the tiled pass's workgroup");
+    assert_eq!((planned.size, planned.memory_bytes), ([8, 8, 1], 3456));
+    assert!(
+        graph_core::explain::text(&plan)
+            .contains("workgroup: 8x8x1 (cs_light_tiled), 3456 bytes of workgroup memory"),
+        "explain shows the workgroup"
+    );
     let huge = text.replace(
         "params: (edges: (detector: compare)),",
         "params: (edges: (detector: compare), tile: 32),",

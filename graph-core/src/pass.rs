@@ -51,7 +51,7 @@ impl Record {
 /// What a compute pass's entry point asks of the device: checked against the profile's
 /// compute limits when compiling, so a shader too big for a device is a graph error
 /// naming the pass, not a pipeline-creation failure on the first frame.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct Workgroup {
     /// The entry point, for messages.
     pub entry: String,

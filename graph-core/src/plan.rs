@@ -47,6 +47,8 @@ pub struct PlannedPass {
     /// `max_color_attachment_bytes_per_sample` (a G-buffer's size per sample).
     pub color_bytes_per_sample: u32,
     pub depth_stencil: Option<DepthStencilAttachment>,
+    /// A compute pass's workgroup size and memory, where its plugin declared them.
+    pub workgroup: Option<crate::pass::Workgroup>,
 }
 
 /// How an attachment aspect begins.

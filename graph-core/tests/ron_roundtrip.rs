@@ -3,7 +3,7 @@
 
 use graph_core::file::{load_file, Registry};
 use graph_core::types::TextureFormat;
-use graph_core::{ColorLoad, CompileOptions, Graph, GraphBuilder, Plan, TextureDesc};
+use graph_core::{ColorLoad, CompileOptions, Graph, GraphBuilder, Plan, TextureDesc, Workgroup};
 
 fn plan_json(plan: &Plan) -> serde_json::Value {
     serde_json::to_value(plan).expect("plans serialize")
@@ -19,6 +19,12 @@ fn postprocess_twin() -> Graph {
 
     let hdr = g.add_render_pass("sky").color_output(hdr, clear);
     let mut tonemap = g.add_compute_pass("tonemap");
+    // shaders/exposure.wgsl's entry point: 8x8 invocations, no workgroup memory.
+    tonemap.workgroup(Workgroup {
+        entry: "main".into(),
+        size: [8, 8, 1],
+        memory_bytes: 0,
+    });
     tonemap.sampled(hdr);
     let toned = tonemap.storage_write(toned);
     let mut present = g.add_render_pass("present");

@@ -177,6 +177,7 @@ impl Graph {
                     ),
                     color: color.clone(),
                     depth_stencil: depth_stencil.clone(),
+                    workgroup: pass.workgroup.clone(),
                 }
             })
             .collect();

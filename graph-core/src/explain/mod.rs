@@ -61,6 +61,14 @@ pub fn text(plan: &Plan) -> String {
                 pass.color_bytes_per_sample
             );
         }
+        if let Some(w) = &pass.workgroup {
+            let [x, y, z] = w.size;
+            let _ = writeln!(
+                out,
+                "         workgroup: {x}x{y}x{z} ({}), {} bytes of workgroup memory",
+                w.entry, w.memory_bytes
+            );
+        }
         if let Some(ds) = &pass.depth_stencil {
             let aspect = |o: Option<String>| o.unwrap_or_else(|| "read-only".into());
             let _ = writeln!(
