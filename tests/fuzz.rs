@@ -38,16 +38,18 @@ fn graph_files_load_and_compile_or_fail_with_errors() {
         let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("pipelines/fuzzed.ron");
         Box::new(move |input| {
             let text = String::from_utf8_lossy(input);
-            if let Ok(loaded) = load_str(&path, &text, &registry) {
-                // What `explain` prints of a plan, in every format.
-                if let Ok(plan) = loaded.compile(&CompileOptions::default()) {
-                    let _ = (
-                        explain::text(&plan),
-                        explain::dot(&plan),
-                        explain::json(&plan),
-                    );
-                }
+            let Ok(loaded) = load_str(&path, &text, &registry) else {
+                return false;
+            };
+            // What `explain` prints of a plan, in every format.
+            if let Ok(plan) = loaded.compile(&CompileOptions::default()) {
+                let _ = (
+                    explain::text(&plan),
+                    explain::dot(&plan),
+                    explain::json(&plan),
+                );
             }
+            true
         })
     })
     .assert_clean();
@@ -81,10 +83,12 @@ fn gltf_files_load_and_analyse_or_fail_with_errors() {
         };
         Box::new(move |input| {
             std::fs::write(&file, input).expect("the input is written");
-            if let Ok(scene) = Scene::from_gltf_with(&file, &policy) {
-                // What `explain --scene` and `render` print of it.
-                let _ = (Analysis::of(&scene, (64, 48)), scene.stats().to_string());
-            }
+            let Ok(scene) = Scene::from_gltf_with(&file, &policy) else {
+                return false;
+            };
+            // What `explain --scene` and `render` print of it.
+            let _ = (Analysis::of(&scene, (64, 48)), scene.stats().to_string());
+            true
         })
     })
     .assert_clean();
@@ -98,7 +102,7 @@ fn command_lines_parse_or_fail_with_usage_errors() {
             // One argument a line, as the corpus files are written.
             let text = String::from_utf8_lossy(input);
             let args = std::iter::once("rgraph").chain(text.lines());
-            let _ = <cli::Cli as clap::Parser>::try_parse_from(args);
+            <cli::Cli as clap::Parser>::try_parse_from(args).is_ok()
         })
     })
     .assert_clean();
@@ -108,7 +112,10 @@ fn command_lines_parse_or_fail_with_usage_errors() {
 #[test]
 fn the_harness_finds_a_planted_crash() {
     let report = fuzz("planted", vec![b"(1, 2)".to_vec()], 2_000, || {
-        Box::new(|input| assert!(!input.windows(3).any(|w| w == b"NaN"), "NaN reached"))
+        Box::new(|input| {
+            assert!(!input.windows(3).any(|w| w == b"NaN"), "NaN reached");
+            true
+        })
     });
     assert_eq!(
         report.crashes.len(),

@@ -184,3 +184,34 @@ fn a_shader_s_byte_order_mark_is_skipped() {
     let source = "\u{feff}@compute @workgroup_size(1) fn main() {}";
     graph_core::shader::Shader::parse("bom.wgsl", source).unwrap_or_else(|e| panic!("{e}"));
 }
+
+#[cfg(unix)]
+#[test]
+fn a_shader_path_to_a_device_or_fifo_is_refused_without_reading() {
+    let dir = std::env::temp_dir().join(format!("ron-errors-fifo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let fifo = dir.join("pipe.wgsl");
+    let _ = std::fs::remove_file(&fifo);
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo failed");
+    for (shader, kind) in [
+        ("/dev/zero", "character device"),
+        (fifo.to_str().unwrap(), "FIFO"),
+    ] {
+        let text = format!(
+            r#"Graph(
+    resources: {{ "c": Texture(format: "rgba8unorm") }},
+    passes: [(name: "sky", plugin: "fullscreen", params: (shader: "{shader}"), outputs: {{ "color": "c" }})],
+    outputs: ["c"],
+)"#
+        );
+        let error = only_error(ron_support::compile_str(&text));
+        assert!(
+            error
+                .to_string()
+                .ends_with(&format!("not a regular file (it is a {kind})")),
+            "{error}"
+        );
+        assert!(error.to_string().contains("\"sky\""), "{error}");
+    }
+}

@@ -343,3 +343,69 @@ fn a_light_placed_by_more_nodes_than_the_light_limit_is_an_error() {
         )
     );
 }
+
+/// A triangle with one material `{ "name": "paint", ...fields }`, loaded.
+fn painted(test: &str, fields: Value) -> (std::path::PathBuf, Result<Scene, SceneError>) {
+    let mut gltf = Gltf::default();
+    let mut material = json!({ "name": "paint" });
+    for (key, value) in fields.as_object().unwrap() {
+        material[key] = value.clone();
+    }
+    let material = gltf.push("materials", material);
+    gltf.triangle(Some(material));
+    let path = temp_dir(test).join("scene.gltf");
+    gltf.write_embedded(&path);
+    let loaded = Scene::from_gltf(&path);
+    (path, loaded)
+}
+
+#[test]
+fn material_factors_beyond_f32_are_errors_naming_the_material() {
+    for (fields, field) in [
+        (
+            json!({ "emissiveFactor": [1e39, 0.0, 0.0] }),
+            "emissiveFactor [inf, 0.0, 0.0]",
+        ),
+        (
+            json!({ "pbrMetallicRoughness": { "roughnessFactor": -1e39 } }),
+            "roughnessFactor [-inf]",
+        ),
+        (
+            json!({ "extensions": { "KHR_materials_emissive_strength": { "emissiveStrength": 1e39 } } }),
+            "emissiveStrength [inf]",
+        ),
+    ] {
+        let (path, loaded) = painted("material_beyond_f32", fields);
+        assert_eq!(
+            loaded.expect_err("the factor is infinite").to_string(),
+            format!(
+                "{}: material 0 \"paint\": {field} is beyond the largest f32 (3.4028235e38)",
+                path.display()
+            )
+        );
+    }
+}
+
+#[test]
+fn material_factors_outside_gltf_s_ranges_are_clamped_with_a_warning() {
+    let (path, loaded) = painted(
+        "material_clamped",
+        json!({
+            "pbrMetallicRoughness": { "baseColorFactor": [2.0, 0.5, -1.0, 1.0], "metallicFactor": 3.0 },
+            "alphaMode": "MASK", "alphaCutoff": -0.5,
+        }),
+    );
+    let scene = loaded.unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let material = &scene.materials[0];
+    assert_eq!(material.base_color_factor, [1.0, 0.5, 0.0, 1.0]);
+    assert_eq!(material.metallic_factor, 1.0);
+    assert_eq!(
+        scene.warnings,
+        [
+            "material 0 \"paint\": baseColorFactor [2.0, 0.5, -1.0, 1.0] is not within 0..=1; \
+             clamped to [1.0, 0.5, 0.0, 1.0]",
+            "material 0 \"paint\": metallicFactor [3.0] is not within 0..=1; clamped to [1.0]",
+            "material 0 \"paint\": alphaCutoff [-0.5] is not at least 0; clamped to [0.0]",
+        ]
+    );
+}

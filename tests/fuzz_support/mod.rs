@@ -2,8 +2,10 @@
 //! submission for a fixed budget (see `tests/fuzz.rs`).
 //!
 //! Each target replays its seeds (committed files: `pipelines/`, the test fixtures and
-//! `tests/fuzz_corpus/<target>/`), then runs mutations of them (see [`mutate`]) on a worker
-//! thread. A panic is a crash and an input that runs longer than [`HANG_LIMIT`] a hang;
+//! `tests/fuzz_corpus/<target>/`), then runs mutations (see [`mutate`]) on a worker thread.
+//! A mutated input the target accepted (it parsed, so later stages ran on it) joins the
+//! pool that mutations start from, up to [`POOL_LIMIT`] inputs: without coverage feedback,
+//! that is what lets mutations reach past the parsers. A panic is a crash and an input that runs longer than [`HANG_LIMIT`] a hang;
 //! either is saved under the test binary's temporary directory, and the run fails with its
 //! path. `RGRAPH_FUZZ_ITERATIONS` sets the number of mutated inputs per target (the longer
 //! run in the README) and `RGRAPH_FUZZ_SEED` the generator's seed.
@@ -21,8 +23,13 @@ use mutate::{mutate, Rng};
 /// (a full deferred pipeline compiled in a debug build takes well under a second).
 pub const HANG_LIMIT: Duration = Duration::from_secs(20);
 
-/// The function that takes one input, made on the worker thread.
-pub type Target = Box<dyn FnMut(&[u8])>;
+/// The function that takes one input, made on the worker thread. It returns whether the
+/// input was accepted (parsed, so the later stages ran on it).
+pub type Target = Box<dyn FnMut(&[u8]) -> bool>;
+
+/// The most accepted inputs kept to mutate, besides the seeds; past it a random one is
+/// replaced.
+pub const POOL_LIMIT: usize = 1_000;
 
 /// A run stops after this many crashes: they are usually one bug, and each prints its
 /// panic.
@@ -32,6 +39,8 @@ pub const MAX_CRASHES: usize = 5;
 pub struct Report {
     pub target: &'static str,
     pub executions: usize,
+    /// Mutated inputs the target accepted.
+    pub accepted: usize,
     pub crashes: Vec<String>,
     pub hangs: Vec<String>,
     pub elapsed: Duration,
@@ -41,9 +50,10 @@ impl Report {
     /// Fails, naming the saved inputs, when anything crashed or hung.
     pub fn assert_clean(&self) {
         println!(
-            "fuzz {}: {} inputs in {:.1} s, {} crashes, {} hangs",
+            "fuzz {}: {} inputs ({} mutations accepted) in {:.1} s, {} crashes, {} hangs",
             self.target,
             self.executions,
+            self.accepted,
             self.elapsed.as_secs_f64(),
             self.crashes.len(),
             self.hangs.len()
@@ -106,7 +116,7 @@ pub fn fuzz(
         .unwrap_or(0x5eed_2026);
     let mut rng = Rng::new(seed);
     let (inputs, work) = mpsc::channel::<Vec<u8>>();
-    let (done, results) = mpsc::channel::<Result<(), String>>();
+    let (done, results) = mpsc::channel::<Result<bool, String>>();
     // The worker outlives a hang (a thread cannot be stopped): the run ends there.
     std::thread::spawn(move || {
         let mut run = setup();
@@ -127,23 +137,35 @@ pub fn fuzz(
     let mut report = Report {
         target,
         executions: 0,
+        accepted: 0,
         crashes: Vec::new(),
         hangs: Vec::new(),
         elapsed: Duration::ZERO,
     };
     let total = seeds.len() + iterations;
+    let mut pool = seeds.clone();
     for i in 0..total {
         let input = match seeds.get(i) {
             Some(seed) => seed.clone(),
             None => {
-                let (base, other) = (rng.below(seeds.len()), rng.below(seeds.len()));
-                mutate(&mut rng, &seeds[base], &seeds[other])
+                let (base, other) = (rng.below(pool.len()), rng.below(pool.len()));
+                mutate(&mut rng, &pool[base], &pool[other])
             }
         };
         inputs.send(input.clone()).expect("the worker runs");
         report.executions += 1;
         match results.recv_timeout(HANG_LIMIT) {
-            Ok(Ok(())) => {}
+            Ok(Ok(accepted)) => {
+                if accepted && i >= seeds.len() {
+                    report.accepted += 1;
+                    if pool.len() < seeds.len() + POOL_LIMIT {
+                        pool.push(input);
+                    } else {
+                        let replaced = seeds.len() + rng.below(POOL_LIMIT);
+                        pool[replaced] = input;
+                    }
+                }
+            }
             Ok(Err(message)) => {
                 let saved = save(target, "crash", report.crashes.len(), &input);
                 report

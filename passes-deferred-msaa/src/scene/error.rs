@@ -106,6 +106,14 @@ pub enum SceneError {
         reason: String,
     },
 
+    /// A material factor is not a finite f32.
+    #[error("{file}: {material}: {reason}")]
+    InvalidMaterial {
+        file: PathBuf,
+        material: String,
+        reason: String,
+    },
+
     /// A light's parameters are outside what KHR_lights_punctual allows.
     #[error("{file}: {light}: {reason}")]
     InvalidLight {

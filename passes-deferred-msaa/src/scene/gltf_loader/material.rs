@@ -3,7 +3,7 @@
 use gltf::material::AlphaMode as GltfAlphaMode;
 use gltf::texture::{MagFilter, MinFilter, WrappingMode};
 
-use super::Loader;
+use super::{factors, Loader};
 use crate::scene::error::label;
 use crate::scene::{AlphaMode, FilterMode, Material, Sampler, SceneError, TextureRef, WrapMode};
 
@@ -28,11 +28,22 @@ impl Loader<'_> {
             |i| label("material", i, material.name()),
         );
         let pbr = material.pbr_metallic_roughness();
+        let (file, warnings) = (self.file, &mut self.builder.warnings);
+        let mut check = |field, values: &[f32], range| {
+            factors::checked(file, &name, field, values, range, warnings)
+        };
+        let (unit, positive) = (0.0..=1.0, 0.0..=f32::MAX);
+        let base_color = check("baseColorFactor", &pbr.base_color_factor(), unit.clone())?;
+        let metallic = check("metallicFactor", &[pbr.metallic_factor()], unit.clone())?[0];
+        let roughness = check("roughnessFactor", &[pbr.roughness_factor()], unit.clone())?[0];
+        let emissive = check("emissiveFactor", &material.emissive_factor(), unit)?;
+        let strength = material.emissive_strength().unwrap_or(1.0);
+        let strength = check("emissiveStrength", &[strength], positive.clone())?[0];
+        let cutoff = material.alpha_cutoff().unwrap_or(DEFAULT_ALPHA_CUTOFF);
+        let cutoff = check("alphaCutoff", &[cutoff], positive)?[0];
         let alpha_mode = match material.alpha_mode() {
             GltfAlphaMode::Opaque => AlphaMode::Opaque,
-            GltfAlphaMode::Mask => AlphaMode::Mask {
-                cutoff: material.alpha_cutoff().unwrap_or(DEFAULT_ALPHA_CUTOFF),
-            },
+            GltfAlphaMode::Mask => AlphaMode::Mask { cutoff },
             GltfAlphaMode::Blend => {
                 self.builder.warnings.push(format!(
                     "{name}: alphaMode BLEND is not supported (a G-buffer holds one surface per \
@@ -78,12 +89,12 @@ impl Loader<'_> {
             None => None,
         };
         Ok(Material {
-            base_color_factor: pbr.base_color_factor(),
+            base_color_factor: [base_color[0], base_color[1], base_color[2], base_color[3]],
             base_color_texture,
-            metallic_factor: pbr.metallic_factor(),
-            roughness_factor: pbr.roughness_factor(),
-            emissive_factor: material.emissive_factor(),
-            emissive_strength: material.emissive_strength().unwrap_or(1.0),
+            metallic_factor: metallic,
+            roughness_factor: roughness,
+            emissive_factor: [emissive[0], emissive[1], emissive[2]],
+            emissive_strength: strength,
             alpha_mode,
             double_sided: material.double_sided(),
             unlit: material.unlit(),

@@ -11,6 +11,7 @@
 mod accessor;
 mod camera;
 mod extensions;
+mod factors;
 mod glb;
 mod image;
 mod light;
