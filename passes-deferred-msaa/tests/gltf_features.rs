@@ -305,3 +305,53 @@ fn unsupported_features_are_warnings_naming_them() {
         passes_deferred_msaa::scene::AlphaMode::Opaque
     );
 }
+
+/// Application attributes (`_`-prefixed, which the glTF spec allows) are ignored, not a reason
+/// to reject the file: Cesium's `_BATCHID`, bevy's `__BARYCENTRIC`.
+#[test]
+fn underscore_attributes_are_ignored() {
+    let mut gltf = Gltf::default();
+    let positions = gltf.floats(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let batch = gltf.floats(&[[0.0], [0.0], [1.0]]);
+    let barycentric = gltf.floats(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+    gltf.mesh(
+        "batched",
+        json!({ "attributes": {
+            "POSITION": positions, "_BATCHID": batch, "__BARYCENTRIC": barycentric
+        } }),
+    );
+    let scene = load_embedded("underscore_attributes", &gltf);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    assert_eq!(scene.meshes.len(), 1);
+    assert_eq!(scene.meshes[0].triangle_count(), 1);
+}
+
+/// A scene without `nodes` is valid glTF: it loads empty, with a warning naming it, in both
+/// containers; so does a scene whose list is empty.
+#[test]
+fn scene_without_nodes_loads_empty_with_a_warning() {
+    let dir = temp_dir("scene_without_nodes");
+    let mut gltf = Gltf::default();
+    gltf.json["scenes"] = json!([{ "name": "void" }]);
+    let embedded = dir.join("scene.gltf");
+    gltf.write_embedded(&embedded);
+    let glb = dir.join("scene.glb");
+    gltf.write_glb(&glb);
+    gltf.json["scenes"] = json!([{ "nodes": [] }]);
+    let listed = dir.join("listed.gltf");
+    gltf.write_embedded(&listed);
+    for (path, name) in [
+        (&embedded, "scene 0 \"void\""),
+        (&glb, "scene 0 \"void\""),
+        (&listed, "scene 0"),
+    ] {
+        let scene = Scene::from_gltf(path).unwrap_or_else(|e| panic!("{e}"));
+        assert!(scene.meshes.is_empty(), "{}", path.display());
+        assert_eq!(
+            scene.warnings,
+            [format!(
+                "{name} lists no nodes: nothing to draw, the frame is empty"
+            )]
+        );
+    }
+}

@@ -67,6 +67,13 @@ impl MeshBuffers {
                 _pad: [0; 3],
             });
         }
+        // A scene without meshes (a glTF scene listing no nodes) still binds these buffers:
+        // wgpu refuses empty slices and zero-sized storage bindings, and nothing is drawn.
+        if draws.is_empty() {
+            vertices.push(bytemuck::Zeroable::zeroed());
+            indices.push(0);
+            data.push(bytemuck::Zeroable::zeroed());
+        }
         let init = |label, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),

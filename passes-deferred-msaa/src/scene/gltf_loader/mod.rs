@@ -2,7 +2,8 @@
 //!
 //! What is read: the default scene (else the first) with its node hierarchy; triangle
 //! primitives (TRIANGLES, and strips and fans converted to lists) with POSITION, NORMAL (flat
-//! normals generated when missing) and TEXCOORD_0; metallic-roughness materials with their
+//! normals generated when missing) and TEXCOORD_0 (application attributes, `_`-prefixed,
+//! are ignored as the spec allows); metallic-roughness materials with their
 //! base-color texture, emissive, alpha OPAQUE/MASK, double-sided and the extensions in
 //! [`extensions::IMPLEMENTED`]; cameras; KHR_lights_punctual lights. What is not: other
 //! textures, BLEND (drawn opaque), points and lines, skins, morph targets and animations, each
@@ -10,6 +11,7 @@
 
 mod accessor;
 mod camera;
+mod document;
 mod extensions;
 mod glb;
 mod image;
@@ -28,6 +30,7 @@ use std::path::Path;
 use graph_core::bounded_read;
 
 use super::builder::SceneBuilder;
+use super::error;
 use super::{AssetPolicy, Scene, SceneError, MAX_LIGHTS};
 
 /// Loads `file`, reading it and the files its URIs name as `policy` allows; see the module
@@ -37,15 +40,17 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         file: file.to_owned(),
         source,
     })?;
-    let gltf_error = |source| SceneError::Gltf {
+    glb::check_header(file, &bytes)?;
+    let document::Parsed {
+        document,
+        json,
+        blob,
+    } = document::parse(file, &bytes)?;
+    let warnings = extensions::check(file, &document)?;
+    let document = validate::validate(document).map_err(|source| SceneError::Gltf {
         file: file.to_owned(),
         source,
-    };
-    glb::check_header(file, &bytes)?;
-    let gltf::Gltf { document, blob } =
-        gltf::Gltf::from_slice_without_validation(&bytes).map_err(gltf_error)?;
-    let warnings = extensions::check(file, &document)?;
-    let document = validate::validate(document).map_err(gltf_error)?;
+    })?;
     let sandbox = sandbox::Sandbox::new(file, policy)?;
     let mut loader = Loader {
         file,
@@ -66,7 +71,14 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         .default_scene()
         .or_else(|| document.scenes().next())
     {
-        let local = transforms::read(file, &bytes, &document)?;
+        if scene.nodes().len() == 0 {
+            let name = error::label("scene", scene.index(), scene.name());
+            loader.builder.warnings.push(format!(
+                "{name} lists no nodes: nothing to draw, the frame is empty"
+            ));
+            loader.builder.allow_empty = true;
+        }
+        let local = transforms::read(file, &json, &document)?;
         for placed in nodes::flatten(file, &document, &scene, &local)? {
             loader.place(&placed)?;
         }
