@@ -265,6 +265,9 @@ fn unsupported_features_are_warnings_naming_them() {
     // The image file does not exist: ignored textures are never decoded.
     gltf.push("images", json!({ "uri": "missing.png" }));
     gltf.push("textures", json!({ "source": 0 }));
+    // Decoded: the metallicRoughness and emissive textures are implemented.
+    gltf.push("images", json!({ "uri": "present.png" }));
+    gltf.push("textures", json!({ "source": 1 }));
     let glass = gltf.push(
         "materials",
         json!({ "name": "glass", "alphaMode": "BLEND" }),
@@ -275,8 +278,8 @@ fn unsupported_features_are_warnings_naming_them() {
             "name": "bumpy",
             "normalTexture": { "index": 0 },
             "occlusionTexture": { "index": 0 },
-            "emissiveTexture": { "index": 0 },
-            "pbrMetallicRoughness": { "metallicRoughnessTexture": { "index": 0 } },
+            "emissiveTexture": { "index": 1 },
+            "pbrMetallicRoughness": { "metallicRoughnessTexture": { "index": 1 } },
         }),
     );
     gltf.triangle(Some(glass));
@@ -286,7 +289,11 @@ fn unsupported_features_are_warnings_naming_them() {
         "dots",
         json!({ "attributes": { "POSITION": points }, "mode": 0 }),
     );
-    let scene = load_embedded("warnings", &gltf);
+    let dir = temp_dir("warnings");
+    std::fs::write(dir.join("present.png"), png_2x1()).unwrap();
+    let path = dir.join("scene.gltf");
+    gltf.write_embedded(&path);
+    let scene = Scene::from_gltf(&path).unwrap_or_else(|e| panic!("{e}"));
 
     assert_eq!(
         scene.warnings,
@@ -294,8 +301,8 @@ fn unsupported_features_are_warnings_naming_them() {
             "glTF extension KHR_texture_transform is not implemented; its effect is ignored",
             "material 0 \"glass\": alphaMode BLEND is not supported (a G-buffer holds one surface \
              per sample); rendered as OPAQUE",
-            "material 1 \"bumpy\": normal, occlusion, metallicRoughness, emissive texture(s) \
-             ignored; only base color textures are implemented",
+            "material 1 \"bumpy\": normal, occlusion texture(s) ignored; only base color, \
+             metallicRoughness and emissive textures are implemented",
             "mesh 2 \"dots\" primitive 0: mode Points is not triangles; skipped",
         ]
     );
@@ -354,4 +361,59 @@ fn scene_without_nodes_loads_empty_with_a_warning() {
             )]
         );
     }
+}
+
+/// The emissive texture is sRGB color, the metallicRoughness texture linear data: one image
+/// used as both is decoded into two scene textures, one per role, and each reference keeps
+/// its own sampler.
+#[test]
+fn emissive_and_metallic_roughness_textures_are_loaded_in_their_color_spaces() {
+    let mut gltf = Gltf::default();
+    let view = gltf.view(&png_2x1());
+    gltf.push(
+        "images",
+        json!({ "bufferView": view, "mimeType": "image/png" }),
+    );
+    gltf.push("samplers", json!({ "magFilter": 9728, "wrapS": 33071 }));
+    gltf.push("textures", json!({ "source": 0, "sampler": 0 }));
+    gltf.push("textures", json!({ "source": 0 }));
+    let material = gltf.push(
+        "materials",
+        json!({
+            "emissiveFactor": [1.0, 0.5, 0.25],
+            "emissiveTexture": { "index": 0 },
+            "pbrMetallicRoughness": { "metallicRoughnessTexture": { "index": 1 } },
+        }),
+    );
+    gltf.triangle(Some(material));
+    let scene = load_embedded("emissive_metallic_roughness", &gltf);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let srgb: Vec<bool> = scene.textures.iter().map(|t| t.srgb).collect();
+    // metallicRoughness is converted before emissive.
+    assert_eq!(srgb, [false, true]);
+    assert!(scene
+        .textures
+        .iter()
+        .all(|t| t.rgba8 == [255, 0, 0, 255, 0, 0, 255, 128]));
+    let m = &scene.materials[0];
+    let nearest_clamped = Sampler {
+        wrap_u: WrapMode::ClampToEdge,
+        mag_filter: FilterMode::Nearest,
+        ..Sampler::default()
+    };
+    assert_eq!(
+        m.emissive_texture,
+        Some(TextureRef {
+            image: 1,
+            sampler: nearest_clamped
+        })
+    );
+    assert_eq!(
+        m.metallic_roughness_texture,
+        Some(TextureRef {
+            image: 0,
+            sampler: Sampler::default()
+        })
+    );
+    assert_eq!(m.base_color_texture, None);
 }

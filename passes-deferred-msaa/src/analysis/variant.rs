@@ -29,6 +29,10 @@ pub enum Gate {
     SpotLights,
     /// Sampling the base-color texture (without one a material's texture is white).
     Textures,
+    /// Sampling the emissive texture (without one, or without emission, it is white).
+    EmissiveTextures,
+    /// Sampling the metallicRoughness texture (without one it is white).
+    MetalRoughTextures,
     /// Flipping back faces' normals (without double-sided materials back faces are
     /// culled).
     DoubleSided,
@@ -44,6 +48,8 @@ impl Gate {
             Gate::PointLights => "point_lights",
             Gate::SpotLights => "spot_lights",
             Gate::Textures => "textures",
+            Gate::EmissiveTextures => "emissive_textures",
+            Gate::MetalRoughTextures => "metal_rough_textures",
             Gate::DoubleSided => "double_sided",
             Gate::Emissive => "emissive",
         }
@@ -56,6 +62,8 @@ impl Gate {
             Gate::PointLights => "POINT_LIGHTS",
             Gate::SpotLights => "SPOT_LIGHTS",
             Gate::Textures => "TEXTURES",
+            Gate::EmissiveTextures => "EMISSIVE_TEXTURES",
+            Gate::MetalRoughTextures => "METAL_ROUGH_TEXTURES",
             Gate::DoubleSided => "DOUBLE_SIDED",
             Gate::Emissive => "EMISSIVE",
         }
@@ -68,6 +76,8 @@ impl Gate {
             Gate::PointLights => features.point_lights,
             Gate::SpotLights => features.spot_lights,
             Gate::Textures => features.textures,
+            Gate::EmissiveTextures => features.emissive_textures,
+            Gate::MetalRoughTextures => features.metal_rough_textures,
             Gate::DoubleSided => features.double_sided,
             Gate::Emissive => features.emissive,
         }
@@ -113,7 +123,13 @@ impl GatedShader {
     pub fn gates(self) -> &'static [Gate] {
         use Gate::*;
         match self {
-            GatedShader::GBuffer => &[Textures, DoubleSided, Emissive],
+            GatedShader::GBuffer => &[
+                Textures,
+                EmissiveTextures,
+                MetalRoughTextures,
+                DoubleSided,
+                Emissive,
+            ],
             GatedShader::Light | GatedShader::LightTiled => {
                 &[DirectionalLights, PointLights, SpotLights]
             }
@@ -122,6 +138,8 @@ impl GatedShader {
                 PointLights,
                 SpotLights,
                 Textures,
+                EmissiveTextures,
+                MetalRoughTextures,
                 DoubleSided,
                 Emissive,
             ],
@@ -257,7 +275,7 @@ mod tests {
         let general = Variant::general(GatedShader::Forward);
         assert!(general.is_general());
         assert!(general.constants().iter().all(|&(_, v)| v == 1.0));
-        assert_eq!(general.constants().len(), 6);
+        assert_eq!(general.constants().len(), 8);
     }
 
     #[test]
@@ -300,7 +318,9 @@ mod tests {
             shown,
             [
                 (
-                    "gbuffer.wgsl {textures, double_sided, emissive}".to_owned(),
+                    "gbuffer.wgsl {textures, emissive_textures, metal_rough_textures, \
+                     double_sided, emissive}"
+                        .to_owned(),
                     vec!["gbuffer".to_owned()]
                 ),
                 (

@@ -1,5 +1,8 @@
 //! Materials on the device: the constants of every material in one storage buffer, and
-//! per material a bind group (group 1 of the G-buffer pass) with its base-color texture.
+//! per material a bind group (group 1 of the G-buffer and forward passes, material.wgsl)
+//! with its textures.
+
+use std::collections::HashMap;
 
 use wgpu::util::DeviceExt;
 
@@ -38,28 +41,38 @@ pub(super) struct Materials {
     pub bind_groups: Vec<wgpu::BindGroup>,
 }
 
-/// The layout of a material's bind group: its base-color texture and sampler.
+/// A material's textures in binding order (material.wgsl): base color, emissive,
+/// metallicRoughness.
+const TEXTURE_SLOTS: u32 = 3;
+
+/// The layout of a material's bind group: per texture of [`TEXTURE_SLOTS`], the texture
+/// (binding `2 * slot`) and its sampler (binding `2 * slot + 1`).
 pub(super) fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let entries: Vec<wgpu::BindGroupLayoutEntry> = (0..TEXTURE_SLOTS)
+        .flat_map(|slot| {
+            [
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2 * slot,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2 * slot + 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ]
+        })
+        .collect();
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("deferred material"),
-        entries: &[
-            wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 1,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                count: None,
-            },
-        ],
+        entries: &entries,
     })
 }
 
@@ -76,7 +89,8 @@ impl Materials {
             .map(|image| textures::upload(device, queue, image))
             .collect();
         let white = textures::white(device, queue);
-        let default_sampler = textures::sampler(device, &Sampler::default());
+        // One device sampler per distinct glTF sampler: materials share most of them.
+        let mut samplers = HashMap::new();
         let mut data = Vec::new();
         let mut states = Vec::new();
         let mut bind_groups = Vec::new();
@@ -99,26 +113,41 @@ impl Materials {
                 masked: matches!(material.alpha_mode, AlphaMode::Mask { .. }),
             });
             // Scenes guarantee texture indices are in range; a broken one shows white.
-            let texture = material
-                .base_color_texture
-                .and_then(|t| Some((images.get(t.image)?, textures::sampler(device, &t.sampler))));
-            let (view, sampler) = match &texture {
-                Some((view, sampler)) => (*view, sampler),
-                None => (&white, &default_sampler),
-            };
+            let textures: Vec<(&wgpu::TextureView, wgpu::Sampler)> = [
+                material.base_color_texture,
+                material.emissive_texture,
+                material.metallic_roughness_texture,
+            ]
+            .into_iter()
+            .map(|texture| {
+                let (view, sampler) = texture
+                    .and_then(|t| Some((images.get(t.image)?, t.sampler)))
+                    .unwrap_or((&white, Sampler::default()));
+                let sampler = samplers
+                    .entry(sampler)
+                    .or_insert_with(|| textures::sampler(device, &sampler));
+                (view, sampler.clone())
+            })
+            .collect();
+            let entries: Vec<wgpu::BindGroupEntry> = (0u32..)
+                .zip(&textures)
+                .flat_map(|(slot, (view, sampler))| {
+                    [
+                        wgpu::BindGroupEntry {
+                            binding: 2 * slot,
+                            resource: wgpu::BindingResource::TextureView(view),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2 * slot + 1,
+                            resource: wgpu::BindingResource::Sampler(sampler),
+                        },
+                    ]
+                })
+                .collect();
             bind_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(&material.name),
                 layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::Sampler(sampler),
-                    },
-                ],
+                entries: &entries,
             }));
         }
         // Storage bindings cannot be empty; scenes always have a material, but keep the

@@ -98,11 +98,13 @@ pub enum SceneError {
         reason: String,
     },
 
-    /// A base-color image could not be located or decoded.
-    #[error("{file}: {image} (base color of {material}): {reason}")]
+    /// A material's image could not be located or decoded.
+    #[error("{file}: {image} ({slot} of {material}): {reason}")]
     InvalidImage {
         file: PathBuf,
         image: String,
+        /// Which of the material's textures uses it: "base color", "emissive", ...
+        slot: &'static str,
         material: String,
         reason: String,
     },

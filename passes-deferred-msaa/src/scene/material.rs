@@ -23,8 +23,14 @@ pub struct Material {
     pub base_color_texture: Option<TextureRef>,
     pub metallic_factor: f32,
     pub roughness_factor: f32,
-    /// Linear RGB emitted radiance before `emissive_strength`.
+    /// glTF metallicRoughnessTexture, linear, sampled with TEXCOORD_0: blue multiplies
+    /// `metallic_factor`, green `roughness_factor` (red is unused; glTF packs occlusion there).
+    pub metallic_roughness_texture: Option<TextureRef>,
+    /// Linear RGB emitted radiance before `emissive_strength` and the emissive texture.
     pub emissive_factor: [f32; 3],
+    /// sRGB texture sampled with TEXCOORD_0, multiplied with `emissive_factor`: without it
+    /// the factor alone is emitted everywhere.
+    pub emissive_texture: Option<TextureRef>,
     /// KHR_materials_emissive_strength multiplier (1 without the extension).
     pub emissive_strength: f32,
     pub alpha_mode: AlphaMode,
@@ -44,7 +50,9 @@ impl Material {
             base_color_texture: None,
             metallic_factor: 1.0,
             roughness_factor: 1.0,
+            metallic_roughness_texture: None,
             emissive_factor: [0.0; 3],
+            emissive_texture: None,
             emissive_strength: 1.0,
             alpha_mode: AlphaMode::Opaque,
             double_sided: false,
@@ -52,7 +60,8 @@ impl Material {
         }
     }
 
-    /// Emitted radiance, `emissive_factor * emissive_strength`.
+    /// Emitted radiance where the emissive texture is white: `emissive_factor *
+    /// emissive_strength`.
     pub fn emission(&self) -> [f32; 3] {
         self.emissive_factor.map(|c| c * self.emissive_strength)
     }

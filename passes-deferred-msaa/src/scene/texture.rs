@@ -14,7 +14,7 @@ pub struct TextureImage {
 }
 
 /// How texture coordinates outside `[0, 1]` wrap (glTF sampler `wrapS` / `wrapT`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum WrapMode {
     Repeat,
     MirroredRepeat,
@@ -22,14 +22,14 @@ pub enum WrapMode {
 }
 
 /// Texel filtering between texels or between mip levels.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum FilterMode {
     Nearest,
     Linear,
 }
 
 /// A glTF sampler, split the way wgpu's `SamplerDescriptor` is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Sampler {
     pub wrap_u: WrapMode,
     pub wrap_v: WrapMode,

@@ -3,18 +3,15 @@
 // deferred light passes run), so forward and deferred images agree. Emission and unlit
 // colors are what gbuffer.wgsl writes into the HDR target; lit surfaces add the ambient
 // term and every light, as light.wgsl's draws add them.
-// Composed after common.wgsl, scene.wgsl and brdf.wgsl.
-
-@group(1) @binding(0) var base_color_tex: texture_2d<f32>;
-@group(1) @binding(1) var base_color_sampler: sampler;
+// Composed after common.wgsl, scene.wgsl, material.wgsl (the material model gbuffer.wgsl
+// reads too) and brdf.wgsl.
 
 // Alpha MASK materials: discard below the cutoff (one pipeline per material state).
 override MASKED: bool = false;
-// Which material features the scene has, as in gbuffer.wgsl (analysis/variant.rs);
-// the light kinds are brdf.wgsl's. The defaults are the general shader.
-override TEXTURES: bool = true;
+// Whether the scene has double-sided materials, as in gbuffer.wgsl (analysis/variant.rs);
+// the material gates are material.wgsl's, the light kinds brdf.wgsl's. The defaults are
+// the general shader.
 override DOUBLE_SIDED: bool = true;
-override EMISSIVE: bool = true;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -71,24 +68,18 @@ fn vs_sample(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> SampleVar
 
 fn shade(a: Attributes, front: bool) -> vec4<f32> {
     let material = materials[a.material];
-    var base = material.base_color;
-    if TEXTURES {
-        base *= textureSample(base_color_tex, base_color_sampler, a.uv);
-    }
-    if MASKED && base.a < material.alpha_cutoff {
+    let m = sample_material(material, a.uv);
+    if MASKED && m.base.a < material.alpha_cutoff {
         discard;
     }
-    var color = vec3<f32>(0.0);
-    if EMISSIVE {
-        color = material.emission;
-    }
+    var color = m.emission;
     if (material.flags & FLAG_UNLIT) != 0u {
-        color += base.rgb;
+        color += m.base.rgb;
     } else {
         // Back faces reach here only for double-sided materials: light their other side.
         let n = unit_normal(select(-a.normal, a.normal, front || !DOUBLE_SIDED));
-        let s = Surface(a.position, n, safe_normalize(-a.position), base.rgb, material.metallic, material.roughness);
-        color += light_info.ambient * base.rgb;
+        let s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness);
+        color += light_info.ambient * m.base.rgb;
         for (var i = 0u; i < light_info.light_count; i++) {
             color += shade_light(s, lights[i]);
         }

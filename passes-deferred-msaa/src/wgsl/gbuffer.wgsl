@@ -1,20 +1,18 @@
 // The G-buffer pass: one draw per mesh (instance index = mesh index), writing
 // albedo, octahedral normal, material, linear view depth and the HDR target (emission,
 // or the whole color of unlit materials, so that it is added exactly once).
-// Composed after common.wgsl and scene.wgsl, and before the generated `GBufferOut` and
-// `gbuffer_out`, which keep the channels the pass writes (an unlit-only scene's G-buffer
-// has no normal or material) at consecutive locations.
+// Composed after common.wgsl, scene.wgsl and material.wgsl, and before the generated
+// `GBufferOut` and `gbuffer_out`, which keep the channels the pass writes (an unlit-only
+// scene's G-buffer has no normal or material) at consecutive locations.
+//
+// Channels: albedo = base color RGB (textured); normal = octahedral unit normal;
+// material = metallic and roughness after their texture, flags, edge bits; view depth;
+// HDR = emission after its texture (or the whole unlit color). Textures change what the
+// channels hold, not how many there are.
 
-@group(1) @binding(0) var base_color_tex: texture_2d<f32>;
-@group(1) @binding(1) var base_color_sampler: sampler;
-
-// Which material features the scene has (analysis/variant.rs); the defaults are the
-// general shader. Without textures every material's is white, without double-sided
-// materials back faces are culled, without emission it is zero: the gated code would
-// change nothing.
-override TEXTURES: bool = true;
+// Whether the scene has double-sided materials (analysis/variant.rs; the default is the
+// general shader): without them back faces are culled and the flip changes nothing.
 override DOUBLE_SIDED: bool = true;
-override EMISSIVE: bool = true;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -61,15 +59,7 @@ fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
     return out;
 }
 
-fn base_color(in: Varyings) -> vec4<f32> {
-    var base = materials[in.material].base_color;
-    if TEXTURES {
-        base *= textureSample(base_color_tex, base_color_sampler, in.uv);
-    }
-    return base;
-}
-
-fn surface(in: Varyings, base: vec4<f32>, front: bool, coverage: u32) -> GBuffer {
+fn surface(in: Varyings, m: MaterialSample, front: bool, coverage: u32) -> GBuffer {
     let material = materials[in.material];
     // Back faces reach here only for double-sided materials: light their other side.
     let n = unit_normal(select(-in.normal, in.normal, front || !DOUBLE_SIDED));
@@ -82,15 +72,11 @@ fn surface(in: Varyings, base: vec4<f32>, front: bool, coverage: u32) -> GBuffer
     }
     let unlit = (material.flags & FLAG_UNLIT) != 0u;
     var out: GBuffer;
-    out.albedo = vec4<f32>(base.rgb, 1.0);
+    out.albedo = vec4<f32>(m.base.rgb, 1.0);
     out.normal = vec4<f32>(oct_encode(n), 0.0, 0.0);
-    out.material = vec4<f32>(material.metallic, material.roughness, f32(material.flags), f32(edge)) / vec4<f32>(1.0, 1.0, 255.0, 255.0);
+    out.material = vec4<f32>(m.metallic, m.roughness, f32(material.flags), f32(edge)) / vec4<f32>(1.0, 1.0, 255.0, 255.0);
     out.view_depth = vec4<f32>(in.view_depth, 0.0, 0.0, 0.0);
-    var emission = vec3<f32>(0.0);
-    if EMISSIVE {
-        emission = material.emission;
-    }
-    let emitted = select(emission, base.rgb + emission, unlit);
+    let emitted = select(m.emission, m.base.rgb + m.emission, unlit);
     out.hdr = vec4<f32>(min(emitted, vec3<f32>(HALF_MAX)), 1.0);
     return out;
 }
@@ -101,7 +87,7 @@ fn fs_opaque(
     @builtin(front_facing) front: bool,
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
-    return gbuffer_out(surface(in, base_color(in), front, coverage));
+    return gbuffer_out(surface(in, sample_material(materials[in.material], in.uv), front, coverage));
 }
 
 // Alpha MASK: coverage is decided per pixel by the base color's alpha.
@@ -111,9 +97,9 @@ fn fs_masked(
     @builtin(front_facing) front: bool,
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
-    let base = base_color(in);
-    if base.a < materials[in.material].alpha_cutoff {
+    let m = sample_material(materials[in.material], in.uv);
+    if m.base.a < materials[in.material].alpha_cutoff {
         discard;
     }
-    return gbuffer_out(surface(in, base, front, coverage));
+    return gbuffer_out(surface(in, m, front, coverage));
 }

@@ -44,51 +44,69 @@ impl Loader<'_> {
         let ignored: Vec<&str> = [
             ("normal", material.normal_texture().is_some()),
             ("occlusion", material.occlusion_texture().is_some()),
-            (
-                "metallicRoughness",
-                pbr.metallic_roughness_texture().is_some(),
-            ),
-            ("emissive", material.emissive_texture().is_some()),
         ]
         .into_iter()
         .filter_map(|(kind, present)| present.then_some(kind))
         .collect();
         if !ignored.is_empty() {
             self.builder.warnings.push(format!(
-                "{name}: {} texture(s) ignored; only base color textures are implemented",
+                "{name}: {} texture(s) ignored; only base color, metallicRoughness and \
+                 emissive textures are implemented",
                 ignored.join(", ")
             ));
         }
-        let base_color_texture = match pbr.base_color_texture() {
-            Some(info) if info.tex_coord() != 0 => {
-                self.builder.warnings.push(format!(
-                    "{name}: base color texture uses TEXCOORD_{}, only TEXCOORD_0 is loaded; \
-                     texture ignored",
-                    info.tex_coord()
-                ));
-                None
-            }
-            Some(info) => {
-                let texture = info.texture();
-                Some(TextureRef {
-                    image: self.base_color_image(texture.source().index(), &name)?,
-                    sampler: sampler(&texture.sampler()),
-                })
-            }
-            None => None,
-        };
+        let base_color_texture =
+            self.texture(pbr.base_color_texture(), "base color", true, &name)?;
+        let metallic_roughness_texture = self.texture(
+            pbr.metallic_roughness_texture(),
+            "metallicRoughness",
+            false,
+            &name,
+        )?;
+        let emissive_texture =
+            self.texture(material.emissive_texture(), "emissive", true, &name)?;
         Ok(Material {
             base_color_factor: pbr.base_color_factor(),
             base_color_texture,
             metallic_factor: pbr.metallic_factor(),
             roughness_factor: pbr.roughness_factor(),
+            metallic_roughness_texture,
             emissive_factor: material.emissive_factor(),
+            emissive_texture,
             emissive_strength: material.emissive_strength().unwrap_or(1.0),
             alpha_mode,
             double_sided: material.double_sided(),
             unlit: material.unlit(),
             name,
         })
+    }
+
+    /// The texture `info` refers to as the material's `slot` texture, its image decoded as
+    /// `srgb` color or linear data; `None` without one, or (with a warning) when it uses
+    /// another set of texture coordinates than TEXCOORD_0, the only one loaded.
+    fn texture(
+        &mut self,
+        info: Option<gltf::texture::Info>,
+        slot: &'static str,
+        srgb: bool,
+        material: &str,
+    ) -> Result<Option<TextureRef>, SceneError> {
+        let Some(info) = info else {
+            return Ok(None);
+        };
+        if info.tex_coord() != 0 {
+            self.builder.warnings.push(format!(
+                "{material}: {slot} texture uses TEXCOORD_{}, only TEXCOORD_0 is loaded; \
+                 texture ignored",
+                info.tex_coord()
+            ));
+            return Ok(None);
+        }
+        let texture = info.texture();
+        Ok(Some(TextureRef {
+            image: self.image(texture.source().index(), srgb, slot, material)?,
+            sampler: sampler(&texture.sampler()),
+        }))
     }
 }
 

@@ -3,11 +3,11 @@
 //! What is read: the default scene (else the first) with its node hierarchy; triangle
 //! primitives (TRIANGLES, and strips and fans converted to lists) with POSITION, NORMAL (flat
 //! normals generated when missing) and TEXCOORD_0 (application attributes, `_`-prefixed,
-//! are ignored as the spec allows); metallic-roughness materials with their
-//! base-color texture, emissive, alpha OPAQUE/MASK, double-sided and the extensions in
-//! [`extensions::IMPLEMENTED`]; cameras; KHR_lights_punctual lights. What is not: other
-//! textures, BLEND (drawn opaque), points and lines, skins, morph targets and animations, each
-//! with a warning in [`Scene::warnings`].
+//! are ignored as the spec allows); metallic-roughness materials with their base-color,
+//! metallicRoughness and emissive textures, emission, alpha OPAQUE/MASK, double-sided and the
+//! extensions in [`extensions::IMPLEMENTED`]; cameras; KHR_lights_punctual lights. What is
+//! not: normal and occlusion textures, BLEND (drawn opaque), points and lines, skins, morph
+//! targets and animations, each with a warning in [`Scene::warnings`].
 
 mod accessor;
 mod camera;
@@ -97,8 +97,9 @@ struct Loader<'a> {
     /// glTF material index (`None` = the default material) to scene material index, so each is
     /// converted once and only if some primitive uses it.
     materials: HashMap<Option<usize>, usize>,
-    /// glTF image index to scene texture index: each image is decoded once.
-    images: HashMap<usize, usize>,
+    /// glTF image index and whether it is sRGB to scene texture index: each image is decoded
+    /// once per role (an image used both as color and as data is uploaded in both formats).
+    images: HashMap<(usize, bool), usize>,
     /// What is left of [`AssetPolicy::max_scene_bytes`].
     budget: Budget,
 }

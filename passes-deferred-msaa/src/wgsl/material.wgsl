@@ -1,0 +1,53 @@
+// A material's textures (group 1, one bind group per material: gpu_scene/materials.rs) and
+// what the G-buffer and forward passes read from them, so every pipeline renders the same
+// material model. Composed after common.wgsl and scene.wgsl.
+//
+// A material without one of these textures binds a white texel, which multiplies its
+// factor by exactly one.
+
+@group(1) @binding(0) var base_color_tex: texture_2d<f32>;
+@group(1) @binding(1) var base_color_sampler: sampler;
+@group(1) @binding(2) var emissive_tex: texture_2d<f32>;
+@group(1) @binding(3) var emissive_sampler: sampler;
+// Linear data, glTF's packing: blue is metalness, green roughness.
+@group(1) @binding(4) var metal_rough_tex: texture_2d<f32>;
+@group(1) @binding(5) var metal_rough_sampler: sampler;
+
+// Which material features the scene has (analysis/variant.rs); the defaults are the
+// general shader. Without textures of a kind every material's is white, without emission
+// it is zero: the gated code would change nothing.
+override TEXTURES: bool = true;
+override EMISSIVE_TEXTURES: bool = true;
+override METAL_ROUGH_TEXTURES: bool = true;
+override EMISSIVE: bool = true;
+
+// A material's parameters at one point of a surface.
+struct MaterialSample {
+    // Linear RGB and alpha.
+    base: vec4<f32>,
+    // Emitted radiance.
+    emission: vec3<f32>,
+    metallic: f32,
+    roughness: f32,
+}
+
+// Material `m` at texture coordinate `uv` (TEXCOORD_0). Sampled in uniform control flow:
+// callers discard only after this returns.
+fn sample_material(m: MaterialData, uv: vec2<f32>) -> MaterialSample {
+    var out = MaterialSample(m.base_color, vec3<f32>(0.0), m.metallic, m.roughness);
+    if TEXTURES {
+        out.base *= textureSample(base_color_tex, base_color_sampler, uv);
+    }
+    if EMISSIVE {
+        out.emission = m.emission;
+        if EMISSIVE_TEXTURES {
+            out.emission *= textureSample(emissive_tex, emissive_sampler, uv).rgb;
+        }
+    }
+    if METAL_ROUGH_TEXTURES {
+        let packed = textureSample(metal_rough_tex, metal_rough_sampler, uv);
+        out.metallic *= packed.b;
+        out.roughness *= packed.g;
+    }
+    return out;
+}
