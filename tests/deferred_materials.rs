@@ -59,8 +59,23 @@ fn quad_file(
     images: &[Vec<u8>],
     lights: &[(Value, [f64; 3])],
 ) -> String {
+    quad_file_colored(test, material, images, lights, None)
+}
+
+/// [`quad_file`] with `color_0` (float VEC4, per corner) as the quad's COLOR_0.
+fn quad_file_colored(
+    test: &str,
+    material: Value,
+    images: &[Vec<u8>],
+    lights: &[(Value, [f64; 3])],
+    color_0: Option<[[f32; 4]; 4]>,
+) -> String {
     let mut gltf = Gltf::default();
-    gltf.json["extensionsUsed"] = json!(["KHR_materials_emissive_strength", "KHR_lights_punctual"]);
+    gltf.json["extensionsUsed"] = json!([
+        "KHR_materials_emissive_strength",
+        "KHR_lights_punctual",
+        "KHR_materials_unlit"
+    ]);
     let positions = gltf.floats(&[
         [-1.0, -1.0, 0.0],
         [1.0, -1.0, 0.0],
@@ -70,6 +85,10 @@ fn quad_file(
     let normals = gltf.floats(&[[0.0, 0.0, 1.0]; 4]);
     let uvs = gltf.floats(&[[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]]);
     let indices = gltf.indices_u16(&[0, 1, 2, 0, 2, 3]);
+    let mut attributes = json!({ "POSITION": positions, "NORMAL": normals, "TEXCOORD_0": uvs });
+    if let Some(colors) = color_0 {
+        attributes["COLOR_0"] = json!(gltf.floats(&colors));
+    }
     gltf.push(
         "samplers",
         json!({ "magFilter": NEAREST, "minFilter": NEAREST, "wrapS": CLAMP, "wrapT": CLAMP }),
@@ -86,7 +105,7 @@ fn quad_file(
     gltf.mesh(
         "quad",
         json!({
-            "attributes": { "POSITION": positions, "NORMAL": normals, "TEXCOORD_0": uvs },
+            "attributes": attributes,
             "indices": indices,
             "material": material,
         }),
@@ -294,5 +313,39 @@ fn deferred_tiled_and_forward_agree_on_a_textured_pbr_quad() {
             "{pipeline} and {}: only {close} of {total} pixels within 2/255",
             PIPELINES[0]
         );
+    }
+}
+
+/// COLOR_0 multiplies the base color: an unlit white quad whose vertices are all
+/// (1, 0.5, 0.25) shows exactly that color in every pipeline, and an unlit red-textured
+/// one its product with the texture.
+#[test]
+fn color_0_tints_the_base_color() {
+    let tint = [1.0, 0.5, 0.25, 1.0];
+    let red = [255, 0, 0, 255];
+    for (test, material, images, expected) in [
+        ("color_0_white", json!({}), vec![], [1.0, 0.5, 0.25]),
+        (
+            "color_0_textured",
+            json!({ "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } } }),
+            vec![png_2x2([red; 4])],
+            [1.0, 0.0, 0.0],
+        ),
+    ] {
+        let mut material = material;
+        material["extensions"] = json!({ "KHR_materials_unlit": {} });
+        let file = quad_file_colored(test, material, &images, &[], Some([tint; 4]));
+        let scene = load(&file);
+        for pipeline in PIPELINES {
+            let hdr = resolved(pipeline, &file, scene.clone());
+            for (quadrant, x, y) in quadrant_interiors() {
+                let got = hdr[(y * SIZE.0 + x) as usize];
+                assert_eq!(
+                    got[..3],
+                    expected,
+                    "{test}, {pipeline}: pixel ({x}, {y}) in quadrant {quadrant}"
+                );
+            }
+        }
     }
 }

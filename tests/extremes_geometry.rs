@@ -62,6 +62,7 @@ fn triangle(parts: &mut Parts, name: &str, corners: [DVec3; 3], material: usize)
                 position: c.as_vec3().to_array(),
                 normal: [0.0, 0.0, 1.0],
                 uv: [0.0, 0.0],
+                color: Vertex::WHITE,
             })
             .collect(),
         indices: vec![0, 1, 2],
@@ -241,6 +242,7 @@ fn a_million_triangles_render_at_16x16() {
                 position: [x as f32, y as f32, z as f32],
                 normal: [0.0, 0.0, 1.0],
                 uv: [0.0, 0.0],
+                color: Vertex::WHITE,
             });
         }
     }

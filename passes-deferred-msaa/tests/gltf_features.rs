@@ -7,7 +7,7 @@ use crate::common;
 use common::{temp_dir, Gltf, SHORT};
 use glam::{DQuat, DVec3};
 use passes_deferred_msaa::scene::{
-    FilterMode, Material, Projection, Sampler, Scene, TextureRef, WrapMode,
+    FilterMode, Material, Projection, Sampler, Scene, TextureRef, Vertex, WrapMode,
 };
 use serde_json::json;
 
@@ -416,4 +416,49 @@ fn emissive_and_metallic_roughness_textures_are_loaded_in_their_color_spaces() {
         })
     );
     assert_eq!(m.base_color_texture, None);
+}
+
+/// COLOR_0 in each encoding the spec allows (float VEC3, normalized UNSIGNED_BYTE VEC4,
+/// normalized UNSIGNED_SHORT VEC4) becomes the vertices' 16-bit RGBA, and is kept when flat
+/// normals un-index the primitive; without COLOR_0 vertices are white.
+#[test]
+fn color_0_in_every_encoding_becomes_the_vertex_color() {
+    let mut gltf = Gltf::default();
+    let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let float_rgb = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 0.5]];
+    let bytes: [u8; 12] = [255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 51, 0];
+    let shorts: Vec<u8> = [65535u16, 0, 0, 65535, 0, 32768, 0, 0, 0, 0, 65535, 65535]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    let colors = [
+        gltf.floats(&float_rgb),
+        gltf.accessor(&bytes, 5121, 3, "VEC4", true),
+        gltf.accessor(&shorts, common::UNSIGNED_SHORT, 3, "VEC4", true),
+    ];
+    for color in colors {
+        let positions = gltf.floats(&corners);
+        gltf.mesh(
+            "colored",
+            json!({ "attributes": { "POSITION": positions, "COLOR_0": color } }),
+        );
+    }
+    gltf.triangle(None);
+    let scene = load_embedded("color_0", &gltf);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let colors: Vec<Vec<[u16; 4]>> = scene
+        .meshes
+        .iter()
+        .map(|m| m.vertices.iter().map(|v| v.color).collect())
+        .collect();
+    const MAX: u16 = u16::MAX;
+    assert_eq!(
+        colors,
+        [
+            vec![[MAX, 0, 0, MAX], [0, MAX, 0, MAX], [0, 0, 32768, MAX]],
+            vec![[MAX, 0, 0, MAX], [0, MAX, 0, 32896], [0, 0, 13107, 0]],
+            vec![[MAX, 0, 0, MAX], [0, 32768, 0, 0], [0, 0, MAX, MAX]],
+            vec![Vertex::WHITE; 3],
+        ]
+    );
 }

@@ -68,6 +68,7 @@ impl Parts {
                     position: c.as_vec3().to_array(),
                     normal: normal.as_vec3().to_array(),
                     uv: [0.0, 0.0],
+                    color: Vertex::WHITE,
                 });
             }
             for i in 1..corners.len() as u32 - 1 {

@@ -36,12 +36,14 @@ pub(super) struct MeshBuffers {
     pub draws: Vec<MeshDraw>,
 }
 
-/// The vertex layout of scene meshes: [`Vertex`] at locations 0 (position), 1 (normal)
-/// and 2 (uv).
+/// The vertex layout of scene meshes: [`Vertex`] at locations 0 (position), 1 (normal),
+/// 2 (uv) and 3 (color).
 pub const VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     array_stride: std::mem::size_of::<Vertex>() as u64,
     step_mode: wgpu::VertexStepMode::Vertex,
-    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2],
+    attributes: &wgpu::vertex_attr_array![
+        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Unorm16x4
+    ],
 };
 
 impl MeshBuffers {

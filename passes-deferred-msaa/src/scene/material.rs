@@ -17,7 +17,7 @@ pub enum AlphaMode {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     pub name: String,
-    /// Linear RGBA, multiplied with the base-color texture.
+    /// Linear RGBA, multiplied with the base-color texture and the vertex color.
     pub base_color_factor: [f32; 4],
     /// sRGB texture sampled with TEXCOORD_0.
     pub base_color_texture: Option<TextureRef>,

@@ -4,7 +4,7 @@ use glam::{DMat3, DMat4, DVec3, Vec3};
 
 use super::bounds::Aabb;
 
-/// One vertex as the G-buffer pass reads it: 32 bytes, no padding, uploadable as is.
+/// One vertex as the G-buffer pass reads it: 40 bytes, no padding, uploadable as is.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct Vertex {
@@ -15,6 +15,20 @@ pub struct Vertex {
     pub normal: [f32; 3],
     /// TEXCOORD_0; `[0, 0]` when the source has none.
     pub uv: [f32; 2],
+    /// COLOR_0, linear RGBA as 16-bit unorm (a multiplier of the base color: 8 bits would
+    /// band dark linear colors, floats would take 8 more bytes); [`Vertex::WHITE`] when the
+    /// source has none.
+    pub color: [u16; 4],
+}
+
+impl Vertex {
+    /// The color of vertices without COLOR_0: multiplies the base color by exactly one.
+    pub const WHITE: [u16; 4] = [u16::MAX; 4];
+
+    /// `rgba` (components in [0, 1], clamped) as [`Vertex::color`] stores it.
+    pub fn color_from(rgba: [f32; 4]) -> [u16; 4] {
+        rgba.map(|c| (c.clamp(0.0, 1.0) * f32::from(u16::MAX)).round() as u16)
+    }
 }
 
 /// An indexed triangle list with one material.

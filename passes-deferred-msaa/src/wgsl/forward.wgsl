@@ -17,6 +17,7 @@ struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
+    @location(3) color: vec4<f32>,
 }
 
 // What shading needs, however it was interpolated.
@@ -25,6 +26,7 @@ struct Attributes {
     position: vec3<f32>,
     normal: vec3<f32>,
     uv: vec2<f32>,
+    color: vec4<f32>,
     material: u32,
 }
 
@@ -36,6 +38,7 @@ struct PixelVaryings {
     @location(1) @interpolate(perspective, centroid) normal: vec3<f32>,
     @location(2) @interpolate(perspective, centroid) uv: vec2<f32>,
     @location(3) @interpolate(flat) material: u32,
+    @location(4) @interpolate(perspective, centroid) color: vec4<f32>,
 }
 
 // `shading: sample`: `sample` interpolation runs the fragment shader once per covered
@@ -46,29 +49,30 @@ struct SampleVaryings {
     @location(1) @interpolate(perspective, sample) normal: vec3<f32>,
     @location(2) @interpolate(perspective, sample) uv: vec2<f32>,
     @location(3) @interpolate(flat) material: u32,
+    @location(4) @interpolate(perspective, sample) color: vec4<f32>,
 }
 
 fn transform(v: VertexIn, mesh_index: u32) -> Attributes {
     let mesh = meshes[mesh_index];
     let p = (mesh.model * vec4<f32>(v.position, 1.0)).xyz;
-    return Attributes(p, mesh.normal_matrix * v.normal, v.uv, mesh.material);
+    return Attributes(p, mesh.normal_matrix * v.normal, v.uv, v.color, mesh.material);
 }
 
 @vertex
 fn vs_pixel(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> PixelVaryings {
     let a = transform(v, mesh_index);
-    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material);
+    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color);
 }
 
 @vertex
 fn vs_sample(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> SampleVaryings {
     let a = transform(v, mesh_index);
-    return SampleVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material);
+    return SampleVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color);
 }
 
 fn shade(a: Attributes, front: bool) -> vec4<f32> {
     let material = materials[a.material];
-    let m = sample_material(material, a.uv);
+    let m = sample_material(material, a.uv, a.color);
     if MASKED && m.base.a < material.alpha_cutoff {
         discard;
     }
@@ -89,10 +93,10 @@ fn shade(a: Attributes, front: bool) -> vec4<f32> {
 
 @fragment
 fn fs_pixel(in: PixelVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade(Attributes(in.position, in.normal, in.uv, in.material), front);
+    return shade(Attributes(in.position, in.normal, in.uv, in.color, in.material), front);
 }
 
 @fragment
 fn fs_sample(in: SampleVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade(Attributes(in.position, in.normal, in.uv, in.material), front);
+    return shade(Attributes(in.position, in.normal, in.uv, in.color, in.material), front);
 }

@@ -18,6 +18,7 @@ struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
+    @location(3) color: vec4<f32>,
 }
 
 // Attributes are interpolated at the centroid of the covered samples: at a partially
@@ -33,6 +34,7 @@ struct Varyings {
     // triangle covers part of the pixel (the centroid edge detector of seed 000).
     @location(4) @interpolate(perspective, centroid) at_centroid: vec2<f32>,
     @location(5) @interpolate(perspective, center) at_center: vec2<f32>,
+    @location(6) @interpolate(perspective, centroid) color: vec4<f32>,
 }
 
 // Every channel the pass can write; `gbuffer_out` picks those it does.
@@ -52,6 +54,7 @@ fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
     out.clip = camera.view_proj * vec4<f32>(p, 1.0);
     out.normal = mesh.normal_matrix * v.normal;
     out.uv = v.uv;
+    out.color = v.color;
     out.view_depth = dot(p, camera.forward);
     out.material = mesh.material;
     out.at_centroid = out.clip.xy;
@@ -87,7 +90,7 @@ fn fs_opaque(
     @builtin(front_facing) front: bool,
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
-    return gbuffer_out(surface(in, sample_material(materials[in.material], in.uv), front, coverage));
+    return gbuffer_out(surface(in, sample_material(materials[in.material], in.uv, in.color), front, coverage));
 }
 
 // Alpha MASK: coverage is decided per pixel by the base color's alpha.
@@ -97,7 +100,7 @@ fn fs_masked(
     @builtin(front_facing) front: bool,
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
-    let m = sample_material(materials[in.material], in.uv);
+    let m = sample_material(materials[in.material], in.uv, in.color);
     if m.base.a < materials[in.material].alpha_cutoff {
         discard;
     }

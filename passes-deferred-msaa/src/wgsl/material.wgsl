@@ -31,10 +31,11 @@ struct MaterialSample {
     roughness: f32,
 }
 
-// Material `m` at texture coordinate `uv` (TEXCOORD_0). Sampled in uniform control flow:
-// callers discard only after this returns.
-fn sample_material(m: MaterialData, uv: vec2<f32>) -> MaterialSample {
-    var out = MaterialSample(m.base_color, vec3<f32>(0.0), m.metallic, m.roughness);
+// Material `m` at texture coordinate `uv` (TEXCOORD_0) with vertex color `color` (COLOR_0,
+// white without one), which multiplies the base color as glTF says. Sampled in uniform
+// control flow: callers discard only after this returns.
+fn sample_material(m: MaterialData, uv: vec2<f32>, color: vec4<f32>) -> MaterialSample {
+    var out = MaterialSample(m.base_color * color, vec3<f32>(0.0), m.metallic, m.roughness);
     if TEXTURES {
         out.base *= textureSample(base_color_tex, base_color_sampler, uv);
     }

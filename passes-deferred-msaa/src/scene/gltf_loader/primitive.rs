@@ -37,7 +37,13 @@ impl Loader<'_> {
             .ok_or_else(|| site.invalid("has no POSITION attribute".to_owned()))?;
         let normals = self.attribute::<3>(&site, primitive, Semantic::Normals, "NORMAL")?;
         let uvs = self.attribute::<2>(&site, primitive, Semantic::TexCoords(0), "TEXCOORD_0")?;
-        site.check_finite(&positions, normals.as_deref(), uvs.as_deref())?;
+        let colors = self.colors(&site, primitive)?;
+        site.check_finite(
+            &positions,
+            normals.as_deref(),
+            uvs.as_deref(),
+            colors.as_deref(),
+        )?;
         let indices = match primitive.indices() {
             Some(accessor) => accessor::read_indices(&self.buffers, &accessor)
                 .map_err(|reason| site.accessor_error("indices", &accessor, reason))?,
@@ -48,10 +54,15 @@ impl Loader<'_> {
         // placement is not.
         self.reserve_memory(&site, primitive)?;
         let indices = triangle_list(mode, indices).map_err(|reason| site.invalid(reason))?;
-        let uvs = uvs.unwrap_or_default();
+        let vertices = interleave(
+            &positions,
+            normals.as_deref(),
+            uvs.as_deref(),
+            colors.as_deref(),
+        );
         let (vertices, mut indices) = match normals {
-            Some(normals) => (interleave(&positions, &normals, &uvs), indices),
-            None => flat_shaded(&positions, &uvs, &indices),
+            Some(_) => (vertices, indices),
+            None => flat_shaded(&vertices, &indices),
         };
         // A mirroring transform turns counter-clockwise triangles clockwise on screen; reversing
         // them here keeps the Mesh contract (front faces CCW in world space) for renderers.
@@ -121,6 +132,28 @@ impl Loader<'_> {
             })
             .transpose()
     }
+
+    /// COLOR_0 as RGBA (`None` when the primitive has none): VEC3 gets alpha 1; float,
+    /// normalized UNSIGNED_BYTE and UNSIGNED_SHORT as the spec allows.
+    fn colors(
+        &self,
+        site: &Site,
+        primitive: &gltf::Primitive,
+    ) -> Result<Option<Vec<[f32; 4]>>, SceneError> {
+        let Some(accessor) = primitive.get(&Semantic::Colors(0)) else {
+            return Ok(None);
+        };
+        let colors = match accessor.dimensions() {
+            gltf::accessor::Dimensions::Vec3 => {
+                accessor::read_vectors::<3>(&self.buffers, &accessor)
+                    .map(|rgb| rgb.into_iter().map(|[r, g, b]| [r, g, b, 1.0]).collect())
+            }
+            _ => accessor::read_vectors::<4>(&self.buffers, &accessor),
+        };
+        colors
+            .map(Some)
+            .map_err(|reason| site.accessor_error("COLOR_0", &accessor, reason))
+    }
 }
 
 /// Where in the file a primitive is, for error messages.
@@ -163,14 +196,16 @@ impl Site<'_> {
         positions: &[[f32; 3]],
         normals: Option<&[[f32; 3]]>,
         uvs: Option<&[[f32; 2]]>,
+        colors: Option<&[[f32; 4]]>,
     ) -> Result<(), SceneError> {
-        let attributes: [(&'static str, Option<Vec<&[f32]>>); 3] = [
+        let attributes: [(&'static str, Option<Vec<&[f32]>>); 4] = [
             ("position", Some(positions.iter().map(|p| &p[..]).collect())),
             (
                 "normal",
                 normals.map(|n| n.iter().map(|v| &v[..]).collect()),
             ),
             ("uv", uvs.map(|u| u.iter().map(|v| &v[..]).collect())),
+            ("color", colors.map(|c| c.iter().map(|v| &v[..]).collect())),
         ];
         let mut first_bad: Option<(usize, &'static str, Vec<f32>)> = None;
         for (attribute, values) in attributes {
@@ -241,16 +276,20 @@ fn triangle_list(mode: Mode, indices: Vec<u32>) -> Result<Vec<u32>, String> {
     }
 }
 
-/// Builds vertices from per-vertex attributes of equal length (`uvs` may be empty).
-fn interleave(positions: &[[f32; 3]], normals: &[[f32; 3]], uvs: &[[f32; 2]]) -> Vec<Vertex> {
-    positions
-        .iter()
-        .zip(normals)
-        .enumerate()
-        .map(|(i, (&position, &normal))| Vertex {
-            position,
-            normal,
-            uv: uvs.get(i).copied().unwrap_or_default(),
+/// Builds vertices from per-vertex attributes as long as `positions` (`None`: zero normals,
+/// for [`flat_shaded`] to replace; uv 0; white).
+fn interleave(
+    positions: &[[f32; 3]],
+    normals: Option<&[[f32; 3]]>,
+    uvs: Option<&[[f32; 2]]>,
+    colors: Option<&[[f32; 4]]>,
+) -> Vec<Vertex> {
+    (0..positions.len())
+        .map(|i| Vertex {
+            position: positions[i],
+            normal: normals.map_or([0.0; 3], |n| n[i]),
+            uv: uvs.map_or([0.0; 2], |u| u[i]),
+            color: colors.map_or(Vertex::WHITE, |c| Vertex::color_from(c[i])),
         })
         .collect()
 }

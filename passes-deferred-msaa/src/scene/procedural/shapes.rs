@@ -30,6 +30,7 @@ impl Shape {
                     position: p,
                     normal: p,
                     uv: [u, v],
+                    color: Vertex::WHITE,
                 });
             }
         }
@@ -88,6 +89,7 @@ impl Shape {
                     position: [cos, y, -sin],
                     normal,
                     uv: [u, y],
+                    color: Vertex::WHITE,
                 })
             })
             .collect();
@@ -129,6 +131,7 @@ impl Shape {
                     position: p,
                     normal,
                     uv: [p[0], p[1]],
+                    color: Vertex::WHITE,
                 })
                 .collect(),
             indices: (1..corners.len() as u32 - 1)
@@ -152,6 +155,7 @@ impl Shape {
                     .normalize()
                     .to_array(),
                 uv: v.uv,
+                color: v.color,
             })
             .collect();
         Shape {
