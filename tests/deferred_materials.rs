@@ -51,14 +51,9 @@ fn png_2x2(texels: [[u8; 4]; 4]) -> Vec<u8> {
 
 /// The quad with `material` (the JSON object; textures it names are `images` in order,
 /// each sampled NEAREST with clamping), the orthographic camera, and the
-/// KHR_lights_punctual `lights` (each placed by a node with `translation`) written as
+/// KHR_lights_punctual `lights` (each placed by a node with the given transform fields) written as
 /// `test`/quad.gltf; returns its path.
-fn quad_file(
-    test: &str,
-    material: Value,
-    images: &[Vec<u8>],
-    lights: &[(Value, [f64; 3])],
-) -> String {
+fn quad_file(test: &str, material: Value, images: &[Vec<u8>], lights: &[(Value, Value)]) -> String {
     quad_file_colored(test, material, images, lights, None)
 }
 
@@ -67,7 +62,7 @@ fn quad_file_colored(
     test: &str,
     material: Value,
     images: &[Vec<u8>],
-    lights: &[(Value, [f64; 3])],
+    lights: &[(Value, Value)],
     color_0: Option<[[f32; 4]; 4]>,
 ) -> String {
     let mut gltf = Gltf::default();
@@ -118,11 +113,10 @@ fn quad_file_colored(
     gltf.root(json!({ "camera": camera, "translation": [0.0, 0.0, 3.0] }));
     let list: Vec<&Value> = lights.iter().map(|(light, _)| light).collect();
     gltf.json["extensions"] = json!({ "KHR_lights_punctual": { "lights": list } });
-    for (index, (_, translation)) in lights.iter().enumerate() {
-        gltf.root(json!({
-            "translation": translation,
-            "extensions": { "KHR_lights_punctual": { "light": index } },
-        }));
+    for (index, (_, transform)) in lights.iter().enumerate() {
+        let mut node = transform.clone();
+        node["extensions"] = json!({ "KHR_lights_punctual": { "light": index } });
+        gltf.root(node);
     }
     let path = temp_dir(test).join("quad.gltf");
     gltf.write_embedded(&path);
@@ -213,7 +207,7 @@ fn metallic_roughness_texture_sets_metal_from_blue_and_rough_from_green() {
             },
         }),
         &[png_2x2(texels)],
-        &[(light, [-0.5, 0.5, 1.5])],
+        &[(light, json!({ "translation": [-0.5, 0.5, 1.5] }))],
     );
     let scene = load(&file);
     for pipeline in ["deferred_msaa_4x.ron", "forward_msaa_4x.ron"] {
@@ -257,7 +251,8 @@ fn metallic_roughness_texture_sets_metal_from_blue_and_rough_from_green() {
 }
 
 /// Deferred (fragment and tiled lighting) and forward render the same material model: on
-/// a quad with base-color, metallicRoughness and emissive textures under a point light,
+/// a quad with base-color, metallicRoughness, emissive and normal textures under a point
+/// light,
 /// their 8-bit images agree within 2/255 on at least 99% of pixels.
 #[test]
 fn deferred_tiled_and_forward_agree_on_a_textured_pbr_quad() {
@@ -272,13 +267,15 @@ fn deferred_tiled_and_forward_agree_on_a_textured_pbr_quad() {
             },
             "emissiveFactor": [0.2, 0.1, 0.0],
             "emissiveTexture": { "index": 2 },
+            "normalTexture": { "index": 3, "scale": 0.8 },
         }),
         &[
             png_2x2(texels([230, 40, 30, 255], [30, 90, 220, 255])),
             png_2x2(texels([0, 60, 255, 255], [0, 230, 0, 255])),
             png_2x2(texels([255, 255, 255, 255], [0, 0, 0, 255])),
+            png_2x2(texels([200, 150, 220, 255], [90, 60, 230, 255])),
         ],
-        &[(light, [0.4, -0.3, 1.2])],
+        &[(light, json!({ "translation": [0.4, -0.3, 1.2] }))],
     );
     let scene = load(&file);
     let gpu = gpu();
@@ -345,6 +342,77 @@ fn color_0_tints_the_base_color() {
                     expected,
                     "{test}, {pipeline}: pixel ({x}, {y}) in quadrant {quadrant}"
                 );
+            }
+        }
+    }
+}
+
+/// A normal texture tilts the shading normal in the tangent frame glTF defines (+X along
+/// u, +Y up the image, tangents from MikkTSpace as the file has none): under a directional
+/// light from the front, the right and a little above, each quadrant of a quad whose normal texels
+/// tilt right, up, left and down renders as the same quad with its geometric normal set to
+/// that texel's decoded normal, normalize(2 * texel / 255 - 1); the four differ, so a
+/// mirrored tangent or bitangent could not pass.
+#[test]
+fn normal_texture_tilts_the_normal_in_the_gltf_tangent_frame() {
+    use passes_deferred_msaa::glam::{DQuat, DVec3};
+    let texels = [
+        [204, 128, 230, 255],
+        [128, 204, 230, 255],
+        [52, 128, 230, 255],
+        [128, 52, 230, 255],
+    ];
+    let normals: Vec<[f32; 3]> = texels
+        .iter()
+        .map(|t| {
+            let n = [0, 1, 2].map(|c| f32::from(t[c]) / 255.0 * 2.0 - 1.0);
+            let length = n.iter().map(|c| c * c).sum::<f32>().sqrt();
+            n.map(|c| c / length)
+        })
+        .collect();
+    // The light travels towards -x, -y, -z (glTF lights shine down their node's -z), less
+    // down than left so that no two texels' normals face it alike.
+    let rotation = DQuat::from_rotation_arc(DVec3::NEG_Z, DVec3::new(-1.0, -0.4, -1.0).normalize());
+    let light = json!({ "type": "directional", "color": [1.0, 1.0, 1.0], "intensity": 2.0 });
+    let file = quad_file(
+        "normal_texture",
+        json!({
+            "pbrMetallicRoughness": { "metallicFactor": 0.0, "roughnessFactor": 0.6 },
+            "normalTexture": { "index": 0 },
+        }),
+        &[png_2x2(texels)],
+        &[(light, json!({ "rotation": rotation.to_array() }))],
+    );
+    let scene = load(&file);
+    for pipeline in ["deferred_msaa_4x.ron", "forward_msaa_4x.ron"] {
+        let mapped = resolved(pipeline, &file, scene.clone());
+        let plain: Vec<Vec<[f32; 4]>> = normals
+            .iter()
+            .map(|&normal| {
+                let mut plain = scene.clone();
+                plain.materials[0].normal_texture = None;
+                for vertex in &mut plain.meshes[0].vertices {
+                    vertex.normal = normal;
+                }
+                resolved(pipeline, &file, plain)
+            })
+            .collect();
+        for (quadrant, x, y) in quadrant_interiors() {
+            let i = (y * SIZE.0 + x) as usize;
+            let (got, want) = (mapped[i], plain[quadrant][i]);
+            let close = (0..3).all(|c| (got[c] - want[c]).abs() <= 4e-3 * want[c].max(1.0));
+            assert!(
+                close,
+                "{pipeline}: pixel ({x}, {y}) in quadrant {quadrant}: {got:?}, expected {want:?} \
+                 (normal {:?})",
+                normals[quadrant]
+            );
+        }
+        let i = (20 * SIZE.0 + 20) as usize;
+        for a in 0..4 {
+            for b in a + 1..4 {
+                let differ = (0..3).any(|c| (plain[a][i][c] - plain[b][i][c]).abs() > 0.01);
+                assert!(differ, "{pipeline}: normals {a} and {b} render alike");
             }
         }
     }

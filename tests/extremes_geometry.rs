@@ -63,6 +63,7 @@ fn triangle(parts: &mut Parts, name: &str, corners: [DVec3; 3], material: usize)
                 normal: [0.0, 0.0, 1.0],
                 uv: [0.0, 0.0],
                 color: Vertex::WHITE,
+                tangent: Vertex::NO_TANGENT,
             })
             .collect(),
         indices: vec![0, 1, 2],
@@ -243,6 +244,7 @@ fn a_million_triangles_render_at_16x16() {
                 normal: [0.0, 0.0, 1.0],
                 uv: [0.0, 0.0],
                 color: Vertex::WHITE,
+                tangent: Vertex::NO_TANGENT,
             });
         }
     }

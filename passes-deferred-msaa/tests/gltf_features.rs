@@ -276,7 +276,7 @@ fn unsupported_features_are_warnings_naming_them() {
         "materials",
         json!({
             "name": "bumpy",
-            "normalTexture": { "index": 0 },
+            "normalTexture": { "index": 1 },
             "occlusionTexture": { "index": 0 },
             "emissiveTexture": { "index": 1 },
             "pbrMetallicRoughness": { "metallicRoughnessTexture": { "index": 1 } },
@@ -301,8 +301,10 @@ fn unsupported_features_are_warnings_naming_them() {
             "glTF extension KHR_texture_transform is not implemented; its effect is ignored",
             "material 0 \"glass\": alphaMode BLEND is not supported (a G-buffer holds one surface \
              per sample); rendered as OPAQUE",
-            "material 1 \"bumpy\": normal, occlusion texture(s) ignored; only base color, \
-             metallicRoughness and emissive textures are implemented",
+            "mesh 1 \"triangle\" primitive 0: its material's normal texture needs TEXCOORD_0, \
+             which it lacks; drawn without the normal texture",
+            "material 1 \"bumpy\": occlusion texture ignored; only base color, \
+             metallicRoughness, normal and emissive textures are implemented",
             "mesh 2 \"dots\" primitive 0: mode Points is not triangles; skipped",
         ]
     );
@@ -461,4 +463,76 @@ fn color_0_in_every_encoding_becomes_the_vertex_color() {
             vec![Vertex::WHITE; 3],
         ]
     );
+}
+
+/// A unit quad in the xy plane facing +z, u along +x and v down the image (glTF's UV
+/// origin is the image's top left), with `material`; `extra` attributes are added.
+fn uv_quad(gltf: &mut Gltf, material: usize, extra: serde_json::Value) {
+    let positions = gltf.floats(&[
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ]);
+    let normals = gltf.floats(&[[0.0, 0.0, 1.0]; 4]);
+    let uvs = gltf.floats(&[[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]]);
+    let indices = gltf.indices_u16(&[0, 1, 2, 0, 2, 3]);
+    let mut attributes = json!({ "POSITION": positions, "NORMAL": normals, "TEXCOORD_0": uvs });
+    for (name, accessor) in extra.as_object().unwrap() {
+        attributes[name] = accessor.clone();
+    }
+    gltf.mesh(
+        "quad",
+        json!({ "attributes": attributes, "indices": indices, "material": material }),
+    );
+}
+
+/// Normal textures get tangents: TANGENT as the file has it, else MikkTSpace's, with the
+/// sign that makes the bitangent point up the image (+y here, as glTF's normal textures
+/// encode +Y); a mirroring node flips the sign; no normal texture, no tangents.
+#[test]
+fn normal_textures_get_tangents_from_the_file_or_mikktspace() {
+    let mut gltf = Gltf::default();
+    let view = gltf.view(&png_2x1());
+    gltf.push(
+        "images",
+        json!({ "bufferView": view, "mimeType": "image/png" }),
+    );
+    gltf.push("textures", json!({ "source": 0 }));
+    let bumpy = gltf.push(
+        "materials",
+        json!({ "normalTexture": { "index": 0, "scale": 0.5 } }),
+    );
+    let plain = gltf.push("materials", json!({}));
+    uv_quad(&mut gltf, bumpy, json!({}));
+    let tangents = gltf.floats(&[[0.0, 1.0, 0.0, -1.0]; 4]);
+    uv_quad(&mut gltf, bumpy, json!({ "TANGENT": tangents }));
+    uv_quad(&mut gltf, plain, json!({}));
+    // The first quad again, mirrored in x by its node.
+    let nodes = gltf.json["nodes"].as_array().unwrap().len();
+    gltf.root(json!({ "mesh": 0, "scale": [-1.0, 1.0, 1.0] }));
+    assert_eq!(nodes, 3);
+    let scene = load_embedded("tangents", &gltf);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let one = i16::MAX;
+    let tangents: Vec<[i16; 4]> = scene.meshes.iter().map(|m| m.vertices[0].tangent).collect();
+    assert_eq!(
+        tangents,
+        [
+            [one, 0, 0, one],
+            [0, one, 0, -one],
+            Vertex::NO_TANGENT,
+            [one, 0, 0, -one]
+        ]
+    );
+    assert!(scene.meshes.iter().all(|m| m
+        .vertices
+        .iter()
+        .all(|v| v.tangent == m.vertices[0].tangent)));
+    let m = &scene.materials[0];
+    assert_eq!(
+        (m.normal_texture.map(|t| t.image), m.normal_scale),
+        (Some(0), 0.5)
+    );
+    assert!(!scene.textures[0].srgb, "normal textures are linear data");
 }

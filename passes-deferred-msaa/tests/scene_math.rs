@@ -283,6 +283,7 @@ fn flat_shading_unindexes_with_face_normals() {
             normal: [9.0; 3],
             uv,
             color: [i; 4],
+            tangent: Vertex::NO_TANGENT,
         })
         .collect();
     // A triangle facing +Z, one facing -Y, one degenerate.

@@ -69,6 +69,7 @@ impl Parts {
                     normal: normal.as_vec3().to_array(),
                     uv: [0.0, 0.0],
                     color: Vertex::WHITE,
+                    tangent: Vertex::NO_TANGENT,
                 });
             }
             for i in 1..corners.len() as u32 - 1 {

@@ -24,6 +24,8 @@ pub struct Features {
     pub emissive_textures: bool,
     /// Some mesh's lit material samples a metallicRoughness texture.
     pub metal_rough_textures: bool,
+    /// Some mesh's lit material samples a normal texture.
+    pub normal_textures: bool,
     pub double_sided: bool,
     /// A 24-bit unorm depth buffer with standard Z resolves the geometry's depth range
     /// as finely as [`DepthRange::shallow`] asks. A reduction, like `unlit_only`: only a
@@ -33,7 +35,7 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 15] = [
+    pub const NAMES: [&'static str; 16] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -47,6 +49,7 @@ impl Features {
         "textures",
         "emissive_textures",
         "metal_rough_textures",
+        "normal_textures",
         "double_sided",
         "shallow_depth",
     ];
@@ -72,6 +75,7 @@ impl Features {
             textures: material(|m| m.base_color_texture.is_some()),
             emissive_textures: material(|m| m.is_emissive() && m.emissive_texture.is_some()),
             metal_rough_textures: material(|m| !m.unlit && m.metallic_roughness_texture.is_some()),
+            normal_textures: material(|m| !m.unlit && m.normal_texture.is_some()),
             double_sided: material(|m| m.double_sided),
             // With no geometry between the planes nothing is depth-tested: the general
             // pipeline is as good as any.
@@ -99,6 +103,7 @@ impl Features {
             textures: true,
             emissive_textures: true,
             metal_rough_textures: true,
+            normal_textures: true,
             double_sided: true,
             shallow_depth: false,
         }
@@ -131,6 +136,7 @@ impl Features {
             self.textures,
             self.emissive_textures,
             self.metal_rough_textures,
+            self.normal_textures,
             self.double_sided,
             self.shallow_depth,
         ];

@@ -33,6 +33,8 @@ pub enum Gate {
     EmissiveTextures,
     /// Sampling the metallicRoughness texture (without one it is white).
     MetalRoughTextures,
+    /// Perturbing normals by the normal texture (without one the normal is unchanged).
+    NormalTextures,
     /// Flipping back faces' normals (without double-sided materials back faces are
     /// culled).
     DoubleSided,
@@ -50,6 +52,7 @@ impl Gate {
             Gate::Textures => "textures",
             Gate::EmissiveTextures => "emissive_textures",
             Gate::MetalRoughTextures => "metal_rough_textures",
+            Gate::NormalTextures => "normal_textures",
             Gate::DoubleSided => "double_sided",
             Gate::Emissive => "emissive",
         }
@@ -64,6 +67,7 @@ impl Gate {
             Gate::Textures => "TEXTURES",
             Gate::EmissiveTextures => "EMISSIVE_TEXTURES",
             Gate::MetalRoughTextures => "METAL_ROUGH_TEXTURES",
+            Gate::NormalTextures => "NORMAL_TEXTURES",
             Gate::DoubleSided => "DOUBLE_SIDED",
             Gate::Emissive => "EMISSIVE",
         }
@@ -78,6 +82,7 @@ impl Gate {
             Gate::Textures => features.textures,
             Gate::EmissiveTextures => features.emissive_textures,
             Gate::MetalRoughTextures => features.metal_rough_textures,
+            Gate::NormalTextures => features.normal_textures,
             Gate::DoubleSided => features.double_sided,
             Gate::Emissive => features.emissive,
         }
@@ -127,6 +132,7 @@ impl GatedShader {
                 Textures,
                 EmissiveTextures,
                 MetalRoughTextures,
+                NormalTextures,
                 DoubleSided,
                 Emissive,
             ],
@@ -140,6 +146,7 @@ impl GatedShader {
                 Textures,
                 EmissiveTextures,
                 MetalRoughTextures,
+                NormalTextures,
                 DoubleSided,
                 Emissive,
             ],
@@ -275,7 +282,7 @@ mod tests {
         let general = Variant::general(GatedShader::Forward);
         assert!(general.is_general());
         assert!(general.constants().iter().all(|&(_, v)| v == 1.0));
-        assert_eq!(general.constants().len(), 8);
+        assert_eq!(general.constants().len(), 9);
     }
 
     #[test]
@@ -319,7 +326,7 @@ mod tests {
             [
                 (
                     "gbuffer.wgsl {textures, emissive_textures, metal_rough_textures, \
-                     double_sided, emissive}"
+                     normal_textures, double_sided, emissive}"
                         .to_owned(),
                     vec!["gbuffer".to_owned()]
                 ),

@@ -23,7 +23,7 @@ struct MaterialData {
     metallic: f32,
     roughness: f32,
     flags: u32,
-    _pad: u32,
+    normal_scale: f32,
 }
 
 /// What the G-buffer pass needs to pick a pipeline for a material.
@@ -42,8 +42,8 @@ pub(super) struct Materials {
 }
 
 /// A material's textures in binding order (material.wgsl): base color, emissive,
-/// metallicRoughness.
-const TEXTURE_SLOTS: u32 = 3;
+/// metallicRoughness, normal.
+const TEXTURE_SLOTS: u32 = 4;
 
 /// The layout of a material's bind group: per texture of [`TEXTURE_SLOTS`], the texture
 /// (binding `2 * slot`) and its sampler (binding `2 * slot + 1`).
@@ -106,7 +106,10 @@ impl Materials {
                 metallic: material.metallic_factor,
                 roughness: material.roughness_factor,
                 flags: if material.unlit { FLAG_UNLIT } else { FLAG_LIT },
-                _pad: 0,
+                normal_scale: match material.normal_texture {
+                    Some(_) => material.normal_scale,
+                    None => 0.0,
+                },
             });
             states.push(MaterialState {
                 double_sided: material.double_sided,
@@ -117,6 +120,7 @@ impl Materials {
                 material.base_color_texture,
                 material.emissive_texture,
                 material.metallic_roughness_texture,
+                material.normal_texture,
             ]
             .into_iter()
             .map(|texture| {

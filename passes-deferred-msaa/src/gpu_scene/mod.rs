@@ -156,7 +156,8 @@ impl GpuScene {
     }
 
     /// The layout of each material's bind group, as material.wgsl declares it: base-color,
-    /// emissive and metallicRoughness textures, each followed by its sampler (bindings 0-5).
+    /// emissive, metallicRoughness and normal textures, each followed by its sampler
+    /// (bindings 0-7).
     pub fn material_layout(&self) -> &wgpu::BindGroupLayout {
         &self.material_layout
     }

@@ -26,6 +26,10 @@ pub struct Material {
     /// glTF metallicRoughnessTexture, linear, sampled with TEXCOORD_0: blue multiplies
     /// `metallic_factor`, green `roughness_factor` (red is unused; glTF packs occlusion there).
     pub metallic_roughness_texture: Option<TextureRef>,
+    /// glTF normalTexture, linear tangent-space normals sampled with TEXCOORD_0 along the
+    /// vertices' tangents; its X and Y are scaled by `normal_scale`.
+    pub normal_texture: Option<TextureRef>,
+    pub normal_scale: f32,
     /// Linear RGB emitted radiance before `emissive_strength` and the emissive texture.
     pub emissive_factor: [f32; 3],
     /// sRGB texture sampled with TEXCOORD_0, multiplied with `emissive_factor`: without it
@@ -51,6 +55,8 @@ impl Material {
             metallic_factor: 1.0,
             roughness_factor: 1.0,
             metallic_roughness_texture: None,
+            normal_texture: None,
+            normal_scale: 1.0,
             emissive_factor: [0.0; 3],
             emissive_texture: None,
             emissive_strength: 1.0,

@@ -21,6 +21,7 @@ mod mips;
 mod normals;
 mod procedural;
 mod stats;
+mod tangents;
 mod texture;
 
 use std::path::Path;
@@ -37,6 +38,7 @@ pub use mesh::{Mesh, Vertex};
 pub use normals::flat_shaded;
 pub use procedural::{builtin_names, BuiltinParam, BuiltinScene, BUILTIN_PREFIX};
 pub use stats::SceneStats;
+pub use tangents::generate_tangents;
 pub use texture::{FilterMode, Sampler, TextureImage, TextureRef, WrapMode};
 
 /// Everything a renderer needs to draw one view of a scene.

@@ -18,6 +18,7 @@ struct VertexIn {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) color: vec4<f32>,
+    @location(4) tangent: vec4<f32>,
 }
 
 // What shading needs, however it was interpolated.
@@ -27,6 +28,8 @@ struct Attributes {
     normal: vec3<f32>,
     uv: vec2<f32>,
     color: vec4<f32>,
+    // World-space tangent, w the bitangent's sign.
+    tangent: vec4<f32>,
     material: u32,
 }
 
@@ -39,6 +42,7 @@ struct PixelVaryings {
     @location(2) @interpolate(perspective, centroid) uv: vec2<f32>,
     @location(3) @interpolate(flat) material: u32,
     @location(4) @interpolate(perspective, centroid) color: vec4<f32>,
+    @location(5) @interpolate(perspective, centroid) tangent: vec4<f32>,
 }
 
 // `shading: sample`: `sample` interpolation runs the fragment shader once per covered
@@ -50,24 +54,27 @@ struct SampleVaryings {
     @location(2) @interpolate(perspective, sample) uv: vec2<f32>,
     @location(3) @interpolate(flat) material: u32,
     @location(4) @interpolate(perspective, sample) color: vec4<f32>,
+    @location(5) @interpolate(perspective, sample) tangent: vec4<f32>,
 }
 
 fn transform(v: VertexIn, mesh_index: u32) -> Attributes {
     let mesh = meshes[mesh_index];
     let p = (mesh.model * vec4<f32>(v.position, 1.0)).xyz;
-    return Attributes(p, mesh.normal_matrix * v.normal, v.uv, v.color, mesh.material);
+    // Tangents lie in the surface: they transform with the model matrix.
+    let t = vec4<f32>((mesh.model * vec4<f32>(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
+    return Attributes(p, mesh.normal_matrix * v.normal, v.uv, v.color, t, mesh.material);
 }
 
 @vertex
 fn vs_pixel(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> PixelVaryings {
     let a = transform(v, mesh_index);
-    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color);
+    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent);
 }
 
 @vertex
 fn vs_sample(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> SampleVaryings {
     let a = transform(v, mesh_index);
-    return SampleVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color);
+    return SampleVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent);
 }
 
 fn shade(a: Attributes, front: bool) -> vec4<f32> {
@@ -80,8 +87,10 @@ fn shade(a: Attributes, front: bool) -> vec4<f32> {
     if (material.flags & FLAG_UNLIT) != 0u {
         color += m.base.rgb;
     } else {
-        // Back faces reach here only for double-sided materials: light their other side.
-        let n = unit_normal(select(-a.normal, a.normal, front || !DOUBLE_SIDED));
+        // Back faces reach here only for double-sided materials: light their other side (the
+        // normal texture's perturbation turned around with it).
+        let mapped = shading_normal(a.normal, a.tangent, m.tangent_normal);
+        let n = unit_normal(select(-mapped, mapped, front || !DOUBLE_SIDED));
         let s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness);
         color += light_info.ambient * m.base.rgb;
         for (var i = 0u; i < light_info.light_count; i++) {
@@ -93,10 +102,10 @@ fn shade(a: Attributes, front: bool) -> vec4<f32> {
 
 @fragment
 fn fs_pixel(in: PixelVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade(Attributes(in.position, in.normal, in.uv, in.color, in.material), front);
+    return shade(Attributes(in.position, in.normal, in.uv, in.color, in.tangent, in.material), front);
 }
 
 @fragment
 fn fs_sample(in: SampleVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade(Attributes(in.position, in.normal, in.uv, in.color, in.material), front);
+    return shade(Attributes(in.position, in.normal, in.uv, in.color, in.tangent, in.material), front);
 }

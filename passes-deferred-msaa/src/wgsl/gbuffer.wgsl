@@ -19,6 +19,7 @@ struct VertexIn {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) color: vec4<f32>,
+    @location(4) tangent: vec4<f32>,
 }
 
 // Attributes are interpolated at the centroid of the covered samples: at a partially
@@ -35,6 +36,8 @@ struct Varyings {
     @location(4) @interpolate(perspective, centroid) at_centroid: vec2<f32>,
     @location(5) @interpolate(perspective, center) at_center: vec2<f32>,
     @location(6) @interpolate(perspective, centroid) color: vec4<f32>,
+    // World-space tangent, w the bitangent's sign.
+    @location(7) @interpolate(perspective, centroid) tangent: vec4<f32>,
 }
 
 // Every channel the pass can write; `gbuffer_out` picks those it does.
@@ -55,6 +58,9 @@ fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
     out.normal = mesh.normal_matrix * v.normal;
     out.uv = v.uv;
     out.color = v.color;
+    // Tangents lie in the surface: they transform with the model matrix, not the normal
+    // matrix.
+    out.tangent = vec4<f32>((mesh.model * vec4<f32>(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
     out.view_depth = dot(p, camera.forward);
     out.material = mesh.material;
     out.at_centroid = out.clip.xy;
@@ -64,8 +70,10 @@ fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
 
 fn surface(in: Varyings, m: MaterialSample, front: bool, coverage: u32) -> GBuffer {
     let material = materials[in.material];
-    // Back faces reach here only for double-sided materials: light their other side.
-    let n = unit_normal(select(-in.normal, in.normal, front || !DOUBLE_SIDED));
+    // Back faces reach here only for double-sided materials: light their other side (the
+    // normal texture's perturbation turned around with it).
+    let mapped = shading_normal(in.normal, in.tangent, m.tangent_normal);
+    let n = unit_normal(select(-mapped, mapped, front || !DOUBLE_SIDED));
     var edge = 0u;
     if any(in.at_centroid != in.at_center) {
         edge |= EDGE_CENTROID;

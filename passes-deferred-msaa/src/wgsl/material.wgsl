@@ -12,6 +12,9 @@
 // Linear data, glTF's packing: blue is metalness, green roughness.
 @group(1) @binding(4) var metal_rough_tex: texture_2d<f32>;
 @group(1) @binding(5) var metal_rough_sampler: sampler;
+// Linear tangent-space normals, glTF's convention: +X along the tangent, +Y up the image.
+@group(1) @binding(6) var normal_tex: texture_2d<f32>;
+@group(1) @binding(7) var normal_sampler: sampler;
 
 // Which material features the scene has (analysis/variant.rs); the defaults are the
 // general shader. Without textures of a kind every material's is white, without emission
@@ -19,6 +22,7 @@
 override TEXTURES: bool = true;
 override EMISSIVE_TEXTURES: bool = true;
 override METAL_ROUGH_TEXTURES: bool = true;
+override NORMAL_TEXTURES: bool = true;
 override EMISSIVE: bool = true;
 
 // A material's parameters at one point of a surface.
@@ -29,13 +33,16 @@ struct MaterialSample {
     emission: vec3<f32>,
     metallic: f32,
     roughness: f32,
+    // The tangent-space normal, X and Y scaled by the material's normal_scale; (0, 0, 1)
+    // leaves the surface normal as it is.
+    tangent_normal: vec3<f32>,
 }
 
 // Material `m` at texture coordinate `uv` (TEXCOORD_0) with vertex color `color` (COLOR_0,
 // white without one), which multiplies the base color as glTF says. Sampled in uniform
 // control flow: callers discard only after this returns.
 fn sample_material(m: MaterialData, uv: vec2<f32>, color: vec4<f32>) -> MaterialSample {
-    var out = MaterialSample(m.base_color * color, vec3<f32>(0.0), m.metallic, m.roughness);
+    var out = MaterialSample(m.base_color * color, vec3<f32>(0.0), m.metallic, m.roughness, vec3<f32>(0.0, 0.0, 1.0));
     if TEXTURES {
         out.base *= textureSample(base_color_tex, base_color_sampler, uv);
     }
@@ -50,5 +57,27 @@ fn sample_material(m: MaterialData, uv: vec2<f32>, color: vec4<f32>) -> Material
         out.metallic *= packed.b;
         out.roughness *= packed.g;
     }
+    if NORMAL_TEXTURES {
+        let s = textureSample(normal_tex, normal_sampler, uv).xyz * 2.0 - 1.0;
+        out.tangent_normal = vec3<f32>(s.xy * m.normal_scale, s.z);
+    }
     return out;
+}
+
+// The shading normal: `tangent_normal` (a MaterialSample's) in the frame of the
+// interpolated world-space `normal` and `tangent` (xyz, and w the bitangent's sign:
+// bitangent = w * normal x tangent, as glTF defines it). Unperturbed where the vertices
+// have no tangent. Not unit length.
+fn shading_normal(normal: vec3<f32>, tangent: vec4<f32>, tangent_normal: vec3<f32>) -> vec3<f32> {
+    if !NORMAL_TEXTURES {
+        return normal;
+    }
+    let n = safe_normalize(normal);
+    // Interpolation and non-uniform scale leave the tangent off perpendicular: Gram-Schmidt.
+    let t = tangent.xyz - n * dot(n, tangent.xyz);
+    if dot(t, t) < 1e-12 {
+        return normal;
+    }
+    let b = cross(n, safe_normalize(t)) * select(-1.0, 1.0, tangent.w >= 0.0);
+    return safe_normalize(t) * tangent_normal.x + b * tangent_normal.y + n * tangent_normal.z;
 }

@@ -28,7 +28,9 @@ struct MaterialData {
     metallic: f32,
     roughness: f32,
     flags: u32,
-    _pad: u32,
+    // Scales the normal texture's X and Y; 0 without a normal texture, so the white texel
+    // bound in its place leaves the normal as it is.
+    normal_scale: f32,
 }
 
 const LIGHT_DIRECTIONAL: u32 = 0u;

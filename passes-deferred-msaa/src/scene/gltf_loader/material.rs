@@ -41,36 +41,45 @@ impl Loader<'_> {
                 AlphaMode::Opaque
             }
         };
-        let ignored: Vec<&str> = [
-            ("normal", material.normal_texture().is_some()),
-            ("occlusion", material.occlusion_texture().is_some()),
-        ]
-        .into_iter()
-        .filter_map(|(kind, present)| present.then_some(kind))
-        .collect();
-        if !ignored.is_empty() {
+        if material.occlusion_texture().is_some() {
             self.builder.warnings.push(format!(
-                "{name}: {} texture(s) ignored; only base color, metallicRoughness and \
-                 emissive textures are implemented",
-                ignored.join(", ")
+                "{name}: occlusion texture ignored; only base color, metallicRoughness, normal \
+                 and emissive textures are implemented"
             ));
         }
-        let base_color_texture =
-            self.texture(pbr.base_color_texture(), "base color", true, &name)?;
+        let base_color_texture = self.texture(
+            pbr.base_color_texture().map(with_tex_coord),
+            "base color",
+            true,
+            &name,
+        )?;
         let metallic_roughness_texture = self.texture(
-            pbr.metallic_roughness_texture(),
+            pbr.metallic_roughness_texture().map(with_tex_coord),
             "metallicRoughness",
             false,
             &name,
         )?;
-        let emissive_texture =
-            self.texture(material.emissive_texture(), "emissive", true, &name)?;
+        let emissive_texture = self.texture(
+            material.emissive_texture().map(with_tex_coord),
+            "emissive",
+            true,
+            &name,
+        )?;
+        let normal = material.normal_texture();
+        let normal_texture = self.texture(
+            normal.as_ref().map(|n| (n.texture(), n.tex_coord())),
+            "normal",
+            false,
+            &name,
+        )?;
         Ok(Material {
             base_color_factor: pbr.base_color_factor(),
             base_color_texture,
             metallic_factor: pbr.metallic_factor(),
             roughness_factor: pbr.roughness_factor(),
             metallic_roughness_texture,
+            normal_texture,
+            normal_scale: normal.map_or(1.0, |n| n.scale()),
             emissive_factor: material.emissive_factor(),
             emissive_texture,
             emissive_strength: material.emissive_strength().unwrap_or(1.0),
@@ -81,33 +90,36 @@ impl Loader<'_> {
         })
     }
 
-    /// The texture `info` refers to as the material's `slot` texture, its image decoded as
-    /// `srgb` color or linear data; `None` without one, or (with a warning) when it uses
-    /// another set of texture coordinates than TEXCOORD_0, the only one loaded.
+    /// `texture` with its texture coordinate set, as the material's `slot` texture, its
+    /// image decoded as `srgb` color or linear data; `None` without one, or (with a warning)
+    /// when it uses another set of texture coordinates than TEXCOORD_0, the only one loaded.
     fn texture(
         &mut self,
-        info: Option<gltf::texture::Info>,
+        texture: Option<(gltf::Texture, u32)>,
         slot: &'static str,
         srgb: bool,
         material: &str,
     ) -> Result<Option<TextureRef>, SceneError> {
-        let Some(info) = info else {
+        let Some((texture, tex_coord)) = texture else {
             return Ok(None);
         };
-        if info.tex_coord() != 0 {
+        if tex_coord != 0 {
             self.builder.warnings.push(format!(
-                "{material}: {slot} texture uses TEXCOORD_{}, only TEXCOORD_0 is loaded; \
-                 texture ignored",
-                info.tex_coord()
+                "{material}: {slot} texture uses TEXCOORD_{tex_coord}, only TEXCOORD_0 is \
+                 loaded; texture ignored"
             ));
             return Ok(None);
         }
-        let texture = info.texture();
         Ok(Some(TextureRef {
             image: self.image(texture.source().index(), srgb, slot, material)?,
             sampler: sampler(&texture.sampler()),
         }))
     }
+}
+
+/// A texture reference's texture and texture coordinate set.
+fn with_tex_coord(info: gltf::texture::Info<'_>) -> (gltf::Texture<'_>, u32) {
+    (info.texture(), info.tex_coord())
 }
 
 /// A glTF sampler; missing filters get [`Sampler::default`]'s.

@@ -2,11 +2,12 @@
 //!
 //! What is read: the default scene (else the first) with its node hierarchy; triangle
 //! primitives (TRIANGLES, and strips and fans converted to lists) with POSITION, NORMAL (flat
-//! normals generated when missing), TEXCOORD_0 and COLOR_0 (application attributes,
-//! `_`-prefixed, are ignored as the spec allows); metallic-roughness materials with their base-color,
-//! metallicRoughness and emissive textures, emission, alpha OPAQUE/MASK, double-sided and the
-//! extensions in [`extensions::IMPLEMENTED`]; cameras; KHR_lights_punctual lights. What is
-//! not: normal and occlusion textures, BLEND (drawn opaque), points and lines, skins, morph
+//! normals generated when missing), TEXCOORD_0, COLOR_0 and TANGENT (MikkTSpace tangents
+//! generated when a normal texture needs them; application attributes, `_`-prefixed, are
+//! ignored as the spec allows); metallic-roughness materials with their base-color,
+//! metallicRoughness, normal and emissive textures, emission, alpha OPAQUE/MASK, double-sided
+//! and the extensions in [`extensions::IMPLEMENTED`]; cameras; KHR_lights_punctual lights.
+//! What is not: occlusion textures, BLEND (drawn opaque), points and lines, skins, morph
 //! targets and animations, each with a warning in [`Scene::warnings`].
 
 mod accessor;

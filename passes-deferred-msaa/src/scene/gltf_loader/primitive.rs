@@ -5,7 +5,7 @@ use gltf::mesh::{Mode, Semantic};
 
 use super::{accessor, Loader};
 use crate::scene::error::label;
-use crate::scene::{flat_shaded, Mesh, SceneError, Vertex};
+use crate::scene::{flat_shaded, generate_tangents, Mesh, SceneError, Vertex};
 
 impl Loader<'_> {
     /// Converts one primitive of a mesh placed at `world` and adds it to the scene. Points and
@@ -38,11 +38,13 @@ impl Loader<'_> {
         let normals = self.attribute::<3>(&site, primitive, Semantic::Normals, "NORMAL")?;
         let uvs = self.attribute::<2>(&site, primitive, Semantic::TexCoords(0), "TEXCOORD_0")?;
         let colors = self.colors(&site, primitive)?;
+        let tangents = self.attribute::<4>(&site, primitive, Semantic::Tangents, "TANGENT")?;
         site.check_finite(
             &positions,
             normals.as_deref(),
             uvs.as_deref(),
             colors.as_deref(),
+            tangents.as_deref(),
         )?;
         let indices = match primitive.indices() {
             Some(accessor) => accessor::read_indices(&self.buffers, &accessor)
@@ -59,15 +61,33 @@ impl Loader<'_> {
             normals.as_deref(),
             uvs.as_deref(),
             colors.as_deref(),
+            tangents.as_deref(),
         );
-        let (vertices, mut indices) = match normals {
+        let (mut vertices, mut indices) = match normals {
             Some(_) => (vertices, indices),
             None => flat_shaded(&vertices, &indices),
         };
+        if tangents.is_none() && primitive.material().normal_texture().is_some() {
+            match uvs {
+                Some(_) => generate_tangents(&mut vertices, &indices).map_err(|e| {
+                    site.invalid(format!("MikkTSpace cannot generate its tangents: {e:?}"))
+                })?,
+                None => self.builder.warnings.push(format!(
+                    "{} primitive {}: its material's normal texture needs TEXCOORD_0, which it \
+                     lacks; drawn without the normal texture",
+                    site.mesh, site.primitive
+                )),
+            }
+        }
         // A mirroring transform turns counter-clockwise triangles clockwise on screen; reversing
-        // them here keeps the Mesh contract (front faces CCW in world space) for renderers.
+        // them here keeps the Mesh contract (front faces CCW in world space) for renderers. It
+        // also turns the bitangent `normal x tangent` around: the sign keeps it on the side
+        // the normal texture was baked for.
         if world.determinant() < 0.0 {
             indices.chunks_exact_mut(3).for_each(|tri| tri.swap(1, 2));
+            vertices
+                .iter_mut()
+                .for_each(|v| v.tangent[3] = -v.tangent[3]);
         }
         let material = self.material(&primitive.material())?;
         self.builder.meshes.push(Mesh {
@@ -197,8 +217,9 @@ impl Site<'_> {
         normals: Option<&[[f32; 3]]>,
         uvs: Option<&[[f32; 2]]>,
         colors: Option<&[[f32; 4]]>,
+        tangents: Option<&[[f32; 4]]>,
     ) -> Result<(), SceneError> {
-        let attributes: [(&'static str, Option<Vec<&[f32]>>); 4] = [
+        let attributes: [(&'static str, Option<Vec<&[f32]>>); 5] = [
             ("position", Some(positions.iter().map(|p| &p[..]).collect())),
             (
                 "normal",
@@ -206,6 +227,10 @@ impl Site<'_> {
             ),
             ("uv", uvs.map(|u| u.iter().map(|v| &v[..]).collect())),
             ("color", colors.map(|c| c.iter().map(|v| &v[..]).collect())),
+            (
+                "tangent",
+                tangents.map(|t| t.iter().map(|v| &v[..]).collect()),
+            ),
         ];
         let mut first_bad: Option<(usize, &'static str, Vec<f32>)> = None;
         for (attribute, values) in attributes {
@@ -277,12 +302,13 @@ fn triangle_list(mode: Mode, indices: Vec<u32>) -> Result<Vec<u32>, String> {
 }
 
 /// Builds vertices from per-vertex attributes as long as `positions` (`None`: zero normals,
-/// for [`flat_shaded`] to replace; uv 0; white).
+/// for [`flat_shaded`] to replace; uv 0; white; no tangent).
 fn interleave(
     positions: &[[f32; 3]],
     normals: Option<&[[f32; 3]]>,
     uvs: Option<&[[f32; 2]]>,
     colors: Option<&[[f32; 4]]>,
+    tangents: Option<&[[f32; 4]]>,
 ) -> Vec<Vertex> {
     (0..positions.len())
         .map(|i| Vertex {
@@ -290,6 +316,7 @@ fn interleave(
             normal: normals.map_or([0.0; 3], |n| n[i]),
             uv: uvs.map_or([0.0; 2], |u| u[i]),
             color: colors.map_or(Vertex::WHITE, |c| Vertex::color_from(c[i])),
+            tangent: tangents.map_or(Vertex::NO_TANGENT, |t| Vertex::tangent_from(t[i])),
         })
         .collect()
 }

@@ -31,6 +31,7 @@ impl Shape {
                     normal: p,
                     uv: [u, v],
                     color: Vertex::WHITE,
+                    tangent: Vertex::NO_TANGENT,
                 });
             }
         }
@@ -90,6 +91,7 @@ impl Shape {
                     normal,
                     uv: [u, y],
                     color: Vertex::WHITE,
+                    tangent: Vertex::NO_TANGENT,
                 })
             })
             .collect();
@@ -132,6 +134,7 @@ impl Shape {
                     normal,
                     uv: [p[0], p[1]],
                     color: Vertex::WHITE,
+                    tangent: Vertex::NO_TANGENT,
                 })
                 .collect(),
             indices: (1..corners.len() as u32 - 1)
@@ -156,6 +159,8 @@ impl Shape {
                     .to_array(),
                 uv: v.uv,
                 color: v.color,
+                // Built-in shapes have no tangents: no built-in material has a normal map.
+                tangent: v.tangent,
             })
             .collect();
         Shape {
