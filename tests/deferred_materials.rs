@@ -417,3 +417,57 @@ fn normal_texture_tilts_the_normal_in_the_gltf_tangent_frame() {
         }
     }
 }
+
+/// An occlusion texture darkens only ambient (indirect) light: with ambient radiance 0.5
+/// and a directional light, each quadrant is darker than without the texture by exactly
+/// 0.5 * albedo * (1 - occlusion), occlusion = 1 + strength * (red - 1); with no ambient
+/// the texture changes nothing at all.
+#[test]
+fn occlusion_texture_darkens_only_ambient_light() {
+    let reds = [255u8, 128, 0, 64];
+    let strength = 0.75;
+    let light = json!({ "type": "directional", "color": [1.0, 1.0, 1.0], "intensity": 1.5 });
+    let file = quad_file(
+        "occlusion_texture",
+        json!({
+            "pbrMetallicRoughness": { "baseColorFactor": [0.9, 0.6, 0.3, 1.0], "metallicFactor": 0.0 },
+            "occlusionTexture": { "index": 0, "strength": strength },
+        }),
+        &[png_2x2(reds.map(|r| [r, 0, 0, 255]))],
+        &[(light, json!({}))],
+    );
+    let textured = load(&file);
+    let mut plain = textured.clone();
+    plain.materials[0].occlusion_texture = None;
+    let albedo = [0.9f32, 0.6, 0.3];
+    for pipeline in PIPELINES {
+        for ambient in [0.0, 0.5] {
+            let [with, without] = [&textured, &plain].map(|scene| {
+                let mut scene = scene.clone();
+                scene.ambient = [ambient; 3];
+                resolved(pipeline, &file, scene)
+            });
+            for (quadrant, x, y) in quadrant_interiors() {
+                let i = (y * SIZE.0 + x) as usize;
+                let occlusion = 1.0 + strength * (f32::from(reds[quadrant]) / 255.0 - 1.0);
+                for c in 0..3 {
+                    let expected = without[i][c] - ambient * albedo[c] * (1.0 - occlusion);
+                    // The G-buffer holds albedo and occlusion in 8 bits (0.9 is stored as
+                    // sRGB 243, linear 0.896): up to 2e-3 here, plus half-float rounding.
+                    assert!(
+                        (with[i][c] - expected).abs() <= 4e-3 * expected.max(1.0),
+                        "{pipeline}, ambient {ambient}: pixel ({x}, {y}) channel {c} in quadrant \
+                         {quadrant}: {}, expected {expected}",
+                        with[i][c]
+                    );
+                }
+            }
+            if ambient == 0.0 {
+                assert!(
+                    with == without,
+                    "{pipeline}: occlusion changed direct light"
+                );
+            }
+        }
+    }
+}

@@ -72,7 +72,7 @@ fn a_scene_s_plan_lists_the_shader_variants_it_builds() {
     assert_eq!(code, Some(0));
     let expected = "\nshader variants built:\n\
         \x20 gbuffer.wgsl {} instead of {textures, emissive_textures, metal_rough_textures, \
-        normal_textures, double_sided, emissive}: gbuffer\n\
+        normal_textures, occlusion_textures, double_sided, emissive}: gbuffer\n\
         \x20 light.wgsl {directional_lights, point_lights} instead of \
         {directional_lights, point_lights, spot_lights}: light edges, light the rest\n";
     assert!(
@@ -83,7 +83,8 @@ fn a_scene_s_plan_lists_the_shader_variants_it_builds() {
     let (_, stdout, _) = explain("builtin:unlit", "text");
     let expected = "\nshader variants built:\n\
         \x20 gbuffer.wgsl {double_sided} instead of {textures, emissive_textures, \
-        metal_rough_textures, normal_textures, double_sided, emissive}: gbuffer (unlit)\n";
+        metal_rough_textures, normal_textures, occlusion_textures, double_sided, emissive}: \
+        gbuffer (unlit)\n";
     assert!(
         stdout.ends_with(expected),
         "no {expected:?} at the end of:\n{stdout}"

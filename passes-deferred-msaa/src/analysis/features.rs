@@ -26,6 +26,8 @@ pub struct Features {
     pub metal_rough_textures: bool,
     /// Some mesh's lit material samples a normal texture.
     pub normal_textures: bool,
+    /// Some mesh's lit material samples an occlusion texture.
+    pub occlusion_textures: bool,
     pub double_sided: bool,
     /// A 24-bit unorm depth buffer with standard Z resolves the geometry's depth range
     /// as finely as [`DepthRange::shallow`] asks. A reduction, like `unlit_only`: only a
@@ -35,7 +37,7 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 16] = [
+    pub const NAMES: [&'static str; 17] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -50,6 +52,7 @@ impl Features {
         "emissive_textures",
         "metal_rough_textures",
         "normal_textures",
+        "occlusion_textures",
         "double_sided",
         "shallow_depth",
     ];
@@ -76,6 +79,7 @@ impl Features {
             emissive_textures: material(|m| m.is_emissive() && m.emissive_texture.is_some()),
             metal_rough_textures: material(|m| !m.unlit && m.metallic_roughness_texture.is_some()),
             normal_textures: material(|m| !m.unlit && m.normal_texture.is_some()),
+            occlusion_textures: material(|m| !m.unlit && m.occlusion_texture.is_some()),
             double_sided: material(|m| m.double_sided),
             // With no geometry between the planes nothing is depth-tested: the general
             // pipeline is as good as any.
@@ -104,6 +108,7 @@ impl Features {
             emissive_textures: true,
             metal_rough_textures: true,
             normal_textures: true,
+            occlusion_textures: true,
             double_sided: true,
             shallow_depth: false,
         }
@@ -137,6 +142,7 @@ impl Features {
             self.emissive_textures,
             self.metal_rough_textures,
             self.normal_textures,
+            self.occlusion_textures,
             self.double_sided,
             self.shallow_depth,
         ];

@@ -35,6 +35,8 @@ pub enum Gate {
     MetalRoughTextures,
     /// Perturbing normals by the normal texture (without one the normal is unchanged).
     NormalTextures,
+    /// Sampling the occlusion texture (without one, occlusion is 1).
+    OcclusionTextures,
     /// Flipping back faces' normals (without double-sided materials back faces are
     /// culled).
     DoubleSided,
@@ -53,6 +55,7 @@ impl Gate {
             Gate::EmissiveTextures => "emissive_textures",
             Gate::MetalRoughTextures => "metal_rough_textures",
             Gate::NormalTextures => "normal_textures",
+            Gate::OcclusionTextures => "occlusion_textures",
             Gate::DoubleSided => "double_sided",
             Gate::Emissive => "emissive",
         }
@@ -68,6 +71,7 @@ impl Gate {
             Gate::EmissiveTextures => "EMISSIVE_TEXTURES",
             Gate::MetalRoughTextures => "METAL_ROUGH_TEXTURES",
             Gate::NormalTextures => "NORMAL_TEXTURES",
+            Gate::OcclusionTextures => "OCCLUSION_TEXTURES",
             Gate::DoubleSided => "DOUBLE_SIDED",
             Gate::Emissive => "EMISSIVE",
         }
@@ -83,6 +87,7 @@ impl Gate {
             Gate::EmissiveTextures => features.emissive_textures,
             Gate::MetalRoughTextures => features.metal_rough_textures,
             Gate::NormalTextures => features.normal_textures,
+            Gate::OcclusionTextures => features.occlusion_textures,
             Gate::DoubleSided => features.double_sided,
             Gate::Emissive => features.emissive,
         }
@@ -133,6 +138,7 @@ impl GatedShader {
                 EmissiveTextures,
                 MetalRoughTextures,
                 NormalTextures,
+                OcclusionTextures,
                 DoubleSided,
                 Emissive,
             ],
@@ -147,6 +153,7 @@ impl GatedShader {
                 EmissiveTextures,
                 MetalRoughTextures,
                 NormalTextures,
+                OcclusionTextures,
                 DoubleSided,
                 Emissive,
             ],
@@ -282,7 +289,7 @@ mod tests {
         let general = Variant::general(GatedShader::Forward);
         assert!(general.is_general());
         assert!(general.constants().iter().all(|&(_, v)| v == 1.0));
-        assert_eq!(general.constants().len(), 9);
+        assert_eq!(general.constants().len(), 10);
     }
 
     #[test]
@@ -326,7 +333,7 @@ mod tests {
             [
                 (
                     "gbuffer.wgsl {textures, emissive_textures, metal_rough_textures, \
-                     normal_textures, double_sided, emissive}"
+                     normal_textures, occlusion_textures, double_sided, emissive}"
                         .to_owned(),
                     vec!["gbuffer".to_owned()]
                 ),

@@ -24,6 +24,8 @@ struct MaterialData {
     roughness: f32,
     flags: u32,
     normal_scale: f32,
+    occlusion_strength: f32,
+    _pad: [u32; 3],
 }
 
 /// What the G-buffer pass needs to pick a pipeline for a material.
@@ -42,8 +44,8 @@ pub(super) struct Materials {
 }
 
 /// A material's textures in binding order (material.wgsl): base color, emissive,
-/// metallicRoughness, normal.
-const TEXTURE_SLOTS: u32 = 4;
+/// metallicRoughness, normal, occlusion.
+const TEXTURE_SLOTS: u32 = 5;
 
 /// The layout of a material's bind group: per texture of [`TEXTURE_SLOTS`], the texture
 /// (binding `2 * slot`) and its sampler (binding `2 * slot + 1`).
@@ -110,6 +112,11 @@ impl Materials {
                     Some(_) => material.normal_scale,
                     None => 0.0,
                 },
+                occlusion_strength: match material.occlusion_texture {
+                    Some(_) => material.occlusion_strength,
+                    None => 0.0,
+                },
+                _pad: [0; 3],
             });
             states.push(MaterialState {
                 double_sided: material.double_sided,
@@ -121,6 +128,7 @@ impl Materials {
                 material.emissive_texture,
                 material.metallic_roughness_texture,
                 material.normal_texture,
+                material.occlusion_texture,
             ]
             .into_iter()
             .map(|texture| {

@@ -156,8 +156,8 @@ impl GpuScene {
     }
 
     /// The layout of each material's bind group, as material.wgsl declares it: base-color,
-    /// emissive, metallicRoughness and normal textures, each followed by its sampler
-    /// (bindings 0-7).
+    /// emissive, metallicRoughness, normal and occlusion textures, each followed by its
+    /// sampler (bindings 0-9).
     pub fn material_layout(&self) -> &wgpu::BindGroupLayout {
         &self.material_layout
     }

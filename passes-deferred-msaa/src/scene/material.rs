@@ -30,6 +30,10 @@ pub struct Material {
     /// vertices' tangents; its X and Y are scaled by `normal_scale`.
     pub normal_texture: Option<TextureRef>,
     pub normal_scale: f32,
+    /// glTF occlusionTexture, linear, red channel, sampled with TEXCOORD_0: scales ambient
+    /// light only, by `1 + occlusion_strength * (red - 1)`.
+    pub occlusion_texture: Option<TextureRef>,
+    pub occlusion_strength: f32,
     /// Linear RGB emitted radiance before `emissive_strength` and the emissive texture.
     pub emissive_factor: [f32; 3],
     /// sRGB texture sampled with TEXCOORD_0, multiplied with `emissive_factor`: without it
@@ -57,6 +61,8 @@ impl Material {
             metallic_roughness_texture: None,
             normal_texture: None,
             normal_scale: 1.0,
+            occlusion_texture: None,
+            occlusion_strength: 1.0,
             emissive_factor: [0.0; 3],
             emissive_texture: None,
             emissive_strength: 1.0,

@@ -91,8 +91,8 @@ fn shade(a: Attributes, front: bool) -> vec4<f32> {
         // normal texture's perturbation turned around with it).
         let mapped = shading_normal(a.normal, a.tangent, m.tangent_normal);
         let n = unit_normal(select(-mapped, mapped, front || !DOUBLE_SIDED));
-        let s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness);
-        color += light_info.ambient * m.base.rgb;
+        let s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness, m.occlusion);
+        color += light_info.ambient * m.base.rgb * m.occlusion;
         for (var i = 0u; i < light_info.light_count; i++) {
             color += shade_light(s, lights[i]);
         }

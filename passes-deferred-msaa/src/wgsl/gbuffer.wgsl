@@ -5,7 +5,9 @@
 // `GBufferOut` and `gbuffer_out`, which keep the channels the pass writes (an unlit-only
 // scene's G-buffer has no normal or material) at consecutive locations.
 //
-// Channels: albedo = base color RGB (textured); normal = octahedral unit normal;
+// Channels: albedo = base color RGB (textured, times COLOR_0) and ambient occlusion in
+// alpha (otherwise unused, so occlusion costs no byte); normal = octahedral shading normal
+// (after the normal texture);
 // material = metallic and roughness after their texture, flags, edge bits; view depth;
 // HDR = emission after its texture (or the whole unlit color). Textures change what the
 // channels hold, not how many there are.
@@ -83,7 +85,7 @@ fn surface(in: Varyings, m: MaterialSample, front: bool, coverage: u32) -> GBuff
     }
     let unlit = (material.flags & FLAG_UNLIT) != 0u;
     var out: GBuffer;
-    out.albedo = vec4<f32>(m.base.rgb, 1.0);
+    out.albedo = vec4<f32>(m.base.rgb, m.occlusion);
     out.normal = vec4<f32>(oct_encode(n), 0.0, 0.0);
     out.material = vec4<f32>(m.metallic, m.roughness, f32(material.flags), f32(edge)) / vec4<f32>(1.0, 1.0, 255.0, 255.0);
     out.view_depth = vec4<f32>(in.view_depth, 0.0, 0.0, 0.0);

@@ -15,6 +15,9 @@
 // Linear tangent-space normals, glTF's convention: +X along the tangent, +Y up the image.
 @group(1) @binding(6) var normal_tex: texture_2d<f32>;
 @group(1) @binding(7) var normal_sampler: sampler;
+// Linear data: red is ambient occlusion.
+@group(1) @binding(8) var occlusion_tex: texture_2d<f32>;
+@group(1) @binding(9) var occlusion_sampler: sampler;
 
 // Which material features the scene has (analysis/variant.rs); the defaults are the
 // general shader. Without textures of a kind every material's is white, without emission
@@ -23,6 +26,7 @@ override TEXTURES: bool = true;
 override EMISSIVE_TEXTURES: bool = true;
 override METAL_ROUGH_TEXTURES: bool = true;
 override NORMAL_TEXTURES: bool = true;
+override OCCLUSION_TEXTURES: bool = true;
 override EMISSIVE: bool = true;
 
 // A material's parameters at one point of a surface.
@@ -36,13 +40,15 @@ struct MaterialSample {
     // The tangent-space normal, X and Y scaled by the material's normal_scale; (0, 0, 1)
     // leaves the surface normal as it is.
     tangent_normal: vec3<f32>,
+    // Scales ambient light only: 1 + strength * (occlusion texel - 1), as glTF defines it.
+    occlusion: f32,
 }
 
 // Material `m` at texture coordinate `uv` (TEXCOORD_0) with vertex color `color` (COLOR_0,
 // white without one), which multiplies the base color as glTF says. Sampled in uniform
 // control flow: callers discard only after this returns.
 fn sample_material(m: MaterialData, uv: vec2<f32>, color: vec4<f32>) -> MaterialSample {
-    var out = MaterialSample(m.base_color * color, vec3<f32>(0.0), m.metallic, m.roughness, vec3<f32>(0.0, 0.0, 1.0));
+    var out = MaterialSample(m.base_color * color, vec3<f32>(0.0), m.metallic, m.roughness, vec3<f32>(0.0, 0.0, 1.0), 1.0);
     if TEXTURES {
         out.base *= textureSample(base_color_tex, base_color_sampler, uv);
     }
@@ -60,6 +66,10 @@ fn sample_material(m: MaterialData, uv: vec2<f32>, color: vec4<f32>) -> Material
     if NORMAL_TEXTURES {
         let s = textureSample(normal_tex, normal_sampler, uv).xyz * 2.0 - 1.0;
         out.tangent_normal = vec3<f32>(s.xy * m.normal_scale, s.z);
+    }
+    if OCCLUSION_TEXTURES {
+        let texel = textureSample(occlusion_tex, occlusion_sampler, uv).r;
+        out.occlusion = 1.0 + m.occlusion_strength * (texel - 1.0);
     }
     return out;
 }

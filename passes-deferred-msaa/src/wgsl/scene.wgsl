@@ -31,6 +31,11 @@ struct MaterialData {
     // Scales the normal texture's X and Y; 0 without a normal texture, so the white texel
     // bound in its place leaves the normal as it is.
     normal_scale: f32,
+    // glTF occlusionTexture strength (0 without one: the white texel then changes nothing).
+    occlusion_strength: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 const LIGHT_DIRECTIONAL: u32 = 0u;

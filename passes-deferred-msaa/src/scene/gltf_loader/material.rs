@@ -41,12 +41,6 @@ impl Loader<'_> {
                 AlphaMode::Opaque
             }
         };
-        if material.occlusion_texture().is_some() {
-            self.builder.warnings.push(format!(
-                "{name}: occlusion texture ignored; only base color, metallicRoughness, normal \
-                 and emissive textures are implemented"
-            ));
-        }
         let base_color_texture = self.texture(
             pbr.base_color_texture().map(with_tex_coord),
             "base color",
@@ -65,6 +59,13 @@ impl Loader<'_> {
             true,
             &name,
         )?;
+        let occlusion = material.occlusion_texture();
+        let occlusion_texture = self.texture(
+            occlusion.as_ref().map(|o| (o.texture(), o.tex_coord())),
+            "occlusion",
+            false,
+            &name,
+        )?;
         let normal = material.normal_texture();
         let normal_texture = self.texture(
             normal.as_ref().map(|n| (n.texture(), n.tex_coord())),
@@ -80,6 +81,8 @@ impl Loader<'_> {
             metallic_roughness_texture,
             normal_texture,
             normal_scale: normal.map_or(1.0, |n| n.scale()),
+            occlusion_texture,
+            occlusion_strength: occlusion.map_or(1.0, |o| o.strength()),
             emissive_factor: material.emissive_factor(),
             emissive_texture,
             emissive_strength: material.emissive_strength().unwrap_or(1.0),

@@ -5,9 +5,9 @@
 //! normals generated when missing), TEXCOORD_0, COLOR_0 and TANGENT (MikkTSpace tangents
 //! generated when a normal texture needs them; application attributes, `_`-prefixed, are
 //! ignored as the spec allows); metallic-roughness materials with their base-color,
-//! metallicRoughness, normal and emissive textures, emission, alpha OPAQUE/MASK, double-sided
+//! metallicRoughness, normal, occlusion and emissive textures, emission, alpha OPAQUE/MASK, double-sided
 //! and the extensions in [`extensions::IMPLEMENTED`]; cameras; KHR_lights_punctual lights.
-//! What is not: occlusion textures, BLEND (drawn opaque), points and lines, skins, morph
+//! What is not: BLEND (drawn opaque), points and lines, skins, morph
 //! targets and animations, each with a warning in [`Scene::warnings`].
 
 mod accessor;
