@@ -502,16 +502,25 @@ fn normal_textures_get_tangents_from_the_file_or_mikktspace() {
         json!({ "normalTexture": { "index": 0, "scale": 0.5 } }),
     );
     let plain = gltf.push("materials", json!({}));
+    // A normal texture on TEXCOORD_1 (not loaded) is dropped: nothing needs tangents.
+    let second_set = gltf.push(
+        "materials",
+        json!({ "normalTexture": { "index": 0, "texCoord": 1 } }),
+    );
     uv_quad(&mut gltf, bumpy, json!({}));
     let tangents = gltf.floats(&[[0.0, 1.0, 0.0, -1.0]; 4]);
     uv_quad(&mut gltf, bumpy, json!({ "TANGENT": tangents }));
     uv_quad(&mut gltf, plain, json!({}));
+    uv_quad(&mut gltf, second_set, json!({}));
     // The first quad again, mirrored in x by its node.
     let nodes = gltf.json["nodes"].as_array().unwrap().len();
     gltf.root(json!({ "mesh": 0, "scale": [-1.0, 1.0, 1.0] }));
-    assert_eq!(nodes, 3);
+    assert_eq!(nodes, 4);
     let scene = load_embedded("tangents", &gltf);
-    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    assert_eq!(
+        scene.warnings,
+        ["material 2: normal texture uses TEXCOORD_1, only TEXCOORD_0 is loaded; texture ignored"]
+    );
     let one = i16::MAX;
     let tangents: Vec<[i16; 4]> = scene.meshes.iter().map(|m| m.vertices[0].tangent).collect();
     assert_eq!(
@@ -519,6 +528,7 @@ fn normal_textures_get_tangents_from_the_file_or_mikktspace() {
         [
             [one, 0, 0, one],
             [0, one, 0, -one],
+            Vertex::NO_TANGENT,
             Vertex::NO_TANGENT,
             [one, 0, 0, -one]
         ]

@@ -67,7 +67,9 @@ impl Loader<'_> {
             Some(_) => (vertices, indices),
             None => flat_shaded(&vertices, &indices),
         };
-        if tangents.is_none() && primitive.material().normal_texture().is_some() {
+        // Only for a normal texture the material keeps (it drops those on other UV sets).
+        let normal_texture = primitive.material().normal_texture();
+        if tangents.is_none() && normal_texture.is_some_and(|n| n.tex_coord() == 0) {
             match uvs {
                 Some(_) => generate_tangents(&mut vertices, &indices).map_err(|e| {
                     site.invalid(format!("MikkTSpace cannot generate its tangents: {e:?}"))
