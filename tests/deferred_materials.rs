@@ -54,16 +54,17 @@ fn png_2x2(texels: [[u8; 4]; 4]) -> Vec<u8> {
 /// KHR_lights_punctual `lights` (each placed by a node with the given transform fields) written as
 /// `test`/quad.gltf; returns its path.
 fn quad_file(test: &str, material: Value, images: &[Vec<u8>], lights: &[(Value, Value)]) -> String {
-    quad_file_colored(test, material, images, lights, None)
+    quad_file_with(test, material, images, lights, &|_| json!({}))
 }
 
-/// [`quad_file`] with `color_0` (float VEC4, per corner) as the quad's COLOR_0.
-fn quad_file_colored(
+/// [`quad_file`] with the attributes `extra` adds to the quad (accessors it writes, by
+/// attribute name; per corner: bottom left, bottom right, top right, top left).
+fn quad_file_with(
     test: &str,
     material: Value,
     images: &[Vec<u8>],
     lights: &[(Value, Value)],
-    color_0: Option<[[f32; 4]; 4]>,
+    extra: &dyn Fn(&mut Gltf) -> Value,
 ) -> String {
     let mut gltf = Gltf::default();
     gltf.json["extensionsUsed"] = json!([
@@ -81,8 +82,8 @@ fn quad_file_colored(
     let uvs = gltf.floats(&[[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]]);
     let indices = gltf.indices_u16(&[0, 1, 2, 0, 2, 3]);
     let mut attributes = json!({ "POSITION": positions, "NORMAL": normals, "TEXCOORD_0": uvs });
-    if let Some(colors) = color_0 {
-        attributes["COLOR_0"] = json!(gltf.floats(&colors));
+    for (name, accessor) in extra(&mut gltf).as_object().unwrap() {
+        attributes[name] = accessor.clone();
     }
     gltf.push(
         "samplers",
@@ -145,32 +146,44 @@ fn load(file: &str) -> Scene {
 /// the factor alone would light the whole quad (DamagedHelmet's white silhouette).
 #[test]
 fn emissive_texture_shows_its_pattern() {
+    emissive_pattern("emissive_texture", 0, &[0, 3]);
+}
+
+/// A texture on TEXCOORD_1 samples it: the emissive checker through a second UV set that
+/// mirrors u lights the other two quadrants.
+#[test]
+fn a_texture_on_texcoord_1_samples_the_second_uv_set() {
+    emissive_pattern("emissive_texcoord_1", 1, &[1, 2]);
+}
+
+/// The emissive checker (white top left and bottom right) on UV set `tex_coord` (set 1
+/// mirrors set 0 in u) emits 2.0 in the quadrants `lit` and nothing in the others, in
+/// every pipeline.
+fn emissive_pattern(test: &str, tex_coord: u32, lit: &[usize]) {
     let (white, black) = ([255, 255, 255, 255], [0, 0, 0, 255]);
-    let file = quad_file(
-        "emissive_texture",
+    let mirrored = [[1.0, 1.0], [0.0, 1.0], [0.0, 0.0], [1.0, 0.0]];
+    let file = quad_file_with(
+        test,
         json!({
             "pbrMetallicRoughness": { "baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0 },
             "emissiveFactor": [1.0, 1.0, 1.0],
-            "emissiveTexture": { "index": 0 },
+            "emissiveTexture": { "index": 0, "texCoord": tex_coord },
             "extensions": { "KHR_materials_emissive_strength": { "emissiveStrength": 2.0 } },
         }),
         &[png_2x2([white, black, black, white])],
         &[],
+        &|gltf| json!({ "TEXCOORD_1": gltf.floats(&mirrored) }),
     );
     let scene = load(&file);
     for pipeline in PIPELINES {
         let hdr = resolved(pipeline, &file, scene.clone());
         for (quadrant, x, y) in quadrant_interiors() {
-            let expected = if quadrant == 0 || quadrant == 3 {
-                2.0
-            } else {
-                0.0
-            };
+            let expected = if lit.contains(&quadrant) { 2.0 } else { 0.0 };
             let got = hdr[(y * SIZE.0 + x) as usize];
             assert_eq!(
                 got[..3],
                 [expected; 3],
-                "{pipeline}: pixel ({x}, {y}) in quadrant {quadrant}"
+                "{test}, {pipeline}: pixel ({x}, {y}) in quadrant {quadrant}"
             );
         }
     }
@@ -331,7 +344,13 @@ fn color_0_tints_the_base_color() {
     ] {
         let mut material = material;
         material["extensions"] = json!({ "KHR_materials_unlit": {} });
-        let file = quad_file_colored(test, material, &images, &[], Some([tint; 4]));
+        let file = quad_file_with(
+            test,
+            material,
+            &images,
+            &[],
+            &|gltf| json!({ "COLOR_0": gltf.floats(&[tint; 4]) }),
+        );
         let scene = load(&file);
         for pipeline in PIPELINES {
             let hdr = resolved(pipeline, &file, scene.clone());

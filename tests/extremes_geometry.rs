@@ -64,6 +64,7 @@ fn triangle(parts: &mut Parts, name: &str, corners: [DVec3; 3], material: usize)
                 uv: [0.0, 0.0],
                 color: Vertex::WHITE,
                 tangent: Vertex::NO_TANGENT,
+                uv1: [0.0; 2],
             })
             .collect(),
         indices: vec![0, 1, 2],
@@ -245,6 +246,7 @@ fn a_million_triangles_render_at_16x16() {
                 uv: [0.0, 0.0],
                 color: Vertex::WHITE,
                 tangent: Vertex::NO_TANGENT,
+                uv1: [0.0; 2],
             });
         }
     }

@@ -66,6 +66,7 @@ fn glb_with_png_in_buffer_view_and_sampler() {
                 min_filter: FilterMode::Linear,
                 mipmap_filter: Some(FilterMode::Linear),
             },
+            tex_coord: 0,
         })
     );
     assert_eq!(scene.stats().textured_materials, 1);
@@ -95,7 +96,11 @@ fn image_file_next_to_gltf_is_decoded_once_for_two_materials() {
     for material in &scene.materials {
         assert_eq!(
             material.base_color_texture,
-            Some(TextureRef { image: 0, sampler })
+            Some(TextureRef {
+                image: 0,
+                sampler,
+                tex_coord: 0
+            })
         );
     }
 }
@@ -405,14 +410,16 @@ fn emissive_and_metallic_roughness_textures_are_loaded_in_their_color_spaces() {
         m.emissive_texture,
         Some(TextureRef {
             image: 1,
-            sampler: nearest_clamped
+            sampler: nearest_clamped,
+            tex_coord: 0
         })
     );
     assert_eq!(
         m.metallic_roughness_texture,
         Some(TextureRef {
             image: 0,
-            sampler: Sampler::default()
+            sampler: Sampler::default(),
+            tex_coord: 0
         })
     );
     assert_eq!(m.base_color_texture, None);
@@ -502,16 +509,16 @@ fn normal_textures_get_tangents_from_the_file_or_mikktspace() {
         json!({ "normalTexture": { "index": 0, "scale": 0.5 } }),
     );
     let plain = gltf.push("materials", json!({}));
-    // A normal texture on TEXCOORD_1 (not loaded) is dropped: nothing needs tangents.
-    let second_set = gltf.push(
+    // A normal texture on TEXCOORD_2 (not loaded) is dropped: nothing needs tangents.
+    let third_set = gltf.push(
         "materials",
-        json!({ "normalTexture": { "index": 0, "texCoord": 1 } }),
+        json!({ "normalTexture": { "index": 0, "texCoord": 2 } }),
     );
     uv_quad(&mut gltf, bumpy, json!({}));
     let tangents = gltf.floats(&[[0.0, 1.0, 0.0, -1.0]; 4]);
     uv_quad(&mut gltf, bumpy, json!({ "TANGENT": tangents }));
     uv_quad(&mut gltf, plain, json!({}));
-    uv_quad(&mut gltf, second_set, json!({}));
+    uv_quad(&mut gltf, third_set, json!({}));
     // The first quad again, mirrored in x by its node.
     let nodes = gltf.json["nodes"].as_array().unwrap().len();
     gltf.root(json!({ "mesh": 0, "scale": [-1.0, 1.0, 1.0] }));
@@ -519,7 +526,10 @@ fn normal_textures_get_tangents_from_the_file_or_mikktspace() {
     let scene = load_embedded("tangents", &gltf);
     assert_eq!(
         scene.warnings,
-        ["material 2: normal texture uses TEXCOORD_1, only TEXCOORD_0 is loaded; texture ignored"]
+        [
+            "material 2: normal texture uses TEXCOORD_2, only TEXCOORD_0 and TEXCOORD_1 are \
+             loaded; texture ignored"
+        ]
     );
     let one = i16::MAX;
     let tangents: Vec<[i16; 4]> = scene.meshes.iter().map(|m| m.vertices[0].tangent).collect();
@@ -543,4 +553,39 @@ fn normal_textures_get_tangents_from_the_file_or_mikktspace() {
         (Some(0), 0.5)
     );
     assert!(!scene.textures[0].srgb, "normal textures are linear data");
+}
+
+/// TEXCOORD_1 is kept beside TEXCOORD_0, and a texture says which set it samples; a normal
+/// texture on set 1 gets its MikkTSpace tangents along set 1 (here u1 runs along -x, so the
+/// tangent does too).
+#[test]
+fn texcoord_1_is_loaded_and_textures_name_their_set() {
+    let mut gltf = Gltf::default();
+    let view = gltf.view(&png_2x1());
+    gltf.push(
+        "images",
+        json!({ "bufferView": view, "mimeType": "image/png" }),
+    );
+    gltf.push("textures", json!({ "source": 0 }));
+    let material = gltf.push(
+        "materials",
+        json!({
+            "emissiveFactor": [1.0, 1.0, 1.0],
+            "emissiveTexture": { "index": 0, "texCoord": 1 },
+            "normalTexture": { "index": 0, "texCoord": 1 },
+            "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } },
+        }),
+    );
+    let uv1 = gltf.floats(&[[1.0, 1.0], [0.0, 1.0], [0.0, 0.0], [1.0, 0.0]]);
+    uv_quad(&mut gltf, material, json!({ "TEXCOORD_1": uv1 }));
+    let scene = load_embedded("texcoord_1", &gltf);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let uv1: Vec<[f32; 2]> = scene.meshes[0].vertices.iter().map(|v| v.uv1).collect();
+    assert_eq!(uv1, [[1.0, 1.0], [0.0, 1.0], [0.0, 0.0], [1.0, 0.0]]);
+    let m = &scene.materials[0];
+    let sets = [m.base_color_texture, m.emissive_texture, m.normal_texture]
+        .map(|t| t.map(|t| t.tex_coord));
+    assert_eq!(sets, [Some(0), Some(1), Some(1)]);
+    let one = i16::MAX;
+    assert_eq!(scene.meshes[0].vertices[0].tangent, [-one, 0, 0, -one]);
 }

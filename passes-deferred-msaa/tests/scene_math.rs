@@ -284,6 +284,7 @@ fn flat_shading_unindexes_with_face_normals() {
             uv,
             color: [i; 4],
             tangent: Vertex::NO_TANGENT,
+            uv1: [0.0; 2],
         })
         .collect();
     // A triangle facing +Z, one facing -Y, one degenerate.

@@ -70,6 +70,7 @@ impl Parts {
                     uv: [0.0, 0.0],
                     color: Vertex::WHITE,
                     tangent: Vertex::NO_TANGENT,
+                    uv1: [0.0; 2],
                 });
             }
             for i in 1..corners.len() as u32 - 1 {

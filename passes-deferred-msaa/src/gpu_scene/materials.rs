@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use wgpu::util::DeviceExt;
 
 use super::textures;
-use crate::scene::{AlphaMode, Sampler, Scene};
+use crate::scene::{AlphaMode, Material, Sampler, Scene, TextureRef};
 
 /// `FLAG_LIT` and `FLAG_UNLIT` in common.wgsl.
 const FLAG_LIT: u32 = 1;
@@ -25,7 +25,9 @@ struct MaterialData {
     flags: u32,
     normal_scale: f32,
     occlusion_strength: f32,
-    _pad: [u32; 3],
+    /// Bit `slot` set: the texture of that slot samples TEXCOORD_1.
+    uv_sets: u32,
+    _pad: [u32; 2],
 }
 
 /// What the G-buffer pass needs to pick a pipeline for a material.
@@ -46,6 +48,17 @@ pub(super) struct Materials {
 /// A material's textures in binding order (material.wgsl): base color, emissive,
 /// metallicRoughness, normal, occlusion.
 const TEXTURE_SLOTS: u32 = 5;
+
+/// A material's textures in binding order.
+fn slots(material: &Material) -> [Option<TextureRef>; TEXTURE_SLOTS as usize] {
+    [
+        material.base_color_texture,
+        material.emissive_texture,
+        material.metallic_roughness_texture,
+        material.normal_texture,
+        material.occlusion_texture,
+    ]
+}
 
 /// The layout of a material's bind group: per texture of [`TEXTURE_SLOTS`], the texture
 /// (binding `2 * slot`) and its sampler (binding `2 * slot + 1`).
@@ -116,31 +129,29 @@ impl Materials {
                     Some(_) => material.occlusion_strength,
                     None => 0.0,
                 },
-                _pad: [0; 3],
+                uv_sets: (0u32..)
+                    .zip(slots(material))
+                    .filter(|(_, t)| t.is_some_and(|t| t.tex_coord == 1))
+                    .fold(0, |bits, (slot, _)| bits | 1 << slot),
+                _pad: [0; 2],
             });
             states.push(MaterialState {
                 double_sided: material.double_sided,
                 masked: matches!(material.alpha_mode, AlphaMode::Mask { .. }),
             });
             // Scenes guarantee texture indices are in range; a broken one shows white.
-            let textures: Vec<(&wgpu::TextureView, wgpu::Sampler)> = [
-                material.base_color_texture,
-                material.emissive_texture,
-                material.metallic_roughness_texture,
-                material.normal_texture,
-                material.occlusion_texture,
-            ]
-            .into_iter()
-            .map(|texture| {
-                let (view, sampler) = texture
-                    .and_then(|t| Some((images.get(t.image)?, t.sampler)))
-                    .unwrap_or((&white, Sampler::default()));
-                let sampler = samplers
-                    .entry(sampler)
-                    .or_insert_with(|| textures::sampler(device, &sampler));
-                (view, sampler.clone())
-            })
-            .collect();
+            let textures: Vec<(&wgpu::TextureView, wgpu::Sampler)> = slots(material)
+                .into_iter()
+                .map(|texture| {
+                    let (view, sampler) = texture
+                        .and_then(|t| Some((images.get(t.image)?, t.sampler)))
+                        .unwrap_or((&white, Sampler::default()));
+                    let sampler = samplers
+                        .entry(sampler)
+                        .or_insert_with(|| textures::sampler(device, &sampler));
+                    (view, sampler.clone())
+                })
+                .collect();
             let entries: Vec<wgpu::BindGroupEntry> = (0u32..)
                 .zip(&textures)
                 .flat_map(|(slot, (view, sampler))| {

@@ -37,12 +37,13 @@ pub(super) struct MeshBuffers {
 }
 
 /// The vertex layout of scene meshes: [`Vertex`] at locations 0 (position), 1 (normal),
-/// 2 (uv), 3 (color) and 4 (tangent).
+/// 2 (uv), 3 (color), 4 (tangent) and 5 (uv1).
 pub const VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     array_stride: std::mem::size_of::<Vertex>() as u64,
     step_mode: wgpu::VertexStepMode::Vertex,
     attributes: &wgpu::vertex_attr_array![
-        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Unorm16x4, 4 => Snorm16x4
+        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Unorm16x4, 4 => Snorm16x4,
+        5 => Float32x2
     ],
 };
 

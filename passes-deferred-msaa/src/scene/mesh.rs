@@ -4,7 +4,7 @@ use glam::{DMat3, DMat4, DVec3, Vec3};
 
 use super::bounds::Aabb;
 
-/// One vertex as the G-buffer pass reads it: 48 bytes, no padding, uploadable as is.
+/// One vertex as the G-buffer pass reads it: 56 bytes, no padding, uploadable as is.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct Vertex {
@@ -22,6 +22,8 @@ pub struct Vertex {
     /// Object-space tangent (xyz) and bitangent sign (w: bitangent = w * normal x tangent),
     /// as 16-bit snorm; [`Vertex::NO_TANGENT`] where no normal texture needs one.
     pub tangent: [i16; 4],
+    /// TEXCOORD_1; `[0, 0]` when the source has none.
+    pub uv1: [f32; 2],
 }
 
 impl Vertex {

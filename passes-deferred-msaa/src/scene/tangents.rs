@@ -4,7 +4,7 @@
 use super::mesh::Vertex;
 
 /// Sets the tangent of every vertex `indices` (a triangle list) reaches from its position,
-/// normal and uv. MikkTSpace assumes OpenGL's texture coordinates (v up) while glTF's v
+/// normal and texture coordinates of set `uv_set` (0: [`Vertex::uv`], 1: [`Vertex::uv1`]). MikkTSpace assumes OpenGL's texture coordinates (v up) while glTF's v
 /// points down, so v is flipped on the way in: the bitangent then points along the normal
 /// map's +Y (up in the image), which is what glTF's normal textures encode (three.js negates
 /// the sign for glTF for the same reason). A vertex that several triangles share keeps the
@@ -14,13 +14,19 @@ use super::mesh::Vertex;
 pub fn generate_tangents(
     vertices: &mut [Vertex],
     indices: &[u32],
+    uv_set: u32,
 ) -> Result<(), bevy_mikktspace::GenerateTangentSpaceError> {
-    bevy_mikktspace::generate_tangents(&mut Triangles { vertices, indices })
+    bevy_mikktspace::generate_tangents(&mut Triangles {
+        vertices,
+        indices,
+        uv_set,
+    })
 }
 
 struct Triangles<'a> {
     vertices: &'a mut [Vertex],
     indices: &'a [u32],
+    uv_set: u32,
 }
 
 impl Triangles<'_> {
@@ -47,7 +53,12 @@ impl bevy_mikktspace::Geometry for Triangles<'_> {
     }
 
     fn tex_coord(&self, face: usize, vert: usize) -> [f32; 2] {
-        let [u, v] = self.vertex(face, vert).uv;
+        let vertex = self.vertex(face, vert);
+        let [u, v] = if self.uv_set == 1 {
+            vertex.uv1
+        } else {
+            vertex.uv
+        };
         [u, 1.0 - v]
     }
 

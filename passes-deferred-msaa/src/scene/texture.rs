@@ -59,4 +59,10 @@ pub struct TextureRef {
     /// Index into `Scene::textures`.
     pub image: usize,
     pub sampler: Sampler,
+    /// Which texture coordinates it is sampled with: 0 ([`Vertex::uv`]) or 1
+    /// ([`Vertex::uv1`]).
+    ///
+    /// [`Vertex::uv`]: super::Vertex::uv
+    /// [`Vertex::uv1`]: super::Vertex::uv1
+    pub tex_coord: u32,
 }

@@ -19,6 +19,7 @@ struct VertexIn {
     @location(2) uv: vec2<f32>,
     @location(3) color: vec4<f32>,
     @location(4) tangent: vec4<f32>,
+    @location(5) uv1: vec2<f32>,
 }
 
 // What shading needs, however it was interpolated.
@@ -27,6 +28,7 @@ struct Attributes {
     position: vec3<f32>,
     normal: vec3<f32>,
     uv: vec2<f32>,
+    uv1: vec2<f32>,
     color: vec4<f32>,
     // World-space tangent, w the bitangent's sign.
     tangent: vec4<f32>,
@@ -43,6 +45,7 @@ struct PixelVaryings {
     @location(3) @interpolate(flat) material: u32,
     @location(4) @interpolate(perspective, centroid) color: vec4<f32>,
     @location(5) @interpolate(perspective, centroid) tangent: vec4<f32>,
+    @location(6) @interpolate(perspective, centroid) uv1: vec2<f32>,
 }
 
 // `shading: sample`: `sample` interpolation runs the fragment shader once per covered
@@ -55,6 +58,7 @@ struct SampleVaryings {
     @location(3) @interpolate(flat) material: u32,
     @location(4) @interpolate(perspective, sample) color: vec4<f32>,
     @location(5) @interpolate(perspective, sample) tangent: vec4<f32>,
+    @location(6) @interpolate(perspective, sample) uv1: vec2<f32>,
 }
 
 fn transform(v: VertexIn, mesh_index: u32) -> Attributes {
@@ -62,24 +66,24 @@ fn transform(v: VertexIn, mesh_index: u32) -> Attributes {
     let p = (mesh.model * vec4<f32>(v.position, 1.0)).xyz;
     // Tangents lie in the surface: they transform with the model matrix.
     let t = vec4<f32>((mesh.model * vec4<f32>(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
-    return Attributes(p, mesh.normal_matrix * v.normal, v.uv, v.color, t, mesh.material);
+    return Attributes(p, mesh.normal_matrix * v.normal, v.uv, v.uv1, v.color, t, mesh.material);
 }
 
 @vertex
 fn vs_pixel(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> PixelVaryings {
     let a = transform(v, mesh_index);
-    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent);
+    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent, a.uv1);
 }
 
 @vertex
 fn vs_sample(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> SampleVaryings {
     let a = transform(v, mesh_index);
-    return SampleVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent);
+    return SampleVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent, a.uv1);
 }
 
 fn shade(a: Attributes, front: bool) -> vec4<f32> {
     let material = materials[a.material];
-    let m = sample_material(material, a.uv, a.color);
+    let m = sample_material(material, a.uv, a.uv1, a.color);
     if MASKED && m.base.a < material.alpha_cutoff {
         discard;
     }
@@ -102,10 +106,10 @@ fn shade(a: Attributes, front: bool) -> vec4<f32> {
 
 @fragment
 fn fs_pixel(in: PixelVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade(Attributes(in.position, in.normal, in.uv, in.color, in.tangent, in.material), front);
+    return shade(Attributes(in.position, in.normal, in.uv, in.uv1, in.color, in.tangent, in.material), front);
 }
 
 @fragment
 fn fs_sample(in: SampleVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade(Attributes(in.position, in.normal, in.uv, in.color, in.tangent, in.material), front);
+    return shade(Attributes(in.position, in.normal, in.uv, in.uv1, in.color, in.tangent, in.material), front);
 }

@@ -22,6 +22,7 @@ struct VertexIn {
     @location(2) uv: vec2<f32>,
     @location(3) color: vec4<f32>,
     @location(4) tangent: vec4<f32>,
+    @location(5) uv1: vec2<f32>,
 }
 
 // Attributes are interpolated at the centroid of the covered samples: at a partially
@@ -40,6 +41,7 @@ struct Varyings {
     @location(6) @interpolate(perspective, centroid) color: vec4<f32>,
     // World-space tangent, w the bitangent's sign.
     @location(7) @interpolate(perspective, centroid) tangent: vec4<f32>,
+    @location(8) @interpolate(perspective, centroid) uv1: vec2<f32>,
 }
 
 // Every channel the pass can write; `gbuffer_out` picks those it does.
@@ -59,6 +61,7 @@ fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
     out.clip = camera.view_proj * vec4<f32>(p, 1.0);
     out.normal = mesh.normal_matrix * v.normal;
     out.uv = v.uv;
+    out.uv1 = v.uv1;
     out.color = v.color;
     // Tangents lie in the surface: they transform with the model matrix, not the normal
     // matrix.
@@ -100,7 +103,7 @@ fn fs_opaque(
     @builtin(front_facing) front: bool,
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
-    return gbuffer_out(surface(in, sample_material(materials[in.material], in.uv, in.color), front, coverage));
+    return gbuffer_out(surface(in, sample_material(materials[in.material], in.uv, in.uv1, in.color), front, coverage));
 }
 
 // Alpha MASK: coverage is decided per pixel by the base color's alpha.
@@ -110,7 +113,7 @@ fn fs_masked(
     @builtin(front_facing) front: bool,
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
-    let m = sample_material(materials[in.material], in.uv, in.color);
+    let m = sample_material(materials[in.material], in.uv, in.uv1, in.color);
     if m.base.a < materials[in.material].alpha_cutoff {
         discard;
     }

@@ -44,31 +44,37 @@ struct MaterialSample {
     occlusion: f32,
 }
 
-// Material `m` at texture coordinate `uv` (TEXCOORD_0) with vertex color `color` (COLOR_0,
+// The texture coordinates the texture of `slot` (its binding / 2) samples: TEXCOORD_0
+// `uv0` or TEXCOORD_1 `uv1`, as the material says.
+fn slot_uv(m: MaterialData, slot: u32, uv0: vec2<f32>, uv1: vec2<f32>) -> vec2<f32> {
+    return select(uv0, uv1, ((m.uv_sets >> slot) & 1u) != 0u);
+}
+
+// Material `m` at texture coordinates `uv0` and `uv1` with vertex color `color` (COLOR_0,
 // white without one), which multiplies the base color as glTF says. Sampled in uniform
 // control flow: callers discard only after this returns.
-fn sample_material(m: MaterialData, uv: vec2<f32>, color: vec4<f32>) -> MaterialSample {
+fn sample_material(m: MaterialData, uv0: vec2<f32>, uv1: vec2<f32>, color: vec4<f32>) -> MaterialSample {
     var out = MaterialSample(m.base_color * color, vec3<f32>(0.0), m.metallic, m.roughness, vec3<f32>(0.0, 0.0, 1.0), 1.0);
     if TEXTURES {
-        out.base *= textureSample(base_color_tex, base_color_sampler, uv);
+        out.base *= textureSample(base_color_tex, base_color_sampler, slot_uv(m, 0u, uv0, uv1));
     }
     if EMISSIVE {
         out.emission = m.emission;
         if EMISSIVE_TEXTURES {
-            out.emission *= textureSample(emissive_tex, emissive_sampler, uv).rgb;
+            out.emission *= textureSample(emissive_tex, emissive_sampler, slot_uv(m, 1u, uv0, uv1)).rgb;
         }
     }
     if METAL_ROUGH_TEXTURES {
-        let packed = textureSample(metal_rough_tex, metal_rough_sampler, uv);
+        let packed = textureSample(metal_rough_tex, metal_rough_sampler, slot_uv(m, 2u, uv0, uv1));
         out.metallic *= packed.b;
         out.roughness *= packed.g;
     }
     if NORMAL_TEXTURES {
-        let s = textureSample(normal_tex, normal_sampler, uv).xyz * 2.0 - 1.0;
+        let s = textureSample(normal_tex, normal_sampler, slot_uv(m, 3u, uv0, uv1)).xyz * 2.0 - 1.0;
         out.tangent_normal = vec3<f32>(s.xy * m.normal_scale, s.z);
     }
     if OCCLUSION_TEXTURES {
-        let texel = textureSample(occlusion_tex, occlusion_sampler, uv).r;
+        let texel = textureSample(occlusion_tex, occlusion_sampler, slot_uv(m, 4u, uv0, uv1)).r;
         out.occlusion = 1.0 + m.occlusion_strength * (texel - 1.0);
     }
     return out;

@@ -33,9 +33,10 @@ struct MaterialData {
     normal_scale: f32,
     // glTF occlusionTexture strength (0 without one: the white texel then changes nothing).
     occlusion_strength: f32,
+    // Bit `slot` (material.wgsl's binding / 2) set: that texture samples TEXCOORD_1.
+    uv_sets: u32,
     _pad0: u32,
     _pad1: u32,
-    _pad2: u32,
 }
 
 const LIGHT_DIRECTIONAL: u32 = 0u;

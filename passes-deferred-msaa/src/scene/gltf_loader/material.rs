@@ -95,7 +95,8 @@ impl Loader<'_> {
 
     /// `texture` with its texture coordinate set, as the material's `slot` texture, its
     /// image decoded as `srgb` color or linear data; `None` without one, or (with a warning)
-    /// when it uses another set of texture coordinates than TEXCOORD_0, the only one loaded.
+    /// when it uses another set of texture coordinates than TEXCOORD_0 and TEXCOORD_1, the
+    /// ones loaded.
     fn texture(
         &mut self,
         texture: Option<(gltf::Texture, u32)>,
@@ -106,16 +107,17 @@ impl Loader<'_> {
         let Some((texture, tex_coord)) = texture else {
             return Ok(None);
         };
-        if tex_coord != 0 {
+        if tex_coord > 1 {
             self.builder.warnings.push(format!(
-                "{material}: {slot} texture uses TEXCOORD_{tex_coord}, only TEXCOORD_0 is \
-                 loaded; texture ignored"
+                "{material}: {slot} texture uses TEXCOORD_{tex_coord}, only TEXCOORD_0 and \
+                 TEXCOORD_1 are loaded; texture ignored"
             ));
             return Ok(None);
         }
         Ok(Some(TextureRef {
             image: self.image(texture.source().index(), srgb, slot, material)?,
             sampler: sampler(&texture.sampler()),
+            tex_coord,
         }))
     }
 }

@@ -2,7 +2,7 @@
 //!
 //! What is read: the default scene (else the first) with its node hierarchy; triangle
 //! primitives (TRIANGLES, and strips and fans converted to lists) with POSITION, NORMAL (flat
-//! normals generated when missing), TEXCOORD_0, COLOR_0 and TANGENT (MikkTSpace tangents
+//! normals generated when missing), TEXCOORD_0 and _1, COLOR_0 and TANGENT (MikkTSpace tangents
 //! generated when a normal texture needs them; application attributes, `_`-prefixed, are
 //! ignored as the spec allows); metallic-roughness materials with their base-color,
 //! metallicRoughness, normal, occlusion and emissive textures, emission, alpha OPAQUE/MASK, double-sided

@@ -37,12 +37,14 @@ impl Loader<'_> {
             .ok_or_else(|| site.invalid("has no POSITION attribute".to_owned()))?;
         let normals = self.attribute::<3>(&site, primitive, Semantic::Normals, "NORMAL")?;
         let uvs = self.attribute::<2>(&site, primitive, Semantic::TexCoords(0), "TEXCOORD_0")?;
+        let uvs1 = self.attribute::<2>(&site, primitive, Semantic::TexCoords(1), "TEXCOORD_1")?;
         let colors = self.colors(&site, primitive)?;
         let tangents = self.attribute::<4>(&site, primitive, Semantic::Tangents, "TANGENT")?;
         site.check_finite(
             &positions,
             normals.as_deref(),
             uvs.as_deref(),
+            uvs1.as_deref(),
             colors.as_deref(),
             tangents.as_deref(),
         )?;
@@ -59,7 +61,7 @@ impl Loader<'_> {
         let vertices = interleave(
             &positions,
             normals.as_deref(),
-            uvs.as_deref(),
+            [uvs.as_deref(), uvs1.as_deref()],
             colors.as_deref(),
             tangents.as_deref(),
         );
@@ -67,16 +69,18 @@ impl Loader<'_> {
             Some(_) => (vertices, indices),
             None => flat_shaded(&vertices, &indices),
         };
-        // Only for a normal texture the material keeps (it drops those on other UV sets).
-        let normal_texture = primitive.material().normal_texture();
-        if tangents.is_none() && normal_texture.is_some_and(|n| n.tex_coord() == 0) {
-            match uvs {
-                Some(_) => generate_tangents(&mut vertices, &indices).map_err(|e| {
+        // Only for a normal texture the material keeps (it drops those on UV sets past 1),
+        // along the UV set it is sampled with.
+        let normal_set = primitive.material().normal_texture().map(|n| n.tex_coord());
+        if let (None, Some(set @ 0..=1)) = (&tangents, normal_set) {
+            let present = [uvs.is_some(), uvs1.is_some()][set as usize];
+            match present {
+                true => generate_tangents(&mut vertices, &indices, set).map_err(|e| {
                     site.invalid(format!("MikkTSpace cannot generate its tangents: {e:?}"))
                 })?,
-                None => self.builder.warnings.push(format!(
-                    "{} primitive {}: its material's normal texture needs TEXCOORD_0, which it \
-                     lacks; drawn without the normal texture",
+                false => self.builder.warnings.push(format!(
+                    "{} primitive {}: its material's normal texture needs TEXCOORD_{set}, which \
+                     it lacks; drawn without the normal texture",
                     site.mesh, site.primitive
                 )),
             }
@@ -218,16 +222,18 @@ impl Site<'_> {
         positions: &[[f32; 3]],
         normals: Option<&[[f32; 3]]>,
         uvs: Option<&[[f32; 2]]>,
+        uvs1: Option<&[[f32; 2]]>,
         colors: Option<&[[f32; 4]]>,
         tangents: Option<&[[f32; 4]]>,
     ) -> Result<(), SceneError> {
-        let attributes: [(&'static str, Option<Vec<&[f32]>>); 5] = [
+        let attributes: [(&'static str, Option<Vec<&[f32]>>); 6] = [
             ("position", Some(positions.iter().map(|p| &p[..]).collect())),
             (
                 "normal",
                 normals.map(|n| n.iter().map(|v| &v[..]).collect()),
             ),
             ("uv", uvs.map(|u| u.iter().map(|v| &v[..]).collect())),
+            ("uv1", uvs1.map(|u| u.iter().map(|v| &v[..]).collect())),
             ("color", colors.map(|c| c.iter().map(|v| &v[..]).collect())),
             (
                 "tangent",
@@ -304,11 +310,11 @@ fn triangle_list(mode: Mode, indices: Vec<u32>) -> Result<Vec<u32>, String> {
 }
 
 /// Builds vertices from per-vertex attributes as long as `positions` (`None`: zero normals,
-/// for [`flat_shaded`] to replace; uv 0; white; no tangent).
+/// for [`flat_shaded`] to replace; uvs 0; white; no tangent). `uvs` are TEXCOORD_0 and _1.
 fn interleave(
     positions: &[[f32; 3]],
     normals: Option<&[[f32; 3]]>,
-    uvs: Option<&[[f32; 2]]>,
+    [uvs, uvs1]: [Option<&[[f32; 2]]>; 2],
     colors: Option<&[[f32; 4]]>,
     tangents: Option<&[[f32; 4]]>,
 ) -> Vec<Vertex> {
@@ -317,6 +323,7 @@ fn interleave(
             position: positions[i],
             normal: normals.map_or([0.0; 3], |n| n[i]),
             uv: uvs.map_or([0.0; 2], |u| u[i]),
+            uv1: uvs1.map_or([0.0; 2], |u| u[i]),
             color: colors.map_or(Vertex::WHITE, |c| Vertex::color_from(c[i])),
             tangent: tangents.map_or(Vertex::NO_TANGENT, |t| Vertex::tangent_from(t[i])),
         })

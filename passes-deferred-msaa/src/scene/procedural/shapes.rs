@@ -32,6 +32,7 @@ impl Shape {
                     uv: [u, v],
                     color: Vertex::WHITE,
                     tangent: Vertex::NO_TANGENT,
+                    uv1: [0.0; 2],
                 });
             }
         }
@@ -92,6 +93,7 @@ impl Shape {
                     uv: [u, y],
                     color: Vertex::WHITE,
                     tangent: Vertex::NO_TANGENT,
+                    uv1: [0.0; 2],
                 })
             })
             .collect();
@@ -135,6 +137,7 @@ impl Shape {
                     uv: [p[0], p[1]],
                     color: Vertex::WHITE,
                     tangent: Vertex::NO_TANGENT,
+                    uv1: [0.0; 2],
                 })
                 .collect(),
             indices: (1..corners.len() as u32 - 1)
@@ -161,6 +164,7 @@ impl Shape {
                 color: v.color,
                 // Built-in shapes have no tangents: no built-in material has a normal map.
                 tangent: v.tangent,
+                uv1: v.uv1,
             })
             .collect();
         Shape {
