@@ -70,7 +70,8 @@ fn quad_file_with(
     gltf.json["extensionsUsed"] = json!([
         "KHR_materials_emissive_strength",
         "KHR_lights_punctual",
-        "KHR_materials_unlit"
+        "KHR_materials_unlit",
+        "KHR_texture_transform"
     ]);
     let positions = gltf.floats(&[
         [-1.0, -1.0, 0.0],
@@ -146,20 +147,36 @@ fn load(file: &str) -> Scene {
 /// the factor alone would light the whole quad (DamagedHelmet's white silhouette).
 #[test]
 fn emissive_texture_shows_its_pattern() {
-    emissive_pattern("emissive_texture", 0, &[0, 3]);
+    emissive_pattern("emissive_texture", json!({ "index": 0 }), &[0, 3]);
 }
 
 /// A texture on TEXCOORD_1 samples it: the emissive checker through a second UV set that
 /// mirrors u lights the other two quadrants.
 #[test]
 fn a_texture_on_texcoord_1_samples_the_second_uv_set() {
-    emissive_pattern("emissive_texcoord_1", 1, &[1, 2]);
+    emissive_pattern(
+        "emissive_texcoord_1",
+        json!({ "index": 0, "texCoord": 1 }),
+        &[1, 2],
+    );
 }
 
-/// The emissive checker (white top left and bottom right) on UV set `tex_coord` (set 1
-/// mirrors set 0 in u) emits 2.0 in the quadrants `lit` and nothing in the others, in
-/// every pipeline.
-fn emissive_pattern(test: &str, tex_coord: u32, lit: &[usize]) {
+/// KHR_texture_transform moves a texture: scale -1 and offset 1 in u mirror the emissive
+/// checker, which lights the other two quadrants.
+#[test]
+fn a_texture_transform_mirrors_the_pattern() {
+    let mirror = json!({ "KHR_texture_transform": { "offset": [1.0, 0.0], "scale": [-1.0, 1.0] } });
+    emissive_pattern(
+        "emissive_texture_transform",
+        json!({ "index": 0, "extensions": mirror }),
+        &[1, 2],
+    );
+}
+
+/// The emissive checker (white top left and bottom right) as the texture reference
+/// `texture` (TEXCOORD_1 mirrors TEXCOORD_0 in u) emits 2.0 in the quadrants `lit` and
+/// nothing in the others, in every pipeline.
+fn emissive_pattern(test: &str, texture: Value, lit: &[usize]) {
     let (white, black) = ([255, 255, 255, 255], [0, 0, 0, 255]);
     let mirrored = [[1.0, 1.0], [0.0, 1.0], [0.0, 0.0], [1.0, 0.0]];
     let file = quad_file_with(
@@ -167,7 +184,7 @@ fn emissive_pattern(test: &str, tex_coord: u32, lit: &[usize]) {
         json!({
             "pbrMetallicRoughness": { "baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0 },
             "emissiveFactor": [1.0, 1.0, 1.0],
-            "emissiveTexture": { "index": 0, "texCoord": tex_coord },
+            "emissiveTexture": texture,
             "extensions": { "KHR_materials_emissive_strength": { "emissiveStrength": 2.0 } },
         }),
         &[png_2x2([white, black, black, white])],

@@ -25,6 +25,7 @@ fn checker_quad(sampler: Sampler) -> Scene {
         image: 0,
         sampler,
         tex_coord: 0,
+        uv_transform: TextureRef::IDENTITY_UV,
     });
     let d = |x: f64, y: f64| DVec3::new(x, y, 0.0);
     let quad = parts.mesh(

@@ -67,6 +67,7 @@ fn glb_with_png_in_buffer_view_and_sampler() {
                 mipmap_filter: Some(FilterMode::Linear),
             },
             tex_coord: 0,
+            uv_transform: TextureRef::IDENTITY_UV,
         })
     );
     assert_eq!(scene.stats().textured_materials, 1);
@@ -99,7 +100,8 @@ fn image_file_next_to_gltf_is_decoded_once_for_two_materials() {
             Some(TextureRef {
                 image: 0,
                 sampler,
-                tex_coord: 0
+                tex_coord: 0,
+                uv_transform: TextureRef::IDENTITY_UV
             })
         );
     }
@@ -266,7 +268,7 @@ fn sparse_accessor_substitutes_values() {
 #[test]
 fn unsupported_features_are_warnings_naming_them() {
     let mut gltf = Gltf::default();
-    gltf.json["extensionsUsed"] = json!(["KHR_texture_transform", "KHR_materials_unlit"]);
+    gltf.json["extensionsUsed"] = json!(["KHR_materials_clearcoat", "KHR_materials_unlit"]);
     // The image file does not exist: textures no material uses are never decoded.
     gltf.push("images", json!({ "uri": "missing.png" }));
     gltf.push("textures", json!({ "source": 0 }));
@@ -303,7 +305,7 @@ fn unsupported_features_are_warnings_naming_them() {
     assert_eq!(
         scene.warnings,
         [
-            "glTF extension KHR_texture_transform is not implemented; its effect is ignored",
+            "glTF extension KHR_materials_clearcoat is not implemented; its effect is ignored",
             "material 0 \"glass\": alphaMode BLEND is not supported (a G-buffer holds one surface \
              per sample); rendered as OPAQUE",
             "mesh 1 \"triangle\" primitive 0: its material's normal texture needs TEXCOORD_0, \
@@ -411,7 +413,8 @@ fn emissive_and_metallic_roughness_textures_are_loaded_in_their_color_spaces() {
         Some(TextureRef {
             image: 1,
             sampler: nearest_clamped,
-            tex_coord: 0
+            tex_coord: 0,
+            uv_transform: TextureRef::IDENTITY_UV
         })
     );
     assert_eq!(
@@ -419,7 +422,8 @@ fn emissive_and_metallic_roughness_textures_are_loaded_in_their_color_spaces() {
         Some(TextureRef {
             image: 0,
             sampler: Sampler::default(),
-            tex_coord: 0
+            tex_coord: 0,
+            uv_transform: TextureRef::IDENTITY_UV
         })
     );
     assert_eq!(m.base_color_texture, None);
@@ -588,4 +592,61 @@ fn texcoord_1_is_loaded_and_textures_name_their_set() {
     assert_eq!(sets, [Some(0), Some(1), Some(1)]);
     let one = i16::MAX;
     assert_eq!(scene.meshes[0].vertices[0].tangent, [-one, 0, 0, -one]);
+}
+
+/// KHR_texture_transform becomes each texture's UV matrix, as the extension's own example
+/// reads: offset (0, 1), rotation 90° and scale 0.5 show the image's lower left quadrant
+/// (UVs 0..1 land on u 0..0.5, v 0.5..1), on the normal texture as on the others; its
+/// texCoord overrides the reference's.
+#[test]
+fn texture_transform_becomes_the_uv_matrix() {
+    let mut gltf = Gltf::default();
+    gltf.json["extensionsUsed"] = json!(["KHR_texture_transform"]);
+    let view = gltf.view(&png_2x1());
+    gltf.push(
+        "images",
+        json!({ "bufferView": view, "mimeType": "image/png" }),
+    );
+    gltf.push("textures", json!({ "source": 0 }));
+    let example = json!({ "KHR_texture_transform": {
+        "offset": [0.0, 1.0], "rotation": std::f64::consts::FRAC_PI_2, "scale": [0.5, 0.5]
+    } });
+    let material = gltf.push(
+        "materials",
+        json!({
+            "pbrMetallicRoughness": { "baseColorTexture": { "index": 0, "extensions": example } },
+            "normalTexture": { "index": 0, "extensions": example },
+            "emissiveFactor": [1.0, 1.0, 1.0],
+            "emissiveTexture": { "index": 0, "extensions": {
+                "KHR_texture_transform": { "texCoord": 1 }
+            } },
+        }),
+    );
+    let uv1 = gltf.floats(&[[0.0, 0.0]; 4]);
+    uv_quad(&mut gltf, material, json!({ "TEXCOORD_1": uv1 }));
+    let scene = load_embedded("texture_transform", &gltf);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let m = &scene.materials[0];
+    let apply =
+        |t: [[f32; 2]; 3], [u, v]: [f32; 2]| [0, 1].map(|i| t[0][i] * u + t[1][i] * v + t[2][i]);
+    for texture in [m.base_color_texture, m.normal_texture] {
+        let t = texture.expect("kept").uv_transform;
+        for (uv, expected) in [
+            ([0.0, 0.0], [0.0, 1.0]),
+            ([1.0, 0.0], [0.0, 0.5]),
+            ([0.0, 1.0], [0.5, 1.0]),
+            ([1.0, 1.0], [0.5, 0.5]),
+        ] {
+            let got = apply(t, uv);
+            assert!(
+                (0..2).all(|i| (got[i] - expected[i]).abs() < 1e-6),
+                "{uv:?} -> {got:?}, expected {expected:?}"
+            );
+        }
+    }
+    let emissive = m.emissive_texture.expect("kept");
+    assert_eq!(
+        (emissive.tex_coord, emissive.uv_transform),
+        (1, TextureRef::IDENTITY_UV)
+    );
 }

@@ -28,6 +28,10 @@ struct MaterialData {
     /// Bit `slot` set: the texture of that slot samples TEXCOORD_1.
     uv_sets: u32,
     _pad: [u32; 2],
+    /// Per slot, KHR_texture_transform's matrix (`mat3x2<f32>`, three columns).
+    uv_transforms: [[[f32; 2]; 3]; TEXTURE_SLOTS as usize],
+    /// WGSL rounds the struct's size up to its alignment, 16.
+    _tail: [u32; 2],
 }
 
 /// What the G-buffer pass needs to pick a pipeline for a material.
@@ -134,6 +138,9 @@ impl Materials {
                     .filter(|(_, t)| t.is_some_and(|t| t.tex_coord == 1))
                     .fold(0, |bits, (slot, _)| bits | 1 << slot),
                 _pad: [0; 2],
+                uv_transforms: slots(material)
+                    .map(|t| t.map_or(TextureRef::IDENTITY_UV, |t| t.uv_transform)),
+                _tail: [0; 2],
             });
             states.push(MaterialState {
                 double_sided: material.double_sided,

@@ -9,8 +9,10 @@ use super::mesh::Vertex;
 /// map's +Y (up in the image), which is what glTF's normal textures encode (three.js negates
 /// the sign for glTF for the same reason). A vertex that several triangles share keeps the
 /// last triangle's tangent; a vertex MikkTSpace gives none (degenerate surroundings) keeps
-/// [`Vertex::NO_TANGENT`], so its normal is not perturbed. (bevy_mikktspace 1.0 has no
-/// error yet; it reserves the right to add some.)
+/// [`Vertex::NO_TANGENT`], so its normal is not perturbed. The UVs are taken as the vertices
+/// hold them: a KHR_texture_transform rotation of the normal texture is not followed (its
+/// tangent frame would have to turn with it). (bevy_mikktspace 1.0 has no error yet; it
+/// reserves the right to add some.)
 pub fn generate_tangents(
     vertices: &mut [Vertex],
     indices: &[u32],

@@ -54,7 +54,7 @@ impl Default for Sampler {
 }
 
 /// A material's use of a texture: which image and how to sample it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TextureRef {
     /// Index into `Scene::textures`.
     pub image: usize,
@@ -65,4 +65,13 @@ pub struct TextureRef {
     /// [`Vertex::uv`]: super::Vertex::uv
     /// [`Vertex::uv1`]: super::Vertex::uv1
     pub tex_coord: u32,
+    /// KHR_texture_transform, as the columns of a 2x3 matrix: the texture is sampled at
+    /// `uv_transform[0] * u + uv_transform[1] * v + uv_transform[2]`;
+    /// [`TextureRef::IDENTITY_UV`] without the extension.
+    pub uv_transform: [[f32; 2]; 3],
+}
+
+impl TextureRef {
+    /// The UV transform that changes nothing.
+    pub const IDENTITY_UV: [[f32; 2]; 3] = [[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]];
 }

@@ -45,9 +45,11 @@ struct MaterialSample {
 }
 
 // The texture coordinates the texture of `slot` (its binding / 2) samples: TEXCOORD_0
-// `uv0` or TEXCOORD_1 `uv1`, as the material says.
+// `uv0` or TEXCOORD_1 `uv1`, as the material says, through its KHR_texture_transform.
 fn slot_uv(m: MaterialData, slot: u32, uv0: vec2<f32>, uv1: vec2<f32>) -> vec2<f32> {
-    return select(uv0, uv1, ((m.uv_sets >> slot) & 1u) != 0u);
+    let uv = select(uv0, uv1, ((m.uv_sets >> slot) & 1u) != 0u);
+    var transforms = m.uv_transforms;
+    return transforms[slot] * vec3<f32>(uv, 1.0);
 }
 
 // Material `m` at texture coordinates `uv0` and `uv1` with vertex color `color` (COLOR_0,

@@ -37,6 +37,8 @@ struct MaterialData {
     uv_sets: u32,
     _pad0: u32,
     _pad1: u32,
+    // Per slot, KHR_texture_transform: a texture samples uv_transforms[slot] * (uv, 1).
+    uv_transforms: array<mat3x2<f32>, 5>,
 }
 
 const LIGHT_DIRECTIONAL: u32 = 0u;

@@ -3,7 +3,7 @@
 use gltf::material::AlphaMode as GltfAlphaMode;
 use gltf::texture::{MagFilter, MinFilter, WrappingMode};
 
-use super::Loader;
+use super::{texture_transform, Loader};
 use crate::scene::error::label;
 use crate::scene::{AlphaMode, FilterMode, Material, Sampler, SceneError, TextureRef, WrapMode};
 
@@ -42,33 +42,39 @@ impl Loader<'_> {
             }
         };
         let base_color_texture = self.texture(
-            pbr.base_color_texture().map(with_tex_coord),
+            pbr.base_color_texture().as_ref().map(reference),
             "base color",
             true,
             &name,
         )?;
         let metallic_roughness_texture = self.texture(
-            pbr.metallic_roughness_texture().map(with_tex_coord),
+            pbr.metallic_roughness_texture().as_ref().map(reference),
             "metallicRoughness",
             false,
             &name,
         )?;
         let emissive_texture = self.texture(
-            material.emissive_texture().map(with_tex_coord),
+            material.emissive_texture().as_ref().map(reference),
             "emissive",
             true,
             &name,
         )?;
         let occlusion = material.occlusion_texture();
         let occlusion_texture = self.texture(
-            occlusion.as_ref().map(|o| (o.texture(), o.tex_coord())),
+            occlusion.as_ref().map(|o| {
+                let transform = o.extension_value(TRANSFORM);
+                (o.texture(), o.tex_coord(), transform)
+            }),
             "occlusion",
             false,
             &name,
         )?;
         let normal = material.normal_texture();
         let normal_texture = self.texture(
-            normal.as_ref().map(|n| (n.texture(), n.tex_coord())),
+            normal.as_ref().map(|n| {
+                let transform = n.extension_value(TRANSFORM);
+                (n.texture(), n.tex_coord(), transform)
+            }),
             "normal",
             false,
             &name,
@@ -93,20 +99,33 @@ impl Loader<'_> {
         })
     }
 
-    /// `texture` with its texture coordinate set, as the material's `slot` texture, its
-    /// image decoded as `srgb` color or linear data; `None` without one, or (with a warning)
-    /// when it uses another set of texture coordinates than TEXCOORD_0 and TEXCOORD_1, the
-    /// ones loaded.
+    /// `texture` with its texture coordinate set and its KHR_texture_transform object, as
+    /// the material's `slot` texture, its image decoded as `srgb` color or linear data;
+    /// `None` without one, or (with a warning) when it uses another set of texture
+    /// coordinates than TEXCOORD_0 and TEXCOORD_1, the ones loaded. A transform that cannot
+    /// be read is ignored with a warning.
     fn texture(
         &mut self,
-        texture: Option<(gltf::Texture, u32)>,
+        texture: Option<(gltf::Texture, u32, Option<&serde_json::Value>)>,
         slot: &'static str,
         srgb: bool,
         material: &str,
     ) -> Result<Option<TextureRef>, SceneError> {
-        let Some((texture, tex_coord)) = texture else {
+        let Some((texture, mut tex_coord, transform)) = texture else {
             return Ok(None);
         };
+        let mut uv_transform = TextureRef::IDENTITY_UV;
+        match transform.map(texture_transform::read) {
+            None => {}
+            Some(Ok(transform)) => {
+                uv_transform = transform.matrix;
+                tex_coord = transform.tex_coord.unwrap_or(tex_coord);
+            }
+            Some(Err(reason)) => self
+                .builder
+                .warnings
+                .push(format!("{material}: {slot} texture: {reason}; ignored")),
+        }
         if tex_coord > 1 {
             self.builder.warnings.push(format!(
                 "{material}: {slot} texture uses TEXCOORD_{tex_coord}, only TEXCOORD_0 and \
@@ -118,13 +137,23 @@ impl Loader<'_> {
             image: self.image(texture.source().index(), srgb, slot, material)?,
             sampler: sampler(&texture.sampler()),
             tex_coord,
+            uv_transform,
         }))
     }
 }
 
-/// A texture reference's texture and texture coordinate set.
-fn with_tex_coord(info: gltf::texture::Info<'_>) -> (gltf::Texture<'_>, u32) {
-    (info.texture(), info.tex_coord())
+/// The extension that transforms a texture reference's UVs.
+const TRANSFORM: &str = "KHR_texture_transform";
+
+/// A texture reference's texture, texture coordinate set and transform extension.
+fn reference<'a>(
+    info: &'a gltf::texture::Info<'a>,
+) -> (gltf::Texture<'a>, u32, Option<&'a serde_json::Value>) {
+    (
+        info.texture(),
+        info.tex_coord(),
+        info.extension_value(TRANSFORM),
+    )
 }
 
 /// A glTF sampler; missing filters get [`Sampler::default`]'s.

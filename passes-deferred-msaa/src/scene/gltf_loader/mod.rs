@@ -2,13 +2,14 @@
 //!
 //! What is read: the default scene (else the first) with its node hierarchy; triangle
 //! primitives (TRIANGLES, and strips and fans converted to lists) with POSITION, NORMAL (flat
-//! normals generated when missing), TEXCOORD_0 and _1, COLOR_0 and TANGENT (MikkTSpace tangents
-//! generated when a normal texture needs them; application attributes, `_`-prefixed, are
-//! ignored as the spec allows); metallic-roughness materials with their base-color,
-//! metallicRoughness, normal, occlusion and emissive textures, emission, alpha OPAQUE/MASK, double-sided
-//! and the extensions in [`extensions::IMPLEMENTED`]; cameras; KHR_lights_punctual lights.
-//! What is not: BLEND (drawn opaque), points and lines, skins, morph
-//! targets and animations, each with a warning in [`Scene::warnings`].
+//! normals generated when missing), TEXCOORD_0 and _1, COLOR_0 and TANGENT (MikkTSpace
+//! tangents generated when a normal texture needs them; application attributes,
+//! `_`-prefixed, are ignored as the spec allows); metallic-roughness materials with their
+//! base-color, metallicRoughness, normal, occlusion and emissive textures, emission, alpha
+//! OPAQUE/MASK, double-sided and the extensions in [`extensions::IMPLEMENTED`]
+//! (KHR_texture_transform per texture); cameras; KHR_lights_punctual lights. What is not:
+//! BLEND (drawn opaque), points and lines, skins, morph targets and animations, each with a
+//! warning in [`Scene::warnings`].
 
 mod accessor;
 mod camera;
@@ -21,6 +22,7 @@ mod material;
 mod nodes;
 mod primitive;
 mod sandbox;
+mod texture_transform;
 mod transforms;
 mod uri;
 mod validate;
