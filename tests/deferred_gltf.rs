@@ -87,3 +87,33 @@ fn alpha_mask_discards_below_the_cutoff() {
         "{masked} pixels drawn with alpha below the cutoff"
     );
 }
+
+/// A glTF scene that lists no nodes loads empty (with a warning, see the loader's tests) and
+/// every pipeline renders it as the background alone instead of failing on empty buffers.
+#[test]
+fn scene_without_nodes_renders_the_background() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("deferred_gltf_empty");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("empty.gltf");
+    std::fs::write(
+        &path,
+        r#"{ "asset": { "version": "2.0" }, "scenes": [{}] }"#,
+    )
+    .unwrap();
+    let gpu = gpu();
+    for pipeline in [
+        "deferred_msaa_4x.ron",
+        "deferred_msaa_4x_tiled.ron",
+        "forward_msaa_4x.ron",
+    ] {
+        let image = Render::new(pipeline, path.to_str().unwrap(), SIZE)
+            .run(&gpu)
+            .image(&gpu, "color");
+        let black = image.count([0, 0, 0, 255]);
+        assert_eq!(
+            black,
+            image.pixels.len(),
+            "{pipeline}: not every pixel is the black background"
+        );
+    }
+}

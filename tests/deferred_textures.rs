@@ -21,7 +21,12 @@ fn checker_quad(sampler: Sampler) -> Scene {
     let mut parts = Parts::new();
     let material = parts.material("checker", [1.0, 1.0, 1.0], 1.0);
     parts.materials[material].unlit = true;
-    parts.materials[material].base_color_texture = Some(TextureRef { image: 0, sampler });
+    parts.materials[material].base_color_texture = Some(TextureRef {
+        image: 0,
+        sampler,
+        tex_coord: 0,
+        uv_transform: TextureRef::IDENTITY_UV,
+    });
     let d = |x: f64, y: f64| DVec3::new(x, y, 0.0);
     let quad = parts.mesh(
         "quad",

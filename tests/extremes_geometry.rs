@@ -62,6 +62,9 @@ fn triangle(parts: &mut Parts, name: &str, corners: [DVec3; 3], material: usize)
                 position: c.as_vec3().to_array(),
                 normal: [0.0, 0.0, 1.0],
                 uv: [0.0, 0.0],
+                color: Vertex::WHITE,
+                tangent: Vertex::NO_TANGENT,
+                uv1: [0.0; 2],
             })
             .collect(),
         indices: vec![0, 1, 2],
@@ -241,6 +244,9 @@ fn a_million_triangles_render_at_16x16() {
                 position: [x as f32, y as f32, z as f32],
                 normal: [0.0, 0.0, 1.0],
                 uv: [0.0, 0.0],
+                color: Vertex::WHITE,
+                tangent: Vertex::NO_TANGENT,
+                uv1: [0.0; 2],
             });
         }
     }

@@ -8,6 +8,10 @@ mod cli_support;
 mod common;
 mod deferred_support;
 mod fuzz_support;
+// passes-deferred-msaa's glTF writer, for GPU tests of files the loader reads.
+#[allow(dead_code)]
+#[path = "../passes-deferred-msaa/tests/common/mod.rs"]
+mod gltf_writer;
 
 mod baselines_errors;
 mod baselines_forward;
@@ -22,6 +26,7 @@ mod cli_validate;
 mod deferred_detectors;
 mod deferred_gltf;
 mod deferred_lit;
+mod deferred_materials;
 mod deferred_sample_mask;
 mod deferred_textures;
 mod deferred_tiled;

@@ -71,7 +71,8 @@ fn a_scene_s_plan_lists_the_shader_variants_it_builds() {
     let (code, stdout, _) = explain("builtin:spheres", "text");
     assert_eq!(code, Some(0));
     let expected = "\nshader variants built:\n\
-        \x20 gbuffer.wgsl {} instead of {textures, double_sided, emissive}: gbuffer\n\
+        \x20 gbuffer.wgsl {} instead of {textures, emissive_textures, metal_rough_textures, \
+        normal_textures, occlusion_textures, double_sided, emissive}: gbuffer\n\
         \x20 light.wgsl {directional_lights, point_lights} instead of \
         {directional_lights, point_lights, spot_lights}: light edges, light the rest\n";
     assert!(
@@ -81,7 +82,8 @@ fn a_scene_s_plan_lists_the_shader_variants_it_builds() {
     // builtin:unlit has no lights: the light passes and their variant are dropped.
     let (_, stdout, _) = explain("builtin:unlit", "text");
     let expected = "\nshader variants built:\n\
-        \x20 gbuffer.wgsl {double_sided} instead of {textures, double_sided, emissive}: \
+        \x20 gbuffer.wgsl {double_sided} instead of {textures, emissive_textures, \
+        metal_rough_textures, normal_textures, occlusion_textures, double_sided, emissive}: \
         gbuffer (unlit)\n";
     assert!(
         stdout.ends_with(expected),

@@ -8,6 +8,7 @@ use graph_core::shader::Shader;
 
 const COMMON: &str = include_str!("wgsl/common.wgsl");
 const SCENE: &str = include_str!("wgsl/scene.wgsl");
+const MATERIAL: &str = include_str!("wgsl/material.wgsl");
 const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
 const BRDF: &str = include_str!("wgsl/brdf.wgsl");
 const SURFACE: &str = include_str!("wgsl/surface.wgsl");
@@ -23,7 +24,7 @@ pub(crate) struct Source {
 
 pub(crate) const GBUFFER: Source = Source {
     name: "gbuffer.wgsl",
-    parts: &[COMMON, SCENE, include_str!("wgsl/gbuffer.wgsl")],
+    parts: &[COMMON, SCENE, MATERIAL, include_str!("wgsl/gbuffer.wgsl")],
 };
 pub(crate) const EDGE: Source = Source {
     name: "edge.wgsl",
@@ -79,7 +80,13 @@ pub(crate) const DEBUG: Source = Source {
 
 pub(crate) const FORWARD: Source = Source {
     name: "forward.wgsl",
-    parts: &[COMMON, SCENE, BRDF, include_str!("wgsl/forward.wgsl")],
+    parts: &[
+        COMMON,
+        SCENE,
+        MATERIAL,
+        BRDF,
+        include_str!("wgsl/forward.wgsl"),
+    ],
 };
 pub(crate) const GBUFFER_RESOLVE: Source = Source {
     name: "gbuffer_resolve.wgsl",

@@ -257,16 +257,24 @@ fn node_cycle() {
 }
 
 #[test]
-fn missing_external_buffer_names_the_bin_file() {
+fn missing_external_buffer_names_the_buffer_and_the_bin_file() {
     let mut gltf = Gltf::default();
     gltf.triangle(None);
     let dir = temp_dir("missing_bin");
     let path = dir.join("scene.gltf");
     gltf.write_external(&path, "present.bin", "absent.bin");
-    let error = Scene::from_gltf(&path).expect_err("buffer is missing");
+    let (error, message) = expect_error(&path);
     assert!(
-        matches!(error, SceneError::Io { ref file, .. } if *file == dir.join("absent.bin")),
+        matches!(error, SceneError::InvalidBuffer { buffer: 0, .. }),
         "{error:?}"
+    );
+    assert!(
+        message.starts_with(&format!(
+            "{}: buffer 0: cannot read {}: ",
+            path.display(),
+            dir.join("absent.bin").display()
+        )),
+        "{message}"
     );
 }
 

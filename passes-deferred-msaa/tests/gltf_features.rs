@@ -7,7 +7,7 @@ use crate::common;
 use common::{temp_dir, Gltf, SHORT};
 use glam::{DQuat, DVec3};
 use passes_deferred_msaa::scene::{
-    FilterMode, Material, Projection, Sampler, Scene, TextureRef, WrapMode,
+    FilterMode, Material, Projection, Sampler, Scene, TextureRef, Vertex, WrapMode,
 };
 use serde_json::json;
 
@@ -66,6 +66,8 @@ fn glb_with_png_in_buffer_view_and_sampler() {
                 min_filter: FilterMode::Linear,
                 mipmap_filter: Some(FilterMode::Linear),
             },
+            tex_coord: 0,
+            uv_transform: TextureRef::IDENTITY_UV,
         })
     );
     assert_eq!(scene.stats().textured_materials, 1);
@@ -95,7 +97,12 @@ fn image_file_next_to_gltf_is_decoded_once_for_two_materials() {
     for material in &scene.materials {
         assert_eq!(
             material.base_color_texture,
-            Some(TextureRef { image: 0, sampler })
+            Some(TextureRef {
+                image: 0,
+                sampler,
+                tex_coord: 0,
+                uv_transform: TextureRef::IDENTITY_UV
+            })
         );
     }
 }
@@ -261,10 +268,13 @@ fn sparse_accessor_substitutes_values() {
 #[test]
 fn unsupported_features_are_warnings_naming_them() {
     let mut gltf = Gltf::default();
-    gltf.json["extensionsUsed"] = json!(["KHR_texture_transform", "KHR_materials_unlit"]);
-    // The image file does not exist: ignored textures are never decoded.
+    gltf.json["extensionsUsed"] = json!(["KHR_materials_clearcoat", "KHR_materials_unlit"]);
+    // The image file does not exist: textures no material uses are never decoded.
     gltf.push("images", json!({ "uri": "missing.png" }));
     gltf.push("textures", json!({ "source": 0 }));
+    // Decoded: every material texture kind is implemented.
+    gltf.push("images", json!({ "uri": "present.png" }));
+    gltf.push("textures", json!({ "source": 1 }));
     let glass = gltf.push(
         "materials",
         json!({ "name": "glass", "alphaMode": "BLEND" }),
@@ -273,10 +283,10 @@ fn unsupported_features_are_warnings_naming_them() {
         "materials",
         json!({
             "name": "bumpy",
-            "normalTexture": { "index": 0 },
-            "occlusionTexture": { "index": 0 },
-            "emissiveTexture": { "index": 0 },
-            "pbrMetallicRoughness": { "metallicRoughnessTexture": { "index": 0 } },
+            "normalTexture": { "index": 1 },
+            "occlusionTexture": { "index": 1 },
+            "emissiveTexture": { "index": 1 },
+            "pbrMetallicRoughness": { "metallicRoughnessTexture": { "index": 1 } },
         }),
     );
     gltf.triangle(Some(glass));
@@ -286,16 +296,20 @@ fn unsupported_features_are_warnings_naming_them() {
         "dots",
         json!({ "attributes": { "POSITION": points }, "mode": 0 }),
     );
-    let scene = load_embedded("warnings", &gltf);
+    let dir = temp_dir("warnings");
+    std::fs::write(dir.join("present.png"), png_2x1()).unwrap();
+    let path = dir.join("scene.gltf");
+    gltf.write_embedded(&path);
+    let scene = Scene::from_gltf(&path).unwrap_or_else(|e| panic!("{e}"));
 
     assert_eq!(
         scene.warnings,
         [
-            "glTF extension KHR_texture_transform is not implemented; its effect is ignored",
+            "glTF extension KHR_materials_clearcoat is not implemented; its effect is ignored",
             "material 0 \"glass\": alphaMode BLEND is not supported (a G-buffer holds one surface \
              per sample); rendered as OPAQUE",
-            "material 1 \"bumpy\": normal, occlusion, metallicRoughness, emissive texture(s) \
-             ignored; only base color textures are implemented",
+            "mesh 1 \"triangle\" primitive 0: its material's normal texture needs TEXCOORD_0, \
+             which it lacks; drawn without the normal texture",
             "mesh 2 \"dots\" primitive 0: mode Points is not triangles; skipped",
         ]
     );
@@ -303,5 +317,336 @@ fn unsupported_features_are_warnings_naming_them() {
     assert_eq!(
         scene.materials[0].alpha_mode,
         passes_deferred_msaa::scene::AlphaMode::Opaque
+    );
+}
+
+/// Application attributes (`_`-prefixed, which the glTF spec allows) are ignored, not a reason
+/// to reject the file: Cesium's `_BATCHID`, bevy's `__BARYCENTRIC`.
+#[test]
+fn underscore_attributes_are_ignored() {
+    let mut gltf = Gltf::default();
+    let positions = gltf.floats(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let batch = gltf.floats(&[[0.0], [0.0], [1.0]]);
+    let barycentric = gltf.floats(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+    gltf.mesh(
+        "batched",
+        json!({ "attributes": {
+            "POSITION": positions, "_BATCHID": batch, "__BARYCENTRIC": barycentric
+        } }),
+    );
+    let scene = load_embedded("underscore_attributes", &gltf);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    assert_eq!(scene.meshes.len(), 1);
+    assert_eq!(scene.meshes[0].triangle_count(), 1);
+}
+
+/// A scene without `nodes` is valid glTF: it loads empty, with a warning naming it, in both
+/// containers; so does a scene whose list is empty.
+#[test]
+fn scene_without_nodes_loads_empty_with_a_warning() {
+    let dir = temp_dir("scene_without_nodes");
+    let mut gltf = Gltf::default();
+    gltf.json["scenes"] = json!([{ "name": "void" }]);
+    let embedded = dir.join("scene.gltf");
+    gltf.write_embedded(&embedded);
+    let glb = dir.join("scene.glb");
+    gltf.write_glb(&glb);
+    gltf.json["scenes"] = json!([{ "nodes": [] }]);
+    let listed = dir.join("listed.gltf");
+    gltf.write_embedded(&listed);
+    for (path, name) in [
+        (&embedded, "scene 0 \"void\""),
+        (&glb, "scene 0 \"void\""),
+        (&listed, "scene 0"),
+    ] {
+        let scene = Scene::from_gltf(path).unwrap_or_else(|e| panic!("{e}"));
+        assert!(scene.meshes.is_empty(), "{}", path.display());
+        assert_eq!(
+            scene.warnings,
+            [format!(
+                "{name} lists no nodes: nothing to draw, the frame is empty"
+            )]
+        );
+    }
+}
+
+/// The emissive texture is sRGB color, the metallicRoughness texture linear data: one image
+/// used as both is decoded into two scene textures, one per role, and each reference keeps
+/// its own sampler.
+#[test]
+fn emissive_and_metallic_roughness_textures_are_loaded_in_their_color_spaces() {
+    let mut gltf = Gltf::default();
+    let view = gltf.view(&png_2x1());
+    gltf.push(
+        "images",
+        json!({ "bufferView": view, "mimeType": "image/png" }),
+    );
+    gltf.push("samplers", json!({ "magFilter": 9728, "wrapS": 33071 }));
+    gltf.push("textures", json!({ "source": 0, "sampler": 0 }));
+    gltf.push("textures", json!({ "source": 0 }));
+    let material = gltf.push(
+        "materials",
+        json!({
+            "emissiveFactor": [1.0, 0.5, 0.25],
+            "emissiveTexture": { "index": 0 },
+            "pbrMetallicRoughness": { "metallicRoughnessTexture": { "index": 1 } },
+        }),
+    );
+    gltf.triangle(Some(material));
+    let scene = load_embedded("emissive_metallic_roughness", &gltf);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let srgb: Vec<bool> = scene.textures.iter().map(|t| t.srgb).collect();
+    // metallicRoughness is converted before emissive.
+    assert_eq!(srgb, [false, true]);
+    assert!(scene
+        .textures
+        .iter()
+        .all(|t| t.rgba8 == [255, 0, 0, 255, 0, 0, 255, 128]));
+    let m = &scene.materials[0];
+    let nearest_clamped = Sampler {
+        wrap_u: WrapMode::ClampToEdge,
+        mag_filter: FilterMode::Nearest,
+        ..Sampler::default()
+    };
+    assert_eq!(
+        m.emissive_texture,
+        Some(TextureRef {
+            image: 1,
+            sampler: nearest_clamped,
+            tex_coord: 0,
+            uv_transform: TextureRef::IDENTITY_UV
+        })
+    );
+    assert_eq!(
+        m.metallic_roughness_texture,
+        Some(TextureRef {
+            image: 0,
+            sampler: Sampler::default(),
+            tex_coord: 0,
+            uv_transform: TextureRef::IDENTITY_UV
+        })
+    );
+    assert_eq!(m.base_color_texture, None);
+}
+
+/// COLOR_0 in each encoding the spec allows (float VEC3, normalized UNSIGNED_BYTE VEC4,
+/// normalized UNSIGNED_SHORT VEC4) becomes the vertices' 16-bit RGBA, and is kept when flat
+/// normals un-index the primitive; without COLOR_0 vertices are white.
+#[test]
+fn color_0_in_every_encoding_becomes_the_vertex_color() {
+    let mut gltf = Gltf::default();
+    let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let float_rgb = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 0.5]];
+    let bytes: [u8; 12] = [255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 51, 0];
+    let shorts: Vec<u8> = [65535u16, 0, 0, 65535, 0, 32768, 0, 0, 0, 0, 65535, 65535]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    let colors = [
+        gltf.floats(&float_rgb),
+        gltf.accessor(&bytes, 5121, 3, "VEC4", true),
+        gltf.accessor(&shorts, common::UNSIGNED_SHORT, 3, "VEC4", true),
+    ];
+    for color in colors {
+        let positions = gltf.floats(&corners);
+        gltf.mesh(
+            "colored",
+            json!({ "attributes": { "POSITION": positions, "COLOR_0": color } }),
+        );
+    }
+    gltf.triangle(None);
+    let scene = load_embedded("color_0", &gltf);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let colors: Vec<Vec<[u16; 4]>> = scene
+        .meshes
+        .iter()
+        .map(|m| m.vertices.iter().map(|v| v.color).collect())
+        .collect();
+    const MAX: u16 = u16::MAX;
+    assert_eq!(
+        colors,
+        [
+            vec![[MAX, 0, 0, MAX], [0, MAX, 0, MAX], [0, 0, 32768, MAX]],
+            vec![[MAX, 0, 0, MAX], [0, MAX, 0, 32896], [0, 0, 13107, 0]],
+            vec![[MAX, 0, 0, MAX], [0, 32768, 0, 0], [0, 0, MAX, MAX]],
+            vec![Vertex::WHITE; 3],
+        ]
+    );
+}
+
+/// A unit quad in the xy plane facing +z, u along +x and v down the image (glTF's UV
+/// origin is the image's top left), with `material`; `extra` attributes are added.
+fn uv_quad(gltf: &mut Gltf, material: usize, extra: serde_json::Value) {
+    let positions = gltf.floats(&[
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ]);
+    let normals = gltf.floats(&[[0.0, 0.0, 1.0]; 4]);
+    let uvs = gltf.floats(&[[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]]);
+    let indices = gltf.indices_u16(&[0, 1, 2, 0, 2, 3]);
+    let mut attributes = json!({ "POSITION": positions, "NORMAL": normals, "TEXCOORD_0": uvs });
+    for (name, accessor) in extra.as_object().unwrap() {
+        attributes[name] = accessor.clone();
+    }
+    gltf.mesh(
+        "quad",
+        json!({ "attributes": attributes, "indices": indices, "material": material }),
+    );
+}
+
+/// Normal textures get tangents: TANGENT as the file has it, else MikkTSpace's, with the
+/// sign that makes the bitangent point up the image (+y here, as glTF's normal textures
+/// encode +Y); a mirroring node flips the sign; no normal texture, no tangents.
+#[test]
+fn normal_textures_get_tangents_from_the_file_or_mikktspace() {
+    let mut gltf = Gltf::default();
+    let view = gltf.view(&png_2x1());
+    gltf.push(
+        "images",
+        json!({ "bufferView": view, "mimeType": "image/png" }),
+    );
+    gltf.push("textures", json!({ "source": 0 }));
+    let bumpy = gltf.push(
+        "materials",
+        json!({ "normalTexture": { "index": 0, "scale": 0.5 } }),
+    );
+    let plain = gltf.push("materials", json!({}));
+    // A normal texture on TEXCOORD_2 (not loaded) is dropped: nothing needs tangents.
+    let third_set = gltf.push(
+        "materials",
+        json!({ "normalTexture": { "index": 0, "texCoord": 2 } }),
+    );
+    uv_quad(&mut gltf, bumpy, json!({}));
+    let tangents = gltf.floats(&[[0.0, 1.0, 0.0, -1.0]; 4]);
+    uv_quad(&mut gltf, bumpy, json!({ "TANGENT": tangents }));
+    uv_quad(&mut gltf, plain, json!({}));
+    uv_quad(&mut gltf, third_set, json!({}));
+    // The first quad again, mirrored in x by its node.
+    let nodes = gltf.json["nodes"].as_array().unwrap().len();
+    gltf.root(json!({ "mesh": 0, "scale": [-1.0, 1.0, 1.0] }));
+    assert_eq!(nodes, 4);
+    let scene = load_embedded("tangents", &gltf);
+    assert_eq!(
+        scene.warnings,
+        [
+            "material 2: normal texture uses TEXCOORD_2, only TEXCOORD_0 and TEXCOORD_1 are \
+             loaded; texture ignored"
+        ]
+    );
+    let one = i16::MAX;
+    let tangents: Vec<[i16; 4]> = scene.meshes.iter().map(|m| m.vertices[0].tangent).collect();
+    assert_eq!(
+        tangents,
+        [
+            [one, 0, 0, one],
+            [0, one, 0, -one],
+            Vertex::NO_TANGENT,
+            Vertex::NO_TANGENT,
+            [one, 0, 0, -one]
+        ]
+    );
+    assert!(scene.meshes.iter().all(|m| m
+        .vertices
+        .iter()
+        .all(|v| v.tangent == m.vertices[0].tangent)));
+    let m = &scene.materials[0];
+    assert_eq!(
+        (m.normal_texture.map(|t| t.image), m.normal_scale),
+        (Some(0), 0.5)
+    );
+    assert!(!scene.textures[0].srgb, "normal textures are linear data");
+}
+
+/// TEXCOORD_1 is kept beside TEXCOORD_0, and a texture says which set it samples; a normal
+/// texture on set 1 gets its MikkTSpace tangents along set 1 (here u1 runs along -x, so the
+/// tangent does too).
+#[test]
+fn texcoord_1_is_loaded_and_textures_name_their_set() {
+    let mut gltf = Gltf::default();
+    let view = gltf.view(&png_2x1());
+    gltf.push(
+        "images",
+        json!({ "bufferView": view, "mimeType": "image/png" }),
+    );
+    gltf.push("textures", json!({ "source": 0 }));
+    let material = gltf.push(
+        "materials",
+        json!({
+            "emissiveFactor": [1.0, 1.0, 1.0],
+            "emissiveTexture": { "index": 0, "texCoord": 1 },
+            "normalTexture": { "index": 0, "texCoord": 1 },
+            "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } },
+        }),
+    );
+    let uv1 = gltf.floats(&[[1.0, 1.0], [0.0, 1.0], [0.0, 0.0], [1.0, 0.0]]);
+    uv_quad(&mut gltf, material, json!({ "TEXCOORD_1": uv1 }));
+    let scene = load_embedded("texcoord_1", &gltf);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let uv1: Vec<[f32; 2]> = scene.meshes[0].vertices.iter().map(|v| v.uv1).collect();
+    assert_eq!(uv1, [[1.0, 1.0], [0.0, 1.0], [0.0, 0.0], [1.0, 0.0]]);
+    let m = &scene.materials[0];
+    let sets = [m.base_color_texture, m.emissive_texture, m.normal_texture]
+        .map(|t| t.map(|t| t.tex_coord));
+    assert_eq!(sets, [Some(0), Some(1), Some(1)]);
+    let one = i16::MAX;
+    assert_eq!(scene.meshes[0].vertices[0].tangent, [-one, 0, 0, -one]);
+}
+
+/// KHR_texture_transform becomes each texture's UV matrix, as the extension's own example
+/// reads: offset (0, 1), rotation 90° and scale 0.5 show the image's lower left quadrant
+/// (UVs 0..1 land on u 0..0.5, v 0.5..1), on the normal texture as on the others; its
+/// texCoord overrides the reference's.
+#[test]
+fn texture_transform_becomes_the_uv_matrix() {
+    let mut gltf = Gltf::default();
+    gltf.json["extensionsUsed"] = json!(["KHR_texture_transform"]);
+    let view = gltf.view(&png_2x1());
+    gltf.push(
+        "images",
+        json!({ "bufferView": view, "mimeType": "image/png" }),
+    );
+    gltf.push("textures", json!({ "source": 0 }));
+    let example = json!({ "KHR_texture_transform": {
+        "offset": [0.0, 1.0], "rotation": std::f64::consts::FRAC_PI_2, "scale": [0.5, 0.5]
+    } });
+    let material = gltf.push(
+        "materials",
+        json!({
+            "pbrMetallicRoughness": { "baseColorTexture": { "index": 0, "extensions": example } },
+            "normalTexture": { "index": 0, "extensions": example },
+            "emissiveFactor": [1.0, 1.0, 1.0],
+            "emissiveTexture": { "index": 0, "extensions": {
+                "KHR_texture_transform": { "texCoord": 1 }
+            } },
+        }),
+    );
+    let uv1 = gltf.floats(&[[0.0, 0.0]; 4]);
+    uv_quad(&mut gltf, material, json!({ "TEXCOORD_1": uv1 }));
+    let scene = load_embedded("texture_transform", &gltf);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let m = &scene.materials[0];
+    let apply =
+        |t: [[f32; 2]; 3], [u, v]: [f32; 2]| [0, 1].map(|i| t[0][i] * u + t[1][i] * v + t[2][i]);
+    for texture in [m.base_color_texture, m.normal_texture] {
+        let t = texture.expect("kept").uv_transform;
+        for (uv, expected) in [
+            ([0.0, 0.0], [0.0, 1.0]),
+            ([1.0, 0.0], [0.0, 0.5]),
+            ([0.0, 1.0], [0.5, 1.0]),
+            ([1.0, 1.0], [0.5, 0.5]),
+        ] {
+            let got = apply(t, uv);
+            assert!(
+                (0..2).all(|i| (got[i] - expected[i]).abs() < 1e-6),
+                "{uv:?} -> {got:?}, expected {expected:?}"
+            );
+        }
+    }
+    let emissive = m.emissive_texture.expect("kept");
+    assert_eq!(
+        (emissive.tex_coord, emissive.uv_transform),
+        (1, TextureRef::IDENTITY_UV)
     );
 }

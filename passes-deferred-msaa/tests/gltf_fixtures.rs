@@ -5,7 +5,7 @@ use crate::common;
 
 use glam::{DMat4, DQuat, DVec3, Vec3};
 use passes_deferred_msaa::scene::{
-    AlphaMode, Camera, LightKind, Projection, Scene, FRAMING_DIRECTION, FRAMING_YFOV,
+    AlphaMode, Camera, LightKind, Projection, Scene, FRAMING_MARGIN, FRAMING_YFOV,
 };
 
 fn load(name: &str) -> Scene {
@@ -78,8 +78,9 @@ fn scene_without_camera_gets_the_framing_camera() {
     // Bounds (8,10,0)..(10,12,0): sphere center (9,11,0), radius √2.
     let center = DVec3::new(9.0, 11.0, 0.0);
     let radius = 2f64.sqrt();
-    let distance = radius / (f64::from(FRAMING_YFOV) / 2.0).sin();
-    let expected_eye = center + FRAMING_DIRECTION.normalize() * distance;
+    let distance = FRAMING_MARGIN * radius / (f64::from(FRAMING_YFOV) / 2.0).sin();
+    // From the glTF front (+Z), looking down -Z onto the model.
+    let expected_eye = center + DVec3::Z * distance;
     assert!(
         camera.position.abs_diff_eq(expected_eye, 1e-12),
         "{}",

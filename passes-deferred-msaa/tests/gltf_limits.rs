@@ -247,8 +247,8 @@ fn a_mesh_placed_by_many_nodes_stops_at_the_geometry_limit() {
     assert_eq!(DEFAULT_MAX_SCENE_BYTES, 4 << 30);
     let mut gltf = Gltf::default();
     let mesh = gltf.triangle(None);
-    // One triangle without normals: 3 flat-shaded vertices of 32 bytes and 3 indices of 4,
-    // 108 bytes a placement; ten more nodes place it again.
+    // One triangle without normals: 3 flat-shaded vertices of 56 bytes and 3 indices of 4,
+    // 180 bytes a placement; ten more nodes place it again.
     for _ in 0..10 {
         gltf.root(json!({ "mesh": mesh }));
     }
@@ -258,14 +258,14 @@ fn a_mesh_placed_by_many_nodes_stops_at_the_geometry_limit() {
         max_scene_bytes,
         ..AssetPolicy::default()
     };
-    let scene = Scene::from_gltf_with(&path, &policy(11 * 108)).unwrap_or_else(|e| panic!("{e}"));
+    let scene = Scene::from_gltf_with(&path, &policy(11 * 180)).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(scene.meshes.len(), 11);
-    let error = Scene::from_gltf_with(&path, &policy(11 * 108 - 1)).expect_err("one too many");
+    let error = Scene::from_gltf_with(&path, &policy(11 * 180 - 1)).expect_err("one too many");
     assert_eq!(
         error.to_string(),
         format!(
             "{}: mesh 0 \"triangle\" primitive 0: placing it here (every node placing a mesh \
-             gets its own copy) would take the scene past 1187 bytes of vertices, indices and \
+             gets its own copy) would take the scene past 1979 bytes of vertices, indices and \
              textures (the scene memory limit)",
             path.display()
         )

@@ -4,7 +4,7 @@
 use glam::{DVec3, Mat4, Vec3, Vec4};
 use passes_deferred_msaa::scene::{
     flat_shaded, Aabb, BoundingSphere, Camera, DepthConvention, Light, LightKind, LightVolume,
-    Projection, Scene, DEFAULT_CUTOFF_ILLUMINANCE,
+    Projection, Scene, Vertex, DEFAULT_CUTOFF_ILLUMINANCE,
 };
 
 /// Depth of the view-space point (0, 0, -distance).
@@ -274,8 +274,21 @@ fn flat_shading_unindexes_with_face_normals() {
         [0.0, 0.0, 1.0],
     ];
     let uvs = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.5, 0.5]];
+    let indexed: Vec<Vertex> = positions
+        .iter()
+        .zip(uvs)
+        .zip(0u16..)
+        .map(|((&position, uv), i)| Vertex {
+            position,
+            normal: [9.0; 3],
+            uv,
+            color: [i; 4],
+            tangent: Vertex::NO_TANGENT,
+            uv1: [0.0; 2],
+        })
+        .collect();
     // A triangle facing +Z, one facing -Y, one degenerate.
-    let (vertices, indices) = flat_shaded(&positions, &uvs, &[0, 1, 2, 0, 1, 3, 0, 0, 1]);
+    let (vertices, indices) = flat_shaded(&indexed, &[0, 1, 2, 0, 1, 3, 0, 0, 1]);
     assert_eq!(indices, (0..9).collect::<Vec<u32>>());
     let normals: Vec<[f32; 3]> = vertices.iter().map(|v| v.normal).collect();
     assert_eq!(&normals[0..3], &[[0.0, 0.0, 1.0]; 3]);
@@ -287,6 +300,10 @@ fn flat_shading_unindexes_with_face_normals() {
     );
     assert_eq!(vertices[5].position, [0.0, 0.0, 1.0]);
     assert_eq!(vertices[5].uv, [0.5, 0.5]);
+    assert_eq!(
+        vertices[5].color, [3; 4],
+        "attributes other than the normal are kept"
+    );
 }
 
 #[test]

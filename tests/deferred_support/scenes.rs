@@ -68,6 +68,9 @@ impl Parts {
                     position: c.as_vec3().to_array(),
                     normal: normal.as_vec3().to_array(),
                     uv: [0.0, 0.0],
+                    color: Vertex::WHITE,
+                    tangent: Vertex::NO_TANGENT,
+                    uv1: [0.0; 2],
                 });
             }
             for i in 1..corners.len() as u32 - 1 {

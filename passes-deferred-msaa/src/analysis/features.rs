@@ -20,6 +20,14 @@ pub struct Features {
     pub alpha_mask: bool,
     /// Some mesh's material samples a base-color texture.
     pub textures: bool,
+    /// Some mesh's emissive material samples an emissive texture.
+    pub emissive_textures: bool,
+    /// Some mesh's lit material samples a metallicRoughness texture.
+    pub metal_rough_textures: bool,
+    /// Some mesh's lit material samples a normal texture.
+    pub normal_textures: bool,
+    /// Some mesh's lit material samples an occlusion texture.
+    pub occlusion_textures: bool,
     pub double_sided: bool,
     /// A 24-bit unorm depth buffer with standard Z resolves the geometry's depth range
     /// as finely as [`DepthRange::shallow`] asks. A reduction, like `unlit_only`: only a
@@ -29,7 +37,7 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 13] = [
+    pub const NAMES: [&'static str; 17] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -41,6 +49,10 @@ impl Features {
         "emissive",
         "alpha_mask",
         "textures",
+        "emissive_textures",
+        "metal_rough_textures",
+        "normal_textures",
+        "occlusion_textures",
         "double_sided",
         "shallow_depth",
     ];
@@ -64,6 +76,10 @@ impl Features {
             emissive: material(Material::is_emissive),
             alpha_mask: material(|m| matches!(m.alpha_mode, AlphaMode::Mask { .. })),
             textures: material(|m| m.base_color_texture.is_some()),
+            emissive_textures: material(|m| m.is_emissive() && m.emissive_texture.is_some()),
+            metal_rough_textures: material(|m| !m.unlit && m.metallic_roughness_texture.is_some()),
+            normal_textures: material(|m| !m.unlit && m.normal_texture.is_some()),
+            occlusion_textures: material(|m| !m.unlit && m.occlusion_texture.is_some()),
             double_sided: material(|m| m.double_sided),
             // With no geometry between the planes nothing is depth-tested: the general
             // pipeline is as good as any.
@@ -89,6 +105,10 @@ impl Features {
             emissive: true,
             alpha_mask: true,
             textures: true,
+            emissive_textures: true,
+            metal_rough_textures: true,
+            normal_textures: true,
+            occlusion_textures: true,
             double_sided: true,
             shallow_depth: false,
         }
@@ -119,6 +139,10 @@ impl Features {
             self.emissive,
             self.alpha_mask,
             self.textures,
+            self.emissive_textures,
+            self.metal_rough_textures,
+            self.normal_textures,
+            self.occlusion_textures,
             self.double_sided,
             self.shallow_depth,
         ];

@@ -29,6 +29,14 @@ pub enum Gate {
     SpotLights,
     /// Sampling the base-color texture (without one a material's texture is white).
     Textures,
+    /// Sampling the emissive texture (without one, or without emission, it is white).
+    EmissiveTextures,
+    /// Sampling the metallicRoughness texture (without one it is white).
+    MetalRoughTextures,
+    /// Perturbing normals by the normal texture (without one the normal is unchanged).
+    NormalTextures,
+    /// Sampling the occlusion texture (without one, occlusion is 1).
+    OcclusionTextures,
     /// Flipping back faces' normals (without double-sided materials back faces are
     /// culled).
     DoubleSided,
@@ -44,6 +52,10 @@ impl Gate {
             Gate::PointLights => "point_lights",
             Gate::SpotLights => "spot_lights",
             Gate::Textures => "textures",
+            Gate::EmissiveTextures => "emissive_textures",
+            Gate::MetalRoughTextures => "metal_rough_textures",
+            Gate::NormalTextures => "normal_textures",
+            Gate::OcclusionTextures => "occlusion_textures",
             Gate::DoubleSided => "double_sided",
             Gate::Emissive => "emissive",
         }
@@ -56,6 +68,10 @@ impl Gate {
             Gate::PointLights => "POINT_LIGHTS",
             Gate::SpotLights => "SPOT_LIGHTS",
             Gate::Textures => "TEXTURES",
+            Gate::EmissiveTextures => "EMISSIVE_TEXTURES",
+            Gate::MetalRoughTextures => "METAL_ROUGH_TEXTURES",
+            Gate::NormalTextures => "NORMAL_TEXTURES",
+            Gate::OcclusionTextures => "OCCLUSION_TEXTURES",
             Gate::DoubleSided => "DOUBLE_SIDED",
             Gate::Emissive => "EMISSIVE",
         }
@@ -68,6 +84,10 @@ impl Gate {
             Gate::PointLights => features.point_lights,
             Gate::SpotLights => features.spot_lights,
             Gate::Textures => features.textures,
+            Gate::EmissiveTextures => features.emissive_textures,
+            Gate::MetalRoughTextures => features.metal_rough_textures,
+            Gate::NormalTextures => features.normal_textures,
+            Gate::OcclusionTextures => features.occlusion_textures,
             Gate::DoubleSided => features.double_sided,
             Gate::Emissive => features.emissive,
         }
@@ -113,7 +133,15 @@ impl GatedShader {
     pub fn gates(self) -> &'static [Gate] {
         use Gate::*;
         match self {
-            GatedShader::GBuffer => &[Textures, DoubleSided, Emissive],
+            GatedShader::GBuffer => &[
+                Textures,
+                EmissiveTextures,
+                MetalRoughTextures,
+                NormalTextures,
+                OcclusionTextures,
+                DoubleSided,
+                Emissive,
+            ],
             GatedShader::Light | GatedShader::LightTiled => {
                 &[DirectionalLights, PointLights, SpotLights]
             }
@@ -122,6 +150,10 @@ impl GatedShader {
                 PointLights,
                 SpotLights,
                 Textures,
+                EmissiveTextures,
+                MetalRoughTextures,
+                NormalTextures,
+                OcclusionTextures,
                 DoubleSided,
                 Emissive,
             ],
@@ -257,7 +289,7 @@ mod tests {
         let general = Variant::general(GatedShader::Forward);
         assert!(general.is_general());
         assert!(general.constants().iter().all(|&(_, v)| v == 1.0));
-        assert_eq!(general.constants().len(), 6);
+        assert_eq!(general.constants().len(), 10);
     }
 
     #[test]
@@ -300,7 +332,9 @@ mod tests {
             shown,
             [
                 (
-                    "gbuffer.wgsl {textures, double_sided, emissive}".to_owned(),
+                    "gbuffer.wgsl {textures, emissive_textures, metal_rough_textures, \
+                     normal_textures, occlusion_textures, double_sided, emissive}"
+                        .to_owned(),
                     vec!["gbuffer".to_owned()]
                 ),
                 (

@@ -1,10 +1,13 @@
 //! Materials on the device: the constants of every material in one storage buffer, and
-//! per material a bind group (group 1 of the G-buffer pass) with its base-color texture.
+//! per material a bind group (group 1 of the G-buffer and forward passes, material.wgsl)
+//! with its textures.
+
+use std::collections::HashMap;
 
 use wgpu::util::DeviceExt;
 
 use super::textures;
-use crate::scene::{AlphaMode, Sampler, Scene};
+use crate::scene::{AlphaMode, Material, Sampler, Scene, TextureRef};
 
 /// `FLAG_LIT` and `FLAG_UNLIT` in common.wgsl.
 const FLAG_LIT: u32 = 1;
@@ -20,7 +23,15 @@ struct MaterialData {
     metallic: f32,
     roughness: f32,
     flags: u32,
-    _pad: u32,
+    normal_scale: f32,
+    occlusion_strength: f32,
+    /// Bit `slot` set: the texture of that slot samples TEXCOORD_1.
+    uv_sets: u32,
+    _pad: [u32; 2],
+    /// Per slot, KHR_texture_transform's matrix (`mat3x2<f32>`, three columns).
+    uv_transforms: [[[f32; 2]; 3]; TEXTURE_SLOTS as usize],
+    /// WGSL rounds the struct's size up to its alignment, 16.
+    _tail: [u32; 2],
 }
 
 /// What the G-buffer pass needs to pick a pipeline for a material.
@@ -38,28 +49,49 @@ pub(super) struct Materials {
     pub bind_groups: Vec<wgpu::BindGroup>,
 }
 
-/// The layout of a material's bind group: its base-color texture and sampler.
+/// A material's textures in binding order (material.wgsl): base color, emissive,
+/// metallicRoughness, normal, occlusion.
+const TEXTURE_SLOTS: u32 = 5;
+
+/// A material's textures in binding order.
+fn slots(material: &Material) -> [Option<TextureRef>; TEXTURE_SLOTS as usize] {
+    [
+        material.base_color_texture,
+        material.emissive_texture,
+        material.metallic_roughness_texture,
+        material.normal_texture,
+        material.occlusion_texture,
+    ]
+}
+
+/// The layout of a material's bind group: per texture of [`TEXTURE_SLOTS`], the texture
+/// (binding `2 * slot`) and its sampler (binding `2 * slot + 1`).
 pub(super) fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let entries: Vec<wgpu::BindGroupLayoutEntry> = (0..TEXTURE_SLOTS)
+        .flat_map(|slot| {
+            [
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2 * slot,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2 * slot + 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ]
+        })
+        .collect();
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("deferred material"),
-        entries: &[
-            wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 1,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                count: None,
-            },
-        ],
+        entries: &entries,
     })
 }
 
@@ -76,7 +108,8 @@ impl Materials {
             .map(|image| textures::upload(device, queue, image))
             .collect();
         let white = textures::white(device, queue);
-        let default_sampler = textures::sampler(device, &Sampler::default());
+        // One device sampler per distinct glTF sampler: materials share most of them.
+        let mut samplers = HashMap::new();
         let mut data = Vec::new();
         let mut states = Vec::new();
         let mut bind_groups = Vec::new();
@@ -92,33 +125,59 @@ impl Materials {
                 metallic: material.metallic_factor,
                 roughness: material.roughness_factor,
                 flags: if material.unlit { FLAG_UNLIT } else { FLAG_LIT },
-                _pad: 0,
+                normal_scale: match material.normal_texture {
+                    Some(_) => material.normal_scale,
+                    None => 0.0,
+                },
+                occlusion_strength: match material.occlusion_texture {
+                    Some(_) => material.occlusion_strength,
+                    None => 0.0,
+                },
+                uv_sets: (0u32..)
+                    .zip(slots(material))
+                    .filter(|(_, t)| t.is_some_and(|t| t.tex_coord == 1))
+                    .fold(0, |bits, (slot, _)| bits | 1 << slot),
+                _pad: [0; 2],
+                uv_transforms: slots(material)
+                    .map(|t| t.map_or(TextureRef::IDENTITY_UV, |t| t.uv_transform)),
+                _tail: [0; 2],
             });
             states.push(MaterialState {
                 double_sided: material.double_sided,
                 masked: matches!(material.alpha_mode, AlphaMode::Mask { .. }),
             });
             // Scenes guarantee texture indices are in range; a broken one shows white.
-            let texture = material
-                .base_color_texture
-                .and_then(|t| Some((images.get(t.image)?, textures::sampler(device, &t.sampler))));
-            let (view, sampler) = match &texture {
-                Some((view, sampler)) => (*view, sampler),
-                None => (&white, &default_sampler),
-            };
+            let textures: Vec<(&wgpu::TextureView, wgpu::Sampler)> = slots(material)
+                .into_iter()
+                .map(|texture| {
+                    let (view, sampler) = texture
+                        .and_then(|t| Some((images.get(t.image)?, t.sampler)))
+                        .unwrap_or((&white, Sampler::default()));
+                    let sampler = samplers
+                        .entry(sampler)
+                        .or_insert_with(|| textures::sampler(device, &sampler));
+                    (view, sampler.clone())
+                })
+                .collect();
+            let entries: Vec<wgpu::BindGroupEntry> = (0u32..)
+                .zip(&textures)
+                .flat_map(|(slot, (view, sampler))| {
+                    [
+                        wgpu::BindGroupEntry {
+                            binding: 2 * slot,
+                            resource: wgpu::BindingResource::TextureView(view),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2 * slot + 1,
+                            resource: wgpu::BindingResource::Sampler(sampler),
+                        },
+                    ]
+                })
+                .collect();
             bind_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(&material.name),
                 layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::Sampler(sampler),
-                    },
-                ],
+                entries: &entries,
             }));
         }
         // Storage bindings cannot be empty; scenes always have a material, but keep the

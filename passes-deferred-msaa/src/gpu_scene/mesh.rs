@@ -36,12 +36,15 @@ pub(super) struct MeshBuffers {
     pub draws: Vec<MeshDraw>,
 }
 
-/// The vertex layout of scene meshes: [`Vertex`] at locations 0 (position), 1 (normal)
-/// and 2 (uv).
+/// The vertex layout of scene meshes: [`Vertex`] at locations 0 (position), 1 (normal),
+/// 2 (uv), 3 (color), 4 (tangent) and 5 (uv1).
 pub const VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     array_stride: std::mem::size_of::<Vertex>() as u64,
     step_mode: wgpu::VertexStepMode::Vertex,
-    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2],
+    attributes: &wgpu::vertex_attr_array![
+        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Unorm16x4, 4 => Snorm16x4,
+        5 => Float32x2
+    ],
 };
 
 impl MeshBuffers {
@@ -66,6 +69,13 @@ impl MeshBuffers {
                 material: mesh.material as u32,
                 _pad: [0; 3],
             });
+        }
+        // A scene without meshes (a glTF scene listing no nodes) still binds these buffers:
+        // wgpu refuses empty slices and zero-sized storage bindings, and nothing is drawn.
+        if draws.is_empty() {
+            vertices.push(bytemuck::Zeroable::zeroed());
+            indices.push(0);
+            data.push(bytemuck::Zeroable::zeroed());
         }
         let init = |label, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

@@ -155,8 +155,9 @@ impl GpuScene {
         }
     }
 
-    /// The layout of each material's bind group: base-color texture (binding 0) and its
-    /// sampler (binding 1).
+    /// The layout of each material's bind group, as material.wgsl declares it: base-color,
+    /// emissive, metallicRoughness, normal and occlusion textures, each followed by its
+    /// sampler (bindings 0-9).
     pub fn material_layout(&self) -> &wgpu::BindGroupLayout {
         &self.material_layout
     }

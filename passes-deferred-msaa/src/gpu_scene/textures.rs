@@ -21,7 +21,8 @@ pub(super) fn upload(
     create(device, queue, &image.name, size, format, &texels)
 }
 
-/// The texture of materials without a base-color texture: one white texel, so every
+/// The texture of a material without one of its textures: one white texel (1.0 in every
+/// channel, sRGB or not), which multiplies the texture's factor by exactly one, so every
 /// material samples the same way.
 pub(super) fn white(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::TextureView {
     let format = wgpu::TextureFormat::Rgba8UnormSrgb;

@@ -1,6 +1,8 @@
 //! Assembly shared by the glTF loader and the built-in scenes.
 
-use super::{Camera, Light, Material, Mesh, Scene, SceneError, TextureImage, MAX_COORDINATE};
+use glam::DVec3;
+
+use super::{Aabb, Camera, Light, Material, Mesh, Scene, SceneError, TextureImage, MAX_COORDINATE};
 
 /// A scene under construction: loaders push parts, [`SceneBuilder::finish`] derives the rest.
 pub(crate) struct SceneBuilder {
@@ -12,6 +14,9 @@ pub(crate) struct SceneBuilder {
     pub ambient: [f32; 3],
     pub camera: Option<Camera>,
     pub warnings: Vec<String>,
+    /// Whether a scene without triangles is what the source asked for (a glTF scene listing
+    /// no nodes) rather than a sign that everything was skipped; see [`SceneBuilder::finish`].
+    pub allow_empty: bool,
 }
 
 impl SceneBuilder {
@@ -25,6 +30,7 @@ impl SceneBuilder {
             ambient: [0.0; 3],
             camera: None,
             warnings: Vec::new(),
+            allow_empty: false,
         }
     }
 
@@ -36,7 +42,8 @@ impl SceneBuilder {
 
     /// Drops meshes without triangles, computes the bounds and, when no camera was set, frames
     /// them with [`Camera::framing`]. Fails with [`SceneError::EmptyScene`] when no triangle is
-    /// left, since nothing downstream can render or frame an empty scene, and with
+    /// left, unless [`SceneBuilder::allow_empty`] is set (the loader has warned): then the
+    /// bounds are the origin and the frame shows only the background. Fails with
     /// [`SceneError::TooFar`] when the bounds, a light or the camera lie beyond
     /// ±[`MAX_COORDINATE`] (or are not finite), which would otherwise render an empty frame.
     pub fn finish(mut self) -> Result<Scene, SceneError> {
@@ -46,8 +53,10 @@ impl SceneBuilder {
             .iter()
             .filter_map(Mesh::world_bounds)
             .reduce(|a, b| a.union(&b));
-        let Some(bounds) = bounds else {
-            return Err(SceneError::EmptyScene { scene: self.name });
+        let bounds = match bounds {
+            Some(bounds) => bounds,
+            None if self.allow_empty => Aabb::from_points([DVec3::ZERO]).expect("one point"),
+            None => return Err(SceneError::EmptyScene { scene: self.name }),
         };
         self.check_extent("the geometry", bounds.largest_coordinate())?;
         for light in &self.lights {

@@ -7,10 +7,14 @@ use super::bounds::Aabb;
 /// Vertical field of view of the camera made by [`Camera::framing`] (45°).
 pub const FRAMING_YFOV: f32 = std::f32::consts::FRAC_PI_4;
 
-/// Direction from the scene center towards the camera made by [`Camera::framing`] (before
-/// normalizing): from the front right and somewhat above, so the ground and three sides of
-/// boxes show.
-pub const FRAMING_DIRECTION: DVec3 = DVec3::new(1.0, 0.6, 1.4);
+/// Direction from the scene center towards the camera made by [`Camera::framing`] (unit
+/// length): +Z, the glTF front ("the front of an asset faces +Z"), as the Khronos glTF sample
+/// viewer frames a model, so models are seen as their artists posed them.
+pub const FRAMING_DIRECTION: DVec3 = DVec3::Z;
+
+/// How much larger than the bounds' sphere the view of [`Camera::framing`] is, so the
+/// silhouette keeps a margin from the frame's edges.
+pub const FRAMING_MARGIN: f64 = 1.1;
 
 /// A glTF projection. Angles in radians, distances in world units along the view axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,9 +108,10 @@ impl Camera {
 
     /// The camera a scene without one gets: perspective with [`FRAMING_YFOV`], looking at the
     /// center `c` of the bounds' sphere (radius `r`) from direction [`FRAMING_DIRECTION`], at
-    /// distance `d = r / sin(yfov / 2)` so the sphere exactly fits the vertical field of view.
-    /// Near plane `(d - r) / 2` (half way to the closest possible geometry), far plane infinite.
-    /// A zero-size box is framed as a sphere of radius 1.
+    /// distance `d = FRAMING_MARGIN * r / sin(yfov / 2)` so the sphere, enlarged by
+    /// [`FRAMING_MARGIN`], fits the vertical field of view. Near plane `(d - r) / 2` (half way to
+    /// the closest possible geometry), far plane infinite. A zero-size box is framed as a
+    /// sphere of radius 1.
     pub fn framing(bounds: &Aabb) -> Camera {
         let sphere = bounds.bounding_sphere();
         let radius = if sphere.radius > 0.0 {
@@ -114,8 +119,8 @@ impl Camera {
         } else {
             1.0
         };
-        let distance = radius / (f64::from(FRAMING_YFOV) * 0.5).sin();
-        let eye = sphere.center + FRAMING_DIRECTION.normalize() * distance;
+        let distance = FRAMING_MARGIN * radius / (f64::from(FRAMING_YFOV) * 0.5).sin();
+        let eye = sphere.center + FRAMING_DIRECTION * distance;
         let projection = Projection::Perspective {
             yfov: FRAMING_YFOV,
             znear: (0.5 * (distance - radius)) as f32,

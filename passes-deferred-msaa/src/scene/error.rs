@@ -7,8 +7,9 @@ use std::path::PathBuf;
 /// is enough to find the problem.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
-    /// The file (or a buffer or image it references) could not be read: missing,
-    /// unreadable, not a regular file, or over the size cap.
+    /// The file, or the folder it is in, could not be read: missing, unreadable, not a
+    /// regular file, or over the size cap. (A buffer's or image's file that cannot be read is
+    /// an [`SceneError::InvalidBuffer`] or [`SceneError::InvalidImage`] naming its user.)
     #[error("cannot read {file}: {source}")]
     Io {
         file: PathBuf,
@@ -41,7 +42,7 @@ pub enum SceneError {
         implemented: String,
     },
 
-    /// A buffer's data is missing, unreachable or shorter than declared.
+    /// A buffer's data is missing (its file too), unreachable or shorter than declared.
     #[error("{file}: buffer {buffer}: {reason}")]
     InvalidBuffer {
         file: PathBuf,
@@ -97,11 +98,13 @@ pub enum SceneError {
         reason: String,
     },
 
-    /// A base-color image could not be located or decoded.
-    #[error("{file}: {image} (base color of {material}): {reason}")]
+    /// A material's image could not be located or decoded.
+    #[error("{file}: {image} ({slot} of {material}): {reason}")]
     InvalidImage {
         file: PathBuf,
         image: String,
+        /// Which of the material's textures uses it: "base color", "emissive", ...
+        slot: &'static str,
         material: String,
         reason: String,
     },

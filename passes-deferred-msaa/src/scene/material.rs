@@ -14,17 +14,32 @@ pub enum AlphaMode {
 }
 
 /// A glTF 2.0 metallic-roughness material, with the extensions this crate implements folded in.
+/// Each texture is sampled with the UV set its [`TextureRef::tex_coord`] names.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     pub name: String,
-    /// Linear RGBA, multiplied with the base-color texture.
+    /// Linear RGBA, multiplied with the base-color texture and the vertex color.
     pub base_color_factor: [f32; 4],
-    /// sRGB texture sampled with TEXCOORD_0.
+    /// sRGB texture sampled with its UV set.
     pub base_color_texture: Option<TextureRef>,
     pub metallic_factor: f32,
     pub roughness_factor: f32,
-    /// Linear RGB emitted radiance before `emissive_strength`.
+    /// glTF metallicRoughnessTexture, linear, sampled with its UV set: blue multiplies
+    /// `metallic_factor`, green `roughness_factor` (red is unused; glTF packs occlusion there).
+    pub metallic_roughness_texture: Option<TextureRef>,
+    /// glTF normalTexture, linear tangent-space normals sampled with its UV set along the
+    /// vertices' tangents; its X and Y are scaled by `normal_scale`.
+    pub normal_texture: Option<TextureRef>,
+    pub normal_scale: f32,
+    /// glTF occlusionTexture, linear, red channel, sampled with its UV set: scales ambient
+    /// light only, by `1 + occlusion_strength * (red - 1)`.
+    pub occlusion_texture: Option<TextureRef>,
+    pub occlusion_strength: f32,
+    /// Linear RGB emitted radiance before `emissive_strength` and the emissive texture.
     pub emissive_factor: [f32; 3],
+    /// sRGB texture sampled with its UV set, multiplied with `emissive_factor`: without it
+    /// the factor alone is emitted everywhere.
+    pub emissive_texture: Option<TextureRef>,
     /// KHR_materials_emissive_strength multiplier (1 without the extension).
     pub emissive_strength: f32,
     pub alpha_mode: AlphaMode,
@@ -44,7 +59,13 @@ impl Material {
             base_color_texture: None,
             metallic_factor: 1.0,
             roughness_factor: 1.0,
+            metallic_roughness_texture: None,
+            normal_texture: None,
+            normal_scale: 1.0,
+            occlusion_texture: None,
+            occlusion_strength: 1.0,
             emissive_factor: [0.0; 3],
+            emissive_texture: None,
             emissive_strength: 1.0,
             alpha_mode: AlphaMode::Opaque,
             double_sided: false,
@@ -52,7 +73,8 @@ impl Material {
         }
     }
 
-    /// Emitted radiance, `emissive_factor * emissive_strength`.
+    /// Emitted radiance where the emissive texture is white: `emissive_factor *
+    /// emissive_strength`.
     pub fn emission(&self) -> [f32; 3] {
         self.emissive_factor.map(|c| c * self.emissive_strength)
     }

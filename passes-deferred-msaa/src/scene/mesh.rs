@@ -4,7 +4,7 @@ use glam::{DMat3, DMat4, DVec3, Vec3};
 
 use super::bounds::Aabb;
 
-/// One vertex as the G-buffer pass reads it: 32 bytes, no padding, uploadable as is.
+/// One vertex as the G-buffer pass reads it: 56 bytes, no padding, uploadable as is.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct Vertex {
@@ -15,6 +15,33 @@ pub struct Vertex {
     pub normal: [f32; 3],
     /// TEXCOORD_0; `[0, 0]` when the source has none.
     pub uv: [f32; 2],
+    /// COLOR_0, linear RGBA as 16-bit unorm (a multiplier of the base color: 8 bits would
+    /// band dark linear colors, floats would take 8 more bytes); [`Vertex::WHITE`] when the
+    /// source has none.
+    pub color: [u16; 4],
+    /// Object-space tangent (xyz) and bitangent sign (w: bitangent = w * normal x tangent),
+    /// as 16-bit snorm; [`Vertex::NO_TANGENT`] where no normal texture needs one.
+    pub tangent: [i16; 4],
+    /// TEXCOORD_1; `[0, 0]` when the source has none.
+    pub uv1: [f32; 2],
+}
+
+impl Vertex {
+    /// The color of vertices without COLOR_0: multiplies the base color by exactly one.
+    pub const WHITE: [u16; 4] = [u16::MAX; 4];
+
+    /// The tangent of vertices without one: shaders leave the normal unperturbed.
+    pub const NO_TANGENT: [i16; 4] = [0; 4];
+
+    /// `rgba` (components in [0, 1], clamped) as [`Vertex::color`] stores it.
+    pub fn color_from(rgba: [f32; 4]) -> [u16; 4] {
+        rgba.map(|c| (c.clamp(0.0, 1.0) * f32::from(u16::MAX)).round() as u16)
+    }
+
+    /// `xyzw` (components in [-1, 1], clamped) as [`Vertex::tangent`] stores it.
+    pub fn tangent_from(xyzw: [f32; 4]) -> [i16; 4] {
+        xyzw.map(|c| (c.clamp(-1.0, 1.0) * f32::from(i16::MAX)).round() as i16)
+    }
 }
 
 /// An indexed triangle list with one material.
@@ -22,8 +49,9 @@ pub struct Vertex {
 /// Vertex data stays in object space and the world transform is kept apart, in f64, so a renderer
 /// can build camera-relative matrices for scenes far from the origin without losing precision.
 /// Contract: every index is `< vertices.len()`, `indices.len()` is a multiple of 3, and triangles
-/// are counter-clockwise when seen from their front side *after* `transform` (loaders reverse
-/// the winding of mirroring transforms so renderers need not).
+/// are counter-clockwise when seen from their front side *after* `transform`, and tangent
+/// signs are those of the world-space frame (loaders reverse the winding and the signs of
+/// mirroring transforms so renderers need not).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mesh {
     /// `mesh name/primitive index` for glTF, a description for built-in scenes.

@@ -21,13 +21,16 @@ mod mips;
 mod normals;
 mod procedural;
 mod stats;
+mod tangents;
 mod texture;
 
 use std::path::Path;
 
 pub use assets::{AssetPolicy, DEFAULT_MAX_ASSET_BYTES, DEFAULT_MAX_SCENE_BYTES};
 pub use bounds::{Aabb, BoundingSphere, MAX_COORDINATE};
-pub use camera::{Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_YFOV};
+pub use camera::{
+    Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_MARGIN, FRAMING_YFOV,
+};
 pub use error::SceneError;
 pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE, MAX_LIGHTS};
 pub use material::{AlphaMode, Material};
@@ -35,6 +38,7 @@ pub use mesh::{Mesh, Vertex};
 pub use normals::flat_shaded;
 pub use procedural::{builtin_names, BuiltinParam, BuiltinScene, BUILTIN_PREFIX};
 pub use stats::SceneStats;
+pub use tangents::generate_tangents;
 pub use texture::{FilterMode, Sampler, TextureImage, TextureRef, WrapMode};
 
 /// Everything a renderer needs to draw one view of a scene.
@@ -42,7 +46,8 @@ pub use texture::{FilterMode, Sampler, TextureImage, TextureRef, WrapMode};
 pub struct Scene {
     /// The spec it was loaded from: the file path or `builtin:NAME[?params]`.
     pub name: String,
-    /// At least one, each with at least one triangle.
+    /// Each with at least one triangle; at least one, except for a glTF scene that lists no
+    /// nodes, which loads empty with a warning (the frame shows only the background).
     pub meshes: Vec<Mesh>,
     /// Indexed by `Mesh::material`.
     pub materials: Vec<Material>,

@@ -14,7 +14,7 @@ pub struct TextureImage {
 }
 
 /// How texture coordinates outside `[0, 1]` wrap (glTF sampler `wrapS` / `wrapT`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum WrapMode {
     Repeat,
     MirroredRepeat,
@@ -22,14 +22,14 @@ pub enum WrapMode {
 }
 
 /// Texel filtering between texels or between mip levels.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum FilterMode {
     Nearest,
     Linear,
 }
 
 /// A glTF sampler, split the way wgpu's `SamplerDescriptor` is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Sampler {
     pub wrap_u: WrapMode,
     pub wrap_v: WrapMode,
@@ -54,9 +54,24 @@ impl Default for Sampler {
 }
 
 /// A material's use of a texture: which image and how to sample it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TextureRef {
     /// Index into `Scene::textures`.
     pub image: usize,
     pub sampler: Sampler,
+    /// Which texture coordinates it is sampled with: 0 ([`Vertex::uv`]) or 1
+    /// ([`Vertex::uv1`]).
+    ///
+    /// [`Vertex::uv`]: super::Vertex::uv
+    /// [`Vertex::uv1`]: super::Vertex::uv1
+    pub tex_coord: u32,
+    /// KHR_texture_transform, as the columns of a 2x3 matrix: the texture is sampled at
+    /// `uv_transform[0] * u + uv_transform[1] * v + uv_transform[2]`;
+    /// [`TextureRef::IDENTITY_UV`] without the extension.
+    pub uv_transform: [[f32; 2]; 3],
+}
+
+impl TextureRef {
+    /// The UV transform that changes nothing.
+    pub const IDENTITY_UV: [[f32; 2]; 3] = [[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]];
 }

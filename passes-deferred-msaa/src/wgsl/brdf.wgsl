@@ -10,6 +10,9 @@ struct Surface {
     albedo: vec3<f32>,
     metallic: f32,
     roughness: f32,
+    // Ambient occlusion: scales the ambient term (light from everywhere, which crevices
+    // block), never a punctual light's.
+    occlusion: f32,
 }
 
 fn brdf_times_cosine(s: Surface, l: vec3<f32>) -> vec3<f32> {

@@ -3,23 +3,23 @@
 // deferred light passes run), so forward and deferred images agree. Emission and unlit
 // colors are what gbuffer.wgsl writes into the HDR target; lit surfaces add the ambient
 // term and every light, as light.wgsl's draws add them.
-// Composed after common.wgsl, scene.wgsl and brdf.wgsl.
-
-@group(1) @binding(0) var base_color_tex: texture_2d<f32>;
-@group(1) @binding(1) var base_color_sampler: sampler;
+// Composed after common.wgsl, scene.wgsl, material.wgsl (the material model gbuffer.wgsl
+// reads too) and brdf.wgsl.
 
 // Alpha MASK materials: discard below the cutoff (one pipeline per material state).
 override MASKED: bool = false;
-// Which material features the scene has, as in gbuffer.wgsl (analysis/variant.rs);
-// the light kinds are brdf.wgsl's. The defaults are the general shader.
-override TEXTURES: bool = true;
+// Whether the scene has double-sided materials, as in gbuffer.wgsl (analysis/variant.rs);
+// the material gates are material.wgsl's, the light kinds brdf.wgsl's. The defaults are
+// the general shader.
 override DOUBLE_SIDED: bool = true;
-override EMISSIVE: bool = true;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
+    @location(3) color: vec4<f32>,
+    @location(4) tangent: vec4<f32>,
+    @location(5) uv1: vec2<f32>,
 }
 
 // What shading needs, however it was interpolated.
@@ -28,6 +28,10 @@ struct Attributes {
     position: vec3<f32>,
     normal: vec3<f32>,
     uv: vec2<f32>,
+    uv1: vec2<f32>,
+    color: vec4<f32>,
+    // World-space tangent, w the bitangent's sign.
+    tangent: vec4<f32>,
     material: u32,
 }
 
@@ -39,6 +43,9 @@ struct PixelVaryings {
     @location(1) @interpolate(perspective, centroid) normal: vec3<f32>,
     @location(2) @interpolate(perspective, centroid) uv: vec2<f32>,
     @location(3) @interpolate(flat) material: u32,
+    @location(4) @interpolate(perspective, centroid) color: vec4<f32>,
+    @location(5) @interpolate(perspective, centroid) tangent: vec4<f32>,
+    @location(6) @interpolate(perspective, centroid) uv1: vec2<f32>,
 }
 
 // `shading: sample`: `sample` interpolation runs the fragment shader once per covered
@@ -49,46 +56,47 @@ struct SampleVaryings {
     @location(1) @interpolate(perspective, sample) normal: vec3<f32>,
     @location(2) @interpolate(perspective, sample) uv: vec2<f32>,
     @location(3) @interpolate(flat) material: u32,
+    @location(4) @interpolate(perspective, sample) color: vec4<f32>,
+    @location(5) @interpolate(perspective, sample) tangent: vec4<f32>,
+    @location(6) @interpolate(perspective, sample) uv1: vec2<f32>,
 }
 
 fn transform(v: VertexIn, mesh_index: u32) -> Attributes {
     let mesh = meshes[mesh_index];
     let p = (mesh.model * vec4<f32>(v.position, 1.0)).xyz;
-    return Attributes(p, mesh.normal_matrix * v.normal, v.uv, mesh.material);
+    // Tangents lie in the surface: they transform with the model matrix.
+    let t = vec4<f32>((mesh.model * vec4<f32>(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
+    return Attributes(p, mesh.normal_matrix * v.normal, v.uv, v.uv1, v.color, t, mesh.material);
 }
 
 @vertex
 fn vs_pixel(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> PixelVaryings {
     let a = transform(v, mesh_index);
-    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material);
+    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent, a.uv1);
 }
 
 @vertex
 fn vs_sample(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> SampleVaryings {
     let a = transform(v, mesh_index);
-    return SampleVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material);
+    return SampleVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent, a.uv1);
 }
 
 fn shade(a: Attributes, front: bool) -> vec4<f32> {
     let material = materials[a.material];
-    var base = material.base_color;
-    if TEXTURES {
-        base *= textureSample(base_color_tex, base_color_sampler, a.uv);
-    }
-    if MASKED && base.a < material.alpha_cutoff {
+    let m = sample_material(material, a.uv, a.uv1, a.color);
+    if MASKED && m.base.a < material.alpha_cutoff {
         discard;
     }
-    var color = vec3<f32>(0.0);
-    if EMISSIVE {
-        color = material.emission;
-    }
+    var color = m.emission;
     if (material.flags & FLAG_UNLIT) != 0u {
-        color += base.rgb;
+        color += m.base.rgb;
     } else {
-        // Back faces reach here only for double-sided materials: light their other side.
-        let n = unit_normal(select(-a.normal, a.normal, front || !DOUBLE_SIDED));
-        let s = Surface(a.position, n, safe_normalize(-a.position), base.rgb, material.metallic, material.roughness);
-        color += light_info.ambient * base.rgb;
+        // Back faces reach here only for double-sided materials: light their other side (the
+        // normal texture's perturbation turned around with it).
+        let mapped = shading_normal(a.normal, a.tangent, m.tangent_normal);
+        let n = unit_normal(select(-mapped, mapped, front || !DOUBLE_SIDED));
+        let s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness, m.occlusion);
+        color += light_info.ambient * m.base.rgb * m.occlusion;
         for (var i = 0u; i < light_info.light_count; i++) {
             color += shade_light(s, lights[i]);
         }
@@ -98,10 +106,10 @@ fn shade(a: Attributes, front: bool) -> vec4<f32> {
 
 @fragment
 fn fs_pixel(in: PixelVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade(Attributes(in.position, in.normal, in.uv, in.material), front);
+    return shade(Attributes(in.position, in.normal, in.uv, in.uv1, in.color, in.tangent, in.material), front);
 }
 
 @fragment
 fn fs_sample(in: SampleVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade(Attributes(in.position, in.normal, in.uv, in.material), front);
+    return shade(Attributes(in.position, in.normal, in.uv, in.uv1, in.color, in.tangent, in.material), front);
 }

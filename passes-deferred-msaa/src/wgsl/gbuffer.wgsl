@@ -1,25 +1,28 @@
 // The G-buffer pass: one draw per mesh (instance index = mesh index), writing
 // albedo, octahedral normal, material, linear view depth and the HDR target (emission,
 // or the whole color of unlit materials, so that it is added exactly once).
-// Composed after common.wgsl and scene.wgsl, and before the generated `GBufferOut` and
-// `gbuffer_out`, which keep the channels the pass writes (an unlit-only scene's G-buffer
-// has no normal or material) at consecutive locations.
+// Composed after common.wgsl, scene.wgsl and material.wgsl, and before the generated
+// `GBufferOut` and `gbuffer_out`, which keep the channels the pass writes (an unlit-only
+// scene's G-buffer has no normal or material) at consecutive locations.
+//
+// Channels: albedo = base color RGB (textured, times COLOR_0) and ambient occlusion in
+// alpha (otherwise unused, so occlusion costs no byte); normal = octahedral shading normal
+// (after the normal texture);
+// material = metallic and roughness after their texture, flags, edge bits; view depth;
+// HDR = emission after its texture (or the whole unlit color). Textures change what the
+// channels hold, not how many there are.
 
-@group(1) @binding(0) var base_color_tex: texture_2d<f32>;
-@group(1) @binding(1) var base_color_sampler: sampler;
-
-// Which material features the scene has (analysis/variant.rs); the defaults are the
-// general shader. Without textures every material's is white, without double-sided
-// materials back faces are culled, without emission it is zero: the gated code would
-// change nothing.
-override TEXTURES: bool = true;
+// Whether the scene has double-sided materials (analysis/variant.rs; the default is the
+// general shader): without them back faces are culled and the flip changes nothing.
 override DOUBLE_SIDED: bool = true;
-override EMISSIVE: bool = true;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
+    @location(3) color: vec4<f32>,
+    @location(4) tangent: vec4<f32>,
+    @location(5) uv1: vec2<f32>,
 }
 
 // Attributes are interpolated at the centroid of the covered samples: at a partially
@@ -35,6 +38,10 @@ struct Varyings {
     // triangle covers part of the pixel (the centroid edge detector of seed 000).
     @location(4) @interpolate(perspective, centroid) at_centroid: vec2<f32>,
     @location(5) @interpolate(perspective, center) at_center: vec2<f32>,
+    @location(6) @interpolate(perspective, centroid) color: vec4<f32>,
+    // World-space tangent, w the bitangent's sign.
+    @location(7) @interpolate(perspective, centroid) tangent: vec4<f32>,
+    @location(8) @interpolate(perspective, centroid) uv1: vec2<f32>,
 }
 
 // Every channel the pass can write; `gbuffer_out` picks those it does.
@@ -54,6 +61,11 @@ fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
     out.clip = camera.view_proj * vec4<f32>(p, 1.0);
     out.normal = mesh.normal_matrix * v.normal;
     out.uv = v.uv;
+    out.uv1 = v.uv1;
+    out.color = v.color;
+    // Tangents lie in the surface: they transform with the model matrix, not the normal
+    // matrix.
+    out.tangent = vec4<f32>((mesh.model * vec4<f32>(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
     out.view_depth = dot(p, camera.forward);
     out.material = mesh.material;
     out.at_centroid = out.clip.xy;
@@ -61,18 +73,12 @@ fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
     return out;
 }
 
-fn base_color(in: Varyings) -> vec4<f32> {
-    var base = materials[in.material].base_color;
-    if TEXTURES {
-        base *= textureSample(base_color_tex, base_color_sampler, in.uv);
-    }
-    return base;
-}
-
-fn surface(in: Varyings, base: vec4<f32>, front: bool, coverage: u32) -> GBuffer {
+fn surface(in: Varyings, m: MaterialSample, front: bool, coverage: u32) -> GBuffer {
     let material = materials[in.material];
-    // Back faces reach here only for double-sided materials: light their other side.
-    let n = unit_normal(select(-in.normal, in.normal, front || !DOUBLE_SIDED));
+    // Back faces reach here only for double-sided materials: light their other side (the
+    // normal texture's perturbation turned around with it).
+    let mapped = shading_normal(in.normal, in.tangent, m.tangent_normal);
+    let n = unit_normal(select(-mapped, mapped, front || !DOUBLE_SIDED));
     var edge = 0u;
     if any(in.at_centroid != in.at_center) {
         edge |= EDGE_CENTROID;
@@ -82,15 +88,11 @@ fn surface(in: Varyings, base: vec4<f32>, front: bool, coverage: u32) -> GBuffer
     }
     let unlit = (material.flags & FLAG_UNLIT) != 0u;
     var out: GBuffer;
-    out.albedo = vec4<f32>(base.rgb, 1.0);
+    out.albedo = vec4<f32>(m.base.rgb, m.occlusion);
     out.normal = vec4<f32>(oct_encode(n), 0.0, 0.0);
-    out.material = vec4<f32>(material.metallic, material.roughness, f32(material.flags), f32(edge)) / vec4<f32>(1.0, 1.0, 255.0, 255.0);
+    out.material = vec4<f32>(m.metallic, m.roughness, f32(material.flags), f32(edge)) / vec4<f32>(1.0, 1.0, 255.0, 255.0);
     out.view_depth = vec4<f32>(in.view_depth, 0.0, 0.0, 0.0);
-    var emission = vec3<f32>(0.0);
-    if EMISSIVE {
-        emission = material.emission;
-    }
-    let emitted = select(emission, base.rgb + emission, unlit);
+    let emitted = select(m.emission, m.base.rgb + m.emission, unlit);
     out.hdr = vec4<f32>(min(emitted, vec3<f32>(HALF_MAX)), 1.0);
     return out;
 }
@@ -101,7 +103,7 @@ fn fs_opaque(
     @builtin(front_facing) front: bool,
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
-    return gbuffer_out(surface(in, base_color(in), front, coverage));
+    return gbuffer_out(surface(in, sample_material(materials[in.material], in.uv, in.uv1, in.color), front, coverage));
 }
 
 // Alpha MASK: coverage is decided per pixel by the base color's alpha.
@@ -111,9 +113,9 @@ fn fs_masked(
     @builtin(front_facing) front: bool,
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
-    let base = base_color(in);
-    if base.a < materials[in.material].alpha_cutoff {
+    let m = sample_material(materials[in.material], in.uv, in.uv1, in.color);
+    if m.base.a < materials[in.material].alpha_cutoff {
         discard;
     }
-    return gbuffer_out(surface(in, base, front, coverage));
+    return gbuffer_out(surface(in, m, front, coverage));
 }

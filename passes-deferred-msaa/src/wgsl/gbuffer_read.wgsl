@@ -11,6 +11,8 @@
 
 struct GSample {
     albedo: vec3<f32>,
+    // Ambient occlusion (albedo's alpha): scales ambient light only.
+    occlusion: f32,
     normal: vec3<f32>,
     metallic: f32,
     roughness: f32,
@@ -28,7 +30,9 @@ fn material_flags(pixel: vec2<i32>, s: u32) -> vec2<u32> {
 fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
     let m = textureLoad(material_tex, pixel, s);
     var g: GSample;
-    g.albedo = textureLoad(albedo_tex, pixel, s).rgb;
+    let albedo = textureLoad(albedo_tex, pixel, s);
+    g.albedo = albedo.rgb;
+    g.occlusion = albedo.a;
     g.normal = oct_decode(textureLoad(normal_tex, pixel, s).xy);
     g.metallic = m.r;
     g.roughness = m.g;

@@ -15,7 +15,7 @@ struct Resolved {
     @builtin(frag_depth) depth: f32,
 }
 
-// Albedo, metallic, roughness and view depth are plain averages over all samples, empty
+// Albedo, occlusion, metallic, roughness and view depth are plain averages over all samples, empty
 // ones (no geometry: black albedo, depth 0) included, as a box resolve computes them.
 // Two things cannot be averaged at all, and get the most charitable treatment instead:
 // normals are decoded, summed over the samples with geometry and renormalized (seed 000's
@@ -25,6 +25,7 @@ struct Resolved {
 fn fs_resolve_gbuffer(@builtin(position) position: vec4<f32>) -> Resolved {
     let pixel = pixel_of(position);
     var albedo = vec3<f32>(0.0);
+    var occlusion = 0.0;
     var normal = vec3<f32>(0.0);
     var metal_rough = vec2<f32>(0.0);
     var view_depth = 0.0;
@@ -32,6 +33,7 @@ fn fs_resolve_gbuffer(@builtin(position) position: vec4<f32>) -> Resolved {
     for (var s = 0u; s < SAMPLES; s++) {
         let g = load_gsample(pixel, s);
         albedo += g.albedo;
+        occlusion += g.occlusion;
         metal_rough += vec2<f32>(g.metallic, g.roughness);
         view_depth += g.view_depth;
         flags |= g.flags;
@@ -42,7 +44,7 @@ fn fs_resolve_gbuffer(@builtin(position) position: vec4<f32>) -> Resolved {
     let n = f32(SAMPLES);
     view_depth /= n;
     var out: Resolved;
-    out.albedo = vec4<f32>(albedo / n, 1.0);
+    out.albedo = vec4<f32>(albedo / n, occlusion / n);
     out.normal = vec4<f32>(oct_encode(safe_normalize(normal)), 0.0, 0.0);
     out.material = vec4<f32>(metal_rough / n, f32(flags) / 255.0, 0.0);
     out.view_depth = vec4<f32>(view_depth, 0.0, 0.0, 0.0);

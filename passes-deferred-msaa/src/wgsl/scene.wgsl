@@ -28,7 +28,17 @@ struct MaterialData {
     metallic: f32,
     roughness: f32,
     flags: u32,
-    _pad: u32,
+    // Scales the normal texture's X and Y; 0 without a normal texture, so the white texel
+    // bound in its place leaves the normal as it is.
+    normal_scale: f32,
+    // glTF occlusionTexture strength (0 without one: the white texel then changes nothing).
+    occlusion_strength: f32,
+    // Bit `slot` (material.wgsl's binding / 2) set: that texture samples TEXCOORD_1.
+    uv_sets: u32,
+    _pad0: u32,
+    _pad1: u32,
+    // Per slot, KHR_texture_transform: a texture samples uv_transforms[slot] * (uv, 1).
+    uv_transforms: array<mat3x2<f32>, 5>,
 }
 
 const LIGHT_DIRECTIONAL: u32 = 0u;

@@ -12,6 +12,7 @@ pub(super) const IMPLEMENTED: &[&str] = &[
     "KHR_materials_emissive_strength",
     "KHR_materials_unlit",
     "KHR_mesh_quantization",
+    "KHR_texture_transform",
 ];
 
 /// Fails on the first `extensionsRequired` entry that is not [`IMPLEMENTED`] (the file says it

@@ -1,18 +1,21 @@
-//! Base-color images, decoded to RGBA8.
+//! Material images, decoded to RGBA8.
 
 use super::{accessor, uri, Loader};
 use crate::scene::error::label;
 use crate::scene::{SceneError, TextureImage};
 
 impl Loader<'_> {
-    /// The scene texture index of glTF image `index`, decoding it (PNG or JPEG, from a buffer
-    /// view, a data URI or a file) on first use. `material` names the user in errors.
-    pub(super) fn base_color_image(
+    /// The scene texture index of glTF image `index` as `srgb` color data or linear data,
+    /// decoding it (PNG or JPEG, from a buffer view, a data URI or a file) on first use in
+    /// that role. `slot` and `material` name the user in errors.
+    pub(super) fn image(
         &mut self,
         index: usize,
+        srgb: bool,
+        slot: &'static str,
         material: &str,
     ) -> Result<usize, SceneError> {
-        if let Some(&texture) = self.images.get(&index) {
+        if let Some(&texture) = self.images.get(&(index, srgb)) {
             return Ok(texture);
         }
         // The JSON is read directly: gltf's `Image::source` unwraps fields a malformed file
@@ -24,6 +27,7 @@ impl Loader<'_> {
         let invalid = |reason: String| SceneError::InvalidImage {
             file: self.file.to_owned(),
             image: name.clone(),
+            slot,
             material: material.to_owned(),
             reason,
         };
@@ -62,10 +66,10 @@ impl Loader<'_> {
             width: decoded.width(),
             height: decoded.height(),
             rgba8: decoded.into_raw(),
-            srgb: true,
+            srgb,
         });
         let texture = self.builder.textures.len() - 1;
-        self.images.insert(index, texture);
+        self.images.insert((index, srgb), texture);
         Ok(texture)
     }
 }

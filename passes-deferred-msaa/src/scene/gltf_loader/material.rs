@@ -3,7 +3,7 @@
 use gltf::material::AlphaMode as GltfAlphaMode;
 use gltf::texture::{MagFilter, MinFilter, WrappingMode};
 
-use super::{factors, Loader};
+use super::{factors, texture_transform, Loader};
 use crate::scene::error::label;
 use crate::scene::{AlphaMode, FilterMode, Material, Sampler, SceneError, TextureRef, WrapMode};
 
@@ -52,48 +52,56 @@ impl Loader<'_> {
                 AlphaMode::Opaque
             }
         };
-        let ignored: Vec<&str> = [
-            ("normal", material.normal_texture().is_some()),
-            ("occlusion", material.occlusion_texture().is_some()),
-            (
-                "metallicRoughness",
-                pbr.metallic_roughness_texture().is_some(),
-            ),
-            ("emissive", material.emissive_texture().is_some()),
-        ]
-        .into_iter()
-        .filter_map(|(kind, present)| present.then_some(kind))
-        .collect();
-        if !ignored.is_empty() {
-            self.builder.warnings.push(format!(
-                "{name}: {} texture(s) ignored; only base color textures are implemented",
-                ignored.join(", ")
-            ));
-        }
-        let base_color_texture = match pbr.base_color_texture() {
-            Some(info) if info.tex_coord() != 0 => {
-                self.builder.warnings.push(format!(
-                    "{name}: base color texture uses TEXCOORD_{}, only TEXCOORD_0 is loaded; \
-                     texture ignored",
-                    info.tex_coord()
-                ));
-                None
-            }
-            Some(info) => {
-                let texture = info.texture();
-                Some(TextureRef {
-                    image: self.base_color_image(texture.source().index(), &name)?,
-                    sampler: sampler(&texture.sampler()),
-                })
-            }
-            None => None,
-        };
+        let base_color_texture = self.texture(
+            pbr.base_color_texture().as_ref().map(reference),
+            "base color",
+            true,
+            &name,
+        )?;
+        let metallic_roughness_texture = self.texture(
+            pbr.metallic_roughness_texture().as_ref().map(reference),
+            "metallicRoughness",
+            false,
+            &name,
+        )?;
+        let emissive_texture = self.texture(
+            material.emissive_texture().as_ref().map(reference),
+            "emissive",
+            true,
+            &name,
+        )?;
+        let occlusion = material.occlusion_texture();
+        let occlusion_texture = self.texture(
+            occlusion.as_ref().map(|o| {
+                let transform = o.extension_value(TRANSFORM);
+                (o.texture(), o.tex_coord(), transform)
+            }),
+            "occlusion",
+            false,
+            &name,
+        )?;
+        let normal = material.normal_texture();
+        let normal_texture = self.texture(
+            normal.as_ref().map(|n| {
+                let transform = n.extension_value(TRANSFORM);
+                (n.texture(), n.tex_coord(), transform)
+            }),
+            "normal",
+            false,
+            &name,
+        )?;
         Ok(Material {
             base_color_factor: [base_color[0], base_color[1], base_color[2], base_color[3]],
             base_color_texture,
             metallic_factor: metallic,
             roughness_factor: roughness,
+            metallic_roughness_texture,
+            normal_texture,
+            normal_scale: normal.map_or(1.0, |n| n.scale()),
+            occlusion_texture,
+            occlusion_strength: occlusion.map_or(1.0, |o| o.strength()),
             emissive_factor: [emissive[0], emissive[1], emissive[2]],
+            emissive_texture,
             emissive_strength: strength,
             alpha_mode,
             double_sided: material.double_sided(),
@@ -101,6 +109,62 @@ impl Loader<'_> {
             name,
         })
     }
+
+    /// `texture` with its texture coordinate set and its KHR_texture_transform object, as
+    /// the material's `slot` texture, its image decoded as `srgb` color or linear data;
+    /// `None` without one, or (with a warning) when it uses another set of texture
+    /// coordinates than TEXCOORD_0 and TEXCOORD_1, the ones loaded. A transform that cannot
+    /// be read is ignored with a warning.
+    fn texture(
+        &mut self,
+        texture: Option<(gltf::Texture, u32, Option<&serde_json::Value>)>,
+        slot: &'static str,
+        srgb: bool,
+        material: &str,
+    ) -> Result<Option<TextureRef>, SceneError> {
+        let Some((texture, mut tex_coord, transform)) = texture else {
+            return Ok(None);
+        };
+        let mut uv_transform = TextureRef::IDENTITY_UV;
+        match transform.map(texture_transform::read) {
+            None => {}
+            Some(Ok(transform)) => {
+                uv_transform = transform.matrix;
+                tex_coord = transform.tex_coord.unwrap_or(tex_coord);
+            }
+            Some(Err(reason)) => self
+                .builder
+                .warnings
+                .push(format!("{material}: {slot} texture: {reason}; ignored")),
+        }
+        if tex_coord > 1 {
+            self.builder.warnings.push(format!(
+                "{material}: {slot} texture uses TEXCOORD_{tex_coord}, only TEXCOORD_0 and \
+                 TEXCOORD_1 are loaded; texture ignored"
+            ));
+            return Ok(None);
+        }
+        Ok(Some(TextureRef {
+            image: self.image(texture.source().index(), srgb, slot, material)?,
+            sampler: sampler(&texture.sampler()),
+            tex_coord,
+            uv_transform,
+        }))
+    }
+}
+
+/// The extension that transforms a texture reference's UVs.
+const TRANSFORM: &str = "KHR_texture_transform";
+
+/// A texture reference's texture, texture coordinate set and transform extension.
+fn reference<'a>(
+    info: &'a gltf::texture::Info<'a>,
+) -> (gltf::Texture<'a>, u32, Option<&'a serde_json::Value>) {
+    (
+        info.texture(),
+        info.tex_coord(),
+        info.extension_value(TRANSFORM),
+    )
 }
 
 /// A glTF sampler; missing filters get [`Sampler::default`]'s.

@@ -2,14 +2,18 @@
 //!
 //! What is read: the default scene (else the first) with its node hierarchy; triangle
 //! primitives (TRIANGLES, and strips and fans converted to lists) with POSITION, NORMAL (flat
-//! normals generated when missing) and TEXCOORD_0; metallic-roughness materials with their
-//! base-color texture, emissive, alpha OPAQUE/MASK, double-sided and the extensions in
-//! [`extensions::IMPLEMENTED`]; cameras; KHR_lights_punctual lights. What is not: other
-//! textures, BLEND (drawn opaque), points and lines, skins, morph targets and animations, each
-//! with a warning in [`Scene::warnings`].
+//! normals generated when missing), TEXCOORD_0 and _1, COLOR_0 and TANGENT (MikkTSpace
+//! tangents generated when a normal texture needs them; application attributes,
+//! `_`-prefixed, are ignored as the spec allows); metallic-roughness materials with their
+//! base-color, metallicRoughness, normal, occlusion and emissive textures, emission, alpha
+//! OPAQUE/MASK, double-sided and the extensions in [`extensions::IMPLEMENTED`]
+//! (KHR_texture_transform per texture); cameras; KHR_lights_punctual lights. What is not:
+//! BLEND (drawn opaque), points and lines, skins, morph targets and animations, each with a
+//! warning in [`Scene::warnings`].
 
 mod accessor;
 mod camera;
+mod document;
 mod extensions;
 mod factors;
 mod glb;
@@ -19,6 +23,7 @@ mod material;
 mod nodes;
 mod primitive;
 mod sandbox;
+mod texture_transform;
 mod transforms;
 mod uri;
 mod validate;
@@ -29,6 +34,7 @@ use std::path::Path;
 use graph_core::bounded_read;
 
 use super::builder::SceneBuilder;
+use super::error;
 use super::{AssetPolicy, Scene, SceneError, MAX_LIGHTS};
 
 /// Loads `file`, reading it and the files its URIs name as `policy` allows; see the module
@@ -38,15 +44,17 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         file: file.to_owned(),
         source,
     })?;
-    let gltf_error = |source| SceneError::Gltf {
+    glb::check_header(file, &bytes)?;
+    let document::Parsed {
+        document,
+        json,
+        blob,
+    } = document::parse(file, &bytes)?;
+    let warnings = extensions::check(file, &document)?;
+    let document = validate::validate(document).map_err(|source| SceneError::Gltf {
         file: file.to_owned(),
         source,
-    };
-    glb::check_header(file, &bytes)?;
-    let gltf::Gltf { document, blob } =
-        gltf::Gltf::from_slice_without_validation(&bytes).map_err(gltf_error)?;
-    let warnings = extensions::check(file, &document)?;
-    let document = validate::validate(document).map_err(gltf_error)?;
+    })?;
     let sandbox = sandbox::Sandbox::new(file, policy)?;
     let mut loader = Loader {
         file,
@@ -67,7 +75,14 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         .default_scene()
         .or_else(|| document.scenes().next())
     {
-        let local = transforms::read(file, &bytes, &document)?;
+        if scene.nodes().len() == 0 {
+            let name = error::label("scene", scene.index(), scene.name());
+            loader.builder.warnings.push(format!(
+                "{name} lists no nodes: nothing to draw, the frame is empty"
+            ));
+            loader.builder.allow_empty = true;
+        }
+        let local = transforms::read(file, &json, &document)?;
         for placed in nodes::flatten(file, &document, &scene, &local)? {
             loader.place(&placed)?;
         }
@@ -86,8 +101,9 @@ struct Loader<'a> {
     /// glTF material index (`None` = the default material) to scene material index, so each is
     /// converted once and only if some primitive uses it.
     materials: HashMap<Option<usize>, usize>,
-    /// glTF image index to scene texture index: each image is decoded once.
-    images: HashMap<usize, usize>,
+    /// glTF image index and whether it is sRGB to scene texture index: each image is decoded
+    /// once per role (an image used both as color and as data is uploaded in both formats).
+    images: HashMap<(usize, bool), usize>,
     /// What is left of [`AssetPolicy::max_scene_bytes`].
     budget: Budget,
 }

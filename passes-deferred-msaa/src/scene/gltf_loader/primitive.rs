@@ -5,7 +5,7 @@ use gltf::mesh::{Mode, Semantic};
 
 use super::{accessor, Loader};
 use crate::scene::error::label;
-use crate::scene::{flat_shaded, Mesh, SceneError, Vertex};
+use crate::scene::{flat_shaded, generate_tangents, Mesh, SceneError, Vertex};
 
 impl Loader<'_> {
     /// Converts one primitive of a mesh placed at `world` and adds it to the scene. Points and
@@ -37,7 +37,17 @@ impl Loader<'_> {
             .ok_or_else(|| site.invalid("has no POSITION attribute".to_owned()))?;
         let normals = self.attribute::<3>(&site, primitive, Semantic::Normals, "NORMAL")?;
         let uvs = self.attribute::<2>(&site, primitive, Semantic::TexCoords(0), "TEXCOORD_0")?;
-        site.check_finite(&positions, normals.as_deref(), uvs.as_deref())?;
+        let uvs1 = self.attribute::<2>(&site, primitive, Semantic::TexCoords(1), "TEXCOORD_1")?;
+        let colors = self.colors(&site, primitive)?;
+        let tangents = self.attribute::<4>(&site, primitive, Semantic::Tangents, "TANGENT")?;
+        site.check_finite(
+            &positions,
+            normals.as_deref(),
+            uvs.as_deref(),
+            uvs1.as_deref(),
+            colors.as_deref(),
+            tangents.as_deref(),
+        )?;
         let indices = match primitive.indices() {
             Some(accessor) => accessor::read_indices(&self.buffers, &accessor)
                 .map_err(|reason| site.accessor_error("indices", &accessor, reason))?,
@@ -48,15 +58,42 @@ impl Loader<'_> {
         // placement is not.
         self.reserve_memory(&site, primitive)?;
         let indices = triangle_list(mode, indices).map_err(|reason| site.invalid(reason))?;
-        let uvs = uvs.unwrap_or_default();
-        let (vertices, mut indices) = match normals {
-            Some(normals) => (interleave(&positions, &normals, &uvs), indices),
-            None => flat_shaded(&positions, &uvs, &indices),
+        let vertices = interleave(
+            &positions,
+            normals.as_deref(),
+            [uvs.as_deref(), uvs1.as_deref()],
+            colors.as_deref(),
+            tangents.as_deref(),
+        );
+        let (mut vertices, mut indices) = match normals {
+            Some(_) => (vertices, indices),
+            None => flat_shaded(&vertices, &indices),
         };
+        // Only for a normal texture the material keeps (it drops those on UV sets past 1),
+        // along the UV set it is sampled with.
+        let normal_set = primitive.material().normal_texture().map(|n| n.tex_coord());
+        if let (None, Some(set @ 0..=1)) = (&tangents, normal_set) {
+            let present = [uvs.is_some(), uvs1.is_some()][set as usize];
+            match present {
+                true => generate_tangents(&mut vertices, &indices, set).map_err(|e| {
+                    site.invalid(format!("MikkTSpace cannot generate its tangents: {e:?}"))
+                })?,
+                false => self.builder.warnings.push(format!(
+                    "{} primitive {}: its material's normal texture needs TEXCOORD_{set}, which \
+                     it lacks; drawn without the normal texture",
+                    site.mesh, site.primitive
+                )),
+            }
+        }
         // A mirroring transform turns counter-clockwise triangles clockwise on screen; reversing
-        // them here keeps the Mesh contract (front faces CCW in world space) for renderers.
+        // them here keeps the Mesh contract (front faces CCW in world space) for renderers. It
+        // also turns the bitangent `normal x tangent` around: the sign keeps it on the side
+        // the normal texture was baked for.
         if world.determinant() < 0.0 {
             indices.chunks_exact_mut(3).for_each(|tri| tri.swap(1, 2));
+            vertices
+                .iter_mut()
+                .for_each(|v| v.tangent[3] = -v.tangent[3]);
         }
         let material = self.material(&primitive.material())?;
         self.builder.meshes.push(Mesh {
@@ -121,6 +158,28 @@ impl Loader<'_> {
             })
             .transpose()
     }
+
+    /// COLOR_0 as RGBA (`None` when the primitive has none): VEC3 gets alpha 1; float,
+    /// normalized UNSIGNED_BYTE and UNSIGNED_SHORT as the spec allows.
+    fn colors(
+        &self,
+        site: &Site,
+        primitive: &gltf::Primitive,
+    ) -> Result<Option<Vec<[f32; 4]>>, SceneError> {
+        let Some(accessor) = primitive.get(&Semantic::Colors(0)) else {
+            return Ok(None);
+        };
+        let colors = match accessor.dimensions() {
+            gltf::accessor::Dimensions::Vec3 => {
+                accessor::read_vectors::<3>(&self.buffers, &accessor)
+                    .map(|rgb| rgb.into_iter().map(|[r, g, b]| [r, g, b, 1.0]).collect())
+            }
+            _ => accessor::read_vectors::<4>(&self.buffers, &accessor),
+        };
+        colors
+            .map(Some)
+            .map_err(|reason| site.accessor_error("COLOR_0", &accessor, reason))
+    }
 }
 
 /// Where in the file a primitive is, for error messages.
@@ -163,14 +222,23 @@ impl Site<'_> {
         positions: &[[f32; 3]],
         normals: Option<&[[f32; 3]]>,
         uvs: Option<&[[f32; 2]]>,
+        uvs1: Option<&[[f32; 2]]>,
+        colors: Option<&[[f32; 4]]>,
+        tangents: Option<&[[f32; 4]]>,
     ) -> Result<(), SceneError> {
-        let attributes: [(&'static str, Option<Vec<&[f32]>>); 3] = [
+        let attributes: [(&'static str, Option<Vec<&[f32]>>); 6] = [
             ("position", Some(positions.iter().map(|p| &p[..]).collect())),
             (
                 "normal",
                 normals.map(|n| n.iter().map(|v| &v[..]).collect()),
             ),
             ("uv", uvs.map(|u| u.iter().map(|v| &v[..]).collect())),
+            ("uv1", uvs1.map(|u| u.iter().map(|v| &v[..]).collect())),
+            ("color", colors.map(|c| c.iter().map(|v| &v[..]).collect())),
+            (
+                "tangent",
+                tangents.map(|t| t.iter().map(|v| &v[..]).collect()),
+            ),
         ];
         let mut first_bad: Option<(usize, &'static str, Vec<f32>)> = None;
         for (attribute, values) in attributes {
@@ -241,16 +309,23 @@ fn triangle_list(mode: Mode, indices: Vec<u32>) -> Result<Vec<u32>, String> {
     }
 }
 
-/// Builds vertices from per-vertex attributes of equal length (`uvs` may be empty).
-fn interleave(positions: &[[f32; 3]], normals: &[[f32; 3]], uvs: &[[f32; 2]]) -> Vec<Vertex> {
-    positions
-        .iter()
-        .zip(normals)
-        .enumerate()
-        .map(|(i, (&position, &normal))| Vertex {
-            position,
-            normal,
-            uv: uvs.get(i).copied().unwrap_or_default(),
+/// Builds vertices from per-vertex attributes as long as `positions` (`None`: zero normals,
+/// for [`flat_shaded`] to replace; uvs 0; white; no tangent). `uvs` are TEXCOORD_0 and _1.
+fn interleave(
+    positions: &[[f32; 3]],
+    normals: Option<&[[f32; 3]]>,
+    [uvs, uvs1]: [Option<&[[f32; 2]]>; 2],
+    colors: Option<&[[f32; 4]]>,
+    tangents: Option<&[[f32; 4]]>,
+) -> Vec<Vertex> {
+    (0..positions.len())
+        .map(|i| Vertex {
+            position: positions[i],
+            normal: normals.map_or([0.0; 3], |n| n[i]),
+            uv: uvs.map_or([0.0; 2], |u| u[i]),
+            uv1: uvs1.map_or([0.0; 2], |u| u[i]),
+            color: colors.map_or(Vertex::WHITE, |c| Vertex::color_from(c[i])),
+            tangent: tangents.map_or(Vertex::NO_TANGENT, |t| Vertex::tangent_from(t[i])),
         })
         .collect()
 }

@@ -27,27 +27,16 @@ struct DocumentJson {
     nodes: Vec<NodeJson>,
 }
 
-/// Each node's transform relative to its parent, by node index, from the glTF file's bytes
-/// (`.gltf` JSON or `.glb`). `document` is the same file as parsed by `gltf`, for names in
-/// errors. Fails, naming the node, on a value that is not a finite f64 (JSON has no
-/// infinity, but `1e400` overflows).
+/// Each node's transform relative to its parent, by node index, from the glTF file's JSON
+/// text (the file, or a GLB's JSON chunk). `document` is the same JSON as parsed by `gltf`,
+/// for names in errors. Fails, naming the node, on a value that is not a finite f64 (JSON has
+/// no infinity, but `1e400` overflows).
 pub(super) fn read(
     file: &Path,
-    bytes: &[u8],
+    json: &[u8],
     document: &gltf::Document,
 ) -> Result<Vec<DMat4>, SceneError> {
-    let json = match bytes.starts_with(b"glTF") {
-        // `gltf` has already parsed this GLB: the chunk is there.
-        true => gltf::Glb::from_slice(bytes)
-            .map_err(|source| SceneError::Gltf {
-                file: file.to_owned(),
-                source,
-            })?
-            .json
-            .into_owned(),
-        false => bytes.to_vec(),
-    };
-    let parsed: DocumentJson = serde_json::from_slice(&json).map_err(|e| {
+    let parsed: DocumentJson = serde_json::from_slice(json).map_err(|e| {
         // `gltf` read every field already, so only a number out of f64's range gets here.
         SceneError::InvalidNode {
             file: file.to_owned(),

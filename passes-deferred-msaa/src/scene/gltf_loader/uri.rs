@@ -46,16 +46,9 @@ pub(super) enum UriError {
 }
 
 impl UriError {
-    /// The scene error, with `invalid` naming the object whose URI is unusable.
-    pub(super) fn into_scene_error(self, invalid: impl FnOnce(String) -> SceneError) -> SceneError {
-        match self {
-            UriError::Invalid(reason) => invalid(reason),
-            UriError::Io(error) => error,
-        }
-    }
-
-    /// The scene error, with `invalid` naming the object whose URI failed either way: an
-    /// image's user needs the glTF file and the material, not only the missing file.
+    /// The scene error, with `invalid` naming the object whose URI failed either way: a
+    /// missing file's user needs the glTF file and the buffer or image that refers to it, not
+    /// only the file.
     pub(super) fn into_named_error(self, invalid: impl FnOnce(String) -> SceneError) -> SceneError {
         match self {
             UriError::Invalid(reason) => invalid(reason),
@@ -89,7 +82,7 @@ pub(super) fn load_buffers(
                     )
                 })?,
                 gltf::buffer::Source::Uri(uri) => {
-                    read(sandbox, uri).map_err(|e| e.into_scene_error(invalid))?
+                    read(sandbox, uri).map_err(|e| e.into_named_error(invalid))?
                 }
             };
             if data.len() < buffer.length() {

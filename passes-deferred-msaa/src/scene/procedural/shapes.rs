@@ -30,6 +30,9 @@ impl Shape {
                     position: p,
                     normal: p,
                     uv: [u, v],
+                    color: Vertex::WHITE,
+                    tangent: Vertex::NO_TANGENT,
+                    uv1: [0.0; 2],
                 });
             }
         }
@@ -88,6 +91,9 @@ impl Shape {
                     position: [cos, y, -sin],
                     normal,
                     uv: [u, y],
+                    color: Vertex::WHITE,
+                    tangent: Vertex::NO_TANGENT,
+                    uv1: [0.0; 2],
                 })
             })
             .collect();
@@ -129,6 +135,9 @@ impl Shape {
                     position: p,
                     normal,
                     uv: [p[0], p[1]],
+                    color: Vertex::WHITE,
+                    tangent: Vertex::NO_TANGENT,
+                    uv1: [0.0; 2],
                 })
                 .collect(),
             indices: (1..corners.len() as u32 - 1)
@@ -152,6 +161,10 @@ impl Shape {
                     .normalize()
                     .to_array(),
                 uv: v.uv,
+                color: v.color,
+                // Built-in shapes have no tangents: no built-in material has a normal map.
+                tangent: v.tangent,
+                uv1: v.uv1,
             })
             .collect();
         Shape {
