@@ -49,7 +49,7 @@ fn main() -> String {
 pub enum Dispatch {
     /// Enough to cover every texel of the texture bound to this slot.
     PerTexel(String),
-    /// Exactly these counts, each from 1 to [`MAX_WORKGROUPS_PER_DIMENSION`].
+    /// Exactly these counts, each from 1 to 65,535 (WebGPU's default limit).
     Workgroups(u32, u32, u32),
 }
 

@@ -116,8 +116,9 @@ fn reaches_tile(light: LightData, nearest: f32, farthest: f32) -> bool {
 // 002's unique fragments). Samples of two triangles differ in something, if only in
 // their interpolated view depth.
 fn same_fragment(a: GSample, b: GSample) -> bool {
-    return all(a.albedo == b.albedo) && all(a.normal == b.normal) && a.metallic == b.metallic
-        && a.roughness == b.roughness && a.flags == b.flags && a.view_depth == b.view_depth;
+    return all(a.albedo == b.albedo) && a.occlusion == b.occlusion && all(a.normal == b.normal)
+        && a.metallic == b.metallic && a.roughness == b.roughness && a.flags == b.flags
+        && a.view_depth == b.view_depth;
 }
 
 // Where a fragment covering the samples of `mask` is shaded: at the mean of their
