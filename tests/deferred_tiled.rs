@@ -167,10 +167,9 @@ fn fragment_and_tile_light_views() {
     );
 }
 
-/// A tile too big for the device's workgroup memory is a compile error naming the pass
-/// and the entry point; the same pass with a smaller tile compiles.
-#[test]
-fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
+/// A registry with the deferred plugins and no scene (enough to load and compile), the
+/// path of pipelines/deferred_msaa_4x_tiled.ron and its text, for edited copies.
+fn tiled_file() -> (Registry, String, String) {
     let mut registry = Registry::with_builtins();
     passes_deferred_msaa::register(&mut registry, None);
     let path = format!(
@@ -178,6 +177,14 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
         env!("CARGO_MANIFEST_DIR")
     );
     let text = std::fs::read_to_string(&path).expect("the pipeline exists");
+    (registry, path, text)
+}
+
+/// A tile too big for the device's workgroup memory is a compile error naming the pass
+/// and the entry point; the same pass with a smaller tile compiles.
+#[test]
+fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
+    let (registry, path, text) = tiled_file();
     let mut profile = DeviceProfile::webgpu();
     profile.limits.max_compute_workgroup_storage_size = 8192;
     profile.name = "a device with 8 KiB of workgroup memory".into();
@@ -250,18 +257,11 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
 /// A tile side outside 2 to 32 is refused at load, naming the parameter.
 #[test]
 fn a_tile_of_one_pixel_is_refused() {
-    let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
-    let path = format!(
-        "{}/pipelines/deferred_msaa_4x_tiled.ron",
-        env!("CARGO_MANIFEST_DIR")
+    let (registry, path, text) = tiled_file();
+    let text = text.replace(
+        "params: (edges: (detector: compare)),",
+        "params: (edges: (detector: compare), tile: 1),",
     );
-    let text = std::fs::read_to_string(&path)
-        .expect("the pipeline exists")
-        .replace(
-            "params: (edges: (detector: compare)),",
-            "params: (edges: (detector: compare), tile: 1),",
-        );
     let Err(error) = load_str(&path, &text, &registry) else {
         panic!("a 1x1 tile has no room for its four side planes, but the file loaded");
     };

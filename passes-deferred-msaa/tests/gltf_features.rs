@@ -18,6 +18,15 @@ fn load_embedded(test: &str, gltf: &Gltf) -> Scene {
     Scene::from_gltf(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// Adds [`png_2x1`] as an image in a buffer view of `gltf`; returns the image's index.
+fn png_2x1_image(gltf: &mut Gltf) -> usize {
+    let view = gltf.view(&png_2x1());
+    gltf.push(
+        "images",
+        json!({ "bufferView": view, "mimeType": "image/png" }),
+    )
+}
+
 /// A 2 x 1 RGBA PNG: one opaque red texel, one half-transparent blue one.
 fn png_2x1() -> Vec<u8> {
     let image = image::RgbaImage::from_raw(2, 1, vec![255, 0, 0, 255, 0, 0, 255, 128]).unwrap();
@@ -31,11 +40,7 @@ fn png_2x1() -> Vec<u8> {
 #[test]
 fn glb_with_png_in_buffer_view_and_sampler() {
     let mut gltf = Gltf::default();
-    let view = gltf.view(&png_2x1());
-    gltf.push(
-        "images",
-        json!({ "bufferView": view, "mimeType": "image/png" }),
-    );
+    png_2x1_image(&mut gltf);
     // NEAREST, LINEAR_MIPMAP_LINEAR, CLAMP_TO_EDGE, MIRRORED_REPEAT.
     gltf.push(
         "samplers",
@@ -376,11 +381,7 @@ fn scene_without_nodes_loads_empty_with_a_warning() {
 #[test]
 fn emissive_and_metallic_roughness_textures_are_loaded_in_their_color_spaces() {
     let mut gltf = Gltf::default();
-    let view = gltf.view(&png_2x1());
-    gltf.push(
-        "images",
-        json!({ "bufferView": view, "mimeType": "image/png" }),
-    );
+    png_2x1_image(&mut gltf);
     gltf.push("samplers", json!({ "magFilter": 9728, "wrapS": 33071 }));
     gltf.push("textures", json!({ "source": 0, "sampler": 0 }));
     gltf.push("textures", json!({ "source": 0 }));
@@ -502,11 +503,7 @@ fn uv_quad(gltf: &mut Gltf, material: usize, extra: serde_json::Value) {
 #[test]
 fn normal_textures_get_tangents_from_the_file_or_mikktspace() {
     let mut gltf = Gltf::default();
-    let view = gltf.view(&png_2x1());
-    gltf.push(
-        "images",
-        json!({ "bufferView": view, "mimeType": "image/png" }),
-    );
+    png_2x1_image(&mut gltf);
     gltf.push("textures", json!({ "source": 0 }));
     let bumpy = gltf.push(
         "materials",
@@ -565,11 +562,7 @@ fn normal_textures_get_tangents_from_the_file_or_mikktspace() {
 #[test]
 fn texcoord_1_is_loaded_and_textures_name_their_set() {
     let mut gltf = Gltf::default();
-    let view = gltf.view(&png_2x1());
-    gltf.push(
-        "images",
-        json!({ "bufferView": view, "mimeType": "image/png" }),
-    );
+    png_2x1_image(&mut gltf);
     gltf.push("textures", json!({ "source": 0 }));
     let material = gltf.push(
         "materials",
@@ -602,11 +595,7 @@ fn texcoord_1_is_loaded_and_textures_name_their_set() {
 fn texture_transform_becomes_the_uv_matrix() {
     let mut gltf = Gltf::default();
     gltf.json["extensionsUsed"] = json!(["KHR_texture_transform"]);
-    let view = gltf.view(&png_2x1());
-    gltf.push(
-        "images",
-        json!({ "bufferView": view, "mimeType": "image/png" }),
-    );
+    png_2x1_image(&mut gltf);
     gltf.push("textures", json!({ "source": 0 }));
     let example = json!({ "KHR_texture_transform": {
         "offset": [0.0, 1.0], "rotation": std::f64::consts::FRAC_PI_2, "scale": [0.5, 0.5]
