@@ -12,6 +12,7 @@ const MATERIAL: &str = include_str!("wgsl/material.wgsl");
 const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
 const BRDF: &str = include_str!("wgsl/brdf.wgsl");
 const SURFACE: &str = include_str!("wgsl/surface.wgsl");
+const LIGHTING: &str = include_str!("wgsl/lighting.wgsl");
 const EDGE_DETECT: &str = include_str!("wgsl/edge_detect.wgsl");
 
 /// A pass's shader: a name for messages and its own fragment, composed after the shared
@@ -42,6 +43,7 @@ pub(crate) const LIGHT: Source = Source {
         SCENE,
         GBUFFER_READ,
         BRDF,
+        LIGHTING,
         SURFACE,
         include_str!("wgsl/light.wgsl"),
     ],
@@ -54,6 +56,7 @@ pub(crate) const LIGHT_TILED: Source = Source {
         SCENE,
         GBUFFER_READ,
         BRDF,
+        LIGHTING,
         SURFACE,
         EDGE_DETECT,
         include_str!("wgsl/light_tiled.wgsl"),
@@ -85,6 +88,7 @@ pub(crate) const FORWARD: Source = Source {
         SCENE,
         MATERIAL,
         BRDF,
+        LIGHTING,
         include_str!("wgsl/forward.wgsl"),
     ],
 };

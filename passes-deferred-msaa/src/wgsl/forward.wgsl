@@ -4,7 +4,7 @@
 // colors are what gbuffer.wgsl writes into the HDR target; lit surfaces add the ambient
 // term and every light, as light.wgsl's draws add them.
 // Composed after common.wgsl, scene.wgsl, material.wgsl (the material model gbuffer.wgsl
-// reads too) and brdf.wgsl.
+// reads too), brdf.wgsl and lighting.wgsl.
 
 // Alpha MASK materials: discard below the cutoff (one pipeline per material state).
 override MASKED: bool = false;
@@ -96,10 +96,7 @@ fn shade(a: Attributes, front: bool) -> vec4<f32> {
         let mapped = shading_normal(a.normal, a.tangent, m.tangent_normal);
         let n = unit_normal(select(-mapped, mapped, front || !DOUBLE_SIDED));
         let s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness, m.occlusion);
-        color += light_info.ambient * m.base.rgb * m.occlusion;
-        for (var i = 0u; i < light_info.light_count; i++) {
-            color += shade_light(s, lights[i]);
-        }
+        color += every_light(s);
     }
     return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), 1.0);
 }

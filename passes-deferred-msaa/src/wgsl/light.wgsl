@@ -2,7 +2,8 @@
 // multisampled HDR target, shaded once per pixel (non-edge pixels, from sample 0) or
 // once per sample (edge pixels). Directional lights and ambient are one full-screen draw;
 // each point or spot light is a draw of its volume with instance index = light index.
-// Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl, brdf.wgsl and surface.wgsl.
+// Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl, brdf.wgsl, lighting.wgsl and
+// surface.wgsl.
 
 // Clip depth of the far plane: 0 with reversed Z, 1 without.
 override FAR_DEPTH: f32 = 0.0;

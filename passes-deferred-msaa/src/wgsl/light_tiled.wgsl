@@ -15,8 +15,8 @@
 // 4. Resolve: each sample's light plus the G-buffer's HDR (emission, unlit colour),
 //    averaged (box, or resolve.wgsl's tone-mapped weights), stored in the 1x output.
 //
-// Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl, brdf.wgsl, surface.wgsl
-// and edge_detect.wgsl, then a generated block defining TILE (the tile's side in
+// Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl, brdf.wgsl, lighting.wgsl,
+// surface.wgsl and edge_detect.wgsl, then a generated block defining TILE (the tile's side in
 // pixels), EDGE_SLOTS (max(SAMPLES - 1, 1): the most edge-list entries one invocation
 // shades) and OutTex (the output's storage texture type).
 

@@ -19,16 +19,3 @@ fn center_surface(pixel: vec2<i32>, s: u32) -> vec3<f32> {
 fn surface_of(g: GSample, p: vec3<f32>) -> Surface {
     return Surface(p, g.normal, safe_normalize(-p), g.albedo, g.metallic, g.roughness, g.occlusion);
 }
-
-// The light that reaches every surface: ambient plus every directional light.
-fn ambient_and_directional(s: Surface) -> vec3<f32> {
-    var color = light_info.ambient * s.albedo * s.occlusion;
-    // brdf.wgsl's DIRECTIONAL_LIGHTS: without directional lights that emit, the loop
-    // would add zeros.
-    if DIRECTIONAL_LIGHTS {
-        for (var i = 0u; i < light_info.directional_count; i++) {
-            color += shade_light(s, lights[i]);
-        }
-    }
-    return color;
-}
