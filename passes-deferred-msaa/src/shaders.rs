@@ -81,16 +81,27 @@ pub(crate) const DEBUG: Source = Source {
     ],
 };
 
+const FORWARD_WGSL: &str = include_str!("wgsl/forward.wgsl");
 pub(crate) const FORWARD: Source = Source {
     name: "forward.wgsl",
+    parts: &[COMMON, SCENE, MATERIAL, BRDF, LIGHTING, FORWARD_WGSL],
+};
+/// forward.wgsl's vertex stages and shading, with entry points that keep the alpha.
+pub(crate) const TRANSPARENT: Source = Source {
+    name: "transparent.wgsl",
     parts: &[
         COMMON,
         SCENE,
         MATERIAL,
         BRDF,
         LIGHTING,
-        include_str!("wgsl/forward.wgsl"),
+        FORWARD_WGSL,
+        include_str!("wgsl/transparent.wgsl"),
     ],
+};
+pub(crate) const COMPOSITE: Source = Source {
+    name: "composite.wgsl",
+    parts: &[COMMON, include_str!("wgsl/composite.wgsl")],
 };
 pub(crate) const GBUFFER_RESOLVE: Source = Source {
     name: "gbuffer_resolve.wgsl",

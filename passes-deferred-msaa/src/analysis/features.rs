@@ -18,6 +18,9 @@ pub struct Features {
     pub lit: bool,
     pub emissive: bool,
     pub alpha_mask: bool,
+    /// Some mesh is drawn with an alpha BLEND material: the pipelines add their
+    /// transparent passes under `when: "blend"`.
+    pub blend: bool,
     /// Some mesh's material samples a base-color texture.
     pub textures: bool,
     /// Some mesh's emissive material samples an emissive texture.
@@ -37,7 +40,7 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 17] = [
+    pub const NAMES: [&'static str; 18] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -48,6 +51,7 @@ impl Features {
         "unlit_only",
         "emissive",
         "alpha_mask",
+        "blend",
         "textures",
         "emissive_textures",
         "metal_rough_textures",
@@ -75,6 +79,7 @@ impl Features {
             lit: material(|m| !m.unlit),
             emissive: material(Material::is_emissive),
             alpha_mask: material(|m| matches!(m.alpha_mode, AlphaMode::Mask { .. })),
+            blend: material(|m| m.alpha_mode == AlphaMode::Blend),
             textures: material(|m| m.base_color_texture.is_some()),
             emissive_textures: material(|m| m.is_emissive() && m.emissive_texture.is_some()),
             metal_rough_textures: material(|m| !m.unlit && m.metallic_roughness_texture.is_some()),
@@ -93,7 +98,10 @@ impl Features {
     /// names of absences and reductions (`no_lights`, `unlit_only`, `shallow_depth`) are
     /// not set for it, which is why
     /// pipelines drop work only under those: compiled for no features at all, a
-    /// pipeline is the general one too.
+    /// pipeline is the general one too. The one exception is `blend`: the transparent
+    /// passes are added under it, so that every scene without BLEND materials keeps
+    /// exactly the plan it had before they existed; compiled for no features, a
+    /// pipeline draws no blended meshes (the opaque passes skip them regardless).
     pub fn general() -> Features {
         Features {
             point_lights: true,
@@ -104,6 +112,7 @@ impl Features {
             lit: true,
             emissive: true,
             alpha_mask: true,
+            blend: true,
             textures: true,
             emissive_textures: true,
             metal_rough_textures: true,
@@ -138,6 +147,7 @@ impl Features {
             self.unlit_only(),
             self.emissive,
             self.alpha_mask,
+            self.blend,
             self.textures,
             self.emissive_textures,
             self.metal_rough_textures,

@@ -1,6 +1,6 @@
 //! Shader variants: which of a shader's feature-gated code paths a scene needs.
 //!
-//! The G-buffer, light and forward shaders gate the code of scene features behind WGSL
+//! The G-buffer, light, forward and transparent shaders gate the code of scene features behind WGSL
 //! `override` bool constants (`override SPOT_LIGHTS: bool = true;`). Their pipelines
 //! set each constant to whether the scene uses the feature, so the driver compiles out
 //! what the scene lacks; the defaults (all true) are the general shader. A gated path is
@@ -105,6 +105,8 @@ pub enum GatedShader {
     LightTiled,
     /// forward.wgsl, of `forward`.
     Forward,
+    /// transparent.wgsl (forward.wgsl's shading, keeping alpha), of `transparent`.
+    Transparent,
 }
 
 impl GatedShader {
@@ -115,6 +117,7 @@ impl GatedShader {
             "light_edge" | "light_nonedge" => Some(GatedShader::Light),
             "light_tiled" => Some(GatedShader::LightTiled),
             "forward" => Some(GatedShader::Forward),
+            "transparent" => Some(GatedShader::Transparent),
             _ => None,
         }
     }
@@ -125,6 +128,7 @@ impl GatedShader {
             GatedShader::Light => "light.wgsl",
             GatedShader::LightTiled => "light_tiled.wgsl",
             GatedShader::Forward => "forward.wgsl",
+            GatedShader::Transparent => "transparent.wgsl",
         }
     }
 
@@ -145,7 +149,7 @@ impl GatedShader {
             GatedShader::Light | GatedShader::LightTiled => {
                 &[DirectionalLights, PointLights, SpotLights]
             }
-            GatedShader::Forward => &[
+            GatedShader::Forward | GatedShader::Transparent => &[
                 DirectionalLights,
                 PointLights,
                 SpotLights,

@@ -1,5 +1,5 @@
 //! Recording a full-screen draw of a deferred shader: the edge pass (stencil only), the
-//! resolve, the tone mapper and the debug views.
+//! resolve, the tone mapper, the debug views and the transparent composite.
 
 use std::sync::Arc;
 
@@ -61,7 +61,11 @@ pub(crate) fn record(
                 .map_or(1, |h| shape(h).samples),
         };
         let pipeline = state.pipelines.get(key, |key| {
-            let targets = [key.target.map(wgpu::ColorTargetState::from)];
+            let targets = [key.target.map(|format| wgpu::ColorTargetState {
+                format,
+                blend: draw.blend,
+                write_mask: wgpu::ColorWrites::ALL,
+            })];
             PipelineDesc {
                 label: draw.label,
                 layout: &state.layout,

@@ -7,7 +7,7 @@ use graph_core::gpu::RenderContext;
 
 use super::scene_draw::{self, SceneDraw, Stages};
 use crate::analysis::GatedShader;
-use crate::gpu_scene::SceneCache;
+use crate::gpu_scene::{Layer, SceneCache};
 use crate::plugins::gbuffer::GBufferDraw;
 
 pub(crate) fn record(
@@ -21,6 +21,7 @@ pub(crate) fn record(
         depth_rule: draw.depth_rule,
         targets: draw.targets,
         depth: draw.depth,
+        layer: Layer::Opaque,
         stages: Box::new(|material| Stages {
             vertex: "vs_main",
             fragment: if material.masked {

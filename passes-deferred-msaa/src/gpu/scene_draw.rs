@@ -1,8 +1,16 @@
-//! Recording a pass that draws the scene's meshes (the G-buffer and forward passes): one
-//! draw per mesh, with a pipeline per material state (culling, alpha mask) and
-//! attachment formats. The two passes differ only in shader, color targets and the entry
-//! points and constants a material state takes. Pipelines are compiled for the scene's
-//! shader variant (analysis/variant.rs), which their key holds.
+//! Recording a pass that draws the scene's meshes (the G-buffer, forward and transparent
+//! passes): one draw per mesh of the pass's [`Layer`], with a pipeline per material state
+//! (culling, alpha mask) and attachment formats. The passes differ only in shader, color
+//! targets, layer and the entry points and constants a material state takes. Pipelines
+//! are compiled for the scene's shader variant (analysis/variant.rs), which their key
+//! holds.
+//!
+//! The opaque layer writes depth and replaces colour. The blended layer tests depth
+//! without writing it (the depth-stencil is attached read-only) and accumulates as seed
+//! 001 does for off-screen particles: colour by conventional alpha blending
+//! (`src * a + dst * (1 - a)`) and alpha by the product of `1 - a` (source factor zero,
+//! destination `1 - a`), so a target cleared to (0, 0, 0, 1) ends as the blended colour
+//! over black and the transmittance of everything drawn.
 
 use std::sync::Arc;
 
@@ -11,7 +19,7 @@ use graph_core::TextureHandle;
 
 use super::{PipelineDesc, Pipelines};
 use crate::analysis::{GatedShader, Variant};
-use crate::gpu_scene::{mesh, MaterialState, SceneCache};
+use crate::gpu_scene::{mesh, Layer, MaterialState, SceneCache};
 use crate::plugins::depth::DepthRule;
 use crate::scene::DepthConvention;
 
@@ -33,6 +41,7 @@ pub(crate) struct SceneDraw {
     /// Color attachments in location order.
     pub targets: Vec<TextureHandle>,
     pub depth: TextureHandle,
+    pub layer: Layer,
     pub stages: Box<dyn Fn(MaterialState) -> Stages>,
 }
 
@@ -80,7 +89,8 @@ pub(crate) fn record(
         let convention = draw.depth_rule.convention(depth.format);
         ctx.pass
             .set_bind_group(0, scene.bind_group(convention), &[]);
-        scene.draw_meshes(ctx.pass, 1, |pass, _, material| {
+        let layer = draw.layer;
+        scene.draw_meshes(ctx.pass, 1, layer, |pass, _, material| {
             let key = Key {
                 targets: targets.clone(),
                 depth: depth.format,
@@ -90,8 +100,11 @@ pub(crate) fn record(
             };
             let (module, layout) = (&state.module, &state.layout);
             let pipeline = state.pipelines.get(key, |key| {
-                let targets: Vec<Option<wgpu::ColorTargetState>> =
-                    key.targets.iter().map(|&f| Some(f.into())).collect();
+                let targets: Vec<Option<wgpu::ColorTargetState>> = key
+                    .targets
+                    .iter()
+                    .map(|&format| Some(color_target(format, layer)))
+                    .collect();
                 let stages = (draw.stages)(key.material);
                 let mut constants = stages.constants;
                 constants.extend(key.variant.constants());
@@ -105,7 +118,7 @@ pub(crate) fn record(
                     constants: &constants,
                     targets: &targets,
                     cull: (!key.material.double_sided).then_some(wgpu::Face::Back),
-                    depth_stencil: Some(depth_test(key.depth, convention)),
+                    depth_stencil: Some(depth_test(key.depth, convention, layer)),
                     samples: key.samples,
                     mask: !0,
                 }
@@ -117,12 +130,43 @@ pub(crate) fn record(
     })
 }
 
-/// Nearer fragments win: `Greater` with reversed Z, `Less` without. Stencil is left alone
-/// (cleared to 0 by the G-buffer pass; the edge pass marks it).
-fn depth_test(format: wgpu::TextureFormat, convention: DepthConvention) -> wgpu::DepthStencilState {
+/// Replacing for the opaque layer; seed 001's accumulation for the blended one (see the
+/// module documentation).
+fn color_target(format: wgpu::TextureFormat, layer: Layer) -> wgpu::ColorTargetState {
+    let blend = match layer {
+        Layer::Opaque => None,
+        Layer::Blended => Some(wgpu::BlendState {
+            color: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::SrcAlpha,
+                dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                operation: wgpu::BlendOperation::Add,
+            },
+            alpha: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::Zero,
+                dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                operation: wgpu::BlendOperation::Add,
+            },
+        }),
+    };
+    wgpu::ColorTargetState {
+        format,
+        blend,
+        write_mask: wgpu::ColorWrites::ALL,
+    }
+}
+
+/// Nearer fragments win: `Greater` with reversed Z, `Less` without. Only the opaque layer
+/// writes depth: blended surfaces are hidden by opaque ones but never hide each other
+/// (they are drawn back to front instead). Stencil is left alone (cleared to 0 by the
+/// G-buffer pass; the edge pass marks it).
+fn depth_test(
+    format: wgpu::TextureFormat,
+    convention: DepthConvention,
+    layer: Layer,
+) -> wgpu::DepthStencilState {
     wgpu::DepthStencilState {
         format,
-        depth_write_enabled: Some(true),
+        depth_write_enabled: Some(layer == Layer::Opaque),
         depth_compare: Some(match convention {
             DepthConvention::ReversedZ => wgpu::CompareFunction::Greater,
             DepthConvention::Standard => wgpu::CompareFunction::Less,

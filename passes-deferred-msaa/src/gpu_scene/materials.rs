@@ -34,13 +34,16 @@ struct MaterialData {
     _tail: [u32; 2],
 }
 
-/// What the G-buffer pass needs to pick a pipeline for a material.
+/// What a scene-drawing pass needs to pick a pipeline for a material, and which pass
+/// draws it.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub struct MaterialState {
     /// Back faces are drawn, with the normal flipped (no culling).
     pub double_sided: bool,
     /// Alpha MASK: fragments are discarded below the cutoff.
     pub masked: bool,
+    /// Alpha BLEND: drawn by the transparent pass only, never by the opaque ones.
+    pub blended: bool,
 }
 
 pub(super) struct Materials {
@@ -116,7 +119,7 @@ impl Materials {
         for material in &scene.materials {
             let cutoff = match material.alpha_mode {
                 AlphaMode::Mask { cutoff } => cutoff,
-                AlphaMode::Opaque => 0.0,
+                AlphaMode::Opaque | AlphaMode::Blend => 0.0,
             };
             data.push(MaterialData {
                 base_color: material.base_color_factor,
@@ -145,6 +148,7 @@ impl Materials {
             states.push(MaterialState {
                 double_sided: material.double_sided,
                 masked: matches!(material.alpha_mode, AlphaMode::Mask { .. }),
+                blended: material.alpha_mode == AlphaMode::Blend,
             });
             // Scenes guarantee texture indices are in range; a broken one shows white.
             let textures: Vec<(&wgpu::TextureView, wgpu::Sampler)> = slots(material)

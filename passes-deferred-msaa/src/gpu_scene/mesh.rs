@@ -5,7 +5,7 @@
 use glam::{DMat4, DVec3};
 use wgpu::util::DeviceExt;
 
-use crate::scene::{Scene, Vertex};
+use crate::scene::{Aabb, Scene, Vertex};
 
 /// `MeshData` in scene.wgsl.
 #[repr(C)]
@@ -27,6 +27,9 @@ pub struct MeshDraw {
     pub instance: u32,
     /// Index into `Scene::materials`.
     pub material: usize,
+    /// The centre of the mesh's world bounds, camera-relative: how far the draw is from
+    /// the camera, for drawing blended meshes back to front.
+    pub center: DVec3,
 }
 
 pub(super) struct MeshBuffers {
@@ -58,6 +61,9 @@ impl MeshBuffers {
                 base_vertex: vertices.len() as i32,
                 instance,
                 material: mesh.material,
+                center: Aabb::from_points(mesh.world_positions())
+                    .map_or(mesh.transform.w_axis.truncate(), |b| b.center())
+                    - scene.camera.position,
             });
             vertices.extend_from_slice(&mesh.vertices);
             indices.extend_from_slice(&mesh.indices);

@@ -35,6 +35,17 @@ use crate::analysis::{Features, GatedShader, Variant, Variants};
 use crate::host::Host;
 use crate::scene::{DepthConvention, Scene};
 
+/// Which of the scene's meshes a pass draws, and in what order.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Layer {
+    /// Opaque and alpha MASK meshes, in the scene's order: what the depth buffer and
+    /// the G-buffer hold.
+    Opaque,
+    /// Alpha BLEND meshes, back to front by the distance of each mesh's bounds centre
+    /// from the camera: the order over-compositing needs.
+    Blended,
+}
+
 /// Uploads of one host's scene, one per device, made on first use.
 pub struct SceneCache {
     host: Option<Arc<Host>>,
@@ -170,17 +181,28 @@ impl GpuScene {
             .filter_map(|d| Some((d, *self.materials.states.get(d.material)?)))
     }
 
-    /// Binds the mesh buffers, then for each draw `choose` accepts binds its material as
-    /// `material_group` and draws it. The caller sets the pipeline in `choose`.
+    /// Binds the mesh buffers, then for each draw of `layer`, in its order, that `choose`
+    /// accepts binds its material as `material_group` and draws it. The caller sets the
+    /// pipeline in `choose`.
     pub fn draw_meshes(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
         material_group: u32,
+        layer: Layer,
         mut choose: impl FnMut(&mut wgpu::RenderPass<'_>, &MeshDraw, MaterialState) -> bool,
     ) {
         pass.set_vertex_buffer(0, self.meshes.vertices.slice(..));
         pass.set_index_buffer(self.meshes.indices.slice(..), wgpu::IndexFormat::Uint32);
-        for (draw, state) in self.mesh_draws() {
+        let mut draws: Vec<(&MeshDraw, MaterialState)> = self
+            .mesh_draws()
+            .filter(|(_, state)| state.blended == (layer == Layer::Blended))
+            .collect();
+        if layer == Layer::Blended {
+            // Farthest first, sorted on every frame as a moving camera or mesh would need;
+            // the sort is stable, so draws at one distance keep the scene's order.
+            draws.sort_by(|(a, _), (b, _)| b.center.length().total_cmp(&a.center.length()));
+        }
+        for (draw, state) in draws {
             if !choose(pass, draw, state) {
                 continue;
             }

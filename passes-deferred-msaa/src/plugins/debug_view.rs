@@ -150,6 +150,7 @@ impl Plugin for DebugView {
             reads_scene: params.view == View::Lights,
             target: Some(target),
             stencil_mark: None,
+            blend: None,
         };
         self.0.record(pass, draw);
         Ok(())

@@ -86,6 +86,7 @@ impl Plugin for EdgeStencil {
             reads_scene: false,
             target: None,
             stencil_mark: Some(depth),
+            blend: None,
         };
         self.0.record(pass, draw);
         Ok(())

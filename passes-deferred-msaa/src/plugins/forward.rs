@@ -17,7 +17,8 @@
 //! light of the scene (point and spot lights windowed to zero at their range, which the
 //! deferred passes' volumes circumscribe). Emission is added once; unlit materials show
 //! base color plus emission, exactly what the `gbuffer` pass writes into its HDR target.
-//! Alpha MASK and double-sided materials behave as there.
+//! Alpha MASK and double-sided materials behave as there; alpha BLEND meshes are left to
+//! the `transparent` pass, as the G-buffer pass leaves them.
 //!
 //! `pixel` shades once per pixel and triangle at the centroid of the covered samples (the
 //! G-buffer pass's interpolation, so a deferred pipeline that shades every sample gives the
@@ -65,19 +66,23 @@ pub enum Shading {
 
 use TextureFormat as F;
 /// Forward shading needs no stencil, so depth-only formats do too.
-const DEPTH: &[TextureFormat] = &[
+pub(crate) const DEPTH: &[TextureFormat] = &[
     F::Depth24Plus,
     F::Depth32Float,
     F::Depth24PlusStencil8,
     F::Depth32FloatStencil8,
 ];
 
-/// The forward pass as set up: what `gpu::forward` records.
+/// The forward pass, or the transparent pass (plugins/transparent.rs), as set up: what
+/// `gpu::forward` records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct ForwardDraw {
     pub source: String,
     pub depth_rule: DepthRule,
     pub shading: Shading,
+    /// Draws the BLEND meshes back to front, blending into `hdr` and testing a read-only
+    /// `depth` (transparent.wgsl); else the other meshes, writing both.
+    pub transparent: bool,
     pub hdr: TextureHandle,
     pub depth: TextureHandle,
 }
@@ -114,6 +119,7 @@ impl Plugin for Forward {
             source: shaders::FORWARD.compose(desc.samples)?.source().to_owned(),
             depth_rule,
             shading: params.shading,
+            transparent: false,
             hdr,
             depth,
         };

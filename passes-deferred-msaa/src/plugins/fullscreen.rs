@@ -1,6 +1,7 @@
-//! A full-screen draw of a deferred shader, as the edge, resolve, tone-mapping and debug
-//! plugins set it up; `gpu::fullscreen` records it.
+//! A full-screen draw of a deferred shader, as the edge, resolve, tone-mapping, debug and
+//! transparent-composite plugins set it up; `gpu::fullscreen` records it.
 
+use graph_core::types::BlendState;
 use graph_core::TextureHandle;
 
 use super::textures::Input;
@@ -22,6 +23,8 @@ pub(crate) struct Fullscreen {
     /// A depth-stencil attachment whose stencil the pass marks: `Replace` with the
     /// reference 0x80 through write mask 0x80, wherever the shader does not discard.
     pub stencil_mark: Option<TextureHandle>,
+    /// How the shader's output combines with the color attachment; `None` replaces it.
+    pub blend: Option<BlendState>,
 }
 
 impl Recording for Fullscreen {

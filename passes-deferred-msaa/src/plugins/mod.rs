@@ -6,12 +6,15 @@
 //! are complete examples. Each plugin's module documents its parameters and slots.
 //! The baselines add `forward` (the scene lit per fragment, pipelines/forward_msaa_4x.ron
 //! and reference_ssaa16.ron) and `gbuffer_resolve` (the G-buffer averaged before
-//! lighting, pipelines/deferred_gbuffer_resolve_4x.ron).
+//! lighting, pipelines/deferred_gbuffer_resolve_4x.ron). Every pipeline that renders the
+//! lit scene adds `transparent` and `composite_transparent` under `when: "blend"`: alpha
+//! BLEND meshes, which the opaque passes skip, drawn after lighting and composited onto
+//! the resolved image.
 //!
 //! The G-buffer slots every pass uses the same names for: `albedo`, `normal`,
 //! `material`, `view_depth`, `hdr` and `depth` (the multisampled depth-stencil).
 //!
-//! The passes that test or write depth (`gbuffer`, `forward`, `gbuffer_resolve`,
+//! The passes that test or write depth (`gbuffer`, `forward`, `gbuffer_resolve`, `transparent`,
 //! `light_edge`, `light_nonedge`) take an optional `reversed_z`. Left out, the depth
 //! convention follows the depth format the compile picks: reversed-Z for float depth,
 //! standard Z for unorm depth (see `plugins/depth.rs`), so the passes agree whichever format a
@@ -31,6 +34,7 @@ pub(crate) mod light_tiled;
 pub(crate) mod resolve;
 pub(crate) mod textures;
 pub(crate) mod tonemap;
+pub(crate) mod transparent;
 
 use std::sync::Arc;
 
@@ -52,6 +56,9 @@ pub use light::{
 pub use light_tiled::{EdgeShading, LightTiled, LightTiledParams, TiledView};
 pub use resolve::{Resolve, ResolveMode, ResolveParams};
 pub use tonemap::{Operator, Tonemap, TonemapParams};
+pub use transparent::{
+    CompositeTransparent, CompositeTransparentParams, Transparent, TransparentParams,
+};
 
 /// What every plugin of one registry shares: the host's overrides and, with feature
 /// `gpu`, the scene's upload.
@@ -109,7 +116,9 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(Tonemap(shared.clone()))
         .register(DebugView(shared.clone()))
         .register(Forward(shared.clone()))
-        .register(GBufferResolve(shared));
+        .register(GBufferResolve(shared.clone()))
+        .register(Transparent(shared.clone()))
+        .register(CompositeTransparent(shared));
 }
 
 /// Why `edge_stencil` and `light_edge` leave themselves out of plans with one sample

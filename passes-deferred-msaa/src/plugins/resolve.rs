@@ -91,6 +91,7 @@ impl Plugin for Resolve {
             reads_scene: false,
             target: Some(target),
             stencil_mark: None,
+            blend: None,
         };
         self.0.record(pass, draw);
         Ok(())

@@ -95,6 +95,7 @@ impl Plugin for Tonemap {
             reads_scene: false,
             target: Some(target),
             stencil_mark: None,
+            blend: None,
         };
         self.0.record(pass, draw);
         Ok(())

@@ -2,8 +2,7 @@
 
 use super::texture::TextureRef;
 
-/// How alpha affects coverage. glTF BLEND is not supported by a deferred G-buffer; the loader
-/// turns it into `Opaque` with a warning.
+/// How alpha affects coverage.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum AlphaMode {
     Opaque,
@@ -11,6 +10,11 @@ pub enum AlphaMode {
     Mask {
         cutoff: f32,
     },
+    /// glTF BLEND: the surface is composited over what lies behind it with its alpha
+    /// (Porter and Duff's over). A G-buffer holds one surface per sample, so the opaque
+    /// passes skip these meshes and the `transparent` pass draws them, lit, after
+    /// lighting (plugins/transparent.rs).
+    Blend,
 }
 
 /// A glTF 2.0 metallic-roughness material, with the extensions this crate implements folded in.

@@ -81,7 +81,9 @@ fn vs_sample(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> SampleVar
     return SampleVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent, a.uv1);
 }
 
-fn shade(a: Attributes, front: bool) -> vec4<f32> {
+// The surface's colour (emission plus light, or base colour plus emission if unlit) and
+// its base alpha: what transparent.wgsl blends, and what `shade` writes opaque.
+fn shade_surface(a: Attributes, front: bool) -> vec4<f32> {
     let material = materials[a.material];
     let m = sample_material(material, a.uv, a.uv1, a.color);
     if MASKED && m.base.a < material.alpha_cutoff {
@@ -98,7 +100,11 @@ fn shade(a: Attributes, front: bool) -> vec4<f32> {
         let s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness, m.occlusion);
         color += every_light(s);
     }
-    return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), 1.0);
+    return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), m.base.a);
+}
+
+fn shade(a: Attributes, front: bool) -> vec4<f32> {
+    return vec4<f32>(shade_surface(a, front).rgb, 1.0);
 }
 
 @fragment

@@ -44,13 +44,7 @@ impl Loader<'_> {
         let alpha_mode = match material.alpha_mode() {
             GltfAlphaMode::Opaque => AlphaMode::Opaque,
             GltfAlphaMode::Mask => AlphaMode::Mask { cutoff },
-            GltfAlphaMode::Blend => {
-                self.builder.warnings.push(format!(
-                    "{name}: alphaMode BLEND is not supported (a G-buffer holds one surface per \
-                     sample); rendered as OPAQUE"
-                ));
-                AlphaMode::Opaque
-            }
+            GltfAlphaMode::Blend => AlphaMode::Blend,
         };
         let base_color_texture = self.texture(
             pbr.base_color_texture().as_ref().map(reference),

@@ -1,0 +1,14 @@
+// The transparent pass: alpha BLEND meshes drawn back to front into an accumulation
+// target, shaded as forward.wgsl shades (its vertex stages, its `shade_surface`: the same
+// material model and every light of lighting.wgsl), with the surface's base alpha for
+// the pipeline's blending (gpu/scene_draw.rs). Composed after forward.wgsl.
+
+@fragment
+fn fs_blend_pixel(in: PixelVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    return shade_surface(Attributes(in.position, in.normal, in.uv, in.uv1, in.color, in.tangent, in.material), front);
+}
+
+@fragment
+fn fs_blend_sample(in: SampleVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    return shade_surface(Attributes(in.position, in.normal, in.uv, in.uv1, in.color, in.tangent, in.material), front);
+}
