@@ -54,3 +54,4 @@ mod specialise_lights;
 mod specialise_samples;
 mod specialise_unlit;
 mod specialise_variants;
+mod transparency;

@@ -311,17 +311,16 @@ fn unsupported_features_are_warnings_naming_them() {
         scene.warnings,
         [
             "glTF extension KHR_materials_clearcoat is not implemented; its effect is ignored",
-            "material 0 \"glass\": alphaMode BLEND is not supported (a G-buffer holds one surface \
-             per sample); rendered as OPAQUE",
             "mesh 1 \"triangle\" primitive 0: its material's normal texture needs TEXCOORD_0, \
              which it lacks; drawn without the normal texture",
             "mesh 2 \"dots\" primitive 0: mode Points is not triangles; skipped",
         ]
     );
     assert_eq!(scene.meshes.len(), 2, "the POINTS primitive is skipped");
+    // BLEND is implemented (the transparent pass): kept, without a warning.
     assert_eq!(
         scene.materials[0].alpha_mode,
-        passes_deferred_msaa::scene::AlphaMode::Opaque
+        passes_deferred_msaa::scene::AlphaMode::Blend
     );
 }
 
