@@ -409,22 +409,24 @@ fn a_specialised_plan_is_measured_beside_the_general_one() {
             .contains(&"unlit_only".into()),
         "{special:#}"
     );
-    // The unlit G-buffer pass and the tone mapping, instead of the light pass too.
+    // The unlit G-buffer pass and the tone mapping, instead of the light and transparent
+    // passes too.
     assert_eq!(
         (number(special, "passes"), number(special, "general_passes")),
-        (2.0, 3.0)
+        (2.0, 5.0)
     );
     assert_eq!(figures["passes"].as_array().unwrap().len(), 2);
-    // Normal and material (4 bytes each) are not allocated at 64x48, and the depth-stencil
-    // is depth24plus-stencil8 (4 bytes) instead of depth32float-stencil8 (8, padded).
+    // Normal and material (4 bytes each) and the transparent accumulation (rgba16float, 8)
+    // are not allocated at 64x48, and the depth-stencil is depth24plus-stencil8 (4 bytes)
+    // instead of depth32float-stencil8 (8, padded).
     assert_eq!(
         number(special, "general_memory.physical_bytes") - number(figures, "memory.physical_bytes"),
-        64.0 * 48.0 * (4.0 + 4.0 + 4.0)
+        64.0 * 48.0 * (4.0 + 4.0 + 4.0 + 8.0)
     );
     assert_eq!(number(figures, "memory.gbuffer_bytes_per_sample"), 20.0);
     let table = std::fs::read_to_string(dir.path().join("results.md")).unwrap();
     assert!(
-        table.contains("| deferred_noaa | no_lights, shallow_depth, unlit_only | gbuffer.wgsl {double_sided} | 3 → 2 |"),
+        table.contains("| deferred_noaa | no_lights, shallow_depth, unlit_only | gbuffer.wgsl {double_sided} | 5 → 2 |"),
         "{table}"
     );
     let row = table

@@ -388,8 +388,8 @@ fn an_unlit_scene_renders_with_the_specialised_plan_and_the_same_image() {
         .stderr_has("specialised to the scene's features: no_lights, shallow_depth, unlit_only")
         .stderr_has("\ngbuffer (unlit) ")
         .stderr_has(
-            "dropped by conditions: gbuffer, light tiled, resolve (no lights), debug edges, \
-             debug tile lights, debug normals, debug lights",
+            "dropped by conditions: gbuffer, light tiled, resolve (no lights), transparent, \
+             composite transparent, debug edges, debug tile lights, debug normals, debug lights",
         );
     let run = render_unlit(&general, &["--no-specialise"]).expect(0);
     run.stderr_has("\nlight tiled ");
@@ -433,7 +433,8 @@ fn a_lit_scene_is_specialised_only_in_its_depth_format() {
     // builtin:spheres uses lights and lit materials; its depth spans 309 near planes.
     run.stderr_has("specialised to the scene's features: shallow_depth (")
         .stderr_has(
-            "dropped by conditions: gbuffer (unlit), resolve (unlit), resolve (no lights)\n",
+            "dropped by conditions: gbuffer (unlit), resolve (unlit), resolve (no lights), \
+             transparent, composite transparent\n",
         );
 }
 

@@ -46,7 +46,7 @@ fn an_unlit_scene_s_plan_says_what_it_drops_and_saves() {
         "features: no_lights, shallow_depth, unlit_only\n",
         "    0. gbuffer (unlit) (render)",
         "dropped passes:\n  - gbuffer: condition \"!unlit_only\" is false\n",
-        "against the plan for a scene using every feature (features: none):\n  passes: 6 instead of 11\n",
+        "against the plan for a scene using every feature (features: blend):\n  passes: 6 instead of 13\n",
         "    - light edges: condition \"!unlit_only & !no_lights\" is false (\"unlit_only\" is set, \"no_lights\" is set)\n",
         "    not allocated: normal (64.0 KiB): condition \"!unlit_only\" is false\n",
         "  memory: 416.0 KiB physical instead of 576.0 KiB (160.0 KiB saved, 28%)\n",
@@ -55,14 +55,20 @@ fn an_unlit_scene_s_plan_says_what_it_drops_and_saves() {
     }
 }
 
+/// A lit scene without BLEND materials keeps the general plan but for the transparent
+/// passes, whose accumulation target shares the lit HDR target's memory.
 #[test]
-fn a_lit_scene_keeps_the_general_plan() {
+fn a_lit_scene_keeps_the_general_plan_but_the_transparent_passes() {
     let (code, stdout, _) = explain("builtin:spheres", "text");
     assert_eq!(code, Some(0));
     assert!(
         stdout.contains("features ambient, directional_lights, lit, point_lights, shallow_depth\n")
     );
-    assert!(stdout.contains("  passes: 11 instead of 11\n  memory: 576.0 KiB physical instead of 576.0 KiB (0 B saved, 0%)\n"), "{stdout}");
+    assert!(stdout.contains("  passes: 11 instead of 13\n    - transparent: condition \"blend\" is false\n    - composite transparent: condition \"blend\" is false\n"), "{stdout}");
+    assert!(
+        stdout.contains("  memory: 576.0 KiB physical instead of 576.0 KiB (0 B saved, 0%)\n"),
+        "{stdout}"
+    );
 }
 
 /// The shaders with feature-gated code, compiled for the scene's features only.
@@ -114,6 +120,8 @@ fn json_carries_the_features_and_the_dropped_passes() {
             "edges",
             "light edges",
             "light the rest",
+            "transparent",
+            "composite transparent",
             "debug normals",
             "debug lights"
         ]

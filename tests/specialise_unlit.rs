@@ -57,6 +57,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
             "light edges",
             "light the rest",
             "resolve",
+            "transparent",
+            "composite transparent",
             "tonemap"
         ]
     );
@@ -70,6 +72,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
     let not_lit = r#"condition "!unlit_only" is false"#;
     // builtin:unlit has no lights either.
     let no_light = r#"condition "!unlit_only & !no_lights" is false ("unlit_only" is set, "no_lights" is set)"#;
+    // Nor BLEND materials.
+    let no_blend = r#"condition "blend" is false"#;
     assert_eq!(
         dropped,
         [
@@ -77,6 +81,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
             ("edges", no_light),
             ("light edges", no_light),
             ("light the rest", no_light),
+            ("transparent", no_blend),
+            ("composite transparent", no_blend),
             ("debug normals", not_lit),
             ("debug lights", not_lit),
         ]

@@ -511,3 +511,47 @@ fn pipelines_add_the_transparent_passes_for_blend_scenes_only() {
         }
     }
 }
+
+/// `rgraph explain --scene` shows the transparent passes and their variant for a scene
+/// with BLEND materials, and for a scene without them says the condition dropped them.
+#[test]
+fn explain_shows_the_transparent_passes_for_a_blend_scene_only() {
+    let file = panels_file(
+        "blend_explain",
+        &[
+            Panel::background([0.0, 0.0, 1.0]),
+            Panel::unlit(0.0, 0.5, [1.0, 0.0, 0.0, 0.5], true),
+        ],
+    );
+    let explain = |scene: &str| {
+        crate::cli_support::rgraph(&[
+            "explain",
+            "--pipeline",
+            "pipelines/deferred_msaa_4x_tiled.ron",
+            "--scene",
+            scene,
+            "--size",
+            "64x64",
+        ])
+        .expect(0)
+        .stdout
+    };
+    let with = explain(&file);
+    for shown in [
+        "features: blend",
+        ". transparent (render)",
+        ". composite transparent (render)",
+        "transparent.wgsl {",
+    ] {
+        assert!(with.contains(shown), "no {shown:?} in:\n{with}");
+    }
+    let without = explain("builtin:spheres");
+    assert!(
+        !without.contains(". transparent (render)"),
+        "the transparent pass runs for builtin:spheres:\n{without}"
+    );
+    assert!(
+        without.contains("condition \"blend\" is false"),
+        "no reason for dropping the transparent passes in:\n{without}"
+    );
+}

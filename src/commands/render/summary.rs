@@ -5,8 +5,10 @@ use graph_core::explain::bytes;
 use graph_core::gpu::FrameReport;
 use graph_core::Plan;
 
-/// The summary, one line each, for stderr.
-pub fn text(plan: &Plan, report: &FrameReport) -> String {
+/// The summary, one line each, for stderr. `specialised`: the plan was compiled for the
+/// scene's features (without `--no-specialise`). The plan's features alone do not tell:
+/// compiled for every feature, a plan holds the presences its file declares (`blend`).
+pub fn text(plan: &Plan, report: &FrameReport, specialised: bool) -> String {
     let ms = |ns: Option<u64>| ns.map_or("-".to_string(), |ns| format!("{:.3}", ns as f64 / 1e6));
     let width = report
         .passes
@@ -56,7 +58,7 @@ pub fn text(plan: &Plan, report: &FrameReport) -> String {
         bytes(plan.memory.logical_bytes),
         bytes(plan.memory.physical_bytes),
     ));
-    if !plan.features.is_empty() {
+    if specialised && !plan.features.is_empty() {
         lines.push(format!(
             "specialised to the scene's features: {} (--no-specialise compiles for every \
              feature)",
