@@ -12,7 +12,7 @@ use serde_json::json;
 use crate::deferred_support::measure::pixel_diff;
 use crate::deferred_support::{gpu, Render};
 use crate::gltf_writer::{fixture, temp_dir, Gltf};
-use graph_core::file::{load_file, Registry};
+use graph_core::file::{load_file, load_str, Registry};
 use graph_core::{CompileOptions, Features};
 use passes_deferred_msaa::analysis::Features as SceneFeatures;
 use passes_deferred_msaa::glam::{DVec3, Vec3};
@@ -554,4 +554,55 @@ fn explain_shows_the_transparent_passes_for_a_blend_scene_only() {
         without.contains("condition \"blend\" is false"),
         "no reason for dropping the transparent passes in:\n{without}"
     );
+}
+
+/// Slots of the wrong kind are load errors naming the pass, the slot and the resource:
+/// an accumulation of another size than the image it composites onto, of another format,
+/// or of another sample count than the depth it is tested against.
+#[test]
+fn bad_transparent_slots_are_errors_naming_pass_slot_and_resource() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines/forward_msaa_4x.ron");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut registry = Registry::with_builtins();
+    passes_deferred_msaa::register(&mut registry, None);
+    let accum = r#""transparent": Texture(format: "rgba16float", samples: 4, when: "blend"),"#;
+    for (from, to, expected) in [
+        (
+            accum,
+            r#""transparent": Texture(format: "rgba16float", size: Relative(0.5), samples: 4, when: "blend"),"#,
+            &[
+                "pass \"composite transparent\"",
+                "slot \"resolved\": \"resolved\" is Relative(1.0), but the accumulation it \
+                 composites (\"transparent\") is Relative(0.5)",
+            ][..],
+        ),
+        (
+            accum,
+            r#""transparent": Texture(format: "rgba8unorm", samples: 4, when: "blend"),"#,
+            &[
+                "pass \"transparent\"",
+                "slot \"accum\": \"transparent\" is rgba8unorm, but the transparent accumulation \
+                 must be rgba16float",
+            ][..],
+        ),
+        (
+            accum,
+            r#""transparent": Texture(format: "rgba16float", when: "blend"),"#,
+            &[
+                "pass \"transparent\"",
+                "slot \"accum\": \"transparent\" has 1 sample(s), but the transparent \
+                 accumulation must have 4",
+            ][..],
+        ),
+    ] {
+        assert!(text.contains(from), "no {from:?} to edit");
+        let message = match load_str(&path, &text.replace(from, to), &registry) {
+            Ok(_) => panic!("forward_msaa_4x.ron with {to:?} loaded"),
+            Err(errors) => errors.to_string(),
+        };
+        for part in expected {
+            assert!(message.contains(part), "no {part:?} in:\n{message}");
+        }
+    }
 }

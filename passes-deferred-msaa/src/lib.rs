@@ -3,8 +3,9 @@
 //! - [`scene`]: the CPU scene model and its loaders.
 //! - [`analysis`]: what a scene needs, as the feature names pipeline conditions test.
 //! - [`plugins`]: the pass plugins graph files name (`gbuffer`, `edge_stencil`,
-//!   `light_edge`, `light_nonedge`, `resolve`, `tonemap`, `debug_view`), and the
-//!   baselines' `forward` and `gbuffer_resolve`.
+//!   `light_edge`, `light_nonedge`, `light_tiled`, `resolve`, `tonemap`, `debug_view`),
+//!   the baselines' `forward` and `gbuffer_resolve`, and `transparent` and
+//!   `composite_transparent` for alpha BLEND meshes.
 //! - [`gpu_scene`] (feature `gpu`): the scene on the device, shared by the plugins and
 //!   reusable by other passes that draw it.
 //!
