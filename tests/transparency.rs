@@ -245,6 +245,53 @@ fn overlapping_blend_panels_composite_back_to_front_in_either_order() {
     }
 }
 
+/// A transparent pass that lists `accum` in its inputs draws over the accumulation
+/// instead of clearing it, so layers of blended geometry (particles after meshes) share
+/// one target: the panel accumulated twice is red of alpha 0.5 over itself over blue,
+/// (0.75, 0, 0.25).
+#[test]
+fn a_second_transparent_pass_accumulates_over_the_first() {
+    let file = panels_file(
+        "blend_layers",
+        &[
+            Panel::background([0.0, 0.0, 1.0]),
+            Panel::unlit(0.0, 0.5, [1.0, 0.0, 0.0, 0.5], true),
+        ],
+    );
+    let scene = load(&file);
+    let gpu = gpu();
+    let hdr = Render::new("forward_msaa_4x.ron", &file, SIZE)
+        .with_scene(scene.clone())
+        .features(SceneFeatures::of(&scene).names())
+        .edit(
+            r#"outputs: { "accum": "transparent" },
+        ),"#,
+            r#"outputs: { "accum": "transparent" },
+        ),
+        (
+            name: "transparent again",
+            plugin: "transparent",
+            when: "blend",
+            inputs: { "depth": "depth", "accum": "transparent" },
+            outputs: { "accum": "transparent_twice" },
+        ),"#,
+        )
+        .edit(
+            r#"inputs: { "accum": "transparent", "resolved": "resolved_hdr" },"#,
+            r#"inputs: { "accum": "transparent_twice", "resolved": "resolved_hdr" },"#,
+        )
+        .export_resolved()
+        .run(&gpu)
+        .hdr(&gpu, "resolved");
+    for (x, y) in inside(0.5) {
+        let p = hdr[(y * SIZE.0 + x) as usize];
+        assert!(
+            near([p[0], p[1], p[2]], [0.75, 0.0, 0.25], STEP),
+            "({x}, {y}) is {p:?}"
+        );
+    }
+}
+
 /// A lit BLEND panel (Lambert plus GGX under a point light, alpha 0.4, over a lit opaque
 /// background) renders alike in deferred (fragment and tiled lighting) and forward: their
 /// 8-bit images agree within 2/255 on at least 99% of pixels, and the panel is neither

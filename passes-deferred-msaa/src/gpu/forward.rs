@@ -16,25 +16,15 @@ pub(crate) fn record(
     draw: ForwardDraw,
     scenes: Arc<SceneCache>,
 ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-    let vertex = match draw.shading {
-        Shading::Pixel => "vs_pixel",
-        Shading::Sample => "vs_sample",
+    let (label, shader, layer) = match draw.transparent {
+        false => ("forward", GatedShader::Forward, Layer::Opaque),
+        true => ("transparent", GatedShader::Transparent, Layer::Blended),
     };
-    let (label, shader, layer, fragment) = match (draw.transparent, draw.shading) {
-        (false, Shading::Pixel) => ("forward", GatedShader::Forward, Layer::Opaque, "fs_pixel"),
-        (false, Shading::Sample) => ("forward", GatedShader::Forward, Layer::Opaque, "fs_sample"),
-        (true, Shading::Pixel) => (
-            "transparent",
-            GatedShader::Transparent,
-            Layer::Blended,
-            "fs_blend_pixel",
-        ),
-        (true, Shading::Sample) => (
-            "transparent",
-            GatedShader::Transparent,
-            Layer::Blended,
-            "fs_blend_sample",
-        ),
+    let (vertex, fragment) = match (draw.shading, draw.transparent) {
+        (Shading::Pixel, false) => ("vs_pixel", "fs_pixel"),
+        (Shading::Sample, false) => ("vs_sample", "fs_sample"),
+        (Shading::Pixel, true) => ("vs_pixel", "fs_blend_pixel"),
+        (Shading::Sample, true) => ("vs_sample", "fs_blend_sample"),
     };
     let draw = SceneDraw {
         label,

@@ -26,6 +26,8 @@
 //! passes' does; a `reversed_z` given here must be given to them too.
 //! Stencil is cleared to 0. Double-sided materials are drawn without culling and their
 //! back faces get the flipped normal; alpha MASK materials discard below the cutoff.
+//! Alpha BLEND meshes are not drawn: a sample holds one surface, so the `transparent`
+//! pass draws them after lighting (plugins/transparent.rs).
 //! The material target's alpha records per-sample edge evidence for the `centroid` and
 //! `coverage` detectors of [`edge_stencil`](super::edge_stencil).
 
