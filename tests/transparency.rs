@@ -134,11 +134,22 @@ fn load(file: &str) -> Scene {
 
 /// `pipeline`'s single-sampled HDR image `image` of `scene`, compiled for its features.
 fn hdr(pipeline: &str, image: &str, file: &str, scene: &Scene) -> Vec<[f32; 4]> {
+    hdr_for(pipeline, image, file, scene, SceneFeatures::of(scene))
+}
+
+/// [`hdr`] compiled for `features`.
+fn hdr_for(
+    pipeline: &str,
+    image: &str,
+    file: &str,
+    scene: &Scene,
+    features: SceneFeatures,
+) -> Vec<[f32; 4]> {
     let gpu = gpu();
     let export = format!("outputs: [\"{image}\", \"color\"");
     Render::new(pipeline, file, SIZE)
         .with_scene(scene.clone())
-        .features(SceneFeatures::of(scene).names())
+        .features(features.names())
         .edit("outputs: [\"color\"", &export)
         .run(&gpu)
         .hdr(&gpu, image)
@@ -165,8 +176,8 @@ fn inside(half: f32) -> impl Iterator<Item = (u32, u32)> {
 
 /// A BLEND panel shows what is behind it: an unlit red panel of alpha 0.5 over an unlit
 /// blue background is (0.5, 0, 0.5) inside, within one 8-bit step, and the background
-/// is untouched around it, in every pipeline. The glTF loader keeps BLEND, without the
-/// warning it used to give.
+/// is untouched around it, in every pipeline, with 24-bit and with float depth. The glTF
+/// loader keeps BLEND, without the warning it used to give.
 #[test]
 fn a_blend_panel_shows_what_is_behind_it_in_every_pipeline() {
     let file = panels_file(
@@ -178,25 +189,36 @@ fn a_blend_panel_shows_what_is_behind_it_in_every_pipeline() {
     );
     let scene = load(&file);
     assert_eq!(scene.materials[1].alpha_mode, AlphaMode::Blend);
-    assert!(SceneFeatures::of(&scene).blend);
-    for (pipeline, image) in PIPELINES {
-        let hdr = hdr(pipeline, image, &file, &scene);
-        for (x, y) in inside(0.5) {
-            let p = hdr[(y * SIZE.0 + x) as usize];
-            assert!(
-                near([p[0], p[1], p[2]], [0.5, 0.0, 0.5], STEP),
-                "{pipeline}: ({x}, {y}) is {p:?} inside the panel"
-            );
-        }
-        for (x, y) in [(2, 2), (61, 2), (2, 61), (61, 61)] {
-            let p = hdr[(y * SIZE.0 + x) as usize];
-            assert_eq!(p[..3], [0.0, 0.0, 1.0], "{pipeline}: ({x}, {y}) outside");
+    let shallow = SceneFeatures::of(&scene);
+    assert!(shallow.blend);
+    // Also with float depth, reversed-Z (as in a_blend_panel_behind_an_opaque_one_is_hidden).
+    let float_depth = SceneFeatures {
+        shallow_depth: false,
+        ..shallow
+    };
+    for features in [shallow, float_depth] {
+        for (pipeline, image) in PIPELINES {
+            let hdr = hdr_for(pipeline, image, &file, &scene, features);
+            let depth = format!("shallow_depth {}", features.shallow_depth);
+            for (x, y) in inside(0.5) {
+                let p = hdr[(y * SIZE.0 + x) as usize];
+                assert!(
+                    near([p[0], p[1], p[2]], [0.5, 0.0, 0.5], STEP),
+                    "{pipeline}, {depth}: ({x}, {y}) is {p:?} inside the panel"
+                );
+            }
+            for (x, y) in [(2, 2), (61, 2), (2, 61), (61, 61)] {
+                let p = hdr[(y * SIZE.0 + x) as usize];
+                assert_eq!(p[..3], [0.0, 0.0, 1.0], "{pipeline}, {depth}: ({x}, {y})");
+            }
         }
     }
 }
 
 /// A blended surface behind an opaque one is hidden: the BLEND panel at z = 0 behind an
-/// opaque green panel at z = 0.5 that covers it leaves the green exactly as it is.
+/// opaque green panel at z = 0.5 that covers it leaves the green exactly as it is, with
+/// the scene's 24-bit standard-Z depth (`shallow_depth`) and with the general float
+/// depth, reversed-Z where the device has depth32float-stencil8 (lavapipe has).
 #[test]
 fn a_blend_panel_behind_an_opaque_one_is_hidden() {
     let file = panels_file(
@@ -208,11 +230,24 @@ fn a_blend_panel_behind_an_opaque_one_is_hidden() {
         ],
     );
     let scene = load(&file);
-    for (pipeline, image) in PIPELINES {
-        let hdr = hdr(pipeline, image, &file, &scene);
-        for (x, y) in inside(0.5) {
-            let p = hdr[(y * SIZE.0 + x) as usize];
-            assert_eq!(p[..3], [0.0, 1.0, 0.0], "{pipeline}: ({x}, {y})");
+    let shallow = SceneFeatures::of(&scene);
+    assert!(shallow.shallow_depth);
+    let float_depth = SceneFeatures {
+        shallow_depth: false,
+        ..shallow
+    };
+    for features in [shallow, float_depth] {
+        for (pipeline, image) in PIPELINES {
+            let hdr = hdr_for(pipeline, image, &file, &scene, features);
+            for (x, y) in inside(0.5) {
+                let p = hdr[(y * SIZE.0 + x) as usize];
+                assert_eq!(
+                    p[..3],
+                    [0.0, 1.0, 0.0],
+                    "{pipeline}, shallow_depth {}: ({x}, {y})",
+                    features.shallow_depth
+                );
+            }
         }
     }
 }
