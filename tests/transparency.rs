@@ -688,3 +688,64 @@ fn bad_transparent_slots_are_errors_naming_pass_slot_and_resource() {
         }
     }
 }
+
+/// `rgraph render` warns when the scene has BLEND materials and the pipeline has no
+/// `transparent` pass to draw them (the opaque passes skip them), and not otherwise.
+#[test]
+fn render_warns_when_the_pipeline_leaves_blend_meshes_out() {
+    let file = panels_file(
+        "blend_warning",
+        &[
+            Panel::background([0.0, 0.0, 1.0]),
+            Panel::unlit(0.0, 0.5, [1.0, 0.0, 0.0, 0.5], true),
+        ],
+    );
+    let dir = temp_dir("blend_warning_pipeline");
+    let opaque_only = dir.join("forward_opaque_only.ron");
+    std::fs::write(
+        &opaque_only,
+        r#"Graph(
+    resources: {
+        "hdr": Texture(format: "rgba16float", samples: 4),
+        "depth": Texture(format: "depth24plus-stencil8", samples: 4),
+        "resolved": Texture(format: "rgba16float"),
+        "color": Texture(format: "rgba8unorm-srgb"),
+    },
+    passes: [
+        (name: "forward", plugin: "forward", outputs: { "hdr": "hdr", "depth": "depth" }),
+        (name: "resolve", plugin: "resolve", inputs: { "hdr": "hdr" },
+         outputs: { "resolved": "resolved" }),
+        (name: "tonemap", plugin: "tonemap", inputs: { "hdr": "resolved" },
+         outputs: { "color": "color" }),
+    ],
+    outputs: ["color"],
+)"#,
+    )
+    .unwrap();
+    let warning = "warning: the scene has alpha BLEND materials, but";
+    let render = |pipeline: &str| {
+        let out = dir.join("frame.png");
+        crate::cli_support::rgraph(&[
+            "render",
+            "--pipeline",
+            pipeline,
+            "--scene",
+            &file,
+            "--width",
+            "64",
+            "--height",
+            "64",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .expect(0)
+        .stderr
+    };
+    let stderr = render(opaque_only.to_str().unwrap());
+    assert!(
+        stderr.contains(warning) && stderr.contains("has no `transparent` pass"),
+        "{stderr}"
+    );
+    let stderr = render("pipelines/forward_msaa_4x.ron");
+    assert!(!stderr.contains(warning), "{stderr}");
+}

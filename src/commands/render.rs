@@ -57,6 +57,15 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     progress.stage(format!("compile for {}", session.profile.name));
     let mut prepared = session.prepare(pipeline, (args.width, args.height))?;
 
+    // Debug views cull the transparent pass on purpose: only the final image misses it.
+    if args.view == view::FINAL && prepared.blend_left_out() {
+        progress.note(format!(
+            "warning: the scene has alpha BLEND materials, but {} has no `transparent` pass \
+             to draw them: they are left out (pipelines/*.ron show how to add one)",
+            args.pipeline.display()
+        ));
+    }
+
     progress.stage("upload and render");
     let report = prepared.run(1)?.remove(0);
 

@@ -3,6 +3,7 @@
 use graph_core::gpu::{read_rgba8, Executor, FrameReport, Gpu, Imports};
 use graph_core::{Plan, ResourceId};
 use image::RgbaImage;
+use passes_deferred_msaa::scene::AlphaMode;
 
 use super::{FrameError, Pipeline};
 
@@ -32,6 +33,26 @@ impl<'s> Prepared<'s> {
             executor,
             outputs,
         }
+    }
+
+    /// Whether the scene has meshes with alpha BLEND materials that no pass of the plan
+    /// draws: the opaque passes skip them, and only a `transparent` pass draws them, so a
+    /// pipeline without one (or a view that culls it) leaves them out.
+    pub fn blend_left_out(&self) -> bool {
+        let scene = &self.pipeline.scene;
+        let blended = scene.meshes.iter().any(|mesh| {
+            scene
+                .materials
+                .get(mesh.material)
+                .is_some_and(|m| m.alpha_mode == AlphaMode::Blend)
+        });
+        let loaded = &self.pipeline.loaded;
+        blended
+            && !self
+                .plan
+                .passes
+                .iter()
+                .any(|p| loaded.plugin(&p.name) == Some("transparent"))
     }
 
     /// Runs `frames` frames one after the other, each waited for, and reports each.

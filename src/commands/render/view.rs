@@ -4,7 +4,7 @@
 use super::error::RenderError;
 use crate::frame::FrameError;
 
-const FINAL: &str = "final";
+pub(super) const FINAL: &str = "final";
 const FINAL_OUTPUT: &str = "color";
 const DEBUG_PREFIX: &str = "debug.";
 
