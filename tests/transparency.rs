@@ -398,7 +398,8 @@ fn a_lit_blend_panel_renders_alike_in_deferred_tiled_and_forward() {
 /// An MSAA edge of an opaque object in front of a BLEND panel is antialiased: along the
 /// slanted edge of an opaque green panel covering half of a red BLEND panel (alpha 0.5,
 /// over blue), pixels lie between green and the blended (0.5, 0, 0.5), many strictly
-/// between, in the 4x pipelines; without MSAA none do.
+/// between, in the 4x pipelines, each the product of means the composite documents;
+/// without MSAA none do.
 #[test]
 fn an_opaque_edge_in_front_of_a_blend_panel_is_antialiased() {
     let mut cover = Panel::unlit(0.5, 0.8, [0.0, 1.0, 0.0, 1.0], false);
@@ -435,6 +436,26 @@ fn an_opaque_edge_in_front_of_a_blend_panel_is_antialiased() {
             });
             assert!(within, "{pipeline}: ({x}, {y}) is {p:?}, outside the two");
             between += 1;
+            // With k of the 4 samples green, the composite gives mean(hdr) * mean(T) +
+            // mean(C): red (4 - k) / 8 as the exact mean, green and blue scaled by
+            // mean(T) = (k + (4 - k) / 2) / 4 where the exact pixel has k / 4 and
+            // (4 - k) / 8 (plugins/transparent.rs states the difference).
+            let k = 4.0 - 8.0 * p[0];
+            assert!(
+                (k - k.round()).abs() < 0.05,
+                "{pipeline}: ({x}, {y}) is {p:?}"
+            );
+            let k = k.round();
+            let transmittance = (k + (4.0 - k) / 2.0) / 4.0;
+            let expected = [
+                (4.0 - k) / 8.0,
+                k / 4.0 * transmittance,
+                (4.0 - k) / 4.0 * transmittance,
+            ];
+            assert!(
+                near(p, expected, STEP),
+                "{pipeline}: ({x}, {y}) is {p:?}, not {expected:?} for {k} green samples"
+            );
         }
         if expect_between {
             assert!(
