@@ -3,7 +3,9 @@
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use passes_deferred_msaa::scene::{AssetPolicy, DEFAULT_MAX_ASSET_BYTES};
+use passes_deferred_msaa::scene::{
+    AssetPolicy, Lighting, Scene, SceneError, DEFAULT_MAX_ASSET_BYTES,
+};
 
 #[derive(Parser)]
 #[command(
@@ -164,9 +166,15 @@ pub struct RenderArgs {
     pub assets: AssetArgs,
 }
 
-/// What a glTF scene may read besides itself.
+/// What a glTF scene may read besides itself, and which lights it is drawn with.
 #[derive(clap::Args)]
 pub struct AssetArgs {
+    /// The lights to draw with: auto (a file's own, or for a file without lights the
+    /// defaults: a neutral studio environment and a headlight, with a warning), file (only
+    /// the scene's, even none), default (only the defaults) or both.
+    #[arg(long, value_name = "auto|file|default|both", default_value = "auto",
+          value_parser = parse_lighting)]
+    pub lights: Lighting,
     /// A folder the glTF file's buffer and image URIs may also point into. Without it, a
     /// URI that is an absolute path or climbs out of the glTF file's folder is an error.
     #[arg(long, value_name = "DIR")]
@@ -178,6 +186,11 @@ pub struct AssetArgs {
 }
 
 impl AssetArgs {
+    /// Loads `spec` as these flags say: within the asset policy, lit as `--lights` says.
+    pub fn load(&self, spec: &str) -> Result<Scene, SceneError> {
+        Ok(Scene::load_with(spec, &self.policy())?.lit(self.lights))
+    }
+
     /// The loader's policy these flags ask for.
     pub fn policy(&self) -> AssetPolicy {
         AssetPolicy {
@@ -318,6 +331,13 @@ fn parse_spp(text: &str) -> Result<u32, String> {
 }
 
 /// An exposure multiplier: finite and above 0.
+fn parse_lighting(text: &str) -> Result<Lighting, String> {
+    Lighting::named(text).ok_or_else(|| {
+        let names: Vec<&str> = Lighting::ALL.iter().map(|l| l.name()).collect();
+        format!("expected one of {}", names.join(", "))
+    })
+}
+
 fn parse_exposure(text: &str) -> Result<f32, String> {
     match text.trim().parse::<f32>() {
         Ok(e) if e.is_finite() && e > 0.0 => Ok(e),

@@ -13,11 +13,11 @@ mod view;
 use std::sync::Arc;
 
 use graph_core::gpu::AdapterChoice;
-use passes_deferred_msaa::scene::{AssetPolicy, Scene};
+use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::Overrides;
 
 use super::CommandError;
-use crate::cli::RenderArgs;
+use crate::cli::{AssetArgs, RenderArgs};
 use crate::frame::{host, FrameError, Pipeline, Session, Specialise};
 use error::RenderError;
 use progress::Progress;
@@ -34,7 +34,7 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     let mut progress = Progress::new(7);
 
     progress.stage(format!("load scene {}", args.scene));
-    let scene = load_scene(&args.scene, &args.assets.policy(), &progress)?;
+    let scene = load_scene(&args.scene, &args.assets, &progress)?;
     let overrides = Overrides {
         tonemap: args.tonemap.map(|t| t.name().to_string()),
         exposure: args.exposure,
@@ -86,10 +86,10 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
 /// The scene; its statistics and the loader's warnings go to stderr.
 fn load_scene(
     spec: &str,
-    policy: &AssetPolicy,
+    assets: &AssetArgs,
     progress: &Progress,
 ) -> Result<Arc<Scene>, FrameError> {
-    let scene = Scene::load_with(spec, policy).map_err(FrameError::Scene)?;
+    let scene = assets.load(spec).map_err(FrameError::Scene)?;
     progress.note(format!("scene {spec}: {}", scene.stats()));
     for warning in &scene.warnings {
         progress.note(format!("warning: {warning}"));

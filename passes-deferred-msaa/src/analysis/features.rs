@@ -12,6 +12,8 @@ pub struct Features {
     pub directional_lights: bool,
     /// A nonzero ambient term.
     pub ambient: bool,
+    /// Image-based lighting (the default lighting of files without lights).
+    pub environment: bool,
     /// Some mesh is drawn with an unlit material (KHR_materials_unlit).
     pub unlit: bool,
     /// Some mesh is drawn with a lit material.
@@ -37,11 +39,12 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 17] = [
+    pub const NAMES: [&'static str; 18] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
         "ambient",
+        "environment",
         "no_lights",
         "unlit",
         "lit",
@@ -71,6 +74,7 @@ impl Features {
             spot_lights: light(|k| matches!(k, LightKind::Spot { .. })),
             directional_lights: light(|k| matches!(k, LightKind::Directional)),
             ambient: scene.ambient.iter().any(|&c| c > 0.0),
+            environment: scene.environment.is_some_and(|e| e.intensity > 0.0),
             unlit: material(|m| m.unlit),
             lit: material(|m| !m.unlit),
             emissive: material(Material::is_emissive),
@@ -100,6 +104,7 @@ impl Features {
             spot_lights: true,
             directional_lights: true,
             ambient: true,
+            environment: true,
             unlit: true,
             lit: true,
             emissive: true,
@@ -114,9 +119,13 @@ impl Features {
         }
     }
 
-    /// No light emits and there is no ambient term: lighting adds nothing.
+    /// No light emits and there is no ambient term or environment: lighting adds nothing.
     pub fn no_lights(&self) -> bool {
-        !(self.point_lights || self.spot_lights || self.directional_lights || self.ambient)
+        !(self.point_lights
+            || self.spot_lights
+            || self.directional_lights
+            || self.ambient
+            || self.environment)
     }
 
     /// Every material drawn is unlit: nothing needs normals, material parameters or
@@ -132,6 +141,7 @@ impl Features {
             self.spot_lights,
             self.directional_lights,
             self.ambient,
+            self.environment,
             self.no_lights(),
             self.unlit,
             self.lit,
