@@ -29,14 +29,38 @@ impl EnvironmentMaps {
                 let cube_size = (CUBE_SIZE, CUBE_SIZE, CUBE_LEVELS);
                 (
                     create(device, queue, "environment", cube_size, format, Cube, &cube),
-                    create(device, queue, "split-sum LUT", (LUT_SIZE, LUT_SIZE, 1), format, D2, &lut),
+                    create(
+                        device,
+                        queue,
+                        "split-sum LUT",
+                        (LUT_SIZE, LUT_SIZE, 1),
+                        format,
+                        D2,
+                        &lut,
+                    ),
                 )
             }
             None => {
                 let black = [0u8; 8];
                 (
-                    create(device, queue, "no environment", (1, 1, 1), format, Cube, &black.repeat(6)),
-                    create(device, queue, "no split-sum LUT", (1, 1, 1), format, D2, &black),
+                    create(
+                        device,
+                        queue,
+                        "no environment",
+                        (1, 1, 1),
+                        format,
+                        Cube,
+                        &black.repeat(6),
+                    ),
+                    create(
+                        device,
+                        queue,
+                        "no split-sum LUT",
+                        (1, 1, 1),
+                        format,
+                        D2,
+                        &black,
+                    ),
                 )
             }
         };

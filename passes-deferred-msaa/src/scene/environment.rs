@@ -104,7 +104,11 @@ impl Irradiance {
                     (theta.sin() * phi.sin()) as f32,
                 );
                 let l = f64::from(radiance(d)) * cell;
-                for ((c, p), k) in coefficients.iter_mut().zip(polynomials(d)).zip(BASIS_CONSTANT) {
+                for ((c, p), k) in coefficients
+                    .iter_mut()
+                    .zip(polynomials(d))
+                    .zip(BASIS_CONSTANT)
+                {
                     *c += l * f64::from(p * k);
                 }
             }

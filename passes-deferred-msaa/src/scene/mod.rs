@@ -42,7 +42,8 @@ pub use material::{AlphaMode, Material};
 pub use mesh::{Mesh, Vertex};
 pub use normals::flat_shaded;
 pub use prefilter::{
-    cube_direction, prefiltered_cube, split_sum_lut, CUBE_LEVELS, CUBE_SIZE, LUT_SIZE,
+    cube_direction, prefilter, prefiltered_cube, split_sum, split_sum_lut, CUBE_LEVELS, CUBE_SIZE,
+    LUT_SIZE,
 };
 pub use procedural::{builtin_names, BuiltinParam, BuiltinScene, BUILTIN_PREFIX};
 pub use stats::SceneStats;

@@ -83,7 +83,10 @@ pub fn cube_direction(face: u32, u: f32, v: f32) -> Vec3 {
 
 /// The `i`th of `n` points of the Hammersley set in [0, 1)^2.
 fn hammersley(i: u32, n: u32) -> (f32, f32) {
-    (i as f32 / n as f32, i.reverse_bits() as f32 * 2.0f32.powi(-32))
+    (
+        i as f32 / n as f32,
+        i.reverse_bits() as f32 * 2.0f32.powi(-32),
+    )
 }
 
 /// GGX `α²` for perceptual roughness `r`, clamped as brdf.wgsl clamps it.
@@ -102,10 +105,11 @@ fn ggx_half_vector(xi: (f32, f32), alpha2: f32, n: Vec3) -> Vec3 {
         .normalize()
 }
 
-/// The environment's radiance around `n` weighted by the GGX lobe of `roughness`, with
-/// Karis's assumption `v = r = n` (and weighted by `n·l`, as he found closer to the
-/// reference).
-fn prefilter(n: Vec3, roughness: f32) -> f32 {
+/// The neutral environment's radiance (intensity 1) around `n` weighted by the GGX lobe
+/// of `roughness`, with Karis's assumption `v = r = n` (and weighted by `n·l`, as he found
+/// closer to the reference): what [`prefiltered_cube`] holds at `n` in the mip level of
+/// `roughness`.
+pub fn prefilter(n: Vec3, roughness: f32) -> f32 {
     if roughness == 0.0 {
         return radiance(n);
     }
@@ -129,8 +133,9 @@ fn visibility(n_v: f32, n_l: f32, a2: f32) -> f32 {
 }
 
 /// `(a, b)` with `∫ f_spec(l) (n·l) dl = f0 * a + b` for Schlick's Fresnel, by GGX
-/// importance sampling: each sample weighs `F * V * (n·l) * 4 (v·h) / (n·h)`.
-fn split_sum(n_v: f32, roughness: f32) -> [f32; 2] {
+/// importance sampling: each sample weighs `F * V * (n·l) * 4 (v·h) / (n·h)`. What
+/// [`split_sum_lut`] holds at `(n_v, roughness)`.
+pub fn split_sum(n_v: f32, roughness: f32) -> [f32; 2] {
     let a2 = alpha2(roughness);
     let n = Vec3::Z;
     let v = Vec3::new((1.0 - n_v * n_v).sqrt(), 0.0, n_v);
@@ -180,7 +185,10 @@ mod tests {
         assert_eq!(mirror, radiance(Vec3::Y));
         let rough = prefilter(Vec3::Y, 1.0);
         // Overhead is the brightest part of the studio: a wide lobe sees darker parts too.
-        assert!(rough < mirror && rough > 0.5, "mirror {mirror} rough {rough}");
+        assert!(
+            rough < mirror && rough > 0.5,
+            "mirror {mirror} rough {rough}"
+        );
         let texels = prefiltered_cube().len() as u32;
         let per_face: u32 = (0..CUBE_LEVELS).map(|l| (CUBE_SIZE >> l).pow(2)).sum();
         assert_eq!(texels, 6 * per_face);
