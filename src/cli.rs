@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use passes_deferred_msaa::scene::{
     AssetPolicy, Lighting, Scene, SceneError, DEFAULT_MAX_ASSET_BYTES,
 };
+use passes_deferred_msaa::Exposure;
 
 #[derive(Parser)]
 #[command(
@@ -143,12 +144,14 @@ pub struct RenderArgs {
     /// pipeline's).
     #[arg(long, value_enum)]
     pub tonemap: Option<Tonemap>,
-    /// Exposure multiplier before tone mapping, finite and above 0, replacing the
-    /// pipeline's (default: the pipeline's).
+    /// Exposure before tone mapping, replacing the pipeline's (default: the pipeline's):
+    /// a multiplier, finite and above 0, or auto: metered from the frame (its average
+    /// luminance, between the 10th and 90th percentiles of the lit pixels, mapped to
+    /// middle grey), for scenes lit in physical units (a 68,000 lux sun).
     // Negative numbers reach the parser, which explains the rule, instead of clap
     // taking "-1" for an unknown flag.
-    #[arg(long, value_name = "E", value_parser = parse_exposure, allow_negative_numbers = true)]
-    pub exposure: Option<f32>,
+    #[arg(long, value_name = "E|auto", value_parser = parse_exposure, allow_negative_numbers = true)]
+    pub exposure: Option<Exposure>,
     /// Compile the pipeline as for a scene using every feature, instead of dropping the
     /// passes and channels this scene does not use (`rgraph explain --scene` shows what
     /// those are). The image is the same; the point is comparing, or a debug view the
@@ -330,7 +333,7 @@ fn parse_spp(text: &str) -> Result<u32, String> {
     }
 }
 
-/// An exposure multiplier: finite and above 0.
+/// `auto`, or an exposure multiplier: finite and above 0.
 fn parse_lighting(text: &str) -> Result<Lighting, String> {
     Lighting::named(text).ok_or_else(|| {
         let names: Vec<&str> = Lighting::ALL.iter().map(|l| l.name()).collect();
@@ -338,11 +341,14 @@ fn parse_lighting(text: &str) -> Result<Lighting, String> {
     })
 }
 
-fn parse_exposure(text: &str) -> Result<f32, String> {
+fn parse_exposure(text: &str) -> Result<Exposure, String> {
+    if text.trim() == "auto" {
+        return Ok(Exposure::Auto);
+    }
     match text.trim().parse::<f32>() {
-        Ok(e) if e.is_finite() && e > 0.0 => Ok(e),
-        Ok(_) => Err("must be a finite number above 0".into()),
-        Err(_) => Err("expected a number, e.g. 1.5".into()),
+        Ok(e) if e.is_finite() && e > 0.0 => Ok(Exposure::Fixed(e)),
+        Ok(_) => Err("must be auto or a finite number above 0".into()),
+        Err(_) => Err("expected auto or a number, e.g. 1.5".into()),
     }
 }
 

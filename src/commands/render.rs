@@ -7,6 +7,7 @@
 mod error;
 mod output;
 mod progress;
+mod saturation;
 mod summary;
 mod view;
 
@@ -73,6 +74,14 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
             args.pipeline.display(),
             image.width(),
             image.height()
+        ));
+    }
+
+    if let Some(share) = saturation::blown_out(&image).filter(|_| output == "color") {
+        progress.note(format!(
+            "warning: {:.0}% of the lit pixels are saturated (a channel at 255): lower \
+             --exposure, or let --exposure auto meter the frame",
+            share * 100.0
         ));
     }
 

@@ -35,11 +35,15 @@ pub struct Features {
     /// as finely as [`DepthRange::shallow`] asks. A reduction, like `unlit_only`: only a
     /// scene that is measured gets it.
     pub shallow_depth: bool,
+    /// Not the scene's but the host's choice: expose each frame for its metered
+    /// luminance (`Exposure::Auto`), which pipelines do with an `auto_exposure` pass
+    /// under this condition. [`Features::of`] and [`Features::general`] leave it unset.
+    pub auto_exposure: bool,
 }
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 18] = [
+    pub const NAMES: [&'static str; 19] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -58,6 +62,7 @@ impl Features {
         "occlusion_textures",
         "double_sided",
         "shallow_depth",
+        "auto_exposure",
     ];
 
     pub fn of(scene: &Scene) -> Features {
@@ -89,6 +94,7 @@ impl Features {
             // pipeline is as good as any.
             shallow_depth: DepthRange::of(scene)
                 .is_some_and(|range| range.shallow(&scene.camera.projection)),
+            auto_exposure: false,
         }
     }
 
@@ -116,6 +122,7 @@ impl Features {
             occlusion_textures: true,
             double_sided: true,
             shallow_depth: false,
+            auto_exposure: false,
         }
     }
 
@@ -155,6 +162,7 @@ impl Features {
             self.occlusion_textures,
             self.double_sided,
             self.shallow_depth,
+            self.auto_exposure,
         ];
         Self::NAMES
             .iter()

@@ -345,7 +345,8 @@ mod tests {
                     vec!["gbuffer".to_owned()]
                 ),
                 (
-                    "light.wgsl {directional_lights, point_lights, spot_lights}".to_owned(),
+                    "light.wgsl {directional_lights, point_lights, spot_lights, environment}"
+                        .to_owned(),
                     vec!["light edges".to_owned(), "light the rest".to_owned()]
                 ),
             ]

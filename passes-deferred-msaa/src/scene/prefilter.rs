@@ -180,14 +180,18 @@ mod tests {
     }
 
     #[test]
-    fn prefiltering_keeps_a_constant_and_blurs_toward_the_mean() {
-        let mirror = prefilter(Vec3::Y, 0.0);
-        assert_eq!(mirror, radiance(Vec3::Y));
-        let rough = prefilter(Vec3::Y, 1.0);
-        // Overhead is the brightest part of the studio: a wide lobe sees darker parts too.
+    fn prefiltering_keeps_the_mirror_and_blurs_toward_the_surroundings() {
+        let down = -Vec3::Y;
+        assert_eq!(prefilter(down, 0.0), radiance(down));
+        // Underfoot is the darkest part of the studio, the key soft box the brightest: a
+        // wide lobe sees brighter parts around the one, darker around the other.
+        let (mirror, rough) = (prefilter(down, 0.0), prefilter(down, 1.0));
+        assert!(rough > mirror, "underfoot: mirror {mirror} rough {rough}");
+        let key = Vec3::new(-0.5, 0.75, 0.45).normalize();
+        let (mirror, rough) = (prefilter(key, 0.0), prefilter(key, 1.0));
         assert!(
             rough < mirror && rough > 0.5,
-            "mirror {mirror} rough {rough}"
+            "key: mirror {mirror} rough {rough}"
         );
         let texels = prefiltered_cube().len() as u32;
         let per_face: u32 = (0..CUBE_LEVELS).map(|l| (CUBE_SIZE >> l).pow(2)).sum();
