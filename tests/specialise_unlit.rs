@@ -70,6 +70,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
     let not_lit = r#"condition "!unlit_only" is false"#;
     // builtin:unlit has no lights either.
     let no_light = r#"condition "!unlit_only & !no_lights" is false ("unlit_only" is set, "no_lights" is set)"#;
+    // And a fixed exposure, as every render without --exposure auto.
+    let fixed = r#"condition "auto_exposure" is false"#;
     assert_eq!(
         dropped,
         [
@@ -77,6 +79,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
             ("edges", no_light),
             ("light edges", no_light),
             ("light the rest", no_light),
+            ("auto exposure", fixed),
+            ("tonemap (auto exposure)", fixed),
             ("debug normals", not_lit),
             ("debug lights", not_lit),
         ]
