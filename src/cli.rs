@@ -3,7 +3,10 @@
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use passes_deferred_msaa::scene::{AssetPolicy, DEFAULT_MAX_ASSET_BYTES};
+use passes_deferred_msaa::scene::{
+    AssetPolicy, Lighting, Scene, SceneError, DEFAULT_MAX_ASSET_BYTES,
+};
+use passes_deferred_msaa::Exposure;
 
 #[derive(Parser)]
 #[command(
@@ -141,12 +144,14 @@ pub struct RenderArgs {
     /// pipeline's).
     #[arg(long, value_enum)]
     pub tonemap: Option<Tonemap>,
-    /// Exposure multiplier before tone mapping, finite and above 0, replacing the
-    /// pipeline's (default: the pipeline's).
+    /// Exposure before tone mapping, replacing the pipeline's (default: the pipeline's):
+    /// a multiplier, finite and above 0, or auto: metered from the frame (its average
+    /// luminance, between the 10th and 90th percentiles of the lit pixels, mapped to
+    /// middle grey), for scenes lit in physical units (a 68,000 lux sun).
     // Negative numbers reach the parser, which explains the rule, instead of clap
     // taking "-1" for an unknown flag.
-    #[arg(long, value_name = "E", value_parser = parse_exposure, allow_negative_numbers = true)]
-    pub exposure: Option<f32>,
+    #[arg(long, value_name = "E|auto", value_parser = parse_exposure, allow_negative_numbers = true)]
+    pub exposure: Option<Exposure>,
     /// Compile the pipeline as for a scene using every feature, instead of dropping the
     /// passes and channels this scene does not use (`rgraph explain --scene` shows what
     /// those are). The image is the same; the point is comparing, or a debug view the
@@ -164,9 +169,15 @@ pub struct RenderArgs {
     pub assets: AssetArgs,
 }
 
-/// What a glTF scene may read besides itself.
+/// What a glTF scene may read besides itself, and which lights it is drawn with.
 #[derive(clap::Args)]
 pub struct AssetArgs {
+    /// The lights to draw with: auto (a file's own, or for a file without lights the
+    /// defaults: a neutral studio environment and a headlight, with a warning), file (only
+    /// the scene's, even none), default (only the defaults) or both.
+    #[arg(long, value_name = "auto|file|default|both", default_value = "auto",
+          value_parser = parse_lighting)]
+    pub lights: Lighting,
     /// A folder the glTF file's buffer and image URIs may also point into. Without it, a
     /// URI that is an absolute path or climbs out of the glTF file's folder is an error.
     #[arg(long, value_name = "DIR")]
@@ -178,6 +189,11 @@ pub struct AssetArgs {
 }
 
 impl AssetArgs {
+    /// Loads `spec` as these flags say: within the asset policy, lit as `--lights` says.
+    pub fn load(&self, spec: &str) -> Result<Scene, SceneError> {
+        Ok(Scene::load_with(spec, &self.policy())?.lit(self.lights))
+    }
+
     /// The loader's policy these flags ask for.
     pub fn policy(&self) -> AssetPolicy {
         AssetPolicy {
@@ -317,12 +333,22 @@ fn parse_spp(text: &str) -> Result<u32, String> {
     }
 }
 
-/// An exposure multiplier: finite and above 0.
-fn parse_exposure(text: &str) -> Result<f32, String> {
+/// `auto`, or an exposure multiplier: finite and above 0.
+fn parse_lighting(text: &str) -> Result<Lighting, String> {
+    Lighting::named(text).ok_or_else(|| {
+        let names: Vec<&str> = Lighting::ALL.iter().map(|l| l.name()).collect();
+        format!("expected one of {}", names.join(", "))
+    })
+}
+
+fn parse_exposure(text: &str) -> Result<Exposure, String> {
+    if text.trim() == "auto" {
+        return Ok(Exposure::Auto);
+    }
     match text.trim().parse::<f32>() {
-        Ok(e) if e.is_finite() && e > 0.0 => Ok(e),
-        Ok(_) => Err("must be a finite number above 0".into()),
-        Err(_) => Err("expected a number, e.g. 1.5".into()),
+        Ok(e) if e.is_finite() && e > 0.0 => Ok(Exposure::Fixed(e)),
+        Ok(_) => Err("must be auto or a finite number above 0".into()),
+        Err(_) => Err("expected auto or a number, e.g. 1.5".into()),
     }
 }
 

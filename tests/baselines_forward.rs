@@ -19,7 +19,7 @@ use crate::deferred_support::measure;
 use deferred_support::{gpu, Image, Render};
 use graph_core::gpu::Gpu;
 use measure::{diff, marked, pixel_diff, where_true};
-use passes_deferred_msaa::Overrides;
+use passes_deferred_msaa::{Exposure, Overrides};
 
 const SIZE: (u32, u32) = (96, 64);
 const SCENES: [&str; 2] = ["builtin:spheres", "builtin:dense"];
@@ -162,7 +162,7 @@ fn unlit_scene_matches_deferred() {
     let gpu = gpu();
     let linear = Overrides {
         tonemap: Some("none".into()),
-        exposure: Some(1.0),
+        exposure: Some(Exposure::Fixed(1.0)),
     };
     let scene = "builtin:unlit";
     let deferred = Render::new("deferred_msaa_4x.ron", scene, SIZE)

@@ -389,7 +389,8 @@ fn an_unlit_scene_renders_with_the_specialised_plan_and_the_same_image() {
         .stderr_has("\ngbuffer (unlit) ")
         .stderr_has(
             "dropped by conditions: gbuffer, light tiled, resolve (no lights), transparent, \
-             composite transparent, debug edges, debug tile lights, debug normals, debug lights",
+             composite transparent, auto exposure, tonemap (auto exposure), debug edges, \
+             debug tile lights, debug normals, debug lights",
         );
     let run = render_unlit(&general, &["--no-specialise"]).expect(0);
     run.stderr_has("\nlight tiled ");
@@ -434,7 +435,7 @@ fn a_lit_scene_is_specialised_only_in_its_depth_format() {
     run.stderr_has("specialised to the scene's features: shallow_depth (")
         .stderr_has(
             "dropped by conditions: gbuffer (unlit), resolve (unlit), resolve (no lights), \
-             transparent, composite transparent\n",
+             transparent, composite transparent, auto exposure, tonemap (auto exposure)\n",
         );
 }
 
@@ -528,4 +529,50 @@ fn a_scene_texture_larger_than_the_device_is_named_before_any_upload() {
     ));
     assert!(!run.stderr.contains("upload and render"), "{}", run.stderr);
     assert!(!out.exists());
+}
+
+#[test]
+fn exposure_auto_meters_the_frame_and_a_blown_out_frame_warns() {
+    let dir = temp_dir();
+    let out = dir.path().join("a.png");
+    let auto = render_default(&out, &["--exposure", "auto"]).expect(0);
+    auto.stderr_has("auto exposure")
+        .stderr_has("tonemap (auto exposure)");
+    assert!(!auto.stderr.contains("saturated"), "{}", auto.stderr);
+    render_default(&out, &["--exposure", "50"])
+        .expect(0)
+        .stderr_has("% of the lit pixels are saturated (a channel at 255): lower --exposure, or let --exposure auto meter the frame");
+}
+
+#[test]
+fn exposure_auto_needs_a_pipeline_that_meters_after_resolving() {
+    let dir = temp_dir();
+    let out = dir.path().join("a.png");
+    let pipeline = "pipelines/deferred_msaa_4x_tonemapped_resolve.ron";
+    render_default(&out, &["--pipeline", pipeline, "--exposure", "auto"])
+        .expect(1)
+        .stderr_has("error: pass \"resolve\" (resolve): auto exposure meters the resolved image, but `resolve: tonemapped` applies exposure before resolving");
+    assert_nothing_written(&dir);
+}
+
+#[test]
+fn a_gltf_file_without_lights_gets_the_default_lighting_with_a_warning() {
+    let dir = temp_dir();
+    let out = dir.path().join("a.png");
+    let scene = "passes-deferred-msaa/tests/fixtures/hierarchy_embedded.gltf";
+    render_default(&out, &["--scene", scene])
+        .expect(0)
+        .stderr_has("it has no lights; lit by the default lighting: a neutral studio environment");
+    let lit = mean_brightness(&read_png(&out));
+    let file_only = render_default(&out, &["--scene", scene, "--lights", "file"]).expect(0);
+    assert!(
+        !file_only.stderr.contains("default lighting"),
+        "{}",
+        file_only.stderr
+    );
+    // The fixture's material mostly emits: the default lighting adds a little.
+    assert!(mean_brightness(&read_png(&out)) < lit - 1.0);
+    render_default(&out, &["--scene", scene, "--lights", "sun"])
+        .expect(2)
+        .stderr_has("expected one of auto, file, default, both");
 }

@@ -7,7 +7,7 @@ use crate::deferred_support;
 use deferred_support::unlit::{Coverage, Judged};
 use deferred_support::{gpu, srgb8, Render};
 use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::Overrides;
+use passes_deferred_msaa::{Exposure, Overrides};
 
 const N: u32 = 64;
 const RED: [u8; 4] = [255, 0, 0, 255];
@@ -33,7 +33,7 @@ fn coverage() -> Coverage {
 fn linear() -> Overrides {
     Overrides {
         tonemap: Some("none".into()),
-        exposure: Some(1.0),
+        exposure: Some(Exposure::Fixed(1.0)),
     }
 }
 

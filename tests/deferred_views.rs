@@ -7,7 +7,7 @@ use crate::deferred_support;
 use deferred_support::unlit::Coverage;
 use deferred_support::{gpu, srgb8, Image, Render};
 use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::Overrides;
+use passes_deferred_msaa::{Exposure, Overrides};
 
 const N: u32 = 64;
 
@@ -21,7 +21,7 @@ fn coverage() -> Coverage {
 fn overrides(tonemap: &str, exposure: f32) -> Overrides {
     Overrides {
         tonemap: Some(tonemap.into()),
-        exposure: Some(exposure),
+        exposure: Some(Exposure::Fixed(exposure)),
     }
 }
 

@@ -238,6 +238,15 @@ fn display_reference<'a>() -> Render<'a> {
             "params: (operator: aces, exposure: 1.0),\n            inputs: { \"hdr\": \"resolved\" },\n            outputs: { \"color\": \"color\" },",
             "params: (operator: reinhard, exposure: 1.0),\n            inputs: { \"hdr\": \"resolved_2x\" },\n            outputs: { \"color\": \"color_2x\" },",
         )
+        // The auto-exposure passes (dropped here) read and write what the fixed ones do.
+        .edit(
+            "inputs: { \"hdr\": \"resolved\" },\n            outputs: { \"exposure\"",
+            "inputs: { \"hdr\": \"resolved_2x\" },\n            outputs: { \"exposure\"",
+        )
+        .edit(
+            "inputs: { \"hdr\": \"resolved\", \"exposure\": \"exposure\" },\n            outputs: { \"color\": \"color\" },",
+            "inputs: { \"hdr\": \"resolved_2x\", \"exposure\": \"exposure\" },\n            outputs: { \"color\": \"color_2x\" },",
+        )
 }
 
 /// On edges several thousand to one in contrast, the box resolve makes every pixel with

@@ -24,6 +24,8 @@ mod cli_render;
 mod cli_render_samples;
 mod cli_validate;
 mod deferred_detectors;
+mod deferred_environment;
+mod deferred_exposure;
 mod deferred_gltf;
 mod deferred_lit;
 mod deferred_materials;

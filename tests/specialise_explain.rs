@@ -80,7 +80,7 @@ fn a_scene_s_plan_lists_the_shader_variants_it_builds() {
         \x20 gbuffer.wgsl {} instead of {textures, emissive_textures, metal_rough_textures, \
         normal_textures, occlusion_textures, double_sided, emissive}: gbuffer\n\
         \x20 light.wgsl {directional_lights, point_lights} instead of \
-        {directional_lights, point_lights, spot_lights}: light edges, light the rest\n";
+        {directional_lights, point_lights, spot_lights, environment}: light edges, light the rest\n";
     assert!(
         stdout.ends_with(expected),
         "no {expected:?} at the end of:\n{stdout}"
@@ -122,6 +122,8 @@ fn json_carries_the_features_and_the_dropped_passes() {
             "light the rest",
             "transparent",
             "composite transparent",
+            "auto exposure",
+            "tonemap (auto exposure)",
             "debug normals",
             "debug lights"
         ]

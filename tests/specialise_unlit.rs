@@ -74,6 +74,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
     let no_light = r#"condition "!unlit_only & !no_lights" is false ("unlit_only" is set, "no_lights" is set)"#;
     // Nor BLEND materials.
     let no_blend = r#"condition "blend" is false"#;
+    // And a fixed exposure, as every render without --exposure auto.
+    let fixed = r#"condition "auto_exposure" is false"#;
     assert_eq!(
         dropped,
         [
@@ -83,6 +85,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
             ("light the rest", no_light),
             ("transparent", no_blend),
             ("composite transparent", no_blend),
+            ("auto exposure", fixed),
+            ("tonemap (auto exposure)", fixed),
             ("debug normals", not_lit),
             ("debug lights", not_lit),
         ]

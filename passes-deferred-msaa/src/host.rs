@@ -22,6 +22,17 @@ pub struct Host {
 pub struct Overrides {
     /// Tone-mapping operator name: "none", "reinhard" or "aces".
     pub tonemap: Option<String>,
-    /// Exposure multiplier applied before tone mapping.
-    pub exposure: Option<f32>,
+    /// Exposure applied before tone mapping.
+    pub exposure: Option<Exposure>,
+}
+
+/// How bright the image is made before tone mapping.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum Exposure {
+    /// A multiplier, finite and positive.
+    Fixed(f32),
+    /// Metered from each frame's resolved HDR image by the `auto_exposure` pass, which a
+    /// pipeline runs under the condition `auto_exposure` (set by the host's choice, see
+    /// [`crate::analysis::Features::auto_exposure`]); its `tonemap` pass reads the result.
+    Auto,
 }

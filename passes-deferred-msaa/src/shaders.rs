@@ -66,6 +66,10 @@ pub(crate) const RESOLVE: Source = Source {
     name: "resolve.wgsl",
     parts: &[COMMON, include_str!("wgsl/resolve.wgsl")],
 };
+pub(crate) const AUTO_EXPOSURE: Source = Source {
+    name: "auto_exposure.wgsl",
+    parts: &[COMMON, include_str!("wgsl/auto_exposure.wgsl")],
+};
 pub(crate) const TONEMAP: Source = Source {
     name: "tonemap.wgsl",
     parts: &[COMMON, include_str!("wgsl/tonemap.wgsl")],

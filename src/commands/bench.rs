@@ -130,6 +130,7 @@ fn measure(
             frames: args.frames,
             warmup: args.warmup,
             assets: args.assets.policy(),
+            lighting: args.assets.lights,
         };
         // Images only outside sweeps, where one folder per scene is unambiguous.
         let images = step.point.is_none().then_some(args.out_dir.as_path());

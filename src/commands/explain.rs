@@ -9,7 +9,7 @@ use graph_core::explain;
 use graph_core::file::{load_file, FileErrors, LoadedGraph};
 use graph_core::{CompileOptions, Features, Plan};
 use passes_deferred_msaa::analysis::{Analysis, Features as SceneFeatures, SHALLOW_STEP};
-use passes_deferred_msaa::scene::{AssetPolicy, Scene, SceneError};
+use passes_deferred_msaa::scene::SceneError;
 
 use super::target::compile_options;
 use super::CommandError;
@@ -26,7 +26,7 @@ pub fn run(
     let options = compile_options(target)?;
     let loaded = load_file(pipeline, &registry()).map_err(|e| invalid(pipeline, e))?;
     let analysis = scene
-        .map(|spec| analyse(spec, &assets.policy(), options.output_size))
+        .map(|spec| analyse(spec, assets, options.output_size))
         .transpose()?;
     let features = analysis
         .as_ref()
@@ -82,10 +82,10 @@ fn invalid(pipeline: &Path, errors: FileErrors) -> CommandError {
 
 fn analyse(
     spec: &str,
-    policy: &AssetPolicy,
+    assets: &AssetArgs,
     output: (u32, u32),
 ) -> Result<(String, Analysis), CommandError> {
-    let scene = Scene::load_with(spec, policy).map_err(|e| {
+    let scene = assets.load(spec).map_err(|e| {
         eprintln!("error: scene {spec}: {e}");
         let message = format!("scene {spec} cannot be loaded");
         // As `render` and `validate`: a file that cannot be read is an I/O error.

@@ -7,17 +7,18 @@
 mod error;
 mod output;
 mod progress;
+mod saturation;
 mod summary;
 mod view;
 
 use std::sync::Arc;
 
 use graph_core::gpu::AdapterChoice;
-use passes_deferred_msaa::scene::{AssetPolicy, Scene};
+use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::Overrides;
 
 use super::CommandError;
-use crate::cli::RenderArgs;
+use crate::cli::{AssetArgs, RenderArgs};
 use crate::frame::{host, FrameError, Pipeline, Session, Specialise};
 use error::RenderError;
 use progress::Progress;
@@ -34,7 +35,7 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     let mut progress = Progress::new(7);
 
     progress.stage(format!("load scene {}", args.scene));
-    let scene = load_scene(&args.scene, &args.assets.policy(), &progress)?;
+    let scene = load_scene(&args.scene, &args.assets, &progress)?;
     let overrides = Overrides {
         tonemap: args.tonemap.map(|t| t.name().to_string()),
         exposure: args.exposure,
@@ -85,6 +86,14 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
         ));
     }
 
+    if let Some(share) = saturation::blown_out(&image).filter(|_| output == "color") {
+        progress.note(format!(
+            "warning: {:.0}% of the lit pixels are saturated (a channel at 255): lower \
+             --exposure, or let --exposure auto meter the frame",
+            share * 100.0
+        ));
+    }
+
     progress.stage(format!("write {}", args.out.display()));
     output::write_png(&args.out, &image)?;
     drop(progress);
@@ -96,10 +105,10 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
 /// The scene; its statistics and the loader's warnings go to stderr.
 fn load_scene(
     spec: &str,
-    policy: &AssetPolicy,
+    assets: &AssetArgs,
     progress: &Progress,
 ) -> Result<Arc<Scene>, FrameError> {
-    let scene = Scene::load_with(spec, policy).map_err(FrameError::Scene)?;
+    let scene = assets.load(spec).map_err(FrameError::Scene)?;
     progress.note(format!("scene {spec}: {}", scene.stats()));
     for warning in &scene.warnings {
         progress.note(format!("warning: {warning}"));

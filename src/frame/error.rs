@@ -48,6 +48,12 @@ pub enum FrameError {
     },
 
     #[error(
+        "--exposure auto: {pipeline} has no auto_exposure pass that runs for this output \
+         (the pipelines in pipelines/ meter the frame under the condition auto_exposure)"
+    )]
+    NoMetering { pipeline: PathBuf },
+
+    #[error(
         "{pipeline} imports \"{resource}\", which an engine binds; the command line runs \
          pipelines whose resources the graph creates"
     )]

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use graph_core::file::{load_file, load_str, ErrorKind, FileErrors, LoadedGraph, Registry};
 use passes_deferred_msaa::analysis::{Features as SceneFeatures, Variants};
 use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::{Host, Overrides};
+use passes_deferred_msaa::{Exposure, Host, Overrides};
 
 use super::FrameError;
 use crate::registry::registry_for;
@@ -111,7 +111,9 @@ impl Pipeline {
         specialise: Specialise,
         load: impl FnOnce(&Registry) -> Result<LoadedGraph, FrameError>,
     ) -> Result<Self, FrameError> {
-        let (features, shader_features) = specialise.features(&host.scene);
+        let (mut features, shader_features) = specialise.features(&host.scene);
+        // The file's `auto_exposure` passes stand in for its fixed-exposure tone mapping.
+        features.auto_exposure = host.overrides.exposure == Some(Exposure::Auto);
         let scene = host.scene.clone();
         let loaded = load(&registry_for(Some(host), specialise.variants()))?;
         Self::keep(path, loaded, outputs, (features, shader_features), scene)

@@ -39,6 +39,7 @@ impl Session {
             .compile_for(&options, &pipeline.features.names())
             .map_err(FrameError::Pipeline)?;
         no_imports(&plan, &pipeline)?;
+        metered(&plan, &pipeline)?;
         let outputs = pipeline
             .outputs
             .iter()
@@ -142,6 +143,19 @@ fn readable_output(
 
 /// The command line has no engine to bind imported resources from: say so before
 /// executing, rather than with the executor's advice to call `Imports::texture`.
+/// Auto exposure needs a pass that meters: a file without one would tone map with its
+/// fixed exposure, silently.
+fn metered(plan: &Plan, pipeline: &Pipeline) -> Result<(), FrameError> {
+    let metering =
+        |p: &graph_core::PlannedPass| pipeline.loaded.plugin(&p.name) == Some("auto_exposure");
+    match pipeline.features.auto_exposure && !plan.passes.iter().any(metering) {
+        true => Err(FrameError::NoMetering {
+            pipeline: pipeline.path.clone(),
+        }),
+        false => Ok(()),
+    }
+}
+
 fn no_imports(plan: &Plan, pipeline: &Pipeline) -> Result<(), FrameError> {
     let used = plan
         .resources

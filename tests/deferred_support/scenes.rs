@@ -124,6 +124,7 @@ impl Parts {
             textures: Vec::new(),
             lights: self.lights.clone(),
             ambient: self.ambient,
+            environment: None,
             camera,
             bounds,
             warnings: Vec::new(),

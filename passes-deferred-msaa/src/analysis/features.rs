@@ -12,6 +12,8 @@ pub struct Features {
     pub directional_lights: bool,
     /// A nonzero ambient term.
     pub ambient: bool,
+    /// Image-based lighting (the default lighting of files without lights).
+    pub environment: bool,
     /// Some mesh is drawn with an unlit material (KHR_materials_unlit).
     pub unlit: bool,
     /// Some mesh is drawn with a lit material.
@@ -36,15 +38,20 @@ pub struct Features {
     /// as finely as [`DepthRange::shallow`] asks. A reduction, like `unlit_only`: only a
     /// scene that is measured gets it.
     pub shallow_depth: bool,
+    /// Not the scene's but the host's choice: expose each frame for its metered
+    /// luminance (`Exposure::Auto`), which pipelines do with an `auto_exposure` pass
+    /// under this condition. [`Features::of`] and [`Features::general`] leave it unset.
+    pub auto_exposure: bool,
 }
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 18] = [
+    pub const NAMES: [&'static str; 20] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
         "ambient",
+        "environment",
         "no_lights",
         "unlit",
         "lit",
@@ -59,6 +66,7 @@ impl Features {
         "occlusion_textures",
         "double_sided",
         "shallow_depth",
+        "auto_exposure",
     ];
 
     pub fn of(scene: &Scene) -> Features {
@@ -75,6 +83,7 @@ impl Features {
             spot_lights: light(|k| matches!(k, LightKind::Spot { .. })),
             directional_lights: light(|k| matches!(k, LightKind::Directional)),
             ambient: scene.ambient.iter().any(|&c| c > 0.0),
+            environment: scene.environment.is_some_and(|e| e.intensity > 0.0),
             unlit: material(|m| m.unlit),
             lit: material(|m| !m.unlit),
             emissive: material(Material::is_emissive),
@@ -90,6 +99,7 @@ impl Features {
             // pipeline is as good as any.
             shallow_depth: DepthRange::of(scene)
                 .is_some_and(|range| range.shallow(&scene.camera.projection)),
+            auto_exposure: false,
         }
     }
 
@@ -98,7 +108,7 @@ impl Features {
     /// names of absences and reductions (`no_lights`, `unlit_only`, `shallow_depth`) are
     /// not set for it, which is why
     /// pipelines drop work only under those: compiled for no features at all, a
-    /// pipeline is the general one too. The one exception is `blend`: the transparent
+    /// pipeline is the general one too. The one exception among scene features is `blend`: the transparent
     /// passes are added under it, so that every scene without BLEND materials keeps
     /// exactly the plan it had before they existed; compiled for no features, a
     /// pipeline draws no blended meshes (the opaque passes skip them regardless).
@@ -108,6 +118,7 @@ impl Features {
             spot_lights: true,
             directional_lights: true,
             ambient: true,
+            environment: true,
             unlit: true,
             lit: true,
             emissive: true,
@@ -120,12 +131,17 @@ impl Features {
             occlusion_textures: true,
             double_sided: true,
             shallow_depth: false,
+            auto_exposure: false,
         }
     }
 
-    /// No light emits and there is no ambient term: lighting adds nothing.
+    /// No light emits and there is no ambient term or environment: lighting adds nothing.
     pub fn no_lights(&self) -> bool {
-        !(self.point_lights || self.spot_lights || self.directional_lights || self.ambient)
+        !(self.point_lights
+            || self.spot_lights
+            || self.directional_lights
+            || self.ambient
+            || self.environment)
     }
 
     /// Every material drawn is unlit: nothing needs normals, material parameters or
@@ -141,6 +157,7 @@ impl Features {
             self.spot_lights,
             self.directional_lights,
             self.ambient,
+            self.environment,
             self.no_lights(),
             self.unlit,
             self.lit,
@@ -155,6 +172,7 @@ impl Features {
             self.occlusion_textures,
             self.double_sided,
             self.shallow_depth,
+            self.auto_exposure,
         ];
         Self::NAMES
             .iter()

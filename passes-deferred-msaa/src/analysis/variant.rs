@@ -42,6 +42,8 @@ pub enum Gate {
     DoubleSided,
     /// Adding material emission (zero for materials that do not emit).
     Emissive,
+    /// Image-based lighting (zero irradiance and intensity without an environment).
+    Environment,
 }
 
 impl Gate {
@@ -58,6 +60,7 @@ impl Gate {
             Gate::OcclusionTextures => "occlusion_textures",
             Gate::DoubleSided => "double_sided",
             Gate::Emissive => "emissive",
+            Gate::Environment => "environment",
         }
     }
 
@@ -74,6 +77,7 @@ impl Gate {
             Gate::OcclusionTextures => "OCCLUSION_TEXTURES",
             Gate::DoubleSided => "DOUBLE_SIDED",
             Gate::Emissive => "EMISSIVE",
+            Gate::Environment => "ENVIRONMENT",
         }
     }
 
@@ -90,6 +94,7 @@ impl Gate {
             Gate::OcclusionTextures => features.occlusion_textures,
             Gate::DoubleSided => features.double_sided,
             Gate::Emissive => features.emissive,
+            Gate::Environment => features.environment,
         }
     }
 }
@@ -132,8 +137,8 @@ impl GatedShader {
         }
     }
 
-    /// The gates the shader's code has (brdf.wgsl's light kinds in the shaders that
-    /// light).
+    /// The gates the shader's code has (brdf.wgsl's light kinds and lighting.wgsl's
+    /// environment in the shaders that light).
     pub fn gates(self) -> &'static [Gate] {
         use Gate::*;
         match self {
@@ -147,7 +152,7 @@ impl GatedShader {
                 Emissive,
             ],
             GatedShader::Light | GatedShader::LightTiled => {
-                &[DirectionalLights, PointLights, SpotLights]
+                &[DirectionalLights, PointLights, SpotLights, Environment]
             }
             GatedShader::Forward | GatedShader::Transparent => &[
                 DirectionalLights,
@@ -160,6 +165,7 @@ impl GatedShader {
                 OcclusionTextures,
                 DoubleSided,
                 Emissive,
+                Environment,
             ],
         }
     }
@@ -293,7 +299,7 @@ mod tests {
         let general = Variant::general(GatedShader::Forward);
         assert!(general.is_general());
         assert!(general.constants().iter().all(|&(_, v)| v == 1.0));
-        assert_eq!(general.constants().len(), 10);
+        assert_eq!(general.constants().len(), 11);
     }
 
     #[test]
@@ -310,7 +316,8 @@ mod tests {
             [
                 ("DIRECTIONAL_LIGHTS", 0.0),
                 ("POINT_LIGHTS", 1.0),
-                ("SPOT_LIGHTS", 1.0)
+                ("SPOT_LIGHTS", 1.0),
+                ("ENVIRONMENT", 0.0)
             ]
         );
         let gbuffer = Variant::of(GatedShader::GBuffer, &features);
@@ -342,7 +349,8 @@ mod tests {
                     vec!["gbuffer".to_owned()]
                 ),
                 (
-                    "light.wgsl {directional_lights, point_lights, spot_lights}".to_owned(),
+                    "light.wgsl {directional_lights, point_lights, spot_lights, environment}"
+                        .to_owned(),
                     vec!["light edges".to_owned(), "light the rest".to_owned()]
                 ),
             ]

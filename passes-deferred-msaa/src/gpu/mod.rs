@@ -3,6 +3,7 @@
 //! (formats, sample counts), the bind group of a pass's input textures, and the
 //! recording of full-screen passes.
 
+pub(crate) mod auto_exposure;
 mod bindings;
 pub(crate) mod forward;
 pub(crate) mod fullscreen;

@@ -1,6 +1,9 @@
 //! The scene's bind group (group 0 of every deferred pass that reads the scene, render
-//! or compute): camera,
-//! meshes, materials, lights and light info, bound at bindings 0 to 4 as in scene.wgsl.
+//! or compute), as scene.wgsl and lighting.wgsl declare it: camera, meshes, materials,
+//! lights and light info at bindings 0 to 4, the environment's prefiltered cube map, its
+//! sampler and the split-sum lookup table at 5 to 7.
+
+use super::environment::EnvironmentMaps;
 
 pub(super) fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
@@ -19,6 +22,11 @@ pub(super) fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         has_dynamic_offset: false,
         min_binding_size: None,
     };
+    let texture = |view_dimension| wgpu::BindingType::Texture {
+        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+        view_dimension,
+        multisampled: false,
+    };
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("deferred scene"),
         entries: &[
@@ -27,6 +35,12 @@ pub(super) fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             entry(2, storage),
             entry(3, storage),
             entry(4, uniform),
+            entry(5, texture(wgpu::TextureViewDimension::Cube)),
+            entry(
+                6,
+                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+            ),
+            entry(7, texture(wgpu::TextureViewDimension::D2)),
         ],
     })
 }
@@ -35,8 +49,9 @@ pub(super) fn scene_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     buffers: [&wgpu::Buffer; 5],
+    environment: &EnvironmentMaps,
 ) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry<'_>> = buffers
+    let mut entries: Vec<wgpu::BindGroupEntry<'_>> = buffers
         .iter()
         .zip(0u32..)
         .map(|(buffer, binding)| wgpu::BindGroupEntry {
@@ -44,6 +59,20 @@ pub(super) fn scene_group(
             resource: buffer.as_entire_binding(),
         })
         .collect();
+    entries.extend([
+        wgpu::BindGroupEntry {
+            binding: 5,
+            resource: wgpu::BindingResource::TextureView(&environment.cube),
+        },
+        wgpu::BindGroupEntry {
+            binding: 6,
+            resource: wgpu::BindingResource::Sampler(&environment.sampler),
+        },
+        wgpu::BindGroupEntry {
+            binding: 7,
+            resource: wgpu::BindingResource::TextureView(&environment.lut),
+        },
+    ]);
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("deferred scene"),
         layout,

@@ -1,5 +1,5 @@
 //! Lights on the device: every light in one storage buffer (directional lights first), the
-//! ambient term, and per point or spot light the volume to rasterize and whether the
+//! ambient term and the environment's irradiance, and per point or spot light the volume to rasterize and whether the
 //! camera may be inside it.
 
 use glam::{DMat4, DQuat, DVec3};
@@ -8,8 +8,8 @@ use wgpu::util::DeviceExt;
 use super::mesh::camera_relative;
 use super::volumes::{VolumeMesh, VolumeShape};
 use crate::scene::{
-    BoundingSphere, Camera, Light, LightKind, LightVolume, Projection, Scene,
-    DEFAULT_CUTOFF_ILLUMINANCE,
+    BoundingSphere, Camera, Irradiance, Light, LightKind, LightVolume, Projection, Scene,
+    CUBE_LEVELS, DEFAULT_CUTOFF_ILLUMINANCE,
 };
 
 /// `LIGHT_*` in scene.wgsl.
@@ -42,6 +42,10 @@ struct LightInfo {
     directional_count: u32,
     light_count: u32,
     _pad: [u32; 3],
+    environment_intensity: f32,
+    environment_max_level: f32,
+    _pad1: [f32; 2],
+    irradiance: [[f32; 4]; 9],
 }
 
 /// A point or spot light to draw as a volume.
@@ -118,9 +122,17 @@ impl LightBuffers {
             };
             data.push(light_data(light, kind, volume, eye));
         }
+        let intensity = scene.environment.map_or(0.0, |e| e.intensity);
         let info = LightInfo {
             ambient: scene.ambient,
             directional_count: directional.len() as u32,
+            environment_intensity: intensity,
+            environment_max_level: (CUBE_LEVELS - 1) as f32,
+            _pad1: [0.0; 2],
+            irradiance: match scene.environment {
+                Some(_) => Irradiance::neutral().0.map(|c| [c * intensity; 4]),
+                None => [[0.0; 4]; 9],
+            },
             light_count: data.len() as u32,
             _pad: [0; 3],
         };
@@ -149,7 +161,8 @@ impl LightBuffers {
                 wgpu::BufferUsages::UNIFORM,
             ),
             fullscreen: directional.iter().any(|l| l.emits())
-                || scene.ambient.iter().any(|&c| c > 0.0),
+                || scene.ambient.iter().any(|&c| c > 0.0)
+                || intensity > 0.0,
             volumes,
         }
     }

@@ -4,7 +4,8 @@
 //! [`SceneCache`] uploads the [`Host`]'s scene once per device, on the first
 //! frame that needs it, and hands out an `Arc<GpuScene>`. A [`GpuScene`] holds:
 //! - group 0 ([`GpuScene::layout`], [`GpuScene::bind_group`]), as `scene.wgsl` declares
-//!   it: camera uniform, per-mesh data, materials, lights, light info;
+//!   it: camera uniform, per-mesh data, materials, lights, light info, and lighting.wgsl's
+//!   environment maps;
 //! - the meshes ([`GpuScene::draw_meshes`], vertex layout [`mesh::VERTEX_LAYOUT`]) and a
 //!   bind group per material for group 1 ([`GpuScene::material_layout`]);
 //! - the light volumes ([`GpuScene::volume_lights`], [`GpuScene::volume_mesh`]).
@@ -16,6 +17,7 @@
 //! it changed (one output size per frame and device is assumed).
 
 mod camera;
+mod environment;
 mod layout;
 mod lights;
 mod materials;
@@ -123,6 +125,7 @@ impl GpuScene {
         let materials = materials::Materials::new(device, queue, scene, &material_layout);
         let (sphere, cone) = (volumes::sphere(device), volumes::cone(device));
         let lights = lights::LightBuffers::new(device, scene, &sphere, &cone);
+        let environment = environment::EnvironmentMaps::new(device, queue, scene);
         let group = |camera| {
             let buffers = [
                 camera,
@@ -131,7 +134,7 @@ impl GpuScene {
                 &lights.data,
                 &lights.info,
             ];
-            layout::scene_group(device, &layout, buffers)
+            layout::scene_group(device, &layout, buffers, &environment)
         };
         GpuScene {
             camera: scene.camera.clone(),
@@ -220,7 +223,7 @@ impl GpuScene {
     }
 
     /// Whether a full-screen light draw has anything to add: a directional light that
-    /// emits, or ambient. Without one the light passes build no full-screen pipeline.
+    /// emits, ambient or an environment. Without one the light passes build no full-screen pipeline.
     pub fn has_fullscreen_lights(&self) -> bool {
         self.lights.fullscreen
     }

@@ -1,6 +1,7 @@
 //! Scene images on the device and the samplers materials use.
 
 use wgpu::util::DeviceExt;
+use wgpu::TextureViewDimension::D2;
 
 use crate::scene::{FilterMode, Sampler, TextureImage, WrapMode};
 
@@ -18,7 +19,7 @@ pub(super) fn upload(
     let mut texels = image.rgba8.clone();
     texels.extend(image.mip_chain().into_iter().flatten());
     let size = (image.width, image.height, image.mip_levels());
-    create(device, queue, &image.name, size, format, &texels)
+    create(device, queue, &image.name, size, format, D2, &texels)
 }
 
 /// The texture of a material without one of its textures: one white texel (1.0 in every
@@ -26,16 +27,18 @@ pub(super) fn upload(
 /// material samples the same way.
 pub(super) fn white(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::TextureView {
     let format = wgpu::TextureFormat::Rgba8UnormSrgb;
-    create(device, queue, "white", (1, 1, 1), format, &[255; 4])
+    create(device, queue, "white", (1, 1, 1), format, D2, &[255; 4])
 }
 
-/// A texture of `(width, height, mip levels)` from `texels`, every level in order.
-fn create(
+/// A 2D texture, or a cube map (`dimension` Cube: six layers), of `(width, height, mip
+/// levels)` from `texels`: each layer's levels in order, layer after layer.
+pub(super) fn create(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     label: &str,
     (width, height, mip_level_count): (u32, u32, u32),
     format: wgpu::TextureFormat,
+    dimension: wgpu::TextureViewDimension,
     texels: &[u8],
 ) -> wgpu::TextureView {
     device
@@ -46,7 +49,10 @@ fn create(
                 size: wgpu::Extent3d {
                     width,
                     height,
-                    depth_or_array_layers: 1,
+                    depth_or_array_layers: match dimension {
+                        wgpu::TextureViewDimension::Cube => 6,
+                        _ => 1,
+                    },
                 },
                 mip_level_count,
                 sample_count: 1,
@@ -58,7 +64,10 @@ fn create(
             wgpu::util::TextureDataOrder::LayerMajor,
             texels,
         )
-        .create_view(&wgpu::TextureViewDescriptor::default())
+        .create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(dimension),
+            ..Default::default()
+        })
 }
 
 /// How a material samples its texture: glTF's sampler, mipmaps included.

@@ -53,7 +53,7 @@ use graph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
 use super::depth::DepthRule;
 use super::edge_detection::{Detector, EdgeDetection};
 use super::light::GBUFFER_INPUTS;
-use super::resolve::{exposure, one, ResolveMode};
+use super::resolve::{one, resolve_exposure, ResolveMode};
 use super::textures::{self, format_name, Input, Texels, Want};
 use super::{yes, Recording, Shared};
 use crate::shaders;
@@ -179,7 +179,7 @@ impl Plugin for LightTiled {
                 params.tile
             )));
         }
-        let exposure = exposure(&self.0, params.exposure)?;
+        let exposure = resolve_exposure(&self.0, params.exposure, params.resolve)?;
         let want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
         let (depth, desc) = textures::input(slots, pass, "depth", want)?;
         let samples = desc.samples;

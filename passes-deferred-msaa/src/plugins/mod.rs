@@ -21,6 +21,7 @@
 //! device or a scene gets. Given, it holds for any format, and passes sharing a depth
 //! buffer must give the same.
 
+pub(crate) mod auto_exposure;
 pub(crate) mod debug_view;
 pub(crate) mod depth;
 pub(crate) mod edge_detection;
@@ -44,6 +45,7 @@ use graph_core::PassBuilder;
 use crate::analysis::Variants;
 use crate::host::{Host, Overrides};
 
+pub use auto_exposure::{AutoExposure, AutoExposureParams};
 pub use debug_view::{DebugView, DebugViewParams, View};
 pub use edge_detection::{Detector, EdgeDetection};
 pub use edge_stencil::EdgeStencil;
@@ -114,6 +116,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(LightTiled(shared.clone()))
         .register(Resolve(shared.clone()))
         .register(Tonemap(shared.clone()))
+        .register(AutoExposure(shared.clone()))
         .register(DebugView(shared.clone()))
         .register(Forward(shared.clone()))
         .register(GBufferResolve(shared.clone()))

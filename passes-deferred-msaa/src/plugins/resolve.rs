@@ -22,6 +22,7 @@ use graph_core::{PassBuilder, PassKind};
 use super::fullscreen::Fullscreen;
 use super::textures::{self, Want};
 use super::Shared;
+use crate::host::Exposure;
 use crate::shaders;
 
 pub struct Resolve(pub(crate) Shared);
@@ -47,15 +48,39 @@ pub(crate) fn one() -> f32 {
     1.0
 }
 
-/// The exposure to use: the host's override, else `param`; finite and positive.
-pub(crate) fn exposure(shared: &Shared, param: f32) -> Result<f32, PluginError> {
-    let exposure = shared.overrides.exposure.unwrap_or(param);
+/// The fixed exposure to use: the host's override, else `param`; finite and positive.
+/// `None` when the host asks for auto exposure.
+pub(crate) fn exposure(shared: &Shared, param: f32) -> Result<Option<f32>, PluginError> {
+    let exposure = match shared.overrides.exposure {
+        Some(Exposure::Auto) => return Ok(None),
+        Some(Exposure::Fixed(exposure)) => exposure,
+        None => param,
+    };
     if exposure.is_finite() && exposure > 0.0 {
-        Ok(exposure)
+        Ok(Some(exposure))
     } else {
         Err(PluginError::Invalid(format!(
             "exposure must be finite and positive, got {exposure}"
         )))
+    }
+}
+
+/// The exposure a resolve applies: only a tone-mapped resolve uses it, and auto exposure
+/// cannot serve one, since the frame is metered after its resolve.
+pub(crate) fn resolve_exposure(
+    shared: &Shared,
+    param: f32,
+    mode: ResolveMode,
+) -> Result<f32, PluginError> {
+    match (exposure(shared, param)?, mode) {
+        (Some(exposure), _) => Ok(exposure),
+        (None, ResolveMode::Box) => Ok(1.0),
+        (None, ResolveMode::Tonemapped) => Err(PluginError::Invalid(
+            "auto exposure meters the resolved image, but `resolve: tonemapped` applies \
+             exposure before resolving: give a fixed exposure, or use a pipeline that \
+             resolves with `box` and tone maps after"
+                .into(),
+        )),
     }
 }
 
@@ -73,7 +98,7 @@ impl Plugin for Resolve {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        let exposure = exposure(&self.0, params.exposure)?;
+        let exposure = resolve_exposure(&self.0, params.exposure, params.mode)?;
         let want = Want::new("the lit HDR target", textures::HDR);
         let (input, desc) = textures::sampled(slots, pass, "hdr", want, 0)?;
         let want = Want::new("the resolved HDR target", textures::HDR).samples(1);

@@ -24,6 +24,7 @@ pub(crate) const HDR: &[TextureFormat] = &[F::Rgba16Float];
 pub(crate) const DEPTH_STENCIL: &[TextureFormat] =
     &[F::Depth24PlusStencil8, F::Depth32FloatStencil8];
 pub(crate) const DISPLAY: &[TextureFormat] = &[F::Rgba8UnormSrgb, F::Rgba8Unorm];
+pub(crate) const EXPOSURE: &[TextureFormat] = &[F::R32Float];
 
 impl Want {
     pub const fn new(what: &'static str, formats: &'static [TextureFormat]) -> Want {

@@ -8,6 +8,10 @@
 //!  outputs: { "color": "color" })              // rgba8unorm-srgb (or rgba8unorm), 1 sample
 //! ```
 //!
+//! With an `"exposure"` input (the 1x1 r32float texture `auto_exposure` writes), the pass
+//! multiplies the metered exposure by `exposure` (then a compensation): what the host's
+//! auto exposure runs, under the condition `auto_exposure`.
+//!
 //! `none` clamps the exposed linear color to [0, 1]; `reinhard` is `c / (1 + c)` per
 //! channel; `aces` is Narkowicz's fit of the ACES filmic curve. An sRGB output encodes
 //! the result. The host's overrides replace `operator` and `exposure` when set.
@@ -78,20 +82,35 @@ impl Plugin for Tonemap {
             })?,
             None => params.operator,
         };
-        let exposure = exposure(&self.0, params.exposure)?;
+        let fixed = exposure(&self.0, params.exposure)?;
         let want = Want::new("the resolved HDR input (resolve it first)", textures::HDR).samples(1);
         let (input, _) = textures::sampled(slots, pass, "hdr", want, 0)?;
+        let mut inputs = vec![input];
+        let metered = slots.kind("exposure").is_some();
+        if metered {
+            let want = Want::new("the metered exposure", textures::EXPOSURE).samples(1);
+            inputs.push(textures::sampled(slots, pass, "exposure", want, 1)?.0);
+        }
         let want = Want::new("the displayed output", textures::DISPLAY).samples(1);
         let (target, _) = textures::color_output(slots, pass, "color", want, [0.0; 4])?;
         let draw = Fullscreen {
             label: "tonemap",
             source: shaders::TONEMAP.compose(1)?.source().to_owned(),
-            entry: "fs_tonemap",
+            entry: if metered {
+                "fs_tonemap_metered"
+            } else {
+                "fs_tonemap"
+            },
             constants: vec![
                 ("OPERATOR", operator as u32 as f64),
-                ("EXPOSURE", f64::from(exposure)),
+                // Under auto exposure a pass without the input is the one its file runs
+                // otherwise (the frame checks that a metering pass runs): its own value.
+                (
+                    "EXPOSURE",
+                    f64::from(fixed.filter(|_| !metered).unwrap_or(params.exposure)),
+                ),
             ],
-            inputs: vec![input],
+            inputs,
             reads_scene: false,
             target: Some(target),
             stencil_mark: None,

@@ -75,6 +75,7 @@ impl SceneBuilder {
             textures: self.textures,
             lights: self.lights,
             ambient: self.ambient,
+            environment: None,
             bounds,
             warnings: self.warnings,
         })

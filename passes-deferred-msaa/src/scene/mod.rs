@@ -12,13 +12,16 @@ mod assets;
 mod bounds;
 mod builder;
 mod camera;
+mod environment;
 mod error;
 mod gltf_loader;
 mod light;
+mod lighting;
 mod material;
 mod mesh;
 mod mips;
 mod normals;
+mod prefilter;
 mod procedural;
 mod stats;
 mod tangents;
@@ -31,11 +34,17 @@ pub use bounds::{Aabb, BoundingSphere, MAX_COORDINATE};
 pub use camera::{
     Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_MARGIN, FRAMING_YFOV,
 };
+pub use environment::{radiance as environment_radiance, Environment, Irradiance};
 pub use error::SceneError;
 pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE, MAX_LIGHTS};
+pub use lighting::{Lighting, DEFAULT_ENVIRONMENT_INTENSITY, HEADLIGHT_LUX};
 pub use material::{AlphaMode, Material};
 pub use mesh::{Mesh, Vertex};
 pub use normals::flat_shaded;
+pub use prefilter::{
+    cube_direction, prefilter, prefiltered_cube, split_sum, split_sum_lut, CUBE_LEVELS, CUBE_SIZE,
+    LUT_SIZE,
+};
 pub use procedural::{builtin_names, BuiltinParam, BuiltinScene, BUILTIN_PREFIX};
 pub use stats::SceneStats;
 pub use tangents::generate_tangents;
@@ -56,6 +65,9 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Linear RGB ambient radiance multiplied with base color (glTF has none: zero for files).
     pub ambient: [f32; 3],
+    /// Image-based lighting, added to the ambient term and the lights: the default
+    /// lighting of files without lights (see [`Lighting`]); built-in scenes have none.
+    pub environment: Option<Environment>,
     /// The file's first camera in scene order, else [`Camera::framing`] of the bounds.
     pub camera: Camera,
     /// Exact world-space bounds of all vertices.

@@ -3,9 +3,51 @@
 // point and spot lights they cull; forward passes add it all at once.
 // Composed after common.wgsl, scene.wgsl and brdf.wgsl.
 
-// Light from everywhere: the ambient term, scaled by the material's occlusion.
+// Image-based lighting (gpu_scene/environment.rs): the environment's radiance
+// prefiltered by roughness in the mip levels of a cube map, and the split-sum lookup
+// table (n.v across, roughness down) of the specular BRDF's scale and bias on F0.
+@group(0) @binding(5) var environment_tex: texture_cube<f32>;
+@group(0) @binding(6) var environment_sampler: sampler;
+@group(0) @binding(7) var split_sum_tex: texture_2d<f32>;
+
+// Whether the scene has an environment (analysis/variant.rs; the default is the general
+// shader). Without one its irradiance and intensity are zero: the code would add zero.
+override ENVIRONMENT: bool = true;
+
+fn environment_irradiance(n: vec3<f32>) -> vec3<f32> {
+    let c = light_info.irradiance;
+    let p = array<f32, 9>(1.0, n.y, n.z, n.x, n.x * n.y, n.y * n.z, 3.0 * n.z * n.z - 1.0, n.x * n.z, n.x * n.x - n.y * n.y);
+    var e = vec3<f32>(0.0);
+    for (var i = 0u; i < 9u; i++) {
+        e += c[i].rgb * p[i];
+    }
+    return max(e, vec3<f32>(0.0));
+}
+
+// The environment's light reflected toward the viewer (Karis's split sum): diffuse from
+// the irradiance, weighted by what the specular lobe leaves (as brdf.wgsl's (1 - F)),
+// plus the prefiltered radiance around the reflection times the BRDF's directional albedo.
+// Explicit mip levels: valid in compute and non-uniform control flow alike.
+fn environment_light(s: Surface) -> vec3<f32> {
+    let n_v = clamp(dot(s.normal, s.view), 1e-4, 1.0);
+    let split = textureSampleLevel(split_sum_tex, environment_sampler, vec2<f32>(n_v, s.roughness), 0.0).rg;
+    let f0 = mix(vec3<f32>(0.04), s.albedo, s.metallic);
+    let specular_albedo = f0 * split.x + split.y;
+    let r = reflect(-s.view, s.normal);
+    let level = clamp(s.roughness, 0.0, 1.0) * light_info.environment_max_level;
+    let prefiltered = textureSampleLevel(environment_tex, environment_sampler, r, level).rgb * light_info.environment_intensity;
+    let diffuse = environment_irradiance(s.normal) / PI * s.albedo * (1.0 - s.metallic) * (1.0 - specular_albedo);
+    return diffuse + prefiltered * specular_albedo;
+}
+
+// Light from everywhere: the ambient term and the environment, scaled by the material's
+// occlusion.
 fn ambient_light(s: Surface) -> vec3<f32> {
-    return light_info.ambient * s.albedo * s.occlusion;
+    var color = light_info.ambient * s.albedo;
+    if ENVIRONMENT {
+        color += environment_light(s);
+    }
+    return color * s.occlusion;
 }
 
 // The light that reaches every surface: ambient plus every directional light.

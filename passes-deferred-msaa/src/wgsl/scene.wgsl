@@ -76,6 +76,15 @@ struct LightInfo {
     _pad0: u32,
     _pad1: u32,
     _pad2: u32,
+    // Image-based lighting (lighting.wgsl): the prefiltered radiance's scale and its
+    // cube map's last mip level (roughness 1).
+    environment_intensity: f32,
+    environment_max_level: f32,
+    _pad3: f32,
+    _pad4: f32,
+    // The environment's irradiance E(n) = sum of irradiance[i] * polynomial i of n
+    // (scene/environment.rs), already scaled by its intensity.
+    irradiance: array<vec4<f32>, 9>,
 }
 
 @group(0) @binding(0) var<uniform> camera: Camera;

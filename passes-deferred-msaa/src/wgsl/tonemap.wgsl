@@ -3,6 +3,8 @@
 // inputs are group 1, like every deferred pass's.
 
 @group(1) @binding(0) var hdr_tex: texture_2d<f32>;
+// fs_tonemap_metered's: the exposure auto_exposure.wgsl metered, at texel (0, 0).
+@group(1) @binding(1) var exposure_tex: texture_2d<f32>;
 
 // 0: none (clamp), 1: Reinhard per channel, 2: ACES filmic (Narkowicz's fit).
 override OPERATOR: u32 = 0u;
@@ -12,13 +14,12 @@ fn aces(x: vec3<f32>) -> vec3<f32> {
     return (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
 }
 
-@fragment
-fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+fn tonemap(position: vec4<f32>, exposure: f32) -> vec4<f32> {
     // An additive blend past the half-float range may store infinity (devices differ:
     // lavapipe saturates); clamped first, it maps to white instead of inf / inf = NaN.
     let texel = textureLoad(hdr_tex, pixel_of(position), 0).rgb;
     let stored = clamp(texel, vec3<f32>(0.0), vec3<f32>(HALF_MAX));
-    let c = stored * EXPOSURE;
+    let c = stored * exposure;
     var mapped = c;
     if OPERATOR == 1u {
         mapped = c / (1.0 + c);
@@ -26,4 +27,15 @@ fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> 
         mapped = aces(c);
     }
     return vec4<f32>(clamp(mapped, vec3<f32>(0.0), vec3<f32>(1.0)), 1.0);
+}
+
+@fragment
+fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    return tonemap(position, EXPOSURE);
+}
+
+// Auto exposure: the metered exposure, times EXPOSURE.
+@fragment
+fn fs_tonemap_metered(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    return tonemap(position, textureLoad(exposure_tex, vec2<i32>(0), 0).r * EXPOSURE);
 }

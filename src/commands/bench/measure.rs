@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use graph_core::gpu::FrameReport;
 use image::RgbaImage;
-use passes_deferred_msaa::scene::AssetPolicy;
+use passes_deferred_msaa::scene::{AssetPolicy, Lighting};
 use passes_deferred_msaa::Host;
 
 use super::candidates::{Candidate, COLOR};
@@ -24,6 +24,8 @@ pub struct Setup<'a> {
     pub warmup: u32,
     /// What glTF scenes may read (`--asset-root`, `--max-asset-bytes`).
     pub assets: AssetPolicy,
+    /// How every scene is lit (`--lights`).
+    pub lighting: Lighting,
 }
 
 /// The figures, the last measured frame's image, and the debug.edges view when there is

@@ -57,7 +57,7 @@ pub fn bench_scene(
         unique_surfaces: None,
         unique_surfaces_error: None,
     };
-    let scene = match Scene::load_with(spec, &setup.assets) {
+    let scene = match Scene::load_with(spec, &setup.assets).map(|s| s.lit(setup.lighting)) {
         Ok(scene) => Arc::new(scene),
         Err(source) => {
             let error = RowError::Scene {
