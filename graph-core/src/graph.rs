@@ -8,7 +8,8 @@ use crate::resource::ResourceNode;
 
 /// A graph whose passes and resources are all declared. Compiling it needs no GPU and
 /// does not consume it: the same graph can be compiled for several output sizes or
-/// device profiles, and executed with any plan compiled from it.
+/// device profiles. To execute it, bind it to its plans in a
+/// [`CompiledGraph`](crate::CompiledGraph).
 pub struct Graph {
     pub(crate) resources: Vec<ResourceNode>,
     pub(crate) passes: Vec<PassNode>,

@@ -8,14 +8,16 @@
 //!    The resulting [`Plan`] is plain data that explains itself. Passes and resources
 //!    may carry a [`Condition`] over named features; [`Graph::compile_for`] a feature
 //!    set drops what does not apply first, and a [`PlanCache`] keeps one plan per set.
-//! 3. **Execute** (feature `gpu`) with [`gpu::Executor`]: pooled allocation, the inferred
-//!    render-pass setup, per-pass timings.
+//! 3. **Execute** (feature `gpu`) with [`gpu::Executor`] a [`CompiledGraph`], a graph
+//!    bound to its plans: pooled allocation, the inferred render-pass setup, per-pass
+//!    timings, and record callbacks that reach only the resources their pass declared.
 //!
 //! Graphs can also be declared in RON files through registered [`file::Plugin`]s.
 
 mod access;
 mod builder;
 mod compile;
+mod compiled;
 mod condition;
 mod error;
 mod graph;
@@ -41,6 +43,7 @@ pub use access::{
 };
 pub use builder::{GraphBuilder, PassBuilder};
 pub use compile::CompileOptions;
+pub use compiled::CompiledGraph;
 pub use condition::{Condition, ConditionError, Features, Literal};
 pub use error::{GraphError, GraphErrors};
 pub use graph::Graph;

@@ -79,7 +79,7 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     progress.stage(format!("write {}", args.out.display()));
     output::write_png(&args.out, &image)?;
     drop(progress);
-    eprintln!("{}", summary::text(&prepared.plan, &report));
+    eprintln!("{}", summary::text(prepared.plan(), &report));
     Ok(())
 }
 

@@ -2,7 +2,7 @@
 //! and build the small pipelines their passes draw with.
 
 use graph_core::gpu::{AdapterChoice, Gpu};
-use graph_core::{CompileOptions, Graph, Plan};
+use graph_core::{CompileOptions, CompiledGraph, Graph};
 
 /// Test textures are this size: small enough for lavapipe to run every test in a blink.
 pub const SIZE: (u32, u32) = (64, 64);
@@ -15,12 +15,12 @@ pub fn gpu() -> Gpu {
 }
 
 /// Compiles at [`SIZE`] against the opened device's own profile.
-pub fn plan(graph: &Graph, gpu: &Gpu) -> Plan {
-    graph
-        .compile(&CompileOptions {
-            output_size: SIZE,
-            profile: gpu.profile(),
-        })
+pub fn compile(graph: Graph, gpu: &Gpu) -> CompiledGraph {
+    let options = CompileOptions {
+        output_size: SIZE,
+        profile: gpu.profile(),
+    };
+    CompiledGraph::new(graph, &options)
         .unwrap_or_else(|e| panic!("expected the graph to compile, got:\n{e}"))
 }
 

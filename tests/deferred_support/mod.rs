@@ -14,7 +14,7 @@ use std::sync::Arc;
 
 use graph_core::file::{load_str, LoadedGraph, Registry};
 use graph_core::gpu::{read_rgba16f, read_rgba8, Executor, Gpu, Imports};
-use graph_core::{CompileOptions, Features, Plan};
+use graph_core::{CompileOptions, CompiledGraph, Features, Plan};
 use passes_deferred_msaa::analysis::Variants;
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Host, Overrides};
@@ -43,8 +43,7 @@ pub struct Render<'a> {
 /// An executed frame, whose exported textures can be read back.
 pub struct Frame {
     label: String,
-    loaded: LoadedGraph,
-    plan: Plan,
+    compiled: CompiledGraph<LoadedGraph>,
     executor: Executor,
 }
 
@@ -159,18 +158,17 @@ impl<'a> Render<'a> {
             );
             text = text.replace(from, to);
         }
-        let mut loaded = load_str(&path, &text, &registry)
+        let loaded = load_str(&path, &text, &registry)
             .unwrap_or_else(|e| panic!("cannot load {}:\n{e}", path.display()));
         let options = CompileOptions {
             output_size: self.size,
             profile: gpu.profile(),
         };
-        let plan = loaded
-            .compile_for(&options, &self.features)
+        let mut compiled = CompiledGraph::new_for(loaded, &options, &self.features)
             .unwrap_or_else(|e| panic!("cannot compile {}:\n{e}", self.pipeline));
         let mut executor = Executor::new(gpu);
         executor
-            .execute(&mut loaded.graph, &plan, &Imports::new())
+            .execute(&mut compiled, &Imports::new())
             .unwrap_or_else(|e| panic!("{} failed on the device: {e}", self.pipeline));
         let edited = if self.edits.is_empty() && self.scene_edit.is_none() {
             ""
@@ -183,8 +181,7 @@ impl<'a> Render<'a> {
                 self.pipeline.trim_end_matches(".ron"),
                 self.scene.replace([':', '?', '/', '=', '&'], "_")
             ),
-            loaded,
-            plan,
+            compiled,
             executor,
         }
     }
@@ -199,17 +196,18 @@ impl<'a> Render<'a> {
 impl Frame {
     /// The plan the frame executed.
     pub fn plan(&self) -> &Plan {
-        &self.plan
+        self.compiled.plan()
     }
 
     fn texture(&self, name: &str) -> &wgpu::Texture {
         let handle = self
-            .loaded
+            .compiled
+            .graph()
             .names
             .texture(name)
             .unwrap_or_else(|| panic!("{} has no texture named {name}", self.label));
         self.executor
-            .texture(&self.plan, handle.id())
+            .texture(self.compiled.plan(), handle.id())
             .unwrap_or_else(|| panic!("{name} is not an exported texture of {}", self.label))
     }
 

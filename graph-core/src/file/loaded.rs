@@ -13,7 +13,8 @@ use crate::handle::{BufferHandle, TextureHandle};
 use crate::plan::Plan;
 
 /// A graph file, declared: compile it (as often as needed, for any output size or
-/// profile) with [`LoadedGraph::compile`], and execute its plans like any graph's.
+/// profile) with [`LoadedGraph::compile`], and bind it to its plans with
+/// [`CompiledGraph`](crate::CompiledGraph) to execute them.
 pub struct LoadedGraph {
     pub graph: Graph,
     /// The handle each name in the file denotes.
@@ -80,6 +81,13 @@ impl LoadedGraph {
             resource.exported &= kept.contains(&index);
         }
         Ok(())
+    }
+}
+
+impl crate::plan_cache::sealed::Graphs for LoadedGraph {
+    #[cfg(feature = "gpu")]
+    fn graph_mut(&mut self) -> &mut Graph {
+        &mut self.graph
     }
 }
 

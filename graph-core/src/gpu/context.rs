@@ -1,5 +1,5 @@
 //! What a pass's record callback sees: the begun wgpu pass (or encoder) and the frame's
-//! physical resources, looked up through the same handles the pass declared.
+//! physical resources, looked up through the handles the pass declared.
 //!
 //! Views and buffers borrowed from a context are valid for this frame only: the pool may
 //! hand the same memory to another resource in another pass. Device objects a callback
@@ -7,18 +7,40 @@
 
 use std::collections::HashMap;
 
-use crate::access::Aspect;
-use crate::handle::{BufferHandle, ResourceId, TextureHandle};
-use crate::plan::TextureShape;
+use crate::access::{Access, Aspect, Role, TextureRole};
+use crate::handle::{BufferHandle, Handle, ResourceId, ResourceKind, TextureHandle};
+use crate::plan::{PlannedResource, TextureShape};
 
-/// The physical resources of one executing frame.
+use super::pool::ViewKey;
+
+/// This frame's objects by resource, for every resource a live pass accesses.
+#[derive(Default)]
+pub(crate) struct FrameObjects {
+    pub textures: HashMap<ResourceId, (wgpu::Texture, TextureShape)>,
+    pub views: HashMap<(ResourceId, ViewKey), wgpu::TextureView>,
+    pub buffers: HashMap<ResourceId, wgpu::Buffer>,
+}
+
+/// The physical resources of one executing frame, as one pass sees them.
+///
+/// Lookups are checked against the executing pass's declared accesses, as Filament's
+/// frame graph asserts: a handle the pass did not declare, or declared at another
+/// version, is a bug in the pass (the graph ordered and allocated the frame from the
+/// declarations, so an undeclared resource may hold anything, or another resource's
+/// data, at that point). Each lookup accepts the version a declared access was handed
+/// and the version it produced, and panics with a message naming the pass, the resource
+/// and the version otherwise.
 pub struct FrameResources<'f> {
     pub device: &'f wgpu::Device,
     pub queue: &'f wgpu::Queue,
     pub(crate) output_size: (u32, u32),
-    pub(crate) textures: HashMap<ResourceId, (&'f wgpu::Texture, TextureShape)>,
-    pub(crate) views: HashMap<(ResourceId, Aspect), &'f wgpu::TextureView>,
-    pub(crate) buffers: HashMap<ResourceId, &'f wgpu::Buffer>,
+    pub(crate) objects: &'f FrameObjects,
+    /// The executing pass.
+    pub(crate) pass: &'f str,
+    /// What the executing pass declared.
+    pub(crate) accesses: &'f [Access],
+    /// Every resource of the plan, by id: their names, for messages.
+    pub(crate) resources: &'f [PlannedResource],
 }
 
 impl<'f> FrameResources<'f> {
@@ -27,34 +49,147 @@ impl<'f> FrameResources<'f> {
         self.output_size
     }
 
-    /// The texture behind a handle. Panics only if the handle was not declared by the
-    /// executing graph, which compile already rejects.
+    /// The texture behind a handle.
+    ///
+    /// # Panics
+    /// When the executing pass did not declare an access to this version of the texture.
     pub fn texture(&self, handle: TextureHandle) -> &'f wgpu::Texture {
-        self.textures[&handle.id()].0
+        self.check(handle, "texture", None);
+        &self.objects.textures[&handle.id()].0
     }
 
     /// Format, size and sample count of a texture, as planned.
+    ///
+    /// # Panics
+    /// As [`texture`](Self::texture).
     pub fn shape(&self, handle: TextureHandle) -> TextureShape {
-        self.textures[&handle.id()].1
+        self.check(handle, "texture", None);
+        self.objects.textures[&handle.id()].1
     }
 
     /// The full view of a texture.
+    ///
+    /// # Panics
+    /// As [`texture`](Self::texture).
     pub fn view(&self, handle: TextureHandle) -> &'f wgpu::TextureView {
         self.aspect_view(handle, Aspect::All)
     }
 
-    /// A view of one aspect, for passes that declared `sampled_aspect(handle, aspect)`.
+    /// A view of one aspect. [`Aspect::All`] is the full view of any declared texture;
+    /// a single aspect needs the pass to have declared `sampled_aspect(handle, aspect)`.
+    ///
+    /// # Panics
+    /// When the executing pass did not declare this version of the texture, or declared
+    /// no sampled access to the aspect asked for.
     pub fn aspect_view(&self, handle: TextureHandle, aspect: Aspect) -> &'f wgpu::TextureView {
-        self.views[&(handle.id(), aspect)]
+        let needs = (aspect != Aspect::All).then_some(aspect);
+        self.check(handle, "texture", needs);
+        &self.objects.views[&(handle.id(), ViewKey::Aspect(aspect))]
     }
 
+    /// The buffer behind a handle.
+    ///
+    /// # Panics
+    /// When the executing pass did not declare an access to this version of the buffer.
     pub fn buffer(&self, handle: BufferHandle) -> &'f wgpu::Buffer {
-        self.buffers[&handle.id()]
+        self.check(handle, "buffer", None);
+        &self.objects.buffers[&handle.id()]
+    }
+
+    /// Panics unless the executing pass declared `handle` (as a sampled view of `aspect`,
+    /// when given) at the handle's version.
+    fn check<K: ResourceKind>(
+        &self,
+        handle: Handle<K>,
+        kind: &'static str,
+        aspect: Option<Aspect>,
+    ) {
+        if let Err(e) = self.declared(handle, kind, aspect) {
+            panic!("{e}");
+        }
+    }
+
+    fn declared<K: ResourceKind>(
+        &self,
+        handle: Handle<K>,
+        kind: &'static str,
+        aspect: Option<Aspect>,
+    ) -> Result<(), UndeclaredAccess> {
+        let (id, version) = (handle.id(), handle.version());
+        let of_resource = || self.accesses.iter().filter(move |a| a.resource == id);
+        let found = of_resource()
+            .filter(|a| a.version == version || a.written == Some(version))
+            .any(|a| match aspect {
+                None => true,
+                Some(aspect) => a.role == Role::Texture(TextureRole::Sampled { aspect }),
+            });
+        if found {
+            return Ok(());
+        }
+        let declared: Vec<String> = of_resource()
+            .map(|a| match a.written {
+                Some(written) if a.role.reads() => {
+                    format!("{} (version {} to {written})", describe(a), a.version)
+                }
+                Some(written) => format!("{} (version {written})", describe(a)),
+                None => format!("{} (version {})", describe(a), a.version),
+            })
+            .collect();
+        Err(UndeclaredAccess {
+            pass: self.pass.to_string(),
+            what: match aspect {
+                Some(Aspect::DepthOnly) => "the depth view of texture",
+                Some(Aspect::StencilOnly) => "the stencil view of texture",
+                Some(Aspect::All) | None => kind,
+            },
+            resource: self
+                .resources
+                .get(id.index())
+                .map_or_else(|| format!("#{}", id.0), |r| r.name.clone()),
+            version,
+            declared: match declared.is_empty() {
+                true => String::new(),
+                false => format!(" (it declared it as {})", declared.join(", ")),
+            },
+        })
     }
 }
 
+/// A role and, for sampled textures, the aspect: "sampled texture (depth)".
+fn describe(access: &Access) -> String {
+    match access.role {
+        Role::Texture(TextureRole::Sampled {
+            aspect: aspect @ (Aspect::DepthOnly | Aspect::StencilOnly),
+        }) => format!(
+            "{} ({})",
+            access.role.describe(),
+            match aspect {
+                Aspect::DepthOnly => "depth",
+                _ => "stencil",
+            }
+        ),
+        role => role.describe().to_string(),
+    }
+}
+
+/// A record callback looked up what its pass did not declare: the message of the panic.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "pass \"{pass}\" looked up {what} \"{resource}\" (version {version}), which it did not \
+     declare{declared}"
+)]
+struct UndeclaredAccess {
+    pass: String,
+    /// "texture", "buffer", "the depth view of texture".
+    what: &'static str,
+    resource: String,
+    version: u32,
+    /// What the pass did declare of the resource, if anything, as a parenthesis.
+    declared: String,
+}
+
 /// A render pass callback's view of the frame: the render pass, begun with the declared
-/// attachments, and the frame's resources.
+/// attachments, and the frame's resources as the pass declared them.
 pub struct RenderContext<'a, 'p> {
     pub pass: &'a mut wgpu::RenderPass<'p>,
     pub resources: &'a FrameResources<'a>,
