@@ -20,15 +20,6 @@ pub struct Graph {
 }
 
 impl Graph {
-    pub(crate) fn from_builder(builder: crate::GraphBuilder) -> Self {
-        Self {
-            resources: builder.resources,
-            passes: builder.passes,
-            features: builder.features,
-            declare_errors: builder.errors,
-        }
-    }
-
     pub fn resources(&self) -> &[ResourceNode] {
         &self.resources
     }
@@ -72,10 +63,10 @@ impl Graph {
     }
 
     /// The id of the resource called `name` (the first, if names repeat).
-    pub fn resource_id(&self, name: &str) -> Option<crate::ResourceId> {
+    pub fn resource_id(&self, name: &str) -> Option<crate::handle::ResourceId> {
         self.resources
             .iter()
             .position(|r| r.name == name)
-            .map(|i| crate::ResourceId(i as u32))
+            .map(|i| crate::handle::ResourceId(i as u32))
     }
 }

@@ -25,7 +25,10 @@ mod handle;
 mod pass;
 mod plan;
 mod plan_cache;
+mod position;
 mod profile;
+#[cfg(feature = "gpu")]
+mod record;
 mod resource;
 
 pub mod bounded_read;
@@ -51,17 +54,17 @@ pub use handle::{
     Buffer, BufferHandle, Handle, Kind, PassId, ResourceId, ResourceKind, Texture, TextureHandle,
 };
 pub use pass::PassKind;
-#[cfg(feature = "gpu")]
-pub use pass::Record;
 pub use pass::{PassNode, Workgroup};
 pub use plan::{
     ColorAttachment, CulledPass, DepthStencilAttachment, Load, MemoryReport, Ops, PhysicalBuffer,
-    PhysicalTexture, Plan, PlannedPass, PlannedResource, Store, TextureShape,
+    PhysicalTexture, Plan, PlannedPass, PlannedResource, Store,
 };
 pub use plan_cache::{Compile, PlanCache, PlanKey};
 pub use profile::{color_bytes_per_sample, color_target_cost, DeviceProfile};
+#[cfg(feature = "gpu")]
+pub use record::Record;
 pub use resource::{
-    texel_bytes, BufferDesc, Origin, ResourceDesc, ResourceNode, Size, TextureDesc,
+    texel_bytes, BufferDesc, Origin, ResourceDesc, ResourceNode, Size, TextureDesc, TextureShape,
 };
 
 pub use wgpu_types as types;

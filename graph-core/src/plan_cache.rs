@@ -45,7 +45,7 @@ pub(crate) mod sealed {
 }
 
 impl Compile for Graph {
-    type Error = crate::GraphErrors;
+    type Error = crate::error::GraphErrors;
 
     fn compile_for(
         &self,

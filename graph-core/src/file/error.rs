@@ -6,10 +6,10 @@ use std::path::Path;
 
 use thiserror::Error;
 
-use super::plugin::PluginError;
-use super::position::Position;
+use super::plugin_error::PluginError;
 use crate::condition::ConditionError;
 use crate::error::GraphError;
+use crate::position::Position;
 
 /// A position in a named file.
 #[derive(Clone, Debug, PartialEq, Eq)]

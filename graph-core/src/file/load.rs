@@ -7,11 +7,11 @@ use super::declare::declare;
 use super::error::{ErrorKind, FileError, FileErrors};
 use super::loaded::LoadedGraph;
 use super::plugin::Prepared;
-use super::position::Position;
 use super::registry::Registry;
 use super::schema::{self, GraphFile};
 use super::source::Source;
 use super::{conditions, names, order, ron_message};
+use crate::position::Position;
 use crate::{bounded_read, embedded};
 
 /// Reads and declares the graph file at `path` (a regular file of at most

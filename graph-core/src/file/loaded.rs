@@ -91,7 +91,7 @@ impl crate::plan_cache::sealed::Graphs for LoadedGraph {
     }
 }
 
-impl crate::Compile for LoadedGraph {
+impl crate::plan_cache::Compile for LoadedGraph {
     type Error = FileErrors;
 
     fn compile_for(

@@ -3,23 +3,21 @@
 //! GPU timestamps per pass. wgpu inserts the barriers; the plan's usages and order are
 //! what make them right.
 
-use std::collections::hash_map::Entry;
 use std::collections::HashMap;
 use std::time::Instant;
 
 use crate::access::{Aspect, Role, TextureRole};
-use crate::compile::format_name;
 use crate::compiled::CompiledGraph;
 use crate::graph::Graph;
 use crate::handle::ResourceId;
-use crate::pass::{PassKind, Record};
-use crate::plan::{Load, Ops, Plan, PlannedPass, Store, TextureShape};
+use crate::pass::PassKind;
+use crate::plan::{Load, Ops, Plan, PlannedPass, Store};
 use crate::plan_cache::Compile;
-use crate::resource::{texel_bytes, Origin};
-
-use super::context::{
-    ComputeContext, FrameObjects, FrameResources, RenderContext, TransferContext,
+use crate::record::{
+    ComputeContext, FrameObjects, FrameResources, Record, RenderContext, TransferContext,
 };
+use crate::resource::{format_name, texel_bytes, Origin, TextureShape};
+
 use super::device::{ErrorLog, Gpu};
 use super::error_scopes::ErrorScopes;
 use super::imports::{Binding, ImportError, Imports};
@@ -295,15 +293,30 @@ impl Executor {
                             _ => {}
                         }
                         for key in keys {
-                            if let Entry::Vacant(slot) = objects.views.entry((planned.id, key)) {
-                                slot.insert(self.view(source, key).map_err(|aspect| {
-                                    ImportError::ViewAspect {
-                                        pass: pass.name.clone(),
-                                        resource: planned.name.clone(),
-                                        aspect,
-                                    }
-                                })?);
+                            let made = match key {
+                                ViewKey::Aspect(aspect) => {
+                                    objects.views.contains_key(&(planned.id, aspect))
+                                }
+                                ViewKey::Attachment => {
+                                    objects.attachments.contains_key(&planned.id)
+                                }
+                            };
+                            if made {
+                                continue;
                             }
+                            let view = self.view(source, key).map_err(|aspect| {
+                                ImportError::ViewAspect {
+                                    pass: pass.name.clone(),
+                                    resource: planned.name.clone(),
+                                    aspect,
+                                }
+                            })?;
+                            match key {
+                                ViewKey::Aspect(aspect) => {
+                                    objects.views.insert((planned.id, aspect), view)
+                                }
+                                ViewKey::Attachment => objects.attachments.insert(planned.id, view),
+                            };
                         }
                     }
                 }
@@ -378,7 +391,7 @@ impl Executor {
                 objects,
                 pass: &node.name,
                 accesses: &node.accesses,
-                resources: &plan.resources,
+                resources: &graph.resources,
             };
             let recorded = record_pass(
                 &mut encoder,
@@ -484,15 +497,13 @@ enum Source<'b> {
     View(&'b wgpu::TextureView),
 }
 
-/// This frame's objects are owned (cheap reference-counted clones), so that
-/// [`FrameResources`] can borrow them while the executor's own fields stay borrowable.
 impl FrameObjects {
     fn attachment(
         &self,
         pass: &PlannedPass,
         id: ResourceId,
     ) -> Result<&wgpu::TextureView, ExecuteError> {
-        self.views.get(&(id, ViewKey::Attachment)).ok_or_else(|| {
+        self.attachments.get(&id).ok_or_else(|| {
             ExecuteError::Inconsistent(format!(
                 "pass \"{}\" attaches resource #{}, which it does not declare",
                 pass.name, id.0

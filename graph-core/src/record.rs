@@ -1,5 +1,8 @@
-//! What a pass's record callback sees: the begun wgpu pass (or encoder) and the frame's
-//! physical resources, looked up through the handles the pass declared.
+//! Recording a pass (feature `gpu`): the callback a pass declares ([`Record`]) and what it
+//! sees when the executor calls it, the begun wgpu pass (or encoder) and the frame's
+//! physical resources, looked up through the handles the pass declared. Declaring a pass
+//! needs these types, so they belong with the model, below compile and execution; the
+//! executor fills them in.
 //!
 //! Views and buffers borrowed from a context are valid for this frame only: the pool may
 //! hand the same memory to another resource in another pass. Device objects a callback
@@ -9,15 +12,26 @@ use std::collections::HashMap;
 
 use crate::access::{Access, Aspect, Role, TextureRole};
 use crate::handle::{BufferHandle, Handle, ResourceId, ResourceKind, TextureHandle};
-use crate::plan::{PlannedResource, TextureShape};
+use crate::resource::{ResourceNode, TextureShape};
 
-use super::pool::ViewKey;
+/// The callback that records a pass's commands. It runs once per executed frame, so it
+/// may keep pipelines and other device objects it creates on the first call.
+pub enum Record {
+    Render(Box<dyn FnMut(&mut RenderContext<'_, '_>)>),
+    Compute(Box<dyn FnMut(&mut ComputeContext<'_, '_>)>),
+    Transfer(Box<dyn FnMut(&mut TransferContext<'_>)>),
+}
 
-/// This frame's objects by resource, for every resource a live pass accesses.
+/// This frame's objects by resource, for every resource a live pass accesses: owned
+/// (cheap reference-counted clones), so that [`FrameResources`] can borrow them while the
+/// executor's own fields stay borrowable.
 #[derive(Default)]
 pub(crate) struct FrameObjects {
     pub textures: HashMap<ResourceId, (wgpu::Texture, TextureShape)>,
-    pub views: HashMap<(ResourceId, ViewKey), wgpu::TextureView>,
+    /// Views for callbacks: every texture's full view, and the sampled aspects declared.
+    pub views: HashMap<(ResourceId, Aspect), wgpu::TextureView>,
+    /// Views the executor attaches to render passes.
+    pub attachments: HashMap<ResourceId, wgpu::TextureView>,
     pub buffers: HashMap<ResourceId, wgpu::Buffer>,
 }
 
@@ -39,8 +53,8 @@ pub struct FrameResources<'f> {
     pub(crate) pass: &'f str,
     /// What the executing pass declared.
     pub(crate) accesses: &'f [Access],
-    /// Every resource of the plan, by id: their names, for messages.
-    pub(crate) resources: &'f [PlannedResource],
+    /// Every resource of the graph, by id: their names, for messages.
+    pub(crate) resources: &'f [ResourceNode],
 }
 
 impl<'f> FrameResources<'f> {
@@ -84,7 +98,7 @@ impl<'f> FrameResources<'f> {
     pub fn aspect_view(&self, handle: TextureHandle, aspect: Aspect) -> &'f wgpu::TextureView {
         let needs = (aspect != Aspect::All).then_some(aspect);
         self.check(handle, "texture", needs);
-        &self.objects.views[&(handle.id(), ViewKey::Aspect(aspect))]
+        &self.objects.views[&(handle.id(), aspect)]
     }
 
     /// The buffer behind a handle.
