@@ -20,6 +20,7 @@ mod ron_names;
 mod ron_roundtrip;
 mod ron_scale;
 mod ron_validate;
+mod structure;
 mod usage;
 mod validate_attachments;
 mod validate_resources;
