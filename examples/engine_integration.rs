@@ -6,6 +6,10 @@
 //! cargo run --release --example engine_integration [-- --frames N --out out/frame.png]
 //! ```
 //!
+//! The Vulkan loader's environment is the engine's to set, as `rgraph` and the tests set
+//! theirs: without `XDG_RUNTIME_DIR` the loader warns, and `VK_DRIVER_FILES` naming only
+//! lavapipe's manifest keeps it from probing other drivers.
+//!
 //! The frame: a sky gradient (`fullscreen` plugin) into a 4x multisampled HDR target, the
 //! engine's own pass drawing a rotating triangle over it and resolving, an exposure and
 //! tone curve (`compute` plugin), and a `blit` into the engine's sRGB texture, which the

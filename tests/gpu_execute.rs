@@ -754,6 +754,7 @@ fn readback_refuses_multisampled_textures() {
 
 #[test]
 fn an_unknown_adapter_is_an_error_listing_the_available_ones() {
+    common::prepare_environment(&AdapterChoice::from_env());
     let choice = AdapterChoice::Named("no such adapter anywhere".into());
     let error = match Gpu::open(&choice) {
         Ok(gpu) => panic!("opened {:?}", gpu.info),
