@@ -17,6 +17,7 @@ mod properties;
 mod ron_bindings;
 mod ron_errors;
 mod ron_names;
+mod ron_params;
 mod ron_roundtrip;
 mod ron_scale;
 mod ron_validate;

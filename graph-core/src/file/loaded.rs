@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 
 use super::any_handle::AnyHandle;
 use super::error::FileErrors;
+use super::params::GraphParams;
 use super::spans::Spans;
 use crate::compile::CompileOptions;
 use crate::condition::Features;
@@ -21,6 +22,8 @@ pub struct LoadedGraph {
     pub names: Names,
     /// The plugin each declared pass names, by pass name.
     pub(crate) plugins: BTreeMap<String, String>,
+    /// Every parameter the file declares, with the value it was loaded with.
+    pub(crate) params: GraphParams,
     pub(crate) spans: Spans,
 }
 
@@ -40,6 +43,12 @@ impl LoadedGraph {
         self.graph.compile_for(options, features).map_err(|errors| {
             FileErrors::sorted(errors.0.into_iter().map(|e| self.spans.locate(e)).collect())
         })
+    }
+
+    /// Every parameter the file declares, with the value it was loaded with (given, or the
+    /// default).
+    pub fn params(&self) -> &GraphParams {
+        &self.params
     }
 
     /// The plugin the file names for the pass called `pass` (a plan's passes carry
