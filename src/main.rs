@@ -28,8 +28,9 @@ fn main() -> ExitCode {
             scene,
             format,
             target,
+            samples,
             assets,
-        } => commands::explain::run(pipeline, scene.as_deref(), *format, target, assets),
+        } => commands::explain::run(pipeline, scene.as_deref(), *format, target, samples, assets),
         Command::Render(args) => commands::render::run(args),
         Command::Bench(args) => commands::bench::run(args),
         Command::Adapters {
