@@ -4,6 +4,7 @@
 mod common;
 mod ron_support;
 
+mod compiled;
 mod conditional_formats;
 mod conditions;
 mod conditions_file;
