@@ -48,7 +48,8 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
         false => Specialise::ToScene,
     };
     let host = host(scene, overrides);
-    let pipeline = Pipeline::load(&args.pipeline, host, &[&output], specialise)
+    let params = args.samples.params();
+    let pipeline = Pipeline::load(&args.pipeline, host, &[&output], specialise, &params)
         .map_err(|e| view::unknown(e, &args.view))?;
 
     let choice = AdapterChoice::resolve(args.adapter.as_deref());
@@ -88,7 +89,7 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     progress.stage(format!("write {}", args.out.display()));
     output::write_png(&args.out, &image)?;
     drop(progress);
-    eprintln!("{}", summary::text(&prepared.plan, &report));
+    eprintln!("{}", summary::text(prepared.plan(), &report));
     Ok(())
 }
 
