@@ -6,6 +6,10 @@
 //! cargo run --release --example engine_integration [-- --frames N --out out/frame.png]
 //! ```
 //!
+//! The Vulkan loader's environment is the engine's to set, as `rgraph` and the tests set
+//! theirs: without `XDG_RUNTIME_DIR` the loader warns, and `VK_DRIVER_FILES` naming only
+//! lavapipe's manifest keeps it from probing other drivers.
+//!
 //! The frame: a sky gradient (`fullscreen` plugin) into a 4x multisampled HDR target, the
 //! engine's own pass drawing a rotating triangle over it and resolving, an exposure and
 //! tone curve (`compute` plugin), and a `blit` into the engine's sRGB texture, which the
@@ -18,7 +22,9 @@ use graph_core::file::{AnyHandle, PluginPassError};
 use graph_core::gpu::{read_rgba8, AdapterChoice, Executor, Gpu, Imports, RenderContext};
 use graph_core::plugins::{Blit, Compute, Fullscreen};
 use graph_core::types::TextureFormat;
-use graph_core::{ColorLoad, CompileOptions, Graph, GraphBuilder, TextureDesc, TextureHandle};
+use graph_core::{
+    ColorLoad, CompileOptions, CompiledGraph, Graph, GraphBuilder, TextureDesc, TextureHandle,
+};
 
 const SIZE: (u32, u32) = (640, 360);
 const SAMPLES: u32 = 4;
@@ -44,11 +50,12 @@ fn main() -> Result<(), Box<dyn Error>> {
         view_formats: &[],
     });
 
-    let mut graph = frame_graph()?;
-    let plan = graph.compile(&CompileOptions {
+    let options = CompileOptions {
         output_size: SIZE,
         profile: gpu.profile(),
-    })?;
+    };
+    let mut compiled = CompiledGraph::new(frame_graph()?, &options)?;
+    let plan = compiled.plan();
     eprintln!(
         "plan: {} passes, graph textures {} KiB logical, {} KiB after pooling",
         plan.passes.len(),
@@ -60,7 +67,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     imports.texture("target", &target);
     let mut executor = Executor::new(&gpu);
     for frame in 0..frames {
-        let report = executor.execute(&mut graph, &plan, &imports)?;
+        let report = executor.execute(&mut compiled, &imports)?;
         let passes: Vec<String> = report
             .passes
             .iter()

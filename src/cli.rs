@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use graph_core::file::GraphParams;
 use passes_deferred_msaa::scene::{
     AssetPolicy, Lighting, Scene, SceneError, DEFAULT_MAX_ASSET_BYTES,
 };
@@ -59,6 +60,8 @@ pub enum Command {
         format: Format,
         #[command(flatten)]
         target: Target,
+        #[command(flatten)]
+        samples: Samples,
         #[command(flatten)]
         assets: AssetArgs,
     },
@@ -166,7 +169,33 @@ pub struct RenderArgs {
     #[arg(long, value_name = "FILE.png")]
     pub out: PathBuf,
     #[command(flatten)]
+    pub samples: Samples,
+    #[command(flatten)]
     pub assets: AssetArgs,
+}
+
+/// The graph-file parameter that is the MSAA sample count:
+/// `samples: Param(name: "msaa", default: 4)`.
+pub const MSAA: &str = "msaa";
+
+/// `--samples N`, for one graph file.
+#[derive(clap::Args)]
+pub struct Samples {
+    /// MSAA samples per pixel: the value of the graph file's "msaa" parameter
+    /// (`samples: Param(name: "msaa", default: 4)`); a file without one is an error
+    /// (default: the file's).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub samples: Option<u32>,
+}
+
+impl Samples {
+    /// The values for the file's parameters these flags ask for.
+    pub fn params(&self) -> GraphParams {
+        match self.samples {
+            Some(n) => GraphParams::new().with(MSAA, n),
+            None => GraphParams::new(),
+        }
+    }
 }
 
 /// What a glTF scene may read besides itself, and which lights it is drawn with.
@@ -245,6 +274,11 @@ pub struct BenchArgs {
     /// 720p..2160p, or samples 1, 2, 4, 8 (those the device lacks become error rows).
     #[arg(long, value_enum)]
     pub sweep: Option<Sweep>,
+    /// MSAA samples per pixel for every pipeline whose file has the "msaa" parameter
+    /// (`samples: Param(name: "msaa", default: 4)`); the others run as written, and the
+    /// results' notes name them (default: each file's; --sweep samples overrides it).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub samples: Option<u32>,
     /// Adapter to measure on: lavapipe, gpu, or part of an adapter's name (default:
     /// $RGRAPH_ADAPTER, else lavapipe).
     #[arg(long)]

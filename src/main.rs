@@ -4,6 +4,7 @@ mod cli;
 mod commands;
 mod frame;
 mod registry;
+mod vulkan_env;
 
 use std::process::ExitCode;
 
@@ -19,6 +20,7 @@ static EMBEDDED: &[graph_core::embedded::EmbeddedFile] =
 fn main() -> ExitCode {
     graph_core::embedded::provide(EMBEDDED);
     let cli = Cli::parse();
+    vulkan_env::prepare(&cli);
     let result = match &cli.command {
         Command::Validate { files, target } => commands::validate::run(files, target),
         Command::Explain {
@@ -26,8 +28,9 @@ fn main() -> ExitCode {
             scene,
             format,
             target,
+            samples,
             assets,
-        } => commands::explain::run(pipeline, scene.as_deref(), *format, target, assets),
+        } => commands::explain::run(pipeline, scene.as_deref(), *format, target, samples, assets),
         Command::Render(args) => commands::render::run(args),
         Command::Bench(args) => commands::bench::run(args),
         Command::Adapters {

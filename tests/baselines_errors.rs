@@ -41,7 +41,7 @@ fn assert_names(message: &str, parts: &[&str]) {
 fn forward_hdr_with_another_sample_count_than_its_depth() {
     let message = error(
         "forward_msaa_4x.ron",
-        r#""hdr": Texture(format: "rgba16float", samples: 4)"#,
+        r#""hdr": Texture(format: "rgba16float", samples: Param(name: "msaa", default: 4))"#,
         r#""hdr": Texture(format: "rgba16float", samples: 1)"#,
     );
     assert_names(&message, &["forward", "slot \"hdr\"", "1 sample", "4"]);

@@ -326,7 +326,7 @@ fn the_tonemapped_resolve_beats_box_on_high_contrast_edges() {
 fn tone_mapping_maps_an_infinite_hdr_texel_to_white() {
     use graph_core::file::{load_str, Registry};
     use graph_core::gpu::{read_rgba8, Executor, Imports};
-    use graph_core::CompileOptions;
+    use graph_core::{CompileOptions, CompiledGraph};
 
     let gpu = gpu();
     let hdr = gpu.device.create_texture(&wgpu::TextureDescriptor {
@@ -370,20 +370,20 @@ fn tone_mapping_maps_an_infinite_hdr_texel_to_white() {
     )"#;
     let mut registry = Registry::with_builtins();
     passes_deferred_msaa::register(&mut registry, None);
-    let mut loaded = load_str("inf.ron", graph, &registry).unwrap_or_else(|e| panic!("{e}"));
+    let loaded = load_str("inf.ron", graph, &registry).unwrap_or_else(|e| panic!("{e}"));
     let options = CompileOptions {
         output_size: (4, 1),
         profile: gpu.profile(),
     };
-    let plan = loaded.compile(&options).unwrap_or_else(|e| panic!("{e}"));
+    let mut compiled = CompiledGraph::new(loaded, &options).unwrap_or_else(|e| panic!("{e}"));
     let mut imports = Imports::new();
     imports.texture("hdr", &hdr);
     let mut executor = Executor::new(&gpu);
     executor
-        .execute(&mut loaded.graph, &plan, &imports)
+        .execute(&mut compiled, &imports)
         .unwrap_or_else(|e| panic!("{e}"));
-    let color = loaded.names.texture("color").unwrap();
-    let texture = executor.texture(&plan, color.id()).unwrap();
+    let color = compiled.graph().names.texture("color").unwrap();
+    let texture = executor.texture(compiled.plan(), color.id()).unwrap();
     let pixels = read_rgba8(&gpu.device, &gpu.queue, texture).unwrap();
     let red: Vec<u8> = pixels.iter().flatten().step_by(4).copied().collect();
     // ACES of 65504 clamps to 1; of 1, about 0.80 (231 in sRGB); of 0, 0.

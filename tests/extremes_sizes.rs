@@ -21,7 +21,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use deferred_support::{gpu, Render};
-use graph_core::file::{load_str, Registry};
+use graph_core::file::{load_file_with, GraphParams, Registry};
 use graph_core::gpu::Gpu;
 use graph_core::CompileOptions;
 use passes_deferred_msaa::scene::Scene;
@@ -37,15 +37,13 @@ const FORMATS: [wgpu::TextureFormat; 6] = [
     wgpu::TextureFormat::Depth32FloatStencil8,
 ];
 
-/// Renders deferred_msaa_4x (with `samples: 4` replaced by `samples` unless 4) and checks
-/// the resolved image.
+/// Renders deferred_msaa_4x at `samples` samples (its `msaa` parameter) and checks the
+/// resolved image.
 fn render_checked(gpu: &Gpu, size: (u32, u32), samples: u32) {
-    let count = format!("samples: {samples}");
-    let mut render = Render::new("deferred_msaa_4x.ron", "builtin:spheres", size).export_resolved();
-    if samples != 4 {
-        render = render.edit("samples: 4", &count);
-    }
-    let frame = render.run(gpu);
+    let frame = Render::new("deferred_msaa_4x.ron", "builtin:spheres", size)
+        .export_resolved()
+        .param("msaa", samples)
+        .run(gpu);
     let hdr = frame.hdr(gpu, "resolved");
     let color = frame.image(gpu, "color");
     assert_eq!(
@@ -103,9 +101,9 @@ fn every_offered_sample_count_renders() {
     }
 }
 
-/// Loads and compiles deferred_msaa_4x with `edit` applied for `gpu` at `size`; the
+/// Loads and compiles deferred_msaa_4x at `samples` samples for `gpu` at `size`; the
 /// error text.
-fn compile_error(gpu: &Gpu, size: (u32, u32), edit: (&str, &str)) -> String {
+fn compile_error(gpu: &Gpu, size: (u32, u32), samples: u32) -> String {
     let host = Host {
         scene: Arc::new(Scene::load("builtin:spheres").expect("builtin:spheres loads")),
         overrides: Overrides::default(),
@@ -113,11 +111,9 @@ fn compile_error(gpu: &Gpu, size: (u32, u32), edit: (&str, &str)) -> String {
     let mut registry = Registry::with_builtins();
     passes_deferred_msaa::register(&mut registry, Some(Arc::new(host)));
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines/deferred_msaa_4x.ron");
-    let text = std::fs::read_to_string(&path)
-        .expect("the pipeline exists")
-        .replace(edit.0, edit.1);
+    let params = GraphParams::new().with("msaa", samples);
     // Counts the plugins cannot shade are refused at load, the rest by the compile.
-    let loaded = match load_str(&path, &text, &registry) {
+    let loaded = match load_file_with(&path, &registry, &params) {
         Ok(loaded) => loaded,
         Err(e) => return e.to_string(),
     };
@@ -126,7 +122,7 @@ fn compile_error(gpu: &Gpu, size: (u32, u32), edit: (&str, &str)) -> String {
         profile: gpu.profile(),
     };
     match loaded.compile(&options) {
-        Ok(_) => panic!("compiling at {size:?} with {edit:?} succeeded"),
+        Ok(_) => panic!("compiling at {size:?} with {samples} samples succeeded"),
         Err(e) => e.to_string(),
     }
 }
@@ -170,8 +166,7 @@ fn unsupported_sample_counts_are_clear_errors() {
         .collect();
     assert!(!missing.is_empty(), "the device offers every count");
     for samples in missing {
-        let count = format!("samples: {samples}");
-        let error = compile_error(&gpu, (16, 16), ("samples: 4", &count));
+        let error = compile_error(&gpu, (16, 16), samples);
         println!("{samples}x: {error}");
         let by_device = error.contains(&format!("does not support {samples}x multisampling"))
             && error.contains("supported: ");

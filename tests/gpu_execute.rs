@@ -5,18 +5,18 @@
 use crate::common;
 
 use common::{
-    bind_group, compute_pipeline, gpu, plan, render_pipeline, render_pipeline_with, FULLSCREEN_VS,
-    SIZE,
+    bind_group, compile, compute_pipeline, gpu, render_pipeline, render_pipeline_with,
+    FULLSCREEN_VS, SIZE,
 };
 use graph_core::gpu::{
     read_rgba8, read_texture, AdapterChoice, DeviceError, ExecuteError, Executor, Gpu, ImportError,
     Imports, ReadbackError, KEEP_FRAMES,
 };
 use graph_core::{
-    Aspect, AspectAccess, BufferDesc, BufferHandle, BufferRole, ColorLoad, CompileOptions, Graph,
-    GraphBuilder, Plan, Size, TextureDesc, TextureHandle,
+    Aspect, AspectAccess, BufferDesc, BufferHandle, BufferRole, ColorLoad, CompileOptions,
+    CompiledGraph, Features, Graph, GraphBuilder, Size, TextureDesc, TextureHandle,
 };
-use wgpu::{Features, TextureFormat, TextureUsages};
+use wgpu::{TextureFormat, TextureUsages};
 
 fn tex(format: TextureFormat) -> TextureDesc {
     TextureDesc::new(format).size(Size::Absolute(SIZE.0, SIZE.1))
@@ -29,13 +29,13 @@ fn texel(pixels: &[u8], x: u32, y: u32) -> [u8; 4] {
 }
 
 /// Executes one frame and reads back the exported texture `out`.
-fn execute_and_read(gpu: &Gpu, graph: &mut Graph, plan: &Plan, out: TextureHandle) -> Vec<u8> {
+fn execute_and_read(gpu: &Gpu, compiled: &mut CompiledGraph, out: TextureHandle) -> Vec<u8> {
     let mut executor = Executor::new(gpu);
     executor
-        .execute(graph, plan, &Imports::new())
+        .execute(compiled, &Imports::new())
         .unwrap_or_else(|e| panic!("execution failed: {e}"));
     let texture = executor
-        .texture(plan, out.id())
+        .texture(compiled.plan(), out.id())
         .expect("an exported texture is readable after the frame");
     read_texture(&gpu.device, &gpu.queue, texture).expect("readback")
 }
@@ -134,10 +134,9 @@ fn a_clear_pass_without_callback_fills_the_exported_texture() {
         .add_render_pass("clear")
         .color_output(target, ColorLoad::Clear([0.2, 0.6, 1.0, 1.0]));
     g.export(out);
-    let mut graph = g.build();
-    let plan = plan(&graph, &gpu);
+    let mut compiled = compile(g.build(), &gpu);
 
-    let pixels = execute_and_read(&gpu, &mut graph, &plan, out);
+    let pixels = execute_and_read(&gpu, &mut compiled, out);
     assert_eq!(pixels.len(), (SIZE.0 * SIZE.1 * 4) as usize);
     assert!(
         pixels.chunks_exact(4).all(|p| p == [51, 153, 255, 255]),
@@ -153,10 +152,9 @@ fn a_compute_pass_writes_a_storage_texture() {
     let target = g.create_texture("gradient", tex(TextureFormat::Rgba8Uint));
     let out = gradient(&mut g, target, true);
     g.export(out);
-    let mut graph = g.build();
-    let plan = plan(&graph, &gpu);
+    let mut compiled = compile(g.build(), &gpu);
 
-    let pixels = execute_and_read(&gpu, &mut graph, &plan, out);
+    let pixels = execute_and_read(&gpu, &mut compiled, out);
     for (x, y) in [(0, 0), (1, 0), (0, 1), (17, 42), (63, 63)] {
         assert_eq!(
             texel(&pixels, x, y),
@@ -214,10 +212,9 @@ fn a_fullscreen_pass_samples_another_texture() {
         ctx.pass.draw(0..3, 0..1);
     });
     g.export(out);
-    let mut graph = g.build();
-    let plan = plan(&graph, &gpu);
+    let mut compiled = compile(g.build(), &gpu);
 
-    let pixels = execute_and_read(&gpu, &mut graph, &plan, out);
+    let pixels = execute_and_read(&gpu, &mut compiled, out);
     for y in 0..SIZE.1 {
         for x in 0..SIZE.0 {
             assert_eq!(
@@ -245,14 +242,15 @@ fn a_transfer_pass_copies_a_texture_and_every_pass_is_timed() {
             .copy_texture_to_texture(from.as_image_copy(), to.as_image_copy(), from.size());
     });
     g.export(out);
-    let mut graph = g.build();
-    let plan = plan(&graph, &gpu);
+    let mut compiled = compile(g.build(), &gpu);
 
     let mut executor = Executor::new(&gpu);
     let report = executor
-        .execute(&mut graph, &plan, &Imports::new())
+        .execute(&mut compiled, &Imports::new())
         .unwrap_or_else(|e| panic!("{e}"));
-    let texture = executor.texture(&plan, out.id()).expect("exported");
+    let texture = executor
+        .texture(compiled.plan(), out.id())
+        .expect("exported");
     let pixels = read_texture(&gpu.device, &gpu.queue, texture).expect("readback");
     for (x, y) in [(0, 0), (5, 9), (63, 0), (0, 63), (63, 63)] {
         assert_eq!(
@@ -264,7 +262,8 @@ fn a_transfer_pass_copies_a_texture_and_every_pass_is_timed() {
 
     let names: Vec<&str> = report.passes.iter().map(|p| p.name.as_str()).collect();
     assert_eq!(names, ["gradient", "copy"]);
-    let timestamps = Features::TIMESTAMP_QUERY | Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
+    let timestamps =
+        wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
     if gpu.device.features().contains(timestamps) {
         assert!(
             report.passes.iter().all(|p| p.gpu_ns.is_some()),
@@ -304,16 +303,16 @@ fn msaa_resolve_shows_partial_coverage_on_the_edge() {
         ctx.pass.draw(0..3, 0..1);
     });
     g.export(out);
-    let mut graph = g.build();
-    let plan = plan(&graph, &gpu);
+    let mut compiled = compile(g.build(), &gpu);
     // The multisampled target never leaves its pass: the executor must create it with
     // the transient usage the plan asks for.
-    assert!(plan
+    assert!(compiled
+        .plan()
         .resource(msaa.id())
         .texture_usage
         .contains(TextureUsages::TRANSIENT_ATTACHMENT));
 
-    let pixels = execute_and_read(&gpu, &mut graph, &plan, out);
+    let pixels = execute_and_read(&gpu, &mut compiled, out);
     assert_eq!(texel(&pixels, 5, 50), [255; 4], "covered texel");
     assert_eq!(texel(&pixels, 50, 5), [0; 4], "uncovered texel");
     for i in 0..SIZE.0 {
@@ -417,15 +416,17 @@ fn a_read_only_depth_attachment_is_tested_against_and_sampled_in_one_pass() {
         ctx.pass.draw(0..3, 0..1);
     });
     g.export(out);
-    let mut graph = g.build();
-    let plan = plan(&graph, &gpu);
-    let attached = plan.pass("shade").and_then(|p| p.depth_stencil.as_ref());
+    let mut compiled = compile(g.build(), &gpu);
+    let attached = compiled
+        .plan()
+        .pass("shade")
+        .and_then(|p| p.depth_stencil.as_ref());
     assert!(
         attached.is_some_and(|ds| ds.depth.is_none() && ds.stencil.is_none()),
         "{attached:?}"
     );
 
-    let pixels = execute_and_read(&gpu, &mut graph, &plan, out);
+    let pixels = execute_and_read(&gpu, &mut compiled, out);
     assert_eq!(
         texel(&pixels, 5, 50),
         [64, 0, 0, 255],
@@ -461,8 +462,8 @@ fn the_pool_reuses_everything_from_the_second_frame_on() {
     let c = copy_pass(&mut g, "second to third", b, third, None);
     let out = copy_pass(&mut g, "third to last", c, last, None);
     g.export(out);
-    let mut graph = g.build();
-    let plan = plan(&graph, &gpu);
+    let mut compiled = compile(g.build(), &gpu);
+    let plan = compiled.plan();
 
     // "first" dies where "third" is born, and both have the same descriptor and usages:
     // they share one texture; "second" overlaps both, and "last" is exported.
@@ -470,7 +471,7 @@ fn the_pool_reuses_everything_from_the_second_frame_on() {
         plan.resource(first.id()).physical,
         plan.resource(third.id()).physical,
         "{}",
-        graph_core::explain::text(&plan)
+        graph_core::explain::text(plan)
     );
     assert_eq!(plan.textures.len(), 3);
     assert_eq!(plan.buffers.len(), 1);
@@ -478,7 +479,7 @@ fn the_pool_reuses_everything_from_the_second_frame_on() {
     let mut executor = Executor::new(&gpu);
     for frame in 1..=3 {
         let report = executor
-            .execute(&mut graph, &plan, &Imports::new())
+            .execute(&mut compiled, &Imports::new())
             .unwrap_or_else(|e| panic!("frame {frame}: {e}"));
         let (textures, buffers) = if frame == 1 { (3, 1) } else { (0, 0) };
         assert_eq!(
@@ -486,7 +487,9 @@ fn the_pool_reuses_everything_from_the_second_frame_on() {
             (textures, buffers),
             "allocations in frame {frame}"
         );
-        let texture = executor.texture(&plan, out.id()).expect("exported");
+        let texture = executor
+            .texture(compiled.plan(), out.id())
+            .expect("exported");
         let pixels = read_texture(&gpu.device, &gpu.queue, texture).expect("readback");
         assert_eq!(texel(&pixels, 10, 20), [51, 102, 153, 204], "frame {frame}");
     }
@@ -505,32 +508,33 @@ fn the_pool_frees_what_no_frame_used_for_a_while() {
         .add_render_pass("clear")
         .color_output(target, ColorLoad::Clear([0.0; 4]));
     g.export(out);
-    let mut graph = g.build();
-    let compile = |size| {
-        graph
-            .compile(&CompileOptions {
-                output_size: size,
-                profile: gpu.profile(),
-            })
-            .unwrap_or_else(|e| panic!("{e}"))
-    };
-    let (large, small) = (compile(SIZE), compile((16, 16)));
+    let mut compiled = compile(g.build(), &gpu);
 
     let mut executor = Executor::new(&gpu);
-    let mut run = |plan: &Plan| {
+    let mut run = |compiled: &mut CompiledGraph, size| {
+        let options = CompileOptions {
+            output_size: size,
+            profile: gpu.profile(),
+        };
+        compiled
+            .recompile(&options, &Features::new())
+            .unwrap_or_else(|e| panic!("{e}"));
         executor
-            .execute(&mut graph, plan, &Imports::new())
+            .execute(compiled, &Imports::new())
             .unwrap_or_else(|e| panic!("{e}"));
         executor.pool_stats()
     };
-    assert_eq!(run(&large).textures_alive, 1);
+    let small = (16, 16);
+    assert_eq!(run(&mut compiled, SIZE).textures_alive, 1);
     // After a resize the old size lingers for a few frames, in case it comes back.
-    assert_eq!(run(&small).textures_alive, 2);
-    let mut stats = run(&small);
+    assert_eq!(run(&mut compiled, small).textures_alive, 2);
+    let mut stats = run(&mut compiled, small);
     for _ in 0..KEEP_FRAMES {
-        stats = run(&small);
+        stats = run(&mut compiled, small);
     }
     assert_eq!((stats.textures_alive, stats.textures_allocated), (1, 2));
+    // Each size compiled once; going back to one recompiles nothing.
+    assert_eq!((compiled.plans().misses(), compiled.plans().len()), (2, 2));
 }
 
 /// A graph that clears the engine's texture "backbuffer".
@@ -562,17 +566,13 @@ fn engine_texture(gpu: &Gpu, size: (u32, u32)) -> wgpu::Texture {
 #[test]
 fn an_imported_texture_is_written_by_the_graph() {
     let gpu = gpu();
-    let (mut graph, backbuffer) = clear_import();
-    let plan = plan(&graph, &gpu);
+    let (graph, backbuffer) = clear_import();
+    let mut compiled = compile(graph, &gpu);
     let mut executor = Executor::new(&gpu);
     let engine = engine_texture(&gpu, SIZE);
 
     executor
-        .execute(
-            &mut graph,
-            &plan,
-            Imports::new().texture("backbuffer", &engine),
-        )
+        .execute(&mut compiled, Imports::new().texture("backbuffer", &engine))
         .unwrap_or_else(|e| panic!("{e}"));
     let pixels = read_rgba8(&gpu.device, &gpu.queue, &engine).expect("readback");
     assert!(
@@ -581,7 +581,7 @@ fn an_imported_texture_is_written_by_the_graph() {
         pixels[0]
     );
     assert!(
-        executor.texture(&plan, backbuffer.id()).is_none(),
+        executor.texture(compiled.plan(), backbuffer.id()).is_none(),
         "the engine owns it"
     );
 
@@ -589,7 +589,7 @@ fn an_imported_texture_is_written_by_the_graph() {
     let other = engine_texture(&gpu, SIZE);
     let view = other.create_view(&Default::default());
     executor
-        .execute(&mut graph, &plan, Imports::new().view(backbuffer, &view))
+        .execute(&mut compiled, Imports::new().view(backbuffer, &view))
         .unwrap_or_else(|e| panic!("{e}"));
     let pixels = read_rgba8(&gpu.device, &gpu.queue, &other).expect("readback");
     assert_eq!(pixels[100], [255, 0, 51, 255]);
@@ -598,12 +598,12 @@ fn an_imported_texture_is_written_by_the_graph() {
 #[test]
 fn a_missing_or_mismatched_import_is_a_clear_error() {
     let gpu = gpu();
-    let (mut graph, _) = clear_import();
-    let plan = plan(&graph, &gpu);
+    let (graph, _) = clear_import();
+    let mut compiled = compile(graph, &gpu);
     let mut executor = Executor::new(&gpu);
 
     let missing = executor
-        .execute(&mut graph, &plan, &Imports::new())
+        .execute(&mut compiled, &Imports::new())
         .expect_err("nothing is bound");
     assert!(
         matches!(&missing, ExecuteError::Import(ImportError::Missing { resource, pass })
@@ -614,11 +614,7 @@ fn a_missing_or_mismatched_import_is_a_clear_error() {
 
     let small = engine_texture(&gpu, (32, 32));
     let wrong = executor
-        .execute(
-            &mut graph,
-            &plan,
-            Imports::new().texture("backbuffer", &small),
-        )
+        .execute(&mut compiled, Imports::new().texture("backbuffer", &small))
         .expect_err("wrong size");
     assert!(
         matches!(&wrong, ExecuteError::Import(ImportError::Shape { resource, .. }) if resource == "backbuffer"),
@@ -627,13 +623,85 @@ fn a_missing_or_mismatched_import_is_a_clear_error() {
     assert!(wrong.to_string().contains("32x32"), "{wrong}");
 
     let unknown = executor
-        .execute(
-            &mut graph,
-            &plan,
-            Imports::new().texture("frontbuffer", &small),
-        )
+        .execute(&mut compiled, Imports::new().texture("frontbuffer", &small))
         .expect_err("no such resource");
     assert!(unknown.to_string().contains("\"frontbuffer\""), "{unknown}");
+}
+
+/// "hdr" cleared by one pass (version 1) and sampled by "light tiled", which draws into
+/// "target"; the callback of "light tiled" looks up what `lookup` returns of the handles
+/// of "hdr" (version 0, 1) and of another texture, "other", that the pass does not use.
+fn lookup_graph(
+    lookup: impl Fn(&graph_core::gpu::FrameResources<'_>, [TextureHandle; 3]) + 'static,
+) -> Graph {
+    let mut g = GraphBuilder::new();
+    let hdr = g.create_texture("hdr", tex(TextureFormat::Rgba16Float));
+    let cleared = g
+        .add_render_pass("clear hdr")
+        .color_output(hdr, ColorLoad::Clear([0.0; 4]));
+    let other = g.create_texture("other", tex(TextureFormat::Rgba8Unorm));
+    let other = g
+        .add_render_pass("clear other")
+        .color_output(other, ColorLoad::Clear([0.0; 4]));
+    let target = g.create_texture("target", tex(TextureFormat::Rgba8Unorm));
+    let mut pass = g.add_render_pass("light tiled");
+    pass.sampled(cleared);
+    let out = pass.color_output(target, ColorLoad::Clear([0.0; 4]));
+    pass.render(move |ctx| lookup(ctx.resources, [hdr, cleared, other]));
+    g.export(out);
+    g.export(other);
+    g.build()
+}
+
+#[test]
+fn a_callback_reaches_what_its_pass_declared() {
+    let gpu = gpu();
+    let graph = lookup_graph(|resources, [_, cleared, _]| {
+        resources.view(cleared);
+        assert_eq!(resources.shape(cleared).format, TextureFormat::Rgba16Float);
+    });
+    Executor::new(&gpu)
+        .execute(&mut compile(graph, &gpu), &Imports::new())
+        .unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+#[should_panic(
+    expected = "pass \"light tiled\" looked up texture \"other\" (version 1), \
+                           which it did not declare"
+)]
+fn an_undeclared_lookup_names_the_pass_and_the_resource() {
+    let gpu = gpu();
+    let graph = lookup_graph(|resources, [_, _, other]| {
+        resources.view(other);
+    });
+    let _ = Executor::new(&gpu).execute(&mut compile(graph, &gpu), &Imports::new());
+}
+
+#[test]
+#[should_panic(
+    expected = "pass \"light tiled\" looked up texture \"hdr\" (version 0), which \
+                           it did not declare (it declared it as sampled texture (version 1))"
+)]
+fn a_lookup_at_an_undeclared_version_names_the_declared_one() {
+    let gpu = gpu();
+    let graph = lookup_graph(|resources, [hdr, _, _]| {
+        resources.texture(hdr);
+    });
+    let _ = Executor::new(&gpu).execute(&mut compile(graph, &gpu), &Imports::new());
+}
+
+#[test]
+#[should_panic(
+    expected = "pass \"light tiled\" looked up the depth view of texture \"hdr\" \
+                           (version 1), which it did not declare"
+)]
+fn a_lookup_of_an_undeclared_aspect_names_it() {
+    let gpu = gpu();
+    let graph = lookup_graph(|resources, [_, cleared, _]| {
+        resources.aspect_view(cleared, Aspect::DepthOnly);
+    });
+    let _ = Executor::new(&gpu).execute(&mut compile(graph, &gpu), &Imports::new());
 }
 
 #[test]
@@ -646,12 +714,11 @@ fn a_validation_error_in_a_callback_is_an_error_not_a_panic() {
     // Drawing without a pipeline is invalid.
     pass.render(|ctx| ctx.pass.draw(0..3, 0..1));
     g.export(out);
-    let mut graph = g.build();
-    let plan = plan(&graph, &gpu);
+    let mut compiled = compile(g.build(), &gpu);
     let mut executor = Executor::new(&gpu);
 
     let error = executor
-        .execute(&mut graph, &plan, &Imports::new())
+        .execute(&mut compiled, &Imports::new())
         .expect_err("the draw is invalid");
     assert!(
         matches!(&error, ExecuteError::Device { pass: Some(p), .. } if p == "broken"),
@@ -687,6 +754,7 @@ fn readback_refuses_multisampled_textures() {
 
 #[test]
 fn an_unknown_adapter_is_an_error_listing_the_available_ones() {
+    common::prepare_environment(&AdapterChoice::from_env());
     let choice = AdapterChoice::Named("no such adapter anywhere".into());
     let error = match Gpu::open(&choice) {
         Ok(gpu) => panic!("opened {:?}", gpu.info),
@@ -730,18 +798,16 @@ fn a_texture_the_device_cannot_create_is_named_with_its_size_and_format() {
         .add_render_pass("clear")
         .color_output(target, ColorLoad::Clear([0.0; 4]));
     g.export(out);
-    let mut graph = g.build();
     let mut profile = gpu.profile();
     profile.limits.max_texture_dimension_2d = width;
-    let plan = graph
-        .compile(&CompileOptions {
-            output_size: SIZE,
-            profile,
-        })
-        .unwrap_or_else(|e| panic!("{e}"));
+    let options = CompileOptions {
+        output_size: SIZE,
+        profile,
+    };
+    let mut compiled = CompiledGraph::new(g.build(), &options).unwrap_or_else(|e| panic!("{e}"));
     let mut executor = Executor::new(&gpu);
     let error = executor
-        .execute(&mut graph, &plan, &Imports::new())
+        .execute(&mut compiled, &Imports::new())
         .expect_err("the texture is too wide for the device");
     assert!(
         matches!(error, ExecuteError::Allocation { .. }),
@@ -754,5 +820,5 @@ fn a_texture_the_device_cannot_create_is_named_with_its_size_and_format() {
     );
     assert!(error.to_string().starts_with(&expected), "{error}");
     assert_eq!(executor.pool_stats().textures_alive, 0);
-    assert!(executor.texture(&plan, out.id()).is_none());
+    assert!(executor.texture(compiled.plan(), out.id()).is_none());
 }

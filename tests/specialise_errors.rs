@@ -61,8 +61,10 @@ fn a_misspelt_feature_in_a_pass_condition_is_an_error_at_the_feature() {
 #[test]
 fn a_misspelt_feature_in_a_resource_condition_is_an_error_at_the_feature() {
     let text = edited(
-        "\"material\": Texture(format: \"rgba8unorm\", samples: 4, when: \"!unlit_only\")",
-        "\"material\": Texture(format: \"rgba8unorm\", samples: 4, when: \"!unlit-only\")",
+        "\"material\": Texture(format: \"rgba8unorm\", samples: Param(name: \"msaa\", default: 4), \
+         when: \"!unlit_only\")",
+        "\"material\": Texture(format: \"rgba8unorm\", samples: Param(name: \"msaa\", default: 4), \
+         when: \"!unlit-only\")",
     );
     let errors = load(&text);
     // "unlit-only" is not a name: the condition stops parsing at the '-'.

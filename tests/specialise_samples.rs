@@ -24,7 +24,7 @@ fn the_edge_passes_are_omitted_at_one_sample_and_the_image_is_the_no_aa_one() {
     // shading everywhere): at one sample both leave the lighting to light_nonedge.
     for pipeline in ["deferred_msaa_4x.ron", "deferred_per_sample_4x.ron"] {
         let frame = Render::new(pipeline, SCENE, (N, N))
-            .edit("samples: 4", "samples: 1")
+            .param("msaa", 1)
             .run(&gpu);
         let plan = frame.plan();
         let live: Vec<&str> = plan

@@ -669,11 +669,11 @@ fn bad_transparent_slots_are_errors_naming_pass_slot_and_resource() {
     let text = std::fs::read_to_string(&path).unwrap();
     let mut registry = Registry::with_builtins();
     passes_deferred_msaa::register(&mut registry, None);
-    let accum = r#""transparent": Texture(format: "rgba16float", samples: 4, when: "blend"),"#;
+    let accum = r#""transparent": Texture(format: "rgba16float", samples: Param(name: "msaa", default: 4), when: "blend"),"#;
     for (from, to, expected) in [
         (
             accum,
-            r#""transparent": Texture(format: "rgba16float", size: Relative(0.5), samples: 4, when: "blend"),"#,
+            r#""transparent": Texture(format: "rgba16float", size: Relative(0.5), samples: Param(name: "msaa", default: 4), when: "blend"),"#,
             &[
                 "pass \"composite transparent\"",
                 "slot \"resolved\": \"resolved\" is Relative(1.0), but the accumulation it \
@@ -682,7 +682,7 @@ fn bad_transparent_slots_are_errors_naming_pass_slot_and_resource() {
         ),
         (
             accum,
-            r#""transparent": Texture(format: "rgba8unorm", samples: 4, when: "blend"),"#,
+            r#""transparent": Texture(format: "rgba8unorm", samples: Param(name: "msaa", default: 4), when: "blend"),"#,
             &[
                 "pass \"transparent\"",
                 "slot \"accum\": \"transparent\" is rgba8unorm, but the transparent accumulation \

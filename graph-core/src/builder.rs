@@ -10,7 +10,7 @@ use crate::pass::{PassKind, PassNode};
 use crate::resource::{BufferDesc, Origin, ResourceDesc, ResourceNode, TextureDesc};
 
 /// A graph being declared. Declaring never fails and never touches a GPU: mistakes are
-/// recorded and reported, all together, by [`Graph::compile`](crate::Graph::compile).
+/// recorded and reported, all together, by [`Graph::compile`](crate::graph::Graph::compile).
 #[derive(Default)]
 pub struct GraphBuilder {
     pub(crate) resources: Vec<ResourceNode>,
@@ -97,8 +97,13 @@ impl GraphBuilder {
 
     /// Finishes declaring. The graph can then be compiled (and recompiled for other
     /// output sizes or profiles) without a GPU.
-    pub fn build(self) -> crate::Graph {
-        crate::Graph::from_builder(self)
+    pub fn build(self) -> crate::graph::Graph {
+        crate::graph::Graph {
+            resources: self.resources,
+            passes: self.passes,
+            features: self.features,
+            declare_errors: self.errors,
+        }
     }
 
     fn add_resource<K: ResourceKind>(
@@ -293,23 +298,29 @@ impl PassBuilder<'_> {
     /// Records the pass's commands. The render pass is already begun with the declared
     /// attachments and inferred load/store operations; the callback runs once per frame.
     #[cfg(feature = "gpu")]
-    pub fn render(&mut self, record: impl FnMut(&mut crate::gpu::RenderContext<'_, '_>) + 'static) {
-        self.node().record = Some(crate::pass::Record::Render(Box::new(record)));
+    pub fn render(
+        &mut self,
+        record: impl FnMut(&mut crate::record::RenderContext<'_, '_>) + 'static,
+    ) {
+        self.node().record = Some(crate::record::Record::Render(Box::new(record)));
     }
 
     /// Records a compute pass's commands into the already begun compute pass.
     #[cfg(feature = "gpu")]
     pub fn compute(
         &mut self,
-        record: impl FnMut(&mut crate::gpu::ComputeContext<'_, '_>) + 'static,
+        record: impl FnMut(&mut crate::record::ComputeContext<'_, '_>) + 'static,
     ) {
-        self.node().record = Some(crate::pass::Record::Compute(Box::new(record)));
+        self.node().record = Some(crate::record::Record::Compute(Box::new(record)));
     }
 
     /// Records a transfer pass's commands into the command encoder.
     #[cfg(feature = "gpu")]
-    pub fn transfer(&mut self, record: impl FnMut(&mut crate::gpu::TransferContext<'_>) + 'static) {
-        self.node().record = Some(crate::pass::Record::Transfer(Box::new(record)));
+    pub fn transfer(
+        &mut self,
+        record: impl FnMut(&mut crate::record::TransferContext<'_>) + 'static,
+    ) {
+        self.node().record = Some(crate::record::Record::Transfer(Box::new(record)));
     }
 
     fn node(&mut self) -> &mut PassNode {

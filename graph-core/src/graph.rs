@@ -8,7 +8,8 @@ use crate::resource::ResourceNode;
 
 /// A graph whose passes and resources are all declared. Compiling it needs no GPU and
 /// does not consume it: the same graph can be compiled for several output sizes or
-/// device profiles, and executed with any plan compiled from it.
+/// device profiles. To execute it, bind it to its plans in a
+/// [`CompiledGraph`](crate::CompiledGraph).
 pub struct Graph {
     pub(crate) resources: Vec<ResourceNode>,
     pub(crate) passes: Vec<PassNode>,
@@ -19,15 +20,6 @@ pub struct Graph {
 }
 
 impl Graph {
-    pub(crate) fn from_builder(builder: crate::GraphBuilder) -> Self {
-        Self {
-            resources: builder.resources,
-            passes: builder.passes,
-            features: builder.features,
-            declare_errors: builder.errors,
-        }
-    }
-
     pub fn resources(&self) -> &[ResourceNode] {
         &self.resources
     }
@@ -71,10 +63,10 @@ impl Graph {
     }
 
     /// The id of the resource called `name` (the first, if names repeat).
-    pub fn resource_id(&self, name: &str) -> Option<crate::ResourceId> {
+    pub fn resource_id(&self, name: &str) -> Option<crate::handle::ResourceId> {
         self.resources
             .iter()
             .position(|r| r.name == name)
-            .map(|i| crate::ResourceId(i as u32))
+            .map(|i| crate::handle::ResourceId(i as u32))
     }
 }

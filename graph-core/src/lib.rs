@@ -8,14 +8,16 @@
 //!    The resulting [`Plan`] is plain data that explains itself. Passes and resources
 //!    may carry a [`Condition`] over named features; [`Graph::compile_for`] a feature
 //!    set drops what does not apply first, and a [`PlanCache`] keeps one plan per set.
-//! 3. **Execute** (feature `gpu`) with [`gpu::Executor`]: pooled allocation, the inferred
-//!    render-pass setup, per-pass timings.
+//! 3. **Execute** (feature `gpu`) with [`gpu::Executor`] a [`CompiledGraph`], a graph
+//!    bound to its plans: pooled allocation, the inferred render-pass setup, per-pass
+//!    timings, and record callbacks that reach only the resources their pass declared.
 //!
 //! Graphs can also be declared in RON files through registered [`file::Plugin`]s.
 
 mod access;
 mod builder;
 mod compile;
+mod compiled;
 mod condition;
 mod error;
 mod graph;
@@ -23,7 +25,10 @@ mod handle;
 mod pass;
 mod plan;
 mod plan_cache;
+mod position;
 mod profile;
+#[cfg(feature = "gpu")]
+mod record;
 mod resource;
 
 pub mod bounded_read;
@@ -41,6 +46,7 @@ pub use access::{
 };
 pub use builder::{GraphBuilder, PassBuilder};
 pub use compile::CompileOptions;
+pub use compiled::CompiledGraph;
 pub use condition::{Condition, ConditionError, Features, Literal};
 pub use error::{GraphError, GraphErrors};
 pub use graph::Graph;
@@ -48,17 +54,17 @@ pub use handle::{
     Buffer, BufferHandle, Handle, Kind, PassId, ResourceId, ResourceKind, Texture, TextureHandle,
 };
 pub use pass::PassKind;
-#[cfg(feature = "gpu")]
-pub use pass::Record;
 pub use pass::{PassNode, Workgroup};
 pub use plan::{
     ColorAttachment, CulledPass, DepthStencilAttachment, Load, MemoryReport, Ops, PhysicalBuffer,
-    PhysicalTexture, Plan, PlannedPass, PlannedResource, Store, TextureShape,
+    PhysicalTexture, Plan, PlannedPass, PlannedResource, Store,
 };
 pub use plan_cache::{Compile, PlanCache, PlanKey};
 pub use profile::{color_bytes_per_sample, color_target_cost, DeviceProfile};
+#[cfg(feature = "gpu")]
+pub use record::Record;
 pub use resource::{
-    texel_bytes, BufferDesc, Origin, ResourceDesc, ResourceNode, Size, TextureDesc,
+    texel_bytes, BufferDesc, Origin, ResourceDesc, ResourceNode, Size, TextureDesc, TextureShape,
 };
 
 pub use wgpu_types as types;

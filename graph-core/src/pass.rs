@@ -28,22 +28,15 @@ impl std::fmt::Display for PassKind {
     }
 }
 
-/// The callback that records a pass's commands. It runs once per executed frame, so it
-/// may keep pipelines and other device objects it creates on the first call.
+/// Defined here, beside the kinds, so that recording does not import the pass model.
 #[cfg(feature = "gpu")]
-pub enum Record {
-    Render(Box<dyn FnMut(&mut crate::gpu::RenderContext<'_, '_>)>),
-    Compute(Box<dyn FnMut(&mut crate::gpu::ComputeContext<'_, '_>)>),
-    Transfer(Box<dyn FnMut(&mut crate::gpu::TransferContext<'_>)>),
-}
-
-#[cfg(feature = "gpu")]
-impl Record {
+impl crate::record::Record {
+    /// The kind of pass whose commands the callback records.
     pub fn kind(&self) -> PassKind {
         match self {
-            Record::Render(_) => PassKind::Render,
-            Record::Compute(_) => PassKind::Compute,
-            Record::Transfer(_) => PassKind::Transfer,
+            Self::Render(_) => PassKind::Render,
+            Self::Compute(_) => PassKind::Compute,
+            Self::Transfer(_) => PassKind::Transfer,
         }
     }
 }
@@ -76,7 +69,7 @@ pub struct PassNode {
     /// A compute pass's workgroup shape and memory, where its plugin declared them.
     pub workgroup: Option<Workgroup>,
     #[cfg(feature = "gpu")]
-    pub(crate) record: Option<Record>,
+    pub(crate) record: Option<crate::record::Record>,
 }
 
 /// `(resource, version)` pairs.

@@ -3,11 +3,11 @@
 //! `rgraph explain` prints it; the executor follows it.
 
 use serde::Serialize;
-use wgpu_types::{BufferUsages, TextureFormat, TextureUsages};
+use wgpu_types::{BufferUsages, TextureUsages};
 
 use crate::handle::{Kind, PassId, ResourceId};
 use crate::pass::PassKind;
-use crate::resource::Origin;
+use crate::resource::{Origin, TextureShape};
 
 #[derive(Clone, Debug, Serialize)]
 pub struct Plan {
@@ -101,17 +101,6 @@ pub struct CulledPass {
     /// What it would have read and written, so drawings can show the dead branch.
     pub reads: Vec<(ResourceId, u32)>,
     pub writes: Vec<(ResourceId, u32)>,
-}
-
-/// The resolved description of a texture.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize)]
-pub struct TextureShape {
-    pub format: TextureFormat,
-    pub width: u32,
-    pub height: u32,
-    pub samples: u32,
-    pub mips: u32,
-    pub layers: u32,
 }
 
 #[derive(Clone, Debug, Serialize)]

@@ -9,8 +9,10 @@ use crate::graph::Graph;
 use crate::plan::Plan;
 
 /// A graph that compiles for a feature set: [`Graph`], or a
-/// [`LoadedGraph`](crate::file::LoadedGraph), whose errors carry file positions.
-pub trait Compile {
+/// [`LoadedGraph`](crate::file::LoadedGraph), whose errors carry file positions. Sealed:
+/// a [`CompiledGraph`](crate::CompiledGraph) relies on the graph it executes being the
+/// graph it compiled.
+pub trait Compile: sealed::Graphs {
     type Error;
 
     /// See [`Graph::compile_for`].
@@ -24,8 +26,26 @@ pub trait Compile {
     fn relevant(&self, features: &Features) -> Features;
 }
 
+/// Reaching the declared graph inside what compiles, for the crate alone.
+pub(crate) mod sealed {
+    use crate::graph::Graph;
+
+    pub trait Graphs {
+        /// The graph that `compile_for` compiles.
+        #[cfg(feature = "gpu")]
+        fn graph_mut(&mut self) -> &mut Graph;
+    }
+
+    impl Graphs for Graph {
+        #[cfg(feature = "gpu")]
+        fn graph_mut(&mut self) -> &mut Graph {
+            self
+        }
+    }
+}
+
 impl Compile for Graph {
-    type Error = crate::GraphErrors;
+    type Error = crate::error::GraphErrors;
 
     fn compile_for(
         &self,
@@ -71,6 +91,18 @@ impl PlanCache {
         options: &CompileOptions,
         features: &Features,
     ) -> Result<&Plan, G::Error> {
+        let key = self.compile_key(graph, options, features)?;
+        Ok(self.get(&key))
+    }
+
+    /// Compiles the plan for `options` and `features` unless it is held, and returns its
+    /// key.
+    pub(crate) fn compile_key<G: Compile>(
+        &mut self,
+        graph: &G,
+        options: &CompileOptions,
+        features: &Features,
+    ) -> Result<PlanKey, G::Error> {
         let key = PlanKey {
             features: graph.relevant(features),
             output_size: options.output_size,
@@ -83,7 +115,12 @@ impl PlanCache {
             self.misses += 1;
             self.plans.insert(key.clone(), plan);
         }
-        Ok(&self.plans[&key])
+        Ok(key)
+    }
+
+    /// The plan of a key [`compile_key`](Self::compile_key) returned.
+    pub(crate) fn get(&self, key: &PlanKey) -> &Plan {
+        &self.plans[key]
     }
 
     /// Requests answered from the cache.

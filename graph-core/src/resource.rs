@@ -152,6 +152,32 @@ pub fn texel_bytes(format: TextureFormat) -> u64 {
     }
 }
 
+/// The WebGPU name of a format (`rgba16float`), the spelling graph files use.
+pub(crate) fn format_name(format: TextureFormat) -> String {
+    ron::to_string(&format)
+        .map(|s| s.trim_matches('"').to_owned())
+        .unwrap_or_else(|_| format!("{format:?}"))
+}
+
+/// Whether passes written for one format can use the other: same aspects, same sample
+/// type.
+pub(crate) fn same_kind(a: TextureFormat, b: TextureFormat) -> bool {
+    a.has_depth_aspect() == b.has_depth_aspect()
+        && a.has_stencil_aspect() == b.has_stencil_aspect()
+        && a.sample_type(None, None) == b.sample_type(None, None)
+}
+
+/// The resolved description of a texture.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize)]
+pub struct TextureShape {
+    pub format: TextureFormat,
+    pub width: u32,
+    pub height: u32,
+    pub samples: u32,
+    pub mips: u32,
+    pub layers: u32,
+}
+
 /// A buffer's size and any usages the graph cannot see from pass accesses (for example
 /// `MAP_READ` on a readback buffer).
 #[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]

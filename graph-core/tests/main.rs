@@ -4,6 +4,7 @@
 mod common;
 mod ron_support;
 
+mod compiled;
 mod conditional_formats;
 mod conditions;
 mod conditions_file;
@@ -17,9 +18,11 @@ mod properties;
 mod ron_bindings;
 mod ron_errors;
 mod ron_names;
+mod ron_params;
 mod ron_roundtrip;
 mod ron_scale;
 mod ron_validate;
+mod structure;
 mod usage;
 mod validate_attachments;
 mod validate_resources;

@@ -61,6 +61,10 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
     let (git_commit, timestamp) = (machine::git_commit(), machine::timestamp());
     let scenes = candidates::scenes(&args.scenes);
     let (pipelines, mut notes) = candidates::pipelines(&args.pipelines);
+    let pipelines = match args.samples {
+        Some(samples) => candidates::at_samples(pipelines, samples, &mut notes),
+        None => pipelines,
+    };
     let session = Session::open(&AdapterChoice::resolve(args.adapter.as_deref()))
         .map_err(BenchError::Device)?;
     let size = (args.width, args.height);

@@ -6,14 +6,14 @@ mod variants;
 use std::path::Path;
 
 use graph_core::explain;
-use graph_core::file::{load_file, FileErrors, LoadedGraph};
+use graph_core::file::{load_file_with, FileErrors, LoadedGraph};
 use graph_core::{CompileOptions, Features, Plan};
 use passes_deferred_msaa::analysis::{Analysis, Features as SceneFeatures, SHALLOW_STEP};
 use passes_deferred_msaa::scene::SceneError;
 
 use super::target::compile_options;
 use super::CommandError;
-use crate::cli::{AssetArgs, Format, Target};
+use crate::cli::{AssetArgs, Format, Samples, Target};
 use crate::registry::registry;
 
 pub fn run(
@@ -21,10 +21,12 @@ pub fn run(
     scene: Option<&str>,
     format: Format,
     target: &Target,
+    samples: &Samples,
     assets: &AssetArgs,
 ) -> Result<(), CommandError> {
     let options = compile_options(target)?;
-    let loaded = load_file(pipeline, &registry()).map_err(|e| invalid(pipeline, e))?;
+    let loaded = load_file_with(pipeline, &registry(), &samples.params())
+        .map_err(|e| invalid(pipeline, e))?;
     let analysis = scene
         .map(|spec| analyse(spec, assets, options.output_size))
         .transpose()?;

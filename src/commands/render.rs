@@ -14,7 +14,7 @@ mod view;
 use std::sync::Arc;
 
 use graph_core::gpu::AdapterChoice;
-use passes_deferred_msaa::scene::Scene;
+use passes_deferred_msaa::scene::{AlphaMode, Scene};
 use passes_deferred_msaa::Overrides;
 
 use super::CommandError;
@@ -48,7 +48,8 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
         false => Specialise::ToScene,
     };
     let host = host(scene, overrides);
-    let pipeline = Pipeline::load(&args.pipeline, host, &[&output], specialise)
+    let params = args.samples.params();
+    let pipeline = Pipeline::load(&args.pipeline, host, &[&output], specialise, &params)
         .map_err(|e| view::unknown(e, &args.view))?;
 
     let choice = AdapterChoice::resolve(args.adapter.as_deref());
@@ -56,10 +57,12 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     let session = Session::open(&choice)?;
 
     progress.stage(format!("compile for {}", session.profile.name));
+    let blended = draws_blended(&pipeline.scene);
     let mut prepared = session.prepare(pipeline, (args.width, args.height))?;
 
-    // Debug views cull the transparent pass on purpose: only the final image misses it.
-    if args.view == view::FINAL && prepared.blend_left_out() {
+    // The opaque passes skip BLEND meshes and only a `transparent` pass draws them; debug
+    // views cull it on purpose, so only the final image can miss it.
+    if args.view == view::FINAL && blended && !prepared.runs("transparent") {
         progress.note(format!(
             "warning: the scene has alpha BLEND materials, but {} has no `transparent` pass \
              to draw them: they are left out (pipelines/*.ron show how to add one)",
@@ -98,8 +101,18 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     output::write_png(&args.out, &image)?;
     drop(progress);
     let specialised = specialise == Specialise::ToScene;
-    eprintln!("{}", summary::text(&prepared.plan, &report, specialised));
+    eprintln!("{}", summary::text(prepared.plan(), &report, specialised));
     Ok(())
+}
+
+/// Whether some mesh of `scene` has an alpha BLEND material.
+fn draws_blended(scene: &Scene) -> bool {
+    scene.meshes.iter().any(|mesh| {
+        scene
+            .materials
+            .get(mesh.material)
+            .is_some_and(|m| m.alpha_mode == AlphaMode::Blend)
+    })
 }
 
 /// The scene; its statistics and the loader's warnings go to stderr.

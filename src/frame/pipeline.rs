@@ -4,7 +4,9 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use graph_core::file::{load_file, load_str, ErrorKind, FileErrors, LoadedGraph, Registry};
+use graph_core::file::{
+    load_file_with, load_str_with, ErrorKind, FileErrors, GraphParams, LoadedGraph, Registry,
+};
 use passes_deferred_msaa::analysis::{Features as SceneFeatures, Variants};
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Exposure, Host, Overrides};
@@ -77,15 +79,17 @@ impl Specialise {
 }
 
 impl Pipeline {
-    /// Loads `path` with the plugins drawing `host`'s scene.
+    /// Loads `path` with the plugins drawing `host`'s scene and `params` for the file's
+    /// parameters.
     pub fn load(
         path: &Path,
         host: Arc<Host>,
         outputs: &[&str],
         specialise: Specialise,
+        params: &GraphParams,
     ) -> Result<Self, FrameError> {
         Self::load_with(path, host, outputs, specialise, |registry| {
-            load_file(path, registry).map_err(|e| file_error(path, e))
+            load_file_with(path, registry, params).map_err(|e| file_error(path, e))
         })
     }
 
@@ -97,9 +101,10 @@ impl Pipeline {
         host: Arc<Host>,
         outputs: &[&str],
         specialise: Specialise,
+        params: &GraphParams,
     ) -> Result<Self, FrameError> {
         Self::load_with(path, host, outputs, specialise, |registry| {
-            load_str(path, text, registry).map_err(FrameError::Pipeline)
+            load_str_with(path, text, registry, params).map_err(FrameError::Pipeline)
         })
     }
 

@@ -1,18 +1,25 @@
 //! A pipeline compiled for a device: frames to run, outputs to read back.
 
+use std::path::PathBuf;
+
+use graph_core::file::LoadedGraph;
 use graph_core::gpu::{read_rgba8, Executor, FrameReport, Gpu, Imports};
-use graph_core::{Plan, ResourceId};
+use graph_core::{CompiledGraph, Plan, ResourceId};
 use image::RgbaImage;
-use passes_deferred_msaa::scene::AlphaMode;
+use passes_deferred_msaa::analysis::Features as SceneFeatures;
 
-use super::{FrameError, Pipeline};
+use super::FrameError;
 
-/// Made by [`Session::prepare`](super::Session::prepare); the executor's pool keeps the
-/// textures across frames, so only the first frame allocates and uploads the scene.
+/// Made by [`Session::prepare`](super::Session::prepare) from a
+/// [`Pipeline`](super::Pipeline); the executor's pool keeps the textures across frames, so
+/// only the first frame allocates and uploads the scene.
 pub struct Prepared<'s> {
     gpu: &'s Gpu,
-    pub pipeline: Pipeline,
-    pub plan: Plan,
+    /// The pipeline's file.
+    pub path: PathBuf,
+    /// What the deferred plugins built their shader variants for.
+    pub shader_features: SceneFeatures,
+    compiled: CompiledGraph<LoadedGraph>,
     executor: Executor,
     /// The kept outputs and their resources, checked readable.
     outputs: Vec<(String, ResourceId)>,
@@ -21,38 +28,39 @@ pub struct Prepared<'s> {
 impl<'s> Prepared<'s> {
     pub(super) fn new(
         gpu: &'s Gpu,
-        pipeline: Pipeline,
-        plan: Plan,
+        path: PathBuf,
+        shader_features: SceneFeatures,
+        compiled: CompiledGraph<LoadedGraph>,
         executor: Executor,
         outputs: Vec<(String, ResourceId)>,
     ) -> Self {
         Prepared {
             gpu,
-            pipeline,
-            plan,
+            path,
+            shader_features,
+            compiled,
             executor,
             outputs,
         }
     }
 
-    /// Whether the scene has meshes with alpha BLEND materials that no pass of the plan
-    /// draws: the opaque passes skip them, and only a `transparent` pass draws them, so a
-    /// pipeline without one (or a view that culls it) leaves them out.
-    pub fn blend_left_out(&self) -> bool {
-        let scene = &self.pipeline.scene;
-        let blended = scene.meshes.iter().any(|mesh| {
-            scene
-                .materials
-                .get(mesh.material)
-                .is_some_and(|m| m.alpha_mode == AlphaMode::Blend)
-        });
-        let loaded = &self.pipeline.loaded;
-        blended
-            && !self
-                .plan
-                .passes
-                .iter()
-                .any(|p| loaded.plugin(&p.name) == Some("transparent"))
+    /// The plan the frames run.
+    pub fn plan(&self) -> &Plan {
+        self.compiled.plan()
+    }
+
+    /// The pipeline's graph, as loaded.
+    pub fn loaded(&self) -> &LoadedGraph {
+        self.compiled.graph()
+    }
+
+    /// Whether a pass of the plan runs `plugin`'s passes (`"transparent"`, say).
+    pub fn runs(&self, plugin: &str) -> bool {
+        let loaded = self.loaded();
+        self.plan()
+            .passes
+            .iter()
+            .any(|p| loaded.plugin(&p.name) == Some(plugin))
     }
 
     /// Runs `frames` frames one after the other, each waited for, and reports each.
@@ -60,9 +68,9 @@ impl<'s> Prepared<'s> {
         (0..frames)
             .map(|_| {
                 self.executor
-                    .execute(&mut self.pipeline.loaded.graph, &self.plan, &Imports::new())
+                    .execute(&mut self.compiled, &Imports::new())
                     .map_err(|source| FrameError::Execute {
-                        pipeline: self.pipeline.path.clone(),
+                        pipeline: self.path.clone(),
                         source,
                     })
             })
@@ -72,7 +80,7 @@ impl<'s> Prepared<'s> {
     /// The last frame's `output` (one of the kept outputs) as raw RGBA8 bytes (sRGB-encoded
     /// for sRGB formats), with any device error the readback raised outside the frame.
     pub fn read(&self, output: &str) -> Result<RgbaImage, FrameError> {
-        let pipeline = &self.pipeline.path;
+        let pipeline = &self.path;
         let unreadable = |found: &str| FrameError::unreadable(output, pipeline, found);
         let id = self
             .outputs
@@ -82,7 +90,7 @@ impl<'s> Prepared<'s> {
             .ok_or_else(|| unreadable("not one of the outputs kept"))?;
         let texture = self
             .executor
-            .texture(&self.plan, id)
+            .texture(self.compiled.plan(), id)
             .ok_or_else(|| unreadable("not kept after the frame"))?;
         let texels = read_rgba8(&self.gpu.device, &self.gpu.queue, texture).map_err(|source| {
             FrameError::Readback {

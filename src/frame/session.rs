@@ -1,9 +1,11 @@
 //! An open device, and pipelines compiled for it.
 
+use std::path::Path;
+
 use graph_core::file::LoadedGraph;
 use graph_core::gpu::{AdapterChoice, Executor, Gpu};
 use graph_core::types::TextureFormat;
-use graph_core::{CompileOptions, DeviceProfile, Origin, Plan, ResourceId};
+use graph_core::{CompileOptions, CompiledGraph, DeviceProfile, Origin, Plan, ResourceId};
 
 use super::{FrameError, Pipeline, Prepared};
 
@@ -34,26 +36,30 @@ impl Session {
             output_size: size,
             profile: self.profile.clone(),
         };
-        let plan = pipeline
-            .loaded
-            .compile_for(&options, &pipeline.features.names())
+        let Pipeline {
+            path,
+            loaded,
+            outputs,
+            features,
+            shader_features,
+            ..
+        } = pipeline;
+        let compiled = CompiledGraph::new_for(loaded, &options, &features.names())
             .map_err(FrameError::Pipeline)?;
-        no_imports(&plan, &pipeline)?;
-        metered(&plan, &pipeline)?;
-        let outputs = pipeline
-            .outputs
+        no_imports(compiled.plan(), &path)?;
+        metered(&compiled, features.auto_exposure, &path)?;
+        let outputs = outputs
             .iter()
             .map(|o| {
-                Ok((
-                    o.clone(),
-                    readable_output(&pipeline.loaded, &plan, o, &pipeline)?,
-                ))
+                let id = readable_output(compiled.graph(), compiled.plan(), o, &path)?;
+                Ok((o.clone(), id))
             })
             .collect::<Result<_, FrameError>>()?;
         Ok(Prepared::new(
             &self.gpu,
-            pipeline,
-            plan,
+            path,
+            shader_features,
+            compiled,
             Executor::new(&self.gpu),
             outputs,
         ))
@@ -104,9 +110,9 @@ fn readable_output(
     loaded: &LoadedGraph,
     plan: &Plan,
     output: &str,
-    pipeline: &Pipeline,
+    pipeline: &Path,
 ) -> Result<ResourceId, FrameError> {
-    let unreadable = |found: String| FrameError::unreadable(output, &pipeline.path, found);
+    let unreadable = |found: String| FrameError::unreadable(output, pipeline, found);
     let handle = loaded
         .names
         .get(output)
@@ -116,7 +122,7 @@ fn readable_output(
         // Kept outputs are never culled as unneeded: a condition dropped this one.
         return Err(FrameError::NotForScene {
             output: output.to_string(),
-            pipeline: pipeline.path.clone(),
+            pipeline: pipeline.to_path_buf(),
             why: why.clone(),
             features: match plan.features.is_empty() {
                 true => "none the file tests".into(),
@@ -141,29 +147,33 @@ fn readable_output(
     }
 }
 
-/// The command line has no engine to bind imported resources from: say so before
-/// executing, rather than with the executor's advice to call `Imports::texture`.
 /// Auto exposure needs a pass that meters: a file without one would tone map with its
 /// fixed exposure, silently.
-fn metered(plan: &Plan, pipeline: &Pipeline) -> Result<(), FrameError> {
+fn metered(
+    compiled: &CompiledGraph<LoadedGraph>,
+    auto_exposure: bool,
+    pipeline: &Path,
+) -> Result<(), FrameError> {
     let metering =
-        |p: &graph_core::PlannedPass| pipeline.loaded.plugin(&p.name) == Some("auto_exposure");
-    match pipeline.features.auto_exposure && !plan.passes.iter().any(metering) {
+        |p: &graph_core::PlannedPass| compiled.graph().plugin(&p.name) == Some("auto_exposure");
+    match auto_exposure && !compiled.plan().passes.iter().any(metering) {
         true => Err(FrameError::NoMetering {
-            pipeline: pipeline.path.clone(),
+            pipeline: pipeline.to_path_buf(),
         }),
         false => Ok(()),
     }
 }
 
-fn no_imports(plan: &Plan, pipeline: &Pipeline) -> Result<(), FrameError> {
+/// The command line has no engine to bind imported resources from: say so before
+/// executing, rather than with the executor's advice to call `Imports::texture`.
+fn no_imports(plan: &Plan, pipeline: &Path) -> Result<(), FrameError> {
     let used = plan
         .resources
         .iter()
         .find(|r| r.origin == Origin::Imported && r.lifetime.is_some());
     match used {
         Some(import) => Err(FrameError::Imports {
-            pipeline: pipeline.path.clone(),
+            pipeline: pipeline.to_path_buf(),
             resource: import.name.clone(),
         }),
         None => Ok(()),

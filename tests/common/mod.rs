@@ -1,8 +1,10 @@
 //! Helpers shared by the GPU tests: the one way they open a device, compile against it,
 //! and build the small pipelines their passes draw with.
 
+use std::sync::Once;
+
 use graph_core::gpu::{AdapterChoice, Gpu};
-use graph_core::{CompileOptions, Graph, Plan};
+use graph_core::{CompileOptions, CompiledGraph, Graph};
 
 /// Test textures are this size: small enough for lavapipe to run every test in a blink.
 pub const SIZE: (u32, u32) = (64, 64);
@@ -10,17 +12,43 @@ pub const SIZE: (u32, u32) = (64, 64);
 /// Opens the adapter `RGRAPH_ADAPTER` names (lavapipe when unset). A machine without one
 /// fails the test with the reason and the fix: GPU tests never skip silently.
 pub fn gpu() -> Gpu {
-    Gpu::open(&AdapterChoice::from_env())
-        .unwrap_or_else(|e| panic!("this test needs a Vulkan adapter: {e}"))
+    let choice = AdapterChoice::from_env();
+    prepare_environment(&choice);
+    Gpu::open(&choice).unwrap_or_else(|e| panic!("this test needs a Vulkan adapter: {e}"))
+}
+
+/// Where Mesa installs lavapipe's driver manifest on x86-64 Linux.
+const LAVAPIPE_ICD: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+
+/// The tests' Vulkan loader environment, as the CLI sets its own (`src/vulkan_env.rs`):
+/// `XDG_RUNTIME_DIR` when unset (else the loader warns on every instance), and, for
+/// lavapipe with no driver list set, only lavapipe's driver (other drivers are probed,
+/// and sometimes crash, otherwise). Call it before opening any device: the first call in
+/// the test process decides, before any instance reads the environment.
+pub fn prepare_environment(choice: &AdapterChoice) {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+            std::env::set_var("XDG_RUNTIME_DIR", "/tmp");
+        }
+        let driver_list_set = std::env::var_os("VK_DRIVER_FILES").is_some()
+            || std::env::var_os("VK_ICD_FILENAMES").is_some();
+        if *choice == AdapterChoice::Lavapipe
+            && !driver_list_set
+            && std::path::Path::new(LAVAPIPE_ICD).exists()
+        {
+            std::env::set_var("VK_DRIVER_FILES", LAVAPIPE_ICD);
+        }
+    });
 }
 
 /// Compiles at [`SIZE`] against the opened device's own profile.
-pub fn plan(graph: &Graph, gpu: &Gpu) -> Plan {
-    graph
-        .compile(&CompileOptions {
-            output_size: SIZE,
-            profile: gpu.profile(),
-        })
+pub fn compile(graph: Graph, gpu: &Gpu) -> CompiledGraph {
+    let options = CompileOptions {
+        output_size: SIZE,
+        profile: gpu.profile(),
+    };
+    CompiledGraph::new(graph, &options)
         .unwrap_or_else(|e| panic!("expected the graph to compile, got:\n{e}"))
 }
 

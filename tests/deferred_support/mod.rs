@@ -12,22 +12,24 @@ pub mod unlit;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use graph_core::file::{load_str, LoadedGraph, Registry};
+use graph_core::file::{load_str_with, GraphParams, LoadedGraph, Registry};
 use graph_core::gpu::{read_rgba16f, read_rgba8, Executor, Gpu, Imports};
-use graph_core::{CompileOptions, Features, Plan};
+use graph_core::{CompileOptions, CompiledGraph, Features, Plan};
 use passes_deferred_msaa::analysis::Variants;
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Host, Overrides};
 
 pub use crate::common::gpu;
 
-/// One render: which pipeline, scene, overrides and size, and text edits to the
-/// pipeline file (each `(from, to)` must match) for variants no file needs to exist for.
+/// One render: which pipeline, scene, overrides and size, values for the pipeline file's
+/// parameters, and text edits to the file (each `(from, to)` must match) for variants no
+/// file or parameter exists for.
 pub struct Render<'a> {
     pub pipeline: &'a str,
     pub scene: &'a str,
     pub overrides: Overrides,
     pub size: (u32, u32),
+    pub params: GraphParams,
     pub edits: Vec<(&'a str, &'a str)>,
     /// Changes to the loaded scene before it is handed to the plugins.
     pub scene_edit: Option<fn(&mut Scene)>,
@@ -43,8 +45,7 @@ pub struct Render<'a> {
 /// An executed frame, whose exported textures can be read back.
 pub struct Frame {
     label: String,
-    loaded: LoadedGraph,
-    plan: Plan,
+    compiled: CompiledGraph<LoadedGraph>,
     executor: Executor,
 }
 
@@ -74,6 +75,7 @@ impl<'a> Render<'a> {
             scene,
             overrides: Overrides::default(),
             size,
+            params: GraphParams::new(),
             edits: Vec::new(),
             scene_edit: None,
             given_scene: None,
@@ -102,6 +104,13 @@ impl<'a> Render<'a> {
 
     pub fn scene_edit(mut self, edit: fn(&mut Scene)) -> Render<'a> {
         self.scene_edit = Some(edit);
+        self
+    }
+
+    /// Loads the pipeline with its parameter `name` at `value` (`msaa` for the sample
+    /// count).
+    pub fn param(mut self, name: &str, value: u32) -> Render<'a> {
+        self.params = self.params.with(name, value);
         self
     }
 
@@ -159,32 +168,35 @@ impl<'a> Render<'a> {
             );
             text = text.replace(from, to);
         }
-        let mut loaded = load_str(&path, &text, &registry)
+        let loaded = load_str_with(&path, &text, &registry, &self.params)
             .unwrap_or_else(|e| panic!("cannot load {}:\n{e}", path.display()));
         let options = CompileOptions {
             output_size: self.size,
             profile: gpu.profile(),
         };
-        let plan = loaded
-            .compile_for(&options, &self.features)
+        let mut compiled = CompiledGraph::new_for(loaded, &options, &self.features)
             .unwrap_or_else(|e| panic!("cannot compile {}:\n{e}", self.pipeline));
         let mut executor = Executor::new(gpu);
         executor
-            .execute(&mut loaded.graph, &plan, &Imports::new())
+            .execute(&mut compiled, &Imports::new())
             .unwrap_or_else(|e| panic!("{} failed on the device: {e}", self.pipeline));
         let edited = if self.edits.is_empty() && self.scene_edit.is_none() {
-            ""
+            String::new()
         } else {
-            "-edited"
+            "-edited".to_string()
         };
+        let params: String = self
+            .params
+            .iter()
+            .map(|(name, value)| format!("-{name}{value}"))
+            .collect();
         Frame {
             label: format!(
-                "{}{edited}-{}",
+                "{}{params}{edited}-{}",
                 self.pipeline.trim_end_matches(".ron"),
                 self.scene.replace([':', '?', '/', '=', '&'], "_")
             ),
-            loaded,
-            plan,
+            compiled,
             executor,
         }
     }
@@ -199,17 +211,18 @@ impl<'a> Render<'a> {
 impl Frame {
     /// The plan the frame executed.
     pub fn plan(&self) -> &Plan {
-        &self.plan
+        self.compiled.plan()
     }
 
     fn texture(&self, name: &str) -> &wgpu::Texture {
         let handle = self
-            .loaded
+            .compiled
+            .graph()
             .names
             .texture(name)
             .unwrap_or_else(|| panic!("{} has no texture named {name}", self.label));
         self.executor
-            .texture(&self.plan, handle.id())
+            .texture(self.compiled.plan(), handle.id())
             .unwrap_or_else(|| panic!("{name} is not an exported texture of {}", self.label))
     }
 

@@ -9,9 +9,7 @@
 use crate::condition::Features;
 use crate::error::GraphError;
 use crate::graph::Graph;
-use crate::resource::{ResourceDesc, ResourceNode, TextureDesc};
-
-use super::validate::{format_name, same_kind};
+use crate::resource::{format_name, same_kind, ResourceDesc, ResourceNode, TextureDesc};
 
 /// Gives `resource` the format its conditions pick for `features`, leaving no
 /// conditional formats behind. Returns why the format changed (`None` where none holds

@@ -11,7 +11,8 @@ use crate::access::{AspectAccess, ColorLoad, Role, TextureRole};
 use crate::graph::Graph;
 use crate::handle::{PassId, ResourceId};
 use crate::pass::PassKind;
-use crate::plan::{ColorAttachment, DepthStencilAttachment, Load, Ops, Store, TextureShape};
+use crate::plan::{ColorAttachment, DepthStencilAttachment, Load, Ops, Store};
+use crate::resource::TextureShape;
 
 use super::cull::Live;
 use super::versions::Versions;

@@ -12,15 +12,13 @@ mod usage;
 mod validate;
 mod versions;
 
-pub(crate) use validate::format_name;
-
 use crate::condition::Features;
 use crate::error::{GraphError, GraphErrors};
 use crate::graph::Graph;
 use crate::handle::{PassId, ResourceId};
-use crate::plan::{CulledPass, MemoryReport, Plan, PlannedPass, PlannedResource, TextureShape};
+use crate::plan::{CulledPass, MemoryReport, Plan, PlannedPass, PlannedResource};
 use crate::profile::{color_bytes_per_sample, DeviceProfile};
-use crate::resource::ResourceDesc;
+use crate::resource::{ResourceDesc, TextureShape};
 
 use conditions::Conditioned;
 use cull::Live;

@@ -9,8 +9,9 @@ use std::hash::Hash;
 use wgpu_types::{BufferUsages, TextureUsages};
 
 use crate::graph::Graph;
-use crate::plan::{PhysicalBuffer, PhysicalTexture, TextureShape};
+use crate::plan::{PhysicalBuffer, PhysicalTexture};
 use crate::resource::Origin;
+use crate::resource::TextureShape;
 
 use super::usage::Usages;
 

@@ -1,15 +1,12 @@
 //! Validation: everything that would make wgpu reject the graph, or make it read garbage,
 //! reported before any GPU work with the pass and resource named.
 
-use wgpu_types::TextureFormat;
-
 use crate::access::{Access, Aspect, AspectAccess, BufferRole, Role, TextureRole};
 use crate::error::GraphError;
 use crate::graph::Graph;
 use crate::pass::{PassKind, PassNode, Workgroup};
-use crate::plan::TextureShape;
 use crate::profile::{color_bytes_per_sample, DeviceProfile};
-use crate::resource::{Origin, ResourceDesc};
+use crate::resource::{format_name, same_kind, Origin, ResourceDesc, TextureShape};
 
 use super::conditions::Conditioned;
 use super::versions::Versions;
@@ -122,14 +119,6 @@ pub(super) fn resources(
             ));
         }
     }
-}
-
-/// Whether passes written for one format can use the other: same aspects, same sample
-/// type.
-pub(super) fn same_kind(a: TextureFormat, b: TextureFormat) -> bool {
-    a.has_depth_aspect() == b.has_depth_aspect()
-        && a.has_stencil_aspect() == b.has_stencil_aspect()
-        && a.sample_type(None, None) == b.sample_type(None, None)
 }
 
 /// Checks every pass's accesses: roles its kind allows, data that exists, formats that fit
@@ -517,11 +506,4 @@ fn aspect_misfit<T>(access: AspectAccess<T>, present: bool, aspect: &str) -> Opt
 
 fn describe_extent(s: &TextureShape) -> String {
     format!("{}x{} with {} sample(s)", s.width, s.height, s.samples)
-}
-
-/// The WebGPU name of a format (`rgba16float`), the spelling graph files use.
-pub(crate) fn format_name(format: TextureFormat) -> String {
-    ron::to_string(&format)
-        .map(|s| s.trim_matches('"').to_owned())
-        .unwrap_or_else(|_| format!("{format:?}"))
 }

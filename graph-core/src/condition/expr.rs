@@ -138,15 +138,6 @@ impl fmt::Display for Condition {
     }
 }
 
-/// Parses, as [`Condition::parse`]: how serde reads a condition written as text.
-impl TryFrom<String> for Condition {
-    type Error = super::ConditionError;
-
-    fn try_from(text: String) -> Result<Condition, Self::Error> {
-        Condition::parse(&text)
-    }
-}
-
 impl From<Condition> for String {
     fn from(condition: Condition) -> String {
         condition.to_string()

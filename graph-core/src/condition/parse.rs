@@ -82,6 +82,15 @@ impl Condition {
     }
 }
 
+/// Parses, as [`Condition::parse`]: how serde reads a condition written as text.
+impl TryFrom<String> for Condition {
+    type Error = ConditionError;
+
+    fn try_from(text: String) -> Result<Condition, Self::Error> {
+        Condition::parse(&text)
+    }
+}
+
 impl FromStr for Condition {
     type Err = ConditionError;
 

@@ -3,9 +3,9 @@
 
 use std::fmt::Write;
 
-use super::bytes;
-use crate::compile::format_name;
+use super::units::bytes;
 use crate::plan::Plan;
+use crate::resource::format_name;
 
 /// What `plan` runs and allocates against `base` (called `base_name`, as in "the general
 /// scene"): the passes that run in `base` only, each with the reason `plan` gives, the

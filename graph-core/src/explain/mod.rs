@@ -2,17 +2,20 @@
 //! comparison of two plans of one graph.
 
 mod compare;
+mod units;
 
 pub use compare::compare;
+pub use units::bytes;
 
 use std::fmt::Write;
 
 use wgpu_types::{BufferUsages, TextureUsages};
 
-use crate::compile::format_name;
 use crate::handle::ResourceId;
-use crate::plan::{Load, Ops, Plan, Store, TextureShape};
+use crate::plan::{Load, Ops, Plan, Store};
+use crate::resource::format_name;
 use crate::resource::Origin;
+use crate::resource::TextureShape;
 
 /// The plan as a report: order and attachments, what was culled and why, every resource's
 /// lifetime, usages and physical texture, and the memory saved by sharing.
@@ -26,7 +29,7 @@ pub fn text(plan: &Plan) -> String {
     let _ = writeln!(out, "\npasses, in execution order:");
     for (i, pass) in plan.passes.iter().enumerate() {
         let _ = writeln!(out, "  {i:>3}. {} ({})", pass.name, pass.kind);
-        let list = |versions: &[(crate::ResourceId, u32)]| {
+        let list = |versions: &[(crate::handle::ResourceId, u32)]| {
             versions
                 .iter()
                 .map(|(r, v)| format!("{}@{v}", plan.resource(*r).name))
@@ -179,7 +182,7 @@ pub fn text(plan: &Plan) -> String {
 /// passes and the versions only they touch drawn grey.
 pub fn dot(plan: &Plan) -> String {
     let mut out = String::from("digraph plan {\n  rankdir=LR;\n  node [fontname=\"Helvetica\"];\n");
-    let version = |r: crate::ResourceId, v: u32| {
+    let version = |r: crate::handle::ResourceId, v: u32| {
         format!("\"{}@{v}\"", plan.resource(r).name.replace('"', "'"))
     };
     let mut live_versions = std::collections::BTreeSet::new();
@@ -280,21 +283,5 @@ fn flag_names<'a>(names: impl Iterator<Item = &'a str>) -> String {
         "none".into()
     } else {
         names.join(" | ")
-    }
-}
-
-/// Bytes in binary units, one decimal.
-pub fn bytes(n: u64) -> String {
-    const UNITS: [&str; 4] = ["B", "KiB", "MiB", "GiB"];
-    let mut value = n as f64;
-    let mut unit = 0;
-    while value >= 1024.0 && unit < UNITS.len() - 1 {
-        value /= 1024.0;
-        unit += 1;
-    }
-    if unit == 0 {
-        format!("{n} B")
-    } else {
-        format!("{value:.1} {}", UNITS[unit])
     }
 }

@@ -7,7 +7,9 @@ use super::any_handle::AnyHandle;
 use super::conditions::FileConditions;
 use super::error::{ErrorKind, FileError, FileErrors};
 use super::loaded::{LoadedGraph, Names};
-use super::plugin::{PluginError, Prepared};
+use super::params::GraphParams;
+use super::plugin::Prepared;
+use super::plugin_error::PluginError;
 use super::schema::{GraphFile, PassDecl};
 use super::slots::Slots;
 use super::source::Source;
@@ -23,13 +25,14 @@ pub(super) fn declare<'f>(
     mut prepared: Vec<Option<Box<dyn Prepared + '_>>>,
     mut conditions: FileConditions,
     order: &[usize],
+    params: GraphParams,
 ) -> Result<LoadedGraph, FileErrors> {
     let mut graph = GraphBuilder::new();
     graph.declare_features(conditions.features.iter());
     let mut handles: HashMap<&'f str, AnyHandle> = HashMap::new();
     let resources = file.resources.0.iter().zip(&mut conditions.resources);
     for (((name, decl), condition), formats) in resources.zip(&mut conditions.formats) {
-        let handle = decl.declare(&mut graph, name.as_str(), std::mem::take(formats));
+        let handle = decl.declare(&mut graph, name.as_str(), std::mem::take(formats), &params);
         if let Some(condition) = condition.take() {
             match handle {
                 AnyHandle::Texture(h) => graph.when(h, condition),
@@ -100,6 +103,7 @@ pub(super) fn declare<'f>(
                 .collect(),
         ),
         plugins,
+        params,
         spans,
     })
 }

@@ -6,10 +6,10 @@ use std::path::Path;
 
 use thiserror::Error;
 
-use super::plugin::PluginError;
-use super::position::Position;
+use super::plugin_error::PluginError;
 use crate::condition::ConditionError;
 use crate::error::GraphError;
+use crate::position::Position;
 
 /// A position in a named file.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -53,6 +53,36 @@ pub enum ErrorKind {
         pass: String,
         plugin: String,
         known: String,
+    },
+
+    #[error(
+        "parameter \"{name}\" is given a value ({value}), but the file declares no parameter \
+         of that name (it declares: {declared})"
+    )]
+    UnknownParam {
+        name: String,
+        value: u32,
+        declared: String,
+    },
+
+    #[error(
+        "parameter \"{name}\" has default {first} where it is first used and {second} here; \
+         give every use the same default"
+    )]
+    ParamDefaults {
+        name: String,
+        first: u32,
+        second: u32,
+    },
+
+    #[error(
+        "parameter \"{name}\" is {value}, but the {field} of \"{resource}\" must be 1 or more"
+    )]
+    ParamValue {
+        name: String,
+        value: u32,
+        resource: String,
+        field: &'static str,
     },
 
     #[error("pass \"{pass}\": parameters of plugin \"{plugin}\": {message}")]

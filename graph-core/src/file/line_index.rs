@@ -1,7 +1,7 @@
 //! Byte offsets to line and column in constant time per lookup (after one pass over the
 //! text), so placing every name of a large graph file stays linear in its size.
 
-use super::position::Position;
+use crate::position::Position;
 
 /// How far apart (in bytes) the character counts are recorded: a lookup counts at most
 /// this many bytes' characters, whatever the length of the line.
@@ -62,7 +62,7 @@ impl<'a> LineIndex<'a> {
 #[cfg(test)]
 mod tests {
     use super::LineIndex;
-    use crate::file::Position;
+    use crate::position::Position;
 
     #[test]
     fn agrees_with_scanning_at_every_offset() {

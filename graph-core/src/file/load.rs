@@ -6,44 +6,58 @@ use std::path::Path;
 use super::declare::declare;
 use super::error::{ErrorKind, FileError, FileErrors};
 use super::loaded::LoadedGraph;
+use super::param_uses;
+use super::params::GraphParams;
 use super::plugin::Prepared;
-use super::position::Position;
 use super::registry::Registry;
 use super::schema::{self, GraphFile};
 use super::source::Source;
 use super::{conditions, names, order, ron_message};
+use crate::position::Position;
 use crate::{bounded_read, embedded};
 
 /// Reads and declares the graph file at `path` (a regular file of at most
 /// [`bounded_read::MAX_GRAPH_FILE_BYTES`]; a built-in file when a relative `path` is not on
-/// disk, see [`embedded`]). Shader paths in it resolve against the
-/// file's directory; messages show `path` as given. Compile the result with
+/// disk, see [`embedded`]), every parameter at its default. Shader paths in it resolve
+/// against the file's directory; messages show `path` as given. Compile the result with
 /// [`LoadedGraph::compile`].
 pub fn load_file(path: impl AsRef<Path>, registry: &Registry) -> Result<LoadedGraph, FileErrors> {
-    let path = path.as_ref();
-    match embedded::read_text(path, bounded_read::MAX_GRAPH_FILE_BYTES) {
-        Ok(text) => load_str(path, &text, registry),
-        Err(e) => Err(FileErrors(vec![FileError {
-            location: Source::new(path, "").location(Position::START),
-            kind: ErrorKind::Unreadable {
-                reason: e.to_string(),
-            },
-        }])),
-    }
+    load_file_with(path, registry, &GraphParams::new())
 }
 
-/// Declares the graph file whose text is `text`, as if read from `path`.
+/// [`load_file`] with values for the file's parameters (see [`GraphParams`]). A value for a
+/// parameter the file does not declare, or a value a texture cannot take, is an error.
+pub fn load_file_with(
+    path: impl AsRef<Path>,
+    registry: &Registry,
+    params: &GraphParams,
+) -> Result<LoadedGraph, FileErrors> {
+    let path = path.as_ref();
+    load_str_with(path, &read(path)?, registry, params)
+}
+
+/// Declares the graph file whose text is `text`, as if read from `path`, every parameter
+/// at its default.
 pub fn load_str(
     path: impl AsRef<Path>,
     text: &str,
     registry: &Registry,
 ) -> Result<LoadedGraph, FileErrors> {
-    // Editors on Windows may start UTF-8 files with a byte-order mark, which `ron` reads as
-    // an unexpected character. It is invisible in the editor, so columns do not count it.
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    load_str_with(path, text, registry, &GraphParams::new())
+}
+
+/// [`load_str`] with values for the file's parameters, as [`load_file_with`].
+pub fn load_str_with(
+    path: impl AsRef<Path>,
+    text: &str,
+    registry: &Registry,
+    params: &GraphParams,
+) -> Result<LoadedGraph, FileErrors> {
+    let text = without_bom(text);
     let source = Source::new(path.as_ref(), text);
     let file = schema::parse(text).map_err(|e| FileErrors(vec![source.syntax(&e)]))?;
     let mut errors = Vec::new();
+    let values = param_uses::resolve(&source, &file, params, &mut errors);
     let prepared = prepare(&source, &file, registry, &mut errors);
     let conditions = conditions::read(&source, &file, &mut errors);
     let edges = names::resolve(&source, &file, &conditions, &mut errors);
@@ -51,7 +65,37 @@ pub fn load_str(
     if !errors.is_empty() {
         return Err(FileErrors::sorted(errors));
     }
-    declare(&source, &file, prepared, conditions, &order)
+    declare(&source, &file, prepared, conditions, &order, values)
+}
+
+/// The parameters the graph file at `path` declares, with their defaults, read without
+/// declaring anything: what a tool checks before giving a value, as the bench does before
+/// setting `msaa`. Errors are the file's syntax errors (or an unreadable file).
+pub fn declared_params(path: impl AsRef<Path>) -> Result<GraphParams, FileErrors> {
+    let path = path.as_ref();
+    let text = read(path)?;
+    let text = without_bom(&text);
+    let file =
+        schema::parse(text).map_err(|e| FileErrors(vec![Source::new(path, text).syntax(&e)]))?;
+    Ok(param_uses::declared(&file))
+}
+
+/// The text of the file at `path`, or the error saying why it cannot be read.
+fn read(path: &Path) -> Result<String, FileErrors> {
+    embedded::read_text(path, bounded_read::MAX_GRAPH_FILE_BYTES).map_err(|e| {
+        FileErrors(vec![FileError {
+            location: Source::new(path, "").location(Position::START),
+            kind: ErrorKind::Unreadable {
+                reason: e.to_string(),
+            },
+        }])
+    })
+}
+
+/// Editors on Windows may start UTF-8 files with a byte-order mark, which `ron` reads as an
+/// unexpected character. It is invisible in the editor, so columns do not count it.
+fn without_bom(text: &str) -> &str {
+    text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
 /// Each pass's plugin with its parameters, by file index (`None` where that failed).

@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 
 use super::any_handle::AnyHandle;
 use super::error::FileErrors;
+use super::params::GraphParams;
 use super::spans::Spans;
 use crate::compile::CompileOptions;
 use crate::condition::Features;
@@ -13,13 +14,16 @@ use crate::handle::{BufferHandle, TextureHandle};
 use crate::plan::Plan;
 
 /// A graph file, declared: compile it (as often as needed, for any output size or
-/// profile) with [`LoadedGraph::compile`], and execute its plans like any graph's.
+/// profile) with [`LoadedGraph::compile`], and bind it to its plans with
+/// [`CompiledGraph`](crate::CompiledGraph) to execute them.
 pub struct LoadedGraph {
     pub graph: Graph,
     /// The handle each name in the file denotes.
     pub names: Names,
     /// The plugin each declared pass names, by pass name.
     pub(crate) plugins: BTreeMap<String, String>,
+    /// Every parameter the file declares, with the value it was loaded with.
+    pub(crate) params: GraphParams,
     pub(crate) spans: Spans,
 }
 
@@ -39,6 +43,12 @@ impl LoadedGraph {
         self.graph.compile_for(options, features).map_err(|errors| {
             FileErrors::sorted(errors.0.into_iter().map(|e| self.spans.locate(e)).collect())
         })
+    }
+
+    /// Every parameter the file declares, with the value it was loaded with (given, or the
+    /// default).
+    pub fn params(&self) -> &GraphParams {
+        &self.params
     }
 
     /// The plugin the file names for the pass called `pass` (a plan's passes carry
@@ -83,7 +93,14 @@ impl LoadedGraph {
     }
 }
 
-impl crate::Compile for LoadedGraph {
+impl crate::plan_cache::sealed::Graphs for LoadedGraph {
+    #[cfg(feature = "gpu")]
+    fn graph_mut(&mut self) -> &mut Graph {
+        &mut self.graph
+    }
+}
+
+impl crate::plan_cache::Compile for LoadedGraph {
     type Error = FileErrors;
 
     fn compile_for(

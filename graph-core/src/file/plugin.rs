@@ -1,13 +1,12 @@
 //! Pass plugins: what a graph file's `plugin: "name"` stands for.
 
 use serde::de::DeserializeOwned;
-use thiserror::Error;
 
+use super::plugin_error::PluginError;
 use super::schema;
 use super::slots::Slots;
 use crate::builder::PassBuilder;
 use crate::pass::PassKind;
-use crate::shader::{ShaderError, Stage};
 
 /// A pass type that graph files can name. The loader deserializes the pass's `params`
 /// into [`Plugin::Params`], begins a pass of [`Plugin::kind`] named as in the file, and
@@ -30,78 +29,6 @@ pub trait Plugin: 'static {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError>;
-}
-
-/// Why a plugin could not set up its pass. The loader adds the file position, the pass
-/// and the plugin name; messages here name the slot and the resource in it.
-#[derive(Debug, Clone, PartialEq, Error)]
-pub enum PluginError {
-    #[error("needs slot \"{slot}\" in its {side}")]
-    MissingSlot { slot: String, side: &'static str },
-
-    #[error("writes slot \"{slot}\" (\"{resource}\"), so the slot belongs in outputs")]
-    NotAnOutput { slot: String, resource: String },
-
-    #[error("only reads slot \"{slot}\" (\"{resource}\"), so the slot belongs in inputs only")]
-    NotAnInput { slot: String, resource: String },
-
-    #[error("slot \"{slot}\" holds {found} \"{resource}\", but needs a {expected}")]
-    SlotKind {
-        slot: String,
-        resource: String,
-        found: &'static str,
-        expected: &'static str,
-    },
-
-    #[error("slot \"{slot}\": \"{resource}\" {why}")]
-    Slot {
-        slot: String,
-        resource: String,
-        why: String,
-    },
-
-    #[error(transparent)]
-    Shader(#[from] ShaderError),
-
-    #[error("shader \"{shader}\" has no {stage} entry point \"{entry}\" (it has: {found})")]
-    MissingEntry {
-        shader: String,
-        stage: Stage,
-        entry: String,
-        found: String,
-    },
-
-    /// A binding the file declares and the shader disagree; `slot` is the file's slot
-    /// bound there, if any.
-    #[error("shader \"{shader}\" @group({group}) @binding({binding}): {why}")]
-    Binding {
-        shader: String,
-        group: u32,
-        binding: u32,
-        slot: Option<String>,
-        why: String,
-    },
-
-    /// Parameters that deserialize but do not make sense together.
-    #[error("{0}")]
-    Invalid(String),
-}
-
-impl PluginError {
-    /// The slot the error is about, so the loader can point at it.
-    pub fn slot(&self) -> Option<&str> {
-        match self {
-            PluginError::NotAnOutput { slot, .. }
-            | PluginError::NotAnInput { slot, .. }
-            | PluginError::SlotKind { slot, .. }
-            | PluginError::Slot { slot, .. } => Some(slot),
-            PluginError::Binding { slot, .. } => slot.as_deref(),
-            PluginError::MissingSlot { .. }
-            | PluginError::Shader(_)
-            | PluginError::MissingEntry { .. }
-            | PluginError::Invalid(_) => None,
-        }
-    }
 }
 
 /// A plugin without its parameter type, as the registry keeps it.

@@ -6,7 +6,8 @@ use std::path::Path;
 use thiserror::Error;
 
 use super::any_handle::AnyHandle;
-use super::plugin::{Plugin, PluginError};
+use super::plugin::Plugin;
+use super::plugin_error::PluginError;
 use super::slots::{SlotPart, Slots};
 use crate::builder::GraphBuilder;
 use crate::handle::{BufferHandle, TextureHandle};

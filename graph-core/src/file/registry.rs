@@ -17,13 +17,6 @@ impl Registry {
         Self::default()
     }
 
-    /// A registry with the built-in generic plugins (see [`crate::plugins`]).
-    pub fn with_builtins() -> Self {
-        let mut registry = Self::new();
-        crate::plugins::register(&mut registry);
-        registry
-    }
-
     /// Adds `plugin` under [`Plugin::NAME`], replacing a plugin of the same name (so an
     /// engine can override a built-in).
     pub fn register<P: Plugin>(&mut self, plugin: P) -> &mut Self {

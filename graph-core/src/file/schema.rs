@@ -6,11 +6,13 @@ use std::borrow::Cow;
 
 use ron::extensions::Extensions;
 use ron::value::RawValue;
+use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer};
 use wgpu_types::{BufferUsages, TextureFormat};
 
 use super::any_handle::AnyHandle;
 use super::pairs::Pairs;
+use super::params::GraphParams;
 use crate::builder::GraphBuilder;
 use crate::condition::Condition;
 use crate::resource::{BufferDesc, Size, TextureDesc};
@@ -59,14 +61,81 @@ pub(crate) struct TextureDecl<'a> {
     pub format_if: Vec<(Name<'a>, TextureFormat)>,
     #[serde(default)]
     size: Size,
-    #[serde(default = "one")]
-    samples: u32,
-    #[serde(default = "one")]
-    mips: u32,
-    #[serde(default = "one")]
-    layers: u32,
+    #[serde(borrow, default = "Count::one")]
+    pub samples: Count<'a>,
+    #[serde(borrow, default = "Count::one")]
+    pub mips: Count<'a>,
+    #[serde(borrow, default = "Count::one")]
+    pub layers: Count<'a>,
     #[serde(borrow, default)]
     when: Option<Name<'a>>,
+}
+
+/// A texture's `samples`, `mips` or `layers` as written: a number, or a parameter whose
+/// value the loader is given (see [`GraphParams`](super::GraphParams)):
+/// `Param(name: "msaa", default: 4)`.
+#[derive(Debug)]
+pub(crate) enum Count<'a> {
+    Value(u32),
+    Param(ParamUse<'a>),
+}
+
+/// By hand rather than `#[serde(untagged)]`: through serde's buffered content, `ron`
+/// reads `Param(..)` as an enum variant, which no untagged struct matches.
+impl<'de: 'a, 'a> Deserialize<'de> for Count<'a> {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct CountVisitor<'a>(std::marker::PhantomData<&'a ()>);
+
+        impl<'de: 'a, 'a> Visitor<'de> for CountVisitor<'a> {
+            type Value = Count<'a>;
+
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a count (4) or a parameter (Param(name: \"msaa\", default: 4))")
+            }
+
+            fn visit_u64<E: de::Error>(self, value: u64) -> Result<Count<'a>, E> {
+                u32::try_from(value)
+                    .map(Count::Value)
+                    .map_err(|_| E::invalid_value(de::Unexpected::Unsigned(value), &self))
+            }
+
+            fn visit_i64<E: de::Error>(self, value: i64) -> Result<Count<'a>, E> {
+                u32::try_from(value)
+                    .map(Count::Value)
+                    .map_err(|_| E::invalid_value(de::Unexpected::Signed(value), &self))
+            }
+
+            fn visit_map<A: de::MapAccess<'de>>(self, map: A) -> Result<Count<'a>, A::Error> {
+                ParamUse::deserialize(de::value::MapAccessDeserializer::new(map)).map(Count::Param)
+            }
+        }
+
+        deserializer.deserialize_any(CountVisitor(std::marker::PhantomData))
+    }
+}
+
+/// `Param(name: "msaa", default: 4)`.
+#[derive(Debug, Deserialize)]
+#[serde(rename = "Param", deny_unknown_fields)]
+pub(crate) struct ParamUse<'a> {
+    #[serde(borrow)]
+    pub name: Name<'a>,
+    pub default: u32,
+}
+
+impl Count<'_> {
+    fn one() -> Self {
+        Count::Value(1)
+    }
+
+    /// The number, or the parameter's value in `values` (which holds every declared
+    /// parameter once they are resolved).
+    fn value(&self, values: &GraphParams) -> u32 {
+        match self {
+            Count::Value(n) => *n,
+            Count::Param(p) => values.get(p.name.as_str()).unwrap_or(p.default),
+        }
+    }
 }
 
 /// A [`BufferDesc`] as a file writes it, with its condition.
@@ -80,22 +149,32 @@ pub(crate) struct BufferDecl<'a> {
     when: Option<Name<'a>>,
 }
 
-fn one() -> u32 {
-    1
-}
-
-impl TextureDecl<'_> {
-    /// The description, with the conditional formats as read (and checked) apart.
-    fn desc(&self, format_if: Vec<(Condition, TextureFormat)>) -> TextureDesc {
+impl<'a> TextureDecl<'a> {
+    /// The description, with the conditional formats as read (and checked) apart and
+    /// parameters at their `values`.
+    fn desc(
+        &self,
+        format_if: Vec<(Condition, TextureFormat)>,
+        values: &GraphParams,
+    ) -> TextureDesc {
         TextureDesc {
             format: self.format,
             fallback: self.fallback,
             format_if,
             size: self.size,
-            samples: self.samples,
-            mips: self.mips,
-            layers: self.layers,
+            samples: self.samples.value(values),
+            mips: self.mips.value(values),
+            layers: self.layers.value(values),
         }
+    }
+
+    /// The counts as written, with their field names.
+    pub fn counts(&self) -> [(&'static str, &Count<'a>); 3] {
+        [
+            ("samples", &self.samples),
+            ("mips", &self.mips),
+            ("layers", &self.layers),
+        ]
     }
 }
 
@@ -110,17 +189,21 @@ impl BufferDecl<'_> {
 
 impl<'a> ResourceDecl<'a> {
     /// Declares the resource in `graph`, returning its version-0 handle. `format_if` are
-    /// a texture's conditional formats, their conditions parsed.
+    /// a texture's conditional formats, their conditions parsed; `values` the value of
+    /// every parameter the file declares.
     pub fn declare(
         &self,
         graph: &mut GraphBuilder,
         name: &str,
         format_if: Vec<(Condition, TextureFormat)>,
+        values: &GraphParams,
     ) -> AnyHandle {
         match self {
-            ResourceDecl::Texture(t) => graph.create_texture(name, t.desc(format_if)).into(),
+            ResourceDecl::Texture(t) => {
+                graph.create_texture(name, t.desc(format_if, values)).into()
+            }
             ResourceDecl::ImportedTexture(t) => {
-                graph.import_texture(name, t.desc(format_if)).into()
+                graph.import_texture(name, t.desc(format_if, values)).into()
             }
             ResourceDecl::Buffer(b) => graph.create_buffer(name, b.desc()).into(),
             ResourceDecl::ImportedBuffer(b) => graph.import_buffer(name, b.desc()).into(),
@@ -133,6 +216,14 @@ impl<'a> ResourceDecl<'a> {
             self,
             ResourceDecl::ImportedTexture(_) | ResourceDecl::ImportedBuffer(_)
         )
+    }
+
+    /// A texture as written (`None` for a buffer).
+    pub fn texture(&self) -> Option<&TextureDecl<'a>> {
+        match self {
+            ResourceDecl::Texture(t) | ResourceDecl::ImportedTexture(t) => Some(t),
+            ResourceDecl::Buffer(_) | ResourceDecl::ImportedBuffer(_) => None,
+        }
     }
 
     /// A texture's conditional formats, as written (none for a buffer).
@@ -164,7 +255,7 @@ pub(crate) struct PassDecl<'a> {
     #[serde(borrow, default)]
     pub when: Option<Name<'a>>,
     #[serde(borrow, default)]
-    pub params: Option<Params<'a>>,
+    pub params: Option<PluginParams<'a>>,
     /// Slot name -> name of the version read.
     #[serde(borrow, default)]
     pub inputs: Pairs<Name<'a>, Name<'a>>,
@@ -216,11 +307,11 @@ impl Name<'_> {
 
 /// A plugin's parameters, still as RON text borrowed from the file.
 #[derive(Debug)]
-pub(crate) struct Params<'a>(pub &'a RawValue);
+pub(crate) struct PluginParams<'a>(pub &'a RawValue);
 
-impl<'de: 'a, 'a> Deserialize<'de> for Params<'a> {
+impl<'de: 'a, 'a> Deserialize<'de> for PluginParams<'a> {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        <&RawValue>::deserialize(deserializer).map(Params)
+        <&RawValue>::deserialize(deserializer).map(PluginParams)
     }
 }
 

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
 
 use super::any_handle::AnyHandle;
-use super::plugin::PluginError;
+use super::plugin_error::PluginError;
 use super::schema::PassDecl;
 use crate::access::ColorLoad;
 use crate::handle::{Handle, Kind, ResourceKind, Texture};

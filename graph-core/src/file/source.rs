@@ -7,9 +7,9 @@ use ron::value::RawValue;
 
 use super::error::{ErrorKind, FileError, Location};
 use super::line_index::LineIndex;
-use super::position::Position;
 use super::ron_message;
 use super::schema::{offset_in, Name};
+use crate::position::Position;
 
 pub(crate) struct Source<'a> {
     path: &'a Path,

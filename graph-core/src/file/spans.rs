@@ -4,10 +4,10 @@
 use std::collections::HashMap;
 
 use super::error::{ErrorKind, FileError, Location};
-use super::position::Position;
 use super::schema::GraphFile;
 use super::source::Source;
 use crate::error::GraphError;
+use crate::position::Position;
 
 #[derive(Debug, Clone)]
 pub(crate) struct Spans {

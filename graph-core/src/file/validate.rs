@@ -5,10 +5,10 @@ use std::path::{Path, PathBuf};
 
 use super::error::{ErrorKind, FileError, FileErrors, Location};
 use super::load::load_file;
-use super::position::Position;
 use super::registry::Registry;
 use crate::compile::CompileOptions;
 use crate::plan::Plan;
+use crate::position::Position;
 use crate::shader::{Shader, ShaderError};
 
 /// What [`validate_dir`] checked, sorted: graph files and shaders.

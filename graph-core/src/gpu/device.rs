@@ -6,7 +6,7 @@
 
 use std::fmt;
 use std::str::FromStr;
-use std::sync::{Arc, Mutex, Once};
+use std::sync::{Arc, Mutex};
 
 use wgpu::{Backends, DeviceType, Features, TextureFormat};
 
@@ -169,11 +169,10 @@ impl Gpu {
     /// Opens the chosen adapter requesting `wanted & adapter.features()`.
     ///
     /// The device gets `adapter.limits()`, not the WebGPU defaults: a G-buffer needs more
-    /// than the default 32 color bytes per sample. Choosing lavapipe also narrows the
-    /// Vulkan loader to the lavapipe driver when no driver list is set (the first open in
-    /// a process decides that for the whole process).
+    /// than the default 32 color bytes per sample. The Vulkan loader's environment
+    /// (`VK_DRIVER_FILES`, `XDG_RUNTIME_DIR`) is the application's to set, before any
+    /// thread starts: the library only reads it.
     pub fn open_with(choice: &AdapterChoice, wanted: Features) -> Result<Gpu, DeviceError> {
-        prepare_environment(choice);
         let instance = new_instance();
         let adapters = pollster::block_on(instance.enumerate_adapters(Backends::VULKAN));
         if adapters.is_empty() {
@@ -280,10 +279,8 @@ pub const COMMON_FORMATS: &[TextureFormat] = &[
     TextureFormat::Depth32FloatStencil8,
 ];
 
-/// Every Vulkan adapter the loader finds, in the loader's order. Does not narrow the
-/// loader to lavapipe, so the list shows everything `--adapter` could pick.
+/// Every Vulkan adapter the loader finds, in the loader's order.
 pub fn list_adapters() -> Vec<AdapterSummary> {
-    prepare_environment(&AdapterChoice::FirstGpu);
     let instance = new_instance();
     pollster::block_on(instance.enumerate_adapters(Backends::VULKAN))
         .iter()
@@ -321,30 +318,6 @@ fn new_instance() -> wgpu::Instance {
         flags: wgpu::InstanceFlags::default().with_env(),
         ..wgpu::InstanceDescriptor::new_without_display_handle()
     })
-}
-
-const LAVAPIPE_ICD: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-
-/// Sets the variables the Vulkan loader reads, once per process and before any instance
-/// exists: changing the environment while another thread reads it is undefined, and the
-/// loader reads it only when an instance is created anyway.
-fn prepare_environment(choice: &AdapterChoice) {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        // Without it the loader warns on every instance in containers and CI.
-        if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
-            std::env::set_var("XDG_RUNTIME_DIR", "/tmp");
-        }
-        let driver_list_set = std::env::var_os("VK_DRIVER_FILES").is_some()
-            || std::env::var_os("VK_ICD_FILENAMES").is_some();
-        // Loading only lavapipe skips probing (and sometimes crashing in) other drivers.
-        if *choice == AdapterChoice::Lavapipe
-            && !driver_list_set
-            && std::path::Path::new(LAVAPIPE_ICD).exists()
-        {
-            std::env::set_var("VK_DRIVER_FILES", LAVAPIPE_ICD);
-        }
-    });
 }
 
 /// Capabilities of every uncompressed format the adapter knows.

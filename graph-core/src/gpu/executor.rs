@@ -1,21 +1,23 @@
-//! Executing a compiled [`Plan`]: physical resources from the pool, each pass begun with
+//! Executing a [`CompiledGraph`]'s plan: physical resources from the pool, each pass begun with
 //! the planned attachments and load/store operations, the record callbacks, one submit,
 //! GPU timestamps per pass. wgpu inserts the barriers; the plan's usages and order are
 //! what make them right.
 
-use std::collections::hash_map::Entry;
 use std::collections::HashMap;
 use std::time::Instant;
 
 use crate::access::{Aspect, Role, TextureRole};
-use crate::compile::format_name;
+use crate::compiled::CompiledGraph;
 use crate::graph::Graph;
 use crate::handle::ResourceId;
-use crate::pass::{PassKind, Record};
-use crate::plan::{Load, Ops, Plan, PlannedPass, Store, TextureShape};
-use crate::resource::{texel_bytes, Origin};
+use crate::pass::PassKind;
+use crate::plan::{Load, Ops, Plan, PlannedPass, Store};
+use crate::plan_cache::Compile;
+use crate::record::{
+    ComputeContext, FrameObjects, FrameResources, Record, RenderContext, TransferContext,
+};
+use crate::resource::{format_name, texel_bytes, Origin, TextureShape};
 
-use super::context::{ComputeContext, FrameResources, RenderContext, TransferContext};
 use super::device::{ErrorLog, Gpu};
 use super::error_scopes::ErrorScopes;
 use super::imports::{Binding, ImportError, Imports};
@@ -52,8 +54,9 @@ pub struct FrameReport {
 /// Why a frame could not execute.
 #[derive(Debug, thiserror::Error)]
 pub enum ExecuteError {
-    #[error("the plan was not compiled from this graph ({0}); compile the graph again")]
-    PlanMismatch(String),
+    /// The plan leaves out what its own graph uses: a bug in graph-core's compiler.
+    #[error("the plan does not provide what its graph uses ({0}); this is a bug in graph-core")]
+    Inconsistent(String),
 
     #[error("pass \"{pass}\" is a {kind} pass but its callback records {record} commands")]
     RecordKind {
@@ -122,21 +125,22 @@ impl Executor {
         }
     }
 
-    /// Runs one frame of `plan`, which must have been compiled from `graph`, and waits
-    /// for the GPU to finish it.
+    /// Runs one frame of `compiled`'s current plan, calling its graph's record callbacks,
+    /// and waits for the GPU to finish it.
     ///
-    /// Checks the plan against the graph and `imports` against the plan before touching
-    /// the device. Validation and out-of-memory errors while recording (record callbacks
-    /// included) or submitting come back as [`ExecuteError::Device`], not as panics.
+    /// Checks `imports` against the plan before touching the device. Validation and
+    /// out-of-memory errors while recording (record callbacks included) or submitting
+    /// come back as [`ExecuteError::Device`], not as panics. A record callback that looks
+    /// up a resource its pass did not declare panics (see [`FrameResources`]).
     /// Invalidates what [`texture`](Self::texture) and [`buffer`](Self::buffer) returned
     /// for the previous frame: the pool may hand those objects to this frame's resources.
-    pub fn execute(
+    pub fn execute<G: Compile>(
         &mut self,
-        graph: &mut Graph,
-        plan: &Plan,
+        compiled: &mut CompiledGraph<G>,
         imports: &Imports,
     ) -> Result<FrameReport, ExecuteError> {
-        check_plan(graph, plan)?;
+        let (graph, plan) = compiled.parts();
+        check_records(graph, plan)?;
         let bound = imports.resolve(graph, plan)?;
         // Scopes are per thread and capture everything below: resource creation, each
         // pass (which pushes its own scopes too), the submission.
@@ -163,7 +167,8 @@ impl Executor {
     }
 
     /// The physical texture of an exported, graph-created texture of the last executed
-    /// frame, for readback. `plan` must be the plan that frame executed. `None` for
+    /// frame, for readback. `plan` must be the plan that frame executed (the
+    /// [`CompiledGraph::plan`] it executed). `None` for
     /// resources that are not exported (their memory may hold another resource by the
     /// end of the frame), imported (the engine has them) or were not used.
     pub fn texture(&self, plan: &Plan, id: ResourceId) -> Option<&wgpu::Texture> {
@@ -241,7 +246,7 @@ impl Executor {
             for access in &pass.accesses {
                 let planned = &plan.resources[access.resource.index()];
                 let mismatch = || {
-                    ExecuteError::PlanMismatch(format!(
+                    ExecuteError::Inconsistent(format!(
                         "pass \"{}\" uses \"{}\", which the plan does not allocate",
                         pass.name, planned.name
                     ))
@@ -288,15 +293,30 @@ impl Executor {
                             _ => {}
                         }
                         for key in keys {
-                            if let Entry::Vacant(slot) = objects.views.entry((planned.id, key)) {
-                                slot.insert(self.view(source, key).map_err(|aspect| {
-                                    ImportError::ViewAspect {
-                                        pass: pass.name.clone(),
-                                        resource: planned.name.clone(),
-                                        aspect,
-                                    }
-                                })?);
+                            let made = match key {
+                                ViewKey::Aspect(aspect) => {
+                                    objects.views.contains_key(&(planned.id, aspect))
+                                }
+                                ViewKey::Attachment => {
+                                    objects.attachments.contains_key(&planned.id)
+                                }
+                            };
+                            if made {
+                                continue;
                             }
+                            let view = self.view(source, key).map_err(|aspect| {
+                                ImportError::ViewAspect {
+                                    pass: pass.name.clone(),
+                                    resource: planned.name.clone(),
+                                    aspect,
+                                }
+                            })?;
+                            match key {
+                                ViewKey::Aspect(aspect) => {
+                                    objects.views.insert((planned.id, aspect), view)
+                                }
+                                ViewKey::Attachment => objects.attachments.insert(planned.id, view),
+                            };
                         }
                     }
                 }
@@ -352,7 +372,6 @@ impl Executor {
         objects: &FrameObjects,
         slots: &[Option<u32>],
     ) -> Result<(Vec<wgpu::CommandBuffer>, Vec<u64>), ExecuteError> {
-        let resources = objects.resources(self, plan.output_size);
         let timestamps = self.timestamps.as_ref();
         let mut buffers = Vec::with_capacity(plan.passes.len() + 1);
         let mut cpu_ns = Vec::with_capacity(plan.passes.len());
@@ -364,11 +383,20 @@ impl Executor {
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some(&planned.name),
                 });
-            let record = &mut graph.passes[planned.id.index()].record;
+            let node = &mut graph.passes[planned.id.index()];
+            let resources = FrameResources {
+                device: &self.device,
+                queue: &self.queue,
+                output_size: plan.output_size,
+                objects,
+                pass: &node.name,
+                accesses: &node.accesses,
+                resources: &graph.resources,
+            };
             let recorded = record_pass(
                 &mut encoder,
                 planned,
-                record.as_mut(),
+                node.record.as_mut(),
                 objects,
                 &resources,
                 timestamps.zip(slot),
@@ -469,50 +497,14 @@ enum Source<'b> {
     View(&'b wgpu::TextureView),
 }
 
-/// This frame's objects by resource, owned here (cheap reference-counted clones) so that
-/// [`FrameResources`] can borrow them while the executor's own fields stay borrowable.
-#[derive(Default)]
-struct FrameObjects {
-    textures: HashMap<ResourceId, (wgpu::Texture, TextureShape)>,
-    views: HashMap<(ResourceId, ViewKey), wgpu::TextureView>,
-    buffers: HashMap<ResourceId, wgpu::Buffer>,
-}
-
 impl FrameObjects {
-    /// What record callbacks see: borrowed from here, so valid for this frame only.
-    fn resources<'f>(
-        &'f self,
-        executor: &'f Executor,
-        output_size: (u32, u32),
-    ) -> FrameResources<'f> {
-        FrameResources {
-            device: &executor.device,
-            queue: &executor.queue,
-            output_size,
-            textures: self
-                .textures
-                .iter()
-                .map(|(id, (t, shape))| (*id, (t, *shape)))
-                .collect(),
-            views: self
-                .views
-                .iter()
-                .filter_map(|((id, key), view)| match key {
-                    ViewKey::Aspect(aspect) => Some(((*id, *aspect), view)),
-                    ViewKey::Attachment => None,
-                })
-                .collect(),
-            buffers: self.buffers.iter().map(|(id, b)| (*id, b)).collect(),
-        }
-    }
-
     fn attachment(
         &self,
         pass: &PlannedPass,
         id: ResourceId,
     ) -> Result<&wgpu::TextureView, ExecuteError> {
-        self.views.get(&(id, ViewKey::Attachment)).ok_or_else(|| {
-            ExecuteError::PlanMismatch(format!(
+        self.attachments.get(&id).ok_or_else(|| {
+            ExecuteError::Inconsistent(format!(
                 "pass \"{}\" attaches resource #{}, which it does not declare",
                 pass.name, id.0
             ))
@@ -641,35 +633,10 @@ fn operations<T: Copy, V>(ops: &Ops<T>, value: impl Fn(T) -> V) -> wgpu::Operati
     }
 }
 
-/// The plan must name this graph's resources and passes, and each pass's callback must
-/// record the kind of commands the pass begins.
-fn check_plan(graph: &Graph, plan: &Plan) -> Result<(), ExecuteError> {
-    let mismatch = |what: String| Err(ExecuteError::PlanMismatch(what));
-    if plan.resources.len() != graph.resources.len() {
-        return mismatch(format!(
-            "the plan has {} resources, the graph {}",
-            plan.resources.len(),
-            graph.resources.len()
-        ));
-    }
-    for (planned, node) in plan.resources.iter().zip(&graph.resources) {
-        if planned.name != node.name {
-            return mismatch(format!(
-                "resource #{} is \"{}\" in the plan but \"{}\" in the graph",
-                planned.id.0, planned.name, node.name
-            ));
-        }
-    }
+/// Each pass's callback must record the kind of commands the pass begins.
+fn check_records(graph: &Graph, plan: &Plan) -> Result<(), ExecuteError> {
     for planned in &plan.passes {
-        let Some(node) = graph.passes.get(planned.id.index()) else {
-            return mismatch(format!("the graph has no pass \"{}\"", planned.name));
-        };
-        if node.name != planned.name || node.kind != planned.kind {
-            return mismatch(format!(
-                "pass #{} is {} pass \"{}\" in the plan but {} pass \"{}\" in the graph",
-                planned.id.0, planned.kind, planned.name, node.kind, node.name
-            ));
-        }
+        let node = &graph.passes[planned.id.index()];
         if let Some(record) = &node.record {
             if record.kind() != node.kind {
                 return Err(ExecuteError::RecordKind {

@@ -11,8 +11,9 @@ use wgpu::TextureUsages;
 use crate::explain::{buffer_usages, describe_shape, texture_usages};
 use crate::graph::Graph;
 use crate::handle::{Handle, ResourceId, ResourceKind};
-use crate::plan::{Plan, TextureShape};
+use crate::plan::Plan;
 use crate::resource::Origin;
+use crate::resource::TextureShape;
 
 /// How a binding names its resource.
 #[derive(Clone, Debug, PartialEq, Eq)]

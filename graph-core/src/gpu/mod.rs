@@ -2,7 +2,6 @@
 //! ([`Gpu::open`]), running compiled plans ([`Executor`]) with engine-owned resources
 //! ([`Imports`]), and reading results back ([`read_texture`]).
 
-mod context;
 mod device;
 mod error_scopes;
 mod executor;
@@ -11,7 +10,7 @@ mod pool;
 mod readback;
 mod timing;
 
-pub use context::{ComputeContext, FrameResources, RenderContext, TransferContext};
+pub use crate::record::{ComputeContext, FrameResources, RenderContext, TransferContext};
 pub use device::{
     is_lavapipe, list_adapters, AdapterChoice, AdapterSummary, DeviceError, EmptyChoice, Gpu,
     COMMON_FORMATS,

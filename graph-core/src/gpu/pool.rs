@@ -13,7 +13,7 @@ use wgpu::{BufferUsages, TextureUsages};
 
 use super::error_scopes::ErrorScopes;
 use crate::access::Aspect;
-use crate::plan::TextureShape;
+use crate::resource::TextureShape;
 
 /// Frames an unused object survives before it is freed: long enough to ride out a frame
 /// that skips a pass, short enough that a resize does not keep both sizes for long.

@@ -10,9 +10,9 @@ use wgpu_types::{
 
 use crate::access::{Aspect, BufferRole};
 use crate::builder::PassBuilder;
-use crate::compile::format_name;
 use crate::file::{PluginError, Slots};
 use crate::handle::{Buffer, BufferHandle, Texture, TextureHandle};
+use crate::resource::format_name;
 use crate::resource::{ResourceDesc, TextureDesc};
 use crate::shader::{BindingKind, Entry, SampleKind, Shader, ShaderBinding};
 

@@ -132,9 +132,9 @@ fn fixed_counts(counts: [u32; 3]) -> Result<[u32; 3], PluginError> {
 #[cfg(feature = "gpu")]
 mod gpu {
     use super::Workgroups;
-    use crate::gpu::ComputeContext;
     use crate::plugins::binding::Bound;
     use crate::plugins::gpu::{module, GpuBindings};
+    use crate::record::ComputeContext;
 
     /// Device objects, made on the first frame and kept.
     struct State {

@@ -11,10 +11,10 @@ use serde::Deserialize;
 use super::binding::texture_desc;
 use crate::access::BufferRole;
 use crate::builder::PassBuilder;
-use crate::compile::format_name;
 use crate::file::{Plugin, PluginError, Slots};
 use crate::handle::{Buffer, Kind, Texture};
 use crate::pass::PassKind;
+use crate::resource::format_name;
 
 pub struct Copy;
 

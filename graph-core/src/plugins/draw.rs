@@ -146,10 +146,10 @@ fn check_outputs(
 #[cfg(feature = "gpu")]
 mod gpu {
     use super::{Blend, FULLSCREEN_VS};
-    use crate::gpu::RenderContext;
     use crate::handle::TextureHandle;
     use crate::plugins::binding::Bound;
     use crate::plugins::gpu::{module, GpuBindings};
+    use crate::record::RenderContext;
 
     /// Target formats and sample counts a pipeline was made for.
     type Key = Vec<(wgpu::TextureFormat, u32)>;

@@ -6,8 +6,8 @@ use wgpu::util::DeviceExt;
 
 use super::binding::{Bound, Filter, Source};
 use crate::access::Aspect;
-use crate::gpu::FrameResources;
 use crate::handle::{BufferHandle, TextureHandle};
+use crate::record::FrameResources;
 
 /// The bindings of one pass on one device.
 pub(crate) struct GpuBindings {

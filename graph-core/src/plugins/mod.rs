@@ -24,6 +24,16 @@ pub use fullscreen::{Fullscreen, FullscreenParams};
 
 use crate::file::Registry;
 
+impl Registry {
+    /// A registry with the built-in generic plugins (those of [`register`]). Defined here,
+    /// beside the plugins, so that the file front-end does not import them.
+    pub fn with_builtins() -> Self {
+        let mut registry = Self::new();
+        register(&mut registry);
+        registry
+    }
+}
+
 /// Adds every built-in plugin to `registry`.
 pub fn register(registry: &mut Registry) {
     registry

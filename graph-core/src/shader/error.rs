@@ -2,7 +2,7 @@
 
 use thiserror::Error;
 
-use crate::file::Position;
+use crate::position::Position;
 
 /// A WGSL file that could not be read, or that naga rejects.
 #[derive(Debug, Clone, PartialEq, Eq, Error)]

@@ -9,7 +9,7 @@ use naga::{
 use wgpu_types::TextureFormat;
 
 use super::wgsl::Shader;
-use crate::compile::format_name;
+use crate::resource::format_name;
 
 /// A pipeline stage whose entry points plugins look up.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]

@@ -6,7 +6,7 @@ use std::path::Path;
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
 use super::error::ShaderError;
-use crate::file::Position;
+use crate::position::Position;
 use crate::{bounded_read, embedded};
 
 /// A WGSL module that naga parsed and validated with its default capabilities (those of

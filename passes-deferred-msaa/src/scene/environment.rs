@@ -66,17 +66,14 @@ fn polynomials(d: Vec3) -> [f32; 9] {
 }
 
 /// Ramamoorthi and Hanrahan's convolution of each band with the clamped cosine.
-const BAND_SCALE: [f32; 9] = [
-    std::f32::consts::PI,
-    2.094_395,
-    2.094_395,
-    2.094_395,
-    0.785_398,
-    0.785_398,
-    0.785_398,
-    0.785_398,
-    0.785_398,
-];
+const BAND_SCALE: [f32; 9] = {
+    use std::f32::consts::{FRAC_PI_4, PI};
+    let two_thirds = 2.0 * PI / 3.0;
+    [
+        PI, two_thirds, two_thirds, two_thirds, FRAC_PI_4, FRAC_PI_4, FRAC_PI_4, FRAC_PI_4,
+        FRAC_PI_4,
+    ]
+};
 
 /// The irradiance `E(n) = ∫ L(ω) max(n·ω, 0) dω` of the neutral environment (intensity 1)
 /// as 9 spherical-harmonic coefficients, each already convolved with the clamped cosine

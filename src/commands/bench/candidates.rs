@@ -4,10 +4,11 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use graph_core::embedded;
-use graph_core::file::load_file;
+use graph_core::file::{declared_params, load_file, GraphParams};
 use passes_deferred_msaa::scene::{builtin_names, BUILTIN_PREFIX};
 use passes_deferred_msaa::Host;
 
+use crate::cli::MSAA;
 use crate::frame::{FrameError, Pipeline, Specialise};
 use crate::registry::registry;
 
@@ -24,6 +25,8 @@ pub struct Candidate {
     pub path: PathBuf,
     /// The rewritten text of a variant; `None` to read the file.
     pub text: Option<String>,
+    /// Values for the file's parameters.
+    pub params: GraphParams,
 }
 
 impl Candidate {
@@ -32,7 +35,19 @@ impl Candidate {
             name: stem(path),
             path: path.to_path_buf(),
             text: None,
+            params: GraphParams::new(),
         }
+    }
+
+    /// This pipeline at `samples` samples, when its file has the `msaa` parameter
+    /// (`samples: Param(name: "msaa", default: 4)`); `None` when it has none, or cannot be
+    /// read (loading it then reports why, in its row).
+    pub fn at_samples(&self, samples: u32) -> Option<Candidate> {
+        declared_params(&self.path).ok()?.get(MSAA)?;
+        Some(Candidate {
+            params: self.params.clone().with(MSAA, samples),
+            ..self.clone()
+        })
     }
 
     /// The file stem, without any variant suffix.
@@ -47,8 +62,10 @@ impl Candidate {
         specialise: Specialise,
     ) -> Result<Pipeline, FrameError> {
         match &self.text {
-            Some(text) => Pipeline::from_text(&self.path, text, host, outputs, specialise),
-            None => Pipeline::load(&self.path, host, outputs, specialise),
+            Some(text) => {
+                Pipeline::from_text(&self.path, text, host, outputs, specialise, &self.params)
+            }
+            None => Pipeline::load(&self.path, host, outputs, specialise, &self.params),
         }
     }
 }
@@ -106,6 +123,27 @@ pub fn pipelines(asked: &[PathBuf]) -> (Vec<Candidate>, Vec<String>) {
         ));
     }
     (kept, notes)
+}
+
+/// `pipelines` at `samples` samples (`--samples`), those whose files have the `msaa`
+/// parameter; the others as they are, each named in a note.
+pub fn at_samples(
+    pipelines: Vec<Candidate>,
+    samples: u32,
+    notes: &mut Vec<String>,
+) -> Vec<Candidate> {
+    pipelines
+        .into_iter()
+        .map(|candidate| {
+            candidate.at_samples(samples).unwrap_or_else(|| {
+                notes.push(format!(
+                    "--samples {samples}: {} has no \"{MSAA}\" parameter; measured as written",
+                    candidate.path.display()
+                ));
+                candidate
+            })
+        })
+        .collect()
 }
 
 fn stem(path: &Path) -> String {

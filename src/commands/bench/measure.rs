@@ -48,10 +48,10 @@ impl Setup<'_> {
         let mut prepared = self.session.prepare(pipeline, self.size)?;
         let reports = self.time(&mut prepared)?;
         let color = prepared.read(COLOR)?;
-        let (samples, supersampling) = sampling(&prepared.plan);
-        let memory = Memory::of(&prepared.plan);
+        let (samples, supersampling) = sampling(prepared.plan());
+        let memory = Memory::of(prepared.plan());
         let shape = PlanShape::of(&prepared);
-        let features = prepared.plan.features.clone();
+        let features = prepared.plan().features.clone();
         drop(prepared);
         let specialisation = self.general(candidate, host, shape, features)?;
 
@@ -100,7 +100,7 @@ impl Setup<'_> {
             return Ok(None);
         }
         let general_gpu_frame_ms = self.gpu_frame_ms(&mut prepared)?;
-        let general_memory = Memory::of(&prepared.plan);
+        let general_memory = Memory::of(prepared.plan());
         drop(prepared);
         let both_differ = !special.same_plan(&general) && special.variants() != general.variants();
         let plan_only_gpu_frame_ms = if both_differ {

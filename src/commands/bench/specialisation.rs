@@ -42,12 +42,12 @@ pub struct PlanShape {
 
 impl PlanShape {
     pub fn of(prepared: &Prepared<'_>) -> PlanShape {
-        let (plan, pipeline) = (&prepared.plan, &prepared.pipeline);
+        let plan = prepared.plan();
         PlanShape {
             passes: plan.passes.iter().map(|p| p.name.clone()).collect(),
             textures: plan.textures.iter().map(|t| t.shape).collect(),
             memory: Memory::of(plan),
-            variants: plan_shader_variants(&pipeline.shader_features, plan, &pipeline.loaded)
+            variants: plan_shader_variants(&prepared.shader_features, plan, prepared.loaded())
                 .into_iter()
                 .map(|v| v.variant.to_string())
                 .collect(),

@@ -3,14 +3,13 @@
 //!
 //! - lights: builtin:lights?count=N, N = 1, 4, 16, 64, 256, 1024 (replaces --scene);
 //! - resolution: 1280x720, 1920x1080, 2560x1440, 3840x2160 (replaces --width/--height);
-//! - samples: every "samples: 4" in each pipeline file rewritten to 1, 2, 4 and 8. A
-//!   count the device lacks fails that variant's compile, which becomes an error row; so
-//!   does a pipeline whose passes need multisampled inputs at 1 sample.
+//! - samples: each pipeline whose file has the `msaa` parameter
+//!   (`samples: Param(name: "msaa", default: 4)`) at 1, 2, 4 and 8; the others as
+//!   written. A count the device lacks fails that variant's compile, which becomes an
+//!   error row; so does a pipeline whose passes need multisampled inputs at 1 sample.
 //!
 //! Sweeps measure time and work only: no reference, no image error, no images.
 
-use graph_core::bounded_read::MAX_GRAPH_FILE_BYTES;
-use graph_core::embedded;
 use serde::Serialize;
 
 use super::candidates::Candidate;
@@ -98,16 +97,11 @@ pub fn steps(
     }
 }
 
-/// `candidate` with every 4-sample texture at `samples` samples. A file that cannot be
-/// read stays as it is: loading it reports the error in its row.
+/// `candidate` at `samples` samples, or as it is when its file has no `msaa` parameter.
 fn with_samples(candidate: &Candidate, samples: u32) -> Candidate {
-    let Ok(text) = embedded::read_text(&candidate.path, MAX_GRAPH_FILE_BYTES) else {
-        return candidate.clone();
-    };
-    Candidate {
-        text: Some(text.replace("samples: 4", &format!("samples: {samples}"))),
-        ..candidate.clone()
-    }
+    candidate
+        .at_samples(samples)
+        .unwrap_or_else(|| candidate.clone())
 }
 
 #[cfg(test)]

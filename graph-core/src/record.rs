@@ -1,0 +1,222 @@
+//! Recording a pass (feature `gpu`): the callback a pass declares ([`Record`]) and what it
+//! sees when the executor calls it, the begun wgpu pass (or encoder) and the frame's
+//! physical resources, looked up through the handles the pass declared. Declaring a pass
+//! needs these types, so they belong with the model, below compile and execution; the
+//! executor fills them in.
+//!
+//! Views and buffers borrowed from a context are valid for this frame only: the pool may
+//! hand the same memory to another resource in another pass. Device objects a callback
+//! creates (pipelines, samplers) are the callback's own to keep across frames.
+
+use std::collections::HashMap;
+
+use crate::access::{Access, Aspect, Role, TextureRole};
+use crate::handle::{BufferHandle, Handle, ResourceId, ResourceKind, TextureHandle};
+use crate::resource::{ResourceNode, TextureShape};
+
+/// The callback that records a pass's commands. It runs once per executed frame, so it
+/// may keep pipelines and other device objects it creates on the first call.
+pub enum Record {
+    Render(Box<dyn FnMut(&mut RenderContext<'_, '_>)>),
+    Compute(Box<dyn FnMut(&mut ComputeContext<'_, '_>)>),
+    Transfer(Box<dyn FnMut(&mut TransferContext<'_>)>),
+}
+
+/// This frame's objects by resource, for every resource a live pass accesses: owned
+/// (cheap reference-counted clones), so that [`FrameResources`] can borrow them while the
+/// executor's own fields stay borrowable.
+#[derive(Default)]
+pub(crate) struct FrameObjects {
+    pub textures: HashMap<ResourceId, (wgpu::Texture, TextureShape)>,
+    /// Views for callbacks: every texture's full view, and the sampled aspects declared.
+    pub views: HashMap<(ResourceId, Aspect), wgpu::TextureView>,
+    /// Views the executor attaches to render passes.
+    pub attachments: HashMap<ResourceId, wgpu::TextureView>,
+    pub buffers: HashMap<ResourceId, wgpu::Buffer>,
+}
+
+/// The physical resources of one executing frame, as one pass sees them.
+///
+/// Lookups are checked against the executing pass's declared accesses, as Filament's
+/// frame graph asserts: a handle the pass did not declare, or declared at another
+/// version, is a bug in the pass (the graph ordered and allocated the frame from the
+/// declarations, so an undeclared resource may hold anything, or another resource's
+/// data, at that point). Each lookup accepts the version a declared access was handed
+/// and the version it produced, and panics with a message naming the pass, the resource
+/// and the version otherwise.
+pub struct FrameResources<'f> {
+    pub device: &'f wgpu::Device,
+    pub queue: &'f wgpu::Queue,
+    pub(crate) output_size: (u32, u32),
+    pub(crate) objects: &'f FrameObjects,
+    /// The executing pass.
+    pub(crate) pass: &'f str,
+    /// What the executing pass declared.
+    pub(crate) accesses: &'f [Access],
+    /// Every resource of the graph, by id: their names, for messages.
+    pub(crate) resources: &'f [ResourceNode],
+}
+
+impl<'f> FrameResources<'f> {
+    /// The size relative textures were resolved against.
+    pub fn output_size(&self) -> (u32, u32) {
+        self.output_size
+    }
+
+    /// The texture behind a handle.
+    ///
+    /// # Panics
+    /// When the executing pass did not declare an access to this version of the texture.
+    pub fn texture(&self, handle: TextureHandle) -> &'f wgpu::Texture {
+        self.check(handle, "texture", None);
+        &self.objects.textures[&handle.id()].0
+    }
+
+    /// Format, size and sample count of a texture, as planned.
+    ///
+    /// # Panics
+    /// As [`texture`](Self::texture).
+    pub fn shape(&self, handle: TextureHandle) -> TextureShape {
+        self.check(handle, "texture", None);
+        self.objects.textures[&handle.id()].1
+    }
+
+    /// The full view of a texture.
+    ///
+    /// # Panics
+    /// As [`texture`](Self::texture).
+    pub fn view(&self, handle: TextureHandle) -> &'f wgpu::TextureView {
+        self.aspect_view(handle, Aspect::All)
+    }
+
+    /// A view of one aspect. [`Aspect::All`] is the full view of any declared texture;
+    /// a single aspect needs the pass to have declared `sampled_aspect(handle, aspect)`.
+    ///
+    /// # Panics
+    /// When the executing pass did not declare this version of the texture, or declared
+    /// no sampled access to the aspect asked for.
+    pub fn aspect_view(&self, handle: TextureHandle, aspect: Aspect) -> &'f wgpu::TextureView {
+        let needs = (aspect != Aspect::All).then_some(aspect);
+        self.check(handle, "texture", needs);
+        &self.objects.views[&(handle.id(), aspect)]
+    }
+
+    /// The buffer behind a handle.
+    ///
+    /// # Panics
+    /// When the executing pass did not declare an access to this version of the buffer.
+    pub fn buffer(&self, handle: BufferHandle) -> &'f wgpu::Buffer {
+        self.check(handle, "buffer", None);
+        &self.objects.buffers[&handle.id()]
+    }
+
+    /// Panics unless the executing pass declared `handle` (as a sampled view of `aspect`,
+    /// when given) at the handle's version.
+    fn check<K: ResourceKind>(
+        &self,
+        handle: Handle<K>,
+        kind: &'static str,
+        aspect: Option<Aspect>,
+    ) {
+        if let Err(e) = self.declared(handle, kind, aspect) {
+            panic!("{e}");
+        }
+    }
+
+    fn declared<K: ResourceKind>(
+        &self,
+        handle: Handle<K>,
+        kind: &'static str,
+        aspect: Option<Aspect>,
+    ) -> Result<(), UndeclaredAccess> {
+        let (id, version) = (handle.id(), handle.version());
+        let of_resource = || self.accesses.iter().filter(move |a| a.resource == id);
+        let found = of_resource()
+            .filter(|a| a.version == version || a.written == Some(version))
+            .any(|a| match aspect {
+                None => true,
+                Some(aspect) => a.role == Role::Texture(TextureRole::Sampled { aspect }),
+            });
+        if found {
+            return Ok(());
+        }
+        let declared: Vec<String> = of_resource()
+            .map(|a| match a.written {
+                Some(written) if a.role.reads() => {
+                    format!("{} (version {} to {written})", describe(a), a.version)
+                }
+                Some(written) => format!("{} (version {written})", describe(a)),
+                None => format!("{} (version {})", describe(a), a.version),
+            })
+            .collect();
+        Err(UndeclaredAccess {
+            pass: self.pass.to_string(),
+            what: match aspect {
+                Some(Aspect::DepthOnly) => "the depth view of texture",
+                Some(Aspect::StencilOnly) => "the stencil view of texture",
+                Some(Aspect::All) | None => kind,
+            },
+            resource: self
+                .resources
+                .get(id.index())
+                .map_or_else(|| format!("#{}", id.0), |r| r.name.clone()),
+            version,
+            declared: match declared.is_empty() {
+                true => String::new(),
+                false => format!(" (it declared it as {})", declared.join(", ")),
+            },
+        })
+    }
+}
+
+/// A role and, for sampled textures, the aspect: "sampled texture (depth)".
+fn describe(access: &Access) -> String {
+    match access.role {
+        Role::Texture(TextureRole::Sampled {
+            aspect: aspect @ (Aspect::DepthOnly | Aspect::StencilOnly),
+        }) => format!(
+            "{} ({})",
+            access.role.describe(),
+            match aspect {
+                Aspect::DepthOnly => "depth",
+                _ => "stencil",
+            }
+        ),
+        role => role.describe().to_string(),
+    }
+}
+
+/// A record callback looked up what its pass did not declare: the message of the panic.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "pass \"{pass}\" looked up {what} \"{resource}\" (version {version}), which it did not \
+     declare{declared}"
+)]
+struct UndeclaredAccess {
+    pass: String,
+    /// "texture", "buffer", "the depth view of texture".
+    what: &'static str,
+    resource: String,
+    version: u32,
+    /// What the pass did declare of the resource, if anything, as a parenthesis.
+    declared: String,
+}
+
+/// A render pass callback's view of the frame: the render pass, begun with the declared
+/// attachments, and the frame's resources as the pass declared them.
+pub struct RenderContext<'a, 'p> {
+    pub pass: &'a mut wgpu::RenderPass<'p>,
+    pub resources: &'a FrameResources<'a>,
+}
+
+/// A compute pass callback's view of the frame.
+pub struct ComputeContext<'a, 'p> {
+    pub pass: &'a mut wgpu::ComputePass<'p>,
+    pub resources: &'a FrameResources<'a>,
+}
+
+/// A transfer pass callback's view of the frame: the command encoder itself.
+pub struct TransferContext<'a> {
+    pub encoder: &'a mut wgpu::CommandEncoder,
+    pub resources: &'a FrameResources<'a>,
+}
