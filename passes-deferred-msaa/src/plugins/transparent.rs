@@ -8,9 +8,13 @@
 //!  inputs: { "depth": "depth" }, // the opaque passes' depth, any sample count: read-only
 //!  outputs: { "accum": "transparent" }),   // rgba16float, the depth's sample count
 //! (name: "composite transparent", plugin: "composite_transparent",
-//!  inputs: { "accum": "transparent", "resolved": "resolved" },   // resolved: rgba16float, 1x,
-//!  outputs: { "resolved": "resolved_blended" })                  // the accumulation's size
+//!  inputs: { "accum": "transparent", "resolved": "resolved_hdr" }, // rgba16float, 1x, the
+//!  outputs: { "resolved": "resolved" })                            // accumulation's size
 //! ```
+//!
+//! The shipped pipelines name the resolved texture `resolved_hdr` and the composite's
+//! version of it `resolved`, so `resolved` (what tone mapping, auto exposure and tests
+//! read) is the final image whether or not the composite runs.
 //!
 //! **The transparent pass** draws the scene's BLEND meshes (which the `gbuffer` and
 //! `forward` passes skip) back to front, each mesh at the distance of its bounds' centre
