@@ -104,10 +104,10 @@ fn every_offered_sample_count_renders() {
 /// Loads and compiles deferred_msaa_4x at `samples` samples for `gpu` at `size`; the
 /// error text.
 fn compile_error(gpu: &Gpu, size: (u32, u32), samples: u32) -> String {
-    let host = Host {
-        scene: Arc::new(Scene::load("builtin:spheres").expect("builtin:spheres loads")),
-        overrides: Overrides::default(),
-    };
+    let host = Host::new(
+        Arc::new(Scene::load("builtin:spheres").expect("builtin:spheres loads")),
+        Overrides::default(),
+    );
     let mut registry = Registry::with_builtins();
     passes_deferred_msaa::register(&mut registry, Some(Arc::new(host)));
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines/deferred_msaa_4x.ron");

@@ -46,6 +46,7 @@ mod extremes_normals;
 mod extremes_sizes;
 mod extremes_thresholds;
 mod extremes_volumes;
+mod frame_inputs;
 mod fuzz;
 mod gpu_execute;
 mod specialise_analysis;

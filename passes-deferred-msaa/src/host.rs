@@ -1,20 +1,50 @@
-//! What the host application hands the deferred plugins: the scene to draw and the
-//! per-render overrides a command line or an engine UI sets.
+//! What the host application hands the deferred plugins: the scene to draw, the
+//! per-render overrides a command line or an engine UI sets, and the per-frame inputs an
+//! engine changes between frames.
 //!
 //! Graph files name plugins and their parameters; the scene is not a graph resource
 //! (its geometry and lights are uploaded by the plugins that use them, on their first
 //! frame, from the device they record with). A registry made with `host: None` declares
 //! the same passes and validates the same graphs, for build scripts and CI; executing
 //! such a graph draws no geometry.
+//!
+//! # Per-frame inputs: who owns what, what a call invalidates
+//!
+//! The [`Host`] owns the current [`FrameInputs`] behind a lock. The engine replaces them
+//! with [`Host::set_frame`] between executions; the next execution's passes upload what
+//! changed ([`crate::gpu_scene::SceneCache::for_frame`]) before recording. A call
+//! invalidates nothing on the device: geometry, materials, textures and environment maps
+//! stay uploaded, plans stay compiled and pipelines stay built. The scene is drawn
+//! camera-relative, so a moved camera rewrites the per-mesh model matrices, the lights
+//! and the camera uniform, a few hundred bytes per mesh and light; a moved object
+//! rewrites the same per-mesh data; a moved light the light data.
+//!
+//! What frame inputs cannot change is what plans and shader variants were made for: the
+//! scene's feature set ([`crate::analysis::Features`]) is the loaded scene's, so lights
+//! keep their kind, color and intensity (only their pose moves) and the depth format
+//! chosen from the loaded camera's depth range stays. A new output size, sample count or
+//! feature set is a recompile of the graph (`CompiledGraph::recompile`), not a frame
+//! input.
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
-use crate::scene::Scene;
+use glam::{DMat4, DVec3, Vec3};
 
-/// The scene and overrides every deferred plugin of one registry shares.
+use crate::scene::{Camera, Scene};
+
+/// The scene and overrides every deferred plugin of one registry shares, and the current
+/// [`FrameInputs`] (see the module documentation for the contract).
 pub struct Host {
     pub scene: Arc<Scene>,
     pub overrides: Overrides,
+    frame: Mutex<CurrentFrame>,
+}
+
+/// The frame inputs set last and how many times they were set: the scene's uploads
+/// compare the count with the one they were written for.
+struct CurrentFrame {
+    inputs: Arc<FrameInputs>,
+    generation: u64,
 }
 
 /// Values that, when set, replace what the graph file's parameters say.
@@ -35,4 +65,171 @@ pub enum Exposure {
     /// pipeline runs under the condition `auto_exposure` (set by the host's choice, see
     /// [`crate::analysis::Features::auto_exposure`]); its `tonemap` pass reads the result.
     Auto,
+}
+
+/// What an engine may change from one frame to the next without reloading: the camera,
+/// the pose of every light and the transform of every mesh, in the scene's order.
+/// [`FrameInputs::of`] gives the scene's own; an engine keeps one, changes its fields and
+/// hands it to [`Host::set_frame`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameInputs {
+    /// The camera, pose and projection.
+    pub camera: Camera,
+    /// One pose per light of `Scene::lights`, in its order.
+    pub lights: Vec<LightPose>,
+    /// One object-to-world transform per mesh of `Scene::meshes` (glTF: per mesh node
+    /// primitive), in its order.
+    pub transforms: Vec<DMat4>,
+    /// A factor on the exposure the pipeline tone maps with (the file's, the override's
+    /// or the metered one); 1 leaves it as it is. The `tonemap` pass reads it from the
+    /// scene's light data each frame, so changing it builds no pipeline.
+    pub exposure: f32,
+    /// Seconds since the sequence started, for the engine's own passes that animate by
+    /// it; the deferred plugins draw a pose, not a time, so they do not read it.
+    pub time: f64,
+}
+
+/// Where a light is and where it points, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightPose {
+    /// Unused by directional lights.
+    pub position: DVec3,
+    /// Unit direction the light travels; unused by point lights.
+    pub direction: Vec3,
+}
+
+impl FrameInputs {
+    /// The scene as loaded: its camera, lights and transforms, exposure 1, at time 0.
+    pub fn of(scene: &Scene) -> FrameInputs {
+        FrameInputs {
+            camera: scene.camera.clone(),
+            lights: scene
+                .lights
+                .iter()
+                .map(|l| LightPose {
+                    position: l.position,
+                    direction: l.direction,
+                })
+                .collect(),
+            transforms: scene.meshes.iter().map(|m| m.transform).collect(),
+            exposure: 1.0,
+            time: 0.0,
+        }
+    }
+}
+
+/// Frame inputs that do not fit the host's scene: they are refused whole, and the last
+/// accepted ones stay.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FrameInputsError {
+    #[error("frame inputs give {given} light poses, but scene \"{scene}\" has {expected} lights")]
+    LightCount {
+        scene: String,
+        given: usize,
+        expected: usize,
+    },
+    #[error(
+        "frame inputs give {given} mesh transforms, but scene \"{scene}\" has {expected} meshes"
+    )]
+    MeshCount {
+        scene: String,
+        given: usize,
+        expected: usize,
+    },
+    #[error("frame inputs: {what} of scene \"{scene}\" is not finite")]
+    NotFinite { scene: String, what: String },
+    #[error("frame inputs: the exposure factor {0} is not finite and positive")]
+    Exposure(f32),
+}
+
+impl Host {
+    /// A host drawing `scene` with `overrides`, whose frame inputs are the scene's own
+    /// ([`FrameInputs::of`]).
+    pub fn new(scene: Arc<Scene>, overrides: Overrides) -> Host {
+        let inputs = Arc::new(FrameInputs::of(&scene));
+        Host {
+            scene,
+            overrides,
+            frame: Mutex::new(CurrentFrame {
+                inputs,
+                generation: 0,
+            }),
+        }
+    }
+
+    /// Makes `inputs` what the next execution draws. Call it between executions: passes
+    /// recorded after the call see the new inputs, so a call during an execution could
+    /// draw one frame with two. Checked against the scene (one pose per light, one
+    /// transform per mesh, finite values); on error the previous inputs stay.
+    pub fn set_frame(&self, inputs: FrameInputs) -> Result<(), FrameInputsError> {
+        self.check(&inputs)?;
+        let mut frame = self.frame.lock().unwrap_or_else(|e| e.into_inner());
+        frame.inputs = Arc::new(inputs);
+        frame.generation += 1;
+        Ok(())
+    }
+
+    /// The current frame inputs.
+    pub fn frame(&self) -> Arc<FrameInputs> {
+        self.current().0
+    }
+
+    /// The current frame inputs and how many times [`set_frame`](Self::set_frame) has
+    /// been called: a count the scene's uploads were written for is up to date.
+    pub(crate) fn current(&self) -> (Arc<FrameInputs>, u64) {
+        let frame = self.frame.lock().unwrap_or_else(|e| e.into_inner());
+        (frame.inputs.clone(), frame.generation)
+    }
+
+    fn check(&self, inputs: &FrameInputs) -> Result<(), FrameInputsError> {
+        let scene = || self.scene.name.clone();
+        if inputs.lights.len() != self.scene.lights.len() {
+            return Err(FrameInputsError::LightCount {
+                scene: scene(),
+                given: inputs.lights.len(),
+                expected: self.scene.lights.len(),
+            });
+        }
+        if inputs.transforms.len() != self.scene.meshes.len() {
+            return Err(FrameInputsError::MeshCount {
+                scene: scene(),
+                given: inputs.transforms.len(),
+                expected: self.scene.meshes.len(),
+            });
+        }
+        if !(inputs.exposure.is_finite() && inputs.exposure > 0.0) {
+            return Err(FrameInputsError::Exposure(inputs.exposure));
+        }
+        let camera = &inputs.camera;
+        let not_finite = std::iter::once((
+            format!("the camera \"{}\"", camera.name),
+            camera.position.is_finite() && camera.orientation.is_finite(),
+        ))
+        .chain(inputs.lights.iter().zip(&self.scene.lights).map(|(p, l)| {
+            (
+                format!("the pose of light \"{}\"", l.name),
+                p.position.is_finite() && p.direction.is_finite(),
+            )
+        }))
+        .chain(
+            inputs
+                .transforms
+                .iter()
+                .zip(&self.scene.meshes)
+                .map(|(t, m)| {
+                    (
+                        format!("the transform of mesh \"{}\"", m.name),
+                        t.is_finite(),
+                    )
+                }),
+        )
+        .find(|(_, finite)| !finite);
+        match not_finite {
+            Some((what, _)) => Err(FrameInputsError::NotFinite {
+                scene: scene(),
+                what,
+            }),
+            None => Ok(()),
+        }
+    }
 }

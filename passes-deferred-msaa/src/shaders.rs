@@ -72,7 +72,7 @@ pub(crate) const AUTO_EXPOSURE: Source = Source {
 };
 pub(crate) const TONEMAP: Source = Source {
     name: "tonemap.wgsl",
-    parts: &[COMMON, include_str!("wgsl/tonemap.wgsl")],
+    parts: &[COMMON, SCENE, include_str!("wgsl/tonemap.wgsl")],
 };
 pub(crate) const DEBUG: Source = Source {
     name: "debug.wgsl",

@@ -16,7 +16,7 @@ use crate::registry::registry_for;
 
 /// What the deferred plugins draw: `scene` with `overrides`.
 pub fn host(scene: Arc<Scene>, overrides: Overrides) -> Arc<Host> {
-    Arc::new(Host { scene, overrides })
+    Arc::new(Host::new(scene, overrides))
 }
 
 /// A loaded graph file whose exports are exactly the outputs asked for, so compiling it

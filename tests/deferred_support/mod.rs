@@ -13,11 +13,11 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use graph_core::file::{load_str_with, GraphParams, LoadedGraph, Registry};
-use graph_core::gpu::{read_rgba16f, read_rgba8, Executor, Gpu, Imports};
+use graph_core::gpu::{read_rgba16f, read_rgba8, Executor, FrameReport, Gpu, Imports};
 use graph_core::{CompileOptions, CompiledGraph, Features, Plan};
 use passes_deferred_msaa::analysis::Variants;
 use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::{Host, Overrides};
+use passes_deferred_msaa::{FrameInputs, Host, Overrides};
 
 pub use crate::common::gpu;
 
@@ -42,9 +42,11 @@ pub struct Render<'a> {
     pub variants: Variants,
 }
 
-/// An executed frame, whose exported textures can be read back.
+/// An executed frame, whose exported textures can be read back, and the executor and
+/// host that can run the next one.
 pub struct Frame {
     label: String,
+    host: Arc<Host>,
     compiled: CompiledGraph<LoadedGraph>,
     executor: Executor,
 }
@@ -151,12 +153,9 @@ impl<'a> Render<'a> {
         if let Some(edit) = self.scene_edit {
             edit(&mut scene);
         }
-        let host = Host {
-            scene: Arc::new(scene),
-            overrides: self.overrides.clone(),
-        };
+        let host = Arc::new(Host::new(Arc::new(scene), self.overrides.clone()));
         let mut registry = Registry::with_builtins();
-        passes_deferred_msaa::register_with(&mut registry, Some(Arc::new(host)), self.variants);
+        passes_deferred_msaa::register_with(&mut registry, Some(host.clone()), self.variants);
         let path = pipelines().join(self.pipeline);
         let mut text = std::fs::read_to_string(&path)
             .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
@@ -196,6 +195,7 @@ impl<'a> Render<'a> {
                 self.pipeline.trim_end_matches(".ron"),
                 self.scene.replace([':', '?', '/', '=', '&'], "_")
             ),
+            host,
             compiled,
             executor,
         }
@@ -209,6 +209,22 @@ impl<'a> Render<'a> {
 }
 
 impl Frame {
+    /// Runs the next frame through the same executor with `inputs`, as an engine does;
+    /// the report says what it allocated.
+    pub fn next(&mut self, inputs: FrameInputs) -> FrameReport {
+        self.host
+            .set_frame(inputs)
+            .unwrap_or_else(|e| panic!("{}: {e}", self.label));
+        self.executor
+            .execute(&mut self.compiled, &Imports::new())
+            .unwrap_or_else(|e| panic!("{} failed on the device: {e}", self.label))
+    }
+
+    /// The host's current frame inputs (the scene's own until [`Frame::next`]).
+    pub fn inputs(&self) -> FrameInputs {
+        FrameInputs::clone(&self.host.frame())
+    }
+
     /// The plan the frame executed.
     pub fn plan(&self) -> &Plan {
         self.compiled.plan()

@@ -33,7 +33,7 @@ pub(crate) fn per_scene<'s, S>(
 ) -> &'s mut S {
     if slot
         .as_ref()
-        .is_some_and(|(built, _)| !Arc::ptr_eq(built, scene))
+        .is_some_and(|(built, _)| !built.same_upload(scene))
     {
         *slot = None;
     }

@@ -1,5 +1,6 @@
 //! The camera uniform: camera-relative view-projection for the output's aspect ratio, one
-//! buffer per depth convention, rewritten only when the output size changes.
+//! buffer per depth convention, rewritten only when the output size or the frame's camera
+//! changes.
 
 use std::sync::Mutex;
 
@@ -25,8 +26,9 @@ struct CameraUniform {
 pub(super) struct Cameras {
     pub reversed: wgpu::Buffer,
     pub standard: wgpu::Buffer,
-    /// The output size the buffers were last written for.
-    written_for: Mutex<Option<(u32, u32)>>,
+    /// The output size and the frame inputs' generation (see `Host::set_frame`) the
+    /// buffers were last written for.
+    written_for: Mutex<Option<((u32, u32), u64)>>,
 }
 
 impl Cameras {
@@ -46,11 +48,17 @@ impl Cameras {
         }
     }
 
-    /// Writes both buffers for `size` unless they hold it already. The write lands before
-    /// the next submission, i.e. before the frame being recorded runs.
-    pub fn prepare(&self, queue: &wgpu::Queue, camera: &Camera, size: (u32, u32)) {
+    /// Writes both buffers for `camera` (of frame inputs `generation`) at `size` unless
+    /// they hold it already. The write lands before the next submission, i.e. before the
+    /// frame being recorded runs.
+    pub fn prepare(
+        &self,
+        queue: &wgpu::Queue,
+        (camera, generation): (&Camera, u64),
+        size: (u32, u32),
+    ) {
         let mut written = self.written_for.lock().unwrap_or_else(|e| e.into_inner());
-        if *written == Some(size) {
+        if *written == Some((size, generation)) {
             return;
         }
         for (buffer, convention) in [
@@ -60,7 +68,7 @@ impl Cameras {
             let uniform = uniform(camera, size, convention);
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(&uniform));
         }
-        *written = Some(size);
+        *written = Some((size, generation));
     }
 }
 

@@ -7,6 +7,7 @@ use wgpu::util::DeviceExt;
 
 use super::mesh::camera_relative;
 use super::volumes::{VolumeMesh, VolumeShape};
+use crate::host::LightPose;
 use crate::scene::{
     BoundingSphere, Camera, Irradiance, Light, LightKind, LightVolume, Projection, Scene,
     CUBE_LEVELS, DEFAULT_CUTOFF_ILLUMINANCE,
@@ -44,7 +45,9 @@ struct LightInfo {
     _pad: [u32; 3],
     environment_intensity: f32,
     environment_max_level: f32,
-    _pad1: [f32; 2],
+    /// A factor on the tone mapper's exposure: the frame's (`FrameInputs::exposure`).
+    exposure: f32,
+    _pad1: f32,
     irradiance: [[f32; 4]; 9],
 }
 
@@ -62,23 +65,41 @@ pub struct VolumeLight {
 pub(super) struct LightBuffers {
     pub data: wgpu::Buffer,
     pub info: wgpu::Buffer,
+}
+
+/// The lights of one frame: what the buffers hold, and what the light passes draw.
+#[derive(Clone)]
+pub(super) struct LightFrame {
+    data: Vec<LightData>,
+    info: LightInfo,
     /// Some directional light emits, or the ambient term is nonzero: the full-screen
     /// light draw adds something.
     pub fullscreen: bool,
     pub volumes: Vec<VolumeLight>,
 }
 
-impl LightBuffers {
+impl LightFrame {
+    /// The lights of `scene` placed as `poses` says (one per light), seen from `eye`,
+    /// with `exposure` for the tone mapper.
     pub fn new(
-        device: &wgpu::Device,
         scene: &Scene,
-        sphere: &VolumeMesh,
-        cone: &VolumeMesh,
-    ) -> LightBuffers {
-        let eye = scene.camera.position;
-        // Directional lights first: the full-screen draw loops over them.
-        let (directional, local): (Vec<&Light>, Vec<&Light>) = scene
+        poses: &[LightPose],
+        eye: DVec3,
+        exposure: f32,
+        (sphere, cone): (&VolumeMesh, &VolumeMesh),
+    ) -> LightFrame {
+        let placed: Vec<Light> = scene
             .lights
+            .iter()
+            .zip(poses)
+            .map(|(light, pose)| Light {
+                position: pose.position,
+                direction: pose.direction,
+                ..light.clone()
+            })
+            .collect();
+        // Directional lights first: the full-screen draw loops over them.
+        let (directional, local): (Vec<&Light>, Vec<&Light>) = placed
             .iter()
             .partition(|l| l.kind == LightKind::Directional);
         let mut data = Vec::new();
@@ -128,7 +149,8 @@ impl LightBuffers {
             directional_count: directional.len() as u32,
             environment_intensity: intensity,
             environment_max_level: (CUBE_LEVELS - 1) as f32,
-            _pad1: [0.0; 2],
+            exposure,
+            _pad1: 0.0,
             irradiance: match scene.environment {
                 Some(_) => Irradiance::neutral().0.map(|c| [c * intensity; 4]),
                 None => [[0.0; 4]; 9],
@@ -142,28 +164,48 @@ impl LightBuffers {
         }
         // A light whose range is zero reaches nothing.
         volumes.retain(|v| v.bounds.radius > 0.0);
+        LightFrame {
+            data,
+            info,
+            fullscreen: directional.iter().any(|l| l.emits())
+                || scene.ambient.iter().any(|&c| c > 0.0)
+                || intensity > 0.0,
+            volumes,
+        }
+    }
+
+    /// The contents of the light buffer.
+    pub fn data_bytes(&self) -> &[u8] {
+        bytemuck::cast_slice(&self.data)
+    }
+
+    /// The contents of the light info buffer.
+    pub fn info_bytes(&self) -> &[u8] {
+        bytemuck::bytes_of(&self.info)
+    }
+}
+
+impl LightBuffers {
+    /// Buffers holding `frame`, rewritable for later frames.
+    pub fn new(device: &wgpu::Device, frame: &LightFrame) -> LightBuffers {
         let init = |label, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
                 contents,
-                usage,
+                usage: usage | wgpu::BufferUsages::COPY_DST,
             })
         };
         LightBuffers {
             data: init(
                 "scene lights",
-                bytemuck::cast_slice(&data),
+                frame.data_bytes(),
                 wgpu::BufferUsages::STORAGE,
             ),
             info: init(
                 "scene light info",
-                bytemuck::bytes_of(&info),
+                frame.info_bytes(),
                 wgpu::BufferUsages::UNIFORM,
             ),
-            fullscreen: directional.iter().any(|l| l.emits())
-                || scene.ambient.iter().any(|&c| c > 0.0)
-                || intensity > 0.0,
-            volumes,
         }
     }
 }

@@ -2,7 +2,7 @@
 //! per-mesh data (camera-relative model matrix, normal matrix, material) in a storage
 //! buffer the G-buffer vertex shader indexes with the instance index.
 
-use glam::{DMat4, DVec3};
+use glam::{DMat3, DMat4, DVec3, Vec3};
 use wgpu::util::DeviceExt;
 
 use crate::scene::{Aabb, Scene, Vertex};
@@ -35,8 +35,8 @@ pub struct MeshDraw {
 pub(super) struct MeshBuffers {
     pub vertices: wgpu::Buffer,
     pub indices: wgpu::Buffer,
+    /// Per-mesh [`MeshData`], rewritten when the camera or a mesh moves.
     pub data: wgpu::Buffer,
-    pub draws: Vec<MeshDraw>,
 }
 
 /// The vertex layout of scene meshes: [`Vertex`] at locations 0 (position), 1 (normal),
@@ -50,38 +50,90 @@ pub const VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferL
     ],
 };
 
-impl MeshBuffers {
-    pub fn new(device: &wgpu::Device, scene: &Scene) -> MeshBuffers {
-        let (mut vertices, mut indices, mut data, mut draws) =
-            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        for (mesh, instance) in scene.meshes.iter().zip(0u32..) {
-            let first = indices.len() as u32;
-            draws.push(MeshDraw {
-                indices: first..first + mesh.indices.len() as u32,
-                base_vertex: vertices.len() as i32,
+/// The per-mesh data of one frame: what the data buffer holds and each mesh's draw.
+#[derive(Clone)]
+pub(super) struct MeshFrame {
+    data: Vec<MeshData>,
+    pub draws: Vec<MeshDraw>,
+    /// Each mesh's world bounds centre, kept so that a frame moving the camera but not
+    /// the mesh does not transform its vertices again.
+    world_centers: Vec<DVec3>,
+}
+
+impl MeshFrame {
+    /// The meshes of `scene` placed by `transforms` (one per mesh) and seen from `eye`.
+    /// `previous` is the frame before, whose bounds centres are reused for the meshes
+    /// `transforms` does not move.
+    pub fn new(
+        scene: &Scene,
+        transforms: &[DMat4],
+        eye: DVec3,
+        previous: Option<(&MeshFrame, &[DMat4])>,
+    ) -> MeshFrame {
+        let (mut index_count, mut vertex_count) = (0u32, 0i32);
+        let mut frame = MeshFrame {
+            data: Vec::new(),
+            draws: Vec::new(),
+            world_centers: Vec::new(),
+        };
+        for ((mesh, &transform), instance) in scene.meshes.iter().zip(transforms).zip(0u32..) {
+            let kept = previous.and_then(|(frame, transforms)| {
+                (transforms.get(instance as usize) == Some(&transform))
+                    .then(|| frame.world_centers[instance as usize])
+            });
+            let world_center = kept.unwrap_or_else(|| {
+                let positions = mesh
+                    .vertices
+                    .iter()
+                    .map(|v| transform.transform_point3(Vec3::from_array(v.position).as_dvec3()));
+                Aabb::from_points(positions).map_or(transform.w_axis.truncate(), |b| b.center())
+            });
+            frame.world_centers.push(world_center);
+            frame.draws.push(MeshDraw {
+                indices: index_count..index_count + mesh.indices.len() as u32,
+                base_vertex: vertex_count,
                 instance,
                 material: mesh.material,
-                center: Aabb::from_points(mesh.world_positions())
-                    .map_or(mesh.transform.w_axis.truncate(), |b| b.center())
-                    - scene.camera.position,
+                center: world_center - eye,
             });
-            vertices.extend_from_slice(&mesh.vertices);
-            indices.extend_from_slice(&mesh.indices);
-            let normal = mesh.normal_matrix().as_mat3();
-            data.push(MeshData {
-                model: camera_relative(mesh.transform, scene.camera.position),
+            index_count += mesh.indices.len() as u32;
+            vertex_count += mesh.vertices.len() as i32;
+            // Mesh::normal_matrix of the placed mesh.
+            let normal = DMat3::from_mat4(transform).inverse().transpose().as_mat3();
+            frame.data.push(MeshData {
+                model: camera_relative(transform, eye),
                 normal_matrix: [normal.x_axis, normal.y_axis, normal.z_axis]
                     .map(|c| c.extend(0.0).to_array()),
                 material: mesh.material as u32,
                 _pad: [0; 3],
             });
         }
-        // A scene without meshes (a glTF scene listing no nodes) still binds these buffers:
-        // wgpu refuses empty slices and zero-sized storage bindings, and nothing is drawn.
-        if draws.is_empty() {
+        // A scene without meshes (a glTF scene listing no nodes) still binds the buffer:
+        // wgpu refuses zero-sized storage bindings, and nothing is drawn.
+        if frame.draws.is_empty() {
+            frame.data.push(bytemuck::Zeroable::zeroed());
+        }
+        frame
+    }
+
+    /// The data buffer's contents.
+    pub fn bytes(&self) -> &[u8] {
+        bytemuck::cast_slice(&self.data)
+    }
+}
+
+impl MeshBuffers {
+    /// Uploads `scene`'s geometry and `frame`'s per-mesh data.
+    pub fn new(device: &wgpu::Device, scene: &Scene, frame: &MeshFrame) -> MeshBuffers {
+        let (mut vertices, mut indices) = (Vec::new(), Vec::new());
+        for mesh in &scene.meshes {
+            vertices.extend_from_slice(&mesh.vertices);
+            indices.extend_from_slice(&mesh.indices);
+        }
+        // wgpu refuses empty vertex and index slices; nothing is drawn from these.
+        if vertices.is_empty() || indices.is_empty() {
             vertices.push(bytemuck::Zeroable::zeroed());
             indices.push(0);
-            data.push(bytemuck::Zeroable::zeroed());
         }
         let init = |label, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -103,10 +155,9 @@ impl MeshBuffers {
             ),
             data: init(
                 "scene meshes",
-                bytemuck::cast_slice(&data),
-                wgpu::BufferUsages::STORAGE,
+                frame.bytes(),
+                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             ),
-            draws,
         }
     }
 }

@@ -2,7 +2,10 @@
 //! for other passes that draw the same scene: forward baselines, references).
 //!
 //! [`SceneCache`] uploads the [`Host`]'s scene once per device, on the first
-//! frame that needs it, and hands out an `Arc<GpuScene>`. A [`GpuScene`] holds:
+//! frame that needs it, and hands out an `Arc<GpuScene>`; when the host's
+//! [`FrameInputs`] change, the next frame writes the per-mesh data, lights and camera
+//! they change into the same buffers (see [`crate::host`] for the contract). A
+//! [`GpuScene`] holds:
 //! - group 0 ([`GpuScene::layout`], [`GpuScene::bind_group`]), as `scene.wgsl` declares
 //!   it: camera uniform, per-mesh data, materials, lights, light info, and lighting.wgsl's
 //!   environment maps;
@@ -34,7 +37,7 @@ pub use mesh::MeshDraw;
 pub use volumes::{VolumeMesh, VolumeShape};
 
 use crate::analysis::{Features, GatedShader, Variant, Variants};
-use crate::host::Host;
+use crate::host::{FrameInputs, Host};
 use crate::scene::{DepthConvention, Scene};
 
 /// Which of the scene's meshes a pass draws, and in what order.
@@ -48,10 +51,12 @@ pub enum Layer {
     Blended,
 }
 
-/// Uploads of one host's scene, one per device, made on first use.
+/// Uploads of one host's scene, one per device, made on first use, and brought up to the
+/// host's [`FrameInputs`] when they change.
 pub struct SceneCache {
     host: Option<Arc<Host>>,
     features: Features,
+    /// Per device, the scene as the last frame drew it.
     uploaded: Mutex<Vec<(wgpu::Device, Arc<GpuScene>)>>,
 }
 
@@ -75,10 +80,17 @@ impl SceneCache {
         Variant::of(shader, &self.features)
     }
 
-    /// The scene for a frame: on the frame's device (uploaded the first time) with its
-    /// camera set for the output size. The camera depends only on the aspect ratio, and
-    /// the shaders never read the viewport, so a target at a multiple of the output size
-    /// (the reference) is fine. `None` without a host: the pass records nothing.
+    /// The scene for a frame: on the frame's device (uploaded the first time), drawn as
+    /// the host's current [`FrameInputs`] say, with its camera set for the output size.
+    /// The camera depends only on the aspect ratio, and the shaders never read the
+    /// viewport, so a target at a multiple of the output size (the reference) is fine.
+    /// `None` without a host: the pass records nothing.
+    ///
+    /// Every pass of a frame calls it; the first after [`Host::set_frame`] writes what the
+    /// new inputs changed (per-mesh data, lights, camera: queue writes, which land before
+    /// the frame's submission) and the others get the same scene. It creates no device
+    /// object after the first upload: a scene with new inputs shares the upload's buffers
+    /// and bind groups ([`GpuScene::same_upload`]).
     pub fn for_frame(
         &self,
         resources: &graph_core::gpu::FrameResources<'_>,
@@ -88,22 +100,39 @@ impl SceneCache {
         Some(scene)
     }
 
-    /// The scene on `device`, uploaded through `queue` the first time.
+    /// The scene on `device` as the host's current frame inputs place it, uploaded
+    /// through `queue` the first time and updated through it when the inputs changed.
     pub fn get(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Option<Arc<GpuScene>> {
         let host = self.host.as_ref()?;
+        let (inputs, generation) = host.current();
         let mut uploaded = self.uploaded.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((_, scene)) = uploaded.iter().find(|(d, _)| d == device) {
-            return Some(scene.clone());
+        let at = match uploaded.iter().position(|(d, _)| d == device) {
+            Some(at) => at,
+            None => {
+                let scene =
+                    GpuScene::upload_with(device, queue, &host.scene, inputs.clone(), generation);
+                uploaded.push((device.clone(), Arc::new(scene)));
+                uploaded.len() - 1
+            }
+        };
+        let scene = &mut uploaded[at].1;
+        if scene.frame.generation != generation {
+            *scene = Arc::new(scene.next_frame(queue, &host.scene, inputs, generation));
         }
-        let scene = Arc::new(GpuScene::upload(device, queue, &host.scene));
-        uploaded.push((device.clone(), scene.clone()));
-        Some(scene)
+        Some(scene.clone())
     }
 }
 
-/// One scene's device objects; see the module documentation.
+/// One scene's device objects, and the frame they were last written for; see the module
+/// documentation.
 pub struct GpuScene {
-    camera: crate::scene::Camera,
+    upload: Arc<Upload>,
+    frame: Frame,
+}
+
+/// What is uploaded once per device: everything but the frame's bytes, which later
+/// frames write into `meshes.data`, `lights` and `cameras`.
+struct Upload {
     layout: wgpu::BindGroupLayout,
     material_layout: wgpu::BindGroupLayout,
     cameras: camera::Cameras,
@@ -116,15 +145,57 @@ pub struct GpuScene {
     cone: VolumeMesh,
 }
 
+/// The CPU side of one frame's inputs: what the buffers hold for it.
+struct Frame {
+    inputs: Arc<FrameInputs>,
+    /// The host's count of `set_frame` calls these inputs came with.
+    generation: u64,
+    meshes: mesh::MeshFrame,
+    lights: lights::LightFrame,
+}
+
+impl Frame {
+    /// `scene` placed by `inputs`; `previous` lends what `inputs` did not change.
+    fn new(
+        scene: &Scene,
+        (inputs, generation): (Arc<FrameInputs>, u64),
+        previous: Option<&Frame>,
+        volumes: (&VolumeMesh, &VolumeMesh),
+    ) -> Frame {
+        let eye = inputs.camera.position;
+        let previous_meshes = previous.map(|p| (&p.meshes, p.inputs.transforms.as_slice()));
+        Frame {
+            meshes: mesh::MeshFrame::new(scene, &inputs.transforms, eye, previous_meshes),
+            lights: lights::LightFrame::new(scene, &inputs.lights, eye, inputs.exposure, volumes),
+            inputs,
+            generation,
+        }
+    }
+}
+
 impl GpuScene {
+    /// Uploads `scene` on `device` as loaded (its own [`FrameInputs`]).
     pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) -> GpuScene {
+        let inputs = Arc::new(FrameInputs::of(scene));
+        GpuScene::upload_with(device, queue, scene, inputs, 0)
+    }
+
+    /// Uploads `scene` on `device`, placed by `inputs` (of `generation`).
+    fn upload_with(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+        inputs: Arc<FrameInputs>,
+        generation: u64,
+    ) -> GpuScene {
+        let (sphere, cone) = (volumes::sphere(device), volumes::cone(device));
+        let frame = Frame::new(scene, (inputs, generation), None, (&sphere, &cone));
         let layout = layout::scene_layout(device);
         let material_layout = materials::layout(device);
         let cameras = camera::Cameras::new(device);
-        let meshes = mesh::MeshBuffers::new(device, scene);
+        let meshes = mesh::MeshBuffers::new(device, scene, &frame.meshes);
         let materials = materials::Materials::new(device, queue, scene, &material_layout);
-        let (sphere, cone) = (volumes::sphere(device), volumes::cone(device));
-        let lights = lights::LightBuffers::new(device, scene, &sphere, &cone);
+        let lights = lights::LightBuffers::new(device, &frame.lights);
         let environment = environment::EnvironmentMaps::new(device, queue, scene);
         let group = |camera| {
             let buffers = [
@@ -136,8 +207,7 @@ impl GpuScene {
             ];
             layout::scene_group(device, &layout, buffers, &environment)
         };
-        GpuScene {
-            camera: scene.camera.clone(),
+        let upload = Upload {
             reversed_group: group(&cameras.reversed),
             standard_group: group(&cameras.standard),
             layout,
@@ -148,24 +218,82 @@ impl GpuScene {
             lights,
             sphere,
             cone,
+        };
+        GpuScene {
+            upload: Arc::new(upload),
+            frame,
         }
     }
 
-    /// Writes the camera for an output of `size` if it was written for another size.
+    /// This upload placed by `inputs` (of `generation`): writes through `queue` the
+    /// buffers whose contents the inputs change, and shares every device object.
+    fn next_frame(
+        &self,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+        inputs: Arc<FrameInputs>,
+        generation: u64,
+    ) -> GpuScene {
+        let upload = &self.upload;
+        let volumes = (&upload.sphere, &upload.cone);
+        let frame = Frame::new(scene, (inputs, generation), Some(&self.frame), volumes);
+        let writes = [
+            (
+                &upload.meshes.data,
+                frame.meshes.bytes(),
+                self.frame.meshes.bytes(),
+            ),
+            (
+                &upload.lights.data,
+                frame.lights.data_bytes(),
+                self.frame.lights.data_bytes(),
+            ),
+            (
+                &upload.lights.info,
+                frame.lights.info_bytes(),
+                self.frame.lights.info_bytes(),
+            ),
+        ];
+        for (buffer, new, old) in writes {
+            if new != old {
+                queue.write_buffer(buffer, 0, new);
+            }
+        }
+        GpuScene {
+            upload: upload.clone(),
+            frame,
+        }
+    }
+
+    /// Whether `self` and `other` are one upload (one device, one host), perhaps placed
+    /// by different frame inputs: what a recorder builds against the scene's layouts
+    /// (modules, pipelines) serves both.
+    pub fn same_upload(&self, other: &GpuScene) -> bool {
+        Arc::ptr_eq(&self.upload, &other.upload)
+    }
+
+    /// The frame inputs this scene is placed by.
+    pub fn inputs(&self) -> &FrameInputs {
+        &self.frame.inputs
+    }
+
+    /// Writes the camera for an output of `size` if it was written for another size or
+    /// another frame's camera.
     pub fn prepare(&self, queue: &wgpu::Queue, size: (u32, u32)) {
-        self.cameras.prepare(queue, &self.camera, size);
+        let camera = (&self.frame.inputs.camera, self.frame.generation);
+        self.upload.cameras.prepare(queue, camera, size);
     }
 
     /// Group 0's layout: see scene.wgsl.
     pub fn layout(&self) -> &wgpu::BindGroupLayout {
-        &self.layout
+        &self.upload.layout
     }
 
     /// Group 0 with the camera of `convention`.
     pub fn bind_group(&self, convention: DepthConvention) -> &wgpu::BindGroup {
         match convention {
-            DepthConvention::ReversedZ => &self.reversed_group,
-            DepthConvention::Standard => &self.standard_group,
+            DepthConvention::ReversedZ => &self.upload.reversed_group,
+            DepthConvention::Standard => &self.upload.standard_group,
         }
     }
 
@@ -173,15 +301,17 @@ impl GpuScene {
     /// emissive, metallicRoughness, normal and occlusion textures, each followed by its
     /// sampler (bindings 0-9).
     pub fn material_layout(&self) -> &wgpu::BindGroupLayout {
-        &self.material_layout
+        &self.upload.material_layout
     }
 
     /// Every mesh's draw and its material's pipeline state.
     pub fn mesh_draws(&self) -> impl Iterator<Item = (&MeshDraw, MaterialState)> {
-        self.meshes
+        let states = &self.upload.materials.states;
+        self.frame
+            .meshes
             .draws
             .iter()
-            .filter_map(|d| Some((d, *self.materials.states.get(d.material)?)))
+            .filter_map(|d| Some((d, *states.get(d.material)?)))
     }
 
     /// Binds the mesh buffers, then for each draw of `layer`, in its order, that `choose`
@@ -194,8 +324,11 @@ impl GpuScene {
         layer: Layer,
         mut choose: impl FnMut(&mut wgpu::RenderPass<'_>, &MeshDraw, MaterialState) -> bool,
     ) {
-        pass.set_vertex_buffer(0, self.meshes.vertices.slice(..));
-        pass.set_index_buffer(self.meshes.indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.set_vertex_buffer(0, self.upload.meshes.vertices.slice(..));
+        pass.set_index_buffer(
+            self.upload.meshes.indices.slice(..),
+            wgpu::IndexFormat::Uint32,
+        );
         let mut draws: Vec<(&MeshDraw, MaterialState)> = self
             .mesh_draws()
             .filter(|(_, state)| state.blended == (layer == Layer::Blended))
@@ -211,7 +344,7 @@ impl GpuScene {
             }
             pass.set_bind_group(
                 material_group,
-                &self.materials.bind_groups[draw.material],
+                &self.upload.materials.bind_groups[draw.material],
                 &[],
             );
             pass.draw_indexed(
@@ -225,32 +358,32 @@ impl GpuScene {
     /// Whether a full-screen light draw has anything to add: a directional light that
     /// emits, ambient or an environment. Without one the light passes build no full-screen pipeline.
     pub fn has_fullscreen_lights(&self) -> bool {
-        self.lights.fullscreen
+        self.frame.lights.fullscreen
     }
 
     /// Point and spot lights that reach something (so emit), each with the instance
     /// index its volume is drawn with. The light passes build volume pipelines only
     /// when there are some.
     pub fn volume_lights(&self) -> &[VolumeLight] {
-        &self.lights.volumes
+        &self.frame.lights.volumes
     }
 
     /// Whether the camera's near plane may cut `light`'s volume at an output of `size`.
     pub fn camera_may_be_inside(&self, light: &VolumeLight, size: (u32, u32)) -> bool {
         let aspect = f64::from(size.0.max(1)) / f64::from(size.1.max(1));
-        camera_may_be_inside(&self.camera, aspect, &light.bounds)
+        camera_may_be_inside(&self.frame.inputs.camera, aspect, &light.bounds)
     }
 
     /// Whether `light`'s volume may reach beyond the camera's finite far plane (see
     /// [`far_plane_may_cut`]).
     pub fn far_plane_may_cut(&self, light: &VolumeLight) -> bool {
-        far_plane_may_cut(&self.camera, &light.bounds)
+        far_plane_may_cut(&self.frame.inputs.camera, &light.bounds)
     }
 
     pub fn volume_mesh(&self, shape: VolumeShape) -> &VolumeMesh {
         match shape {
-            VolumeShape::Sphere => &self.sphere,
-            VolumeShape::Cone => &self.cone,
+            VolumeShape::Sphere => &self.upload.sphere,
+            VolumeShape::Cone => &self.upload.cone,
         }
     }
 }

@@ -67,6 +67,9 @@ pub use transparent::{
 #[derive(Clone)]
 pub(crate) struct Shared {
     pub overrides: Overrides,
+    /// A host gave a scene, so passes may read its group 0 (the tone mapper reads the
+    /// frame's exposure there).
+    pub draws_scene: bool,
     #[cfg(feature = "gpu")]
     pub scenes: Arc<crate::gpu_scene::SceneCache>,
 }
@@ -79,6 +82,7 @@ impl Shared {
                 .as_ref()
                 .map(|h| h.overrides.clone())
                 .unwrap_or_default(),
+            draws_scene: host.is_some(),
             #[cfg(feature = "gpu")]
             scenes: Arc::new(crate::gpu_scene::SceneCache::new(host, variants)),
         }

@@ -96,10 +96,11 @@ impl Plugin for Tonemap {
         let draw = Fullscreen {
             label: "tonemap",
             source: shaders::TONEMAP.compose(1)?.source().to_owned(),
-            entry: if metered {
-                "fs_tonemap_metered"
-            } else {
-                "fs_tonemap"
+            entry: match (metered, self.0.draws_scene) {
+                (true, true) => "fs_tonemap_frame_metered",
+                (false, true) => "fs_tonemap_frame",
+                (true, false) => "fs_tonemap_metered",
+                (false, false) => "fs_tonemap",
             },
             constants: vec![
                 ("OPERATOR", operator as u32 as f64),
@@ -111,7 +112,7 @@ impl Plugin for Tonemap {
                 ),
             ],
             inputs,
-            reads_scene: false,
+            reads_scene: self.0.draws_scene,
             target: Some(target),
             stencil_mark: None,
             blend: None,

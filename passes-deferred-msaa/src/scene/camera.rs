@@ -145,6 +145,18 @@ impl Camera {
         self.orientation * DVec3::NEG_Z
     }
 
+    /// This camera turned `angle` radians about the vertical line through `center`
+    /// (world +Y, glTF's up; counter-clockwise seen from above): its position circles
+    /// `center` and its view turns with it, so what it looked at stays in view.
+    pub fn orbited(&self, center: DVec3, angle: f64) -> Camera {
+        let turn = DQuat::from_rotation_y(angle);
+        Camera {
+            position: center + turn * (self.position - center),
+            orientation: (turn * self.orientation).normalize(),
+            ..self.clone()
+        }
+    }
+
     /// Shorthand for `self.projection.matrix(aspect, depth)`.
     pub fn projection_matrix(&self, aspect: f32, depth: DepthConvention) -> Mat4 {
         self.projection.matrix(aspect, depth)

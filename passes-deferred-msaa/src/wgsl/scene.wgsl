@@ -80,7 +80,8 @@ struct LightInfo {
     // cube map's last mip level (roughness 1).
     environment_intensity: f32,
     environment_max_level: f32,
-    _pad3: f32,
+    // A factor on the tone mapper's exposure: the frame's (FrameInputs::exposure).
+    exposure: f32,
     _pad4: f32,
     // The environment's irradiance E(n) = sum of irradiance[i] * polynomial i of n
     // (scene/environment.rs), already scaled by its intensity.

@@ -1,6 +1,8 @@
 // The tone-mapping pass: exposure, then an operator, into an sRGB target (the format
-// encodes; the shader writes linear values in [0, 1]). Composed after common.wgsl;
-// inputs are group 1, like every deferred pass's.
+// encodes; the shader writes linear values in [0, 1]). Composed after common.wgsl and
+// scene.wgsl; inputs are group 1, like every deferred pass's. The fs_*_frame entry points
+// read group 0 (a host's scene) for the frame's exposure factor, a uniform, so a new
+// exposure each frame builds no pipeline; the others (no host) use EXPOSURE alone.
 
 @group(1) @binding(0) var hdr_tex: texture_2d<f32>;
 // fs_tonemap_metered's: the exposure auto_exposure.wgsl metered, at texel (0, 0).
@@ -38,4 +40,17 @@ fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> 
 @fragment
 fn fs_tonemap_metered(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     return tonemap(position, textureLoad(exposure_tex, vec2<i32>(0), 0).r * EXPOSURE);
+}
+
+// With a host: the frame's exposure factor (FrameInputs::exposure) on top. A factor of 1
+// multiplies exactly, so the image is the one fs_tonemap draws.
+@fragment
+fn fs_tonemap_frame(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    return tonemap(position, EXPOSURE * light_info.exposure);
+}
+
+@fragment
+fn fs_tonemap_frame_metered(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let metered = textureLoad(exposure_tex, vec2<i32>(0), 0).r * EXPOSURE;
+    return tonemap(position, metered * light_info.exposure);
 }
