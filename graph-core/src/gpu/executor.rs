@@ -49,6 +49,10 @@ pub struct FrameReport {
     pub textures_allocated: u32,
     /// Buffers this frame had to create.
     pub buffers_allocated: u32,
+    /// CPU time from the call to the submission returning: checking the imports, taking
+    /// resources from the pool, recording every pass and submitting, without the wait for
+    /// the GPU that follows. What a frame costs the CPU of a frame loop.
+    pub record_submit_ns: u64,
 }
 
 /// Why a frame could not execute.
@@ -139,6 +143,7 @@ impl Executor {
         compiled: &mut CompiledGraph<G>,
         imports: &Imports,
     ) -> Result<FrameReport, ExecuteError> {
+        let start = Instant::now();
         let (graph, plan) = compiled.parts();
         check_records(graph, plan)?;
         let bound = imports.resolve(graph, plan)?;
@@ -151,6 +156,7 @@ impl Executor {
             self.queue.submit(buffers);
             Ok((slots, cpu_ns))
         });
+        let record_submit_ns = start.elapsed().as_nanos() as u64;
         let mut messages: Vec<String> = scopes.pop().into_iter().collect();
         let (slots, cpu_ns) = recorded?;
         if let Some(log) = &self.uncaptured {
@@ -163,7 +169,7 @@ impl Executor {
             });
         }
         let stamps = self.read_timestamps(&slots)?;
-        Ok(self.report(plan, &slots, cpu_ns, &stamps))
+        Ok(self.report(plan, &slots, (cpu_ns, record_submit_ns), &stamps))
     }
 
     /// The physical texture of an exported, graph-created texture of the last executed
@@ -426,12 +432,13 @@ impl Executor {
         Ok((buffers, cpu_ns))
     }
 
-    /// Timings per pass from the CPU times and the timestamp ticks of the timed passes.
+    /// Timings per pass from the CPU times (per pass, and of the whole record and submit)
+    /// and the timestamp ticks of the timed passes.
     fn report(
         &self,
         plan: &Plan,
         slots: &[Option<u32>],
-        cpu_ns: Vec<u64>,
+        (cpu_ns, record_submit_ns): (Vec<u64>, u64),
         stamps: &[(u64, u64)],
     ) -> FrameReport {
         let ns = |ticks: u64| self.timestamps.as_ref().map_or(0, |t| t.nanoseconds(ticks));
@@ -457,6 +464,7 @@ impl Executor {
             gpu_total_ns: begin.zip(end).map(|(b, e)| ns(e.saturating_sub(b))),
             textures_allocated: stats.frame_textures_allocated,
             buffers_allocated: stats.frame_buffers_allocated,
+            record_submit_ns,
         }
     }
 
