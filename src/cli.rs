@@ -65,12 +65,14 @@ pub enum Command {
         #[command(flatten)]
         assets: AssetArgs,
     },
-    /// Render one frame headless and write it as an 8-bit sRGB PNG.
+    /// Render one frame (or a sequence) headless and write it as an 8-bit sRGB PNG.
     ///
     /// Loads the scene, loads the pipeline and keeps only the passes the chosen view needs,
     /// opens the adapter, compiles for it, renders, reads back and writes the PNG
     /// atomically (never a partial file). Progress and a per-pass timing table go to
-    /// stderr; stdout gets only the written path.
+    /// stderr; stdout gets only the written path. With --frames N, the frames run through
+    /// one executor, the camera orbiting by --orbit, one PNG each (one path per line on
+    /// stdout) and one timing line each on stderr.
     ///
     /// Exit status: 0 when the PNG was written, 1 when the pipeline, scene or view is
     /// invalid or the frame fails on the device (each problem named), 2 for usage, I/O
@@ -79,7 +81,8 @@ pub enum Command {
         rgraph render --out frame.png\n  \
         rgraph render --scene builtin:spheres --width 640 --height 360 --view edges --out edges.png\n  \
         rgraph render --pipeline pipelines/deferred_msaa_4x.ron --scene model.glb \\\n      \
-        --tonemap aces --exposure 1.5 --adapter gpu --out model.png")]
+        --tonemap aces --exposure 1.5 --adapter gpu --out model.png\n  \
+        rgraph render --frames 36 --orbit 350 --out orbit/%04d.png")]
     Render(RenderArgs),
     /// Measure every pipeline on every scene: GPU time per pass and frame, memory, edge
     /// work, and image error against a supersampled reference.
@@ -165,9 +168,20 @@ pub struct RenderArgs {
     /// $RGRAPH_ADAPTER, else lavapipe).
     #[arg(long)]
     pub adapter: Option<String>,
-    /// The PNG to write (its directory must exist); replaced atomically.
+    /// The PNG to write (its directory must exist); replaced atomically. With --frames
+    /// above 1 the name holds %04d (or %0Nd for N digits), replaced by each frame's number.
     #[arg(long, value_name = "FILE.png")]
     pub out: PathBuf,
+    /// Frames to render through one executor, as an engine would: the scene is uploaded
+    /// and the pipelines built once, and each later frame only moves the camera.
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    pub frames: u32,
+    /// Degrees the camera turns about the vertical axis through the scene's bounds centre
+    /// over the frames: frame 0 is the file's (or the default) camera, the last frame is
+    /// turned by DEGREES, the frames between evenly spaced. For a seamless loop of N
+    /// frames give 360 * (N - 1) / N.
+    #[arg(long, value_name = "DEGREES", default_value_t = 0.0, value_parser = parse_degrees, allow_negative_numbers = true)]
+    pub orbit: f64,
     #[command(flatten)]
     pub samples: Samples,
     #[command(flatten)]
@@ -383,6 +397,15 @@ fn parse_exposure(text: &str) -> Result<Exposure, String> {
         Ok(e) if e.is_finite() && e > 0.0 => Ok(Exposure::Fixed(e)),
         Ok(_) => Err("must be auto or a finite number above 0".into()),
         Err(_) => Err("expected auto or a number, e.g. 1.5".into()),
+    }
+}
+
+fn parse_degrees(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(d) if d.is_finite() => Ok(d),
+        _ => Err(format!(
+            "expected a finite number of degrees, e.g. 90, got \"{text}\""
+        )),
     }
 }
 

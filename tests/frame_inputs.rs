@@ -35,7 +35,10 @@ fn two_frames(render: Render<'_>, change: impl FnOnce(&mut FrameInputs)) -> (Ima
     let mut frame = render.run(&gpu);
     let first = frame.image(&gpu, "color");
     let before = device_objects(&gpu.device);
-    assert!(before[2] > 0, "no render pipeline counted: wgpu's counters feature is off");
+    assert!(
+        before[2] > 0,
+        "no render pipeline counted: wgpu's counters feature is off"
+    );
     let mut inputs = frame.inputs();
     change(&mut inputs);
     let report = frame.next(inputs);

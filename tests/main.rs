@@ -21,6 +21,7 @@ mod cli_anywhere;
 mod cli_assets;
 mod cli_bench;
 mod cli_render;
+mod cli_render_frames;
 mod cli_render_samples;
 mod cli_validate;
 mod deferred_detectors;

@@ -1,4 +1,5 @@
-//! `rgraph render`: one frame, headless, written as an 8-bit sRGB PNG.
+//! `rgraph render`: one frame, headless, written as an 8-bit sRGB PNG; or `--frames N`
+//! through one executor with the camera orbiting (`--orbit`), one PNG each.
 //!
 //! Stages, in the order that finds cheap mistakes before expensive work: the arguments,
 //! the scene, the pipeline and its view, then the device, the compile for that device,
@@ -11,11 +12,14 @@ mod saturation;
 mod summary;
 mod view;
 
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use graph_core::gpu::AdapterChoice;
+use image::RgbaImage;
+use passes_deferred_msaa::glam::DVec3;
 use passes_deferred_msaa::scene::{AlphaMode, Scene};
-use passes_deferred_msaa::Overrides;
+use passes_deferred_msaa::{FrameInputs, Host, Overrides};
 
 use super::CommandError;
 use crate::cli::{AssetArgs, RenderArgs};
@@ -23,16 +27,21 @@ use crate::frame::{host, FrameError, Pipeline, Session, Specialise};
 use error::RenderError;
 use progress::Progress;
 
-/// Renders and prints the written path on stdout (the only thing there).
+/// Renders and prints the written paths on stdout (the only thing there), one a line.
 pub fn run(args: &RenderArgs) -> Result<(), CommandError> {
-    render(args).map_err(RenderError::into_command_error)?;
-    println!("{}", args.out.display());
+    let written = render(args).map_err(RenderError::into_command_error)?;
+    for path in written {
+        println!("{}", path.display());
+    }
     Ok(())
 }
 
-fn render(args: &RenderArgs) -> Result<(), RenderError> {
-    output::check(&args.out)?;
-    let mut progress = Progress::new(7);
+fn render(args: &RenderArgs) -> Result<Vec<PathBuf>, RenderError> {
+    let paths = output::FramePaths::new(&args.out, args.frames)?;
+    // One frame reads back and writes as stages of its own; a sequence does both per
+    // frame within its render stage, with a timing line each.
+    let single = args.frames == 1;
+    let mut progress = Progress::new(if single { 7 } else { 5 });
 
     progress.stage(format!("load scene {}", args.scene));
     let scene = load_scene(&args.scene, &args.assets, &progress)?;
@@ -49,8 +58,14 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     };
     let host = host(scene, overrides);
     let params = args.samples.params();
-    let pipeline = Pipeline::load(&args.pipeline, host, &[&output], specialise, &params)
-        .map_err(|e| view::unknown(e, &args.view))?;
+    let pipeline = Pipeline::load(
+        &args.pipeline,
+        host.clone(),
+        &[&output],
+        specialise,
+        &params,
+    )
+    .map_err(|e| view::unknown(e, &args.view))?;
 
     let choice = AdapterChoice::resolve(args.adapter.as_deref());
     progress.stage(format!("open device ({choice})"));
@@ -70,11 +85,78 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
         ));
     }
 
-    progress.stage("upload and render");
-    let report = prepared.run(1)?.remove(0);
+    progress.stage(match single {
+        true => "upload and render".to_string(),
+        false => format!(
+            "render {} frames, the camera orbiting {}°",
+            args.frames, args.orbit
+        ),
+    });
+    let orbit = Orbit::new(&host, args);
+    let mut written = Vec::new();
+    let mut first = None;
+    for index in 0..args.frames {
+        if index > 0 {
+            host.set_frame(orbit.inputs(index))?;
+        }
+        let report = prepared.run(1)?.remove(0);
+        if single {
+            progress.stage(format!("read back \"{output}\""));
+        }
+        let image = prepared.read(&output)?;
+        if index == 0 {
+            warn_about(&image, args, &output, &progress);
+        }
+        let path = paths.path(index);
+        if single {
+            progress.stage(format!("write {}", path.display()));
+        }
+        output::write_png(&path, &image)?;
+        if !single {
+            progress.note(summary::frame_line(index, &report));
+        }
+        written.push(path);
+        first.get_or_insert(report);
+    }
+    drop(progress);
+    let specialised = specialise == Specialise::ToScene;
+    if let Some(report) = first {
+        eprintln!("{}", summary::text(prepared.plan(), &report, specialised));
+    }
+    Ok(written)
+}
 
-    progress.stage(format!("read back \"{output}\""));
-    let image = prepared.read(&output)?;
+/// The camera of each frame of `--frames N --orbit DEGREES`: the scene's camera turned
+/// about the vertical axis through the scene's bounds centre, evenly from 0 (frame 0)
+/// to DEGREES (the last frame).
+struct Orbit {
+    start: FrameInputs,
+    center: DVec3,
+    /// Radians per frame.
+    step: f64,
+}
+
+impl Orbit {
+    fn new(host: &Host, args: &RenderArgs) -> Orbit {
+        let steps = f64::from(args.frames.saturating_sub(1).max(1));
+        Orbit {
+            start: FrameInputs::clone(&host.frame()),
+            center: host.scene.bounds.center(),
+            step: args.orbit.to_radians() / steps,
+        }
+    }
+
+    fn inputs(&self, index: u32) -> FrameInputs {
+        FrameInputs {
+            camera: (self.start.camera).orbited(self.center, self.step * f64::from(index)),
+            ..self.start.clone()
+        }
+    }
+}
+
+/// Warnings the first frame's image earns: a size the flags did not set, and a blown-out
+/// final image.
+fn warn_about(image: &RgbaImage, args: &RenderArgs, output: &str, progress: &Progress) {
     if image.dimensions() != (args.width, args.height) {
         // A pipeline may give its output a fixed size: the flags then do nothing, and the
         // user should hear so rather than wonder why the PNG has another size.
@@ -88,21 +170,13 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
             image.height()
         ));
     }
-
-    if let Some(share) = saturation::blown_out(&image).filter(|_| output == "color") {
+    if let Some(share) = saturation::blown_out(image).filter(|_| output == "color") {
         progress.note(format!(
             "warning: {:.0}% of the lit pixels are saturated (a channel at 255): lower \
              --exposure, or let --exposure auto meter the frame",
             share * 100.0
         ));
     }
-
-    progress.stage(format!("write {}", args.out.display()));
-    output::write_png(&args.out, &image)?;
-    drop(progress);
-    let specialised = specialise == Specialise::ToScene;
-    eprintln!("{}", summary::text(prepared.plan(), &report, specialised));
-    Ok(())
 }
 
 /// Whether some mesh of `scene` has an alpha BLEND material.

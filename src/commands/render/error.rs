@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use crate::commands::CommandError;
 use crate::frame::FrameError;
+use passes_deferred_msaa::FrameInputsError;
 
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
@@ -23,6 +24,10 @@ pub enum RenderError {
     /// A problem with `--out`, or writing it.
     #[error("{0}")]
     Output(String),
+
+    /// A frame's inputs (the orbited camera) that the scene refused.
+    #[error("{0}")]
+    FrameInputs(#[from] FrameInputsError),
 }
 
 impl RenderError {
@@ -32,7 +37,7 @@ impl RenderError {
         let usage = match &self {
             RenderError::Frame(frame) => frame.is_usage(),
             RenderError::Output(_) => true,
-            RenderError::UnknownView { .. } => false,
+            RenderError::UnknownView { .. } | RenderError::FrameInputs(_) => false,
         };
         if usage {
             return CommandError::Usage(self.to_string());

@@ -1,6 +1,7 @@
-//! The `--out` file: checked before any work, written atomically at the end.
+//! The `--out` file, or with `--frames N` the pattern of one file per frame: checked
+//! before any work, each written atomically.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use image::RgbaImage;
 
@@ -51,4 +52,83 @@ pub fn check(path: &Path) -> Result<(), RenderError> {
 /// Writes the image as a PNG, atomically.
 pub fn write_png(path: &Path, image: &RgbaImage) -> Result<(), RenderError> {
     crate::commands::write_png(path, image).map_err(|e| RenderError::Output(e.to_string()))
+}
+
+/// Where each frame's PNG goes: `--out` itself for one frame without a pattern, else
+/// `--out` with its `%0Nd` (or `%d`) replaced by the frame number, zero-padded to N digits.
+pub struct FramePaths {
+    /// The path before the pattern, the pattern's width, the path after it.
+    pattern: Option<(String, usize, String)>,
+    out: PathBuf,
+}
+
+impl FramePaths {
+    /// Checks `out` for `frames` frames: more than one needs a pattern, and the first
+    /// frame's path must be writable (the others share its directory).
+    pub fn new(out: &Path, frames: u32) -> Result<FramePaths, RenderError> {
+        let shown = out.display();
+        let text = out.to_str().ok_or_else(|| {
+            RenderError::Output(format!("--out {shown}: the path is not valid UTF-8"))
+        })?;
+        let pattern = frame_pattern(text);
+        if pattern.is_none() && frames > 1 {
+            return Err(RenderError::Output(format!(
+                "--out {shown}: --frames {frames} writes one PNG per frame; put %04d (or \
+                 %0Nd for N digits) in the file name where the frame number goes, e.g. \
+                 out/frame_%04d.png"
+            )));
+        }
+        let paths = FramePaths {
+            pattern,
+            out: out.to_path_buf(),
+        };
+        check(&paths.path(0))?;
+        Ok(paths)
+    }
+
+    /// The PNG of frame `index`.
+    pub fn path(&self, index: u32) -> PathBuf {
+        match &self.pattern {
+            Some((before, width, after)) => {
+                PathBuf::from(format!("{before}{index:0width$}{after}"))
+            }
+            None => self.out.clone(),
+        }
+    }
+}
+
+/// `text` split at its first `%0Nd` or `%d` (width 0: no padding).
+fn frame_pattern(text: &str) -> Option<(String, usize, String)> {
+    let start = text.find('%')?;
+    let rest = &text[start + 1..];
+    let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
+    if rest.as_bytes().get(digits) != Some(&b'd') {
+        return None;
+    }
+    let width = match &rest[..digits] {
+        "" => 0,
+        padded if padded.starts_with('0') => padded.parse().ok()?,
+        // %4d pads with spaces in printf, which no file name wants.
+        _ => return None,
+    };
+    let after = &rest[digits + 1..];
+    Some((text[..start].to_string(), width, after.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::frame_pattern;
+
+    #[test]
+    fn frame_patterns() {
+        let split = frame_pattern;
+        assert_eq!(
+            split("out/%04d.png"),
+            Some(("out/".into(), 4, ".png".into()))
+        );
+        assert_eq!(split("f%d.png"), Some(("f".into(), 0, ".png".into())));
+        assert_eq!(split("out/frame.png"), None);
+        assert_eq!(split("out/%4d.png"), None);
+        assert_eq!(split("out/%s.png"), None);
+    }
 }

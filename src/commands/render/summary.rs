@@ -79,3 +79,16 @@ pub fn text(plan: &Plan, report: &FrameReport, specialised: bool) -> String {
     }
     lines.join("\n")
 }
+
+/// One frame of a sequence on one line: its index, the CPU time to record and submit it,
+/// and its GPU time when the device has timestamps.
+pub fn frame_line(index: u32, report: &FrameReport) -> String {
+    let gpu = match report.gpu_total_ns {
+        Some(ns) => format!("GPU {:.3} ms", ns as f64 / 1e6),
+        None => "GPU - (no timestamp queries)".to_string(),
+    };
+    format!(
+        "frame {index:04}: record+submit {:.3} ms, {gpu}",
+        report.record_submit_ns as f64 / 1e6
+    )
+}
