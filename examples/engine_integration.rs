@@ -1,6 +1,9 @@
-//! An engine embedding rgraph: it owns the device and the final target texture, declares
-//! its frame in code with plugin passes next to one pass of its own, and runs several
-//! frames through one executor, whose pool reuses every texture after the first frame.
+//! An engine embedding rgraph: it owns the device and the final target texture, loads a
+//! scene once, declares its frame as a graph of the deferred plugins, and animates the
+//! scene through one executor: each frame it moves the camera, the lights and one
+//! object and sets the exposure through `Host::set_frame`, without reloading anything.
+//! It prints, per frame, the CPU time to record and submit it and what it created: after
+//! the first frame, nothing (no texture, buffer, pipeline or shader module).
 //!
 //! ```sh
 //! cargo run --release --example engine_integration [-- --frames N --out out/frame.png]
@@ -10,30 +13,110 @@
 //! theirs: without `XDG_RUNTIME_DIR` the loader warns, and `VK_DRIVER_FILES` naming only
 //! lavapipe's manifest keeps it from probing other drivers.
 //!
-//! The frame: a sky gradient (`fullscreen` plugin) into a 4x multisampled HDR target, the
-//! engine's own pass drawing a rotating triangle over it and resolving, an exposure and
-//! tone curve (`compute` plugin), and a `blit` into the engine's sRGB texture, which the
-//! engine then reads back and saves.
+//! Who owns what: the engine owns the device, the target (imported into the graph each
+//! execution with `Imports`) and the [`Host`] (scene plus current [`FrameInputs`]); the
+//! executor owns the graph's textures, pooled across frames; the deferred plugins own
+//! the scene's upload and their pipelines, made on the first frame. `Host::set_frame`
+//! between executions changes what the next one draws and invalidates nothing.
 
 use std::error::Error;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
-use graph_core::file::{AnyHandle, PluginPassError};
-use graph_core::gpu::{read_rgba8, AdapterChoice, Executor, Gpu, Imports, RenderContext};
-use graph_core::plugins::{Blit, Compute, Fullscreen};
+use graph_core::file::{load_str_with, GraphParams, LoadedGraph, Registry};
+use graph_core::gpu::{read_rgba8, AdapterChoice, Executor, Gpu, Imports};
 use graph_core::types::TextureFormat;
-use graph_core::{
-    ColorLoad, CompileOptions, CompiledGraph, Graph, GraphBuilder, TextureDesc, TextureHandle,
-};
+use graph_core::{CompileOptions, CompiledGraph};
+use passes_deferred_msaa::glam::{DMat4, DQuat, DVec3};
+use passes_deferred_msaa::scene::Scene;
+use passes_deferred_msaa::{FrameInputs, Host, Overrides};
 
 const SIZE: (u32, u32) = (640, 360);
-const SAMPLES: u32 = 4;
+/// The scene: five spheres on a ground plane, four point lights and a sun.
+const SCENE: &str = "builtin:spheres";
+/// Frames per second of the animation's clock.
+const FPS: f64 = 30.0;
+
+/// The frame: the G-buffer at 4x MSAA, lit and resolved in one tiled compute pass, tone
+/// mapped into the engine's target. The same plugins and parameters as
+/// pipelines/deferred_msaa_4x_tiled.ron, without its debug views and scene conditions.
+const GRAPH: &str = r#"Graph(
+    resources: {
+        "albedo": Texture(format: "rgba8unorm-srgb", samples: 4),
+        "normal": Texture(format: "rg16float", samples: 4),
+        "material": Texture(format: "rgba8unorm", samples: 4),
+        "view_depth": Texture(format: "r32float", samples: 4),
+        "hdr": Texture(format: "rgba16float", samples: 4),
+        "depth": Texture(format: "depth32float-stencil8", fallback: "depth24plus-stencil8", samples: 4),
+        "resolved": Texture(format: "rgba16float"),
+        "target": ImportedTexture(format: "rgba8unorm-srgb"),
+    },
+    passes: [
+        (name: "gbuffer", plugin: "gbuffer",
+         outputs: { "albedo": "albedo", "normal": "normal", "material": "material",
+                    "view_depth": "view_depth", "hdr": "hdr", "depth": "depth" }),
+        (name: "light tiled", plugin: "light_tiled", params: (edges: (detector: compare)),
+         inputs: { "albedo": "albedo", "normal": "normal", "material": "material",
+                   "view_depth": "view_depth", "depth": "depth", "hdr": "hdr" },
+         outputs: { "resolved": "resolved" }),
+        (name: "tonemap", plugin: "tonemap", params: (operator: aces),
+         inputs: { "hdr": "resolved" }, outputs: { "color": "target" }),
+    ],
+    outputs: ["target"],
+)"#;
 
 fn main() -> Result<(), Box<dyn Error>> {
     let (frames, out) = arguments()?;
     let gpu = Gpu::open(&AdapterChoice::from_env())?;
     eprintln!("adapter: {} ({:?})", gpu.info.name, gpu.info.backend);
+    let sequence = animate(&gpu, frames, |index, frame| {
+        eprintln!(
+            "frame {index}: record+submit {:.3} ms; allocated {} textures, {} buffers; \
+             created {}",
+            frame.record_submit_ns as f64 / 1e6,
+            frame.textures_allocated,
+            frame.buffers_allocated,
+            frame.created
+        );
+    })?;
+    let later = &sequence.frames[1..];
+    if !later.is_empty() {
+        let mean = later.iter().map(|f| f.record_submit_ns).sum::<u64>() / later.len() as u64;
+        eprintln!(
+            "frames 1 to {}: record+submit {:.3} ms on average",
+            frames - 1,
+            mean as f64 / 1e6
+        );
+    }
+    save_png(&out, &sequence.image)?;
+    println!("{}", out.display());
+    Ok(())
+}
 
+/// What one frame cost and made.
+pub struct FrameStats {
+    /// CPU time from the executor call to its submission (`FrameReport::record_submit_ns`).
+    pub record_submit_ns: u64,
+    /// Graph textures and buffers the executor's pool had to create.
+    pub textures_allocated: u32,
+    pub buffers_allocated: u32,
+    /// Device objects alive after the frame minus before it.
+    pub created: DeviceObjects,
+}
+
+/// An animated sequence: each frame's stats and the last frame's image (RGBA8, sRGB).
+pub struct Sequence {
+    pub frames: Vec<FrameStats>,
+    pub image: Vec<[u8; 4]>,
+}
+
+/// Renders `frames` frames of the animation on `gpu` through one executor, calling
+/// `each` after each frame.
+pub fn animate(
+    gpu: &Gpu,
+    frames: u32,
+    mut each: impl FnMut(u32, &FrameStats),
+) -> Result<Sequence, Box<dyn Error>> {
     // The engine's own render target, which the graph draws into but never owns.
     let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("engine target"),
@@ -50,190 +133,148 @@ fn main() -> Result<(), Box<dyn Error>> {
         view_formats: &[],
     });
 
+    // Loaded once: the scene, and the host that owns it and its frame inputs.
+    let scene = Arc::new(Scene::load(SCENE)?);
+    let host = Arc::new(Host::new(scene.clone(), Overrides::default()));
+    let mut registry = Registry::with_builtins();
+    passes_deferred_msaa::register(&mut registry, Some(host.clone()));
+    let loaded = load_str_with(
+        "engine_integration.ron",
+        GRAPH,
+        &registry,
+        &GraphParams::new(),
+    )?;
+
+    // Compiled once. A new output size or sample count would be
+    // `compiled.recompile(..)`, which keeps the plans it made before.
     let options = CompileOptions {
         output_size: SIZE,
         profile: gpu.profile(),
     };
-    let mut compiled = CompiledGraph::new(frame_graph()?, &options)?;
-    let plan = compiled.plan();
-    eprintln!(
-        "plan: {} passes, graph textures {} KiB logical, {} KiB after pooling",
-        plan.passes.len(),
-        plan.memory.logical_bytes / 1024,
-        plan.memory.physical_bytes / 1024
-    );
+    let mut compiled: CompiledGraph<LoadedGraph> = CompiledGraph::new(loaded, &options)?;
 
     let mut imports = Imports::new();
     imports.texture("target", &target);
-    let mut executor = Executor::new(&gpu);
-    for frame in 0..frames {
+    let mut executor = Executor::new(gpu);
+    let animation = Animation::new(&scene);
+    let mut stats = Vec::new();
+    for index in 0..frames {
+        host.set_frame(animation.at(f64::from(index) / FPS))?;
+        let before = DeviceObjects::alive(&gpu.device);
         let report = executor.execute(&mut compiled, &imports)?;
-        let passes: Vec<String> = report
-            .passes
-            .iter()
-            .map(|p| match p.gpu_ns {
-                Some(ns) => format!("{} {:.3} ms", p.name, ns as f64 / 1e6),
-                None => format!("{} (untimed)", p.name),
-            })
-            .collect();
-        eprintln!(
-            "frame {frame}: {} textures allocated; {}",
-            report.textures_allocated,
-            passes.join(", ")
-        );
+        let frame = FrameStats {
+            record_submit_ns: report.record_submit_ns,
+            textures_allocated: report.textures_allocated,
+            buffers_allocated: report.buffers_allocated,
+            created: DeviceObjects::alive(&gpu.device).minus(&before),
+        };
+        each(index, &frame);
+        stats.push(frame);
     }
-    let stats = executor.pool_stats();
-    eprintln!(
-        "pool: {} textures created over {frames} frames, {} alive",
-        stats.textures_allocated, stats.textures_alive
-    );
-
-    let texels = read_rgba8(&gpu.device, &gpu.queue, &target)?;
-    save_png(&out, &texels)?;
-    println!("{}", out.display());
-    Ok(())
-}
-
-/// The frame, declared in code. Plugins are the same ones graph files name; the engine's
-/// own pass sits between them and is declared with the builder's verbs.
-fn frame_graph() -> Result<Graph, PluginPassError> {
-    let mut graph = GraphBuilder::new();
-    let msaa = graph.create_texture(
-        "hdr.msaa",
-        TextureDesc::new(TextureFormat::Rgba16Float).samples(SAMPLES),
-    );
-    let hdr = graph.create_texture("hdr", TextureDesc::new(TextureFormat::Rgba16Float));
-    let toned = graph.create_texture("toned", TextureDesc::new(TextureFormat::Rgba16Float));
-    let target = graph.import_texture("target", TextureDesc::new(TextureFormat::Rgba8UnormSrgb));
-
-    let sky = graph
-        .add_plugin_pass(
-            "sky",
-            &Fullscreen,
-            params(
-                "(shader: \"shaders/gradient.wgsl\", bindings: [Uniform(binding: 0, values: \
-                 [0.2, 0.4, 1.6, 1.0, 1.8, 1.2, 0.6, 1.0])])",
-            ),
-            &[],
-            &[("color", msaa.into())],
-        )?
-        .texture("color")
-        .expect("fullscreen writes its color slot");
-
-    let resolved = triangle_pass(&mut graph, sky, hdr);
-
-    let toned = graph
-        .add_plugin_pass(
-            "tonemap",
-            &Compute,
-            params(
-                "(shader: \"shaders/exposure.wgsl\", dispatch: PerTexel(\"dst\"), bindings: \
-                 [Slot(binding: 0, slot: \"src\"), Slot(binding: 1, slot: \"dst\"), \
-                 Uniform(binding: 2, values: [1.5, 0.0, 0.0, 0.0])])",
-            ),
-            &[("src", resolved.into())],
-            &[("dst", toned.into())],
-        )?
-        .texture("dst")
-        .expect("compute writes its dst slot");
-
-    let presented: AnyHandle = graph
-        .add_plugin_pass(
-            "present",
-            &Blit,
-            params("()"),
-            &[("src", toned.into())],
-            &[("dst", target.into())],
-        )?
-        .get("dst")
-        .expect("blit writes its dst slot");
-    if let AnyHandle::Texture(h) = presented {
-        graph.export(h);
-    }
-    Ok(graph.build())
-}
-
-/// The engine's own pass: draws over the sky (loading it) and resolves into `hdr`. The
-/// pipeline is made on the first frame and kept by the closure.
-fn triangle_pass(
-    graph: &mut GraphBuilder,
-    sky: TextureHandle,
-    hdr: TextureHandle,
-) -> TextureHandle {
-    let mut pass = graph.add_render_pass("engine triangle");
-    let drawn = pass.color_output(sky, ColorLoad::Load);
-    let resolved = pass.resolve_output(drawn, hdr);
-    let mut pipeline: Option<wgpu::RenderPipeline> = None;
-    let mut frame = 0u32;
-    pass.render(move |ctx: &mut RenderContext<'_, '_>| {
-        let shape = ctx.resources.shape(drawn);
-        let pipeline = pipeline.get_or_insert_with(|| {
-            triangle_pipeline(ctx.resources.device, shape.format, shape.samples)
-        });
-        ctx.pass.set_pipeline(pipeline);
-        // The angle travels as the instance index, so the pass needs no buffers.
-        ctx.pass.draw(0..3, frame..frame + 1);
-        frame += 1;
-    });
-    resolved
-}
-
-const TRIANGLE: &str = r#"
-struct Out { @builtin(position) position: vec4f, @location(0) color: vec3f }
-
-@vertex
-fn vs(@builtin(vertex_index) v: u32, @builtin(instance_index) frame: u32) -> Out {
-    let angle = f32(v) * 2.0943951 + f32(frame) * 0.3;
-    var out: Out;
-    out.position = vec4f(0.5 * cos(angle) * 0.5625, 0.5 * sin(angle), 0.0, 1.0);
-    out.color = vec3f(f32(v == 0u), f32(v == 1u), f32(v == 2u)) * 4.0;
-    return out;
-}
-
-@fragment
-fn fs(in: Out) -> @location(0) vec4f {
-    return vec4f(in.color, 1.0);
-}
-"#;
-
-fn triangle_pipeline(
-    device: &wgpu::Device,
-    format: TextureFormat,
-    samples: u32,
-) -> wgpu::RenderPipeline {
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("engine triangle"),
-        source: wgpu::ShaderSource::Wgsl(TRIANGLE.into()),
-    });
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("engine triangle"),
-        layout: None,
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: None,
-        multisample: wgpu::MultisampleState {
-            count: samples,
-            ..Default::default()
-        },
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs"),
-            compilation_options: Default::default(),
-            targets: &[Some(format.into())],
-        }),
-        multiview_mask: None,
-        cache: None,
+    Ok(Sequence {
+        frames: stats,
+        image: read_rgba8(&gpu.device, &gpu.queue, &target)?,
     })
 }
 
-/// Plugin parameters, written as a graph file would write them.
-fn params<P: serde::de::DeserializeOwned>(ron_text: &str) -> P {
-    ron::from_str(ron_text).expect("the example's parameters are valid")
+/// The scene's motion: the camera orbits the scene's centre, the point lights circle it
+/// the other way, the sun turns, the sphere nearest the centre bobs and the exposure
+/// breathes.
+struct Animation {
+    start: FrameInputs,
+    center: DVec3,
+    /// The mesh that moves.
+    bobbing: usize,
+}
+
+impl Animation {
+    fn new(scene: &Scene) -> Animation {
+        let center = scene.bounds.center();
+        let bobbing = (0..scene.meshes.len())
+            .filter_map(|i| Some((i, scene.meshes[i].world_bounds()?.center())))
+            .min_by(|a, b| a.1.distance(center).total_cmp(&b.1.distance(center)))
+            .map_or(0, |(i, _)| i);
+        Animation {
+            start: FrameInputs::of(scene),
+            center,
+            bobbing,
+        }
+    }
+
+    /// The frame inputs at `time` seconds.
+    fn at(&self, time: f64) -> FrameInputs {
+        let mut inputs = self.start.clone();
+        inputs.time = time;
+        inputs.camera = self.start.camera.orbited(self.center, 0.4 * time);
+        let turn = DQuat::from_rotation_y(-0.8 * time);
+        for pose in &mut inputs.lights {
+            pose.position = self.center + turn * (pose.position - self.center);
+            pose.direction = turn.as_quat() * pose.direction;
+        }
+        let lift = DMat4::from_translation(DVec3::Y * 0.5 * (2.0 * time).sin().abs());
+        inputs.transforms[self.bobbing] = lift * self.start.transforms[self.bobbing];
+        inputs.exposure = 1.0 + 0.25 * (0.5 * time).sin() as f32;
+        inputs
+    }
+}
+
+/// Device objects alive, by kind, as wgpu counts them (its `counters` feature, which
+/// rgraph's Cargo.toml turns on). They count objects alive, not creations: a frame
+/// that created an object and dropped it before the count would not show, but every
+/// object the graph or the plugins keep (pooled textures, cached pipelines) does.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DeviceObjects {
+    /// Bytes of texture memory: wgpu-hal 30's Vulkan backend counts what textures
+    /// allocate but not the textures (its `create_texture` leaves that count alone).
+    pub texture_bytes: isize,
+    pub buffers: isize,
+    pub render_pipelines: isize,
+    pub compute_pipelines: isize,
+    pub shader_modules: isize,
+    pub bind_group_layouts: isize,
+}
+
+impl DeviceObjects {
+    /// What `device` holds alive now.
+    pub fn alive(device: &wgpu::Device) -> DeviceObjects {
+        let hal = device.get_internal_counters().hal;
+        DeviceObjects {
+            texture_bytes: hal.texture_memory.read(),
+            buffers: hal.buffers.read(),
+            render_pipelines: hal.render_pipelines.read(),
+            compute_pipelines: hal.compute_pipelines.read(),
+            shader_modules: hal.shader_modules.read(),
+            bind_group_layouts: hal.bind_group_layouts.read(),
+        }
+    }
+
+    /// What `self` holds more than `before` (negative: fewer).
+    pub fn minus(&self, before: &DeviceObjects) -> DeviceObjects {
+        DeviceObjects {
+            texture_bytes: self.texture_bytes - before.texture_bytes,
+            buffers: self.buffers - before.buffers,
+            render_pipelines: self.render_pipelines - before.render_pipelines,
+            compute_pipelines: self.compute_pipelines - before.compute_pipelines,
+            shader_modules: self.shader_modules - before.shader_modules,
+            bind_group_layouts: self.bind_group_layouts - before.bind_group_layouts,
+        }
+    }
+}
+
+impl std::fmt::Display for DeviceObjects {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} KiB of textures, {} buffers, {} render and {} compute pipelines, {} shader \
+             modules, {} bind group layouts",
+            self.texture_bytes / 1024,
+            self.buffers,
+            self.render_pipelines,
+            self.compute_pipelines,
+            self.shader_modules,
+            self.bind_group_layouts
+        )
+    }
 }
 
 /// `--frames N` (default 3) and `--out FILE` (default out/frame.png).

@@ -8,25 +8,12 @@ use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Exposure, FrameInputs, Overrides};
 
 use crate::deferred_support::{gpu, Image, Render};
+use crate::engine_integration::DeviceObjects;
 
 const SIZE: (u32, u32) = (96, 64);
 /// Point and spot lights, drawn as volumes by the fragment light passes.
 const SCENE: &str = "builtin:dense";
 const PIPELINE: &str = "deferred_msaa_4x.ron";
-
-/// What the device holds alive, by kind (wgpu's `counters` feature): a frame that
-/// creates any of these and keeps it shows here.
-fn device_objects(device: &wgpu::Device) -> [isize; 6] {
-    let hal = device.get_internal_counters().hal;
-    [
-        hal.textures.read(),
-        hal.buffers.read(),
-        hal.render_pipelines.read(),
-        hal.compute_pipelines.read(),
-        hal.shader_modules.read(),
-        hal.bind_group_layouts.read(),
-    ]
-}
 
 /// Renders `render`'s scene as loaded, then a second frame with its frame inputs changed
 /// by `change`; returns both images. Asserts the second frame made nothing new.
@@ -34,9 +21,9 @@ fn two_frames(render: Render<'_>, change: impl FnOnce(&mut FrameInputs)) -> (Ima
     let gpu = gpu();
     let mut frame = render.run(&gpu);
     let first = frame.image(&gpu, "color");
-    let before = device_objects(&gpu.device);
+    let before = DeviceObjects::alive(&gpu.device);
     assert!(
-        before[2] > 0,
+        before.render_pipelines > 0,
         "no render pipeline counted: wgpu's counters feature is off"
     );
     let mut inputs = frame.inputs();
@@ -49,10 +36,9 @@ fn two_frames(render: Render<'_>, change: impl FnOnce(&mut FrameInputs)) -> (Ima
         "the second frame allocated graph resources"
     );
     assert_eq!(
-        device_objects(&gpu.device),
-        before,
-        "the second frame created device objects (textures, buffers, render and compute \
-         pipelines, shader modules, bind group layouts)"
+        DeviceObjects::alive(&gpu.device).minus(&before),
+        DeviceObjects::default(),
+        "the second frame created device objects"
     );
     (first, second)
 }

@@ -7,6 +7,10 @@
 mod cli_support;
 mod common;
 mod deferred_support;
+// The engine example, whose frame loop tests/engine_example.rs runs (its `main` is not).
+#[allow(dead_code)]
+#[path = "../examples/engine_integration.rs"]
+mod engine_integration;
 mod fuzz_support;
 // passes-deferred-msaa's glTF writer, for GPU tests of files the loader reads.
 #[allow(dead_code)]
@@ -37,6 +41,7 @@ mod deferred_unlit;
 mod deferred_views;
 mod deferred_volumes;
 mod deferred_volumes_gpu;
+mod engine_example;
 mod extremes_depth;
 mod extremes_determinism;
 mod extremes_far;

@@ -17,7 +17,7 @@
 //! minus the camera position, computed in f64 and then cast to f32, and the camera
 //! matrices only rotate and project. Call [`GpuScene::prepare`] with the output size at
 //! the start of each pass's recording: it rewrites the camera for that aspect ratio when
-//! it changed (one output size per frame and device is assumed).
+//! it or the frame's camera changed (one output size per frame and device is assumed).
 
 mod camera;
 mod environment;
@@ -270,11 +270,6 @@ impl GpuScene {
     /// (modules, pipelines) serves both.
     pub fn same_upload(&self, other: &GpuScene) -> bool {
         Arc::ptr_eq(&self.upload, &other.upload)
-    }
-
-    /// The frame inputs this scene is placed by.
-    pub fn inputs(&self) -> &FrameInputs {
-        &self.frame.inputs
     }
 
     /// Writes the camera for an output of `size` if it was written for another size or

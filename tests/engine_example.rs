@@ -1,0 +1,39 @@
+//! The engine example (examples/engine_integration.rs, compiled into this binary) run as
+//! a test: an animated sequence through one executor whose frames after the first
+//! allocate nothing and create no device object, while the image does change.
+
+use crate::deferred_support::gpu;
+use crate::engine_integration::{animate, DeviceObjects};
+
+#[test]
+fn frames_after_the_first_allocate_nothing_and_create_no_pipelines() {
+    let gpu = gpu();
+    let mut images = Vec::new();
+    for frames in [1, 4] {
+        let sequence = animate(&gpu, frames, |_, _| {}).expect("the example runs");
+        let first = &sequence.frames[0];
+        assert!(
+            first.created.render_pipelines > 0 && first.textures_allocated > 0,
+            "the first frame builds the pipelines and allocates the targets (counted: {}); \
+             is wgpu's counters feature off?",
+            first.created
+        );
+        for (index, frame) in sequence.frames.iter().enumerate().skip(1) {
+            assert_eq!(
+                (frame.textures_allocated, frame.buffers_allocated),
+                (0, 0),
+                "frame {index} allocated graph resources"
+            );
+            assert_eq!(
+                frame.created,
+                DeviceObjects::default(),
+                "frame {index} created device objects"
+            );
+        }
+        images.push(sequence.image);
+    }
+    assert_ne!(
+        images[0], images[1],
+        "the animation did not change the image"
+    );
+}
