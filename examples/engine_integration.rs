@@ -79,12 +79,18 @@ fn main() -> Result<(), Box<dyn Error>> {
             frame.created
         );
     })?;
-    let later = &sequence.frames[1..];
+    // The frames after the first: the steady state an engine's frame loop lives in.
+    let mut later: Vec<u64> = sequence.frames[1..]
+        .iter()
+        .map(|f| f.record_submit_ns)
+        .collect();
     if !later.is_empty() {
-        let mean = later.iter().map(|f| f.record_submit_ns).sum::<u64>() / later.len() as u64;
+        later.sort_unstable();
+        let mean = later.iter().sum::<u64>() / later.len() as u64;
         eprintln!(
-            "frames 1 to {}: record+submit {:.3} ms on average",
+            "frames 1 to {}: record+submit median {:.3} ms, mean {:.3} ms",
             frames - 1,
+            later[later.len() / 2] as f64 / 1e6,
             mean as f64 / 1e6
         );
     }
