@@ -14,7 +14,7 @@ use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
 use passes_deferred_msaa::glam::{DVec3, Vec3};
 use passes_deferred_msaa::scene::{
-    environment_radiance, prefilter, split_sum, Camera, Environment, Lighting, Projection, Scene,
+    irradiance_integral, prefilter, split_sum, Camera, Environment, Lighting, Projection, Scene,
 };
 
 const SIZE: (u32, u32) = (64, 64);
@@ -79,33 +79,6 @@ fn face_pixels(parts: &Parts) -> Vec<(u32, u32, DVec3, DVec3)> {
     pixels
 }
 
-/// `∫ L(ω) max(n·ω, 0) dω` of the neutral environment, by quadrature.
-fn irradiance_integral(n: Vec3) -> f32 {
-    irradiance_by_quadrature(n, 512)
-}
-
-/// [`irradiance_integral`] over `columns` x `columns / 2` cells.
-fn irradiance_by_quadrature(n: Vec3, columns: u32) -> f32 {
-    let rows = columns / 2;
-    let mut sum = 0.0f64;
-    for row in 0..rows {
-        let theta = (row as f64 + 0.5) / rows as f64 * std::f64::consts::PI;
-        let cell = (std::f64::consts::PI / rows as f64)
-            * (2.0 * std::f64::consts::PI / columns as f64)
-            * theta.sin();
-        for column in 0..columns {
-            let phi = (column as f64 + 0.5) / columns as f64 * 2.0 * std::f64::consts::PI;
-            let d = Vec3::new(
-                (theta.sin() * phi.cos()) as f32,
-                theta.cos() as f32,
-                (theta.sin() * phi.sin()) as f32,
-            );
-            sum += f64::from(environment_radiance(d) * n.dot(d).max(0.0)) * cell;
-        }
-    }
-    sum as f32
-}
-
 /// What a surface of normal `n` and irradiance `irradiance` reflects from `point` toward the
 /// camera at `eye`: lighting.wgsl's `environment_light` with the exact irradiance integral in place
 /// of its spherical harmonics. The shaders light every camera as a point at its position
@@ -129,7 +102,7 @@ fn worst_relative_error(albedo: f32, metallic: f32, roughness: f32) -> f32 {
     let pixels = face_pixels(&parts);
     assert!(pixels.len() > 1000, "{} face pixels", pixels.len());
     let normals = [DVec3::X, DVec3::Y, DVec3::Z];
-    let irradiance = normals.map(|n| irradiance_integral(n.as_vec3()));
+    let irradiance = normals.map(|n| irradiance_integral(n.as_vec3(), 512));
     let gpu = gpu();
     let mut worst = 0.0f32;
     for pipeline in PIPELINES {
@@ -237,7 +210,7 @@ fn a_white_lambert_sphere_reflects_the_irradiance_integral_within_4_percent() {
             if n.dot(v) < 0.3 {
                 continue;
             }
-            let irradiance = irradiance_by_quadrature(n, 128);
+            let irradiance = irradiance_integral(n, 128);
             let want = expected(n, irradiance, point, eye, (1.0, 0.0, 1.0));
             let got = hdr[(y * SIZE.0 + x) as usize][0];
             let error = (got - want).abs() / want;
