@@ -69,7 +69,11 @@ impl fmt::Display for SceneStats {
             self.point_lights,
             self.spot_lights,
             self.directional_lights,
-            if self.environment { ", environment" } else { "" },
+            if self.environment {
+                ", environment"
+            } else {
+                ""
+            },
             self.materials,
             self.unlit_materials,
             self.emissive_materials,
