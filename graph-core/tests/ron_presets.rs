@@ -129,3 +129,20 @@ fn a_missing_base_or_a_preset_of_a_preset_is_an_error_at_the_base() {
     let found = errors(&dir.path().join("pp.ron"));
     assert!(matches!(&found[0].1, ErrorKind::PresetOfPreset { base } if base.ends_with("p.ron")));
 }
+
+#[test]
+fn a_preset_gives_the_base_s_parameters_values_that_a_loader_s_replace() {
+    let preset = "Preset(base: \"base.ron\", values: { \"msaa\": 1 })";
+    let dir = folder(&[("base.ron", BASE), ("one.ron", preset)]);
+    let path = dir.path().join("one.ron");
+    let registry = Registry::with_builtins();
+    let loaded = load_file(&path, &registry).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(loaded.params(), &GraphParams::new().with("msaa", 1));
+    assert_eq!(
+        declared_params(&path).unwrap(),
+        GraphParams::new().with("msaa", 1)
+    );
+    let given = GraphParams::new().with("msaa", 8);
+    let loaded = graph_core::file::load_file_with(&path, &registry, &given).unwrap();
+    assert_eq!(loaded.params(), &given);
+}

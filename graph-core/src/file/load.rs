@@ -65,12 +65,24 @@ pub fn load_str_with(
         .map_err(|e| FileErrors(vec![Source::new(path, text).syntax(&e)]))?;
     let main = Source::new(path, text);
     let (base_path, base_text) = read_base(&main, &preset)?;
+    let params = preset_values(&preset).overridden_by(params);
     let base_text = without_bom(&base_text);
     let source = Source::with_base(path, text, (&base_path, base_text));
     let mut file = schema::parse(base_text)
         .map_err(|e| FileErrors(vec![Source::new(&base_path, base_text).syntax(&e)]))?;
     apply_preset(&source, preset, &base_path, &mut file)?;
-    load_graph(&source, file, registry, params)
+    load_graph(&source, file, registry, &params)
+}
+
+/// The values a preset gives its base's parameters.
+fn preset_values(preset: &PresetFile<'_>) -> GraphParams {
+    preset
+        .values
+        .0
+        .iter()
+        .fold(GraphParams::new(), |values, (name, value)| {
+            values.with(name.as_str(), *value)
+        })
 }
 
 /// Declares a parsed graph file: look up plugins and their parameters, read conditions,
@@ -149,7 +161,8 @@ fn apply_preset<'a>(
     }
 }
 
-/// The parameters the graph file at `path` declares, with their defaults, read without
+/// The parameters the graph file at `path` declares, with their defaults (a preset's
+/// values for its base's), read without
 /// declaring anything: what a tool checks before giving a value, as the bench does before
 /// setting `msaa`. Errors are the file's syntax errors (or an unreadable file).
 pub fn declared_params(path: impl AsRef<Path>) -> Result<GraphParams, FileErrors> {
@@ -157,18 +170,18 @@ pub fn declared_params(path: impl AsRef<Path>) -> Result<GraphParams, FileErrors
     let text = read(path)?;
     let text = without_bom(&text);
     let main = Source::new(path, text);
-    let (path, text) = match schema::is_preset(text) {
+    let ((path, text), values) = match schema::is_preset(text) {
         true => {
             let preset =
                 schema::parse_preset(text).map_err(|e| FileErrors(vec![main.syntax(&e)]))?;
-            read_base(&main, &preset)?
+            (read_base(&main, &preset)?, preset_values(&preset))
         }
-        false => (path.to_path_buf(), text.to_owned()),
+        false => ((path.to_path_buf(), text.to_owned()), GraphParams::new()),
     };
     let text = without_bom(&text);
     let file =
         schema::parse(text).map_err(|e| FileErrors(vec![Source::new(&path, text).syntax(&e)]))?;
-    Ok(param_uses::declared(&file))
+    Ok(param_uses::declared(&file).overridden_by(&values))
 }
 
 /// The text of the file at `path`, or the error saying why it cannot be read.

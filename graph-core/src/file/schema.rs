@@ -35,7 +35,8 @@ pub(crate) struct GraphFile<'a> {
 }
 
 /// A preset: a graph file named by `base` (relative to the preset's folder) with some
-/// passes' parameters or inputs replaced, for files that differ from another in those only:
+/// passes' parameters or inputs replaced and its parameters given other values, for files
+/// that differ from another in those only:
 /// `Preset(base: "deferred_msaa_4x.ron", passes: { "edges": (params: (detector: centroid),
 /// inputs: { "material": "material", "depth": "depth" }) })`.
 #[derive(Debug, Deserialize)]
@@ -43,6 +44,9 @@ pub(crate) struct GraphFile<'a> {
 pub(crate) struct PresetFile<'a> {
     #[serde(borrow)]
     pub base: Name<'a>,
+    /// Values for the base's parameters (`{ "msaa": 1 }`), which a loader's own replace.
+    #[serde(borrow, default)]
+    pub values: Pairs<Name<'a>, u32>,
     /// Pass name -> what replaces its parameters and inputs.
     #[serde(borrow, default)]
     pub passes: Pairs<Name<'a>, PassChange<'a>>,
