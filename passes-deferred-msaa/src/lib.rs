@@ -13,6 +13,7 @@
 //! filter), and sampled as their glTF sampler says.
 
 pub mod analysis;
+mod common;
 #[cfg(feature = "gpu")]
 mod gpu;
 #[cfg(feature = "gpu")]

@@ -3,7 +3,7 @@
 
 use graph_core::gpu::ComputeContext;
 
-use super::InputPass;
+use crate::common::gpu::InputPass;
 use crate::plugins::auto_exposure::Metering;
 
 pub(crate) fn record(metering: Metering) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {

@@ -5,8 +5,8 @@ use std::sync::Arc;
 
 use graph_core::gpu::RenderContext;
 
-use super::scene_draw::{self, SceneDraw, Stages};
 use crate::analysis::GatedShader;
+use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
 use crate::gpu_scene::{Layer, SceneCache};
 use crate::plugins::gbuffer::GBufferDraw;
 

@@ -5,9 +5,9 @@ use std::sync::Arc;
 
 use graph_core::gpu::RenderContext;
 
-use super::{InputPass, PipelineDesc};
+use crate::common::depth::far_depth;
+use crate::common::gpu::{per_scene, InputPass, PipelineDesc};
 use crate::gpu_scene::SceneCache;
-use crate::plugins::depth::far_depth;
 use crate::plugins::gbuffer_resolve::GBufferResolveDraw;
 
 #[derive(Clone, PartialEq)]
@@ -28,7 +28,7 @@ pub(crate) fn record(
         let Some(scene) = scenes.for_frame(resources) else {
             return;
         };
-        let state = super::per_scene(&mut state, &scene, || {
+        let state = per_scene(&mut state, &scene, || {
             let label = "gbuffer resolve";
             InputPass::new(resources, label, &draw.source, Some(&scene), &draw.inputs)
         });

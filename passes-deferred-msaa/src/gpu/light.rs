@@ -12,10 +12,10 @@ use std::sync::Arc;
 
 use graph_core::gpu::RenderContext;
 
-use super::{additive, InputPass, PipelineDesc, EDGE_STENCIL};
 use crate::analysis::{GatedShader, Variant};
+use crate::common::depth::far_depth;
+use crate::common::gpu::{additive, per_scene, InputPass, PipelineDesc, EDGE_STENCIL};
 use crate::gpu_scene::{volumes, SceneCache};
-use crate::plugins::depth::far_depth;
 use crate::plugins::light::{EdgeMode, Frequency, LightDraw, PixelSamples};
 use crate::scene::DepthConvention;
 
@@ -55,7 +55,7 @@ pub(crate) fn record(
             return;
         };
         let size = resources.output_size();
-        let state = super::per_scene(&mut state, &scene, || {
+        let state = per_scene(&mut state, &scene, || {
             InputPass::new(resources, "light", &draw.source, Some(&scene), &draw.inputs)
         });
         let (hdr, depth) = (resources.shape(draw.hdr), resources.shape(draw.depth));

@@ -6,8 +6,8 @@ use std::sync::Arc;
 
 use graph_core::gpu::ComputeContext;
 
-use super::{per_scene, InputPass};
 use crate::analysis::{GatedShader, Variant};
+use crate::common::gpu::{per_scene, InputPass};
 use crate::gpu_scene::SceneCache;
 use crate::plugins::light_tiled::TiledDispatch;
 use crate::scene::DepthConvention;

@@ -26,8 +26,8 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::shader::Stage;
 use graph_core::{Aspect, PassBuilder, PassKind};
 
-use super::textures::{self, Input, Texels, Want};
-use super::{Recording, Shared};
+use crate::common::plugin::{Recording, Shared};
+use crate::common::textures::{self, Input, Texels, Want};
 use crate::shaders;
 
 pub struct AutoExposure(pub(crate) Shared);

@@ -31,10 +31,10 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::types::TextureFormat;
 use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
-use super::depth::DepthRule;
 use super::gbuffer::opaque_black;
-use super::textures::{self, Want};
-use super::{Recording, Shared};
+use crate::common::depth::DepthRule;
+use crate::common::plugin::{Recording, Shared};
+use crate::common::textures::{self, Want};
 use crate::shaders;
 
 pub struct Forward(pub(crate) Shared);

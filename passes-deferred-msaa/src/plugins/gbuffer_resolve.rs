@@ -28,10 +28,9 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
-use super::depth::DepthRule;
-use super::light::GBUFFER_INPUTS;
-use super::textures::{self, Input, Want};
-use super::{Recording, Shared};
+use crate::common::depth::DepthRule;
+use crate::common::plugin::{Recording, Shared};
+use crate::common::textures::{self, Input, Want, GBUFFER_INPUTS};
 use crate::shaders;
 
 pub struct GBufferResolve(pub(crate) Shared);

@@ -52,9 +52,9 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, TextureHandle};
 
-use super::depth::DepthRule;
-use super::textures::{self, Input, Texels, Want};
-use super::{yes, Recording, Shared};
+use crate::common::depth::DepthRule;
+use crate::common::plugin::{yes, Recording, Shared, ONE_SAMPLE};
+use crate::common::textures::{self, Input, Texels, Want, GBUFFER_INPUTS};
 use crate::shaders;
 
 pub struct LightNonEdge(pub(crate) Shared);
@@ -180,26 +180,13 @@ impl Plugin for LightEdge {
         let frequency = Frequency::Sample(params.mode);
         let (draw, samples) = setup(frequency, params.reversed_z, params.volumes, pass, slots)?;
         if samples == 1 {
-            pass.omit(super::ONE_SAMPLE);
+            pass.omit(ONE_SAMPLE);
             return Ok(());
         }
         self.0.record(pass, draw);
         Ok(())
     }
 }
-
-/// The G-buffer textures a light pass reads, by slot and group-1 binding (gbuffer_read.wgsl).
-pub(crate) const GBUFFER_INPUTS: [(&str, &str, &[graph_core::types::TextureFormat], u32); 4] = [
-    ("albedo", "the G-buffer's albedo", textures::ALBEDO, 0),
-    ("normal", "the G-buffer's normals", textures::NORMAL, 1),
-    ("material", "the G-buffer's material", textures::MATERIAL, 2),
-    (
-        "view_depth",
-        "the G-buffer's view depth",
-        textures::VIEW_DEPTH,
-        3,
-    ),
-];
 
 fn setup(
     frequency: Frequency,

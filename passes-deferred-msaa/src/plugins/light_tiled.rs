@@ -50,12 +50,11 @@ use graph_core::shader::Stage;
 use graph_core::types::TextureFormat;
 use graph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
 
-use super::depth::DepthRule;
-use super::edge_detection::{Detector, EdgeDetection};
-use super::light::GBUFFER_INPUTS;
 use super::resolve::{one, resolve_exposure, ResolveMode};
-use super::textures::{self, format_name, Input, Texels, Want};
-use super::{yes, Recording, Shared};
+use crate::common::depth::DepthRule;
+use crate::common::edge_detection::{Detector, EdgeDetection};
+use crate::common::plugin::{yes, Recording, Shared};
+use crate::common::textures::{self, format_name, Input, Texels, Want, GBUFFER_INPUTS};
 use crate::shaders;
 
 pub struct LightTiled(pub(crate) Shared);

@@ -17,37 +17,33 @@
 //! The passes that test or write depth (`gbuffer`, `forward`, `gbuffer_resolve`, `transparent`,
 //! `light_edge`, `light_nonedge`) take an optional `reversed_z`. Left out, the depth
 //! convention follows the depth format the compile picks: reversed-Z for float depth,
-//! standard Z for unorm depth (see `plugins/depth.rs`), so the passes agree whichever format a
+//! standard Z for unorm depth (see `common/depth.rs`), so the passes agree whichever format a
 //! device or a scene gets. Given, it holds for any format, and passes sharing a depth
 //! buffer must give the same.
 
 pub(crate) mod auto_exposure;
 pub(crate) mod debug_view;
-pub(crate) mod depth;
-pub(crate) mod edge_detection;
 pub(crate) mod edge_stencil;
 pub(crate) mod forward;
-pub(crate) mod fullscreen;
 pub(crate) mod gbuffer;
 pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
 pub(crate) mod light_tiled;
 pub(crate) mod resolve;
-pub(crate) mod textures;
 pub(crate) mod tonemap;
 pub(crate) mod transparent;
 
 use std::sync::Arc;
 
 use graph_core::file::Registry;
-use graph_core::PassBuilder;
 
 use crate::analysis::Variants;
-use crate::host::{Host, Overrides};
+use crate::common::plugin::Shared;
+use crate::host::Host;
 
+pub use crate::common::edge_detection::{Detector, EdgeDetection};
 pub use auto_exposure::{AutoExposure, AutoExposureParams};
 pub use debug_view::{DebugView, DebugViewParams, View};
-pub use edge_detection::{Detector, EdgeDetection};
 pub use edge_stencil::EdgeStencil;
 pub use forward::{Forward, ForwardParams, Shading};
 pub use gbuffer::{GBuffer, GBufferParams};
@@ -61,49 +57,6 @@ pub use tonemap::{Operator, Tonemap, TonemapParams};
 pub use transparent::{
     CompositeTransparent, CompositeTransparentParams, Transparent, TransparentParams,
 };
-
-/// What every plugin of one registry shares: the host's overrides and, with feature
-/// `gpu`, the scene's upload.
-#[derive(Clone)]
-pub(crate) struct Shared {
-    pub overrides: Overrides,
-    #[cfg(feature = "gpu")]
-    pub scenes: Arc<crate::gpu_scene::SceneCache>,
-}
-
-impl Shared {
-    #[cfg_attr(not(feature = "gpu"), allow(unused_variables))]
-    fn new(host: Option<Arc<Host>>, variants: Variants) -> Shared {
-        Shared {
-            overrides: host
-                .as_ref()
-                .map(|h| h.overrides.clone())
-                .unwrap_or_default(),
-            #[cfg(feature = "gpu")]
-            scenes: Arc::new(crate::gpu_scene::SceneCache::new(host, variants)),
-        }
-    }
-
-    /// Gives the pass its record callback. Without feature `gpu` graphs are only declared
-    /// and validated, and `recording` is dropped.
-    pub fn record(&self, pass: &mut PassBuilder<'_>, recording: impl Recording) {
-        #[cfg(feature = "gpu")]
-        match recording.record(self.scenes.clone()) {
-            graph_core::Record::Render(record) => pass.render(record),
-            graph_core::Record::Compute(record) => pass.compute(record),
-            graph_core::Record::Transfer(record) => pass.transfer(record),
-        }
-        #[cfg(not(feature = "gpu"))]
-        let _ = (pass, recording);
-    }
-}
-
-/// A pass as its plugin set it up, ready to be recorded on a device: its record
-/// callback, of the kind the plugin declared the pass.
-pub(crate) trait Recording: 'static {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record;
-}
 
 /// Adds every deferred plugin, sharing `host`, compiling shaders as `variants` says.
 pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variants: Variants) {
@@ -122,14 +75,4 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(GBufferResolve(shared.clone()))
         .register(Transparent(shared.clone()))
         .register(CompositeTransparent(shared));
-}
-
-/// Why `edge_stencil` and `light_edge` leave themselves out of plans with one sample
-/// per pixel (`PassBuilder::omit`).
-const ONE_SAMPLE: &str = "one sample per pixel: a pixel holds one surface, so there are \
-                          no edge pixels to find or to shade per sample";
-
-/// `true`, for `#[serde(default = "yes")]`.
-fn yes() -> bool {
-    true
 }
