@@ -19,6 +19,7 @@ mod gpu;
 #[cfg(feature = "gpu")]
 pub mod gpu_scene;
 pub mod host;
+mod passes;
 pub mod plugins;
 pub mod scene;
 mod shaders;

@@ -4,7 +4,7 @@
 use graph_core::gpu::ComputeContext;
 
 use crate::common::gpu::InputPass;
-use crate::plugins::auto_exposure::Metering;
+use crate::passes::auto_exposure::Metering;
 
 pub(crate) fn record(metering: Metering) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
     let mut state: Option<(wgpu::Device, InputPass<(), wgpu::ComputePipeline>)> = None;

@@ -10,7 +10,7 @@ use graph_core::gpu::RenderContext;
 use crate::analysis::GatedShader;
 use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
 use crate::gpu_scene::{Layer, SceneCache};
-use crate::plugins::forward::{ForwardDraw, Shading};
+use crate::passes::forward::{ForwardDraw, Shading};
 
 pub(crate) fn record(
     draw: ForwardDraw,

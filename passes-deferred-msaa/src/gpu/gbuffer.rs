@@ -8,7 +8,7 @@ use graph_core::gpu::RenderContext;
 use crate::analysis::GatedShader;
 use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
 use crate::gpu_scene::{Layer, SceneCache};
-use crate::plugins::gbuffer::GBufferDraw;
+use crate::passes::gbuffer::GBufferDraw;
 
 pub(crate) fn record(
     draw: GBufferDraw,

@@ -8,7 +8,7 @@ use graph_core::gpu::RenderContext;
 use crate::common::depth::far_depth;
 use crate::common::gpu::{per_scene, InputPass, PipelineDesc};
 use crate::gpu_scene::SceneCache;
-use crate::plugins::gbuffer_resolve::GBufferResolveDraw;
+use crate::passes::gbuffer_resolve::GBufferResolveDraw;
 
 #[derive(Clone, PartialEq)]
 struct Key {

@@ -16,7 +16,7 @@ use crate::analysis::{GatedShader, Variant};
 use crate::common::depth::far_depth;
 use crate::common::gpu::{additive, per_scene, InputPass, PipelineDesc, EDGE_STENCIL};
 use crate::gpu_scene::{volumes, SceneCache};
-use crate::plugins::light::{EdgeMode, Frequency, LightDraw, PixelSamples};
+use crate::passes::light::{EdgeMode, Frequency, LightDraw, PixelSamples};
 use crate::scene::DepthConvention;
 
 /// What a light draw rasterizes, and so its depth test and culling.

@@ -9,7 +9,7 @@ use graph_core::gpu::ComputeContext;
 use crate::analysis::{GatedShader, Variant};
 use crate::common::gpu::{per_scene, InputPass};
 use crate::gpu_scene::SceneCache;
-use crate::plugins::light_tiled::TiledDispatch;
+use crate::passes::light_tiled::TiledDispatch;
 use crate::scene::DepthConvention;
 
 #[derive(Clone, PartialEq)]

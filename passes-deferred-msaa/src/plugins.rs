@@ -21,18 +21,6 @@
 //! device or a scene gets. Given, it holds for any format, and passes sharing a depth
 //! buffer must give the same.
 
-pub(crate) mod auto_exposure;
-pub(crate) mod debug_view;
-pub(crate) mod edge_stencil;
-pub(crate) mod forward;
-pub(crate) mod gbuffer;
-pub(crate) mod gbuffer_resolve;
-pub(crate) mod light;
-pub(crate) mod light_tiled;
-pub(crate) mod resolve;
-pub(crate) mod tonemap;
-pub(crate) mod transparent;
-
 use std::sync::Arc;
 
 use graph_core::file::Registry;
@@ -42,19 +30,19 @@ use crate::common::plugin::Shared;
 use crate::host::Host;
 
 pub use crate::common::edge_detection::{Detector, EdgeDetection};
-pub use auto_exposure::{AutoExposure, AutoExposureParams};
-pub use debug_view::{DebugView, DebugViewParams, View};
-pub use edge_stencil::EdgeStencil;
-pub use forward::{Forward, ForwardParams, Shading};
-pub use gbuffer::{GBuffer, GBufferParams};
-pub use gbuffer_resolve::{GBufferResolve, GBufferResolveParams};
-pub use light::{
+pub use crate::passes::auto_exposure::{AutoExposure, AutoExposureParams};
+pub use crate::passes::debug_view::{DebugView, DebugViewParams, View};
+pub use crate::passes::edge_stencil::EdgeStencil;
+pub use crate::passes::forward::{Forward, ForwardParams, Shading};
+pub use crate::passes::gbuffer::{GBuffer, GBufferParams};
+pub use crate::passes::gbuffer_resolve::{GBufferResolve, GBufferResolveParams};
+pub use crate::passes::light::{
     EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams, PixelSamples,
 };
-pub use light_tiled::{EdgeShading, LightTiled, LightTiledParams, TiledView};
-pub use resolve::{Resolve, ResolveMode, ResolveParams};
-pub use tonemap::{Operator, Tonemap, TonemapParams};
-pub use transparent::{
+pub use crate::passes::light_tiled::{EdgeShading, LightTiled, LightTiledParams, TiledView};
+pub use crate::passes::resolve::{Resolve, ResolveMode, ResolveParams};
+pub use crate::passes::tonemap::{Operator, Tonemap, TonemapParams};
+pub use crate::passes::transparent::{
     CompositeTransparent, CompositeTransparentParams, Transparent, TransparentParams,
 };
 
