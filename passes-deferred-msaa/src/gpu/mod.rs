@@ -3,7 +3,6 @@
 
 pub(crate) mod auto_exposure;
 pub(crate) mod forward;
-pub(crate) mod gbuffer;
 pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
 pub(crate) mod light_tiled;

@@ -59,7 +59,7 @@ pub(crate) fn opaque_black() -> [f64; 4] {
     [0.0, 0.0, 0.0, 1.0]
 }
 
-/// The G-buffer pass as set up: what `gpu::gbuffer` records.
+/// The G-buffer pass as set up: what its `gpu` module records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct GBufferDraw {
     pub source: String,
@@ -72,7 +72,7 @@ pub(crate) struct GBufferDraw {
 impl Recording for GBufferDraw {
     #[cfg(feature = "gpu")]
     fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(crate::gpu::gbuffer::record(self, scenes))
+        graph_core::Record::Render(gpu::record(self, scenes))
     }
 }
 
@@ -166,4 +166,44 @@ fn outputs_wgsl(channels: &[&str]) -> String {
          fn gbuffer_out(g: GBuffer) -> GBufferOut {{\n    return GBufferOut({});\n}}\n",
         values.join(", ")
     )
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the G-buffer pass: the scene into the G-buffer's color targets, masked
+    //! materials through the fragment entry point that discards.
+
+    use std::sync::Arc;
+
+    use graph_core::gpu::RenderContext;
+
+    use super::GBufferDraw;
+    use crate::analysis::GatedShader;
+    use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
+    use crate::gpu_scene::{Layer, SceneCache};
+
+    pub(super) fn record(
+        draw: GBufferDraw,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+        let draw = SceneDraw {
+            label: "gbuffer",
+            shader: GatedShader::GBuffer,
+            source: draw.source,
+            depth_rule: draw.depth_rule,
+            targets: draw.targets,
+            depth: draw.depth,
+            layer: Layer::Opaque,
+            stages: Box::new(|material| Stages {
+                vertex: "vs_main",
+                fragment: if material.masked {
+                    "fs_masked"
+                } else {
+                    "fs_opaque"
+                },
+                constants: Vec::new(),
+            }),
+        };
+        scene_draw::record(draw, scenes)
+    }
 }
