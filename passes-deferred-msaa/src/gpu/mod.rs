@@ -2,7 +2,6 @@
 //! passes' modules.
 
 pub(crate) mod auto_exposure;
-pub(crate) mod forward;
 pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
 pub(crate) mod light_tiled;
