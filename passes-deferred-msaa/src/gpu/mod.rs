@@ -2,6 +2,5 @@
 //! passes' modules.
 
 pub(crate) mod auto_exposure;
-pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
 pub(crate) mod light_tiled;
