@@ -1,6 +1,5 @@
 //! The recordings of the deferred passes (feature `gpu`), while they move into their
 //! passes' modules.
 
-pub(crate) mod auto_exposure;
 pub(crate) mod light;
 pub(crate) mod light_tiled;
