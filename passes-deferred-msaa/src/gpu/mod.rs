@@ -2,4 +2,3 @@
 //! passes' modules.
 
 pub(crate) mod light;
-pub(crate) mod light_tiled;
