@@ -15,8 +15,6 @@
 pub mod analysis;
 mod common;
 #[cfg(feature = "gpu")]
-mod gpu;
-#[cfg(feature = "gpu")]
 pub mod gpu_scene;
 pub mod host;
 mod passes;
