@@ -73,7 +73,7 @@ pub(crate) const DEPTH: &[TextureFormat] = &[
     F::Depth32FloatStencil8,
 ];
 
-/// The forward pass, or the transparent pass (plugins/transparent.rs), as set up: what
+/// The forward pass, or the transparent pass (passes/transparent.rs), as set up: what
 /// `gpu::forward` records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct ForwardDraw {
@@ -133,7 +133,7 @@ mod gpu {
     //! Recording the forward pass: the scene's opaque meshes into the HDR target alone,
     //! shaded per pixel or per sample, masked materials selected by the `MASKED` pipeline
     //! constant; and the transparent pass, its BLEND meshes into the accumulation target
-    //! with the same vertex stages and shading (plugins/transparent.rs).
+    //! with the same vertex stages and shading (passes/transparent.rs).
 
     use std::sync::Arc;
 

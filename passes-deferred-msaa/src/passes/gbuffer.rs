@@ -22,12 +22,12 @@
 //!
 //! With reversed-Z depth is cleared to 0 and tested with `Greater` (near is 1), else
 //! cleared to 1 and tested with `Less`. Without `reversed_z` the convention follows the
-//! depth format (reversed for float depth, see `plugins/depth.rs`), as the light
+//! depth format (reversed for float depth, see `common/depth.rs`), as the light
 //! passes' does; a `reversed_z` given here must be given to them too.
 //! Stencil is cleared to 0. Double-sided materials are drawn without culling and their
 //! back faces get the flipped normal; alpha MASK materials discard below the cutoff.
 //! Alpha BLEND meshes are not drawn: a sample holds one surface, so the `transparent`
-//! pass draws them after lighting (plugins/transparent.rs).
+//! pass draws them after lighting (passes/transparent.rs).
 //! The material target's alpha records per-sample edge evidence for the `centroid` and
 //! `coverage` detectors of [`edge_stencil`](super::edge_stencil).
 

@@ -6,8 +6,8 @@
 //! ```ron
 //! (name: "light", plugin: "light_tiled",
 //!  params: (
-//!      edges: (detector: compare),   // edge_detection.rs: the same detectors and
-//!                                    // thresholds as edge_stencil
+//!      edges: (detector: compare),   // common/edge_detection.rs: the same
+//!                                    // detectors and thresholds as edge_stencil
 //!      shading: per_sample,          // or adaptive: each fragment once
 //!      resolve: box, exposure: 1.0,  // or resolve: tonemapped (resolve.rs)
 //!      tile: 16,                     // pixels per tile side
