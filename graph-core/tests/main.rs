@@ -24,6 +24,7 @@ mod ron_roundtrip;
 mod ron_scale;
 mod ron_validate;
 mod structure;
+mod structure_check;
 mod usage;
 mod validate_attachments;
 mod validate_resources;

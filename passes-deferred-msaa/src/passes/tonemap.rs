@@ -21,10 +21,10 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind};
 
-use super::fullscreen::Fullscreen;
 use super::resolve::{exposure, one};
-use super::textures::{self, Want};
-use super::Shared;
+use crate::common::fullscreen::Fullscreen;
+use crate::common::plugin::Shared;
+use crate::common::textures::{self, Want};
 use crate::shaders;
 
 pub struct Tonemap(pub(crate) Shared);

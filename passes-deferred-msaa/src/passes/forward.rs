@@ -31,10 +31,10 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::types::TextureFormat;
 use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
-use super::depth::DepthRule;
 use super::gbuffer::opaque_black;
-use super::textures::{self, Want};
-use super::{Recording, Shared};
+use crate::common::depth::DepthRule;
+use crate::common::plugin::{Recording, Shared};
+use crate::common::textures::{self, Want};
 use crate::shaders;
 
 pub struct Forward(pub(crate) Shared);
@@ -73,7 +73,7 @@ pub(crate) const DEPTH: &[TextureFormat] = &[
     F::Depth32FloatStencil8,
 ];
 
-/// The forward pass, or the transparent pass (plugins/transparent.rs), as set up: what
+/// The forward pass, or the transparent pass (passes/transparent.rs), as set up: what
 /// `gpu::forward` records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct ForwardDraw {
@@ -90,7 +90,7 @@ pub(crate) struct ForwardDraw {
 impl Recording for ForwardDraw {
     #[cfg(feature = "gpu")]
     fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(crate::gpu::forward::record(self, scenes))
+        graph_core::Record::Render(gpu::record(self, scenes))
     }
 }
 
@@ -125,5 +125,53 @@ impl Plugin for Forward {
         };
         self.0.record(pass, draw);
         Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the forward pass: the scene's opaque meshes into the HDR target alone,
+    //! shaded per pixel or per sample, masked materials selected by the `MASKED` pipeline
+    //! constant; and the transparent pass, its BLEND meshes into the accumulation target
+    //! with the same vertex stages and shading (passes/transparent.rs).
+
+    use std::sync::Arc;
+
+    use graph_core::gpu::RenderContext;
+
+    use super::{ForwardDraw, Shading};
+    use crate::analysis::GatedShader;
+    use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
+    use crate::gpu_scene::{Layer, SceneCache};
+
+    pub(super) fn record(
+        draw: ForwardDraw,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+        let (label, shader, layer) = match draw.transparent {
+            false => ("forward", GatedShader::Forward, Layer::Opaque),
+            true => ("transparent", GatedShader::Transparent, Layer::Blended),
+        };
+        let (vertex, fragment) = match (draw.shading, draw.transparent) {
+            (Shading::Pixel, false) => ("vs_pixel", "fs_pixel"),
+            (Shading::Sample, false) => ("vs_sample", "fs_sample"),
+            (Shading::Pixel, true) => ("vs_pixel", "fs_blend_pixel"),
+            (Shading::Sample, true) => ("vs_sample", "fs_blend_sample"),
+        };
+        let draw = SceneDraw {
+            label,
+            shader,
+            source: draw.source,
+            depth_rule: draw.depth_rule,
+            targets: vec![draw.hdr],
+            depth: draw.depth,
+            layer,
+            stages: Box::new(move |material| Stages {
+                vertex,
+                fragment,
+                constants: vec![("MASKED", f64::from(u8::from(material.masked)))],
+            }),
+        };
+        scene_draw::record(draw, scenes)
     }
 }

@@ -27,9 +27,9 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{Aspect, PassBuilder, PassKind};
 
-use super::fullscreen::Fullscreen;
-use super::textures::{self, Input, Texels, Want};
-use super::Shared;
+use crate::common::fullscreen::Fullscreen;
+use crate::common::plugin::Shared;
+use crate::common::textures::{self, Input, Texels, Want};
 use crate::shaders;
 
 pub struct DebugView(pub(crate) Shared);

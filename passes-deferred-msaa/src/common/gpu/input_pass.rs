@@ -5,9 +5,10 @@
 
 use graph_core::gpu::FrameResources;
 
-use super::{module, pipeline_layout, Pipelines, TextureBindings};
+use super::bindings::TextureBindings;
+use super::pipeline::{module, pipeline_layout, Pipelines};
+use crate::common::textures::Input;
 use crate::gpu_scene::GpuScene;
-use crate::plugins::textures::Input;
 
 pub(crate) struct InputPass<K, P = wgpu::RenderPipeline> {
     pub module: wgpu::ShaderModule,

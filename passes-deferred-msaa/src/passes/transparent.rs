@@ -67,12 +67,12 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::types::{BlendComponent, BlendFactor, BlendOperation, BlendState};
 use graph_core::{AspectAccess, ColorLoad, PassBuilder, PassKind};
 
-use super::depth::DepthRule;
 use super::forward::{ForwardDraw, Shading, DEPTH};
-use super::fullscreen::Fullscreen;
 use super::gbuffer::opaque_black;
-use super::textures::{self, Want};
-use super::Shared;
+use crate::common::depth::DepthRule;
+use crate::common::fullscreen::Fullscreen;
+use crate::common::plugin::Shared;
+use crate::common::textures::{self, Want};
 use crate::shaders;
 
 pub struct Transparent(pub(crate) Shared);

@@ -26,8 +26,8 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::shader::Stage;
 use graph_core::{Aspect, PassBuilder, PassKind};
 
-use super::textures::{self, Input, Texels, Want};
-use super::{Recording, Shared};
+use crate::common::plugin::{Recording, Shared};
+use crate::common::textures::{self, Input, Texels, Want};
 use crate::shaders;
 
 pub struct AutoExposure(pub(crate) Shared);
@@ -56,7 +56,7 @@ fn high() -> f32 {
     0.9
 }
 
-/// The metering pass as set up: what `gpu::auto_exposure` records.
+/// The metering pass as set up: what its `gpu` module records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct Metering {
     pub source: String,
@@ -67,7 +67,7 @@ pub(crate) struct Metering {
 impl Recording for Metering {
     #[cfg(feature = "gpu")]
     fn record(self, _: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Compute(crate::gpu::auto_exposure::record(self))
+        graph_core::Record::Compute(gpu::record(self))
     }
 }
 
@@ -129,5 +129,56 @@ impl Plugin for AutoExposure {
         };
         self.0.record(pass, metering);
         Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the auto-exposure pass: one workgroup meters the image; its pipeline is made
+    //! on the first frame of a device and kept.
+
+    use graph_core::gpu::ComputeContext;
+
+    use super::Metering;
+    use crate::common::gpu::InputPass;
+
+    pub(super) fn record(metering: Metering) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
+        let mut state: Option<(wgpu::Device, InputPass<(), wgpu::ComputePipeline>)> = None;
+        Box::new(move |ctx| {
+            let resources = ctx.resources;
+            let device = resources.device;
+            if state.as_ref().is_some_and(|(built, _)| built != device) {
+                state = None;
+            }
+            let (_, state) = state.get_or_insert_with(|| {
+                let pass = InputPass::new(
+                    resources,
+                    "auto_exposure",
+                    &metering.source,
+                    None,
+                    &metering.inputs,
+                );
+                (device.clone(), pass)
+            });
+            let (module, layout) = (&state.module, &state.layout);
+            let pipeline = state.pipelines.get((), |()| {
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("auto_exposure"),
+                    layout: Some(layout),
+                    module,
+                    entry_point: Some("cs_auto_exposure"),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants: &metering.constants,
+                        // The shader clears its histogram itself.
+                        zero_initialize_workgroup_memory: false,
+                    },
+                    cache: None,
+                })
+            });
+            ctx.pass.set_pipeline(pipeline);
+            ctx.pass
+                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            ctx.pass.dispatch_workgroups(1, 1, 1);
+        })
     }
 }

@@ -3,7 +3,7 @@
 
 use graph_core::gpu::FrameResources;
 
-use crate::plugins::textures::{Input, Texels};
+use crate::common::textures::{Input, Texels};
 
 pub(crate) struct TextureBindings {
     pub layout: wgpu::BindGroupLayout,

@@ -22,12 +22,12 @@
 //!
 //! With reversed-Z depth is cleared to 0 and tested with `Greater` (near is 1), else
 //! cleared to 1 and tested with `Less`. Without `reversed_z` the convention follows the
-//! depth format (reversed for float depth, see `plugins/depth.rs`), as the light
+//! depth format (reversed for float depth, see `common/depth.rs`), as the light
 //! passes' does; a `reversed_z` given here must be given to them too.
 //! Stencil is cleared to 0. Double-sided materials are drawn without culling and their
 //! back faces get the flipped normal; alpha MASK materials discard below the cutoff.
 //! Alpha BLEND meshes are not drawn: a sample holds one surface, so the `transparent`
-//! pass draws them after lighting (plugins/transparent.rs).
+//! pass draws them after lighting (passes/transparent.rs).
 //! The material target's alpha records per-sample edge evidence for the `centroid` and
 //! `coverage` detectors of [`edge_stencil`](super::edge_stencil).
 
@@ -36,9 +36,9 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
-use super::depth::DepthRule;
-use super::textures::{self, Want};
-use super::{Recording, Shared};
+use crate::common::depth::DepthRule;
+use crate::common::plugin::{Recording, Shared};
+use crate::common::textures::{self, Want};
 use crate::shaders;
 
 pub struct GBuffer(pub(crate) Shared);
@@ -59,7 +59,7 @@ pub(crate) fn opaque_black() -> [f64; 4] {
     [0.0, 0.0, 0.0, 1.0]
 }
 
-/// The G-buffer pass as set up: what `gpu::gbuffer` records.
+/// The G-buffer pass as set up: what its `gpu` module records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct GBufferDraw {
     pub source: String,
@@ -72,7 +72,7 @@ pub(crate) struct GBufferDraw {
 impl Recording for GBufferDraw {
     #[cfg(feature = "gpu")]
     fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(crate::gpu::gbuffer::record(self, scenes))
+        graph_core::Record::Render(gpu::record(self, scenes))
     }
 }
 
@@ -166,4 +166,44 @@ fn outputs_wgsl(channels: &[&str]) -> String {
          fn gbuffer_out(g: GBuffer) -> GBufferOut {{\n    return GBufferOut({});\n}}\n",
         values.join(", ")
     )
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the G-buffer pass: the scene into the G-buffer's color targets, masked
+    //! materials through the fragment entry point that discards.
+
+    use std::sync::Arc;
+
+    use graph_core::gpu::RenderContext;
+
+    use super::GBufferDraw;
+    use crate::analysis::GatedShader;
+    use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
+    use crate::gpu_scene::{Layer, SceneCache};
+
+    pub(super) fn record(
+        draw: GBufferDraw,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+        let draw = SceneDraw {
+            label: "gbuffer",
+            shader: GatedShader::GBuffer,
+            source: draw.source,
+            depth_rule: draw.depth_rule,
+            targets: draw.targets,
+            depth: draw.depth,
+            layer: Layer::Opaque,
+            stages: Box::new(|material| Stages {
+                vertex: "vs_main",
+                fragment: if material.masked {
+                    "fs_masked"
+                } else {
+                    "fs_opaque"
+                },
+                constants: Vec::new(),
+            }),
+        };
+        scene_draw::record(draw, scenes)
+    }
 }

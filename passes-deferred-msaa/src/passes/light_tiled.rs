@@ -6,8 +6,8 @@
 //! ```ron
 //! (name: "light", plugin: "light_tiled",
 //!  params: (
-//!      edges: (detector: compare),   // edge_detection.rs: the same detectors and
-//!                                    // thresholds as edge_stencil
+//!      edges: (detector: compare),   // common/edge_detection.rs: the same
+//!                                    // detectors and thresholds as edge_stencil
 //!      shading: per_sample,          // or adaptive: each fragment once
 //!      resolve: box, exposure: 1.0,  // or resolve: tonemapped (resolve.rs)
 //!      tile: 16,                     // pixels per tile side
@@ -50,12 +50,11 @@ use graph_core::shader::Stage;
 use graph_core::types::TextureFormat;
 use graph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
 
-use super::depth::DepthRule;
-use super::edge_detection::{Detector, EdgeDetection};
-use super::light::GBUFFER_INPUTS;
 use super::resolve::{one, resolve_exposure, ResolveMode};
-use super::textures::{self, format_name, Input, Texels, Want};
-use super::{yes, Recording, Shared};
+use crate::common::depth::DepthRule;
+use crate::common::edge_detection::{Detector, EdgeDetection};
+use crate::common::plugin::{yes, Recording, Shared};
+use crate::common::textures::{self, format_name, Input, Texels, Want, GBUFFER_INPUTS};
 use crate::shaders;
 
 pub struct LightTiled(pub(crate) Shared);
@@ -137,7 +136,7 @@ impl TiledView {
 /// invocations is more than any device's workgroup.
 const TILES: std::ops::RangeInclusive<u32> = 2..=32;
 
-/// The tiled pass as set up: what `gpu::light_tiled` records.
+/// The tiled pass as set up: what its `gpu` module records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct TiledDispatch {
     pub source: String,
@@ -152,7 +151,7 @@ pub(crate) struct TiledDispatch {
 impl Recording for TiledDispatch {
     #[cfg(feature = "gpu")]
     fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Compute(crate::gpu::light_tiled::record(self, scenes))
+        graph_core::Record::Compute(gpu::record(self, scenes))
     }
 }
 
@@ -256,5 +255,87 @@ impl Plugin for LightTiled {
         };
         self.0.record(pass, dispatch);
         Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the tiled light pass: one dispatch of a workgroup per tile over the output,
+    //! its pipeline compiled for the scene's light kinds (analysis/variant.rs) and the depth
+    //! format's convention, made on first use and kept.
+
+    use std::sync::Arc;
+
+    use graph_core::gpu::ComputeContext;
+
+    use super::TiledDispatch;
+    use crate::analysis::{GatedShader, Variant};
+    use crate::common::gpu::{per_scene, InputPass};
+    use crate::gpu_scene::SceneCache;
+    use crate::scene::DepthConvention;
+
+    #[derive(Clone, PartialEq)]
+    struct Key {
+        convention: DepthConvention,
+        variant: Variant,
+    }
+
+    pub(super) fn record(
+        dispatch: TiledDispatch,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
+        let mut state = None;
+        Box::new(move |ctx| {
+            let resources = ctx.resources;
+            let device = resources.device;
+            let Some(scene) = scenes.for_frame(resources) else {
+                return;
+            };
+            let state: &mut InputPass<Key, wgpu::ComputePipeline> =
+                per_scene(&mut state, &scene, || {
+                    InputPass::new(
+                        resources,
+                        "light_tiled",
+                        &dispatch.source,
+                        Some(&scene),
+                        &dispatch.inputs,
+                    )
+                });
+            let convention = dispatch
+                .depth_rule
+                .convention(resources.shape(dispatch.depth).format);
+            let key = Key {
+                convention,
+                variant: scenes.variant(GatedShader::LightTiled),
+            };
+            let (module, layout) = (&state.module, &state.layout);
+            let pipeline = state.pipelines.get(key, |key| {
+                let mut constants = dispatch.constants.clone();
+                constants.extend(key.variant.constants());
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("light_tiled"),
+                    layout: Some(layout),
+                    module,
+                    entry_point: Some("cs_light_tiled"),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants: &constants,
+                        // The shader initialises what it reads of workgroup memory.
+                        zero_initialize_workgroup_memory: false,
+                    },
+                    cache: None,
+                })
+            });
+            ctx.pass.set_pipeline(pipeline);
+            ctx.pass
+                .set_bind_group(0, scene.bind_group(convention), &[]);
+            ctx.pass
+                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            let out = resources.shape(dispatch.output);
+            ctx.pass.dispatch_workgroups(
+                out.width.div_ceil(dispatch.tile),
+                out.height.div_ceil(dispatch.tile),
+                1,
+            );
+        })
     }
 }

@@ -28,10 +28,9 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
-use super::depth::DepthRule;
-use super::light::GBUFFER_INPUTS;
-use super::textures::{self, Input, Want};
-use super::{Recording, Shared};
+use crate::common::depth::DepthRule;
+use crate::common::plugin::{Recording, Shared};
+use crate::common::textures::{self, Input, Want, GBUFFER_INPUTS};
 use crate::shaders;
 
 pub struct GBufferResolve(pub(crate) Shared);
@@ -53,7 +52,7 @@ const OUTPUTS: [(&str, &str); 4] = [
     ("resolved_view_depth", "the resolved view depth"),
 ];
 
-/// The resolve as set up: what `gpu::gbuffer_resolve` records.
+/// The resolve as set up: what its `gpu` module records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct GBufferResolveDraw {
     pub source: String,
@@ -69,7 +68,7 @@ pub(crate) struct GBufferResolveDraw {
 impl Recording for GBufferResolveDraw {
     #[cfg(feature = "gpu")]
     fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(crate::gpu::gbuffer_resolve::record(self, scenes))
+        graph_core::Record::Render(gpu::record(self, scenes))
     }
 }
 
@@ -121,5 +120,90 @@ impl Plugin for GBufferResolve {
         };
         self.0.record(pass, draw);
         Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the G-buffer resolve: one full-screen triangle writing the four resolved
+    //! targets and, through `frag_depth`, the depth.
+
+    use std::sync::Arc;
+
+    use graph_core::gpu::RenderContext;
+
+    use super::GBufferResolveDraw;
+    use crate::common::depth::far_depth;
+    use crate::common::gpu::{per_scene, InputPass, PipelineDesc};
+    use crate::gpu_scene::SceneCache;
+
+    #[derive(Clone, PartialEq)]
+    struct Key {
+        targets: Vec<wgpu::TextureFormat>,
+        depth: wgpu::TextureFormat,
+    }
+
+    pub(super) fn record(
+        draw: GBufferResolveDraw,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+        let mut state = None;
+        Box::new(move |ctx| {
+            let resources = ctx.resources;
+            let device = resources.device;
+            // The camera turns the averaged view depth into depth.
+            let Some(scene) = scenes.for_frame(resources) else {
+                return;
+            };
+            let state = per_scene(&mut state, &scene, || {
+                let label = "gbuffer resolve";
+                InputPass::new(resources, label, &draw.source, Some(&scene), &draw.inputs)
+            });
+            let key = Key {
+                targets: draw
+                    .targets
+                    .iter()
+                    .map(|&h| resources.shape(h).format)
+                    .collect(),
+                depth: resources.shape(draw.depth).format,
+            };
+            let convention = draw.depth_rule.convention(key.depth);
+            let pipeline = state.pipelines.get(key, |key| {
+                let targets: Vec<Option<wgpu::ColorTargetState>> =
+                    key.targets.iter().map(|&f| Some(f.into())).collect();
+                PipelineDesc {
+                    label: "gbuffer resolve",
+                    layout: &state.layout,
+                    module: &state.module,
+                    vertex: "vs_fullscreen",
+                    buffers: &[],
+                    fragment: "fs_resolve_gbuffer",
+                    constants: &[("FAR_DEPTH", f64::from(far_depth(convention)))],
+                    targets: &targets,
+                    cull: None,
+                    depth_stencil: Some(write_depth(key.depth)),
+                    samples: 1,
+                    mask: !0,
+                }
+                .build(device)
+            });
+            ctx.pass.set_pipeline(pipeline);
+            ctx.pass
+                .set_bind_group(0, scene.bind_group(convention), &[]);
+            ctx.pass
+                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            ctx.pass.draw(0..3, 0..1);
+        })
+    }
+
+    /// Every fragment writes its depth; stencil stays as cleared.
+    fn write_depth(format: wgpu::TextureFormat) -> wgpu::DepthStencilState {
+        wgpu::DepthStencilState {
+            format,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Always),
+            stencil: wgpu::StencilState::default(),
+            bias: Default::default(),
+        }
     }
 }

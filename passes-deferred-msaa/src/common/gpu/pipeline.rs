@@ -1,5 +1,24 @@
-//! Building render pipelines from the deferred shaders, and keeping pipelines (render or
-//! compute).
+//! Building render pipelines from the deferred shaders (shader modules, pipeline layouts,
+//! the pipelines), and keeping pipelines (render or compute).
+
+pub(crate) fn module(device: &wgpu::Device, label: &str, wgsl: &str) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+    })
+}
+
+/// A pipeline layout of `groups` in order; `None` leaves a group unused.
+pub(crate) fn pipeline_layout(
+    device: &wgpu::Device,
+    groups: &[Option<&wgpu::BindGroupLayout>],
+) -> wgpu::PipelineLayout {
+    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: None,
+        bind_group_layouts: groups,
+        immediate_size: 0,
+    })
+}
 
 /// Everything that varies between the deferred passes' pipelines.
 pub(crate) struct PipelineDesc<'a> {

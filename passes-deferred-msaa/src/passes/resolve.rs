@@ -19,9 +19,9 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind};
 
-use super::fullscreen::Fullscreen;
-use super::textures::{self, Want};
-use super::Shared;
+use crate::common::fullscreen::Fullscreen;
+use crate::common::plugin::Shared;
+use crate::common::textures::{self, Want};
 use crate::host::Exposure;
 use crate::shaders;
 

@@ -26,6 +26,15 @@ pub(crate) const DEPTH_STENCIL: &[TextureFormat] =
 pub(crate) const DISPLAY: &[TextureFormat] = &[F::Rgba8UnormSrgb, F::Rgba8Unorm];
 pub(crate) const EXPOSURE: &[TextureFormat] = &[F::R32Float];
 
+/// The G-buffer textures the light passes, the edge pass and the G-buffer resolve read, by
+/// slot and group-1 binding (gbuffer_read.wgsl).
+pub(crate) const GBUFFER_INPUTS: [(&str, &str, &[TextureFormat], u32); 4] = [
+    ("albedo", "the G-buffer's albedo", ALBEDO, 0),
+    ("normal", "the G-buffer's normals", NORMAL, 1),
+    ("material", "the G-buffer's material", MATERIAL, 2),
+    ("view_depth", "the G-buffer's view depth", VIEW_DEPTH, 3),
+];
+
 impl Want {
     pub const fn new(what: &'static str, formats: &'static [TextureFormat]) -> Want {
         Want {

@@ -28,11 +28,10 @@
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{AspectAccess, PassBuilder, PassKind};
 
-use super::edge_detection::{Detector, EdgeDetection};
-use super::fullscreen::Fullscreen;
-use super::light::GBUFFER_INPUTS;
-use super::textures::{self, Want};
-use super::Shared;
+use crate::common::edge_detection::{Detector, EdgeDetection};
+use crate::common::fullscreen::Fullscreen;
+use crate::common::plugin::{Shared, ONE_SAMPLE};
+use crate::common::textures::{self, Want, GBUFFER_INPUTS};
 use crate::shaders;
 
 pub struct EdgeStencil(pub(crate) Shared);
@@ -74,7 +73,7 @@ impl Plugin for EdgeStencil {
             Detector::None => return Ok(()),
         };
         if desc.samples == 1 {
-            pass.omit(super::ONE_SAMPLE);
+            pass.omit(ONE_SAMPLE);
             return Ok(());
         }
         let draw = Fullscreen {

@@ -17,10 +17,11 @@ use std::sync::Arc;
 use graph_core::gpu::RenderContext;
 use graph_core::TextureHandle;
 
-use super::{PipelineDesc, Pipelines};
+use super::per_scene;
+use super::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
 use crate::analysis::{GatedShader, Variant};
+use crate::common::depth::DepthRule;
 use crate::gpu_scene::{mesh, Layer, MaterialState, SceneCache};
-use crate::plugins::depth::DepthRule;
 use crate::scene::DepthConvention;
 
 /// What a material state draws with.
@@ -71,11 +72,11 @@ pub(crate) fn record(
         let Some(scene) = scenes.for_frame(resources) else {
             return;
         };
-        let state = super::per_scene(&mut state, &scene, || {
+        let state = per_scene(&mut state, &scene, || {
             let layouts = [Some(scene.layout()), Some(scene.material_layout())];
             State {
-                module: super::module(device, draw.label, &draw.source),
-                layout: super::pipeline_layout(device, &layouts),
+                module: module(device, draw.label, &draw.source),
+                layout: pipeline_layout(device, &layouts),
                 pipelines: Pipelines::default(),
             }
         });
