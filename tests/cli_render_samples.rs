@@ -97,3 +97,19 @@ fn explain_at_one_sample_plans_no_multisampled_texture() {
     );
     assert!(!explain(&["--samples", "1"]).contains("\"samples\": 4"));
 }
+
+#[test]
+fn explain_says_which_parameter_values_it_planned_with() {
+    let explain = |extra: &[&str]| {
+        let run = Command::new(env!("CARGO_BIN_EXE_rgraph"))
+            .args(["explain", "--pipeline", "pipelines/deferred_msaa_4x.ron"])
+            .args(extra)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .expect("the rgraph binary runs");
+        assert_eq!(run.status.code(), Some(0));
+        String::from_utf8(run.stdout).expect("UTF-8 text")
+    };
+    assert!(explain(&[]).starts_with("parameters: msaa = 4 (the file's default)\n"));
+    assert!(explain(&["--samples", "1"]).starts_with("parameters: msaa = 1 (given)\n"));
+}

@@ -152,7 +152,7 @@ fn spot_up() -> DVec3 {
     (DVec3::Y - axis * axis.y).normalize()
 }
 
-/// How the light passes draw a point or spot light (gpu/light.rs).
+/// How the light passes draw a point or spot light (passes/light.rs).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum Path {
     /// The volume's front faces, depth test "in front of the surface": the camera's near

@@ -439,7 +439,7 @@ fn an_opaque_edge_in_front_of_a_blend_panel_is_antialiased() {
             // With k of the 4 samples green, the composite gives mean(hdr) * mean(T) +
             // mean(C): red (4 - k) / 8 as the exact mean, green and blue scaled by
             // mean(T) = (k + (4 - k) / 2) / 4 where the exact pixel has k / 4 and
-            // (4 - k) / 8 (plugins/transparent.rs states the difference).
+            // (4 - k) / 8 (passes/transparent.rs states the difference).
             let k = 4.0 - 8.0 * p[0];
             assert!(
                 (k - k.round()).abs() < 0.05,

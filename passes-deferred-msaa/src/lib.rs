@@ -13,11 +13,11 @@
 //! filter), and sampled as their glTF sampler says.
 
 pub mod analysis;
-#[cfg(feature = "gpu")]
-mod gpu;
+mod common;
 #[cfg(feature = "gpu")]
 pub mod gpu_scene;
 pub mod host;
+mod passes;
 pub mod plugins;
 pub mod scene;
 mod shaders;

@@ -12,3 +12,7 @@ mod gltf_limits;
 mod gltf_sandbox;
 mod robustness;
 mod scene_math;
+mod structure;
+// The structure check graph-core's tests run, shared.
+#[path = "../../graph-core/tests/structure_check.rs"]
+mod structure_check;

@@ -312,6 +312,6 @@ fn stats_count_by_feature_and_print_on_one_line() {
     assert_eq!(
         stats.to_string(),
         "4 meshes, 6 triangles, 14 vertices; lights: 0 point, 0 spot, 0 directional; \
-         4 materials (4 unlit, 0 emissive, 0 mask, 0 textured, 4 double-sided), 0 textures"
+         4 materials (4 unlit, 0 emissive, 0 mask, 0 blend, 0 textured, 4 double-sided), 0 textures"
     );
 }

@@ -35,7 +35,7 @@ pub fn run(
         .map_or_else(Features::new, |(_, a)| a.features.names());
     let plan = compile(&loaded, &options, &features, pipeline)?;
     let text = match format {
-        Format::Text => explain::text(&plan),
+        Format::Text => format!("{}{}", parameters(&loaded, samples), explain::text(&plan)),
         Format::Dot => explain::dot(&plan),
         Format::Json => explain::json(&plan),
     };
@@ -58,6 +58,24 @@ pub fn run(
         _ => print!("{text}"),
     }
     Ok(())
+}
+
+/// The file's parameters and the values this plan was compiled with, as a first line (none
+/// for a file without parameters).
+fn parameters(loaded: &LoadedGraph, samples: &Samples) -> String {
+    let given = samples.params();
+    let values: Vec<String> = loaded
+        .params()
+        .iter()
+        .map(|(name, value)| match given.get(name) {
+            Some(_) => format!("{name} = {value} (given)"),
+            None => format!("{name} = {value} (the file's default)"),
+        })
+        .collect();
+    match values.is_empty() {
+        true => String::new(),
+        false => format!("parameters: {}\n", values.join(", ")),
+    }
 }
 
 fn compile(

@@ -156,17 +156,7 @@ impl<'a> Render<'a> {
         let host = Arc::new(Host::new(Arc::new(scene), self.overrides.clone()));
         let mut registry = Registry::with_builtins();
         passes_deferred_msaa::register_with(&mut registry, Some(host.clone()), self.variants);
-        let path = pipelines().join(self.pipeline);
-        let mut text = std::fs::read_to_string(&path)
-            .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
-        for (from, to) in &self.edits {
-            assert!(
-                text.contains(from),
-                "{} has no \"{from}\" to edit",
-                self.pipeline
-            );
-            text = text.replace(from, to);
-        }
+        let (path, text) = edited(self.pipeline, &self.edits);
         let loaded = load_str_with(&path, &text, &registry, &self.params)
             .unwrap_or_else(|e| panic!("cannot load {}:\n{e}", path.display()));
         let options = CompileOptions {
@@ -271,6 +261,45 @@ impl Frame {
     pub fn hdr(&self, gpu: &Gpu, name: &str) -> Vec<[f32; 4]> {
         read_rgba16f(&gpu.device, &gpu.queue, self.texture(name))
             .unwrap_or_else(|e| panic!("cannot read {name} back: {e}"))
+    }
+}
+
+/// The path and text of pipeline file `name` with `edits` applied. A preset's edits apply
+/// to it where its own text has them, else to its base, which is then loaded from a copy
+/// beside an edited copy of the preset.
+fn edited(name: &str, edits: &[(&str, &str)]) -> (PathBuf, String) {
+    let read = |path: &Path| {
+        std::fs::read_to_string(path)
+            .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
+    };
+    let path = pipelines().join(name);
+    let mut text = read(&path);
+    let base_name = text
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("base: \""))
+        .filter(|_| text.contains("\nPreset("))
+        .map(|rest| rest.trim_end_matches("\",").to_owned());
+    let mut base = base_name.as_ref().map(|b| read(&pipelines().join(b)));
+    for (from, to) in edits {
+        if text.contains(from) {
+            text = text.replace(from, to);
+        } else if let Some(base) = base.as_mut().filter(|b| b.contains(from)) {
+            *base = base.replace(from, to);
+        } else {
+            panic!("{name} has no \"{from}\" to edit");
+        }
+    }
+    match (base_name, base) {
+        (Some(base_name), Some(base)) if !edits.is_empty() => {
+            static COPIES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+            let n = COPIES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let dir =
+                std::env::temp_dir().join(format!("rgraph-preset-{}-{n}", std::process::id()));
+            std::fs::create_dir_all(&dir).expect("a temporary folder");
+            std::fs::write(dir.join(base_name), base).expect("a writable temporary folder");
+            (dir.join(name), text)
+        }
+        _ => (path, text),
     }
 }
 

@@ -131,7 +131,7 @@ fn condition(
         Ok(condition) => condition,
         Err(error) => {
             errors.push(FileError {
-                location: source.location(source.position_in(when, error.column())),
+                location: source.locate_in(when, error.column()),
                 kind: ErrorKind::BadCondition {
                     owner: match owner {
                         Owner::Pass(name) => format!("pass \"{name}\""),
@@ -175,7 +175,7 @@ fn condition(
             },
         };
         errors.push(FileError {
-            location: source.location(source.position_in(when, column)),
+            location: source.locate_in(when, column),
             kind: ErrorKind::Graph(error),
         });
     }

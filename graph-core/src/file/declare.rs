@@ -120,7 +120,7 @@ fn record_uses(
         let read = decl.input(slot.as_str()).unwrap_or(name);
         if let Some(h) = handles.get(read.as_str()) {
             let resource = &graph.resources[h.id().index()].name;
-            spans.record_use(decl.name.as_str(), resource, source.position(name));
+            spans.record_use(decl.name.as_str(), resource, source.locate(name));
         }
     }
 }
@@ -131,13 +131,13 @@ fn plugin_error(source: &Source<'_>, decl: &PassDecl<'_>, error: PluginError) ->
     let slot = error
         .slot()
         .and_then(|slot| decl.input(slot).or_else(|| decl.output(slot)));
-    let at = match (slot, &decl.params) {
-        (Some(name), _) => source.position(name),
-        (None, Some(params)) => source.raw_position(params.0),
-        (None, None) => source.position(&decl.name),
+    let location = match (slot, &decl.params) {
+        (Some(name), _) => source.locate(name),
+        (None, Some(params)) => source.locate_raw(params.0),
+        (None, None) => source.locate(&decl.name),
     };
     FileError {
-        location: source.location(at),
+        location,
         kind: ErrorKind::Plugin {
             pass: decl.name.as_str().to_owned(),
             plugin: decl.plugin.as_str().to_owned(),

@@ -55,6 +55,21 @@ pub enum ErrorKind {
         known: String,
     },
 
+    #[error("the preset's base {base} cannot be read: {reason}")]
+    PresetBase { base: String, reason: String },
+
+    #[error("the preset's base {base} is a preset too; a preset names a Graph file")]
+    PresetOfPreset { base: String },
+
+    #[error(
+        "the preset changes pass \"{pass}\", which {base} does not have (its passes: {known})"
+    )]
+    UnknownPresetPass {
+        pass: String,
+        base: String,
+        known: String,
+    },
+
     #[error(
         "parameter \"{name}\" is given a value ({value}), but the file declares no parameter \
          of that name (it declares: {declared})"

@@ -1,16 +1,16 @@
 //! Loading a graph file: parse, look up plugins and their parameters, read conditions,
 //! resolve names, order passes, declare. Every error found before declaring is reported together.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use super::declare::declare;
-use super::error::{ErrorKind, FileError, FileErrors};
+use super::error::{ErrorKind, FileError, FileErrors, Location};
 use super::loaded::LoadedGraph;
 use super::param_uses;
 use super::params::GraphParams;
 use super::plugin::Prepared;
 use super::registry::Registry;
-use super::schema::{self, GraphFile};
+use super::schema::{self, GraphFile, PresetFile};
 use super::source::Source;
 use super::{conditions, names, order, ron_message};
 use crate::position::Position;
@@ -46,38 +46,142 @@ pub fn load_str(
     load_str_with(path, text, registry, &GraphParams::new())
 }
 
-/// [`load_str`] with values for the file's parameters, as [`load_file_with`].
+/// [`load_str`] with values for the file's parameters, as [`load_file_with`]. A preset
+/// (`Preset(base: "FILE.ron", passes: {..})`) is its base file, read from the preset's
+/// folder, with the passes it names changed; errors name the file each part is written in.
 pub fn load_str_with(
     path: impl AsRef<Path>,
     text: &str,
     registry: &Registry,
     params: &GraphParams,
 ) -> Result<LoadedGraph, FileErrors> {
-    let text = without_bom(text);
-    let source = Source::new(path.as_ref(), text);
-    let file = schema::parse(text).map_err(|e| FileErrors(vec![source.syntax(&e)]))?;
+    let (path, text) = (path.as_ref(), without_bom(text));
+    if !schema::is_preset(text) {
+        let source = Source::new(path, text);
+        let file = schema::parse(text).map_err(|e| FileErrors(vec![source.syntax(&e)]))?;
+        return load_graph(&source, file, registry, params);
+    }
+    let preset = schema::parse_preset(text)
+        .map_err(|e| FileErrors(vec![Source::new(path, text).syntax(&e)]))?;
+    let main = Source::new(path, text);
+    let (base_path, base_text) = read_base(&main, &preset)?;
+    let params = preset_values(&preset).overridden_by(params);
+    let base_text = without_bom(&base_text);
+    let source = Source::with_base(path, text, (&base_path, base_text));
+    let mut file = schema::parse(base_text)
+        .map_err(|e| FileErrors(vec![Source::new(&base_path, base_text).syntax(&e)]))?;
+    apply_preset(&source, preset, &base_path, &mut file)?;
+    load_graph(&source, file, registry, &params)
+}
+
+/// The values a preset gives its base's parameters.
+fn preset_values(preset: &PresetFile<'_>) -> GraphParams {
+    preset
+        .values
+        .0
+        .iter()
+        .fold(GraphParams::new(), |values, (name, value)| {
+            values.with(name.as_str(), *value)
+        })
+}
+
+/// Declares a parsed graph file: look up plugins and their parameters, read conditions,
+/// resolve names, order passes, declare.
+fn load_graph(
+    source: &Source<'_>,
+    file: GraphFile<'_>,
+    registry: &Registry,
+    params: &GraphParams,
+) -> Result<LoadedGraph, FileErrors> {
     let mut errors = Vec::new();
-    let values = param_uses::resolve(&source, &file, params, &mut errors);
-    let prepared = prepare(&source, &file, registry, &mut errors);
-    let conditions = conditions::read(&source, &file, &mut errors);
-    let edges = names::resolve(&source, &file, &conditions, &mut errors);
-    let order = order::sort(&source, &file, &edges, &mut errors);
+    let values = param_uses::resolve(source, &file, params, &mut errors);
+    let prepared = prepare(source, &file, registry, &mut errors);
+    let conditions = conditions::read(source, &file, &mut errors);
+    let edges = names::resolve(source, &file, &conditions, &mut errors);
+    let order = order::sort(source, &file, &edges, &mut errors);
     if !errors.is_empty() {
         return Err(FileErrors::sorted(errors));
     }
-    declare(&source, &file, prepared, conditions, &order, values)
+    declare(source, &file, prepared, conditions, &order, values)
 }
 
-/// The parameters the graph file at `path` declares, with their defaults, read without
+/// The path and text of a preset's base (relative to the preset's folder), which must be
+/// a graph file, not another preset.
+fn read_base(main: &Source<'_>, preset: &PresetFile<'_>) -> Result<(PathBuf, String), FileErrors> {
+    let path = main.dir().join(preset.base.as_str());
+    let error = |kind| FileErrors(vec![main.error(&preset.base, kind)]);
+    let base = path.display().to_string();
+    let text = embedded::read_text(&path, bounded_read::MAX_GRAPH_FILE_BYTES).map_err(|e| {
+        error(ErrorKind::PresetBase {
+            base: base.clone(),
+            reason: e.to_string(),
+        })
+    })?;
+    if schema::is_preset(without_bom(&text)) {
+        return Err(error(ErrorKind::PresetOfPreset { base }));
+    }
+    Ok((path, text))
+}
+
+/// Replaces the parameters and inputs of the passes `preset` names in the base `file`.
+fn apply_preset<'a>(
+    source: &Source<'_>,
+    preset: PresetFile<'a>,
+    base: &Path,
+    file: &mut GraphFile<'a>,
+) -> Result<(), FileErrors> {
+    let mut errors = Vec::new();
+    for (name, change) in preset.passes.0 {
+        let Some(pass) = file
+            .passes
+            .iter_mut()
+            .find(|p| p.name.as_str() == name.as_str())
+        else {
+            let known: Vec<&str> = file.passes.iter().map(|p| p.name.as_str()).collect();
+            errors.push(source.error(
+                &name,
+                ErrorKind::UnknownPresetPass {
+                    pass: name.as_str().to_owned(),
+                    base: base.display().to_string(),
+                    known: known.join(", "),
+                },
+            ));
+            continue;
+        };
+        if let Some(params) = change.params {
+            pass.params = Some(params);
+        }
+        if let Some(inputs) = change.inputs {
+            pass.inputs = inputs;
+        }
+    }
+    match errors.is_empty() {
+        true => Ok(()),
+        false => Err(FileErrors::sorted(errors)),
+    }
+}
+
+/// The parameters the graph file at `path` declares, with their defaults (a preset's
+/// values for its base's), read without
 /// declaring anything: what a tool checks before giving a value, as the bench does before
 /// setting `msaa`. Errors are the file's syntax errors (or an unreadable file).
 pub fn declared_params(path: impl AsRef<Path>) -> Result<GraphParams, FileErrors> {
     let path = path.as_ref();
     let text = read(path)?;
     let text = without_bom(&text);
+    let main = Source::new(path, text);
+    let ((path, text), values) = match schema::is_preset(text) {
+        true => {
+            let preset =
+                schema::parse_preset(text).map_err(|e| FileErrors(vec![main.syntax(&e)]))?;
+            (read_base(&main, &preset)?, preset_values(&preset))
+        }
+        false => ((path.to_path_buf(), text.to_owned()), GraphParams::new()),
+    };
+    let text = without_bom(&text);
     let file =
-        schema::parse(text).map_err(|e| FileErrors(vec![Source::new(path, text).syntax(&e)]))?;
-    Ok(param_uses::declared(&file))
+        schema::parse(text).map_err(|e| FileErrors(vec![Source::new(&path, text).syntax(&e)]))?;
+    Ok(param_uses::declared(&file).overridden_by(&values))
 }
 
 /// The text of the file at `path`, or the error saying why it cannot be read.
@@ -121,22 +225,23 @@ fn prepare<'r>(
             // A pass without `params` gets `()`: plugins without parameters accept it,
             // others report their first missing field at the pass.
             let (text, base) = match &pass.params {
-                Some(raw) => (raw.0.get_ron(), Some(source.raw_position(raw.0))),
+                Some(raw) => (raw.0.get_ron(), Some(source.locate_raw(raw.0))),
                 None => ("()", None),
             };
             plugin
                 .prepare(text)
                 .map_err(|e| {
-                    let at = base.map_or_else(
-                        || source.position(&pass.name),
-                        |base| {
-                            Position::from(e.span.start)
+                    let location = base.map_or_else(
+                        || source.locate(&pass.name),
+                        |base| Location {
+                            at: Position::from(e.span.start)
                                 .skip_whitespace(text)
-                                .within(base)
+                                .within(base.at),
+                            ..base
                         },
                     );
                     errors.push(FileError {
-                        location: source.location(at),
+                        location,
                         kind: ErrorKind::Params {
                             pass: pass.name.as_str().to_owned(),
                             plugin: plugin_name.to_owned(),

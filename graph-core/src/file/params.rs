@@ -33,6 +33,13 @@ impl GraphParams {
         self.0.get(name).copied()
     }
 
+    /// These values, with every value of `other` replacing the one of its name.
+    pub fn overridden_by(&self, other: &GraphParams) -> GraphParams {
+        other.iter().fold(self.clone(), |values, (name, value)| {
+            values.with(name, value)
+        })
+    }
+
     /// The values, sorted by name.
     pub fn iter(&self) -> impl Iterator<Item = (&str, u32)> {
         self.0.iter().map(|(name, value)| (name.as_str(), *value))

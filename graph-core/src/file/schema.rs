@@ -34,6 +34,34 @@ pub(crate) struct GraphFile<'a> {
     pub outputs: Vec<Name<'a>>,
 }
 
+/// A preset: a graph file named by `base` (relative to the preset's folder) with some
+/// passes' parameters or inputs replaced and its parameters given other values, for files
+/// that differ from another in those only:
+/// `Preset(base: "deferred_msaa_4x.ron", passes: { "edges": (params: (detector: centroid),
+/// inputs: { "material": "material", "depth": "depth" }) })`.
+#[derive(Debug, Deserialize)]
+#[serde(rename = "Preset", deny_unknown_fields)]
+pub(crate) struct PresetFile<'a> {
+    #[serde(borrow)]
+    pub base: Name<'a>,
+    /// Values for the base's parameters (`{ "msaa": 1 }`), which a loader's own replace.
+    #[serde(borrow, default)]
+    pub values: Pairs<Name<'a>, u32>,
+    /// Pass name -> what replaces its parameters and inputs.
+    #[serde(borrow, default)]
+    pub passes: Pairs<Name<'a>, PassChange<'a>>,
+}
+
+/// What a preset replaces in one pass: each part given replaces the base's whole part.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PassChange<'a> {
+    #[serde(borrow, default)]
+    pub params: Option<PluginParams<'a>>,
+    #[serde(borrow, default)]
+    pub inputs: Option<Pairs<Name<'a>, Name<'a>>>,
+}
+
 /// A declared resource; its name (the map key) names the version its one writer produces.
 #[derive(Debug, Deserialize)]
 pub(crate) enum ResourceDecl<'a> {
@@ -332,4 +360,26 @@ pub(crate) fn options() -> ron::Options {
 /// Reads a graph file.
 pub(crate) fn parse(text: &str) -> Result<GraphFile<'_>, ron::error::SpannedError> {
     options().from_str(text)
+}
+
+pub(crate) fn parse_preset(text: &str) -> Result<PresetFile<'_>, ron::error::SpannedError> {
+    options().from_str(text)
+}
+
+/// Whether the file's value is a `Preset(..)`: its first word past comments and blanks.
+pub(crate) fn is_preset(text: &str) -> bool {
+    let mut rest = text;
+    loop {
+        rest = rest.trim_start();
+        if let Some(comment) = rest.strip_prefix("//") {
+            rest = comment.split_once('\n').map_or("", |(_, after)| after);
+        } else if let Some(comment) = rest.strip_prefix("/*") {
+            rest = comment.split_once("*/").map_or("", |(_, after)| after);
+        } else {
+            let word = rest
+                .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .next();
+            return word == Some("Preset");
+        }
+    }
 }

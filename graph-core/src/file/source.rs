@@ -12,76 +12,125 @@ use super::schema::{offset_in, Name};
 use crate::position::Position;
 
 pub(crate) struct Source<'a> {
+    /// The file the user named: file-level errors point here.
+    main: Text<'a>,
+    /// A preset's base: names and values borrowed from it are placed in it (see
+    /// `load::apply_preset`).
+    base: Option<Text<'a>>,
+}
+
+/// One file's path and text.
+struct Text<'a> {
     path: &'a Path,
     text: &'a str,
     /// Built once: every name of the file is placed through it.
     lines: LineIndex<'a>,
 }
 
-impl<'a> Source<'a> {
-    pub fn new(path: &'a Path, text: &'a str) -> Self {
-        Source {
+impl<'a> Text<'a> {
+    fn new(path: &'a Path, text: &'a str) -> Self {
+        Text {
             path,
             text,
             lines: LineIndex::new(text),
         }
     }
 
-    /// The directory relative paths in the file are resolved against.
-    pub fn dir(&self) -> &'a Path {
-        self.path.parent().unwrap_or(Path::new(""))
-    }
-
-    pub fn location(&self, at: Position) -> Location {
+    fn location(&self, at: Position) -> Location {
         Location {
             path: self.path.display().to_string(),
             at,
         }
     }
+}
 
-    /// Where a name is written: its opening quote. A name with escapes (a copy, not a
-    /// slice of the text) is placed at the start of the file.
-    pub fn position(&self, name: &Name<'_>) -> Position {
-        name.offset(self.text).map_or(Position::START, |offset| {
+impl<'a> Source<'a> {
+    pub fn new(path: &'a Path, text: &'a str) -> Self {
+        Source {
+            main: Text::new(path, text),
+            base: None,
+        }
+    }
+
+    /// A preset at `path` over the graph file `base` (its path and text): the graph is the
+    /// base's, with parts borrowed from the preset's text.
+    pub fn with_base(path: &'a Path, text: &'a str, base: (&'a Path, &'a str)) -> Self {
+        Source {
+            main: Text::new(path, text),
+            base: Some(Text::new(base.0, base.1)),
+        }
+    }
+
+    /// The file whose text holds `part`: the base's, or the main file's (also for text
+    /// that is in neither, such as a copied name).
+    fn text_of(&self, part: &str) -> &Text<'a> {
+        self.base
+            .as_ref()
+            .filter(|base| offset_in(base.text, part).is_some())
+            .unwrap_or(&self.main)
+    }
+
+    /// The directory relative paths in the graph are resolved against: the graph's file
+    /// (a preset's base), where its passes are written.
+    pub fn dir(&self) -> &'a Path {
+        let graph = self.base.as_ref().unwrap_or(&self.main);
+        graph.path.parent().unwrap_or(Path::new(""))
+    }
+
+    /// A position in the file the user named.
+    pub fn location(&self, at: Position) -> Location {
+        self.main.location(at)
+    }
+
+    /// Where a name is written: its opening quote, in the file it is written in. A name
+    /// with escapes (a copy, not a slice of the text) is placed at the start of the file.
+    pub fn locate(&self, name: &Name<'_>) -> Location {
+        let file = self.text_of(name.as_str());
+        let at = name.offset(file.text).map_or(Position::START, |offset| {
             let quote = offset
                 .checked_sub(1)
-                .filter(|&q| self.text.as_bytes()[q] == b'"');
-            self.lines.position(quote.unwrap_or(offset))
-        })
+                .filter(|&q| file.text.as_bytes()[q] == b'"');
+            file.lines.position(quote.unwrap_or(offset))
+        });
+        file.location(at)
     }
 
     /// Where the character `column` (counted from 0) of `name`'s text is, when the name
-    /// borrows from the file; else where the name is.
-    pub fn position_in(&self, name: &Name<'_>, column: usize) -> Position {
+    /// borrows from a file; else where the name is.
+    pub fn locate_in(&self, name: &Name<'_>, column: usize) -> Location {
+        let file = self.text_of(name.as_str());
         let within = name
             .as_str()
             .char_indices()
             .nth(column)
             .map_or(name.as_str().len(), |(i, _)| i);
-        name.offset(self.text)
-            .map_or(self.position(name), |offset| {
-                self.lines.position(offset + within)
-            })
+        match name.offset(file.text) {
+            Some(offset) => file.location(file.lines.position(offset + within)),
+            None => self.locate(name),
+        }
     }
 
     /// An error pointing at `name`.
     pub fn error(&self, name: &Name<'_>, kind: ErrorKind) -> FileError {
         FileError {
-            location: self.location(self.position(name)),
+            location: self.locate(name),
             kind,
         }
     }
 
     /// Where a raw value starts.
-    pub fn raw_position(&self, raw: &RawValue) -> Position {
-        offset_in(self.text, raw.get_ron())
-            .map_or(Position::START, |offset| self.lines.position(offset))
+    pub fn locate_raw(&self, raw: &RawValue) -> Location {
+        let file = self.text_of(raw.get_ron());
+        let at = offset_in(file.text, raw.get_ron())
+            .map_or(Position::START, |offset| file.lines.position(offset));
+        file.location(at)
     }
 
     /// A `ron` error in the whole file.
     pub fn syntax(&self, error: &ron::error::SpannedError) -> FileError {
+        let at = Position::from(error.span.start).skip_whitespace(self.main.text);
         FileError {
-            location: self.location(Position::from(error.span.start).skip_whitespace(self.text)),
+            location: self.location(at),
             kind: ErrorKind::Syntax {
                 message: ron_message::describe(&error.code),
             },

@@ -12,10 +12,10 @@ use crate::position::Position;
 #[derive(Debug, Clone)]
 pub(crate) struct Spans {
     start: Location,
-    passes: HashMap<String, Position>,
-    resources: HashMap<String, Position>,
+    passes: HashMap<String, Location>,
+    resources: HashMap<String, Location>,
     /// (pass, declared resource) -> the first slot of the pass that names a version of it.
-    uses: HashMap<(String, String), Position>,
+    uses: HashMap<(String, String), Location>,
 }
 
 impl Spans {
@@ -24,13 +24,13 @@ impl Spans {
         for pass in &file.passes {
             passes
                 .entry(pass.name.as_str().to_owned())
-                .or_insert_with(|| source.position(&pass.name));
+                .or_insert_with(|| source.locate(&pass.name));
         }
         let mut resources = HashMap::new();
         for (name, _) in &file.resources.0 {
             resources
                 .entry(name.as_str().to_owned())
-                .or_insert_with(|| source.position(name));
+                .or_insert_with(|| source.locate(name));
         }
         Spans {
             start: source.location(Position::START),
@@ -41,7 +41,7 @@ impl Spans {
     }
 
     /// Records that `pass` names a version of `resource` at `at`.
-    pub fn record_use(&mut self, pass: &str, resource: &str, at: Position) {
+    pub fn record_use(&mut self, pass: &str, resource: &str, at: Location) {
         self.uses
             .entry((pass.to_owned(), resource.to_owned()))
             .or_insert(at);
@@ -52,19 +52,16 @@ impl Spans {
     pub fn locate(&self, error: GraphError) -> FileError {
         let pass = error.pass().map(str::to_owned);
         let resource = error.resource().map(str::to_owned);
-        let at = pass
+        let location = pass
             .clone()
             .zip(resource.clone())
             .and_then(|key| self.uses.get(&key))
             .or_else(|| pass.and_then(|p| self.passes.get(&p)))
             .or_else(|| resource.and_then(|r| self.resources.get(&r)))
-            .copied()
-            .unwrap_or(self.start.at);
+            .unwrap_or(&self.start)
+            .clone();
         FileError {
-            location: Location {
-                path: self.start.path.clone(),
-                at,
-            },
+            location,
             kind: ErrorKind::Graph(error),
         }
     }

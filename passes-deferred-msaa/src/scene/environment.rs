@@ -86,28 +86,15 @@ impl Irradiance {
     /// Projects [`radiance`] on the basis by midpoint quadrature over the sphere (the
     /// integrand is smooth: 256 x 128 cells are far below the result's error).
     pub fn neutral() -> Irradiance {
-        let (columns, rows) = (256, 128);
         let mut coefficients = [0.0f64; 9];
-        for row in 0..rows {
-            let theta = (row as f64 + 0.5) / rows as f64 * std::f64::consts::PI;
-            let cell = (std::f64::consts::PI / rows as f64)
-                * (2.0 * std::f64::consts::PI / columns as f64)
-                * theta.sin();
-            for column in 0..columns {
-                let phi = (column as f64 + 0.5) / columns as f64 * 2.0 * std::f64::consts::PI;
-                let d = Vec3::new(
-                    (theta.sin() * phi.cos()) as f32,
-                    theta.cos() as f32,
-                    (theta.sin() * phi.sin()) as f32,
-                );
-                let l = f64::from(radiance(d)) * cell;
-                for ((c, p), k) in coefficients
-                    .iter_mut()
-                    .zip(polynomials(d))
-                    .zip(BASIS_CONSTANT)
-                {
-                    *c += l * f64::from(p * k);
-                }
+        for (d, cell) in sphere_cells(256) {
+            let l = f64::from(radiance(d)) * cell;
+            for ((c, p), k) in coefficients
+                .iter_mut()
+                .zip(polynomials(d))
+                .zip(BASIS_CONSTANT)
+            {
+                *c += l * f64::from(p * k);
             }
         }
         // Folding each basis function's constant into its coefficient leaves the shader a
@@ -123,31 +110,39 @@ impl Irradiance {
     }
 }
 
+/// The neutral environment's irradiance `∫ L(ω) max(n·ω, 0) dω` at unit normal `n`,
+/// integrated directly over `columns` x `columns / 2` cells: the reference the spherical
+/// harmonics approximate (tests compare against it).
+pub fn irradiance_integral(n: Vec3, columns: u32) -> f32 {
+    let sum: f64 = sphere_cells(columns)
+        .map(|(d, cell)| f64::from(radiance(d) * n.dot(d).max(0.0)) * cell)
+        .sum();
+    sum as f32
+}
+
+/// The midpoints of a latitude-longitude grid of `columns` x `columns / 2` cells over the
+/// unit sphere, each with its solid angle.
+fn sphere_cells(columns: u32) -> impl Iterator<Item = (Vec3, f64)> {
+    use std::f64::consts::PI;
+    let rows = columns / 2;
+    (0..rows).flat_map(move |row| {
+        let theta = (f64::from(row) + 0.5) / f64::from(rows) * PI;
+        let cell = (PI / f64::from(rows)) * (2.0 * PI / f64::from(columns)) * theta.sin();
+        (0..columns).map(move |column| {
+            let phi = (f64::from(column) + 0.5) / f64::from(columns) * 2.0 * PI;
+            let d = Vec3::new(
+                (theta.sin() * phi.cos()) as f32,
+                theta.cos() as f32,
+                (theta.sin() * phi.sin()) as f32,
+            );
+            (d, cell)
+        })
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// `∫ L(ω) max(n·ω, 0) dω` by quadrature.
-    fn integral(n: Vec3) -> f32 {
-        let (columns, rows) = (512, 256);
-        let mut sum = 0.0f64;
-        for row in 0..rows {
-            let theta = (row as f64 + 0.5) / rows as f64 * std::f64::consts::PI;
-            let cell = (std::f64::consts::PI / rows as f64)
-                * (2.0 * std::f64::consts::PI / columns as f64)
-                * theta.sin();
-            for column in 0..columns {
-                let phi = (column as f64 + 0.5) / columns as f64 * 2.0 * std::f64::consts::PI;
-                let d = Vec3::new(
-                    (theta.sin() * phi.cos()) as f32,
-                    theta.cos() as f32,
-                    (theta.sin() * phi.sin()) as f32,
-                );
-                sum += f64::from(radiance(d) * n.dot(d).max(0.0)) * cell;
-            }
-        }
-        sum as f32
-    }
 
     #[test]
     fn spherical_harmonics_match_the_irradiance_integral_within_3_percent() {
@@ -159,7 +154,7 @@ mod tests {
             let r = (1.0 - y * y).sqrt();
             let phi = i as f32 * 2.399_963;
             let n = Vec3::new(r * phi.cos(), y, r * phi.sin());
-            let expected = integral(n);
+            let expected = irradiance_integral(n, 512);
             worst = worst.max((sh.at(n) - expected).abs() / expected);
         }
         assert!(worst < 0.03, "worst relative error {worst}");

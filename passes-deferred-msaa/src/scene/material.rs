@@ -13,7 +13,7 @@ pub enum AlphaMode {
     /// glTF BLEND: the surface is composited over what lies behind it with its alpha
     /// (Porter and Duff's over). A G-buffer holds one surface per sample, so the opaque
     /// passes skip these meshes and the `transparent` pass draws them, lit, after
-    /// lighting (plugins/transparent.rs).
+    /// lighting (passes/transparent.rs).
     Blend,
 }
 

@@ -34,7 +34,9 @@ pub use bounds::{Aabb, BoundingSphere, MAX_COORDINATE};
 pub use camera::{
     Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_MARGIN, FRAMING_YFOV,
 };
-pub use environment::{radiance as environment_radiance, Environment, Irradiance};
+pub use environment::{
+    irradiance_integral, radiance as environment_radiance, Environment, Irradiance,
+};
 pub use error::SceneError;
 pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE, MAX_LIGHTS};
 pub use lighting::{Lighting, DEFAULT_ENVIRONMENT_INTENSITY, HEADLIGHT_LUX};

@@ -15,10 +15,13 @@ pub struct SceneStats {
     pub point_lights: usize,
     pub spot_lights: usize,
     pub directional_lights: usize,
+    /// Image-based lighting (the default lighting of files without lights).
+    pub environment: bool,
     pub materials: usize,
     pub unlit_materials: usize,
     pub emissive_materials: usize,
     pub mask_materials: usize,
+    pub blend_materials: usize,
     pub textured_materials: usize,
     pub double_sided_materials: usize,
     pub textures: usize,
@@ -37,10 +40,12 @@ impl SceneStats {
             point_lights: lights(|k| matches!(k, LightKind::Point)),
             spot_lights: lights(|k| matches!(k, LightKind::Spot { .. })),
             directional_lights: lights(|k| matches!(k, LightKind::Directional)),
+            environment: scene.environment.is_some(),
             materials: scene.materials.len(),
             unlit_materials: materials(|m| m.unlit),
             emissive_materials: materials(|m| m.is_emissive()),
             mask_materials: materials(|m| matches!(m.alpha_mode, AlphaMode::Mask { .. })),
+            blend_materials: materials(|m| m.alpha_mode == AlphaMode::Blend),
             textured_materials: materials(|m| m.base_color_texture.is_some()),
             double_sided_materials: materials(|m| m.double_sided),
             textures: scene.textures.len(),
@@ -50,24 +55,30 @@ impl SceneStats {
 
 impl fmt::Display for SceneStats {
     /// One line, e.g. `12 meshes, 20480 triangles, 9000 vertices; lights: 4 point, 0 spot,
-    /// 1 directional; 6 materials (0 unlit, 1 emissive, 0 mask, 2 textured, 0 double-sided),
-    /// 2 textures`.
+    /// 1 directional; 6 materials (0 unlit, 1 emissive, 0 mask, 0 blend, 2 textured, 0
+    /// double-sided), 2 textures`; `, environment` follows the lights of a scene with one.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "{} meshes, {} triangles, {} vertices; lights: {} point, {} spot, {} directional; \
-             {} materials ({} unlit, {} emissive, {} mask, {} textured, {} double-sided), \
-             {} textures",
+            "{} meshes, {} triangles, {} vertices; lights: {} point, {} spot, {} directional{}; \
+             {} materials ({} unlit, {} emissive, {} mask, {} blend, {} textured, {} \
+             double-sided), {} textures",
             self.meshes,
             self.triangles,
             self.vertices,
             self.point_lights,
             self.spot_lights,
             self.directional_lights,
+            if self.environment {
+                ", environment"
+            } else {
+                ""
+            },
             self.materials,
             self.unlit_materials,
             self.emissive_materials,
             self.mask_materials,
+            self.blend_materials,
             self.textured_materials,
             self.double_sided_materials,
             self.textures

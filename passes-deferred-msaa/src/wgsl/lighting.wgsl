@@ -15,12 +15,13 @@
 override ENVIRONMENT: bool = true;
 
 fn environment_irradiance(n: vec3<f32>) -> vec3<f32> {
-    let c = light_info.irradiance;
-    let p = array<f32, 9>(1.0, n.y, n.z, n.x, n.x * n.y, n.y * n.z, 3.0 * n.z * n.z - 1.0, n.x * n.z, n.x * n.x - n.y * n.y);
-    var e = vec3<f32>(0.0);
-    for (var i = 0u; i < 9u; i++) {
-        e += c[i].rgb * p[i];
-    }
+    // Spelled out with constant indices: a loop over local arrays would make the compiler
+    // keep them in (slow) indexable memory.
+    let c = &light_info.irradiance;
+    let e = (*c)[0].rgb + (*c)[1].rgb * n.y + (*c)[2].rgb * n.z + (*c)[3].rgb * n.x
+        + (*c)[4].rgb * (n.x * n.y) + (*c)[5].rgb * (n.y * n.z)
+        + (*c)[6].rgb * (3.0 * n.z * n.z - 1.0) + (*c)[7].rgb * (n.x * n.z)
+        + (*c)[8].rgb * (n.x * n.x - n.y * n.y);
     return max(e, vec3<f32>(0.0));
 }
 

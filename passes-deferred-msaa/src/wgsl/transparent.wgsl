@@ -1,7 +1,7 @@
 // The transparent pass: alpha BLEND meshes drawn back to front into an accumulation
 // target, shaded as forward.wgsl shades (its vertex stages, its `shade_surface`: the same
 // material model and every light of lighting.wgsl), with the surface's base alpha for
-// the pipeline's blending (gpu/scene_draw.rs). Composed after forward.wgsl.
+// the pipeline's blending (common/gpu/scene_draw.rs). Composed after forward.wgsl.
 
 @fragment
 fn fs_blend_pixel(in: PixelVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {

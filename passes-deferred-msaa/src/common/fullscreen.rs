@@ -1,0 +1,150 @@
+//! A full-screen draw of a deferred shader, as the edge, resolve, tone-mapping, debug and
+//! transparent-composite plugins set it up, and (feature `gpu`) its recording: the edge
+//! pass marks the stencil only, the others draw into a color target.
+
+use graph_core::types::BlendState;
+use graph_core::TextureHandle;
+
+use super::plugin::Recording;
+use super::textures::Input;
+
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct Fullscreen {
+    pub label: &'static str,
+    /// The composed WGSL; its vertex entry point is `vs_fullscreen` (common.wgsl).
+    pub source: String,
+    pub entry: &'static str,
+    pub constants: Vec<(&'static str, f64)>,
+    /// Group 1.
+    pub inputs: Vec<Input>,
+    /// The shader reads the scene (group 0); without a host such a pass draws nothing.
+    pub reads_scene: bool,
+    /// The color attachment, if any.
+    pub target: Option<TextureHandle>,
+    /// A depth-stencil attachment whose stencil the pass marks: `Replace` with the
+    /// reference 0x80 through write mask 0x80, wherever the shader does not discard.
+    pub stencil_mark: Option<TextureHandle>,
+    /// How the shader's output combines with the color attachment; `None` replaces it.
+    pub blend: Option<BlendState>,
+}
+
+impl Recording for Fullscreen {
+    #[cfg(feature = "gpu")]
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Render(gpu::record(self, scenes))
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    use std::sync::Arc;
+
+    use graph_core::gpu::RenderContext;
+    use graph_core::TextureHandle;
+
+    use super::Fullscreen;
+    use crate::common::gpu::{InputPass, PipelineDesc, EDGE_STENCIL};
+    use crate::gpu_scene::SceneCache;
+    use crate::scene::DepthConvention;
+
+    /// Attachment formats and sample count, as the plan made them.
+    #[derive(Clone, PartialEq)]
+    struct Key {
+        target: Option<wgpu::TextureFormat>,
+        depth_stencil: Option<wgpu::TextureFormat>,
+        samples: u32,
+    }
+
+    pub(super) fn record(
+        draw: Fullscreen,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+        // Built per device: the scene's group 0 layout is the same for every upload.
+        let mut state: Option<(wgpu::Device, InputPass<Key>)> = None;
+        Box::new(move |ctx| {
+            let resources = ctx.resources;
+            let device = resources.device;
+            let scene = match draw.reads_scene {
+                true => match scenes.for_frame(resources) {
+                    Some(scene) => Some(scene),
+                    None => return,
+                },
+                false => None,
+            };
+            if state.as_ref().is_some_and(|(built, _)| built != device) {
+                state = None;
+            }
+            let (_, state) = state.get_or_insert_with(|| {
+                let pass = InputPass::new(
+                    resources,
+                    draw.label,
+                    &draw.source,
+                    scene.as_deref(),
+                    &draw.inputs,
+                );
+                (device.clone(), pass)
+            });
+            let shape = |h: TextureHandle| resources.shape(h);
+            let key = Key {
+                target: draw.target.map(|h| shape(h).format),
+                depth_stencil: draw.stencil_mark.map(|h| shape(h).format),
+                samples: draw
+                    .target
+                    .or(draw.stencil_mark)
+                    .map_or(1, |h| shape(h).samples),
+            };
+            let pipeline = state.pipelines.get(key, |key| {
+                let targets = [key.target.map(|format| wgpu::ColorTargetState {
+                    format,
+                    blend: draw.blend,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })];
+                PipelineDesc {
+                    label: draw.label,
+                    layout: &state.layout,
+                    module: &state.module,
+                    vertex: "vs_fullscreen",
+                    buffers: &[],
+                    fragment: draw.entry,
+                    constants: &draw.constants,
+                    targets: if key.target.is_some() { &targets } else { &[] },
+                    cull: None,
+                    depth_stencil: key.depth_stencil.map(stencil_mark),
+                    samples: key.samples,
+                    mask: !0,
+                }
+                .build(device)
+            });
+            ctx.pass.set_pipeline(pipeline);
+            if let Some(scene) = &scene {
+                ctx.pass
+                    .set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
+            }
+            ctx.pass
+                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            ctx.pass.set_stencil_reference(EDGE_STENCIL);
+            ctx.pass.draw(0..3, 0..1);
+        })
+    }
+
+    fn stencil_mark(format: wgpu::TextureFormat) -> wgpu::DepthStencilState {
+        let mark = wgpu::StencilFaceState {
+            compare: wgpu::CompareFunction::Always,
+            fail_op: wgpu::StencilOperation::Keep,
+            depth_fail_op: wgpu::StencilOperation::Keep,
+            pass_op: wgpu::StencilOperation::Replace,
+        };
+        wgpu::DepthStencilState {
+            format,
+            depth_write_enabled: Some(false),
+            depth_compare: Some(wgpu::CompareFunction::Always),
+            stencil: wgpu::StencilState {
+                front: mark,
+                back: mark,
+                read_mask: 0xff,
+                write_mask: EDGE_STENCIL,
+            },
+            bias: Default::default(),
+        }
+    }
+}

@@ -1,0 +1,40 @@
+//! The device objects of a pass that reads G-buffer textures (light, tiled light,
+//! G-buffer resolve, full-screen passes): its shader module, the bind group layout of its inputs, a
+//! pipeline layout of the scene's group 0 (when it reads the scene) and the inputs' group
+//! 1, and its pipelines. Built on the first frame of a device or scene upload, kept after.
+
+use graph_core::gpu::FrameResources;
+
+use super::bindings::TextureBindings;
+use super::pipeline::{module, pipeline_layout, Pipelines};
+use crate::common::textures::Input;
+use crate::gpu_scene::GpuScene;
+
+pub(crate) struct InputPass<K, P = wgpu::RenderPipeline> {
+    pub module: wgpu::ShaderModule,
+    pub inputs: TextureBindings,
+    pub layout: wgpu::PipelineLayout,
+    pub pipelines: Pipelines<K, P>,
+}
+
+impl<K, P> InputPass<K, P> {
+    /// For `source`'s shader reading `inputs` as the plan shapes them, and `scene`'s
+    /// group 0 when given.
+    pub fn new(
+        resources: &FrameResources<'_>,
+        label: &str,
+        source: &str,
+        scene: Option<&GpuScene>,
+        inputs: &[Input],
+    ) -> Self {
+        let device = resources.device;
+        let inputs = TextureBindings::new(resources, inputs);
+        let layouts = [scene.map(GpuScene::layout), Some(&inputs.layout)];
+        InputPass {
+            module: module(device, label, source),
+            layout: pipeline_layout(device, &layouts),
+            inputs,
+            pipelines: Pipelines::default(),
+        }
+    }
+}

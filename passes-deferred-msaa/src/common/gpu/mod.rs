@@ -1,0 +1,38 @@
+//! Device-side helpers the deferred passes' recordings share (feature `gpu`): one way to
+//! build a render pipeline and a cache of pipelines keyed by what the plan decides at
+//! execution (formats, sample counts) ([`pipeline`]), the bind group of a pass's input
+//! textures ([`bindings`]), the device objects of a pass that reads them
+//! ([`input_pass`]), and the recording of passes that draw the scene's meshes
+//! ([`scene_draw`]).
+
+pub(crate) mod bindings;
+pub(crate) mod input_pass;
+pub(crate) mod pipeline;
+pub(crate) mod scene_draw;
+
+use std::sync::Arc;
+
+use crate::gpu_scene::GpuScene;
+pub(crate) use input_pass::InputPass;
+pub(crate) use pipeline::{additive, PipelineDesc};
+
+/// The stencil bit edge pixels carry (seed 000's 0x80): the edge pass marks it, the light
+/// passes test it.
+pub(crate) const EDGE_STENCIL: u32 = 0x80;
+
+/// What a recorder built for one scene upload, rebuilt by `build` when the frame's scene
+/// is another upload (another device, or a new host): its module and layouts are made
+/// on the scene's device against the scene's bind group layouts.
+pub(crate) fn per_scene<'s, S>(
+    slot: &'s mut Option<(Arc<GpuScene>, S)>,
+    scene: &Arc<GpuScene>,
+    build: impl FnOnce() -> S,
+) -> &'s mut S {
+    if slot
+        .as_ref()
+        .is_some_and(|(built, _)| !built.same_upload(scene))
+    {
+        *slot = None;
+    }
+    &mut slot.get_or_insert_with(|| (scene.clone(), build())).1
+}

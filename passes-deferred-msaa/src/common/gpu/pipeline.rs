@@ -1,0 +1,119 @@
+//! Building render pipelines from the deferred shaders (shader modules, pipeline layouts,
+//! the pipelines), and keeping pipelines (render or compute).
+
+pub(crate) fn module(device: &wgpu::Device, label: &str, wgsl: &str) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+    })
+}
+
+/// A pipeline layout of `groups` in order; `None` leaves a group unused.
+pub(crate) fn pipeline_layout(
+    device: &wgpu::Device,
+    groups: &[Option<&wgpu::BindGroupLayout>],
+) -> wgpu::PipelineLayout {
+    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: None,
+        bind_group_layouts: groups,
+        immediate_size: 0,
+    })
+}
+
+/// Everything that varies between the deferred passes' pipelines.
+pub(crate) struct PipelineDesc<'a> {
+    pub label: &'a str,
+    pub layout: &'a wgpu::PipelineLayout,
+    pub module: &'a wgpu::ShaderModule,
+    pub vertex: &'a str,
+    pub buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    pub fragment: &'a str,
+    /// Pipeline-overridable constants, given to both stages.
+    pub constants: &'a [(&'a str, f64)],
+    pub targets: &'a [Option<wgpu::ColorTargetState>],
+    pub cull: Option<wgpu::Face>,
+    pub depth_stencil: Option<wgpu::DepthStencilState>,
+    pub samples: u32,
+    /// Which samples the pipeline may write (`!0` for all).
+    pub mask: u64,
+}
+
+impl PipelineDesc<'_> {
+    pub fn build(&self, device: &wgpu::Device) -> wgpu::RenderPipeline {
+        let options = wgpu::PipelineCompilationOptions {
+            constants: self.constants,
+            zero_initialize_workgroup_memory: false,
+        };
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(self.label),
+            layout: Some(self.layout),
+            vertex: wgpu::VertexState {
+                module: self.module,
+                entry_point: Some(self.vertex),
+                compilation_options: options.clone(),
+                buffers: self.buffers,
+            },
+            primitive: wgpu::PrimitiveState {
+                cull_mode: self.cull,
+                ..Default::default()
+            },
+            depth_stencil: self.depth_stencil.clone(),
+            multisample: wgpu::MultisampleState {
+                count: self.samples,
+                mask: self.mask,
+                alpha_to_coverage_enabled: false,
+            },
+            fragment: Some(wgpu::FragmentState {
+                module: self.module,
+                entry_point: Some(self.fragment),
+                compilation_options: options,
+                targets: self.targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    }
+}
+
+/// Adds color and alpha: how light contributions accumulate in the HDR target.
+pub(crate) fn additive(format: wgpu::TextureFormat) -> wgpu::ColorTargetState {
+    let add = wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    };
+    wgpu::ColorTargetState {
+        format,
+        blend: Some(wgpu::BlendState {
+            color: add,
+            alpha: add,
+        }),
+        write_mask: wgpu::ColorWrites::ALL,
+    }
+}
+
+/// Pipelines made on first use, by key. Keys hold what the plan decides (formats, sample
+/// counts) and the pass's own variants; plans rarely change, so a list is enough.
+pub(crate) struct Pipelines<K, P = wgpu::RenderPipeline> {
+    built: Vec<(K, P)>,
+}
+
+impl<K, P> Default for Pipelines<K, P> {
+    fn default() -> Self {
+        Pipelines { built: Vec::new() }
+    }
+}
+
+impl<K: PartialEq, P> Pipelines<K, P> {
+    pub fn get(&mut self, key: K, build: impl FnOnce(&K) -> P) -> &P {
+        let index = match self.built.iter().position(|(k, _)| *k == key) {
+            Some(index) => index,
+            None => {
+                let pipeline = build(&key);
+                self.built.push((key, pipeline));
+                self.built.len() - 1
+            }
+        };
+        &self.built[index].1
+    }
+}

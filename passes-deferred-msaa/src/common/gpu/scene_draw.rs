@@ -1,0 +1,178 @@
+//! Recording a pass that draws the scene's meshes (the G-buffer, forward and transparent
+//! passes): one draw per mesh of the pass's [`Layer`], with a pipeline per material state
+//! (culling, alpha mask) and attachment formats. The passes differ only in shader, color
+//! targets, layer and the entry points and constants a material state takes. Pipelines
+//! are compiled for the scene's shader variant (analysis/variant.rs), which their key
+//! holds.
+//!
+//! The opaque layer writes depth and replaces colour. The blended layer tests depth
+//! without writing it (the depth-stencil is attached read-only) and accumulates as seed
+//! 001 does for off-screen particles: colour by conventional alpha blending
+//! (`src * a + dst * (1 - a)`) and alpha by the product of `1 - a` (source factor zero,
+//! destination `1 - a`), so a target cleared to (0, 0, 0, 1) ends as the blended colour
+//! over black and the transmittance of everything drawn.
+
+use std::sync::Arc;
+
+use graph_core::gpu::RenderContext;
+use graph_core::TextureHandle;
+
+use super::per_scene;
+use super::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
+use crate::analysis::{GatedShader, Variant};
+use crate::common::depth::DepthRule;
+use crate::gpu_scene::{mesh, Layer, MaterialState, SceneCache};
+use crate::scene::DepthConvention;
+
+/// What a material state draws with.
+pub(crate) struct Stages {
+    pub vertex: &'static str,
+    pub fragment: &'static str,
+    /// Pipeline-overridable constants, given to both stages.
+    pub constants: Vec<(&'static str, f64)>,
+}
+
+/// One scene-drawing pass.
+pub(crate) struct SceneDraw {
+    pub label: &'static str,
+    pub shader: GatedShader,
+    pub source: String,
+    /// Resolved against the depth attachment's format when recording.
+    pub depth_rule: DepthRule,
+    /// Color attachments in location order.
+    pub targets: Vec<TextureHandle>,
+    pub depth: TextureHandle,
+    pub layer: Layer,
+    pub stages: Box<dyn Fn(MaterialState) -> Stages>,
+}
+
+#[derive(Clone, PartialEq)]
+struct Key {
+    targets: Vec<wgpu::TextureFormat>,
+    depth: wgpu::TextureFormat,
+    samples: u32,
+    material: MaterialState,
+    variant: Variant,
+}
+
+struct State {
+    module: wgpu::ShaderModule,
+    layout: wgpu::PipelineLayout,
+    pipelines: Pipelines<Key>,
+}
+
+pub(crate) fn record(
+    draw: SceneDraw,
+    scenes: Arc<SceneCache>,
+) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+    let mut state = None;
+    Box::new(move |ctx| {
+        let resources = ctx.resources;
+        let device = resources.device;
+        let Some(scene) = scenes.for_frame(resources) else {
+            return;
+        };
+        let state = per_scene(&mut state, &scene, || {
+            let layouts = [Some(scene.layout()), Some(scene.material_layout())];
+            State {
+                module: module(device, draw.label, &draw.source),
+                layout: pipeline_layout(device, &layouts),
+                pipelines: Pipelines::default(),
+            }
+        });
+        let variant = scenes.variant(draw.shader);
+        let depth = resources.shape(draw.depth);
+        let targets: Vec<wgpu::TextureFormat> = draw
+            .targets
+            .iter()
+            .map(|&h| resources.shape(h).format)
+            .collect();
+        let convention = draw.depth_rule.convention(depth.format);
+        ctx.pass
+            .set_bind_group(0, scene.bind_group(convention), &[]);
+        let layer = draw.layer;
+        scene.draw_meshes(ctx.pass, 1, layer, |pass, _, material| {
+            let key = Key {
+                targets: targets.clone(),
+                depth: depth.format,
+                samples: depth.samples,
+                material,
+                variant: variant.clone(),
+            };
+            let (module, layout) = (&state.module, &state.layout);
+            let pipeline = state.pipelines.get(key, |key| {
+                let targets: Vec<Option<wgpu::ColorTargetState>> = key
+                    .targets
+                    .iter()
+                    .map(|&format| Some(color_target(format, layer)))
+                    .collect();
+                let stages = (draw.stages)(key.material);
+                let mut constants = stages.constants;
+                constants.extend(key.variant.constants());
+                PipelineDesc {
+                    label: draw.label,
+                    layout,
+                    module,
+                    vertex: stages.vertex,
+                    buffers: &[Some(mesh::VERTEX_LAYOUT)],
+                    fragment: stages.fragment,
+                    constants: &constants,
+                    targets: &targets,
+                    cull: (!key.material.double_sided).then_some(wgpu::Face::Back),
+                    depth_stencil: Some(depth_test(key.depth, convention, layer)),
+                    samples: key.samples,
+                    mask: !0,
+                }
+                .build(device)
+            });
+            pass.set_pipeline(pipeline);
+            true
+        });
+    })
+}
+
+/// Replacing for the opaque layer; seed 001's accumulation for the blended one (see the
+/// module documentation).
+fn color_target(format: wgpu::TextureFormat, layer: Layer) -> wgpu::ColorTargetState {
+    let blend = match layer {
+        Layer::Opaque => None,
+        Layer::Blended => Some(wgpu::BlendState {
+            color: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::SrcAlpha,
+                dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                operation: wgpu::BlendOperation::Add,
+            },
+            alpha: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::Zero,
+                dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                operation: wgpu::BlendOperation::Add,
+            },
+        }),
+    };
+    wgpu::ColorTargetState {
+        format,
+        blend,
+        write_mask: wgpu::ColorWrites::ALL,
+    }
+}
+
+/// Nearer fragments win: `Greater` with reversed Z, `Less` without. Only the opaque layer
+/// writes depth: blended surfaces are hidden by opaque ones but never hide each other
+/// (they are drawn back to front instead). Stencil is left alone (cleared to 0 by the
+/// G-buffer pass; the edge pass marks it).
+fn depth_test(
+    format: wgpu::TextureFormat,
+    convention: DepthConvention,
+    layer: Layer,
+) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format,
+        depth_write_enabled: Some(layer == Layer::Opaque),
+        depth_compare: Some(match convention {
+            DepthConvention::ReversedZ => wgpu::CompareFunction::Greater,
+            DepthConvention::Standard => wgpu::CompareFunction::Less,
+        }),
+        stencil: wgpu::StencilState::default(),
+        bias: Default::default(),
+    }
+}

@@ -1,0 +1,184 @@
+//! `auto_exposure`: meters the resolved HDR image and writes the exposure that maps its
+//! average luminance to a key, for `tonemap` to apply (what `--exposure auto` runs).
+//!
+//! ```ron
+//! (name: "auto exposure", plugin: "auto_exposure",
+//!  when: "auto_exposure",                   // the host's choice (analysis::Features)
+//!  params: (key: 0.18, low: 0.1, high: 0.9), // these defaults
+//!  inputs: { "hdr": "resolved" },           // rgba16float, 1 sample
+//!  outputs: { "exposure": "exposure" })     // r32float, 1x1, storage
+//! ```
+//!
+//! As engines meter (e.g. Unreal's histogram method): a 256-bin histogram of log2
+//! luminance over the lit (non-black) pixels, the mean log2 luminance of those ranked
+//! between the `low` and `high` shares, and `key / 2^mean`. Black pixels (background,
+//! nothing lit) are not metered, so a small model on an empty frame is exposed for
+//! itself. One workgroup meters a grid of at most about 2^18 pixels (every 2nd pixel at
+//! 1280x720, every 6th at 3840x2160): one dispatch, nothing to clear between frames.
+//!
+//! The exposure is of this frame, for this frame (the tone mapper runs after): a
+//! still image is exposed as an engine's adapted exposure converges to. An engine wanting
+//! eye adaptation over time would blend with the previous frame's value here.
+
+use serde::Deserialize;
+
+use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::shader::Stage;
+use graph_core::{Aspect, PassBuilder, PassKind};
+
+use crate::common::plugin::{Recording, Shared};
+use crate::common::textures::{self, Input, Texels, Want};
+use crate::shaders;
+
+pub struct AutoExposure(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AutoExposureParams {
+    /// The luminance the metered average maps to (middle grey).
+    #[serde(default = "middle_grey")]
+    pub key: f32,
+    /// The share of the lit pixels, darkest first, left out of the average.
+    #[serde(default = "low")]
+    pub low: f32,
+    /// The share of the lit pixels, darkest first, above which they are left out.
+    #[serde(default = "high")]
+    pub high: f32,
+}
+
+fn middle_grey() -> f32 {
+    0.18
+}
+fn low() -> f32 {
+    0.1
+}
+fn high() -> f32 {
+    0.9
+}
+
+/// The metering pass as set up: what its `gpu` module records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct Metering {
+    pub source: String,
+    pub constants: Vec<(&'static str, f64)>,
+    pub inputs: Vec<Input>,
+}
+
+impl Recording for Metering {
+    #[cfg(feature = "gpu")]
+    fn record(self, _: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Compute(gpu::record(self))
+    }
+}
+
+impl Plugin for AutoExposure {
+    const NAME: &'static str = "auto_exposure";
+    type Params = AutoExposureParams;
+
+    fn kind(&self, _: &AutoExposureParams) -> PassKind {
+        PassKind::Compute
+    }
+
+    fn setup(
+        &self,
+        params: AutoExposureParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        if !(params.key.is_finite() && params.key > 0.0) {
+            return Err(PluginError::Invalid(format!(
+                "key must be finite and positive, got {}",
+                params.key
+            )));
+        }
+        if !(0.0 <= params.low && params.low < params.high && params.high <= 1.0) {
+            return Err(PluginError::Invalid(format!(
+                "low and high must be shares with 0 <= low < high <= 1, got low {} and high {}",
+                params.low, params.high
+            )));
+        }
+        let want = Want::new("the resolved HDR image", textures::HDR).samples(1);
+        let (hdr, _) = textures::sampled(slots, pass, "hdr", want, 0)?;
+        let want = Want::new("the metered exposure", textures::EXPOSURE).samples(1);
+        let (exposure, _) = textures::output(slots, pass, "exposure", want, |pass, h, _| {
+            pass.storage_write(h)
+        })?;
+        let shader = shaders::AUTO_EXPOSURE.compose(1)?;
+        let Some(entry) = shader.entry("cs_auto_exposure", Stage::Compute) else {
+            return Err(PluginError::Invalid(
+                "auto_exposure.wgsl has no entry point cs_auto_exposure".into(),
+            ));
+        };
+        pass.workgroup(entry.workgroup());
+        let metering = Metering {
+            source: shader.source().to_owned(),
+            constants: vec![
+                ("KEY", f64::from(params.key)),
+                ("LOW", f64::from(params.low)),
+                ("HIGH", f64::from(params.high)),
+            ],
+            inputs: vec![
+                hdr,
+                Input {
+                    binding: 1,
+                    texture: exposure,
+                    aspect: Aspect::All,
+                    texels: Texels::Store,
+                },
+            ],
+        };
+        self.0.record(pass, metering);
+        Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the auto-exposure pass: one workgroup meters the image; its pipeline is made
+    //! on the first frame of a device and kept.
+
+    use graph_core::gpu::ComputeContext;
+
+    use super::Metering;
+    use crate::common::gpu::InputPass;
+
+    pub(super) fn record(metering: Metering) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
+        let mut state: Option<(wgpu::Device, InputPass<(), wgpu::ComputePipeline>)> = None;
+        Box::new(move |ctx| {
+            let resources = ctx.resources;
+            let device = resources.device;
+            if state.as_ref().is_some_and(|(built, _)| built != device) {
+                state = None;
+            }
+            let (_, state) = state.get_or_insert_with(|| {
+                let pass = InputPass::new(
+                    resources,
+                    "auto_exposure",
+                    &metering.source,
+                    None,
+                    &metering.inputs,
+                );
+                (device.clone(), pass)
+            });
+            let (module, layout) = (&state.module, &state.layout);
+            let pipeline = state.pipelines.get((), |()| {
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("auto_exposure"),
+                    layout: Some(layout),
+                    module,
+                    entry_point: Some("cs_auto_exposure"),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants: &metering.constants,
+                        // The shader clears its histogram itself.
+                        zero_initialize_workgroup_memory: false,
+                    },
+                    cache: None,
+                })
+            });
+            ctx.pass.set_pipeline(pipeline);
+            ctx.pass
+                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            ctx.pass.dispatch_workgroups(1, 1, 1);
+        })
+    }
+}

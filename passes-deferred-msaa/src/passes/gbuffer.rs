@@ -1,0 +1,209 @@
+//! `gbuffer`: draws the host's scene into the (multisampled) G-buffer.
+//!
+//! ```ron
+//! (name: "gbuffer", plugin: "gbuffer",
+//!  params: (background: (0.0, 0.0, 0.0, 1.0)),   // the default; reversed_z optional
+//!  outputs: {
+//!      "albedo": "albedo",          // rgba8unorm(-srgb): base color
+//!      "normal": "normal",          // rg16float: octahedral world-space normal
+//!      "material": "material",      // rgba8unorm: metallic, roughness, flags, edge bits
+//!      "view_depth": "view_depth",  // r32float: linear view depth, 0 where nothing was drawn
+//!      "hdr": "hdr",                // rgba16float: emission and unlit color, else background
+//!      "depth": "depth",            // depth24plus-stencil8 or depth32float-stencil8
+//!  })
+//! ```
+//!
+//! All six must have the depth-stencil's sample count; 1 works too. The color targets
+//! cost 32 bytes per sample (8 + 4 + 8 + 4 + 8 in wgpu's accounting), the WebGPU default
+//! limit. `normal` and `material` may be left out, and then are not written: only
+//! lighting reads them, so a pipeline's G-buffer pass for unlit-only scenes (under a
+//! `when: "unlit_only"` condition, pipelines/deferred_msaa_4x.ron) goes without. `view_depth` exists because later passes attach the depth-stencil and so
+//! cannot sample its depth aspect while they write the stencil (notes/wgpu30.md).
+//!
+//! With reversed-Z depth is cleared to 0 and tested with `Greater` (near is 1), else
+//! cleared to 1 and tested with `Less`. Without `reversed_z` the convention follows the
+//! depth format (reversed for float depth, see `common/depth.rs`), as the light
+//! passes' does; a `reversed_z` given here must be given to them too.
+//! Stencil is cleared to 0. Double-sided materials are drawn without culling and their
+//! back faces get the flipped normal; alpha MASK materials discard below the cutoff.
+//! Alpha BLEND meshes are not drawn: a sample holds one surface, so the `transparent`
+//! pass draws them after lighting (passes/transparent.rs).
+//! The material target's alpha records per-sample edge evidence for the `centroid` and
+//! `coverage` detectors of [`edge_stencil`](super::edge_stencil).
+
+use serde::Deserialize;
+
+use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
+
+use crate::common::depth::DepthRule;
+use crate::common::plugin::{Recording, Shared};
+use crate::common::textures::{self, Want};
+use crate::shaders;
+
+pub struct GBuffer(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GBufferParams {
+    /// Fixes the depth convention; left out, it follows the depth format the compile
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
+    #[serde(default)]
+    pub reversed_z: Option<bool>,
+    /// The HDR target's value where no geometry is drawn (linear RGBA).
+    #[serde(default = "opaque_black")]
+    pub background: [f64; 4],
+}
+
+pub(crate) fn opaque_black() -> [f64; 4] {
+    [0.0, 0.0, 0.0, 1.0]
+}
+
+/// The G-buffer pass as set up: what its `gpu` module records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct GBufferDraw {
+    pub source: String,
+    pub depth_rule: DepthRule,
+    /// albedo, normal, material, view_depth, hdr: color attachments 0 to 4.
+    pub targets: Vec<TextureHandle>,
+    pub depth: TextureHandle,
+}
+
+impl Recording for GBufferDraw {
+    #[cfg(feature = "gpu")]
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Render(gpu::record(self, scenes))
+    }
+}
+
+impl Plugin for GBuffer {
+    const NAME: &'static str = "gbuffer";
+    type Params = GBufferParams;
+
+    fn kind(&self, _: &GBufferParams) -> PassKind {
+        PassKind::Render
+    }
+
+    fn setup(
+        &self,
+        params: GBufferParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let depth_rule = DepthRule::new(params.reversed_z);
+        let depth_want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
+        let (depth, desc) = textures::output(slots, pass, "depth", depth_want, |pass, h, _| {
+            pass.depth_stencil(h, depth_rule.clear(), AspectAccess::Clear(0))
+        })?;
+        let samples = desc.samples;
+        let colors = [
+            (
+                "albedo",
+                "the G-buffer's albedo",
+                textures::ALBEDO,
+                [0.0; 4],
+            ),
+            (
+                "normal",
+                "the G-buffer's normals",
+                textures::NORMAL,
+                [0.0; 4],
+            ),
+            (
+                "material",
+                "the G-buffer's material",
+                textures::MATERIAL,
+                [0.0; 4],
+            ),
+            (
+                "view_depth",
+                "the G-buffer's view depth",
+                textures::VIEW_DEPTH,
+                [0.0; 4],
+            ),
+            ("hdr", "the HDR target", textures::HDR, params.background),
+        ];
+        let mut targets = Vec::with_capacity(colors.len());
+        let mut written = Vec::with_capacity(colors.len());
+        for (slot, what, formats, clear) in colors {
+            if OPTIONAL.contains(&slot) && !slots.is_output(slot) {
+                continue;
+            }
+            let want = Want::new(what, formats).samples(samples);
+            targets.push(textures::color_output(slots, pass, slot, want, clear)?.0);
+            written.push(slot);
+        }
+        let outputs = outputs_wgsl(&written);
+        let draw = GBufferDraw {
+            source: shaders::GBUFFER
+                .compose_with(samples, &outputs)?
+                .source()
+                .to_owned(),
+            depth_rule,
+            targets,
+            depth,
+        };
+        self.0.record(pass, draw);
+        Ok(())
+    }
+}
+
+/// The channels only lighting reads: an unlit-only scene's G-buffer goes without them.
+const OPTIONAL: [&str; 2] = ["normal", "material"];
+
+/// `gbuffer.wgsl`'s fragment output: the `channels` written, at locations counting up
+/// from 0 as the pass attaches them.
+fn outputs_wgsl(channels: &[&str]) -> String {
+    let fields: String = channels
+        .iter()
+        .enumerate()
+        .map(|(location, c)| format!("    @location({location}) {c}: vec4<f32>,\n"))
+        .collect();
+    let values: Vec<String> = channels.iter().map(|c| format!("g.{c}")).collect();
+    format!(
+        "// Generated: the channels this G-buffer pass writes.\n\
+         struct GBufferOut {{\n{fields}}}\n\n\
+         fn gbuffer_out(g: GBuffer) -> GBufferOut {{\n    return GBufferOut({});\n}}\n",
+        values.join(", ")
+    )
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the G-buffer pass: the scene into the G-buffer's color targets, masked
+    //! materials through the fragment entry point that discards.
+
+    use std::sync::Arc;
+
+    use graph_core::gpu::RenderContext;
+
+    use super::GBufferDraw;
+    use crate::analysis::GatedShader;
+    use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
+    use crate::gpu_scene::{Layer, SceneCache};
+
+    pub(super) fn record(
+        draw: GBufferDraw,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+        let draw = SceneDraw {
+            label: "gbuffer",
+            shader: GatedShader::GBuffer,
+            source: draw.source,
+            depth_rule: draw.depth_rule,
+            targets: draw.targets,
+            depth: draw.depth,
+            layer: Layer::Opaque,
+            stages: Box::new(|material| Stages {
+                vertex: "vs_main",
+                fragment: if material.masked {
+                    "fs_masked"
+                } else {
+                    "fs_opaque"
+                },
+                constants: Vec::new(),
+            }),
+        };
+        scene_draw::record(draw, scenes)
+    }
+}

@@ -1,0 +1,209 @@
+//! `gbuffer_resolve`: averages a multisampled G-buffer into a single-sampled one plus a
+//! depth-stencil, so `light_nonedge` can light it once per pixel: the wrong way to combine
+//! deferred shading with MSAA that seed 000 warns about (figure 2.8.3), kept as a baseline
+//! to measure against.
+//!
+//! ```ron
+//! (name: "resolve gbuffer", plugin: "gbuffer_resolve",
+//!  params: (reversed_z: true),   // optional: left out, it follows the depth format
+//!  inputs: {                      // the multisampled G-buffer
+//!      "albedo": "albedo", "normal": "normal", "material": "material",
+//!      "view_depth": "view_depth",
+//!  },
+//!  outputs: {                     // the same formats, 1 sample
+//!      "resolved_albedo": "albedo_1x", "resolved_normal": "normal_1x",
+//!      "resolved_material": "material_1x", "resolved_view_depth": "view_depth_1x",
+//!      "depth": "depth_1x",       // depth24plus-stencil8 or depth32float-stencil8, 1 sample
+//!  })
+//! ```
+//!
+//! A full-screen pass; gbuffer_resolve.wgsl says what each target's resolve is. The depth
+//! written is the averaged view depth projected by the scene's camera (far where no sample
+//! has geometry), so the light passes' depth tests see the same averaged surface as their
+//! shading; stencil is cleared to 0, so `light_nonedge` shades every pixel. Emission and
+//! unlit colors are in the G-buffer's HDR target: resolve that with `resolve`.
+
+use serde::Deserialize;
+
+use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
+
+use crate::common::depth::DepthRule;
+use crate::common::plugin::{Recording, Shared};
+use crate::common::textures::{self, Input, Want, GBUFFER_INPUTS};
+use crate::shaders;
+
+pub struct GBufferResolve(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GBufferResolveParams {
+    /// Fixes the depth convention; left out, it follows the depth format the compile
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
+    #[serde(default)]
+    pub reversed_z: Option<bool>,
+}
+
+/// The output slots, in the order of [`GBUFFER_INPUTS`] (and of the shader's locations).
+const OUTPUTS: [(&str, &str); 4] = [
+    ("resolved_albedo", "the resolved albedo"),
+    ("resolved_normal", "the resolved normals"),
+    ("resolved_material", "the resolved material"),
+    ("resolved_view_depth", "the resolved view depth"),
+];
+
+/// The resolve as set up: what its `gpu` module records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct GBufferResolveDraw {
+    pub source: String,
+    /// Also gives the clip depth of the far plane, written where no sample has geometry.
+    pub depth_rule: DepthRule,
+    /// The multisampled G-buffer, group 1.
+    pub inputs: Vec<Input>,
+    /// albedo, normal, material, view_depth: color attachments 0 to 3.
+    pub targets: Vec<TextureHandle>,
+    pub depth: TextureHandle,
+}
+
+impl Recording for GBufferResolveDraw {
+    #[cfg(feature = "gpu")]
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Render(gpu::record(self, scenes))
+    }
+}
+
+impl Plugin for GBufferResolve {
+    const NAME: &'static str = "gbuffer_resolve";
+    type Params = GBufferResolveParams;
+
+    fn kind(&self, _: &GBufferResolveParams) -> PassKind {
+        PassKind::Render
+    }
+
+    fn setup(
+        &self,
+        params: GBufferResolveParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let depth_rule = DepthRule::new(params.reversed_z);
+        let mut inputs = Vec::new();
+        let mut samples = None;
+        for (slot, what, formats, binding) in GBUFFER_INPUTS {
+            let want = Want {
+                samples,
+                ..Want::new(what, formats)
+            };
+            let (input, desc) = textures::sampled(slots, pass, slot, want, binding)?;
+            samples = Some(desc.samples);
+            inputs.push(input);
+        }
+        let samples = samples.unwrap_or(1);
+        let want = Want::new("the resolved depth-stencil", textures::DEPTH_STENCIL).samples(1);
+        let (depth, _) = textures::output(slots, pass, "depth", want, |pass, h, _| {
+            pass.depth_stencil(h, depth_rule.clear(), AspectAccess::Clear(0))
+        })?;
+        let mut targets = Vec::new();
+        for ((slot, what), (_, _, formats, _)) in OUTPUTS.into_iter().zip(GBUFFER_INPUTS) {
+            let want = Want::new(what, formats).samples(1);
+            targets.push(textures::color_output(slots, pass, slot, want, [0.0; 4])?.0);
+        }
+        let draw = GBufferResolveDraw {
+            source: shaders::GBUFFER_RESOLVE
+                .compose(samples)?
+                .source()
+                .to_owned(),
+            depth_rule,
+            inputs,
+            targets,
+            depth,
+        };
+        self.0.record(pass, draw);
+        Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the G-buffer resolve: one full-screen triangle writing the four resolved
+    //! targets and, through `frag_depth`, the depth.
+
+    use std::sync::Arc;
+
+    use graph_core::gpu::RenderContext;
+
+    use super::GBufferResolveDraw;
+    use crate::common::depth::far_depth;
+    use crate::common::gpu::{per_scene, InputPass, PipelineDesc};
+    use crate::gpu_scene::SceneCache;
+
+    #[derive(Clone, PartialEq)]
+    struct Key {
+        targets: Vec<wgpu::TextureFormat>,
+        depth: wgpu::TextureFormat,
+    }
+
+    pub(super) fn record(
+        draw: GBufferResolveDraw,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+        let mut state = None;
+        Box::new(move |ctx| {
+            let resources = ctx.resources;
+            let device = resources.device;
+            // The camera turns the averaged view depth into depth.
+            let Some(scene) = scenes.for_frame(resources) else {
+                return;
+            };
+            let state = per_scene(&mut state, &scene, || {
+                let label = "gbuffer resolve";
+                InputPass::new(resources, label, &draw.source, Some(&scene), &draw.inputs)
+            });
+            let key = Key {
+                targets: draw
+                    .targets
+                    .iter()
+                    .map(|&h| resources.shape(h).format)
+                    .collect(),
+                depth: resources.shape(draw.depth).format,
+            };
+            let convention = draw.depth_rule.convention(key.depth);
+            let pipeline = state.pipelines.get(key, |key| {
+                let targets: Vec<Option<wgpu::ColorTargetState>> =
+                    key.targets.iter().map(|&f| Some(f.into())).collect();
+                PipelineDesc {
+                    label: "gbuffer resolve",
+                    layout: &state.layout,
+                    module: &state.module,
+                    vertex: "vs_fullscreen",
+                    buffers: &[],
+                    fragment: "fs_resolve_gbuffer",
+                    constants: &[("FAR_DEPTH", f64::from(far_depth(convention)))],
+                    targets: &targets,
+                    cull: None,
+                    depth_stencil: Some(write_depth(key.depth)),
+                    samples: 1,
+                    mask: !0,
+                }
+                .build(device)
+            });
+            ctx.pass.set_pipeline(pipeline);
+            ctx.pass
+                .set_bind_group(0, scene.bind_group(convention), &[]);
+            ctx.pass
+                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            ctx.pass.draw(0..3, 0..1);
+        })
+    }
+
+    /// Every fragment writes its depth; stencil stays as cleared.
+    fn write_depth(format: wgpu::TextureFormat) -> wgpu::DepthStencilState {
+        wgpu::DepthStencilState {
+            format,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Always),
+            stencil: wgpu::StencilState::default(),
+            bias: Default::default(),
+        }
+    }
+}

@@ -1,0 +1,341 @@
+//! `light_tiled`: lighting and resolve in one compute pass, by tiles (Lauritzen,
+//! "Deferred Rendering for Current and Future Rendering Pipelines", SIGGRAPH 2010): the
+//! fast path beside the fragment light passes, which stay as the seeds' method and the
+//! baseline.
+//!
+//! ```ron
+//! (name: "light", plugin: "light_tiled",
+//!  params: (
+//!      edges: (detector: compare),   // common/edge_detection.rs: the same
+//!                                    // detectors and thresholds as edge_stencil
+//!      shading: per_sample,          // or adaptive: each fragment once
+//!      resolve: box, exposure: 1.0,  // or resolve: tonemapped (resolve.rs)
+//!      tile: 16,                     // pixels per tile side
+//!      cull: true,                   // false: every light in every tile
+//!      view: shaded,                 // or edges | tile_lights | fragments
+//!  ),                                // (these are the defaults)
+//!  inputs: {
+//!      "albedo": "albedo", "normal": "normal", "material": "material",
+//!      "view_depth": "view_depth",
+//!      "depth": "depth",   // the G-buffer's depth-stencil: its depth aspect is read
+//!      "hdr": "hdr",       // emission and unlit colour, per sample
+//!  },
+//!  outputs: { "resolved": "resolved" })   // 1 sample, rgba16float, storage
+//! ```
+//!
+//! One workgroup of `tile` x `tile` invocations per tile, one per pixel
+//! (light_tiled.wgsl says how): it classifies each pixel as edge or not with
+//! [`EdgeDetection`], culls point and spot lights against the tile's side planes and
+//! depth bounds in batches of one light per invocation (so any number of lights is
+//! correct), shades non-edge pixels once and the other samples (or, with `adaptive`,
+//! the other fragments, weighted by the samples they cover: seed 002) of edge
+//! pixels spread over the whole workgroup, and resolves into the single-sampled output.
+//! No multisampled HDR accumulation, no stencil, no resolve pass.
+//!
+//! The workgroup memory the shader needs grows with the tile and the sample count
+//! (`tile`² x (samples − 1) edge entries of 16 bytes): the graph checks it against the
+//! device profile when compiling, so a tile too big for a device (16 at 8x against the
+//! WebGPU default of 16 KiB) is an error naming the pass, and `tile: 8` fits.
+//!
+//! Debug views write an `rgba8unorm` output named `color` instead of `resolved`:
+//! `edges` (red edge pixels, blue others, black without geometry, as debug_view's),
+//! `tile_lights` (lights each tile shades, directional ones included, as a heat map from
+//! blue for 1 to red for 64 or more) and `fragments` (fragments per pixel: dark
+//! grey 1, green 2, blue 3, red 4 or more).
+
+use serde::Deserialize;
+
+use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::shader::Stage;
+use graph_core::types::TextureFormat;
+use graph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
+
+use super::resolve::{one, resolve_exposure, ResolveMode};
+use crate::common::depth::DepthRule;
+use crate::common::edge_detection::{Detector, EdgeDetection};
+use crate::common::plugin::{yes, Recording, Shared};
+use crate::common::textures::{self, format_name, Input, Texels, Want, GBUFFER_INPUTS};
+use crate::shaders;
+
+pub struct LightTiled(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LightTiledParams {
+    #[serde(default)]
+    pub edges: EdgeDetection,
+    #[serde(default)]
+    pub shading: EdgeShading,
+    #[serde(default)]
+    pub resolve: ResolveMode,
+    #[serde(default = "one")]
+    pub exposure: f32,
+    #[serde(default = "tile")]
+    pub tile: u32,
+    #[serde(default = "yes")]
+    pub cull: bool,
+    #[serde(default)]
+    pub view: TiledView,
+}
+
+fn tile() -> u32 {
+    16
+}
+
+/// How `light_tiled` shades an edge pixel.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EdgeShading {
+    /// Every sample (seed 000's per-sample shading).
+    #[default]
+    PerSample,
+    /// Each fragment among the samples once, weighted by the samples it covers (seed
+    /// 002's adaptive shading by unique fragments): samples whose G-buffer values are
+    /// identical are one fragment, as the G-buffer pass shades once per pixel and
+    /// triangle.
+    Adaptive,
+}
+
+/// What `light_tiled` writes.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TiledView {
+    /// The lit, resolved HDR image.
+    #[default]
+    Shaded,
+    Edges,
+    TileLights,
+    Fragments,
+}
+
+impl TiledView {
+    /// light_tiled.wgsl's `VIEW`.
+    fn constant(self) -> f64 {
+        match self {
+            TiledView::Shaded => 0.0,
+            TiledView::Edges => 1.0,
+            TiledView::TileLights => 2.0,
+            TiledView::Fragments => 3.0,
+        }
+    }
+
+    /// The output slot and the formats it may have: storage formats.
+    fn output(self) -> (&'static str, Want) {
+        const VIEW: &[TextureFormat] = &[TextureFormat::Rgba8Unorm];
+        match self {
+            TiledView::Shaded => (
+                "resolved",
+                Want::new("the resolved HDR target", textures::HDR),
+            ),
+            _ => ("color", Want::new("a debug view", VIEW)),
+        }
+    }
+}
+
+/// Tile sides allowed: the four side planes are set up by four invocations, and 32 x 32
+/// invocations is more than any device's workgroup.
+const TILES: std::ops::RangeInclusive<u32> = 2..=32;
+
+/// The tiled pass as set up: what its `gpu` module records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct TiledDispatch {
+    pub source: String,
+    pub constants: Vec<(&'static str, f64)>,
+    pub tile: u32,
+    pub depth_rule: DepthRule,
+    pub depth: TextureHandle,
+    pub output: TextureHandle,
+    pub inputs: Vec<Input>,
+}
+
+impl Recording for TiledDispatch {
+    #[cfg(feature = "gpu")]
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Compute(gpu::record(self, scenes))
+    }
+}
+
+impl Plugin for LightTiled {
+    const NAME: &'static str = "light_tiled";
+    type Params = LightTiledParams;
+
+    fn kind(&self, _: &LightTiledParams) -> PassKind {
+        PassKind::Compute
+    }
+
+    fn setup(
+        &self,
+        params: LightTiledParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        params.edges.check()?;
+        if !TILES.contains(&params.tile) {
+            return Err(PluginError::Invalid(format!(
+                "tile must be {} to {} pixels, got {}",
+                TILES.start(),
+                TILES.end(),
+                params.tile
+            )));
+        }
+        let exposure = resolve_exposure(&self.0, params.exposure, params.resolve)?;
+        let want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
+        let (depth, desc) = textures::input(slots, pass, "depth", want)?;
+        let samples = desc.samples;
+        pass.sampled_aspect(depth, Aspect::DepthOnly);
+        let mut inputs = vec![Input {
+            binding: 5,
+            texture: depth,
+            aspect: Aspect::DepthOnly,
+            texels: Texels::Depth,
+        }];
+        for (slot, what, formats, binding) in GBUFFER_INPUTS {
+            let want = Want::new(what, formats).samples(samples);
+            inputs.push(textures::sampled(slots, pass, slot, want, binding)?.0);
+        }
+        let want = Want::new("the G-buffer's HDR target", textures::HDR).samples(samples);
+        inputs.push(textures::sampled(slots, pass, "hdr", want, 6)?.0);
+        let (slot, want) = params.view.output();
+        let (output, out) = textures::output(slots, pass, slot, want.samples(1), |pass, h, _| {
+            pass.storage_write(h)
+        })?;
+        inputs.push(Input {
+            binding: 7,
+            texture: output,
+            aspect: Aspect::All,
+            texels: Texels::Store,
+        });
+        // The shader's sizes are constants, so the workgroup memory the compile checks
+        // is the memory this tile and sample count use.
+        let generated = format!(
+            "// Generated: the tile, the edge entries per invocation, the output.\n\
+             const TILE: u32 = {}u;\n\
+             const EDGE_SLOTS: u32 = {}u;\n\
+             alias OutTex = texture_storage_2d<{}, write>;\n",
+            params.tile,
+            samples.saturating_sub(1).max(1),
+            format_name(out.format)
+        );
+        let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
+        let Some(entry) = shader.entry("cs_light_tiled", Stage::Compute) else {
+            return Err(PluginError::Invalid(
+                "light_tiled.wgsl has no entry point cs_light_tiled".into(),
+            ));
+        };
+        pass.workgroup(entry.workgroup());
+        let detector = match params.edges.detector {
+            Detector::Compare => 0.0,
+            Detector::Centroid | Detector::Coverage => 1.0,
+            Detector::All => 2.0,
+            Detector::None => 3.0,
+        };
+        let mut constants = params.edges.constants();
+        constants.extend([
+            ("DETECTOR", detector),
+            (
+                "ADAPTIVE",
+                f64::from(u8::from(params.shading == EdgeShading::Adaptive)),
+            ),
+            ("CULL", f64::from(u8::from(params.cull))),
+            ("VIEW", params.view.constant()),
+            (
+                "RESOLVE",
+                f64::from(u8::from(params.resolve == ResolveMode::Tonemapped)),
+            ),
+            ("EXPOSURE", f64::from(exposure)),
+        ]);
+        let dispatch = TiledDispatch {
+            source: shader.source().to_owned(),
+            constants,
+            tile: params.tile,
+            depth_rule: DepthRule::new(None),
+            depth,
+            output,
+            inputs,
+        };
+        self.0.record(pass, dispatch);
+        Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the tiled light pass: one dispatch of a workgroup per tile over the output,
+    //! its pipeline compiled for the scene's light kinds (analysis/variant.rs) and the depth
+    //! format's convention, made on first use and kept.
+
+    use std::sync::Arc;
+
+    use graph_core::gpu::ComputeContext;
+
+    use super::TiledDispatch;
+    use crate::analysis::{GatedShader, Variant};
+    use crate::common::gpu::{per_scene, InputPass};
+    use crate::gpu_scene::SceneCache;
+    use crate::scene::DepthConvention;
+
+    #[derive(Clone, PartialEq)]
+    struct Key {
+        convention: DepthConvention,
+        variant: Variant,
+    }
+
+    pub(super) fn record(
+        dispatch: TiledDispatch,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
+        let mut state = None;
+        Box::new(move |ctx| {
+            let resources = ctx.resources;
+            let device = resources.device;
+            let Some(scene) = scenes.for_frame(resources) else {
+                return;
+            };
+            let state: &mut InputPass<Key, wgpu::ComputePipeline> =
+                per_scene(&mut state, &scene, || {
+                    InputPass::new(
+                        resources,
+                        "light_tiled",
+                        &dispatch.source,
+                        Some(&scene),
+                        &dispatch.inputs,
+                    )
+                });
+            let convention = dispatch
+                .depth_rule
+                .convention(resources.shape(dispatch.depth).format);
+            let key = Key {
+                convention,
+                variant: scenes.variant(GatedShader::LightTiled),
+            };
+            let (module, layout) = (&state.module, &state.layout);
+            let pipeline = state.pipelines.get(key, |key| {
+                let mut constants = dispatch.constants.clone();
+                constants.extend(key.variant.constants());
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("light_tiled"),
+                    layout: Some(layout),
+                    module,
+                    entry_point: Some("cs_light_tiled"),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants: &constants,
+                        // The shader initialises what it reads of workgroup memory.
+                        zero_initialize_workgroup_memory: false,
+                    },
+                    cache: None,
+                })
+            });
+            ctx.pass.set_pipeline(pipeline);
+            ctx.pass
+                .set_bind_group(0, scene.bind_group(convention), &[]);
+            ctx.pass
+                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            let out = resources.shape(dispatch.output);
+            ctx.pass.dispatch_workgroups(
+                out.width.div_ceil(dispatch.tile),
+                out.height.div_ceil(dispatch.tile),
+                1,
+            );
+        })
+    }
+}

@@ -1,0 +1,17 @@
+//! The deferred passes, one module each: a pass's parameters, slots and `Plugin::setup`,
+//! and (feature `gpu`) its recording, as graph-core's plugins keep theirs. They import
+//! what they share from [`crate::common`], and from each other only one way (the
+//! transparent pass draws as the forward pass does, the tiled light pass resolves as the
+//! resolve pass does); [`crate::plugins`] registers them by name.
+
+pub(crate) mod auto_exposure;
+pub(crate) mod debug_view;
+pub(crate) mod edge_stencil;
+pub(crate) mod forward;
+pub(crate) mod gbuffer;
+pub(crate) mod gbuffer_resolve;
+pub(crate) mod light;
+pub(crate) mod light_tiled;
+pub(crate) mod resolve;
+pub(crate) mod tonemap;
+pub(crate) mod transparent;
