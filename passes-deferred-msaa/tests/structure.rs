@@ -13,7 +13,7 @@ use crate::structure_check::{check, edges, sources, Layers};
 /// in a loop. `lib.rs`, the crate's face, is not checked.
 const LAYERS: Layers<'_> = &[
     // The CPU scene model and its loaders, and what the host application hands the
-    // plugins: the scene and the overrides.
+    // plugins: the scene, the overrides and the frame inputs.
     ("scene", &["scene", "host"]),
     // What a scene needs, as feature names and shader variants.
     ("analysis", &["analysis"]),
