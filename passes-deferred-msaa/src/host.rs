@@ -17,7 +17,9 @@
 //! stay uploaded, plans stay compiled and pipelines stay built. The scene is drawn
 //! camera-relative, so a moved camera rewrites the per-mesh model matrices, the lights
 //! and the camera uniform, a few hundred bytes per mesh and light; a moved object
-//! rewrites the same per-mesh data; a moved light the light data.
+//! rewrites the same per-mesh data; a moved light the light data. (The fragment light
+//! passes build a pipeline per light-volume geometry when a frame first needs it: the
+//! first frame whose camera is inside a volume builds the back-face one, once.)
 //!
 //! What frame inputs cannot change is what plans and shader variants were made for: the
 //! scene's feature set ([`crate::analysis::Features`]) is the loaded scene's, so lights
