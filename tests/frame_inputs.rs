@@ -1,7 +1,8 @@
 //! Frame inputs change the image without reloading: a camera, a light, an object or the
 //! exposure changed through `Host::set_frame` between two frames of one executor renders
 //! bit-identically (on lavapipe) to a fresh render of the scene loaded that way, and the
-//! second frame creates no texture, buffer, pipeline or shader module.
+//! second frame creates no texture, buffer, pipeline or shader module. A new output size
+//! is a recompile instead: one plan more, new targets, still no pipeline.
 
 use passes_deferred_msaa::glam::{DMat4, DQuat, DVec3};
 use passes_deferred_msaa::scene::Scene;
@@ -183,5 +184,39 @@ fn frame_inputs_that_do_not_fit_the_scene_are_refused_naming_it() {
         *host.frame(),
         FrameInputs::of(&scene),
         "refused inputs replaced the last good ones"
+    );
+}
+
+#[test]
+fn a_new_output_size_recompiles_the_plan_once_and_builds_no_pipeline() {
+    let gpu = gpu();
+    let pipeline = "deferred_msaa_4x_tiled.ron";
+    let mut frame = Render::new(pipeline, SCENE, SIZE).run(&gpu);
+    let before = DeviceObjects::alive(&gpu.device);
+    let resized = frame.resize(&gpu, (SIZE.0 + 32, SIZE.1 + 16));
+    let created = DeviceObjects::alive(&gpu.device).minus(&before);
+    assert!(
+        resized.textures_allocated > 0,
+        "a larger output needs larger targets"
+    );
+    assert_eq!(
+        (
+            created.render_pipelines,
+            created.compute_pipelines,
+            created.shader_modules
+        ),
+        (0, 0, 0),
+        "a new output size built pipelines: {created}"
+    );
+    // Back to the first size: its plan comes from the cache, its textures from the pool.
+    let back = frame.resize(&gpu, SIZE);
+    assert_eq!(
+        (frame.plans().misses(), frame.plans().hits()),
+        (2, 1),
+        "plans compiled and reused"
+    );
+    assert_eq!(
+        back.textures_allocated, 0,
+        "the pool kept the first size's textures"
     );
 }

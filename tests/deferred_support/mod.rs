@@ -210,6 +210,29 @@ impl Frame {
             .unwrap_or_else(|e| panic!("{} failed on the device: {e}", self.label))
     }
 
+    /// Recompiles for an output of `size` (the plan's other inputs as they were) and runs
+    /// the next frame, as an engine does when its window resizes.
+    pub fn resize(&mut self, gpu: &Gpu, size: (u32, u32)) -> FrameReport {
+        let options = CompileOptions {
+            output_size: size,
+            profile: gpu.profile(),
+        };
+        // The plan's features are those of the feature set it was compiled for that the
+        // graph tests, which is all a compile reads.
+        let features: Features = self.compiled.plan().features.iter().cloned().collect();
+        self.compiled
+            .recompile(&options, &features)
+            .unwrap_or_else(|e| panic!("cannot recompile {} at {size:?}:\n{e}", self.label));
+        self.executor
+            .execute(&mut self.compiled, &Imports::new())
+            .unwrap_or_else(|e| panic!("{} failed on the device: {e}", self.label))
+    }
+
+    /// The plans compiled so far.
+    pub fn plans(&self) -> &graph_core::PlanCache {
+        self.compiled.plans()
+    }
+
     /// The host's current frame inputs (the scene's own until [`Frame::next`]).
     pub fn inputs(&self) -> FrameInputs {
         FrameInputs::clone(&self.host.frame())
