@@ -14,7 +14,10 @@
 //!
 //! `none` clamps the exposed linear color to [0, 1]; `reinhard` is `c / (1 + c)` per
 //! channel; `aces` is Narkowicz's fit of the ACES filmic curve. An sRGB output encodes
-//! the result. The host's overrides replace `operator` and `exposure` when set.
+//! the result. The host's overrides replace `operator` and `exposure` when set. With a
+//! host, the frame's exposure factor (`FrameInputs::exposure`, from the scene's light
+//! info, group 0) multiplies the result each frame: a uniform, not the pipeline constant
+//! `exposure` becomes, so a new value every frame builds no pipeline.
 
 use serde::Deserialize;
 
