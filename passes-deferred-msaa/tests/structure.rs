@@ -3,7 +3,6 @@
 //! (graph-core/tests/structure_check.rs, shared); code behind feature `gpu` counts, so
 //! each pass's recording, beside its declaration in `passes/`, is held to the same rules.
 
-use std::collections::BTreeSet;
 use std::path::Path;
 
 use crate::structure_check::{check, edges, sources, Layers};
@@ -29,14 +28,6 @@ const LAYERS: Layers<'_> = &[
     ("registry", &["plugins"]),
 ];
 
-/// Cycles found before this check covered the crate, left to fix in their own change:
-/// the check reports them but does not fail on them, and fails once one is gone, so the
-/// list only shrinks.
-const KNOWN_CYCLES: &[&str] = &[
-    "cycle: scene/builder.rs -> scene/mod.rs -> scene/gltf_loader/mod.rs -> scene/builder.rs",
-    "cycle: scene/gltf_loader/sandbox.rs -> scene/gltf_loader/uri.rs -> scene/gltf_loader/sandbox.rs",
-];
-
 #[test]
 fn passes_deferred_msaa_imports_run_down_the_layers_without_cycles() {
     let files = sources(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));
@@ -55,18 +46,7 @@ fn passes_deferred_msaa_imports_run_down_the_layers_without_cycles() {
         let edge = (from.to_owned(), to.to_owned());
         assert!(edges.contains(&edge), "{edge:?} not seen");
     }
-    let problems = check(&files, LAYERS);
-    let known: BTreeSet<&str> = KNOWN_CYCLES.iter().copied().collect();
-    let mut report: Vec<String> = problems
-        .iter()
-        .filter(|p| !known.contains(p.as_str()))
-        .cloned()
-        .collect();
-    for cycle in KNOWN_CYCLES {
-        if !problems.iter().any(|p| p == cycle) {
-            report.push(format!("{cycle} is gone: remove it from KNOWN_CYCLES"));
-        }
-    }
+    let report = check(&files, LAYERS);
     assert!(
         report.is_empty(),
         "passes-deferred-msaa's structure (passes-deferred-msaa/tests/structure.rs):\n{}",

@@ -20,6 +20,7 @@ mod lighting;
 mod material;
 mod mesh;
 mod mips;
+mod model;
 mod normals;
 mod prefilter;
 mod procedural;
@@ -42,6 +43,7 @@ pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE, MAX_L
 pub use lighting::{Lighting, DEFAULT_ENVIRONMENT_INTENSITY, HEADLIGHT_LUX};
 pub use material::{AlphaMode, Material};
 pub use mesh::{Mesh, Vertex};
+pub use model::Scene;
 pub use normals::flat_shaded;
 pub use prefilter::{
     cube_direction, prefilter, prefiltered_cube, split_sum, split_sum_lut, CUBE_LEVELS, CUBE_SIZE,
@@ -51,32 +53,6 @@ pub use procedural::{builtin_names, BuiltinParam, BuiltinScene, BUILTIN_PREFIX};
 pub use stats::SceneStats;
 pub use tangents::generate_tangents;
 pub use texture::{FilterMode, Sampler, TextureImage, TextureRef, WrapMode};
-
-/// Everything a renderer needs to draw one view of a scene.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Scene {
-    /// The spec it was loaded from: the file path or `builtin:NAME[?params]`.
-    pub name: String,
-    /// Each with at least one triangle; at least one, except for a glTF scene that lists no
-    /// nodes, which loads empty with a warning (the frame shows only the background).
-    pub meshes: Vec<Mesh>,
-    /// Indexed by `Mesh::material`.
-    pub materials: Vec<Material>,
-    /// Indexed by `TextureRef::image`.
-    pub textures: Vec<TextureImage>,
-    pub lights: Vec<Light>,
-    /// Linear RGB ambient radiance multiplied with base color (glTF has none: zero for files).
-    pub ambient: [f32; 3],
-    /// Image-based lighting, added to the ambient term and the lights: the default
-    /// lighting of files without lights (see [`Lighting`]); built-in scenes have none.
-    pub environment: Option<Environment>,
-    /// The file's first camera in scene order, else [`Camera::framing`] of the bounds.
-    pub camera: Camera,
-    /// Exact world-space bounds of all vertices.
-    pub bounds: Aabb,
-    /// Things the loader ignored or changed, each naming the object concerned.
-    pub warnings: Vec<String>,
-}
 
 impl Scene {
     /// Loads `builtin:NAME[?key=value&...]` or a `.gltf` / `.glb` file path, with the

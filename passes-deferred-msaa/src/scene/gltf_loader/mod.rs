@@ -26,6 +26,7 @@ mod sandbox;
 mod texture_transform;
 mod transforms;
 mod uri;
+mod uri_error;
 mod validate;
 
 use std::collections::HashMap;

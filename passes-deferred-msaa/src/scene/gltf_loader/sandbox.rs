@@ -4,7 +4,7 @@ use std::path::{Component, Path, PathBuf};
 
 use graph_core::bounded_read;
 
-use super::uri::UriError;
+use super::uri_error::UriError;
 use crate::scene::{AssetPolicy, SceneError};
 
 /// The folders a glTF file's URIs may reach, canonical (symbolic links resolved), and the

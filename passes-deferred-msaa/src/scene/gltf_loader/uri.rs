@@ -6,6 +6,7 @@ use std::path::Path;
 use base64::Engine;
 
 use super::sandbox::Sandbox;
+use super::uri_error::UriError;
 use crate::scene::SceneError;
 
 /// Reads what `uri` names: a data URI's payload, or a file relative to the glTF file's folder
@@ -35,26 +36,6 @@ pub(super) fn read(sandbox: &Sandbox, uri: &str) -> Result<Vec<u8>, UriError> {
         UriError::Invalid(format!("URI `{uri}` is not valid percent-encoded UTF-8"))
     })?;
     sandbox.read(uri, Path::new(&*relative))
-}
-
-/// Why [`read`] failed.
-pub(super) enum UriError {
-    /// The URI itself is unusable; the caller says which object had it.
-    Invalid(String),
-    /// The referenced file could not be read; already names the file.
-    Io(SceneError),
-}
-
-impl UriError {
-    /// The scene error, with `invalid` naming the object whose URI failed either way: a
-    /// missing file's user needs the glTF file and the buffer or image that refers to it, not
-    /// only the file.
-    pub(super) fn into_named_error(self, invalid: impl FnOnce(String) -> SceneError) -> SceneError {
-        match self {
-            UriError::Invalid(reason) => invalid(reason),
-            UriError::Io(error) => invalid(error.to_string()),
-        }
-    }
 }
 
 /// Loads every buffer of the document, in order: the GLB chunk for a buffer without URI, else

@@ -1,0 +1,31 @@
+//! The scene itself: what a renderer needs to draw one view, as plain data. Loading is
+//! `Scene::load` (scene/mod.rs), from glTF files (gltf_loader/) or built-in scenes
+//! (procedural/), both through `SceneBuilder`.
+
+use super::{Aabb, Camera, Environment, Light, Material, Mesh, TextureImage};
+
+/// Everything a renderer needs to draw one view of a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// The spec it was loaded from: the file path or `builtin:NAME[?params]`.
+    pub name: String,
+    /// Each with at least one triangle; at least one, except for a glTF scene that lists no
+    /// nodes, which loads empty with a warning (the frame shows only the background).
+    pub meshes: Vec<Mesh>,
+    /// Indexed by `Mesh::material`.
+    pub materials: Vec<Material>,
+    /// Indexed by `TextureRef::image`.
+    pub textures: Vec<TextureImage>,
+    pub lights: Vec<Light>,
+    /// Linear RGB ambient radiance multiplied with base color (glTF has none: zero for files).
+    pub ambient: [f32; 3],
+    /// Image-based lighting, added to the ambient term and the lights: the default
+    /// lighting of files without lights (see [`Lighting`](super::Lighting)); built-in scenes have none.
+    pub environment: Option<Environment>,
+    /// The file's first camera in scene order, else [`Camera::framing`] of the bounds.
+    pub camera: Camera,
+    /// Exact world-space bounds of all vertices.
+    pub bounds: Aabb,
+    /// Things the loader ignored or changed, each naming the object concerned.
+    pub warnings: Vec<String>,
+}
