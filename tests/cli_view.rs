@@ -1,0 +1,288 @@
+//! `rgraph view` on lavapipe under a virtual X display (Xvfb, started per test on a free
+//! display): the presented image equals `rgraph render` of the same pipeline, scene and
+//! size, hot reload picks up valid edits and reports invalid ones while the last good
+//! graph keeps running, and without a display the command says what it needs.
+
+use std::io::{BufRead, BufReader, Read};
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc::{channel, Receiver};
+use std::time::{Duration, Instant};
+
+use crate::cli_support::rgraph;
+
+/// Where Debian's `xvfb` package installs the server.
+const XVFB: &str = "/usr/bin/Xvfb";
+
+/// A virtual X server on a display it picked itself (`-displayfd`), killed on drop.
+struct Xvfb {
+    child: Child,
+    /// `:N`.
+    display: String,
+}
+
+impl Xvfb {
+    /// Starts Xvfb and waits until it accepts connections (it writes its display number
+    /// then). A machine without it fails the test with the fix: these tests never skip.
+    fn start() -> Xvfb {
+        assert!(
+            Path::new(XVFB).exists(),
+            "the viewer tests need a virtual X server: apt-get install xvfb (.ci/run does)"
+        );
+        let mut child = Command::new(XVFB)
+            .args(["-displayfd", "1", "-screen", "0", "640x480x24", "-nolisten", "tcp"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("Xvfb starts");
+        let mut line = String::new();
+        BufReader::new(child.stdout.take().expect("piped"))
+            .read_line(&mut line)
+            .expect("Xvfb writes its display number");
+        let number = line.trim();
+        assert!(
+            !number.is_empty() && number.bytes().all(|b| b.is_ascii_digit()),
+            "Xvfb gave no display number (got {line:?})"
+        );
+        Xvfb {
+            child,
+            display: format!(":{number}"),
+        }
+    }
+
+    /// `rgraph ARGS` on this display (never on a Wayland one the environment names).
+    fn rgraph(&self, args: &[&str]) -> Command {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_rgraph"));
+        command
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .env("DISPLAY", &self.display)
+            .env("WINIT_X11_SCALE_FACTOR", "1")
+            .env_remove("WAYLAND_DISPLAY");
+        command
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn read_png(path: &Path) -> image::RgbaImage {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{} is not a readable PNG: {e}", path.display()))
+        .into_rgba8()
+}
+
+/// Runs the viewer for 3 frames with a screenshot and renders the same view headless:
+/// the two images must be equal byte for byte (the output is copied and blitted onto
+/// the surface through non-sRGB views, so nothing is re-encoded on the way).
+fn screenshot_equals_render(view: &str) {
+    let x = Xvfb::start();
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let shot = dir.path().join("shot.png");
+    let reference = dir.path().join("render.png");
+    let size = ["--width", "160", "--height", "96", "--view", view];
+    let shot_arg = shot.to_str().expect("temp paths are UTF-8");
+    let out = x
+        .rgraph(&[&["view", "--frames", "3", "--screenshot", shot_arg][..], &size].concat())
+        .output()
+        .expect("rgraph runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "rgraph view failed:\n{stderr}");
+    assert!(stderr.contains("window 160x96"), "{stderr}");
+    let reference_arg = reference.to_str().expect("temp paths are UTF-8");
+    rgraph(&[&["render", "--out", reference_arg][..], &size].concat()).expect(0);
+    let (shot, reference) = (read_png(&shot), read_png(&reference));
+    assert_eq!(shot.dimensions(), reference.dimensions());
+    let differing = shot
+        .pixels()
+        .zip(reference.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(
+        differing, 0,
+        "{differing} pixels of the presented image differ from `rgraph render`'s"
+    );
+}
+
+#[test]
+fn the_presented_image_is_the_rendered_one() {
+    screenshot_equals_render("final");
+}
+
+#[test]
+fn a_debug_view_is_presented_as_rendered() {
+    screenshot_equals_render("edges");
+}
+
+/// stderr of a running viewer, line by line, kept for failure messages.
+struct Lines {
+    receiver: Receiver<String>,
+    seen: Vec<String>,
+}
+
+impl Lines {
+    fn of(stream: impl Read + Send + 'static) -> Lines {
+        let (sender, receiver) = channel();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stream).lines() {
+                let Ok(line) = line else { break };
+                if sender.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        Lines {
+            receiver,
+            seen: Vec::new(),
+        }
+    }
+
+    /// Waits (up to two minutes: lavapipe in a debug build on a busy machine) for a line
+    /// for which `wanted` holds, and returns it.
+    fn wait_for(&mut self, what: &str, wanted: impl Fn(&str) -> bool) -> String {
+        let deadline = Instant::now() + Duration::from_secs(120);
+        loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            match self.receiver.recv_timeout(left) {
+                Ok(line) => {
+                    self.seen.push(line.clone());
+                    if wanted(&line) {
+                        return line;
+                    }
+                }
+                Err(_) => panic!(
+                    "no stderr line {what} within 120 s; stderr so far:\n{}",
+                    self.seen.join("\n")
+                ),
+            }
+        }
+    }
+}
+
+/// The LINE and COL of an error line that reads `FILE:LINE:COL: error: ...` with `file`.
+fn located(line: &str, file: &Path) -> (u32, u32) {
+    let rest = line
+        .strip_prefix(&format!("{}:", file.display()))
+        .unwrap_or_else(|| panic!("the error does not start with {}: {line}", file.display()));
+    let mut parts = rest.splitn(3, ':');
+    let mut number = || parts.next().and_then(|n| n.parse::<u32>().ok());
+    let position = (number(), number());
+    match (position, rest.split_once(": error: ")) {
+        ((Some(l), Some(c)), Some(_)) => (l, c),
+        _ => panic!("not FILE:LINE:COL: error: ...: {line}"),
+    }
+}
+
+/// Replaces `path`'s contents at once (a rename), so the viewer never reads half a file.
+fn edit(path: &Path, text: &str) {
+    let temp = path.with_extension("partial");
+    std::fs::write(&temp, text).expect("write");
+    std::fs::rename(&temp, path).expect("rename");
+}
+
+const GRAPH: &str = r#"Graph(
+    resources: { "color": Texture(format: "rgba8unorm-srgb") },
+    passes: [
+        (name: "fill", plugin: "fullscreen", params: (shader: "fill.wgsl"),
+         outputs: { "color": "color" }),
+    ],
+    outputs: ["color"],
+)
+"#;
+
+fn shader(color: &str) -> String {
+    format!(
+        "@fragment\nfn fs_main(@location(0) uv: vec2<f32>) -> @location(0) vec4<f32> {{\n    \
+         return vec4<f32>({color});\n}}\n"
+    )
+}
+
+#[test]
+fn hot_reload_takes_valid_edits_and_reports_invalid_ones_while_running() {
+    let x = Xvfb::start();
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let graph = dir.path().join("graph.ron");
+    let fill = dir.path().join("fill.wgsl");
+    std::fs::write(&graph, GRAPH).expect("write");
+    std::fs::write(&fill, shader("1.0, 0.0, 0.0, 1.0")).expect("write");
+    let graph_arg = graph.to_str().expect("temp paths are UTF-8");
+    let mut child = x
+        .rgraph(&[
+            "view",
+            "--pipeline",
+            graph_arg,
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--poll-ms",
+            "20",
+            "--frames",
+            "1000000000",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("rgraph runs");
+    let mut lines = Lines::of(child.stderr.take().expect("piped"));
+    let window = lines.wait_for("opening the window", |l| l.starts_with("window "));
+    assert!(window.contains("fill.wgsl"), "the shader is watched: {window}");
+
+    // A valid edit of the shader: reloaded.
+    edit(&fill, &shader("0.0, 1.0, 0.0, 1.0"));
+    lines.wait_for("reporting the shader's reload", |l| {
+        l.starts_with("reloaded ") && l.contains("fill.wgsl changed")
+    });
+
+    // An invalid edit of the shader: its FILE:LINE:COL error, and the old graph runs on.
+    edit(&fill, &shader("0.0, 0.0, 1.0"));
+    let error = lines.wait_for("with the shader's error", |l| l.contains(": error: "));
+    assert_eq!(located(&error, &fill).0, 3, "the shader's return line: {error}");
+    lines.wait_for("saying the last good graph runs", |l| {
+        l.starts_with("reload failed (") && l.contains("keeps running")
+    });
+    assert!(child.try_wait().expect("status").is_none(), "the viewer exited");
+
+    // An invalid edit of the graph file (the shader fixed with it, one poll later at most).
+    edit(&fill, &shader("0.0, 0.0, 1.0, 1.0"));
+    lines.wait_for("reloading the fixed shader", |l| l.starts_with("reloaded "));
+    edit(&graph, &GRAPH.replace("\"fullscreen\"", "\"fullscren\""));
+    let error = lines.wait_for("with the graph file's error", |l| l.contains(": error: "));
+    assert_eq!(located(&error, &graph).0, 4, "the pass's line: {error}");
+    assert!(error.contains("fullscren"), "names the unknown plugin: {error}");
+    lines.wait_for("saying the last good graph runs", |l| l.starts_with("reload failed ("));
+    assert!(child.try_wait().expect("status").is_none(), "the viewer exited");
+
+    // Fixed again: reloaded, still running.
+    edit(&graph, GRAPH);
+    lines.wait_for("reloading the fixed graph", |l| {
+        l.starts_with("reloaded ") && l.contains("graph.ron changed")
+    });
+    assert!(child.try_wait().expect("status").is_none(), "the viewer exited");
+    child.kill().expect("kill");
+    child.wait().expect("wait");
+}
+
+#[test]
+fn without_a_display_it_says_which_variables_it_needs() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let out = Command::new(env!("CARGO_BIN_EXE_rgraph"))
+        .args(["view", "--frames", "1"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .env("XDG_RUNTIME_DIR", dir.path())
+        .output()
+        .expect("rgraph runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("needs a display") && stderr.contains("DISPLAY") && stderr.contains("WAYLAND_DISPLAY"),
+        "{stderr}"
+    );
+}
