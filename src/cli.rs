@@ -243,6 +243,10 @@ pub struct ViewArgs {
     /// $RGRAPH_ADAPTER, else lavapipe). It must be able to present to the window.
     #[arg(long)]
     pub adapter: Option<String>,
+    /// Degrees the camera starts turned by about the vertical axis through the scene's
+    /// bounds centre, as the last frame of `render --frames N --orbit DEGREES` is.
+    #[arg(long, value_name = "DEGREES", default_value_t = 0.0, value_parser = parse_degrees, allow_negative_numbers = true)]
+    pub orbit: f64,
     /// Present this many frames, then exit (default: until the window is closed).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub frames: Option<u32>,

@@ -13,6 +13,8 @@ use crate::cli_support::rgraph;
 
 /// Where Debian's `xvfb` package installs the server.
 const XVFB: &str = "/usr/bin/Xvfb";
+/// Where Debian's `x11-utils` package installs the window lister the title is read with.
+const XWININFO: &str = "/usr/bin/xwininfo";
 
 /// A virtual X server on a display it picked itself (`-displayfd`), killed on drop.
 struct Xvfb {
@@ -30,7 +32,15 @@ impl Xvfb {
             "the viewer tests need a virtual X server: apt-get install xvfb (.ci/run does)"
         );
         let mut child = Command::new(XVFB)
-            .args(["-displayfd", "1", "-screen", "0", "640x480x24", "-nolisten", "tcp"])
+            .args([
+                "-displayfd",
+                "1",
+                "-screen",
+                "0",
+                "640x480x24",
+                "-nolisten",
+                "tcp",
+            ])
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
             .spawn()
@@ -63,6 +73,32 @@ impl Xvfb {
     }
 }
 
+impl Xvfb {
+    /// Waits (up to a minute) until a window's title contains every one of `parts`, and
+    /// returns the titles then, read with `xwininfo` (package x11-utils).
+    fn wait_for_title(&self, parts: &[&str]) -> String {
+        let deadline = Instant::now() + Duration::from_secs(60);
+        loop {
+            let out = Command::new(XWININFO)
+                .args(["-display", &self.display, "-root", "-children"])
+                .output()
+                .unwrap_or_else(|e| panic!("{XWININFO} runs (apt-get install x11-utils): {e}"));
+            let titles = String::from_utf8_lossy(&out.stdout).into_owned();
+            let found = titles
+                .lines()
+                .any(|line| parts.iter().all(|part| line.contains(part)));
+            if found {
+                return titles;
+            }
+            assert!(
+                Instant::now() < deadline,
+                "no window title with {parts:?} within 60 s; the windows:\n{titles}"
+            );
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    }
+}
+
 impl Drop for Xvfb {
     fn drop(&mut self) {
         let _ = self.child.kill();
@@ -76,26 +112,32 @@ fn read_png(path: &Path) -> image::RgbaImage {
         .into_rgba8()
 }
 
-/// Runs the viewer for 3 frames with a screenshot and renders the same view headless:
-/// the two images must be equal byte for byte (the output is copied and blitted onto
-/// the surface through non-sRGB views, so nothing is re-encoded on the way).
-fn screenshot_equals_render(view: &str) {
+/// Runs the viewer for 3 frames with a screenshot (`view_args` added) and renders the same
+/// pipeline and scene at the window's size (`render_args` added, writing `--out DIR/out`;
+/// the PNG compared is `DIR/rendered`): the two images must be equal byte for byte (the output is copied and
+/// blitted onto the surface through non-sRGB views, so nothing is re-encoded on the way).
+fn screenshot_equals_render(view_args: &[&str], render_args: &[&str], out: &str, rendered: &str) {
     let x = Xvfb::start();
     let dir = tempfile::tempdir().expect("a temporary directory");
     let shot = dir.path().join("shot.png");
-    let reference = dir.path().join("render.png");
-    let size = ["--width", "160", "--height", "96", "--view", view];
+    let size = ["--width", "160", "--height", "96"];
     let shot_arg = shot.to_str().expect("temp paths are UTF-8");
-    let out = x
-        .rgraph(&[&["view", "--frames", "3", "--screenshot", shot_arg][..], &size].concat())
+    let view = ["view", "--frames", "3", "--screenshot", shot_arg];
+    let viewed = x
+        .rgraph(&[&view[..], &size, view_args].concat())
         .output()
         .expect("rgraph runs");
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(0), "rgraph view failed:\n{stderr}");
+    let stderr = String::from_utf8_lossy(&viewed.stderr);
+    assert_eq!(
+        viewed.status.code(),
+        Some(0),
+        "rgraph view failed:\n{stderr}"
+    );
     assert!(stderr.contains("window 160x96"), "{stderr}");
-    let reference_arg = reference.to_str().expect("temp paths are UTF-8");
-    rgraph(&[&["render", "--out", reference_arg][..], &size].concat()).expect(0);
-    let (shot, reference) = (read_png(&shot), read_png(&reference));
+    let out_arg = dir.path().join(out);
+    let out_arg = out_arg.to_str().expect("temp paths are UTF-8");
+    rgraph(&[&["render", "--out", out_arg][..], &size, render_args].concat()).expect(0);
+    let (shot, reference) = (read_png(&shot), read_png(&dir.path().join(rendered)));
     assert_eq!(shot.dimensions(), reference.dimensions());
     let differing = shot
         .pixels()
@@ -110,12 +152,26 @@ fn screenshot_equals_render(view: &str) {
 
 #[test]
 fn the_presented_image_is_the_rendered_one() {
-    screenshot_equals_render("final");
+    screenshot_equals_render(&[], &[], "render.png", "render.png");
 }
 
 #[test]
 fn a_debug_view_is_presented_as_rendered() {
-    screenshot_equals_render("edges");
+    let edges = ["--view", "edges"];
+    screenshot_equals_render(&edges, &edges, "render.png", "render.png");
+}
+
+/// The camera turned through the host's frame inputs: `view --orbit 30` shows the last
+/// frame of `render --frames 2 --orbit 30`.
+#[test]
+fn an_orbited_camera_is_presented_as_rendered() {
+    let render = ["--frames", "2", "--orbit", "30"];
+    screenshot_equals_render(
+        &["--orbit", "30"],
+        &render,
+        "frame_%04d.png",
+        "frame_0001.png",
+    );
 }
 
 /// stderr of a running viewer, line by line, kept for failure messages.
@@ -230,7 +286,10 @@ fn hot_reload_takes_valid_edits_and_reports_invalid_ones_while_running() {
         .expect("rgraph runs");
     let mut lines = Lines::of(child.stderr.take().expect("piped"));
     let window = lines.wait_for("opening the window", |l| l.starts_with("window "));
-    assert!(window.contains("fill.wgsl"), "the shader is watched: {window}");
+    assert!(
+        window.contains("fill.wgsl"),
+        "the shader is watched: {window}"
+    );
 
     // A valid edit of the shader: reloaded.
     edit(&fill, &shader("0.0, 1.0, 0.0, 1.0"));
@@ -241,11 +300,19 @@ fn hot_reload_takes_valid_edits_and_reports_invalid_ones_while_running() {
     // An invalid edit of the shader: its FILE:LINE:COL error, and the old graph runs on.
     edit(&fill, &shader("0.0, 0.0, 1.0"));
     let error = lines.wait_for("with the shader's error", |l| l.contains(": error: "));
-    assert_eq!(located(&error, &fill).0, 3, "the shader's return line: {error}");
+    // The graph file's line naming the shader, then the shader's own FILE:LINE:COL.
+    assert_eq!(located(&error, &graph).0, 4, "the pass's line: {error}");
+    assert!(
+        error.contains(&format!("{}:3:", fill.display())),
+        "names the shader's return line: {error}"
+    );
     lines.wait_for("saying the last good graph runs", |l| {
         l.starts_with("reload failed (") && l.contains("keeps running")
     });
-    assert!(child.try_wait().expect("status").is_none(), "the viewer exited");
+    assert!(
+        child.try_wait().expect("status").is_none(),
+        "the viewer exited"
+    );
 
     // An invalid edit of the graph file (the shader fixed with it, one poll later at most).
     edit(&fill, &shader("0.0, 0.0, 1.0, 1.0"));
@@ -253,16 +320,39 @@ fn hot_reload_takes_valid_edits_and_reports_invalid_ones_while_running() {
     edit(&graph, &GRAPH.replace("\"fullscreen\"", "\"fullscren\""));
     let error = lines.wait_for("with the graph file's error", |l| l.contains(": error: "));
     assert_eq!(located(&error, &graph).0, 4, "the pass's line: {error}");
-    assert!(error.contains("fullscren"), "names the unknown plugin: {error}");
-    lines.wait_for("saying the last good graph runs", |l| l.starts_with("reload failed ("));
-    assert!(child.try_wait().expect("status").is_none(), "the viewer exited");
+    assert!(
+        error.contains("fullscren"),
+        "names the unknown plugin: {error}"
+    );
+    lines.wait_for("saying the last good graph runs", |l| {
+        l.starts_with("reload failed (")
+    });
+    assert!(
+        child.try_wait().expect("status").is_none(),
+        "the viewer exited"
+    );
+    // The title shows the error, with the last good graph's view and pass time.
+    let located_error = format!("ERROR: {}:4:", graph.display());
+    x.wait_for_title(&[
+        "rgraph view: graph.ron",
+        &located_error,
+        "[final 1/1] fill ",
+    ]);
 
     // Fixed again: reloaded, still running.
     edit(&graph, GRAPH);
     lines.wait_for("reloading the fixed graph", |l| {
         l.starts_with("reloaded ") && l.contains("graph.ron changed")
     });
-    assert!(child.try_wait().expect("status").is_none(), "the viewer exited");
+    assert!(
+        child.try_wait().expect("status").is_none(),
+        "the viewer exited"
+    );
+    let titles = x.wait_for_title(&["rgraph view: graph.ron [final 1/1] fill "]);
+    assert!(
+        !titles.contains("ERROR"),
+        "a good reload clears the error: {titles}"
+    );
     child.kill().expect("kill");
     child.wait().expect("wait");
 }
@@ -282,7 +372,9 @@ fn without_a_display_it_says_which_variables_it_needs() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(
-        stderr.contains("needs a display") && stderr.contains("DISPLAY") && stderr.contains("WAYLAND_DISPLAY"),
+        stderr.contains("needs a display")
+            && stderr.contains("DISPLAY")
+            && stderr.contains("WAYLAND_DISPLAY"),
         "{stderr}"
     );
 }

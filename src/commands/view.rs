@@ -110,6 +110,8 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
     let choice = AdapterChoice::resolve(args.adapter.as_deref());
     eprintln!("open device ({choice})");
     let session = Session::open(&choice).map_err(RenderError::Frame)?;
+    let camera = app::Orbit::of(&host, args.orbit);
+    host.set_frame(camera.inputs())?;
     let loader = Loader {
         session: &session,
         host,
@@ -121,7 +123,7 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
     let shown = loader
         .load(&output, (args.width, args.height))
         .map_err(|e| view::unknown(e, &args.view))?;
-    let mut viewer = app::Viewer::new(loader, shown, args);
+    let mut viewer = app::Viewer::new(loader, shown, camera, args);
     event_loop.run_app(&mut viewer)?;
     viewer.finish()
 }

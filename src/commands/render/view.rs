@@ -50,7 +50,10 @@ pub fn unknown(error: FrameError, view: &str) -> RenderError {
 
 /// The views among a pipeline's outputs, `final` first.
 fn offered<'a>(outputs: impl Iterator<Item = &'a str>) -> String {
-    let views: Vec<&str> = viewable(outputs).into_iter().filter_map(view_name).collect();
+    let views: Vec<&str> = viewable(outputs)
+        .into_iter()
+        .filter_map(view_name)
+        .collect();
     if views.is_empty() {
         "none (it exports neither \"color\" nor \"debug.NAME\")".into()
     } else {

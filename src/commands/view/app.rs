@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 
 use image::RgbaImage;
 use passes_deferred_msaa::glam::DVec3;
-use passes_deferred_msaa::FrameInputs;
+use passes_deferred_msaa::{FrameInputs, Host};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, KeyEvent, MouseButton, WindowEvent};
@@ -59,13 +59,9 @@ pub struct Viewer<'s> {
 }
 
 impl<'s> Viewer<'s> {
-    pub fn new(loader: Loader<'s>, shown: Shown<'s>, args: &ViewArgs) -> Viewer<'s> {
+    /// `camera`: the orbit the host's frame inputs are at now.
+    pub fn new(loader: Loader<'s>, shown: Shown<'s>, camera: Orbit, args: &ViewArgs) -> Viewer<'s> {
         let watch = Watch::new(&loader.path);
-        let camera = Orbit {
-            start: FrameInputs::clone(&loader.host.frame()),
-            center: loader.host.scene.bounds.center(),
-            angle: 0.0,
-        };
         Viewer {
             loader,
             shown,
@@ -352,7 +348,7 @@ impl ApplicationHandler for Viewer<'_> {
 
 /// The camera turned about the vertical axis through the scene's bounds centre, as
 /// `render --orbit` turns it.
-struct Orbit {
+pub struct Orbit {
     start: FrameInputs,
     center: DVec3,
     /// Radians turned from the start.
@@ -360,7 +356,17 @@ struct Orbit {
 }
 
 impl Orbit {
-    fn inputs(&self) -> FrameInputs {
+    /// `host`'s current frame inputs turned by `degrees`.
+    pub fn of(host: &Host, degrees: f64) -> Orbit {
+        Orbit {
+            start: FrameInputs::clone(&host.frame()),
+            center: host.scene.bounds.center(),
+            angle: degrees.to_radians(),
+        }
+    }
+
+    /// The frame inputs with the camera turned by the orbit's angle.
+    pub fn inputs(&self) -> FrameInputs {
         FrameInputs {
             camera: self.start.camera.orbited(self.center, self.angle),
             ..self.start.clone()

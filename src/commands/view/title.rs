@@ -20,9 +20,10 @@ pub fn title(
     frame_ms: f64,
     error: Option<&str>,
 ) -> String {
-    let file = pipeline
-        .file_name()
-        .map_or_else(|| pipeline.display().to_string(), |f| f.to_string_lossy().into());
+    let file = pipeline.file_name().map_or_else(
+        || pipeline.display().to_string(),
+        |f| f.to_string_lossy().into(),
+    );
     let view = view_name(output).unwrap_or(output);
     let ms = |ns: u64| ns as f64 / 1e6;
     let times = match report.gpu_total_ns {
@@ -94,7 +95,14 @@ mod tests {
     #[test]
     fn a_failed_reload_is_in_the_title() {
         let error = "a.ron:3:5: error: unknown plugin \"nope\"";
-        let shown = title(Path::new("a.ron"), "color", (0, 1), &report(true), 1.0, Some(error));
+        let shown = title(
+            Path::new("a.ron"),
+            "color",
+            (0, 1),
+            &report(true),
+            1.0,
+            Some(error),
+        );
         assert!(
             shown.starts_with(&format!(
                 "rgraph view: a.ron ERROR: {error}; showing the last good graph [final 1/1]"

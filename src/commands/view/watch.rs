@@ -102,8 +102,11 @@ mod tests {
         let preset = dir.path().join("preset.ron");
         let shader = dir.path().join("sub").join("s.wgsl");
         std::fs::create_dir(dir.path().join("sub")).expect("mkdir");
-        std::fs::write(&base, r#"Graph(passes: [(params: (shader: "sub/s.wgsl"))])"#)
-            .expect("write");
+        std::fs::write(
+            &base,
+            r#"Graph(passes: [(params: (shader: "sub/s.wgsl"))])"#,
+        )
+        .expect("write");
         std::fs::write(&preset, r#"Preset(base: "base.ron")"#).expect("write");
         std::fs::write(&shader, "// shader").expect("write");
         let mut watch = Watch::new(&preset);
