@@ -250,9 +250,9 @@ pub struct ViewArgs {
     /// Present this many frames, then exit (default: until the window is closed).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub frames: Option<u32>,
-    /// On exit, write the last presented image (read back from the window's surface) as a
-    /// PNG; its directory must exist.
-    #[arg(long, value_name = "FILE.png")]
+    /// With --frames, write the last frame's presented image (read back from the window's
+    /// surface) as a PNG when the viewer exits; its directory must exist.
+    #[arg(long, value_name = "FILE.png", requires = "frames")]
     pub screenshot: Option<PathBuf>,
     /// How often the watched files' modification times are polled, in milliseconds.
     #[arg(long, value_name = "MS", default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..))]

@@ -37,6 +37,9 @@ pub struct Viewer<'s> {
     /// `None` until the event loop resumes and the window exists.
     presenter: Option<Presenter>,
     initial_size: (u32, u32),
+    /// The size the last load was for: a window size is tried once, so a size the
+    /// device refuses is reported once rather than every frame.
+    loaded_size: (u32, u32),
     watch: Watch,
     poll_every: Duration,
     polled_at: Instant,
@@ -67,6 +70,7 @@ impl<'s> Viewer<'s> {
             shown,
             presenter: None,
             initial_size: (args.width, args.height),
+            loaded_size: (args.width, args.height),
             watch,
             poll_every: Duration::from_millis(args.poll_ms),
             polled_at: Instant::now(),
@@ -116,7 +120,7 @@ impl<'s> Viewer<'s> {
                 .changed()
                 .map(|file| format!("{} changed", file.display()));
         }
-        if reason.is_none() && self.shown.prepared.plan().output_size != size {
+        if reason.is_none() && self.loaded_size != size {
             reason = Some(format!("the window is {}x{}", size.0, size.1));
         }
         let reloaded = match reason {
@@ -158,6 +162,7 @@ impl<'s> Viewer<'s> {
     /// to the title, and the last good graph stays. Returns whether it replaced it.
     fn reload(&mut self, output: &str, size: (u32, u32), reason: &str) -> bool {
         let started = Instant::now();
+        self.loaded_size = size;
         // The new graph's plugins replace the old one's: the old graph's plugins are
         // dropped only when the new graph succeeds.
         let result = self.loader.load(output, size);
@@ -241,14 +246,14 @@ impl<'s> Viewer<'s> {
         if event.state != ElementState::Pressed {
             return Ok(());
         }
-        let back = if self.shift { -1 } else { 1 };
+        let step = if self.shift { -1 } else { 1 };
         match &event.logical_key {
             Key::Named(NamedKey::ArrowLeft) => self.turn(-KEY_TURN)?,
             Key::Named(NamedKey::ArrowRight) => self.turn(KEY_TURN)?,
-            Key::Named(NamedKey::Tab) => self.pick(back),
+            Key::Named(NamedKey::Tab) => self.pick(step),
             Key::Named(NamedKey::Escape) => event_loop.exit(),
             Key::Character(c) => match c.to_lowercase().as_str() {
-                "v" => self.pick(back),
+                "v" => self.pick(step),
                 "r" => {
                     if let Some(size) = self.presenter.as_ref().map(Presenter::size) {
                         self.reload(&self.shown.output.clone(), size, "R pressed");
