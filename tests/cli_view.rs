@@ -9,6 +9,8 @@ use std::process::{Child, Command, Stdio};
 use std::sync::mpsc::{channel, Receiver};
 use std::time::{Duration, Instant};
 
+use x11rb::connection::Connection as _;
+
 use crate::cli_support::rgraph;
 
 /// Where Debian's `xvfb` package installs the server.
@@ -336,7 +338,7 @@ fn hot_reload_takes_valid_edits_and_reports_invalid_ones_while_running() {
     x.wait_for_title(&[
         "rgraph view: graph.ron",
         &located_error,
-        "[final 1/1] fill ",
+        "[final 1/1] orbit 0 deg: fill ",
     ]);
 
     // Fixed again: reloaded, still running.
@@ -352,6 +354,126 @@ fn hot_reload_takes_valid_edits_and_reports_invalid_ones_while_running() {
     assert!(
         !titles.contains("ERROR"),
         "a good reload clears the error: {titles}"
+    );
+    child.kill().expect("kill");
+    child.wait().expect("wait");
+}
+
+/// Presses keys in the viewer's window as a user would, through the X server's XTEST
+/// extension (Xvfb has it), after giving the window the keyboard focus.
+struct Keyboard {
+    connection: x11rb::rust_connection::RustConnection,
+    root: u32,
+}
+
+impl Keyboard {
+    fn on(x: &Xvfb) -> Keyboard {
+        let (connection, screen) = x11rb::connect(Some(&x.display)).expect("connects to Xvfb");
+        let root = connection.setup().roots[screen].root;
+        Keyboard { connection, root }
+    }
+
+    /// Focuses the top-level window whose name contains "rgraph view".
+    fn focus_viewer(&self) {
+        use x11rb::protocol::xproto::{AtomEnum, ConnectionExt as _, InputFocus};
+        let tree = self
+            .connection
+            .query_tree(self.root)
+            .expect("query")
+            .reply()
+            .expect("tree");
+        let window = tree
+            .children
+            .iter()
+            .copied()
+            .find(|&w| {
+                let name = self
+                    .connection
+                    .get_property(false, w, AtomEnum::WM_NAME, AtomEnum::ANY, 0, 4096)
+                    .expect("get_property")
+                    .reply()
+                    .expect("property");
+                String::from_utf8_lossy(&name.value).contains("rgraph view")
+            })
+            .expect("the viewer's window is a child of the root");
+        self.connection
+            .set_input_focus(InputFocus::PARENT, window, x11rb::CURRENT_TIME)
+            .expect("focus");
+        self.connection.flush().expect("flush");
+    }
+
+    /// Presses and releases the key that types `keysym`.
+    fn press(&self, keysym: u32) {
+        use x11rb::protocol::xproto::{ConnectionExt as _, KEY_PRESS_EVENT, KEY_RELEASE_EVENT};
+        use x11rb::protocol::xtest::ConnectionExt as _;
+        let setup = self.connection.setup();
+        let (min, max) = (setup.min_keycode, setup.max_keycode);
+        let mapping = self
+            .connection
+            .get_keyboard_mapping(min, max - min + 1)
+            .expect("mapping")
+            .reply()
+            .expect("mapping reply");
+        let per = usize::from(mapping.keysyms_per_keycode);
+        let index = mapping
+            .keysyms
+            .chunks(per)
+            .position(|syms| syms.contains(&keysym))
+            .unwrap_or_else(|| panic!("no key types keysym {keysym:#x}"));
+        let keycode = min + u8::try_from(index).expect("keycodes are bytes");
+        for event in [KEY_PRESS_EVENT, KEY_RELEASE_EVENT] {
+            self.connection
+                .xtest_fake_input(event, keycode, x11rb::CURRENT_TIME, self.root, 0, 0, 0)
+                .expect("fake input");
+        }
+        self.connection.flush().expect("flush");
+    }
+}
+
+/// X keysyms of the keys pressed.
+const KEY_V: u32 = 0x76;
+const KEY_RIGHT: u32 = 0xff53;
+
+#[test]
+fn keys_pick_the_next_view_and_orbit_the_camera() {
+    let x = Xvfb::start();
+    let mut child = x
+        .rgraph(&[
+            "view",
+            "--width",
+            "160",
+            "--height",
+            "96",
+            "--frames",
+            "1000000000",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("rgraph runs");
+    let mut lines = Lines::of(child.stderr.take().expect("piped"));
+    lines.wait_for("opening the window", |l| l.starts_with("window "));
+    x.wait_for_title(&["[final 1/", "orbit 0 deg: "]);
+    let keyboard = Keyboard::on(&x);
+    keyboard.focus_viewer();
+
+    // V: the next view, "color" being the first, the debug views after it by name.
+    keyboard.press(KEY_V);
+    let picked = lines.wait_for("showing the next view", |l| l.starts_with("reloaded "));
+    assert!(
+        picked.contains("(view picked)") && picked.contains(": showing debug.albedo (2/"),
+        "{picked}"
+    );
+    x.wait_for_title(&["[albedo 2/", "gbuffer "]);
+
+    // Right arrow, six times: 5 degrees each.
+    for _ in 0..6 {
+        keyboard.press(KEY_RIGHT);
+    }
+    x.wait_for_title(&["[albedo 2/", "orbit 30 deg: "]);
+    assert!(
+        child.try_wait().expect("status").is_none(),
+        "the viewer exited"
     );
     child.kill().expect("kill");
     child.wait().expect("wait");

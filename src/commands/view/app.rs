@@ -217,6 +217,7 @@ impl<'s> Viewer<'s> {
             &self.loader.path,
             &self.shown.output,
             self.position(),
+            self.camera.angle.to_degrees(),
             &self.shown.report,
             self.frame_ms,
             self.error.as_deref(),

@@ -7,15 +7,17 @@ use graph_core::gpu::FrameReport;
 
 use crate::commands::render::view::view_name;
 
-/// `rgraph view: FILE [VIEW i/n] pass 1.20 | pass 3.40 | GPU 4.60 ms`: the file, the view
-/// shown (its position among the file's views), each pass's GPU time in milliseconds
-/// and the frame's GPU total; or `frame 16.2 ms` (`frame_ms`, the time between two
+/// `rgraph view: FILE [VIEW i/n] orbit 30 deg: pass 1.20 | pass 3.40 | GPU 4.60 ms`: the
+/// file, the view shown (its position among the file's views), the camera's turn from
+/// its start (`orbit`, in degrees), each pass's GPU time in milliseconds and the frame's
+/// GPU total; or `frame 16.2 ms` (`frame_ms`, the time between two
 /// presented frames) when no pass was timed. With `error` (the first line of a failed
 /// reload), `ERROR: ...; showing the last good graph` follows the file.
 pub fn title(
     pipeline: &Path,
     output: &str,
     (index, count): (usize, usize),
+    orbit: f64,
     report: &FrameReport,
     frame_ms: f64,
     error: Option<&str>,
@@ -43,7 +45,7 @@ pub fn title(
         None => String::new(),
     };
     format!(
-        "rgraph view: {file}{error} [{view} {}/{count}] {times}",
+        "rgraph view: {file}{error} [{view} {}/{count}] orbit {orbit:.0} deg: {times}",
         index + 1
     )
 }
@@ -83,12 +85,20 @@ mod tests {
     fn titles_name_the_view_and_the_pass_times() {
         let path = Path::new("pipelines/a.ron");
         assert_eq!(
-            title(path, "debug.edges", (1, 3), &report(true), 20.0, None),
-            "rgraph view: a.ron [edges 2/3] gbuffer 1.20 | light 3.40 | GPU 4.60 ms"
+            title(
+                path,
+                "debug.edges",
+                (1, 3),
+                -30.0,
+                &report(true),
+                20.0,
+                None
+            ),
+            "rgraph view: a.ron [edges 2/3] orbit -30 deg: gbuffer 1.20 | light 3.40 | GPU 4.60 ms"
         );
         assert_eq!(
-            title(path, "color", (0, 1), &report(false), 16.25, None),
-            "rgraph view: a.ron [final 1/1] frame 16.2 ms (no GPU timestamps)"
+            title(path, "color", (0, 1), 0.0, &report(false), 16.25, None),
+            "rgraph view: a.ron [final 1/1] orbit 0 deg: frame 16.2 ms (no GPU timestamps)"
         );
     }
 
