@@ -109,6 +109,7 @@ mod tests {
             Path::new("a.ron"),
             "color",
             (0, 1),
+            0.0,
             &report(true),
             1.0,
             Some(error),
