@@ -350,7 +350,7 @@ fn hot_reload_takes_valid_edits_and_reports_invalid_ones_while_running() {
         child.try_wait().expect("status").is_none(),
         "the viewer exited"
     );
-    let titles = x.wait_for_title(&["rgraph view: graph.ron [final 1/1] fill "]);
+    let titles = x.wait_for_title(&["rgraph view: graph.ron [final 1/1] orbit 0 deg: fill "]);
     assert!(
         !titles.contains("ERROR"),
         "a good reload clears the error: {titles}"

@@ -163,12 +163,11 @@ impl<'s> Viewer<'s> {
     fn reload(&mut self, output: &str, size: (u32, u32), reason: &str) -> bool {
         let started = Instant::now();
         self.loaded_size = size;
-        // The new graph's plugins replace the old one's: the old graph's plugins are
-        // dropped only when the new graph succeeds.
-        let result = self.loader.load(output, size);
-        // The file's references may have changed (valid or not): watch what it names now.
+        // What the files name now (an edit may change that, valid or not), stamped before
+        // they are read, so an edit saved while loading is seen at the next poll.
         self.watch = Watch::new(&self.loader.path);
-        match result {
+        // The old graph (and its plugins) is dropped only when the new one succeeds.
+        match self.loader.load(output, size) {
             Ok(shown) => {
                 self.shown = shown;
                 self.error = None;
@@ -183,10 +182,7 @@ impl<'s> Viewer<'s> {
             }
             Err(error) => {
                 report(&error);
-                eprintln!(
-                    "reload failed ({reason}): the last good graph keeps running; fix the \
-                     file and save it again"
-                );
+                eprintln!("reload failed ({reason}): the last good graph keeps running");
                 self.error = error.to_string().lines().next().map(str::to_string);
                 self.update_title();
                 false
