@@ -359,7 +359,7 @@ fn hot_reload_takes_valid_edits_and_reports_invalid_ones_while_running() {
     child.wait().expect("wait");
 }
 
-/// Presses keys in the viewer's window as a user would, through the X server's XTEST
+/// Presses keys (and drags the mouse) in the viewer's window as a user would, through the X server's XTEST
 /// extension (Xvfb has it), after giving the window the keyboard focus.
 struct Keyboard {
     connection: x11rb::rust_connection::RustConnection,
@@ -430,12 +430,39 @@ impl Keyboard {
     }
 }
 
+impl Keyboard {
+    /// Drags with the left mouse button held from `from` to `to`, in root (here: window)
+    /// coordinates.
+    fn drag(&self, from: (i16, i16), to: (i16, i16)) {
+        use x11rb::protocol::xproto::{
+            BUTTON_PRESS_EVENT, BUTTON_RELEASE_EVENT, MOTION_NOTIFY_EVENT,
+        };
+        use x11rb::protocol::xtest::ConnectionExt as _;
+        let fake = |event: u8, detail: u8, (x, y): (i16, i16)| {
+            self.connection
+                .xtest_fake_input(event, detail, x11rb::CURRENT_TIME, self.root, x, y, 0)
+                .expect("fake input");
+        };
+        // One event at a time, each given time to arrive before the next.
+        for (event, detail, at) in [
+            (MOTION_NOTIFY_EVENT, 0, from),
+            (BUTTON_PRESS_EVENT, 1, from),
+            (MOTION_NOTIFY_EVENT, 0, to),
+            (BUTTON_RELEASE_EVENT, 1, to),
+        ] {
+            fake(event, detail, at);
+            self.connection.flush().expect("flush");
+            std::thread::sleep(Duration::from_millis(300));
+        }
+    }
+}
+
 /// X keysyms of the keys pressed.
 const KEY_V: u32 = 0x76;
 const KEY_RIGHT: u32 = 0xff53;
 
 #[test]
-fn keys_pick_the_next_view_and_orbit_the_camera() {
+fn keys_pick_the_next_view_and_keys_and_drags_orbit_the_camera() {
     let x = Xvfb::start();
     let mut child = x
         .rgraph(&[
@@ -471,6 +498,10 @@ fn keys_pick_the_next_view_and_orbit_the_camera() {
         keyboard.press(KEY_RIGHT);
     }
     x.wait_for_title(&["[albedo 2/", "orbit 30 deg: "]);
+
+    // Dragging 75 pixels left turns it back: 0.4 degrees a pixel.
+    keyboard.drag((100, 50), (25, 50));
+    x.wait_for_title(&["[albedo 2/", "orbit 0 deg: "]);
     assert!(
         child.try_wait().expect("status").is_none(),
         "the viewer exited"

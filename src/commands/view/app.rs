@@ -44,8 +44,9 @@ pub struct Viewer<'s> {
     poll_every: Duration,
     polled_at: Instant,
     camera: Orbit,
-    /// The cursor's x while the left button is held.
-    drag: Option<f64>,
+    /// Whether the left button is held: moving the cursor then turns the camera.
+    dragging: bool,
+    /// The cursor's last x in the window.
     cursor_x: f64,
     shift: bool,
     /// The first line of the last failed reload, until a reload succeeds.
@@ -75,7 +76,7 @@ impl<'s> Viewer<'s> {
             poll_every: Duration::from_millis(args.poll_ms),
             polled_at: Instant::now(),
             camera,
-            drag: None,
+            dragging: false,
             cursor_x: 0.0,
             shift: false,
             error: None,
@@ -278,12 +279,10 @@ impl<'s> Viewer<'s> {
                 state,
                 button: MouseButton::Left,
                 ..
-            } => {
-                self.drag = (state == ElementState::Pressed).then_some(self.cursor_x);
-            }
+            } => self.dragging = state == ElementState::Pressed,
             WindowEvent::CursorMoved { position, .. } => {
-                self.cursor_x = position.x;
-                if let Some(from) = self.drag.replace(position.x) {
+                let from = std::mem::replace(&mut self.cursor_x, position.x);
+                if self.dragging {
                     self.turn((position.x - from) * DRAG_TURN)?;
                 }
             }

@@ -27,6 +27,8 @@ pub fn title(
         |f| f.to_string_lossy().into(),
     );
     let view = view_name(output).unwrap_or(output);
+    // A turn back to the start sums to a tiny negative number: "0", not "-0".
+    let orbit = orbit.round() + 0.0;
     let ms = |ns: u64| ns as f64 / 1e6;
     let times = match report.gpu_total_ns {
         Some(total) => {
@@ -97,7 +99,7 @@ mod tests {
             "rgraph view: a.ron [edges 2/3] orbit -30 deg: gbuffer 1.20 | light 3.40 | GPU 4.60 ms"
         );
         assert_eq!(
-            title(path, "color", (0, 1), 0.0, &report(false), 16.25, None),
+            title(path, "color", (0, 1), -1e-12, &report(false), 16.25, None),
             "rgraph view: a.ron [final 1/1] orbit 0 deg: frame 16.2 ms (no GPU timestamps)"
         );
     }
