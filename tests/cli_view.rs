@@ -373,8 +373,8 @@ impl Keyboard {
         Keyboard { connection, root }
     }
 
-    /// Focuses the top-level window whose name contains "rgraph view".
-    fn focus_viewer(&self) {
+    /// Focuses the top-level window whose name contains "rgraph view", and returns it.
+    fn focus_viewer(&self) -> u32 {
         use x11rb::protocol::xproto::{AtomEnum, ConnectionExt as _, InputFocus};
         let tree = self
             .connection
@@ -399,6 +399,17 @@ impl Keyboard {
         self.connection
             .set_input_focus(InputFocus::PARENT, window, x11rb::CURRENT_TIME)
             .expect("focus");
+        self.connection.flush().expect("flush");
+        window
+    }
+
+    /// Resizes `window` as a window manager would.
+    fn resize(&self, window: u32, (width, height): (u32, u32)) {
+        use x11rb::protocol::xproto::{ConfigureWindowAux, ConnectionExt as _};
+        let size = ConfigureWindowAux::new().width(width).height(height);
+        self.connection
+            .configure_window(window, &size)
+            .expect("configure");
         self.connection.flush().expect("flush");
     }
 
@@ -462,7 +473,7 @@ const KEY_V: u32 = 0x76;
 const KEY_RIGHT: u32 = 0xff53;
 
 #[test]
-fn keys_pick_the_next_view_and_keys_and_drags_orbit_the_camera() {
+fn keys_pick_the_view_keys_and_drags_orbit_the_camera_and_a_resize_recompiles() {
     let x = Xvfb::start();
     let mut child = x
         .rgraph(&[
@@ -482,7 +493,7 @@ fn keys_pick_the_next_view_and_keys_and_drags_orbit_the_camera() {
     lines.wait_for("opening the window", |l| l.starts_with("window "));
     x.wait_for_title(&["[final 1/", "orbit 0 deg: "]);
     let keyboard = Keyboard::on(&x);
-    keyboard.focus_viewer();
+    let window = keyboard.focus_viewer();
 
     // V: the next view, "color" being the first, the debug views after it by name.
     keyboard.press(KEY_V);
@@ -502,6 +513,11 @@ fn keys_pick_the_next_view_and_keys_and_drags_orbit_the_camera() {
     // Dragging 75 pixels left turns it back: 0.4 degrees a pixel.
     keyboard.drag((100, 50), (25, 50));
     x.wait_for_title(&["[albedo 2/", "orbit 0 deg: "]);
+
+    // A new window size: the graph is compiled again at that size.
+    keyboard.resize(window, (120, 80));
+    let resized = lines.wait_for("reloading at the new size", |l| l.starts_with("reloaded "));
+    assert!(resized.contains("(the window is 120x80)"), "{resized}");
     assert!(
         child.try_wait().expect("status").is_none(),
         "the viewer exited"
