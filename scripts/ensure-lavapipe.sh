@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Makes sure the lavapipe Vulkan driver (Mesa's CPU rasterizer) is installed, a C++
-# compiler (the nv-flip crate behind `rgraph bench` builds NVIDIA's FLIP from C++), and
-# Xvfb and xwininfo (the virtual X display the `rgraph view` tests open their windows on,
-# and what reads their titles), installing what is missing with apt when we are root (or
-# have sudo).
+# Makes sure the lavapipe Vulkan driver (Mesa's CPU rasterizer) is installed, and a C++
+# compiler (the nv-flip crate behind `rgraph bench` builds NVIDIA's FLIP from C++); with
+# --tests also Xvfb and xwininfo (the virtual X display the `rgraph view` tests open their
+# windows on, and what reads their titles). Installs what is missing with apt when we are
+# root (or have sudo).
 set -euo pipefail
 
 icd_present() {
@@ -13,8 +13,15 @@ icd_present() {
 packages=""
 icd_present || packages="mesa-vulkan-drivers libvulkan1"
 command -v c++ >/dev/null 2>&1 || packages="$packages g++"
-[ -x /usr/bin/Xvfb ] || packages="$packages xvfb"
-[ -x /usr/bin/xwininfo ] || packages="$packages x11-utils"
+tests=false
+[ "${1:-}" = --tests ] && tests=true
+x_present() {
+  ! $tests || { [ -x /usr/bin/Xvfb ] && [ -x /usr/bin/xwininfo ]; }
+}
+if $tests; then
+  [ -x /usr/bin/Xvfb ] || packages="$packages xvfb"
+  [ -x /usr/bin/xwininfo ] || packages="$packages x11-utils"
+fi
 if [ -z "$packages" ]; then
   exit 0
 fi
@@ -35,7 +42,7 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq >&2
 $sudo apt-get install -y -qq $packages >&2
-if ! icd_present || ! command -v c++ >/dev/null 2>&1 || [ ! -x /usr/bin/Xvfb ] || [ ! -x /usr/bin/xwininfo ]; then
+if ! icd_present || ! command -v c++ >/dev/null 2>&1 || ! x_present; then
   echo "rgraph: installed$packages but the lavapipe ICD (/usr/share/vulkan/icd.d), c++, /usr/bin/Xvfb or /usr/bin/xwininfo is still missing" >&2
   exit 1
 fi
