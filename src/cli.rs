@@ -102,6 +102,30 @@ pub enum Command {
         --pipeline pipelines/deferred_msaa_4x.ron --width 640 --height 360 --out-dir out\n  \
         rgraph bench --sweep lights --pipeline pipelines/deferred_msaa_4x.ron --out-dir out/lights")]
     Bench(BenchArgs),
+    /// Show a pipeline live in a window, with an orbit camera, a view picker, per-pass GPU
+    /// times in the title and hot reload of the graph file and its shaders.
+    ///
+    /// Needs a display (DISPLAY for X11 or WAYLAND_DISPLAY for Wayland; `xvfb-run` gives a
+    /// virtual one). Keys: Left/Right arrows orbit the camera about the scene's bounds
+    /// centre (as does dragging with the left mouse button); V or Tab shows the next view
+    /// (the pipeline's "color" output, then each "debug.NAME"), with Shift the previous
+    /// one; R reloads now; Q or Escape quits. The title shows the view and each pass's GPU
+    /// time (the frame time when the device has no timestamps).
+    ///
+    /// Hot reload: the graph file, the graph files it builds on and the WGSL files they
+    /// name are polled every --poll-ms; a change reloads, re-validates and recompiles the
+    /// graph, printing `reloaded FILE` on stderr. An invalid edit prints its
+    /// FILE:LINE:COL: error: lines on stderr and shows the first in the title, while the
+    /// last good graph keeps running.
+    ///
+    /// Exit status: 0 when the window was closed (or --frames ran), 1 when the first load
+    /// of the pipeline, scene or view is invalid, 2 for usage, I/O, adapter or display
+    /// problems (no display, a surface the adapter cannot draw into).
+    #[command(after_long_help = "Examples:\n  \
+        rgraph view\n  \
+        rgraph view --pipeline pipelines/deferred_msaa_4x.ron --scene model.glb --view edges\n  \
+        xvfb-run -a rgraph view --frames 3 --screenshot shot.png")]
+    View(ViewArgs),
     /// List the GPU adapters wgpu can use, with their features and sample counts.
     Adapters {
         /// Also write the profile (limits, features, format capabilities) of the adapter
@@ -182,6 +206,57 @@ pub struct RenderArgs {
     /// frames give 360 * (N - 1) / N.
     #[arg(long, value_name = "DEGREES", default_value_t = 0.0, value_parser = parse_degrees, allow_negative_numbers = true)]
     pub orbit: f64,
+    #[command(flatten)]
+    pub samples: Samples,
+    #[command(flatten)]
+    pub assets: AssetArgs,
+}
+
+/// What `rgraph view` shows, and how long.
+#[derive(clap::Args)]
+pub struct ViewArgs {
+    /// The graph file, watched for changes with the files it names. It must export "color"
+    /// or "debug.NAME" outputs, rgba8unorm-srgb or rgba8unorm.
+    #[arg(
+        long,
+        value_name = "FILE",
+        default_value = "pipelines/deferred_msaa_4x_tiled.ron"
+    )]
+    pub pipeline: PathBuf,
+    /// A glTF 2.0 file (.gltf or .glb), or builtin:NAME[?key=value&...].
+    #[arg(
+        long,
+        value_name = "PATH|builtin:NAME",
+        default_value = "builtin:spheres"
+    )]
+    pub scene: String,
+    /// The window's width in pixels; the graph renders at the window's size.
+    #[arg(long, value_name = "W", default_value_t = 1280, value_parser = parse_dimension)]
+    pub width: u32,
+    /// The window's height in pixels.
+    #[arg(long, value_name = "H", default_value_t = 720, value_parser = parse_dimension)]
+    pub height: u32,
+    /// The view shown first: final (the "color" output) or NAME (the "debug.NAME" output).
+    #[arg(long, value_name = "VIEW", default_value = "final")]
+    pub view: String,
+    /// Adapter to render on: lavapipe, gpu, or part of an adapter's name (default:
+    /// $RGRAPH_ADAPTER, else lavapipe). It must be able to present to the window.
+    #[arg(long)]
+    pub adapter: Option<String>,
+    /// Degrees the camera starts turned by about the vertical axis through the scene's
+    /// bounds centre, as the last frame of `render --frames N --orbit DEGREES` is.
+    #[arg(long, value_name = "DEGREES", default_value_t = 0.0, value_parser = parse_degrees, allow_negative_numbers = true)]
+    pub orbit: f64,
+    /// Present this many frames, then exit (default: until the window is closed).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub frames: Option<u32>,
+    /// With --frames, write the last frame's presented image (read back from the window's
+    /// surface) as a PNG when the viewer exits; its directory must exist.
+    #[arg(long, value_name = "FILE.png", requires = "frames")]
+    pub screenshot: Option<PathBuf>,
+    /// How often the watched files' modification times are polled, in milliseconds.
+    #[arg(long, value_name = "MS", default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..))]
+    pub poll_ms: u64,
     #[command(flatten)]
     pub samples: Samples,
     #[command(flatten)]

@@ -33,6 +33,7 @@ fn main() -> ExitCode {
         } => commands::explain::run(pipeline, scene.as_deref(), *format, target, samples, assets),
         Command::Render(args) => commands::render::run(args),
         Command::Bench(args) => commands::bench::run(args),
+        Command::View(args) => commands::view::run(args),
         Command::Adapters {
             save_profile,
             adapter,

@@ -24,6 +24,7 @@ pub fn prepare(cli: &Cli) {
         Command::Validate { target, .. } | Command::Explain { target, .. } => &target.adapter,
         Command::Render(args) => &args.adapter,
         Command::Bench(args) => &args.adapter,
+        Command::View(args) => &args.adapter,
         Command::Adapters { .. } => return,
     };
     let driver_list_set = std::env::var_os("VK_DRIVER_FILES").is_some()

@@ -28,6 +28,7 @@ mod cli_render;
 mod cli_render_frames;
 mod cli_render_samples;
 mod cli_validate;
+mod cli_view;
 mod deferred_detectors;
 mod deferred_environment;
 mod deferred_exposure;

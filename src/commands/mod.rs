@@ -7,6 +7,7 @@ pub mod explain;
 pub mod render;
 pub mod target;
 pub mod validate;
+pub mod view;
 
 use std::io::Write;
 use std::path::Path;

@@ -5,12 +5,12 @@
 //! the scene, the pipeline and its view, then the device, the compile for that device,
 //! the frame, the readback and the PNG.
 
-mod error;
-mod output;
+pub(super) mod error;
+pub(super) mod output;
 mod progress;
 mod saturation;
 mod summary;
-mod view;
+pub(super) mod view;
 
 use std::path::PathBuf;
 use std::sync::Arc;

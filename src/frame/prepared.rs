@@ -77,21 +77,27 @@ impl<'s> Prepared<'s> {
             .collect()
     }
 
-    /// The last frame's `output` (one of the kept outputs) as raw RGBA8 bytes (sRGB-encoded
-    /// for sRGB formats), with any device error the readback raised outside the frame.
-    pub fn read(&self, output: &str) -> Result<RgbaImage, FrameError> {
-        let pipeline = &self.path;
-        let unreadable = |found: &str| FrameError::unreadable(output, pipeline, found);
+    /// The texture holding the last frame's `output` (one of the kept outputs): an
+    /// `Rgba8UnormSrgb` or `Rgba8Unorm` texture with `COPY_SRC`, valid until the next frame.
+    pub fn texture(&self, output: &str) -> Result<&wgpu::Texture, FrameError> {
+        let unreadable = |found: &str| FrameError::unreadable(output, &self.path, found);
         let id = self
             .outputs
             .iter()
             .find(|(name, _)| name == output)
             .map(|(_, id)| *id)
             .ok_or_else(|| unreadable("not one of the outputs kept"))?;
-        let texture = self
-            .executor
+        self.executor
             .texture(self.compiled.plan(), id)
-            .ok_or_else(|| unreadable("not kept after the frame"))?;
+            .ok_or_else(|| unreadable("not kept after the frame"))
+    }
+
+    /// The last frame's `output` (one of the kept outputs) as raw RGBA8 bytes (sRGB-encoded
+    /// for sRGB formats), with any device error the readback raised outside the frame.
+    pub fn read(&self, output: &str) -> Result<RgbaImage, FrameError> {
+        let pipeline = &self.path;
+        let unreadable = |found: &str| FrameError::unreadable(output, pipeline, found);
+        let texture = self.texture(output)?;
         let texels = read_rgba8(&self.gpu.device, &self.gpu.queue, texture).map_err(|source| {
             FrameError::Readback {
                 pipeline: pipeline.clone(),

@@ -17,6 +17,23 @@ pub fn output_name(view: &str) -> String {
     }
 }
 
+/// The view an output shows: `final` for "color", NAME for "debug.NAME", `None` for
+/// any other output.
+pub fn view_name(output: &str) -> Option<&str> {
+    match output {
+        FINAL_OUTPUT => Some(FINAL),
+        o => o.strip_prefix(DEBUG_PREFIX),
+    }
+}
+
+/// The outputs among `outputs` that are views, "color" first, then the debug views by
+/// name: the order a viewer cycles through them.
+pub fn viewable<'a>(outputs: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
+    let mut views: Vec<&str> = outputs.filter(|o| view_name(o).is_some()).collect();
+    views.sort_by_key(|o| (*o != FINAL_OUTPUT, *o));
+    views
+}
+
 /// A view the pipeline lacks becomes an error listing the views it has; other errors
 /// pass through.
 pub fn unknown(error: FrameError, view: &str) -> RenderError {
@@ -33,13 +50,10 @@ pub fn unknown(error: FrameError, view: &str) -> RenderError {
 
 /// The views among a pipeline's outputs, `final` first.
 fn offered<'a>(outputs: impl Iterator<Item = &'a str>) -> String {
-    let mut views: Vec<&str> = outputs
-        .filter_map(|o| match o {
-            FINAL_OUTPUT => Some(FINAL),
-            o => o.strip_prefix(DEBUG_PREFIX),
-        })
+    let views: Vec<&str> = viewable(outputs)
+        .into_iter()
+        .filter_map(view_name)
         .collect();
-    views.sort_by_key(|v| (*v != FINAL, *v));
     if views.is_empty() {
         "none (it exports neither \"color\" nor \"debug.NAME\")".into()
     } else {
@@ -49,7 +63,7 @@ fn offered<'a>(outputs: impl Iterator<Item = &'a str>) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{offered, output_name};
+    use super::{offered, output_name, viewable};
 
     #[test]
     fn views_name_outputs() {
@@ -62,5 +76,14 @@ mod tests {
         let outputs = ["debug.normals", "color", "history", "debug.edges"];
         assert_eq!(offered(outputs.into_iter()), "final, edges, normals");
         assert!(offered(["history"].into_iter()).starts_with("none"));
+    }
+
+    #[test]
+    fn viewable_outputs_put_color_first() {
+        let outputs = ["debug.normals", "history", "color", "debug.edges"];
+        assert_eq!(
+            viewable(outputs.into_iter()),
+            ["color", "debug.edges", "debug.normals"]
+        );
     }
 }
