@@ -9,7 +9,7 @@
 
 use crate::deferred_support;
 
-use deferred_support::measure::pixel_diff;
+use deferred_support::measure::pixels_within;
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
 use passes_deferred_msaa::glam::{DVec3, Vec3};
@@ -252,9 +252,7 @@ fn every_pipeline_renders_the_default_lighting_alike() {
     ];
     for (a, b) in pairs {
         let (first, second) = (image(a), image(b));
-        let within = (first.pixels.iter().zip(&second.pixels))
-            .filter(|&(&p, &q)| pixel_diff(p, q) <= 2)
-            .count();
+        let within = pixels_within(&first, &second, 2);
         let share = within as f64 / first.pixels.len() as f64;
         assert!(share >= 0.99, "{b} against {a}: {share} within 2/255");
     }

@@ -5,7 +5,7 @@
 
 use crate::deferred_support;
 
-use deferred_support::measure::pixel_diff;
+use deferred_support::measure::pixels_within;
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Image, Render};
 use graph_core::Features;
@@ -106,10 +106,7 @@ fn metered_exposure(hdr: &[[f32; 4]]) -> f32 {
 }
 
 fn share_within(a: &Image, b: &Image, tolerance: u8) -> f64 {
-    let within = (a.pixels.iter().zip(&b.pixels))
-        .filter(|&(&p, &q)| pixel_diff(p, q) <= tolerance)
-        .count();
-    within as f64 / a.pixels.len() as f64
+    pixels_within(a, b, tolerance) as f64 / a.pixels.len() as f64
 }
 
 /// The metering pass computes what the CPU computes from the same resolved image: the

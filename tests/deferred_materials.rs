@@ -7,7 +7,7 @@
 use crate::deferred_support;
 use crate::gltf_writer::{temp_dir, Gltf};
 
-use deferred_support::measure::pixel_diff;
+use deferred_support::measure::pixels_within;
 use deferred_support::{gpu, Render};
 use passes_deferred_msaa::scene::Scene;
 use serde_json::{json, Value};
@@ -328,12 +328,7 @@ fn deferred_tiled_and_forward_agree_on_a_textured_pbr_quad() {
         "only {lit} pixels are not black: the quad is not lit"
     );
     for (pipeline, image) in PIPELINES.iter().zip(&images).skip(1) {
-        let close = image
-            .pixels
-            .iter()
-            .zip(&images[0].pixels)
-            .filter(|(a, b)| pixel_diff(**a, **b) <= 2)
-            .count();
+        let close = pixels_within(image, &images[0], 2);
         let total = image.pixels.len();
         assert!(
             close * 100 >= total * 99,

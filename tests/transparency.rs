@@ -9,7 +9,7 @@ use std::f32::consts::FRAC_PI_8;
 
 use serde_json::json;
 
-use crate::deferred_support::measure::pixel_diff;
+use crate::deferred_support::measure::{pixel_diff, pixels_within};
 use crate::deferred_support::{gpu, Render};
 use crate::gltf_writer::{fixture, temp_dir, Gltf};
 use graph_core::file::{load_file, load_str, Registry};
@@ -362,12 +362,7 @@ fn a_lit_blend_panel_renders_alike_in_deferred_tiled_and_forward() {
         })
         .collect();
     for (pipeline, image) in pipelines.iter().zip(&images).skip(1) {
-        let close = image
-            .pixels
-            .iter()
-            .zip(&images[0].pixels)
-            .filter(|(a, b)| pixel_diff(**a, **b) <= 2)
-            .count();
+        let close = pixels_within(image, &images[0], 2);
         let total = image.pixels.len();
         assert!(
             close * 100 >= total * 99,

@@ -36,6 +36,18 @@ pub fn pixel_diff(a: [u8; 4], b: [u8; 4]) -> u8 {
     (0..3).map(|c| a[c].abs_diff(b[c])).max().unwrap_or(0)
 }
 
+/// How many pixels of `a` and `b` differ by at most `tolerance` in every RGB channel.
+pub fn pixels_within(a: &Image, b: &Image, tolerance: u8) -> usize {
+    assert_eq!(
+        (a.width, a.height),
+        (b.width, b.height),
+        "compared images differ in size"
+    );
+    (a.pixels.iter().zip(&b.pixels))
+        .filter(|&(&p, &q)| pixel_diff(p, q) <= tolerance)
+        .count()
+}
+
 /// How `a` and `b` differ where `mask` is true (everywhere for `None`).
 pub fn diff(a: &Image, b: &Image, mask: Option<&[bool]>) -> Diff {
     assert_eq!(
