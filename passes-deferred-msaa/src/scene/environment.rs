@@ -13,6 +13,8 @@
 //!   map's mip levels, and the split-sum scale and bias of the BRDF in a lookup table
 //!   ([`super::prefilter`]).
 
+use std::sync::OnceLock;
+
 use glam::Vec3;
 
 /// Image-based lighting for a scene.
@@ -84,8 +86,15 @@ pub struct Irradiance(pub [f32; 9]);
 
 impl Irradiance {
     /// Projects [`radiance`] on the basis by midpoint quadrature over the sphere (the
-    /// integrand is smooth: 256 x 128 cells are far below the result's error).
+    /// integrand is smooth: 256 x 128 cells are far below the result's error). Computed
+    /// once per process: every scene upload and every frame whose inputs move a light
+    /// writes it into the light info.
     pub fn neutral() -> Irradiance {
+        static NEUTRAL: OnceLock<Irradiance> = OnceLock::new();
+        *NEUTRAL.get_or_init(Irradiance::project_neutral)
+    }
+
+    fn project_neutral() -> Irradiance {
         let mut coefficients = [0.0f64; 9];
         for (d, cell) in sphere_cells(256) {
             let l = f64::from(radiance(d)) * cell;
