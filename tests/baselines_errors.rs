@@ -9,7 +9,7 @@ use graph_core::file::{load_str, Registry};
 
 /// Loads `pipeline` from `pipelines/` with `from` replaced by `to`, and returns the
 /// error text the load must fail with.
-fn error(pipeline: &str, from: &str, to: &str) -> String {
+pub fn error(pipeline: &str, from: &str, to: &str) -> String {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("pipelines")
         .join(pipeline);
@@ -28,7 +28,7 @@ fn error(pipeline: &str, from: &str, to: &str) -> String {
     }
 }
 
-fn assert_names(message: &str, parts: &[&str]) {
+pub fn assert_names(message: &str, parts: &[&str]) {
     for part in parts {
         assert!(
             message.contains(part),

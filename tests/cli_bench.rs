@@ -194,6 +194,7 @@ fn results_json_has_every_figure_with_its_type() {
             ("logical_bytes", "number"),
             ("physical_bytes", "number"),
             ("gbuffer_bytes_per_sample", "number"),
+            ("gbuffer_stored_bytes_per_sample", "number"),
         ],
     );
     assert!(number(figures, "memory.physical_bytes") > 0.0);
@@ -424,6 +425,11 @@ fn a_specialised_plan_is_measured_beside_the_general_one() {
         64.0 * 48.0 * (4.0 + 4.0 + 4.0 + 8.0)
     );
     assert_eq!(number(figures, "memory.gbuffer_bytes_per_sample"), 20.0);
+    // albedo 4, view depth 4, HDR 8 and the depth-stencil 4.
+    assert_eq!(
+        number(figures, "memory.gbuffer_stored_bytes_per_sample"),
+        20.0
+    );
     let table = std::fs::read_to_string(dir.path().join("results.md")).unwrap();
     assert!(
         table.contains("| deferred_noaa | no_lights, shallow_depth, unlit_only | gbuffer.wgsl {double_sided} | 5 → 2 |"),

@@ -33,6 +33,7 @@ mod deferred_detectors;
 mod deferred_environment;
 mod deferred_exposure;
 mod deferred_gltf;
+mod deferred_lean;
 mod deferred_lit;
 mod deferred_materials;
 mod deferred_sample_mask;

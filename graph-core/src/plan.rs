@@ -46,6 +46,11 @@ pub struct PlannedPass {
     /// What the color attachments cost per sample against the device's
     /// `max_color_attachment_bytes_per_sample` (a G-buffer's size per sample).
     pub color_bytes_per_sample: u32,
+    /// What one sample of the attachments, color and depth-stencil, occupies in memory
+    /// ([`texel_bytes`](crate::resource::texel_bytes): D32S8 counts 8): a G-buffer's real
+    /// size per sample, which `color_bytes_per_sample`'s alignment rules overstate and its
+    /// leaving out depth understates.
+    pub stored_bytes_per_sample: u32,
     pub depth_stencil: Option<DepthStencilAttachment>,
     /// A compute pass's workgroup size and memory, where its plugin declared them.
     pub workgroup: Option<crate::pass::Workgroup>,

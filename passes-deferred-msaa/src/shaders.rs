@@ -10,6 +10,11 @@ const COMMON: &str = include_str!("wgsl/common.wgsl");
 const SCENE: &str = include_str!("wgsl/scene.wgsl");
 const MATERIAL: &str = include_str!("wgsl/material.wgsl");
 const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
+pub(crate) const VIEW_DEPTH_STORED: &str = include_str!("wgsl/view_depth_stored.wgsl");
+pub(crate) const VIEW_DEPTH_FROM_DEPTH: &str = include_str!("wgsl/view_depth_from_depth.wgsl");
+pub(crate) const EMITTED_HDR: &str = include_str!("wgsl/emitted_hdr.wgsl");
+pub(crate) const EMITTED_RGB9E5: &str = include_str!("wgsl/emitted_rgb9e5.wgsl");
+pub(crate) const EMITTED_NONE: &str = include_str!("wgsl/emitted_none.wgsl");
 const BRDF: &str = include_str!("wgsl/brdf.wgsl");
 const SURFACE: &str = include_str!("wgsl/surface.wgsl");
 const LIGHTING: &str = include_str!("wgsl/lighting.wgsl");
@@ -32,6 +37,7 @@ pub(crate) const EDGE: Source = Source {
     parts: &[
         COMMON,
         GBUFFER_READ,
+        VIEW_DEPTH_STORED,
         EDGE_DETECT,
         include_str!("wgsl/edge.wgsl"),
     ],
@@ -42,13 +48,15 @@ pub(crate) const LIGHT: Source = Source {
         COMMON,
         SCENE,
         GBUFFER_READ,
+        VIEW_DEPTH_STORED,
         BRDF,
         LIGHTING,
         SURFACE,
         include_str!("wgsl/light.wgsl"),
     ],
 };
-/// Needs a generated block after it: see [`crate::plugins::LightTiled`].
+/// Needs a generated block after it, with one of the `VIEW_DEPTH_*` and one of the
+/// `EMITTED_*` fragments: see [`crate::plugins::LightTiled`].
 pub(crate) const LIGHT_TILED: Source = Source {
     name: "light_tiled.wgsl",
     parts: &[
@@ -80,6 +88,7 @@ pub(crate) const DEBUG: Source = Source {
         COMMON,
         SCENE,
         GBUFFER_READ,
+        VIEW_DEPTH_STORED,
         BRDF,
         include_str!("wgsl/debug.wgsl"),
     ],
@@ -113,6 +122,7 @@ pub(crate) const GBUFFER_RESOLVE: Source = Source {
         COMMON,
         SCENE,
         GBUFFER_READ,
+        VIEW_DEPTH_STORED,
         include_str!("wgsl/gbuffer_resolve.wgsl"),
     ],
 };

@@ -18,7 +18,7 @@ use crate::graph::Graph;
 use crate::handle::{PassId, ResourceId};
 use crate::plan::{CulledPass, MemoryReport, Plan, PlannedPass, PlannedResource};
 use crate::profile::{color_bytes_per_sample, DeviceProfile};
-use crate::resource::{ResourceDesc, TextureShape};
+use crate::resource::{texel_bytes, ResourceDesc, TextureShape};
 
 use conditions::Conditioned;
 use cull::Live;
@@ -173,6 +173,12 @@ impl Graph {
                             .iter()
                             .filter_map(|c| a.shapes[c.resource.index()].map(|s| s.format)),
                     ),
+                    stored_bytes_per_sample: color
+                        .iter()
+                        .map(|c| c.resource)
+                        .chain(depth_stencil.as_ref().map(|d| d.resource))
+                        .filter_map(|r| a.shapes[r.index()].map(|s| texel_bytes(s.format) as u32))
+                        .sum(),
                     color: color.clone(),
                     depth_stencil: depth_stencil.clone(),
                     workgroup: pass.workgroup.clone(),

@@ -60,8 +60,8 @@ pub fn text(plan: &Plan) -> String {
         if !pass.color.is_empty() {
             let _ = writeln!(
                 out,
-                "         color bytes per sample: {}",
-                pass.color_bytes_per_sample
+                "         color bytes per sample: {} (limit accounting); stored, depth included: {}",
+                pass.color_bytes_per_sample, pass.stored_bytes_per_sample
             );
         }
         if let Some(w) = &pass.workgroup {

@@ -1,7 +1,8 @@
 //! What the deferred passes share, below them: the state every plugin of a registry shares
 //! and how a pass hands over its recording ([`plugin`]), the textures in a pass's slots
 //! ([`textures`]), the depth convention ([`depth`]), the edge detectors two passes use
-//! ([`edge_detection`]), the full-screen draw five passes set up ([`fullscreen`]) and,
+//! ([`edge_detection`]), the full-screen draw five passes set up ([`fullscreen`]), the lean
+//! G-buffer's emission encoding ([`rgb9e5`]) and,
 //! with feature `gpu`, the device helpers of their recordings ([`gpu`]). Nothing here
 //! imports a pass.
 
@@ -11,4 +12,5 @@ pub(crate) mod fullscreen;
 #[cfg(feature = "gpu")]
 pub(crate) mod gpu;
 pub(crate) mod plugin;
+pub(crate) mod rgb9e5;
 pub(crate) mod textures;

@@ -21,8 +21,17 @@ pub(crate) const NORMAL: &[TextureFormat] = &[F::Rg16Float];
 pub(crate) const MATERIAL: &[TextureFormat] = &[F::Rgba8Unorm];
 pub(crate) const VIEW_DEPTH: &[TextureFormat] = &[F::R32Float];
 pub(crate) const HDR: &[TextureFormat] = &[F::Rgba16Float];
+/// The lean G-buffer's emission, RGB9E5 (common.wgsl's `pack_rgb9e5`) low half in red:
+/// WebGPU multisamples rg16uint, not r32uint.
+pub(crate) const EMISSION: &[TextureFormat] = &[F::Rg16Uint];
 pub(crate) const DEPTH_STENCIL: &[TextureFormat] =
     &[F::Depth24PlusStencil8, F::Depth32FloatStencil8];
+/// The G-buffer's depth where no later pass needs stencil (the tiled compute path).
+pub(crate) const DEPTH_ANY: &[TextureFormat] = &[
+    F::Depth24PlusStencil8,
+    F::Depth32FloatStencil8,
+    F::Depth32Float,
+];
 pub(crate) const DISPLAY: &[TextureFormat] = &[F::Rgba8UnormSrgb, F::Rgba8Unorm];
 pub(crate) const EXPOSURE: &[TextureFormat] = &[F::R32Float];
 

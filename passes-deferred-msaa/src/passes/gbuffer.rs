@@ -13,12 +13,22 @@
 //!  })
 //! ```
 //!
-//! All six must have the depth-stencil's sample count; 1 works too. The color targets
-//! cost 32 bytes per sample (8 + 4 + 8 + 4 + 8 in wgpu's accounting), the WebGPU default
-//! limit. `normal` and `material` may be left out, and then are not written: only
-//! lighting reads them, so a pipeline's G-buffer pass for unlit-only scenes (under a
-//! `when: "unlit_only"` condition, pipelines/deferred_msaa_4x.ron) goes without. `view_depth` exists because later passes attach the depth-stencil and so
-//! cannot sample its depth aspect while they write the stencil (notes/wgpu30.md).
+//! All must have the depth's sample count; 1 works too. The full G-buffer's color
+//! targets cost 32 bytes per sample (8 + 4 + 8 + 4 + 8 in wgpu's accounting), the WebGPU
+//! default limit. Every channel but `albedo` may be left out, and then is not written:
+//! - `normal` and `material`: only lighting reads them, so a pipeline's G-buffer pass for
+//!   unlit-only scenes (under a `when: "unlit_only"` condition,
+//!   pipelines/deferred_msaa_4x.ron) goes without.
+//! - `view_depth` exists because the fragment light passes attach the depth-stencil and so
+//!   cannot sample its depth aspect while they write the stencil (notes/wgpu30.md); the
+//!   tiled compute pass reads the depth buffer instead.
+//! - `hdr`, or instead the lean `"emission": "emission"` (`rg16uint`, RGB9E5: 4 bytes for
+//!   the 8 of rgba16float), which holds only the emission: the tiled pass takes an unlit
+//!   surface's color from albedo and the background from its own parameter. A scene
+//!   without emission needs neither.
+//!
+//! The lean G-buffer (pipelines/deferred_msaa_4x_lean.ron) is albedo, normal, material
+//! and a `depth32float` depth without stencil: 16 bytes per sample, 20 with emission.
 //!
 //! With reversed-Z depth is cleared to 0 and tested with `Greater` (near is 1), else
 //! cleared to 1 and tested with `Less`. Without `reversed_z` the convention follows the
@@ -38,6 +48,7 @@ use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{Recording, Shared};
+use crate::common::rgb9e5;
 use crate::common::textures::{self, Want};
 use crate::shaders;
 
@@ -91,47 +102,41 @@ impl Plugin for GBuffer {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         let depth_rule = DepthRule::new(params.reversed_z);
-        let depth_want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
+        let depth_want = Want::new("the G-buffer's depth", textures::DEPTH_ANY);
         let (depth, desc) = textures::output(slots, pass, "depth", depth_want, |pass, h, _| {
-            pass.depth_stencil(h, depth_rule.clear(), AspectAccess::Clear(0))
+            // depth32float has no stencil to clear (the lean G-buffer's tiled pass needs
+            // none).
+            let stencil = match pass.resource(h).texture().map(|d| d.format) {
+                Some(format) if !format.has_stencil_aspect() => AspectAccess::Absent,
+                _ => AspectAccess::Clear(0),
+            };
+            pass.depth_stencil(h, depth_rule.clear(), stencil)
         })?;
         let samples = desc.samples;
-        let colors = [
-            (
-                "albedo",
-                "the G-buffer's albedo",
-                textures::ALBEDO,
-                [0.0; 4],
-            ),
-            (
-                "normal",
-                "the G-buffer's normals",
-                textures::NORMAL,
-                [0.0; 4],
-            ),
-            (
-                "material",
-                "the G-buffer's material",
-                textures::MATERIAL,
-                [0.0; 4],
-            ),
-            (
-                "view_depth",
-                "the G-buffer's view depth",
-                textures::VIEW_DEPTH,
-                [0.0; 4],
-            ),
-            ("hdr", "the HDR target", textures::HDR, params.background),
-        ];
-        let mut targets = Vec::with_capacity(colors.len());
-        let mut written = Vec::with_capacity(colors.len());
-        for (slot, what, formats, clear) in colors {
-            if OPTIONAL.contains(&slot) && !slots.is_output(slot) {
+        if slots.is_output("hdr") && slots.is_output("emission") {
+            return Err(PluginError::Invalid(
+                "outputs \"hdr\" and \"emission\" both hold the emission: write one \
+                 (emission is the lean G-buffer's, hdr the full one's)"
+                    .into(),
+            ));
+        }
+        let mut targets = Vec::with_capacity(CHANNELS.len());
+        let mut written = Vec::with_capacity(CHANNELS.len());
+        for channel in &CHANNELS {
+            if channel.slot != "albedo" && !slots.is_output(channel.slot) {
                 continue;
             }
-            let want = Want::new(what, formats).samples(samples);
-            targets.push(textures::color_output(slots, pass, slot, want, clear)?.0);
-            written.push(slot);
+            let clear = match channel.slot {
+                "hdr" => params.background,
+                "emission" => {
+                    let bits = rgb9e5::pack(background_rgb(params.background));
+                    [f64::from(bits & 0xffff), f64::from(bits >> 16), 0.0, 0.0]
+                }
+                _ => [0.0; 4],
+            };
+            let want = Want::new(channel.what, channel.formats).samples(samples);
+            targets.push(textures::color_output(slots, pass, channel.slot, want, clear)?.0);
+            written.push(channel);
         }
         let outputs = outputs_wgsl(&written);
         let draw = GBufferDraw {
@@ -148,18 +153,69 @@ impl Plugin for GBuffer {
     }
 }
 
-/// The channels only lighting reads: an unlit-only scene's G-buffer goes without them.
-const OPTIONAL: [&str; 2] = ["normal", "material"];
+/// A color target the pass can write, at the next location when the file lists it.
+struct Channel {
+    slot: &'static str,
+    what: &'static str,
+    formats: &'static [graph_core::types::TextureFormat],
+    /// gbuffer.wgsl's type for it.
+    wgsl: &'static str,
+}
+
+/// In attachment order. Only `albedo` is required (see the module docs).
+const CHANNELS: [Channel; 6] = [
+    Channel {
+        slot: "albedo",
+        what: "the G-buffer's albedo",
+        formats: textures::ALBEDO,
+        wgsl: "vec4<f32>",
+    },
+    Channel {
+        slot: "normal",
+        what: "the G-buffer's normals",
+        formats: textures::NORMAL,
+        wgsl: "vec4<f32>",
+    },
+    Channel {
+        slot: "material",
+        what: "the G-buffer's material",
+        formats: textures::MATERIAL,
+        wgsl: "vec4<f32>",
+    },
+    Channel {
+        slot: "view_depth",
+        what: "the G-buffer's view depth",
+        formats: textures::VIEW_DEPTH,
+        wgsl: "vec4<f32>",
+    },
+    Channel {
+        slot: "hdr",
+        what: "the HDR target",
+        formats: textures::HDR,
+        wgsl: "vec4<f32>",
+    },
+    Channel {
+        slot: "emission",
+        what: "the G-buffer's emission",
+        formats: textures::EMISSION,
+        wgsl: "vec2<u32>",
+    },
+];
+
+/// The background's color where the emission channel holds it (RGB9E5 has no alpha).
+fn background_rgb(background: [f64; 4]) -> [f32; 3] {
+    [background[0], background[1], background[2]].map(|c| c as f32)
+}
 
 /// `gbuffer.wgsl`'s fragment output: the `channels` written, at locations counting up
 /// from 0 as the pass attaches them.
-fn outputs_wgsl(channels: &[&str]) -> String {
+fn outputs_wgsl(channels: &[&Channel]) -> String {
     let fields: String = channels
         .iter()
         .enumerate()
-        .map(|(location, c)| format!("    @location({location}) {c}: vec4<f32>,\n"))
+        .map(|(location, c)| format!("    @location({location}) {}: {},\n", c.slot, c.wgsl))
         .collect();
-    let values: Vec<String> = channels.iter().map(|c| format!("g.{c}")).collect();
+    let values: Vec<String> = channels.iter().map(|c| format!("g.{}", c.slot)).collect();
     format!(
         "// Generated: the channels this G-buffer pass writes.\n\
          struct GBufferOut {{\n{fields}}}\n\n\

@@ -76,6 +76,10 @@ pub struct LightTiledParams {
     pub cull: bool,
     #[serde(default)]
     pub view: TiledView,
+    /// What samples where nothing was drawn resolve to, when the G-buffer has neither
+    /// `hdr` nor `emission` (which are cleared to the G-buffer pass's background).
+    #[serde(default)]
+    pub background: Option<[f64; 3]>,
 }
 
 fn tile() -> u32 {
@@ -132,6 +136,72 @@ impl TiledView {
     }
 }
 
+/// Which G-buffer the pass reads, from the slots the file binds: the full one (`view_depth`
+/// and `hdr`), the lean one (neither; `emission` when the scene emits), or a mix.
+struct GBufferLayout {
+    stored_view_depth: bool,
+    emitted: Emitted,
+}
+
+enum Emitted {
+    /// `hdr` or `emission`.
+    Channel(&'static str),
+    /// No channel: unlit colour from albedo, this background elsewhere.
+    None([f64; 3]),
+}
+
+impl GBufferLayout {
+    fn of(slots: &Slots<'_>, background: Option<[f64; 3]>) -> Result<GBufferLayout, PluginError> {
+        let listed = |slot| slots.kind(slot).is_some();
+        let emitted = match (listed("hdr"), listed("emission"), background) {
+            (true, true, _) => {
+                return Err(PluginError::Invalid(
+                    "inputs \"hdr\" and \"emission\" both hold what samples emit: bind one".into(),
+                ))
+            }
+            (true, false, Some(_)) | (false, true, Some(_)) => {
+                return Err(PluginError::Invalid(
+                    "background is for a G-buffer without \"hdr\" or \"emission\": with one, the \
+                     background is what the G-buffer pass cleared it to"
+                        .into(),
+                ))
+            }
+            (true, false, None) => Emitted::Channel("hdr"),
+            (false, true, None) => Emitted::Channel("emission"),
+            (false, false, background) => {
+                let background = background.unwrap_or([0.0; 3]);
+                if !background.iter().all(|c| c.is_finite() && *c >= 0.0) {
+                    return Err(PluginError::Invalid(format!(
+                        "background must be finite and not negative, got {background:?}"
+                    )));
+                }
+                Emitted::None(background)
+            }
+        };
+        Ok(GBufferLayout {
+            stored_view_depth: listed("view_depth"),
+            emitted,
+        })
+    }
+
+    /// The shader fragments that read this layout.
+    fn wgsl(&self) -> String {
+        let view_depth = match self.stored_view_depth {
+            true => shaders::VIEW_DEPTH_STORED,
+            false => shaders::VIEW_DEPTH_FROM_DEPTH,
+        };
+        let emitted = match self.emitted {
+            Emitted::Channel("hdr") => shaders::EMITTED_HDR.to_owned(),
+            Emitted::Channel(_) => shaders::EMITTED_RGB9E5.to_owned(),
+            Emitted::None([r, g, b]) => format!(
+                "const BACKGROUND: vec3<f32> = vec3<f32>({r:?}, {g:?}, {b:?});\n{}",
+                shaders::EMITTED_NONE
+            ),
+        };
+        format!("{view_depth}\n{emitted}")
+    }
+}
+
 /// Tile sides allowed: the four side planes are set up by four invocations, and 32 x 32
 /// invocations is more than any device's workgroup.
 const TILES: std::ops::RangeInclusive<u32> = 2..=32;
@@ -141,6 +211,9 @@ const TILES: std::ops::RangeInclusive<u32> = 2..=32;
 pub(crate) struct TiledDispatch {
     pub source: String,
     pub constants: Vec<(&'static str, f64)>,
+    /// The shader takes view depth from the depth buffer and needs the convention's
+    /// `FAR_DEPTH` (view_depth_from_depth.wgsl).
+    pub view_depth_from_depth: bool,
     pub tile: u32,
     pub depth_rule: DepthRule,
     pub depth: TextureHandle,
@@ -179,7 +252,7 @@ impl Plugin for LightTiled {
             )));
         }
         let exposure = resolve_exposure(&self.0, params.exposure, params.resolve)?;
-        let want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
+        let want = Want::new("the G-buffer's depth", textures::DEPTH_ANY);
         let (depth, desc) = textures::input(slots, pass, "depth", want)?;
         let samples = desc.samples;
         pass.sampled_aspect(depth, Aspect::DepthOnly);
@@ -189,12 +262,34 @@ impl Plugin for LightTiled {
             aspect: Aspect::DepthOnly,
             texels: Texels::Depth,
         }];
+        let layout = GBufferLayout::of(slots, params.background)?;
         for (slot, what, formats, binding) in GBUFFER_INPUTS {
+            if slot == "view_depth" && !layout.stored_view_depth {
+                continue;
+            }
             let want = Want::new(what, formats).samples(samples);
             inputs.push(textures::sampled(slots, pass, slot, want, binding)?.0);
         }
-        let want = Want::new("the G-buffer's HDR target", textures::HDR).samples(samples);
-        inputs.push(textures::sampled(slots, pass, "hdr", want, 6)?.0);
+        if let Emitted::Channel(slot) = layout.emitted {
+            let (what, formats) = match slot {
+                "hdr" => ("the G-buffer's HDR target", textures::HDR),
+                _ => ("the G-buffer's emission", textures::EMISSION),
+            };
+            let (handle, _) =
+                textures::input(slots, pass, slot, Want::new(what, formats).samples(samples))?;
+            pass.sampled(handle);
+            let texels = if slot == "hdr" {
+                Texels::Float
+            } else {
+                Texels::Uint
+            };
+            inputs.push(Input {
+                binding: 6,
+                texture: handle,
+                aspect: Aspect::All,
+                texels,
+            });
+        }
         let (slot, want) = params.view.output();
         let (output, out) = textures::output(slots, pass, slot, want.samples(1), |pass, h, _| {
             pass.storage_write(h)
@@ -208,13 +303,15 @@ impl Plugin for LightTiled {
         // The shader's sizes are constants, so the workgroup memory the compile checks
         // is the memory this tile and sample count use.
         let generated = format!(
-            "// Generated: the tile, the edge entries per invocation, the output.\n\
+            "// Generated: the tile, the edge entries per invocation, the output, then the\n\
+             // G-buffer's layout.\n\
              const TILE: u32 = {}u;\n\
              const EDGE_SLOTS: u32 = {}u;\n\
-             alias OutTex = texture_storage_2d<{}, write>;\n",
+             alias OutTex = texture_storage_2d<{}, write>;\n{}",
             params.tile,
             samples.saturating_sub(1).max(1),
-            format_name(out.format)
+            format_name(out.format),
+            layout.wgsl(),
         );
         let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
         let Some(entry) = shader.entry("cs_light_tiled", Stage::Compute) else {
@@ -247,6 +344,7 @@ impl Plugin for LightTiled {
         let dispatch = TiledDispatch {
             source: shader.source().to_owned(),
             constants,
+            view_depth_from_depth: !layout.stored_view_depth,
             tile: params.tile,
             depth_rule: DepthRule::new(None),
             depth,
@@ -270,6 +368,7 @@ mod gpu {
 
     use super::TiledDispatch;
     use crate::analysis::{GatedShader, Variant};
+    use crate::common::depth::far_depth;
     use crate::common::gpu::{per_scene, InputPass};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
@@ -312,6 +411,9 @@ mod gpu {
             let pipeline = state.pipelines.get(key, |key| {
                 let mut constants = dispatch.constants.clone();
                 constants.extend(key.variant.constants());
+                if dispatch.view_depth_from_depth {
+                    constants.push(("FAR_DEPTH", f64::from(far_depth(key.convention))));
+                }
                 device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                     label: Some("light_tiled"),
                     layout: Some(layout),

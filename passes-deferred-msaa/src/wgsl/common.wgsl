@@ -20,6 +20,33 @@ fn unorm8(v: f32) -> u32 {
     return u32(round(clamp(v, 0.0, 1.0) * 255.0));
 }
 
+// RGB9E5, the shared-exponent HDR encoding of EXT_texture_shared_exponent: three 9-bit
+// mantissas and a 5-bit exponent in 32 bits, so the lean G-buffer's emission costs 4
+// bytes per sample where an rgba16float target costs 8. Each channel's error is below
+// 2^-9 of the brightest channel (or 2^-25). (No GPU renders to rgb9e5ufloat, hence
+// a uint target.)
+const RGB9E5_MAX: f32 = 65408.0;  // (2^9 - 1) / 2^9 * 2^16
+
+fn pack_rgb9e5(rgb: vec3<f32>) -> u32 {
+    let c = clamp(rgb, vec3<f32>(0.0), vec3<f32>(RGB9E5_MAX));
+    let brightest = max(c.r, max(c.g, c.b));
+    if !(brightest > 0.0) {
+        return 0u;
+    }
+    // frexp gives floor(log2(brightest)) + 1 exactly; log2 may round up at powers of two.
+    var e = max(frexp(brightest).exp, -15) + 15;
+    if u32(floor(brightest * exp2(f32(24 - e)) + 0.5)) == 512u {
+        e += 1;
+    }
+    let m = vec3<u32>(floor(c * exp2(f32(24 - e)) + 0.5));
+    return m.r | (m.g << 9u) | (m.b << 18u) | (u32(e) << 27u);
+}
+
+fn unpack_rgb9e5(bits: u32) -> vec3<f32> {
+    let m = vec3<u32>(bits & 511u, (bits >> 9u) & 511u, (bits >> 18u) & 511u);
+    return vec3<f32>(m) * exp2(f32(bits >> 27u) - 24.0);
+}
+
 // Octahedral normal encoding into [-1, 1]^2, stored in rg16float. `oct_encode` returns
 // half floats (exact in f32, so the target stores them unchanged whatever its rounding):
 // of the four around the exact encoding, the pair that decodes closest to `n` (Cigolle et

@@ -9,8 +9,11 @@
 // alpha (otherwise unused, so occlusion costs no byte); normal = octahedral shading normal
 // (after the normal texture);
 // material = metallic and roughness after their texture, flags, edge bits; view depth;
-// HDR = emission after its texture (or the whole unlit color). Textures change what the
-// channels hold, not how many there are.
+// HDR = emission after its texture (or the whole unlit color). The lean G-buffer has
+// neither view depth (later passes take it from the depth buffer) nor HDR: its emission
+// channel holds only the emission, in RGB9E5 (common.wgsl) split over an rg16uint, and the light pass takes an
+// unlit surface's color from albedo. Textures change what the channels hold, not how
+// many there are.
 
 // Whether the scene has double-sided materials (analysis/variant.rs; the default is the
 // general shader): without them back faces are culled and the flip changes nothing.
@@ -51,6 +54,7 @@ struct GBuffer {
     material: vec4<f32>,
     view_depth: vec4<f32>,
     hdr: vec4<f32>,
+    emission: vec2<u32>,
 }
 
 @vertex
@@ -94,6 +98,8 @@ fn surface(in: Varyings, m: MaterialSample, front: bool, coverage: u32) -> GBuff
     out.view_depth = vec4<f32>(in.view_depth, 0.0, 0.0, 0.0);
     let emitted = select(m.emission, m.base.rgb + m.emission, unlit);
     out.hdr = vec4<f32>(min(emitted, vec3<f32>(HALF_MAX)), 1.0);
+    let emission = pack_rgb9e5(m.emission);
+    out.emission = vec2<u32>(emission & 0xffffu, emission >> 16u);
     return out;
 }
 

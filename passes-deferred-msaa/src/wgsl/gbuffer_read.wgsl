@@ -1,10 +1,10 @@
 // The multisampled G-buffer as the passes after the G-buffer pass read it (group 1).
-// A pass binds only the textures its entry points use.
+// A pass binds only the textures its entry points use. Composed with one of
+// view_depth_stored.wgsl and view_depth_from_depth.wgsl, which define `load_view_depth`.
 
 @group(1) @binding(0) var albedo_tex: GTexF;
 @group(1) @binding(1) var normal_tex: GTexF;
 @group(1) @binding(2) var material_tex: GTexF;
-@group(1) @binding(3) var view_depth_tex: GTexF;
 @group(1) @binding(4) var stencil_tex: GTexU;
 // The depth aspect, where the pass attaches the depth-stencil read-only.
 @group(1) @binding(5) var depth_tex: GTexD;
@@ -38,6 +38,6 @@ fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
     g.roughness = m.g;
     g.flags = unorm8(m.b);
     g.edge_bits = unorm8(m.a);
-    g.view_depth = textureLoad(view_depth_tex, pixel, s).r;
+    g.view_depth = load_view_depth(pixel, s);
     return g;
 }

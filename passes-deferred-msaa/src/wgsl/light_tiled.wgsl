@@ -12,15 +12,16 @@
 // 3. Shade: each invocation lights its pixel's sample 0 (at the pixel center when not an
 //    edge) and its share of the edge list, so a few edge pixels spread their extra
 //    samples over the whole workgroup instead of stalling it.
-// 4. Resolve: each sample's light plus the G-buffer's HDR (emission, unlit colour),
-//    averaged (box, or resolve.wgsl's tone-mapped weights), stored in the 1x output.
+// 4. Resolve: each sample's light plus what it emits (emission, unlit colour,
+//    background), averaged (box, or resolve.wgsl's tone-mapped weights), stored in the 1x
+//    output.
 //
 // Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl, brdf.wgsl, lighting.wgsl,
 // surface.wgsl and edge_detect.wgsl, then a generated block defining TILE (the tile's side in
 // pixels), EDGE_SLOTS (max(SAMPLES - 1, 1): the most edge-list entries one invocation
-// shades) and OutTex (the output's storage texture type).
-
-@group(1) @binding(6) var hdr_tex: GTexF;
+// shades) and OutTex (the output's storage texture type), and holding the G-buffer's
+// layout: `load_view_depth` (view_depth_stored.wgsl, or view_depth_from_depth.wgsl for the
+// lean G-buffer) and `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or emitted_none.wgsl).
 @group(1) @binding(7) var out_tex: OutTex;
 
 // How edge pixels are found: 0 `compare`, 1 EDGE_BIT in the material (`centroid`,
@@ -114,11 +115,16 @@ fn reaches_tile(light: LightData, nearest: f32, farthest: f32) -> bool {
 // Whether two samples hold what one fragment wrote: the G-buffer pass shades once per
 // pixel and triangle, so the samples a fragment covers hold identical values (seed
 // 002's unique fragments). Samples of two triangles differ in something, if only in
-// their interpolated view depth.
+// their interpolated view depth. Without a stored view depth each sample has its own
+// depth along the fragment's slope: then depths within the compare detector's
+// threshold count as one fragment's.
 fn same_fragment(a: GSample, b: GSample) -> bool {
+    var depth = a.view_depth == b.view_depth;
+    if !STORED_VIEW_DEPTH {
+        depth = abs(a.view_depth - b.view_depth) <= DEPTH_THRESHOLD * max(a.view_depth, b.view_depth);
+    }
     return all(a.albedo == b.albedo) && a.occlusion == b.occlusion && all(a.normal == b.normal)
-        && a.metallic == b.metallic && a.roughness == b.roughness && a.flags == b.flags
-        && a.view_depth == b.view_depth;
+        && a.metallic == b.metallic && a.roughness == b.roughness && a.flags == b.flags && depth;
 }
 
 // Where a fragment covering the samples of `mask` is shaded: at the mean of their
@@ -228,7 +234,14 @@ fn cs_light_tiled(
     let lit0 = inside && (g[0].flags & FLAG_LIT) != 0u;
     var p0 = vec3<f32>(0.0);
     if lit0 {
-        p0 = select(center_surface(pixel, 0u), fragment_surface(pixel, masks[0]), edge);
+        // Without a stored view depth the pixel center's depth is the mean of its
+        // samples' (fragment_surface): the mean of the standard sample positions is the
+        // center.
+        if edge || !STORED_VIEW_DEPTH {
+            p0 = fragment_surface(pixel, masks[0]);
+        } else {
+            p0 = center_surface(pixel, 0u);
+        }
         include_depth(p0);
     }
     var base = 0u;
@@ -371,7 +384,7 @@ fn cs_light_tiled(
             var sum = vec3<f32>(0.0);
             var weights = 0.0;
             for (var s = 0u; s < SAMPLES; s++) {
-                let c = clamp(textureLoad(hdr_tex, pixel, s).rgb + light[s], vec3<f32>(0.0), vec3<f32>(HALF_MAX));
+                let c = clamp(emitted(pixel, s, g[s]) + light[s], vec3<f32>(0.0), vec3<f32>(HALF_MAX));
                 let w = select(1.0, 1.0 / (1.0 + EXPOSURE * luminance(c)), RESOLVE == 1u);
                 sum += w * c;
                 weights += w;

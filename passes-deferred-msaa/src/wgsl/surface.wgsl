@@ -12,7 +12,7 @@ fn sample_surface(pixel: vec2<i32>, s: u32) -> vec3<f32> {
 
 // Per-pixel shading: the surface at the pixel center, at sample `s`'s view depth.
 fn center_surface(pixel: vec2<i32>, s: u32) -> vec3<f32> {
-    return surface_position(vec2<f32>(pixel) + 0.5, textureLoad(view_depth_tex, pixel, s).r);
+    return surface_position(vec2<f32>(pixel) + 0.5, load_view_depth(pixel, s));
 }
 
 // G-buffer sample `g` as the surface point `p` (camera-relative) seen from the camera.

@@ -1,7 +1,7 @@
 //! Memory a pipeline's plan asks for: every graph texture on its own and after pooling,
 //! and the G-buffer's bytes per sample.
 
-use graph_core::Plan;
+use graph_core::{Plan, PlannedPass};
 use serde::Serialize;
 
 /// The pass whose color attachments are the G-buffer, in every deferred pipeline (its
@@ -18,6 +18,9 @@ pub struct Memory {
     /// `maxColorAttachmentBytesPerSample` counts them (each target aligned to its
     /// component size); `None` without a "gbuffer" pass (forward pipelines).
     pub gbuffer_bytes_per_sample: Option<u32>,
+    /// What one sample of the G-buffer pass's attachments occupies, depth-stencil
+    /// included (D32S8 as 8 bytes): the G-buffer's real size.
+    pub gbuffer_stored_bytes_per_sample: Option<u32>,
 }
 
 impl Memory {
@@ -25,16 +28,14 @@ impl Memory {
         Memory {
             logical_bytes: plan.memory.logical_bytes,
             physical_bytes: plan.memory.physical_bytes,
-            gbuffer_bytes_per_sample: gbuffer_bytes_per_sample(plan),
+            gbuffer_bytes_per_sample: gbuffer(plan).map(|p| p.color_bytes_per_sample),
+            gbuffer_stored_bytes_per_sample: gbuffer(plan).map(|p| p.stored_bytes_per_sample),
         }
     }
 }
 
-fn gbuffer_bytes_per_sample(plan: &Plan) -> Option<u32> {
-    plan.passes
-        .iter()
-        .find(|p| is_gbuffer(&p.name))
-        .map(|p| p.color_bytes_per_sample)
+fn gbuffer(plan: &Plan) -> Option<&PlannedPass> {
+    plan.passes.iter().find(|p| is_gbuffer(&p.name))
 }
 
 /// "gbuffer", or one of its alternatives under a condition, "gbuffer (unlit)".

@@ -109,9 +109,13 @@ fn figure_cells(f: &Figures) -> Vec<String> {
             .map_or("-".into(), |s| ms(s.median)),
         bytes(f.memory.logical_bytes),
         bytes(f.memory.physical_bytes),
-        f.memory
-            .gbuffer_bytes_per_sample
-            .map_or("-".into(), |b| b.to_string()),
+        match (
+            f.memory.gbuffer_stored_bytes_per_sample,
+            f.memory.gbuffer_bytes_per_sample,
+        ) {
+            (Some(stored), Some(limit)) => format!("{stored} ({limit})"),
+            _ => "-".into(),
+        },
         f.work
             .edge_pixel_share
             .map_or("-".into(), |s| format!("{:.1}%", s * 100.0)),
@@ -259,8 +263,9 @@ const LEGEND: &str = "\n\
 GPU ms: median GPU frame time from timestamps (first pass's begin to last pass's end), with \
 the 10th–90th percentile over the measured frames. × noaa: median over deferred_noaa's on \
 the same scene (and sweep value) in this run. CPU rec.: CPU time to record all passes. memory / pooled: \
-bytes of the graph's textures on their own and after sharing. G-buf B/sample: bytes per \
-sample of the gbuffer pass's color targets. edge px: pixels the pipeline's debug.edges \
+bytes of the graph's textures on their own and after sharing. G-buf B/sample: what one \
+sample of the gbuffer pass's targets occupies, depth-stencil included (D32S8 as 8 bytes); in \
+brackets its color targets as WebGPU's limit on them counts (each aligned to its component size). edge px: pixels the pipeline's debug.edges \
 marks; shaded/px: shading invocations per pixel (edge pixels once per sample, others once; \
 pipelines without debug.edges by their kind, see results.json). On lavapipe times are CPU \
 rasterisation: compare ratios within one run only. FLIP: mean of NVIDIA's FLIP error \
