@@ -21,6 +21,9 @@
 #   specialise  the same pipelines on every built-in scene without a reference: each
 #               compiled for its scene and, where that differs, for every feature (the
 #               savings table in results.md)
+#   gbuffer     the G-buffer's cost as its targets are removed one at a time
+#               (bench/graphs/gbuffer_cost/) at 1 and 4 samples on builtin:dense and
+#               builtin:lights?count=256, into gbuffer-1x and gbuffer-4x
 # Each part writes to OUT_DIR/PART. Frames: BENCH_FRAMES (default 10) after BENCH_WARMUP
 # (default 2); BENCH_SIZE (default 3840x2160) for a quick try elsewhere.
 #
@@ -106,8 +109,17 @@ for part in $parts; do
       "$bin" bench "${core[@]}" --no-reference --width "$width" --height "$height" "${common[@]}" \
         --out-dir "$out/specialise" || status=$?
       ;;
+    gbuffer)
+      steps=()
+      for graph in bench/graphs/gbuffer_cost/*.ron; do steps+=(--pipeline "$graph"); done
+      for samples in 1 4; do
+        "$bin" bench "${steps[@]}" --samples "$samples" --scene builtin:dense \
+          --scene 'builtin:lights?count=256' --no-reference --width "$width" --height "$height" \
+          "${common[@]}" --out-dir "$out/gbuffer-${samples}x" || status=$?
+      done
+      ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise, gbuffer)" >&2
       status=2
       ;;
   esac
