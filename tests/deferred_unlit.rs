@@ -53,7 +53,7 @@ fn unlit_pixels_through_the_tiled_pass_are_the_average_of_their_covered_samples(
     unlit_pixels_average_their_samples("deferred_msaa_4x_tiled.ron");
 }
 
-fn unlit_pixels_average_their_samples(pipeline: &str) {
+pub fn unlit_pixels_average_their_samples(pipeline: &str) {
     let gpu = gpu();
     let coverage = coverage();
     let image = Render::new(pipeline, "builtin:unlit", (N, N))

@@ -66,3 +66,4 @@ mod specialise_samples;
 mod specialise_unlit;
 mod specialise_variants;
 mod transparency;
+mod visibility;

@@ -1,7 +1,8 @@
 //! The deferred-shading pass plugins. A graph file chains them as
 //! `gbuffer` → `edge_stencil` → `light_edge` + `light_nonedge` → `resolve` → `tonemap`
 //! (the seeds' fragment path), or `gbuffer` → `light_tiled` → `tonemap` (lighting and
-//! resolve in one compute pass),
+//! resolve in one compute pass), or `visibility` → `light_tiled` → `tonemap` (a visibility
+//! buffer, whose triangles the compute pass rebuilds and shades),
 //! with `debug_view` passes reading the G-buffer beside them; `pipelines/deferred_*.ron`
 //! are complete examples. Each plugin's module documents its parameters and slots.
 //! The baselines add `forward` (the scene lit per fragment, pipelines/forward_msaa_4x.ron
@@ -45,6 +46,7 @@ pub use crate::passes::tonemap::{Operator, Tonemap, TonemapParams};
 pub use crate::passes::transparent::{
     CompositeTransparent, CompositeTransparentParams, Transparent, TransparentParams,
 };
+pub use crate::passes::visibility::{Visibility, VisibilityParams};
 
 /// Adds every deferred plugin, sharing `host`, compiling shaders as `variants` says.
 pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variants: Variants) {
@@ -55,6 +57,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(LightNonEdge(shared.clone()))
         .register(LightEdge(shared.clone()))
         .register(LightTiled(shared.clone()))
+        .register(Visibility(shared.clone()))
         .register(Resolve(shared.clone()))
         .register(Tonemap(shared.clone()))
         .register(AutoExposure(shared.clone()))

@@ -9,12 +9,18 @@ use graph_core::shader::Shader;
 const COMMON: &str = include_str!("wgsl/common.wgsl");
 const SCENE: &str = include_str!("wgsl/scene.wgsl");
 const MATERIAL: &str = include_str!("wgsl/material.wgsl");
-const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
+pub(crate) const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
+const GEOMETRY: &str = include_str!("wgsl/geometry.wgsl");
+/// Reads a visibility buffer as gbuffer_read.wgsl reads a G-buffer (with geometry.wgsl).
+pub(crate) const VISIBILITY_READ: &str = concat!(
+    include_str!("wgsl/geometry.wgsl"),
+    include_str!("wgsl/visibility_read.wgsl")
+);
 pub(crate) const VIEW_DEPTH_STORED: &str = include_str!("wgsl/view_depth_stored.wgsl");
 pub(crate) const VIEW_DEPTH_FROM_DEPTH: &str = include_str!("wgsl/view_depth_from_depth.wgsl");
 pub(crate) const EMITTED_HDR: &str = include_str!("wgsl/emitted_hdr.wgsl");
 pub(crate) const EMITTED_RGB9E5: &str = include_str!("wgsl/emitted_rgb9e5.wgsl");
-pub(crate) const EMITTED_NONE: &str = include_str!("wgsl/emitted_none.wgsl");
+pub(crate) const EMITTED_SURFACE: &str = include_str!("wgsl/emitted_surface.wgsl");
 const BRDF: &str = include_str!("wgsl/brdf.wgsl");
 const SURFACE: &str = include_str!("wgsl/surface.wgsl");
 const LIGHTING: &str = include_str!("wgsl/lighting.wgsl");
@@ -55,19 +61,28 @@ pub(crate) const LIGHT: Source = Source {
         include_str!("wgsl/light.wgsl"),
     ],
 };
-/// Needs a generated block after it, with one of the `VIEW_DEPTH_*` and one of the
-/// `EMITTED_*` fragments: see [`crate::plugins::LightTiled`].
+/// Needs a generated block after it, with a reader ([`GBUFFER_READ`] or
+/// [`VISIBILITY_READ`]), one of the `VIEW_DEPTH_*` and one of the `EMITTED_*` fragments:
+/// see [`crate::plugins::LightTiled`].
 pub(crate) const LIGHT_TILED: Source = Source {
     name: "light_tiled.wgsl",
     parts: &[
         COMMON,
         SCENE,
-        GBUFFER_READ,
         BRDF,
         LIGHTING,
         SURFACE,
         EDGE_DETECT,
         include_str!("wgsl/light_tiled.wgsl"),
+    ],
+};
+pub(crate) const VISIBILITY: Source = Source {
+    name: "visibility.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        GEOMETRY,
+        include_str!("wgsl/visibility.wgsl"),
     ],
 };
 pub(crate) const RESOLVE: Source = Source {

@@ -15,7 +15,12 @@ struct MeshData {
     /// mat3x3<f32>: three columns padded to 16 bytes.
     normal_matrix: [[f32; 4]; 3],
     material: u32,
-    _pad: [u32; 3],
+    /// Where the mesh's indices start in the scene's index buffer, and what they add to
+    /// reach the scene's vertex buffer: a visibility buffer's triangle ID is an index
+    /// position / 3, and its shading pass pulls the triangle's vertices through these.
+    first_index: u32,
+    base_vertex: i32,
+    _pad: u32,
 }
 
 /// One mesh's draw: `draw_indexed(indices, base_vertex, instance..instance + 1)`.
@@ -105,7 +110,9 @@ impl MeshFrame {
                 normal_matrix: [normal.x_axis, normal.y_axis, normal.z_axis]
                     .map(|c| c.extend(0.0).to_array()),
                 material: mesh.material as u32,
-                _pad: [0; 3],
+                first_index: index_count - mesh.indices.len() as u32,
+                base_vertex: vertex_count - mesh.vertices.len() as i32,
+                _pad: 0,
             });
         }
         // A scene without meshes (a glTF scene listing no nodes) still binds the buffer:
@@ -146,12 +153,13 @@ impl MeshBuffers {
             vertices: init(
                 "scene vertices",
                 bytemuck::cast_slice(&vertices),
-                wgpu::BufferUsages::VERTEX,
+                // Storage too: visibility-buffer passes pull vertices (geometry.wgsl).
+                wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
             ),
             indices: init(
                 "scene indices",
                 bytemuck::cast_slice(&indices),
-                wgpu::BufferUsages::INDEX,
+                wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
             ),
             data: init(
                 "scene meshes",

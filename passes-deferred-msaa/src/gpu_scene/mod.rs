@@ -11,6 +11,8 @@
 //!   environment maps;
 //! - the meshes ([`GpuScene::draw_meshes`], vertex layout [`mesh::VERTEX_LAYOUT`]) and a
 //!   bind group per material for group 1 ([`GpuScene::material_layout`]);
+//! - the same vertices and indices as storage buffers for visibility-buffer passes
+//!   ([`GpuScene::geometry_layout`], [`GpuScene::geometry_group`], [`GpuScene::pull_meshes`]);
 //! - the light volumes ([`GpuScene::volume_lights`], [`GpuScene::volume_mesh`]).
 //!
 //! Everything is camera-relative: model matrices and light positions are the world ones
@@ -21,6 +23,7 @@
 
 mod camera;
 mod environment;
+mod geometry;
 mod layout;
 mod lights;
 mod materials;
@@ -139,6 +142,7 @@ struct Upload {
     reversed_group: wgpu::BindGroup,
     standard_group: wgpu::BindGroup,
     meshes: mesh::MeshBuffers,
+    geometry: geometry::Geometry,
     materials: materials::Materials,
     lights: lights::LightBuffers,
     sphere: VolumeMesh,
@@ -214,6 +218,7 @@ impl GpuScene {
             material_layout,
             cameras,
             meshes,
+            geometry: geometry::Geometry::new(device),
             materials,
             lights,
             sphere,
@@ -324,16 +329,7 @@ impl GpuScene {
             self.upload.meshes.indices.slice(..),
             wgpu::IndexFormat::Uint32,
         );
-        let mut draws: Vec<(&MeshDraw, MaterialState)> = self
-            .mesh_draws()
-            .filter(|(_, state)| state.blended == (layer == Layer::Blended))
-            .collect();
-        if layer == Layer::Blended {
-            // Farthest first, sorted on every frame as a moving camera or mesh would need;
-            // the sort is stable, so draws at one distance keep the scene's order.
-            draws.sort_by(|(a, _), (b, _)| b.center.length().total_cmp(&a.center.length()));
-        }
-        for (draw, state) in draws {
+        for (draw, state) in self.layer_draws(layer) {
             if !choose(pass, draw, state) {
                 continue;
             }
@@ -348,6 +344,49 @@ impl GpuScene {
                 draw.instance..draw.instance + 1,
             );
         }
+    }
+
+    /// For each opaque draw that `choose` accepts, draws its index range without index or
+    /// vertex buffers: the vertex shader pulls them (geometry.wgsl), and its vertex index
+    /// is the position in the scene's index buffer, from which a visibility buffer takes
+    /// triangle IDs. The caller binds [`geometry_group`](Self::geometry_group) and sets
+    /// the pipeline in `choose`.
+    pub fn pull_meshes(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        mut choose: impl FnMut(&mut wgpu::RenderPass<'_>, &MeshDraw, MaterialState) -> bool,
+    ) {
+        for (draw, state) in self.layer_draws(Layer::Opaque) {
+            if choose(pass, draw, state) {
+                pass.draw(draw.indices.clone(), draw.instance..draw.instance + 1);
+            }
+        }
+    }
+
+    /// The draws of `layer` in the order they are drawn: the blended layer farthest first.
+    fn layer_draws(&self, layer: Layer) -> Vec<(&MeshDraw, MaterialState)> {
+        let mut draws: Vec<(&MeshDraw, MaterialState)> = self
+            .mesh_draws()
+            .filter(|(_, state)| state.blended == (layer == Layer::Blended))
+            .collect();
+        if layer == Layer::Blended {
+            // Farthest first, sorted on every frame as a moving camera or mesh would need;
+            // the sort is stable, so draws at one distance keep the scene's order.
+            draws.sort_by(|(a, _), (b, _)| b.center.length().total_cmp(&a.center.length()));
+        }
+        draws
+    }
+
+    /// The layout of the visibility passes' group 2: the scene's vertices and indices as
+    /// read-only storage (geometry.wgsl).
+    pub fn geometry_layout(&self) -> &wgpu::BindGroupLayout {
+        self.upload.geometry.layout()
+    }
+
+    /// Group 2 of the visibility passes, made on first use; an error when the device cannot
+    /// bind the scene's buffers as storage.
+    pub fn geometry_group(&self, device: &wgpu::Device) -> Result<&wgpu::BindGroup, &str> {
+        self.upload.geometry.group(device, &self.upload.meshes)
     }
 
     /// Whether a full-screen light draw has anything to add: a directional light that

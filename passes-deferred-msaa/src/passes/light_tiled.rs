@@ -137,8 +137,10 @@ impl TiledView {
 }
 
 /// Which G-buffer the pass reads, from the slots the file binds: the full one (`view_depth`
-/// and `hdr`), the lean one (neither; `emission` when the scene emits), or a mix.
+/// and `hdr`), the lean one (neither; `emission` when the scene emits), a mix, or a
+/// visibility buffer (`ids`: triangle IDs, whose triangles the pass rebuilds).
 struct GBufferLayout {
+    visibility: bool,
     stored_view_depth: bool,
     emitted: Emitted,
 }
@@ -146,8 +148,9 @@ struct GBufferLayout {
 enum Emitted {
     /// `hdr` or `emission`.
     Channel(&'static str),
-    /// No channel: unlit colour from albedo, this background elsewhere.
-    None([f64; 3]),
+    /// No channel: what the surface carries (a visibility buffer's emission), unlit colour
+    /// from albedo, this background elsewhere.
+    Surface([f64; 3]),
 }
 
 impl GBufferLayout {
@@ -175,10 +178,30 @@ impl GBufferLayout {
                         "background must be finite and not negative, got {background:?}"
                     )));
                 }
-                Emitted::None(background)
+                Emitted::Surface(background)
             }
         };
+        let visibility = listed("ids");
+        if visibility {
+            if let Some(slot) = [
+                "albedo",
+                "normal",
+                "material",
+                "view_depth",
+                "hdr",
+                "emission",
+            ]
+            .into_iter()
+            .find(|&slot| listed(slot))
+            {
+                return Err(PluginError::Invalid(format!(
+                    "inputs \"ids\" (a visibility buffer) and \"{slot}\" (a G-buffer's) \
+                     are two ways of reading the surfaces: bind one"
+                )));
+            }
+        }
         Ok(GBufferLayout {
+            visibility,
             stored_view_depth: listed("view_depth"),
             emitted,
         })
@@ -186,6 +209,10 @@ impl GBufferLayout {
 
     /// The shader fragments that read this layout.
     fn wgsl(&self) -> String {
+        let reader = match self.visibility {
+            true => shaders::VISIBILITY_READ,
+            false => shaders::GBUFFER_READ,
+        };
         let view_depth = match self.stored_view_depth {
             true => shaders::VIEW_DEPTH_STORED,
             false => shaders::VIEW_DEPTH_FROM_DEPTH,
@@ -193,12 +220,12 @@ impl GBufferLayout {
         let emitted = match self.emitted {
             Emitted::Channel("hdr") => shaders::EMITTED_HDR.to_owned(),
             Emitted::Channel(_) => shaders::EMITTED_RGB9E5.to_owned(),
-            Emitted::None([r, g, b]) => format!(
+            Emitted::Surface([r, g, b]) => format!(
                 "const BACKGROUND: vec3<f32> = vec3<f32>({r:?}, {g:?}, {b:?});\n{}",
-                shaders::EMITTED_NONE
+                shaders::EMITTED_SURFACE
             ),
         };
-        format!("{view_depth}\n{emitted}")
+        format!("{reader}\n{view_depth}\n{emitted}")
     }
 }
 
@@ -214,6 +241,8 @@ pub(crate) struct TiledDispatch {
     /// The shader takes view depth from the depth buffer and needs the convention's
     /// `FAR_DEPTH` (view_depth_from_depth.wgsl).
     pub view_depth_from_depth: bool,
+    /// The shader rebuilds triangles from the scene's geometry (group 2).
+    pub geometry: bool,
     pub tile: u32,
     pub depth_rule: DepthRule,
     pub depth: TextureHandle,
@@ -263,8 +292,27 @@ impl Plugin for LightTiled {
             texels: Texels::Depth,
         }];
         let layout = GBufferLayout::of(slots, params.background)?;
+        if layout.visibility {
+            if params.edges.detector != Detector::Compare {
+                return Err(PluginError::Invalid(
+                    "a visibility buffer's edge pixels are those whose samples show different \
+                     triangles: leave out edges' detector"
+                        .into(),
+                ));
+            }
+            let want =
+                Want::new("the visibility buffer's triangle IDs", textures::IDS).samples(samples);
+            let (ids, _) = textures::input(slots, pass, "ids", want)?;
+            pass.sampled(ids);
+            inputs.push(Input {
+                binding: 0,
+                texture: ids,
+                aspect: Aspect::All,
+                texels: Texels::Uint,
+            });
+        }
         for (slot, what, formats, binding) in GBUFFER_INPUTS {
-            if slot == "view_depth" && !layout.stored_view_depth {
+            if layout.visibility || (slot == "view_depth" && !layout.stored_view_depth) {
                 continue;
             }
             let want = Want::new(what, formats).samples(samples);
@@ -321,6 +369,7 @@ impl Plugin for LightTiled {
         };
         pass.workgroup(entry.workgroup());
         let detector = match params.edges.detector {
+            _ if layout.visibility => 4.0,
             Detector::Compare => 0.0,
             Detector::Centroid | Detector::Coverage => 1.0,
             Detector::All => 2.0,
@@ -345,6 +394,7 @@ impl Plugin for LightTiled {
             source: shader.source().to_owned(),
             constants,
             view_depth_from_depth: !layout.stored_view_depth,
+            geometry: layout.visibility,
             tile: params.tile,
             depth_rule: DepthRule::new(None),
             depth,
@@ -392,12 +442,13 @@ mod gpu {
             };
             let state: &mut InputPass<Key, wgpu::ComputePipeline> =
                 per_scene(&mut state, &scene, || {
-                    InputPass::new(
+                    InputPass::with_geometry(
                         resources,
                         "light_tiled",
                         &dispatch.source,
                         Some(&scene),
                         &dispatch.inputs,
+                        dispatch.geometry,
                     )
                 });
             let convention = dispatch
@@ -432,6 +483,12 @@ mod gpu {
                 .set_bind_group(0, scene.bind_group(convention), &[]);
             ctx.pass
                 .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            if dispatch.geometry {
+                match scene.geometry_group(device) {
+                    Ok(group) => ctx.pass.set_bind_group(2, group, &[]),
+                    Err(why) => panic!("pass \"light_tiled\": {why}"),
+                }
+            }
             let out = resources.shape(dispatch.output);
             ctx.pass.dispatch_workgroups(
                 out.width.div_ceil(dispatch.tile),

@@ -15,3 +15,4 @@ pub(crate) mod light_tiled;
 pub(crate) mod resolve;
 pub(crate) mod tonemap;
 pub(crate) mod transparent;
+pub(crate) mod visibility;

@@ -153,3 +153,23 @@ fn fullscreen_position(index: u32, depth: f32) -> vec4<f32> {
 fn vs_fullscreen(@builtin(vertex_index) index: u32) -> Fullscreen {
     return Fullscreen(fullscreen_position(index, 0.0));
 }
+
+// A sample's surface as the light passes read it: from a G-buffer (gbuffer_read.wgsl) or
+// rebuilt from a visibility buffer (visibility_read.wgsl).
+struct GSample {
+    albedo: vec3<f32>,
+    // Ambient occlusion (albedo's alpha): scales ambient light only.
+    occlusion: f32,
+    normal: vec3<f32>,
+    metallic: f32,
+    roughness: f32,
+    flags: u32,
+    edge_bits: u32,
+    // 0 where no geometry was drawn.
+    view_depth: f32,
+    // What a visibility buffer rebuilds beside the material: the triangle's ID + 1 and
+    // the emission. A G-buffer's samples leave both 0 (its emission is a channel of its
+    // own: emitted_*.wgsl).
+    id: u32,
+    emission: vec3<f32>,
+}

@@ -1,7 +1,7 @@
-// Edge detection: whether a pixel's samples hold different surfaces. One definition for
-// the fragment path (edge.wgsl, which marks the stencil) and the tiled compute pass
+// Edge detection: whether two samples hold different surfaces. One definition for the
+// fragment path (edge.wgsl, which marks the stencil) and the tiled compute pass
 // (light_tiled.wgsl), so both classify every pixel alike.
-// Composed after common.wgsl and gbuffer_read.wgsl.
+// Composed after common.wgsl.
 
 // `compare`: samples differ when their view depths differ by more than this fraction of
 // the larger one, ...
@@ -19,23 +19,4 @@ fn differ(a: GSample, b: GSample) -> bool {
     let bend = dot(a.normal, b.normal) < NORMAL_THRESHOLD;
     let tint = any(abs(a.albedo - b.albedo) > vec3<f32>(ALBEDO_THRESHOLD));
     return depth_step || bend || tint || a.flags != b.flags;
-}
-
-// `compare`: some sample of `pixel` differs from sample 0.
-fn samples_differ(pixel: vec2<i32>) -> bool {
-    let first = load_gsample(pixel, 0u);
-    var edge = false;
-    for (var s = 1u; s < SAMPLES; s++) {
-        edge = edge || differ(first, load_gsample(pixel, s));
-    }
-    return edge;
-}
-
-// `centroid` / `coverage`: some sample's fragment recorded EDGE_BIT.
-fn edge_bit_set(pixel: vec2<i32>) -> bool {
-    var edge = false;
-    for (var s = 0u; s < SAMPLES; s++) {
-        edge = edge || (material_flags(pixel, s).y & EDGE_BIT) != 0u;
-    }
-    return edge;
 }

@@ -9,19 +9,6 @@
 // The depth aspect, where the pass attaches the depth-stencil read-only.
 @group(1) @binding(5) var depth_tex: GTexD;
 
-struct GSample {
-    albedo: vec3<f32>,
-    // Ambient occlusion (albedo's alpha): scales ambient light only.
-    occlusion: f32,
-    normal: vec3<f32>,
-    metallic: f32,
-    roughness: f32,
-    flags: u32,
-    edge_bits: u32,
-    // 0 where no geometry was drawn.
-    view_depth: f32,
-}
-
 fn material_flags(pixel: vec2<i32>, s: u32) -> vec2<u32> {
     let m = textureLoad(material_tex, pixel, s);
     return vec2<u32>(unorm8(m.b), unorm8(m.a));
@@ -39,5 +26,17 @@ fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
     g.flags = unorm8(m.b);
     g.edge_bits = unorm8(m.a);
     g.view_depth = load_view_depth(pixel, s);
+    return g;
+}
+
+// A G-buffer's samples carry no surface IDs: what one fragment wrote is found by
+// comparing values (light_tiled.wgsl's same_fragment).
+const SURFACE_IDS: bool = false;
+
+fn load_gsamples(pixel: vec2<i32>) -> array<GSample, SAMPLES> {
+    var g: array<GSample, SAMPLES>;
+    for (var s = 0u; s < SAMPLES; s++) {
+        g[s] = load_gsample(pixel, s);
+    }
     return g;
 }

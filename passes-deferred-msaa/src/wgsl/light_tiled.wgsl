@@ -16,16 +16,19 @@
 //    background), averaged (box, or resolve.wgsl's tone-mapped weights), stored in the 1x
 //    output.
 //
-// Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl, brdf.wgsl, lighting.wgsl,
+// Composed after common.wgsl, scene.wgsl, brdf.wgsl, lighting.wgsl,
 // surface.wgsl and edge_detect.wgsl, then a generated block defining TILE (the tile's side in
 // pixels), EDGE_SLOTS (max(SAMPLES - 1, 1): the most edge-list entries one invocation
 // shades) and OutTex (the output's storage texture type), and holding the G-buffer's
-// layout: `load_view_depth` (view_depth_stored.wgsl, or view_depth_from_depth.wgsl for the
-// lean G-buffer) and `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or emitted_none.wgsl).
+// layout: `load_gsample` and `load_gsamples` (gbuffer_read.wgsl, or visibility_read.wgsl
+// with geometry.wgsl), `load_view_depth` (view_depth_stored.wgsl, or
+// view_depth_from_depth.wgsl for the lean G-buffer and the visibility buffer) and
+// `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or emitted_surface.wgsl).
 @group(1) @binding(7) var out_tex: OutTex;
 
 // How edge pixels are found: 0 `compare`, 1 EDGE_BIT in the material (`centroid`,
-// `coverage`), 2 every pixel (`all`), 3 none.
+// `coverage`), 2 every pixel (`all`), 3 none, 4 samples of different triangles (a
+// visibility buffer's).
 override DETECTOR: u32 = 0u;
 // Edge pixels shade each fragment once, weighted by the samples it covers, instead of
 // every sample.
@@ -115,10 +118,14 @@ fn reaches_tile(light: LightData, nearest: f32, farthest: f32) -> bool {
 // Whether two samples hold what one fragment wrote: the G-buffer pass shades once per
 // pixel and triangle, so the samples a fragment covers hold identical values (seed
 // 002's unique fragments). Samples of two triangles differ in something, if only in
-// their interpolated view depth. Without a stored view depth each sample has its own
+// their interpolated view depth; a visibility buffer's samples name their triangle.
+// Without a stored view depth each sample has its own
 // depth along the fragment's slope: then depths within the compare detector's
 // threshold count as one fragment's.
 fn same_fragment(a: GSample, b: GSample) -> bool {
+    if SURFACE_IDS {
+        return a.id == b.id;
+    }
     var depth = a.view_depth == b.view_depth;
     if !STORED_VIEW_DEPTH {
         depth = abs(a.view_depth - b.view_depth) <= DEPTH_THRESHOLD * max(a.view_depth, b.view_depth);
@@ -177,6 +184,11 @@ fn is_edge(g: ptr<function, array<GSample, SAMPLES>>) -> bool {
         case 2u: {
             edge = true;
         }
+        case 4u: {
+            for (var s = 1u; s < SAMPLES; s++) {
+                edge = edge || (*g)[s].id != (*g)[0].id;
+            }
+        }
         default: {}
     }
     return edge;
@@ -212,9 +224,7 @@ fn cs_light_tiled(
     var edge = false;
     var fragments = 0u;
     if inside {
-        for (var s = 0u; s < SAMPLES; s++) {
-            g[s] = load_gsample(pixel, s);
-        }
+        g = load_gsamples(pixel);
         edge = is_edge(&g);
         for (var s = 0u; s < SAMPLES; s++) {
             group[s] = s;

@@ -18,6 +18,10 @@ struct MeshData {
     model: mat4x4<f32>,
     normal_matrix: mat3x3<f32>,
     material: u32,
+    // The mesh's first index in the scene's index buffer, and the offset its indices add
+    // to reach the scene's vertex buffer (geometry.wgsl).
+    first_index: u32,
+    base_vertex: i32,
 }
 
 struct MaterialData {

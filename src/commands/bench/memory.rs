@@ -4,9 +4,10 @@
 use graph_core::{Plan, PlannedPass};
 use serde::Serialize;
 
-/// The pass whose color attachments are the G-buffer, in every deferred pipeline (its
-/// alternatives under conditions are named "gbuffer (...)").
-const GBUFFER_PASS: &str = "gbuffer";
+/// The passes whose attachments are the G-buffer, in every deferred pipeline (their
+/// alternatives under conditions are named "gbuffer (...)"): a G-buffer, or a visibility
+/// buffer's IDs and depth.
+const GBUFFER_PASSES: [&str; 2] = ["gbuffer", "visibility"];
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Memory {
@@ -38,8 +39,11 @@ fn gbuffer(plan: &Plan) -> Option<&PlannedPass> {
     plan.passes.iter().find(|p| is_gbuffer(&p.name))
 }
 
-/// "gbuffer", or one of its alternatives under a condition, "gbuffer (unlit)".
+/// "gbuffer" or "visibility", or one of their alternatives under a condition,
+/// "gbuffer (unlit)".
 fn is_gbuffer(pass: &str) -> bool {
-    pass.strip_prefix(GBUFFER_PASS)
-        .is_some_and(|rest| rest.is_empty() || rest.starts_with(" ("))
+    GBUFFER_PASSES.iter().any(|name| {
+        pass.strip_prefix(name)
+            .is_some_and(|rest| rest.is_empty() || rest.starts_with(" ("))
+    })
 }

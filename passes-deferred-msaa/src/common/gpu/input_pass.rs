@@ -1,7 +1,8 @@
 //! The device objects of a pass that reads G-buffer textures (light, tiled light,
 //! G-buffer resolve, full-screen passes): its shader module, the bind group layout of its inputs, a
-//! pipeline layout of the scene's group 0 (when it reads the scene) and the inputs' group
-//! 1, and its pipelines. Built on the first frame of a device or scene upload, kept after.
+//! pipeline layout of the scene's group 0 (when it reads the scene), the inputs' group
+//! 1 and, for a visibility buffer's shading, the scene's geometry as group 2; and its
+//! pipelines. Built on the first frame of a device or scene upload, kept after.
 
 use graph_core::gpu::FrameResources;
 
@@ -27,12 +28,26 @@ impl<K, P> InputPass<K, P> {
         scene: Option<&GpuScene>,
         inputs: &[Input],
     ) -> Self {
+        Self::with_geometry(resources, label, source, scene, inputs, false)
+    }
+
+    /// As [`new`](Self::new), and with `geometry` the scene's geometry as group 2
+    /// ([`GpuScene::geometry_layout`]).
+    pub fn with_geometry(
+        resources: &FrameResources<'_>,
+        label: &str,
+        source: &str,
+        scene: Option<&GpuScene>,
+        inputs: &[Input],
+        geometry: bool,
+    ) -> Self {
         let device = resources.device;
         let inputs = TextureBindings::new(resources, inputs);
-        let layouts = [scene.map(GpuScene::layout), Some(&inputs.layout)];
+        let geometry = scene.filter(|_| geometry).map(GpuScene::geometry_layout);
+        let layouts = [scene.map(GpuScene::layout), Some(&inputs.layout), geometry];
         InputPass {
             module: module(device, label, source),
-            layout: pipeline_layout(device, &layouts),
+            layout: pipeline_layout(device, &layouts[..2 + usize::from(geometry.is_some())]),
             inputs,
             pipelines: Pipelines::default(),
         }

@@ -160,7 +160,7 @@ fn color_target(format: wgpu::TextureFormat, layer: Layer) -> wgpu::ColorTargetS
 /// writes depth: blended surfaces are hidden by opaque ones but never hide each other
 /// (they are drawn back to front instead). Stencil is left alone (cleared to 0 by the
 /// G-buffer pass; the edge pass marks it).
-fn depth_test(
+pub(crate) fn depth_test(
     format: wgpu::TextureFormat,
     convention: DepthConvention,
     layer: Layer,

@@ -1,0 +1,203 @@
+//! `visibility`: draws the host's opaque meshes into a visibility buffer (Burns & Hunt,
+//! "The Visibility Buffer", JCGT 2013): per sample only the depth and the ID of the nearest
+//! triangle, which `light_tiled` with an `ids` input rebuilds and shades.
+//!
+//! ```ron
+//! (name: "visibility", plugin: "visibility",
+//!  params: (reversed_z: true),          // optional, as the G-buffer pass's
+//!  outputs: {
+//!      "ids": "ids",        // rg16uint: triangle ID + 1 (0: nothing drawn), low half in red
+//!      "depth": "depth",    // depth32float (or a depth-stencil: stencil cleared to 0)
+//!  })
+//! ```
+//!
+//! Both with one sample count. 8 bytes per sample with depth32float, where the lean
+//! G-buffer takes 16 and the full one 32. The ID is a triangle's position in the scene's
+//! index buffer / 3 (the raster pass pulls its vertices from storage, so its vertex index
+//! is that position: visibility.wgsl), exact for any triangle count a u32 index buffer
+//! holds. `rg16uint` because WebGPU multisamples it and not `r32uint`: the 32 bits are
+//! split, low half in red. Alpha MASK materials discard below the cutoff using their base
+//! colour factor and vertex colour alpha: textured materials need the G-buffer path
+//! (pipelines/visibility_msaa_4x.ron sends textured scenes there). Alpha BLEND meshes are
+//! left to the `transparent` pass, as with a G-buffer.
+
+use serde::Deserialize;
+
+use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::{AspectAccess, ColorLoad, PassBuilder, PassKind, TextureHandle};
+
+use crate::common::depth::DepthRule;
+use crate::common::plugin::{Recording, Shared};
+use crate::common::textures::{self, Want};
+use crate::shaders;
+
+pub struct Visibility(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VisibilityParams {
+    /// Fixes the depth convention; left out, it follows the depth format.
+    #[serde(default)]
+    pub reversed_z: Option<bool>,
+}
+
+/// The visibility pass as set up: what its `gpu` module records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct VisibilityDraw {
+    pub source: String,
+    pub depth_rule: DepthRule,
+    pub ids: TextureHandle,
+    pub depth: TextureHandle,
+}
+
+impl Recording for VisibilityDraw {
+    #[cfg(feature = "gpu")]
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Render(gpu::record(self, scenes))
+    }
+}
+
+impl Plugin for Visibility {
+    const NAME: &'static str = "visibility";
+    type Params = VisibilityParams;
+
+    fn kind(&self, _: &VisibilityParams) -> PassKind {
+        PassKind::Render
+    }
+
+    fn setup(
+        &self,
+        params: VisibilityParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let depth_rule = DepthRule::new(params.reversed_z);
+        let want = Want::new("the visibility buffer's depth", textures::DEPTH_ANY);
+        let (depth, desc) = textures::output(slots, pass, "depth", want, |pass, h, _| {
+            let stencil = match pass.resource(h).texture().map(|d| d.format) {
+                Some(format) if !format.has_stencil_aspect() => AspectAccess::Absent,
+                _ => AspectAccess::Clear(0),
+            };
+            pass.depth_stencil(h, depth_rule.clear(), stencil)
+        })?;
+        let want =
+            Want::new("the visibility buffer's triangle IDs", textures::IDS).samples(desc.samples);
+        let (ids, _) = textures::output(slots, pass, "ids", want, |pass, h, _| {
+            pass.color_output(h, ColorLoad::Clear([0.0; 4]))
+        })?;
+        let draw = VisibilityDraw {
+            source: shaders::VISIBILITY
+                .compose_with(desc.samples, "")?
+                .source()
+                .to_owned(),
+            depth_rule,
+            ids,
+            depth,
+        };
+        self.0.record(pass, draw);
+        Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the visibility pass: every opaque mesh drawn with its vertices pulled,
+    //! a pipeline per culling and alpha-mask state.
+
+    use std::sync::Arc;
+
+    use graph_core::gpu::RenderContext;
+
+    use super::VisibilityDraw;
+    use crate::common::gpu::per_scene;
+    use crate::common::gpu::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
+    use crate::common::gpu::scene_draw::depth_test;
+    use crate::gpu_scene::{Layer, SceneCache};
+    use crate::scene::DepthConvention;
+
+    #[derive(Clone, PartialEq)]
+    struct Key {
+        ids: wgpu::TextureFormat,
+        depth: wgpu::TextureFormat,
+        samples: u32,
+        convention: DepthConvention,
+        masked: bool,
+        double_sided: bool,
+    }
+
+    struct State {
+        module: wgpu::ShaderModule,
+        layout: wgpu::PipelineLayout,
+        pipelines: Pipelines<Key>,
+    }
+
+    pub(super) fn record(
+        draw: VisibilityDraw,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+        let mut state = None;
+        Box::new(move |ctx| {
+            let resources = ctx.resources;
+            let device = resources.device;
+            let Some(scene) = scenes.for_frame(resources) else {
+                return;
+            };
+            let state = per_scene(&mut state, &scene, || State {
+                module: module(device, "visibility", &draw.source),
+                // Group 1 is the light passes' inputs; geometry is group 2 in both.
+                layout: pipeline_layout(
+                    device,
+                    &[Some(scene.layout()), None, Some(scene.geometry_layout())],
+                ),
+                pipelines: Pipelines::default(),
+            });
+            let geometry = match scene.geometry_group(device) {
+                Ok(group) => group,
+                Err(why) => panic!("pass \"visibility\": {why}"),
+            };
+            let (ids, depth) = (resources.shape(draw.ids), resources.shape(draw.depth));
+            let convention = draw.depth_rule.convention(depth.format);
+            ctx.pass
+                .set_bind_group(0, scene.bind_group(convention), &[]);
+            ctx.pass.set_bind_group(2, geometry, &[]);
+            scene.pull_meshes(ctx.pass, |pass, _, material| {
+                let key = Key {
+                    ids: ids.format,
+                    depth: depth.format,
+                    samples: depth.samples,
+                    convention,
+                    masked: material.masked,
+                    double_sided: material.double_sided,
+                };
+                let (module, layout) = (&state.module, &state.layout);
+                let pipeline = state.pipelines.get(key, |key| {
+                    let targets = [Some(wgpu::ColorTargetState {
+                        format: key.ids,
+                        blend: None,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })];
+                    PipelineDesc {
+                        label: "visibility",
+                        layout,
+                        module,
+                        vertex: "vs_visibility",
+                        buffers: &[],
+                        fragment: match key.masked {
+                            true => "fs_visibility_masked",
+                            false => "fs_visibility",
+                        },
+                        constants: &[],
+                        targets: &targets,
+                        cull: (!key.double_sided).then_some(wgpu::Face::Back),
+                        depth_stencil: Some(depth_test(key.depth, key.convention, Layer::Opaque)),
+                        samples: key.samples,
+                        mask: !0,
+                    }
+                    .build(device)
+                });
+                pass.set_pipeline(pipeline);
+                true
+            });
+        })
+    }
+}

@@ -1,0 +1,107 @@
+// A visibility buffer as the tiled shading pass reads it: per sample the ID + 1 of the
+// triangle it shows (group 1, binding 0, rg16uint, low half in red) and its depth
+// (binding 5); the triangles from the scene's geometry (group 2, geometry.wgsl). Each
+// triangle a pixel shows is rebuilt once, at the mean position of the samples it covers
+// (the pixel center when it covers them all, as a G-buffer pass's centroid
+// interpolation places it): barycentrics where the ray through that point meets the
+// triangle's plane, then its attributes and material as the G-buffer pass computes them.
+// Untextured materials only: pipelines send textured scenes through a G-buffer
+// (pipelines/visibility_msaa_4x.ron). Composed with view_depth_from_depth.wgsl.
+
+@group(1) @binding(0) var ids_tex: GTexU;
+@group(1) @binding(5) var depth_tex: GTexD;
+
+// Samples of one triangle are one fragment, exactly (light_tiled.wgsl's same_fragment).
+const SURFACE_IDS: bool = true;
+
+fn sample_id(pixel: vec2<i32>, s: u32) -> u32 {
+    let halves = textureLoad(ids_tex, pixel, s);
+    return halves.r | (halves.g << 16u);
+}
+
+// Triangle `id` (+ 1) as seen through pixel coordinate `at`.
+fn rebuild(id: u32, at: vec2<f32>) -> GSample {
+    let triangle = id - 1u;
+    let mesh = meshes[mesh_of_triangle(triangle)];
+    let v0 = pull_vertex(3u * triangle, mesh);
+    let v1 = pull_vertex(3u * triangle + 1u, mesh);
+    let v2 = pull_vertex(3u * triangle + 2u, mesh);
+    let p0 = (mesh.model * vec4<f32>(v0.position, 1.0)).xyz;
+    let e1 = (mesh.model * vec4<f32>(v1.position, 1.0)).xyz - p0;
+    let e2 = (mesh.model * vec4<f32>(v2.position, 1.0)).xyz - p0;
+    // Möller-Trumbore on the ray through `at` (two unprojected points: any projection).
+    let origin = unproject(at, 0.5);
+    let ray = unproject(at, 0.25) - origin;
+    let pv = cross(ray, e2);
+    // A triangle seen edge-on covers no sample, so the determinant is never 0 here.
+    let inverse = 1.0 / dot(e1, pv);
+    let t = origin - p0;
+    let u = dot(t, pv) * inverse;
+    let v = dot(ray, cross(t, e1)) * inverse;
+    let b = vec3<f32>(1.0 - u - v, u, v);
+    // Counter-clockwise on screen is the front (wgpu's default front face): the geometric
+    // normal faces the camera.
+    let front = dot(cross(e1, e2), ray) < 0.0;
+    let material = materials[mesh.material];
+    let color = b.x * v0.color + b.y * v1.color + b.z * v2.color;
+    let normal = mesh.normal_matrix * (b.x * v0.normal + b.y * v1.normal + b.z * v2.normal);
+    var g: GSample;
+    g.albedo = (material.base_color * color).rgb;
+    g.occlusion = 1.0;
+    // Back faces reach here only for double-sided materials: light their other side.
+    g.normal = unit_normal(select(-normal, normal, front));
+    g.metallic = material.metallic;
+    g.roughness = material.roughness;
+    g.flags = material.flags;
+    g.id = id;
+    g.emission = material.emission;
+    return g;
+}
+
+// Where triangle `id` is rebuilt in `pixel`: the mean position of the samples showing it.
+fn covered_center(pixel: vec2<i32>, id: u32) -> vec2<f32> {
+    var at = vec2<f32>(0.0);
+    var n = 0.0;
+    for (var s = 0u; s < SAMPLES; s++) {
+        if sample_id(pixel, s) == id {
+            at += sample_position(pixel, s);
+            n += 1.0;
+        }
+    }
+    return at / n;
+}
+
+fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
+    let id = sample_id(pixel, s);
+    var g: GSample;
+    if id != 0u {
+        g = rebuild(id, covered_center(pixel, id));
+    }
+    g.view_depth = load_view_depth(pixel, s);
+    return g;
+}
+
+// A pixel's samples, each triangle rebuilt once.
+fn load_gsamples(pixel: vec2<i32>) -> array<GSample, SAMPLES> {
+    var ids: array<u32, SAMPLES>;
+    for (var s = 0u; s < SAMPLES; s++) {
+        ids[s] = sample_id(pixel, s);
+    }
+    var g: array<GSample, SAMPLES>;
+    for (var s = 0u; s < SAMPLES; s++) {
+        var first = s;
+        for (var j = 0u; j < s; j++) {
+            if ids[j] == ids[s] {
+                first = j;
+                break;
+            }
+        }
+        if first != s {
+            g[s] = g[first];
+        } else if ids[s] != 0u {
+            g[s] = rebuild(ids[s], covered_center(pixel, ids[s]));
+        }
+        g[s].view_depth = load_view_depth(pixel, s);
+    }
+    return g;
+}
