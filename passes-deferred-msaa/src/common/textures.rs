@@ -24,8 +24,9 @@ pub(crate) const HDR: &[TextureFormat] = &[F::Rgba16Float];
 /// The lean G-buffer's emission, RGB9E5 (common.wgsl's `pack_rgb9e5`) low half in red:
 /// WebGPU multisamples rg16uint, not r32uint.
 pub(crate) const EMISSION: &[TextureFormat] = &[F::Rg16Uint];
-/// A visibility buffer's triangle IDs + 1, low half in red (visibility.wgsl).
-pub(crate) const IDS: &[TextureFormat] = &[F::Rg16Uint];
+/// A visibility buffer's triangle IDs + 1: whole, or split low half in red where the
+/// device does not multisample r32uint (geometry.wgsl's `SPLIT_IDS`).
+pub(crate) const IDS: &[TextureFormat] = &[F::R32Uint, F::Rg16Uint];
 pub(crate) const DEPTH_STENCIL: &[TextureFormat] =
     &[F::Depth24PlusStencil8, F::Depth32FloatStencil8];
 /// The G-buffer's depth where no later pass needs stencil (the tiled compute path).

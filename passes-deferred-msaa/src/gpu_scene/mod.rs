@@ -346,17 +346,22 @@ impl GpuScene {
         }
     }
 
-    /// For each opaque draw that `choose` accepts, draws its index range without index or
-    /// vertex buffers: the vertex shader pulls them (geometry.wgsl), and its vertex index
-    /// is the position in the scene's index buffer, from which a visibility buffer takes
-    /// triangle IDs. The caller binds [`geometry_group`](Self::geometry_group) and sets
-    /// the pipeline in `choose`.
+    /// For each opaque draw that `choose` accepts, nearest first, draws its index range
+    /// without index or vertex buffers: the vertex shader pulls them (geometry.wgsl), and
+    /// its vertex index is the position in the scene's index buffer, from which a
+    /// visibility buffer takes triangle IDs. Nearest first so that the depth test rejects
+    /// hidden samples before they reach the (on some chips narrow) sample writes; the ID
+    /// of a sample does not depend on the order except between coplanar triangles. The
+    /// caller binds [`geometry_group`](Self::geometry_group) and sets the pipeline in
+    /// `choose`.
     pub fn pull_meshes(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
         mut choose: impl FnMut(&mut wgpu::RenderPass<'_>, &MeshDraw, MaterialState) -> bool,
     ) {
-        for (draw, state) in self.layer_draws(Layer::Opaque) {
+        let mut draws = self.layer_draws(Layer::Opaque);
+        draws.sort_by(|(a, _), (b, _)| a.center.length().total_cmp(&b.center.length()));
+        for (draw, state) in draws {
             if choose(pass, draw, state) {
                 pass.draw(draw.indices.clone(), draw.instance..draw.instance + 1);
             }

@@ -241,8 +241,9 @@ pub(crate) struct TiledDispatch {
     /// The shader takes view depth from the depth buffer and needs the convention's
     /// `FAR_DEPTH` (view_depth_from_depth.wgsl).
     pub view_depth_from_depth: bool,
-    /// The shader rebuilds triangles from the scene's geometry (group 2).
-    pub geometry: bool,
+    /// A visibility buffer's IDs: the shader rebuilds their triangles from the scene's
+    /// geometry (group 2).
+    pub ids: Option<TextureHandle>,
     pub tile: u32,
     pub depth_rule: DepthRule,
     pub depth: TextureHandle,
@@ -292,6 +293,7 @@ impl Plugin for LightTiled {
             texels: Texels::Depth,
         }];
         let layout = GBufferLayout::of(slots, params.background)?;
+        let mut visibility_ids = None;
         if layout.visibility {
             if params.edges.detector != Detector::Compare {
                 return Err(PluginError::Invalid(
@@ -304,6 +306,7 @@ impl Plugin for LightTiled {
                 Want::new("the visibility buffer's triangle IDs", textures::IDS).samples(samples);
             let (ids, _) = textures::input(slots, pass, "ids", want)?;
             pass.sampled(ids);
+            visibility_ids = Some(ids);
             inputs.push(Input {
                 binding: 0,
                 texture: ids,
@@ -394,7 +397,7 @@ impl Plugin for LightTiled {
             source: shader.source().to_owned(),
             constants,
             view_depth_from_depth: !layout.stored_view_depth,
-            geometry: layout.visibility,
+            ids: visibility_ids,
             tile: params.tile,
             depth_rule: DepthRule::new(None),
             depth,
@@ -419,7 +422,7 @@ mod gpu {
     use super::TiledDispatch;
     use crate::analysis::{GatedShader, Variant};
     use crate::common::depth::far_depth;
-    use crate::common::gpu::{per_scene, InputPass};
+    use crate::common::gpu::{per_scene, split_ids, InputPass};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
 
@@ -427,6 +430,8 @@ mod gpu {
     struct Key {
         convention: DepthConvention,
         variant: Variant,
+        /// The visibility buffer's ID format.
+        ids: Option<wgpu::TextureFormat>,
     }
 
     pub(super) fn record(
@@ -448,7 +453,7 @@ mod gpu {
                         &dispatch.source,
                         Some(&scene),
                         &dispatch.inputs,
-                        dispatch.geometry,
+                        dispatch.ids.is_some(),
                     )
                 });
             let convention = dispatch
@@ -457,6 +462,7 @@ mod gpu {
             let key = Key {
                 convention,
                 variant: scenes.variant(GatedShader::LightTiled),
+                ids: dispatch.ids.map(|ids| resources.shape(ids).format),
             };
             let (module, layout) = (&state.module, &state.layout);
             let pipeline = state.pipelines.get(key, |key| {
@@ -464,6 +470,9 @@ mod gpu {
                 constants.extend(key.variant.constants());
                 if dispatch.view_depth_from_depth {
                     constants.push(("FAR_DEPTH", f64::from(far_depth(key.convention))));
+                }
+                if let Some(ids) = key.ids {
+                    constants.push(("SPLIT_IDS", split_ids(ids)));
                 }
                 device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                     label: Some("light_tiled"),
@@ -483,7 +492,7 @@ mod gpu {
                 .set_bind_group(0, scene.bind_group(convention), &[]);
             ctx.pass
                 .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            if dispatch.geometry {
+            if dispatch.ids.is_some() {
                 match scene.geometry_group(device) {
                     Ok(group) => ctx.pass.set_bind_group(2, group, &[]),
                     Err(why) => panic!("pass \"light_tiled\": {why}"),

@@ -6,7 +6,8 @@
 //! (name: "visibility", plugin: "visibility",
 //!  params: (reversed_z: true),          // optional, as the G-buffer pass's
 //!  outputs: {
-//!      "ids": "ids",        // rg16uint: triangle ID + 1 (0: nothing drawn), low half in red
+//!      "ids": "ids",        // triangle ID + 1 (0: nothing drawn): r32uint, or rg16uint
+//!                           // with the low half in red
 //!      "depth": "depth",    // depth32float (or a depth-stencil: stencil cleared to 0)
 //!  })
 //! ```
@@ -15,8 +16,10 @@
 //! G-buffer takes 16 and the full one 32. The ID is a triangle's position in the scene's
 //! index buffer / 3 (the raster pass pulls its vertices from storage, so its vertex index
 //! is that position: visibility.wgsl), exact for any triangle count a u32 index buffer
-//! holds. `rg16uint` because WebGPU multisamples it and not `r32uint`: the 32 bits are
-//! split, low half in red. Alpha MASK materials discard below the cutoff using their base
+//! holds. `r32uint` where the device multisamples it (adapter-specific format features:
+//! NVIDIA and lavapipe do), else `rg16uint`, which WebGPU multisamples, with the 32 bits
+//! split: pipelines declare `format: "r32uint", fallback: "rg16uint"`, and `rgraph explain`
+//! shows which a device got. Alpha MASK materials discard below the cutoff using their base
 //! colour factor and vertex colour alpha: textured materials need the G-buffer path
 //! (pipelines/visibility_msaa_4x.ron sends textured scenes there). Alpha BLEND meshes are
 //! left to the `transparent` pass, as with a G-buffer.
@@ -109,9 +112,9 @@ mod gpu {
     use graph_core::gpu::RenderContext;
 
     use super::VisibilityDraw;
-    use crate::common::gpu::per_scene;
     use crate::common::gpu::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
     use crate::common::gpu::scene_draw::depth_test;
+    use crate::common::gpu::{per_scene, split_ids};
     use crate::gpu_scene::{Layer, SceneCache};
     use crate::scene::DepthConvention;
 
@@ -186,7 +189,7 @@ mod gpu {
                             true => "fs_visibility_masked",
                             false => "fs_visibility",
                         },
-                        constants: &[],
+                        constants: &[("SPLIT_IDS", split_ids(key.ids))],
                         targets: &targets,
                         cull: (!key.double_sided).then_some(wgpu::Face::Back),
                         depth_stencil: Some(depth_test(key.depth, key.convention, Layer::Opaque)),

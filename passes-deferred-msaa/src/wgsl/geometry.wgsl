@@ -9,6 +9,24 @@
 
 const VERTEX_WORDS: u32 = 14u;
 
+// How a visibility buffer holds a triangle's ID + 1: in r32uint where the device
+// multisamples it, else split over rg16uint (low half in red), which WebGPU multisamples.
+override SPLIT_IDS: bool = true;
+
+fn id_texel(id: u32) -> vec2<u32> {
+    if SPLIT_IDS {
+        return vec2<u32>(id & 0xffffu, id >> 16u);
+    }
+    return vec2<u32>(id, 0u);
+}
+
+fn texel_id(texel: vec4<u32>) -> u32 {
+    if SPLIT_IDS {
+        return texel.r | (texel.g << 16u);
+    }
+    return texel.r;
+}
+
 struct PulledVertex {
     position: vec3<f32>,
     normal: vec3<f32>,

@@ -1,9 +1,9 @@
 // The visibility-buffer raster pass: each opaque mesh drawn without index or vertex
 // buffers (gpu_scene's pull_meshes), its vertices pulled from storage (geometry.wgsl), so
 // the vertex index is the position in the scene's index buffer and index / 3 the
-// triangle. Each sample keeps the nearest triangle's ID + 1 (0: nothing drawn) in an
-// rg16uint target, low half in red: WebGPU multisamples rg16uint, not r32uint. IDs are
-// exact for every triangle an index buffer of u32 positions can hold.
+// triangle. Each sample keeps the nearest triangle's ID + 1 (0: nothing drawn), as
+// geometry.wgsl's id_texel stores it. IDs are exact for every triangle an index buffer of
+// u32 positions can hold.
 // Composed after common.wgsl, scene.wgsl and geometry.wgsl.
 
 struct Varyings {
@@ -27,13 +27,9 @@ fn vs_visibility(@builtin(vertex_index) index: u32, @builtin(instance_index) mes
     return out;
 }
 
-fn split(id: u32) -> vec2<u32> {
-    return vec2<u32>(id & 0xffffu, id >> 16u);
-}
-
 @fragment
 fn fs_visibility(in: Varyings) -> @location(0) vec2<u32> {
-    return split(in.id);
+    return id_texel(in.id);
 }
 
 @fragment
@@ -41,5 +37,5 @@ fn fs_visibility_masked(in: Varyings) -> @location(0) vec2<u32> {
     if in.alpha < materials[in.material].alpha_cutoff {
         discard;
     }
-    return split(in.id);
+    return id_texel(in.id);
 }

@@ -1,5 +1,5 @@
 // A visibility buffer as the tiled shading pass reads it: per sample the ID + 1 of the
-// triangle it shows (group 1, binding 0, rg16uint, low half in red) and its depth
+// triangle it shows (group 1, binding 0, geometry.wgsl's texel_id) and its depth
 // (binding 5); the triangles from the scene's geometry (group 2, geometry.wgsl). Each
 // triangle a pixel shows is rebuilt once, at the mean position of the samples it covers
 // (the pixel center when it covers them all, as a G-buffer pass's centroid
@@ -15,8 +15,7 @@
 const SURFACE_IDS: bool = true;
 
 fn sample_id(pixel: vec2<i32>, s: u32) -> u32 {
-    let halves = textureLoad(ids_tex, pixel, s);
-    return halves.r | (halves.g << 16u);
+    return texel_id(textureLoad(ids_tex, pixel, s));
 }
 
 // Triangle `id` (+ 1) as seen through pixel coordinate `at`.

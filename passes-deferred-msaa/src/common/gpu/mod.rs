@@ -16,6 +16,12 @@ use crate::gpu_scene::GpuScene;
 pub(crate) use input_pass::InputPass;
 pub(crate) use pipeline::{additive, PipelineDesc};
 
+/// geometry.wgsl's `SPLIT_IDS` for a visibility buffer of `format`: rg16uint holds an ID
+/// in two halves, r32uint whole.
+pub(crate) fn split_ids(format: wgpu::TextureFormat) -> f64 {
+    f64::from(u8::from(format == wgpu::TextureFormat::Rg16Uint))
+}
+
 /// The stencil bit edge pixels carry (seed 000's 0x80): the edge pass marks it, the light
 /// passes test it.
 pub(crate) const EDGE_STENCIL: u32 = 0x80;
