@@ -141,3 +141,19 @@ fn the_visibility_buffer_stores_8_bytes_per_sample() {
         assert_eq!(ids.texture.unwrap().samples, samples, "{pipeline}");
     }
 }
+
+/// IDs split over rg16uint (devices that do not multisample r32uint) render the image that
+/// whole r32uint IDs do, exactly, past 2^16 triangles too.
+#[test]
+fn split_ids_render_what_whole_ids_do() {
+    let gpu = gpu();
+    let image = |format: &'static str| {
+        Render::new(VISIBILITY, "builtin:spheres", (160, 90))
+            .scene_edit(past_a_million_triangles)
+            .edit("format: \"r32uint\", fallback: \"rg16uint\"", format)
+            .run(&gpu)
+            .image(&gpu, "color")
+    };
+    let (whole, split) = (image("format: \"r32uint\""), image("format: \"rg16uint\""));
+    assert_eq!(pixels_within(&whole, &split, 0), whole.pixels.len());
+}
