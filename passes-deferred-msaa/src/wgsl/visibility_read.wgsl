@@ -6,7 +6,8 @@
 // interpolation places it): barycentrics where the ray through that point meets the
 // triangle's plane, then its attributes and material as the G-buffer pass computes them.
 // Untextured materials only: pipelines send textured scenes through a G-buffer
-// (pipelines/visibility_msaa_4x.ron). Composed with view_depth_from_depth.wgsl.
+// (pipelines/visibility_msaa_4x.ron). Composed with view_depth_from_depth.wgsl, which the
+// shading pass's per-pixel surface takes its depth from.
 
 @group(1) @binding(0) var ids_tex: GTexU;
 @group(1) @binding(5) var depth_tex: GTexD;
@@ -35,8 +36,10 @@ fn rebuild(id: u32, at: vec2<f32>) -> GSample {
     // A triangle seen edge-on covers no sample, so the determinant is never 0 here.
     let inverse = 1.0 / dot(e1, pv);
     let t = origin - p0;
+    let q = cross(t, e1);
     let u = dot(t, pv) * inverse;
-    let v = dot(ray, cross(t, e1)) * inverse;
+    let v = dot(ray, q) * inverse;
+    let along = dot(e2, q) * inverse;
     let b = vec3<f32>(1.0 - u - v, u, v);
     // Counter-clockwise on screen is the front (wgpu's default front face): the geometric
     // normal faces the camera.
@@ -54,38 +57,45 @@ fn rebuild(id: u32, at: vec2<f32>) -> GSample {
     g.flags = material.flags;
     g.id = id;
     g.emission = material.emission;
+    // The fragment's view depth where it is rebuilt, as a G-buffer stores it: one per
+    // triangle and pixel.
+    g.view_depth = dot(origin + along * ray, camera.forward);
     return g;
 }
 
-// Where triangle `id` is rebuilt in `pixel`: the mean position of the samples showing it.
-fn covered_center(pixel: vec2<i32>, id: u32) -> vec2<f32> {
-    var at = vec2<f32>(0.0);
-    var n = 0.0;
-    for (var s = 0u; s < SAMPLES; s++) {
-        if sample_id(pixel, s) == id {
-            at += sample_position(pixel, s);
-            n += 1.0;
-        }
-    }
-    return at / n;
-}
-
-fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
-    let id = sample_id(pixel, s);
-    var g: GSample;
-    if id != 0u {
-        g = rebuild(id, covered_center(pixel, id));
-    }
-    g.view_depth = load_view_depth(pixel, s);
-    return g;
-}
-
-// A pixel's samples, each triangle rebuilt once.
-fn load_gsamples(pixel: vec2<i32>) -> array<GSample, SAMPLES> {
+fn pixel_ids(pixel: vec2<i32>) -> array<u32, SAMPLES> {
     var ids: array<u32, SAMPLES>;
     for (var s = 0u; s < SAMPLES; s++) {
         ids[s] = sample_id(pixel, s);
     }
+    return ids;
+}
+
+// Sample `s` of `pixel`, whose samples show `ids`: its triangle rebuilt at the mean
+// position of the samples showing it. Nothing drawn: view depth 0, as a G-buffer's.
+fn rebuild_sample(pixel: vec2<i32>, ids: array<u32, SAMPLES>, s: u32) -> GSample {
+    var g: GSample;
+    if ids[s] == 0u {
+        return g;
+    }
+    var at = vec2<f32>(0.0);
+    var n = 0.0;
+    for (var k = 0u; k < SAMPLES; k++) {
+        if ids[k] == ids[s] {
+            at += sample_position(pixel, k);
+            n += 1.0;
+        }
+    }
+    return rebuild(ids[s], at / n);
+}
+
+fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
+    return rebuild_sample(pixel, pixel_ids(pixel), s);
+}
+
+// A pixel's samples, each triangle rebuilt once.
+fn load_gsamples(pixel: vec2<i32>) -> array<GSample, SAMPLES> {
+    let ids = pixel_ids(pixel);
     var g: array<GSample, SAMPLES>;
     for (var s = 0u; s < SAMPLES; s++) {
         var first = s;
@@ -97,10 +107,9 @@ fn load_gsamples(pixel: vec2<i32>) -> array<GSample, SAMPLES> {
         }
         if first != s {
             g[s] = g[first];
-        } else if ids[s] != 0u {
-            g[s] = rebuild(ids[s], covered_center(pixel, ids[s]));
+        } else {
+            g[s] = rebuild_sample(pixel, ids, s);
         }
-        g[s].view_depth = load_view_depth(pixel, s);
     }
     return g;
 }
