@@ -17,11 +17,26 @@
 //!  inputs: {
 //!      "albedo": "albedo", "normal": "normal", "material": "material",
 //!      "view_depth": "view_depth",
-//!      "depth": "depth",   // the G-buffer's depth-stencil: its depth aspect is read
+//!      "depth": "depth",   // the G-buffer's depth(-stencil): its depth aspect is read
 //!      "hdr": "hdr",       // emission and unlit colour, per sample
 //!  },
 //!  outputs: { "resolved": "resolved" })   // 1 sample, rgba16float, storage
 //! ```
+//!
+//! # The G-buffer's layout
+//!
+//! The pass reads what its file binds, and composes the shader to match:
+//! - without `view_depth` (the lean G-buffer), view depth comes from the depth buffer,
+//!   each sample's unprojected at its position, and a non-edge pixel is shaded at the
+//!   mean of its samples' positions and depths (the pixel centre, on the surface);
+//! - for what samples emit, `hdr` (rgba16float), or `emission` (RGB9E5 in rg16uint, the
+//!   lean G-buffer's, plus an unlit surface's colour from albedo), or neither (a scene
+//!   that emits nothing: unlit colour from albedo, and the `background` parameter, black
+//!   by default, where nothing was drawn);
+//! - `ids` instead of albedo, normal, material, view depth and emission: a visibility
+//!   buffer (passes/visibility.rs). Each pixel's distinct triangles are rebuilt from the
+//!   scene's geometry, edge pixels are those whose samples show different triangles, and
+//!   `shading: adaptive` shades each triangle once, exactly (pipelines/visibility_msaa_4x.ron).
 //!
 //! One workgroup of `tile` x `tile` invocations per tile, one per pixel
 //! (light_tiled.wgsl says how): it classifies each pixel as edge or not with
