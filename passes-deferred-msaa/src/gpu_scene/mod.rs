@@ -346,8 +346,8 @@ impl GpuScene {
         }
     }
 
-    /// For each opaque draw that `choose` accepts, in [`layer_draws`](Self::layer_draws)'
-    /// order, draws its index range without index or vertex buffers: the vertex shader
+    /// For each opaque draw that `choose` accepts, nearest first (as `draw_meshes` draws
+    /// them), draws its index range without index or vertex buffers: the vertex shader
     /// pulls them (geometry.wgsl), and its vertex index is the position in the scene's
     /// index buffer, from which a visibility buffer takes triangle IDs. The caller binds
     /// [`geometry_group`](Self::geometry_group) and sets the pipeline in `choose`.
