@@ -22,8 +22,9 @@
 #               compiled for its scene and, where that differs, for every feature (the
 #               savings table in results.md)
 #   gbuffer     the G-buffer's cost as its targets are removed one at a time
-#               (bench/graphs/gbuffer_cost/) at 1 and 4 samples on builtin:dense and
-#               builtin:lights?count=256, into gbuffer-1x and gbuffer-4x
+#               (bench/graphs/gbuffer_cost/), the visibility buffer and its depth-only
+#               floor (bench/graphs/visibility_cost/) at 1 and 4 samples on builtin:dense
+#               and builtin:lights?count=256, into gbuffer-1x and gbuffer-4x
 # Each part writes to OUT_DIR/PART. Frames: BENCH_FRAMES (default 10) after BENCH_WARMUP
 # (default 2); BENCH_SIZE (default 3840x2160) for a quick try elsewhere.
 #
@@ -111,7 +112,10 @@ for part in $parts; do
       ;;
     gbuffer)
       steps=()
-      for graph in bench/graphs/gbuffer_cost/*.ron; do steps+=(--pipeline "$graph"); done
+      for graph in bench/graphs/gbuffer_cost/*.ron pipelines/visibility_msaa_4x.ron \
+          bench/graphs/visibility_cost/depth_only.ron; do
+        steps+=(--pipeline "$graph")
+      done
       for samples in 1 4; do
         "$bin" bench "${steps[@]}" --samples "$samples" --scene builtin:dense \
           --scene 'builtin:lights?count=256' --no-reference --width "$width" --height "$height" \

@@ -12,7 +12,9 @@
 //!  })
 //! ```
 //!
-//! Both with one sample count. 8 bytes per sample with depth32float, where the lean
+//! Both with one sample count; `ids` may be left out, for a depth pre-pass (and the
+//! depth-only floor of bench/graphs/visibility_cost). 8 bytes per sample with
+//! depth32float, where the lean
 //! G-buffer takes 16 and the full one 32. The ID is a triangle's position in the scene's
 //! index buffer / 3 (the raster pass pulls its vertices from storage, so its vertex index
 //! is that position: visibility.wgsl), exact for any triangle count a u32 index buffer
@@ -49,7 +51,7 @@ pub struct VisibilityParams {
 pub(crate) struct VisibilityDraw {
     pub source: String,
     pub depth_rule: DepthRule,
-    pub ids: TextureHandle,
+    pub ids: Option<TextureHandle>,
     pub depth: TextureHandle,
 }
 
@@ -83,11 +85,17 @@ impl Plugin for Visibility {
             };
             pass.depth_stencil(h, depth_rule.clear(), stencil)
         })?;
-        let want =
-            Want::new("the visibility buffer's triangle IDs", textures::IDS).samples(desc.samples);
-        let (ids, _) = textures::output(slots, pass, "ids", want, |pass, h, _| {
-            pass.color_output(h, ColorLoad::Clear([0.0; 4]))
-        })?;
+        let ids = match slots.is_output("ids") {
+            true => {
+                let want = Want::new("the visibility buffer's triangle IDs", textures::IDS)
+                    .samples(desc.samples);
+                let output = textures::output(slots, pass, "ids", want, |pass, h, _| {
+                    pass.color_output(h, ColorLoad::Clear([0.0; 4]))
+                })?;
+                Some(output.0)
+            }
+            false => None,
+        };
         let draw = VisibilityDraw {
             source: shaders::VISIBILITY
                 .compose_with(desc.samples, "")?
@@ -120,7 +128,7 @@ mod gpu {
 
     #[derive(Clone, PartialEq)]
     struct Key {
-        ids: wgpu::TextureFormat,
+        ids: Option<wgpu::TextureFormat>,
         depth: wgpu::TextureFormat,
         samples: u32,
         convention: DepthConvention,
@@ -158,14 +166,15 @@ mod gpu {
                 Ok(group) => group,
                 Err(why) => panic!("pass \"visibility\": {why}"),
             };
-            let (ids, depth) = (resources.shape(draw.ids), resources.shape(draw.depth));
+            let ids = draw.ids.map(|ids| resources.shape(ids).format);
+            let depth = resources.shape(draw.depth);
             let convention = draw.depth_rule.convention(depth.format);
             ctx.pass
                 .set_bind_group(0, scene.bind_group(convention), &[]);
             ctx.pass.set_bind_group(2, geometry, &[]);
             scene.pull_meshes(ctx.pass, |pass, _, material| {
                 let key = Key {
-                    ids: ids.format,
+                    ids,
                     depth: depth.format,
                     samples: depth.samples,
                     convention,
@@ -174,22 +183,29 @@ mod gpu {
                 };
                 let (module, layout) = (&state.module, &state.layout);
                 let pipeline = state.pipelines.get(key, |key| {
-                    let targets = [Some(wgpu::ColorTargetState {
-                        format: key.ids,
-                        blend: None,
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })];
+                    let targets: Vec<Option<wgpu::ColorTargetState>> = key
+                        .ids
+                        .map(|format| wgpu::ColorTargetState {
+                            format,
+                            blend: None,
+                            write_mask: wgpu::ColorWrites::ALL,
+                        })
+                        .into_iter()
+                        .map(Some)
+                        .collect();
                     PipelineDesc {
                         label: "visibility",
                         layout,
                         module,
                         vertex: "vs_visibility",
                         buffers: &[],
-                        fragment: match key.masked {
-                            true => "fs_visibility_masked",
-                            false => "fs_visibility",
+                        fragment: match (key.ids.is_some(), key.masked) {
+                            (true, true) => "fs_visibility_masked",
+                            (true, false) => "fs_visibility",
+                            (false, true) => "fs_depth_masked",
+                            (false, false) => "fs_depth",
                         },
-                        constants: &[("SPLIT_IDS", split_ids(key.ids))],
+                        constants: &[("SPLIT_IDS", key.ids.map_or(0.0, split_ids))],
                         targets: &targets,
                         cull: (!key.double_sided).then_some(wgpu::Face::Back),
                         depth_stencil: Some(depth_test(key.depth, key.convention, Layer::Opaque)),

@@ -39,3 +39,14 @@ fn fs_visibility_masked(in: Varyings) -> @location(0) vec2<u32> {
     }
     return id_texel(in.id);
 }
+
+// Without IDs (a depth pre-pass): depth only.
+@fragment
+fn fs_depth() {}
+
+@fragment
+fn fs_depth_masked(in: Varyings) {
+    if in.alpha < materials[in.material].alpha_cutoff {
+        discard;
+    }
+}
