@@ -9,7 +9,8 @@
 //! lighting, pipelines/deferred_gbuffer_resolve_4x.ron). Every pipeline that renders the
 //! lit scene adds `transparent` and `composite_transparent` under `when: "blend"`: alpha
 //! BLEND meshes, which the opaque passes skip, drawn after lighting and composited onto
-//! the resolved image.
+//! the resolved image. `fxaa` is a post filter on the tone-mapped image
+//! (pipelines/deferred_noaa_fxaa.ron, deferred_msaa_4x_fxaa.ron).
 //!
 //! The G-buffer slots every pass uses the same names for: `albedo`, `normal`,
 //! `material`, `view_depth`, `hdr` and `depth` (the multisampled depth-stencil).
@@ -34,6 +35,7 @@ pub use crate::passes::auto_exposure::{AutoExposure, AutoExposureParams};
 pub use crate::passes::debug_view::{DebugView, DebugViewParams, View};
 pub use crate::passes::edge_stencil::EdgeStencil;
 pub use crate::passes::forward::{Forward, ForwardParams, Shading};
+pub use crate::passes::fxaa::{Fxaa, FxaaParams};
 pub use crate::passes::gbuffer::{GBuffer, GBufferParams};
 pub use crate::passes::gbuffer_resolve::{GBufferResolve, GBufferResolveParams};
 pub use crate::passes::light::{
@@ -61,6 +63,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(DebugView(shared.clone()))
         .register(Forward(shared.clone()))
         .register(GBufferResolve(shared.clone()))
+        .register(Fxaa(shared.clone()))
         .register(Transparent(shared.clone()))
         .register(CompositeTransparent(shared));
 }

@@ -74,6 +74,10 @@ pub(crate) const TONEMAP: Source = Source {
     name: "tonemap.wgsl",
     parts: &[COMMON, SCENE, include_str!("wgsl/tonemap.wgsl")],
 };
+pub(crate) const FXAA: Source = Source {
+    name: "fxaa.wgsl",
+    parts: &[COMMON, include_str!("wgsl/fxaa.wgsl")],
+};
 pub(crate) const DEBUG: Source = Source {
     name: "debug.wgsl",
     parts: &[

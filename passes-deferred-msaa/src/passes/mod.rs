@@ -8,6 +8,7 @@ pub(crate) mod auto_exposure;
 pub(crate) mod debug_view;
 pub(crate) mod edge_stencil;
 pub(crate) mod forward;
+pub(crate) mod fxaa;
 pub(crate) mod gbuffer;
 pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
