@@ -57,6 +57,7 @@ mod frame_inputs;
 mod fuzz;
 mod gpu_execute;
 mod post_fxaa;
+mod post_ssao;
 mod specialise_analysis;
 mod specialise_depth;
 mod specialise_errors;

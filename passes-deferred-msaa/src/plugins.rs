@@ -10,7 +10,9 @@
 //! lit scene adds `transparent` and `composite_transparent` under `when: "blend"`: alpha
 //! BLEND meshes, which the opaque passes skip, drawn after lighting and composited onto
 //! the resolved image. `fxaa` is a post filter on the tone-mapped image
-//! (pipelines/deferred_noaa_fxaa.ron, deferred_msaa_4x_fxaa.ron).
+//! (pipelines/deferred_noaa_fxaa.ron, deferred_msaa_4x_fxaa.ron). `ssao` and `ssao_blur`
+//! compute screen-space ambient occlusion from the G-buffer, which the light passes take
+//! as their optional `ao` input (pipelines/deferred_msaa_4x_ssao.ron).
 //!
 //! The G-buffer slots every pass uses the same names for: `albedo`, `normal`,
 //! `material`, `view_depth`, `hdr` and `depth` (the multisampled depth-stencil).
@@ -43,6 +45,7 @@ pub use crate::passes::light::{
 };
 pub use crate::passes::light_tiled::{EdgeShading, LightTiled, LightTiledParams, TiledView};
 pub use crate::passes::resolve::{Resolve, ResolveMode, ResolveParams};
+pub use crate::passes::ssao::{Ssao, SsaoBlur, SsaoBlurParams, SsaoParams};
 pub use crate::passes::tonemap::{Operator, Tonemap, TonemapParams};
 pub use crate::passes::transparent::{
     CompositeTransparent, CompositeTransparentParams, Transparent, TransparentParams,
@@ -64,6 +67,8 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(Forward(shared.clone()))
         .register(GBufferResolve(shared.clone()))
         .register(Fxaa(shared.clone()))
+        .register(Ssao(shared.clone()))
+        .register(SsaoBlur(shared.clone()))
         .register(Transparent(shared.clone()))
         .register(CompositeTransparent(shared));
 }

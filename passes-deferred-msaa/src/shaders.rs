@@ -78,6 +78,10 @@ pub(crate) const FXAA: Source = Source {
     name: "fxaa.wgsl",
     parts: &[COMMON, include_str!("wgsl/fxaa.wgsl")],
 };
+pub(crate) const SSAO: Source = Source {
+    name: "ssao.wgsl",
+    parts: &[COMMON, SCENE, include_str!("wgsl/ssao.wgsl")],
+};
 pub(crate) const DEBUG: Source = Source {
     name: "debug.wgsl",
     parts: &[

@@ -12,6 +12,8 @@
 //!      "view_depth": "view_depth",
 //!      "depth": "depth_edges",   // the depth-stencil: attached read-only, both aspects
 //!      "hdr": "hdr",             // also an output: the pass adds to it
+//!      "ao": "ao",               // optional: ssao_blur's occlusion (r8unorm, 1 sample),
+//!                                // which scales the ambient and environment light only
 //!  },
 //!  outputs: { "hdr": "hdr_edges" })
 //! (name: "light_nonedge", plugin: "light_nonedge",
@@ -52,6 +54,7 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, TextureHandle};
 
+use crate::common::ao;
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{yes, Recording, Shared, ONE_SAMPLE};
 use crate::common::textures::{self, Input, Texels, Want, GBUFFER_INPUTS};
@@ -222,8 +225,13 @@ fn setup(
         pass.color_output(h, ColorLoad::Load)
     })?;
     textures::must_modify(slots, "hdr", modifies, "adds light to it")?;
+    let ao = ao::input(slots, pass)?;
+    inputs.extend(ao);
     let draw = LightDraw {
-        source: shaders::LIGHT.compose(samples)?.source().to_owned(),
+        source: shaders::LIGHT
+            .compose_with(samples, &ao::wgsl(ao.as_ref()))?
+            .source()
+            .to_owned(),
         depth_rule: DepthRule::new(reversed_z),
         frequency,
         volumes,

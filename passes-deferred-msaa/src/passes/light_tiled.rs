@@ -19,6 +19,8 @@
 //!      "view_depth": "view_depth",
 //!      "depth": "depth",   // the G-buffer's depth-stencil: its depth aspect is read
 //!      "hdr": "hdr",       // emission and unlit colour, per sample
+//!      "ao": "ao",         // optional: ssao_blur's occlusion (r8unorm, 1 sample),
+//!                          // which scales the ambient and environment light only
 //!  },
 //!  outputs: { "resolved": "resolved" })   // 1 sample, rgba16float, storage
 //! ```
@@ -51,6 +53,7 @@ use graph_core::types::TextureFormat;
 use graph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
 
 use super::resolve::{one, resolve_exposure, ResolveMode};
+use crate::common::ao;
 use crate::common::depth::DepthRule;
 use crate::common::edge_detection::{Detector, EdgeDetection};
 use crate::common::plugin::{yes, Recording, Shared};
@@ -216,6 +219,9 @@ impl Plugin for LightTiled {
             samples.saturating_sub(1).max(1),
             format_name(out.format)
         );
+        let ao = ao::input(slots, pass)?;
+        inputs.extend(ao);
+        let generated = generated + &ao::wgsl(ao.as_ref());
         let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
         let Some(entry) = shader.entry("cs_light_tiled", Stage::Compute) else {
             return Err(PluginError::Invalid(

@@ -14,5 +14,6 @@ pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
 pub(crate) mod light_tiled;
 pub(crate) mod resolve;
+pub(crate) mod ssao;
 pub(crate) mod tonemap;
 pub(crate) mod transparent;

@@ -3,7 +3,7 @@
 // once per sample (edge pixels). Directional lights and ambient are one full-screen draw;
 // each point or spot light is a draw of its volume with instance index = light index.
 // Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl, brdf.wgsl, lighting.wgsl and
-// surface.wgsl.
+// surface.wgsl, and before common/ao.rs's generated `with_screen_ao`.
 
 // Clip depth of the far plane: 0 with reversed Z, 1 without.
 override FAR_DEPTH: f32 = 0.0;
@@ -47,7 +47,8 @@ fn shade_sample(pixel: vec2<i32>, s: u32, p: vec3<f32>, light: u32) -> vec4<f32>
     let surface = surface_of(g, p);
     var color = vec3<f32>(0.0);
     if light == ALL_DIRECTIONAL {
-        color = ambient_and_directional(surface);
+        // Screen-space AO, when the pass reads it, darkens the ambient term only.
+        color = ambient_and_directional(with_screen_ao(surface, pixel));
     } else {
         color = shade_light(surface, lights[light]);
     }

@@ -18,7 +18,8 @@
 // Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl, brdf.wgsl, lighting.wgsl,
 // surface.wgsl and edge_detect.wgsl, then a generated block defining TILE (the tile's side in
 // pixels), EDGE_SLOTS (max(SAMPLES - 1, 1): the most edge-list entries one invocation
-// shades) and OutTex (the output's storage texture type).
+// shades) and OutTex (the output's storage texture type), and common/ao.rs's
+// `with_screen_ao`.
 
 @group(1) @binding(6) var hdr_tex: GTexF;
 @group(1) @binding(7) var out_tex: OutTex;
@@ -149,7 +150,9 @@ fn entry_surface(origin: vec2<u32>, code: u32) -> EntrySurface {
     let pixel = vec2<i32>(origin + vec2<u32>(at % TILE, at / TILE));
     let g = load_gsample(pixel, code & 15u);
     let lit = (g.flags & FLAG_LIT) != 0u;
-    return EntrySurface(lit, surface_of(g, fragment_surface(pixel, (code >> 4u) & 0xffu)));
+    // Screen-space AO, when the pass reads it, darkens the ambient term only.
+    let surface = surface_of(g, fragment_surface(pixel, (code >> 4u) & 0xffu));
+    return EntrySurface(lit, with_screen_ao(surface, pixel));
 }
 
 fn is_edge(g: ptr<function, array<GSample, SAMPLES>>) -> bool {
@@ -277,7 +280,7 @@ fn cs_light_tiled(
             }
         }
     }
-    let surface0 = surface_of(g[0], p0);
+    let surface0 = with_screen_ao(surface_of(g[0], p0), pixel);
     var light0 = vec3<f32>(0.0);
     if VIEW == VIEW_SHADED && lit0 {
         light0 = ambient_and_directional(surface0);
