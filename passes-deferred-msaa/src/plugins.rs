@@ -13,6 +13,9 @@
 //! (pipelines/deferred_noaa_fxaa.ron, deferred_msaa_4x_fxaa.ron). `ssao` and `ssao_blur`
 //! compute screen-space ambient occlusion from the G-buffer, which the light passes take
 //! as their optional `ao` input (pipelines/deferred_msaa_4x_ssao.ron).
+//! `light_prepass_gbuffer` and `light_prepass_material` are a light pre-pass renderer's
+//! geometry passes around the light passes' `accumulate: light`
+//! (pipelines/light_prepass_msaa_4x.ron).
 //!
 //! The G-buffer slots every pass uses the same names for: `albedo`, `normal`,
 //! `material`, `view_depth`, `hdr` and `depth` (the multisampled depth-stencil).
@@ -41,7 +44,12 @@ pub use crate::passes::fxaa::{Fxaa, FxaaParams};
 pub use crate::passes::gbuffer::{GBuffer, GBufferParams};
 pub use crate::passes::gbuffer_resolve::{GBufferResolve, GBufferResolveParams};
 pub use crate::passes::light::{
-    EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams, PixelSamples,
+    Accumulate, EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams,
+    PixelSamples,
+};
+pub use crate::passes::light_prepass::{
+    LightPrepassGBuffer, LightPrepassGBufferParams, LightPrepassMaterial,
+    LightPrepassMaterialParams,
 };
 pub use crate::passes::light_tiled::{EdgeShading, LightTiled, LightTiledParams, TiledView};
 pub use crate::passes::resolve::{Resolve, ResolveMode, ResolveParams};
@@ -68,6 +76,8 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(GBufferResolve(shared.clone()))
         .register(Fxaa(shared.clone()))
         .register(Ssao(shared.clone()))
+        .register(LightPrepassGBuffer(shared.clone()))
+        .register(LightPrepassMaterial(shared.clone()))
         .register(SsaoBlur(shared.clone()))
         .register(Transparent(shared.clone()))
         .register(CompositeTransparent(shared));

@@ -12,6 +12,7 @@ pub(crate) mod fxaa;
 pub(crate) mod gbuffer;
 pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
+pub(crate) mod light_prepass;
 pub(crate) mod light_tiled;
 pub(crate) mod resolve;
 pub(crate) mod ssao;
