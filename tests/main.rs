@@ -56,6 +56,7 @@ mod extremes_volumes;
 mod frame_inputs;
 mod fuzz;
 mod gpu_execute;
+mod light_prepass;
 mod post_fxaa;
 mod post_ssao;
 mod specialise_analysis;
