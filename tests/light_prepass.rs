@@ -5,6 +5,7 @@
 //! bound on the built-in scenes, whose coloured lights and metals its one specular
 //! channel approximates.
 
+use graph_core::file::{load_str_with, GraphParams, Registry};
 use passes_deferred_msaa::glam::{DVec3, Vec3};
 use passes_deferred_msaa::scene::{Camera, Light, LightKind, Projection, Scene};
 
@@ -194,4 +195,29 @@ fn light_prepass_is_close_to_deferred_msaa_on_the_builtin_scenes() {
             "{scene}: only {close} of {total} within 4/255"
         );
     }
+}
+
+/// The light buffer holds no ambient light, so a light pass accumulating it has no use
+/// for SSAO's `ao`, and a file that gives one is told so, naming the pass and the slot.
+#[test]
+fn light_prepass_light_passes_refuse_an_ao_input() {
+    let mut registry = Registry::with_builtins();
+    passes_deferred_msaa::register(&mut registry, None);
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("pipelines")
+        .join(PIPELINE);
+    let text = std::fs::read_to_string(&path).expect("the light pre-pass pipeline");
+    let edited = text.replace(
+        r#""depth": "depth_edges", "hdr": "light_edges","#,
+        r#""depth": "depth_edges", "hdr": "light_edges", "ao": "light","#,
+    );
+    assert_ne!(edited, text);
+    let Err(error) = load_str_with(&path, &edited, &registry, &GraphParams::new()) else {
+        panic!("an ao input to a light-buffer pass was accepted");
+    };
+    let error = error.to_string();
+    assert!(
+        error.contains("pass \"light the rest\"") && error.contains("slot \"ao\""),
+        "{error}"
+    );
 }

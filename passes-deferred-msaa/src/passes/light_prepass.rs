@@ -4,7 +4,7 @@
 //! pass of deferred MSAA (pipelines/light_prepass_msaa_4x.ron).
 //!
 //! ```ron
-//! (name: "thin gbuffer", plugin: "light_prepass_gbuffer",   // params: reversed_z
+//! (name: "gbuffer (thin)", plugin: "light_prepass_gbuffer",  // params: reversed_z
 //!  outputs: {
 //!      "normal": "normal",          // rg16float: octahedral shading normal
 //!      "material": "material",      // rgba8unorm: gbuffer's layout; roughness and flags are read
