@@ -21,6 +21,9 @@
 #   specialise  the same pipelines on every built-in scene without a reference: each
 #               compiled for its scene and, where that differs, for every feature (the
 #               savings table in results.md)
+#   variants    FXAA, SSAO and the light pre-pass against deferred and forward MSAA on every
+#               built-in scene, with the reference (issue 16's rows; not in the default set:
+#               BENCH_PARTS=variants)
 # Each part writes to OUT_DIR/PART. Frames: BENCH_FRAMES (default 10) after BENCH_WARMUP
 # (default 2); BENCH_SIZE (default 3840x2160) for a quick try elsewhere.
 #
@@ -81,6 +84,10 @@ core=(--pipeline pipelines/deferred_noaa.ron --pipeline pipelines/deferred_msaa_
       --pipeline pipelines/deferred_per_sample_4x.ron --pipeline pipelines/deferred_noaa_tiled.ron
       --pipeline pipelines/deferred_msaa_4x_tiled.ron --pipeline pipelines/deferred_per_sample_4x_tiled.ron
       --pipeline pipelines/forward_msaa_4x.ron)
+variants=(--pipeline pipelines/deferred_noaa.ron --pipeline pipelines/deferred_noaa_fxaa.ron
+          --pipeline pipelines/deferred_msaa_4x.ron --pipeline pipelines/deferred_msaa_4x_fxaa.ron
+          --pipeline pipelines/deferred_msaa_4x_ssao.ron --pipeline pipelines/light_prepass_msaa_4x.ron
+          --pipeline pipelines/deferred_msaa_4x_tiled.ron --pipeline pipelines/forward_msaa_4x.ron)
 common=(--frames "$frames" --warmup "$warmup")
 status=0
 for part in $parts; do
@@ -106,8 +113,12 @@ for part in $parts; do
       "$bin" bench "${core[@]}" --no-reference --width "$width" --height "$height" "${common[@]}" \
         --out-dir "$out/specialise" || status=$?
       ;;
+    variants)
+      "$bin" bench "${variants[@]}" --width "$width" --height "$height" "${common[@]}" \
+        --out-dir "$out/variants" || status=$?
+      ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise, variants)" >&2
       status=2
       ;;
   esac

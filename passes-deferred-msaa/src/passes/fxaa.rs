@@ -144,7 +144,18 @@ impl Plugin for Fxaa {
     ) -> Result<(), PluginError> {
         let steps = params.steps()?;
         let want = Want::new("the tone-mapped image FXAA filters", textures::DISPLAY).samples(1);
-        let (mut input, _) = textures::sampled(slots, pass, "ldr", want, 0)?;
+        let (mut input, desc) = textures::sampled(slots, pass, "ldr", want, 0)?;
+        // The shader's luma depends on whether reads decode sRGB, fixed at setup: every
+        // format the device may give the texture must agree.
+        let linear = desc.format.is_srgb();
+        if desc.formats().any(|f| f.is_srgb() != linear) {
+            return Err(PluginError::Slot {
+                slot: "ldr".to_owned(),
+                resource: slots.resource("ldr").unwrap_or("ldr").to_owned(),
+                why: "may be sRGB or not, depending on the device: FXAA needs to know which"
+                    .to_owned(),
+            });
+        }
         input.texels = Texels::Filtered { sampler: 1 };
         let want = Want::new("the anti-aliased output", textures::DISPLAY).samples(1);
         let (target, _) = textures::color_output(slots, pass, "color", want, [0.0; 4])?;
@@ -156,6 +167,7 @@ impl Plugin for Fxaa {
                 .to_owned(),
             entry: "fs_fxaa",
             constants: vec![
+                ("LINEAR_INPUT", f64::from(u8::from(linear))),
                 ("SUBPIX", f64::from(params.subpix)),
                 ("EDGE_THRESHOLD", f64::from(params.edge_threshold)),
                 ("EDGE_THRESHOLD_MIN", f64::from(params.edge_threshold_min)),

@@ -19,11 +19,15 @@ override EDGE_THRESHOLD: f32 = 0.166;
 // alone.
 override EDGE_THRESHOLD_MIN: f32 = 0.0833;
 
-// FXAA wants perceptual luma. The input is an sRGB texture, so the sampler returns linear
-// color: the square root of its linear luma approximates the encoded one (Fxaa3_11.h's
-// suggestion for linear input).
+// Whether the sampler returns linear colour: an sRGB texture (true) decodes on reads, an
+// rgba8unorm one holds the encoded values.
+override LINEAR_INPUT: bool = true;
+
+// FXAA wants perceptual luma. From linear colour, the square root of its linear luma
+// approximates the encoded one (Fxaa3_11.h's suggestion for linear input).
 fn fxaa_luma(rgb: vec3<f32>) -> f32 {
-    return sqrt(dot(rgb, vec3<f32>(0.299, 0.587, 0.114)));
+    let luma = dot(rgb, vec3<f32>(0.299, 0.587, 0.114));
+    return select(luma, sqrt(luma), LINEAR_INPUT);
 }
 
 fn fxaa_tap(uv: vec2<f32>) -> vec3<f32> {
