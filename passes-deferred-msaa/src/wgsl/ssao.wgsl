@@ -116,8 +116,9 @@ fn fs_gtao(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     }
     // Normalised by the same slices without occluders, so a surface with nothing above it
     // is exactly 1 whatever its tilt and the slice count; occluders only narrow the arcs,
-    // and the clamp keeps rounding from brightening.
-    let ao = clamp(visible / max(unoccluded, 1e-20), 0.0, 1.0);
+    // and the clamp keeps rounding from brightening. A surface seen exactly edge-on by
+    // its only slice has no arc to measure: unoccluded.
+    let ao = select(1.0, clamp(visible / unoccluded, 0.0, 1.0), unoccluded > 1e-6);
     return vec4<f32>(ao, ao, ao, 1.0);
 }
 
