@@ -138,19 +138,36 @@ fn ray(camera: &Camera, x: u32, y: u32) -> (DVec3, DVec3) {
     (camera.position + near, (farther - near).normalize())
 }
 
-/// The floor at a right-angle corner: each pixel's AO against the visibility the
-/// geometry gives at the point it sees (GTAO with a hard radius integrates exactly that
-/// for a floor and a wall; the slices, steps and blur leave a bounded error): within
-/// 0.02 on average and 0.12 at worst (measured on lavapipe: 0.0071 and 0.080), about 1/2
-/// at the crease, and exactly 1 beyond the radius and the blur.
-#[test]
-fn ssao_darkens_a_right_angle_corner_by_its_visibility() {
+/// How the AO of the floor at a right-angle corner compares with the visibility the
+/// geometry gives at the point each pixel sees.
+struct CornerFit {
+    /// Floor pixels within the radius (and the blur) of the wall.
+    count: usize,
+    mean: f64,
+    /// The largest error, where, and how far from the wall.
+    worst: (f64, u32, u32, f64),
+    /// The AO of floor pixels less than 0.03 from the wall.
+    crease: Vec<f64>,
+}
+
+/// Renders the corner (SSAO at half resolution with `half`) and fits its AO. Floor
+/// pixels beyond the radius and the blur must be exactly 1.
+fn corner_fit(half: bool) -> CornerFit {
     let gpu = gpu();
     let (parts, scene) = corner(true);
-    let images = render(PIPELINE, &scene).read(&gpu, &["debug.ao"]);
+    let mut render = render(PIPELINE, &scene);
+    if half {
+        render = render.edit(HALF.0, HALF.1);
+    }
+    let images = render.read(&gpu, &["debug.ao"]);
     let ao = ao_of(&images[0]);
-    let (mut sum, mut count, mut worst) = (0.0, 0usize, (0.0, 0, 0, 0.0));
-    let mut crease = Vec::new();
+    let blur = if half { 0.5 } else { 0.3 };
+    let mut fit = CornerFit {
+        count: 0,
+        mean: 0.0,
+        worst: (0.0, 0, 0, 0.0),
+        crease: Vec::new(),
+    };
     for y in 4..SIZE.1 - 4 {
         for x in 4..SIZE.0 - 4 {
             let (origin, dir) = ray(&scene.camera, x, y);
@@ -163,36 +180,77 @@ fn ssao_darkens_a_right_angle_corner_by_its_visibility() {
                 continue;
             }
             let d = hit.point.z;
-            let expected = corner_visibility(d);
             let got = ao[(y * SIZE.0 + x) as usize];
-            if d > RADIUS + 0.3 {
+            if d > RADIUS + blur {
                 assert_eq!(got, 1.0, "({x}, {y}), {d:.2} from the wall, is occluded");
                 continue;
             }
             if d < 0.03 {
-                crease.push(got);
+                fit.crease.push(got);
             }
-            let error = (got - expected).abs();
-            sum += error;
-            count += 1;
-            if error > worst.0 {
-                worst = (error, x, y, d);
+            let error = (got - corner_visibility(d)).abs();
+            fit.mean += error;
+            fit.count += 1;
+            if error > fit.worst.0 {
+                fit.worst = (error, x, y, d);
             }
         }
     }
-    let mean = sum / count as f64;
+    fit.mean /= fit.count.max(1) as f64;
     println!(
-        "{count} floor pixels within the radius: mean error {mean:.4}, worst {:.4} at ({}, {}) \
-         {:.3} from the wall; crease {crease:?}",
-        worst.0, worst.1, worst.2, worst.3
+        "{} floor pixels within the radius: mean error {:.4}, worst {:.4} at ({}, {}) \
+         {:.3} from the wall; crease {:?}",
+        fit.count, fit.mean, fit.worst.0, fit.worst.1, fit.worst.2, fit.worst.3, fit.crease
     );
-    assert!(count > 50, "only {count} floor pixels near the wall");
-    assert!(mean < 0.02, "mean error {mean:.4}");
-    assert!(worst.0 < 0.12, "worst error {worst:?}");
-    assert!(!crease.is_empty(), "no pixel at the crease");
-    for got in crease {
+    assert!(
+        fit.count > 50,
+        "only {} floor pixels near the wall",
+        fit.count
+    );
+    assert!(!fit.crease.is_empty(), "no pixel at the crease");
+    fit
+}
+
+/// The pipeline's raw AO at half the G-buffer's size.
+const HALF: (&str, &str) = (
+    r#""ao_raw": Texture(format: "r8unorm", when"#,
+    r#""ao_raw": Texture(format: "r8unorm", size: Relative(0.5), when"#,
+);
+
+/// The floor at a right-angle corner: each pixel's AO against the visibility the
+/// geometry gives at the point it sees (GTAO with a hard radius integrates exactly that
+/// for a floor and a wall; the slices, steps and blur leave a bounded error): within
+/// 0.02 on average and 0.12 at worst (measured on lavapipe: 0.0071 and 0.080), about 1/2
+/// at the crease, and exactly 1 beyond the radius and the blur.
+#[test]
+fn ssao_darkens_a_right_angle_corner_by_its_visibility() {
+    let fit = corner_fit(false);
+    assert!(fit.mean < 0.02, "mean error {:.4}", fit.mean);
+    assert!(fit.worst.0 < 0.12, "worst error {:?}", fit.worst);
+    for got in fit.crease {
         assert!((0.45..0.63).contains(&got), "AO {got:.3} at the crease");
     }
+}
+
+/// At half resolution (the raw AO at half the G-buffer's size, upsampled by the blur's
+/// depth weights) a plane is still exactly 1, and the corner is within 0.03 on average
+/// and 0.2 at worst, the crease between 0.45 and 0.75 (measured on lavapipe: 0.012 and
+/// 0.18, the crease 0.57 to 0.71: a texel's AO is its block's top-left pixel's, up to a
+/// pixel farther from the wall).
+#[test]
+fn ssao_at_half_resolution_fits_the_corner_and_leaves_a_plane_alone() {
+    let fit = corner_fit(true);
+    assert!(fit.mean < 0.03, "mean error {:.4}", fit.mean);
+    assert!(fit.worst.0 < 0.2, "worst error {:?}", fit.worst);
+    for got in fit.crease {
+        assert!((0.45..0.75).contains(&got), "AO {got:.3} at the crease");
+    }
+    let (_, plane) = corner(false);
+    let images = render(PIPELINE, &plane)
+        .edit(HALF.0, HALF.1)
+        .read(&gpu(), &["debug.ao"]);
+    let not_one = images[0].pixels.iter().filter(|p| p[0] != 255).count();
+    assert_eq!(not_one, 0, "{not_one} pixels of the plane are occluded");
 }
 
 /// AO only darkens: every pixel of the resolved HDR image with SSAO is at most the one
@@ -307,6 +365,20 @@ fn ssao_refuses_bad_parameters() {
             "{edit}: {error}"
         );
     }
+    let edited = text.replace(
+        HALF.0,
+        r#""ao_raw": Texture(format: "r8unorm", size: Relative(0.25), when"#,
+    );
+    let Err(error) = load_str_with(&path, &edited, &registry, &GraphParams::new()) else {
+        panic!("AO at a quarter of the G-buffer's size was accepted");
+    };
+    let error = error.to_string();
+    assert!(
+        error.contains("pass \"ssao\"")
+            && error.contains("slot \"ao\"")
+            && error.contains("must be the G-buffer's size (Relative(1.0)) or half of it"),
+        "{error}"
+    );
     let edited = text.replace(
         r#"plugin: "ssao_blur",
             when: "!unlit_only & !no_lights",

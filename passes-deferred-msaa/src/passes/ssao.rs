@@ -1,5 +1,5 @@
 //! `ssao` and `ssao_blur`: screen-space ambient occlusion on the multisampled G-buffer
-//! (GTAO, Jimenez et al. 2016, at full resolution), then a bilateral blur; the light
+//! (GTAO, Jimenez et al. 2016, at full or half resolution), then a bilateral blur; the light
 //! passes take the result as their optional `ao` input (common/ao.rs) and darken only
 //! the ambient and environment light with it, as seed 004 argues: occlusion of light
 //! from everywhere, not a shadow of the direct lights.
@@ -8,7 +8,7 @@
 //! (name: "ssao", plugin: "ssao",
 //!  params: (radius: 0.5, directions: 4, steps: 4, bias: 0.05),   // these defaults
 //!  inputs: { "normal": "normal", "view_depth": "view_depth" },   // the G-buffer's, any samples
-//!  outputs: { "ao": "ao_raw" })                                    // r8unorm, 1 sample
+//!  outputs: { "ao": "ao_raw" })     // r8unorm, 1 sample; the G-buffer's size or half
 //! (name: "ssao blur", plugin: "ssao_blur",
 //!  params: (depth_tolerance: 0.05),                                // the default
 //!  inputs: { "raw": "ao_raw", "view_depth": "view_depth" },
@@ -28,6 +28,12 @@
 //! side of a silhouette. With a `color` output instead of `ao` it writes the blurred AO
 //! as grey: the debug view of the AO term.
 //!
+//! The resolution follows the raw AO texture's size: the G-buffer's, or half of it
+//! (`size: Relative(0.5)` where the G-buffer is `Relative(1.0)`), where `ssao` works on
+//! each 2 x 2 block's top-left pixel (a quarter of the work) and the blur, at the
+//! G-buffer's size, upsamples with the same depth weights. Other sizes are errors naming
+//! the slot.
+//!
 //! Which depth of a multisampled pixel: sample 0's. The per-pixel light pass shades
 //! non-edge pixels from sample 0, so there the occlusion belongs to exactly the surface
 //! it darkens (a min or max of the samples would too, since all samples agree there).
@@ -43,7 +49,7 @@
 use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{PassBuilder, PassKind};
+use graph_core::{PassBuilder, PassKind, Size, TextureDesc};
 
 use crate::common::ao::AO;
 use crate::common::fullscreen::Fullscreen;
@@ -121,18 +127,42 @@ impl SsaoParams {
     }
 }
 
-/// The G-buffer's view depth, bound at 1, and its sample count.
+/// The G-buffer's view depth, bound at 1, and its description.
 fn view_depth(
     slots: &mut Slots<'_>,
     pass: &mut PassBuilder<'_>,
-    samples: Option<u32>,
-) -> Result<(textures::Input, u32), PluginError> {
-    let want = Want {
-        samples,
-        ..Want::new("the G-buffer's view depth", textures::VIEW_DEPTH)
+) -> Result<(textures::Input, TextureDesc), PluginError> {
+    let want = Want::new("the G-buffer's view depth", textures::VIEW_DEPTH);
+    textures::sampled(slots, pass, "view_depth", want, 1)
+}
+
+/// G-buffer pixels per side of a texel of `slot`'s texture (`ao`): 1 at the G-buffer's
+/// size, 2 at half of it (fs_gtao then works on each 2 x 2 block's top-left pixel, and
+/// fs_blur upsamples); `allow_half` false admits 1 only.
+fn texel_scale(
+    slots: &Slots<'_>,
+    slot: &str,
+    gbuffer: Size,
+    ao: Size,
+    allow_half: bool,
+) -> Result<i32, PluginError> {
+    let half = match (gbuffer, ao) {
+        (g, a) if g == a => return Ok(1),
+        (Size::Relative(g), Size::Relative(a)) => a * 2.0 == g,
+        (Size::Absolute(gw, gh), Size::Absolute(aw, ah)) => (aw * 2, ah * 2) == (gw, gh),
+        _ => false,
     };
-    let (input, desc) = textures::sampled(slots, pass, "view_depth", want, 1)?;
-    Ok((input, desc.samples))
+    match (half, allow_half) {
+        (true, true) => Ok(2),
+        _ => Err(PluginError::Slot {
+            slot: slot.to_owned(),
+            resource: slots.resource(slot).unwrap_or(slot).to_owned(),
+            why: format!(
+                "is {ao:?}, but must be the G-buffer's size ({gbuffer:?}){}",
+                if allow_half { " or half of it" } else { "" }
+            ),
+        }),
+    }
 }
 
 impl Plugin for Ssao {
@@ -150,11 +180,13 @@ impl Plugin for Ssao {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         params.check()?;
-        let (depth, samples) = view_depth(slots, pass, None)?;
+        let (depth, gbuffer) = view_depth(slots, pass)?;
+        let samples = gbuffer.samples;
         let want = Want::new("the G-buffer's normals", textures::NORMAL).samples(samples);
         let (normal, _) = textures::sampled(slots, pass, "normal", want, 0)?;
         let want = Want::new("the ambient occlusion", AO).samples(1);
-        let (target, _) = textures::color_output(slots, pass, "ao", want, [1.0; 4])?;
+        let (target, ao) = textures::color_output(slots, pass, "ao", want, [1.0; 4])?;
+        let scale = texel_scale(slots, "ao", gbuffer.size, ao.size, true)?;
         let draw = Fullscreen {
             label: "ssao",
             source: shaders::SSAO.compose(samples)?.source().to_owned(),
@@ -164,6 +196,7 @@ impl Plugin for Ssao {
                 ("DIRECTIONS", f64::from(params.directions)),
                 ("STEPS", f64::from(params.steps)),
                 ("BIAS", f64::from(params.bias)),
+                ("SCALE", f64::from(scale)),
             ],
             inputs: vec![normal, depth],
             reads_scene: true,
@@ -196,20 +229,26 @@ impl Plugin for SsaoBlur {
                 "SSAO blur's depth_tolerance is {tolerance}, but must be finite and positive"
             )));
         }
-        let (depth, samples) = view_depth(slots, pass, None)?;
+        let (depth, gbuffer) = view_depth(slots, pass)?;
+        let samples = gbuffer.samples;
         let want = Want::new("the unblurred ambient occlusion", AO).samples(1);
-        let (raw, _) = textures::sampled(slots, pass, "raw", want, 2)?;
+        let (raw, raw_desc) = textures::sampled(slots, pass, "raw", want, 2)?;
+        let scale = texel_scale(slots, "raw", gbuffer.size, raw_desc.size, true)?;
         // The AO for the light passes, or the debug view of it.
         let (slot, want) = match slots.is_output("color") {
             true => ("color", Want::new("the AO debug view", textures::DISPLAY)),
             false => ("ao", Want::new("the ambient occlusion", AO)),
         };
-        let (target, _) = textures::color_output(slots, pass, slot, want.samples(1), [1.0; 4])?;
+        let (target, out) = textures::color_output(slots, pass, slot, want.samples(1), [1.0; 4])?;
+        texel_scale(slots, slot, gbuffer.size, out.size, false)?;
         let draw = Fullscreen {
             label: "ssao_blur",
             source: shaders::SSAO.compose(samples)?.source().to_owned(),
             entry: "fs_blur",
-            constants: vec![("BLUR_DEPTH", f64::from(tolerance))],
+            constants: vec![
+                ("BLUR_DEPTH", f64::from(tolerance)),
+                ("SCALE", f64::from(scale)),
+            ],
             inputs: vec![raw, depth],
             reads_scene: false,
             target: Some(target),

@@ -25,6 +25,9 @@ override BIAS: f32 = 0.05;
 // fs_blur: a neighbour's weight falls from 1 to 0 as its view depth departs from the
 // pixel's by this fraction of it.
 override BLUR_DEPTH: f32 = 0.05;
+// G-buffer pixels per AO texel side: 1 at full resolution, 2 at half (passes/ssao.rs).
+// At half resolution a texel's occlusion is its 2 x 2 block's top-left pixel's.
+override SCALE: i32 = 1;
 
 const HALF_PI: f32 = 1.5707963267949;
 
@@ -49,7 +52,8 @@ const BAYER = array<u32, 16>(0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u,
 
 @fragment
 fn fs_gtao(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let pixel = pixel_of(position);
+    let texel = pixel_of(position);
+    let pixel = texel * SCALE;
     let z = g_depth(pixel);
     // No geometry: nothing to occlude.
     if z <= 0.0 {
@@ -67,7 +71,8 @@ fn fs_gtao(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     if radius_px < 1.0 {
         return vec4<f32>(1.0);
     }
-    let tile = (u32(pixel.x) & 3u) + 4u * (u32(pixel.y) & 3u);
+    // By AO texel, so that fs_blur's window of 4 x 4 texels holds all sixteen rotations.
+    let tile = (u32(texel.x) & 3u) + 4u * (u32(texel.y) & 3u);
     let rotation = (f32(BAYER[tile]) + 0.5) / 16.0;
     let stride = (f32(tile) + 0.5) / 16.0;
 
@@ -122,10 +127,11 @@ fn fs_gtao(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     return vec4<f32>(ao, ao, ao, 1.0);
 }
 
-// The bilateral blur: the 4 x 4 window fs_gtao's rotations repeat over, each neighbour
-// weighted by how close its view depth is to the pixel's, so occlusion does not bleed
-// across silhouettes. Writes the AO to r8unorm, or as grey to a display target (the
-// debug view).
+// The bilateral blur: the 4 x 4 window of AO texels fs_gtao's rotations repeat over,
+// each weighted by how close the view depth it was computed at is to the pixel's, so
+// occlusion does not bleed across silhouettes; at half resolution the same weights
+// upsample it. Writes the AO to r8unorm, or as grey to a display target (the debug
+// view).
 @fragment
 fn fs_blur(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let pixel = pixel_of(position);
@@ -133,20 +139,26 @@ fn fs_blur(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     if z <= 0.0 {
         return vec4<f32>(1.0);
     }
+    let texels = vec2<i32>(textureDimensions(raw_ao_tex));
+    let base = min(pixel / SCALE, texels - 1);
     var sum = 0.0;
     var weights = 0.0;
     for (var y = -2; y < 2; y++) {
         for (var x = -2; x < 2; x++) {
-            let q = pixel + vec2<i32>(x, y);
-            if !in_image(q) {
+            let q = base + vec2<i32>(x, y);
+            if any(q < vec2<i32>(0)) || any(q >= texels) {
                 continue;
             }
-            let w = max(0.0, 1.0 - abs(g_depth(q) - z) / (BLUR_DEPTH * z));
+            let w = max(0.0, 1.0 - abs(g_depth(q * SCALE) - z) / (BLUR_DEPTH * z));
             sum += w * textureLoad(raw_ao_tex, q, 0).r;
             weights += w;
         }
     }
-    // The pixel itself always weighs 1.
-    let ao = sum / weights;
+    // At full resolution the pixel itself weighs 1; at half, a pixel unlike every texel
+    // around it (a thin sliver) takes its own block's.
+    var ao = textureLoad(raw_ao_tex, base, 0).r;
+    if weights > 0.0 {
+        ao = sum / weights;
+    }
     return vec4<f32>(ao, ao, ao, 1.0);
 }
