@@ -1,8 +1,9 @@
 //! Screen-space ambient occlusion (`ssao`, `ssao_blur`, passes/ssao.rs) in
 //! pipelines/deferred_msaa_4x_ssao.ron: a flat plane is not occluded at all (the image is
 //! deferred_msaa_4x.ron's, bit for bit), the floor of a right-angle corner is darkened as
-//! the cosine-weighted visibility within the radius says, AO never brightens, the tiled
-//! light pass applies it as the fragment passes do, and bad parameters are refused.
+//! the cosine-weighted visibility within the radius says (at full and half resolution),
+//! AO never brightens, the tiled light pass applies it as the fragment passes do, and bad
+//! parameters and sizes are refused.
 
 use std::f64::consts::PI;
 
