@@ -25,6 +25,9 @@
 #               (bench/graphs/gbuffer_cost/), the visibility buffer and its depth-only
 #               floor (bench/graphs/visibility_cost/) at 1 and 4 samples on builtin:dense
 #               and builtin:lights?count=256, into gbuffer-1x and gbuffer-4x
+#   variants    FXAA, SSAO and the light pre-pass against deferred and forward MSAA on every
+#               built-in scene, with the reference (issue 16's rows; not in the default set:
+#               BENCH_PARTS=variants)
 # Each part writes to OUT_DIR/PART. Frames: BENCH_FRAMES (default 10) after BENCH_WARMUP
 # (default 2); BENCH_SIZE (default 3840x2160) for a quick try elsewhere.
 #
@@ -85,6 +88,10 @@ core=(--pipeline pipelines/deferred_noaa.ron --pipeline pipelines/deferred_msaa_
       --pipeline pipelines/deferred_per_sample_4x.ron --pipeline pipelines/deferred_noaa_tiled.ron
       --pipeline pipelines/deferred_msaa_4x_tiled.ron --pipeline pipelines/deferred_per_sample_4x_tiled.ron
       --pipeline pipelines/forward_msaa_4x.ron)
+variants=(--pipeline pipelines/deferred_noaa.ron --pipeline pipelines/deferred_noaa_fxaa.ron
+          --pipeline pipelines/deferred_msaa_4x.ron --pipeline pipelines/deferred_msaa_4x_fxaa.ron
+          --pipeline pipelines/deferred_msaa_4x_ssao.ron --pipeline pipelines/light_prepass_msaa_4x.ron
+          --pipeline pipelines/deferred_msaa_4x_tiled.ron --pipeline pipelines/forward_msaa_4x.ron)
 common=(--frames "$frames" --warmup "$warmup")
 status=0
 for part in $parts; do
@@ -122,8 +129,12 @@ for part in $parts; do
           "${common[@]}" --out-dir "$out/gbuffer-${samples}x" || status=$?
       done
       ;;
+    variants)
+      "$bin" bench "${variants[@]}" --width "$width" --height "$height" "${common[@]}" \
+        --out-dir "$out/variants" || status=$?
+      ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise, gbuffer)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise, gbuffer, variants)" >&2
       status=2
       ;;
   esac

@@ -10,7 +10,13 @@
 //! lighting, pipelines/deferred_gbuffer_resolve_4x.ron). Every pipeline that renders the
 //! lit scene adds `transparent` and `composite_transparent` under `when: "blend"`: alpha
 //! BLEND meshes, which the opaque passes skip, drawn after lighting and composited onto
-//! the resolved image.
+//! the resolved image. `fxaa` is a post filter on the tone-mapped image
+//! (pipelines/deferred_noaa_fxaa.ron, deferred_msaa_4x_fxaa.ron). `ssao` and `ssao_blur`
+//! compute screen-space ambient occlusion from the G-buffer, which the light passes take
+//! as their optional `ao` input (pipelines/deferred_msaa_4x_ssao.ron).
+//! `light_prepass_gbuffer` and `light_prepass_material` are a light pre-pass renderer's
+//! geometry passes around the light passes' `accumulate: light`
+//! (pipelines/light_prepass_msaa_4x.ron).
 //!
 //! The G-buffer slots every pass uses the same names for: `albedo`, `normal`,
 //! `material`, `view_depth`, `hdr` and `depth` (the multisampled depth-stencil).
@@ -35,13 +41,20 @@ pub use crate::passes::auto_exposure::{AutoExposure, AutoExposureParams};
 pub use crate::passes::debug_view::{DebugView, DebugViewParams, View};
 pub use crate::passes::edge_stencil::EdgeStencil;
 pub use crate::passes::forward::{Forward, ForwardParams, Shading};
+pub use crate::passes::fxaa::{Fxaa, FxaaParams};
 pub use crate::passes::gbuffer::{GBuffer, GBufferParams};
 pub use crate::passes::gbuffer_resolve::{GBufferResolve, GBufferResolveParams};
 pub use crate::passes::light::{
-    EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams, PixelSamples,
+    Accumulate, EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams,
+    PixelSamples,
+};
+pub use crate::passes::light_prepass::{
+    LightPrepassGBuffer, LightPrepassGBufferParams, LightPrepassMaterial,
+    LightPrepassMaterialParams,
 };
 pub use crate::passes::light_tiled::{EdgeShading, LightTiled, LightTiledParams, TiledView};
 pub use crate::passes::resolve::{Resolve, ResolveMode, ResolveParams};
+pub use crate::passes::ssao::{Ssao, SsaoBlur, SsaoBlurParams, SsaoParams};
 pub use crate::passes::tonemap::{Operator, Tonemap, TonemapParams};
 pub use crate::passes::transparent::{
     CompositeTransparent, CompositeTransparentParams, Transparent, TransparentParams,
@@ -64,6 +77,11 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(DebugView(shared.clone()))
         .register(Forward(shared.clone()))
         .register(GBufferResolve(shared.clone()))
+        .register(Fxaa(shared.clone()))
+        .register(Ssao(shared.clone()))
+        .register(LightPrepassGBuffer(shared.clone()))
+        .register(LightPrepassMaterial(shared.clone()))
+        .register(SsaoBlur(shared.clone()))
         .register(Transparent(shared.clone()))
         .register(CompositeTransparent(shared));
 }

@@ -48,6 +48,8 @@ pub(crate) const EDGE: Source = Source {
         include_str!("wgsl/edge.wgsl"),
     ],
 };
+const LIGHT_WGSL: &str = include_str!("wgsl/light.wgsl");
+/// Needs common/ao.rs's generated block after it.
 pub(crate) const LIGHT: Source = Source {
     name: "light.wgsl",
     parts: &[
@@ -58,7 +60,23 @@ pub(crate) const LIGHT: Source = Source {
         BRDF,
         LIGHTING,
         SURFACE,
-        include_str!("wgsl/light.wgsl"),
+        include_str!("wgsl/light_shade.wgsl"),
+        LIGHT_WGSL,
+    ],
+};
+/// light.wgsl's draws accumulating the light pre-pass's light buffer.
+pub(crate) const LIGHT_PREPASS: Source = Source {
+    name: "light.wgsl (light pre-pass)",
+    parts: &[
+        COMMON,
+        SCENE,
+        GBUFFER_READ,
+        VIEW_DEPTH_STORED,
+        BRDF,
+        LIGHTING,
+        SURFACE,
+        include_str!("wgsl/light_prepass.wgsl"),
+        LIGHT_WGSL,
     ],
 };
 /// Needs a generated block after it, with a reader ([`GBUFFER_READ`] or
@@ -97,6 +115,14 @@ pub(crate) const TONEMAP: Source = Source {
     name: "tonemap.wgsl",
     parts: &[COMMON, SCENE, include_str!("wgsl/tonemap.wgsl")],
 };
+pub(crate) const FXAA: Source = Source {
+    name: "fxaa.wgsl",
+    parts: &[COMMON, include_str!("wgsl/fxaa.wgsl")],
+};
+pub(crate) const SSAO: Source = Source {
+    name: "ssao.wgsl",
+    parts: &[COMMON, SCENE, include_str!("wgsl/ssao.wgsl")],
+};
 pub(crate) const DEBUG: Source = Source {
     name: "debug.wgsl",
     parts: &[
@@ -125,6 +151,20 @@ pub(crate) const TRANSPARENT: Source = Source {
         LIGHTING,
         FORWARD_WGSL,
         include_str!("wgsl/transparent.wgsl"),
+    ],
+};
+/// forward.wgsl's vertex stages and material model, with the light pre-pass's thin
+/// G-buffer and material entry points.
+pub(crate) const LIGHT_PREPASS_GEOMETRY: Source = Source {
+    name: "light_prepass_material.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        MATERIAL,
+        BRDF,
+        LIGHTING,
+        FORWARD_WGSL,
+        include_str!("wgsl/light_prepass_material.wgsl"),
     ],
 };
 pub(crate) const COMPOSITE: Source = Source {

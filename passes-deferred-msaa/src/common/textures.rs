@@ -184,6 +184,10 @@ pub(crate) struct Input {
 pub(crate) enum Texels {
     /// `f32` color (`GTexF`), never filtered.
     Float,
+    /// `f32` color of a single-sampled filterable format, sampled bilinearly through a
+    /// clamp-to-edge linear sampler bound at `sampler` (post filters such as FXAA, whose
+    /// taps between texels rely on the filtering hardware).
+    Filtered { sampler: u32 },
     /// `u32` (`GTexU`): the stencil aspect.
     Uint,
     /// The depth aspect (`GTexD`).

@@ -12,10 +12,14 @@
 //!      "view_depth": "view_depth",
 //!      "depth": "depth_edges",   // the depth-stencil: attached read-only, both aspects
 //!      "hdr": "hdr",             // also an output: the pass adds to it
+//!      "ao": "ao",               // optional: ssao_blur's occlusion (r8unorm, 1 sample),
+//!                                // which scales the ambient and environment light only
 //!  },
 //!  outputs: { "hdr": "hdr_edges" })
 //! (name: "light_nonedge", plugin: "light_nonedge",
 //!  params: (volumes: true, samples: first),   // or samples: average; reversed_z
+//!  //  both take `accumulate: shaded` (the default) or `light`: the light pre-pass's
+//!  //  light buffer in "hdr", from the thin G-buffer without "albedo" (light_prepass.rs)
 //!  inputs: { /* the same slots */ "hdr": "hdr_edges" },
 //!  outputs: { "hdr": "hdr_lit" })
 //! ```
@@ -52,6 +56,7 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, TextureHandle};
 
+use crate::common::ao;
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{yes, Recording, Shared, ONE_SAMPLE};
 use crate::common::textures::{self, Input, Texels, Want, GBUFFER_INPUTS};
@@ -73,6 +78,22 @@ pub struct LightNonEdgeParams {
     pub volumes: bool,
     #[serde(default)]
     pub samples: PixelSamples,
+    #[serde(default)]
+    pub accumulate: Accumulate,
+}
+
+/// What the light passes add up in their `hdr` slot.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Accumulate {
+    /// The lit colour, from the full G-buffer.
+    #[default]
+    Shaded,
+    /// The light pre-pass's light buffer (light_prepass.wgsl), from the thin G-buffer
+    /// (`normal`, `material`, `view_depth`; no `albedo`): diffuse light and the
+    /// luminance of a dielectric's specular, before the material is applied
+    /// (passes/light_prepass.rs).
+    Light,
 }
 
 /// Which G-buffer samples `light_nonedge` shades a pixel from.
@@ -98,6 +119,9 @@ pub struct LightEdgeParams {
     /// As for `light_nonedge`.
     #[serde(default = "yes")]
     pub volumes: bool,
+    /// As for `light_nonedge`.
+    #[serde(default)]
+    pub accumulate: Accumulate,
 }
 
 /// How `light_edge` shades each sample.
@@ -155,6 +179,7 @@ impl Plugin for LightNonEdge {
             Frequency::Pixel(params.samples),
             params.reversed_z,
             params.volumes,
+            params.accumulate,
             pass,
             slots,
         )?;
@@ -178,7 +203,14 @@ impl Plugin for LightEdge {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         let frequency = Frequency::Sample(params.mode);
-        let (draw, samples) = setup(frequency, params.reversed_z, params.volumes, pass, slots)?;
+        let (draw, samples) = setup(
+            frequency,
+            params.reversed_z,
+            params.volumes,
+            params.accumulate,
+            pass,
+            slots,
+        )?;
         if samples == 1 {
             pass.omit(ONE_SAMPLE);
             return Ok(());
@@ -192,6 +224,7 @@ fn setup(
     frequency: Frequency,
     reversed_z: Option<bool>,
     volumes: bool,
+    accumulate: Accumulate,
     pass: &mut PassBuilder<'_>,
     slots: &mut Slots<'_>,
 ) -> Result<(LightDraw, u32), PluginError> {
@@ -211,19 +244,37 @@ fn setup(
             texels: Texels::Depth,
         });
     }
-    for (slot, what, formats, binding) in GBUFFER_INPUTS {
+    // The light pre-pass's thin G-buffer has no albedo.
+    let reads = GBUFFER_INPUTS
+        .into_iter()
+        .filter(|(slot, ..)| accumulate == Accumulate::Shaded || *slot != "albedo");
+    for (slot, what, formats, binding) in reads {
         let want = Want::new(what, formats).samples(samples);
         inputs.push(textures::sampled(slots, pass, slot, want, binding)?.0);
     }
-    let want = Want::new("the HDR target", textures::HDR).samples(samples);
+    let want = match accumulate {
+        Accumulate::Shaded => Want::new("the HDR target", textures::HDR),
+        Accumulate::Light => Want::new("the light buffer", textures::HDR),
+    };
+    let want = want.samples(samples);
     let mut modifies = true;
     let (hdr, _) = textures::output(slots, pass, "hdr", want, |pass, h, m| {
         modifies = m;
         pass.color_output(h, ColorLoad::Load)
     })?;
     textures::must_modify(slots, "hdr", modifies, "adds light to it")?;
+    let source = match accumulate {
+        Accumulate::Shaded => {
+            let ao = ao::input(slots, pass)?;
+            inputs.extend(ao);
+            shaders::LIGHT.compose_with(samples, &ao::wgsl(ao.as_ref()))?
+        }
+        // Its ambient light is the material pass's, so no AO here: an "ao" slot is
+        // left unread, which the file loader reports.
+        Accumulate::Light => shaders::LIGHT_PREPASS.compose(samples)?,
+    };
     let draw = LightDraw {
-        source: shaders::LIGHT.compose(samples)?.source().to_owned(),
+        source: source.source().to_owned(),
         depth_rule: DepthRule::new(reversed_z),
         frequency,
         volumes,

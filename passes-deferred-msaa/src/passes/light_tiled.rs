@@ -19,6 +19,8 @@
 //!      "view_depth": "view_depth",
 //!      "depth": "depth",   // the G-buffer's depth(-stencil): its depth aspect is read
 //!      "hdr": "hdr",       // emission and unlit colour, per sample
+//!      "ao": "ao",         // optional: ssao_blur's occlusion (r8unorm, 1 sample),
+//!                          // which scales the ambient and environment light only
 //!  },
 //!  outputs: { "resolved": "resolved" })   // 1 sample, rgba16float, storage
 //! ```
@@ -66,6 +68,7 @@ use graph_core::types::TextureFormat;
 use graph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
 
 use super::resolve::{one, resolve_exposure, ResolveMode};
+use crate::common::ao;
 use crate::common::depth::DepthRule;
 use crate::common::edge_detection::{Detector, EdgeDetection};
 use crate::common::plugin::{yes, Recording, Shared};
@@ -379,6 +382,9 @@ impl Plugin for LightTiled {
             format_name(out.format),
             layout.wgsl(),
         );
+        let ao = ao::input(slots, pass)?;
+        inputs.extend(ao);
+        let generated = generated + &ao::wgsl(ao.as_ref());
         let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
         let Some(entry) = shader.entry("cs_light_tiled", Stage::Compute) else {
             return Err(PluginError::Invalid(

@@ -208,7 +208,12 @@ mod gpu {
                         constants: &[("SPLIT_IDS", key.ids.map_or(0.0, split_ids))],
                         targets: &targets,
                         cull: (!key.double_sided).then_some(wgpu::Face::Back),
-                        depth_stencil: Some(depth_test(key.depth, key.convention, Layer::Opaque)),
+                        depth_stencil: Some(depth_test(
+                            key.depth,
+                            key.convention,
+                            Layer::Opaque,
+                            false,
+                        )),
                         samples: key.samples,
                         mask: !0,
                     }

@@ -1,9 +1,12 @@
-// The light passes: additive HDR accumulation of every light's contribution into the
-// multisampled HDR target, shaded once per pixel (non-edge pixels, from sample 0) or
-// once per sample (edge pixels). Directional lights and ambient are one full-screen draw;
-// each point or spot light is a draw of its volume with instance index = light index.
-// Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl, brdf.wgsl, lighting.wgsl and
-// surface.wgsl.
+// The light passes: additive accumulation of every light's contribution into a
+// multisampled target, shaded once per pixel (non-edge pixels, from sample 0) or once per
+// sample (edge pixels). Directional lights and ambient are one full-screen draw; each
+// point or spot light is a draw of its volume with instance index = light index.
+// Composed after common.wgsl, scene.wgsl, gbuffer_read.wgsl, brdf.wgsl, lighting.wgsl,
+// surface.wgsl and what one sample accumulates, `shade_sample(pixel, s, p, light)`: the
+// lit colour (light_shade.wgsl, into the HDR target, then common/ao.rs's generated
+// `with_screen_ao`) or the light pre-pass's light (light_prepass.wgsl, into the light
+// buffer).
 
 // Clip depth of the far plane: 0 with reversed Z, 1 without.
 override FAR_DEPTH: f32 = 0.0;
@@ -36,22 +39,6 @@ fn vs_fullscreen_light(@builtin(vertex_index) index: u32, @builtin(instance_inde
 fn vs_volume(@location(0) position: vec3<f32>, @builtin(instance_index) light: u32) -> LightVaryings {
     let world = lights[light].volume * vec4<f32>(position, 1.0);
     return LightVaryings(camera.view_proj * world, light);
-}
-
-// Shades G-buffer sample `s` of `pixel` as the surface point `p` (camera-relative).
-fn shade_sample(pixel: vec2<i32>, s: u32, p: vec3<f32>, light: u32) -> vec4<f32> {
-    let g = load_gsample(pixel, s);
-    if (g.flags & FLAG_LIT) == 0u {
-        return vec4<f32>(0.0);
-    }
-    let surface = surface_of(g, p);
-    var color = vec3<f32>(0.0);
-    if light == ALL_DIRECTIONAL {
-        color = ambient_and_directional(surface);
-    } else {
-        color = shade_light(surface, lights[light]);
-    }
-    return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), 0.0);
 }
 
 @fragment

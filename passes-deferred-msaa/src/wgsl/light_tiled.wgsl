@@ -23,7 +23,9 @@
 // layout: `load_gsample` and `load_gsamples` (gbuffer_read.wgsl, or visibility_read.wgsl
 // with geometry.wgsl), `load_view_depth` (view_depth_stored.wgsl, or
 // view_depth_from_depth.wgsl for the lean G-buffer and the visibility buffer) and
-// `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or emitted_surface.wgsl).
+// `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or emitted_surface.wgsl), and common/ao.rs's
+// `with_screen_ao`.
+
 @group(1) @binding(7) var out_tex: OutTex;
 
 // How edge pixels are found: 0 `compare`, 1 EDGE_BIT in the material (`centroid`,
@@ -162,7 +164,9 @@ fn entry_surface(origin: vec2<u32>, code: u32) -> EntrySurface {
     let pixel = vec2<i32>(origin + vec2<u32>(at % TILE, at / TILE));
     let g = load_gsample(pixel, code & 15u);
     let lit = (g.flags & FLAG_LIT) != 0u;
-    return EntrySurface(lit, surface_of(g, fragment_surface(pixel, (code >> 4u) & 0xffu)));
+    // Screen-space AO, when the pass reads it, darkens the ambient term only.
+    let surface = surface_of(g, fragment_surface(pixel, (code >> 4u) & 0xffu));
+    return EntrySurface(lit, with_screen_ao(surface, pixel));
 }
 
 fn is_edge(g: ptr<function, array<GSample, SAMPLES>>) -> bool {
@@ -300,7 +304,7 @@ fn cs_light_tiled(
             }
         }
     }
-    let surface0 = surface_of(g[0], p0);
+    let surface0 = with_screen_ao(surface_of(g[0], p0), pixel);
     var light0 = vec3<f32>(0.0);
     if VIEW == VIEW_SHADED && lit0 {
         light0 = ambient_and_directional(surface0);

@@ -1,5 +1,6 @@
 //! A pass's textures as one bind group (group 1 of the deferred shaders, render or
-//! compute), made again every frame because the pool may lend a slot different memory.
+//! compute), made again every frame because the pool may lend a slot different memory,
+//! with the linear sampler of any input read filtered.
 
 use graph_core::gpu::FrameResources;
 
@@ -8,12 +9,16 @@ use crate::common::textures::{Input, Texels};
 pub(crate) struct TextureBindings {
     pub layout: wgpu::BindGroupLayout,
     bindings: Vec<Input>,
+    /// The clamp-to-edge linear sampler `Texels::Filtered` inputs are read through; made
+    /// only for passes that have one.
+    sampler: Option<wgpu::Sampler>,
 }
 
 impl TextureBindings {
     /// The layout for `bindings` as the plan shapes their textures.
     pub fn new(resources: &FrameResources<'_>, bindings: &[Input]) -> TextureBindings {
-        let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
+        let visibility = wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
+        let mut entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
             .iter()
             .map(|b| {
                 let shape = resources.shape(b.texture);
@@ -24,12 +29,15 @@ impl TextureBindings {
                 };
                 wgpu::BindGroupLayoutEntry {
                     binding: b.binding,
-                    visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
+                    visibility,
                     ty: match b.texels {
                         // textureLoad only: nothing is filtered, and r32float is not
                         // filterable.
                         Texels::Float => {
                             sampled(wgpu::TextureSampleType::Float { filterable: false })
+                        }
+                        Texels::Filtered { .. } => {
+                            sampled(wgpu::TextureSampleType::Float { filterable: true })
                         }
                         Texels::Uint => sampled(wgpu::TextureSampleType::Uint),
                         Texels::Depth => sampled(wgpu::TextureSampleType::Depth),
@@ -43,6 +51,22 @@ impl TextureBindings {
                 }
             })
             .collect();
+        entries.extend(
+            samplers(bindings).map(|binding| wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            }),
+        );
+        let sampler = (samplers(bindings).next().is_some()).then(|| {
+            resources.device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("deferred pass inputs (linear)"),
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                ..Default::default()
+            })
+        });
         let layout = resources
             .device
             .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -52,11 +76,12 @@ impl TextureBindings {
         TextureBindings {
             layout,
             bindings: bindings.to_vec(),
+            sampler,
         }
     }
 
     pub fn bind_group(&self, resources: &FrameResources<'_>) -> wgpu::BindGroup {
-        let entries: Vec<wgpu::BindGroupEntry<'_>> = self
+        let mut entries: Vec<wgpu::BindGroupEntry<'_>> = self
             .bindings
             .iter()
             .map(|b| wgpu::BindGroupEntry {
@@ -66,6 +91,14 @@ impl TextureBindings {
                 ),
             })
             .collect();
+        if let Some(sampler) = &self.sampler {
+            entries.extend(
+                samplers(&self.bindings).map(|binding| wgpu::BindGroupEntry {
+                    binding,
+                    resource: wgpu::BindingResource::Sampler(sampler),
+                }),
+            );
+        }
         resources
             .device
             .create_bind_group(&wgpu::BindGroupDescriptor {
@@ -74,4 +107,12 @@ impl TextureBindings {
                 entries: &entries,
             })
     }
+}
+
+/// The sampler bindings of `bindings`' filtered inputs.
+fn samplers(bindings: &[Input]) -> impl Iterator<Item = u32> + '_ {
+    bindings.iter().filter_map(|b| match b.texels {
+        Texels::Filtered { sampler } => Some(sampler),
+        _ => None,
+    })
 }

@@ -11,16 +11,22 @@
 //! (`src * a + dst * (1 - a)`) and alpha by the product of `1 - a` (source factor zero,
 //! destination `1 - a`), so a target cleared to (0, 0, 0, 1) ends as the blended colour
 //! over black and the transmittance of everything drawn.
+//!
+//! A [`Redraw`] draws the opaque layer again over the depth an earlier draw of the same
+//! shader module wrote (the light pre-pass's material pass): tested for the same or a
+//! nearer depth without writing it, reading textures as group 2.
 
 use std::sync::Arc;
 
 use graph_core::gpu::RenderContext;
 use graph_core::TextureHandle;
 
+use super::bindings::TextureBindings;
 use super::per_scene;
 use super::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
 use crate::analysis::{GatedShader, Variant};
 use crate::common::depth::DepthRule;
+use crate::common::textures::Input;
 use crate::gpu_scene::{mesh, Layer, MaterialState, SceneCache};
 use crate::scene::DepthConvention;
 
@@ -46,6 +52,12 @@ pub(crate) struct SceneDraw {
     pub stages: Box<dyn Fn(MaterialState) -> Stages>,
 }
 
+/// What a second draw over the depth of a first one reads (group 2). The pass attaches
+/// the depth-stencil read-only.
+pub(crate) struct Redraw {
+    pub inputs: Vec<Input>,
+}
+
 #[derive(Clone, PartialEq)]
 struct Key {
     targets: Vec<wgpu::TextureFormat>,
@@ -58,11 +70,22 @@ struct Key {
 struct State {
     module: wgpu::ShaderModule,
     layout: wgpu::PipelineLayout,
+    /// A redraw's group 2.
+    inputs: Option<TextureBindings>,
     pipelines: Pipelines<Key>,
 }
 
 pub(crate) fn record(
     draw: SceneDraw,
+    scenes: Arc<SceneCache>,
+) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+    record_with(draw, None, scenes)
+}
+
+/// [`record`], as a [`Redraw`] when given one.
+pub(crate) fn record_with(
+    draw: SceneDraw,
+    redraw: Option<Redraw>,
     scenes: Arc<SceneCache>,
 ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
     let mut state = None;
@@ -73,10 +96,18 @@ pub(crate) fn record(
             return;
         };
         let state = per_scene(&mut state, &scene, || {
-            let layouts = [Some(scene.layout()), Some(scene.material_layout())];
+            let inputs = redraw
+                .as_ref()
+                .map(|r| TextureBindings::new(resources, &r.inputs));
+            let layouts = [
+                Some(scene.layout()),
+                Some(scene.material_layout()),
+                inputs.as_ref().map(|i| &i.layout),
+            ];
             State {
                 module: module(device, draw.label, &draw.source),
                 layout: pipeline_layout(device, &layouts),
+                inputs,
                 pipelines: Pipelines::default(),
             }
         });
@@ -90,7 +121,12 @@ pub(crate) fn record(
         let convention = draw.depth_rule.convention(depth.format);
         ctx.pass
             .set_bind_group(0, scene.bind_group(convention), &[]);
+        if let Some(inputs) = &state.inputs {
+            ctx.pass
+                .set_bind_group(2, &inputs.bind_group(resources), &[]);
+        }
         let layer = draw.layer;
+        let redraws = state.inputs.is_some();
         scene.draw_meshes(ctx.pass, 1, layer, |pass, _, material| {
             let key = Key {
                 targets: targets.clone(),
@@ -119,7 +155,7 @@ pub(crate) fn record(
                     constants: &constants,
                     targets: &targets,
                     cull: (!key.material.double_sided).then_some(wgpu::Face::Back),
-                    depth_stencil: Some(depth_test(key.depth, convention, layer)),
+                    depth_stencil: Some(depth_test(key.depth, convention, layer, redraws)),
                     samples: key.samples,
                     mask: !0,
                 }
@@ -158,19 +194,24 @@ fn color_target(format: wgpu::TextureFormat, layer: Layer) -> wgpu::ColorTargetS
 
 /// Nearer fragments win: `Greater` with reversed Z, `Less` without. Only the opaque layer
 /// writes depth: blended surfaces are hidden by opaque ones but never hide each other
-/// (they are drawn back to front instead). Stencil is left alone (cleared to 0 by the
-/// G-buffer pass; the edge pass marks it).
+/// (they are drawn back to front instead). A redraw passes where its surface is the one
+/// drawn before (`GreaterEqual`, `LessEqual`: the same vertex code gives the same depth)
+/// and writes nothing. Stencil is left alone (cleared to 0 by the G-buffer pass; the edge
+/// pass marks it).
 pub(crate) fn depth_test(
     format: wgpu::TextureFormat,
     convention: DepthConvention,
     layer: Layer,
+    redraw: bool,
 ) -> wgpu::DepthStencilState {
     wgpu::DepthStencilState {
         format,
-        depth_write_enabled: Some(layer == Layer::Opaque),
-        depth_compare: Some(match convention {
-            DepthConvention::ReversedZ => wgpu::CompareFunction::Greater,
-            DepthConvention::Standard => wgpu::CompareFunction::Less,
+        depth_write_enabled: Some(layer == Layer::Opaque && !redraw),
+        depth_compare: Some(match (convention, redraw) {
+            (DepthConvention::ReversedZ, false) => wgpu::CompareFunction::Greater,
+            (DepthConvention::Standard, false) => wgpu::CompareFunction::Less,
+            (DepthConvention::ReversedZ, true) => wgpu::CompareFunction::GreaterEqual,
+            (DepthConvention::Standard, true) => wgpu::CompareFunction::LessEqual,
         }),
         stencil: wgpu::StencilState::default(),
         bias: Default::default(),
