@@ -165,7 +165,7 @@ fn builtin_spec_errors_list_what_is_available() {
     let message = Scene::load("builtin:nope").unwrap_err().to_string();
     assert_eq!(
         message,
-        "unknown built-in scene `nope`; available: spheres, dense, lights, unlit"
+        "unknown built-in scene `nope`; available: spheres, dense, lights, unlit, smoke"
     );
     let error = Scene::load("builtin:lights?lamps=3").unwrap_err();
     assert!(matches!(error, SceneError::BuiltinParameter { .. }));

@@ -32,7 +32,7 @@ pub(super) const PARAMS: &[BuiltinParam] = &[
     },
     BuiltinParam {
         key: "size",
-        meaning: "nominal particle diameter in centimetres (default 120, from 1 to 10000)",
+        meaning: "nominal particle diameter in centimetres (default 120, at least 1, at most 10000)",
         default: 120,
         max: 10_000,
     },
