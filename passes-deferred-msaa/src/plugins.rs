@@ -40,6 +40,9 @@ pub use crate::passes::light::{
     EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams, PixelSamples,
 };
 pub use crate::passes::light_tiled::{EdgeShading, LightTiled, LightTiledParams, TiledView};
+pub use crate::passes::particles::{
+    CompositeParticles, CompositeParticlesParams, Particles, ParticlesParams, MAX_PAD,
+};
 pub use crate::passes::resolve::{Resolve, ResolveMode, ResolveParams};
 pub use crate::passes::tonemap::{Operator, Tonemap, TonemapParams};
 pub use crate::passes::transparent::{
@@ -62,5 +65,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(Forward(shared.clone()))
         .register(GBufferResolve(shared.clone()))
         .register(Transparent(shared.clone()))
-        .register(CompositeTransparent(shared));
+        .register(CompositeTransparent(shared.clone()))
+        .register(Particles(shared.clone()))
+        .register(CompositeParticles(shared));
 }

@@ -25,6 +25,7 @@ mod layout;
 mod lights;
 mod materials;
 pub mod mesh;
+mod particles;
 mod textures;
 pub mod volumes;
 
@@ -34,6 +35,7 @@ pub use camera::view_projection;
 pub use lights::{camera_may_be_inside, far_plane_may_cut, VolumeLight};
 pub use materials::MaterialState;
 pub use mesh::MeshDraw;
+pub use particles::ParticleBuffer;
 pub use volumes::{VolumeMesh, VolumeShape};
 
 use crate::analysis::{Features, GatedShader, Variant, Variants};

@@ -12,6 +12,7 @@ pub(crate) mod gbuffer;
 pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
 pub(crate) mod light_tiled;
+pub(crate) mod particles;
 pub(crate) mod resolve;
 pub(crate) mod tonemap;
 pub(crate) mod transparent;

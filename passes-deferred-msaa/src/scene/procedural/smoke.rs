@@ -5,7 +5,7 @@
 //!   smoke is lit by ambient only: see passes/particles.rs).
 //! - Emitter "smoke": `count - count / 8` blended particles (3,500 of the default 4,000),
 //!   their centres in a column that widens upward over the solids: height y in [0, 4),
-//!   radius from the y axis growing from 1 at the ground to 4 at the top (uniform over the
+//!   radius from the y axis growing from 2 at the ground to 7 at the top (uniform over the
 //!   disc), diameters from 0.5 to 1.5 times `size`, grey albedo 0.35 to 0.75, alpha 0.05
 //!   to 0.25. Seen from the camera they fill most of the frame, hundreds deep.
 //! - Emitter "fire": `count / 8` emissive particles near the ground (y in [0, 1), radius up
@@ -64,7 +64,7 @@ pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), S
             let y = rng.range(0.0, 4.0);
             let grey = rng.range(0.35, 0.75);
             Particle {
-                position: in_disc(&mut rng, 1.0 + 0.75 * y, f64::from(y)),
+                position: in_disc(&mut rng, 2.0 + 1.25 * y, f64::from(y)),
                 size: size * rng.range(0.5, 1.5),
                 color: [grey, grey, grey * 0.95],
                 alpha: rng.range(0.05, 0.25),
