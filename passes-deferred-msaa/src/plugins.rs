@@ -33,6 +33,7 @@ pub use crate::common::edge_detection::{Detector, EdgeDetection};
 pub use crate::passes::auto_exposure::{AutoExposure, AutoExposureParams};
 pub use crate::passes::debug_view::{DebugView, DebugViewParams, View};
 pub use crate::passes::edge_stencil::EdgeStencil;
+pub use crate::passes::depth_downsample::{DepthDownsample, DepthDownsampleParams, MAX_TAPS};
 pub use crate::passes::forward::{Forward, ForwardParams, Shading};
 pub use crate::passes::gbuffer::{GBuffer, GBufferParams};
 pub use crate::passes::gbuffer_resolve::{GBufferResolve, GBufferResolveParams};
@@ -40,6 +41,7 @@ pub use crate::passes::light::{
     EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams, PixelSamples,
 };
 pub use crate::passes::light_tiled::{EdgeShading, LightTiled, LightTiledParams, TiledView};
+pub use crate::passes::particle_edges::{ParticleEdges, ParticleEdgesParams};
 pub use crate::passes::particles::{
     CompositeParticles, CompositeParticlesParams, Particles, ParticlesParams, MAX_PAD,
 };
@@ -67,5 +69,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(Transparent(shared.clone()))
         .register(CompositeTransparent(shared.clone()))
         .register(Particles(shared.clone()))
-        .register(CompositeParticles(shared));
+        .register(CompositeParticles(shared.clone()))
+        .register(DepthDownsample(shared.clone()))
+        .register(ParticleEdges(shared));
 }

@@ -118,6 +118,19 @@ pub(crate) const PARTICLE_COMPOSITE: Source = Source {
     name: "particle_composite.wgsl",
     parts: &[COMMON, SCENE, include_str!("wgsl/particle_composite.wgsl")],
 };
+pub(crate) const DEPTH_DOWNSAMPLE: Source = Source {
+    name: "depth_downsample.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        PARTICLE_DEPTH,
+        include_str!("wgsl/depth_downsample.wgsl"),
+    ],
+};
+pub(crate) const PARTICLE_EDGES: Source = Source {
+    name: "particle_edges.wgsl",
+    parts: &[COMMON, include_str!("wgsl/particle_edges.wgsl")],
+};
 pub(crate) const GBUFFER_RESOLVE: Source = Source {
     name: "gbuffer_resolve.wgsl",
     parts: &[
