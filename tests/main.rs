@@ -56,6 +56,7 @@ mod extremes_volumes;
 mod frame_inputs;
 mod fuzz;
 mod gpu_execute;
+mod particles;
 mod specialise_analysis;
 mod specialise_depth;
 mod specialise_errors;

@@ -3,7 +3,7 @@
 //!
 //! ```ron
 //! (name: "particle edges", plugin: "particle_edges",
-//!  params: (threshold: 0.2),   // the default
+//!  params: (threshold: 1.0),   // the default
 //!  inputs: { "color": "particle_color", "additive": "particle_additive" },
 //!  outputs: { "edges": "particle_edges" })   // r8unorm at their size: 1 on edges
 //! ```
@@ -11,7 +11,8 @@
 //! A full-screen draw at the off-screen size: each of the three signals (colour
 //! luminance and emissive luminance as `x / (1 + x)`, transmittance as it is) is
 //! filtered with the 3x3 Sobel kernels, and a pixel is an edge where any gradient's
-//! magnitude exceeds `threshold` (a step of 1 across a pixel gives 4). Edges are where
+//! magnitude exceeds `threshold` (a step of 1 across a pixel gives 4; the default, 1,
+//! marks about 4% of the off-screen pixels of builtin:smoke at scale 2 and 11% at 4). Edges are where
 //! the upsampled image would look blocky: `composite_particles` leaves those areas to a
 //! second, full-resolution particle pass.
 
@@ -37,7 +38,7 @@ pub struct ParticleEdgesParams {
 }
 
 fn default_threshold() -> f32 {
-    0.2
+    1.0
 }
 
 impl Plugin for ParticleEdges {

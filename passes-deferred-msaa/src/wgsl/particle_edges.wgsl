@@ -8,7 +8,7 @@
 @group(1) @binding(0) var particle_color: texture_2d<f32>;
 @group(1) @binding(1) var particle_additive: texture_2d<f32>;
 
-override THRESHOLD: f32 = 0.2;
+override THRESHOLD: f32 = 1.0;
 
 fn signal(pixel: vec2<i32>) -> vec3<f32> {
     let at = clamp(pixel, vec2<i32>(0), vec2<i32>(textureDimensions(particle_color)) - 1);
