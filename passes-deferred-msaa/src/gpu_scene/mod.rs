@@ -76,6 +76,12 @@ impl SceneCache {
         }
     }
 
+    /// The host's scene (its particles are uploaded by the passes that draw them:
+    /// [`ParticleBuffer`]); `None` without a host.
+    pub fn scene(&self) -> Option<&Arc<Scene>> {
+        self.host.as_ref().map(|h| &h.scene)
+    }
+
     /// The variant of `shader` that draws the scene: the code its features need (every
     /// feature's with [`Variants::General`]). A pipeline key part.
     pub fn variant(&self, shader: GatedShader) -> Variant {
@@ -279,6 +285,11 @@ impl GpuScene {
     pub fn prepare(&self, queue: &wgpu::Queue, size: (u32, u32)) {
         let camera = (&self.frame.inputs.camera, self.frame.generation);
         self.upload.cameras.prepare(queue, camera, size);
+    }
+
+    /// The camera of the frame inputs this scene is placed by.
+    pub fn camera(&self) -> &crate::scene::Camera {
+        &self.frame.inputs.camera
     }
 
     /// Group 0's layout: see scene.wgsl.

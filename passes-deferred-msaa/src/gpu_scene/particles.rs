@@ -10,12 +10,10 @@
 //! moved since it was written.
 
 use std::ops::Range;
-use std::sync::Arc;
 
 use glam::DVec3;
 
-use super::{GpuScene, SceneCache};
-use crate::scene::{Particle, Scene};
+use crate::scene::{Camera, Particle, Scene};
 
 /// `Particle` in particles.wgsl.
 #[repr(C)]
@@ -59,10 +57,10 @@ impl ParticleBuffer {
         }
     }
 
-    /// Writes `scene`'s particles relative to `view`'s camera, sorted, unless the buffer
-    /// holds them for that camera pose already.
-    pub fn update(&mut self, queue: &wgpu::Queue, scene: &Scene, view: &GpuScene) {
-        let camera = &view.frame.inputs.camera;
+    /// Writes `scene`'s particles relative to `camera` (the frame's:
+    /// [`GpuScene::camera`](super::GpuScene::camera)), sorted, unless the buffer holds them
+    /// for that camera pose already.
+    pub fn update(&mut self, queue: &wgpu::Queue, scene: &Scene, camera: &Camera) {
         let (eye, forward) = (camera.position, camera.orientation * DVec3::NEG_Z);
         if self.written_for == Some((eye, forward)) || self.blended + self.additive == 0 {
             return;
@@ -97,12 +95,5 @@ impl ParticleBuffer {
     /// The instances of the emissive particles.
     pub fn additive(&self) -> Range<u32> {
         self.blended..self.blended + self.additive
-    }
-}
-
-impl SceneCache {
-    /// The host's scene, whose particles a pass uploads; `None` without a host.
-    pub fn scene(&self) -> Option<&Arc<Scene>> {
-        self.host.as_ref().map(|h| &h.scene)
     }
 }

@@ -449,7 +449,7 @@ mod gpu {
                     pipelines: Pipelines::default(),
                 }
             });
-            state.particles.update(resources.queue, host_scene, &scene);
+            state.particles.update(resources.queue, host_scene, scene.camera());
             let (blended, additive) = (state.particles.blended(), state.particles.additive());
             if blended.is_empty() && additive.is_empty() {
                 return;
