@@ -60,7 +60,13 @@ fn turned_stage(half: (f64, f64), angle: f64, particles: Vec<Particle>) -> Scene
         znear: 1.0,
         zfar: 20.0,
     };
-    let camera = Camera::look_at("front", DVec3::new(0.0, 0.0, 10.0), DVec3::ZERO, DVec3::Y, projection);
+    let camera = Camera::look_at(
+        "front",
+        DVec3::new(0.0, 0.0, 10.0),
+        DVec3::ZERO,
+        DVec3::Y,
+        projection,
+    );
     let mut scene = parts.scene("particle stage", camera);
     scene.emitters = vec![ParticleEmitter {
         name: "test".to_owned(),
@@ -119,7 +125,12 @@ fn changed(a: &[[f32; 4]], b: &[[f32; 4]], by: f32) -> usize {
 /// Overlapping particles of several colours and opacities in front of the panel and the
 /// backdrop, one of them crossing the panel (soft), all `emissive` or none.
 fn overlapping(emissive: bool) -> Vec<Particle> {
-    let colors = [[0.9, 0.2, 0.1], [0.2, 0.8, 0.3], [0.9, 0.9, 0.2], [0.3, 0.3, 0.9]];
+    let colors = [
+        [0.9, 0.2, 0.1],
+        [0.2, 0.8, 0.3],
+        [0.9, 0.9, 0.2],
+        [0.3, 0.3, 0.9],
+    ];
     (0..12)
         .map(|i| {
             let t = i as f64 / 11.0;
@@ -138,12 +149,19 @@ fn overlapping(emissive: bool) -> Vec<Particle> {
 fn at_scale_1_with_point_depth_the_composite_reproduces_full_resolution_blending() {
     let gpu = gpu();
     for emissive in [false, true] {
-        let kind = if emissive { "additive" } else { "alpha-blended" };
+        let kind = if emissive {
+            "additive"
+        } else {
+            "alpha-blended"
+        };
         let scene = stage((0.6, 0.4), overlapping(emissive));
         let full = resolved(&gpu, FULL, &scene, &[]);
         let bare = resolved(&gpu, FULL, &stage((0.6, 0.4), Vec::new()), &[]);
         let drawn = changed(&full, &bare, 0.05);
-        assert!(drawn > 4000, "{kind}: the particles changed only {drawn} pixels");
+        assert!(
+            drawn > 4000,
+            "{kind}: the particles changed only {drawn} pixels"
+        );
         for pipeline in [LOW, MIXED] {
             let low = resolved(&gpu, pipeline, &scene, &[("scale", 1), ("depth_taps", 1)]);
             let worst = largest_difference(&low, &full);
@@ -175,7 +193,11 @@ fn a_particle_behind_the_panel_is_hidden_and_one_in_front_is_not_at_every_scale(
     let mut runs = vec![(FULL, 1, resolved(&gpu, FULL, &scene, &[]))];
     for scale in [1, 2, 4, 8] {
         for pipeline in [LOW, MIXED] {
-            runs.push((pipeline, scale, resolved(&gpu, pipeline, &scene, &[("scale", scale)])));
+            runs.push((
+                pipeline,
+                scale,
+                resolved(&gpu, pipeline, &scene, &[("scale", scale)]),
+            ));
         }
     }
     for (pipeline, scale, image) in runs {
@@ -201,7 +223,10 @@ fn soft_particles_fade_to_zero_at_the_intersection() {
     let bare = resolved(&gpu, FULL, &stage((0.9, 0.6), Vec::new()), &[]);
     let images = [
         (FULL, resolved(&gpu, FULL, &scene, &[])),
-        (LOW, resolved(&gpu, LOW, &scene, &[("scale", 1), ("depth_taps", 1)])),
+        (
+            LOW,
+            resolved(&gpu, LOW, &scene, &[("scale", 1), ("depth_taps", 1)]),
+        ),
     ];
     for (pipeline, image) in images {
         for (x, fade) in [(-0.5, 0.0), (0.0, 0.4), (0.5, 1.0)] {
@@ -257,7 +282,12 @@ fn the_maximum_depth_downsample_removes_the_halo_point_sampling_leaves() {
     let half = 0.3;
     let big = vec![particle([0.0, 0.0, -2.0], 4.0, [1.0, 0.0, 0.0], 1.0)];
     let scene = turned_stage((half, half), TURN, big);
-    let bare = resolved(&gpu, FULL, &turned_stage((half, half), TURN, Vec::new()), &[]);
+    let bare = resolved(
+        &gpu,
+        FULL,
+        &turned_stage((half, half), TURN, Vec::new()),
+        &[],
+    );
     let full = resolved(&gpu, FULL, &scene, &[]);
     assert_eq!(halo(&full, &full, &bare, half), 0);
     let count = |scale, taps| {
@@ -272,19 +302,36 @@ fn the_maximum_depth_downsample_removes_the_halo_point_sampling_leaves() {
             "scale {scale}: halo pixels with point sampling {point}, the maximum of 2x2 \
              {seed}, of {scale}x{scale} {every}"
         );
-        assert!(point > 20, "scale {scale}: point sampling left only {point} halo pixels");
-        assert!(seed < point, "scale {scale}: the seed's four samples leave {seed} of {point}");
-        assert_eq!(every, 0, "scale {scale}: the maximum of every pixel leaves {every}");
+        assert!(
+            point > 20,
+            "scale {scale}: point sampling left only {point} halo pixels"
+        );
+        assert!(
+            seed < point,
+            "scale {scale}: the seed's four samples leave {seed} of {point}"
+        );
+        assert_eq!(
+            every, 0,
+            "scale {scale}: the maximum of every pixel leaves {every}"
+        );
     }
 }
 
 /// FLIP's mean error of `test` against `reference` (8-bit sRGB images).
 fn flip(reference: &Image, test: &Image) -> f64 {
     let rgb = |image: &Image| {
-        let bytes: Vec<u8> = image.pixels.iter().flat_map(|p| [p[0], p[1], p[2]]).collect();
+        let bytes: Vec<u8> = image
+            .pixels
+            .iter()
+            .flat_map(|p| [p[0], p[1], p[2]])
+            .collect();
         nv_flip::FlipImageRgb8::with_data(image.width, image.height, &bytes)
     };
-    let map = nv_flip::flip(rgb(reference), rgb(test), nv_flip::DEFAULT_PIXELS_PER_DEGREE);
+    let map = nv_flip::flip(
+        rgb(reference),
+        rgb(test),
+        nv_flip::DEFAULT_PIXELS_PER_DEGREE,
+    );
     let values = map.to_vec();
     values.iter().map(|&v| f64::from(v)).sum::<f64>() / values.len() as f64
 }
@@ -300,11 +347,19 @@ fn mixed_resolution_is_closer_to_full_resolution_than_low_resolution() {
             .read(&gpu, &["color"])
             .remove(0)
     };
-    let full = Render::new(FULL, scene, size).read(&gpu, &["color"]).remove(0);
+    let full = Render::new(FULL, scene, size)
+        .read(&gpu, &["color"])
+        .remove(0);
     for scale in [2, 4] {
-        let (low, mixed) = (flip(&full, &color(LOW, scale)), flip(&full, &color(MIXED, scale)));
+        let (low, mixed) = (
+            flip(&full, &color(LOW, scale)),
+            flip(&full, &color(MIXED, scale)),
+        );
         eprintln!("scale {scale}: FLIP against full resolution: low {low:.4}, mixed {mixed:.4}");
-        assert!(low > 0.005, "scale {scale}: low resolution is full resolution ({low})");
+        assert!(
+            low > 0.005,
+            "scale {scale}: low resolution is full resolution ({low})"
+        );
         assert!(
             mixed < 0.6 * low,
             "scale {scale}: mixed {mixed} is not clearly closer than low {low}"
@@ -319,7 +374,9 @@ fn load(pipeline: &str, params: &[(&str, u32)]) -> Result<graph_core::file::Load
     let params = params
         .iter()
         .fold(GraphParams::new(), |p, (name, value)| p.with(*name, *value));
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines").join(pipeline);
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("pipelines")
+        .join(pipeline);
     load_file_with(&path, &registry, &params).map_err(|e| e.to_string())
 }
 
@@ -346,7 +403,9 @@ fn bad_particle_parameters_are_errors_naming_the_pass() {
         assert!(error.contains(expected), "{params:?}: {error}");
     }
     let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines").join(MIXED),
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("pipelines")
+            .join(MIXED),
     )
     .unwrap();
     let mut registry = Registry::with_builtins();
@@ -395,13 +454,21 @@ fn explain_shows_the_off_screen_passes_at_their_size() {
         })
         .unwrap();
     let text = graph_core::explain::text(&plan);
-    for pass in ["depth downsample", "particles (off screen)", "particle edges"] {
+    for pass in [
+        "depth downsample",
+        "particles (off screen)",
+        "particle edges",
+    ] {
         let at = text.find(&format!(". {pass} (render)\n")).expect(pass);
         assert!(
-            text[at..].lines().nth(1) == Some("         renders at 320x180, not the output's 1280x720"),
+            text[at..].lines().nth(1)
+                == Some("         renders at 320x180, not the output's 1280x720"),
             "{pass}:\n{text}"
         );
     }
     let at = text.find(". composite particles (render)\n").unwrap();
-    assert!(!text[at..].lines().nth(1).unwrap().contains("renders at"), "{text}");
+    assert!(
+        !text[at..].lines().nth(1).unwrap().contains("renders at"),
+        "{text}"
+    );
 }

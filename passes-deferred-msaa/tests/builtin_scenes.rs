@@ -325,7 +325,9 @@ fn smoke_is_dense_with_a_seeded_smoke_column_and_fire() {
     assert_eq!(names, ["smoke", "fire"]);
     let (smoke, fire) = (&scene.emitters[0].particles, &scene.emitters[1].particles);
     assert_eq!((smoke.len(), fire.len()), (3500, 500));
-    assert!(smoke.iter().all(|p| !p.emissive && p.size >= 0.6 && p.size <= 1.8));
+    assert!(smoke
+        .iter()
+        .all(|p| !p.emissive && p.size >= 0.6 && p.size <= 1.8));
     assert!(fire.iter().all(|p| p.emissive && p.position.y < 1.0));
     assert_eq!(scene.particles().count(), 4000);
     let other = builtin("builtin:smoke?count=80&size=300&seed=7");
@@ -358,10 +360,7 @@ fn bad_particles_in_code_built_scenes_are_named_errors() {
         alpha: 0.5,
         emissive: false,
     };
-    let bad = Particle {
-        alpha: 1.5,
-        ..good
-    };
+    let bad = Particle { alpha: 1.5, ..good };
     scene.emitters = vec![ParticleEmitter {
         name: "sparks".to_owned(),
         particles: vec![good, bad],
@@ -374,7 +373,11 @@ fn bad_particles_in_code_built_scenes_are_named_errors() {
         size: f32::NAN,
         ..good
     };
-    assert!(scene.check_particles().unwrap_err().to_string().contains("size NaN"));
+    assert!(scene
+        .check_particles()
+        .unwrap_err()
+        .to_string()
+        .contains("size NaN"));
     scene.emitters[0].particles = vec![good; MAX_PARTICLES + 1];
     assert!(scene
         .check_particles()

@@ -38,7 +38,10 @@ pub fn text(plan: &Plan) -> String {
             .and_then(|r| plan.resource(r).texture.as_ref())
             .map(|t| (t.width, t.height));
         if let Some((aw, ah)) = area.filter(|&a| a != plan.output_size) {
-            let _ = writeln!(out, "         renders at {aw}x{ah}, not the output's {w}x{h}");
+            let _ = writeln!(
+                out,
+                "         renders at {aw}x{ah}, not the output's {w}x{h}"
+            );
         }
         let list = |versions: &[(crate::handle::ResourceId, u32)]| {
             versions

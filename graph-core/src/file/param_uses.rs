@@ -170,12 +170,13 @@ pub(super) fn substitute(text: &str, values: &GraphParams) -> String {
             .to_string();
         let padded: String = value
             .chars()
-            .chain(
-                text[range.clone()]
-                    .chars()
-                    .skip(value.len())
-                    .map(|c| if c == '\n' { c } else { ' ' }),
-            )
+            .chain(text[range.clone()].chars().skip(value.len()).map(|c| {
+                if c == '\n' {
+                    c
+                } else {
+                    ' '
+                }
+            }))
             .collect();
         out.replace_range(range, &padded);
     }

@@ -175,7 +175,8 @@ mod gpu {
                 .build(resources.device)
             });
             ctx.pass.set_pipeline(pipeline);
-            ctx.pass.set_bind_group(0, scene.bind_group(convention), &[]);
+            ctx.pass
+                .set_bind_group(0, scene.bind_group(convention), &[]);
             ctx.pass
                 .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
             ctx.pass.draw(0..3, 0..1);

@@ -170,7 +170,10 @@ impl Plugin for Particles {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         params.check()?;
-        let want = Want::new("the scene depth (a depth-stencil or an r32float view depth)", SCENE_DEPTH);
+        let want = Want::new(
+            "the scene depth (a depth-stencil or an r32float view depth)",
+            SCENE_DEPTH,
+        );
         let (depth, depth_desc) = textures::input(slots, pass, "depth", want)?;
         let view_depth = depth_desc.format == TextureFormat::R32Float;
         let (input, depth_rule, samples) = if view_depth {
@@ -189,7 +192,11 @@ impl Plugin for Particles {
                 aspect: Aspect::DepthOnly,
                 texels: Texels::Depth,
             };
-            (input, Some(DepthRule::new(params.reversed_z)), depth_desc.samples)
+            (
+                input,
+                Some(DepthRule::new(params.reversed_z)),
+                depth_desc.samples,
+            )
         };
         let (targets, target_desc) = if slots.is_output("hdr") {
             let want = Want::new("the resolved HDR image", textures::HDR).samples(1);
@@ -449,7 +456,9 @@ mod gpu {
                     pipelines: Pipelines::default(),
                 }
             });
-            state.particles.update(resources.queue, host_scene, scene.camera());
+            state
+                .particles
+                .update(resources.queue, host_scene, scene.camera());
             let (blended, additive) = (state.particles.blended(), state.particles.additive());
             if blended.is_empty() && additive.is_empty() {
                 return;
@@ -515,12 +524,16 @@ mod gpu {
                         ),
                         build(
                             "fs_additive_apart",
-                            &[target(key.targets[0], None), target(key.targets[1], Some(ADD))],
+                            &[
+                                target(key.targets[0], None),
+                                target(key.targets[1], Some(ADD)),
+                            ],
                         ),
                     ],
                 }
             });
-            ctx.pass.set_bind_group(0, scene.bind_group(convention), &[]);
+            ctx.pass
+                .set_bind_group(0, scene.bind_group(convention), &[]);
             ctx.pass
                 .set_bind_group(1, &state.textures.bind_group(resources), &[]);
             ctx.pass.set_bind_group(2, &state.particle_group, &[]);
@@ -544,7 +557,6 @@ mod gpu {
             operation: wgpu::BlendOperation::Add,
         }
     }
-
 
     /// Over the HDR image: colour `src * a + dst * (1 - a)`, its alpha kept.
     const OVER: wgpu::BlendState = wgpu::BlendState {

@@ -26,13 +26,15 @@ use crate::scene::{Particle, ParticleEmitter, SceneError, MAX_PARTICLES};
 pub(super) const PARAMS: &[BuiltinParam] = &[
     BuiltinParam {
         key: "count",
-        meaning: "total number of particles, 7/8 smoke and 1/8 fire (default 4000, at most 1048576)",
+        meaning:
+            "total number of particles, 7/8 smoke and 1/8 fire (default 4000, at most 1048576)",
         default: 4000,
         max: MAX_PARTICLES as u32,
     },
     BuiltinParam {
         key: "size",
-        meaning: "nominal particle diameter in centimetres (default 120, at least 1, at most 10000)",
+        meaning:
+            "nominal particle diameter in centimetres (default 120, at least 1, at most 10000)",
         default: 120,
         max: 10_000,
     },
