@@ -387,6 +387,11 @@ pub struct BenchArgs {
     /// results' notes name them (default: each file's; --sweep samples overrides it).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub samples: Option<u32>,
+    /// A value for a graph-file parameter, repeatable (`--param scale=4`), given to every
+    /// pipeline whose file declares it, whose rows' names then say so ("particles_low_res
+    /// [scale=4]"); the results' notes name the files without it.
+    #[arg(long = "param", value_name = "NAME=VALUE", value_parser = parse_param)]
+    pub params: Vec<(String, u32)>,
     /// Adapter to measure on: lavapipe, gpu, or part of an adapter's name (default:
     /// $RGRAPH_ADAPTER, else lavapipe).
     #[arg(long)]

@@ -334,6 +334,11 @@ fn smoke_is_dense_with_a_seeded_smoke_column_and_fire() {
     assert_eq!(other.particles().count(), 80);
     assert!(other.particles().all(|p| p.size >= 0.9 && p.size <= 4.5));
     assert_ne!(builtin("builtin:smoke?seed=2").emitters, scene.emitters);
+    let half = builtin("builtin:smoke?extent=50");
+    for (a, b) in half.particles().zip(scene.particles()) {
+        assert!((a.position * 2.0 - b.position).length() < 1e-6);
+        assert!((a.size * 2.0 - b.size).abs() < 1e-6);
+    }
 }
 
 #[test]
@@ -346,7 +351,12 @@ fn smoke_parameters_out_of_range_are_errors_not_allocations() {
     );
     assert!(message("builtin:smoke?size=0").contains("`size=0`: a particle needs a positive size"));
     assert!(message("builtin:smoke?size=10001").contains("`size=10001`"));
-    assert!(message("builtin:smoke?speed=3").contains("this scene takes: count, size, seed"));
+    assert!(
+        message("builtin:smoke?extent=0").contains("`extent=0`: a particle needs a positive size")
+    );
+    assert!(
+        message("builtin:smoke?speed=3").contains("this scene takes: count, size, seed, extent")
+    );
 }
 
 #[test]

@@ -65,6 +65,7 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         Some(samples) => candidates::at_samples(pipelines, samples, &mut notes),
         None => pipelines,
     };
+    let pipelines = candidates::with_params(pipelines, &args.params, &mut notes);
     let session = Session::open(&AdapterChoice::resolve(args.adapter.as_deref()))
         .map_err(BenchError::Device)?;
     let size = (args.width, args.height);

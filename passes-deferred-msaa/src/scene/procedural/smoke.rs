@@ -12,6 +12,10 @@
 //!   to 1.2), diameters 0.3 to 0.8 times `size`, orange radiance 2 to 6, alpha 0.2 to 0.6.
 //! - `size` is the nominal diameter in centimetres (default 120: 1.2 units), `seed` seeds
 //!   [`Pcg32`] (default 1), so each (count, size, seed) is one fixed scene.
+//! - `extent` scales the whole effect about the origin, positions and diameters, in
+//!   percent (default 100): how much of the frame it fills without moving the camera,
+//!   as the seed moved away from its effect to shrink it on screen (Table 23-3). The
+//!   same particles in the same order at every extent.
 
 use std::f32::consts::TAU;
 
@@ -44,29 +48,41 @@ pub(super) const PARAMS: &[BuiltinParam] = &[
         default: 1,
         max: u32::MAX,
     },
+    BuiltinParam {
+        key: "extent",
+        meaning: "the effect's scale in percent, positions and sizes (default 100, at least 1, at most 1000)",
+        default: 100,
+        max: 1000,
+    },
 ];
 
 pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), SceneError> {
     let count = params.u32("count")?;
     let size = params.u32("size")?;
-    if size == 0 {
-        return Err(SceneError::BuiltinParameter {
-            scene: "smoke".to_owned(),
-            reason: "`size=0`: a particle needs a positive size (1 to 10000 centimetres)"
-                .to_owned(),
-        });
+    let extent = params.u32("extent")?;
+    for (key, value, range) in [
+        ("size", size, "1 to 10000 centimetres"),
+        ("extent", extent, "1 to 1000 percent"),
+    ] {
+        if value == 0 {
+            return Err(SceneError::BuiltinParameter {
+                scene: "smoke".to_owned(),
+                reason: format!("`{key}=0`: a particle needs a positive size ({range})"),
+            });
+        }
     }
     let mut rng = Pcg32::new(u64::from(params.u32("seed")?));
     super::dense::build(params, builder)?;
     builder.ambient = [0.25; 3];
-    let size = size as f32 / 100.0;
+    let extent = extent as f32 / 100.0;
+    let size = size as f32 / 100.0 * extent;
     let fire = count / 8;
     let smoke = (0..count - fire)
         .map(|_| {
             let y = rng.range(0.0, 4.0);
             let grey = rng.range(0.35, 0.75);
             Particle {
-                position: in_disc(&mut rng, 2.0 + 1.25 * y, f64::from(y)),
+                position: in_disc(&mut rng, 2.0 + 1.25 * y, y) * f64::from(extent),
                 size: size * rng.range(0.5, 1.5),
                 color: [grey, grey, grey * 0.95],
                 alpha: rng.range(0.05, 0.25),
@@ -79,7 +95,7 @@ pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), S
             let y = rng.range(0.0, 1.0);
             let radiance = rng.range(2.0, 6.0);
             Particle {
-                position: in_disc(&mut rng, 1.2, f64::from(y)),
+                position: in_disc(&mut rng, 1.2, y) * f64::from(extent),
                 size: size * rng.range(0.3, 0.8),
                 color: [radiance, radiance * 0.45, radiance * 0.1],
                 alpha: rng.range(0.2, 0.6),
@@ -101,7 +117,11 @@ pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), S
 }
 
 /// A point uniform over the horizontal disc of `radius` around the y axis at height `y`.
-fn in_disc(rng: &mut Pcg32, radius: f32, y: f64) -> DVec3 {
+fn in_disc(rng: &mut Pcg32, radius: f32, y: f32) -> DVec3 {
     let (r, angle) = (radius * rng.unit().sqrt(), rng.range(0.0, TAU));
-    DVec3::new(f64::from(r * angle.cos()), y, f64::from(r * angle.sin()))
+    DVec3::new(
+        f64::from(r * angle.cos()),
+        f64::from(y),
+        f64::from(r * angle.sin()),
+    )
 }
