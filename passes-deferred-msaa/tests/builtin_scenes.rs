@@ -395,3 +395,30 @@ fn bad_particles_in_code_built_scenes_are_named_errors() {
         .to_string()
         .contains("1048577 particles, more than 1048576"));
 }
+
+#[test]
+fn billboard_pixels_are_the_squares_of_the_projected_diameters_cut_to_the_target() {
+    use passes_deferred_msaa::scene::{billboard_pixels, Particle};
+    // builtin:unlit's orthographic camera: 2 units across, so 64 pixels a unit at 128.
+    let camera = builtin("builtin:unlit").camera;
+    let at = |x, size| Particle {
+        position: DVec3::new(x, 0.0, 0.0),
+        size,
+        color: [1.0; 3],
+        alpha: 1.0,
+        emissive: false,
+    };
+    let pixels = |particles: &[Particle]| billboard_pixels(particles, &camera, (128, 128));
+    assert!((pixels(&[at(0.0, 0.5)]) - 32.0 * 32.0).abs() < 1e-6);
+    // Half of it beyond the right edge; twice over when two overlap.
+    assert!((pixels(&[at(1.0, 0.5)]) - 16.0 * 32.0).abs() < 1e-6);
+    assert!((pixels(&[at(0.0, 0.5), at(0.0, 0.5)]) - 2048.0).abs() < 1e-6);
+    assert_eq!(pixels(&[at(5.0, 0.5)]), 0.0);
+    // Perspective: the smoke shrinks with its extent as the square of it.
+    let smoke = builtin("builtin:smoke");
+    let half = builtin("builtin:smoke?extent=50");
+    let full = billboard_pixels(smoke.particles(), &smoke.camera, (1280, 720));
+    let small = billboard_pixels(half.particles(), &half.camera, (1280, 720));
+    assert!(full > 10.0 * 1280.0 * 720.0, "{full}");
+    assert!(small < 0.4 * full, "{small} of {full}");
+}

@@ -14,6 +14,8 @@ mod images;
 mod machine;
 mod measure;
 mod memory;
+mod particle_table;
+mod particle_work;
 mod progress;
 mod reference;
 mod results;

@@ -46,7 +46,7 @@ pub use material::{AlphaMode, Material};
 pub use mesh::{Mesh, Vertex};
 pub use model::Scene;
 pub use normals::flat_shaded;
-pub use particles::{Particle, ParticleEmitter, MAX_PARTICLES};
+pub use particles::{billboard_pixels, Particle, ParticleEmitter, MAX_PARTICLES};
 pub use prefilter::{
     cube_direction, prefilter, prefiltered_cube, split_sum, split_sum_lut, CUBE_LEVELS, CUBE_SIZE,
     LUT_SIZE,

@@ -7,7 +7,9 @@
 //! `size` world units across facing the camera, whose opacity falls off from its centre
 //! (the procedural soft texture of particles.wgsl).
 
-use glam::DVec3;
+use glam::{DVec3, DVec4};
+
+use super::{Camera, DepthConvention};
 
 /// The most particles a scene may hold over all its emitters: 32 bytes each on the device,
 /// so 32 MiB, and one instance each in a single draw.
@@ -59,4 +61,44 @@ impl Particle {
         }
         None
     }
+}
+
+/// How many pixels the billboards of `particles` cover on a target of `size` seen by
+/// `camera`, overlaps counted as often as they overlap: the fragments a particle pass
+/// shades (seed 001's "particle pixels"). Each billboard is the square of its diameter
+/// facing the camera, cut to the target; one reaching behind the near plane is left out.
+pub fn billboard_pixels<'a>(
+    particles: impl IntoIterator<Item = &'a Particle>,
+    camera: &Camera,
+    size: (u32, u32),
+) -> f64 {
+    let (width, height) = (f64::from(size.0), f64::from(size.1));
+    let aspect = (width / height.max(1.0)) as f32;
+    let projection = camera
+        .projection_matrix(aspect, DepthConvention::Standard)
+        .as_dmat4();
+    let view = camera.view_matrix();
+    let ndc = |v: DVec4| (v.w > 0.0).then(|| v.truncate().truncate() / v.w);
+    particles
+        .into_iter()
+        .filter_map(|p| {
+            let centre = view * p.position.extend(1.0);
+            let radius = 0.5 * f64::from(p.size);
+            // Wholly in front of the camera (view space looks down -z).
+            if centre.z + radius >= 0.0 {
+                return None;
+            }
+            let middle = ndc(projection * centre)?;
+            let top = ndc(projection * (centre + DVec4::new(0.0, radius, 0.0, 0.0)))?;
+            let half = (top.y - middle.y).abs() * 0.5 * height;
+            let (x, y) = (
+                (middle.x + 1.0) * 0.5 * width,
+                (1.0 - middle.y) * 0.5 * height,
+            );
+            let cover = |centre: f64, extent: f64| {
+                ((centre + half).min(extent) - (centre - half).max(0.0)).max(0.0)
+            };
+            Some(cover(x, width) * cover(y, height))
+        })
+        .sum()
 }
