@@ -19,6 +19,9 @@ pub struct ParticleWork {
     pub particle_pixels: f64,
     /// Pixels of the depth downsample, edge detection and composite passes.
     pub image_processing_pixels: f64,
+    /// The passes of the technique (particle passes and image processing), whose GPU
+    /// times add up to its cost apart from the opaque frame's.
+    pub passes: Vec<String>,
     /// How the full-resolution pass of mixed resolution was counted: its billboard pixels
     /// times the edge mask's share of the pixels (`debug.particle_edges`), an estimate:
     /// the composite leaves a little more than the mask to it. `null` without such a pass.
@@ -38,9 +41,9 @@ impl ParticleWork {
         let mut work = ParticleWork {
             particle_pixels: 0.0,
             image_processing_pixels: 0.0,
+            passes: Vec::new(),
             stencilled: None,
         };
-        let mut any = false;
         for pass in &plan.passes {
             let Some(size) = pass
                 .color
@@ -52,7 +55,7 @@ impl ParticleWork {
             };
             match plugin(&pass.name).as_deref() {
                 Some("particles") => {
-                    any = true;
+                    work.passes.push(pass.name.clone());
                     let pixels = billboard_pixels(scene.particles(), &scene.camera, size);
                     let share = match (&pass.depth_stencil, edge_share) {
                         (None, _) => 1.0,
@@ -75,11 +78,12 @@ impl ParticleWork {
                     work.particle_pixels += pixels * share;
                 }
                 Some("depth_downsample" | "particle_edges" | "composite_particles") => {
+                    work.passes.push(pass.name.clone());
                     work.image_processing_pixels += f64::from(size.0) * f64::from(size.1);
                 }
                 _ => {}
             }
         }
-        any.then_some(work)
+        (!work.passes.is_empty()).then_some(work)
     }
 }

@@ -274,8 +274,9 @@ changes the plan, the general plan is timed too and a table per scene shows what
 Particle pipelines (seed 001): particle Mpx are the fragments their particle passes shade \
 (billboard pixels, overlaps counted), image-processing Mpx those of the depth downsample, \
 edge detection and composite, both counted on the CPU (results.json says how the \
-stencilled full-resolution pass of mixed resolution is estimated); saved: GPU frame time \
-against particles_full_res on the same scene.";
+stencilled full-resolution pass of mixed resolution is estimated); particle GPU ms: the \
+median GPU times of those passes added up, the technique's cost apart from the opaque \
+frame; saved: that against particles_full_res's on the same scene.";
 
 /// Outside sweeps, which write no images.
 const IMAGES: &str = " Images per scene are in the folder next to this file: reference.png, \
