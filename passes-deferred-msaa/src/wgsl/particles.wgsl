@@ -74,21 +74,16 @@ fn particle_alpha(in: Billboard) -> f32 {
 }
 
 // Blended (smoke): albedo lit by the ambient radiance, with its opacity for the
-// pipeline's over-blending.
+// pipeline's over-blending. No `discard` where the opacity is 0: blending 0 leaves the
+// target exactly as it was, and a shader without discard lets the hardware run the
+// mixed-resolution stencil test before it.
 fn blended(in: Billboard) -> vec4<f32> {
-    let a = particle_alpha(in);
-    if a <= 0.0 {
-        discard;
-    }
-    return vec4<f32>(min(in.color * light_info.ambient, vec3<f32>(HALF_MAX)), a);
+    return vec4<f32>(min(in.color * light_info.ambient, vec3<f32>(HALF_MAX)), particle_alpha(in));
 }
 
 // Emissive (fire): its radiance times its opacity, for additive blending.
 fn additive(in: Billboard) -> vec4<f32> {
     let a = particle_alpha(in);
-    if a <= 0.0 {
-        discard;
-    }
     return vec4<f32>(min(in.color * a, vec3<f32>(HALF_MAX)), a);
 }
 
