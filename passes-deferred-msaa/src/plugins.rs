@@ -9,7 +9,9 @@
 //! lighting, pipelines/deferred_gbuffer_resolve_4x.ron). Every pipeline that renders the
 //! lit scene adds `transparent` and `composite_transparent` under `when: "blend"`: alpha
 //! BLEND meshes, which the opaque passes skip, drawn after lighting and composited onto
-//! the resolved image.
+//! the resolved image. The `particles_*` pipelines draw the scene's particle emitters
+//! after that, at full resolution or off screen (`depth_downsample`, `particles`,
+//! `particle_edges`, `composite_particles`: seed 001).
 //!
 //! The G-buffer slots every pass uses the same names for: `albedo`, `normal`,
 //! `material`, `view_depth`, `hdr` and `depth` (the multisampled depth-stencil).
