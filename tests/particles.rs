@@ -472,3 +472,25 @@ fn explain_shows_the_off_screen_passes_at_their_size() {
         "{text}"
     );
 }
+
+#[test]
+fn a_moved_camera_redraws_the_particles_as_a_fresh_upload_does() {
+    let gpu = gpu();
+    let scene = stage((0.6, 0.4), overlapping(false));
+    let mut frame = Render::new(FULL, "particle stage", SIZE)
+        .with_scene(scene.clone())
+        .export_resolved()
+        .run(&gpu);
+    let first = frame.hdr(&gpu, "resolved");
+    let mut inputs = frame.inputs();
+    // Round to the other side: the particles' back-to-front order reverses.
+    inputs.camera = inputs.camera.orbited(DVec3::ZERO, std::f64::consts::PI);
+    frame.next(inputs.clone());
+    let moved = frame.hdr(&gpu, "resolved");
+    let mut seen_from_there = scene;
+    seen_from_there.camera = inputs.camera;
+    let fresh = resolved(&gpu, FULL, &seen_from_there, &[]);
+    let worst = largest_difference(&moved, &fresh);
+    assert!(worst <= STEP, "the moved frame differs from a fresh one by {worst}");
+    assert!(changed(&moved, &first, 0.05) > 1000, "the view did not change");
+}
