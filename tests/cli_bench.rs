@@ -177,7 +177,10 @@ fn results_json_has_every_figure_with_its_type() {
             ("particles", "object|null"),
         ],
     );
-    assert!(figures["particles"].is_null(), "no particle passes: {figures:#}");
+    assert!(
+        figures["particles"].is_null(),
+        "no particle passes: {figures:#}"
+    );
     assert_eq!(number(figures, "ratio_to_noaa"), 1.0);
     for pass in figures["passes"].as_array().unwrap() {
         assert_fields(

@@ -491,6 +491,12 @@ fn a_moved_camera_redraws_the_particles_as_a_fresh_upload_does() {
     seen_from_there.camera = inputs.camera;
     let fresh = resolved(&gpu, FULL, &seen_from_there, &[]);
     let worst = largest_difference(&moved, &fresh);
-    assert!(worst <= STEP, "the moved frame differs from a fresh one by {worst}");
-    assert!(changed(&moved, &first, 0.05) > 1000, "the view did not change");
+    assert!(
+        worst <= STEP,
+        "the moved frame differs from a fresh one by {worst}"
+    );
+    assert!(
+        changed(&moved, &first, 0.05) > 1000,
+        "the view did not change"
+    );
 }

@@ -13,7 +13,7 @@ use std::ops::Range;
 
 use glam::DVec3;
 
-use crate::scene::{Camera, Particle, Scene};
+use crate::scene::{Camera, Particle, Scene, MAX_PARTICLES};
 
 /// `Particle` in particles.wgsl.
 #[repr(C)]
@@ -35,12 +35,14 @@ pub struct ParticleBuffer {
 }
 
 impl ParticleBuffer {
-    /// A buffer for `scene`'s particles (at most `MAX_PARTICLES`, which loading checks;
-    /// one zeroed entry when it has none, as a binding cannot be empty), written on the
-    /// first [`update`](Self::update).
+    /// A buffer for `scene`'s particles (one zeroed entry when it has none, as a
+    /// binding cannot be empty), written on the first [`update`](Self::update). Loading
+    /// refuses more than [`MAX_PARTICLES`]; of a scene built in code without
+    /// [`Scene::check_particles`], only the first `MAX_PARTICLES` are drawn, so the
+    /// buffer stays within 32 MiB.
     pub fn new(device: &wgpu::Device, scene: &Scene) -> ParticleBuffer {
-        let blended = scene.particles().filter(|p| !p.emissive).count();
-        let additive = scene.particles().count() - blended;
+        let blended = particles(scene).filter(|p| !p.emissive).count();
+        let additive = particles(scene).count() - blended;
         let entries = (blended + additive).max(1);
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("particles"),
@@ -66,12 +68,12 @@ impl ParticleBuffer {
             return;
         }
         let depth = |p: &Particle| (p.position - eye).dot(forward);
-        let mut blended: Vec<&Particle> = scene.particles().filter(|p| !p.emissive).collect();
+        let mut blended: Vec<&Particle> = particles(scene).filter(|p| !p.emissive).collect();
         // Farthest first; stable, so particles at one depth keep the scene's order.
         blended.sort_by(|a, b| depth(b).total_cmp(&depth(a)));
         let gpu: Vec<GpuParticle> = blended
             .into_iter()
-            .chain(scene.particles().filter(|p| p.emissive))
+            .chain(particles(scene).filter(|p| p.emissive))
             .map(|p| GpuParticle {
                 position: (p.position - eye).as_vec3().to_array(),
                 size: p.size,
@@ -96,4 +98,9 @@ impl ParticleBuffer {
     pub fn additive(&self) -> Range<u32> {
         self.blended..self.blended + self.additive
     }
+}
+
+/// The particles the buffer holds: at most [`MAX_PARTICLES`].
+fn particles(scene: &Scene) -> impl Iterator<Item = &Particle> {
+    scene.particles().take(MAX_PARTICLES)
 }
