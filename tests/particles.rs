@@ -500,3 +500,34 @@ fn a_moved_camera_redraws_the_particles_as_a_fresh_upload_does() {
         "the view did not change"
     );
 }
+
+#[test]
+fn render_warns_when_the_pipeline_leaves_the_scenes_particles_out() {
+    let dir = std::env::temp_dir().join(format!("rgraph-particles-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("frame.png");
+    let render = |pipeline: &str| {
+        crate::cli_support::rgraph(&[
+            "render",
+            "--pipeline",
+            pipeline,
+            "--scene",
+            "builtin:smoke?count=40",
+            "--width",
+            "64",
+            "--height",
+            "36",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .expect(0)
+        .stderr
+    };
+    let warning = "warning: the scene has 40 particles, but pipelines/deferred_msaa_4x_tiled.ron \
+                   has no `particles` pass to draw them";
+    let stderr = render("pipelines/deferred_msaa_4x_tiled.ron");
+    assert!(stderr.contains(warning), "{stderr}");
+    let stderr = render("pipelines/particles_low_res.ron");
+    assert!(!stderr.contains("particles, but"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
