@@ -531,3 +531,44 @@ fn render_warns_when_the_pipeline_leaves_the_scenes_particles_out() {
     assert!(!stderr.contains("particles, but"), "{stderr}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn an_engine_moves_and_adds_particles_through_the_frame_inputs() {
+    let gpu = gpu();
+    let half = (0.6, 0.4);
+    let one = vec![particle([0.0, 0.0, 1.0], 0.5, [1.0, 0.0, 0.0], 0.8)];
+    let mut frame = Render::new(LOW, "particle stage", SIZE)
+        .with_scene(stage(half, one))
+        .export_resolved()
+        .run(&gpu);
+    // Twelve where there was one: the buffer grows.
+    let mut inputs = frame.inputs();
+    inputs.emitters = std::sync::Arc::new(vec![ParticleEmitter {
+        name: "simulated".to_owned(),
+        particles: overlapping(true),
+    }]);
+    frame.next(inputs.clone());
+    let moved = frame.hdr(&gpu, "resolved");
+    let fresh = resolved(&gpu, LOW, &stage(half, overlapping(true)), &[]);
+    let worst = largest_difference(&moved, &fresh);
+    assert!(
+        worst <= STEP,
+        "the simulated particles differ from a fresh upload by {worst}"
+    );
+
+    let host = passes_deferred_msaa::Host::new(
+        std::sync::Arc::new(stage(half, Vec::new())),
+        passes_deferred_msaa::Overrides::default(),
+    );
+    let mut bad = overlapping(false);
+    bad[3].size = -1.0;
+    inputs.emitters = std::sync::Arc::new(vec![ParticleEmitter {
+        name: "simulated".to_owned(),
+        particles: bad,
+    }]);
+    assert_eq!(
+        host.set_frame(inputs).unwrap_err().to_string(),
+        "frame inputs: particle stage: emitter \"simulated\" particle 3: size -1 is not finite \
+         and positive"
+    );
+}

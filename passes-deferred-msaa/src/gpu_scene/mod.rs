@@ -76,12 +76,6 @@ impl SceneCache {
         }
     }
 
-    /// The host's scene (its particles are uploaded by the passes that draw them:
-    /// [`ParticleBuffer`]); `None` without a host.
-    pub fn scene(&self) -> Option<&Arc<Scene>> {
-        self.host.as_ref().map(|h| &h.scene)
-    }
-
     /// The variant of `shader` that draws the scene: the code its features need (every
     /// feature's with [`Variants::General`]). A pipeline key part.
     pub fn variant(&self, shader: GatedShader) -> Variant {
@@ -287,9 +281,10 @@ impl GpuScene {
         self.upload.cameras.prepare(queue, camera, size);
     }
 
-    /// The camera of the frame inputs this scene is placed by.
-    pub fn camera(&self) -> &crate::scene::Camera {
-        &self.frame.inputs.camera
+    /// The frame inputs this scene is placed by (the particle passes read the camera
+    /// and the emitters).
+    pub fn inputs(&self) -> &FrameInputs {
+        &self.frame.inputs
     }
 
     /// Group 0's layout: see scene.wgsl.

@@ -18,8 +18,9 @@
 //!  outputs: { "resolved": "resolved" }),        // + "stencil": "particle_stencil" (mixed)
 //! ```
 //!
-//! **The particle pass** draws the scene's particles (`Scene::emitters`,
-//! gpu_scene/particles.rs) as camera-facing billboards in one instanced draw per kind:
+//! **The particle pass** draws the frame's particles (`FrameInputs::emitters`: the
+//! scene's, or wherever an engine's simulation took them; gpu_scene/particles.rs) as
+//! camera-facing billboards in one instanced draw per kind:
 //! the blended ones (smoke) back to front, then the emissive ones (fire). Each fragment's
 //! opacity is the particle's alpha times a procedural soft texture times the seed's
 //! soft-particle fade `zFade = saturate(softness * (scene depth - particle depth))` in view
@@ -400,7 +401,6 @@ mod gpu {
         textures: TextureBindings,
         layout: wgpu::PipelineLayout,
         particles: ParticleBuffer,
-        particle_group: wgpu::BindGroup,
         /// The blended and the additive pipeline.
         pipelines: Pipelines<Key, [wgpu::RenderPipeline; 2]>,
     }
@@ -413,52 +413,29 @@ mod gpu {
         Box::new(move |ctx| {
             let resources = ctx.resources;
             let device = resources.device;
-            let (Some(scene), Some(host_scene)) = (scenes.for_frame(resources), scenes.scene())
-            else {
+            let Some(scene) = scenes.for_frame(resources) else {
                 return;
             };
             let state = per_scene(&mut state, &scene, || {
                 let textures = TextureBindings::new(resources, &[draw.depth]);
-                let particles = ParticleBuffer::new(device, host_scene);
-                let particle_layout =
-                    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                        label: Some("particles"),
-                        entries: &[wgpu::BindGroupLayoutEntry {
-                            binding: 0,
-                            visibility: wgpu::ShaderStages::VERTEX,
-                            ty: wgpu::BindingType::Buffer {
-                                ty: wgpu::BufferBindingType::Storage { read_only: true },
-                                has_dynamic_offset: false,
-                                min_binding_size: None,
-                            },
-                            count: None,
-                        }],
-                    });
-                let particle_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("particles"),
-                    layout: &particle_layout,
-                    entries: &[wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: particles.buffer().as_entire_binding(),
-                    }],
-                });
+                let particles = ParticleBuffer::new(device);
                 let layouts = [
                     Some(scene.layout()),
                     Some(&textures.layout),
-                    Some(&particle_layout),
+                    Some(particles.layout()),
                 ];
                 State {
                     module: module(device, "particles", &draw.source),
                     layout: pipeline_layout(device, &layouts),
                     textures,
                     particles,
-                    particle_group,
                     pipelines: Pipelines::default(),
                 }
             });
+            let inputs = scene.inputs();
             state
                 .particles
-                .update(resources.queue, host_scene, scene.camera());
+                .update(device, resources.queue, &inputs.emitters, &inputs.camera);
             let (blended, additive) = (state.particles.blended(), state.particles.additive());
             if blended.is_empty() && additive.is_empty() {
                 return;
@@ -536,7 +513,7 @@ mod gpu {
                 .set_bind_group(0, scene.bind_group(convention), &[]);
             ctx.pass
                 .set_bind_group(1, &state.textures.bind_group(resources), &[]);
-            ctx.pass.set_bind_group(2, &state.particle_group, &[]);
+            ctx.pass.set_bind_group(2, state.particles.group(), &[]);
             ctx.pass.set_stencil_reference(EDGE_STENCIL);
             for (pipeline, instances) in [(blend_pipeline, blended), (add_pipeline, additive)] {
                 if !instances.is_empty() {

@@ -46,7 +46,7 @@ pub use material::{AlphaMode, Material};
 pub use mesh::{Mesh, Vertex};
 pub use model::Scene;
 pub use normals::flat_shaded;
-pub use particles::{billboard_pixels, Particle, ParticleEmitter, MAX_PARTICLES};
+pub use particles::{billboard_pixels, check_emitters, Particle, ParticleEmitter, MAX_PARTICLES};
 pub use prefilter::{
     cube_direction, prefilter, prefiltered_cube, split_sum, split_sum_lut, CUBE_LEVELS, CUBE_SIZE,
     LUT_SIZE,
@@ -89,38 +89,10 @@ impl Scene {
 
     /// Fails when the emitters hold more than [`MAX_PARTICLES`] particles or a particle
     /// that cannot be drawn, naming the emitter and the particle. Loading checks it; an
-    /// engine that adds emitters to a loaded scene calls it before handing the scene over.
+    /// engine that adds emitters to a loaded scene calls it before handing the scene over
+    /// (frame inputs' emitters are checked by `Host::set_frame`).
     pub fn check_particles(&self) -> Result<(), SceneError> {
-        let count: usize = self.emitters.iter().map(|e| e.particles.len()).sum();
-        if count > MAX_PARTICLES {
-            return Err(SceneError::TooManyParticles {
-                scene: self.name.clone(),
-                count,
-                max: MAX_PARTICLES,
-            });
-        }
-        for emitter in &self.emitters {
-            for (index, particle) in emitter.particles.iter().enumerate() {
-                if let Some(reason) = particle.invalid() {
-                    return Err(SceneError::InvalidParticle {
-                        scene: self.name.clone(),
-                        emitter: emitter.name.clone(),
-                        index,
-                        reason,
-                    });
-                }
-                let extent = particle.position.abs().max_element();
-                if extent > MAX_COORDINATE {
-                    return Err(SceneError::TooFar {
-                        scene: self.name.clone(),
-                        what: format!("particle {index} of emitter \"{}\"", emitter.name),
-                        value: extent,
-                        max: MAX_COORDINATE,
-                    });
-                }
-            }
-        }
-        Ok(())
+        particles::check_emitters(&self.name, &self.emitters)
     }
 
     /// The particles of every emitter, in emitter order.

@@ -9,7 +9,7 @@
 
 use glam::{DVec3, DVec4};
 
-use super::{Camera, DepthConvention};
+use super::{Camera, DepthConvention, SceneError, MAX_COORDINATE};
 
 /// The most particles a scene may hold over all its emitters: 32 bytes each on the device,
 /// so 32 MiB, and one instance each in a single draw.
@@ -61,6 +61,42 @@ impl Particle {
         }
         None
     }
+}
+
+/// Fails when `emitters` (of scene `scene`) hold more than [`MAX_PARTICLES`] particles,
+/// or a particle that cannot be drawn ([`Particle::invalid`], or farther from the origin
+/// than [`MAX_COORDINATE`]), naming the emitter and the particle.
+pub fn check_emitters(scene: &str, emitters: &[ParticleEmitter]) -> Result<(), SceneError> {
+    let count: usize = emitters.iter().map(|e| e.particles.len()).sum();
+    if count > MAX_PARTICLES {
+        return Err(SceneError::TooManyParticles {
+            scene: scene.to_owned(),
+            count,
+            max: MAX_PARTICLES,
+        });
+    }
+    for emitter in emitters {
+        for (index, particle) in emitter.particles.iter().enumerate() {
+            if let Some(reason) = particle.invalid() {
+                return Err(SceneError::InvalidParticle {
+                    scene: scene.to_owned(),
+                    emitter: emitter.name.clone(),
+                    index,
+                    reason,
+                });
+            }
+            let extent = particle.position.abs().max_element();
+            if extent > MAX_COORDINATE {
+                return Err(SceneError::TooFar {
+                    scene: scene.to_owned(),
+                    what: format!("particle {index} of emitter \"{}\"", emitter.name),
+                    value: extent,
+                    max: MAX_COORDINATE,
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 /// How many pixels the billboards of `particles` cover on a target of `size` seen by
