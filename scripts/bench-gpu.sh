@@ -28,7 +28,14 @@
 #   variants    FXAA, SSAO and the light pre-pass against deferred and forward MSAA on every
 #               built-in scene, with the reference (issue 16's rows; not in the default set:
 #               BENCH_PARTS=variants)
-# Each part writes to OUT_DIR/PART. Frames: BENCH_FRAMES (default 10) after BENCH_WARMUP
+#   particles   seed 001's tables on builtin:smoke, the three particle pipelines
+#               (full, low and mixed resolution), FLIP against particles_full_res:
+#               particles-scaleS (Table 23-1 at off-screen scales 2x2 and 4x4, the depth
+#               downsample's maximum of 2x2 taps) and particles-scaleS-point (the same
+#               with point-sampled depth); particles-padP (Table 23-2: scale 2, P extra
+#               multiply-adds per particle fragment); particles-extent (Table 23-3: scale
+#               2, the effect at 12.5% to 400% of its size, and the break-even extent)
+# Each part writes to OUT_DIR/PART (particles to OUT_DIR/particles-*). Frames: BENCH_FRAMES (default 10) after BENCH_WARMUP
 # (default 2); BENCH_SIZE (default 3840x2160) for a quick try elsewhere.
 #
 # BENCH_ARCHIVE=FILE.tar.gz also packs what gets committed (each part's results.json,
@@ -133,8 +140,32 @@ for part in $parts; do
       "$bin" bench "${variants[@]}" --width "$width" --height "$height" "${common[@]}" \
         --out-dir "$out/variants" || status=$?
       ;;
+    particles)
+      particles=(--pipeline pipelines/particles_full_res.ron --pipeline pipelines/particles_low_res.ron
+                 --pipeline pipelines/particles_mixed_res.ron)
+      for scale in 2 4; do
+        for taps in 2 1; do
+          suffix=""
+          [ "$taps" = 1 ] && suffix="-point"
+          "$bin" bench --scene builtin:smoke "${particles[@]}" --param scale="$scale" \
+            --param depth_taps="$taps" --reference pipelines/particles_full_res.ron \
+            --width "$width" --height "$height" "${common[@]}" \
+            --out-dir "$out/particles-scale$scale$suffix" || status=$?
+        done
+      done
+      for pad in 0 64 256; do
+        "$bin" bench --scene builtin:smoke "${particles[@]}" --param scale=2 --param pad="$pad" \
+          --no-reference --width "$width" --height "$height" "${common[@]}" \
+          --out-dir "$out/particles-pad$pad" || status=$?
+      done
+      extents=()
+      for extent in 12 25 50 100 200 400; do extents+=(--scene "builtin:smoke?extent=$extent"); done
+      "$bin" bench "${extents[@]}" "${particles[@]}" --param scale=2 --no-reference \
+        --width "$width" --height "$height" "${common[@]}" --out-dir "$out/particles-extent" \
+        || status=$?
+      ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise, gbuffer, variants)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise, gbuffer, variants, particles)" >&2
       status=2
       ;;
   esac

@@ -267,7 +267,7 @@ pub struct ViewArgs {
 /// `samples: Param(name: "msaa", default: 4)`.
 pub const MSAA: &str = "msaa";
 
-/// `--samples N`, for one graph file.
+/// `--samples N` and `--param NAME=VALUE`, for one graph file.
 #[derive(clap::Args)]
 pub struct Samples {
     /// MSAA samples per pixel: the value of the graph file's "msaa" parameter
@@ -275,16 +275,35 @@ pub struct Samples {
     /// (default: the file's).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub samples: Option<u32>,
+    /// A value for a parameter of the graph file, repeatable: `--param scale=4` for
+    /// `size: Divided(Param(name: "scale", default: 2))` or a plugin parameter written
+    /// `Param(name: .., default: ..)`. A name the file does not declare is an error.
+    #[arg(long = "param", value_name = "NAME=VALUE", value_parser = parse_param)]
+    pub param: Vec<(String, u32)>,
 }
 
 impl Samples {
     /// The values for the file's parameters these flags ask for.
     pub fn params(&self) -> GraphParams {
-        match self.samples {
+        let samples = match self.samples {
             Some(n) => GraphParams::new().with(MSAA, n),
             None => GraphParams::new(),
-        }
+        };
+        self.param
+            .iter()
+            .fold(samples, |params, (name, value)| params.with(name, *value))
     }
+}
+
+/// `NAME=VALUE`, VALUE a whole number.
+fn parse_param(text: &str) -> Result<(String, u32), String> {
+    let (name, value) = text
+        .split_once('=')
+        .ok_or_else(|| format!("`{text}` is not NAME=VALUE"))?;
+    let value = value
+        .parse()
+        .map_err(|_| format!("`{value}` (parameter {name}) is not a whole number"))?;
+    Ok((name.to_owned(), value))
 }
 
 /// What a glTF scene may read besides itself, and which lights it is drawn with.
@@ -368,6 +387,11 @@ pub struct BenchArgs {
     /// results' notes name them (default: each file's; --sweep samples overrides it).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub samples: Option<u32>,
+    /// A value for a graph-file parameter, repeatable (`--param scale=4`), given to every
+    /// pipeline whose file declares it, whose rows' names then say so ("particles_low_res
+    /// [scale=4]"); the results' notes name the files without it.
+    #[arg(long = "param", value_name = "NAME=VALUE", value_parser = parse_param)]
+    pub params: Vec<(String, u32)>,
     /// Adapter to measure on: lavapipe, gpu, or part of an adapter's name (default:
     /// $RGRAPH_ADAPTER, else lavapipe).
     #[arg(long)]

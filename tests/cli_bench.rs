@@ -174,7 +174,12 @@ fn results_json_has_every_figure_with_its_type() {
             ("work", "object"),
             ("image_error", "object"),
             ("specialisation", "object|null"),
+            ("particles", "object|null"),
         ],
+    );
+    assert!(
+        figures["particles"].is_null(),
+        "no particle passes: {figures:#}"
     );
     assert_eq!(number(figures, "ratio_to_noaa"), 1.0);
     for pass in figures["passes"].as_array().unwrap() {

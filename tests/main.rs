@@ -58,6 +58,7 @@ mod frame_inputs;
 mod fuzz;
 mod gpu_execute;
 mod light_prepass;
+mod particles;
 mod post_fxaa;
 mod post_ssao;
 mod specialise_analysis;

@@ -1,6 +1,7 @@
 //! Graph-file parameters: `samples: Param(name: "msaa", default: 4)` takes its default, or
 //! the value the loader is given; a value for an undeclared parameter, a value of 0 and
-//! two defaults for one name are errors at their place in the file.
+//! two defaults for one name are errors at their place in the file. So do a size
+//! `Divided(Param(..))` and a `Param(..)` in a pass's plugin parameters.
 
 use graph_core::file::{
     declared_params, load_str, load_str_with, ErrorKind, GraphParams, Registry,
@@ -145,4 +146,108 @@ fn the_declared_parameters_are_read_without_declaring() {
     let declared = declared_params(&path);
     std::fs::remove_file(&path).unwrap();
     assert_eq!(declared.unwrap(), GraphParams::new().with("msaa", 4));
+}
+
+/// A target at a parameter's fraction of the output, and a depth-stencil cleared to a
+/// stencil value that is a parameter of the clear plugin (line 8).
+const DIVIDED: &str = r#"Graph(
+    resources: {
+        "small": Texture(format: "rgba8unorm", size: Divided(Param(name: "scale", default: 2))),
+        "third": Texture(format: "rgba8unorm", size: Divided(3)),
+        "depth": Texture(format: "depth24plus-stencil8"),
+    },
+    passes: [
+        (name: "clear", plugin: "clear", outputs: { "target": "small" }),
+        (name: "mark", plugin: "clear", params: (stencil: Param(name: "mark", default: 7), depth: 0.5),
+         outputs: { "target": "depth" }),
+        (name: "clear third", plugin: "clear", outputs: { "target": "third" }),
+    ],
+    outputs: ["small", "depth", "third"],
+)"#;
+
+fn divided(params: &GraphParams) -> (Vec<graph_core::Size>, u32) {
+    let loaded = load_str_with(PATH, DIVIDED, &Registry::with_builtins(), params)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let sizes = loaded
+        .graph
+        .resources()
+        .iter()
+        .filter_map(|r| match &r.desc {
+            graph_core::ResourceDesc::Texture(t) => Some(t.size),
+            graph_core::ResourceDesc::Buffer(_) => None,
+        })
+        .collect();
+    let stencil = loaded.graph.passes()[1]
+        .accesses
+        .iter()
+        .find_map(|a| match a.role {
+            graph_core::Role::Texture(graph_core::TextureRole::DepthStencil {
+                stencil: graph_core::AspectAccess::Clear(v),
+                ..
+            }) => Some(v),
+            _ => None,
+        })
+        .expect("the mark pass clears the stencil");
+    (sizes, stencil)
+}
+
+#[test]
+fn a_size_divided_by_a_parameter_and_a_plugin_parameter_take_their_values() {
+    use graph_core::Size::Relative;
+    let (sizes, stencil) = divided(&GraphParams::new());
+    assert_eq!(sizes, [Relative(0.5), Relative(1.0 / 3.0), Relative(1.0)]);
+    assert_eq!(stencil, 7);
+    let given = GraphParams::new().with("scale", 4).with("mark", 0x80);
+    let (sizes, stencil) = divided(&given);
+    assert_eq!(sizes[0], Relative(0.25));
+    assert_eq!(stencil, 0x80);
+    let loaded = load_str(PATH, DIVIDED, &Registry::with_builtins()).unwrap();
+    assert_eq!(
+        loaded.params(),
+        &GraphParams::new().with("mark", 7).with("scale", 2)
+    );
+    let plan = loaded
+        .compile(&CompileOptions {
+            output_size: (640, 360),
+            ..Default::default()
+        })
+        .unwrap_or_else(|e| panic!("{e}"));
+    let text = graph_core::explain::text(&plan);
+    assert!(text.contains("320x180"), "{text}");
+    assert!(text.contains("213x120"), "{text}");
+}
+
+#[test]
+fn a_zero_divisor_is_an_error_at_its_use_and_a_plugin_judges_its_own_values() {
+    let errors = load_str_with(
+        PATH,
+        DIVIDED,
+        &Registry::with_builtins(),
+        &GraphParams::new().with("scale", 0),
+    )
+    .err()
+    .expect("rejected");
+    assert_eq!(
+        errors.to_string().trim_end(),
+        "tests/fixtures/inline.ron:3:74: error: parameter \"scale\" is 0, but the size \
+         divisor of \"small\" must be 1 or more"
+    );
+    // The clear plugin takes any stencil value, 0 included.
+    divided(&GraphParams::new().with("mark", 0));
+}
+
+#[test]
+fn plugin_errors_after_a_parameter_keep_their_columns() {
+    let text = DIVIDED.replace("depth: 0.5)", "dpth: 0.5)");
+    let errors = load_str(PATH, &text, &Registry::with_builtins())
+        .err()
+        .expect("rejected");
+    let line = errors.to_string();
+    let column = r#"        (name: "mark", plugin: "clear", params: (stencil: Param(name: "mark", default: 7), "#
+        .len()
+        + 1;
+    assert!(
+        line.starts_with(&format!("tests/fixtures/inline.ron:9:{column}: error:")),
+        "{line}"
+    );
 }

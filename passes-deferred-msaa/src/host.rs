@@ -17,7 +17,9 @@
 //! stay uploaded, plans stay compiled and pipelines stay built. The scene is drawn
 //! camera-relative, so a moved camera rewrites the per-mesh model matrices, the lights
 //! and the camera uniform, a few hundred bytes per mesh and light; a moved object
-//! rewrites the same per-mesh data; a moved light the light data. (The fragment light
+//! rewrites the same per-mesh data; a moved light the light data; new particle emitters
+//! (a new `Arc`), or a moved camera, make the particle passes sort and write their
+//! particles again, in a larger buffer when there are more than it holds. (The fragment light
 //! passes build a pipeline per light-volume geometry when a frame first needs it: the
 //! first frame whose camera is inside a volume builds the back-face one, once.)
 //!
@@ -32,7 +34,7 @@ use std::sync::{Arc, Mutex};
 
 use glam::{DMat4, DVec3, Vec3};
 
-use crate::scene::{Camera, Scene};
+use crate::scene::{check_emitters, Camera, ParticleEmitter, Scene};
 
 /// The scene and overrides every deferred plugin of one registry shares, and the current
 /// [`FrameInputs`] (see the module documentation for the contract).
@@ -70,7 +72,8 @@ pub enum Exposure {
 }
 
 /// What an engine may change from one frame to the next without reloading: the camera,
-/// the pose of every light and the transform of every mesh, in the scene's order.
+/// the pose of every light and the transform of every mesh, in the scene's order, and the
+/// particles.
 /// [`FrameInputs::of`] gives the scene's own; an engine keeps one, changes its fields and
 /// hands it to [`Host::set_frame`].
 #[derive(Clone, Debug, PartialEq)]
@@ -89,6 +92,12 @@ pub struct FrameInputs {
     /// Seconds since the sequence started, for the engine's own passes that animate by
     /// it; the deferred plugins draw a pose, not a time, so they do not read it.
     pub time: f64,
+    /// The particles the `particles` passes draw, emitter by emitter: the scene's
+    /// (`Scene::emitters`), or wherever an engine's simulation has taken them, in any
+    /// number up to `MAX_PARTICLES` (checked like the scene's). Shared, so that frame
+    /// inputs clone cheaply; a new `Arc` (or a moved camera) is what makes the passes
+    /// upload and sort them again.
+    pub emitters: Arc<Vec<ParticleEmitter>>,
 }
 
 /// Where a light is and where it points, in world space.
@@ -116,6 +125,7 @@ impl FrameInputs {
             transforms: scene.meshes.iter().map(|m| m.transform).collect(),
             exposure: 1.0,
             time: 0.0,
+            emitters: Arc::new(scene.emitters.clone()),
         }
     }
 }
@@ -142,6 +152,10 @@ pub enum FrameInputsError {
     NotFinite { scene: String, what: String },
     #[error("frame inputs: the exposure factor {0} is not finite and positive")]
     Exposure(f32),
+    /// The particles do not fit: too many, or one that cannot be drawn (the reason
+    /// names the emitter and the particle).
+    #[error("frame inputs: {0}")]
+    Particles(String),
 }
 
 impl Host {
@@ -202,6 +216,8 @@ impl Host {
         if !(inputs.exposure.is_finite() && inputs.exposure > 0.0) {
             return Err(FrameInputsError::Exposure(inputs.exposure));
         }
+        check_emitters(&self.scene.name, &inputs.emitters)
+            .map_err(|e| FrameInputsError::Particles(e.to_string()))?;
         let camera = &inputs.camera;
         let not_finite = std::iter::once((
             format!("the camera \"{}\"", camera.name),

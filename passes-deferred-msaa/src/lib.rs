@@ -4,8 +4,9 @@
 //! - [`analysis`]: what a scene needs, as the feature names pipeline conditions test.
 //! - [`plugins`]: the pass plugins graph files name (`gbuffer`, `edge_stencil`,
 //!   `light_edge`, `light_nonedge`, `light_tiled`, `resolve`, `tonemap`, `debug_view`),
-//!   the baselines' `forward` and `gbuffer_resolve`, and `transparent` and
-//!   `composite_transparent` for alpha BLEND meshes.
+//!   the baselines' `forward` and `gbuffer_resolve`, `transparent` and
+//!   `composite_transparent` for alpha BLEND meshes, and seed 001's off-screen particles:
+//!   `particles`, `composite_particles`, `depth_downsample` and `particle_edges`.
 //! - [`gpu_scene`] (feature `gpu`): the scene on the device, shared by the plugins and
 //!   reusable by other passes that draw it.
 //!

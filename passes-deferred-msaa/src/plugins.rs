@@ -17,6 +17,9 @@
 //! `light_prepass_gbuffer` and `light_prepass_material` are a light pre-pass renderer's
 //! geometry passes around the light passes' `accumulate: light`
 //! (pipelines/light_prepass_msaa_4x.ron).
+//! the resolved image. The `particles_*` pipelines draw the scene's particle emitters
+//! after that, at full resolution or off screen (`depth_downsample`, `particles`,
+//! `particle_edges`, `composite_particles`: seed 001).
 //!
 //! The G-buffer slots every pass uses the same names for: `albedo`, `normal`,
 //! `material`, `view_depth`, `hdr` and `depth` (the multisampled depth-stencil).
@@ -39,6 +42,7 @@ use crate::host::Host;
 pub use crate::common::edge_detection::{Detector, EdgeDetection};
 pub use crate::passes::auto_exposure::{AutoExposure, AutoExposureParams};
 pub use crate::passes::debug_view::{DebugView, DebugViewParams, View};
+pub use crate::passes::depth_downsample::{DepthDownsample, DepthDownsampleParams, MAX_TAPS};
 pub use crate::passes::edge_stencil::EdgeStencil;
 pub use crate::passes::forward::{Forward, ForwardParams, Shading};
 pub use crate::passes::fxaa::{Fxaa, FxaaParams};
@@ -53,6 +57,10 @@ pub use crate::passes::light_prepass::{
     LightPrepassMaterialParams,
 };
 pub use crate::passes::light_tiled::{EdgeShading, LightTiled, LightTiledParams, TiledView};
+pub use crate::passes::particle_edges::{ParticleEdges, ParticleEdgesParams};
+pub use crate::passes::particles::{
+    CompositeParticles, CompositeParticlesParams, Particles, ParticlesParams, MAX_PAD,
+};
 pub use crate::passes::resolve::{Resolve, ResolveMode, ResolveParams};
 pub use crate::passes::ssao::{Ssao, SsaoBlur, SsaoBlurParams, SsaoParams};
 pub use crate::passes::tonemap::{Operator, Tonemap, TonemapParams};
@@ -83,5 +91,9 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(LightPrepassMaterial(shared.clone()))
         .register(SsaoBlur(shared.clone()))
         .register(Transparent(shared.clone()))
-        .register(CompositeTransparent(shared));
+        .register(CompositeTransparent(shared.clone()))
+        .register(Particles(shared.clone()))
+        .register(CompositeParticles(shared.clone()))
+        .register(DepthDownsample(shared.clone()))
+        .register(ParticleEdges(shared));
 }

@@ -171,6 +171,30 @@ pub(crate) const COMPOSITE: Source = Source {
     name: "composite.wgsl",
     parts: &[COMMON, include_str!("wgsl/composite.wgsl")],
 };
+/// View depth from a depth buffer's value, for the particle passes.
+pub(crate) const PARTICLE_DEPTH: &str = include_str!("wgsl/particle_depth.wgsl");
+/// Needs a generated block after it: see [`crate::plugins::Particles`].
+pub(crate) const PARTICLES: Source = Source {
+    name: "particles.wgsl",
+    parts: &[COMMON, SCENE, include_str!("wgsl/particles.wgsl")],
+};
+pub(crate) const PARTICLE_COMPOSITE: Source = Source {
+    name: "particle_composite.wgsl",
+    parts: &[COMMON, SCENE, include_str!("wgsl/particle_composite.wgsl")],
+};
+pub(crate) const DEPTH_DOWNSAMPLE: Source = Source {
+    name: "depth_downsample.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        PARTICLE_DEPTH,
+        include_str!("wgsl/depth_downsample.wgsl"),
+    ],
+};
+pub(crate) const PARTICLE_EDGES: Source = Source {
+    name: "particle_edges.wgsl",
+    parts: &[COMMON, include_str!("wgsl/particle_edges.wgsl")],
+};
 pub(crate) const GBUFFER_RESOLVE: Source = Source {
     name: "gbuffer_resolve.wgsl",
     parts: &[

@@ -20,7 +20,7 @@ fn mesh<'a>(scene: &'a Scene, name: &str) -> &'a Mesh {
 #[test]
 fn every_builtin_is_listed_described_and_bit_identical_across_loads() {
     let names: Vec<&str> = builtin_names().iter().map(|b| b.name).collect();
-    assert_eq!(names, ["spheres", "dense", "lights", "unlit"]);
+    assert_eq!(names, ["spheres", "dense", "lights", "unlit", "smoke"]);
     for scene in builtin_names() {
         assert!(!scene.description.is_empty());
         let spec = format!("builtin:{}", scene.name);
@@ -165,7 +165,7 @@ fn builtin_spec_errors_list_what_is_available() {
     let message = Scene::load("builtin:nope").unwrap_err().to_string();
     assert_eq!(
         message,
-        "unknown built-in scene `nope`; available: spheres, dense, lights, unlit"
+        "unknown built-in scene `nope`; available: spheres, dense, lights, unlit, smoke"
     );
     let error = Scene::load("builtin:lights?lamps=3").unwrap_err();
     assert!(matches!(error, SceneError::BuiltinParameter { .. }));
@@ -313,4 +313,112 @@ fn unlit_has_the_documented_geometry_and_mapping() {
         a[2] + (b[2] - a[2]) * (x - a[0]) / (b[0] - a[0])
     };
     assert_eq!(z_at(0.5), 0.0);
+}
+
+#[test]
+fn smoke_is_dense_with_a_seeded_smoke_column_and_fire() {
+    let scene = builtin("builtin:smoke");
+    let dense = builtin("builtin:dense");
+    assert_eq!(scene.meshes, dense.meshes);
+    assert_eq!(scene.camera, dense.camera);
+    let names: Vec<&str> = scene.emitters.iter().map(|e| e.name.as_str()).collect();
+    assert_eq!(names, ["smoke", "fire"]);
+    let (smoke, fire) = (&scene.emitters[0].particles, &scene.emitters[1].particles);
+    assert_eq!((smoke.len(), fire.len()), (3500, 500));
+    assert!(smoke
+        .iter()
+        .all(|p| !p.emissive && p.size >= 0.6 && p.size <= 1.8));
+    assert!(fire.iter().all(|p| p.emissive && p.position.y < 1.0));
+    assert_eq!(scene.particles().count(), 4000);
+    let other = builtin("builtin:smoke?count=80&size=300&seed=7");
+    assert_eq!(other.particles().count(), 80);
+    assert!(other.particles().all(|p| p.size >= 0.9 && p.size <= 4.5));
+    assert_ne!(builtin("builtin:smoke?seed=2").emitters, scene.emitters);
+    let half = builtin("builtin:smoke?extent=50");
+    for (a, b) in half.particles().zip(scene.particles()) {
+        assert!((a.position * 2.0 - b.position).length() < 1e-6);
+        assert!((a.size * 2.0 - b.size).abs() < 1e-6);
+    }
+}
+
+#[test]
+fn smoke_parameters_out_of_range_are_errors_not_allocations() {
+    let message = |spec: &str| Scene::load(spec).unwrap_err().to_string();
+    assert_eq!(
+        message("builtin:smoke?count=1048577"),
+        "builtin:smoke: `count=1048577`: a whole number from 0 to 1048576 (total number of \
+         particles, 7/8 smoke and 1/8 fire (default 4000, at most 1048576))"
+    );
+    assert!(message("builtin:smoke?size=0").contains("`size=0`: a particle needs a positive size"));
+    assert!(message("builtin:smoke?size=10001").contains("`size=10001`"));
+    assert!(
+        message("builtin:smoke?extent=0").contains("`extent=0`: a particle needs a positive size")
+    );
+    assert!(
+        message("builtin:smoke?speed=3").contains("this scene takes: count, size, seed, extent")
+    );
+}
+
+#[test]
+fn bad_particles_in_code_built_scenes_are_named_errors() {
+    use passes_deferred_msaa::scene::{Particle, ParticleEmitter, MAX_PARTICLES};
+    let mut scene = builtin("builtin:unlit");
+    let good = Particle {
+        position: DVec3::ZERO,
+        size: 1.0,
+        color: [1.0; 3],
+        alpha: 0.5,
+        emissive: false,
+    };
+    let bad = Particle { alpha: 1.5, ..good };
+    scene.emitters = vec![ParticleEmitter {
+        name: "sparks".to_owned(),
+        particles: vec![good, bad],
+    }];
+    assert_eq!(
+        scene.check_particles().unwrap_err().to_string(),
+        "builtin:unlit: emitter \"sparks\" particle 1: alpha 1.5 is not within 0 to 1"
+    );
+    scene.emitters[0].particles[1] = Particle {
+        size: f32::NAN,
+        ..good
+    };
+    assert!(scene
+        .check_particles()
+        .unwrap_err()
+        .to_string()
+        .contains("size NaN"));
+    scene.emitters[0].particles = vec![good; MAX_PARTICLES + 1];
+    assert!(scene
+        .check_particles()
+        .unwrap_err()
+        .to_string()
+        .contains("1048577 particles, more than 1048576"));
+}
+
+#[test]
+fn billboard_pixels_are_the_squares_of_the_projected_diameters_cut_to_the_target() {
+    use passes_deferred_msaa::scene::{billboard_pixels, Particle};
+    // builtin:unlit's orthographic camera: 2 units across, so 64 pixels a unit at 128.
+    let camera = builtin("builtin:unlit").camera;
+    let at = |x, size| Particle {
+        position: DVec3::new(x, 0.0, 0.0),
+        size,
+        color: [1.0; 3],
+        alpha: 1.0,
+        emissive: false,
+    };
+    let pixels = |particles: &[Particle]| billboard_pixels(particles, &camera, (128, 128));
+    assert!((pixels(&[at(0.0, 0.5)]) - 32.0 * 32.0).abs() < 1e-6);
+    // Half of it beyond the right edge; twice over when two overlap.
+    assert!((pixels(&[at(1.0, 0.5)]) - 16.0 * 32.0).abs() < 1e-6);
+    assert!((pixels(&[at(0.0, 0.5), at(0.0, 0.5)]) - 2048.0).abs() < 1e-6);
+    assert_eq!(pixels(&[at(5.0, 0.5)]), 0.0);
+    // Perspective: the smoke shrinks with its extent as the square of it.
+    let smoke = builtin("builtin:smoke");
+    let half = builtin("builtin:smoke?extent=50");
+    let full = billboard_pixels(smoke.particles(), &smoke.camera, (1280, 720));
+    let small = billboard_pixels(half.particles(), &half.camera, (1280, 720));
+    assert!(full > 10.0 * 1280.0 * 720.0, "{full}");
+    assert!(small < 0.4 * full, "{small} of {full}");
 }

@@ -14,6 +14,8 @@ mod images;
 mod machine;
 mod measure;
 mod memory;
+mod particle_table;
+mod particle_work;
 mod progress;
 mod reference;
 mod results;
@@ -65,6 +67,7 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         Some(samples) => candidates::at_samples(pipelines, samples, &mut notes),
         None => pipelines,
     };
+    let pipelines = candidates::with_params(pipelines, &args.params, &mut notes);
     let session = Session::open(&AdapterChoice::resolve(args.adapter.as_deref()))
         .map_err(BenchError::Device)?;
     let size = (args.width, args.height);

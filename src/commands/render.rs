@@ -73,6 +73,7 @@ fn render(args: &RenderArgs) -> Result<Vec<PathBuf>, RenderError> {
 
     progress.stage(format!("compile for {}", session.profile.name));
     let blended = draws_blended(&pipeline.scene);
+    let particles = pipeline.scene.particles().count();
     let mut prepared = session.prepare(pipeline, (args.width, args.height))?;
 
     // The opaque passes skip BLEND meshes and only a `transparent` pass draws them; debug
@@ -81,6 +82,14 @@ fn render(args: &RenderArgs) -> Result<Vec<PathBuf>, RenderError> {
         progress.note(format!(
             "warning: the scene has alpha BLEND materials, but {} has no `transparent` pass \
              to draw them: they are left out (pipelines/*.ron show how to add one)",
+            args.pipeline.display()
+        ));
+    }
+    // Likewise particles: only a `particles` pass draws them.
+    if args.view == view::FINAL && particles > 0 && !prepared.runs("particles") {
+        progress.note(format!(
+            "warning: the scene has {particles} particles, but {} has no `particles` pass \
+             to draw them: they are left out (pipelines/particles_*.ron draw them)",
             args.pipeline.display()
         ));
     }

@@ -125,6 +125,7 @@ impl Parts {
             lights: self.lights.clone(),
             ambient: self.ambient,
             environment: None,
+            emitters: Vec::new(),
             camera,
             bounds,
             warnings: Vec::new(),

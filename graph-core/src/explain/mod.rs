@@ -29,6 +29,20 @@ pub fn text(plan: &Plan) -> String {
     let _ = writeln!(out, "\npasses, in execution order:");
     for (i, pass) in plan.passes.iter().enumerate() {
         let _ = writeln!(out, "  {i:>3}. {} ({})", pass.name, pass.kind);
+        // Passes at a fraction of the output (off-screen particles, downsampling) say so.
+        let area = pass
+            .color
+            .first()
+            .map(|c| c.resource)
+            .or(pass.depth_stencil.as_ref().map(|d| d.resource))
+            .and_then(|r| plan.resource(r).texture.as_ref())
+            .map(|t| (t.width, t.height));
+        if let Some((aw, ah)) = area.filter(|&a| a != plan.output_size) {
+            let _ = writeln!(
+                out,
+                "         renders at {aw}x{ah}, not the output's {w}x{h}"
+            );
+        }
         let list = |versions: &[(crate::handle::ResourceId, u32)]| {
             versions
                 .iter()

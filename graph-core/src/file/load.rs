@@ -95,7 +95,7 @@ fn load_graph(
 ) -> Result<LoadedGraph, FileErrors> {
     let mut errors = Vec::new();
     let values = param_uses::resolve(source, &file, params, &mut errors);
-    let prepared = prepare(source, &file, registry, &mut errors);
+    let prepared = prepare(source, &file, registry, &values, &mut errors);
     let conditions = conditions::read(source, &file, &mut errors);
     let edges = names::resolve(source, &file, &conditions, &mut errors);
     let order = order::sort(source, &file, &edges, &mut errors);
@@ -207,6 +207,7 @@ fn prepare<'r>(
     source: &Source<'_>,
     file: &GraphFile<'_>,
     registry: &'r Registry,
+    values: &GraphParams,
     errors: &mut Vec<FileError>,
 ) -> Vec<Option<Box<dyn Prepared + 'r>>> {
     file.passes
@@ -223,11 +224,16 @@ fn prepare<'r>(
                 return None;
             };
             // A pass without `params` gets `()`: plugins without parameters accept it,
-            // others report their first missing field at the pass.
+            // others report their first missing field at the pass. Parameter uses become
+            // their values, in text of the same length, so errors keep their places.
             let (text, base) = match &pass.params {
-                Some(raw) => (raw.0.get_ron(), Some(source.locate_raw(raw.0))),
-                None => ("()", None),
+                Some(raw) => (
+                    param_uses::substitute(raw.0.get_ron(), values),
+                    Some(source.locate_raw(raw.0)),
+                ),
+                None => ("()".to_owned(), None),
             };
+            let text = text.as_str();
             plugin
                 .prepare(text)
                 .map_err(|e| {

@@ -1,28 +1,42 @@
-//! Where a graph file uses its parameters, and the value each takes when it is loaded.
+//! Where a graph file uses its parameters, and the value each takes when it is loaded:
+//! in textures (`samples`, `mips`, `layers`, a `Divided` size) and in passes' plugin
+//! parameters, where `Param(name: "pad", default: 0)` stands for a whole number.
+
+use std::ops::Range;
 
 use super::error::{ErrorKind, FileError};
 use super::params::GraphParams;
-use super::schema::{Count, GraphFile, ParamUse};
+use super::schema::{options, Count, GraphFile, ParamUse};
 use super::source::Source;
 use crate::position::Position;
+
+/// One use of a parameter.
+struct Use<'f, 'a> {
+    /// The texture or pass it is in.
+    owner: &'f str,
+    /// The texture's field, or "params" for a pass.
+    field: &'static str,
+    param: ParamUse<'a>,
+}
 
 /// The parameters `file` declares with their defaults: what a tool checks before giving
 /// a value (the bench sets `msaa` only in files that have it). Repeated uses of a name
 /// give its first default; [`load_file_with`](super::load_file_with) reports conflicts.
 pub(super) fn declared(file: &GraphFile<'_>) -> GraphParams {
     let mut declared = GraphParams::new();
-    for (_, use_) in uses(file) {
+    for use_ in uses(file) {
         declared
             .0
-            .entry(use_.name.as_str().to_owned())
-            .or_insert(use_.default);
+            .entry(use_.param.name.as_str().to_owned())
+            .or_insert(use_.param.default);
     }
     declared
 }
 
 /// Every parameter of `file` with the value it takes: `given`, else its default. Reports
 /// a given name the file does not declare (at the file's start), a name used with two
-/// defaults (at the second), and a value of 0 (at each use it would apply to).
+/// defaults (at the second), and a value of 0 for a texture's count (at each use it would
+/// apply to; a plugin judges the values of its own parameters).
 pub(super) fn resolve(
     source: &Source<'_>,
     file: &GraphFile<'_>,
@@ -52,27 +66,32 @@ pub(super) fn resolve(
             .map(|(name, default)| (name.to_owned(), given.get(name).unwrap_or(default)))
             .collect(),
     );
-    for ((resource, field), use_) in uses(file) {
-        let name = use_.name.as_str();
-        let first = declared.get(name).unwrap_or(use_.default);
-        if use_.default != first {
+    for Use {
+        owner,
+        field,
+        param,
+    } in uses(file)
+    {
+        let name = param.name.as_str();
+        let first = declared.get(name).unwrap_or(param.default);
+        if param.default != first {
             errors.push(source.error(
-                &use_.name,
+                &param.name,
                 ErrorKind::ParamDefaults {
                     name: name.to_owned(),
                     first,
-                    second: use_.default,
+                    second: param.default,
                 },
             ));
         }
-        let value = values.get(name).unwrap_or(use_.default);
-        if value == 0 {
+        let value = values.get(name).unwrap_or(param.default);
+        if value == 0 && field != PLUGIN_PARAMS {
             errors.push(source.error(
-                &use_.name,
+                &param.name,
                 ErrorKind::ParamValue {
                     name: name.to_owned(),
                     value,
-                    resource: resource.to_owned(),
+                    resource: owner.to_owned(),
                     field,
                 },
             ));
@@ -81,17 +100,85 @@ pub(super) fn resolve(
     values
 }
 
-/// Each parameter use in `file`, with the texture and field it sets, in file order.
-fn uses<'f, 'a>(
-    file: &'f GraphFile<'a>,
-) -> impl Iterator<Item = ((&'f str, &'static str), &'f ParamUse<'a>)> {
-    file.resources.0.iter().flat_map(|(name, decl)| {
+/// The field of a use in a pass's plugin parameters.
+const PLUGIN_PARAMS: &str = "params";
+
+/// Each parameter use in `file`: textures first, then passes, in file order.
+fn uses<'f, 'a>(file: &'f GraphFile<'a>) -> Vec<Use<'f, 'a>> {
+    let textures = file.resources.0.iter().flat_map(|(name, decl)| {
         decl.texture()
             .into_iter()
             .flat_map(|t| t.counts())
             .filter_map(move |(field, count)| match count {
-                Count::Param(p) => Some(((name.as_str(), field), p)),
+                Count::Param(p) => Some(Use {
+                    owner: name.as_str(),
+                    field,
+                    param: p.clone(),
+                }),
                 Count::Value(_) => None,
             })
-    })
+    });
+    let passes = file.passes.iter().flat_map(|pass| {
+        let text = pass.params.as_ref().map_or("", |p| p.0.get_ron());
+        in_plugin_params(text).into_iter().map(|(_, param)| Use {
+            owner: pass.name.as_str(),
+            field: PLUGIN_PARAMS,
+            param,
+        })
+    });
+    textures.chain(passes).collect()
+}
+
+/// The `Param(name: .., default: ..)` uses in a pass's plugin parameters, each with its
+/// byte range in `text`. Text that only looks like one (in a string, or not parsing as
+/// one) is left to the plugin, which reports it.
+pub(super) fn in_plugin_params(text: &str) -> Vec<(Range<usize>, ParamUse<'_>)> {
+    const START: &str = "Param(";
+    let mut found = Vec::new();
+    let mut from = 0;
+    while let Some(at) = text[from..].find(START) {
+        let start = from + at;
+        from = start + START.len();
+        // Part of a longer identifier (`MyParam(`) is not a use.
+        let joined = text[..start]
+            .chars()
+            .next_back()
+            .is_some_and(|c| c.is_alphanumeric() || c == '_');
+        let Some(end) = text[start..].find(')').map(|e| start + e + 1) else {
+            break;
+        };
+        if joined {
+            continue;
+        }
+        if let Ok(param) = options().from_str::<ParamUse>(&text[start..end]) {
+            found.push((start..end, param));
+            from = end;
+        }
+    }
+    found
+}
+
+/// `text` (a pass's plugin parameters) with each parameter use replaced by its value in
+/// `values`, padded with spaces to the use's length (its line breaks kept), so the
+/// plugin's errors keep their lines and columns.
+pub(super) fn substitute(text: &str, values: &GraphParams) -> String {
+    let mut out = text.to_owned();
+    for (range, param) in in_plugin_params(text).into_iter().rev() {
+        let value = values
+            .get(param.name.as_str())
+            .unwrap_or(param.default)
+            .to_string();
+        let padded: String = value
+            .chars()
+            .chain(text[range.clone()].chars().skip(value.len()).map(|c| {
+                if c == '\n' {
+                    c
+                } else {
+                    ' '
+                }
+            }))
+            .collect();
+        out.replace_range(range, &padded);
+    }
+    out
 }

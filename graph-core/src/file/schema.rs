@@ -87,8 +87,8 @@ pub(crate) struct TextureDecl<'a> {
     /// `[(condition, format), ..]`: see [`TextureDesc::format_if`].
     #[serde(borrow, default)]
     pub format_if: Vec<(Name<'a>, TextureFormat)>,
-    #[serde(default)]
-    size: Size,
+    #[serde(borrow, default)]
+    pub size: SizeDecl<'a>,
     #[serde(borrow, default = "Count::one")]
     pub samples: Count<'a>,
     #[serde(borrow, default = "Count::one")]
@@ -99,7 +99,40 @@ pub(crate) struct TextureDecl<'a> {
     when: Option<Name<'a>>,
 }
 
-/// A texture's `samples`, `mips` or `layers` as written: a number, or a parameter whose
+/// A texture's size as written: [`Size`]'s `Absolute(w, h)` and `Relative(scale)`, or
+/// `Divided(n)`, the output size divided by a whole number that may be a parameter
+/// (`Divided(Param(name: "scale", default: 2))`): `Relative(1 / n)`, for targets at a
+/// fraction of the output that one file serves at every fraction.
+#[derive(Debug, Deserialize)]
+pub(crate) enum SizeDecl<'a> {
+    Absolute(u32, u32),
+    Relative(f32),
+    #[serde(borrow)]
+    Divided(Count<'a>),
+}
+
+impl Default for SizeDecl<'_> {
+    fn default() -> Self {
+        SizeDecl::Relative(1.0)
+    }
+}
+
+impl SizeDecl<'_> {
+    /// The size, with a parameter at its value in `values`. `Divided(0)` is a size of
+    /// zero, which validation reports.
+    fn size(&self, values: &GraphParams) -> Size {
+        match self {
+            SizeDecl::Absolute(w, h) => Size::Absolute(*w, *h),
+            SizeDecl::Relative(scale) => Size::Relative(*scale),
+            SizeDecl::Divided(n) => match n.value(values) {
+                0 => Size::Relative(0.0),
+                n => Size::Relative((1.0 / f64::from(n)) as f32),
+            },
+        }
+    }
+}
+
+/// A texture's `samples`, `mips` or `layers` (or the divisor of its size) as written: a number, or a parameter whose
 /// value the loader is given (see [`GraphParams`](super::GraphParams)):
 /// `Param(name: "msaa", default: 4)`.
 #[derive(Debug)]
@@ -143,7 +176,7 @@ impl<'de: 'a, 'a> Deserialize<'de> for Count<'a> {
 }
 
 /// `Param(name: "msaa", default: 4)`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 #[serde(rename = "Param", deny_unknown_fields)]
 pub(crate) struct ParamUse<'a> {
     #[serde(borrow)]
@@ -189,7 +222,7 @@ impl<'a> TextureDecl<'a> {
             format: self.format,
             fallback: self.fallback,
             format_if,
-            size: self.size,
+            size: self.size.size(values),
             samples: self.samples.value(values),
             mips: self.mips.value(values),
             layers: self.layers.value(values),
@@ -197,12 +230,16 @@ impl<'a> TextureDecl<'a> {
     }
 
     /// The counts as written, with their field names.
-    pub fn counts(&self) -> [(&'static str, &Count<'a>); 3] {
-        [
+    pub fn counts(&self) -> Vec<(&'static str, &Count<'a>)> {
+        let mut counts = vec![
             ("samples", &self.samples),
             ("mips", &self.mips),
             ("layers", &self.layers),
-        ]
+        ];
+        if let SizeDecl::Divided(n) = &self.size {
+            counts.push(("size divisor", n));
+        }
+        counts
     }
 }
 
@@ -315,7 +352,7 @@ fn find<'p, 'a>(pairs: &'p Pairs<Name<'a>, Name<'a>>, slot: &str) -> Option<&'p 
 
 /// A name as written in the file. Plain strings borrow from the file's text, which is how
 /// their position is found; a string with escapes is a copy and has no position of its own.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 #[serde(transparent)]
 pub(crate) struct Name<'a>(#[serde(borrow)] Cow<'a, str>);
 

@@ -28,6 +28,7 @@ mod layout;
 mod lights;
 mod materials;
 pub mod mesh;
+mod particles;
 mod textures;
 pub mod volumes;
 
@@ -37,6 +38,7 @@ pub use camera::view_projection;
 pub use lights::{camera_may_be_inside, far_plane_may_cut, VolumeLight};
 pub use materials::MaterialState;
 pub use mesh::MeshDraw;
+pub use particles::ParticleBuffer;
 pub use volumes::{VolumeMesh, VolumeShape};
 
 use crate::analysis::{Features, GatedShader, Variant, Variants};
@@ -282,6 +284,12 @@ impl GpuScene {
     pub fn prepare(&self, queue: &wgpu::Queue, size: (u32, u32)) {
         let camera = (&self.frame.inputs.camera, self.frame.generation);
         self.upload.cameras.prepare(queue, camera, size);
+    }
+
+    /// The frame inputs this scene is placed by (the particle passes read the camera
+    /// and the emitters).
+    pub fn inputs(&self) -> &FrameInputs {
+        &self.frame.inputs
     }
 
     /// Group 0's layout: see scene.wgsl.

@@ -6,6 +6,7 @@
 
 pub(crate) mod auto_exposure;
 pub(crate) mod debug_view;
+pub(crate) mod depth_downsample;
 pub(crate) mod edge_stencil;
 pub(crate) mod forward;
 pub(crate) mod fxaa;
@@ -14,6 +15,8 @@ pub(crate) mod gbuffer_resolve;
 pub(crate) mod light;
 pub(crate) mod light_prepass;
 pub(crate) mod light_tiled;
+pub(crate) mod particle_edges;
+pub(crate) mod particles;
 pub(crate) mod resolve;
 pub(crate) mod ssao;
 pub(crate) mod tonemap;

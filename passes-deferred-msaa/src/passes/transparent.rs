@@ -130,8 +130,8 @@ impl Plugin for Transparent {
 }
 
 /// `hdr * T + C` from the composite's output (C, T): see the module documentation. The
-/// target's alpha is kept.
-const UNDER_TRANSMITTANCE: BlendState = BlendState {
+/// target's alpha is kept. The particle composite blends the same way.
+pub(crate) const UNDER_TRANSMITTANCE: BlendState = BlendState {
     color: BlendComponent {
         src_factor: BlendFactor::One,
         dst_factor: BlendFactor::SrcAlpha,

@@ -2,7 +2,10 @@
 
 use glam::DVec3;
 
-use super::{Aabb, Camera, Light, Material, Mesh, Scene, SceneError, TextureImage, MAX_COORDINATE};
+use super::{
+    Aabb, Camera, Light, Material, Mesh, ParticleEmitter, Scene, SceneError, TextureImage,
+    MAX_COORDINATE,
+};
 
 /// A scene under construction: loaders push parts, [`SceneBuilder::finish`] derives the rest.
 pub(crate) struct SceneBuilder {
@@ -13,6 +16,7 @@ pub(crate) struct SceneBuilder {
     pub lights: Vec<Light>,
     pub ambient: [f32; 3],
     pub camera: Option<Camera>,
+    pub emitters: Vec<ParticleEmitter>,
     pub warnings: Vec<String>,
     /// Whether a scene without triangles is what the source asked for (a glTF scene listing
     /// no nodes) rather than a sign that everything was skipped; see [`SceneBuilder::finish`].
@@ -29,6 +33,7 @@ impl SceneBuilder {
             lights: Vec::new(),
             ambient: [0.0; 3],
             camera: None,
+            emitters: Vec::new(),
             warnings: Vec::new(),
             allow_empty: false,
         }
@@ -67,7 +72,7 @@ impl SceneBuilder {
             let what = format!("the position of the camera ({})", camera.name);
             self.check_extent(&what, camera.position.abs().max_element())?;
         }
-        Ok(Scene {
+        let scene = Scene {
             camera: self.camera.unwrap_or_else(|| Camera::framing(&bounds)),
             name: self.name,
             meshes: self.meshes,
@@ -76,9 +81,12 @@ impl SceneBuilder {
             lights: self.lights,
             ambient: self.ambient,
             environment: None,
+            emitters: self.emitters,
             bounds,
             warnings: self.warnings,
-        })
+        };
+        scene.check_particles()?;
+        Ok(scene)
     }
 
     /// Fails when `value` (a largest coordinate magnitude) is beyond [`MAX_COORDINATE`] or NaN.

@@ -165,6 +165,23 @@ pub enum SceneError {
     #[error("{scene}: more than {max} lights (the most a scene may have: each is drawn as its own volume)")]
     TooManyLights { scene: String, max: u32 },
 
+    /// More particles than [`MAX_PARTICLES`](super::MAX_PARTICLES) over all emitters.
+    #[error("{scene}: {count} particles, more than {max} (the most a scene may have: each is an instance of one draw, 32 bytes on the device)")]
+    TooManyParticles {
+        scene: String,
+        count: usize,
+        max: usize,
+    },
+
+    /// A particle that cannot be drawn (see [`Particle::invalid`](super::Particle::invalid)).
+    #[error("{scene}: emitter \"{emitter}\" particle {index}: {reason}")]
+    InvalidParticle {
+        scene: String,
+        emitter: String,
+        index: usize,
+        reason: String,
+    },
+
     /// Nothing to draw: no triangle survived loading.
     #[error("{scene}: the scene contains no triangles")]
     EmptyScene { scene: String },

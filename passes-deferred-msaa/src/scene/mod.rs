@@ -22,6 +22,7 @@ mod mesh;
 mod mips;
 mod model;
 mod normals;
+mod particles;
 mod prefilter;
 mod procedural;
 mod stats;
@@ -45,6 +46,7 @@ pub use material::{AlphaMode, Material};
 pub use mesh::{Mesh, Vertex};
 pub use model::Scene;
 pub use normals::flat_shaded;
+pub use particles::{billboard_pixels, check_emitters, Particle, ParticleEmitter, MAX_PARTICLES};
 pub use prefilter::{
     cube_direction, prefilter, prefiltered_cube, split_sum, split_sum_lut, CUBE_LEVELS, CUBE_SIZE,
     LUT_SIZE,
@@ -83,6 +85,19 @@ impl Scene {
     /// Generates a built-in scene from `NAME[?key=value&...]` (without the `builtin:` prefix).
     pub fn builtin(spec: &str) -> Result<Scene, SceneError> {
         procedural::build(spec)
+    }
+
+    /// Fails when the emitters hold more than [`MAX_PARTICLES`] particles or a particle
+    /// that cannot be drawn, naming the emitter and the particle. Loading checks it; an
+    /// engine that adds emitters to a loaded scene calls it before handing the scene over
+    /// (frame inputs' emitters are checked by `Host::set_frame`).
+    pub fn check_particles(&self) -> Result<(), SceneError> {
+        particles::check_emitters(&self.name, &self.emitters)
+    }
+
+    /// The particles of every emitter, in emitter order.
+    pub fn particles(&self) -> impl Iterator<Item = &Particle> {
+        self.emitters.iter().flat_map(|e| e.particles.iter())
     }
 
     pub fn stats(&self) -> SceneStats {

@@ -2,7 +2,7 @@
 //! `Scene::load` (scene/mod.rs), from glTF files (gltf_loader/) or built-in scenes
 //! (procedural/), both through `SceneBuilder`.
 
-use super::{Aabb, Camera, Environment, Light, Material, Mesh, TextureImage};
+use super::{Aabb, Camera, Environment, Light, Material, Mesh, ParticleEmitter, TextureImage};
 
 /// Everything a renderer needs to draw one view of a scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -22,6 +22,11 @@ pub struct Scene {
     /// Image-based lighting, added to the ambient term and the lights: the default
     /// lighting of files without lights (see [`Lighting`](super::Lighting)); built-in scenes have none.
     pub environment: Option<Environment>,
+    /// Particle emitters, drawn by the `particles` pass after lighting; glTF files have
+    /// none, `builtin:smoke` has two, an engine adds its own. At most
+    /// [`MAX_PARTICLES`](super::MAX_PARTICLES) particles over all of them, each valid
+    /// ([`Particle::invalid`](super::Particle::invalid)): [`Scene::check_particles`].
+    pub emitters: Vec<ParticleEmitter>,
     /// The file's first camera in scene order, else [`Camera::framing`] of the bounds.
     pub camera: Camera,
     /// Exact world-space bounds of all vertices.

@@ -146,6 +146,41 @@ pub fn at_samples(
         .collect()
 }
 
+/// `pipelines` with the `--param` values each file declares, named with them; a note for
+/// each value a file does not declare.
+pub fn with_params(
+    pipelines: Vec<Candidate>,
+    given: &[(String, u32)],
+    notes: &mut Vec<String>,
+) -> Vec<Candidate> {
+    if given.is_empty() {
+        return pipelines;
+    }
+    pipelines
+        .into_iter()
+        .map(|mut candidate| {
+            let declared = declared_params(&candidate.path).unwrap_or_default();
+            let mut applied = Vec::new();
+            for (name, value) in given {
+                match declared.get(name) {
+                    Some(_) => {
+                        candidate.params = candidate.params.clone().with(name, *value);
+                        applied.push(format!("{name}={value}"));
+                    }
+                    None => notes.push(format!(
+                        "--param {name}={value}: {} has no \"{name}\" parameter",
+                        candidate.path.display()
+                    )),
+                }
+            }
+            if !applied.is_empty() {
+                candidate.name = format!("{} [{}]", candidate.name, applied.join(", "));
+            }
+            candidate
+        })
+        .collect()
+}
+
 fn stem(path: &Path) -> String {
     path.file_stem().map_or_else(
         || path.display().to_string(),

@@ -10,6 +10,7 @@ use passes_deferred_msaa::Host;
 
 use super::candidates::{Candidate, COLOR};
 use super::memory::Memory;
+use super::particle_work::{ParticleWork, PARTICLE_EDGES_OUTPUT};
 use super::results::{Figures, PassFigures};
 use super::specialisation::{PlanShape, Specialisation};
 use super::stats::Spread;
@@ -45,6 +46,14 @@ impl Setup<'_> {
         let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::ToScene)?;
         let offers = |output: &str| pipeline.offered.iter().any(|o| o == output);
         let (has_edges, has_fragments) = (offers(EDGES_OUTPUT), offers(FRAGMENTS_OUTPUT));
+        let has_particle_edges = offers(PARTICLE_EDGES_OUTPUT);
+        let plugins: Vec<(String, String)> = pipeline
+            .loaded
+            .graph
+            .passes()
+            .iter()
+            .filter_map(|p| Some((p.name.clone(), pipeline.loaded.plugin(&p.name)?.to_owned())))
+            .collect();
         let mut prepared = self.session.prepare(pipeline, self.size)?;
         let reports = self.time(&mut prepared)?;
         let color = prepared.read(COLOR)?;
@@ -52,7 +61,23 @@ impl Setup<'_> {
         let memory = Memory::of(prepared.plan());
         let shape = PlanShape::of(&prepared);
         let features = prepared.plan().features.clone();
+        let plan = prepared.plan().clone();
         drop(prepared);
+        let particle_edge_share = match has_particle_edges {
+            true => Some(edge_share(&self.render(
+                candidate,
+                host,
+                PARTICLE_EDGES_OUTPUT,
+            )?)),
+            false => None,
+        };
+        let plugin = |pass: &str| {
+            plugins
+                .iter()
+                .find(|(name, _)| name == pass)
+                .map(|(_, plugin)| plugin.clone())
+        };
+        let particles = ParticleWork::of(&plan, plugin, &host.scene, particle_edge_share);
         let specialisation = self.general(candidate, host, shape, features)?;
 
         let edges = if has_edges {
@@ -69,6 +94,7 @@ impl Setup<'_> {
         };
         let mut figures = figures(&reports, samples, memory, work);
         figures.specialisation = specialisation;
+        figures.particles = particles;
         Ok(Measured {
             figures,
             color,
@@ -181,5 +207,6 @@ fn figures(reports: &[FrameReport], samples: u32, memory: Memory, work: Work) ->
         work,
         image_error: None,
         specialisation: None,
+        particles: None,
     }
 }

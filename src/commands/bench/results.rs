@@ -6,6 +6,7 @@ use serde::Serialize;
 use super::image_error::ImageError;
 use super::machine::{Adapter, Machine};
 use super::memory::Memory;
+use super::particle_work::ParticleWork;
 use super::reference::Reference;
 use super::scene::SceneSummary;
 use super::specialisation::Specialisation;
@@ -78,6 +79,8 @@ pub struct Figures {
     /// The general plan's figures, when the scene's plan is specialised (all other
     /// figures are the scene's plan's).
     pub specialisation: Option<Specialisation>,
+    /// Particle and image-processing pixels, for a plan with particle passes.
+    pub particles: Option<ParticleWork>,
 }
 
 #[derive(Debug, Serialize)]

@@ -5,6 +5,7 @@ use std::fmt::Write;
 
 use graph_core::explain::bytes;
 
+use super::particle_table;
 use super::results::{Figures, Results, Row};
 use super::specialisation::Specialisation;
 
@@ -72,7 +73,9 @@ pub fn markdown(results: &Results) -> String {
             md.push_str(&pass_table(&rows));
         }
         md.push_str(&specialisation_table(&rows));
+        md.push_str(&particle_table::per_scene(&rows));
     }
+    md.push_str(&particle_table::by_extent(results));
     md.push_str(LEGEND);
     if r.sweep.is_none() {
         md.push_str(IMAGES);
@@ -272,7 +275,13 @@ rasterisation: compare ratios within one run only. FLIP: mean of NVIDIA's FLIP e
 (0 = identical, 1 = maximal) against the reference on the tone-mapped 8-bit images; PSNR \
 on the sRGB channels; edge: both restricted to the scene's edge pixels. Every pipeline is \
 compiled for its scene's features (rgraph explain --scene shows what that drops); where that \
-changes the plan, the general plan is timed too and a table per scene shows what was saved.";
+changes the plan, the general plan is timed too and a table per scene shows what was saved. \
+Particle pipelines (seed 001): particle Mpx are the fragments their particle passes shade \
+(billboard pixels, overlaps counted), image-processing Mpx those of the depth downsample, \
+edge detection and composite, both counted on the CPU (results.json says how the \
+stencilled full-resolution pass of mixed resolution is estimated); particle GPU ms: the \
+median GPU times of those passes added up, the technique's cost apart from the opaque \
+frame; saved: that against particles_full_res's on the same scene.";
 
 /// Outside sweeps, which write no images.
 const IMAGES: &str = " Images per scene are in the folder next to this file: reference.png, \

@@ -10,6 +10,7 @@ mod params;
 mod parts;
 mod rng;
 mod shapes;
+mod smoke;
 mod solid;
 mod spheres;
 mod unlit;
@@ -56,6 +57,12 @@ const BUILTINS: &[BuiltinScene] = &[
         description: "analytic: four flat-colored UNLIT shapes at documented positions under an orthographic camera",
         params: &[],
         build: unlit::build,
+    },
+    BuiltinScene {
+        name: "smoke",
+        description: "particles: 3,500 blended smoke and 500 emissive fire particles (seeded) over the dense scene, filling most of the frame",
+        params: smoke::PARAMS,
+        build: smoke::build,
     },
 ];
 
