@@ -2,41 +2,24 @@
 //! stencil-less depth32float, 16 bytes per sample (20 with RGB9E5 emission), renders the
 //! tiled pipeline's 32-byte G-buffer image within 1/255, and its layout errors are clear.
 
-use passes_deferred_msaa::analysis::Features;
 use passes_deferred_msaa::scene::Scene;
 
 use crate::baselines_errors::{assert_names, error};
 use crate::deferred_support;
-use deferred_support::measure::pixels_within;
-use deferred_support::{gpu, Render};
+use deferred_support::{gpu, unchanged, Render};
 
 const LEAN: &str = "deferred_msaa_4x_lean.ron";
 const TILED: &str = "deferred_msaa_4x_tiled.ron";
 
-/// Share of pixels of `scene` (edited by `edit`) that the lean and the full G-buffer render
-/// within 1/255, each compiled for the scene's features as `rgraph render` does. Where
-/// they differ, the compare detector found an edge in one and not the other: the lean
-/// G-buffer's samples have their own depths along a slope, the full one's the fragment's
-/// centroid depth, so a surface steep enough to change depth by 1% within a pixel is an
-/// edge only in the lean one (and shaded per sample). That takes a steeper surface the
-/// smaller the pixels: at 192x108, 3% of the 64-lights scene differs.
+/// Where the lean and the full G-buffer differ, the compare detector found an edge in one
+/// and not the other: the lean G-buffer's samples have their own depths along a slope,
+/// the full one's the fragment's centroid depth, so a surface steep enough to change depth
+/// by 1% within a pixel is an edge only in the lean one (and shaded per sample). That takes
+/// a steeper surface the smaller the pixels: at 192x108, 3% of the 64-lights scene
+/// differs, so the test renders at 480x270.
 fn agreement(scene: &str, edit: fn(&mut Scene)) -> f64 {
-    let gpu = gpu();
-    let mut loaded = Scene::load(scene).unwrap();
-    edit(&mut loaded);
-    let features = Features::of(&loaded).names();
-    let image = |pipeline| {
-        Render::new(pipeline, scene, (480, 270))
-            .scene_edit(edit)
-            .features(features.clone())
-            .run(&gpu)
-            .image(&gpu, "color")
-    };
-    let (lean, full) = (image(LEAN), image(TILED));
-    pixels_within(&lean, &full, 1) as f64 / lean.pixels.len() as f64
+    deferred_support::agreement((LEAN, TILED), scene, edit, (480, 270))
 }
-
-fn unchanged(_: &mut Scene) {}
 
 /// Every material glows, in HDR: the lean G-buffer's emission channel (RGB9E5) carries it.
 fn glowing(scene: &mut Scene) {

@@ -3,36 +3,21 @@
 //! the tiled compute pass. Against the exact coverage of builtin:unlit and against the
 //! G-buffer pipelines.
 
-use passes_deferred_msaa::analysis::Features;
 use passes_deferred_msaa::scene::{Mesh, Scene};
 
 use crate::deferred_support;
 use deferred_support::measure::pixels_within;
 use deferred_support::unlit::{Coverage, Judged};
-use deferred_support::{gpu, Render};
+use deferred_support::{gpu, unchanged, Render};
 
 const VISIBILITY: &str = "visibility_msaa_4x.ron";
 const RED: [u8; 4] = [255, 0, 0, 255];
 
 /// Share of `scene`'s pixels (edited by `edit`) the visibility buffer and `pipeline`
-/// render within 1/255, both compiled for the scene's features.
+/// render within 1/255 at 960x540.
 fn agreement(pipeline: &str, scene: &str, edit: fn(&mut Scene)) -> f64 {
-    let gpu = gpu();
-    let mut loaded = Scene::load(scene).unwrap();
-    edit(&mut loaded);
-    let features = Features::of(&loaded).names();
-    let image = |pipeline| {
-        Render::new(pipeline, scene, (960, 540))
-            .scene_edit(edit)
-            .features(features.clone())
-            .run(&gpu)
-            .image(&gpu, "color")
-    };
-    let (visibility, other) = (image(VISIBILITY), image(pipeline));
-    pixels_within(&visibility, &other, 1) as f64 / visibility.pixels.len() as f64
+    deferred_support::agreement((VISIBILITY, pipeline), scene, edit, (960, 540))
 }
-
-fn unchanged(_: &mut Scene) {}
 
 /// One material unlit, one emissive, one double-sided, the rest lit.
 fn mixed(scene: &mut Scene) {

@@ -359,3 +359,25 @@ pub fn srgb8(linear: f64) -> u8 {
     };
     (encoded * 255.0).round() as u8
 }
+
+/// Share of `scene`'s pixels (edited by `edit`) that pipelines `a` and `b` render within
+/// 1/255 at `size`, each compiled for the edited scene's features as `rgraph render`
+/// compiles it.
+pub fn agreement((a, b): (&str, &str), scene: &str, edit: fn(&mut Scene), size: (u32, u32)) -> f64 {
+    let gpu = gpu();
+    let mut loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
+    edit(&mut loaded);
+    let features = passes_deferred_msaa::analysis::Features::of(&loaded).names();
+    let image = |pipeline| {
+        Render::new(pipeline, scene, size)
+            .scene_edit(edit)
+            .features(features.clone())
+            .run(&gpu)
+            .image(&gpu, "color")
+    };
+    let (first, second) = (image(a), image(b));
+    measure::pixels_within(&first, &second, 1) as f64 / first.pixels.len() as f64
+}
+
+/// A scene edit that changes nothing, for tables of scenes and edits.
+pub fn unchanged(_: &mut Scene) {}
