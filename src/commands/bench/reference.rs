@@ -17,6 +17,8 @@ use super::measure::Setup;
 use crate::cli::BenchArgs;
 use crate::frame::FrameError;
 
+/// The built-in reference, whose shaded samples per pixel `--reference-spp` sets.
+const BUILTIN: &str = "reference_ssaa16";
 /// Used when the reference file is missing: every sample of 4x MSAA shaded.
 const FALLBACK: &str = "deferred_per_sample_4x";
 /// The 1-sample render the edge pixels are found with.
@@ -27,8 +29,9 @@ const ALIASED: &str = "deferred_noaa";
 pub struct Reference {
     pub pipeline: String,
     pub file: String,
-    /// Shaded samples per pixel.
-    pub spp: u32,
+    /// Shaded samples per pixel, where known: the built-in reference's (`--reference-spp`)
+    /// or the fallback's; `None` for another `--reference` file, which renders as written.
+    pub spp: Option<u32>,
     #[serde(skip)]
     candidate: Candidate,
     #[serde(skip)]
@@ -62,10 +65,11 @@ impl Reference {
                 candidate.text = Some(text.replace("Relative(2.0)", "Relative(1.0)"));
                 candidate.name = format!("{}@4spp", candidate.name);
             }
+            let builtin = args.reference.file_stem().is_some_and(|s| s == BUILTIN);
             return Some(Reference {
                 pipeline: candidate.name.clone(),
                 file: args.reference.display().to_string(),
-                spp: args.reference_spp,
+                spp: builtin.then_some(args.reference_spp),
                 candidate,
                 aliased,
             });
@@ -80,7 +84,7 @@ impl Reference {
             return Some(Reference {
                 pipeline: FALLBACK.into(),
                 file: fallback.display().to_string(),
-                spp: 4,
+                spp: Some(4),
                 candidate: Candidate::file(&fallback),
                 aliased,
             });

@@ -34,10 +34,13 @@ pub fn markdown(results: &Results) -> String {
         r.timestamp,
     );
     if let Some(reference) = &r.reference {
+        let spp = reference.spp.map_or("rendered as written".into(), |spp| {
+            format!("{spp} shaded samples per pixel")
+        });
         let _ = writeln!(
             md,
-            "- reference: {} ({}, {} shaded samples per pixel)",
-            reference.pipeline, reference.file, reference.spp
+            "- reference: {} ({}, {spp})",
+            reference.pipeline, reference.file
         );
     }
     for note in &r.notes {
