@@ -2,7 +2,8 @@
 //! and how a pass hands over its recording ([`plugin`]), the textures in a pass's slots
 //! ([`textures`]), the light passes' optional ambient-occlusion input ([`ao`]), the depth
 //! convention ([`depth`]), the edge detectors two passes use ([`edge_detection`]), the
-//! full-screen draw five passes set up ([`fullscreen`]), the lean G-buffer's emission
+//! full-screen draw five passes set up ([`fullscreen`]), the G-buffer layouts a lighting
+//! pass reads ([`gbuffer_layout`]), the lean G-buffer's emission
 //! encoding ([`rgb9e5`]) and,
 //! with feature `gpu`, the device helpers of their recordings ([`gpu`]). Nothing here
 //! imports a pass.
@@ -11,6 +12,7 @@ pub(crate) mod ao;
 pub(crate) mod depth;
 pub(crate) mod edge_detection;
 pub(crate) mod fullscreen;
+pub(crate) mod gbuffer_layout;
 #[cfg(feature = "gpu")]
 pub(crate) mod gpu;
 pub(crate) mod plugin;

@@ -46,7 +46,7 @@ impl Geometry {
         meshes: &MeshBuffers,
     ) -> Result<&wgpu::BindGroup, &str> {
         let group = self.group.get_or_init(|| {
-            let limit = u64::from(device.limits().max_storage_buffer_binding_size);
+            let limit = device.limits().max_storage_buffer_binding_size;
             for (what, buffer) in [("vertices", &meshes.vertices), ("indices", &meshes.indices)] {
                 if buffer.size() > limit {
                     return Err(format!(

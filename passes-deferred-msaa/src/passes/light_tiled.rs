@@ -71,8 +71,9 @@ use super::resolve::{one, resolve_exposure, ResolveMode};
 use crate::common::ao;
 use crate::common::depth::DepthRule;
 use crate::common::edge_detection::{Detector, EdgeDetection};
+use crate::common::gbuffer_layout::GBufferLayout;
 use crate::common::plugin::{yes, Recording, Shared};
-use crate::common::textures::{self, format_name, Input, Texels, Want, GBUFFER_INPUTS};
+use crate::common::textures::{self, format_name, Input, Texels, Want};
 use crate::shaders;
 
 pub struct LightTiled(pub(crate) Shared);
@@ -154,99 +155,6 @@ impl TiledView {
     }
 }
 
-/// Which G-buffer the pass reads, from the slots the file binds: the full one (`view_depth`
-/// and `hdr`), the lean one (neither; `emission` when the scene emits), a mix, or a
-/// visibility buffer (`ids`: triangle IDs, whose triangles the pass rebuilds).
-struct GBufferLayout {
-    visibility: bool,
-    stored_view_depth: bool,
-    emitted: Emitted,
-}
-
-enum Emitted {
-    /// `hdr` or `emission`.
-    Channel(&'static str),
-    /// No channel: what the surface carries (a visibility buffer's emission), unlit colour
-    /// from albedo, this background elsewhere.
-    Surface([f64; 3]),
-}
-
-impl GBufferLayout {
-    fn of(slots: &Slots<'_>, background: Option<[f64; 3]>) -> Result<GBufferLayout, PluginError> {
-        let listed = |slot| slots.kind(slot).is_some();
-        let emitted = match (listed("hdr"), listed("emission"), background) {
-            (true, true, _) => {
-                return Err(PluginError::Invalid(
-                    "inputs \"hdr\" and \"emission\" both hold what samples emit: bind one".into(),
-                ))
-            }
-            (true, false, Some(_)) | (false, true, Some(_)) => {
-                return Err(PluginError::Invalid(
-                    "background is for a G-buffer without \"hdr\" or \"emission\": with one, the \
-                     background is what the G-buffer pass cleared it to"
-                        .into(),
-                ))
-            }
-            (true, false, None) => Emitted::Channel("hdr"),
-            (false, true, None) => Emitted::Channel("emission"),
-            (false, false, background) => {
-                let background = background.unwrap_or([0.0; 3]);
-                if !background.iter().all(|c| c.is_finite() && *c >= 0.0) {
-                    return Err(PluginError::Invalid(format!(
-                        "background must be finite and not negative, got {background:?}"
-                    )));
-                }
-                Emitted::Surface(background)
-            }
-        };
-        let visibility = listed("ids");
-        if visibility {
-            if let Some(slot) = [
-                "albedo",
-                "normal",
-                "material",
-                "view_depth",
-                "hdr",
-                "emission",
-            ]
-            .into_iter()
-            .find(|&slot| listed(slot))
-            {
-                return Err(PluginError::Invalid(format!(
-                    "inputs \"ids\" (a visibility buffer) and \"{slot}\" (a G-buffer's) \
-                     are two ways of reading the surfaces: bind one"
-                )));
-            }
-        }
-        Ok(GBufferLayout {
-            visibility,
-            stored_view_depth: listed("view_depth"),
-            emitted,
-        })
-    }
-
-    /// The shader fragments that read this layout.
-    fn wgsl(&self) -> String {
-        let reader = match self.visibility {
-            true => shaders::VISIBILITY_READ,
-            false => shaders::GBUFFER_READ,
-        };
-        let view_depth = match self.stored_view_depth {
-            true => shaders::VIEW_DEPTH_STORED,
-            false => shaders::VIEW_DEPTH_FROM_DEPTH,
-        };
-        let emitted = match self.emitted {
-            Emitted::Channel("hdr") => shaders::EMITTED_HDR.to_owned(),
-            Emitted::Channel(_) => shaders::EMITTED_RGB9E5.to_owned(),
-            Emitted::Surface([r, g, b]) => format!(
-                "const BACKGROUND: vec3<f32> = vec3<f32>({r:?}, {g:?}, {b:?});\n{}",
-                shaders::EMITTED_SURFACE
-            ),
-        };
-        format!("{reader}\n{view_depth}\n{emitted}")
-    }
-}
-
 /// Tile sides allowed: the four side planes are set up by four invocations, and 32 x 32
 /// invocations is more than any device's workgroup.
 const TILES: std::ops::RangeInclusive<u32> = 2..=32;
@@ -311,54 +219,14 @@ impl Plugin for LightTiled {
             texels: Texels::Depth,
         }];
         let layout = GBufferLayout::of(slots, params.background)?;
-        let mut visibility_ids = None;
-        if layout.visibility {
-            if params.edges.detector != Detector::Compare {
-                return Err(PluginError::Invalid(
-                    "a visibility buffer's edge pixels are those whose samples show different \
-                     triangles: leave out edges' detector"
-                        .into(),
-                ));
-            }
-            let want =
-                Want::new("the visibility buffer's triangle IDs", textures::IDS).samples(samples);
-            let (ids, _) = textures::input(slots, pass, "ids", want)?;
-            pass.sampled(ids);
-            visibility_ids = Some(ids);
-            inputs.push(Input {
-                binding: 0,
-                texture: ids,
-                aspect: Aspect::All,
-                texels: Texels::Uint,
-            });
+        if layout.visibility && params.edges.detector != Detector::Compare {
+            return Err(PluginError::Invalid(
+                "a visibility buffer's edge pixels are those whose samples show different \
+                 triangles: leave out edges' detector"
+                    .into(),
+            ));
         }
-        for (slot, what, formats, binding) in GBUFFER_INPUTS {
-            if layout.visibility || (slot == "view_depth" && !layout.stored_view_depth) {
-                continue;
-            }
-            let want = Want::new(what, formats).samples(samples);
-            inputs.push(textures::sampled(slots, pass, slot, want, binding)?.0);
-        }
-        if let Emitted::Channel(slot) = layout.emitted {
-            let (what, formats) = match slot {
-                "hdr" => ("the G-buffer's HDR target", textures::HDR),
-                _ => ("the G-buffer's emission", textures::EMISSION),
-            };
-            let (handle, _) =
-                textures::input(slots, pass, slot, Want::new(what, formats).samples(samples))?;
-            pass.sampled(handle);
-            let texels = if slot == "hdr" {
-                Texels::Float
-            } else {
-                Texels::Uint
-            };
-            inputs.push(Input {
-                binding: 6,
-                texture: handle,
-                aspect: Aspect::All,
-                texels,
-            });
-        }
+        let visibility_ids = layout.bind(slots, pass, samples, &mut inputs)?;
         let (slot, want) = params.view.output();
         let (output, out) = textures::output(slots, pass, slot, want.samples(1), |pass, h, _| {
             pass.storage_write(h)
