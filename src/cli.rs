@@ -90,8 +90,9 @@ pub enum Command {
     /// For each scene and pipeline: warmup frames, then measured frames (median and spread
     /// of GPU and CPU times), the plan's memory, the edge mask's share of pixels and the
     /// shading work it implies, and FLIP and PSNR against the reference, on all pixels and
-    /// on edge pixels. Writes results.json, results.md, charts and images to --out-dir.
-    /// A row that cannot be measured (unknown pipeline or scene, a compile or device
+    /// on edge pixels. Writes results.json, results.md, charts and images to --out-dir,
+    /// after each scene too (with a note of the scenes still missing), so a run stopped
+    /// part way keeps what it measured. A row that cannot be measured (unknown pipeline or scene, a compile or device
     /// failure) is an error row; the rest are still measured.
     ///
     /// Exit status: 0 when at least one row was measured, 1 when none could be, 2 for

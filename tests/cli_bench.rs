@@ -446,3 +446,57 @@ fn a_specialised_plan_is_measured_beside_the_general_one() {
         .unwrap();
     assert!(row.ends_with(" ms |"), "no time saved by shaders: {row}");
 }
+
+/// A run stopped part way keeps what it measured: after each scene results.json and
+/// results.md hold the rows so far, with a note saying how many scenes are missing (the
+/// second scene here, a thousand lights shaded per sample, takes seconds on lavapipe,
+/// and the run is killed as soon as the first scene's results.md appears, which is
+/// written after results.json).
+#[test]
+fn a_run_stopped_after_one_scene_keeps_its_rows() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rgraph"))
+        .args([
+            "bench",
+            "--pipeline",
+            PER_SAMPLE,
+            "--scene",
+            "builtin:spheres",
+            "--scene",
+            "builtin:lights?count=1024",
+            "--no-reference",
+            "--width",
+            "320",
+            "--height",
+            "180",
+            "--frames",
+            "3",
+            "--warmup",
+            "1",
+            "--out-dir",
+            out,
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("the rgraph binary runs");
+    let (json, table) = (dir.path().join("results.json"), dir.path().join("results.md"));
+    while !table.exists() {
+        if let Some(status) = child.try_wait().unwrap() {
+            panic!("rgraph bench ended ({status}) before writing any results");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let results: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let rows = results["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 1, "{rows:?}");
+    assert_eq!(rows[0]["scene"], "builtin:spheres");
+    let notes = results["notes"].to_string();
+    assert!(notes.contains("partial: 1 of 2 scenes measured"), "{notes}");
+    let table = std::fs::read_to_string(table).unwrap();
+    assert!(table.contains("partial: 1 of 2 scenes measured"), "{table}");
+}

@@ -39,8 +39,8 @@ use machine::{Adapter, Machine};
 use measure::Setup;
 use progress::Progress;
 use reference::Reference;
-use results::{Results, Row, SCHEMA};
-use scene::{bench_scene, SceneSummary};
+use results::{Results, SCHEMA};
+use scene::bench_scene;
 use sweep::Step;
 
 /// The pipeline every frame time is compared with.
@@ -82,10 +82,7 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         (Some(_), _) => None,
     };
 
-    let (mut rows, summaries) = measure(&session, args, &steps, reference.as_ref())?;
-    results::ratios_to_baseline(&mut rows, BASELINE);
-
-    let results = Results {
+    let mut results = Results {
         schema: SCHEMA,
         command: std::env::args().collect::<Vec<_>>().join(" "),
         machine: Machine::this(),
@@ -98,10 +95,12 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         warmup: args.warmup,
         reference,
         notes,
-        scenes: summaries,
-        rows,
+        scenes: Vec::new(),
+        rows: Vec::new(),
     };
+    measure(&session, args, &steps, &mut results)?;
     let json_path = write_results(&results, out)?;
+    eprintln!("{}", table::markdown(&results));
     if results.rows.iter().all(|r| r.figures.is_none()) {
         return Err(BenchError::NothingMeasured {
             rows: results.rows.len(),
@@ -111,25 +110,26 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
     Ok(json_path)
 }
 
-/// Every step's scenes, with a progress bar over all their items: the rows, and each
-/// scene's summary outside sweeps.
+/// Every step's scenes, with a progress bar over all their items, into `results`: the rows,
+/// and each scene's summary outside sweeps. After each scene the results so far are
+/// written, with a note saying how many scenes are missing, so a run stopped part way
+/// (a machine lent for minutes) keeps what it measured.
 fn measure(
     session: &Session,
     args: &BenchArgs,
     steps: &[Step],
-    reference: Option<&Reference>,
-) -> Result<(Vec<Row>, Vec<SceneSummary>), BenchError> {
+    results: &mut Results,
+) -> Result<(), BenchError> {
+    let reference = results.reference.clone();
+    let extra = |s: &Step| usize::from(reference.is_some()) + usize::from(s.point.is_none());
+    // The reference and the unique-surface count are items of their own.
     let items = steps
         .iter()
-        .map(|s| {
-            // The reference and the unique-surface count are items of their own.
-            let extra = usize::from(reference.is_some()) + usize::from(s.point.is_none());
-            s.scenes.len() * (s.pipelines.len() + extra)
-        })
+        .map(|s| s.scenes.len() * (s.pipelines.len() + extra(s)))
         .sum();
+    let scene_count: usize = steps.iter().map(|s| s.scenes.len()).sum();
     let mut progress = Progress::new(items);
-    let mut rows = Vec::new();
-    let mut summaries = Vec::new();
+    let mut done = 0;
     for step in steps {
         let setup = Setup {
             session,
@@ -146,33 +146,40 @@ fn measure(
                 &setup,
                 scene,
                 &step.pipelines,
-                reference,
+                reference.as_ref(),
                 images,
                 &mut progress,
             )?;
-            rows.extend(scene_rows.into_iter().map(|mut row| {
+            results.rows.extend(scene_rows.into_iter().map(|mut row| {
                 row.sweep = step.point.clone();
                 row
             }));
             if images.is_some() {
-                summaries.push(summary);
+                results.scenes.push(summary);
+            }
+            results::ratios_to_baseline(&mut results.rows, BASELINE);
+            done += 1;
+            if done < scene_count {
+                results.notes.push(format!(
+                    "partial: {done} of {scene_count} scenes measured (the run was stopped \
+                     before the rest, or is still running)"
+                ));
+                write_results(results, &args.out_dir)?;
+                results.notes.pop();
             }
         }
     }
-    Ok((rows, summaries))
+    Ok(())
 }
 
-/// results.json, the charts and results.md (also printed on stderr); returns the JSON's
-/// path.
+/// results.json, results.md and the charts; returns the JSON's path.
 fn write_results(results: &Results, out: &Path) -> Result<PathBuf, BenchError> {
     let json_path = out.join("results.json");
     // Plain structs of numbers and strings: serializing them cannot fail.
     let json = serde_json::to_string_pretty(results).expect("results serialize");
     write(&json_path, json.as_bytes())?;
+    write(&out.join("results.md"), table::markdown(results).as_bytes())?;
     charts::write_all(results, out)?;
-    let table = table::markdown(results);
-    write(&out.join("results.md"), table.as_bytes())?;
-    eprintln!("{table}");
     Ok(json_path)
 }
 
