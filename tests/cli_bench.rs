@@ -482,7 +482,10 @@ fn a_run_stopped_after_one_scene_keeps_its_rows() {
         .stderr(std::process::Stdio::null())
         .spawn()
         .expect("the rgraph binary runs");
-    let (json, table) = (dir.path().join("results.json"), dir.path().join("results.md"));
+    let (json, table) = (
+        dir.path().join("results.json"),
+        dir.path().join("results.md"),
+    );
     while !table.exists() {
         if let Some(status) = child.try_wait().unwrap() {
             panic!("rgraph bench ended ({status}) before writing any results");

@@ -142,3 +142,34 @@ fn split_ids_render_what_whole_ids_do() {
     let (whole, split) = (image("format: \"r32uint\""), image("format: \"rg16uint\""));
     assert_eq!(pixels_within(&whole, &split, 0), whole.pixels.len());
 }
+
+/// Without its IDs the visibility pass is a depth pre-pass: the same depth, sample for
+/// sample (bench/graphs/visibility_cost/depth_only.ron averages it into its colour).
+#[test]
+fn without_ids_the_visibility_pass_writes_the_same_depth() {
+    let gpu = gpu();
+    let graph = "../bench/graphs/visibility_cost/depth_only.ron";
+    let image = |render: Render| render.run(&gpu).image(&gpu, "color");
+    let depth_only = image(Render::new(graph, "builtin:dense", (160, 90)));
+    let with_ids = image(
+        Render::new(graph, "builtin:dense", (160, 90))
+            .edit(
+                "resources: {",
+                "resources: {\n        \"ids\": Texture(format: \"r32uint\", fallback: \"rg16uint\", samples: 4),",
+            )
+            .edit(
+                "outputs: { \"depth\": \"depth\" }",
+                "outputs: { \"ids\": \"ids\", \"depth\": \"depth\" }",
+            )
+            .edit("outputs: [\"color\"]", "outputs: [\"color\", \"ids\"]"),
+    );
+    assert_eq!(
+        pixels_within(&depth_only, &with_ids, 0),
+        depth_only.pixels.len()
+    );
+    let background = depth_only.count([0, 0, 0, 255]);
+    assert!(
+        background > 0 && background < depth_only.pixels.len() / 2,
+        "{background} background pixels"
+    );
+}
