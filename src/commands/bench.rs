@@ -9,6 +9,7 @@ mod candidates;
 mod charts;
 mod edge_pixels;
 mod error;
+mod figures;
 mod image_error;
 mod images;
 mod machine;

@@ -9,9 +9,9 @@ use passes_deferred_msaa::scene::{AssetPolicy, Lighting};
 use passes_deferred_msaa::Host;
 
 use super::candidates::{Candidate, COLOR};
+use super::figures::{Figures, PassFigures};
 use super::memory::Memory;
 use super::particle_work::{ParticleWork, PARTICLE_EDGES_OUTPUT};
-use super::results::{Figures, PassFigures};
 use super::specialisation::{PlanShape, Specialisation};
 use super::stats::Spread;
 use super::work::{edge_share, sampling, Work, EDGES_OUTPUT, FRAGMENTS_OUTPUT};

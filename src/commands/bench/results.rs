@@ -3,16 +3,12 @@
 
 use serde::Serialize;
 
-use super::image_error::ImageError;
+use super::edge_pixels::EdgePixels;
+use super::figures::Figures;
 use super::machine::{Adapter, Machine};
-use super::memory::Memory;
-use super::particle_work::ParticleWork;
 use super::reference::Reference;
-use super::scene::SceneSummary;
-use super::specialisation::Specialisation;
-use super::stats::Spread;
+use super::surfaces::UniqueSurfaces;
 use super::sweep::SweepPoint;
-use super::work::Work;
 use crate::cli::Sweep;
 
 /// Bumped when a field changes meaning or moves.
@@ -57,38 +53,6 @@ pub struct Row {
     pub sweep: Option<SweepPoint>,
     pub message: Option<String>,
     pub figures: Option<Figures>,
-}
-
-#[derive(Debug, Serialize)]
-pub struct Figures {
-    /// The most samples of any texture the pipeline uses.
-    pub samples: u32,
-    /// From the first pass's begin timestamp to the last one's end, per measured frame;
-    /// `null` when the device has no timestamp queries.
-    pub gpu_frame_ms: Option<Spread>,
-    /// CPU time to record all passes (callbacks included), per measured frame.
-    pub cpu_record_ms: Option<Spread>,
-    /// Median GPU frame time over deferred_noaa's on the same scene in this run.
-    pub ratio_to_noaa: Option<f64>,
-    /// Executed passes in order.
-    pub passes: Vec<PassFigures>,
-    pub memory: Memory,
-    pub work: Work,
-    /// Against the reference; `null` without one.
-    pub image_error: Option<ImageError>,
-    /// The general plan's figures, when the scene's plan is specialised (all other
-    /// figures are the scene's plan's).
-    pub specialisation: Option<Specialisation>,
-    /// Particle and image-processing pixels, for a plan with particle passes.
-    pub particles: Option<ParticleWork>,
-}
-
-#[derive(Debug, Serialize)]
-pub struct PassFigures {
-    pub name: String,
-    pub kind: String,
-    pub gpu_ms: Option<Spread>,
-    pub cpu_ms: Option<Spread>,
 }
 
 impl Row {
@@ -140,4 +104,21 @@ pub fn ratios_to_baseline(rows: &mut [Row], baseline: &str) {
             figures.ratio_to_noaa = ratio.filter(|r| r.is_finite());
         }
     }
+}
+
+/// What a scene's rows share: where its images are, how its edge pixels were found and
+/// the least shading it needs.
+#[derive(Debug, Serialize)]
+pub struct SceneSummary {
+    pub scene: String,
+    /// The folder of its images; empty in sweeps, which write none.
+    pub images: String,
+    /// The pixels edge errors are measured on; `null` without a reference.
+    pub edge_pixels: Option<EdgePixels>,
+    /// Why the reference could not be rendered, when it could not.
+    pub reference_error: Option<String>,
+    /// The lower bound of shading work; `null` in sweeps or when it failed.
+    pub unique_surfaces: Option<UniqueSurfaces>,
+    /// Why the bound could not be measured, when it could not.
+    pub unique_surfaces_error: Option<String>,
 }

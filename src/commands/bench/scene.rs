@@ -6,36 +6,18 @@ use std::sync::Arc;
 
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Host, Overrides};
-use serde::Serialize;
 
 use super::candidates::Candidate;
-use super::edge_pixels::EdgePixels;
 use super::error::{BenchError, RowError};
+use super::figures::Figures;
 use super::image_error::compare;
 use super::images::SceneImages;
 use super::measure::{Measured, Setup};
 use super::progress::Progress;
 use super::reference::{Reference, SceneReference};
-use super::results::{Figures, Row};
-use super::surfaces::{self, UniqueSurfaces};
+use super::results::{Row, SceneSummary};
+use super::surfaces;
 use crate::frame::host;
-
-/// What a scene's rows share: where its images are, how its edge pixels were found and
-/// the least shading it needs.
-#[derive(Debug, Serialize)]
-pub struct SceneSummary {
-    pub scene: String,
-    /// The folder of its images; empty in sweeps, which write none.
-    pub images: String,
-    /// The pixels edge errors are measured on; `null` without a reference.
-    pub edge_pixels: Option<EdgePixels>,
-    /// Why the reference could not be rendered, when it could not.
-    pub reference_error: Option<String>,
-    /// The lower bound of shading work; `null` in sweeps or when it failed.
-    pub unique_surfaces: Option<UniqueSurfaces>,
-    /// Why the bound could not be measured, when it could not.
-    pub unique_surfaces_error: Option<String>,
-}
 
 /// Every pipeline on the scene `spec`. When `out` is given (outside sweeps), also the
 /// images under it and the unique-surface bound. A scene that fails to load is one error

@@ -5,8 +5,9 @@ use std::fmt::Write;
 
 use graph_core::explain::bytes;
 
+use super::figures::Figures;
 use super::particle_table;
-use super::results::{Figures, Results, Row};
+use super::results::{Results, Row};
 use super::specialisation::Specialisation;
 
 pub fn markdown(results: &Results) -> String {
