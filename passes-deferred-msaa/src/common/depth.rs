@@ -13,7 +13,7 @@
 //! passes sharing a depth buffer must say the same.
 
 use graph_core::types::TextureFormat;
-use graph_core::{AspectAccess, ByFormat};
+use graph_core::{AspectAccess, ByFormat, PassBuilder, TextureHandle};
 
 use crate::scene::DepthConvention;
 
@@ -35,6 +35,18 @@ impl DepthRule {
     pub fn convention(self, format: TextureFormat) -> DepthConvention {
         self.reversed_z
             .map_or_else(|| format_convention(format), named)
+    }
+
+    /// Binds `depth` as the attachment of a pass that starts the depth buffer: depth
+    /// cleared as [`clear`](Self::clear) says, stencil to 0 where the format has one
+    /// (depth32float has none: the lean G-buffer and the visibility buffer, read by the
+    /// tiled pass, need no stencil). Returns the written version.
+    pub fn start(self, pass: &mut PassBuilder<'_>, depth: TextureHandle) -> TextureHandle {
+        let stencil = match pass.resource(depth).texture().map(|d| d.format) {
+            Some(format) if !format.has_stencil_aspect() => AspectAccess::Absent,
+            _ => AspectAccess::Clear(0),
+        };
+        pass.depth_stencil(depth, self.clear(), stencil)
     }
 
     /// How a pass that starts the depth buffer clears it: to the far depth of the

@@ -29,7 +29,7 @@ use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::types::TextureFormat;
-use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
+use graph_core::{PassBuilder, PassKind, TextureHandle};
 
 use super::gbuffer::opaque_black;
 use crate::common::depth::DepthRule;
@@ -111,7 +111,7 @@ impl Plugin for Forward {
         let depth_rule = DepthRule::new(params.reversed_z);
         let want = Want::new("the forward pass's depth", DEPTH);
         let (depth, desc) = textures::output(slots, pass, "depth", want, |pass, h, _| {
-            pass.depth_stencil(h, depth_rule.clear(), AspectAccess::Clear(0))
+            depth_rule.start(pass, h)
         })?;
         let want = Want::new("the HDR target", textures::HDR).samples(desc.samples);
         let (hdr, _) = textures::color_output(slots, pass, "hdr", want, params.background)?;

@@ -44,7 +44,7 @@
 use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
+use graph_core::{PassBuilder, PassKind, TextureHandle};
 
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{Recording, Shared};
@@ -104,13 +104,7 @@ impl Plugin for GBuffer {
         let depth_rule = DepthRule::new(params.reversed_z);
         let depth_want = Want::new("the G-buffer's depth", textures::DEPTH_ANY);
         let (depth, desc) = textures::output(slots, pass, "depth", depth_want, |pass, h, _| {
-            // depth32float has no stencil to clear (the lean G-buffer's tiled pass needs
-            // none).
-            let stencil = match pass.resource(h).texture().map(|d| d.format) {
-                Some(format) if !format.has_stencil_aspect() => AspectAccess::Absent,
-                _ => AspectAccess::Clear(0),
-            };
-            pass.depth_stencil(h, depth_rule.clear(), stencil)
+            depth_rule.start(pass, h)
         })?;
         let samples = desc.samples;
         if slots.is_output("hdr") && slots.is_output("emission") {

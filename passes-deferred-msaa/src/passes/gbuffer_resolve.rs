@@ -26,7 +26,7 @@
 use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
+use graph_core::{PassBuilder, PassKind, TextureHandle};
 
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{Recording, Shared};
@@ -101,7 +101,7 @@ impl Plugin for GBufferResolve {
         let samples = samples.unwrap_or(1);
         let want = Want::new("the resolved depth-stencil", textures::DEPTH_STENCIL).samples(1);
         let (depth, _) = textures::output(slots, pass, "depth", want, |pass, h, _| {
-            pass.depth_stencil(h, depth_rule.clear(), AspectAccess::Clear(0))
+            depth_rule.start(pass, h)
         })?;
         let mut targets = Vec::new();
         for ((slot, what), (_, _, formats, _)) in OUTPUTS.into_iter().zip(GBUFFER_INPUTS) {

@@ -109,7 +109,7 @@ impl Plugin for LightPrepassGBuffer {
         let depth_rule = DepthRule::new(params.reversed_z);
         let want = Want::new("the thin G-buffer's depth-stencil", textures::DEPTH_STENCIL);
         let (depth, desc) = textures::output(slots, pass, "depth", want, |pass, h, _| {
-            pass.depth_stencil(h, depth_rule.clear(), AspectAccess::Clear(0))
+            depth_rule.start(pass, h)
         })?;
         let samples = desc.samples;
         let mut targets = Vec::new();

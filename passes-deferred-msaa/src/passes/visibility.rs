@@ -29,7 +29,7 @@
 use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{AspectAccess, ColorLoad, PassBuilder, PassKind, TextureHandle};
+use graph_core::{ColorLoad, PassBuilder, PassKind, TextureHandle};
 
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{Recording, Shared};
@@ -79,11 +79,7 @@ impl Plugin for Visibility {
         let depth_rule = DepthRule::new(params.reversed_z);
         let want = Want::new("the visibility buffer's depth", textures::DEPTH_ANY);
         let (depth, desc) = textures::output(slots, pass, "depth", want, |pass, h, _| {
-            let stencil = match pass.resource(h).texture().map(|d| d.format) {
-                Some(format) if !format.has_stencil_aspect() => AspectAccess::Absent,
-                _ => AspectAccess::Clear(0),
-            };
-            pass.depth_stencil(h, depth_rule.clear(), stencil)
+            depth_rule.start(pass, h)
         })?;
         let ids = match slots.is_output("ids") {
             true => {
