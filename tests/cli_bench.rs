@@ -447,6 +447,33 @@ fn a_specialised_plan_is_measured_beside_the_general_one() {
     assert!(row.ends_with(" ms |"), "no time saved by shaders: {row}");
 }
 
+/// A file that drops its edge view for a scene (deferred_msaa_4x_tiled has none on an
+/// unlit-only scene: nothing is lit, so nothing is split) is measured all the same, its
+/// row saying why it has no edge figures.
+#[test]
+fn an_edge_view_the_scene_drops_leaves_the_row_without_edge_figures() {
+    let dir = tempfile::tempdir().unwrap();
+    bench(&[
+        "--scene",
+        "builtin:unlit",
+        "--pipeline",
+        "pipelines/deferred_msaa_4x_tiled.ron",
+        "--no-reference",
+        "--out-dir",
+        dir.path().to_str().unwrap(),
+    ])
+    .expect(0);
+    let json = read_json(&dir.path().join("results.json"));
+    let figures = &row(&json, "deferred_msaa_4x_tiled")["figures"];
+    assert!(number(figures, "gpu_frame_ms.median") > 0.0, "{figures:#}");
+    let work = &figures["work"];
+    assert!(work["edge_pixel_share"].is_null(), "{work:#}");
+    assert_eq!(
+        work["source"],
+        "not counted: debug.edges is not made for this scene (condition \"!unlit_only\" is false)"
+    );
+}
+
 /// A run stopped part way keeps what it measured: after each scene results.json and
 /// results.md hold the rows so far, with a note saying how many scenes are missing (the
 /// second scene here, a thousand lights shaded per sample, takes seconds on lavapipe,

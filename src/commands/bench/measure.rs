@@ -80,17 +80,23 @@ impl Setup<'_> {
         let particles = ParticleWork::of(&plan, plugin, &host.scene, particle_edge_share);
         let specialisation = self.general(candidate, host, shape, features)?;
 
-        let edges = if has_edges {
-            Some(self.render(candidate, host, EDGES_OUTPUT)?)
-        } else {
-            None
+        // A file may drop its edge view for some scenes (no lighting to split on an
+        // unlit-only scene): the row then says why it has no edge figures.
+        let (edges, dropped) = match has_edges {
+            true => match self.render(candidate, host, EDGES_OUTPUT) {
+                Ok(view) => (Some(view), None),
+                Err(FrameError::NotForScene { why, .. }) => (None, Some(why)),
+                Err(e) => return Err(e),
+            },
+            false => (None, None),
         };
-        let work = match &edges {
-            Some(view) if has_fragments => {
+        let work = match (&edges, dropped) {
+            (Some(view), _) if has_fragments => {
                 Work::from_fragments(view, &self.render(candidate, host, FRAGMENTS_OUTPUT)?)
             }
-            Some(view) => Work::from_edges(edge_share(view), samples),
-            None => Work::from_kind(&candidate.stem(), samples, supersampling),
+            (Some(view), _) => Work::from_edges(edge_share(view), samples),
+            (None, Some(why)) => Work::not_made(&why),
+            (None, None) => Work::from_kind(&candidate.stem(), samples, supersampling),
         };
         let mut figures = figures(&reports, samples, memory, work);
         figures.specialisation = specialisation;

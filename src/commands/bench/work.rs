@@ -62,6 +62,16 @@ impl Work {
         }
     }
 
+    /// For a pipeline whose edge mask its file's conditions drop for this scene (`why`).
+    pub fn not_made(why: &str) -> Work {
+        Work {
+            edge_pixel_share: None,
+            shaded_samples_per_pixel: None,
+            source: format!("not counted: {EDGES_OUTPUT} is not made for this scene ({why})"),
+            unique_surface_bound: None,
+        }
+    }
+
     /// For a pipeline without an edge mask, from its kind (its file name): how often its
     /// shading shader runs per pixel, `supersampling` being its shaded samples per pixel
     /// when every sample is shaded.
