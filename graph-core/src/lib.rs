@@ -60,7 +60,9 @@ pub use plan::{
     PhysicalTexture, Plan, PlannedPass, PlannedResource, Store,
 };
 pub use plan_cache::{Compile, PlanCache, PlanKey};
-pub use profile::{color_bytes_per_sample, color_target_cost, DeviceProfile};
+pub use profile::{
+    color_bytes_per_sample, color_target_cost, is_device_condition, DeviceProfile, DEVICE_CONDITIONS,
+};
 #[cfg(feature = "gpu")]
 pub use record::Record;
 pub use resource::{

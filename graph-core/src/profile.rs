@@ -8,6 +8,22 @@ use wgpu_types::{
     TextureUsages,
 };
 
+use crate::condition;
+
+/// Optional device features that graph conditions may test by name, as scene features
+/// are tested: a file declaring `int64_atomics` in its `features` can pick a pass that
+/// needs 64-bit atomics on devices that have them and another elsewhere. The device sets
+/// these names, never the caller: compiling takes them from the profile.
+pub const DEVICE_CONDITIONS: [(&str, Features); 1] = [(
+    "int64_atomics",
+    Features::SHADER_INT64.union(Features::SHADER_INT64_ATOMIC_MIN_MAX),
+)];
+
+/// Whether `name` is one of [`DEVICE_CONDITIONS`].
+pub fn is_device_condition(name: &str) -> bool {
+    DEVICE_CONDITIONS.iter().any(|(n, _)| *n == name)
+}
+
 /// What a device can do, as far as graph validation cares.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct DeviceProfile {
@@ -32,6 +48,30 @@ impl DeviceProfile {
             formats: Vec::new(),
             transient_attachments: true,
         }
+    }
+
+    /// `features` with the [device conditions](DEVICE_CONDITIONS) as this device has them:
+    /// the caller's own device names are replaced.
+    pub fn conditions(&self, features: &condition::Features) -> condition::Features {
+        let theirs = features.iter().filter(|f| !is_device_condition(f));
+        let ours = DEVICE_CONDITIONS
+            .iter()
+            .filter(|(_, needs)| self.features.contains(*needs))
+            .map(|(name, _)| *name);
+        theirs.chain(ours).collect()
+    }
+
+    /// This profile with the device features behind the device conditions `features`
+    /// names: validation compiles a file's branch for such a device on any profile.
+    pub fn granting(&self, features: &condition::Features) -> DeviceProfile {
+        let mut profile = self.clone();
+        for (name, needs) in DEVICE_CONDITIONS {
+            if features.contains(name) {
+                profile.features |= needs;
+                profile.name = format!("{} with {name}", profile.name);
+            }
+        }
+        profile
     }
 
     /// The capabilities of `format` on this device.

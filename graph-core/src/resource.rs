@@ -183,7 +183,14 @@ pub struct TextureShape {
 #[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BufferDesc {
+    /// Bytes, plus `per_pixel` for each pixel of the output.
     pub size: u64,
+    /// Bytes per pixel of the graph's output size: a buffer that holds something per
+    /// pixel or sample (a software rasteriser's samples, per-pixel lists) follows the
+    /// output as a `Relative` texture does. 0 for a fixed size. Compiling settles it:
+    /// a plan's buffers have their size in bytes and `per_pixel` 0.
+    #[serde(default)]
+    pub per_pixel: u64,
     #[serde(default = "BufferUsages::empty")]
     pub extra_usage: BufferUsages,
 }
@@ -192,8 +199,24 @@ impl BufferDesc {
     pub fn new(size: u64) -> Self {
         Self {
             size,
+            per_pixel: 0,
             extra_usage: BufferUsages::empty(),
         }
+    }
+
+    /// `per_pixel` bytes for each pixel of the output and `size` more.
+    pub fn per_pixel(per_pixel: u64, size: u64) -> Self {
+        Self {
+            per_pixel,
+            ..Self::new(size)
+        }
+    }
+
+    /// The size in bytes for an output of `(width, height)` (saturating: validation
+    /// rejects what exceeds the device's limit).
+    pub fn bytes(&self, (width, height): (u32, u32)) -> u64 {
+        let pixels = u64::from(width) * u64::from(height);
+        self.per_pixel.saturating_mul(pixels).saturating_add(self.size)
     }
 }
 

@@ -169,6 +169,48 @@ fn relative_sizes_resolve_against_the_output_size() {
     assert_eq!(plan.output_size, (1279, 721));
 }
 
+/// A buffer sized per pixel (a software rasteriser's samples) follows the output as a
+/// relative texture does, its fixed bytes added once; the plan holds bytes only, so two
+/// such buffers of one size pool as fixed-size ones do, and the device's buffer size
+/// limit applies to what the output makes of it.
+#[test]
+fn buffers_sized_per_pixel_resolve_against_the_output_size() {
+    let mut g = GraphBuilder::new();
+    let write = BufferRole::Storage {
+        read: false,
+        write: true,
+    };
+    let samples = g.create_buffer("samples", BufferDesc::per_pixel(32, 12));
+    let samples = g.add_compute_pass("raster").buffer(samples, write);
+    let mut p = g.add_compute_pass("shade");
+    p.buffer(
+        samples,
+        BufferRole::Storage {
+            read: true,
+            write: false,
+        },
+    );
+    p.side_effect();
+    let graph = g.build();
+    let at = |output_size| {
+        graph.compile(&CompileOptions {
+            output_size,
+            ..CompileOptions::default()
+        })
+    };
+    let plan = at((640, 360)).unwrap();
+    let planned = plan.find("samples").unwrap();
+    assert_eq!(planned.buffer_size, Some(640 * 360 * 32 + 12));
+    assert_eq!(planned.bytes, 640 * 360 * 32 + 12);
+    assert_eq!(plan.buffers[planned.physical.unwrap()].size, 640 * 360 * 32 + 12);
+    // 2^28 bytes is WebGPU's default buffer size limit: 4096 x 2048 x 32 reaches it.
+    let errors = at((4096, 2048)).unwrap_err().to_string();
+    assert!(
+        errors.contains("\"samples\"") && errors.contains("268435468 bytes exceed the buffer size limit"),
+        "{errors}"
+    );
+}
+
 #[test]
 fn bytes_count_samples_mips_and_depth_stencil_texels() {
     let mut g = GraphBuilder::new();

@@ -66,8 +66,9 @@ impl Graph {
         options: &CompileOptions,
         features: &Features,
     ) -> Result<Plan, GraphErrors> {
-        let features = self.relevant(features);
-        let conditioned = conditions::apply(self, &features);
+        let features = self.relevant(&options.profile.conditions(features));
+        let mut conditioned = conditions::apply(self, &features);
+        conditioned.graph.size_buffers(options.output_size);
         let graph = &conditioned.graph;
         let shapes = graph.resolve_shapes(options.output_size, &options.profile);
         let versions = Versions::index(graph);
@@ -92,6 +93,17 @@ impl Graph {
                 physical,
             },
         ))
+    }
+
+    /// Buffers sized per pixel get their size in bytes for `output` (and `per_pixel` 0),
+    /// so the later phases and the plan see bytes only.
+    fn size_buffers(&mut self, output: (u32, u32)) {
+        for resource in &mut self.resources {
+            if let ResourceDesc::Buffer(b) = &mut resource.desc {
+                b.size = b.bytes(output);
+                b.per_pixel = 0;
+            }
+        }
     }
 
     /// Sizes resolved against the output, and each texture's format: the first of its

@@ -203,7 +203,10 @@ impl Count<'_> {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct BufferDecl<'a> {
+    #[serde(default)]
     size: u64,
+    #[serde(default)]
+    per_pixel: u64,
     #[serde(default = "BufferUsages::empty")]
     extra_usage: BufferUsages,
     #[serde(borrow, default)]
@@ -247,6 +250,7 @@ impl BufferDecl<'_> {
     fn desc(&self) -> BufferDesc {
         BufferDesc {
             size: self.size,
+            per_pixel: self.per_pixel,
             extra_usage: self.extra_usage,
         }
     }

@@ -21,7 +21,9 @@ pub struct Validated {
 /// Loads and compiles one graph file for `options` (its device profile and output size),
 /// returning the plan for no features. A file with conditions is compiled for each of
 /// its [witnesses](crate::Graph::witnesses) too, so that every pass and resource is
-/// checked in some graph; their errors are reported together.
+/// checked in some graph; their errors are reported together. A witness naming
+/// [device conditions](crate::DEVICE_CONDITIONS) is compiled for the profile
+/// with those features added, so a branch for 64-bit atomics is checked on any profile.
 pub fn validate_file(
     path: impl AsRef<Path>,
     registry: &Registry,
@@ -33,7 +35,13 @@ pub fn validate_file(
         .witnesses()
         .iter()
         .skip(1)
-        .filter_map(|features| loaded.compile_for(options, features).err())
+        .filter_map(|features| {
+            let options = CompileOptions {
+                output_size: options.output_size,
+                profile: options.profile.granting(features),
+            };
+            loaded.compile_for(&options, features).err()
+        })
         .flat_map(|e| e.0)
         .collect();
     // Sorting drops the errors several feature sets found alike.

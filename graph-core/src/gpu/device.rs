@@ -152,13 +152,16 @@ pub struct Gpu {
 
 impl Gpu {
     /// Optional features requested whenever the adapter has them: GPU timestamps
-    /// everywhere, `Depth32FloatStencil8`, and the adapter's real format capabilities
-    /// (MSAA and resolve for formats WebGPU does not guarantee).
+    /// everywhere, `Depth32FloatStencil8`, the adapter's real format capabilities
+    /// (MSAA and resolve for formats WebGPU does not guarantee), and what the
+    /// [device conditions](crate::DEVICE_CONDITIONS) test (64-bit atomics).
     pub const DEFAULT_FEATURES: Features = Features::TIMESTAMP_QUERY
         .union(Features::TIMESTAMP_QUERY_INSIDE_ENCODERS)
         .union(Features::TIMESTAMP_QUERY_INSIDE_PASSES)
         .union(Features::DEPTH32FLOAT_STENCIL8)
-        .union(Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES);
+        .union(Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES)
+        .union(Features::SHADER_INT64)
+        .union(Features::SHADER_INT64_ATOMIC_MIN_MAX);
 
     /// Opens the chosen adapter with [`Self::DEFAULT_FEATURES`] (those it has) and all its
     /// limits. Blocks until the device exists.

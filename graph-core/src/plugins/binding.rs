@@ -391,6 +391,7 @@ pub(crate) fn texture_desc(
     }
 }
 
+/// The least the buffer holds: a buffer sized per pixel at a 1x1 output.
 fn buffer_size(pass: &PassBuilder<'_>, handle: BufferHandle) -> u64 {
-    pass.resource(handle).buffer().map_or(0, |b| b.size)
+    pass.resource(handle).buffer().map_or(0, |b| b.bytes((1, 1)))
 }

@@ -99,6 +99,16 @@ fn copy_buffer(pass: &mut PassBuilder<'_>, slots: &mut Slots<'_>) -> Result<(), 
     let src = slots.input::<Buffer>("src")?;
     pass.buffer(src, BufferRole::CopySrc);
     let dst = slots.write::<Buffer>("dst", |t| pass.buffer(t.handle, BufferRole::CopyDst))?;
+    // The byte count is fixed when the pass is set up, before an output size exists.
+    for (slot, handle) in [("src", src), ("dst", dst)] {
+        if pass.resource(handle).buffer().is_some_and(|b| b.per_pixel != 0) {
+            return Err(PluginError::Slot {
+                slot: slot.into(),
+                resource: slots.resource(slot).unwrap_or(slot).to_owned(),
+                why: "is sized per pixel; copy_buffer copies buffers of a fixed size".into(),
+            });
+        }
+    }
     let size = |h| pass.resource(h).buffer().map_or(0, |b| b.size);
     let (from, to) = (size(src), size(dst));
     if from % wgpu_types::COPY_BUFFER_ALIGNMENT != 0 {

@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
+use wgpu_types::Features;
 
 use super::error::ShaderError;
 use crate::position::Position;
@@ -40,6 +41,17 @@ impl Shader {
         path: impl Into<String>,
         source: impl Into<String>,
     ) -> Result<Shader, ShaderError> {
+        Self::parse_for(path, source, Features::empty())
+    }
+
+    /// Validates WGSL `source` that may use what the optional device `features` allow
+    /// in shaders (64-bit integers and their atomics); a pass using such a shader runs
+    /// only where the device has them (see [`DEVICE_CONDITIONS`](crate::DEVICE_CONDITIONS)).
+    pub fn parse_for(
+        path: impl Into<String>,
+        source: impl Into<String>,
+        features: Features,
+    ) -> Result<Shader, ShaderError> {
         let path = path.into();
         let source: String = source.into();
         // A byte-order mark from a Windows editor is invisible there, and not WGSL.
@@ -56,7 +68,7 @@ impl Shader {
                 e.emit_to_string_with_path(&source, &path),
             )
         })?;
-        let info = Validator::new(ValidationFlags::all(), Capabilities::default())
+        let info = Validator::new(ValidationFlags::all(), capabilities(features))
             .validate(&module)
             .map_err(|e| {
                 invalid(
@@ -122,4 +134,19 @@ fn with_causes(error: &dyn std::error::Error) -> String {
         cause = c.source();
     }
     message
+}
+
+/// What naga allows a shader for the device `features` that widen WGSL.
+fn capabilities(features: Features) -> Capabilities {
+    let mut capabilities = Capabilities::default();
+    for (feature, capability) in [
+        (Features::SHADER_INT64, Capabilities::SHADER_INT64),
+        (
+            Features::SHADER_INT64_ATOMIC_MIN_MAX,
+            Capabilities::SHADER_INT64_ATOMIC_MIN_MAX,
+        ),
+    ] {
+        capabilities.set(capability, features.contains(feature));
+    }
+    capabilities
 }
