@@ -68,6 +68,7 @@ pub use crate::passes::transparent::{
     CompositeTransparent, CompositeTransparentParams, Transparent, TransparentParams,
 };
 pub use crate::passes::visibility::{Visibility, VisibilityParams};
+pub use crate::passes::visibility_compute::{VisibilityCompute, VisibilityComputeParams};
 
 /// Adds every deferred plugin, sharing `host`, compiling shaders as `variants` says.
 pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variants: Variants) {
@@ -79,6 +80,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(LightEdge(shared.clone()))
         .register(LightTiled(shared.clone()))
         .register(Visibility(shared.clone()))
+        .register(VisibilityCompute(shared.clone()))
         .register(Resolve(shared.clone()))
         .register(Tonemap(shared.clone()))
         .register(AutoExposure(shared.clone()))

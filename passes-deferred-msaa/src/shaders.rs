@@ -5,15 +5,24 @@
 
 use graph_core::file::PluginError;
 use graph_core::shader::Shader;
+use graph_core::types::Features;
 
 const COMMON: &str = include_str!("wgsl/common.wgsl");
 const SCENE: &str = include_str!("wgsl/scene.wgsl");
 const MATERIAL: &str = include_str!("wgsl/material.wgsl");
 pub(crate) const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
 const GEOMETRY: &str = include_str!("wgsl/geometry.wgsl");
-/// Reads a visibility buffer as gbuffer_read.wgsl reads a G-buffer (with geometry.wgsl).
-pub(crate) const VISIBILITY_READ: &str = concat!(
+/// Reads a raster pass's visibility buffer as gbuffer_read.wgsl reads a G-buffer (with
+/// geometry.wgsl).
+pub(crate) const VISIBILITY_READ_TEXTURES: &str = concat!(
     include_str!("wgsl/geometry.wgsl"),
+    include_str!("wgsl/visibility_textures.wgsl"),
+    include_str!("wgsl/visibility_read.wgsl")
+);
+/// Reads a compute rasteriser's visibility buffer (its keys in group 3) the same way.
+pub(crate) const VISIBILITY_READ_SAMPLES: &str = concat!(
+    include_str!("wgsl/geometry.wgsl"),
+    include_str!("wgsl/visibility_samples.wgsl"),
     include_str!("wgsl/visibility_read.wgsl")
 );
 pub(crate) const VIEW_DEPTH_STORED: &str = include_str!("wgsl/view_depth_stored.wgsl");
@@ -101,6 +110,15 @@ pub(crate) const VISIBILITY: Source = Source {
         SCENE,
         GEOMETRY,
         include_str!("wgsl/visibility.wgsl"),
+    ],
+};
+pub(crate) const VISIBILITY_RASTER: Source = Source {
+    name: "visibility_raster.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        GEOMETRY,
+        include_str!("wgsl/visibility_raster.wgsl"),
     ],
 };
 pub(crate) const RESOLVE: Source = Source {
@@ -246,6 +264,17 @@ impl Source {
     /// [`compose`](Self::compose) with generated WGSL after the fragments: the part of a
     /// shader that varies with the pass's slots.
     pub fn compose_with(self, samples: u32, generated: &str) -> Result<Shader, PluginError> {
+        self.compose_for(samples, generated, Features::empty())
+    }
+
+    /// [`compose_with`](Self::compose_with) for a shader that uses what the optional
+    /// device `features` allow (64-bit atomics): its pass runs only on such devices.
+    pub fn compose_for(
+        self,
+        samples: u32,
+        generated: &str,
+        features: Features,
+    ) -> Result<Shader, PluginError> {
         let (textures, depth) = if samples > 1 {
             ("texture_multisampled_2d", "texture_depth_multisampled_2d")
         } else {
@@ -276,6 +305,6 @@ impl Source {
         }
         text.push_str(generated);
         let name = format!("passes-deferred-msaa {} ({samples} sample(s))", self.name);
-        Ok(Shader::parse(name, text)?)
+        Ok(Shader::parse_for(name, text, features)?)
     }
 }

@@ -103,12 +103,11 @@ pub(super) fn resolve(
 /// The field of a use in a pass's plugin parameters.
 const PLUGIN_PARAMS: &str = "params";
 
-/// Each parameter use in `file`: textures first, then passes, in file order.
+/// Each parameter use in `file`: resources first, then passes, in file order.
 fn uses<'f, 'a>(file: &'f GraphFile<'a>) -> Vec<Use<'f, 'a>> {
-    let textures = file.resources.0.iter().flat_map(|(name, decl)| {
-        decl.texture()
+    let resources = file.resources.0.iter().flat_map(|(name, decl)| {
+        decl.counts()
             .into_iter()
-            .flat_map(|t| t.counts())
             .filter_map(move |(field, count)| match count {
                 Count::Param(p) => Some(Use {
                     owner: name.as_str(),
@@ -126,7 +125,7 @@ fn uses<'f, 'a>(file: &'f GraphFile<'a>) -> Vec<Use<'f, 'a>> {
             param,
         })
     });
-    textures.chain(passes).collect()
+    resources.chain(passes).collect()
 }
 
 /// The `Param(name: .., default: ..)` uses in a pass's plugin parameters, each with its

@@ -205,8 +205,11 @@ impl Count<'_> {
 pub(crate) struct BufferDecl<'a> {
     #[serde(default)]
     size: u64,
+    /// Bytes per sample of each pixel of the output, with `samples` samples.
     #[serde(default)]
     per_pixel: u64,
+    #[serde(borrow, default = "Count::one")]
+    samples: Count<'a>,
     #[serde(default = "BufferUsages::empty")]
     extra_usage: BufferUsages,
     #[serde(borrow, default)]
@@ -246,13 +249,21 @@ impl<'a> TextureDecl<'a> {
     }
 }
 
-impl BufferDecl<'_> {
-    fn desc(&self) -> BufferDesc {
+impl<'a> BufferDecl<'a> {
+    /// The description, with parameters at their `values`.
+    fn desc(&self, values: &GraphParams) -> BufferDesc {
         BufferDesc {
             size: self.size,
-            per_pixel: self.per_pixel,
+            per_pixel: self
+                .per_pixel
+                .saturating_mul(u64::from(self.samples.value(values))),
             extra_usage: self.extra_usage,
         }
+    }
+
+    /// The counts as written, with their field names.
+    pub fn counts(&self) -> Vec<(&'static str, &Count<'a>)> {
+        vec![("samples", &self.samples)]
     }
 }
 
@@ -274,8 +285,8 @@ impl<'a> ResourceDecl<'a> {
             ResourceDecl::ImportedTexture(t) => {
                 graph.import_texture(name, t.desc(format_if, values)).into()
             }
-            ResourceDecl::Buffer(b) => graph.create_buffer(name, b.desc()).into(),
-            ResourceDecl::ImportedBuffer(b) => graph.import_buffer(name, b.desc()).into(),
+            ResourceDecl::Buffer(b) => graph.create_buffer(name, b.desc(values)).into(),
+            ResourceDecl::ImportedBuffer(b) => graph.import_buffer(name, b.desc(values)).into(),
         }
     }
 
@@ -287,11 +298,11 @@ impl<'a> ResourceDecl<'a> {
         )
     }
 
-    /// A texture as written (`None` for a buffer).
-    pub fn texture(&self) -> Option<&TextureDecl<'a>> {
+    /// The counts a file may give as parameters, with their field names.
+    pub fn counts(&self) -> Vec<(&'static str, &Count<'a>)> {
         match self {
-            ResourceDecl::Texture(t) | ResourceDecl::ImportedTexture(t) => Some(t),
-            ResourceDecl::Buffer(_) | ResourceDecl::ImportedBuffer(_) => None,
+            ResourceDecl::Texture(t) | ResourceDecl::ImportedTexture(t) => t.counts(),
+            ResourceDecl::Buffer(b) | ResourceDecl::ImportedBuffer(b) => b.counts(),
         }
     }
 

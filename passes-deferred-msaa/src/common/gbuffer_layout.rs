@@ -1,9 +1,10 @@
 //! The G-buffers a lighting pass can read, told apart by the slots its file binds: the
 //! full one (`view_depth` and `hdr`), the lean one (neither; `emission` when the scene
-//! emits), a mix, or a visibility buffer (`ids`: triangle IDs, whose triangles the pass
-//! rebuilds). For each, the textures to bind (group 1) and the WGSL that reads them
-//! (gbuffer_read.wgsl or visibility_read.wgsl, a `load_view_depth`, an `emitted`), so the
-//! rest of the pass's shader is one source for all of them.
+//! emits), a mix, or a visibility buffer (`ids`: a raster pass's triangle IDs beside its
+//! `depth`, or `samples`: a compute rasteriser's buffer of depth and ID per sample), whose
+//! triangles the pass rebuilds. For each, the textures to bind (group 1) and the WGSL
+//! that reads them (gbuffer_read.wgsl or visibility_read.wgsl, a `load_view_depth`, an
+//! `emitted`), so the rest of the pass's shader is one source for all of them.
 
 use graph_core::file::{PluginError, Slots};
 use graph_core::{Aspect, PassBuilder, TextureHandle};
@@ -13,9 +14,28 @@ use crate::shaders;
 
 /// Which G-buffer a pass reads (see the module documentation).
 pub(crate) struct GBufferLayout {
-    pub visibility: bool,
+    pub surfaces: Surfaces,
     pub stored_view_depth: bool,
     emitted: Emitted,
+}
+
+/// Where a pass finds its samples' surfaces.
+#[derive(Copy, Clone, PartialEq, Eq)]
+pub(crate) enum Surfaces {
+    /// A G-buffer's channels, and its depth buffer.
+    GBuffer,
+    /// A raster pass's visibility buffer: `ids` and the depth buffer.
+    VisibilityTextures,
+    /// A compute rasteriser's visibility buffer, `samples` (common/visibility_samples.rs):
+    /// no depth buffer.
+    VisibilitySamples,
+}
+
+impl Surfaces {
+    /// Rebuilt from triangle IDs.
+    pub fn visibility(self) -> bool {
+        self != Surfaces::GBuffer
+    }
 }
 
 enum Emitted {
@@ -59,8 +79,17 @@ impl GBufferLayout {
                 Emitted::Surface(background)
             }
         };
-        let visibility = listed("ids");
-        if visibility {
+        let surfaces = match (listed("ids"), listed("samples")) {
+            (true, true) => {
+                return Err(PluginError::Invalid(
+                    "inputs \"ids\" and \"samples\" are two visibility buffers: bind one".into(),
+                ))
+            }
+            (true, false) => Surfaces::VisibilityTextures,
+            (false, true) => Surfaces::VisibilitySamples,
+            (false, false) => Surfaces::GBuffer,
+        };
+        if surfaces.visibility() {
             if let Some(slot) = [
                 "albedo",
                 "normal",
@@ -73,13 +102,13 @@ impl GBufferLayout {
             .find(|&slot| listed(slot))
             {
                 return Err(PluginError::Invalid(format!(
-                    "inputs \"ids\" (a visibility buffer) and \"{slot}\" (a G-buffer's) \
-                     are two ways of reading the surfaces: bind one"
+                    "a visibility buffer's input and \"{slot}\" (a G-buffer's) are two ways \
+                     of reading the surfaces: bind one"
                 )));
             }
         }
         Ok(GBufferLayout {
-            visibility,
+            surfaces,
             stored_view_depth: listed("view_depth"),
             emitted,
         })
@@ -87,9 +116,10 @@ impl GBufferLayout {
 
     /// The shader fragments that read this layout.
     pub fn wgsl(&self) -> String {
-        let reader = match self.visibility {
-            true => shaders::VISIBILITY_READ,
-            false => shaders::GBUFFER_READ,
+        let reader = match self.surfaces {
+            Surfaces::GBuffer => shaders::GBUFFER_READ,
+            Surfaces::VisibilityTextures => shaders::VISIBILITY_READ_TEXTURES,
+            Surfaces::VisibilitySamples => shaders::VISIBILITY_READ_SAMPLES,
         };
         let view_depth = match self.stored_view_depth {
             true => shaders::VIEW_DEPTH_STORED,
@@ -107,8 +137,9 @@ impl GBufferLayout {
     }
 
     /// Declares the layout's textures sampled and adds them to `inputs` at
-    /// gbuffer_read.wgsl's and visibility_read.wgsl's bindings, each checked to have
-    /// `samples`. Returns the visibility buffer's IDs, if it is one.
+    /// gbuffer_read.wgsl's and visibility_textures.wgsl's bindings, each checked to have
+    /// `samples`. Returns a raster pass's visibility buffer's IDs, if it is one (a
+    /// compute rasteriser's buffer is the pass's own to bind: it is no texture).
     pub fn bind(
         &self,
         slots: &mut Slots<'_>,
@@ -128,7 +159,10 @@ impl GBufferLayout {
             });
             Ok::<_, PluginError>(handle)
         };
-        if self.visibility {
+        if self.surfaces == Surfaces::VisibilitySamples {
+            return Ok(None);
+        }
+        if self.surfaces == Surfaces::VisibilityTextures {
             let what = "the visibility buffer's triangle IDs";
             return sampled("ids", what, textures::IDS, 0, Texels::Uint).map(Some);
         }

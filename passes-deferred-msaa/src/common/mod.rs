@@ -18,3 +18,4 @@ pub(crate) mod gpu;
 pub(crate) mod plugin;
 pub(crate) mod rgb9e5;
 pub(crate) mod textures;
+pub(crate) mod visibility_samples;

@@ -38,7 +38,10 @@
 //! - `ids` instead of albedo, normal, material, view depth and emission: a visibility
 //!   buffer (passes/visibility.rs). Each pixel's distinct triangles are rebuilt from the
 //!   scene's geometry, edge pixels are those whose samples show different triangles, and
-//!   `shading: adaptive` shades each triangle once, exactly (pipelines/visibility_msaa_4x.ron).
+//!   `shading: adaptive` shades each triangle once, exactly (pipelines/visibility_msaa_4x.ron);
+//! - `samples` instead of `ids` and `depth`: a visibility buffer rasterised in compute
+//!   (passes/visibility_compute.rs), depth and ID per sample in one graph buffer, whose
+//!   size gives the sample count (pipelines/visibility_compute_4x.ron).
 //!
 //! One workgroup of `tile` x `tile` invocations per tile, one per pixel
 //! (light_tiled.wgsl says how): it classifies each pixel as edge or not with
@@ -65,15 +68,16 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::shader::Stage;
 use graph_core::types::TextureFormat;
-use graph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
+use graph_core::{Aspect, Buffer, BufferHandle, BufferRole, PassBuilder, PassKind, TextureHandle};
 
 use super::resolve::{one, resolve_exposure, ResolveMode};
 use crate::common::ao;
 use crate::common::depth::DepthRule;
 use crate::common::edge_detection::{Detector, EdgeDetection};
-use crate::common::gbuffer_layout::GBufferLayout;
+use crate::common::gbuffer_layout::{GBufferLayout, Surfaces};
 use crate::common::plugin::{yes, Recording, Shared};
 use crate::common::textures::{self, format_name, Input, Texels, Want};
+use crate::common::visibility_samples;
 use crate::shaders;
 
 pub struct LightTiled(pub(crate) Shared);
@@ -155,6 +159,16 @@ impl TiledView {
     }
 }
 
+/// Where the pass reads its samples' depth.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) enum Depth {
+    /// A depth buffer (group 1, binding 5), in the convention its format gets.
+    Buffer(DepthRule, TextureHandle),
+    /// A compute rasteriser's keys (group 3): reversed-Z, and the triangles rebuilt from
+    /// the scene's geometry.
+    Keys(BufferHandle),
+}
+
 /// Tile sides allowed: the four side planes are set up by four invocations, and 32 x 32
 /// invocations is more than any device's workgroup.
 const TILES: std::ops::RangeInclusive<u32> = 2..=32;
@@ -167,12 +181,11 @@ pub(crate) struct TiledDispatch {
     /// The shader takes view depth from the depth buffer and needs the convention's
     /// `FAR_DEPTH` (view_depth_from_depth.wgsl).
     pub view_depth_from_depth: bool,
-    /// A visibility buffer's IDs: the shader rebuilds their triangles from the scene's
-    /// geometry (group 2).
+    /// A raster pass's visibility buffer's IDs: the shader rebuilds their triangles from
+    /// the scene's geometry (group 2).
     pub ids: Option<TextureHandle>,
     pub tile: u32,
-    pub depth_rule: DepthRule,
-    pub depth: TextureHandle,
+    pub depth: Depth,
     pub output: TextureHandle,
     pub inputs: Vec<Input>,
 }
@@ -208,18 +221,33 @@ impl Plugin for LightTiled {
             )));
         }
         let exposure = resolve_exposure(&self.0, params.exposure, params.resolve)?;
-        let want = Want::new("the G-buffer's depth", textures::DEPTH_ANY);
-        let (depth, desc) = textures::input(slots, pass, "depth", want)?;
-        let samples = desc.samples;
-        pass.sampled_aspect(depth, Aspect::DepthOnly);
-        let mut inputs = vec![Input {
-            binding: 5,
-            texture: depth,
-            aspect: Aspect::DepthOnly,
-            texels: Texels::Depth,
-        }];
         let layout = GBufferLayout::of(slots, params.background)?;
-        if layout.visibility && params.edges.detector != Detector::Compare {
+        let mut inputs = Vec::new();
+        let (depth, samples) = match layout.surfaces {
+            Surfaces::VisibilitySamples => {
+                let read = BufferRole::Storage {
+                    read: true,
+                    write: false,
+                };
+                let keys = slots.input::<Buffer>("samples")?;
+                pass.buffer(keys, read);
+                let samples = visibility_samples::sample_count(pass, slots, "samples", keys)?;
+                (Depth::Keys(keys), samples)
+            }
+            Surfaces::GBuffer | Surfaces::VisibilityTextures => {
+                let want = Want::new("the G-buffer's depth", textures::DEPTH_ANY);
+                let (depth, desc) = textures::input(slots, pass, "depth", want)?;
+                pass.sampled_aspect(depth, Aspect::DepthOnly);
+                inputs.push(Input {
+                    binding: 5,
+                    texture: depth,
+                    aspect: Aspect::DepthOnly,
+                    texels: Texels::Depth,
+                });
+                (Depth::Buffer(DepthRule::new(None), depth), desc.samples)
+            }
+        };
+        if layout.surfaces.visibility() && params.edges.detector != Detector::Compare {
             return Err(PluginError::Invalid(
                 "a visibility buffer's edge pixels are those whose samples show different \
                  triangles: leave out edges' detector"
@@ -261,7 +289,7 @@ impl Plugin for LightTiled {
         };
         pass.workgroup(entry.workgroup());
         let detector = match params.edges.detector {
-            _ if layout.visibility => 4.0,
+            _ if layout.surfaces.visibility() => 4.0,
             Detector::Compare => 0.0,
             Detector::Centroid | Detector::Coverage => 1.0,
             Detector::All => 2.0,
@@ -288,7 +316,6 @@ impl Plugin for LightTiled {
             view_depth_from_depth: !layout.stored_view_depth,
             ids: visibility_ids,
             tile: params.tile,
-            depth_rule: DepthRule::new(None),
             depth,
             output,
             inputs,
@@ -308,9 +335,10 @@ mod gpu {
 
     use graph_core::gpu::ComputeContext;
 
-    use super::TiledDispatch;
+    use super::{Depth, TiledDispatch};
     use crate::analysis::{GatedShader, Variant};
     use crate::common::depth::far_depth;
+    use crate::common::gpu::input_pass::Geometry;
     use crate::common::gpu::{per_scene, split_ids, InputPass};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
@@ -336,18 +364,24 @@ mod gpu {
             };
             let state: &mut InputPass<Key, wgpu::ComputePipeline> =
                 per_scene(&mut state, &scene, || {
+                    let geometry = match (&dispatch.depth, dispatch.ids) {
+                        (Depth::Keys(_), _) => Geometry::TrianglesAndKeys,
+                        (Depth::Buffer(..), Some(_)) => Geometry::Triangles,
+                        (Depth::Buffer(..), None) => Geometry::None,
+                    };
                     InputPass::with_geometry(
                         resources,
                         "light_tiled",
                         &dispatch.source,
                         Some(&scene),
                         &dispatch.inputs,
-                        dispatch.ids.is_some(),
+                        geometry,
                     )
                 });
-            let convention = dispatch
-                .depth_rule
-                .convention(resources.shape(dispatch.depth).format);
+            let convention = match dispatch.depth {
+                Depth::Buffer(rule, depth) => rule.convention(resources.shape(depth).format),
+                Depth::Keys(_) => DepthConvention::ReversedZ,
+            };
             let key = Key {
                 convention,
                 variant: scenes.variant(GatedShader::LightTiled),
@@ -381,10 +415,15 @@ mod gpu {
                 .set_bind_group(0, scene.bind_group(convention), &[]);
             ctx.pass
                 .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            if dispatch.ids.is_some() {
+            if state.geometry != Geometry::None {
                 match scene.geometry_group(device) {
                     Ok(group) => ctx.pass.set_bind_group(2, group, &[]),
                     Err(why) => panic!("pass \"light_tiled\": {why}"),
+                }
+            }
+            if let Depth::Keys(keys) = dispatch.depth {
+                if let Some(group) = state.keys_group(resources, resources.buffer(keys)) {
+                    ctx.pass.set_bind_group(3, &group, &[]);
                 }
             }
             let out = resources.shape(dispatch.output);

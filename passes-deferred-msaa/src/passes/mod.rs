@@ -22,3 +22,4 @@ pub(crate) mod ssao;
 pub(crate) mod tonemap;
 pub(crate) mod transparent;
 pub(crate) mod visibility;
+pub(crate) mod visibility_compute;

@@ -9,6 +9,11 @@
 // The depth aspect, where the pass attaches the depth-stencil read-only.
 @group(1) @binding(5) var depth_tex: GTexD;
 
+// Sample `s`'s depth buffer value.
+fn sample_depth(pixel: vec2<i32>, s: u32) -> f32 {
+    return textureLoad(depth_tex, pixel, s);
+}
+
 fn material_flags(pixel: vec2<i32>, s: u32) -> vec2<u32> {
     let m = textureLoad(material_tex, pixel, s);
     return vec2<u32>(unorm8(m.b), unorm8(m.a));

@@ -68,3 +68,9 @@ fn mesh_of_triangle(triangle: u32) -> u32 {
     }
     return low;
 }
+
+// Only the object-space position of pull_vertex's vertex: all a rasteriser needs.
+fn pull_position(index: u32, mesh: MeshData) -> vec3<f32> {
+    let w = u32(i32(index_words[index]) + mesh.base_vertex) * VERTEX_WORDS;
+    return vec3<f32>(vertex_f32(w), vertex_f32(w + 1u), vertex_f32(w + 2u));
+}

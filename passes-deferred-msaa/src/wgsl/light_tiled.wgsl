@@ -146,7 +146,7 @@ fn fragment_surface(pixel: vec2<i32>, mask: u32) -> vec3<f32> {
     for (var s = 0u; s < SAMPLES; s++) {
         if (mask & (1u << s)) != 0u {
             xy += sample_position(pixel, s);
-            depth += textureLoad(depth_tex, pixel, s);
+            depth += sample_depth(pixel, s);
             n += 1.0;
         }
     }

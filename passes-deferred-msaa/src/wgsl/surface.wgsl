@@ -7,7 +7,7 @@
 // view depth is the fragment's, interpolated at its centroid: on steep surfaces it can
 // lie far from a sample the volume test rejected.)
 fn sample_surface(pixel: vec2<i32>, s: u32) -> vec3<f32> {
-    return unproject(sample_position(pixel, s), textureLoad(depth_tex, pixel, s));
+    return unproject(sample_position(pixel, s), sample_depth(pixel, s));
 }
 
 // Per-pixel shading: the surface at the pixel center, at sample `s`'s view depth.

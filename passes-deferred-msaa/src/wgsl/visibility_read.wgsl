@@ -1,23 +1,17 @@
 // A visibility buffer as the tiled shading pass reads it: per sample the ID + 1 of the
-// triangle it shows (group 1, binding 0, geometry.wgsl's texel_id) and its depth
-// (binding 5); the triangles from the scene's geometry (group 2, geometry.wgsl). Each
-// triangle a pixel shows is rebuilt once, at the mean position of the samples it covers
-// (the pixel center when it covers them all, as a G-buffer pass's centroid
+// triangle it shows and its depth, through `sample_id` and `sample_depth`
+// (visibility_textures.wgsl for a raster pass's targets, visibility_samples.wgsl for a
+// compute rasteriser's buffer); the triangles from the scene's geometry (group 2,
+// geometry.wgsl). Each triangle a pixel shows is rebuilt once, at the mean position of
+// the samples it covers (the pixel center when it covers them all, as a G-buffer pass's centroid
 // interpolation places it): barycentrics where the ray through that point meets the
 // triangle's plane, then its attributes and material as the G-buffer pass computes them.
 // Untextured materials only: pipelines send textured scenes through a G-buffer
 // (pipelines/visibility_msaa_4x.ron). Composed with view_depth_from_depth.wgsl, which the
 // shading pass's per-pixel surface takes its depth from.
 
-@group(1) @binding(0) var ids_tex: GTexU;
-@group(1) @binding(5) var depth_tex: GTexD;
-
 // Samples of one triangle are one fragment, exactly (light_tiled.wgsl's same_fragment).
 const SURFACE_IDS: bool = true;
-
-fn sample_id(pixel: vec2<i32>, s: u32) -> u32 {
-    return texel_id(textureLoad(ids_tex, pixel, s));
-}
 
 // Triangle `id` (+ 1) as seen through pixel coordinate `at`.
 fn rebuild(id: u32, at: vec2<f32>) -> GSample {

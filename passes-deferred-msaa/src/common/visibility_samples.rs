@@ -1,0 +1,51 @@
+//! A visibility buffer rasterised in compute, as a graph buffer: per pixel, each sample's
+//! 64-bit key, the bits of its reversed-Z depth (a positive float, so its bits order as
+//! its values) over the ID + 1 of the triangle it shows, 0 where nothing was drawn
+//! (the far depth). `visibility_compute` writes it, `light_tiled` reads it
+//! (visibility_samples.wgsl). Its size is its sample count: a file declares
+//! `Buffer(per_pixel: 32)` for 4 samples per pixel, 8 bytes each, as a hardware
+//! visibility buffer's depth32float and r32uint take.
+
+use graph_core::file::{PluginError, Slots};
+use graph_core::{BufferHandle, PassBuilder};
+
+/// Bytes of one sample's key.
+pub(crate) const KEY_BYTES: u64 = 8;
+
+/// The sample counts the passes know the positions of (shaders.rs).
+const SAMPLE_COUNTS: [u32; 4] = [1, 2, 4, 8];
+
+/// The samples per pixel of the buffer in `slot`: its bytes per pixel over 8, which must
+/// be 1, 2, 4 or 8 samples, with no fixed part.
+pub(crate) fn sample_count(
+    pass: &PassBuilder<'_>,
+    slots: &Slots<'_>,
+    slot: &str,
+    handle: BufferHandle,
+) -> Result<u32, PluginError> {
+    let resource = || slots.resource(slot).unwrap_or(slot).to_owned();
+    let Some(desc) = pass.resource(handle).buffer().copied() else {
+        return Err(PluginError::Slot {
+            slot: slot.to_owned(),
+            resource: resource(),
+            why: "is not a buffer".into(),
+        });
+    };
+    let samples = desc.per_pixel / KEY_BYTES;
+    let fits = desc.size == 0
+        && desc.per_pixel % KEY_BYTES == 0
+        && SAMPLE_COUNTS.iter().any(|&n| u64::from(n) == samples);
+    if !fits {
+        return Err(PluginError::Slot {
+            slot: slot.to_owned(),
+            resource: resource(),
+            why: format!(
+                "is Buffer(size: {}, per_pixel: {}): a visibility buffer in compute holds \
+                 {KEY_BYTES} bytes per sample and nothing else, so it is Buffer(per_pixel: \
+                 8, 16, 32 or 64) for 1, 2, 4 or 8 samples",
+                desc.size, desc.per_pixel
+            ),
+        });
+    }
+    Ok(samples as u32)
+}
