@@ -40,10 +40,10 @@ pub(crate) fn sample_count(
             slot: slot.to_owned(),
             resource: resource(),
             why: format!(
-                "is Buffer(size: {}, per_pixel: {}): a visibility buffer in compute holds \
-                 {KEY_BYTES} bytes per sample and nothing else, so it is Buffer(per_pixel: \
-                 8, 16, 32 or 64) for 1, 2, 4 or 8 samples",
-                desc.size, desc.per_pixel
+                "holds {} bytes per pixel and {} more: a visibility buffer in compute holds \
+                 {KEY_BYTES} bytes per sample and nothing else (per_pixel: {KEY_BYTES}, \
+                 samples: 1, 2, 4 or 8)",
+                desc.per_pixel, desc.size
             ),
         });
     }
