@@ -185,7 +185,7 @@ fn the_compute_raster_stores_8_bytes_per_sample() {
 fn a_compute_visibility_buffer_of_another_size_is_an_error() {
     let text = std::fs::read_to_string("pipelines/visibility_compute_4x.ron")
         .unwrap()
-        .replace("Buffer(per_pixel: 8,", "Buffer(per_pixel: 6,");
+        .replace("Buffer(per_sample: 8,", "Buffer(per_sample: 6,");
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("odd.ron");
     std::fs::write(&path, text).unwrap();
@@ -199,7 +199,7 @@ fn a_compute_visibility_buffer_of_another_size_is_an_error() {
     assert!(
         line.contains("odd.ron:")
             && line.contains("slot \"samples\"")
-            && line.contains("holds 24 bytes per pixel and 0 more")
+            && line.contains("holds 6 bytes per sample, 4 samples per pixel and 0 bytes more")
             && line.contains("8 bytes per sample"),
         "{line}"
     );

@@ -47,7 +47,9 @@ pub use access::{
 pub use builder::{GraphBuilder, PassBuilder};
 pub use compile::CompileOptions;
 pub use compiled::CompiledGraph;
-pub use condition::{Condition, ConditionError, Features, Literal};
+pub use condition::{
+    is_device_condition, Condition, ConditionError, Features, Literal, DEVICE_CONDITIONS,
+};
 pub use error::{GraphError, GraphErrors};
 pub use graph::Graph;
 pub use handle::{
@@ -60,9 +62,7 @@ pub use plan::{
     PhysicalTexture, Plan, PlannedPass, PlannedResource, Store,
 };
 pub use plan_cache::{Compile, PlanCache, PlanKey};
-pub use profile::{
-    color_bytes_per_sample, color_target_cost, is_device_condition, DeviceProfile, DEVICE_CONDITIONS,
-};
+pub use profile::{color_bytes_per_sample, color_target_cost, DeviceProfile};
 #[cfg(feature = "gpu")]
 pub use record::Record;
 pub use resource::{

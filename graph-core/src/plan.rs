@@ -49,7 +49,8 @@ pub struct PlannedPass {
     /// What one sample of the attachments, color and depth-stencil, occupies in memory
     /// ([`texel_bytes`](crate::resource::texel_bytes): D32S8 counts 8): a G-buffer's real
     /// size per sample, which `color_bytes_per_sample`'s alignment rules overstate and its
-    /// leaving out depth understates.
+    /// leaving out depth understates. Buffers sized per sample that the pass writes add
+    /// their bytes per sample (a visibility buffer rasterised in compute).
     pub stored_bytes_per_sample: u32,
     pub depth_stencil: Option<DepthStencilAttachment>,
     /// A compute pass's workgroup size and memory, where its plugin declared them.

@@ -8,21 +8,8 @@ use wgpu_types::{
     TextureUsages,
 };
 
-use crate::condition;
+use crate::condition::{self, DEVICE_CONDITIONS};
 
-/// Optional device features that graph conditions may test by name, as scene features
-/// are tested: a file declaring `int64_atomics` in its `features` can pick a pass that
-/// needs 64-bit atomics on devices that have them and another elsewhere. The device sets
-/// these names, never the caller: compiling takes them from the profile.
-pub const DEVICE_CONDITIONS: [(&str, Features); 1] = [(
-    "int64_atomics",
-    Features::SHADER_INT64.union(Features::SHADER_INT64_ATOMIC_MIN_MAX),
-)];
-
-/// Whether `name` is one of [`DEVICE_CONDITIONS`].
-pub fn is_device_condition(name: &str) -> bool {
-    DEVICE_CONDITIONS.iter().any(|(n, _)| *n == name)
-}
 
 /// What a device can do, as far as graph validation cares.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -53,7 +40,7 @@ impl DeviceProfile {
     /// `features` with the [device conditions](DEVICE_CONDITIONS) as this device has them:
     /// the caller's own device names are replaced.
     pub fn conditions(&self, features: &condition::Features) -> condition::Features {
-        let theirs = features.iter().filter(|f| !is_device_condition(f));
+        let theirs = features.iter().filter(|f| !condition::is_device_condition(f));
         let ours = DEVICE_CONDITIONS
             .iter()
             .filter(|(_, needs)| self.features.contains(*needs))

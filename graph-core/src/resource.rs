@@ -183,14 +183,20 @@ pub struct TextureShape {
 #[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BufferDesc {
-    /// Bytes, plus `per_pixel` for each pixel of the output.
+    /// Bytes, plus `per_sample` for each of `samples` samples of each pixel of the
+    /// output.
     pub size: u64,
-    /// Bytes per pixel of the graph's output size: a buffer that holds something per
-    /// pixel or sample (a software rasteriser's samples, per-pixel lists) follows the
-    /// output as a `Relative` texture does. 0 for a fixed size. Compiling settles it:
-    /// a plan's buffers have their size in bytes and `per_pixel` 0.
+    /// Bytes per sample of each pixel of the graph's output: a buffer that holds
+    /// something per pixel or sample (a software rasteriser's samples, per-pixel lists)
+    /// follows the output as a `Relative` texture does. 0 for a fixed size. Compiling
+    /// settles it: the compiled graph's buffers have their size in bytes and
+    /// `per_sample` 0 (the plan's passes still count it in their stored bytes per
+    /// sample).
     #[serde(default)]
-    pub per_pixel: u64,
+    pub per_sample: u64,
+    /// Samples per pixel of a buffer sized per sample.
+    #[serde(default = "one")]
+    pub samples: u32,
     #[serde(default = "BufferUsages::empty")]
     pub extra_usage: BufferUsages,
 }
@@ -199,24 +205,26 @@ impl BufferDesc {
     pub fn new(size: u64) -> Self {
         Self {
             size,
-            per_pixel: 0,
+            per_sample: 0,
+            samples: 1,
             extra_usage: BufferUsages::empty(),
         }
     }
 
-    /// `per_pixel` bytes for each pixel of the output and `size` more.
-    pub fn per_pixel(per_pixel: u64, size: u64) -> Self {
+    /// `per_sample` bytes for each of `samples` samples of each pixel of the output.
+    pub fn per_sample(per_sample: u64, samples: u32) -> Self {
         Self {
-            per_pixel,
-            ..Self::new(size)
+            per_sample,
+            samples,
+            ..Self::new(0)
         }
     }
 
     /// The size in bytes for an output of `(width, height)` (saturating: validation
     /// rejects what exceeds the device's limit).
     pub fn bytes(&self, (width, height): (u32, u32)) -> u64 {
-        let pixels = u64::from(width) * u64::from(height);
-        self.per_pixel.saturating_mul(pixels).saturating_add(self.size)
+        let samples = u64::from(width) * u64::from(height) * u64::from(self.samples);
+        self.per_sample.saturating_mul(samples).saturating_add(self.size)
     }
 }
 

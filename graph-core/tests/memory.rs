@@ -169,18 +169,18 @@ fn relative_sizes_resolve_against_the_output_size() {
     assert_eq!(plan.output_size, (1279, 721));
 }
 
-/// A buffer sized per pixel (a software rasteriser's samples) follows the output as a
-/// relative texture does, its fixed bytes added once; the plan holds bytes only, so two
-/// such buffers of one size pool as fixed-size ones do, and the device's buffer size
-/// limit applies to what the output makes of it.
+/// A buffer sized per sample (a software rasteriser's samples) follows the output as a
+/// relative texture does; the plan holds its bytes, which pool as fixed-size ones do,
+/// and the device's buffer size limit applies to what the output makes of it. The pass
+/// writing it counts its bytes per sample as a render pass counts its attachments'.
 #[test]
-fn buffers_sized_per_pixel_resolve_against_the_output_size() {
+fn buffers_sized_per_sample_resolve_against_the_output_size() {
     let mut g = GraphBuilder::new();
     let write = BufferRole::Storage {
         read: false,
         write: true,
     };
-    let samples = g.create_buffer("samples", BufferDesc::per_pixel(32, 12));
+    let samples = g.create_buffer("samples", BufferDesc::per_sample(8, 4));
     let samples = g.add_compute_pass("raster").buffer(samples, write);
     let mut p = g.add_compute_pass("shade");
     p.buffer(
@@ -200,13 +200,15 @@ fn buffers_sized_per_pixel_resolve_against_the_output_size() {
     };
     let plan = at((640, 360)).unwrap();
     let planned = plan.find("samples").unwrap();
-    assert_eq!(planned.buffer_size, Some(640 * 360 * 32 + 12));
-    assert_eq!(planned.bytes, 640 * 360 * 32 + 12);
-    assert_eq!(plan.buffers[planned.physical.unwrap()].size, 640 * 360 * 32 + 12);
-    // 2^28 bytes is WebGPU's default buffer size limit: 4096 x 2048 x 32 reaches it.
-    let errors = at((4096, 2048)).unwrap_err().to_string();
+    assert_eq!(planned.buffer_size, Some(640 * 360 * 32));
+    assert_eq!(planned.bytes, 640 * 360 * 32);
+    assert_eq!(plan.buffers[planned.physical.unwrap()].size, 640 * 360 * 32);
+    let raster = plan.passes.iter().find(|p| p.name == "raster").unwrap();
+    assert_eq!(raster.stored_bytes_per_sample, 8);
+    // 2^28 bytes is WebGPU's default buffer size limit: 4096 x 2049 x 32 exceeds it.
+    let errors = at((4096, 2049)).unwrap_err().to_string();
     assert!(
-        errors.contains("\"samples\"") && errors.contains("268435468 bytes exceed the buffer size limit"),
+        errors.contains("\"samples\"") && errors.contains("268566528 bytes exceed the buffer size limit"),
         "{errors}"
     );
 }

@@ -95,15 +95,26 @@ impl Graph {
         ))
     }
 
-    /// Buffers sized per pixel get their size in bytes for `output` (and `per_pixel` 0),
-    /// so the later phases and the plan see bytes only.
+    /// Buffers sized per sample get their size in bytes for `output` (and `per_sample`
+    /// 0), so the later phases and the plan see bytes only.
     fn size_buffers(&mut self, output: (u32, u32)) {
         for resource in &mut self.resources {
             if let ResourceDesc::Buffer(b) = &mut resource.desc {
                 b.size = b.bytes(output);
-                b.per_pixel = 0;
+                b.per_sample = 0;
             }
         }
+    }
+
+    /// What one sample of the buffers sized per sample among `writes` holds, as declared
+    /// (the compiled graph has their sizes in bytes): a compute pass's per-sample
+    /// storage, as a render pass's attachments are.
+    fn per_sample_bytes_written(&self, writes: &[(ResourceId, u32)]) -> u32 {
+        writes
+            .iter()
+            .filter_map(|(r, _)| self.resources[r.index()].buffer())
+            .map(|b| b.per_sample as u32)
+            .sum()
     }
 
     /// Sizes resolved against the output, and each texture's format: the first of its
@@ -174,6 +185,7 @@ impl Graph {
                     depth_stencil,
                 } = &a.attachments[id.index()];
                 let (reads, writes) = pass.versions();
+                let stored_in_buffers = self.per_sample_bytes_written(&writes);
                 PlannedPass {
                     id,
                     name: pass.name.clone(),
@@ -190,7 +202,8 @@ impl Graph {
                         .map(|c| c.resource)
                         .chain(depth_stencil.as_ref().map(|d| d.resource))
                         .filter_map(|r| a.shapes[r.index()].map(|s| texel_bytes(s.format) as u32))
-                        .sum(),
+                        .sum::<u32>()
+                        + stored_in_buffers,
                     color: color.clone(),
                     depth_stencil: depth_stencil.clone(),
                     workgroup: pass.workgroup.clone(),

@@ -86,6 +86,11 @@ impl Condition {
             .filter(|l| !l.holds(features))
             .map(|l| match l.negated {
                 true => format!("\"{}\" is set", l.feature),
+                false if super::is_device_condition(&l.feature) => format!(
+                    "\"{}\" is not set: the device lacks it (rgraph explain --profile adapter \
+                     shows a device's plan)",
+                    l.feature
+                ),
                 false => format!("\"{}\" is not set", l.feature),
             })
             .collect();

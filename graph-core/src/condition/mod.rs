@@ -12,10 +12,12 @@
 //! Conditions are conjunctions only: a disjunction is two passes with exclusive
 //! conditions (`a` and `!a`), which may then write the same version, one at a time.
 
+mod device;
 mod expr;
 mod features;
 mod parse;
 
+pub use device::{is_device_condition, DEVICE_CONDITIONS};
 pub use expr::{Condition, Literal};
 pub use features::Features;
 pub use parse::ConditionError;

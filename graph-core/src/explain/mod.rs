@@ -77,6 +77,12 @@ pub fn text(plan: &Plan) -> String {
                 "         color bytes per sample: {} (limit accounting); stored, depth included: {}",
                 pass.color_bytes_per_sample, pass.stored_bytes_per_sample
             );
+        } else if pass.stored_bytes_per_sample > 0 {
+            let _ = writeln!(
+                out,
+                "         stored bytes per sample: {} (buffers sized per sample)",
+                pass.stored_bytes_per_sample
+            );
         }
         if let Some(w) = &pass.workgroup {
             let [x, y, z] = w.size;

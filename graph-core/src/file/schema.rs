@@ -205,9 +205,9 @@ impl Count<'_> {
 pub(crate) struct BufferDecl<'a> {
     #[serde(default)]
     size: u64,
-    /// Bytes per sample of each pixel of the output, with `samples` samples.
+    /// Bytes per sample of each pixel of the output, with `samples` samples per pixel.
     #[serde(default)]
-    per_pixel: u64,
+    per_sample: u64,
     #[serde(borrow, default = "Count::one")]
     samples: Count<'a>,
     #[serde(default = "BufferUsages::empty")]
@@ -254,9 +254,8 @@ impl<'a> BufferDecl<'a> {
     fn desc(&self, values: &GraphParams) -> BufferDesc {
         BufferDesc {
             size: self.size,
-            per_pixel: self
-                .per_pixel
-                .saturating_mul(u64::from(self.samples.value(values))),
+            per_sample: self.per_sample,
+            samples: self.samples.value(values),
             extra_usage: self.extra_usage,
         }
     }

@@ -2,9 +2,9 @@
 //! 64-bit key, the bits of its reversed-Z depth (a positive float, so its bits order as
 //! its values) over the ID + 1 of the triangle it shows, 0 where nothing was drawn
 //! (the far depth). `visibility_compute` writes it, `light_tiled` reads it
-//! (visibility_samples.wgsl). Its size is its sample count: a file declares
-//! `Buffer(per_pixel: 32)` for 4 samples per pixel, 8 bytes each, as a hardware
-//! visibility buffer's depth32float and r32uint take.
+//! (visibility_samples.wgsl). A file declares it `Buffer(per_sample: 8, samples: 4)`
+//! for 4 samples per pixel: 8 bytes each, as a hardware visibility buffer's
+//! depth32float and r32uint take.
 
 use graph_core::file::{PluginError, Slots};
 use graph_core::{BufferHandle, PassBuilder};
@@ -15,8 +15,8 @@ pub(crate) const KEY_BYTES: u64 = 8;
 /// The sample counts the passes know the positions of (shaders.rs).
 const SAMPLE_COUNTS: [u32; 4] = [1, 2, 4, 8];
 
-/// The samples per pixel of the buffer in `slot`: its bytes per pixel over 8, which must
-/// be 1, 2, 4 or 8 samples, with no fixed part.
+/// The samples per pixel of the buffer in `slot`, which must hold 8 bytes per sample
+/// (1, 2, 4 or 8 of them) and nothing else.
 pub(crate) fn sample_count(
     pass: &PassBuilder<'_>,
     slots: &Slots<'_>,
@@ -31,21 +31,18 @@ pub(crate) fn sample_count(
             why: "is not a buffer".into(),
         });
     };
-    let samples = desc.per_pixel / KEY_BYTES;
-    let fits = desc.size == 0
-        && desc.per_pixel % KEY_BYTES == 0
-        && SAMPLE_COUNTS.iter().any(|&n| u64::from(n) == samples);
+    let fits = desc.size == 0 && desc.per_sample == KEY_BYTES && SAMPLE_COUNTS.contains(&desc.samples);
     if !fits {
         return Err(PluginError::Slot {
             slot: slot.to_owned(),
             resource: resource(),
             why: format!(
-                "holds {} bytes per pixel and {} more: a visibility buffer in compute holds \
-                 {KEY_BYTES} bytes per sample and nothing else (per_pixel: {KEY_BYTES}, \
-                 samples: 1, 2, 4 or 8)",
-                desc.per_pixel, desc.size
+                "holds {} bytes per sample, {} samples per pixel and {} bytes more: a \
+                 visibility buffer in compute holds {KEY_BYTES} bytes per sample and nothing \
+                 else (Buffer(per_sample: {KEY_BYTES}, samples: 1, 2, 4 or 8))",
+                desc.per_sample, desc.samples, desc.size
             ),
         });
     }
-    Ok(samples as u32)
+    Ok(desc.samples)
 }

@@ -8,7 +8,7 @@
 //!
 //! ```ron
 //! (name: "visibility", plugin: "visibility_compute",
-//!  outputs: { "samples": "samples" })    // Buffer(per_pixel: 32): 4 samples per pixel
+//!  outputs: { "samples": "samples" })    // Buffer(per_sample: 8, samples: 4)
 //! ```
 //!
 //! `light_tiled` with a `samples` input shades it as it shades a hardware visibility
