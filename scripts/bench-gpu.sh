@@ -22,9 +22,13 @@
 #               compiled for its scene and, where that differs, for every feature (the
 #               savings table in results.md)
 #   gbuffer     the G-buffer's cost as its targets are removed one at a time
-#               (bench/graphs/gbuffer_cost/), the visibility buffer and its depth-only
-#               floor (bench/graphs/visibility_cost/) at 1 and 4 samples on builtin:dense
-#               and builtin:lights?count=256, into gbuffer-1x and gbuffer-4x
+#               (bench/graphs/gbuffer_cost/), the visibility buffer, its depth-only
+#               floor (bench/graphs/visibility_cost/) and the visibility buffer
+#               rasterised in compute, at 1 and 4 samples on builtin:dense and
+#               builtin:lights?count=256, into gbuffer-1x and gbuffer-4x
+#   visibility  the visibility pipelines (hardware and compute raster, 4x and 1x)
+#               against the lean G-buffer and forward MSAA on builtin:dense and
+#               builtin:lights?count=256, with the reference (not in the default set)
 #   variants    FXAA, SSAO and the light pre-pass against deferred and forward MSAA on every
 #               built-in scene, with the reference (issue 16's rows; not in the default set:
 #               BENCH_PARTS=variants)
@@ -127,7 +131,7 @@ for part in $parts; do
     gbuffer)
       steps=()
       for graph in bench/graphs/gbuffer_cost/*.ron pipelines/visibility_msaa_4x.ron \
-          bench/graphs/visibility_cost/depth_only.ron; do
+          bench/graphs/visibility_cost/depth_only.ron pipelines/visibility_compute_4x.ron; do
         steps+=(--pipeline "$graph")
       done
       for samples in 1 4; do
@@ -135,6 +139,16 @@ for part in $parts; do
           --scene 'builtin:lights?count=256' --no-reference --width "$width" --height "$height" \
           "${common[@]}" --out-dir "$out/gbuffer-${samples}x" || status=$?
       done
+      ;;
+    visibility)
+      visibility=()
+      for p in visibility_msaa_4x visibility_noaa visibility_compute_4x visibility_compute_noaa \
+          deferred_msaa_4x_lean forward_msaa_4x; do
+        visibility+=(--pipeline "pipelines/$p.ron")
+      done
+      "$bin" bench "${visibility[@]}" --scene builtin:dense --scene 'builtin:lights?count=256' \
+        --width "$width" --height "$height" "${common[@]}" --out-dir "$out/visibility" \
+        || status=$?
       ;;
     variants)
       "$bin" bench "${variants[@]}" --width "$width" --height "$height" "${common[@]}" \
@@ -165,7 +179,7 @@ for part in $parts; do
         || status=$?
       ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise, gbuffer, variants, particles)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise, gbuffer, visibility, variants, particles)" >&2
       status=2
       ;;
   esac
