@@ -362,7 +362,9 @@ pub struct BenchArgs {
     /// Measured frames per scene and pipeline, after the warmup.
     #[arg(long, value_name = "N", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..))]
     pub frames: u32,
-    /// Frames run and discarded first (the first uploads the scene and creates pipelines).
+    /// Frames run and discarded first (the first uploads the scene and creates pipelines),
+    /// for half a second at least unless 0, so that a GPU that clocked down while the
+    /// bench measured image error is at speed again.
     #[arg(long, value_name = "M", default_value_t = 2)]
     pub warmup: u32,
     /// The supersampled reference errors are measured against.

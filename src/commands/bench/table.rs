@@ -18,7 +18,7 @@ pub fn markdown(results: &Results) -> String {
     let _ = writeln!(
         md,
         "- machine: {} ({}, {} cores)\n- adapter: {} [{} {}], {} {}\n- resolution: {}x{}, \
-         {} measured frames after {} warmup\n- commit: {}\n- time: {}",
+         {} measured frames after {} warmup{}\n- commit: {}\n- time: {}",
         r.machine.hostname,
         r.machine.cpu,
         r.machine.cpu_cores,
@@ -31,6 +31,10 @@ pub fn markdown(results: &Results) -> String {
         r.resolution[1],
         r.frames,
         r.warmup,
+        match r.warmup {
+            0 => "",
+            _ => " (for 0.5 s at least)",
+        },
         r.git_commit,
         r.timestamp,
     );
