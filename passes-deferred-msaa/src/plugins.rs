@@ -63,7 +63,7 @@ pub use crate::passes::particles::{
 };
 pub use crate::passes::resolve::{Resolve, ResolveMode, ResolveParams};
 pub use crate::passes::ssao::{Ssao, SsaoBlur, SsaoBlurParams, SsaoParams};
-pub use crate::passes::tonemap::{Operator, Tonemap, TonemapParams};
+pub use crate::passes::tonemap::{Operator, Tonemap, TonemapParams, TonemapStage};
 pub use crate::passes::transparent::{
     CompositeTransparent, CompositeTransparentParams, Transparent, TransparentParams,
 };
