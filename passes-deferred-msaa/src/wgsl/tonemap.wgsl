@@ -70,7 +70,12 @@ fn store_tonemapped(pixel: vec2<u32>, exposure: f32) {
         return;
     }
     let mapped = tonemap(vec4<f32>(vec2<f32>(pixel) + 0.5, 0.0, 1.0), exposure);
-    textureStore(out_tex, pixel, vec4<f32>(srgb_encode(mapped.rgb), 1.0));
+    // Rounded here, to the nearest of the 256 levels, and stored a quarter level above
+    // it: a device converting to unorm by truncation or by rounding keeps that level
+    // (the H200's storage writes and its sRGB targets otherwise differed by a level on
+    // many pixels).
+    let level = floor(srgb_encode(mapped.rgb) * 255.0 + 0.5);
+    textureStore(out_tex, pixel, vec4<f32>((level + 0.25) / 255.0, 1.0));
 }
 
 @compute @workgroup_size(8, 8)
