@@ -292,28 +292,23 @@ fn cs_light_tiled(
     let nearest = -key_depth(atomicLoad(&nearest_key));
     let farthest = key_depth(atomicLoad(&farthest_key));
     // Light accumulates in registers; the surfaces are loaded again for each batch
-    // rather than held through it, so that invocations keep few registers.
+    // rather than held through it, so that invocations keep few registers. The first
+    // batch adds the ambient and directional light too (a visibility buffer rebuilds an
+    // entry's triangle each time it is loaded).
     var extra_light: array<vec3<f32>, EDGE_SLOTS>;
-    for (var i = 0u; i < EDGE_SLOTS; i++) {
-        let entry = local + i * THREADS;
-        extra_light[i] = vec3<f32>(0.0);
-        if VIEW == VIEW_SHADED && entry < edges {
-            let e = entry_surface(origin, edge_samples[entry]);
-            if e.lit {
-                extra_light[i] = ambient_and_directional(e.surface);
-            }
-        }
-    }
     let surface0 = with_screen_ao(surface_of(g[0], p0), pixel);
     var light0 = vec3<f32>(0.0);
     if VIEW == VIEW_SHADED && lit0 {
         light0 = ambient_and_directional(surface0);
     }
 
-    // 2 and 3. Point and spot lights (after the directional ones), a batch at a time.
+    // 2 and 3. Point and spot lights (after the directional ones), a batch at a time; one
+    // batch at least, which lights the edge entries' ambient and directional light.
     var tile_lights = light_info.directional_count;
     if VIEW == VIEW_SHADED || VIEW == VIEW_TILE_LIGHTS {
-        for (var batch = light_info.directional_count; batch < light_info.light_count; batch += THREADS) {
+        let first = light_info.directional_count;
+        let last = max(light_info.light_count, first + 1u);
+        for (var batch = first; batch < last; batch += THREADS) {
             let index = batch + local;
             if index < light_info.light_count && (!CULL || (tile_lit && reaches_tile(lights[index], nearest, farthest))) {
                 batch_lights[atomicAdd(&batch_light_count, 1u)] = index;
@@ -332,6 +327,9 @@ fn cs_light_tiled(
                     if entry < edges {
                         let e = entry_surface(origin, edge_samples[entry]);
                         if e.lit {
+                            if batch == first {
+                                extra_light[i] = ambient_and_directional(e.surface);
+                            }
                             for (var l = 0u; l < count; l++) {
                                 extra_light[i] += shade_light(e.surface, lights[batch_lights[l]]);
                             }
