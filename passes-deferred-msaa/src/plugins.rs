@@ -1,8 +1,9 @@
 //! The deferred-shading pass plugins. A graph file chains them as
 //! `gbuffer` → `edge_stencil` → `light_edge` + `light_nonedge` → `resolve` → `tonemap`
 //! (the seeds' fragment path), or `gbuffer` → `light_tiled` → `tonemap` (lighting and
-//! resolve in one compute pass), or `visibility` → `light_tiled` → `tonemap` (a visibility
-//! buffer, whose triangles the compute pass rebuilds and shades),
+//! resolve in one compute pass), or `visibility` (or `visibility_compute`, rasterising in
+//! compute) → `light_tiled` → `tonemap` (a visibility buffer, whose triangles the compute
+//! pass rebuilds and shades),
 //! with `debug_view` passes reading the G-buffer beside them; `pipelines/deferred_*.ron`
 //! are complete examples. Each plugin's module documents its parameters and slots.
 //! The baselines add `forward` (the scene lit per fragment, pipelines/forward_msaa_4x.ron
@@ -16,9 +17,8 @@
 //! as their optional `ao` input (pipelines/deferred_msaa_4x_ssao.ron).
 //! `light_prepass_gbuffer` and `light_prepass_material` are a light pre-pass renderer's
 //! geometry passes around the light passes' `accumulate: light`
-//! (pipelines/light_prepass_msaa_4x.ron).
-//! the resolved image. The `particles_*` pipelines draw the scene's particle emitters
-//! after that, at full resolution or off screen (`depth_downsample`, `particles`,
+//! (pipelines/light_prepass_msaa_4x.ron). The `particles_*` pipelines draw the scene's
+//! particle emitters after the transparent composite, at full resolution or off screen (`depth_downsample`, `particles`,
 //! `particle_edges`, `composite_particles`: seed 001).
 //!
 //! The G-buffer slots every pass uses the same names for: `albedo`, `normal`,
