@@ -728,6 +728,34 @@ fn a_validation_error_in_a_callback_is_an_error_not_a_panic() {
     assert!(gpu.take_errors().is_empty(), "the frame's scope caught it");
 }
 
+/// A callback that cannot record its work on this device says why, and the frame fails
+/// naming the pass, with nothing submitted and no panic.
+#[test]
+fn a_callback_that_cannot_record_fails_the_frame_naming_its_pass() {
+    let gpu = gpu();
+    let mut g = GraphBuilder::new();
+    let target = g.create_texture("target", tex(TextureFormat::Rgba8Unorm));
+    let mut pass = g.add_render_pass("too big");
+    let out = pass.color_output(target, ColorLoad::Clear([0.0; 4]));
+    pass.render(|ctx| {
+        ctx.resources.fail("the scene's vertices exceed the storage binding limit");
+        ctx.resources.fail("a second reason is not kept");
+    });
+    g.export(out);
+    let mut compiled = compile(g.build(), &gpu);
+    let error = Executor::new(&gpu)
+        .execute(&mut compiled, &Imports::new())
+        .expect_err("the pass failed");
+    assert!(
+        matches!(&error, ExecuteError::Pass { pass, .. } if pass == "too big"),
+        "{error:?}"
+    );
+    assert_eq!(
+        error.to_string(),
+        "pass \"too big\": the scene's vertices exceed the storage binding limit"
+    );
+}
+
 #[test]
 fn readback_refuses_multisampled_textures() {
     let gpu = gpu();

@@ -55,12 +55,25 @@ pub struct FrameResources<'f> {
     pub(crate) accesses: &'f [Access],
     /// Every resource of the graph, by id: their names, for messages.
     pub(crate) resources: &'f [ResourceNode],
+    /// Why the executing pass could not record its work, when its callback said so.
+    pub(crate) failure: &'f std::cell::RefCell<Option<String>>,
 }
 
 impl<'f> FrameResources<'f> {
     /// The size relative textures were resolved against.
     pub fn output_size(&self) -> (u32, u32) {
         self.output_size
+    }
+
+    /// Says that the executing pass cannot record its work on this device, and why (`why`
+    /// names what the device lacks: "the scene's 3 GiB of vertices exceed the storage
+    /// binding limit of 2 GiB", say): the frame fails with [`ExecuteError::Pass`] naming
+    /// the pass, and nothing of it is submitted. The callback should then return without
+    /// recording; a second call keeps the first reason.
+    ///
+    /// [`ExecuteError::Pass`]: crate::gpu::ExecuteError::Pass
+    pub fn fail(&self, why: impl Into<String>) {
+        self.failure.borrow_mut().get_or_insert_with(|| why.into());
     }
 
     /// The texture behind a handle.

@@ -62,6 +62,10 @@ pub enum ExecuteError {
     #[error("the plan does not provide what its graph uses ({0}); this is a bug in graph-core")]
     Inconsistent(String),
 
+    /// A pass's callback could not record its work on this device ([`FrameResources::fail`]).
+    #[error("pass \"{pass}\": {why}")]
+    Pass { pass: String, why: String },
+
     #[error("pass \"{pass}\" is a {kind} pass but its callback records {record} commands")]
     RecordKind {
         pass: String,
@@ -390,6 +394,7 @@ impl Executor {
                     label: Some(&planned.name),
                 });
             let node = &mut graph.passes[planned.id.index()];
+            let failure = std::cell::RefCell::new(None);
             let resources = FrameResources {
                 device: &self.device,
                 queue: &self.queue,
@@ -398,6 +403,7 @@ impl Executor {
                 pass: &node.name,
                 accesses: &node.accesses,
                 resources: &graph.resources,
+                failure: &failure,
             };
             let recorded = record_pass(
                 &mut encoder,
@@ -411,6 +417,12 @@ impl Executor {
             let buffer = encoder.finish();
             let errors = scopes.pop();
             recorded?;
+            if let Some(why) = failure.into_inner() {
+                return Err(ExecuteError::Pass {
+                    pass: planned.name.clone(),
+                    why,
+                });
+            }
             if let Some(message) = errors {
                 return Err(ExecuteError::Device {
                     pass: Some(planned.name.clone()),

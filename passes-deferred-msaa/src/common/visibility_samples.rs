@@ -46,3 +46,19 @@ pub(crate) fn sample_count(
     }
     Ok(desc.samples)
 }
+
+/// Whether the device can bind `buffer`, a visibility buffer, as one storage binding; the
+/// reason if not (the output too large for it at its sample count).
+#[cfg(feature = "gpu")]
+pub(crate) fn fits_binding(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<(), String> {
+    let limit = u64::from(device.limits().max_storage_buffer_binding_size);
+    match buffer.size() <= limit {
+        true => Ok(()),
+        false => Err(format!(
+            "the visibility buffer's {} bytes ({KEY_BYTES} per sample) exceed this device's \
+             storage binding limit of {limit} bytes: render smaller or with fewer samples, or \
+             with visibility_msaa_4x.ron, which rasterises into textures",
+            buffer.size()
+        )),
+    }
+}

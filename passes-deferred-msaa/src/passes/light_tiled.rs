@@ -340,6 +340,7 @@ mod gpu {
     use crate::common::depth::far_depth;
     use crate::common::gpu::input_pass::Geometry;
     use crate::common::gpu::{per_scene, split_ids, InputPass};
+    use crate::common::visibility_samples::fits_binding;
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
 
@@ -378,6 +379,25 @@ mod gpu {
                         geometry,
                     )
                 });
+            // What a visibility buffer's shading binds besides the textures, or why the
+            // device cannot bind it.
+            let geometry = match state.geometry {
+                Geometry::None => None,
+                _ => match scene.geometry_group(device) {
+                    Ok(group) => Some(group),
+                    Err(why) => return resources.fail(why),
+                },
+            };
+            let keys = match dispatch.depth {
+                Depth::Keys(keys) => {
+                    let buffer = resources.buffer(keys);
+                    if let Err(why) = fits_binding(device, buffer) {
+                        return resources.fail(why);
+                    }
+                    state.keys_group(resources, buffer)
+                }
+                Depth::Buffer(..) => None,
+            };
             let convention = match dispatch.depth {
                 Depth::Buffer(rule, depth) => rule.convention(resources.shape(depth).format),
                 Depth::Keys(_) => DepthConvention::ReversedZ,
@@ -415,16 +435,11 @@ mod gpu {
                 .set_bind_group(0, scene.bind_group(convention), &[]);
             ctx.pass
                 .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            if state.geometry != Geometry::None {
-                match scene.geometry_group(device) {
-                    Ok(group) => ctx.pass.set_bind_group(2, group, &[]),
-                    Err(why) => panic!("pass \"light_tiled\": {why}"),
-                }
+            if let Some(group) = geometry {
+                ctx.pass.set_bind_group(2, group, &[]);
             }
-            if let Depth::Keys(keys) = dispatch.depth {
-                if let Some(group) = state.keys_group(resources, resources.buffer(keys)) {
-                    ctx.pass.set_bind_group(3, &group, &[]);
-                }
+            if let Some(group) = keys {
+                ctx.pass.set_bind_group(3, &group, &[]);
             }
             let out = resources.shape(dispatch.output);
             ctx.pass.dispatch_workgroups(

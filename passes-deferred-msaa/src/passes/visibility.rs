@@ -160,7 +160,7 @@ mod gpu {
             });
             let geometry = match scene.geometry_group(device) {
                 Ok(group) => group,
-                Err(why) => panic!("pass \"visibility\": {why}"),
+                Err(why) => return resources.fail(why),
             };
             let ids = draw.ids.map(|ids| resources.shape(ids).format);
             let depth = resources.shape(draw.depth);

@@ -98,7 +98,7 @@ mod gpu {
     use super::RasterDispatch;
     use crate::common::gpu::per_scene;
     use crate::common::gpu::pipeline::{module, pipeline_layout};
-    use crate::common::visibility_samples::KEY_BYTES;
+    use crate::common::visibility_samples::{fits_binding, KEY_BYTES};
     use crate::gpu_scene::{GpuScene, SceneCache};
     use crate::scene::DepthConvention;
 
@@ -149,9 +149,12 @@ mod gpu {
             let state = per_scene(&mut state, &scene, || build(device, &dispatch.source, &scene));
             let geometry = match scene.geometry_group(device) {
                 Ok(group) => group,
-                Err(why) => panic!("pass \"visibility_compute\": {why}"),
+                Err(why) => return resources.fail(why),
             };
             let keys = resources.buffer(dispatch.samples);
+            if let Err(why) = fits_binding(device, keys) {
+                return resources.fail(why);
+            }
             let placeholder;
             let draws = match &state.draws {
                 Some(draws) => draws,
