@@ -38,10 +38,12 @@ fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
 // comparing values (light_tiled.wgsl's same_fragment).
 const SURFACE_IDS: bool = false;
 
-fn load_gsamples(pixel: vec2<i32>) -> array<GSample, SAMPLES> {
-    var g: array<GSample, SAMPLES>;
+// Which samples hold one fragment is known only from their values: each sample leads its
+// own here, and light_tiled.wgsl compares values where it needs to.
+fn fragment_leaders(pixel: vec2<i32>) -> array<u32, SAMPLES> {
+    var leaders: array<u32, SAMPLES>;
     for (var s = 0u; s < SAMPLES; s++) {
-        g[s] = load_gsample(pixel, s);
+        leaders[s] = s;
     }
-    return g;
+    return leaders;
 }

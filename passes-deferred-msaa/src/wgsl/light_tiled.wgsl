@@ -20,7 +20,7 @@
 // surface.wgsl and edge_detect.wgsl, then a generated block defining TILE (the tile's side in
 // pixels), EDGE_SLOTS (max(SAMPLES - 1, 1): the most edge-list entries one invocation
 // shades) and OutTex (the output's storage texture type), and holding the G-buffer's
-// layout: `load_gsample` and `load_gsamples` (gbuffer_read.wgsl, or visibility_read.wgsl
+// layout: `load_gsample` and `fragment_leaders` (gbuffer_read.wgsl, or visibility_read.wgsl
 // with geometry.wgsl), `load_view_depth` (view_depth_stored.wgsl, or
 // view_depth_from_depth.wgsl for the lean G-buffer and the visibility buffer) and
 // `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or emitted_surface.wgsl), and common/ao.rs's
@@ -169,33 +169,28 @@ fn entry_surface(origin: vec2<u32>, code: u32) -> EntrySurface {
     return EntrySurface(lit, with_screen_ao(surface, pixel));
 }
 
-fn is_edge(g: ptr<function, array<GSample, SAMPLES>>) -> bool {
+// Whether sample `s` (`gs`) makes its pixel an edge pixel, beside sample 0 (`g0`).
+fn sample_is_edge(g0: GSample, gs: GSample, s: u32) -> bool {
     if SAMPLES == 1u {
         return false;
     }
-    var edge = false;
     switch DETECTOR {
         case 0u: {
-            for (var s = 1u; s < SAMPLES; s++) {
-                edge = edge || differ((*g)[0], (*g)[s]);
-            }
+            return s > 0u && differ(g0, gs);
         }
         case 1u: {
-            for (var s = 0u; s < SAMPLES; s++) {
-                edge = edge || ((*g)[s].edge_bits & EDGE_BIT) != 0u;
-            }
+            return (gs.edge_bits & EDGE_BIT) != 0u;
         }
         case 2u: {
-            edge = true;
+            return true;
         }
         case 4u: {
-            for (var s = 1u; s < SAMPLES; s++) {
-                edge = edge || (*g)[s].id != (*g)[0].id;
-            }
+            return gs.id != g0.id;
         }
-        default: {}
+        default: {
+            return false;
+        }
     }
-    return edge;
 }
 
 @compute @workgroup_size(TILE, TILE, 1)
@@ -216,36 +211,55 @@ fn cs_light_tiled(
     }
     workgroupBarrier();
 
-    // 1. Classify. `group[s]` is the first sample holding the same fragment as sample s
-    // (found where ADAPTIVE or the fragments view needs it); `source[s]` the sample
-    // whose light sample s takes: 0 on a non-edge pixel, else itself, or with ADAPTIVE
-    // its fragment's first sample.
-    var g: array<GSample, SAMPLES>;
+    // 1. Classify, a sample at a time, holding only sample 0's surface (a 4x pixel's
+    // surfaces held at once took local memory). `group[s]` is the first sample holding
+    // the same fragment as sample s (a visibility buffer knows it from IDs, and rebuilds
+    // each triangle once; a G-buffer's are compared where ADAPTIVE or the fragments view
+    // needs them); `source[s]` the sample whose light sample s takes: 0 on a non-edge
+    // pixel, else itself, or with ADAPTIVE its fragment's first sample. `emits[s]` is what
+    // sample s emits, and bit s of `lit` says whether its surface is lit.
+    var g0: GSample;
     var group: array<u32, SAMPLES>;
     var source: array<u32, SAMPLES>;
     // By source sample: the samples that take its light.
     var masks: array<u32, SAMPLES>;
+    var emits: array<vec3<f32>, SAMPLES>;
+    var lit = 0u;
     var edge = false;
     var fragments = 0u;
     if inside {
-        g = load_gsamples(pixel);
-        edge = is_edge(&g);
+        let leaders = fragment_leaders(pixel);
         for (var s = 0u; s < SAMPLES; s++) {
-            group[s] = s;
-            if ADAPTIVE || VIEW == VIEW_FRAGMENTS {
+            group[s] = leaders[s];
+            if leaders[s] != s {
+                // An earlier sample's triangle: what it found holds here.
+                emits[s] = emits[leaders[s]];
+                lit |= ((lit >> leaders[s]) & 1u) << s;
+                continue;
+            }
+            let gs = load_gsample(pixel, s);
+            if s == 0u {
+                g0 = gs;
+            }
+            edge = edge || sample_is_edge(g0, gs, s);
+            if (ADAPTIVE || VIEW == VIEW_FRAGMENTS) && !SURFACE_IDS {
                 for (var j = 0u; j < s; j++) {
-                    if group[j] == j && same_fragment(g[j], g[s]) {
+                    if group[j] == j && same_fragment(load_gsample(pixel, j), gs) {
                         group[s] = j;
                         break;
                     }
                 }
             }
+            emits[s] = emitted(pixel, s, gs);
+            lit |= u32((gs.flags & FLAG_LIT) != 0u) << s;
+        }
+        for (var s = 0u; s < SAMPLES; s++) {
             fragments += u32(group[s] == s);
             source[s] = select(0u, select(s, group[s], ADAPTIVE), edge);
             masks[source[s]] |= 1u << s;
         }
     }
-    let lit0 = inside && (g[0].flags & FLAG_LIT) != 0u;
+    let lit0 = (lit & 1u) != 0u;
     var p0 = vec3<f32>(0.0);
     if lit0 {
         // Without a stored view depth the pixel center's depth is the mean of its
@@ -270,7 +284,7 @@ fn cs_light_tiled(
             if source[s] == s {
                 edge_samples[next] = (local << 12u) | (masks[s] << 4u) | s;
                 next++;
-                if (g[s].flags & FLAG_LIT) != 0u {
+                if ((lit >> s) & 1u) != 0u {
                     include_depth(fragment_surface(pixel, masks[s]));
                 }
             }
@@ -296,7 +310,7 @@ fn cs_light_tiled(
     // batch adds the ambient and directional light too (a visibility buffer rebuilds an
     // entry's triangle each time it is loaded).
     var extra_light: array<vec3<f32>, EDGE_SLOTS>;
-    let surface0 = with_screen_ao(surface_of(g[0], p0), pixel);
+    let surface0 = with_screen_ao(surface_of(g0, p0), pixel);
     var light0 = vec3<f32>(0.0);
     if VIEW == VIEW_SHADED && lit0 {
         light0 = ambient_and_directional(surface0);
@@ -358,7 +372,7 @@ fn cs_light_tiled(
         return;
     }
 
-    let covered = g[0].view_depth > 0.0;
+    let covered = g0.view_depth > 0.0;
     switch VIEW {
         case VIEW_EDGES: {
             let color = select(select(vec3<f32>(0.0), vec3<f32>(0.0, 0.0, 1.0), covered), vec3<f32>(1.0, 0.0, 0.0), edge);
@@ -396,7 +410,7 @@ fn cs_light_tiled(
             var sum = vec3<f32>(0.0);
             var weights = 0.0;
             for (var s = 0u; s < SAMPLES; s++) {
-                let c = clamp(emitted(pixel, s, g[s]) + light[s], vec3<f32>(0.0), vec3<f32>(HALF_MAX));
+                let c = clamp(emits[s] + light[s], vec3<f32>(0.0), vec3<f32>(HALF_MAX));
                 let w = select(1.0, 1.0 / (1.0 + EXPOSURE * luminance(c)), RESOLVE == 1u);
                 sum += w * c;
                 weights += w;

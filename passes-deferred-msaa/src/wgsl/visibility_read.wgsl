@@ -87,23 +87,19 @@ fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
     return rebuild_sample(pixel, pixel_ids(pixel), s);
 }
 
-// A pixel's samples, each triangle rebuilt once.
-fn load_gsamples(pixel: vec2<i32>) -> array<GSample, SAMPLES> {
+// For each sample, the first sample showing the same triangle (itself where no earlier
+// one does): a pixel's fragments from its IDs alone, so each triangle is rebuilt once.
+fn fragment_leaders(pixel: vec2<i32>) -> array<u32, SAMPLES> {
     let ids = pixel_ids(pixel);
-    var g: array<GSample, SAMPLES>;
+    var leaders: array<u32, SAMPLES>;
     for (var s = 0u; s < SAMPLES; s++) {
-        var first = s;
+        leaders[s] = s;
         for (var j = 0u; j < s; j++) {
             if ids[j] == ids[s] {
-                first = j;
+                leaders[s] = j;
                 break;
             }
         }
-        if first != s {
-            g[s] = g[first];
-        } else {
-            g[s] = rebuild_sample(pixel, ids, s);
-        }
     }
-    return g;
+    return leaders;
 }
