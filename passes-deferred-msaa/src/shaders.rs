@@ -8,7 +8,11 @@ use graph_core::shader::Shader;
 
 const COMMON: &str = include_str!("wgsl/common.wgsl");
 const SCENE: &str = include_str!("wgsl/scene.wgsl");
-const MATERIAL: &str = include_str!("wgsl/material.wgsl");
+/// The material model and a material's textures bound per draw (G-buffer, forward).
+const MATERIAL: &str = concat!(
+    include_str!("wgsl/material.wgsl"),
+    include_str!("wgsl/material_bound.wgsl")
+);
 pub(crate) const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
 const GEOMETRY: &str = include_str!("wgsl/geometry.wgsl");
 /// Reads a visibility buffer as gbuffer_read.wgsl reads a G-buffer (with geometry.wgsl).

@@ -1,5 +1,5 @@
 //! Materials on the device: the constants of every material in one storage buffer, and
-//! per material a bind group (group 1 of the G-buffer and forward passes, material.wgsl)
+//! per material a bind group (group 1 of the G-buffer and forward passes, material_bound.wgsl)
 //! with its textures.
 
 use std::collections::HashMap;
@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use wgpu::util::DeviceExt;
 
 use super::textures;
-use crate::scene::{AlphaMode, Material, Sampler, Scene, TextureRef};
+use crate::scene::{AlphaMode, Sampler, Scene, TextureRef};
 
 /// `FLAG_LIT` and `FLAG_UNLIT` in common.wgsl.
 const FLAG_LIT: u32 = 1;
@@ -52,20 +52,9 @@ pub(super) struct Materials {
     pub bind_groups: Vec<wgpu::BindGroup>,
 }
 
-/// A material's textures in binding order (material.wgsl): base color, emissive,
-/// metallicRoughness, normal, occlusion.
+/// A material's textures in binding order (material_bound.wgsl):
+/// [`crate::scene::Material::texture_slots`].
 const TEXTURE_SLOTS: u32 = 5;
-
-/// A material's textures in binding order.
-fn slots(material: &Material) -> [Option<TextureRef>; TEXTURE_SLOTS as usize] {
-    [
-        material.base_color_texture,
-        material.emissive_texture,
-        material.metallic_roughness_texture,
-        material.normal_texture,
-        material.occlusion_texture,
-    ]
-}
 
 /// The layout of a material's bind group: per texture of [`TEXTURE_SLOTS`], the texture
 /// (binding `2 * slot`) and its sampler (binding `2 * slot + 1`).
@@ -137,11 +126,11 @@ impl Materials {
                     None => 0.0,
                 },
                 uv_sets: (0u32..)
-                    .zip(slots(material))
+                    .zip(material.texture_slots())
                     .filter(|(_, t)| t.is_some_and(|t| t.tex_coord == 1))
                     .fold(0, |bits, (slot, _)| bits | 1 << slot),
                 _pad: [0; 2],
-                uv_transforms: slots(material)
+                uv_transforms: material.texture_slots()
                     .map(|t| t.map_or(TextureRef::IDENTITY_UV, |t| t.uv_transform)),
                 _tail: [0; 2],
             });
@@ -151,7 +140,7 @@ impl Materials {
                 blended: material.alpha_mode == AlphaMode::Blend,
             });
             // Scenes guarantee texture indices are in range; a broken one shows white.
-            let textures: Vec<(&wgpu::TextureView, wgpu::Sampler)> = slots(material)
+            let textures: Vec<(&wgpu::TextureView, wgpu::Sampler)> = material.texture_slots()
                 .into_iter()
                 .map(|texture| {
                     let (view, sampler) = texture
