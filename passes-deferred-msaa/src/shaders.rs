@@ -15,9 +15,12 @@ const MATERIAL: &str = concat!(
 );
 pub(crate) const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
 const GEOMETRY: &str = include_str!("wgsl/geometry.wgsl");
-/// Reads a visibility buffer as gbuffer_read.wgsl reads a G-buffer (with geometry.wgsl).
+/// Reads a visibility buffer as gbuffer_read.wgsl reads a G-buffer (with geometry.wgsl,
+/// and the material model with the scene's texture table).
 pub(crate) const VISIBILITY_READ: &str = concat!(
     include_str!("wgsl/geometry.wgsl"),
+    include_str!("wgsl/material.wgsl"),
+    include_str!("wgsl/material_table.wgsl"),
     include_str!("wgsl/visibility_read.wgsl")
 );
 pub(crate) const VIEW_DEPTH_STORED: &str = include_str!("wgsl/view_depth_stored.wgsl");

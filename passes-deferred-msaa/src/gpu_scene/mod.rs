@@ -12,7 +12,9 @@
 //! - the meshes ([`GpuScene::draw_meshes`], vertex layout [`mesh::VERTEX_LAYOUT`]) and a
 //!   bind group per material for group 1 ([`GpuScene::material_layout`]);
 //! - the same vertices and indices as storage buffers for visibility-buffer passes
-//!   ([`GpuScene::geometry_layout`], [`GpuScene::geometry_group`], [`GpuScene::pull_meshes`]);
+//!   ([`GpuScene::geometry_layout`], [`GpuScene::geometry_group`], [`GpuScene::pull_meshes`]),
+//!   and every material's textures as one table for their shading
+//!   ([`GpuScene::texture_table_layout`], [`GpuScene::texture_table_group`]);
 //! - the light volumes ([`GpuScene::volume_lights`], [`GpuScene::volume_mesh`]).
 //!
 //! Everything is camera-relative: model matrices and light positions are the world ones
@@ -29,6 +31,7 @@ mod lights;
 mod materials;
 pub mod mesh;
 mod particles;
+mod texture_table;
 mod textures;
 pub mod volumes;
 
@@ -83,6 +86,11 @@ impl SceneCache {
     /// feature's with [`Variants::General`]). A pipeline key part.
     pub fn variant(&self, shader: GatedShader) -> Variant {
         Variant::of(shader, &self.features)
+    }
+
+    /// The host's scene, as loaded (what [`GpuScene::texture_table_group`] is made from).
+    pub fn scene(&self) -> Option<&Scene> {
+        self.host.as_ref().map(|h| &*h.scene)
     }
 
     /// The scene for a frame: on the frame's device (uploaded the first time), drawn as
@@ -145,6 +153,7 @@ struct Upload {
     standard_group: wgpu::BindGroup,
     meshes: mesh::MeshBuffers,
     geometry: geometry::Geometry,
+    texture_table: texture_table::TextureTableGpu,
     materials: materials::Materials,
     lights: lights::LightBuffers,
     sphere: VolumeMesh,
@@ -221,6 +230,7 @@ impl GpuScene {
             cameras,
             meshes,
             geometry: geometry::Geometry::new(device),
+            texture_table: texture_table::TextureTableGpu::new(device),
             materials,
             lights,
             sphere,
@@ -402,6 +412,24 @@ impl GpuScene {
     /// bind the scene's buffers as storage.
     pub fn geometry_group(&self, device: &wgpu::Device) -> Result<&wgpu::BindGroup, &str> {
         self.upload.geometry.group(device, &self.upload.meshes)
+    }
+
+    /// The layout of the visibility shading's group 3: the scene's texture table
+    /// (material_table.wgsl).
+    pub fn texture_table_layout(&self) -> &wgpu::BindGroupLayout {
+        self.upload.texture_table.layout()
+    }
+
+    /// Group 3 of the visibility shading for `scene` (this upload's scene), made on first
+    /// use; an error when the device cannot hold the table
+    /// ([`crate::scene::texture_table::TextureTable::check`]).
+    pub fn texture_table_group(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+    ) -> Result<&wgpu::BindGroup, &str> {
+        self.upload.texture_table.group(device, queue, scene)
     }
 
     /// Whether a full-screen light draw has anything to add: a directional light that

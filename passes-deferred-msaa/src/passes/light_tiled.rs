@@ -386,6 +386,14 @@ mod gpu {
                     Ok(group) => ctx.pass.set_bind_group(2, group, &[]),
                     Err(why) => panic!("pass \"light_tiled\": {why}"),
                 }
+                // A scene on the device has a host scene (for_frame returned it).
+                let table = scenes.scene().ok_or("no scene").and_then(|host_scene| {
+                    scene.texture_table_group(device, resources.queue, host_scene)
+                });
+                match table {
+                    Ok(group) => ctx.pass.set_bind_group(3, group, &[]),
+                    Err(why) => panic!("pass \"light_tiled\", texture table: {why}"),
+                }
             }
             let out = resources.shape(dispatch.output);
             ctx.pass.dispatch_workgroups(

@@ -1,7 +1,8 @@
 //! The device objects of a pass that reads G-buffer textures (light, tiled light,
 //! G-buffer resolve, full-screen passes): its shader module, the bind group layout of its inputs, a
 //! pipeline layout of the scene's group 0 (when it reads the scene), the inputs' group
-//! 1 and, for a visibility buffer's shading, the scene's geometry as group 2; and its
+//! 1 and, for a visibility buffer's shading, the scene's geometry as group 2 and its
+//! texture table as group 3; and its
 //! pipelines. Built on the first frame of a device or scene upload, kept after.
 
 use graph_core::gpu::FrameResources;
@@ -32,7 +33,8 @@ impl<K, P> InputPass<K, P> {
     }
 
     /// As [`new`](Self::new), and with `geometry` the scene's geometry as group 2
-    /// ([`GpuScene::geometry_layout`]).
+    /// ([`GpuScene::geometry_layout`]) and its texture table as group 3
+    /// ([`GpuScene::texture_table_layout`]).
     pub fn with_geometry(
         resources: &FrameResources<'_>,
         label: &str,
@@ -43,11 +45,16 @@ impl<K, P> InputPass<K, P> {
     ) -> Self {
         let device = resources.device;
         let inputs = TextureBindings::new(resources, inputs);
-        let geometry = scene.filter(|_| geometry).map(GpuScene::geometry_layout);
-        let layouts = [scene.map(GpuScene::layout), Some(&inputs.layout), geometry];
+        let visibility = scene.filter(|_| geometry);
+        let layouts = [
+            scene.map(GpuScene::layout),
+            Some(&inputs.layout),
+            visibility.map(GpuScene::geometry_layout),
+            visibility.map(GpuScene::texture_table_layout),
+        ];
         InputPass {
             module: module(device, label, source),
-            layout: pipeline_layout(device, &layouts[..2 + usize::from(geometry.is_some())]),
+            layout: pipeline_layout(device, &layouts[..2 + 2 * usize::from(visibility.is_some())]),
             inputs,
             pipelines: Pipelines::default(),
         }
