@@ -64,8 +64,10 @@ fn rebuild(id: u32, at: vec2<f32>) -> GSample {
     let e2 = (mesh.model * vec4<f32>(v2.position, 1.0)).xyz - p0;
     let hit = hit_plane(at, p0, e1, e2);
     let b = hit.b;
-    // Ray differentials: the same plane one pixel right and one down, where a fragment
-    // shader's neighbours in its quad would interpolate.
+    // Ray differentials: the plane's barycentrics change across the 2x2 quad the pixel lies
+    // in (from its even corner, keeping `at`'s place in the pixel), as a fragment shader's
+    // coarse derivatives are taken. Lavapipe's are; differences at the pixel itself would
+    // pick other mip levels where the change varies from pixel to pixel (a grazing floor).
     let quad = at - vec2<f32>(vec2<u32>(at) & vec2<u32>(1u));
     let base = hit_plane(quad, p0, e1, e2).b;
     let right = hit_plane(quad + vec2<f32>(1.0, 0.0), p0, e1, e2).b - base + b;
