@@ -37,7 +37,9 @@
 //!   by default, where nothing was drawn);
 //! - `ids` instead of albedo, normal, material, view depth and emission: a visibility
 //!   buffer (passes/visibility.rs). Each pixel's distinct triangles are rebuilt from the
-//!   scene's geometry, edge pixels are those whose samples show different triangles, and
+//!   scene's geometry (group 2) and their materials sampled from the scene's texture
+//!   table (group 3, made on the first frame: GpuScene::texture_table_group), edge pixels
+//!   are those whose samples show different triangles, and
 //!   `shading: adaptive` shades each triangle once, exactly (pipelines/visibility_msaa_4x.ron).
 //!
 //! One workgroup of `tile` x `tile` invocations per tile, one per pixel
