@@ -130,7 +130,8 @@ impl Materials {
                     .filter(|(_, t)| t.is_some_and(|t| t.tex_coord == 1))
                     .fold(0, |bits, (slot, _)| bits | 1 << slot),
                 _pad: [0; 2],
-                uv_transforms: material.texture_slots()
+                uv_transforms: material
+                    .texture_slots()
                     .map(|t| t.map_or(TextureRef::IDENTITY_UV, |t| t.uv_transform)),
                 _tail: [0; 2],
             });
@@ -140,7 +141,8 @@ impl Materials {
                 blended: material.alpha_mode == AlphaMode::Blend,
             });
             // Scenes guarantee texture indices are in range; a broken one shows white.
-            let textures: Vec<(&wgpu::TextureView, wgpu::Sampler)> = material.texture_slots()
+            let textures: Vec<(&wgpu::TextureView, wgpu::Sampler)> = material
+                .texture_slots()
                 .into_iter()
                 .map(|texture| {
                     let (view, sampler) = texture

@@ -10,6 +10,7 @@ use std::sync::OnceLock;
 
 use wgpu::util::DeviceExt;
 
+use super::textures;
 use crate::scene::texture_table::{TableArray, TextureTable};
 use crate::scene::{FilterMode, Scene, TextureRef, WrapMode};
 
@@ -92,121 +93,121 @@ impl TextureTableGpu {
         queue: &wgpu::Queue,
         scene: &Scene,
     ) -> Result<&wgpu::BindGroup, &str> {
-        let group = self.group.get_or_init(|| {
-            let table = TextureTable::of(scene);
-            let limits = device.limits();
-            table
-                .check(
-                    scene,
-                    limits.max_texture_array_layers,
-                    limits.max_texture_dimension_2d,
-                )
-                .map_err(|e| {
-                    format!(
-                        "{e}: a visibility buffer cannot shade the scene's textures; use a \
-                         G-buffer pipeline"
-                    )
-                })?;
-            let array = |name, array: &TableArray, format| {
-                device
-                    .create_texture_with_data(
-                        queue,
-                        &wgpu::TextureDescriptor {
-                            label: Some(name),
-                            size: wgpu::Extent3d {
-                                width: array.width,
-                                height: array.height,
-                                depth_or_array_layers: array.layers(),
-                            },
-                            mip_level_count: array.mip_levels(),
-                            sample_count: 1,
-                            dimension: wgpu::TextureDimension::D2,
-                            format,
-                            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                            view_formats: &[],
-                        },
-                        wgpu::util::TextureDataOrder::LayerMajor,
-                        &array.texels(&scene.textures),
-                    )
-                    .create_view(&wgpu::TextureViewDescriptor {
-                        dimension: Some(wgpu::TextureViewDimension::D2Array),
-                        ..Default::default()
-                    })
-            };
-            let color = array(
-                "texture table: color",
-                &table.color,
-                wgpu::TextureFormat::Rgba8UnormSrgb,
-            );
-            let data = array(
-                "texture table: data",
-                &table.data,
-                wgpu::TextureFormat::Rgba8Unorm,
-            );
-            let mut words: Vec<[u32; 5]> = scene
-                .materials
-                .iter()
-                .map(|m| m.texture_slots().map(|t| slot_word(&table, t)))
-                .collect();
-            // Storage bindings cannot be empty.
-            if words.is_empty() {
-                words.push([NO_LAYER; 5]);
-            }
-            let slots = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("texture table: material slots"),
-                contents: bytemuck::cast_slice(&words),
-                usage: wgpu::BufferUsages::STORAGE,
-            });
-            let samplers: Vec<wgpu::Sampler> = SAMPLERS
-                .iter()
-                .map(|&(address, filter, mipmap_filter)| {
-                    device.create_sampler(&wgpu::SamplerDescriptor {
-                        label: Some("texture table"),
-                        address_mode_u: address,
-                        address_mode_v: address,
-                        mag_filter: filter,
-                        min_filter: filter,
-                        mipmap_filter,
-                        ..Default::default()
-                    })
-                })
-                .collect();
-            let mut entries = vec![
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: slots.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&color),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&data),
-                },
-            ];
-            entries.extend((3..).zip(&samplers).map(|(binding, sampler)| {
-                wgpu::BindGroupEntry {
-                    binding,
-                    resource: wgpu::BindingResource::Sampler(sampler),
-                }
-            }));
-            Ok(device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("scene texture table"),
-                layout: &self.layout,
-                entries: &entries,
-            }))
-        });
+        let group = self.group.get_or_init(|| self.build(device, queue, scene));
         group.as_ref().map_err(String::as_str)
     }
+
+    fn build(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+    ) -> Result<wgpu::BindGroup, String> {
+        let table = TextureTable::of(scene);
+        let limits = device.limits();
+        let (layers, side) = (
+            limits.max_texture_array_layers,
+            limits.max_texture_dimension_2d,
+        );
+        table.check(scene, layers, side).map_err(|e| {
+            format!(
+                "{e}: a visibility buffer cannot shade the scene's textures; use a G-buffer \
+                 pipeline"
+            )
+        })?;
+        let upload = |name, array, format| upload(device, queue, scene, (name, array, format));
+        let color = upload(
+            "texture table: color",
+            &table.color,
+            wgpu::TextureFormat::Rgba8UnormSrgb,
+        );
+        let data = upload(
+            "texture table: data",
+            &table.data,
+            wgpu::TextureFormat::Rgba8Unorm,
+        );
+        let mut words: Vec<[u32; 5]> = scene
+            .materials
+            .iter()
+            .map(|m| m.texture_slots().map(|t| slot_word(&table, t)))
+            .collect();
+        // Storage bindings cannot be empty.
+        if words.is_empty() {
+            words.push([NO_LAYER; 5]);
+        }
+        let slots = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("texture table: material slots"),
+            contents: bytemuck::cast_slice(&words),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let samplers: Vec<wgpu::Sampler> = SAMPLERS
+            .iter()
+            .map(|&(address, filter, mipmap_filter)| {
+                device.create_sampler(&wgpu::SamplerDescriptor {
+                    label: Some("texture table"),
+                    address_mode_u: address,
+                    address_mode_v: address,
+                    mag_filter: filter,
+                    min_filter: filter,
+                    mipmap_filter,
+                    ..Default::default()
+                })
+            })
+            .collect();
+        let mut entries = vec![
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: slots.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::TextureView(&color),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&data),
+            },
+        ];
+        entries.extend(
+            (3..)
+                .zip(&samplers)
+                .map(|(binding, sampler)| wgpu::BindGroupEntry {
+                    binding,
+                    resource: wgpu::BindingResource::Sampler(sampler),
+                }),
+        );
+        Ok(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("scene texture table"),
+            layout: &self.layout,
+            entries: &entries,
+        }))
+    }
+}
+
+/// One array of the table as a 2D array texture of `format`, its layers the images of
+/// `scene` it names, with their mips.
+fn upload(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &Scene,
+    (name, array, format): (&str, &TableArray, wgpu::TextureFormat),
+) -> wgpu::TextureView {
+    let size = (
+        array.width,
+        array.height,
+        array.layers(),
+        array.mip_levels(),
+    );
+    let texels = array.texels(&scene.textures);
+    let dimension = wgpu::TextureViewDimension::D2Array;
+    textures::create_layers(device, queue, name, size, format, dimension, &texels)
 }
 
 /// material_table.wgsl's word for a slot holding `texture`: its layer (`NO_LAYER` without
 /// one, or for an image index out of range, which the G-buffer path shows white too),
 /// array, wrap modes and filters.
 fn slot_word(table: &TextureTable, texture: Option<TextureRef>) -> u32 {
-    let Some((texture, (color, layer))) =
-        texture.and_then(|t| Some((t, table.layer_of(t.image)?)))
+    let Some((texture, (color, layer))) = texture.and_then(|t| Some((t, table.layer_of(t.image)?)))
     else {
         return NO_LAYER;
     };

@@ -262,13 +262,20 @@ mod tests {
 
     #[test]
     fn images_of_one_size_cost_what_they_cost_alone() {
-        let scene = scene_of(vec![image(64, 64, true), image(64, 64, false), image(64, 64, true)]);
+        let scene = scene_of(vec![
+            image(64, 64, true),
+            image(64, 64, false),
+            image(64, 64, true),
+        ]);
         let table = TextureTable::of(&scene);
         assert_eq!(table.color.images, [0, 2]);
         assert_eq!(table.layer_of(2), Some((true, 1)));
         assert_eq!(table.layer_of(1), Some((false, 0)));
         assert_eq!(table.bytes(), 3 * chain_bytes(64, 64));
-        assert_eq!(table.check(&scene, WEBGPU_MAX_LAYERS, WEBGPU_MAX_SIDE), Ok(()));
+        assert_eq!(
+            table.check(&scene, WEBGPU_MAX_LAYERS, WEBGPU_MAX_SIDE),
+            Ok(())
+        );
     }
 
     #[test]
@@ -276,10 +283,20 @@ mod tests {
         let scene = scene_of(vec![image(64, 64, true), image(16, 32, true)]);
         let table = TextureTable::of(&scene);
         assert_eq!((table.color.width, table.color.height), (64, 64));
-        assert_eq!(table.color.texels(&scene.textures).len() as u64, table.color.bytes());
+        assert_eq!(
+            table.color.texels(&scene.textures).len() as u64,
+            table.color.bytes()
+        );
         // A uniform image stays uniform.
-        assert!(table.color.texels(&scene.textures).iter().all(|&b| b == 200));
-        assert_eq!(table.check(&scene, WEBGPU_MAX_LAYERS, WEBGPU_MAX_SIDE), Ok(()));
+        assert!(table
+            .color
+            .texels(&scene.textures)
+            .iter()
+            .all(|&b| b == 200));
+        assert_eq!(
+            table.check(&scene, WEBGPU_MAX_LAYERS, WEBGPU_MAX_SIDE),
+            Ok(())
+        );
         let mut lopsided = vec![image(256, 256, false)];
         lopsided.extend((0..4).map(|_| image(8, 8, false)));
         let lopsided = scene_of(lopsided);

@@ -54,7 +54,10 @@ impl<K, P> InputPass<K, P> {
         ];
         InputPass {
             module: module(device, label, source),
-            layout: pipeline_layout(device, &layouts[..2 + 2 * usize::from(visibility.is_some())]),
+            layout: pipeline_layout(
+                device,
+                &layouts[..2 + 2 * usize::from(visibility.is_some())],
+            ),
             inputs,
             pipelines: Pipelines::default(),
         }
