@@ -194,7 +194,11 @@ fn textured_agreement(scene: &Scene, pipeline: &str) -> (f64, f64, Diff) {
     let away = measure::away_from_edges(&edges);
     let all = measure::share_within(&visibility[0], &other, 1, None);
     let interior = measure::share_within(&visibility[0], &other, 1, Some(&away));
-    (all, interior, measure::diff(&visibility[0], &other, Some(&away)))
+    (
+        all,
+        interior,
+        measure::diff(&visibility[0], &other, Some(&away)),
+    )
 }
 
 /// Textured materials shade from the texture table: on a floor seen at a grazing angle
@@ -204,8 +208,9 @@ fn textured_agreement(scene: &Scene, pipeline: &str) -> (f64, f64, Diff) {
 /// deferred_msaa_4x and the lean G-buffer) and of the pixels away from triangle edges and
 /// silhouettes (99.47%). Most of the rest is lavapipe's: its derivatives in a 2x2 quad
 /// that straddles two triangles pick far too coarse a mip level (deferred_noaa's
-/// debug.albedo shows a dotted grey seam along each quad's diagonal, at one sample per
-/// pixel too), where the analytic ones follow the triangle's plane.
+/// debug.albedo shows a dotted grey seam along the diagonal of the floor and of each
+/// panel, at one sample per pixel too), where the analytic ones follow the triangle's
+/// plane.
 #[test]
 fn textured_materials_render_the_gbuffers_image_through_the_texture_table() {
     let scene = textured_scene();
@@ -274,7 +279,8 @@ fn a_textured_alpha_mask_takes_the_lean_gbuffer() {
         .map(|p| p.name.as_str())
         .collect();
     assert!(
-        !passes.contains(&"visibility") && passes.contains(&"gbuffer (untabled textures, emissive)"),
+        !passes.contains(&"visibility")
+            && passes.contains(&"gbuffer (untabled textures, emissive)"),
         "{passes:?}"
     );
     let (image, lean) = (

@@ -45,7 +45,12 @@ fn images() -> Vec<TextureImage> {
     vec![
         image("base colour", true, |u, v| {
             let check = ((u * 8.0).floor() + (v * 8.0).floor()) % 2.0;
-            [unorm(0.3 + 0.6 * u), unorm(0.25 + 0.5 * check), unorm(0.8 - 0.6 * v), 255]
+            [
+                unorm(0.3 + 0.6 * u),
+                unorm(0.25 + 0.5 * check),
+                unorm(0.8 - 0.6 * v),
+                255,
+            ]
         }),
         image("emissive", true, |u, _| {
             let stripe = f64::from(u8::from((u * 4.0).fract() < 0.2));
@@ -59,7 +64,12 @@ fn images() -> Vec<TextureImage> {
             let dx = 0.5 * (2.0 * tau * u).cos() * (2.0 * tau * v).sin();
             let dy = 0.5 * (2.0 * tau * u).sin() * (2.0 * tau * v).cos();
             let n = DVec3::new(-dx, -dy, 1.0).normalize();
-            [unorm(n.x * 0.5 + 0.5), unorm(n.y * 0.5 + 0.5), unorm(n.z * 0.5 + 0.5), 255]
+            [
+                unorm(n.x * 0.5 + 0.5),
+                unorm(n.y * 0.5 + 0.5),
+                unorm(n.z * 0.5 + 0.5),
+                255,
+            ]
         }),
         image("occlusion", false, |u, v| {
             let h = (2.0 * tau * u).sin() * (2.0 * tau * v).sin();
@@ -129,7 +139,12 @@ pub fn textured_scene() -> Scene {
     // A trapezoid inside the view: the rasteriser clips nothing, so both G-buffer paths
     // draw its two triangles as they are (see the derivative test in tests/visibility.rs).
     // Texture coordinates are the plane's, 2/3 of a repeat per unit.
-    let corners = [d(-1.4, 0.0, 2.0), d(2.0, 0.0, 2.0), d(8.0, 0.0, -6.0), d(-7.4, 0.0, -6.0)];
+    let corners = [
+        d(-1.4, 0.0, 2.0),
+        d(2.0, 0.0, 2.0),
+        d(8.0, 0.0, -6.0),
+        d(-7.4, 0.0, -6.0),
+    ];
     quad(
         &mut parts,
         "floor",
@@ -140,14 +155,24 @@ pub fn textured_scene() -> Scene {
     quad(
         &mut parts,
         "clamped panel",
-        [d(-2.6, 0.2, -0.5), d(-0.6, 0.2, -1.2), d(-0.6, 2.0, -1.2), d(-2.6, 2.0, -0.5)],
+        [
+            d(-2.6, 0.2, -0.5),
+            d(-0.6, 0.2, -1.2),
+            d(-0.6, 2.0, -1.2),
+            d(-2.6, 2.0, -0.5),
+        ],
         [[-0.25, 1.25], [1.25, 1.25], [1.25, -0.25], [-0.25, -0.25]],
         clamped,
     );
     quad(
         &mut parts,
         "mirrored panel",
-        [d(0.6, 0.2, -1.2), d(2.6, 0.2, -0.3), d(2.6, 2.0, -0.3), d(0.6, 2.0, -1.2)],
+        [
+            d(0.6, 0.2, -1.2),
+            d(2.6, 0.2, -0.3),
+            d(2.6, 2.0, -0.3),
+            d(0.6, 2.0, -1.2),
+        ],
         [[0.0, 2.0], [2.0, 2.0], [2.0, 0.0], [0.0, 0.0]],
         mirrored,
     );
@@ -160,9 +185,13 @@ pub fn textured_scene() -> Scene {
         direction: Vec3::new(-0.4, -0.6, -0.7).normalize(),
         range: None,
     });
-    parts
-        .lights
-        .push(Light::point("lamp", d(0.0, 1.2, 1.5), [0.9, 0.9, 1.0], 3.0, None));
+    parts.lights.push(Light::point(
+        "lamp",
+        d(0.0, 1.2, 1.5),
+        [0.9, 0.9, 1.0],
+        3.0,
+        None,
+    ));
     parts.ambient = [0.15; 3];
     let camera = Camera::look_at(
         "grazing",
