@@ -2,10 +2,10 @@
 //! seen at a grazing angle (so each pixel's footprint stretches over many texels and
 //! mipmaps and their level of detail decide the colour) and two upright panels, every
 //! material with base colour, emissive, metallicRoughness, normal and occlusion textures
-//! (64x64, full mip chains made at upload) and tangents. The floor repeats its textures
-//! ten times across; one panel clamps to the edge with nearest magnification, one mirrors, so
-//! every wrap mode and both filters are seen.
-
+//! (64x64, full mip chains made at upload) and tangents, occlusion on a second UV set and
+//! emission through a texture transform. The floor repeats its textures ten times
+//! across; one panel clamps to the edge with nearest magnification, one mirrors, so every
+//! wrap mode and both filters are seen.
 use passes_deferred_msaa::glam::{DVec3, Vec3};
 use passes_deferred_msaa::scene::{
     Camera, FilterMode, Light, LightKind, Projection, Sampler, Scene, TextureImage, TextureRef,
@@ -92,21 +92,36 @@ fn material(parts: &mut Parts, name: &str, sampler: Sampler) -> usize {
     let m = &mut parts.materials[index];
     m.metallic_factor = 1.0;
     m.base_color_texture = texture(0);
-    m.emissive_texture = texture(1);
     m.emissive_factor = [0.6, 0.6, 0.6];
     m.metallic_roughness_texture = texture(2);
     m.normal_texture = texture(3);
-    m.occlusion_texture = texture(4);
+    // Occlusion on TEXCOORD_1, and emission through a KHR_texture_transform (rotated a
+    // quarter turn's third, scaled 1.5 and offset), as loaded glTF materials can have them.
+    m.occlusion_texture = texture(4).map(|t| TextureRef { tex_coord: 1, ..t });
+    let (sin, cos) = (
+        std::f32::consts::FRAC_PI_6.sin(),
+        std::f32::consts::FRAC_PI_6.cos(),
+    );
+    m.emissive_texture = texture(1).map(|t| TextureRef {
+        uv_transform: [
+            [1.5 * cos, 1.5 * sin],
+            [-1.5 * sin, 1.5 * cos],
+            [0.25, -0.1],
+        ],
+        ..t
+    });
     index
 }
 
 /// A quad from `corners` (counter-clockwise from the front) with texture coordinates
-/// `uvs` at them, and the tangent along its first edge (where U grows).
+/// `uvs` at them (TEXCOORD_1 the same, halved and swapped), and the tangent along its
+/// first edge (where U grows).
 fn quad(parts: &mut Parts, name: &str, corners: [DVec3; 4], uvs: [[f32; 2]; 4], material: usize) {
     let mesh = parts.mesh(name, &[corners.to_vec()], material);
     let along = (corners[1] - corners[0]).normalize().as_vec3();
     for (vertex, uv) in parts.meshes[mesh].vertices.iter_mut().zip(uvs) {
         vertex.uv = uv;
+        vertex.uv1 = [uv[1] * 0.5, uv[0] * 0.5];
         vertex.tangent = Vertex::tangent_from([along.x, along.y, along.z, 1.0]);
     }
 }
