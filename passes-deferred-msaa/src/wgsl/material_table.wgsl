@@ -135,6 +135,17 @@ fn table_texel(word: u32, at: UvGrad) -> vec4<f32> {
     }
 }
 
+// Whether material `index` has a texture in the table: without one its texels are all
+// white, and the point needs no derivatives.
+fn material_textured(index: u32) -> bool {
+    var slots = material_slots[index];
+    var textured = false;
+    for (var slot = 0u; slot < 5u; slot++) {
+        textured = textured || (slots[slot] & NO_LAYER) != NO_LAYER;
+    }
+    return textured;
+}
+
 // Material `index` (`m`, its MaterialData) with vertex color `color` at a point whose
 // texture coordinates are `at`, and `right` and `down` one pixel right and down: what
 // material_bound.wgsl's sample_material gives a fragment there.

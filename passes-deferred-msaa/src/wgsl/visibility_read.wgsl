@@ -68,10 +68,15 @@ fn rebuild(id: u32, at: vec2<f32>) -> GSample {
     // in (from its even corner, keeping `at`'s place in the pixel), as a fragment shader's
     // coarse derivatives are taken. Lavapipe's are; differences at the pixel itself would
     // pick other mip levels where the change varies from pixel to pixel (a grazing floor).
-    let quad = at - vec2<f32>(vec2<u32>(at) & vec2<u32>(1u));
-    let base = hit_plane(quad, p0, e1, e2).b;
-    let right = hit_plane(quad + vec2<f32>(1.0, 0.0), p0, e1, e2).b - base + b;
-    let down = hit_plane(quad + vec2<f32>(0.0, 1.0), p0, e1, e2).b - base + b;
+    // Untextured materials skip them (every scene without textures).
+    var right = b;
+    var down = b;
+    if material_textured(mesh.material) {
+        let quad = at - vec2<f32>(vec2<u32>(at) & vec2<u32>(1u));
+        let base = hit_plane(quad, p0, e1, e2).b;
+        right += hit_plane(quad + vec2<f32>(1.0, 0.0), p0, e1, e2).b - base;
+        down += hit_plane(quad + vec2<f32>(0.0, 1.0), p0, e1, e2).b - base;
+    }
     // Counter-clockwise on screen is the front (wgpu's default front face): the geometric
     // normal faces the camera.
     let front = dot(cross(e1, e2), hit.ray) < 0.0;
