@@ -10,7 +10,8 @@
 //!   it: camera uniform, per-mesh data, materials, lights, light info, and lighting.wgsl's
 //!   environment maps;
 //! - the meshes ([`GpuScene::draw_meshes`], vertex layout [`mesh::VERTEX_LAYOUT`]) and a
-//!   bind group per material for group 1 ([`GpuScene::material_layout`]);
+//!   bind group per material for group 1 ([`GpuScene::material_layout`],
+//!   [`GpuScene::material_groups`], made when a pass first draws with them);
 //! - the same vertices and indices as storage buffers for visibility-buffer passes
 //!   ([`GpuScene::geometry_layout`], [`GpuScene::geometry_group`], [`GpuScene::pull_meshes`]),
 //!   and every material's textures as one table for their shading
@@ -209,7 +210,7 @@ impl GpuScene {
         let material_layout = materials::layout(device);
         let cameras = camera::Cameras::new(device);
         let meshes = mesh::MeshBuffers::new(device, scene, &frame.meshes);
-        let materials = materials::Materials::new(device, queue, scene, &material_layout);
+        let materials = materials::Materials::new(device, scene);
         let lights = lights::LightBuffers::new(device, &frame.lights);
         let environment = environment::EnvironmentMaps::new(device, queue, scene);
         let group = |camera| {
@@ -332,13 +333,28 @@ impl GpuScene {
             .filter_map(|d| Some((d, *states.get(d.material)?)))
     }
 
+    /// Per material, its textures as a bind group of [`material_layout`](Self::material_layout)
+    /// for `scene` (this upload's), made the first time: only passes that bind textures per
+    /// draw upload them.
+    pub fn material_groups(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+    ) -> &[wgpu::BindGroup] {
+        let upload = &self.upload;
+        upload
+            .materials
+            .bind_groups(device, queue, scene, &upload.material_layout)
+    }
+
     /// Binds the mesh buffers, then for each draw of `layer`, in its order, that `choose`
-    /// accepts binds its material as `material_group` and draws it. The caller sets the
-    /// pipeline in `choose`.
+    /// accepts binds its material's group of `materials` ([`material_groups`](Self::material_groups))
+    /// as group `material_group` and draws it. The caller sets the pipeline in `choose`.
     pub fn draw_meshes(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
-        material_group: u32,
+        (material_group, materials): (u32, &[wgpu::BindGroup]),
         layer: Layer,
         mut choose: impl FnMut(&mut wgpu::RenderPass<'_>, &MeshDraw, MaterialState) -> bool,
     ) {
@@ -351,11 +367,7 @@ impl GpuScene {
             if !choose(pass, draw, state) {
                 continue;
             }
-            pass.set_bind_group(
-                material_group,
-                &self.upload.materials.bind_groups[draw.material],
-                &[],
-            );
+            pass.set_bind_group(material_group, &materials[draw.material], &[]);
             pass.draw_indexed(
                 draw.indices.clone(),
                 draw.base_vertex,
