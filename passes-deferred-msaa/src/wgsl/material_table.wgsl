@@ -79,12 +79,15 @@ fn sample_layers(s: sampler, color: bool, uv: vec2<f32>, layer: u32, dx: vec2<f3
     return textureSampleGrad(data_layers, s, uv, layer, dx, dy);
 }
 
-// The texel of the texture a slot word names at `at`; white without one.
-fn table_texel(word: u32, at: UvGrad) -> vec4<f32> {
+// The texel of material `m`'s texture in `slot`, whose word is `word`, at a point whose
+// texture coordinates are `point`, and `right` and `down` one pixel over; white without
+// one (before any coordinates are computed).
+fn table_texel(word: u32, m: MaterialData, slot: u32, point: TexCoords, right: TexCoords, down: TexCoords) -> vec4<f32> {
     let layer = word & NO_LAYER;
     if layer == NO_LAYER {
         return vec4<f32>(1.0);
     }
+    let at = slot_grad(m, slot, point, right, down);
     let color = ((word >> 16u) & 1u) != 0u;
     let size = vec2<f32>(select(textureDimensions(data_layers), textureDimensions(color_layers), color));
     // The level of detail a sampler computes (isotropic): at or below 0 it magnifies, and
@@ -153,19 +156,19 @@ fn sample_material_table(index: u32, m: MaterialData, color: vec4<f32>, at: TexC
     let slots = material_slots[index];
     var t = white_texels();
     if TEXTURES {
-        t.base = table_texel(slots[0], slot_grad(m, 0u, at, right, down));
+        t.base = table_texel(slots[0], m, 0u, at, right, down);
     }
     if EMISSIVE && EMISSIVE_TEXTURES {
-        t.emissive = table_texel(slots[1], slot_grad(m, 1u, at, right, down));
+        t.emissive = table_texel(slots[1], m, 1u, at, right, down);
     }
     if METAL_ROUGH_TEXTURES {
-        t.metal_rough = table_texel(slots[2], slot_grad(m, 2u, at, right, down));
+        t.metal_rough = table_texel(slots[2], m, 2u, at, right, down);
     }
     if NORMAL_TEXTURES {
-        t.normal = table_texel(slots[3], slot_grad(m, 3u, at, right, down));
+        t.normal = table_texel(slots[3], m, 3u, at, right, down);
     }
     if OCCLUSION_TEXTURES {
-        t.occlusion = table_texel(slots[4], slot_grad(m, 4u, at, right, down));
+        t.occlusion = table_texel(slots[4], m, 4u, at, right, down);
     }
     return material_from_texels(m, color, t);
 }
