@@ -9,19 +9,27 @@ use graph_core::types::Features;
 
 const COMMON: &str = include_str!("wgsl/common.wgsl");
 const SCENE: &str = include_str!("wgsl/scene.wgsl");
-const MATERIAL: &str = include_str!("wgsl/material.wgsl");
+/// The material model and a material's textures bound per draw (G-buffer, forward).
+const MATERIAL: &str = concat!(
+    include_str!("wgsl/material.wgsl"),
+    include_str!("wgsl/material_bound.wgsl")
+);
 pub(crate) const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
 const GEOMETRY: &str = include_str!("wgsl/geometry.wgsl");
 /// Reads a raster pass's visibility buffer as gbuffer_read.wgsl reads a G-buffer (with
-/// geometry.wgsl).
+/// geometry.wgsl, and the material model with the scene's texture table).
 pub(crate) const VISIBILITY_READ_TEXTURES: &str = concat!(
     include_str!("wgsl/geometry.wgsl"),
+    include_str!("wgsl/material.wgsl"),
+    include_str!("wgsl/material_table.wgsl"),
     include_str!("wgsl/visibility_textures.wgsl"),
     include_str!("wgsl/visibility_read.wgsl")
 );
-/// Reads a compute rasteriser's visibility buffer (its keys in group 3) the same way.
+/// Reads a compute rasteriser's visibility buffer (its keys in group 1) the same way.
 pub(crate) const VISIBILITY_READ_SAMPLES: &str = concat!(
     include_str!("wgsl/geometry.wgsl"),
+    include_str!("wgsl/material.wgsl"),
+    include_str!("wgsl/material_table.wgsl"),
     include_str!("wgsl/visibility_samples.wgsl"),
     include_str!("wgsl/visibility_read.wgsl")
 );

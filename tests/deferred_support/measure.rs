@@ -81,6 +81,42 @@ pub fn marked(edges: &Image) -> Vec<bool> {
     edges.pixels.iter().map(|&p| p == EDGE_RED).collect()
 }
 
+/// The pixels of `edges` (a `debug.edges` view) none of whose 3x3 neighbours is an edge
+/// pixel or empty (black: no geometry): away from every edge and silhouette, so that the
+/// 2x2 quad a fragment shader computes derivatives over shows one surface.
+pub fn away_from_edges(edges: &Image) -> Vec<bool> {
+    let apart: Vec<bool> = edges
+        .pixels
+        .iter()
+        .map(|&p| p == EDGE_RED || p == [0, 0, 0, 255])
+        .collect();
+    let (w, h) = (i64::from(edges.width), i64::from(edges.height));
+    (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            !(-1..=1).any(|dy| {
+                (-1..=1).any(|dx| {
+                    let (nx, ny) = (x + dx, y + dy);
+                    nx >= 0 && ny >= 0 && nx < w && ny < h && apart[(ny * w + nx) as usize]
+                })
+            })
+        })
+        .collect()
+}
+
+/// Share of the pixels where `mask` is true (all for `None`) at which `a` and `b` differ
+/// by at most `tolerance` in every RGB channel.
+pub fn share_within(a: &Image, b: &Image, tolerance: u8, mask: Option<&[bool]>) -> f64 {
+    let (mut within, mut pixels) = (0usize, 0usize);
+    for (i, (&p, &q)) in a.pixels.iter().zip(&b.pixels).enumerate() {
+        if mask.is_none_or(|m| m[i]) {
+            pixels += 1;
+            within += usize::from(pixel_diff(p, q) <= tolerance);
+        }
+    }
+    within as f64 / pixels.max(1) as f64
+}
+
 /// Pixel coordinates of the true entries, for messages (the first `limit`).
 pub fn where_true(mask: &[bool], width: u32, limit: usize) -> Vec<(u32, u32)> {
     mask.iter()

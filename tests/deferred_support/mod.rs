@@ -7,6 +7,7 @@
 pub mod measure;
 pub mod samples;
 pub mod scenes;
+pub mod textured;
 pub mod unlit;
 
 use std::path::{Path, PathBuf};
@@ -364,19 +365,25 @@ pub fn srgb8(linear: f64) -> u8 {
 /// 1/255 at `size`, each compiled for the edited scene's features as `rgraph render`
 /// compiles it.
 pub fn agreement((a, b): (&str, &str), scene: &str, edit: fn(&mut Scene), size: (u32, u32)) -> f64 {
-    let gpu = gpu();
     let mut loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
     edit(&mut loaded);
-    let features = passes_deferred_msaa::analysis::Features::of(&loaded).names();
+    let (first, second) = images((a, b), &loaded, size);
+    measure::pixels_within(&first, &second, 1) as f64 / first.pixels.len() as f64
+}
+
+/// The colour images pipelines `a` and `b` render of `scene` at `size`, each compiled
+/// for the scene's features as `rgraph render` compiles it.
+pub fn images((a, b): (&str, &str), scene: &Scene, size: (u32, u32)) -> (Image, Image) {
+    let gpu = gpu();
+    let features = passes_deferred_msaa::analysis::Features::of(scene).names();
     let image = |pipeline| {
-        Render::new(pipeline, scene, size)
-            .scene_edit(edit)
+        Render::new(pipeline, &scene.name, size)
+            .with_scene(scene.clone())
             .features(features.clone())
             .run(&gpu)
             .image(&gpu, "color")
     };
-    let (first, second) = (image(a), image(b));
-    measure::pixels_within(&first, &second, 1) as f64 / first.pixels.len() as f64
+    (image(a), image(b))
 }
 
 /// A scene edit that changes nothing, for tables of scenes and edits.

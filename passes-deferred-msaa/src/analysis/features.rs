@@ -1,6 +1,7 @@
 //! The features a scene uses, under the names graph-file conditions test.
 
 use super::DepthRange;
+use crate::scene::texture_table::{TextureTable, WEBGPU_MAX_LAYERS, WEBGPU_MAX_SIDE};
 use crate::scene::{AlphaMode, LightKind, Material, Scene};
 
 /// Which features a scene uses. Only what can change a rendered pixel counts: materials
@@ -33,6 +34,12 @@ pub struct Features {
     pub normal_textures: bool,
     /// Some mesh's lit material samples an occlusion texture.
     pub occlusion_textures: bool,
+    /// Some mesh's material has textures that the visibility buffer cannot shade from its
+    /// texture table: an alpha MASK material's base-color texture (the visibility raster
+    /// pass tests the cutoff on the factor and vertex alpha only), or any texture when the
+    /// scene's do not fit the table within WebGPU's default limits
+    /// ([`TextureTable::check`]). Pipelines take a G-buffer for these scenes.
+    pub untabled_textures: bool,
     pub double_sided: bool,
     /// A 24-bit unorm depth buffer with standard Z resolves the geometry's depth range
     /// as finely as [`DepthRange::shallow`] asks. A reduction, like `unlit_only`: only a
@@ -46,7 +53,7 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 20] = [
+    pub const NAMES: [&'static str; 21] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -64,6 +71,7 @@ impl Features {
         "metal_rough_textures",
         "normal_textures",
         "occlusion_textures",
+        "untabled_textures",
         "double_sided",
         "shallow_depth",
         "auto_exposure",
@@ -94,6 +102,12 @@ impl Features {
             metal_rough_textures: material(|m| !m.unlit && m.metallic_roughness_texture.is_some()),
             normal_textures: material(|m| !m.unlit && m.normal_texture.is_some()),
             occlusion_textures: material(|m| !m.unlit && m.occlusion_texture.is_some()),
+            untabled_textures: material(|m| {
+                matches!(m.alpha_mode, AlphaMode::Mask { .. }) && m.base_color_texture.is_some()
+            }) || (material(|m| m.texture_slots().iter().any(Option::is_some))
+                && TextureTable::of(scene)
+                    .check(scene, WEBGPU_MAX_LAYERS, WEBGPU_MAX_SIDE)
+                    .is_err()),
             double_sided: material(|m| m.double_sided),
             // With no geometry between the planes nothing is depth-tested: the general
             // pipeline is as good as any.
@@ -129,6 +143,7 @@ impl Features {
             metal_rough_textures: true,
             normal_textures: true,
             occlusion_textures: true,
+            untabled_textures: true,
             double_sided: true,
             shallow_depth: false,
             auto_exposure: false,
@@ -170,6 +185,7 @@ impl Features {
             self.metal_rough_textures,
             self.normal_textures,
             self.occlusion_textures,
+            self.untabled_textures,
             self.double_sided,
             self.shallow_depth,
             self.auto_exposure,

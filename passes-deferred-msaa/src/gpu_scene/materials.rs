@@ -1,8 +1,9 @@
 //! Materials on the device: the constants of every material in one storage buffer, and
-//! per material a bind group (group 1 of the G-buffer and forward passes, material.wgsl)
-//! with its textures.
+//! per material a bind group (group 1 of the G-buffer and forward passes,
+//! material_bound.wgsl) with its textures, made when a pass first draws with them.
 
 use std::collections::HashMap;
+use std::sync::OnceLock;
 
 use wgpu::util::DeviceExt;
 
@@ -49,23 +50,12 @@ pub struct MaterialState {
 pub(super) struct Materials {
     pub data: wgpu::Buffer,
     pub states: Vec<MaterialState>,
-    pub bind_groups: Vec<wgpu::BindGroup>,
+    bind_groups: OnceLock<Vec<wgpu::BindGroup>>,
 }
 
-/// A material's textures in binding order (material.wgsl): base color, emissive,
-/// metallicRoughness, normal, occlusion.
+/// A material's textures in binding order (material_bound.wgsl):
+/// [`crate::scene::Material::texture_slots`].
 const TEXTURE_SLOTS: u32 = 5;
-
-/// A material's textures in binding order.
-fn slots(material: &Material) -> [Option<TextureRef>; TEXTURE_SLOTS as usize] {
-    [
-        material.base_color_texture,
-        material.emissive_texture,
-        material.metallic_roughness_texture,
-        material.normal_texture,
-        material.occlusion_texture,
-    ]
-}
 
 /// The layout of a material's bind group: per texture of [`TEXTURE_SLOTS`], the texture
 /// (binding `2 * slot`) and its sampler (binding `2 * slot + 1`).
@@ -99,59 +89,104 @@ pub(super) fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 }
 
 impl Materials {
-    pub fn new(
+    /// The constants and pipeline states of `scene`'s materials; their textures wait for
+    /// [`bind_groups`](Self::bind_groups).
+    pub fn new(device: &wgpu::Device, scene: &Scene) -> Materials {
+        let mut data: Vec<MaterialData> = scene.materials.iter().map(material_data).collect();
+        // Storage bindings cannot be empty; scenes always have a material, but keep the
+        // buffer valid regardless.
+        if data.is_empty() {
+            data.push(bytemuck::Zeroable::zeroed());
+        }
+        Materials {
+            data: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("scene materials"),
+                contents: bytemuck::cast_slice(&data),
+                usage: wgpu::BufferUsages::STORAGE,
+            }),
+            states: scene
+                .materials
+                .iter()
+                .map(|material| MaterialState {
+                    double_sided: material.double_sided,
+                    masked: matches!(material.alpha_mode, AlphaMode::Mask { .. }),
+                    blended: material.alpha_mode == AlphaMode::Blend,
+                })
+                .collect(),
+            bind_groups: OnceLock::new(),
+        }
+    }
+
+    /// Per material of `scene` (this upload's) its bind group of `layout`, its images
+    /// uploaded the first time: passes that bind textures per draw pay for them, and a
+    /// visibility buffer's shading, which reads the texture table, does not.
+    pub fn bind_groups(
+        &self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         scene: &Scene,
         layout: &wgpu::BindGroupLayout,
-    ) -> Materials {
-        let images: Vec<wgpu::TextureView> = scene
-            .textures
-            .iter()
-            .map(|image| textures::upload(device, queue, image))
-            .collect();
-        let white = textures::white(device, queue);
-        // One device sampler per distinct glTF sampler: materials share most of them.
-        let mut samplers = HashMap::new();
-        let mut data = Vec::new();
-        let mut states = Vec::new();
-        let mut bind_groups = Vec::new();
-        for material in &scene.materials {
-            let cutoff = match material.alpha_mode {
-                AlphaMode::Mask { cutoff } => cutoff,
-                AlphaMode::Opaque | AlphaMode::Blend => 0.0,
-            };
-            data.push(MaterialData {
-                base_color: material.base_color_factor,
-                emission: material.emission(),
-                alpha_cutoff: cutoff,
-                metallic: material.metallic_factor,
-                roughness: material.roughness_factor,
-                flags: if material.unlit { FLAG_UNLIT } else { FLAG_LIT },
-                normal_scale: match material.normal_texture {
-                    Some(_) => material.normal_scale,
-                    None => 0.0,
-                },
-                occlusion_strength: match material.occlusion_texture {
-                    Some(_) => material.occlusion_strength,
-                    None => 0.0,
-                },
-                uv_sets: (0u32..)
-                    .zip(slots(material))
-                    .filter(|(_, t)| t.is_some_and(|t| t.tex_coord == 1))
-                    .fold(0, |bits, (slot, _)| bits | 1 << slot),
-                _pad: [0; 2],
-                uv_transforms: slots(material)
-                    .map(|t| t.map_or(TextureRef::IDENTITY_UV, |t| t.uv_transform)),
-                _tail: [0; 2],
-            });
-            states.push(MaterialState {
-                double_sided: material.double_sided,
-                masked: matches!(material.alpha_mode, AlphaMode::Mask { .. }),
-                blended: material.alpha_mode == AlphaMode::Blend,
-            });
+    ) -> &[wgpu::BindGroup] {
+        self.bind_groups
+            .get_or_init(|| bind_groups(device, queue, scene, layout))
+    }
+}
+
+/// `material`'s constants.
+fn material_data(material: &Material) -> MaterialData {
+    let cutoff = match material.alpha_mode {
+        AlphaMode::Mask { cutoff } => cutoff,
+        AlphaMode::Opaque | AlphaMode::Blend => 0.0,
+    };
+    MaterialData {
+        base_color: material.base_color_factor,
+        emission: material.emission(),
+        alpha_cutoff: cutoff,
+        metallic: material.metallic_factor,
+        roughness: material.roughness_factor,
+        flags: if material.unlit { FLAG_UNLIT } else { FLAG_LIT },
+        normal_scale: match material.normal_texture {
+            Some(_) => material.normal_scale,
+            None => 0.0,
+        },
+        occlusion_strength: match material.occlusion_texture {
+            Some(_) => material.occlusion_strength,
+            None => 0.0,
+        },
+        uv_sets: (0u32..)
+            .zip(material.texture_slots())
+            .filter(|(_, t)| t.is_some_and(|t| t.tex_coord == 1))
+            .fold(0, |bits, (slot, _)| bits | 1 << slot),
+        _pad: [0; 2],
+        uv_transforms: material
+            .texture_slots()
+            .map(|t| t.map_or(TextureRef::IDENTITY_UV, |t| t.uv_transform)),
+        _tail: [0; 2],
+    }
+}
+
+/// Per material of `scene`, its textures and samplers as a bind group of `layout`.
+fn bind_groups(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &Scene,
+    layout: &wgpu::BindGroupLayout,
+) -> Vec<wgpu::BindGroup> {
+    let images: Vec<wgpu::TextureView> = scene
+        .textures
+        .iter()
+        .map(|image| textures::upload(device, queue, image))
+        .collect();
+    let white = textures::white(device, queue);
+    // One device sampler per distinct glTF sampler: materials share most of them.
+    let mut samplers = HashMap::new();
+    scene
+        .materials
+        .iter()
+        .map(|material| {
             // Scenes guarantee texture indices are in range; a broken one shows white.
-            let textures: Vec<(&wgpu::TextureView, wgpu::Sampler)> = slots(material)
+            let textures: Vec<(&wgpu::TextureView, wgpu::Sampler)> = material
+                .texture_slots()
                 .into_iter()
                 .map(|texture| {
                     let (view, sampler) = texture
@@ -178,25 +213,11 @@ impl Materials {
                     ]
                 })
                 .collect();
-            bind_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(&material.name),
                 layout,
                 entries: &entries,
-            }));
-        }
-        // Storage bindings cannot be empty; scenes always have a material, but keep the
-        // buffer valid regardless.
-        if data.is_empty() {
-            data.push(bytemuck::Zeroable::zeroed());
-        }
-        Materials {
-            data: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("scene materials"),
-                contents: bytemuck::cast_slice(&data),
-                usage: wgpu::BufferUsages::STORAGE,
-            }),
-            states,
-            bind_groups,
-        }
-    }
+            })
+        })
+        .collect()
 }

@@ -10,9 +10,12 @@
 //!   it: camera uniform, per-mesh data, materials, lights, light info, and lighting.wgsl's
 //!   environment maps;
 //! - the meshes ([`GpuScene::draw_meshes`], vertex layout [`mesh::VERTEX_LAYOUT`]) and a
-//!   bind group per material for group 1 ([`GpuScene::material_layout`]);
+//!   bind group per material for group 1 ([`GpuScene::material_layout`],
+//!   [`GpuScene::material_groups`], made when a pass first draws with them);
 //! - the same vertices and indices as storage buffers for visibility-buffer passes
-//!   ([`GpuScene::geometry_layout`], [`GpuScene::geometry_group`], [`GpuScene::pull_meshes`]);
+//!   ([`GpuScene::geometry_layout`], [`GpuScene::geometry_group`], [`GpuScene::pull_meshes`]),
+//!   and every material's textures as one table for their shading
+//!   ([`GpuScene::texture_table_layout`], [`GpuScene::texture_table_group`]);
 //! - the light volumes ([`GpuScene::volume_lights`], [`GpuScene::volume_mesh`]).
 //!
 //! Everything is camera-relative: model matrices and light positions are the world ones
@@ -29,6 +32,7 @@ mod lights;
 mod materials;
 pub mod mesh;
 mod particles;
+mod texture_table;
 mod textures;
 pub mod volumes;
 
@@ -83,6 +87,11 @@ impl SceneCache {
     /// feature's with [`Variants::General`]). A pipeline key part.
     pub fn variant(&self, shader: GatedShader) -> Variant {
         Variant::of(shader, &self.features)
+    }
+
+    /// The host's scene, as loaded (what [`GpuScene::texture_table_group`] is made from).
+    pub fn scene(&self) -> Option<&Scene> {
+        self.host.as_ref().map(|h| &*h.scene)
     }
 
     /// The scene for a frame: on the frame's device (uploaded the first time), drawn as
@@ -145,6 +154,7 @@ struct Upload {
     standard_group: wgpu::BindGroup,
     meshes: mesh::MeshBuffers,
     geometry: geometry::Geometry,
+    texture_table: texture_table::TextureTableGpu,
     materials: materials::Materials,
     lights: lights::LightBuffers,
     sphere: VolumeMesh,
@@ -200,7 +210,7 @@ impl GpuScene {
         let material_layout = materials::layout(device);
         let cameras = camera::Cameras::new(device);
         let meshes = mesh::MeshBuffers::new(device, scene, &frame.meshes);
-        let materials = materials::Materials::new(device, queue, scene, &material_layout);
+        let materials = materials::Materials::new(device, scene);
         let lights = lights::LightBuffers::new(device, &frame.lights);
         let environment = environment::EnvironmentMaps::new(device, queue, scene);
         let group = |camera| {
@@ -221,6 +231,7 @@ impl GpuScene {
             cameras,
             meshes,
             geometry: geometry::Geometry::new(device),
+            texture_table: texture_table::TextureTableGpu::new(device),
             materials,
             lights,
             sphere,
@@ -322,13 +333,28 @@ impl GpuScene {
             .filter_map(|d| Some((d, *states.get(d.material)?)))
     }
 
+    /// Per material, its textures as a bind group of [`material_layout`](Self::material_layout)
+    /// for `scene` (this upload's), made the first time: only passes that bind textures per
+    /// draw upload them.
+    pub fn material_groups(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+    ) -> &[wgpu::BindGroup] {
+        let upload = &self.upload;
+        upload
+            .materials
+            .bind_groups(device, queue, scene, &upload.material_layout)
+    }
+
     /// Binds the mesh buffers, then for each draw of `layer`, in its order, that `choose`
-    /// accepts binds its material as `material_group` and draws it. The caller sets the
-    /// pipeline in `choose`.
+    /// accepts binds its material's group of `materials` ([`material_groups`](Self::material_groups))
+    /// as group `material_group` and draws it. The caller sets the pipeline in `choose`.
     pub fn draw_meshes(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
-        material_group: u32,
+        (material_group, materials): (u32, &[wgpu::BindGroup]),
         layer: Layer,
         mut choose: impl FnMut(&mut wgpu::RenderPass<'_>, &MeshDraw, MaterialState) -> bool,
     ) {
@@ -341,11 +367,7 @@ impl GpuScene {
             if !choose(pass, draw, state) {
                 continue;
             }
-            pass.set_bind_group(
-                material_group,
-                &self.upload.materials.bind_groups[draw.material],
-                &[],
-            );
+            pass.set_bind_group(material_group, &materials[draw.material], &[]);
             pass.draw_indexed(
                 draw.indices.clone(),
                 draw.base_vertex,
@@ -402,6 +424,24 @@ impl GpuScene {
     /// bind the scene's buffers as storage.
     pub fn geometry_group(&self, device: &wgpu::Device) -> Result<&wgpu::BindGroup, &str> {
         self.upload.geometry.group(device, &self.upload.meshes)
+    }
+
+    /// The layout of the visibility shading's group 3: the scene's texture table
+    /// (material_table.wgsl).
+    pub fn texture_table_layout(&self) -> &wgpu::BindGroupLayout {
+        self.upload.texture_table.layout()
+    }
+
+    /// Group 3 of the visibility shading for `scene` (this upload's scene), made on first
+    /// use; an error when the device cannot hold the table
+    /// ([`crate::scene::texture_table::TextureTable::check`]).
+    pub fn texture_table_group(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+    ) -> Result<&wgpu::BindGroup, &str> {
+        self.upload.texture_table.group(device, queue, scene)
     }
 
     /// Whether a full-screen light draw has anything to add: a directional light that

@@ -41,6 +41,25 @@ pub(super) fn create(
     dimension: wgpu::TextureViewDimension,
     texels: &[u8],
 ) -> wgpu::TextureView {
+    let layers = match dimension {
+        wgpu::TextureViewDimension::Cube => 6,
+        _ => 1,
+    };
+    let size = (width, height, layers, mip_level_count);
+    create_layers(device, queue, label, size, format, dimension, texels)
+}
+
+/// A texture of `(width, height, layers, mip levels)` seen as `dimension` (D2Array for
+/// the texture table's arrays), from `texels` as [`create`] takes them.
+pub(super) fn create_layers(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    (width, height, layers, mip_level_count): (u32, u32, u32, u32),
+    format: wgpu::TextureFormat,
+    dimension: wgpu::TextureViewDimension,
+    texels: &[u8],
+) -> wgpu::TextureView {
     device
         .create_texture_with_data(
             queue,
@@ -49,10 +68,7 @@ pub(super) fn create(
                 size: wgpu::Extent3d {
                     width,
                     height,
-                    depth_or_array_layers: match dimension {
-                        wgpu::TextureViewDimension::Cube => 6,
-                        _ => 1,
-                    },
+                    depth_or_array_layers: layers,
                 },
                 mip_level_count,
                 sample_count: 1,

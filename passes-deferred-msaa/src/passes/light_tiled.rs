@@ -37,11 +37,13 @@
 //!   by default, where nothing was drawn);
 //! - `ids` instead of albedo, normal, material, view depth and emission: a visibility
 //!   buffer (passes/visibility.rs). Each pixel's distinct triangles are rebuilt from the
-//!   scene's geometry, edge pixels are those whose samples show different triangles, and
+//!   scene's geometry (group 2) and their materials sampled from the scene's texture
+//!   table (group 3, made on the first frame: GpuScene::texture_table_group), edge pixels
+//!   are those whose samples show different triangles, and
 //!   `shading: adaptive` shades each triangle once, exactly (pipelines/visibility_msaa_4x.ron);
 //! - `samples` instead of `ids` and `depth`: a visibility buffer rasterised in compute
-//!   (passes/visibility_compute.rs), depth and ID per sample in one graph buffer, whose
-//!   size gives the sample count (pipelines/visibility_compute_4x.ron).
+//!   (passes/visibility_compute.rs), depth and ID per sample in one graph buffer (group 1,
+//!   binding 8), whose size gives the sample count (pipelines/visibility_compute_4x.ron).
 //!
 //! One workgroup of `tile` x `tile` invocations per tile, one per pixel
 //! (light_tiled.wgsl says how): it classifies each pixel as edge or not with
@@ -338,7 +340,6 @@ mod gpu {
     use super::{Depth, TiledDispatch};
     use crate::analysis::{GatedShader, Variant};
     use crate::common::depth::far_depth;
-    use crate::common::gpu::input_pass::Geometry;
     use crate::common::gpu::{per_scene, split_ids, InputPass};
     use crate::common::visibility_samples::fits_binding;
     use crate::gpu_scene::SceneCache;
@@ -352,6 +353,17 @@ mod gpu {
         ids: Option<wgpu::TextureFormat>,
     }
 
+    /// Where visibility_samples.wgsl reads a compute rasteriser's keys: group 1.
+    const KEYS_BINDING: u32 = 8;
+
+    /// The storage buffers group 1 holds besides the textures: the keys, if any.
+    fn keys_binding(depth: &Depth) -> Vec<(u32, graph_core::BufferHandle)> {
+        match depth {
+            Depth::Keys(keys) => vec![(KEYS_BINDING, *keys)],
+            Depth::Buffer(..) => Vec::new(),
+        }
+    }
+
     pub(super) fn record(
         dispatch: TiledDispatch,
         scenes: Arc<SceneCache>,
@@ -363,41 +375,43 @@ mod gpu {
             let Some(scene) = scenes.for_frame(resources) else {
                 return;
             };
+            let visibility = dispatch.ids.is_some() || matches!(dispatch.depth, Depth::Keys(_));
             let state: &mut InputPass<Key, wgpu::ComputePipeline> =
                 per_scene(&mut state, &scene, || {
-                    let geometry = match (&dispatch.depth, dispatch.ids) {
-                        (Depth::Keys(_), _) => Geometry::TrianglesAndKeys,
-                        (Depth::Buffer(..), Some(_)) => Geometry::Triangles,
-                        (Depth::Buffer(..), None) => Geometry::None,
-                    };
                     InputPass::with_geometry(
                         resources,
                         "light_tiled",
                         &dispatch.source,
                         Some(&scene),
                         &dispatch.inputs,
-                        geometry,
+                        &keys_binding(&dispatch.depth),
+                        visibility,
                     )
                 });
-            // What a visibility buffer's shading binds besides the textures, or why the
-            // device cannot bind it.
-            let geometry = match state.geometry {
-                Geometry::None => None,
-                _ => match scene.geometry_group(device) {
-                    Ok(group) => Some(group),
-                    Err(why) => return resources.fail(why),
-                },
-            };
-            let keys = match dispatch.depth {
-                Depth::Keys(keys) => {
-                    let buffer = resources.buffer(keys);
-                    if let Err(why) = fits_binding(device, buffer) {
-                        return resources.fail(why);
+            // What a visibility buffer's shading binds besides its inputs (the scene's
+            // geometry and texture table), or why the device cannot.
+            let visibility_groups = match visibility {
+                false => None,
+                true => {
+                    let geometry = match scene.geometry_group(device) {
+                        Ok(group) => group,
+                        Err(why) => return resources.fail(why),
+                    };
+                    // A scene on the device has a host scene (for_frame returned it).
+                    let table = scenes.scene().ok_or("no scene").and_then(|host_scene| {
+                        scene.texture_table_group(device, resources.queue, host_scene)
+                    });
+                    match table {
+                        Ok(table) => Some((geometry, table)),
+                        Err(why) => return resources.fail(format!("texture table: {why}")),
                     }
-                    state.keys_group(resources, buffer)
                 }
-                Depth::Buffer(..) => None,
             };
+            if let Depth::Keys(keys) = dispatch.depth {
+                if let Err(why) = fits_binding(device, resources.buffer(keys)) {
+                    return resources.fail(why);
+                }
+            }
             let convention = match dispatch.depth {
                 Depth::Buffer(rule, depth) => rule.convention(resources.shape(depth).format),
                 Depth::Keys(_) => DepthConvention::ReversedZ,
@@ -435,11 +449,9 @@ mod gpu {
                 .set_bind_group(0, scene.bind_group(convention), &[]);
             ctx.pass
                 .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            if let Some(group) = geometry {
-                ctx.pass.set_bind_group(2, group, &[]);
-            }
-            if let Some(group) = keys {
-                ctx.pass.set_bind_group(3, &group, &[]);
+            if let Some((geometry, table)) = visibility_groups {
+                ctx.pass.set_bind_group(2, geometry, &[]);
+                ctx.pass.set_bind_group(3, table, &[]);
             }
             let out = resources.shape(dispatch.output);
             ctx.pass.dispatch_workgroups(

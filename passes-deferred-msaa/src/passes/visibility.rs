@@ -22,8 +22,9 @@
 //! NVIDIA and lavapipe do), else `rg16uint`, which WebGPU multisamples, with the 32 bits
 //! split: pipelines declare `format: "r32uint", fallback: "rg16uint"`, and `rgraph explain`
 //! shows which a device got. Alpha MASK materials discard below the cutoff using their base
-//! colour factor and vertex colour alpha: textured materials need the G-buffer path
-//! (pipelines/visibility_msaa_4x.ron sends textured scenes there). Alpha BLEND meshes are
+//! colour factor and vertex colour alpha: a MASK material with a base-colour texture
+//! needs the G-buffer path (scene feature `untabled_textures`: pipelines/visibility_msaa_4x.ron
+//! sends such scenes there). Alpha BLEND meshes are
 //! left to the `transparent` pass, as with a G-buffer.
 
 use serde::Deserialize;

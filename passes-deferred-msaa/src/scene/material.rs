@@ -83,6 +83,18 @@ impl Material {
         self.emissive_factor.map(|c| c * self.emissive_strength)
     }
 
+    /// The material's textures in the shaders' slot order (material.wgsl's `slot_uv`):
+    /// base color, emissive, metallicRoughness, normal, occlusion.
+    pub fn texture_slots(&self) -> [Option<TextureRef>; 5] {
+        [
+            self.base_color_texture,
+            self.emissive_texture,
+            self.metallic_roughness_texture,
+            self.normal_texture,
+            self.occlusion_texture,
+        ]
+    }
+
     /// Whether the material emits light at all.
     pub fn is_emissive(&self) -> bool {
         self.emission().iter().any(|&c| c > 0.0)

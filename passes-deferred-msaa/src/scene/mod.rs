@@ -28,6 +28,7 @@ mod procedural;
 mod stats;
 mod tangents;
 mod texture;
+pub mod texture_table;
 
 use std::path::Path;
 

@@ -1,23 +1,10 @@
-// A material's textures (group 1, one bind group per material: gpu_scene/materials.rs) and
-// what the G-buffer and forward passes read from them, so every pipeline renders the same
-// material model. Composed after common.wgsl and scene.wgsl.
+// The material model: what a material's factors and texels make of a surface, one source
+// for every pass that shades the scene (the G-buffer and forward passes fetch texels from
+// a material's bound textures, material_bound.wgsl; the visibility buffer's shading from
+// the scene's texture table, material_table.wgsl), so every pipeline renders the same
+// material. Composed after common.wgsl and scene.wgsl, before one of those two.
 //
-// A material without one of these textures binds a white texel, which multiplies its
-// factor by exactly one.
-
-@group(1) @binding(0) var base_color_tex: texture_2d<f32>;
-@group(1) @binding(1) var base_color_sampler: sampler;
-@group(1) @binding(2) var emissive_tex: texture_2d<f32>;
-@group(1) @binding(3) var emissive_sampler: sampler;
-// Linear data, glTF's packing: blue is metalness, green roughness.
-@group(1) @binding(4) var metal_rough_tex: texture_2d<f32>;
-@group(1) @binding(5) var metal_rough_sampler: sampler;
-// Linear tangent-space normals, glTF's convention: +X along the tangent, +Y up the image.
-@group(1) @binding(6) var normal_tex: texture_2d<f32>;
-@group(1) @binding(7) var normal_sampler: sampler;
-// Linear data: red is ambient occlusion.
-@group(1) @binding(8) var occlusion_tex: texture_2d<f32>;
-@group(1) @binding(9) var occlusion_sampler: sampler;
+// A texture a material lacks reads as white, which multiplies its factor by exactly one.
 
 // Which material features the scene has (analysis/variant.rs); the defaults are the
 // general shader. Without textures of a kind every material's is white, without emission
@@ -44,7 +31,8 @@ struct MaterialSample {
     occlusion: f32,
 }
 
-// The texture coordinates the texture of `slot` (its binding / 2) samples: TEXCOORD_0
+// The texture coordinates the texture of `slot` (0 base color, 1 emissive, 2
+// metallicRoughness, 3 normal, 4 occlusion) samples: TEXCOORD_0
 // `uv0` or TEXCOORD_1 `uv1`, as the material says, through its KHR_texture_transform.
 fn slot_uv(m: MaterialData, slot: u32, uv0: vec2<f32>, uv1: vec2<f32>) -> vec2<f32> {
     let uv = select(uv0, uv1, ((m.uv_sets >> slot) & 1u) != 0u);
@@ -52,32 +40,35 @@ fn slot_uv(m: MaterialData, slot: u32, uv0: vec2<f32>, uv1: vec2<f32>) -> vec2<f
     return transforms[slot] * vec3<f32>(uv, 1.0);
 }
 
-// Material `m` at texture coordinates `uv0` and `uv1` with vertex color `color` (COLOR_0,
-// white without one), which multiplies the base color as glTF says. Sampled in uniform
-// control flow: callers discard only after this returns.
-fn sample_material(m: MaterialData, uv0: vec2<f32>, uv1: vec2<f32>, color: vec4<f32>) -> MaterialSample {
-    var out = MaterialSample(m.base_color * color, vec3<f32>(0.0), m.metallic, m.roughness, vec3<f32>(0.0, 0.0, 1.0), 1.0);
-    if TEXTURES {
-        out.base *= textureSample(base_color_tex, base_color_sampler, slot_uv(m, 0u, uv0, uv1));
-    }
+// A material's five texels at one point, in slot order (base color, emissive,
+// metallicRoughness, normal, occlusion); white where a material has no such texture or
+// the scene's variant compiles its sampling out.
+struct MaterialTexels {
+    base: vec4<f32>,
+    emissive: vec4<f32>,
+    metal_rough: vec4<f32>,
+    normal: vec4<f32>,
+    occlusion: vec4<f32>,
+}
+
+fn white_texels() -> MaterialTexels {
+    let white = vec4<f32>(1.0);
+    return MaterialTexels(white, white, white, white, white);
+}
+
+// Material `m` with texels `t` and vertex color `color` (COLOR_0, white without one),
+// which multiplies the base color as glTF says.
+fn material_from_texels(m: MaterialData, color: vec4<f32>, t: MaterialTexels) -> MaterialSample {
+    var out = MaterialSample(m.base_color * color * t.base, vec3<f32>(0.0), m.metallic * t.metal_rough.b, m.roughness * t.metal_rough.g, vec3<f32>(0.0, 0.0, 1.0), 1.0);
     if EMISSIVE {
-        out.emission = m.emission;
-        if EMISSIVE_TEXTURES {
-            out.emission *= textureSample(emissive_tex, emissive_sampler, slot_uv(m, 1u, uv0, uv1)).rgb;
-        }
-    }
-    if METAL_ROUGH_TEXTURES {
-        let packed = textureSample(metal_rough_tex, metal_rough_sampler, slot_uv(m, 2u, uv0, uv1));
-        out.metallic *= packed.b;
-        out.roughness *= packed.g;
+        out.emission = m.emission * t.emissive.rgb;
     }
     if NORMAL_TEXTURES {
-        let s = textureSample(normal_tex, normal_sampler, slot_uv(m, 3u, uv0, uv1)).xyz * 2.0 - 1.0;
+        let s = t.normal.xyz * 2.0 - 1.0;
         out.tangent_normal = vec3<f32>(s.xy * m.normal_scale, s.z);
     }
     if OCCLUSION_TEXTURES {
-        let texel = textureSample(occlusion_tex, occlusion_sampler, slot_uv(m, 4u, uv0, uv1)).r;
-        out.occlusion = 1.0 + m.occlusion_strength * (texel - 1.0);
+        out.occlusion = 1.0 + m.occlusion_strength * (t.occlusion.r - 1.0);
     }
     return out;
 }

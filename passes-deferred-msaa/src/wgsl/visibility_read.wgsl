@@ -3,27 +3,30 @@
 // (visibility_textures.wgsl for a raster pass's targets, visibility_samples.wgsl for a
 // compute rasteriser's buffer); the triangles from the scene's geometry (group 2,
 // geometry.wgsl). Each triangle a pixel shows is rebuilt once, at the mean position of
-// the samples it covers (the pixel center when it covers them all, as a G-buffer pass's centroid
-// interpolation places it): barycentrics where the ray through that point meets the
-// triangle's plane, then its attributes and material as the G-buffer pass computes them.
-// Untextured materials only: pipelines send textured scenes through a G-buffer
-// (pipelines/visibility_msaa_4x.ron). Composed with view_depth_from_depth.wgsl, which the
-// shading pass's per-pixel surface takes its depth from.
+// the samples it covers (the pixel center when it covers them all, as a G-buffer pass's
+// centroid interpolation places it): barycentrics where the ray through that point meets the
+// triangle's plane, then its attributes and material as the G-buffer pass computes them,
+// textures from the scene's texture table (material_table.wgsl, group 3). Composed after
+// geometry.wgsl, material.wgsl and material_table.wgsl, and with
+// view_depth_from_depth.wgsl, which the shading pass's per-pixel surface takes its depth
+// from.
 
 // Samples of one triangle are one fragment, exactly (light_tiled.wgsl's same_fragment).
 const SURFACE_IDS: bool = true;
 
-// Triangle `id` (+ 1) as seen through pixel coordinate `at`.
-fn rebuild(id: u32, at: vec2<f32>) -> GSample {
-    let triangle = id - 1u;
-    let mesh = meshes[mesh_of_triangle(triangle)];
-    let v0 = pull_vertex(3u * triangle, mesh);
-    let v1 = pull_vertex(3u * triangle + 1u, mesh);
-    let v2 = pull_vertex(3u * triangle + 2u, mesh);
-    let p0 = (mesh.model * vec4<f32>(v0.position, 1.0)).xyz;
-    let e1 = (mesh.model * vec4<f32>(v1.position, 1.0)).xyz - p0;
-    let e2 = (mesh.model * vec4<f32>(v2.position, 1.0)).xyz - p0;
-    // Möller-Trumbore on the ray through `at` (two unprojected points: any projection).
+// Where the ray through pixel coordinate `at` meets the plane of the triangle at `p0`
+// with edges `e1` and `e2` (Möller-Trumbore; the ray from two unprojected points: any
+// projection): the barycentrics there, inside the triangle or not (the plane's, so one
+// pixel over they give the texture coordinates' change per pixel), the ray, and the
+// distance along it.
+struct PlaneHit {
+    b: vec3<f32>,
+    origin: vec3<f32>,
+    ray: vec3<f32>,
+    along: f32,
+}
+
+fn hit_plane(at: vec2<f32>, p0: vec3<f32>, e1: vec3<f32>, e2: vec3<f32>) -> PlaneHit {
     let origin = unproject(at, 0.5);
     let ray = unproject(at, 0.25) - origin;
     let pv = cross(ray, e2);
@@ -33,27 +36,73 @@ fn rebuild(id: u32, at: vec2<f32>) -> GSample {
     let q = cross(t, e1);
     let u = dot(t, pv) * inverse;
     let v = dot(ray, q) * inverse;
-    let along = dot(e2, q) * inverse;
-    let b = vec3<f32>(1.0 - u - v, u, v);
+    return PlaneHit(vec3<f32>(1.0 - u - v, u, v), origin, ray, dot(e2, q) * inverse);
+}
+
+// The texture coordinates of vertices `v0`, `v1`, `v2` at barycentrics `b`.
+fn tex_coords(b: vec3<f32>, v0: PulledVertex, v1: PulledVertex, v2: PulledVertex) -> TexCoords {
+    return TexCoords(b.x * v0.uv + b.y * v1.uv + b.z * v2.uv, b.x * v0.uv1 + b.y * v1.uv1 + b.z * v2.uv1);
+}
+
+// Triangle `id` (+ 1) as seen through pixel coordinate `at`: its attributes and material
+// (textures from the scene's texture table, filtered for the pixel's footprint there) as
+// the G-buffer pass computes them.
+fn rebuild(id: u32, at: vec2<f32>) -> GSample {
+    let triangle = id - 1u;
+    let mesh = meshes[mesh_of_triangle(triangle)];
+    let v0 = pull_vertex(3u * triangle, mesh);
+    let v1 = pull_vertex(3u * triangle + 1u, mesh);
+    let v2 = pull_vertex(3u * triangle + 2u, mesh);
+    let p0 = (mesh.model * vec4<f32>(v0.position, 1.0)).xyz;
+    let e1 = (mesh.model * vec4<f32>(v1.position, 1.0)).xyz - p0;
+    let e2 = (mesh.model * vec4<f32>(v2.position, 1.0)).xyz - p0;
+    let hit = hit_plane(at, p0, e1, e2);
+    let b = hit.b;
+    // Ray differentials: the plane's barycentrics change across the 2x2 quad the pixel lies
+    // in (from its even corner, keeping `at`'s place in the pixel), as a fragment shader's
+    // coarse derivatives are taken. Lavapipe's are; differences at the pixel itself would
+    // pick other mip levels where the change varies from pixel to pixel (a grazing floor).
+    // Untextured materials skip them (every scene without textures).
+    var right = b;
+    var down = b;
+    if material_textured(mesh.material) {
+        let quad = at - vec2<f32>(vec2<u32>(at) & vec2<u32>(1u));
+        let base = hit_plane(quad, p0, e1, e2).b;
+        right += hit_plane(quad + vec2<f32>(1.0, 0.0), p0, e1, e2).b - base;
+        down += hit_plane(quad + vec2<f32>(0.0, 1.0), p0, e1, e2).b - base;
+    }
     // Counter-clockwise on screen is the front (wgpu's default front face): the geometric
     // normal faces the camera.
-    let front = dot(cross(e1, e2), ray) < 0.0;
+    let front = dot(cross(e1, e2), hit.ray) < 0.0;
     let material = materials[mesh.material];
     let color = b.x * v0.color + b.y * v1.color + b.z * v2.color;
     let normal = mesh.normal_matrix * (b.x * v0.normal + b.y * v1.normal + b.z * v2.normal);
+    // Tangents lie in the surface: they transform with the model matrix (gbuffer.wgsl).
+    let tangent_xyz = b.x * v0.tangent.xyz + b.y * v1.tangent.xyz + b.z * v2.tangent.xyz;
+    let tangent = vec4<f32>((mesh.model * vec4<f32>(tangent_xyz, 0.0)).xyz, b.x * v0.tangent.w + b.y * v1.tangent.w + b.z * v2.tangent.w);
+    let m = sample_material_table(
+        mesh.material,
+        material,
+        color,
+        tex_coords(b, v0, v1, v2),
+        tex_coords(right, v0, v1, v2),
+        tex_coords(down, v0, v1, v2),
+    );
+    let mapped = shading_normal(normal, tangent, m.tangent_normal);
     var g: GSample;
-    g.albedo = (material.base_color * color).rgb;
-    g.occlusion = 1.0;
-    // Back faces reach here only for double-sided materials: light their other side.
-    g.normal = unit_normal(select(-normal, normal, front));
-    g.metallic = material.metallic;
-    g.roughness = material.roughness;
+    g.albedo = m.base.rgb;
+    g.occlusion = m.occlusion;
+    // Back faces reach here only for double-sided materials: light their other side (the
+    // normal texture's perturbation turned around with it).
+    g.normal = unit_normal(select(-mapped, mapped, front));
+    g.metallic = m.metallic;
+    g.roughness = m.roughness;
     g.flags = material.flags;
     g.id = id;
-    g.emission = material.emission;
+    g.emission = m.emission;
     // The fragment's view depth where it is rebuilt, as a G-buffer stores it: one per
     // triangle and pixel.
-    g.view_depth = dot(origin + along * ray, camera.forward);
+    g.view_depth = dot(hit.origin + hit.along * hit.ray, camera.forward);
     return g;
 }
 

@@ -1,14 +1,17 @@
 //! A pass's textures as one bind group (group 1 of the deferred shaders, render or
 //! compute), made again every frame because the pool may lend a slot different memory,
-//! with the linear sampler of any input read filtered.
+//! with the linear sampler of any input read filtered and any storage buffers it reads.
 
 use graph_core::gpu::FrameResources;
+use graph_core::BufferHandle;
 
 use crate::common::textures::{Input, Texels};
 
 pub(crate) struct TextureBindings {
     pub layout: wgpu::BindGroupLayout,
     bindings: Vec<Input>,
+    /// Graph buffers read as read-only storage, by binding.
+    buffers: Vec<(u32, BufferHandle)>,
     /// The clamp-to-edge linear sampler `Texels::Filtered` inputs are read through; made
     /// only for passes that have one.
     sampler: Option<wgpu::Sampler>,
@@ -17,6 +20,15 @@ pub(crate) struct TextureBindings {
 impl TextureBindings {
     /// The layout for `bindings` as the plan shapes their textures.
     pub fn new(resources: &FrameResources<'_>, bindings: &[Input]) -> TextureBindings {
+        Self::with_buffers(resources, bindings, &[])
+    }
+
+    /// [`new`](Self::new), and read-only storage `buffers` at their bindings.
+    pub fn with_buffers(
+        resources: &FrameResources<'_>,
+        bindings: &[Input],
+        buffers: &[(u32, BufferHandle)],
+    ) -> TextureBindings {
         let visibility = wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
         let mut entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
             .iter()
@@ -51,6 +63,16 @@ impl TextureBindings {
                 }
             })
             .collect();
+        entries.extend(buffers.iter().map(|&(binding, _)| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: true },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        }));
         entries.extend(
             samplers(bindings).map(|binding| wgpu::BindGroupLayoutEntry {
                 binding,
@@ -76,6 +98,7 @@ impl TextureBindings {
         TextureBindings {
             layout,
             bindings: bindings.to_vec(),
+            buffers: buffers.to_vec(),
             sampler,
         }
     }
@@ -91,6 +114,10 @@ impl TextureBindings {
                 ),
             })
             .collect();
+        entries.extend(self.buffers.iter().map(|&(binding, buffer)| wgpu::BindGroupEntry {
+            binding,
+            resource: resources.buffer(buffer).as_entire_binding(),
+        }));
         if let Some(sampler) = &self.sampler {
             entries.extend(
                 samplers(&self.bindings).map(|binding| wgpu::BindGroupEntry {

@@ -127,7 +127,12 @@ pub(crate) fn record_with(
         }
         let layer = draw.layer;
         let redraws = state.inputs.is_some();
-        scene.draw_meshes(ctx.pass, 1, layer, |pass, _, material| {
+        // A scene on the device has a host scene (for_frame returned it).
+        let Some(host_scene) = scenes.scene() else {
+            return;
+        };
+        let materials = scene.material_groups(device, resources.queue, host_scene);
+        scene.draw_meshes(ctx.pass, (1, materials), layer, |pass, _, material| {
             let key = Key {
                 targets: targets.clone(),
                 depth: depth.format,
