@@ -738,7 +738,8 @@ fn a_callback_that_cannot_record_fails_the_frame_naming_its_pass() {
     let mut pass = g.add_render_pass("too big");
     let out = pass.color_output(target, ColorLoad::Clear([0.0; 4]));
     pass.render(|ctx| {
-        ctx.resources.fail("the scene's vertices exceed the storage binding limit");
+        ctx.resources
+            .fail("the scene's vertices exceed the storage binding limit");
         ctx.resources.fail("a second reason is not kept");
     });
     g.export(out);

@@ -95,11 +95,31 @@ fn unlit_pixels_through_the_visibility_buffer_are_the_average_of_their_covered_s
 #[test]
 fn the_compute_raster_renders_the_hardware_raster_s_image() {
     for (pipelines, scene, edit, name) in [
-        ((COMPUTE, VISIBILITY), "builtin:spheres", unchanged as fn(&mut Scene), "spheres"),
+        (
+            (COMPUTE, VISIBILITY),
+            "builtin:spheres",
+            unchanged as fn(&mut Scene),
+            "spheres",
+        ),
         ((COMPUTE, VISIBILITY), "builtin:dense", unchanged, "dense"),
-        ((COMPUTE, VISIBILITY), "builtin:lights?count=64", unchanged, "64 lights"),
-        ((COMPUTE, VISIBILITY), "builtin:dense", mixed, "dense, mixed materials"),
-        ((COMPUTE, VISIBILITY), "builtin:spheres", past_a_million_triangles, "IDs past 2^20"),
+        (
+            (COMPUTE, VISIBILITY),
+            "builtin:lights?count=64",
+            unchanged,
+            "64 lights",
+        ),
+        (
+            (COMPUTE, VISIBILITY),
+            "builtin:dense",
+            mixed,
+            "dense, mixed materials",
+        ),
+        (
+            (COMPUTE, VISIBILITY),
+            "builtin:spheres",
+            past_a_million_triangles,
+            "IDs past 2^20",
+        ),
         (
             ("visibility_compute_noaa.ron", "visibility_noaa.ron"),
             "builtin:dense",
@@ -108,8 +128,14 @@ fn the_compute_raster_renders_the_hardware_raster_s_image() {
         ),
     ] {
         let share = deferred_support::agreement(pipelines, scene, edit, (960, 540));
-        eprintln!("{name}: {:.4}% within 1/255 of the hardware raster", share * 100.0);
-        assert!(share >= 0.995, "{name}: only {share} of pixels within 1/255");
+        eprintln!(
+            "{name}: {:.4}% within 1/255 of the hardware raster",
+            share * 100.0
+        );
+        assert!(
+            share >= 0.995,
+            "{name}: only {share} of pixels within 1/255"
+        );
     }
 }
 
@@ -229,9 +255,10 @@ fn tone_mapping_in_compute_stores_what_an_srgb_target_holds() {
                 })
                 .features(features.clone());
             if fragment {
-                render = render
-                    .edit(", stage: compute)", ")")
-                    .edit("\"color\": Texture(format: \"rgba8unorm\"", "\"color\": Texture(format: \"rgba8unorm-srgb\"");
+                render = render.edit(", stage: compute)", ")").edit(
+                    "\"color\": Texture(format: \"rgba8unorm\"",
+                    "\"color\": Texture(format: \"rgba8unorm-srgb\"",
+                );
             }
             render.run(&gpu).image(&gpu, "color")
         };

@@ -10,7 +10,6 @@ use wgpu_types::{
 
 use crate::condition::{self, DEVICE_CONDITIONS};
 
-
 /// What a device can do, as far as graph validation cares.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct DeviceProfile {
@@ -40,7 +39,9 @@ impl DeviceProfile {
     /// `features` with the [device conditions](DEVICE_CONDITIONS) as this device has them:
     /// the caller's own device names are replaced.
     pub fn conditions(&self, features: &condition::Features) -> condition::Features {
-        let theirs = features.iter().filter(|f| !condition::is_device_condition(f));
+        let theirs = features
+            .iter()
+            .filter(|f| !condition::is_device_condition(f));
         let ours = DEVICE_CONDITIONS
             .iter()
             .filter(|(_, needs)| self.features.contains(*needs))

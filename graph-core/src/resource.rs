@@ -224,7 +224,9 @@ impl BufferDesc {
     /// rejects what exceeds the device's limit).
     pub fn bytes(&self, (width, height): (u32, u32)) -> u64 {
         let samples = u64::from(width) * u64::from(height) * u64::from(self.samples);
-        self.per_sample.saturating_mul(samples).saturating_add(self.size)
+        self.per_sample
+            .saturating_mul(samples)
+            .saturating_add(self.size)
     }
 }
 

@@ -285,14 +285,23 @@ fn validation_checks_a_device_branch_on_a_profile_without_the_device_feature() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("fast.ron");
     std::fs::write(&path, device_branches("bc1-rgba-unorm")).unwrap();
-    let errors = validate_file(&path, &Registry::with_builtins(), &CompileOptions::default())
-        .expect_err("the fast branch is invalid");
+    let errors = validate_file(
+        &path,
+        &Registry::with_builtins(),
+        &CompileOptions::default(),
+    )
+    .expect_err("the fast branch is invalid");
     assert!(
         errors.to_string().contains(r#""scratch""#)
             && errors.to_string().contains("bc1-rgba-unorm"),
         "{errors}"
     );
     std::fs::write(&path, device_branches("rgba8unorm")).unwrap();
-    validate_file(&path, &Registry::with_builtins(), &CompileOptions::default()).unwrap();
+    validate_file(
+        &path,
+        &Registry::with_builtins(),
+        &CompileOptions::default(),
+    )
+    .unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
 }

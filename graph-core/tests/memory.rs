@@ -208,7 +208,8 @@ fn buffers_sized_per_sample_resolve_against_the_output_size() {
     // 2^28 bytes is WebGPU's default buffer size limit: 4096 x 2049 x 32 exceeds it.
     let errors = at((4096, 2049)).unwrap_err().to_string();
     assert!(
-        errors.contains("\"samples\"") && errors.contains("268566528 bytes exceed the buffer size limit"),
+        errors.contains("\"samples\"")
+            && errors.contains("268566528 bytes exceed the buffer size limit"),
         "{errors}"
     );
 }

@@ -391,7 +391,9 @@ pub(crate) fn texture_desc(
     }
 }
 
-/// The least the buffer holds: a buffer sized per pixel at a 1x1 output.
+/// The least the buffer holds: a buffer sized per sample at a 1x1 output.
 fn buffer_size(pass: &PassBuilder<'_>, handle: BufferHandle) -> u64 {
-    pass.resource(handle).buffer().map_or(0, |b| b.bytes((1, 1)))
+    pass.resource(handle)
+        .buffer()
+        .map_or(0, |b| b.bytes((1, 1)))
 }

@@ -101,12 +101,17 @@ fn copy_buffer(pass: &mut PassBuilder<'_>, slots: &mut Slots<'_>) -> Result<(), 
     let dst = slots.write::<Buffer>("dst", |t| pass.buffer(t.handle, BufferRole::CopyDst))?;
     // The byte count is fixed when the pass is set up, before an output size exists.
     for (slot, handle) in [("src", src), ("dst", dst)] {
-        if pass.resource(handle).buffer().is_some_and(|b| b.per_sample != 0) {
+        if pass
+            .resource(handle)
+            .buffer()
+            .is_some_and(|b| b.per_sample != 0)
+        {
             return Err(PluginError::Slot {
                 slot: slot.into(),
                 resource: slots.resource(slot).unwrap_or(slot).to_owned(),
-                why: "is sized per sample of the output; copy_buffer copies buffers of a fixed size"
-                    .into(),
+                why:
+                    "is sized per sample of the output; copy_buffer copies buffers of a fixed size"
+                        .into(),
             });
         }
     }

@@ -31,7 +31,8 @@ pub(crate) fn sample_count(
             why: "is not a buffer".into(),
         });
     };
-    let fits = desc.size == 0 && desc.per_sample == KEY_BYTES && SAMPLE_COUNTS.contains(&desc.samples);
+    let fits =
+        desc.size == 0 && desc.per_sample == KEY_BYTES && SAMPLE_COUNTS.contains(&desc.samples);
     if !fits {
         return Err(PluginError::Slot {
             slot: slot.to_owned(),
@@ -51,7 +52,7 @@ pub(crate) fn sample_count(
 /// reason if not (the output too large for it at its sample count).
 #[cfg(feature = "gpu")]
 pub(crate) fn fits_binding(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<(), String> {
-    let limit = u64::from(device.limits().max_storage_buffer_binding_size);
+    let limit = device.limits().max_storage_buffer_binding_size;
     match buffer.size() <= limit {
         true => Ok(()),
         false => Err(format!(

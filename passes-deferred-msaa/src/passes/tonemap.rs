@@ -166,9 +166,10 @@ impl Plugin for Tonemap {
             }
             TonemapStage::Compute => {
                 let want = Want::new("the displayed output, a storage texture", STORED);
-                let (target, _) = textures::output(slots, pass, "color", want.samples(1), |pass, h, _| {
-                    pass.storage_write(h)
-                })?;
+                let (target, _) =
+                    textures::output(slots, pass, "color", want.samples(1), |pass, h, _| {
+                        pass.storage_write(h)
+                    })?;
                 inputs.push(Input {
                     binding: 2,
                     texture: target,

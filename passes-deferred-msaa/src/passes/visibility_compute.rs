@@ -38,7 +38,8 @@ pub struct VisibilityCompute(pub(crate) Shared);
 pub struct VisibilityComputeParams {}
 
 /// What the shader needs of the device: 64-bit integers and their atomic min and max.
-pub(crate) const NEEDS: Features = Features::SHADER_INT64.union(Features::SHADER_INT64_ATOMIC_MIN_MAX);
+pub(crate) const NEEDS: Features =
+    Features::SHADER_INT64.union(Features::SHADER_INT64_ATOMIC_MIN_MAX);
 
 /// The pass as set up: what its `gpu` module records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
@@ -146,7 +147,9 @@ mod gpu {
             let Some(scene) = scenes.for_frame(resources) else {
                 return;
             };
-            let state = per_scene(&mut state, &scene, || build(device, &dispatch.source, &scene));
+            let state = per_scene(&mut state, &scene, || {
+                build(device, &dispatch.source, &scene)
+            });
             let geometry = match scene.geometry_group(device) {
                 Ok(group) => group,
                 Err(why) => return resources.fail(why),
@@ -225,7 +228,11 @@ mod gpu {
         let module = module(device, "visibility_compute", source);
         let pipeline_layout = pipeline_layout(
             device,
-            &[Some(scene.layout()), Some(&layout), Some(scene.geometry_layout())],
+            &[
+                Some(scene.layout()),
+                Some(&layout),
+                Some(scene.geometry_layout()),
+            ],
         );
         let pipeline = |entry: &str| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {

@@ -63,16 +63,20 @@ impl TextureBindings {
                 }
             })
             .collect();
-        entries.extend(buffers.iter().map(|&(binding, _)| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: true },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        }));
+        entries.extend(
+            buffers
+                .iter()
+                .map(|&(binding, _)| wgpu::BindGroupLayoutEntry {
+                    binding,
+                    visibility,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                }),
+        );
         entries.extend(
             samplers(bindings).map(|binding| wgpu::BindGroupLayoutEntry {
                 binding,
@@ -114,10 +118,14 @@ impl TextureBindings {
                 ),
             })
             .collect();
-        entries.extend(self.buffers.iter().map(|&(binding, buffer)| wgpu::BindGroupEntry {
-            binding,
-            resource: resources.buffer(buffer).as_entire_binding(),
-        }));
+        entries.extend(
+            self.buffers
+                .iter()
+                .map(|&(binding, buffer)| wgpu::BindGroupEntry {
+                    binding,
+                    resource: resources.buffer(buffer).as_entire_binding(),
+                }),
+        );
         if let Some(sampler) = &self.sampler {
             entries.extend(
                 samplers(&self.bindings).map(|binding| wgpu::BindGroupEntry {
