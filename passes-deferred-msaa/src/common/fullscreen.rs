@@ -43,7 +43,7 @@ mod gpu {
     use graph_core::TextureHandle;
 
     use super::Fullscreen;
-    use crate::common::gpu::{InputPass, PipelineDesc, EDGE_STENCIL};
+    use crate::common::gpu::{per_device, InputPass, PipelineDesc, EDGE_STENCIL};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
 
@@ -71,18 +71,14 @@ mod gpu {
                 },
                 false => None,
             };
-            if state.as_ref().is_some_and(|(built, _)| built != device) {
-                state = None;
-            }
-            let (_, state) = state.get_or_insert_with(|| {
-                let pass = InputPass::new(
+            let state = per_device(&mut state, device, || {
+                InputPass::new(
                     resources,
                     draw.label,
                     &draw.source,
                     scene.as_deref(),
                     &draw.inputs,
-                );
-                (device.clone(), pass)
+                )
             });
             let shape = |h: TextureHandle| resources.shape(h);
             let key = Key {

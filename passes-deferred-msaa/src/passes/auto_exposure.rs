@@ -140,25 +140,21 @@ mod gpu {
     use graph_core::gpu::ComputeContext;
 
     use super::Metering;
-    use crate::common::gpu::InputPass;
+    use crate::common::gpu::{per_device, InputPass};
 
     pub(super) fn record(metering: Metering) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
         let mut state: Option<(wgpu::Device, InputPass<(), wgpu::ComputePipeline>)> = None;
         Box::new(move |ctx| {
             let resources = ctx.resources;
             let device = resources.device;
-            if state.as_ref().is_some_and(|(built, _)| built != device) {
-                state = None;
-            }
-            let (_, state) = state.get_or_insert_with(|| {
-                let pass = InputPass::new(
+            let state = per_device(&mut state, device, || {
+                InputPass::new(
                     resources,
                     "auto_exposure",
                     &metering.source,
                     None,
                     &metering.inputs,
-                );
-                (device.clone(), pass)
+                )
             });
             let (module, layout) = (&state.module, &state.layout);
             let pipeline = state.pipelines.get((), |()| {

@@ -218,7 +218,7 @@ mod gpu {
     use graph_core::gpu::ComputeContext;
 
     use super::TonemapDispatch;
-    use crate::common::gpu::InputPass;
+    use crate::common::gpu::{per_device, InputPass};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
 
@@ -239,18 +239,14 @@ mod gpu {
                 },
                 false => None,
             };
-            if state.as_ref().is_some_and(|(built, _)| built != device) {
-                state = None;
-            }
-            let (_, state) = state.get_or_insert_with(|| {
-                let pass = InputPass::new(
+            let state = per_device(&mut state, device, || {
+                InputPass::new(
                     resources,
                     "tonemap",
                     &dispatch.source,
                     scene.as_deref(),
                     &dispatch.inputs,
-                );
-                (device.clone(), pass)
+                )
             });
             let (module, layout) = (&state.module, &state.layout);
             let pipeline = state.pipelines.get((), |_| {

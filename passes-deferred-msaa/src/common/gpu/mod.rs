@@ -42,3 +42,17 @@ pub(crate) fn per_scene<'s, S>(
     }
     &mut slot.get_or_insert_with(|| (scene.clone(), build())).1
 }
+
+/// What a recorder built for one device, rebuilt by `build` on another: for passes whose
+/// objects do not depend on the scene's upload (the scene's group 0 layout is the same for
+/// every upload).
+pub(crate) fn per_device<'s, S>(
+    slot: &'s mut Option<(wgpu::Device, S)>,
+    device: &wgpu::Device,
+    build: impl FnOnce() -> S,
+) -> &'s mut S {
+    if slot.as_ref().is_some_and(|(built, _)| built != device) {
+        *slot = None;
+    }
+    &mut slot.get_or_insert_with(|| (device.clone(), build())).1
+}
