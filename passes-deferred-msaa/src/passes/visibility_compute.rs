@@ -17,9 +17,11 @@
 //! 0 far), the convention a float depth buffer gets. Needs 64-bit atomic min/max
 //! (`int64_atomics`, a device condition: pipelines/visibility_compute_4x.ron falls back
 //! to nothing, so a device without them gets an error naming the condition). Alpha MASK
-//! draws are covered as if opaque (their cutoff is not tested) and alpha BLEND draws are
-//! left out, as with a G-buffer; the pipelines send scenes with `alpha_mask` or `blend`
-//! (whose transparent pass needs a depth buffer) to the hardware pass.
+//! draws are tested as the hardware pass tests them: their base colour's alpha times the
+//! vertex colour's, at the pixel centre, against the cutoff (a textured base colour's
+//! alpha is not read: such scenes are `untabled_textures`, which the pipelines keep from
+//! this pass). Alpha BLEND draws are left out, as with a G-buffer; the pipelines send
+//! scenes with `blend` (whose transparent pass needs a depth buffer) to the hardware pass.
 
 use serde::Deserialize;
 
@@ -103,7 +105,7 @@ mod gpu {
     use crate::gpu_scene::{GpuScene, SceneCache};
     use crate::scene::DepthConvention;
 
-    /// Triangles too large for one invocation the lists hold (64 bytes each), and their
+    /// Triangles too large for one invocation the lists hold (80 bytes each), and their
     /// items (8 bytes each: up to 16 blocks of 8 x 8 pixels). Beyond them, triangles are
     /// covered by their own invocation: slower, never wrong.
     const LISTED: u64 = 1 << 17;
@@ -121,8 +123,12 @@ mod gpu {
         triangles: u32,
         start: u32,
         mesh: u32,
-        cull: u32,
+        flags: u32,
     }
+
+    /// visibility_raster.wgsl's RasterDraw flags.
+    const CULL: u32 = 1;
+    const MASKED: u32 = 2;
 
     struct State {
         layout: wgpu::BindGroupLayout,
@@ -270,7 +276,7 @@ mod gpu {
             }),
             triangles,
             counts: scratch("visibility_compute counts", 8),
-            listed: scratch("visibility_compute listed", LISTED * 64),
+            listed: scratch("visibility_compute listed", LISTED * 80),
             item_list: scratch("visibility_compute items", ITEMS * 8),
         }
     }
@@ -289,7 +295,13 @@ mod gpu {
                     triangles,
                     start,
                     mesh: draw.instance,
-                    cull: u32::from(!state.double_sided),
+                    flags: match state.double_sided {
+                        true => 0,
+                        false => CULL,
+                    } | match state.masked {
+                        true => MASKED,
+                        false => 0,
+                    },
                 };
                 start += triangles;
                 entry

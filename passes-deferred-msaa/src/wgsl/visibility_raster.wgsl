@@ -23,22 +23,28 @@
 // Composed after common.wgsl (SAMPLES, SAMPLE_POSITIONS), scene.wgsl and geometry.wgsl.
 
 // A draw as the raster pass sees it: `triangles` triangles from `first_triangle` (the
-// scene index buffer's position / 3) of mesh `mesh`, whose back faces are culled when
-// `cull` is 1; `start` the number of triangles of the draws before it.
+// scene index buffer's position / 3) of mesh `mesh`, with `flags` CULL (back faces are
+// dropped) and MASKED (alpha MASK: a pixel whose alpha is below the material's cutoff
+// keeps none of its samples); `start` the number of triangles of the draws before it.
 struct RasterDraw {
     first_triangle: u32,
     triangles: u32,
     start: u32,
     mesh: u32,
-    cull: u32,
+    flags: u32,
 }
 
+const CULL: u32 = 1u;
+const MASKED: u32 = 2u;
+
 // A triangle too large for one invocation: its screen-space corners (x, y in pixels,
-// clip depth), wound so that its area is positive, and its ID + 1.
+// clip depth, 1 / w), wound so that its area is positive, its alpha mask (mask_of) and
+// its ID + 1.
 struct Listed {
     a: vec4<f32>,
     b: vec4<f32>,
     c: vec4<f32>,
+    mask: vec4<f32>,
     id: u32,
 }
 
@@ -112,9 +118,25 @@ fn inside(w: f32, owns: bool) -> bool {
     return w > 0.0 || (w == 0.0 && owns);
 }
 
+// An alpha mask: the corners' alpha over w, and the cutoff (negative: no test). Alpha is
+// interpolated perspective-correct (alpha / w and 1 / w are linear in screen space) at
+// the pixel centre, where the hardware pass's fragment reads it, inside the triangle or
+// not, and the pixel's samples are kept or dropped together, as a discard drops them.
+fn mask_passes(pixel: vec2<u32>, a: vec4<f32>, b: vec4<f32>, c: vec4<f32>, mask: vec4<f32>, area: f32) -> bool {
+    if mask.w < 0.0 {
+        return true;
+    }
+    let p = vec2<f32>(pixel) + 0.5;
+    let l = vec3<f32>(edge_at(b.xy, c.xy, p), edge_at(c.xy, a.xy, p), edge_at(a.xy, b.xy, p)) / area;
+    return dot(l, mask.xyz) >= mask.w * dot(l, vec3<f32>(a.w, b.w, c.w));
+}
+
 // Tests every sample of `pixel` against the triangle (positive area `area`) and keeps
 // the nearer key.
-fn cover_pixel(pixel: vec2<u32>, a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, area: f32, id: u32) {
+fn cover_pixel(pixel: vec2<u32>, a: vec4<f32>, b: vec4<f32>, c: vec4<f32>, mask: vec4<f32>, area: f32, id: u32) {
+    if !mask_passes(pixel, a, b, c, mask, area) {
+        return;
+    }
     let owns = vec3<bool>(top_left(b.xy, c.xy), top_left(c.xy, a.xy), top_left(a.xy, b.xy));
     let base = (pixel.y * output_size().x + pixel.x) * SAMPLES;
     var positions = SAMPLE_POSITIONS;
@@ -134,19 +156,21 @@ fn cover_pixel(pixel: vec2<u32>, a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, area:
 
 // The pixels whose samples may lie in the triangle, clamped to the output: min and max
 // corners, inclusive; empty when max < min.
-fn pixel_bounds(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>) -> vec4<i32> {
+fn pixel_bounds(a: vec4<f32>, b: vec4<f32>, c: vec4<f32>) -> vec4<i32> {
     let size = vec2<f32>(output_size());
     let low = clamp(floor(min(min(a.xy, b.xy), c.xy)), vec2<f32>(0.0), size);
     let high = clamp(floor(max(max(a.xy, b.xy), c.xy)), vec2<f32>(-1.0), size - 1.0);
     return vec4<i32>(vec2<i32>(low), vec2<i32>(high));
 }
 
-// A screen-space triangle: covered here when small, else listed with its items. `cull`:
-// back faces (clockwise in NDC) are dropped.
-fn raster_screen(a_in: vec3<f32>, b_in: vec3<f32>, c_in: vec3<f32>, id: u32, cull: bool) {
+// A screen-space triangle (to_screen's corners, `mask` as cover_pixel takes it): covered
+// here when small, else listed with its items. `cull`: back faces (clockwise in NDC) are
+// dropped.
+fn raster_screen(a_in: vec4<f32>, b_in: vec4<f32>, c_in: vec4<f32>, mask_in: vec4<f32>, id: u32, cull: bool) {
     let a = a_in;
     var b = b_in;
     var c = c_in;
+    var mask = mask_in;
     var area = edge(a.xy, b.xy, c.xy);
     // Edge-on, or not finite (a corner on the camera plane after clipping): no samples.
     if !(abs(area) > 0.0 && abs(area) < 1e30) {
@@ -160,6 +184,7 @@ fn raster_screen(a_in: vec3<f32>, b_in: vec3<f32>, c_in: vec3<f32>, id: u32, cul
         let t = b;
         b = c;
         c = t;
+        mask = mask.xzyw;
         area = -area;
     }
     let bounds = pixel_bounds(a, b, c);
@@ -175,7 +200,7 @@ fn raster_screen(a_in: vec3<f32>, b_in: vec3<f32>, c_in: vec3<f32>, id: u32, cul
         let first_item = atomicAdd(&counts.items, item_count);
         let fits = slot < arrayLength(&listed) && first_item + item_count <= arrayLength(&items);
         if fits {
-            listed[slot] = Listed(vec4<f32>(a, 0.0), vec4<f32>(b, 0.0), vec4<f32>(c, 0.0), id);
+            listed[slot] = Listed(a, b, c, mask, id);
         }
         // A list is full: the items this triangle took that fit are marked empty (other
         // triangles may have taken items after them, so the count stays), and it is
@@ -190,15 +215,22 @@ fn raster_screen(a_in: vec3<f32>, b_in: vec3<f32>, c_in: vec3<f32>, id: u32, cul
     }
     for (var y = bounds.y; y <= bounds.w; y++) {
         for (var x = bounds.x; x <= bounds.z; x++) {
-            cover_pixel(vec2<u32>(vec2<i32>(x, y)), a, b, c, area, id);
+            cover_pixel(vec2<u32>(vec2<i32>(x, y)), a, b, c, mask, area, id);
         }
     }
 }
 
-fn to_screen(clip: vec4<f32>) -> vec3<f32> {
+// A clip-space corner in pixels (x, y), clip depth and 1 / w.
+fn to_screen(clip: vec4<f32>) -> vec4<f32> {
     let ndc = clip.xyz / clip.w;
     let size = camera.viewport;
-    return vec3<f32>((ndc.x * 0.5 + 0.5) * size.x, (0.5 - ndc.y * 0.5) * size.y, ndc.z);
+    return vec4<f32>((ndc.x * 0.5 + 0.5) * size.x, (0.5 - ndc.y * 0.5) * size.y, ndc.z, 1.0 / clip.w);
+}
+
+// The mask of the triangle with clip-space corners `a`, `b`, `c` and alphas `alpha`
+// under `cutoff` (negative: none).
+fn mask_of(a: vec4<f32>, b: vec4<f32>, c: vec4<f32>, alpha: vec3<f32>, cutoff: f32) -> vec4<f32> {
+    return vec4<f32>(alpha / vec3<f32>(a.w, b.w, c.w), cutoff);
 }
 
 // Signed distances to the clip volume's depth planes, positive inside: z >= 0 and
@@ -207,37 +239,48 @@ fn depth_planes(clip: vec4<f32>) -> vec2<f32> {
     return vec2<f32>(clip.z, clip.w - clip.z);
 }
 
-// Clips the triangle against both depth planes (Sutherland-Hodgman: at most five
-// corners) and rasterises the fan of what is left.
-fn raster_clipped(c0: vec4<f32>, c1: vec4<f32>, c2: vec4<f32>, id: u32, cull: bool) {
+// Clips the triangle (clip-space corners and their alphas) against both depth planes
+// (Sutherland-Hodgman: at most five corners, alpha interpolated with them) and
+// rasterises the fan of what is left.
+fn raster_clipped(c0: vec4<f32>, c1: vec4<f32>, c2: vec4<f32>, alpha: vec3<f32>, cutoff: f32, id: u32, cull: bool) {
     var polygon = array<vec4<f32>, 5>(c0, c1, c2, c0, c0);
+    var alphas = array<f32, 5>(alpha.x, alpha.y, alpha.z, 0.0, 0.0);
     var count = 3u;
     for (var plane = 0u; plane < 2u; plane++) {
         var clipped: array<vec4<f32>, 5>;
+        var clipped_alphas: array<f32, 5>;
         var kept = 0u;
         for (var i = 0u; i < count; i++) {
+            let next = (i + 1u) % count;
             let p = polygon[i];
-            let q = polygon[(i + 1u) % count];
+            let q = polygon[next];
             let dp = depth_planes(p)[plane];
             let dq = depth_planes(q)[plane];
             if dp >= 0.0 && kept < 5u {
                 clipped[kept] = p;
+                clipped_alphas[kept] = alphas[i];
                 kept++;
             }
             if (dp >= 0.0) != (dq >= 0.0) && kept < 5u {
-                clipped[kept] = mix(p, q, dp / (dp - dq));
+                let t = dp / (dp - dq);
+                clipped[kept] = mix(p, q, t);
+                clipped_alphas[kept] = mix(alphas[i], alphas[next], t);
                 kept++;
             }
         }
         polygon = clipped;
+        alphas = clipped_alphas;
         count = kept;
         if count < 3u {
             return;
         }
     }
-    let first = to_screen(polygon[0]);
     for (var i = 1u; i + 1u < count; i++) {
-        raster_screen(first, to_screen(polygon[i]), to_screen(polygon[i + 1u]), id, cull);
+        let a = polygon[0];
+        let b = polygon[i];
+        let c = polygon[i + 1u];
+        let mask = mask_of(a, b, c, vec3<f32>(alphas[0], alphas[i], alphas[i + 1u]), cutoff);
+        raster_screen(to_screen(a), to_screen(b), to_screen(c), mask, id, cull);
     }
 }
 
@@ -267,18 +310,30 @@ fn cs_raster(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgro
     let triangle = draw.first_triangle + t - draw.start;
     let mesh = meshes[draw.mesh];
     var clip: array<vec4<f32>, 3>;
+    // Unmasked triangles skip the test (a negative cutoff); masked ones take their base
+    // colour's alpha times each vertex colour's, as visibility.wgsl does.
+    var alpha = vec3<f32>(1.0);
+    var cutoff = -1.0;
+    let masked = (draw.flags & MASKED) != 0u;
+    if masked {
+        cutoff = materials[mesh.material].alpha_cutoff;
+    }
     for (var k = 0u; k < 3u; k++) {
         let position = pull_position(3u * triangle + k, mesh);
         clip[k] = camera.view_proj * (mesh.model * vec4<f32>(position, 1.0));
+        if masked {
+            alpha[k] = materials[mesh.material].base_color.a * pull_vertex(3u * triangle + k, mesh).color.a;
+        }
     }
-    let cull = draw.cull != 0u;
+    let cull = (draw.flags & CULL) != 0u;
     let d0 = depth_planes(clip[0]);
     let d1 = depth_planes(clip[1]);
     let d2 = depth_planes(clip[2]);
     if all(min(min(d0, d1), d2) >= vec2<f32>(0.0)) && min(min(clip[0].w, clip[1].w), clip[2].w) > 0.0 {
-        raster_screen(to_screen(clip[0]), to_screen(clip[1]), to_screen(clip[2]), triangle + 1u, cull);
+        let mask = mask_of(clip[0], clip[1], clip[2], alpha, cutoff);
+        raster_screen(to_screen(clip[0]), to_screen(clip[1]), to_screen(clip[2]), mask, triangle + 1u, cull);
     } else if all(max(max(d0, d1), d2) >= vec2<f32>(0.0)) {
-        raster_clipped(clip[0], clip[1], clip[2], triangle + 1u, cull);
+        raster_clipped(clip[0], clip[1], clip[2], alpha, cutoff, triangle + 1u, cull);
     }
 }
 
@@ -291,9 +346,9 @@ fn cs_raster_items(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invoc
             continue;
         }
         let triangle = listed[item.x];
-        let a = triangle.a.xyz;
-        let b = triangle.b.xyz;
-        let c = triangle.c.xyz;
+        let a = triangle.a;
+        let b = triangle.b;
+        let c = triangle.c;
         let bounds = pixel_bounds(a, b, c);
         let extent = vec2<u32>(bounds.zw - bounds.xy) + 1u;
         let blocks = (extent + BLOCK - 1u) / BLOCK;
@@ -302,7 +357,7 @@ fn cs_raster_items(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invoc
         for (var k = item.y; k < last; k++) {
             let at = vec2<u32>(k % blocks.x, k / blocks.x) * BLOCK + local.xy;
             if all(at < extent) {
-                cover_pixel(vec2<u32>(bounds.xy) + at, a, b, c, area, triangle.id);
+                cover_pixel(vec2<u32>(bounds.xy) + at, a, b, c, triangle.mask, area, triangle.id);
             }
         }
     }
