@@ -118,7 +118,11 @@ fn the_compute_raster_cuts_alpha_masked_pixels_away() {
     };
     let (whole, masked) = (image(unchanged), image(masked_by_height));
     let same = pixels_within(&whole, &masked, 1) as f64 / whole.pixels.len() as f64;
-    assert!(same < 0.8, "only {:.1}% of pixels changed", (1.0 - same) * 100.0);
+    assert!(
+        same < 0.8,
+        "only {:.1}% of pixels changed",
+        (1.0 - same) * 100.0
+    );
 }
 
 /// The compute raster renders the hardware raster's image within 1/255 on at least 99.5%
