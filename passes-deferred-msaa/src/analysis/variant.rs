@@ -108,6 +108,9 @@ pub enum GatedShader {
     Light,
     /// light_tiled.wgsl, of `light_tiled`.
     LightTiled,
+    /// light_tiled.wgsl reading a visibility buffer: it samples the material textures
+    /// itself (material_table.wgsl), so the texture gates apply too.
+    LightTiledVisibility,
     /// forward.wgsl, of `forward`.
     Forward,
     /// transparent.wgsl (forward.wgsl's shading, keeping alpha), of `transparent`.
@@ -131,7 +134,7 @@ impl GatedShader {
         match self {
             GatedShader::GBuffer => "gbuffer.wgsl",
             GatedShader::Light => "light.wgsl",
-            GatedShader::LightTiled => "light_tiled.wgsl",
+            GatedShader::LightTiled | GatedShader::LightTiledVisibility => "light_tiled.wgsl",
             GatedShader::Forward => "forward.wgsl",
             GatedShader::Transparent => "transparent.wgsl",
         }
@@ -154,6 +157,17 @@ impl GatedShader {
             GatedShader::Light | GatedShader::LightTiled => {
                 &[DirectionalLights, PointLights, SpotLights, Environment]
             }
+            GatedShader::LightTiledVisibility => &[
+                DirectionalLights,
+                PointLights,
+                SpotLights,
+                Textures,
+                EmissiveTextures,
+                MetalRoughTextures,
+                NormalTextures,
+                OcclusionTextures,
+                Environment,
+            ],
             GatedShader::Forward | GatedShader::Transparent => &[
                 DirectionalLights,
                 PointLights,
