@@ -135,7 +135,7 @@ mod gpu {
         clear: wgpu::ComputePipeline,
         raster: wgpu::ComputePipeline,
         items: wgpu::ComputePipeline,
-        draws: Option<wgpu::Buffer>,
+        draws: wgpu::Buffer,
         triangles: u32,
         counts: wgpu::Buffer,
         listed: wgpu::Buffer,
@@ -164,19 +164,10 @@ mod gpu {
             if let Err(why) = fits_binding(device, keys) {
                 return resources.fail(why);
             }
-            let placeholder;
-            let draws = match &state.draws {
-                Some(draws) => draws,
-                None => {
-                    // Nothing opaque: the clear runs alone, but the group is whole.
-                    placeholder = empty_draws(device);
-                    &placeholder
-                }
-            };
             let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("visibility_compute"),
                 layout: &state.layout,
-                entries: &[keys, draws, &state.counts, &state.listed, &state.item_list]
+                entries: &[keys, &state.draws, &state.counts, &state.listed, &state.item_list]
                     .into_iter()
                     .zip(0..)
                     .map(|(buffer, binding)| wgpu::BindGroupEntry {
@@ -253,7 +244,12 @@ mod gpu {
                 cache: None,
             })
         };
-        let (draws, triangles) = raster_draws(scene);
+        let (mut draws, triangles) = raster_draws(scene);
+        if draws.is_empty() {
+            // Nothing opaque: one zeroed entry keeps the group whole; the clear runs
+            // alone and nothing reads it.
+            draws.push(bytemuck::Zeroable::zeroed());
+        }
         let scratch = |label, size| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -267,12 +263,10 @@ mod gpu {
             raster: pipeline("cs_raster"),
             items: pipeline("cs_raster_items"),
             layout,
-            draws: (!draws.is_empty()).then(|| {
-                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("visibility_compute draws"),
-                    contents: bytemuck::cast_slice(&draws),
-                    usage: wgpu::BufferUsages::STORAGE,
-                })
+            draws: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("visibility_compute draws"),
+                contents: bytemuck::cast_slice(&draws),
+                usage: wgpu::BufferUsages::STORAGE,
             }),
             triangles,
             counts: scratch("visibility_compute counts", 8),
@@ -308,14 +302,5 @@ mod gpu {
             })
             .collect();
         (draws, start)
-    }
-
-    fn empty_draws(device: &wgpu::Device) -> wgpu::Buffer {
-        device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("visibility_compute draws (none)"),
-            size: std::mem::size_of::<RasterDraw>() as u64,
-            usage: wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        })
     }
 }
