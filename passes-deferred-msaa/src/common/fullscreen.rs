@@ -64,12 +64,8 @@ mod gpu {
         Box::new(move |ctx| {
             let resources = ctx.resources;
             let device = resources.device;
-            let scene = match draw.reads_scene {
-                true => match scenes.for_frame(resources) {
-                    Some(scene) => Some(scene),
-                    None => return,
-                },
-                false => None,
+            let Some(scene) = scenes.for_frame_if(draw.reads_scene, resources) else {
+                return;
             };
             let state = per_device(&mut state, device, || {
                 InputPass::new(

@@ -94,6 +94,20 @@ impl SceneCache {
         self.host.as_ref().map(|h| &*h.scene)
     }
 
+    /// [`for_frame`](Self::for_frame) for a pass that reads the scene only when `reads`:
+    /// `Some(None)` when it does not, `None` when it does and the frame has none (the
+    /// pass then records nothing).
+    pub fn for_frame_if(
+        &self,
+        reads: bool,
+        resources: &graph_core::gpu::FrameResources<'_>,
+    ) -> Option<Option<Arc<GpuScene>>> {
+        match reads {
+            true => self.for_frame(resources).map(Some),
+            false => Some(None),
+        }
+    }
+
     /// The scene for a frame: on the frame's device (uploaded the first time), drawn as
     /// the host's current [`FrameInputs`] say, with its camera set for the output size.
     /// The camera depends only on the aspect ratio, and the shaders never read the
