@@ -319,10 +319,10 @@ fn cs_raster(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgro
         cutoff = materials[mesh.material].alpha_cutoff;
     }
     for (var k = 0u; k < 3u; k++) {
-        let position = pull_position(3u * triangle + k, mesh);
-        clip[k] = camera.view_proj * (mesh.model * vec4<f32>(position, 1.0));
+        let w = vertex_word(3u * triangle + k, mesh);
+        clip[k] = camera.view_proj * (mesh.model * vec4<f32>(position_at(w), 1.0));
         if masked {
-            alpha[k] = materials[mesh.material].base_color.a * pull_vertex(3u * triangle + k, mesh).color.a;
+            alpha[k] = materials[mesh.material].base_color.a * color_at(w).a;
         }
     }
     let cull = (draw.flags & CULL) != 0u;
