@@ -167,14 +167,20 @@ mod gpu {
             let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("visibility_compute"),
                 layout: &state.layout,
-                entries: &[keys, &state.draws, &state.counts, &state.listed, &state.item_list]
-                    .into_iter()
-                    .zip(0..)
-                    .map(|(buffer, binding)| wgpu::BindGroupEntry {
-                        binding,
-                        resource: buffer.as_entire_binding(),
-                    })
-                    .collect::<Vec<_>>(),
+                entries: &[
+                    keys,
+                    &state.draws,
+                    &state.counts,
+                    &state.listed,
+                    &state.item_list,
+                ]
+                .into_iter()
+                .zip(0..)
+                .map(|(buffer, binding)| wgpu::BindGroupEntry {
+                    binding,
+                    resource: buffer.as_entire_binding(),
+                })
+                .collect::<Vec<_>>(),
             });
             let pass = &mut ctx.pass;
             pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
