@@ -40,27 +40,14 @@ fn vertex_f32(w: u32) -> f32 {
     return bitcast<f32>(vertex_words[w]);
 }
 
-// The first word of the vertex at position `index` of the scene's index buffer, in `mesh`.
-fn vertex_word(index: u32, mesh: MeshData) -> u32 {
-    return u32(i32(index_words[index]) + mesh.base_vertex) * VERTEX_WORDS;
-}
-
-fn position_at(w: u32) -> vec3<f32> {
-    return vec3<f32>(vertex_f32(w), vertex_f32(w + 1u), vertex_f32(w + 2u));
-}
-
-fn color_at(w: u32) -> vec4<f32> {
-    return vec4<f32>(unpack2x16unorm(vertex_words[w + 8u]), unpack2x16unorm(vertex_words[w + 9u]));
-}
-
 // The object-space vertex at position `index` of the scene's index buffer, in `mesh`.
 fn pull_vertex(index: u32, mesh: MeshData) -> PulledVertex {
-    let w = vertex_word(index, mesh);
+    let w = u32(i32(index_words[index]) + mesh.base_vertex) * VERTEX_WORDS;
     var v: PulledVertex;
-    v.position = position_at(w);
+    v.position = vec3<f32>(vertex_f32(w), vertex_f32(w + 1u), vertex_f32(w + 2u));
     v.normal = vec3<f32>(vertex_f32(w + 3u), vertex_f32(w + 4u), vertex_f32(w + 5u));
     v.uv = vec2<f32>(vertex_f32(w + 6u), vertex_f32(w + 7u));
-    v.color = color_at(w);
+    v.color = vec4<f32>(unpack2x16unorm(vertex_words[w + 8u]), unpack2x16unorm(vertex_words[w + 9u]));
     v.tangent = vec4<f32>(unpack2x16snorm(vertex_words[w + 10u]), unpack2x16snorm(vertex_words[w + 11u]));
     v.uv1 = vec2<f32>(vertex_f32(w + 12u), vertex_f32(w + 13u));
     return v;
@@ -80,4 +67,10 @@ fn mesh_of_triangle(triangle: u32) -> u32 {
         }
     }
     return low;
+}
+
+// Only the object-space position of pull_vertex's vertex: all a rasteriser needs.
+fn pull_position(index: u32, mesh: MeshData) -> vec3<f32> {
+    let w = u32(i32(index_words[index]) + mesh.base_vertex) * VERTEX_WORDS;
+    return vec3<f32>(vertex_f32(w), vertex_f32(w + 1u), vertex_f32(w + 2u));
 }

@@ -319,11 +319,16 @@ fn cs_raster(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgro
         cutoff = materials[mesh.material].alpha_cutoff;
     }
     for (var k = 0u; k < 3u; k++) {
-        let w = vertex_word(3u * triangle + k, mesh);
-        clip[k] = camera.view_proj * (mesh.model * vec4<f32>(position_at(w), 1.0));
+        // A masked triangle's vertices are pulled whole, once, for their colour too.
+        var position: vec3<f32>;
         if masked {
-            alpha[k] = materials[mesh.material].base_color.a * color_at(w).a;
+            let v = pull_vertex(3u * triangle + k, mesh);
+            position = v.position;
+            alpha[k] = materials[mesh.material].base_color.a * v.color.a;
+        } else {
+            position = pull_position(3u * triangle + k, mesh);
         }
+        clip[k] = camera.view_proj * (mesh.model * vec4<f32>(position, 1.0));
     }
     let cull = (draw.flags & CULL) != 0u;
     let d0 = depth_planes(clip[0]);
