@@ -39,11 +39,17 @@ fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
 const SURFACE_IDS: bool = false;
 
 // Which samples hold one fragment is known only from their values: each sample leads its
-// own here, and light_tiled.wgsl compares values where it needs to.
-fn fragment_leaders(pixel: vec2<i32>) -> array<u32, SAMPLES> {
-    var leaders: array<u32, SAMPLES>;
+// own here (four bits per sample, as light_tiled.wgsl's leader_of reads them), and
+// light_tiled.wgsl compares values where it needs to.
+fn fragment_leaders(pixel: vec2<i32>) -> u32 {
+    var leaders = 0u;
     for (var s = 0u; s < SAMPLES; s++) {
-        leaders[s] = s;
+        leaders |= s << (4u * s);
     }
     return leaders;
+}
+
+// Whether sample `s` shows a surface the light passes shade.
+fn sample_lit(pixel: vec2<i32>, s: u32) -> bool {
+    return (material_flags(pixel, s).x & FLAG_LIT) != 0u;
 }

@@ -156,17 +156,75 @@ fn fragment_surface(pixel: vec2<i32>, mask: u32) -> vec3<f32> {
 struct EntrySurface {
     lit: bool,
     surface: Surface,
+    // What the entry's samples emit, where the pixel does not know it (a visibility
+    // buffer's fragments other than sample 0's are rebuilt only here); 0 for a G-buffer,
+    // whose pixel loaded every sample.
+    emits: vec3<f32>,
 }
 
 // The surface an edge-list entry (`edge_samples`) of the tile at `origin` shades.
 fn entry_surface(origin: vec2<u32>, code: u32) -> EntrySurface {
     let at = code >> 12u;
     let pixel = vec2<i32>(origin + vec2<u32>(at % TILE, at / TILE));
-    let g = load_gsample(pixel, code & 15u);
+    let s = code & 15u;
+    let g = load_gsample(pixel, s);
     let lit = (g.flags & FLAG_LIT) != 0u;
+    var emits = vec3<f32>(0.0);
+    if SURFACE_IDS {
+        emits = emitted(pixel, s, g);
+    }
     // Screen-space AO, when the pass reads it, darkens the ambient term only.
     let surface = surface_of(g, fragment_surface(pixel, (code >> 4u) & 0xffu));
-    return EntrySurface(lit, with_screen_ao(surface, pixel));
+    return EntrySurface(lit, with_screen_ao(surface, pixel), emits);
+}
+
+// Lights edge-list entry `entry` with this batch's `count` lights (batch_lights):
+// ambient and directional light too in the `first` batch; in the `last`, its edge_light
+// slot becomes the light its samples take (no more than HALF_MAX), with what a visibility
+// buffer's entry emits (its pixel knows only sample 0's; a G-buffer's pixel adds each
+// sample's own).
+fn shade_entry(origin: vec2<u32>, entry: u32, first: bool, last: bool, count: u32) {
+    let e = entry_surface(origin, edge_samples[entry]);
+    let slot = 3u * entry;
+    var light = vec3<f32>(0.0);
+    if !first {
+        light = vec3<f32>(edge_light[slot], edge_light[slot + 1u], edge_light[slot + 2u]);
+    }
+    if e.lit {
+        if first {
+            light = ambient_and_directional(e.surface);
+        }
+        for (var l = 0u; l < count; l++) {
+            light += shade_light(e.surface, lights[batch_lights[l]]);
+        }
+    }
+    if last {
+        light = e.emits + min(light, vec3<f32>(HALF_MAX));
+    }
+    edge_light[slot] = light.r;
+    edge_light[slot + 1u] = light.g;
+    edge_light[slot + 2u] = light.b;
+}
+
+// A pixel's fragments, packed four bits per sample: the first sample holding the same
+// fragment as sample `s` (fragment_leaders).
+fn leader_of(leaders: u32, s: u32) -> u32 {
+    return (leaders >> (4u * s)) & 15u;
+}
+
+// The sample whose light sample `s` takes: 0 on a non-edge pixel, else itself, or with
+// ADAPTIVE its fragment's first sample.
+fn source_of(leaders: u32, edge: bool, s: u32) -> u32 {
+    return select(0u, select(s, leader_of(leaders, s), ADAPTIVE), edge);
+}
+
+// The samples that take sample `source`'s light.
+fn source_mask(leaders: u32, edge: bool, source: u32) -> u32 {
+    var mask = 0u;
+    for (var s = 0u; s < SAMPLES; s++) {
+        mask |= u32(source_of(leaders, edge, s) == source) << s;
+    }
+    return mask;
 }
 
 // Whether sample `s` (`gs`) makes its pixel an edge pixel, beside sample 0 (`g0`).
@@ -212,52 +270,57 @@ fn cs_light_tiled(
     workgroupBarrier();
 
     // 1. Classify, a sample at a time, holding only sample 0's surface (a 4x pixel's
-    // surfaces held at once took local memory). `group[s]` is the first sample holding
-    // the same fragment as sample s (a visibility buffer knows it from IDs, and rebuilds
-    // each triangle once; a G-buffer's are compared where ADAPTIVE or the fragments view
-    // needs them); `source[s]` the sample whose light sample s takes: 0 on a non-edge
-    // pixel, else itself, or with ADAPTIVE its fragment's first sample. `emits[s]` is what
-    // sample s emits, and bit s of `lit` says whether its surface is lit.
+    // surfaces held at once took local memory), and the rest as bits (`leaders`, `lit`,
+    // `entries`) rather than arrays indexed by sample. A G-buffer's samples are each
+    // loaded, and compared where ADAPTIVE or the fragments view needs it; a visibility
+    // buffer knows its fragments from IDs and rebuilds only sample 0's triangle here:
+    // the others are rebuilt once, by the invocation that shades their edge-list entry.
+    // `emits[s]` is what sample s emits (a visibility buffer's samples of sample 0's
+    // triangle all emit emits[0]), and bit s of `lit` says whether its surface is lit.
     var g0: GSample;
-    var group: array<u32, SAMPLES>;
-    var source: array<u32, SAMPLES>;
-    // By source sample: the samples that take its light.
-    var masks: array<u32, SAMPLES>;
+    var leaders = 0u;
     var emits: array<vec3<f32>, SAMPLES>;
     var lit = 0u;
     var edge = false;
-    var fragments = 0u;
-    if inside {
-        let leaders = fragment_leaders(pixel);
-        for (var s = 0u; s < SAMPLES; s++) {
-            group[s] = leaders[s];
-            if leaders[s] != s {
-                // An earlier sample's triangle: what it found holds here.
-                emits[s] = emits[leaders[s]];
-                lit |= ((lit >> leaders[s]) & 1u) << s;
-                continue;
+    if inside && SURFACE_IDS {
+        leaders = fragment_leaders(pixel);
+        g0 = load_gsample(pixel, 0u);
+        emits[0] = emitted(pixel, 0u, g0);
+        lit = u32((g0.flags & FLAG_LIT) != 0u);
+        for (var s = 1u; s < SAMPLES; s++) {
+            let leader = leader_of(leaders, s);
+            if leader == s {
+                lit |= u32(sample_lit(pixel, s)) << s;
             }
+            edge = edge || leader != 0u;
+        }
+    } else if inside {
+        for (var s = 0u; s < SAMPLES; s++) {
             let gs = load_gsample(pixel, s);
             if s == 0u {
                 g0 = gs;
             }
             edge = edge || sample_is_edge(g0, gs, s);
-            if (ADAPTIVE || VIEW == VIEW_FRAGMENTS) && !SURFACE_IDS {
+            var leader = s;
+            if ADAPTIVE || VIEW == VIEW_FRAGMENTS {
                 for (var j = 0u; j < s; j++) {
-                    if group[j] == j && same_fragment(load_gsample(pixel, j), gs) {
-                        group[s] = j;
+                    if leader_of(leaders, j) == j && same_fragment(load_gsample(pixel, j), gs) {
+                        leader = j;
                         break;
                     }
                 }
             }
+            leaders |= leader << (4u * s);
             emits[s] = emitted(pixel, s, gs);
             lit |= u32((gs.flags & FLAG_LIT) != 0u) << s;
         }
-        for (var s = 0u; s < SAMPLES; s++) {
-            fragments += u32(group[s] == s);
-            source[s] = select(0u, select(s, group[s], ADAPTIVE), edge);
-            masks[source[s]] |= 1u << s;
-        }
+    }
+    var fragments = 0u;
+    // The samples after 0 that lead an edge-list entry.
+    var entries = 0u;
+    for (var s = 0u; s < SAMPLES; s++) {
+        fragments += u32(leader_of(leaders, s) == s);
+        entries |= u32(s > 0u && edge && source_of(leaders, edge, s) == s) << s;
     }
     let lit0 = (lit & 1u) != 0u;
     var p0 = vec3<f32>(0.0);
@@ -266,7 +329,7 @@ fn cs_light_tiled(
         // samples' (fragment_surface): the mean of the standard sample positions is the
         // center.
         if edge || !STORED_VIEW_DEPTH {
-            p0 = fragment_surface(pixel, masks[0]);
+            p0 = fragment_surface(pixel, source_mask(leaders, edge, 0u));
         } else {
             p0 = center_surface(pixel, 0u);
         }
@@ -274,18 +337,15 @@ fn cs_light_tiled(
     }
     var base = 0u;
     if edge {
-        var extra = 0u;
-        for (var s = 1u; s < SAMPLES; s++) {
-            extra += u32(source[s] == s);
-        }
-        base = atomicAdd(&edge_count, extra);
+        base = atomicAdd(&edge_count, countOneBits(entries));
         var next = base;
         for (var s = 1u; s < SAMPLES; s++) {
-            if source[s] == s {
-                edge_samples[next] = (local << 12u) | (masks[s] << 4u) | s;
+            if ((entries >> s) & 1u) != 0u {
+                let mask = source_mask(leaders, edge, s);
+                edge_samples[next] = (local << 12u) | (mask << 4u) | s;
                 next++;
                 if ((lit >> s) & 1u) != 0u {
-                    include_depth(fragment_surface(pixel, masks[s]));
+                    include_depth(fragment_surface(pixel, mask));
                 }
             }
         }
@@ -305,11 +365,12 @@ fn cs_light_tiled(
     let tile_lit = atomicLoad(&farthest_key) != 0u;
     let nearest = -key_depth(atomicLoad(&nearest_key));
     let farthest = key_depth(atomicLoad(&farthest_key));
-    // Light accumulates in registers; the surfaces are loaded again for each batch
-    // rather than held through it, so that invocations keep few registers. The first
-    // batch adds the ambient and directional light too (a visibility buffer rebuilds an
-    // entry's triangle each time it is loaded).
-    var extra_light: array<vec3<f32>, EDGE_SLOTS>;
+    // Sample 0's light accumulates in registers, an edge entry's in its edge_light
+    // slot (each entry is one invocation's), so that no invocation holds light for
+    // entries it is not shading. An entry's surface is loaded again for each batch
+    // rather than held through it (a visibility buffer rebuilds its triangle each time);
+    // the first batch adds the ambient and directional light, the last writes what the
+    // pixel reads.
     let surface0 = with_screen_ao(surface_of(g0, p0), pixel);
     var light0 = vec3<f32>(0.0);
     if VIEW == VIEW_SHADED && lit0 {
@@ -336,19 +397,8 @@ fn cs_light_tiled(
                         light0 += shade_light(surface0, lights[batch_lights[l]]);
                     }
                 }
-                for (var i = 0u; i < EDGE_SLOTS; i++) {
-                    let entry = local + i * THREADS;
-                    if entry < edges {
-                        let e = entry_surface(origin, edge_samples[entry]);
-                        if e.lit {
-                            if batch == first {
-                                extra_light[i] = ambient_and_directional(e.surface);
-                            }
-                            for (var l = 0u; l < count; l++) {
-                                extra_light[i] += shade_light(e.surface, lights[batch_lights[l]]);
-                            }
-                        }
-                    }
+                for (var entry = local; entry < edges; entry += THREADS) {
+                    shade_entry(origin, entry, batch == first, batch + THREADS >= last, count);
                 }
             }
             workgroupBarrier();
@@ -356,15 +406,6 @@ fn cs_light_tiled(
                 atomicStore(&batch_light_count, 0u);
             }
             workgroupBarrier();
-        }
-    }
-    for (var i = 0u; i < EDGE_SLOTS; i++) {
-        let entry = local + i * THREADS;
-        if VIEW == VIEW_SHADED && entry < edges {
-            let c = min(extra_light[i], vec3<f32>(HALF_MAX));
-            edge_light[3u * entry] = c.r;
-            edge_light[3u * entry + 1u] = c.g;
-            edge_light[3u * entry + 2u] = c.b;
         }
     }
     workgroupBarrier();
@@ -395,22 +436,23 @@ fn cs_light_tiled(
         }
         default: {
             // 4. Each sample's light is its source sample's: sample 0's in registers, the
-            // others' in the edge list from `base` on, in sample order.
-            var light: array<vec3<f32>, SAMPLES>;
-            light[0] = min(light0, vec3<f32>(HALF_MAX));
-            var next = base;
-            for (var s = 1u; s < SAMPLES; s++) {
-                if source[s] == s {
-                    light[s] = vec3<f32>(edge_light[3u * next], edge_light[3u * next + 1u], edge_light[3u * next + 2u]);
-                    next++;
-                } else {
-                    light[s] = light[source[s]];
-                }
-            }
+            // others' in the edge list from `base` on, in sample order (with what a
+            // visibility buffer's entry emits).
             var sum = vec3<f32>(0.0);
             var weights = 0.0;
             for (var s = 0u; s < SAMPLES; s++) {
-                let c = clamp(emits[s] + light[s], vec3<f32>(0.0), vec3<f32>(HALF_MAX));
+                let source = source_of(leaders, edge, s);
+                var c: vec3<f32>;
+                if source == 0u {
+                    c = emits[select(s, 0u, SURFACE_IDS)] + min(light0, vec3<f32>(HALF_MAX));
+                } else {
+                    let e = 3u * (base + countOneBits(entries & ((1u << source) - 1u)));
+                    c = vec3<f32>(edge_light[e], edge_light[e + 1u], edge_light[e + 2u]);
+                    if !SURFACE_IDS {
+                        c = emits[s] + c;
+                    }
+                }
+                c = clamp(c, vec3<f32>(0.0), vec3<f32>(HALF_MAX));
                 let w = select(1.0, 1.0 / (1.0 + EXPOSURE * luminance(c)), RESOLVE == 1u);
                 sum += w * c;
                 weights += w;

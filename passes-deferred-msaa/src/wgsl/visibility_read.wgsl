@@ -137,18 +137,27 @@ fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
 }
 
 // For each sample, the first sample showing the same triangle (itself where no earlier
-// one does): a pixel's fragments from its IDs alone, so each triangle is rebuilt once.
-fn fragment_leaders(pixel: vec2<i32>) -> array<u32, SAMPLES> {
+// one does), four bits per sample as light_tiled.wgsl's leader_of reads them: a pixel's
+// fragments from its IDs alone, so each triangle is rebuilt once.
+fn fragment_leaders(pixel: vec2<i32>) -> u32 {
     let ids = pixel_ids(pixel);
-    var leaders: array<u32, SAMPLES>;
+    var leaders = 0u;
     for (var s = 0u; s < SAMPLES; s++) {
-        leaders[s] = s;
+        var leader = s;
         for (var j = 0u; j < s; j++) {
             if ids[j] == ids[s] {
-                leaders[s] = j;
+                leader = j;
                 break;
             }
         }
+        leaders |= leader << (4u * s);
     }
     return leaders;
+}
+
+// Whether sample `s` shows a surface the light passes shade: its triangle's material's
+// flags, without rebuilding it.
+fn sample_lit(pixel: vec2<i32>, s: u32) -> bool {
+    let id = sample_id(pixel, s);
+    return id != 0u && (materials[meshes[mesh_of_triangle(id - 1u)].material].flags & FLAG_LIT) != 0u;
 }
