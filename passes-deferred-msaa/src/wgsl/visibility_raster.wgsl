@@ -62,7 +62,7 @@ struct Counts {
 @group(1) @binding(4) var<storage, read_write> items: array<vec2<u32>>;
 
 // A triangle whose bounding box holds more pixels than this is listed.
-const SMALL_PIXELS: u32 = 64u;
+const SMALL_PIXELS: u32 = 32u;
 const BLOCK: u32 = 8u;
 const ITEM_BLOCKS: u32 = 16u;
 const NO_ITEM: u32 = 0xffffffffu;
