@@ -13,7 +13,7 @@ use crate::deferred_support::measure::{pixel_diff, pixels_within};
 use crate::deferred_support::{gpu, Render};
 use crate::gltf_writer::{fixture, temp_dir, Gltf};
 use graph_core::file::{load_file, load_str, Registry};
-use graph_core::{CompileOptions, Features};
+use graph_core::{CompileOptions, DeviceProfile, Features};
 use passes_deferred_msaa::analysis::Features as SceneFeatures;
 use passes_deferred_msaa::glam::{DVec3, Vec3};
 use passes_deferred_msaa::scene::{AlphaMode, Light, LightKind, Scene};
@@ -25,7 +25,7 @@ const STEP: f32 = 1.0 / 255.0;
 /// Every pipeline file that renders the lit scene, with the name of the single-sampled
 /// HDR image it tone-maps (`resolved`, or the lit HDR target in the files without a
 /// resolve).
-const PIPELINES: [(&str, &str); 15] = [
+const PIPELINES: [(&str, &str); 17] = [
     ("deferred_gbuffer_resolve_4x.ron", "hdr_lit"),
     ("deferred_msaa_4x.ron", "resolved"),
     ("deferred_msaa_4x_adaptive.ron", "resolved"),
@@ -41,6 +41,8 @@ const PIPELINES: [(&str, &str); 15] = [
     ("deferred_per_sample_4x_tiled.ron", "resolved"),
     ("forward_msaa_4x.ron", "resolved"),
     ("reference_ssaa16.ron", "resolved"),
+    ("visibility_msaa_4x.ron", "resolved"),
+    ("visibility_compute_4x.ron", "resolved"),
 ];
 
 /// A square quad of the test scene.
@@ -216,20 +218,19 @@ fn a_blend_panel_shows_what_is_behind_it_in_every_pipeline() {
 }
 
 /// A blended surface behind an opaque one is hidden: the BLEND panel at z = 0 behind an
-/// opaque green panel at z = 0.5 that covers it leaves the green exactly as it is, with
-/// the scene's 24-bit standard-Z depth (`shallow_depth`) and with the general float
-/// depth, reversed-Z where the device has depth32float-stencil8 (lavapipe has).
+/// opaque green panel at z = 0.5 that covers it leaves the green exactly as the scene
+/// without the BLEND panel shows it (green within an 8-bit step: a visibility buffer
+/// interpolates the vertex colour it rebuilds), with the scene's 24-bit standard-Z depth
+/// (`shallow_depth`) and with the general float depth, reversed-Z where the device has
+/// depth32float-stencil8 (lavapipe has).
 #[test]
 fn a_blend_panel_behind_an_opaque_one_is_hidden() {
-    let file = panels_file(
-        "blend_hidden",
-        &[
-            Panel::background([0.0, 0.0, 1.0]),
-            Panel::unlit(0.0, 0.5, [1.0, 0.0, 0.0, 0.5], true),
-            Panel::unlit(0.5, 0.7, [0.0, 1.0, 0.0, 1.0], false),
-        ],
-    );
-    let scene = load(&file);
+    let background = Panel::background([0.0, 0.0, 1.0]);
+    let green = Panel::unlit(0.5, 0.7, [0.0, 1.0, 0.0, 1.0], false);
+    let red = Panel::unlit(0.0, 0.5, [1.0, 0.0, 0.0, 0.5], true);
+    let file = panels_file("blend_hidden", &[background, red, green]);
+    let opaque_file = panels_file("blend_hidden_opaque", &[background, green]);
+    let (scene, opaque) = (load(&file), load(&opaque_file));
     let shallow = SceneFeatures::of(&scene);
     assert!(shallow.shallow_depth);
     let float_depth = SceneFeatures {
@@ -237,15 +238,21 @@ fn a_blend_panel_behind_an_opaque_one_is_hidden() {
         ..shallow
     };
     for features in [shallow, float_depth] {
+        let opaque_features = SceneFeatures {
+            blend: false,
+            ..features
+        };
         for (pipeline, image) in PIPELINES {
             let hdr = hdr_for(pipeline, image, &file, &scene, features);
+            let want = hdr_for(pipeline, image, &opaque_file, &opaque, opaque_features);
             for (x, y) in inside(0.5) {
-                let p = hdr[(y * SIZE.0 + x) as usize];
-                assert_eq!(
-                    p[..3],
-                    [0.0, 1.0, 0.0],
-                    "{pipeline}, shallow_depth {}: ({x}, {y})",
-                    features.shallow_depth
+                let at = (y * SIZE.0 + x) as usize;
+                let p = hdr[at];
+                let depth = format!("shallow_depth {}", features.shallow_depth);
+                assert_eq!(p, want[at], "{pipeline}, {depth}: ({x}, {y})");
+                assert!(
+                    near([p[0], p[1], p[2]], [0.0, 1.0, 0.0], STEP),
+                    "{pipeline}, {depth}: ({x}, {y}) is {p:?}"
                 );
             }
         }
@@ -554,7 +561,8 @@ fn fixture_path() -> String {
 /// Every pipeline that renders the lit scene declares `blend` and adds the transparent
 /// passes for a scene with BLEND materials only: compiled for the built-in scenes'
 /// features its plan is the one without them, which is the plan it had before they
-/// existed. (No GPU: plans against the WebGPU defaults.)
+/// existed. (No GPU: plans against the WebGPU defaults, granted the 64-bit atomics the
+/// compute raster's branch needs.)
 #[test]
 fn pipelines_add_the_transparent_passes_for_blend_scenes_only() {
     let file = panels_file(
@@ -567,9 +575,10 @@ fn pipelines_add_the_transparent_passes_for_blend_scenes_only() {
     let blend = SceneFeatures::of(&load(&file)).names();
     let mut registry = Registry::with_builtins();
     passes_deferred_msaa::register(&mut registry, None);
+    let atomics: Features = ["int64_atomics"].into_iter().collect();
     let options = CompileOptions {
         output_size: SIZE,
-        ..CompileOptions::default()
+        profile: DeviceProfile::webgpu().granting(&atomics),
     };
     for (pipeline, _) in PIPELINES {
         let path = format!("{}/pipelines/{pipeline}", env!("CARGO_MANIFEST_DIR"));

@@ -285,6 +285,36 @@ fn a_compute_visibility_buffer_of_another_size_is_an_error() {
     );
 }
 
+/// The keys' depth for the transparent pass in a format that cannot hold their float
+/// depth exactly (24-bit unorm) is an error naming the pass, slot and resource, found
+/// without a GPU.
+#[test]
+fn keys_depth_in_a_unorm_format_is_an_error() {
+    let text = std::fs::read_to_string("pipelines/visibility_compute_4x.ron")
+        .unwrap()
+        .replace(
+            "\"depth\": Texture(format: \"depth32float\",",
+            "\"depth\": Texture(format: \"depth24plus\",",
+        );
+    assert!(text.contains("depth24plus"));
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("unorm.ron");
+    std::fs::write(&path, text).unwrap();
+    let run = crate::cli_support::rgraph(&["validate", path.to_str().unwrap()]).expect(1);
+    let line = run
+        .stdout
+        .lines()
+        .find(|l| l.contains("pass \"keys depth\""))
+        .unwrap_or_else(|| panic!("no error names the keys depth pass:\n{}", run.stdout));
+    assert!(
+        line.contains("unorm.ron:")
+            && line.contains("slot \"depth\"")
+            && line.contains("depth24plus")
+            && line.contains("depth32float"),
+        "{line}"
+    );
+}
+
 /// The compute tone mapper (stage: compute, rgba8unorm sRGB-encoded by the shader) stores
 /// what the fragment one does into an sRGB target: within 1/255 everywhere, under a fixed
 /// and a metered exposure. (The shader's encoding and the format's round apart by one

@@ -2,8 +2,8 @@
 //! `gbuffer` → `edge_stencil` → `light_edge` + `light_nonedge` → `resolve` → `tonemap`
 //! (the seeds' fragment path), or `gbuffer` → `light_tiled` → `tonemap` (lighting and
 //! resolve in one compute pass), or `visibility` (or `visibility_compute`, rasterising in
-//! compute) → `light_tiled` → `tonemap` (a visibility buffer, whose triangles the compute
-//! pass rebuilds and shades),
+//! compute, with `keys_depth` for the transparent pass) → `light_tiled` → `tonemap` (a
+//! visibility buffer, whose triangles the compute pass rebuilds and shades),
 //! with `debug_view` passes reading the G-buffer beside them; `pipelines/deferred_*.ron`
 //! are complete examples. Each plugin's module documents its parameters and slots.
 //! The baselines add `forward` (the scene lit per fragment, pipelines/forward_msaa_4x.ron
@@ -48,6 +48,7 @@ pub use crate::passes::forward::{Forward, ForwardParams, Shading};
 pub use crate::passes::fxaa::{Fxaa, FxaaParams};
 pub use crate::passes::gbuffer::{GBuffer, GBufferParams};
 pub use crate::passes::gbuffer_resolve::{GBufferResolve, GBufferResolveParams};
+pub use crate::passes::keys_depth::{KeysDepth, KeysDepthParams};
 pub use crate::passes::light::{
     Accumulate, EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams,
     PixelSamples,
@@ -81,6 +82,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(LightTiled(shared.clone()))
         .register(Visibility(shared.clone()))
         .register(VisibilityCompute(shared.clone()))
+        .register(KeysDepth(shared.clone()))
         .register(Resolve(shared.clone()))
         .register(Tonemap(shared.clone()))
         .register(AutoExposure(shared.clone()))

@@ -221,6 +221,15 @@ pub(crate) const PARTICLE_EDGES: Source = Source {
     name: "particle_edges.wgsl",
     parts: &[COMMON, include_str!("wgsl/particle_edges.wgsl")],
 };
+pub(crate) const KEYS_DEPTH: Source = Source {
+    name: "keys_depth.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        include_str!("wgsl/visibility_samples.wgsl"),
+        include_str!("wgsl/keys_depth.wgsl"),
+    ],
+};
 pub(crate) const GBUFFER_RESOLVE: Source = Source {
     name: "gbuffer_resolve.wgsl",
     parts: &[

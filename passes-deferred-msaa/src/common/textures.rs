@@ -35,6 +35,8 @@ pub(crate) const DEPTH_ANY: &[TextureFormat] = &[
     F::Depth32FloatStencil8,
     F::Depth32Float,
 ];
+/// Depth holding 32-bit floats exactly (a compute rasteriser's keys hold them).
+pub(crate) const DEPTH_FLOAT: &[TextureFormat] = &[F::Depth32Float, F::Depth32FloatStencil8];
 pub(crate) const DISPLAY: &[TextureFormat] = &[F::Rgba8UnormSrgb, F::Rgba8Unorm];
 pub(crate) const EXPOSURE: &[TextureFormat] = &[F::R32Float];
 

@@ -12,6 +12,10 @@ use graph_core::{BufferHandle, PassBuilder};
 /// Bytes of one sample's key.
 pub(crate) const KEY_BYTES: u64 = 8;
 
+/// Where visibility_samples.wgsl reads the keys: group 1, this binding.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) const KEYS_BINDING: u32 = 8;
+
 /// The sample counts the passes know the positions of (shaders.rs).
 const SAMPLE_COUNTS: [u32; 4] = [1, 2, 4, 8];
 

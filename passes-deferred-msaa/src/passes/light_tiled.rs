@@ -341,7 +341,7 @@ mod gpu {
     use crate::analysis::{GatedShader, Variant};
     use crate::common::depth::far_depth;
     use crate::common::gpu::{per_scene, split_ids, InputPass};
-    use crate::common::visibility_samples::fits_binding;
+    use crate::common::visibility_samples::{fits_binding, KEYS_BINDING};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
 
@@ -352,9 +352,6 @@ mod gpu {
         /// The visibility buffer's ID format.
         ids: Option<wgpu::TextureFormat>,
     }
-
-    /// Where visibility_samples.wgsl reads a compute rasteriser's keys: group 1.
-    const KEYS_BINDING: u32 = 8;
 
     /// The storage buffers group 1 holds besides the textures: the keys, if any.
     fn keys_binding(depth: &Depth) -> Vec<(u32, graph_core::BufferHandle)> {

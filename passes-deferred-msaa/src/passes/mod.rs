@@ -12,6 +12,7 @@ pub(crate) mod forward;
 pub(crate) mod fxaa;
 pub(crate) mod gbuffer;
 pub(crate) mod gbuffer_resolve;
+pub(crate) mod keys_depth;
 pub(crate) mod light;
 pub(crate) mod light_prepass;
 pub(crate) mod light_tiled;

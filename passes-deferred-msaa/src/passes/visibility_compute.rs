@@ -20,8 +20,8 @@
 //! draws are tested as the hardware pass tests them: their base colour's alpha times the
 //! vertex colour's, at the pixel centre, against the cutoff (a textured base colour's
 //! alpha is not read: such scenes are `untabled_textures`, which the pipelines keep from
-//! this pass). Alpha BLEND draws are left out, as with a G-buffer; the pipelines send
-//! scenes with `blend` (whose transparent pass needs a depth buffer) to the hardware pass.
+//! this pass). Alpha BLEND draws are left out, as with a G-buffer: the transparent pass
+//! draws them later, testing against the depth `keys_depth` makes from the keys.
 
 use serde::Deserialize;
 

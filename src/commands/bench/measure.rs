@@ -140,7 +140,8 @@ impl Setup<'_> {
         let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::General)?;
         let mut prepared = match self.session.prepare(pipeline, self.size) {
             // A file that makes its output only for some scenes (visibility_compute_4x:
-            // opaque ones) has no general plan to set beside the scene's.
+            // those whose textures fit its table) has no general plan to set beside the
+            // scene's.
             Err(FrameError::NotForScene { .. }) => return Ok(None),
             prepared => prepared?,
         };
