@@ -259,26 +259,35 @@ fn the_compute_raster_stores_8_bytes_per_sample() {
     }
 }
 
+/// The line `rgraph validate` prints about pass `pass` for visibility_compute_4x.ron
+/// with `from` replaced by `to`, saved as `name`; the run must fail.
+fn validate_error(from: &str, to: &str, name: &str, pass: &str) -> String {
+    let text = std::fs::read_to_string("pipelines/visibility_compute_4x.ron").unwrap();
+    assert!(text.contains(from), "{from}");
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name);
+    std::fs::write(&path, text.replace(from, to)).unwrap();
+    let run = crate::cli_support::rgraph(&["validate", path.to_str().unwrap()]).expect(1);
+    // validate lists what it found on stdout, a line per error.
+    let named = format!("pass \"{pass}\"");
+    let line = run.stdout.lines().find(|l| l.contains(&named));
+    let line = line.unwrap_or_else(|| panic!("no error names {pass}:\n{}", run.stdout));
+    assert!(line.contains(&format!("{name}:")), "{line}");
+    line.to_owned()
+}
+
 /// A buffer that is not 8 bytes per sample is an error naming the pass, slot and
 /// resource, found without a GPU.
 #[test]
 fn a_compute_visibility_buffer_of_another_size_is_an_error() {
-    let text = std::fs::read_to_string("pipelines/visibility_compute_4x.ron")
-        .unwrap()
-        .replace("Buffer(per_sample: 8,", "Buffer(per_sample: 6,");
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("odd.ron");
-    std::fs::write(&path, text).unwrap();
-    let run = crate::cli_support::rgraph(&["validate", path.to_str().unwrap()]).expect(1);
-    // validate lists what it found on stdout, a line per error.
-    let line = run
-        .stdout
-        .lines()
-        .find(|l| l.contains("pass \"visibility\""))
-        .unwrap_or_else(|| panic!("no error names the raster pass:\n{}", run.stdout));
+    let line = validate_error(
+        "Buffer(per_sample: 8,",
+        "Buffer(per_sample: 6,",
+        "odd.ron",
+        "visibility",
+    );
     assert!(
-        line.contains("odd.ron:")
-            && line.contains("slot \"samples\"")
+        line.contains("slot \"samples\"")
             && line.contains("holds 6 bytes per sample, 4 samples per pixel and 0 bytes more")
             && line.contains("8 bytes per sample"),
         "{line}"
@@ -290,27 +299,16 @@ fn a_compute_visibility_buffer_of_another_size_is_an_error() {
 /// without a GPU.
 #[test]
 fn keys_depth_in_a_unorm_format_is_an_error() {
-    let text = std::fs::read_to_string("pipelines/visibility_compute_4x.ron")
-        .unwrap()
-        .replace(
-            "\"depth\": Texture(format: \"depth32float\",",
-            "\"depth\": Texture(format: \"depth24plus\",",
-        );
-    assert!(text.contains("depth24plus"));
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("unorm.ron");
-    std::fs::write(&path, text).unwrap();
-    let run = crate::cli_support::rgraph(&["validate", path.to_str().unwrap()]).expect(1);
-    let line = run
-        .stdout
-        .lines()
-        .find(|l| l.contains("pass \"keys depth\""))
-        .unwrap_or_else(|| panic!("no error names the keys depth pass:\n{}", run.stdout));
+    let line = validate_error(
+        "\"depth\": Texture(format: \"depth32float\",",
+        "\"depth\": Texture(format: \"depth24plus\",",
+        "unorm.ron",
+        "keys depth",
+    );
     assert!(
-        line.contains("unorm.ron:")
-            && line.contains("slot \"depth\"")
-            && line.contains("depth24plus")
-            && line.contains("depth32float"),
+        line.contains("slot \"depth\"")
+            && line.contains("\"depth\" is depth24plus")
+            && line.contains("depth32float or depth32float-stencil8"),
         "{line}"
     );
 }

@@ -7,7 +7,7 @@
 //! depth32float and r32uint take.
 
 use graph_core::file::{PluginError, Slots};
-use graph_core::{BufferHandle, PassBuilder};
+use graph_core::{Buffer, BufferHandle, BufferRole, PassBuilder};
 
 /// Bytes of one sample's key.
 pub(crate) const KEY_BYTES: u64 = 8;
@@ -50,6 +50,22 @@ pub(crate) fn sample_count(
         });
     }
     Ok(desc.samples)
+}
+
+/// Takes input `slot` as a visibility buffer the pass reads (as read-only storage):
+/// its handle and samples per pixel, checked as [`sample_count`] checks them.
+pub(crate) fn read(
+    pass: &mut PassBuilder<'_>,
+    slots: &mut Slots<'_>,
+    slot: &str,
+) -> Result<(BufferHandle, u32), PluginError> {
+    let keys = slots.input::<Buffer>(slot)?;
+    let read = BufferRole::Storage {
+        read: true,
+        write: false,
+    };
+    pass.buffer(keys, read);
+    Ok((keys, sample_count(pass, slots, slot, keys)?))
 }
 
 /// Whether the device can bind `buffer`, a visibility buffer, as one storage binding; the

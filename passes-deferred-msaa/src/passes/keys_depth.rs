@@ -20,7 +20,7 @@
 use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, PassKind, TextureHandle};
+use graph_core::{BufferHandle, PassBuilder, PassKind, TextureHandle};
 
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{Recording, Shared};
@@ -64,13 +64,7 @@ impl Plugin for KeysDepth {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        let read = BufferRole::Storage {
-            read: true,
-            write: false,
-        };
-        let keys = slots.input::<Buffer>("samples")?;
-        pass.buffer(keys, read);
-        let samples = visibility_samples::sample_count(pass, slots, "samples", keys)?;
+        let (keys, samples) = visibility_samples::read(pass, slots, "samples")?;
         let want =
             Want::new("the visibility buffer's depth", textures::DEPTH_FLOAT).samples(samples);
         let (depth, _) = textures::output(slots, pass, "depth", want, |pass, h, _| {

@@ -70,7 +70,7 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::shader::Stage;
 use graph_core::types::TextureFormat;
-use graph_core::{Aspect, Buffer, BufferHandle, BufferRole, PassBuilder, PassKind, TextureHandle};
+use graph_core::{Aspect, BufferHandle, PassBuilder, PassKind, TextureHandle};
 
 use super::resolve::{one, resolve_exposure, ResolveMode};
 use crate::common::ao;
@@ -227,13 +227,7 @@ impl Plugin for LightTiled {
         let mut inputs = Vec::new();
         let (depth, samples) = match layout.surfaces {
             Surfaces::VisibilitySamples => {
-                let read = BufferRole::Storage {
-                    read: true,
-                    write: false,
-                };
-                let keys = slots.input::<Buffer>("samples")?;
-                pass.buffer(keys, read);
-                let samples = visibility_samples::sample_count(pass, slots, "samples", keys)?;
+                let (keys, samples) = visibility_samples::read(pass, slots, "samples")?;
                 (Depth::Keys(keys), samples)
             }
             Surfaces::GBuffer | Surfaces::VisibilityTextures => {
