@@ -10,18 +10,20 @@
 //    lights are tested against the tile's four side planes and those bounds, in batches
 //    of THREADS lights (one per invocation), so any number of lights fits.
 // 3. Shade: each invocation lights its pixel's sample 0 (at the pixel center when not an
-//    edge) and its share of the edge list, so a few edge pixels spread their extra
-//    samples over the whole workgroup instead of stalling it.
+//    edge) and the edge-list entries from its own index on, THREADS apart: a pixel's
+//    extra samples are shaded by other invocations, packed into the first warps, rather
+//    than one after another by its own.
 // 4. Resolve: each sample's light plus what it emits (emission, unlit colour,
 //    background), averaged (box, or resolve.wgsl's tone-mapped weights), stored in the 1x
 //    output.
 //
 // Composed after common.wgsl, scene.wgsl, brdf.wgsl, lighting.wgsl,
 // surface.wgsl and edge_detect.wgsl, then a generated block defining TILE (the tile's side in
-// pixels), EDGE_SLOTS (max(SAMPLES - 1, 1): the most edge-list entries one invocation
-// shades) and OutTex (the output's storage texture type), and holding the G-buffer's
-// layout: `load_gsample` and `fragment_leaders` (gbuffer_read.wgsl, or visibility_read.wgsl
-// with geometry.wgsl), `load_view_depth` (view_depth_stored.wgsl, or
+// pixels), EDGE_SLOTS (max(SAMPLES - 1, 1): the edge list holds that many entries per
+// invocation, every sample of every pixel but one) and OutTex (the output's storage
+// texture type), and holding the G-buffer's layout: `load_gsample`, `fragment_leaders`
+// and `sample_lit` (gbuffer_read.wgsl, or visibility_read.wgsl with geometry.wgsl),
+// `load_view_depth` (view_depth_stored.wgsl, or
 // view_depth_from_depth.wgsl for the lean G-buffer and the visibility buffer) and
 // `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or emitted_surface.wgsl), and common/ao.rs's
 // `with_screen_ao`.
