@@ -105,6 +105,35 @@ fn masked_by_height(scene: &mut Scene) {
     }
 }
 
+/// The first material alpha BLEND at 40% opacity: the transparent pass draws it after
+/// lighting, against the raster's depth (the compute raster's through keys_depth).
+fn first_blended(scene: &mut Scene) {
+    let material = &mut scene.materials[0];
+    material.alpha_mode = AlphaMode::Blend;
+    material.base_color_factor[3] = 0.4;
+}
+
+/// Through the compute raster, `first_blended`'s material changes a real share of
+/// builtin:spheres (the transparent pass ran against the keys' depth: what the agreement
+/// with the hardware raster compares is not the opaque image twice).
+#[test]
+fn the_compute_raster_draws_alpha_blend_over_its_keys_depth() {
+    let gpu = gpu();
+    let image = |edit: fn(&mut Scene)| {
+        Render::new(COMPUTE, "builtin:spheres", (320, 180))
+            .scene_edit(edit)
+            .run(&gpu)
+            .image(&gpu, "color")
+    };
+    let (opaque, blended) = (image(unchanged), image(first_blended));
+    let same = pixels_within(&opaque, &blended, 1) as f64 / opaque.pixels.len() as f64;
+    assert!(
+        same < 0.95,
+        "only {:.1}% of pixels changed",
+        100.0 * (1.0 - same)
+    );
+}
+
 /// The mask of `masked_by_height` cuts a real share of builtin:spheres away through the
 /// compute raster (what the agreement above compares is not the unmasked image twice).
 #[test]
@@ -169,6 +198,12 @@ fn the_compute_raster_renders_the_hardware_raster_s_image() {
             "builtin:dense",
             masked_by_height,
             "dense, alpha MASK by height",
+        ),
+        (
+            (COMPUTE, VISIBILITY),
+            "builtin:spheres",
+            first_blended,
+            "spheres, one material alpha BLEND",
         ),
         (
             ("visibility_compute_noaa.ron", "visibility_noaa.ron"),
