@@ -294,3 +294,24 @@ fn a_color_target_resolves_into_one_target() {
         r#"pass "resolve" resolves into "b": "msaa" already resolves into "a""#
     );
 }
+
+/// A depth-only pass's explain line says its stored bytes are the depth-stencil's (not
+/// buffers sized per sample, as a compute rasteriser's are).
+#[test]
+fn a_depth_only_pass_stores_its_depth_stencil() {
+    let mut g = GraphBuilder::new();
+    let depth = g.create_texture("depth", tex(Depth32Float));
+    let mut p = g.add_render_pass("prepass");
+    let written = p.depth_stencil(depth, AspectAccess::Clear(0.0), AspectAccess::ReadOnly);
+    g.export(written);
+    let plan = g
+        .build()
+        .compile(&CompileOptions::default())
+        .expect("compiles");
+    assert_eq!(plan.passes[0].stored_bytes_per_sample, 4);
+    let text = graph_core::explain::text(&plan);
+    assert!(
+        text.contains("stored bytes per sample: 4 (the depth-stencil)"),
+        "{text}"
+    );
+}

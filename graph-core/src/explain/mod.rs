@@ -78,9 +78,15 @@ pub fn text(plan: &Plan) -> String {
                 pass.color_bytes_per_sample, pass.stored_bytes_per_sample
             );
         } else if pass.stored_bytes_per_sample > 0 {
+            // Without color attachments, what a sample stores is the depth-stencil's (a
+            // depth-only pass) or buffers sized per sample (a compute rasteriser's).
+            let what = match pass.depth_stencil {
+                Some(_) => "the depth-stencil",
+                None => "buffers sized per sample",
+            };
             let _ = writeln!(
                 out,
-                "         stored bytes per sample: {} (buffers sized per sample)",
+                "         stored bytes per sample: {} ({what})",
                 pass.stored_bytes_per_sample
             );
         }
