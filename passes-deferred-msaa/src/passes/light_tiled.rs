@@ -51,7 +51,8 @@
 //! depth bounds in batches of one light per invocation (so any number of lights is
 //! correct), shades non-edge pixels once and the other samples (or, with `adaptive`,
 //! the other fragments, weighted by the samples they cover: seed 002) of edge
-//! pixels spread over the whole workgroup, and resolves into the single-sampled output.
+//! pixels as a workgroup list dealt out from the first invocation on, and
+//! resolves into the single-sampled output.
 //! No multisampled HDR accumulation, no stencil, no resolve pass.
 //!
 //! The workgroup memory the shader needs grows with the tile and the sample count
