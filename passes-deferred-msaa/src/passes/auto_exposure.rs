@@ -140,7 +140,7 @@ mod gpu {
     use graph_core::gpu::ComputeContext;
 
     use super::Metering;
-    use crate::common::gpu::{per_device, InputPass};
+    use crate::common::gpu::{compute_pipeline, per_device, InputPass};
 
     pub(super) fn record(metering: Metering) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
         let mut state: Option<(wgpu::Device, InputPass<(), wgpu::ComputePipeline>)> = None;
@@ -157,19 +157,16 @@ mod gpu {
                 )
             });
             let (module, layout) = (&state.module, &state.layout);
+            // The shader clears its histogram itself.
             let pipeline = state.pipelines.get((), |()| {
-                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some("auto_exposure"),
-                    layout: Some(layout),
+                compute_pipeline(
+                    device,
+                    "auto_exposure",
+                    layout,
                     module,
-                    entry_point: Some("cs_auto_exposure"),
-                    compilation_options: wgpu::PipelineCompilationOptions {
-                        constants: &metering.constants,
-                        // The shader clears its histogram itself.
-                        zero_initialize_workgroup_memory: false,
-                    },
-                    cache: None,
-                })
+                    "cs_auto_exposure",
+                    &metering.constants,
+                )
             });
             ctx.pass.set_pipeline(pipeline);
             ctx.pass

@@ -335,7 +335,7 @@ mod gpu {
     use super::{Depth, TiledDispatch};
     use crate::analysis::{GatedShader, Variant};
     use crate::common::depth::far_depth;
-    use crate::common::gpu::{per_scene, split_ids, InputPass};
+    use crate::common::gpu::{compute_pipeline, per_scene, split_ids, InputPass};
     use crate::common::visibility_samples::{fits_binding, KEYS_BINDING};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
@@ -429,18 +429,14 @@ mod gpu {
                 if let Some(ids) = key.ids {
                     constants.push(("SPLIT_IDS", split_ids(ids)));
                 }
-                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some("light_tiled"),
-                    layout: Some(layout),
+                compute_pipeline(
+                    device,
+                    "light_tiled",
+                    layout,
                     module,
-                    entry_point: Some("cs_light_tiled"),
-                    compilation_options: wgpu::PipelineCompilationOptions {
-                        constants: &constants,
-                        // The shader initialises what it reads of workgroup memory.
-                        zero_initialize_workgroup_memory: false,
-                    },
-                    cache: None,
-                })
+                    "cs_light_tiled",
+                    &constants,
+                )
             });
             ctx.pass.set_pipeline(pipeline);
             ctx.pass

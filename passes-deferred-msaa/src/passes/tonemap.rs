@@ -218,7 +218,7 @@ mod gpu {
     use graph_core::gpu::ComputeContext;
 
     use super::TonemapDispatch;
-    use crate::common::gpu::{per_device, InputPass};
+    use crate::common::gpu::{compute_pipeline, per_device, InputPass};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
 
@@ -246,17 +246,8 @@ mod gpu {
             });
             let (module, layout) = (&state.module, &state.layout);
             let pipeline = state.pipelines.get((), |_| {
-                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some("tonemap"),
-                    layout: Some(layout),
-                    module,
-                    entry_point: Some(dispatch.entry),
-                    compilation_options: wgpu::PipelineCompilationOptions {
-                        constants: &dispatch.constants,
-                        ..Default::default()
-                    },
-                    cache: None,
-                })
+                let constants = &dispatch.constants;
+                compute_pipeline(device, "tonemap", layout, module, dispatch.entry, constants)
             });
             ctx.pass.set_pipeline(pipeline);
             if let Some(scene) = &scene {

@@ -99,8 +99,8 @@ mod gpu {
     use wgpu::util::DeviceExt;
 
     use super::RasterDispatch;
-    use crate::common::gpu::per_scene;
     use crate::common::gpu::pipeline::{module, pipeline_layout};
+    use crate::common::gpu::{compute_pipeline, per_scene};
     use crate::common::visibility_samples::{fits_binding, KEY_BYTES};
     use crate::gpu_scene::{GpuScene, SceneCache};
     use crate::scene::DepthConvention;
@@ -237,18 +237,10 @@ mod gpu {
                 Some(scene.geometry_layout()),
             ],
         );
+        let constants = [("ITEM_GROUPS", f64::from(ITEM_GROUPS))];
+        let label = "visibility_compute";
         let pipeline = |entry: &str| {
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some("visibility_compute"),
-                layout: Some(&pipeline_layout),
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: &[("ITEM_GROUPS", f64::from(ITEM_GROUPS))],
-                    zero_initialize_workgroup_memory: false,
-                },
-                cache: None,
-            })
+            compute_pipeline(device, label, &pipeline_layout, &module, entry, &constants)
         };
         let (mut draws, triangles) = raster_draws(scene);
         if draws.is_empty() {

@@ -14,7 +14,7 @@ use std::sync::Arc;
 
 use crate::gpu_scene::GpuScene;
 pub(crate) use input_pass::InputPass;
-pub(crate) use pipeline::{additive, PipelineDesc};
+pub(crate) use pipeline::{additive, compute_pipeline, PipelineDesc};
 
 /// geometry.wgsl's `SPLIT_IDS` for a visibility buffer of `format`: rg16uint holds an ID
 /// in two halves, r32uint whole.

@@ -75,6 +75,30 @@ impl PipelineDesc<'_> {
     }
 }
 
+/// The compute pipeline of `module`'s `entry` with pipeline-overridable `constants`.
+/// Workgroup memory is not zero-initialised: the deferred compute shaders initialise what
+/// they read of it (or have none), and the driver's clear would cost every workgroup.
+pub(crate) fn compute_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+    entry: &str,
+    constants: &[(&str, f64)],
+) -> wgpu::ComputePipeline {
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: Some(layout),
+        module,
+        entry_point: Some(entry),
+        compilation_options: wgpu::PipelineCompilationOptions {
+            constants,
+            zero_initialize_workgroup_memory: false,
+        },
+        cache: None,
+    })
+}
+
 /// Adds color and alpha: how light contributions accumulate in the HDR target.
 pub(crate) fn additive(format: wgpu::TextureFormat) -> wgpu::ColorTargetState {
     let add = wgpu::BlendComponent {
