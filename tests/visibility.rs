@@ -113,11 +113,9 @@ fn first_blended(scene: &mut Scene) {
     material.base_color_factor[3] = 0.4;
 }
 
-/// Through the compute raster, `first_blended`'s material changes a real share of
-/// builtin:spheres (the transparent pass ran against the keys' depth: what the agreement
-/// with the hardware raster compares is not the opaque image twice).
-#[test]
-fn the_compute_raster_draws_alpha_blend_over_its_keys_depth() {
+/// The share of builtin:spheres' pixels (320x180, through the compute raster) that
+/// `edit` leaves within 1/255.
+fn unchanged_by(edit: fn(&mut Scene)) -> f64 {
     let gpu = gpu();
     let image = |edit: fn(&mut Scene)| {
         Render::new(COMPUTE, "builtin:spheres", (320, 180))
@@ -125,8 +123,15 @@ fn the_compute_raster_draws_alpha_blend_over_its_keys_depth() {
             .run(&gpu)
             .image(&gpu, "color")
     };
-    let (opaque, blended) = (image(unchanged), image(first_blended));
-    let same = pixels_within(&opaque, &blended, 1) as f64 / opaque.pixels.len() as f64;
+    measure::share_within(&image(unchanged), &image(edit), 1, None)
+}
+
+/// Through the compute raster, `first_blended`'s material changes a real share of
+/// builtin:spheres (the transparent pass ran against the keys' depth: what the agreement
+/// with the hardware raster compares is not the opaque image twice).
+#[test]
+fn the_compute_raster_draws_alpha_blend_over_its_keys_depth() {
+    let same = unchanged_by(first_blended);
     assert!(
         same < 0.95,
         "only {:.1}% of pixels changed",
@@ -138,15 +143,7 @@ fn the_compute_raster_draws_alpha_blend_over_its_keys_depth() {
 /// compute raster (what the agreement above compares is not the unmasked image twice).
 #[test]
 fn the_compute_raster_cuts_alpha_masked_pixels_away() {
-    let gpu = gpu();
-    let image = |edit: fn(&mut Scene)| {
-        Render::new(COMPUTE, "builtin:spheres", (320, 180))
-            .scene_edit(edit)
-            .run(&gpu)
-            .image(&gpu, "color")
-    };
-    let (whole, masked) = (image(unchanged), image(masked_by_height));
-    let same = pixels_within(&whole, &masked, 1) as f64 / whole.pixels.len() as f64;
+    let same = unchanged_by(masked_by_height);
     assert!(
         same < 0.8,
         "only {:.1}% of pixels changed",

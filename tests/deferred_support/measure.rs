@@ -107,6 +107,11 @@ pub fn away_from_edges(edges: &Image) -> Vec<bool> {
 /// Share of the pixels where `mask` is true (all for `None`) at which `a` and `b` differ
 /// by at most `tolerance` in every RGB channel.
 pub fn share_within(a: &Image, b: &Image, tolerance: u8, mask: Option<&[bool]>) -> f64 {
+    assert_eq!(
+        (a.width, a.height),
+        (b.width, b.height),
+        "compared images differ in size"
+    );
     let (mut within, mut pixels) = (0usize, 0usize);
     for (i, (&p, &q)) in a.pixels.iter().zip(&b.pixels).enumerate() {
         if mask.is_none_or(|m| m[i]) {

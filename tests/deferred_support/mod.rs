@@ -368,7 +368,7 @@ pub fn agreement((a, b): (&str, &str), scene: &str, edit: fn(&mut Scene), size: 
     let mut loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
     edit(&mut loaded);
     let (first, second) = images((a, b), &loaded, size);
-    measure::pixels_within(&first, &second, 1) as f64 / first.pixels.len() as f64
+    measure::share_within(&first, &second, 1, None)
 }
 
 /// The colour images pipelines `a` and `b` render of `scene` at `size`, each compiled
