@@ -16,6 +16,7 @@ const MATERIAL: &str = concat!(
 );
 pub(crate) const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
 const GEOMETRY: &str = include_str!("wgsl/geometry.wgsl");
+const TRIANGLE_SETUP: &str = include_str!("wgsl/triangle_setup.wgsl");
 /// Reads a raster pass's visibility buffer as gbuffer_read.wgsl reads a G-buffer (with
 /// geometry.wgsl, and the material model with the scene's texture table).
 pub(crate) const VISIBILITY_READ_TEXTURES: &str = concat!(
@@ -31,6 +32,14 @@ pub(crate) const VISIBILITY_READ_SAMPLES: &str = concat!(
     include_str!("wgsl/material.wgsl"),
     include_str!("wgsl/material_table.wgsl"),
     include_str!("wgsl/visibility_samples.wgsl"),
+    include_str!("wgsl/visibility_read.wgsl")
+);
+pub(crate) const VISIBILITY_READ_TILES: &str = concat!(
+    include_str!("wgsl/geometry.wgsl"),
+    include_str!("wgsl/material.wgsl"),
+    include_str!("wgsl/material_table.wgsl"),
+    include_str!("wgsl/triangle_setup.wgsl"),
+    include_str!("wgsl/visibility_tiles.wgsl"),
     include_str!("wgsl/visibility_read.wgsl")
 );
 pub(crate) const VIEW_DEPTH_STORED: &str = include_str!("wgsl/view_depth_stored.wgsl");
@@ -126,7 +135,18 @@ pub(crate) const VISIBILITY_RASTER: Source = Source {
         COMMON,
         SCENE,
         GEOMETRY,
+        TRIANGLE_SETUP,
         include_str!("wgsl/visibility_raster.wgsl"),
+    ],
+};
+pub(crate) const TILE_BINS: Source = Source {
+    name: "tile_bins.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        GEOMETRY,
+        TRIANGLE_SETUP,
+        include_str!("wgsl/tile_bins.wgsl"),
     ],
 };
 pub(crate) const RESOLVE: Source = Source {

@@ -95,15 +95,15 @@ mod gpu {
 
     use std::sync::Arc;
 
-    use graph_core::gpu::ComputeContext;
-    use wgpu::util::DeviceExt;
-
     use super::RasterDispatch;
     use crate::common::gpu::pipeline::{module, pipeline_layout};
+    use crate::common::gpu::raster_draws::{grid, RasterDraws};
+    use crate::common::gpu::storage::{scratch, storage_group, storage_layout};
     use crate::common::gpu::{compute_pipeline, per_scene};
     use crate::common::visibility_samples::{fits_binding, KEY_BYTES};
     use crate::gpu_scene::{GpuScene, SceneCache};
     use crate::scene::DepthConvention;
+    use graph_core::gpu::ComputeContext;
 
     /// Triangles too large for one invocation the lists hold (80 bytes each), and their
     /// items (8 bytes each: up to 16 blocks of 8 x 8 pixels). Beyond them, triangles are
@@ -115,28 +115,12 @@ mod gpu {
     const GROUP: u32 = 64;
     const ITEM_GROUPS: u32 = 1024;
 
-    /// visibility_raster.wgsl's RasterDraw.
-    #[repr(C)]
-    #[derive(Copy, Clone, bytemuck::Pod, bytemuck::Zeroable)]
-    struct RasterDraw {
-        first_triangle: u32,
-        triangles: u32,
-        start: u32,
-        mesh: u32,
-        flags: u32,
-    }
-
-    /// visibility_raster.wgsl's RasterDraw flags.
-    const CULL: u32 = 1;
-    const MASKED: u32 = 2;
-
     struct State {
         layout: wgpu::BindGroupLayout,
         clear: wgpu::ComputePipeline,
         raster: wgpu::ComputePipeline,
         items: wgpu::ComputePipeline,
-        draws: wgpu::Buffer,
-        triangles: u32,
+        draws: RasterDraws,
         counts: wgpu::Buffer,
         listed: wgpu::Buffer,
         item_list: wgpu::Buffer,
@@ -164,33 +148,27 @@ mod gpu {
             if let Err(why) = fits_binding(device, keys) {
                 return resources.fail(why);
             }
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("visibility_compute"),
-                layout: &state.layout,
-                entries: &[
+            let group = storage_group(
+                device,
+                "visibility_compute",
+                &state.layout,
+                &[
                     keys,
-                    &state.draws,
+                    &state.draws.buffer,
                     &state.counts,
                     &state.listed,
                     &state.item_list,
-                ]
-                .into_iter()
-                .zip(0..)
-                .map(|(buffer, binding)| wgpu::BindGroupEntry {
-                    binding,
-                    resource: buffer.as_entire_binding(),
-                })
-                .collect::<Vec<_>>(),
-            });
+                ],
+            );
             let pass = &mut ctx.pass;
             pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
             pass.set_bind_group(1, &group, &[]);
             pass.set_bind_group(2, geometry, &[]);
-            let (x, y) = grid(keys.size() / KEY_BYTES);
+            let (x, y) = grid(keys.size() / KEY_BYTES, GROUP);
             pass.set_pipeline(&state.clear);
             pass.dispatch_workgroups(x, y, 1);
-            if state.triangles > 0 {
-                let (x, y) = grid(u64::from(state.triangles));
+            if state.draws.triangles > 0 {
+                let (x, y) = grid(u64::from(state.draws.triangles), GROUP);
                 pass.set_pipeline(&state.raster);
                 pass.dispatch_workgroups(x, y, 1);
                 pass.set_pipeline(&state.items);
@@ -199,35 +177,12 @@ mod gpu {
         })
     }
 
-    /// Workgroups of GROUP invocations for `invocations`, as x by y within the 65,535 a
-    /// dimension allows (the shader flattens them back).
-    fn grid(invocations: u64) -> (u32, u32) {
-        let groups = invocations.div_ceil(u64::from(GROUP)).max(1);
-        let x = groups.min(65_535);
-        (x as u32, groups.div_ceil(x) as u32)
-    }
-
     fn build(device: &wgpu::Device, source: &str, scene: &GpuScene) -> State {
-        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("visibility_compute"),
-            entries: &[
-                storage(0, false),
-                storage(1, true),
-                storage(2, false),
-                storage(3, false),
-                storage(4, false),
-            ],
-        });
+        let layout = storage_layout(
+            device,
+            "visibility_compute",
+            &[false, true, false, false, false],
+        );
         let module = module(device, "visibility_compute", source);
         let pipeline_layout = pipeline_layout(
             device,
@@ -242,63 +197,15 @@ mod gpu {
         let pipeline = |entry: &str| {
             compute_pipeline(device, label, &pipeline_layout, &module, entry, &constants)
         };
-        let (mut draws, triangles) = raster_draws(scene);
-        if draws.is_empty() {
-            // Nothing opaque: one zeroed entry keeps the group whole; the clear runs
-            // alone and nothing reads it.
-            draws.push(bytemuck::Zeroable::zeroed());
-        }
-        let scratch = |label, size| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size,
-                usage: wgpu::BufferUsages::STORAGE,
-                mapped_at_creation: false,
-            })
-        };
         State {
             clear: pipeline("cs_clear"),
             raster: pipeline("cs_raster"),
             items: pipeline("cs_raster_items"),
             layout,
-            draws: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("visibility_compute draws"),
-                contents: bytemuck::cast_slice(&draws),
-                usage: wgpu::BufferUsages::STORAGE,
-            }),
-            triangles,
-            counts: scratch("visibility_compute counts", 8),
-            listed: scratch("visibility_compute listed", LISTED * 80),
-            item_list: scratch("visibility_compute items", ITEMS * 8),
+            draws: RasterDraws::new(device, scene),
+            counts: scratch(device, "visibility_compute counts", 8),
+            listed: scratch(device, "visibility_compute listed", LISTED * 80),
+            item_list: scratch(device, "visibility_compute items", ITEMS * 8),
         }
-    }
-
-    /// The opaque draws (alpha BLEND ones are the transparent pass's), each after the
-    /// triangles of those before it, and their triangles in all.
-    fn raster_draws(scene: &GpuScene) -> (Vec<RasterDraw>, u32) {
-        let mut start = 0;
-        let draws = scene
-            .mesh_draws()
-            .filter(|(_, state)| !state.blended)
-            .map(|(draw, state)| {
-                let triangles = (draw.indices.end - draw.indices.start) / 3;
-                let entry = RasterDraw {
-                    first_triangle: draw.indices.start / 3,
-                    triangles,
-                    start,
-                    mesh: draw.instance,
-                    flags: match state.double_sided {
-                        true => 0,
-                        false => CULL,
-                    } | match state.masked {
-                        true => MASKED,
-                        false => 0,
-                    },
-                };
-                start += triangles;
-                entry
-            })
-            .collect();
-        (draws, start)
     }
 }

@@ -2,17 +2,23 @@
 //! build a render pipeline and a cache of pipelines keyed by what the plan decides at
 //! execution (formats, sample counts) ([`pipeline`]), the bind group of a pass's input
 //! textures ([`bindings`]), the device objects of a pass that reads them
-//! ([`input_pass`]), and the recording of passes that draw the scene's meshes
-//! ([`scene_draw`]).
+//! ([`input_pass`]), the recording of passes that draw the scene's meshes
+//! ([`scene_draw`]), the opaque draws as compute rasterisers see them
+//! ([`raster_draws`]), their triangles binned to tiles ([`tile_bins`]), and groups of
+//! storage buffers ([`storage`]).
 
 pub(crate) mod bindings;
 pub(crate) mod input_pass;
 pub(crate) mod pipeline;
+pub(crate) mod raster_draws;
 pub(crate) mod scene_draw;
+pub(crate) mod storage;
+pub(crate) mod tile_bins;
 
 use std::sync::Arc;
 
 use crate::gpu_scene::GpuScene;
+pub(crate) use bindings::StorageInput;
 pub(crate) use input_pass::InputPass;
 pub(crate) use pipeline::{additive, compute_pipeline, PipelineDesc};
 

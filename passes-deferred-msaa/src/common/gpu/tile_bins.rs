@@ -1,0 +1,148 @@
+//! The opaque draws' triangles binned to the tiles of the tiled shading pass
+//! (tile_bins.wgsl says how), so that `light_tiled` with `raster` covers each tile in
+//! workgroup memory (visibility_tiles.wgsl) and no visibility buffer goes through memory.
+//! Made for one scene upload and output size; recorded as four dispatches just before the
+//! shading's, in the same compute pass.
+
+use super::pipeline::{module, pipeline_layout};
+use super::raster_draws::{grid, RasterDraws};
+use super::storage::{scratch, storage_group, storage_layout};
+use super::{compute_pipeline, StorageInput};
+use crate::gpu_scene::GpuScene;
+use crate::scene::DepthConvention;
+
+/// tile_bins.wgsl's BINNED_TILES: a triangle touching at most this many tiles is listed in
+/// each; larger ones are read by every tile. It sizes the entries: at most this many per
+/// triangle.
+const BINNED_TILES: u32 = 16;
+/// tile_bins.wgsl's workgroup of its per-tile and per-triangle dispatches.
+const GROUP: u32 = 64;
+/// The spanning pieces a triangle may add: its clipped polygon's fan.
+const PIECES: u64 = 3;
+
+/// visibility_tiles.wgsl's bindings of the draws and the bins in group 1.
+const SHADING_BINDINGS: std::ops::Range<u32> = 9..15;
+
+pub(crate) struct TileBins {
+    clear: wgpu::ComputePipeline,
+    count: wgpu::ComputePipeline,
+    offsets: wgpu::ComputePipeline,
+    fill: wgpu::ComputePipeline,
+    group: wgpu::BindGroup,
+    draws: RasterDraws,
+    tiles: u32,
+    /// In visibility_tiles.wgsl's binding order: draws, tile_ends, tile_starts,
+    /// tile_entries, spanning, spanning_count.
+    buffers: [wgpu::Buffer; 6],
+}
+
+impl TileBins {
+    /// Bins for `scene`'s opaque triangles over the tiles of side `tile` covering
+    /// `size`, with tile_bins.wgsl composed as `source`; an error when the device cannot
+    /// bind them.
+    pub fn new(
+        device: &wgpu::Device,
+        source: &str,
+        scene: &GpuScene,
+        tile: u32,
+        size: (u32, u32),
+    ) -> Result<TileBins, String> {
+        let tiles = size.0.div_ceil(tile) * size.1.div_ceil(tile);
+        let draws = RasterDraws::new(device, scene);
+        let triangles = u64::from(draws.triangles);
+        let entries = triangles * u64::from(BINNED_TILES) * 4;
+        let limit = device.limits().max_storage_buffer_binding_size;
+        if entries > limit {
+            return Err(format!(
+                "the scene's {triangles} opaque triangles need {entries} bytes of tile bins \
+                 ({BINNED_TILES} entries of 4 bytes each); this device binds at most {limit}: \
+                 use a pipeline whose raster pass is not tiled"
+            ));
+        }
+        let tile_words = u64::from(tiles) * 4;
+        let buffers = [
+            draws.buffer.clone(),
+            scratch(device, "tile bins: ends", tile_words),
+            scratch(device, "tile bins: starts", tile_words),
+            scratch(device, "tile bins: entries", entries),
+            scratch(device, "tile bins: spanning", triangles * PIECES * 4),
+            scratch(device, "tile bins: spanning count", 4),
+        ];
+        let layout = storage_layout(
+            device,
+            "tile bins",
+            &[true, false, false, false, false, false],
+        );
+        let refs: Vec<&wgpu::Buffer> = buffers.iter().collect();
+        let group = storage_group(device, "tile bins", &layout, &refs);
+        let module = module(device, "tile_bins", source);
+        let pipeline_layout = pipeline_layout(
+            device,
+            &[
+                Some(scene.layout()),
+                Some(&layout),
+                Some(scene.geometry_layout()),
+            ],
+        );
+        let constants = [
+            ("TILE", f64::from(tile)),
+            ("BINNED_TILES", f64::from(BINNED_TILES)),
+        ];
+        let pipeline = |entry: &str| {
+            compute_pipeline(
+                device,
+                "tile bins",
+                &pipeline_layout,
+                &module,
+                entry,
+                &constants,
+            )
+        };
+        Ok(TileBins {
+            clear: pipeline("cs_bins_clear"),
+            count: pipeline("cs_bins_count"),
+            offsets: pipeline("cs_bins_offsets"),
+            fill: pipeline("cs_bins_fill"),
+            group,
+            draws,
+            tiles,
+            buffers,
+        })
+    }
+
+    /// Records the binning into `pass`, with `scene`'s groups 0 (reversed-Z, as the
+    /// shading covers the tiles) and 2 (`geometry`); the pass's later dispatches set
+    /// their own groups.
+    pub fn record(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        scene: &GpuScene,
+        geometry: &wgpu::BindGroup,
+    ) {
+        pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
+        pass.set_bind_group(1, &self.group, &[]);
+        pass.set_bind_group(2, geometry, &[]);
+        let (x, y) = grid(u64::from(self.tiles), GROUP);
+        pass.set_pipeline(&self.clear);
+        pass.dispatch_workgroups(x, y, 1);
+        if self.draws.triangles == 0 {
+            // No entries: the tiles' counts stay 0, as their starts are.
+            return;
+        }
+        let (x, y) = grid(u64::from(self.draws.triangles), GROUP);
+        pass.set_pipeline(&self.count);
+        pass.dispatch_workgroups(x, y, 1);
+        pass.set_pipeline(&self.offsets);
+        pass.dispatch_workgroups(1, 1, 1);
+        pass.set_pipeline(&self.fill);
+        pass.dispatch_workgroups(x, y, 1);
+    }
+
+    /// The buffers the shading reads, at visibility_tiles.wgsl's bindings.
+    pub fn shading_buffers(&self) -> Vec<(u32, StorageInput)> {
+        SHADING_BINDINGS
+            .zip(&self.buffers)
+            .map(|(binding, buffer)| (binding, StorageInput::Owned(buffer.clone())))
+            .collect()
+    }
+}

@@ -1,0 +1,100 @@
+// A visibility buffer that never leaves the chip: the tiled shading pass's workgroup
+// covers its tile's triangles (binned by tile_bins.wgsl) in workgroup memory before it
+// shades them, each invocation keeping its pixel's nearest keys (triangle_setup.wgsl's)
+// in registers, then in `tile_keys`, where `sample_id` and `sample_depth` read them as
+// visibility_samples.wgsl reads a compute rasteriser's buffer. The same coverage rules
+// and keys as that rasteriser's, so the same image; no buffer of keys is written or read.
+//
+// Group 1 binds the draws and the bins at bindings 9 to 13. Composed after common.wgsl,
+// scene.wgsl, geometry.wgsl and triangle_setup.wgsl, inside light_tiled.wgsl's generated
+// block (TILE), before visibility_read.wgsl.
+
+@group(1) @binding(9) var<storage, read> draws: array<RasterDraw>;
+@group(1) @binding(10) var<storage, read> tile_ends: array<u32>;
+@group(1) @binding(11) var<storage, read> tile_starts: array<u32>;
+@group(1) @binding(12) var<storage, read> tile_entries: array<u32>;
+@group(1) @binding(13) var<storage, read> spanning: array<u32>;
+@group(1) @binding(14) var<storage, read> spanning_count: u32;
+
+// Triangles set up a chunk at a time, one per invocation, then tested by every invocation.
+const RASTER_CHUNK: u32 = min(TILE * TILE, 64u);
+
+// Each pixel's samples' keys (triangle_setup.wgsl's), at the pixel's index in the tile
+// times SAMPLES plus the sample.
+var<workgroup> tile_keys: array<vec2<u32>, TILE * TILE * SAMPLES>;
+var<workgroup> chunk: array<ScreenTriangle, RASTER_CHUNK>;
+var<workgroup> chunk_count: atomic<u32>;
+
+fn key_at(pixel: vec2<i32>, s: u32) -> vec2<u32> {
+    let at = vec2<u32>(pixel) % TILE;
+    return tile_keys[(at.y * TILE + at.x) * SAMPLES + s];
+}
+
+fn sample_id(pixel: vec2<i32>, s: u32) -> u32 {
+    return key_at(pixel, s).x;
+}
+
+fn sample_depth(pixel: vec2<i32>, s: u32) -> f32 {
+    return bitcast<f32>(key_at(pixel, s).y);
+}
+
+// Entry `i` of the tile's list (its binned triangles, then the spanning ones), set up, with
+// area 0 where it misses the tile's pixels `tile` (min and max corners, inclusive).
+fn chunk_triangle(i: u32, binned: u32, start: u32, tile: vec4<i32>) -> ScreenTriangle {
+    if i < binned {
+        return whole_triangle(clip_triangle(tile_entries[start + i]));
+    }
+    let piece = spanning[i - binned];
+    let triangle = clip_triangle(piece >> 2u);
+    var t: ScreenTriangle;
+    if unclipped(triangle) {
+        t = whole_triangle(triangle);
+    } else {
+        t = clipped_triangle(triangle, piece & 3u);
+    }
+    let bounds = pixel_bounds(t);
+    if any(max(bounds.xy, tile.xy) > min(bounds.zw, tile.zw)) {
+        t.area = 0.0;
+    }
+    return t;
+}
+
+// Covers the tile at `origin` (the workgroup's, every invocation calling with its own
+// `local` index) and leaves its keys in tile_keys for after the next barrier.
+fn raster_tile(origin: vec2<u32>, local: u32) {
+    let tile_index = (origin.y / TILE) * ((output_size().x + TILE - 1u) / TILE) + origin.x / TILE;
+    let start = tile_starts[tile_index];
+    let binned = tile_ends[tile_index] - start;
+    let total = binned + spanning_count;
+    let tile = vec4<i32>(vec2<i32>(origin), vec2<i32>(origin + TILE - 1u));
+    let pixel = origin + vec2<u32>(local % TILE, local / TILE);
+    let covers = all(pixel < output_size());
+    var keys: array<vec2<u32>, SAMPLES>;
+    for (var first = 0u; first < total; first += RASTER_CHUNK) {
+        if local == 0u {
+            atomicStore(&chunk_count, 0u);
+        }
+        workgroupBarrier();
+        if local < RASTER_CHUNK && first + local < total {
+            let t = chunk_triangle(first + local, binned, start, tile);
+            if t.area > 0.0 {
+                chunk[atomicAdd(&chunk_count, 1u)] = t;
+            }
+        }
+        workgroupBarrier();
+        let count = atomicLoad(&chunk_count);
+        for (var j = 0u; j < count && covers; j++) {
+            let t = chunk[j];
+            if mask_passes(pixel, t) {
+                let owns = owned_edges(t);
+                for (var s = 0u; s < SAMPLES; s++) {
+                    keys[s] = key_max(keys[s], sample_key(pixel, s, t, owns));
+                }
+            }
+        }
+        workgroupBarrier();
+    }
+    for (var s = 0u; s < SAMPLES; s++) {
+        tile_keys[local * SAMPLES + s] = keys[s];
+    }
+}
