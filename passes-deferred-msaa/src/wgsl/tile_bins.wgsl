@@ -4,36 +4,58 @@
 // design of Laine and Karras's software rasteriser ("High-Performance Software
 // Rasterization on GPUs", HPG 2011: bin, then rasterise tile by tile on chip).
 //
-// A triangle whose pixel bounds touch at most BINNED_TILES tiles is binned: listed in
-// each of those tiles. The rest (large ones, and the pieces of those clipped against a
-// depth plane) go to one list of "spanning" triangles that every tile reads, testing
-// their bounds against its own. Four dispatches, in order:
-// 1. cs_bins_clear: every tile's count to 0, the spanning list emptied.
-// 2. cs_bins_count: per triangle, its tiles' counts raised, or it is added to the
-//    spanning list (as `t << 2 | k`: piece k of the t-th triangle of all draws).
-// 3. cs_bins_offsets: one workgroup turns the counts into each tile's first entry
+// Every triangle whose pixel bounds touch a tile is listed in that tile (`tile_entries`,
+// by the `t` of the t-th triangle of all draws), but for those clipped against a depth
+// plane and those the entries have no room for: their pieces (`t << 2 | k`, piece k of
+// the clipped polygon's fan) go to one list of "spanning" pieces that every tile reads,
+// testing the triangle's pixel bounds (`spanning_bounds`) against its own first. A
+// triangle touching at most BINNED_TILES tiles lists itself; a larger one takes room
+// for its entries from what is left after BINNED_TILES per triangle, and is listed by
+// items of up to ITEM_TILES tiles, an invocation per tile, so that a triangle across the
+// screen spreads over the GPU. Dispatches, in order:
+// 1. cs_bins_clear: every tile's count to 0, the lists emptied.
+// 2. cs_bins_count: per triangle, its tiles' counts raised (or its items listed, or its
+//    pieces added to the spanning list).
+// 3. cs_bins_count_items: the items' tiles' counts raised.
+// 4. cs_bins_offsets: one workgroup turns the counts into each tile's first entry
 //    (`tile_starts`, an exclusive prefix sum) and sets `tile_ends` there.
-// 4. cs_bins_fill: per triangle again, its entry appended to each of its tiles by
-//    raising `tile_ends`, which ends at the tile's last entry + 1.
+// 5. cs_bins_fill and cs_bins_fill_items: each entry written by raising `tile_ends`,
+//    which ends at the tile's last entry + 1.
 // A tile's entries are in no particular order: coverage keeps the largest key, which
-// does not depend on it. No list overflows: a binned triangle takes at most
-// BINNED_TILES entries and a triangle at most 3 spanning pieces, and the buffers are
-// sized for the scene's triangles.
+// does not depend on it. No list overflows: the entries hold BINNED_TILES per triangle
+// and the room large triangles take, the items at most one per BINNED_TILES of that
+// room, the spanning list 3 pieces per triangle.
 //
 // Composed after common.wgsl, scene.wgsl, geometry.wgsl and triangle_setup.wgsl.
+
+// The lists' lengths: the spanning pieces, the entries large triangles took (some may
+// not have fitted), the items.
+struct BinCounts {
+    spanning: atomic<u32>,
+    large_entries: atomic<u32>,
+    items: atomic<u32>,
+}
 
 @group(1) @binding(0) var<storage, read> draws: array<RasterDraw>;
 @group(1) @binding(1) var<storage, read_write> tile_ends: array<atomic<u32>>;
 @group(1) @binding(2) var<storage, read_write> tile_starts: array<u32>;
 @group(1) @binding(3) var<storage, read_write> tile_entries: array<u32>;
 @group(1) @binding(4) var<storage, read_write> spanning: array<u32>;
-@group(1) @binding(5) var<storage, read_write> spanning_count: atomic<u32>;
+@group(1) @binding(5) var<storage, read_write> bin_counts: BinCounts;
+// Per triangle, the pixel bounds of a spanning one (spanning_bounds).
+@group(1) @binding(6) var<storage, read_write> spanning_bounds: array<vec2<u32>>;
+// A large triangle's item: its `t`, its tiles (min and max corners, each x | y << 16),
+// and the first of its tiles (in rows across its bounds) the item lists.
+@group(1) @binding(7) var<storage, read_write> items: array<vec4<u32>>;
 
 // The shading pass's tile side in pixels.
 override TILE: u32;
 // common/gpu/tile_bins.rs sizes the entries by it.
 override BINNED_TILES: u32;
+// cs_bins_count_items' and cs_bins_fill_items' grid of workgroups.
+override ITEM_GROUPS: u32;
 const BIN_GROUP: u32 = 64u;
+const ITEM_TILES: u32 = 64u;
 const SCAN_GROUP: u32 = 256u;
 
 var<workgroup> scan: array<u32, SCAN_GROUP>;
@@ -42,59 +64,70 @@ fn invocation(id: vec3<u32>, groups: vec3<u32>) -> u32 {
     return id.x + id.y * groups.x * BIN_GROUP;
 }
 
+fn pack(v: vec2<u32>) -> u32 {
+    return v.x | (v.y << 16u);
+}
+
+fn unpack(v: u32) -> vec2<u32> {
+    return vec2<u32>(v & 0xffffu, v >> 16u);
+}
+
+fn tiles_across() -> u32 {
+    return (output_size().x + TILE - 1u) / TILE;
+}
+
 @compute @workgroup_size(64)
 fn cs_bins_clear(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = invocation(id, groups);
     if i == 0u {
-        atomicStore(&spanning_count, 0u);
+        atomicStore(&bin_counts.spanning, 0u);
+        atomicStore(&bin_counts.large_entries, 0u);
+        atomicStore(&bin_counts.items, 0u);
     }
     if i < arrayLength(&tile_ends) {
         atomicStore(&tile_ends[i], 0u);
     }
 }
 
-// The `t`-th triangle as binned: `binned` with its tile bounds (min and max corners,
-// inclusive), or not when it covers nothing or spans.
-struct Binned {
+// The t-th triangle's tiles (min and max corners, inclusive) when it lies within the
+// depth planes and covers some pixel (else max < min), and its pixel bounds.
+struct Tiles {
     tiles: vec4<u32>,
-    binned: bool,
+    pixels: vec4<i32>,
+    clipped: bool,
 }
 
-// The t-th triangle's tiles; a spanning triangle's pieces are added to the spanning list
-// when `list_spanning` (the count pass lists them, the fill pass skips them).
-fn bin(t: u32, list_spanning: bool) -> Binned {
-    var out = Binned(vec4<u32>(1u, 1u, 0u, 0u), false);
+fn tiles_of(t: u32) -> Tiles {
+    var out = Tiles(vec4<u32>(1u, 1u, 0u, 0u), vec4<i32>(0, 0, -1, -1), true);
     let triangle = clip_triangle(t);
-    var pieces = 1u;
-    if unclipped(triangle) {
-        let screen = whole_triangle(triangle);
-        let bounds = pixel_bounds(screen);
-        if screen.area == 0.0 || any(bounds.zw < bounds.xy) {
-            return out;
-        }
-        let tiles = vec4<u32>(bounds) / TILE;
-        let extent = tiles.zw - tiles.xy + 1u;
-        if extent.x * extent.y <= BINNED_TILES {
-            out.tiles = tiles;
-            out.binned = true;
-            return out;
-        }
-    } else {
-        pieces = clipped_count(triangle);
+    if !unclipped(triangle) {
+        return out;
     }
-    if list_spanning && pieces > 0u {
-        let first = atomicAdd(&spanning_count, pieces);
-        for (var k = 0u; k < pieces; k++) {
-            if first + k < arrayLength(&spanning) {
-                spanning[first + k] = (t << 2u) | k;
-            }
-        }
+    out.clipped = false;
+    let screen = whole_triangle(triangle);
+    let bounds = pixel_bounds(screen);
+    if screen.area > 0.0 && all(bounds.xy <= bounds.zw) {
+        out.pixels = bounds;
+        out.tiles = vec4<u32>(bounds) / TILE;
     }
     return out;
 }
 
-fn tiles_across() -> u32 {
-    return (output_size().x + TILE - 1u) / TILE;
+fn tile_count(tiles: vec4<u32>) -> u32 {
+    let extent = tiles.zw - tiles.xy + 1u;
+    return extent.x * extent.y;
+}
+
+// Adds `pieces` pieces of triangle `t`, whose pixel bounds are `pixels`, to the spanning
+// list.
+fn add_spanning(t: u32, pieces: u32, pixels: vec4<i32>) {
+    spanning_bounds[t] = vec2<u32>(pack(vec2<u32>(pixels.xy)), pack(vec2<u32>(pixels.zw)));
+    let first = atomicAdd(&bin_counts.spanning, pieces);
+    for (var k = 0u; k < pieces; k++) {
+        if first + k < arrayLength(&spanning) {
+            spanning[first + k] = (t << 2u) | k;
+        }
+    }
 }
 
 @compute @workgroup_size(64)
@@ -103,13 +136,73 @@ fn cs_bins_count(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_work
     if t >= triangle_count() {
         return;
     }
-    let b = bin(t, true);
-    if !b.binned {
+    let b = tiles_of(t);
+    if b.clipped {
+        // Its pieces' bounds together.
+        let triangle = clip_triangle(t);
+        let pieces = clipped_count(triangle);
+        var pixels = vec4<i32>(1 << 30, 1 << 30, -1, -1);
+        for (var k = 0u; k < pieces; k++) {
+            let bounds = pixel_bounds(clipped_triangle(triangle, k));
+            pixels = vec4<i32>(min(pixels.xy, bounds.xy), max(pixels.zw, bounds.zw));
+        }
+        if pieces > 0u && all(pixels.xy <= pixels.zw) {
+            add_spanning(t, pieces, pixels);
+        }
         return;
     }
-    for (var y = b.tiles.y; y <= b.tiles.w; y++) {
-        for (var x = b.tiles.x; x <= b.tiles.z; x++) {
-            atomicAdd(&tile_ends[y * tiles_across() + x], 1u);
+    if any(b.tiles.zw < b.tiles.xy) {
+        return;
+    }
+    let count = tile_count(b.tiles);
+    if count <= BINNED_TILES {
+        for (var y = b.tiles.y; y <= b.tiles.w; y++) {
+            for (var x = b.tiles.x; x <= b.tiles.z; x++) {
+                atomicAdd(&tile_ends[y * tiles_across() + x], 1u);
+            }
+        }
+        return;
+    }
+    // Room after BINNED_TILES entries per triangle.
+    let room = arrayLength(&tile_entries) - BINNED_TILES * triangle_count();
+    let taken = atomicAdd(&bin_counts.large_entries, count);
+    if taken + count > room {
+        add_spanning(t, 1u, b.pixels);
+        return;
+    }
+    let item_count = (count + ITEM_TILES - 1u) / ITEM_TILES;
+    let first = atomicAdd(&bin_counts.items, item_count);
+    for (var i = 0u; i < item_count; i++) {
+        if first + i < arrayLength(&items) {
+            items[first + i] = vec4<u32>(t, pack(b.tiles.xy), pack(b.tiles.zw), i * ITEM_TILES);
+        }
+    }
+}
+
+// The tile an invocation `local` of an item's workgroup lists, or none (NO_TILE).
+const NO_TILE: u32 = 0xffffffffu;
+
+fn item_tile(item: vec4<u32>, local: u32) -> u32 {
+    let low = unpack(item.y);
+    let extent = unpack(item.z) - low + 1u;
+    let k = item.w + local;
+    if local >= ITEM_TILES || k >= extent.x * extent.y {
+        return NO_TILE;
+    }
+    let tile = low + vec2<u32>(k % extent.x, k / extent.x);
+    return tile.y * tiles_across() + tile.x;
+}
+
+fn item_total() -> u32 {
+    return min(atomicLoad(&bin_counts.items), arrayLength(&items));
+}
+
+@compute @workgroup_size(64)
+fn cs_bins_count_items(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) local: u32) {
+    for (var i = group.x; i < item_total(); i += ITEM_GROUPS) {
+        let tile = item_tile(items[i], local);
+        if tile != NO_TILE {
+            atomicAdd(&tile_ends[tile], 1u);
         }
     }
 }
@@ -145,22 +238,37 @@ fn cs_bins_offsets(@builtin(local_invocation_index) local: u32) {
     }
 }
 
+fn add_entry(tile: u32, t: u32) {
+    let entry = atomicAdd(&tile_ends[tile], 1u);
+    if entry < arrayLength(&tile_entries) {
+        tile_entries[entry] = t;
+    }
+}
+
 @compute @workgroup_size(64)
 fn cs_bins_fill(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let t = invocation(id, groups);
     if t >= triangle_count() {
         return;
     }
-    let b = bin(t, false);
-    if !b.binned {
+    let b = tiles_of(t);
+    if b.clipped || any(b.tiles.zw < b.tiles.xy) || tile_count(b.tiles) > BINNED_TILES {
         return;
     }
     for (var y = b.tiles.y; y <= b.tiles.w; y++) {
         for (var x = b.tiles.x; x <= b.tiles.z; x++) {
-            let entry = atomicAdd(&tile_ends[y * tiles_across() + x], 1u);
-            if entry < arrayLength(&tile_entries) {
-                tile_entries[entry] = t;
-            }
+            add_entry(y * tiles_across() + x, t);
+        }
+    }
+}
+
+@compute @workgroup_size(64)
+fn cs_bins_fill_items(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) local: u32) {
+    for (var i = group.x; i < item_total(); i += ITEM_GROUPS) {
+        let item = items[i];
+        let tile = item_tile(item, local);
+        if tile != NO_TILE {
+            add_entry(tile, item.x);
         }
     }
 }

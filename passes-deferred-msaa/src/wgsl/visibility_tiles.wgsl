@@ -5,7 +5,7 @@
 // visibility_samples.wgsl reads a compute rasteriser's buffer. The same coverage rules
 // and keys as that rasteriser's, so the same image; no buffer of keys is written or read.
 //
-// Group 1 binds the draws and the bins at bindings 9 to 13. Composed after common.wgsl,
+// Group 1 binds the draws and the bins at bindings 9 to 15. Composed after common.wgsl,
 // scene.wgsl, geometry.wgsl and triangle_setup.wgsl, inside light_tiled.wgsl's generated
 // block (TILE), before visibility_read.wgsl.
 
@@ -14,7 +14,9 @@
 @group(1) @binding(11) var<storage, read> tile_starts: array<u32>;
 @group(1) @binding(12) var<storage, read> tile_entries: array<u32>;
 @group(1) @binding(13) var<storage, read> spanning: array<u32>;
+// tile_bins.wgsl's BinCounts, read after it is done: the spanning pieces first.
 @group(1) @binding(14) var<storage, read> spanning_count: u32;
+@group(1) @binding(15) var<storage, read> spanning_bounds: array<vec2<u32>>;
 
 // Triangles set up a chunk at a time, one per invocation, then tested by every invocation.
 const RASTER_CHUNK: u32 = min(TILE * TILE, 64u);
@@ -23,6 +25,8 @@ const RASTER_CHUNK: u32 = min(TILE * TILE, 64u);
 // times SAMPLES plus the sample.
 var<workgroup> tile_keys: array<vec2<u32>, TILE * TILE * SAMPLES>;
 var<workgroup> chunk: array<ScreenTriangle, RASTER_CHUNK>;
+// Their pixel bounds (pixel_bounds), which most of the tile's pixels are outside.
+var<workgroup> chunk_bounds: array<vec4<i32>, RASTER_CHUNK>;
 var<workgroup> chunk_count: atomic<u32>;
 
 fn key_at(pixel: vec2<i32>, s: u32) -> vec2<u32> {
@@ -38,22 +42,31 @@ fn sample_depth(pixel: vec2<i32>, s: u32) -> f32 {
     return bitcast<f32>(key_at(pixel, s).y);
 }
 
-// Entry `i` of the tile's list (its binned triangles, then the spanning ones), set up, with
-// area 0 where it misses the tile's pixels `tile` (min and max corners, inclusive).
+// Whether pixel bounds `a` and `b` (min and max corners, inclusive) overlap.
+fn overlap(a: vec4<i32>, b: vec4<i32>) -> bool {
+    return all(max(a.xy, b.xy) <= min(a.zw, b.zw));
+}
+
+// Entry `i` of the tile's list (its binned triangles, then the spanning pieces), set up,
+// with area 0 where it misses the tile's pixels `tile` (min and max corners, inclusive).
 fn chunk_triangle(i: u32, binned: u32, start: u32, tile: vec4<i32>) -> ScreenTriangle {
     if i < binned {
         return whole_triangle(clip_triangle(tile_entries[start + i]));
     }
-    let piece = spanning[i - binned];
-    let triangle = clip_triangle(piece >> 2u);
     var t: ScreenTriangle;
+    let piece = spanning[i - binned];
+    let packed = spanning_bounds[piece >> 2u];
+    let bounds = vec4<i32>(vec2<i32>(vec2<u32>(packed.x & 0xffffu, packed.x >> 16u)), vec2<i32>(vec2<u32>(packed.y & 0xffffu, packed.y >> 16u)));
+    if !overlap(bounds, tile) {
+        return t;
+    }
+    let triangle = clip_triangle(piece >> 2u);
     if unclipped(triangle) {
         t = whole_triangle(triangle);
     } else {
         t = clipped_triangle(triangle, piece & 3u);
     }
-    let bounds = pixel_bounds(t);
-    if any(max(bounds.xy, tile.xy) > min(bounds.zw, tile.zw)) {
+    if !overlap(pixel_bounds(t), tile) {
         t.area = 0.0;
     }
     return t;
@@ -78,12 +91,19 @@ fn raster_tile(origin: vec2<u32>, local: u32) {
         if local < RASTER_CHUNK && first + local < total {
             let t = chunk_triangle(first + local, binned, start, tile);
             if t.area > 0.0 {
-                chunk[atomicAdd(&chunk_count, 1u)] = t;
+                let slot = atomicAdd(&chunk_count, 1u);
+                chunk[slot] = t;
+                chunk_bounds[slot] = pixel_bounds(t);
             }
         }
         workgroupBarrier();
         let count = atomicLoad(&chunk_count);
+        let at = vec2<i32>(pixel);
         for (var j = 0u; j < count && covers; j++) {
+            let bounds = chunk_bounds[j];
+            if any(at < bounds.xy) || any(at > bounds.zw) {
+                continue;
+            }
             let t = chunk[j];
             if mask_passes(pixel, t) {
                 let owns = owned_edges(t);

@@ -1,7 +1,7 @@
 //! The opaque draws' triangles binned to the tiles of the tiled shading pass
 //! (tile_bins.wgsl says how), so that `light_tiled` with `raster` covers each tile in
 //! workgroup memory (visibility_tiles.wgsl) and no visibility buffer goes through memory.
-//! Made for one scene upload and output size; recorded as four dispatches just before the
+//! Made for one scene upload and output size; recorded as six dispatches just before the
 //! shading's, in the same compute pass.
 
 use super::pipeline::{module, pipeline_layout};
@@ -11,29 +11,36 @@ use super::{compute_pipeline, StorageInput};
 use crate::gpu_scene::GpuScene;
 use crate::scene::DepthConvention;
 
-/// tile_bins.wgsl's BINNED_TILES: a triangle touching at most this many tiles is listed in
-/// each; larger ones are read by every tile. It sizes the entries: at most this many per
-/// triangle.
-const BINNED_TILES: u32 = 16;
-/// tile_bins.wgsl's workgroup of its per-tile and per-triangle dispatches.
+/// tile_bins.wgsl's BINNED_TILES: a triangle touching at most this many tiles lists
+/// itself; the entries hold this many per triangle.
+const BINNED_TILES: u64 = 16;
+/// Room in the entries for larger triangles, per tile: beyond it they are spanning, read
+/// by every tile (slower, never wrong).
+const LARGE_ENTRIES_PER_TILE: u64 = 16;
+/// tile_bins.wgsl's workgroup of its per-tile and per-triangle dispatches, and the grid
+/// of its item dispatches.
 const GROUP: u32 = 64;
+const ITEM_GROUPS: u32 = 1024;
 /// The spanning pieces a triangle may add: its clipped polygon's fan.
 const PIECES: u64 = 3;
 
-/// visibility_tiles.wgsl's bindings of the draws and the bins in group 1.
-const SHADING_BINDINGS: std::ops::Range<u32> = 9..15;
+/// visibility_tiles.wgsl's bindings in group 1 of the bins the shading reads, from the
+/// draws to the spanning bounds.
+const SHADING_BINDINGS: std::ops::Range<u32> = 9..16;
 
 pub(crate) struct TileBins {
     clear: wgpu::ComputePipeline,
     count: wgpu::ComputePipeline,
+    count_items: wgpu::ComputePipeline,
     offsets: wgpu::ComputePipeline,
     fill: wgpu::ComputePipeline,
+    fill_items: wgpu::ComputePipeline,
     group: wgpu::BindGroup,
     draws: RasterDraws,
     tiles: u32,
-    /// In visibility_tiles.wgsl's binding order: draws, tile_ends, tile_starts,
-    /// tile_entries, spanning, spanning_count.
-    buffers: [wgpu::Buffer; 6],
+    /// In tile_bins.wgsl's binding order: draws, tile_ends, tile_starts, tile_entries,
+    /// spanning, bin_counts, spanning_bounds, items.
+    buffers: [wgpu::Buffer; 8],
 }
 
 impl TileBins {
@@ -50,13 +57,15 @@ impl TileBins {
         let tiles = size.0.div_ceil(tile) * size.1.div_ceil(tile);
         let draws = RasterDraws::new(device, scene);
         let triangles = u64::from(draws.triangles);
-        let entries = triangles * u64::from(BINNED_TILES) * 4;
+        let large = LARGE_ENTRIES_PER_TILE * u64::from(tiles);
+        let entries = (BINNED_TILES * triangles + large) * 4;
         let limit = device.limits().max_storage_buffer_binding_size;
         if entries > limit {
             return Err(format!(
                 "the scene's {triangles} opaque triangles need {entries} bytes of tile bins \
-                 ({BINNED_TILES} entries of 4 bytes each); this device binds at most {limit}: \
-                 use a pipeline whose raster pass is not tiled"
+                 ({BINNED_TILES} entries of 4 bytes each, and {LARGE_ENTRIES_PER_TILE} per \
+                 tile); this device binds at most {limit}: use a pipeline whose raster pass \
+                 is not tiled"
             ));
         }
         let tile_words = u64::from(tiles) * 4;
@@ -66,13 +75,13 @@ impl TileBins {
             scratch(device, "tile bins: starts", tile_words),
             scratch(device, "tile bins: entries", entries),
             scratch(device, "tile bins: spanning", triangles * PIECES * 4),
-            scratch(device, "tile bins: spanning count", 4),
+            scratch(device, "tile bins: counts", 12),
+            scratch(device, "tile bins: spanning bounds", triangles * 8),
+            scratch(device, "tile bins: items", (large / BINNED_TILES + 1) * 16),
         ];
-        let layout = storage_layout(
-            device,
-            "tile bins",
-            &[true, false, false, false, false, false],
-        );
+        let mut read_only = [false; 8];
+        read_only[0] = true;
+        let layout = storage_layout(device, "tile bins", &read_only);
         let refs: Vec<&wgpu::Buffer> = buffers.iter().collect();
         let group = storage_group(device, "tile bins", &layout, &refs);
         let module = module(device, "tile_bins", source);
@@ -86,7 +95,8 @@ impl TileBins {
         );
         let constants = [
             ("TILE", f64::from(tile)),
-            ("BINNED_TILES", f64::from(BINNED_TILES)),
+            ("BINNED_TILES", BINNED_TILES as f64),
+            ("ITEM_GROUPS", f64::from(ITEM_GROUPS)),
         ];
         let pipeline = |entry: &str| {
             compute_pipeline(
@@ -101,8 +111,10 @@ impl TileBins {
         Ok(TileBins {
             clear: pipeline("cs_bins_clear"),
             count: pipeline("cs_bins_count"),
+            count_items: pipeline("cs_bins_count_items"),
             offsets: pipeline("cs_bins_offsets"),
             fill: pipeline("cs_bins_fill"),
+            fill_items: pipeline("cs_bins_fill_items"),
             group,
             draws,
             tiles,
@@ -132,10 +144,14 @@ impl TileBins {
         let (x, y) = grid(u64::from(self.draws.triangles), GROUP);
         pass.set_pipeline(&self.count);
         pass.dispatch_workgroups(x, y, 1);
+        pass.set_pipeline(&self.count_items);
+        pass.dispatch_workgroups(ITEM_GROUPS, 1, 1);
         pass.set_pipeline(&self.offsets);
         pass.dispatch_workgroups(1, 1, 1);
         pass.set_pipeline(&self.fill);
         pass.dispatch_workgroups(x, y, 1);
+        pass.set_pipeline(&self.fill_items);
+        pass.dispatch_workgroups(ITEM_GROUPS, 1, 1);
     }
 
     /// The buffers the shading reads, at visibility_tiles.wgsl's bindings.
