@@ -265,6 +265,15 @@ pub(crate) const GBUFFER_RESOLVE: Source = Source {
 /// standardSampleLocations (D3D's), which WebGPU prescribes for its one multisampled
 /// count, 4. Per-sample shading reconstructs each sample's surface point there, where
 /// the rasterizer tested the sample against the light volumes.
+/// The positions within the pixel of `samples` samples (WebGPU's standard ones), or
+/// `None` for a count without them.
+pub(crate) fn sample_positions(samples: u32) -> Option<&'static [(f32, f32)]> {
+    SAMPLE_POSITIONS
+        .iter()
+        .find(|(n, _)| *n == samples)
+        .map(|(_, positions)| *positions)
+}
+
 const SAMPLE_POSITIONS: [(u32, &[(f32, f32)]); 4] = [
     (1, &[(0.5, 0.5)]),
     (2, &[(0.75, 0.75), (0.25, 0.25)]),
@@ -317,7 +326,7 @@ impl Source {
         } else {
             ("texture_2d", "texture_depth_2d")
         };
-        let Some((_, positions)) = SAMPLE_POSITIONS.iter().find(|(n, _)| *n == samples) else {
+        let Some(positions) = sample_positions(samples) else {
             return Err(PluginError::Invalid(format!(
                 "{samples} samples per pixel: the deferred passes know the sample positions \
                  of 1, 2, 4 and 8 samples only"

@@ -293,7 +293,7 @@ impl Plugin for LightTiled {
             params.tile,
             samples.saturating_sub(1).max(1),
             format_name(out.format),
-            layout.wgsl(),
+            layout.wgsl(samples),
         );
         let ao = ao::input(slots, pass)?;
         inputs.extend(ao);

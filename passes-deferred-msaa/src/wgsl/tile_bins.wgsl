@@ -47,6 +47,8 @@ struct BinCounts {
 // A large triangle's item: its `t`, its tiles (min and max corners, each x | y << 16),
 // and the first of its tiles (in rows across its bounds) the item lists.
 @group(1) @binding(7) var<storage, read_write> items: array<vec4<u32>>;
+// Per triangle, a binned one set up (written by cs_bins_count), as its tiles read it.
+@group(1) @binding(8) var<storage, read_write> records: array<ScreenTriangle>;
 
 // The shading pass's tile side in pixels.
 override TILE: u32;
@@ -90,15 +92,20 @@ fn cs_bins_clear(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_work
 }
 
 // The t-th triangle's tiles (min and max corners, inclusive) when it lies within the
-// depth planes and covers some pixel (else max < min), and its pixel bounds.
+// depth planes and covers some pixel (else max < min),
+// its pixel bounds, and the triangle set up.
 struct Tiles {
     tiles: vec4<u32>,
     pixels: vec4<i32>,
     clipped: bool,
+    screen: ScreenTriangle,
 }
 
 fn tiles_of(t: u32) -> Tiles {
-    var out = Tiles(vec4<u32>(1u, 1u, 0u, 0u), vec4<i32>(0, 0, -1, -1), true);
+    var out: Tiles;
+    out.tiles = vec4<u32>(1u, 1u, 0u, 0u);
+    out.pixels = vec4<i32>(0, 0, -1, -1);
+    out.clipped = true;
     let triangle = clip_triangle(t);
     if !unclipped(triangle) {
         return out;
@@ -109,6 +116,7 @@ fn tiles_of(t: u32) -> Tiles {
     if screen.area > 0.0 && all(bounds.xy <= bounds.zw) {
         out.pixels = bounds;
         out.tiles = vec4<u32>(bounds) / TILE;
+        out.screen = screen;
     }
     return out;
 }
@@ -154,6 +162,8 @@ fn cs_bins_count(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_work
     if any(b.tiles.zw < b.tiles.xy) {
         return;
     }
+    // Its tiles read it set up, unless it spans (then they set it up themselves).
+    records[t] = b.screen;
     let count = tile_count(b.tiles);
     if count <= BINNED_TILES {
         for (var y = b.tiles.y; y <= b.tiles.w; y++) {

@@ -17,6 +17,7 @@
 // tile_bins.wgsl's BinCounts, read after it is done: the spanning pieces first.
 @group(1) @binding(14) var<storage, read> spanning_count: u32;
 @group(1) @binding(15) var<storage, read> spanning_bounds: array<vec2<u32>>;
+@group(1) @binding(16) var<storage, read> records: array<ScreenTriangle>;
 
 // Triangles set up a chunk at a time, one per invocation, then tested by every invocation.
 const RASTER_CHUNK: u32 = min(TILE * TILE, 64u);
@@ -51,7 +52,7 @@ fn overlap(a: vec4<i32>, b: vec4<i32>) -> bool {
 // with area 0 where it misses the tile's pixels `tile` (min and max corners, inclusive).
 fn chunk_triangle(i: u32, binned: u32, start: u32, tile: vec4<i32>) -> ScreenTriangle {
     if i < binned {
-        return whole_triangle(clip_triangle(tile_entries[start + i]));
+        return records[tile_entries[start + i]];
     }
     var t: ScreenTriangle;
     let piece = spanning[i - binned];
@@ -72,6 +73,40 @@ fn chunk_triangle(i: u32, binned: u32, start: u32, tile: vec4<i32>) -> ScreenTri
     return t;
 }
 
+// edge_at for lanes of sample positions `x`, `y`: the same operations, lane by lane.
+fn edge_lanes(u: vec2<f32>, v: vec2<f32>, x: LaneF, y: LaneF) -> LaneF {
+    if u.x < v.x || (u.x == v.x && u.y < v.y) {
+        return (v.x - u.x) * (y - u.y) - (v.y - u.y) * (x - u.x);
+    }
+    return -((u.x - v.x) * (y - v.y) - (u.y - v.y) * (x - v.x));
+}
+
+fn inside_lanes(w: LaneF, owns: bool) -> LaneB {
+    return (w > LaneF(0.0)) | ((w == LaneF(0.0)) & LaneB(owns));
+}
+
+// Keeps the nearer of `t`'s keys and `depths`' and `ids`' in each sample of `pixel`
+// (triangle_setup.wgsl's sample_key and key_max, lane by lane).
+fn cover_lanes(pixel: vec2<u32>, t: ScreenTriangle, depths: ptr<function, array<LaneU, LANE_GROUPS>>, ids: ptr<function, array<LaneU, LANE_GROUPS>>) {
+    let owns = owned_edges(t);
+    let id = LaneU(t.id);
+    for (var g = 0u; g < LANE_GROUPS; g++) {
+        let x = LaneF(f32(pixel.x)) + LANE_X[g];
+        let y = LaneF(f32(pixel.y)) + LANE_Y[g];
+        let w0 = edge_lanes(t.b.xy, t.c.xy, x, y);
+        let w1 = edge_lanes(t.c.xy, t.a.xy, x, y);
+        let w2 = edge_lanes(t.a.xy, t.b.xy, x, y);
+        let depth = (w0 * t.a.z + w1 * t.b.z + w2 * t.c.z) / t.area;
+        let covered = inside_lanes(w0, owns.x) & inside_lanes(w1, owns.y) & inside_lanes(w2, owns.z)
+            & (depth >= LaneF(0.0)) & (depth <= LaneF(1.0));
+        let bits = bitcast<LaneU>(depth);
+        let kept = (*depths)[g];
+        let nearer = covered & ((bits > kept) | ((bits == kept) & (id > (*ids)[g])));
+        (*depths)[g] = select(kept, bits, nearer);
+        (*ids)[g] = select((*ids)[g], id, nearer);
+    }
+}
+
 // Covers the tile at `origin` (the workgroup's, every invocation calling with its own
 // `local` index) and leaves its keys in tile_keys for after the next barrier.
 fn raster_tile(origin: vec2<u32>, local: u32) {
@@ -82,7 +117,9 @@ fn raster_tile(origin: vec2<u32>, local: u32) {
     let tile = vec4<i32>(vec2<i32>(origin), vec2<i32>(origin + TILE - 1u));
     let pixel = origin + vec2<u32>(local % TILE, local / TILE);
     let covers = all(pixel < output_size());
-    var keys: array<vec2<u32>, SAMPLES>;
+    // Each sample's key as its depth's bits and its ID, a lane each.
+    var depths: array<LaneU, LANE_GROUPS>;
+    var ids: array<LaneU, LANE_GROUPS>;
     for (var first = 0u; first < total; first += RASTER_CHUNK) {
         if local == 0u {
             atomicStore(&chunk_count, 0u);
@@ -106,15 +143,13 @@ fn raster_tile(origin: vec2<u32>, local: u32) {
             }
             let t = chunk[j];
             if mask_passes(pixel, t) {
-                let owns = owned_edges(t);
-                for (var s = 0u; s < SAMPLES; s++) {
-                    keys[s] = key_max(keys[s], sample_key(pixel, s, t, owns));
-                }
+                cover_lanes(pixel, t, &depths, &ids);
             }
         }
         workgroupBarrier();
     }
     for (var s = 0u; s < SAMPLES; s++) {
-        tile_keys[local * SAMPLES + s] = keys[s];
+        let g = s / LANES;
+        tile_keys[local * SAMPLES + s] = vec2<u32>(lane(ids[g], s % LANES), lane(depths[g], s % LANES));
     }
 }

@@ -21,12 +21,16 @@ const LARGE_ENTRIES_PER_TILE: u64 = 16;
 /// of its item dispatches.
 const GROUP: u32 = 64;
 const ITEM_GROUPS: u32 = 1024;
+/// triangle_setup.wgsl's ScreenTriangle, a binned triangle set up.
+const RECORD_BYTES: u64 = 80;
 /// The spanning pieces a triangle may add: its clipped polygon's fan.
 const PIECES: u64 = 3;
 
 /// visibility_tiles.wgsl's bindings in group 1 of the bins the shading reads, from the
-/// draws to the spanning bounds.
-const SHADING_BINDINGS: std::ops::Range<u32> = 9..16;
+/// draws to the spanning bounds, then the records.
+const SHADING_BINDINGS: [u32; 8] = [9, 10, 11, 12, 13, 14, 15, 16];
+/// The buffers it reads: all but the items.
+const SHADING_BUFFERS: [usize; 8] = [0, 1, 2, 3, 4, 5, 6, 8];
 
 pub(crate) struct TileBins {
     clear: wgpu::ComputePipeline,
@@ -39,8 +43,8 @@ pub(crate) struct TileBins {
     draws: RasterDraws,
     tiles: u32,
     /// In tile_bins.wgsl's binding order: draws, tile_ends, tile_starts, tile_entries,
-    /// spanning, bin_counts, spanning_bounds, items.
-    buffers: [wgpu::Buffer; 8],
+    /// spanning, bin_counts, spanning_bounds, items, records.
+    buffers: [wgpu::Buffer; 9],
 }
 
 impl TileBins {
@@ -78,8 +82,9 @@ impl TileBins {
             scratch(device, "tile bins: counts", 12),
             scratch(device, "tile bins: spanning bounds", triangles * 8),
             scratch(device, "tile bins: items", (large / BINNED_TILES + 1) * 16),
+            scratch(device, "tile bins: records", triangles * RECORD_BYTES),
         ];
-        let mut read_only = [false; 8];
+        let mut read_only = [false; 9];
         read_only[0] = true;
         let layout = storage_layout(device, "tile bins", &read_only);
         let refs: Vec<&wgpu::Buffer> = buffers.iter().collect();
@@ -157,8 +162,9 @@ impl TileBins {
     /// The buffers the shading reads, at visibility_tiles.wgsl's bindings.
     pub fn shading_buffers(&self) -> Vec<(u32, StorageInput)> {
         SHADING_BINDINGS
-            .zip(&self.buffers)
-            .map(|(binding, buffer)| (binding, StorageInput::Owned(buffer.clone())))
+            .into_iter()
+            .zip(SHADING_BUFFERS)
+            .map(|(binding, i)| (binding, StorageInput::Owned(self.buffers[i].clone())))
             .collect()
     }
 }
