@@ -39,6 +39,7 @@ pub(crate) const VISIBILITY_READ_TILES: &str = concat!(
     include_str!("wgsl/material.wgsl"),
     include_str!("wgsl/material_table.wgsl"),
     include_str!("wgsl/triangle_setup.wgsl"),
+    include_str!("wgsl/tile_raster.wgsl"),
     include_str!("wgsl/visibility_tiles.wgsl"),
     include_str!("wgsl/visibility_read.wgsl")
 );
@@ -137,6 +138,17 @@ pub(crate) const VISIBILITY_RASTER: Source = Source {
         GEOMETRY,
         TRIANGLE_SETUP,
         include_str!("wgsl/visibility_raster.wgsl"),
+    ],
+};
+pub(crate) const TILE_RASTER: Source = Source {
+    name: "visibility_tiles_raster.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        GEOMETRY,
+        TRIANGLE_SETUP,
+        include_str!("wgsl/tile_raster.wgsl"),
+        include_str!("wgsl/visibility_tiles_raster.wgsl"),
     ],
 };
 pub(crate) const TILE_BINS: Source = Source {
@@ -265,6 +277,51 @@ pub(crate) const GBUFFER_RESOLVE: Source = Source {
 /// standardSampleLocations (D3D's), which WebGPU prescribes for its one multisampled
 /// count, 4. Per-sample shading reconstructs each sample's surface point there, where
 /// the rasterizer tested the sample against the light volumes.
+/// tile_raster.wgsl's sample lanes for `samples` per pixel: a pixel's samples as the
+/// lanes of one scalar or vector type (groups of four at 8x), so that covering a tile
+/// tests them together and keeps its keys in registers, and each sample's position in the
+/// pixel as lanes. One sample is a scalar: lanes a pixel does not have are never computed.
+/// Nothing for a sample count without known positions (composing the shader names it).
+pub(crate) fn sample_lanes(samples: u32) -> String {
+    let Some(positions) = sample_positions(samples) else {
+        return String::new();
+    };
+    let lanes = positions.len().min(4);
+    let groups = positions.len().div_ceil(4);
+    let vector = |scalar: &str| match lanes {
+        1 => scalar.to_owned(),
+        n => format!("vec{n}<{scalar}>"),
+    };
+    let axis = |pick: fn(&(f32, f32)) -> f32| {
+        let group = |chunk: &[(f32, f32)]| {
+            let values: Vec<String> = chunk.iter().map(|p| format!("{:?}", pick(p))).collect();
+            format!("LaneF({})", values.join(", "))
+        };
+        positions
+            .chunks(lanes)
+            .map(group)
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    format!(
+        "// Generated: a pixel's {samples} sample(s) as {groups} group(s) of {lanes} lane(s).\n\
+         alias LaneF = {};\n\
+         alias LaneU = {};\n\
+         alias LaneB = {};\n\
+         const LANES: u32 = {lanes}u;\n\
+         const LANE_GROUPS: u32 = {groups}u;\n\
+         const LANE_X = array<LaneF, LANE_GROUPS>({});\n\
+         const LANE_Y = array<LaneF, LANE_GROUPS>({});\n\
+         fn lane(v: LaneU, lane: u32) -> u32 {{\n    return {};\n}}\n",
+        vector("f32"),
+        vector("u32"),
+        vector("bool"),
+        axis(|p| p.0),
+        axis(|p| p.1),
+        if lanes == 1 { "v" } else { "v[lane]" },
+    )
+}
+
 /// The positions within the pixel of `samples` samples (WebGPU's standard ones), or
 /// `None` for a count without them.
 pub(crate) fn sample_positions(samples: u32) -> Option<&'static [(f32, f32)]> {

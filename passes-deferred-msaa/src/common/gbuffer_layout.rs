@@ -151,7 +151,7 @@ impl GBufferLayout {
         };
         // Only a pass covering its tiles has something to do before it reads them.
         let raster = match self.surfaces {
-            Surfaces::VisibilityTiles => sample_lanes(samples),
+            Surfaces::VisibilityTiles => shaders::sample_lanes(samples),
             _ => "fn raster_tile(origin: vec2<u32>, local: u32) {}\n".to_owned(),
         };
         format!("{reader}\n{view_depth}\n{emitted}\n{raster}")
@@ -218,49 +218,4 @@ impl GBufferLayout {
         }
         Ok(None)
     }
-}
-
-/// visibility_tiles.wgsl's sample lanes for `samples` per pixel: a pixel's samples as the
-/// lanes of one scalar or vector type (groups of four at 8x), so that covering a tile
-/// tests them together and keeps its keys in registers, and each sample's position in the
-/// pixel as lanes. One sample is a scalar: lanes a pixel does not have are never computed.
-/// Nothing for a sample count without known positions (composing the shader names it).
-fn sample_lanes(samples: u32) -> String {
-    let Some(positions) = shaders::sample_positions(samples) else {
-        return String::new();
-    };
-    let lanes = positions.len().min(4);
-    let groups = positions.len().div_ceil(4);
-    let vector = |scalar: &str| match lanes {
-        1 => scalar.to_owned(),
-        n => format!("vec{n}<{scalar}>"),
-    };
-    let axis = |pick: fn(&(f32, f32)) -> f32| {
-        let group = |chunk: &[(f32, f32)]| {
-            let values: Vec<String> = chunk.iter().map(|p| format!("{:?}", pick(p))).collect();
-            format!("LaneF({})", values.join(", "))
-        };
-        positions
-            .chunks(lanes)
-            .map(group)
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    format!(
-        "// Generated: a pixel's {samples} sample(s) as {groups} group(s) of {lanes} lane(s).\n\
-         alias LaneF = {};\n\
-         alias LaneU = {};\n\
-         alias LaneB = {};\n\
-         const LANES: u32 = {lanes}u;\n\
-         const LANE_GROUPS: u32 = {groups}u;\n\
-         const LANE_X = array<LaneF, LANE_GROUPS>({});\n\
-         const LANE_Y = array<LaneF, LANE_GROUPS>({});\n\
-         fn lane(v: LaneU, lane: u32) -> u32 {{\n    return {};\n}}\n",
-        vector("f32"),
-        vector("u32"),
-        vector("bool"),
-        axis(|p| p.0),
-        axis(|p| p.1),
-        if lanes == 1 { "v" } else { "v[lane]" },
-    )
 }

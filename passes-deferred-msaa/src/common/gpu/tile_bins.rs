@@ -161,10 +161,18 @@ impl TileBins {
 
     /// The buffers the shading reads, at visibility_tiles.wgsl's bindings.
     pub fn shading_buffers(&self) -> Vec<(u32, StorageInput)> {
+        self.raster_buffers()
+            .into_iter()
+            .map(|(binding, buffer)| (binding, StorageInput::Owned(buffer.clone())))
+            .collect()
+    }
+
+    /// The buffers a tile's raster reads, at tile_raster.wgsl's bindings.
+    pub fn raster_buffers(&self) -> Vec<(u32, &wgpu::Buffer)> {
         SHADING_BINDINGS
             .into_iter()
             .zip(SHADING_BUFFERS)
-            .map(|(binding, i)| (binding, StorageInput::Owned(self.buffers[i].clone())))
+            .map(|(binding, i)| (binding, &self.buffers[i]))
             .collect()
     }
 }

@@ -1,0 +1,150 @@
+// A tile's keys covered in one workgroup, an invocation per pixel (the tile raster of
+// Laine and Karras, "High-Performance Software Rasterization on GPUs", HPG 2011): the
+// tile's triangles, binned by tile_bins.wgsl, are set up RASTER_CHUNK at a time, one per
+// invocation (a binned triangle read from the bins' records, a spanning piece set up
+// here and tested against the tile), then each invocation tests its pixel's samples
+// against each, as the lanes of one vector, keeping the nearest key of each sample in
+// registers (triangle_setup.wgsl's keys, compared as key_max compares them). The same
+// coverage rules and keys as visibility_raster.wgsl's, so the same keys.
+//
+// Group 1 binds the draws and the bins at bindings 9 to 16. Composed after common.wgsl,
+// scene.wgsl, geometry.wgsl and triangle_setup.wgsl, with a generated block defining
+// TILE and the sample lanes (LaneF, LaneU, LaneB, LANES, LANE_GROUPS, LANE_X, LANE_Y,
+// `lane`: common/gbuffer_layout.rs's sample_lanes).
+
+@group(1) @binding(9) var<storage, read> draws: array<RasterDraw>;
+@group(1) @binding(10) var<storage, read> tile_ends: array<u32>;
+@group(1) @binding(11) var<storage, read> tile_starts: array<u32>;
+@group(1) @binding(12) var<storage, read> tile_entries: array<u32>;
+@group(1) @binding(13) var<storage, read> spanning: array<u32>;
+// tile_bins.wgsl's BinCounts, read after it is done: the spanning pieces first.
+@group(1) @binding(14) var<storage, read> spanning_count: u32;
+@group(1) @binding(15) var<storage, read> spanning_bounds: array<vec2<u32>>;
+@group(1) @binding(16) var<storage, read> records: array<ScreenTriangle>;
+
+// Triangles set up a chunk at a time, one per invocation, then tested by every invocation.
+const RASTER_CHUNK: u32 = min(TILE * TILE, 64u);
+
+var<workgroup> chunk: array<ScreenTriangle, RASTER_CHUNK>;
+// Their pixel bounds (pixel_bounds), which most of the tile's pixels are outside.
+var<workgroup> chunk_bounds: array<vec4<i32>, RASTER_CHUNK>;
+var<workgroup> chunk_count: atomic<u32>;
+
+// Whether pixel bounds `a` and `b` (min and max corners, inclusive) overlap.
+fn overlap(a: vec4<i32>, b: vec4<i32>) -> bool {
+    return all(max(a.xy, b.xy) <= min(a.zw, b.zw));
+}
+
+// Entry `i` of the tile's list (its binned triangles, then the spanning pieces), set up,
+// with area 0 where it misses the tile's pixels `tile` (min and max corners, inclusive).
+fn chunk_triangle(i: u32, binned: u32, start: u32, tile: vec4<i32>) -> ScreenTriangle {
+    if i < binned {
+        return records[tile_entries[start + i]];
+    }
+    var t: ScreenTriangle;
+    let piece = spanning[i - binned];
+    let packed = spanning_bounds[piece >> 2u];
+    let bounds = vec4<i32>(vec2<i32>(vec2<u32>(packed.x & 0xffffu, packed.x >> 16u)), vec2<i32>(vec2<u32>(packed.y & 0xffffu, packed.y >> 16u)));
+    if !overlap(bounds, tile) {
+        return t;
+    }
+    let triangle = clip_triangle(piece >> 2u);
+    if unclipped(triangle) {
+        t = whole_triangle(triangle);
+    } else {
+        t = clipped_triangle(triangle, piece & 3u);
+    }
+    if !overlap(pixel_bounds(t), tile) {
+        t.area = 0.0;
+    }
+    return t;
+}
+
+// edge_at for lanes of sample positions `x`, `y`: the same operations, lane by lane.
+fn edge_lanes(u: vec2<f32>, v: vec2<f32>, x: LaneF, y: LaneF) -> LaneF {
+    if u.x < v.x || (u.x == v.x && u.y < v.y) {
+        return (v.x - u.x) * (y - u.y) - (v.y - u.y) * (x - u.x);
+    }
+    return -((u.x - v.x) * (y - v.y) - (u.y - v.y) * (x - v.x));
+}
+
+fn inside_lanes(w: LaneF, owns: bool) -> LaneB {
+    return (w > LaneF(0.0)) | ((w == LaneF(0.0)) & LaneB(owns));
+}
+
+// Keeps the nearer of `t`'s keys and `depths`' and `ids`' in each sample of `pixel`
+// (triangle_setup.wgsl's sample_key and key_max, lane by lane).
+fn cover_lanes(pixel: vec2<u32>, t: ScreenTriangle, depths: ptr<function, array<LaneU, LANE_GROUPS>>, ids: ptr<function, array<LaneU, LANE_GROUPS>>) {
+    let owns = owned_edges(t);
+    let id = LaneU(t.id);
+    for (var g = 0u; g < LANE_GROUPS; g++) {
+        let x = LaneF(f32(pixel.x)) + LANE_X[g];
+        let y = LaneF(f32(pixel.y)) + LANE_Y[g];
+        let w0 = edge_lanes(t.b.xy, t.c.xy, x, y);
+        let w1 = edge_lanes(t.c.xy, t.a.xy, x, y);
+        let w2 = edge_lanes(t.a.xy, t.b.xy, x, y);
+        let depth = (w0 * t.a.z + w1 * t.b.z + w2 * t.c.z) / t.area;
+        let covered = inside_lanes(w0, owns.x) & inside_lanes(w1, owns.y) & inside_lanes(w2, owns.z)
+            & (depth >= LaneF(0.0)) & (depth <= LaneF(1.0));
+        let bits = bitcast<LaneU>(depth);
+        let kept = (*depths)[g];
+        let nearer = covered & ((bits > kept) | ((bits == kept) & (id > (*ids)[g])));
+        (*depths)[g] = select(kept, bits, nearer);
+        (*ids)[g] = select((*ids)[g], id, nearer);
+    }
+}
+
+// A pixel's keys, each sample's depth bits and ID as a lane.
+struct TileKeys {
+    depths: array<LaneU, LANE_GROUPS>,
+    ids: array<LaneU, LANE_GROUPS>,
+}
+
+// Sample `s`'s key in `keys`, ID low (x), depth high (y).
+fn key_of_sample(keys: TileKeys, s: u32) -> vec2<u32> {
+    let g = s / LANES;
+    return vec2<u32>(lane(keys.ids[g], s % LANES), lane(keys.depths[g], s % LANES));
+}
+
+// Covers the tile at `origin` (the workgroup's, every invocation calling with its own
+// `local` index): the keys of the invocation's pixel, all 0 outside the output.
+fn cover_tile(origin: vec2<u32>, local: u32) -> TileKeys {
+    var depths: array<LaneU, LANE_GROUPS>;
+    var ids: array<LaneU, LANE_GROUPS>;
+    let tile_index = (origin.y / TILE) * ((output_size().x + TILE - 1u) / TILE) + origin.x / TILE;
+    let start = tile_starts[tile_index];
+    let binned = tile_ends[tile_index] - start;
+    let total = binned + spanning_count;
+    let tile = vec4<i32>(vec2<i32>(origin), vec2<i32>(origin + TILE - 1u));
+    let pixel = origin + vec2<u32>(local % TILE, local / TILE);
+    let covers = all(pixel < output_size());
+    for (var first = 0u; first < total; first += RASTER_CHUNK) {
+        if local == 0u {
+            atomicStore(&chunk_count, 0u);
+        }
+        workgroupBarrier();
+        if local < RASTER_CHUNK && first + local < total {
+            let t = chunk_triangle(first + local, binned, start, tile);
+            if t.area > 0.0 {
+                let slot = atomicAdd(&chunk_count, 1u);
+                chunk[slot] = t;
+                chunk_bounds[slot] = pixel_bounds(t);
+            }
+        }
+        workgroupBarrier();
+        let count = atomicLoad(&chunk_count);
+        let at = vec2<i32>(pixel);
+        for (var j = 0u; j < count && covers; j++) {
+            let bounds = chunk_bounds[j];
+            if any(at < bounds.xy) || any(at > bounds.zw) {
+                continue;
+            }
+            let t = chunk[j];
+            if mask_passes(pixel, t) {
+                cover_lanes(pixel, t, &depths, &ids);
+            }
+        }
+        workgroupBarrier();
+    }
+    return TileKeys(depths, ids);
+}

@@ -1,0 +1,24 @@
+// The visibility buffer rasterised tile by tile (passes/visibility_tiles.rs): a workgroup
+// per tile covers its triangles in registers (tile_raster.wgsl) and stores each pixel's
+// keys once, with plain stores, into the buffer a compute rasteriser's keys go to
+// (visibility_samples.wgsl reads it): no atomics into memory, and no 64-bit integers.
+// Composed after tile_raster.wgsl.
+
+@group(1) @binding(0) var<storage, read_write> sample_keys: array<vec2<u32>>;
+
+@compute @workgroup_size(TILE, TILE, 1)
+fn cs_raster_tiles(
+    @builtin(workgroup_id) tile: vec3<u32>,
+    @builtin(local_invocation_id) local_id: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+) {
+    let origin = tile.xy * TILE;
+    let keys = cover_tile(origin, local);
+    let pixel = origin + local_id.xy;
+    if all(pixel < output_size()) {
+        let base = (pixel.y * output_size().x + pixel.x) * SAMPLES;
+        for (var s = 0u; s < SAMPLES; s++) {
+            sample_keys[base + s] = key_of_sample(keys, s);
+        }
+    }
+}
