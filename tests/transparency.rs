@@ -561,8 +561,7 @@ fn fixture_path() -> String {
 /// Every pipeline that renders the lit scene declares `blend` and adds the transparent
 /// passes for a scene with BLEND materials only: compiled for the built-in scenes'
 /// features its plan is the one without them, which is the plan it had before they
-/// existed. (No GPU: plans against the WebGPU defaults, granted the 64-bit atomics the
-/// compute raster's branch needs.)
+/// existed. (No GPU: plans against the WebGPU defaults.)
 #[test]
 fn pipelines_add_the_transparent_passes_for_blend_scenes_only() {
     let file = panels_file(
@@ -575,10 +574,9 @@ fn pipelines_add_the_transparent_passes_for_blend_scenes_only() {
     let blend = SceneFeatures::of(&load(&file)).names();
     let mut registry = Registry::with_builtins();
     passes_deferred_msaa::register(&mut registry, None);
-    let atomics: Features = ["int64_atomics"].into_iter().collect();
     let options = CompileOptions {
         output_size: SIZE,
-        profile: DeviceProfile::webgpu().granting(&atomics),
+        profile: DeviceProfile::webgpu(),
     };
     for (pipeline, _) in PIPELINES {
         let path = format!("{}/pipelines/{pipeline}", env!("CARGO_MANIFEST_DIR"));

@@ -1,12 +1,13 @@
 //! The visibility buffer (pipelines/visibility_msaa_4x.ron, visibility_noaa.ron): 8 bytes
 //! per sample (triangle IDs in rg16uint and depth32float), triangles rebuilt and shaded in
 //! the tiled compute pass. Against the exact coverage of builtin:unlit and against the
-//! G-buffer pipelines. Rasterised in compute (visibility_compute_4x.ron, _noaa.ron: one
-//! 64-bit key per sample in a buffer), against the same coverage and the hardware's
-//! raster.
+//! G-buffer pipelines. Rasterised in compute (visibility_compute_4x.ron, _noaa.ron: tile
+//! by tile, one key of depth and ID per sample in a buffer), against the same coverage
+//! and the hardware's raster.
 
 use graph_core::Features;
 use passes_deferred_msaa::analysis::Features as SceneFeatures;
+use passes_deferred_msaa::glam::{DMat4, DVec3};
 use passes_deferred_msaa::scene::{AlphaMode, Mesh, Scene};
 use passes_deferred_msaa::{Exposure, Overrides};
 
@@ -203,6 +204,12 @@ fn the_compute_raster_renders_the_hardware_raster_s_image() {
             "spheres, one material alpha BLEND",
         ),
         (
+            (COMPUTE, VISIBILITY),
+            "builtin:spheres",
+            stacked_squares,
+            "forty screen-filling squares, most beyond the bins' room",
+        ),
+        (
             ("visibility_compute_noaa.ron", "visibility_noaa.ron"),
             "builtin:dense",
             unchanged,
@@ -218,6 +225,62 @@ fn the_compute_raster_renders_the_hardware_raster_s_image() {
             share >= 0.995,
             "{name}: only {share} of pixels within 1/255"
         );
+    }
+}
+
+/// Forty screen-filling squares (two triangles each, each its own grey) stacked in front
+/// of the camera, each nearer than the last: every tile holds eighty large triangles, more than the bins
+/// keep room for (16 entries per tile beyond 16 per triangle), so most go to the list
+/// every tile reads (common/gpu/tile_bins.rs), and the nearest must win in every tile.
+fn stacked_squares(scene: &mut Scene) {
+    let first = &scene.meshes[0];
+    let (eye, turn) = (scene.camera.position, scene.camera.orientation);
+    let mut vertices = Vec::new();
+    let mut indices = Vec::new();
+    for k in 0..40u32 {
+        // 4 m to 2.05 m in front of the camera, 6 m wide: wider than the view.
+        let distance = 4.0 - 0.05 * f64::from(k);
+        let base = vertices.len() as u32;
+        for (x, y) in [(-3.0, -3.0), (3.0, -3.0), (3.0, 3.0), (-3.0, 3.0)] {
+            let mut v = first.vertices[0];
+            v.position = (eye + turn * DVec3::new(x, y, -distance)).as_vec3().into();
+            // Each square its own shade, so that a farther one showing through would not
+            // pass for the nearest.
+            let shade = (65535 * (k + 1) / 40) as u16;
+            v.color = [shade, shade, shade, 65535];
+            vertices.push(v);
+        }
+        indices.extend([0, 1, 2, 0, 2, 3].map(|i| base + i));
+    }
+    let square = Mesh {
+        name: "stacked squares".into(),
+        vertices,
+        indices,
+        material: first.material,
+        transform: DMat4::IDENTITY,
+    };
+    scene.meshes.push(square);
+}
+
+/// The compute raster's tiles do not change its keys: tiles of 4, 8 and 16 pixels render
+/// builtin:dense (whose triangles span up to the whole screen, and are clipped by the
+/// near plane) bit for bit alike, at an output no tile size divides.
+#[test]
+fn the_compute_raster_s_tile_size_does_not_change_the_image() {
+    let gpu = gpu();
+    let image = |tile: &'static str| {
+        Render::new(COMPUTE, "builtin:dense", (333, 217))
+            .edit("plugin: \"visibility_compute\",", tile)
+            .run(&gpu)
+            .image(&gpu, "color")
+    };
+    let sixteen = image("plugin: \"visibility_compute\", params: (tile: 16),");
+    for tile in [
+        "plugin: \"visibility_compute\", params: (tile: 4),",
+        "plugin: \"visibility_compute\", params: (tile: 8),",
+    ] {
+        let other = image(tile);
+        assert!(sixteen.pixels == other.pixels, "{tile}: the image changed");
     }
 }
 
@@ -322,6 +385,21 @@ fn a_compute_visibility_buffer_of_another_size_is_an_error() {
         line.contains("slot \"samples\"")
             && line.contains("holds 6 bytes per sample, 4 samples per pixel and 0 bytes more")
             && line.contains("8 bytes per sample"),
+        "{line}"
+    );
+}
+
+/// A tile side outside 4 to 16 is an error naming the pass, found without a GPU.
+#[test]
+fn a_compute_raster_tile_outside_4_to_16_is_an_error() {
+    let line = validate_error(
+        "plugin: \"visibility_compute\",",
+        "plugin: \"visibility_compute\", params: (tile: 32),",
+        "big_tiles.ron",
+        "visibility",
+    );
+    assert!(
+        line.contains("tile must be 4 to 16 pixels, got 32"),
         "{line}"
     );
 }

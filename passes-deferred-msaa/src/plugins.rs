@@ -70,7 +70,6 @@ pub use crate::passes::transparent::{
 };
 pub use crate::passes::visibility::{Visibility, VisibilityParams};
 pub use crate::passes::visibility_compute::{VisibilityCompute, VisibilityComputeParams};
-pub use crate::passes::visibility_tiles::{VisibilityTiles, VisibilityTilesParams};
 
 /// Adds every deferred plugin, sharing `host`, compiling shaders as `variants` says.
 pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variants: Variants) {
@@ -83,7 +82,6 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(LightTiled(shared.clone()))
         .register(Visibility(shared.clone()))
         .register(VisibilityCompute(shared.clone()))
-        .register(VisibilityTiles(shared.clone()))
         .register(KeysDepth(shared.clone()))
         .register(Resolve(shared.clone()))
         .register(Tonemap(shared.clone()))

@@ -34,15 +34,6 @@ pub(crate) const VISIBILITY_READ_SAMPLES: &str = concat!(
     include_str!("wgsl/visibility_samples.wgsl"),
     include_str!("wgsl/visibility_read.wgsl")
 );
-pub(crate) const VISIBILITY_READ_TILES: &str = concat!(
-    include_str!("wgsl/geometry.wgsl"),
-    include_str!("wgsl/material.wgsl"),
-    include_str!("wgsl/material_table.wgsl"),
-    include_str!("wgsl/triangle_setup.wgsl"),
-    include_str!("wgsl/tile_raster.wgsl"),
-    include_str!("wgsl/visibility_tiles.wgsl"),
-    include_str!("wgsl/visibility_read.wgsl")
-);
 pub(crate) const VIEW_DEPTH_STORED: &str = include_str!("wgsl/view_depth_stored.wgsl");
 pub(crate) const VIEW_DEPTH_FROM_DEPTH: &str = include_str!("wgsl/view_depth_from_depth.wgsl");
 pub(crate) const EMITTED_HDR: &str = include_str!("wgsl/emitted_hdr.wgsl");
@@ -130,25 +121,15 @@ pub(crate) const VISIBILITY: Source = Source {
         include_str!("wgsl/visibility.wgsl"),
     ],
 };
-pub(crate) const VISIBILITY_RASTER: Source = Source {
-    name: "visibility_raster.wgsl",
-    parts: &[
-        COMMON,
-        SCENE,
-        GEOMETRY,
-        TRIANGLE_SETUP,
-        include_str!("wgsl/visibility_raster.wgsl"),
-    ],
-};
-pub(crate) const TILE_RASTER: Source = Source {
-    name: "visibility_tiles_raster.wgsl",
+pub(crate) const VISIBILITY_COMPUTE: Source = Source {
+    name: "visibility_compute.wgsl",
     parts: &[
         COMMON,
         SCENE,
         GEOMETRY,
         TRIANGLE_SETUP,
         include_str!("wgsl/tile_raster.wgsl"),
-        include_str!("wgsl/visibility_tiles_raster.wgsl"),
+        include_str!("wgsl/visibility_compute.wgsl"),
     ],
 };
 pub(crate) const TILE_BINS: Source = Source {

@@ -1,9 +1,8 @@
 //! The G-buffers a lighting pass can read, told apart by the slots its file binds: the
 //! full one (`view_depth` and `hdr`), the lean one (neither; `emission` when the scene
 //! emits), a mix, or a visibility buffer (`ids`: a raster pass's triangle IDs beside its
-//! `depth`, or `samples`: a compute rasteriser's buffer of depth and ID per sample, or
-//! none when the pass covers its tiles' triangles itself), whose triangles the pass
-//! rebuilds. For each, the textures to bind (group 1) and the WGSL
+//! `depth`, or `samples`: a compute rasteriser's buffer of depth and ID per sample), whose
+//! triangles the pass rebuilds. For each, the textures to bind (group 1) and the WGSL
 //! that reads them (gbuffer_read.wgsl or visibility_read.wgsl, a `load_view_depth`, an
 //! `emitted`), so the rest of the pass's shader is one source for all of them.
 
@@ -30,9 +29,6 @@ pub(crate) enum Surfaces {
     /// A compute rasteriser's visibility buffer, `samples` (common/visibility_samples.rs):
     /// no depth buffer.
     VisibilitySamples,
-    /// A visibility buffer the tiled pass covers in workgroup memory, tile by tile
-    /// (visibility_tiles.wgsl): no input.
-    VisibilityTiles,
 }
 
 impl Surfaces {
@@ -51,13 +47,11 @@ enum Emitted {
 }
 
 impl GBufferLayout {
-    /// The layout of the slots `slots` lists, or with `covers_tiles` none: the pass
-    /// covers its triangles itself; `background` is what samples where nothing was drawn
-    /// resolve to without an `hdr` or `emission` channel.
+    /// The layout of the slots `slots` lists; `background` is what samples where nothing
+    /// was drawn resolve to without an `hdr` or `emission` channel.
     pub fn of(
         slots: &Slots<'_>,
         background: Option<[f64; 3]>,
-        covers_tiles: bool,
     ) -> Result<GBufferLayout, PluginError> {
         let listed = |slot| slots.kind(slot).is_some();
         let emitted = match (listed("hdr"), listed("emission"), background) {
@@ -86,7 +80,6 @@ impl GBufferLayout {
             }
         };
         let surfaces = match (listed("ids"), listed("samples")) {
-            _ if covers_tiles => Surfaces::VisibilityTiles,
             (true, true) => {
                 return Err(PluginError::Invalid(
                     "inputs \"ids\" and \"samples\" are two visibility buffers: bind one".into(),
@@ -96,14 +89,6 @@ impl GBufferLayout {
             (false, true) => Surfaces::VisibilitySamples,
             (false, false) => Surfaces::GBuffer,
         };
-        if covers_tiles {
-            if let Some(slot) = ["ids", "samples", "depth"].into_iter().find(|&s| listed(s)) {
-                return Err(PluginError::Invalid(format!(
-                    "raster: the pass covers the scene's triangles itself; input \"{slot}\" \
-                     would be a second visibility buffer: leave it out, or leave out raster"
-                )));
-            }
-        }
         if surfaces.visibility() {
             if let Some(slot) = [
                 "albedo",
@@ -129,13 +114,12 @@ impl GBufferLayout {
         })
     }
 
-    /// The shader fragments that read this layout, for `samples` per pixel.
-    pub fn wgsl(&self, samples: u32) -> String {
+    /// The shader fragments that read this layout.
+    pub fn wgsl(&self) -> String {
         let reader = match self.surfaces {
             Surfaces::GBuffer => shaders::GBUFFER_READ,
             Surfaces::VisibilityTextures => shaders::VISIBILITY_READ_TEXTURES,
             Surfaces::VisibilitySamples => shaders::VISIBILITY_READ_SAMPLES,
-            Surfaces::VisibilityTiles => shaders::VISIBILITY_READ_TILES,
         };
         let view_depth = match self.stored_view_depth {
             true => shaders::VIEW_DEPTH_STORED,
@@ -149,12 +133,7 @@ impl GBufferLayout {
                 shaders::EMITTED_SURFACE
             ),
         };
-        // Only a pass covering its tiles has something to do before it reads them.
-        let raster = match self.surfaces {
-            Surfaces::VisibilityTiles => shaders::sample_lanes(samples),
-            _ => "fn raster_tile(origin: vec2<u32>, local: u32) {}\n".to_owned(),
-        };
-        format!("{reader}\n{view_depth}\n{emitted}\n{raster}")
+        format!("{reader}\n{view_depth}\n{emitted}")
     }
 
     /// Declares the layout's textures sampled and adds them to `inputs` at
@@ -180,10 +159,7 @@ impl GBufferLayout {
             });
             Ok::<_, PluginError>(handle)
         };
-        if matches!(
-            self.surfaces,
-            Surfaces::VisibilitySamples | Surfaces::VisibilityTiles
-        ) {
+        if self.surfaces == Surfaces::VisibilitySamples {
             return Ok(None);
         }
         if self.surfaces == Surfaces::VisibilityTextures {

@@ -90,7 +90,7 @@ mod gpu {
     use graph_core::gpu::RenderContext;
 
     use super::KeysDepthDraw;
-    use crate::common::gpu::{per_scene, InputPass, PipelineDesc, StorageInput};
+    use crate::common::gpu::{per_scene, InputPass, PipelineDesc};
     use crate::common::visibility_samples::{fits_binding, KEYS_BINDING};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
@@ -110,7 +110,7 @@ mod gpu {
                 return resources.fail(why);
             }
             let state: &mut InputPass<wgpu::TextureFormat> = per_scene(&mut state, &scene, || {
-                let buffers = [(KEYS_BINDING, StorageInput::Graph(draw.keys))];
+                let buffers = [(KEYS_BINDING, draw.keys)];
                 let label = "keys depth";
                 InputPass::with_geometry(
                     resources,

@@ -106,18 +106,6 @@ pub struct LightTiledParams {
     /// `hdr` nor `emission` (which are cleared to the G-buffer pass's background).
     #[serde(default)]
     pub background: Option<[f64; 3]>,
-    /// Cover the scene's opaque triangles tile by tile, in the workgroup, instead of
-    /// reading a G-buffer or visibility buffer: no input.
-    #[serde(default)]
-    pub raster: Option<TileRaster>,
-}
-
-/// `raster: (samples: 4)`: the visibility buffer the pass covers for itself.
-#[derive(Copy, Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TileRaster {
-    /// Samples per pixel: 1, 2, 4 or 8.
-    pub samples: u32,
 }
 
 fn tile() -> u32 {
@@ -179,12 +167,9 @@ impl TiledView {
 pub(crate) enum Depth {
     /// A depth buffer (group 1, binding 5), in the convention its format gets.
     Buffer(DepthRule, TextureHandle),
-    /// A compute rasteriser's keys (group 1): reversed-Z, and the triangles rebuilt from
+    /// A compute rasteriser's keys (group 3): reversed-Z, and the triangles rebuilt from
     /// the scene's geometry.
     Keys(BufferHandle),
-    /// Keys the pass covers tile by tile (visibility_tiles.wgsl): reversed-Z, the
-    /// triangles binned first by tile_bins.wgsl, composed as `bins`.
-    Tiles { bins: String },
 }
 
 /// Tile sides allowed: the four side planes are set up by four invocations, and 32 x 32
@@ -239,14 +224,9 @@ impl Plugin for LightTiled {
             )));
         }
         let exposure = resolve_exposure(&self.0, params.exposure, params.resolve)?;
-        let layout = GBufferLayout::of(slots, params.background, params.raster.is_some())?;
+        let layout = GBufferLayout::of(slots, params.background)?;
         let mut inputs = Vec::new();
         let (depth, samples) = match layout.surfaces {
-            Surfaces::VisibilityTiles => {
-                let samples = params.raster.map_or(1, |raster| raster.samples);
-                let bins = shaders::TILE_BINS.compose(samples)?.source().to_owned();
-                (Depth::Tiles { bins }, samples)
-            }
             Surfaces::VisibilitySamples => {
                 let (keys, samples) = visibility_samples::read(pass, slots, "samples")?;
                 (Depth::Keys(keys), samples)
@@ -293,7 +273,7 @@ impl Plugin for LightTiled {
             params.tile,
             samples.saturating_sub(1).max(1),
             format_name(out.format),
-            layout.wgsl(samples),
+            layout.wgsl(),
         );
         let ao = ao::input(slots, pass)?;
         inputs.extend(ao);
@@ -350,15 +330,14 @@ mod gpu {
 
     use std::sync::Arc;
 
-    use graph_core::gpu::{ComputeContext, FrameResources};
+    use graph_core::gpu::ComputeContext;
 
     use super::{Depth, TiledDispatch};
     use crate::analysis::{GatedShader, Variant};
     use crate::common::depth::far_depth;
-    use crate::common::gpu::tile_bins::TileBins;
-    use crate::common::gpu::{compute_pipeline, per_scene, split_ids, InputPass, StorageInput};
+    use crate::common::gpu::{compute_pipeline, per_scene, split_ids, InputPass};
     use crate::common::visibility_samples::{fits_binding, KEYS_BINDING};
-    use crate::gpu_scene::{GpuScene, SceneCache};
+    use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
 
     #[derive(Clone, PartialEq)]
@@ -369,41 +348,12 @@ mod gpu {
         ids: Option<wgpu::TextureFormat>,
     }
 
-    /// What the recorder builds for one scene upload: the pass's objects, and the bins of a
-    /// pass that covers its tiles.
-    struct Built {
-        pass: InputPass<Key, wgpu::ComputePipeline>,
-        bins: Option<TileBins>,
-    }
-
-    fn build(
-        resources: &FrameResources<'_>,
-        dispatch: &TiledDispatch,
-        scene: &GpuScene,
-    ) -> Result<Built, String> {
-        // The storage buffers group 1 holds besides the textures: the keys, the bins.
-        let (bins, buffers) = match &dispatch.depth {
-            Depth::Buffer(..) => (None, Vec::new()),
-            Depth::Keys(keys) => (None, vec![(KEYS_BINDING, StorageInput::Graph(*keys))]),
-            Depth::Tiles { bins } => {
-                let out = resources.shape(dispatch.output);
-                let size = (out.width, out.height);
-                let bins = TileBins::new(resources.device, bins, scene, dispatch.tile, size)?;
-                let buffers = bins.shading_buffers();
-                (Some(bins), buffers)
-            }
-        };
-        let visibility = !matches!(dispatch.depth, Depth::Buffer(..)) || dispatch.ids.is_some();
-        let pass = InputPass::with_geometry(
-            resources,
-            "light_tiled",
-            &dispatch.source,
-            Some(scene),
-            &dispatch.inputs,
-            &buffers,
-            visibility,
-        );
-        Ok(Built { pass, bins })
+    /// The storage buffers group 1 holds besides the textures: the keys, if any.
+    fn keys_binding(depth: &Depth) -> Vec<(u32, graph_core::BufferHandle)> {
+        match depth {
+            Depth::Keys(keys) => vec![(KEYS_BINDING, *keys)],
+            Depth::Buffer(..) => Vec::new(),
+        }
     }
 
     pub(super) fn record(
@@ -417,12 +367,19 @@ mod gpu {
             let Some(scene) = scenes.for_frame(resources) else {
                 return;
             };
-            let visibility = !matches!(dispatch.depth, Depth::Buffer(..)) || dispatch.ids.is_some();
-            let built = per_scene(&mut state, &scene, || build(resources, &dispatch, &scene));
-            let built = match built {
-                Ok(built) => built,
-                Err(why) => return resources.fail(why.clone()),
-            };
+            let visibility = dispatch.ids.is_some() || matches!(dispatch.depth, Depth::Keys(_));
+            let state: &mut InputPass<Key, wgpu::ComputePipeline> =
+                per_scene(&mut state, &scene, || {
+                    InputPass::with_geometry(
+                        resources,
+                        "light_tiled",
+                        &dispatch.source,
+                        Some(&scene),
+                        &dispatch.inputs,
+                        &keys_binding(&dispatch.depth),
+                        visibility,
+                    )
+                });
             // What a visibility buffer's shading binds besides its inputs (the scene's
             // geometry and texture table), or why the device cannot.
             let visibility_groups = match visibility {
@@ -449,7 +406,7 @@ mod gpu {
             }
             let convention = match dispatch.depth {
                 Depth::Buffer(rule, depth) => rule.convention(resources.shape(depth).format),
-                Depth::Keys(_) | Depth::Tiles { .. } => DepthConvention::ReversedZ,
+                Depth::Keys(_) => DepthConvention::ReversedZ,
             };
             let key = Key {
                 convention,
@@ -462,7 +419,6 @@ mod gpu {
                 }),
                 ids: dispatch.ids.map(|ids| resources.shape(ids).format),
             };
-            let state = &mut built.pass;
             let (module, layout) = (&state.module, &state.layout);
             let pipeline = state.pipelines.get(key, |key| {
                 let mut constants = dispatch.constants.clone();
@@ -482,9 +438,6 @@ mod gpu {
                     &constants,
                 )
             });
-            if let (Some(bins), Some((geometry, _))) = (&built.bins, visibility_groups) {
-                bins.record(&mut ctx.pass, &scene, geometry);
-            }
             ctx.pass.set_pipeline(pipeline);
             ctx.pass
                 .set_bind_group(0, scene.bind_group(convention), &[]);

@@ -24,4 +24,3 @@ pub(crate) mod tonemap;
 pub(crate) mod transparent;
 pub(crate) mod visibility;
 pub(crate) mod visibility_compute;
-pub(crate) mod visibility_tiles;

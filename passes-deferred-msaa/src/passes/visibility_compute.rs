@@ -1,32 +1,38 @@
-//! `visibility_compute`: the visibility pass rasterised in compute (Nanite's software
-//! rasteriser in spirit: Karis et al., "Nanite", SIGGRAPH 2021): the host's opaque
-//! meshes into a graph buffer of one 64-bit key per sample, depth over triangle ID,
-//! kept by `atomicMax` (common/visibility_samples.rs; visibility_raster.wgsl says how
-//! triangles are covered). No render targets and no ROPs: on a chip with few of them
-//! (the H200), a multisampled raster pass pays per sample written whatever it holds,
-//! and the hardware visibility pass at 4x took 3.6x its 1x time.
+//! `visibility_compute`: the visibility pass rasterised in compute, tile by tile (the
+//! design of Laine and Karras, "High-Performance Software Rasterization on GPUs", HPG
+//! 2011: bin, then rasterise each tile on chip), into a graph buffer of one key per
+//! sample: depth over triangle ID (common/visibility_samples.rs). No render targets and
+//! no ROPs: on a chip with few of them (the H200), a multisampled raster pass pays per
+//! sample written whatever it holds, and the hardware visibility pass at 4x took 3.6x its
+//! 1x time. No atomics into memory and no 64-bit integers either: the opaque triangles
+//! are binned to tiles first (common/gpu/tile_bins.rs, tile_bins.wgsl); then a workgroup
+//! per tile covers its triangles in registers, an invocation per pixel
+//! (tile_raster.wgsl), and stores each pixel's keys once, in rows
+//! (visibility_compute.wgsl). An atomicMax per covered sample into the buffer, the
+//! design before, lands anywhere in a buffer five times the H200's L2 at 4x and 3840x2160
+//! (bench/results/gpu/visibility-4x-attribution).
 //!
 //! ```ron
 //! (name: "visibility", plugin: "visibility_compute",
+//!  params: (tile: 16),                   // pixels per tile side, 4 to 16 (the default)
 //!  outputs: { "samples": "samples" })    // Buffer(per_sample: 8, samples: 4)
 //! ```
 //!
 //! `light_tiled` with a `samples` input shades it as it shades a hardware visibility
 //! buffer's `ids` and `depth`, with the same IDs (the triangle's position in the scene's
-//! index buffer / 3, + 1) and the same sample positions. Depth is reversed-Z (1 near,
-//! 0 far), the convention a float depth buffer gets. Needs 64-bit atomic min/max
-//! (`int64_atomics`, a device condition: pipelines/visibility_compute_4x.ron falls back
-//! to nothing, so a device without them gets an error naming the condition). Alpha MASK
-//! draws are tested as the hardware pass tests them: their base colour's alpha times the
-//! vertex colour's, at the pixel centre, against the cutoff (a textured base colour's
-//! alpha is not read: such scenes are `untabled_textures`, which the pipelines keep from
-//! this pass). Alpha BLEND draws are left out, as with a G-buffer: the transparent pass
-//! draws them later, testing against the depth `keys_depth` makes from the keys.
+//! index buffer / 3, + 1) and the same sample positions; triangle_setup.wgsl gives the
+//! coverage rules. Depth is reversed-Z (1 near, 0 far), the convention a float depth
+//! buffer gets. Alpha MASK draws are tested as the hardware pass tests them: their base
+//! colour's alpha times the vertex colour's, at the pixel centre, against the cutoff (a
+//! textured base colour's alpha is not read: such scenes are `untabled_textures`, which
+//! the pipelines keep from this pass). Alpha BLEND draws are left out, as with a
+//! G-buffer: the transparent pass draws them later, testing against the depth
+//! `keys_depth` makes from the keys.
 
 use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::types::Features;
+use graph_core::shader::Stage;
 use graph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, PassKind};
 
 use crate::common::plugin::{Recording, Shared};
@@ -37,16 +43,25 @@ pub struct VisibilityCompute(pub(crate) Shared);
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct VisibilityComputeParams {}
+pub struct VisibilityComputeParams {
+    /// Pixels per tile side.
+    #[serde(default = "tile")]
+    pub tile: u32,
+}
 
-/// What the shader needs of the device: 64-bit integers and their atomic min and max.
-pub(crate) const NEEDS: Features =
-    Features::SHADER_INT64.union(Features::SHADER_INT64_ATOMIC_MIN_MAX);
+fn tile() -> u32 {
+    16
+}
+
+/// Tile sides allowed: a workgroup of 16 x 16 invocations is WebGPU's largest.
+const TILES: std::ops::RangeInclusive<u32> = 4..=16;
 
 /// The pass as set up: what its `gpu` module records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct RasterDispatch {
-    pub source: String,
+    pub raster: String,
+    pub bins: String,
+    pub tile: u32,
     pub samples: BufferHandle,
 }
 
@@ -67,20 +82,42 @@ impl Plugin for VisibilityCompute {
 
     fn setup(
         &self,
-        _: VisibilityComputeParams,
+        params: VisibilityComputeParams,
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        // Cleared before it is drawn into: nothing of an earlier version is read.
+        if !TILES.contains(&params.tile) {
+            return Err(PluginError::Invalid(format!(
+                "tile must be {} to {} pixels, got {}",
+                TILES.start(),
+                TILES.end(),
+                params.tile
+            )));
+        }
+        // Every key is stored each frame: nothing of an earlier version is read.
         let role = BufferRole::Storage {
             read: false,
             write: true,
         };
         let samples = slots.write::<Buffer>("samples", |t| pass.buffer(t.handle, role))?;
         let count = visibility_samples::sample_count(pass, slots, "samples", samples)?;
-        let shader = shaders::VISIBILITY_RASTER.compose_for(count, "", NEEDS)?;
+        let generated = format!(
+            "// Generated: the tile's side in pixels, then the sample lanes.\n\
+             const TILE: u32 = {}u;\n{}",
+            params.tile,
+            shaders::sample_lanes(count)
+        );
+        let raster = shaders::VISIBILITY_COMPUTE.compose_with(count, &generated)?;
+        let Some(entry) = raster.entry("cs_raster_tiles", Stage::Compute) else {
+            return Err(PluginError::Invalid(
+                "visibility_compute.wgsl has no entry point cs_raster_tiles".into(),
+            ));
+        };
+        pass.workgroup(entry.workgroup());
         let dispatch = RasterDispatch {
-            source: shader.source().to_owned(),
+            raster: raster.source().to_owned(),
+            bins: shaders::TILE_BINS.compose(count)?.source().to_owned(),
+            tile: params.tile,
             samples,
         };
         self.0.record(pass, dispatch);
@@ -90,40 +127,26 @@ impl Plugin for VisibilityCompute {
 
 #[cfg(feature = "gpu")]
 mod gpu {
-    //! Recording: the clear, raster and item dispatches of visibility_raster.wgsl, with
-    //! the opaque draws' table and the work lists made once per scene upload.
+    //! Recording: the bins' dispatches, then one workgroup per tile, with the bins and
+    //! pipelines made once per scene upload.
 
     use std::sync::Arc;
 
-    use super::RasterDispatch;
-    use crate::common::gpu::pipeline::{module, pipeline_layout};
-    use crate::common::gpu::raster_draws::{grid, RasterDraws};
-    use crate::common::gpu::storage::{scratch, storage_group, storage_layout};
-    use crate::common::gpu::{compute_pipeline, per_scene};
-    use crate::common::visibility_samples::{fits_binding, KEY_BYTES};
-    use crate::gpu_scene::{GpuScene, SceneCache};
-    use crate::scene::DepthConvention;
     use graph_core::gpu::ComputeContext;
 
-    /// Triangles too large for one invocation the lists hold (80 bytes each), and their
-    /// items (8 bytes each: up to 16 blocks of 8 x 8 pixels). Beyond them, triangles are
-    /// covered by their own invocation: slower, never wrong.
-    const LISTED: u64 = 1 << 17;
-    const ITEMS: u64 = 1 << 20;
-    /// visibility_raster.wgsl's workgroup of cs_clear and cs_raster, and the grid of
-    /// cs_raster_items.
-    const GROUP: u32 = 64;
-    const ITEM_GROUPS: u32 = 1024;
+    use super::RasterDispatch;
+    use crate::common::gpu::pipeline::{module, pipeline_layout};
+    use crate::common::gpu::storage::{storage_group, storage_layout};
+    use crate::common::gpu::tile_bins::TileBins;
+    use crate::common::gpu::{compute_pipeline, per_scene};
+    use crate::common::visibility_samples::fits_binding;
+    use crate::gpu_scene::{GpuScene, SceneCache};
+    use crate::scene::DepthConvention;
 
     struct State {
+        bins: TileBins,
         layout: wgpu::BindGroupLayout,
-        clear: wgpu::ComputePipeline,
         raster: wgpu::ComputePipeline,
-        items: wgpu::ComputePipeline,
-        draws: RasterDraws,
-        counts: wgpu::Buffer,
-        listed: wgpu::Buffer,
-        item_list: wgpu::Buffer,
     }
 
     pub(super) fn record(
@@ -137,9 +160,14 @@ mod gpu {
             let Some(scene) = scenes.for_frame(resources) else {
                 return;
             };
+            let size = resources.output_size();
             let state = per_scene(&mut state, &scene, || {
-                build(device, &dispatch.source, &scene)
+                build(device, &dispatch, &scene, size)
             });
+            let state = match state {
+                Ok(state) => state,
+                Err(why) => return resources.fail(why.clone()),
+            };
             let geometry = match scene.geometry_group(device) {
                 Ok(group) => group,
                 Err(why) => return resources.fail(why),
@@ -148,42 +176,35 @@ mod gpu {
             if let Err(why) = fits_binding(device, keys) {
                 return resources.fail(why);
             }
-            let group = storage_group(
-                device,
-                "visibility_compute",
-                &state.layout,
-                &[
-                    keys,
-                    &state.draws.buffer,
-                    &state.counts,
-                    &state.listed,
-                    &state.item_list,
-                ],
-            );
+            let mut buffers = vec![keys];
+            buffers.extend(state.bins.raster_buffers());
+            let group = storage_group(device, "visibility_compute", &state.layout, &buffers);
+            state.bins.record(&mut ctx.pass, &scene, geometry);
             let pass = &mut ctx.pass;
             pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
             pass.set_bind_group(1, &group, &[]);
             pass.set_bind_group(2, geometry, &[]);
-            let (x, y) = grid(keys.size() / KEY_BYTES, GROUP);
-            pass.set_pipeline(&state.clear);
-            pass.dispatch_workgroups(x, y, 1);
-            if state.draws.triangles > 0 {
-                let (x, y) = grid(u64::from(state.draws.triangles), GROUP);
-                pass.set_pipeline(&state.raster);
-                pass.dispatch_workgroups(x, y, 1);
-                pass.set_pipeline(&state.items);
-                pass.dispatch_workgroups(ITEM_GROUPS, 1, 1);
-            }
+            pass.set_pipeline(&state.raster);
+            pass.dispatch_workgroups(
+                size.0.div_ceil(dispatch.tile),
+                size.1.div_ceil(dispatch.tile),
+                1,
+            );
         })
     }
 
-    fn build(device: &wgpu::Device, source: &str, scene: &GpuScene) -> State {
-        let layout = storage_layout(
-            device,
-            "visibility_compute",
-            &[false, true, false, false, false],
-        );
-        let module = module(device, "visibility_compute", source);
+    fn build(
+        device: &wgpu::Device,
+        dispatch: &RasterDispatch,
+        scene: &GpuScene,
+        size: (u32, u32),
+    ) -> Result<State, String> {
+        let bins = TileBins::new(device, &dispatch.bins, scene, dispatch.tile, size)?;
+        // The keys, then the bins.
+        let mut read_only = vec![false];
+        read_only.extend(bins.raster_buffers().iter().map(|_| true));
+        let layout = storage_layout(device, "visibility_compute", &read_only);
+        let module = module(device, "visibility_compute", &dispatch.raster);
         let pipeline_layout = pipeline_layout(
             device,
             &[
@@ -192,20 +213,18 @@ mod gpu {
                 Some(scene.geometry_layout()),
             ],
         );
-        let constants = [("ITEM_GROUPS", f64::from(ITEM_GROUPS))];
-        let label = "visibility_compute";
-        let pipeline = |entry: &str| {
-            compute_pipeline(device, label, &pipeline_layout, &module, entry, &constants)
-        };
-        State {
-            clear: pipeline("cs_clear"),
-            raster: pipeline("cs_raster"),
-            items: pipeline("cs_raster_items"),
+        let raster = compute_pipeline(
+            device,
+            "visibility_compute",
+            &pipeline_layout,
+            &module,
+            "cs_raster_tiles",
+            &[],
+        );
+        Ok(State {
+            bins,
             layout,
-            draws: RasterDraws::new(device, scene),
-            counts: scratch(device, "visibility_compute counts", 8),
-            listed: scratch(device, "visibility_compute listed", LISTED * 80),
-            item_list: scratch(device, "visibility_compute items", ITEMS * 8),
-        }
+            raster,
+        })
     }
 }

@@ -22,12 +22,11 @@
 // pixels), EDGE_SLOTS (max(SAMPLES - 1, 1): the edge list holds that many entries per
 // invocation, every sample of every pixel but one) and OutTex (the output's storage
 // texture type), and holding the G-buffer's layout: `load_gsample`, `fragment_leaders`
-// and `sample_lit` (gbuffer_read.wgsl, or visibility_read.wgsl with geometry.wgsl and
-// visibility_textures.wgsl, visibility_samples.wgsl or visibility_tiles.wgsl),
+// and `sample_lit` (gbuffer_read.wgsl, or visibility_read.wgsl with geometry.wgsl),
 // `load_view_depth` (view_depth_stored.wgsl, or
 // view_depth_from_depth.wgsl for the lean G-buffer and the visibility buffer) and
-// `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or emitted_surface.wgsl), `raster_tile`
-// (visibility_tiles.wgsl's, or nothing), and common/ao.rs's `with_screen_ao`.
+// `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or emitted_surface.wgsl), and common/ao.rs's
+// `with_screen_ao`.
 
 @group(1) @binding(7) var out_tex: OutTex;
 
@@ -264,9 +263,6 @@ fn cs_light_tiled(
     let pixel = vec2<i32>(origin + local_id.xy);
     let inside = all(pixel < vec2<i32>(textureDimensions(out_tex)));
 
-    // A visibility buffer covered tile by tile is made here, in workgroup memory, and read
-    // after the barrier below; other layouts are read from memory and make nothing.
-    raster_tile(origin, local);
     if local == 0u {
         atomicStore(&nearest_key, 0u);
         atomicStore(&farthest_key, 0u);

@@ -1,8 +1,7 @@
-// The opaque draws' triangles binned to the tiled shading pass's tiles
-// (common/gpu/tile_bins.rs), so that each tile's workgroup covers its own triangles in
-// workgroup memory (visibility_tiles.wgsl) and no visibility buffer is written: the
-// design of Laine and Karras's software rasteriser ("High-Performance Software
-// Rasterization on GPUs", HPG 2011: bin, then rasterise tile by tile on chip).
+// The opaque draws' triangles binned to tiles (common/gpu/tile_bins.rs), so that each
+// tile's workgroup covers its own triangles (tile_raster.wgsl): the design of Laine and
+// Karras's software rasteriser ("High-Performance Software Rasterization on GPUs", HPG
+// 2011: bin, then rasterise tile by tile on chip).
 //
 // Every triangle whose pixel bounds touch a tile is listed in that tile (`tile_entries`,
 // by the `t` of the t-th triangle of all draws), but for those clipped against a depth
@@ -50,7 +49,7 @@ struct BinCounts {
 // Per triangle, a binned one set up (written by cs_bins_count), as its tiles read it.
 @group(1) @binding(8) var<storage, read_write> records: array<ScreenTriangle>;
 
-// The shading pass's tile side in pixels.
+// The raster's tile side in pixels.
 override TILE: u32;
 // common/gpu/tile_bins.rs sizes the entries by it.
 override BINNED_TILES: u32;

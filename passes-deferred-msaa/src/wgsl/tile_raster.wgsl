@@ -4,23 +4,23 @@
 // invocation (a binned triangle read from the bins' records, a spanning piece set up
 // here and tested against the tile), then each invocation tests its pixel's samples
 // against each, as the lanes of one vector, keeping the nearest key of each sample in
-// registers (triangle_setup.wgsl's keys, compared as key_max compares them). The same
-// coverage rules and keys as visibility_raster.wgsl's, so the same keys.
+// registers (triangle_setup.wgsl's keys: the order the triangles come in does not
+// matter).
 //
-// Group 1 binds the draws and the bins at bindings 9 to 16. Composed after common.wgsl,
+// Group 1 binds the draws and the bins at bindings 1 to 8 (common/gpu/tile_bins.rs). Composed after common.wgsl,
 // scene.wgsl, geometry.wgsl and triangle_setup.wgsl, with a generated block defining
 // TILE and the sample lanes (LaneF, LaneU, LaneB, LANES, LANE_GROUPS, LANE_X, LANE_Y,
 // `lane`: common/gbuffer_layout.rs's sample_lanes).
 
-@group(1) @binding(9) var<storage, read> draws: array<RasterDraw>;
-@group(1) @binding(10) var<storage, read> tile_ends: array<u32>;
-@group(1) @binding(11) var<storage, read> tile_starts: array<u32>;
-@group(1) @binding(12) var<storage, read> tile_entries: array<u32>;
-@group(1) @binding(13) var<storage, read> spanning: array<u32>;
+@group(1) @binding(1) var<storage, read> draws: array<RasterDraw>;
+@group(1) @binding(2) var<storage, read> tile_ends: array<u32>;
+@group(1) @binding(3) var<storage, read> tile_starts: array<u32>;
+@group(1) @binding(4) var<storage, read> tile_entries: array<u32>;
+@group(1) @binding(5) var<storage, read> spanning: array<u32>;
 // tile_bins.wgsl's BinCounts, read after it is done: the spanning pieces first.
-@group(1) @binding(14) var<storage, read> spanning_count: u32;
-@group(1) @binding(15) var<storage, read> spanning_bounds: array<vec2<u32>>;
-@group(1) @binding(16) var<storage, read> records: array<ScreenTriangle>;
+@group(1) @binding(6) var<storage, read> spanning_count: u32;
+@group(1) @binding(7) var<storage, read> spanning_bounds: array<vec2<u32>>;
+@group(1) @binding(8) var<storage, read> records: array<ScreenTriangle>;
 
 // Triangles set up a chunk at a time, one per invocation, then tested by every invocation.
 const RASTER_CHUNK: u32 = min(TILE * TILE, 64u);
@@ -60,7 +60,8 @@ fn chunk_triangle(i: u32, binned: u32, start: u32, tile: vec4<i32>) -> ScreenTri
     return t;
 }
 
-// edge_at for lanes of sample positions `x`, `y`: the same operations, lane by lane.
+// triangle_setup.wgsl's edge_at for lanes of sample positions `x`, `y`: the same
+// operations, lane by lane (mask_passes takes edge_at at the pixel centre).
 fn edge_lanes(u: vec2<f32>, v: vec2<f32>, x: LaneF, y: LaneF) -> LaneF {
     if u.x < v.x || (u.x == v.x && u.y < v.y) {
         return (v.x - u.x) * (y - u.y) - (v.y - u.y) * (x - u.x);
@@ -68,12 +69,15 @@ fn edge_lanes(u: vec2<f32>, v: vec2<f32>, x: LaneF, y: LaneF) -> LaneF {
     return -((u.x - v.x) * (y - v.y) - (u.y - v.y) * (x - v.x));
 }
 
+// Inside an edge, or on it where it owns the samples on it (triangle_setup.wgsl).
 fn inside_lanes(w: LaneF, owns: bool) -> LaneB {
     return (w > LaneF(0.0)) | ((w == LaneF(0.0)) & LaneB(owns));
 }
 
-// Keeps the nearer of `t`'s keys and `depths`' and `ids`' in each sample of `pixel`
-// (triangle_setup.wgsl's sample_key and key_max, lane by lane).
+// Keeps the nearer of `t`'s keys and `depths`' and `ids`' in each sample of `pixel`: a
+// sample inside all three edges, at a depth within [0, 1] (the clip depth interpolated
+// at the sample, affine in screen space), takes `t` where its depth is nearer, or equal
+// and its ID larger.
 fn cover_lanes(pixel: vec2<u32>, t: ScreenTriangle, depths: ptr<function, array<LaneU, LANE_GROUPS>>, ids: ptr<function, array<LaneU, LANE_GROUPS>>) {
     let owns = owned_edges(t);
     let id = LaneU(t.id);

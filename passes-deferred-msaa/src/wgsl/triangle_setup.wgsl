@@ -1,7 +1,7 @@
-// The opaque draws' triangles set up for coverage in compute, as visibility_raster.wgsl
-// covers them into a buffer, tile_bins.wgsl bins them to tiles and visibility_tiles.wgsl
-// covers a tile's in workgroup memory: each transformed, clipped against the depth planes,
-// projected to pixels and wound to a positive area, then tested sample by sample.
+// The opaque draws' triangles set up for coverage in compute, as tile_bins.wgsl bins them
+// to tiles and tile_raster.wgsl covers a tile's: each transformed, clipped against the
+// depth planes, projected to pixels and wound to a positive area, then tested sample by
+// sample.
 //
 // Coverage follows the hardware's rules: a sample is inside when it is inside all
 // three edges, and a sample exactly on an edge belongs to the triangle for which that
@@ -10,9 +10,8 @@
 // Depth is the clip depth interpolated at the sample, affine in screen space. A sample
 // keeps the nearest triangle as one 64-bit key, its reversed-Z depth's bits over the
 // triangle's ID + 1, so that the largest key wins (a reversed-Z depth is a positive
-// float, whose bits order as its values); 0, below every key, is "nothing drawn" at the
-// far depth 0. Keys are vec2s of their words here, the ID low (x) and the depth high (y),
-// as visibility_samples.wgsl reads them.
+// float, whose bits order as its values; equal depths keep the larger ID); 0, below
+// every key, is "nothing drawn" at the far depth 0 (tile_raster.wgsl's cover_lanes).
 //
 // Composed after common.wgsl (SAMPLES, SAMPLE_POSITIONS), scene.wgsl and geometry.wgsl;
 // the file composing it binds `draws`.
@@ -59,15 +58,6 @@ fn output_size() -> vec2<u32> {
     return vec2<u32>(camera.viewport);
 }
 
-fn key_of(depth: f32, id: u32) -> vec2<u32> {
-    return vec2<u32>(id, bitcast<u32>(depth));
-}
-
-// The larger of two keys.
-fn key_max(a: vec2<u32>, b: vec2<u32>) -> vec2<u32> {
-    return select(a, b, b.y > a.y || (b.y == a.y && b.x > a.x));
-}
-
 // Edge function of u -> v at p: positive on its right in pixel coordinates (y down),
 // where a triangle of positive area has its inside.
 fn edge(u: vec2<f32>, v: vec2<f32>, p: vec2<f32>) -> f32 {
@@ -90,10 +80,6 @@ fn top_left(u: vec2<f32>, v: vec2<f32>) -> bool {
     return d.y < 0.0 || (d.y == 0.0 && d.x > 0.0);
 }
 
-fn inside(w: f32, owns: bool) -> bool {
-    return w > 0.0 || (w == 0.0 && owns);
-}
-
 // Which of the triangle's edges (b -> c, c -> a, a -> b) own the samples on them.
 fn owned_edges(t: ScreenTriangle) -> vec3<bool> {
     return vec3<bool>(top_left(t.b.xy, t.c.xy), top_left(t.c.xy, t.a.xy), top_left(t.a.xy, t.b.xy));
@@ -110,23 +96,6 @@ fn mask_passes(pixel: vec2<u32>, t: ScreenTriangle) -> bool {
     let p = vec2<f32>(pixel) + 0.5;
     let l = vec3<f32>(edge_at(t.b.xy, t.c.xy, p), edge_at(t.c.xy, t.a.xy, p), edge_at(t.a.xy, t.b.xy, p)) / t.area;
     return dot(l, t.mask.xyz) >= t.mask.w * dot(l, vec3<f32>(t.a.w, t.b.w, t.c.w));
-}
-
-// The key triangle `t` gives sample `s` of `pixel`, whose mask passed: 0 where it does not
-// cover the sample or its depth is outside [0, 1].
-fn sample_key(pixel: vec2<u32>, s: u32, t: ScreenTriangle, owns: vec3<bool>) -> vec2<u32> {
-    var positions = SAMPLE_POSITIONS;
-    let p = vec2<f32>(pixel) + positions[s];
-    let w0 = edge_at(t.b.xy, t.c.xy, p);
-    let w1 = edge_at(t.c.xy, t.a.xy, p);
-    let w2 = edge_at(t.a.xy, t.b.xy, p);
-    if inside(w0, owns.x) && inside(w1, owns.y) && inside(w2, owns.z) {
-        let depth = (w0 * t.a.z + w1 * t.b.z + w2 * t.c.z) / t.area;
-        if depth >= 0.0 && depth <= 1.0 {
-            return key_of(depth, t.id);
-        }
-    }
-    return vec2<u32>(0u);
 }
 
 // The pixels whose samples may lie in the triangle, clamped to the output: min and max

@@ -7,18 +7,11 @@ use graph_core::BufferHandle;
 
 use crate::common::textures::{Input, Texels};
 
-/// A buffer a pass reads as read-only storage: the graph's, or one its recorder made.
-#[derive(Clone)]
-pub(crate) enum StorageInput {
-    Graph(BufferHandle),
-    Owned(wgpu::Buffer),
-}
-
 pub(crate) struct TextureBindings {
     pub layout: wgpu::BindGroupLayout,
     bindings: Vec<Input>,
-    /// Buffers read as read-only storage, by binding.
-    buffers: Vec<(u32, StorageInput)>,
+    /// Graph buffers read as read-only storage, by binding.
+    buffers: Vec<(u32, BufferHandle)>,
     /// The clamp-to-edge linear sampler `Texels::Filtered` inputs are read through; made
     /// only for passes that have one.
     sampler: Option<wgpu::Sampler>,
@@ -34,7 +27,7 @@ impl TextureBindings {
     pub fn with_buffers(
         resources: &FrameResources<'_>,
         bindings: &[Input],
-        buffers: &[(u32, StorageInput)],
+        buffers: &[(u32, BufferHandle)],
     ) -> TextureBindings {
         let visibility = wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
         let mut entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
@@ -125,16 +118,14 @@ impl TextureBindings {
                 ),
             })
             .collect();
-        entries.extend(self.buffers.iter().map(|(binding, buffer)| {
-            wgpu::BindGroupEntry {
-                binding: *binding,
-                resource: match buffer {
-                    StorageInput::Graph(handle) => resources.buffer(*handle),
-                    StorageInput::Owned(buffer) => buffer,
-                }
-                .as_entire_binding(),
-            }
-        }));
+        entries.extend(
+            self.buffers
+                .iter()
+                .map(|&(binding, buffer)| wgpu::BindGroupEntry {
+                    binding,
+                    resource: resources.buffer(buffer).as_entire_binding(),
+                }),
+        );
         if let Some(sampler) = &self.sampler {
             entries.extend(
                 samplers(&self.bindings).map(|binding| wgpu::BindGroupEntry {

@@ -7,8 +7,9 @@
 //! after.
 
 use graph_core::gpu::FrameResources;
+use graph_core::BufferHandle;
 
-use super::bindings::{StorageInput, TextureBindings};
+use super::bindings::TextureBindings;
 use super::pipeline::{module, pipeline_layout, Pipelines};
 use crate::common::textures::Input;
 use crate::gpu_scene::GpuScene;
@@ -43,7 +44,7 @@ impl<K, P> InputPass<K, P> {
         source: &str,
         scene: Option<&GpuScene>,
         inputs: &[Input],
-        buffers: &[(u32, StorageInput)],
+        buffers: &[(u32, BufferHandle)],
         geometry: bool,
     ) -> Self {
         let device = resources.device;

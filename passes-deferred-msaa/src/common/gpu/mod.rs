@@ -18,7 +18,6 @@ pub(crate) mod tile_bins;
 use std::sync::Arc;
 
 use crate::gpu_scene::GpuScene;
-pub(crate) use bindings::StorageInput;
 pub(crate) use input_pass::InputPass;
 pub(crate) use pipeline::{additive, compute_pipeline, PipelineDesc};
 

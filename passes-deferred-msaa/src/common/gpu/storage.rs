@@ -1,5 +1,5 @@
-//! Bind groups of storage buffers only (the compute rasterisers' and the tile bins'
-//! group 1), and the scratch buffers they hold.
+//! Bind groups of storage buffers only, bound in order from binding 0 (the compute
+//! raster's and the tile bins' group 1), and the scratch buffers they hold.
 
 /// A compute-only layout of storage buffers at bindings 0, 1, ..., each read-only or not.
 pub(crate) fn storage_layout(
@@ -7,19 +7,10 @@ pub(crate) fn storage_layout(
     label: &str,
     read_only: &[bool],
 ) -> wgpu::BindGroupLayout {
-    let bindings: Vec<(u32, bool)> = (0..).zip(read_only.iter().copied()).collect();
-    storage_layout_at(device, label, &bindings)
-}
-
-/// A compute-only layout of storage buffers at the bindings given, each read-only or not.
-pub(crate) fn storage_layout_at(
-    device: &wgpu::Device,
-    label: &str,
-    bindings: &[(u32, bool)],
-) -> wgpu::BindGroupLayout {
-    let entries: Vec<_> = bindings
+    let entries: Vec<_> = read_only
         .iter()
-        .map(|&(binding, read_only)| wgpu::BindGroupLayoutEntry {
+        .zip(0..)
+        .map(|(&read_only, binding)| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: wgpu::ShaderStages::COMPUTE,
             ty: wgpu::BindingType::Buffer {
@@ -43,20 +34,10 @@ pub(crate) fn storage_group(
     layout: &wgpu::BindGroupLayout,
     buffers: &[&wgpu::Buffer],
 ) -> wgpu::BindGroup {
-    let bindings: Vec<(u32, &wgpu::Buffer)> = (0..).zip(buffers.iter().copied()).collect();
-    storage_group_at(device, label, layout, &bindings)
-}
-
-/// `buffers` bound whole at the bindings given of `layout`.
-pub(crate) fn storage_group_at(
-    device: &wgpu::Device,
-    label: &str,
-    layout: &wgpu::BindGroupLayout,
-    buffers: &[(u32, &wgpu::Buffer)],
-) -> wgpu::BindGroup {
     let entries: Vec<_> = buffers
         .iter()
-        .map(|&(binding, buffer)| wgpu::BindGroupEntry {
+        .zip(0..)
+        .map(|(buffer, binding)| wgpu::BindGroupEntry {
             binding,
             resource: buffer.as_entire_binding(),
         })

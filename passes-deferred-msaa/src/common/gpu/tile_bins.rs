@@ -1,13 +1,12 @@
-//! The opaque draws' triangles binned to the tiles of the tiled shading pass
-//! (tile_bins.wgsl says how), so that `light_tiled` with `raster` covers each tile in
-//! workgroup memory (visibility_tiles.wgsl) and no visibility buffer goes through memory.
-//! Made for one scene upload and output size; recorded as six dispatches just before the
-//! shading's, in the same compute pass.
+//! The opaque draws' triangles binned to tiles (tile_bins.wgsl says how), so that the
+//! compute raster covers each tile in one workgroup (passes/visibility_compute.rs,
+//! tile_raster.wgsl). Made for one scene upload and output size; recorded as six
+//! dispatches just before the raster's, in the same compute pass.
 
+use super::compute_pipeline;
 use super::pipeline::{module, pipeline_layout};
 use super::raster_draws::{grid, RasterDraws};
 use super::storage::{scratch, storage_group, storage_layout};
-use super::{compute_pipeline, StorageInput};
 use crate::gpu_scene::GpuScene;
 use crate::scene::DepthConvention;
 
@@ -26,11 +25,9 @@ const RECORD_BYTES: u64 = 80;
 /// The spanning pieces a triangle may add: its clipped polygon's fan.
 const PIECES: u64 = 3;
 
-/// visibility_tiles.wgsl's bindings in group 1 of the bins the shading reads, from the
-/// draws to the spanning bounds, then the records.
-const SHADING_BINDINGS: [u32; 8] = [9, 10, 11, 12, 13, 14, 15, 16];
-/// The buffers it reads: all but the items.
-const SHADING_BUFFERS: [usize; 8] = [0, 1, 2, 3, 4, 5, 6, 8];
+/// The buffers a tile's raster reads (tile_raster.wgsl's bindings 1 to 8, in this
+/// order): all but the items.
+const RASTER_BUFFERS: [usize; 8] = [0, 1, 2, 3, 4, 5, 6, 8];
 
 pub(crate) struct TileBins {
     clear: wgpu::ComputePipeline,
@@ -159,20 +156,8 @@ impl TileBins {
         pass.dispatch_workgroups(ITEM_GROUPS, 1, 1);
     }
 
-    /// The buffers the shading reads, at visibility_tiles.wgsl's bindings.
-    pub fn shading_buffers(&self) -> Vec<(u32, StorageInput)> {
-        self.raster_buffers()
-            .into_iter()
-            .map(|(binding, buffer)| (binding, StorageInput::Owned(buffer.clone())))
-            .collect()
-    }
-
-    /// The buffers a tile's raster reads, at tile_raster.wgsl's bindings.
-    pub fn raster_buffers(&self) -> Vec<(u32, &wgpu::Buffer)> {
-        SHADING_BINDINGS
-            .into_iter()
-            .zip(SHADING_BUFFERS)
-            .map(|(binding, i)| (binding, &self.buffers[i]))
-            .collect()
+    /// The buffers a tile's raster reads, in tile_raster.wgsl's binding order (from 1).
+    pub fn raster_buffers(&self) -> Vec<&wgpu::Buffer> {
+        RASTER_BUFFERS.iter().map(|&i| &self.buffers[i]).collect()
     }
 }

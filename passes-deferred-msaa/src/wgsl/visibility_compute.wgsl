@@ -1,4 +1,4 @@
-// The visibility buffer rasterised tile by tile (passes/visibility_tiles.rs): a workgroup
+// The visibility buffer rasterised tile by tile (passes/visibility_compute.rs): a workgroup
 // per tile covers its triangles in registers (tile_raster.wgsl) and stores each pixel's
 // keys once, with plain stores, into the buffer a compute rasteriser's keys go to
 // (visibility_samples.wgsl reads it): no atomics into memory, and no 64-bit integers.
