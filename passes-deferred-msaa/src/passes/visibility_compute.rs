@@ -179,7 +179,7 @@ mod gpu {
             let mut buffers = vec![keys];
             buffers.extend(state.bins.raster_buffers());
             let group = storage_group(device, "visibility_compute", &state.layout, &buffers);
-            state.bins.record(&mut ctx.pass, &scene, geometry);
+            state.bins.record(ctx.pass, &scene, geometry);
             let pass = &mut ctx.pass;
             pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
             pass.set_bind_group(1, &group, &[]);

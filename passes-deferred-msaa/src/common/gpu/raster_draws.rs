@@ -1,7 +1,6 @@
-//! The opaque draws as the compute rasterisers see them (triangle_setup.wgsl's
-//! `RasterDraw`): visibility_compute covers their triangles into a buffer, tile_bins bins
-//! them for the tiled pass to cover. Alpha BLEND draws are left out: the transparent pass
-//! draws them later.
+//! The opaque draws as the compute raster sees them (triangle_setup.wgsl's `RasterDraw`),
+//! which the tile bins list by triangle. Alpha BLEND draws are left out: the transparent
+//! pass draws them later.
 
 use wgpu::util::DeviceExt;
 
@@ -68,12 +67,4 @@ impl RasterDraws {
             triangles: start,
         }
     }
-}
-
-/// Workgroups of `group` invocations for `invocations`, as x by y within the 65,535 a
-/// dimension allows (the shaders flatten them back).
-pub(crate) fn grid(invocations: u64, group: u32) -> (u32, u32) {
-    let groups = invocations.div_ceil(u64::from(group)).max(1);
-    let x = groups.min(65_535);
-    (x as u32, groups.div_ceil(x) as u32)
 }

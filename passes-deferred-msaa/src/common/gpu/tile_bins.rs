@@ -5,7 +5,7 @@
 
 use super::compute_pipeline;
 use super::pipeline::{module, pipeline_layout};
-use super::raster_draws::{grid, RasterDraws};
+use super::raster_draws::RasterDraws;
 use super::storage::{scratch, storage_group, storage_layout};
 use crate::gpu_scene::GpuScene;
 use crate::scene::DepthConvention;
@@ -61,12 +61,16 @@ impl TileBins {
         let large = LARGE_ENTRIES_PER_TILE * u64::from(tiles);
         let entries = (BINNED_TILES * triangles + large) * 4;
         let limit = device.limits().max_storage_buffer_binding_size;
-        if entries > limit {
+        let per_triangle = [
+            ("entries", entries),
+            ("records", triangles * RECORD_BYTES),
+            ("spanning list", triangles * PIECES * 4),
+        ];
+        if let Some((what, bytes)) = per_triangle.iter().find(|(_, bytes)| *bytes > limit) {
             return Err(format!(
-                "the scene's {triangles} opaque triangles need {entries} bytes of tile bins \
-                 ({BINNED_TILES} entries of 4 bytes each, and {LARGE_ENTRIES_PER_TILE} per \
-                 tile); this device binds at most {limit}: use a pipeline whose raster pass \
-                 is not tiled"
+                "the scene's {triangles} opaque triangles need {bytes} bytes of tile-bin \
+                 {what}; this device binds at most {limit}: render with \
+                 visibility_msaa_4x.ron, whose raster pass is the hardware's"
             ));
         }
         let tile_words = u64::from(tiles) * 4;
@@ -160,4 +164,12 @@ impl TileBins {
     pub fn raster_buffers(&self) -> Vec<&wgpu::Buffer> {
         RASTER_BUFFERS.iter().map(|&i| &self.buffers[i]).collect()
     }
+}
+
+/// Workgroups of `group` invocations for `invocations`, as x by y within the 65,535 a
+/// dimension allows (tile_bins.wgsl flattens them back).
+fn grid(invocations: u64, group: u32) -> (u32, u32) {
+    let groups = invocations.div_ceil(u64::from(group)).max(1);
+    let x = groups.min(65_535);
+    (x as u32, groups.div_ceil(x) as u32)
 }
