@@ -122,24 +122,24 @@ pub(crate) const VISIBILITY: Source = Source {
     ],
 };
 pub(crate) const VISIBILITY_COMPUTE: Source = Source {
-    name: "visibility_compute.wgsl",
+    name: "raster_tiles.wgsl",
     parts: &[
         COMMON,
         SCENE,
         GEOMETRY,
         TRIANGLE_SETUP,
         include_str!("wgsl/tile_raster.wgsl"),
-        include_str!("wgsl/visibility_compute.wgsl"),
+        include_str!("wgsl/raster_tiles.wgsl"),
     ],
 };
 pub(crate) const TILE_BINS: Source = Source {
-    name: "tile_bins.wgsl",
+    name: "bin_triangles.wgsl",
     parts: &[
         COMMON,
         SCENE,
         GEOMETRY,
         TRIANGLE_SETUP,
-        include_str!("wgsl/tile_bins.wgsl"),
+        include_str!("wgsl/bin_triangles.wgsl"),
     ],
 };
 pub(crate) const RESOLVE: Source = Source {

@@ -64,3 +64,19 @@ pub(crate) const ONE_SAMPLE: &str = "one sample per pixel: a pixel holds one sur
 pub(crate) fn yes() -> bool {
     true
 }
+
+/// Checks a tiled pass's `tile` parameter (pixels per tile side) against the sides it
+/// allows.
+pub(crate) fn check_tile(
+    tile: u32,
+    allowed: std::ops::RangeInclusive<u32>,
+) -> Result<(), graph_core::file::PluginError> {
+    match allowed.contains(&tile) {
+        true => Ok(()),
+        false => Err(graph_core::file::PluginError::Invalid(format!(
+            "tile must be {} to {} pixels, got {tile}",
+            allowed.start(),
+            allowed.end()
+        ))),
+    }
+}

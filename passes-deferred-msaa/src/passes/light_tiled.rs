@@ -78,7 +78,7 @@ use crate::common::ao;
 use crate::common::depth::DepthRule;
 use crate::common::edge_detection::{Detector, EdgeDetection};
 use crate::common::gbuffer_layout::{GBufferLayout, Surfaces};
-use crate::common::plugin::{yes, Recording, Shared};
+use crate::common::plugin::{check_tile, yes, Recording, Shared};
 use crate::common::textures::{self, format_name, Input, Texels, Want};
 use crate::common::visibility_samples;
 use crate::shaders;
@@ -215,14 +215,7 @@ impl Plugin for LightTiled {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         params.edges.check()?;
-        if !TILES.contains(&params.tile) {
-            return Err(PluginError::Invalid(format!(
-                "tile must be {} to {} pixels, got {}",
-                TILES.start(),
-                TILES.end(),
-                params.tile
-            )));
-        }
+        check_tile(params.tile, TILES)?;
         let exposure = resolve_exposure(&self.0, params.exposure, params.resolve)?;
         let layout = GBufferLayout::of(slots, params.background)?;
         let mut inputs = Vec::new();

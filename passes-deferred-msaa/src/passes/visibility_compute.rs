@@ -5,10 +5,10 @@
 //! no ROPs: on a chip with few of them (the H200), a multisampled raster pass pays per
 //! sample written whatever it holds, and the hardware visibility pass at 4x took 3.6x its
 //! 1x time. No atomics into memory and no 64-bit integers either: the opaque triangles
-//! are binned to tiles first (common/gpu/tile_bins.rs, tile_bins.wgsl); then a workgroup
+//! are binned to tiles first (common/gpu/tile_bins.rs, bin_triangles.wgsl); then a workgroup
 //! per tile covers its triangles in registers, an invocation per pixel
 //! (tile_raster.wgsl), and stores each pixel's keys once, in rows
-//! (visibility_compute.wgsl). An atomicMax per covered sample into the buffer, the
+//! (raster_tiles.wgsl). An atomicMax per covered sample into the buffer, the
 //! design before, lands anywhere in a buffer five times the H200's L2 at 4x and 3840x2160
 //! (bench/results/gpu/visibility-4x-attribution).
 //!
@@ -35,7 +35,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::shader::Stage;
 use graph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, PassKind};
 
-use crate::common::plugin::{Recording, Shared};
+use crate::common::plugin::{check_tile, Recording, Shared};
 use crate::common::visibility_samples;
 use crate::shaders;
 
@@ -86,14 +86,7 @@ impl Plugin for VisibilityCompute {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        if !TILES.contains(&params.tile) {
-            return Err(PluginError::Invalid(format!(
-                "tile must be {} to {} pixels, got {}",
-                TILES.start(),
-                TILES.end(),
-                params.tile
-            )));
-        }
+        check_tile(params.tile, TILES)?;
         // Every key is stored each frame: nothing of an earlier version is read.
         let role = BufferRole::Storage {
             read: false,
@@ -110,7 +103,7 @@ impl Plugin for VisibilityCompute {
         let raster = shaders::VISIBILITY_COMPUTE.compose_with(count, &generated)?;
         let Some(entry) = raster.entry("cs_raster_tiles", Stage::Compute) else {
             return Err(PluginError::Invalid(
-                "visibility_compute.wgsl has no entry point cs_raster_tiles".into(),
+                "raster_tiles.wgsl has no entry point cs_raster_tiles".into(),
             ));
         };
         pass.workgroup(entry.workgroup());

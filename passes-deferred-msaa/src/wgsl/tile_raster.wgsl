@@ -1,23 +1,23 @@
 // A tile's keys covered in one workgroup, an invocation per pixel (the tile raster of
 // Laine and Karras, "High-Performance Software Rasterization on GPUs", HPG 2011): the
-// tile's triangles, binned by tile_bins.wgsl, are set up RASTER_CHUNK at a time, one per
+// tile's triangles, binned by bin_triangles.wgsl, are set up RASTER_CHUNK at a time, one per
 // invocation (a binned triangle read from the bins' records, a spanning piece set up
 // here and tested against the tile), then each invocation tests its pixel's samples
 // against each, as the lanes of one vector, keeping the nearest key of each sample in
 // registers (triangle_setup.wgsl's keys: the order the triangles come in does not
 // matter).
 //
-// Group 1 binds the draws and the bins at bindings 1 to 8 (common/gpu/tile_bins.rs). Composed after common.wgsl,
-// scene.wgsl, geometry.wgsl and triangle_setup.wgsl, with a generated block defining
-// TILE and the sample lanes (LaneF, LaneU, LaneB, LANES, LANE_GROUPS, LANE_X, LANE_Y,
-// `lane`: common/gbuffer_layout.rs's sample_lanes).
+// Group 1 binds the draws and the bins at bindings 1 to 8 (common/gpu/tile_bins.rs).
+// Composed after common.wgsl, scene.wgsl, geometry.wgsl and triangle_setup.wgsl, with a
+// generated block defining TILE and the sample lanes (LaneF, LaneU, LaneB, LANES,
+// LANE_GROUPS, LANE_X, LANE_Y and `lane`, which the Rust side's sample_lanes writes).
 
 @group(1) @binding(1) var<storage, read> draws: array<RasterDraw>;
 @group(1) @binding(2) var<storage, read> tile_ends: array<u32>;
 @group(1) @binding(3) var<storage, read> tile_starts: array<u32>;
 @group(1) @binding(4) var<storage, read> tile_entries: array<u32>;
 @group(1) @binding(5) var<storage, read> spanning: array<u32>;
-// tile_bins.wgsl's BinCounts, read after it is done: the spanning pieces first.
+// bin_triangles.wgsl's BinCounts, read after it is done: the spanning pieces first.
 @group(1) @binding(6) var<storage, read> spanning_count: u32;
 @group(1) @binding(7) var<storage, read> spanning_bounds: array<vec2<u32>>;
 @group(1) @binding(8) var<storage, read> records: array<ScreenTriangle>;

@@ -1,4 +1,4 @@
-// The opaque draws' triangles set up for coverage in compute, as tile_bins.wgsl bins them
+// The opaque draws' triangles set up for coverage in compute, as bin_triangles.wgsl bins them
 // to tiles and tile_raster.wgsl covers a tile's: each transformed, clipped against the
 // depth planes, projected to pixels and wound to a positive area, then tested sample by
 // sample.

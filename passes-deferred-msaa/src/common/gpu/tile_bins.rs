@@ -1,4 +1,4 @@
-//! The opaque draws' triangles binned to tiles (tile_bins.wgsl says how), so that the
+//! The opaque draws' triangles binned to tiles (bin_triangles.wgsl says how), so that the
 //! compute raster covers each tile in one workgroup (passes/visibility_compute.rs,
 //! tile_raster.wgsl). Made for one scene upload and output size; recorded as six
 //! dispatches just before the raster's, in the same compute pass.
@@ -10,13 +10,13 @@ use super::storage::{scratch, storage_group, storage_layout};
 use crate::gpu_scene::GpuScene;
 use crate::scene::DepthConvention;
 
-/// tile_bins.wgsl's BINNED_TILES: a triangle touching at most this many tiles lists
+/// bin_triangles.wgsl's BINNED_TILES: a triangle touching at most this many tiles lists
 /// itself; the entries hold this many per triangle.
 const BINNED_TILES: u64 = 16;
 /// Room in the entries for larger triangles, per tile: beyond it they are spanning, read
 /// by every tile (slower, never wrong).
 const LARGE_ENTRIES_PER_TILE: u64 = 16;
-/// tile_bins.wgsl's workgroup of its per-tile and per-triangle dispatches, and the grid
+/// bin_triangles.wgsl's workgroup of its per-tile and per-triangle dispatches, and the grid
 /// of its item dispatches.
 const GROUP: u32 = 64;
 const ITEM_GROUPS: u32 = 1024;
@@ -39,14 +39,14 @@ pub(crate) struct TileBins {
     group: wgpu::BindGroup,
     draws: RasterDraws,
     tiles: u32,
-    /// In tile_bins.wgsl's binding order: draws, tile_ends, tile_starts, tile_entries,
+    /// In bin_triangles.wgsl's binding order: draws, tile_ends, tile_starts, tile_entries,
     /// spanning, bin_counts, spanning_bounds, items, records.
     buffers: [wgpu::Buffer; 9],
 }
 
 impl TileBins {
     /// Bins for `scene`'s opaque triangles over the tiles of side `tile` covering
-    /// `size`, with tile_bins.wgsl composed as `source`; an error when the device cannot
+    /// `size`, with bin_triangles.wgsl composed as `source`; an error when the device cannot
     /// bind them.
     pub fn new(
         device: &wgpu::Device,
@@ -167,7 +167,7 @@ impl TileBins {
 }
 
 /// Workgroups of `group` invocations for `invocations`, as x by y within the 65,535 a
-/// dimension allows (tile_bins.wgsl flattens them back).
+/// dimension allows (bin_triangles.wgsl flattens them back).
 fn grid(invocations: u64, group: u32) -> (u32, u32) {
     let groups = invocations.div_ceil(u64::from(group)).max(1);
     let x = groups.min(65_535);
