@@ -27,8 +27,7 @@
 //
 // Composed after common.wgsl, scene.wgsl, geometry.wgsl and triangle_setup.wgsl.
 
-// The lists' lengths: the spanning pieces, the entries large triangles took (some may
-// not have fitted), the items.
+// The lists' lengths: the spanning pieces, the entries large triangles took, the items.
 struct BinCounts {
     spanning: atomic<u32>,
     large_entries: atomic<u32>,
@@ -41,7 +40,7 @@ struct BinCounts {
 @group(1) @binding(3) var<storage, read_write> tile_entries: array<u32>;
 @group(1) @binding(4) var<storage, read_write> spanning: array<u32>;
 @group(1) @binding(5) var<storage, read_write> bin_counts: BinCounts;
-// Per triangle, the pixel bounds of a spanning one (spanning_bounds).
+// Per triangle, a spanning one's pixel bounds (min and max corners, each x | y << 16).
 @group(1) @binding(6) var<storage, read_write> spanning_bounds: array<vec2<u32>>;
 // A large triangle's item: its `t`, its tiles (min and max corners, each x | y << 16),
 // and the first of its tiles (in rows across its bounds) the item lists.
@@ -91,8 +90,8 @@ fn cs_bins_clear(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_work
 }
 
 // The t-th triangle's tiles (min and max corners, inclusive) when it lies within the
-// depth planes and covers some pixel (else max < min),
-// its pixel bounds, and the triangle set up.
+// depth planes and covers some pixel (else max < min), its pixel bounds, and the
+// triangle set up.
 struct Tiles {
     tiles: vec4<u32>,
     pixels: vec4<i32>,
@@ -172,12 +171,20 @@ fn cs_bins_count(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_work
         }
         return;
     }
-    // Room after BINNED_TILES entries per triangle.
+    // Room after BINNED_TILES entries per triangle, taken only where it fits (so the
+    // count never passes the room, and never wraps).
     let room = arrayLength(&tile_entries) - BINNED_TILES * triangle_count();
-    let taken = atomicAdd(&bin_counts.large_entries, count);
-    if taken + count > room {
-        add_spanning(t, 1u, b.pixels);
-        return;
+    var taken = atomicLoad(&bin_counts.large_entries);
+    loop {
+        if count > room - taken {
+            add_spanning(t, 1u, b.pixels);
+            return;
+        }
+        let swap = atomicCompareExchangeWeak(&bin_counts.large_entries, taken, taken + count);
+        if swap.exchanged {
+            break;
+        }
+        taken = swap.old_value;
     }
     let item_count = (count + ITEM_TILES - 1u) / ITEM_TILES;
     let first = atomicAdd(&bin_counts.items, item_count);

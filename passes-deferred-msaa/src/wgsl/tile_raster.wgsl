@@ -90,7 +90,8 @@ fn cover_lanes(pixel: vec2<u32>, t: ScreenTriangle, depths: ptr<function, array<
         let depth = (w0 * t.a.z + w1 * t.b.z + w2 * t.c.z) / t.area;
         let covered = inside_lanes(w0, owns.x) & inside_lanes(w1, owns.y) & inside_lanes(w2, owns.z)
             & (depth >= LaneF(0.0)) & (depth <= LaneF(1.0));
-        let bits = bitcast<LaneU>(depth);
+        // -0 (all three terms zero, one negative) would order above every depth.
+        let bits = bitcast<LaneU>(select(depth, LaneF(0.0), depth == LaneF(0.0)));
         let kept = (*depths)[g];
         let nearer = covered & ((bits > kept) | ((bits == kept) & (id > (*ids)[g])));
         (*depths)[g] = select(kept, bits, nearer);
