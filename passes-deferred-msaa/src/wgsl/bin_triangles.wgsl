@@ -23,7 +23,8 @@
 // A tile's entries are in no particular order: coverage keeps the largest key, which
 // does not depend on it. No list overflows: the entries hold BINNED_TILES per triangle
 // and the room large triangles take, the items at most one per BINNED_TILES of that
-// room, the spanning list 3 pieces per triangle.
+// room, the spanning list 3 pieces per triangle. (Should the room's count still overrun,
+// a tile whose list ends past the entries walks every triangle instead: tile_raster.wgsl.)
 //
 // Composed after common.wgsl, scene.wgsl, geometry.wgsl and triangle_setup.wgsl.
 
@@ -171,20 +172,18 @@ fn cs_bins_count(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_work
         }
         return;
     }
-    // Room after BINNED_TILES entries per triangle, taken only where it fits (so the
-    // count never passes the room, and never wraps).
+    // Room after BINNED_TILES entries per triangle. Once it is known full, nothing more is
+    // taken (so the count cannot run on towards 2^32); tile_raster.wgsl checks each
+    // tile's list against the entries all the same.
     let room = arrayLength(&tile_entries) - BINNED_TILES * triangle_count();
-    var taken = atomicLoad(&bin_counts.large_entries);
-    loop {
-        if count > room - taken {
-            add_spanning(t, 1u, b.pixels);
-            return;
-        }
-        let swap = atomicCompareExchangeWeak(&bin_counts.large_entries, taken, taken + count);
-        if swap.exchanged {
-            break;
-        }
-        taken = swap.old_value;
+    if atomicLoad(&bin_counts.large_entries) > room {
+        add_spanning(t, 1u, b.pixels);
+        return;
+    }
+    let taken = atomicAdd(&bin_counts.large_entries, count);
+    if count > room || taken > room - count {
+        add_spanning(t, 1u, b.pixels);
+        return;
     }
     let item_count = (count + ITEM_TILES - 1u) / ITEM_TILES;
     let first = atomicAdd(&bin_counts.items, item_count);

@@ -35,29 +35,42 @@ fn overlap(a: vec4<i32>, b: vec4<i32>) -> bool {
     return all(max(a.xy, b.xy) <= min(a.zw, b.zw));
 }
 
+// Piece `k` of the t-th triangle set up (the whole triangle is piece 0 of an unclipped
+// one; pieces its fan does not have have area 0), with area 0 where it misses the tile's
+// pixels `tile` (min and max corners, inclusive).
+fn piece_in_tile(t: u32, k: u32, tile: vec4<i32>) -> ScreenTriangle {
+    var screen: ScreenTriangle;
+    let triangle = clip_triangle(t);
+    if unclipped(triangle) {
+        if k == 0u {
+            screen = whole_triangle(triangle);
+        }
+    } else if k < clipped_count(triangle) {
+        screen = clipped_triangle(triangle, k);
+    }
+    if !overlap(pixel_bounds(screen), tile) {
+        screen.area = 0.0;
+    }
+    return screen;
+}
+
 // Entry `i` of the tile's list (its binned triangles, then the spanning pieces), set up,
-// with area 0 where it misses the tile's pixels `tile` (min and max corners, inclusive).
-fn chunk_triangle(i: u32, binned: u32, start: u32, tile: vec4<i32>) -> ScreenTriangle {
+// with area 0 where it misses the tile's pixels `tile`. A tile whose list did not fit
+// (`complete` false) takes every piece of every triangle instead.
+fn chunk_triangle(i: u32, binned: u32, start: u32, tile: vec4<i32>, complete: bool) -> ScreenTriangle {
+    if !complete {
+        return piece_in_tile(i / 3u, i % 3u, tile);
+    }
     if i < binned {
         return records[tile_entries[start + i]];
     }
-    var t: ScreenTriangle;
     let piece = spanning[i - binned];
     let packed = spanning_bounds[piece >> 2u];
     let bounds = vec4<i32>(vec2<i32>(vec2<u32>(packed.x & 0xffffu, packed.x >> 16u)), vec2<i32>(vec2<u32>(packed.y & 0xffffu, packed.y >> 16u)));
     if !overlap(bounds, tile) {
-        return t;
+        return ScreenTriangle();
     }
-    let triangle = clip_triangle(piece >> 2u);
-    if unclipped(triangle) {
-        t = whole_triangle(triangle);
-    } else {
-        t = clipped_triangle(triangle, piece & 3u);
-    }
-    if !overlap(pixel_bounds(t), tile) {
-        t.area = 0.0;
-    }
-    return t;
+    return piece_in_tile(piece >> 2u, piece & 3u, tile);
 }
 
 // triangle_setup.wgsl's edge_at for lanes of sample positions `x`, `y`: the same
@@ -118,8 +131,12 @@ fn cover_tile(origin: vec2<u32>, local: u32) -> TileKeys {
     var ids: array<LaneU, LANE_GROUPS>;
     let tile_index = (origin.y / TILE) * ((output_size().x + TILE - 1u) / TILE) + origin.x / TILE;
     let start = tile_starts[tile_index];
-    let binned = tile_ends[tile_index] - start;
-    let total = binned + spanning_count;
+    let end = tile_ends[tile_index];
+    let binned = end - start;
+    // A list past the entries (bin_triangles.wgsl never writes one): every triangle's
+    // pieces, three slots per triangle.
+    let complete = end <= arrayLength(&tile_entries) && start <= end;
+    let total = select(3u * triangle_count(), binned + spanning_count, complete);
     let tile = vec4<i32>(vec2<i32>(origin), vec2<i32>(origin + TILE - 1u));
     let pixel = origin + vec2<u32>(local % TILE, local / TILE);
     let covers = all(pixel < output_size());
@@ -129,7 +146,7 @@ fn cover_tile(origin: vec2<u32>, local: u32) -> TileKeys {
         }
         workgroupBarrier();
         if local < RASTER_CHUNK && first + local < total {
-            let t = chunk_triangle(first + local, binned, start, tile);
+            let t = chunk_triangle(first + local, binned, start, tile, complete);
             if t.area > 0.0 {
                 let slot = atomicAdd(&chunk_count, 1u);
                 chunk[slot] = t;
