@@ -103,8 +103,9 @@ fn cover_lanes(pixel: vec2<u32>, t: ScreenTriangle, depths: ptr<function, array<
         let depth = (w0 * t.a.z + w1 * t.b.z + w2 * t.c.z) / t.area;
         let covered = inside_lanes(w0, owns.x) & inside_lanes(w1, owns.y) & inside_lanes(w2, owns.z)
             & (depth >= LaneF(0.0)) & (depth <= LaneF(1.0));
-        // -0 (all three terms zero, one negative) would order above every depth.
-        let bits = bitcast<LaneU>(select(depth, LaneF(0.0), depth == LaneF(0.0)));
+        // A covered depth is not negative, but may be -0 (every term zero, one of them
+        // negative), whose sign bit would order it above every depth.
+        let bits = bitcast<LaneU>(depth) & LaneU(0x7fffffffu);
         let kept = (*depths)[g];
         let nearer = covered & ((bits > kept) | ((bits == kept) & (id > (*ids)[g])));
         (*depths)[g] = select(kept, bits, nearer);
