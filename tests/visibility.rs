@@ -284,6 +284,30 @@ fn the_compute_raster_s_tile_size_does_not_change_the_image() {
     }
 }
 
+/// Its bins are made for an output size: a frame resized to another renders what a frame
+/// made at that size renders, bit for bit, and so does one resized back.
+#[test]
+fn the_compute_raster_follows_a_resize() {
+    let gpu = gpu();
+    let (small, large) = ((160, 90), (333, 217));
+    let fresh = |size| {
+        Render::new(COMPUTE, "builtin:dense", size)
+            .run(&gpu)
+            .image(&gpu, "color")
+    };
+    let mut frame = Render::new(COMPUTE, "builtin:dense", small).run(&gpu);
+    frame.resize(&gpu, large);
+    assert!(
+        frame.image(&gpu, "color").pixels == fresh(large).pixels,
+        "resized"
+    );
+    frame.resize(&gpu, small);
+    assert!(
+        frame.image(&gpu, "color").pixels == fresh(small).pixels,
+        "resized back"
+    );
+}
+
 /// The edge pixels are exactly those whose samples show different triangles: the pixels
 /// where a visible triangle does not cover every sample, and those where two surfaces
 /// meet (the yellow-blue intersection, which the coverage detector misses).

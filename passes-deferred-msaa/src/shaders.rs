@@ -5,7 +5,6 @@
 
 use graph_core::file::PluginError;
 use graph_core::shader::Shader;
-use graph_core::types::Features;
 
 const COMMON: &str = include_str!("wgsl/common.wgsl");
 const SCENE: &str = include_str!("wgsl/scene.wgsl");
@@ -348,17 +347,6 @@ impl Source {
     /// [`compose`](Self::compose) with generated WGSL after the fragments: the part of a
     /// shader that varies with the pass's slots.
     pub fn compose_with(self, samples: u32, generated: &str) -> Result<Shader, PluginError> {
-        self.compose_for(samples, generated, Features::empty())
-    }
-
-    /// [`compose_with`](Self::compose_with) for a shader that uses what the optional
-    /// device `features` allow (64-bit atomics): its pass runs only on such devices.
-    pub fn compose_for(
-        self,
-        samples: u32,
-        generated: &str,
-        features: Features,
-    ) -> Result<Shader, PluginError> {
         let (textures, depth) = if samples > 1 {
             ("texture_multisampled_2d", "texture_depth_multisampled_2d")
         } else {
@@ -389,6 +377,6 @@ impl Source {
         }
         text.push_str(generated);
         let name = format!("passes-deferred-msaa {} ({samples} sample(s))", self.name);
-        Ok(Shader::parse_for(name, text, features)?)
+        Ok(Shader::parse(name, text)?)
     }
 }

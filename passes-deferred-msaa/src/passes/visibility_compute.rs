@@ -130,16 +130,18 @@ mod gpu {
     use super::RasterDispatch;
     use crate::common::gpu::pipeline::{module, pipeline_layout};
     use crate::common::gpu::storage::{storage_group, storage_layout};
-    use crate::common::gpu::tile_bins::TileBins;
+    use crate::common::gpu::tile_bins::{TileBins, RASTER_BUFFERS};
     use crate::common::gpu::{compute_pipeline, per_scene};
     use crate::common::visibility_samples::fits_binding;
     use crate::gpu_scene::{GpuScene, SceneCache};
     use crate::scene::DepthConvention;
 
     struct State {
-        bins: TileBins,
         layout: wgpu::BindGroupLayout,
         raster: wgpu::ComputePipeline,
+        /// The bins and the output size they were made for (or why the device cannot
+        /// hold them).
+        bins: Option<((u32, u32), Result<TileBins, String>)>,
     }
 
     pub(super) fn record(
@@ -153,12 +155,18 @@ mod gpu {
             let Some(scene) = scenes.for_frame(resources) else {
                 return;
             };
+            let state = per_scene(&mut state, &scene, || build(device, &dispatch, &scene));
+            // The bins are made for one output size: a resized graph gets new ones.
             let size = resources.output_size();
-            let state = per_scene(&mut state, &scene, || {
-                build(device, &dispatch, &scene, size)
+            if state.bins.as_ref().is_some_and(|(made, _)| *made != size) {
+                state.bins = None;
+            }
+            let (_, bins) = state.bins.get_or_insert_with(|| {
+                let bins = TileBins::new(device, &dispatch.bins, &scene, dispatch.tile, size);
+                (size, bins)
             });
-            let state = match state {
-                Ok(state) => state,
+            let bins = match bins {
+                Ok(bins) => bins,
                 Err(why) => return resources.fail(why.clone()),
             };
             let geometry = match scene.geometry_group(device) {
@@ -170,9 +178,9 @@ mod gpu {
                 return resources.fail(why);
             }
             let mut buffers = vec![keys];
-            buffers.extend(state.bins.raster_buffers());
+            buffers.extend(bins.raster_buffers());
             let group = storage_group(device, "visibility_compute", &state.layout, &buffers);
-            state.bins.record(ctx.pass, &scene, geometry);
+            bins.record(ctx.pass, &scene, geometry);
             let pass = &mut ctx.pass;
             pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
             pass.set_bind_group(1, &group, &[]);
@@ -186,16 +194,10 @@ mod gpu {
         })
     }
 
-    fn build(
-        device: &wgpu::Device,
-        dispatch: &RasterDispatch,
-        scene: &GpuScene,
-        size: (u32, u32),
-    ) -> Result<State, String> {
-        let bins = TileBins::new(device, &dispatch.bins, scene, dispatch.tile, size)?;
+    fn build(device: &wgpu::Device, dispatch: &RasterDispatch, scene: &GpuScene) -> State {
         // The keys, then the bins.
         let mut read_only = vec![false];
-        read_only.extend(bins.raster_buffers().iter().map(|_| true));
+        read_only.extend([true; RASTER_BUFFERS]);
         let layout = storage_layout(device, "visibility_compute", &read_only);
         let module = module(device, "visibility_compute", &dispatch.raster);
         let pipeline_layout = pipeline_layout(
@@ -214,10 +216,10 @@ mod gpu {
             "cs_raster_tiles",
             &[],
         );
-        Ok(State {
-            bins,
+        State {
             layout,
             raster,
-        })
+            bins: None,
+        }
     }
 }

@@ -27,7 +27,9 @@ const PIECES: u64 = 3;
 
 /// The buffers a tile's raster reads (tile_raster.wgsl's bindings 1 to 8, in this
 /// order): all but the items.
-const RASTER_BUFFERS: [usize; 8] = [0, 1, 2, 3, 4, 5, 6, 8];
+const RASTER_BUFFER_INDICES: [usize; RASTER_BUFFERS] = [0, 1, 2, 3, 4, 5, 6, 8];
+/// How many: the raster's group binds them after its keys.
+pub(crate) const RASTER_BUFFERS: usize = 8;
 
 pub(crate) struct TileBins {
     clear: wgpu::ComputePipeline,
@@ -162,7 +164,10 @@ impl TileBins {
 
     /// The buffers a tile's raster reads, in tile_raster.wgsl's binding order (from 1).
     pub fn raster_buffers(&self) -> Vec<&wgpu::Buffer> {
-        RASTER_BUFFERS.iter().map(|&i| &self.buffers[i]).collect()
+        RASTER_BUFFER_INDICES
+            .iter()
+            .map(|&i| &self.buffers[i])
+            .collect()
     }
 }
 
