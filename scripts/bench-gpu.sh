@@ -29,6 +29,11 @@
 #   visibility  the visibility pipelines (hardware and compute raster, 4x and 1x)
 #               against the lean G-buffer and forward MSAA on builtin:dense and
 #               builtin:lights?count=256, with the reference (not in the default set)
+#   solo        the visibility pipelines (compute and hardware raster, 4x and 1x) each in a
+#               bench process of its own, without the reference, into solo-PIPELINE: rows of
+#               a many-pipeline run have been measured on a clocked-down H200 (its compute
+#               tone map at 0.14-0.24 ms instead of 0.08), so the x1x ratios are quoted
+#               from these (not in the default set)
 #   variants    FXAA, SSAO and the light pre-pass against deferred and forward MSAA on every
 #               built-in scene, with the reference (issue 16's rows; not in the default set:
 #               BENCH_PARTS=variants)
@@ -150,6 +155,13 @@ for part in $parts; do
         --width "$width" --height "$height" "${common[@]}" --out-dir "$out/visibility" \
         || status=$?
       ;;
+    solo)
+      for p in visibility_compute_4x visibility_compute_noaa visibility_msaa_4x visibility_noaa; do
+        "$bin" bench --pipeline "pipelines/$p.ron" --scene builtin:dense \
+          --scene 'builtin:lights?count=256' --no-reference --width "$width" --height "$height" \
+          "${common[@]}" --out-dir "$out/solo-$p" || status=$?
+      done
+      ;;
     variants)
       "$bin" bench "${variants[@]}" --width "$width" --height "$height" "${common[@]}" \
         --out-dir "$out/variants" || status=$?
@@ -179,7 +191,7 @@ for part in $parts; do
         || status=$?
       ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise, gbuffer, visibility, variants, particles)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise, gbuffer, visibility, solo, variants, particles)" >&2
       status=2
       ;;
   esac
