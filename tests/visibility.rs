@@ -325,10 +325,7 @@ fn the_compute_raster_s_samples_approach_the_reference() {
             .param("msaa", samples)
             .run(&gpu)
             .image(&gpu, "color");
-        let total: u64 = (image.pixels.iter().zip(&reference.pixels))
-            .flat_map(|(a, b)| (0..3).map(move |c| u64::from(a[c].abs_diff(b[c]))))
-            .sum();
-        total as f64 / (3 * image.pixels.len()) as f64
+        measure::diff(&image, &reference, None).mean
     };
     let errors: Vec<f64> = [1, 2, 4, 8].into_iter().map(error).collect();
     eprintln!("mean absolute difference at 1, 2, 4, 8 samples: {errors:?}");

@@ -253,10 +253,6 @@ pub(crate) const GBUFFER_RESOLVE: Source = Source {
     ],
 };
 
-/// Sample positions within a pixel (y down) by sample count: Vulkan's
-/// standardSampleLocations (D3D's), which WebGPU prescribes for its one multisampled
-/// count, 4. Per-sample shading reconstructs each sample's surface point there, where
-/// the rasterizer tested the sample against the light volumes.
 /// tile_raster.wgsl's sample lanes for `samples` per pixel: a pixel's samples as the
 /// lanes of one scalar or vector type (groups of four at 8x), so that covering a tile
 /// tests them together and keeps its keys in registers, and each sample's position in the
@@ -311,6 +307,10 @@ pub(crate) fn sample_positions(samples: u32) -> Option<&'static [(f32, f32)]> {
         .map(|(_, positions)| *positions)
 }
 
+/// Sample positions within a pixel (y down) by sample count: Vulkan's
+/// standardSampleLocations (D3D's), which WebGPU prescribes for its one multisampled
+/// count, 4. Per-sample shading reconstructs each sample's surface point there, where
+/// the rasterizer tested the sample against the light volumes.
 const SAMPLE_POSITIONS: [(u32, &[(f32, f32)]); 4] = [
     (1, &[(0.5, 0.5)]),
     (2, &[(0.75, 0.75), (0.25, 0.25)]),

@@ -65,14 +65,6 @@ fn invocation(id: vec3<u32>, groups: vec3<u32>) -> u32 {
     return id.x + id.y * groups.x * BIN_GROUP;
 }
 
-fn pack(v: vec2<u32>) -> u32 {
-    return v.x | (v.y << 16u);
-}
-
-fn unpack(v: u32) -> vec2<u32> {
-    return vec2<u32>(v & 0xffffu, v >> 16u);
-}
-
 fn tiles_across() -> u32 {
     return (output_size().x + TILE - 1u) / TILE;
 }

@@ -66,7 +66,7 @@ fn chunk_triangle(i: u32, binned: u32, start: u32, tile: vec4<i32>, complete: bo
     }
     let piece = spanning[i - binned];
     let packed = spanning_bounds[piece >> 2u];
-    let bounds = vec4<i32>(vec2<i32>(vec2<u32>(packed.x & 0xffffu, packed.x >> 16u)), vec2<i32>(vec2<u32>(packed.y & 0xffffu, packed.y >> 16u)));
+    let bounds = vec4<i32>(vec2<i32>(unpack(packed.x)), vec2<i32>(unpack(packed.y)));
     if !overlap(bounds, tile) {
         return ScreenTriangle();
     }

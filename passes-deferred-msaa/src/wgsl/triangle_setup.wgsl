@@ -58,6 +58,16 @@ fn output_size() -> vec2<u32> {
     return vec2<u32>(camera.viewport);
 }
 
+// Pixel or tile coordinates (under 2^16 each, as every output is) packed in one word,
+// x | y << 16: the bins' items and spanning bounds hold them so.
+fn pack(v: vec2<u32>) -> u32 {
+    return v.x | (v.y << 16u);
+}
+
+fn unpack(v: u32) -> vec2<u32> {
+    return vec2<u32>(v & 0xffffu, v >> 16u);
+}
+
 // Edge function of u -> v at p: positive on its right in pixel coordinates (y down),
 // where a triangle of positive area has its inside.
 fn edge(u: vec2<f32>, v: vec2<f32>, p: vec2<f32>) -> f32 {

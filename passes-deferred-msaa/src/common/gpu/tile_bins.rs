@@ -27,9 +27,9 @@ const PIECES: u64 = 3;
 
 /// The buffers a tile's raster reads (tile_raster.wgsl's bindings 1 to 8, in this
 /// order): all but the items.
-const RASTER_BUFFER_INDICES: [usize; RASTER_BUFFERS] = [0, 1, 2, 3, 4, 5, 6, 8];
+const RASTER_BUFFER_INDICES: [usize; 8] = [0, 1, 2, 3, 4, 5, 6, 8];
 /// How many: the raster's group binds them after its keys.
-pub(crate) const RASTER_BUFFERS: usize = 8;
+pub(crate) const RASTER_BUFFERS: usize = RASTER_BUFFER_INDICES.len();
 
 pub(crate) struct TileBins {
     clear: wgpu::ComputePipeline,
@@ -63,10 +63,12 @@ impl TileBins {
         let large = LARGE_ENTRIES_PER_TILE * u64::from(tiles);
         let entries = (BINNED_TILES * triangles + large) * 4;
         let limit = device.limits().max_storage_buffer_binding_size;
+        let records = triangles * RECORD_BYTES;
+        let spanning = triangles * PIECES * 4;
         let per_triangle = [
             ("entries", entries),
-            ("records", triangles * RECORD_BYTES),
-            ("spanning list", triangles * PIECES * 4),
+            ("records", records),
+            ("spanning list", spanning),
         ];
         if let Some((what, bytes)) = per_triangle.iter().find(|(_, bytes)| *bytes > limit) {
             return Err(format!(
@@ -81,11 +83,11 @@ impl TileBins {
             scratch(device, "tile bins: ends", tile_words),
             scratch(device, "tile bins: starts", tile_words),
             scratch(device, "tile bins: entries", entries),
-            scratch(device, "tile bins: spanning", triangles * PIECES * 4),
+            scratch(device, "tile bins: spanning", spanning),
             scratch(device, "tile bins: counts", 12),
             scratch(device, "tile bins: spanning bounds", triangles * 8),
             scratch(device, "tile bins: items", (large / BINNED_TILES + 1) * 16),
-            scratch(device, "tile bins: records", triangles * RECORD_BYTES),
+            scratch(device, "tile bins: records", records),
         ];
         let mut read_only = [false; 9];
         read_only[0] = true;
