@@ -16,6 +16,8 @@ const MATERIAL: &str = concat!(
 pub(crate) const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
 const GEOMETRY: &str = include_str!("wgsl/geometry.wgsl");
 const TRIANGLE_SETUP: &str = include_str!("wgsl/triangle_setup.wgsl");
+/// Where a compute rasteriser's visibility buffer keeps each sample's key.
+const KEY_LAYOUT: &str = include_str!("wgsl/key_layout.wgsl");
 /// Reads a raster pass's visibility buffer as gbuffer_read.wgsl reads a G-buffer (with
 /// geometry.wgsl, and the material model with the scene's texture table).
 pub(crate) const VISIBILITY_READ_TEXTURES: &str = concat!(
@@ -30,6 +32,7 @@ pub(crate) const VISIBILITY_READ_SAMPLES: &str = concat!(
     include_str!("wgsl/geometry.wgsl"),
     include_str!("wgsl/material.wgsl"),
     include_str!("wgsl/material_table.wgsl"),
+    include_str!("wgsl/key_layout.wgsl"),
     include_str!("wgsl/visibility_samples.wgsl"),
     include_str!("wgsl/visibility_read.wgsl")
 );
@@ -128,6 +131,7 @@ pub(crate) const VISIBILITY_COMPUTE: Source = Source {
         GEOMETRY,
         TRIANGLE_SETUP,
         include_str!("wgsl/tile_raster.wgsl"),
+        KEY_LAYOUT,
         include_str!("wgsl/raster_tiles.wgsl"),
     ],
 };
@@ -238,6 +242,7 @@ pub(crate) const KEYS_DEPTH: Source = Source {
     parts: &[
         COMMON,
         SCENE,
+        KEY_LAYOUT,
         include_str!("wgsl/visibility_samples.wgsl"),
         include_str!("wgsl/keys_depth.wgsl"),
     ],

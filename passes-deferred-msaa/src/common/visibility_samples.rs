@@ -1,10 +1,12 @@
-//! A visibility buffer rasterised in compute, as a graph buffer: per pixel, each sample's
-//! 64-bit key, the bits of its reversed-Z depth (a positive float, so its bits order as
-//! its values) over the ID + 1 of the triangle it shows, 0 where nothing was drawn
-//! (the far depth). `visibility_compute` writes it, `light_tiled` reads it
-//! (visibility_samples.wgsl). A file declares it `Buffer(per_sample: 8, samples: 4)`
-//! for 4 samples per pixel: 8 bytes each, as a hardware visibility buffer's
-//! depth32float and r32uint take.
+//! A visibility buffer rasterised in compute, as a graph buffer: each sample's 64-bit key,
+//! the bits of its reversed-Z depth (a positive float, so its bits order as its values)
+//! over the ID + 1 of the triangle it shows, 0 where nothing was drawn (the far depth), in
+//! a plane per sample; sample 0's key also says whether the pixel's samples show more than
+//! one triangle, so that a reader loads the other planes only there (key_layout.wgsl).
+//! `visibility_compute` writes it, `light_tiled` and `keys_depth` read it
+//! (visibility_samples.wgsl). A file declares it `Buffer(per_sample: 8, samples: 4)` for 4
+//! samples per pixel: 8 bytes each, as a hardware visibility buffer's depth32float and
+//! r32uint take.
 
 use graph_core::file::{PluginError, Slots};
 use graph_core::{Buffer, BufferHandle, BufferRole, PassBuilder};

@@ -327,13 +327,14 @@ fn cs_light_tiled(
     let lit0 = (lit & 1u) != 0u;
     var p0 = vec3<f32>(0.0);
     if lit0 {
-        // Without a stored view depth the pixel center's depth is the mean of its
-        // samples' (fragment_surface): the mean of the standard sample positions is the
+        // A stored view depth, and a visibility buffer's triangle rebuilt at the pixel
+        // center, say where the center's surface is; a depth buffer's samples say it by
+        // their mean (fragment_surface): the mean of the standard sample positions is the
         // center.
-        if edge || !STORED_VIEW_DEPTH {
+        if edge || !(STORED_VIEW_DEPTH || SURFACE_IDS) {
             p0 = fragment_surface(pixel, source_mask(leaders, edge, 0u));
         } else {
-            p0 = center_surface(pixel, 0u);
+            p0 = surface_position(vec2<f32>(pixel) + 0.5, g0.view_depth);
         }
         include_depth(p0);
     }

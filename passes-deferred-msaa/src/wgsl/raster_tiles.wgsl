@@ -2,9 +2,11 @@
 // per tile covers its triangles in registers (tile_raster.wgsl) and stores each pixel's
 // keys once, with plain stores, into the buffer a compute rasteriser's keys go to
 // (visibility_samples.wgsl reads it): no atomics into memory, and no 64-bit integers.
-// Composed after tile_raster.wgsl.
+// Sample 0's key says whether the pixel's samples show more than one triangle
+// (SEVERAL_SURFACES), which only this pass knows without reading them all. Composed after
+// tile_raster.wgsl and key_layout.wgsl.
 
-@group(1) @binding(0) var<storage, read_write> sample_keys: array<vec2<u32>>;
+@group(1) @binding(0) var<storage, read_write> written_keys: array<vec2<u32>>;
 
 @compute @workgroup_size(TILE, TILE, 1)
 fn cs_raster_tiles(
@@ -16,9 +18,17 @@ fn cs_raster_tiles(
     let keys = cover_tile(origin, local);
     let pixel = origin + local_id.xy;
     if all(pixel < output_size()) {
-        let base = (pixel.y * output_size().x + pixel.x) * SAMPLES;
+        let id0 = LaneU(lane(keys.ids[0], 0u));
+        var several = false;
+        for (var g = 0u; g < LANE_GROUPS; g++) {
+            several = several || any(keys.ids[g] != id0);
+        }
         for (var s = 0u; s < SAMPLES; s++) {
-            sample_keys[base + s] = key_of_sample(keys, s);
+            var key = key_of_sample(keys, s);
+            if s == 0u && several {
+                key.y |= SEVERAL_SURFACES;
+            }
+            written_keys[key_index(pixel, s)] = key;
         }
     }
 }

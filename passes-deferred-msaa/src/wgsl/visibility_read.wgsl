@@ -1,6 +1,6 @@
 // A visibility buffer as the tiled shading pass reads it: per sample the ID + 1 of the
-// triangle it shows and its depth, through `sample_id` and `sample_depth`
-// (visibility_textures.wgsl for a raster pass's targets, visibility_samples.wgsl for a
+// triangle it shows and its depth, through `sample_id` and `sample_depth`, and whether a
+// pixel's samples all show one triangle, through `one_surface` (visibility_textures.wgsl for a raster pass's targets, visibility_samples.wgsl for a
 // compute rasteriser's buffer); the triangles from the scene's geometry (group 2,
 // geometry.wgsl). Each triangle a pixel shows is rebuilt once, at the mean position of
 // the samples it covers (the pixel center when it covers them all, as a G-buffer pass's
@@ -114,13 +114,20 @@ fn pixel_ids(pixel: vec2<i32>) -> array<u32, SAMPLES> {
     return ids;
 }
 
-// Sample `s` of `pixel`, whose samples show `ids`: its triangle rebuilt at the mean
-// position of the samples showing it. Nothing drawn: view depth 0, as a G-buffer's.
-fn rebuild_sample(pixel: vec2<i32>, ids: array<u32, SAMPLES>, s: u32) -> GSample {
-    var g: GSample;
-    if ids[s] == 0u {
-        return g;
+// Where sample `s` of `pixel` is rebuilt: the triangle it shows (ID + 1, 0 for nothing
+// drawn) at the mean position of the samples showing it. A pixel whose samples all show
+// one triangle takes it at the pixel center (the mean of the standard sample positions,
+// exactly) from sample 0's ID, reading no other sample.
+struct SampleFragment {
+    id: u32,
+    at: vec2<f32>,
+}
+
+fn sample_fragment(pixel: vec2<i32>, s: u32) -> SampleFragment {
+    if one_surface(pixel) {
+        return SampleFragment(sample_id(pixel, 0u), vec2<f32>(pixel) + 0.5);
     }
+    let ids = pixel_ids(pixel);
     var at = vec2<f32>(0.0);
     var n = 0.0;
     for (var k = 0u; k < SAMPLES; k++) {
@@ -129,17 +136,27 @@ fn rebuild_sample(pixel: vec2<i32>, ids: array<u32, SAMPLES>, s: u32) -> GSample
             n += 1.0;
         }
     }
-    return rebuild(ids[s], at / n);
+    return SampleFragment(ids[s], at / n);
 }
 
+// Sample `s` of `pixel` as a G-buffer sample. Nothing drawn: view depth 0, as a
+// G-buffer's. One call of `rebuild` for either kind of pixel: a warp holding both runs it
+// once.
 fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
-    return rebuild_sample(pixel, pixel_ids(pixel), s);
+    let f = sample_fragment(pixel, s);
+    if f.id == 0u {
+        return GSample();
+    }
+    return rebuild(f.id, f.at);
 }
 
 // For each sample, the first sample showing the same triangle (itself where no earlier
 // one does), four bits per sample as light_tiled.wgsl's leader_of reads them: a pixel's
 // fragments from its IDs alone, so each triangle is rebuilt once.
 fn fragment_leaders(pixel: vec2<i32>) -> u32 {
+    if one_surface(pixel) {
+        return 0u;
+    }
     let ids = pixel_ids(pixel);
     var leaders = 0u;
     for (var s = 0u; s < SAMPLES; s++) {

@@ -11,3 +11,14 @@ fn sample_id(pixel: vec2<i32>, s: u32) -> u32 {
 fn sample_depth(pixel: vec2<i32>, s: u32) -> f32 {
     return textureLoad(depth_tex, pixel, s);
 }
+
+// Whether every sample of `pixel` shows sample 0's triangle: the raster pass records
+// nothing more than the samples, so all of them are compared.
+fn one_surface(pixel: vec2<i32>) -> bool {
+    let id = sample_id(pixel, 0u);
+    var one = true;
+    for (var s = 1u; s < SAMPLES; s++) {
+        one = one && sample_id(pixel, s) == id;
+    }
+    return one;
+}
