@@ -25,7 +25,7 @@
 // Triangles set up a chunk at a time, one per invocation, then tested by every invocation.
 const RASTER_CHUNK: u32 = min(TILE * TILE, 64u);
 
-var<workgroup> chunk: array<ScreenTriangle, RASTER_CHUNK>;
+var<workgroup> chunk: array<CoverTriangle, RASTER_CHUNK>;
 // Their pixel bounds (pixel_bounds), which most of the tile's pixels are outside.
 var<workgroup> chunk_bounds: array<vec4<i32>, RASTER_CHUNK>;
 var<workgroup> chunk_count: atomic<u32>;
@@ -73,38 +73,95 @@ fn chunk_triangle(i: u32, binned: u32, start: u32, tile: vec4<i32>, complete: bo
     return piece_in_tile(piece >> 2u, piece & 3u, tile);
 }
 
-// triangle_setup.wgsl's edge_at for lanes of sample positions `x`, `y`: the same
-// operations, lane by lane (mask_passes takes edge_at at the pixel centre).
-fn edge_lanes(u: vec2<f32>, v: vec2<f32>, x: LaneF, y: LaneF) -> LaneF {
-    if u.x < v.x || (u.x == v.x && u.y < v.y) {
-        return (v.x - u.x) * (y - u.y) - (v.y - u.y) * (x - u.x);
+// A triangle set up for covering: its three edge functions (b -> c, c -> a, a -> b:
+// triangle_setup.wgsl's edge_at) as planes, each its value at an anchor, the pixel
+// corner at or before the edge's lesser corner, and its changes per pixel right and down,
+// so that a pixel takes two multiply-adds per edge and a sample two more. The triangle
+// sharing an edge has the same anchor and exactly the negated value and changes (edge_at's
+// value is exactly negated, the changes are differences of the same corners), so its
+// function is exactly negated at every sample: no gaps, no double cover; and nothing
+// depends on the tile. The clip depth is corner a's plus the other two corners'
+// differences from it weighted by their edge functions over the area (`depth`), exact to
+// the triangle's own depth range however thin it is. Bits 0 to 2 of `owns` say which
+// edges own the samples on them (owned_edges); `mask` and `inverse_w` are the alpha
+// mask's (mask_passes).
+struct CoverTriangle {
+    at_anchor: vec3<f32>,
+    id: u32,
+    anchor_x: vec3<f32>,
+    owns: u32,
+    anchor_y: vec3<f32>,
+    per_x: vec3<f32>,
+    per_y: vec3<f32>,
+    depth: vec3<f32>,
+    mask: vec4<f32>,
+    inverse_w: vec3<f32>,
+}
+
+fn cover_triangle(t: ScreenTriangle) -> CoverTriangle {
+    let corners = array<vec2<f32>, 3>(t.a.xy, t.b.xy, t.c.xy);
+    var c: CoverTriangle;
+    for (var k = 0u; k < 3u; k++) {
+        let u = corners[(k + 1u) % 3u];
+        let v = corners[(k + 2u) % 3u];
+        let lesser = select(v, u, u.x < v.x || (u.x == v.x && u.y < v.y));
+        let anchor = floor(lesser);
+        c.at_anchor[k] = edge_at(u, v, anchor);
+        c.anchor_x[k] = anchor.x;
+        c.anchor_y[k] = anchor.y;
+        c.per_x[k] = u.y - v.y;
+        c.per_y[k] = v.x - u.x;
     }
-    return -((u.x - v.x) * (y - v.y) - (u.y - v.y) * (x - v.x));
-}
-
-// Inside an edge, or on it where it owns the samples on it (triangle_setup.wgsl).
-fn inside_lanes(w: LaneF, owns: bool) -> LaneB {
-    return (w > LaneF(0.0)) | ((w == LaneF(0.0)) & LaneB(owns));
-}
-
-// Keeps the nearer of `t`'s keys and `depths`' and `ids`' in each sample of `pixel`: a
-// sample inside all three edges, at a depth within [0, 1] (the clip depth interpolated
-// at the sample, affine in screen space), takes `t` where its depth is nearer, or equal
-// and its ID larger.
-fn cover_lanes(pixel: vec2<u32>, t: ScreenTriangle, depths: ptr<function, array<LaneU, LANE_GROUPS>>, ids: ptr<function, array<LaneU, LANE_GROUPS>>) {
+    c.depth = vec3<f32>(t.a.z, (t.b.z - t.a.z) / t.area, (t.c.z - t.a.z) / t.area);
+    c.mask = t.mask;
+    c.inverse_w = vec3<f32>(t.a.w, t.b.w, t.c.w);
+    c.id = t.id;
     let owns = owned_edges(t);
+    c.owns = u32(owns.x) | (u32(owns.y) << 1u) | (u32(owns.z) << 2u);
+    return c;
+}
+
+// The three edge functions of `t` at the top-left corner of `pixel`.
+fn edges_at_pixel(t: CoverTriangle, pixel: vec2<u32>) -> vec3<f32> {
+    let p = vec2<f32>(pixel);
+    return t.at_anchor + t.per_x * (p.x - t.anchor_x) + t.per_y * (p.y - t.anchor_y);
+}
+
+// Inside edge `k`, or on it where it owns the samples on it (triangle_setup.wgsl).
+fn inside_lanes(w: LaneF, owns: u32, k: u32) -> LaneB {
+    return (w > LaneF(0.0)) | ((w == LaneF(0.0)) & LaneB(((owns >> k) & 1u) != 0u));
+}
+
+// The alpha mask (triangle_setup.wgsl's mask_of) tested at the centre of the pixel whose
+// corner has edge functions `corner`, where the hardware pass's fragment reads it, inside
+// the triangle or not: the pixel's samples are kept or dropped together, as a discard
+// drops them. Alpha is interpolated perspective-correct (alpha / w and 1 / w are linear in
+// screen space); the edge functions are the barycentrics times the area, which both sides
+// of the test share.
+fn mask_passes(t: CoverTriangle, corner: vec3<f32>) -> bool {
+    if t.mask.w < 0.0 {
+        return true;
+    }
+    let l = corner + 0.5 * (t.per_x + t.per_y);
+    return dot(l, t.mask.xyz) >= t.mask.w * dot(l, t.inverse_w);
+}
+
+// Keeps the nearer of `t`'s keys and `depths`' and `ids`' in each sample of the pixel
+// whose corner has edge functions `corner`: a sample inside all three edges, at a depth
+// within [0, 1], takes `t` where its depth is nearer, or equal and its ID larger.
+fn cover_lanes(corner: vec3<f32>, t: CoverTriangle, depths: ptr<function, array<LaneU, LANE_GROUPS>>, ids: ptr<function, array<LaneU, LANE_GROUPS>>) {
     let id = LaneU(t.id);
     for (var g = 0u; g < LANE_GROUPS; g++) {
-        let x = LaneF(f32(pixel.x)) + LANE_X[g];
-        let y = LaneF(f32(pixel.y)) + LANE_Y[g];
-        let w0 = edge_lanes(t.b.xy, t.c.xy, x, y);
-        let w1 = edge_lanes(t.c.xy, t.a.xy, x, y);
-        let w2 = edge_lanes(t.a.xy, t.b.xy, x, y);
-        let depth = (w0 * t.a.z + w1 * t.b.z + w2 * t.c.z) / t.area;
-        let covered = inside_lanes(w0, owns.x) & inside_lanes(w1, owns.y) & inside_lanes(w2, owns.z)
+        let x = LANE_X[g];
+        let y = LANE_Y[g];
+        let w0 = LaneF(corner.x) + t.per_x.x * x + t.per_y.x * y;
+        let w1 = LaneF(corner.y) + t.per_x.y * x + t.per_y.y * y;
+        let w2 = LaneF(corner.z) + t.per_x.z * x + t.per_y.z * y;
+        let depth = LaneF(t.depth.x) + w1 * t.depth.y + w2 * t.depth.z;
+        let covered = inside_lanes(w0, t.owns, 0u) & inside_lanes(w1, t.owns, 1u) & inside_lanes(w2, t.owns, 2u)
             & (depth >= LaneF(0.0)) & (depth <= LaneF(1.0));
-        // A covered depth is not negative, but may be -0 (every term zero, one of them
-        // negative), whose sign bit would order it above every depth.
+        // A covered depth is not negative, but may be -0, whose sign bit would order it
+        // above every depth.
         let bits = bitcast<LaneU>(depth) & LaneU(0x7fffffffu);
         let kept = (*depths)[g];
         let nearer = covered & ((bits > kept) | ((bits == kept) & (id > (*ids)[g])));
@@ -150,7 +207,7 @@ fn cover_tile(origin: vec2<u32>, local: u32) -> TileKeys {
             let t = chunk_triangle(first + local, binned, start, tile, complete);
             if t.area > 0.0 {
                 let slot = atomicAdd(&chunk_count, 1u);
-                chunk[slot] = t;
+                chunk[slot] = cover_triangle(t);
                 chunk_bounds[slot] = pixel_bounds(t);
             }
         }
@@ -163,8 +220,9 @@ fn cover_tile(origin: vec2<u32>, local: u32) -> TileKeys {
                 continue;
             }
             let t = chunk[j];
-            if mask_passes(pixel, t) {
-                cover_lanes(pixel, t, &depths, &ids);
+            let corner = edges_at_pixel(t, pixel);
+            if mask_passes(t, corner) {
+                cover_lanes(corner, t, &depths, &ids);
             }
         }
         workgroupBarrier();

@@ -95,19 +95,6 @@ fn owned_edges(t: ScreenTriangle) -> vec3<bool> {
     return vec3<bool>(top_left(t.b.xy, t.c.xy), top_left(t.c.xy, t.a.xy), top_left(t.a.xy, t.b.xy));
 }
 
-// An alpha mask: the corners' alpha over w, and the cutoff (negative: no test). Alpha is
-// interpolated perspective-correct (alpha / w and 1 / w are linear in screen space) at
-// the pixel centre, where the hardware pass's fragment reads it, inside the triangle or
-// not, and the pixel's samples are kept or dropped together, as a discard drops them.
-fn mask_passes(pixel: vec2<u32>, t: ScreenTriangle) -> bool {
-    if t.mask.w < 0.0 {
-        return true;
-    }
-    let p = vec2<f32>(pixel) + 0.5;
-    let l = vec3<f32>(edge_at(t.b.xy, t.c.xy, p), edge_at(t.c.xy, t.a.xy, p), edge_at(t.a.xy, t.b.xy, p)) / t.area;
-    return dot(l, t.mask.xyz) >= t.mask.w * dot(l, vec3<f32>(t.a.w, t.b.w, t.c.w));
-}
-
 // The pixels whose samples may lie in the triangle, clamped to the output: min and max
 // corners, inclusive; empty when max < min.
 fn pixel_bounds(t: ScreenTriangle) -> vec4<i32> {
@@ -124,8 +111,9 @@ fn to_screen(clip: vec4<f32>) -> vec4<f32> {
     return vec4<f32>((ndc.x * 0.5 + 0.5) * size.x, (0.5 - ndc.y * 0.5) * size.y, ndc.z, 1.0 / clip.w);
 }
 
-// The mask of the triangle with clip-space corners `a`, `b`, `c` and alphas `alpha`
-// under `cutoff` (negative: none).
+// The alpha mask of the triangle with clip-space corners `a`, `b`, `c` and alphas
+// `alpha` under `cutoff`: the corners' alpha over w, and the cutoff (negative: no test;
+// tile_raster.wgsl's mask_passes tests it).
 fn mask_of(a: vec4<f32>, b: vec4<f32>, c: vec4<f32>, alpha: vec3<f32>, cutoff: f32) -> vec4<f32> {
     return vec4<f32>(alpha / vec3<f32>(a.w, b.w, c.w), cutoff);
 }
