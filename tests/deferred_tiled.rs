@@ -218,7 +218,7 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
             "params: (view: tile_lights),",
             "params: (view: tile_lights, tile: 8),",
         );
-    // Edge entries (4 + 8 bytes for each of 64 x 4), the light batch (4 x 64), the
+    // Edge entries (4 + 12 bytes for each of 64 x 3), the light batch (4 x 64), the
     // four side planes (64) and four atomics (16 each).
     let plan = load_str(&path, &debug_views, &registry)
         .expect("the file loads")

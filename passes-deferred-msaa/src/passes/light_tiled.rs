@@ -54,13 +54,9 @@
 //! pixels as a workgroup list dealt out from the first invocation on, and
 //! resolves into the single-sampled output.
 //! No multisampled HDR accumulation, no stencil, no resolve pass.
-//! A visibility buffer shaded at more than one sample per pixel has its edge pixels
-//! lit by a second dispatch over the tiles, of 64 invocations a tile, which lists every
-//! fragment of the tile's edge pixels and lights them packed into its warps; the first
-//! leaves them out (bench/results/gpu/visibility-edges says why).
 //!
 //! The workgroup memory the shader needs grows with the tile and the sample count
-//! (`tile`² x samples edge entries of 12 bytes): the graph checks it against the
+//! (`tile`² x (samples − 1) edge entries of 16 bytes): the graph checks it against the
 //! device profile when compiling, so a tile too big for a device (16 at 8x against the
 //! WebGPU default of 16 KiB) is an error naming the pass, and `tile: 8` fits.
 //!
@@ -176,12 +172,6 @@ pub(crate) enum Depth {
     Keys(BufferHandle),
 }
 
-/// The entry point lighting every pixel that is not an edge pixel, and every pixel of a
-/// debug view or of a single-sampled output.
-const PIXELS: &str = "cs_light_tiled";
-/// The entry point lighting the edge pixels.
-const EDGES: &str = "cs_light_edges";
-
 /// Tile sides allowed: the four side planes are set up by four invocations, and 32 x 32
 /// invocations is more than any device's workgroup.
 const TILES: std::ops::RangeInclusive<u32> = 2..=32;
@@ -190,8 +180,6 @@ const TILES: std::ops::RangeInclusive<u32> = 2..=32;
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct TiledDispatch {
     pub source: String,
-    /// The entry points dispatched, in order, over the same tiles and bindings.
-    pub entries: Vec<&'static str>,
     pub constants: Vec<(&'static str, f64)>,
     /// The shader takes view depth from the depth buffer and needs the convention's
     /// `FAR_DEPTH` (view_depth_from_depth.wgsl).
@@ -270,10 +258,13 @@ impl Plugin for LightTiled {
         // The shader's sizes are constants, so the workgroup memory the compile checks
         // is the memory this tile and sample count use.
         let generated = format!(
-            "// Generated: the tile, the output, then the G-buffer's layout.\n\
+            "// Generated: the tile, the edge entries per invocation, the output, then the\n\
+             // G-buffer's layout.\n\
              const TILE: u32 = {}u;\n\
+             const EDGE_SLOTS: u32 = {}u;\n\
              alias OutTex = texture_storage_2d<{}, write>;\n{}",
             params.tile,
+            samples.saturating_sub(1).max(1),
             format_name(out.format),
             layout.wgsl(),
         );
@@ -281,26 +272,12 @@ impl Plugin for LightTiled {
         inputs.extend(ao);
         let generated = generated + &ao::wgsl(ao.as_ref());
         let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
-        // A visibility buffer shaded at more than one sample per pixel has its edge
-        // pixels lit in a second dispatch (light_tiled.wgsl's split()): the workgroup the
-        // device must allow is the one using more memory.
-        let split = samples > 1 && params.view == TiledView::Shaded && layout.surfaces.visibility();
-        let entries = match split {
-            true => vec![PIXELS, EDGES],
-            false => vec![PIXELS],
+        let Some(entry) = shader.entry("cs_light_tiled", Stage::Compute) else {
+            return Err(PluginError::Invalid(
+                "light_tiled.wgsl has no entry point cs_light_tiled".into(),
+            ));
         };
-        let mut workgroups = Vec::new();
-        for name in &entries {
-            let Some(entry) = shader.entry(name, Stage::Compute) else {
-                return Err(PluginError::Invalid(format!(
-                    "light_tiled.wgsl has no entry point {name}"
-                )));
-            };
-            workgroups.push(entry.workgroup());
-        }
-        if let Some(largest) = workgroups.into_iter().max_by_key(|w| w.memory_bytes) {
-            pass.workgroup(largest);
-        }
+        pass.workgroup(entry.workgroup());
         let detector = match params.edges.detector {
             _ if layout.surfaces.visibility() => 4.0,
             Detector::Compare => 0.0,
@@ -325,7 +302,6 @@ impl Plugin for LightTiled {
         ]);
         let dispatch = TiledDispatch {
             source: shader.source().to_owned(),
-            entries,
             constants,
             view_depth_from_depth: !layout.stored_view_depth,
             ids: visibility_ids,
@@ -385,7 +361,7 @@ mod gpu {
                 return;
             };
             let visibility = dispatch.ids.is_some() || matches!(dispatch.depth, Depth::Keys(_));
-            let state: &mut InputPass<Key, Vec<wgpu::ComputePipeline>> =
+            let state: &mut InputPass<Key, wgpu::ComputePipeline> =
                 per_scene(&mut state, &scene, || {
                     InputPass::with_geometry(
                         resources,
@@ -437,7 +413,7 @@ mod gpu {
                 ids: dispatch.ids.map(|ids| resources.shape(ids).format),
             };
             let (module, layout) = (&state.module, &state.layout);
-            let pipelines = state.pipelines.get(key, |key| {
+            let pipeline = state.pipelines.get(key, |key| {
                 let mut constants = dispatch.constants.clone();
                 constants.extend(key.variant.constants());
                 if dispatch.view_depth_from_depth {
@@ -446,11 +422,16 @@ mod gpu {
                 if let Some(ids) = key.ids {
                     constants.push(("SPLIT_IDS", split_ids(ids)));
                 }
-                let pipeline = |entry| {
-                    compute_pipeline(device, "light_tiled", layout, module, entry, &constants)
-                };
-                dispatch.entries.iter().copied().map(pipeline).collect()
+                compute_pipeline(
+                    device,
+                    "light_tiled",
+                    layout,
+                    module,
+                    "cs_light_tiled",
+                    &constants,
+                )
             });
+            ctx.pass.set_pipeline(pipeline);
             ctx.pass
                 .set_bind_group(0, scene.bind_group(convention), &[]);
             ctx.pass
@@ -459,17 +440,12 @@ mod gpu {
                 ctx.pass.set_bind_group(2, geometry, &[]);
                 ctx.pass.set_bind_group(3, table, &[]);
             }
-            // The dispatches write disjoint pixels (an edge pixel is the second's alone)
-            // and read nothing the other writes: no order between them is needed.
             let out = resources.shape(dispatch.output);
-            for pipeline in pipelines {
-                ctx.pass.set_pipeline(pipeline);
-                ctx.pass.dispatch_workgroups(
-                    out.width.div_ceil(dispatch.tile),
-                    out.height.div_ceil(dispatch.tile),
-                    1,
-                );
-            }
+            ctx.pass.dispatch_workgroups(
+                out.width.div_ceil(dispatch.tile),
+                out.height.div_ceil(dispatch.tile),
+                1,
+            );
         })
     }
 }
