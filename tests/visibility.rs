@@ -262,6 +262,72 @@ fn stacked_squares(scene: &mut Scene) {
     scene.meshes.push(square);
 }
 
+/// The scene's meshes replaced by one fan of 97 triangles round a point just off the view
+/// axis, wider than the view, in its first material with white vertices: every sample lies
+/// in the fan, most near edges two triangles share (all of them meet at the centre).
+fn fan_over_the_view(scene: &mut Scene) {
+    let first = &scene.meshes[0];
+    let (eye, turn) = (scene.camera.position, scene.camera.orientation);
+    let mut vertices = vec![first.vertices[0]];
+    let centre = DVec3::new(0.0013, -0.0007, -3.0);
+    let corners = 97u32;
+    for k in 0..=corners {
+        let angle = std::f64::consts::TAU * f64::from(k) / f64::from(corners);
+        let mut v = first.vertices[0];
+        v.position = (eye
+            + turn * (centre + DVec3::new(40.0 * angle.cos(), 40.0 * angle.sin(), 0.0)))
+        .as_vec3()
+        .into();
+        vertices.push(v);
+    }
+    for v in &mut vertices {
+        v.color = [65535; 4];
+    }
+    vertices[0].position = (eye + turn * centre).as_vec3().into();
+    // Counter-clockwise as seen from the camera: front faces.
+    let indices = (1..=corners).flat_map(|k| [0, k, k + 1]).collect();
+    let fan = Mesh {
+        name: "fan".into(),
+        vertices,
+        indices,
+        material: first.material,
+        transform: DMat4::IDENTITY,
+    };
+    scene.meshes = vec![fan];
+}
+
+/// Triangles sharing an edge cover each sample on it once between them: a fan of thin
+/// triangles filling the view, all its edges meeting at one point near the centre of the
+/// image, leaves no sample uncovered (a gap would let the background into a pixel), with
+/// the compute raster's edge functions set up per triangle (tile_raster.wgsl's
+/// CoverTriangle) as with the hardware's.
+#[test]
+fn a_fan_of_triangles_covers_every_sample() {
+    let gpu = gpu();
+    let mut scene = Scene::load("builtin:unlit").expect("builtin:unlit loads");
+    fan_over_the_view(&mut scene);
+    let render = |pipeline, scene: &Scene| {
+        Render::new(pipeline, "builtin:unlit", (333, 217))
+            .with_scene(scene.clone())
+            .run(&gpu)
+            .image(&gpu, "color")
+    };
+    // The fan shrunk to a point: nothing drawn.
+    let mut empty = scene.clone();
+    empty.meshes[0].transform = DMat4::from_scale(DVec3::ZERO);
+    let background = render(COMPUTE, &empty).pixels[0];
+    for pipeline in [COMPUTE, VISIBILITY] {
+        let image = render(pipeline, &scene);
+        let fill = image.pixels[0];
+        assert_ne!(fill, background, "{pipeline}: the fan is not drawn");
+        let gaps = image.pixels.iter().filter(|&&p| p != fill).count();
+        assert_eq!(
+            gaps, 0,
+            "{pipeline}: {gaps} pixels differ from the fan's colour {fill:?}"
+        );
+    }
+}
+
 /// The compute raster's tiles do not change its keys: tiles of 4, 8 and 16 pixels render
 /// builtin:dense (whose triangles span up to the whole screen, and are clipped by the
 /// near plane) bit for bit alike, at an output no tile size divides.
