@@ -9,8 +9,9 @@
 //! per tile covers its triangles in registers, an invocation per pixel
 //! (tile_raster.wgsl), and stores each pixel's keys once, a plane per sample, with a
 //! flag where they show more than one triangle (raster_tiles.wgsl, key_layout.wgsl):
-//! the shading pass then reads a quarter of a 4x buffer away from edges. An atomicMax per covered sample into the buffer, the
-//! design before, lands anywhere in a buffer five times the H200's L2 at 4x and 3840x2160
+//! the shading pass then reads a quarter of a 4x buffer away from edges. An atomicMax
+//! per covered sample into the buffer, the design before, lands anywhere in a buffer
+//! five times the H200's L2 at 4x and 3840x2160
 //! (bench/results/gpu/visibility-4x-attribution).
 //!
 //! ```ron

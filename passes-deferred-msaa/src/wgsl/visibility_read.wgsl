@@ -1,7 +1,8 @@
 // A visibility buffer as the tiled shading pass reads it: per sample the ID + 1 of the
 // triangle it shows and its depth, through `sample_id` and `sample_depth`, and whether a
-// pixel's samples all show one triangle, through `one_surface` (visibility_textures.wgsl for a raster pass's targets, visibility_samples.wgsl for a
-// compute rasteriser's buffer); the triangles from the scene's geometry (group 2,
+// pixel's samples all show one triangle, through `one_surface` (visibility_textures.wgsl
+// for a raster pass's targets, visibility_samples.wgsl for a compute rasteriser's
+// buffer); the triangles from the scene's geometry (group 2,
 // geometry.wgsl). Each triangle a pixel shows is rebuilt once, at the mean position of
 // the samples it covers (the pixel center when it covers them all, as a G-buffer pass's
 // centroid interpolation places it): barycentrics where the ray through that point meets the
