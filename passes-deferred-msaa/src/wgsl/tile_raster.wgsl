@@ -104,8 +104,7 @@ fn cover_triangle(t: ScreenTriangle) -> CoverTriangle {
     for (var k = 0u; k < 3u; k++) {
         let u = corners[(k + 1u) % 3u];
         let v = corners[(k + 2u) % 3u];
-        let lesser = select(v, u, u.x < v.x || (u.x == v.x && u.y < v.y));
-        let anchor = floor(lesser);
+        let anchor = floor(select(v, u, lesser_first(u, v)));
         c.at_anchor[k] = edge_at(u, v, anchor);
         c.anchor_x[k] = anchor.x;
         c.anchor_y[k] = anchor.y;

@@ -74,10 +74,16 @@ fn edge(u: vec2<f32>, v: vec2<f32>, p: vec2<f32>) -> f32 {
     return (v.x - u.x) * (p.y - u.y) - (v.y - u.y) * (p.x - u.x);
 }
 
+// Whether corner `u` is an edge's lesser corner beside `v` (x first, then y): both
+// triangles sharing the edge pick the same one.
+fn lesser_first(u: vec2<f32>, v: vec2<f32>) -> bool {
+    return u.x < v.x || (u.x == v.x && u.y < v.y);
+}
+
 // The edge function of u -> v, computed from the lesser corner so that the triangle on
 // the other side, which walks v -> u, gets exactly its negation.
 fn edge_at(u: vec2<f32>, v: vec2<f32>, p: vec2<f32>) -> f32 {
-    if u.x < v.x || (u.x == v.x && u.y < v.y) {
+    if lesser_first(u, v) {
         return edge(u, v, p);
     }
     return -edge(v, u, p);
