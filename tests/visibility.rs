@@ -268,22 +268,19 @@ fn stacked_squares(scene: &mut Scene) {
 fn fan_over_the_view(scene: &mut Scene) {
     let first = &scene.meshes[0];
     let (eye, turn) = (scene.camera.position, scene.camera.orientation);
-    let mut vertices = vec![first.vertices[0]];
+    let white = |at: DVec3| {
+        let mut v = first.vertices[0];
+        v.position = (eye + turn * at).as_vec3().into();
+        v.color = [65535; 4];
+        v
+    };
     let centre = DVec3::new(0.0013, -0.0007, -3.0);
     let corners = 97u32;
-    for k in 0..=corners {
+    let ring = (0..=corners).map(|k| {
         let angle = std::f64::consts::TAU * f64::from(k) / f64::from(corners);
-        let mut v = first.vertices[0];
-        v.position = (eye
-            + turn * (centre + DVec3::new(40.0 * angle.cos(), 40.0 * angle.sin(), 0.0)))
-        .as_vec3()
-        .into();
-        vertices.push(v);
-    }
-    for v in &mut vertices {
-        v.color = [65535; 4];
-    }
-    vertices[0].position = (eye + turn * centre).as_vec3().into();
+        white(centre + DVec3::new(40.0 * angle.cos(), 40.0 * angle.sin(), 0.0))
+    });
+    let vertices = std::iter::once(white(centre)).chain(ring).collect();
     // Counter-clockwise as seen from the camera: front faces.
     let indices = (1..=corners).flat_map(|k| [0, k, k + 1]).collect();
     let fan = Mesh {
