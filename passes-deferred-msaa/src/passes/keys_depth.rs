@@ -90,7 +90,7 @@ mod gpu {
     use graph_core::gpu::RenderContext;
 
     use super::KeysDepthDraw;
-    use crate::common::gpu::{per_scene, InputPass, PipelineDesc};
+    use crate::common::gpu::{per_scene, GroupBuffers, InputPass, PipelineDesc};
     use crate::common::visibility_samples::{fits_binding, KEYS_BINDING};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
@@ -110,7 +110,10 @@ mod gpu {
                 return resources.fail(why);
             }
             let state: &mut InputPass<wgpu::TextureFormat> = per_scene(&mut state, &scene, || {
-                let buffers = [(KEYS_BINDING, draw.keys)];
+                let buffers = GroupBuffers {
+                    read: vec![(KEYS_BINDING, draw.keys)],
+                    owned: Vec::new(),
+                };
                 let label = "keys depth";
                 InputPass::with_geometry(
                     resources,

@@ -54,9 +54,14 @@
 //! pixels as a workgroup list dealt out from the first invocation on, and
 //! resolves into the single-sampled output.
 //! No multisampled HDR accumulation, no stencil, no resolve pass.
+//! A visibility buffer shaded at more than one sample per pixel has its edge pixels
+//! listed by the tiles' dispatch into a buffer the pass owns (4 bytes a pixel of the
+//! output, not in the graph's memory figures), then lit and resolved by a dispatch of an
+//! invocation a listed pixel, each fragment against the lights reaching its point
+//! (bench/results/gpu/visibility-edges says why).
 //!
 //! The workgroup memory the shader needs grows with the tile and the sample count
-//! (`tile`² x (samples − 1) edge entries of 16 bytes): the graph checks it against the
+//! (`tile`² x samples edge entries of 12 bytes): the graph checks it against the
 //! device profile when compiling, so a tile too big for a device (16 at 8x against the
 //! WebGPU default of 16 KiB) is an error naming the pass, and `tile: 8` fits.
 //!
@@ -172,6 +177,19 @@ pub(crate) enum Depth {
     Keys(BufferHandle),
 }
 
+/// The entry point lighting every pixel that is not an edge pixel, and every pixel of a
+/// debug view or of a single-sampled output.
+const PIXELS: &str = "cs_light_tiled";
+/// The entry points emptying the list of edge pixels before it and lighting them after
+/// it, and the workgroups the second runs (light_tiled.wgsl's EDGE_WORKGROUPS).
+const EDGES_RESET: &str = "cs_edge_pixels_reset";
+const EDGES: &str = "cs_light_edge_pixels";
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+const EDGE_WORKGROUPS: u32 = 1024;
+/// Where light_tiled.wgsl binds the list of edge pixels in group 1.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+const EDGE_PIXELS_BINDING: u32 = 12;
+
 /// Tile sides allowed: the four side planes are set up by four invocations, and 32 x 32
 /// invocations is more than any device's workgroup.
 const TILES: std::ops::RangeInclusive<u32> = 2..=32;
@@ -180,6 +198,8 @@ const TILES: std::ops::RangeInclusive<u32> = 2..=32;
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct TiledDispatch {
     pub source: String,
+    /// The entry points dispatched, in order, over the same tiles and bindings.
+    pub entries: Vec<&'static str>,
     pub constants: Vec<(&'static str, f64)>,
     /// The shader takes view depth from the depth buffer and needs the convention's
     /// `FAR_DEPTH` (view_depth_from_depth.wgsl).
@@ -258,13 +278,10 @@ impl Plugin for LightTiled {
         // The shader's sizes are constants, so the workgroup memory the compile checks
         // is the memory this tile and sample count use.
         let generated = format!(
-            "// Generated: the tile, the edge entries per invocation, the output, then the\n\
-             // G-buffer's layout.\n\
+            "// Generated: the tile, the output, then the G-buffer's layout.\n\
              const TILE: u32 = {}u;\n\
-             const EDGE_SLOTS: u32 = {}u;\n\
              alias OutTex = texture_storage_2d<{}, write>;\n{}",
             params.tile,
-            samples.saturating_sub(1).max(1),
             format_name(out.format),
             layout.wgsl(),
         );
@@ -272,12 +289,26 @@ impl Plugin for LightTiled {
         inputs.extend(ao);
         let generated = generated + &ao::wgsl(ao.as_ref());
         let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
-        let Some(entry) = shader.entry("cs_light_tiled", Stage::Compute) else {
-            return Err(PluginError::Invalid(
-                "light_tiled.wgsl has no entry point cs_light_tiled".into(),
-            ));
+        // A visibility buffer shaded at more than one sample per pixel has its edge
+        // pixels lit in a second dispatch (light_tiled.wgsl's split()): the workgroup the
+        // device must allow is the one using more memory.
+        let split = samples > 1 && params.view == TiledView::Shaded && layout.surfaces.visibility();
+        let entries = match split {
+            true => vec![EDGES_RESET, PIXELS, EDGES],
+            false => vec![PIXELS],
         };
-        pass.workgroup(entry.workgroup());
+        let mut workgroups = Vec::new();
+        for name in &entries {
+            let Some(entry) = shader.entry(name, Stage::Compute) else {
+                return Err(PluginError::Invalid(format!(
+                    "light_tiled.wgsl has no entry point {name}"
+                )));
+            };
+            workgroups.push(entry.workgroup());
+        }
+        if let Some(largest) = workgroups.into_iter().max_by_key(|w| w.memory_bytes) {
+            pass.workgroup(largest);
+        }
         let detector = match params.edges.detector {
             _ if layout.surfaces.visibility() => 4.0,
             Detector::Compare => 0.0,
@@ -302,6 +333,7 @@ impl Plugin for LightTiled {
         ]);
         let dispatch = TiledDispatch {
             source: shader.source().to_owned(),
+            entries,
             constants,
             view_depth_from_depth: !layout.stored_view_depth,
             ids: visibility_ids,
@@ -325,10 +357,11 @@ mod gpu {
 
     use graph_core::gpu::ComputeContext;
 
-    use super::{Depth, TiledDispatch};
+    use super::{Depth, TiledDispatch, EDGES, EDGES_RESET, EDGE_PIXELS_BINDING, EDGE_WORKGROUPS};
     use crate::analysis::{GatedShader, Variant};
     use crate::common::depth::far_depth;
-    use crate::common::gpu::{compute_pipeline, per_scene, split_ids, InputPass};
+    use crate::common::gpu::storage::scratch;
+    use crate::common::gpu::{compute_pipeline, per_scene, split_ids, GroupBuffers, InputPass};
     use crate::common::visibility_samples::{fits_binding, KEYS_BINDING};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
@@ -342,7 +375,14 @@ mod gpu {
     }
 
     /// The storage buffers group 1 holds besides the textures: the keys, if any.
-    fn keys_binding(depth: &Depth) -> Vec<(u32, graph_core::BufferHandle)> {
+    fn keys_binding(depth: &Depth) -> GroupBuffers {
+        GroupBuffers {
+            read: keys_read(depth),
+            owned: vec![EDGE_PIXELS_BINDING],
+        }
+    }
+
+    fn keys_read(depth: &Depth) -> Vec<(u32, graph_core::BufferHandle)> {
         match depth {
             Depth::Keys(keys) => vec![(KEYS_BINDING, *keys)],
             Depth::Buffer(..) => Vec::new(),
@@ -354,6 +394,9 @@ mod gpu {
         scenes: Arc<SceneCache>,
     ) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
         let mut state = None;
+        // The list of edge pixels and the output size it was made for: a count and 4 bytes
+        // a pixel when the edge pixels are lit apart, else the count alone.
+        let mut edge_list: Option<((u32, u32), wgpu::Buffer)> = None;
         Box::new(move |ctx| {
             let resources = ctx.resources;
             let device = resources.device;
@@ -361,7 +404,7 @@ mod gpu {
                 return;
             };
             let visibility = dispatch.ids.is_some() || matches!(dispatch.depth, Depth::Keys(_));
-            let state: &mut InputPass<Key, wgpu::ComputePipeline> =
+            let state: &mut InputPass<Key, Vec<wgpu::ComputePipeline>> =
                 per_scene(&mut state, &scene, || {
                     InputPass::with_geometry(
                         resources,
@@ -413,7 +456,7 @@ mod gpu {
                 ids: dispatch.ids.map(|ids| resources.shape(ids).format),
             };
             let (module, layout) = (&state.module, &state.layout);
-            let pipeline = state.pipelines.get(key, |key| {
+            let pipelines = state.pipelines.get(key, |key| {
                 let mut constants = dispatch.constants.clone();
                 constants.extend(key.variant.constants());
                 if dispatch.view_depth_from_depth {
@@ -422,30 +465,48 @@ mod gpu {
                 if let Some(ids) = key.ids {
                     constants.push(("SPLIT_IDS", split_ids(ids)));
                 }
-                compute_pipeline(
-                    device,
-                    "light_tiled",
-                    layout,
-                    module,
-                    "cs_light_tiled",
-                    &constants,
-                )
+                let pipeline = |entry| {
+                    compute_pipeline(device, "light_tiled", layout, module, entry, &constants)
+                };
+                dispatch.entries.iter().copied().map(pipeline).collect()
             });
-            ctx.pass.set_pipeline(pipeline);
             ctx.pass
                 .set_bind_group(0, scene.bind_group(convention), &[]);
+            let size = resources.output_size();
+            if edge_list.as_ref().is_some_and(|(made, _)| *made != size) {
+                edge_list = None;
+            }
+            let pixels = match dispatch.entries.len() > 1 {
+                true => u64::from(size.0) * u64::from(size.1),
+                false => 0,
+            };
+            let (_, list) = edge_list.get_or_insert_with(|| {
+                (
+                    size,
+                    scratch(device, "light_tiled edge pixels", 8 + 4 * pixels),
+                )
+            });
             ctx.pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+                .set_bind_group(1, &state.inputs.bind_group_with(resources, &[list]), &[]);
             if let Some((geometry, table)) = visibility_groups {
                 ctx.pass.set_bind_group(2, geometry, &[]);
                 ctx.pass.set_bind_group(3, table, &[]);
             }
+            // The dispatches write disjoint pixels (an edge pixel is the second's alone)
+            // and read nothing the other writes: no order between them is needed.
             let out = resources.shape(dispatch.output);
-            ctx.pass.dispatch_workgroups(
-                out.width.div_ceil(dispatch.tile),
-                out.height.div_ceil(dispatch.tile),
-                1,
-            );
+            for (entry, pipeline) in dispatch.entries.iter().zip(pipelines) {
+                ctx.pass.set_pipeline(pipeline);
+                let (x, y) = match *entry {
+                    EDGES_RESET => (1, 1),
+                    EDGES => (EDGE_WORKGROUPS, 1),
+                    _ => (
+                        out.width.div_ceil(dispatch.tile),
+                        out.height.div_ceil(dispatch.tile),
+                    ),
+                };
+                ctx.pass.dispatch_workgroups(x, y, 1);
+            }
         })
     }
 }

@@ -1,6 +1,7 @@
 // The tiled lighting pass (Lauritzen, "Deferred Rendering for Current and Future
-// Rendering Pipelines", SIGGRAPH 2010): one compute workgroup per TILE x TILE pixels,
-// one invocation per pixel, classifies, culls, shades and resolves in one dispatch.
+// Rendering Pipelines", SIGGRAPH 2010): cs_light_tiled, one compute workgroup per TILE x
+// TILE pixels, one invocation per pixel, classifies, culls, shades and resolves in one
+// dispatch.
 //
 // 1. Classify: each invocation reads its pixel's samples and finds whether they hold
 //    different surfaces (edge_detect.wgsl, as the fragment path's edge pass does). An
@@ -17,13 +18,16 @@
 //    background), averaged (box, or resolve.wgsl's tone-mapped weights), stored in the 1x
 //    output.
 //
+// A visibility buffer's edge pixels, found from IDs alone, are left to a second dispatch
+// (split()): cs_light_tiled lists them across the whole output, one atomic a tile, and
+// cs_light_edge_pixels lights each, an invocation a pixel, each fragment against the
+// lights that reach its point, and resolves it: no tile state, every warp full.
+//
 // Composed after common.wgsl, scene.wgsl, brdf.wgsl, lighting.wgsl,
 // surface.wgsl and edge_detect.wgsl, then a generated block defining TILE (the tile's side in
-// pixels), EDGE_SLOTS (max(SAMPLES - 1, 1): the edge list holds that many entries per
-// invocation, every sample of every pixel but one) and OutTex (the output's storage
-// texture type), and holding the G-buffer's layout: `load_gsample`, `fragment_leaders`
-// and `sample_lit` (gbuffer_read.wgsl, or visibility_read.wgsl with geometry.wgsl),
-// `load_view_depth` (view_depth_stored.wgsl, or
+// pixels) and OutTex (the output's storage texture type), and holding the G-buffer's
+// layout: `load_gsample`, `fragment_leaders` and `sample_lit` (gbuffer_read.wgsl, or
+// visibility_read.wgsl with geometry.wgsl), `load_view_depth` (view_depth_stored.wgsl, or
 // view_depth_from_depth.wgsl for the lean G-buffer and the visibility buffer) and
 // `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or emitted_surface.wgsl), and common/ao.rs's
 // `with_screen_ao`.
@@ -51,7 +55,9 @@ override EXPOSURE: f32 = 1.0;
 override HEAT_MAX: f32 = 64.0;
 
 const THREADS: u32 = TILE * TILE;
-const EDGE_CAPACITY: u32 = THREADS * EDGE_SLOTS;
+// Edge-list entries: every fragment of every pixel at most (cs_light_tiled lists every
+// fragment of an edge pixel but sample 0's).
+const EDGE_CAPACITY: u32 = THREADS * SAMPLES;
 const VIEW_SHADED: u32 = 0u;
 const VIEW_EDGES: u32 = 1u;
 const VIEW_TILE_LIGHTS: u32 = 2u;
@@ -69,9 +75,25 @@ var<workgroup> batch_lights: array<u32, THREADS>;
 // Edge-list entries: the pixel's index in the tile << 12 | the samples its fragment
 // covers (a mask) << 4 | its first sample.
 var<workgroup> edge_samples: array<u32, EDGE_CAPACITY>;
-// Their light, red, green and blue of entry i at 3i, 3i + 1 and 3i + 2 (an array of
-// vec3 would pad each to 16 bytes).
-var<workgroup> edge_light: array<f32, 3u * EDGE_CAPACITY>;
+// Their light (store_light): of the batches so far, and after the last what their samples
+// take. 8 bytes an entry, so that every fragment of a 4x 16 x 16 tile fits in WebGPU's
+// 16 KiB of workgroup memory.
+var<workgroup> edge_light: array<vec2<u32>, EDGE_CAPACITY>;
+// With split(), every tile's edge pixels as cs_light_tiled lists them for
+// cs_light_edge_pixels: their count, then each pixel's x | y << 16 (light_tiled.rs owns
+// the buffer, room for every pixel of the output). A tile takes its room with one atomic:
+// its edge pixels counted in tile_edges, the first of its room in tile_edges_base.
+struct EdgePixels {
+    count: atomic<u32>,
+    pixels: array<u32>,
+}
+@group(1) @binding(12) var<storage, read_write> edge_pixels: EdgePixels;
+var<workgroup> tile_edges: atomic<u32>;
+var<workgroup> tile_edges_base: u32;
+// cs_light_edge_pixels' workgroup, and how many there are (each going through the list
+// EDGE_WORKGROUPS * EDGE_INVOCATIONS apart).
+const EDGE_INVOCATIONS: u32 = 64u;
+const EDGE_WORKGROUPS: u32 = 1024u;
 // The tile's side planes (inward normal, offset), camera-relative.
 var<workgroup> tile_planes: array<vec4<f32>, 4>;
 
@@ -100,6 +122,16 @@ fn side_plane(a: vec2<f32>, b: vec2<f32>, inside: vec3<f32>) -> vec4<f32> {
     var n = safe_normalize(cross(unproject(b, 0.5) - pa, along));
     n = select(n, -n, dot(n, inside - pa) < 0.0);
     return vec4<f32>(n, -dot(n, pa));
+}
+
+// One side plane per invocation of the first four, corners clockwise from the top left.
+fn set_side_plane(origin: vec2<u32>, local: u32) {
+    if local < 4u {
+        let corners = array<vec2<f32>, 5>(vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0), vec2<f32>(0.0, 0.0));
+        let o = vec2<f32>(origin);
+        let t = f32(TILE);
+        tile_planes[local] = side_plane(o + corners[local] * t, o + corners[local + 1u] * t, unproject(o + 0.5 * t, 0.5));
+    }
 }
 
 // Whether point or spot light `light` may reach a point of the tile between view depths
@@ -180,6 +212,19 @@ fn entry_surface(origin: vec2<u32>, code: u32) -> EntrySurface {
     return EntrySurface(lit, with_screen_ao(surface, pixel), emits);
 }
 
+// An entry's light (never negative) in 63 bits: each channel's float without its sign
+// bit, rounded to 13 bits of mantissa, 21 bits a channel.
+fn store_light(entry: u32, light: vec3<f32>) {
+    let b = (bitcast<vec3<u32>>(max(light, vec3<f32>(0.0))) + vec3<u32>(0x200u)) >> vec3<u32>(10u);
+    edge_light[entry] = vec2<u32>(b.x | (b.y << 21u), (b.y >> 11u) | (b.z << 10u));
+}
+
+fn load_light(entry: u32) -> vec3<f32> {
+    let w = edge_light[entry];
+    let b = vec3<u32>(w.x & 0x1fffffu, (w.x >> 21u) | ((w.y & 0x3ffu) << 11u), w.y >> 10u);
+    return bitcast<vec3<f32>>(b << vec3<u32>(10u));
+}
+
 // Lights edge-list entry `entry` with this batch's `count` lights (batch_lights):
 // ambient and directional light too in the `first` batch; in the `last`, its edge_light
 // slot becomes the light its samples take (no more than HALF_MAX), with what a visibility
@@ -187,10 +232,9 @@ fn entry_surface(origin: vec2<u32>, code: u32) -> EntrySurface {
 // sample's own).
 fn shade_entry(origin: vec2<u32>, entry: u32, first: bool, last: bool, count: u32) {
     let e = entry_surface(origin, edge_samples[entry]);
-    let slot = 3u * entry;
     var light = vec3<f32>(0.0);
     if !first {
-        light = vec3<f32>(edge_light[slot], edge_light[slot + 1u], edge_light[slot + 2u]);
+        light = load_light(entry);
     }
     if e.lit {
         if first {
@@ -203,9 +247,24 @@ fn shade_entry(origin: vec2<u32>, entry: u32, first: bool, last: bool, count: u3
     if last {
         light = e.emits + min(light, vec3<f32>(HALF_MAX));
     }
-    edge_light[slot] = light.r;
-    edge_light[slot + 1u] = light.g;
-    edge_light[slot + 2u] = light.b;
+    store_light(entry, light);
+}
+
+// Whether edge pixels are cs_light_edge_pixels' (light_tiled.rs dispatches it then): a
+// visibility buffer's, shaded at more than one sample per pixel. They are listed across
+// the output and lit after this dispatch, an invocation a pixel in full workgroups,
+// rather than here in a second round of the tile's first warps while the others wait
+// (and with registers every pixel of this dispatch would hold).
+// A G-buffer's pixels are classified from every sample's channels, too much to read
+// twice: their edge pixels stay here.
+fn split() -> bool {
+    return SAMPLES > 1u && VIEW == VIEW_SHADED && SURFACE_IDS;
+}
+
+// Whether this dispatch lists and lights edge-list entries: a pixel of more than one
+// sample, not split().
+fn listed_here() -> bool {
+    return SAMPLES > 1u && !split();
 }
 
 // A pixel's fragments, packed four bits per sample: the first sample holding the same
@@ -253,6 +312,46 @@ fn sample_is_edge(g0: GSample, gs: GSample, s: u32) -> bool {
     }
 }
 
+// Clears the tile's shared state (invocation `local` 0), before a barrier.
+fn start_tile(local: u32) {
+    if local == 0u {
+        atomicStore(&nearest_key, 0u);
+        atomicStore(&farthest_key, 0u);
+        atomicStore(&edge_count, 0u);
+        atomicStore(&batch_light_count, 0u);
+        atomicStore(&tile_edges, 0u);
+    }
+}
+
+// The tile's depth bounds, once every point it shades is in. A tile without lit samples
+// has none (its keys are still 0): nothing to cull for.
+struct Bounds {
+    lit: bool,
+    nearest: f32,
+    farthest: f32,
+}
+
+fn tile_bounds() -> Bounds {
+    return Bounds(atomicLoad(&farthest_key) != 0u, -key_depth(atomicLoad(&nearest_key)), key_depth(atomicLoad(&farthest_key)));
+}
+
+// Adds light `index` to this batch's lights (batch_lights) if it is one and may reach
+// the tile, or every light without CULL.
+fn cull_batch(index: u32, bounds: Bounds) {
+    if index < light_info.light_count && (!CULL || (bounds.lit && reaches_tile(lights[index], bounds.nearest, bounds.farthest))) {
+        batch_lights[atomicAdd(&batch_light_count, 1u)] = index;
+    }
+}
+
+// A resolve's weighted sum of sample colours (rgb) and of weights (a), with colour `c`
+// added: clamped to what the output holds, weighted 1 (box) or by its tone-mapped
+// weight.
+fn resolve_sample(sum: vec4<f32>, c: vec3<f32>) -> vec4<f32> {
+    let clamped = clamp(c, vec3<f32>(0.0), vec3<f32>(HALF_MAX));
+    let w = select(1.0, 1.0 / (1.0 + EXPOSURE * luminance(clamped)), RESOLVE == 1u);
+    return sum + vec4<f32>(w * clamped, w);
+}
+
 @compute @workgroup_size(TILE, TILE, 1)
 fn cs_light_tiled(
     @builtin(workgroup_id) tile: vec3<u32>,
@@ -263,12 +362,7 @@ fn cs_light_tiled(
     let pixel = vec2<i32>(origin + local_id.xy);
     let inside = all(pixel < vec2<i32>(textureDimensions(out_tex)));
 
-    if local == 0u {
-        atomicStore(&nearest_key, 0u);
-        atomicStore(&farthest_key, 0u);
-        atomicStore(&edge_count, 0u);
-        atomicStore(&batch_light_count, 0u);
-    }
+    start_tile(local);
     workgroupBarrier();
 
     // 1. Classify, a sample at a time, holding only sample 0's surface (a 4x pixel's
@@ -286,15 +380,17 @@ fn cs_light_tiled(
     var edge = false;
     if inside && SURFACE_IDS {
         leaders = fragment_leaders(pixel);
-        g0 = load_gsample(pixel, 0u);
-        emits[0] = emitted(pixel, 0u, g0);
-        lit = u32((g0.flags & FLAG_LIT) != 0u);
         for (var s = 1u; s < SAMPLES; s++) {
             let leader = leader_of(leaders, s);
             if leader == s {
                 lit |= u32(sample_lit(pixel, s)) << s;
             }
             edge = edge || leader != 0u;
+        }
+        if !(split() && edge) {
+            g0 = load_gsample(pixel, 0u);
+            emits[0] = emitted(pixel, 0u, g0);
+            lit |= u32((g0.flags & FLAG_LIT) != 0u);
         }
     } else if inside {
         for (var s = 0u; s < SAMPLES; s++) {
@@ -324,7 +420,14 @@ fn cs_light_tiled(
         fragments += u32(leader_of(leaders, s) == s);
         entries |= u32(s > 0u && edge && source_of(leaders, edge, s) == s) << s;
     }
-    let lit0 = (lit & 1u) != 0u;
+    // With split(), cs_light_edge_pixels lights and stores edge pixels: this dispatch
+    // lists them for it, and leaves them out, of its depth bounds too.
+    let here = inside && !(split() && edge);
+    var edge_slot = 0u;
+    if split() && inside && edge {
+        edge_slot = atomicAdd(&tile_edges, 1u);
+    }
+    let lit0 = here && (lit & 1u) != 0u;
     var p0 = vec3<f32>(0.0);
     if lit0 {
         // A stored view depth, and a visibility buffer's triangle rebuilt at the pixel
@@ -339,7 +442,7 @@ fn cs_light_tiled(
         include_depth(p0);
     }
     var base = 0u;
-    if edge {
+    if here && edge && listed_here() {
         base = atomicAdd(&edge_count, countOneBits(entries));
         var next = base;
         for (var s = 1u; s < SAMPLES; s++) {
@@ -353,21 +456,21 @@ fn cs_light_tiled(
             }
         }
     }
-    // One side plane per invocation of the first four, corners clockwise from the top left.
-    if local < 4u {
-        let corners = array<vec2<f32>, 5>(vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0), vec2<f32>(0.0, 0.0));
-        let o = vec2<f32>(origin);
-        let t = f32(TILE);
-        tile_planes[local] = side_plane(o + corners[local] * t, o + corners[local + 1u] * t, unproject(o + 0.5 * t, 0.5));
-    }
+    set_side_plane(origin, local);
     workgroupBarrier();
+    if split() {
+        if local == 0u {
+            tile_edges_base = atomicAdd(&edge_pixels.count, atomicLoad(&tile_edges));
+        }
+        workgroupBarrier();
+        if inside && edge {
+            edge_pixels.pixels[tile_edges_base + edge_slot] = u32(pixel.x) | (u32(pixel.y) << 16u);
+        }
+    }
 
     // The edge-list entries this invocation shades, as surfaces.
     let edges = atomicLoad(&edge_count);
-    // A tile without lit samples has no bounds (its keys are still 0): nothing to cull for.
-    let tile_lit = atomicLoad(&farthest_key) != 0u;
-    let nearest = -key_depth(atomicLoad(&nearest_key));
-    let farthest = key_depth(atomicLoad(&farthest_key));
+    let bounds = tile_bounds();
     // Sample 0's light accumulates in registers, an edge entry's in its edge_light
     // slot (each entry is one invocation's), so that no invocation holds light for
     // entries it is not shading. An entry's surface is loaded again for each batch
@@ -387,10 +490,7 @@ fn cs_light_tiled(
         let first = light_info.directional_count;
         let last = max(light_info.light_count, first + 1u);
         for (var batch = first; batch < last; batch += THREADS) {
-            let index = batch + local;
-            if index < light_info.light_count && (!CULL || (tile_lit && reaches_tile(lights[index], nearest, farthest))) {
-                batch_lights[atomicAdd(&batch_light_count, 1u)] = index;
-            }
+            cull_batch(batch + local, bounds);
             workgroupBarrier();
             let count = atomicLoad(&batch_light_count);
             tile_lights += count;
@@ -400,8 +500,10 @@ fn cs_light_tiled(
                         light0 += shade_light(surface0, lights[batch_lights[l]]);
                     }
                 }
-                for (var entry = local; entry < edges; entry += THREADS) {
-                    shade_entry(origin, entry, batch == first, batch + THREADS >= last, count);
+                if listed_here() {
+                    for (var entry = local; entry < edges; entry += THREADS) {
+                        shade_entry(origin, entry, batch == first, batch + THREADS >= last, count);
+                    }
                 }
             }
             workgroupBarrier();
@@ -412,7 +514,7 @@ fn cs_light_tiled(
         }
     }
     workgroupBarrier();
-    if !inside {
+    if !here {
         return;
     }
 
@@ -441,26 +543,72 @@ fn cs_light_tiled(
             // 4. Each sample's light is its source sample's: sample 0's in registers, the
             // others' in the edge list from `base` on, in sample order (with what a
             // visibility buffer's entry emits).
-            var sum = vec3<f32>(0.0);
-            var weights = 0.0;
+            var sum = vec4<f32>(0.0);
             for (var s = 0u; s < SAMPLES; s++) {
                 let source = source_of(leaders, edge, s);
                 var c: vec3<f32>;
                 if source == 0u {
                     c = emits[select(s, 0u, SURFACE_IDS)] + min(light0, vec3<f32>(HALF_MAX));
                 } else {
-                    let e = 3u * (base + countOneBits(entries & ((1u << source) - 1u)));
-                    c = vec3<f32>(edge_light[e], edge_light[e + 1u], edge_light[e + 2u]);
+                    c = load_light(base + countOneBits(entries & ((1u << source) - 1u)));
                     if !SURFACE_IDS {
                         c = emits[s] + c;
                     }
                 }
-                c = clamp(c, vec3<f32>(0.0), vec3<f32>(HALF_MAX));
-                let w = select(1.0, 1.0 / (1.0 + EXPOSURE * luminance(c)), RESOLVE == 1u);
-                sum += w * c;
-                weights += w;
+                sum = resolve_sample(sum, c);
             }
-            textureStore(out_tex, pixel, vec4<f32>(sum / weights, 1.0));
+            textureStore(out_tex, pixel, vec4<f32>(sum.rgb / sum.a, 1.0));
         }
+    }
+}
+
+// Empties the edge-pixel list before cs_light_tiled fills it.
+@compute @workgroup_size(1, 1, 1)
+fn cs_edge_pixels_reset() {
+    atomicStore(&edge_pixels.count, 0u);
+}
+
+// The light of every point and spot light reaching point `s` of a lit surface (every
+// light without CULL), with ambient and directional light: what the tiles cull for their
+// pixels, culled for one point.
+fn point_light(surface: Surface) -> vec3<f32> {
+    var light = ambient_and_directional(surface);
+    for (var l = light_info.directional_count; l < light_info.light_count; l++) {
+        if !CULL || reaches(lights[l], surface.position) {
+            light += shade_light(surface, lights[l]);
+        }
+    }
+    return light;
+}
+
+// Lights and resolves the edge pixels cs_light_tiled listed, one an invocation: each of
+// its fragments (each sample, or with ADAPTIVE each distinct triangle once) rebuilt at
+// the mean of the samples it covers and lit, each sample taking its fragment's light.
+@compute @workgroup_size(EDGE_INVOCATIONS, 1, 1)
+fn cs_light_edge_pixels(@builtin(global_invocation_id) id: vec3<u32>) {
+    let count = atomicLoad(&edge_pixels.count);
+    for (var i = id.x; i < count; i += EDGE_WORKGROUPS * EDGE_INVOCATIONS) {
+        let packed = edge_pixels.pixels[i];
+        let pixel = vec2<i32>(vec2<u32>(packed & 0xffffu, packed >> 16u));
+        let leaders = fragment_leaders(pixel);
+        var sum = vec4<f32>(0.0);
+        for (var s = 0u; s < SAMPLES; s++) {
+            if source_of(leaders, true, s) != s {
+                continue;
+            }
+            let mask = source_mask(leaders, true, s);
+            let g = load_gsample(pixel, s);
+            var light = vec3<f32>(0.0);
+            if (g.flags & FLAG_LIT) != 0u {
+                let surface = with_screen_ao(surface_of(g, fragment_surface(pixel, mask)), pixel);
+                light = point_light(surface);
+            }
+            let c = emitted(pixel, s, g) + min(light, vec3<f32>(HALF_MAX));
+            // Each sample of the fragment takes its light.
+            for (var k = 0u; k < countOneBits(mask); k++) {
+                sum = resolve_sample(sum, c);
+            }
+        }
+        textureStore(out_tex, pixel, vec4<f32>(sum.rgb / sum.a, 1.0));
     }
 }

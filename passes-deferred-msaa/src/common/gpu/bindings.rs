@@ -12,6 +12,9 @@ pub(crate) struct TextureBindings {
     bindings: Vec<Input>,
     /// Graph buffers read as read-only storage, by binding.
     buffers: Vec<(u32, BufferHandle)>,
+    /// Bindings of read-write storage buffers the pass owns (given to
+    /// [`bind_group_with`](Self::bind_group_with)).
+    owned: Vec<u32>,
     /// The clamp-to-edge linear sampler `Texels::Filtered` inputs are read through; made
     /// only for passes that have one.
     sampler: Option<wgpu::Sampler>,
@@ -20,14 +23,16 @@ pub(crate) struct TextureBindings {
 impl TextureBindings {
     /// The layout for `bindings` as the plan shapes their textures.
     pub fn new(resources: &FrameResources<'_>, bindings: &[Input]) -> TextureBindings {
-        Self::with_buffers(resources, bindings, &[])
+        Self::with_buffers(resources, bindings, &[], &[])
     }
 
-    /// [`new`](Self::new), and read-only storage `buffers` at their bindings.
+    /// [`new`](Self::new), read-only storage `buffers` at their bindings, and read-write
+    /// storage buffers the pass owns at bindings `owned`.
     pub fn with_buffers(
         resources: &FrameResources<'_>,
         bindings: &[Input],
         buffers: &[(u32, BufferHandle)],
+        owned: &[u32],
     ) -> TextureBindings {
         let visibility = wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
         let mut entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
@@ -77,6 +82,16 @@ impl TextureBindings {
                     count: None,
                 }),
         );
+        entries.extend(owned.iter().map(|&binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: false },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        }));
         entries.extend(
             samplers(bindings).map(|binding| wgpu::BindGroupLayoutEntry {
                 binding,
@@ -103,11 +118,22 @@ impl TextureBindings {
             layout,
             bindings: bindings.to_vec(),
             buffers: buffers.to_vec(),
+            owned: owned.to_vec(),
             sampler,
         }
     }
 
     pub fn bind_group(&self, resources: &FrameResources<'_>) -> wgpu::BindGroup {
+        self.bind_group_with(resources, &[])
+    }
+
+    /// The group with `owned` bound at the bindings given when the layout was made, in
+    /// that order.
+    pub fn bind_group_with(
+        &self,
+        resources: &FrameResources<'_>,
+        owned: &[&wgpu::Buffer],
+    ) -> wgpu::BindGroup {
         let mut entries: Vec<wgpu::BindGroupEntry<'_>> = self
             .bindings
             .iter()
@@ -126,6 +152,12 @@ impl TextureBindings {
                     resource: resources.buffer(buffer).as_entire_binding(),
                 }),
         );
+        entries.extend(self.owned.iter().zip(owned).map(|(&binding, buffer)| {
+            wgpu::BindGroupEntry {
+                binding,
+                resource: buffer.as_entire_binding(),
+            }
+        }));
         if let Some(sampler) = &self.sampler {
             entries.extend(
                 samplers(&self.bindings).map(|binding| wgpu::BindGroupEntry {

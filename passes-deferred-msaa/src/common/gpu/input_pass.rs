@@ -14,6 +14,14 @@ use super::pipeline::{module, pipeline_layout, Pipelines};
 use crate::common::textures::Input;
 use crate::gpu_scene::GpuScene;
 
+/// The storage buffers of a pass's group 1: graph buffers it reads, by binding, and the
+/// bindings of read-write buffers it owns (bound with `TextureBindings::bind_group_with`).
+#[derive(Default)]
+pub(crate) struct GroupBuffers {
+    pub read: Vec<(u32, BufferHandle)>,
+    pub owned: Vec<u32>,
+}
+
 pub(crate) struct InputPass<K, P = wgpu::RenderPipeline> {
     pub module: wgpu::ShaderModule,
     pub inputs: TextureBindings,
@@ -31,11 +39,19 @@ impl<K, P> InputPass<K, P> {
         scene: Option<&GpuScene>,
         inputs: &[Input],
     ) -> Self {
-        Self::with_geometry(resources, label, source, scene, inputs, &[], false)
+        Self::with_geometry(
+            resources,
+            label,
+            source,
+            scene,
+            inputs,
+            &GroupBuffers::default(),
+            false,
+        )
     }
 
-    /// As [`new`](Self::new), with read-only storage `buffers` in group 1 (at their
-    /// bindings), and with `geometry` the scene's geometry as group 2
+    /// As [`new`](Self::new), with the storage `buffers` in group 1 (at their bindings),
+    /// and with `geometry` the scene's geometry as group 2
     /// ([`GpuScene::geometry_layout`]) and its texture table as group 3
     /// ([`GpuScene::texture_table_layout`]).
     pub fn with_geometry(
@@ -44,11 +60,12 @@ impl<K, P> InputPass<K, P> {
         source: &str,
         scene: Option<&GpuScene>,
         inputs: &[Input],
-        buffers: &[(u32, BufferHandle)],
+        buffers: &GroupBuffers,
         geometry: bool,
     ) -> Self {
         let device = resources.device;
-        let inputs = TextureBindings::with_buffers(resources, inputs, buffers);
+        let inputs =
+            TextureBindings::with_buffers(resources, inputs, &buffers.read, &buffers.owned);
         let visibility = scene.filter(|_| geometry);
         let layouts = [
             scene.map(GpuScene::layout),

@@ -18,7 +18,7 @@ pub(crate) mod tile_bins;
 use std::sync::Arc;
 
 use crate::gpu_scene::GpuScene;
-pub(crate) use input_pass::InputPass;
+pub(crate) use input_pass::{GroupBuffers, InputPass};
 pub(crate) use pipeline::{additive, compute_pipeline, PipelineDesc};
 
 /// geometry.wgsl's `SPLIT_IDS` for a visibility buffer of `format`: rg16uint holds an ID
