@@ -347,6 +347,35 @@ fn the_compute_raster_s_tile_size_does_not_change_the_image() {
     }
 }
 
+/// A visibility buffer's edge pixels, listed by the tiled pass and lit in a dispatch of
+/// their own (light_edges_listed.wgsl), add up their light across batches: with tiles of
+/// 16 each run of listed pixels culls the 200 lights in one batch of 256, with tiles of
+/// 8 in four of 64, a fragment's light held in workgroup memory between them, and the
+/// two images agree within 1/255 everywhere, edge pixels included.
+#[test]
+fn listed_edge_pixels_add_up_every_batch_of_lights() {
+    let gpu = gpu();
+    let frame = |tile: &'static str| {
+        Render::new(COMPUTE, "builtin:lights?count=200", (320, 180))
+            .edit("params: (shading: adaptive),", tile)
+            .read(&gpu, &["color", "debug.edges"])
+    };
+    let sixteen = frame("params: (shading: adaptive, tile: 16),");
+    let eight = frame("params: (shading: adaptive, tile: 8),");
+    let edges = sixteen[1].pixels.iter().filter(|&&p| p == RED).count();
+    assert!(
+        edges > 1000,
+        "only {edges} edge pixels: the test proves little"
+    );
+    let d = measure::diff(&sixteen[0], &eight[0], None);
+    assert!(
+        d.max <= 1,
+        "tiles of 8 and 16 differ by {} at {:?} ({edges} edge pixels)",
+        d.max,
+        d.at
+    );
+}
+
 /// Its bins are made for an output size: a frame resized to another renders what a frame
 /// made at that size renders, bit for bit, and so does one resized back.
 #[test]

@@ -41,6 +41,10 @@ pub(crate) const VIEW_DEPTH_FROM_DEPTH: &str = include_str!("wgsl/view_depth_fro
 pub(crate) const EMITTED_HDR: &str = include_str!("wgsl/emitted_hdr.wgsl");
 pub(crate) const EMITTED_RGB9E5: &str = include_str!("wgsl/emitted_rgb9e5.wgsl");
 pub(crate) const EMITTED_SURFACE: &str = include_str!("wgsl/emitted_surface.wgsl");
+/// Where light_tiled.wgsl's edge pixels are lit: in their tile, or listed for a dispatch
+/// of their own (a visibility buffer's).
+pub(crate) const EDGES_IN_TILES: &str = include_str!("wgsl/edges_in_tiles.wgsl");
+pub(crate) const LIGHT_EDGES_LISTED: &str = include_str!("wgsl/light_edges_listed.wgsl");
 const BRDF: &str = include_str!("wgsl/brdf.wgsl");
 const SURFACE: &str = include_str!("wgsl/surface.wgsl");
 const LIGHTING: &str = include_str!("wgsl/lighting.wgsl");
@@ -100,8 +104,8 @@ pub(crate) const LIGHT_PREPASS: Source = Source {
     ],
 };
 /// Needs a generated block after it, with a reader ([`GBUFFER_READ`] or
-/// [`VISIBILITY_READ`]), one of the `VIEW_DEPTH_*` and one of the `EMITTED_*` fragments:
-/// see [`crate::plugins::LightTiled`].
+/// [`VISIBILITY_READ`]), one of the `VIEW_DEPTH_*`, one of the `EMITTED_*` fragments and
+/// [`EDGES_IN_TILES`] or [`LIGHT_EDGES_LISTED`]: see [`crate::plugins::LightTiled`].
 pub(crate) const LIGHT_TILED: Source = Source {
     name: "light_tiled.wgsl",
     parts: &[

@@ -54,16 +54,19 @@
 //! pixels as a workgroup list dealt out from the first invocation on, and
 //! resolves into the single-sampled output.
 //! No multisampled HDR accumulation, no stencil, no resolve pass.
-//! A visibility buffer shaded at more than one sample per pixel has its edge pixels
-//! listed by the tiles' dispatch into a buffer the pass owns (4 bytes a pixel of the
-//! output, not in the graph's memory figures), then lit and resolved by a dispatch of an
-//! invocation a listed pixel, each fragment against the lights reaching its point
-//! (bench/results/gpu/visibility-edges says why).
+//! A visibility buffer shaded at more than one sample per pixel knows its edge pixels
+//! from one flag or ID comparison: the tiles' dispatch lists them into a buffer the pass
+//! owns (4 bytes a pixel of the output, not in the graph's memory figures) and leaves
+//! them out; a second dispatch lights them in runs of 64 listed pixels, each run culling
+//! lights for itself as a tile does, each pixel an invocation's, its fragments in turn,
+//! and resolves them (light_edges_listed.wgsl; bench/results/gpu/visibility-edges says
+//! why).
 //!
 //! The workgroup memory the shader needs grows with the tile and the sample count
-//! (`tile`² x samples edge entries of 12 bytes): the graph checks it against the
-//! device profile when compiling, so a tile too big for a device (16 at 8x against the
-//! WebGPU default of 16 KiB) is an error naming the pass, and `tile: 8` fits.
+//! (`tile`² x (samples − 1) edge entries of 16 bytes where the tile lights its edge
+//! pixels): the graph checks it against the device profile when compiling, so a tile
+//! too big for a device (16 at 8x against the WebGPU default of 16 KiB) is an error
+//! naming the pass, and `tile: 8` fits.
 //!
 //! Debug views write an `rgba8unorm` output named `color` instead of `resolved`:
 //! `edges` (red edge pixels, blue others, black without geometry, as debug_view's),
@@ -181,12 +184,13 @@ pub(crate) enum Depth {
 /// debug view or of a single-sampled output.
 const PIXELS: &str = "cs_light_tiled";
 /// The entry points emptying the list of edge pixels before it and lighting them after
-/// it, and the workgroups the second runs (light_tiled.wgsl's EDGE_WORKGROUPS).
+/// it (light_edges_listed.wgsl), and the workgroups the second runs: enough to fill a
+/// large GPU (4096 x 64 invocations), each going through the list's runs in turn.
 const EDGES_RESET: &str = "cs_edge_pixels_reset";
 const EDGES: &str = "cs_light_edge_pixels";
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-const EDGE_WORKGROUPS: u32 = 1024;
-/// Where light_tiled.wgsl binds the list of edge pixels in group 1.
+const EDGE_WORKGROUPS: u32 = 4096;
+/// Where light_edges_listed.wgsl binds the list of edge pixels in group 1.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 const EDGE_PIXELS_BINDING: u32 = 12;
 
@@ -275,25 +279,40 @@ impl Plugin for LightTiled {
             aspect: Aspect::All,
             texels: Texels::Store,
         });
+        // A visibility buffer shaded at more than one sample per pixel has its edge
+        // pixels listed and lit by a dispatch of their own (light_edges_listed.wgsl); a
+        // G-buffer's are classified from every sample's channels, too much to read twice,
+        // and stay in their tile, as do a debug view's.
+        let listed =
+            samples > 1 && params.view == TiledView::Shaded && layout.surfaces.visibility();
+        // The tile's edge-list entries: every sample of every pixel but one, where the
+        // tile lights its edge pixels.
+        let capacity = match samples > 1 && !listed {
+            true => params.tile * params.tile * (samples - 1),
+            false => 1,
+        };
         // The shader's sizes are constants, so the workgroup memory the compile checks
         // is the memory this tile and sample count use.
         let generated = format!(
-            "// Generated: the tile, the output, then the G-buffer's layout.\n\
+            "// Generated: the tile, its edge-list entries, the output, then the G-buffer's\n\
+             // layout and where edge pixels are lit.\n\
              const TILE: u32 = {}u;\n\
-             alias OutTex = texture_storage_2d<{}, write>;\n{}",
+             const EDGE_CAPACITY: u32 = {capacity}u;\n\
+             alias OutTex = texture_storage_2d<{}, write>;\n{}{}",
             params.tile,
             format_name(out.format),
             layout.wgsl(),
+            match listed {
+                true => shaders::LIGHT_EDGES_LISTED,
+                false => shaders::EDGES_IN_TILES,
+            },
         );
         let ao = ao::input(slots, pass)?;
         inputs.extend(ao);
         let generated = generated + &ao::wgsl(ao.as_ref());
         let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
-        // A visibility buffer shaded at more than one sample per pixel has its edge
-        // pixels lit in a second dispatch (light_tiled.wgsl's split()): the workgroup the
-        // device must allow is the one using more memory.
-        let split = samples > 1 && params.view == TiledView::Shaded && layout.surfaces.visibility();
-        let entries = match split {
+        // The workgroup the device must allow is the one using more memory.
+        let entries = match listed {
             true => vec![EDGES_RESET, PIXELS, EDGES],
             false => vec![PIXELS],
         };
@@ -374,18 +393,18 @@ mod gpu {
         ids: Option<wgpu::TextureFormat>,
     }
 
-    /// The storage buffers group 1 holds besides the textures: the keys, if any.
-    fn keys_binding(depth: &Depth) -> GroupBuffers {
+    /// The storage buffers group 1 holds besides the textures: the keys, if any, and
+    /// the list of edge pixels where they are lit apart.
+    fn group_buffers(dispatch: &TiledDispatch) -> GroupBuffers {
         GroupBuffers {
-            read: keys_read(depth),
-            owned: vec![EDGE_PIXELS_BINDING],
-        }
-    }
-
-    fn keys_read(depth: &Depth) -> Vec<(u32, graph_core::BufferHandle)> {
-        match depth {
-            Depth::Keys(keys) => vec![(KEYS_BINDING, *keys)],
-            Depth::Buffer(..) => Vec::new(),
+            read: match dispatch.depth {
+                Depth::Keys(keys) => vec![(KEYS_BINDING, keys)],
+                Depth::Buffer(..) => Vec::new(),
+            },
+            owned: match dispatch.entries.len() > 1 {
+                true => vec![EDGE_PIXELS_BINDING],
+                false => Vec::new(),
+            },
         }
     }
 
@@ -394,8 +413,8 @@ mod gpu {
         scenes: Arc<SceneCache>,
     ) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
         let mut state = None;
-        // The list of edge pixels and the output size it was made for: a count and 4 bytes
-        // a pixel when the edge pixels are lit apart, else the count alone.
+        // The list of edge pixels, where they are listed, and the output size it was made
+        // for: a count and 4 bytes a pixel.
         let mut edge_list: Option<((u32, u32), wgpu::Buffer)> = None;
         Box::new(move |ctx| {
             let resources = ctx.resources;
@@ -412,7 +431,7 @@ mod gpu {
                         &dispatch.source,
                         Some(&scene),
                         &dispatch.inputs,
-                        &keys_binding(&dispatch.depth),
+                        &group_buffers(&dispatch),
                         visibility,
                     )
                 });
@@ -472,29 +491,30 @@ mod gpu {
             });
             ctx.pass
                 .set_bind_group(0, scene.bind_group(convention), &[]);
-            let size = resources.output_size();
-            if edge_list.as_ref().is_some_and(|(made, _)| *made != size) {
-                edge_list = None;
+            let out = resources.shape(dispatch.output);
+            let mut owned = Vec::new();
+            if dispatch.entries.len() > 1 {
+                let size = (out.width, out.height);
+                if edge_list.as_ref().is_some_and(|(made, _)| *made != size) {
+                    edge_list = None;
+                }
+                let pixels = u64::from(out.width) * u64::from(out.height);
+                let (_, list) = edge_list.get_or_insert_with(|| {
+                    (
+                        size,
+                        scratch(device, "light_tiled edge pixels", 4 + 4 * pixels),
+                    )
+                });
+                owned.push(&*list);
             }
-            let pixels = match dispatch.entries.len() > 1 {
-                true => u64::from(size.0) * u64::from(size.1),
-                false => 0,
-            };
-            let (_, list) = edge_list.get_or_insert_with(|| {
-                (
-                    size,
-                    scratch(device, "light_tiled edge pixels", 8 + 4 * pixels),
-                )
-            });
             ctx.pass
-                .set_bind_group(1, &state.inputs.bind_group_with(resources, &[list]), &[]);
+                .set_bind_group(1, &state.inputs.bind_group_with(resources, &owned), &[]);
             if let Some((geometry, table)) = visibility_groups {
                 ctx.pass.set_bind_group(2, geometry, &[]);
                 ctx.pass.set_bind_group(3, table, &[]);
             }
-            // The dispatches write disjoint pixels (an edge pixel is the second's alone)
-            // and read nothing the other writes: no order between them is needed.
-            let out = resources.shape(dispatch.output);
+            // wgpu orders the dispatches (the list is written by one and read by the
+            // next); they write disjoint pixels of the output.
             for (entry, pipeline) in dispatch.entries.iter().zip(pipelines) {
                 ctx.pass.set_pipeline(pipeline);
                 let (x, y) = match *entry {

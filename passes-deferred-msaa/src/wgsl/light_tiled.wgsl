@@ -18,19 +18,20 @@
 //    background), averaged (box, or resolve.wgsl's tone-mapped weights), stored in the 1x
 //    output.
 //
-// A visibility buffer's edge pixels, found from IDs alone, are left to a second dispatch
-// (split()): cs_light_tiled lists them across the whole output, one atomic a tile, and
-// cs_light_edge_pixels lights each, an invocation a pixel, each fragment against the
-// lights that reach its point, and resolves it: no tile state, every warp full.
+// A visibility buffer shaded at more than one sample per pixel finds its edge pixels from
+// IDs alone: cs_light_tiled lists them instead (EDGES_LISTED) and light_edges_listed.wgsl
+// lights them in a dispatch of their own.
 //
-// Composed after common.wgsl, scene.wgsl, brdf.wgsl, lighting.wgsl,
-// surface.wgsl and edge_detect.wgsl, then a generated block defining TILE (the tile's side in
-// pixels) and OutTex (the output's storage texture type), and holding the G-buffer's
-// layout: `load_gsample`, `fragment_leaders` and `sample_lit` (gbuffer_read.wgsl, or
-// visibility_read.wgsl with geometry.wgsl), `load_view_depth` (view_depth_stored.wgsl, or
-// view_depth_from_depth.wgsl for the lean G-buffer and the visibility buffer) and
-// `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or emitted_surface.wgsl), and common/ao.rs's
-// `with_screen_ao`.
+// Composed after common.wgsl, scene.wgsl, brdf.wgsl, lighting.wgsl, surface.wgsl and
+// edge_detect.wgsl, then a generated block defining TILE (the tile's side in pixels),
+// EDGE_CAPACITY (the tile's edge-list entries: every sample of every pixel but one, or 1
+// where edge pixels are listed) and OutTex (the output's storage texture type), and
+// holding the G-buffer's layout: `load_gsample`, `fragment_leaders` and `sample_lit`
+// (gbuffer_read.wgsl, or visibility_read.wgsl with geometry.wgsl), `load_view_depth`
+// (view_depth_stored.wgsl, or view_depth_from_depth.wgsl for the lean G-buffer and the
+// visibility buffer) and `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or
+// emitted_surface.wgsl), where edge pixels are lit (edges_in_tiles.wgsl or
+// light_edges_listed.wgsl), and common/ao.rs's `with_screen_ao`.
 
 @group(1) @binding(7) var out_tex: OutTex;
 
@@ -55,9 +56,6 @@ override EXPOSURE: f32 = 1.0;
 override HEAT_MAX: f32 = 64.0;
 
 const THREADS: u32 = TILE * TILE;
-// Edge-list entries: every fragment of every pixel at most (cs_light_tiled lists every
-// fragment of an edge pixel but sample 0's).
-const EDGE_CAPACITY: u32 = THREADS * SAMPLES;
 const VIEW_SHADED: u32 = 0u;
 const VIEW_EDGES: u32 = 1u;
 const VIEW_TILE_LIGHTS: u32 = 2u;
@@ -68,6 +66,7 @@ const VIEW_FRAGMENTS: u32 = 3u;
 // every key) until a lit sample is seen.
 var<workgroup> nearest_key: atomic<u32>;
 var<workgroup> farthest_key: atomic<u32>;
+// The tile's edge-list entries, or where edge pixels are listed, its edge pixels.
 var<workgroup> edge_count: atomic<u32>;
 var<workgroup> batch_light_count: atomic<u32>;
 // The lights of this batch that reach the tile.
@@ -75,25 +74,9 @@ var<workgroup> batch_lights: array<u32, THREADS>;
 // Edge-list entries: the pixel's index in the tile << 12 | the samples its fragment
 // covers (a mask) << 4 | its first sample.
 var<workgroup> edge_samples: array<u32, EDGE_CAPACITY>;
-// Their light (store_light): of the batches so far, and after the last what their samples
-// take. 8 bytes an entry, so that every fragment of a 4x 16 x 16 tile fits in WebGPU's
-// 16 KiB of workgroup memory.
-var<workgroup> edge_light: array<vec2<u32>, EDGE_CAPACITY>;
-// With split(), every tile's edge pixels as cs_light_tiled lists them for
-// cs_light_edge_pixels: their count, then each pixel's x | y << 16 (light_tiled.rs owns
-// the buffer, room for every pixel of the output). A tile takes its room with one atomic:
-// its edge pixels counted in tile_edges, the first of its room in tile_edges_base.
-struct EdgePixels {
-    count: atomic<u32>,
-    pixels: array<u32>,
-}
-@group(1) @binding(12) var<storage, read_write> edge_pixels: EdgePixels;
-var<workgroup> tile_edges: atomic<u32>;
-var<workgroup> tile_edges_base: u32;
-// cs_light_edge_pixels' workgroup, and how many there are (each going through the list
-// EDGE_WORKGROUPS * EDGE_INVOCATIONS apart).
-const EDGE_INVOCATIONS: u32 = 64u;
-const EDGE_WORKGROUPS: u32 = 1024u;
+// Their light, red, green and blue of entry i at 3i, 3i + 1 and 3i + 2 (an array of
+// vec3 would pad each to 16 bytes).
+var<workgroup> edge_light: array<f32, 3u * EDGE_CAPACITY>;
 // The tile's side planes (inward normal, offset), camera-relative.
 var<workgroup> tile_planes: array<vec4<f32>, 4>;
 
@@ -109,8 +92,13 @@ fn key_depth(key: u32) -> f32 {
 
 fn include_depth(p: vec3<f32>) {
     let depth = dot(p, camera.forward);
-    atomicMax(&nearest_key, depth_key(-depth));
-    atomicMax(&farthest_key, depth_key(depth));
+    include_depths(depth, depth);
+}
+
+// Widens the tile's depth bounds to view depths `nearest` to `farthest`.
+fn include_depths(nearest: f32, farthest: f32) {
+    atomicMax(&nearest_key, depth_key(-nearest));
+    atomicMax(&farthest_key, depth_key(farthest));
 }
 
 // The plane through the camera rays of pixel coordinates `a` and `b`, facing `inside`.
@@ -124,13 +112,12 @@ fn side_plane(a: vec2<f32>, b: vec2<f32>, inside: vec3<f32>) -> vec4<f32> {
     return vec4<f32>(n, -dot(n, pa));
 }
 
-// One side plane per invocation of the first four, corners clockwise from the top left.
-fn set_side_plane(origin: vec2<u32>, local: u32) {
+// The side planes of the rectangle of pixels from `corner`, `size` wide and high: one per
+// invocation of the first four, corners clockwise from the top left.
+fn set_side_plane(corner: vec2<f32>, size: vec2<f32>, local: u32) {
     if local < 4u {
         let corners = array<vec2<f32>, 5>(vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0), vec2<f32>(0.0, 0.0));
-        let o = vec2<f32>(origin);
-        let t = f32(TILE);
-        tile_planes[local] = side_plane(o + corners[local] * t, o + corners[local + 1u] * t, unproject(o + 0.5 * t, 0.5));
+        tile_planes[local] = side_plane(corner + corners[local] * size, corner + corners[local + 1u] * size, unproject(corner + 0.5 * size, 0.5));
     }
 }
 
@@ -200,7 +187,11 @@ struct EntrySurface {
 fn entry_surface(origin: vec2<u32>, code: u32) -> EntrySurface {
     let at = code >> 12u;
     let pixel = vec2<i32>(origin + vec2<u32>(at % TILE, at / TILE));
-    let s = code & 15u;
+    return fragment_surface_of(pixel, code & 15u, (code >> 4u) & 0xffu);
+}
+
+// The surface of `pixel`'s fragment covering the samples of `mask`, sample `s` among them.
+fn fragment_surface_of(pixel: vec2<i32>, s: u32, mask: u32) -> EntrySurface {
     let g = load_gsample(pixel, s);
     let lit = (g.flags & FLAG_LIT) != 0u;
     var emits = vec3<f32>(0.0);
@@ -208,63 +199,52 @@ fn entry_surface(origin: vec2<u32>, code: u32) -> EntrySurface {
         emits = emitted(pixel, s, g);
     }
     // Screen-space AO, when the pass reads it, darkens the ambient term only.
-    let surface = surface_of(g, fragment_surface(pixel, (code >> 4u) & 0xffu));
+    let surface = surface_of(g, fragment_surface(pixel, mask));
     return EntrySurface(lit, with_screen_ao(surface, pixel), emits);
 }
 
-// An entry's light (never negative) in 63 bits: each channel's float without its sign
-// bit, rounded to 13 bits of mantissa, 21 bits a channel.
-fn store_light(entry: u32, light: vec3<f32>) {
-    let b = (bitcast<vec3<u32>>(max(light, vec3<f32>(0.0))) + vec3<u32>(0x200u)) >> vec3<u32>(10u);
-    edge_light[entry] = vec2<u32>(b.x | (b.y << 21u), (b.y >> 11u) | (b.z << 10u));
-}
-
 fn load_light(entry: u32) -> vec3<f32> {
-    let w = edge_light[entry];
-    let b = vec3<u32>(w.x & 0x1fffffu, (w.x >> 21u) | ((w.y & 0x3ffu) << 11u), w.y >> 10u);
-    return bitcast<vec3<f32>>(b << vec3<u32>(10u));
+    let slot = 3u * entry;
+    return vec3<f32>(edge_light[slot], edge_light[slot + 1u], edge_light[slot + 2u]);
 }
 
-// Lights edge-list entry `entry` with this batch's `count` lights (batch_lights):
-// ambient and directional light too in the `first` batch; in the `last`, its edge_light
-// slot becomes the light its samples take (no more than HALF_MAX), with what a visibility
-// buffer's entry emits (its pixel knows only sample 0's; a G-buffer's pixel adds each
-// sample's own).
-fn shade_entry(origin: vec2<u32>, entry: u32, first: bool, last: bool, count: u32) {
-    let e = entry_surface(origin, edge_samples[entry]);
-    var light = vec3<f32>(0.0);
-    if !first {
-        light = load_light(entry);
-    }
+fn store_light(entry: u32, light: vec3<f32>) {
+    let slot = 3u * entry;
+    edge_light[slot] = light.r;
+    edge_light[slot + 1u] = light.g;
+    edge_light[slot + 2u] = light.b;
+}
+
+// `light`, the light of surface `e` from the batches before this one, with this batch's
+// `count` lights (batch_lights): ambient and directional light too in the `first` batch;
+// after the `last`, the light its samples take (no more than HALF_MAX), with what a
+// visibility buffer's surface emits (a G-buffer's pixel adds each sample's own).
+fn light_batch(e: EntrySurface, light: vec3<f32>, first: bool, last: bool, count: u32) -> vec3<f32> {
+    var sum = select(light, vec3<f32>(0.0), first);
     if e.lit {
         if first {
-            light = ambient_and_directional(e.surface);
+            sum = ambient_and_directional(e.surface);
         }
         for (var l = 0u; l < count; l++) {
-            light += shade_light(e.surface, lights[batch_lights[l]]);
+            sum += shade_light(e.surface, lights[batch_lights[l]]);
         }
     }
     if last {
-        light = e.emits + min(light, vec3<f32>(HALF_MAX));
+        sum = e.emits + min(sum, vec3<f32>(HALF_MAX));
     }
-    store_light(entry, light);
+    return sum;
 }
 
-// Whether edge pixels are cs_light_edge_pixels' (light_tiled.rs dispatches it then): a
-// visibility buffer's, shaded at more than one sample per pixel. They are listed across
-// the output and lit after this dispatch, an invocation a pixel in full workgroups,
-// rather than here in a second round of the tile's first warps while the others wait
-// (and with registers every pixel of this dispatch would hold).
-// A G-buffer's pixels are classified from every sample's channels, too much to read
-// twice: their edge pixels stay here.
-fn split() -> bool {
-    return SAMPLES > 1u && VIEW == VIEW_SHADED && SURFACE_IDS;
+// Lights edge-list entry `entry` with this batch's `count` lights, in its edge_light slot.
+fn shade_entry(origin: vec2<u32>, entry: u32, first: bool, last: bool, count: u32) {
+    let e = entry_surface(origin, edge_samples[entry]);
+    store_light(entry, light_batch(e, load_light(entry), first, last, count));
 }
 
-// Whether this dispatch lists and lights edge-list entries: a pixel of more than one
-// sample, not split().
-fn listed_here() -> bool {
-    return SAMPLES > 1u && !split();
+// Whether this dispatch lights edge-list entries: a pixel of more than one sample whose
+// edge pixels are not listed for a dispatch of their own.
+fn entries_here() -> bool {
+    return SAMPLES > 1u && !EDGES_LISTED;
 }
 
 // A pixel's fragments, packed four bits per sample: the first sample holding the same
@@ -319,7 +299,6 @@ fn start_tile(local: u32) {
         atomicStore(&farthest_key, 0u);
         atomicStore(&edge_count, 0u);
         atomicStore(&batch_light_count, 0u);
-        atomicStore(&tile_edges, 0u);
     }
 }
 
@@ -378,7 +357,11 @@ fn cs_light_tiled(
     var emits: array<vec3<f32>, SAMPLES>;
     var lit = 0u;
     var edge = false;
-    if inside && SURFACE_IDS {
+    // A listed edge pixel is known from its flag alone: nothing else of it is read here.
+    let listed = inside && listed_edge(pixel);
+    if listed {
+        edge = true;
+    } else if inside && SURFACE_IDS {
         leaders = fragment_leaders(pixel);
         for (var s = 1u; s < SAMPLES; s++) {
             let leader = leader_of(leaders, s);
@@ -387,11 +370,9 @@ fn cs_light_tiled(
             }
             edge = edge || leader != 0u;
         }
-        if !(split() && edge) {
-            g0 = load_gsample(pixel, 0u);
-            emits[0] = emitted(pixel, 0u, g0);
-            lit |= u32((g0.flags & FLAG_LIT) != 0u);
-        }
+        g0 = load_gsample(pixel, 0u);
+        emits[0] = emitted(pixel, 0u, g0);
+        lit |= u32((g0.flags & FLAG_LIT) != 0u);
     } else if inside {
         for (var s = 0u; s < SAMPLES; s++) {
             let gs = load_gsample(pixel, s);
@@ -420,13 +401,10 @@ fn cs_light_tiled(
         fragments += u32(leader_of(leaders, s) == s);
         entries |= u32(s > 0u && edge && source_of(leaders, edge, s) == s) << s;
     }
-    // With split(), cs_light_edge_pixels lights and stores edge pixels: this dispatch
-    // lists them for it, and leaves them out, of its depth bounds too.
-    let here = inside && !(split() && edge);
-    var edge_slot = 0u;
-    if split() && inside && edge {
-        edge_slot = atomicAdd(&tile_edges, 1u);
-    }
+    // A listed edge pixel is lit and stored by the edge dispatch: this one leaves it out,
+    // of its depth bounds too.
+    list_edge_pixel(local, pixel, listed);
+    let here = inside && !listed;
     let lit0 = here && (lit & 1u) != 0u;
     var p0 = vec3<f32>(0.0);
     if lit0 {
@@ -442,7 +420,7 @@ fn cs_light_tiled(
         include_depth(p0);
     }
     var base = 0u;
-    if here && edge && listed_here() {
+    if here && edge && entries_here() {
         base = atomicAdd(&edge_count, countOneBits(entries));
         var next = base;
         for (var s = 1u; s < SAMPLES; s++) {
@@ -456,17 +434,8 @@ fn cs_light_tiled(
             }
         }
     }
-    set_side_plane(origin, local);
+    set_side_plane(vec2<f32>(origin), vec2<f32>(f32(TILE)), local);
     workgroupBarrier();
-    if split() {
-        if local == 0u {
-            tile_edges_base = atomicAdd(&edge_pixels.count, atomicLoad(&tile_edges));
-        }
-        workgroupBarrier();
-        if inside && edge {
-            edge_pixels.pixels[tile_edges_base + edge_slot] = u32(pixel.x) | (u32(pixel.y) << 16u);
-        }
-    }
 
     // The edge-list entries this invocation shades, as surfaces.
     let edges = atomicLoad(&edge_count);
@@ -500,7 +469,7 @@ fn cs_light_tiled(
                         light0 += shade_light(surface0, lights[batch_lights[l]]);
                     }
                 }
-                if listed_here() {
+                if entries_here() {
                     for (var entry = local; entry < edges; entry += THREADS) {
                         shade_entry(origin, entry, batch == first, batch + THREADS >= last, count);
                     }
@@ -559,56 +528,5 @@ fn cs_light_tiled(
             }
             textureStore(out_tex, pixel, vec4<f32>(sum.rgb / sum.a, 1.0));
         }
-    }
-}
-
-// Empties the edge-pixel list before cs_light_tiled fills it.
-@compute @workgroup_size(1, 1, 1)
-fn cs_edge_pixels_reset() {
-    atomicStore(&edge_pixels.count, 0u);
-}
-
-// The light of every point and spot light reaching point `s` of a lit surface (every
-// light without CULL), with ambient and directional light: what the tiles cull for their
-// pixels, culled for one point.
-fn point_light(surface: Surface) -> vec3<f32> {
-    var light = ambient_and_directional(surface);
-    for (var l = light_info.directional_count; l < light_info.light_count; l++) {
-        if !CULL || reaches(lights[l], surface.position) {
-            light += shade_light(surface, lights[l]);
-        }
-    }
-    return light;
-}
-
-// Lights and resolves the edge pixels cs_light_tiled listed, one an invocation: each of
-// its fragments (each sample, or with ADAPTIVE each distinct triangle once) rebuilt at
-// the mean of the samples it covers and lit, each sample taking its fragment's light.
-@compute @workgroup_size(EDGE_INVOCATIONS, 1, 1)
-fn cs_light_edge_pixels(@builtin(global_invocation_id) id: vec3<u32>) {
-    let count = atomicLoad(&edge_pixels.count);
-    for (var i = id.x; i < count; i += EDGE_WORKGROUPS * EDGE_INVOCATIONS) {
-        let packed = edge_pixels.pixels[i];
-        let pixel = vec2<i32>(vec2<u32>(packed & 0xffffu, packed >> 16u));
-        let leaders = fragment_leaders(pixel);
-        var sum = vec4<f32>(0.0);
-        for (var s = 0u; s < SAMPLES; s++) {
-            if source_of(leaders, true, s) != s {
-                continue;
-            }
-            let mask = source_mask(leaders, true, s);
-            let g = load_gsample(pixel, s);
-            var light = vec3<f32>(0.0);
-            if (g.flags & FLAG_LIT) != 0u {
-                let surface = with_screen_ao(surface_of(g, fragment_surface(pixel, mask)), pixel);
-                light = point_light(surface);
-            }
-            let c = emitted(pixel, s, g) + min(light, vec3<f32>(HALF_MAX));
-            // Each sample of the fragment takes its light.
-            for (var k = 0u; k < countOneBits(mask); k++) {
-                sum = resolve_sample(sum, c);
-            }
-        }
-        textureStore(out_tex, pixel, vec4<f32>(sum.rgb / sum.a, 1.0));
     }
 }
