@@ -362,13 +362,16 @@ fn cs_light_tiled(
     if listed {
         edge = true;
     } else if inside && SURFACE_IDS {
-        leaders = fragment_leaders(pixel);
-        for (var s = 1u; s < SAMPLES; s++) {
-            let leader = leader_of(leaders, s);
-            if leader == s {
-                lit |= u32(sample_lit(pixel, s)) << s;
+        // Where edge pixels are listed, the others show one triangle.
+        if !EDGES_LISTED {
+            leaders = fragment_leaders(pixel);
+            for (var s = 1u; s < SAMPLES; s++) {
+                let leader = leader_of(leaders, s);
+                if leader == s {
+                    lit |= u32(sample_lit(pixel, s)) << s;
+                }
+                edge = edge || leader != 0u;
             }
-            edge = edge || leader != 0u;
         }
         g0 = load_gsample(pixel, 0u);
         emits[0] = emitted(pixel, 0u, g0);
@@ -394,12 +397,15 @@ fn cs_light_tiled(
             lit |= u32((gs.flags & FLAG_LIT) != 0u) << s;
         }
     }
-    var fragments = 0u;
+    var fragments = 1u;
     // The samples after 0 that lead an edge-list entry.
     var entries = 0u;
-    for (var s = 0u; s < SAMPLES; s++) {
-        fragments += u32(leader_of(leaders, s) == s);
-        entries |= u32(s > 0u && edge && source_of(leaders, edge, s) == s) << s;
+    if edge {
+        fragments = 0u;
+        for (var s = 0u; s < SAMPLES; s++) {
+            fragments += u32(leader_of(leaders, s) == s);
+            entries |= u32(s > 0u && source_of(leaders, edge, s) == s) << s;
+        }
     }
     // A listed edge pixel is lit and stored by the edge dispatch: this one leaves it out,
     // of its depth bounds too.
@@ -512,6 +518,12 @@ fn cs_light_tiled(
             // 4. Each sample's light is its source sample's: sample 0's in registers, the
             // others' in the edge list from `base` on, in sample order (with what a
             // visibility buffer's entry emits).
+            // A visibility buffer's pixel of one triangle: every sample takes sample 0's.
+            if SURFACE_IDS && !edge {
+                let c = emits[0] + min(light0, vec3<f32>(HALF_MAX));
+                textureStore(out_tex, pixel, vec4<f32>(clamp(c, vec3<f32>(0.0), vec3<f32>(HALF_MAX)), 1.0));
+                return;
+            }
             var sum = vec4<f32>(0.0);
             for (var s = 0u; s < SAMPLES; s++) {
                 let source = source_of(leaders, edge, s);
