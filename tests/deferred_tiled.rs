@@ -228,7 +228,7 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
         .passes
         .iter()
         .find(|p| p.name == "light tiled")
-        .and_then(|p| p.workgroup.clone())
+        .and_then(|p| p.workgroups.first().cloned())
         .expect("the plan has the tiled pass's workgroup");
     assert_eq!((planned.size, planned.memory_bytes), ([8, 8, 1], 3456));
     assert!(
@@ -249,6 +249,51 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
         errors.contains(
             "pass \"light tiled\": compute entry point \"cs_light_tiled\" runs 1024 invocations \
              per workgroup (32x32x1), more than the limit of 256"
+        ),
+        "{errors}"
+    );
+}
+
+/// A visibility buffer's tiled pass dispatches three entry points (the list's reset, the
+/// tiles, the listed edge pixels), and the compile checks each: a device allowing 128
+/// invocations refuses the tiles' 16x16 even though the edge dispatch, the one with the
+/// most workgroup memory, runs 64; explain lists all three.
+#[test]
+fn every_entry_point_the_tiled_pass_dispatches_is_checked() {
+    let mut registry = Registry::with_builtins();
+    passes_deferred_msaa::register(&mut registry, None);
+    let path = format!(
+        "{}/pipelines/visibility_compute_4x.ron",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).expect("the pipeline exists");
+    let loaded = load_str(&path, &text, &registry).expect("the file loads");
+    let plan = loaded
+        .compile(&CompileOptions::default())
+        .expect("it compiles for WebGPU's defaults");
+    let explained = graph_core::explain::text(&plan);
+    for line in [
+        "workgroup: 1x1x1 (cs_edge_pixels_reset), 0 bytes of workgroup memory",
+        "workgroup: 16x16x1 (cs_light_tiled), 1200 bytes of workgroup memory",
+        "workgroup: 64x1x1 (cs_light_edge_pixels), 4256 bytes of workgroup memory",
+    ] {
+        assert!(explained.contains(line), "{line} not in:\n{explained}");
+    }
+    let mut profile = DeviceProfile::webgpu();
+    profile.limits.max_compute_invocations_per_workgroup = 128;
+    profile.name = "a device of 128 invocations".into();
+    let options = CompileOptions {
+        output_size: (64, 64),
+        profile,
+    };
+    let errors = loaded
+        .compile(&options)
+        .expect_err("16x16 tiles exceed 128 invocations")
+        .to_string();
+    assert!(
+        errors.contains(
+            "pass \"light tiled\": compute entry point \"cs_light_tiled\" runs 256 invocations \
+             per workgroup (16x16x1), more than the limit of 128"
         ),
         "{errors}"
     );

@@ -163,12 +163,13 @@ impl PassBuilder<'_> {
         self
     }
 
-    /// Declares what the pass's compute entry point asks of the device
-    /// ([`Entry::workgroup`](crate::shader::Entry::workgroup)): compiling checks it
-    /// against the profile's `max_compute_workgroup_storage_size`, invocations and
-    /// workgroup dimensions, and fails naming the pass and the entry point.
+    /// Declares what a compute entry point the pass dispatches asks of the device
+    /// ([`Entry::workgroup`](crate::shader::Entry::workgroup)), once for each it
+    /// dispatches: compiling checks each against the profile's
+    /// `max_compute_workgroup_storage_size`, invocations and workgroup dimensions, and
+    /// fails naming the pass and the entry point.
     pub fn workgroup(&mut self, workgroup: crate::pass::Workgroup) -> &mut Self {
-        self.node().workgroup = Some(workgroup);
+        self.node().workgroups.push(workgroup);
         self
     }
 

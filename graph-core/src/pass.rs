@@ -66,8 +66,9 @@ pub struct PassNode {
     /// Why the pass is left out of every plan, when its plugin found at setup that it
     /// has nothing to do: compiled as if its condition were false.
     pub omitted: Option<String>,
-    /// A compute pass's workgroup shape and memory, where its plugin declared them.
-    pub workgroup: Option<Workgroup>,
+    /// A compute pass's workgroup shape and memory for each entry point it dispatches,
+    /// in the order its plugin declared them.
+    pub workgroups: Vec<Workgroup>,
     #[cfg(feature = "gpu")]
     pub(crate) record: Option<crate::record::Record>,
 }
@@ -99,7 +100,7 @@ impl PassNode {
             side_effect: false,
             condition: None,
             omitted: None,
-            workgroup: None,
+            workgroups: Vec::new(),
             #[cfg(feature = "gpu")]
             record: None,
         }
@@ -112,7 +113,7 @@ impl PassNode {
             side_effect: self.side_effect,
             condition: self.condition.clone(),
             omitted: self.omitted.clone(),
-            workgroup: self.workgroup.clone(),
+            workgroups: self.workgroups.clone(),
             ..Self::new(self.name.clone(), self.kind)
         }
     }

@@ -53,8 +53,8 @@ pub struct PlannedPass {
     /// their bytes per sample (a visibility buffer rasterised in compute).
     pub stored_bytes_per_sample: u32,
     pub depth_stencil: Option<DepthStencilAttachment>,
-    /// A compute pass's workgroup size and memory, where its plugin declared them.
-    pub workgroup: Option<crate::pass::Workgroup>,
+    /// A compute pass's workgroup size and memory for each entry point it dispatches.
+    pub workgroups: Vec<crate::pass::Workgroup>,
 }
 
 /// How an attachment aspect begins.

@@ -206,7 +206,7 @@ impl Graph {
                         + stored_in_buffers,
                     color: color.clone(),
                     depth_stencil: depth_stencil.clone(),
-                    workgroup: pass.workgroup.clone(),
+                    workgroups: pass.workgroups.clone(),
                 }
             })
             .collect();

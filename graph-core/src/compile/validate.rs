@@ -148,7 +148,7 @@ pub(super) fn passes(
         if pass.kind == PassKind::Render {
             check.attachments(errors);
         }
-        if let Some(workgroup) = &pass.workgroup {
+        for workgroup in &pass.workgroups {
             check.workgroup(workgroup, errors);
         }
     }

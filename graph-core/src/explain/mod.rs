@@ -90,7 +90,7 @@ pub fn text(plan: &Plan) -> String {
                 pass.stored_bytes_per_sample
             );
         }
-        if let Some(w) = &pass.workgroup {
+        for w in &pass.workgroups {
             let [x, y, z] = w.size;
             let _ = writeln!(
                 out,

@@ -311,22 +311,18 @@ impl Plugin for LightTiled {
         inputs.extend(ao);
         let generated = generated + &ao::wgsl(ao.as_ref());
         let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
-        // The workgroup the device must allow is the one using more memory.
+        // The device must allow the workgroup of each.
         let entries = match listed {
             true => vec![EDGES_RESET, PIXELS, EDGES],
             false => vec![PIXELS],
         };
-        let mut workgroups = Vec::new();
         for name in &entries {
             let Some(entry) = shader.entry(name, Stage::Compute) else {
                 return Err(PluginError::Invalid(format!(
                     "light_tiled.wgsl has no entry point {name}"
                 )));
             };
-            workgroups.push(entry.workgroup());
-        }
-        if let Some(largest) = workgroups.into_iter().max_by_key(|w| w.memory_bytes) {
-            pass.workgroup(largest);
+            pass.workgroup(entry.workgroup());
         }
         let detector = match params.edges.detector {
             _ if layout.surfaces.visibility() => 4.0,
