@@ -168,14 +168,11 @@ fn fragment_and_tile_light_views() {
 }
 
 /// A registry with the deferred plugins and no scene (enough to load and compile), the
-/// path of pipelines/deferred_msaa_4x_tiled.ron and its text, for edited copies.
-fn tiled_file() -> (Registry, String, String) {
+/// path of pipelines/`name` and its text, for edited copies.
+fn pipeline_file(name: &str) -> (Registry, String, String) {
     let mut registry = Registry::with_builtins();
     passes_deferred_msaa::register(&mut registry, None);
-    let path = format!(
-        "{}/pipelines/deferred_msaa_4x_tiled.ron",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let path = format!("{}/pipelines/{name}", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).expect("the pipeline exists");
     (registry, path, text)
 }
@@ -184,7 +181,7 @@ fn tiled_file() -> (Registry, String, String) {
 /// and the entry point; the same pass with a smaller tile compiles.
 #[test]
 fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
-    let (registry, path, text) = tiled_file();
+    let (registry, path, text) = pipeline_file("deferred_msaa_4x_tiled.ron");
     let mut profile = DeviceProfile::webgpu();
     profile.limits.max_compute_workgroup_storage_size = 8192;
     profile.name = "a device with 8 KiB of workgroup memory".into();
@@ -260,13 +257,7 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
 /// most workgroup memory, runs 64; explain lists all three.
 #[test]
 fn every_entry_point_the_tiled_pass_dispatches_is_checked() {
-    let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
-    let path = format!(
-        "{}/pipelines/visibility_compute_4x.ron",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).expect("the pipeline exists");
+    let (registry, path, text) = pipeline_file("visibility_compute_4x.ron");
     let loaded = load_str(&path, &text, &registry).expect("the file loads");
     let plan = loaded
         .compile(&CompileOptions::default())
@@ -302,7 +293,7 @@ fn every_entry_point_the_tiled_pass_dispatches_is_checked() {
 /// A tile side outside 2 to 32 is refused at load, naming the parameter.
 #[test]
 fn a_tile_of_one_pixel_is_refused() {
-    let (registry, path, text) = tiled_file();
+    let (registry, path, text) = pipeline_file("deferred_msaa_4x_tiled.ron");
     let text = text.replace(
         "params: (edges: (detector: compare)),",
         "params: (edges: (detector: compare), tile: 1),",
