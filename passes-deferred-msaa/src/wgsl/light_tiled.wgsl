@@ -400,7 +400,9 @@ fn cs_light_tiled(
     var fragments = 1u;
     // The samples after 0 that lead an edge-list entry.
     var entries = 0u;
-    if edge {
+    // A visibility buffer's pixel of one triangle is one fragment; a G-buffer's samples
+    // may hold several where its detector sees no edge (the fragments view counts them).
+    if edge || !SURFACE_IDS {
         fragments = 0u;
         for (var s = 0u; s < SAMPLES; s++) {
             fragments += u32(leader_of(leaders, s) == s);
