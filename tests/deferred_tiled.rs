@@ -137,9 +137,10 @@ fn tiled_and_stencil_edges_are_the_same_pixels() {
 }
 
 /// "debug.fragments" marks every edge pixel as holding several fragments (green 2, blue
-/// 3, red 4: samples the detector tells apart are never one fragment), and
-/// "debug.tile_lights" is a heat map that is constant over each 16x16 tile and lit
-/// where lights reach.
+/// 3, red 4: samples the detector tells apart are never one fragment), and pixels it
+/// does not tell apart too where their samples differ below its thresholds (fragments
+/// are told apart exactly); "debug.tile_lights" is a heat map that is constant over
+/// each 16x16 tile and lit where lights reach.
 #[test]
 fn fragment_and_tile_light_views() {
     let gpu = gpu();
@@ -153,6 +154,11 @@ fn fragment_and_tile_light_views() {
     assert!(count > 20, "only {count} pixels with several fragments");
     let single = (0..split.len()).find(|&i| edges[i] && !split[i]);
     assert_eq!(single, None, "an edge pixel (index) with one fragment");
+    let below = (0..split.len()).filter(|&i| !edges[i] && split[i]).count();
+    assert!(
+        below > 100,
+        "only {below} pixels off the edges with several fragments"
+    );
     let heat = frame.image(&gpu, "debug.tile_lights");
     for y in 0..SIZE.1 {
         for x in 0..SIZE.0 {
