@@ -217,6 +217,15 @@ pub(crate) struct TiledDispatch {
     pub inputs: Vec<Input>,
 }
 
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+impl TiledDispatch {
+    /// Whether edge pixels are listed for a dispatch of their own (which then needs the
+    /// list bound and filled).
+    fn lists_edges(&self) -> bool {
+        self.entries.contains(&EDGES)
+    }
+}
+
 impl Recording for TiledDispatch {
     #[cfg(feature = "gpu")]
     fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
@@ -397,7 +406,7 @@ mod gpu {
                 Depth::Keys(keys) => vec![(KEYS_BINDING, keys)],
                 Depth::Buffer(..) => Vec::new(),
             },
-            owned: match dispatch.entries.len() > 1 {
+            owned: match dispatch.lists_edges() {
                 true => vec![EDGE_PIXELS_BINDING],
                 false => Vec::new(),
             },
@@ -489,7 +498,7 @@ mod gpu {
                 .set_bind_group(0, scene.bind_group(convention), &[]);
             let out = resources.shape(dispatch.output);
             let mut owned = Vec::new();
-            if dispatch.entries.len() > 1 {
+            if dispatch.lists_edges() {
                 let size = (out.width, out.height);
                 if edge_list.as_ref().is_some_and(|(made, _)| *made != size) {
                     edge_list = None;

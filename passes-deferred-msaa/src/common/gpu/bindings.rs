@@ -68,30 +68,21 @@ impl TextureBindings {
                 }
             })
             .collect();
+        // Graph buffers read only, then the pass's own buffers read and written.
+        let storage = (buffers.iter().map(|&(binding, _)| (binding, true)))
+            .chain(owned.iter().map(|&binding| (binding, false)));
         entries.extend(
-            buffers
-                .iter()
-                .map(|&(binding, _)| wgpu::BindGroupLayoutEntry {
-                    binding,
-                    visibility,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                }),
+            storage.map(|(binding, read_only)| wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { read_only },
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            }),
         );
-        entries.extend(owned.iter().map(|&binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: false },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        }));
         entries.extend(
             samplers(bindings).map(|binding| wgpu::BindGroupLayoutEntry {
                 binding,
