@@ -215,6 +215,18 @@ fn store_light(entry: u32, light: vec3<f32>) {
     edge_light[slot + 2u] = light.b;
 }
 
+// The light of this batch's light `l` (batch_lights) at surface `s`. The tile's culling
+// keeps lights that reach some point of its bounds; one that misses `s`'s point adds 0
+// (incident's window): the test skips its BRDF (with 256 lights, 0.13 ms of 0.96 at
+// 3840x2160 on the H200, bench/results/gpu/visibility-dense).
+fn batch_light(s: Surface, l: u32) -> vec3<f32> {
+    let light = lights[batch_lights[l]];
+    if !reaches(light, s.position) {
+        return vec3<f32>(0.0);
+    }
+    return shade_light(s, light);
+}
+
 // `light`, the light of surface `e` from the batches before this one, with this batch's
 // `count` lights (batch_lights): ambient and directional light too in the `first` batch;
 // after the `last`, the light its samples take (no more than HALF_MAX), with what a
@@ -226,7 +238,7 @@ fn light_batch(e: EntrySurface, light: vec3<f32>, first: bool, last: bool, count
             sum = ambient_and_directional(e.surface);
         }
         for (var l = 0u; l < count; l++) {
-            sum += shade_light(e.surface, lights[batch_lights[l]]);
+            sum += batch_light(e.surface, l);
         }
     }
     if last {
@@ -474,7 +486,7 @@ fn cs_light_tiled(
             if VIEW == VIEW_SHADED {
                 if lit0 {
                     for (var l = 0u; l < count; l++) {
-                        light0 += shade_light(surface0, lights[batch_lights[l]]);
+                        light0 += batch_light(surface0, l);
                     }
                 }
                 if entries_here() {
