@@ -198,11 +198,14 @@ fn results_json_has_every_figure_with_its_type() {
         &[
             ("logical_bytes", "number"),
             ("physical_bytes", "number"),
+            ("pass_bytes", "number"),
             ("gbuffer_bytes_per_sample", "number"),
             ("gbuffer_stored_bytes_per_sample", "number"),
         ],
     );
     assert!(number(figures, "memory.physical_bytes") > 0.0);
+    // A G-buffer pipeline's passes keep no buffers of their own.
+    assert_eq!(number(figures, "memory.pass_bytes"), 0.0);
     assert_fields(
         &figures["work"],
         &[

@@ -400,6 +400,40 @@ fn the_compute_raster_follows_a_resize() {
     );
 }
 
+/// A frame's report counts the buffers its passes keep for themselves, which the plan
+/// does not know of: at 4x the tiled pass's list of edge pixels (4 bytes a pixel of the
+/// output and a count, made anew for a resized output), and the compute raster's bins,
+/// which grow with the scene's triangles; at 1x nothing is listed.
+#[test]
+fn a_frame_reports_the_buffers_its_passes_keep() {
+    let gpu = gpu();
+    let held = |report: &graph_core::gpu::FrameReport, pass: &str| {
+        let timing = report.passes.iter().find(|p| p.name == pass);
+        timing
+            .unwrap_or_else(|| panic!("no pass {pass:?}"))
+            .held_bytes
+    };
+    let mut frame = Render::new(COMPUTE, "builtin:dense", (160, 90)).run(&gpu);
+    let dense = frame.resize(&gpu, (320, 180));
+    assert_eq!(held(&dense, "light tiled"), 4 + 4 * 320 * 180);
+    assert_eq!(held(&dense, "tonemap"), 0);
+    let mut frame = Render::new(COMPUTE, "builtin:spheres", (160, 90)).run(&gpu);
+    let spheres = frame.resize(&gpu, (320, 180));
+    let bins = (held(&dense, "visibility"), held(&spheres, "visibility"));
+    assert!(
+        bins.0 > bins.1 && bins.1 > 0,
+        "bins of dense and spheres: {bins:?}"
+    );
+    assert_eq!(
+        dense.held_bytes(),
+        held(&dense, "visibility") + held(&dense, "light tiled")
+    );
+    let mut frame = Render::new(COMPUTE, "builtin:dense", (160, 90))
+        .param("msaa", 1)
+        .run(&gpu);
+    assert_eq!(held(&frame.resize(&gpu, (320, 180)), "light tiled"), 0);
+}
+
 /// The compute raster covers 1, 2, 4 and 8 samples (a scalar, a vec2, a vec4 and two
 /// vec4s of lanes), devices' hardware MSAA or not (lavapipe's depth32float has 1x and 4x
 /// only): on builtin:dense at 160x90, where nearly every pixel holds grass edges, each

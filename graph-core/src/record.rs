@@ -57,9 +57,21 @@ pub struct FrameResources<'f> {
     pub(crate) resources: &'f [ResourceNode],
     /// Why the executing pass could not record its work, when its callback said so.
     pub(crate) failure: &'f std::cell::RefCell<Option<String>>,
+    /// Bytes of the buffers the executing pass keeps for itself ([`Self::hold`]).
+    pub(crate) held: &'f std::cell::Cell<u64>,
 }
 
 impl<'f> FrameResources<'f> {
+    /// Counts `buffer`, which the executing pass made and keeps for itself (a rasteriser's
+    /// bins, a list of pixels), in this frame's [`PassTiming::held_bytes`]: memory the
+    /// plan does not know of, which reports of a frame's memory add. The pass still owns
+    /// the buffer; call it each frame for each such buffer the frame uses.
+    ///
+    /// [`PassTiming::held_bytes`]: crate::gpu::PassTiming::held_bytes
+    pub fn hold(&self, buffer: &wgpu::Buffer) {
+        self.held.set(self.held.get() + buffer.size());
+    }
+
     /// The size relative textures were resolved against.
     pub fn output_size(&self) -> (u32, u32) {
         self.output_size

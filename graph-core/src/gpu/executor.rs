@@ -35,6 +35,9 @@ pub struct PassTiming {
     pub gpu_ns: Option<u64>,
     /// CPU time to begin the pass, run its record callback and end it.
     pub cpu_ns: u64,
+    /// Bytes of the buffers the pass keeps for itself and used this frame
+    /// ([`FrameResources::hold`]), which the plan's memory does not count.
+    pub held_bytes: u64,
 }
 
 /// What one [`Executor::execute`] did.
@@ -53,6 +56,20 @@ pub struct FrameReport {
     /// resources from the pool, recording every pass and submitting, without the wait for
     /// the GPU that follows. What a frame costs the CPU of a frame loop.
     pub record_submit_ns: u64,
+}
+
+impl FrameReport {
+    /// Bytes of the buffers the frame's passes keep for themselves
+    /// ([`PassTiming::held_bytes`]), beside the plan's memory.
+    pub fn held_bytes(&self) -> u64 {
+        self.passes.iter().map(|p| p.held_bytes).sum()
+    }
+}
+
+/// What recording one pass measured, for its [`PassTiming`].
+struct RecordedPass {
+    cpu_ns: u64,
+    held_bytes: u64,
 }
 
 /// Why a frame could not execute.
@@ -156,13 +173,13 @@ impl Executor {
         let scopes = ErrorScopes::push(&self.device);
         let recorded = self.acquire(graph, plan, &bound).and_then(|objects| {
             let slots = self.timing_slots(plan);
-            let (buffers, cpu_ns) = self.record(graph, plan, &objects, &slots)?;
+            let (buffers, passes) = self.record(graph, plan, &objects, &slots)?;
             self.queue.submit(buffers);
-            Ok((slots, cpu_ns))
+            Ok((slots, passes))
         });
         let record_submit_ns = start.elapsed().as_nanos() as u64;
         let mut messages: Vec<String> = scopes.pop().into_iter().collect();
-        let (slots, cpu_ns) = recorded?;
+        let (slots, passes) = recorded?;
         if let Some(log) = &self.uncaptured {
             messages.extend(log.take());
         }
@@ -173,7 +190,7 @@ impl Executor {
             });
         }
         let stamps = self.read_timestamps(&slots)?;
-        Ok(self.report(plan, &slots, (cpu_ns, record_submit_ns), &stamps))
+        Ok(self.report(plan, &slots, (passes, record_submit_ns), &stamps))
     }
 
     /// The physical texture of an exported, graph-created texture of the last executed
@@ -374,17 +391,18 @@ impl Executor {
 
     /// Records each pass into its own command encoder, under its own error scopes, so a
     /// device error names the pass that caused it. Returns the command buffers (the last
-    /// one resolves the timestamps) and each pass's CPU time; nothing is submitted.
+    /// one resolves the timestamps) and each pass's CPU time and held bytes; nothing is
+    /// submitted.
     fn record(
         &self,
         graph: &mut Graph,
         plan: &Plan,
         objects: &FrameObjects,
         slots: &[Option<u32>],
-    ) -> Result<(Vec<wgpu::CommandBuffer>, Vec<u64>), ExecuteError> {
+    ) -> Result<(Vec<wgpu::CommandBuffer>, Vec<RecordedPass>), ExecuteError> {
         let timestamps = self.timestamps.as_ref();
         let mut buffers = Vec::with_capacity(plan.passes.len() + 1);
-        let mut cpu_ns = Vec::with_capacity(plan.passes.len());
+        let mut recorded_passes = Vec::with_capacity(plan.passes.len());
         for (planned, &slot) in plan.passes.iter().zip(slots) {
             let start = Instant::now();
             let scopes = ErrorScopes::push(&self.device);
@@ -395,6 +413,7 @@ impl Executor {
                 });
             let node = &mut graph.passes[planned.id.index()];
             let failure = std::cell::RefCell::new(None);
+            let held = std::cell::Cell::new(0);
             let resources = FrameResources {
                 device: &self.device,
                 queue: &self.queue,
@@ -404,6 +423,7 @@ impl Executor {
                 accesses: &node.accesses,
                 resources: &graph.resources,
                 failure: &failure,
+                held: &held,
             };
             let recorded = record_pass(
                 &mut encoder,
@@ -430,7 +450,10 @@ impl Executor {
                 });
             }
             buffers.push(buffer);
-            cpu_ns.push(start.elapsed().as_nanos() as u64);
+            recorded_passes.push(RecordedPass {
+                cpu_ns: start.elapsed().as_nanos() as u64,
+                held_bytes: held.get(),
+            });
         }
         if let Some(t) = timestamps {
             let mut encoder = self
@@ -441,31 +464,32 @@ impl Executor {
             t.resolve(&mut encoder, slots.iter().flatten().count() as u32);
             buffers.push(encoder.finish());
         }
-        Ok((buffers, cpu_ns))
+        Ok((buffers, recorded_passes))
     }
 
-    /// Timings per pass from the CPU times (per pass, and of the whole record and submit)
-    /// and the timestamp ticks of the timed passes.
+    /// Timings per pass from the CPU times and held bytes (per pass), the CPU time of the
+    /// whole record and submit, and the timestamp ticks of the timed passes.
     fn report(
         &self,
         plan: &Plan,
         slots: &[Option<u32>],
-        (cpu_ns, record_submit_ns): (Vec<u64>, u64),
+        (recorded, record_submit_ns): (Vec<RecordedPass>, u64),
         stamps: &[(u64, u64)],
     ) -> FrameReport {
         let ns = |ticks: u64| self.timestamps.as_ref().map_or(0, |t| t.nanoseconds(ticks));
         let passes = plan
             .passes
             .iter()
-            .zip(cpu_ns)
+            .zip(recorded)
             .zip(slots)
-            .map(|((pass, cpu_ns), slot)| PassTiming {
+            .map(|((pass, recorded), slot)| PassTiming {
                 name: pass.name.clone(),
                 kind: pass.kind,
                 gpu_ns: slot
                     .and_then(|s| stamps.get(s as usize))
                     .map(|&(begin, end)| ns(end.saturating_sub(begin))),
-                cpu_ns,
+                cpu_ns: recorded.cpu_ns,
+                held_bytes: recorded.held_bytes,
             })
             .collect();
         let begin = stamps.iter().map(|s| s.0).min();

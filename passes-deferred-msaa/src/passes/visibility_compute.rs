@@ -171,6 +171,9 @@ mod gpu {
                 Ok(bins) => bins,
                 Err(why) => return resources.fail(why.clone()),
             };
+            bins.buffers()
+                .iter()
+                .for_each(|buffer| resources.hold(buffer));
             let geometry = match scene.geometry_group(device) {
                 Ok(group) => group,
                 Err(why) => return resources.fail(why),

@@ -65,7 +65,7 @@ impl Setup<'_> {
         let reports = self.time(&mut prepared)?;
         let color = prepared.read(COLOR)?;
         let (samples, supersampling) = sampling(prepared.plan());
-        let memory = Memory::of(prepared.plan());
+        let memory = Memory::of(prepared.plan(), &reports);
         let shape = PlanShape::of(&prepared);
         let features = prepared.plan().features.clone();
         let plan = prepared.plan().clone();
@@ -149,8 +149,9 @@ impl Setup<'_> {
         if general == special {
             return Ok(None);
         }
-        let general_gpu_frame_ms = self.gpu_frame_ms(&mut prepared)?;
-        let general_memory = Memory::of(prepared.plan());
+        let reports = self.time(&mut prepared)?;
+        let general_gpu_frame_ms = Spread::of_ns(reports.iter().filter_map(|r| r.gpu_total_ns));
+        let general_memory = Memory::of(prepared.plan(), &reports);
         drop(prepared);
         let both_differ = !special.same_plan(&general) && special.variants() != general.variants();
         let plan_only_gpu_frame_ms = if both_differ {

@@ -1,6 +1,7 @@
-//! Memory a pipeline's plan asks for: every graph texture on its own and after pooling,
-//! and the G-buffer's bytes per sample.
+//! Memory a pipeline asks for: every graph texture on its own and after pooling, the
+//! buffers its passes keep for themselves, and the G-buffer's bytes per sample.
 
+use graph_core::gpu::FrameReport;
 use graph_core::{Plan, PlannedPass};
 use serde::Serialize;
 
@@ -15,6 +16,10 @@ pub struct Memory {
     pub logical_bytes: u64,
     /// What the executor allocates after textures of equal shape share memory.
     pub physical_bytes: u64,
+    /// Buffers the passes keep for themselves (a compute rasteriser's bins, a list of
+    /// edge pixels: FrameReport::held_bytes), which the plan does not count: the most a
+    /// measured frame held.
+    pub pass_bytes: u64,
     /// Bytes per sample of the G-buffer pass's color attachments, counted as WebGPU's
     /// `maxColorAttachmentBytesPerSample` counts them (each target aligned to its
     /// component size); `None` without a "gbuffer" pass (forward pipelines).
@@ -25,13 +30,30 @@ pub struct Memory {
 }
 
 impl Memory {
-    pub fn of(plan: &Plan) -> Memory {
+    /// The memory of `plan`, with what its passes kept for themselves in `frames`.
+    pub fn of(plan: &Plan, frames: &[FrameReport]) -> Memory {
+        let pass_bytes = frames
+            .iter()
+            .map(FrameReport::held_bytes)
+            .max()
+            .unwrap_or(0);
         Memory {
             logical_bytes: plan.memory.logical_bytes,
             physical_bytes: plan.memory.physical_bytes,
+            pass_bytes,
             gbuffer_bytes_per_sample: gbuffer(plan).map(|p| p.color_bytes_per_sample),
             gbuffer_stored_bytes_per_sample: gbuffer(plan).map(|p| p.stored_bytes_per_sample),
         }
+    }
+
+    /// Every texture and buffer on its own, the passes' own included.
+    pub fn total_bytes(&self) -> u64 {
+        self.logical_bytes + self.pass_bytes
+    }
+
+    /// What is allocated after pooling, the passes' own buffers included.
+    pub fn allocated_bytes(&self) -> u64 {
+        self.physical_bytes + self.pass_bytes
     }
 }
 

@@ -46,7 +46,7 @@ impl PlanShape {
         PlanShape {
             passes: plan.passes.iter().map(|p| p.name.clone()).collect(),
             textures: plan.textures.iter().map(|t| t.shape).collect(),
-            memory: Memory::of(plan),
+            memory: Memory::of(plan, &[]),
             variants: plan_shader_variants(&prepared.shader_features, plan, prepared.loaded())
                 .into_iter()
                 .map(|v| v.variant.to_string())

@@ -118,8 +118,8 @@ fn figure_cells(f: &Figures) -> Vec<String> {
         f.cpu_record_ms
             .as_ref()
             .map_or("-".into(), |s| ms(s.median)),
-        bytes(f.memory.logical_bytes),
-        bytes(f.memory.physical_bytes),
+        bytes(f.memory.total_bytes()),
+        bytes(f.memory.allocated_bytes()),
         match (
             f.memory.gbuffer_stored_bytes_per_sample,
             f.memory.gbuffer_bytes_per_sample,
@@ -191,7 +191,10 @@ fn specialisation_table(rows: &[&Row]) -> String {
          saved | by shaders |\n|---|---|---|--:|--:|--:|--:|--:|--:|\n",
     );
     for (row, f, s) in special {
-        let (general, special) = (s.general_memory.physical_bytes, f.memory.physical_bytes);
+        let (general, special) = (
+            s.general_memory.allocated_bytes(),
+            f.memory.allocated_bytes(),
+        );
         let gpu = s
             .general_gpu_frame_ms
             .as_ref()
@@ -274,7 +277,9 @@ const LEGEND: &str = "\n\
 GPU ms: median GPU frame time from timestamps (first pass's begin to last pass's end), with \
 the 10th–90th percentile over the measured frames. × noaa: median over deferred_noaa's on \
 the same scene (and sweep value) in this run. CPU rec.: CPU time to record all passes. memory / pooled: \
-bytes of the graph's textures on their own and after sharing. G-buf B/sample: what one \
+bytes of the graph's textures and buffers on their own and after sharing, each with the \
+buffers passes keep for themselves (a compute rasteriser's bins, a list of edge pixels; \
+results.json's pass_bytes). G-buf B/sample: what one \
 sample of the gbuffer pass's targets occupies, depth-stencil included (D32S8 as 8 bytes); in \
 brackets its color targets as WebGPU's limit on them counts (each aligned to its component size). edge px: pixels the pipeline's debug.edges \
 marks; shaded/px: shading invocations per pixel (edge pixels once per sample, others once; \

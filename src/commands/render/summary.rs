@@ -50,9 +50,13 @@ pub fn text(plan: &Plan, report: &FrameReport, specialised: bool) -> String {
         .iter()
         .filter(|r| r.physical.is_some() && r.texture.is_some())
         .count();
+    let held = match report.held_bytes() {
+        0 => String::new(),
+        held => format!(", and {} the passes keep for themselves", bytes(held)),
+    };
     lines.push(format!(
         "textures: {} physical for {resources} resource(s), {} allocated this frame; \
-         memory: {} logical, {} physical",
+         memory: {} logical, {} physical{held}",
         plan.textures.len(),
         report.textures_allocated,
         bytes(plan.memory.logical_bytes),

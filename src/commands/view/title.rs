@@ -73,6 +73,7 @@ mod tests {
             kind: PassKind::Render,
             gpu_ns: timed.then_some(ns),
             cpu_ns: 1,
+            held_bytes: 0,
         };
         FrameReport {
             passes: vec![pass("gbuffer", 1_200_000), pass("light", 3_400_000)],
