@@ -184,12 +184,24 @@ pub(crate) enum Depth {
 /// debug view or of a single-sampled output.
 const PIXELS: &str = "cs_light_tiled";
 /// The entry points emptying the list of edge pixels before it and lighting them after
-/// it (light_edges_listed.wgsl), and the workgroups the second runs: enough to fill a
-/// large GPU (4096 x 64 invocations), each going through the list's runs in turn.
+/// it (light_edges_listed.wgsl).
 const EDGES_RESET: &str = "cs_edge_pixels_reset";
 const EDGES: &str = "cs_light_edge_pixels";
-#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-const EDGE_WORKGROUPS: u32 = 4096;
+
+/// The workgroups lighting the listed edge pixels, each going through the list's runs in
+/// turn: on a GPU enough to fill a large one (4096 x 64 invocations); on a CPU, which runs
+/// workgroups one after another on its threads and pays for each, CPU_EDGE_WORKGROUPS
+/// (lavapipe's tiled pass of visibility_msaa_4x on dense at 640x360: 211 ms with 4096,
+/// 113-123 with 64, about the same with 16 or 256).
+#[cfg(feature = "gpu")]
+fn edge_workgroups(device: &wgpu::Device) -> u32 {
+    match device.adapter_info().device_type {
+        wgpu::DeviceType::Cpu => CPU_EDGE_WORKGROUPS,
+        _ => 4096,
+    }
+}
+#[cfg(feature = "gpu")]
+const CPU_EDGE_WORKGROUPS: u32 = 64;
 /// Where light_edges_listed.wgsl binds the list of edge pixels in group 1.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 const EDGE_PIXELS_BINDING: u32 = 12;
@@ -381,7 +393,7 @@ mod gpu {
 
     use graph_core::gpu::ComputeContext;
 
-    use super::{Depth, TiledDispatch, EDGES, EDGES_RESET, EDGE_PIXELS_BINDING, EDGE_WORKGROUPS};
+    use super::{edge_workgroups, Depth, TiledDispatch, EDGES, EDGES_RESET, EDGE_PIXELS_BINDING};
     use crate::analysis::{GatedShader, Variant};
     use crate::common::depth::far_depth;
     use crate::common::gpu::storage::scratch;
@@ -421,6 +433,8 @@ mod gpu {
         // The list of edge pixels, where they are listed, and the output size it was made
         // for: a count and 4 bytes a pixel.
         let mut edge_list: Option<((u32, u32), wgpu::Buffer)> = None;
+        // The device's edge_workgroups, asked once.
+        let mut edge_groups = None;
         Box::new(move |ctx| {
             let resources = ctx.resources;
             let device = resources.device;
@@ -525,7 +539,10 @@ mod gpu {
                 ctx.pass.set_pipeline(pipeline);
                 let (x, y) = match *entry {
                     EDGES_RESET => (1, 1),
-                    EDGES => (EDGE_WORKGROUPS, 1),
+                    EDGES => (
+                        *edge_groups.get_or_insert_with(|| edge_workgroups(device)),
+                        1,
+                    ),
                     _ => (
                         out.width.div_ceil(dispatch.tile),
                         out.height.div_ceil(dispatch.tile),
