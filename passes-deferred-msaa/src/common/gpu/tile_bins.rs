@@ -47,15 +47,15 @@ pub(crate) struct TileBins {
 }
 
 impl TileBins {
-    /// Bins for `scene`'s opaque triangles over the tiles of side `tile` covering
-    /// `size`, with bin_triangles.wgsl composed as `source`; an error when the device cannot
-    /// bind them.
     /// Every buffer the bins keep, for the pass to count as its own
     /// ([`graph_core::FrameResources::hold`]).
     pub fn buffers(&self) -> &[wgpu::Buffer] {
         &self.buffers
     }
 
+    /// Bins for `scene`'s opaque triangles over the tiles of side `tile` covering
+    /// `size`, with bin_triangles.wgsl composed as `source`; an error when the device cannot
+    /// bind them.
     pub fn new(
         device: &wgpu::Device,
         source: &str,
