@@ -114,16 +114,23 @@ fn first_blended(scene: &mut Scene) {
     material.base_color_factor[3] = 0.4;
 }
 
+/// builtin:spheres edited by `edit` through the compute raster at 320x180, compiled for
+/// the edited scene's features as `rgraph render` compiles it (a blended material's
+/// transparent and keys_depth passes run only where the features say `blend`).
+fn spheres_edited(edit: fn(&mut Scene)) -> Render<'static> {
+    let mut scene = Scene::load("builtin:spheres").expect("builtin:spheres loads");
+    edit(&mut scene);
+    let features = SceneFeatures::of(&scene).names();
+    Render::new(COMPUTE, "builtin:spheres", (320, 180))
+        .with_scene(scene)
+        .features(features)
+}
+
 /// The share of builtin:spheres' pixels (320x180, through the compute raster) that
 /// `edit` leaves within 1/255.
 fn unchanged_by(edit: fn(&mut Scene)) -> f64 {
     let gpu = gpu();
-    let image = |edit: fn(&mut Scene)| {
-        Render::new(COMPUTE, "builtin:spheres", (320, 180))
-            .scene_edit(edit)
-            .run(&gpu)
-            .image(&gpu, "color")
-    };
+    let image = |edit| spheres_edited(edit).run(&gpu).image(&gpu, "color");
     measure::share_within(&image(unchanged), &image(edit), 1, None)
 }
 
@@ -138,6 +145,40 @@ fn the_compute_raster_draws_alpha_blend_over_its_keys_depth() {
         "only {:.1}% of pixels changed",
         100.0 * (1.0 - same)
     );
+}
+
+/// The second material alpha BLEND at 40% opacity: builtin:spheres' red sphere, wholly in
+/// front of the camera.
+fn second_blended(scene: &mut Scene) {
+    let material = &mut scene.materials[1];
+    material.alpha_mode = AlphaMode::Blend;
+    material.base_color_factor[3] = 0.4;
+}
+
+/// keys_depth with `extent: blended` (the compute raster's files) writes the depth only
+/// under the blended meshes' bounds on screen: the transparent pass, which tests only
+/// there, renders what it renders over the whole output's depth (`extent: full`), bit for
+/// bit, with builtin:spheres' ground blended (its bounds reach behind the camera: the
+/// whole output; partly hidden behind the spheres, which a rectangle half as wide shows
+/// it through: checked) and with its red sphere blended (a rectangle around it).
+#[test]
+fn keys_depth_under_the_blended_meshes_renders_what_the_full_depth_renders() {
+    let gpu = gpu();
+    for edit in [first_blended, second_blended] {
+        let image = |extent: &'static str| {
+            spheres_edited(edit)
+                .edit("params: (extent: blended),", extent)
+                .run(&gpu)
+                .image(&gpu, "color")
+        };
+        let blended = image("params: (extent: blended),");
+        let full = image("params: (extent: full),");
+        let d = measure::diff(&blended, &full, None);
+        assert_eq!(d.max, 0, "differ by {} at {:?}", d.max, d.at);
+        let opaque = spheres_edited(unchanged).run(&gpu).image(&gpu, "color");
+        let changed = blended.pixels.len() - pixels_within(&blended, &opaque, 1);
+        assert!(changed > 500, "the blend changed only {changed} pixels");
+    }
 }
 
 /// The mask of `masked_by_height` cuts a real share of builtin:spheres away through the

@@ -35,6 +35,9 @@ pub struct MeshDraw {
     /// The centre of the mesh's world bounds, camera-relative: how far the draw is from
     /// the camera, for drawing blended meshes back to front.
     pub center: DVec3,
+    /// The mesh's world bounds, camera-relative (a point at its origin without
+    /// vertices): where on screen it may be.
+    pub bounds: Aabb,
 }
 
 pub(super) struct MeshBuffers {
@@ -60,14 +63,14 @@ pub const VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferL
 pub(super) struct MeshFrame {
     data: Vec<MeshData>,
     pub draws: Vec<MeshDraw>,
-    /// Each mesh's world bounds centre, kept so that a frame moving the camera but not
-    /// the mesh does not transform its vertices again.
-    world_centers: Vec<DVec3>,
+    /// Each mesh's world bounds, kept so that a frame moving the camera but not the mesh
+    /// does not transform its vertices again.
+    world_bounds: Vec<Aabb>,
 }
 
 impl MeshFrame {
     /// The meshes of `scene` placed by `transforms` (one per mesh) and seen from `eye`.
-    /// `previous` is the frame before, whose bounds centres are reused for the meshes
+    /// `previous` is the frame before, whose bounds are reused for the meshes
     /// `transforms` does not move.
     pub fn new(
         scene: &Scene,
@@ -79,27 +82,37 @@ impl MeshFrame {
         let mut frame = MeshFrame {
             data: Vec::new(),
             draws: Vec::new(),
-            world_centers: Vec::new(),
+            world_bounds: Vec::new(),
         };
         for ((mesh, &transform), instance) in scene.meshes.iter().zip(transforms).zip(0u32..) {
             let kept = previous.and_then(|(frame, transforms)| {
                 (transforms.get(instance as usize) == Some(&transform))
-                    .then(|| frame.world_centers[instance as usize])
+                    .then(|| frame.world_bounds[instance as usize])
             });
-            let world_center = kept.unwrap_or_else(|| {
+            let world_bounds = kept.unwrap_or_else(|| {
                 let positions = mesh
                     .vertices
                     .iter()
                     .map(|v| transform.transform_point3(Vec3::from_array(v.position).as_dvec3()));
-                Aabb::from_points(positions).map_or(transform.w_axis.truncate(), |b| b.center())
+                Aabb::from_points(positions).unwrap_or_else(|| {
+                    let origin = transform.w_axis.truncate();
+                    Aabb {
+                        min: origin,
+                        max: origin,
+                    }
+                })
             });
-            frame.world_centers.push(world_center);
+            frame.world_bounds.push(world_bounds);
             frame.draws.push(MeshDraw {
                 indices: index_count..index_count + mesh.indices.len() as u32,
                 base_vertex: vertex_count,
                 instance,
                 material: mesh.material,
-                center: world_center - eye,
+                center: world_bounds.center() - eye,
+                bounds: Aabb {
+                    min: world_bounds.min - eye,
+                    max: world_bounds.max - eye,
+                },
             });
             index_count += mesh.indices.len() as u32;
             vertex_count += mesh.vertices.len() as i32;

@@ -16,7 +16,8 @@
 //!   ([`GpuScene::geometry_layout`], [`GpuScene::geometry_group`], [`GpuScene::pull_meshes`]),
 //!   and every material's textures as one table for their shading
 //!   ([`GpuScene::texture_table_layout`], [`GpuScene::texture_table_group`]);
-//! - the light volumes ([`GpuScene::volume_lights`], [`GpuScene::volume_mesh`]).
+//! - the light volumes ([`GpuScene::volume_lights`], [`GpuScene::volume_mesh`]);
+//! - where on screen the blended meshes may be ([`GpuScene::blended_rect`]).
 //!
 //! Everything is camera-relative: model matrices and light positions are the world ones
 //! minus the camera position, computed in f64 and then cast to f32, and the camera
@@ -32,6 +33,7 @@ mod lights;
 mod materials;
 pub mod mesh;
 mod particles;
+pub mod screen_rect;
 mod texture_table;
 mod textures;
 pub mod volumes;
@@ -426,6 +428,16 @@ impl GpuScene {
             Layer::Opaque => draws.sort_by(|(a, _), (b, _)| distance(a).total_cmp(&distance(b))),
         }
         draws
+    }
+
+    /// The pixels of an output of `size` the blended meshes may cover
+    /// ([`screen_rect::screen_rect`] of their bounds): `None` where none is in view.
+    pub fn blended_rect(&self, size: (u32, u32)) -> Option<screen_rect::PixelRect> {
+        let blended = self
+            .mesh_draws()
+            .filter(|(_, state)| state.blended)
+            .map(|(draw, _)| &draw.bounds);
+        screen_rect::screen_rect(&self.frame.inputs.camera, size, blended)
     }
 
     /// The layout of the visibility passes' group 2: the scene's vertices and indices as
