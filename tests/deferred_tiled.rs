@@ -7,7 +7,7 @@ use crate::deferred_support;
 
 use deferred_support::measure::{diff, marked, Diff};
 use deferred_support::{gpu, Image, Render};
-use graph_core::file::{load_str, Registry};
+use graph_core::file::{load_str, LoadedGraph, Registry};
 use graph_core::{CompileOptions, DeviceProfile};
 
 const SIZE: (u32, u32) = (96, 64);
@@ -183,30 +183,40 @@ fn pipeline_file(name: &str) -> (Registry, String, String) {
     (registry, path, text)
 }
 
+/// WebGPU's defaults as a device named `name` with one limit changed by `limit`, at
+/// 64x64.
+fn limited_device(name: &str, limit: impl FnOnce(&mut DeviceProfile)) -> CompileOptions {
+    let mut profile = DeviceProfile::webgpu();
+    limit(&mut profile);
+    profile.name = name.into();
+    CompileOptions {
+        output_size: (64, 64),
+        profile,
+    }
+}
+
+/// Compiling `loaded` for `options` fails (`why` says why it must), with `expected` among
+/// its errors.
+fn assert_refused(loaded: &LoadedGraph, options: &CompileOptions, why: &str, expected: &str) {
+    let errors = loaded.compile(options).expect_err(why).to_string();
+    assert!(errors.contains(expected), "{errors}");
+}
+
 /// A tile too big for the device's workgroup memory is a compile error naming the pass
 /// and the entry point; the same pass with a smaller tile compiles.
 #[test]
 fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
     let (registry, path, text) = pipeline_file("deferred_msaa_4x_tiled.ron");
-    let mut profile = DeviceProfile::webgpu();
-    profile.limits.max_compute_workgroup_storage_size = 8192;
-    profile.name = "a device with 8 KiB of workgroup memory".into();
-    let options = CompileOptions {
-        output_size: (64, 64),
-        profile,
-    };
-    let errors = load_str(&path, &text, &registry)
-        .expect("the file loads")
-        .compile(&options)
-        .expect_err("16x16 tiles at 4x need more than 8 KiB")
-        .to_string();
-    assert!(
-        errors.contains(
-            "pass \"light tiled\": compute entry point \"cs_light_tiled\" uses 13440 bytes of \
-             workgroup memory, more than the limit of 8192 on a device with 8 KiB of workgroup \
-             memory"
-        ),
-        "{errors}"
+    let options = limited_device("a device with 8 KiB of workgroup memory", |p| {
+        p.limits.max_compute_workgroup_storage_size = 8192;
+    });
+    assert_refused(
+        &load_str(&path, &text, &registry).expect("the file loads"),
+        &options,
+        "16x16 tiles at 4x need more than 8 KiB",
+        "pass \"light tiled\": compute entry point \"cs_light_tiled\" uses 13440 bytes of \
+         workgroup memory, more than the limit of 8192 on a device with 8 KiB of workgroup \
+         memory",
     );
     let smaller = text.replace(
         "params: (edges: (detector: compare)),",
@@ -243,17 +253,12 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
         "params: (edges: (detector: compare)),",
         "params: (edges: (detector: compare), tile: 32),",
     );
-    let errors = load_str(&path, &huge, &registry)
-        .expect("the file loads")
-        .compile(&CompileOptions::default())
-        .expect_err("32x32 invocations exceed WebGPU's 256")
-        .to_string();
-    assert!(
-        errors.contains(
-            "pass \"light tiled\": compute entry point \"cs_light_tiled\" runs 1024 invocations \
-             per workgroup (32x32x1), more than the limit of 256"
-        ),
-        "{errors}"
+    assert_refused(
+        &load_str(&path, &huge, &registry).expect("the file loads"),
+        &CompileOptions::default(),
+        "32x32 invocations exceed WebGPU's 256",
+        "pass \"light tiled\": compute entry point \"cs_light_tiled\" runs 1024 invocations \
+         per workgroup (32x32x1), more than the limit of 256",
     );
 }
 
@@ -276,23 +281,15 @@ fn every_entry_point_the_tiled_pass_dispatches_is_checked() {
     ] {
         assert!(explained.contains(line), "{line} not in:\n{explained}");
     }
-    let mut profile = DeviceProfile::webgpu();
-    profile.limits.max_compute_invocations_per_workgroup = 128;
-    profile.name = "a device of 128 invocations".into();
-    let options = CompileOptions {
-        output_size: (64, 64),
-        profile,
-    };
-    let errors = loaded
-        .compile(&options)
-        .expect_err("16x16 tiles exceed 128 invocations")
-        .to_string();
-    assert!(
-        errors.contains(
-            "pass \"light tiled\": compute entry point \"cs_light_tiled\" runs 256 invocations \
-             per workgroup (16x16x1), more than the limit of 128"
-        ),
-        "{errors}"
+    let options = limited_device("a device of 128 invocations", |p| {
+        p.limits.max_compute_invocations_per_workgroup = 128;
+    });
+    assert_refused(
+        &loaded,
+        &options,
+        "16x16 tiles exceed 128 invocations",
+        "pass \"light tiled\": compute entry point \"cs_light_tiled\" runs 256 invocations \
+         per workgroup (16x16x1), more than the limit of 128",
     );
 }
 

@@ -33,7 +33,10 @@ pub struct MeshDraw {
     /// Index into `Scene::materials`.
     pub material: usize,
     /// The centre of the mesh's world bounds, camera-relative: how far the draw is from
-    /// the camera, for drawing blended meshes back to front.
+    /// the camera, for drawing blended meshes back to front. Kept beside `bounds` rather
+    /// than taken from it: the world centre minus the eye is what the draws were always
+    /// sorted by, and the centre of the camera-relative bounds rounds differently, which
+    /// could reorder draws at nearly one distance.
     pub center: DVec3,
     /// The mesh's world bounds, camera-relative (a point at its origin without
     /// vertices): where on screen it may be.

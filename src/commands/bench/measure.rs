@@ -150,7 +150,7 @@ impl Setup<'_> {
             return Ok(None);
         }
         let reports = self.time(&mut prepared)?;
-        let general_gpu_frame_ms = Spread::of_ns(reports.iter().filter_map(|r| r.gpu_total_ns));
+        let general_gpu_frame_ms = frame_ms(&reports);
         let general_memory = Memory::of(prepared.plan(), &reports);
         drop(prepared);
         let both_differ = !special.same_plan(&general) && special.variants() != general.variants();
@@ -177,13 +177,8 @@ impl Setup<'_> {
         host: &Arc<Host>,
     ) -> Result<Option<Spread>, FrameError> {
         let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::PlanOnly)?;
-        self.gpu_frame_ms(&mut self.session.prepare(pipeline, self.size)?)
-    }
-
-    /// The median and spread of `prepared`'s measured frames, `None` without timestamps.
-    fn gpu_frame_ms(&self, prepared: &mut Prepared<'_>) -> Result<Option<Spread>, FrameError> {
-        let reports = self.time(prepared)?;
-        Ok(Spread::of_ns(reports.iter().filter_map(|r| r.gpu_total_ns)))
+        let mut prepared = self.session.prepare(pipeline, self.size)?;
+        Ok(frame_ms(&self.time(&mut prepared)?))
     }
 
     /// `output` of one frame of `candidate`: the reference, edge masks, measurements.
@@ -198,6 +193,11 @@ impl Setup<'_> {
         prepared.run(1)?;
         prepared.read(output)
     }
+}
+
+/// The spread of the GPU frame times of `reports`, `None` without timestamps.
+fn frame_ms(reports: &[FrameReport]) -> Option<Spread> {
+    Spread::of_ns(reports.iter().filter_map(|r| r.gpu_total_ns))
 }
 
 /// Per-frame and per-pass spreads over the measured frames.
@@ -220,7 +220,7 @@ fn figures(reports: &[FrameReport], samples: u32, memory: Memory, work: Work) ->
     });
     Figures {
         samples,
-        gpu_frame_ms: Spread::of_ns(reports.iter().filter_map(|r| r.gpu_total_ns)),
+        gpu_frame_ms: frame_ms(reports),
         cpu_record_ms: Spread::of_ns(
             reports
                 .iter()
