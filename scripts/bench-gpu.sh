@@ -22,15 +22,16 @@
 #               compiled for its scene and, where that differs, for every feature (the
 #               savings table in results.md)
 #   gbuffer     the G-buffer's cost as its targets are removed one at a time
-#               (bench/graphs/gbuffer_cost/), the visibility buffer, its depth-only
-#               floor (bench/graphs/visibility_cost/) and the visibility buffer
-#               rasterised in compute, at 1 and 4 samples on builtin:dense and
-#               builtin:lights?count=256, into gbuffer-1x and gbuffer-4x
-#   visibility  the visibility pipelines (hardware and compute raster, 4x and 1x)
-#               against the lean G-buffer and forward MSAA on builtin:dense and
-#               builtin:lights?count=256, with the reference (not in the default set)
-#   solo        the visibility pipelines (compute and hardware raster, 4x and 1x) each in a
-#               bench process of its own, without the reference, into solo-PIPELINE: rows of
+#               (bench/graphs/gbuffer_cost/), the visibility buffer (rasterised in
+#               compute, as visibility_msaa_4x.ron does on a GPU), its depth-only floor
+#               and its hardware raster (bench/graphs/visibility_cost/), at 1 and 4
+#               samples on builtin:dense and builtin:lights?count=256, into gbuffer-1x
+#               and gbuffer-4x
+#   visibility  the visibility pipelines (4x and 1x) against the lean G-buffer and
+#               forward MSAA on builtin:dense and builtin:lights?count=256, with the
+#               reference (not in the default set)
+#   solo        the visibility pipelines and the hardware raster (4x and 1x) each in a
+#               bench process of its own, without the reference, into solo-NAME: rows of
 #               a many-pipeline run have been measured on a clocked-down H200 (its compute
 #               tone map at 0.14-0.24 ms instead of 0.08), so the x1x ratios are quoted
 #               from these (not in the default set)
@@ -136,7 +137,7 @@ for part in $parts; do
     gbuffer)
       steps=()
       for graph in bench/graphs/gbuffer_cost/*.ron pipelines/visibility_msaa_4x.ron \
-          bench/graphs/visibility_cost/depth_only.ron pipelines/visibility_compute_4x.ron; do
+          bench/graphs/visibility_cost/depth_only.ron bench/graphs/visibility_cost/hardware_raster.ron; do
         steps+=(--pipeline "$graph")
       done
       for samples in 1 4; do
@@ -147,8 +148,7 @@ for part in $parts; do
       ;;
     visibility)
       visibility=()
-      for p in visibility_msaa_4x visibility_noaa visibility_compute_4x visibility_compute_noaa \
-          deferred_msaa_4x_lean forward_msaa_4x; do
+      for p in visibility_msaa_4x visibility_noaa deferred_msaa_4x_lean forward_msaa_4x; do
         visibility+=(--pipeline "pipelines/$p.ron")
       done
       "$bin" bench "${visibility[@]}" --scene builtin:dense --scene 'builtin:lights?count=256' \
@@ -156,10 +156,16 @@ for part in $parts; do
         || status=$?
       ;;
     solo)
-      for p in visibility_compute_4x visibility_compute_noaa visibility_msaa_4x visibility_noaa; do
-        "$bin" bench --pipeline "pipelines/$p.ron" --scene builtin:dense \
+      # Each in a process of its own: a GPU that ran many pipelines before may clock down.
+      for run in pipelines/visibility_msaa_4x.ron:4 pipelines/visibility_noaa.ron:1 \
+          bench/graphs/visibility_cost/hardware_raster.ron:4 \
+          bench/graphs/visibility_cost/hardware_raster.ron:1; do
+        graph=${run%:*} samples=${run#*:}
+        name=$(basename "$graph" .ron)
+        [ "$name" = hardware_raster ] && name="hardware_raster_${samples}x"
+        "$bin" bench --pipeline "$graph" --samples "$samples" --scene builtin:dense \
           --scene 'builtin:lights?count=256' --no-reference --width "$width" --height "$height" \
-          "${common[@]}" --out-dir "$out/solo-$p" || status=$?
+          "${common[@]}" --out-dir "$out/solo-$name" || status=$?
       done
       ;;
     variants)

@@ -427,6 +427,26 @@ fn a_view_the_scene_does_not_need_is_refused_with_the_reason() {
     assert_eq!(read_png(&out).dimensions(), (64, 48));
 }
 
+/// visibility_msaa_4x.ron takes its branch for CPU adapters on lavapipe, the hardware
+/// raster, and the summary says the device decided it, specialised or not (unspecialised,
+/// every scene feature is set, `untabled_textures` too: the G-buffer fallback, tone
+/// mapped as on a CPU).
+#[test]
+fn the_visibility_pipeline_rasterises_by_the_hardware_on_a_cpu_device() {
+    let dir = temp_dir();
+    let out = dir.path().join("v.png");
+    let pipeline = ["--pipeline", "pipelines/visibility_msaa_4x.ron"];
+    render_default(&out, &pipeline)
+        .expect(0)
+        .stderr_has("\nvisibility (hardware raster) ")
+        .stderr_has("\ndevice conditions: cpu_device\n")
+        .stderr_has("dropped by conditions: visibility, light tiled, keys depth, ");
+    render_default(&out, &[&pipeline[..], &["--no-specialise"]].concat())
+        .expect(0)
+        .stderr_has("\ntonemap (cpu device) ")
+        .stderr_has("\ndevice conditions: cpu_device\n");
+}
+
 #[test]
 fn a_lit_scene_is_specialised_only_in_its_depth_format() {
     let dir = temp_dir();

@@ -312,7 +312,7 @@ fn deferred_tiled_and_forward_agree_on_a_textured_pbr_quad() {
     let images: Vec<_> = PIPELINES
         .iter()
         .map(|pipeline| {
-            Render::new(pipeline, &file, SIZE)
+            Render::new(*pipeline, &file, SIZE)
                 .with_scene(scene.clone())
                 .run(&gpu)
                 .image(&gpu, "color")

@@ -268,7 +268,7 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
 /// most workgroup memory, runs 64; explain lists all three.
 #[test]
 fn every_entry_point_the_tiled_pass_dispatches_is_checked() {
-    let (registry, path, text) = pipeline_file("visibility_compute_4x.ron");
+    let (registry, path, text) = pipeline_file("visibility_msaa_4x.ron");
     let loaded = load_str(&path, &text, &registry).expect("the file loads");
     let plan = loaded
         .compile(&CompileOptions::default())

@@ -5,7 +5,7 @@
 use crate::deferred_support;
 
 use deferred_support::unlit::{Coverage, Judged};
-use deferred_support::{gpu, srgb8, Render};
+use deferred_support::{gpu, srgb8, PipelineFile, Render};
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Exposure, Overrides};
 
@@ -43,17 +43,17 @@ fn linear() -> Overrides {
 /// edge to call are skipped, and there must be few of them.
 #[test]
 fn unlit_pixels_are_the_average_of_their_covered_samples() {
-    unlit_pixels_average_their_samples("deferred_msaa_4x.ron");
+    unlit_pixels_average_their_samples("deferred_msaa_4x.ron".into());
 }
 
 /// The same through the tiled compute pass, which resolves as it lights (compiled for
 /// no features, so the pass runs although the scene is unlit).
 #[test]
 fn unlit_pixels_through_the_tiled_pass_are_the_average_of_their_covered_samples() {
-    unlit_pixels_average_their_samples("deferred_msaa_4x_tiled.ron");
+    unlit_pixels_average_their_samples("deferred_msaa_4x_tiled.ron".into());
 }
 
-pub fn unlit_pixels_average_their_samples(pipeline: &str) {
+pub fn unlit_pixels_average_their_samples(pipeline: PipelineFile<'_>) {
     let gpu = gpu();
     let coverage = coverage();
     let image = Render::new(pipeline, "builtin:unlit", (N, N))

@@ -193,7 +193,7 @@ fn a_new_output_size_recompiles_the_plan_once_and_builds_no_pipeline() {
     let pipeline = "deferred_msaa_4x_tiled.ron";
     let mut frame = Render::new(pipeline, SCENE, SIZE).run(&gpu);
     let before = DeviceObjects::alive(&gpu.device);
-    let resized = frame.resize(&gpu, (SIZE.0 + 32, SIZE.1 + 16));
+    let resized = frame.resize((SIZE.0 + 32, SIZE.1 + 16));
     let created = DeviceObjects::alive(&gpu.device).minus(&before);
     assert!(
         resized.textures_allocated > 0,
@@ -209,7 +209,7 @@ fn a_new_output_size_recompiles_the_plan_once_and_builds_no_pipeline() {
         "a new output size built pipelines: {created}"
     );
     // Back to the first size: its plan comes from the cache, its textures from the pool.
-    let back = frame.resize(&gpu, SIZE);
+    let back = frame.resize(SIZE);
     assert_eq!(
         (frame.plans().misses(), frame.plans().hits()),
         (2, 1),

@@ -10,7 +10,7 @@ use std::f32::consts::FRAC_PI_8;
 use serde_json::json;
 
 use crate::deferred_support::measure::{pixel_diff, pixels_within};
-use crate::deferred_support::{gpu, Render};
+use crate::deferred_support::{gpu, PipelineFile, Render};
 use crate::gltf_writer::{fixture, temp_dir, Gltf};
 use graph_core::file::{load_file, load_str, Registry};
 use graph_core::{CompileOptions, DeviceProfile, Features};
@@ -22,27 +22,66 @@ const SIZE: (u32, u32) = (64, 64);
 /// One 8-bit step, the tolerance of exact expectations in linear HDR.
 const STEP: f32 = 1.0 / 255.0;
 
-/// Every pipeline file that renders the lit scene, with the name of the single-sampled
-/// HDR image it tone-maps (`resolved`, or the lit HDR target in the files without a
-/// resolve).
-const PIPELINES: [(&str, &str); 17] = [
-    ("deferred_gbuffer_resolve_4x.ron", "hdr_lit"),
-    ("deferred_msaa_4x.ron", "resolved"),
-    ("deferred_msaa_4x_adaptive.ron", "resolved"),
-    ("deferred_msaa_4x_centroid.ron", "resolved"),
-    ("deferred_msaa_4x_coverage.ron", "resolved"),
-    ("deferred_msaa_4x_sample_mask.ron", "resolved"),
-    ("deferred_msaa_4x_tiled.ron", "resolved"),
-    ("deferred_msaa_4x_tonemapped_resolve.ron", "resolved"),
-    ("deferred_noaa.ron", "hdr_lit"),
-    ("deferred_noaa_tiled.ron", "resolved"),
-    ("deferred_onthefly_resolve_4x.ron", "resolved"),
-    ("deferred_per_sample_4x.ron", "resolved"),
-    ("deferred_per_sample_4x_tiled.ron", "resolved"),
-    ("forward_msaa_4x.ron", "resolved"),
-    ("reference_ssaa16.ron", "resolved"),
-    ("visibility_msaa_4x.ron", "resolved"),
-    ("visibility_compute_4x.ron", "resolved"),
+/// Every pipeline file that renders the lit scene (visibility_msaa_4x.ron's branches for
+/// CPU and GPU adapters both), with the name of the single-sampled HDR image it tone-maps
+/// (`resolved`, or the lit HDR target in the files without a resolve).
+const PIPELINES: [(PipelineFile, &str); 17] = [
+    (
+        PipelineFile::for_device("deferred_gbuffer_resolve_4x.ron"),
+        "hdr_lit",
+    ),
+    (PipelineFile::for_device("deferred_msaa_4x.ron"), "resolved"),
+    (
+        PipelineFile::for_device("deferred_msaa_4x_adaptive.ron"),
+        "resolved",
+    ),
+    (
+        PipelineFile::for_device("deferred_msaa_4x_centroid.ron"),
+        "resolved",
+    ),
+    (
+        PipelineFile::for_device("deferred_msaa_4x_coverage.ron"),
+        "resolved",
+    ),
+    (
+        PipelineFile::for_device("deferred_msaa_4x_sample_mask.ron"),
+        "resolved",
+    ),
+    (
+        PipelineFile::for_device("deferred_msaa_4x_tiled.ron"),
+        "resolved",
+    ),
+    (
+        PipelineFile::for_device("deferred_msaa_4x_tonemapped_resolve.ron"),
+        "resolved",
+    ),
+    (PipelineFile::for_device("deferred_noaa.ron"), "hdr_lit"),
+    (
+        PipelineFile::for_device("deferred_noaa_tiled.ron"),
+        "resolved",
+    ),
+    (
+        PipelineFile::for_device("deferred_onthefly_resolve_4x.ron"),
+        "resolved",
+    ),
+    (
+        PipelineFile::for_device("deferred_per_sample_4x.ron"),
+        "resolved",
+    ),
+    (
+        PipelineFile::for_device("deferred_per_sample_4x_tiled.ron"),
+        "resolved",
+    ),
+    (PipelineFile::for_device("forward_msaa_4x.ron"), "resolved"),
+    (PipelineFile::for_device("reference_ssaa16.ron"), "resolved"),
+    (
+        PipelineFile::for_device("visibility_msaa_4x.ron"),
+        "resolved",
+    ),
+    (
+        PipelineFile::gpu_branch("visibility_msaa_4x.ron"),
+        "resolved",
+    ),
 ];
 
 /// A square quad of the test scene.
@@ -135,13 +174,13 @@ fn load(file: &str) -> Scene {
 }
 
 /// `pipeline`'s single-sampled HDR image `image` of `scene`, compiled for its features.
-fn hdr(pipeline: &str, image: &str, file: &str, scene: &Scene) -> Vec<[f32; 4]> {
+fn hdr(pipeline: PipelineFile, image: &str, file: &str, scene: &Scene) -> Vec<[f32; 4]> {
     hdr_for(pipeline, image, file, scene, SceneFeatures::of(scene))
 }
 
 /// [`hdr`] compiled for `features`.
 fn hdr_for(
-    pipeline: &str,
+    pipeline: PipelineFile,
     image: &str,
     file: &str,
     scene: &Scene,
@@ -361,7 +400,7 @@ fn a_lit_blend_panel_renders_alike_in_deferred_tiled_and_forward() {
     let images: Vec<_> = pipelines
         .iter()
         .map(|pipeline| {
-            Render::new(pipeline, &file, SIZE)
+            Render::new(*pipeline, &file, SIZE)
                 .with_scene(scene.clone())
                 .features(SceneFeatures::of(&scene).names())
                 .run(&gpu)
@@ -424,7 +463,7 @@ fn an_opaque_edge_in_front_of_a_blend_panel_is_antialiased() {
         ("forward_msaa_4x.ron", "resolved", true),
         ("deferred_noaa.ron", "hdr_lit", false),
     ] {
-        let hdr = hdr(pipeline, image, &file, &scene);
+        let hdr = hdr(pipeline.into(), image, &file, &scene);
         let mut between = 0;
         for (x, y) in inside(0.6) {
             let p = hdr[(y * SIZE.0 + x) as usize];
@@ -579,7 +618,7 @@ fn pipelines_add_the_transparent_passes_for_blend_scenes_only() {
         profile: DeviceProfile::webgpu(),
     };
     for (pipeline, _) in PIPELINES {
-        let path = format!("{}/pipelines/{pipeline}", env!("CARGO_MANIFEST_DIR"));
+        let path = format!("{}/pipelines/{}", env!("CARGO_MANIFEST_DIR"), pipeline.name);
         let mut loaded = load_file(&path, &registry).unwrap_or_else(|e| panic!("{e}"));
         loaded.keep_outputs(&["color"]).expect("color is an output");
         let passes = |features: &Features| -> Vec<String> {

@@ -153,6 +153,12 @@ impl PassBuilder<'_> {
         self
     }
 
+    /// The condition set by [`when`](Self::when), if any: plugins check the formats a
+    /// texture may have where it holds ([`TextureDesc::formats_where`]).
+    pub fn condition(&self) -> Option<&Condition> {
+        self.graph.passes[self.id.index()].condition.as_ref()
+    }
+
     /// Leaves the pass out of every plan, as a false condition would (what it modifies
     /// passes through; explain shows `reason`), with its accesses still declared and
     /// checked. For a plugin that finds at setup that its work is empty, such as edge

@@ -48,7 +48,8 @@ pub use builder::{GraphBuilder, PassBuilder};
 pub use compile::CompileOptions;
 pub use compiled::CompiledGraph;
 pub use condition::{
-    is_device_condition, Condition, ConditionError, Features, Literal, DEVICE_CONDITIONS,
+    is_device_condition, Condition, ConditionError, DeviceTrait, Features, Literal,
+    DEVICE_CONDITIONS,
 };
 pub use error::{GraphError, GraphErrors};
 pub use graph::Graph;

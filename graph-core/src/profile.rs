@@ -8,7 +8,7 @@ use wgpu_types::{
     TextureUsages,
 };
 
-use crate::condition::{self, DEVICE_CONDITIONS};
+use crate::condition::{self, DeviceTrait, DEVICE_CONDITIONS};
 
 /// What a device can do, as far as graph validation cares.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -22,6 +22,10 @@ pub struct DeviceProfile {
     pub formats: Vec<(TextureFormat, TextureFormatFeatures)>,
     /// Whether `TextureUsages::TRANSIENT_ATTACHMENT` may be used.
     pub transient_attachments: bool,
+    /// The adapter is the CPU (device condition `cpu_device`). Profiles recorded before
+    /// this field existed read as a GPU's.
+    #[serde(default)]
+    pub cpu: bool,
 }
 
 impl DeviceProfile {
@@ -33,6 +37,15 @@ impl DeviceProfile {
             features: Features::empty(),
             formats: Vec::new(),
             transient_attachments: true,
+            cpu: false,
+        }
+    }
+
+    /// Whether this device is or has what `condition` stands for.
+    pub fn has(&self, condition: DeviceTrait) -> bool {
+        match condition {
+            DeviceTrait::Features(needs) => self.features.contains(needs),
+            DeviceTrait::Cpu => self.cpu,
         }
     }
 
@@ -44,18 +57,22 @@ impl DeviceProfile {
             .filter(|f| !condition::is_device_condition(f));
         let ours = DEVICE_CONDITIONS
             .iter()
-            .filter(|(_, needs)| self.features.contains(*needs))
+            .filter(|(_, condition)| self.has(*condition))
             .map(|(name, _)| *name);
         theirs.chain(ours).collect()
     }
 
-    /// This profile with the device features behind the device conditions `features`
-    /// names: validation compiles a file's branch for such a device on any profile.
+    /// This profile with what the device conditions `features` names stand for (device
+    /// features, or being the CPU): validation compiles a file's branch for such a device
+    /// on any profile.
     pub fn granting(&self, features: &condition::Features) -> DeviceProfile {
         let mut profile = self.clone();
-        for (name, needs) in DEVICE_CONDITIONS {
+        for (name, condition) in DEVICE_CONDITIONS {
             if features.contains(name) {
-                profile.features |= needs;
+                match condition {
+                    DeviceTrait::Features(needs) => profile.features |= needs,
+                    DeviceTrait::Cpu => profile.cpu = true,
+                }
                 profile.name = format!("{} with {name}", profile.name);
             }
         }

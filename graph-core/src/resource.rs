@@ -104,6 +104,26 @@ impl TextureDesc {
             .chain(self.fallback)
             .chain(self.format_if.iter().map(|&(_, f)| f))
     }
+
+    /// The formats the texture may have in plans where `condition` holds (a pass's: what
+    /// that pass must accept): a conditional format whose condition `condition` excludes
+    /// is never chosen there, and one whose condition it implies is always chosen unless
+    /// an earlier one is, so neither `format`, its fallback nor any later one is.
+    pub fn formats_where(&self, condition: Option<&Condition>) -> Vec<TextureFormat> {
+        let mut formats = Vec::new();
+        for (chosen_if, format) in &self.format_if {
+            if condition.is_some_and(|holds| holds.excludes(chosen_if)) {
+                continue;
+            }
+            formats.push(*format);
+            if condition.is_some_and(|holds| holds.implies(chosen_if)) {
+                return formats;
+            }
+        }
+        // No conditional format is certain: the declared ones may stay.
+        formats.splice(0..0, std::iter::once(self.format).chain(self.fallback));
+        formats
+    }
     pub fn size(mut self, size: Size) -> Self {
         self.size = size;
         self

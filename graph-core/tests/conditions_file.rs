@@ -236,72 +236,84 @@ fn the_plan_cache_compiles_each_feature_set_once() {
     assert_eq!((cache.hits(), cache.misses(), cache.len()), (1, 3, 3));
 }
 
-/// "sky" where the device lacks 64-bit atomics, "fast sky" where it has them: a device
-/// condition, which the profile sets and the caller cannot.
-fn device_branches(fast_target: &str) -> String {
+/// "sky" where the device is not or has not what the device condition `condition` stands
+/// for, "fast sky" where it is or has: a device condition, which the profile sets and the
+/// caller cannot.
+fn device_branches(condition: &str, fast_target: &str) -> String {
     format!(
         r#"Graph(
-features: ["int64_atomics"],
+features: ["{condition}"],
 resources: {{
     "hdr": Texture(format: "rgba8unorm"),
-    "scratch": Texture(format: "{fast_target}", when: "int64_atomics"),
+    "scratch": Texture(format: "{fast_target}", when: "{condition}"),
 }},
 passes: [
-    (name: "sky", plugin: "clear", when: "!int64_atomics", outputs: {{ "target": "hdr" }}),
-    (name: "fast sky", plugin: "clear", when: "int64_atomics", outputs: {{ "target": "scratch" }}),
-    (name: "present", plugin: "blit", when: "int64_atomics", inputs: {{ "src": "scratch" }}, outputs: {{ "dst": "hdr" }}),
+    (name: "sky", plugin: "clear", when: "!{condition}", outputs: {{ "target": "hdr" }}),
+    (name: "fast sky", plugin: "clear", when: "{condition}", outputs: {{ "target": "scratch" }}),
+    (name: "present", plugin: "blit", when: "{condition}", inputs: {{ "src": "scratch" }}, outputs: {{ "dst": "hdr" }}),
 ],
 outputs: ["hdr"],
 )"#
     )
 }
 
-#[test]
-fn device_conditions_come_from_the_profile_not_the_caller() {
-    let text = device_branches("rgba8unorm");
-    let loaded = load(&text).unwrap();
-    let asked = Features::from_iter(["int64_atomics"]);
-    let webgpu = loaded
-        .compile_for(&CompileOptions::default(), &asked)
-        .unwrap();
-    assert_eq!(live(&webgpu), ["sky"]);
-    assert!(webgpu.features.is_empty(), "{:?}", webgpu.features);
-    let mut profile = graph_core::DeviceProfile::webgpu();
-    profile.features = graph_core::types::Features::SHADER_INT64
+/// Each device condition, and a profile of a device that sets it.
+fn device_conditions() -> [(&'static str, graph_core::DeviceProfile); 2] {
+    let mut atomics = graph_core::DeviceProfile::webgpu();
+    atomics.features = graph_core::types::Features::SHADER_INT64
         | graph_core::types::Features::SHADER_INT64_ATOMIC_MIN_MAX;
-    let options = CompileOptions {
-        profile,
-        ..CompileOptions::default()
-    };
-    let atomics = loaded.compile_for(&options, &Features::new()).unwrap();
-    assert_eq!(live(&atomics), ["fast sky", "present"]);
-    assert_eq!(atomics.features, ["int64_atomics"]);
+    let mut cpu = graph_core::DeviceProfile::webgpu();
+    cpu.cpu = true;
+    [("int64_atomics", atomics), ("cpu_device", cpu)]
 }
 
 #[test]
-fn validation_checks_a_device_branch_on_a_profile_without_the_device_feature() {
-    // The fast branch blits into a compressed texture: wrong on every device.
+fn device_conditions_come_from_the_profile_not_the_caller() {
+    for (condition, profile) in device_conditions() {
+        let text = device_branches(condition, "rgba8unorm");
+        let loaded = load(&text).unwrap();
+        let asked = Features::from_iter([condition]);
+        let webgpu = loaded
+            .compile_for(&CompileOptions::default(), &asked)
+            .unwrap();
+        assert_eq!(live(&webgpu), ["sky"], "{condition}");
+        assert!(webgpu.features.is_empty(), "{:?}", webgpu.features);
+        let options = CompileOptions {
+            profile,
+            ..CompileOptions::default()
+        };
+        let device = loaded.compile_for(&options, &Features::new()).unwrap();
+        assert_eq!(live(&device), ["fast sky", "present"], "{condition}");
+        assert_eq!(device.features, [condition]);
+    }
+}
+
+#[test]
+fn validation_checks_a_device_branch_on_a_profile_without_the_device_condition() {
     let dir = std::env::temp_dir().join(format!("device-conditions-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("fast.ron");
-    std::fs::write(&path, device_branches("bc1-rgba-unorm")).unwrap();
-    let errors = validate_file(
-        &path,
-        &Registry::with_builtins(),
-        &CompileOptions::default(),
-    )
-    .expect_err("the fast branch is invalid");
-    assert!(
-        errors.to_string().contains(r#""scratch""#)
-            && errors.to_string().contains("bc1-rgba-unorm"),
-        "{errors}"
-    );
-    std::fs::write(&path, device_branches("rgba8unorm")).unwrap();
-    validate_file(
-        &path,
-        &Registry::with_builtins(),
-        &CompileOptions::default(),
-    )
-    .unwrap();
+    for (condition, _) in device_conditions() {
+        let path = dir.join(format!("{condition}.ron"));
+        // The fast branch blits into a compressed texture: wrong on every device.
+        std::fs::write(&path, device_branches(condition, "bc1-rgba-unorm")).unwrap();
+        let errors = validate_file(
+            &path,
+            &Registry::with_builtins(),
+            &CompileOptions::default(),
+        )
+        .expect_err("the fast branch is invalid");
+        assert!(
+            errors.to_string().contains(r#""scratch""#)
+                && errors.to_string().contains("bc1-rgba-unorm"),
+            "{condition}: {errors}"
+        );
+        std::fs::write(&path, device_branches(condition, "rgba8unorm")).unwrap();
+        validate_file(
+            &path,
+            &Registry::with_builtins(),
+            &CompileOptions::default(),
+        )
+        .unwrap();
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }

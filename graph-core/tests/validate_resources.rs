@@ -2,11 +2,12 @@
 
 use crate::common;
 
-use common::{errors, errors_with, only_error, tex};
+use common::{errors, errors_with, only_error, tex, CLEAR};
 use graph_core::types::Features;
 use graph_core::types::TextureFormat::{Bc1RgbaUnorm, Rgba16Float, Rgba8Unorm};
 use graph_core::{
-    BufferDesc, CompileOptions, DeviceProfile, GraphBuilder, GraphError, Size, TextureDesc,
+    BufferDesc, CompileOptions, Condition, DeviceProfile, GraphBuilder, GraphError, Size,
+    TextureDesc,
 };
 
 /// The error a graph holding nothing but `desc`, imported as "t", reports.
@@ -291,5 +292,35 @@ fn a_fallback_of_another_kind_is_an_error() {
     assert_eq!(
         error.to_string(),
         r#""t": fallback rgba8uint is not the same kind of format as rgba16float (aspects and sample type must agree, since passes are written for both)"#
+    );
+}
+
+/// A texture whose every user a condition drops is not made for those features, so the
+/// device need not be able to make it (a file's branch for other devices may use one
+/// that only they can make); where its user stays, it is checked as ever.
+#[test]
+fn a_texture_only_dropped_passes_use_is_not_checked_against_the_device() {
+    let mut g = GraphBuilder::new();
+    g.declare_features(["elsewhere"]);
+    let t = g.create_texture("t", tex(Rgba8Unorm).samples(3));
+    g.add_render_pass("only elsewhere")
+        .when(Condition::feature("elsewhere"))
+        .side_effect()
+        .color_output(t, CLEAR);
+    let graph = g.build();
+    let options = CompileOptions::default();
+    let plan = graph
+        .compile_for(&options, &graph_core::Features::new())
+        .expect("without the feature nothing makes t");
+    assert!(plan.passes.is_empty());
+    let errors = graph
+        .compile_for(&options, &graph_core::Features::from_iter(["elsewhere"]))
+        .expect_err("with it, t's sample count is checked")
+        .0;
+    assert_eq!(
+        errors.iter().map(ToString::to_string).collect::<Vec<_>>(),
+        [
+            r#"texture "t": rgba8unorm does not support 3x multisampling on webgpu defaults (supported: 1x, 4x)"#
+        ]
     );
 }

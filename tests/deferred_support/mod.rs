@@ -15,18 +15,74 @@ use std::sync::Arc;
 
 use graph_core::file::{load_str_with, GraphParams, LoadedGraph, Registry};
 use graph_core::gpu::{read_rgba16f, read_rgba8, Executor, FrameReport, Gpu, Imports};
-use graph_core::{CompileOptions, CompiledGraph, Features, Plan};
+use graph_core::{CompileOptions, CompiledGraph, DeviceProfile, Features, Plan};
 use passes_deferred_msaa::analysis::Variants;
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{FrameInputs, Host, Overrides};
 
 pub use crate::common::gpu;
 
+/// A file in `pipelines/` and the device it is compiled for.
+#[derive(Clone, Copy, Debug)]
+pub struct PipelineFile<'a> {
+    pub name: &'a str,
+    /// Compiled as for a GPU adapter, with the device condition `cpu_device` unset: the
+    /// file's branch for GPUs, run on lavapipe. Otherwise as for the adapter the tests
+    /// run on.
+    pub as_gpu: bool,
+}
+
+impl<'a> PipelineFile<'a> {
+    /// `name` compiled for the adapter the tests run on.
+    pub const fn for_device(name: &'a str) -> PipelineFile<'a> {
+        PipelineFile {
+            name,
+            as_gpu: false,
+        }
+    }
+
+    /// `name`'s branch for GPUs (see [`Self::as_gpu`]).
+    pub const fn gpu_branch(name: &'a str) -> PipelineFile<'a> {
+        PipelineFile { name, as_gpu: true }
+    }
+
+    /// The profile of `gpu` the file is compiled for.
+    fn profile(&self, gpu: &Gpu) -> DeviceProfile {
+        let mut profile = gpu.profile();
+        profile.cpu &= !self.as_gpu;
+        profile
+    }
+
+    /// The name PNG files and messages use: the file's stem, `-gpu` for the GPU branch.
+    fn label(&self) -> String {
+        let stem = self.name.trim_end_matches(".ron");
+        match self.as_gpu {
+            true => format!("{stem}-gpu"),
+            false => stem.to_owned(),
+        }
+    }
+}
+
+impl std::fmt::Display for PipelineFile<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.as_gpu {
+            true => write!(f, "{} (as on a GPU)", self.name),
+            false => f.write_str(self.name),
+        }
+    }
+}
+
+impl<'a> From<&'a str> for PipelineFile<'a> {
+    fn from(name: &'a str) -> PipelineFile<'a> {
+        PipelineFile::for_device(name)
+    }
+}
+
 /// One render: which pipeline, scene, overrides and size, values for the pipeline file's
 /// parameters, and text edits to the file (each `(from, to)` must match) for variants no
 /// file or parameter exists for.
 pub struct Render<'a> {
-    pub pipeline: &'a str,
+    pub pipeline: PipelineFile<'a>,
     pub scene: &'a str,
     pub overrides: Overrides,
     pub size: (u32, u32),
@@ -47,6 +103,8 @@ pub struct Render<'a> {
 /// host that can run the next one.
 pub struct Frame {
     label: String,
+    /// The profile the plan was compiled for: a resize keeps it.
+    profile: DeviceProfile,
     host: Arc<Host>,
     compiled: CompiledGraph<LoadedGraph>,
     executor: Executor,
@@ -71,10 +129,15 @@ impl Image {
 }
 
 impl<'a> Render<'a> {
-    /// `pipeline` (a file name in `pipelines/`) with `scene` at `size`, default overrides.
-    pub fn new(pipeline: &'a str, scene: &'a str, size: (u32, u32)) -> Render<'a> {
+    /// `pipeline` (a file name in `pipelines/`, or a [`PipelineFile`]) with `scene` at
+    /// `size`, default overrides.
+    pub fn new(
+        pipeline: impl Into<PipelineFile<'a>>,
+        scene: &'a str,
+        size: (u32, u32),
+    ) -> Render<'a> {
         Render {
-            pipeline,
+            pipeline: pipeline.into(),
             scene,
             overrides: Overrides::default(),
             size,
@@ -157,19 +220,20 @@ impl<'a> Render<'a> {
         let host = Arc::new(Host::new(Arc::new(scene), self.overrides.clone()));
         let mut registry = Registry::with_builtins();
         passes_deferred_msaa::register_with(&mut registry, Some(host.clone()), self.variants);
-        let (path, text) = edited(self.pipeline, &self.edits);
+        let (path, text) = edited(self.pipeline.name, &self.edits);
         let loaded = load_str_with(&path, &text, &registry, &self.params)
             .unwrap_or_else(|e| panic!("cannot load {}:\n{e}", path.display()));
+        let label = self.pipeline.label();
         let options = CompileOptions {
             output_size: self.size,
-            profile: gpu.profile(),
+            profile: self.pipeline.profile(gpu),
         };
         let mut compiled = CompiledGraph::new_for(loaded, &options, &self.features)
-            .unwrap_or_else(|e| panic!("cannot compile {}:\n{e}", self.pipeline));
+            .unwrap_or_else(|e| panic!("cannot compile {label}:\n{e}"));
         let mut executor = Executor::new(gpu);
         executor
             .execute(&mut compiled, &Imports::new())
-            .unwrap_or_else(|e| panic!("{} failed on the device: {e}", self.pipeline));
+            .unwrap_or_else(|e| panic!("{label} failed on the device: {e}"));
         let edited = if self.edits.is_empty() && self.scene_edit.is_none() {
             String::new()
         } else {
@@ -182,10 +246,10 @@ impl<'a> Render<'a> {
             .collect();
         Frame {
             label: format!(
-                "{}{params}{edited}-{}",
-                self.pipeline.trim_end_matches(".ron"),
+                "{label}{params}{edited}-{}",
                 self.scene.replace([':', '?', '/', '=', '&'], "_")
             ),
+            profile: options.profile,
             host,
             compiled,
             executor,
@@ -213,10 +277,10 @@ impl Frame {
 
     /// Recompiles for an output of `size` (the plan's other inputs as they were) and runs
     /// the next frame, as an engine does when its window resizes.
-    pub fn resize(&mut self, gpu: &Gpu, size: (u32, u32)) -> FrameReport {
+    pub fn resize(&mut self, size: (u32, u32)) -> FrameReport {
         let options = CompileOptions {
             output_size: size,
-            profile: gpu.profile(),
+            profile: self.profile.clone(),
         };
         // The plan's features are those of the feature set it was compiled for that the
         // graph tests, which is all a compile reads.
@@ -364,7 +428,12 @@ pub fn srgb8(linear: f64) -> u8 {
 /// Share of `scene`'s pixels (edited by `edit`) that pipelines `a` and `b` render within
 /// 1/255 at `size`, each compiled for the edited scene's features as `rgraph render`
 /// compiles it.
-pub fn agreement((a, b): (&str, &str), scene: &str, edit: fn(&mut Scene), size: (u32, u32)) -> f64 {
+pub fn agreement<'a>(
+    (a, b): (impl Into<PipelineFile<'a>>, impl Into<PipelineFile<'a>>),
+    scene: &str,
+    edit: fn(&mut Scene),
+    size: (u32, u32),
+) -> f64 {
     let mut loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
     edit(&mut loaded);
     let (first, second) = images((a, b), &loaded, size);
@@ -373,17 +442,21 @@ pub fn agreement((a, b): (&str, &str), scene: &str, edit: fn(&mut Scene), size: 
 
 /// The colour images pipelines `a` and `b` render of `scene` at `size`, each compiled
 /// for the scene's features as `rgraph render` compiles it.
-pub fn images((a, b): (&str, &str), scene: &Scene, size: (u32, u32)) -> (Image, Image) {
+pub fn images<'a>(
+    (a, b): (impl Into<PipelineFile<'a>>, impl Into<PipelineFile<'a>>),
+    scene: &Scene,
+    size: (u32, u32),
+) -> (Image, Image) {
     let gpu = gpu();
     let features = passes_deferred_msaa::analysis::Features::of(scene).names();
-    let image = |pipeline| {
+    let image = |pipeline: PipelineFile<'a>| {
         Render::new(pipeline, &scene.name, size)
             .with_scene(scene.clone())
             .features(features.clone())
             .run(&gpu)
             .image(&gpu, "color")
     };
-    (image(a), image(b))
+    (image(a.into()), image(b.into()))
 }
 
 /// A scene edit that changes nothing, for tables of scenes and edits.

@@ -113,6 +113,47 @@ mod tests {
         assert!(texture.format_if.is_empty());
     }
 
+    /// A pass under a condition accepts the formats the texture may have where it runs:
+    /// conditional formats it excludes drop out, and one it implies replaces the declared
+    /// formats and every later conditional one.
+    #[test]
+    fn a_pass_s_condition_narrows_the_formats_it_must_accept() {
+        let depth = depth();
+        let formats = |condition: Option<Condition>| depth.formats_where(condition.as_ref());
+        let all = vec![
+            F::Depth32FloatStencil8,
+            F::Depth24PlusStencil8,
+            F::Depth16Unorm,
+            F::Depth24PlusStencil8,
+        ];
+        assert_eq!(formats(None), all);
+        assert_eq!(formats(Some(Condition::feature("other"))), all);
+        assert_eq!(
+            formats(Some(Condition::not("tiny"))),
+            vec![
+                F::Depth32FloatStencil8,
+                F::Depth24PlusStencil8,
+                F::Depth24PlusStencil8
+            ]
+        );
+        assert_eq!(
+            formats(Some(Condition::not("tiny").and(Condition::not("shallow")))),
+            vec![F::Depth32FloatStencil8, F::Depth24PlusStencil8]
+        );
+        assert_eq!(
+            formats(Some(
+                Condition::feature("tiny").and(Condition::feature("shallow"))
+            )),
+            vec![F::Depth16Unorm]
+        );
+        assert_eq!(
+            formats(Some(
+                Condition::not("tiny").and(Condition::feature("shallow"))
+            )),
+            vec![F::Depth24PlusStencil8]
+        );
+    }
+
     #[test]
     fn undeclared_features_and_other_kinds_of_format_are_errors() {
         let mut graph = GraphBuilder::new();

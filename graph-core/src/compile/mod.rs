@@ -161,7 +161,7 @@ impl Graph {
         let mut errors: Vec<GraphError> = self.declare_errors.clone();
         errors.extend(conditioned.errors.iter().cloned());
         if errors.is_empty() {
-            validate::resources(conditioned, shapes, profile, &mut errors);
+            validate::resources(self, conditioned, shapes, versions, profile, &mut errors);
             validate::passes(conditioned, shapes, versions, profile, &mut errors);
         }
         if errors.is_empty() {

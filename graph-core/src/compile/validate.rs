@@ -14,13 +14,16 @@ use super::versions::Versions;
 /// Checks every texture and buffer description against the profile. Dropped resources
 /// are not in this graph and are not checked.
 pub(super) fn resources(
+    declared: &Graph,
     conditioned: &Conditioned,
     shapes: &[Option<TextureShape>],
+    versions: &Versions,
     profile: &DeviceProfile,
     errors: &mut Vec<GraphError>,
 ) {
     let kept = (0..shapes.len()).filter(|&r| !conditioned.resource_dropped(r));
-    for (resource, shape) in kept.map(|r| (&conditioned.graph.resources[r], &shapes[r])) {
+    for r in kept {
+        let (resource, shape) = (&conditioned.graph.resources[r], &shapes[r]);
         let name = || resource.name.clone();
         let invalid = |what: String| GraphError::InvalidResource {
             resource: resource.name.clone(),
@@ -43,24 +46,6 @@ pub(super) fn resources(
                         height: s.height,
                     });
                 }
-                let max = profile.limits.max_texture_dimension_2d;
-                if s.width > max || s.height > max {
-                    errors.push(GraphError::TooLarge {
-                        resource: name(),
-                        width: s.width,
-                        height: s.height,
-                        max,
-                        profile: profile.name.clone(),
-                    });
-                }
-                let missing = s.format.required_features() - profile.features;
-                if !missing.is_empty() {
-                    errors.push(invalid(format!(
-                        "{} needs {missing}, which {} lacks",
-                        format_name(s.format),
-                        profile.name
-                    )));
-                }
                 let max_mips = 32 - s.width.max(s.height).leading_zeros();
                 if s.mips == 0 || s.layers == 0 {
                     errors.push(invalid("mip and layer counts must be at least 1".into()));
@@ -68,12 +53,6 @@ pub(super) fn resources(
                     errors.push(invalid(format!(
                         "{}x{} has at most {max_mips} mips, {} were asked for",
                         s.width, s.height, s.mips
-                    )));
-                }
-                if s.layers > profile.limits.max_texture_array_layers {
-                    errors.push(invalid(format!(
-                        "{} layers exceed the limit of {} on {}",
-                        s.layers, profile.limits.max_texture_array_layers, profile.name
                     )));
                 }
                 if s.samples > 1 && s.mips > 1 {
@@ -84,19 +63,17 @@ pub(super) fn resources(
                         "a multisampled texture has exactly one layer".into(),
                     ));
                 }
-                if !profile.supports_samples(s.format, s.samples) {
-                    let supported = profile.sample_counts(s.format);
-                    errors.push(GraphError::UnsupportedSampleCount {
-                        resource: name(),
-                        format: format_name(s.format),
-                        samples: s.samples,
-                        supported: supported
-                            .iter()
-                            .map(|n| format!("{n}x"))
-                            .collect::<Vec<_>>()
-                            .join(", "),
-                        profile: profile.name.clone(),
-                    });
+                // A texture whose every user a condition dropped is never made for these
+                // features: whether this device could make it does not matter (a file's
+                // branch for other devices may use one that only they can make, such as
+                // a depth buffer at 2x, which lavapipe cannot).
+                let unmade = versions.users[r].is_empty()
+                    && declared
+                        .passes
+                        .iter()
+                        .any(|p| p.accesses.iter().any(|a| a.resource.index() == r));
+                if !unmade {
+                    device_misfits(&resource.name, s, profile, errors);
                 }
             }
             (ResourceDesc::Buffer(b), _) => {
@@ -118,6 +95,57 @@ pub(super) fn resources(
                 "is exported, but no pass writes it, so its contents would be undefined".into(),
             ));
         }
+    }
+}
+
+/// What `profile` cannot make of a texture of shape `s`, named `resource`.
+fn device_misfits(
+    resource: &str,
+    s: &TextureShape,
+    profile: &DeviceProfile,
+    errors: &mut Vec<GraphError>,
+) {
+    let invalid = |what: String| GraphError::InvalidResource {
+        resource: resource.to_owned(),
+        what,
+    };
+    let max = profile.limits.max_texture_dimension_2d;
+    if s.width > max || s.height > max {
+        errors.push(GraphError::TooLarge {
+            resource: resource.to_owned(),
+            width: s.width,
+            height: s.height,
+            max,
+            profile: profile.name.clone(),
+        });
+    }
+    let missing = s.format.required_features() - profile.features;
+    if !missing.is_empty() {
+        errors.push(invalid(format!(
+            "{} needs {missing}, which {} lacks",
+            format_name(s.format),
+            profile.name
+        )));
+    }
+    if s.layers > profile.limits.max_texture_array_layers {
+        errors.push(invalid(format!(
+            "{} layers exceed the limit of {} on {}",
+            s.layers, profile.limits.max_texture_array_layers, profile.name
+        )));
+    }
+    if !profile.supports_samples(s.format, s.samples) {
+        let supported = profile.sample_counts(s.format);
+        errors.push(GraphError::UnsupportedSampleCount {
+            resource: resource.to_owned(),
+            format: format_name(s.format),
+            samples: s.samples,
+            supported: supported
+                .iter()
+                .map(|n| format!("{n}x"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            profile: profile.name.clone(),
+        });
     }
 }
 

@@ -87,7 +87,7 @@ impl Condition {
             .map(|l| match l.negated {
                 true => format!("\"{}\" is set", l.feature),
                 false if super::is_device_condition(&l.feature) => format!(
-                    "\"{}\" is not set: the device lacks it (rgraph explain --profile adapter \
+                    "\"{}\" is not set for this device (rgraph explain --profile adapter \
                      shows a device's plan)",
                     l.feature
                 ),
@@ -114,6 +114,12 @@ impl Condition {
                 .iter()
                 .any(|m| m.feature == l.feature && m.negated != l.negated)
         })
+    }
+
+    /// Whether every feature set satisfying this condition satisfies `other`: each of
+    /// `other`'s literals is one of this one's.
+    pub fn implies(&self, other: &Condition) -> bool {
+        other.literals.iter().all(|m| self.literals.contains(m))
     }
 
     /// The features the condition names, as written.

@@ -17,7 +17,7 @@ mod expr;
 mod features;
 mod parse;
 
-pub use device::{is_device_condition, DEVICE_CONDITIONS};
+pub use device::{is_device_condition, DeviceTrait, DEVICE_CONDITIONS};
 pub use expr::{Condition, Literal};
 pub use features::Features;
 pub use parse::ConditionError;

@@ -231,6 +231,7 @@ impl Gpu {
             features,
             formats,
             transient_attachments: true,
+            cpu: self.info.device_type == DeviceType::Cpu,
         }
     }
 
@@ -251,6 +252,7 @@ impl DeviceProfile {
             features: adapter.features(),
             formats: format_features(adapter),
             transient_attachments: true,
+            cpu: adapter.get_info().device_type == DeviceType::Cpu,
         }
     }
 }

@@ -144,8 +144,10 @@ fn check(
     let Some(desc) = pass.resource(handle).texture().cloned() else {
         return Err(error("is not a texture".to_owned()));
     };
-    // A fallback format must fit as well: the device decides which one the pass gets.
-    if let Some(format) = desc.formats().find(|f| !want.formats.contains(f)) {
+    // A fallback format must fit as well (the device decides which one the pass gets),
+    // and a conditional one that may be chosen where the pass runs.
+    let formats = desc.formats_where(pass.condition());
+    if let Some(format) = formats.into_iter().find(|f| !want.formats.contains(f)) {
         let expected: Vec<String> = want.formats.iter().map(|f| format_name(*f)).collect();
         return Err(error(format!(
             "is {}, but {} must be {}",

@@ -80,7 +80,7 @@ pub(crate) fn fits_binding(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Resu
         false => Err(format!(
             "the visibility buffer's {} bytes ({KEY_BYTES} per sample) exceed this device's \
              storage binding limit of {limit} bytes: render smaller or with fewer samples, or \
-             with visibility_msaa_4x.ron, which rasterises into textures",
+             with deferred_msaa_4x_lean.ron, whose G-buffer is textures",
             buffer.size()
         )),
     }

@@ -148,7 +148,8 @@ impl Plugin for Fxaa {
         // The shader's luma depends on whether reads decode sRGB, fixed at setup: every
         // format the device may give the texture must agree.
         let linear = desc.format.is_srgb();
-        if desc.formats().any(|f| f.is_srgb() != linear) {
+        let formats = desc.formats_where(pass.condition());
+        if formats.iter().any(|f| f.is_srgb() != linear) {
             return Err(PluginError::Slot {
                 slot: "ldr".to_owned(),
                 resource: slots.resource("ldr").unwrap_or("ldr").to_owned(),

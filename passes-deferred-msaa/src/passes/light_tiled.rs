@@ -40,10 +40,12 @@
 //!   scene's geometry (group 2) and their materials sampled from the scene's texture
 //!   table (group 3, made on the first frame: GpuScene::texture_table_group), edge pixels
 //!   are those whose samples show different triangles, and
-//!   `shading: adaptive` shades each triangle once, exactly (pipelines/visibility_msaa_4x.ron);
+//!   `shading: adaptive` shades each triangle once, exactly (pipelines/visibility_msaa_4x.ron
+//!   on CPU adapters);
 //! - `samples` instead of `ids` and `depth`: a visibility buffer rasterised in compute
 //!   (passes/visibility_compute.rs), depth and ID per sample in one graph buffer (group 1,
-//!   binding 8), whose size gives the sample count (pipelines/visibility_compute_4x.ron).
+//!   binding 8), whose size gives the sample count (pipelines/visibility_msaa_4x.ron on
+//!   GPUs).
 //!
 //! One workgroup of `tile` x `tile` invocations per tile, one per pixel
 //! (light_tiled.wgsl says how): it classifies each pixel as edge or not with

@@ -139,9 +139,8 @@ impl Setup<'_> {
     ) -> Result<Option<Specialisation>, FrameError> {
         let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::General)?;
         let mut prepared = match self.session.prepare(pipeline, self.size) {
-            // A file that makes its output only for some scenes (visibility_compute_4x:
-            // those whose textures fit its table) has no general plan to set beside the
-            // scene's.
+            // A file that makes its output only for some scenes (under a condition that
+            // every feature at once fails) has no general plan to set beside the scene's.
             Err(FrameError::NotForScene { .. }) => return Ok(None),
             prepared => prepared?,
         };

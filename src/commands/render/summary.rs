@@ -62,12 +62,21 @@ pub fn text(plan: &Plan, report: &FrameReport, specialised: bool) -> String {
         bytes(plan.memory.logical_bytes),
         bytes(plan.memory.physical_bytes),
     ));
-    if specialised && !plan.features.is_empty() {
+    // The device conditions are the device's, whatever --no-specialise says.
+    let (device, scene): (Vec<&str>, Vec<&str>) = plan
+        .features
+        .iter()
+        .map(String::as_str)
+        .partition(|f| graph_core::is_device_condition(f));
+    if specialised && !scene.is_empty() {
         lines.push(format!(
             "specialised to the scene's features: {} (--no-specialise compiles for every \
              feature)",
-            plan.features.join(", ")
+            scene.join(", ")
         ));
+    }
+    if !device.is_empty() {
+        lines.push(format!("device conditions: {}", device.join(", ")));
     }
     // Passes a false condition dropped are the file's other variants, not waste.
     for (dropped, label) in [(false, "culled"), (true, "dropped by conditions")] {

@@ -80,7 +80,7 @@ impl TileBins {
             return Err(format!(
                 "the scene's {triangles} opaque triangles need {bytes} bytes of tile-bin \
                  {what}; this device binds at most {limit}: render with \
-                 visibility_msaa_4x.ron, whose raster pass is the hardware's"
+                 deferred_msaa_4x_lean.ron, whose raster pass is the hardware's"
             ));
         }
         let tile_words = u64::from(tiles) * 4;
