@@ -26,63 +26,35 @@ const STEP: f32 = 1.0 / 255.0;
 /// CPU and GPU adapters both), with the name of the single-sampled HDR image it tone-maps
 /// (`resolved`, or the lit HDR target in the files without a resolve).
 const PIPELINES: [(PipelineFile, &str); 17] = [
-    (
-        PipelineFile::for_device("deferred_gbuffer_resolve_4x.ron"),
-        "hdr_lit",
-    ),
-    (PipelineFile::for_device("deferred_msaa_4x.ron"), "resolved"),
-    (
-        PipelineFile::for_device("deferred_msaa_4x_adaptive.ron"),
-        "resolved",
-    ),
-    (
-        PipelineFile::for_device("deferred_msaa_4x_centroid.ron"),
-        "resolved",
-    ),
-    (
-        PipelineFile::for_device("deferred_msaa_4x_coverage.ron"),
-        "resolved",
-    ),
-    (
-        PipelineFile::for_device("deferred_msaa_4x_sample_mask.ron"),
-        "resolved",
-    ),
-    (
-        PipelineFile::for_device("deferred_msaa_4x_tiled.ron"),
-        "resolved",
-    ),
-    (
-        PipelineFile::for_device("deferred_msaa_4x_tonemapped_resolve.ron"),
-        "resolved",
-    ),
-    (PipelineFile::for_device("deferred_noaa.ron"), "hdr_lit"),
-    (
-        PipelineFile::for_device("deferred_noaa_tiled.ron"),
-        "resolved",
-    ),
-    (
-        PipelineFile::for_device("deferred_onthefly_resolve_4x.ron"),
-        "resolved",
-    ),
-    (
-        PipelineFile::for_device("deferred_per_sample_4x.ron"),
-        "resolved",
-    ),
-    (
-        PipelineFile::for_device("deferred_per_sample_4x_tiled.ron"),
-        "resolved",
-    ),
-    (PipelineFile::for_device("forward_msaa_4x.ron"), "resolved"),
-    (PipelineFile::for_device("reference_ssaa16.ron"), "resolved"),
-    (
-        PipelineFile::for_device("visibility_msaa_4x.ron"),
-        "resolved",
-    ),
+    on_device("deferred_gbuffer_resolve_4x.ron", "hdr_lit"),
+    on_device("deferred_msaa_4x.ron", "resolved"),
+    on_device("deferred_msaa_4x_adaptive.ron", "resolved"),
+    on_device("deferred_msaa_4x_centroid.ron", "resolved"),
+    on_device("deferred_msaa_4x_coverage.ron", "resolved"),
+    on_device("deferred_msaa_4x_sample_mask.ron", "resolved"),
+    on_device("deferred_msaa_4x_tiled.ron", "resolved"),
+    on_device("deferred_msaa_4x_tonemapped_resolve.ron", "resolved"),
+    on_device("deferred_noaa.ron", "hdr_lit"),
+    on_device("deferred_noaa_tiled.ron", "resolved"),
+    on_device("deferred_onthefly_resolve_4x.ron", "resolved"),
+    on_device("deferred_per_sample_4x.ron", "resolved"),
+    on_device("deferred_per_sample_4x_tiled.ron", "resolved"),
+    on_device("forward_msaa_4x.ron", "resolved"),
+    on_device("reference_ssaa16.ron", "resolved"),
+    on_device("visibility_msaa_4x.ron", "resolved"),
     (
         PipelineFile::gpu_branch("visibility_msaa_4x.ron"),
         "resolved",
     ),
 ];
+
+/// File `name` compiled for the tests' adapter, with the HDR image `image` it tone-maps.
+const fn on_device(
+    name: &'static str,
+    image: &'static str,
+) -> (PipelineFile<'static>, &'static str) {
+    (PipelineFile::for_device(name), image)
+}
 
 /// A square quad of the test scene.
 #[derive(Clone, Copy)]
