@@ -151,3 +151,24 @@ pub fn color_target_cost(format: TextureFormat) -> (u32, u32) {
     let align = format.target_component_alignment().unwrap_or(1);
     (bytes, align)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::DeviceProfile;
+
+    /// A profile file saved before `cpu` existed (`rgraph adapters --save-profile`) reads as
+    /// a GPU's, and a CPU adapter's keeps the flag through a save and load.
+    #[test]
+    fn profiles_saved_without_cpu_read_as_a_gpu_s() {
+        let mut json = serde_json::to_value(DeviceProfile::webgpu()).unwrap();
+        json.as_object_mut().unwrap().remove("cpu");
+        let old: DeviceProfile = serde_json::from_value(json).unwrap();
+        assert!(!old.cpu);
+        let cpu = DeviceProfile {
+            cpu: true,
+            ..DeviceProfile::webgpu()
+        };
+        let text = serde_json::to_string(&cpu).unwrap();
+        assert!(serde_json::from_str::<DeviceProfile>(&text).unwrap().cpu);
+    }
+}
