@@ -265,7 +265,7 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
 /// A visibility buffer's tiled pass dispatches three entry points (the list's reset, the
 /// tiles, the listed edge pixels), and the compile checks each: a device allowing 128
 /// invocations refuses the tiles' 16x16 even though the edge dispatch, the one with the
-/// most workgroup memory, runs 64; explain lists all three.
+/// most workgroup memory, runs 128; explain lists all three.
 #[test]
 fn every_entry_point_the_tiled_pass_dispatches_is_checked() {
     let (registry, path, text) = pipeline_file("visibility_msaa_4x.ron");
@@ -277,7 +277,7 @@ fn every_entry_point_the_tiled_pass_dispatches_is_checked() {
     for line in [
         "workgroup: 1x1x1 (cs_edge_pixels_reset), 0 bytes of workgroup memory",
         "workgroup: 16x16x1 (cs_light_tiled), 1200 bytes of workgroup memory",
-        "workgroup: 64x1x1 (cs_light_edge_pixels), 4256 bytes of workgroup memory",
+        "workgroup: 128x1x1 (cs_light_edge_pixels), 7328 bytes of workgroup memory",
     ] {
         assert!(explained.contains(line), "{line} not in:\n{explained}");
     }

@@ -59,7 +59,7 @@
 //! A visibility buffer shaded at more than one sample per pixel knows its edge pixels
 //! from one flag or ID comparison: the tiles' dispatch lists them into a buffer the pass
 //! owns (4 bytes a pixel of the output, which frames report as the pass's own) and leaves
-//! them out; a second dispatch lights them in runs of 64 listed pixels, each run culling
+//! them out; a second dispatch lights them in runs of 128 listed pixels, each run culling
 //! lights for itself as a tile does, each pixel an invocation's, its fragments in turn,
 //! and resolves them (light_edges_listed.wgsl; bench/results/gpu/visibility-edges says
 //! why).

@@ -50,8 +50,12 @@ fn cs_edge_pixels_reset() {
 }
 
 // cs_light_edge_pixels' workgroup: a run of EDGE_INVOCATIONS listed pixels (near each
-// other, as tiles list them), culled for together as a tile is.
-const EDGE_INVOCATIONS: u32 = min(THREADS, 64u);
+// other, as tiles list them), culled for together as a tile is. On the H200 at 3840x2160
+// dense's 4x tiled pass takes 0.74 ms with runs of 128, 0.77 with 64, 0.81 with 32 and
+// 0.75 with 256 (where 256 lights' goes from 1.04 to 1.08; 1.05 with 128): a run's
+// culling is shared by more pixels, and its rectangle still fits its lights
+// (bench/results/gpu/visibility-merged/experiments.md).
+const EDGE_INVOCATIONS: u32 = min(THREADS, 128u);
 var<workgroup> edge_total: u32;
 // The run's pixels' bounding rectangle: smallest x and y, largest x and y.
 var<workgroup> run_bounds: array<atomic<u32>, 4>;
