@@ -12,7 +12,8 @@ use super::conditions::Conditioned;
 use super::versions::Versions;
 
 /// Checks every texture and buffer description against the profile. Dropped resources
-/// are not in this graph and are not checked.
+/// are not in this graph and are not checked; a texture whose every user was dropped
+/// (`declared` says who uses it) is checked as a description, not against the device.
 pub(super) fn resources(
     declared: &Graph,
     conditioned: &Conditioned,
