@@ -30,6 +30,13 @@ pub enum AspectAccess<T> {
     ClearByFormat(ByFormat<T>),
     /// Written on top of the incoming contents.
     Load,
+    /// Written where the pass draws, over contents nothing reads: the incoming version is
+    /// not read (as with `Clear`), and what the pass leaves undrawn is undefined, so later
+    /// passes must read only what it draws. For a pass that draws every texel later passes
+    /// read (a full-screen draw, or one scissored to where they read): a clear of a
+    /// multisampled target goes through the ROPs, which on a chip with few of them (the
+    /// H200) costs as much as a full-screen pass.
+    Overwrite,
     /// The format has no such aspect (the stencil of `depth32float`, the depth of
     /// `stencil8`): neither read nor written, so it orders nothing.
     /// [`PassBuilder::depth_stencil`](crate::PassBuilder::depth_stencil) turns a `ReadOnly`
@@ -41,7 +48,10 @@ impl<T> AspectAccess<T> {
     pub fn writes(&self) -> bool {
         matches!(
             self,
-            AspectAccess::Clear(_) | AspectAccess::ClearByFormat(_) | AspectAccess::Load
+            AspectAccess::Clear(_)
+                | AspectAccess::ClearByFormat(_)
+                | AspectAccess::Load
+                | AspectAccess::Overwrite
         )
     }
     pub fn reads(&self) -> bool {

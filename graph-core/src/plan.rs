@@ -63,6 +63,9 @@ pub struct PlannedPass {
 pub enum Load<T> {
     Clear(T),
     Load,
+    /// Neither cleared nor read: the pass overwrites what later passes read
+    /// ([`AspectAccess::Overwrite`](crate::AspectAccess::Overwrite)); the device loads.
+    Overwrite,
 }
 
 /// Whether an attachment's contents are kept after the pass.

@@ -165,3 +165,37 @@ fn a_depth_only_format_has_no_stencil_ops() {
         )
     );
 }
+
+/// An overwrite begins the resource as a clear does (it needs no earlier writer), and the
+/// plan says the device neither clears nor reads: what the pass leaves undrawn is
+/// undefined, which explain states.
+#[test]
+fn an_overwrite_begins_a_texture_without_clearing_it() {
+    let mut g = GraphBuilder::new();
+    let depth = g.create_texture("depth", tex(Depth32Float));
+    let out = g.create_texture("out", tex(Rgba8Unorm));
+    let depth = g.add_render_pass("keys").depth_stencil(
+        depth,
+        AspectAccess::Overwrite,
+        AspectAccess::Absent,
+    );
+    let mut p = g.add_render_pass("test against it");
+    let out = p.color_output(out, CLEAR);
+    p.depth_stencil(depth, AspectAccess::ReadOnly, AspectAccess::Absent);
+    g.export(out);
+    let plan = plan(&g.build());
+
+    let ds = plan.pass("keys").unwrap().depth_stencil.clone().unwrap();
+    assert_eq!(
+        ds.depth,
+        Some(Ops {
+            load: Load::Overwrite,
+            store: Store::Store,
+        })
+    );
+    let explained = graph_core::explain::text(&plan);
+    assert!(
+        explained.contains("depth-stencil: depth depth overwrite (not cleared) -> store"),
+        "{explained}"
+    );
+}

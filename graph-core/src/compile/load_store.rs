@@ -103,6 +103,10 @@ fn aspect_ops<T>(access: AspectAccess<T>, format: TextureFormat, store: Store) -
             load: Load::Load,
             store,
         }),
+        AspectAccess::Overwrite => Some(Ops {
+            load: Load::Overwrite,
+            store,
+        }),
     }
 }
 

@@ -264,6 +264,7 @@ fn ops<T: Copy>(ops: &Ops<T>, value: impl Fn(T) -> String) -> String {
     let load = match ops.load {
         Load::Clear(v) => format!("clear {}", value(v)),
         Load::Load => "load".into(),
+        Load::Overwrite => "overwrite (not cleared)".into(),
     };
     let store = match ops.store {
         Store::Store => "store",

@@ -668,7 +668,9 @@ fn operations<T: Copy, V>(ops: &Ops<T>, value: impl Fn(T) -> V) -> wgpu::Operati
     wgpu::Operations {
         load: match ops.load {
             Load::Clear(v) => wgpu::LoadOp::Clear(value(v)),
-            Load::Load => wgpu::LoadOp::Load,
+            // What the pass leaves undrawn is never read: a load costs nothing, where a
+            // clear costs a full-screen pass's writes (wgpu initialises the memory once).
+            Load::Load | Load::Overwrite => wgpu::LoadOp::Load,
         },
         store: match ops.store {
             Store::Store => wgpu::StoreOp::Store,

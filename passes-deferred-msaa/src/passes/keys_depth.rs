@@ -15,12 +15,17 @@
 //! the depth test always passing: the key's high word is the reversed-Z clip depth the
 //! rasteriser interpolated at the sample (0, the far depth, where nothing was drawn), so
 //! a float depth format holds it exactly and passes reading the buffer take reversed-Z,
-//! as they do for a float depth buffer without a `reversed_z` parameter. Stencil, where
-//! the format has it, is cleared to 0.
+//! as they do for a float depth buffer without a `reversed_z` parameter.
+//!
+//! The buffer is loaded, never cleared (stencil too, where the format has one: nothing
+//! tests it): the draw writes every sample the transparent pass can test, and what it
+//! leaves is never read. A clear of a multisampled target goes through the ROPs, which on
+//! the H200 cost as much as a full-screen pass (2.37 of this pass's 2.40 ms on
+//! FlightHelmet at 3840x2160 4x, bench/results/gpu/visibility-merged/clears.md).
 //!
 //! With `extent: blended` the draw covers only the pixels the scene's blended meshes may
 //! cover (the bounds of their world boxes on screen, [`GpuScene::blended_rect`]), and
-//! none when none is in view; elsewhere the depth stays cleared to the far depth. For a
+//! none when none is in view; elsewhere the depth is whatever the texture held. For a
 //! depth buffer only the transparent pass reads: shaded once per sample, the draw costs
 //! as much as a 4x raster pass's sample writes (5.2 ms of FlightHelmet's 13.1 at 2160p on
 //! the H200, bench/results/gpu/visibility-tile-raster), where the blended meshes may
@@ -31,9 +36,8 @@
 use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{BufferHandle, PassBuilder, PassKind, TextureHandle};
+use graph_core::{AspectAccess, BufferHandle, PassBuilder, PassKind, TextureHandle};
 
-use crate::common::depth::DepthRule;
 use crate::common::plugin::{Recording, Shared};
 use crate::common::textures::{self, Want};
 use crate::common::visibility_samples;
@@ -55,7 +59,8 @@ pub enum Extent {
     /// Every pixel.
     #[default]
     Full,
-    /// Those the scene's blended meshes may cover; the far depth elsewhere.
+    /// Those the scene's blended meshes may cover; elsewhere whatever the texture held
+    /// (no blended fragment lies there to test it).
     Blended,
 }
 
@@ -93,8 +98,16 @@ impl Plugin for KeysDepth {
         let (keys, samples) = visibility_samples::read(pass, slots, "samples")?;
         let want =
             Want::new("the visibility buffer's depth", textures::DEPTH_FLOAT).samples(samples);
+        // Loaded, not cleared: the draw writes every sample the transparent pass tests
+        // (those of the pixels blended meshes may cover), and what it leaves is never read.
+        // A clear of a multisampled target goes through the ROPs: on the H200 at 3840x2160
+        // 4x it cost 2.37 of this pass's 2.40 ms (FlightHelmet).
         let (depth, _) = textures::output(slots, pass, "depth", want, |pass, h, _| {
-            DepthRule::new(Some(true)).start(pass, h)
+            let stencil = match pass.resource(h).texture().map(|d| d.format) {
+                Some(format) if format.has_stencil_aspect() => AspectAccess::Overwrite,
+                _ => AspectAccess::Absent,
+            };
+            pass.depth_stencil(h, AspectAccess::Overwrite, stencil)
         })?;
         let draw = KeysDepthDraw {
             source: shaders::KEYS_DEPTH.compose(samples)?.source().to_owned(),
