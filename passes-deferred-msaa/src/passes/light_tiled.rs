@@ -191,8 +191,10 @@ const EDGES_RESET: &str = "cs_edge_pixels_reset";
 const EDGES: &str = "cs_light_edge_pixels";
 
 /// The workgroups lighting the listed edge pixels, each going through the list's runs in
-/// turn: on a GPU enough to fill a large one (4096 x 64 invocations); on a CPU, which runs
-/// workgroups one after another on its threads and pays for each, CPU_EDGE_WORKGROUPS
+/// turn: on a GPU enough to fill a large one (4096 x 128 invocations; 2048 measured
+/// 0.02 ms slower on the H200, 8192 the same: bench/results/gpu/visibility-merged); on a
+/// CPU, which runs workgroups one after another on its threads and pays for each,
+/// CPU_EDGE_WORKGROUPS
 /// (lavapipe's tiled pass of visibility_msaa_4x on dense at 640x360: 211 ms with 4096,
 /// 113-123 with 64, about the same with 16 or 256).
 #[cfg(feature = "gpu")]
