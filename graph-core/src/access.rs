@@ -16,6 +16,9 @@ pub enum ColorLoad {
     Clear([f64; 4]),
     /// Keep the previous contents (the pass reads the version it writes over).
     Load,
+    /// Neither clear nor read: the pass draws every texel later passes read (a full-screen
+    /// draw), as [`AspectAccess::Overwrite`] for depth.
+    Overwrite,
 }
 
 /// How a pass uses one aspect (depth or stencil) of a depth-stencil attachment.

@@ -199,3 +199,23 @@ fn an_overwrite_begins_a_texture_without_clearing_it() {
         "{explained}"
     );
 }
+
+/// A color target a full-screen pass draws whole is overwritten, not cleared, as a depth
+/// aspect is, and reads nothing: the pass before it that wrote the texture is culled.
+#[test]
+fn a_color_overwrite_neither_clears_nor_reads() {
+    let mut g = GraphBuilder::new();
+    let target = g.create_texture("target", tex(Rgba8Unorm));
+    let cleared = g.add_render_pass("earlier").color_output(target, CLEAR);
+    let drawn = g
+        .add_render_pass("full screen")
+        .color_output(cleared, ColorLoad::Overwrite);
+    g.export(drawn);
+    let plan = plan(&g.build());
+
+    assert_eq!(
+        color(&plan, "full screen")[0].ops,
+        ops(Load::Overwrite, Store::Store)
+    );
+    assert!(plan.pass("earlier").is_none(), "{:?}", plan.passes);
+}

@@ -58,6 +58,7 @@ pub(super) fn infer(
                             load: match load {
                                 ColorLoad::Clear(c) => Load::Clear(c),
                                 ColorLoad::Load => Load::Load,
+                                ColorLoad::Overwrite => Load::Overwrite,
                             },
                             store: store(r, access.written),
                         },

@@ -111,6 +111,24 @@ pub(crate) fn color_output(
     })
 }
 
+/// [`color_output`] for a pass that draws every pixel of its target (a full-screen
+/// triangle, nothing discarded): begun without a clear, which on a chip with few ROPs
+/// costs as much as the pass's own writes (bench/results/gpu/visibility-merged/clears.md).
+pub(crate) fn covered_output(
+    slots: &mut Slots<'_>,
+    pass: &mut PassBuilder<'_>,
+    slot: &str,
+    want: Want,
+) -> Result<(TextureHandle, TextureDesc), PluginError> {
+    output(slots, pass, slot, want, |pass, handle, modifies| {
+        let load = match modifies {
+            true => ColorLoad::Load,
+            false => ColorLoad::Overwrite,
+        };
+        pass.color_output(handle, load)
+    })
+}
+
 /// An output slot the pass adds to (`hdr` of the light passes, `depth` of the edge pass):
 /// the file must list it in `inputs` as well.
 pub(crate) fn must_modify(

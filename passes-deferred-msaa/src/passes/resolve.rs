@@ -102,7 +102,7 @@ impl Plugin for Resolve {
         let want = Want::new("the lit HDR target", textures::HDR);
         let (input, desc) = textures::sampled(slots, pass, "hdr", want, 0)?;
         let want = Want::new("the resolved HDR target", textures::HDR).samples(1);
-        let (target, _) = textures::color_output(slots, pass, "resolved", want, [0.0; 4])?;
+        let (target, _) = textures::covered_output(slots, pass, "resolved", want)?;
         let mode = match params.mode {
             ResolveMode::Box => 0.0,
             ResolveMode::Tonemapped => 1.0,

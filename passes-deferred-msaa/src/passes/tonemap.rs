@@ -150,7 +150,7 @@ impl Plugin for Tonemap {
         match params.stage {
             TonemapStage::Fragment => {
                 let want = Want::new("the displayed output", textures::DISPLAY).samples(1);
-                let (target, _) = textures::color_output(slots, pass, "color", want, [0.0; 4])?;
+                let (target, _) = textures::covered_output(slots, pass, "color", want)?;
                 let draw = Fullscreen {
                     label: "tonemap",
                     source,
