@@ -134,7 +134,7 @@ impl Plugin for DebugView {
             inputs.push(input);
         }
         let want = Want::new("a debug view", textures::DISPLAY).samples(1);
-        let (target, _) = textures::color_output(slots, pass, "color", want, [0.0, 0.0, 0.0, 1.0])?;
+        let (target, _) = textures::covered_output(slots, pass, "color", want)?;
         let draw = Fullscreen {
             label: "debug_view",
             source: shaders::DEBUG

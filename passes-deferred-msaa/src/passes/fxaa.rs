@@ -159,7 +159,7 @@ impl Plugin for Fxaa {
         }
         input.texels = Texels::Filtered { sampler: 1 };
         let want = Want::new("the anti-aliased output", textures::DISPLAY).samples(1);
-        let (target, _) = textures::color_output(slots, pass, "color", want, [0.0; 4])?;
+        let (target, _) = textures::covered_output(slots, pass, "color", want)?;
         let draw = Fullscreen {
             label: "fxaa",
             source: shaders::FXAA

@@ -185,7 +185,7 @@ impl Plugin for Ssao {
         let want = Want::new("the G-buffer's normals", textures::NORMAL).samples(samples);
         let (normal, _) = textures::sampled(slots, pass, "normal", want, 0)?;
         let want = Want::new("the ambient occlusion", AO).samples(1);
-        let (target, ao) = textures::color_output(slots, pass, "ao", want, [1.0; 4])?;
+        let (target, ao) = textures::covered_output(slots, pass, "ao", want)?;
         let scale = texel_scale(slots, "ao", gbuffer.size, ao.size, true)?;
         let draw = Fullscreen {
             label: "ssao",
@@ -239,7 +239,7 @@ impl Plugin for SsaoBlur {
             true => ("color", Want::new("the AO debug view", textures::DISPLAY)),
             false => ("ao", Want::new("the ambient occlusion", AO)),
         };
-        let (target, out) = textures::color_output(slots, pass, slot, want.samples(1), [1.0; 4])?;
+        let (target, out) = textures::covered_output(slots, pass, slot, want.samples(1))?;
         texel_scale(slots, slot, gbuffer.size, out.size, false)?;
         let draw = Fullscreen {
             label: "ssao_blur",
