@@ -42,10 +42,7 @@ impl DepthRule {
     /// (depth32float has none: the lean G-buffer and the visibility buffer, read by the
     /// tiled pass, need no stencil). Returns the written version.
     pub fn start(self, pass: &mut PassBuilder<'_>, depth: TextureHandle) -> TextureHandle {
-        let stencil = match pass.resource(depth).texture().map(|d| d.format) {
-            Some(format) if !format.has_stencil_aspect() => AspectAccess::Absent,
-            _ => AspectAccess::Clear(0),
-        };
+        let stencil = stencil_where_present(pass, depth, AspectAccess::Clear(0));
         pass.depth_stencil(depth, self.clear(), stencil)
     }
 
@@ -58,6 +55,27 @@ impl DepthRule {
                 AspectAccess::ClearByFormat(ByFormat(|format| far_depth(format_convention(format))))
             }
         }
+    }
+}
+
+/// Binds `depth` as the attachment of a pass that draws every depth later passes test:
+/// depth and stencil (where the format has one: nothing such a pass's readers test)
+/// overwritten, not cleared ([`AspectAccess::Overwrite`]: a multisampled clear costs the
+/// H200 as much as a full-screen pass). Returns the written version.
+pub(crate) fn overwrite(pass: &mut PassBuilder<'_>, depth: TextureHandle) -> TextureHandle {
+    let stencil = stencil_where_present(pass, depth, AspectAccess::Overwrite);
+    pass.depth_stencil(depth, AspectAccess::Overwrite, stencil)
+}
+
+/// `access` for the stencil of `depth`, or `Absent` where its format has none.
+fn stencil_where_present(
+    pass: &PassBuilder<'_>,
+    depth: TextureHandle,
+    access: AspectAccess<u32>,
+) -> AspectAccess<u32> {
+    match pass.resource(depth).texture().map(|d| d.format) {
+        Some(format) if !format.has_stencil_aspect() => AspectAccess::Absent,
+        _ => access,
     }
 }
 

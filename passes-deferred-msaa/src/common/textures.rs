@@ -101,14 +101,7 @@ pub(crate) fn color_output(
     want: Want,
     clear: [f64; 4],
 ) -> Result<(TextureHandle, TextureDesc), PluginError> {
-    output(slots, pass, slot, want, |pass, handle, modifies| {
-        let load = if modifies {
-            ColorLoad::Load
-        } else {
-            ColorLoad::Clear(clear)
-        };
-        pass.color_output(handle, load)
-    })
+    attached_output(slots, pass, slot, want, ColorLoad::Clear(clear))
 }
 
 /// [`color_output`] for a pass that draws every pixel of its target (a full-screen
@@ -120,11 +113,20 @@ pub(crate) fn covered_output(
     slot: &str,
     want: Want,
 ) -> Result<(TextureHandle, TextureDesc), PluginError> {
+    attached_output(slots, pass, slot, want, ColorLoad::Overwrite)
+}
+
+/// The next color attachment, beginning as `fresh` says where the pass writes a new
+/// version, loaded where it adds to its input.
+fn attached_output(
+    slots: &mut Slots<'_>,
+    pass: &mut PassBuilder<'_>,
+    slot: &str,
+    want: Want,
+    fresh: ColorLoad,
+) -> Result<(TextureHandle, TextureDesc), PluginError> {
     output(slots, pass, slot, want, |pass, handle, modifies| {
-        let load = match modifies {
-            true => ColorLoad::Load,
-            false => ColorLoad::Overwrite,
-        };
+        let load = if modifies { ColorLoad::Load } else { fresh };
         pass.color_output(handle, load)
     })
 }

@@ -36,8 +36,9 @@
 use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{AspectAccess, BufferHandle, PassBuilder, PassKind, TextureHandle};
+use graph_core::{BufferHandle, PassBuilder, PassKind, TextureHandle};
 
+use crate::common::depth;
 use crate::common::plugin::{Recording, Shared};
 use crate::common::textures::{self, Want};
 use crate::common::visibility_samples;
@@ -98,16 +99,11 @@ impl Plugin for KeysDepth {
         let (keys, samples) = visibility_samples::read(pass, slots, "samples")?;
         let want =
             Want::new("the visibility buffer's depth", textures::DEPTH_FLOAT).samples(samples);
-        // Loaded, not cleared: the draw writes every sample the transparent pass tests
-        // (those of the pixels blended meshes may cover), and what it leaves is never read.
-        // A clear of a multisampled target goes through the ROPs: on the H200 at 3840x2160
-        // 4x it cost 2.37 of this pass's 2.40 ms (FlightHelmet).
+        // Overwritten: the draw writes every sample the transparent pass tests (those of
+        // the pixels blended meshes may cover); its clear was 2.37 of this pass's 2.40 ms
+        // on the H200 (FlightHelmet at 3840x2160 4x).
         let (depth, _) = textures::output(slots, pass, "depth", want, |pass, h, _| {
-            let stencil = match pass.resource(h).texture().map(|d| d.format) {
-                Some(format) if format.has_stencil_aspect() => AspectAccess::Overwrite,
-                _ => AspectAccess::Absent,
-            };
-            pass.depth_stencil(h, AspectAccess::Overwrite, stencil)
+            depth::overwrite(pass, h)
         })?;
         let draw = KeysDepthDraw {
             source: shaders::KEYS_DEPTH.compose(samples)?.source().to_owned(),
