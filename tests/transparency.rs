@@ -345,6 +345,88 @@ fn a_second_transparent_pass_accumulates_over_the_first() {
     }
 }
 
+/// `extent: blended` (the shipped pipelines') begins the accumulation by a draw over the
+/// blended meshes' rectangle instead of a clear (explain shows it overwritten, not
+/// cleared), and the composite draws only there: with a panel in a corner of the view the
+/// image is `extent: full`'s bit for bit and the pixels far from the panel are the
+/// background exactly (the composite never reads the accumulation there, which wgpu
+/// begins as zero: transmittance 0 would blacken them); with the panel out of view every
+/// pixel is the background. Forward MSAA and the visibility buffer's GPU branch (whose
+/// keys_depth the edit to `extent: full` turns full too).
+#[test]
+fn the_accumulation_begins_and_composites_over_the_blended_rectangle_only() {
+    let panel = |x: f32| Panel {
+        center: [x, 0.8, 0.0],
+        ..Panel::unlit(0.0, 0.2, [1.0, 0.0, 0.0, 0.5], true)
+    };
+    let corner = panels_file(
+        "blend_rect_corner",
+        &[Panel::background([0.0, 0.0, 1.0]), panel(-0.8)],
+    );
+    let aside = panels_file(
+        "blend_rect_aside",
+        &[Panel::background([0.0, 0.0, 1.0]), panel(5.0)],
+    );
+    let blended = "params: (extent: blended)";
+    let gpu = gpu();
+    for pipeline in [
+        PipelineFile::for_device("forward_msaa_4x.ron"),
+        PipelineFile::gpu_branch("visibility_msaa_4x.ron"),
+    ] {
+        let render = |file: &str, extent: &'static str| {
+            let scene = load(file);
+            Render::new(pipeline, file, SIZE)
+                .with_scene(scene.clone())
+                .features(SceneFeatures::of(&scene).names())
+                .edit(blended, extent)
+                .export_resolved()
+                .run(&gpu)
+                .hdr(&gpu, "resolved")
+        };
+        let full = render(&corner, "params: (extent: full)");
+        let rect = render(&corner, blended);
+        let differences = crate::deferred_support::hdr_differences(
+            &full,
+            &rect,
+            SIZE.0,
+            ("extent: full", "extent: blended"),
+        );
+        assert!(
+            differences.is_empty(),
+            "{pipeline}: {} pixels differ, first {:?}",
+            differences.len(),
+            &differences[..differences.len().min(4)]
+        );
+        // The panel covers x, y in 6..16 (its centre 12 pixels from the top left corner).
+        let p = rect[(11 * SIZE.0 + 11) as usize];
+        assert!(
+            near([p[0], p[1], p[2]], [0.5, 0.0, 0.5], STEP),
+            "{pipeline}: {p:?}"
+        );
+        for (x, y) in [(40, 40), (61, 2), (2, 61), (61, 61)] {
+            let p = rect[(y * SIZE.0 + x) as usize];
+            assert_eq!(p[..3], [0.0, 0.0, 1.0], "{pipeline}: ({x}, {y})");
+        }
+        let out_of_view = render(&aside, blended);
+        for (i, p) in out_of_view.iter().enumerate() {
+            assert_eq!(p[..3], [0.0, 0.0, 1.0], "{pipeline}: pixel {i}");
+        }
+    }
+    let explain = crate::cli_support::rgraph(&[
+        "explain",
+        "--pipeline",
+        "pipelines/forward_msaa_4x.ron",
+        "--scene",
+        &corner,
+        "--size",
+        "64x64",
+    ])
+    .expect(0)
+    .stdout;
+    let shown = "color 0: transparent overwrite (not cleared)";
+    assert!(explain.contains(shown), "no {shown:?} in:\n{explain}");
+}
+
 /// A lit BLEND panel (Lambert plus GGX under a point light, alpha 0.4, over a lit opaque
 /// background) renders alike in deferred (fragment and tiled lighting) and forward: their
 /// 8-bit images agree within 2/255 on at least 99% of pixels, and the panel is neither

@@ -40,6 +40,7 @@ use crate::common::plugin::Shared;
 use crate::host::Host;
 
 pub use crate::common::edge_detection::{Detector, EdgeDetection};
+pub use crate::common::extent::Extent;
 pub use crate::passes::auto_exposure::{AutoExposure, AutoExposureParams};
 pub use crate::passes::debug_view::{DebugView, DebugViewParams, View};
 pub use crate::passes::depth_downsample::{DepthDownsample, DepthDownsampleParams, MAX_TAPS};

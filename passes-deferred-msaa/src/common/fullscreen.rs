@@ -5,6 +5,7 @@
 use graph_core::types::BlendState;
 use graph_core::TextureHandle;
 
+use super::extent::Extent;
 use super::plugin::Recording;
 use super::textures::Input;
 
@@ -21,6 +22,9 @@ pub(crate) struct Fullscreen {
     pub reads_scene: bool,
     /// The color attachment, if any.
     pub target: Option<TextureHandle>,
+    /// Which of its pixels the draw covers (scissored; with `Blended` the pass needs a
+    /// scene, and draws nothing when no blended mesh is in view).
+    pub extent: Extent,
     /// A depth-stencil attachment whose stencil the pass marks: `Replace` with the
     /// reference 0x80 through write mask 0x80, wherever the shader does not discard.
     pub stencil_mark: Option<TextureHandle>,
@@ -43,6 +47,7 @@ mod gpu {
     use graph_core::TextureHandle;
 
     use super::Fullscreen;
+    use crate::common::extent::Extent;
     use crate::common::gpu::{per_device, InputPass, PipelineDesc, EDGE_STENCIL};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
@@ -67,6 +72,21 @@ mod gpu {
             let Some(scene) = scenes.for_frame_if(draw.reads_scene, resources) else {
                 return;
             };
+            if draw.extent == Extent::Blended {
+                let Some(rect_scene) = scenes.for_frame(resources) else {
+                    return;
+                };
+                let target = draw.target.or(draw.stencil_mark);
+                let size = target.map_or(resources.output_size(), |h| {
+                    let shape = resources.shape(h);
+                    (shape.width, shape.height)
+                });
+                let Some(rect) = draw.extent.rect(&rect_scene, size) else {
+                    return;
+                };
+                ctx.pass
+                    .set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
+            }
             let state = per_device(&mut state, device, || {
                 InputPass::new(
                     resources,

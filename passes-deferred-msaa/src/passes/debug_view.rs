@@ -27,6 +27,7 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{Aspect, PassBuilder, PassKind};
 
+use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Input, Texels, Want};
@@ -149,6 +150,7 @@ impl Plugin for DebugView {
             inputs,
             reads_scene: params.view == View::Lights,
             target: Some(target),
+            extent: Extent::Full,
             stencil_mark: None,
             blend: None,
         };

@@ -29,6 +29,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{AspectAccess, PassBuilder, PassKind};
 
 use crate::common::edge_detection::{Detector, EdgeDetection};
+use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::{Shared, ONE_SAMPLE};
 use crate::common::textures::{self, Want, GBUFFER_INPUTS};
@@ -84,6 +85,7 @@ impl Plugin for EdgeStencil {
             inputs,
             reads_scene: false,
             target: None,
+            extent: Extent::Full,
             stencil_mark: Some(depth),
             blend: None,
         };

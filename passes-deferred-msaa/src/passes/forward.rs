@@ -83,6 +83,11 @@ pub(crate) struct ForwardDraw {
     /// Draws the BLEND meshes back to front, blending into `hdr` and testing a read-only
     /// `depth` (transparent.wgsl); else the other meshes, writing both.
     pub transparent: bool,
+    /// Begins the transparent pass's accumulation over the blended meshes' rectangle with
+    /// this fragment entry point ([`SceneDraw::begin_blended`]).
+    ///
+    /// [`SceneDraw::begin_blended`]: crate::common::gpu::scene_draw::SceneDraw::begin_blended
+    pub begin_blended: Option<&'static str>,
     pub hdr: TextureHandle,
     pub depth: TextureHandle,
 }
@@ -120,6 +125,7 @@ impl Plugin for Forward {
             depth_rule,
             shading: params.shading,
             transparent: false,
+            begin_blended: None,
             hdr,
             depth,
         };
@@ -166,6 +172,7 @@ mod gpu {
             targets: vec![draw.hdr],
             depth: draw.depth,
             layer,
+            begin_blended: draw.begin_blended,
             stages: Box::new(move |material| Stages {
                 vertex,
                 fragment,

@@ -27,6 +27,7 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind};
 
+use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Texels, Want};
@@ -176,6 +177,7 @@ impl Plugin for Fxaa {
             inputs: vec![input],
             reads_scene: false,
             target: Some(target),
+            extent: Extent::Full,
             stencil_mark: None,
             blend: None,
         };

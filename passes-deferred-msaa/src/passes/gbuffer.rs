@@ -244,6 +244,7 @@ mod gpu {
             targets: draw.targets,
             depth: draw.depth,
             layer: Layer::Opaque,
+            begin_blended: None,
             stages: Box::new(|material| Stages {
                 vertex: "vs_main",
                 fragment: if material.masked {

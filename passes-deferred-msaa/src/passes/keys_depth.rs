@@ -39,6 +39,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{BufferHandle, PassBuilder, PassKind, TextureHandle};
 
 use crate::common::depth;
+use crate::common::extent::Extent;
 use crate::common::plugin::{Recording, Shared};
 use crate::common::textures::{self, Want};
 use crate::common::visibility_samples;
@@ -49,20 +50,9 @@ pub struct KeysDepth(pub(crate) Shared);
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct KeysDepthParams {
+    /// Which pixels the depth is written at.
     #[serde(default)]
     pub extent: Extent,
-}
-
-/// Which pixels the depth is written at.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum Extent {
-    /// Every pixel.
-    #[default]
-    Full,
-    /// Those the scene's blended meshes may cover; elsewhere whatever the texture held
-    /// (no blended fragment lies there to test it).
-    Blended,
 }
 
 /// The draw as set up: what its `gpu` module records.
@@ -125,10 +115,9 @@ mod gpu {
 
     use graph_core::gpu::RenderContext;
 
-    use super::{Extent, KeysDepthDraw};
+    use super::KeysDepthDraw;
     use crate::common::gpu::{per_scene, GroupBuffers, InputPass, PipelineDesc};
     use crate::common::visibility_samples::{fits_binding, KEYS_BINDING};
-    use crate::gpu_scene::screen_rect::PixelRect;
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
 
@@ -189,12 +178,8 @@ mod gpu {
             });
             let shape = resources.shape(draw.depth);
             let size = (shape.width, shape.height);
-            let rect = match draw.extent {
-                Extent::Full => Some(PixelRect::full(size)),
-                Extent::Blended => scene.blended_rect(size),
-            };
-            // Nothing blended in view: the pass's clear is all the depth needed.
-            let Some(rect) = rect else {
+            // Nothing blended in view: no blended fragment tests the depth.
+            let Some(rect) = draw.extent.rect(&scene, size) else {
                 return;
             };
             ctx.pass

@@ -216,6 +216,7 @@ mod gpu {
             targets: draw.targets,
             depth: draw.depth,
             layer: Layer::Opaque,
+            begin_blended: None,
             stages: Box::new(move |material| Stages {
                 vertex,
                 fragment,

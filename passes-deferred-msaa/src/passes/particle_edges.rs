@@ -22,6 +22,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind};
 
 use super::particles::{same_size, EDGES};
+use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Want};
@@ -78,6 +79,7 @@ impl Plugin for ParticleEdges {
             inputs: vec![color, additive],
             reads_scene: false,
             target: Some(edges),
+            extent: Extent::Full,
             stencil_mark: None,
             blend: None,
         };

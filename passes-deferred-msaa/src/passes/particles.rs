@@ -63,6 +63,7 @@ use graph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, Texture
 
 use super::transparent::UNDER_TRANSMITTANCE;
 use crate::common::depth::DepthRule;
+use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Input, Texels, Want};
@@ -342,6 +343,7 @@ impl Plugin for CompositeParticles {
             inputs,
             reads_scene: true,
             target: Some(target),
+            extent: Extent::Full,
             stencil_mark,
             blend: Some(UNDER_TRANSMITTANCE),
         };

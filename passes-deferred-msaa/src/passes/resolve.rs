@@ -19,6 +19,7 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind};
 
+use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Want};
@@ -115,6 +116,7 @@ impl Plugin for Resolve {
             inputs: vec![input],
             reads_scene: false,
             target: Some(target),
+            extent: Extent::Full,
             stencil_mark: None,
             blend: None,
         };

@@ -52,6 +52,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind, Size, TextureDesc};
 
 use crate::common::ao::AO;
+use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Want};
@@ -201,6 +202,7 @@ impl Plugin for Ssao {
             inputs: vec![normal, depth],
             reads_scene: true,
             target: Some(target),
+            extent: Extent::Full,
             stencil_mark: None,
             blend: None,
         };
@@ -252,6 +254,7 @@ impl Plugin for SsaoBlur {
             inputs: vec![raw, depth],
             reads_scene: false,
             target: Some(target),
+            extent: Extent::Full,
             stencil_mark: None,
             blend: None,
         };

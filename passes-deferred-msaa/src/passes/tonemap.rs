@@ -32,6 +32,7 @@ use graph_core::types::TextureFormat;
 use graph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
 
 use super::resolve::{exposure, one};
+use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::{Recording, Shared};
 use crate::common::textures::{self, Input, Texels, Want};
@@ -159,6 +160,7 @@ impl Plugin for Tonemap {
                     inputs,
                     reads_scene: self.0.draws_scene,
                     target: Some(target),
+                    extent: Extent::Full,
                     stencil_mark: None,
                     blend: None,
                 };

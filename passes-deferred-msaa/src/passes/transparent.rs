@@ -4,7 +4,8 @@
 //!
 //! ```ron
 //! (name: "transparent", plugin: "transparent",
-//!  params: (shading: pixel),     // the default; or sample (the reference); reversed_z optional
+//!  params: (shading: pixel,      // the default; or sample (the reference); reversed_z optional
+//!           extent: blended),    // or `full` (the default): where the accumulation begins
 //!  inputs: { "depth": "depth" }, // the opaque passes' depth, any sample count: read-only
 //!  outputs: { "accum": "transparent" }),   // rgba16float, the depth's sample count
 //! (name: "composite transparent", plugin: "composite_transparent",
@@ -27,17 +28,28 @@
 //! own position, as the supersampled reference needs. Depth is tested against the
 //! multisampled depth of the opaque passes, attached read-only (both aspects): a blended
 //! surface behind an opaque one is hidden per sample, and blended surfaces never hide
-//! each other. The accumulation target is cleared to (0, 0, 0, 1) and blended as seed
+//! each other. The accumulation target begins as (0, 0, 0, 1) and is blended as seed
 //! 001 accumulates off-screen particles: rgb by conventional alpha blending
 //! (`src * a + dst * (1 - a)`), alpha multiplied by `1 - a`; per sample it ends as
 //! `C`, the blended surfaces over black, and `T`, the product of their transmittances.
-//! Listing `accum` in `inputs` too draws over an accumulation instead of clearing it
+//! Listing `accum` in `inputs` too draws over an accumulation instead of beginning one
 //! (another layer of blended geometry, such as particles).
+//!
+//! With `extent: full` the accumulation is cleared, every pixel of it. With `extent:
+//! blended` only the pixels the blended meshes may cover begin as (0, 0, 0, 1) (a
+//! scissored draw over their rectangle on screen, [`Extent::Blended`]), and nothing is
+//! drawn when none is in view: the rest of the target is undefined, and the composite
+//! never reads it. A multisampled clear goes through the ROPs, which on the H200 cost as
+//! much as a full-screen pass: 4.72 of this pass's 4.76 ms on FlightHelmet at 3840x2160
+//! 4x (bench/results/gpu/visibility-merged/clears.md), where the lenses cover a small
+//! part of the output.
 //!
 //! **The composite** is a full-screen draw onto the single-sampled HDR image (`resolved`,
 //! modified in place) that reads each pixel's samples of the accumulation and outputs
 //! their mean colour and mean transmittance, blended with source factor one and
 //! destination factor source alpha: `resolved * mean(T) + mean(C)`, before tone mapping.
+//! It draws only the pixels the blended meshes may cover, as `extent: blended` begins
+//! them: elsewhere T = 1 and C = 0 leave the image exactly as it is.
 //!
 //! What that costs in exactness: the exact pixel is the mean over samples of
 //! `hdr_s * T_s + C_s`; the composite computes `mean(hdr) * mean(T) + mean(C)`, which
@@ -70,6 +82,7 @@ use graph_core::{AspectAccess, ColorLoad, PassBuilder, PassKind};
 use super::forward::{ForwardDraw, Shading, DEPTH};
 use super::gbuffer::opaque_black;
 use crate::common::depth::DepthRule;
+use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Want};
@@ -87,6 +100,9 @@ pub struct TransparentParams {
     /// picks, as the opaque passes' does: they must agree.
     #[serde(default)]
     pub reversed_z: Option<bool>,
+    /// Which pixels a fresh accumulation begins at (see the module documentation).
+    #[serde(default)]
+    pub extent: Extent,
 }
 
 #[derive(Clone, Debug, Default, Deserialize)]
@@ -112,7 +128,18 @@ impl Plugin for Transparent {
         pass.depth_stencil(depth, AspectAccess::ReadOnly, AspectAccess::ReadOnly);
         let want = Want::new("the transparent accumulation", textures::HDR).samples(desc.samples);
         // Transmittance 1 where nothing blended is drawn: the composite leaves those pixels.
-        let (accum, _) = textures::color_output(slots, pass, "accum", want, opaque_black())?;
+        // Begun by a draw over the blended meshes' rectangle instead of a clear, where the
+        // extent says so.
+        let mut fresh = false;
+        let (accum, _) = textures::output(slots, pass, "accum", want, |pass, h, modifies| {
+            fresh = !modifies;
+            match (modifies, params.extent) {
+                (true, _) => pass.color_output(h, ColorLoad::Load),
+                (false, Extent::Full) => pass.color_output(h, ColorLoad::Clear(opaque_black())),
+                (false, Extent::Blended) => pass.color_output(h, ColorLoad::Overwrite),
+            }
+        })?;
+        let begin = fresh && params.extent == Extent::Blended;
         let draw = ForwardDraw {
             source: shaders::TRANSPARENT
                 .compose(desc.samples)?
@@ -121,6 +148,7 @@ impl Plugin for Transparent {
             depth_rule: DepthRule::new(params.reversed_z),
             shading: params.shading,
             transparent: true,
+            begin_blended: begin.then_some("fs_accumulation_start"),
             hdr: accum,
             depth,
         };
@@ -191,6 +219,7 @@ impl Plugin for CompositeTransparent {
             inputs: vec![accum],
             reads_scene: false,
             target: Some(target),
+            extent: Extent::Blended,
             stencil_mark: None,
             blend: Some(UNDER_TRANSMITTANCE),
         };

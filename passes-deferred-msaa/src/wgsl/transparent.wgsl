@@ -12,3 +12,11 @@ fn fs_blend_pixel(in: PixelVaryings, @builtin(front_facing) front: bool) -> @loc
 fn fs_blend_sample(in: SampleVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
     return shade_surface(Attributes(in.position, in.normal, in.uv, in.uv1, in.color, in.tangent, in.material), front);
 }
+
+// The accumulation's start where blended meshes may lie (passes/transparent.rs, `extent:
+// blended`): nothing blended over black, transmittance 1. Drawn with common.wgsl's
+// vs_fullscreen, scissored, before the meshes.
+@fragment
+fn fs_accumulation_start() -> @location(0) vec4<f32> {
+    return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+}

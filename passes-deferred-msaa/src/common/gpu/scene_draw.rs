@@ -49,6 +49,15 @@ pub(crate) struct SceneDraw {
     pub targets: Vec<TextureHandle>,
     pub depth: TextureHandle,
     pub layer: Layer,
+    /// Begins the targets over the rectangle the blended meshes may cover
+    /// ([`GpuScene::blended_rect`]) with this fragment entry point of the pass's module
+    /// (after common.wgsl's `vs_fullscreen`, writing every target, depth neither tested nor
+    /// written), and keeps the meshes' draws to it; nothing is drawn when no blended mesh
+    /// is in view. For targets the pass begins without a clear (the transparent
+    /// accumulation with `extent: blended`), whose other pixels nothing reads.
+    ///
+    /// [`GpuScene::blended_rect`]: crate::gpu_scene::GpuScene::blended_rect
+    pub begin_blended: Option<&'static str>,
     pub stages: Box<dyn Fn(MaterialState) -> Stages>,
 }
 
@@ -73,6 +82,9 @@ struct State {
     /// A redraw's group 2.
     inputs: Option<TextureBindings>,
     pipelines: Pipelines<Key>,
+    /// The beginning draw's: no bind groups, keyed by attachment formats and samples.
+    begin_layout: wgpu::PipelineLayout,
+    begin_pipelines: Pipelines<(Vec<wgpu::TextureFormat>, wgpu::TextureFormat, u32)>,
 }
 
 pub(crate) fn record(
@@ -109,6 +121,8 @@ pub(crate) fn record_with(
                 layout: pipeline_layout(device, &layouts),
                 inputs,
                 pipelines: Pipelines::default(),
+                begin_layout: pipeline_layout(device, &[]),
+                begin_pipelines: Pipelines::default(),
             }
         });
         let variant = scenes.variant(draw.shader);
@@ -131,6 +145,44 @@ pub(crate) fn record_with(
         let Some(host_scene) = scenes.scene() else {
             return;
         };
+        if let Some(entry) = draw.begin_blended {
+            let Some(rect) = scene.blended_rect((depth.width, depth.height)) else {
+                return;
+            };
+            let key = (targets.clone(), depth.format, depth.samples);
+            let (module, layout) = (&state.module, &state.begin_layout);
+            let pipeline = state.begin_pipelines.get(key, |(targets, depth, samples)| {
+                let targets: Vec<Option<wgpu::ColorTargetState>> = targets
+                    .iter()
+                    .map(|&format| Some(color_target(format, Layer::Opaque)))
+                    .collect();
+                PipelineDesc {
+                    label: draw.label,
+                    layout,
+                    module,
+                    vertex: "vs_fullscreen",
+                    buffers: &[],
+                    fragment: entry,
+                    constants: &[],
+                    targets: &targets,
+                    cull: None,
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: *depth,
+                        depth_write_enabled: Some(false),
+                        depth_compare: Some(wgpu::CompareFunction::Always),
+                        stencil: wgpu::StencilState::default(),
+                        bias: Default::default(),
+                    }),
+                    samples: *samples,
+                    mask: !0,
+                }
+                .build(device)
+            });
+            ctx.pass
+                .set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
+            ctx.pass.set_pipeline(pipeline);
+            ctx.pass.draw(0..3, 0..1);
+        }
         let materials = scene.material_groups(device, resources.queue, host_scene);
         scene.draw_meshes(ctx.pass, (1, materials), layer, |pass, _, material| {
             let key = Key {
