@@ -17,6 +17,7 @@ mod fuzz_support;
 #[path = "../passes-deferred-msaa/tests/common/mod.rs"]
 mod gltf_writer;
 
+mod background_fill;
 mod baselines_errors;
 mod baselines_forward;
 mod baselines_reference;

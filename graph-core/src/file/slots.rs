@@ -173,6 +173,13 @@ impl<'s> Slots<'s> {
         self.get(slot).is_some_and(|s| s.output.is_some())
     }
 
+    /// Whether the file lists the slot in both `inputs` and `outputs`: the pass draws over
+    /// (or updates) the version it reads.
+    pub fn modifies(&self, slot: &str) -> bool {
+        self.get(slot)
+            .is_some_and(|s| s.input.is_some() && s.output.is_some())
+    }
+
     /// The output slots, in file order.
     pub fn outputs(&self) -> Vec<&'s str> {
         self.slots

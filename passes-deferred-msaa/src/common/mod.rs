@@ -1,6 +1,7 @@
 //! What the deferred passes share, below them: the state every plugin of a registry shares
 //! and how a pass hands over its recording ([`plugin`]), the textures in a pass's slots
-//! ([`textures`]), the light passes' optional ambient-occlusion input ([`ao`]), the depth
+//! ([`textures`]), the light passes' optional ambient-occlusion input ([`ao`]), the scene
+//! passes' background fill ([`background`]), the depth
 //! convention ([`depth`]), where a pass draws ([`extent`]), the edge detectors two passes
 //! use ([`edge_detection`]), the full-screen draw five passes set up ([`fullscreen`]), the
 //! G-buffer layouts a lighting pass reads ([`gbuffer_layout`]), the lean G-buffer's
@@ -8,6 +9,7 @@
 //! recordings ([`gpu`]). Nothing here imports a pass.
 
 pub(crate) mod ao;
+pub(crate) mod background;
 pub(crate) mod depth;
 pub(crate) mod edge_detection;
 pub(crate) mod extent;

@@ -18,7 +18,9 @@
 //! deferred passes' volumes circumscribe). Emission is added once; unlit materials show
 //! base color plus emission, exactly what the `gbuffer` pass writes into its HDR target.
 //! Alpha MASK and double-sided materials behave as there; alpha BLEND meshes are left to
-//! the `transparent` pass, as the G-buffer pass leaves them.
+//! the `transparent` pass, as the G-buffer pass leaves them. The HDR target is not
+//! cleared: after the meshes, the samples none drew are filled with `background`
+//! (common/background.rs), as the G-buffer pass fills its targets.
 //!
 //! `pixel` shades once per pixel and triangle at the centroid of the covered samples (the
 //! G-buffer pass's interpolation, so a deferred pipeline that shades every sample gives the
@@ -32,6 +34,7 @@ use graph_core::types::TextureFormat;
 use graph_core::{PassBuilder, PassKind, TextureHandle};
 
 use super::gbuffer::opaque_black;
+use crate::common::background;
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{Recording, Shared};
 use crate::common::textures::{self, Want};
@@ -88,6 +91,8 @@ pub(crate) struct ForwardDraw {
     ///
     /// [`SceneDraw::begin_blended`]: crate::common::gpu::scene_draw::SceneDraw::begin_blended
     pub begin_blended: Option<&'static str>,
+    /// Fills the HDR target with the background where no mesh draws (common/background.rs).
+    pub fill_background: bool,
     pub hdr: TextureHandle,
     pub depth: TextureHandle,
 }
@@ -119,13 +124,27 @@ impl Plugin for Forward {
             depth_rule.start(pass, h)
         })?;
         let want = Want::new("the HDR target", textures::HDR).samples(desc.samples);
-        let (hdr, _) = textures::color_output(slots, pass, "hdr", want, params.background)?;
+        // Filled with the background where no mesh draws rather than cleared first
+        // (common/background.rs), unless the pass draws over the target it reads.
+        let fill = !slots.modifies("hdr");
+        let (hdr, _) = match fill {
+            true => textures::covered_output(slots, pass, "hdr", want)?,
+            false => textures::color_output(slots, pass, "hdr", want, params.background)?,
+        };
+        let generated = match fill {
+            true => background::fill_wgsl(&[("vec4<f32>", params.background)]),
+            false => String::new(),
+        };
         let draw = ForwardDraw {
-            source: shaders::FORWARD.compose(desc.samples)?.source().to_owned(),
+            source: shaders::FORWARD
+                .compose_with(desc.samples, &generated)?
+                .source()
+                .to_owned(),
             depth_rule,
             shading: params.shading,
             transparent: false,
             begin_blended: None,
+            fill_background: fill,
             hdr,
             depth,
         };
@@ -173,6 +192,7 @@ mod gpu {
             depth: draw.depth,
             layer,
             begin_blended: draw.begin_blended,
+            fill_background: draw.fill_background,
             stages: Box::new(move |material| Stages {
                 vertex,
                 fragment,

@@ -34,7 +34,11 @@
 //! cleared to 1 and tested with `Less`. Without `reversed_z` the convention follows the
 //! depth format (reversed for float depth, see `common/depth.rs`), as the light
 //! passes' does; a `reversed_z` given here must be given to them too.
-//! Stencil is cleared to 0. Double-sided materials are drawn without culling and their
+//! Stencil is cleared to 0. The color targets are not cleared: after the meshes, the
+//! samples none drew are filled with what a clear would have left (zeros, the
+//! background in `hdr` and `emission`: common/background.rs), which on the H200 costs a
+//! fraction of the clear; a pass that lists a target in its inputs too (drawing over it)
+//! clears its fresh targets instead. Double-sided materials are drawn without culling and their
 //! back faces get the flipped normal; alpha MASK materials discard below the cutoff.
 //! Alpha BLEND meshes are not drawn: a sample holds one surface, so the `transparent`
 //! pass draws them after lighting (passes/transparent.rs).
@@ -46,6 +50,7 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind, TextureHandle};
 
+use crate::common::background;
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{Recording, Shared};
 use crate::common::rgb9e5;
@@ -78,6 +83,8 @@ pub(crate) struct GBufferDraw {
     /// albedo, normal, material, view_depth, hdr: color attachments 0 to 4.
     pub targets: Vec<TextureHandle>,
     pub depth: TextureHandle,
+    /// The targets begin undrawn and are filled where no mesh draws (common/background.rs).
+    pub fill_background: bool,
 }
 
 impl Recording for GBufferDraw {
@@ -114,8 +121,12 @@ impl Plugin for GBuffer {
                     .into(),
             ));
         }
+        // Filled where no mesh draws rather than cleared first (common/background.rs),
+        // unless the pass draws over a target it reads.
+        let fill = !CHANNELS.iter().any(|c| slots.modifies(c.slot));
         let mut targets = Vec::with_capacity(CHANNELS.len());
         let mut written = Vec::with_capacity(CHANNELS.len());
+        let mut fills = Vec::with_capacity(CHANNELS.len());
         for channel in &CHANNELS {
             if channel.slot != "albedo" && !slots.is_output(channel.slot) {
                 continue;
@@ -129,10 +140,18 @@ impl Plugin for GBuffer {
                 _ => [0.0; 4],
             };
             let want = Want::new(channel.what, channel.formats).samples(samples);
-            targets.push(textures::color_output(slots, pass, channel.slot, want, clear)?.0);
+            let (target, _) = match fill {
+                true => textures::covered_output(slots, pass, channel.slot, want)?,
+                false => textures::color_output(slots, pass, channel.slot, want, clear)?,
+            };
+            targets.push(target);
             written.push(channel);
+            fills.push((channel.wgsl, clear));
         }
-        let outputs = outputs_wgsl(&written);
+        let mut outputs = outputs_wgsl(&written);
+        if fill {
+            outputs += &background::fill_wgsl(&fills);
+        }
         let draw = GBufferDraw {
             source: shaders::GBUFFER
                 .compose_with(samples, &outputs)?
@@ -141,6 +160,7 @@ impl Plugin for GBuffer {
             depth_rule,
             targets,
             depth,
+            fill_background: fill,
         };
         self.0.record(pass, draw);
         Ok(())
@@ -245,6 +265,7 @@ mod gpu {
             depth: draw.depth,
             layer: Layer::Opaque,
             begin_blended: None,
+            fill_background: draw.fill_background,
             stages: Box::new(|material| Stages {
                 vertex: "vs_main",
                 fragment: if material.masked {

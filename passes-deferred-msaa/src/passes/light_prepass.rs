@@ -217,6 +217,7 @@ mod gpu {
             depth: draw.depth,
             layer: Layer::Opaque,
             begin_blended: None,
+            fill_background: false,
             stages: Box::new(move |material| Stages {
                 vertex,
                 fragment,

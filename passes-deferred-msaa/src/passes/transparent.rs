@@ -149,6 +149,7 @@ impl Plugin for Transparent {
             shading: params.shading,
             transparent: true,
             begin_blended: begin.then_some("fs_accumulation_start"),
+            fill_background: false,
             hdr: accum,
             depth,
         };

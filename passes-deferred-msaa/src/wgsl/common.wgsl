@@ -154,6 +154,16 @@ fn vs_fullscreen(@builtin(vertex_index) index: u32) -> Fullscreen {
     return Fullscreen(fullscreen_position(index, 0.0));
 }
 
+// Clip depth of the far plane, the value a depth buffer is cleared to: 0 with reversed
+// Z, 1 without (the pass gives it).
+override FAR_DEPTH: f32 = 0.0;
+
+// The full-screen triangle at the far depth: common/background.rs's fill.
+@vertex
+fn vs_fullscreen_far(@builtin(vertex_index) index: u32) -> Fullscreen {
+    return Fullscreen(fullscreen_position(index, FAR_DEPTH));
+}
+
 // A sample's surface as the light passes read it: from a G-buffer (gbuffer_read.wgsl) or
 // rebuilt from a visibility buffer (visibility_read.wgsl).
 struct GSample {

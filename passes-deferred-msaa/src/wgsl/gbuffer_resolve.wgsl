@@ -3,8 +3,6 @@
 // would, so the light passes see surfaces that exist nowhere in the scene.
 // Composed after common.wgsl, scene.wgsl and gbuffer_read.wgsl (the multisampled inputs).
 
-// Clip depth of the far plane: 0 with reversed Z, 1 without.
-override FAR_DEPTH: f32 = 0.0;
 
 struct Resolved {
     @location(0) albedo: vec4<f32>,

@@ -8,8 +8,6 @@
 // `with_screen_ao`) or the light pre-pass's light (light_prepass.wgsl, into the light
 // buffer).
 
-// Clip depth of the far plane: 0 with reversed Z, 1 without.
-override FAR_DEPTH: f32 = 0.0;
 // `fs_one_sample`: the sample this pipeline shades (its multisample mask is 1 << SAMPLE).
 override SAMPLE: u32 = 0u;
 

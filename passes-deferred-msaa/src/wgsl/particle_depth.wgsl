@@ -4,7 +4,6 @@
 // pass binds group 0 with the camera of its depth buffer's convention and gives
 // FAR_DEPTH, the value the buffer is cleared to.
 
-override FAR_DEPTH: f32 = 0.0;
 // Where nothing was drawn: farther than any particle (a finite f32, so differences stay
 // finite).
 const FAR_VIEW_DEPTH: f32 = 1.0e30;

@@ -3,8 +3,6 @@
 // the stored channel has it: FAR_DEPTH is the depth convention's clear value (0 with
 // reversed-Z, 1 without), which no drawn sample keeps.
 
-override FAR_DEPTH: f32 = 0.0;
-
 // Each sample's own depth: the samples of one fragment differ along its slope.
 const STORED_VIEW_DEPTH: bool = false;
 

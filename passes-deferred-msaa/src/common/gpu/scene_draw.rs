@@ -25,7 +25,7 @@ use super::bindings::TextureBindings;
 use super::per_scene;
 use super::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
 use crate::analysis::{GatedShader, Variant};
-use crate::common::depth::DepthRule;
+use crate::common::depth::{far_depth, DepthRule};
 use crate::common::textures::Input;
 use crate::gpu_scene::{mesh, Layer, MaterialState, SceneCache};
 use crate::scene::DepthConvention;
@@ -58,6 +58,10 @@ pub(crate) struct SceneDraw {
     ///
     /// [`GpuScene::blended_rect`]: crate::gpu_scene::GpuScene::blended_rect
     pub begin_blended: Option<&'static str>,
+    /// After the meshes, fills what they left undrawn with the module's `fs_background`
+    /// (common/background.rs): for targets begun without a clear, over a depth the pass
+    /// cleared.
+    pub fill_background: bool,
     pub stages: Box<dyn Fn(MaterialState) -> Stages>,
 }
 
@@ -82,10 +86,14 @@ struct State {
     /// A redraw's group 2.
     inputs: Option<TextureBindings>,
     pipelines: Pipelines<Key>,
-    /// The beginning draw's: no bind groups, keyed by attachment formats and samples.
-    begin_layout: wgpu::PipelineLayout,
-    begin_pipelines: Pipelines<(Vec<wgpu::TextureFormat>, wgpu::TextureFormat, u32)>,
+    /// The full-screen draws' (the blended layer's beginning, the background fill): no
+    /// bind groups, keyed by attachment formats and samples.
+    fullscreen_layout: wgpu::PipelineLayout,
+    begin_pipelines: Pipelines<FullscreenKey>,
+    fill_pipelines: Pipelines<FullscreenKey>,
 }
+
+type FullscreenKey = (Vec<wgpu::TextureFormat>, wgpu::TextureFormat, u32);
 
 pub(crate) fn record(
     draw: SceneDraw,
@@ -121,8 +129,9 @@ pub(crate) fn record_with(
                 layout: pipeline_layout(device, &layouts),
                 inputs,
                 pipelines: Pipelines::default(),
-                begin_layout: pipeline_layout(device, &[]),
+                fullscreen_layout: pipeline_layout(device, &[]),
                 begin_pipelines: Pipelines::default(),
+                fill_pipelines: Pipelines::default(),
             }
         });
         let variant = scenes.variant(draw.shader);
@@ -150,33 +159,14 @@ pub(crate) fn record_with(
                 return;
             };
             let key = (targets.clone(), depth.format, depth.samples);
-            let (module, layout) = (&state.module, &state.begin_layout);
-            let pipeline = state.begin_pipelines.get(key, |(targets, depth, samples)| {
-                let targets: Vec<Option<wgpu::ColorTargetState>> = targets
-                    .iter()
-                    .map(|&format| Some(color_target(format, Layer::Opaque)))
-                    .collect();
-                PipelineDesc {
+            let pipeline = state.begin_pipelines.get(key, |key| {
+                FullscreenDraw {
                     label: draw.label,
-                    layout,
-                    module,
                     vertex: "vs_fullscreen",
-                    buffers: &[],
                     fragment: entry,
-                    constants: &[],
-                    targets: &targets,
-                    cull: None,
-                    depth_stencil: Some(wgpu::DepthStencilState {
-                        format: *depth,
-                        depth_write_enabled: Some(false),
-                        depth_compare: Some(wgpu::CompareFunction::Always),
-                        stencil: wgpu::StencilState::default(),
-                        bias: Default::default(),
-                    }),
-                    samples: *samples,
-                    mask: !0,
+                    far_depth: None,
                 }
-                .build(device)
+                .build(device, &state.fullscreen_layout, &state.module, key)
             });
             ctx.pass
                 .set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
@@ -221,7 +211,75 @@ pub(crate) fn record_with(
             pass.set_pipeline(pipeline);
             true
         });
+        if draw.fill_background {
+            let key = (targets.clone(), depth.format, depth.samples);
+            let pipeline = state.fill_pipelines.get(key, |key| {
+                FullscreenDraw {
+                    label: draw.label,
+                    vertex: "vs_fullscreen_far",
+                    fragment: "fs_background",
+                    far_depth: Some(convention),
+                }
+                .build(device, &state.fullscreen_layout, &state.module, key)
+            });
+            ctx.pass.set_pipeline(pipeline);
+            ctx.pass.draw(0..3, 0..1);
+        }
     })
+}
+
+/// A full-screen triangle over a scene pass's attachments, replacing every target's
+/// colour, writing no depth and no stencil: tested `Always`, or with `far_depth` drawn at
+/// that convention's far depth and tested `Equal`, so that it covers exactly the samples
+/// no mesh drew (the depth the pass cleared).
+struct FullscreenDraw<'a> {
+    label: &'a str,
+    vertex: &'a str,
+    fragment: &'a str,
+    far_depth: Option<DepthConvention>,
+}
+
+impl FullscreenDraw<'_> {
+    fn build(
+        &self,
+        device: &wgpu::Device,
+        layout: &wgpu::PipelineLayout,
+        module: &wgpu::ShaderModule,
+        (targets, depth, samples): &FullscreenKey,
+    ) -> wgpu::RenderPipeline {
+        let targets: Vec<Option<wgpu::ColorTargetState>> = targets
+            .iter()
+            .map(|&format| Some(color_target(format, Layer::Opaque)))
+            .collect();
+        let (compare, constants) = match self.far_depth {
+            None => (wgpu::CompareFunction::Always, Vec::new()),
+            Some(convention) => (
+                wgpu::CompareFunction::Equal,
+                vec![("FAR_DEPTH", f64::from(far_depth(convention)))],
+            ),
+        };
+        PipelineDesc {
+            label: self.label,
+            layout,
+            module,
+            vertex: self.vertex,
+            buffers: &[],
+            fragment: self.fragment,
+            constants: &constants,
+            targets: &targets,
+            cull: None,
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: *depth,
+                depth_write_enabled: Some(false),
+                depth_compare: Some(compare),
+                stencil: wgpu::StencilState::default(),
+                bias: Default::default(),
+            }),
+            samples: *samples,
+            mask: !0,
+        }
+        .build(device)
+    }
 }
 
 /// Replacing for the opaque layer; seed 001's accumulation for the blended one (see the

@@ -1,0 +1,66 @@
+//! A scene pass's color targets filled where its meshes draw nothing, after them, instead
+//! of cleared before them: a full-screen draw at the far depth, tested for equality
+//! against the depth the pass cleared, writes each target's clear value to exactly the
+//! samples no mesh covered, so the targets end as a clear and the meshes would leave
+//! them, bit for bit. A multisampled clear goes through the ROPs, which on the H200 cost
+//! as much as a full-screen pass (builtin:dense at 3840x2160 4x: 7.1 of the lean
+//! G-buffer pass's 20.2 ms, 14.2 of the five-target one's 33.9, 4.7 of forward's 20.1:
+//! bench/results/gpu/visibility-merged/clears.md); the fill writes the background's
+//! samples only and depth-culls the rest.
+
+/// The WGSL of the fill's fragment stage, `fs_background`, for targets of these WGSL
+/// types (`vec4<f32>`, `vec2<u32>`, ...) holding these clear values, at locations 0 on:
+/// generated, since the values are the pass's parameters. Integer targets take their
+/// values' integer parts, as a clear does.
+pub(crate) fn fill_wgsl(targets: &[(&str, [f64; 4])]) -> String {
+    let fields: String = targets
+        .iter()
+        .enumerate()
+        .map(|(location, (ty, _))| format!("    @location({location}) t{location}: {ty},\n"))
+        .collect();
+    let values: Vec<String> = targets.iter().map(|(ty, v)| literal(ty, v)).collect();
+    format!(
+        "// Generated: each target's value where no mesh draws (common/background.rs).\n\
+         struct BackgroundOut {{\n{fields}}}\n\n\
+         @fragment\nfn fs_background() -> BackgroundOut {{\n    return BackgroundOut({});\n}}\n",
+        values.join(", ")
+    )
+}
+
+/// `value` as a WGSL constructor of `ty`: as many components as the type has.
+fn literal(ty: &str, value: &[f64; 4]) -> String {
+    let count = match ty.get(3..4) {
+        Some(n) => n.parse().unwrap_or(1),
+        None => 1,
+    };
+    let integer = ty.contains("u32") || ty.contains("i32");
+    let components: Vec<String> = value[..count]
+        .iter()
+        .map(|&c| match integer {
+            true => format!("{}", c.trunc() as i64),
+            false => format!("{c:?}"),
+        })
+        .collect();
+    format!("{ty}({})", components.join(", "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_fill_returns_each_targets_clear_value_in_its_type() {
+        let wgsl = fill_wgsl(&[
+            ("vec4<f32>", [0.25, 0.0, 1.0, 1.0]),
+            ("vec2<u32>", [513.0, 7.0, 0.0, 0.0]),
+        ]);
+        assert!(wgsl.contains("@location(0) t0: vec4<f32>,"), "{wgsl}");
+        assert!(wgsl.contains("@location(1) t1: vec2<u32>,"), "{wgsl}");
+        assert!(
+            wgsl.contains(
+                "return BackgroundOut(vec4<f32>(0.25, 0.0, 1.0, 1.0), vec2<u32>(513, 7));"
+            ),
+            "{wgsl}"
+        );
+    }
+}
