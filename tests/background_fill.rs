@@ -1,6 +1,7 @@
-//! The scene passes' background fill (common/background.rs): `forward` and `gbuffer` begin
-//! their color targets without a clear, and after their meshes a full-screen draw at the
-//! far depth, tested for equality, writes each target's clear value where no mesh drew.
+//! The scene passes' background fill (common/background.rs): `forward`, `gbuffer` and the
+//! light pre-pass's two geometry passes begin their color targets without a clear, and
+//! after their meshes a full-screen draw at the far depth, tested for equality, writes
+//! each target's clear value where no mesh drew.
 
 use crate::deferred_support::{gpu, Render};
 
@@ -9,11 +10,12 @@ const BACKGROUND: [f32; 3] = [0.25, 0.5, 0.75];
 
 /// A background colour set on the pass that fills it shows exactly (f16 holds these
 /// values) in the resolved image's pixels no mesh covers, top left and top right on
-/// builtin:spheres, in forward MSAA and in the fragment path's G-buffer (its `hdr`
-/// target): the fill writes them, where wgpu's first-use zeros would leave black. The
-/// plan begins those targets overwritten, not cleared.
+/// builtin:spheres, in forward MSAA, in the fragment path's G-buffer (its `hdr` target)
+/// and in the light pre-pass's material pass: the fill writes them, where wgpu's
+/// first-use zeros would leave black. The plan begins those targets overwritten, not
+/// cleared (the light pre-pass's thin G-buffer too).
 #[test]
-fn a_background_fills_what_no_mesh_draws_in_forward_and_the_gbuffer() {
+fn a_background_fills_what_no_mesh_draws_in_the_scene_passes() {
     let gpu = gpu();
     let cases = [
         (
@@ -27,6 +29,12 @@ fn a_background_fills_what_no_mesh_draws_in_forward_and_the_gbuffer() {
             "plugin: \"gbuffer\",\n            when: \"!unlit_only\",",
             "plugin: \"gbuffer\",\n            when: \"!unlit_only\",\n            params: (background: (0.25, 0.5, 0.75, 1.0)),",
             "color 0: albedo overwrite (not cleared)",
+        ),
+        (
+            "light_prepass_msaa_4x.ron",
+            "plugin: \"light_prepass_material\",",
+            "plugin: \"light_prepass_material\",\n            params: (background: (0.25, 0.5, 0.75, 1.0)),",
+            "color 0: normal overwrite (not cleared)",
         ),
     ];
     for (pipeline, from, to, shown) in cases {

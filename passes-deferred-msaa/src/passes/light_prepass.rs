@@ -45,6 +45,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
 use super::gbuffer::opaque_black;
+use crate::common::background;
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{Recording, Shared};
 use crate::common::textures::{self, Input, Want};
@@ -83,6 +84,8 @@ pub(crate) struct GeometryDraw {
     pub depth: TextureHandle,
     /// The material pass's light buffer; `None` for the thin G-buffer pass.
     pub light: Option<Input>,
+    /// The targets begin undrawn and are filled where no mesh draws (common/background.rs).
+    pub fill_background: bool,
 }
 
 impl Recording for GeometryDraw {
@@ -112,6 +115,11 @@ impl Plugin for LightPrepassGBuffer {
             depth_rule.start(pass, h)
         })?;
         let samples = desc.samples;
+        // Filled where no mesh draws rather than cleared first (common/background.rs),
+        // unless the pass draws over a target it reads.
+        let fill = !["normal", "material", "view_depth"]
+            .iter()
+            .any(|slot| slots.modifies(slot));
         let mut targets = Vec::new();
         for (slot, what, formats) in [
             ("normal", "the thin G-buffer's normals", textures::NORMAL),
@@ -127,17 +135,26 @@ impl Plugin for LightPrepassGBuffer {
             ),
         ] {
             let want = Want::new(what, formats).samples(samples);
-            targets.push(textures::color_output(slots, pass, slot, want, [0.0; 4])?.0);
+            let (target, _) = match fill {
+                true => textures::covered_output(slots, pass, slot, want)?,
+                false => textures::color_output(slots, pass, slot, want, [0.0; 4])?,
+            };
+            targets.push(target);
         }
+        let generated = match fill {
+            true => background::fill_wgsl(&[("vec4<f32>", [0.0; 4]); 3]),
+            false => String::new(),
+        };
         let draw = GeometryDraw {
             source: shaders::LIGHT_PREPASS_GEOMETRY
-                .compose(samples)?
+                .compose_with(samples, &generated)?
                 .source()
                 .to_owned(),
             depth_rule,
             targets,
             depth,
             light: None,
+            fill_background: fill,
         };
         self.0.record(pass, draw);
         Ok(())
@@ -165,16 +182,26 @@ impl Plugin for LightPrepassMaterial {
         let want = Want::new("the light buffer", textures::HDR).samples(samples);
         let (light, _) = textures::sampled(slots, pass, "light", want, 0)?;
         let want = Want::new("the HDR target", textures::HDR).samples(samples);
-        let (hdr, _) = textures::color_output(slots, pass, "hdr", want, params.background)?;
+        // Filled with the background where no mesh draws, as forward's is.
+        let fill = !slots.modifies("hdr");
+        let (hdr, _) = match fill {
+            true => textures::covered_output(slots, pass, "hdr", want)?,
+            false => textures::color_output(slots, pass, "hdr", want, params.background)?,
+        };
+        let generated = match fill {
+            true => background::fill_wgsl(&[("vec4<f32>", params.background)]),
+            false => String::new(),
+        };
         let draw = GeometryDraw {
             source: shaders::LIGHT_PREPASS_GEOMETRY
-                .compose(samples)?
+                .compose_with(samples, &generated)?
                 .source()
                 .to_owned(),
             depth_rule: DepthRule::new(params.reversed_z),
             targets: vec![hdr],
             depth,
             light: Some(light),
+            fill_background: fill,
         };
         self.0.record(pass, draw);
         Ok(())
@@ -217,7 +244,7 @@ mod gpu {
             depth: draw.depth,
             layer: Layer::Opaque,
             begin_blended: None,
-            fill_background: false,
+            fill_background: draw.fill_background,
             stages: Box::new(move |material| Stages {
                 vertex,
                 fragment,
