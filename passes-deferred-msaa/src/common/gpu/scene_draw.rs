@@ -12,6 +12,12 @@
 //! destination `1 - a`), so a target cleared to (0, 0, 0, 1) ends as the blended colour
 //! over black and the transmittance of everything drawn.
 //!
+//! Where a pass begins its targets without a clear (a multisampled clear costs the H200 a
+//! full-screen pass), a full-screen draw frames the meshes: before them, the blended
+//! layer's beginning over the rectangle its meshes may cover (`begin_blended`); after
+//! them, the background fill of the samples none drew (`fill_background`,
+//! common/background.rs).
+//!
 //! A [`Redraw`] draws the opaque layer again over the depth an earlier draw of the same
 //! shader module wrote (the light pre-pass's material pass): tested for the same or a
 //! nearer depth without writing it, reading textures as group 2.
