@@ -124,3 +124,75 @@ fn a_slot_the_plugin_does_not_take_is_an_error() {
         r#"pass "clear": plugin "clear" has no use for slot "mystery" ("extra")"#
     );
 }
+
+/// Answers `Slots::modifies` for its slots as it sets up, copying `src` to `dst`.
+struct ModifiesProbe(std::sync::Mutex<Vec<(&'static str, bool)>>);
+
+impl graph_core::file::Plugin for ModifiesProbe {
+    const NAME: &'static str = "modifies_probe";
+    type Params = ();
+
+    fn kind(&self, _: &()) -> graph_core::PassKind {
+        graph_core::PassKind::Transfer
+    }
+
+    fn setup(
+        &self,
+        _: (),
+        pass: &mut graph_core::PassBuilder<'_>,
+        slots: &mut graph_core::file::Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let answers = ["src", "dst", "absent"].map(|slot| (slot, slots.modifies(slot)));
+        self.0.lock().unwrap().extend(answers);
+        let src = slots.input::<graph_core::Texture>("src")?;
+        pass.copy_src(src);
+        slots.write::<graph_core::Texture>("dst", |t| pass.copy_dst(t.handle))?;
+        Ok(())
+    }
+}
+
+/// `Slots::modifies` says which slots the pass lists in both its inputs and its outputs
+/// (so that a plugin can tell, before writing any, whether it draws over what it reads):
+/// not an input-only slot, not an output-only one, not one the pass does not list.
+#[test]
+fn slots_say_which_outputs_the_pass_also_reads() {
+    let mut graph = GraphBuilder::new();
+    let a = graph.create_texture("a", TextureDesc::new(TextureFormat::Rgba8Unorm));
+    let b = graph.create_texture("b", TextureDesc::new(TextureFormat::Rgba8Unorm));
+    let a1 = graph
+        .add_plugin_pass(
+            "fill a",
+            &Clear,
+            clear_params(),
+            &[],
+            &[("target", a.into())],
+        )
+        .expect("clear declares")
+        .texture("target")
+        .expect("a1");
+    let b1 = graph
+        .add_plugin_pass(
+            "fill b",
+            &Clear,
+            clear_params(),
+            &[],
+            &[("target", b.into())],
+        )
+        .expect("clear declares")
+        .texture("target")
+        .expect("b1");
+    let probe = ModifiesProbe(std::sync::Mutex::new(Vec::new()));
+    graph
+        .add_plugin_pass(
+            "probe",
+            &probe,
+            (),
+            &[("src", a1.into()), ("dst", b1.into())],
+            &[("dst", b1.into())],
+        )
+        .expect("the probe declares");
+    assert_eq!(
+        *probe.0.lock().unwrap(),
+        [("src", false), ("dst", true), ("absent", false)]
+    );
+}
