@@ -8,6 +8,68 @@
 //! bench/results/gpu/visibility-merged/clears.md); the fill writes the background's
 //! samples only and depth-culls the rest.
 
+use graph_core::file::{PluginError, Slots};
+use graph_core::{PassBuilder, TextureHandle};
+
+use super::textures::{self, Want};
+
+/// A scene pass's color targets as it declares them, each begun for the fill (overwritten)
+/// unless the pass draws over a target it reads: then every fresh one is cleared to its
+/// value instead, and nothing is filled.
+pub(crate) struct FilledTargets {
+    fill: bool,
+    handles: Vec<TextureHandle>,
+    values: Vec<(&'static str, [f64; 4])>,
+}
+
+impl FilledTargets {
+    /// For a pass that may write the slots `named`.
+    pub fn new(slots: &Slots<'_>, named: &[&str]) -> FilledTargets {
+        FilledTargets {
+            fill: !named.iter().any(|slot| slots.modifies(slot)),
+            handles: Vec::with_capacity(named.len()),
+            values: Vec::with_capacity(named.len()),
+        }
+    }
+
+    /// Declares `slot` as the next color attachment: of WGSL type `ty` in the fill's
+    /// output, holding `clear` where no mesh draws.
+    pub fn push(
+        &mut self,
+        slots: &mut Slots<'_>,
+        pass: &mut PassBuilder<'_>,
+        slot: &str,
+        want: Want,
+        (ty, clear): (&'static str, [f64; 4]),
+    ) -> Result<(), PluginError> {
+        let (target, _) = match self.fill {
+            true => textures::covered_output(slots, pass, slot, want)?,
+            false => textures::color_output(slots, pass, slot, want, clear)?,
+        };
+        self.handles.push(target);
+        self.values.push((ty, clear));
+        Ok(())
+    }
+
+    /// Whether the pass fills its targets (`SceneDraw::fill_background`).
+    pub fn fill(&self) -> bool {
+        self.fill
+    }
+
+    /// The fill's WGSL ([`fill_wgsl`]), or nothing where the targets are cleared.
+    pub fn wgsl(&self) -> String {
+        match self.fill {
+            true => fill_wgsl(&self.values),
+            false => String::new(),
+        }
+    }
+
+    /// The attachments, in location order.
+    pub fn into_handles(self) -> Vec<TextureHandle> {
+        self.handles
+    }
+}
+
 /// The WGSL of the fill's fragment stage, `fs_background`, for targets of these WGSL
 /// types (`vec4<f32>`, `vec2<u32>`, ...) holding these clear values, at locations 0 on:
 /// generated, since the values are the pass's parameters. Integer targets take their

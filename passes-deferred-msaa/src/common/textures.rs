@@ -118,7 +118,7 @@ pub(crate) fn covered_output(
 
 /// The next color attachment, beginning as `fresh` says where the pass writes a new
 /// version, loaded where it adds to its input.
-fn attached_output(
+pub(crate) fn attached_output(
     slots: &mut Slots<'_>,
     pass: &mut PassBuilder<'_>,
     slot: &str,

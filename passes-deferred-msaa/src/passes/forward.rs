@@ -34,7 +34,7 @@ use graph_core::types::TextureFormat;
 use graph_core::{PassBuilder, PassKind, TextureHandle};
 
 use super::gbuffer::opaque_black;
-use crate::common::background;
+use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{Recording, Shared};
 use crate::common::textures::{self, Want};
@@ -126,26 +126,19 @@ impl Plugin for Forward {
         let want = Want::new("the HDR target", textures::HDR).samples(desc.samples);
         // Filled with the background where no mesh draws rather than cleared first
         // (common/background.rs), unless the pass draws over the target it reads.
-        let fill = !slots.modifies("hdr");
-        let (hdr, _) = match fill {
-            true => textures::covered_output(slots, pass, "hdr", want)?,
-            false => textures::color_output(slots, pass, "hdr", want, params.background)?,
-        };
-        let generated = match fill {
-            true => background::fill_wgsl(&[("vec4<f32>", params.background)]),
-            false => String::new(),
-        };
+        let mut targets = FilledTargets::new(slots, &["hdr"]);
+        targets.push(slots, pass, "hdr", want, ("vec4<f32>", params.background))?;
         let draw = ForwardDraw {
             source: shaders::FORWARD
-                .compose_with(desc.samples, &generated)?
+                .compose_with(desc.samples, &targets.wgsl())?
                 .source()
                 .to_owned(),
             depth_rule,
             shading: params.shading,
             transparent: false,
             begin_blended: None,
-            fill_background: fill,
-            hdr,
+            fill_background: targets.fill(),
+            hdr: targets.into_handles()[0],
             depth,
         };
         self.0.record(pass, draw);

@@ -50,7 +50,7 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind, TextureHandle};
 
-use crate::common::background;
+use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{Recording, Shared};
 use crate::common::rgb9e5;
@@ -123,10 +123,8 @@ impl Plugin for GBuffer {
         }
         // Filled where no mesh draws rather than cleared first (common/background.rs),
         // unless the pass draws over a target it reads.
-        let fill = !CHANNELS.iter().any(|c| slots.modifies(c.slot));
-        let mut targets = Vec::with_capacity(CHANNELS.len());
+        let mut targets = FilledTargets::new(slots, &CHANNELS.map(|c| c.slot));
         let mut written = Vec::with_capacity(CHANNELS.len());
-        let mut fills = Vec::with_capacity(CHANNELS.len());
         for channel in &CHANNELS {
             if channel.slot != "albedo" && !slots.is_output(channel.slot) {
                 continue;
@@ -140,27 +138,20 @@ impl Plugin for GBuffer {
                 _ => [0.0; 4],
             };
             let want = Want::new(channel.what, channel.formats).samples(samples);
-            let (target, _) = match fill {
-                true => textures::covered_output(slots, pass, channel.slot, want)?,
-                false => textures::color_output(slots, pass, channel.slot, want, clear)?,
-            };
-            targets.push(target);
+            targets.push(slots, pass, channel.slot, want, (channel.wgsl, clear))?;
             written.push(channel);
-            fills.push((channel.wgsl, clear));
         }
-        let mut outputs = outputs_wgsl(&written);
-        if fill {
-            outputs += &background::fill_wgsl(&fills);
-        }
+        let outputs = outputs_wgsl(&written) + &targets.wgsl();
+        let fill_background = targets.fill();
         let draw = GBufferDraw {
             source: shaders::GBUFFER
                 .compose_with(samples, &outputs)?
                 .source()
                 .to_owned(),
             depth_rule,
-            targets,
+            targets: targets.into_handles(),
             depth,
-            fill_background: fill,
+            fill_background,
         };
         self.0.record(pass, draw);
         Ok(())

@@ -45,7 +45,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
 use super::gbuffer::opaque_black;
-use crate::common::background;
+use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{Recording, Shared};
 use crate::common::textures::{self, Input, Want};
@@ -117,10 +117,7 @@ impl Plugin for LightPrepassGBuffer {
         let samples = desc.samples;
         // Filled where no mesh draws rather than cleared first (common/background.rs),
         // unless the pass draws over a target it reads.
-        let fill = !["normal", "material", "view_depth"]
-            .iter()
-            .any(|slot| slots.modifies(slot));
-        let mut targets = Vec::new();
+        let mut targets = FilledTargets::new(slots, &["normal", "material", "view_depth"]);
         for (slot, what, formats) in [
             ("normal", "the thin G-buffer's normals", textures::NORMAL),
             (
@@ -135,26 +132,18 @@ impl Plugin for LightPrepassGBuffer {
             ),
         ] {
             let want = Want::new(what, formats).samples(samples);
-            let (target, _) = match fill {
-                true => textures::covered_output(slots, pass, slot, want)?,
-                false => textures::color_output(slots, pass, slot, want, [0.0; 4])?,
-            };
-            targets.push(target);
+            targets.push(slots, pass, slot, want, ("vec4<f32>", [0.0; 4]))?;
         }
-        let generated = match fill {
-            true => background::fill_wgsl(&[("vec4<f32>", [0.0; 4]); 3]),
-            false => String::new(),
-        };
         let draw = GeometryDraw {
             source: shaders::LIGHT_PREPASS_GEOMETRY
-                .compose_with(samples, &generated)?
+                .compose_with(samples, &targets.wgsl())?
                 .source()
                 .to_owned(),
             depth_rule,
-            targets,
+            fill_background: targets.fill(),
+            targets: targets.into_handles(),
             depth,
             light: None,
-            fill_background: fill,
         };
         self.0.record(pass, draw);
         Ok(())
@@ -183,25 +172,18 @@ impl Plugin for LightPrepassMaterial {
         let (light, _) = textures::sampled(slots, pass, "light", want, 0)?;
         let want = Want::new("the HDR target", textures::HDR).samples(samples);
         // Filled with the background where no mesh draws, as forward's is.
-        let fill = !slots.modifies("hdr");
-        let (hdr, _) = match fill {
-            true => textures::covered_output(slots, pass, "hdr", want)?,
-            false => textures::color_output(slots, pass, "hdr", want, params.background)?,
-        };
-        let generated = match fill {
-            true => background::fill_wgsl(&[("vec4<f32>", params.background)]),
-            false => String::new(),
-        };
+        let mut targets = FilledTargets::new(slots, &["hdr"]);
+        targets.push(slots, pass, "hdr", want, ("vec4<f32>", params.background))?;
         let draw = GeometryDraw {
             source: shaders::LIGHT_PREPASS_GEOMETRY
-                .compose_with(samples, &generated)?
+                .compose_with(samples, &targets.wgsl())?
                 .source()
                 .to_owned(),
             depth_rule: DepthRule::new(params.reversed_z),
-            targets: vec![hdr],
+            fill_background: targets.fill(),
+            targets: targets.into_handles(),
             depth,
             light: Some(light),
-            fill_background: fill,
         };
         self.0.record(pass, draw);
         Ok(())

@@ -130,16 +130,12 @@ impl Plugin for Transparent {
         // Transmittance 1 where nothing blended is drawn: the composite leaves those pixels.
         // Begun by a draw over the blended meshes' rectangle instead of a clear, where the
         // extent says so.
-        let mut fresh = false;
-        let (accum, _) = textures::output(slots, pass, "accum", want, |pass, h, modifies| {
-            fresh = !modifies;
-            match (modifies, params.extent) {
-                (true, _) => pass.color_output(h, ColorLoad::Load),
-                (false, Extent::Full) => pass.color_output(h, ColorLoad::Clear(opaque_black())),
-                (false, Extent::Blended) => pass.color_output(h, ColorLoad::Overwrite),
-            }
-        })?;
-        let begin = fresh && params.extent == Extent::Blended;
+        let fresh = match params.extent {
+            Extent::Full => ColorLoad::Clear(opaque_black()),
+            Extent::Blended => ColorLoad::Overwrite,
+        };
+        let (accum, _) = textures::attached_output(slots, pass, "accum", want, fresh)?;
+        let begin = params.extent == Extent::Blended && !slots.modifies("accum");
         let draw = ForwardDraw {
             source: shaders::TRANSPARENT
                 .compose(desc.samples)?
