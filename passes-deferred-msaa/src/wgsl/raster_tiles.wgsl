@@ -3,7 +3,8 @@
 // keys once, with plain stores, into the buffer a compute rasteriser's keys go to
 // (visibility_samples.wgsl reads it): no atomics into memory, and no 64-bit integers.
 // Sample 0's key says whether the pixel's samples show more than one triangle
-// (SEVERAL_SURFACES), which only this pass knows without reading them all. Composed after
+// (SEVERAL_SURFACES), which only this pass knows without reading them all. An invocation
+// stores the keys of the pixel it covered (tile_raster.wgsl's pixel_in_tile). Composed after
 // tile_raster.wgsl and key_layout.wgsl.
 
 @group(1) @binding(0) var<storage, read_write> written_keys: array<vec2<u32>>;
@@ -11,12 +12,11 @@
 @compute @workgroup_size(TILE, TILE, 1)
 fn cs_raster_tiles(
     @builtin(workgroup_id) tile: vec3<u32>,
-    @builtin(local_invocation_id) local_id: vec3<u32>,
     @builtin(local_invocation_index) local: u32,
 ) {
     let origin = tile.xy * TILE;
     let keys = cover_tile(origin, local);
-    let pixel = origin + local_id.xy;
+    let pixel = origin + pixel_in_tile(local);
     if all(pixel < output_size()) {
         let id0 = LaneU(lane(keys.ids[0], 0u));
         var several = false;
