@@ -76,26 +76,9 @@ if [ -z "$bin" ] || [ ! -x "$bin" ]; then
   exit 2
 fi
 
-# The Vulkan loader: servers without it get the Debian packages unpacked into /.
-if ! ldconfig -p | grep -q libvulkan; then
-  debs=(.gl/*.deb)
-  if [ ! -e "${debs[0]}" ]; then
-    echo "bench-gpu: no Vulkan loader (libvulkan) and no .debs in .gl/ to unpack;" \
-         "see ../shared/notes/gpu.md" >&2
-    exit 2
-  fi
-  for deb in "${debs[@]}"; do dpkg -x "$deb" /; done
-  ldconfig
-fi
-nvidia_icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-if [ -z "${VK_DRIVER_FILES:-}" ] && [ -f "$nvidia_icd" ]; then
-  export VK_DRIVER_FILES="$nvidia_icd"
-fi
-export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
-export RGRAPH_ADAPTER="${RGRAPH_ADAPTER:-gpu}"
-if [ -z "${RGRAPH_GIT_COMMIT:-}" ] && git rev-parse HEAD >/dev/null 2>&1; then
-  export RGRAPH_GIT_COMMIT="$(git rev-parse HEAD)"
-fi
+tool=bench-gpu
+# shellcheck source=scripts/gpu-env.sh
+. scripts/gpu-env.sh
 
 mkdir -p "$out"
 # Which adapters the server has, for the record (the bench prints the one it used).
