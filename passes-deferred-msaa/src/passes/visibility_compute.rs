@@ -6,7 +6,8 @@
 //! sample written whatever it holds, and the hardware visibility pass at 4x took 3.6x its
 //! 1x time. No atomics into memory and no 64-bit integers either: the opaque triangles
 //! are binned to tiles first (common/gpu/tile_bins.rs, bin_triangles.wgsl); then a workgroup
-//! per tile covers its triangles in registers, an invocation per pixel
+//! per tile covers its triangles in registers, an invocation per pixel and a warp per
+//! block of 4 x 8 pixels, which skips the triangles whose area misses its block
 //! (tile_raster.wgsl), and stores each pixel's keys once, a plane per sample, with a
 //! flag where they show more than one triangle (raster_tiles.wgsl, key_layout.wgsl):
 //! the shading pass then reads a quarter of a 4x buffer away from edges. An atomicMax
