@@ -32,6 +32,33 @@ pub(crate) struct Fullscreen {
     pub blend: Option<BlendState>,
 }
 
+impl Fullscreen {
+    /// `entry` of `source` reading `inputs`, drawn over the whole of `target` (`None`
+    /// for a pass that only marks the stencil): no constants, no scene, no stencil mark,
+    /// the target's pixels replaced. A pass that needs more sets those fields over this
+    /// (`Fullscreen { blend, ..Fullscreen::new(...) }`).
+    pub fn new(
+        label: &'static str,
+        source: String,
+        entry: &'static str,
+        inputs: Vec<Input>,
+        target: Option<TextureHandle>,
+    ) -> Self {
+        Fullscreen {
+            label,
+            source,
+            entry,
+            constants: Vec::new(),
+            inputs,
+            reads_scene: false,
+            target,
+            extent: Extent::Full,
+            stencil_mark: None,
+            blend: None,
+        }
+    }
+}
+
 impl Recording for Fullscreen {
     #[cfg(feature = "gpu")]
     fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {

@@ -27,7 +27,6 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{Aspect, PassBuilder, PassKind};
 
-use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Input, Texels, Want};
@@ -136,23 +135,17 @@ impl Plugin for DebugView {
         }
         let want = Want::new("a debug view", textures::DISPLAY).samples(1);
         let (target, _) = textures::covered_output(slots, pass, "color", want)?;
+        let source = shaders::DEBUG
+            .compose(samples.unwrap_or(1))?
+            .source()
+            .to_owned();
         let draw = Fullscreen {
-            label: "debug_view",
-            source: shaders::DEBUG
-                .compose(samples.unwrap_or(1))?
-                .source()
-                .to_owned(),
-            entry,
             constants: vec![
                 ("DEPTH_SCALE", f64::from(params.depth_scale)),
                 ("HEAT_MAX", f64::from(params.heat_max)),
             ],
-            inputs,
             reads_scene: params.view == View::Lights,
-            target: Some(target),
-            extent: Extent::Full,
-            stencil_mark: None,
-            blend: None,
+            ..Fullscreen::new("debug_view", source, entry, inputs, Some(target))
         };
         self.0.record(pass, draw);
         Ok(())

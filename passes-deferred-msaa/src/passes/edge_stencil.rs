@@ -29,7 +29,6 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{AspectAccess, PassBuilder, PassKind};
 
 use crate::common::edge_detection::{Detector, EdgeDetection};
-use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::{Shared, ONE_SAMPLE};
 use crate::common::textures::{self, Want, GBUFFER_INPUTS};
@@ -77,17 +76,11 @@ impl Plugin for EdgeStencil {
             pass.omit(ONE_SAMPLE);
             return Ok(());
         }
+        let source = shaders::EDGE.compose(desc.samples)?.source().to_owned();
         let draw = Fullscreen {
-            label: "edge_stencil",
-            source: shaders::EDGE.compose(desc.samples)?.source().to_owned(),
-            entry,
             constants: params.constants(),
-            inputs,
-            reads_scene: false,
-            target: None,
-            extent: Extent::Full,
             stencil_mark: Some(depth),
-            blend: None,
+            ..Fullscreen::new("edge_stencil", source, entry, inputs, None)
         };
         self.0.record(pass, draw);
         Ok(())

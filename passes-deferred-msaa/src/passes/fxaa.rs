@@ -27,7 +27,6 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind};
 
-use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Texels, Want};
@@ -161,25 +160,18 @@ impl Plugin for Fxaa {
         input.texels = Texels::Filtered { sampler: 1 };
         let want = Want::new("the anti-aliased output", textures::DISPLAY).samples(1);
         let (target, _) = textures::covered_output(slots, pass, "color", want)?;
+        let source = shaders::FXAA
+            .compose_with(1, &steps_wgsl(steps))?
+            .source()
+            .to_owned();
         let draw = Fullscreen {
-            label: "fxaa",
-            source: shaders::FXAA
-                .compose_with(1, &steps_wgsl(steps))?
-                .source()
-                .to_owned(),
-            entry: "fs_fxaa",
             constants: vec![
                 ("LINEAR_INPUT", f64::from(u8::from(linear))),
                 ("SUBPIX", f64::from(params.subpix)),
                 ("EDGE_THRESHOLD", f64::from(params.edge_threshold)),
                 ("EDGE_THRESHOLD_MIN", f64::from(params.edge_threshold_min)),
             ],
-            inputs: vec![input],
-            reads_scene: false,
-            target: Some(target),
-            extent: Extent::Full,
-            stencil_mark: None,
-            blend: None,
+            ..Fullscreen::new("fxaa", source, "fs_fxaa", vec![input], Some(target))
         };
         self.0.record(pass, draw);
         Ok(())

@@ -22,7 +22,6 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind};
 
 use super::particles::{same_size, EDGES};
-use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Want};
@@ -71,17 +70,11 @@ impl Plugin for ParticleEdges {
         let want = Want::new("the particle edges", EDGES).samples(1);
         let (edges, desc) = textures::color_output(slots, pass, "edges", want, [0.0; 4])?;
         same_size(slots, ("edges", &desc), ("color", &color_desc))?;
+        let source = shaders::PARTICLE_EDGES.compose(1)?.source().to_owned();
+        let inputs = vec![color, additive];
         let draw = Fullscreen {
-            label: "particle edges",
-            source: shaders::PARTICLE_EDGES.compose(1)?.source().to_owned(),
-            entry: "fs_sobel",
             constants: vec![("THRESHOLD", f64::from(params.threshold))],
-            inputs: vec![color, additive],
-            reads_scene: false,
-            target: Some(edges),
-            extent: Extent::Full,
-            stencil_mark: None,
-            blend: None,
+            ..Fullscreen::new("particle edges", source, "fs_sobel", inputs, Some(edges))
         };
         self.0.record(pass, draw);
         Ok(())

@@ -63,7 +63,6 @@ use graph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, Texture
 
 use super::transparent::UNDER_TRANSMITTANCE;
 use crate::common::depth::DepthRule;
-use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Input, Texels, Want};
@@ -335,17 +334,12 @@ impl Plugin for CompositeParticles {
                 return Err(slot_error(slots, slot, why));
             }
         };
+        let source = shaders::PARTICLE_COMPOSITE.compose(1)?.source().to_owned();
         let draw = Fullscreen {
-            label: "composite particles",
-            source: shaders::PARTICLE_COMPOSITE.compose(1)?.source().to_owned(),
-            entry,
-            constants: Vec::new(),
-            inputs,
             reads_scene: true,
-            target: Some(target),
-            extent: Extent::Full,
             stencil_mark,
             blend: Some(UNDER_TRANSMITTANCE),
+            ..Fullscreen::new("composite particles", source, entry, inputs, Some(target))
         };
         self.0.record(pass, draw);
         Ok(())

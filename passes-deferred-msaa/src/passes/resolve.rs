@@ -19,7 +19,6 @@ use serde::Deserialize;
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind};
 
-use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Want};
@@ -108,17 +107,10 @@ impl Plugin for Resolve {
             ResolveMode::Box => 0.0,
             ResolveMode::Tonemapped => 1.0,
         };
+        let source = shaders::RESOLVE.compose(desc.samples)?.source().to_owned();
         let draw = Fullscreen {
-            label: "resolve",
-            source: shaders::RESOLVE.compose(desc.samples)?.source().to_owned(),
-            entry: "fs_resolve",
             constants: vec![("MODE", mode), ("EXPOSURE", f64::from(exposure))],
-            inputs: vec![input],
-            reads_scene: false,
-            target: Some(target),
-            extent: Extent::Full,
-            stencil_mark: None,
-            blend: None,
+            ..Fullscreen::new("resolve", source, "fs_resolve", vec![input], Some(target))
         };
         self.0.record(pass, draw);
         Ok(())

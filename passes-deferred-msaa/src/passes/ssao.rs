@@ -52,7 +52,6 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind, Size, TextureDesc};
 
 use crate::common::ao::AO;
-use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Want};
@@ -188,10 +187,8 @@ impl Plugin for Ssao {
         let want = Want::new("the ambient occlusion", AO).samples(1);
         let (target, ao) = textures::covered_output(slots, pass, "ao", want)?;
         let scale = texel_scale(slots, "ao", gbuffer.size, ao.size, true)?;
+        let source = shaders::SSAO.compose(samples)?.source().to_owned();
         let draw = Fullscreen {
-            label: "ssao",
-            source: shaders::SSAO.compose(samples)?.source().to_owned(),
-            entry: "fs_gtao",
             constants: vec![
                 ("RADIUS", f64::from(params.radius)),
                 ("DIRECTIONS", f64::from(params.directions)),
@@ -199,12 +196,8 @@ impl Plugin for Ssao {
                 ("BIAS", f64::from(params.bias)),
                 ("SCALE", f64::from(scale)),
             ],
-            inputs: vec![normal, depth],
             reads_scene: true,
-            target: Some(target),
-            extent: Extent::Full,
-            stencil_mark: None,
-            blend: None,
+            ..Fullscreen::new("ssao", source, "fs_gtao", vec![normal, depth], Some(target))
         };
         self.0.record(pass, draw);
         Ok(())
@@ -243,20 +236,19 @@ impl Plugin for SsaoBlur {
         };
         let (target, out) = textures::covered_output(slots, pass, slot, want.samples(1))?;
         texel_scale(slots, slot, gbuffer.size, out.size, false)?;
+        let source = shaders::SSAO.compose(samples)?.source().to_owned();
         let draw = Fullscreen {
-            label: "ssao_blur",
-            source: shaders::SSAO.compose(samples)?.source().to_owned(),
-            entry: "fs_blur",
             constants: vec![
                 ("BLUR_DEPTH", f64::from(tolerance)),
                 ("SCALE", f64::from(scale)),
             ],
-            inputs: vec![raw, depth],
-            reads_scene: false,
-            target: Some(target),
-            extent: Extent::Full,
-            stencil_mark: None,
-            blend: None,
+            ..Fullscreen::new(
+                "ssao_blur",
+                source,
+                "fs_blur",
+                vec![raw, depth],
+                Some(target),
+            )
         };
         self.0.record(pass, draw);
         Ok(())

@@ -32,7 +32,6 @@ use graph_core::types::TextureFormat;
 use graph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
 
 use super::resolve::{exposure, one};
-use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::{Recording, Shared};
 use crate::common::textures::{self, Input, Texels, Want};
@@ -152,17 +151,11 @@ impl Plugin for Tonemap {
             TonemapStage::Fragment => {
                 let want = Want::new("the displayed output", textures::DISPLAY).samples(1);
                 let (target, _) = textures::covered_output(slots, pass, "color", want)?;
+                let entry = FRAGMENT_ENTRIES[entry];
                 let draw = Fullscreen {
-                    label: "tonemap",
-                    source,
-                    entry: FRAGMENT_ENTRIES[entry],
                     constants,
-                    inputs,
                     reads_scene: self.0.draws_scene,
-                    target: Some(target),
-                    extent: Extent::Full,
-                    stencil_mark: None,
-                    blend: None,
+                    ..Fullscreen::new("tonemap", source, entry, inputs, Some(target))
                 };
                 self.0.record(pass, draw);
             }

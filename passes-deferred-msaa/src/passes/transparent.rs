@@ -205,20 +205,20 @@ impl Plugin for CompositeTransparent {
                 ),
             });
         }
+        let source = shaders::COMPOSITE
+            .compose(accum_desc.samples)?
+            .source()
+            .to_owned();
         let draw = Fullscreen {
-            label: "composite transparent",
-            source: shaders::COMPOSITE
-                .compose(accum_desc.samples)?
-                .source()
-                .to_owned(),
-            entry: "fs_composite",
-            constants: Vec::new(),
-            inputs: vec![accum],
-            reads_scene: false,
-            target: Some(target),
             extent: Extent::Blended,
-            stencil_mark: None,
             blend: Some(UNDER_TRANSMITTANCE),
+            ..Fullscreen::new(
+                "composite transparent",
+                source,
+                "fs_composite",
+                vec![accum],
+                Some(target),
+            )
         };
         self.0.record(pass, draw);
         Ok(())
