@@ -202,14 +202,20 @@ const BLOCK_H: u32 = select(TILE, 8u, TILE % 8u == 0u);
 const BLOCKS_ACROSS: u32 = TILE / BLOCK_W;
 const BLOCKS: u32 = BLOCKS_ACROSS * (TILE / BLOCK_H);
 
-// The pixel of the tile invocation `local` covers: block by block, row by row in each.
+// The block of the tile's invocation `local`: consecutive invocations fill a block.
+fn block_of(local: u32) -> u32 {
+    return local / (BLOCK_W * BLOCK_H);
+}
+
+// The top-left pixel of block `b` in its tile, the blocks row by row.
+fn block_corner(b: u32) -> vec2<u32> {
+    return vec2<u32>(b % BLOCKS_ACROSS * BLOCK_W, b / BLOCKS_ACROSS * BLOCK_H);
+}
+
+// The pixel of the tile invocation `local` covers: its block's, row by row.
 fn pixel_in_tile(local: u32) -> vec2<u32> {
-    let block = local / (BLOCK_W * BLOCK_H);
     let within = local % (BLOCK_W * BLOCK_H);
-    return vec2<u32>(
-        block % BLOCKS_ACROSS * BLOCK_W + within % BLOCK_W,
-        block / BLOCKS_ACROSS * BLOCK_H + within / BLOCK_W,
-    );
+    return block_corner(block_of(local)) + vec2<u32>(within % BLOCK_W, within / BLOCK_W);
 }
 
 // The blocks of the tile at `origin` that `t`, whose pixel bounds are `bounds`, may cover
@@ -231,7 +237,7 @@ fn blocks_touched(t: CoverTriangle, bounds: vec4<i32>, origin: vec2<u32>) -> u32
     let at_origin = edges_at_pixel(t, origin);
     var touched = 0u;
     for (var b = 0u; b < BLOCKS; b++) {
-        let offset = vec2<u32>(b % BLOCKS_ACROSS * BLOCK_W, b / BLOCKS_ACROSS * BLOCK_H);
+        let offset = block_corner(b);
         let block = origin + offset;
         let pixels = vec4<i32>(vec2<i32>(block), vec2<i32>(block + vec2<u32>(BLOCK_W - 1u, BLOCK_H - 1u)));
         let corner = at_origin + t.per_x * f32(offset.x) + t.per_y * f32(offset.y);
@@ -256,10 +262,9 @@ fn cover_tile(origin: vec2<u32>, local: u32) -> TileKeys {
     let complete = end <= arrayLength(&tile_entries) && start <= end;
     let total = select(3u * triangle_count(), binned + spanning_count, complete);
     let tile = vec4<i32>(vec2<i32>(origin), vec2<i32>(origin + TILE - 1u));
-    let in_tile = pixel_in_tile(local);
-    let pixel = origin + in_tile;
+    let pixel = origin + pixel_in_tile(local);
     let covers = all(pixel < output_size());
-    let block = 1u << (in_tile.y / BLOCK_H * BLOCKS_ACROSS + in_tile.x / BLOCK_W);
+    let block = 1u << block_of(local);
     for (var first = 0u; first < total; first += RASTER_CHUNK) {
         if local == 0u {
             atomicStore(&chunk_count, 0u);
