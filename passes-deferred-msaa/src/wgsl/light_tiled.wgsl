@@ -161,13 +161,24 @@ fn same_fragment(a: GSample, b: GSample) -> bool {
 // positions and depths, which lies on the fragment's plane (clip depth is affine in
 // screen space across a triangle). One sample's own position for a mask of one.
 fn fragment_surface(pixel: vec2<i32>, mask: u32) -> vec3<f32> {
+    var depths: array<f32, SAMPLES>;
+    for (var s = 0u; s < SAMPLES; s++) {
+        if (mask & (1u << s)) != 0u {
+            depths[s] = sample_depth(pixel, s);
+        }
+    }
+    return mean_point(pixel, mask, depths);
+}
+
+// fragment_surface from the samples' clip depths, read before.
+fn mean_point(pixel: vec2<i32>, mask: u32, depths: array<f32, SAMPLES>) -> vec3<f32> {
     var xy = vec2<f32>(0.0);
     var depth = 0.0;
     var n = 0.0;
     for (var s = 0u; s < SAMPLES; s++) {
         if (mask & (1u << s)) != 0u {
             xy += sample_position(pixel, s);
-            depth += sample_depth(pixel, s);
+            depth += depths[s];
             n += 1.0;
         }
     }
@@ -192,15 +203,18 @@ fn entry_surface(origin: vec2<u32>, code: u32) -> EntrySurface {
 
 // The surface of `pixel`'s fragment covering the samples of `mask`, sample `s` among them.
 fn fragment_surface_of(pixel: vec2<i32>, s: u32, mask: u32) -> EntrySurface {
-    let g = load_gsample(pixel, s);
+    return entry_of(pixel, s, load_gsample(pixel, s), fragment_surface(pixel, mask));
+}
+
+// Sample `s`'s fragment of `pixel`, `g`, as the surface at point `p`.
+fn entry_of(pixel: vec2<i32>, s: u32, g: GSample, p: vec3<f32>) -> EntrySurface {
     let lit = (g.flags & FLAG_LIT) != 0u;
     var emits = vec3<f32>(0.0);
     if SURFACE_IDS {
         emits = emitted(pixel, s, g);
     }
     // Screen-space AO, when the pass reads it, darkens the ambient term only.
-    let surface = surface_of(g, fragment_surface(pixel, mask));
-    return EntrySurface(lit, with_screen_ao(surface, pixel), emits);
+    return EntrySurface(lit, with_screen_ao(surface_of(g, p), pixel), emits);
 }
 
 fn load_light(entry: u32) -> vec3<f32> {

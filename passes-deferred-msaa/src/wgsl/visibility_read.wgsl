@@ -115,6 +115,44 @@ fn pixel_ids(pixel: vec2<i32>) -> array<u32, SAMPLES> {
     return ids;
 }
 
+// A pixel's samples, read once for everything its fragments need: each one's triangle
+// (ID + 1, 0 for nothing drawn) and clip depth.
+struct PixelSamples {
+    ids: array<u32, SAMPLES>,
+    depths: array<f32, SAMPLES>,
+}
+
+fn read_samples(pixel: vec2<i32>) -> PixelSamples {
+    var samples: PixelSamples;
+    for (var s = 0u; s < SAMPLES; s++) {
+        samples.ids[s] = sample_id(pixel, s);
+        samples.depths[s] = sample_depth(pixel, s);
+    }
+    return samples;
+}
+
+// The samples among `ids` showing triangle `id`, a bit each.
+fn showing(ids: array<u32, SAMPLES>, id: u32) -> u32 {
+    var mask = 0u;
+    for (var k = 0u; k < SAMPLES; k++) {
+        mask |= u32(ids[k] == id) << k;
+    }
+    return mask;
+}
+
+// The mean position of the samples of `mask` in `pixel`.
+fn mean_position(pixel: vec2<i32>, mask: u32) -> vec2<f32> {
+    var at = vec2<f32>(0.0);
+    var n = 0.0;
+    for (var k = 0u; k < SAMPLES; k++) {
+        if (mask & (1u << k)) != 0u {
+            at += sample_position(pixel, k);
+            n += 1.0;
+        }
+    }
+    return at / n;
+}
+
 // Where sample `s` of `pixel` is rebuilt: the triangle it shows (ID + 1, 0 for nothing
 // drawn) at the mean position of the samples showing it. A pixel whose samples all show
 // one triangle takes it at the pixel center (the mean of the standard sample positions,
@@ -128,27 +166,31 @@ fn sample_fragment(pixel: vec2<i32>, s: u32) -> SampleFragment {
     if one_surface(pixel) {
         return SampleFragment(sample_id(pixel, 0u), vec2<f32>(pixel) + 0.5);
     }
-    let ids = pixel_ids(pixel);
-    var at = vec2<f32>(0.0);
-    var n = 0.0;
-    for (var k = 0u; k < SAMPLES; k++) {
-        if ids[k] == ids[s] {
-            at += sample_position(pixel, k);
-            n += 1.0;
-        }
-    }
-    return SampleFragment(ids[s], at / n);
+    return fragment_of(pixel, pixel_ids(pixel), s);
 }
 
-// Sample `s` of `pixel` as a G-buffer sample. Nothing drawn: view depth 0, as a
-// G-buffer's. One call of `rebuild` for either kind of pixel: a warp holding both runs it
-// once.
-fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
-    let f = sample_fragment(pixel, s);
+// sample_fragment from the pixel's IDs, read before.
+fn fragment_of(pixel: vec2<i32>, ids: array<u32, SAMPLES>, s: u32) -> SampleFragment {
+    // ids[s], without indexing the array by a variable (which may put it in memory).
+    var id = 0u;
+    for (var k = 0u; k < SAMPLES; k++) {
+        id = select(id, ids[k], k == s);
+    }
+    return SampleFragment(id, mean_position(pixel, showing(ids, id)));
+}
+
+// Fragment `f` as a G-buffer sample. Nothing drawn: view depth 0, as a G-buffer's.
+fn rebuilt(f: SampleFragment) -> GSample {
     if f.id == 0u {
         return GSample();
     }
     return rebuild(f.id, f.at);
+}
+
+// Sample `s` of `pixel` as a G-buffer sample. One call of `rebuild` for either kind of
+// pixel: a warp holding both runs it once.
+fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
+    return rebuilt(sample_fragment(pixel, s));
 }
 
 // For each sample, the first sample showing the same triangle (itself where no earlier
@@ -158,7 +200,11 @@ fn fragment_leaders(pixel: vec2<i32>) -> u32 {
     if one_surface(pixel) {
         return 0u;
     }
-    let ids = pixel_ids(pixel);
+    return leaders_of(pixel_ids(pixel));
+}
+
+// fragment_leaders from the pixel's IDs, read before.
+fn leaders_of(ids: array<u32, SAMPLES>) -> u32 {
     var leaders = 0u;
     for (var s = 0u; s < SAMPLES; s++) {
         var leader = s;
