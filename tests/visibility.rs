@@ -430,6 +430,35 @@ fn listed_edge_pixels_add_up_every_batch_of_lights() {
     );
 }
 
+/// Where a scene has few point and spot lights, each listed edge pixel's fragments test
+/// every light instead of those its run culled (light_edges_listed.wgsl's RUN_CULL_ABOVE):
+/// 64 lights, culled by each run, and the same lights with culling off (every light for
+/// each fragment, as a run of a scene with few lights takes them) agree within 1/255
+/// everywhere, edge pixels included.
+#[test]
+fn listed_edge_pixels_lit_by_every_light_match_their_runs_culling() {
+    let gpu = gpu();
+    let frame = |params: &'static str| {
+        Render::new(COMPUTE, "builtin:lights?count=64", (320, 180))
+            .edit("params: (shading: adaptive),", params)
+            .read(&gpu, &["color", "debug.edges"])
+    };
+    let culled = frame("params: (shading: adaptive, cull: true),");
+    let every = frame("params: (shading: adaptive, cull: false),");
+    let edges = culled[1].pixels.iter().filter(|&&p| p == RED).count();
+    assert!(
+        edges > 1000,
+        "only {edges} edge pixels: the test proves little"
+    );
+    let d = measure::diff(&culled[0], &every[0], None);
+    assert!(
+        d.max <= 1,
+        "culled and unculled differ by {} at {:?} ({edges} edge pixels)",
+        d.max,
+        d.at
+    );
+}
+
 /// Its bins are made for an output size: a frame resized to another renders what a frame
 /// made at that size renders, bit for bit, and so does one resized back.
 #[test]

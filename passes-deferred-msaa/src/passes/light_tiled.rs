@@ -59,10 +59,11 @@
 //! A visibility buffer shaded at more than one sample per pixel knows its edge pixels
 //! from one flag or ID comparison: the tiles' dispatch lists them into a buffer the pass
 //! owns (4 bytes a pixel of the output, which frames report as the pass's own) and leaves
-//! them out; a second dispatch lights them in runs of 128 listed pixels, each run culling
-//! lights for itself as a tile does, each pixel an invocation's, its fragments in turn,
-//! and resolves them (light_edges_listed.wgsl; bench/results/gpu/visibility-edges says
-//! why).
+//! them out; a second dispatch lights them in runs of 128 listed pixels, each pixel an
+//! invocation's, its fragments in turn, and resolves them (light_edges_listed.wgsl;
+//! bench/results/gpu/visibility-edges says why). A run culls lights for itself as a tile
+//! does where the scene has more than 32 point and spot lights; with fewer each fragment
+//! tests every light, which costs less than the run's culling.
 //!
 //! The workgroup memory the shader needs grows with the tile and the sample count
 //! (`tile`² x (samples − 1) edge entries of 16 bytes where the tile lights its edge

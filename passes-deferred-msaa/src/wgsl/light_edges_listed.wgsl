@@ -1,8 +1,9 @@
 // A visibility buffer's edge pixels, lit by a dispatch of their own (light_tiled.rs says
 // when): cs_light_tiled knows them from sample 0's flag alone and lists them across the
 // output, one atomic a tile; cs_light_edge_pixels lights them EDGE_INVOCATIONS at a time,
-// with the lights that reach those pixels' samples, and resolves them. The tiles'
-// dispatch carries no code for their fragments, and every warp of this one is full
+// with the lights that reach those pixels' samples (each run culling them where the scene
+// has many, runs_cull), and resolves them. The tiles' dispatch carries no code for their
+// fragments, and every warp of this one is full
 // (bench/results/gpu/visibility-edges measured a tile's edge entries in a second round
 // of its first warps while the others waited).
 //
@@ -75,15 +76,59 @@ fn cs_light_edge_pixels(
         edge_total = atomicLoad(&edge_pixels.count);
     }
     let count = workgroupUniformLoad(&edge_total);
+    let culls = runs_cull();
     for (var run = group.x * EDGE_INVOCATIONS; run < count; run += groups.x * EDGE_INVOCATIONS) {
-        light_run(run, count, local);
+        if culls {
+            light_run(run, count, local);
+        } else if run + local < count {
+            light_unculled(listed_pixel(run + local));
+        }
     }
+}
+
+// Whether each run culls the point and spot lights for its pixels as a tile does
+// (light_run), or each fragment tests every light (light_unculled): more than
+// RUN_CULL_ABOVE lights. With few, the run's depth bounds, side planes and barriers cost
+// more than the tests they save (on the H200 at 3840x2160, 4x: builtin:dense's 6 lights
+// shade in 0.67 ms unculled, 0.70 culled; lights?count=64 in 0.53 unculled, 0.49
+// culled; bench/results/gpu/visibility-runs).
+const RUN_CULL_ABOVE: u32 = 32u;
+
+fn runs_cull() -> bool {
+    return CULL && light_info.light_count - light_info.directional_count > RUN_CULL_ABOVE;
+}
+
+// Lights and resolves listed pixel `p` with every light, no workgroup memory and no
+// barrier: the samples of each fragment take its light.
+fn light_unculled(p: ListedPixel) {
+    var sum = vec4<f32>(0.0);
+    var rest = p.fragments;
+    while rest != 0u {
+        let s = firstTrailingBit(rest);
+        rest &= rest - 1u;
+        let mask = source_mask(p.leaders, true, s);
+        let e = listed_fragment(p, s, mask);
+        var light = vec3<f32>(0.0);
+        if e.lit {
+            light = ambient_and_directional(e.surface);
+            for (var l = light_info.directional_count; l < light_info.light_count; l++) {
+                light += reaching_light(e.surface, lights[l]);
+            }
+        }
+        sum = with_fragment(sum, mask, taken_light(e, light));
+    }
+    textureStore(out_tex, p.pixel, vec4<f32>(sum.rgb / sum.a, 1.0));
+}
+
+// A pixel's resolve `sum` with the samples of `mask` taking `light`.
+fn with_fragment(sum: vec4<f32>, mask: u32, light: vec3<f32>) -> vec4<f32> {
+    return sum + f32(countOneBits(mask)) * resolve_sample(vec4<f32>(0.0), light);
 }
 
 // Lights listed pixel `run + local`, if there is one: each of its fragments (each sample,
 // or with ADAPTIVE each triangle once) rebuilt at the mean of the samples it covers, lit
 // with the lights reaching the run (culled in batches of THREADS as a tile culls) and
-// taken by those samples.
+// taken by those samples. Every invocation of the workgroup calls it (it has barriers).
 fn light_run(run: u32, count: u32, local: u32) {
     start_tile(local);
     if local == 0u {
@@ -143,8 +188,7 @@ fn light_run(run: u32, count: u32, local: u32) {
             var light = vec3<f32>(fragment_light[slot], fragment_light[slot + 1u], fragment_light[slot + 2u]);
             light = light_batch(listed_fragment(p, s, mask), light, batch == first, last_batch, lights_now);
             if last_batch {
-                // Each sample of the fragment takes its light.
-                sum += f32(countOneBits(mask)) * resolve_sample(vec4<f32>(0.0), light);
+                sum = with_fragment(sum, mask, light);
             } else {
                 fragment_light[slot] = light.r;
                 fragment_light[slot + 1u] = light.g;

@@ -235,11 +235,22 @@ fn store_light(entry: u32, light: vec3<f32>) {
 // 0.85 ms, the 4x 1.20 -> 1.04, at 3840x2160 on the H200:
 // bench/results/gpu/visibility-dense).
 fn batch_light(s: Surface, l: u32) -> vec3<f32> {
-    let light = lights[batch_lights[l]];
+    return reaching_light(s, lights[batch_lights[l]]);
+}
+
+// The light of point or spot light `light` at surface `s`: 0 without its BRDF where it
+// cannot reach `s`'s point.
+fn reaching_light(s: Surface, light: LightData) -> vec3<f32> {
     if !reaches(light, s.position) {
         return vec3<f32>(0.0);
     }
     return shade_light(s, light);
+}
+
+// What the samples of surface `e` take, lit by `light` in all: what it emits (a visibility
+// buffer's surface), plus that light, no more than HALF_MAX.
+fn taken_light(e: EntrySurface, light: vec3<f32>) -> vec3<f32> {
+    return e.emits + min(light, vec3<f32>(HALF_MAX));
 }
 
 // `light`, the light of surface `e` from the batches before this one, with this batch's
@@ -257,7 +268,7 @@ fn light_batch(e: EntrySurface, light: vec3<f32>, first: bool, last: bool, count
         }
     }
     if last {
-        sum = e.emits + min(sum, vec3<f32>(HALF_MAX));
+        sum = taken_light(e, sum);
     }
     return sum;
 }
