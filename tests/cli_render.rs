@@ -440,7 +440,9 @@ fn the_visibility_pipeline_rasterises_by_the_hardware_on_a_cpu_device() {
         .expect(0)
         .stderr_has("\nvisibility (hardware raster) ")
         .stderr_has("\ndevice conditions: cpu_device\n")
-        .stderr_has("dropped by conditions: visibility, light tiled, keys depth, ");
+        .stderr_has(
+            "dropped by conditions: visibility, visibility (blend), light tiled, keys depth, ",
+        );
     render_default(&out, &[&pipeline[..], &["--no-specialise"]].concat())
         .expect(0)
         .stderr_has("\ntonemap (cpu device) ")

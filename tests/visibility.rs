@@ -386,15 +386,15 @@ fn the_compute_raster_s_tile_size_does_not_change_the_image() {
     let gpu = gpu();
     let image = |tile: &'static str| {
         Render::new(COMPUTE, "builtin:dense", (333, 217))
-            .edit("plugin: \"visibility_compute\",", tile)
+            .edit("params: (other_samples: at_edges),", tile)
             .run(&gpu)
             .image(&gpu, "color")
     };
-    let sixteen = image("plugin: \"visibility_compute\", params: (tile: 16),");
+    let sixteen = image("params: (other_samples: at_edges, tile: 16),");
     for tile in [
-        "plugin: \"visibility_compute\", params: (tile: 4),",
-        "plugin: \"visibility_compute\", params: (tile: 8),",
-        "plugin: \"visibility_compute\", params: (tile: 12),",
+        "params: (other_samples: at_edges, tile: 4),",
+        "params: (other_samples: at_edges, tile: 8),",
+        "params: (other_samples: at_edges, tile: 12),",
     ] {
         let other = image(tile);
         assert!(sixteen.pixels == other.pixels, "{tile}: the image changed");
@@ -653,8 +653,8 @@ fn a_compute_visibility_buffer_of_another_size_is_an_error() {
 #[test]
 fn a_compute_raster_tile_outside_4_to_16_is_an_error() {
     let line = validate_error(
-        "plugin: \"visibility_compute\",",
-        "plugin: \"visibility_compute\", params: (tile: 32),",
+        "params: (other_samples: at_edges),",
+        "params: (other_samples: at_edges, tile: 32),",
         "big_tiles.ron",
         "visibility",
     );

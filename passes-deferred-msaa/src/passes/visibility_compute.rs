@@ -17,9 +17,20 @@
 //!
 //! ```ron
 //! (name: "visibility", plugin: "visibility_compute",
-//!  params: (tile: 16),                   // pixels per tile side, 4 to 16 (the default)
+//!  params: (
+//!      tile: 16,                    // pixels per tile side, 4 to 16 (the default)
+//!      other_samples: everywhere,   // or at_edges: below
+//!  ),
 //!  outputs: { "samples": "samples" })    // Buffer(per_sample: 8, samples: 4)
 //! ```
+//!
+//! `other_samples: at_edges` stores the keys of samples other than 0 only at pixels whose
+//! samples show more than one triangle (sample 0's key says which): `light_tiled` reads
+//! no more, and the raster writes a quarter of a 4x buffer away from edges (on the H200
+//! at 3840x2160 builtin:dense's 4x raster 0.81 -> 0.79 ms, lights?count=256's 0.47 ->
+//! 0.42: bench/results/gpu/visibility-runs). Elsewhere those samples hold whatever an
+//! earlier frame left: a pass reading every sample (`keys_depth`) needs `everywhere`,
+//! the default.
 //!
 //! `light_tiled` with a `samples` input shades it as it shades a hardware visibility
 //! buffer's `ids` and `depth`, with the same IDs (the triangle's position in the scene's
@@ -50,6 +61,20 @@ pub struct VisibilityComputeParams {
     /// Pixels per tile side.
     #[serde(default = "tile")]
     pub tile: u32,
+    #[serde(default)]
+    pub other_samples: OtherSamples,
+}
+
+/// Where `visibility_compute` stores the keys of samples other than sample 0.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OtherSamples {
+    /// At every pixel: every sample of the buffer holds its key.
+    #[default]
+    Everywhere,
+    /// Only at pixels whose samples show more than one triangle, which sample 0's key
+    /// flags: enough for readers that read the others only there (`light_tiled`).
+    AtEdges,
 }
 
 fn tile() -> u32 {
@@ -66,6 +91,8 @@ pub(crate) struct RasterDispatch {
     pub bins: String,
     pub tile: u32,
     pub samples: BufferHandle,
+    /// raster_tiles.wgsl's OTHERS_EVERYWHERE.
+    pub others_everywhere: bool,
 }
 
 impl Recording for RasterDispatch {
@@ -115,6 +142,7 @@ impl Plugin for VisibilityCompute {
             bins: shaders::TILE_BINS.compose(count)?.source().to_owned(),
             tile: params.tile,
             samples,
+            others_everywhere: params.other_samples == OtherSamples::Everywhere,
         };
         self.0.record(pass, dispatch);
         Ok(())
@@ -220,7 +248,10 @@ mod gpu {
             &pipeline_layout,
             &module,
             "cs_raster_tiles",
-            &[],
+            &[(
+                "OTHERS_EVERYWHERE",
+                f64::from(u8::from(dispatch.others_everywhere)),
+            )],
         );
         State {
             layout,

@@ -5,7 +5,8 @@
 // drawn, at the far depth 0). A depth is never negative, so the sign bit of sample 0's
 // depth is free: it is set (SEVERAL_SURFACES) where the pixel's samples show more than one
 // triangle. Most pixels show one, and their readers load sample 0's plane only, a quarter
-// of a 4x buffer; the other planes are read at the edges. Composed after scene.wgsl.
+// of a 4x buffer; the other planes are read at the edges (and with visibility_compute's
+// `other_samples: at_edges` written only there). Composed after scene.wgsl.
 
 const SEVERAL_SURFACES: u32 = 0x80000000u;
 

@@ -9,6 +9,10 @@
 
 @group(1) @binding(0) var<storage, read_write> written_keys: array<vec2<u32>>;
 
+// Whether the keys of samples other than 0 are stored at every pixel, or only where the
+// pixel's samples show more than one triangle (visibility_compute.rs's other_samples).
+override OTHERS_EVERYWHERE: bool = true;
+
 @compute @workgroup_size(TILE, TILE, 1)
 fn cs_raster_tiles(
     @builtin(workgroup_id) tile: vec3<u32>,
@@ -23,7 +27,8 @@ fn cs_raster_tiles(
         for (var g = 0u; g < LANE_GROUPS; g++) {
             several = several || any(keys.ids[g] != id0);
         }
-        for (var s = 0u; s < SAMPLES; s++) {
+        let stored = select(1u, SAMPLES, several || OTHERS_EVERYWHERE);
+        for (var s = 0u; s < stored; s++) {
             var key = key_of_sample(keys, s);
             if s == 0u && several {
                 key.y |= SEVERAL_SURFACES;
