@@ -408,25 +408,10 @@ fn the_compute_raster_s_tile_size_does_not_change_the_image() {
 /// two images agree within 1/255 everywhere, edge pixels included.
 #[test]
 fn listed_edge_pixels_add_up_every_batch_of_lights() {
-    let gpu = gpu();
-    let frame = |tile: &'static str| {
-        Render::new(COMPUTE, "builtin:lights?count=200", (320, 180))
-            .edit("params: (shading: adaptive),", tile)
-            .read(&gpu, &["color", "debug.edges"])
-    };
-    let sixteen = frame("params: (shading: adaptive, tile: 16),");
-    let eight = frame("params: (shading: adaptive, tile: 8),");
-    let edges = sixteen[1].pixels.iter().filter(|&&p| p == RED).count();
-    assert!(
-        edges > 1000,
-        "only {edges} edge pixels: the test proves little"
-    );
-    let d = measure::diff(&sixteen[0], &eight[0], None);
-    assert!(
-        d.max <= 1,
-        "tiles of 8 and 16 differ by {} at {:?} ({edges} edge pixels)",
-        d.max,
-        d.at
+    listed_edge_pixels_agree(
+        "builtin:lights?count=200",
+        ("params: (shading: adaptive, tile: 16),", "tiles of 16"),
+        ("params: (shading: adaptive, tile: 8),", "tiles of 8"),
     );
 }
 
@@ -437,23 +422,35 @@ fn listed_edge_pixels_add_up_every_batch_of_lights() {
 /// everywhere, edge pixels included.
 #[test]
 fn listed_edge_pixels_lit_by_every_light_match_their_runs_culling() {
+    listed_edge_pixels_agree(
+        "builtin:lights?count=64",
+        ("params: (shading: adaptive, cull: true),", "culled"),
+        ("params: (shading: adaptive, cull: false),", "unculled"),
+    );
+}
+
+/// `scene` through the compute raster with the light passes' params `a` and `b` (each
+/// with its name): more than 1000 edge pixels, and the two images within 1/255
+/// everywhere.
+fn listed_edge_pixels_agree(scene: &'static str, a: (&'static str, &str), b: (&'static str, &str)) {
     let gpu = gpu();
     let frame = |params: &'static str| {
-        Render::new(COMPUTE, "builtin:lights?count=64", (320, 180))
+        Render::new(COMPUTE, scene, (320, 180))
             .edit("params: (shading: adaptive),", params)
             .read(&gpu, &["color", "debug.edges"])
     };
-    let culled = frame("params: (shading: adaptive, cull: true),");
-    let every = frame("params: (shading: adaptive, cull: false),");
-    let edges = culled[1].pixels.iter().filter(|&&p| p == RED).count();
+    let (first, second) = (frame(a.0), frame(b.0));
+    let edges = first[1].pixels.iter().filter(|&&p| p == RED).count();
     assert!(
         edges > 1000,
         "only {edges} edge pixels: the test proves little"
     );
-    let d = measure::diff(&culled[0], &every[0], None);
+    let d = measure::diff(&first[0], &second[0], None);
     assert!(
         d.max <= 1,
-        "culled and unculled differ by {} at {:?} ({edges} edge pixels)",
+        "{} and {} differ by {} at {:?} ({edges} edge pixels)",
+        a.1,
+        b.1,
         d.max,
         d.at
     );
