@@ -62,7 +62,7 @@
 //! them out; a second dispatch lights them in runs of 128 listed pixels, each pixel an
 //! invocation's, its fragments in turn, and resolves them (light_edges_listed.wgsl;
 //! bench/results/gpu/visibility-edges says why). A run culls lights for itself as a tile
-//! does where the scene has more than 32 point and spot lights; with fewer each fragment
+//! does where the scene has more than 8 point and spot lights; with fewer each fragment
 //! tests every light, which costs less than the run's culling.
 //!
 //! The workgroup memory the shader needs grows with the tile and the sample count

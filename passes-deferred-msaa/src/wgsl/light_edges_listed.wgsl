@@ -89,10 +89,11 @@ fn cs_light_edge_pixels(
 // Whether each run culls the point and spot lights for its pixels as a tile does
 // (light_run), or each fragment tests every light (light_unculled): more than
 // RUN_CULL_ABOVE lights. With few, the run's depth bounds, side planes and barriers cost
-// more than the tests they save (on the H200 at 3840x2160, 4x: builtin:dense's 6 lights
-// shade in 0.67 ms unculled, 0.70 culled; lights?count=64 in 0.53 unculled, 0.49
-// culled; bench/results/gpu/visibility-runs).
-const RUN_CULL_ABOVE: u32 = 32u;
+// more than the tests they save. On the H200 at 3840x2160, 4x, the tiled pass takes
+// 0.69 ms unculled and 0.72 culled on builtin:dense (6 lights), 0.35 and 0.34 with
+// lights?count=16, 0.41 and 0.39 with 32, 0.53 and 0.49 with 64
+// (bench/results/gpu/visibility-runs): the turn lies between 6 and 16.
+const RUN_CULL_ABOVE: u32 = 8u;
 
 fn runs_cull() -> bool {
     return CULL && light_info.light_count - light_info.directional_count > RUN_CULL_ABOVE;
