@@ -7,8 +7,9 @@
 // (bench/results/gpu/visibility-edges measured a tile's edge entries in a second round
 // of its first warps while the others waited).
 //
-// Composed after light_tiled.wgsl and a visibility buffer's reader (`one_surface`,
-// `sample_id`, `sample_depth`).
+// Composed after light_tiled.wgsl, a visibility buffer's reader (`one_surface`,
+// `sample_id`, `sample_depth`) and visibility_read.wgsl (`read_samples`, `leaders_of`,
+// `fragment_of`, `rebuilt`).
 
 const EDGES_LISTED: bool = true;
 
