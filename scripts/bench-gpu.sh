@@ -27,6 +27,12 @@
 #               and its hardware raster (bench/graphs/visibility_cost/), at 1 and 4
 #               samples on builtin:dense and builtin:lights?count=256, into gbuffer-1x
 #               and gbuffer-4x
+#   every-4x    every 4x pipeline the README's summary table compares (tiled, adaptive, lean,
+#               visibility, the fragment light volumes and their FXAA, SSAO and light
+#               pre-pass variants) beside forward MSAA and the 1x baselines, on
+#               builtin:dense and builtin:lights?count=256, with the reference, into
+#               every-4x: 30 rows in four minutes of an H200 (BENCH_FRAMES=8), where
+#               `main`'s 54 rows outlast one ten-minute device call (not in the default set)
 #   visibility  the visibility pipelines (4x and 1x) against the lean G-buffer and
 #               forward MSAA on builtin:dense and builtin:lights?count=256, with the
 #               reference (not in the default set)
@@ -92,6 +98,13 @@ variants=(--pipeline pipelines/deferred_noaa.ron --pipeline pipelines/deferred_n
           --pipeline pipelines/deferred_msaa_4x.ron --pipeline pipelines/deferred_msaa_4x_fxaa.ron
           --pipeline pipelines/deferred_msaa_4x_ssao.ron --pipeline pipelines/light_prepass_msaa_4x.ron
           --pipeline pipelines/deferred_msaa_4x_tiled.ron --pipeline pipelines/forward_msaa_4x.ron)
+every_4x=()
+for p in deferred_noaa deferred_noaa_tiled visibility_noaa deferred_msaa_4x deferred_msaa_4x_tiled \
+    deferred_msaa_4x_adaptive deferred_msaa_4x_lean deferred_per_sample_4x_tiled \
+    deferred_msaa_4x_fxaa deferred_msaa_4x_ssao light_prepass_msaa_4x visibility_msaa_4x \
+    forward_msaa_4x; do
+  every_4x+=(--pipeline "pipelines/$p.ron")
+done
 common=(--frames "$frames" --warmup "$warmup")
 status=0
 for part in $parts; do
@@ -128,6 +141,10 @@ for part in $parts; do
           --scene 'builtin:lights?count=256' --no-reference --width "$width" --height "$height" \
           "${common[@]}" --out-dir "$out/gbuffer-${samples}x" || status=$?
       done
+      ;;
+    every-4x)
+      "$bin" bench "${every_4x[@]}" --scene builtin:dense --scene 'builtin:lights?count=256' \
+        --width "$width" --height "$height" "${common[@]}" --out-dir "$out/every-4x" || status=$?
       ;;
     visibility)
       visibility=()
