@@ -2,11 +2,12 @@
 //! scene once, declares its frame as a graph of the deferred plugins, and animates the
 //! scene through one executor: each frame it moves the camera, the lights and one
 //! object and sets the exposure through `Host::set_frame`, without reloading anything.
-//! It prints, per frame, the CPU time to record and submit it and what it created: after
-//! the first frame, nothing (no texture, buffer, pipeline or shader module).
+//! It prints, per frame, the CPU time to record and submit it, what it created (after the
+//! first frame, nothing: no texture, buffer, pipeline or shader module) and the process's
+//! resident memory (flat after the first frames: tests/soak.rs runs thousands).
 //!
 //! ```sh
-//! cargo run --release --example engine_integration [-- --frames N --out out/frame.png]
+//! cargo run --release --example engine_integration [-- --frames N --size W,H --out out/frame.png]
 //! ```
 //!
 //! The Vulkan loader's environment is the engine's to set, as `rgraph` and the tests set
@@ -20,18 +21,22 @@
 //! between executions changes what the next one draws and invalidates nothing.
 
 use std::error::Error;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use graph_core::file::{load_str_with, GraphParams, LoadedGraph, Registry};
-use graph_core::gpu::{read_rgba8, AdapterChoice, Executor, Gpu, Imports};
+use graph_core::gpu::{
+    read_rgba8, resident_bytes, AdapterChoice, DeviceObjects, Executor, Gpu, Imports,
+};
 use graph_core::types::TextureFormat;
 use graph_core::{CompileOptions, CompiledGraph};
 use passes_deferred_msaa::glam::{DMat4, DQuat, DVec3};
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{FrameInputs, Host, Overrides};
 
-const SIZE: (u32, u32) = (640, 360);
+/// The target's size (`--size W,H` changes it).
+pub const SIZE: (u32, u32) = (640, 360);
 /// The scene: five spheres on a ground plane, four point lights and a sun.
 const SCENE: &str = "builtin:spheres";
 /// Frames per second of the animation's clock.
@@ -66,24 +71,27 @@ const GRAPH: &str = r#"Graph(
 )"#;
 
 fn main() -> Result<(), Box<dyn Error>> {
-    let (frames, out) = arguments()?;
+    let Options { frames, size, out } = arguments()?;
     let gpu = Gpu::open(&AdapterChoice::from_env())?;
     eprintln!("adapter: {} ({:?})", gpu.info.name, gpu.info.backend);
-    let sequence = animate(&gpu, frames, |index, frame| {
+    let mut later = Vec::new();
+    let image = animate(&gpu, frames, size, |index, frame| {
+        let resident = frame.resident_bytes.map_or(String::new(), |b| {
+            format!("; resident {:.1} MiB", b as f64 / 1048576.0)
+        });
         eprintln!(
             "frame {index}: record+submit {:.3} ms; allocated {} textures, {} buffers; \
-             created {}",
+             created {}{resident}",
             frame.record_submit_ns as f64 / 1e6,
             frame.textures_allocated,
             frame.buffers_allocated,
             frame.created
         );
+        // The frames after the first: the steady state an engine's frame loop lives in.
+        if index > 0 {
+            later.push(frame.record_submit_ns);
+        }
     })?;
-    // The frames after the first: the steady state an engine's frame loop lives in.
-    let mut later: Vec<u64> = sequence.frames[1..]
-        .iter()
-        .map(|f| f.record_submit_ns)
-        .collect();
     if !later.is_empty() {
         later.sort_unstable();
         let mean = later.iter().sum::<u64>() / later.len() as u64;
@@ -94,12 +102,13 @@ fn main() -> Result<(), Box<dyn Error>> {
             mean as f64 / 1e6
         );
     }
-    save_png(&out, &sequence.image)?;
+    save_png(&out, size, &image)?;
     println!("{}", out.display());
     Ok(())
 }
 
 /// What one frame cost and made.
+#[derive(Clone, Copy, Debug)]
 pub struct FrameStats {
     /// CPU time from the executor call to its submission (`FrameReport::record_submit_ns`).
     pub record_submit_ns: u64,
@@ -108,27 +117,25 @@ pub struct FrameStats {
     pub buffers_allocated: u32,
     /// Device objects alive after the frame minus before it.
     pub created: DeviceObjects,
+    /// The process's resident memory after the frame, where the platform tells.
+    pub resident_bytes: Option<u64>,
 }
 
-/// An animated sequence: each frame's stats and the last frame's image (RGBA8, sRGB).
-pub struct Sequence {
-    pub frames: Vec<FrameStats>,
-    pub image: Vec<[u8; 4]>,
-}
-
-/// Renders `frames` frames of the animation on `gpu` through one executor, calling
-/// `each` after each frame.
+/// Renders `frames` frames of the animation at `size` on `gpu` through one executor,
+/// calling `each` after each frame (an engine keeps what it wants of them: a long run
+/// keeps nothing), and returns the last frame's image (RGBA8, sRGB).
 pub fn animate(
     gpu: &Gpu,
     frames: u32,
+    size: (u32, u32),
     mut each: impl FnMut(u32, &FrameStats),
-) -> Result<Sequence, Box<dyn Error>> {
+) -> Result<Vec<[u8; 4]>, Box<dyn Error>> {
     // The engine's own render target, which the graph draws into but never owns.
     let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("engine target"),
         size: wgpu::Extent3d {
-            width: SIZE.0,
-            height: SIZE.1,
+            width: size.0,
+            height: size.1,
             depth_or_array_layers: 1,
         },
         mip_level_count: 1,
@@ -154,7 +161,7 @@ pub fn animate(
     // Compiled once. A new output size or sample count would be
     // `compiled.recompile(..)`, which keeps the plans it made before.
     let options = CompileOptions {
-        output_size: SIZE,
+        output_size: size,
         profile: gpu.profile(),
     };
     let mut compiled: CompiledGraph<LoadedGraph> = CompiledGraph::new(loaded, &options)?;
@@ -163,7 +170,6 @@ pub fn animate(
     imports.texture("target", &target);
     let mut executor = Executor::new(gpu);
     let animation = Animation::new(&scene);
-    let mut stats = Vec::new();
     for index in 0..frames {
         host.set_frame(animation.at(f64::from(index) / FPS))?;
         let before = DeviceObjects::alive(&gpu.device);
@@ -173,14 +179,11 @@ pub fn animate(
             textures_allocated: report.textures_allocated,
             buffers_allocated: report.buffers_allocated,
             created: DeviceObjects::alive(&gpu.device).minus(&before),
+            resident_bytes: resident_bytes(),
         };
         each(index, &frame);
-        stats.push(frame);
     }
-    Ok(Sequence {
-        frames: stats,
-        image: read_rgba8(&gpu.device, &gpu.queue, &target)?,
-    })
+    Ok(read_rgba8(&gpu.device, &gpu.queue, &target)?)
 }
 
 /// The scene's motion: the camera orbits the scene's centre, the point lights circle it
@@ -224,101 +227,62 @@ impl Animation {
     }
 }
 
-/// Device objects alive, by kind, as wgpu counts them (its `counters` feature, which
-/// rgraph's Cargo.toml turns on). They count objects alive, not creations: a frame
-/// that created an object and dropped it before the count would not show, but every
-/// object the graph or the plugins keep (pooled textures, cached pipelines) does.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct DeviceObjects {
-    /// Bytes of texture memory: wgpu-hal 30's Vulkan backend counts what textures
-    /// allocate but not the textures (its `create_texture` leaves that count alone).
-    pub texture_bytes: isize,
-    pub buffers: isize,
-    pub render_pipelines: isize,
-    pub compute_pipelines: isize,
-    pub shader_modules: isize,
-    pub bind_group_layouts: isize,
+/// What the command line asks for.
+struct Options {
+    frames: u32,
+    size: (u32, u32),
+    out: PathBuf,
 }
 
-impl DeviceObjects {
-    /// What `device` holds alive now.
-    pub fn alive(device: &wgpu::Device) -> DeviceObjects {
-        let hal = device.get_internal_counters().hal;
-        DeviceObjects {
-            texture_bytes: hal.texture_memory.read(),
-            buffers: hal.buffers.read(),
-            render_pipelines: hal.render_pipelines.read(),
-            compute_pipelines: hal.compute_pipelines.read(),
-            shader_modules: hal.shader_modules.read(),
-            bind_group_layouts: hal.bind_group_layouts.read(),
-        }
-    }
-
-    /// What `self` holds more than `before` (negative: fewer).
-    pub fn minus(&self, before: &DeviceObjects) -> DeviceObjects {
-        DeviceObjects {
-            texture_bytes: self.texture_bytes - before.texture_bytes,
-            buffers: self.buffers - before.buffers,
-            render_pipelines: self.render_pipelines - before.render_pipelines,
-            compute_pipelines: self.compute_pipelines - before.compute_pipelines,
-            shader_modules: self.shader_modules - before.shader_modules,
-            bind_group_layouts: self.bind_group_layouts - before.bind_group_layouts,
-        }
-    }
-}
-
-impl std::fmt::Display for DeviceObjects {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "{} KiB of textures, {} buffers, {} render and {} compute pipelines, {} shader \
-             modules, {} bind group layouts",
-            self.texture_bytes / 1024,
-            self.buffers,
-            self.render_pipelines,
-            self.compute_pipelines,
-            self.shader_modules,
-            self.bind_group_layouts
-        )
-    }
-}
-
-/// `--frames N` (default 3) and `--out FILE` (default out/frame.png).
-fn arguments() -> Result<(u32, PathBuf), String> {
-    let mut frames = 3;
-    let mut out = PathBuf::from("out/frame.png");
+/// `--frames N` (default 3), `--size W,H` (default [`SIZE`]) and `--out FILE` (default
+/// out/frame.png).
+fn arguments() -> Result<Options, String> {
+    let mut options = Options {
+        frames: 3,
+        size: SIZE,
+        out: PathBuf::from("out/frame.png"),
+    };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
         let value = args.next().ok_or(format!("{flag} needs a value"))?;
+        let positive = |text: &str| text.parse().ok().filter(|&n: &u32| n > 0);
         match flag.as_str() {
             "--frames" => {
-                frames = value
-                    .parse()
-                    .ok()
-                    .filter(|&n| n > 0)
+                options.frames = positive(&value)
                     .ok_or(format!("--frames takes a positive count, not \"{value}\""))?
             }
-            "--out" => out = PathBuf::from(value),
+            "--size" => {
+                options.size = value
+                    .split_once(',')
+                    .and_then(|(w, h)| Some((positive(w)?, positive(h)?)))
+                    .ok_or(format!("--size takes W,H in pixels, not \"{value}\""))?
+            }
+            "--out" => options.out = PathBuf::from(value),
             _ => {
                 return Err(format!(
-                    "unknown flag {flag} (flags: --frames N, --out FILE)"
+                    "unknown flag {flag} (flags: --frames N, --size W,H, --out FILE)"
                 ))
             }
         }
     }
-    Ok((frames, out))
+    Ok(options)
 }
 
-/// Writes the PNG beside its final name and renames it, so a failed write never leaves a
-/// partial image that looks finished.
-fn save_png(path: &Path, texels: &[[u8; 4]]) -> Result<(), Box<dyn Error>> {
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)?;
-    }
-    let partial = path.with_extension("png.partial");
-    let image = image::RgbaImage::from_raw(SIZE.0, SIZE.1, texels.concat())
+/// Writes the PNG through a temporary file of a random name created beside it (never
+/// through a name another user could have planted a link at) and renames it, so a failed
+/// write never leaves a partial image that looks finished.
+fn save_png(path: &Path, size: (u32, u32), texels: &[[u8; 4]]) -> Result<(), Box<dyn Error>> {
+    let dir = match path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(dir) => dir,
+        None => Path::new("."),
+    };
+    std::fs::create_dir_all(dir)?;
+    let image = image::RgbaImage::from_raw(size.0, size.1, texels.concat())
         .ok_or("readback size does not match the target")?;
-    image.save_with_format(&partial, image::ImageFormat::Png)?;
-    std::fs::rename(&partial, path)?;
+    let mut png = std::io::Cursor::new(Vec::new());
+    image.write_to(&mut png, image::ImageFormat::Png)?;
+    let mut temp = tempfile::NamedTempFile::new_in(dir)?;
+    temp.write_all(png.get_ref())?;
+    temp.persist(path)?;
     Ok(())
 }

@@ -4,12 +4,12 @@
 //! second frame creates no texture, buffer, pipeline or shader module. A new output size
 //! is a recompile instead: one plan more, new targets, still no pipeline.
 
+use graph_core::gpu::DeviceObjects;
 use passes_deferred_msaa::glam::{DMat4, DQuat, DVec3};
 use passes_deferred_msaa::scene::Scene;
 use passes_deferred_msaa::{Exposure, FrameInputs, Overrides};
 
 use crate::deferred_support::{gpu, Image, Render};
-use crate::engine_integration::DeviceObjects;
 
 const SIZE: (u32, u32) = (96, 64);
 /// Point and spot lights, drawn as volumes by the fragment light passes.

@@ -62,6 +62,7 @@ mod light_prepass;
 mod particles;
 mod post_fxaa;
 mod post_ssao;
+mod soak;
 mod specialise_analysis;
 mod specialise_depth;
 mod specialise_errors;

@@ -15,7 +15,7 @@ pub(super) mod view;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use graph_core::gpu::AdapterChoice;
+use graph_core::gpu::{resident_bytes, AdapterChoice, DeviceObjects};
 use image::RgbaImage;
 use passes_deferred_msaa::glam::DVec3;
 use passes_deferred_msaa::scene::{AlphaMode, Scene};
@@ -122,7 +122,9 @@ fn render(args: &RenderArgs) -> Result<Vec<PathBuf>, RenderError> {
         }
         output::write_png(&path, &image)?;
         if !single {
-            progress.note(summary::frame_line(index, &report));
+            let device = DeviceObjects::alive(&session.gpu.device);
+            let line = summary::frame_line(index, &report, resident_bytes(), &device);
+            progress.note(line);
         }
         written.push(path);
         first.get_or_insert(report);

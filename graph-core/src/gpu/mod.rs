@@ -1,10 +1,12 @@
 //! Execution on a wgpu device (feature `gpu`): opening a headless device
 //! ([`Gpu::open`]), running compiled plans ([`Executor`]) with engine-owned resources
-//! ([`Imports`]), and reading results back ([`read_texture`]).
+//! ([`Imports`]), reading results back ([`read_texture`]), and what frames leave behind
+//! ([`DeviceObjects`], [`resident_bytes`]).
 
 mod device;
 mod error_scopes;
 mod executor;
+mod footprint;
 mod imports;
 mod pool;
 mod readback;
@@ -16,6 +18,7 @@ pub use device::{
     COMMON_FORMATS,
 };
 pub use executor::{ExecuteError, Executor, FrameReport, PassTiming};
+pub use footprint::{resident_bytes, DeviceObjects};
 pub use imports::{ImportError, ImportKey, Imports};
 pub use pool::{PoolStats, KEEP_FRAMES};
 pub use readback::{read_buffer, read_rgba16f, read_rgba8, read_texture, ReadbackError};

@@ -2,7 +2,7 @@
 //! totals, the textures and memory the plan asked for, and what was culled.
 
 use graph_core::explain::bytes;
-use graph_core::gpu::FrameReport;
+use graph_core::gpu::{DeviceObjects, FrameReport};
 use graph_core::Plan;
 
 /// The summary, one line each, for stderr. `specialised`: the plan was compiled for the
@@ -94,14 +94,29 @@ pub fn text(plan: &Plan, report: &FrameReport, specialised: bool) -> String {
 }
 
 /// One frame of a sequence on one line: its index, the CPU time to record and submit it,
-/// and its GPU time when the device has timestamps.
-pub fn frame_line(index: u32, report: &FrameReport) -> String {
+/// its GPU time when the device has timestamps, then what the process holds after it:
+/// its resident memory where the platform tells, and the device objects alive with their
+/// memory. Both stay flat after the first frame; a soak run watches them.
+pub fn frame_line(
+    index: u32,
+    report: &FrameReport,
+    resident: Option<u64>,
+    device: &DeviceObjects,
+) -> String {
+    let mib = |bytes: f64| bytes / f64::from(1u32 << 20);
     let gpu = match report.gpu_total_ns {
         Some(ns) => format!("GPU {:.3} ms", ns as f64 / 1e6),
         None => "GPU - (no timestamp queries)".to_string(),
     };
+    let resident = match resident {
+        Some(bytes) => format!("resident {:.1} MiB, ", mib(bytes as f64)),
+        None => String::new(),
+    };
     format!(
-        "frame {index:04}: record+submit {:.3} ms, {gpu}",
-        report.record_submit_ns as f64 / 1e6
+        "frame {index:04}: record+submit {:.3} ms, {gpu}; {resident}device {} objects, \
+         {:.1} MiB",
+        report.record_submit_ns as f64 / 1e6,
+        device.objects(),
+        mib(device.bytes() as f64)
     )
 }
