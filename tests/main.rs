@@ -59,6 +59,7 @@ mod frame_inputs;
 mod fuzz;
 mod gpu_execute;
 mod light_prepass;
+mod output_files;
 mod particles;
 mod post_fxaa;
 mod post_ssao;

@@ -234,7 +234,9 @@ fn run_pipeline(gpu: &Gpu, file: &str, scene: &Arc<Scene>, frames: u32, each: im
 }
 
 /// Whether `samples` hold: device objects and their memory the same after every frame
-/// from the second on, and the lowest resident memory of the last tenth of the frames
+/// from the second on (a pass that builds a pipeline on first need, for a light volume
+/// the camera enters, would add one later: these scenes and camera paths need none after
+/// the first frame), and the lowest resident memory of the last tenth of the frames
 /// (50 at least) within [`GROWTH_LIMIT`] of the lowest of as many frames from `settle`
 /// on. Lowest, because on lavapipe a frame's resident memory moves by a few MiB with
 /// what the driver's threads hold at that moment, where a leak raises the floor.

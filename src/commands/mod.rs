@@ -15,6 +15,7 @@ use std::process::ExitCode;
 
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder, RgbaImage};
+use tempfile::NamedTempFile;
 
 /// How a command failed, which decides the exit status.
 #[derive(Debug, thiserror::Error)]
@@ -36,31 +37,56 @@ impl CommandError {
     }
 }
 
-/// Writes `bytes` to `path` through a temporary file in the same directory and a rename,
-/// so a failure never leaves a partial file behind under the real name.
+/// Writes `bytes` to `path` through a temporary file beside it ([`temporary_beside`]) and
+/// a rename, so a failure never leaves a partial file behind under the real name. Nothing
+/// is written through a link: the temporary file is new, and a link at `path` itself is
+/// replaced by the file, its target untouched.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CommandError> {
     let io =
         |e: std::io::Error| CommandError::Usage(format!("cannot write {}: {e}", path.display()));
-    let temp = partial_path(path)
-        .ok_or_else(|| CommandError::Usage(format!("{} is not a file path", path.display())))?;
-    let result = std::fs::File::create(&temp)
-        .and_then(|mut f| f.write_all(bytes).and_then(|_| f.sync_all()))
-        .and_then(|_| std::fs::rename(&temp, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temp);
-    }
-    result.map_err(io)
+    let mut temp = temporary_beside(path).map_err(io)?;
+    temp.write_all(bytes)
+        .and_then(|_| temp.as_file().sync_all())
+        .map_err(io)?;
+    // Dropped on failure, the temporary file is deleted.
+    temp.persist(path).map_err(|e| io(e.error))?;
+    Ok(())
 }
 
-/// The temporary file [`write_atomically`] writes `path` through: `.NAME.partial` in the
-/// same directory (so the rename stays on one file system). `None` when `path` names no file.
-pub fn partial_path(path: &Path) -> Option<std::path::PathBuf> {
+/// A new, empty file in `path`'s directory (so a rename onto `path` stays on one file
+/// system), named `.NAME.RANDOM.partial` and created exclusively (`O_EXCL`): no name
+/// another user could predict and plant a link at, and never an existing file. It gets
+/// the permissions any new file gets (read-write for all, less the umask) and is deleted
+/// when dropped unless persisted. An error when `path` names no file (`x.png/`, `/`).
+pub fn temporary_beside(path: &Path) -> std::io::Result<NamedTempFile> {
+    let name = path.file_name().ok_or_else(|| {
+        std::io::Error::new(std::io::ErrorKind::InvalidInput, "the path names no file")
+    })?;
     let dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    let name = path.file_name()?;
-    Some(dir.join(format!(".{}.partial", name.to_string_lossy())))
+    let prefix = format!(".{}.", name.to_string_lossy());
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".partial");
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    builder.tempfile_in(dir)
+}
+
+/// `dir`, a folder of our own inside an output folder the user named: created when
+/// missing, refused when something else (a link, say) stands at its name, so that the
+/// files written in it land where the user asked.
+pub fn own_folder(dir: &Path) -> std::io::Result<()> {
+    match std::fs::symlink_metadata(dir) {
+        Ok(meta) if meta.is_dir() => Ok(()),
+        Ok(_) => Err(std::io::Error::new(
+            std::io::ErrorKind::AlreadyExists,
+            "something that is not a folder (a link or a file) is in the way",
+        )),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => std::fs::create_dir(dir),
+        Err(e) => Err(e),
+    }
 }
 
 /// Encodes the image (sRGB-encoded RGBA8) as a PNG and writes it through a temporary file

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use image::RgbaImage;
 
 use super::error::BenchError;
-use crate::commands::write_png;
+use crate::commands::{own_folder, write_png};
 
 /// The folder of one scene's images inside the output directory.
 pub struct SceneImages {
@@ -17,10 +17,10 @@ pub struct SceneImages {
 impl SceneImages {
     /// Creates `out/SLUG`, the slug being the scene spec with every character that is not
     /// a letter, digit, '-' or '.' replaced by '_' (`builtin:lights?count=4` →
-    /// `builtin_lights_count_4`).
+    /// `builtin_lights_count_4`); a link at that name is refused, not followed.
     pub fn create(out: &Path, scene: &str) -> Result<SceneImages, BenchError> {
         let dir = out.join(slug(scene));
-        std::fs::create_dir_all(&dir).map_err(|e| BenchError::Write {
+        own_folder(&dir).map_err(|e| BenchError::Write {
             path: dir.clone(),
             reason: e.to_string(),
         })?;

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use image::RgbaImage;
 
 use super::error::RenderError;
-use crate::commands::partial_path;
+use crate::commands::temporary_beside;
 
 /// A `.png` path in an existing directory that can be written, so a long render never
 /// ends in an unwritable path. `flag` names the option it came from in the errors.
@@ -35,18 +35,20 @@ pub fn check(path: &Path, flag: &str) -> Result<(), RenderError> {
             dir.display()
         )));
     }
-    // Creating the temporary file the PNG is written through is the only sure test that
-    // it can be written (permissions, read-only or full file systems, ACLs).
-    let probe = partial_path(path)
-        .ok_or_else(|| RenderError::Output(format!("{flag} {shown}: is not a file path")))?;
-    std::fs::File::create(&probe)
-        .and_then(|_| std::fs::remove_file(&probe))
-        .map_err(|e| {
-            RenderError::Output(format!(
-                "{flag} {shown}: cannot write in {}: {e}",
-                dir.display()
-            ))
-        })
+    if path.file_name().is_none() {
+        return Err(RenderError::Output(format!(
+            "{flag} {shown}: is not a file path"
+        )));
+    }
+    // Creating a temporary file as the PNG will be written through is the only sure test
+    // that it can be written (permissions, read-only or full file systems, ACLs); dropped,
+    // it is deleted.
+    temporary_beside(path).map(drop).map_err(|e| {
+        RenderError::Output(format!(
+            "{flag} {shown}: cannot write in {}: {e}",
+            dir.display()
+        ))
+    })
 }
 
 /// Writes the image as a PNG, atomically.
@@ -70,7 +72,8 @@ impl FramePaths {
         let text = out.to_str().ok_or_else(|| {
             RenderError::Output(format!("--out {shown}: the path is not valid UTF-8"))
         })?;
-        let pattern = frame_pattern(text);
+        let pattern = frame_pattern(text)
+            .map_err(|why| RenderError::Output(format!("--out {shown}: {why}")))?;
         if pattern.is_none() && frames > 1 {
             return Err(RenderError::Output(format!(
                 "--out {shown}: --frames {frames} writes one PNG per frame; put %04d (or \
@@ -97,22 +100,41 @@ impl FramePaths {
     }
 }
 
-/// `text` split at its first `%0Nd` or `%d` (width 0: no padding).
-fn frame_pattern(text: &str) -> Option<(String, usize, String)> {
-    let start = text.find('%')?;
+/// The widest frame number `%0Nd` pads to: a frame number has at most 10 digits, and a
+/// file name at most 255 bytes.
+const MAX_WIDTH: usize = 32;
+
+/// `text` split at its first `%0Nd` or `%d` (width 0: no padding); an error for a width
+/// above [`MAX_WIDTH`].
+fn frame_pattern(text: &str) -> Result<Option<(String, usize, String)>, String> {
+    let Some(start) = text.find('%') else {
+        return Ok(None);
+    };
     let rest = &text[start + 1..];
     let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
     if rest.as_bytes().get(digits) != Some(&b'd') {
-        return None;
+        return Ok(None);
     }
     let width = match &rest[..digits] {
         "" => 0,
-        padded if padded.starts_with('0') => padded.parse().ok()?,
+        padded if padded.starts_with('0') => {
+            let width = padded.trim_start_matches('0');
+            match width.parse::<usize>() {
+                Ok(width) if width <= MAX_WIDTH => width,
+                _ if width.is_empty() => 0,
+                _ => {
+                    return Err(format!(
+                        "%{padded}d pads the frame number to {width} digits; at most \
+                         {MAX_WIDTH} (%04d pads to 4)"
+                    ))
+                }
+            }
+        }
         // %4d pads with spaces in printf, which no file name wants.
-        _ => return None,
+        _ => return Ok(None),
     };
     let after = &rest[digits + 1..];
-    Some((text[..start].to_string(), width, after.to_string()))
+    Ok(Some((text[..start].to_string(), width, after.to_string())))
 }
 
 #[cfg(test)]
@@ -121,14 +143,33 @@ mod tests {
 
     #[test]
     fn frame_patterns() {
-        let split = frame_pattern;
+        let split = |text| frame_pattern(text).expect("a width within the bound");
         assert_eq!(
             split("out/%04d.png"),
             Some(("out/".into(), 4, ".png".into()))
         );
         assert_eq!(split("f%d.png"), Some(("f".into(), 0, ".png".into())));
+        assert_eq!(split("f%00d.png"), Some(("f".into(), 0, ".png".into())));
+        assert_eq!(split("f%032d.png"), Some(("f".into(), 32, ".png".into())));
         assert_eq!(split("out/frame.png"), None);
         assert_eq!(split("out/%4d.png"), None);
         assert_eq!(split("out/%s.png"), None);
+    }
+
+    #[test]
+    fn widths_beyond_the_bound_are_errors_naming_it() {
+        for text in [
+            "f%033d.png",
+            "f%065536d.png",
+            "f%099999999999999999999999d.png",
+        ] {
+            let why = frame_pattern(text).expect_err(text);
+            assert!(why.contains("at most 32"), "{text}: {why}");
+        }
+        let why = frame_pattern("f%065536d.png").unwrap_err();
+        assert!(
+            why.starts_with("%065536d pads the frame number to 65536 digits"),
+            "{why}"
+        );
     }
 }
