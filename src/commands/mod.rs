@@ -13,8 +13,7 @@ use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
 
-use image::codecs::png::PngEncoder;
-use image::{ExtendedColorType, ImageEncoder, RgbaImage};
+use image::RgbaImage;
 use tempfile::NamedTempFile;
 
 /// How a command failed, which decides the exit status.
@@ -89,17 +88,33 @@ pub fn own_folder(dir: &Path) -> std::io::Result<()> {
     }
 }
 
-/// Encodes the image (sRGB-encoded RGBA8) as a PNG and writes it through a temporary file
-/// and a rename.
+/// Encodes the image (sRGB-encoded RGBA8) as a PNG straight into a temporary file beside
+/// `path` ([`temporary_beside`]) and renames it onto `path`. The encoder streams: it
+/// holds a chunk of the compressed image at a time, never all of it, so a large image
+/// needs no second copy of its size in memory.
 pub fn write_png(path: &Path, image: &RgbaImage) -> Result<(), CommandError> {
-    let mut png = Vec::new();
-    PngEncoder::new(&mut png)
-        .write_image(
-            image.as_raw(),
-            image.width(),
-            image.height(),
-            ExtendedColorType::Rgba8,
-        )
-        .map_err(|e| CommandError::Usage(format!("cannot encode {}: {e}", path.display())))?;
-    write_atomically(path, &png)
+    let failed = |e: &dyn std::fmt::Display| {
+        CommandError::Usage(format!("cannot write {}: {e}", path.display()))
+    };
+    let mut temp = temporary_beside(path).map_err(|e| failed(&e))?;
+    encode_png(std::io::BufWriter::new(temp.as_file_mut()), image).map_err(|e| failed(&e))?;
+    temp.as_file().sync_all().map_err(|e| failed(&e))?;
+    temp.persist(path).map_err(|e| failed(&e.error))?;
+    Ok(())
+}
+
+/// `image` as an 8-bit RGBA PNG into `out`, row data streamed in chunks; flushes `out`.
+fn encode_png(out: impl Write, image: &RgbaImage) -> Result<(), png::EncodingError> {
+    let mut encoder = png::Encoder::new(out, image.width(), image.height());
+    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_depth(png::BitDepth::Eight);
+    // What the image crate's PNG encoder chooses by default.
+    encoder.set_compression(png::Compression::Balanced);
+    encoder.set_filter(png::Filter::Adaptive);
+    let mut png = encoder.write_header()?;
+    let mut rows = png.stream_writer()?;
+    rows.write_all(image.as_raw())?;
+    rows.finish()?;
+    // The end chunk, and a flush of `out`.
+    png.finish()
 }

@@ -1,5 +1,7 @@
 //! Copying textures and buffers back to the CPU, for tests, screenshots and tools. Each
-//! call submits its own copy and blocks until the GPU has finished it.
+//! call submits its own copy and blocks until the GPU has finished it. What a readback
+//! returns is reserved before it is filled: a host that cannot hold it (a large
+//! `--width`/`--height`, little memory left) is an error naming the bytes, not an abort.
 
 use wgpu::{BufferUsages, TextureFormat, TextureUsages};
 
@@ -35,6 +37,24 @@ pub enum ReadbackError {
 
     #[error("waiting for the GPU failed: {0}")]
     Poll(#[from] wgpu::PollError),
+
+    #[error(
+        "cannot allocate {bytes} bytes ({:.1} MiB) of host memory for {what}",
+        *bytes as f64 / 1048576.0
+    )]
+    HostMemory { bytes: u64, what: &'static str },
+}
+
+/// An empty vector with room for `len` items, or [`ReadbackError::HostMemory`] naming the
+/// bytes and `what` they were for.
+pub(crate) fn reserve<T>(len: usize, what: &'static str) -> Result<Vec<T>, ReadbackError> {
+    let mut vec = Vec::new();
+    vec.try_reserve_exact(len)
+        .map_err(|_| ReadbackError::HostMemory {
+            bytes: (len as u64).saturating_mul(std::mem::size_of::<T>() as u64),
+            what,
+        })?;
+    Ok(vec)
 }
 
 /// The bytes of mip 0, layer 0 of a single-sampled texture, rows tightly packed (no
@@ -44,6 +64,21 @@ pub fn read_texture(
     queue: &wgpu::Queue,
     texture: &wgpu::Texture,
 ) -> Result<Vec<u8>, ReadbackError> {
+    read_rows(device, queue, texture, 1, |row, bytes| {
+        bytes.extend_from_slice(row)
+    })
+}
+
+/// Mip 0, layer 0 of a single-sampled texture as `T`s of `texel_bytes` bytes each (rows
+/// top first), each row's bytes appended by `append`; the vector is reserved before the
+/// copy is mapped.
+fn read_rows<T>(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    texel_bytes: usize,
+    mut append: impl FnMut(&[u8], &mut Vec<T>),
+) -> Result<Vec<T>, ReadbackError> {
     if texture.sample_count() > 1 {
         return Err(ReadbackError::Multisampled {
             samples: texture.sample_count(),
@@ -54,17 +89,19 @@ pub fn read_texture(
     }
     let format = texture.format();
     // Combined depth-stencil formats copy one aspect at a time, and some not at all.
-    let Some(texel) = format
+    let Some(block) = format
         .block_copy_size(None)
         .filter(|_| format.block_dimensions() == (1, 1))
     else {
         return Err(ReadbackError::UncopyableFormat { format });
     };
     let (width, height) = (texture.width(), texture.height());
-    let row = width * texel;
-    let padded =
-        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-    let staging = staging_buffer(device, padded as u64 * height as u64);
+    let row = width as usize * block as usize;
+    let padded = (width * block).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+        * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let count = row / texel_bytes * height as usize;
+    let mut texels = reserve(count, "the texels read back")?;
+    let staging = staging_buffer(device, u64::from(padded) * u64::from(height));
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("rgraph readback"),
     });
@@ -85,12 +122,12 @@ pub fn read_texture(
         },
     );
     queue.submit([encoder.finish()]);
-    let bytes = map_read(device, &staging)?;
-    Ok(bytes
-        .chunks_exact(padded as usize)
-        .flat_map(|r| &r[..row as usize])
-        .copied()
-        .collect())
+    with_mapped(device, &staging, |bytes| {
+        for padded_row in bytes.chunks_exact(padded as usize) {
+            append(&padded_row[..row], &mut texels);
+        }
+    })?;
+    Ok(texels)
 }
 
 /// The whole contents of a buffer. The buffer needs `COPY_SRC` and a size that is a
@@ -113,7 +150,7 @@ pub fn read_buffer(
     });
     encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, Some(size));
     queue.submit([encoder.finish()]);
-    map_read(device, &staging)
+    map_read(device, &staging, "the buffer read back")
 }
 
 /// The texels of an `Rgba8Unorm` or `Rgba8UnormSrgb` texture, row by row (raw bytes: no
@@ -128,11 +165,9 @@ pub fn read_rgba8(
         &[TextureFormat::Rgba8Unorm, TextureFormat::Rgba8UnormSrgb],
         "Rgba8Unorm",
     )?;
-    let bytes = read_texture(device, queue, texture)?;
-    Ok(bytes
-        .chunks_exact(4)
-        .map(|t| [t[0], t[1], t[2], t[3]])
-        .collect())
+    read_rows(device, queue, texture, 4, |row, texels| {
+        texels.extend(row.chunks_exact(4).map(|t| [t[0], t[1], t[2], t[3]]));
+    })
 }
 
 /// The texels of an `Rgba16Float` texture, row by row, widened to `f32`.
@@ -142,14 +177,12 @@ pub fn read_rgba16f(
     texture: &wgpu::Texture,
 ) -> Result<Vec<[f32; 4]>, ReadbackError> {
     expect_format(texture, &[TextureFormat::Rgba16Float], "Rgba16Float")?;
-    let bytes = read_texture(device, queue, texture)?;
-    Ok(bytes
-        .chunks_exact(8)
-        .map(|t| {
+    read_rows(device, queue, texture, 8, |row, texels| {
+        texels.extend(row.chunks_exact(8).map(|t| {
             let h = |i: usize| f16_to_f32(u16::from_le_bytes([t[2 * i], t[2 * i + 1]]));
             [h(0), h(1), h(2), h(3)]
-        })
-        .collect())
+        }));
+    })
 }
 
 fn expect_format(
@@ -189,11 +222,25 @@ fn staging_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
     })
 }
 
-/// Maps a `MAP_READ` buffer after the work already submitted, waits, and copies it out.
+/// Maps a `MAP_READ` buffer after the work already submitted, waits, and copies it out
+/// into a vector reserved first (`what` names it in the error when the host cannot).
 pub(crate) fn map_read(
     device: &wgpu::Device,
     buffer: &wgpu::Buffer,
+    what: &'static str,
 ) -> Result<Vec<u8>, ReadbackError> {
+    let mut bytes = reserve(buffer.size() as usize, what)?;
+    with_mapped(device, buffer, |mapped| bytes.extend_from_slice(mapped))?;
+    Ok(bytes)
+}
+
+/// Maps a `MAP_READ` buffer after the work already submitted, waits, hands its bytes to
+/// `read` and unmaps it.
+fn with_mapped<R>(
+    device: &wgpu::Device,
+    buffer: &wgpu::Buffer,
+    read: impl FnOnce(&[u8]) -> R,
+) -> Result<R, ReadbackError> {
     let (sender, receiver) = std::sync::mpsc::channel();
     buffer.map_async(wgpu::MapMode::Read, .., move |result| {
         // The receiver outlives the wait below; a failed send cannot happen.
@@ -205,17 +252,39 @@ pub(crate) fn map_read(
         Ok(Err(e)) => return Err(ReadbackError::Map(e.to_string())),
         Err(_) => return Err(ReadbackError::Map("the map callback never ran".into())),
     }
-    let bytes = buffer
+    let mapped = buffer
         .get_mapped_range(..)
-        .map_err(|e| ReadbackError::Map(e.to_string()))?
-        .to_vec();
+        .map_err(|e| ReadbackError::Map(e.to_string()))?;
+    let result = read(&mapped);
+    drop(mapped);
     buffer.unmap();
-    Ok(bytes)
+    Ok(result)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::f16_to_f32;
+    use super::{f16_to_f32, reserve, ReadbackError};
+
+    #[test]
+    fn a_host_that_cannot_hold_the_readback_is_an_error_naming_the_bytes() {
+        // More than any address space: the reservation fails without touching memory.
+        let huge = usize::MAX / 16;
+        match reserve::<[f32; 4]>(huge, "the texels read back") {
+            Err(e @ ReadbackError::HostMemory { .. }) => {
+                let message = e.to_string();
+                assert!(
+                    message.starts_with(&format!(
+                        "cannot allocate {} bytes",
+                        (huge as u64).saturating_mul(16)
+                    )),
+                    "{message}"
+                );
+                assert!(message.ends_with("of host memory for the texels read back"));
+            }
+            other => panic!("expected HostMemory, got {:?}", other.map(|v| v.len())),
+        }
+        assert_eq!(reserve::<u8>(16, "x").map(|v| v.capacity()).ok(), Some(16));
+    }
 
     #[test]
     fn halves_decode() {

@@ -89,7 +89,7 @@ impl Timestamps {
         if slots == 0 {
             return Ok(Vec::new());
         }
-        let bytes = map_read(device, &self.readback)?;
+        let bytes = map_read(device, &self.readback, "the pass timestamps")?;
         Ok(bytes
             .chunks_exact(16)
             .take(slots as usize)
