@@ -18,7 +18,9 @@
 //! execution with `Imports`) and the [`Host`] (scene plus current [`FrameInputs`]); the
 //! executor owns the graph's textures, pooled across frames; the deferred plugins own
 //! the scene's upload and their pipelines, made on the first frame. `Host::set_frame`
-//! between executions changes what the next one draws and invalidates nothing.
+//! between executions changes what the next one draws and invalidates nothing. After a
+//! device loss (`ExecuteError::DeviceLost`), an engine opens a new device and runs the
+//! same compiled graph through a new `Executor` on it (tests/gpu_failures.rs does).
 
 use std::error::Error;
 use std::io::Write;

@@ -815,7 +815,7 @@ fn the_default_adapter_is_listed_with_its_sample_counts() {
 
 /// A texture the device cannot create (here wider than its largest 2D texture, in a plan
 /// compiled for a profile that claimed more) fails naming the resource, its size and
-/// format, before any pass runs; the pool keeps nothing of it.
+/// format and the pass that needs it, before any pass runs; the pool keeps nothing of it.
 #[test]
 fn a_texture_the_device_cannot_create_is_named_with_its_size_and_format() {
     let gpu = gpu();
@@ -844,7 +844,7 @@ fn a_texture_the_device_cannot_create_is_named_with_its_size_and_format() {
     );
     let expected = format!(
         "cannot allocate texture \"too_wide\" ({width}x4, 1 sample(s), 1 mip(s), rgba16float, \
-         {:.1} MiB for mip 0) on the device: ",
+         {:.1} MiB for mip 0) for pass \"clear\" on the device: ",
         f64::from(width * 4 * 8) / f64::from(1u32 << 20)
     );
     assert!(error.to_string().starts_with(&expected), "{error}");

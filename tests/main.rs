@@ -44,6 +44,7 @@ mod deferred_unlit;
 mod deferred_views;
 mod deferred_volumes;
 mod deferred_volumes_gpu;
+
 mod engine_example;
 mod extremes_depth;
 mod extremes_determinism;
@@ -58,6 +59,7 @@ mod extremes_volumes;
 mod frame_inputs;
 mod fuzz;
 mod gpu_execute;
+mod gpu_failures;
 mod light_prepass;
 mod output_files;
 mod particles;

@@ -14,7 +14,9 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use graph_core::file::{load_str_with, GraphParams, LoadedGraph, Registry};
-use graph_core::gpu::{read_rgba16f, read_rgba8, Executor, FrameReport, Gpu, Imports};
+use graph_core::gpu::{
+    read_rgba16f, read_rgba8, ExecuteError, Executor, FrameReport, Gpu, Imports,
+};
 use graph_core::{CompileOptions, CompiledGraph, DeviceProfile, Features, Plan};
 use passes_deferred_msaa::analysis::Variants;
 use passes_deferred_msaa::scene::Scene;
@@ -273,6 +275,18 @@ impl Frame {
         self.executor
             .execute(&mut self.compiled, &Imports::new())
             .unwrap_or_else(|e| panic!("{} failed on the device: {e}", self.label))
+    }
+
+    /// Runs the next frame through the same executor with the inputs as they are, and
+    /// returns what it said, errors included.
+    pub fn try_again(&mut self) -> Result<FrameReport, ExecuteError> {
+        self.executor.execute(&mut self.compiled, &Imports::new())
+    }
+
+    /// Moves the next frames to `gpu`, with a new executor there, as an engine does after
+    /// its device was lost: the compiled graph and the host stay.
+    pub fn move_to(&mut self, gpu: &Gpu) {
+        self.executor = Executor::new(gpu);
     }
 
     /// Recompiles for an output of `size` (the plan's other inputs as they were) and runs

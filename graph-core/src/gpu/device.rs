@@ -137,6 +137,50 @@ impl ErrorLog {
     }
 }
 
+/// Why a device was lost, as its device-lost callback said.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DeviceLoss {
+    pub reason: wgpu::DeviceLostReason,
+    /// The driver's words, often empty.
+    pub message: String,
+}
+
+impl fmt::Display for DeviceLoss {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.reason {
+            wgpu::DeviceLostReason::Destroyed => f.write_str("it was destroyed")?,
+            // A driver error, a GPU reset, a shader that ran past the driver's timeout.
+            wgpu::DeviceLostReason::Unknown => {
+                f.write_str("the driver lost it (a GPU reset, a shader timeout or a driver error)")?
+            }
+        }
+        match self.message.trim() {
+            "" => Ok(()),
+            message => write!(f, ": {message}"),
+        }
+    }
+}
+
+/// Whether a device was lost, for the [`Executor`](super::Executor)s on it: filled by the
+/// device's lost callback. [`Gpu::open`] installs one; an engine that opened its device
+/// itself calls [`record`](Self::record) from its own callback and hands a clone to
+/// [`Executor::watching`](super::Executor::watching).
+#[derive(Clone, Debug, Default)]
+pub struct LossWatch(Arc<Mutex<Option<DeviceLoss>>>);
+
+impl LossWatch {
+    /// Records that the device was lost; the first loss is kept.
+    pub fn record(&self, reason: wgpu::DeviceLostReason, message: String) {
+        let mut lost = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        lost.get_or_insert(DeviceLoss { reason, message });
+    }
+
+    /// The loss, once the device is lost.
+    pub fn lost(&self) -> Option<DeviceLoss> {
+        self.0.lock().unwrap_or_else(|e| e.into_inner()).clone()
+    }
+}
+
 /// An open device and what it was opened from.
 ///
 /// The `Gpu` owns nothing the graph allocates: an [`Executor`](super::Executor) created
@@ -148,6 +192,8 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     pub info: wgpu::AdapterInfo,
     pub(crate) errors: ErrorLog,
+    /// Filled when the device is lost.
+    pub loss: LossWatch,
 }
 
 impl Gpu {
@@ -205,6 +251,9 @@ impl Gpu {
         let errors = ErrorLog::default();
         let log = errors.clone();
         device.on_uncaptured_error(Arc::new(move |e| log.push(e.to_string())));
+        let loss = LossWatch::default();
+        let watch = loss.clone();
+        device.set_device_lost_callback(move |reason, message| watch.record(reason, message));
         Ok(Gpu {
             instance,
             adapter,
@@ -212,6 +261,7 @@ impl Gpu {
             queue,
             info,
             errors,
+            loss,
         })
     }
 
@@ -316,13 +366,23 @@ fn describe(info: &wgpu::AdapterInfo) -> String {
     }
 }
 
+/// The process's one instance, made on first use: every device [`Gpu::open`] opens comes
+/// from it. wgpu numbers devices (and every object) per instance and compares them by
+/// that number alone, so two devices of two instances can compare equal; from one
+/// instance, a device opened after another was lost is another device to the plugins'
+/// per-device caches, which then build their objects again on it.
 fn new_instance() -> wgpu::Instance {
-    wgpu::Instance::new(wgpu::InstanceDescriptor {
-        backends: Backends::VULKAN,
-        // WGPU_VALIDATION=1 and friends still work.
-        flags: wgpu::InstanceFlags::default().with_env(),
-        ..wgpu::InstanceDescriptor::new_without_display_handle()
-    })
+    static INSTANCE: std::sync::OnceLock<wgpu::Instance> = std::sync::OnceLock::new();
+    INSTANCE
+        .get_or_init(|| {
+            wgpu::Instance::new(wgpu::InstanceDescriptor {
+                backends: Backends::VULKAN,
+                // WGPU_VALIDATION=1 and friends still work.
+                flags: wgpu::InstanceFlags::default().with_env(),
+                ..wgpu::InstanceDescriptor::new_without_display_handle()
+            })
+        })
+        .clone()
 }
 
 /// Capabilities of every uncompressed format the adapter knows.

@@ -18,7 +18,7 @@ use crate::record::{
 };
 use crate::resource::{format_name, texel_bytes, Origin, TextureShape};
 
-use super::device::{ErrorLog, Gpu};
+use super::device::{DeviceLoss, ErrorLog, Gpu, LossWatch};
 use super::error_scopes::ErrorScopes;
 use super::imports::{Binding, ImportError, Imports};
 use super::pool::{make_view, Pool, PoolStats, ViewKey};
@@ -95,9 +95,22 @@ pub enum ExecuteError {
 
     /// The device could not create a texture or buffer of the plan (out of memory, or
     /// beyond a limit the profile it was compiled for did not have). `what` names the
-    /// resources it holds, its size, format and bytes.
-    #[error("cannot allocate {what} on the device: {message}")]
-    Allocation { what: String, message: String },
+    /// resources it holds, its size, format and bytes; `pass` the first pass using it.
+    #[error("cannot allocate {what} for pass \"{pass}\" on the device: {message}")]
+    Allocation {
+        what: String,
+        pass: String,
+        message: String,
+    },
+
+    /// The device was lost: destroyed, reset, or a shader ran past the driver's timeout.
+    /// Everything created on it is gone; open a new device, and the compiled graph runs
+    /// on a new executor there (the plugins build their device objects again on it).
+    #[error(
+        "the device was lost {at}: {loss}; open a new device and run the graph with a new \
+         Executor on it"
+    )]
+    DeviceLost { at: LostAt, loss: DeviceLoss },
 
     /// A validation or out-of-memory error wgpu reported while the frame was built or
     /// submitted: in the pass named (its recording, callback included), or outside any
@@ -107,6 +120,33 @@ pub enum ExecuteError {
         pass: Option<String>,
         message: String,
     },
+}
+
+/// When a frame found its device lost.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum LostAt {
+    /// Before the frame began: nothing of it ran.
+    Start,
+    /// While the pass named was recorded: wgpu reported the loss at once (a driver error
+    /// during a call).
+    Pass(String),
+    /// While the frame's passes (named, in order) were recorded or ran: wgpu reports most
+    /// losses (a device destroyed, a GPU reset, a timeout) only once it waits for the
+    /// frame, and the device does not say which pass it was running.
+    Frame(Vec<String>),
+}
+
+impl std::fmt::Display for LostAt {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            LostAt::Start => f.write_str("before the frame began"),
+            LostAt::Pass(pass) => write!(f, "while pass \"{pass}\" was recorded"),
+            LostAt::Frame(passes) => {
+                let names: Vec<String> = passes.iter().map(|p| format!("\"{p}\"")).collect();
+                write!(f, "while the frame ran (its passes: {})", names.join(", "))
+            }
+        }
+    }
 }
 
 /// Executes plans on one device, keeping physical resources and timestamp queries
@@ -122,6 +162,9 @@ pub struct Executor {
     timestamps: Option<Timestamps>,
     /// Errors outside any scope, when the device was opened by [`Gpu`].
     uncaptured: Option<ErrorLog>,
+    /// Whether the device was lost, when known ([`Gpu`]'s, or one given to
+    /// [`watching`](Self::watching)).
+    loss: Option<LossWatch>,
     /// Pool indices of the last frame's physical textures and buffers, by plan index.
     frame_textures: Vec<usize>,
     frame_buffers: Vec<usize>,
@@ -129,15 +172,18 @@ pub struct Executor {
 
 impl Executor {
     /// An executor on a device opened by [`Gpu::open`]; device errors raised outside the
-    /// frame's error scopes (other threads, internal errors) are reported too.
+    /// frame's error scopes (other threads, internal errors) are reported too, and a lost
+    /// device is [`ExecuteError::DeviceLost`].
     pub fn new(gpu: &Gpu) -> Self {
-        let mut executor = Self::from_device(&gpu.device, &gpu.queue);
+        let mut executor = Self::from_device(&gpu.device, &gpu.queue).watching(gpu.loss.clone());
         executor.uncaptured = Some(gpu.errors.clone());
         executor
     }
 
     /// An executor on an engine's device. The engine keeps handling errors that fall
-    /// outside the frame's error scopes.
+    /// outside the frame's error scopes, and the device's loss: without
+    /// [`watching`](Self::watching), frames on a lost device fail with the device errors
+    /// wgpu raises instead of [`ExecuteError::DeviceLost`].
     pub fn from_device(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
         Self {
             device: device.clone(),
@@ -145,9 +191,23 @@ impl Executor {
             pool: Pool::default(),
             timestamps: Timestamps::new(device, queue),
             uncaptured: None,
+            loss: None,
             frame_textures: Vec::new(),
             frame_buffers: Vec::new(),
         }
+    }
+
+    /// This executor, told by `loss` when its device is lost (an engine records into it
+    /// from the callback it gave `wgpu::Device::set_device_lost_callback`): frames then
+    /// fail with [`ExecuteError::DeviceLost`], naming the pass being recorded.
+    pub fn watching(mut self, loss: LossWatch) -> Self {
+        self.loss = Some(loss);
+        self
+    }
+
+    /// Why the device was lost, once it is (and the executor is told).
+    fn lost(&self) -> Option<DeviceLoss> {
+        self.loss.as_ref()?.lost()
     }
 
     /// Runs one frame of `compiled`'s current plan, calling its graph's record callbacks,
@@ -165,6 +225,10 @@ impl Executor {
         imports: &Imports,
     ) -> Result<FrameReport, ExecuteError> {
         let start = Instant::now();
+        if let Some(loss) = self.lost() {
+            let at = LostAt::Start;
+            return Err(ExecuteError::DeviceLost { at, loss });
+        }
         let (graph, plan) = compiled.parts();
         check_records(graph, plan)?;
         let bound = imports.resolve(graph, plan)?;
@@ -183,14 +247,22 @@ impl Executor {
         if let Some(log) = &self.uncaptured {
             messages.extend(log.take());
         }
-        if !messages.is_empty() {
-            return Err(ExecuteError::Device {
+        let stamps = match messages.is_empty() {
+            true => self.read_timestamps(&slots),
+            false => Err(ExecuteError::Device {
                 pass: None,
                 message: messages.join("\n"),
-            });
+            }),
+        };
+        // What a lost device fails with is its loss, not the errors that followed it.
+        if let Some(loss) = self.lost() {
+            if let Some(log) = &self.uncaptured {
+                log.take();
+            }
+            let at = LostAt::Frame(plan.passes.iter().map(|p| p.name.clone()).collect());
+            return Err(ExecuteError::DeviceLost { at, loss });
         }
-        let stamps = self.read_timestamps(&slots)?;
-        Ok(self.report(plan, &slots, (passes, record_submit_ns), &stamps))
+        Ok(self.report(plan, &slots, (passes, record_submit_ns), &stamps?))
     }
 
     /// The physical texture of an exported, graph-created texture of the last executed
@@ -235,6 +307,18 @@ impl Executor {
                 .collect();
             names.join(" | ")
         };
+        // The first pass that uses any of the resources an object holds: the one a failed
+        // allocation stops.
+        let first_pass = |holds: &[ResourceId]| {
+            let first = holds
+                .iter()
+                .filter_map(|id| plan.resources.get(id.index())?.lifetime)
+                .map(|(first, _)| first)
+                .min();
+            first
+                .and_then(|i| plan.passes.get(i))
+                .map_or_else(String::new, |p| p.name.clone())
+        };
         // Cleared first: after a failed allocation, nothing of an earlier frame is readable.
         self.frame_textures.clear();
         self.frame_buffers.clear();
@@ -247,6 +331,7 @@ impl Executor {
                     .acquire_texture(&self.device, t.shape, t.usage, || resources.clone())
                     .map_err(|message| ExecuteError::Allocation {
                         what: format!("texture \"{resources}\" ({})", describe_shape(&t.shape)),
+                        pass: first_pass(&t.holds),
                         message,
                     })
             })
@@ -260,6 +345,7 @@ impl Executor {
                     .acquire_buffer(&self.device, b.size, b.usage, || resources.clone())
                     .map_err(|message| ExecuteError::Allocation {
                         what: format!("buffer \"{resources}\" ({} bytes)", b.size),
+                        pass: first_pass(&b.holds),
                         message,
                     })
             })
@@ -436,6 +522,10 @@ impl Executor {
             // wgpu reports errors inside passes when the encoder finishes.
             let buffer = encoder.finish();
             let errors = scopes.pop();
+            if let Some(loss) = self.lost() {
+                let at = LostAt::Pass(planned.name.clone());
+                return Err(ExecuteError::DeviceLost { at, loss });
+            }
             recorded?;
             if let Some(why) = failure.into_inner() {
                 return Err(ExecuteError::Pass {

@@ -14,10 +14,10 @@ mod timing;
 
 pub use crate::record::{ComputeContext, FrameResources, RenderContext, TransferContext};
 pub use device::{
-    is_lavapipe, list_adapters, AdapterChoice, AdapterSummary, DeviceError, EmptyChoice, Gpu,
-    COMMON_FORMATS,
+    is_lavapipe, list_adapters, AdapterChoice, AdapterSummary, DeviceError, DeviceLoss,
+    EmptyChoice, Gpu, LossWatch, COMMON_FORMATS,
 };
-pub use executor::{ExecuteError, Executor, FrameReport, PassTiming};
+pub use executor::{ExecuteError, Executor, FrameReport, LostAt, PassTiming};
 pub use footprint::{resident_bytes, DeviceObjects};
 pub use imports::{ImportError, ImportKey, Imports};
 pub use pool::{PoolStats, KEEP_FRAMES};
