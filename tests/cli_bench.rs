@@ -145,7 +145,7 @@ fn results_json_has_every_figure_with_its_type() {
             ("round_log", "array"),
         ],
     );
-    assert_eq!((json["frames"], json["rounds"]), (1.into(), 3.into()));
+    assert_eq!((&json["frames"], &json["rounds"]), (&1.into(), &3.into()));
     assert_eq!(json["spread_limit"], 0.05);
     assert_eq!(json["resolution"], serde_json::json!([64, 48]));
     assert_fields(
@@ -681,7 +681,7 @@ fn warmup_frames_keep_pipeline_creation_out_of_the_rounds() {
     assert_eq!(number(&json, "warmup"), 1.0);
 }
 
-/// A round made slow through the bench's test hook (its GPU times half as long again)
+/// A round made slow through the bench's test hook (its GPU times three times as long)
 /// flags every row it slowed, in results.json and results.md, and the notes say that
 /// the figures were changed.
 #[test]
@@ -729,7 +729,7 @@ fn a_fake_slow_round_is_flagged() {
         .iter()
         .map(|v| v.as_f64().unwrap())
         .collect();
-    // Round 2 is the slowest by far: half as long again as its real frames.
+    // Round 2 is the slowest by far: three times as long as its real frames.
     let slowest = (0..rounds.len()).max_by(|a, b| rounds[*a].total_cmp(&rounds[*b]));
     assert_eq!(slowest, Some(1), "{rounds:?}");
     let flag = &figures["flag"];

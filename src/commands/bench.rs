@@ -100,7 +100,7 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         .and_then(|v| v.parse().ok());
     if let Some(round) = fake_slow_round {
         notes.push(format!(
-            "{}={round}: a test hook made round {round}'s GPU times half as long again; \
+            "{}={round}: a test hook made round {round}'s GPU times three times as long; \
              these figures are not measurements",
             rounds::FAKE_SLOW_ROUND
         ));

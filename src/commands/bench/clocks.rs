@@ -28,12 +28,17 @@ pub struct ClockSource {
     pub detail: String,
     /// The GPU's memory as `nvidia-smi` reports it, in bytes.
     pub memory_total_bytes: Option<u64>,
-    /// The GPU queried (`nvidia-smi -i`): the adapter's PCI bus ID where wgpu gives one.
+    /// The adapter's PCI address where wgpu gives one: the line of `nvidia-smi`'s output
+    /// to read on a machine with several GPUs (else the first).
     #[serde(skip)]
-    gpu: Option<String>,
+    bus: Option<PciAddress>,
     #[serde(skip)]
     query: String,
 }
+
+/// Domain, bus, device and function: "0000:18:00.0" as wgpu writes it, "00000000:18:00.0"
+/// as `nvidia-smi` does.
+type PciAddress = [u32; 4];
 
 /// One sample taken while a round ran.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -61,7 +66,7 @@ const REASONS: [(u64, &str); 9] = [
     (0x100, "display_clock_setting"),
 ];
 
-/// A query started with a round; [`Pending::finish`] reads it.
+/// A query started with a round; [`ClockSource::finish`] reads it.
 pub struct Pending(Child);
 
 impl ClockSource {
@@ -75,30 +80,26 @@ impl ClockSource {
                 info.name
             ));
         }
-        let bus = Some(info.device_pci_bus_id.clone()).filter(|b| !b.is_empty());
+        let gpu_at = match info.device_pci_bus_id.as_str() {
+            "" => "the first GPU".to_string(),
+            bus => format!("the GPU at {bus}"),
+        };
         let mut why = String::new();
         for field in THROTTLE_FIELDS {
             let mut source = ClockSource {
                 reported_by: Some(TOOL.into()),
                 detail: String::new(),
                 memory_total_bytes: None,
-                gpu: bus.clone(),
-                query: format!("clocks.sm,clocks.mem,{field},temperature.gpu"),
+                bus: pci_address(&info.device_pci_bus_id),
+                query: format!("pci.bus_id,clocks.sm,clocks.mem,{field},temperature.gpu"),
             };
-            let probe = source
-                .start()
-                .map_err(|e| e.to_string())
-                .and_then(|p| p.read());
-            match probe.and_then(|line| parse(&line)) {
+            let probe = source.start().map_err(|e| e.to_string());
+            match probe.and_then(|p| source.read(p)) {
                 Ok(_) => {
                     source.memory_total_bytes = source.memory_total();
                     source.detail = format!(
-                        "{TOOL} --query-gpu={} {}, once per round while its frames run",
-                        source.query,
-                        source
-                            .gpu
-                            .as_ref()
-                            .map_or("(the first GPU)".into(), |b| format!("-i {b}")),
+                        "{TOOL} --query-gpu={}, {gpu_at}, once per round while its frames run",
+                        source.query
                     );
                     return source;
                 }
@@ -113,7 +114,7 @@ impl ClockSource {
             reported_by: None,
             detail,
             memory_total_bytes: None,
-            gpu: None,
+            bus: None,
             query: String::new(),
         }
     }
@@ -124,57 +125,87 @@ impl ClockSource {
         self.start().ok()
     }
 
+    /// The sample `pending` took; `None` when the query failed or printed something else.
+    pub fn finish(&self, pending: Pending) -> Option<ClockSample> {
+        self.read(pending).ok()
+    }
+
     fn start(&self) -> std::io::Result<Pending> {
         self.command(&self.query).spawn().map(Pending)
+    }
+
+    fn read(&self, pending: Pending) -> Result<ClockSample, String> {
+        parse(&output(pending.0)?, self.bus)
     }
 
     fn command(&self, query: &str) -> Command {
         let mut command = Command::new(TOOL);
         command.arg(format!("--query-gpu={query}"));
         command.arg("--format=csv,noheader,nounits");
-        if let Some(gpu) = &self.gpu {
-            command.args(["-i", gpu]);
-        }
         command.stdout(Stdio::piped()).stderr(Stdio::piped());
         command
     }
 
     /// The GPU's memory in bytes (`memory.total`, reported in MiB).
     fn memory_total(&self) -> Option<u64> {
-        let out = self.command("memory.total").output().ok()?;
-        let text = String::from_utf8_lossy(&out.stdout);
-        let mib: u64 = text.lines().next()?.trim().parse().ok()?;
-        Some(mib << 20)
+        let child = self.command("pci.bus_id,memory.total").spawn().ok()?;
+        let out = output(child).ok()?;
+        let [mib] = gpu_line(&out, self.bus)?[..] else {
+            return None;
+        };
+        Some(mib.parse::<u64>().ok()? << 20)
     }
 }
 
-impl Pending {
-    /// The sample, `None` when the query failed or printed something else.
-    pub fn finish(self) -> Option<ClockSample> {
-        parse(&self.read().ok()?).ok()
-    }
-
-    /// The query's first line of output, or its error.
-    fn read(self) -> Result<String, String> {
-        let out = self.0.wait_with_output().map_err(|e| e.to_string())?;
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        match out.status.success() {
-            true => Ok(stdout.lines().next().unwrap_or("").to_string()),
-            false => {
-                let stderr = String::from_utf8_lossy(&out.stderr);
-                let said = stderr.lines().chain(stdout.lines()).next().unwrap_or("");
-                Err(format!("{} ({said})", out.status))
-            }
+/// What `child` printed, or why it failed.
+fn output(child: Child) -> Result<String, String> {
+    let out = child.wait_with_output().map_err(|e| e.to_string())?;
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    match out.status.success() {
+        true => Ok(stdout.into_owned()),
+        false => {
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            let said = stderr.lines().chain(stdout.lines()).next().unwrap_or("");
+            Err(format!("{} ({said})", out.status))
         }
     }
 }
 
-/// One line of `clocks.sm, clocks.mem, throttle reasons, temperature.gpu` without units;
-/// a field the GPU does not report ("[N/A]") is `None`.
-fn parse(line: &str) -> Result<ClockSample, String> {
-    let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+/// The fields after the bus ID on the line of the GPU at `bus` in `nvidia-smi`'s CSV
+/// output (one line per GPU, each starting with its bus ID); the first line where `bus`
+/// is unknown or no line has it.
+fn gpu_line(out: &str, bus: Option<PciAddress>) -> Option<Vec<&str>> {
+    let lines: Vec<Vec<&str>> = out
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.split(',').map(str::trim).collect())
+        .collect();
+    let at_bus = |line: &&Vec<&str>| bus.is_some() && pci_address(line[0]) == bus;
+    let line = lines.iter().find(at_bus).or(lines.first())?;
+    Some(line[1..].to_vec())
+}
+
+/// A PCI address "DOMAIN:BUS:DEVICE.FUNCTION" in hexadecimal, whatever its digits.
+fn pci_address(text: &str) -> Option<PciAddress> {
+    let (rest, function) = text.trim().rsplit_once('.')?;
+    let mut parts = rest.split(':');
+    let mut next = || u32::from_str_radix(parts.next()?, 16).ok();
+    let address = [
+        next()?,
+        next()?,
+        next()?,
+        u32::from_str_radix(function, 16).ok()?,
+    ];
+    parts.next().is_none().then_some(address)
+}
+
+/// The line of the GPU at `bus` of `pci.bus_id, clocks.sm, clocks.mem, throttle reasons,
+/// temperature.gpu` without units; a field the GPU does not report ("[N/A]") is `None`.
+fn parse(out: &str, bus: Option<PciAddress>) -> Result<ClockSample, String> {
+    let unexpected = || format!("unexpected output \"{}\"", out.trim());
+    let fields = gpu_line(out, bus).ok_or_else(unexpected)?;
     let [sm, mem, throttle, temperature] = fields[..] else {
-        return Err(format!("unexpected output \"{line}\""));
+        return Err(unexpected());
     };
     let mask = u64::from_str_radix(throttle.trim_start_matches("0x"), 16).ok();
     Ok(ClockSample {
@@ -194,18 +225,36 @@ fn parse(line: &str) -> Result<ClockSample, String> {
 
 #[cfg(test)]
 mod tests {
-    use super::parse;
+    use super::{parse, pci_address};
 
     #[test]
     fn a_sample_line_is_read_with_its_throttle_reasons() {
-        let sample = parse("1980, 2619, 0x0000000000000044, 47").unwrap();
+        let out = "00000000:18:00.0, 1980, 2619, 0x0000000000000044, 47\n";
+        let sample = parse(out, None).unwrap();
         assert_eq!(
             (sample.sm_mhz, sample.mem_mhz, sample.temperature_c),
             (Some(1980), Some(2619), Some(47))
         );
         assert_eq!(sample.throttle, ["sw_power_cap", "hw_thermal_slowdown"]);
-        let missing = parse("[N/A], 2619, [N/A], 40").unwrap();
+        let missing = parse("00000000:18:00.0, [N/A], 2619, [N/A], 40", None).unwrap();
         assert_eq!((missing.sm_mhz, missing.throttle.len()), (None, 0));
-        assert!(parse("No devices were found").is_err());
+        assert!(parse("No devices were found", None).is_err());
+        assert!(parse("", None).is_err());
+    }
+
+    #[test]
+    fn the_adapters_gpu_is_found_by_its_bus_among_several() {
+        let out = "00000000:18:00.0, 1980, 2619, 0x0, 40\n\
+                   00000000:2A:00.0, 1410, 2619, 0x20, 85\n";
+        // wgpu writes a four-digit domain and lower-case hexadecimal.
+        let bus = pci_address("0000:2a:00.0");
+        assert_eq!(bus, Some([0, 0x2a, 0, 0]));
+        assert_eq!(parse(out, bus).unwrap().sm_mhz, Some(1410));
+        // An address no line has, or none, reads the first GPU.
+        let elsewhere = pci_address("0000:99:00.0");
+        assert_eq!(parse(out, elsewhere).unwrap().sm_mhz, Some(1980));
+        assert_eq!(parse(out, None).unwrap().sm_mhz, Some(1980));
+        assert_eq!(pci_address(""), None);
+        assert_eq!(pci_address("0:1:2:3.0"), None);
     }
 }

@@ -85,7 +85,7 @@ pub fn judge(evidence: &Evidence) -> Option<Flag> {
             evidence.clocks,
             &THERMAL,
             ReasonKind::Thermal,
-            "thermal slowdown",
+            "thermal or hardware slowdown",
         ),
         throttled(
             evidence.clocks,
@@ -288,7 +288,7 @@ mod tests {
             details[1..],
             [
                 "GPU clocks changed: SM 1410–1980 MHz across the rounds",
-                "thermal slowdown in round 2 (sw_thermal_slowdown)",
+                "thermal or hardware slowdown in round 2 (sw_thermal_slowdown)",
                 "power cap in round 4 (sw_power_cap)"
             ]
         );
