@@ -102,8 +102,9 @@ pub fn interleave<'s, T, C>(
         .map(|t| Memory::of(t.prepared.plan(), &[]).allocated_bytes())
         .collect();
     let groups = groups(&sizes, setup.group_bytes);
+    let count = groups.len();
     // One group was counted for the scene beforehand.
-    progress.add(groups.len().saturating_sub(1) * (1 + setup.rounds as usize));
+    progress.add(count.saturating_sub(1) * (1 + setup.rounds as usize));
     let mut plans = plans.into_iter();
     let mut closed = Vec::new();
     for (index, range) in groups.into_iter().enumerate() {
@@ -120,14 +121,19 @@ pub fn interleave<'s, T, C>(
                 failed: None,
             })
             .collect();
-        let names = group.len();
-        progress.item(format!("{scene}: warmup of {names} pipelines"));
+        // What the progress bar says of the group: "builtin:dense, 12 plans".
+        let plans_text = match group.len() {
+            1 => "1 plan".to_string(),
+            n => format!("{n} plans"),
+        };
+        let what = match count {
+            1 => format!("{scene}, {plans_text}"),
+            _ => format!("{scene}, group {} of {count} ({plans_text})", index + 1),
+        };
+        progress.item(format!("{what}: warmup"));
         warm(setup, &mut group);
         for round in 1..=setup.rounds {
-            progress.item(format!(
-                "{scene}: round {round} of {}, {names} pipelines",
-                setup.rounds
-            ));
+            progress.item(format!("{what}: round {round} of {}", setup.rounds));
             let (order, clocks) = run_round(setup, round, &mut group);
             log.push(RoundLog {
                 scene: scene.to_string(),
