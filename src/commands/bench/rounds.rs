@@ -1,7 +1,7 @@
 //! Timing a scene's pipelines in interleaved rounds: each round runs `--frames` frames of
 //! every pipeline in turn (A B C, A B C, ...), so a GPU whose clocks drift, or that
-//! something else slows for a while, slows every pipeline of that round alike instead of
-//! whichever ran then. Before round 1 each pipeline runs its warmup frames (its first
+//! something else slows for a while, shows as rounds that disagree instead of as
+//! whichever pipeline ran then measured slow. Before round 1 each pipeline runs its warmup frames (its first
 //! frame creates its pipelines and uploads the scene), then all of them take turns until
 //! [`WARM_FOR`] has passed. Every round is logged with the order its pipelines ran in
 //! and, where the platform reports them, the GPU's clocks while it ran.
