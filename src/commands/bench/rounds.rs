@@ -246,7 +246,9 @@ pub fn groups(sizes: &[u64], budget: u64) -> Vec<Range<usize>> {
 
 /// The pipelines and shader modules alive on a device (wgpu's `counters` feature, which
 /// rgraph's Cargo.toml turns on): caches keep every one a plan creates, so a rise over
-/// a plan's frames is what those frames compiled.
+/// a plan's frames is what those frames compiled for the first time. The counts are of
+/// objects alive, not of creations: a pipeline created to replace one the same frames
+/// drop (a cache recompiling every frame) does not show.
 struct Objects {
     render_pipelines: i64,
     compute_pipelines: i64,
