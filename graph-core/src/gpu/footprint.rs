@@ -90,8 +90,12 @@ impl DeviceObjects {
     }
 }
 
+/// Each kind's count, or "nothing" when every count is 0 (a frame that created nothing).
 impl fmt::Display for DeviceObjects {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if *self == DeviceObjects::default() {
+            return f.write_str("nothing");
+        }
         write!(
             f,
             "{} KiB of textures and {} KiB of buffers in {} memory blocks, {} buffers, {} \
