@@ -71,9 +71,27 @@ impl Scene {
             self.environment = Some(Environment {
                 intensity: DEFAULT_ENVIRONMENT_INTENSITY,
             });
-            let why = match lighting {
-                Lighting::Auto => "it has no lights; ",
-                _ => "",
+            let why = match (lighting, self.lights.len()) {
+                (Lighting::Auto, 0) => "it has no lights; ".to_owned(),
+                // Named, so a light that was meant to shine is found.
+                (Lighting::Auto, dark) => {
+                    let mut names: Vec<&str> = self
+                        .lights
+                        .iter()
+                        .take(3)
+                        .map(|l| l.name.as_str())
+                        .collect();
+                    let more = format!("{} more", dark - names.len());
+                    if dark > names.len() {
+                        names.push(&more);
+                    }
+                    format!(
+                        "none of its {dark} light(s) emits anything ({}: intensity or \
+                         color 0); ",
+                        names.join(", ")
+                    )
+                }
+                _ => String::new(),
             };
             self.warnings.push(format!(
                 "{}: {why}lit by the default lighting: a neutral studio environment \
