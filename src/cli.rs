@@ -353,9 +353,7 @@ fn parse_param(text: &str) -> Result<(String, u32), String> {
 fn parse_file_path(text: &str) -> Result<PathBuf, String> {
     if text.ends_with(std::path::is_separator) {
         return Err(format!(
-            "{text} ends with a path separator, so it names a folder; name the file, e.g. \
-             {}frame.png",
-            text
+            "{text} ends with a path separator, so it names a folder, not a file"
         ));
     }
     Ok(PathBuf::from(text))

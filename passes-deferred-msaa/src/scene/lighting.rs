@@ -67,10 +67,6 @@ impl Scene {
             self.ambient = [0.0; 3];
         }
         if add {
-            self.lights.push(headlight(&self));
-            self.environment = Some(Environment {
-                intensity: DEFAULT_ENVIRONMENT_INTENSITY,
-            });
             let why = match (lighting, self.lights.len()) {
                 (Lighting::Auto, 0) => "it has no lights; ".to_owned(),
                 // Named, so a light that was meant to shine is found.
@@ -93,6 +89,10 @@ impl Scene {
                 }
                 _ => String::new(),
             };
+            self.lights.push(headlight(&self));
+            self.environment = Some(Environment {
+                intensity: DEFAULT_ENVIRONMENT_INTENSITY,
+            });
             self.warnings.push(format!(
                 "{}: {why}lit by the default lighting: a neutral studio environment \
                  (intensity {DEFAULT_ENVIRONMENT_INTENSITY}) and a {HEADLIGHT_LUX} lux \

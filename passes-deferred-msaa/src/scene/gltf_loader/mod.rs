@@ -62,7 +62,7 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         file,
         buffers: uri::load_buffers(file, &sandbox, &document, blob)?,
         sandbox,
-        budget: reserve::Budget::new(policy.max_scene_bytes),
+        budget: Budget::new(policy.max_scene_bytes),
         document: &document,
         builder: SceneBuilder::new(file.display().to_string()),
         materials: HashMap::new(),
@@ -112,7 +112,32 @@ struct Loader<'a> {
     /// The images, by glTF index and role, whose memory the budget holds.
     reserved: HashSet<(usize, bool)>,
     /// What is left of [`AssetPolicy::max_scene_bytes`], taken before anything is built.
-    budget: reserve::Budget,
+    budget: Budget,
+}
+
+/// The bytes of vertices, indices and textures a scene may still build.
+struct Budget {
+    left: u64,
+    max: u64,
+}
+
+impl Budget {
+    fn new(max: u64) -> Budget {
+        Budget { left: max, max }
+    }
+
+    /// Takes `bytes`, or says (as the end of a sentence about `what`) why it cannot.
+    fn take(&mut self, bytes: u64, why: &str) -> Result<(), String> {
+        if bytes > self.left {
+            return Err(format!(
+                "{why} would take the scene past {} bytes of vertices, indices and textures \
+                 (the scene memory limit)",
+                self.max
+            ));
+        }
+        self.left -= bytes;
+        Ok(())
+    }
 }
 
 impl Loader<'_> {

@@ -12,31 +12,6 @@ use super::{material, Loader};
 use crate::scene::error::label;
 use crate::scene::{SceneError, Vertex};
 
-/// The bytes of vertices, indices and textures a scene may still build.
-pub(super) struct Budget {
-    left: u64,
-    max: u64,
-}
-
-impl Budget {
-    pub fn new(max: u64) -> Budget {
-        Budget { left: max, max }
-    }
-
-    /// Takes `bytes`, or says (as the end of a sentence about `what`) why it cannot.
-    fn take(&mut self, bytes: u64, why: &str) -> Result<(), String> {
-        if bytes > self.left {
-            return Err(format!(
-                "{why} would take the scene past {} bytes of vertices, indices and textures \
-                 (the scene memory limit)",
-                self.max
-            ));
-        }
-        self.left -= bytes;
-        Ok(())
-    }
-}
-
 impl Loader<'_> {
     /// Takes from the budget what the meshes `placed` places and the images their
     /// materials name will hold, in the order they are built; fails on the first that does
