@@ -128,16 +128,15 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
     viewer.finish()
 }
 
-/// winit's OS errors read `os error at FILE:LINE: WHY`, FILE a path in the build machine's
-/// cargo registry: only WHY means anything to a user.
+/// winit's OS errors read `os error at FILE:LINE: WHY.`, FILE a path in the build
+/// machine's cargo registry: only WHY means anything to a user (without its period: the
+/// message goes on after it).
 fn without_source_location(reason: &str) -> String {
-    match reason.strip_prefix("os error at ") {
-        Some(rest) => rest
-            .split_once(": ")
-            .map_or(rest, |(_, why)| why)
-            .to_owned(),
-        None => reason.to_owned(),
-    }
+    let why = match reason.strip_prefix("os error at ") {
+        Some(rest) => rest.split_once(": ").map_or(rest, |(_, why)| why),
+        None => reason,
+    };
+    why.trim_end_matches('.').to_owned()
 }
 
 /// Loads the pipeline for one view at one size on the session's device, with the
