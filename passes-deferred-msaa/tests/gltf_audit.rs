@@ -154,17 +154,7 @@ fn crc32(bytes: &[u8]) -> u32 {
 /// A triangle whose material's base color is the image in `png`, written as a `.glb`.
 fn textured(test: &str, png: &[u8]) -> std::path::PathBuf {
     let mut gltf = Gltf::default();
-    let view = gltf.view(png);
-    gltf.push(
-        "images",
-        json!({ "bufferView": view, "mimeType": "image/png" }),
-    );
-    gltf.push("textures", json!({ "source": 0 }));
-    let material = gltf.push(
-        "materials",
-        json!({ "name": "painted", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } } }),
-    );
-    gltf.triangle(Some(material));
+    gltf.textured_triangle(png);
     let path = temp_dir(test).join("scene.glb");
     gltf.write_glb(&path);
     path
