@@ -38,6 +38,8 @@ pub enum Command {
         files: Vec<PathBuf>,
         #[command(flatten)]
         target: Target,
+        #[command(flatten)]
+        roots: GraphRoots,
     },
     /// Print the compiled plan of a graph file: order, lifetimes, usages, load/store,
     /// physical textures and memory, culled passes with the reason. No GPU needed.
@@ -64,6 +66,8 @@ pub enum Command {
         samples: Samples,
         #[command(flatten)]
         assets: AssetArgs,
+        #[command(flatten)]
+        roots: GraphRoots,
     },
     /// Render one frame (or a sequence) headless and write it as an 8-bit sRGB PNG.
     ///
@@ -176,7 +180,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum)]
     pub tonemap: Option<Tonemap>,
     /// Exposure before tone mapping, replacing the pipeline's (default: the pipeline's):
-    /// a multiplier, finite and above 0, or auto: metered from the frame (its average
+    /// a multiplier, above 0 and at most 1e12, or auto: metered from the frame (its average
     /// luminance, between the 10th and 90th percentiles of the lit pixels, mapped to
     /// middle grey), for scenes lit in physical units (a 68,000 lux sun).
     // Negative numbers reach the parser, which explains the rule, instead of clap
@@ -195,7 +199,7 @@ pub struct RenderArgs {
     pub adapter: Option<String>,
     /// The PNG to write (its directory must exist); replaced atomically. With --frames
     /// above 1 the name holds %04d (or %0Nd for N digits), replaced by each frame's number.
-    #[arg(long, value_name = "FILE.png")]
+    #[arg(long, value_name = "FILE.png", value_parser = parse_file_path)]
     pub out: PathBuf,
     /// Frames to render through one executor, as an engine would: the scene is uploaded
     /// and the pipelines built once, and each later frame only moves the camera.
@@ -211,6 +215,8 @@ pub struct RenderArgs {
     pub samples: Samples,
     #[command(flatten)]
     pub assets: AssetArgs,
+    #[command(flatten)]
+    pub roots: GraphRoots,
 }
 
 /// What `rgraph view` shows, and how long.
@@ -253,7 +259,7 @@ pub struct ViewArgs {
     pub frames: Option<u32>,
     /// With --frames, write the last frame's presented image (read back from the window's
     /// surface) as a PNG when the viewer exits; its directory must exist.
-    #[arg(long, value_name = "FILE.png", requires = "frames")]
+    #[arg(long, value_name = "FILE.png", requires = "frames", value_parser = parse_file_path)]
     pub screenshot: Option<PathBuf>,
     /// How often the watched files' modification times are polled, in milliseconds.
     #[arg(long, value_name = "MS", default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..))]
@@ -262,6 +268,32 @@ pub struct ViewArgs {
     pub samples: Samples,
     #[command(flatten)]
     pub assets: AssetArgs,
+    #[command(flatten)]
+    pub roots: GraphRoots,
+}
+
+impl Command {
+    /// The folders `--graph-root` names, for the commands that load graph files.
+    pub fn graph_roots(&self) -> &[PathBuf] {
+        match self {
+            Command::Validate { roots, .. } | Command::Explain { roots, .. } => &roots.dirs,
+            Command::Render(args) => &args.roots.dirs,
+            Command::View(args) => &args.roots.dirs,
+            Command::Bench(args) => &args.roots.dirs,
+            Command::Adapters { .. } => &[],
+        }
+    }
+}
+
+/// `--graph-root DIR`: where graph files' references may also lead.
+#[derive(clap::Args)]
+pub struct GraphRoots {
+    /// A folder a graph file's references (a preset's base, a pass's shader) may also
+    /// point into; repeatable. Without it they must stay inside the graph file's own folder
+    /// and the shipped pipelines/ and shaders/: an absolute path, a `..` that climbs out or
+    /// a symbolic link that leads out is an error naming the reference.
+    #[arg(long = "graph-root", value_name = "DIR", value_parser = parse_folder)]
+    pub dirs: Vec<PathBuf>,
 }
 
 /// The graph-file parameter that is the MSAA sample count:
@@ -296,15 +328,45 @@ impl Samples {
     }
 }
 
-/// `NAME=VALUE`, VALUE a whole number.
+/// `NAME=VALUE`, VALUE a whole number that fits the parameter (32 bits).
 fn parse_param(text: &str) -> Result<(String, u32), String> {
     let (name, value) = text
         .split_once('=')
         .ok_or_else(|| format!("`{text}` is not NAME=VALUE"))?;
     let value = value
         .parse()
-        .map_err(|_| format!("`{value}` (parameter {name}) is not a whole number"))?;
+        .map_err(|e: std::num::ParseIntError| match e.kind() {
+            std::num::IntErrorKind::PosOverflow => {
+                format!(
+                    "`{value}` (parameter {name}) is too large (at most {})",
+                    u32::MAX
+                )
+            }
+            _ => format!("`{value}` (parameter {name}) is not a whole number"),
+        })?;
     Ok((name.to_owned(), value))
+}
+
+/// A file to write (`--out`, `--screenshot`). Text ending in a path separator names a
+/// folder, which the checks of the path cannot see (`x.png/` has the file name `x.png`)
+/// and which would fail only when the rendered frame is written.
+fn parse_file_path(text: &str) -> Result<PathBuf, String> {
+    if text.ends_with(std::path::is_separator) {
+        return Err(format!(
+            "{text} ends with a path separator, so it names a folder, not a file"
+        ));
+    }
+    Ok(PathBuf::from(text))
+}
+
+/// A folder that exists (`--asset-root`, `--graph-root`): clap names the flag.
+fn parse_folder(text: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(text);
+    match std::fs::metadata(&path) {
+        Ok(meta) if meta.is_dir() => Ok(path),
+        Ok(_) => Err(format!("{text} is a file, not a folder")),
+        Err(e) => Err(format!("{text} is not a folder that exists ({e})")),
+    }
 }
 
 /// What a glTF scene may read besides itself, and which lights it is drawn with.
@@ -318,7 +380,7 @@ pub struct AssetArgs {
     pub lights: Lighting,
     /// A folder the glTF file's buffer and image URIs may also point into. Without it, a
     /// URI that is an absolute path or climbs out of the glTF file's folder is an error.
-    #[arg(long, value_name = "DIR")]
+    #[arg(long, value_name = "DIR", value_parser = parse_folder)]
     pub asset_root: Option<PathBuf>,
     /// The largest file a scene reads (the glTF file, each buffer, each image), in bytes.
     #[arg(long, value_name = "BYTES", default_value_t = DEFAULT_MAX_ASSET_BYTES,
@@ -416,6 +478,8 @@ pub struct BenchArgs {
     pub out_dir: PathBuf,
     #[command(flatten)]
     pub assets: AssetArgs,
+    #[command(flatten)]
+    pub roots: GraphRoots,
 }
 
 /// What `rgraph bench --sweep` varies.
@@ -508,6 +572,11 @@ fn parse_exposure(text: &str) -> Result<Exposure, String> {
         return Ok(Exposure::Auto);
     }
     match text.trim().parse::<f32>() {
+        Ok(e) if e.is_finite() && e > Exposure::MAX => Err(format!(
+            "{e:e} is too large (at most {:e}): tone mapping squares the exposed color, which \
+             would overflow to a black frame",
+            Exposure::MAX
+        )),
         Ok(e) if e.is_finite() && e > 0.0 => Ok(Exposure::Fixed(e)),
         Ok(_) => Err("must be auto or a finite number above 0".into()),
         Err(_) => Err("expected auto or a number, e.g. 1.5".into()),

@@ -21,8 +21,9 @@ fn main() -> ExitCode {
     graph_core::embedded::provide(EMBEDDED);
     let cli = Cli::parse();
     vulkan_env::prepare(&cli);
+    registry::allow_graph_roots(cli.command.graph_roots());
     let result = match &cli.command {
-        Command::Validate { files, target } => commands::validate::run(files, target),
+        Command::Validate { files, target, .. } => commands::validate::run(files, target),
         Command::Explain {
             pipeline,
             scene,
@@ -30,6 +31,7 @@ fn main() -> ExitCode {
             target,
             samples,
             assets,
+            ..
         } => commands::explain::run(pipeline, scene.as_deref(), *format, target, samples, assets),
         Command::Render(args) => commands::render::run(args),
         Command::Bench(args) => commands::bench::run(args),

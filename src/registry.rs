@@ -1,10 +1,21 @@
-//! The plugins the CLI knows: graph-core's generic ones and the deferred MSAA set.
+//! The plugins the CLI knows: graph-core's generic ones and the deferred MSAA set, and the
+//! folders `--graph-root` lets graph files reach.
 
-use std::sync::Arc;
+use std::path::PathBuf;
+use std::sync::{Arc, OnceLock};
 
 use graph_core::file::Registry;
 use passes_deferred_msaa::analysis::Variants;
 use passes_deferred_msaa::Host;
+
+/// The command's `--graph-root` folders: set once, before any graph file is loaded, so
+/// every registry the command makes (and loads graph files against) allows them.
+static GRAPH_ROOTS: OnceLock<Vec<PathBuf>> = OnceLock::new();
+
+/// Lets every graph file this run loads name files under `roots` too.
+pub fn allow_graph_roots(roots: &[PathBuf]) {
+    let _ = GRAPH_ROOTS.set(roots.to_vec());
+}
 
 /// For commands that only declare and compile: the deferred plugins draw nothing.
 pub fn registry() -> Registry {
@@ -16,5 +27,10 @@ pub fn registry() -> Registry {
 pub fn registry_for(host: Option<Arc<Host>>, variants: Variants) -> Registry {
     let mut registry = Registry::with_builtins();
     passes_deferred_msaa::register_with(&mut registry, host, variants);
+    for root in GRAPH_ROOTS.get().into_iter().flatten() {
+        // The flag's parser checked that each is a folder; one removed since is left out,
+        // and references into it are refused, naming the folders that are allowed.
+        let _ = registry.allow_graph_root(root);
+    }
     registry
 }

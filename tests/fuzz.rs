@@ -14,6 +14,13 @@ use graph_core::{explain, CompileOptions};
 use passes_deferred_msaa::analysis::Analysis;
 use passes_deferred_msaa::scene::{AssetPolicy, Scene};
 
+/// Where the graph-file target plants the files its path-attack mutants name (see
+/// fuzz_support's tokens), outside every folder graph files may read.
+const SECRET_FOLDER: &str = "/tmp/rgraph-fuzz-secret";
+
+/// What the planted files hold.
+const SECRET: &str = "SECRET-5c1d";
+
 /// The command-line definition itself, compiled into this test.
 #[allow(dead_code)]
 #[path = "../src/cli.rs"]
@@ -32,17 +39,45 @@ fn graph_files_load_and_compile_or_fail_with_errors() {
         &[".ron"],
     );
     fuzz("ron", seeds, iterations(3_000), || {
+        let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
         let mut registry = Registry::with_builtins();
         passes_deferred_msaa::register(&mut registry, None);
+        // The seeds name the shipped shaders from pipelines/ and tests/fixtures/.
+        registry
+            .allow_graph_root(&root)
+            .expect("the repository is a folder");
+        // Files outside every allowed folder, which the mutants' path attacks name: no
+        // error may quote them.
+        let secrets = std::path::Path::new(SECRET_FOLDER);
+        std::fs::create_dir_all(secrets).expect("a folder for the planted files");
+        for name in ["secret.ron", "secret.wgsl"] {
+            std::fs::write(secrets.join(name), format!("{SECRET}(\n")).expect("planted");
+        }
         // As if in pipelines/, so the seeds' relative shader paths resolve.
-        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("pipelines/fuzzed.ron");
+        let path = root.join("pipelines/fuzzed.ron");
         Box::new(move |input| {
             let text = String::from_utf8_lossy(input);
-            let Ok(loaded) = load_str(&path, &text, &registry) else {
-                return false;
+            let loaded = match load_str(&path, &text, &registry) {
+                Ok(loaded) => loaded,
+                Err(errors) => {
+                    let message = errors.to_string();
+                    assert!(
+                        !message.contains(SECRET),
+                        "a planted file leaked: {message}"
+                    );
+                    return false;
+                }
             };
-            // What `explain` prints of a plan, in every format.
-            if let Ok(plan) = loaded.compile(&CompileOptions::default()) {
+            // What `explain` checks (as `validate` does) and prints of a plan, in every
+            // format. A file `validate` accepts compiles for no features too.
+            let options = CompileOptions::default();
+            let validated = loaded.validate(&options);
+            let compiled = loaded.compile(&options);
+            assert!(
+                validated.is_err() || compiled.is_ok(),
+                "validate accepted a file that does not compile"
+            );
+            if let Ok(plan) = compiled {
                 let _ = (
                     explain::text(&plan),
                     explain::dot(&plan),

@@ -28,6 +28,7 @@ mod cli_bench;
 mod cli_render;
 mod cli_render_frames;
 mod cli_render_samples;
+mod cli_trust;
 mod cli_validate;
 mod cli_view;
 mod deferred_detectors;

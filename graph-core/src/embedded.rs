@@ -5,8 +5,9 @@
 //! shaders named by a relative path that does not exist on disk are then read from there,
 //! so the program works from any directory while files on disk still override. A path
 //! matches after `.` and `..` are applied to its text: `pipelines/../shaders/a.wgsl` is
-//! `shaders/a.wgsl`. Absolute paths, and paths that climb above the starting directory,
-//! never match.
+//! `shaders/a.wgsl`. The built-in files lie, as it were, in the current directory: an
+//! absolute path matches where it lies under it (so a file named by a path typed either
+//! way finds the same built-in file), and paths that climb above it never match.
 
 use std::path::{Component, Path};
 use std::sync::OnceLock;
@@ -48,6 +49,19 @@ pub fn list(dir: &str) -> Vec<&'static str> {
         .collect()
 }
 
+/// The folders the built-in files are in (`pipelines`, `shaders`, ...), sorted: graph files
+/// may name the files of these shipped trees (see [`file`](crate::file)).
+pub fn folders() -> Vec<&'static str> {
+    let files = FILES.get().map_or(&[][..], |f| *f);
+    let mut folders: Vec<&str> = files
+        .iter()
+        .filter_map(|(name, _)| name.rsplit_once('/').map(|(dir, _)| dir))
+        .collect();
+    folders.sort_unstable();
+    folders.dedup();
+    folders
+}
+
 /// Whether `path` is a file on disk or, missing there, a built-in one.
 pub fn exists(path: &Path) -> bool {
     path.is_file() || (!path.exists() && get(path).is_some())
@@ -64,10 +78,15 @@ pub fn read_text(path: &Path, max_bytes: u64) -> Result<String, ReadError> {
     }
 }
 
-/// `path` as an embedded file's key, or `None` when it is absolute or climbs out.
+/// `path` as an embedded file's key, or `None` when it lies outside the current directory.
 fn normalise(path: &Path) -> Option<String> {
+    let cwd = std::env::current_dir().ok();
+    let relative = match cwd.as_deref().and_then(|cwd| path.strip_prefix(cwd).ok()) {
+        Some(inside) => inside,
+        None => path,
+    };
     let mut parts: Vec<&str> = Vec::new();
-    for component in path.components() {
+    for component in relative.components() {
         match component {
             Component::CurDir => {}
             Component::ParentDir => {
@@ -86,8 +105,13 @@ mod tests {
     use std::path::Path;
 
     #[test]
-    fn paths_match_after_dots_and_never_when_absolute_or_climbing_out() {
+    fn paths_match_after_dots_and_never_when_outside_the_current_directory() {
         let key = |p: &str| normalise(Path::new(p));
+        let cwd = std::env::current_dir().unwrap();
+        assert_eq!(
+            normalise(&cwd.join("pipelines/a.ron")).as_deref(),
+            Some("pipelines/a.ron")
+        );
         assert_eq!(key("pipelines/a.ron").as_deref(), Some("pipelines/a.ron"));
         assert_eq!(
             key("./pipelines/../shaders/a.wgsl").as_deref(),

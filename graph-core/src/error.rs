@@ -98,6 +98,21 @@ pub enum GraphError {
         why: String,
     },
 
+    /// A buffer larger than the device binds in its role (the whole buffer is bound).
+    #[error(
+        "pass \"{pass}\": buffer \"{resource}\" ({size} bytes) is bound as a {role}, but \
+         {profile} binds at most {max} bytes there ({limit}); make it smaller or split it"
+    )]
+    BindingTooLarge {
+        pass: String,
+        resource: String,
+        size: u64,
+        role: &'static str,
+        max: u64,
+        limit: &'static str,
+        profile: String,
+    },
+
     #[error(
         "pass \"{pass}\": color attachments ({resources}) take {bytes} bytes per sample, over \
          the limit of {limit} on {profile}"
@@ -248,6 +263,7 @@ impl GraphError {
             | UsageConflict { pass, .. }
             | SampledWhileWritable { pass, .. }
             | FormatRole { pass, .. }
+            | BindingTooLarge { pass, .. }
             | ColorBytesPerSample { pass, .. }
             | TooManyColorAttachments { pass, .. }
             | AttachmentMismatch { pass, .. }
@@ -287,6 +303,7 @@ impl GraphError {
             | TooLarge { resource, .. }
             | UnsupportedSampleCount { resource, .. }
             | FormatRole { resource, .. }
+            | BindingTooLarge { resource, .. }
             | AttachmentMismatch { resource, .. }
             | BadResolve { resource, .. }
             | UnknownResourceFeature { resource, .. }

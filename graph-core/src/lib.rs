@@ -35,6 +35,7 @@ pub mod bounded_read;
 pub mod embedded;
 pub mod explain;
 pub mod file;
+pub mod folders;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod plugins;

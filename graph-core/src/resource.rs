@@ -143,18 +143,25 @@ impl TextureDesc {
 
     /// Bytes the texture occupies at `extent`: every mip, layer and sample. Compressed
     /// formats count whole blocks, as a mip smaller than a block still takes one.
+    ///
+    ///
+    /// Any description is counted, also one validation refuses (a texture a condition
+    /// drops is still described in the plan): from mip 32 on every mip is one block, and
+    /// sizes past `u64` saturate.
     pub fn bytes(&self, extent: (u32, u32)) -> u64 {
         let block = texel_bytes(self.format);
         let (bw, bh) = self.format.block_dimensions();
-        (0..self.mips)
+        let shifted = self.mips.min(32);
+        let one_block = u64::from(self.mips - shifted) * block;
+        (0..shifted)
             .map(|m| {
                 let w = (extent.0 >> m).max(1).div_ceil(bw) as u64;
                 let h = (extent.1 >> m).max(1).div_ceil(bh) as u64;
-                w * h * block
+                w.saturating_mul(h).saturating_mul(block)
             })
-            .sum::<u64>()
-            * self.layers as u64
-            * self.samples as u64
+            .fold(one_block, u64::saturating_add)
+            .saturating_mul(self.layers as u64)
+            .saturating_mul(self.samples as u64)
     }
 }
 

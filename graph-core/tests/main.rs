@@ -21,6 +21,7 @@ mod ron_names;
 mod ron_params;
 mod ron_presets;
 mod ron_roundtrip;
+mod ron_sandbox;
 mod ron_scale;
 mod ron_validate;
 mod structure;

@@ -246,3 +246,15 @@ fn bytes_of_a_compressed_texture_count_blocks() {
         (16 * 16 + 8 * 8 + 4 * 4) * 8
     );
 }
+
+/// A description no device could make (a condition may drop its texture, which the plan
+/// still describes) is counted without overflowing: every mip past the smallest is one
+/// texel, and a size past u64 saturates.
+#[test]
+fn any_description_is_counted_without_overflow() {
+    // 64x64: 4096 + 1024 + ... + 1 = 5461 texels in 7 mips, then 2041 mips of one texel.
+    let desc = TextureDesc::new(Rgba8Unorm).mips(2048);
+    assert_eq!(desc.bytes((64, 64)), (5461 + 2041) * 4);
+    let huge = TextureDesc::new(Rgba8Unorm).layers(u32::MAX).samples(16);
+    assert_eq!(huge.bytes((u32::MAX, u32::MAX)), u64::MAX);
+}

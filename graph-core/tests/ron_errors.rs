@@ -188,15 +188,27 @@ fn a_shader_s_byte_order_mark_is_skipped() {
 #[cfg(unix)]
 #[test]
 fn a_shader_path_to_a_device_or_fifo_is_refused_without_reading() {
-    let dir = std::env::temp_dir().join(format!("ron-errors-fifo-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let fifo = dir.join("pipe.wgsl");
-    let _ = std::fs::remove_file(&fifo);
+    // In the graph file's folder: a FIFO, and a link to a device, which leads out of it.
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("pipe.wgsl");
     let made = std::process::Command::new("mkfifo").arg(&fifo).status();
     assert!(made.is_ok_and(|s| s.success()), "mkfifo failed");
-    for (shader, kind) in [
-        ("/dev/zero", "character device"),
-        (fifo.to_str().unwrap(), "FIFO"),
+    std::os::unix::fs::symlink("/dev/zero", dir.path().join("zero.wgsl")).unwrap();
+    let graph = dir.path().join("g.ron");
+    for (shader, ending) in [
+        ("pipe.wgsl", "not a regular file (it is a FIFO)".to_owned()),
+        (
+            "zero.wgsl",
+            format!(
+                "leads (through a symbolic link) to /dev/zero, outside the folders graph files \
+                 may read ({}); another is allowed with --graph-root DIR",
+                dir.path().display()
+            ),
+        ),
+        (
+            "/dev/zero",
+            "is an absolute path; a graph file names files relative to its own folder".to_owned(),
+        ),
     ] {
         let text = format!(
             r#"Graph(
@@ -205,13 +217,12 @@ fn a_shader_path_to_a_device_or_fifo_is_refused_without_reading() {
     outputs: ["c"],
 )"#
         );
-        let error = only_error(ron_support::compile_str(&text));
-        assert!(
-            error
-                .to_string()
-                .ends_with(&format!("not a regular file (it is a {kind})")),
-            "{error}"
-        );
+        let registry = graph_core::file::Registry::with_builtins();
+        let errors = graph_core::file::load_str(&graph, &text, &registry)
+            .map(drop)
+            .expect_err("the shader is refused");
+        let error = only_error(Err(errors));
+        assert!(error.to_string().ends_with(&ending), "{error}");
         assert!(error.to_string().contains("\"sky\""), "{error}");
     }
 }

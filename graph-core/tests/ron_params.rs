@@ -143,7 +143,7 @@ fn a_misspelt_parameter_is_a_syntax_error_at_the_count() {
 fn the_declared_parameters_are_read_without_declaring() {
     let path = std::env::temp_dir().join(format!("rgraph-params-{}.ron", std::process::id()));
     std::fs::write(&path, MSAA).unwrap();
-    let declared = declared_params(&path);
+    let declared = declared_params(&path, &Registry::new());
     std::fs::remove_file(&path).unwrap();
     assert_eq!(declared.unwrap(), GraphParams::new().with("msaa", 4));
 }

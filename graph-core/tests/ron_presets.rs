@@ -62,7 +62,7 @@ Preset(
     assert_eq!(plan("green.ron"), plan("edited.ron"));
     assert_ne!(plan("green.ron"), plan("base.ron"));
     // The base's parameters are the preset's.
-    let declared = declared_params(dir.path().join("green.ron")).unwrap();
+    let declared = declared_params(dir.path().join("green.ron"), &registry).unwrap();
     assert_eq!(declared, GraphParams::new().with("msaa", 4));
 }
 
@@ -139,7 +139,7 @@ fn a_preset_gives_the_base_s_parameters_values_that_a_loader_s_replace() {
     let loaded = load_file(&path, &registry).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(loaded.params(), &GraphParams::new().with("msaa", 1));
     assert_eq!(
-        declared_params(&path).unwrap(),
+        declared_params(&path, &registry).unwrap(),
         GraphParams::new().with("msaa", 1)
     );
     let given = GraphParams::new().with("msaa", 8);

@@ -1,7 +1,9 @@
 //! A graph file and its code-built twin compile to the same plan: loading goes through
 //! the same builder and compile as code does.
 
-use graph_core::file::{load_file, Registry};
+use crate::ron_support;
+
+use graph_core::file::load_file;
 use graph_core::types::TextureFormat;
 use graph_core::{ColorLoad, CompileOptions, Graph, GraphBuilder, Plan, TextureDesc, Workgroup};
 
@@ -58,7 +60,7 @@ fn msaa_twin() -> Graph {
 
 fn assert_same_plan(file: &str, twin: Graph) {
     let options = CompileOptions::default();
-    let loaded = load_file(file, &Registry::with_builtins()).unwrap_or_else(|e| panic!("{e}"));
+    let loaded = load_file(file, &ron_support::registry()).unwrap_or_else(|e| panic!("{e}"));
     let from_file = loaded.compile(&options).unwrap_or_else(|e| panic!("{e}"));
     let from_code = twin.compile(&options).expect("the twin compiles");
     assert_eq!(plan_json(&from_file), plan_json(&from_code));

@@ -21,6 +21,7 @@ const LAYERS: Layers<'_> = &[
             "condition",
             "embedded",
             "error",
+            "folders",
             "handle",
             "position",
             "profile",

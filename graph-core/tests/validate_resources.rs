@@ -6,8 +6,8 @@ use common::{errors, errors_with, only_error, tex, CLEAR};
 use graph_core::types::Features;
 use graph_core::types::TextureFormat::{Bc1RgbaUnorm, Rgba16Float, Rgba8Unorm};
 use graph_core::{
-    BufferDesc, CompileOptions, Condition, DeviceProfile, GraphBuilder, GraphError, Size,
-    TextureDesc,
+    BufferDesc, BufferRole, CompileOptions, Condition, DeviceProfile, GraphBuilder, GraphError,
+    Size, TextureDesc,
 };
 
 /// The error a graph holding nothing but `desc`, imported as "t", reports.
@@ -180,6 +180,52 @@ fn a_buffer_over_the_profile_limit_is_rejected() {
         only_error(&g.build()).to_string(),
         r#""huge": 268435457 bytes exceed the buffer size limit of 268435456 on webgpu defaults"#
     );
+}
+
+/// A buffer the device can make but not bind whole in its role: the compile refuses it
+/// naming the pass and the buffer, where the device would fail creating the bind group.
+#[test]
+fn a_buffer_larger_than_its_binding_limit_is_rejected_naming_it() {
+    // An engine's buffer, which the pass reads (and, as storage, writes for later use).
+    let bound = |size: u64, role: BufferRole| {
+        let mut g = GraphBuilder::new();
+        let buffer = g.import_buffer("bins", BufferDesc::new(size));
+        let written = g.add_compute_pass("raster").buffer(buffer, role);
+        if role != BufferRole::Uniform {
+            g.export(written);
+        }
+        g.build()
+    };
+    let storage = BufferRole::Storage {
+        read: true,
+        write: true,
+    };
+    // WebGPU's defaults: 128 MiB of storage binding, 64 KiB of uniform, 256 MiB of buffer.
+    let error = only_error(&bound((128 << 20) + 1, storage));
+    assert_eq!(
+        error.to_string(),
+        "pass \"raster\": buffer \"bins\" (134217729 bytes) is bound as a storage buffer, but \
+         webgpu defaults binds at most 134217728 bytes there (max_storage_buffer_binding_size); \
+         make it smaller or split it"
+    );
+    assert_eq!(error.resource(), Some("bins"));
+    let options = CompileOptions::default();
+    assert!(bound(128 << 20, storage).compile(&options).is_ok());
+    let error = only_error(&bound((64 << 10) + 4, BufferRole::Uniform));
+    assert!(
+        error
+            .to_string()
+            .contains("is bound as a uniform buffer, but webgpu defaults binds at most 65536"),
+        "{error}"
+    );
+    // A device with more room binds it.
+    let mut roomy = DeviceProfile::webgpu();
+    roomy.limits.max_storage_buffer_binding_size = 256 << 20;
+    let options = CompileOptions {
+        profile: roomy,
+        ..CompileOptions::default()
+    };
+    assert!(bound((128 << 20) + 1, storage).compile(&options).is_ok());
 }
 
 /// Every problem is reported at once, in declaration order, so a graph file is fixed in

@@ -71,6 +71,14 @@ pub enum Exposure {
     Auto,
 }
 
+impl Exposure {
+    /// The largest fixed exposure. ACES squares the exposed color, and the brightest value
+    /// a frame stores (half float's 65504) times a larger exposure can overflow f32: an
+    /// infinity, then NaN, a black pixel. Twelve orders of magnitude above 1 leave room for
+    /// any scene (a 68,000 lux sun wants about 1e-5).
+    pub const MAX: f32 = 1e12;
+}
+
 /// What an engine may change from one frame to the next without reloading: the camera,
 /// the pose of every light and the transform of every mesh, in the scene's order, and the
 /// particles.

@@ -264,9 +264,9 @@ fn a_mesh_placed_by_many_nodes_stops_at_the_geometry_limit() {
     assert_eq!(
         error.to_string(),
         format!(
-            "{}: mesh 0 \"triangle\" primitive 0: placing it here (every node placing a mesh \
-             gets its own copy) would take the scene past 1979 bytes of vertices, indices and \
-             textures (the scene memory limit)",
+            "{}: mesh 0 \"triangle\": placing it 11 times (180 bytes each: every node placing \
+             a mesh gets its own copy) would take the scene past 1979 bytes of vertices, \
+             indices and textures (the scene memory limit)",
             path.display()
         )
     );
@@ -281,17 +281,7 @@ fn images_are_counted_against_the_scene_memory_limit_before_decoding() {
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .unwrap();
     let mut gltf = Gltf::default();
-    let view = gltf.view(&png);
-    gltf.push(
-        "images",
-        json!({ "bufferView": view, "mimeType": "image/png" }),
-    );
-    gltf.push("textures", json!({ "source": 0 }));
-    let material = gltf.push(
-        "materials",
-        json!({ "name": "painted", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } } }),
-    );
-    gltf.triangle(Some(material));
+    gltf.textured_triangle(&png);
     let path = temp_dir("image_budget").join("scene.gltf");
     gltf.write_embedded(&path);
     let policy = AssetPolicy {

@@ -41,7 +41,13 @@ pub fn run(save_profile: Option<&Path>, adapter: Option<&str>) -> Result<(), Com
         let chosen = adapters
             .iter()
             .find(|a| choice.matches(&a.info))
-            .ok_or_else(|| CommandError::Usage(format!("no adapter matches \"{choice}\"")))?;
+            .ok_or_else(|| {
+                let names: Vec<&str> = adapters.iter().map(|a| a.info.name.as_str()).collect();
+                CommandError::Usage(format!(
+                    "no adapter matches {choice} (adapters: {})",
+                    names.join(", ")
+                ))
+            })?;
         let json = serde_json::to_string_pretty(&chosen.profile)
             .map_err(|e| CommandError::Usage(format!("cannot encode the profile: {e}")))?;
         write_atomically(path, json.as_bytes())?;

@@ -27,6 +27,11 @@ pub fn run(
     let options = compile_options(target)?;
     let loaded = load_file_with(pipeline, &registry(), &samples.params())
         .map_err(|e| invalid(pipeline, e))?;
+    // Checked as `validate` checks it, so a file explain shows is one validate accepts:
+    // an error under a condition off by default is found too.
+    loaded
+        .validate(&options)
+        .map_err(|e| invalid(pipeline, e))?;
     let analysis = scene
         .map(|spec| analyse(spec, assets, options.output_size))
         .transpose()?;

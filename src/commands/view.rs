@@ -93,7 +93,7 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
     }
     // The display first: without one nothing else is worth loading.
     let event_loop = EventLoop::new().map_err(|e| ViewError::NoDisplay {
-        reason: e.to_string(),
+        reason: without_source_location(&e.to_string()),
         display: std::env::var("DISPLAY").ok(),
         wayland: std::env::var("WAYLAND_DISPLAY").ok(),
     })?;
@@ -126,6 +126,17 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
     let mut viewer = app::Viewer::new(loader, shown, camera, args);
     event_loop.run_app(&mut viewer)?;
     viewer.finish()
+}
+
+/// winit's OS errors read `os error at FILE:LINE: WHY.`, FILE a path in the build
+/// machine's cargo registry: only WHY means anything to a user (without its period: the
+/// message goes on after it).
+fn without_source_location(reason: &str) -> String {
+    let why = match reason.strip_prefix("os error at ") {
+        Some(rest) => rest.split_once(": ").map_or(rest, |(_, why)| why),
+        None => reason,
+    };
+    why.trim_end_matches('.').to_owned()
 }
 
 /// Loads the pipeline for one view at one size on the session's device, with the

@@ -172,6 +172,7 @@ pub(super) fn passes(
             check.role_allowed(access, errors);
             check.input_exists(access, versions, errors);
             check.format_fits(access, errors);
+            check.binding_fits(access, errors);
         }
         check.no_conflicts(errors);
         if pass.kind == PassKind::Render {
@@ -271,6 +272,40 @@ impl PassCheck<'_> {
             errors.push(GraphError::ReadBeforeWrite {
                 pass: self.pass.name.clone(),
                 resource: self.name(access),
+            });
+        }
+    }
+
+    /// A buffer bound as a uniform or storage buffer must fit the device's binding limit,
+    /// which is smaller than its largest buffer (128 MiB against 256 MiB by default):
+    /// otherwise creating the bind group fails on the device.
+    fn binding_fits(&self, access: &Access, errors: &mut Vec<GraphError>) {
+        let resource = &self.graph.resources[access.resource.index()];
+        let (Role::Buffer(role), ResourceDesc::Buffer(buffer)) = (access.role, &resource.desc)
+        else {
+            return;
+        };
+        let limits = &self.profile.limits;
+        let (max, limit) = match role {
+            BufferRole::Uniform => (
+                limits.max_uniform_buffer_binding_size,
+                "max_uniform_buffer_binding_size",
+            ),
+            BufferRole::Storage { .. } => (
+                limits.max_storage_buffer_binding_size,
+                "max_storage_buffer_binding_size",
+            ),
+            _ => return,
+        };
+        if buffer.size > max {
+            errors.push(GraphError::BindingTooLarge {
+                pass: self.pass.name.clone(),
+                resource: resource.name.clone(),
+                size: buffer.size,
+                role: access.role.describe(),
+                max,
+                limit,
+                profile: self.profile.name.clone(),
             });
         }
     }

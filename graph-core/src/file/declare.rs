@@ -10,6 +10,7 @@ use super::loaded::{LoadedGraph, Names};
 use super::params::GraphParams;
 use super::plugin::Prepared;
 use super::plugin_error::PluginError;
+use super::references::References;
 use super::schema::{GraphFile, PassDecl};
 use super::slots::Slots;
 use super::source::Source;
@@ -26,6 +27,7 @@ pub(super) fn declare<'f>(
     mut conditions: FileConditions,
     order: &[usize],
     params: GraphParams,
+    references: &'f References,
 ) -> Result<LoadedGraph, FileErrors> {
     let mut graph = GraphBuilder::new();
     graph.declare_features(conditions.features.iter());
@@ -50,7 +52,7 @@ pub(super) fn declare<'f>(
         // A pass whose inputs a failed pass should have written is skipped: the failure
         // is reported already, and its consequences would only repeat it.
         let plugin = prepared.get_mut(p).and_then(Option::take);
-        let slots = Slots::new(decl, &handles, &declared, source.dir());
+        let slots = Slots::new(decl, &handles, &declared, (source.dir(), references));
         let (Some(plugin), Some(mut slots)) = (plugin, slots) else {
             continue;
         };
@@ -125,7 +127,8 @@ fn record_uses(
     }
 }
 
-/// Places a plugin error at the slot it is about, else at the parameters, else at the
+/// Places a plugin error at the slot it is about, else at the file reference it is about
+/// (where the parameters write it as a plain string), else at the parameters, else at the
 /// pass's name.
 fn plugin_error(source: &Source<'_>, decl: &PassDecl<'_>, error: PluginError) -> FileError {
     let slot = error
@@ -133,7 +136,14 @@ fn plugin_error(source: &Source<'_>, decl: &PassDecl<'_>, error: PluginError) ->
         .and_then(|slot| decl.input(slot).or_else(|| decl.output(slot)));
     let location = match (slot, &decl.params) {
         (Some(name), _) => source.locate(name),
-        (None, Some(params)) => source.locate_raw(params.0),
+        (None, Some(params)) => {
+            let params = params.0.get_ron();
+            let quoted = error.reference().map(|r| format!("\"{r}\""));
+            match quoted.and_then(|q| params.find(&q)) {
+                Some(at) => source.locate_raw_at(params, at),
+                None => source.locate_raw(params),
+            }
+        }
         (None, None) => source.locate(&decl.name),
     };
     FileError {

@@ -55,6 +55,20 @@ pub enum ErrorKind {
         known: String,
     },
 
+    /// A file the graph file names (`what`: "the preset's base") that it may not name:
+    /// empty, absolute, or outside the folders graph files may reach. `reference` is shown
+    /// quoted, control characters escaped; the file was not read.
+    #[error("{what} {reference} {reason}")]
+    Reference {
+        what: &'static str,
+        reference: String,
+        reason: String,
+    },
+
+    /// Bytes that are not UTF-8, placed at the first of them.
+    #[error("not UTF-8 text: {detail}; graph files are UTF-8")]
+    NotUtf8 { detail: String },
+
     #[error("the preset's base {base} cannot be read: {reason}")]
     PresetBase { base: String, reason: String },
 

@@ -9,18 +9,22 @@ use super::loaded::LoadedGraph;
 use super::param_uses;
 use super::params::GraphParams;
 use super::plugin::Prepared;
+use super::references::{ReferenceError, References};
 use super::registry::Registry;
 use super::schema::{self, GraphFile, PresetFile};
+use super::shown::Shown;
 use super::source::Source;
 use super::{conditions, names, order, ron_message};
+use crate::bounded_read::{self, ReadError};
+use crate::embedded;
+use crate::folders::Folders;
 use crate::position::Position;
-use crate::{bounded_read, embedded};
 
 /// Reads and declares the graph file at `path` (a regular file of at most
 /// [`bounded_read::MAX_GRAPH_FILE_BYTES`]; a built-in file when a relative `path` is not on
 /// disk, see [`embedded`]), every parameter at its default. Shader paths in it resolve
-/// against the file's directory; messages show `path` as given. Compile the result with
-/// [`LoadedGraph::compile`].
+/// against the file's directory, and must stay inside the folders [`Registry`] allows;
+/// messages show `path` as given. Compile the result with [`LoadedGraph::compile`].
 pub fn load_file(path: impl AsRef<Path>, registry: &Registry) -> Result<LoadedGraph, FileErrors> {
     load_file_with(path, registry, &GraphParams::new())
 }
@@ -32,8 +36,18 @@ pub fn load_file_with(
     registry: &Registry,
     params: &GraphParams,
 ) -> Result<LoadedGraph, FileErrors> {
-    let path = path.as_ref();
-    load_str_with(path, &read(path)?, registry, params)
+    load_file_in(path.as_ref(), registry, params, &Folders::new())
+}
+
+/// [`load_file_with`], the file's references also allowed into `extra` folders.
+pub(super) fn load_file_in(
+    path: &Path,
+    registry: &Registry,
+    params: &GraphParams,
+    extra: &Folders,
+) -> Result<LoadedGraph, FileErrors> {
+    let references = References::of_file(path, registry.roots(), extra);
+    load_text(path, &read(path)?, registry, params, &references)
 }
 
 /// Declares the graph file whose text is `text`, as if read from `path`, every parameter
@@ -55,23 +69,36 @@ pub fn load_str_with(
     registry: &Registry,
     params: &GraphParams,
 ) -> Result<LoadedGraph, FileErrors> {
-    let (path, text) = (path.as_ref(), without_bom(text));
+    let path = path.as_ref();
+    let references = References::of_file(path, registry.roots(), &Folders::new());
+    load_text(path, text, registry, params, &references)
+}
+
+/// [`load_str_with`], the graph's references resolved by `references`.
+fn load_text(
+    path: &Path,
+    text: &str,
+    registry: &Registry,
+    params: &GraphParams,
+    references: &References,
+) -> Result<LoadedGraph, FileErrors> {
+    let text = without_bom(text);
     if !schema::is_preset(text) {
         let source = Source::new(path, text);
         let file = schema::parse(text).map_err(|e| FileErrors(vec![source.syntax(&e)]))?;
-        return load_graph(&source, file, registry, params);
+        return load_graph(&source, file, registry, params, references);
     }
     let preset = schema::parse_preset(text)
         .map_err(|e| FileErrors(vec![Source::new(path, text).syntax(&e)]))?;
     let main = Source::new(path, text);
-    let (base_path, base_text) = read_base(&main, &preset)?;
+    let (base_path, base_text) = read_base(&main, &preset, references)?;
     let params = preset_values(&preset).overridden_by(params);
     let base_text = without_bom(&base_text);
     let source = Source::with_base(path, text, (&base_path, base_text));
     let mut file = schema::parse(base_text)
         .map_err(|e| FileErrors(vec![Source::new(&base_path, base_text).syntax(&e)]))?;
     apply_preset(&source, preset, &base_path, &mut file)?;
-    load_graph(&source, file, registry, &params)
+    load_graph(&source, file, registry, &params, references)
 }
 
 /// The values a preset gives its base's parameters.
@@ -92,6 +119,7 @@ fn load_graph(
     file: GraphFile<'_>,
     registry: &Registry,
     params: &GraphParams,
+    references: &References,
 ) -> Result<LoadedGraph, FileErrors> {
     let mut errors = Vec::new();
     let values = param_uses::resolve(source, &file, params, &mut errors);
@@ -102,25 +130,44 @@ fn load_graph(
     if !errors.is_empty() {
         return Err(FileErrors::sorted(errors));
     }
-    declare(source, &file, prepared, conditions, &order, values)
+    declare(
+        source, &file, prepared, conditions, &order, values, references,
+    )
 }
 
-/// The path and text of a preset's base (relative to the preset's folder), which must be
-/// a graph file, not another preset.
-fn read_base(main: &Source<'_>, preset: &PresetFile<'_>) -> Result<(PathBuf, String), FileErrors> {
-    let path = main.dir().join(preset.base.as_str());
+/// The path and text of a preset's base (relative to the preset's folder, inside the
+/// folders `references` allows), which must be a graph file, not another preset.
+fn read_base(
+    main: &Source<'_>,
+    preset: &PresetFile<'_>,
+    references: &References,
+) -> Result<(PathBuf, String), FileErrors> {
     let error = |kind| FileErrors(vec![main.error(&preset.base, kind)]);
-    let base = path.display().to_string();
-    let text = embedded::read_text(&path, bounded_read::MAX_GRAPH_FILE_BYTES).map_err(|e| {
-        error(ErrorKind::PresetBase {
-            base: base.clone(),
-            reason: e.to_string(),
-        })
-    })?;
-    if schema::is_preset(without_bom(&text)) {
-        return Err(error(ErrorKind::PresetOfPreset { base }));
+    let reference = preset.base.as_str();
+    let max = bounded_read::MAX_GRAPH_FILE_BYTES;
+    let named = references
+        .read(main.dir(), reference, max)
+        .map_err(|e| match e {
+            ReferenceError::Refused(reason) => error(ErrorKind::Reference {
+                what: "the preset's base",
+                reference: Shown(reference).to_string(),
+                reason,
+            }),
+            ReferenceError::Unreadable {
+                path,
+                reason: ReadError::NotUtf8(e),
+            } => FileErrors(vec![not_utf8(&path, &e)]),
+            ReferenceError::Unreadable { path, reason } => error(ErrorKind::PresetBase {
+                base: path.display().to_string(),
+                reason: reason.to_string(),
+            }),
+        })?;
+    if schema::is_preset(without_bom(&named.text)) {
+        return Err(error(ErrorKind::PresetOfPreset {
+            base: named.path.display().to_string(),
+        }));
     }
-    Ok((path, text))
+    Ok((named.path, named.text))
 }
 
 /// Replaces the parameters and inputs of the passes `preset` names in the base `file`.
@@ -165,7 +212,12 @@ fn apply_preset<'a>(
 /// values for its base's), read without
 /// declaring anything: what a tool checks before giving a value, as the bench does before
 /// setting `msaa`. Errors are the file's syntax errors (or an unreadable file).
-pub fn declared_params(path: impl AsRef<Path>) -> Result<GraphParams, FileErrors> {
+///
+/// A preset's base is read as [`load_file`] reads it, inside the folders `registry` allows.
+pub fn declared_params(
+    path: impl AsRef<Path>,
+    registry: &Registry,
+) -> Result<GraphParams, FileErrors> {
     let path = path.as_ref();
     let text = read(path)?;
     let text = without_bom(&text);
@@ -174,7 +226,11 @@ pub fn declared_params(path: impl AsRef<Path>) -> Result<GraphParams, FileErrors
         true => {
             let preset =
                 schema::parse_preset(text).map_err(|e| FileErrors(vec![main.syntax(&e)]))?;
-            (read_base(&main, &preset)?, preset_values(&preset))
+            let references = References::of_file(path, registry.roots(), &Folders::new());
+            (
+                read_base(&main, &preset, &references)?,
+                preset_values(&preset),
+            )
         }
         false => ((path.to_path_buf(), text.to_owned()), GraphParams::new()),
     };
@@ -187,13 +243,31 @@ pub fn declared_params(path: impl AsRef<Path>) -> Result<GraphParams, FileErrors
 /// The text of the file at `path`, or the error saying why it cannot be read.
 fn read(path: &Path) -> Result<String, FileErrors> {
     embedded::read_text(path, bounded_read::MAX_GRAPH_FILE_BYTES).map_err(|e| {
-        FileErrors(vec![FileError {
-            location: Source::new(path, "").location(Position::START),
-            kind: ErrorKind::Unreadable {
-                reason: e.to_string(),
+        FileErrors(vec![match e {
+            ReadError::NotUtf8(e) => not_utf8(path, &e),
+            e => FileError {
+                location: Source::new(path, "").location(Position::START),
+                kind: ErrorKind::Unreadable {
+                    reason: e.to_string(),
+                },
             },
         }])
     })
+}
+
+/// The error for a graph file at `path` that is not UTF-8, placed at its first bad byte.
+fn not_utf8(path: &Path, error: &std::string::FromUtf8Error) -> FileError {
+    let bytes = error.as_bytes();
+    let valid = error.utf8_error().valid_up_to();
+    // The bytes before the first bad one are valid UTF-8.
+    let before = std::str::from_utf8(&bytes[..valid]).unwrap_or_default();
+    let at = Position::of_offset(before, before.len());
+    FileError {
+        location: Source::new(path, "").location(at),
+        kind: ErrorKind::NotUtf8 {
+            detail: format!("byte 0x{:02X} cannot stand here", bytes[valid]),
+        },
+    }
 }
 
 /// Editors on Windows may start UTF-8 files with a byte-order mark, which `ron` reads as an
@@ -229,7 +303,7 @@ fn prepare<'r>(
             let (text, base) = match &pass.params {
                 Some(raw) => (
                     param_uses::substitute(raw.0.get_ron(), values),
-                    Some(source.locate_raw(raw.0)),
+                    Some(source.locate_raw(raw.0.get_ron())),
                 ),
                 None => ("()".to_owned(), None),
             };

@@ -34,6 +34,36 @@ impl LoadedGraph {
         self.compile_for(options, &Features::new())
     }
 
+    /// Checks the graph for `options` (its device profile and output size) as `rgraph
+    /// validate` does, returning the plan for no features. A file with conditions is
+    /// compiled for each of its [witnesses](crate::Graph::witnesses) too, so that every
+    /// pass and resource is checked in some graph, even one only a feature off by default
+    /// keeps; their errors are reported together. A witness naming
+    /// [device conditions](crate::DEVICE_CONDITIONS) is compiled for the profile with those
+    /// features added, so a branch for 64-bit atomics is checked on any profile.
+    pub fn validate(&self, options: &CompileOptions) -> Result<Plan, FileErrors> {
+        let errors: Vec<_> = self
+            .graph
+            .witnesses()
+            .iter()
+            .skip(1)
+            .filter_map(|features| {
+                let options = CompileOptions {
+                    output_size: options.output_size,
+                    profile: options.profile.granting(features),
+                };
+                self.compile_for(&options, features).err()
+            })
+            .flat_map(|e| e.0)
+            .collect();
+        // Sorting drops the errors several feature sets found alike.
+        match (self.compile(options), errors.is_empty()) {
+            (Ok(plan), true) => Ok(plan),
+            (Ok(_), false) => Err(FileErrors::sorted(errors)),
+            (Err(e), _) => Err(FileErrors::sorted(errors.into_iter().chain(e.0).collect())),
+        }
+    }
+
     /// [`Graph::compile_for`], with errors placed as by [`compile`](Self::compile).
     pub fn compile_for(
         &self,

@@ -15,7 +15,8 @@ use crate::error::GraphError;
 
 /// Pass indices in dependency order; among passes free to go, file order decides, so a
 /// file listed in a valid order keeps it. Each cycle is reported at its first pass (in
-/// file order), and its passes are left out of the order.
+/// file order; for a preset, at the first of its changed inputs that closes it), and its
+/// passes are left out of the order.
 pub(super) fn sort(
     source: &Source<'_>,
     file: &GraphFile<'_>,
@@ -74,7 +75,19 @@ fn report_cycles(
                 resources.push(e.name.to_owned());
             }
         }
-        let first = &file.passes[cycle[0]].name;
+        // A preset that closed the cycle by changing a pass's inputs is where to fix it.
+        let changed = edges
+            .iter()
+            .filter(|e| cycle.contains(&e.writer) && cycle.contains(&e.reader))
+            .filter_map(|e| {
+                let inputs = &file.passes[e.reader].inputs.0;
+                inputs
+                    .iter()
+                    .map(|(_, name)| name)
+                    .find(|n| n.as_str() == e.name)
+            })
+            .find(|name| source.in_preset(name.as_str()));
+        let at = changed.unwrap_or(&file.passes[cycle[0]].name);
         let kind = ErrorKind::Graph(GraphError::Cycle {
             passes: cycle
                 .iter()
@@ -82,6 +95,6 @@ fn report_cycles(
                 .collect(),
             resources,
         });
-        errors.push(source.error(first, kind));
+        errors.push(source.error(at, kind));
     }
 }

@@ -2,6 +2,7 @@
 
 use thiserror::Error;
 
+use super::shown::Shown;
 use crate::shader::{ShaderError, Stage};
 
 /// Why a plugin could not set up its pass. The loader adds the file position, the pass
@@ -54,6 +55,15 @@ pub enum PluginError {
         why: String,
     },
 
+    /// A file the parameters name (`what`: "shader") that the graph file may not name:
+    /// empty, absolute, or outside the folders graph files may reach. The file was not read.
+    #[error("{what} {} {reason}", Shown(reference))]
+    Reference {
+        what: &'static str,
+        reference: String,
+        reason: String,
+    },
+
     /// Parameters that deserialize but do not make sense together.
     #[error("{0}")]
     Invalid(String),
@@ -71,7 +81,17 @@ impl PluginError {
             PluginError::MissingSlot { .. }
             | PluginError::Shader(_)
             | PluginError::MissingEntry { .. }
+            | PluginError::Reference { .. }
             | PluginError::Invalid(_) => None,
+        }
+    }
+
+    /// The file reference the error is about, as written in the parameters, so the
+    /// loader can point at it.
+    pub fn reference(&self) -> Option<&str> {
+        match self {
+            PluginError::Reference { reference, .. } => Some(reference),
+            _ => None,
         }
     }
 }

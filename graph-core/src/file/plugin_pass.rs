@@ -8,6 +8,7 @@ use thiserror::Error;
 use super::any_handle::AnyHandle;
 use super::plugin::Plugin;
 use super::plugin_error::PluginError;
+use super::references::References;
 use super::slots::{SlotPart, Slots};
 use crate::builder::GraphBuilder;
 use crate::handle::{BufferHandle, TextureHandle};
@@ -104,7 +105,9 @@ impl GraphBuilder {
                 output: None,
                 handle,
             });
-        let mut slots = Slots::from_parts(written.chain(read_only).collect(), Path::new("."));
+        let references = References::unrestricted();
+        let parts = written.chain(read_only).collect();
+        let mut slots = Slots::from_parts(parts, Path::new("."), &references);
 
         let kind = plugin.kind(&params);
         let mut pass = match kind {

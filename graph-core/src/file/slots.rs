@@ -2,13 +2,16 @@
 //! `inputs` and `outputs`. Plugins take their handles by slot name.
 
 use std::collections::HashMap;
-use std::path::{Component, Path, PathBuf};
+use std::path::Path;
 
 use super::any_handle::AnyHandle;
 use super::plugin_error::PluginError;
+use super::references::{ReferenceError, References};
 use super::schema::PassDecl;
 use crate::access::ColorLoad;
+use crate::bounded_read;
 use crate::handle::{Handle, Kind, ResourceKind, Texture};
+use crate::shader::{Shader, ShaderError};
 
 /// The slots of the pass being set up. A slot only in `inputs` is read; a slot in
 /// `outputs` is written, and when it is also in `inputs` it modifies the version it
@@ -17,7 +20,10 @@ use crate::handle::{Handle, Kind, ResourceKind, Texture};
 pub struct Slots<'s> {
     /// Output slots in file order (their color-attachment order), then input-only slots.
     slots: Vec<Slot<'s>>,
+    /// The folder of the graph file the pass is written in, which its file paths are
+    /// relative to, and where they may lead.
     dir: &'s Path,
+    references: &'s References,
 }
 
 struct Slot<'s> {
@@ -80,7 +86,7 @@ impl<'s> Slots<'s> {
         decl: &'s PassDecl<'_>,
         handles: &HashMap<&str, AnyHandle>,
         declared: &HashMap<&str, AnyHandle>,
-        dir: &'s Path,
+        (dir, references): (&'s Path, &'s References),
     ) -> Option<Self> {
         let outputs = decl.outputs.0.iter().map(|(slot, out)| {
             let input = decl.input(slot.as_str()).map(|n| n.as_str());
@@ -107,11 +113,15 @@ impl<'s> Slots<'s> {
                 })
             })
             .collect::<Option<Vec<_>>>()?;
-        Some(Self::from_parts(parts, dir))
+        Some(Self::from_parts(parts, dir, references))
     }
 
     /// Slots from their parts, outputs first and in attachment order.
-    pub(crate) fn from_parts(parts: Vec<SlotPart<'s>>, dir: &'s Path) -> Self {
+    pub(crate) fn from_parts(
+        parts: Vec<SlotPart<'s>>,
+        dir: &'s Path,
+        references: &'s References,
+    ) -> Self {
         let slots = parts
             .into_iter()
             .map(|p| Slot {
@@ -123,7 +133,11 @@ impl<'s> Slots<'s> {
                 written: None,
             })
             .collect();
-        Slots { slots, dir }
+        Slots {
+            slots,
+            dir,
+            references,
+        }
     }
 
     /// The handle of an input-only slot.
@@ -195,22 +209,24 @@ impl<'s> Slots<'s> {
         self.get(slot).map(|s| s.shown())
     }
 
-    /// `relative` resolved against the graph file's directory, with `..` folded away
-    /// where it can be, so messages show short paths.
-    pub fn path(&self, relative: &str) -> PathBuf {
-        let mut path = PathBuf::new();
-        for component in self.dir.join(relative).components() {
-            match component {
-                Component::CurDir => {}
-                Component::ParentDir
-                    if matches!(path.components().next_back(), Some(Component::Normal(_))) =>
-                {
-                    path.pop();
-                }
-                other => path.push(other),
+    /// The WGSL shader the parameters name, relative to the graph file's folder: read (only
+    /// inside the folders graph files may reach, see [`Registry`](super::Registry)) and
+    /// validated by naga. Messages name it by that path, `..` folded away where it can be.
+    pub fn shader(&self, reference: &str) -> Result<Shader, PluginError> {
+        let max = bounded_read::MAX_SHADER_BYTES;
+        match self.references.read(self.dir, reference, max) {
+            Ok(named) => Ok(Shader::parse(named.path.display().to_string(), named.text)?),
+            Err(ReferenceError::Refused(reason)) => Err(PluginError::Reference {
+                what: "shader",
+                reference: reference.to_owned(),
+                reason,
+            }),
+            Err(ReferenceError::Unreadable { path, reason }) => Err(ShaderError::Unreadable {
+                path: path.display().to_string(),
+                reason: reason.to_string(),
             }
+            .into()),
         }
-        path
     }
 
     pub(crate) fn finish(self) -> Finished<'s> {

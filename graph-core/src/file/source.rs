@@ -3,8 +3,6 @@
 
 use std::path::Path;
 
-use ron::value::RawValue;
-
 use super::error::{ErrorKind, FileError, Location};
 use super::line_index::LineIndex;
 use super::ron_message;
@@ -70,6 +68,12 @@ impl<'a> Source<'a> {
             .unwrap_or(&self.main)
     }
 
+    /// Whether `part` is text of a preset over a base (a change the preset makes), not
+    /// the base's.
+    pub fn in_preset(&self, part: &str) -> bool {
+        self.base.is_some() && offset_in(self.main.text, part).is_some()
+    }
+
     /// The directory relative paths in the graph are resolved against: the graph's file
     /// (a preset's base), where its passes are written.
     pub fn dir(&self) -> &'a Path {
@@ -118,11 +122,17 @@ impl<'a> Source<'a> {
         }
     }
 
-    /// Where a raw value starts.
-    pub fn locate_raw(&self, raw: &RawValue) -> Location {
-        let file = self.text_of(raw.get_ron());
-        let at = offset_in(file.text, raw.get_ron())
-            .map_or(Position::START, |offset| file.lines.position(offset));
+    /// Where a raw value (its text) starts.
+    pub fn locate_raw(&self, raw: &str) -> Location {
+        self.locate_raw_at(raw, 0)
+    }
+
+    /// Where byte `within` of a raw value's text is.
+    pub fn locate_raw_at(&self, raw: &str, within: usize) -> Location {
+        let file = self.text_of(raw);
+        let at = offset_in(file.text, raw).map_or(Position::START, |offset| {
+            file.lines.position(offset + within)
+        });
         file.location(at)
     }
 

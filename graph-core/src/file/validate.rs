@@ -4,9 +4,11 @@
 use std::path::{Path, PathBuf};
 
 use super::error::{ErrorKind, FileError, FileErrors, Location};
-use super::load::load_file;
+use super::load::load_file_in;
+use super::params::GraphParams;
 use super::registry::Registry;
 use crate::compile::CompileOptions;
+use crate::folders::Folders;
 use crate::plan::Plan;
 use crate::position::Position;
 use crate::shader::{Shader, ShaderError};
@@ -18,38 +20,24 @@ pub struct Validated {
     pub shaders: Vec<PathBuf>,
 }
 
-/// Loads and compiles one graph file for `options` (its device profile and output size),
-/// returning the plan for no features. A file with conditions is compiled for each of
-/// its [witnesses](crate::Graph::witnesses) too, so that every pass and resource is
-/// checked in some graph; their errors are reported together. A witness naming
-/// [device conditions](crate::DEVICE_CONDITIONS) is compiled for the profile
-/// with those features added, so a branch for 64-bit atomics is checked on any profile.
+/// Loads and checks one graph file for `options` (its device profile and output size),
+/// as [`LoadedGraph::validate`](super::LoadedGraph::validate) does, returning the plan for no features.
 pub fn validate_file(
     path: impl AsRef<Path>,
     registry: &Registry,
     options: &CompileOptions,
 ) -> Result<Plan, FileErrors> {
-    let loaded = load_file(path, registry)?;
-    let errors: Vec<FileError> = loaded
-        .graph
-        .witnesses()
-        .iter()
-        .skip(1)
-        .filter_map(|features| {
-            let options = CompileOptions {
-                output_size: options.output_size,
-                profile: options.profile.granting(features),
-            };
-            loaded.compile_for(&options, features).err()
-        })
-        .flat_map(|e| e.0)
-        .collect();
-    // Sorting drops the errors several feature sets found alike.
-    match (loaded.compile(options), errors.is_empty()) {
-        (Ok(plan), true) => Ok(plan),
-        (Ok(_), false) => Err(FileErrors::sorted(errors)),
-        (Err(e), _) => Err(FileErrors::sorted(errors.into_iter().chain(e.0).collect())),
-    }
+    validate_file_in(path.as_ref(), registry, options, &Folders::new())
+}
+
+/// [`validate_file`], the file's references also allowed into `extra` folders.
+fn validate_file_in(
+    path: &Path,
+    registry: &Registry,
+    options: &CompileOptions,
+    extra: &Folders,
+) -> Result<Plan, FileErrors> {
+    load_file_in(path, registry, &GraphParams::new(), extra)?.validate(options)
 }
 
 /// Parses and validates one WGSL file with naga.
@@ -60,7 +48,8 @@ pub fn validate_shader(path: impl AsRef<Path>) -> Result<(), FileErrors> {
 }
 
 /// Validates every `.ron` file under `pipelines` as a graph and every `.wgsl` file under
-/// `shaders` (both searched recursively), reporting every error of every file.
+/// `shaders` (both searched recursively), reporting every error of every file. The graph
+/// files may name files in both folders (and those `registry` allows).
 pub fn validate_dir(
     pipelines: impl AsRef<Path>,
     shaders: impl AsRef<Path>,
@@ -75,9 +64,13 @@ pub fn validate_dir(
     for shader in &validated.shaders {
         errors.extend(validate_shader(shader).err().into_iter().flat_map(|e| e.0));
     }
+    let mut folders = Folders::new();
+    for dir in [pipelines.as_ref(), shaders.as_ref()] {
+        folders.allow_virtual(dir);
+    }
     for graph in &validated.graphs {
         errors.extend(
-            validate_file(graph, registry, options)
+            validate_file_in(graph, registry, options, &folders)
                 .err()
                 .into_iter()
                 .flat_map(|e| e.0),

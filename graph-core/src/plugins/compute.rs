@@ -24,7 +24,7 @@ use crate::builder::PassBuilder;
 use crate::file::{Plugin, PluginError, Slots};
 use crate::handle::TextureHandle;
 use crate::pass::PassKind;
-use crate::shader::{Shader, Stage};
+use crate::shader::Stage;
 
 pub struct Compute;
 
@@ -75,7 +75,7 @@ impl Plugin for Compute {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        let shader = Shader::load(slots.path(&params.shader))?;
+        let shader = slots.shader(&params.shader)?;
         let entry = entry_point(&shader, &params.entry, Stage::Compute)?;
         let bound = bind(&shader, &entry, &params.bindings, pass, slots)?;
         pass.workgroup(entry.workgroup());

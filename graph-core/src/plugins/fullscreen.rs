@@ -25,7 +25,6 @@ use super::draw::{Blend, Draw};
 use crate::builder::PassBuilder;
 use crate::file::{Plugin, PluginError, Slots};
 use crate::pass::PassKind;
-use crate::shader::Shader;
 
 pub struct Fullscreen;
 
@@ -64,7 +63,7 @@ impl Plugin for Fullscreen {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         Draw {
-            shader: Shader::load(slots.path(&params.shader))?,
+            shader: slots.shader(&params.shader)?,
             entry: &params.entry,
             bindings: &params.bindings,
             blend: params.blend,

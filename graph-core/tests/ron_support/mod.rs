@@ -4,19 +4,24 @@
 use graph_core::file::{load_file, load_str, FileError, FileErrors, Registry};
 use graph_core::{CompileOptions, Plan};
 
+/// The built-in plugins, with the workspace's folders open to graph files (the fixtures
+/// name the shipped shaders/ from tests/fixtures/).
+pub fn registry() -> Registry {
+    let mut registry = Registry::with_builtins();
+    registry
+        .allow_graph_root(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .expect("the workspace is a folder");
+    registry
+}
+
 /// Loads and compiles `path` for the WebGPU defaults at 1080p.
 pub fn compile_file(path: &str) -> Result<Plan, FileErrors> {
-    load_file(path, &Registry::with_builtins())?.compile(&CompileOptions::default())
+    load_file(path, &registry())?.compile(&CompileOptions::default())
 }
 
 /// Loads and compiles `text` as if read from `tests/fixtures/inline.ron`.
 pub fn compile_str(text: &str) -> Result<Plan, FileErrors> {
-    load_str(
-        "tests/fixtures/inline.ron",
-        text,
-        &Registry::with_builtins(),
-    )?
-    .compile(&CompileOptions::default())
+    load_str("tests/fixtures/inline.ron", text, &registry())?.compile(&CompileOptions::default())
 }
 
 /// The one error `result` is expected to hold.

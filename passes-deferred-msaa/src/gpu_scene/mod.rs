@@ -225,7 +225,7 @@ impl GpuScene {
         let layout = layout::scene_layout(device);
         let material_layout = materials::layout(device);
         let cameras = camera::Cameras::new(device);
-        let meshes = mesh::MeshBuffers::new(device, scene, &frame.meshes);
+        let meshes = mesh::MeshBuffers::new(device, queue, scene, &frame.meshes);
         let materials = materials::Materials::new(device, scene);
         let lights = lights::LightBuffers::new(device, &frame.lights);
         let environment = environment::EnvironmentMaps::new(device, queue, scene);

@@ -99,6 +99,15 @@ pub enum SceneError {
     },
 
     /// A material's image could not be located or decoded.
+    /// Every placement of a mesh together is more than the scene may hold (checked before
+    /// any is built).
+    #[error("{file}: {mesh}: {reason}")]
+    InvalidMesh {
+        file: PathBuf,
+        mesh: String,
+        reason: String,
+    },
+
     #[error("{file}: {image} ({slot} of {material}): {reason}")]
     InvalidImage {
         file: PathBuf,

@@ -67,14 +67,32 @@ impl Scene {
             self.ambient = [0.0; 3];
         }
         if add {
+            let why = match (lighting, self.lights.len()) {
+                (Lighting::Auto, 0) => "it has no lights; ".to_owned(),
+                // Named, so a light that was meant to shine is found.
+                (Lighting::Auto, dark) => {
+                    let mut names: Vec<&str> = self
+                        .lights
+                        .iter()
+                        .take(3)
+                        .map(|l| l.name.as_str())
+                        .collect();
+                    let more = format!("{} more", dark - names.len());
+                    if dark > names.len() {
+                        names.push(&more);
+                    }
+                    format!(
+                        "none of its {dark} light(s) emits anything ({}: intensity or \
+                         color 0); ",
+                        names.join(", ")
+                    )
+                }
+                _ => String::new(),
+            };
             self.lights.push(headlight(&self));
             self.environment = Some(Environment {
                 intensity: DEFAULT_ENVIRONMENT_INTENSITY,
             });
-            let why = match lighting {
-                Lighting::Auto => "it has no lights; ",
-                _ => "",
-            };
             self.warnings.push(format!(
                 "{}: {why}lit by the default lighting: a neutral studio environment \
                  (intensity {DEFAULT_ENVIRONMENT_INTENSITY}) and a {HEADLIGHT_LUX} lux \

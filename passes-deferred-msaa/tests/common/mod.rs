@@ -125,6 +125,22 @@ impl Gltf {
         self.mesh("triangle", primitive)
     }
 
+    /// A root-placed triangle whose material ("painted") has the PNG `png`, in a buffer
+    /// view, as its base color texture; returns the mesh index.
+    pub fn textured_triangle(&mut self, png: &[u8]) -> usize {
+        let view = self.view(png);
+        let image = self.push(
+            "images",
+            json!({ "bufferView": view, "mimeType": "image/png" }),
+        );
+        let texture = self.push("textures", json!({ "source": image }));
+        let material = self.push(
+            "materials",
+            json!({ "name": "painted", "pbrMetallicRoughness": { "baseColorTexture": { "index": texture } } }),
+        );
+        self.triangle(Some(material))
+    }
+
     /// The JSON with `buffers[0]` pointing at `uri` (or at the GLB chunk when `None`).
     fn document(&self, uri: Option<String>) -> Value {
         let mut json = self.json.clone();

@@ -43,7 +43,7 @@ impl Candidate {
     /// (`samples: Param(name: "msaa", default: 4)`); `None` when it has none, or cannot be
     /// read (loading it then reports why, in its row).
     pub fn at_samples(&self, samples: u32) -> Option<Candidate> {
-        declared_params(&self.path).ok()?.get(MSAA)?;
+        declared_params(&self.path, &registry()).ok()?.get(MSAA)?;
         Some(Candidate {
             params: self.params.clone().with(MSAA, samples),
             ..self.clone()
@@ -159,7 +159,7 @@ pub fn with_params(
     pipelines
         .into_iter()
         .map(|mut candidate| {
-            let declared = declared_params(&candidate.path).unwrap_or_default();
+            let declared = declared_params(&candidate.path, &registry()).unwrap_or_default();
             let mut applied = Vec::new();
             for (name, value) in given {
                 match declared.get(name) {

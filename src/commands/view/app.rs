@@ -306,7 +306,7 @@ impl ApplicationHandler for Viewer<'_> {
         let made = event_loop
             .create_window(attributes)
             .map_err(|e| ViewError::NoDisplay {
-                reason: e.to_string(),
+                reason: super::without_source_location(&e.to_string()),
                 display: std::env::var("DISPLAY").ok(),
                 wayland: std::env::var("WAYLAND_DISPLAY").ok(),
             })

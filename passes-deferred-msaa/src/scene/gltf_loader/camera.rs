@@ -7,12 +7,20 @@ use gltf::json::camera::Type;
 use gltf::json::validation::Checked;
 
 use crate::scene::error::label;
-use crate::scene::{Camera, Projection, SceneError};
+use crate::scene::{Camera, Projection, SceneError, MAX_COORDINATE};
+
+/// The smallest perspective znear. With reversed-Z a point at distance `d` gets depth
+/// `znear / d`, and GPUs flush values below f32's smallest normal number (1.2e-38) to 0,
+/// the far plane, where nothing is drawn: the frame would be empty. Every point of a scene
+/// lies within ±[`MAX_COORDINATE`], so within `2√3 · MAX_COORDINATE` of the camera; from
+/// this znear on, every depth is a normal number.
+pub(crate) const MIN_ZNEAR: f32 = (f32::MIN_POSITIVE as f64 * 4.0 * MAX_COORDINATE) as f32;
 
 /// Converts a camera placed at `world`. The node's scale is dropped (glTF cameras look down
 /// their node's -Z with +Y up whatever the scale). Rejects projections that cannot make a
 /// matrix: a value that is not a finite f32 (`1e39` in the file), yfov outside (0, π),
-/// znear <= 0 for perspective (< 0 for orthographic), zfar <= znear, zero xmag or ymag.
+/// znear <= 0 for perspective (< 0 for orthographic), zfar <= znear, zero xmag or ymag; and
+/// a perspective znear below [`MIN_ZNEAR`], which would draw nothing.
 pub(super) fn convert(
     file: &Path,
     document: &gltf::Document,
@@ -52,6 +60,14 @@ pub(super) fn convert(
             }
             if p.znear <= 0.0 || p.zfar.is_some_and(|zfar| zfar <= p.znear) {
                 return Err(invalid("perspective needs 0 < znear < zfar"));
+            }
+            if p.znear < MIN_ZNEAR {
+                return Err(invalid(&format!(
+                    "znear {:e} is below {MIN_ZNEAR:.1e}: depths (znear / distance) would \
+                     fall below the smallest normal f32, which GPUs flush to the far plane, \
+                     and the frame would be empty",
+                    p.znear
+                )));
             }
             Projection::Perspective {
                 yfov: p.yfov,

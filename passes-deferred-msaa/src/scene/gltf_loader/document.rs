@@ -1,6 +1,9 @@
 //! The glTF JSON parsed into the `gltf` crate's document, after accepting what the glTF
 //! spec allows but gltf 1.4 rejects.
 //!
+//! A UTF-8 byte-order mark before the JSON, which the spec forbids and editors write, is
+//! skipped.
+//!
 //! gltf 1.4 requires `scenes[i].nodes`, which the spec makes optional (an empty scene is
 //! valid and the Khronos validator accepts it): such a scene gets an empty node list here
 //! instead of failing the whole file with "missing field `nodes`".
@@ -33,6 +36,12 @@ pub(super) fn parse(file: &Path, bytes: &[u8]) -> Result<Parsed, SceneError> {
             (glb.json.into_owned(), glb.bin.map(|bin| bin.into_owned()))
         }
         false => (bytes.to_vec(), None),
+    };
+    // glTF forbids a byte-order mark, but Windows editors write one, invisibly; JSON
+    // parsers stop at it ("expected value at line 1 column 1"), which says nothing useful.
+    let json = match json.strip_prefix(b"\xEF\xBB\xBF") {
+        Some(rest) => rest.to_vec(),
+        None => json,
     };
     let deserialize = |e| gltf_error(gltf::Error::Deserialize(e));
     let mut value: Value = serde_json::from_slice(&json).map_err(deserialize)?;

@@ -10,7 +10,7 @@ use crate::scene::error::label;
 use crate::scene::{Light, LightKind, SceneError};
 
 /// Converts a light placed at `world`: position from the translation, direction from the
-/// node's -Z axis. Rejects values the extension forbids (negative intensity, range <= 0, cone
+/// node's -Z axis. Rejects values the extension forbids (negative intensity or color, range <= 0, cone
 /// angles outside `0 <= inner <= outer <= π/2`), which would break light volumes, and values
 /// beyond f32's range (`1e39` in the file), which would light the frame with infinities.
 pub(super) fn convert(
@@ -44,6 +44,15 @@ pub(super) fn convert(
         return Err(invalid(format!(
             "intensity {} is negative",
             light.intensity()
+        )));
+    }
+    // A negative channel would subtract light; a light emitting nothing would be dropped
+    // from drawing while the scene counted it.
+    if color.iter().any(|c| *c < 0.0) {
+        let [r, g, b] = color;
+        return Err(invalid(format!(
+            "color [{r}, {g}, {b}] has a negative channel; a light's color is linear RGB \
+             from 0"
         )));
     }
     if let Some(range) = light.range().filter(|r| *r <= 0.0) {

@@ -23,10 +23,7 @@ impl Loader<'_> {
     }
 
     fn convert_material(&mut self, material: &gltf::Material) -> Result<Material, SceneError> {
-        let name = material.index().map_or_else(
-            || "default material".to_owned(),
-            |i| label("material", i, material.name()),
-        );
+        let name = name(material);
         let pbr = material.pbr_metallic_roughness();
         let (file, warnings) = (self.file, &mut self.builder.warnings);
         let mut check = |field, values: &[f32], range| {
@@ -145,6 +142,51 @@ impl Loader<'_> {
             uv_transform,
         }))
     }
+}
+
+/// A material as messages name it.
+pub(super) fn name(material: &gltf::Material) -> String {
+    material.index().map_or_else(
+        || "default material".to_owned(),
+        |i| label("material", i, material.name()),
+    )
+}
+
+/// The images `material`'s textures name, each with its slot and whether it is decoded as
+/// sRGB color (as `convert_material` decodes them): what it may ask the scene to hold.
+pub(super) fn images(material: &gltf::Material) -> Vec<(usize, &'static str, bool)> {
+    let pbr = material.pbr_metallic_roughness();
+    let image = |texture: gltf::Texture| texture.source().index();
+    [
+        (
+            pbr.base_color_texture().map(|t| image(t.texture())),
+            "base color",
+            true,
+        ),
+        (
+            pbr.metallic_roughness_texture().map(|t| image(t.texture())),
+            "metallicRoughness",
+            false,
+        ),
+        (
+            material.emissive_texture().map(|t| image(t.texture())),
+            "emissive",
+            true,
+        ),
+        (
+            material.occlusion_texture().map(|t| image(t.texture())),
+            "occlusion",
+            false,
+        ),
+        (
+            material.normal_texture().map(|t| image(t.texture())),
+            "normal",
+            false,
+        ),
+    ]
+    .into_iter()
+    .filter_map(|(index, slot, srgb)| Some((index?, slot, srgb)))
+    .collect()
 }
 
 /// The extension that transforms a texture reference's UVs.

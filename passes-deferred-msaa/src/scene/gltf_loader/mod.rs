@@ -22,6 +22,7 @@ mod light;
 mod material;
 mod nodes;
 mod primitive;
+mod reserve;
 mod sandbox;
 mod texture_transform;
 mod transforms;
@@ -29,7 +30,7 @@ mod uri;
 mod uri_error;
 mod validate;
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
 use graph_core::bounded_read;
@@ -61,14 +62,13 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         file,
         buffers: uri::load_buffers(file, &sandbox, &document, blob)?,
         sandbox,
-        budget: Budget {
-            left: policy.max_scene_bytes,
-            max: policy.max_scene_bytes,
-        },
+        budget: Budget::new(policy.max_scene_bytes),
         document: &document,
         builder: SceneBuilder::new(file.display().to_string()),
         materials: HashMap::new(),
         images: HashMap::new(),
+        encoded: HashMap::new(),
+        reserved: HashSet::new(),
     };
     loader.builder.warnings = warnings;
     loader.builder.warnings.extend(ignored_features(&document));
@@ -84,8 +84,10 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
             loader.builder.allow_empty = true;
         }
         let local = transforms::read(file, &json, &document)?;
-        for placed in nodes::flatten(file, &document, &scene, &local)? {
-            loader.place(&placed)?;
+        let placed = nodes::flatten(file, &document, &scene, &local)?;
+        loader.reserve(&placed)?;
+        for placed in &placed {
+            loader.place(placed)?;
         }
     }
     loader.builder.finish()
@@ -105,7 +107,11 @@ struct Loader<'a> {
     /// glTF image index and whether it is sRGB to scene texture index: each image is decoded
     /// once per role (an image used both as color and as data is uploaded in both formats).
     images: HashMap<(usize, bool), usize>,
-    /// What is left of [`AssetPolicy::max_scene_bytes`].
+    /// glTF image index to its encoded bytes, read once for its header and its decoding.
+    encoded: HashMap<usize, Vec<u8>>,
+    /// The images, by glTF index and role, whose memory the budget holds.
+    reserved: HashSet<(usize, bool)>,
+    /// What is left of [`AssetPolicy::max_scene_bytes`], taken before anything is built.
     budget: Budget,
 }
 
@@ -116,6 +122,10 @@ struct Budget {
 }
 
 impl Budget {
+    fn new(max: u64) -> Budget {
+        Budget { left: max, max }
+    }
+
     /// Takes `bytes`, or says (as the end of a sentence about `what`) why it cannot.
     fn take(&mut self, bytes: u64, why: &str) -> Result<(), String> {
         if bytes > self.left {

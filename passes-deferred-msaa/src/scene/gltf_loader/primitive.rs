@@ -53,10 +53,9 @@ impl Loader<'_> {
                 .map_err(|reason| site.accessor_error("indices", &accessor, reason))?,
             None => (0..positions.len() as u32).collect(),
         };
+        // What this placement keeps was taken from the budget before anything was built
+        // (see `reserve`).
         site.check_indices(&indices, positions.len())?;
-        // What is decoded so far is bounded by the file's size; what is kept for every
-        // placement is not.
-        self.reserve_memory(&site, primitive)?;
         let indices = triangle_list(mode, indices).map_err(|reason| site.invalid(reason))?;
         let vertices = interleave(
             &positions,
@@ -104,41 +103,6 @@ impl Loader<'_> {
             transform: world,
         });
         Ok(())
-    }
-
-    /// Takes from the scene's memory budget what this primitive will keep, before building it:
-    /// its vertices (one per index when flat normals are generated) and its indices (up to
-    /// three per index when a strip or fan becomes a list).
-    fn reserve_memory(
-        &mut self,
-        site: &Site,
-        primitive: &gltf::Primitive,
-    ) -> Result<(), SceneError> {
-        let positions = primitive
-            .get(&Semantic::Positions)
-            .map_or(0, |a| a.count() as u64);
-        let per_index = match primitive.mode() {
-            Mode::Triangles => 1,
-            _ => 3,
-        };
-        let indices = primitive
-            .indices()
-            .map_or(positions, |a| a.count() as u64)
-            .saturating_mul(per_index);
-        let vertices = match primitive.get(&Semantic::Normals) {
-            Some(_) => positions,
-            None => indices,
-        };
-        let vertex_bytes = std::mem::size_of::<crate::scene::Vertex>() as u64;
-        let bytes = vertices
-            .saturating_mul(vertex_bytes)
-            .saturating_add(indices.saturating_mul(4));
-        self.budget
-            .take(
-                bytes,
-                "placing it here (every node placing a mesh gets its own copy)",
-            )
-            .map_err(|reason| site.invalid(reason))
     }
 
     /// Reads an optional vertex attribute (`None` when the primitive has none). Its length is
