@@ -40,7 +40,7 @@ fn unorm(v: f64) -> u8 {
 /// up: glossier metal turns the few-hundredths-of-a-level differences between two
 /// pipelines' filtering into specular sparkles), bumps (a normal map of a sine height
 /// field) and occlusion in the bumps' valleys.
-fn images() -> Vec<TextureImage> {
+pub fn images() -> Vec<TextureImage> {
     let tau = std::f64::consts::TAU;
     vec![
         image("base colour", true, |u, v| {
@@ -79,7 +79,7 @@ fn images() -> Vec<TextureImage> {
 }
 
 /// One of the floor's or panels' materials: every slot textured with `sampler`.
-fn material(parts: &mut Parts, name: &str, sampler: Sampler) -> usize {
+pub fn material(parts: &mut Parts, name: &str, sampler: Sampler) -> usize {
     let index = parts.material(name, [1.0, 1.0, 1.0], 1.0);
     let texture = |image| {
         Some(TextureRef {
