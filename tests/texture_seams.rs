@@ -13,10 +13,8 @@ use deferred_support::measure::{pixel_diff, share_within};
 use deferred_support::textured;
 use deferred_support::{gpu, Image, Render};
 use passes_deferred_msaa::analysis::Features;
-use passes_deferred_msaa::glam::{DMat4, DVec3, Vec3};
-use passes_deferred_msaa::scene::{
-    Camera, Light, LightKind, Mesh, Projection, Sampler, Scene, TextureImage, Vertex,
-};
+use passes_deferred_msaa::glam::{DMat4, DVec3};
+use passes_deferred_msaa::scene::{Camera, Mesh, Projection, Sampler, Scene, TextureImage, Vertex};
 use serde_json::json;
 
 /// The hardware-raster pipelines that draw textured meshes: the G-buffer at 4x, lean and
@@ -268,15 +266,7 @@ fn textured_sphere() -> Scene {
     parts.materials[material].emissive_texture = None;
     parts.materials[material].emissive_factor = [0.0; 3];
     parts.meshes.push(sphere(48, 48, material));
-    parts.lights.push(Light {
-        name: "sun".into(),
-        kind: LightKind::Directional,
-        color: [1.0, 0.95, 0.9],
-        intensity: 2.5,
-        position: DVec3::ZERO,
-        direction: Vec3::new(-0.4, -0.6, -0.7).normalize(),
-        range: None,
-    });
+    parts.lights.push(textured::sun());
     parts.ambient = [0.15; 3];
     let camera = Camera::look_at(
         "front, above",

@@ -126,6 +126,19 @@ fn quad(parts: &mut Parts, name: &str, corners: [DVec3; 4], uvs: [[f32; 2]; 4], 
     }
 }
 
+/// The low sun that lights the scene, from the front left and above.
+pub fn sun() -> Light {
+    Light {
+        name: "sun".into(),
+        kind: LightKind::Directional,
+        color: [1.0, 0.95, 0.9],
+        intensity: 2.5,
+        position: DVec3::ZERO,
+        direction: Vec3::new(-0.4, -0.6, -0.7).normalize(),
+        range: None,
+    }
+}
+
 /// The scene: see the module documentation. Lit by a low sun, a point light and some
 /// ambient light.
 pub fn textured_scene() -> Scene {
@@ -191,15 +204,7 @@ pub fn textured_scene() -> Scene {
         [[0.0, 2.0], [2.0, 2.0], [2.0, 0.0], [0.0, 0.0]],
         mirrored,
     );
-    parts.lights.push(Light {
-        name: "sun".into(),
-        kind: LightKind::Directional,
-        color: [1.0, 0.95, 0.9],
-        intensity: 2.5,
-        position: DVec3::ZERO,
-        direction: Vec3::new(-0.4, -0.6, -0.7).normalize(),
-        range: None,
-    });
+    parts.lights.push(sun());
     parts.lights.push(Light::point(
         "lamp",
         d(0.0, 1.2, 1.5),
