@@ -11,7 +11,9 @@
 # gzipped is about 6 MB, which fits a device's carry where several plain ones do not).
 # BENCH_PIPELINES: file stems in pipelines/ (default "visibility_msaa_4x visibility_noaa");
 # BENCH_SCENES (default "builtin:dense builtin:lights?count=256"); BENCH_ROUNDS (2);
-# BENCH_FRAMES (20) after BENCH_WARMUP (5); BENCH_SIZE (3840x2160). Each run's results.md,
+# BENCH_FRAMES (4: frames per bench round, and `rgraph bench` runs 5 rounds, so 20 frames a
+# row; a build from before interleaved rounds measures only BENCH_FRAMES) after BENCH_WARMUP
+# (5); BENCH_SIZE (3840x2160). Each run's results.md,
 # results.json and output (bench.log) go to OUT_DIR/NAME/PIPELINE-SCENE-rROUND/, the lines to
 # OUT_DIR/summary.md; BENCH_ARCHIVE=FILE.tar.gz packs both (every results.md and the
 # summary) into one file for machines that hand back few files. The environment is
@@ -28,7 +30,7 @@ shift
 pipelines="${BENCH_PIPELINES:-visibility_msaa_4x visibility_noaa}"
 scenes="${BENCH_SCENES:-builtin:dense builtin:lights?count=256}"
 rounds="${BENCH_ROUNDS:-2}"
-frames="${BENCH_FRAMES:-20}"
+frames="${BENCH_FRAMES:-4}"
 warmup="${BENCH_WARMUP:-5}"
 size="${BENCH_SIZE:-3840x2160}"
 
@@ -67,7 +69,7 @@ tool=bench-builds
 mkdir -p "$out"
 summary="$out/summary.md"
 {
-  echo "# scripts/bench-builds.sh: $size, $frames frames after $warmup, a process each"
+  echo "# scripts/bench-builds.sh: $size, $frames frames a round after $warmup, a process each"
   echo
   echo "| build | pipeline | scene | round | GPU ms | per pass (median) |"
   echo "| --- | --- | --- | --: | --: | --- |"

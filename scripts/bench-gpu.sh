@@ -10,10 +10,21 @@
 # or name it with RGRAPH_BIN. The commit the binary was built from goes in
 # RGRAPH_GIT_COMMIT when the server has no git checkout.
 #
-# What runs (BENCH_PARTS picks a subset, e.g. BENCH_PARTS="main lights"):
+# Every part times a scene's pipelines together in interleaved rounds (A B C, A B C, ...:
+# `rgraph bench --rounds`), each time the median of the round medians, a row whose rounds
+# spread by more than 5% flagged with its reasons, and the GPU's clocks sampled per round
+# with nvidia-smi (results.md and results.json say all of it). Each part fits one device
+# call of 8 minutes at the default frames and rounds (results.json's elapsed_s says how
+# long it took); `main` does not, so it is also split by scene.
+#
+# What runs (BENCH_PARTS picks a subset, e.g. BENCH_PARTS="main-dense lights"):
 #   main        every pipeline in pipelines/ on builtin:dense and builtin:lights?count=256
 #               (the issue's "dense scene with 256 lights": builtin:dense has 6 lights and
-#               no light-count parameter, so the 256-light case is builtin:lights)
+#               no light-count parameter, so the 256-light case is builtin:lights); about
+#               ten minutes, longer than one device call: run its halves instead
+#   main-dense  `main` on builtin:dense alone, into main-dense (not in the default set)
+#   main-lights `main` on builtin:lights?count=256 alone, into main-lights (not in the
+#               default set)
 #   lights      the light sweep (1..1024) for noaa, MSAA 4x, per-sample 4x (each with its
 #               fragment light passes and its tiled compute pass) and forward MSAA
 #   samples     the sample-count sweep (1, 2, 4, 8) of the same pipelines on builtin:dense
@@ -31,16 +42,15 @@
 #               visibility, the fragment light volumes and their FXAA, SSAO and light
 #               pre-pass variants) beside forward MSAA and the 1x baselines, on
 #               builtin:dense and builtin:lights?count=256, with the reference, into
-#               every-4x: 30 rows in four minutes of an H200 (BENCH_FRAMES=8), where
-#               `main`'s 54 rows outlast one ten-minute device call (not in the default set)
+#               every-4x: 26 rows in about five minutes of an H200 (not in the default set)
 #   visibility  the visibility pipelines (4x and 1x) against the lean G-buffer and
 #               forward MSAA on builtin:dense and builtin:lights?count=256, with the
 #               reference (not in the default set)
 #   solo        the visibility pipelines and the hardware raster (4x and 1x) each in a
-#               bench process of its own, without the reference, into solo-NAME: rows of
-#               a many-pipeline run have been measured on a clocked-down H200 (its compute
-#               tone map at 0.14-0.24 ms instead of 0.08), so the x1x ratios are quoted
-#               from these (not in the default set)
+#               bench process of its own, without the reference, into solo-NAME: before
+#               interleaved rounds, rows of a many-pipeline run were measured on a
+#               clocked-down H200 (its compute tone map at 0.14-0.24 ms instead of 0.08),
+#               so the x1x ratios were quoted from these (not in the default set)
 #   variants    FXAA, SSAO and the light pre-pass against deferred and forward MSAA on every
 #               built-in scene, with the reference (issue 16's rows; not in the default set:
 #               BENCH_PARTS=variants)
@@ -51,8 +61,11 @@
 #               with point-sampled depth); particles-padP (Table 23-2: scale 2, P extra
 #               multiply-adds per particle fragment); particles-extent (Table 23-3: scale
 #               2, the effect at 12.5% to 400% of its size, and the break-even extent)
-# Each part writes to OUT_DIR/PART (particles to OUT_DIR/particles-*). Frames: BENCH_FRAMES (default 10) after BENCH_WARMUP
-# (default 2); BENCH_SIZE (default 3840x2160) for a quick try elsewhere.
+# Each part writes to OUT_DIR/PART (particles to OUT_DIR/particles-*). Frames: BENCH_ROUNDS
+# rounds (default 5) of BENCH_FRAMES frames of each pipeline (default 2: ten measured frames
+# a pipeline, as before rounds) after BENCH_WARMUP warmup frames (default 2);
+# BENCH_GROUP_MEMORY (MiB) bounds the memory of the pipelines timed together (default: 60%
+# of the GPU's); BENCH_SIZE (default 3840x2160) for a quick try elsewhere.
 #
 # BENCH_ARCHIVE=FILE.tar.gz also packs what gets committed (each part's results.json,
 # results.md and charts, and adapters.txt) into one file, for machines that hand back only a
@@ -64,7 +77,8 @@ cd "$(dirname "$0")/.."
 
 out="${1:-${OUT:-bench/results/gpu}}"
 parts="${BENCH_PARTS:-main lights samples resolution specialise}"
-frames="${BENCH_FRAMES:-10}"
+frames="${BENCH_FRAMES:-2}"
+rounds="${BENCH_ROUNDS:-5}"
 warmup="${BENCH_WARMUP:-2}"
 size="${BENCH_SIZE:-3840x2160}"
 width="${size%x*}"
@@ -105,7 +119,8 @@ for p in deferred_noaa deferred_noaa_tiled visibility_noaa deferred_msaa_4x defe
     forward_msaa_4x; do
   every_4x+=(--pipeline "pipelines/$p.ron")
 done
-common=(--frames "$frames" --warmup "$warmup")
+common=(--frames "$frames" --rounds "$rounds" --warmup "$warmup")
+if [ -n "${BENCH_GROUP_MEMORY:-}" ]; then common+=(--group-memory "$BENCH_GROUP_MEMORY"); fi
 status=0
 for part in $parts; do
   echo "bench-gpu: $part -> $out/$part" >&2
@@ -113,6 +128,12 @@ for part in $parts; do
     main)
       "$bin" bench --scene builtin:dense --scene 'builtin:lights?count=256' \
         --width "$width" --height "$height" "${common[@]}" --out-dir "$out/main" || status=$?
+      ;;
+    main-dense|main-lights)
+      scene=builtin:dense
+      [ "$part" = main-lights ] && scene='builtin:lights?count=256'
+      "$bin" bench --scene "$scene" --width "$width" --height "$height" "${common[@]}" \
+        --out-dir "$out/$part" || status=$?
       ;;
     lights)
       "$bin" bench --sweep lights "${core[@]}" --width "$width" --height "$height" "${common[@]}" \
@@ -197,7 +218,7 @@ for part in $parts; do
         || status=$?
       ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, lights, samples, resolution, specialise, gbuffer, visibility, solo, variants, particles)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, lights, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, particles)" >&2
       status=2
       ;;
   esac

@@ -359,14 +359,26 @@ pub struct BenchArgs {
     /// Image height in pixels.
     #[arg(long, value_name = "H", default_value_t = 720, value_parser = parse_dimension)]
     pub height: u32,
-    /// Measured frames per scene and pipeline, after the warmup.
-    #[arg(long, value_name = "N", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Measured frames of each pipeline per round: a scene's pipelines take turns, N
+    /// frames each, in every one of --rounds rounds, and a time is the median of the
+    /// rounds' medians.
+    #[arg(long, value_name = "N", default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub frames: u32,
-    /// Frames run and discarded first (the first uploads the scene and creates pipelines),
-    /// for half a second at least unless 0, so that a GPU that clocked down while the
-    /// bench measured image error is at speed again.
+    /// Interleaved rounds per scene; a row whose round medians spread (p10 to p90) by
+    /// more than 5% of its time is flagged.
+    #[arg(long, value_name = "R", default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=100))]
+    pub rounds: u32,
+    /// Frames of each pipeline run and discarded before round 1 (the first uploads the
+    /// scene and creates pipelines), then turns until half a second has passed, unless 0,
+    /// so that a GPU that clocked down while the bench measured image error is at speed
+    /// again.
     #[arg(long, value_name = "M", default_value_t = 2)]
     pub warmup: u32,
+    /// The most pooled memory, in MiB, the plans measured together in one round may ask
+    /// for; more pipelines are measured in consecutive groups (default: 60% of the GPU's
+    /// memory where nvidia-smi reports it, else 4096).
+    #[arg(long, value_name = "MIB", value_parser = clap::value_parser!(u64).range(1..=(1 << 24)))]
+    pub group_memory: Option<u64>,
     /// The supersampled reference errors are measured against.
     #[arg(
         long,

@@ -1,7 +1,8 @@
 //! `rgraph bench` as a user runs it: the built binary on lavapipe (unless RGRAPH_ADAPTER
-//! says otherwise) at 64x48 with one frame, checked through its exit status, results.json,
-//! and the charts and images it writes. A machine without a Vulkan adapter fails these
-//! tests with the binary's own explanation: they never skip.
+//! says otherwise) at 64x48 with one frame a round, three rounds and no warmup, checked
+//! through its exit status, results.json, and the charts and images it writes. A machine
+//! without a Vulkan adapter fails these tests with the binary's own explanation: they
+//! never skip.
 
 use crate::cli_support;
 
@@ -17,9 +18,13 @@ const PER_SAMPLE: &str = "pipelines/deferred_per_sample_4x.ron";
 const REFERENCE: &str = "pipelines/reference_ssaa16.ron";
 const MISSING: &str = "pipelines/no_such_pipeline.ron";
 
+/// Rounds of every run here but the stopped one's.
+const ROUNDS: usize = 3;
+
 fn bench(args: &[&str]) -> Run {
     let size = [
-        "bench", "--width", "64", "--height", "48", "--frames", "1", "--warmup", "0",
+        "bench", "--width", "64", "--height", "48", "--frames", "1", "--rounds", "3", "--warmup",
+        "0",
     ];
     rgraph(&[&size[..], args].concat())
 }
@@ -96,9 +101,14 @@ fn assert_fields(value: &Value, keys: &[(&str, &str)]) {
             "number" => field.is_number(),
             "array" => field.is_array(),
             "object" => field.is_object(),
-            "spread" => ["median", "p10", "p90", "min", "max"]
-                .iter()
-                .all(|k| field[k].is_number()),
+            "spread" => {
+                ["median", "p10", "p90", "min", "max", "spread"]
+                    .iter()
+                    .all(|k| field[k].is_number())
+                    && field["rounds"]
+                        .as_array()
+                        .is_some_and(|r| r.len() == ROUNDS)
+            }
             "number|null" => field.is_number() || field.is_null(),
             "string|null" => field.is_string() || field.is_null(),
             "object|null" => field.is_object() || field.is_null(),
@@ -120,15 +130,23 @@ fn results_json_has_every_figure_with_its_type() {
             ("adapter", "object"),
             ("git_commit", "string"),
             ("timestamp", "string"),
+            ("elapsed_s", "number"),
             ("resolution", "array"),
             ("frames", "number"),
+            ("rounds", "number"),
             ("warmup", "number"),
+            ("spread_limit", "number"),
+            ("group_memory_bytes", "number"),
+            ("gpu_clocks", "object"),
             ("reference", "object"),
             ("notes", "array"),
             ("scenes", "array"),
             ("rows", "array"),
+            ("round_log", "array"),
         ],
     );
+    assert_eq!((&json["frames"], &json["rounds"]), (&1.into(), &3.into()));
+    assert_eq!(json["spread_limit"], 0.05);
     assert_eq!(json["resolution"], serde_json::json!([64, 48]));
     assert_fields(
         &json["machine"],
@@ -167,6 +185,8 @@ fn results_json_has_every_figure_with_its_type() {
         &[
             ("samples", "number"),
             ("gpu_frame_ms", "spread"),
+            ("flag", "object|null"),
+            ("created_while_measured", "array"),
             ("cpu_record_ms", "spread"),
             ("ratio_to_noaa", "number"),
             ("passes", "array"),
@@ -532,4 +552,253 @@ fn a_run_stopped_after_one_scene_keeps_its_rows() {
     assert!(notes.contains("partial: 1 of 2 scenes measured"), "{notes}");
     let table = std::fs::read_to_string(table).unwrap();
     assert!(table.contains("partial: 1 of 2 scenes measured"), "{table}");
+}
+
+/// The names of the plans each round ran, in order, for `scene`.
+fn round_orders(json: &Value, scene: &str) -> Vec<(u64, u64, Vec<String>)> {
+    json["round_log"]
+        .as_array()
+        .expect("round_log is an array")
+        .iter()
+        .filter(|r| r["scene"] == scene)
+        .map(|r| {
+            let order = r["order"].as_array().unwrap();
+            let names = order.iter().map(|n| n.as_str().unwrap().to_string());
+            (
+                r["group"].as_u64().unwrap(),
+                r["round"].as_u64().unwrap(),
+                names.collect(),
+            )
+        })
+        .collect()
+}
+
+/// Every measured plan of the run's rows, in the order the rows were given: each row's
+/// plan, then its general plan and its plan with the general shaders where timed.
+fn timed_plans(json: &Value) -> Vec<String> {
+    let mut plans = Vec::new();
+    for row in json["rows"].as_array().unwrap() {
+        let Some(figures) = row["figures"].as_object() else {
+            continue;
+        };
+        let name = row["pipeline"].as_str().unwrap();
+        plans.push(name.to_string());
+        let special = &figures["specialisation"];
+        if !special.is_null() {
+            plans.push(format!("{name} (general)"));
+            if !special["plan_only_gpu_frame_ms"].is_null() {
+                plans.push(format!("{name} (plan only)"));
+            }
+        }
+    }
+    plans
+}
+
+#[test]
+fn pipelines_take_turns_in_every_round() {
+    let json = &main_run().json;
+    let plans = timed_plans(json);
+    assert!(plans.len() >= 3, "{plans:?}");
+    // A B C, A B C, A B C: every plan once a round, in the order given, in one group.
+    let expected: Vec<(u64, u64, Vec<String>)> = (1..=ROUNDS as u64)
+        .map(|round| (1, round, plans.clone()))
+        .collect();
+    assert_eq!(round_orders(json, "builtin:dense"), expected);
+    // The row's time comes from those rounds: one median per round.
+    let noaa = &row(json, "deferred_noaa")["figures"]["gpu_frame_ms"];
+    let medians: Vec<f64> = noaa["rounds"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let mut sorted = medians.clone();
+    sorted.sort_by(f64::total_cmp);
+    assert_eq!(number(noaa, "median"), sorted[1], "{noaa:#}");
+    assert_eq!(
+        (number(noaa, "p10"), number(noaa, "p90")),
+        (sorted[0], sorted[2])
+    );
+}
+
+#[test]
+fn lavapipe_reports_no_clocks_and_a_first_use_compile_is_recorded() {
+    let json = &main_run().json;
+    let clocks = &json["gpu_clocks"];
+    assert!(clocks["reported_by"].is_null(), "{clocks:#}");
+    let detail = clocks["detail"].as_str().unwrap();
+    assert!(detail.starts_with("not reported: "), "{detail}");
+    assert!(json["round_log"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|r| r["clocks"].is_null()));
+    let table = std::fs::read_to_string(main_run().dir.path().join("results.md")).unwrap();
+    assert!(table.contains("GPU clocks: not reported"), "{table}");
+    // Without warmup the first round's frames create the pipelines, and only they do.
+    let figures = &row(json, "deferred_noaa")["figures"];
+    let created = figures["created_while_measured"].as_array().unwrap();
+    assert_eq!(created.len(), 1, "{created:?}");
+    assert_eq!(created[0]["round"], 1);
+    assert!(number(&created[0], "render_pipelines") > 0.0, "{created:?}");
+    // Were the row flagged, the compile would be among its reasons.
+    if let Some(flag) = figures["flag"].as_object() {
+        let kinds = flag["reasons"].as_array().unwrap();
+        assert!(
+            kinds.iter().any(|r| r["kind"] == "first_use_compile"),
+            "{flag:?}"
+        );
+    }
+}
+
+#[test]
+fn warmup_frames_keep_pipeline_creation_out_of_the_rounds() {
+    let dir = tempfile::tempdir().unwrap();
+    rgraph(&[
+        "bench",
+        "--width",
+        "64",
+        "--height",
+        "48",
+        "--frames",
+        "1",
+        "--rounds",
+        "2",
+        "--warmup",
+        "1",
+        "--scene",
+        "builtin:unlit",
+        "--pipeline",
+        NOAA,
+        "--no-reference",
+        "--out-dir",
+        dir.path().to_str().unwrap(),
+    ])
+    .expect(0);
+    let json = read_json(&dir.path().join("results.json"));
+    let figures = &row(&json, "deferred_noaa")["figures"];
+    assert_eq!(figures["created_while_measured"], serde_json::json!([]));
+    assert_eq!(number(&json, "warmup"), 1.0);
+}
+
+/// A round made slow through the bench's test hook (its GPU times three times as long)
+/// flags every row it slowed, in results.json and results.md, and the notes say that
+/// the figures were changed.
+#[test]
+fn a_fake_slow_round_is_flagged() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_rgraph"))
+        .args([
+            "bench",
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--frames",
+            "3",
+            "--rounds",
+            "5",
+            "--warmup",
+            "1",
+            "--scene",
+            "builtin:unlit",
+            "--pipeline",
+            NOAA,
+            "--no-reference",
+            "--out-dir",
+            out,
+        ])
+        .env("RGRAPH_BENCH_FAKE_SLOW_ROUND", "2")
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the rgraph binary runs");
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let json = read_json(&dir.path().join("results.json"));
+    let notes = json["notes"].to_string();
+    assert!(notes.contains("RGRAPH_BENCH_FAKE_SLOW_ROUND=2"), "{notes}");
+    let figures = &row(&json, "deferred_noaa")["figures"];
+    let time = &figures["gpu_frame_ms"];
+    let rounds: Vec<f64> = time["rounds"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    // Round 2 is the slowest by far: three times as long as its real frames.
+    let slowest = (0..rounds.len()).max_by(|a, b| rounds[*a].total_cmp(&rounds[*b]));
+    assert_eq!(slowest, Some(1), "{rounds:?}");
+    let flag = &figures["flag"];
+    assert!(
+        flag.is_object(),
+        "a slow round must flag the row: {figures:#}"
+    );
+    assert_eq!(flag["spread"], time["spread"]);
+    assert!(number(flag, "spread") > 0.05, "{flag:#}");
+    // When the other rounds agree, the reason names round 2 and no other.
+    for reason in flag["reasons"].as_array().unwrap() {
+        if reason["kind"] == "outlier_round" {
+            let detail = reason["detail"].as_str().unwrap();
+            assert!(
+                detail.starts_with("a slow outlier round: round 2 "),
+                "{detail}"
+            );
+        }
+    }
+    let table = std::fs::read_to_string(dir.path().join("results.md")).unwrap();
+    assert!(table.contains("⚑ Flagged"), "{table}");
+    assert!(table.contains("\n- deferred_noaa: "), "{table}");
+    let line = table
+        .lines()
+        .find(|l| l.starts_with("| deferred_noaa |"))
+        .unwrap();
+    assert!(line.contains('⚑'), "{line}");
+}
+
+/// With a memory budget smaller than any one plan, each plan is timed in a group of its
+/// own, every group in its own rounds.
+#[test]
+fn a_memory_budget_splits_the_rounds_into_groups() {
+    let dir = tempfile::tempdir().unwrap();
+    rgraph(&[
+        "bench",
+        "--width",
+        "320",
+        "--height",
+        "240",
+        "--frames",
+        "1",
+        "--rounds",
+        "2",
+        "--warmup",
+        "0",
+        "--group-memory",
+        "1",
+        "--scene",
+        "builtin:unlit",
+        "--pipeline",
+        NOAA,
+        "--pipeline",
+        PER_SAMPLE,
+        "--no-reference",
+        "--out-dir",
+        dir.path().to_str().unwrap(),
+    ])
+    .expect(0);
+    let json = read_json(&dir.path().join("results.json"));
+    assert_eq!(number(&json, "group_memory_bytes"), f64::from(1 << 20));
+    let plans = timed_plans(&json);
+    let expected: Vec<(u64, u64, Vec<String>)> = plans
+        .iter()
+        .enumerate()
+        .flat_map(|(i, plan)| (1..=2).map(move |round| (i as u64 + 1, round, vec![plan.clone()])))
+        .collect();
+    assert_eq!(round_orders(&json, "builtin:unlit"), expected);
+    let table = std::fs::read_to_string(dir.path().join("results.md")).unwrap();
+    let groups = format!("in {} groups that fit --group-memory", plans.len());
+    assert!(table.contains(&groups), "{table}");
 }

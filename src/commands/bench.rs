@@ -1,15 +1,20 @@
 //! `rgraph bench`: every pipeline on every scene, measured: GPU time per pass and frame,
 //! memory, shading work, image error against a reference; written as results.json,
-//! results.md, charts and images.
+//! results.md, charts and images. A scene's pipelines are timed in interleaved rounds
+//! (rounds.rs), each figure the median of its round medians (stats.rs), and a row whose
+//! rounds disagree by more than 5% is flagged with what the bench knows of why (flag.rs,
+//! with the GPU's clocks from clocks.rs).
 //!
 //! A row that cannot be measured becomes an error row naming its scene and pipeline and
 //! the rest go on; the command fails (exit 1) only when no row could be measured.
 
 mod candidates;
 mod charts;
+mod clocks;
 mod edge_pixels;
 mod error;
 mod figures;
+mod flag;
 mod image_error;
 mod images;
 mod machine;
@@ -20,6 +25,7 @@ mod particle_work;
 mod progress;
 mod reference;
 mod results;
+mod rounds;
 mod scene;
 mod specialisation;
 mod stats;
@@ -29,13 +35,16 @@ mod table;
 mod work;
 
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 use graph_core::gpu::AdapterChoice;
 
 use super::{write_atomically, CommandError};
 use crate::cli::BenchArgs;
 use crate::frame::Session;
+use clocks::ClockSource;
 use error::BenchError;
+use flag::SPREAD_LIMIT;
 use machine::{Adapter, Machine};
 use measure::Setup;
 use progress::Progress;
@@ -46,6 +55,12 @@ use sweep::Step;
 
 /// The pipeline every frame time is compared with.
 const BASELINE: &str = "deferred_noaa";
+/// The share of the GPU's memory (as `nvidia-smi` reports it) one interleaved group's
+/// plans may ask for without `--group-memory`: room left for the scene's uploads and
+/// the buffers passes keep, which the plans do not count.
+const GROUP_SHARE: f64 = 0.6;
+/// The group budget where the GPU's memory is not reported (lavapipe, other vendors).
+const GROUP_DEFAULT_BYTES: u64 = 4 << 30;
 
 pub fn run(args: &BenchArgs) -> Result<(), CommandError> {
     let json = bench(args)?;
@@ -55,6 +70,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CommandError> {
 
 /// Measures, writes the results, and returns the path of results.json.
 fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
+    let started = Instant::now();
     let out = &args.out_dir;
     std::fs::create_dir_all(out).map_err(|e| BenchError::OutDir {
         path: out.clone(),
@@ -73,6 +89,22 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         .map_err(BenchError::Device)?;
     let size = (args.width, args.height);
     let steps = sweep::steps(args.sweep, scenes, pipelines, size, &mut notes);
+    let gpu_clocks = ClockSource::for_gpu(&session.gpu);
+    let group_memory_bytes = match (args.group_memory, gpu_clocks.memory_total_bytes) {
+        (Some(mib), _) => mib << 20,
+        (None, Some(total)) => (total as f64 * GROUP_SHARE) as u64,
+        (None, None) => GROUP_DEFAULT_BYTES,
+    };
+    let fake_slow_round = std::env::var(rounds::FAKE_SLOW_ROUND)
+        .ok()
+        .and_then(|v| v.parse().ok());
+    if let Some(round) = fake_slow_round {
+        notes.push(format!(
+            "{}={round}: a test hook made round {round}'s GPU times three times as long; \
+             these figures are not measurements",
+            rounds::FAKE_SLOW_ROUND
+        ));
+    }
     // Sweeps measure cost only: a reference per sweep value would dominate the run.
     let reference = match (args.sweep, args.no_reference) {
         (None, false) => Reference::choose(args, &mut notes),
@@ -91,15 +123,36 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         git_commit,
         timestamp,
         resolution: [args.width, args.height],
+        elapsed_s: 0.0,
         sweep: args.sweep,
         frames: args.frames,
+        rounds: args.rounds,
         warmup: args.warmup,
+        spread_limit: SPREAD_LIMIT,
+        group_memory_bytes,
+        gpu_clocks,
         reference,
         notes,
         scenes: Vec::new(),
         rows: Vec::new(),
+        round_log: Vec::new(),
     };
-    measure(&session, args, &steps, &mut results)?;
+    let clocks = results.gpu_clocks.clone();
+    let setup = |step: &Step| Setup {
+        session: &session,
+        size: step.size,
+        frames: args.frames,
+        rounds: args.rounds,
+        warmup: args.warmup,
+        group_bytes: group_memory_bytes,
+        clocks: &clocks,
+        fake_slow_round,
+        sweep: step.point.as_ref().map(|p| p.label.clone()),
+        assets: args.assets.policy(),
+        lighting: args.assets.lights,
+    };
+    measure(args, &steps, setup, started, &mut results)?;
+    results.elapsed_s = started.elapsed().as_secs_f64();
     let json_path = write_results(&results, out)?;
     eprintln!("{}", table::markdown(&results));
     if results.rows.iter().all(|r| r.figures.is_none()) {
@@ -112,34 +165,32 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
 }
 
 /// Every step's scenes, with a progress bar over all their items, into `results`: the rows,
-/// and each scene's summary outside sweeps. After each scene the results so far are
-/// written, with a note saying how many scenes are missing, so a run stopped part way
-/// (a machine lent for minutes) keeps what it measured.
-fn measure(
-    session: &Session,
+/// the rounds, and each scene's summary outside sweeps. After each scene the results so
+/// far are written, with a note saying how many scenes are missing, so a run stopped part
+/// way (a machine lent for minutes) keeps what it measured.
+fn measure<'a>(
     args: &BenchArgs,
     steps: &[Step],
+    setup: impl Fn(&Step) -> Setup<'a>,
+    started: Instant,
     results: &mut Results,
 ) -> Result<(), BenchError> {
     let reference = results.reference.clone();
-    let extra = |s: &Step| usize::from(reference.is_some()) + usize::from(s.point.is_none());
-    // The reference and the unique-surface count are items of their own.
+    // The reference and the unique-surface count are items of their own; each pipeline
+    // is compiled, then finished after the rounds; a scene's warmup and rounds are
+    // counted for one memory group (rounds.rs adds the others').
+    let extra = |s: &Step| {
+        usize::from(reference.is_some()) + usize::from(s.point.is_none()) + 1 + args.rounds as usize
+    };
     let items = steps
         .iter()
-        .map(|s| s.scenes.len() * (s.pipelines.len() + extra(s)))
+        .map(|s| s.scenes.len() * (2 * s.pipelines.len() + extra(s)))
         .sum();
     let scene_count: usize = steps.iter().map(|s| s.scenes.len()).sum();
     let mut progress = Progress::new(items);
     let mut done = 0;
     for step in steps {
-        let setup = Setup {
-            session,
-            size: step.size,
-            frames: args.frames,
-            warmup: args.warmup,
-            assets: args.assets.policy(),
-            lighting: args.assets.lights,
-        };
+        let setup = setup(step);
         // Images only outside sweeps, where one folder per scene is unambiguous.
         let images = step.point.is_none().then_some(args.out_dir.as_path());
         for scene in &step.scenes {
@@ -150,6 +201,7 @@ fn measure(
                 reference.as_ref(),
                 images,
                 &mut progress,
+                &mut results.round_log,
             )?;
             results.rows.extend(scene_rows.into_iter().map(|mut row| {
                 row.sweep = step.point.clone();
@@ -165,6 +217,7 @@ fn measure(
                     "partial: {done} of {scene_count} scenes measured (the run was stopped \
                      before the rest, or is still running)"
                 ));
+                results.elapsed_s = started.elapsed().as_secs_f64();
                 write_results(results, &args.out_dir)?;
                 results.notes.pop();
             }

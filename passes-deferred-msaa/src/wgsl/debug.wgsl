@@ -54,7 +54,7 @@ fn fs_lights(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let depth = textureLoad(view_depth_tex, pixel, 0u).r;
     let p = surface_position(vec2<f32>(pixel) + 0.5, depth);
     var count = 0u;
-    for (var i = 0u; i < light_info.light_count; i++) {
+    for (var i = 0u; i < light_count(); i++) {
         count += u32(reaches(lights[i], p));
     }
     if count == 0u {

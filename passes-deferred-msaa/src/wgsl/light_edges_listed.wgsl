@@ -97,7 +97,7 @@ fn cs_light_edge_pixels(
 const RUN_CULL_ABOVE: u32 = 8u;
 
 fn runs_cull() -> bool {
-    return CULL && light_info.light_count - light_info.directional_count > RUN_CULL_ABOVE;
+    return CULL && light_count() - directional_count() > RUN_CULL_ABOVE;
 }
 
 // Lights and resolves listed pixel `p` with every light, no workgroup memory and no
@@ -113,7 +113,7 @@ fn light_unculled(p: ListedPixel) {
         var light = vec3<f32>(0.0);
         if e.lit {
             light = ambient_and_directional(e.surface);
-            for (var l = light_info.directional_count; l < light_info.light_count; l++) {
+            for (var l = directional_count(); l < light_count(); l++) {
                 light += reaching_light(e.surface, lights[l]);
             }
         }
@@ -172,8 +172,8 @@ fn light_run(run: u32, count: u32, local: u32) {
     let bounds = tile_bounds();
 
     var sum = vec4<f32>(0.0);
-    let first = light_info.directional_count;
-    let last = max(light_info.light_count, first + 1u);
+    let first = directional_count();
+    let last = max(light_count(), first + 1u);
     for (var batch = first; batch < last; batch += THREADS) {
         for (var k = local; k < THREADS; k += EDGE_INVOCATIONS) {
             cull_batch(batch + k, bounds);

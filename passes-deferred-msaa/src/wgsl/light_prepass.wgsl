@@ -40,7 +40,7 @@ fn shade_sample(pixel: vec2<i32>, s: u32, p: vec3<f32>, light: u32) -> vec4<f32>
     if light == ALL_DIRECTIONAL {
         // Ambient and environment light need the albedo: the material pass adds them.
         if DIRECTIONAL_LIGHTS {
-            for (var i = 0u; i < light_info.directional_count; i++) {
+            for (var i = 0u; i < directional_count(); i++) {
                 sum += light_terms(surface, lights[i]);
             }
         }

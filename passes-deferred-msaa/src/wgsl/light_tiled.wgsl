@@ -355,7 +355,7 @@ fn tile_bounds() -> Bounds {
 // Adds light `index` to this batch's lights (batch_lights) if it is one and may reach
 // the tile, or every light without CULL.
 fn cull_batch(index: u32, bounds: Bounds) {
-    if index < light_info.light_count && (!CULL || (bounds.lit && reaches_tile(lights[index], bounds.nearest, bounds.farthest))) {
+    if index < light_count() && (!CULL || (bounds.lit && reaches_tile(lights[index], bounds.nearest, bounds.farthest))) {
         batch_lights[atomicAdd(&batch_light_count, 1u)] = index;
     }
 }
@@ -500,10 +500,10 @@ fn cs_light_tiled(
 
     // 2 and 3. Point and spot lights (after the directional ones), a batch at a time; one
     // batch at least, which lights the edge entries' ambient and directional light.
-    var tile_lights = light_info.directional_count;
+    var tile_lights = directional_count();
     if VIEW == VIEW_SHADED || VIEW == VIEW_TILE_LIGHTS {
-        let first = light_info.directional_count;
-        let last = max(light_info.light_count, first + 1u);
+        let first = directional_count();
+        let last = max(light_count(), first + 1u);
         for (var batch = first; batch < last; batch += THREADS) {
             cull_batch(batch + local, bounds);
             workgroupBarrier();

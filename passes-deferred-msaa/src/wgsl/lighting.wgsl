@@ -57,7 +57,7 @@ fn ambient_and_directional(s: Surface) -> vec3<f32> {
     // brdf.wgsl's DIRECTIONAL_LIGHTS: without directional lights that emit, the loop
     // would add zeros.
     if DIRECTIONAL_LIGHTS {
-        for (var i = 0u; i < light_info.directional_count; i++) {
+        for (var i = 0u; i < directional_count(); i++) {
             color += shade_light(s, lights[i]);
         }
     }
@@ -67,7 +67,7 @@ fn ambient_and_directional(s: Surface) -> vec3<f32> {
 // Every light of the scene, for passes that shade a surface once with all of them.
 fn every_light(s: Surface) -> vec3<f32> {
     var color = ambient_light(s);
-    for (var i = 0u; i < light_info.light_count; i++) {
+    for (var i = 0u; i < light_count(); i++) {
         color += shade_light(s, lights[i]);
     }
     return color;

@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+use super::flag::{Created, Flag};
 use super::image_error::ImageError;
 use super::memory::Memory;
 use super::particle_work::ParticleWork;
@@ -14,10 +15,17 @@ use super::work::Work;
 pub struct Figures {
     /// The most samples of any texture the pipeline uses.
     pub samples: u32,
-    /// From the first pass's begin timestamp to the last one's end, per measured frame;
-    /// `null` when the device has no timestamp queries.
+    /// From the first pass's begin timestamp to the last one's end: the median of the
+    /// round medians, and their spread (stats.rs); `null` when the device has no
+    /// timestamp queries.
     pub gpu_frame_ms: Option<Spread>,
-    /// CPU time to record all passes (callbacks included), per measured frame.
+    /// Set when `gpu_frame_ms.spread` exceeds 5%, with the reasons the bench knows.
+    pub flag: Option<Flag>,
+    /// Pipelines and shader modules the measured frames created, per round that
+    /// created any (empty when the warmup created them all, as it should).
+    pub created_while_measured: Vec<Created>,
+    /// CPU time to record all passes (callbacks included), over the rounds as the GPU
+    /// time is.
     pub cpu_record_ms: Option<Spread>,
     /// Median GPU frame time over deferred_noaa's on the same scene in this run.
     pub ratio_to_noaa: Option<f64>,

@@ -1,40 +1,90 @@
-//! Measuring one pipeline on one scene: warmup frames, measured frames, the plan's memory,
-//! the final image, and the edge mask rendered in the same setup.
+//! Measuring one pipeline on one scene, in two halves around the interleaved rounds
+//! (rounds.rs): [`Setup::prepare`] compiles the plans to time (the scene's, and the
+//! general ones where they differ); [`Setup::finish`] turns their timings into the row's
+//! figures, with the final image, the plan's memory, and the edge mask and other views
+//! rendered afterwards in graphs of the same size.
 
 use std::sync::Arc;
-use std::time::{Duration, Instant};
 
-use graph_core::gpu::FrameReport;
+use graph_core::gpu::PassTiming;
+use graph_core::Plan;
 use image::RgbaImage;
 use passes_deferred_msaa::scene::{AssetPolicy, Lighting};
 use passes_deferred_msaa::Host;
 
 use super::candidates::{Candidate, COLOR};
+use super::clocks::ClockSource;
 use super::figures::{Figures, PassFigures};
+use super::flag::{judge, Evidence};
 use super::memory::Memory;
 use super::particle_work::{ParticleWork, PARTICLE_EDGES_OUTPUT};
+use super::rounds::Timing;
 use super::specialisation::{PlanShape, Specialisation};
 use super::stats::Spread;
 use super::work::{edge_share, sampling, Work, EDGES_OUTPUT, FRAGMENTS_OUTPUT};
 use crate::frame::{FrameError, Prepared, Session, Specialise};
 
-/// What every measurement of one run shares.
+/// What every measurement of one step of a run shares.
 pub struct Setup<'a> {
     pub session: &'a Session,
     pub size: (u32, u32),
+    /// Measured frames of each pipeline per round.
     pub frames: u32,
+    pub rounds: u32,
+    /// Warmup frames of each pipeline before round 1.
     pub warmup: u32,
+    /// The most pooled memory the plans of one interleaved group may ask for.
+    pub group_bytes: u64,
+    pub clocks: &'a ClockSource,
+    /// The round [`FAKE_SLOW_ROUND`](super::rounds::FAKE_SLOW_ROUND) slows, if set.
+    pub fake_slow_round: Option<u32>,
+    /// The sweep value this step measures, as the round log names it.
+    pub sweep: Option<String>,
     /// What glTF scenes may read (`--asset-root`, `--max-asset-bytes`).
     pub assets: AssetPolicy,
     /// How every scene is lit (`--lights`).
     pub lighting: Lighting,
 }
 
-/// The least time warmup frames run: a GPU clocks down while the bench computes FLIP on
-/// the CPU between pipelines (seconds at 2160p), and on the H200 frames of a few
-/// milliseconds then took up to five times as long until its clocks came back, which two
-/// warmup frames did not wait for.
-const WARM_FOR: Duration = Duration::from_millis(500);
+/// The plans of one pipeline to time: the scene's, compiled for its features, and, where
+/// that differs, the general plan and the scene's plan with the general shaders.
+pub struct Plans<'s> {
+    pub scene: Prepared<'s>,
+    pub general: Option<Prepared<'s>>,
+    pub plan_only: Option<Prepared<'s>>,
+    pub about: About,
+}
+
+/// What [`Setup::finish`] needs to know of a pipeline besides its timings.
+pub struct About {
+    has_edges: bool,
+    has_fragments: bool,
+    has_particle_edges: bool,
+    /// Each pass of the file and the plugin it runs.
+    plugins: Vec<(String, String)>,
+    special: PlanShape,
+    general: Option<PlanShape>,
+    features: Vec<String>,
+}
+
+/// A timed plan once its rounds are over: what was measured and the plan.
+pub struct Closed {
+    pub timing: Timing,
+    pub plan: Plan,
+    /// The last frame's "color", for the scene's plan.
+    pub color: Option<RgbaImage>,
+}
+
+impl Closed {
+    /// `timing` of `prepared`, reading its "color" back when `read_color`.
+    pub fn of(prepared: &Prepared, timing: Timing, read_color: bool) -> Result<Closed, FrameError> {
+        Ok(Closed {
+            color: read_color.then(|| prepared.read(COLOR)).transpose()?,
+            plan: prepared.plan().clone(),
+            timing,
+        })
+    }
+}
 
 /// The figures, the last measured frame's image, and the debug.edges view when there is
 /// one.
@@ -45,11 +95,15 @@ pub struct Measured {
 }
 
 impl Setup<'_> {
-    /// Times `candidate`'s "color" (only the passes it needs run) as compiled for the
-    /// scene, and as compiled for every feature when that plan differs; then renders its
-    /// "debug.edges", when it has one, in another graph of the same size (and its
-    /// "debug.fragments", for a pipeline that shades edge pixels per fragment).
-    pub fn measure(&self, candidate: &Candidate, host: &Arc<Host>) -> Result<Measured, FrameError> {
+    /// `candidate`'s "color" (only the passes it needs run) compiled for the scene; and,
+    /// when that plan differs from the one compiled for every feature, the general plan;
+    /// and when both the plan and the shaders differ, the scene's plan with the general
+    /// shaders. Nothing runs yet.
+    pub fn prepare(
+        &self,
+        candidate: &Candidate,
+        host: &Arc<Host>,
+    ) -> Result<Plans<'_>, FrameError> {
         let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::ToScene)?;
         let offers = |output: &str| pipeline.offered.iter().any(|o| o == output);
         let (has_edges, has_fragments) = (offers(EDGES_OUTPUT), offers(FRAGMENTS_OUTPUT));
@@ -61,16 +115,78 @@ impl Setup<'_> {
             .iter()
             .filter_map(|p| Some((p.name.clone(), pipeline.loaded.plugin(&p.name)?.to_owned())))
             .collect();
-        let mut prepared = self.session.prepare(pipeline, self.size)?;
-        let reports = self.time(&mut prepared)?;
-        let color = prepared.read(COLOR)?;
-        let (samples, supersampling) = sampling(prepared.plan());
-        let memory = Memory::of(prepared.plan(), &reports);
+        let scene = self.session.prepare(pipeline, self.size)?;
+        let special = PlanShape::of(&scene);
+        let features = scene.plan().features.clone();
+        let (general, plan_only, general_shape) = match self.general(candidate, host, &special)? {
+            Some((general, shape)) => {
+                let both_differ =
+                    !special.same_plan(&shape) && special.variants() != shape.variants();
+                let plan_only = match both_differ {
+                    true => {
+                        let pipeline =
+                            candidate.load(host.clone(), &[COLOR], Specialise::PlanOnly)?;
+                        Some(self.session.prepare(pipeline, self.size)?)
+                    }
+                    false => None,
+                };
+                (Some(general), plan_only, Some(shape))
+            }
+            None => (None, None, None),
+        };
+        Ok(Plans {
+            scene,
+            general,
+            plan_only,
+            about: About {
+                has_edges,
+                has_fragments,
+                has_particle_edges,
+                plugins,
+                special,
+                general: general_shape,
+                features,
+            },
+        })
+    }
+
+    /// `candidate` compiled for every feature with the general shaders, unless the
+    /// scene's plan (`special`) is the same.
+    fn general(
+        &self,
+        candidate: &Candidate,
+        host: &Arc<Host>,
+        special: &PlanShape,
+    ) -> Result<Option<(Prepared<'_>, PlanShape)>, FrameError> {
+        let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::General)?;
+        let prepared = match self.session.prepare(pipeline, self.size) {
+            // A file that makes its output only for some scenes (under a condition that
+            // every feature at once fails) has no general plan to set beside the scene's.
+            Err(FrameError::NotForScene { .. }) => return Ok(None),
+            prepared => prepared?,
+        };
         let shape = PlanShape::of(&prepared);
-        let features = prepared.plan().features.clone();
-        let plan = prepared.plan().clone();
-        drop(prepared);
-        let particle_edge_share = match has_particle_edges {
+        Ok((shape != *special).then_some((prepared, shape)))
+    }
+
+    /// The row's figures from the timed plans (`general` and `plan_only` where
+    /// [`prepare`](Self::prepare) made them); then renders its "debug.edges", when it has
+    /// one, in another graph of the same size (and its "debug.fragments", for a pipeline
+    /// that shades edge pixels per fragment, and its particle edges).
+    pub fn finish(
+        &self,
+        candidate: &Candidate,
+        host: &Arc<Host>,
+        about: About,
+        scene: Closed,
+        general: Option<Closed>,
+        plan_only: Option<Closed>,
+    ) -> Result<Measured, FrameError> {
+        let plan = &scene.plan;
+        let (samples, supersampling) = sampling(plan);
+        let reports: Vec<_> = scene.timing.frames().cloned().collect();
+        let memory = Memory::of(plan, &reports);
+        let particle_edge_share = match about.has_particle_edges {
             true => Some(edge_share(&self.render(
                 candidate,
                 host,
@@ -79,17 +195,21 @@ impl Setup<'_> {
             false => None,
         };
         let plugin = |pass: &str| {
-            plugins
+            about
+                .plugins
                 .iter()
                 .find(|(name, _)| name == pass)
                 .map(|(_, plugin)| plugin.clone())
         };
-        let particles = ParticleWork::of(&plan, plugin, &host.scene, particle_edge_share);
-        let specialisation = self.general(candidate, host, shape, features)?;
+        let particles = ParticleWork::of(plan, plugin, &host.scene, particle_edge_share);
+        let specialisation = match (general, &about.general) {
+            (Some(general), Some(shape)) => Some(specialisation(&about, shape, general, plan_only)),
+            _ => None,
+        };
 
         // A file may drop its edge view for some scenes (no lighting to split on an
         // unlit-only scene): the row then says why it has no edge figures.
-        let (edges, dropped) = match has_edges {
+        let (edges, dropped) = match about.has_edges {
             true => match self.render(candidate, host, EDGES_OUTPUT) {
                 Ok(view) => (Some(view), None),
                 Err(FrameError::NotForScene { why, .. }) => (None, Some(why)),
@@ -98,86 +218,23 @@ impl Setup<'_> {
             false => (None, None),
         };
         let work = match (&edges, dropped) {
-            (Some(view), _) if has_fragments => {
+            (Some(view), _) if about.has_fragments => {
                 Work::from_fragments(view, &self.render(candidate, host, FRAGMENTS_OUTPUT)?)
             }
             (Some(view), _) => Work::from_edges(edge_share(view), samples),
             (None, Some(why)) => Work::not_made(&why),
             (None, None) => Work::from_kind(&candidate.stem(), samples, supersampling),
         };
-        let mut figures = figures(&reports, samples, memory, work);
+        let mut figures = figures(&scene.timing, samples, memory, work);
         figures.specialisation = specialisation;
         figures.particles = particles;
+        // Closed::of reads the scene plan's "color" back after its rounds.
+        let color = scene.color.expect("the scene's plan's color was read");
         Ok(Measured {
             figures,
             color,
             edges,
         })
-    }
-
-    /// The warmup frames, for at least [`WARM_FOR`] when there are any, then the
-    /// measured ones' reports.
-    fn time(&self, prepared: &mut Prepared<'_>) -> Result<Vec<FrameReport>, FrameError> {
-        let start = Instant::now();
-        prepared.run(self.warmup as usize)?;
-        while self.warmup > 0 && start.elapsed() < WARM_FOR {
-            prepared.run(1)?;
-        }
-        prepared.run(self.frames as usize)
-    }
-
-    /// `candidate` compiled for every feature with the general shaders and timed like
-    /// the scene's plan, unless the scene's plan (`special`, compiled for `features`)
-    /// is the same; and the scene's plan with the general shaders, when both the plan
-    /// and the shaders differ.
-    fn general(
-        &self,
-        candidate: &Candidate,
-        host: &Arc<Host>,
-        special: PlanShape,
-        features: Vec<String>,
-    ) -> Result<Option<Specialisation>, FrameError> {
-        let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::General)?;
-        let mut prepared = match self.session.prepare(pipeline, self.size) {
-            // A file that makes its output only for some scenes (under a condition that
-            // every feature at once fails) has no general plan to set beside the scene's.
-            Err(FrameError::NotForScene { .. }) => return Ok(None),
-            prepared => prepared?,
-        };
-        let general = PlanShape::of(&prepared);
-        if general == special {
-            return Ok(None);
-        }
-        let reports = self.time(&mut prepared)?;
-        let general_gpu_frame_ms = frame_ms(&reports);
-        let general_memory = Memory::of(prepared.plan(), &reports);
-        drop(prepared);
-        let both_differ = !special.same_plan(&general) && special.variants() != general.variants();
-        let plan_only_gpu_frame_ms = if both_differ {
-            self.plan_only(candidate, host)?
-        } else {
-            None
-        };
-        Ok(Some(Specialisation {
-            features,
-            shader_variants: special.variants().to_vec(),
-            passes: special.passes(),
-            general_passes: general.passes(),
-            general_memory,
-            general_gpu_frame_ms,
-            plan_only_gpu_frame_ms,
-        }))
-    }
-
-    /// The GPU frame time of `candidate` compiled for the scene with the general shaders.
-    fn plan_only(
-        &self,
-        candidate: &Candidate,
-        host: &Arc<Host>,
-    ) -> Result<Option<Spread>, FrameError> {
-        let pipeline = candidate.load(host.clone(), &[COLOR], Specialise::PlanOnly)?;
-        let mut prepared = self.session.prepare(pipeline, self.size)?;
-        Ok(frame_ms(&self.time(&mut prepared)?))
     }
 
     /// `output` of one frame of `candidate`: the reference, edge masks, measurements.
@@ -194,37 +251,80 @@ impl Setup<'_> {
     }
 }
 
-/// The spread of the GPU frame times of `reports`, `None` without timestamps.
-fn frame_ms(reports: &[FrameReport]) -> Option<Spread> {
-    Spread::of_ns(reports.iter().filter_map(|r| r.gpu_total_ns))
+/// The general plan's figures beside the scene's (`about.special`).
+fn specialisation(
+    about: &About,
+    general_shape: &PlanShape,
+    general: Closed,
+    plan_only: Option<Closed>,
+) -> Specialisation {
+    let general_reports: Vec<_> = general.timing.frames().cloned().collect();
+    Specialisation {
+        features: about.features.clone(),
+        shader_variants: about.special.variants().to_vec(),
+        passes: about.special.passes(),
+        general_passes: general_shape.passes(),
+        general_memory: Memory::of(&general.plan, &general_reports),
+        general_gpu_frame_ms: frame_ms(&general.timing),
+        plan_only_gpu_frame_ms: plan_only.and_then(|p| frame_ms(&p.timing)),
+    }
 }
 
-/// Per-frame and per-pass spreads over the measured frames.
-fn figures(reports: &[FrameReport], samples: u32, memory: Memory, work: Work) -> Figures {
-    let passes = reports.first().map_or(Vec::new(), |first| {
+/// The GPU frame time over `timing`'s rounds, `None` without timestamps.
+fn frame_ms(timing: &Timing) -> Option<Spread> {
+    Spread::of_rounds(
+        timing
+            .rounds
+            .iter()
+            .map(|round| round.iter().filter_map(|r| r.gpu_total_ns)),
+    )
+}
+
+/// Per-frame and per-pass times over the rounds, and the flag when the frame time's
+/// rounds disagree.
+fn figures(timing: &Timing, samples: u32, memory: Memory, work: Work) -> Figures {
+    let rounds = &timing.rounds;
+    let first = rounds.iter().flatten().next();
+    let passes = first.map_or(Vec::new(), |first| {
         first
             .passes
             .iter()
             .enumerate()
             .map(|(i, pass)| {
-                let timings = || reports.iter().filter_map(move |r| r.passes.get(i));
+                let per_round = |value: fn(&PassTiming) -> Option<u64>| {
+                    Spread::of_rounds(
+                        rounds
+                            .iter()
+                            .map(|round| round.iter().filter_map(move |r| value(r.passes.get(i)?))),
+                    )
+                };
                 PassFigures {
                     name: pass.name.clone(),
                     kind: pass.kind.to_string(),
-                    gpu_ms: Spread::of_ns(timings().filter_map(|t| t.gpu_ns)),
-                    cpu_ms: Spread::of_ns(timings().map(|t| t.cpu_ns)),
+                    gpu_ms: per_round(|t| t.gpu_ns),
+                    cpu_ms: per_round(|t| Some(t.cpu_ns)),
                 }
             })
             .collect()
     });
+    let gpu_frame_ms = frame_ms(timing);
+    let flag = gpu_frame_ms.as_ref().and_then(|time| {
+        judge(&Evidence {
+            time,
+            created: &timing.created,
+            clocks: &timing.clocks,
+        })
+    });
     Figures {
         samples,
-        gpu_frame_ms: frame_ms(reports),
-        cpu_record_ms: Spread::of_ns(
-            reports
+        gpu_frame_ms,
+        flag,
+        created_while_measured: timing.created.clone(),
+        cpu_record_ms: Spread::of_rounds(rounds.iter().map(|round| {
+            round
                 .iter()
-                .map(|r| r.passes.iter().map(|p| p.cpu_ns).sum()),
-        ),
+                .map(|r| r.passes.iter().map(|p| p.cpu_ns).sum::<u64>())
+        })),
         ratio_to_noaa: None,
         passes,
         memory,

@@ -46,6 +46,14 @@ impl Progress {
         }
     }
 
+    /// `more` items found to do after the start (a scene measured in several groups).
+    pub fn add(&mut self, more: usize) {
+        self.total += more;
+        if let Some(bar) = &self.bar {
+            bar.set_length(self.total as u64);
+        }
+    }
+
     /// A line that stays, printed above the bar.
     pub fn note(&self, line: impl AsRef<str>) {
         match &self.bar {

@@ -3,16 +3,19 @@
 
 use serde::Serialize;
 
+use super::clocks::ClockSource;
 use super::edge_pixels::EdgePixels;
 use super::figures::Figures;
 use super::machine::{Adapter, Machine};
 use super::reference::Reference;
+use super::rounds::RoundLog;
 use super::surfaces::UniqueSurfaces;
 use super::sweep::SweepPoint;
 use crate::cli::Sweep;
 
-/// Bumped when a field changes meaning or moves.
-pub const SCHEMA: u32 = 2;
+/// Bumped when a field changes meaning or moves: 3 when times became medians of
+/// interleaved rounds' medians and `frames` the frames of a round.
+pub const SCHEMA: u32 = 3;
 
 #[derive(Debug, Serialize)]
 pub struct Results {
@@ -24,12 +27,24 @@ pub struct Results {
     pub git_commit: String,
     /// When the run started: UTC, RFC 3339.
     pub timestamp: String,
+    /// Wall-clock seconds the run took (so far, in a partial file).
+    pub elapsed_s: f64,
     /// The size asked for (a resolution sweep replaces it: see each row's `sweep`).
     pub resolution: [u32; 2],
     /// What `--sweep` varied, if anything.
     pub sweep: Option<Sweep>,
+    /// Measured frames of each pipeline per round.
     pub frames: u32,
+    /// Interleaved rounds per scene (and memory group).
+    pub rounds: u32,
+    /// Warmup frames of each pipeline before round 1.
     pub warmup: u32,
+    /// Rows whose `gpu_frame_ms.spread` exceeds this are flagged.
+    pub spread_limit: f64,
+    /// The most pooled memory the plans timed together in one round may ask for.
+    pub group_memory_bytes: u64,
+    /// Whether the GPU's clocks are sampled, how, or why not.
+    pub gpu_clocks: ClockSource,
     /// What errors are measured against; `null` when nothing could be.
     pub reference: Option<Reference>,
     /// Things the reader should know: skipped files, substitutes, unmeasured figures.
@@ -38,6 +53,9 @@ pub struct Results {
     pub scenes: Vec<SceneSummary>,
     /// One per scene and pipeline (and sweep value), error rows included.
     pub rows: Vec<Row>,
+    /// Every round in the order it ran: its scene, the plans in the order they ran, and
+    /// the GPU's clocks meanwhile.
+    pub round_log: Vec<RoundLog>,
 }
 
 #[derive(Debug, Serialize)]

@@ -12,17 +12,18 @@ use super::error::{BenchError, RowError};
 use super::figures::Figures;
 use super::image_error::compare;
 use super::images::SceneImages;
-use super::measure::{Measured, Setup};
+use super::measure::{About, Closed, Measured, Setup};
 use super::progress::Progress;
 use super::reference::{Reference, SceneReference};
 use super::results::{Row, SceneSummary};
+use super::rounds::{interleave, RoundLog, Timed};
 use super::surfaces;
-use crate::frame::host;
+use crate::frame::{host, FrameError, Prepared};
 
-/// Every pipeline on the scene `spec`. When `out` is given (outside sweeps), also the
-/// images under it and the unique-surface bound. A scene that fails to load is one error
-/// row; a pipeline that fails is an error row and the others go on. Only writing images
-/// fails the whole bench.
+/// Every pipeline on the scene `spec`, its rounds appended to `log`. When `out` is given
+/// (outside sweeps), also the images under it and the unique-surface bound. A scene that
+/// fails to load is one error row; a pipeline that fails is an error row and the others
+/// go on. Only writing images fails the whole bench.
 pub fn bench_scene(
     setup: &Setup,
     spec: &str,
@@ -30,6 +31,7 @@ pub fn bench_scene(
     reference: Option<&Reference>,
     out: Option<&Path>,
     progress: &mut Progress,
+    log: &mut Vec<RoundLog>,
 ) -> Result<(Vec<Row>, SceneSummary), BenchError> {
     let mut summary = SceneSummary {
         scene: spec.to_string(),
@@ -68,11 +70,24 @@ pub fn bench_scene(
     if out.is_some() {
         run.unique_surfaces(&mut summary, progress);
     }
-    let rows = pipelines
-        .iter()
-        .map(|candidate| run.row(candidate, reference.as_ref(), &summary, progress))
-        .collect::<Result<_, _>>()?;
+    let rows = run.rows(pipelines, reference.as_ref(), &summary, progress, log)?;
     Ok((rows, summary))
+}
+
+/// Which of a pipeline's plans a timed plan is.
+#[derive(Copy, Clone, PartialEq, Eq)]
+enum Kind {
+    Scene,
+    General,
+    PlanOnly,
+}
+
+/// A pipeline's timed plans after the rounds, each closed or the error that stopped it.
+#[derive(Default)]
+struct Outcomes {
+    scene: Option<Result<Closed, FrameError>>,
+    general: Option<Result<Closed, FrameError>>,
+    plan_only: Option<Result<Closed, FrameError>>,
 }
 
 /// One loaded scene being measured.
@@ -123,18 +138,83 @@ impl SceneRun<'_> {
         }
     }
 
-    /// One pipeline's row: measured, compared and its images written, or an error row.
+    /// Every pipeline's row: its plans compiled, timed together in interleaved rounds,
+    /// then each measured, compared and its images written; or an error row.
+    fn rows(
+        &self,
+        pipelines: &[Candidate],
+        reference: Option<&SceneReference>,
+        summary: &SceneSummary,
+        progress: &mut Progress,
+        log: &mut Vec<RoundLog>,
+    ) -> Result<Vec<Row>, BenchError> {
+        let spec = self.spec;
+        let mut plans = Vec::new();
+        let mut outcomes: Vec<Result<About, FrameError>> = Vec::new();
+        for (owner, candidate) in pipelines.iter().enumerate() {
+            progress.item(format!("{spec} {}: compile", candidate.name));
+            match self.setup.prepare(candidate, &self.host) {
+                Ok(prepared) => {
+                    let name = &candidate.name;
+                    plans.push(timed(name.clone(), prepared.scene, (owner, Kind::Scene)));
+                    if let Some(general) = prepared.general {
+                        let name = format!("{name} (general)");
+                        plans.push(timed(name, general, (owner, Kind::General)));
+                    }
+                    if let Some(plan_only) = prepared.plan_only {
+                        let name = format!("{name} (plan only)");
+                        plans.push(timed(name, plan_only, (owner, Kind::PlanOnly)));
+                    }
+                    outcomes.push(Ok(prepared.about));
+                }
+                Err(error) => outcomes.push(Err(error)),
+            }
+        }
+        let mut timed: Vec<Outcomes> = pipelines.iter().map(|_| Outcomes::default()).collect();
+        let closed = interleave(self.setup, spec, plans, progress, log, |plan, timing| {
+            let (owner, kind) = plan.tag;
+            let closed = timing.and_then(|t| Closed::of(&plan.prepared, t, kind == Kind::Scene));
+            (owner, kind, closed)
+        });
+        for (owner, kind, closed) in closed {
+            let slot = &mut timed[owner];
+            match kind {
+                Kind::Scene => slot.scene = Some(closed),
+                Kind::General => slot.general = Some(closed),
+                Kind::PlanOnly => slot.plan_only = Some(closed),
+            }
+        }
+        pipelines
+            .iter()
+            .zip(outcomes)
+            .zip(timed)
+            .map(|((candidate, about), timed)| {
+                progress.item(format!("{spec} {}", candidate.name));
+                let measured = about.and_then(|about| {
+                    // Every prepared pipeline's scene plan was timed.
+                    let scene = timed.scene.expect("the scene's plan was timed")?;
+                    let general = timed.general.transpose()?;
+                    let plan_only = timed.plan_only.transpose()?;
+                    self.setup
+                        .finish(candidate, &self.host, about, scene, general, plan_only)
+                });
+                self.row(candidate, measured, reference, summary, progress)
+            })
+            .collect()
+    }
+
+    /// One pipeline's row: compared and its images written, or an error row.
     fn row(
         &self,
         candidate: &Candidate,
+        measured: Result<Measured, FrameError>,
         reference: Option<&SceneReference>,
         summary: &SceneSummary,
         progress: &mut Progress,
     ) -> Result<Row, BenchError> {
         let (spec, name) = (self.spec, candidate.name.as_str());
-        progress.item(format!("{spec} {name}"));
         let file = candidate.path.display().to_string();
-        match self.setup.measure(candidate, &self.host) {
+        match measured {
             Ok(measured) => {
                 let mut figures = self.record(measured, name, reference)?;
                 // The bound holds for pipelines at the sample count it was counted at.
@@ -184,5 +264,13 @@ impl SceneRun<'_> {
             }
         }
         Ok(figures)
+    }
+}
+
+fn timed<'s>(name: String, prepared: Prepared<'s>, tag: (usize, Kind)) -> Timed<'s, (usize, Kind)> {
+    Timed {
+        name,
+        prepared,
+        tag,
     }
 }

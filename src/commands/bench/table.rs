@@ -5,9 +5,12 @@ use std::fmt::Write;
 
 use graph_core::explain::bytes;
 
+use super::clocks::ClockSample;
 use super::figures::Figures;
+use super::flag::Flag;
 use super::particle_table;
 use super::results::{Results, Row};
+use super::rounds::RoundLog;
 use super::specialisation::Specialisation;
 
 pub fn markdown(results: &Results) -> String {
@@ -17,8 +20,10 @@ pub fn markdown(results: &Results) -> String {
     let _ = writeln!(md, "`{}`\n", r.command);
     let _ = writeln!(
         md,
-        "- machine: {} ({}, {} cores)\n- adapter: {} [{} {}], {} {}\n- resolution: {}x{}, \
-         {} measured frames after {} warmup{}\n- commit: {}\n- time: {}",
+        "- machine: {} ({}, {} cores)\n- adapter: {} [{} {}], {} {}\n- resolution: {}x{}; \
+         each scene's pipelines timed together in {} interleaved rounds of {} frames each \
+         after {} warmup frames{}; times are medians of the round medians\n- GPU clocks: \
+         {}\n- commit: {}\n- time: {}, {:.0} s",
         r.machine.hostname,
         r.machine.cpu,
         r.machine.cpu_cores,
@@ -29,14 +34,17 @@ pub fn markdown(results: &Results) -> String {
         r.adapter.device_type,
         r.resolution[0],
         r.resolution[1],
+        r.rounds,
         r.frames,
         r.warmup,
         match r.warmup {
             0 => "",
             _ => " (for 0.5 s at least)",
         },
+        r.gpu_clocks.detail,
         r.git_commit,
         r.timestamp,
+        r.elapsed_s,
     );
     if let Some(reference) = &r.reference {
         let spp = reference.spp.map_or("rendered as written".into(), |spp| {
@@ -76,7 +84,9 @@ pub fn markdown(results: &Results) -> String {
                 let _ = writeln!(md, "Reference failed: {error}\n");
             }
         }
+        md.push_str(&rounds_line(&r.round_log, scene));
         md.push_str(&scene_table(&rows));
+        md.push_str(&flagged(&rows, r.spread_limit));
         if rows.iter().any(|row| row.figures.is_some()) {
             md.push_str(&pass_table(&rows));
         }
@@ -92,10 +102,12 @@ pub fn markdown(results: &Results) -> String {
     md
 }
 
-const HEADER: &str = "| pipeline | GPU ms | p10–p90 | × noaa | CPU rec. ms | memory | pooled | \
-                      G-buf B/sample | edge px | shaded/px | FLIP | edge FLIP | PSNR dB | \
-                      edge PSNR dB |\n\
-                      |---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+const HEADER: &str = "| pipeline | GPU ms | p10–p90 | spread | × noaa | CPU rec. ms | memory | \
+                      pooled | G-buf B/sample | edge px | shaded/px | FLIP | edge FLIP | \
+                      PSNR dB | edge PSNR dB |\n\
+                      |---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+/// After a flagged row's GPU time.
+const FLAG: &str = "⚑";
 
 fn scene_table(rows: &[&Row]) -> String {
     let mut md = String::from(HEADER);
@@ -111,9 +123,11 @@ fn scene_table(rows: &[&Row]) -> String {
 
 fn figure_cells(f: &Figures) -> Vec<String> {
     let gpu = f.gpu_frame_ms.as_ref();
+    let flag = if f.flag.is_some() { FLAG } else { "" };
     let mut cells = vec![
-        gpu.map_or("-".into(), |s| ms(s.median)),
+        gpu.map_or("-".into(), |s| format!("{}{flag}", ms(s.median))),
         gpu.map_or("-".into(), |s| format!("{}–{}", ms(s.p10), ms(s.p90))),
+        gpu.map_or("-".into(), |s| percent(s.spread)),
         f.ratio_to_noaa.map_or("-".into(), |r| format!("{r:.2}")),
         f.cpu_record_ms
             .as_ref()
@@ -144,6 +158,88 @@ fn figure_cells(f: &Figures) -> Vec<String> {
             .map_or("-".into(), psnr),
     ]);
     cells
+}
+
+/// How `scene`'s rounds ran: how many, in how many memory groups, and the GPU's clocks
+/// over them where reported.
+fn rounds_line(log: &[RoundLog], scene: &str) -> String {
+    let rounds: Vec<&RoundLog> = log.iter().filter(|l| l.scene == scene).collect();
+    if rounds.is_empty() {
+        return String::new();
+    }
+    let groups = rounds.iter().map(|l| l.group).max().unwrap_or(1);
+    let plans = rounds.iter().map(|l| l.order.len()).max().unwrap_or(0);
+    let mut line = format!(
+        "Timed in {} rounds (round_log in results.json), up to {plans} plans a round",
+        rounds.len()
+    );
+    if groups > 1 {
+        let _ = write!(line, ", in {groups} groups that fit --group-memory");
+    }
+    let samples: Vec<&ClockSample> = rounds.iter().filter_map(|l| l.clocks.as_ref()).collect();
+    let range = |values: Vec<u32>| {
+        let (low, high) = (values.iter().min()?, values.iter().max()?);
+        Some(match low == high {
+            true => format!("{low}"),
+            false => format!("{low}–{high}"),
+        })
+    };
+    let sm = range(samples.iter().filter_map(|c| c.sm_mhz).collect());
+    let mem = range(samples.iter().filter_map(|c| c.mem_mhz).collect());
+    let temperature = range(samples.iter().filter_map(|c| c.temperature_c).collect());
+    match (sm, mem, temperature) {
+        (Some(sm), Some(mem), Some(temperature)) => {
+            let mut reasons: Vec<&str> = samples
+                .iter()
+                .flat_map(|c| c.throttle.iter().copied())
+                .filter(|t| *t != "gpu_idle")
+                .collect();
+            reasons.sort_unstable();
+            reasons.dedup();
+            let throttle = match reasons.is_empty() {
+                true => "none but idle".to_string(),
+                false => reasons.join(", "),
+            };
+            let _ = write!(
+                line,
+                ". GPU clocks in {} of them: SM {sm} MHz, memory {mem} MHz, {temperature} °C, \
+                 throttle reasons: {throttle}",
+                samples.len()
+            );
+        }
+        _ => line.push_str(". GPU clocks: not reported"),
+    }
+    line.push_str(".\n\n");
+    line
+}
+
+/// The flagged rows under a scene's table, each with its spread and reasons.
+fn flagged(rows: &[&Row], limit: f64) -> String {
+    let flagged: Vec<(&Row, &Flag)> = rows
+        .iter()
+        .filter_map(|row| Some((*row, row.figures.as_ref()?.flag.as_ref()?)))
+        .collect();
+    if flagged.is_empty() {
+        return String::new();
+    }
+    let mut md = format!(
+        "\n{FLAG} Flagged: the round medians spread by more than {} of the time (p10–p90 \
+         over the median); read these times as unmeasured until re-run:\n\n",
+        percent(limit)
+    );
+    for (row, flag) in flagged {
+        let reasons: Vec<&str> = flag.reasons.iter().map(|r| r.detail.as_str()).collect();
+        let why = match reasons.is_empty() {
+            true => "reason unknown".to_string(),
+            false => reasons.join("; "),
+        };
+        let _ = writeln!(md, "- {}: {}, {why}", name(row), percent(flag.spread));
+    }
+    md
+}
+
+fn percent(share: f64) -> String {
+    format!("{:.1}%", share * 100.0)
 }
 
 /// Identical images have no finite PSNR.
@@ -274,9 +370,18 @@ fn ms(value: f64) -> String {
 }
 
 const LEGEND: &str = "\n\
-GPU ms: median GPU frame time from timestamps (first pass's begin to last pass's end), with \
-the 10th–90th percentile over the measured frames. × noaa: median over deferred_noaa's on \
-the same scene (and sweep value) in this run. CPU rec.: CPU time to record all passes. memory / pooled: \
+GPU ms: GPU frame time from timestamps (first pass's begin to last pass's end). A scene's \
+pipelines take turns in interleaved rounds (A B C, A B C, ...), each running its frames of \
+the round; a row's time is the median of its round medians (each round's median over its \
+frames). p10–p90: the 10th and 90th percentiles of the round medians by nearest rank (with 9 \
+rounds or fewer, the fastest and the slowest round); spread: (p90 − p10) / median. A row \
+whose spread exceeds 5% is flagged (⚑) and listed under its table with the reasons the bench \
+knows: a first-use compile (pipelines created inside measured frames), GPU clocks that \
+changed between its rounds, a thermal slowdown or power cap reported in a round, or one \
+outlier round without which the others agree. GPU clocks are sampled once per round where \
+the platform reports them (nvidia-smi on NVIDIA; not on lavapipe). × noaa: the time over \
+deferred_noaa's on the same scene (and sweep value) in this run. CPU rec.: CPU time to record \
+all passes, the median of round medians too. memory / pooled: \
 bytes of the graph's textures and buffers on their own and after sharing, each with the \
 buffers passes keep for themselves (a compute rasteriser's bins, a list of edge pixels; \
 results.json's pass_bytes). G-buf B/sample: what one \

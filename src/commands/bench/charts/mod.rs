@@ -140,14 +140,13 @@ pub fn legend(area: &Area, title: &str, labels: &[String], footer: Option<&str>)
         area.draw(&Text::new(label.clone(), (34, y), font(15.0)))
             .map_err(text)?;
     }
-    match footer {
-        Some(footer) => {
-            let y = 60 + 24 * labels.len() as i32;
-            area.draw(&Text::new(footer.to_string(), (10, y), font(15.0)))
-                .map_err(text)
-        }
-        None => Ok(()),
+    // The footer's lines under the labels.
+    for (i, line) in footer.into_iter().flat_map(str::lines).enumerate() {
+        let y = 60 + 24 * (labels.len() + i) as i32;
+        area.draw(&Text::new(line.to_string(), (10, y), font(15.0)))
+            .map_err(text)?;
     }
+    Ok(())
 }
 
 /// `n` panels in a grid of at most two columns.

@@ -1,5 +1,6 @@
 //! pareto.png: GPU frame time against mean FLIP, one panel per scene, one numbered point
-//! per pipeline (the legend on the right names the numbers), and the Pareto front: the
+//! per pipeline (the legend on the right names the numbers) with a bar over its round
+//! medians' p10 to p90, hollow when the row is flagged, and the Pareto front: the
 //! pipelines no other pipeline beats on both time and error.
 
 use plotters::prelude::*;
@@ -22,6 +23,9 @@ pub fn size(results: &Results) -> (u32, u32) {
 /// One point: (pipeline index, GPU ms, mean FLIP).
 type Point = (usize, f64, f64);
 
+/// A point's spread: p10 and p90 of its round medians, and whether the row is flagged.
+type Bar = (f64, f64, bool);
+
 pub fn pareto(results: &Results, area: &Area) -> DrawResult {
     let names = pipelines(results);
     let (title, body) = area.split_vertically(TITLE_HEIGHT);
@@ -30,19 +34,22 @@ pub fn pareto(results: &Results, area: &Area) -> DrawResult {
     let scenes = scenes(results);
     let (rows, columns) = grid(scenes.len());
     for (scene, panel) in scenes.iter().zip(panels.split_evenly((rows, columns))) {
-        let points: Vec<Point> = results
+        let (points, bars): (Vec<Point>, Vec<Bar>) = results
             .rows
             .iter()
             .filter(|r| r.scene == *scene)
             .filter_map(|r| {
                 let f = r.figures.as_ref()?;
-                let ms = f.gpu_frame_ms.as_ref()?.median;
+                let time = f.gpu_frame_ms.as_ref()?;
                 let flip = f.image_error.as_ref()?.flip_mean;
                 let index = names.iter().position(|n| *n == r.pipeline)?;
-                Some((index, ms, flip))
+                Some((
+                    (index, time.median, flip),
+                    (time.p10, time.p90, f.flag.is_some()),
+                ))
             })
-            .collect();
-        scene_panel(&panel, scene, &points)?;
+            .unzip();
+        scene_panel(&panel, scene, &points, &bars)?;
     }
     let labels: Vec<String> = names
         .iter()
@@ -53,7 +60,7 @@ pub fn pareto(results: &Results, area: &Area) -> DrawResult {
         &legend_area,
         "pipelines",
         &labels,
-        Some("grey: Pareto front"),
+        Some("grey: Pareto front\nbars: p10–p90 of the round medians\nhollow: flagged (spread over 5%)"),
     )
 }
 
@@ -64,14 +71,14 @@ fn heading(results: &Results) -> String {
     )
 }
 
-fn scene_panel(area: &Area, scene: &str, points: &[Point]) -> DrawResult {
+fn scene_panel(area: &Area, scene: &str, points: &[Point], bars: &[Bar]) -> DrawResult {
     if points.is_empty() {
         area.titled(&format!("{scene}: no time and error measured"), font(18.0))
             .map_err(text)?;
         return Ok(());
     }
-    let (lo, hi) = points.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
-        (lo.min(p.1), hi.max(p.1))
+    let (lo, hi) = bars.iter().fold((f64::MAX, f64::MIN), |(lo, hi), b| {
+        (lo.min(b.0), hi.max(b.1))
     });
     let top = points.iter().map(|p| p.2).fold(0.0, f64::max).max(1e-3) * 1.15;
     // Enough decimals that labels a tenth of the axis apart differ (at least 3).
@@ -101,13 +108,32 @@ fn scene_panel(area: &Area, scene: &str, points: &[Point]) -> DrawResult {
         ))
         .map_err(text)?;
     chart
-        .draw_series(points.iter().map(|&(i, ms, flip)| {
-            let label = font(15.0).color(color(i));
-            EmptyElement::at((ms, flip))
-                + Circle::new((0, 0), 6, color(i).filled())
+        .draw_series(
+            points
+                .iter()
+                .zip(bars)
+                .map(|(&(i, _, flip), &(p10, p90, _))| {
+                    PathElement::new([(p10, flip), (p90, flip)], color(i).stroke_width(2))
+                }),
+        )
+        .map_err(text)?;
+    chart
+        .draw_series(
+            points
+                .iter()
+                .zip(bars)
+                .map(|(&(i, ms, flip), &(.., flagged))| {
+                    let label = font(15.0).color(color(i));
+                    let dot = match flagged {
+                        true => ShapeStyle::from(color(i)).stroke_width(2),
+                        false => color(i).filled(),
+                    };
+                    EmptyElement::at((ms, flip))
+                + Circle::new((0, 0), 6, dot)
                 // Alternating above and below keeps neighbours' numbers apart.
                 + Text::new(format!("{}", i + 1), (8, if i % 2 == 0 { -18 } else { 4 }), label)
-        }))
+                }),
+        )
         .map_err(text)?;
     Ok(())
 }
