@@ -5,7 +5,7 @@ use crate::common;
 
 use glam::{DMat4, DQuat, DVec3, Vec3};
 use passes_deferred_msaa::scene::{
-    AlphaMode, Camera, LightKind, Projection, Scene, FRAMING_MARGIN, FRAMING_YFOV,
+    AlphaMode, BoundingSphere, Camera, LightKind, Projection, Scene, FRAMING_FILL, FRAMING_YFOV,
 };
 
 fn load(name: &str) -> Scene {
@@ -74,13 +74,19 @@ fn material_factors_mask_emissive_strength_and_double_sided() {
 fn scene_without_camera_gets_the_framing_camera() {
     let scene = load("hierarchy_embedded.gltf");
     let camera = &scene.camera;
-    assert_eq!(*camera, Camera::framing(&scene.bounds));
-    // Bounds (8,10,0)..(10,12,0): sphere center (9,11,0), radius √2.
+    // Bounds (8,10,0)..(10,12,0): sphere center (9,11,0); the farthest vertex a corner, √2
+    // away.
     let center = DVec3::new(9.0, 11.0, 0.0);
     let radius = 2f64.sqrt();
-    let distance = FRAMING_MARGIN * radius / (f64::from(FRAMING_YFOV) / 2.0).sin();
-    // From the glTF front (+Z), looking down -Z onto the model.
-    let expected_eye = center + DVec3::Z * distance;
+    let sphere = BoundingSphere::around(center, scene.meshes[0].world_positions());
+    assert_eq!(sphere, BoundingSphere { center, radius });
+    assert_eq!(*camera, Camera::framing(&sphere));
+    // The outline's radius on the image plane, FRAMING_FILL of the half height.
+    let s = FRAMING_FILL * (f64::from(FRAMING_YFOV) / 2.0).tan();
+    let distance = radius * (1.0 + 1.0 / (s * s)).sqrt();
+    // From the glTF front (+Z), 15° above, looking at the center.
+    let expected_eye =
+        center + DVec3::new(0.0, 15f64.to_radians().sin(), 15f64.to_radians().cos()) * distance;
     assert!(
         camera.position.abs_diff_eq(expected_eye, 1e-12),
         "{}",

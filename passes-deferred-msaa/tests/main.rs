@@ -5,6 +5,7 @@ mod common;
 
 mod builtin_scenes;
 mod extremes_normals;
+mod framing;
 mod gltf_audit;
 mod gltf_errors;
 mod gltf_features;

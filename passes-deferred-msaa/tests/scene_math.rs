@@ -250,11 +250,13 @@ fn aabb_union_and_sphere() {
         (u.min, u.max),
         (DVec3::new(-1.0, 0.0, 3.0), DVec3::splat(6.0))
     );
-    let sphere = Aabb {
-        min: DVec3::ZERO,
-        max: DVec3::new(2.0, 4.0, 4.0),
-    }
-    .bounding_sphere();
+    // Centred at (1, 2, 2), the farthest of the points is (0, 0, 0), 3 away.
+    let points = [
+        DVec3::ZERO,
+        DVec3::new(2.0, 4.0, 2.0),
+        DVec3::new(1.0, 2.0, 4.0),
+    ];
+    let sphere = BoundingSphere::around(DVec3::new(1.0, 2.0, 2.0), points);
     assert_eq!(
         sphere,
         BoundingSphere {
@@ -262,6 +264,7 @@ fn aabb_union_and_sphere() {
             radius: 3.0
         }
     );
+    assert_eq!(BoundingSphere::around(DVec3::ONE, []).radius, 0.0);
     assert_eq!(Aabb::from_points([]), None);
 }
 

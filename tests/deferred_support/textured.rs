@@ -40,7 +40,7 @@ fn unorm(v: f64) -> u8 {
 /// up: glossier metal turns the few-hundredths-of-a-level differences between two
 /// pipelines' filtering into specular sparkles), bumps (a normal map of a sine height
 /// field) and occlusion in the bumps' valleys.
-fn images() -> Vec<TextureImage> {
+pub fn images() -> Vec<TextureImage> {
     let tau = std::f64::consts::TAU;
     vec![
         image("base colour", true, |u, v| {
@@ -79,7 +79,7 @@ fn images() -> Vec<TextureImage> {
 }
 
 /// One of the floor's or panels' materials: every slot textured with `sampler`.
-fn material(parts: &mut Parts, name: &str, sampler: Sampler) -> usize {
+pub fn material(parts: &mut Parts, name: &str, sampler: Sampler) -> usize {
     let index = parts.material(name, [1.0, 1.0, 1.0], 1.0);
     let texture = |image| {
         Some(TextureRef {
@@ -123,6 +123,19 @@ fn quad(parts: &mut Parts, name: &str, corners: [DVec3; 4], uvs: [[f32; 2]; 4], 
         vertex.uv = uv;
         vertex.uv1 = [uv[1] * 0.5, uv[0] * 0.5];
         vertex.tangent = Vertex::tangent_from([along.x, along.y, along.z, 1.0]);
+    }
+}
+
+/// The low sun that lights the scene, from the front left and above.
+pub fn sun() -> Light {
+    Light {
+        name: "sun".into(),
+        kind: LightKind::Directional,
+        color: [1.0, 0.95, 0.9],
+        intensity: 2.5,
+        position: DVec3::ZERO,
+        direction: Vec3::new(-0.4, -0.6, -0.7).normalize(),
+        range: None,
     }
 }
 
@@ -191,15 +204,7 @@ pub fn textured_scene() -> Scene {
         [[0.0, 2.0], [2.0, 2.0], [2.0, 0.0], [0.0, 0.0]],
         mirrored,
     );
-    parts.lights.push(Light {
-        name: "sun".into(),
-        kind: LightKind::Directional,
-        color: [1.0, 0.95, 0.9],
-        intensity: 2.5,
-        position: DVec3::ZERO,
-        direction: Vec3::new(-0.4, -0.6, -0.7).normalize(),
-        range: None,
-    });
+    parts.lights.push(sun());
     parts.lights.push(Light::point(
         "lamp",
         d(0.0, 1.2, 1.5),

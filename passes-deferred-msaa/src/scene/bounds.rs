@@ -56,13 +56,18 @@ impl Aabb {
     pub fn size(&self) -> DVec3 {
         self.max - self.min
     }
+}
 
-    /// The sphere through the box's corners (center = box center, radius = half diagonal): not
-    /// the tightest sphere around the geometry, but stable and cheap.
-    pub fn bounding_sphere(&self) -> BoundingSphere {
-        BoundingSphere {
-            center: self.center(),
-            radius: self.size().length() * 0.5,
-        }
+impl BoundingSphere {
+    /// The smallest sphere centred at `center` that holds every point: the box center and
+    /// the farthest vertex frame a model as a viewer does, where the sphere through the
+    /// box's corners is up to √3 times as large as the model (radius 0 without points).
+    pub fn around(center: DVec3, points: impl IntoIterator<Item = DVec3>) -> BoundingSphere {
+        let radius = points
+            .into_iter()
+            .map(|p| p.distance_squared(center))
+            .fold(0.0, f64::max)
+            .sqrt();
+        BoundingSphere { center, radius }
     }
 }

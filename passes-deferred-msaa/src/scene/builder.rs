@@ -3,8 +3,8 @@
 use glam::DVec3;
 
 use super::{
-    Aabb, Camera, Light, Material, Mesh, ParticleEmitter, Scene, SceneError, TextureImage,
-    MAX_COORDINATE,
+    Aabb, BoundingSphere, Camera, Light, Material, Mesh, ParticleEmitter, Scene, SceneError,
+    TextureImage, MAX_COORDINATE,
 };
 
 /// A scene under construction: loaders push parts, [`SceneBuilder::finish`] derives the rest.
@@ -46,7 +46,7 @@ impl SceneBuilder {
     }
 
     /// Drops meshes without triangles, computes the bounds and, when no camera was set, frames
-    /// them with [`Camera::framing`]. Fails with [`SceneError::EmptyScene`] when no triangle is
+    /// the vertices' sphere around their center with [`Camera::framing`]. Fails with [`SceneError::EmptyScene`] when no triangle is
     /// left, unless [`SceneBuilder::allow_empty`] is set (the loader has warned): then the
     /// bounds are the origin and the frame shows only the background. Fails with
     /// [`SceneError::TooFar`] when the bounds, a light or the camera lie beyond
@@ -73,7 +73,10 @@ impl SceneBuilder {
             self.check_extent(&what, camera.position.abs().max_element())?;
         }
         let scene = Scene {
-            camera: self.camera.unwrap_or_else(|| Camera::framing(&bounds)),
+            camera: self.camera.unwrap_or_else(|| {
+                let points = self.meshes.iter().flat_map(Mesh::world_positions);
+                Camera::framing(&BoundingSphere::around(bounds.center(), points))
+            }),
             name: self.name,
             meshes: self.meshes,
             materials: self.materials,

@@ -2,19 +2,21 @@
 
 use glam::{DMat4, DQuat, DVec3, Mat4};
 
-use super::bounds::Aabb;
+use super::bounds::BoundingSphere;
 
 /// Vertical field of view of the camera made by [`Camera::framing`] (45°).
 pub const FRAMING_YFOV: f32 = std::f32::consts::FRAC_PI_4;
 
 /// Direction from the scene center towards the camera made by [`Camera::framing`] (unit
-/// length): +Z, the glTF front ("the front of an asset faces +Z"), as the Khronos glTF sample
-/// viewer frames a model, so models are seen as their artists posed them.
-pub const FRAMING_DIRECTION: DVec3 = DVec3::Z;
+/// length): the glTF front ("the front of an asset faces +Z"), raised 15° towards +Y, as
+/// the Khronos glTF sample viewer frames a model from its front and a model viewer looks
+/// at it from slightly above: `(0, sin 15°, cos 15°)`.
+pub const FRAMING_DIRECTION: DVec3 =
+    DVec3::new(0.0, 0.258_819_045_102_520_74, 0.965_925_826_289_068_3);
 
-/// How much larger than the bounds' sphere the view of [`Camera::framing`] is, so the
-/// silhouette keeps a margin from the frame's edges.
-pub const FRAMING_MARGIN: f64 = 1.1;
+/// How much of the image's height the outline of the scene's bounding sphere spans in
+/// the view of [`Camera::framing`]: most of the frame, with a margin.
+pub const FRAMING_FILL: f64 = 0.85;
 
 /// A glTF projection. Angles in radians, distances in world units along the view axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -107,19 +109,23 @@ impl Camera {
     }
 
     /// The camera a scene without one gets: perspective with [`FRAMING_YFOV`], looking at the
-    /// center `c` of the bounds' sphere (radius `r`) from direction [`FRAMING_DIRECTION`], at
-    /// distance `d = FRAMING_MARGIN * r / sin(yfov / 2)` so the sphere, enlarged by
-    /// [`FRAMING_MARGIN`], fits the vertical field of view. Near plane `(d - r) / 2` (half way to
-    /// the closest possible geometry), far plane infinite. A zero-size box is framed as a
-    /// sphere of radius 1.
-    pub fn framing(bounds: &Aabb) -> Camera {
-        let sphere = bounds.bounding_sphere();
+    /// center `c` of the scene's bounding `sphere` (radius `r`) from direction
+    /// [`FRAMING_DIRECTION`], at the distance `d` at which the sphere's outline spans
+    /// [`FRAMING_FILL`] of the image height: the outline's radius on the image plane at
+    /// focal distance 1 is `tan(asin(r / d)) = r / sqrt(d² - r²)`, which is
+    /// `s = FRAMING_FILL * tan(yfov / 2)` at `d = r * sqrt(1 + 1 / s²)`. The height is the
+    /// shorter side of landscape and square images; a portrait image (taller than wide)
+    /// sees the same view, cut at its sides. Near plane `(d - r) / 2` (half way to the
+    /// closest possible geometry), far plane infinite. A sphere of radius 0 is framed as
+    /// one of radius 1.
+    pub fn framing(sphere: &BoundingSphere) -> Camera {
         let radius = if sphere.radius > 0.0 {
             sphere.radius
         } else {
             1.0
         };
-        let distance = FRAMING_MARGIN * radius / (f64::from(FRAMING_YFOV) * 0.5).sin();
+        let s = FRAMING_FILL * (f64::from(FRAMING_YFOV) * 0.5).tan();
+        let distance = radius * (1.0 + 1.0 / (s * s)).sqrt();
         let eye = sphere.center + FRAMING_DIRECTION * distance;
         let projection = Projection::Perspective {
             yfov: FRAMING_YFOV,

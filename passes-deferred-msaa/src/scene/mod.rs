@@ -35,7 +35,7 @@ use std::path::Path;
 pub use assets::{AssetPolicy, DEFAULT_MAX_ASSET_BYTES, DEFAULT_MAX_SCENE_BYTES};
 pub use bounds::{Aabb, BoundingSphere, MAX_COORDINATE};
 pub use camera::{
-    Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_MARGIN, FRAMING_YFOV,
+    Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_FILL, FRAMING_YFOV,
 };
 pub use environment::{
     irradiance_integral, radiance as environment_radiance, Environment, Irradiance,

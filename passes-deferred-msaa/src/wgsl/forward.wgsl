@@ -29,6 +29,9 @@ struct Attributes {
     normal: vec3<f32>,
     uv: vec2<f32>,
     uv1: vec2<f32>,
+    // uv and uv1 where their derivatives are taken (material_bound.wgsl's fragment_uv):
+    // at the pixel center when shading at the centroid, else where uv and uv1 are.
+    uv_center: vec4<f32>,
     color: vec4<f32>,
     // World-space tangent, w the bitangent's sign.
     tangent: vec4<f32>,
@@ -46,6 +49,7 @@ struct PixelVaryings {
     @location(4) @interpolate(perspective, centroid) color: vec4<f32>,
     @location(5) @interpolate(perspective, centroid) tangent: vec4<f32>,
     @location(6) @interpolate(perspective, centroid) uv1: vec2<f32>,
+    @location(7) @interpolate(perspective, center) uv_center: vec4<f32>,
 }
 
 // `shading: sample`: `sample` interpolation runs the fragment shader once per covered
@@ -66,13 +70,13 @@ fn transform(v: VertexIn, mesh_index: u32) -> Attributes {
     let p = (mesh.model * vec4<f32>(v.position, 1.0)).xyz;
     // Tangents lie in the surface: they transform with the model matrix.
     let t = vec4<f32>((mesh.model * vec4<f32>(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
-    return Attributes(p, mesh.normal_matrix * v.normal, v.uv, v.uv1, v.color, t, mesh.material);
+    return Attributes(p, mesh.normal_matrix * v.normal, v.uv, v.uv1, vec4<f32>(v.uv, v.uv1), v.color, t, mesh.material);
 }
 
 @vertex
 fn vs_pixel(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> PixelVaryings {
     let a = transform(v, mesh_index);
-    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent, a.uv1);
+    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent, a.uv1, a.uv_center);
 }
 
 @vertex
@@ -85,7 +89,7 @@ fn vs_sample(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> SampleVar
 // its base alpha: what transparent.wgsl blends, and what `shade` writes opaque.
 fn shade_surface(a: Attributes, front: bool) -> vec4<f32> {
     let material = materials[a.material];
-    let m = sample_material(material, a.uv, a.uv1, a.color);
+    let m = sample_material(material, fragment_uv(a.uv, a.uv1, a.uv_center), a.color);
     if MASKED && m.base.a < material.alpha_cutoff {
         discard;
     }
@@ -103,16 +107,26 @@ fn shade_surface(a: Attributes, front: bool) -> vec4<f32> {
     return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), m.base.a);
 }
 
+fn pixel_attributes(in: PixelVaryings) -> Attributes {
+    return Attributes(in.position, in.normal, in.uv, in.uv1, in.uv_center, in.color, in.tangent, in.material);
+}
+
+// Per sample, derivatives come from the shaded samples' own coordinates: every
+// invocation of a quad runs at the same sample of its pixel, one pixel apart.
+fn sample_attributes(in: SampleVaryings) -> Attributes {
+    return Attributes(in.position, in.normal, in.uv, in.uv1, vec4<f32>(in.uv, in.uv1), in.color, in.tangent, in.material);
+}
+
 fn shade(a: Attributes, front: bool) -> vec4<f32> {
     return vec4<f32>(shade_surface(a, front).rgb, 1.0);
 }
 
 @fragment
 fn fs_pixel(in: PixelVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade(Attributes(in.position, in.normal, in.uv, in.uv1, in.color, in.tangent, in.material), front);
+    return shade(pixel_attributes(in), front);
 }
 
 @fragment
 fn fs_sample(in: SampleVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade(Attributes(in.position, in.normal, in.uv, in.uv1, in.color, in.tangent, in.material), front);
+    return shade(sample_attributes(in), front);
 }

@@ -45,6 +45,9 @@ struct Varyings {
     // World-space tangent, w the bitangent's sign.
     @location(7) @interpolate(perspective, centroid) tangent: vec4<f32>,
     @location(8) @interpolate(perspective, centroid) uv1: vec2<f32>,
+    // uv and uv1 at the pixel center, for their derivatives (material_bound.wgsl's
+    // fragment_uv).
+    @location(9) @interpolate(perspective, center) uv_center: vec4<f32>,
 }
 
 // Every channel the pass can write; `gbuffer_out` picks those it does.
@@ -66,6 +69,7 @@ fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
     out.normal = mesh.normal_matrix * v.normal;
     out.uv = v.uv;
     out.uv1 = v.uv1;
+    out.uv_center = vec4<f32>(v.uv, v.uv1);
     out.color = v.color;
     // Tangents lie in the surface: they transform with the model matrix, not the normal
     // matrix.
@@ -109,7 +113,8 @@ fn fs_opaque(
     @builtin(front_facing) front: bool,
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
-    return gbuffer_out(surface(in, sample_material(materials[in.material], in.uv, in.uv1, in.color), front, coverage));
+    let m = sample_material(materials[in.material], fragment_uv(in.uv, in.uv1, in.uv_center), in.color);
+    return gbuffer_out(surface(in, m, front, coverage));
 }
 
 // Alpha MASK: coverage is decided per pixel by the base color's alpha.
@@ -119,7 +124,7 @@ fn fs_masked(
     @builtin(front_facing) front: bool,
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
-    let m = sample_material(materials[in.material], in.uv, in.uv1, in.color);
+    let m = sample_material(materials[in.material], fragment_uv(in.uv, in.uv1, in.uv_center), in.color);
     if m.base.a < materials[in.material].alpha_cutoff {
         discard;
     }

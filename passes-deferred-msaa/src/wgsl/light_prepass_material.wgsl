@@ -30,9 +30,9 @@ fn normal_of(a: Attributes, m: MaterialSample, front: bool) -> vec3<f32> {
 
 @fragment
 fn fs_thin_gbuffer(in: PixelVaryings, @builtin(front_facing) front: bool) -> ThinGBuffer {
-    let a = Attributes(in.position, in.normal, in.uv, in.uv1, in.color, in.tangent, in.material);
+    let a = pixel_attributes(in);
     let material = materials[a.material];
-    let m = sample_material(material, a.uv, a.uv1, a.color);
+    let m = sample_material(material, fragment_uv(a.uv, a.uv1, a.uv_center), a.color);
     if MASKED && m.base.a < material.alpha_cutoff {
         discard;
     }
@@ -62,9 +62,9 @@ fn fs_apply_material(
     @builtin(front_facing) front: bool,
     @builtin(sample_index) sample: u32,
 ) -> @location(0) vec4<f32> {
-    let a = Attributes(in.position, in.normal, in.uv, in.uv1, in.color, in.tangent, in.material);
+    let a = sample_attributes(in);
     let material = materials[a.material];
-    let m = sample_material(material, a.uv, a.uv1, a.color);
+    let m = sample_material(material, fragment_uv(a.uv, a.uv1, a.uv_center), a.color);
     if MASKED && m.base.a < material.alpha_cutoff {
         discard;
     }

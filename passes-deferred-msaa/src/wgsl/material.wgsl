@@ -31,13 +31,23 @@ struct MaterialSample {
     occlusion: f32,
 }
 
-// The texture coordinates the texture of `slot` (0 base color, 1 emissive, 2
-// metallicRoughness, 3 normal, 4 occlusion) samples: TEXCOORD_0
-// `uv0` or TEXCOORD_1 `uv1`, as the material says, through its KHR_texture_transform.
-fn slot_uv(m: MaterialData, slot: u32, uv0: vec2<f32>, uv1: vec2<f32>) -> vec2<f32> {
-    let uv = select(uv0, uv1, ((m.uv_sets >> slot) & 1u) != 0u);
+// Which of `uv0` and `uv1` (TEXCOORD_0 and TEXCOORD_1, or their changes across the
+// screen) the texture of `slot` (0 base color, 1 emissive, 2 metallicRoughness, 3
+// normal, 4 occlusion) reads, as the material says.
+fn slot_set(m: MaterialData, slot: u32, uv0: vec2<f32>, uv1: vec2<f32>) -> vec2<f32> {
+    return select(uv0, uv1, ((m.uv_sets >> slot) & 1u) != 0u);
+}
+
+// The KHR_texture_transform of the texture of `slot`.
+fn slot_transform(m: MaterialData, slot: u32) -> mat3x2<f32> {
     var transforms = m.uv_transforms;
-    return transforms[slot] * vec3<f32>(uv, 1.0);
+    return transforms[slot];
+}
+
+// The texture coordinates the texture of `slot` samples: TEXCOORD_0 `uv0` or TEXCOORD_1
+// `uv1`, as the material says, through its KHR_texture_transform.
+fn slot_uv(m: MaterialData, slot: u32, uv0: vec2<f32>, uv1: vec2<f32>) -> vec2<f32> {
+    return slot_transform(m, slot) * vec3<f32>(slot_set(m, slot, uv0, uv1), 1.0);
 }
 
 // A material's five texels at one point, in slot order (base color, emissive,
