@@ -4,6 +4,7 @@
 //! One binary rather than one per file: each test binary links wgpu and naga, and 36 of
 //! them cost CI minutes of linking and gigabytes of disk.
 
+mod browser_support;
 mod cli_support;
 mod common;
 mod deferred_support;
@@ -45,6 +46,7 @@ mod deferred_views;
 mod deferred_volumes;
 mod deferred_volumes_gpu;
 mod engine_example;
+mod explain_page;
 mod extremes_depth;
 mod extremes_determinism;
 mod extremes_far;
@@ -59,6 +61,7 @@ mod frame_inputs;
 mod fuzz;
 mod gpu_execute;
 mod light_prepass;
+mod page_browser;
 mod particles;
 mod post_fxaa;
 mod post_ssao;
