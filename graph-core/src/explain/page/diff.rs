@@ -7,6 +7,7 @@ use std::collections::{BTreeSet, HashMap};
 use maud::{html, Markup};
 
 use super::super::{color_ops, depth_stencil_ops, describe_shape, units::bytes};
+use super::counted;
 use crate::handle::ResourceId;
 use crate::plan::{Plan, PlannedPass, PlannedResource};
 
@@ -141,16 +142,18 @@ impl<'a> Diff<'a> {
             section #compare aria-labelledby="compare-h" {
                 h2 #compare-h { "Compared with " (self.label) }
                 p {
-                    (plan.passes.len()) " passes run here, "
+                    (counted(plan.passes.len(), "pass runs", "passes run")) " here, "
                     (other.map_or(0, |o| o.passes.len())) " there; physical memory "
                     (bytes(now)) " here, " (bytes(then)) " there (" (memory) ")."
                 }
                 p {
-                    span.badge.added { "added" } " " (count(&self.passes, "added")) " passes, "
-                    (count(&self.resources, "added")) " resources; "
-                    span.badge.changed { "changed" } " " (count(&self.passes, "changed")) " passes, "
-                    (count(&self.resources, "changed")) " resources: marked in the timeline, \
-                    with what changed on hover or focus."
+                    span.badge.added { "added" } " "
+                    (counted(count(&self.passes, "added"), "pass", "passes")) " and "
+                    (counted(count(&self.resources, "added"), "resource", "resources")) "; "
+                    span.badge.changed { "changed" } " "
+                    (counted(count(&self.passes, "changed"), "pass", "passes")) " and "
+                    (counted(count(&self.resources, "changed"), "resource", "resources"))
+                    ": marked in the timeline, with what changed on hover or focus."
                 }
                 @if !self.gone_passes.is_empty() {
                     h3 { "Run there, not here" }

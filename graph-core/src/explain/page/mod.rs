@@ -134,6 +134,23 @@ fn data(page: &Page) -> String {
     json.replace('<', "\\u003c")
 }
 
+/// `1 pass`, `2 passes`.
+fn counted(n: usize, one: &str, many: &str) -> String {
+    match n {
+        1 => format!("1 {one}"),
+        n => format!("{n} {many}"),
+    }
+}
+
+/// What the executor allocates: `7 textures and 1 buffer`.
+fn allocations(plan: &Plan) -> String {
+    format!(
+        "{} and {}",
+        counted(plan.textures.len(), "texture", "textures"),
+        counted(plan.buffers.len(), "buffer", "buffers")
+    )
+}
+
 /// The first lines: size, profile, counts and memory.
 fn summary(page: &Page) -> Markup {
     let plan = page.plan;
@@ -147,9 +164,9 @@ fn summary(page: &Page) -> Markup {
     html! {
         p.sub {
             (w) "×" (h) " for " (plan.profile) " · "
-            (plan.passes.len()) " passes run, " (plan.culled.len()) " not run · "
-            (plan.resources.len()) " resources in " (plan.textures.len()) " textures and "
-            (plan.buffers.len()) " buffers"
+            (counted(plan.passes.len(), "pass", "passes")) " run, " (plan.culled.len()) " not run · "
+            (counted(plan.resources.len(), "resource", "resources")) " in "
+            (allocations(plan))
         }
         dl.totals {
             div { dt { "Logical memory" } dd #logical-bytes { (bytes(m.logical_bytes)) } }

@@ -12,6 +12,7 @@ use super::super::{
     buffer_usages, color_ops, depth_stencil_ops, describe_shape, texture_usages, units::bytes,
 };
 use super::diff::{Diff, Mark};
+use super::allocations;
 use super::timings::{Clock, Timings};
 use crate::handle::ResourceId;
 use crate::plan::{Plan, PlannedPass, PlannedResource};
@@ -94,7 +95,10 @@ pub(super) fn legend(plan: &Plan, timed: bool, compared: bool) -> Markup {
             "; the rows under Physical memory show them). Grey is what does not run or is not \
              allocated; an outlined bar is imported. Hover, focus or click a name for details."
             @if timed { " Bars under the passes are their median GPU and CPU times." }
-            @if compared { " Outlined names and columns differ from the compared plan." }
+            @if compared {
+                " Names and columns marked added or changed differ from the compared plan: \
+                 hover or focus them for what differs."
+            }
         }
     }
 }
@@ -132,8 +136,7 @@ pub(super) fn table(plan: &Plan, timings: Option<&Timings>, diff: Option<&Diff>)
                 tr.group {
                     th colspan=(columns + 1) scope="rowgroup" {
                         "Physical memory (" (bytes(plan.memory.physical_bytes)) " in "
-                        (plan.textures.len()) " textures and " (plan.buffers.len())
-                        " buffers): resources in one row take turns in its memory"
+                        (allocations(plan)) "): resources in one row take turns in its memory"
                     }
                 }
                 @for i in 0..plan.textures.len() { (physical_row(plan, &texture(plan, i), columns)) }
