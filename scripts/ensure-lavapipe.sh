@@ -2,8 +2,8 @@
 # Makes sure the lavapipe Vulkan driver (Mesa's CPU rasterizer) is installed, and a C++
 # compiler (the nv-flip crate behind `rgraph bench` builds NVIDIA's FLIP from C++); with
 # --tests also Xvfb and xwininfo (the virtual X display the `rgraph view` tests open their
-# windows on, and what reads their titles). Installs what is missing with apt when we are
-# root (or have sudo).
+# windows on, and what reads their titles) and Chromium (the browser the plan page's tests
+# open it in). Installs what is missing with apt when we are root (or have sudo).
 set -euo pipefail
 
 icd_present() {
@@ -15,12 +15,16 @@ icd_present || packages="mesa-vulkan-drivers libvulkan1"
 command -v c++ >/dev/null 2>&1 || packages="$packages g++"
 tests=false
 [ "${1:-}" = --tests ] && tests=true
-x_present() {
-  ! $tests || { [ -x /usr/bin/Xvfb ] && [ -x /usr/bin/xwininfo ]; }
+chromium_present() {
+  [ -n "${RGRAPH_CHROMIUM:-}" ] || command -v chromium >/dev/null 2>&1 || command -v chromium-browser >/dev/null 2>&1
+}
+test_tools_present() {
+  ! $tests || { [ -x /usr/bin/Xvfb ] && [ -x /usr/bin/xwininfo ] && chromium_present; }
 }
 if $tests; then
   [ -x /usr/bin/Xvfb ] || packages="$packages xvfb"
   [ -x /usr/bin/xwininfo ] || packages="$packages x11-utils"
+  chromium_present || packages="$packages chromium"
 fi
 if [ -z "$packages" ]; then
   exit 0
@@ -36,14 +40,14 @@ else
   exit 1
 fi
 if ! command -v apt-get >/dev/null 2>&1; then
-  echo "rgraph: apt-get not found; install with your package manager:$packages (Mesa's lavapipe Vulkan driver, the Vulkan loader, a C++ compiler, Xvfb, xwininfo)" >&2
+  echo "rgraph: apt-get not found; install with your package manager:$packages (Mesa's lavapipe Vulkan driver, the Vulkan loader, a C++ compiler, Xvfb, xwininfo, Chromium)" >&2
   exit 1
 fi
 export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq >&2
 $sudo apt-get install -y -qq $packages >&2
-if ! icd_present || ! command -v c++ >/dev/null 2>&1 || ! x_present; then
-  echo "rgraph: installed$packages but the lavapipe ICD (/usr/share/vulkan/icd.d), c++, /usr/bin/Xvfb or /usr/bin/xwininfo is still missing" >&2
+if ! icd_present || ! command -v c++ >/dev/null 2>&1 || ! test_tools_present; then
+  echo "rgraph: installed$packages but the lavapipe ICD (/usr/share/vulkan/icd.d), c++, /usr/bin/Xvfb, /usr/bin/xwininfo or chromium is still missing" >&2
   exit 1
 fi
 echo "rgraph: installed$packages" >&2

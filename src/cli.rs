@@ -18,7 +18,7 @@ use passes_deferred_msaa::Exposure;
                   pass order, culled passes with reasons, texture lifetimes, usages, load/store \
                   operations and pooled memory. Validation and explanation need no GPU; rendering \
                   runs headless on any Vulkan adapter, lavapipe included.",
-    after_help = "Examples:\n  rgraph render --out frame.png\n  rgraph bench --out-dir bench/out\n  rgraph validate pipelines/*.ron shaders/*.wgsl\n  rgraph explain --pipeline pipelines/postprocess_demo.ron --format dot | dot -Tpng > plan.png\n  rgraph adapters"
+    after_help = "Examples:\n  rgraph render --out frame.png\n  rgraph bench --out-dir bench/out\n  rgraph validate pipelines/*.ron shaders/*.wgsl\n  rgraph explain --pipeline pipelines/postprocess_demo.ron --format dot | dot -Tpng > plan.png\n  rgraph explain --pipeline pipelines/deferred_msaa_4x.ron --scene builtin:spheres --format html --out plan.html\n  rgraph adapters"
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -48,8 +48,14 @@ pub enum Command {
     /// compiled for its features, and (as text) what that drops and saves against the
     /// plan for a scene using every feature is printed after it.
     ///
-    /// Exit status: 0 with the plan on stdout (nothing else goes there), 1 when the file or
-    /// scene is invalid, 2 for usage or I/O errors (as validate); errors go to stderr.
+    /// With --format html, one self-contained page (no network, for a CI artifact): the
+    /// passes as a timeline, resource lifetimes coloured by the memory they share, culled
+    /// passes with the reason, the scene and parameters; --timings adds a bench's per-pass
+    /// times, --compare or --compare-scene marks what differs from another plan.
+    ///
+    /// Exit status: 0 with the plan on stdout (nothing else goes there) or in --out, 1 when
+    /// the file, scene or --timings file is invalid, 2 for usage or I/O errors (as validate;
+    /// a --timings file without this pipeline's row); errors go to stderr.
     Explain {
         /// The graph file.
         #[arg(long, value_name = "FILE")]
@@ -57,7 +63,8 @@ pub enum Command {
         /// Specialise the plan to this scene: a glTF file or builtin:NAME[?params].
         #[arg(long, value_name = "PATH|builtin:NAME")]
         scene: Option<String>,
-        /// text for people, dot for Graphviz (culled parts grey), json for tools.
+        /// text for people, dot for Graphviz (culled parts grey), json for tools, html for
+        /// a self-contained page (timeline, lifetimes, shared memory, culled passes).
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
         #[command(flatten)]
@@ -68,6 +75,8 @@ pub enum Command {
         assets: AssetArgs,
         #[command(flatten)]
         roots: GraphRoots,
+        #[command(flatten)]
+        page: ExplainArgs,
     },
     /// Render one frame (or a sequence) headless and write it as an 8-bit sRGB PNG.
     ///
@@ -538,6 +547,32 @@ pub enum Format {
     Text,
     Dot,
     Json,
+    Html,
+}
+
+/// Which outputs `explain` plans for, where it writes, and what its page (`--format
+/// html`) adds to the plan.
+#[derive(clap::Args)]
+pub struct ExplainArgs {
+    /// Plan for this output only (repeatable; default: every output the file exports), as
+    /// `render --view` and `bench` ("color") do: passes only the other outputs need are
+    /// culled, and resources that then live shorter may share memory.
+    #[arg(long = "output", value_name = "NAME")]
+    pub outputs: Vec<String>,
+    /// Write to FILE (replaced atomically) instead of stdout.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// html: each pass's GPU and CPU time from a results.json of `rgraph bench`, the row of
+    /// this pipeline (on --scene, when the file has several scenes).
+    #[arg(long, value_name = "results.json")]
+    pub timings: Option<PathBuf>,
+    /// html: mark what differs from the plan of this graph file (compiled for the same
+    /// scene and parameters), as a review of a change to the file needs.
+    #[arg(long, value_name = "OTHER.ron")]
+    pub compare: Option<PathBuf>,
+    /// html: mark what differs from the plan for this scene (of --compare's file, if given).
+    #[arg(long, value_name = "PATH|builtin:NAME")]
+    pub compare_scene: Option<String>,
 }
 
 /// A width or height: a whole number of at least 1 (the device's maximum is checked once

@@ -31,8 +31,17 @@ fn main() -> ExitCode {
             target,
             samples,
             assets,
+            page,
             ..
-        } => commands::explain::run(pipeline, scene.as_deref(), *format, target, samples, assets),
+        } => commands::explain::run(
+            pipeline,
+            scene.as_deref(),
+            *format,
+            target,
+            samples,
+            assets,
+            page,
+        ),
         Command::Render(args) => commands::render::run(args),
         Command::Bench(args) => commands::bench::run(args),
         Command::View(args) => commands::view::run(args),

@@ -4,6 +4,7 @@
 //! One binary rather than one per file: each test binary links wgpu and naga, and 36 of
 //! them cost CI minutes of linking and gigabytes of disk.
 
+mod browser_support;
 mod cli_support;
 mod common;
 mod deferred_support;
@@ -45,8 +46,8 @@ mod deferred_unlit;
 mod deferred_views;
 mod deferred_volumes;
 mod deferred_volumes_gpu;
-
 mod engine_example;
+mod explain_page;
 mod extremes_depth;
 mod extremes_determinism;
 mod extremes_far;
@@ -64,6 +65,7 @@ mod gpu_failures;
 mod helper_loads;
 mod light_prepass;
 mod output_files;
+mod page_browser;
 mod particles;
 mod post_fxaa;
 mod post_ssao;

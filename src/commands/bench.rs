@@ -22,6 +22,7 @@ mod measure;
 mod memory;
 mod particle_table;
 mod particle_work;
+mod plan_page;
 mod progress;
 mod reference;
 mod results;

@@ -1,6 +1,8 @@
 //! `rgraph explain`: the compiled plan of a graph file, for people or tools, optionally
 //! specialised to a scene.
 
+pub mod page;
+mod timings;
 mod variants;
 
 use std::path::Path;
@@ -12,8 +14,8 @@ use passes_deferred_msaa::analysis::{Analysis, Features as SceneFeatures, SHALLO
 use passes_deferred_msaa::scene::SceneError;
 
 use super::target::compile_options;
-use super::CommandError;
-use crate::cli::{AssetArgs, Format, Samples, Target};
+use super::{write_atomically, CommandError};
+use crate::cli::{AssetArgs, ExplainArgs, Format, Samples, Target};
 use crate::registry::registry;
 
 pub fn run(
@@ -23,15 +25,11 @@ pub fn run(
     target: &Target,
     samples: &Samples,
     assets: &AssetArgs,
+    page_args: &ExplainArgs,
 ) -> Result<(), CommandError> {
+    page::check_flags(format, page_args)?;
     let options = compile_options(target)?;
-    let loaded = load_file_with(pipeline, &registry(), &samples.params())
-        .map_err(|e| invalid(pipeline, e))?;
-    // Checked as `validate` checks it, so a file explain shows is one validate accepts:
-    // an error under a condition off by default is found too.
-    loaded
-        .validate(&options)
-        .map_err(|e| invalid(pipeline, e))?;
+    let loaded = load(pipeline, samples, &page_args.outputs, &options)?;
     let analysis = scene
         .map(|spec| analyse(spec, assets, options.output_size))
         .transpose()?;
@@ -43,8 +41,20 @@ pub fn run(
         Format::Text => format!("{}{}", parameters(&loaded, samples), explain::text(&plan)),
         Format::Dot => explain::dot(&plan),
         Format::Json => explain::json(&plan),
+        Format::Html => page::html(
+            &page::Explained {
+                pipeline,
+                loaded: &loaded,
+                plan: &plan,
+                scene: analysis.as_ref(),
+                options: &options,
+                samples,
+                assets,
+            },
+            page_args,
+        )?,
     };
-    match (&analysis, format) {
+    let output = match (&analysis, format) {
         (Some((spec, analysis)), Format::Text) => {
             // The plan for a scene using everything: what the file does unspecialised.
             let general = compile(
@@ -53,16 +63,22 @@ pub fn run(
                 &SceneFeatures::general().names(),
                 pipeline,
             )?;
-            print!(
+            format!(
                 "{}\n{text}\n{}\n{}",
                 describe(spec, analysis, &options),
                 explain::compare(&plan, &general, "a scene using every feature"),
                 variants::text(&plan, &loaded, &analysis.features)
-            );
+            )
         }
-        _ => print!("{text}"),
+        _ => text,
+    };
+    match &page_args.out {
+        Some(path) => write_atomically(path, output.as_bytes()),
+        None => {
+            print!("{output}");
+            Ok(())
+        }
     }
-    Ok(())
 }
 
 /// The file's parameters and the values this plan was compiled with, as a first line (none
@@ -81,6 +97,30 @@ fn parameters(loaded: &LoadedGraph, samples: &Samples) -> String {
         true => String::new(),
         false => format!("parameters: {}\n", values.join(", ")),
     }
+}
+
+/// The graph file with the values `samples` gives its parameters, exporting only
+/// `outputs` (all it exports when empty), validated as `validate` would.
+fn load(
+    pipeline: &Path,
+    samples: &Samples,
+    outputs: &[String],
+    options: &CompileOptions,
+) -> Result<LoadedGraph, CommandError> {
+    let mut loaded = load_file_with(pipeline, &registry(), &samples.params())
+        .map_err(|e| invalid(pipeline, e))?;
+    // Checked as `validate` checks it, so a file explain shows is one validate accepts:
+    // an error under a condition off by default is found too.
+    loaded
+        .validate(options)
+        .map_err(|e| invalid(pipeline, e))?;
+    if !outputs.is_empty() {
+        let names: Vec<&str> = outputs.iter().map(String::as_str).collect();
+        loaded
+            .keep_outputs(&names)
+            .map_err(|e| CommandError::Usage(format!("--output: {e} in {}", pipeline.display())))?;
+    }
+    Ok(loaded)
 }
 
 fn compile(

@@ -2,6 +2,7 @@
 //! comparison of two plans of one graph.
 
 mod compare;
+pub mod page;
 mod units;
 
 pub use compare::compare;
@@ -12,7 +13,7 @@ use std::fmt::Write;
 use wgpu_types::{BufferUsages, TextureUsages};
 
 use crate::handle::ResourceId;
-use crate::plan::{Load, Ops, Plan, Store};
+use crate::plan::{ColorAttachment, DepthStencilAttachment, Load, Ops, Plan, Store};
 use crate::resource::format_name;
 use crate::resource::Origin;
 use crate::resource::TextureShape;
@@ -57,19 +58,7 @@ pub fn text(plan: &Plan) -> String {
             let _ = writeln!(out, "         writes  {}", list(&pass.writes));
         }
         for (location, c) in pass.color.iter().enumerate() {
-            let resolve = c
-                .resolve_target
-                .map(|t| format!(", resolves into {}", plan.resource(t).name))
-                .unwrap_or_default();
-            let _ = writeln!(
-                out,
-                "         color {location}: {} {}{resolve}",
-                plan.resource(c.resource).name,
-                ops(&c.ops, |c| format!(
-                    "({}, {}, {}, {})",
-                    c[0], c[1], c[2], c[3]
-                ))
-            );
+            let _ = writeln!(out, "         color {location}: {}", color_ops(plan, c));
         }
         if !pass.color.is_empty() {
             let _ = writeln!(
@@ -99,13 +88,10 @@ pub fn text(plan: &Plan) -> String {
             );
         }
         if let Some(ds) = &pass.depth_stencil {
-            let aspect = |o: Option<String>| o.unwrap_or_else(|| "read-only".into());
             let _ = writeln!(
                 out,
-                "         depth-stencil: {} depth {}, stencil {}",
-                plan.resource(ds.resource).name,
-                aspect(ds.depth.as_ref().map(|o| ops(o, |d| d.to_string()))),
-                aspect(ds.stencil.as_ref().map(|o| ops(o, |s| format!("{s:#04x}")))),
+                "         depth-stencil: {}",
+                depth_stencil_ops(plan, ds)
             );
         }
     }
@@ -258,6 +244,32 @@ pub fn dot(plan: &Plan) -> String {
 /// The plan as pretty-printed JSON: the same data, for tools.
 pub fn json(plan: &Plan) -> String {
     serde_json::to_string_pretty(plan).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+}
+
+/// A color attachment as explain's formats write it: `hdr clear (0, 0, 0, 1) -> store,
+/// resolves into resolved`.
+fn color_ops(plan: &Plan, c: &ColorAttachment) -> String {
+    let resolve = c
+        .resolve_target
+        .map(|t| format!(", resolves into {}", plan.resource(t).name))
+        .unwrap_or_default();
+    let value = |c: [f64; 4]| format!("({}, {}, {}, {})", c[0], c[1], c[2], c[3]);
+    format!(
+        "{} {}{resolve}",
+        plan.resource(c.resource).name,
+        ops(&c.ops, value)
+    )
+}
+
+/// A depth-stencil attachment: `depth depth clear 1 -> store, stencil read-only`.
+fn depth_stencil_ops(plan: &Plan, ds: &DepthStencilAttachment) -> String {
+    let aspect = |o: Option<String>| o.unwrap_or_else(|| "read-only".into());
+    format!(
+        "{} depth {}, stencil {}",
+        plan.resource(ds.resource).name,
+        aspect(ds.depth.as_ref().map(|o| ops(o, |d| d.to_string()))),
+        aspect(ds.stencil.as_ref().map(|o| ops(o, |s| format!("{s:#04x}")))),
+    )
 }
 
 fn ops<T: Copy>(ops: &Ops<T>, value: impl Fn(T) -> String) -> String {

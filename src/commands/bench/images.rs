@@ -1,13 +1,14 @@
 //! The images a person looks at to see where the error lives, one folder per scene:
 //! reference.png, edge_pixels.png, and per pipeline PIPELINE.png, PIPELINE_error.png (the
-//! FLIP heat map) and PIPELINE_edges.png (its debug.edges view, when it has one).
+//! FLIP heat map) and PIPELINE_edges.png (its debug.edges view, when it has one); beside
+//! them each pipeline's plan as a page, PIPELINE.plan.html.
 
 use std::path::{Path, PathBuf};
 
 use image::RgbaImage;
 
 use super::error::BenchError;
-use crate::commands::{own_folder, write_png};
+use crate::commands::{own_folder, write_atomically, write_png};
 
 /// The folder of one scene's images inside the output directory.
 pub struct SceneImages {
@@ -31,6 +32,15 @@ impl SceneImages {
     pub fn write(&self, name: &str, image: &RgbaImage) -> Result<(), BenchError> {
         let path = self.dir.join(format!("{}.png", slug(name)));
         write_png(&path, image).map_err(|e| BenchError::Write {
+            path,
+            reason: e.to_string(),
+        })
+    }
+
+    /// Writes the page `file` (a pipeline's plan: plan_page.rs) beside the images.
+    pub fn write_page(&self, file: &str, html: &str) -> Result<(), BenchError> {
+        let path = self.dir.join(file);
+        write_atomically(&path, html.as_bytes()).map_err(|e| BenchError::Write {
             path,
             reason: e.to_string(),
         })

@@ -6,6 +6,7 @@
 
 use std::sync::Arc;
 
+use graph_core::explain::page::Setting;
 use graph_core::gpu::PassTiming;
 use graph_core::Plan;
 use image::RgbaImage;
@@ -22,6 +23,7 @@ use super::rounds::Timing;
 use super::specialisation::{PlanShape, Specialisation};
 use super::stats::Spread;
 use super::work::{edge_share, sampling, Work, EDGES_OUTPUT, FRAGMENTS_OUTPUT};
+use crate::commands::explain::page::parameters;
 use crate::frame::{FrameError, Prepared, Session, Specialise};
 
 /// What every measurement of one step of a run shares.
@@ -65,6 +67,8 @@ pub struct About {
     special: PlanShape,
     general: Option<PlanShape>,
     features: Vec<String>,
+    /// The parameters and the scene's features, for the plan's page.
+    setting: Setting,
 }
 
 /// A timed plan once its rounds are over: what was measured and the plan.
@@ -86,12 +90,14 @@ impl Closed {
     }
 }
 
-/// The figures, the last measured frame's image, and the debug.edges view when there is
-/// one.
+/// The figures, the last measured frame's image, the debug.edges view when there is
+/// one, and the timed plan with what it was compiled for.
 pub struct Measured {
     pub figures: Figures,
     pub color: RgbaImage,
     pub edges: Option<RgbaImage>,
+    pub plan: Plan,
+    pub setting: Setting,
 }
 
 impl Setup<'_> {
@@ -115,6 +121,15 @@ impl Setup<'_> {
             .iter()
             .filter_map(|p| Some((p.name.clone(), pipeline.loaded.plugin(&p.name)?.to_owned())))
             .collect();
+        let setting = Setting {
+            scene_features: pipeline
+                .features
+                .names()
+                .iter()
+                .map(str::to_owned)
+                .collect(),
+            ..parameters(&pipeline.loaded, &candidate.params)
+        };
         let scene = self.session.prepare(pipeline, self.size)?;
         let special = PlanShape::of(&scene);
         let features = scene.plan().features.clone();
@@ -146,6 +161,7 @@ impl Setup<'_> {
                 special,
                 general: general_shape,
                 features,
+                setting,
             },
         })
     }
@@ -234,6 +250,8 @@ impl Setup<'_> {
             figures,
             color,
             edges,
+            plan: scene.plan,
+            setting: about.setting,
         })
     }
 

@@ -13,6 +13,7 @@ use super::figures::Figures;
 use super::image_error::compare;
 use super::images::SceneImages;
 use super::measure::{About, Closed, Measured, Setup};
+use super::plan_page;
 use super::progress::Progress;
 use super::reference::{Reference, SceneReference};
 use super::results::{Row, SceneSummary};
@@ -216,7 +217,7 @@ impl SceneRun<'_> {
         let file = candidate.path.display().to_string();
         match measured {
             Ok(measured) => {
-                let mut figures = self.record(measured, name, reference)?;
+                let mut figures = self.record(measured, name, &candidate.path, reference)?;
                 // The bound holds for pipelines at the sample count it was counted at.
                 figures.work.unique_surface_bound = summary
                     .unique_surfaces
@@ -237,17 +238,21 @@ impl SceneRun<'_> {
         }
     }
 
-    /// Compares a measured image with the reference and writes the pipeline's images.
+    /// Compares a measured image with the reference and writes the pipeline's images and
+    /// its plan's page.
     fn record(
         &self,
         measured: Measured,
         name: &str,
+        file: &Path,
         reference: Option<&SceneReference>,
     ) -> Result<Figures, BenchError> {
         let Measured {
             mut figures,
             color,
             edges,
+            plan,
+            setting,
         } = measured;
         let heat = reference.map(|reference| {
             let (error, heat) = compare(&reference.image, &color, &reference.edges);
@@ -262,6 +267,8 @@ impl SceneRun<'_> {
             if let Some(heat) = &heat {
                 images.write(&format!("{name}_error"), heat)?;
             }
+            let page = plan_page::html(self.setup, self.spec, name, file, &plan, setting, &figures);
+            images.write_page(&plan_page::file_name(name), &page)?;
         }
         Ok(figures)
     }

@@ -8,7 +8,9 @@ use graph_core::explain::bytes;
 use super::clocks::ClockSample;
 use super::figures::Figures;
 use super::flag::Flag;
+use super::images::slug;
 use super::particle_table;
+use super::plan_page;
 use super::results::{Results, Row};
 use super::rounds::RoundLog;
 use super::specialisation::Specialisation;
@@ -86,6 +88,12 @@ pub fn markdown(results: &Results) -> String {
         }
         md.push_str(&rounds_line(&r.round_log, scene));
         md.push_str(&scene_table(&rows));
+        if r.scenes
+            .iter()
+            .any(|s| s.scene == scene && !s.images.is_empty())
+        {
+            md.push_str(&plan_links(scene, &rows));
+        }
         md.push_str(&flagged(&rows, r.spread_limit));
         if rows.iter().any(|row| row.figures.is_some()) {
             md.push_str(&pass_table(&rows));
@@ -119,6 +127,23 @@ fn scene_table(rows: &[&Row]) -> String {
         let _ = writeln!(md, "| {} | {} |", name(row), cells.join(" | "));
     }
     md
+}
+
+/// Links to the measured rows' plan pages (plan_page.rs), in the scene's images folder.
+fn plan_links(scene: &str, rows: &[&Row]) -> String {
+    let links: Vec<String> = rows
+        .iter()
+        .filter(|row| row.figures.is_some())
+        .map(|row| {
+            let text = row.pipeline.replace('[', "\\[").replace(']', "\\]");
+            let page = plan_page::file_name(&row.pipeline);
+            format!("[{text}]({}/{page})", slug(scene))
+        })
+        .collect();
+    match links.is_empty() {
+        true => String::new(),
+        false => format!("\nPlans with each pass's time: {}.\n", links.join(", ")),
+    }
 }
 
 fn figure_cells(f: &Figures) -> Vec<String> {
@@ -404,4 +429,4 @@ frame; saved: that against particles_full_res's on the same scene.";
 /// Outside sweeps, which write no images.
 const IMAGES: &str = " Images per scene are in the folder next to this file: reference.png, \
 edge_pixels.png, PIPELINE.png, PIPELINE_error.png (FLIP heat map), PIPELINE_edges.png \
-(debug.edges).";
+(debug.edges), and PIPELINE.plan.html, the timed plan as a page (`rgraph explain --format html`).";
