@@ -3,7 +3,8 @@
 //! ([`textures`]), the light passes' optional ambient-occlusion input ([`ao`]), the scene
 //! passes' background fill ([`background`]), the depth
 //! convention ([`depth`]), where a pass draws ([`extent`]), the edge detectors two passes
-//! use ([`edge_detection`]), the full-screen draw five passes set up ([`fullscreen`]), the
+//! use ([`edge_detection`]), the full-screen draw five passes set up ([`fullscreen`]) and its
+//! compute counterpart ([`fullscreen_compute`]), the
 //! G-buffer layouts a lighting pass reads ([`gbuffer_layout`]), the lean G-buffer's
 //! emission encoding ([`rgb9e5`]) and, with feature `gpu`, the device helpers of their
 //! recordings ([`gpu`]). Nothing here imports a pass.
@@ -14,6 +15,7 @@ pub(crate) mod depth;
 pub(crate) mod edge_detection;
 pub(crate) mod extent;
 pub(crate) mod fullscreen;
+pub(crate) mod fullscreen_compute;
 pub(crate) mod gbuffer_layout;
 #[cfg(feature = "gpu")]
 pub(crate) mod gpu;
