@@ -17,6 +17,7 @@ mod fuzz_support;
 #[path = "../passes-deferred-msaa/tests/common/mod.rs"]
 mod gltf_writer;
 
+mod background;
 mod background_fill;
 mod baselines_errors;
 mod baselines_forward;
@@ -30,6 +31,7 @@ mod cli_render_frames;
 mod cli_render_samples;
 mod cli_validate;
 mod cli_view;
+mod default_pipeline;
 mod deferred_detectors;
 mod deferred_environment;
 mod deferred_exposure;
