@@ -91,7 +91,8 @@ impl Plugin for Background {
                 let (keys, samples) = visibility_samples::read(pass, slots, "samples")?;
                 let generated = format!(
                     "{}\nfn drawn(pixel: vec2<i32>, s: u32) -> bool {{\n    \
-                     return sample_id(pixel, s) != 0u;\n}}\n",
+                     return sample_id(pixel, s) != 0u;\n}}\n\
+                     fn coverage_size() -> vec2<f32> {{\n    return camera.viewport;\n}}\n",
                     shaders::KEYS
                 );
                 (Coverage::Keys(keys), samples, generated)
@@ -110,7 +111,9 @@ impl Plugin for Background {
                 let generated = "@group(1) @binding(0) var scene_depth: GTexD;\n\
                      fn drawn(pixel: vec2<i32>, s: u32) -> bool {\n    \
                      return textureLoad(scene_depth, pixel, s) != FAR_DEPTH;\n}\n\
-                     fn one_surface(pixel: vec2<i32>) -> bool {\n    return false;\n}\n"
+                     fn one_surface(pixel: vec2<i32>) -> bool {\n    return false;\n}\n\
+                     fn coverage_size() -> vec2<f32> {\n    \
+                     return vec2<f32>(textureDimensions(scene_depth));\n}\n"
                     .to_owned();
                 (Coverage::Depth(input), desc.samples, generated)
             }

@@ -4,9 +4,10 @@
 // (the background's transmittance, which the transparent and particle composites then
 // multiply and tone mapping reads for a colour or transparent background). Composed
 // after common.wgsl and scene.wgsl, then a generated block defining
-// `fn drawn(pixel: vec2<i32>, s: u32) -> bool` (whether sample `s` shows a surface) and
-// `fn one_surface(pixel: vec2<i32>) -> bool` (whether sample 0 speaks for them all),
-// from the opaque passes' depth or a compute rasteriser's keys (group 1).
+// `fn drawn(pixel: vec2<i32>, s: u32) -> bool` (whether sample `s` shows a surface),
+// `fn one_surface(pixel: vec2<i32>) -> bool` (whether sample 0 speaks for them all) and
+// `fn coverage_size() -> vec2<f32>` (the pixels those cover, the image's), from the
+// opaque passes' depth or a compute rasteriser's keys (group 1).
 
 // Add the environment's radiance (1), or nothing and leave the background to tone
 // mapping (0: a colour, or transparency).
@@ -24,10 +25,12 @@ fn uncovered(pixel: vec2<i32>) -> f32 {
     return f32(empty) / f32(SAMPLES);
 }
 
-// The environment's radiance arriving through pixel coordinate `at`: its cube map's
-// level 0, which mirror reflections read too.
+// The environment's radiance arriving through pixel coordinate `at` of the image: its
+// cube map's level 0, which mirror reflections read too. The image may be larger than
+// the output the camera's viewport counts (a supersampled reference's).
 fn environment_seen(at: vec2<f32>) -> vec3<f32> {
-    let ray = unproject(at, 0.25) - unproject(at, 0.5);
+    let output = at * camera.viewport / coverage_size();
+    let ray = unproject(output, 0.25) - unproject(output, 0.5);
     let radiance = textureSampleLevel(environment_tex, environment_sampler, ray, 0.0).rgb;
     return min(radiance * light_info.environment_intensity, vec3<f32>(HALF_MAX));
 }
