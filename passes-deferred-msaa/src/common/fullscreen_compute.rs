@@ -5,6 +5,7 @@
 
 use graph_core::TextureHandle;
 
+use super::opaque_depth::OpaqueDepth;
 use super::plugin::Recording;
 use super::textures::Input;
 
@@ -21,6 +22,9 @@ pub(crate) struct FullscreenCompute {
     pub reads_scene: bool,
     /// The output whose pixels the dispatch covers.
     pub target: TextureHandle,
+    /// The opaque depth the shader reads (group 1, with `inputs`), which sets its
+    /// FAR_DEPTH and the convention of the camera in group 0.
+    pub depth: Option<OpaqueDepth>,
 }
 
 impl Recording for FullscreenCompute {
@@ -37,9 +41,12 @@ mod gpu {
     use graph_core::gpu::ComputeContext;
 
     use super::FullscreenCompute;
-    use crate::common::gpu::{compute_pipeline, per_device, InputPass};
+    use crate::common::depth::far_depth;
+    use crate::common::gpu::{compute_pipeline, per_device, GroupBuffers, InputPass};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
+
+    type State = InputPass<DepthConvention, wgpu::ComputePipeline>;
 
     pub(super) fn record(
         dispatch: FullscreenCompute,
@@ -47,39 +54,51 @@ mod gpu {
     ) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
         // Built per device, as the full-screen passes are: the scene's group 0 layout is
         // the same for every upload.
-        let mut state: Option<(wgpu::Device, InputPass<(), wgpu::ComputePipeline>)> = None;
+        let mut state: Option<(wgpu::Device, State)> = None;
         Box::new(move |ctx| {
             let resources = ctx.resources;
             let device = resources.device;
             let Some(scene) = scenes.for_frame_if(dispatch.reads_scene, resources) else {
                 return;
             };
+            let mut inputs = dispatch.inputs.clone();
+            let mut buffers = GroupBuffers::default();
+            let mut convention = DepthConvention::ReversedZ;
+            if let Some(depth) = &dispatch.depth {
+                let bound = match depth.bound(resources) {
+                    Ok(bound) => bound,
+                    Err(why) => return resources.fail(why),
+                };
+                inputs.extend(bound.inputs);
+                buffers = bound.buffers;
+                convention = bound.convention;
+            }
             let state = per_device(&mut state, device, || {
-                InputPass::new(
+                InputPass::with_geometry(
                     resources,
                     dispatch.label,
                     &dispatch.source,
                     scene.as_deref(),
-                    &dispatch.inputs,
+                    &inputs,
+                    &buffers,
+                    false,
                 )
             });
             let (module, layout) = (&state.module, &state.layout);
-            let pipeline = state.pipelines.get((), |_| {
-                let constants = &dispatch.constants;
-                compute_pipeline(
-                    device,
-                    dispatch.label,
-                    layout,
-                    module,
-                    dispatch.entry,
-                    constants,
-                )
+            let pipeline = state.pipelines.get(convention, |&convention| {
+                let mut constants = dispatch.constants.clone();
+                if dispatch.depth.is_some() {
+                    constants.push(("FAR_DEPTH", f64::from(far_depth(convention))));
+                }
+                let entry = dispatch.entry;
+                compute_pipeline(device, dispatch.label, layout, module, entry, &constants)
             });
             ctx.pass.set_pipeline(pipeline);
             if let Some(scene) = &scene {
-                // The camera's viewport and the frame's exposure, not depth.
+                // The camera of the depth's convention (without a depth, the viewport
+                // and the frame's exposure are all the shader reads).
                 ctx.pass
-                    .set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
+                    .set_bind_group(0, scene.bind_group(convention), &[]);
             }
             ctx.pass
                 .set_bind_group(1, &state.inputs.bind_group(resources), &[]);

@@ -30,12 +30,12 @@
 use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{Aspect, BufferHandle, PassBuilder, PassKind};
+use graph_core::{Aspect, PassBuilder, PassKind};
 
-use crate::common::depth::DepthRule;
-use crate::common::plugin::{Recording, Shared};
+use crate::common::fullscreen_compute::FullscreenCompute;
+use crate::common::opaque_depth::OpaqueDepth;
+use crate::common::plugin::Shared;
 use crate::common::textures::{self, Input, Texels, Want};
-use crate::common::visibility_samples;
 use crate::shaders;
 
 pub struct DepthDownsample(pub(crate) Shared);
@@ -49,8 +49,8 @@ pub struct DepthDownsampleParams {
     /// 1 (the default): point sampling; 2 to [`MAX_TAPS`]: the maximum of taps x taps.
     #[serde(default = "one")]
     pub taps: u32,
-    /// Fixes the depth convention; left out, it follows the depth format the compile
-    /// picks, as the opaque passes' does.
+    /// Fixes the depth convention of a depth buffer; left out, it follows the depth
+    /// format the compile picks, as the opaque passes' does.
     #[serde(default)]
     pub reversed_z: Option<bool>,
 }
@@ -80,164 +80,31 @@ impl Plugin for DepthDownsample {
                 params.taps
             )));
         }
-        let (depth, samples, generated) = match slots.kind("samples") {
-            Some(_) => {
-                let (keys, samples) = visibility_samples::read(pass, slots, "samples")?;
-                let generated = format!(
-                    "{}\nfn sample_depth_at(pixel: vec2<i32>, s: u32) -> f32 {{\n    \
-                     return sample_depth(pixel, s);\n}}\n",
-                    shaders::KEYS
-                );
-                (Depth::Keys(keys), samples, generated)
-            }
-            None => {
-                let want = Want::new("the opaque passes' depth", textures::DEPTH_ANY);
-                let (depth, desc) = textures::input(slots, pass, "depth", want)?;
-                pass.sampled_aspect(depth, Aspect::DepthOnly);
-                let input = Input {
-                    binding: 0,
-                    texture: depth,
-                    aspect: Aspect::DepthOnly,
-                    texels: Texels::Depth,
-                };
-                // Every sample is read: a depth buffer does not say where they agree.
-                let generated = "@group(1) @binding(0) var scene_depth: GTexD;\n\
-                     fn sample_depth_at(pixel: vec2<i32>, s: u32) -> f32 {\n    \
-                     return textureLoad(scene_depth, pixel, s);\n}\n\
-                     fn one_surface(pixel: vec2<i32>) -> bool {\n    return false;\n}\n"
-                    .to_owned();
-                let rule = DepthRule::new(params.reversed_z);
-                (Depth::Buffer(input, rule), desc.samples, generated)
-            }
-        };
+        let (depth, samples) = OpaqueDepth::read(slots, pass, params.reversed_z)?;
         let want = Want::new("the downsampled view depth", textures::VIEW_DEPTH).samples(1);
         let (target, _) = textures::output(slots, pass, "view_depth", want, |pass, h, _| {
             pass.storage_write(h)
         })?;
-        let draw = Downsample {
+        let stored = Input {
+            binding: 1,
+            texture: target,
+            aspect: Aspect::All,
+            texels: Texels::Store,
+        };
+        let dispatch = FullscreenCompute {
+            label: "depth downsample",
             source: shaders::DEPTH_DOWNSAMPLE
-                .compose_with(samples, &generated)?
+                .compose_with(samples, &depth.wgsl())?
                 .source()
                 .to_owned(),
-            depth,
-            target: Input {
-                binding: 1,
-                texture: target,
-                aspect: Aspect::All,
-                texels: Texels::Store,
-            },
-            taps: params.taps,
+            entry: "cs_downsample",
+            constants: vec![("TAPS", f64::from(params.taps))],
+            inputs: vec![stored],
+            reads_scene: true,
+            target,
+            depth: Some(depth),
         };
-        self.0.record(pass, draw);
+        self.0.record(pass, dispatch);
         Ok(())
-    }
-}
-
-/// Where the pass reads the opaque scene's depth.
-#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-enum Depth {
-    /// A depth buffer (group 1, binding 0) in the convention the rule gives its format.
-    Buffer(Input, DepthRule),
-    /// A compute rasteriser's keys: reversed-Z.
-    Keys(BufferHandle),
-}
-
-#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-struct Downsample {
-    source: String,
-    depth: Depth,
-    target: Input,
-    taps: u32,
-}
-
-impl Recording for Downsample {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Compute(gpu::record(self, scenes))
-    }
-}
-
-#[cfg(feature = "gpu")]
-mod gpu {
-    use std::sync::Arc;
-
-    use graph_core::gpu::ComputeContext;
-
-    use super::{Depth, Downsample};
-    use crate::common::depth::far_depth;
-    use crate::common::gpu::{compute_pipeline, per_scene, GroupBuffers, InputPass};
-    use crate::common::visibility_samples::{fits_binding, KEYS_BINDING};
-    use crate::gpu_scene::SceneCache;
-    use crate::scene::DepthConvention;
-
-    pub(super) fn record(
-        draw: Downsample,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
-        let mut state = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            let device = resources.device;
-            let Some(scene) = scenes.for_frame(resources) else {
-                return;
-            };
-            // The camera that unprojects the depth is the one of its convention.
-            let (inputs, buffers, convention) = match &draw.depth {
-                Depth::Buffer(input, rule) => {
-                    let convention = rule.convention(resources.shape(input.texture).format);
-                    (
-                        vec![*input, draw.target],
-                        GroupBuffers::default(),
-                        convention,
-                    )
-                }
-                Depth::Keys(keys) => {
-                    if let Err(why) = fits_binding(device, resources.buffer(*keys)) {
-                        return resources.fail(why);
-                    }
-                    let buffers = GroupBuffers {
-                        read: vec![(KEYS_BINDING, *keys)],
-                        owned: Vec::new(),
-                    };
-                    (vec![draw.target], buffers, DepthConvention::ReversedZ)
-                }
-            };
-            let state: &mut InputPass<DepthConvention, wgpu::ComputePipeline> =
-                per_scene(&mut state, &scene, || {
-                    let label = "depth downsample";
-                    InputPass::with_geometry(
-                        resources,
-                        label,
-                        &draw.source,
-                        Some(&scene),
-                        &inputs,
-                        &buffers,
-                        false,
-                    )
-                });
-            let (module, layout) = (&state.module, &state.layout);
-            let pipeline = state.pipelines.get(convention, |&convention| {
-                let constants = [
-                    ("TAPS", f64::from(draw.taps)),
-                    ("FAR_DEPTH", f64::from(far_depth(convention))),
-                ];
-                compute_pipeline(
-                    device,
-                    "depth downsample",
-                    layout,
-                    module,
-                    "cs_downsample",
-                    &constants,
-                )
-            });
-            ctx.pass.set_pipeline(pipeline);
-            ctx.pass
-                .set_bind_group(0, scene.bind_group(convention), &[]);
-            ctx.pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            let out = resources.shape(draw.target.texture);
-            ctx.pass
-                .dispatch_workgroups(out.width.div_ceil(8), out.height.div_ceil(8), 1);
-        })
     }
 }

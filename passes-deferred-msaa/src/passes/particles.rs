@@ -507,6 +507,7 @@ impl CompositeParticles {
             inputs: vec![color, additive, under, stored],
             reads_scene: true,
             target,
+            depth: None,
         };
         self.0.record(pass, dispatch);
         Ok(())

@@ -188,6 +188,7 @@ impl Plugin for Tonemap {
                     inputs,
                     reads_scene: self.0.draws_scene,
                     target,
+                    depth: None,
                 };
                 self.0.record(pass, dispatch);
             }

@@ -170,14 +170,10 @@ mod gpu {
                 Ok(group) => group,
                 Err(why) => return resources.fail(why),
             };
-            // Textured alpha masks read the table (a scene on the device has a host
-            // scene: for_frame returned it).
-            let table = scenes.scene().ok_or("no scene").and_then(|host_scene| {
-                scene.texture_table_group(device, resources.queue, host_scene)
-            });
-            let table = match table {
+            // Textured alpha masks read the table.
+            let table = match scenes.texture_table(&scene, device, resources.queue) {
                 Ok(table) => table,
-                Err(why) => return resources.fail(format!("texture table: {why}")),
+                Err(why) => return resources.fail(why),
             };
             let variant = scenes.variant(GatedShader::VisibilityRaster);
             let ids = draw.ids.map(|ids| resources.shape(ids).format);

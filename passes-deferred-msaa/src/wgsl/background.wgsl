@@ -3,11 +3,15 @@
 // proportion to the pixel's samples that show nothing, and that share itself in alpha
 // (the background's transmittance, which the transparent and particle composites then
 // multiply and tone mapping reads for a colour or transparent background). Composed
-// after common.wgsl and scene.wgsl, then a generated block defining
-// `fn drawn(pixel: vec2<i32>, s: u32) -> bool` (whether sample `s` shows a surface),
-// `fn one_surface(pixel: vec2<i32>) -> bool` (whether sample 0 speaks for them all) and
-// `fn coverage_size() -> vec2<f32>` (the pixels those cover, the image's), from the
-// opaque passes' depth or a compute rasteriser's keys (group 1).
+// after common.wgsl and scene.wgsl, then common/opaque_depth.rs's block reading the
+// opaque passes' depth or a compute rasteriser's keys (group 1): `sample_depth_at`,
+// `one_surface` and `coverage_size`, the pixels those cover (the image's).
+
+// Whether sample `s` of `pixel` shows a surface: its depth is not the far depth the
+// buffer was cleared to (the keys' 0 with reversed-Z).
+fn drawn(pixel: vec2<i32>, s: u32) -> bool {
+    return sample_depth_at(pixel, s) != FAR_DEPTH;
+}
 
 // Add the environment's radiance (1), or nothing and leave the background to tone
 // mapping (0: a colour, or transparency).

@@ -1,10 +1,10 @@
 // Depth downsampling for off-screen particles (seed 001 §23.3): the multisampled depth
 // as view depth at the off-screen size, an invocation per off-screen pixel. Composed
-// after common.wgsl, scene.wgsl and particle_depth.wgsl, then a generated block defining
-// `fn sample_depth_at(pixel: vec2<i32>, s: u32) -> f32` (a sample's clip depth, FAR_DEPTH
-// where nothing was drawn) and `fn one_surface(pixel: vec2<i32>) -> bool` (sample 0
-// speaks for every sample of the pixel) from the opaque passes' depth or a compute
-// rasteriser's keys (group 1); the output is group 1 binding 1.
+// after common.wgsl, scene.wgsl and particle_depth.wgsl, then common/opaque_depth.rs's
+// block reading the opaque passes' depth or a compute rasteriser's keys (group 1):
+// `sample_depth_at` (a sample's clip depth, FAR_DEPTH where nothing was drawn) and
+// `one_surface` (sample 0 speaks for every sample of the pixel); the output is group 1
+// binding 1.
 //
 // TAPS = 1 point-samples: sample 0 of the full-resolution pixel under the off-screen
 // pixel's centre (at scale 1, exactly what the full-resolution particle pass reads).
@@ -38,8 +38,7 @@ fn cs_downsample(@builtin(global_invocation_id) id: vec3<u32>) {
     if any(id.xy >= size) {
         return;
     }
-    // The depth is the output's size: the camera's viewport.
-    let full = camera.viewport;
+    let full = coverage_size();
     // One off-screen pixel's extent in full-resolution pixels.
     let block = full / vec2<f32>(size);
     let last = vec2<i32>(full) - 1;
