@@ -44,28 +44,22 @@ const SCENE: &str = "builtin:spheres";
 /// Frames per second of the animation's clock.
 const FPS: f64 = 30.0;
 
-/// The frame: the G-buffer at 4x MSAA, lit and resolved in one tiled compute pass, tone
-/// mapped into the engine's target. The same plugins and parameters as
-/// pipelines/deferred_msaa_4x_tiled.ron, without its debug views and scene conditions.
+/// The frame: the default pipeline's branch for GPUs (pipelines/visibility_msaa_4x.ron,
+/// without its scene conditions and debug views): a visibility buffer at 4x MSAA
+/// rasterised in compute, its triangles rebuilt, lit and resolved in one tiled compute
+/// pass, tone mapped into the engine's target (by a fragment pass: no sRGB format is a
+/// storage format).
 const GRAPH: &str = r#"Graph(
     resources: {
-        "albedo": Texture(format: "rgba8unorm-srgb", samples: 4),
-        "normal": Texture(format: "rg16float", samples: 4),
-        "material": Texture(format: "rgba8unorm", samples: 4),
-        "view_depth": Texture(format: "r32float", samples: 4),
-        "hdr": Texture(format: "rgba16float", samples: 4),
-        "depth": Texture(format: "depth32float-stencil8", fallback: "depth24plus-stencil8", samples: 4),
+        "samples": Buffer(per_sample: 8, samples: 4),
         "resolved": Texture(format: "rgba16float"),
         "target": ImportedTexture(format: "rgba8unorm-srgb"),
     },
     passes: [
-        (name: "gbuffer", plugin: "gbuffer",
-         outputs: { "albedo": "albedo", "normal": "normal", "material": "material",
-                    "view_depth": "view_depth", "hdr": "hdr", "depth": "depth" }),
-        (name: "light tiled", plugin: "light_tiled", params: (edges: (detector: compare)),
-         inputs: { "albedo": "albedo", "normal": "normal", "material": "material",
-                   "view_depth": "view_depth", "depth": "depth", "hdr": "hdr" },
-         outputs: { "resolved": "resolved" }),
+        (name: "visibility", plugin: "visibility_compute", params: (other_samples: at_edges),
+         outputs: { "samples": "samples" }),
+        (name: "light tiled", plugin: "light_tiled", params: (shading: adaptive),
+         inputs: { "samples": "samples" }, outputs: { "resolved": "resolved" }),
         (name: "tonemap", plugin: "tonemap", params: (operator: aces),
          inputs: { "hdr": "resolved" }, outputs: { "color": "target" }),
     ],

@@ -7,7 +7,7 @@ use graph_core::file::GraphParams;
 use passes_deferred_msaa::scene::{
     AssetPolicy, Lighting, Scene, SceneError, DEFAULT_MAX_ASSET_BYTES,
 };
-use passes_deferred_msaa::Exposure;
+use passes_deferred_msaa::{Background, Exposure};
 
 #[derive(Parser)]
 #[command(
@@ -157,12 +157,13 @@ pub enum Command {
 #[derive(clap::Args)]
 pub struct RenderArgs {
     /// The graph file. It must export "color" (the final image) and may export debug
-    /// views as "debug.NAME"; both rgba8unorm-srgb or rgba8unorm. The default lights in
-    /// one tiled compute pass: the fastest 4x pipeline at the fragment path's edge error.
+    /// views as "debug.NAME"; both rgba8unorm-srgb or rgba8unorm. The default, a
+    /// visibility buffer at 4x MSAA, draws every feature a scene has (opaque, alpha MASK
+    /// and BLEND, emission, the environment, particles) and is the fastest 4x pipeline.
     #[arg(
         long,
         value_name = "FILE",
-        default_value = "pipelines/deferred_msaa_4x_tiled.ron"
+        default_value = "pipelines/visibility_msaa_4x.ron"
     )]
     pub pipeline: PathBuf,
     /// A glTF 2.0 file (.gltf or .glb), or builtin:NAME[?key=value&...] for a built-in
@@ -196,6 +197,14 @@ pub struct RenderArgs {
     // taking "-1" for an unknown flag.
     #[arg(long, value_name = "E|auto", value_parser = parse_exposure, allow_negative_numbers = true)]
     pub exposure: Option<Exposure>,
+    /// What shows where nothing is drawn: environment (the scene's, as a mirror reflects
+    /// it: the default for files without lights, whose default lighting it is), color:R,G,B
+    /// (sRGB bytes 0 to 255 as the PNG shows them, composited in linear light) or
+    /// transparent (the PNG's alpha is the coverage, for compositing). Without it a scene
+    /// with lights of its own shows black. The pipeline must draw a background (the
+    /// default does); others refuse the flag.
+    #[arg(long, value_name = "environment|color:R,G,B|transparent", value_parser = parse_background)]
+    pub background: Option<Background>,
     /// Compile the pipeline as for a scene using every feature, instead of dropping the
     /// passes and channels this scene does not use (`rgraph explain --scene` shows what
     /// those are). The image is the same; the point is comparing, or a debug view the
@@ -236,7 +245,7 @@ pub struct ViewArgs {
     #[arg(
         long,
         value_name = "FILE",
-        default_value = "pipelines/deferred_msaa_4x_tiled.ron"
+        default_value = "pipelines/visibility_msaa_4x.ron"
     )]
     pub pipeline: PathBuf,
     /// A glTF 2.0 file (.gltf or .glb), or builtin:NAME[?key=value&...].
@@ -255,6 +264,14 @@ pub struct ViewArgs {
     /// The view shown first: final (the "color" output) or NAME (the "debug.NAME" output).
     #[arg(long, value_name = "VIEW", default_value = "final")]
     pub view: String,
+    /// What shows where nothing is drawn: environment (the scene's, as a mirror reflects
+    /// it: the default for files without lights, whose default lighting it is), color:R,G,B
+    /// (sRGB bytes 0 to 255 as the PNG shows them, composited in linear light) or
+    /// transparent (the PNG's alpha is the coverage, for compositing). Without it a scene
+    /// with lights of its own shows black. The pipeline must draw a background (the
+    /// default does); others refuse the flag.
+    #[arg(long, value_name = "environment|color:R,G,B|transparent", value_parser = parse_background)]
+    pub background: Option<Background>,
     /// Adapter to render on: lavapipe, gpu, or part of an adapter's name (default:
     /// $RGRAPH_ADAPTER, else lavapipe). It must be able to present to the window.
     #[arg(long)]
@@ -615,6 +632,26 @@ fn parse_exposure(text: &str) -> Result<Exposure, String> {
         Ok(e) if e.is_finite() && e > 0.0 => Ok(Exposure::Fixed(e)),
         Ok(_) => Err("must be auto or a finite number above 0".into()),
         Err(_) => Err("expected auto or a number, e.g. 1.5".into()),
+    }
+}
+
+fn parse_background(text: &str) -> Result<Background, String> {
+    let text = text.trim();
+    match text {
+        "environment" => return Ok(Background::Environment),
+        "transparent" => return Ok(Background::Transparent),
+        _ => {}
+    }
+    let expected = "expected environment, transparent or color:R,G,B (each 0 to 255, the \
+                    sRGB bytes shown), e.g. color:255,255,255";
+    let Some(rgb) = text.strip_prefix("color:") else {
+        return Err(format!("{expected}, got \"{text}\""));
+    };
+    let channels: Vec<&str> = rgb.split(',').collect();
+    let parsed: Result<Vec<u8>, _> = channels.iter().map(|c| c.trim().parse::<u8>()).collect();
+    match parsed {
+        Ok(c) if c.len() == 3 => Ok(Background::Color([c[0], c[1], c[2]])),
+        _ => Err(format!("{expected}, got \"{text}\"")),
     }
 }
 

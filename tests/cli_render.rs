@@ -43,13 +43,20 @@ fn assert_nothing_written(dir: &TempDir) {
     assert!(left.is_empty(), "a failed render left files: {left:?}");
 }
 
-/// The defaults (pipelines/deferred_msaa_4x_tiled.ron on builtin:spheres) at 64x48, plus
+/// The defaults (pipelines/visibility_msaa_4x.ron on builtin:spheres) at 64x48, plus
 /// `extra`.
 fn render_default(out: &Path, extra: &[&str]) -> Run {
     let out = out.to_str().expect("temp paths are UTF-8");
     let mut args = vec!["--width", "64", "--height", "48", "--out", out];
     args.extend_from_slice(extra);
     render(&args)
+}
+
+/// pipelines/deferred_msaa_4x_tiled.ron, a G-buffer with its debug views and scene
+/// conditions, on builtin:spheres at 64x48, plus `extra`.
+fn render_tiled(out: &Path, extra: &[&str]) -> Run {
+    let pipeline = ["--pipeline", "pipelines/deferred_msaa_4x_tiled.ron"];
+    render_default(out, &[&pipeline[..], extra].concat())
 }
 
 /// How many different colors an image has: a real render of a scene has many.
@@ -311,8 +318,9 @@ fn an_adapter_that_does_not_exist_is_a_usage_error_listing_the_others() {
     assert_nothing_written(&dir);
 }
 
+/// The default pipeline is the visibility buffer, by the hardware raster on lavapipe.
 #[test]
-fn the_defaults_render_the_spheres_with_deferred_msaa() {
+fn the_defaults_render_the_spheres_through_the_visibility_buffer() {
     let dir = temp_dir();
     let out = dir.path().join("frame.png");
     let run = render_default(&out, &[]).expect(0);
@@ -320,13 +328,14 @@ fn the_defaults_render_the_spheres_with_deferred_msaa() {
     assert_eq!(image.dimensions(), (64, 48));
     let colors = distinct_colors(&image);
     assert!(colors > 100, "a lit scene has many colors, got {colors}");
-    run.stderr_has("\ngbuffer ")
-        .stderr_has("\ntonemap ")
-        .stderr_has("culled: debug edges");
+    run.stderr_has("\nvisibility (hardware raster) ")
+        .stderr_has("\nlight tiled (hardware raster) ")
+        .stderr_has("\ntonemap (cpu device) ")
+        .stderr_has("culled: debug edges (hardware raster), debug fragments (hardware raster)");
 }
 
 #[test]
-fn every_debug_view_of_the_default_pipeline_renders_without_the_lighting() {
+fn every_debug_view_of_the_tiled_pipeline_renders_without_the_lighting() {
     let dir = temp_dir();
     let views = [
         "edges",
@@ -338,7 +347,7 @@ fn every_debug_view_of_the_default_pipeline_renders_without_the_lighting() {
     ];
     for view in views {
         let out = dir.path().join(format!("{view}.png"));
-        let run = render_default(&out, &["--view", view]).expect(0);
+        let run = render_tiled(&out, &["--view", view]).expect(0);
         let image = read_png(&out);
         assert_eq!(image.dimensions(), (64, 48), "--view {view}");
         assert!(
@@ -372,11 +381,11 @@ fn exposure_reaches_the_tone_mapping() {
     );
 }
 
-/// builtin:unlit at 64x48 with the default pipeline, plus `extra`.
+/// builtin:unlit at 64x48 with the tiled pipeline, plus `extra`.
 fn render_unlit(out: &Path, extra: &[&str]) -> Run {
     let mut args = vec!["--scene", "builtin:unlit"];
     args.extend_from_slice(extra);
-    render_default(out, &args)
+    render_tiled(out, &args)
 }
 
 #[test]
@@ -388,8 +397,8 @@ fn an_unlit_scene_renders_with_the_specialised_plan_and_the_same_image() {
         .stderr_has("specialised to the scene's features: no_lights, shallow_depth, unlit_only")
         .stderr_has("\ngbuffer (unlit) ")
         .stderr_has(
-            "dropped by conditions: gbuffer, light tiled, resolve (no lights), transparent, \
-             composite transparent, auto exposure, tonemap (auto exposure), debug edges, \
+            "dropped by conditions: gbuffer, light tiled, resolve (no lights), background, \
+             transparent, composite transparent, auto exposure, tonemap (auto exposure), debug edges, \
              debug tile lights, debug normals, debug lights",
         );
     let run = render_unlit(&general, &["--no-specialise"]).expect(0);
@@ -429,8 +438,8 @@ fn a_view_the_scene_does_not_need_is_refused_with_the_reason() {
 
 /// visibility_msaa_4x.ron takes its branch for CPU adapters on lavapipe, the hardware
 /// raster, and the summary says the device decided it, specialised or not (unspecialised,
-/// every scene feature is set, `untabled_textures` too: the G-buffer fallback, tone
-/// mapped as on a CPU).
+/// every scene feature is set, `untabled_textures` and `particles` too: the G-buffer
+/// fallback with the particle passes, tone mapped as on a CPU).
 #[test]
 fn the_visibility_pipeline_rasterises_by_the_hardware_on_a_cpu_device() {
     let dir = temp_dir();
@@ -445,19 +454,22 @@ fn the_visibility_pipeline_rasterises_by_the_hardware_on_a_cpu_device() {
         );
     render_default(&out, &[&pipeline[..], &["--no-specialise"]].concat())
         .expect(0)
-        .stderr_has("\ntonemap (cpu device) ")
+        .stderr_has("\ngbuffer (untabled textures, emissive) ")
+        .stderr_has("\nparticles (off screen) ")
+        .stderr_has("\ntonemap (cpu device, particles) ")
         .stderr_has("\ndevice conditions: cpu_device\n");
 }
 
 #[test]
 fn a_lit_scene_is_specialised_only_in_its_depth_format() {
     let dir = temp_dir();
-    let run = render_default(&dir.path().join("f.png"), &[]).expect(0);
+    let run = render_tiled(&dir.path().join("f.png"), &[]).expect(0);
     // builtin:spheres uses lights and lit materials; its depth spans 309 near planes.
     run.stderr_has("specialised to the scene's features: shallow_depth (")
         .stderr_has(
             "dropped by conditions: gbuffer (unlit), resolve (unlit), resolve (no lights), \
-             transparent, composite transparent, auto exposure, tonemap (auto exposure)\n",
+             background, transparent, composite transparent, auto exposure, tonemap (auto \
+             exposure)\n",
         );
 }
 

@@ -478,6 +478,8 @@ fn keys_pick_the_view_keys_and_drags_orbit_the_camera_and_a_resize_recompiles() 
     let mut child = x
         .rgraph(&[
             "view",
+            "--pipeline",
+            "pipelines/deferred_msaa_4x_tiled.ron",
             "--width",
             "160",
             "--height",

@@ -18,6 +18,7 @@ mod fuzz_support;
 #[path = "../passes-deferred-msaa/tests/common/mod.rs"]
 mod gltf_writer;
 
+mod background;
 mod background_fill;
 mod baselines_errors;
 mod baselines_forward;
@@ -32,6 +33,7 @@ mod cli_render_samples;
 mod cli_trust;
 mod cli_validate;
 mod cli_view;
+mod default_pipeline;
 mod deferred_detectors;
 mod deferred_environment;
 mod deferred_exposure;

@@ -44,7 +44,16 @@ fn the_general_scene_uses_every_feature_and_lacks_nothing() {
     let general = Features::general().names();
     let mut present: Vec<&str> = Features::NAMES
         .into_iter()
-        .filter(|&n| !["unlit_only", "no_lights", "shallow_depth", "auto_exposure"].contains(&n))
+        .filter(|&n| {
+            ![
+                "unlit_only",
+                "no_lights",
+                "shallow_depth",
+                "auto_exposure",
+                "background",
+            ]
+            .contains(&n)
+        })
         .collect();
     present.sort();
     assert_eq!(general.iter().collect::<Vec<_>>(), present);

@@ -52,7 +52,7 @@ fn a_misspelt_feature_in_a_pass_condition_is_an_error_at_the_feature() {
     assert_eq!(
         errors.to_string(),
         format!(
-            "{}: error: pass \"light edges\": condition \"!unlitonly & !no_lights\" names feature \"unlitonly\", which the graph does not declare (declared: auto_exposure, blend, no_lights, shallow_depth, unlit_only)",
+            "{}: error: pass \"light edges\": condition \"!unlitonly & !no_lights\" names feature \"unlitonly\", which the graph does not declare (declared: auto_exposure, background, blend, no_lights, shallow_depth, unlit_only)",
             at(&text, "unlitonly &", 0)
         )
     );
@@ -87,7 +87,7 @@ fn a_misspelt_feature_in_a_conditional_format_is_an_error_at_the_feature() {
     assert_eq!(
         errors.to_string(),
         format!(
-            "{}: error: resource \"depth\": the condition \"shallow_dept\" of a conditional format names feature \"shallow_dept\", which the graph does not declare (declared: auto_exposure, blend, no_lights, shallow_depth, unlit_only)",
+            "{}: error: resource \"depth\": the condition \"shallow_dept\" of a conditional format names feature \"shallow_dept\", which the graph does not declare (declared: auto_exposure, background, blend, no_lights, shallow_depth, unlit_only)",
             at(&text, "shallow_dept\"", 0)
         )
     );

@@ -120,6 +120,7 @@ fn json_carries_the_features_and_the_dropped_passes() {
             "edges",
             "light edges",
             "light the rest",
+            "background",
             "transparent",
             "composite transparent",
             "auto exposure",

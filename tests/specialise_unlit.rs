@@ -74,6 +74,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
     let no_light = r#"condition "!unlit_only & !no_lights" is false ("unlit_only" is set, "no_lights" is set)"#;
     // Nor BLEND materials.
     let no_blend = r#"condition "blend" is false"#;
+    // Nor a background (no environment, no --background).
+    let no_background = r#"condition "background" is false"#;
     // And a fixed exposure, as every render without --exposure auto.
     let fixed = r#"condition "auto_exposure" is false"#;
     assert_eq!(
@@ -83,6 +85,7 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
             ("edges", no_light),
             ("light edges", no_light),
             ("light the rest", no_light),
+            ("background", no_background),
             ("transparent", no_blend),
             ("composite transparent", no_blend),
             ("auto exposure", fixed),

@@ -58,6 +58,28 @@ pub struct Overrides {
     pub tonemap: Option<String>,
     /// Exposure applied before tone mapping.
     pub exposure: Option<Exposure>,
+    /// What shows where nothing is drawn: `None` leaves it to the pipeline (black). A
+    /// pipeline draws one with a `background` pass, which it runs under the condition
+    /// `background` (set by the host's choice, see
+    /// [`crate::analysis::Features::background`]).
+    pub background: Option<Background>,
+}
+
+/// What a frame shows where its opaque passes drew nothing: behind every surface, seen
+/// through blended ones and particles, and at silhouettes in proportion to the samples
+/// that show nothing.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Background {
+    /// The scene's environment as a mirror would reflect it (its image-based lighting's
+    /// radiance, level 0 of its cube map), lit and tone mapped with the scene.
+    Environment,
+    /// A colour, as the output's sRGB bytes show it: tone mapping composites the frame
+    /// over it, in linear light.
+    Color([u8; 3]),
+    /// Nothing: the output's alpha is the frame's coverage (0 where nothing is drawn,
+    /// partial at silhouettes and behind blended surfaces), its colour unpremultiplied, as
+    /// an RGBA image for compositing is.
+    Transparent,
 }
 
 /// How bright the image is made before tone mapping.

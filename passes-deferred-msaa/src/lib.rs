@@ -30,7 +30,7 @@ use graph_core::file::Registry;
 /// The math crate of the scene API (`DVec3` positions, `DMat4` transforms), so callers
 /// building a [`scene::Scene`] in code use the same version.
 pub use glam;
-pub use host::{Exposure, FrameInputs, FrameInputsError, Host, LightPose, Overrides};
+pub use host::{Background, Exposure, FrameInputs, FrameInputsError, Host, LightPose, Overrides};
 
 /// Adds this crate's pass plugins to `registry`, so graph files can name them. With
 /// `host: None` the plugins declare and validate passes but draw nothing (see [`host`]).

@@ -15,6 +15,9 @@
 //! (pipelines/deferred_noaa_fxaa.ron, deferred_msaa_4x_fxaa.ron). `ssao` and `ssao_blur`
 //! compute screen-space ambient occlusion from the G-buffer, which the light passes take
 //! as their optional `ao` input (pipelines/deferred_msaa_4x_ssao.ron).
+//! `background` draws what shows where nothing is (the host's `Background`: the
+//! environment, or coverage for a colour or transparent output) under `when:
+//! "background"`, before the transparent composite.
 //! `light_prepass_gbuffer` and `light_prepass_material` are a light pre-pass renderer's
 //! geometry passes around the light passes' `accumulate: light`
 //! (pipelines/light_prepass_msaa_4x.ron). The `particles_*` pipelines draw the scene's
@@ -42,6 +45,7 @@ use crate::host::Host;
 pub use crate::common::edge_detection::{Detector, EdgeDetection};
 pub use crate::common::extent::Extent;
 pub use crate::passes::auto_exposure::{AutoExposure, AutoExposureParams};
+pub use crate::passes::background::{Background, BackgroundParams};
 pub use crate::passes::debug_view::{DebugView, DebugViewParams, View};
 pub use crate::passes::depth_downsample::{DepthDownsample, DepthDownsampleParams, MAX_TAPS};
 pub use crate::passes::edge_stencil::EdgeStencil;
@@ -97,6 +101,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(SsaoBlur(shared.clone()))
         .register(Transparent(shared.clone()))
         .register(CompositeTransparent(shared.clone()))
+        .register(Background(shared.clone()))
         .register(Particles(shared.clone()))
         .register(CompositeParticles(shared.clone()))
         .register(DepthDownsample(shared.clone()))

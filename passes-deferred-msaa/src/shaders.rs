@@ -14,16 +14,31 @@ const MATERIAL: &str = concat!(
     include_str!("wgsl/material_bound.wgsl")
 );
 pub(crate) const GBUFFER_READ: &str = include_str!("wgsl/gbuffer_read.wgsl");
+/// The material model with the scene's texture table, a triangle seen through a pixel
+/// from the scene's geometry, and the base colour texel a textured alpha MASK tests: what
+/// the visibility rasters add to geometry.wgsl.
+const MASK_TEXTURE: &str = concat!(
+    include_str!("wgsl/material.wgsl"),
+    include_str!("wgsl/material_table.wgsl"),
+    include_str!("wgsl/plane_hit.wgsl"),
+    include_str!("wgsl/mask_texture.wgsl")
+);
 const GEOMETRY: &str = include_str!("wgsl/geometry.wgsl");
 const TRIANGLE_SETUP: &str = include_str!("wgsl/triangle_setup.wgsl");
 /// Where a compute rasteriser's visibility buffer keeps each sample's key.
 const KEY_LAYOUT: &str = include_str!("wgsl/key_layout.wgsl");
+/// A compute rasteriser's keys as its readers take them (group 1, binding 8).
+pub(crate) const KEYS: &str = concat!(
+    include_str!("wgsl/key_layout.wgsl"),
+    include_str!("wgsl/visibility_samples.wgsl")
+);
 /// Reads a raster pass's visibility buffer as gbuffer_read.wgsl reads a G-buffer (with
 /// geometry.wgsl, and the material model with the scene's texture table).
 pub(crate) const VISIBILITY_READ_TEXTURES: &str = concat!(
     include_str!("wgsl/geometry.wgsl"),
     include_str!("wgsl/material.wgsl"),
     include_str!("wgsl/material_table.wgsl"),
+    include_str!("wgsl/plane_hit.wgsl"),
     include_str!("wgsl/visibility_textures.wgsl"),
     include_str!("wgsl/visibility_read.wgsl")
 );
@@ -32,6 +47,7 @@ pub(crate) const VISIBILITY_READ_SAMPLES: &str = concat!(
     include_str!("wgsl/geometry.wgsl"),
     include_str!("wgsl/material.wgsl"),
     include_str!("wgsl/material_table.wgsl"),
+    include_str!("wgsl/plane_hit.wgsl"),
     include_str!("wgsl/key_layout.wgsl"),
     include_str!("wgsl/visibility_samples.wgsl"),
     include_str!("wgsl/visibility_read.wgsl")
@@ -124,6 +140,7 @@ pub(crate) const VISIBILITY: Source = Source {
         COMMON,
         SCENE,
         GEOMETRY,
+        MASK_TEXTURE,
         include_str!("wgsl/visibility.wgsl"),
     ],
 };
@@ -133,6 +150,7 @@ pub(crate) const VISIBILITY_COMPUTE: Source = Source {
         COMMON,
         SCENE,
         GEOMETRY,
+        MASK_TEXTURE,
         TRIANGLE_SETUP,
         include_str!("wgsl/tile_raster.wgsl"),
         KEY_LAYOUT,
@@ -224,6 +242,17 @@ pub(crate) const PARTICLES: Source = Source {
     name: "particles.wgsl",
     parts: &[COMMON, SCENE, include_str!("wgsl/particles.wgsl")],
 };
+/// particles.wgsl's particles, opacities and blending in compute; needs a generated
+/// block after it: see [`crate::plugins::Particles`].
+pub(crate) const PARTICLES_RASTER: Source = Source {
+    name: "particles_raster.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        include_str!("wgsl/particles.wgsl"),
+        include_str!("wgsl/particles_raster.wgsl"),
+    ],
+};
 pub(crate) const PARTICLE_COMPOSITE: Source = Source {
     name: "particle_composite.wgsl",
     parts: &[COMMON, SCENE, include_str!("wgsl/particle_composite.wgsl")],
@@ -236,6 +265,11 @@ pub(crate) const DEPTH_DOWNSAMPLE: Source = Source {
         PARTICLE_DEPTH,
         include_str!("wgsl/depth_downsample.wgsl"),
     ],
+};
+/// Needs a generated block after it: see [`crate::plugins::Background`].
+pub(crate) const BACKGROUND: Source = Source {
+    name: "background.wgsl",
+    parts: &[COMMON, SCENE, include_str!("wgsl/background.wgsl")],
 };
 pub(crate) const PARTICLE_EDGES: Source = Source {
     name: "particle_edges.wgsl",

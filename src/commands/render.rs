@@ -17,6 +17,7 @@ use std::sync::Arc;
 
 use graph_core::gpu::{resident_bytes, AdapterChoice, DeviceObjects};
 use image::RgbaImage;
+use passes_deferred_msaa::analysis::Features as SceneFeatures;
 use passes_deferred_msaa::glam::DVec3;
 use passes_deferred_msaa::scene::{AlphaMode, Scene};
 use passes_deferred_msaa::{FrameInputs, Host, Overrides};
@@ -46,6 +47,7 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     let overrides = Overrides {
         tonemap: args.tonemap.map(|t| t.name().to_string()),
         exposure: args.exposure,
+        background: args.background,
     };
 
     progress.stage(format!("load pipeline {}", args.pipeline.display()));
@@ -71,6 +73,7 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
 
     progress.stage(format!("compile for {}", session.profile.name));
     let blended = draws_blended(&pipeline.scene);
+    let environment = SceneFeatures::of(&pipeline.scene).environment;
     let particles = pipeline.scene.particles().count();
     let mut prepared = session.prepare(pipeline, (args.width, args.height))?;
 
@@ -80,6 +83,19 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
         progress.note(format!(
             "warning: the scene has alpha BLEND materials, but {} has no `transparent` pass \
              to draw them: they are left out (pipelines/*.ron show how to add one)",
+            args.pipeline.display()
+        ));
+    }
+    // The default lighting's environment shows behind the model where the pipeline
+    // draws a background (a --background it cannot draw was refused above).
+    if args.view == view::FINAL
+        && args.background.is_none()
+        && environment
+        && !prepared.runs("background")
+    {
+        progress.note(format!(
+            "note: {} draws no background, so the environment of the default lighting \
+             does not show behind the model (pipelines/visibility_msaa_4x.ron draws it)",
             args.pipeline.display()
         ));
     }

@@ -106,7 +106,11 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
     for warning in &scene.warnings {
         eprintln!("warning: {warning}");
     }
-    let host = host(Arc::new(scene), Overrides::default());
+    let overrides = Overrides {
+        background: args.background,
+        ..Overrides::default()
+    };
+    let host = host(Arc::new(scene), overrides);
     let choice = AdapterChoice::resolve(args.adapter.as_deref());
     eprintln!("open device ({choice})");
     let session = Session::open(&choice).map_err(RenderError::Frame)?;

@@ -54,6 +54,23 @@ pub enum FrameError {
     NoMetering { pipeline: PathBuf },
 
     #[error(
+        "--background {background}: {pipeline} has no background pass that runs for this \
+         output (pipelines/visibility_msaa_4x.ron, the default, draws one under the \
+         condition background)"
+    )]
+    NoBackground {
+        pipeline: PathBuf,
+        background: String,
+    },
+
+    #[error(
+        "--background environment: scene {scene} has no environment (its file brings its own \
+         lights; the environment is the default lighting of files without them): give \
+         --background color:R,G,B or transparent"
+    )]
+    NoEnvironment { scene: String },
+
+    #[error(
         "{pipeline} imports \"{resource}\", which an engine binds; the command line runs \
          pipelines whose resources the graph creates"
     )]

@@ -9,7 +9,7 @@ use graph_core::file::{
 };
 use passes_deferred_msaa::analysis::{Features as SceneFeatures, Variants};
 use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::{Exposure, Host, Overrides};
+use passes_deferred_msaa::{Background, Exposure, Host, Overrides};
 
 use super::FrameError;
 use crate::registry::registry_for;
@@ -38,6 +38,9 @@ pub struct Pipeline {
     /// The scene the plugins draw, whose textures
     /// [`Session::prepare`](super::Session::prepare) checks against the device.
     pub scene: Arc<Scene>,
+    /// The background the host asked for, which
+    /// [`Session::prepare`](super::Session::prepare) checks a pass draws.
+    pub background: Option<Background>,
 }
 
 /// What a pipeline is compiled for.
@@ -119,9 +122,21 @@ impl Pipeline {
         let (mut features, shader_features) = specialise.features(&host.scene);
         // The file's `auto_exposure` passes stand in for its fixed-exposure tone mapping.
         features.auto_exposure = host.overrides.exposure == Some(Exposure::Auto);
+        // Its `background` passes draw the one asked for, and under the default lighting
+        // (an environment) that environment unasked.
+        let background = host.overrides.background;
+        let environment = SceneFeatures::of(&host.scene).environment;
+        if background == Some(Background::Environment) && !environment {
+            return Err(FrameError::NoEnvironment {
+                scene: host.scene.name.clone(),
+            });
+        }
+        features.background = background.is_some() || environment;
         let scene = host.scene.clone();
         let loaded = load(&registry_for(Some(host), specialise.variants()))?;
-        Self::keep(path, loaded, outputs, (features, shader_features), scene)
+        let mut pipeline = Self::keep(path, loaded, outputs, (features, shader_features), scene)?;
+        pipeline.background = background;
+        Ok(pipeline)
     }
 
     fn keep(
@@ -146,6 +161,7 @@ impl Pipeline {
             features,
             shader_features,
             scene,
+            background: None,
         })
     }
 }

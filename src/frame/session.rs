@@ -7,6 +7,8 @@ use graph_core::gpu::{AdapterChoice, Executor, Gpu};
 use graph_core::types::TextureFormat;
 use graph_core::{CompileOptions, CompiledGraph, DeviceProfile, Origin, Plan, ResourceId};
 
+use passes_deferred_msaa::Background;
+
 use super::{FrameError, Pipeline, Prepared};
 
 /// The device every frame of a command runs on, and what it can do.
@@ -42,12 +44,16 @@ impl Session {
             outputs,
             features,
             shader_features,
+            background,
             ..
         } = pipeline;
         let compiled = CompiledGraph::new_for(loaded, &options, &features.names())
             .map_err(FrameError::Pipeline)?;
         no_imports(compiled.plan(), &path)?;
         metered(&compiled, features.auto_exposure, &path)?;
+        if let Some(background) = background {
+            backgrounded(&compiled, background, &path)?;
+        }
         let outputs = outputs
             .iter()
             .map(|o| {
@@ -161,6 +167,33 @@ fn metered(
             pipeline: pipeline.to_path_buf(),
         }),
         false => Ok(()),
+    }
+}
+
+/// A background asked for needs a pass that draws it: a file without one would show its
+/// own (black), silently.
+fn backgrounded(
+    compiled: &CompiledGraph<LoadedGraph>,
+    background: Background,
+    pipeline: &Path,
+) -> Result<(), FrameError> {
+    let drawing =
+        |p: &graph_core::PlannedPass| compiled.graph().plugin(&p.name) == Some("background");
+    match compiled.plan().passes.iter().any(drawing) {
+        true => Ok(()),
+        false => Err(FrameError::NoBackground {
+            pipeline: pipeline.to_path_buf(),
+            background: background_flag(background),
+        }),
+    }
+}
+
+/// `background` as `--background` spells it.
+pub fn background_flag(background: Background) -> String {
+    match background {
+        Background::Environment => "environment".into(),
+        Background::Color([r, g, b]) => format!("color:{r},{g},{b}"),
+        Background::Transparent => "transparent".into(),
     }
 }
 

@@ -34,17 +34,26 @@ pub struct Features {
     pub normal_textures: bool,
     /// Some mesh's lit material samples an occlusion texture.
     pub occlusion_textures: bool,
-    /// Some mesh's material has textures that the visibility buffer cannot shade from its
-    /// texture table: an alpha MASK material's base-color texture (the visibility raster
-    /// pass tests the cutoff on the factor and vertex alpha only), or any texture when the
-    /// scene's do not fit the table within WebGPU's default limits
-    /// ([`TextureTable::check`]). Pipelines take a G-buffer for these scenes.
+    /// Some mesh's alpha MASK material samples a base-color texture: the visibility
+    /// rasters test its cutoff on the texel's alpha, read from the scene's texture table.
+    pub mask_textures: bool,
+    /// The scene's textures do not fit the texture table within WebGPU's default limits
+    /// ([`TextureTable::check`]): the visibility buffer cannot shade them, and pipelines
+    /// take a G-buffer for these scenes.
     pub untabled_textures: bool,
     pub double_sided: bool,
     /// A 24-bit unorm depth buffer with standard Z resolves the geometry's depth range
     /// as finely as [`DepthRange::shallow`] asks. A reduction, like `unlit_only`: only a
     /// scene that is measured gets it.
     pub shallow_depth: bool,
+    /// The scene has particles (`builtin:smoke`, or emitters an engine adds to it): the
+    /// pipelines add their particle passes under `when: "particles"`.
+    pub particles: bool,
+    /// Not the scene's but the host's choice: draw a background where nothing is (the
+    /// environment, a colour, or transparency: `Background`), which pipelines do with a
+    /// `background` pass under this condition. [`Features::of`] and
+    /// [`Features::general`] leave it unset.
+    pub background: bool,
     /// Not the scene's but the host's choice: expose each frame for its metered
     /// luminance (`Exposure::Auto`), which pipelines do with an `auto_exposure` pass
     /// under this condition. [`Features::of`] and [`Features::general`] leave it unset.
@@ -53,7 +62,7 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 21] = [
+    pub const NAMES: [&'static str; 24] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -71,9 +80,12 @@ impl Features {
         "metal_rough_textures",
         "normal_textures",
         "occlusion_textures",
+        "mask_textures",
         "untabled_textures",
         "double_sided",
         "shallow_depth",
+        "particles",
+        "background",
         "auto_exposure",
     ];
 
@@ -102,17 +114,20 @@ impl Features {
             metal_rough_textures: material(|m| !m.unlit && m.metallic_roughness_texture.is_some()),
             normal_textures: material(|m| !m.unlit && m.normal_texture.is_some()),
             occlusion_textures: material(|m| !m.unlit && m.occlusion_texture.is_some()),
-            untabled_textures: material(|m| {
+            mask_textures: material(|m| {
                 matches!(m.alpha_mode, AlphaMode::Mask { .. }) && m.base_color_texture.is_some()
-            }) || (material(|m| m.texture_slots().iter().any(Option::is_some))
+            }),
+            untabled_textures: material(|m| m.texture_slots().iter().any(Option::is_some))
                 && TextureTable::of(scene)
                     .check(scene, WEBGPU_MAX_LAYERS, WEBGPU_MAX_SIDE)
-                    .is_err()),
+                    .is_err(),
             double_sided: material(|m| m.double_sided),
             // With no geometry between the planes nothing is depth-tested: the general
             // pipeline is as good as any.
             shallow_depth: DepthRange::of(scene)
                 .is_some_and(|range| range.shallow(&scene.camera.projection)),
+            particles: scene.particles().next().is_some(),
+            background: false,
             auto_exposure: false,
         }
     }
@@ -143,9 +158,12 @@ impl Features {
             metal_rough_textures: true,
             normal_textures: true,
             occlusion_textures: true,
+            mask_textures: true,
             untabled_textures: true,
             double_sided: true,
             shallow_depth: false,
+            particles: true,
+            background: false,
             auto_exposure: false,
         }
     }
@@ -185,9 +203,12 @@ impl Features {
             self.metal_rough_textures,
             self.normal_textures,
             self.occlusion_textures,
+            self.mask_textures,
             self.untabled_textures,
             self.double_sided,
             self.shallow_depth,
+            self.particles,
+            self.background,
             self.auto_exposure,
         ];
         Self::NAMES

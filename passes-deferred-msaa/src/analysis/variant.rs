@@ -44,6 +44,9 @@ pub enum Gate {
     Emissive,
     /// Image-based lighting (zero irradiance and intensity without an environment).
     Environment,
+    /// Reading alpha MASK materials' base colour texels in a visibility raster (without
+    /// such a material every masked texel is white).
+    MaskTextures,
 }
 
 impl Gate {
@@ -61,6 +64,7 @@ impl Gate {
             Gate::DoubleSided => "double_sided",
             Gate::Emissive => "emissive",
             Gate::Environment => "environment",
+            Gate::MaskTextures => "mask_textures",
         }
     }
 
@@ -78,6 +82,7 @@ impl Gate {
             Gate::DoubleSided => "DOUBLE_SIDED",
             Gate::Emissive => "EMISSIVE",
             Gate::Environment => "ENVIRONMENT",
+            Gate::MaskTextures => "MASK_TEXTURES",
         }
     }
 
@@ -95,6 +100,7 @@ impl Gate {
             Gate::DoubleSided => features.double_sided,
             Gate::Emissive => features.emissive,
             Gate::Environment => features.environment,
+            Gate::MaskTextures => features.mask_textures,
         }
     }
 }
@@ -115,6 +121,9 @@ pub enum GatedShader {
     Forward,
     /// transparent.wgsl (forward.wgsl's shading, keeping alpha), of `transparent`.
     Transparent,
+    /// mask_texture.wgsl, in the visibility rasters: `visibility_compute` and
+    /// `visibility`.
+    VisibilityRaster,
 }
 
 impl GatedShader {
@@ -126,6 +135,7 @@ impl GatedShader {
             "light_tiled" => Some(GatedShader::LightTiled),
             "forward" => Some(GatedShader::Forward),
             "transparent" => Some(GatedShader::Transparent),
+            "visibility_compute" | "visibility" => Some(GatedShader::VisibilityRaster),
             _ => None,
         }
     }
@@ -137,6 +147,7 @@ impl GatedShader {
             GatedShader::LightTiled | GatedShader::LightTiledVisibility => "light_tiled.wgsl",
             GatedShader::Forward => "forward.wgsl",
             GatedShader::Transparent => "transparent.wgsl",
+            GatedShader::VisibilityRaster => "mask_texture.wgsl",
         }
     }
 
@@ -181,6 +192,7 @@ impl GatedShader {
                 Emissive,
                 Environment,
             ],
+            GatedShader::VisibilityRaster => &[MaskTextures],
         }
     }
 }

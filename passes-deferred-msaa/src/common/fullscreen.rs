@@ -6,6 +6,7 @@ use graph_core::types::BlendState;
 use graph_core::TextureHandle;
 
 use super::extent::Extent;
+use super::opaque_depth::OpaqueDepth;
 use super::plugin::Recording;
 use super::textures::Input;
 
@@ -30,6 +31,9 @@ pub(crate) struct Fullscreen {
     pub stencil_mark: Option<TextureHandle>,
     /// How the shader's output combines with the color attachment; `None` replaces it.
     pub blend: Option<BlendState>,
+    /// The opaque depth the shader reads (group 1, with `inputs`), which sets its
+    /// FAR_DEPTH and the convention of the camera in group 0.
+    pub depth: Option<OpaqueDepth>,
 }
 
 impl Fullscreen {
@@ -55,6 +59,7 @@ impl Fullscreen {
             extent: Extent::Full,
             stencil_mark: None,
             blend: None,
+            depth: None,
         }
     }
 }
@@ -74,17 +79,20 @@ mod gpu {
     use graph_core::TextureHandle;
 
     use super::Fullscreen;
+    use crate::common::depth::far_depth;
     use crate::common::extent::Extent;
-    use crate::common::gpu::{per_device, InputPass, PipelineDesc, EDGE_STENCIL};
+    use crate::common::gpu::{per_device, GroupBuffers, InputPass, PipelineDesc, EDGE_STENCIL};
     use crate::gpu_scene::SceneCache;
     use crate::scene::DepthConvention;
 
-    /// Attachment formats and sample count, as the plan made them.
+    /// Attachment formats and sample count, as the plan made them, and the convention
+    /// of the opaque depth read.
     #[derive(Clone, PartialEq)]
     struct Key {
         target: Option<wgpu::TextureFormat>,
         depth_stencil: Option<wgpu::TextureFormat>,
         samples: u32,
+        convention: DepthConvention,
     }
 
     pub(super) fn record(
@@ -114,13 +122,27 @@ mod gpu {
                 ctx.pass
                     .set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
             }
+            let mut inputs = draw.inputs.clone();
+            let mut buffers = GroupBuffers::default();
+            let mut convention = DepthConvention::ReversedZ;
+            if let Some(depth) = &draw.depth {
+                let bound = match depth.bound(resources) {
+                    Ok(bound) => bound,
+                    Err(why) => return resources.fail(why),
+                };
+                inputs.extend(bound.inputs);
+                buffers = bound.buffers;
+                convention = bound.convention;
+            }
             let state = per_device(&mut state, device, || {
-                InputPass::new(
+                InputPass::with_geometry(
                     resources,
                     draw.label,
                     &draw.source,
                     scene.as_deref(),
-                    &draw.inputs,
+                    &inputs,
+                    &buffers,
+                    false,
                 )
             });
             let shape = |h: TextureHandle| resources.shape(h);
@@ -131,8 +153,13 @@ mod gpu {
                     .target
                     .or(draw.stencil_mark)
                     .map_or(1, |h| shape(h).samples),
+                convention,
             };
             let pipeline = state.pipelines.get(key, |key| {
+                let mut constants = draw.constants.clone();
+                if draw.depth.is_some() {
+                    constants.push(("FAR_DEPTH", f64::from(far_depth(key.convention))));
+                }
                 let targets = [key.target.map(|format| wgpu::ColorTargetState {
                     format,
                     blend: draw.blend,
@@ -145,7 +172,7 @@ mod gpu {
                     vertex: "vs_fullscreen",
                     buffers: &[],
                     fragment: draw.entry,
-                    constants: &draw.constants,
+                    constants: &constants,
                     targets: if key.target.is_some() { &targets } else { &[] },
                     cull: None,
                     depth_stencil: key.depth_stencil.map(stencil_mark),
@@ -157,7 +184,7 @@ mod gpu {
             ctx.pass.set_pipeline(pipeline);
             if let Some(scene) = &scene {
                 ctx.pass
-                    .set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
+                    .set_bind_group(0, scene.bind_group(convention), &[]);
             }
             ctx.pass
                 .set_bind_group(1, &state.inputs.bind_group(resources), &[]);

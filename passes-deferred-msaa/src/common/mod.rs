@@ -3,8 +3,10 @@
 //! ([`textures`]), the light passes' optional ambient-occlusion input ([`ao`]), the scene
 //! passes' background fill ([`background`]), the depth
 //! convention ([`depth`]), where a pass draws ([`extent`]), the edge detectors two passes
-//! use ([`edge_detection`]), the full-screen draw five passes set up ([`fullscreen`]), the
-//! G-buffer layouts a lighting pass reads ([`gbuffer_layout`]), the lean G-buffer's
+//! use ([`edge_detection`]), the full-screen draw five passes set up ([`fullscreen`]) and its
+//! compute counterpart ([`fullscreen_compute`]), the
+//! G-buffer layouts a lighting pass reads ([`gbuffer_layout`]), the opaque depth the
+//! passes after them read ([`opaque_depth`]), the lean G-buffer's
 //! emission encoding ([`rgb9e5`]) and, with feature `gpu`, the device helpers of their
 //! recordings ([`gpu`]). Nothing here imports a pass.
 
@@ -14,7 +16,9 @@ pub(crate) mod depth;
 pub(crate) mod edge_detection;
 pub(crate) mod extent;
 pub(crate) mod fullscreen;
+pub(crate) mod fullscreen_compute;
 pub(crate) mod gbuffer_layout;
+pub(crate) mod opaque_depth;
 #[cfg(feature = "gpu")]
 pub(crate) mod gpu;
 pub(crate) mod plugin;

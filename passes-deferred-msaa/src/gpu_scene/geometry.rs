@@ -18,7 +18,10 @@ impl Geometry {
     pub fn new(device: &wgpu::Device) -> Geometry {
         let entry = |binding| wgpu::BindGroupLayoutEntry {
             binding,
-            visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::COMPUTE,
+            // The hardware raster's alpha MASK reads them in its fragment stage.
+            visibility: wgpu::ShaderStages::VERTEX
+                | wgpu::ShaderStages::FRAGMENT
+                | wgpu::ShaderStages::COMPUTE,
             ty: wgpu::BindingType::Buffer {
                 ty: wgpu::BufferBindingType::Storage { read_only: true },
                 has_dynamic_offset: false,

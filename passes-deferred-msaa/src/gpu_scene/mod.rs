@@ -96,6 +96,20 @@ impl SceneCache {
         self.host.as_ref().map(|h| &*h.scene)
     }
 
+    /// `scene`'s texture table (this cache's upload of the host's scene), made the first
+    /// time, for the passes that read it; or why the device cannot hold it.
+    pub fn texture_table<'s>(
+        &self,
+        scene: &'s GpuScene,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<&'s wgpu::BindGroup, String> {
+        let host = self.scene().ok_or("texture table: no scene")?;
+        scene
+            .texture_table_group(device, queue, host)
+            .map_err(|why| format!("texture table: {why}"))
+    }
+
     /// [`for_frame`](Self::for_frame) for a pass that reads the scene only when `reads`:
     /// `Some(None)` when it does not, `None` when it does and the frame has none (the
     /// pass then records nothing).

@@ -1,6 +1,8 @@
 //! The frame's particles on the device: one storage buffer of billboards for the
-//! `particles` pass's instanced draws (particles.wgsl's `Particle`), camera-relative like
-//! the rest of the scene and ordered for blending, with its bind group.
+//! `particles` pass's instanced draws or compute raster (particles.wgsl's `Particle`),
+//! camera-relative like the rest of the scene and ordered for blending, and how many of
+//! them are blended and drawn in all (`ParticleCounts`, which the compute raster reads),
+//! with their bind group.
 //!
 //! Blended particles come first, farthest first along the view direction (the order
 //! seed 001's over-blending needs, and the same in every pass that draws them, so the
@@ -31,6 +33,8 @@ struct GpuParticle {
 pub struct ParticleBuffer {
     layout: wgpu::BindGroupLayout,
     buffer: wgpu::Buffer,
+    /// particles.wgsl's `ParticleCounts`.
+    counts: wgpu::Buffer,
     group: wgpu::BindGroup,
     /// Particles the buffer has room for.
     capacity: usize,
@@ -44,23 +48,34 @@ impl ParticleBuffer {
     /// An empty buffer (room for one particle, as a binding cannot be empty) and the bind
     /// group layout of particles.wgsl's group 2.
     pub fn new(device: &wgpu::Device) -> ParticleBuffer {
+        let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("particles"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Storage { read_only: true },
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            }],
+            entries: &[
+                entry(0, wgpu::BufferBindingType::Storage { read_only: true }),
+                entry(1, wgpu::BufferBindingType::Uniform),
+            ],
         });
-        let (buffer, group) = storage(device, &layout, 1);
+        let counts = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("particle counts"),
+            size: 16,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let (buffer, group) = storage(device, &layout, &counts, 1);
         ParticleBuffer {
             layout,
             buffer,
+            counts,
             group,
             capacity: 1,
             blended: 0,
@@ -113,9 +128,11 @@ impl ParticleBuffer {
             // Twice what is needed, so a system that grows a little each frame does not
             // make a buffer each frame.
             self.capacity = (2 * gpu.len()).min(MAX_PARTICLES);
-            (self.buffer, self.group) = storage(device, &self.layout, self.capacity);
+            (self.buffer, self.group) = storage(device, &self.layout, &self.counts, self.capacity);
         }
         queue.write_buffer(&self.buffer, 0, bytemuck::cast_slice(&gpu));
+        let counts = [self.blended, self.blended + self.additive, 0, 0];
+        queue.write_buffer(&self.counts, 0, bytemuck::cast_slice(&counts));
         self.written_for = Some((emitters.clone(), eye, forward));
     }
 
@@ -140,10 +157,11 @@ impl ParticleBuffer {
     }
 }
 
-/// A storage buffer with room for `particles` and its bind group.
+/// A storage buffer with room for `particles` and its bind group, with `counts`.
 fn storage(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
+    counts: &wgpu::Buffer,
     particles: usize,
 ) -> (wgpu::Buffer, wgpu::BindGroup) {
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
@@ -155,10 +173,16 @@ fn storage(
     let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("particles"),
         layout,
-        entries: &[wgpu::BindGroupEntry {
-            binding: 0,
-            resource: buffer.as_entire_binding(),
-        }],
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: buffer.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: counts.as_entire_binding(),
+            },
+        ],
     });
     (buffer, group)
 }

@@ -42,9 +42,11 @@ const SAMPLERS: [(wgpu::AddressMode, wgpu::FilterMode, wgpu::MipmapFilterMode); 
 
 impl TextureTableGpu {
     pub fn new(device: &wgpu::Device) -> TextureTableGpu {
+        // The visibility buffer's shading and compute raster read it, and the hardware
+        // raster's alpha MASK test (a fragment stage).
         let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
             binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
+            visibility: wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::FRAGMENT,
             ty,
             count: None,
         };

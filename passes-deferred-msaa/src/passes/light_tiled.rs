@@ -468,13 +468,9 @@ mod gpu {
                         Ok(group) => group,
                         Err(why) => return resources.fail(why),
                     };
-                    // A scene on the device has a host scene (for_frame returned it).
-                    let table = scenes.scene().ok_or("no scene").and_then(|host_scene| {
-                        scene.texture_table_group(device, resources.queue, host_scene)
-                    });
-                    match table {
+                    match scenes.texture_table(&scene, device, resources.queue) {
                         Ok(table) => Some((geometry, table)),
-                        Err(why) => return resources.fail(format!("texture table: {why}")),
+                        Err(why) => return resources.fail(why),
                     }
                 }
             };

@@ -5,6 +5,7 @@
 //! resolve pass does); [`crate::plugins`] registers them by name.
 
 pub(crate) mod auto_exposure;
+pub(crate) mod background;
 pub(crate) mod debug_view;
 pub(crate) mod depth_downsample;
 pub(crate) mod edge_stencil;

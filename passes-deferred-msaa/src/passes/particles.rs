@@ -16,6 +16,15 @@
 //!  inputs: { "color": "particle_color", "additive": "particle_additive",
 //!            "resolved": "resolved_hdr" },      // + "edges": "particle_edges" (mixed)
 //!  outputs: { "resolved": "resolved" }),        // + "stencil": "particle_stencil" (mixed)
+//! // In compute (no ROPs): off screen only, and the composite writes a new image, as a
+//! // compute pass cannot read and write one rgba16float texture in one dispatch.
+//! (name: "particles (compute)", plugin: "particles", params: (stage: compute),
+//!  inputs: { "depth": "particle_depth" },
+//!  outputs: { "color": "particle_color", "additive": "particle_additive" }),
+//! (name: "composite particles", plugin: "composite_particles", params: (stage: compute),
+//!  inputs: { "color": "particle_color", "additive": "particle_additive",
+//!            "hdr": "resolved_hdr" },
+//!  outputs: { "resolved": "composited" }),   // rgba16float, the output's size
 //! ```
 //!
 //! **The particle pass** draws the frame's particles (`FrameInputs::emitters`: the
@@ -47,9 +56,20 @@
 //! `pad` adds that many multiply-adds to every fragment without changing it, to measure
 //! time against shader cost (the seed's Table 23-2).
 //!
+//! **In compute** (`stage: compute`, particles_raster.wgsl): the same particles, opacities
+//! and blending off screen, a workgroup per 16 x 16 pixels of the targets blending the
+//! particles that may cover its tile in their order, in registers, and storing `color`
+//! and `additive` once (storage writes). Against a single-sampled view depth only (the
+//! full-resolution pass's depth test and stencil are the fragment pass's). The fragment
+//! pass pays the ROPs for every blended fragment, which on a chip with few of them is
+//! most of its time. Every tile walks every particle, a chunk of 256 at a time: fine for
+//! the thousands of a smoke column, linear in the count beyond.
+//!
 //! **The composite** is a full-screen draw onto the output-sized HDR image (`resolved`,
 //! modified in place) that upsamples `color` and `additive` bilinearly and blends
-//! `resolved * T + C + A`. With `edges` (particle_edges' Sobel mask, at the off-screen
+//! `resolved * T + C + A` (the alpha, a background's transmittance, times T). With
+//! `stage: compute` it computes the same per pixel from the image `hdr` and stores every
+//! pixel of a new one, `resolved`. With `edges` (particle_edges' Sobel mask, at the off-screen
 //! size) and `stencil` (a `stencil8` texture of the output's size, cleared here) it is
 //! the mixed-resolution composite: it discards wherever any of a pixel's four bilinear
 //! texels is an edge, and marks the stencil (0x80) wherever it composited, so a second
@@ -58,12 +78,14 @@
 use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::shader::Stage;
 use graph_core::types::TextureFormat;
 use graph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, TextureDesc};
 
 use super::transparent::UNDER_TRANSMITTANCE;
 use crate::common::depth::DepthRule;
 use crate::common::fullscreen::Fullscreen;
+use crate::common::fullscreen_compute::FullscreenCompute;
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Input, Texels, Want};
 use crate::shaders;
@@ -73,6 +95,24 @@ pub struct CompositeParticles(pub(crate) Shared);
 
 /// The most `pad` multiply-adds per fragment.
 pub const MAX_PAD: u32 = 4096;
+
+/// Whether a particle plugin draws (fragment stage, the seed's) or computes.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ParticleStage {
+    #[default]
+    Fragment,
+    Compute,
+}
+
+impl ParticleStage {
+    fn kind(self) -> PassKind {
+        match self {
+            ParticleStage::Fragment => PassKind::Render,
+            ParticleStage::Compute => PassKind::Compute,
+        }
+    }
+}
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -88,6 +128,8 @@ pub struct ParticlesParams {
     /// depth format the compile picks, as the opaque passes' does.
     #[serde(default)]
     pub reversed_z: Option<bool>,
+    #[serde(default)]
+    pub stage: ParticleStage,
 }
 
 fn default_softness() -> f32 {
@@ -96,7 +138,13 @@ fn default_softness() -> f32 {
 
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct CompositeParticlesParams {}
+pub struct CompositeParticlesParams {
+    #[serde(default)]
+    pub stage: ParticleStage,
+}
+
+/// The compute raster's tile side, in pixels of the targets.
+const TILE: u32 = 16;
 
 /// The formats `depth` may have: a depth-stencil, or a view depth.
 const SCENE_DEPTH: &[TextureFormat] = &[
@@ -160,8 +208,8 @@ impl Plugin for Particles {
     const NAME: &'static str = "particles";
     type Params = ParticlesParams;
 
-    fn kind(&self, _: &ParticlesParams) -> PassKind {
-        PassKind::Render
+    fn kind(&self, params: &ParticlesParams) -> PassKind {
+        params.stage.kind()
     }
 
     fn setup(
@@ -171,6 +219,9 @@ impl Plugin for Particles {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         params.check()?;
+        if params.stage == ParticleStage::Compute {
+            return self.setup_compute(params, pass, slots);
+        }
         let want = Want::new(
             "the scene depth (a depth-stencil or an r32float view depth)",
             SCENE_DEPTH,
@@ -242,10 +293,7 @@ impl Plugin for Particles {
             }
         };
         let generated = match view_depth {
-            true => "@group(1) @binding(0) var scene_depth: texture_2d<f32>;\n\
-                     fn scene_view_depth(pixel: vec2<i32>) -> f32 {\n    \
-                     return textureLoad(scene_depth, pixel, 0).r;\n}\n"
-                .to_owned(),
+            true => VIEW_DEPTH_BINDING.to_owned(),
             false => format!(
                 "{}\n@group(1) @binding(0) var scene_depth: GTexD;\n\
                  fn scene_view_depth(pixel: vec2<i32>) -> f32 {{\n    \
@@ -272,20 +320,86 @@ impl Plugin for Particles {
     }
 }
 
+/// particles.wgsl's scene depth from an r32float view depth at group 1 binding 0.
+const VIEW_DEPTH_BINDING: &str = "@group(1) @binding(0) var scene_depth: texture_2d<f32>;\n\
+     fn scene_view_depth(pixel: vec2<i32>) -> f32 {\n    \
+     return textureLoad(scene_depth, pixel, 0).r;\n}\n";
+
+impl Particles {
+    /// `stage: compute`: the off-screen targets stored by particles_raster.wgsl.
+    fn setup_compute(
+        &self,
+        params: ParticlesParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        for slot in ["hdr", "stencil"] {
+            if slots.kind(slot).is_some() {
+                let why = "is for the fragment stage: in compute the particles are drawn off \
+                           screen into \"color\" and \"additive\"";
+                return Err(slot_error(slots, slot, why.to_owned()));
+            }
+        }
+        let want = Want::new(
+            "the scene's view depth (depth_downsample)",
+            textures::VIEW_DEPTH,
+        )
+        .samples(1);
+        let (depth, depth_desc) = textures::sampled(slots, pass, "depth", want, 0)?;
+        let mut targets = Vec::new();
+        for (slot, what, binding) in [
+            ("color", "the off-screen particle colour", 1),
+            ("additive", "the off-screen emissive particles", 2),
+        ] {
+            let want = Want::new(what, textures::HDR).samples(1);
+            let (target, desc) =
+                textures::output(slots, pass, slot, want, |pass, h, _| pass.storage_write(h))?;
+            same_size(slots, ("depth", &depth_desc), (slot, &desc))?;
+            targets.push(Input {
+                binding,
+                texture: target,
+                aspect: Aspect::All,
+                texels: Texels::Store,
+            });
+        }
+        let generated = format!("const TILE: u32 = {TILE}u;\n{VIEW_DEPTH_BINDING}");
+        let source = shaders::PARTICLES_RASTER.compose_with(1, &generated)?;
+        let Some(entry) = source.entry("cs_particles", Stage::Compute) else {
+            return Err(PluginError::Invalid(
+                "particles_raster.wgsl has no entry point cs_particles".into(),
+            ));
+        };
+        pass.workgroup(entry.workgroup());
+        let dispatch = ParticleDispatch {
+            source: source.source().to_owned(),
+            inputs: [depth, targets[0], targets[1]],
+            constants: vec![
+                ("SOFTNESS", f64::from(params.softness)),
+                ("PAD", f64::from(params.pad)),
+            ],
+        };
+        self.0.record(pass, dispatch);
+        Ok(())
+    }
+}
+
 impl Plugin for CompositeParticles {
     const NAME: &'static str = "composite_particles";
     type Params = CompositeParticlesParams;
 
-    fn kind(&self, _: &CompositeParticlesParams) -> PassKind {
-        PassKind::Render
+    fn kind(&self, params: &CompositeParticlesParams) -> PassKind {
+        params.stage.kind()
     }
 
     fn setup(
         &self,
-        _: CompositeParticlesParams,
+        params: CompositeParticlesParams,
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
+        if params.stage == ParticleStage::Compute {
+            return self.setup_compute(pass, slots);
+        }
         let want = Want::new("the off-screen particle colour", textures::HDR).samples(1);
         let (color, color_desc) = textures::sampled(slots, pass, "color", want, 0)?;
         let want = Want::new("the off-screen emissive particles", textures::HDR).samples(1);
@@ -346,6 +460,76 @@ impl Plugin for CompositeParticles {
     }
 }
 
+impl CompositeParticles {
+    /// `stage: compute`: `resolved` stored from the image `hdr` and the targets.
+    fn setup_compute(
+        &self,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        for slot in ["edges", "stencil"] {
+            if slots.kind(slot).is_some() {
+                let why = "is for the fragment stage's mixed-resolution composite";
+                return Err(slot_error(slots, slot, why.to_owned()));
+            }
+        }
+        let want = Want::new("the off-screen particle colour", textures::HDR).samples(1);
+        let (color, color_desc) = textures::sampled(slots, pass, "color", want, 0)?;
+        let want = Want::new("the off-screen emissive particles", textures::HDR).samples(1);
+        let (additive, additive_desc) = textures::sampled(slots, pass, "additive", want, 1)?;
+        same_size(slots, ("additive", &additive_desc), ("color", &color_desc))?;
+        let want = Want::new("the resolved HDR image", textures::HDR).samples(1);
+        let (under, under_desc) = textures::sampled(slots, pass, "hdr", want, 3)?;
+        let want = Want::new("the composited HDR image, a storage texture", textures::HDR);
+        let mut modifies = false;
+        let (target, desc) =
+            textures::output(slots, pass, "resolved", want.samples(1), |pass, h, m| {
+                modifies = m;
+                pass.storage_write(h)
+            })?;
+        if modifies {
+            let why = "is read and written: in compute the composite stores a new image from \
+                       \"hdr\" (name another texture)";
+            return Err(slot_error(slots, "resolved", why.to_owned()));
+        }
+        same_size(slots, ("hdr", &under_desc), ("resolved", &desc))?;
+        let stored = Input {
+            binding: 4,
+            texture: target,
+            aspect: Aspect::All,
+            texels: Texels::Store,
+        };
+        let dispatch = FullscreenCompute {
+            label: "composite particles",
+            source: shaders::PARTICLE_COMPOSITE.compose(1)?.source().to_owned(),
+            entry: "cs_composite_particles",
+            constants: Vec::new(),
+            inputs: vec![color, additive, under, stored],
+            reads_scene: true,
+            target,
+            depth: None,
+        };
+        self.0.record(pass, dispatch);
+        Ok(())
+    }
+}
+
+/// The particle pass in compute as set up: its scene depth and targets (group 1,
+/// bindings 0, 1 and 2).
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+struct ParticleDispatch {
+    source: String,
+    inputs: [Input; 3],
+    constants: Vec<(&'static str, f64)>,
+}
+
+impl crate::common::plugin::Recording for ParticleDispatch {
+    #[cfg(feature = "gpu")]
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Compute(gpu::record_compute(self, scenes))
+    }
+}
+
 /// The particle pass as set up: see the module documentation.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 struct ParticleDraw {
@@ -376,9 +560,10 @@ mod gpu {
     use graph_core::gpu::RenderContext;
     use wgpu::BlendFactor::{One, OneMinusSrcAlpha, SrcAlpha, Zero};
 
-    use super::ParticleDraw;
+    use super::{ParticleDispatch, ParticleDraw, TILE};
     use crate::common::depth::far_depth;
     use crate::common::gpu::bindings::TextureBindings;
+    use crate::common::gpu::compute_pipeline;
     use crate::common::gpu::pipeline::{module, pipeline_layout, Pipelines};
     use crate::common::gpu::{per_scene, PipelineDesc, EDGE_STENCIL};
     use crate::gpu_scene::{ParticleBuffer, SceneCache};
@@ -517,6 +702,70 @@ mod gpu {
                     ctx.pass.draw(0..6, instances);
                 }
             }
+        })
+    }
+
+    /// The compute raster's device objects, per scene upload.
+    struct ComputeState {
+        textures: TextureBindings,
+        particles: ParticleBuffer,
+        pipeline: wgpu::ComputePipeline,
+    }
+
+    pub(super) fn record_compute(
+        dispatch: ParticleDispatch,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut graph_core::gpu::ComputeContext<'_, '_>)> {
+        let mut state = None;
+        Box::new(move |ctx| {
+            let resources = ctx.resources;
+            let device = resources.device;
+            let Some(scene) = scenes.for_frame(resources) else {
+                return;
+            };
+            let state = per_scene(&mut state, &scene, || {
+                let textures = TextureBindings::new(resources, &dispatch.inputs);
+                let particles = ParticleBuffer::new(device);
+                let layout = pipeline_layout(
+                    device,
+                    &[
+                        Some(scene.layout()),
+                        Some(&textures.layout),
+                        Some(particles.layout()),
+                    ],
+                );
+                let module = module(device, "particles (compute)", &dispatch.source);
+                let pipeline = compute_pipeline(
+                    device,
+                    "particles (compute)",
+                    &layout,
+                    &module,
+                    "cs_particles",
+                    &dispatch.constants,
+                );
+                ComputeState {
+                    textures,
+                    particles,
+                    pipeline,
+                }
+            });
+            let inputs = scene.inputs();
+            state
+                .particles
+                .update(device, resources.queue, &inputs.emitters, &inputs.camera);
+            // Every pixel of the targets is stored, particles or not: what the composite
+            // reads.
+            ctx.pass.set_pipeline(&state.pipeline);
+            // A view depth needs no depth convention: the reversed-Z camera projects as
+            // the fragment pass's does for one.
+            ctx.pass
+                .set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
+            ctx.pass
+                .set_bind_group(1, &state.textures.bind_group(resources), &[]);
+            ctx.pass.set_bind_group(2, state.particles.group(), &[]);
+            let out = resources.shape(dispatch.inputs[1].texture);
+            ctx.pass
+                .dispatch_workgroups(out.width.div_ceil(TILE), out.height.div_ceil(TILE), 1);
         })
     }
 

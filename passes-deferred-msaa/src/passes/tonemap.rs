@@ -18,6 +18,12 @@
 //! multiplies the metered exposure by `exposure` (then a compensation): what the host's
 //! auto exposure runs, under the condition `auto_exposure`.
 //!
+//! The host's background ([`Background`]): a colour is composited under the image here,
+//! in linear light, by the background's transmittance that a `background` pass left in
+//! the HDR image's alpha (and the passes compositing over it multiplied); transparency
+//! writes one minus it as the output's alpha, the colour unpremultiplied (tone mapped as
+//! the surfaces' own). The environment is in the image already.
+//!
 //! `none` clamps the exposed linear color to [0, 1]; `reinhard` is `c / (1 + c)` per
 //! channel; `aces` is Narkowicz's fit of the ACES filmic curve. An sRGB output encodes
 //! the result. The host's overrides replace `operator` and `exposure` when set. With a
@@ -29,12 +35,14 @@ use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::types::TextureFormat;
-use graph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
+use graph_core::{Aspect, PassBuilder, PassKind};
 
 use super::resolve::{exposure, one};
 use crate::common::fullscreen::Fullscreen;
-use crate::common::plugin::{Recording, Shared};
+use crate::common::fullscreen_compute::FullscreenCompute;
+use crate::common::plugin::Shared;
 use crate::common::textures::{self, Input, Texels, Want};
+use crate::host::Background;
 use crate::shaders;
 
 pub struct Tonemap(pub(crate) Shared);
@@ -138,7 +146,7 @@ impl Plugin for Tonemap {
         // tonemap.wgsl's entry points, by stage: with the metered exposure or not, with
         // a host's frame exposure or not.
         let entry = usize::from(metered) + 2 * usize::from(self.0.draws_scene);
-        let constants = vec![
+        let mut constants = vec![
             ("OPERATOR", operator as u32 as f64),
             // Under auto exposure a pass without the input is the one its file runs
             // otherwise (the frame checks that a metering pass runs): its own value.
@@ -147,6 +155,7 @@ impl Plugin for Tonemap {
                 f64::from(fixed.filter(|_| !metered).unwrap_or(params.exposure)),
             ),
         ];
+        constants.extend(background_constants(self.0.overrides.background));
         match params.stage {
             TonemapStage::Fragment => {
                 let want = Want::new("the displayed output", textures::DISPLAY).samples(1);
@@ -171,13 +180,15 @@ impl Plugin for Tonemap {
                     aspect: Aspect::All,
                     texels: Texels::Store,
                 });
-                let dispatch = TonemapDispatch {
+                let dispatch = FullscreenCompute {
+                    label: "tonemap",
                     source,
                     entry: COMPUTE_ENTRIES[entry],
                     constants,
                     inputs,
                     reads_scene: self.0.draws_scene,
                     target,
+                    depth: None,
                 };
                 self.0.record(pass, dispatch);
             }
@@ -186,75 +197,31 @@ impl Plugin for Tonemap {
     }
 }
 
-/// The compute tone mapper as set up: what its `gpu` module records.
-#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-pub(crate) struct TonemapDispatch {
-    source: String,
-    entry: &'static str,
-    constants: Vec<(&'static str, f64)>,
-    inputs: Vec<Input>,
-    reads_scene: bool,
-    target: TextureHandle,
-}
-
-impl Recording for TonemapDispatch {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Compute(gpu::record(self, scenes))
+/// tonemap.wgsl's BACKGROUND and BACKGROUND_R, _G, _B for the host's background: a
+/// colour or transparency are composited here, from the background's transmittance a
+/// `background` pass leaves in the HDR image's alpha (the environment is in the image
+/// already).
+fn background_constants(background: Option<Background>) -> Vec<(&'static str, f64)> {
+    match background {
+        None | Some(Background::Environment) => Vec::new(),
+        Some(Background::Transparent) => vec![("BACKGROUND", 2.0)],
+        Some(Background::Color(rgb)) => {
+            let [r, g, b] = rgb.map(srgb_to_linear);
+            vec![
+                ("BACKGROUND", 1.0),
+                ("BACKGROUND_R", r),
+                ("BACKGROUND_G", g),
+                ("BACKGROUND_B", b),
+            ]
+        }
     }
 }
 
-#[cfg(feature = "gpu")]
-mod gpu {
-    //! Recording the compute tone mapper: a workgroup per 8 x 8 pixels of the output.
-
-    use std::sync::Arc;
-
-    use graph_core::gpu::ComputeContext;
-
-    use super::TonemapDispatch;
-    use crate::common::gpu::{compute_pipeline, per_device, InputPass};
-    use crate::gpu_scene::SceneCache;
-    use crate::scene::DepthConvention;
-
-    pub(super) fn record(
-        dispatch: TonemapDispatch,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
-        // Built per device, as the full-screen passes are: the scene's group 0 layout is
-        // the same for every upload.
-        let mut state: Option<(wgpu::Device, InputPass<(), wgpu::ComputePipeline>)> = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            let device = resources.device;
-            let Some(scene) = scenes.for_frame_if(dispatch.reads_scene, resources) else {
-                return;
-            };
-            let state = per_device(&mut state, device, || {
-                InputPass::new(
-                    resources,
-                    "tonemap",
-                    &dispatch.source,
-                    scene.as_deref(),
-                    &dispatch.inputs,
-                )
-            });
-            let (module, layout) = (&state.module, &state.layout);
-            let pipeline = state.pipelines.get((), |_| {
-                let constants = &dispatch.constants;
-                compute_pipeline(device, "tonemap", layout, module, dispatch.entry, constants)
-            });
-            ctx.pass.set_pipeline(pipeline);
-            if let Some(scene) = &scene {
-                // The tone mapper reads the frame's exposure there, not depth.
-                ctx.pass
-                    .set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
-            }
-            ctx.pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            let out = resources.shape(dispatch.target);
-            ctx.pass
-                .dispatch_workgroups(out.width.div_ceil(8), out.height.div_ceil(8), 1);
-        })
+/// An sRGB byte as linear light.
+fn srgb_to_linear(byte: u8) -> f64 {
+    let c = f64::from(byte) / 255.0;
+    match c <= 0.04045 {
+        true => c / 12.92,
+        false => ((c + 0.055) / 1.055).powf(2.4),
     }
 }

@@ -155,7 +155,9 @@ impl Plugin for Transparent {
 }
 
 /// `hdr * T + C` from the composite's output (C, T): see the module documentation. The
-/// target's alpha is kept. The particle composite blends the same way.
+/// target's alpha, the background's transmittance where a `background` pass wrote it, is
+/// multiplied by T: what still shows of the background. The particle composite blends
+/// the same way.
 pub(crate) const UNDER_TRANSMITTANCE: BlendState = BlendState {
     color: BlendComponent {
         src_factor: BlendFactor::One,
@@ -164,7 +166,7 @@ pub(crate) const UNDER_TRANSMITTANCE: BlendState = BlendState {
     },
     alpha: BlendComponent {
         src_factor: BlendFactor::Zero,
-        dst_factor: BlendFactor::One,
+        dst_factor: BlendFactor::SrcAlpha,
         operation: BlendOperation::Add,
     },
 };

@@ -22,10 +22,10 @@
 //! NVIDIA and lavapipe do), else `rg16uint`, which WebGPU multisamples, with the 32 bits
 //! split: pipelines declare `format: "r32uint", fallback: "rg16uint"`, and `rgraph explain`
 //! shows which a device got. Alpha MASK materials discard below the cutoff using their base
-//! colour factor and vertex colour alpha: a MASK material with a base-colour texture
-//! needs the G-buffer path (scene feature `untabled_textures`: pipelines/visibility_msaa_4x.ron
-//! sends such scenes there). Alpha BLEND meshes are
-//! left to the `transparent` pass, as with a G-buffer.
+//! colour factor and vertex colour alpha, times a base colour texture's alpha read from
+//! the scene's texture table (group 3) where the pixel centre's ray meets the triangle, as
+//! the compute raster tests it (mask_texture.wgsl). Alpha BLEND meshes are left to the
+//! `transparent` pass, as with a G-buffer.
 
 use serde::Deserialize;
 
@@ -117,6 +117,7 @@ mod gpu {
     use graph_core::gpu::RenderContext;
 
     use super::VisibilityDraw;
+    use crate::analysis::GatedShader;
     use crate::common::gpu::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
     use crate::common::gpu::scene_draw::depth_test;
     use crate::common::gpu::{per_scene, split_ids};
@@ -152,10 +153,16 @@ mod gpu {
             };
             let state = per_scene(&mut state, &scene, || State {
                 module: module(device, "visibility", &draw.source),
-                // Group 1 is the light passes' inputs; geometry is group 2 in both.
+                // Group 1 is the light passes' inputs; geometry is group 2 and the texture
+                // table group 3 in both.
                 layout: pipeline_layout(
                     device,
-                    &[Some(scene.layout()), None, Some(scene.geometry_layout())],
+                    &[
+                        Some(scene.layout()),
+                        None,
+                        Some(scene.geometry_layout()),
+                        Some(scene.texture_table_layout()),
+                    ],
                 ),
                 pipelines: Pipelines::default(),
             });
@@ -163,12 +170,19 @@ mod gpu {
                 Ok(group) => group,
                 Err(why) => return resources.fail(why),
             };
+            // Textured alpha masks read the table.
+            let table = match scenes.texture_table(&scene, device, resources.queue) {
+                Ok(table) => table,
+                Err(why) => return resources.fail(why),
+            };
+            let variant = scenes.variant(GatedShader::VisibilityRaster);
             let ids = draw.ids.map(|ids| resources.shape(ids).format);
             let depth = resources.shape(draw.depth);
             let convention = draw.depth_rule.convention(depth.format);
             ctx.pass
                 .set_bind_group(0, scene.bind_group(convention), &[]);
             ctx.pass.set_bind_group(2, geometry, &[]);
+            ctx.pass.set_bind_group(3, table, &[]);
             scene.pull_meshes(ctx.pass, |pass, _, material| {
                 let key = Key {
                     ids,
@@ -190,6 +204,8 @@ mod gpu {
                         .into_iter()
                         .map(Some)
                         .collect();
+                    let mut constants = vec![("SPLIT_IDS", key.ids.map_or(0.0, split_ids))];
+                    constants.extend(variant.constants());
                     PipelineDesc {
                         label: "visibility",
                         layout,
@@ -202,7 +218,7 @@ mod gpu {
                             (false, true) => "fs_depth_masked",
                             (false, false) => "fs_depth",
                         },
-                        constants: &[("SPLIT_IDS", key.ids.map_or(0.0, split_ids))],
+                        constants: &constants,
                         targets: &targets,
                         cull: (!key.double_sided).then_some(wgpu::Face::Back),
                         depth_stencil: Some(depth_test(

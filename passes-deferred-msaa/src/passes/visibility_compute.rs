@@ -37,11 +37,12 @@
 //! index buffer / 3, + 1) and the same sample positions; triangle_setup.wgsl gives the
 //! coverage rules. Depth is reversed-Z (1 near, 0 far), the convention a float depth
 //! buffer gets. Alpha MASK draws are tested as the hardware pass tests them: their base
-//! colour's alpha times the vertex colour's, at the pixel centre, against the cutoff (a
-//! textured base colour's alpha is not read: such scenes are `untabled_textures`, which
-//! the pipelines keep from this pass). Alpha BLEND draws are left out, as with a
-//! G-buffer: the transparent pass draws them later, testing against the depth
-//! `keys_depth` makes from the keys.
+//! colour's alpha times the vertex colour's, times a base colour texture's alpha read
+//! from the scene's texture table (group 3, mask_texture.wgsl; compiled out for scenes
+//! without textured masks, feature `mask_textures`), at the pixel centre, against the
+//! cutoff: a pixel's samples are kept or dropped together, as a discard drops them.
+//! Alpha BLEND draws are left out, as with a G-buffer: the transparent pass draws them
+//! later, testing against the depth `keys_depth` makes from the keys.
 
 use serde::Deserialize;
 
@@ -159,6 +160,7 @@ mod gpu {
     use graph_core::gpu::ComputeContext;
 
     use super::RasterDispatch;
+    use crate::analysis::{GatedShader, Variant};
     use crate::common::gpu::pipeline::{module, pipeline_layout};
     use crate::common::gpu::storage::{storage_group, storage_layout};
     use crate::common::gpu::tile_bins::{TileBins, RASTER_BUFFERS};
@@ -186,7 +188,10 @@ mod gpu {
             let Some(scene) = scenes.for_frame(resources) else {
                 return;
             };
-            let state = per_scene(&mut state, &scene, || build(device, &dispatch, &scene));
+            let variant = scenes.variant(GatedShader::VisibilityRaster);
+            let state = per_scene(&mut state, &scene, || {
+                build(device, &dispatch, &scene, &variant)
+            });
             // The bins are made for one output size: a resized graph gets new ones.
             let size = resources.output_size();
             if state.bins.as_ref().is_some_and(|(made, _)| *made != size) {
@@ -207,6 +212,11 @@ mod gpu {
                 Ok(group) => group,
                 Err(why) => return resources.fail(why),
             };
+            // Textured alpha masks read the table.
+            let table = match scenes.texture_table(&scene, device, resources.queue) {
+                Ok(table) => table,
+                Err(why) => return resources.fail(why),
+            };
             let keys = resources.buffer(dispatch.samples);
             if let Err(why) = fits_binding(device, keys) {
                 return resources.fail(why);
@@ -219,6 +229,7 @@ mod gpu {
             pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
             pass.set_bind_group(1, &group, &[]);
             pass.set_bind_group(2, geometry, &[]);
+            pass.set_bind_group(3, table, &[]);
             pass.set_pipeline(&state.raster);
             pass.dispatch_workgroups(
                 size.0.div_ceil(dispatch.tile),
@@ -228,7 +239,12 @@ mod gpu {
         })
     }
 
-    fn build(device: &wgpu::Device, dispatch: &RasterDispatch, scene: &GpuScene) -> State {
+    fn build(
+        device: &wgpu::Device,
+        dispatch: &RasterDispatch,
+        scene: &GpuScene,
+        variant: &Variant,
+    ) -> State {
         // The keys, then the bins.
         let mut read_only = vec![false];
         read_only.extend([true; RASTER_BUFFERS]);
@@ -240,18 +256,21 @@ mod gpu {
                 Some(scene.layout()),
                 Some(&layout),
                 Some(scene.geometry_layout()),
+                Some(scene.texture_table_layout()),
             ],
         );
+        let mut constants = vec![(
+            "OTHERS_EVERYWHERE",
+            f64::from(u8::from(dispatch.others_everywhere)),
+        )];
+        constants.extend(variant.constants());
         let raster = compute_pipeline(
             device,
             "visibility_compute",
             &pipeline_layout,
             &module,
             "cs_raster_tiles",
-            &[(
-                "OTHERS_EVERYWHERE",
-                f64::from(u8::from(dispatch.others_everywhere)),
-            )],
+            &constants,
         );
         State {
             layout,

@@ -3,12 +3,7 @@
 // point and spot lights they cull; forward passes add it all at once.
 // Composed after common.wgsl, scene.wgsl and brdf.wgsl.
 
-// Image-based lighting (gpu_scene/environment.rs): the environment's radiance
-// prefiltered by roughness in the mip levels of a cube map, and the split-sum lookup
-// table (n.v across, roughness down) of the specular BRDF's scale and bias on F0.
-@group(0) @binding(5) var environment_tex: texture_cube<f32>;
-@group(0) @binding(6) var environment_sampler: sampler;
-@group(0) @binding(7) var split_sum_tex: texture_2d<f32>;
+// Image-based lighting from scene.wgsl's environment_tex and split_sum_tex.
 
 // Whether the scene has an environment (analysis/variant.rs; the default is the general
 // shader). Without one its irradiance and intensity are zero: the code would add zero.

@@ -58,3 +58,19 @@ fn fs_composite_particles_masked(@builtin(position) position: vec4<f32>) -> @loc
     }
     return composite(taps);
 }
+
+// In compute (`stage: compute`): the same blend over the image `under`, stored into a new
+// one: `under * T + C + A`, its alpha (a background's transmittance) times T, as the
+// fragment composite's blend state computes it.
+@group(1) @binding(3) var under_tex: texture_2d<f32>;
+@group(1) @binding(4) var out_tex: texture_storage_2d<rgba16float, write>;
+
+@compute @workgroup_size(8, 8)
+fn cs_composite_particles(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= textureDimensions(out_tex)) {
+        return;
+    }
+    let particles = composite(bilinear(vec4<f32>(vec2<f32>(id.xy) + 0.5, 0.0, 1.0)));
+    let under = textureLoad(under_tex, vec2<i32>(id.xy), 0);
+    textureStore(out_tex, id.xy, vec4<f32>(under.rgb * particles.a + particles.rgb, under.a * particles.a));
+}

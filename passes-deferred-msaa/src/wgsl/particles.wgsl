@@ -17,6 +17,32 @@ struct Particle {
 
 @group(2) @binding(0) var<storage, read> particles: array<Particle>;
 
+// How many of `particles` are drawn: the blended ones first, then the emissive ones
+// (gpu_scene/particles.rs).
+struct ParticleCounts {
+    blended: u32,
+    total: u32,
+}
+
+@group(2) @binding(1) var<uniform> particle_counts: ParticleCounts;
+
+// The camera's right and up axes in camera-relative world space, from the inverse
+// projection: two points at one clip depth lie at one view depth, so their difference is
+// perpendicular to the view direction, for every projection. A billboard spans them.
+struct BillboardAxes {
+    right: vec3<f32>,
+    up: vec3<f32>,
+}
+
+fn billboard_axes() -> BillboardAxes {
+    let centre = camera.viewport * 0.5;
+    let origin = unproject(centre, 0.5);
+    return BillboardAxes(
+        safe_normalize(unproject(centre + vec2<f32>(1.0, 0.0), 0.5) - origin),
+        safe_normalize(unproject(centre - vec2<f32>(0.0, 1.0), 0.5) - origin),
+    );
+}
+
 // zFade = saturate(SOFTNESS * (scene depth - particle depth)): a particle fades out over
 // the last 1 / SOFTNESS units before the surface behind it, and is gone at and behind it.
 override SOFTNESS: f32 = 4.0;
@@ -41,14 +67,8 @@ fn vs_particle(@builtin(vertex_index) vertex: u32, @builtin(instance_index) inst
     );
     let corner = corners[vertex % 6u];
     let p = particles[instance];
-    // The camera's right and up axes, from the inverse projection: two points at one
-    // clip depth lie at one view depth, so their difference is perpendicular to the
-    // view direction, for every projection.
-    let centre = camera.viewport * 0.5;
-    let origin = unproject(centre, 0.5);
-    let right = safe_normalize(unproject(centre + vec2<f32>(1.0, 0.0), 0.5) - origin);
-    let up = safe_normalize(unproject(centre - vec2<f32>(0.0, 1.0), 0.5) - origin);
-    let world = p.position + (corner.x * right + corner.y * up) * (0.5 * p.size);
+    let axes = billboard_axes();
+    let world = p.position + (corner.x * axes.right + corner.y * axes.up) * (0.5 * p.size);
     return Billboard(
         camera.view_proj * vec4<f32>(world, 1.0),
         corner,
@@ -58,9 +78,12 @@ fn vs_particle(@builtin(vertex_index) vertex: u32, @builtin(instance_index) inst
     );
 }
 
-// The fragment's opacity: the particle's, the soft texture's and the soft-particle fade.
-fn particle_alpha(in: Billboard) -> f32 {
-    let r2 = dot(in.corner, in.corner);
+// The opacity of a particle of opacity `alpha` and view depth `view_depth` at `corner`
+// (-1..1 across its disc), in front of the scene at view depth `scene_depth`: the
+// particle's, the soft texture's and the soft-particle fade. The compute raster
+// (particles_raster.wgsl) takes it too.
+fn particle_opacity(corner: vec2<f32>, alpha: f32, view_depth: f32, scene_depth: f32) -> f32 {
+    let r2 = dot(corner, corner);
     let falloff = max(1.0 - r2, 0.0);
     var shape = falloff * falloff;
     var padded = shape;
@@ -69,22 +92,36 @@ fn particle_alpha(in: Billboard) -> f32 {
     }
     // `padded` stays within 0..1, so this adds 0; the compiler cannot know it.
     shape += min(padded, 0.0);
-    let fade = saturate(SOFTNESS * (scene_view_depth(pixel_of(in.clip)) - in.view_depth));
-    return in.alpha * shape * fade;
+    let fade = saturate(SOFTNESS * (scene_depth - view_depth));
+    return alpha * shape * fade;
 }
 
-// Blended (smoke): albedo lit by the ambient radiance, with its opacity for the
-// pipeline's over-blending. No `discard` where the opacity is 0: blending 0 leaves the
-// target exactly as it was, and a shader without discard lets the hardware run the
-// mixed-resolution stencil test before it.
+// The fragment's opacity.
+fn particle_alpha(in: Billboard) -> f32 {
+    return particle_opacity(in.corner, in.alpha, in.view_depth, scene_view_depth(pixel_of(in.clip)));
+}
+
+// A blended particle's colour (smoke): albedo lit by the ambient radiance.
+fn lit_albedo(color: vec3<f32>) -> vec3<f32> {
+    return min(color * light_info.ambient, vec3<f32>(HALF_MAX));
+}
+
+// An emissive particle's light (fire): its radiance times its opacity `a`.
+fn emitted_light(color: vec3<f32>, a: f32) -> vec3<f32> {
+    return min(color * a, vec3<f32>(HALF_MAX));
+}
+
+// Blended, with its opacity for the pipeline's over-blending. No `discard` where the
+// opacity is 0: blending 0 leaves the target exactly as it was, and a shader without
+// discard lets the hardware run the mixed-resolution stencil test before it.
 fn blended(in: Billboard) -> vec4<f32> {
-    return vec4<f32>(min(in.color * light_info.ambient, vec3<f32>(HALF_MAX)), particle_alpha(in));
+    return vec4<f32>(lit_albedo(in.color), particle_alpha(in));
 }
 
-// Emissive (fire): its radiance times its opacity, for additive blending.
+// Emissive, for additive blending.
 fn additive(in: Billboard) -> vec4<f32> {
     let a = particle_alpha(in);
-    return vec4<f32>(min(in.color * a, vec3<f32>(HALF_MAX)), a);
+    return vec4<f32>(emitted_light(in.color, a), a);
 }
 
 @fragment

@@ -97,6 +97,13 @@ struct LightInfo {
 @group(0) @binding(2) var<storage, read> materials: array<MaterialData>;
 @group(0) @binding(3) var<storage, read> lights: array<LightData>;
 @group(0) @binding(4) var<uniform> light_info: LightInfo;
+// Image-based lighting (gpu_scene/environment.rs, lighting.wgsl): the environment's
+// radiance prefiltered by roughness in the mip levels of a cube map (level 0 the
+// radiance itself, which the background shows), and the split-sum lookup table (n.v
+// across, roughness down) of the specular BRDF's scale and bias on F0.
+@group(0) @binding(5) var environment_tex: texture_cube<f32>;
+@group(0) @binding(6) var environment_sampler: sampler;
+@group(0) @binding(7) var split_sum_tex: texture_2d<f32>;
 
 // The frame's light counts: read them through these, never from light_info directly.
 // Clamped to the light buffer's length, which keeps every loop over `lights` in bounds,

@@ -10,8 +10,10 @@
 // from 1.02 to 0.81 ms at 4x and from 0.76 to 0.68 at 1x, with the strict inside test
 // in cover_lanes (bench/results/gpu/visibility-blocks).
 //
-// Group 1 binds the draws and the bins at bindings 1 to 8 (common/gpu/tile_bins.rs).
-// Composed after common.wgsl, scene.wgsl, geometry.wgsl and triangle_setup.wgsl, with a
+// Group 1 binds the draws and the bins at bindings 1 to 8 (common/gpu/tile_bins.rs), group
+// 3 the texture table, which textured alpha masks read. Composed after common.wgsl,
+// scene.wgsl, geometry.wgsl, material.wgsl, material_table.wgsl, plane_hit.wgsl,
+// mask_texture.wgsl and triangle_setup.wgsl, with a
 // generated block defining TILE and the sample lanes (LaneF, LaneU, LaneB, LANES,
 // LANE_GROUPS, LANE_X, LANE_Y and `lane`, which the Rust side's sample_lanes writes).
 
@@ -86,8 +88,8 @@ fn chunk_triangle(i: u32, binned: u32, start: u32, tile: vec4<i32>, complete: bo
 // depends on the tile. The clip depth is corner a's plus the other two corners'
 // differences from it weighted by their edge functions over the area (`depth`), exact to
 // the triangle's own depth range however thin it is. Bits 0 to 2 of `owns` say which
-// edges own the samples on them (owned_edges); `mask` and `inverse_w` are the alpha
-// mask's (mask_passes).
+// edges own the samples on them (owned_edges), bit 3 (MASK_TEXTURED) that its alpha mask
+// reads a texture; `mask` and `inverse_w` are the alpha mask's (mask_passes).
 struct CoverTriangle {
     at_anchor: vec3<f32>,
     id: u32,
@@ -120,8 +122,14 @@ fn cover_triangle(t: ScreenTriangle) -> CoverTriangle {
     c.id = t.id;
     let owns = owned_edges(t);
     c.owns = u32(owns.x) | (u32(owns.y) << 1u) | (u32(owns.z) << 2u);
+    if MASK_TEXTURES && t.mask.w >= 0.0 && mask_textured(meshes[mesh_of_triangle(t.id - 1u)].material) {
+        c.owns |= MASK_TEXTURED;
+    }
     return c;
 }
+
+// CoverTriangle's `owns` bit: the alpha mask reads the base colour texture.
+const MASK_TEXTURED: u32 = 8u;
 
 // The three edge functions of `t` at the top-left corner of `pixel`.
 fn edges_at_pixel(t: CoverTriangle, pixel: vec2<u32>) -> vec3<f32> {
@@ -134,18 +142,23 @@ fn inside_lanes(w: LaneF, owns: u32, k: u32) -> LaneB {
     return (w > LaneF(0.0)) | ((w == LaneF(0.0)) & LaneB(((owns >> k) & 1u) != 0u));
 }
 
-// The alpha mask (triangle_setup.wgsl's mask_of) tested at the centre of the pixel whose
+// The alpha mask (triangle_setup.wgsl's mask_of) tested at the centre of `pixel`, whose
 // corner has edge functions `corner`, where the hardware pass's fragment reads it, inside
 // the triangle or not: the pixel's samples are kept or dropped together, as a discard
 // drops them. Alpha is interpolated perspective-correct (alpha / w and 1 / w are linear in
 // screen space); the edge functions are the barycentrics times the area, which both sides
-// of the test share.
-fn mask_passes(t: CoverTriangle, corner: vec3<f32>) -> bool {
+// of the test share. A textured mask multiplies in the base colour texel's alpha there
+// (mask_texture.wgsl), as the hardware pass does.
+fn mask_passes(t: CoverTriangle, corner: vec3<f32>, pixel: vec2<u32>) -> bool {
     if t.mask.w < 0.0 {
         return true;
     }
     let l = corner + 0.5 * (t.per_x + t.per_y);
-    return dot(l, t.mask.xyz) >= t.mask.w * dot(l, t.inverse_w);
+    var alpha = dot(l, t.mask.xyz);
+    if MASK_TEXTURES && (t.owns & MASK_TEXTURED) != 0u {
+        alpha *= mask_texel_alpha(t.id, vec2<f32>(pixel) + 0.5);
+    }
+    return alpha >= t.mask.w * dot(l, t.inverse_w);
 }
 
 // Keeps the nearer of `t`'s keys and `depths`' and `ids`' in each sample of the pixel
@@ -287,7 +300,7 @@ fn cover_tile(origin: vec2<u32>, local: u32) -> TileKeys {
             }
             let t = chunk[j];
             let corner = edges_at_pixel(t, pixel);
-            if mask_passes(t, corner) {
+            if mask_passes(t, corner, pixel) {
                 cover_lanes(corner, t, &depths, &ids);
             }
         }

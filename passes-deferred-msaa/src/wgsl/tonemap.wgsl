@@ -16,19 +16,41 @@ fn aces(x: vec3<f32>) -> vec3<f32> {
     return (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
 }
 
+// What shows where nothing is drawn (passes/background.rs): 0 what the image holds (black,
+// or the environment a background pass added to it); 1 BACKGROUND_COLOR (linear), under
+// the image by the background's transmittance, which a background pass left in the HDR
+// image's alpha; 2 nothing: the output's alpha is the image's coverage (1 minus that
+// transmittance) and its colour is unpremultiplied, an RGBA image for compositing.
+override BACKGROUND: u32 = 0u;
+override BACKGROUND_R: f32 = 0.0;
+override BACKGROUND_G: f32 = 0.0;
+override BACKGROUND_B: f32 = 0.0;
+
 fn tonemap(position: vec4<f32>, exposure: f32) -> vec4<f32> {
     // An additive blend past the half-float range may store infinity (devices differ:
     // lavapipe saturates); clamped first, it maps to white instead of inf / inf = NaN.
-    let texel = textureLoad(hdr_tex, pixel_of(position), 0).rgb;
-    let stored = clamp(texel, vec3<f32>(0.0), vec3<f32>(HALF_MAX));
-    let c = stored * exposure;
+    let texel = textureLoad(hdr_tex, pixel_of(position), 0);
+    let stored = clamp(texel.rgb, vec3<f32>(0.0), vec3<f32>(HALF_MAX));
+    var c = stored * exposure;
+    // The surfaces' share of the pixel: their colour over it is what is tone mapped (a
+    // pixel of nothing has none: black).
+    var coverage = 1.0;
+    if BACKGROUND != 0u {
+        coverage = 1.0 - clamp(texel.a, 0.0, 1.0);
+        c = select(vec3<f32>(0.0), c / coverage, coverage > 0.0);
+    }
     var mapped = c;
     if OPERATOR == 1u {
         mapped = c / (1.0 + c);
     } else if OPERATOR == 2u {
         mapped = aces(c);
     }
-    return vec4<f32>(clamp(mapped, vec3<f32>(0.0), vec3<f32>(1.0)), 1.0);
+    mapped = clamp(mapped, vec3<f32>(0.0), vec3<f32>(1.0));
+    if BACKGROUND == 1u {
+        let color = vec3<f32>(BACKGROUND_R, BACKGROUND_G, BACKGROUND_B);
+        return vec4<f32>(mix(color, mapped, coverage), 1.0);
+    }
+    return vec4<f32>(mapped, coverage);
 }
 
 @fragment
@@ -76,7 +98,7 @@ fn store_tonemapped(pixel: vec2<u32>, exposure: f32) {
     // (the H200's storage writes and its sRGB targets otherwise differed by a level on
     // many pixels).
     let level = floor(srgb_encode(mapped.rgb) * 255.0 + 0.5);
-    textureStore(out_tex, pixel, vec4<f32>((level + 0.25) / 255.0, 1.0));
+    textureStore(out_tex, pixel, vec4<f32>((level + 0.25) / 255.0, mapped.a));
 }
 
 @compute @workgroup_size(8, 8)

@@ -6,44 +6,14 @@
 // geometry.wgsl). Each triangle a pixel shows is rebuilt once, at the mean position of
 // the samples it covers (the pixel center when it covers them all, as a G-buffer pass's
 // centroid interpolation places it): barycentrics where the ray through that point meets the
-// triangle's plane, then its attributes and material as the G-buffer pass computes them,
-// textures from the scene's texture table (material_table.wgsl, group 3). Composed after
-// geometry.wgsl, material.wgsl and material_table.wgsl, and with
+// triangle's plane (plane_hit.wgsl), then its attributes and material as the G-buffer pass
+// computes them, textures from the scene's texture table (material_table.wgsl, group 3).
+// Composed after geometry.wgsl, material.wgsl, material_table.wgsl and plane_hit.wgsl, and with
 // view_depth_from_depth.wgsl, which the shading pass's per-pixel surface takes its depth
 // from.
 
 // Samples of one triangle are one fragment, exactly (light_tiled.wgsl's same_fragment).
 const SURFACE_IDS: bool = true;
-
-// Where the ray through pixel coordinate `at` meets the plane of the triangle at `p0`
-// with edges `e1` and `e2` (Möller-Trumbore; the ray from two unprojected points: any
-// projection): the barycentrics there, inside the triangle or not (the plane's, so one
-// pixel over they give the texture coordinates' change per pixel), the ray, and the
-// distance along it.
-struct PlaneHit {
-    b: vec3<f32>,
-    origin: vec3<f32>,
-    ray: vec3<f32>,
-    along: f32,
-}
-
-fn hit_plane(at: vec2<f32>, p0: vec3<f32>, e1: vec3<f32>, e2: vec3<f32>) -> PlaneHit {
-    let origin = unproject(at, 0.5);
-    let ray = unproject(at, 0.25) - origin;
-    let pv = cross(ray, e2);
-    // A triangle seen edge-on covers no sample, so the determinant is never 0 here.
-    let inverse = 1.0 / dot(e1, pv);
-    let t = origin - p0;
-    let q = cross(t, e1);
-    let u = dot(t, pv) * inverse;
-    let v = dot(ray, q) * inverse;
-    return PlaneHit(vec3<f32>(1.0 - u - v, u, v), origin, ray, dot(e2, q) * inverse);
-}
-
-// The texture coordinates of vertices `v0`, `v1`, `v2` at barycentrics `b`.
-fn tex_coords(b: vec3<f32>, v0: PulledVertex, v1: PulledVertex, v2: PulledVertex) -> TexCoords {
-    return TexCoords(b.x * v0.uv + b.y * v1.uv + b.z * v2.uv, b.x * v0.uv1 + b.y * v1.uv1 + b.z * v2.uv1);
-}
 
 // Triangle `id` (+ 1) as seen through pixel coordinate `at`: its attributes and material
 // (textures from the scene's texture table, filtered for the pixel's footprint there) as
@@ -59,19 +29,13 @@ fn rebuild(id: u32, at: vec2<f32>) -> GSample {
     let e2 = (mesh.model * vec4<f32>(v2.position, 1.0)).xyz - p0;
     let hit = hit_plane(at, p0, e1, e2);
     let b = hit.b;
-    // Ray differentials: the plane's barycentrics change across the 2x2 quad the pixel lies
-    // in (from its even corner, keeping `at`'s place in the pixel), as a fragment shader's
-    // coarse derivatives are taken. Lavapipe's are; differences at the pixel itself would
-    // pick other mip levels where the change varies from pixel to pixel (a grazing floor).
-    // Untextured materials skip them (every scene without textures).
-    var right = b;
-    var down = b;
+    // Untextured materials skip the ray differentials (every scene without textures).
+    var step = QuadSteps(b, b);
     if material_textured(mesh.material) {
-        let quad = at - vec2<f32>(vec2<u32>(at) & vec2<u32>(1u));
-        let base = hit_plane(quad, p0, e1, e2).b;
-        right += hit_plane(quad + vec2<f32>(1.0, 0.0), p0, e1, e2).b - base;
-        down += hit_plane(quad + vec2<f32>(0.0, 1.0), p0, e1, e2).b - base;
+        step = quad_steps(at, b, p0, e1, e2);
     }
+    let right = step.right;
+    let down = step.down;
     // Counter-clockwise on screen is the front (wgpu's default front face): the geometric
     // normal faces the camera.
     let front = dot(cross(e1, e2), hit.ray) < 0.0;
