@@ -43,6 +43,12 @@
 #               pre-pass variants) beside forward MSAA and the 1x baselines, on
 #               builtin:dense and builtin:lights?count=256, with the reference, into
 #               every-4x: 26 rows in about five minutes of an H200 (not in the default set)
+#   default     the default pipeline (pipelines/visibility_msaa_4x.ron) beside the G-buffer
+#               pipeline it replaces on builtin:dense, builtin:lights?count=256 and each
+#               real model named in BENCH_MODELS (paths, e.g. models/FlightHelmet/FlightHelmet.gltf),
+#               with the reference, into default; and on builtin:smoke beside
+#               particles_low_res.ron at its default count, into default-smoke (issue 35's
+#               targets; not in the default set)
 #   visibility  the visibility pipelines (4x and 1x) against the lean G-buffer and
 #               forward MSAA on builtin:dense and builtin:lights?count=256, with the
 #               reference (not in the default set)
@@ -167,6 +173,16 @@ for part in $parts; do
       "$bin" bench "${every_4x[@]}" --scene builtin:dense --scene 'builtin:lights?count=256' \
         --width "$width" --height "$height" "${common[@]}" --out-dir "$out/every-4x" || status=$?
       ;;
+    default)
+      models=()
+      for model in ${BENCH_MODELS:-}; do models+=(--scene "$model"); done
+      "$bin" bench --pipeline pipelines/visibility_msaa_4x.ron --pipeline pipelines/deferred_msaa_4x.ron \
+        --scene builtin:dense --scene 'builtin:lights?count=256' "${models[@]}" \
+        --width "$width" --height "$height" "${common[@]}" --out-dir "$out/default" || status=$?
+      "$bin" bench --pipeline pipelines/visibility_msaa_4x.ron --pipeline pipelines/particles_low_res.ron \
+        --scene builtin:smoke --reference pipelines/particles_full_res.ron \
+        --width "$width" --height "$height" "${common[@]}" --out-dir "$out/default-smoke" || status=$?
+      ;;
     visibility)
       visibility=()
       for p in visibility_msaa_4x visibility_noaa deferred_msaa_4x_lean forward_msaa_4x; do
@@ -218,7 +234,7 @@ for part in $parts; do
         || status=$?
       ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, lights, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, particles)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, particles)" >&2
       status=2
       ;;
   esac

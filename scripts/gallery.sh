@@ -18,7 +18,7 @@ render() {
     local name=$1 scene=$2
     shift 2
     echo "== $name: rgraph render --scene $scene $*" >&2
-    ./target/release/rgraph render --scene "$scene" --width 960 --height 540 "$@" \
+    ./target/release/rgraph render --scene "$scene" --width 1280 --height 720 "$@" \
         --out "$out/$name.png" 2>&1 | grep -E "warning|error" >&2 || true
 }
 render flight_helmet "$models/FlightHelmet/FlightHelmet.gltf"
