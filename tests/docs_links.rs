@@ -7,8 +7,9 @@
 //! - every anchor (`path.md#anchor` or `#anchor`) names a heading of that file, as GitHub
 //!   makes anchors of headings (lower case, punctuation dropped, spaces as hyphens, `-1`,
 //!   `-2` for repeats);
-//! - every path under `bench/results/` the text names (linked or not) exists, so a results
-//!   folder cannot be removed while the book still cites it.
+//! - every path under `bench/results/` the text names (linked or not, in code too) exists,
+//!   so a results folder cannot be removed while the book still cites it (a path after
+//!   `REV:`, as in `git show REV:bench/results/...`, names the history and is skipped).
 //!
 //! And the README's embedding snippet, the fenced block after a
 //! `<!-- snippet: FILE -->` line, is found verbatim in FILE: the block is cut at lines
@@ -144,11 +145,15 @@ fn results_paths(line: &str) -> Vec<String> {
     let mut out = Vec::new();
     let mut rest = line;
     while let Some(at) = rest.find("bench/results/") {
+        // `git show REV:bench/results/...` names a path in the history, not in the tree.
+        let in_history = rest[..at].ends_with(':');
         let tail = &rest[at..];
         let end = tail
             .find(|c: char| !(c.is_ascii_alphanumeric() || "_-./".contains(c)))
             .unwrap_or(tail.len());
-        out.push(tail[..end].trim_end_matches(['.', '/']).to_string());
+        if !in_history {
+            out.push(tail[..end].trim_end_matches(['.', '/']).to_string());
+        }
         rest = &tail[end..];
     }
     out
@@ -373,6 +378,7 @@ fn the_checker_finds_what_it_should() {
         results_paths("in `bench/results/h200/main/results.md`, then bench/results/lavapipe."),
         ["bench/results/h200/main/results.md", "bench/results/lavapipe"]
     );
+    assert!(results_paths("`git show c67acb0:bench/results/gpu/x/results.md`").is_empty());
     let source = ["fn f() {", "    let a = 1;", "    let b = 2;", "}"];
     assert_eq!(find_piece(&source, &["let a = 1;", "let b = 2;"], 0), Some(3));
     assert_eq!(find_piece(&source, &["fn f() {", "    let a = 1;"], 0), Some(2));
