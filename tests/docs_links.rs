@@ -11,11 +11,12 @@
 //!   so a results folder cannot be removed while the book still cites it (a path after
 //!   `REV:`, as in `git show REV:bench/results/...`, names the history and is skipped).
 //!
-//! And the README's embedding snippet, the fenced block after a
-//! `<!-- snippet: FILE -->` line, is found verbatim in FILE: the block is cut at lines
-//! `// ...` into pieces, and each piece must appear in FILE as consecutive lines, in order,
-//! with the same indentation relative to its first line (trailing spaces ignored). The
-//! README must have at least one such snippet, so removing the marker fails too.
+//! And every snippet, a fenced block after a `<!-- snippet: FILE -->` line (FILE from the
+//! repository root), is found verbatim in FILE: the block is cut at lines `// ...` into
+//! pieces, and each piece must appear in FILE as consecutive lines, in order, shifted right
+//! by the same whitespace (trailing spaces ignored). The README's embedding example is one
+//! (the README must have at least one, so removing its marker fails too); the graph-file
+//! guide quotes `pipelines/*.ron`, which the build validates.
 //!
 //! A failure lists every problem as `FILE:LINE: ...`, naming the link or snippet line.
 
@@ -295,24 +296,23 @@ fn find_piece(source: &[&str], piece: &[&str], from: usize) -> Option<usize> {
     None
 }
 
-fn check_snippets(problems: &mut Vec<String>) {
-    let readme = fs::read_to_string(root().join("README.md")).expect("README.md reads");
-    let found = snippets(&readme);
-    if found.is_empty() {
-        problems.push(
-            "README.md: no `<!-- snippet: FILE -->` before the embedding example, so nothing \
-             ties it to a file that compiles"
-                .to_string(),
-        );
-    }
+/// Checks the snippets of one Markdown file against the files they quote; returns how many
+/// snippets it has.
+fn check_snippets_of(file: &Path, problems: &mut Vec<String>) -> usize {
+    let text = fs::read_to_string(file).expect("a Markdown file reads");
+    let name = display(file);
+    let found = snippets(&text);
+    let count = found.len();
     for (marker, quoted, block) in found {
         let Ok(source) = fs::read_to_string(root().join(&quoted)) else {
-            problems.push(format!("README.md:{marker}: snippet quotes {quoted}, which does not read"));
+            problems.push(format!(
+                "{name}:{marker}: snippet quotes {quoted} (from the repository root), which does not read"
+            ));
             continue;
         };
         let source: Vec<&str> = source.lines().collect();
         if block.iter().all(|(_, l)| l.trim().is_empty()) {
-            problems.push(format!("README.md:{marker}: the snippet of {quoted} is empty"));
+            problems.push(format!("{name}:{marker}: the snippet of {quoted} is empty"));
             continue;
         }
         let mut from = 0;
@@ -326,7 +326,7 @@ fn check_snippets(problems: &mut Vec<String>) {
             match find_piece(&source, &lines, from) {
                 Some(next) => from = next,
                 None => problems.push(format!(
-                    "README.md:{}: snippet lines {}-{} (from `{}`) are not in {quoted} as \
+                    "{name}:{}: snippet lines {}-{} (from `{}`) are not in {quoted} as \
                      written, in order after the previous piece: copy them from the file again",
                     piece[0].0,
                     piece[0].0,
@@ -336,6 +336,7 @@ fn check_snippets(problems: &mut Vec<String>) {
             }
         }
     }
+    count
 }
 
 #[test]
@@ -355,12 +356,26 @@ fn links_images_anchors_and_results_paths_resolve() {
 }
 
 #[test]
-fn the_readme_embedding_snippet_is_in_its_example_verbatim() {
+fn snippets_are_verbatim_in_the_files_they_quote() {
     let mut problems = Vec::new();
-    check_snippets(&mut problems);
+    let mut readme = 0;
+    for file in markdown_files() {
+        let count = check_snippets_of(&file, &mut problems);
+        if file == root().join("README.md") {
+            readme = count;
+        }
+    }
+    if readme == 0 {
+        problems.push(
+            "README.md: no `<!-- snippet: FILE -->` before the embedding example, so nothing \
+             ties it to a file that compiles"
+                .to_string(),
+        );
+    }
     assert!(
         problems.is_empty(),
-        "the README's snippet drifted from its file:\n{}",
+        "{} snippet(s) drifted from the files they quote:\n{}",
+        problems.len(),
         problems.join("\n")
     );
 }
