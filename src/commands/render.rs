@@ -12,7 +12,6 @@ mod saturation;
 mod summary;
 pub(super) mod view;
 
-use std::path::PathBuf;
 use std::sync::Arc;
 
 use graph_core::gpu::{resident_bytes, AdapterChoice, DeviceObjects};

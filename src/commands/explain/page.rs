@@ -90,7 +90,7 @@ fn compared(
     let other = args
         .compare
         .as_deref()
-        .map(|other| load(other, explained.samples, &args.outputs))
+        .map(|other| load(other, explained.samples, &args.outputs, explained.options))
         .transpose()?;
     let loaded = other.as_ref().unwrap_or(explained.loaded);
     let scene = match &args.compare_scene {
