@@ -320,7 +320,9 @@ fn check_snippets_of(file: &Path, problems: &mut Vec<String>) -> usize {
             // Blank lines around an elision belong to neither side.
             let start = piece.iter().position(|(_, l)| !l.trim().is_empty());
             let end = piece.iter().rposition(|(_, l)| !l.trim().is_empty());
-            let (Some(start), Some(end)) = (start, end) else { continue };
+            let (Some(start), Some(end)) = (start, end) else {
+                continue;
+            };
             let piece = &piece[start..=end];
             let lines: Vec<&str> = piece.iter().map(|(_, l)| l.as_str()).collect();
             match find_piece(&source, &lines, from) {
@@ -382,21 +384,35 @@ fn snippets_are_verbatim_in_the_files_they_quote() {
 
 #[test]
 fn the_checker_finds_what_it_should() {
-    assert_eq!(slug("The lean G-buffer: 16 bytes per sample"), "the-lean-g-buffer-16-bytes-per-sample");
+    assert_eq!(
+        slug("The lean G-buffer: 16 bytes per sample"),
+        "the-lean-g-buffer-16-bytes-per-sample"
+    );
     assert_eq!(slug("A live view: rgraph view"), "a-live-view-rgraph-view");
     assert_eq!(anchors("# A\n## A\n```\n# not\n```\n"), ["a", "a-1"]);
     assert_eq!(
-        link_targets(&blank_code_spans("see [x](a.md#b) and `[y](c.md)` ![i](g.png \"t\")")),
+        link_targets(&blank_code_spans(
+            "see [x](a.md#b) and `[y](c.md)` ![i](g.png \"t\")"
+        )),
         ["a.md#b", "g.png"]
     );
     assert_eq!(
         results_paths("in `bench/results/h200/main/results.md`, then bench/results/lavapipe."),
-        ["bench/results/h200/main/results.md", "bench/results/lavapipe"]
+        [
+            "bench/results/h200/main/results.md",
+            "bench/results/lavapipe"
+        ]
     );
     assert!(results_paths("`git show c67acb0:bench/results/gpu/x/results.md`").is_empty());
     let source = ["fn f() {", "    let a = 1;", "    let b = 2;", "}"];
-    assert_eq!(find_piece(&source, &["let a = 1;", "let b = 2;"], 0), Some(3));
-    assert_eq!(find_piece(&source, &["fn f() {", "    let a = 1;"], 0), Some(2));
+    assert_eq!(
+        find_piece(&source, &["let a = 1;", "let b = 2;"], 0),
+        Some(3)
+    );
+    assert_eq!(
+        find_piece(&source, &["fn f() {", "    let a = 1;"], 0),
+        Some(2)
+    );
     assert_eq!(find_piece(&source, &["fn f() {", "  let a = 1;"], 0), None);
     assert_eq!(find_piece(&source, &["let b = 2;", "let a = 1;"], 0), None);
     assert_eq!(find_piece(&source, &["let a = 1;"], 2), None);
