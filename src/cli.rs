@@ -4,10 +4,10 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use graph_core::file::GraphParams;
-use passes_deferred_msaa::scene::{
+use rgraph_scene::{
     AssetPolicy, Lighting, Scene, SceneError, DEFAULT_MAX_ASSET_BYTES,
 };
-use passes_deferred_msaa::{Background, Exposure};
+use rgraph_passes::{Background, Exposure};
 
 #[derive(Parser)]
 #[command(

@@ -7,8 +7,8 @@ use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
-use passes_deferred_msaa::glam::DVec3;
-use passes_deferred_msaa::scene::{
+use rgraph_scene::glam::DVec3;
+use rgraph_scene::{
     Camera, FilterMode, Projection, Sampler, Scene, TextureImage, TextureRef,
 };
 

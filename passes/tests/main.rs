@@ -1,0 +1,7 @@
+//! rgraph-passes' CPU tests, one binary: the crate's structure. Its GPU tests, which need
+//! a device, are the root package's (tests/).
+
+mod structure;
+// The structure check graph-core's tests run, shared.
+#[path = "../../graph-core/tests/structure_check.rs"]
+mod structure_check;
