@@ -2,7 +2,7 @@
 # rgraph bench on an NVIDIA server (H100/H200, no network, no display) in one command, at
 # 3840x2160, writing results.json, results.md, charts and images.
 #
-#   scripts/bench-gpu.sh [OUT_DIR]       default: $OUT if set, else bench/results/gpu
+#   scripts/bench-gpu.sh [OUT_DIR]       default: $OUT if set, else bench/results/h200
 #
 # The server has no network and no Rust: build the release binary on an x86_64
 # development machine (`cargo build --release`) and bring it along, as .gl/bin/rgraph
@@ -76,12 +76,12 @@
 # BENCH_ARCHIVE=FILE.tar.gz also packs what gets committed (each part's results.json,
 # results.md and charts, and adapters.txt) into one file, for machines that hand back only a
 # few files: e.g. BENCH_ARCHIVE=$OUT/bench-gpu.tar.gz scripts/bench-gpu.sh /tmp/bench-gpu,
-# then `tar xzf bench-gpu.tar.gz -C bench/results/gpu`. The per-scene images (large at
+# then `tar xzf bench-gpu.tar.gz -C bench/results/h200`. The per-scene images (large at
 # 2160p) stay in OUT_DIR.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-out="${1:-${OUT:-bench/results/gpu}}"
+out="${1:-${OUT:-bench/results/h200}}"
 parts="${BENCH_PARTS:-main lights samples resolution specialise}"
 frames="${BENCH_FRAMES:-2}"
 rounds="${BENCH_ROUNDS:-5}"

@@ -15,8 +15,8 @@ use crate::cli_support::Run;
 /// The hostile names' graph file.
 pub const HOSTILE: &str = "tests/fixtures/hostile_names.ron";
 /// A bench result's rows of deferred_msaa_4x and deferred_noaa_fxaa on builtin:lights and
-/// builtin:unlit, measured on an H200 at 3840x2160 (trimmed from
-/// bench/results/gpu/variants-more/results.json).
+/// builtin:unlit, measured on an H200 at 3840x2160 (trimmed from the `variants-more` run's
+/// results.json, summarised in docs/design/post-aa-ssao-light-prepass.md).
 pub const H200_TIMINGS: &str = "tests/fixtures/bench_h200.json";
 
 /// `rgraph ARGS` where no GPU adapter can exist: the Vulkan loader is given no driver.

@@ -111,9 +111,7 @@ fn load(
         .map_err(|e| invalid(pipeline, e))?;
     // Checked as `validate` checks it, so a file explain shows is one validate accepts:
     // an error under a condition off by default is found too.
-    loaded
-        .validate(options)
-        .map_err(|e| invalid(pipeline, e))?;
+    loaded.validate(options).map_err(|e| invalid(pipeline, e))?;
     if !outputs.is_empty() {
         let names: Vec<&str> = outputs.iter().map(String::as_str).collect();
         loaded

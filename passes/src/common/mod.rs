@@ -18,9 +18,9 @@ pub(crate) mod extent;
 pub(crate) mod fullscreen;
 pub(crate) mod fullscreen_compute;
 pub(crate) mod gbuffer_layout;
-pub(crate) mod opaque_depth;
 #[cfg(feature = "gpu")]
 pub(crate) mod gpu;
+pub(crate) mod opaque_depth;
 pub(crate) mod plugin;
 pub(crate) mod rgb9e5;
 pub(crate) mod textures;

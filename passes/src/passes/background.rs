@@ -97,14 +97,17 @@ impl Plugin for Background {
             .source()
             .to_owned();
         let draw = Fullscreen {
-            constants: vec![(
-                "ENVIRONMENT_BACKGROUND",
-                f64::from(u8::from(environment)),
-            )],
+            constants: vec![("ENVIRONMENT_BACKGROUND", f64::from(u8::from(environment)))],
             reads_scene: true,
             blend: Some(ADD_AND_MARK),
             depth: Some(depth),
-            ..Fullscreen::new("background", source, "fs_background", Vec::new(), Some(target))
+            ..Fullscreen::new(
+                "background",
+                source,
+                "fs_background",
+                Vec::new(),
+                Some(target),
+            )
         };
         self.0.record(pass, draw);
         Ok(())

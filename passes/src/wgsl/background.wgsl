@@ -34,7 +34,10 @@ fn uncovered(pixel: vec2<i32>) -> f32 {
 // the output the camera's viewport counts (a supersampled reference's).
 fn environment_seen(at: vec2<f32>) -> vec3<f32> {
     let output = at * camera.viewport / coverage_size();
-    let ray = unproject(output, 0.25) - unproject(output, 0.5);
+    // Two points on the pixel's ray; which of the two clip depths is nearer depends on the
+    // depth convention, so the ray is turned to point away from the camera.
+    let along = unproject(output, 0.25) - unproject(output, 0.5);
+    let ray = select(-along, along, dot(along, camera.forward) > 0.0);
     let radiance = textureSampleLevel(environment_tex, environment_sampler, ray, 0.0).rgb;
     return min(radiance * light_info.environment_intensity, vec3<f32>(HALF_MAX));
 }

@@ -6,8 +6,8 @@ use std::collections::{BTreeSet, HashMap};
 
 use maud::{html, Markup};
 
-use super::super::{color_ops, depth_stencil_ops, describe_shape, units::bytes};
-use super::counted;
+use super::super::units::{bytes, counted};
+use super::super::{color_ops, depth_stencil_ops, describe_shape};
 use crate::handle::ResourceId;
 use crate::plan::{Plan, PlannedPass, PlannedResource};
 

@@ -14,6 +14,7 @@
 //! inline styles and nothing else, so the page cannot reach the network.
 
 mod diff;
+mod hues;
 mod not_run;
 mod timeline;
 mod timings;
@@ -25,9 +26,10 @@ use maud::{html, Markup, PreEscaped, DOCTYPE};
 use serde::Serialize;
 use sha2::{Digest, Sha256};
 
-use super::units::bytes;
+use super::units::{bytes, counted};
 use crate::plan::Plan;
 use diff::Diff;
+use timeline::allocations;
 
 /// The element whose text is the page's data as JSON (`<script type="application/json">`).
 pub const DATA_ID: &str = "page-data";
@@ -132,23 +134,6 @@ fn data(page: &Page) -> String {
     // Plain data of strings and numbers: serializing it cannot fail.
     let json = serde_json::to_string(page).expect("a page's data serializes");
     json.replace('<', "\\u003c")
-}
-
-/// `1 pass`, `2 passes`.
-fn counted(n: usize, one: &str, many: &str) -> String {
-    match n {
-        1 => format!("1 {one}"),
-        n => format!("{n} {many}"),
-    }
-}
-
-/// What the executor allocates: `7 textures and 1 buffer`.
-fn allocations(plan: &Plan) -> String {
-    format!(
-        "{} and {}",
-        counted(plan.textures.len(), "texture", "textures"),
-        counted(plan.buffers.len(), "buffer", "buffers")
-    )
 }
 
 /// The first lines: size, profile, counts and memory.

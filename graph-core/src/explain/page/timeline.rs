@@ -9,10 +9,11 @@
 use maud::{html, Markup};
 
 use super::super::{
-    buffer_usages, color_ops, depth_stencil_ops, describe_shape, texture_usages, units::bytes,
+    buffer_usages, color_ops, depth_stencil_ops, describe_shape, texture_usages,
+    units::{bytes, counted},
 };
 use super::diff::{Diff, Mark};
-use super::allocations;
+use super::hues::hue;
 use super::timings::{Clock, Timings};
 use crate::handle::ResourceId;
 use crate::plan::{Plan, PlannedPass, PlannedResource};
@@ -31,16 +32,6 @@ struct Allocation<'p> {
     hue: u32,
     class: &'static str,
     holds: &'p [ResourceId],
-}
-
-/// A hue per index, the golden angle apart, starting at `offset`.
-fn hue(index: usize, offset: f64) -> u32 {
-    ((index as f64 * 137.508 + offset) % 360.0) as u32
-}
-
-/// The hue of pass `index`'s segment in the time strip.
-pub(super) fn pass_hue(index: usize) -> u32 {
-    hue(index, 90.0)
 }
 
 fn texture(plan: &Plan, i: usize) -> Allocation<'_> {
@@ -394,4 +385,13 @@ fn physical_row(plan: &Plan, a: &Allocation, columns: usize) -> Markup {
 /// A bar from pass `first` to pass `last` in hue `hue`.
 fn bar_style(first: usize, last: usize, hue: u32) -> String {
     format!("grid-column:{}/{};--h:{hue}", first + 1, last + 2)
+}
+
+/// What the executor allocates: `7 textures and 1 buffer`.
+pub(super) fn allocations(plan: &Plan) -> String {
+    format!(
+        "{} and {}",
+        counted(plan.textures.len(), "texture", "textures"),
+        counted(plan.buffers.len(), "buffer", "buffers")
+    )
 }

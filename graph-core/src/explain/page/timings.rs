@@ -4,6 +4,7 @@
 use maud::{html, Markup};
 use serde::Serialize;
 
+use super::hues::pass_hue;
 use crate::plan::Plan;
 
 /// What a measurement said of a plan's passes (a bench's medians), matched to the plan's
@@ -135,7 +136,7 @@ impl Timings {
                     figcaption { "Where the GPU time goes: each pass's share of " (ms(total)) " ms" }
                     div.strip role="img" aria-label=(format!("GPU time by pass: {label}")) {
                         @for (i, name, v) in &timed {
-                            span.seg style=(format!("flex-grow:{v:.4};--h:{}", super::timeline::pass_hue(*i))) title=(format!("{name}: {} ms", ms(*v))) {
+                            span.seg style=(format!("flex-grow:{v:.4};--h:{}", pass_hue(*i))) title=(format!("{name}: {} ms", ms(*v))) {
                                 (name)
                             }
                         }
