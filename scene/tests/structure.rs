@@ -43,3 +43,22 @@ fn rgraph_scene_imports_run_down_the_layers_without_cycles() {
         report.join("\n")
     );
 }
+
+/// The workspace's crates depend one way: the command line on rgraph-passes, on
+/// rgraph-scene, on graph-core. Cargo refuses a cycle between them; this keeps the order,
+/// so that the scene never learns of passes and the graph of neither.
+#[test]
+fn the_crates_depend_one_way() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let below: [(&str, &[&str]); 2] = [
+        ("graph-core/Cargo.toml", &["rgraph-scene", "rgraph-passes"]),
+        ("scene/Cargo.toml", &["rgraph-passes"]),
+    ];
+    for (manifest, above) in below {
+        let text = std::fs::read_to_string(root.join(manifest)).unwrap();
+        for crate_ in above {
+            let line = text.lines().find(|l| l.trim_start().starts_with(crate_));
+            assert!(line.is_none(), "{manifest} depends on {crate_}, a crate above it: {line:?}");
+        }
+    }
+}

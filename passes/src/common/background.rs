@@ -5,7 +5,7 @@
 //! them, bit for bit. A multisampled clear goes through the ROPs, which on the H200 cost
 //! as much as a full-screen pass (builtin:dense at 3840x2160 4x: 7.1 of the lean
 //! G-buffer pass's 20.2 ms, 14.2 of the five-target one's 33.9, 4.7 of forward's 20.1:
-//! bench/results/gpu/visibility-merged/clears.md); the fill writes the background's
+//! docs/design/compute-raster.md, run visibility-merged); the fill writes the background's
 //! samples only and depth-culls the rest.
 
 use graph_core::file::{PluginError, Slots};

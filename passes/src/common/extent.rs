@@ -1,7 +1,7 @@
 //! Where a pass draws: every pixel, or only those the scene's blended meshes may cover,
 //! for the passes that serve the transparent pass alone (`keys_depth`'s depth, the
 //! transparent accumulation's start). On a chip with few ROPs a multisampled full-screen
-//! write costs as much as a full-screen pass (bench/results/gpu/visibility-merged/clears.md),
+//! write costs as much as a full-screen pass (docs/design/compute-raster.md, run visibility-merged),
 //! and blended meshes often cover a small part of the output.
 
 use serde::Deserialize;

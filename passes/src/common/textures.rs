@@ -106,7 +106,7 @@ pub(crate) fn color_output(
 
 /// [`color_output`] for a pass that draws every pixel of its target (a full-screen
 /// triangle, nothing discarded): begun without a clear, which on a chip with few ROPs
-/// costs as much as the pass's own writes (bench/results/gpu/visibility-merged/clears.md).
+/// costs as much as the pass's own writes (docs/design/compute-raster.md, run visibility-merged).
 pub(crate) fn covered_output(
     slots: &mut Slots<'_>,
     pass: &mut PassBuilder<'_>,

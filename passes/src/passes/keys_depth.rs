@@ -21,14 +21,14 @@
 //! tests it): the draw writes every sample the transparent pass can test, and what it
 //! leaves is never read. A clear of a multisampled target goes through the ROPs, which on
 //! the H200 cost as much as a full-screen pass (2.37 of this pass's 2.40 ms on
-//! FlightHelmet at 3840x2160 4x, bench/results/gpu/visibility-merged/clears.md).
+//! FlightHelmet at 3840x2160 4x, docs/design/compute-raster.md, run visibility-merged).
 //!
 //! With `extent: blended` the draw covers only the pixels the scene's blended meshes may
 //! cover (the bounds of their world boxes on screen, [`GpuScene::blended_rect`]), and
 //! none when none is in view; elsewhere the depth is whatever the texture held. For a
 //! depth buffer only the transparent pass reads: shaded once per sample, the draw costs
 //! as much as a 4x raster pass's sample writes (5.2 ms of FlightHelmet's 13.1 at 2160p on
-//! the H200, bench/results/gpu/visibility-tile-raster), where the blended meshes may
+//! the H200, docs/design/compute-raster.md, run visibility-tile-raster), where the blended meshes may
 //! cover a small part of the output.
 //!
 //! [`GpuScene::blended_rect`]: crate::gpu_scene::GpuScene::blended_rect

@@ -61,7 +61,7 @@
 //! owns (4 bytes a pixel of the output, which frames report as the pass's own) and leaves
 //! them out; a second dispatch lights them in runs of 128 listed pixels, each pixel an
 //! invocation's, its fragments in turn, and resolves them (light_edges_listed.wgsl;
-//! bench/results/gpu/visibility-edges says why). A run culls lights for itself as a tile
+//! docs/design/compute-raster.md, run visibility-edges says why). A run culls lights for itself as a tile
 //! does where the scene has more than 8 point and spot lights; with fewer each fragment
 //! tests every light, which costs less than the run's culling.
 //!
@@ -193,7 +193,7 @@ const EDGES: &str = "cs_light_edge_pixels";
 
 /// The workgroups lighting the listed edge pixels, each going through the list's runs in
 /// turn: on a GPU enough to fill a large one (4096 x 128 invocations; 2048 measured
-/// 0.02 ms slower on the H200, 8192 the same: bench/results/gpu/visibility-merged); on a
+/// 0.02 ms slower on the H200, 8192 the same: docs/design/compute-raster.md, run visibility-merged); on a
 /// CPU, which runs workgroups one after another on its threads and pays for each,
 /// CPU_EDGE_WORKGROUPS
 /// (lavapipe's tiled pass of visibility_msaa_4x on dense at 640x360: 211 ms with 4096,

@@ -41,7 +41,7 @@
 //! drawn when none is in view: the rest of the target is undefined, and the composite
 //! never reads it. A multisampled clear goes through the ROPs, which on the H200 cost as
 //! much as a full-screen pass: 4.72 of this pass's 4.76 ms on FlightHelmet at 3840x2160
-//! 4x (bench/results/gpu/visibility-merged/clears.md), where the lenses cover a small
+//! 4x (docs/design/compute-raster.md, run visibility-merged), where the lenses cover a small
 //! part of the output.
 //!
 //! **The composite** is a full-screen draw onto the single-sampled HDR image (`resolved`,

@@ -13,7 +13,7 @@
 //! the shading pass then reads a quarter of a 4x buffer away from edges. An atomicMax
 //! per covered sample into the buffer, the design before, lands anywhere in a buffer
 //! five times the H200's L2 at 4x and 3840x2160
-//! (bench/results/gpu/visibility-4x-attribution).
+//! (docs/design/compute-raster.md, run visibility-4x-attribution).
 //!
 //! ```ron
 //! (name: "visibility", plugin: "visibility_compute",
@@ -28,7 +28,7 @@
 //! samples show more than one triangle (sample 0's key says which): `light_tiled` reads
 //! no more, and the raster writes a quarter of a 4x buffer away from edges (on the H200
 //! at 3840x2160 builtin:dense's 4x raster 0.81 -> 0.79 ms, lights?count=256's 0.47 ->
-//! 0.42: bench/results/gpu/visibility-runs). Elsewhere those samples hold whatever an
+//! 0.42: docs/design/compute-raster.md, run visibility-runs). Elsewhere those samples hold whatever an
 //! earlier frame left: a pass reading every sample (`keys_depth`) needs `everywhere`,
 //! the default.
 //!

@@ -4,7 +4,7 @@
 // with the lights that reach those pixels' samples (each run culling them where the scene
 // has many, runs_cull), and resolves them. The tiles' dispatch carries no code for their
 // fragments, and every warp of this one is full
-// (bench/results/gpu/visibility-edges measured a tile's edge entries in a second round
+// (docs/design/compute-raster.md, run visibility-edges measured a tile's edge entries in a second round
 // of its first warps while the others waited).
 //
 // Composed after light_tiled.wgsl, a visibility buffer's reader (`one_surface`,
@@ -56,7 +56,7 @@ fn cs_edge_pixels_reset() {
 // dense's 4x tiled pass takes 0.74 ms with runs of 128, 0.77 with 64, 0.81 with 32 and
 // 0.75 with 256 (where 256 lights' goes from 1.04 to 1.08; 1.05 with 128): a run's
 // culling is shared by more pixels, and its rectangle still fits its lights
-// (bench/results/gpu/visibility-merged/experiments.md).
+// (docs/design/compute-raster.md, run visibility-merged).
 const EDGE_INVOCATIONS: u32 = min(THREADS, 128u);
 var<workgroup> edge_total: u32;
 // The run's pixels' bounding rectangle: smallest x and y, largest x and y.
@@ -93,7 +93,7 @@ fn cs_light_edge_pixels(
 // more than the tests they save. On the H200 at 3840x2160, 4x, the tiled pass takes
 // 0.69 ms unculled and 0.72 culled on builtin:dense (6 lights), 0.35 and 0.34 with
 // lights?count=16, 0.41 and 0.39 with 32, 0.53 and 0.49 with 64
-// (bench/results/gpu/visibility-runs): the turn lies between 6 and 16.
+// (docs/design/compute-raster.md, run visibility-runs): the turn lies between 6 and 16.
 const RUN_CULL_ABOVE: u32 = 8u;
 
 fn runs_cull() -> bool {
@@ -210,7 +210,7 @@ fn light_run(run: u32, count: u32, local: u32) {
 
 // A listed pixel as its invocation lights it: its samples read once (its fragments' IDs
 // and depths come from them, not from loads of their own: on the H200 at 3840x2160 this
-// took builtin:dense's 4x shading from 0.75 to 0.71 ms, bench/results/gpu/visibility-runs),
+// took builtin:dense's 4x shading from 0.75 to 0.71 ms, docs/design/compute-raster.md, run visibility-runs),
 // its fragments' leaders, and the samples leading a fragment (a bit each).
 struct ListedPixel {
     pixel: vec2<i32>,

@@ -233,7 +233,7 @@ fn store_light(entry: u32, light: vec3<f32>) {
 // keeps lights that reach some point of its bounds; one that misses `s`'s point adds 0
 // (incident's window): the test skips its BRDF (with 256 lights the 1x shading 0.95 ->
 // 0.85 ms, the 4x 1.20 -> 1.04, at 3840x2160 on the H200:
-// bench/results/gpu/visibility-dense).
+// docs/design/compute-raster.md, run visibility-dense).
 fn batch_light(s: Surface, l: u32) -> vec3<f32> {
     return reaching_light(s, lights[batch_lights[l]]);
 }

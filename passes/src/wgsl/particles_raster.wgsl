@@ -9,7 +9,7 @@
 // transmittance multiplied by 1 - a, emissive light added, exactly the blend states of
 // the fragment pass's off-screen targets, then stores both once. The fragment pass
 // pays the ROPs for every blended fragment, hundreds deep in a column of smoke (13 ms
-// for builtin:smoke's 112 million at 1920x1080 on the H200: bench/results/gpu/particles-scale2).
+// for builtin:smoke's 112 million at 1920x1080 on the H200: docs/design/particles.md, run particles-scale2).
 //
 // A billboard faces the camera: its corners lie at one view depth, so on screen it is a
 // rectangle whose `corner` coordinates are affine in the pixel position, which the

@@ -8,7 +8,7 @@
 // (triangle_setup.wgsl's keys: the order the triangles come in does not matter). A warp
 // is a block of 4 x 8 pixels: on the H200 at 3840x2160 this took builtin:dense's raster
 // from 1.02 to 0.81 ms at 4x and from 0.76 to 0.68 at 1x, with the strict inside test
-// in cover_lanes (bench/results/gpu/visibility-blocks).
+// in cover_lanes (docs/design/compute-raster.md, run visibility-blocks).
 //
 // Group 1 binds the draws and the bins at bindings 1 to 8 (common/gpu/tile_bins.rs), group
 // 3 the texture table, which textured alpha masks read. Composed after common.wgsl,
