@@ -366,25 +366,35 @@ fn compare_marks_a_changed_pass_of_another_file() {
     let dir = tempfile::tempdir().unwrap();
     let original = std::fs::read_to_string("pipelines/postprocess_demo.ron").unwrap();
     // The changed file: present reads the HDR sky instead of the toned image, so the
-    // tonemap pass is culled. Its shaders are named by absolute paths, as it lives
-    // elsewhere.
+    // tonemap pass is culled. It lives elsewhere, with the shaders it names beside it
+    // (a graph file reads only its own tree).
     let shaders = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
-    let changed = original
-        .replace(
-            "inputs: { \"src\": \"toned\" }",
-            "inputs: { \"src\": \"hdr\" }",
+    std::fs::create_dir(dir.path().join("shaders")).unwrap();
+    for shader in ["gradient.wgsl", "exposure.wgsl"] {
+        std::fs::copy(
+            shaders.join(shader),
+            dir.path().join("shaders").join(shader),
         )
-        .replace("../shaders", shaders.to_str().unwrap());
+        .unwrap();
+    }
+    let changed = original.replace(
+        "inputs: { \"src\": \"toned\" }",
+        "inputs: { \"src\": \"hdr\" }",
+    );
     assert_eq!(
         changed.matches("\"src\": \"hdr\"").count(),
         2,
         "the edit applies"
     );
-    let changed_path = dir.path().join("postprocess_changed.ron");
+    std::fs::create_dir(dir.path().join("pipelines")).unwrap();
+    let changed_path = dir.path().join("pipelines/postprocess_changed.ron");
+    let root = dir.path().to_str().unwrap();
     std::fs::write(&changed_path, changed).unwrap();
     let html = page(&[
         "--pipeline",
         changed_path.to_str().unwrap(),
+        "--graph-root",
+        root,
         "--compare",
         "pipelines/postprocess_demo.ron",
     ]);

@@ -175,6 +175,11 @@ fn run_pipeline(gpu: &Gpu, file: &str, scene: &Arc<Scene>, frames: u32, each: im
     let host = Arc::new(Host::new(scene.clone(), Overrides::default()));
     let mut registry = Registry::with_builtins();
     rgraph_passes::register(&mut registry, Some(host.clone()));
+    // The generic plugins' demos read their shaders from the shipped shaders/ beside
+    // pipelines/, which a graph file reaches only where its host allows it.
+    registry
+        .allow_graph_root(repo().join("shaders"))
+        .expect("shaders/ exists");
     let path = repo().join("pipelines").join(file);
     let mut loaded = load_file_with(&path, &registry, &GraphParams::new())
         .unwrap_or_else(|e| panic!("{file} loads:\n{e}"));
