@@ -33,9 +33,9 @@ use graph_core::gpu::{
 };
 use graph_core::types::TextureFormat;
 use graph_core::{CompileOptions, CompiledGraph};
+use rgraph_passes::{FrameInputs, Host, Overrides};
 use rgraph_scene::glam::{DMat4, DQuat, DVec3};
 use rgraph_scene::Scene;
-use rgraph_passes::{FrameInputs, Host, Overrides};
 
 /// The target's size (`--size W,H` changes it).
 pub const SIZE: (u32, u32) = (640, 360);

@@ -4,10 +4,10 @@
 //! under the condition `background`: the default, deferred_msaa_4x.ron, the lean and
 //! tiled G-buffers, forward MSAA) draw it alike; the others refuse the flag.
 
+use rgraph_passes::{Background, Overrides};
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::glam::{DVec3, Vec3};
 use rgraph_scene::{environment_radiance, Lighting, Projection, Scene};
-use rgraph_passes::{Background, Overrides};
 use serde_json::json;
 
 use crate::cli_support::rgraph;

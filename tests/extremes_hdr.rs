@@ -17,9 +17,9 @@ use crate::deferred_support::measure;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
+use rgraph_passes::Overrides;
 use rgraph_scene::glam::{DVec3, Vec3};
 use rgraph_scene::{Camera, Light, LightKind, Projection, Scene};
-use rgraph_passes::Overrides;
 
 const SIZE: (u32, u32) = (48, 48);
 const HALF_MAX: f32 = 65504.0;

@@ -1,5 +1,5 @@
 //! Extreme case 4 (issue 6), normals, the GPU half (the encoding's angular error over a
-//! dense sphere is bounded on the CPU: scene/tests/extremes_normals.rs).
+//! dense sphere is bounded on the CPU: passes/tests/extremes_normals.rs).
 //!
 //! - Extreme: vertex normals of zero length, denormal (1e-42), huge (3e38, whose squared
 //!   length overflows f32) and pointing away from the camera on a front face, and a floor

@@ -24,8 +24,8 @@ use deferred_support::{gpu, Render};
 use graph_core::file::{load_file_with, GraphParams, Registry};
 use graph_core::gpu::Gpu;
 use graph_core::CompileOptions;
-use rgraph_scene::Scene;
 use rgraph_passes::{Host, Overrides};
+use rgraph_scene::Scene;
 
 /// The deferred pipeline's formats, each at the sample count the pipeline gives it.
 const FORMATS: [wgpu::TextureFormat; 6] = [

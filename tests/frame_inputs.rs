@@ -5,9 +5,9 @@
 //! is a recompile instead: one plan more, new targets, still no pipeline.
 
 use graph_core::gpu::DeviceObjects;
+use rgraph_passes::{Exposure, FrameInputs, Overrides};
 use rgraph_scene::glam::{DMat4, DQuat, DVec3};
 use rgraph_scene::Scene;
-use rgraph_passes::{Exposure, FrameInputs, Overrides};
 
 use crate::deferred_support::{gpu, Image, Render};
 
@@ -75,10 +75,7 @@ fn assert_changed(first: &Image, second: &Image, what: &str) {
 }
 
 /// The camera of `scene` orbited 25 degrees about its bounds' centre.
-fn orbit(
-    scene_camera: &rgraph_scene::Camera,
-    center: DVec3,
-) -> rgraph_scene::Camera {
+fn orbit(scene_camera: &rgraph_scene::Camera, center: DVec3) -> rgraph_scene::Camera {
     scene_camera.orbited(center, 25f64.to_radians())
 }
 

@@ -106,8 +106,7 @@ fn gltf_files_load_and_analyse_or_fail_with_errors() {
         let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fuzz-gltf");
         let asset = dir.join("asset");
         std::fs::create_dir_all(&asset).expect("a fuzz directory");
-        let fixtures =
-            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scene/tests/fixtures");
+        let fixtures = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scene/tests/fixtures");
         let bin = fixtures.join("external/lights_cameras.bin");
         std::fs::copy(&bin, asset.join("lights_cameras.bin")).expect("the buffer copies");
         std::fs::copy(&bin, dir.join("outside.bin")).expect("the buffer copies");

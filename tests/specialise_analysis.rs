@@ -2,7 +2,7 @@
 //! names pipeline conditions test, its depth range and the smallest detail it puts on
 //! screen.
 
-use rgraph_passes::variant::{Analysis, DepthRange, Features, SmallestFeature};
+use rgraph_scene::analysis::{Analysis, DepthRange, Features, SmallestFeature};
 use rgraph_scene::glam::DVec3;
 use rgraph_scene::{LightKind, Material, Projection, Scene};
 

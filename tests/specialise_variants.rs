@@ -8,9 +8,8 @@ use crate::deferred_support;
 use deferred_support::{gpu, Render};
 use graph_core::file::{load_file, LoadedGraph, Registry};
 use graph_core::CompileOptions;
-use rgraph_passes::variant::{
-    shader_variants, Features as SceneFeatures, GatedShader, Variant, Variants,
-};
+use rgraph_passes::variant::{shader_variants, GatedShader, Variant, Variants};
+use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::Scene;
 
 const SIZE: (u32, u32) = (64, 64);

@@ -7,10 +7,10 @@
 //! coverage and the hardware's raster.
 
 use graph_core::Features;
+use rgraph_passes::{Exposure, Overrides};
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::glam::{DMat4, DVec3};
 use rgraph_scene::{AlphaMode, Mesh, Scene};
-use rgraph_passes::{Exposure, Overrides};
 
 use crate::deferred_support;
 use deferred_support::measure::{self, pixels_within, Diff};

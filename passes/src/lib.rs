@@ -42,6 +42,10 @@ pub fn register(registry: &mut Registry, host: Option<Arc<Host>>) {
 /// [`register`], choosing which shader variants the plugins compile:
 /// [`Variants::General`](variant::Variants::General) renders the same images with the
 /// general shaders, to check or compare specialisation against.
-pub fn register_with(registry: &mut Registry, host: Option<Arc<Host>>, variants: variant::Variants) {
+pub fn register_with(
+    registry: &mut Registry,
+    host: Option<Arc<Host>>,
+    variants: variant::Variants,
+) {
     plugins::register(registry, host, variants);
 }

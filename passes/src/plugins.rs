@@ -38,9 +38,9 @@ use std::sync::Arc;
 
 use graph_core::file::Registry;
 
-use crate::variant::Variants;
 use crate::common::plugin::Shared;
 use crate::host::Host;
+use crate::variant::Variants;
 
 pub use crate::common::edge_detection::{Detector, EdgeDetection};
 pub use crate::common::extent::Extent;

@@ -5,9 +5,7 @@
 use crate::common;
 
 use common::{temp_dir, Gltf};
-use rgraph_scene::{
-    Light, LightKind, Scene, SceneError, DEFAULT_CUTOFF_ILLUMINANCE,
-};
+use rgraph_scene::{Light, LightKind, Scene, SceneError, DEFAULT_CUTOFF_ILLUMINANCE};
 use serde_json::{json, Value};
 
 /// A triangle whose node has `node_fields` (`translation`, `matrix`, ...), written as an

@@ -4,7 +4,6 @@
 mod common;
 
 mod builtin_scenes;
-mod extremes_normals;
 mod framing;
 mod gltf_audit;
 mod gltf_errors;

@@ -15,9 +15,26 @@ const LAYERS: Layers<'_> = &[
     (
         "scene",
         &[
-            "assets", "bounds", "builder", "camera", "environment", "error", "gltf_loader",
-            "light", "lighting", "material", "mesh", "mips", "model", "normals",
-            "particles", "prefilter", "procedural", "stats", "tangents", "texture",
+            "assets",
+            "bounds",
+            "builder",
+            "camera",
+            "environment",
+            "error",
+            "gltf_loader",
+            "light",
+            "lighting",
+            "material",
+            "mesh",
+            "mips",
+            "model",
+            "normals",
+            "particles",
+            "prefilter",
+            "procedural",
+            "stats",
+            "tangents",
+            "texture",
             "texture_table",
         ],
     ),
@@ -58,7 +75,10 @@ fn the_crates_depend_one_way() {
         let text = std::fs::read_to_string(root.join(manifest)).unwrap();
         for crate_ in above {
             let line = text.lines().find(|l| l.trim_start().starts_with(crate_));
-            assert!(line.is_none(), "{manifest} depends on {crate_}, a crate above it: {line:?}");
+            assert!(
+                line.is_none(),
+                "{manifest} depends on {crate_}, a crate above it: {line:?}"
+            );
         }
     }
 }

@@ -10,7 +10,7 @@ use std::path::Path;
 use graph_core::explain;
 use graph_core::file::{load_file_with, FileErrors, LoadedGraph};
 use graph_core::{CompileOptions, Features, Plan};
-use rgraph_passes::variant::{Analysis, Features as SceneFeatures, SHALLOW_STEP};
+use rgraph_scene::analysis::{Analysis, Features as SceneFeatures, SHALLOW_STEP};
 use rgraph_scene::SceneError;
 
 use super::target::compile_options;

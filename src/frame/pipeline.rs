@@ -7,9 +7,10 @@ use std::sync::Arc;
 use graph_core::file::{
     load_file_with, load_str_with, ErrorKind, FileErrors, GraphParams, LoadedGraph, Registry,
 };
-use rgraph_passes::variant::{Features as SceneFeatures, Variants};
-use rgraph_scene::Scene;
+use rgraph_passes::variant::Variants;
 use rgraph_passes::{Background, Exposure, Host, Overrides};
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::Scene;
 
 use super::FrameError;
 use crate::registry::registry_for;

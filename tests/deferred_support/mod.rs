@@ -19,8 +19,8 @@ use graph_core::gpu::{
 };
 use graph_core::{CompileOptions, CompiledGraph, DeviceProfile, Features, Plan};
 use rgraph_passes::variant::Variants;
-use rgraph_scene::Scene;
 use rgraph_passes::{FrameInputs, Host, Overrides};
+use rgraph_scene::Scene;
 
 pub use crate::common::gpu;
 

@@ -5,8 +5,8 @@ use std::sync::Arc;
 
 use graph_core::PassBuilder;
 
-use crate::variant::Variants;
 use crate::host::{Host, Overrides};
+use crate::variant::Variants;
 
 /// What every plugin of one registry shares: the host's overrides and, with feature
 /// `gpu`, the scene's upload.

@@ -47,9 +47,9 @@ pub use mesh::MeshDraw;
 pub use particles::ParticleBuffer;
 pub use volumes::{VolumeMesh, VolumeShape};
 
+use crate::host::{FrameInputs, Host};
 use crate::variant::{GatedShader, Variant, Variants};
 use rgraph_scene::analysis::Features;
-use crate::host::{FrameInputs, Host};
 use rgraph_scene::{DepthConvention, Scene};
 
 /// Which of the scene's meshes a pass draws, and in what order.

@@ -75,8 +75,8 @@ pub fn screen_rect<'a>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rgraph_scene::Projection;
     use glam::DQuat;
+    use rgraph_scene::Projection;
 
     /// Looking down -Z from the origin, 90° vertically: a point at depth d and height h
     /// lies h / d of the half height above the centre.

@@ -158,9 +158,9 @@ mod gpu {
     use graph_core::gpu::RenderContext;
 
     use super::{ForwardDraw, Shading};
-    use crate::variant::GatedShader;
     use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
     use crate::gpu_scene::{Layer, SceneCache};
+    use crate::variant::GatedShader;
 
     pub(super) fn record(
         draw: ForwardDraw,

@@ -239,9 +239,9 @@ mod gpu {
     use graph_core::gpu::RenderContext;
 
     use super::GBufferDraw;
-    use crate::variant::GatedShader;
     use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
     use crate::gpu_scene::{Layer, SceneCache};
+    use crate::variant::GatedShader;
 
     pub(super) fn record(
         draw: GBufferDraw,

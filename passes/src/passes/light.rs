@@ -302,10 +302,10 @@ mod gpu {
     use graph_core::gpu::RenderContext;
 
     use super::{EdgeMode, Frequency, LightDraw, PixelSamples};
-    use crate::variant::{GatedShader, Variant};
     use crate::common::depth::far_depth;
     use crate::common::gpu::{additive, per_scene, InputPass, PipelineDesc, EDGE_STENCIL};
     use crate::gpu_scene::{volumes, SceneCache};
+    use crate::variant::{GatedShader, Variant};
     use rgraph_scene::DepthConvention;
 
     /// What a light draw rasterizes, and so its depth test and culling.

@@ -201,9 +201,9 @@ mod gpu {
     use graph_core::gpu::RenderContext;
 
     use super::GeometryDraw;
-    use crate::variant::GatedShader;
     use crate::common::gpu::scene_draw::{self, Redraw, SceneDraw, Stages};
     use crate::gpu_scene::{Layer, SceneCache};
+    use crate::variant::GatedShader;
 
     pub(super) fn record(
         draw: GeometryDraw,

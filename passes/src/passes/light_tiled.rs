@@ -399,12 +399,12 @@ mod gpu {
     use graph_core::gpu::ComputeContext;
 
     use super::{edge_workgroups, Depth, TiledDispatch, EDGES, EDGES_RESET, EDGE_PIXELS_BINDING};
-    use crate::variant::{GatedShader, Variant};
     use crate::common::depth::far_depth;
     use crate::common::gpu::storage::scratch;
     use crate::common::gpu::{compute_pipeline, per_scene, split_ids, GroupBuffers, InputPass};
     use crate::common::visibility_samples::{fits_binding, KEYS_BINDING};
     use crate::gpu_scene::SceneCache;
+    use crate::variant::{GatedShader, Variant};
     use rgraph_scene::DepthConvention;
 
     #[derive(Clone, PartialEq)]

@@ -117,11 +117,11 @@ mod gpu {
     use graph_core::gpu::RenderContext;
 
     use super::VisibilityDraw;
-    use crate::variant::GatedShader;
     use crate::common::gpu::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
     use crate::common::gpu::scene_draw::depth_test;
     use crate::common::gpu::{per_scene, split_ids};
     use crate::gpu_scene::{Layer, SceneCache};
+    use crate::variant::GatedShader;
     use rgraph_scene::DepthConvention;
 
     #[derive(Clone, PartialEq)]

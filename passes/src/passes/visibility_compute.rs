@@ -160,13 +160,13 @@ mod gpu {
     use graph_core::gpu::ComputeContext;
 
     use super::RasterDispatch;
-    use crate::variant::{GatedShader, Variant};
     use crate::common::gpu::pipeline::{module, pipeline_layout};
     use crate::common::gpu::storage::{storage_group, storage_layout};
     use crate::common::gpu::tile_bins::{TileBins, RASTER_BUFFERS};
     use crate::common::gpu::{compute_pipeline, per_scene};
     use crate::common::visibility_samples::fits_binding;
     use crate::gpu_scene::{GpuScene, SceneCache};
+    use crate::variant::{GatedShader, Variant};
     use rgraph_scene::DepthConvention;
 
     struct State {

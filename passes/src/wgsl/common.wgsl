@@ -52,7 +52,7 @@ fn unpack_rgb9e5(bits: u32) -> vec3<f32> {
 // of the four around the exact encoding, the pair that decodes closest to `n` (Cigolle et
 // al. 2014's "precise" variant). Worst error 0.0505 degrees, where rounding each
 // coordinate to nearest gives 0.059 and toward zero 0.118
-// (scene/tests/extremes_normals.rs).
+// (passes/tests/extremes_normals.rs).
 fn oct_wrap(v: vec2<f32>) -> vec2<f32> {
     let sign = select(vec2<f32>(-1.0), vec2<f32>(1.0), v >= vec2<f32>(0.0));
     return (1.0 - abs(v.yx)) * sign;

@@ -4,8 +4,8 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use rgraph_scene::Scene;
 use rgraph_passes::{Host, Overrides};
+use rgraph_scene::Scene;
 
 use super::candidates::Candidate;
 use super::error::{BenchError, RowError};

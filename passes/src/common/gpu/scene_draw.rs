@@ -30,10 +30,10 @@ use graph_core::TextureHandle;
 use super::bindings::TextureBindings;
 use super::per_scene;
 use super::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
-use crate::variant::{GatedShader, Variant};
 use crate::common::depth::{far_depth, DepthRule};
 use crate::common::textures::Input;
 use crate::gpu_scene::{mesh, Layer, MaterialState, SceneCache};
+use crate::variant::{GatedShader, Variant};
 use rgraph_scene::DepthConvention;
 
 /// What a material state draws with.
