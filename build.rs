@@ -21,7 +21,7 @@ fn main() {
     }
     write_embedded_list();
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     // Graph files must fit every WebGPU device at 1080p; `rgraph validate --target`
     // checks them against other profiles and sizes.
     let options = CompileOptions::default();

@@ -33,9 +33,9 @@ use graph_core::gpu::{
 };
 use graph_core::types::TextureFormat;
 use graph_core::{CompileOptions, CompiledGraph};
-use passes_deferred_msaa::glam::{DMat4, DQuat, DVec3};
-use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::{FrameInputs, Host, Overrides};
+use rgraph_passes::{FrameInputs, Host, Overrides};
+use rgraph_scene::glam::{DMat4, DQuat, DVec3};
+use rgraph_scene::Scene;
 
 /// The target's size (`--size W,H` changes it).
 pub const SIZE: (u32, u32) = (640, 360);
@@ -146,7 +146,7 @@ pub fn animate(
     let scene = Arc::new(Scene::load(SCENE)?);
     let host = Arc::new(Host::new(scene.clone(), Overrides::default()));
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, Some(host.clone()));
+    rgraph_passes::register(&mut registry, Some(host.clone()));
     let loaded = load_str_with(
         "engine_integration.ron",
         GRAPH,

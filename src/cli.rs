@@ -4,10 +4,8 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use graph_core::file::GraphParams;
-use passes_deferred_msaa::scene::{
-    AssetPolicy, Lighting, Scene, SceneError, DEFAULT_MAX_ASSET_BYTES,
-};
-use passes_deferred_msaa::{Background, Exposure};
+use rgraph_passes::{Background, Exposure};
+use rgraph_scene::{AssetPolicy, Lighting, Scene, SceneError, DEFAULT_MAX_ASSET_BYTES};
 
 #[derive(Parser)]
 #[command(

@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
 
 use graph_core::file::Registry;
-use passes_deferred_msaa::analysis::Variants;
-use passes_deferred_msaa::Host;
+use rgraph_passes::variant::Variants;
+use rgraph_passes::Host;
 
 /// The command's `--graph-root` folders: set once, before any graph file is loaded, so
 /// every registry the command makes (and loads graph files against) allows them.
@@ -26,7 +26,7 @@ pub fn registry() -> Registry {
 /// shader `variants`.
 pub fn registry_for(host: Option<Arc<Host>>, variants: Variants) -> Registry {
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register_with(&mut registry, host, variants);
+    rgraph_passes::register_with(&mut registry, host, variants);
     for root in GRAPH_ROOTS.get().into_iter().flatten() {
         // The flag's parser checked that each is a folder; one removed since is left out,
         // and references into it are refused, naming the folders that are allowed.

@@ -4,10 +4,10 @@
 //! under the condition `background`: the default, deferred_msaa_4x.ron, the lean and
 //! tiled G-buffers, forward MSAA) draw it alike; the others refuse the flag.
 
-use passes_deferred_msaa::analysis::Features as SceneFeatures;
-use passes_deferred_msaa::glam::{DVec3, Vec3};
-use passes_deferred_msaa::scene::{environment_radiance, Lighting, Projection, Scene};
-use passes_deferred_msaa::{Background, Overrides};
+use rgraph_passes::{Background, Overrides};
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::glam::{DVec3, Vec3};
+use rgraph_scene::{environment_radiance, Lighting, Projection, Scene};
 use serde_json::json;
 
 use crate::cli_support::rgraph;
@@ -120,7 +120,7 @@ fn lone_triangle() -> Scene {
     scene
 }
 
-/// The sRGB bytes of the neutral environment's radiance (scene/environment.rs) seen
+/// The sRGB bytes of the neutral environment's radiance (scene/src/environment.rs) seen
 /// through pixel `(x, y)` of `scene`'s camera at SIZE, ACES tone mapped at exposure 1 as
 /// the pipelines' default tone mapping maps it.
 fn environment_seen(scene: &Scene, x: u32, y: u32) -> [u8; 3] {

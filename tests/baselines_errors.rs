@@ -17,7 +17,7 @@ pub fn error(pipeline: &str, from: &str, to: &str) -> String {
         .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
     assert!(text.contains(from), "{pipeline} has no \"{from}\" to edit");
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     match load_str(&path, &text.replace(from, to), &registry) {
         Ok(_) => panic!("{pipeline} with \"{to}\" loaded, but should not"),
         Err(errors) => {

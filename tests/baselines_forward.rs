@@ -19,7 +19,7 @@ use crate::deferred_support::measure;
 use deferred_support::{gpu, Image, Render};
 use graph_core::gpu::Gpu;
 use measure::{diff, marked, pixel_diff, where_true};
-use passes_deferred_msaa::{Exposure, Overrides};
+use rgraph_passes::{Exposure, Overrides};
 
 const SIZE: (u32, u32) = (96, 64);
 const SCENES: [&str; 2] = ["builtin:spheres", "builtin:dense"];

@@ -13,7 +13,7 @@ const PIPELINE: &str = "pipelines/deferred_msaa_4x.ron";
 /// The committed external-buffer fixture copied to `dir/asset/scene.gltf`, its buffer moved
 /// to `dir/lights_cameras.bin` and named by the URI `../lights_cameras.bin`.
 fn asset_reaching_out(dir: &Path) -> PathBuf {
-    let fixtures = Path::new("passes-deferred-msaa/tests/fixtures/external");
+    let fixtures = Path::new("scene/tests/fixtures/external");
     let text = std::fs::read_to_string(fixtures.join("lights_cameras.gltf")).unwrap();
     let text = text.replace("\"lights_cameras.bin\"", "\"../lights_cameras.bin\"");
     std::fs::create_dir_all(dir.join("asset")).unwrap();

@@ -593,7 +593,7 @@ fn exposure_auto_needs_a_pipeline_that_meters_after_resolving() {
 fn a_gltf_file_without_lights_gets_the_default_lighting_with_a_warning() {
     let dir = temp_dir();
     let out = dir.path().join("a.png");
-    let scene = "passes-deferred-msaa/tests/fixtures/hierarchy_embedded.gltf";
+    let scene = "scene/tests/fixtures/hierarchy_embedded.gltf";
     render_default(&out, &["--scene", scene])
         .expect(0)
         .stderr_has("it has no lights; lit by the default lighting: a neutral studio environment");

@@ -7,8 +7,8 @@
 //! the file fell back to for it before), builtin:smoke's off-screen particles against
 //! particles_low_res.ron.
 
-use passes_deferred_msaa::analysis::Features as SceneFeatures;
-use passes_deferred_msaa::scene::{AlphaMode, Lighting, Scene};
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::{AlphaMode, Lighting, Scene};
 use serde_json::json;
 
 use crate::deferred_support::measure::{self, pixels_within};
@@ -83,7 +83,7 @@ fn masked_quads_file() -> String {
     let quad = |gltf: &mut Gltf, corners: [[f32; 3]; 4], material: usize| {
         let positions = gltf.floats(&corners);
         let normal = {
-            let [a, b, c, _] = corners.map(passes_deferred_msaa::glam::Vec3::from);
+            let [a, b, c, _] = corners.map(rgraph_scene::glam::Vec3::from);
             (b - a).cross(c - a).normalize().to_array()
         };
         let normals = gltf.floats(&[normal; 4]);

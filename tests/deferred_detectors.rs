@@ -29,8 +29,8 @@ use crate::deferred_support;
 use deferred_support::scenes::Parts;
 use deferred_support::unlit::{Coverage, Judged};
 use deferred_support::{gpu, Image, Render};
-use passes_deferred_msaa::glam::{DVec3, Vec3};
-use passes_deferred_msaa::scene::{Camera, Light, LightKind, Projection, Scene};
+use rgraph_scene::glam::{DVec3, Vec3};
+use rgraph_scene::{Camera, Light, LightKind, Projection, Scene};
 
 const N: u32 = 64;
 const RED: [u8; 4] = [255, 0, 0, 255];

@@ -5,15 +5,15 @@
 //! so three faces (normals +X, +Y, +Z) each fill a region of pixels that share one normal
 //! and one view direction, lit by the neutral environment alone. Their expected radiance
 //! comes from the CPU: the irradiance integral by quadrature (not the spherical harmonics
-//! the shaders evaluate), and the split-sum terms of scene/prefilter.rs.
+//! the shaders evaluate), and the split-sum terms of scene/src/prefilter.rs.
 
 use crate::deferred_support;
 
 use deferred_support::measure::pixels_within;
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
-use passes_deferred_msaa::glam::{DVec3, Vec3};
-use passes_deferred_msaa::scene::{
+use rgraph_scene::glam::{DVec3, Vec3};
+use rgraph_scene::{
     irradiance_integral, prefilter, split_sum, Camera, Environment, Lighting, Projection, Scene,
 };
 
@@ -134,7 +134,7 @@ fn worst_relative_error(albedo: f32, metallic: f32, roughness: f32) -> f32 {
 }
 
 /// A rough white-ish Lambert box: the diffuse term is the irradiance integral within the
-/// spherical harmonics' 3% (scene/environment.rs), plus a small specular term (worst
+/// spherical harmonics' 3% (scene/src/environment.rs), plus a small specular term (worst
 /// 1.8% on lavapipe).
 #[test]
 fn a_rough_dielectric_reflects_the_irradiance_integral_within_3_percent() {
@@ -261,7 +261,7 @@ fn every_pipeline_renders_the_default_lighting_alike() {
 /// `Lighting` decides which lights a scene keeps and whether it gets the defaults.
 #[test]
 fn lighting_modes_keep_replace_or_add_the_defaults() {
-    let file = "passes-deferred-msaa/tests/fixtures/hierarchy_embedded.gltf";
+    let file = "scene/tests/fixtures/hierarchy_embedded.gltf";
     let unlit_file = Scene::load(file).unwrap();
     assert!(unlit_file.lights.is_empty() && unlit_file.environment.is_none());
     let auto = unlit_file.clone().lit(Lighting::Auto);

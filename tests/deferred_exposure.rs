@@ -9,9 +9,9 @@ use deferred_support::measure::share_within;
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Image, Render};
 use graph_core::Features;
-use passes_deferred_msaa::glam::{DVec3, Vec3};
-use passes_deferred_msaa::scene::{Camera, Light, LightKind, Projection, Scene};
-use passes_deferred_msaa::{Exposure, Overrides};
+use rgraph_passes::{Exposure, Overrides};
+use rgraph_scene::glam::{DVec3, Vec3};
+use rgraph_scene::{Camera, Light, LightKind, Projection, Scene};
 
 const SIZE: (u32, u32) = (64, 64);
 const PIPELINE: &str = "deferred_msaa_4x_tiled.ron";

@@ -1,6 +1,6 @@
 //! Material features glTF files bring and the built-in scenes do not: emission, alpha
 //! MASK and double-sided surfaces, through deferred_msaa_4x with the fixture
-//! `passes-deferred-msaa/tests/fixtures/hierarchy_embedded.gltf` (one triangle in the
+//! `scene/tests/fixtures/hierarchy_embedded.gltf` (one triangle in the
 //! plane z = 0 facing +z, material "masked emitter": emission (0.5, 0.25, 0) x strength 4,
 //! MASK cutoff 0.3 with base alpha 1, double-sided; no lights; the framing camera looks
 //! at its front from +z).
@@ -8,12 +8,12 @@
 use crate::deferred_support;
 
 use deferred_support::{gpu, Render};
-use passes_deferred_msaa::scene::Scene;
+use rgraph_scene::Scene;
 
 const SIZE: (u32, u32) = (64, 64);
 const FIXTURE: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/passes-deferred-msaa/tests/fixtures/hierarchy_embedded.gltf"
+    "/scene/tests/fixtures/hierarchy_embedded.gltf"
 );
 const EMISSION: [f32; 3] = [2.0, 1.0, 0.0];
 

@@ -2,7 +2,7 @@
 //! stencil-less depth32float, 16 bytes per sample (20 with RGB9E5 emission), renders the
 //! tiled pipeline's 32-byte G-buffer image within 1/255, and its layout errors are clear.
 
-use passes_deferred_msaa::scene::Scene;
+use rgraph_scene::Scene;
 
 use crate::baselines_errors::{assert_names, error};
 use crate::deferred_support;

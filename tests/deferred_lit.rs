@@ -120,7 +120,7 @@ fn light_volumes_match_full_screen_lights() {
 #[test]
 fn a_scene_far_from_the_origin_renders_as_at_the_origin() {
     let gpu = gpu();
-    fn far_away(scene: &mut passes_deferred_msaa::scene::Scene) {
+    fn far_away(scene: &mut rgraph_scene::Scene) {
         let offset = [3.0e6, 1.0e6, -2.0e6];
         for mesh in &mut scene.meshes {
             // Affine transforms: the last column holds the translation.

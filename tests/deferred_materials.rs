@@ -9,7 +9,7 @@ use crate::gltf_writer::{temp_dir, Gltf};
 
 use deferred_support::measure::pixels_within;
 use deferred_support::{gpu, Render};
-use passes_deferred_msaa::scene::Scene;
+use rgraph_scene::Scene;
 use serde_json::{json, Value};
 
 const SIZE: (u32, u32) = (64, 64);
@@ -386,7 +386,7 @@ fn color_0_tints_the_base_color() {
 /// mirrored tangent or bitangent could not pass.
 #[test]
 fn normal_texture_tilts_the_normal_in_the_gltf_tangent_frame() {
-    use passes_deferred_msaa::glam::{DQuat, DVec3};
+    use rgraph_scene::glam::{DQuat, DVec3};
     let texels = [
         [204, 128, 230, 255],
         [128, 204, 230, 255],

@@ -7,10 +7,8 @@ use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
-use passes_deferred_msaa::glam::DVec3;
-use passes_deferred_msaa::scene::{
-    Camera, FilterMode, Projection, Sampler, Scene, TextureImage, TextureRef,
-};
+use rgraph_scene::glam::DVec3;
+use rgraph_scene::{Camera, FilterMode, Projection, Sampler, Scene, TextureImage, TextureRef};
 
 const SIZE: (u32, u32) = (64, 64);
 const TEXELS: u32 = 256;

@@ -177,7 +177,7 @@ fn fragment_and_tile_light_views() {
 /// path of pipelines/`name` and its text, for edited copies.
 fn pipeline_file(name: &str) -> (Registry, String, String) {
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     let path = format!("{}/pipelines/{name}", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).expect("the pipeline exists");
     (registry, path, text)

@@ -6,8 +6,8 @@ use crate::deferred_support;
 
 use deferred_support::unlit::{Coverage, Judged};
 use deferred_support::{gpu, srgb8, PipelineFile, Render};
-use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::{Exposure, Overrides};
+use rgraph_passes::{Exposure, Overrides};
+use rgraph_scene::Scene;
 
 const N: u32 = 64;
 const RED: [u8; 4] = [255, 0, 0, 255];

@@ -6,8 +6,8 @@ use crate::deferred_support;
 
 use deferred_support::unlit::Coverage;
 use deferred_support::{gpu, srgb8, Image, Render};
-use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::{Exposure, Overrides};
+use rgraph_passes::{Exposure, Overrides};
+use rgraph_scene::Scene;
 
 const N: u32 = 64;
 

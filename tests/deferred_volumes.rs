@@ -3,8 +3,8 @@
 //! depth test reversed. The margin is the distance from the eye to the near plane's
 //! farthest corner.
 
-use passes_deferred_msaa::gpu_scene::camera_may_be_inside;
-use passes_deferred_msaa::scene::{BoundingSphere, Projection, Scene};
+use rgraph_passes::gpu_scene::camera_may_be_inside;
+use rgraph_scene::{BoundingSphere, Projection, Scene};
 
 /// builtin:spheres' camera: perspective, 45° vertical field of view, near plane 0.1. At a
 /// square output the near plane's corners are 0.1 * sqrt(1 + 2 tan²(22.5°)) = 0.1159 from

@@ -43,9 +43,9 @@ use deferred_support::scenes::{Parts, RayHit};
 use deferred_support::unlit::SAMPLES_4X;
 use deferred_support::{gpu, Render};
 use graph_core::gpu::Gpu;
-use passes_deferred_msaa::glam::{DMat4, DQuat, DVec3, DVec4};
-use passes_deferred_msaa::gpu_scene::{view_projection, GpuScene};
-use passes_deferred_msaa::scene::{
+use rgraph_passes::gpu_scene::{view_projection, GpuScene};
+use rgraph_scene::glam::{DMat4, DQuat, DVec3, DVec4};
+use rgraph_scene::{
     Camera, DepthConvention, Light, LightKind, Projection, Scene, DEFAULT_CUTOFF_ILLUMINANCE,
 };
 

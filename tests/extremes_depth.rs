@@ -29,8 +29,8 @@ use crate::deferred_support;
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
 use graph_core::gpu::Gpu;
-use passes_deferred_msaa::glam::{DMat4, DVec3};
-use passes_deferred_msaa::scene::{Camera, Projection, Scene};
+use rgraph_scene::glam::{DMat4, DVec3};
+use rgraph_scene::{Camera, Projection, Scene};
 
 const SIZE: (u32, u32) = (32, 32);
 const NEAR: f32 = 1e-3;

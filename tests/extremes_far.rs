@@ -16,8 +16,8 @@ use crate::deferred_support;
 use crate::deferred_support::measure;
 
 use deferred_support::{gpu, Render};
-use passes_deferred_msaa::glam::DVec3;
-use passes_deferred_msaa::scene::Scene;
+use rgraph_scene::glam::DVec3;
+use rgraph_scene::Scene;
 
 const SIZE: (u32, u32) = (64, 48);
 
@@ -66,7 +66,7 @@ fn dense_scene_at_1e6_and_1e8_renders_as_at_the_origin() {
 /// camera) is translated by `offset`: the file a user far from the origin would load.
 /// Returns the file's path and each node's translation as written.
 fn far_gltf(dir: &std::path::Path, offset: DVec3) -> (std::path::PathBuf, Vec<DVec3>) {
-    use passes_deferred_msaa::scene::{Camera, Projection};
+    use rgraph_scene::{Camera, Projection};
     use serde_json::json;
 
     // A unit cube, four vertices per face so each face has its own normal.
@@ -107,7 +107,7 @@ fn far_gltf(dir: &std::path::Path, offset: DVec3) -> (std::path::PathBuf, Vec<DV
             zfar: None,
         },
     );
-    let spot_rotation = passes_deferred_msaa::glam::DQuat::from_rotation_x(-1.3);
+    let spot_rotation = rgraph_scene::glam::DQuat::from_rotation_x(-1.3);
     // (translation, rotation, scale, what the node carries).
     let nodes = [
         (

@@ -14,18 +14,18 @@
 //!   (within half-float rounding, 1e-3); the huge triangle leaves 0 background samples.
 //!
 //! NaN and Inf vertices are rejected when a glTF file loads, naming mesh, primitive and
-//! vertex: passes-deferred-msaa/tests/gltf_errors.rs
+//! vertex: scene/tests/gltf_errors.rs
 //! (`nan_position_names_mesh_primitive_and_first_bad_vertex`,
 //! `infinite_normal_before_nan_position_is_reported_first`), and damaged numbers never
-//! panic the loader (passes-deferred-msaa/tests/robustness.rs).
+//! panic the loader (scene/tests/robustness.rs).
 
 use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
 use graph_core::gpu::Gpu;
-use passes_deferred_msaa::glam::{DMat4, DQuat, DVec3};
-use passes_deferred_msaa::scene::{Camera, Mesh, Projection, Scene, Vertex};
+use rgraph_scene::glam::{DMat4, DQuat, DVec3};
+use rgraph_scene::{Camera, Mesh, Projection, Scene, Vertex};
 
 const N: u32 = 32;
 const EXPORTS: &str =
@@ -266,13 +266,13 @@ fn a_million_triangles_render_at_16x16() {
         material: grey,
         transform: DMat4::IDENTITY,
     });
-    parts.lights.push(passes_deferred_msaa::scene::Light {
+    parts.lights.push(rgraph_scene::Light {
         name: "sun".into(),
-        kind: passes_deferred_msaa::scene::LightKind::Directional,
+        kind: rgraph_scene::LightKind::Directional,
         color: [1.0, 1.0, 1.0],
         intensity: 3.0,
         position: DVec3::ZERO,
-        direction: passes_deferred_msaa::glam::Vec3::new(0.0, 0.0, -1.0),
+        direction: rgraph_scene::glam::Vec3::new(0.0, 0.0, -1.0),
         range: None,
     });
     let scene = parts.scene("a million triangles", camera());

@@ -17,9 +17,9 @@ use crate::deferred_support::measure;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
-use passes_deferred_msaa::glam::{DVec3, Vec3};
-use passes_deferred_msaa::scene::{Camera, Light, LightKind, Projection, Scene};
-use passes_deferred_msaa::Overrides;
+use rgraph_passes::Overrides;
+use rgraph_scene::glam::{DVec3, Vec3};
+use rgraph_scene::{Camera, Light, LightKind, Projection, Scene};
 
 const SIZE: (u32, u32) = (48, 48);
 const HALF_MAX: f32 = 65504.0;
@@ -370,7 +370,7 @@ fn tone_mapping_maps_an_infinite_hdr_texel_to_white() {
         outputs: ["color"],
     )"#;
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     let loaded = load_str("inf.ron", graph, &registry).unwrap_or_else(|e| panic!("{e}"));
     let options = CompileOptions {
         output_size: (4, 1),

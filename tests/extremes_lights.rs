@@ -26,8 +26,8 @@ use crate::deferred_support;
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
 use graph_core::gpu::Gpu;
-use passes_deferred_msaa::glam::DVec3;
-use passes_deferred_msaa::scene::{Camera, Light, Projection, Scene};
+use rgraph_scene::glam::DVec3;
+use rgraph_scene::{Camera, Light, Projection, Scene};
 
 const SIZE: (u32, u32) = (48, 48);
 /// How far the image of all 10,000 lights may be from the sum of its halves' images.

@@ -1,5 +1,5 @@
 //! Extreme case 4 (issue 6), normals, the GPU half (the encoding's angular error over a
-//! dense sphere is bounded on the CPU: passes-deferred-msaa/tests/extremes_normals.rs).
+//! dense sphere is bounded on the CPU: passes/tests/extremes_normals.rs).
 //!
 //! - Extreme: vertex normals of zero length, denormal (1e-42), huge (3e38, whose squared
 //!   length overflows f32) and pointing away from the camera on a front face, and a floor
@@ -16,8 +16,8 @@ use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
-use passes_deferred_msaa::glam::{DVec3, Vec3};
-use passes_deferred_msaa::scene::{Camera, Light, LightKind, Projection, Scene};
+use rgraph_scene::glam::{DVec3, Vec3};
+use rgraph_scene::{Camera, Light, LightKind, Projection, Scene};
 
 const SIZE: (u32, u32) = (64, 48);
 
@@ -92,7 +92,7 @@ fn degenerate_normals_and_grazing_angles_render_finite() {
     // Where the huge-normal quad (x 0..0.9, y 0..1 at z 0) is: project its center.
     let view_proj = scene.camera.projection.matrix(
         SIZE.0 as f32 / SIZE.1 as f32,
-        passes_deferred_msaa::scene::DepthConvention::Standard,
+        rgraph_scene::DepthConvention::Standard,
     ) * scene.camera.view_matrix().as_mat4();
     let ndc = view_proj.project_point3(Vec3::new(0.45, 0.5, 0.0));
     let center = (

@@ -24,8 +24,8 @@ use deferred_support::{gpu, Render};
 use graph_core::file::{load_file_with, GraphParams, Registry};
 use graph_core::gpu::Gpu;
 use graph_core::CompileOptions;
-use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::{Host, Overrides};
+use rgraph_passes::{Host, Overrides};
+use rgraph_scene::Scene;
 
 /// The deferred pipeline's formats, each at the sample count the pipeline gives it.
 const FORMATS: [wgpu::TextureFormat; 6] = [
@@ -109,7 +109,7 @@ fn compile_error(gpu: &Gpu, size: (u32, u32), samples: u32) -> String {
         Overrides::default(),
     );
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, Some(Arc::new(host)));
+    rgraph_passes::register(&mut registry, Some(Arc::new(host)));
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines/deferred_msaa_4x.ron");
     let params = GraphParams::new().with("msaa", samples);
     // Counts the plugins cannot shade are refused at load, the rest by the compile.

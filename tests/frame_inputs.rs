@@ -5,9 +5,9 @@
 //! is a recompile instead: one plan more, new targets, still no pipeline.
 
 use graph_core::gpu::DeviceObjects;
-use passes_deferred_msaa::glam::{DMat4, DQuat, DVec3};
-use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::{Exposure, FrameInputs, Overrides};
+use rgraph_passes::{Exposure, FrameInputs, Overrides};
+use rgraph_scene::glam::{DMat4, DQuat, DVec3};
+use rgraph_scene::Scene;
 
 use crate::deferred_support::{gpu, Image, Render};
 
@@ -75,10 +75,7 @@ fn assert_changed(first: &Image, second: &Image, what: &str) {
 }
 
 /// The camera of `scene` orbited 25 degrees about its bounds' centre.
-fn orbit(
-    scene_camera: &passes_deferred_msaa::scene::Camera,
-    center: DVec3,
-) -> passes_deferred_msaa::scene::Camera {
+fn orbit(scene_camera: &rgraph_scene::Camera, center: DVec3) -> rgraph_scene::Camera {
     scene_camera.orbited(center, 25f64.to_radians())
 }
 
@@ -168,7 +165,7 @@ fn an_exposure_set_through_frame_inputs_renders_as_the_exposure_override() {
 #[test]
 fn frame_inputs_that_do_not_fit_the_scene_are_refused_naming_it() {
     let scene = std::sync::Arc::new(Scene::load(SCENE).unwrap());
-    let host = passes_deferred_msaa::Host::new(scene.clone(), Overrides::default());
+    let host = rgraph_passes::Host::new(scene.clone(), Overrides::default());
     let mut inputs = FrameInputs::of(&scene);
     inputs.transforms.pop();
     let error = host.set_frame(inputs).unwrap_err().to_string();

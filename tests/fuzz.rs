@@ -11,8 +11,8 @@ use std::path::PathBuf;
 use fuzz_support::{fuzz, iterations, seeds};
 use graph_core::file::{load_str, Registry};
 use graph_core::{explain, CompileOptions};
-use passes_deferred_msaa::analysis::Analysis;
-use passes_deferred_msaa::scene::{AssetPolicy, Scene};
+use rgraph_scene::analysis::Analysis;
+use rgraph_scene::{AssetPolicy, Scene};
 
 /// Where the graph-file target plants the files its path-attack mutants name (see
 /// fuzz_support's tokens), outside every folder graph files may read.
@@ -41,7 +41,7 @@ fn graph_files_load_and_compile_or_fail_with_errors() {
     fuzz("ron", seeds, iterations(3_000), || {
         let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
         let mut registry = Registry::with_builtins();
-        passes_deferred_msaa::register(&mut registry, None);
+        rgraph_passes::register(&mut registry, None);
         // The seeds name the shipped shaders from pipelines/ and tests/fixtures/.
         registry
             .allow_graph_root(&root)
@@ -94,8 +94,8 @@ fn graph_files_load_and_compile_or_fail_with_errors() {
 fn gltf_files_load_and_analyse_or_fail_with_errors() {
     let seeds = seeds(
         &[
-            "passes-deferred-msaa/tests/fixtures",
-            "passes-deferred-msaa/tests/fixtures/external",
+            "scene/tests/fixtures",
+            "scene/tests/fixtures/external",
             "tests/fuzz_corpus/gltf",
         ],
         &[".gltf", ".glb"],
@@ -106,8 +106,7 @@ fn gltf_files_load_and_analyse_or_fail_with_errors() {
         let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fuzz-gltf");
         let asset = dir.join("asset");
         std::fs::create_dir_all(&asset).expect("a fuzz directory");
-        let fixtures =
-            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("passes-deferred-msaa/tests/fixtures");
+        let fixtures = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scene/tests/fixtures");
         let bin = fixtures.join("external/lights_cameras.bin");
         std::fs::copy(&bin, asset.join("lights_cameras.bin")).expect("the buffer copies");
         std::fs::copy(&bin, dir.join("outside.bin")).expect("the buffer copies");

@@ -6,8 +6,8 @@
 //! channel approximates.
 
 use graph_core::file::{load_str_with, GraphParams, Registry};
-use passes_deferred_msaa::glam::{DVec3, Vec3};
-use passes_deferred_msaa::scene::{Camera, Light, LightKind, Projection, Scene};
+use rgraph_scene::glam::{DVec3, Vec3};
+use rgraph_scene::{Camera, Light, LightKind, Projection, Scene};
 
 use crate::deferred_support::measure::{diff, pixels_within};
 use crate::deferred_support::scenes::Parts;
@@ -202,7 +202,7 @@ fn light_prepass_is_close_to_deferred_msaa_on_the_builtin_scenes() {
 #[test]
 fn light_prepass_light_passes_refuse_an_ao_input() {
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("pipelines")
         .join(PIPELINE);

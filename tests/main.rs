@@ -13,9 +13,9 @@ mod deferred_support;
 #[path = "../examples/engine_integration.rs"]
 mod engine_integration;
 mod fuzz_support;
-// passes-deferred-msaa's glTF writer, for GPU tests of files the loader reads.
+// rgraph-scene's glTF writer, for GPU tests of files the loader reads.
 #[allow(dead_code)]
-#[path = "../passes-deferred-msaa/tests/common/mod.rs"]
+#[path = "../scene/tests/common/mod.rs"]
 mod gltf_writer;
 
 mod background;

@@ -10,8 +10,8 @@ use crate::deferred_support::{gpu, Image, Render};
 use graph_core::file::{load_file_with, load_str_with, GraphParams, Registry};
 use graph_core::gpu::Gpu;
 use graph_core::CompileOptions;
-use passes_deferred_msaa::glam::DVec3;
-use passes_deferred_msaa::scene::{Camera, Particle, ParticleEmitter, Projection, Scene};
+use rgraph_scene::glam::DVec3;
+use rgraph_scene::{Camera, Particle, ParticleEmitter, Projection, Scene};
 
 const SIZE: (u32, u32) = (128, 128);
 /// One 8-bit step, the tolerance of exact expectations in linear HDR.
@@ -370,7 +370,7 @@ fn mixed_resolution_is_closer_to_full_resolution_than_low_resolution() {
 /// The particle pipelines loaded with `params`, declared only (no host).
 fn load(pipeline: &str, params: &[(&str, u32)]) -> Result<graph_core::file::LoadedGraph, String> {
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     let params = params
         .iter()
         .fold(GraphParams::new(), |p, (name, value)| p.with(*name, *value));
@@ -409,7 +409,7 @@ fn bad_particle_parameters_are_errors_naming_the_pass() {
     )
     .unwrap();
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     for edits in [
         (
             "softness: 4.0, pad: Param(name: \"pad\", default: 0)),\n            inputs: { \"depth\": \"particle_depth\" }",
@@ -554,9 +554,9 @@ fn an_engine_moves_and_adds_particles_through_the_frame_inputs() {
         "the simulated particles differ from a fresh upload by {worst}"
     );
 
-    let host = passes_deferred_msaa::Host::new(
+    let host = rgraph_passes::Host::new(
         std::sync::Arc::new(stage(half, Vec::new())),
-        passes_deferred_msaa::Overrides::default(),
+        rgraph_passes::Overrides::default(),
     );
     let mut bad = overlapping(false);
     bad[3].size = -1.0;

@@ -70,7 +70,7 @@ fn filter_as(format: &str, entry: &str, u: [f32; 4], params: &str) -> (Vec<[u8; 
     );
     let gpu = gpu();
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     let path: PathBuf = dir.join("fxaa.ron");
     let loaded = load_str_with(&path, &graph, &registry, &GraphParams::new())
         .unwrap_or_else(|e| panic!("cannot load the FXAA graph:\n{e}"));
@@ -195,7 +195,7 @@ fn fxaa_reduces_the_edge_error_of_a_rotated_square() {
 #[test]
 fn fxaa_refuses_unknown_presets_and_bad_parameters() {
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     let text = std::fs::read_to_string(
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("pipelines/deferred_noaa_fxaa.ron"),
     )

@@ -8,8 +8,8 @@
 use std::f64::consts::PI;
 
 use graph_core::file::{load_str_with, GraphParams, Registry};
-use passes_deferred_msaa::glam::{DMat4, DVec3, DVec4};
-use passes_deferred_msaa::scene::{Camera, DepthConvention, Projection, Scene};
+use rgraph_scene::glam::{DMat4, DVec3, DVec4};
+use rgraph_scene::{Camera, DepthConvention, Projection, Scene};
 
 use crate::deferred_support::measure::pixels_within;
 use crate::deferred_support::scenes::Parts;
@@ -328,7 +328,7 @@ fn tiled_lighting_applies_ssao_as_the_fragment_passes_do() {
 #[test]
 fn ssao_refuses_bad_parameters() {
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("pipelines")
         .join(PIPELINE);

@@ -25,9 +25,9 @@ use std::sync::Arc;
 use graph_core::file::{load_file_with, GraphParams, Registry};
 use graph_core::gpu::{resident_bytes, DeviceObjects, Executor, Gpu, Imports};
 use graph_core::{CompileOptions, CompiledGraph, Origin, ResourceId};
-use passes_deferred_msaa::analysis::Features as SceneFeatures;
-use passes_deferred_msaa::scene::{Lighting, Scene};
-use passes_deferred_msaa::{FrameInputs, Host, Overrides};
+use rgraph_passes::{FrameInputs, Host, Overrides};
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::{Lighting, Scene};
 use serde_json::json;
 
 use crate::deferred_support::gpu;
@@ -174,7 +174,7 @@ fn child() {
 fn run_pipeline(gpu: &Gpu, file: &str, scene: &Arc<Scene>, frames: u32, each: impl Fn(u32)) {
     let host = Arc::new(Host::new(scene.clone(), Overrides::default()));
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, Some(host.clone()));
+    rgraph_passes::register(&mut registry, Some(host.clone()));
     // The generic plugins' demos read their shaders from the shipped shaders/ beside
     // pipelines/, which a graph file reaches only where its host allows it.
     registry

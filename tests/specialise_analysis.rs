@@ -2,9 +2,9 @@
 //! names pipeline conditions test, its depth range and the smallest detail it puts on
 //! screen.
 
-use passes_deferred_msaa::analysis::{Analysis, DepthRange, Features, SmallestFeature};
-use passes_deferred_msaa::glam::DVec3;
-use passes_deferred_msaa::scene::{LightKind, Material, Projection, Scene};
+use rgraph_scene::analysis::{Analysis, DepthRange, Features, SmallestFeature};
+use rgraph_scene::glam::DVec3;
+use rgraph_scene::{LightKind, Material, Projection, Scene};
 
 fn scene(name: &str) -> Scene {
     Scene::load(name).unwrap_or_else(|e| panic!("{name} loads: {e}"))

@@ -19,8 +19,8 @@ use deferred_support::{gpu, Image, Render};
 use graph_core::gpu::Gpu;
 use graph_core::types::TextureFormat as F;
 use graph_core::{Features, Load, Plan};
-use passes_deferred_msaa::analysis::Features as SceneFeatures;
-use passes_deferred_msaa::scene::{Projection, Scene};
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::{Projection, Scene};
 
 const N: u32 = 64;
 

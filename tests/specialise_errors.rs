@@ -22,7 +22,7 @@ fn edited(from: &str, to: &str) -> String {
 
 fn load(text: &str) -> FileErrors {
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     match load_str(PIPELINE, text, &registry) {
         Ok(_) => panic!("expected the edited pipeline to be rejected"),
         Err(errors) => errors,

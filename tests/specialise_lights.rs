@@ -8,8 +8,8 @@ use crate::deferred_support;
 use deferred_support::measure::diff;
 use deferred_support::{gpu, Render};
 use graph_core::Features;
-use passes_deferred_msaa::analysis::Features as SceneFeatures;
-use passes_deferred_msaa::scene::Scene;
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::Scene;
 
 const N: u32 = 64;
 

@@ -9,9 +9,9 @@ use deferred_support::measure::diff;
 use deferred_support::{gpu, Render};
 use graph_core::file::{load_file, Registry};
 use graph_core::{CompileOptions, Features, Plan, PlanCache};
-use passes_deferred_msaa::analysis::Features as SceneFeatures;
-use passes_deferred_msaa::glam::DVec3;
-use passes_deferred_msaa::scene::Scene;
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::glam::DVec3;
+use rgraph_scene::Scene;
 
 const PIPELINE: &str = "deferred_msaa_4x.ron";
 const N: u32 = 64;
@@ -25,7 +25,7 @@ fn unlit() -> Scene {
 fn plan(features: &Features) -> Plan {
     let registry = {
         let mut r = Registry::with_builtins();
-        passes_deferred_msaa::register(&mut r, None);
+        rgraph_passes::register(&mut r, None);
         r
     };
     let path = format!("{}/pipelines/{PIPELINE}", env!("CARGO_MANIFEST_DIR"));
@@ -159,7 +159,7 @@ fn the_specialised_unlit_image_equals_the_unspecialised_one() {
 fn a_second_scene_with_the_same_features_reuses_the_plan() {
     let registry = {
         let mut r = Registry::with_builtins();
-        passes_deferred_msaa::register(&mut r, None);
+        rgraph_passes::register(&mut r, None);
         r
     };
     let path = format!("{}/pipelines/{PIPELINE}", env!("CARGO_MANIFEST_DIR"));

@@ -1,4 +1,4 @@
-//! Shader variants (passes-deferred-msaa analysis/variant.rs): the G-buffer, light and
+//! Shader variants (rgraph-passes, passes/src/variant.rs): the G-buffer, light and
 //! forward shaders compiled for only the scene's features render exactly what the general
 //! shaders render (GPU, lavapipe by default), and which variants a plan builds is known
 //! without a GPU.
@@ -8,15 +8,14 @@ use crate::deferred_support;
 use deferred_support::{gpu, Render};
 use graph_core::file::{load_file, LoadedGraph, Registry};
 use graph_core::CompileOptions;
-use passes_deferred_msaa::analysis::{
-    shader_variants, Features as SceneFeatures, GatedShader, Variant, Variants,
-};
-use passes_deferred_msaa::scene::Scene;
+use rgraph_passes::variant::{shader_variants, GatedShader, Variant, Variants};
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::Scene;
 
 const SIZE: (u32, u32) = (64, 64);
 const GLTF: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/passes-deferred-msaa/tests/fixtures/hierarchy_embedded.gltf"
+    "/scene/tests/fixtures/hierarchy_embedded.gltf"
 );
 /// Each lacks something some gated shader has code for: spheres spot lights, lights
 /// (7 point + 1 spot) directional lights, unlit every light, the glTF fixture (an
@@ -103,7 +102,7 @@ fn every_scene_tested_lacks_some_gated_feature() {
 
 fn loaded(pipeline: &str) -> LoadedGraph {
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     let path = format!("{}/pipelines/{pipeline}", env!("CARGO_MANIFEST_DIR"));
     load_file(&path, &registry).unwrap_or_else(|e| panic!("{e}"))
 }

@@ -12,9 +12,9 @@ use crate::gltf_writer::{temp_dir, Gltf};
 use deferred_support::measure::{pixel_diff, share_within};
 use deferred_support::textured;
 use deferred_support::{gpu, Image, Render};
-use passes_deferred_msaa::analysis::Features;
-use passes_deferred_msaa::glam::{DMat4, DVec3};
-use passes_deferred_msaa::scene::{Camera, Mesh, Projection, Sampler, Scene, TextureImage, Vertex};
+use rgraph_scene::analysis::Features;
+use rgraph_scene::glam::{DMat4, DVec3};
+use rgraph_scene::{Camera, Mesh, Projection, Sampler, Scene, TextureImage, Vertex};
 use serde_json::json;
 
 /// The hardware-raster pipelines that draw textured meshes: the G-buffer at 4x, lean and

@@ -14,9 +14,9 @@ use crate::deferred_support::{gpu, PipelineFile, Render};
 use crate::gltf_writer::{fixture, temp_dir, Gltf};
 use graph_core::file::{load_file, load_str, Registry};
 use graph_core::{CompileOptions, DeviceProfile, Features};
-use passes_deferred_msaa::analysis::Features as SceneFeatures;
-use passes_deferred_msaa::glam::{DVec3, Vec3};
-use passes_deferred_msaa::scene::{AlphaMode, Light, LightKind, Scene};
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::glam::{DVec3, Vec3};
+use rgraph_scene::{AlphaMode, Light, LightKind, Scene};
 
 const SIZE: (u32, u32) = (64, 64);
 /// One 8-bit step, the tolerance of exact expectations in linear HDR.
@@ -666,7 +666,7 @@ fn pipelines_add_the_transparent_passes_for_blend_scenes_only() {
     );
     let blend = SceneFeatures::of(&load(&file)).names();
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     let options = CompileOptions {
         output_size: SIZE,
         profile: DeviceProfile::webgpu(),
@@ -763,7 +763,7 @@ fn bad_transparent_slots_are_errors_naming_pass_slot_and_resource() {
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines/forward_msaa_4x.ron");
     let text = std::fs::read_to_string(&path).unwrap();
     let mut registry = Registry::with_builtins();
-    passes_deferred_msaa::register(&mut registry, None);
+    rgraph_passes::register(&mut registry, None);
     let accum = r#""transparent": Texture(format: "rgba16float", samples: Param(name: "msaa", default: 4), when: "blend"),"#;
     for (from, to, expected) in [
         (

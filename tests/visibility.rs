@@ -7,10 +7,10 @@
 //! coverage and the hardware's raster.
 
 use graph_core::Features;
-use passes_deferred_msaa::analysis::Features as SceneFeatures;
-use passes_deferred_msaa::glam::{DMat4, DVec3};
-use passes_deferred_msaa::scene::{AlphaMode, Mesh, Scene};
-use passes_deferred_msaa::{Exposure, Overrides};
+use rgraph_passes::{Exposure, Overrides};
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::glam::{DMat4, DVec3};
+use rgraph_scene::{AlphaMode, Mesh, Scene};
 
 use crate::deferred_support;
 use deferred_support::measure::{self, pixels_within, Diff};

@@ -1,6 +1,6 @@
 //! graph-core's structure: its modules import in one direction, from the layers of
 //! [`LAYERS`] down, and no files import each other in a loop (the check is
-//! structure_check.rs, which passes-deferred-msaa's tests share).
+//! structure_check.rs, which rgraph-scene's and rgraph-passes' tests share).
 
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -1,6 +1,6 @@
-//! The structure check both crates run in `cargo test` (graph-core/tests/structure.rs,
-//! passes-deferred-msaa/tests/structure.rs): a crate's modules import in one direction, from
-//! the layers of its table down, and no files import each other in a loop. It reads the
+//! The structure check every library crate runs in `cargo test` (graph-core/tests/structure.rs,
+//! scene/tests/structure.rs, passes/tests/structure.rs): a crate's modules import in one
+//! direction, from the layers of its table down, and no files import each other in a loop. It reads the
 //! `use` declarations and the `crate::`/`super::` paths of a crate's `src` (comments, string
 //! literals and `#[cfg(test)]` modules left out: tests may reach up), resolves each path to
 //! the file that defines the item, following re-exports, and names every import that runs

@@ -10,8 +10,8 @@ use std::path::Path;
 use graph_core::explain;
 use graph_core::file::{load_file_with, FileErrors, LoadedGraph};
 use graph_core::{CompileOptions, Features, Plan};
-use passes_deferred_msaa::analysis::{Analysis, Features as SceneFeatures, SHALLOW_STEP};
-use passes_deferred_msaa::scene::SceneError;
+use rgraph_scene::analysis::{Analysis, Features as SceneFeatures, SHALLOW_STEP};
+use rgraph_scene::SceneError;
 
 use super::target::compile_options;
 use super::{write_atomically, CommandError};

@@ -16,10 +16,10 @@ use std::sync::Arc;
 
 use graph_core::gpu::{resident_bytes, AdapterChoice, DeviceObjects};
 use image::RgbaImage;
-use passes_deferred_msaa::analysis::Features as SceneFeatures;
-use passes_deferred_msaa::glam::DVec3;
-use passes_deferred_msaa::scene::{AlphaMode, Scene};
-use passes_deferred_msaa::{FrameInputs, Host, Overrides};
+use rgraph_passes::{FrameInputs, Host, Overrides};
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::glam::DVec3;
+use rgraph_scene::{AlphaMode, Scene};
 
 use super::CommandError;
 use crate::cli::{AssetArgs, RenderArgs};

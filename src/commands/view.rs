@@ -18,7 +18,7 @@ use std::sync::Arc;
 
 use graph_core::file::GraphParams;
 use graph_core::gpu::{AdapterChoice, FrameReport};
-use passes_deferred_msaa::{FrameInputsError, Host, Overrides};
+use rgraph_passes::{FrameInputsError, Host, Overrides};
 use winit::event_loop::EventLoop;
 
 use super::render::error::RenderError;

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use graph_core::file::{FileErrors, NotAnOutput};
 use graph_core::gpu::{DeviceError, ExecuteError, ReadbackError};
-use passes_deferred_msaa::scene::SceneError;
+use rgraph_scene::SceneError;
 
 #[derive(Debug, thiserror::Error)]
 pub enum FrameError {

@@ -7,9 +7,10 @@ use std::sync::Arc;
 use graph_core::file::{
     load_file_with, load_str_with, ErrorKind, FileErrors, GraphParams, LoadedGraph, Registry,
 };
-use passes_deferred_msaa::analysis::{Features as SceneFeatures, Variants};
-use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::{Background, Exposure, Host, Overrides};
+use rgraph_passes::variant::Variants;
+use rgraph_passes::{Background, Exposure, Host, Overrides};
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::Scene;
 
 use super::FrameError;
 use crate::registry::registry_for;

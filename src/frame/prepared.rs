@@ -6,7 +6,7 @@ use graph_core::file::LoadedGraph;
 use graph_core::gpu::{read_rgba8, Executor, FrameReport, Gpu, Imports};
 use graph_core::{CompiledGraph, Plan, ResourceId};
 use image::RgbaImage;
-use passes_deferred_msaa::analysis::Features as SceneFeatures;
+use rgraph_scene::analysis::Features as SceneFeatures;
 
 use super::FrameError;
 

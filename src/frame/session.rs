@@ -7,7 +7,7 @@ use graph_core::gpu::{AdapterChoice, Executor, Gpu};
 use graph_core::types::TextureFormat;
 use graph_core::{CompileOptions, CompiledGraph, DeviceProfile, Origin, Plan, ResourceId};
 
-use passes_deferred_msaa::Background;
+use rgraph_passes::Background;
 
 use super::{FrameError, Pipeline, Prepared};
 

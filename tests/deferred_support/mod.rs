@@ -18,9 +18,9 @@ use graph_core::gpu::{
     read_rgba16f, read_rgba8, ExecuteError, Executor, FrameReport, Gpu, Imports,
 };
 use graph_core::{CompileOptions, CompiledGraph, DeviceProfile, Features, Plan};
-use passes_deferred_msaa::analysis::Variants;
-use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::{FrameInputs, Host, Overrides};
+use rgraph_passes::variant::Variants;
+use rgraph_passes::{FrameInputs, Host, Overrides};
+use rgraph_scene::Scene;
 
 pub use crate::common::gpu;
 
@@ -221,7 +221,7 @@ impl<'a> Render<'a> {
         }
         let host = Arc::new(Host::new(Arc::new(scene), self.overrides.clone()));
         let mut registry = Registry::with_builtins();
-        passes_deferred_msaa::register_with(&mut registry, Some(host.clone()), self.variants);
+        rgraph_passes::register_with(&mut registry, Some(host.clone()), self.variants);
         let (path, text) = edited(self.pipeline.name, &self.edits);
         let loaded = load_str_with(&path, &text, &registry, &self.params)
             .unwrap_or_else(|e| panic!("cannot load {}:\n{e}", path.display()));
@@ -462,7 +462,7 @@ pub fn images<'a>(
     size: (u32, u32),
 ) -> (Image, Image) {
     let gpu = gpu();
-    let features = passes_deferred_msaa::analysis::Features::of(scene).names();
+    let features = rgraph_scene::analysis::Features::of(scene).names();
     let image = |pipeline: PipelineFile<'a>| {
         Render::new(pipeline, &scene.name, size)
             .with_scene(scene.clone())

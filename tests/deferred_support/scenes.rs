@@ -4,8 +4,8 @@
 //! Every polygon is its own flat-shaded face (vertex normals = the face normal) with the
 //! identity transform, so world positions are exactly the corners given here.
 
-use passes_deferred_msaa::glam::{DMat4, DVec3};
-use passes_deferred_msaa::scene::{Aabb, Camera, Light, Material, Mesh, Scene, Vertex};
+use rgraph_scene::glam::{DMat4, DVec3};
+use rgraph_scene::{Aabb, Camera, Light, Material, Mesh, Scene, Vertex};
 
 /// A flat convex polygon as drawn: its world corners, counter-clockwise seen from the
 /// side its normal points to (the front).

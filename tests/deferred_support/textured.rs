@@ -6,8 +6,8 @@
 //! emission through a texture transform. The floor repeats its textures ten times
 //! across; one panel clamps to the edge with nearest magnification, one mirrors, so every
 //! wrap mode and both filters are seen.
-use passes_deferred_msaa::glam::{DVec3, Vec3};
-use passes_deferred_msaa::scene::{
+use rgraph_scene::glam::{DVec3, Vec3};
+use rgraph_scene::{
     Camera, FilterMode, Light, LightKind, Projection, Sampler, Scene, TextureImage, TextureRef,
     Vertex, WrapMode,
 };

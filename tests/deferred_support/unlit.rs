@@ -4,7 +4,7 @@
 //! The scene's camera is orthographic with `xmag = ymag = 1` looking down -Z, so at N x N
 //! world (x, y) is pixel `((x + 1) / 2 * N, (1 - y) / 2 * N)` and nearer means larger z.
 
-use passes_deferred_msaa::scene::Scene;
+use rgraph_scene::Scene;
 
 use super::Image;
 

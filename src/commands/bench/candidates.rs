@@ -5,8 +5,8 @@ use std::sync::Arc;
 
 use graph_core::embedded;
 use graph_core::file::{declared_params, load_file, GraphParams};
-use passes_deferred_msaa::scene::{builtin_names, BUILTIN_PREFIX};
-use passes_deferred_msaa::Host;
+use rgraph_passes::Host;
+use rgraph_scene::{builtin_names, BUILTIN_PREFIX};
 
 use crate::cli::MSAA;
 use crate::frame::{FrameError, Pipeline, Specialise};

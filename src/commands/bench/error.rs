@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use passes_deferred_msaa::scene::SceneError;
+use rgraph_scene::SceneError;
 
 use crate::commands::CommandError;
 use crate::frame::FrameError;

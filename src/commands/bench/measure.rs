@@ -10,8 +10,8 @@ use graph_core::explain::page::Setting;
 use graph_core::gpu::PassTiming;
 use graph_core::Plan;
 use image::RgbaImage;
-use passes_deferred_msaa::scene::{AssetPolicy, Lighting};
-use passes_deferred_msaa::Host;
+use rgraph_passes::Host;
+use rgraph_scene::{AssetPolicy, Lighting};
 
 use super::candidates::{Candidate, COLOR};
 use super::clocks::ClockSource;

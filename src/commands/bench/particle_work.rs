@@ -5,7 +5,7 @@
 //! (lavapipe's pipeline statistics count fragments wrongly: ../shared/notes/wgpu30.md).
 
 use graph_core::Plan;
-use passes_deferred_msaa::scene::{billboard_pixels, Scene};
+use rgraph_scene::{billboard_pixels, Scene};
 use serde::Serialize;
 
 /// The output of the mixed-resolution pipeline that shows its edge mask (red on black, at

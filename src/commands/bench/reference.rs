@@ -8,7 +8,7 @@ use graph_core::bounded_read::MAX_GRAPH_FILE_BYTES;
 use graph_core::embedded;
 
 use image::RgbaImage;
-use passes_deferred_msaa::Host;
+use rgraph_passes::Host;
 use serde::Serialize;
 
 use super::candidates::{Candidate, COLOR, PIPELINE_DIR};

@@ -4,8 +4,8 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use passes_deferred_msaa::scene::Scene;
-use passes_deferred_msaa::{Host, Overrides};
+use rgraph_passes::{Host, Overrides};
+use rgraph_scene::Scene;
 
 use super::candidates::Candidate;
 use super::error::{BenchError, RowError};

@@ -2,7 +2,7 @@
 //! scene using every feature) measured beside the scene's, wherever the two differ.
 
 use graph_core::TextureShape;
-use passes_deferred_msaa::analysis::plan_shader_variants;
+use rgraph_passes::variant::plan_shader_variants;
 use serde::Serialize;
 
 use super::memory::Memory;

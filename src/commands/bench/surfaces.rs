@@ -6,7 +6,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use passes_deferred_msaa::Host;
+use rgraph_passes::Host;
 use serde::Serialize;
 
 use super::candidates::Candidate;

@@ -7,7 +7,7 @@ use std::path::Path;
 use graph_core::explain::page::{self, Against, Page, Parameter, Setting};
 use graph_core::file::{GraphParams, LoadedGraph};
 use graph_core::{CompileOptions, Features, Plan};
-use passes_deferred_msaa::analysis::Analysis;
+use rgraph_scene::analysis::Analysis;
 
 use super::{analyse, compile, load, timings};
 use crate::cli::{AssetArgs, ExplainArgs, Format, Samples};

@@ -4,7 +4,8 @@
 
 use graph_core::file::LoadedGraph;
 use graph_core::Plan;
-use passes_deferred_msaa::analysis::{plan_shader_variants, Features, Variant};
+use rgraph_passes::variant::{plan_shader_variants, Variant};
+use rgraph_scene::analysis::Features;
 
 /// One line per variant, e.g.
 /// `  light.wgsl {point_lights} instead of {directional_lights, point_lights, spot_lights}: light edges, light the rest`.

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use crate::commands::CommandError;
 use crate::frame::FrameError;
-use passes_deferred_msaa::FrameInputsError;
+use rgraph_passes::FrameInputsError;
 
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {

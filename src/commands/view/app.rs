@@ -6,8 +6,8 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use image::RgbaImage;
-use passes_deferred_msaa::glam::DVec3;
-use passes_deferred_msaa::{FrameInputs, Host};
+use rgraph_passes::{FrameInputs, Host};
+use rgraph_scene::glam::DVec3;
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, KeyEvent, MouseButton, WindowEvent};

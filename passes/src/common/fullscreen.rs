@@ -1,0 +1,216 @@
+//! A full-screen draw of a deferred shader, as the edge, resolve, tone-mapping, debug and
+//! transparent-composite plugins set it up, and (feature `gpu`) its recording: the edge
+//! pass marks the stencil only, the others draw into a color target.
+
+use graph_core::types::BlendState;
+use graph_core::TextureHandle;
+
+use super::extent::Extent;
+use super::opaque_depth::OpaqueDepth;
+use super::plugin::Recording;
+use super::textures::Input;
+
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct Fullscreen {
+    pub label: &'static str,
+    /// The composed WGSL; its vertex entry point is `vs_fullscreen` (common.wgsl).
+    pub source: String,
+    pub entry: &'static str,
+    pub constants: Vec<(&'static str, f64)>,
+    /// Group 1.
+    pub inputs: Vec<Input>,
+    /// The shader reads the scene (group 0); without a host such a pass draws nothing.
+    pub reads_scene: bool,
+    /// The color attachment, if any.
+    pub target: Option<TextureHandle>,
+    /// Which of its pixels the draw covers (scissored; with `Blended` the pass needs a
+    /// scene, and draws nothing when no blended mesh is in view).
+    pub extent: Extent,
+    /// A depth-stencil attachment whose stencil the pass marks: `Replace` with the
+    /// reference 0x80 through write mask 0x80, wherever the shader does not discard.
+    pub stencil_mark: Option<TextureHandle>,
+    /// How the shader's output combines with the color attachment; `None` replaces it.
+    pub blend: Option<BlendState>,
+    /// The opaque depth the shader reads (group 1, with `inputs`), which sets its
+    /// FAR_DEPTH and the convention of the camera in group 0.
+    pub depth: Option<OpaqueDepth>,
+}
+
+impl Fullscreen {
+    /// `entry` of `source` reading `inputs`, drawn over the whole of `target` (`None`
+    /// for a pass that only marks the stencil): no constants, no scene, no stencil mark,
+    /// the target's pixels replaced. A pass that needs more sets those fields over this
+    /// (`Fullscreen { blend, ..Fullscreen::new(...) }`).
+    pub fn new(
+        label: &'static str,
+        source: String,
+        entry: &'static str,
+        inputs: Vec<Input>,
+        target: Option<TextureHandle>,
+    ) -> Self {
+        Fullscreen {
+            label,
+            source,
+            entry,
+            constants: Vec::new(),
+            inputs,
+            reads_scene: false,
+            target,
+            extent: Extent::Full,
+            stencil_mark: None,
+            blend: None,
+            depth: None,
+        }
+    }
+}
+
+impl Recording for Fullscreen {
+    #[cfg(feature = "gpu")]
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Render(gpu::record(self, scenes))
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    use std::sync::Arc;
+
+    use graph_core::gpu::RenderContext;
+    use graph_core::TextureHandle;
+
+    use super::Fullscreen;
+    use crate::common::depth::far_depth;
+    use crate::common::extent::Extent;
+    use crate::common::gpu::{per_device, GroupBuffers, InputPass, PipelineDesc, EDGE_STENCIL};
+    use crate::gpu_scene::SceneCache;
+    use rgraph_scene::DepthConvention;
+
+    /// Attachment formats and sample count, as the plan made them, and the convention
+    /// of the opaque depth read.
+    #[derive(Clone, PartialEq)]
+    struct Key {
+        target: Option<wgpu::TextureFormat>,
+        depth_stencil: Option<wgpu::TextureFormat>,
+        samples: u32,
+        convention: DepthConvention,
+    }
+
+    pub(super) fn record(
+        draw: Fullscreen,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+        // Built per device: the scene's group 0 layout is the same for every upload.
+        let mut state: Option<(wgpu::Device, InputPass<Key>)> = None;
+        Box::new(move |ctx| {
+            let resources = ctx.resources;
+            let device = resources.device;
+            let Some(scene) = scenes.for_frame_if(draw.reads_scene, resources) else {
+                return;
+            };
+            if draw.extent == Extent::Blended {
+                let Some(rect_scene) = scenes.for_frame(resources) else {
+                    return;
+                };
+                let target = draw.target.or(draw.stencil_mark);
+                let size = target.map_or(resources.output_size(), |h| {
+                    let shape = resources.shape(h);
+                    (shape.width, shape.height)
+                });
+                let Some(rect) = draw.extent.rect(&rect_scene, size) else {
+                    return;
+                };
+                ctx.pass
+                    .set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
+            }
+            let mut inputs = draw.inputs.clone();
+            let mut buffers = GroupBuffers::default();
+            let mut convention = DepthConvention::ReversedZ;
+            if let Some(depth) = &draw.depth {
+                let bound = match depth.bound(resources) {
+                    Ok(bound) => bound,
+                    Err(why) => return resources.fail(why),
+                };
+                inputs.extend(bound.inputs);
+                buffers = bound.buffers;
+                convention = bound.convention;
+            }
+            let state = per_device(&mut state, device, || {
+                InputPass::with_geometry(
+                    resources,
+                    draw.label,
+                    &draw.source,
+                    scene.as_deref(),
+                    &inputs,
+                    &buffers,
+                    false,
+                )
+            });
+            let shape = |h: TextureHandle| resources.shape(h);
+            let key = Key {
+                target: draw.target.map(|h| shape(h).format),
+                depth_stencil: draw.stencil_mark.map(|h| shape(h).format),
+                samples: draw
+                    .target
+                    .or(draw.stencil_mark)
+                    .map_or(1, |h| shape(h).samples),
+                convention,
+            };
+            let pipeline = state.pipelines.get(key, |key| {
+                let mut constants = draw.constants.clone();
+                if draw.depth.is_some() {
+                    constants.push(("FAR_DEPTH", f64::from(far_depth(key.convention))));
+                }
+                let targets = [key.target.map(|format| wgpu::ColorTargetState {
+                    format,
+                    blend: draw.blend,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })];
+                PipelineDesc {
+                    label: draw.label,
+                    layout: &state.layout,
+                    module: &state.module,
+                    vertex: "vs_fullscreen",
+                    buffers: &[],
+                    fragment: draw.entry,
+                    constants: &constants,
+                    targets: if key.target.is_some() { &targets } else { &[] },
+                    cull: None,
+                    depth_stencil: key.depth_stencil.map(stencil_mark),
+                    samples: key.samples,
+                    mask: !0,
+                }
+                .build(device)
+            });
+            ctx.pass.set_pipeline(pipeline);
+            if let Some(scene) = &scene {
+                ctx.pass
+                    .set_bind_group(0, scene.bind_group(convention), &[]);
+            }
+            ctx.pass
+                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            ctx.pass.set_stencil_reference(EDGE_STENCIL);
+            ctx.pass.draw(0..3, 0..1);
+        })
+    }
+
+    fn stencil_mark(format: wgpu::TextureFormat) -> wgpu::DepthStencilState {
+        let mark = wgpu::StencilFaceState {
+            compare: wgpu::CompareFunction::Always,
+            fail_op: wgpu::StencilOperation::Keep,
+            depth_fail_op: wgpu::StencilOperation::Keep,
+            pass_op: wgpu::StencilOperation::Replace,
+        };
+        wgpu::DepthStencilState {
+            format,
+            depth_write_enabled: Some(false),
+            depth_compare: Some(wgpu::CompareFunction::Always),
+            stencil: wgpu::StencilState {
+                front: mark,
+                back: mark,
+                read_mask: 0xff,
+                write_mask: EDGE_STENCIL,
+            },
+            bias: Default::default(),
+        }
+    }
+}

@@ -1,0 +1,242 @@
+//! Scene geometry on the device: every mesh's vertices and indices in one buffer each, and
+//! per-mesh data (camera-relative model matrix, normal matrix, material) in a storage
+//! buffer the G-buffer vertex shader indexes with the instance index.
+
+use glam::{DMat3, DMat4, DVec3, Vec3};
+use wgpu::util::DeviceExt;
+
+use rgraph_scene::{Aabb, Scene, Vertex};
+
+/// `MeshData` in scene.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct MeshData {
+    model: [[f32; 4]; 4],
+    /// mat3x3<f32>: three columns padded to 16 bytes.
+    normal_matrix: [[f32; 4]; 3],
+    material: u32,
+    /// Where the mesh's indices start in the scene's index buffer, and what they add to
+    /// reach the scene's vertex buffer: a visibility buffer's triangle ID is an index
+    /// position / 3, and its shading pass pulls the triangle's vertices through these.
+    first_index: u32,
+    base_vertex: i32,
+    _pad: u32,
+}
+
+/// One mesh's draw: `draw_indexed(indices, base_vertex, instance..instance + 1)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshDraw {
+    pub indices: std::ops::Range<u32>,
+    pub base_vertex: i32,
+    /// The mesh's index in `Scene::meshes`, which is also its instance index.
+    pub instance: u32,
+    /// Index into `Scene::materials`.
+    pub material: usize,
+    /// The centre of the mesh's world bounds, camera-relative: how far the draw is from
+    /// the camera, for drawing blended meshes back to front. Kept beside `bounds` rather
+    /// than taken from it: the world centre minus the eye is what the draws were always
+    /// sorted by, and the centre of the camera-relative bounds rounds differently, which
+    /// could reorder draws at nearly one distance.
+    pub center: DVec3,
+    /// The mesh's world bounds, camera-relative (a point at its origin without
+    /// vertices): where on screen it may be.
+    pub bounds: Aabb,
+}
+
+pub(super) struct MeshBuffers {
+    pub vertices: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    /// Per-mesh [`MeshData`], rewritten when the camera or a mesh moves.
+    pub data: wgpu::Buffer,
+}
+
+/// The vertex layout of scene meshes: [`Vertex`] at locations 0 (position), 1 (normal),
+/// 2 (uv), 3 (color), 4 (tangent) and 5 (uv1).
+pub const VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<Vertex>() as u64,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![
+        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Unorm16x4, 4 => Snorm16x4,
+        5 => Float32x2
+    ],
+};
+
+/// The per-mesh data of one frame: what the data buffer holds and each mesh's draw.
+#[derive(Clone)]
+pub(super) struct MeshFrame {
+    data: Vec<MeshData>,
+    pub draws: Vec<MeshDraw>,
+    /// Each mesh's world bounds, kept so that a frame moving the camera but not the mesh
+    /// does not transform its vertices again.
+    world_bounds: Vec<Aabb>,
+}
+
+impl MeshFrame {
+    /// The meshes of `scene` placed by `transforms` (one per mesh) and seen from `eye`.
+    /// `previous` is the frame before, whose bounds are reused for the meshes
+    /// `transforms` does not move.
+    pub fn new(
+        scene: &Scene,
+        transforms: &[DMat4],
+        eye: DVec3,
+        previous: Option<(&MeshFrame, &[DMat4])>,
+    ) -> MeshFrame {
+        let (mut index_count, mut vertex_count) = (0u32, 0i32);
+        let mut frame = MeshFrame {
+            data: Vec::new(),
+            draws: Vec::new(),
+            world_bounds: Vec::new(),
+        };
+        for ((mesh, &transform), instance) in scene.meshes.iter().zip(transforms).zip(0u32..) {
+            let kept = previous.and_then(|(frame, transforms)| {
+                (transforms.get(instance as usize) == Some(&transform))
+                    .then(|| frame.world_bounds[instance as usize])
+            });
+            let world_bounds = kept.unwrap_or_else(|| {
+                let positions = mesh
+                    .vertices
+                    .iter()
+                    .map(|v| transform.transform_point3(Vec3::from_array(v.position).as_dvec3()));
+                Aabb::from_points(positions).unwrap_or_else(|| {
+                    let origin = transform.w_axis.truncate();
+                    Aabb {
+                        min: origin,
+                        max: origin,
+                    }
+                })
+            });
+            frame.world_bounds.push(world_bounds);
+            frame.draws.push(MeshDraw {
+                indices: index_count..index_count + mesh.indices.len() as u32,
+                base_vertex: vertex_count,
+                instance,
+                material: mesh.material,
+                center: world_bounds.center() - eye,
+                bounds: Aabb {
+                    min: world_bounds.min - eye,
+                    max: world_bounds.max - eye,
+                },
+            });
+            index_count += mesh.indices.len() as u32;
+            vertex_count += mesh.vertices.len() as i32;
+            // Mesh::normal_matrix of the placed mesh.
+            let normal = DMat3::from_mat4(transform).inverse().transpose().as_mat3();
+            frame.data.push(MeshData {
+                model: camera_relative(transform, eye),
+                normal_matrix: [normal.x_axis, normal.y_axis, normal.z_axis]
+                    .map(|c| c.extend(0.0).to_array()),
+                material: mesh.material as u32,
+                first_index: index_count - mesh.indices.len() as u32,
+                base_vertex: vertex_count - mesh.vertices.len() as i32,
+                _pad: 0,
+            });
+        }
+        // A scene without meshes (a glTF scene listing no nodes) still binds the buffer:
+        // wgpu refuses zero-sized storage bindings, and nothing is drawn.
+        if frame.draws.is_empty() {
+            frame.data.push(bytemuck::Zeroable::zeroed());
+        }
+        frame
+    }
+
+    /// The data buffer's contents.
+    pub fn bytes(&self) -> &[u8] {
+        bytemuck::cast_slice(&self.data)
+    }
+}
+
+impl MeshBuffers {
+    /// Uploads `scene`'s geometry and `frame`'s per-mesh data. The geometry goes up mesh by
+    /// mesh in slices (see [`UPLOAD_SLICE_BYTES`]), never gathered into one copy first.
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+        frame: &MeshFrame,
+    ) -> MeshBuffers {
+        let upload = Upload { device, queue };
+        MeshBuffers {
+            // Storage too: visibility-buffer passes pull vertices (geometry.wgsl).
+            vertices: upload.gathered(
+                "scene vertices",
+                scene.meshes.iter().map(|m| m.vertices.as_slice()),
+                wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
+            ),
+            indices: upload.gathered(
+                "scene indices",
+                scene.meshes.iter().map(|m| m.indices.as_slice()),
+                wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
+            ),
+            data: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("scene meshes"),
+                contents: frame.bytes(),
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            }),
+        }
+    }
+}
+
+/// The most geometry staged at once. Each slice is written, submitted and waited for
+/// before the next, so the upload holds one slice beside the scene and the device's
+/// buffers. Gathered into one vector and mapped at creation, the geometry of a 10M-triangle
+/// flat-shaded scene (1.8 GB) was held three times over: the scene's, the gathered copy
+/// (or the mapping's staging buffer) and the device's; on a CPU adapter all in host memory.
+const UPLOAD_SLICE_BYTES: u64 = 64 << 20;
+
+struct Upload<'a> {
+    device: &'a wgpu::Device,
+    queue: &'a wgpu::Queue,
+}
+
+impl Upload<'_> {
+    /// A buffer holding `parts` one after another, uploaded in slices. wgpu refuses empty
+    /// vertex and index buffers (and zero-sized storage bindings): without parts it holds
+    /// one element, zeroed as every new buffer is, from which nothing is drawn.
+    fn gathered<'p, T: bytemuck::Pod>(
+        &self,
+        label: &str,
+        parts: impl Iterator<Item = &'p [T]> + Clone,
+        usage: wgpu::BufferUsages,
+    ) -> wgpu::Buffer {
+        let element = std::mem::size_of::<T>() as u64;
+        let bytes: u64 = parts.clone().map(|p| p.len() as u64 * element).sum();
+        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: bytes
+                .max(element)
+                .next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT),
+            usage: usage | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        // Whole elements per slice; vertices and indices are multiples of 4 bytes, as
+        // buffer writes must be.
+        let per_slice = (UPLOAD_SLICE_BYTES / element).max(1) as usize;
+        let (mut offset, mut staged) = (0, 0);
+        for slice in parts.flat_map(|part| part.chunks(per_slice)) {
+            let slice: &[u8] = bytemuck::cast_slice(slice);
+            self.queue.write_buffer(&buffer, offset, slice);
+            offset += slice.len() as u64;
+            staged += slice.len() as u64;
+            if staged >= UPLOAD_SLICE_BYTES {
+                self.flush();
+                staged = 0;
+            }
+        }
+        buffer
+    }
+
+    /// Runs the staged writes and frees their staging memory. A device lost meanwhile is
+    /// reported where the frame is submitted.
+    fn flush(&self) {
+        self.queue.submit([]);
+        let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+    }
+}
+
+/// `transform` with the camera moved to the origin, computed in f64 and only then cast:
+/// vertices near the camera keep their precision even when the world position is large.
+pub fn camera_relative(transform: DMat4, camera: DVec3) -> [[f32; 4]; 4] {
+    (DMat4::from_translation(-camera) * transform)
+        .as_mat4()
+        .to_cols_array_2d()
+}

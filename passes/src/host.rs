@@ -1,0 +1,283 @@
+//! What the host application hands the deferred plugins: the scene to draw, the
+//! per-render overrides a command line or an engine UI sets, and the per-frame inputs an
+//! engine changes between frames.
+//!
+//! Graph files name plugins and their parameters; the scene is not a graph resource
+//! (its geometry and lights are uploaded by the plugins that use them, on their first
+//! frame, from the device they record with). A registry made with `host: None` declares
+//! the same passes and validates the same graphs, for build scripts and CI; executing
+//! such a graph draws no geometry.
+//!
+//! # Per-frame inputs: who owns what, what a call invalidates
+//!
+//! The [`Host`] owns the current [`FrameInputs`] behind a lock. The engine replaces them
+//! with [`Host::set_frame`] between executions; the next execution's passes upload what
+//! changed ([`crate::gpu_scene::SceneCache::for_frame`]) before recording. A call
+//! invalidates nothing on the device: geometry, materials, textures and environment maps
+//! stay uploaded, plans stay compiled and pipelines stay built. The scene is drawn
+//! camera-relative, so a moved camera rewrites the per-mesh model matrices, the lights
+//! and the camera uniform, a few hundred bytes per mesh and light; a moved object
+//! rewrites the same per-mesh data; a moved light the light data; new particle emitters
+//! (a new `Arc`), or a moved camera, make the particle passes sort and write their
+//! particles again, in a larger buffer when there are more than it holds. (The fragment light
+//! passes build a pipeline per light-volume geometry when a frame first needs it: the
+//! first frame whose camera is inside a volume builds the back-face one, once.)
+//!
+//! What frame inputs cannot change is what plans and shader variants were made for: the
+//! scene's feature set ([`rgraph_scene::analysis::Features`]) is the loaded scene's, so lights
+//! keep their kind, color and intensity (only their pose moves) and the depth format
+//! chosen from the loaded camera's depth range stays. A new output size, sample count or
+//! feature set is a recompile of the graph (`CompiledGraph::recompile`), not a frame
+//! input.
+
+use std::sync::{Arc, Mutex};
+
+use glam::{DMat4, DVec3, Vec3};
+
+use rgraph_scene::{check_emitters, Camera, ParticleEmitter, Scene};
+
+/// The scene and overrides every deferred plugin of one registry shares, and the current
+/// [`FrameInputs`] (see the module documentation for the contract).
+pub struct Host {
+    pub scene: Arc<Scene>,
+    pub overrides: Overrides,
+    frame: Mutex<CurrentFrame>,
+}
+
+/// The frame inputs set last and how many times they were set: the scene's uploads
+/// compare the count with the one they were written for.
+struct CurrentFrame {
+    inputs: Arc<FrameInputs>,
+    generation: u64,
+}
+
+/// Values that, when set, replace what the graph file's parameters say.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Overrides {
+    /// Tone-mapping operator name: "none", "reinhard" or "aces".
+    pub tonemap: Option<String>,
+    /// Exposure applied before tone mapping.
+    pub exposure: Option<Exposure>,
+    /// What shows where nothing is drawn: `None` leaves it to the pipeline (black). A
+    /// pipeline draws one with a `background` pass, which it runs under the condition
+    /// `background` (set by the host's choice, see
+    /// [`rgraph_scene::analysis::Features::background`]).
+    pub background: Option<Background>,
+}
+
+/// What a frame shows where its opaque passes drew nothing: behind every surface, seen
+/// through blended ones and particles, and at silhouettes in proportion to the samples
+/// that show nothing.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Background {
+    /// The scene's environment as a mirror would reflect it (its image-based lighting's
+    /// radiance, level 0 of its cube map), lit and tone mapped with the scene.
+    Environment,
+    /// A colour, as the output's sRGB bytes show it: tone mapping composites the frame
+    /// over it, in linear light.
+    Color([u8; 3]),
+    /// Nothing: the output's alpha is the frame's coverage (0 where nothing is drawn,
+    /// partial at silhouettes and behind blended surfaces), its colour unpremultiplied, as
+    /// an RGBA image for compositing is.
+    Transparent,
+}
+
+/// How bright the image is made before tone mapping.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum Exposure {
+    /// A multiplier, finite and positive.
+    Fixed(f32),
+    /// Metered from each frame's resolved HDR image by the `auto_exposure` pass, which a
+    /// pipeline runs under the condition `auto_exposure` (set by the host's choice, see
+    /// [`rgraph_scene::analysis::Features::auto_exposure`]); its `tonemap` pass reads the result.
+    Auto,
+}
+
+impl Exposure {
+    /// The largest fixed exposure. ACES squares the exposed color, and the brightest value
+    /// a frame stores (half float's 65504) times a larger exposure can overflow f32: an
+    /// infinity, then NaN, a black pixel. Twelve orders of magnitude above 1 leave room for
+    /// any scene (a 68,000 lux sun wants about 1e-5).
+    pub const MAX: f32 = 1e12;
+}
+
+/// What an engine may change from one frame to the next without reloading: the camera,
+/// the pose of every light and the transform of every mesh, in the scene's order, and the
+/// particles.
+/// [`FrameInputs::of`] gives the scene's own; an engine keeps one, changes its fields and
+/// hands it to [`Host::set_frame`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameInputs {
+    /// The camera, pose and projection.
+    pub camera: Camera,
+    /// One pose per light of `Scene::lights`, in its order.
+    pub lights: Vec<LightPose>,
+    /// One object-to-world transform per mesh of `Scene::meshes` (glTF: per mesh node
+    /// primitive), in its order.
+    pub transforms: Vec<DMat4>,
+    /// A factor on the exposure the pipeline tone maps with (the file's, the override's
+    /// or the metered one); 1 leaves it as it is. The `tonemap` pass reads it from the
+    /// scene's light data each frame, so changing it builds no pipeline.
+    pub exposure: f32,
+    /// Seconds since the sequence started, for the engine's own passes that animate by
+    /// it; the deferred plugins draw a pose, not a time, so they do not read it.
+    pub time: f64,
+    /// The particles the `particles` passes draw, emitter by emitter: the scene's
+    /// (`Scene::emitters`), or wherever an engine's simulation has taken them, in any
+    /// number up to `MAX_PARTICLES` (checked like the scene's). Shared, so that frame
+    /// inputs clone cheaply; a new `Arc` (or a moved camera) is what makes the passes
+    /// upload and sort them again.
+    pub emitters: Arc<Vec<ParticleEmitter>>,
+}
+
+/// Where a light is and where it points, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightPose {
+    /// Unused by directional lights.
+    pub position: DVec3,
+    /// Unit direction the light travels; unused by point lights.
+    pub direction: Vec3,
+}
+
+impl FrameInputs {
+    /// The scene as loaded: its camera, lights and transforms, exposure 1, at time 0.
+    pub fn of(scene: &Scene) -> FrameInputs {
+        FrameInputs {
+            camera: scene.camera.clone(),
+            lights: scene
+                .lights
+                .iter()
+                .map(|l| LightPose {
+                    position: l.position,
+                    direction: l.direction,
+                })
+                .collect(),
+            transforms: scene.meshes.iter().map(|m| m.transform).collect(),
+            exposure: 1.0,
+            time: 0.0,
+            emitters: Arc::new(scene.emitters.clone()),
+        }
+    }
+}
+
+/// Frame inputs that do not fit the host's scene: they are refused whole, and the last
+/// accepted ones stay.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FrameInputsError {
+    #[error("frame inputs give {given} light poses, but scene \"{scene}\" has {expected} lights")]
+    LightCount {
+        scene: String,
+        given: usize,
+        expected: usize,
+    },
+    #[error(
+        "frame inputs give {given} mesh transforms, but scene \"{scene}\" has {expected} meshes"
+    )]
+    MeshCount {
+        scene: String,
+        given: usize,
+        expected: usize,
+    },
+    #[error("frame inputs: {what} of scene \"{scene}\" is not finite")]
+    NotFinite { scene: String, what: String },
+    #[error("frame inputs: the exposure factor {0} is not finite and positive")]
+    Exposure(f32),
+    /// The particles do not fit: too many, or one that cannot be drawn (the reason
+    /// names the emitter and the particle).
+    #[error("frame inputs: {0}")]
+    Particles(String),
+}
+
+impl Host {
+    /// A host drawing `scene` with `overrides`, whose frame inputs are the scene's own
+    /// ([`FrameInputs::of`]).
+    pub fn new(scene: Arc<Scene>, overrides: Overrides) -> Host {
+        let inputs = Arc::new(FrameInputs::of(&scene));
+        Host {
+            scene,
+            overrides,
+            frame: Mutex::new(CurrentFrame {
+                inputs,
+                generation: 0,
+            }),
+        }
+    }
+
+    /// Makes `inputs` what the next execution draws. Call it between executions: passes
+    /// recorded after the call see the new inputs, so a call during an execution could
+    /// draw one frame with two. Checked against the scene (one pose per light, one
+    /// transform per mesh, finite values); on error the previous inputs stay.
+    pub fn set_frame(&self, inputs: FrameInputs) -> Result<(), FrameInputsError> {
+        self.check(&inputs)?;
+        let mut frame = self.frame.lock().unwrap_or_else(|e| e.into_inner());
+        frame.inputs = Arc::new(inputs);
+        frame.generation += 1;
+        Ok(())
+    }
+
+    /// The current frame inputs.
+    pub fn frame(&self) -> Arc<FrameInputs> {
+        self.current().0
+    }
+
+    /// The current frame inputs and how many times [`set_frame`](Self::set_frame) has
+    /// been called: a count the scene's uploads were written for is up to date.
+    pub(crate) fn current(&self) -> (Arc<FrameInputs>, u64) {
+        let frame = self.frame.lock().unwrap_or_else(|e| e.into_inner());
+        (frame.inputs.clone(), frame.generation)
+    }
+
+    fn check(&self, inputs: &FrameInputs) -> Result<(), FrameInputsError> {
+        let scene = || self.scene.name.clone();
+        if inputs.lights.len() != self.scene.lights.len() {
+            return Err(FrameInputsError::LightCount {
+                scene: scene(),
+                given: inputs.lights.len(),
+                expected: self.scene.lights.len(),
+            });
+        }
+        if inputs.transforms.len() != self.scene.meshes.len() {
+            return Err(FrameInputsError::MeshCount {
+                scene: scene(),
+                given: inputs.transforms.len(),
+                expected: self.scene.meshes.len(),
+            });
+        }
+        if !(inputs.exposure.is_finite() && inputs.exposure > 0.0) {
+            return Err(FrameInputsError::Exposure(inputs.exposure));
+        }
+        check_emitters(&self.scene.name, &inputs.emitters)
+            .map_err(|e| FrameInputsError::Particles(e.to_string()))?;
+        let camera = &inputs.camera;
+        let not_finite = std::iter::once((
+            format!("the camera \"{}\"", camera.name),
+            camera.position.is_finite() && camera.orientation.is_finite(),
+        ))
+        .chain(inputs.lights.iter().zip(&self.scene.lights).map(|(p, l)| {
+            (
+                format!("the pose of light \"{}\"", l.name),
+                p.position.is_finite() && p.direction.is_finite(),
+            )
+        }))
+        .chain(
+            inputs
+                .transforms
+                .iter()
+                .zip(&self.scene.meshes)
+                .map(|(t, m)| {
+                    (
+                        format!("the transform of mesh \"{}\"", m.name),
+                        t.is_finite(),
+                    )
+                }),
+        )
+        .find(|(_, finite)| !finite);
+        match not_finite {
+            Some((what, _)) => Err(FrameInputsError::NotFinite {
+                scene: scene(),
+                what,
+            }),
+            None => Ok(()),
+        }
+    }
+}

@@ -1,0 +1,197 @@
+//! `forward`: draws the host's scene straight into a (multisampled) HDR target, every
+//! light evaluated per fragment: what users pick instead of deferred + MSAA, and the image
+//! MSAA should give. The baselines and the supersampled reference are built on it.
+//!
+//! ```ron
+//! (name: "forward", plugin: "forward",
+//!  params: (shading: pixel,          // the default; or sample (one invocation per sample)
+//!           background: (0.0, 0.0, 0.0, 1.0)),   // these defaults; reversed_z optional
+//!  outputs: {
+//!      "hdr": "hdr",       // rgba16float, the depth's sample count
+//!      "depth": "depth",   // depth24plus(-stencil8) or depth32float(-stencil8)
+//!  })
+//! ```
+//!
+//! Shading is brdf.wgsl's, as in the deferred light passes: Lambert plus GGX
+//! metallic-roughness, the ambient term times albedo, and every directional, point and spot
+//! light of the scene (point and spot lights windowed to zero at their range, which the
+//! deferred passes' volumes circumscribe). Emission is added once; unlit materials show
+//! base color plus emission, exactly what the `gbuffer` pass writes into its HDR target.
+//! Alpha MASK and double-sided materials behave as there; alpha BLEND meshes are left to
+//! the `transparent` pass, as the G-buffer pass leaves them. The HDR target is not
+//! cleared: after the meshes, the samples none drew are filled with `background`
+//! (common/background.rs), as the G-buffer pass fills its targets.
+//!
+//! `pixel` shades once per pixel and triangle at the centroid of the covered samples (the
+//! G-buffer pass's interpolation, so a deferred pipeline that shades every sample gives the
+//! same image); `sample` shades every covered sample at its own position
+//! (`@interpolate(sample)`), which is supersampling: the reference uses it.
+
+use serde::Deserialize;
+
+use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::types::TextureFormat;
+use graph_core::{PassBuilder, PassKind, TextureHandle};
+
+use super::gbuffer::opaque_black;
+use crate::common::background::FilledTargets;
+use crate::common::depth::DepthRule;
+use crate::common::plugin::{Recording, Shared};
+use crate::common::textures::{self, Want};
+use crate::shaders;
+
+pub struct Forward(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ForwardParams {
+    #[serde(default)]
+    pub shading: Shading,
+    /// Fixes the depth convention; left out, it follows the depth format the compile
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
+    #[serde(default)]
+    pub reversed_z: Option<bool>,
+    /// The HDR target's value where no geometry is drawn (linear RGBA).
+    #[serde(default = "opaque_black")]
+    pub background: [f64; 4],
+}
+
+/// How often the forward pass runs its fragment shader.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Shading {
+    /// Once per pixel and triangle; the result is written to every covered sample.
+    #[default]
+    Pixel,
+    /// Once per covered sample.
+    Sample,
+}
+
+use TextureFormat as F;
+/// Forward shading needs no stencil, so depth-only formats do too.
+pub(crate) const DEPTH: &[TextureFormat] = &[
+    F::Depth24Plus,
+    F::Depth32Float,
+    F::Depth24PlusStencil8,
+    F::Depth32FloatStencil8,
+];
+
+/// The forward pass, or the transparent pass (passes/transparent.rs), as set up: what
+/// `gpu::forward` records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct ForwardDraw {
+    pub source: String,
+    pub depth_rule: DepthRule,
+    pub shading: Shading,
+    /// Draws the BLEND meshes back to front, blending into `hdr` and testing a read-only
+    /// `depth` (transparent.wgsl); else the other meshes, writing both.
+    pub transparent: bool,
+    /// Begins the transparent pass's accumulation over the blended meshes' rectangle with
+    /// this fragment entry point ([`SceneDraw::begin_blended`]).
+    ///
+    /// [`SceneDraw::begin_blended`]: crate::common::gpu::scene_draw::SceneDraw::begin_blended
+    pub begin_blended: Option<&'static str>,
+    /// Fills the HDR target with the background where no mesh draws (common/background.rs).
+    pub fill_background: bool,
+    pub hdr: TextureHandle,
+    pub depth: TextureHandle,
+}
+
+impl Recording for ForwardDraw {
+    #[cfg(feature = "gpu")]
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Render(gpu::record(self, scenes))
+    }
+}
+
+impl Plugin for Forward {
+    const NAME: &'static str = "forward";
+    type Params = ForwardParams;
+
+    fn kind(&self, _: &ForwardParams) -> PassKind {
+        PassKind::Render
+    }
+
+    fn setup(
+        &self,
+        params: ForwardParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let depth_rule = DepthRule::new(params.reversed_z);
+        let want = Want::new("the forward pass's depth", DEPTH);
+        let (depth, desc) = textures::output(slots, pass, "depth", want, |pass, h, _| {
+            depth_rule.start(pass, h)
+        })?;
+        let want = Want::new("the HDR target", textures::HDR).samples(desc.samples);
+        // Filled with the background where no mesh draws rather than cleared first
+        // (common/background.rs), unless the pass draws over the target it reads.
+        let mut targets = FilledTargets::new(slots, &["hdr"]);
+        targets.push(slots, pass, "hdr", want, ("vec4<f32>", params.background))?;
+        let draw = ForwardDraw {
+            source: shaders::FORWARD
+                .compose_with(desc.samples, &targets.wgsl())?
+                .source()
+                .to_owned(),
+            depth_rule,
+            shading: params.shading,
+            transparent: false,
+            begin_blended: None,
+            fill_background: targets.fill(),
+            hdr: targets.into_handles()[0],
+            depth,
+        };
+        self.0.record(pass, draw);
+        Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the forward pass: the scene's opaque meshes into the HDR target alone,
+    //! shaded per pixel or per sample, masked materials selected by the `MASKED` pipeline
+    //! constant; and the transparent pass, its BLEND meshes into the accumulation target
+    //! with the same vertex stages and shading (passes/transparent.rs).
+
+    use std::sync::Arc;
+
+    use graph_core::gpu::RenderContext;
+
+    use super::{ForwardDraw, Shading};
+    use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
+    use crate::gpu_scene::{Layer, SceneCache};
+    use crate::variant::GatedShader;
+
+    pub(super) fn record(
+        draw: ForwardDraw,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+        let (label, shader, layer) = match draw.transparent {
+            false => ("forward", GatedShader::Forward, Layer::Opaque),
+            true => ("transparent", GatedShader::Transparent, Layer::Blended),
+        };
+        let (vertex, fragment) = match (draw.shading, draw.transparent) {
+            (Shading::Pixel, false) => ("vs_pixel", "fs_pixel"),
+            (Shading::Sample, false) => ("vs_sample", "fs_sample"),
+            (Shading::Pixel, true) => ("vs_pixel", "fs_blend_pixel"),
+            (Shading::Sample, true) => ("vs_sample", "fs_blend_sample"),
+        };
+        let draw = SceneDraw {
+            label,
+            shader,
+            source: draw.source,
+            depth_rule: draw.depth_rule,
+            targets: vec![draw.hdr],
+            depth: draw.depth,
+            layer,
+            begin_blended: draw.begin_blended,
+            fill_background: draw.fill_background,
+            stages: Box::new(move |material| Stages {
+                vertex,
+                fragment,
+                constants: vec![("MASKED", f64::from(u8::from(material.masked)))],
+            }),
+        };
+        scene_draw::record(draw, scenes)
+    }
+}

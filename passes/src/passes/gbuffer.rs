@@ -1,0 +1,272 @@
+//! `gbuffer`: draws the host's scene into the (multisampled) G-buffer.
+//!
+//! ```ron
+//! (name: "gbuffer", plugin: "gbuffer",
+//!  params: (background: (0.0, 0.0, 0.0, 1.0)),   // the default; reversed_z optional
+//!  outputs: {
+//!      "albedo": "albedo",          // rgba8unorm(-srgb): base color
+//!      "normal": "normal",          // rg16float: octahedral world-space normal
+//!      "material": "material",      // rgba8unorm: metallic, roughness, flags, edge bits
+//!      "view_depth": "view_depth",  // r32float: linear view depth, 0 where nothing was drawn
+//!      "hdr": "hdr",                // rgba16float: emission and unlit color, else background
+//!      "depth": "depth",            // depth24plus-stencil8 or depth32float-stencil8
+//!  })
+//! ```
+//!
+//! All must have the depth's sample count; 1 works too. The full G-buffer's color
+//! targets cost 32 bytes per sample (8 + 4 + 8 + 4 + 8 in wgpu's accounting), the WebGPU
+//! default limit. Every channel but `albedo` may be left out, and then is not written:
+//! - `normal` and `material`: only lighting reads them, so a pipeline's G-buffer pass for
+//!   unlit-only scenes (under a `when: "unlit_only"` condition,
+//!   pipelines/deferred_msaa_4x.ron) goes without.
+//! - `view_depth` exists because the fragment light passes attach the depth-stencil and so
+//!   cannot sample its depth aspect while they write the stencil (notes/wgpu30.md); the
+//!   tiled compute pass reads the depth buffer instead.
+//! - `hdr`, or instead the lean `"emission": "emission"` (`rg16uint`, RGB9E5: 4 bytes for
+//!   the 8 of rgba16float), which holds only the emission: the tiled pass takes an unlit
+//!   surface's color from albedo and the background from its own parameter. A scene
+//!   without emission needs neither.
+//!
+//! The lean G-buffer (pipelines/deferred_msaa_4x_lean.ron) is albedo, normal, material
+//! and a `depth32float` depth without stencil: 16 bytes per sample, 20 with emission.
+//!
+//! With reversed-Z depth is cleared to 0 and tested with `Greater` (near is 1), else
+//! cleared to 1 and tested with `Less`. Without `reversed_z` the convention follows the
+//! depth format (reversed for float depth, see `common/depth.rs`), as the light
+//! passes' does; a `reversed_z` given here must be given to them too.
+//! Stencil is cleared to 0. The color targets are not cleared: after the meshes, the
+//! samples none drew are filled with what a clear would have left (zeros, the
+//! background in `hdr` and `emission`: common/background.rs), which on the H200 costs a
+//! fraction of the clear; a pass that lists a target in its inputs too (drawing over it)
+//! clears its fresh targets instead. Double-sided materials are drawn without culling and their
+//! back faces get the flipped normal; alpha MASK materials discard below the cutoff.
+//! Alpha BLEND meshes are not drawn: a sample holds one surface, so the `transparent`
+//! pass draws them after lighting (passes/transparent.rs).
+//! The material target's alpha records per-sample edge evidence for the `centroid` and
+//! `coverage` detectors of [`edge_stencil`](super::edge_stencil).
+
+use serde::Deserialize;
+
+use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::{PassBuilder, PassKind, TextureHandle};
+
+use crate::common::background::FilledTargets;
+use crate::common::depth::DepthRule;
+use crate::common::plugin::{Recording, Shared};
+use crate::common::rgb9e5;
+use crate::common::textures::{self, Want};
+use crate::shaders;
+
+pub struct GBuffer(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GBufferParams {
+    /// Fixes the depth convention; left out, it follows the depth format the compile
+    /// picks: reversed-Z for float depth, standard Z for unorm depth.
+    #[serde(default)]
+    pub reversed_z: Option<bool>,
+    /// The HDR target's value where no geometry is drawn (linear RGBA).
+    #[serde(default = "opaque_black")]
+    pub background: [f64; 4],
+}
+
+pub(crate) fn opaque_black() -> [f64; 4] {
+    [0.0, 0.0, 0.0, 1.0]
+}
+
+/// The G-buffer pass as set up: what its `gpu` module records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct GBufferDraw {
+    pub source: String,
+    pub depth_rule: DepthRule,
+    /// albedo, normal, material, view_depth, hdr: color attachments 0 to 4.
+    pub targets: Vec<TextureHandle>,
+    pub depth: TextureHandle,
+    /// The targets begin undrawn and are filled where no mesh draws (common/background.rs).
+    pub fill_background: bool,
+}
+
+impl Recording for GBufferDraw {
+    #[cfg(feature = "gpu")]
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Render(gpu::record(self, scenes))
+    }
+}
+
+impl Plugin for GBuffer {
+    const NAME: &'static str = "gbuffer";
+    type Params = GBufferParams;
+
+    fn kind(&self, _: &GBufferParams) -> PassKind {
+        PassKind::Render
+    }
+
+    fn setup(
+        &self,
+        params: GBufferParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let depth_rule = DepthRule::new(params.reversed_z);
+        let depth_want = Want::new("the G-buffer's depth", textures::DEPTH_ANY);
+        let (depth, desc) = textures::output(slots, pass, "depth", depth_want, |pass, h, _| {
+            depth_rule.start(pass, h)
+        })?;
+        let samples = desc.samples;
+        if slots.is_output("hdr") && slots.is_output("emission") {
+            return Err(PluginError::Invalid(
+                "outputs \"hdr\" and \"emission\" both hold the emission: write one \
+                 (emission is the lean G-buffer's, hdr the full one's)"
+                    .into(),
+            ));
+        }
+        // Filled where no mesh draws rather than cleared first (common/background.rs),
+        // unless the pass draws over a target it reads.
+        let mut targets = FilledTargets::new(slots, &CHANNELS.map(|c| c.slot));
+        let mut written = Vec::with_capacity(CHANNELS.len());
+        for channel in &CHANNELS {
+            if channel.slot != "albedo" && !slots.is_output(channel.slot) {
+                continue;
+            }
+            let clear = match channel.slot {
+                "hdr" => params.background,
+                "emission" => {
+                    let bits = rgb9e5::pack(background_rgb(params.background));
+                    [f64::from(bits & 0xffff), f64::from(bits >> 16), 0.0, 0.0]
+                }
+                _ => [0.0; 4],
+            };
+            let want = Want::new(channel.what, channel.formats).samples(samples);
+            targets.push(slots, pass, channel.slot, want, (channel.wgsl, clear))?;
+            written.push(channel);
+        }
+        let outputs = outputs_wgsl(&written) + &targets.wgsl();
+        let fill_background = targets.fill();
+        let draw = GBufferDraw {
+            source: shaders::GBUFFER
+                .compose_with(samples, &outputs)?
+                .source()
+                .to_owned(),
+            depth_rule,
+            targets: targets.into_handles(),
+            depth,
+            fill_background,
+        };
+        self.0.record(pass, draw);
+        Ok(())
+    }
+}
+
+/// A color target the pass can write, at the next location when the file lists it.
+struct Channel {
+    slot: &'static str,
+    what: &'static str,
+    formats: &'static [graph_core::types::TextureFormat],
+    /// gbuffer.wgsl's type for it.
+    wgsl: &'static str,
+}
+
+/// In attachment order. Only `albedo` is required (see the module docs).
+const CHANNELS: [Channel; 6] = [
+    Channel {
+        slot: "albedo",
+        what: "the G-buffer's albedo",
+        formats: textures::ALBEDO,
+        wgsl: "vec4<f32>",
+    },
+    Channel {
+        slot: "normal",
+        what: "the G-buffer's normals",
+        formats: textures::NORMAL,
+        wgsl: "vec4<f32>",
+    },
+    Channel {
+        slot: "material",
+        what: "the G-buffer's material",
+        formats: textures::MATERIAL,
+        wgsl: "vec4<f32>",
+    },
+    Channel {
+        slot: "view_depth",
+        what: "the G-buffer's view depth",
+        formats: textures::VIEW_DEPTH,
+        wgsl: "vec4<f32>",
+    },
+    Channel {
+        slot: "hdr",
+        what: "the HDR target",
+        formats: textures::HDR,
+        wgsl: "vec4<f32>",
+    },
+    Channel {
+        slot: "emission",
+        what: "the G-buffer's emission",
+        formats: textures::EMISSION,
+        wgsl: "vec2<u32>",
+    },
+];
+
+/// The background's color where the emission channel holds it (RGB9E5 has no alpha).
+fn background_rgb(background: [f64; 4]) -> [f32; 3] {
+    [background[0], background[1], background[2]].map(|c| c as f32)
+}
+
+/// `gbuffer.wgsl`'s fragment output: the `channels` written, at locations counting up
+/// from 0 as the pass attaches them.
+fn outputs_wgsl(channels: &[&Channel]) -> String {
+    let fields: String = channels
+        .iter()
+        .enumerate()
+        .map(|(location, c)| format!("    @location({location}) {}: {},\n", c.slot, c.wgsl))
+        .collect();
+    let values: Vec<String> = channels.iter().map(|c| format!("g.{}", c.slot)).collect();
+    format!(
+        "// Generated: the channels this G-buffer pass writes.\n\
+         struct GBufferOut {{\n{fields}}}\n\n\
+         fn gbuffer_out(g: GBuffer) -> GBufferOut {{\n    return GBufferOut({});\n}}\n",
+        values.join(", ")
+    )
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the G-buffer pass: the scene into the G-buffer's color targets, masked
+    //! materials through the fragment entry point that discards.
+
+    use std::sync::Arc;
+
+    use graph_core::gpu::RenderContext;
+
+    use super::GBufferDraw;
+    use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
+    use crate::gpu_scene::{Layer, SceneCache};
+    use crate::variant::GatedShader;
+
+    pub(super) fn record(
+        draw: GBufferDraw,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
+        let draw = SceneDraw {
+            label: "gbuffer",
+            shader: GatedShader::GBuffer,
+            source: draw.source,
+            depth_rule: draw.depth_rule,
+            targets: draw.targets,
+            depth: draw.depth,
+            layer: Layer::Opaque,
+            begin_blended: None,
+            fill_background: draw.fill_background,
+            stages: Box::new(|material| Stages {
+                vertex: "vs_main",
+                fragment: if material.masked {
+                    "fs_masked"
+                } else {
+                    "fs_opaque"
+                },
+                constants: Vec::new(),
+            }),
+        };
+        scene_draw::record(draw, scenes)
+    }
+}

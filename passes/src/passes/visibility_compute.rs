@@ -1,0 +1,281 @@
+//! `visibility_compute`: the visibility pass rasterised in compute, tile by tile (the
+//! design of Laine and Karras, "High-Performance Software Rasterization on GPUs", HPG
+//! 2011: bin, then rasterise each tile on chip), into a graph buffer of one key per
+//! sample: depth over triangle ID (common/visibility_samples.rs). No render targets and
+//! no ROPs: on a chip with few of them (the H200), a multisampled raster pass pays per
+//! sample written whatever it holds, and the hardware visibility pass at 4x took 3.6x its
+//! 1x time. No atomics into memory and no 64-bit integers either: the opaque triangles
+//! are binned to tiles first (common/gpu/tile_bins.rs, bin_triangles.wgsl); then a workgroup
+//! per tile covers its triangles in registers, an invocation per pixel and a warp per
+//! block of 4 x 8 pixels, which skips the triangles whose area misses its block
+//! (tile_raster.wgsl), and stores each pixel's keys once, a plane per sample, with a
+//! flag where they show more than one triangle (raster_tiles.wgsl, key_layout.wgsl):
+//! the shading pass then reads a quarter of a 4x buffer away from edges. An atomicMax
+//! per covered sample into the buffer, the design before, lands anywhere in a buffer
+//! five times the H200's L2 at 4x and 3840x2160
+//! (docs/design/compute-raster.md, run visibility-4x-attribution).
+//!
+//! ```ron
+//! (name: "visibility", plugin: "visibility_compute",
+//!  params: (
+//!      tile: 16,                    // pixels per tile side, 4 to 16 (the default)
+//!      other_samples: everywhere,   // or at_edges: below
+//!  ),
+//!  outputs: { "samples": "samples" })    // Buffer(per_sample: 8, samples: 4)
+//! ```
+//!
+//! `other_samples: at_edges` stores the keys of samples other than 0 only at pixels whose
+//! samples show more than one triangle (sample 0's key says which): `light_tiled` reads
+//! no more, and the raster writes a quarter of a 4x buffer away from edges (on the H200
+//! at 3840x2160 builtin:dense's 4x raster 0.81 -> 0.79 ms, lights?count=256's 0.47 ->
+//! 0.42: docs/design/compute-raster.md, run visibility-runs). Elsewhere those samples hold whatever an
+//! earlier frame left: a pass reading every sample (`keys_depth`) needs `everywhere`,
+//! the default.
+//!
+//! `light_tiled` with a `samples` input shades it as it shades a hardware visibility
+//! buffer's `ids` and `depth`, with the same IDs (the triangle's position in the scene's
+//! index buffer / 3, + 1) and the same sample positions; triangle_setup.wgsl gives the
+//! coverage rules. Depth is reversed-Z (1 near, 0 far), the convention a float depth
+//! buffer gets. Alpha MASK draws are tested as the hardware pass tests them: their base
+//! colour's alpha times the vertex colour's, times a base colour texture's alpha read
+//! from the scene's texture table (group 3, mask_texture.wgsl; compiled out for scenes
+//! without textured masks, feature `mask_textures`), at the pixel centre, against the
+//! cutoff: a pixel's samples are kept or dropped together, as a discard drops them.
+//! Alpha BLEND draws are left out, as with a G-buffer: the transparent pass draws them
+//! later, testing against the depth `keys_depth` makes from the keys.
+
+use serde::Deserialize;
+
+use graph_core::file::{Plugin, PluginError, Slots};
+use graph_core::shader::Stage;
+use graph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, PassKind};
+
+use crate::common::plugin::{check_tile, Recording, Shared};
+use crate::common::visibility_samples;
+use crate::shaders;
+
+pub struct VisibilityCompute(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VisibilityComputeParams {
+    /// Pixels per tile side.
+    #[serde(default = "tile")]
+    pub tile: u32,
+    #[serde(default)]
+    pub other_samples: OtherSamples,
+}
+
+/// Where `visibility_compute` stores the keys of samples other than sample 0.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OtherSamples {
+    /// At every pixel: every sample of the buffer holds its key.
+    #[default]
+    Everywhere,
+    /// Only at pixels whose samples show more than one triangle, which sample 0's key
+    /// flags: enough for readers that read the others only there (`light_tiled`).
+    AtEdges,
+}
+
+fn tile() -> u32 {
+    16
+}
+
+/// Tile sides allowed: a workgroup of 16 x 16 invocations is WebGPU's largest.
+const TILES: std::ops::RangeInclusive<u32> = 4..=16;
+
+/// The pass as set up: what its `gpu` module records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct RasterDispatch {
+    pub raster: String,
+    pub bins: String,
+    pub tile: u32,
+    pub samples: BufferHandle,
+    /// raster_tiles.wgsl's OTHERS_EVERYWHERE.
+    pub others_everywhere: bool,
+}
+
+impl Recording for RasterDispatch {
+    #[cfg(feature = "gpu")]
+    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
+        graph_core::Record::Compute(gpu::record(self, scenes))
+    }
+}
+
+impl Plugin for VisibilityCompute {
+    const NAME: &'static str = "visibility_compute";
+    type Params = VisibilityComputeParams;
+
+    fn kind(&self, _: &VisibilityComputeParams) -> PassKind {
+        PassKind::Compute
+    }
+
+    fn setup(
+        &self,
+        params: VisibilityComputeParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        check_tile(params.tile, TILES)?;
+        // Every key is stored each frame: nothing of an earlier version is read.
+        let role = BufferRole::Storage {
+            read: false,
+            write: true,
+        };
+        let samples = slots.write::<Buffer>("samples", |t| pass.buffer(t.handle, role))?;
+        let count = visibility_samples::sample_count(pass, slots, "samples", samples)?;
+        let generated = format!(
+            "// Generated: the tile's side in pixels, then the sample lanes.\n\
+             const TILE: u32 = {}u;\n{}",
+            params.tile,
+            shaders::sample_lanes(count)
+        );
+        let raster = shaders::VISIBILITY_COMPUTE.compose_with(count, &generated)?;
+        let Some(entry) = raster.entry("cs_raster_tiles", Stage::Compute) else {
+            return Err(PluginError::Invalid(
+                "raster_tiles.wgsl has no entry point cs_raster_tiles".into(),
+            ));
+        };
+        pass.workgroup(entry.workgroup());
+        let dispatch = RasterDispatch {
+            raster: raster.source().to_owned(),
+            bins: shaders::TILE_BINS.compose(count)?.source().to_owned(),
+            tile: params.tile,
+            samples,
+            others_everywhere: params.other_samples == OtherSamples::Everywhere,
+        };
+        self.0.record(pass, dispatch);
+        Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording: the bins' dispatches, then one workgroup per tile, with the bins and
+    //! pipelines made once per scene upload.
+
+    use std::sync::Arc;
+
+    use graph_core::gpu::ComputeContext;
+
+    use super::RasterDispatch;
+    use crate::common::gpu::pipeline::{module, pipeline_layout};
+    use crate::common::gpu::storage::{storage_group, storage_layout};
+    use crate::common::gpu::tile_bins::{TileBins, RASTER_BUFFERS};
+    use crate::common::gpu::{compute_pipeline, per_scene};
+    use crate::common::visibility_samples::fits_binding;
+    use crate::gpu_scene::{GpuScene, SceneCache};
+    use crate::variant::{GatedShader, Variant};
+    use rgraph_scene::DepthConvention;
+
+    struct State {
+        layout: wgpu::BindGroupLayout,
+        raster: wgpu::ComputePipeline,
+        /// The bins and the output size they were made for (or why the device cannot
+        /// hold them).
+        bins: Option<((u32, u32), Result<TileBins, String>)>,
+    }
+
+    pub(super) fn record(
+        dispatch: RasterDispatch,
+        scenes: Arc<SceneCache>,
+    ) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
+        let mut state = None;
+        Box::new(move |ctx| {
+            let resources = ctx.resources;
+            let device = resources.device;
+            let Some(scene) = scenes.for_frame(resources) else {
+                return;
+            };
+            let variant = scenes.variant(GatedShader::VisibilityRaster);
+            let state = per_scene(&mut state, &scene, || {
+                build(device, &dispatch, &scene, &variant)
+            });
+            // The bins are made for one output size: a resized graph gets new ones.
+            let size = resources.output_size();
+            if state.bins.as_ref().is_some_and(|(made, _)| *made != size) {
+                state.bins = None;
+            }
+            let (_, bins) = state.bins.get_or_insert_with(|| {
+                let bins = TileBins::new(device, &dispatch.bins, &scene, dispatch.tile, size);
+                (size, bins)
+            });
+            let bins = match bins {
+                Ok(bins) => bins,
+                Err(why) => return resources.fail(why.clone()),
+            };
+            bins.buffers()
+                .iter()
+                .for_each(|buffer| resources.hold(buffer));
+            let geometry = match scene.geometry_group(device) {
+                Ok(group) => group,
+                Err(why) => return resources.fail(why),
+            };
+            // Textured alpha masks read the table.
+            let table = match scenes.texture_table(&scene, device, resources.queue) {
+                Ok(table) => table,
+                Err(why) => return resources.fail(why),
+            };
+            let keys = resources.buffer(dispatch.samples);
+            if let Err(why) = fits_binding(device, keys) {
+                return resources.fail(why);
+            }
+            let mut buffers = vec![keys];
+            buffers.extend(bins.raster_buffers());
+            let group = storage_group(device, "visibility_compute", &state.layout, &buffers);
+            bins.record(ctx.pass, &scene, geometry);
+            let pass = &mut ctx.pass;
+            pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
+            pass.set_bind_group(1, &group, &[]);
+            pass.set_bind_group(2, geometry, &[]);
+            pass.set_bind_group(3, table, &[]);
+            pass.set_pipeline(&state.raster);
+            pass.dispatch_workgroups(
+                size.0.div_ceil(dispatch.tile),
+                size.1.div_ceil(dispatch.tile),
+                1,
+            );
+        })
+    }
+
+    fn build(
+        device: &wgpu::Device,
+        dispatch: &RasterDispatch,
+        scene: &GpuScene,
+        variant: &Variant,
+    ) -> State {
+        // The keys, then the bins.
+        let mut read_only = vec![false];
+        read_only.extend([true; RASTER_BUFFERS]);
+        let layout = storage_layout(device, "visibility_compute", &read_only);
+        let module = module(device, "visibility_compute", &dispatch.raster);
+        let pipeline_layout = pipeline_layout(
+            device,
+            &[
+                Some(scene.layout()),
+                Some(&layout),
+                Some(scene.geometry_layout()),
+                Some(scene.texture_table_layout()),
+            ],
+        );
+        let mut constants = vec![(
+            "OTHERS_EVERYWHERE",
+            f64::from(u8::from(dispatch.others_everywhere)),
+        )];
+        constants.extend(variant.constants());
+        let raster = compute_pipeline(
+            device,
+            "visibility_compute",
+            &pipeline_layout,
+            &module,
+            "cs_raster_tiles",
+            &constants,
+        );
+        State {
+            layout,
+            raster,
+            bins: None,
+        }
+    }
+}

@@ -1,0 +1,111 @@
+// Lambert diffuse plus GGX / height-correlated Smith / Schlick specular (glTF
+// metallic-roughness), and the KHR_lights_punctual falloffs. Every denominator is kept
+// positive, so no input produces NaN or Inf.
+
+struct Surface {
+    // Camera-relative world position; the camera is at the origin.
+    position: vec3<f32>,
+    normal: vec3<f32>,
+    view: vec3<f32>,
+    albedo: vec3<f32>,
+    metallic: f32,
+    roughness: f32,
+    // Ambient occlusion: scales the ambient term (light from everywhere, which crevices
+    // block), never a punctual light's.
+    occlusion: f32,
+}
+
+// The parts of the BRDF that depend on the geometry and roughness only, not on the
+// albedo or metalness: what a light pre-pass accumulates before the material is known
+// (light_prepass.wgsl).
+struct Lobe {
+    // The cosine factor; the light is below the surface when it is not positive.
+    n_l: f32,
+    // GGX distribution times the height-correlated Smith visibility.
+    specular: f32,
+    // Schlick's weight (1 - v.h)^5: Fresnel is f0 + (1 - f0) * schlick.
+    schlick: f32,
+}
+
+fn lobe(s: Surface, l: vec3<f32>) -> Lobe {
+    let n_l = dot(s.normal, l);
+    if n_l <= 0.0 {
+        return Lobe(n_l, 0.0, 0.0);
+    }
+    let h = safe_normalize(l + s.view);
+    let n_v = max(dot(s.normal, s.view), 1e-4);
+    let n_h = clamp(dot(s.normal, h), 0.0, 1.0);
+    let v_h = clamp(dot(s.view, h), 0.0, 1.0);
+    let alpha = max(s.roughness, 0.045);
+    let a2 = alpha * alpha * alpha * alpha;
+    let d_denominator = n_h * n_h * (a2 - 1.0) + 1.0;
+    let distribution = a2 / (PI * d_denominator * d_denominator);
+    let visibility = 0.5 / (n_l * sqrt(n_v * n_v * (1.0 - a2) + a2) + n_v * sqrt(n_l * n_l * (1.0 - a2) + a2));
+    return Lobe(n_l, distribution * visibility, pow(1.0 - v_h, 5.0));
+}
+
+fn brdf_times_cosine(s: Surface, l: vec3<f32>) -> vec3<f32> {
+    let k = lobe(s, l);
+    if k.n_l <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let f0 = mix(vec3<f32>(0.04), s.albedo, s.metallic);
+    let fresnel = f0 + (1.0 - f0) * k.schlick;
+    let diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo / PI;
+    return (diffuse + k.specular * fresnel) * k.n_l;
+}
+
+// Which light kinds the scene has (variant.rs): a pipeline for a scene without
+// a kind sets its constant false and the driver compiles that kind's code out. A light
+// of an absent kind emits nothing (zero radiance), so it adds zero through either code.
+// The defaults are the general shader.
+override DIRECTIONAL_LIGHTS: bool = true;
+override POINT_LIGHTS: bool = true;
+override SPOT_LIGHTS: bool = true;
+
+// Where a light's radiance arrives from at surface point `p` (unit `l`, toward the light)
+// and the fraction of it that arrives (`attenuation`: 1 for directional lights).
+struct Incident {
+    l: vec3<f32>,
+    attenuation: f32,
+}
+
+fn incident(p: vec3<f32>, light: LightData) -> Incident {
+    if DIRECTIONAL_LIGHTS && light.kind == LIGHT_DIRECTIONAL {
+        return Incident(-light.direction, 1.0);
+    }
+    if !(POINT_LIGHTS || SPOT_LIGHTS) {
+        return Incident(vec3<f32>(0.0, 0.0, 1.0), 0.0);
+    }
+    let to_light = light.position - p;
+    let distance2 = max(dot(to_light, to_light), 1e-8);
+    let distance = sqrt(distance2);
+    let l = to_light / distance;
+    // glTF's recommended window: smooth, and exactly zero at the range.
+    let ratio = distance / max(light.range, 1e-20);
+    let window = clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
+    var attenuation = window * window / distance2;
+    if SPOT_LIGHTS && light.kind == LIGHT_SPOT {
+        let cone = clamp(dot(light.direction, -l) * light.spot_scale + light.spot_offset, 0.0, 1.0);
+        attenuation *= cone * cone;
+    }
+    return Incident(l, attenuation);
+}
+
+// Radiance arriving from `light` at the surface, times the BRDF and cosine.
+fn shade_light(s: Surface, light: LightData) -> vec3<f32> {
+    let i = incident(s.position, light);
+    return brdf_times_cosine(s, i.l) * light.radiance * i.attenuation;
+}
+
+// Whether `light` reaches point `p` at all (the `lights` debug view counts these).
+fn reaches(light: LightData, p: vec3<f32>) -> bool {
+    if light.kind == LIGHT_DIRECTIONAL {
+        return true;
+    }
+    let to_light = light.position - p;
+    if dot(to_light, to_light) >= light.range * light.range {
+        return false;
+    }
+    return light.kind != LIGHT_SPOT || dot(light.direction, -safe_normalize(to_light)) * light.spot_scale + light.spot_offset > 0.0;
+}

@@ -1,0 +1,295 @@
+//! Mesh primitives to [`Mesh`]es.
+
+use glam::DMat4;
+use gltf::mesh::{Mode, Semantic};
+
+use super::{accessor, Loader};
+use crate::error::label;
+use crate::{flat_shaded, generate_tangents, Mesh, SceneError, Vertex};
+
+impl Loader<'_> {
+    /// Converts one primitive of a mesh placed at `world` and adds it to the scene. Points and
+    /// lines are skipped with a warning; strips and fans become triangle lists.
+    pub(super) fn primitive(
+        &mut self,
+        mesh: &gltf::Mesh,
+        primitive: &gltf::Primitive,
+        world: DMat4,
+    ) -> Result<(), SceneError> {
+        let site = Site {
+            file: self.file,
+            mesh: label("mesh", mesh.index(), mesh.name()),
+            primitive: primitive.index(),
+        };
+        let mode = primitive.mode();
+        if matches!(
+            mode,
+            Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip
+        ) {
+            self.builder.warnings.push(format!(
+                "{} primitive {}: mode {mode:?} is not triangles; skipped",
+                site.mesh, site.primitive
+            ));
+            return Ok(());
+        }
+        let positions = self
+            .attribute::<3>(&site, primitive, Semantic::Positions, "POSITION")?
+            .ok_or_else(|| site.invalid("has no POSITION attribute".to_owned()))?;
+        let normals = self.attribute::<3>(&site, primitive, Semantic::Normals, "NORMAL")?;
+        let uvs = self.attribute::<2>(&site, primitive, Semantic::TexCoords(0), "TEXCOORD_0")?;
+        let uvs1 = self.attribute::<2>(&site, primitive, Semantic::TexCoords(1), "TEXCOORD_1")?;
+        let colors = self.colors(&site, primitive)?;
+        let tangents = self.attribute::<4>(&site, primitive, Semantic::Tangents, "TANGENT")?;
+        site.check_finite(
+            &positions,
+            normals.as_deref(),
+            uvs.as_deref(),
+            uvs1.as_deref(),
+            colors.as_deref(),
+            tangents.as_deref(),
+        )?;
+        let indices = match primitive.indices() {
+            Some(accessor) => accessor::read_indices(&self.buffers, &accessor)
+                .map_err(|reason| site.accessor_error("indices", &accessor, reason))?,
+            None => (0..positions.len() as u32).collect(),
+        };
+        // What this placement keeps was taken from the budget before anything was built
+        // (see `reserve`).
+        site.check_indices(&indices, positions.len())?;
+        let indices = triangle_list(mode, indices).map_err(|reason| site.invalid(reason))?;
+        let vertices = interleave(
+            &positions,
+            normals.as_deref(),
+            [uvs.as_deref(), uvs1.as_deref()],
+            colors.as_deref(),
+            tangents.as_deref(),
+        );
+        let (mut vertices, mut indices) = match normals {
+            Some(_) => (vertices, indices),
+            None => flat_shaded(&vertices, &indices),
+        };
+        // Only for a normal texture the material keeps (it drops those on UV sets past 1),
+        // along the UV set it is sampled with.
+        let normal_set = primitive.material().normal_texture().map(|n| n.tex_coord());
+        if let (None, Some(set @ 0..=1)) = (&tangents, normal_set) {
+            let present = [uvs.is_some(), uvs1.is_some()][set as usize];
+            match present {
+                true => generate_tangents(&mut vertices, &indices, set).map_err(|e| {
+                    site.invalid(format!("MikkTSpace cannot generate its tangents: {e:?}"))
+                })?,
+                false => self.builder.warnings.push(format!(
+                    "{} primitive {}: its material's normal texture needs TEXCOORD_{set}, which \
+                     it lacks; drawn without the normal texture",
+                    site.mesh, site.primitive
+                )),
+            }
+        }
+        // A mirroring transform turns counter-clockwise triangles clockwise on screen; reversing
+        // them here keeps the Mesh contract (front faces CCW in world space) for renderers. It
+        // also turns the bitangent `normal x tangent` around: the sign keeps it on the side
+        // the normal texture was baked for.
+        if world.determinant() < 0.0 {
+            indices.chunks_exact_mut(3).for_each(|tri| tri.swap(1, 2));
+            vertices
+                .iter_mut()
+                .for_each(|v| v.tangent[3] = -v.tangent[3]);
+        }
+        let material = self.material(&primitive.material())?;
+        self.builder.meshes.push(Mesh {
+            name: format!("{} primitive {}", site.mesh, site.primitive),
+            vertices,
+            indices,
+            material,
+            transform: world,
+        });
+        Ok(())
+    }
+
+    /// Reads an optional vertex attribute (`None` when the primitive has none). Its length is
+    /// compared with POSITION's in `Site::check_finite`.
+    fn attribute<const N: usize>(
+        &self,
+        site: &Site,
+        primitive: &gltf::Primitive,
+        semantic: Semantic,
+        name: &'static str,
+    ) -> Result<Option<Vec<[f32; N]>>, SceneError> {
+        primitive
+            .get(&semantic)
+            .map(|accessor| {
+                accessor::read_vectors::<N>(&self.buffers, &accessor)
+                    .map_err(|reason| site.accessor_error(name, &accessor, reason))
+            })
+            .transpose()
+    }
+
+    /// COLOR_0 as RGBA (`None` when the primitive has none): VEC3 gets alpha 1; float,
+    /// normalized UNSIGNED_BYTE and UNSIGNED_SHORT as the spec allows.
+    fn colors(
+        &self,
+        site: &Site,
+        primitive: &gltf::Primitive,
+    ) -> Result<Option<Vec<[f32; 4]>>, SceneError> {
+        let Some(accessor) = primitive.get(&Semantic::Colors(0)) else {
+            return Ok(None);
+        };
+        let colors = match accessor.dimensions() {
+            gltf::accessor::Dimensions::Vec3 => {
+                accessor::read_vectors::<3>(&self.buffers, &accessor)
+                    .map(|rgb| rgb.into_iter().map(|[r, g, b]| [r, g, b, 1.0]).collect())
+            }
+            _ => accessor::read_vectors::<4>(&self.buffers, &accessor),
+        };
+        colors
+            .map(Some)
+            .map_err(|reason| site.accessor_error("COLOR_0", &accessor, reason))
+    }
+}
+
+/// Where in the file a primitive is, for error messages.
+struct Site<'a> {
+    file: &'a std::path::Path,
+    mesh: String,
+    primitive: usize,
+}
+
+impl Site<'_> {
+    fn invalid(&self, reason: String) -> SceneError {
+        SceneError::InvalidPrimitive {
+            file: self.file.to_owned(),
+            mesh: self.mesh.clone(),
+            primitive: self.primitive,
+            reason,
+        }
+    }
+
+    fn accessor_error(
+        &self,
+        attribute: &'static str,
+        accessor: &gltf::Accessor,
+        reason: String,
+    ) -> SceneError {
+        SceneError::InvalidAccessor {
+            file: self.file.to_owned(),
+            mesh: self.mesh.clone(),
+            primitive: self.primitive,
+            attribute,
+            accessor: accessor.index(),
+            reason,
+        }
+    }
+
+    /// Fails on attribute arrays of different lengths, and on the lowest-numbered vertex with a
+    /// NaN or infinite component (NaN would silently poison bounds, normals and depth tests).
+    fn check_finite(
+        &self,
+        positions: &[[f32; 3]],
+        normals: Option<&[[f32; 3]]>,
+        uvs: Option<&[[f32; 2]]>,
+        uvs1: Option<&[[f32; 2]]>,
+        colors: Option<&[[f32; 4]]>,
+        tangents: Option<&[[f32; 4]]>,
+    ) -> Result<(), SceneError> {
+        let attributes: [(&'static str, Option<Vec<&[f32]>>); 6] = [
+            ("position", Some(positions.iter().map(|p| &p[..]).collect())),
+            (
+                "normal",
+                normals.map(|n| n.iter().map(|v| &v[..]).collect()),
+            ),
+            ("uv", uvs.map(|u| u.iter().map(|v| &v[..]).collect())),
+            ("uv1", uvs1.map(|u| u.iter().map(|v| &v[..]).collect())),
+            ("color", colors.map(|c| c.iter().map(|v| &v[..]).collect())),
+            (
+                "tangent",
+                tangents.map(|t| t.iter().map(|v| &v[..]).collect()),
+            ),
+        ];
+        let mut first_bad: Option<(usize, &'static str, Vec<f32>)> = None;
+        for (attribute, values) in attributes {
+            let Some(values) = values else { continue };
+            if values.len() != positions.len() {
+                return Err(self.invalid(format!(
+                    "{attribute} has {} elements but POSITION has {}",
+                    values.len(),
+                    positions.len()
+                )));
+            }
+            let limit = first_bad
+                .as_ref()
+                .map_or(values.len(), |(vertex, ..)| *vertex);
+            if let Some(vertex) = values[..limit]
+                .iter()
+                .position(|v| v.iter().any(|c| !c.is_finite()))
+            {
+                first_bad = Some((vertex, attribute, values[vertex].to_vec()));
+            }
+        }
+        match first_bad {
+            None => Ok(()),
+            Some((vertex, attribute, value)) => Err(SceneError::NonFiniteVertex {
+                file: self.file.to_owned(),
+                mesh: self.mesh.clone(),
+                primitive: self.primitive,
+                vertex,
+                attribute,
+                value,
+            }),
+        }
+    }
+
+    fn check_indices(&self, indices: &[u32], vertex_count: usize) -> Result<(), SceneError> {
+        match indices.iter().position(|&i| i as usize >= vertex_count) {
+            None => Ok(()),
+            Some(position) => Err(SceneError::IndexOutOfRange {
+                file: self.file.to_owned(),
+                mesh: self.mesh.clone(),
+                primitive: self.primitive,
+                position,
+                index: indices[position],
+                vertex_count,
+            }),
+        }
+    }
+}
+
+/// Turns the index sequence of a triangle mode into a triangle list, keeping every triangle
+/// counter-clockwise as the glTF spec orders strip and fan vertices.
+fn triangle_list(mode: Mode, indices: Vec<u32>) -> Result<Vec<u32>, String> {
+    let n = indices.len();
+    match mode {
+        Mode::Triangles if n.is_multiple_of(3) => Ok(indices),
+        Mode::Triangles => Err(format!("TRIANGLES needs a multiple of 3 indices, has {n}")),
+        // Odd triangles of a strip swap their first two vertices to keep the winding.
+        Mode::TriangleStrip => Ok((2..n)
+            .flat_map(|i| match i % 2 {
+                0 => [indices[i - 2], indices[i - 1], indices[i]],
+                _ => [indices[i - 1], indices[i - 2], indices[i]],
+            })
+            .collect()),
+        Mode::TriangleFan => Ok((2..n)
+            .flat_map(|i| [indices[0], indices[i - 1], indices[i]])
+            .collect()),
+        other => Err(format!("mode {other:?} is not a triangle mode")),
+    }
+}
+
+/// Builds vertices from per-vertex attributes as long as `positions` (`None`: zero normals,
+/// for [`flat_shaded`] to replace; uvs 0; white; no tangent). `uvs` are TEXCOORD_0 and _1.
+fn interleave(
+    positions: &[[f32; 3]],
+    normals: Option<&[[f32; 3]]>,
+    [uvs, uvs1]: [Option<&[[f32; 2]]>; 2],
+    colors: Option<&[[f32; 4]]>,
+    tangents: Option<&[[f32; 4]]>,
+) -> Vec<Vertex> {
+    (0..positions.len())
+        .map(|i| Vertex {
+            position: positions[i],
+            normal: normals.map_or([0.0; 3], |n| n[i]),
+            uv: uvs.map_or([0.0; 2], |u| u[i]),
+            uv1: uvs1.map_or([0.0; 2], |u| u[i]),
+            color: colors.map_or(Vertex::WHITE, |c| Vertex::color_from(c[i])),
+            tangent: tangents.map_or(Vertex::NO_TANGENT, |t| Vertex::tangent_from(t[i])),
+        })
+        .collect()
+}

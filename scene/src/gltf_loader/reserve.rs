@@ -1,0 +1,132 @@
+//! What a scene will hold, counted before anything is built: every placement of every mesh
+//! (from its accessors' counts) and every image (from its header), taken from the scene's
+//! memory budget first, so that a small file asking for more than the limit fails before
+//! the memory is spent (a 20 MB GLB placing a 1M-triangle mesh 1,000 times asks for 50 GB).
+
+use std::collections::{HashMap, HashSet};
+
+use gltf::mesh::{Mode, Semantic};
+
+use super::nodes::Placed;
+use super::{material, Loader};
+use crate::error::label;
+use crate::{SceneError, Vertex};
+
+impl Loader<'_> {
+    /// Takes from the budget what the meshes `placed` places and the images their
+    /// materials name will hold, in the order they are built; fails on the first that does
+    /// not fit, naming it.
+    pub(super) fn reserve(&mut self, placed: &[Placed<'_>]) -> Result<(), SceneError> {
+        // Placements per mesh, in the order meshes are first placed.
+        let mut meshes: Vec<(gltf::Mesh, u64)> = Vec::new();
+        let mut slot_of: HashMap<usize, usize> = HashMap::new();
+        for mesh in placed.iter().filter_map(|p| p.node.mesh()) {
+            match slot_of.get(&mesh.index()) {
+                Some(&slot) => meshes[slot].1 += 1,
+                None => {
+                    slot_of.insert(mesh.index(), meshes.len());
+                    meshes.push((mesh, 1));
+                }
+            }
+        }
+        for (mesh, count) in &meshes {
+            let copy = drawn(mesh)
+                .map(|p| primitive_bytes(&p))
+                .fold(0, u64::saturating_add);
+            let why = match count {
+                1 => "building it".to_owned(),
+                n => format!(
+                    "placing it {n} times ({copy} bytes each: every node placing a mesh gets \
+                     its own copy)"
+                ),
+            };
+            self.budget
+                .take(copy.saturating_mul(*count), &why)
+                .map_err(|reason| SceneError::InvalidMesh {
+                    file: self.file.to_owned(),
+                    mesh: label("mesh", mesh.index(), mesh.name()),
+                    reason,
+                })?;
+        }
+        let mut materials = HashSet::new();
+        for (mesh, _) in &meshes {
+            for primitive in drawn(mesh) {
+                let material = primitive.material();
+                if !materials.insert(material.index()) {
+                    continue;
+                }
+                let name = material::name(&material);
+                for (image, slot, srgb) in material::images(&material) {
+                    self.reserve_image(image, srgb, slot, &name)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Takes from the budget what glTF image `index` decoded as `srgb` color or linear data
+    /// will hold (RGBA8 and its mips), read from its header, unless that was taken already.
+    /// Returns the header's size.
+    pub(super) fn reserve_image(
+        &mut self,
+        index: usize,
+        srgb: bool,
+        slot: &'static str,
+        material: &str,
+    ) -> Result<(u32, u32), SceneError> {
+        let invalid = |loader: &Self, reason| loader.image_error(index, slot, material, reason);
+        // Only the header is read: a few kilobytes of PNG can hold gigabytes of pixels.
+        let size = match self.encoded(index) {
+            Ok(encoded) => ::image::ImageReader::new(std::io::Cursor::new(encoded))
+                .with_guessed_format()
+                .map_err(|e| e.to_string())
+                .and_then(|reader| reader.into_dimensions().map_err(|e| e.to_string())),
+            Err(e) => return Err(e.into_named_error(|reason| invalid(self, reason))),
+        };
+        let (width, height) = size.map_err(|e| invalid(self, format!("cannot decode: {e}")))?;
+        if self.reserved.insert((index, srgb)) {
+            // RGBA8, plus a third for the mip chain.
+            let bytes = u64::from(width) * u64::from(height) * 4 / 3 * 4;
+            let why = format!("decoding it ({width}x{height})");
+            if let Err(reason) = self.budget.take(bytes, &why) {
+                return Err(invalid(self, reason));
+            }
+        }
+        Ok((width, height))
+    }
+}
+
+/// The primitives of `mesh` that are drawn: triangles, strips and fans.
+fn drawn<'a>(mesh: &gltf::Mesh<'a>) -> impl Iterator<Item = gltf::Primitive<'a>> {
+    mesh.primitives().filter(|p| {
+        !matches!(
+            p.mode(),
+            Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip
+        )
+    })
+}
+
+/// What one copy of `primitive` keeps, from its accessors' counts: its vertices (one per
+/// index when flat normals are generated) and its indices (up to three per index when a
+/// strip or fan becomes a list).
+fn primitive_bytes(primitive: &gltf::Primitive) -> u64 {
+    let positions = primitive
+        .get(&Semantic::Positions)
+        .map_or(0, |a| a.count() as u64);
+    let per_index = match primitive.mode() {
+        Mode::Triangles => 1,
+        _ => 3,
+    };
+    let indices = primitive
+        .indices()
+        .map_or(positions, |a| a.count() as u64)
+        .saturating_mul(per_index);
+    let vertices = match primitive.get(&Semantic::Normals) {
+        Some(_) => positions,
+        None => indices,
+    };
+    let vertex_bytes = std::mem::size_of::<Vertex>() as u64;
+    vertices
+        .saturating_mul(vertex_bytes)
+        .saturating_add(indices.saturating_mul(4))
+}

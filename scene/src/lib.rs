@@ -1,0 +1,112 @@
+//! The CPU-side scene model and its sources: glTF 2.0 files and built-in procedural scenes.
+//!
+//! A [`Scene`] is plain data ready for upload: object-space vertex arrays with f64 world
+//! transforms, metallic-roughness materials, decoded RGBA8 textures, punctual lights in world
+//! space and one camera. [`Scene::load`] takes either a path to a `.gltf` / `.glb` file or
+//! `builtin:NAME` (see [`builtin_names`]), optionally with parameters: `builtin:lights?count=1024`.
+//!
+//! Nothing here touches the GPU or prints: problems that still allow rendering come back as
+//! [`Scene::warnings`], problems that do not as a [`SceneError`].
+
+pub mod analysis;
+mod assets;
+mod bounds;
+mod builder;
+mod camera;
+mod environment;
+mod error;
+mod gltf_loader;
+mod light;
+mod lighting;
+mod material;
+mod mesh;
+mod mips;
+mod model;
+mod normals;
+mod particles;
+mod prefilter;
+mod procedural;
+mod stats;
+mod tangents;
+mod texture;
+pub mod texture_table;
+
+use std::path::Path;
+
+/// The math crate of the scene API (`DVec3` positions, `DMat4` transforms), so callers
+/// building a [`Scene`] in code use the same version.
+pub use glam;
+
+pub use assets::{AssetPolicy, DEFAULT_MAX_ASSET_BYTES, DEFAULT_MAX_SCENE_BYTES};
+pub use bounds::{Aabb, BoundingSphere, MAX_COORDINATE};
+pub use camera::{
+    Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_FILL, FRAMING_YFOV,
+};
+pub use environment::{
+    irradiance_integral, radiance as environment_radiance, Environment, Irradiance,
+};
+pub use error::SceneError;
+pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE, MAX_LIGHTS};
+pub use lighting::{Lighting, DEFAULT_ENVIRONMENT_INTENSITY, HEADLIGHT_LUX};
+pub use material::{AlphaMode, Material};
+pub use mesh::{Mesh, Vertex};
+pub use model::Scene;
+pub use normals::flat_shaded;
+pub use particles::{billboard_pixels, check_emitters, Particle, ParticleEmitter, MAX_PARTICLES};
+pub use prefilter::{
+    cube_direction, prefilter, prefiltered_cube, split_sum, split_sum_lut, CUBE_LEVELS, CUBE_SIZE,
+    LUT_SIZE,
+};
+pub use procedural::{builtin_names, BuiltinParam, BuiltinScene, BUILTIN_PREFIX};
+pub use stats::SceneStats;
+pub use tangents::generate_tangents;
+pub use texture::{FilterMode, Sampler, TextureImage, TextureRef, WrapMode};
+
+impl Scene {
+    /// Loads `builtin:NAME[?key=value&...]` or a `.gltf` / `.glb` file path, with the
+    /// default [`AssetPolicy`].
+    pub fn load(spec: &str) -> Result<Scene, SceneError> {
+        Scene::load_with(spec, &AssetPolicy::default())
+    }
+
+    /// [`Scene::load`], with a glTF file's reads limited by `policy`.
+    pub fn load_with(spec: &str, policy: &AssetPolicy) -> Result<Scene, SceneError> {
+        match spec.strip_prefix(BUILTIN_PREFIX) {
+            Some(builtin) => Scene::builtin(builtin),
+            None => Scene::from_gltf_with(Path::new(spec), policy),
+        }
+    }
+
+    /// Loads a glTF 2.0 file (`.gltf` with embedded or external buffers, or `.glb`), with
+    /// the default [`AssetPolicy`].
+    pub fn from_gltf(path: &Path) -> Result<Scene, SceneError> {
+        Scene::from_gltf_with(path, &AssetPolicy::default())
+    }
+
+    /// [`Scene::from_gltf`], reading only what `policy` allows.
+    pub fn from_gltf_with(path: &Path, policy: &AssetPolicy) -> Result<Scene, SceneError> {
+        gltf_loader::load(path, policy)
+    }
+
+    /// Generates a built-in scene from `NAME[?key=value&...]` (without the `builtin:` prefix).
+    pub fn builtin(spec: &str) -> Result<Scene, SceneError> {
+        procedural::build(spec)
+    }
+
+    /// Fails when the emitters hold more than [`MAX_PARTICLES`] particles or a particle
+    /// that cannot be drawn, naming the emitter and the particle. Loading checks it; an
+    /// engine that adds emitters to a loaded scene calls it before handing the scene over
+    /// (frame inputs' emitters are checked by `Host::set_frame`).
+    pub fn check_particles(&self) -> Result<(), SceneError> {
+        particles::check_emitters(&self.name, &self.emitters)
+    }
+
+    /// The particles of every emitter, in emitter order.
+    pub fn particles(&self) -> impl Iterator<Item = &Particle> {
+        self.emitters.iter().flat_map(|e| e.particles.iter())
+    }
+
+    pub fn stats(&self) -> SceneStats {
+        SceneStats::of(self)
+    }
+}

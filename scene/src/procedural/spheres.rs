@@ -1,0 +1,95 @@
+//! `builtin:spheres`: few geometric edges, the easy case for edge detection.
+//!
+//! - A 40 x 40 ground plane at y = 0 (grey, rough), 2 triangles.
+//! - Five smooth spheres (48 x 24 tessellation, 2208 triangles each) resting on the ground and
+//!   touching nothing else, so the only edges are silhouettes against the ground and sky:
+//!   radius 1.5 at (0, 1.5, 0) red dielectric, 1.0 at (-3.5, 1, 1) gold metal, 1.2 at
+//!   (3.2, 1.2, -0.5) glossy blue, 0.8 at (-1.5, 0.8, 3.2) rough green, 0.7 at (1.8, 0.7, 3)
+//!   half-metallic white.
+//! - Lights: one directional "sun" (2 lux, from above front-left) and four point lights
+//!   (15 cd, range 10) at (±4, 2.5, ±4).
+//! - Camera: perspective, 45° vertical FOV, eye (0, 4.5, 11) looking at (0, 1, 0), near 0.1,
+//!   infinite far. Ambient 0.03.
+
+use glam::{DVec3, Vec3};
+
+use super::params::Params;
+use super::parts::{add_ground, corner_lights, directional, perspective_camera};
+use super::shapes::Shape;
+use super::solid::Solid;
+use crate::builder::SceneBuilder;
+use crate::SceneError;
+
+const SPHERES: [Solid; 5] = [
+    Solid::sphere(
+        "red sphere",
+        [0.0, 1.5, 0.0],
+        1.5,
+        [0.8, 0.15, 0.1],
+        0.0,
+        0.4,
+    ),
+    Solid::sphere(
+        "gold sphere",
+        [-3.5, 1.0, 1.0],
+        1.0,
+        [1.0, 0.78, 0.34],
+        1.0,
+        0.3,
+    ),
+    Solid::sphere(
+        "blue sphere",
+        [3.2, 1.2, -0.5],
+        1.2,
+        [0.1, 0.3, 0.8],
+        0.0,
+        0.2,
+    ),
+    Solid::sphere(
+        "green sphere",
+        [-1.5, 0.8, 3.2],
+        0.8,
+        [0.2, 0.7, 0.25],
+        0.0,
+        0.7,
+    ),
+    Solid::sphere(
+        "white sphere",
+        [1.8, 0.7, 3.0],
+        0.7,
+        [0.9, 0.9, 0.9],
+        0.5,
+        0.5,
+    ),
+];
+
+pub(super) fn build(_: &Params, builder: &mut SceneBuilder) -> Result<(), SceneError> {
+    add_ground(builder, "ground", 40.0, [0.5, 0.5, 0.5], 0.9);
+    let sphere = Shape::uv_sphere(48, 24);
+    for solid in &SPHERES {
+        solid.add_to(builder, &sphere);
+    }
+    builder.lights.push(directional(
+        "sun",
+        Vec3::new(-0.4, -1.0, -0.3),
+        [1.0, 0.96, 0.9],
+        2.0,
+    ));
+    let colors = [
+        [1.0, 0.8, 0.6],
+        [0.6, 0.8, 1.0],
+        [1.0, 0.6, 0.8],
+        [0.7, 1.0, 0.7],
+    ];
+    builder
+        .lights
+        .extend(corner_lights(4.0, 2.5, colors, 15.0, 10.0));
+    builder.ambient = [0.03; 3];
+    builder.camera = Some(perspective_camera(
+        "spheres",
+        DVec3::new(0.0, 4.5, 11.0),
+        DVec3::new(0.0, 1.0, 0.0),
+        45.0,
+    ));
+    Ok(())
+}

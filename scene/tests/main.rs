@@ -1,0 +1,19 @@
+//! rgraph-scene's tests, one binary: scenes from glTF and the built-ins, the glTF sandbox
+//! and limits, and the scene math the shaders share.
+
+mod common;
+
+mod builtin_scenes;
+mod framing;
+mod gltf_audit;
+mod gltf_errors;
+mod gltf_features;
+mod gltf_fixtures;
+mod gltf_limits;
+mod gltf_sandbox;
+mod robustness;
+mod scene_math;
+mod structure;
+// The structure check graph-core's tests run, shared.
+#[path = "../../graph-core/tests/structure_check.rs"]
+mod structure_check;
