@@ -81,7 +81,8 @@ mod gpu {
     use super::Fullscreen;
     use crate::common::depth::far_depth;
     use crate::common::extent::Extent;
-    use crate::common::gpu::{per_device, GroupBuffers, InputPass, PipelineDesc, EDGE_STENCIL};
+    use crate::common::gpu::{per_device, InputPass, PipelineDesc, EDGE_STENCIL};
+    use crate::common::opaque_depth::{Bound, OpaqueDepth};
     use crate::gpu_scene::SceneCache;
     use rgraph_scene::DepthConvention;
 
@@ -122,18 +123,15 @@ mod gpu {
                 ctx.pass
                     .set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
             }
-            let mut inputs = draw.inputs.clone();
-            let mut buffers = GroupBuffers::default();
-            let mut convention = DepthConvention::ReversedZ;
-            if let Some(depth) = &draw.depth {
-                let bound = match depth.bound(resources) {
-                    Ok(bound) => bound,
-                    Err(why) => return resources.fail(why),
-                };
-                inputs.extend(bound.inputs);
-                buffers = bound.buffers;
-                convention = bound.convention;
-            }
+            let bound = OpaqueDepth::bound_with(draw.depth.as_ref(), &draw.inputs, resources);
+            let Bound {
+                inputs,
+                buffers,
+                convention,
+            } = match bound {
+                Ok(bound) => bound,
+                Err(why) => return resources.fail(why),
+            };
             let state = per_device(&mut state, device, || {
                 InputPass::with_geometry(
                     resources,

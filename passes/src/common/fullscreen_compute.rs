@@ -42,7 +42,8 @@ mod gpu {
 
     use super::FullscreenCompute;
     use crate::common::depth::far_depth;
-    use crate::common::gpu::{compute_pipeline, per_device, GroupBuffers, InputPass};
+    use crate::common::gpu::{compute_pipeline, per_device, InputPass};
+    use crate::common::opaque_depth::{Bound, OpaqueDepth};
     use crate::gpu_scene::SceneCache;
     use rgraph_scene::DepthConvention;
 
@@ -61,18 +62,16 @@ mod gpu {
             let Some(scene) = scenes.for_frame_if(dispatch.reads_scene, resources) else {
                 return;
             };
-            let mut inputs = dispatch.inputs.clone();
-            let mut buffers = GroupBuffers::default();
-            let mut convention = DepthConvention::ReversedZ;
-            if let Some(depth) = &dispatch.depth {
-                let bound = match depth.bound(resources) {
-                    Ok(bound) => bound,
-                    Err(why) => return resources.fail(why),
-                };
-                inputs.extend(bound.inputs);
-                buffers = bound.buffers;
-                convention = bound.convention;
-            }
+            let bound =
+                OpaqueDepth::bound_with(dispatch.depth.as_ref(), &dispatch.inputs, resources);
+            let Bound {
+                inputs,
+                buffers,
+                convention,
+            } = match bound {
+                Ok(bound) => bound,
+                Err(why) => return resources.fail(why),
+            };
             let state = per_device(&mut state, device, || {
                 InputPass::with_geometry(
                     resources,

@@ -75,6 +75,9 @@ impl OpaqueDepth {
 }
 
 #[cfg(feature = "gpu")]
+pub(crate) use gpu::Bound;
+
+#[cfg(feature = "gpu")]
 mod gpu {
     use graph_core::gpu::FrameResources;
 
@@ -93,6 +96,25 @@ mod gpu {
     }
 
     impl OpaqueDepth {
+        /// What a pass binds in group 1: its own `inputs`, then `depth`'s bindings where it
+        /// reads one; the convention its camera follows (reversed-Z without a depth).
+        pub fn bound_with(
+            depth: Option<&OpaqueDepth>,
+            inputs: &[Input],
+            resources: &FrameResources<'_>,
+        ) -> Result<Bound, String> {
+            let mut bound = match depth {
+                Some(depth) => depth.bound(resources)?,
+                None => Bound {
+                    inputs: Vec::new(),
+                    buffers: GroupBuffers::default(),
+                    convention: DepthConvention::ReversedZ,
+                },
+            };
+            bound.inputs.splice(0..0, inputs.iter().copied());
+            Ok(bound)
+        }
+
         /// Its bindings as the plan shapes them, or why the device cannot bind the keys.
         pub fn bound(&self, resources: &FrameResources<'_>) -> Result<Bound, String> {
             Ok(match *self {
