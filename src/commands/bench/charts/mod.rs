@@ -10,6 +10,7 @@ use std::path::Path;
 use std::sync::Once;
 
 use image::{Rgba, RgbaImage};
+use plotters::coord::combinators::{LogCoord, WithKeyPoints};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
@@ -128,25 +129,94 @@ pub fn distinct<'a>(items: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
     seen
 }
 
-/// A legend column: `title`, then a square of the `i`th color before each label, then
-/// `footer` when given.
-pub fn legend(area: &Area, title: &str, labels: &[String], footer: Option<&str>) -> DrawResult {
-    area.draw(&Text::new(title.to_string(), (10, 20), font(17.0)))
-        .map_err(text)?;
-    for (i, label) in labels.iter().enumerate() {
-        let y = 50 + 24 * i as i32;
-        area.draw(&Rectangle::new([(10, y), (26, y + 16)], color(i).filled()))
-            .map_err(text)?;
-        area.draw(&Text::new(label.clone(), (34, y), font(15.0)))
-            .map_err(text)?;
+/// Where a legend's first label sits, how far apart its lines are, and where a label's
+/// text starts (after its color square), in pixels.
+const LEGEND_TOP: u32 = 50;
+const LEGEND_LINE: u32 = 24;
+const LEGEND_TEXT_X: u32 = 34;
+
+/// A legend column beside a chart's panels: `title`, then a square of the `i`th color
+/// before each label, then `footer`'s lines when given. A chart sizes its image with
+/// [`Legend::size`] so that no label is cut.
+pub struct Legend<'a> {
+    pub title: &'a str,
+    pub labels: Vec<String>,
+    pub footer: Option<&'a str>,
+}
+
+impl Legend<'_> {
+    /// The width and height the legend draws in. The width estimates DejaVu Sans at 15
+    /// pixels as 9 pixels a character (its widest lowercase letters are about 9.4, its
+    /// average nearer 8), which plotters cannot measure before the font is registered.
+    pub fn size(&self) -> (u32, u32) {
+        let lines = self
+            .labels
+            .iter()
+            .map(|l| LEGEND_TEXT_X as usize + 9 * l.chars().count());
+        let footer = self.footer.into_iter().flat_map(str::lines);
+        let footer_width = footer.clone().map(|l| 10 + 9 * l.chars().count());
+        let width = lines.chain(footer_width).max().unwrap_or(0) as u32 + 20;
+        let rows = self.labels.len() + footer.count() + 1;
+        (width, LEGEND_TOP + 10 + LEGEND_LINE * rows as u32)
     }
-    // The footer's lines under the labels.
-    for (i, line) in footer.into_iter().flat_map(str::lines).enumerate() {
-        let y = 60 + 24 * (labels.len() + i) as i32;
-        area.draw(&Text::new(line.to_string(), (10, y), font(15.0)))
+
+    pub fn draw(&self, area: &Area) -> DrawResult {
+        area.draw(&Text::new(self.title.to_string(), (10, 20), font(17.0)))
             .map_err(text)?;
+        for (i, label) in self.labels.iter().enumerate() {
+            let y = (LEGEND_TOP + LEGEND_LINE * i as u32) as i32;
+            area.draw(&Rectangle::new([(10, y), (26, y + 16)], color(i).filled()))
+                .map_err(text)?;
+            area.draw(&Text::new(
+                label.clone(),
+                (LEGEND_TEXT_X as i32, y),
+                font(15.0),
+            ))
+            .map_err(text)?;
+        }
+        // The footer's lines under the labels.
+        let footer = self.footer.into_iter().flat_map(str::lines);
+        for (i, line) in footer.enumerate() {
+            let y = LEGEND_TOP + 10 + LEGEND_LINE * (self.labels.len() + i) as u32;
+            area.draw(&Text::new(line.to_string(), (10, y as i32), font(15.0)))
+                .map_err(text)?;
+        }
+        Ok(())
     }
-    Ok(())
+}
+
+/// An axis label: the value with at most 3 decimals and no trailing zeros, so that ticks
+/// half a unit apart read 0.5, 1, 1.5 rather than being rounded to the same number.
+pub fn tick(v: f64) -> String {
+    format!("{v:.3}")
+        .trim_end_matches('0')
+        .trim_end_matches('.')
+        .to_owned()
+}
+
+/// A logarithmic axis over `range` whose labels are 1, 2 and 5 times each power of ten
+/// inside it, or 1 to 9 times it where those are fewer than three: plotters labels only
+/// the powers of ten, which leaves an axis spanning less than a decade without numbers.
+pub fn log_axis(range: std::ops::Range<f64>) -> WithKeyPoints<LogCoord<f64>> {
+    let ticks = |steps: &[f64]| {
+        let mut ticks = Vec::new();
+        let mut decade = 10f64.powf(range.start.max(f64::MIN_POSITIVE).log10().floor());
+        while decade <= range.end {
+            let inside = steps
+                .iter()
+                .map(|s| decade * s)
+                .filter(|v| range.contains(v));
+            ticks.extend(inside);
+            decade *= 10.0;
+        }
+        ticks
+    };
+    let coarse = ticks(&[1.0, 2.0, 5.0]);
+    let ticks = match coarse.len() {
+        3.. => coarse,
+        _ => ticks(&[1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]),
+    };
+    range.log_scale().with_key_points(ticks)
 }
 
 /// `n` panels in a grid of at most two columns.
@@ -158,4 +228,47 @@ pub fn grid(n: usize) -> (usize, usize) {
 /// Turns a plotters error into text.
 pub fn text<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use plotters::coord::ranged1d::{BoldPoints, Ranged};
+
+    use super::{log_axis, tick, Legend};
+
+    #[test]
+    fn a_log_axis_less_than_a_decade_wide_still_has_labels() {
+        let labels = |lo, hi| log_axis(lo..hi).key_points(BoldPoints(100));
+        assert_eq!(labels(1.2, 60.0), [2.0, 5.0, 10.0, 20.0, 50.0]);
+        assert_eq!(labels(134.0, 282.0), [150.0, 200.0]);
+        assert_eq!(labels(0.9, 1.1), [0.9, 1.0]);
+    }
+
+    #[test]
+    fn ticks_half_a_unit_apart_read_differently() {
+        let labels: Vec<String> = (0..7).map(|i| tick(f64::from(i) * 0.5)).collect();
+        assert_eq!(labels, ["0", "0.5", "1", "1.5", "2", "2.5", "3"]);
+        assert_eq!(tick(0.1 + 0.2), "0.3");
+        assert_eq!(tick(120.0), "120");
+        assert_eq!(tick(0.0126), "0.013");
+    }
+
+    #[test]
+    fn a_legend_makes_room_for_every_label_and_its_longest_line() {
+        let legend = |labels: &[&str], footer| Legend {
+            title: "passes",
+            labels: labels.iter().map(|l| l.to_string()).collect(),
+            footer,
+        };
+        let seven = legend(&["a"; 7], None).size();
+        assert_eq!(legend(&["a"; 8], None).size().1 - seven.1, 24);
+        assert_eq!(
+            legend(&["a"; 7], Some("x\ny\nz")).size().1,
+            legend(&["a"; 10], None).size().1
+        );
+        // The last label's square (16 pixels from its line's top) lies inside.
+        assert!(seven.1 >= 50 + 24 * 6 + 16);
+        let long = "particle depth (hardware raster)";
+        assert!(legend(&["a", long], None).size().0 >= 34 + 8 * long.len() as u32);
+    }
 }

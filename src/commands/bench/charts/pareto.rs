@@ -5,18 +5,21 @@
 
 use plotters::prelude::*;
 
-use super::{color, font, grid, legend, pipelines, scenes, text, Area, DrawResult};
+use super::{color, font, grid, log_axis, pipelines, scenes, text, Area, DrawResult, Legend};
 use crate::commands::bench::results::Results;
 
 const PANEL: (u32, u32) = (760, 520);
-const LEGEND_WIDTH: u32 = 330;
 const TITLE_HEIGHT: u32 = 40;
+/// What the legend says under the pipelines.
+const FOOTER: &str =
+    "grey: Pareto front\nbars: p10–p90 of the round medians\nhollow: flagged (spread over 5%)";
 
 pub fn size(results: &Results) -> (u32, u32) {
     let (rows, columns) = grid(scenes(results).len());
+    let legend = legend(results).size();
     (
-        PANEL.0 * columns as u32 + LEGEND_WIDTH,
-        PANEL.1 * rows as u32 + TITLE_HEIGHT,
+        PANEL.0 * columns as u32 + legend.0,
+        (PANEL.1 * rows as u32).max(legend.1) + TITLE_HEIGHT,
     )
 }
 
@@ -30,7 +33,8 @@ pub fn pareto(results: &Results, area: &Area) -> DrawResult {
     let names = pipelines(results);
     let (title, body) = area.split_vertically(TITLE_HEIGHT);
     title.titled(&heading(results), font(22.0)).map_err(text)?;
-    let (panels, legend_area) = body.split_horizontally(body.dim_in_pixel().0 - LEGEND_WIDTH);
+    let legend = legend(results);
+    let (panels, legend_area) = body.split_horizontally(body.dim_in_pixel().0 - legend.size().0);
     let scenes = scenes(results);
     let (rows, columns) = grid(scenes.len());
     for (scene, panel) in scenes.iter().zip(panels.split_evenly((rows, columns))) {
@@ -51,17 +55,20 @@ pub fn pareto(results: &Results, area: &Area) -> DrawResult {
             .unzip();
         scene_panel(&panel, scene, &points, &bars)?;
     }
-    let labels: Vec<String> = names
-        .iter()
-        .enumerate()
-        .map(|(i, name)| format!("{} {name}", i + 1))
-        .collect();
-    legend(
-        &legend_area,
-        "pipelines",
-        &labels,
-        Some("grey: Pareto front\nbars: p10–p90 of the round medians\nhollow: flagged (spread over 5%)"),
-    )
+    legend.draw(&legend_area)
+}
+
+/// The pipelines by the numbers their points carry, and what the marks mean.
+fn legend(results: &Results) -> Legend<'static> {
+    Legend {
+        title: "pipelines",
+        labels: pipelines(results)
+            .iter()
+            .enumerate()
+            .map(|(i, name)| format!("{} {name}", i + 1))
+            .collect(),
+        footer: Some(FOOTER),
+    }
 }
 
 fn heading(results: &Results) -> String {
@@ -88,7 +95,7 @@ fn scene_panel(area: &Area, scene: &str, points: &[Point], bars: &[Bar]) -> Draw
         .margin(12)
         .x_label_area_size(46)
         .y_label_area_size(64)
-        .build_cartesian_2d((lo / 1.3..hi * 1.3).log_scale(), 0.0..top)
+        .build_cartesian_2d(log_axis(lo / 1.3..hi * 1.3), 0.0..top)
         .map_err(text)?;
     chart
         .configure_mesh()

@@ -4,14 +4,13 @@
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::{color, distinct, font, grid, legend, scenes, text, Area, DrawResult};
+use super::{color, distinct, font, grid, scenes, text, tick, Area, DrawResult, Legend};
 use crate::commands::bench::results::{Results, Row};
 
 const PANEL_WIDTH: u32 = 900;
 const ROW_HEIGHT: u32 = 30;
 const PANEL_EXTRA: u32 = 150;
 const TITLE_HEIGHT: u32 = 40;
-const LEGEND_WIDTH: u32 = 220;
 
 pub fn size(results: &Results) -> (u32, u32) {
     let scenes = scenes(results);
@@ -21,9 +20,11 @@ pub fn size(results: &Results) -> (u32, u32) {
         .map(|s| measured(results, s).len())
         .max()
         .unwrap_or(1) as u32;
+    let panels = (ROW_HEIGHT * bars + PANEL_EXTRA) * rows as u32;
+    let legend = legend(results).size();
     (
-        PANEL_WIDTH * columns as u32 + LEGEND_WIDTH,
-        (ROW_HEIGHT * bars + PANEL_EXTRA) * rows as u32 + TITLE_HEIGHT,
+        PANEL_WIDTH * columns as u32 + legend.0,
+        panels.max(legend.1) + TITLE_HEIGHT,
     )
 }
 
@@ -39,14 +40,22 @@ pub fn passes(results: &Results, area: &Area) -> DrawResult {
             font(22.0),
         )
         .map_err(text)?;
-    let (panels, legend_area) = body.split_horizontally(body.dim_in_pixel().0 - LEGEND_WIDTH);
+    let legend = legend(results);
+    let (panels, legend_area) = body.split_horizontally(body.dim_in_pixel().0 - legend.size().0);
     let scenes = scenes(results);
     let (rows, columns) = grid(scenes.len());
     for (scene, panel) in scenes.iter().zip(panels.split_evenly((rows, columns))) {
         scene_panel(&panel, scene, &measured(results, scene), &names)?;
     }
-    let labels: Vec<String> = names.iter().map(|n| n.to_string()).collect();
-    legend(&legend_area, "passes", &labels, None)
+    legend.draw(&legend_area)
+}
+
+fn legend(results: &Results) -> Legend<'static> {
+    Legend {
+        title: "passes",
+        labels: pass_names(results).iter().map(|n| n.to_string()).collect(),
+        footer: None,
+    }
 }
 
 fn measured<'a>(results: &'a Results, scene: &str) -> Vec<&'a Row> {
@@ -81,24 +90,29 @@ fn scene_panel(area: &Area, scene: &str, rows: &[&Row], names: &[&str]) -> DrawR
     }
     let end = axis_end(totals.iter().map(|t| t.1).collect());
     let labels: Vec<&str> = rows.iter().rev().map(|r| r.pipeline.as_str()).collect();
+    // Two units of height per bar, labelled at its middle (an odd number): a segmented
+    // axis would add an empty segment above the last bar, and plotters formats no
+    // floating-point axis with chosen key points.
+    let bars = rows.len() as i32;
+    let middles: Vec<i32> = (0..bars).map(|i| 2 * i + 1).collect();
     let mut chart = ChartBuilder::on(area)
         .caption(scene, font(18.0))
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(250)
-        .build_cartesian_2d(0.0..end, (0..rows.len()).into_segmented())
+        .build_cartesian_2d(0.0..end, (0..2 * bars).with_key_points(middles))
         .map_err(text)?;
     chart
         .configure_mesh()
         .disable_y_mesh()
         .x_desc("GPU ms (median)")
-        .x_label_formatter(&|v| format!("{v:.0}"))
+        .x_label_formatter(&|v| tick(*v))
         .label_style(font(14.0))
         .axis_desc_style(font(15.0))
-        .y_labels(rows.len().max(1))
-        .y_label_formatter(&|v| match v {
-            SegmentValue::CenterOf(i) => labels.get(*i).map_or(String::new(), |s| s.to_string()),
-            _ => String::new(),
+        .y_label_formatter(&|v| {
+            labels
+                .get((*v / 2) as usize)
+                .map_or(String::new(), |s| s.to_string())
         })
         .draw()
         .map_err(text)?;
@@ -109,10 +123,7 @@ fn scene_panel(area: &Area, scene: &str, rows: &[&Row], names: &[&str]) -> DrawR
                 .filter(|s| s.2 < end)
                 .map(|&(i, n, x0, x1)| {
                     let mut bar = Rectangle::new(
-                        [
-                            (x0, SegmentValue::Exact(i)),
-                            (x1.min(end), SegmentValue::Exact(i + 1)),
-                        ],
+                        [(x0, 2 * i as i32), (x1.min(end), 2 * i as i32 + 2)],
                         color(n).filled(),
                     );
                     bar.set_margin(4, 4, 0, 0);
@@ -128,7 +139,7 @@ fn scene_panel(area: &Area, scene: &str, rows: &[&Row], names: &[&str]) -> DrawR
         .draw_series(totals.iter().filter(|t| t.1 > end).map(|&(i, total)| {
             Text::new(
                 format!("{total:.0} ms >"),
-                (end * 0.99, SegmentValue::CenterOf(i)),
+                (end * 0.99, 2 * i as i32 + 1),
                 label.clone(),
             )
         }))

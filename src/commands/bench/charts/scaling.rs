@@ -4,19 +4,21 @@
 
 use plotters::prelude::*;
 
-use super::{color, distinct, font, grid, legend, pipelines, text, Area, DrawResult};
+use super::{
+    color, distinct, font, grid, log_axis, pipelines, text, tick, Area, DrawResult, Legend,
+};
 use crate::cli::Sweep;
 use crate::commands::bench::results::{Results, Row};
 
 const PANEL: (u32, u32) = (760, 520);
-const LEGEND_WIDTH: u32 = 330;
 const TITLE_HEIGHT: u32 = 40;
 
 pub fn size(results: &Results) -> (u32, u32) {
     let (rows, columns) = grid(panels(results).len());
+    let legend = legend(results).size();
     (
-        PANEL.0 * columns as u32 + LEGEND_WIDTH,
-        PANEL.1 * rows as u32 + TITLE_HEIGHT,
+        PANEL.0 * columns as u32 + legend.0,
+        (PANEL.1 * rows as u32).max(legend.1) + TITLE_HEIGHT,
     )
 }
 
@@ -41,7 +43,9 @@ pub fn scaling(results: &Results, sweep: Sweep, area: &Area) -> DrawResult {
             font(22.0),
         )
         .map_err(text)?;
-    let (panel_area, legend_area) = body.split_horizontally(body.dim_in_pixel().0 - LEGEND_WIDTH);
+    let legend = legend(results);
+    let (panel_area, legend_area) =
+        body.split_horizontally(body.dim_in_pixel().0 - legend.size().0);
     let names = pipelines(results);
     let panels = panels(results);
     let (rows, columns) = grid(panels.len());
@@ -59,8 +63,15 @@ pub fn scaling(results: &Results, sweep: Sweep, area: &Area) -> DrawResult {
             .collect();
         panel_chart(&panel, group, sweep, &lines)?;
     }
-    let labels: Vec<String> = names.iter().map(|n| n.to_string()).collect();
-    legend(&legend_area, "pipelines", &labels, None)
+    legend.draw(&legend_area)
+}
+
+fn legend(results: &Results) -> Legend<'static> {
+    Legend {
+        title: "pipelines",
+        labels: pipelines(results).iter().map(|n| n.to_string()).collect(),
+        footer: None,
+    }
 }
 
 fn parameter(sweep: Sweep) -> &'static str {
@@ -115,7 +126,7 @@ fn panel_chart(area: &Area, group: &str, sweep: Sweep, lines: &[Vec<(f64, f64)>]
         .margin(12)
         .x_label_area_size(46)
         .y_label_area_size(64)
-        .build_cartesian_2d(xs.log_scale(), ys.log_scale())
+        .build_cartesian_2d(log_axis(xs), log_axis(ys))
         .map_err(text)?;
     let x_desc = match sweep {
         Sweep::Lights => "lights (log scale)",
@@ -128,18 +139,8 @@ fn panel_chart(area: &Area, group: &str, sweep: Sweep, lines: &[Vec<(f64, f64)>]
         .y_desc("GPU frame time, ms (median; log scale)")
         .label_style(font(14.0))
         .axis_desc_style(font(15.0))
-        .x_label_formatter(&|v| {
-            format!("{v:.3}")
-                .trim_end_matches('0')
-                .trim_end_matches('.')
-                .to_string()
-        })
-        .y_label_formatter(&|v| {
-            format!("{v:.3}")
-                .trim_end_matches('0')
-                .trim_end_matches('.')
-                .to_string()
-        })
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
         .draw()
         .map_err(text)?;
     for (i, line) in lines.iter().enumerate() {
