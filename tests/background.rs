@@ -6,7 +6,7 @@
 
 use rgraph_passes::{Background, Overrides};
 use rgraph_scene::analysis::Features as SceneFeatures;
-use rgraph_scene::glam::{DVec3, Vec3};
+use rgraph_scene::glam::DVec3;
 use rgraph_scene::{environment_radiance, Lighting, Projection, Scene};
 use serde_json::json;
 
@@ -136,7 +136,7 @@ fn environment_seen(scene: &Scene, x: u32, y: u32) -> [u8; 3] {
     let view = DVec3::new(ndc.0 * tan * w / h, ndc.1 * tan, -1.0);
     let d = (scene.camera.orientation * view).normalize().as_vec3();
     let intensity = scene.environment.map_or(0.0, |e| e.intensity);
-    let l = f64::from(environment_radiance(Vec3::from(d)) * intensity);
+    let l = f64::from(environment_radiance(d) * intensity);
     let aces = (l * (2.51 * l + 0.03)) / (l * (2.43 * l + 0.59) + 0.14);
     [srgb8(aces); 3]
 }

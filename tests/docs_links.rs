@@ -236,8 +236,12 @@ fn normalise(path: &Path) -> PathBuf {
     out
 }
 
-/// The README's snippets: (marker line, quoted file, block lines with their numbers).
-fn snippets(readme: &str) -> Vec<(usize, String, Vec<(usize, String)>)> {
+/// A README snippet: its marker's line, the file it quotes, and its block's lines with
+/// their numbers.
+type Snippet = (usize, String, Vec<(usize, String)>);
+
+/// The README's snippets.
+fn snippets(readme: &str) -> Vec<Snippet> {
     let lines: Vec<&str> = readme.lines().collect();
     let mut out = Vec::new();
     let mut index = 0;

@@ -98,7 +98,8 @@ fn every_shipped_pipeline_holds_its_memory_over_500_frames() {
     let ran: Vec<&str> = runs.iter().map(|(file, _)| file.as_str()).collect();
     let mut expected: Vec<&str> = files.iter().map(String::as_str).collect();
     let mut ran_sorted = ran.clone();
-    (ran_sorted.sort(), expected.sort());
+    ran_sorted.sort();
+    expected.sort();
     assert_eq!(ran_sorted, expected, "every file in pipelines/ runs once");
     let failures: Vec<String> = (runs.iter())
         .filter_map(|(file, samples)| Some(format!("{file}: {}", holds(samples, SETTLE).err()?)))
