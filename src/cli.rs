@@ -149,6 +149,29 @@ pub enum Command {
         #[arg(long)]
         adapter: Option<String>,
     },
+    /// Compare two PNG images: the share of pixels
+    /// within --tolerance in every channel, the worst difference and where, and mean FLIP.
+    /// No GPU needed: for golden-image checks in CI, and for comparing two pipelines'
+    /// renders on a GPU server.
+    ///
+    /// Exit status: 0 when at least --at-least percent of the pixels are within the
+    /// tolerance, 1 when fewer are or the sizes differ, 2 when a file cannot be read or a
+    /// flag is out of range.
+    #[command(after_long_help = "Example:\n  \
+        rgraph compare out/visibility.png out/deferred.png --tolerance 1 --at-least 99")]
+    Compare {
+        /// The two images, of one size.
+        #[arg(value_name = "IMAGE")]
+        a: PathBuf,
+        #[arg(value_name = "IMAGE")]
+        b: PathBuf,
+        /// The largest difference of one 8-bit channel that still counts as the same.
+        #[arg(long, default_value_t = 1, value_name = "N")]
+        tolerance: u8,
+        /// The share of pixels, in percent, that must be within the tolerance.
+        #[arg(long, default_value_t = 100.0, value_name = "PERCENT")]
+        at_least: f64,
+    },
 }
 
 /// What `rgraph render` draws, how, and where it writes it.
@@ -304,7 +327,7 @@ impl Command {
             Command::Render(args) => &args.roots.dirs,
             Command::View(args) => &args.roots.dirs,
             Command::Bench(args) => &args.roots.dirs,
-            Command::Adapters { .. } => &[],
+            Command::Adapters { .. } | Command::Compare { .. } => &[],
         }
     }
 }

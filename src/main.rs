@@ -49,6 +49,12 @@ fn main() -> ExitCode {
             save_profile,
             adapter,
         } => commands::adapters::run(save_profile.as_deref(), adapter.as_deref()),
+        Command::Compare {
+            a,
+            b,
+            tolerance,
+            at_least,
+        } => commands::compare::run(a, b, *tolerance, *at_least),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

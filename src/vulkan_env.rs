@@ -25,7 +25,7 @@ pub fn prepare(cli: &Cli) {
         Command::Render(args) => &args.adapter,
         Command::Bench(args) => &args.adapter,
         Command::View(args) => &args.adapter,
-        Command::Adapters { .. } => return,
+        Command::Adapters { .. } | Command::Compare { .. } => return,
     };
     let driver_list_set = std::env::var_os("VK_DRIVER_FILES").is_some()
         || std::env::var_os("VK_ICD_FILENAMES").is_some();

@@ -27,6 +27,7 @@ mod baselines_resolve;
 mod cli_anywhere;
 mod cli_assets;
 mod cli_bench;
+mod cli_compare;
 mod cli_render;
 mod cli_render_frames;
 mod cli_render_samples;

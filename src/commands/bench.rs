@@ -15,7 +15,7 @@ mod edge_pixels;
 mod error;
 mod figures;
 mod flag;
-mod image_error;
+pub mod image_error;
 mod images;
 mod machine;
 mod measure;

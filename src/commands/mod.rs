@@ -3,6 +3,7 @@
 
 pub mod adapters;
 pub mod bench;
+pub mod compare;
 pub mod explain;
 pub mod render;
 pub mod target;

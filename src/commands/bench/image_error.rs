@@ -63,6 +63,16 @@ pub fn compare(
     (error, heat)
 }
 
+/// Mean FLIP of `test` against `reference` over all pixels (images of one size).
+pub fn flip_mean(reference: &RgbaImage, test: &RgbaImage) -> f64 {
+    let flip_map = nv_flip::flip(
+        rgb(reference),
+        rgb(test),
+        nv_flip::DEFAULT_PIXELS_PER_DEGREE,
+    );
+    mean(&flip_map.to_vec(), |_| true).unwrap_or(0.0)
+}
+
 fn rgb(image: &RgbaImage) -> nv_flip::FlipImageRgb8 {
     let bytes: Vec<u8> = image
         .pixels()
