@@ -23,7 +23,9 @@ use std::error::Error;
 
 use graph_core::gpu::{read_rgba8, AdapterChoice, Executor, Gpu, Imports};
 use graph_core::types::TextureFormat;
-use graph_core::{ColorLoad, CompileOptions, CompiledGraph, DeviceProfile, GraphBuilder, TextureDesc};
+use graph_core::{
+    ColorLoad, CompileOptions, CompiledGraph, DeviceProfile, GraphBuilder, TextureDesc,
+};
 
 /// The target's size in texels: small enough that every coordinate is a texel value.
 pub const SIZE: (u32, u32) = (64, 32);
@@ -66,7 +68,10 @@ fn main() -> Result<(), Box<dyn Error>> {
     let texels = render(&gpu.device, &gpu.queue, SIZE, true)?;
     for (x, y) in [(0, 0), (SIZE.0 - 1, SIZE.1 - 1)] {
         let texel = texels[(y * SIZE.0 + x) as usize];
-        println!("texel ({x}, {y}): {texel:?}, expected {:?}", expected(SIZE, x, y));
+        println!(
+            "texel ({x}, {y}): {texel:?}, expected {:?}",
+            expected(SIZE, x, y)
+        );
     }
     let wrong = (0..SIZE.1)
         .flat_map(|y| (0..SIZE.0).map(move |x| (x, y)))
@@ -123,8 +128,8 @@ pub fn render(
     pass.render(move |ctx| {
         let device = ctx.resources.device;
         let format = ctx.resources.shape(pattern).format;
-        let pipeline = pipeline
-            .get_or_insert_with(|| fullscreen_pipeline(device, PATTERN_FS, format));
+        let pipeline =
+            pipeline.get_or_insert_with(|| fullscreen_pipeline(device, PATTERN_FS, format));
         ctx.pass.set_pipeline(pipeline);
         ctx.pass.draw(0..3, 0..1);
     });
