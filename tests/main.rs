@@ -5,6 +5,10 @@
 //! them cost CI minutes of linking and gigabytes of disk.
 
 mod browser_support;
+// The builder-only example, whose frame tests/builder_example.rs checks (its `main` is not run).
+#[allow(dead_code)]
+#[path = "../examples/builder_only.rs"]
+mod builder_only;
 mod cli_support;
 mod common;
 mod deferred_support;
@@ -24,6 +28,7 @@ mod baselines_errors;
 mod baselines_forward;
 mod baselines_reference;
 mod baselines_resolve;
+mod builder_example;
 mod cli_anywhere;
 mod cli_assets;
 mod cli_bench;

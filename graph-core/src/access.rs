@@ -48,6 +48,8 @@ pub enum AspectAccess<T> {
 }
 
 impl<T> AspectAccess<T> {
+    /// Whether the access produces a new version of the aspect (a clear, a load or an
+    /// overwrite): the pass's depth-stencil handle then moves to a new version.
     pub fn writes(&self) -> bool {
         matches!(
             self,
@@ -57,6 +59,8 @@ impl<T> AspectAccess<T> {
                 | AspectAccess::Overwrite
         )
     }
+    /// Whether the access depends on the incoming contents (`ReadOnly`, `Load`), which
+    /// orders the pass after the aspect's previous writer.
     pub fn reads(&self) -> bool {
         matches!(self, AspectAccess::ReadOnly | AspectAccess::Load)
     }
@@ -74,6 +78,7 @@ impl<T> AspectAccess<T> {
 pub struct ByFormat<T>(pub fn(TextureFormat) -> T);
 
 impl<T> ByFormat<T> {
+    /// The value for a texture of `format`.
     pub fn value(&self, format: TextureFormat) -> T {
         (self.0)(format)
     }
@@ -103,9 +108,12 @@ impl<T> Serialize for ByFormat<T> {
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum Aspect {
+    /// Every aspect the format has: the full view.
     #[default]
     All,
+    /// The depth aspect alone (`texture_depth_2d` in WGSL).
     DepthOnly,
+    /// The stencil aspect alone (a `u32` texture in WGSL).
     StencilOnly,
 }
 
@@ -115,28 +123,38 @@ pub enum Aspect {
 pub enum TextureRole {
     /// Color attachment at this location.
     Color {
+        /// `@location` in the fragment shader's output: the attachment's index.
         location: u32,
+        /// How the attachment begins, which decides whether the pass reads it.
         load: ColorLoad,
     },
     /// Resolve target of the multisampled color attachment at this location.
     Resolve {
+        /// The location of the multisampled color attachment resolved into it.
         location: u32,
     },
     /// The depth-stencil attachment.
     DepthStencil {
+        /// The depth aspect's access; its clear value is in the format's units (0 to 1).
         depth: AspectAccess<f32>,
+        /// The stencil aspect's access; its clear value is the 8-bit reference value.
         stencil: AspectAccess<u32>,
     },
     /// Bound for sampling or `textureLoad` (multisampled textures included).
     Sampled {
+        /// The aspect the view shows.
         aspect: Aspect,
     },
     /// Bound as a storage texture.
     Storage {
+        /// The pass reads the incoming contents.
         read: bool,
+        /// The pass produces a new version.
         write: bool,
     },
+    /// The source of a copy (a transfer pass's).
     CopySrc,
+    /// The destination of a copy: a new version, the incoming contents not read.
     CopyDst,
 }
 
@@ -144,12 +162,24 @@ pub enum TextureRole {
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum BufferRole {
+    /// Bound as a vertex buffer (read).
     Vertex,
+    /// Bound as an index buffer (read).
     Index,
+    /// Bound as a uniform buffer (read).
     Uniform,
+    /// The arguments of an indirect draw or dispatch (read).
     Indirect,
-    Storage { read: bool, write: bool },
+    /// Bound as a storage buffer.
+    Storage {
+        /// The pass reads the incoming contents.
+        read: bool,
+        /// The pass produces a new version.
+        write: bool,
+    },
+    /// The source of a copy (read).
     CopySrc,
+    /// The destination of a copy: a new version, the incoming contents not read.
     CopyDst,
 }
 
@@ -157,7 +187,9 @@ pub enum BufferRole {
 #[derive(Copy, Clone, Debug, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Role {
+    /// An access to a texture.
     Texture(TextureRole),
+    /// An access to a buffer.
     Buffer(BufferRole),
 }
 
@@ -263,7 +295,9 @@ impl Role {
 /// role reads) and producing version `written` (if the role writes).
 #[derive(Copy, Clone, Debug, PartialEq, Serialize)]
 pub struct Access {
+    /// The resource accessed.
     pub resource: ResourceId,
+    /// How: what the compiler derives usages, ordering and load/store from.
     pub role: Role,
     /// The version the pass was handed.
     pub version: u32,

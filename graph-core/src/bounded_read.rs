@@ -17,15 +17,22 @@ pub const MAX_SHADER_BYTES: u64 = 16 << 20;
 /// the file plays (graph file, shader, glTF buffer, ...).
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
+    /// Opening or reading failed (the operating system's error).
     #[error("{0}")]
     Io(#[from] std::io::Error),
     /// A directory, FIFO, socket or device: reading one may never end (a FIFO blocks, a
     /// device like /dev/zero never reaches its end), so only regular files are read.
     #[error("not a regular file (it is a {kind})")]
-    NotAFile { kind: &'static str },
+    NotAFile {
+        /// What it is: "directory", "FIFO", ...
+        kind: &'static str,
+    },
     /// Larger than the stated maximum.
     #[error("larger than the maximum of {max} bytes")]
-    TooLarge { max: u64 },
+    TooLarge {
+        /// The maximum, in bytes.
+        max: u64,
+    },
     /// Not UTF-8 text (only from [`read_text`]).
     #[error("not UTF-8 text: {0}")]
     NotUtf8(std::string::FromUtf8Error),

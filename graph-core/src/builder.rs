@@ -21,6 +21,7 @@ pub struct GraphBuilder {
 }
 
 impl GraphBuilder {
+    /// An empty graph with no feature declared.
     pub fn new() -> Self {
         Self::default()
     }

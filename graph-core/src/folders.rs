@@ -44,10 +44,16 @@ pub enum Outside {
     /// With `..` applied, the path lies outside every folder (an absolute path elsewhere,
     /// or one that climbs out).
     #[error("points to {}", path.display())]
-    Leaves { path: PathBuf },
+    Leaves {
+        /// Where it points, `..` applied.
+        path: PathBuf,
+    },
     /// The path lies inside, but a symbolic link on the way leads out.
     #[error("leads (through a symbolic link) to {}", path.display())]
-    Link { path: PathBuf },
+    Link {
+        /// Where the link leads.
+        path: PathBuf,
+    },
 }
 
 impl Folders {

@@ -20,10 +20,13 @@ pub struct Graph {
 }
 
 impl Graph {
+    /// Every declared resource, indexed by [`ResourceId::index`](crate::ResourceId::index).
     pub fn resources(&self) -> &[ResourceNode] {
         &self.resources
     }
 
+    /// Every declared pass in declaration order, indexed by
+    /// [`PassId::index`](crate::PassId::index); the plan's order is the compiler's.
     pub fn passes(&self) -> &[PassNode] {
         &self.passes
     }
@@ -58,6 +61,10 @@ impl Graph {
         sets
     }
 
+    /// The declared resource behind a handle.
+    ///
+    /// # Panics
+    /// When the handle comes from another graph with more resources.
     pub fn resource<K: ResourceKind>(&self, handle: Handle<K>) -> &ResourceNode {
         &self.resources[handle.id().index()]
     }

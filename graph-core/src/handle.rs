@@ -13,12 +13,15 @@ pub struct ResourceId(pub u32);
 pub struct PassId(pub u32);
 
 impl ResourceId {
+    /// The index into [`Graph::resources`](crate::Graph::resources) and
+    /// [`Plan::resources`](crate::Plan::resources).
     pub fn index(self) -> usize {
         self.0 as usize
     }
 }
 
 impl PassId {
+    /// The index into [`Graph::passes`](crate::Graph::passes).
     pub fn index(self) -> usize {
         self.0 as usize
     }
@@ -33,6 +36,7 @@ pub enum Buffer {}
 
 /// A resource kind: what a [`Handle`] may point at.
 pub trait ResourceKind: Copy + 'static {
+    /// The kind as a value, for messages and checks at run time.
     const KIND: Kind;
 }
 impl ResourceKind for Texture {
@@ -46,7 +50,9 @@ impl ResourceKind for Buffer {
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Kind {
+    /// A texture.
     Texture,
+    /// A buffer.
     Buffer,
 }
 
@@ -62,7 +68,9 @@ pub struct Handle<K: ResourceKind> {
     marker: PhantomData<K>,
 }
 
+/// A version of a texture.
 pub type TextureHandle = Handle<Texture>;
+/// A version of a buffer.
 pub type BufferHandle = Handle<Buffer>;
 
 impl<K: ResourceKind> Handle<K> {

@@ -56,8 +56,12 @@ pub struct Workgroup {
 
 /// A pass as declared.
 pub struct PassNode {
+    /// The pass's name, unique in its graph by convention: messages, plans and timings
+    /// name passes by it.
     pub name: String,
+    /// The kind of wgpu pass the executor begins for it.
     pub kind: PassKind,
+    /// Every access the pass declared, in declaration order.
     pub accesses: Vec<Access>,
     /// Kept even when nothing reads what it writes (e.g. it writes outside the graph).
     pub side_effect: bool,

@@ -9,6 +9,10 @@ use crate::handle::{Kind, PassId, ResourceId};
 use crate::pass::PassKind;
 use crate::resource::{Origin, TextureShape};
 
+/// What one compile decided, for one output size, device profile and feature set. Plain
+/// data: it owns no GPU object, can be printed ([`explain`](crate::explain)), serialized
+/// and compared, and stays valid for as long as the graph it was compiled from is
+/// unchanged (which [`CompiledGraph`](crate::CompiledGraph) guarantees).
 #[derive(Clone, Debug, Serialize)]
 pub struct Plan {
     /// The output size relative sizes were resolved against.
@@ -29,13 +33,18 @@ pub struct Plan {
     pub textures: Vec<PhysicalTexture>,
     /// Buffers the executor allocates.
     pub buffers: Vec<PhysicalBuffer>,
+    /// Graph-owned memory before and after resources share physical objects.
     pub memory: MemoryReport,
 }
 
+/// A pass that runs, with what the compiler inferred for it.
 #[derive(Clone, Debug, Serialize)]
 pub struct PlannedPass {
+    /// The pass in the declared graph.
     pub id: PassId,
+    /// Its declared name.
     pub name: String,
+    /// The kind of wgpu pass the executor begins.
     pub kind: PassKind,
     /// Versions read, as `(resource, version)`.
     pub reads: Vec<(ResourceId, u32)>,
@@ -52,6 +61,7 @@ pub struct PlannedPass {
     /// leaving out depth understates. Buffers sized per sample that the pass writes add
     /// their bytes per sample (a visibility buffer rasterised in compute).
     pub stored_bytes_per_sample: u32,
+    /// The depth-stencil attachment (render passes that declared one).
     pub depth_stencil: Option<DepthStencilAttachment>,
     /// A compute pass's workgroup size and memory for each entry point it dispatches.
     pub workgroups: Vec<crate::pass::Workgroup>,
@@ -61,7 +71,9 @@ pub struct PlannedPass {
 #[derive(Copy, Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Load<T> {
+    /// Cleared to this value (wgpu's `LoadOp::Clear`).
     Clear(T),
+    /// The previous contents are kept, because the pass reads them (`LoadOp::Load`).
     Load,
     /// Neither cleared nor read: the pass overwrites what later passes read
     /// ([`AspectAccess::Overwrite`](crate::AspectAccess::Overwrite)); the device loads.
@@ -72,58 +84,88 @@ pub enum Load<T> {
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Store {
+    /// Kept: a later pass reads this version, or it is imported or exported.
     Store,
+    /// Discarded: nothing reads what the pass left (a depth buffer used only for testing
+    /// within the pass, a multisampled color attachment that was resolved).
     Discard,
 }
 
 /// Load and store of one written attachment aspect.
 #[derive(Copy, Clone, Debug, PartialEq, Serialize)]
 pub struct Ops<T> {
+    /// How the aspect begins.
     pub load: Load<T>,
+    /// Whether it is kept after the pass.
     pub store: Store,
 }
 
+/// One color attachment of a planned render pass.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ColorAttachment {
+    /// The texture attached.
     pub resource: ResourceId,
+    /// Its inferred load and store (clear values as linear RGBA, 0 to 1 for unorm formats).
     pub ops: Ops<[f64; 4]>,
+    /// The single-sampled texture it is resolved into at the end of the pass, if any.
     pub resolve_target: Option<ResourceId>,
 }
 
-/// `None` for an aspect means it is attached read-only.
+/// The depth-stencil attachment of a planned render pass. `None` for an aspect means it
+/// is attached read-only (or the format lacks it).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DepthStencilAttachment {
+    /// The texture attached.
     pub resource: ResourceId,
+    /// Depth load and store; clear values in the format's 0 to 1 range.
     pub depth: Option<Ops<f32>>,
+    /// Stencil load and store; clear values are the stencil reference value.
     pub stencil: Option<Ops<u32>>,
 }
 
+/// A declared pass that does not run in this plan.
 #[derive(Clone, Debug, Serialize)]
 pub struct CulledPass {
+    /// The pass in the declared graph.
     pub id: PassId,
+    /// Its declared name.
     pub name: String,
+    /// Its kind.
     pub kind: PassKind,
+    /// Why, in words: the false condition, the omission's reason, or that nothing reads
+    /// what it writes.
     pub reason: String,
     /// Dropped because its condition is false for the plan's features, rather than
     /// culled because nothing needs what it writes.
     pub dropped: bool,
-    /// What it would have read and written, so drawings can show the dead branch.
+    /// The versions it would have read, as `(resource, version)`, so drawings can show
+    /// the dead branch.
     pub reads: Vec<(ResourceId, u32)>,
+    /// The versions it would have produced, as `(resource, version)`.
     pub writes: Vec<(ResourceId, u32)>,
 }
 
+/// A declared resource as the plan resolved it. Every declared resource has one, even
+/// when no live pass uses it ([`culled`](Self::culled) then says why).
 #[derive(Clone, Debug, Serialize)]
 pub struct PlannedResource {
+    /// The resource in the declared graph; also its index in [`Plan::resources`].
     pub id: ResourceId,
+    /// Its declared name.
     pub name: String,
+    /// Texture or buffer.
     pub kind: Kind,
+    /// Graph-owned (pooled) or imported (bound by the engine at execution).
     pub origin: Origin,
+    /// Exported: its final version is readable after the frame.
     pub exported: bool,
     /// Set for textures.
     pub texture: Option<TextureShape>,
     /// Set for buffers: the size in bytes.
     pub buffer_size: Option<u64>,
+    /// Every usage its live accesses need (textures); what an imported texture must have.
     pub texture_usage: TextureUsages,
+    /// Every usage its live accesses need, plus `extra_usage` (buffers).
     pub buffer_usage: BufferUsages,
     /// First and last position in [`Plan::passes`] that use it; `None` when unused.
     pub lifetime: Option<(usize, usize)>,
@@ -141,19 +183,27 @@ pub struct PlannedResource {
     pub bytes: u64,
 }
 
+/// A texture the executor allocates from its pool for this plan.
 #[derive(Clone, Debug, Serialize)]
 pub struct PhysicalTexture {
+    /// Format, size, samples, mips and layers: the same for every resource it holds.
     pub shape: TextureShape,
+    /// The union of the usages of the resources it holds.
     pub usage: TextureUsages,
+    /// Its size in memory ([`TextureDesc::bytes`](crate::TextureDesc::bytes)).
     pub bytes: u64,
     /// The resources that live in it, in lifetime order.
     pub holds: Vec<ResourceId>,
 }
 
+/// A buffer the executor allocates from its pool for this plan.
 #[derive(Clone, Debug, Serialize)]
 pub struct PhysicalBuffer {
+    /// Bytes.
     pub size: u64,
+    /// The union of the usages of the resources it holds.
     pub usage: BufferUsages,
+    /// The resources that live in it, in lifetime order.
     pub holds: Vec<ResourceId>,
 }
 
@@ -167,6 +217,10 @@ pub struct MemoryReport {
 }
 
 impl Plan {
+    /// The planned resource for `id`.
+    ///
+    /// # Panics
+    /// When `id` is not a resource of the graph this plan was compiled from.
     pub fn resource(&self, id: ResourceId) -> &PlannedResource {
         &self.resources[id.index()]
     }

@@ -13,6 +13,8 @@ use crate::plan::Plan;
 /// a [`CompiledGraph`](crate::CompiledGraph) relies on the graph it executes being the
 /// graph it compiled.
 pub trait Compile: sealed::Graphs {
+    /// What a failed compile returns: [`GraphErrors`](crate::GraphErrors) for a
+    /// [`Graph`], errors with file positions for a loaded graph file.
     type Error;
 
     /// See [`Graph::compile_for`].
@@ -64,14 +66,16 @@ impl Compile for Graph {
 /// [`DeviceProfile`](crate::DeviceProfile)s are made for one device each; features are
 /// the graph's relevant ones, so undeclared features do not split the cache.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
-pub struct PlanKey {
+pub(crate) struct PlanKey {
     pub features: Features,
     pub output_size: (u32, u32),
     pub profile: String,
 }
 
-/// Compiled plans of one graph by [`PlanKey`], with hit and miss counts. Use one cache
-/// per graph: the key does not name the graph. Failed compiles are not kept.
+/// Compiled plans of one graph by what decides them (the output size, the profile's
+/// name and the features the graph declares among those asked for), with hit and miss
+/// counts. Use one cache per graph: the key does not name the graph. Failed compiles are
+/// not kept.
 #[derive(Default)]
 pub struct PlanCache {
     plans: HashMap<PlanKey, Plan>,
@@ -80,6 +84,7 @@ pub struct PlanCache {
 }
 
 impl PlanCache {
+    /// An empty cache.
     pub fn new() -> PlanCache {
         PlanCache::default()
     }
@@ -138,6 +143,7 @@ impl PlanCache {
         self.plans.len()
     }
 
+    /// Whether no plan is held.
     pub fn is_empty(&self) -> bool {
         self.plans.is_empty()
     }

@@ -15,7 +15,11 @@ use crate::condition::{self, DeviceTrait, DEVICE_CONDITIONS};
 pub struct DeviceProfile {
     /// Shown in error messages: "webgpu defaults", "llvmpipe (LLVM 15.0.6, 256 bits)".
     pub name: String,
+    /// The device's limits: attachment bytes per sample, texture sizes, storage binding
+    /// sizes and workgroup sizes are checked against them.
     pub limits: Limits,
+    /// The device's optional features (device conditions and formats that need a
+    /// feature depend on them).
     pub features: Features,
     /// Capabilities of the formats the device reports; formats not listed fall back to
     /// what WebGPU guarantees for `features`.
@@ -96,6 +100,7 @@ impl DeviceProfile {
             .collect()
     }
 
+    /// Whether textures of `format` may have `samples` samples (1 always may).
     pub fn supports_samples(&self, format: TextureFormat, samples: u32) -> bool {
         samples == 1 || self.format(format).flags.sample_count_supported(samples)
     }
@@ -105,12 +110,14 @@ impl DeviceProfile {
         self.features.contains(format.required_features()) && self.supports_samples(format, samples)
     }
 
+    /// Whether `format` may be a render attachment.
     pub fn can_render(&self, format: TextureFormat) -> bool {
         self.format(format)
             .allowed_usages
             .contains(TextureUsages::RENDER_ATTACHMENT)
     }
 
+    /// Whether `format` may be bound as a storage texture.
     pub fn can_store(&self, format: TextureFormat) -> bool {
         self.format(format)
             .allowed_usages
@@ -127,6 +134,7 @@ impl DeviceProfile {
         self.format(format).flags.contains(flag)
     }
 
+    /// Whether a multisampled `format` may be resolved in a render pass.
     pub fn can_resolve(&self, format: TextureFormat) -> bool {
         self.format(format)
             .flags

@@ -17,8 +17,11 @@ use crate::resource::{ResourceNode, TextureShape};
 /// The callback that records a pass's commands. It runs once per executed frame, so it
 /// may keep pipelines and other device objects it creates on the first call.
 pub enum Record {
+    /// Records into the render pass the executor began with the pass's attachments.
     Render(Box<dyn FnMut(&mut RenderContext<'_, '_>)>),
+    /// Records into the compute pass the executor began.
     Compute(Box<dyn FnMut(&mut ComputeContext<'_, '_>)>),
+    /// Records into the frame's command encoder (copies).
     Transfer(Box<dyn FnMut(&mut TransferContext<'_>)>),
 }
 
@@ -45,7 +48,10 @@ pub(crate) struct FrameObjects {
 /// and the version it produced, and panics with a message naming the pass, the resource
 /// and the version otherwise.
 pub struct FrameResources<'f> {
+    /// The device, for creating what the pass keeps (pipelines, samplers) and this frame's
+    /// bind groups.
     pub device: &'f wgpu::Device,
+    /// The queue, for writing the pass's own buffers before the frame is submitted.
     pub queue: &'f wgpu::Queue,
     pub(crate) output_size: (u32, u32),
     pub(crate) objects: &'f FrameObjects,
@@ -230,18 +236,24 @@ struct UndeclaredAccess {
 /// A render pass callback's view of the frame: the render pass, begun with the declared
 /// attachments, and the frame's resources as the pass declared them.
 pub struct RenderContext<'a, 'p> {
+    /// The begun render pass: attachments bound, viewport the attachments' size.
     pub pass: &'a mut wgpu::RenderPass<'p>,
+    /// The frame's resources, as this pass declared them.
     pub resources: &'a FrameResources<'a>,
 }
 
 /// A compute pass callback's view of the frame.
 pub struct ComputeContext<'a, 'p> {
+    /// The begun compute pass.
     pub pass: &'a mut wgpu::ComputePass<'p>,
+    /// The frame's resources, as this pass declared them.
     pub resources: &'a FrameResources<'a>,
 }
 
 /// A transfer pass callback's view of the frame: the command encoder itself.
 pub struct TransferContext<'a> {
+    /// The frame's command encoder, between the passes before and after this one.
     pub encoder: &'a mut wgpu::CommandEncoder,
+    /// The frame's resources, as this pass declared them.
     pub resources: &'a FrameResources<'a>,
 }

@@ -45,6 +45,9 @@ impl Size {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TextureDesc {
+    /// The format passes are written for; a fallback or conditional format may replace
+    /// it in a plan ([`PlannedResource::texture`](crate::PlannedResource::texture) says
+    /// which was chosen).
     pub format: TextureFormat,
     /// Used instead of `format` on devices that cannot make `format` with this sample
     /// count (`depth32float-stencil8` needs a feature, say). Plugins must accept both, so
@@ -59,12 +62,16 @@ pub struct TextureDesc {
     /// fallback must.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub format_if: Vec<(Condition, TextureFormat)>,
+    /// Width and height, fixed or relative to the output size compiled for.
     #[serde(default)]
     pub size: Size,
+    /// Samples per texel: 1, or 4 for MSAA (others as the device's formats allow).
     #[serde(default = "one")]
     pub samples: u32,
+    /// Mip levels, at least 1.
     #[serde(default = "one")]
     pub mips: u32,
+    /// Array layers, at least 1 (6 for a cube map's faces).
     #[serde(default = "one")]
     pub layers: u32,
 }
@@ -124,18 +131,22 @@ impl TextureDesc {
         formats.splice(0..0, std::iter::once(self.format).chain(self.fallback));
         formats
     }
+    /// This description with [`size`](Self::size) set.
     pub fn size(mut self, size: Size) -> Self {
         self.size = size;
         self
     }
+    /// This description with [`samples`](Self::samples) set.
     pub fn samples(mut self, samples: u32) -> Self {
         self.samples = samples;
         self
     }
+    /// This description with [`mips`](Self::mips) set.
     pub fn mips(mut self, mips: u32) -> Self {
         self.mips = mips;
         self
     }
+    /// This description with [`layers`](Self::layers) set.
     pub fn layers(mut self, layers: u32) -> Self {
         self.layers = layers;
         self
@@ -197,11 +208,18 @@ pub(crate) fn same_kind(a: TextureFormat, b: TextureFormat) -> bool {
 /// The resolved description of a texture.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, Serialize)]
 pub struct TextureShape {
+    /// The format chosen for the plan: the declared one, its fallback or a conditional
+    /// one.
     pub format: TextureFormat,
+    /// Width of mip 0 in texels, resolved against the output size.
     pub width: u32,
+    /// Height of mip 0 in texels.
     pub height: u32,
+    /// Samples per texel.
     pub samples: u32,
+    /// Mip levels.
     pub mips: u32,
+    /// Array layers.
     pub layers: u32,
 }
 
@@ -224,11 +242,14 @@ pub struct BufferDesc {
     /// Samples per pixel of a buffer sized per sample.
     #[serde(default = "one")]
     pub samples: u32,
+    /// Usages added to those the passes' accesses imply, for uses outside the graph
+    /// (`MAP_READ` for a readback, say).
     #[serde(default = "BufferUsages::empty")]
     pub extra_usage: BufferUsages,
 }
 
 impl BufferDesc {
+    /// A buffer of `size` bytes whatever the output size.
     pub fn new(size: u64) -> Self {
         Self {
             size,
@@ -271,15 +292,21 @@ pub enum Origin {
 /// A resource's description, by kind.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ResourceDesc {
+    /// A texture.
     Texture(TextureDesc),
+    /// A buffer.
     Buffer(BufferDesc),
 }
 
 /// A declared resource.
 #[derive(Clone, Debug)]
 pub struct ResourceNode {
+    /// The name it was declared with: what messages, plans and
+    /// [`Imports`](crate::gpu::Imports) by name use.
     pub name: String,
+    /// What it is, before compiling resolves sizes and formats.
     pub desc: ResourceDesc,
+    /// Who owns it: the graph's pool or the engine.
     pub origin: Origin,
     /// Exported: the final version outlives the frame (readback, history). Exports are
     /// culling roots, like imports.
@@ -291,12 +318,14 @@ pub struct ResourceNode {
 }
 
 impl ResourceNode {
+    /// The description when the resource is a texture.
     pub fn texture(&self) -> Option<&TextureDesc> {
         match &self.desc {
             ResourceDesc::Texture(t) => Some(t),
             ResourceDesc::Buffer(_) => None,
         }
     }
+    /// The description when the resource is a buffer.
     pub fn buffer(&self) -> Option<&BufferDesc> {
         match &self.desc {
             ResourceDesc::Buffer(b) => Some(b),

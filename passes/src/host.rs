@@ -39,7 +39,14 @@ use rgraph_scene::{check_emitters, Camera, ParticleEmitter, Scene};
 /// The scene and overrides every deferred plugin of one registry shares, and the current
 /// [`FrameInputs`] (see the module documentation for the contract).
 pub struct Host {
+    /// The scene every plugin of the registry draws, loaded once and shared; its geometry
+    /// is uploaded on each device's first frame. Read-only: what moves between frames is
+    /// set with `set_frame`.
     pub scene: Arc<Scene>,
+    /// Per-render choices (tone mapping, exposure, background), copied by
+    /// [`register`](crate::register) into the plugins, which bake them into their passes
+    /// at setup: to change them, register the plugins with a new host and load the graph
+    /// again.
     pub overrides: Overrides,
     frame: Mutex<CurrentFrame>,
 }
@@ -164,22 +171,37 @@ impl FrameInputs {
 /// accepted ones stay.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FrameInputsError {
+    /// The frame inputs' light poses are not one per scene light.
     #[error("frame inputs give {given} light poses, but scene \"{scene}\" has {expected} lights")]
     LightCount {
+        /// The scene, by name.
         scene: String,
+        /// Poses given.
         given: usize,
+        /// The scene's lights.
         expected: usize,
     },
+    /// The frame inputs' transforms are not one per scene mesh.
     #[error(
         "frame inputs give {given} mesh transforms, but scene \"{scene}\" has {expected} meshes"
     )]
     MeshCount {
+        /// The scene, by name.
         scene: String,
+        /// Transforms given.
         given: usize,
+        /// The scene's meshes.
         expected: usize,
     },
+    /// A camera, light pose or mesh transform holds NaN or infinity.
     #[error("frame inputs: {what} of scene \"{scene}\" is not finite")]
-    NotFinite { scene: String, what: String },
+    NotFinite {
+        /// The scene, by name.
+        scene: String,
+        /// What: the camera, light N, mesh N.
+        what: String,
+    },
+    /// The exposure factor is not finite and positive.
     #[error("frame inputs: the exposure factor {0} is not finite and positive")]
     Exposure(f32),
     /// The particles do not fit: too many, or one that cannot be drawn (the reason

@@ -3,11 +3,11 @@
 //! off-screen particles, and the post passes (tone mapping, auto exposure, FXAA, SSAO, the
 //! light pre-pass, debug views). They draw a [`rgraph_scene::Scene`].
 //!
-//! - [`plugins`]: the pass plugins graph files name (`gbuffer`, `edge_stencil`,
-//!   `light_edge`, `light_nonedge`, `light_tiled`, `resolve`, `tonemap`, `debug_view`),
-//!   the baselines' `forward` and `gbuffer_resolve`, `transparent` and
-//!   `composite_transparent` for alpha BLEND meshes, and seed 001's off-screen particles:
-//!   `particles`, `composite_particles`, `depth_downsample` and `particle_edges`.
+//! - [`register`]: adds the pass plugins graph files name (`gbuffer`, `edge_stencil`,
+//!   `light_edge`, `light_nonedge`, `light_tiled`, `visibility`, `visibility_compute`,
+//!   `resolve`, `tonemap`, `debug_view`, ...) to a [`Registry`]. Graph files are their only
+//!   interface: each plugin's slots and parameters are in the pass catalogue,
+//!   `docs/reference/passes.md`.
 //! - [`variant`]: which shader variants a plan builds for a scene's features.
 //! - [`host`]: what the host application hands the plugins (the scene, overrides, frame
 //!   inputs).
@@ -16,13 +16,63 @@
 //!
 //! Scene textures are uploaded with a full mip chain made on the CPU (sRGB-correct box
 //! filter), and sampled as their glTF sampler says.
+//!
+//! # A frame of the plugins, validated without a GPU
+//!
+//! A registry with a [`Host`] draws its scene; declaring, loading and compiling need no
+//! device (the plugins parse and reflect their WGSL with naga while loading), so an engine's
+//! build script or CI checks its graph files this way. Executing the loaded graph is
+//! graph-core's [`Executor`](graph_core::gpu::Executor), as for any graph.
+//!
+//! ```
+//! use std::sync::Arc;
+//!
+//! use graph_core::file::{load_str_with, GraphParams, Registry};
+//! use graph_core::CompileOptions;
+//! use rgraph_passes::{Host, Overrides};
+//! use rgraph_scene::analysis::Features;
+//! use rgraph_scene::Scene;
+//!
+//! // A visibility buffer rasterised in compute at 4x MSAA, lit and resolved in one tiled
+//! // compute pass, tone mapped into the engine's target.
+//! const GRAPH: &str = r#"Graph(
+//!     resources: {
+//!         "samples": Buffer(per_sample: 8, samples: 4),
+//!         "resolved": Texture(format: "rgba16float"),
+//!         "target": ImportedTexture(format: "rgba8unorm-srgb"),
+//!     },
+//!     passes: [
+//!         (name: "visibility", plugin: "visibility_compute",
+//!          outputs: { "samples": "samples" }),
+//!         (name: "light tiled", plugin: "light_tiled",
+//!          inputs: { "samples": "samples" }, outputs: { "resolved": "resolved" }),
+//!         (name: "tonemap", plugin: "tonemap", params: (operator: aces),
+//!          inputs: { "hdr": "resolved" }, outputs: { "color": "target" }),
+//!     ],
+//!     outputs: ["target"],
+//! )"#;
+//!
+//! let scene = Arc::new(Scene::load("builtin:spheres")?);
+//! let host = Arc::new(Host::new(scene.clone(), Overrides::default()));
+//! let mut registry = Registry::with_builtins();
+//! rgraph_passes::register(&mut registry, Some(host));
+//! let graph = load_str_with("frame.ron", GRAPH, &registry, &GraphParams::new())?;
+//!
+//! // Compiled for the scene's features, against what every WebGPU device guarantees.
+//! let plan = graph.compile_for(&CompileOptions::default(), &Features::of(&scene).names())?;
+//! let passes: Vec<&str> = plan.passes.iter().map(|p| p.name.as_str()).collect();
+//! assert_eq!(passes, ["visibility", "light tiled", "tonemap"]);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+#![deny(missing_docs)]
 
 mod common;
 #[cfg(feature = "gpu")]
 pub mod gpu_scene;
 pub mod host;
 mod passes;
-pub mod plugins;
+mod plugins;
 mod shaders;
 pub mod variant;
 

@@ -40,41 +40,28 @@ use graph_core::file::Registry;
 
 use crate::common::plugin::Shared;
 use crate::host::Host;
+use crate::passes::auto_exposure::AutoExposure;
+use crate::passes::background::Background;
+use crate::passes::debug_view::DebugView;
+use crate::passes::depth_downsample::DepthDownsample;
+use crate::passes::edge_stencil::EdgeStencil;
+use crate::passes::forward::Forward;
+use crate::passes::fxaa::Fxaa;
+use crate::passes::gbuffer::GBuffer;
+use crate::passes::gbuffer_resolve::GBufferResolve;
+use crate::passes::keys_depth::KeysDepth;
+use crate::passes::light::{LightEdge, LightNonEdge};
+use crate::passes::light_prepass::{LightPrepassGBuffer, LightPrepassMaterial};
+use crate::passes::light_tiled::LightTiled;
+use crate::passes::particle_edges::ParticleEdges;
+use crate::passes::particles::{CompositeParticles, Particles};
+use crate::passes::resolve::Resolve;
+use crate::passes::ssao::{Ssao, SsaoBlur};
+use crate::passes::tonemap::Tonemap;
+use crate::passes::transparent::{CompositeTransparent, Transparent};
+use crate::passes::visibility::Visibility;
+use crate::passes::visibility_compute::VisibilityCompute;
 use crate::variant::Variants;
-
-pub use crate::common::edge_detection::{Detector, EdgeDetection};
-pub use crate::common::extent::Extent;
-pub use crate::passes::auto_exposure::{AutoExposure, AutoExposureParams};
-pub use crate::passes::background::{Background, BackgroundParams};
-pub use crate::passes::debug_view::{DebugView, DebugViewParams, View};
-pub use crate::passes::depth_downsample::{DepthDownsample, DepthDownsampleParams, MAX_TAPS};
-pub use crate::passes::edge_stencil::EdgeStencil;
-pub use crate::passes::forward::{Forward, ForwardParams, Shading};
-pub use crate::passes::fxaa::{Fxaa, FxaaParams};
-pub use crate::passes::gbuffer::{GBuffer, GBufferParams};
-pub use crate::passes::gbuffer_resolve::{GBufferResolve, GBufferResolveParams};
-pub use crate::passes::keys_depth::{KeysDepth, KeysDepthParams};
-pub use crate::passes::light::{
-    Accumulate, EdgeMode, LightEdge, LightEdgeParams, LightNonEdge, LightNonEdgeParams,
-    PixelSamples,
-};
-pub use crate::passes::light_prepass::{
-    LightPrepassGBuffer, LightPrepassGBufferParams, LightPrepassMaterial,
-    LightPrepassMaterialParams,
-};
-pub use crate::passes::light_tiled::{EdgeShading, LightTiled, LightTiledParams, TiledView};
-pub use crate::passes::particle_edges::{ParticleEdges, ParticleEdgesParams};
-pub use crate::passes::particles::{
-    CompositeParticles, CompositeParticlesParams, Particles, ParticlesParams, MAX_PAD,
-};
-pub use crate::passes::resolve::{Resolve, ResolveMode, ResolveParams};
-pub use crate::passes::ssao::{Ssao, SsaoBlur, SsaoBlurParams, SsaoParams};
-pub use crate::passes::tonemap::{Operator, Tonemap, TonemapParams, TonemapStage};
-pub use crate::passes::transparent::{
-    CompositeTransparent, CompositeTransparentParams, Transparent, TransparentParams,
-};
-pub use crate::passes::visibility::{Visibility, VisibilityParams};
-pub use crate::passes::visibility_compute::{VisibilityCompute, VisibilityComputeParams};
 
 /// Adds every deferred plugin, sharing `host`, compiling shaders as `variants` says.
 pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variants: Variants) {

@@ -121,7 +121,7 @@ pub(crate) const LIGHT_PREPASS: Source = Source {
 };
 /// Needs a generated block after it, with a reader ([`GBUFFER_READ`] or
 /// [`VISIBILITY_READ`]), one of the `VIEW_DEPTH_*`, one of the `EMITTED_*` fragments and
-/// [`EDGES_IN_TILES`] or [`LIGHT_EDGES_LISTED`]: see [`crate::plugins::LightTiled`].
+/// [`EDGES_IN_TILES`] or [`LIGHT_EDGES_LISTED`]: see [`crate::passes::light_tiled::LightTiled`].
 pub(crate) const LIGHT_TILED: Source = Source {
     name: "light_tiled.wgsl",
     parts: &[
@@ -237,13 +237,13 @@ pub(crate) const COMPOSITE: Source = Source {
 };
 /// View depth from a depth buffer's value, for the particle passes.
 pub(crate) const PARTICLE_DEPTH: &str = include_str!("wgsl/particle_depth.wgsl");
-/// Needs a generated block after it: see [`crate::plugins::Particles`].
+/// Needs a generated block after it: see [`crate::passes::particles::Particles`].
 pub(crate) const PARTICLES: Source = Source {
     name: "particles.wgsl",
     parts: &[COMMON, SCENE, include_str!("wgsl/particles.wgsl")],
 };
 /// particles.wgsl's particles, opacities and blending in compute; needs a generated
-/// block after it: see [`crate::plugins::Particles`].
+/// block after it: see [`crate::passes::particles::Particles`].
 pub(crate) const PARTICLES_RASTER: Source = Source {
     name: "particles_raster.wgsl",
     parts: &[
@@ -266,7 +266,7 @@ pub(crate) const DEPTH_DOWNSAMPLE: Source = Source {
         include_str!("wgsl/depth_downsample.wgsl"),
     ],
 };
-/// Needs a generated block after it: see [`crate::plugins::Background`].
+/// Needs a generated block after it: see [`crate::passes::background::Background`].
 pub(crate) const BACKGROUND: Source = Source {
     name: "background.wgsl",
     parts: &[COMMON, SCENE, include_str!("wgsl/background.wgsl")],

@@ -24,8 +24,11 @@ use rgraph_scene::Scene;
 /// A scene feature whose code a shader can compile out.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Gate {
+    /// Directional lights' shading (without any, the loop over them is compiled out).
     DirectionalLights,
+    /// Point lights' shading.
     PointLights,
+    /// Spot lights' shading (the cone falloff).
     SpotLights,
     /// Sampling the base-color texture (without one a material's texture is white).
     Textures,
@@ -140,6 +143,8 @@ impl GatedShader {
         }
     }
 
+    /// The WGSL file (in `passes/src/wgsl/`) whose gated code the variant compiles in or
+    /// out.
     pub fn file(self) -> &'static str {
         match self {
             GatedShader::GBuffer => "gbuffer.wgsl",
@@ -200,6 +205,7 @@ impl GatedShader {
 /// One shader compiled with the code of some of its gates: a pipeline-cache key part.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Variant {
+    /// The shader.
     pub shader: GatedShader,
     /// The gates whose code is compiled in, in [`GatedShader::gates`] order.
     pub compiled: Vec<Gate>,
@@ -224,6 +230,7 @@ impl Variant {
         Variant::of(shader, &Features::general())
     }
 
+    /// Whether every gate is compiled in: the variant is the general shader.
     pub fn is_general(&self) -> bool {
         self.compiled.len() == self.shader.gates().len()
     }
@@ -276,6 +283,7 @@ impl Variants {
 /// A variant a plan builds, and the passes that use it.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ShaderVariant {
+    /// The variant built.
     pub variant: Variant,
     /// In plan order.
     pub passes: Vec<String>,

@@ -10,14 +10,18 @@ pub const MAX_COORDINATE: f64 = 1e12;
 /// An axis-aligned box in world space. Always non-empty: `min <= max` per axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
+    /// The smallest coordinate on each axis.
     pub min: DVec3,
+    /// The largest coordinate on each axis.
     pub max: DVec3,
 }
 
 /// A sphere in world space, `radius >= 0`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BoundingSphere {
+    /// Its center, world space.
     pub center: DVec3,
+    /// Its radius, world units.
     pub radius: f64,
 }
 
@@ -48,6 +52,7 @@ impl Aabb {
         self.min.abs().max(self.max.abs()).max_element()
     }
 
+    /// The box's center.
     pub fn center(&self) -> DVec3 {
         (self.min + self.max) * 0.5
     }

@@ -23,15 +23,22 @@ pub const FRAMING_FILL: f64 = 0.85;
 pub enum Projection {
     /// `zfar: None` is an infinite far plane.
     Perspective {
+        /// Vertical field of view, radians, between 0 and π.
         yfov: f32,
+        /// Distance to the near plane, world units, positive.
         znear: f32,
+        /// Distance to the far plane; `None` for an infinite far plane.
         zfar: Option<f32>,
     },
     /// `xmag`/`ymag` are half the view's width/height in world units.
     Orthographic {
+        /// Half the view's width, world units.
         xmag: f32,
+        /// Half the view's height, world units.
         ymag: f32,
+        /// Distance to the near plane, world units (0 or more).
         znear: f32,
+        /// Distance to the far plane, world units, beyond `znear`.
         zfar: f32,
     },
 }
@@ -49,12 +56,14 @@ pub enum DepthConvention {
 /// A camera. View space is glTF's: right-handed, looking down -Z with +Y up.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
+    /// The glTF camera's (or node's) name, for messages; the built-in scenes name theirs.
     pub name: String,
     /// Eye position in world space; f64 so camera-relative rendering of scenes far from the
     /// origin subtracts it exactly.
     pub position: DVec3,
     /// Rotation from view space to world space (unit quaternion).
     pub orientation: DQuat,
+    /// Its projection, in glTF's terms.
     pub projection: Projection,
 }
 

@@ -12,7 +12,9 @@ pub enum SceneError {
     /// an [`SceneError::InvalidBuffer`] or [`SceneError::InvalidImage`] naming its user.)
     #[error("cannot read {file}: {source}")]
     Io {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The underlying error.
         #[source]
         source: graph_core::bounded_read::ReadError,
     },
@@ -20,7 +22,9 @@ pub enum SceneError {
     /// The `gltf` crate rejected the file: not JSON / GLB, or it fails glTF validation.
     #[error("{file}: not a valid glTF 2.0 file: {source}")]
     Gltf {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The underlying error.
         #[source]
         source: gltf::Error,
     },
@@ -28,7 +32,12 @@ pub enum SceneError {
     /// A `.glb` whose container (header or chunks) is inconsistent in a way the `gltf`
     /// crate does not catch itself.
     #[error("{file}: not a valid GLB file: {reason}")]
-    InvalidGlb { file: PathBuf, reason: String },
+    InvalidGlb {
+        /// The glTF file, as given.
+        file: PathBuf,
+        /// What is wrong, in words.
+        reason: String,
+    },
 
     /// The file lists an extension in `extensionsRequired` that this loader does not implement,
     /// so any rendering of it would be wrong.
@@ -37,27 +46,39 @@ pub enum SceneError {
          (implemented: {implemented})"
     )]
     UnsupportedRequiredExtension {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The extension required.
         extension: String,
+        /// The extensions the loader implements, comma-separated.
         implemented: String,
     },
 
     /// A buffer's data is missing (its file too), unreachable or shorter than declared.
     #[error("{file}: buffer {buffer}: {reason}")]
     InvalidBuffer {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The buffer's index.
         buffer: usize,
+        /// What is wrong, in words.
         reason: String,
     },
 
     /// An accessor's type, layout or bounds are inconsistent with its buffer view or its use.
     #[error("{file}: {mesh} primitive {primitive}: {attribute} accessor {accessor}: {reason}")]
     InvalidAccessor {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The glTF mesh, by index and name.
         mesh: String,
+        /// The primitive's index in its mesh.
         primitive: usize,
+        /// What the accessor holds: "POSITION", "indices", ...
         attribute: &'static str,
+        /// The accessor's index.
         accessor: usize,
+        /// What is wrong, in words.
         reason: String,
     },
 
@@ -67,11 +88,17 @@ pub enum SceneError {
          {value:?}"
     )]
     NonFiniteVertex {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The glTF mesh, by index and name.
         mesh: String,
+        /// The primitive's index in its mesh.
         primitive: usize,
+        /// The vertex's index in the primitive.
         vertex: usize,
+        /// The attribute: "POSITION", "NORMAL", ...
         attribute: &'static str,
+        /// The attribute's components.
         value: Vec<f32>,
     },
 
@@ -81,64 +108,90 @@ pub enum SceneError {
          {vertex_count} vertices"
     )]
     IndexOutOfRange {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The glTF mesh, by index and name.
         mesh: String,
+        /// The primitive's index in its mesh.
         primitive: usize,
+        /// Where the index is in the index list.
         position: usize,
+        /// The index.
         index: u32,
+        /// The primitive's vertices.
         vertex_count: usize,
     },
 
     /// A primitive's index count is not what its mode needs (e.g. TRIANGLES not a multiple of 3).
     #[error("{file}: {mesh} primitive {primitive}: {reason}")]
     InvalidPrimitive {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The glTF mesh, by index and name.
         mesh: String,
+        /// The primitive's index in its mesh.
         primitive: usize,
+        /// What is wrong, in words.
         reason: String,
     },
 
-    /// A material's image could not be located or decoded.
     /// Every placement of a mesh together is more than the scene may hold (checked before
     /// any is built).
     #[error("{file}: {mesh}: {reason}")]
     InvalidMesh {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The glTF mesh, by index and name.
         mesh: String,
+        /// What is wrong, in words.
         reason: String,
     },
 
+    /// A material's image could not be located or decoded.
     #[error("{file}: {image} ({slot} of {material}): {reason}")]
     InvalidImage {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The image, by index and name or URI.
         image: String,
         /// Which of the material's textures uses it: "base color", "emissive", ...
         slot: &'static str,
+        /// The material, by index and name.
         material: String,
+        /// What is wrong, in words.
         reason: String,
     },
 
     /// A material factor is not a finite f32.
     #[error("{file}: {material}: {reason}")]
     InvalidMaterial {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The material, by index and name.
         material: String,
+        /// What is wrong, in words.
         reason: String,
     },
 
     /// A light's parameters are outside what KHR_lights_punctual allows.
     #[error("{file}: {light}: {reason}")]
     InvalidLight {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The light, by index and name.
         light: String,
+        /// What is wrong, in words.
         reason: String,
     },
 
     /// A camera's parameters cannot make a projection.
     #[error("{file}: {camera}: {reason}")]
     InvalidCamera {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The camera, by index and name.
         camera: String,
+        /// What is wrong, in words.
         reason: String,
     },
 
@@ -146,8 +199,11 @@ pub enum SceneError {
     /// [`MAX_COORDINATE`](super::MAX_COORDINATE).
     #[error("{file}: {node}: {reason}")]
     InvalidNode {
+        /// The glTF file, as given.
         file: PathBuf,
+        /// The node, by index and name.
         node: String,
+        /// What is wrong, in words.
         reason: String,
     },
 
@@ -159,49 +215,83 @@ pub enum SceneError {
          finite)"
     )]
     TooFar {
+        /// The scene, by its spec.
         scene: String,
+        /// What reaches so far: a vertex of a mesh, a light, the camera.
         what: String,
+        /// Its largest coordinate magnitude.
         value: f64,
+        /// The limit.
         max: f64,
     },
 
     /// A node is reached twice from the scene's roots: a cycle or a shared child, both of which
     /// glTF forbids (the hierarchy must be a forest).
     #[error("{file}: {node} is reached twice in the node hierarchy (cycle or shared child)")]
-    NodeHierarchy { file: PathBuf, node: String },
+    NodeHierarchy {
+        /// The glTF file, as given.
+        file: PathBuf,
+        /// The node, by index and name.
+        node: String,
+    },
 
     /// More lights than [`MAX_LIGHTS`](super::MAX_LIGHTS).
     #[error("{scene}: more than {max} lights (the most a scene may have: each is drawn as its own volume)")]
-    TooManyLights { scene: String, max: u32 },
+    TooManyLights {
+        /// The scene, by its spec.
+        scene: String,
+        /// The limit.
+        max: u32,
+    },
 
     /// More particles than [`MAX_PARTICLES`](super::MAX_PARTICLES) over all emitters.
     #[error("{scene}: {count} particles, more than {max} (the most a scene may have: each is an instance of one draw, 32 bytes on the device)")]
     TooManyParticles {
+        /// The scene, by its spec.
         scene: String,
+        /// The particles over all emitters.
         count: usize,
+        /// The limit.
         max: usize,
     },
 
     /// A particle that cannot be drawn (see [`Particle::invalid`](super::Particle::invalid)).
     #[error("{scene}: emitter \"{emitter}\" particle {index}: {reason}")]
     InvalidParticle {
+        /// The scene, by its spec.
         scene: String,
+        /// The emitter's name.
         emitter: String,
+        /// The particle's index in its emitter.
         index: usize,
+        /// What is wrong, in words.
         reason: String,
     },
 
     /// Nothing to draw: no triangle survived loading.
     #[error("{scene}: the scene contains no triangles")]
-    EmptyScene { scene: String },
+    EmptyScene {
+        /// The scene, by its spec.
+        scene: String,
+    },
 
     /// `builtin:NAME` with a NAME that is not a built-in scene.
     #[error("unknown built-in scene `{name}`; available: {available}")]
-    UnknownBuiltin { name: String, available: String },
+    UnknownBuiltin {
+        /// The name asked for.
+        name: String,
+        /// The built-in scenes' names, comma-separated.
+        available: String,
+    },
 
     /// A `builtin:NAME?key=value` parameter that the scene does not take or cannot parse.
     #[error("builtin:{scene}: {reason}")]
-    BuiltinParameter { scene: String, reason: String },
+    BuiltinParameter {
+        /// The built-in scene's name.
+        scene: String,
+        /// What is wrong, in words.
+        reason: String,
+    },
 }
 
 /// How errors and warnings name a glTF object: its kind and index, plus its name when it has one

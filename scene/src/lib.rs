@@ -7,6 +7,33 @@
 //!
 //! Nothing here touches the GPU or prints: problems that still allow rendering come back as
 //! [`Scene::warnings`], problems that do not as a [`SceneError`].
+//!
+//! Conventions: world space is glTF's (right-handed, +Y up, metres by convention); world
+//! positions and transforms are f64 so that scenes far from the origin render
+//! camera-relative without losing precision; colors are linear RGB unless a field says
+//! sRGB; light intensities are glTF's photometric units (candela, lux).
+//!
+//! ```
+//! use rgraph_scene::analysis::Features;
+//! use rgraph_scene::{Scene, SceneError};
+//!
+//! // Five spheres on a ground plane, one sun and four point lights.
+//! let scene = Scene::load("builtin:spheres")?;
+//! let stats = scene.stats();
+//! assert_eq!((stats.meshes, stats.point_lights, stats.directional_lights), (6, 4, 1));
+//! assert!(scene.warnings.is_empty());
+//!
+//! // What a pipeline can specialise on: the features graph-file conditions test.
+//! let features = Features::of(&scene);
+//! assert!(features.point_lights && !features.spot_lights && !features.particles);
+//!
+//! // Parameters are checked before anything is built, and errors say what is accepted.
+//! let error = Scene::load("builtin:lights?count=-1").unwrap_err();
+//! assert!(matches!(error, SceneError::BuiltinParameter { .. }));
+//! # Ok::<(), SceneError>(())
+//! ```
+
+#![deny(missing_docs)]
 
 pub mod analysis;
 mod assets;
@@ -106,6 +133,8 @@ impl Scene {
         self.emitters.iter().flat_map(|e| e.particles.iter())
     }
 
+    /// What the scene holds, counted: meshes, triangles, lights by kind, materials by
+    /// feature.
     pub fn stats(&self) -> SceneStats {
         SceneStats::of(self)
     }

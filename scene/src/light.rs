@@ -17,20 +17,26 @@ pub const MAX_LIGHTS: u32 = 1 << 14;
 /// The three KHR_lights_punctual types.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LightKind {
+    /// Emits in every direction from `position`.
     Point,
     /// Cone half-angles in radians from the axis, `0 <= inner_cone < outer_cone <= π/2`: full
     /// intensity inside `inner_cone`, none outside `outer_cone`.
     Spot {
+        /// Half-angle of full intensity, radians.
         inner_cone: f32,
+        /// Half-angle beyond which nothing is lit, radians.
         outer_cone: f32,
     },
+    /// Parallel rays along `direction`, from infinitely far (the sun).
     Directional,
 }
 
 /// A light in world space, in glTF units.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Light {
+    /// The glTF light's name, for messages.
     pub name: String,
+    /// Point, spot or directional.
     pub kind: LightKind,
     /// Linear RGB.
     pub color: [f32; 3],
@@ -57,9 +63,13 @@ pub enum LightVolume {
     /// effective range, `base_radius = height * tan(outer_cone)`); a tessellated cone must
     /// circumscribe this one (scale its base by `1 / cos(π / segments)`).
     Cone {
+        /// The light's position, world space.
         apex: DVec3,
+        /// Unit direction from the apex to the base's center.
         axis: Vec3,
+        /// Distance from the apex to the base, world units.
         height: f32,
+        /// Radius of the base disc, world units.
         base_radius: f32,
     },
 }

@@ -27,6 +27,7 @@ pub const DEFAULT_ENVIRONMENT_INTENSITY: f32 = 1.0;
 pub const HEADLIGHT_LUX: f32 = 1.5;
 
 impl Lighting {
+    /// Every choice, in the order the command line lists them.
     pub const ALL: [Lighting; 4] = [
         Lighting::Auto,
         Lighting::File,

@@ -5,9 +5,11 @@ use super::texture::TextureRef;
 /// How alpha affects coverage.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum AlphaMode {
+    /// Alpha is ignored: every fragment covers its sample.
     Opaque,
     /// Fragments with `alpha < cutoff` are discarded.
     Mask {
+        /// The alpha threshold, glTF's `alphaCutoff` (0.5 by default).
         cutoff: f32,
     },
     /// glTF BLEND: the surface is composited over what lies behind it with its alpha
@@ -21,12 +23,15 @@ pub enum AlphaMode {
 /// Each texture is sampled with the UV set its [`TextureRef::tex_coord`] names.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
+    /// The glTF material's name, for messages.
     pub name: String,
     /// Linear RGBA, multiplied with the base-color texture and the vertex color.
     pub base_color_factor: [f32; 4],
     /// sRGB texture sampled with its UV set.
     pub base_color_texture: Option<TextureRef>,
+    /// Metalness, 0 (dielectric) to 1 (metal).
     pub metallic_factor: f32,
+    /// Perceptual roughness, 0 (mirror) to 1.
     pub roughness_factor: f32,
     /// glTF metallicRoughnessTexture, linear, sampled with its UV set: blue multiplies
     /// `metallic_factor`, green `roughness_factor` (red is unused; glTF packs occlusion there).
@@ -34,10 +39,12 @@ pub struct Material {
     /// glTF normalTexture, linear tangent-space normals sampled with its UV set along the
     /// vertices' tangents; its X and Y are scaled by `normal_scale`.
     pub normal_texture: Option<TextureRef>,
+    /// glTF `normalTexture.scale`: scales the sampled normal's X and Y.
     pub normal_scale: f32,
     /// glTF occlusionTexture, linear, red channel, sampled with its UV set: scales ambient
     /// light only, by `1 + occlusion_strength * (red - 1)`.
     pub occlusion_texture: Option<TextureRef>,
+    /// glTF `occlusionTexture.strength`, 0 (no occlusion) to 1.
     pub occlusion_strength: f32,
     /// Linear RGB emitted radiance before `emissive_strength` and the emissive texture.
     pub emissive_factor: [f32; 3],
@@ -46,6 +53,7 @@ pub struct Material {
     pub emissive_texture: Option<TextureRef>,
     /// KHR_materials_emissive_strength multiplier (1 without the extension).
     pub emissive_strength: f32,
+    /// How alpha affects coverage.
     pub alpha_mode: AlphaMode,
     /// Back faces are drawn (and lit with the flipped normal) instead of culled.
     pub double_sided: bool,

@@ -56,7 +56,9 @@ impl Vertex {
 pub struct Mesh {
     /// `mesh name/primitive index` for glTF, a description for built-in scenes.
     pub name: String,
+    /// Object-space vertices.
     pub vertices: Vec<Vertex>,
+    /// Triangle list, three indices per triangle.
     pub indices: Vec<u32>,
     /// Index into `Scene::materials`.
     pub material: usize,
@@ -65,6 +67,7 @@ pub struct Mesh {
 }
 
 impl Mesh {
+    /// Triangles in the index list.
     pub fn triangle_count(&self) -> usize {
         self.indices.len() / 3
     }

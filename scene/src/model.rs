@@ -16,6 +16,7 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Indexed by `TextureRef::image`.
     pub textures: Vec<TextureImage>,
+    /// Punctual lights, world space; at most [`MAX_LIGHTS`](crate::MAX_LIGHTS).
     pub lights: Vec<Light>,
     /// Linear RGB ambient radiance multiplied with base color (glTF has none: zero for files).
     pub ambient: [f32; 3],

@@ -36,6 +36,7 @@ pub struct Particle {
 pub struct ParticleEmitter {
     /// Names the emitter in errors.
     pub name: String,
+    /// Its particles, in any order: the passes sort the blended ones back to front.
     pub particles: Vec<Particle>,
 }
 

@@ -9,25 +9,40 @@ use super::Scene;
 /// What a scene holds. Material counts overlap: one material can be emissive and textured.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SceneStats {
+    /// Meshes (glTF primitives).
     pub meshes: usize,
+    /// Triangles over all meshes.
     pub triangles: usize,
+    /// Vertices over all meshes.
     pub vertices: usize,
+    /// Point lights.
     pub point_lights: usize,
+    /// Spot lights.
     pub spot_lights: usize,
+    /// Directional lights.
     pub directional_lights: usize,
     /// Image-based lighting (the default lighting of files without lights).
     pub environment: bool,
+    /// Materials.
     pub materials: usize,
+    /// Materials with KHR_materials_unlit.
     pub unlit_materials: usize,
+    /// Materials that emit light (a non-zero emissive factor).
     pub emissive_materials: usize,
+    /// Materials with alpha mode MASK.
     pub mask_materials: usize,
+    /// Materials with alpha mode BLEND.
     pub blend_materials: usize,
+    /// Materials with a base-color texture.
     pub textured_materials: usize,
+    /// Double-sided materials.
     pub double_sided_materials: usize,
+    /// Decoded texture images.
     pub textures: usize,
 }
 
 impl SceneStats {
+    /// Counts what `scene` holds.
     pub fn of(scene: &Scene) -> SceneStats {
         let lights =
             |kind: fn(&LightKind) -> bool| scene.lights.iter().filter(|l| kind(&l.kind)).count();

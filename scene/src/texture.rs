@@ -5,7 +5,9 @@
 pub struct TextureImage {
     /// The glTF image name or URI, or a description for generated images; for messages only.
     pub name: String,
+    /// Width in texels.
     pub width: u32,
+    /// Height in texels.
     pub height: u32,
     /// `width * height * 4` bytes.
     pub rgba8: Vec<u8>,
@@ -16,24 +18,33 @@ pub struct TextureImage {
 /// How texture coordinates outside `[0, 1]` wrap (glTF sampler `wrapS` / `wrapT`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum WrapMode {
+    /// Tiles the image (glTF REPEAT, the default).
     Repeat,
+    /// Tiles it, mirroring every other tile.
     MirroredRepeat,
+    /// Repeats the edge texels outward.
     ClampToEdge,
 }
 
 /// Texel filtering between texels or between mip levels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum FilterMode {
+    /// The nearest texel or level.
     Nearest,
+    /// A linear blend of the neighbouring texels or levels.
     Linear,
 }
 
 /// A glTF sampler, split the way wgpu's `SamplerDescriptor` is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Sampler {
+    /// Wrapping across the image's width (glTF `wrapS`).
     pub wrap_u: WrapMode,
+    /// Wrapping across its height (glTF `wrapT`).
     pub wrap_v: WrapMode,
+    /// Filter where a texel covers several pixels.
     pub mag_filter: FilterMode,
+    /// Filter within a mip level where a pixel covers several texels.
     pub min_filter: FilterMode,
     /// `None` when the glTF minification filter uses no mipmaps (NEAREST or LINEAR).
     pub mipmap_filter: Option<FilterMode>,
@@ -58,6 +69,7 @@ impl Default for Sampler {
 pub struct TextureRef {
     /// Index into `Scene::textures`.
     pub image: usize,
+    /// How it is sampled.
     pub sampler: Sampler,
     /// Which texture coordinates it is sampled with: 0 ([`Vertex::uv`]) or 1
     /// ([`Vertex::uv1`]).

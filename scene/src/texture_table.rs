@@ -41,7 +41,9 @@ pub struct TextureTable {
 /// One array texture of the table: its layer size and, in layer order, the scene's images.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TableArray {
+    /// Width of every layer, texels.
     pub width: u32,
+    /// Height of every layer, texels.
     pub height: u32,
     /// Indices into `Scene::textures`; layer `i` holds `images[i]`.
     pub images: Vec<usize>,
@@ -50,31 +52,47 @@ pub struct TableArray {
 /// Why a scene's textures do not fit the table.
 #[derive(Clone, Debug, PartialEq, Error)]
 pub enum TableError {
+    /// More images of one kind than an array texture has layers.
     #[error(
         "the texture table's {array} array would need {layers} layers, more than the \
          {max} a 2D array texture may have (max_texture_array_layers)"
     )]
     TooManyLayers {
+        /// Which array: "color" (sRGB) or "data" (linear).
         array: &'static str,
+        /// The layers it would need.
         layers: usize,
+        /// The limit it exceeds.
         max: u32,
     },
+    /// The largest image of one kind is wider or taller than a texture may be.
     #[error(
         "the texture table's {array} layers would be {width}x{height} texels, more than \
          {max} a side (max_texture_dimension_2d)"
     )]
     TooLarge {
+        /// Which array: "color" (sRGB) or "data" (linear).
         array: &'static str,
+        /// The layers' width, texels.
         width: u32,
+        /// The layers' height, texels.
         height: u32,
+        /// The limit it exceeds.
         max: u32,
     },
+    /// Resampling every image to the largest one's size would more than double the
+    /// textures' memory.
     #[error(
         "the texture table would take {table} bytes, more than twice the {own} bytes of \
          the scene's own textures: its images differ so much in size that resampling the \
          small ones up to the largest costs too much"
     )]
-    TooMuchMemory { table: u64, own: u64 },
+    TooMuchMemory {
+        /// Bytes the table would take.
+        table: u64,
+        /// Bytes of the scene's own textures.
+        own: u64,
+    },
 }
 
 impl TableArray {

@@ -33,7 +33,13 @@ use versions::Versions;
 /// caller that writes these options out in full.
 #[derive(Clone, Debug)]
 pub struct CompileOptions {
+    /// Width and height in texels of the frame's output: what [`Size::Relative`] sizes
+    /// and per-sample buffers resolve against.
+    ///
+    /// [`Size::Relative`]: crate::Size::Relative
     pub output_size: (u32, u32),
+    /// The device the plan must run on: its limits, features and format capabilities.
+    /// An error, not a panic, when the graph does not fit it.
     pub profile: DeviceProfile,
 }
 

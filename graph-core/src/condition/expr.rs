@@ -9,7 +9,9 @@ use super::features::Features;
 /// A feature that must be set, or (`negated`) must not be.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 pub struct Literal {
+    /// The feature's name.
     pub feature: String,
+    /// Written `!feature`: holds where the feature is not set.
     pub negated: bool,
 }
 
@@ -67,6 +69,7 @@ impl Condition {
         self
     }
 
+    /// The literals, all of which must hold, in the order written (repeats dropped).
     pub fn literals(&self) -> &[Literal] {
         &self.literals
     }

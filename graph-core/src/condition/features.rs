@@ -16,6 +16,7 @@ impl Features {
         Features::default()
     }
 
+    /// Whether `feature` is set.
     pub fn contains(&self, feature: &str) -> bool {
         self.0.contains(feature)
     }
@@ -30,6 +31,7 @@ impl Features {
         Features(self.0.intersection(&other.0).cloned().collect())
     }
 
+    /// The features set, in alphabetical order.
     pub fn iter(&self) -> impl Iterator<Item = &str> {
         self.0.iter().map(String::as_str)
     }

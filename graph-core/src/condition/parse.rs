@@ -10,14 +10,27 @@ use super::expr::{Condition, Literal};
 /// condition's text (0-based), so a graph file can point at the character at fault.
 #[derive(Clone, Debug, PartialEq, Eq, Error)]
 pub enum ConditionError {
+    /// The condition names no feature.
     #[error("a condition names at least one feature (`feature`, `!feature` or `a & !b`)")]
     Empty,
 
+    /// Something other than a feature name where one belongs.
     #[error("expected a feature name, found {found}; conditions read `a & !b` (only `&` and `!`)")]
-    Expected { column: usize, found: String },
+    Expected {
+        /// Characters from the start of the condition to the fault.
+        column: usize,
+        /// What stands there, quoted, or "the end".
+        found: String,
+    },
 
+    /// A feature both required and forbidden (`a & !a`): the condition could never hold.
     #[error("\"{feature}\" is both required and forbidden, so the condition never holds")]
-    Contradiction { column: usize, feature: String },
+    Contradiction {
+        /// Characters from the start of the condition to the fault.
+        column: usize,
+        /// The feature.
+        feature: String,
+    },
 }
 
 impl ConditionError {

@@ -5,11 +5,14 @@ use crate::handle::{BufferHandle, Handle, Kind, ResourceId, ResourceKind, Textur
 /// A texture or buffer handle.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub enum AnyHandle {
+    /// A texture version.
     Texture(TextureHandle),
+    /// A buffer version.
     Buffer(BufferHandle),
 }
 
 impl AnyHandle {
+    /// Texture or buffer.
     pub fn kind(&self) -> Kind {
         match self {
             AnyHandle::Texture(_) => Kind::Texture,
@@ -17,6 +20,7 @@ impl AnyHandle {
         }
     }
 
+    /// The resource, whatever its version ([`Handle::id`]).
     pub fn id(&self) -> ResourceId {
         match self {
             AnyHandle::Texture(h) => h.id(),
@@ -24,6 +28,7 @@ impl AnyHandle {
         }
     }
 
+    /// The version ([`Handle::version`]).
     pub fn version(&self) -> u32 {
         match self {
             AnyHandle::Texture(h) => h.version(),

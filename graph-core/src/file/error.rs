@@ -16,6 +16,7 @@ use crate::position::Position;
 pub struct Location {
     /// The path as the caller gave it (relative paths stay relative).
     pub path: String,
+    /// Line and column (1-based) in that file.
     pub at: Position,
 }
 
@@ -28,30 +29,54 @@ impl fmt::Display for Location {
 /// What is wrong, in words that name the pass and resource involved.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum ErrorKind {
+    /// The file could not be read: missing, not a regular file, larger than the bounded
+    /// read allows.
     #[error("cannot read the file: {reason}")]
-    Unreadable { reason: String },
+    Unreadable {
+        /// Why, in words (the operating system's message for I/O).
+        reason: String,
+    },
 
     /// Malformed RON, an unknown field, a value of the wrong type: `ron`'s message.
     #[error("{message}")]
-    Syntax { message: String },
+    Syntax {
+        /// The parser's message.
+        message: String,
+    },
 
+    /// Two resources of one name.
     #[error("resource \"{resource}\" is declared twice")]
-    DuplicateResource { resource: String },
+    DuplicateResource {
+        /// The resource or version, by name.
+        resource: String,
+    },
 
+    /// Two passes of one name.
     #[error("two passes are called \"{pass}\"")]
-    DuplicatePass { pass: String },
+    DuplicatePass {
+        /// The pass, by name.
+        pass: String,
+    },
 
+    /// A pass lists a slot twice on one side.
     #[error("pass \"{pass}\" lists slot \"{slot}\" twice in its {side}")]
     DuplicateSlot {
+        /// The pass, by name.
         pass: String,
+        /// The slot name.
         slot: String,
+        /// `inputs` or `outputs`.
         side: &'static str,
     },
 
+    /// A pass names a plugin the registry does not have.
     #[error("pass \"{pass}\" uses plugin \"{plugin}\", which is not registered (known: {known})")]
     UnknownPlugin {
+        /// The pass, by name.
         pass: String,
+        /// The plugin the pass names.
         plugin: String,
+        /// What the file or registry does have, comma-separated.
         known: String,
     },
 
@@ -60,155 +85,255 @@ pub enum ErrorKind {
     /// quoted, control characters escaped; the file was not read.
     #[error("{what} {reference} {reason}")]
     Reference {
+        /// What the file names: "the preset's base", "the shader".
         what: &'static str,
+        /// The name as written, quoted.
         reference: String,
+        /// Why, in words (the operating system's message for I/O).
         reason: String,
     },
 
     /// Bytes that are not UTF-8, placed at the first of them.
     #[error("not UTF-8 text: {detail}; graph files are UTF-8")]
-    NotUtf8 { detail: String },
+    NotUtf8 {
+        /// Where the first invalid byte is.
+        detail: String,
+    },
 
+    /// A preset's base file cannot be read.
     #[error("the preset's base {base} cannot be read: {reason}")]
-    PresetBase { base: String, reason: String },
+    PresetBase {
+        /// The preset's base file, quoted as written.
+        base: String,
+        /// Why, in words (the operating system's message for I/O).
+        reason: String,
+    },
 
+    /// A preset's base is itself a preset; presets do not chain.
     #[error("the preset's base {base} is a preset too; a preset names a Graph file")]
-    PresetOfPreset { base: String },
+    PresetOfPreset {
+        /// The preset's base file, quoted as written.
+        base: String,
+    },
 
+    /// A preset changes a pass its base does not have.
     #[error(
         "the preset changes pass \"{pass}\", which {base} does not have (its passes: {known})"
     )]
     UnknownPresetPass {
+        /// The pass, by name.
         pass: String,
+        /// The preset's base file, quoted as written.
         base: String,
+        /// What the file or registry does have, comma-separated.
         known: String,
     },
 
+    /// The caller gives a value to a parameter the file does not declare.
     #[error(
         "parameter \"{name}\" is given a value ({value}), but the file declares no parameter \
          of that name (it declares: {declared})"
     )]
     UnknownParam {
+        /// The parameter's name.
         name: String,
+        /// The value given.
         value: u32,
+        /// The parameters the file declares, comma-separated.
         declared: String,
     },
 
+    /// Two uses of one parameter give it different defaults.
     #[error(
         "parameter \"{name}\" has default {first} where it is first used and {second} here; \
          give every use the same default"
     )]
     ParamDefaults {
+        /// The parameter's name.
         name: String,
+        /// The default where it is first used.
         first: u32,
+        /// The default here.
         second: u32,
     },
 
+    /// A parameter's value is not valid where it is used (0 samples, say).
     #[error(
         "parameter \"{name}\" is {value}, but the {field} of \"{resource}\" must be 1 or more"
     )]
     ParamValue {
+        /// The parameter's name.
         name: String,
+        /// The parameter's value.
         value: u32,
+        /// The resource or version, by name.
         resource: String,
+        /// The resource field it sets (`samples`, `mips`, ...).
         field: &'static str,
     },
 
+    /// A pass's `params` do not fit its plugin's parameters.
     #[error("pass \"{pass}\": parameters of plugin \"{plugin}\": {message}")]
     Params {
+        /// The pass, by name.
         pass: String,
+        /// The plugin the pass names.
         plugin: String,
+        /// The deserializer's message.
         message: String,
     },
 
+    /// A pass writes, through an output slot that is not also an input (no modification),
+    /// a name not declared in `resources`.
     #[error("pass \"{pass}\" writes \"{resource}\", which is not declared in resources")]
-    Undeclared { pass: String, resource: String },
+    Undeclared {
+        /// The pass, by name.
+        pass: String,
+        /// The resource or version, by name.
+        resource: String,
+    },
 
+    /// A pass gives the version it writes the name of a declared resource.
     #[error(
         "pass \"{pass}\" names the version it writes \"{resource}\", which is a declared \
          resource; a modified version needs a new name"
     )]
-    VersionNameTaken { pass: String, resource: String },
+    VersionNameTaken {
+        /// The pass, by name.
+        pass: String,
+        /// The resource or version, by name.
+        resource: String,
+    },
 
+    /// Two passes write one name (without exclusive conditions).
     #[error(
         "passes \"{first}\" and \"{second}\" both write \"{resource}\"; a name has one writer"
     )]
     TwoWriters {
+        /// The pass written first in the file.
         first: String,
+        /// The pass written second.
         second: String,
+        /// The resource or version, by name.
         resource: String,
     },
 
+    /// Two passes modify the same version of a resource.
     #[error(
         "passes \"{first}\" and \"{second}\" both modify \"{resource}\"; a version has one \
          writer (let \"{second}\" modify the version \"{first}\" writes)"
     )]
     ModifiedTwice {
+        /// The pass written first in the file.
         first: String,
+        /// The pass written second.
         second: String,
+        /// The resource or version, by name.
         resource: String,
     },
 
+    /// A pass lists the same name as an input and as an output.
     #[error(
         "pass \"{pass}\" reads \"{resource}\" and writes it too; to modify a resource, list \
          the slot in both inputs and outputs and give the new version a new name"
     )]
-    SelfModify { pass: String, resource: String },
+    SelfModify {
+        /// The pass, by name.
+        pass: String,
+        /// The resource or version, by name.
+        resource: String,
+    },
 
+    /// A graph output that no pass writes.
     #[error("output \"{resource}\" is not written by any pass")]
-    UnwrittenOutput { resource: String },
+    UnwrittenOutput {
+        /// The resource or version, by name.
+        resource: String,
+    },
 
+    /// A graph output that a later pass modifies into another version.
     #[error(
         "output \"{resource}\" is not the final version: pass \"{pass}\" modifies it into \
          \"{next}\"; list \"{next}\" instead"
     )]
     OutputNotFinal {
+        /// The resource or version, by name.
         resource: String,
+        /// The pass that modifies it.
         pass: String,
+        /// The name of the later version.
         next: String,
     },
 
+    /// A `when` condition that does not parse.
     #[error("{owner}: condition \"{condition}\": {error}")]
     BadCondition {
         /// `pass "NAME"` or `resource "NAME"`.
         owner: String,
+        /// The condition as written.
         condition: String,
+        /// The underlying error.
         error: ConditionError,
     },
 
+    /// A declared feature name that is not a valid name.
     #[error("\"{feature}\" is not a feature name: {why}")]
-    BadFeature { feature: String, why: String },
+    BadFeature {
+        /// The feature name, as written.
+        feature: String,
+        /// What is wrong with it.
+        why: String,
+    },
 
+    /// A feature declared twice.
     #[error("feature \"{feature}\" is declared twice")]
-    DuplicateFeature { feature: String },
+    DuplicateFeature {
+        /// The feature name, as written.
+        feature: String,
+    },
 
+    /// Two passes write one name and their conditions can hold together.
     #[error(
         "passes \"{first}\" and \"{second}\" both write \"{resource}\" and their conditions \
          (\"{first_when}\", \"{second_when}\") are not exclusive; a name has one writer, or \
          one per exclusive condition"
     )]
     WritersNotExclusive {
+        /// The pass written first in the file.
         first: String,
+        /// The pass written second.
         second: String,
+        /// The resource or version, by name.
         resource: String,
+        /// The first pass's condition.
         first_when: String,
+        /// The second pass's condition.
         second_when: String,
     },
 
+    /// A plugin refused the pass at setup: its slots, parameters or resources do not fit.
     #[error("pass \"{pass}\" ({plugin}): {error}")]
     Plugin {
+        /// The pass, by name.
         pass: String,
+        /// The plugin the pass names.
         plugin: String,
+        /// The underlying error.
         error: PluginError,
     },
 
+    /// A pass binds a slot its plugin does not use.
     #[error(
         "pass \"{pass}\": plugin \"{plugin}\" has no use for slot \"{slot}\" (\"{resource}\")"
     )]
     UnusedSlot {
+        /// The pass, by name.
         pass: String,
+        /// The plugin the pass names.
         plugin: String,
+        /// The slot name.
         slot: String,
+        /// The resource bound to it.
         resource: String,
     },
 
@@ -218,14 +343,19 @@ pub enum ErrorKind {
 
     /// A WGSL file that naga rejects (positioned in the shader itself).
     #[error("{message}")]
-    Shader { message: String },
+    Shader {
+        /// naga's message, positioned in the shader.
+        message: String,
+    },
 }
 
 /// One positioned error.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[error("{location}: error: {kind}")]
 pub struct FileError {
+    /// Where: the file and the line and column the error points at.
     pub location: Location,
+    /// What is wrong.
     pub kind: ErrorKind,
 }
 

@@ -17,6 +17,8 @@ use crate::plan::Plan;
 /// profile) with [`LoadedGraph::compile`], and bind it to its plans with
 /// [`CompiledGraph`](crate::CompiledGraph) to execute them.
 pub struct LoadedGraph {
+    /// The declared graph, with the plugins' record callbacks; compile and execute it
+    /// through the `LoadedGraph` to get errors positioned in the file.
     pub graph: Graph,
     /// The handle each name in the file denotes.
     pub names: Names,
@@ -150,6 +152,7 @@ impl crate::plan_cache::Compile for LoadedGraph {
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("\"{name}\" is not an output of the graph (outputs: {})", outputs.join(", "))]
 pub struct NotAnOutput {
+    /// The name asked for.
     pub name: String,
     /// The graph's outputs, sorted.
     pub outputs: Vec<String>,
@@ -161,14 +164,17 @@ pub struct NotAnOutput {
 pub struct Names(pub(crate) BTreeMap<String, AnyHandle>);
 
 impl Names {
+    /// The handle `name` denotes, of either kind.
     pub fn get(&self, name: &str) -> Option<AnyHandle> {
         self.0.get(name).copied()
     }
 
+    /// The texture `name` denotes; `None` for an unknown name or a buffer.
     pub fn texture(&self, name: &str) -> Option<TextureHandle> {
         self.get(name).and_then(|h| h.typed())
     }
 
+    /// The buffer `name` denotes; `None` for an unknown name or a texture.
     pub fn buffer(&self, name: &str) -> Option<BufferHandle> {
         self.get(name).and_then(|h| h.typed())
     }

@@ -29,6 +29,7 @@ impl GraphParams {
         self
     }
 
+    /// The value given for `name`, if any.
     pub fn get(&self, name: &str) -> Option<u32> {
         self.0.get(name).copied()
     }

@@ -21,8 +21,13 @@ pub trait Plugin: 'static {
     /// The parameters; use `#[serde(deny_unknown_fields)]` so misspelled fields are errors.
     type Params: DeserializeOwned;
 
+    /// The kind of pass the plugin records for `params` (a plugin may record a render or
+    /// a compute pass depending on its parameters).
     fn kind(&self, params: &Self::Params) -> PassKind;
 
+    /// Declares the pass: takes every slot the file lists from `slots`, declares the
+    /// accesses on `pass` and (feature `gpu`) its record callback. An error refuses the
+    /// pass and names the slot or parameter at fault; the graph is not loaded.
     fn setup(
         &self,
         params: Self::Params,

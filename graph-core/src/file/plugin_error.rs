@@ -9,38 +9,71 @@ use crate::shader::{ShaderError, Stage};
 /// and the plugin name; messages here name the slot and the resource in it.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum PluginError {
+    /// The pass does not bind a slot the plugin needs.
     #[error("needs slot \"{slot}\" in its {side}")]
-    MissingSlot { slot: String, side: &'static str },
+    MissingSlot {
+        /// The slot, as the plugin names it.
+        slot: String,
+        /// `inputs` or `outputs`.
+        side: &'static str,
+    },
 
+    /// The plugin writes a slot the file lists only in inputs.
     #[error("writes slot \"{slot}\" (\"{resource}\"), so the slot belongs in outputs")]
-    NotAnOutput { slot: String, resource: String },
+    NotAnOutput {
+        /// The slot, as the plugin names it.
+        slot: String,
+        /// The resource the file binds to the slot.
+        resource: String,
+    },
 
+    /// The plugin only reads a slot the file lists in outputs.
     #[error("only reads slot \"{slot}\" (\"{resource}\"), so the slot belongs in inputs only")]
-    NotAnInput { slot: String, resource: String },
+    NotAnInput {
+        /// The slot, as the plugin names it.
+        slot: String,
+        /// The resource the file binds to the slot.
+        resource: String,
+    },
 
+    /// A slot holds a texture where the plugin needs a buffer, or the other way round.
     #[error("slot \"{slot}\" holds {found} \"{resource}\", but needs a {expected}")]
     SlotKind {
+        /// The slot, as the plugin names it.
         slot: String,
+        /// The resource the file binds to the slot.
         resource: String,
+        /// What the slot holds: "texture" or "buffer".
         found: &'static str,
+        /// What the plugin needs there.
         expected: &'static str,
     },
 
+    /// The resource in a slot does not fit the plugin (its format, size or samples).
     #[error("slot \"{slot}\": \"{resource}\" {why}")]
     Slot {
+        /// The slot, as the plugin names it.
         slot: String,
+        /// The resource the file binds to the slot.
         resource: String,
+        /// What is wrong, in words.
         why: String,
     },
 
+    /// A shader the parameters name does not read, parse or validate.
     #[error(transparent)]
     Shader(#[from] ShaderError),
 
+    /// A shader lacks the entry point the parameters name.
     #[error("shader \"{shader}\" has no {stage} entry point \"{entry}\" (it has: {found})")]
     MissingEntry {
+        /// The shader file, as the parameters name it.
         shader: String,
+        /// The stage the entry point is for.
         stage: Stage,
+        /// The entry point asked for.
         entry: String,
+        /// The shader's entry points of that stage, comma-separated.
         found: String,
     },
 
@@ -48,10 +81,15 @@ pub enum PluginError {
     /// bound there, if any.
     #[error("shader \"{shader}\" @group({group}) @binding({binding}): {why}")]
     Binding {
+        /// The shader file, as the parameters name it.
         shader: String,
+        /// `@group` of the binding.
         group: u32,
+        /// `@binding` of the binding.
         binding: u32,
+        /// The slot, as the plugin names it.
         slot: Option<String>,
+        /// What is wrong, in words.
         why: String,
     },
 
@@ -59,8 +97,11 @@ pub enum PluginError {
     /// empty, absolute, or outside the folders graph files may reach. The file was not read.
     #[error("{what} {} {reason}", Shown(reference))]
     Reference {
+        /// What the parameters name: "shader".
         what: &'static str,
+        /// The name as written.
         reference: String,
+        /// Why it may not be named.
         reason: String,
     },
 

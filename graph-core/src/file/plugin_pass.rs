@@ -17,21 +17,30 @@ use crate::pass::PassKind;
 /// A plugin pass that could not be declared, with the pass and plugin it concerns.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum PluginPassError {
+    /// The plugin refused the pass: its slots, parameters or resources do not fit.
     #[error("pass \"{pass}\" (plugin \"{plugin}\"): {error}")]
     Setup {
+        /// The pass, by name.
         pass: String,
+        /// The plugin's name.
         plugin: &'static str,
         // Boxed: plugin errors are large, and results of this type are returned often.
+        /// The plugin's reason.
         error: Box<PluginError>,
     },
 
+    /// A slot was bound that the plugin does not use.
     #[error(
         "pass \"{pass}\": plugin \"{plugin}\" has no use for slot \"{slot}\" (\"{resource}\")"
     )]
     UnusedSlot {
+        /// The pass, by name.
         pass: String,
+        /// The plugin's name.
         plugin: &'static str,
+        /// The slot's name.
         slot: String,
+        /// The resource bound to it.
         resource: String,
     },
 }
@@ -41,6 +50,8 @@ pub enum PluginPassError {
 pub struct Written(Vec<(String, AnyHandle)>);
 
 impl Written {
+    /// The version written to `slot`, of either kind; `None` when the plugin wrote
+    /// nothing there.
     pub fn get(&self, slot: &str) -> Option<AnyHandle> {
         self.0.iter().find(|(s, _)| s == slot).map(|(_, h)| *h)
     }
@@ -50,6 +61,7 @@ impl Written {
         self.get(slot).and_then(|h| h.typed())
     }
 
+    /// The buffer version written to `slot`, if the plugin wrote a buffer there.
     pub fn buffer(&self, slot: &str) -> Option<BufferHandle> {
         self.get(slot).and_then(|h| h.typed())
     }

@@ -41,6 +41,7 @@ struct Slot<'s> {
 /// An output slot's resource, as the plugin writes it.
 #[derive(Copy, Clone, Debug)]
 pub struct Target<K: ResourceKind> {
+    /// The version the slot holds before the pass: give it to the access verb that writes.
     pub handle: Handle<K>,
     /// The slot is also an input: the pass draws over (or updates) the version it reads,
     /// rather than replacing the contents.

@@ -16,7 +16,9 @@ use crate::shader::{Shader, ShaderError};
 /// What [`validate_dir`] checked, sorted: graph files and shaders.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Validated {
+    /// The graph files checked (`.ron`).
     pub graphs: Vec<PathBuf>,
+    /// The WGSL files checked (`.wgsl`).
     pub shaders: Vec<PathBuf>,
 }
 

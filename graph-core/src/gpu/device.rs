@@ -90,12 +90,14 @@ pub fn is_lavapipe(info: &wgpu::AdapterInfo) -> bool {
 /// Why no device could be opened.
 #[derive(Debug, thiserror::Error)]
 pub enum DeviceError {
+    /// No Vulkan adapter at all: no driver installed, or the loader found none.
     #[error(
         "no Vulkan adapter found: install the lavapipe driver with \
          `apt-get install mesa-vulkan-drivers`, or pick one with --adapter / RGRAPH_ADAPTER"
     )]
     NoAdapter,
 
+    /// Adapters exist, but none matches the choice.
     #[error(
         "no Vulkan adapter matches {wanted}; available: {}. Pick one with --adapter / \
          RGRAPH_ADAPTER (lavapipe, gpu, or part of an adapter's name){}",
@@ -107,13 +109,18 @@ pub enum DeviceError {
         }
     )]
     NotFound {
+        /// The choice asked for.
         wanted: AdapterChoice,
+        /// The adapters found, by name.
         available: Vec<String>,
     },
 
+    /// The adapter refused to open a device with the features and limits asked for.
     #[error("adapter \"{adapter}\" refused to open a device: {source}")]
     RequestDevice {
+        /// The adapter's name.
         adapter: String,
+        /// wgpu's error.
         source: wgpu::RequestDeviceError,
     },
 }
@@ -140,6 +147,7 @@ impl ErrorLog {
 /// Why a device was lost, as its device-lost callback said.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct DeviceLoss {
+    /// Destroyed by the application, or lost for a reason the driver does not tell.
     pub reason: wgpu::DeviceLostReason,
     /// The driver's words, often empty.
     pub message: String,
@@ -186,10 +194,15 @@ impl LossWatch {
 /// The `Gpu` owns nothing the graph allocates: an [`Executor`](super::Executor) created
 /// from it keeps its own clones of the device and queue.
 pub struct Gpu {
+    /// The wgpu instance the adapter came from (Vulkan backend).
     pub instance: wgpu::Instance,
+    /// The adapter chosen.
     pub adapter: wgpu::Adapter,
+    /// The device: clone it to keep it, as the executor does.
     pub device: wgpu::Device,
+    /// The device's queue.
     pub queue: wgpu::Queue,
+    /// The adapter's name, backend and driver.
     pub info: wgpu::AdapterInfo,
     pub(crate) errors: ErrorLog,
     /// Filled when the device is lost.
@@ -310,7 +323,9 @@ impl DeviceProfile {
 /// One adapter as `rgraph adapters` shows it.
 #[derive(Clone, Debug)]
 pub struct AdapterSummary {
+    /// The adapter's name, backend and driver.
     pub info: wgpu::AdapterInfo,
+    /// Whether it is Mesa's lavapipe, the CPU rasteriser the tests run on.
     pub lavapipe: bool,
     /// Its limits, features and format capabilities (see [`DeviceProfile::from_adapter`]).
     pub profile: DeviceProfile,

@@ -27,7 +27,9 @@ use super::timing::Timestamps;
 /// Timings of one executed pass.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PassTiming {
+    /// The pass's name.
     pub name: String,
+    /// The kind of wgpu pass it recorded.
     pub kind: PassKind,
     /// GPU time between the pass's begin and end stamps; `None` when the device cannot
     /// time it (no `TIMESTAMP_QUERY`, or a transfer pass without
@@ -81,15 +83,26 @@ pub enum ExecuteError {
 
     /// A pass's callback could not record its work on this device ([`FrameResources::fail`]).
     #[error("pass \"{pass}\": {why}")]
-    Pass { pass: String, why: String },
+    Pass {
+        /// The pass, by name.
+        pass: String,
+        /// The reason the callback gave.
+        why: String,
+    },
 
+    /// A pass's record callback is of another kind than the pass (a compute callback on a
+    /// render pass): a bug in the code that declared it.
     #[error("pass \"{pass}\" is a {kind} pass but its callback records {record} commands")]
     RecordKind {
+        /// The pass, by name.
         pass: String,
+        /// The pass's kind.
         kind: PassKind,
+        /// The callback's kind.
         record: PassKind,
     },
 
+    /// The imports do not fit the plan: checked before the device is touched.
     #[error(transparent)]
     Import(#[from] ImportError),
 
@@ -98,8 +111,11 @@ pub enum ExecuteError {
     /// resources it holds, its size, format and bytes; `pass` the first pass using it.
     #[error("cannot allocate {what} for pass \"{pass}\" on the device: {message}")]
     Allocation {
+        /// The physical object: the resources it holds, its shape and bytes.
         what: String,
+        /// The pass, by name.
         pass: String,
+        /// wgpu's message.
         message: String,
     },
 
@@ -110,14 +126,22 @@ pub enum ExecuteError {
         "the device was lost {at}: {loss}; open a new device and run the graph with a new \
          Executor on it"
     )]
-    DeviceLost { at: LostAt, loss: DeviceLoss },
+    DeviceLost {
+        /// When in the frame the loss was found.
+        at: LostAt,
+        /// The reason the device gave.
+        loss: DeviceLoss,
+    },
 
     /// A validation or out-of-memory error wgpu reported while the frame was built or
     /// submitted: in the pass named (its recording, callback included), or outside any
     /// pass. Nothing of the frame was submitted when a pass failed.
     #[error("{}", device_message(pass.as_deref(), message))]
     Device {
+        /// The pass whose recording raised it, or `None` outside any pass (allocation,
+        /// submission).
         pass: Option<String>,
+        /// wgpu's messages, one per line.
         message: String,
     },
 }

@@ -15,18 +15,29 @@ pub struct DeviceObjects {
     /// Bytes of texture memory: wgpu-hal 30's Vulkan backend counts what textures
     /// allocate but not the textures (its `create_texture` leaves that count alone).
     pub texture_bytes: isize,
+    /// Bytes of buffer memory.
     pub buffer_bytes: isize,
     /// Device memory blocks the allocator holds.
     pub memory_allocations: isize,
+    /// Buffers alive.
     pub buffers: isize,
+    /// Texture views alive (the executor's are cached with their textures).
     pub texture_views: isize,
+    /// Samplers alive.
     pub samplers: isize,
+    /// Bind groups alive (passes make theirs per frame and drop them).
     pub bind_groups: isize,
+    /// Bind group layouts alive.
     pub bind_group_layouts: isize,
+    /// Pipeline layouts alive.
     pub pipeline_layouts: isize,
+    /// Render pipelines alive.
     pub render_pipelines: isize,
+    /// Compute pipelines alive.
     pub compute_pipelines: isize,
+    /// Shader modules alive.
     pub shader_modules: isize,
+    /// Query sets alive (the executor's timestamp queries).
     pub query_sets: isize,
 }
 

@@ -18,6 +18,7 @@ use crate::resource::TextureShape;
 /// How a binding names its resource.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum ImportKey {
+    /// By id, as a handle or [`Graph::resource_id`] gives it.
     Id(ResourceId),
     /// Resolved with [`Graph::resource_id`] at execution.
     Name(String),
@@ -75,6 +76,7 @@ pub struct Imports {
 }
 
 impl Imports {
+    /// No bindings: enough for a graph that imports nothing.
     pub fn new() -> Self {
         Self::default()
     }
@@ -94,6 +96,7 @@ impl Imports {
         self.bind(resource.into(), Binding::View(view.clone()))
     }
 
+    /// Binds a buffer, which must be at least as large as the plan declares.
     pub fn buffer(&mut self, resource: impl Into<ImportKey>, buffer: &wgpu::Buffer) -> &mut Self {
         self.bind(resource.into(), Binding::Buffer(buffer.clone()))
     }
@@ -240,52 +243,89 @@ fn check_texture(
 /// A binding that does not fit the graph or plan.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum ImportError {
+    /// A pass of the plan uses an imported resource that the imports do not bind.
     #[error(
         "imported resource \"{resource}\" is used by pass \"{pass}\" but was not bound; bind \
          it with Imports::texture, Imports::view or Imports::buffer"
     )]
-    Missing { resource: String, pass: String },
+    Missing {
+        /// The imported resource, by name.
+        resource: String,
+        /// The pass, by name.
+        pass: String,
+    },
 
+    /// The imports bind a name or id the graph does not declare.
     #[error("Imports binds {key}, which the graph does not declare")]
-    Unknown { key: String },
+    Unknown {
+        /// The name (quoted) or id bound.
+        key: String,
+    },
 
+    /// The imports bind a resource the graph creates itself.
     #[error(
         "Imports binds \"{resource}\", which the graph creates itself; only resources declared \
          with import_texture or import_buffer can be bound"
     )]
-    NotImported { resource: String },
+    NotImported {
+        /// The imported resource, by name.
+        resource: String,
+    },
 
+    /// A texture bound to a buffer resource, or the other way round.
     #[error("\"{resource}\" is declared as a {declared}, but a {bound} was bound to it")]
     WrongKind {
+        /// The imported resource, by name.
         resource: String,
+        /// What the graph declares: "texture" or "buffer".
         declared: &'static str,
+        /// What was bound.
         bound: &'static str,
     },
 
+    /// A bound texture's format, size, sample count, mips or layers differ from the plan's.
     #[error("imported texture \"{resource}\" is {found}, but the graph declares {expected}")]
     Shape {
+        /// The imported resource, by name.
         resource: String,
+        /// The plan's shape, described.
         expected: String,
+        /// The bound texture's shape, described.
         found: String,
     },
 
+    /// A bound object lacks usages the plan's passes need.
     #[error("imported \"{resource}\" lacks usages the graph needs: {missing}")]
-    Usage { resource: String, missing: String },
+    Usage {
+        /// The imported resource, by name.
+        resource: String,
+        /// The usages it lacks.
+        missing: String,
+    },
 
+    /// A bound buffer is smaller than the plan needs.
     #[error("imported buffer \"{resource}\" has {size} bytes, but the graph declares {needed}")]
     BufferSize {
+        /// The imported resource, by name.
         resource: String,
+        /// The bound buffer's bytes.
         size: u64,
+        /// The bytes the plan declares.
         needed: u64,
     },
 
+    /// A pass samples one aspect of a depth-stencil texture bound as a view (the executor
+    /// cannot make an aspect view of a view).
     #[error(
         "pass \"{pass}\" samples the {aspect} aspect of \"{resource}\", which was bound as a \
          view; bind the texture (Imports::texture) so the executor can make aspect views"
     )]
     ViewAspect {
+        /// The pass, by name.
         pass: String,
+        /// The imported resource, by name.
         resource: String,
+        /// "depth" or "stencil".
         aspect: &'static str,
     },
 }

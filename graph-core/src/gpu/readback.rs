@@ -8,41 +8,68 @@ use wgpu::{BufferUsages, TextureFormat, TextureUsages};
 /// Why a readback failed.
 #[derive(Debug, thiserror::Error)]
 pub enum ReadbackError {
+    /// The texture is multisampled: copies need one sample per texel.
     #[error(
         "the texture is {samples}x multisampled and cannot be copied; resolve it first \
          (resolve_output) or read its samples in a pass"
     )]
-    Multisampled { samples: u32 },
+    Multisampled {
+        /// Its sample count.
+        samples: u32,
+    },
 
+    /// The texture or buffer was made without `COPY_SRC`.
     #[error(
         "the {what} lacks the COPY_SRC usage; export it from the graph (or create it with \
          COPY_SRC)"
     )]
-    NotCopySource { what: &'static str },
+    NotCopySource {
+        /// "texture" or "buffer".
+        what: &'static str,
+    },
 
+    /// The format has no single copyable layout (a combined depth-stencil format).
     #[error("the texture's format {format:?} has no single copyable layout")]
-    UncopyableFormat { format: TextureFormat },
+    UncopyableFormat {
+        /// The texture's format.
+        format: TextureFormat,
+    },
 
+    /// A typed readback of a texture of another format.
     #[error("the texture's format is {found:?}, expected {expected}")]
     WrongFormat {
+        /// The formats the readback takes.
         expected: &'static str,
+        /// The texture's format.
         found: TextureFormat,
     },
 
+    /// A buffer whose size is not a multiple of 4 bytes.
     #[error("the buffer's size {size} is not a multiple of 4, which copies need")]
-    UnalignedBuffer { size: u64 },
+    UnalignedBuffer {
+        /// Its size in bytes.
+        size: u64,
+    },
 
+    /// Mapping the staging buffer failed (wgpu's message).
     #[error("mapping the readback buffer failed: {0}")]
     Map(String),
 
+    /// Waiting for the copy to finish failed (a lost device, say).
     #[error("waiting for the GPU failed: {0}")]
     Poll(#[from] wgpu::PollError),
 
+    /// The host cannot allocate the bytes the readback returns.
     #[error(
         "cannot allocate {bytes} bytes ({:.1} MiB) of host memory for {what}",
         *bytes as f64 / 1048576.0
     )]
-    HostMemory { bytes: u64, what: &'static str },
+    HostMemory {
+        /// The bytes asked for.
+        bytes: u64,
+        /// What they were for.
+        what: &'static str,
+    },
 }
 
 /// An empty vector with room for `len` items, or [`ReadbackError::HostMemory`] naming the

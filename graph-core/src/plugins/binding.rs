@@ -33,23 +33,36 @@ use crate::shader::{BindingKind, Entry, SampleKind, Shader, ShaderBinding};
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum BindingDecl {
+    /// A texture or buffer from one of the pass's slots, bound where the shader declares
+    /// it.
     Slot {
+        /// `@group(n)`; 0 when left out.
         #[serde(default)]
         group: u32,
+        /// `@binding(n)`.
         binding: u32,
+        /// The slot's name, as the pass's `inputs` and `outputs` use it.
         slot: String,
     },
+    /// A sampler the plugin creates (clamped to edge) with `filter`.
     Sampler {
+        /// `@group(n)`; 0 when left out.
         #[serde(default)]
         group: u32,
+        /// `@binding(n)`.
         binding: u32,
+        /// Magnification and minification filter.
         #[serde(default)]
         filter: Filter,
     },
+    /// A uniform buffer the plugin fills with `values`.
     Uniform {
+        /// `@group(n)`; 0 when left out.
         #[serde(default)]
         group: u32,
+        /// `@binding(n)`.
         binding: u32,
+        /// The uniform's bytes as `f32`s, padding included.
         values: Vec<f32>,
     },
 }
@@ -74,8 +87,10 @@ impl BindingDecl {
 /// How a sampler filters.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
 pub enum Filter {
+    /// Bilinear: the format must be filterable.
     #[default]
     Linear,
+    /// The nearest texel.
     Nearest,
 }
 

@@ -1,11 +1,4 @@
-//! `blit`: copies input slot `src` into output slot `dst` by sampling, so the two may
-//! differ in size and format (an `rgba16float` image into an `rgba8unorm-srgb` target).
-//! `src` must be a single-sampled float texture; resolve multisampled ones first.
-//!
-//! ```ron
-//! (name: "present", plugin: "blit", params: (filter: Nearest),   // default Linear
-//!  inputs: { "src": "hdr" }, outputs: { "dst": "target" })
-//! ```
+//! The `blit` plugin; its contract is on [`Blit`].
 
 use serde::Deserialize;
 
@@ -16,11 +9,21 @@ use crate::file::{Plugin, PluginError, Slots};
 use crate::pass::PassKind;
 use crate::shader::Shader;
 
+/// `blit`: copies input slot `src` into output slot `dst` by sampling, so the two may
+/// differ in size and format (an `rgba16float` image into an `rgba8unorm-srgb` target).
+/// `src` must be a single-sampled float texture; resolve multisampled ones first.
+///
+/// ```ron
+/// (name: "present", plugin: "blit", params: (filter: Nearest),   // default Linear
+///  inputs: { "src": "hdr" }, outputs: { "dst": "target" })
+/// ```
 pub struct Blit;
 
+/// `blit`'s parameters.
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BlitParams {
+    /// How `src` is sampled where the sizes differ; linear by default.
     #[serde(default)]
     pub filter: Filter,
 }

@@ -1,13 +1,4 @@
-//! `clear`: clears output slot `target` (color, or depth and stencil for depth-stencil
-//! formats) and draws nothing.
-//!
-//! ```ron
-//! (name: "clear", plugin: "clear",
-//!  params: (color: (0.0, 0.0, 0.0, 1.0), depth: 1.0, stencil: 0),   // these defaults
-//!  outputs: { "target": "hdr" })
-//! ```
-//!
-//! The color must be finite and the depth within `0.0 ..= 1.0`.
+//! The `clear` plugin; its contract is on [`Clear`].
 
 use serde::Deserialize;
 
@@ -17,15 +8,30 @@ use crate::file::{Plugin, PluginError, Slots};
 use crate::handle::{Texture, TextureHandle};
 use crate::pass::PassKind;
 
+/// `clear`: clears output slot `target` (color, or depth and stencil for depth-stencil
+/// formats) and draws nothing.
+///
+/// ```ron
+/// (name: "clear", plugin: "clear",
+///  params: (color: (0.0, 0.0, 0.0, 1.0), depth: 1.0, stencil: 0),   // these defaults
+///  outputs: { "target": "hdr" })
+/// ```
+///
+/// The color must be finite and the depth within `0.0 ..= 1.0`.
 pub struct Clear;
 
+/// `clear`'s parameters. Only the aspects the target's format has are used.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ClearParams {
+    /// RGBA for a color target, linear, 0 to 1 for unorm formats; opaque black by default.
     #[serde(default = "opaque_black")]
     pub color: [f64; 4],
+    /// Depth for a depth target, within `0.0 ..= 1.0`; 1.0 (the far plane of a
+    /// conventional depth buffer) by default.
     #[serde(default = "far")]
     pub depth: f32,
+    /// Stencil value for a target with a stencil aspect; 0 by default.
     #[serde(default)]
     pub stencil: u32,
 }

@@ -1,20 +1,4 @@
-//! `compute`: a compute pass running a WGSL entry point from a file.
-//!
-//! ```ron
-//! (name: "exposure", plugin: "compute",
-//!  params: (
-//!      shader: "../shaders/exposure.wgsl",   // relative to the graph file
-//!      entry: "main",                        // the default
-//!      dispatch: PerTexel("out"),            // or Workgroups(8, 8, 1)
-//!      bindings: [Slot(binding: 0, slot: "in"), Slot(binding: 1, slot: "out")],
-//!  ),
-//!  inputs: { "in": "hdr" },
-//!  outputs: { "out": "hdr_exposed" })
-//! ```
-//!
-//! `PerTexel(slot)` runs one invocation per texel of the texture bound to `slot`: the
-//! workgroup counts are its size divided by the entry point's `@workgroup_size`, rounded
-//! up (layers count as depth). Every slot must be bound (see [`BindingDecl`]).
+//! The `compute` plugin; its contract is on [`Compute`].
 
 use serde::Deserialize;
 
@@ -26,16 +10,38 @@ use crate::handle::TextureHandle;
 use crate::pass::PassKind;
 use crate::shader::Stage;
 
+/// `compute`: a compute pass running a WGSL entry point from a file.
+///
+/// ```ron
+/// (name: "exposure", plugin: "compute",
+///  params: (
+///      shader: "../shaders/exposure.wgsl",   // relative to the graph file
+///      entry: "main",                        // the default
+///      dispatch: PerTexel("out"),            // or Workgroups(8, 8, 1)
+///      bindings: [Slot(binding: 0, slot: "in"), Slot(binding: 1, slot: "out")],
+///  ),
+///  inputs: { "in": "hdr" },
+///  outputs: { "out": "hdr_exposed" })
+/// ```
+///
+/// `PerTexel(slot)` runs one invocation per texel of the texture bound to `slot`: the
+/// workgroup counts are its size divided by the entry point's `@workgroup_size`, rounded
+/// up (layers count as depth). Every slot must be bound (see [`BindingDecl`]).
 pub struct Compute;
 
+/// `compute`'s parameters.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ComputeParams {
     /// WGSL file, relative to the graph file.
     pub shader: String,
+    /// The compute entry point; `main` by default.
     #[serde(default = "main")]
     pub entry: String,
+    /// How many workgroups to run.
     pub dispatch: Dispatch,
+    /// What the shader's bindings are bound to, checked against the shader when the file
+    /// loads.
     #[serde(default)]
     pub bindings: Vec<BindingDecl>,
 }

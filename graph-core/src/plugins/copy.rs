@@ -1,10 +1,4 @@
-//! `copy`: copies input slot `src` into output slot `dst`, both textures (same size,
-//! layer count and copy-compatible format, single-sampled; mip 0 of every layer is
-//! copied) or both buffers (`dst` at least as large; all of `src` is copied).
-//!
-//! ```ron
-//! (name: "history", plugin: "copy", inputs: { "src": "hdr" }, outputs: { "dst": "prev" })
-//! ```
+//! The `copy` plugin; its contract is on [`Copy`](struct@Copy).
 
 use serde::Deserialize;
 
@@ -16,8 +10,16 @@ use crate::handle::{Buffer, Kind, Texture};
 use crate::pass::PassKind;
 use crate::resource::format_name;
 
+/// `copy`: copies input slot `src` into output slot `dst`, both textures (same size,
+/// layer count and copy-compatible format, single-sampled; mip 0 of every layer is
+/// copied) or both buffers (`dst` at least as large; all of `src` is copied).
+///
+/// ```ron
+/// (name: "history", plugin: "copy", inputs: { "src": "hdr" }, outputs: { "dst": "prev" })
+/// ```
 pub struct Copy;
 
+/// `copy`'s parameters: none.
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CopyParams {}

@@ -1,22 +1,4 @@
-//! `fullscreen`: a full-screen pass running a WGSL fragment shader from a file.
-//!
-//! ```ron
-//! (name: "tonemap", plugin: "fullscreen",
-//!  params: (
-//!      shader: "../shaders/tonemap.wgsl",   // relative to the graph file
-//!      entry: "fs_main",                    // the default
-//!      bindings: [Slot(binding: 0, slot: "hdr"), Sampler(binding: 1)],
-//!      blend: Replace,                      // Replace (default) | Additive | Alpha
-//!      clear: (0.0, 0.0, 0.0, 1.0),         // for outputs written fresh; default 0s
-//!  ),
-//!  inputs: { "hdr": "hdr" },
-//!  outputs: { "color": "ldr" })
-//! ```
-//!
-//! The vertex stage is built in (one full-screen triangle), so the shader needs only a
-//! fragment entry point, which may take `@location(0) uv: vec2<f32>` ((0, 0) at the top
-//! left) and builtins such as `@builtin(position)`. Output slots that no binding takes are
-//! the color attachments, `@location(0)` upward in file order.
+//! The `fullscreen` plugin; its contract is on [`Fullscreen`].
 
 use serde::Deserialize;
 
@@ -26,8 +8,28 @@ use crate::builder::PassBuilder;
 use crate::file::{Plugin, PluginError, Slots};
 use crate::pass::PassKind;
 
+/// `fullscreen`: a full-screen pass running a WGSL fragment shader from a file.
+///
+/// ```ron
+/// (name: "tonemap", plugin: "fullscreen",
+///  params: (
+///      shader: "../shaders/tonemap.wgsl",   // relative to the graph file
+///      entry: "fs_main",                    // the default
+///      bindings: [Slot(binding: 0, slot: "hdr"), Sampler(binding: 1)],
+///      blend: Replace,                      // Replace (default) | Additive | Alpha
+///      clear: (0.0, 0.0, 0.0, 1.0),         // for outputs written fresh; default 0s
+///  ),
+///  inputs: { "hdr": "hdr" },
+///  outputs: { "color": "ldr" })
+/// ```
+///
+/// The vertex stage is built in (one full-screen triangle), so the shader needs only a
+/// fragment entry point, which may take `@location(0) uv: vec2<f32>` ((0, 0) at the top
+/// left) and builtins such as `@builtin(position)`. Output slots that no binding takes are
+/// the color attachments, `@location(0)` upward in file order.
 pub struct Fullscreen;
 
+/// `fullscreen`'s parameters.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FullscreenParams {
@@ -36,10 +38,15 @@ pub struct FullscreenParams {
     /// The fragment entry point.
     #[serde(default = "fs_main")]
     pub entry: String,
+    /// What the shader's bindings are bound to, checked against the shader when the file
+    /// loads.
     #[serde(default)]
     pub bindings: Vec<BindingDecl>,
+    /// How the output is combined with the target; `Replace` by default.
     #[serde(default)]
     pub blend: Blend,
+    /// The clear color (linear RGBA) of color outputs written fresh (not modified);
+    /// transparent black by default.
     #[serde(default)]
     pub clear: [f64; 4],
 }

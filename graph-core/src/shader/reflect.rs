@@ -14,8 +14,11 @@ use crate::resource::format_name;
 /// A pipeline stage whose entry points plugins look up.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum Stage {
+    /// `@vertex`.
     Vertex,
+    /// `@fragment`.
     Fragment,
+    /// `@compute`.
     Compute,
 }
 
@@ -42,18 +45,24 @@ impl fmt::Display for Stage {
 /// What reading a texture binding returns.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum SampleKind {
+    /// `texture_2d<f32>`: filterable or not, as the format decides.
     Float,
     /// `texture_depth_*`: depth values, comparable.
     Depth,
+    /// `texture_2d<i32>`.
     Sint,
+    /// `texture_2d<u32>` (the stencil aspect reads as one).
     Uint,
 }
 
 /// The number type of a stage input or output.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum Number {
+    /// `f32` components.
     Float,
+    /// `i32` components.
     Sint,
+    /// `u32` components.
     Uint,
 }
 
@@ -72,21 +81,35 @@ impl fmt::Display for Number {
 #[derive(Clone, Debug, PartialEq)]
 pub enum BindingKind {
     /// `var<uniform>` of `size` bytes.
-    Uniform { size: u64 },
+    Uniform {
+        /// The uniform's size in bytes, as WGSL lays it out.
+        size: u64,
+    },
     /// `var<storage, read>` or `var<storage, read_write>`.
-    Storage { writable: bool },
+    Storage {
+        /// `read_write` rather than `read`.
+        writable: bool,
+    },
     /// `sampler` or `sampler_comparison`.
-    Sampler { comparison: bool },
+    Sampler {
+        /// `sampler_comparison` rather than `sampler`.
+        comparison: bool,
+    },
     /// `texture_2d<T>`, `texture_multisampled_2d<T>`, `texture_depth_2d`,
     /// `texture_depth_multisampled_2d`.
     Texture {
+        /// What sampling it returns.
         sample: SampleKind,
+        /// A `texture_multisampled_2d` or `texture_depth_multisampled_2d`.
         multisampled: bool,
     },
     /// `texture_storage_2d<format, access>`.
     StorageTexture {
+        /// The texel format the shader declares.
         format: TextureFormat,
+        /// The access includes `read`.
         read: bool,
+        /// The access includes `write`.
         write: bool,
     },
     /// Any other binding, named as WGSL spells its type.
@@ -133,17 +156,22 @@ impl fmt::Display for BindingKind {
 /// One resource binding an entry point uses.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShaderBinding {
+    /// `@group(n)`.
     pub group: u32,
+    /// `@binding(n)`.
     pub binding: u32,
     /// The variable's name in the shader.
     pub name: String,
+    /// What the shader declares there.
     pub kind: BindingKind,
 }
 
 /// A user-defined stage input or output (`@location(n)`).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub struct Io {
+    /// `@location(n)`.
     pub location: u32,
+    /// The component type.
     pub number: Number,
     /// 1 for a scalar, else the vector size.
     pub components: u32,
@@ -182,6 +210,7 @@ impl Shader {
 }
 
 impl Entry<'_> {
+    /// The entry point's name.
     pub fn name(&self) -> &str {
         &self.point().name
     }

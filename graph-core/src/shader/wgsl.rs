@@ -97,10 +97,12 @@ impl Shader {
         &self.source
     }
 
+    /// naga's module, validated: what reflection reads.
     pub fn module(&self) -> &naga::Module {
         &self.module
     }
 
+    /// naga's validation results, which say what each entry point uses.
     pub fn info(&self) -> &ModuleInfo {
         &self.info
     }

@@ -56,6 +56,7 @@ struct LightInfo {
 pub struct VolumeLight {
     /// Index into the light buffer, drawn as the instance index.
     pub index: u32,
+    /// The volume mesh drawn for it: a sphere or a cone.
     pub shape: VolumeShape,
     /// A sphere around the rasterized volume mesh (camera-relative), for deciding whether
     /// the camera's near plane may cut the volume.

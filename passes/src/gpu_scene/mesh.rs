@@ -26,7 +26,9 @@ struct MeshData {
 /// One mesh's draw: `draw_indexed(indices, base_vertex, instance..instance + 1)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MeshDraw {
+    /// The mesh's range in the scene's shared index buffer.
     pub indices: std::ops::Range<u32>,
+    /// Added to each index: where the mesh's vertices start in the shared vertex buffer.
     pub base_vertex: i32,
     /// The mesh's index in `Scene::meshes`, which is also its instance index.
     pub instance: u32,

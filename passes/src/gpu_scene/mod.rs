@@ -33,10 +33,10 @@ mod lights;
 mod materials;
 pub mod mesh;
 mod particles;
-pub mod screen_rect;
+pub(crate) mod screen_rect;
 mod texture_table;
 mod textures;
-pub mod volumes;
+pub(crate) mod volumes;
 
 use std::sync::{Arc, Mutex};
 
@@ -45,6 +45,7 @@ pub use lights::{camera_may_be_inside, far_plane_may_cut, VolumeLight};
 pub use materials::MaterialState;
 pub use mesh::MeshDraw;
 pub use particles::ParticleBuffer;
+pub use screen_rect::PixelRect;
 pub use volumes::{VolumeMesh, VolumeShape};
 
 use crate::host::{FrameInputs, Host};
@@ -445,9 +446,9 @@ impl GpuScene {
         draws
     }
 
-    /// The pixels of an output of `size` the blended meshes may cover
-    /// ([`screen_rect::screen_rect`] of their bounds): `None` where none is in view.
-    pub fn blended_rect(&self, size: (u32, u32)) -> Option<screen_rect::PixelRect> {
+    /// The pixels of an output of `size` the blended meshes may cover (the screen
+    /// rectangle of their camera-relative bounds): `None` where none is in view.
+    pub fn blended_rect(&self, size: (u32, u32)) -> Option<PixelRect> {
         let blended = self
             .mesh_draws()
             .filter(|(_, state)| state.blended)
@@ -510,6 +511,8 @@ impl GpuScene {
         far_plane_may_cut(&self.frame.inputs.camera, &light.bounds)
     }
 
+    /// The device mesh of the unit volume of `shape`, which light passes draw instanced,
+    /// scaled and placed per light by the light data.
     pub fn volume_mesh(&self, shape: VolumeShape) -> &VolumeMesh {
         match shape {
             VolumeShape::Sphere => &self.upload.sphere,

@@ -8,9 +8,13 @@ use rgraph_scene::{Aabb, Camera, DepthConvention};
 /// A rectangle of pixels: columns `x..x + width`, rows `y..y + height`, neither empty.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PixelRect {
+    /// First column.
     pub x: u32,
+    /// First row (rows count down from the top).
     pub y: u32,
+    /// Columns, at least 1.
     pub width: u32,
+    /// Rows, at least 1.
     pub height: u32,
 }
 

@@ -15,8 +15,11 @@ pub enum VolumeShape {
 
 /// A position-only indexed mesh on the device.
 pub struct VolumeMesh {
+    /// Positions (`vec3<f32>`, object space of the unit volume), for `VERTEX_LAYOUT`.
     pub vertices: wgpu::Buffer,
+    /// `u32` triangle list.
     pub indices: wgpu::Buffer,
+    /// Indices to draw.
     pub index_count: u32,
     /// Vertex positions, for the CPU-side bounds of a placed volume.
     pub positions: Vec<Vec3>,

@@ -11,7 +11,9 @@ use crate::{Projection, Scene};
 /// `shallow_depth`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DepthRange {
+    /// Distance to the nearest geometry, world units, at least the near plane's.
     pub near: f64,
+    /// Distance to the farthest geometry, world units, at most the far plane's.
     pub far: f64,
 }
 

@@ -12,6 +12,7 @@ use crate::{Projection, Scene};
 /// and do not count.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SmallestFeature {
+    /// The edge's length in pixels at its distance.
     pub pixels: f64,
     /// The mesh the edge belongs to.
     pub mesh: String,

@@ -8,8 +8,11 @@ use crate::{AlphaMode, LightKind, Material, Scene};
 /// that some mesh draws with, and lights that emit something.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Features {
+    /// Some point light emits.
     pub point_lights: bool,
+    /// Some spot light emits.
     pub spot_lights: bool,
+    /// Some directional light emits.
     pub directional_lights: bool,
     /// A nonzero ambient term.
     pub ambient: bool,
@@ -19,7 +22,9 @@ pub struct Features {
     pub unlit: bool,
     /// Some mesh is drawn with a lit material.
     pub lit: bool,
+    /// Some mesh is drawn with an emissive material.
     pub emissive: bool,
+    /// Some mesh is drawn with an alpha MASK material.
     pub alpha_mask: bool,
     /// Some mesh is drawn with an alpha BLEND material: the pipelines add their
     /// transparent passes under `when: "blend"`.
@@ -41,6 +46,7 @@ pub struct Features {
     /// ([`TextureTable::check`]): the visibility buffer cannot shade them, and pipelines
     /// take a G-buffer for these scenes.
     pub untabled_textures: bool,
+    /// Some mesh is drawn with a double-sided material.
     pub double_sided: bool,
     /// A 24-bit unorm depth buffer with standard Z resolves the geometry's depth range
     /// as finely as [`DepthRange::shallow`] asks. A reduction, like `unlit_only`: only a
@@ -89,6 +95,8 @@ impl Features {
         "auto_exposure",
     ];
 
+    /// The features `scene` uses (`background` and `auto_exposure` unset: they are the
+    /// host's).
     pub fn of(scene: &Scene) -> Features {
         let drawn: Vec<&Material> = scene
             .meshes

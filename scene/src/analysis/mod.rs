@@ -18,6 +18,7 @@ use crate::Scene;
 /// Everything analysis finds about one scene at one output size.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Analysis {
+    /// The features the scene uses, by the names graph-file conditions test.
     pub features: Features,
     /// `None` when no geometry lies between the camera's planes.
     pub depth: Option<DepthRange>,

@@ -26,7 +26,9 @@ pub const BUILTIN_PREFIX: &str = "builtin:";
 
 /// A built-in scene: its name, a one-line description and the parameters it takes.
 pub struct BuiltinScene {
+    /// What follows `builtin:` in a scene spec.
     pub name: &'static str,
+    /// One line, for `rgraph` help and the scene catalogue.
     pub description: &'static str,
     /// Each `?key=value` parameter accepted, with its default and largest value.
     pub params: &'static [BuiltinParam],

@@ -5,9 +5,11 @@ use crate::SceneError;
 /// One parameter a built-in scene takes: a whole number with a default and a documented
 /// range, checked before the scene allocates anything.
 pub struct BuiltinParam {
+    /// The `key` of `?key=value`.
     pub key: &'static str,
     /// What it means, for help and errors.
     pub meaning: &'static str,
+    /// The value used when the spec leaves it out.
     pub default: u32,
     /// The largest value accepted (the smallest is 0).
     pub max: u32,

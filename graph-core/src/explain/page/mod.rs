@@ -43,9 +43,13 @@ const SCRIPT: &str = include_str!("page.js");
 pub struct Page<'a> {
     /// What the plan is of, as the user named it: the graph file's path.
     pub title: String,
+    /// The plan drawn.
     pub plan: &'a Plan,
+    /// The scene and parameters it was compiled for.
     pub setting: Setting,
+    /// Measured times of its passes, drawn as bars.
     pub timings: Option<Timings>,
+    /// A plan to highlight the differences from.
     pub compare: Option<Against<'a>>,
 }
 
@@ -62,9 +66,12 @@ pub struct Setting {
     pub parameters: Vec<Parameter>,
 }
 
+/// A graph-file parameter and the value a plan was compiled with.
 #[derive(Clone, Debug, Serialize)]
 pub struct Parameter {
+    /// The parameter's name in the graph file.
     pub name: String,
+    /// The value the plan was compiled with.
     pub value: u32,
     /// Given by the user rather than the file's default.
     pub given: bool,
@@ -77,6 +84,7 @@ pub struct Against<'a> {
     /// What the other plan is, as the page names it: "pipelines/old.ron",
     /// "the plan for builtin:unlit".
     pub label: String,
+    /// The other plan.
     pub plan: &'a Plan,
 }
 

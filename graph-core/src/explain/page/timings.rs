@@ -15,17 +15,22 @@ pub struct Timings {
     /// Where the times come from, as the page says it: the results file, row, size and
     /// adapter.
     pub source: String,
+    /// GPU time of the whole frame, in milliseconds; `None` without timestamps.
     pub gpu_frame_ms: Option<f64>,
     /// CPU time to record every pass.
     pub cpu_record_ms: Option<f64>,
+    /// Per-pass times, matched to the plan's passes by name.
     pub passes: Vec<PassTime>,
 }
 
+/// One pass's measured times.
 #[derive(Clone, Debug, Serialize)]
 pub struct PassTime {
+    /// The pass's name.
     pub name: String,
-    /// `None` where the device has no timestamps.
+    /// GPU time in milliseconds; `None` where the device has no timestamps.
     pub gpu_ms: Option<f64>,
+    /// CPU time to record it, in milliseconds, where measured.
     pub cpu_ms: Option<f64>,
 }
 
