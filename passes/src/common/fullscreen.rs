@@ -113,6 +113,7 @@ mod gpu {
         }
 
         fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
             let resources = frame.resources;
             if self.extent == Extent::Blended {
                 let Some(rect_scene) = frame.scenes.for_frame(resources) else {
@@ -126,9 +127,7 @@ mod gpu {
                 let Some(rect) = self.extent.rect(&rect_scene, size) else {
                     return Ok(());
                 };
-                frame
-                    .pass
-                    .set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
+                pass.set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
             }
             let convention =
                 OpaqueDepth::bound_with(self.depth.as_ref(), &self.inputs, resources)?.convention;
@@ -168,17 +167,13 @@ mod gpu {
                 }
                 .build(frame.device)
             });
-            frame.pass.set_pipeline(pipeline);
+            pass.set_pipeline(pipeline);
             if let Some(scene) = &frame.scene {
-                frame
-                    .pass
-                    .set_bind_group(0, scene.bind_group(convention), &[]);
+                pass.set_bind_group(0, scene.bind_group(convention), &[]);
             }
-            frame
-                .pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            frame.pass.set_stencil_reference(EDGE_STENCIL);
-            frame.pass.draw(0..3, 0..1);
+            pass.set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            pass.set_stencil_reference(EDGE_STENCIL);
+            pass.draw(0..3, 0..1);
             Ok(())
         }
     }

@@ -61,6 +61,7 @@ mod gpu {
         }
 
         fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
             let resources = frame.resources;
             let convention =
                 OpaqueDepth::bound_with(self.depth.as_ref(), &self.inputs, resources)?.convention;
@@ -79,21 +80,15 @@ mod gpu {
                     &constants,
                 )
             });
-            frame.pass.set_pipeline(pipeline);
+            pass.set_pipeline(pipeline);
             if let Some(scene) = &frame.scene {
                 // The camera of the depth's convention (without a depth, the viewport
                 // and the frame's exposure are all the shader reads).
-                frame
-                    .pass
-                    .set_bind_group(0, scene.bind_group(convention), &[]);
+                pass.set_bind_group(0, scene.bind_group(convention), &[]);
             }
-            frame
-                .pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            pass.set_bind_group(1, &state.inputs.bind_group(resources), &[]);
             let out = resources.shape(self.target);
-            frame
-                .pass
-                .dispatch_workgroups(out.width.div_ceil(8), out.height.div_ceil(8), 1);
+            pass.dispatch_workgroups(out.width.div_ceil(8), out.height.div_ceil(8), 1);
             Ok(())
         }
     }

@@ -150,6 +150,7 @@ mod gpu {
         }
 
         fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
             let (module, layout) = (&state.module, &state.layout);
             // The shader clears its histogram itself.
             let pipeline = state.pipelines.get((), |()| {
@@ -162,11 +163,9 @@ mod gpu {
                     &self.constants,
                 )
             });
-            frame.pass.set_pipeline(pipeline);
-            frame
-                .pass
-                .set_bind_group(1, &state.inputs.bind_group(frame.resources), &[]);
-            frame.pass.dispatch_workgroups(1, 1, 1);
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(1, &state.inputs.bind_group(frame.resources), &[]);
+            pass.dispatch_workgroups(1, 1, 1);
             Ok(())
         }
     }

@@ -152,6 +152,7 @@ mod gpu {
         }
 
         fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
             let resources = frame.resources;
             let key = Key {
                 targets: self
@@ -181,14 +182,10 @@ mod gpu {
                 }
                 .build(frame.device)
             });
-            frame.pass.set_pipeline(pipeline);
-            frame
-                .pass
-                .set_bind_group(0, frame.scene.bind_group(convention), &[]);
-            frame
-                .pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            frame.pass.draw(0..3, 0..1);
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, frame.scene.bind_group(convention), &[]);
+            pass.set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            pass.draw(0..3, 0..1);
             Ok(())
         }
     }

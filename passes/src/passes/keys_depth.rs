@@ -137,6 +137,7 @@ mod gpu {
         }
 
         fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
             let resources = frame.resources;
             fits_binding(frame.device, resources.buffer(self.keys))?;
             let format = resources.shape(self.depth).format;
@@ -170,16 +171,12 @@ mod gpu {
             let Some(rect) = self.extent.rect(&frame.scene, size) else {
                 return Ok(());
             };
-            frame
-                .pass
-                .set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
-            frame.pass.set_pipeline(pipeline);
+            pass.set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
+            pass.set_pipeline(pipeline);
             let camera = frame.scene.bind_group(DepthConvention::ReversedZ);
-            frame.pass.set_bind_group(0, camera, &[]);
-            frame
-                .pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            frame.pass.draw(0..3, 0..1);
+            pass.set_bind_group(0, camera, &[]);
+            pass.set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            pass.draw(0..3, 0..1);
             Ok(())
         }
     }

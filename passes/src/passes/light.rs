@@ -343,6 +343,7 @@ mod gpu {
         }
 
         fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
             let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
             let size = resources.output_size();
             let (hdr, depth) = (resources.shape(self.hdr), resources.shape(self.depth));
@@ -351,13 +352,9 @@ mod gpu {
                 Frequency::Pixel(_) | Frequency::Sample(EdgeMode::SampleIndex) => vec![None],
             };
             let convention = self.depth_rule.convention(depth.format);
-            frame
-                .pass
-                .set_bind_group(0, scene.bind_group(convention), &[]);
-            frame
-                .pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            frame.pass.set_stencil_reference(EDGE_STENCIL);
+            pass.set_bind_group(0, scene.bind_group(convention), &[]);
+            pass.set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            pass.set_stencil_reference(EDGE_STENCIL);
             let (module, layout) = (&state.module, &state.layout);
             let variant = frame.scenes.variant(GatedShader::Light);
             let mut use_pipeline = |pass: &mut wgpu::RenderPass<'_>, geometry, sample| {
@@ -412,8 +409,8 @@ mod gpu {
             };
             for sample in passes {
                 if scene.has_fullscreen_lights() {
-                    use_pipeline(frame.pass, Geometry::FarPlane { light: false }, sample);
-                    frame.pass.draw(0..3, 0..1);
+                    use_pipeline(pass, Geometry::FarPlane { light: false }, sample);
+                    pass.draw(0..3, 0..1);
                 }
                 for light in scene.volume_lights() {
                     let instance = light.index..light.index + 1;
@@ -427,19 +424,15 @@ mod gpu {
                     } else {
                         Geometry::BackFaces
                     };
-                    use_pipeline(frame.pass, geometry, sample);
+                    use_pipeline(pass, geometry, sample);
                     if geometry == (Geometry::FarPlane { light: true }) {
-                        frame.pass.draw(0..3, instance);
+                        pass.draw(0..3, instance);
                         continue;
                     }
                     let mesh = scene.volume_mesh(light.shape);
-                    frame.pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-                    frame
-                        .pass
-                        .set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-                    frame
-                        .pass
-                        .draw_indexed(0..mesh.index_count, 0, light.index..light.index + 1);
+                    pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                    pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..mesh.index_count, 0, light.index..light.index + 1);
                 }
             }
             Ok(())

@@ -461,6 +461,7 @@ mod gpu {
         }
 
         fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
             let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
             let visibility = self.visibility();
             // What a visibility buffer's shading binds besides its inputs (the scene's
@@ -505,9 +506,7 @@ mod gpu {
                 };
                 self.entries.iter().copied().map(pipeline).collect()
             });
-            frame
-                .pass
-                .set_bind_group(0, scene.bind_group(convention), &[]);
+            pass.set_bind_group(0, scene.bind_group(convention), &[]);
             let out = resources.shape(self.output);
             let mut owned = Vec::new();
             if self.lists_edges() {
@@ -530,15 +529,15 @@ mod gpu {
                 owned.push(&*list);
             }
             let group = state.pass.inputs.bind_group_with(resources, &owned);
-            frame.pass.set_bind_group(1, &group, &[]);
+            pass.set_bind_group(1, &group, &[]);
             if let Some((geometry, table)) = visibility_groups {
-                frame.pass.set_bind_group(2, geometry, &[]);
-                frame.pass.set_bind_group(3, table, &[]);
+                pass.set_bind_group(2, geometry, &[]);
+                pass.set_bind_group(3, table, &[]);
             }
             // wgpu orders the dispatches (the list is written by one and read by the
             // next); they write disjoint pixels of the output.
             for (entry, pipeline) in self.entries.iter().zip(pipelines) {
-                frame.pass.set_pipeline(pipeline);
+                pass.set_pipeline(pipeline);
                 let (x, y) = match *entry {
                     EDGES_RESET => (1, 1),
                     EDGES => (state.edge_groups, 1),
@@ -547,7 +546,7 @@ mod gpu {
                         out.height.div_ceil(self.tile),
                     ),
                 };
-                frame.pass.dispatch_workgroups(x, y, 1);
+                pass.dispatch_workgroups(x, y, 1);
             }
             Ok(())
         }

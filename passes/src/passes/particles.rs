@@ -597,6 +597,7 @@ mod gpu {
         }
 
         fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
             let (resources, device) = (frame.resources, frame.device);
             let inputs = frame.scene.inputs();
             state
@@ -675,18 +676,14 @@ mod gpu {
                     ],
                 }
             });
-            frame
-                .pass
-                .set_bind_group(0, frame.scene.bind_group(convention), &[]);
-            frame
-                .pass
-                .set_bind_group(1, &state.textures.bind_group(resources), &[]);
-            frame.pass.set_bind_group(2, state.particles.group(), &[]);
-            frame.pass.set_stencil_reference(EDGE_STENCIL);
+            pass.set_bind_group(0, frame.scene.bind_group(convention), &[]);
+            pass.set_bind_group(1, &state.textures.bind_group(resources), &[]);
+            pass.set_bind_group(2, state.particles.group(), &[]);
+            pass.set_stencil_reference(EDGE_STENCIL);
             for (pipeline, instances) in [(blend_pipeline, blended), (add_pipeline, additive)] {
                 if !instances.is_empty() {
-                    frame.pass.set_pipeline(pipeline);
-                    frame.pass.draw(0..6, instances);
+                    pass.set_pipeline(pipeline);
+                    pass.draw(0..6, instances);
                 }
             }
             Ok(())
@@ -734,6 +731,7 @@ mod gpu {
         }
 
         fn record(&self, state: &mut ComputeState, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
             let resources = frame.resources;
             let inputs = frame.scene.inputs();
             state.particles.update(
@@ -744,19 +742,15 @@ mod gpu {
             );
             // Every pixel of the targets is stored, particles or not: what the composite
             // reads.
-            frame.pass.set_pipeline(&state.pipeline);
+            pass.set_pipeline(&state.pipeline);
             // A view depth needs no depth convention: the reversed-Z camera projects as
             // the fragment pass's does for one.
             let camera = frame.scene.bind_group(DepthConvention::ReversedZ);
-            frame.pass.set_bind_group(0, camera, &[]);
-            frame
-                .pass
-                .set_bind_group(1, &state.textures.bind_group(resources), &[]);
-            frame.pass.set_bind_group(2, state.particles.group(), &[]);
+            pass.set_bind_group(0, camera, &[]);
+            pass.set_bind_group(1, &state.textures.bind_group(resources), &[]);
+            pass.set_bind_group(2, state.particles.group(), &[]);
             let out = resources.shape(self.inputs[1].texture);
-            frame
-                .pass
-                .dispatch_workgroups(out.width.div_ceil(TILE), out.height.div_ceil(TILE), 1);
+            pass.dispatch_workgroups(out.width.div_ceil(TILE), out.height.div_ceil(TILE), 1);
             Ok(())
         }
     }

@@ -156,6 +156,7 @@ mod gpu {
         }
 
         fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
             let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
             let geometry = scene.geometry_group(device)?;
             // Textured alpha masks read the table.
@@ -164,12 +165,10 @@ mod gpu {
             let ids = self.ids.map(|ids| resources.shape(ids).format);
             let depth = resources.shape(self.depth);
             let convention = self.depth_rule.convention(depth.format);
-            frame
-                .pass
-                .set_bind_group(0, scene.bind_group(convention), &[]);
-            frame.pass.set_bind_group(2, geometry, &[]);
-            frame.pass.set_bind_group(3, table, &[]);
-            scene.pull_meshes(frame.pass, |pass, _, material| {
+            pass.set_bind_group(0, scene.bind_group(convention), &[]);
+            pass.set_bind_group(2, geometry, &[]);
+            pass.set_bind_group(3, table, &[]);
+            scene.pull_meshes(pass, |pass, _, material| {
                 let key = Key {
                     ids,
                     depth: depth.format,

@@ -215,6 +215,7 @@ mod gpu {
         }
 
         fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
             let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
             // The bins are made for one output size: a resized graph gets new ones.
             let size = resources.output_size();
@@ -237,8 +238,7 @@ mod gpu {
             let mut buffers = vec![keys];
             buffers.extend(bins.raster_buffers());
             let group = storage_group(device, "visibility_compute", &state.layout, &buffers);
-            bins.record(frame.pass, scene, geometry);
-            let pass = &mut frame.pass;
+            bins.record(pass, scene, geometry);
             pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
             pass.set_bind_group(1, &group, &[]);
             pass.set_bind_group(2, geometry, &[]);

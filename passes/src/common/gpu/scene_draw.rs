@@ -80,6 +80,7 @@ impl Recorder for SceneDraw {
     }
 
     fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+        let pass = &mut *frame.pass;
         let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
         let variant = frame.scenes.variant(self.shader);
         let depth = resources.shape(self.depth);
@@ -89,13 +90,9 @@ impl Recorder for SceneDraw {
             .map(|&h| resources.shape(h).format)
             .collect();
         let convention = self.depth_rule.convention(depth.format);
-        frame
-            .pass
-            .set_bind_group(0, scene.bind_group(convention), &[]);
+        pass.set_bind_group(0, scene.bind_group(convention), &[]);
         if let Some(inputs) = &state.inputs {
-            frame
-                .pass
-                .set_bind_group(2, &inputs.bind_group(resources), &[]);
+            pass.set_bind_group(2, &inputs.bind_group(resources), &[]);
         }
         let layer = match self.blended {
             false => Layer::Opaque,
@@ -120,14 +117,12 @@ impl Recorder for SceneDraw {
                 }
                 .build(device, &state.fullscreen_layout, &state.module, key)
             });
-            frame
-                .pass
-                .set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
-            frame.pass.set_pipeline(pipeline);
-            frame.pass.draw(0..3, 0..1);
+            pass.set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
+            pass.set_pipeline(pipeline);
+            pass.draw(0..3, 0..1);
         }
         let materials = scene.material_groups(device, resources.queue, host_scene);
-        scene.draw_meshes(frame.pass, (1, materials), layer, |pass, _, material| {
+        scene.draw_meshes(pass, (1, materials), layer, |pass, _, material| {
             let key = Key {
                 targets: targets.clone(),
                 depth: depth.format,
@@ -182,8 +177,8 @@ impl Recorder for SceneDraw {
                 }
                 .build(device, &state.fullscreen_layout, &state.module, key)
             });
-            frame.pass.set_pipeline(pipeline);
-            frame.pass.draw(0..3, 0..1);
+            pass.set_pipeline(pipeline);
+            pass.draw(0..3, 0..1);
         }
         Ok(())
     }
