@@ -234,15 +234,6 @@ pub(crate) struct TiledDispatch {
     pub inputs: Vec<Input>,
 }
 
-#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-impl TiledDispatch {
-    /// Whether edge pixels are listed for a dispatch of their own (which then needs the
-    /// list bound and filled).
-    fn lists_edges(&self) -> bool {
-        self.entries.contains(&EDGES)
-    }
-}
-
 impl Plugin for LightTiled {
     const NAME: &'static str = "light_tiled";
     type Params = LightTiledParams;
@@ -417,6 +408,12 @@ mod gpu {
     }
 
     impl TiledDispatch {
+        /// Whether edge pixels are listed for a dispatch of their own (which then needs
+        /// the list bound and filled).
+        fn lists_edges(&self) -> bool {
+            self.entries.contains(&EDGES)
+        }
+
         /// Whether it shades a visibility buffer, reading the scene's geometry and
         /// texture table.
         fn visibility(&self) -> bool {
@@ -511,20 +508,14 @@ mod gpu {
             let mut owned = Vec::new();
             if self.lists_edges() {
                 let size = (out.width, out.height);
-                if state
-                    .edge_list
-                    .as_ref()
-                    .is_some_and(|(made, _)| *made != size)
-                {
-                    state.edge_list = None;
+                let edge_list = &mut state.edge_list;
+                if edge_list.as_ref().is_some_and(|(made, _)| *made != size) {
+                    *edge_list = None;
                 }
-                let pixels = u64::from(out.width) * u64::from(out.height);
-                let (_, list) = state.edge_list.get_or_insert_with(|| {
-                    (
-                        size,
-                        scratch(device, "light_tiled edge pixels", 4 + 4 * pixels),
-                    )
-                });
+                let bytes = 4 + 4 * u64::from(out.width) * u64::from(out.height);
+                let label = "light_tiled edge pixels";
+                let (_, list) =
+                    edge_list.get_or_insert_with(|| (size, scratch(device, label, bytes)));
                 resources.hold(list);
                 owned.push(&*list);
             }
