@@ -174,13 +174,15 @@ pub enum Command {
     },
 }
 
-/// What `rgraph render` draws, how, and where it writes it.
+/// What `rgraph render` and `rgraph view` draw: the graph, the scene, the size, the view
+/// and the background, on which adapter.
 #[derive(clap::Args)]
-pub struct RenderArgs {
+pub struct FrameArgs {
     /// The graph file. It must export "color" (the final image) and may export debug
     /// views as "debug.NAME"; both rgba8unorm-srgb or rgba8unorm. The default, a
     /// visibility buffer at 4x MSAA, draws every feature a scene has (opaque, alpha MASK
     /// and BLEND, emission, the environment, particles) and is the fastest 4x pipeline.
+    /// `view` watches it for changes, with the files it names.
     #[arg(
         long,
         value_name = "FILE",
@@ -195,17 +197,51 @@ pub struct RenderArgs {
         default_value = "builtin:spheres"
     )]
     pub scene: String,
-    /// Image width in pixels, at least 1 and at most the device's largest 2D texture.
+    /// Image width in pixels (for `view` the window's, at whose size the graph renders), at
+    /// least 1 and at most the device's largest 2D texture.
     #[arg(long, value_name = "W", default_value_t = 1280, value_parser = parse_dimension)]
     pub width: u32,
-    /// Image height in pixels, at least 1 and at most the device's largest 2D texture.
+    /// Image height in pixels (for `view` the window's), at least 1 and at most the
+    /// device's largest 2D texture.
     #[arg(long, value_name = "H", default_value_t = 720, value_parser = parse_dimension)]
     pub height: u32,
-    /// What to write: final (the pipeline's "color" output) or a debug view NAME (its
-    /// "debug.NAME" output): edges, albedo, normals, depth or lights in the deferred
-    /// pipelines. Only the passes this view needs run.
+    /// What to draw (for `view`, first): final (the pipeline's "color" output) or a debug
+    /// view NAME (its "debug.NAME" output): edges, albedo, normals, depth or lights in the
+    /// deferred pipelines. Only the passes this view needs run.
     #[arg(long, value_name = "VIEW", default_value = "final")]
     pub view: String,
+    /// What shows where nothing is drawn: environment (the scene's, as a mirror reflects
+    /// it: the default for files without lights, whose default lighting it is), color:R,G,B
+    /// (sRGB bytes 0 to 255 as the PNG shows them, composited in linear light) or
+    /// transparent (the PNG's alpha is the coverage, for compositing). Without it a scene
+    /// with lights of its own shows black. The pipeline must draw a background (the
+    /// default does); others refuse the flag.
+    #[arg(long, value_name = "environment|color:R,G,B|transparent", value_parser = parse_background)]
+    pub background: Option<Background>,
+    /// Adapter to render on: lavapipe, gpu, or part of an adapter's name (default:
+    /// $RGRAPH_ADAPTER, else lavapipe). For `view` it must be able to present to the window.
+    #[arg(long)]
+    pub adapter: Option<String>,
+    #[command(flatten)]
+    pub samples: Samples,
+    #[command(flatten)]
+    pub assets: AssetArgs,
+    #[command(flatten)]
+    pub roots: GraphRoots,
+}
+
+impl FrameArgs {
+    /// `--width` and `--height`.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+}
+
+/// What `rgraph render` draws, how, and where it writes it.
+#[derive(clap::Args)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub frame: FrameArgs,
     /// Tone mapping in the resolve pass, replacing the pipeline's choice (default: the
     /// pipeline's).
     #[arg(long, value_enum)]
@@ -218,24 +254,12 @@ pub struct RenderArgs {
     // taking "-1" for an unknown flag.
     #[arg(long, value_name = "E|auto", value_parser = parse_exposure, allow_negative_numbers = true)]
     pub exposure: Option<Exposure>,
-    /// What shows where nothing is drawn: environment (the scene's, as a mirror reflects
-    /// it: the default for files without lights, whose default lighting it is), color:R,G,B
-    /// (sRGB bytes 0 to 255 as the PNG shows them, composited in linear light) or
-    /// transparent (the PNG's alpha is the coverage, for compositing). Without it a scene
-    /// with lights of its own shows black. The pipeline must draw a background (the
-    /// default does); others refuse the flag.
-    #[arg(long, value_name = "environment|color:R,G,B|transparent", value_parser = parse_background)]
-    pub background: Option<Background>,
     /// Compile the pipeline as for a scene using every feature, instead of dropping the
     /// passes and channels this scene does not use (`rgraph explain --scene` shows what
     /// those are). The image is the same; the point is comparing, or a debug view the
     /// scene's plan drops.
     #[arg(long)]
     pub no_specialise: bool,
-    /// Adapter to render on: lavapipe, gpu, or part of an adapter's name (default:
-    /// $RGRAPH_ADAPTER, else lavapipe).
-    #[arg(long)]
-    pub adapter: Option<String>,
     /// The PNG to write (its directory must exist); replaced atomically. With --frames
     /// above 1 the name holds %04d (or %0Nd for N digits), replaced by each frame's number.
     #[arg(long, value_name = "FILE.png", value_parser = parse_file_path)]
@@ -250,53 +274,13 @@ pub struct RenderArgs {
     /// frames give 360 * (N - 1) / N.
     #[arg(long, value_name = "DEGREES", default_value_t = 0.0, value_parser = parse_degrees, allow_negative_numbers = true)]
     pub orbit: f64,
-    #[command(flatten)]
-    pub samples: Samples,
-    #[command(flatten)]
-    pub assets: AssetArgs,
-    #[command(flatten)]
-    pub roots: GraphRoots,
 }
 
 /// What `rgraph view` shows, and how long.
 #[derive(clap::Args)]
 pub struct ViewArgs {
-    /// The graph file, watched for changes with the files it names. It must export "color"
-    /// or "debug.NAME" outputs, rgba8unorm-srgb or rgba8unorm.
-    #[arg(
-        long,
-        value_name = "FILE",
-        default_value = "pipelines/visibility_msaa_4x.ron"
-    )]
-    pub pipeline: PathBuf,
-    /// A glTF 2.0 file (.gltf or .glb), or builtin:NAME[?key=value&...].
-    #[arg(
-        long,
-        value_name = "PATH|builtin:NAME",
-        default_value = "builtin:spheres"
-    )]
-    pub scene: String,
-    /// The window's width in pixels; the graph renders at the window's size.
-    #[arg(long, value_name = "W", default_value_t = 1280, value_parser = parse_dimension)]
-    pub width: u32,
-    /// The window's height in pixels.
-    #[arg(long, value_name = "H", default_value_t = 720, value_parser = parse_dimension)]
-    pub height: u32,
-    /// The view shown first: final (the "color" output) or NAME (the "debug.NAME" output).
-    #[arg(long, value_name = "VIEW", default_value = "final")]
-    pub view: String,
-    /// What shows where nothing is drawn: environment (the scene's, as a mirror reflects
-    /// it: the default for files without lights, whose default lighting it is), color:R,G,B
-    /// (sRGB bytes 0 to 255 as the PNG shows them, composited in linear light) or
-    /// transparent (the PNG's alpha is the coverage, for compositing). Without it a scene
-    /// with lights of its own shows black. The pipeline must draw a background (the
-    /// default does); others refuse the flag.
-    #[arg(long, value_name = "environment|color:R,G,B|transparent", value_parser = parse_background)]
-    pub background: Option<Background>,
-    /// Adapter to render on: lavapipe, gpu, or part of an adapter's name (default:
-    /// $RGRAPH_ADAPTER, else lavapipe). It must be able to present to the window.
-    #[arg(long)]
-    pub adapter: Option<String>,
+    #[command(flatten)]
+    pub frame: FrameArgs,
     /// Degrees the camera starts turned by about the vertical axis through the scene's
     /// bounds centre, as the last frame of `render --frames N --orbit DEGREES` is.
     #[arg(long, value_name = "DEGREES", default_value_t = 0.0, value_parser = parse_degrees, allow_negative_numbers = true)]
@@ -311,12 +295,6 @@ pub struct ViewArgs {
     /// How often the watched files' modification times are polled, in milliseconds.
     #[arg(long, value_name = "MS", default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..))]
     pub poll_ms: u64,
-    #[command(flatten)]
-    pub samples: Samples,
-    #[command(flatten)]
-    pub assets: AssetArgs,
-    #[command(flatten)]
-    pub roots: GraphRoots,
 }
 
 impl Command {
@@ -324,8 +302,9 @@ impl Command {
     pub fn graph_roots(&self) -> &[PathBuf] {
         match self {
             Command::Validate { roots, .. } | Command::Explain { roots, .. } => &roots.dirs,
-            Command::Render(args) => &args.roots.dirs,
-            Command::View(args) => &args.roots.dirs,
+            Command::Render(RenderArgs { frame, .. }) | Command::View(ViewArgs { frame, .. }) => {
+                &frame.roots.dirs
+            }
             Command::Bench(args) => &args.roots.dirs,
             Command::Adapters { .. } | Command::Compare { .. } => &[],
         }

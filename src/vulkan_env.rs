@@ -7,7 +7,7 @@ use std::path::Path;
 
 use graph_core::gpu::AdapterChoice;
 
-use crate::cli::{Cli, Command};
+use crate::cli::{Cli, Command, RenderArgs, ViewArgs};
 
 /// Where Mesa installs lavapipe's driver manifest on x86-64 Linux.
 const LAVAPIPE_ICD: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
@@ -22,9 +22,10 @@ pub fn prepare(cli: &Cli) {
     }
     let adapter = match &cli.command {
         Command::Validate { target, .. } | Command::Explain { target, .. } => &target.adapter,
-        Command::Render(args) => &args.adapter,
+        Command::Render(RenderArgs { frame, .. }) | Command::View(ViewArgs { frame, .. }) => {
+            &frame.adapter
+        }
         Command::Bench(args) => &args.adapter,
-        Command::View(args) => &args.adapter,
         Command::Adapters { .. } | Command::Compare { .. } => return,
     };
     let driver_list_set = std::env::var_os("VK_DRIVER_FILES").is_some()

@@ -41,32 +41,32 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     let single = args.frames == 1;
     let mut progress = Progress::new(if single { 7 } else { 5 });
 
-    progress.stage(format!("load scene {}", args.scene));
-    let scene = load_scene(&args.scene, &args.assets, &progress)?;
+    progress.stage(format!("load scene {}", args.frame.scene));
+    let scene = load_scene(&args.frame.scene, &args.frame.assets, &progress)?;
     let overrides = Overrides {
         tonemap: args.tonemap.map(|t| t.name().to_string()),
         exposure: args.exposure,
-        background: args.background,
+        background: args.frame.background,
     };
 
-    progress.stage(format!("load pipeline {}", args.pipeline.display()));
-    let output = view::output_name(&args.view);
+    progress.stage(format!("load pipeline {}", args.frame.pipeline.display()));
+    let output = view::output_name(&args.frame.view);
     let specialise = match args.no_specialise {
         true => Specialise::General,
         false => Specialise::ToScene,
     };
     let host = host(scene, overrides);
-    let params = args.samples.params();
+    let params = args.frame.samples.params();
     let pipeline = Pipeline::load(
-        &args.pipeline,
+        &args.frame.pipeline,
         host.clone(),
         &[&output],
         specialise,
         &params,
     )
-    .map_err(|e| view::unknown(e, &args.view))?;
+    .map_err(|e| view::unknown(e, &args.frame.view))?;
 
-    let choice = AdapterChoice::resolve(args.adapter.as_deref());
+    let choice = AdapterChoice::resolve(args.frame.adapter.as_deref());
     progress.stage(format!("open device ({choice})"));
     let session = Session::open(&choice)?;
 
@@ -74,36 +74,36 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     let blended = draws_blended(&pipeline.scene);
     let environment = SceneFeatures::of(&pipeline.scene).environment;
     let particles = pipeline.scene.particles().count();
-    let mut prepared = session.prepare(pipeline, (args.width, args.height))?;
+    let mut prepared = session.prepare(pipeline, args.frame.size())?;
 
     // The opaque passes skip BLEND meshes and only a `transparent` pass draws them; debug
     // views cull it on purpose, so only the final image can miss it.
-    if args.view == view::FINAL && blended && !prepared.runs("transparent") {
+    if args.frame.view == view::FINAL && blended && !prepared.runs("transparent") {
         progress.note(format!(
             "warning: the scene has alpha BLEND materials, but {} has no `transparent` pass \
              to draw them: they are left out (pipelines/*.ron show how to add one)",
-            args.pipeline.display()
+            args.frame.pipeline.display()
         ));
     }
     // The default lighting's environment shows behind the model where the pipeline
     // draws a background (a --background it cannot draw was refused above).
-    if args.view == view::FINAL
-        && args.background.is_none()
+    if args.frame.view == view::FINAL
+        && args.frame.background.is_none()
         && environment
         && !prepared.runs("background")
     {
         progress.note(format!(
             "note: {} draws no background, so the environment of the default lighting \
              does not show behind the model (pipelines/visibility_msaa_4x.ron draws it)",
-            args.pipeline.display()
+            args.frame.pipeline.display()
         ));
     }
     // Likewise particles: only a `particles` pass draws them.
-    if args.view == view::FINAL && particles > 0 && !prepared.runs("particles") {
+    if args.frame.view == view::FINAL && particles > 0 && !prepared.runs("particles") {
         progress.note(format!(
             "warning: the scene has {particles} particles, but {} has no `particles` pass \
              to draw them: they are left out (pipelines/particles_*.ron draw them)",
-            args.pipeline.display()
+            args.frame.pipeline.display()
         ));
     }
 
@@ -180,15 +180,15 @@ impl Orbit {
 /// Warnings the first frame's image earns: a size the flags did not set, and a blown-out
 /// final image.
 fn warn_about(image: &RgbaImage, args: &RenderArgs, output: &str, progress: &Progress) {
-    if image.dimensions() != (args.width, args.height) {
+    if image.dimensions() != args.frame.size() {
         // A pipeline may give its output a fixed size: the flags then do nothing, and the
         // user should hear so rather than wonder why the PNG has another size.
         progress.note(format!(
             "warning: --width {} --height {} do not apply: {} gives \"{output}\" a fixed \
              size of {}x{}, which is what was written",
-            args.width,
-            args.height,
-            args.pipeline.display(),
+            args.frame.width,
+            args.frame.height,
+            args.frame.pipeline.display(),
             image.width(),
             image.height()
         ));

@@ -98,20 +98,19 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
         wayland: std::env::var("WAYLAND_DISPLAY").ok(),
     })?;
 
-    eprintln!("load scene {}", args.scene);
-    let scene = args
-        .assets
-        .load(&args.scene)
+    eprintln!("load scene {}", args.frame.scene);
+    let scene = (args.frame.assets)
+        .load(&args.frame.scene)
         .map_err(|e| RenderError::Frame(FrameError::Scene(e)))?;
     for warning in &scene.warnings {
         eprintln!("warning: {warning}");
     }
     let overrides = Overrides {
-        background: args.background,
+        background: args.frame.background,
         ..Overrides::default()
     };
     let host = host(Arc::new(scene), overrides);
-    let choice = AdapterChoice::resolve(args.adapter.as_deref());
+    let choice = AdapterChoice::resolve(args.frame.adapter.as_deref());
     eprintln!("open device ({choice})");
     let session = Session::open(&choice).map_err(RenderError::Frame)?;
     let camera = app::Orbit::of(&host, args.orbit);
@@ -119,14 +118,14 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
     let loader = Loader {
         session: &session,
         host,
-        path: args.pipeline.clone(),
-        params: args.samples.params(),
+        path: args.frame.pipeline.clone(),
+        params: args.frame.samples.params(),
     };
-    eprintln!("load pipeline {}", args.pipeline.display());
-    let output = view::output_name(&args.view);
+    eprintln!("load pipeline {}", args.frame.pipeline.display());
+    let output = view::output_name(&args.frame.view);
     let shown = loader
-        .load(&output, (args.width, args.height))
-        .map_err(|e| view::unknown(e, &args.view))?;
+        .load(&output, args.frame.size())
+        .map_err(|e| view::unknown(e, &args.frame.view))?;
     let mut viewer = app::Viewer::new(loader, shown, camera, args);
     event_loop.run_app(&mut viewer)?;
     viewer.finish()

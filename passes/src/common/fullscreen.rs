@@ -7,7 +7,6 @@ use graph_core::TextureHandle;
 
 use super::extent::Extent;
 use super::opaque_depth::OpaqueDepth;
-use super::plugin::Recording;
 use super::textures::Input;
 
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
@@ -64,112 +63,101 @@ impl Fullscreen {
     }
 }
 
-impl Recording for Fullscreen {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(gpu::record(self, scenes))
-    }
-}
-
 #[cfg(feature = "gpu")]
 mod gpu {
     use std::sync::Arc;
 
-    use graph_core::gpu::RenderContext;
     use graph_core::TextureHandle;
 
     use super::Fullscreen;
     use crate::common::depth::far_depth;
     use crate::common::extent::Extent;
-    use crate::common::gpu::{per_device, InputPass, PipelineDesc, EDGE_STENCIL};
-    use crate::common::opaque_depth::{Bound, OpaqueDepth};
-    use crate::gpu_scene::SceneCache;
+    use crate::common::gpu::{
+        Frame, InputPass, PipelineDesc, Recorded, Recorder, Render, EDGE_STENCIL,
+    };
+    use crate::common::opaque_depth::OpaqueDepth;
+    use crate::gpu_scene::GpuScene;
     use rgraph_scene::DepthConvention;
 
     /// Attachment formats and sample count, as the plan made them, and the convention
     /// of the opaque depth read.
     #[derive(Clone, PartialEq)]
-    struct Key {
+    pub(crate) struct Key {
         target: Option<wgpu::TextureFormat>,
         depth_stencil: Option<wgpu::TextureFormat>,
         samples: u32,
         convention: DepthConvention,
     }
 
-    pub(super) fn record(
-        draw: Fullscreen,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-        // Built per device: the scene's group 0 layout is the same for every upload.
-        let mut state: Option<(wgpu::Device, InputPass<Key>)> = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            let device = resources.device;
-            let Some(scene) = scenes.for_frame_if(draw.reads_scene, resources) else {
-                return;
-            };
-            if draw.extent == Extent::Blended {
-                let Some(rect_scene) = scenes.for_frame(resources) else {
-                    return;
+    impl Recorder for Fullscreen {
+        type Stage = Render;
+        type Scene = Option<Arc<GpuScene>>;
+        type State = InputPass<Key>;
+
+        fn reads_scene(&self) -> bool {
+            self.reads_scene
+        }
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<Self::State, String> {
+            let bound =
+                OpaqueDepth::bound_with(self.depth.as_ref(), &self.inputs, frame.resources)?;
+            Ok(InputPass::with_geometry(
+                frame.resources,
+                self.label,
+                &self.source,
+                frame.scene.as_deref(),
+                &bound.inputs,
+                &bound.buffers,
+                false,
+            ))
+        }
+
+        fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let resources = frame.resources;
+            if self.extent == Extent::Blended {
+                let Some(rect_scene) = frame.scenes.for_frame(resources) else {
+                    return Ok(());
                 };
-                let target = draw.target.or(draw.stencil_mark);
+                let target = self.target.or(self.stencil_mark);
                 let size = target.map_or(resources.output_size(), |h| {
                     let shape = resources.shape(h);
                     (shape.width, shape.height)
                 });
-                let Some(rect) = draw.extent.rect(&rect_scene, size) else {
-                    return;
+                let Some(rect) = self.extent.rect(&rect_scene, size) else {
+                    return Ok(());
                 };
-                ctx.pass
-                    .set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
+                pass.set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
             }
-            let bound = OpaqueDepth::bound_with(draw.depth.as_ref(), &draw.inputs, resources);
-            let Bound {
-                inputs,
-                buffers,
-                convention,
-            } = match bound {
-                Ok(bound) => bound,
-                Err(why) => return resources.fail(why),
-            };
-            let state = per_device(&mut state, device, || {
-                InputPass::with_geometry(
-                    resources,
-                    draw.label,
-                    &draw.source,
-                    scene.as_deref(),
-                    &inputs,
-                    &buffers,
-                    false,
-                )
-            });
+            let convention =
+                OpaqueDepth::bound_with(self.depth.as_ref(), &self.inputs, resources)?.convention;
             let shape = |h: TextureHandle| resources.shape(h);
             let key = Key {
-                target: draw.target.map(|h| shape(h).format),
-                depth_stencil: draw.stencil_mark.map(|h| shape(h).format),
-                samples: draw
+                target: self.target.map(|h| shape(h).format),
+                depth_stencil: self.stencil_mark.map(|h| shape(h).format),
+                samples: self
                     .target
-                    .or(draw.stencil_mark)
+                    .or(self.stencil_mark)
                     .map_or(1, |h| shape(h).samples),
                 convention,
             };
             let pipeline = state.pipelines.get(key, |key| {
-                let mut constants = draw.constants.clone();
-                if draw.depth.is_some() {
+                let mut constants = self.constants.clone();
+                if self.depth.is_some() {
                     constants.push(("FAR_DEPTH", f64::from(far_depth(key.convention))));
                 }
                 let targets = [key.target.map(|format| wgpu::ColorTargetState {
                     format,
-                    blend: draw.blend,
+                    blend: self.blend,
                     write_mask: wgpu::ColorWrites::ALL,
                 })];
                 PipelineDesc {
-                    label: draw.label,
+                    label: self.label,
                     layout: &state.layout,
                     module: &state.module,
                     vertex: "vs_fullscreen",
                     buffers: &[],
-                    fragment: draw.entry,
+                    fragment: self.entry,
                     constants: &constants,
                     targets: if key.target.is_some() { &targets } else { &[] },
                     cull: None,
@@ -177,18 +165,17 @@ mod gpu {
                     samples: key.samples,
                     mask: !0,
                 }
-                .build(device)
+                .build(frame.device)
             });
-            ctx.pass.set_pipeline(pipeline);
-            if let Some(scene) = &scene {
-                ctx.pass
-                    .set_bind_group(0, scene.bind_group(convention), &[]);
+            pass.set_pipeline(pipeline);
+            if let Some(scene) = &frame.scene {
+                pass.set_bind_group(0, scene.bind_group(convention), &[]);
             }
-            ctx.pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            ctx.pass.set_stencil_reference(EDGE_STENCIL);
-            ctx.pass.draw(0..3, 0..1);
-        })
+            pass.set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            pass.set_stencil_reference(EDGE_STENCIL);
+            pass.draw(0..3, 0..1);
+            Ok(())
+        }
     }
 
     fn stencil_mark(format: wgpu::TextureFormat) -> wgpu::DepthStencilState {

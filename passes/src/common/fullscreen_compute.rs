@@ -6,7 +6,6 @@
 use graph_core::TextureHandle;
 
 use super::opaque_depth::OpaqueDepth;
-use super::plugin::Recording;
 use super::textures::Input;
 
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
@@ -27,83 +26,70 @@ pub(crate) struct FullscreenCompute {
     pub depth: Option<OpaqueDepth>,
 }
 
-impl Recording for FullscreenCompute {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Compute(gpu::record(self, scenes))
-    }
-}
-
 #[cfg(feature = "gpu")]
 mod gpu {
     use std::sync::Arc;
 
-    use graph_core::gpu::ComputeContext;
-
     use super::FullscreenCompute;
     use crate::common::depth::far_depth;
-    use crate::common::gpu::{compute_pipeline, per_device, InputPass};
-    use crate::common::opaque_depth::{Bound, OpaqueDepth};
-    use crate::gpu_scene::SceneCache;
+    use crate::common::gpu::{compute_pipeline, Compute, Frame, InputPass, Recorded, Recorder};
+    use crate::common::opaque_depth::OpaqueDepth;
+    use crate::gpu_scene::GpuScene;
     use rgraph_scene::DepthConvention;
 
-    type State = InputPass<DepthConvention, wgpu::ComputePipeline>;
+    impl Recorder for FullscreenCompute {
+        type Stage = Compute;
+        type Scene = Option<Arc<GpuScene>>;
+        type State = InputPass<DepthConvention, wgpu::ComputePipeline>;
 
-    pub(super) fn record(
-        dispatch: FullscreenCompute,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
-        // Built per device, as the full-screen passes are: the scene's group 0 layout is
-        // the same for every upload.
-        let mut state: Option<(wgpu::Device, State)> = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            let device = resources.device;
-            let Some(scene) = scenes.for_frame_if(dispatch.reads_scene, resources) else {
-                return;
-            };
+        fn reads_scene(&self) -> bool {
+            self.reads_scene
+        }
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<Self::State, String> {
             let bound =
-                OpaqueDepth::bound_with(dispatch.depth.as_ref(), &dispatch.inputs, resources);
-            let Bound {
-                inputs,
-                buffers,
-                convention,
-            } = match bound {
-                Ok(bound) => bound,
-                Err(why) => return resources.fail(why),
-            };
-            let state = per_device(&mut state, device, || {
-                InputPass::with_geometry(
-                    resources,
-                    dispatch.label,
-                    &dispatch.source,
-                    scene.as_deref(),
-                    &inputs,
-                    &buffers,
-                    false,
-                )
-            });
+                OpaqueDepth::bound_with(self.depth.as_ref(), &self.inputs, frame.resources)?;
+            Ok(InputPass::with_geometry(
+                frame.resources,
+                self.label,
+                &self.source,
+                frame.scene.as_deref(),
+                &bound.inputs,
+                &bound.buffers,
+                false,
+            ))
+        }
+
+        fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let resources = frame.resources;
+            let convention =
+                OpaqueDepth::bound_with(self.depth.as_ref(), &self.inputs, resources)?.convention;
             let (module, layout) = (&state.module, &state.layout);
             let pipeline = state.pipelines.get(convention, |&convention| {
-                let mut constants = dispatch.constants.clone();
-                if dispatch.depth.is_some() {
+                let mut constants = self.constants.clone();
+                if self.depth.is_some() {
                     constants.push(("FAR_DEPTH", f64::from(far_depth(convention))));
                 }
-                let entry = dispatch.entry;
-                compute_pipeline(device, dispatch.label, layout, module, entry, &constants)
+                compute_pipeline(
+                    frame.device,
+                    self.label,
+                    layout,
+                    module,
+                    self.entry,
+                    &constants,
+                )
             });
-            ctx.pass.set_pipeline(pipeline);
-            if let Some(scene) = &scene {
+            pass.set_pipeline(pipeline);
+            if let Some(scene) = &frame.scene {
                 // The camera of the depth's convention (without a depth, the viewport
                 // and the frame's exposure are all the shader reads).
-                ctx.pass
-                    .set_bind_group(0, scene.bind_group(convention), &[]);
+                pass.set_bind_group(0, scene.bind_group(convention), &[]);
             }
-            ctx.pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            let out = resources.shape(dispatch.target);
-            ctx.pass
-                .dispatch_workgroups(out.width.div_ceil(8), out.height.div_ceil(8), 1);
-        })
+            pass.set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            let out = resources.shape(self.target);
+            pass.dispatch_workgroups(out.width.div_ceil(8), out.height.div_ceil(8), 1);
+            Ok(())
+        }
     }
 }

@@ -1,14 +1,14 @@
 //! What the deferred passes share, below them: the state every plugin of a registry shares
 //! and how a pass hands over its recording ([`plugin`]), the textures in a pass's slots
 //! ([`textures`]), the light passes' optional ambient-occlusion input ([`ao`]), the scene
-//! passes' background fill ([`background`]), the depth
-//! convention ([`depth`]), where a pass draws ([`extent`]), the edge detectors two passes
-//! use ([`edge_detection`]), the full-screen draw five passes set up ([`fullscreen`]) and its
-//! compute counterpart ([`fullscreen_compute`]), the
-//! G-buffer layouts a lighting pass reads ([`gbuffer_layout`]), the opaque depth the
-//! passes after them read ([`opaque_depth`]), the lean G-buffer's
-//! emission encoding ([`rgb9e5`]) and, with feature `gpu`, the device helpers of their
-//! recordings ([`gpu`]). Nothing here imports a pass.
+//! passes' background fill ([`background`]), the depth convention ([`depth`]), where a
+//! pass draws ([`extent`]), the edge detectors two passes use ([`edge_detection`]), the
+//! full-screen draw five passes set up ([`fullscreen`]) and its compute counterpart
+//! ([`fullscreen_compute`]), the passes that draw the scene's meshes ([`scene_draw`]),
+//! the G-buffer layouts a lighting pass reads ([`gbuffer_layout`]), the opaque depth the
+//! passes after them read ([`opaque_depth`]), the lean G-buffer's emission encoding
+//! ([`rgb9e5`]) and, with feature `gpu`, the device helpers of their recordings
+//! ([`gpu`]). Nothing here imports a pass.
 
 pub(crate) mod ao;
 pub(crate) mod background;
@@ -23,5 +23,6 @@ pub(crate) mod gpu;
 pub(crate) mod opaque_depth;
 pub(crate) mod plugin;
 pub(crate) mod rgb9e5;
+pub(crate) mod scene_draw;
 pub(crate) mod textures;
 pub(crate) mod visibility_samples;

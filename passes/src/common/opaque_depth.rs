@@ -75,9 +75,6 @@ impl OpaqueDepth {
 }
 
 #[cfg(feature = "gpu")]
-pub(crate) use gpu::Bound;
-
-#[cfg(feature = "gpu")]
 mod gpu {
     use graph_core::gpu::FrameResources;
 

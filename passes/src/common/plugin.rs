@@ -1,5 +1,5 @@
-//! What every deferred plugin of one registry shares ([`Shared`]), and how a pass set up
-//! in `Plugin::setup` becomes its record callback ([`Recording`]).
+//! What every deferred plugin of one registry shares ([`Shared`]), through which a pass
+//! set up in `Plugin::setup` gets its record callback.
 
 use std::sync::Arc;
 
@@ -34,25 +34,15 @@ impl Shared {
         }
     }
 
-    /// Gives the pass its record callback. Without feature `gpu` graphs are only declared
-    /// and validated, and `recording` is dropped.
-    pub fn record(&self, pass: &mut PassBuilder<'_>, recording: impl Recording) {
-        #[cfg(feature = "gpu")]
-        match recording.record(self.scenes.clone()) {
-            graph_core::Record::Render(record) => pass.render(record),
-            graph_core::Record::Compute(record) => pass.compute(record),
-            graph_core::Record::Transfer(record) => pass.transfer(record),
-        }
-        #[cfg(not(feature = "gpu"))]
-        let _ = (pass, recording);
-    }
-}
-
-/// A pass as its plugin set it up, ready to be recorded on a device: its record
-/// callback, of the kind the plugin declared the pass.
-pub(crate) trait Recording: 'static {
+    /// Gives the pass `recorder`'s record callback. Without feature `gpu` graphs are only
+    /// declared and validated, and what a pass would record is dropped.
     #[cfg(feature = "gpu")]
-    fn record(self, scenes: Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record;
+    pub fn record(&self, pass: &mut PassBuilder<'_>, recorder: impl crate::common::gpu::Recorder) {
+        crate::common::gpu::recorder::declare(pass, recorder, self.scenes.clone());
+    }
+
+    #[cfg(not(feature = "gpu"))]
+    pub fn record<R>(&self, _: &mut PassBuilder<'_>, _: R) {}
 }
 
 /// Why `edge_stencil` and `light_edge` leave themselves out of plans with one sample

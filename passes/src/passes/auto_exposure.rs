@@ -26,7 +26,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::shader::Stage;
 use graph_core::{Aspect, PassBuilder, PassKind};
 
-use crate::common::plugin::{Recording, Shared};
+use crate::common::plugin::Shared;
 use crate::common::textures::{self, Input, Texels, Want};
 use crate::shaders;
 
@@ -62,13 +62,6 @@ pub(crate) struct Metering {
     pub source: String,
     pub constants: Vec<(&'static str, f64)>,
     pub inputs: Vec<Input>,
-}
-
-impl Recording for Metering {
-    #[cfg(feature = "gpu")]
-    fn record(self, _: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Compute(gpu::record(self))
-    }
 }
 
 impl Plugin for AutoExposure {
@@ -137,41 +130,43 @@ mod gpu {
     //! Recording the auto-exposure pass: one workgroup meters the image; its pipeline is made
     //! on the first frame of a device and kept.
 
-    use graph_core::gpu::ComputeContext;
-
     use super::Metering;
-    use crate::common::gpu::{compute_pipeline, per_device, InputPass};
+    use crate::common::gpu::{compute_pipeline, Compute, Frame, InputPass, Recorded, Recorder};
 
-    pub(super) fn record(metering: Metering) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
-        let mut state: Option<(wgpu::Device, InputPass<(), wgpu::ComputePipeline>)> = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            let device = resources.device;
-            let state = per_device(&mut state, device, || {
-                InputPass::new(
-                    resources,
-                    "auto_exposure",
-                    &metering.source,
-                    None,
-                    &metering.inputs,
-                )
-            });
+    impl Recorder for Metering {
+        type Stage = Compute;
+        type Scene = ();
+        type State = InputPass<(), wgpu::ComputePipeline>;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<Self::State, String> {
+            let (label, source) = ("auto_exposure", &self.source);
+            Ok(InputPass::new(
+                frame.resources,
+                label,
+                source,
+                None,
+                &self.inputs,
+            ))
+        }
+
+        fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
             let (module, layout) = (&state.module, &state.layout);
             // The shader clears its histogram itself.
             let pipeline = state.pipelines.get((), |()| {
                 compute_pipeline(
-                    device,
+                    frame.device,
                     "auto_exposure",
                     layout,
                     module,
                     "cs_auto_exposure",
-                    &metering.constants,
+                    &self.constants,
                 )
             });
-            ctx.pass.set_pipeline(pipeline);
-            ctx.pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            ctx.pass.dispatch_workgroups(1, 1, 1);
-        })
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(1, &state.inputs.bind_group(frame.resources), &[]);
+            pass.dispatch_workgroups(1, 1, 1);
+            Ok(())
+        }
     }
 }

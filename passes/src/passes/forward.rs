@@ -31,14 +31,16 @@ use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::types::TextureFormat;
-use graph_core::{PassBuilder, PassKind, TextureHandle};
+use graph_core::{PassBuilder, PassKind};
 
 use super::gbuffer::opaque_black;
 use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
-use crate::common::plugin::{Recording, Shared};
+use crate::common::plugin::Shared;
+use crate::common::scene_draw::{Masked, SceneDraw, Stages};
 use crate::common::textures::{self, Want};
 use crate::shaders;
+use crate::variant::GatedShader;
 
 pub struct Forward(pub(crate) Shared);
 
@@ -76,31 +78,21 @@ pub(crate) const DEPTH: &[TextureFormat] = &[
     F::Depth32FloatStencil8,
 ];
 
-/// The forward pass, or the transparent pass (passes/transparent.rs), as set up: what
-/// `gpu::forward` records.
-#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-pub(crate) struct ForwardDraw {
-    pub source: String,
-    pub depth_rule: DepthRule,
-    pub shading: Shading,
-    /// Draws the BLEND meshes back to front, blending into `hdr` and testing a read-only
-    /// `depth` (transparent.wgsl); else the other meshes, writing both.
-    pub transparent: bool,
-    /// Begins the transparent pass's accumulation over the blended meshes' rectangle with
-    /// this fragment entry point ([`SceneDraw::begin_blended`]).
-    ///
-    /// [`SceneDraw::begin_blended`]: crate::common::gpu::scene_draw::SceneDraw::begin_blended
-    pub begin_blended: Option<&'static str>,
-    /// Fills the HDR target with the background where no mesh draws (common/background.rs).
-    pub fill_background: bool,
-    pub hdr: TextureHandle,
-    pub depth: TextureHandle,
-}
-
-impl Recording for ForwardDraw {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(gpu::record(self, scenes))
+impl Shading {
+    /// forward.wgsl's entry points, or transparent.wgsl's for the `blended` meshes; alpha
+    /// masks through the constant `MASKED`.
+    pub(crate) fn stages(self, blended: bool) -> Stages {
+        let (vertex, fragment) = match (self, blended) {
+            (Shading::Pixel, false) => ("vs_pixel", "fs_pixel"),
+            (Shading::Sample, false) => ("vs_sample", "fs_sample"),
+            (Shading::Pixel, true) => ("vs_pixel", "fs_blend_pixel"),
+            (Shading::Sample, true) => ("vs_sample", "fs_blend_sample"),
+        };
+        Stages {
+            vertex,
+            fragment,
+            masked: Masked::Constant,
+        }
     }
 }
 
@@ -128,70 +120,20 @@ impl Plugin for Forward {
         // (common/background.rs), unless the pass draws over the target it reads.
         let mut targets = FilledTargets::new(slots, &["hdr"]);
         targets.push(slots, pass, "hdr", want, ("vec4<f32>", params.background))?;
-        let draw = ForwardDraw {
-            source: shaders::FORWARD
-                .compose_with(desc.samples, &targets.wgsl())?
-                .source()
-                .to_owned(),
-            depth_rule,
-            shading: params.shading,
-            transparent: false,
-            begin_blended: None,
+        let source = shaders::FORWARD.compose_with(desc.samples, &targets.wgsl())?;
+        let draw = SceneDraw {
             fill_background: targets.fill(),
-            hdr: targets.into_handles()[0],
-            depth,
+            ..SceneDraw::new(
+                "forward",
+                GatedShader::Forward,
+                source.source().to_owned(),
+                depth_rule,
+                targets.into_handles(),
+                depth,
+                params.shading.stages(false),
+            )
         };
         self.0.record(pass, draw);
         Ok(())
-    }
-}
-
-#[cfg(feature = "gpu")]
-mod gpu {
-    //! Recording the forward pass: the scene's opaque meshes into the HDR target alone,
-    //! shaded per pixel or per sample, masked materials selected by the `MASKED` pipeline
-    //! constant; and the transparent pass, its BLEND meshes into the accumulation target
-    //! with the same vertex stages and shading (passes/transparent.rs).
-
-    use std::sync::Arc;
-
-    use graph_core::gpu::RenderContext;
-
-    use super::{ForwardDraw, Shading};
-    use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
-    use crate::gpu_scene::{Layer, SceneCache};
-    use crate::variant::GatedShader;
-
-    pub(super) fn record(
-        draw: ForwardDraw,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-        let (label, shader, layer) = match draw.transparent {
-            false => ("forward", GatedShader::Forward, Layer::Opaque),
-            true => ("transparent", GatedShader::Transparent, Layer::Blended),
-        };
-        let (vertex, fragment) = match (draw.shading, draw.transparent) {
-            (Shading::Pixel, false) => ("vs_pixel", "fs_pixel"),
-            (Shading::Sample, false) => ("vs_sample", "fs_sample"),
-            (Shading::Pixel, true) => ("vs_pixel", "fs_blend_pixel"),
-            (Shading::Sample, true) => ("vs_sample", "fs_blend_sample"),
-        };
-        let draw = SceneDraw {
-            label,
-            shader,
-            source: draw.source,
-            depth_rule: draw.depth_rule,
-            targets: vec![draw.hdr],
-            depth: draw.depth,
-            layer,
-            begin_blended: draw.begin_blended,
-            fill_background: draw.fill_background,
-            stages: Box::new(move |material| Stages {
-                vertex,
-                fragment,
-                constants: vec![("MASKED", f64::from(u8::from(material.masked)))],
-            }),
-        };
-        scene_draw::record(draw, scenes)
     }
 }

@@ -48,14 +48,16 @@
 use serde::Deserialize;
 
 use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{PassBuilder, PassKind, TextureHandle};
+use graph_core::{PassBuilder, PassKind};
 
 use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
-use crate::common::plugin::{Recording, Shared};
+use crate::common::plugin::Shared;
 use crate::common::rgb9e5;
+use crate::common::scene_draw::{Masked, SceneDraw, Stages};
 use crate::common::textures::{self, Want};
 use crate::shaders;
+use crate::variant::GatedShader;
 
 pub struct GBuffer(pub(crate) Shared);
 
@@ -73,25 +75,6 @@ pub struct GBufferParams {
 
 pub(crate) fn opaque_black() -> [f64; 4] {
     [0.0, 0.0, 0.0, 1.0]
-}
-
-/// The G-buffer pass as set up: what its `gpu` module records.
-#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-pub(crate) struct GBufferDraw {
-    pub source: String,
-    pub depth_rule: DepthRule,
-    /// albedo, normal, material, view_depth, hdr: color attachments 0 to 4.
-    pub targets: Vec<TextureHandle>,
-    pub depth: TextureHandle,
-    /// The targets begin undrawn and are filled where no mesh draws (common/background.rs).
-    pub fill_background: bool,
-}
-
-impl Recording for GBufferDraw {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(gpu::record(self, scenes))
-    }
 }
 
 impl Plugin for GBuffer {
@@ -143,15 +126,21 @@ impl Plugin for GBuffer {
         }
         let outputs = outputs_wgsl(&written) + &targets.wgsl();
         let fill_background = targets.fill();
-        let draw = GBufferDraw {
-            source: shaders::GBUFFER
-                .compose_with(samples, &outputs)?
-                .source()
-                .to_owned(),
-            depth_rule,
-            targets: targets.into_handles(),
-            depth,
+        let source = shaders::GBUFFER
+            .compose_with(samples, &outputs)?
+            .source()
+            .to_owned();
+        let stages = Stages {
+            vertex: "vs_main",
+            fragment: "fs_opaque",
+            masked: Masked::Entry("fs_masked"),
+        };
+        let (targets, shader) = (targets.into_handles(), GatedShader::GBuffer);
+        let draw = SceneDraw {
             fill_background,
+            ..SceneDraw::new(
+                "gbuffer", shader, source, depth_rule, targets, depth, stages,
+            )
         };
         self.0.record(pass, draw);
         Ok(())
@@ -227,46 +216,4 @@ fn outputs_wgsl(channels: &[&Channel]) -> String {
          fn gbuffer_out(g: GBuffer) -> GBufferOut {{\n    return GBufferOut({});\n}}\n",
         values.join(", ")
     )
-}
-
-#[cfg(feature = "gpu")]
-mod gpu {
-    //! Recording the G-buffer pass: the scene into the G-buffer's color targets, masked
-    //! materials through the fragment entry point that discards.
-
-    use std::sync::Arc;
-
-    use graph_core::gpu::RenderContext;
-
-    use super::GBufferDraw;
-    use crate::common::gpu::scene_draw::{self, SceneDraw, Stages};
-    use crate::gpu_scene::{Layer, SceneCache};
-    use crate::variant::GatedShader;
-
-    pub(super) fn record(
-        draw: GBufferDraw,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-        let draw = SceneDraw {
-            label: "gbuffer",
-            shader: GatedShader::GBuffer,
-            source: draw.source,
-            depth_rule: draw.depth_rule,
-            targets: draw.targets,
-            depth: draw.depth,
-            layer: Layer::Opaque,
-            begin_blended: None,
-            fill_background: draw.fill_background,
-            stages: Box::new(|material| Stages {
-                vertex: "vs_main",
-                fragment: if material.masked {
-                    "fs_masked"
-                } else {
-                    "fs_opaque"
-                },
-                constants: Vec::new(),
-            }),
-        };
-        scene_draw::record(draw, scenes)
-    }
 }

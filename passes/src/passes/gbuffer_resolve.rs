@@ -29,7 +29,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{PassBuilder, PassKind, TextureHandle};
 
 use crate::common::depth::DepthRule;
-use crate::common::plugin::{Recording, Shared};
+use crate::common::plugin::Shared;
 use crate::common::textures::{self, Input, Want, GBUFFER_INPUTS};
 use crate::shaders;
 
@@ -63,13 +63,6 @@ pub(crate) struct GBufferResolveDraw {
     /// albedo, normal, material, view_depth: color attachments 0 to 3.
     pub targets: Vec<TextureHandle>,
     pub depth: TextureHandle,
-}
-
-impl Recording for GBufferResolveDraw {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(gpu::record(self, scenes))
-    }
 }
 
 impl Plugin for GBufferResolve {
@@ -130,44 +123,46 @@ mod gpu {
 
     use std::sync::Arc;
 
-    use graph_core::gpu::RenderContext;
-
     use super::GBufferResolveDraw;
     use crate::common::depth::far_depth;
-    use crate::common::gpu::{per_scene, InputPass, PipelineDesc};
-    use crate::gpu_scene::SceneCache;
+    use crate::common::gpu::{Frame, InputPass, PipelineDesc, Recorded, Recorder, Render};
+    use crate::gpu_scene::GpuScene;
 
     #[derive(Clone, PartialEq)]
-    struct Key {
+    pub(crate) struct Key {
         targets: Vec<wgpu::TextureFormat>,
         depth: wgpu::TextureFormat,
     }
 
-    pub(super) fn record(
-        draw: GBufferResolveDraw,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-        let mut state = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            let device = resources.device;
-            // The camera turns the averaged view depth into depth.
-            let Some(scene) = scenes.for_frame(resources) else {
-                return;
-            };
-            let state = per_scene(&mut state, &scene, || {
-                let label = "gbuffer resolve";
-                InputPass::new(resources, label, &draw.source, Some(&scene), &draw.inputs)
-            });
+    impl Recorder for GBufferResolveDraw {
+        type Stage = Render;
+        // The camera turns the averaged view depth into depth.
+        type Scene = Arc<GpuScene>;
+        type State = InputPass<Key>;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<Self::State, String> {
+            let (label, scene) = ("gbuffer resolve", Some(&*frame.scene));
+            Ok(InputPass::new(
+                frame.resources,
+                label,
+                &self.source,
+                scene,
+                &self.inputs,
+            ))
+        }
+
+        fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let resources = frame.resources;
             let key = Key {
-                targets: draw
+                targets: self
                     .targets
                     .iter()
                     .map(|&h| resources.shape(h).format)
                     .collect(),
-                depth: resources.shape(draw.depth).format,
+                depth: resources.shape(self.depth).format,
             };
-            let convention = draw.depth_rule.convention(key.depth);
+            let convention = self.depth_rule.convention(key.depth);
             let pipeline = state.pipelines.get(key, |key| {
                 let targets: Vec<Option<wgpu::ColorTargetState>> =
                     key.targets.iter().map(|&f| Some(f.into())).collect();
@@ -185,15 +180,14 @@ mod gpu {
                     samples: 1,
                     mask: !0,
                 }
-                .build(device)
+                .build(frame.device)
             });
-            ctx.pass.set_pipeline(pipeline);
-            ctx.pass
-                .set_bind_group(0, scene.bind_group(convention), &[]);
-            ctx.pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            ctx.pass.draw(0..3, 0..1);
-        })
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, frame.scene.bind_group(convention), &[]);
+            pass.set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            pass.draw(0..3, 0..1);
+            Ok(())
+        }
     }
 
     /// Every fragment writes its depth; stencil stays as cleared.

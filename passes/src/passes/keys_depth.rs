@@ -40,7 +40,7 @@ use graph_core::{BufferHandle, PassBuilder, PassKind, TextureHandle};
 
 use crate::common::depth;
 use crate::common::extent::Extent;
-use crate::common::plugin::{Recording, Shared};
+use crate::common::plugin::Shared;
 use crate::common::textures::{self, Want};
 use crate::common::visibility_samples;
 use crate::shaders;
@@ -63,13 +63,6 @@ struct KeysDepthDraw {
     depth: TextureHandle,
     samples: u32,
     extent: Extent,
-}
-
-impl Recording for KeysDepthDraw {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(gpu::record(self, scenes))
-    }
 }
 
 impl Plugin for KeysDepth {
@@ -113,45 +106,41 @@ mod gpu {
 
     use std::sync::Arc;
 
-    use graph_core::gpu::RenderContext;
-
     use super::KeysDepthDraw;
-    use crate::common::gpu::{per_scene, GroupBuffers, InputPass, PipelineDesc};
+    use crate::common::gpu::{
+        Frame, GroupBuffers, InputPass, PipelineDesc, Recorded, Recorder, Render,
+    };
     use crate::common::visibility_samples::{fits_binding, KEYS_BINDING};
-    use crate::gpu_scene::SceneCache;
+    use crate::gpu_scene::GpuScene;
     use rgraph_scene::DepthConvention;
 
-    pub(super) fn record(
-        draw: KeysDepthDraw,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-        let mut state = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            // The camera's viewport gives the keys' row length.
-            let Some(scene) = scenes.for_frame(resources) else {
-                return;
+    impl Recorder for KeysDepthDraw {
+        type Stage = Render;
+        // The camera's viewport gives the keys' row length.
+        type Scene = Arc<GpuScene>;
+        type State = InputPass<wgpu::TextureFormat>;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<Self::State, String> {
+            let buffers = GroupBuffers {
+                read: vec![(KEYS_BINDING, self.keys)],
+                owned: Vec::new(),
             };
-            if let Err(why) = fits_binding(resources.device, resources.buffer(draw.keys)) {
-                return resources.fail(why);
-            }
-            let state: &mut InputPass<wgpu::TextureFormat> = per_scene(&mut state, &scene, || {
-                let buffers = GroupBuffers {
-                    read: vec![(KEYS_BINDING, draw.keys)],
-                    owned: Vec::new(),
-                };
-                let label = "keys depth";
-                InputPass::with_geometry(
-                    resources,
-                    label,
-                    &draw.source,
-                    Some(&scene),
-                    &[],
-                    &buffers,
-                    false,
-                )
-            });
-            let format = resources.shape(draw.depth).format;
+            Ok(InputPass::with_geometry(
+                frame.resources,
+                "keys depth",
+                &self.source,
+                Some(&frame.scene),
+                &[],
+                &buffers,
+                false,
+            ))
+        }
+
+        fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let resources = frame.resources;
+            fits_binding(frame.device, resources.buffer(self.keys))?;
+            let format = resources.shape(self.depth).format;
             let (module, layout) = (&state.module, &state.layout);
             let pipeline = state.pipelines.get(format, |&format| {
                 PipelineDesc {
@@ -171,25 +160,24 @@ mod gpu {
                         stencil: wgpu::StencilState::default(),
                         bias: Default::default(),
                     }),
-                    samples: draw.samples,
+                    samples: self.samples,
                     mask: !0,
                 }
-                .build(resources.device)
+                .build(frame.device)
             });
-            let shape = resources.shape(draw.depth);
+            let shape = resources.shape(self.depth);
             let size = (shape.width, shape.height);
             // Nothing blended in view: no blended fragment tests the depth.
-            let Some(rect) = draw.extent.rect(&scene, size) else {
-                return;
+            let Some(rect) = self.extent.rect(&frame.scene, size) else {
+                return Ok(());
             };
-            ctx.pass
-                .set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
-            ctx.pass.set_pipeline(pipeline);
-            let camera = scene.bind_group(DepthConvention::ReversedZ);
-            ctx.pass.set_bind_group(0, camera, &[]);
-            ctx.pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            ctx.pass.draw(0..3, 0..1);
-        })
+            pass.set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
+            pass.set_pipeline(pipeline);
+            let camera = frame.scene.bind_group(DepthConvention::ReversedZ);
+            pass.set_bind_group(0, camera, &[]);
+            pass.set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            pass.draw(0..3, 0..1);
+            Ok(())
+        }
     }
 }

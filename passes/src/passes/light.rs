@@ -58,7 +58,7 @@ use graph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, Texture
 
 use crate::common::ao;
 use crate::common::depth::DepthRule;
-use crate::common::plugin::{yes, Recording, Shared, ONE_SAMPLE};
+use crate::common::plugin::{yes, Shared, ONE_SAMPLE};
 use crate::common::textures::{self, Input, Texels, Want, GBUFFER_INPUTS};
 use crate::shaders;
 
@@ -152,13 +152,6 @@ pub(crate) struct LightDraw {
     pub hdr: TextureHandle,
     pub depth: TextureHandle,
     pub inputs: Vec<Input>,
-}
-
-impl Recording for LightDraw {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(gpu::record(self, scenes))
-    }
 }
 
 impl Plugin for LightNonEdge {
@@ -299,12 +292,13 @@ mod gpu {
 
     use std::sync::Arc;
 
-    use graph_core::gpu::RenderContext;
-
     use super::{EdgeMode, Frequency, LightDraw, PixelSamples};
     use crate::common::depth::far_depth;
-    use crate::common::gpu::{additive, per_scene, InputPass, PipelineDesc, EDGE_STENCIL};
-    use crate::gpu_scene::{volumes, SceneCache};
+    use crate::common::gpu::EDGE_STENCIL;
+    use crate::common::gpu::{
+        additive, Frame, InputPass, PipelineDesc, Recorded, Recorder, Render,
+    };
+    use crate::gpu_scene::{volumes, GpuScene};
     use crate::variant::{GatedShader, Variant};
     use rgraph_scene::DepthConvention;
 
@@ -322,7 +316,7 @@ mod gpu {
     }
 
     #[derive(Clone, PartialEq)]
-    struct Key {
+    pub(crate) struct Key {
         hdr: wgpu::TextureFormat,
         depth: wgpu::TextureFormat,
         samples: u32,
@@ -332,34 +326,37 @@ mod gpu {
         variant: Variant,
     }
 
-    pub(super) fn record(
-        draw: LightDraw,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-        let mut state = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            let device = resources.device;
-            let Some(scene) = scenes.for_frame(resources) else {
-                return;
-            };
+    impl Recorder for LightDraw {
+        type Stage = Render;
+        type Scene = Arc<GpuScene>;
+        type State = InputPass<Key>;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<Self::State, String> {
+            let scene = Some(&*frame.scene);
+            Ok(InputPass::new(
+                frame.resources,
+                "light",
+                &self.source,
+                scene,
+                &self.inputs,
+            ))
+        }
+
+        fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
             let size = resources.output_size();
-            let state = per_scene(&mut state, &scene, || {
-                InputPass::new(resources, "light", &draw.source, Some(&scene), &draw.inputs)
-            });
-            let (hdr, depth) = (resources.shape(draw.hdr), resources.shape(draw.depth));
-            let passes: Vec<Option<u32>> = match draw.frequency {
+            let (hdr, depth) = (resources.shape(self.hdr), resources.shape(self.depth));
+            let passes: Vec<Option<u32>> = match self.frequency {
                 Frequency::Sample(EdgeMode::SampleMask) => (0..hdr.samples).map(Some).collect(),
                 Frequency::Pixel(_) | Frequency::Sample(EdgeMode::SampleIndex) => vec![None],
             };
-            let convention = draw.depth_rule.convention(depth.format);
-            ctx.pass
-                .set_bind_group(0, scene.bind_group(convention), &[]);
-            ctx.pass
-                .set_bind_group(1, &state.inputs.bind_group(resources), &[]);
-            ctx.pass.set_stencil_reference(EDGE_STENCIL);
+            let convention = self.depth_rule.convention(depth.format);
+            pass.set_bind_group(0, scene.bind_group(convention), &[]);
+            pass.set_bind_group(1, &state.inputs.bind_group(resources), &[]);
+            pass.set_stencil_reference(EDGE_STENCIL);
             let (module, layout) = (&state.module, &state.layout);
-            let variant = scenes.variant(GatedShader::Light);
+            let variant = frame.scenes.variant(GatedShader::Light);
             let mut use_pipeline = |pass: &mut wgpu::RenderPass<'_>, geometry, sample| {
                 let key = Key {
                     hdr: hdr.format,
@@ -389,7 +386,7 @@ mod gpu {
                             Geometry::FarPlane { .. } => &[],
                             Geometry::FrontFaces | Geometry::BackFaces => &volume_buffers,
                         },
-                        fragment: match (draw.frequency, key.sample) {
+                        fragment: match (self.frequency, key.sample) {
                             (Frequency::Pixel(PixelSamples::First), _) => "fs_pixel",
                             (Frequency::Pixel(PixelSamples::Average), _) => "fs_pixel_average",
                             (Frequency::Sample(_), None) => "fs_sample",
@@ -402,7 +399,7 @@ mod gpu {
                             Geometry::FrontFaces => Some(wgpu::Face::Back),
                             Geometry::BackFaces => Some(wgpu::Face::Front),
                         },
-                        depth_stencil: Some(depth_stencil(key, convention, draw.frequency)),
+                        depth_stencil: Some(depth_stencil(key, convention, self.frequency)),
                         samples: key.samples,
                         mask: key.sample.map_or(!0, |s| 1 << s),
                     }
@@ -412,12 +409,12 @@ mod gpu {
             };
             for sample in passes {
                 if scene.has_fullscreen_lights() {
-                    use_pipeline(ctx.pass, Geometry::FarPlane { light: false }, sample);
-                    ctx.pass.draw(0..3, 0..1);
+                    use_pipeline(pass, Geometry::FarPlane { light: false }, sample);
+                    pass.draw(0..3, 0..1);
                 }
                 for light in scene.volume_lights() {
                     let instance = light.index..light.index + 1;
-                    let geometry = if !draw.volumes {
+                    let geometry = if !self.volumes {
                         Geometry::FarPlane { light: true }
                     } else if !scene.camera_may_be_inside(light, size) {
                         Geometry::FrontFaces
@@ -427,20 +424,19 @@ mod gpu {
                     } else {
                         Geometry::BackFaces
                     };
-                    use_pipeline(ctx.pass, geometry, sample);
+                    use_pipeline(pass, geometry, sample);
                     if geometry == (Geometry::FarPlane { light: true }) {
-                        ctx.pass.draw(0..3, instance);
+                        pass.draw(0..3, instance);
                         continue;
                     }
                     let mesh = scene.volume_mesh(light.shape);
-                    ctx.pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-                    ctx.pass
-                        .set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-                    ctx.pass
-                        .draw_indexed(0..mesh.index_count, 0, light.index..light.index + 1);
+                    pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                    pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..mesh.index_count, 0, light.index..light.index + 1);
                 }
             }
-        })
+            Ok(())
+        }
     }
 
     /// Read-only depth and stencil: the depth test per [`Geometry`], and the stencil test

@@ -47,9 +47,11 @@ use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 use super::gbuffer::opaque_black;
 use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
-use crate::common::plugin::{Recording, Shared};
-use crate::common::textures::{self, Input, Want};
+use crate::common::plugin::Shared;
+use crate::common::scene_draw::{Masked, SceneDraw, Stages};
+use crate::common::textures::{self, Want};
 use crate::shaders;
+use crate::variant::GatedShader;
 
 pub struct LightPrepassGBuffer(pub(crate) Shared);
 pub struct LightPrepassMaterial(pub(crate) Shared);
@@ -74,25 +76,35 @@ pub struct LightPrepassMaterialParams {
     pub background: [f64; 4],
 }
 
-/// A light pre-pass geometry pass as set up: what its `gpu` module records.
-#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-pub(crate) struct GeometryDraw {
-    pub source: String,
-    pub depth_rule: DepthRule,
-    /// Color attachments in location order.
-    pub targets: Vec<TextureHandle>,
-    pub depth: TextureHandle,
-    /// The material pass's light buffer; `None` for the thin G-buffer pass.
-    pub light: Option<Input>,
-    /// The targets begin undrawn and are filled where no mesh draws (common/background.rs).
-    pub fill_background: bool,
-}
-
-impl Recording for GeometryDraw {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(gpu::record(self, scenes))
-    }
+/// A geometry pass: the scene's opaque meshes at `samples` per pixel with forward.wgsl's
+/// vertex stages (the module is forward.wgsl's, and its gates), alpha masks through its
+/// `MASKED`.
+fn geometry_draw(
+    label: &'static str,
+    (vertex, fragment): (&'static str, &'static str),
+    samples: u32,
+    depth_rule: DepthRule,
+    targets: FilledTargets,
+    depth: TextureHandle,
+) -> Result<SceneDraw, PluginError> {
+    let source = shaders::LIGHT_PREPASS_GEOMETRY.compose_with(samples, &targets.wgsl())?;
+    let stages = Stages {
+        vertex,
+        fragment,
+        masked: Masked::Constant,
+    };
+    Ok(SceneDraw {
+        fill_background: targets.fill(),
+        ..SceneDraw::new(
+            label,
+            GatedShader::Forward,
+            source.source().to_owned(),
+            depth_rule,
+            targets.into_handles(),
+            depth,
+            stages,
+        )
+    })
 }
 
 impl Plugin for LightPrepassGBuffer {
@@ -134,17 +146,9 @@ impl Plugin for LightPrepassGBuffer {
             let want = Want::new(what, formats).samples(samples);
             targets.push(slots, pass, slot, want, ("vec4<f32>", [0.0; 4]))?;
         }
-        let draw = GeometryDraw {
-            source: shaders::LIGHT_PREPASS_GEOMETRY
-                .compose_with(samples, &targets.wgsl())?
-                .source()
-                .to_owned(),
-            depth_rule,
-            fill_background: targets.fill(),
-            targets: targets.into_handles(),
-            depth,
-            light: None,
-        };
+        let stages = ("vs_pixel", "fs_thin_gbuffer");
+        let label = "light_prepass_gbuffer";
+        let draw = geometry_draw(label, stages, samples, depth_rule, targets, depth)?;
         self.0.record(pass, draw);
         Ok(())
     }
@@ -174,65 +178,13 @@ impl Plugin for LightPrepassMaterial {
         // Filled with the background where no mesh draws, as forward's is.
         let mut targets = FilledTargets::new(slots, &["hdr"]);
         targets.push(slots, pass, "hdr", want, ("vec4<f32>", params.background))?;
-        let draw = GeometryDraw {
-            source: shaders::LIGHT_PREPASS_GEOMETRY
-                .compose_with(samples, &targets.wgsl())?
-                .source()
-                .to_owned(),
-            depth_rule: DepthRule::new(params.reversed_z),
-            fill_background: targets.fill(),
-            targets: targets.into_handles(),
-            depth,
-            light: Some(light),
+        let stages = ("vs_sample", "fs_apply_material");
+        let (label, rule) = ("light_prepass_material", DepthRule::new(params.reversed_z));
+        let draw = SceneDraw {
+            redraw: Some(vec![light]),
+            ..geometry_draw(label, stages, samples, rule, targets, depth)?
         };
         self.0.record(pass, draw);
         Ok(())
-    }
-}
-
-#[cfg(feature = "gpu")]
-mod gpu {
-    //! Recording the two geometry passes: the scene's opaque meshes with forward.wgsl's
-    //! vertex stages, into the thin G-buffer per pixel, or over its depth per sample with
-    //! the light buffer as group 2.
-
-    use std::sync::Arc;
-
-    use graph_core::gpu::RenderContext;
-
-    use super::GeometryDraw;
-    use crate::common::gpu::scene_draw::{self, Redraw, SceneDraw, Stages};
-    use crate::gpu_scene::{Layer, SceneCache};
-    use crate::variant::GatedShader;
-
-    pub(super) fn record(
-        draw: GeometryDraw,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-        let (label, vertex, fragment) = match draw.light {
-            None => ("light_prepass_gbuffer", "vs_pixel", "fs_thin_gbuffer"),
-            Some(_) => ("light_prepass_material", "vs_sample", "fs_apply_material"),
-        };
-        let redraw = draw.light.map(|light| Redraw {
-            inputs: vec![light],
-        });
-        let scene_draw = SceneDraw {
-            label,
-            // forward.wgsl's gates: the module is forward.wgsl's and its entry points.
-            shader: GatedShader::Forward,
-            source: draw.source,
-            depth_rule: draw.depth_rule,
-            targets: draw.targets,
-            depth: draw.depth,
-            layer: Layer::Opaque,
-            begin_blended: None,
-            fill_background: draw.fill_background,
-            stages: Box::new(move |material| Stages {
-                vertex,
-                fragment,
-                constants: vec![("MASKED", f64::from(u8::from(material.masked)))],
-            }),
-        };
-        scene_draw::record_with(scene_draw, redraw, scenes)
     }
 }

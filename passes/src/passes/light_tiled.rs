@@ -89,7 +89,7 @@ use crate::common::ao;
 use crate::common::depth::DepthRule;
 use crate::common::edge_detection::{Detector, EdgeDetection};
 use crate::common::gbuffer_layout::{GBufferLayout, Surfaces};
-use crate::common::plugin::{check_tile, yes, Recording, Shared};
+use crate::common::plugin::{check_tile, yes, Shared};
 use crate::common::textures::{self, format_name, Input, Texels, Want};
 use crate::common::visibility_samples;
 use crate::shaders;
@@ -232,22 +232,6 @@ pub(crate) struct TiledDispatch {
     pub depth: Depth,
     pub output: TextureHandle,
     pub inputs: Vec<Input>,
-}
-
-#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-impl TiledDispatch {
-    /// Whether edge pixels are listed for a dispatch of their own (which then needs the
-    /// list bound and filled).
-    fn lists_edges(&self) -> bool {
-        self.entries.contains(&EDGES)
-    }
-}
-
-impl Recording for TiledDispatch {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Compute(gpu::record(self, scenes))
-    }
 }
 
 impl Plugin for LightTiled {
@@ -396,90 +380,100 @@ mod gpu {
 
     use std::sync::Arc;
 
-    use graph_core::gpu::ComputeContext;
-
     use super::{edge_workgroups, Depth, TiledDispatch, EDGES, EDGES_RESET, EDGE_PIXELS_BINDING};
     use crate::common::depth::far_depth;
     use crate::common::gpu::storage::scratch;
-    use crate::common::gpu::{compute_pipeline, per_scene, split_ids, GroupBuffers, InputPass};
+    use crate::common::gpu::{compute_pipeline, split_ids, Compute, Frame, GroupBuffers, Recorded};
+    use crate::common::gpu::{InputPass, Recorder};
     use crate::common::visibility_samples::{fits_binding, KEYS_BINDING};
-    use crate::gpu_scene::SceneCache;
+    use crate::gpu_scene::GpuScene;
     use crate::variant::{GatedShader, Variant};
     use rgraph_scene::DepthConvention;
 
     #[derive(Clone, PartialEq)]
-    struct Key {
+    pub(crate) struct Key {
         convention: DepthConvention,
         variant: Variant,
         /// The visibility buffer's ID format.
         ids: Option<wgpu::TextureFormat>,
     }
 
-    /// The storage buffers group 1 holds besides the textures: the keys, if any, and
-    /// the list of edge pixels where they are lit apart.
-    fn group_buffers(dispatch: &TiledDispatch) -> GroupBuffers {
-        GroupBuffers {
-            read: match dispatch.depth {
-                Depth::Keys(keys) => vec![(KEYS_BINDING, keys)],
-                Depth::Buffer(..) => Vec::new(),
-            },
-            owned: match dispatch.lists_edges() {
-                true => vec![EDGE_PIXELS_BINDING],
-                false => Vec::new(),
-            },
+    pub(crate) struct State {
+        pass: InputPass<Key, Vec<wgpu::ComputePipeline>>,
+        /// The list of edge pixels, where they are listed, and the output size it was
+        /// made for: a count and 4 bytes a pixel.
+        edge_list: Option<((u32, u32), wgpu::Buffer)>,
+        /// The device's edge_workgroups.
+        edge_groups: u32,
+    }
+
+    impl TiledDispatch {
+        /// Whether edge pixels are listed for a dispatch of their own (which then needs
+        /// the list bound and filled).
+        fn lists_edges(&self) -> bool {
+            self.entries.contains(&EDGES)
+        }
+
+        /// Whether it shades a visibility buffer, reading the scene's geometry and
+        /// texture table.
+        fn visibility(&self) -> bool {
+            self.ids.is_some() || matches!(self.depth, Depth::Keys(_))
+        }
+
+        /// The storage buffers group 1 holds besides the textures: the keys, if any, and
+        /// the list of edge pixels where they are lit apart.
+        fn group_buffers(&self) -> GroupBuffers {
+            GroupBuffers {
+                read: match self.depth {
+                    Depth::Keys(keys) => vec![(KEYS_BINDING, keys)],
+                    Depth::Buffer(..) => Vec::new(),
+                },
+                owned: match self.lists_edges() {
+                    true => vec![EDGE_PIXELS_BINDING],
+                    false => Vec::new(),
+                },
+            }
         }
     }
 
-    pub(super) fn record(
-        dispatch: TiledDispatch,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
-        let mut state = None;
-        // The list of edge pixels, where they are listed, and the output size it was made
-        // for: a count and 4 bytes a pixel.
-        let mut edge_list: Option<((u32, u32), wgpu::Buffer)> = None;
-        // The device's edge_workgroups, asked once.
-        let mut edge_groups = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            let device = resources.device;
-            let Some(scene) = scenes.for_frame(resources) else {
-                return;
-            };
-            let visibility = dispatch.ids.is_some() || matches!(dispatch.depth, Depth::Keys(_));
-            let state: &mut InputPass<Key, Vec<wgpu::ComputePipeline>> =
-                per_scene(&mut state, &scene, || {
-                    InputPass::with_geometry(
-                        resources,
-                        "light_tiled",
-                        &dispatch.source,
-                        Some(&scene),
-                        &dispatch.inputs,
-                        &group_buffers(&dispatch),
-                        visibility,
-                    )
-                });
+    impl Recorder for TiledDispatch {
+        type Stage = Compute;
+        type Scene = Arc<GpuScene>;
+        type State = State;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<State, String> {
+            Ok(State {
+                pass: InputPass::with_geometry(
+                    frame.resources,
+                    "light_tiled",
+                    &self.source,
+                    Some(&frame.scene),
+                    &self.inputs,
+                    &self.group_buffers(),
+                    self.visibility(),
+                ),
+                edge_list: None,
+                edge_groups: edge_workgroups(frame.device),
+            })
+        }
+
+        fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
+            let visibility = self.visibility();
             // What a visibility buffer's shading binds besides its inputs (the scene's
             // geometry and texture table), or why the device cannot.
             let visibility_groups = match visibility {
                 false => None,
-                true => {
-                    let geometry = match scene.geometry_group(device) {
-                        Ok(group) => group,
-                        Err(why) => return resources.fail(why),
-                    };
-                    match scenes.texture_table(&scene, device, resources.queue) {
-                        Ok(table) => Some((geometry, table)),
-                        Err(why) => return resources.fail(why),
-                    }
-                }
+                true => Some((
+                    scene.geometry_group(device)?,
+                    frame.scenes.texture_table(scene, device, resources.queue)?,
+                )),
             };
-            if let Depth::Keys(keys) = dispatch.depth {
-                if let Err(why) = fits_binding(device, resources.buffer(keys)) {
-                    return resources.fail(why);
-                }
+            if let Depth::Keys(keys) = self.depth {
+                fits_binding(device, resources.buffer(keys))?;
             }
-            let convention = match dispatch.depth {
+            let convention = match self.depth {
                 Depth::Buffer(rule, depth) => rule.convention(resources.shape(depth).format),
                 Depth::Keys(_) => DepthConvention::ReversedZ,
             };
@@ -488,17 +482,17 @@ mod gpu {
                 // Reading a visibility buffer it samples textures itself: without them in
                 // the scene their code is compiled out (compiled in, it made lavapipe's
                 // 4x shading of builtin:dense about three times slower).
-                variant: scenes.variant(match visibility {
+                variant: frame.scenes.variant(match visibility {
                     true => GatedShader::LightTiledVisibility,
                     false => GatedShader::LightTiled,
                 }),
-                ids: dispatch.ids.map(|ids| resources.shape(ids).format),
+                ids: self.ids.map(|ids| resources.shape(ids).format),
             };
-            let (module, layout) = (&state.module, &state.layout);
-            let pipelines = state.pipelines.get(key, |key| {
-                let mut constants = dispatch.constants.clone();
+            let (module, layout) = (&state.pass.module, &state.pass.layout);
+            let pipelines = state.pass.pipelines.get(key, |key| {
+                let mut constants = self.constants.clone();
                 constants.extend(key.variant.constants());
-                if dispatch.view_depth_from_depth {
+                if self.view_depth_from_depth {
                     constants.push(("FAR_DEPTH", f64::from(far_depth(key.convention))));
                 }
                 if let Some(ids) = key.ids {
@@ -507,50 +501,45 @@ mod gpu {
                 let pipeline = |entry| {
                     compute_pipeline(device, "light_tiled", layout, module, entry, &constants)
                 };
-                dispatch.entries.iter().copied().map(pipeline).collect()
+                self.entries.iter().copied().map(pipeline).collect()
             });
-            ctx.pass
-                .set_bind_group(0, scene.bind_group(convention), &[]);
-            let out = resources.shape(dispatch.output);
+            pass.set_bind_group(0, scene.bind_group(convention), &[]);
+            let out = resources.shape(self.output);
             let mut owned = Vec::new();
-            if dispatch.lists_edges() {
+            if self.lists_edges() {
                 let size = (out.width, out.height);
+                let edge_list = &mut state.edge_list;
                 if edge_list.as_ref().is_some_and(|(made, _)| *made != size) {
-                    edge_list = None;
+                    *edge_list = None;
                 }
-                let pixels = u64::from(out.width) * u64::from(out.height);
-                let (_, list) = edge_list.get_or_insert_with(|| {
-                    (
-                        size,
-                        scratch(device, "light_tiled edge pixels", 4 + 4 * pixels),
-                    )
-                });
+                let bytes = 4 + 4 * u64::from(out.width) * u64::from(out.height);
+                let label = "light_tiled edge pixels";
+                let (_, list) =
+                    edge_list.get_or_insert_with(|| (size, scratch(device, label, bytes)));
                 resources.hold(list);
                 owned.push(&*list);
             }
-            ctx.pass
-                .set_bind_group(1, &state.inputs.bind_group_with(resources, &owned), &[]);
+            let group = state.pass.inputs.bind_group_with(resources, &owned);
+            pass.set_bind_group(1, &group, &[]);
             if let Some((geometry, table)) = visibility_groups {
-                ctx.pass.set_bind_group(2, geometry, &[]);
-                ctx.pass.set_bind_group(3, table, &[]);
+                pass.set_bind_group(2, geometry, &[]);
+                pass.set_bind_group(3, table, &[]);
             }
             // wgpu orders the dispatches (the list is written by one and read by the
             // next); they write disjoint pixels of the output.
-            for (entry, pipeline) in dispatch.entries.iter().zip(pipelines) {
-                ctx.pass.set_pipeline(pipeline);
+            for (entry, pipeline) in self.entries.iter().zip(pipelines) {
+                pass.set_pipeline(pipeline);
                 let (x, y) = match *entry {
                     EDGES_RESET => (1, 1),
-                    EDGES => (
-                        *edge_groups.get_or_insert_with(|| edge_workgroups(device)),
-                        1,
-                    ),
+                    EDGES => (state.edge_groups, 1),
                     _ => (
-                        out.width.div_ceil(dispatch.tile),
-                        out.height.div_ceil(dispatch.tile),
+                        out.width.div_ceil(self.tile),
+                        out.height.div_ceil(self.tile),
                     ),
                 };
-                ctx.pass.dispatch_workgroups(x, y, 1);
+                pass.dispatch_workgroups(x, y, 1);
             }
-        })
+            Ok(())
+        }
     }
 }

@@ -523,13 +523,6 @@ struct ParticleDispatch {
     constants: Vec<(&'static str, f64)>,
 }
 
-impl crate::common::plugin::Recording for ParticleDispatch {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Compute(gpu::record_compute(self, scenes))
-    }
-}
-
 /// The particle pass as set up: see the module documentation.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 struct ParticleDraw {
@@ -546,38 +539,32 @@ struct ParticleDraw {
     constants: Vec<(&'static str, f64)>,
 }
 
-impl crate::common::plugin::Recording for ParticleDraw {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(gpu::record(self, scenes))
-    }
-}
-
 #[cfg(feature = "gpu")]
 mod gpu {
     use std::sync::Arc;
 
-    use graph_core::gpu::RenderContext;
     use wgpu::BlendFactor::{One, OneMinusSrcAlpha, SrcAlpha, Zero};
 
     use super::{ParticleDispatch, ParticleDraw, TILE};
     use crate::common::depth::far_depth;
     use crate::common::gpu::bindings::TextureBindings;
-    use crate::common::gpu::compute_pipeline;
     use crate::common::gpu::pipeline::{module, pipeline_layout, Pipelines};
-    use crate::common::gpu::{per_scene, PipelineDesc, EDGE_STENCIL};
-    use crate::gpu_scene::{ParticleBuffer, SceneCache};
+    use crate::common::gpu::EDGE_STENCIL;
+    use crate::common::gpu::{
+        compute_pipeline, Compute, Frame, PipelineDesc, Recorded, Recorder, Render,
+    };
+    use crate::gpu_scene::{GpuScene, ParticleBuffer};
     use rgraph_scene::DepthConvention;
 
     /// What the plan and the depth convention decide.
     #[derive(Clone, PartialEq)]
-    struct Key {
+    pub(crate) struct Key {
         targets: Vec<wgpu::TextureFormat>,
         stencil: Option<wgpu::TextureFormat>,
         convention: DepthConvention,
     }
 
-    struct State {
+    pub(crate) struct State {
         module: wgpu::ShaderModule,
         textures: TextureBindings,
         layout: wgpu::PipelineLayout,
@@ -586,57 +573,56 @@ mod gpu {
         pipelines: Pipelines<Key, [wgpu::RenderPipeline; 2]>,
     }
 
-    pub(super) fn record(
-        draw: ParticleDraw,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-        let mut state = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            let device = resources.device;
-            let Some(scene) = scenes.for_frame(resources) else {
-                return;
-            };
-            let state = per_scene(&mut state, &scene, || {
-                let textures = TextureBindings::new(resources, &[draw.depth]);
-                let particles = ParticleBuffer::new(device);
-                let layouts = [
-                    Some(scene.layout()),
-                    Some(&textures.layout),
-                    Some(particles.layout()),
-                ];
-                State {
-                    module: module(device, "particles", &draw.source),
-                    layout: pipeline_layout(device, &layouts),
-                    textures,
-                    particles,
-                    pipelines: Pipelines::default(),
-                }
-            });
-            let inputs = scene.inputs();
+    impl Recorder for ParticleDraw {
+        type Stage = Render;
+        type Scene = Arc<GpuScene>;
+        type State = State;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<State, String> {
+            let device = frame.device;
+            let textures = TextureBindings::new(frame.resources, &[self.depth]);
+            let particles = ParticleBuffer::new(device);
+            let layouts = [
+                Some(frame.scene.layout()),
+                Some(&textures.layout),
+                Some(particles.layout()),
+            ];
+            Ok(State {
+                module: module(device, "particles", &self.source),
+                layout: pipeline_layout(device, &layouts),
+                textures,
+                particles,
+                pipelines: Pipelines::default(),
+            })
+        }
+
+        fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let (resources, device) = (frame.resources, frame.device);
+            let inputs = frame.scene.inputs();
             state
                 .particles
                 .update(device, resources.queue, &inputs.emitters, &inputs.camera);
             let (blended, additive) = (state.particles.blended(), state.particles.additive());
             if blended.is_empty() && additive.is_empty() {
-                return;
+                return Ok(());
             }
-            let convention = draw.depth_rule.map_or(DepthConvention::ReversedZ, |rule| {
-                rule.convention(resources.shape(draw.depth.texture).format)
+            let convention = self.depth_rule.map_or(DepthConvention::ReversedZ, |rule| {
+                rule.convention(resources.shape(self.depth.texture).format)
             });
             let key = Key {
-                targets: draw
+                targets: self
                     .targets
                     .iter()
                     .map(|&h| resources.shape(h).format)
                     .collect(),
-                stencil: draw.stencil.map(|h| resources.shape(h).format),
+                stencil: self.stencil.map(|h| resources.shape(h).format),
                 convention,
             };
             let (module, layout) = (&state.module, &state.layout);
             let [blend_pipeline, add_pipeline] = state.pipelines.get(key, |key| {
-                let mut constants = draw.constants.clone();
-                if draw.depth_rule.is_some() {
+                let mut constants = self.constants.clone();
+                if self.depth_rule.is_some() {
                     constants.push(("FAR_DEPTH", f64::from(far_depth(key.convention))));
                 }
                 let apart = key.targets.len() == 2;
@@ -690,83 +676,83 @@ mod gpu {
                     ],
                 }
             });
-            ctx.pass
-                .set_bind_group(0, scene.bind_group(convention), &[]);
-            ctx.pass
-                .set_bind_group(1, &state.textures.bind_group(resources), &[]);
-            ctx.pass.set_bind_group(2, state.particles.group(), &[]);
-            ctx.pass.set_stencil_reference(EDGE_STENCIL);
+            pass.set_bind_group(0, frame.scene.bind_group(convention), &[]);
+            pass.set_bind_group(1, &state.textures.bind_group(resources), &[]);
+            pass.set_bind_group(2, state.particles.group(), &[]);
+            pass.set_stencil_reference(EDGE_STENCIL);
             for (pipeline, instances) in [(blend_pipeline, blended), (add_pipeline, additive)] {
                 if !instances.is_empty() {
-                    ctx.pass.set_pipeline(pipeline);
-                    ctx.pass.draw(0..6, instances);
+                    pass.set_pipeline(pipeline);
+                    pass.draw(0..6, instances);
                 }
             }
-        })
+            Ok(())
+        }
     }
 
-    /// The compute raster's device objects, per scene upload.
-    struct ComputeState {
+    /// The compute raster's device objects.
+    pub(crate) struct ComputeState {
         textures: TextureBindings,
         particles: ParticleBuffer,
         pipeline: wgpu::ComputePipeline,
     }
 
-    pub(super) fn record_compute(
-        dispatch: ParticleDispatch,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut graph_core::gpu::ComputeContext<'_, '_>)> {
-        let mut state = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            let device = resources.device;
-            let Some(scene) = scenes.for_frame(resources) else {
-                return;
-            };
-            let state = per_scene(&mut state, &scene, || {
-                let textures = TextureBindings::new(resources, &dispatch.inputs);
-                let particles = ParticleBuffer::new(device);
-                let layout = pipeline_layout(
-                    device,
-                    &[
-                        Some(scene.layout()),
-                        Some(&textures.layout),
-                        Some(particles.layout()),
-                    ],
-                );
-                let module = module(device, "particles (compute)", &dispatch.source);
-                let pipeline = compute_pipeline(
-                    device,
-                    "particles (compute)",
-                    &layout,
-                    &module,
-                    "cs_particles",
-                    &dispatch.constants,
-                );
-                ComputeState {
-                    textures,
-                    particles,
-                    pipeline,
-                }
-            });
-            let inputs = scene.inputs();
-            state
-                .particles
-                .update(device, resources.queue, &inputs.emitters, &inputs.camera);
+    impl Recorder for ParticleDispatch {
+        type Stage = Compute;
+        type Scene = Arc<GpuScene>;
+        type State = ComputeState;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<ComputeState, String> {
+            let device = frame.device;
+            let textures = TextureBindings::new(frame.resources, &self.inputs);
+            let particles = ParticleBuffer::new(device);
+            let layout = pipeline_layout(
+                device,
+                &[
+                    Some(frame.scene.layout()),
+                    Some(&textures.layout),
+                    Some(particles.layout()),
+                ],
+            );
+            let module = module(device, "particles (compute)", &self.source);
+            let pipeline = compute_pipeline(
+                device,
+                "particles (compute)",
+                &layout,
+                &module,
+                "cs_particles",
+                &self.constants,
+            );
+            Ok(ComputeState {
+                textures,
+                particles,
+                pipeline,
+            })
+        }
+
+        fn record(&self, state: &mut ComputeState, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let resources = frame.resources;
+            let inputs = frame.scene.inputs();
+            state.particles.update(
+                frame.device,
+                resources.queue,
+                &inputs.emitters,
+                &inputs.camera,
+            );
             // Every pixel of the targets is stored, particles or not: what the composite
             // reads.
-            ctx.pass.set_pipeline(&state.pipeline);
+            pass.set_pipeline(&state.pipeline);
             // A view depth needs no depth convention: the reversed-Z camera projects as
             // the fragment pass's does for one.
-            ctx.pass
-                .set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
-            ctx.pass
-                .set_bind_group(1, &state.textures.bind_group(resources), &[]);
-            ctx.pass.set_bind_group(2, state.particles.group(), &[]);
-            let out = resources.shape(dispatch.inputs[1].texture);
-            ctx.pass
-                .dispatch_workgroups(out.width.div_ceil(TILE), out.height.div_ceil(TILE), 1);
-        })
+            let camera = frame.scene.bind_group(DepthConvention::ReversedZ);
+            pass.set_bind_group(0, camera, &[]);
+            pass.set_bind_group(1, &state.textures.bind_group(resources), &[]);
+            pass.set_bind_group(2, state.particles.group(), &[]);
+            let out = resources.shape(self.inputs[1].texture);
+            pass.dispatch_workgroups(out.width.div_ceil(TILE), out.height.div_ceil(TILE), 1);
+            Ok(())
+        }
     }
 
     const fn component(

@@ -79,14 +79,16 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::types::{BlendComponent, BlendFactor, BlendOperation, BlendState};
 use graph_core::{AspectAccess, ColorLoad, PassBuilder, PassKind};
 
-use super::forward::{ForwardDraw, Shading, DEPTH};
+use super::forward::{Shading, DEPTH};
 use super::gbuffer::opaque_black;
 use crate::common::depth::DepthRule;
 use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
+use crate::common::scene_draw::SceneDraw;
 use crate::common::textures::{self, Want};
 use crate::shaders;
+use crate::variant::GatedShader;
 
 pub struct Transparent(pub(crate) Shared);
 pub struct CompositeTransparent(pub(crate) Shared);
@@ -136,18 +138,19 @@ impl Plugin for Transparent {
         };
         let (accum, _) = textures::attached_output(slots, pass, "accum", want, fresh)?;
         let begin = params.extent == Extent::Blended && !slots.modifies("accum");
-        let draw = ForwardDraw {
-            source: shaders::TRANSPARENT
-                .compose(desc.samples)?
-                .source()
-                .to_owned(),
-            depth_rule: DepthRule::new(params.reversed_z),
-            shading: params.shading,
-            transparent: true,
+        let source = shaders::TRANSPARENT.compose(desc.samples)?;
+        let draw = SceneDraw {
+            blended: true,
             begin_blended: begin.then_some("fs_accumulation_start"),
-            fill_background: false,
-            hdr: accum,
-            depth,
+            ..SceneDraw::new(
+                "transparent",
+                GatedShader::Transparent,
+                source.source().to_owned(),
+                DepthRule::new(params.reversed_z),
+                vec![accum],
+                depth,
+                params.shading.stages(true),
+            )
         };
         self.0.record(pass, draw);
         Ok(())

@@ -33,7 +33,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::{ColorLoad, PassBuilder, PassKind, TextureHandle};
 
 use crate::common::depth::DepthRule;
-use crate::common::plugin::{Recording, Shared};
+use crate::common::plugin::Shared;
 use crate::common::textures::{self, Want};
 use crate::shaders;
 
@@ -54,13 +54,6 @@ pub(crate) struct VisibilityDraw {
     pub depth_rule: DepthRule,
     pub ids: Option<TextureHandle>,
     pub depth: TextureHandle,
-}
-
-impl Recording for VisibilityDraw {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Render(gpu::record(self, scenes))
-    }
 }
 
 impl Plugin for Visibility {
@@ -114,18 +107,16 @@ mod gpu {
 
     use std::sync::Arc;
 
-    use graph_core::gpu::RenderContext;
-
     use super::VisibilityDraw;
     use crate::common::gpu::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
     use crate::common::gpu::scene_draw::depth_test;
-    use crate::common::gpu::{per_scene, split_ids};
-    use crate::gpu_scene::{Layer, SceneCache};
+    use crate::common::gpu::{split_ids, Frame, Recorded, Recorder, Render};
+    use crate::gpu_scene::{GpuScene, Layer};
     use crate::variant::GatedShader;
     use rgraph_scene::DepthConvention;
 
     #[derive(Clone, PartialEq)]
-    struct Key {
+    pub(crate) struct Key {
         ids: Option<wgpu::TextureFormat>,
         depth: wgpu::TextureFormat,
         samples: u32,
@@ -134,25 +125,21 @@ mod gpu {
         double_sided: bool,
     }
 
-    struct State {
+    pub(crate) struct State {
         module: wgpu::ShaderModule,
         layout: wgpu::PipelineLayout,
         pipelines: Pipelines<Key>,
     }
 
-    pub(super) fn record(
-        draw: VisibilityDraw,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-        let mut state = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            let device = resources.device;
-            let Some(scene) = scenes.for_frame(resources) else {
-                return;
-            };
-            let state = per_scene(&mut state, &scene, || State {
-                module: module(device, "visibility", &draw.source),
+    impl Recorder for VisibilityDraw {
+        type Stage = Render;
+        type Scene = Arc<GpuScene>;
+        type State = State;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<State, String> {
+            let (device, scene) = (frame.device, &frame.scene);
+            Ok(State {
+                module: module(device, "visibility", &self.source),
                 // Group 1 is the light passes' inputs; geometry is group 2 and the texture
                 // table group 3 in both.
                 layout: pipeline_layout(
@@ -165,25 +152,23 @@ mod gpu {
                     ],
                 ),
                 pipelines: Pipelines::default(),
-            });
-            let geometry = match scene.geometry_group(device) {
-                Ok(group) => group,
-                Err(why) => return resources.fail(why),
-            };
+            })
+        }
+
+        fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
+            let geometry = scene.geometry_group(device)?;
             // Textured alpha masks read the table.
-            let table = match scenes.texture_table(&scene, device, resources.queue) {
-                Ok(table) => table,
-                Err(why) => return resources.fail(why),
-            };
-            let variant = scenes.variant(GatedShader::VisibilityRaster);
-            let ids = draw.ids.map(|ids| resources.shape(ids).format);
-            let depth = resources.shape(draw.depth);
-            let convention = draw.depth_rule.convention(depth.format);
-            ctx.pass
-                .set_bind_group(0, scene.bind_group(convention), &[]);
-            ctx.pass.set_bind_group(2, geometry, &[]);
-            ctx.pass.set_bind_group(3, table, &[]);
-            scene.pull_meshes(ctx.pass, |pass, _, material| {
+            let table = frame.scenes.texture_table(scene, device, resources.queue)?;
+            let variant = frame.scenes.variant(GatedShader::VisibilityRaster);
+            let ids = self.ids.map(|ids| resources.shape(ids).format);
+            let depth = resources.shape(self.depth);
+            let convention = self.depth_rule.convention(depth.format);
+            pass.set_bind_group(0, scene.bind_group(convention), &[]);
+            pass.set_bind_group(2, geometry, &[]);
+            pass.set_bind_group(3, table, &[]);
+            scene.pull_meshes(pass, |pass, _, material| {
                 let key = Key {
                     ids,
                     depth: depth.format,
@@ -235,6 +220,7 @@ mod gpu {
                 pass.set_pipeline(pipeline);
                 true
             });
-        })
+            Ok(())
+        }
     }
 }

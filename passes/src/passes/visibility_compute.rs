@@ -50,7 +50,7 @@ use graph_core::file::{Plugin, PluginError, Slots};
 use graph_core::shader::Stage;
 use graph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, PassKind};
 
-use crate::common::plugin::{check_tile, Recording, Shared};
+use crate::common::plugin::{check_tile, Shared};
 use crate::common::visibility_samples;
 use crate::shaders;
 
@@ -94,13 +94,6 @@ pub(crate) struct RasterDispatch {
     pub samples: BufferHandle,
     /// raster_tiles.wgsl's OTHERS_EVERYWHERE.
     pub others_everywhere: bool,
-}
-
-impl Recording for RasterDispatch {
-    #[cfg(feature = "gpu")]
-    fn record(self, scenes: std::sync::Arc<crate::gpu_scene::SceneCache>) -> graph_core::Record {
-        graph_core::Record::Compute(gpu::record(self, scenes))
-    }
 }
 
 impl Plugin for VisibilityCompute {
@@ -157,19 +150,17 @@ mod gpu {
 
     use std::sync::Arc;
 
-    use graph_core::gpu::ComputeContext;
-
     use super::RasterDispatch;
     use crate::common::gpu::pipeline::{module, pipeline_layout};
     use crate::common::gpu::storage::{storage_group, storage_layout};
     use crate::common::gpu::tile_bins::{TileBins, RASTER_BUFFERS};
-    use crate::common::gpu::{compute_pipeline, per_scene};
+    use crate::common::gpu::{compute_pipeline, Compute, Frame, Recorded, Recorder};
     use crate::common::visibility_samples::fits_binding;
-    use crate::gpu_scene::{GpuScene, SceneCache};
-    use crate::variant::{GatedShader, Variant};
+    use crate::gpu_scene::GpuScene;
+    use crate::variant::GatedShader;
     use rgraph_scene::DepthConvention;
 
-    struct State {
+    pub(crate) struct State {
         layout: wgpu::BindGroupLayout,
         raster: wgpu::ComputePipeline,
         /// The bins and the output size they were made for (or why the device cannot
@@ -177,105 +168,84 @@ mod gpu {
         bins: Option<((u32, u32), Result<TileBins, String>)>,
     }
 
-    pub(super) fn record(
-        dispatch: RasterDispatch,
-        scenes: Arc<SceneCache>,
-    ) -> Box<dyn FnMut(&mut ComputeContext<'_, '_>)> {
-        let mut state = None;
-        Box::new(move |ctx| {
-            let resources = ctx.resources;
-            let device = resources.device;
-            let Some(scene) = scenes.for_frame(resources) else {
-                return;
-            };
-            let variant = scenes.variant(GatedShader::VisibilityRaster);
-            let state = per_scene(&mut state, &scene, || {
-                build(device, &dispatch, &scene, &variant)
-            });
+    impl Recorder for RasterDispatch {
+        type Stage = Compute;
+        type Scene = Arc<GpuScene>;
+        type State = State;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<State, String> {
+            let (device, scene) = (frame.device, &frame.scene);
+            // The keys, then the bins.
+            let mut read_only = vec![false];
+            read_only.extend([true; RASTER_BUFFERS]);
+            let layout = storage_layout(device, "visibility_compute", &read_only);
+            let module = module(device, "visibility_compute", &self.raster);
+            let pipeline_layout = pipeline_layout(
+                device,
+                &[
+                    Some(scene.layout()),
+                    Some(&layout),
+                    Some(scene.geometry_layout()),
+                    Some(scene.texture_table_layout()),
+                ],
+            );
+            let mut constants = vec![(
+                "OTHERS_EVERYWHERE",
+                f64::from(u8::from(self.others_everywhere)),
+            )];
+            constants.extend(
+                frame
+                    .scenes
+                    .variant(GatedShader::VisibilityRaster)
+                    .constants(),
+            );
+            let raster = compute_pipeline(
+                device,
+                "visibility_compute",
+                &pipeline_layout,
+                &module,
+                "cs_raster_tiles",
+                &constants,
+            );
+            Ok(State {
+                layout,
+                raster,
+                bins: None,
+            })
+        }
+
+        fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
             // The bins are made for one output size: a resized graph gets new ones.
             let size = resources.output_size();
             if state.bins.as_ref().is_some_and(|(made, _)| *made != size) {
                 state.bins = None;
             }
             let (_, bins) = state.bins.get_or_insert_with(|| {
-                let bins = TileBins::new(device, &dispatch.bins, &scene, dispatch.tile, size);
+                let bins = TileBins::new(device, &self.bins, scene, self.tile, size);
                 (size, bins)
             });
-            let bins = match bins {
-                Ok(bins) => bins,
-                Err(why) => return resources.fail(why.clone()),
-            };
+            let bins = bins.as_ref().map_err(String::clone)?;
             bins.buffers()
                 .iter()
                 .for_each(|buffer| resources.hold(buffer));
-            let geometry = match scene.geometry_group(device) {
-                Ok(group) => group,
-                Err(why) => return resources.fail(why),
-            };
+            let geometry = scene.geometry_group(device)?;
             // Textured alpha masks read the table.
-            let table = match scenes.texture_table(&scene, device, resources.queue) {
-                Ok(table) => table,
-                Err(why) => return resources.fail(why),
-            };
-            let keys = resources.buffer(dispatch.samples);
-            if let Err(why) = fits_binding(device, keys) {
-                return resources.fail(why);
-            }
+            let table = frame.scenes.texture_table(scene, device, resources.queue)?;
+            let keys = resources.buffer(self.samples);
+            fits_binding(device, keys)?;
             let mut buffers = vec![keys];
             buffers.extend(bins.raster_buffers());
             let group = storage_group(device, "visibility_compute", &state.layout, &buffers);
-            bins.record(ctx.pass, &scene, geometry);
-            let pass = &mut ctx.pass;
+            bins.record(pass, scene, geometry);
             pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
             pass.set_bind_group(1, &group, &[]);
             pass.set_bind_group(2, geometry, &[]);
             pass.set_bind_group(3, table, &[]);
             pass.set_pipeline(&state.raster);
-            pass.dispatch_workgroups(
-                size.0.div_ceil(dispatch.tile),
-                size.1.div_ceil(dispatch.tile),
-                1,
-            );
-        })
-    }
-
-    fn build(
-        device: &wgpu::Device,
-        dispatch: &RasterDispatch,
-        scene: &GpuScene,
-        variant: &Variant,
-    ) -> State {
-        // The keys, then the bins.
-        let mut read_only = vec![false];
-        read_only.extend([true; RASTER_BUFFERS]);
-        let layout = storage_layout(device, "visibility_compute", &read_only);
-        let module = module(device, "visibility_compute", &dispatch.raster);
-        let pipeline_layout = pipeline_layout(
-            device,
-            &[
-                Some(scene.layout()),
-                Some(&layout),
-                Some(scene.geometry_layout()),
-                Some(scene.texture_table_layout()),
-            ],
-        );
-        let mut constants = vec![(
-            "OTHERS_EVERYWHERE",
-            f64::from(u8::from(dispatch.others_everywhere)),
-        )];
-        constants.extend(variant.constants());
-        let raster = compute_pipeline(
-            device,
-            "visibility_compute",
-            &pipeline_layout,
-            &module,
-            "cs_raster_tiles",
-            &constants,
-        );
-        State {
-            layout,
-            raster,
-            bins: None,
+            pass.dispatch_workgroups(size.0.div_ceil(self.tile), size.1.div_ceil(self.tile), 1);
+            Ok(())
         }
     }
 }

@@ -1,9 +1,8 @@
-//! Recording a pass that draws the scene's meshes (the G-buffer, forward and transparent
-//! passes): one draw per mesh of the pass's [`Layer`], with a pipeline per material state
-//! (culling, alpha mask) and attachment formats. The passes differ only in shader, color
-//! targets, layer and the entry points and constants a material state takes. Pipelines
-//! are compiled for the scene's shader variant (variant.rs), which their key
-//! holds.
+//! Recording a pass that draws the scene's meshes ([`SceneDraw`]: the G-buffer, forward,
+//! transparent and light pre-pass passes): one draw per mesh of the pass's [`Layer`],
+//! with a pipeline per material state (culling, alpha mask) and attachment formats. The
+//! passes differ only in shader, color targets, layer and entry points. Pipelines are
+//! compiled for the scene's shader variant (variant.rs), which their key holds.
 //!
 //! The opaque layer writes depth and replaces colour. The blended layer tests depth
 //! without writing it (the depth-stencil is attached read-only) and accumulates as seed
@@ -14,71 +13,26 @@
 //!
 //! Where a pass begins its targets without a clear (a multisampled clear costs the H200 a
 //! full-screen pass), a full-screen draw frames the meshes: before them, the blended
-//! layer's beginning over the rectangle its meshes may cover (`begin_blended`); after
-//! them, the background fill of the samples none drew (`fill_background`,
-//! common/background.rs).
+//! layer's beginning over the rectangle its meshes may cover
+//! ([`GpuScene::blended_rect`]); after them, the background fill of the samples none
+//! drew (common/background.rs).
 //!
-//! A [`Redraw`] draws the opaque layer again over the depth an earlier draw of the same
-//! shader module wrote (the light pre-pass's material pass): tested for the same or a
-//! nearer depth without writing it, reading textures as group 2.
+//! A redraw ([`SceneDraw::redraw`]) draws the opaque layer again over the depth an
+//! earlier draw of the same shader module wrote.
 
 use std::sync::Arc;
 
-use graph_core::gpu::RenderContext;
-use graph_core::TextureHandle;
-
 use super::bindings::TextureBindings;
-use super::per_scene;
 use super::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
-use crate::common::depth::{far_depth, DepthRule};
-use crate::common::textures::Input;
-use crate::gpu_scene::{mesh, Layer, MaterialState, SceneCache};
-use crate::variant::{GatedShader, Variant};
+use super::{Frame, Recorded, Recorder, Render};
+use crate::common::depth::far_depth;
+use crate::common::scene_draw::{Masked, SceneDraw};
+use crate::gpu_scene::{mesh, GpuScene, Layer, MaterialState};
+use crate::variant::Variant;
 use rgraph_scene::DepthConvention;
 
-/// What a material state draws with.
-pub(crate) struct Stages {
-    pub vertex: &'static str,
-    pub fragment: &'static str,
-    /// Pipeline-overridable constants, given to both stages.
-    pub constants: Vec<(&'static str, f64)>,
-}
-
-/// One scene-drawing pass.
-pub(crate) struct SceneDraw {
-    pub label: &'static str,
-    pub shader: GatedShader,
-    pub source: String,
-    /// Resolved against the depth attachment's format when recording.
-    pub depth_rule: DepthRule,
-    /// Color attachments in location order.
-    pub targets: Vec<TextureHandle>,
-    pub depth: TextureHandle,
-    pub layer: Layer,
-    /// Begins the targets over the rectangle the blended meshes may cover
-    /// ([`GpuScene::blended_rect`]) with this fragment entry point of the pass's module
-    /// (after common.wgsl's `vs_fullscreen`, writing every target, depth neither tested nor
-    /// written), and keeps the meshes' draws to it; nothing is drawn when no blended mesh
-    /// is in view. For targets the pass begins without a clear (the transparent
-    /// accumulation with `extent: blended`), whose other pixels nothing reads.
-    ///
-    /// [`GpuScene::blended_rect`]: crate::gpu_scene::GpuScene::blended_rect
-    pub begin_blended: Option<&'static str>,
-    /// After the meshes, fills what they left undrawn with the module's `fs_background`
-    /// (common/background.rs): for targets begun without a clear, over a depth the pass
-    /// cleared.
-    pub fill_background: bool,
-    pub stages: Box<dyn Fn(MaterialState) -> Stages>,
-}
-
-/// What a second draw over the depth of a first one reads (group 2). The pass attaches
-/// the depth-stencil read-only.
-pub(crate) struct Redraw {
-    pub inputs: Vec<Input>,
-}
-
 #[derive(Clone, PartialEq)]
-struct Key {
+pub(crate) struct Key {
     targets: Vec<wgpu::TextureFormat>,
     depth: wgpu::TextureFormat,
     samples: u32,
@@ -86,7 +40,7 @@ struct Key {
     variant: Variant,
 }
 
-struct State {
+pub(crate) struct State {
     module: wgpu::ShaderModule,
     layout: wgpu::PipelineLayout,
     /// A redraw's group 2.
@@ -101,86 +55,74 @@ struct State {
 
 type FullscreenKey = (Vec<wgpu::TextureFormat>, wgpu::TextureFormat, u32);
 
-pub(crate) fn record(
-    draw: SceneDraw,
-    scenes: Arc<SceneCache>,
-) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-    record_with(draw, None, scenes)
-}
+impl Recorder for SceneDraw {
+    type Stage = Render;
+    type Scene = Arc<GpuScene>;
+    type State = State;
 
-/// [`record`], as a [`Redraw`] when given one.
-pub(crate) fn record_with(
-    draw: SceneDraw,
-    redraw: Option<Redraw>,
-    scenes: Arc<SceneCache>,
-) -> Box<dyn FnMut(&mut RenderContext<'_, '_>)> {
-    let mut state = None;
-    Box::new(move |ctx| {
-        let resources = ctx.resources;
-        let device = resources.device;
-        let Some(scene) = scenes.for_frame(resources) else {
-            return;
-        };
-        let state = per_scene(&mut state, &scene, || {
-            let inputs = redraw
-                .as_ref()
-                .map(|r| TextureBindings::new(resources, &r.inputs));
-            let layouts = [
-                Some(scene.layout()),
-                Some(scene.material_layout()),
-                inputs.as_ref().map(|i| &i.layout),
-            ];
-            State {
-                module: module(device, draw.label, &draw.source),
-                layout: pipeline_layout(device, &layouts),
-                inputs,
-                pipelines: Pipelines::default(),
-                fullscreen_layout: pipeline_layout(device, &[]),
-                begin_pipelines: Pipelines::default(),
-                fill_pipelines: Pipelines::default(),
-            }
-        });
-        let variant = scenes.variant(draw.shader);
-        let depth = resources.shape(draw.depth);
-        let targets: Vec<wgpu::TextureFormat> = draw
+    fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<State, String> {
+        let (device, scene) = (frame.device, &frame.scene);
+        let inputs = (self.redraw.as_ref()).map(|r| TextureBindings::new(frame.resources, r));
+        let layouts = [
+            Some(scene.layout()),
+            Some(scene.material_layout()),
+            inputs.as_ref().map(|i| &i.layout),
+        ];
+        Ok(State {
+            module: module(device, self.label, &self.source),
+            layout: pipeline_layout(device, &layouts),
+            inputs,
+            pipelines: Pipelines::default(),
+            fullscreen_layout: pipeline_layout(device, &[]),
+            begin_pipelines: Pipelines::default(),
+            fill_pipelines: Pipelines::default(),
+        })
+    }
+
+    fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+        let pass = &mut *frame.pass;
+        let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
+        let variant = frame.scenes.variant(self.shader);
+        let depth = resources.shape(self.depth);
+        let targets: Vec<wgpu::TextureFormat> = self
             .targets
             .iter()
             .map(|&h| resources.shape(h).format)
             .collect();
-        let convention = draw.depth_rule.convention(depth.format);
-        ctx.pass
-            .set_bind_group(0, scene.bind_group(convention), &[]);
+        let convention = self.depth_rule.convention(depth.format);
+        pass.set_bind_group(0, scene.bind_group(convention), &[]);
         if let Some(inputs) = &state.inputs {
-            ctx.pass
-                .set_bind_group(2, &inputs.bind_group(resources), &[]);
+            pass.set_bind_group(2, &inputs.bind_group(resources), &[]);
         }
-        let layer = draw.layer;
+        let layer = match self.blended {
+            false => Layer::Opaque,
+            true => Layer::Blended,
+        };
         let redraws = state.inputs.is_some();
         // A scene on the device has a host scene (for_frame returned it).
-        let Some(host_scene) = scenes.scene() else {
-            return;
+        let Some(host_scene) = frame.scenes.scene() else {
+            return Ok(());
         };
-        if let Some(entry) = draw.begin_blended {
+        if let Some(entry) = self.begin_blended {
             let Some(rect) = scene.blended_rect((depth.width, depth.height)) else {
-                return;
+                return Ok(());
             };
             let key = (targets.clone(), depth.format, depth.samples);
             let pipeline = state.begin_pipelines.get(key, |key| {
                 FullscreenDraw {
-                    label: draw.label,
+                    label: self.label,
                     vertex: "vs_fullscreen",
                     fragment: entry,
                     far_depth: None,
                 }
                 .build(device, &state.fullscreen_layout, &state.module, key)
             });
-            ctx.pass
-                .set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
-            ctx.pass.set_pipeline(pipeline);
-            ctx.pass.draw(0..3, 0..1);
+            pass.set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
+            pass.set_pipeline(pipeline);
+            pass.draw(0..3, 0..1);
         }
         let materials = scene.material_groups(device, resources.queue, host_scene);
-        scene.draw_meshes(ctx.pass, (1, materials), layer, |pass, _, material| {
+        scene.draw_meshes(pass, (1, materials), layer, |pass, _, material| {
             let key = Key {
                 targets: targets.clone(),
                 depth: depth.format,
@@ -195,16 +137,23 @@ pub(crate) fn record_with(
                     .iter()
                     .map(|&format| Some(color_target(format, layer)))
                     .collect();
-                let stages = (draw.stages)(key.material);
-                let mut constants = stages.constants;
+                let masked = key.material.masked;
+                let (fragment, mut constants) = match self.stages.masked {
+                    Masked::Entry(entry) if masked => (entry, Vec::new()),
+                    Masked::Entry(_) => (self.stages.fragment, Vec::new()),
+                    Masked::Constant => {
+                        let constant = ("MASKED", f64::from(u8::from(masked)));
+                        (self.stages.fragment, vec![constant])
+                    }
+                };
                 constants.extend(key.variant.constants());
                 PipelineDesc {
-                    label: draw.label,
+                    label: self.label,
                     layout,
                     module,
-                    vertex: stages.vertex,
+                    vertex: self.stages.vertex,
                     buffers: &[Some(mesh::VERTEX_LAYOUT)],
-                    fragment: stages.fragment,
+                    fragment,
                     constants: &constants,
                     targets: &targets,
                     cull: (!key.material.double_sided).then_some(wgpu::Face::Back),
@@ -217,21 +166,22 @@ pub(crate) fn record_with(
             pass.set_pipeline(pipeline);
             true
         });
-        if draw.fill_background {
+        if self.fill_background {
             let key = (targets.clone(), depth.format, depth.samples);
             let pipeline = state.fill_pipelines.get(key, |key| {
                 FullscreenDraw {
-                    label: draw.label,
+                    label: self.label,
                     vertex: "vs_fullscreen_far",
                     fragment: "fs_background",
                     far_depth: Some(convention),
                 }
                 .build(device, &state.fullscreen_layout, &state.module, key)
             });
-            ctx.pass.set_pipeline(pipeline);
-            ctx.pass.draw(0..3, 0..1);
+            pass.set_pipeline(pipeline);
+            pass.draw(0..3, 0..1);
         }
-    })
+        Ok(())
+    }
 }
 
 /// A full-screen triangle over a scene pass's attachments, replacing every target's
