@@ -85,9 +85,10 @@ pub fn font(size: f64) -> TextStyle<'static> {
 }
 
 /// The color of the `i`th series: distinct and readable on white (static, because
-/// plotters' text styles borrow their color).
+/// plotters' text styles borrow their color). Twenty, so that a chart of every 4x pipeline
+/// or every pass of a pipeline set (up to 19 today) repeats none.
 pub fn color(i: usize) -> &'static RGBColor {
-    static COLORS: [RGBColor; 12] = [
+    static COLORS: [RGBColor; 20] = [
         RGBColor(31, 119, 180),
         RGBColor(255, 127, 14),
         RGBColor(44, 160, 44),
@@ -100,6 +101,14 @@ pub fn color(i: usize) -> &'static RGBColor {
         RGBColor(23, 190, 207),
         RGBColor(0, 0, 128),
         RGBColor(128, 0, 0),
+        RGBColor(0, 128, 128),
+        RGBColor(218, 165, 32),
+        RGBColor(0, 0, 0),
+        RGBColor(128, 128, 0),
+        RGBColor(106, 61, 154),
+        RGBColor(251, 154, 153),
+        RGBColor(166, 206, 227),
+        RGBColor(178, 223, 138),
     ];
     &COLORS[i % COLORS.len()]
 }
@@ -234,7 +243,23 @@ pub fn text<E: std::fmt::Display>(e: E) -> String {
 mod tests {
     use plotters::coord::ranged1d::{BoldPoints, Ranged};
 
-    use super::{log_axis, tick, Legend};
+    use super::{color, log_axis, tick, Legend};
+
+    #[test]
+    fn the_first_twenty_series_have_colors_of_their_own() {
+        let colors: Vec<_> = (0..20)
+            .map(|i| {
+                let c = color(i);
+                (c.0, c.1, c.2)
+            })
+            .collect();
+        for (i, a) in colors.iter().enumerate() {
+            assert!(
+                !colors[..i].contains(a),
+                "series {i} repeats a color: {a:?}"
+            );
+        }
+    }
 
     #[test]
     fn a_log_axis_less_than_a_decade_wide_still_has_labels() {
