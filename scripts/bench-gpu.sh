@@ -75,7 +75,7 @@
 # of the GPU's); BENCH_SIZE (default 3840x2160) for a quick try elsewhere.
 #
 # BENCH_ARCHIVE=FILE.tar.gz also packs what gets committed (each part's results.json,
-# results.md and charts, and adapters.txt) into one file, for machines that hand back only a
+# results.md, charts and plan pages, and adapters.txt) into one file, for machines that hand back only a
 # few files: e.g. BENCH_ARCHIVE=$OUT/bench-gpu.tar.gz scripts/bench-gpu.sh /tmp/bench-gpu,
 # then `tar xzf bench-gpu.tar.gz -C bench/results/h200`. The per-scene images (large at
 # 2160p) stay in OUT_DIR.
@@ -249,9 +249,11 @@ for part in $parts; do
 done
 if [ -n "${BENCH_ARCHIVE:-}" ]; then
   archive="$(realpath -m "$BENCH_ARCHIVE")"
-  (cd "$out" && find . -maxdepth 2 \( -name results.json -o -name results.md \
-     -o -name pareto.png -o -name passes.png -o -name scaling.png -o -name adapters.txt \
-     -o -name same-image.md \) \
+  # Each part's files, and its plans as pages one level down (SCENE/PIPELINE.plan.html,
+  # about 60 kB each), which results.md links.
+  (cd "$out" && find . -maxdepth 3 \( -name '*.plan.html' -o \( ! -path './*/*/*' \( \
+     -name results.json -o -name results.md -o -name pareto.png -o -name passes.png \
+     -o -name scaling.png -o -name adapters.txt -o -name same-image.md \) \) \) \
      -print0 | tar czf "$archive" --null -T -)
   echo "bench-gpu: packed $BENCH_ARCHIVE" >&2
 fi
