@@ -85,8 +85,8 @@ pub fn font(size: f64) -> TextStyle<'static> {
 }
 
 /// The color of the `i`th series: distinct and readable on white (static, because
-/// plotters' text styles borrow their color). Twenty, so that a chart of every 4x pipeline
-/// or every pass of a pipeline set (up to 19 today) repeats none.
+/// plotters' text styles borrow their color). Twenty, so that the every-4x part's 13
+/// pipelines and 15 passes repeat none.
 pub fn color(i: usize) -> &'static RGBColor {
     static COLORS: [RGBColor; 20] = [
         RGBColor(31, 119, 180),
