@@ -1,16 +1,16 @@
 //! Build-time validation: every graph file in `pipelines/` is loaded and compiled, and
 //! every WGSL file in `shaders/` is validated by naga, all without a GPU. An invalid file
 //! fails the build with `FILE:LINE:COL: error: MESSAGE` lines, as `rgraph validate` and
-//! an engine's own build script (through `graph_core::file::validate_dir`) report them.
+//! an engine's own build script (through `rgraph_core::file::validate_dir`) report them.
 //!
 //! It also writes `$OUT_DIR/embedded.rs`: every `.ron` and `.wgsl` file of
 //! [`EMBEDDED_DIRS`] as `(path, include_str!(..))`, which `main` provides to
-//! `graph_core::embedded`.
+//! `rgraph_core::embedded`.
 
-use graph_core::file::{validate_dir, Registry};
-use graph_core::CompileOptions;
+use rgraph_core::file::{validate_dir, Registry};
+use rgraph_core::CompileOptions;
 
-/// The directories whose files the binary carries (see `graph_core::embedded`), so
+/// The directories whose files the binary carries (see `rgraph_core::embedded`), so
 /// `rgraph render` works from any directory: the default pipeline, the generic demos'
 /// shaders, the bench's unique-surfaces graph.
 const EMBEDDED_DIRS: [&str; 3] = ["pipelines", "shaders", "bench/graphs"];

@@ -5,7 +5,7 @@
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use graph_core::{synthetic, CompileOptions};
+use rgraph_core::{synthetic, CompileOptions};
 
 fn compile(c: &mut Criterion) {
     let options = CompileOptions::default();

@@ -1,4 +1,4 @@
-//! A third-party engine using only `graph-core`: no graph file, no plugin, no scene. It
+//! A third-party engine using only `rgraph-core`: no graph file, no plugin, no scene. It
 //! declares its frame in code with [`GraphBuilder`] and two passes of its own, compiles
 //! it once, executes it into a texture it owns, and reads the texture back.
 //!
@@ -21,9 +21,9 @@
 
 use std::error::Error;
 
-use graph_core::gpu::{read_rgba8, AdapterChoice, Executor, Gpu, Imports};
-use graph_core::types::TextureFormat;
-use graph_core::{
+use rgraph_core::gpu::{read_rgba8, AdapterChoice, Executor, Gpu, Imports};
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{
     ColorLoad, CompileOptions, CompiledGraph, DeviceProfile, GraphBuilder, TextureDesc,
 };
 
@@ -168,7 +168,7 @@ pub fn render(
     let mut compiled = CompiledGraph::new(g.build(), &options)?;
     if verbose {
         // What the compiler inferred: order, lifetimes, usages, load and store.
-        print!("{}", graph_core::explain::text(compiled.plan()));
+        print!("{}", rgraph_core::explain::text(compiled.plan()));
     }
 
     // Execute on the engine's device, binding its texture by the name it was imported as.

@@ -27,12 +27,12 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use graph_core::file::{load_str_with, GraphParams, LoadedGraph, Registry};
-use graph_core::gpu::{
+use rgraph_core::file::{load_str_with, GraphParams, LoadedGraph, Registry};
+use rgraph_core::gpu::{
     read_rgba8, resident_bytes, AdapterChoice, DeviceObjects, Executor, Gpu, Imports,
 };
-use graph_core::types::TextureFormat;
-use graph_core::{CompileOptions, CompiledGraph};
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{CompileOptions, CompiledGraph};
 use rgraph_passes::{FrameInputs, Host, Overrides};
 use rgraph_scene::glam::{DMat4, DQuat, DVec3};
 use rgraph_scene::Scene;

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use graph_core::file::GraphParams;
+use rgraph_core::file::GraphParams;
 use rgraph_passes::{Background, Exposure};
 use rgraph_scene::{AssetPolicy, Lighting, Scene, SceneError, DEFAULT_MAX_ASSET_BYTES};
 

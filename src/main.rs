@@ -14,11 +14,11 @@ use cli::{Cli, Command};
 
 /// `pipelines/`, `shaders/` and `bench/graphs/` as built (see build.rs): read when a
 /// relative path to one of them is missing from disk.
-static EMBEDDED: &[graph_core::embedded::EmbeddedFile] =
+static EMBEDDED: &[rgraph_core::embedded::EmbeddedFile] =
     include!(concat!(env!("OUT_DIR"), "/embedded.rs"));
 
 fn main() -> ExitCode {
-    graph_core::embedded::provide(EMBEDDED);
+    rgraph_core::embedded::provide(EMBEDDED);
     let cli = Cli::parse();
     vulkan_env::prepare(&cli);
     registry::allow_graph_roots(cli.command.graph_roots());

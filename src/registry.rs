@@ -1,10 +1,10 @@
-//! The plugins the CLI knows: graph-core's generic ones and the deferred MSAA set, and the
+//! The plugins the CLI knows: rgraph-core's generic ones and the deferred MSAA set, and the
 //! folders `--graph-root` lets graph files reach.
 
 use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
 
-use graph_core::file::Registry;
+use rgraph_core::file::Registry;
 use rgraph_passes::variant::Variants;
 use rgraph_passes::Host;
 

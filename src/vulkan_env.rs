@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use graph_core::gpu::AdapterChoice;
+use rgraph_core::gpu::AdapterChoice;
 
 use crate::cli::{Cli, Command, RenderArgs, ViewArgs};
 

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use graph_core::file::{load_str, Registry};
+use rgraph_core::file::{load_str, Registry};
 
 /// Loads `pipeline` from `pipelines/` with `from` replaced by `to`, and returns the
 /// error text the load must fail with.

@@ -17,8 +17,8 @@ use crate::deferred_support;
 use crate::deferred_support::measure;
 
 use deferred_support::{gpu, Image, Render};
-use graph_core::gpu::Gpu;
 use measure::{diff, marked, pixel_diff, where_true};
+use rgraph_core::gpu::Gpu;
 use rgraph_passes::{Exposure, Overrides};
 
 const SIZE: (u32, u32) = (96, 64);

@@ -8,8 +8,8 @@ use crate::deferred_support;
 use crate::deferred_support::measure;
 
 use deferred_support::{gpu, Image, Render};
-use graph_core::gpu::Gpu;
 use measure::{diff, marked, mean_luma};
+use rgraph_core::gpu::Gpu;
 
 const SIZE: (u32, u32) = (96, 64);
 const SCENES: [&str; 2] = ["builtin:spheres", "builtin:dense"];

@@ -8,7 +8,7 @@ use crate::deferred_support;
 use deferred_support::measure::share_within;
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Image, Render};
-use graph_core::Features;
+use rgraph_core::Features;
 use rgraph_passes::{Exposure, Overrides};
 use rgraph_scene::glam::{DVec3, Vec3};
 use rgraph_scene::{Camera, Light, LightKind, Projection, Scene};

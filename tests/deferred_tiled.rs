@@ -7,8 +7,8 @@ use crate::deferred_support;
 
 use deferred_support::measure::{diff, marked, Diff};
 use deferred_support::{gpu, Image, Render};
-use graph_core::file::{load_str, LoadedGraph, Registry};
-use graph_core::{CompileOptions, DeviceProfile};
+use rgraph_core::file::{load_str, LoadedGraph, Registry};
+use rgraph_core::{CompileOptions, DeviceProfile};
 
 const SIZE: (u32, u32) = (96, 64);
 
@@ -245,7 +245,7 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
         .expect("the plan has the tiled pass's workgroup");
     assert_eq!((planned.size, planned.memory_bytes), ([8, 8, 1], 3456));
     assert!(
-        graph_core::explain::text(&plan)
+        rgraph_core::explain::text(&plan)
             .contains("workgroup: 8x8x1 (cs_light_tiled), 3456 bytes of workgroup memory"),
         "explain shows the workgroup"
     );
@@ -273,7 +273,7 @@ fn every_entry_point_the_tiled_pass_dispatches_is_checked() {
     let plan = loaded
         .compile(&CompileOptions::default())
         .expect("it compiles for WebGPU's defaults");
-    let explained = graph_core::explain::text(&plan);
+    let explained = rgraph_core::explain::text(&plan);
     for line in [
         "workgroup: 1x1x1 (cs_edge_pixels_reset), 0 bytes of workgroup memory",
         "workgroup: 16x16x1 (cs_light_tiled), 1200 bytes of workgroup memory",

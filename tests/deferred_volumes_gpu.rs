@@ -42,7 +42,7 @@ use crate::deferred_support;
 use deferred_support::scenes::{Parts, RayHit};
 use deferred_support::unlit::SAMPLES_4X;
 use deferred_support::{gpu, Render};
-use graph_core::gpu::Gpu;
+use rgraph_core::gpu::Gpu;
 use rgraph_passes::gpu_scene::{view_projection, GpuScene};
 use rgraph_scene::glam::{DMat4, DQuat, DVec3, DVec4};
 use rgraph_scene::{

@@ -2,7 +2,7 @@
 //! a test: an animated sequence through one executor whose frames after the first
 //! allocate nothing and create no device object, while the image does change.
 
-use graph_core::gpu::DeviceObjects;
+use rgraph_core::gpu::DeviceObjects;
 
 use crate::deferred_support::gpu;
 use crate::engine_integration::{animate, FrameStats, SIZE};

@@ -23,7 +23,7 @@ use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
-use graph_core::gpu::Gpu;
+use rgraph_core::gpu::Gpu;
 use rgraph_scene::glam::{DMat4, DQuat, DVec3};
 use rgraph_scene::{Camera, Mesh, Projection, Scene, Vertex};
 

@@ -325,9 +325,9 @@ fn the_tonemapped_resolve_beats_box_on_high_contrast_edges() {
 /// and maps it to white, where inf / inf would have made NaN. Texels: +Inf, 65504, 1, 0.
 #[test]
 fn tone_mapping_maps_an_infinite_hdr_texel_to_white() {
-    use graph_core::file::{load_str, Registry};
-    use graph_core::gpu::{read_rgba8, Executor, Imports};
-    use graph_core::{CompileOptions, CompiledGraph};
+    use rgraph_core::file::{load_str, Registry};
+    use rgraph_core::gpu::{read_rgba8, Executor, Imports};
+    use rgraph_core::{CompileOptions, CompiledGraph};
 
     let gpu = gpu();
     let hdr = gpu.device.create_texture(&wgpu::TextureDescriptor {

@@ -25,7 +25,7 @@ use crate::deferred_support;
 
 use deferred_support::scenes::Parts;
 use deferred_support::{gpu, Render};
-use graph_core::gpu::Gpu;
+use rgraph_core::gpu::Gpu;
 use rgraph_scene::glam::DVec3;
 use rgraph_scene::{Camera, Light, Projection, Scene};
 

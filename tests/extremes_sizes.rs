@@ -21,9 +21,9 @@ use std::path::Path;
 use std::sync::Arc;
 
 use deferred_support::{gpu, Render};
-use graph_core::file::{load_file_with, GraphParams, Registry};
-use graph_core::gpu::Gpu;
-use graph_core::CompileOptions;
+use rgraph_core::file::{load_file_with, GraphParams, Registry};
+use rgraph_core::gpu::Gpu;
+use rgraph_core::CompileOptions;
 use rgraph_passes::{Host, Overrides};
 use rgraph_scene::Scene;
 
@@ -129,7 +129,7 @@ fn compile_error(gpu: &Gpu, size: (u32, u32), samples: u32) -> String {
 
 /// A zero width or height is refused by `rgraph render` (exit 2, naming the flag) before
 /// anything renders, with the default deferred pipeline. (Through the library a zero
-/// output size is not an error: graph-core's `Size::resolve` makes every relative texture
+/// output size is not an error: rgraph-core's `Size::resolve` makes every relative texture
 /// at least 1 texel, so the frame renders 1 pixel wide; the command line is the guard.)
 #[test]
 fn a_zero_size_is_a_clear_error() {

@@ -29,7 +29,7 @@ use crate::deferred_support;
 use crate::deferred_support::measure;
 
 use deferred_support::{gpu, Render};
-use graph_core::gpu::Gpu;
+use rgraph_core::gpu::Gpu;
 
 const SIZE: (u32, u32) = (64, 64);
 const SWEEP: [f32; 10] = [0.0, 1e-4, 1e-3, 3e-3, 0.01, 0.03, 0.1, 0.3, 0.6, 1.0];

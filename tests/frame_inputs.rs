@@ -4,7 +4,7 @@
 //! second frame creates no texture, buffer, pipeline or shader module. A new output size
 //! is a recompile instead: one plan more, new targets, still no pipeline.
 
-use graph_core::gpu::DeviceObjects;
+use rgraph_core::gpu::DeviceObjects;
 use rgraph_passes::{Exposure, FrameInputs, Overrides};
 use rgraph_scene::glam::{DMat4, DQuat, DVec3};
 use rgraph_scene::Scene;

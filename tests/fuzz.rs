@@ -9,8 +9,8 @@ use crate::fuzz_support;
 use std::path::PathBuf;
 
 use fuzz_support::{fuzz, iterations, seeds};
-use graph_core::file::{load_str, Registry};
-use graph_core::{explain, CompileOptions};
+use rgraph_core::file::{load_str, Registry};
+use rgraph_core::{explain, CompileOptions};
 use rgraph_scene::analysis::Analysis;
 use rgraph_scene::{AssetPolicy, Scene};
 

@@ -8,11 +8,11 @@ use common::{
     bind_group, compile, compute_pipeline, gpu, render_pipeline, render_pipeline_with,
     FULLSCREEN_VS, SIZE,
 };
-use graph_core::gpu::{
+use rgraph_core::gpu::{
     read_rgba8, read_texture, AdapterChoice, DeviceError, ExecuteError, Executor, Gpu, ImportError,
     Imports, ReadbackError, KEEP_FRAMES,
 };
-use graph_core::{
+use rgraph_core::{
     Aspect, AspectAccess, BufferDesc, BufferHandle, BufferRole, ColorLoad, CompileOptions,
     CompiledGraph, Features, Graph, GraphBuilder, Size, TextureDesc, TextureHandle,
 };
@@ -471,7 +471,7 @@ fn the_pool_reuses_everything_from_the_second_frame_on() {
         plan.resource(first.id()).physical,
         plan.resource(third.id()).physical,
         "{}",
-        graph_core::explain::text(plan)
+        rgraph_core::explain::text(plan)
     );
     assert_eq!(plan.textures.len(), 3);
     assert_eq!(plan.buffers.len(), 1);
@@ -632,7 +632,7 @@ fn a_missing_or_mismatched_import_is_a_clear_error() {
 /// "target"; the callback of "light tiled" looks up what `lookup` returns of the handles
 /// of "hdr" (version 0, 1) and of another texture, "other", that the pass does not use.
 fn lookup_graph(
-    lookup: impl Fn(&graph_core::gpu::FrameResources<'_>, [TextureHandle; 3]) + 'static,
+    lookup: impl Fn(&rgraph_core::gpu::FrameResources<'_>, [TextureHandle; 3]) + 'static,
 ) -> Graph {
     let mut g = GraphBuilder::new();
     let hdr = g.create_texture("hdr", tex(TextureFormat::Rgba16Float));
@@ -800,7 +800,7 @@ fn an_unknown_adapter_is_an_error_listing_the_available_ones() {
 #[test]
 fn the_default_adapter_is_listed_with_its_sample_counts() {
     let gpu = gpu();
-    let adapters = graph_core::gpu::list_adapters();
+    let adapters = rgraph_core::gpu::list_adapters();
     let listed = adapters
         .iter()
         .find(|a| a.info.name == gpu.info.name)

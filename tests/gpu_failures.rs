@@ -8,8 +8,8 @@
 //! out, so `Device::destroy` stands in for the loss (wgpu reports it through the same
 //! device-lost callback, reason `Destroyed` instead of `Unknown`).
 
-use graph_core::gpu::{read_texture, ExecuteError, Executor, Imports, LostAt};
-use graph_core::{ColorLoad, GraphBuilder, Size, TextureDesc};
+use rgraph_core::gpu::{read_texture, ExecuteError, Executor, Imports, LostAt};
+use rgraph_core::{ColorLoad, GraphBuilder, Size, TextureDesc};
 use wgpu::TextureFormat;
 
 use crate::common::{compile, gpu, SIZE};

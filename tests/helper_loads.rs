@@ -11,7 +11,7 @@
 //! what material_bound.wgsl does) never read a loaded value in another lane. Run with
 //! `--nocapture` to see whether the driver at hand has the bug (Mesa 25.0.7 has not).
 
-use graph_core::gpu::read_rgba8;
+use rgraph_core::gpu::read_rgba8;
 use wgpu::util::DeviceExt;
 
 use crate::common::{bind_group, gpu, render_pipeline};

@@ -5,7 +5,7 @@
 //! bound on the built-in scenes, whose coloured lights and metals its one specular
 //! channel approximates.
 
-use graph_core::file::{load_str_with, GraphParams, Registry};
+use rgraph_core::file::{load_str_with, GraphParams, Registry};
 use rgraph_scene::glam::{DVec3, Vec3};
 use rgraph_scene::{Camera, Light, LightKind, Projection, Scene};
 

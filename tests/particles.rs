@@ -7,9 +7,9 @@
 
 use crate::deferred_support::scenes::Parts;
 use crate::deferred_support::{gpu, Image, Render};
-use graph_core::file::{load_file_with, load_str_with, GraphParams, Registry};
-use graph_core::gpu::Gpu;
-use graph_core::CompileOptions;
+use rgraph_core::file::{load_file_with, load_str_with, GraphParams, Registry};
+use rgraph_core::gpu::Gpu;
+use rgraph_core::CompileOptions;
 use rgraph_scene::glam::DVec3;
 use rgraph_scene::{Camera, Particle, ParticleEmitter, Projection, Scene};
 
@@ -368,7 +368,7 @@ fn mixed_resolution_is_closer_to_full_resolution_than_low_resolution() {
 }
 
 /// The particle pipelines loaded with `params`, declared only (no host).
-fn load(pipeline: &str, params: &[(&str, u32)]) -> Result<graph_core::file::LoadedGraph, String> {
+fn load(pipeline: &str, params: &[(&str, u32)]) -> Result<rgraph_core::file::LoadedGraph, String> {
     let mut registry = Registry::with_builtins();
     rgraph_passes::register(&mut registry, None);
     let params = params
@@ -453,7 +453,7 @@ fn explain_shows_the_off_screen_passes_at_their_size() {
             ..Default::default()
         })
         .unwrap();
-    let text = graph_core::explain::text(&plan);
+    let text = rgraph_core::explain::text(&plan);
     // The depth downsample is a compute pass, dispatched over its output's size.
     assert!(text.contains(". depth downsample (compute)\n"), "{text}");
     for pass in ["particles (off screen)", "particle edges"] {

@@ -5,9 +5,9 @@
 
 use std::path::PathBuf;
 
-use graph_core::file::{load_str_with, GraphParams, Registry};
-use graph_core::gpu::{read_rgba8, Executor, Imports};
-use graph_core::{CompileOptions, CompiledGraph};
+use rgraph_core::file::{load_str_with, GraphParams, Registry};
+use rgraph_core::gpu::{read_rgba8, Executor, Imports};
+use rgraph_core::{CompileOptions, CompiledGraph};
 
 use crate::deferred_support::measure::pixels_within;
 use crate::deferred_support::{gpu, srgb8, Render};

@@ -7,7 +7,7 @@
 
 use std::f64::consts::PI;
 
-use graph_core::file::{load_str_with, GraphParams, Registry};
+use rgraph_core::file::{load_str_with, GraphParams, Registry};
 use rgraph_scene::glam::{DMat4, DVec3, DVec4};
 use rgraph_scene::{Camera, DepthConvention, Projection, Scene};
 

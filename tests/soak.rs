@@ -31,9 +31,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
 
-use graph_core::file::{load_file_with, GraphParams, Registry};
-use graph_core::gpu::{resident_bytes, DeviceObjects, Executor, Gpu, Imports};
-use graph_core::{CompileOptions, CompiledGraph, Origin, ResourceId};
+use rgraph_core::file::{load_file_with, GraphParams, Registry};
+use rgraph_core::gpu::{resident_bytes, DeviceObjects, Executor, Gpu, Imports};
+use rgraph_core::{CompileOptions, CompiledGraph, Origin, ResourceId};
 use rgraph_passes::{FrameInputs, Host, Overrides};
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::{Lighting, Scene};

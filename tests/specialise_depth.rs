@@ -16,9 +16,9 @@ use crate::deferred_support;
 
 use deferred_support::measure::{diff, Diff};
 use deferred_support::{gpu, Image, Render};
-use graph_core::gpu::Gpu;
-use graph_core::types::TextureFormat as F;
-use graph_core::{Features, Load, Plan};
+use rgraph_core::gpu::Gpu;
+use rgraph_core::types::TextureFormat as F;
+use rgraph_core::{Features, Load, Plan};
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::{Projection, Scene};
 

@@ -5,7 +5,7 @@
 
 use std::process::Command;
 
-use graph_core::file::{load_str, FileErrors, Registry};
+use rgraph_core::file::{load_str, FileErrors, Registry};
 
 const PIPELINE: &str = "pipelines/deferred_msaa_4x.ron";
 

@@ -7,7 +7,7 @@ use crate::deferred_support;
 
 use deferred_support::measure::diff;
 use deferred_support::{gpu, Render};
-use graph_core::Features;
+use rgraph_core::Features;
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::Scene;
 

@@ -7,8 +7,8 @@ use crate::deferred_support;
 
 use deferred_support::measure::diff;
 use deferred_support::{gpu, Render};
-use graph_core::file::{load_file, Registry};
-use graph_core::{CompileOptions, Features, Plan, PlanCache};
+use rgraph_core::file::{load_file, Registry};
+use rgraph_core::{CompileOptions, Features, Plan, PlanCache};
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::glam::DVec3;
 use rgraph_scene::Scene;

@@ -6,8 +6,8 @@
 use crate::deferred_support;
 
 use deferred_support::{gpu, Render};
-use graph_core::file::{load_file, LoadedGraph, Registry};
-use graph_core::CompileOptions;
+use rgraph_core::file::{load_file, LoadedGraph, Registry};
+use rgraph_core::CompileOptions;
 use rgraph_passes::variant::{shader_variants, GatedShader, Variant, Variants};
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::Scene;

@@ -6,7 +6,7 @@
 //! tile by tile, one key of depth and ID per sample in a buffer), against the same
 //! coverage and the hardware's raster.
 
-use graph_core::Features;
+use rgraph_core::Features;
 use rgraph_passes::{Exposure, Overrides};
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::glam::{DMat4, DVec3};
@@ -487,7 +487,7 @@ fn the_compute_raster_follows_a_resize() {
 #[test]
 fn a_frame_reports_the_buffers_its_passes_keep() {
     let gpu = gpu();
-    let held = |report: &graph_core::gpu::FrameReport, pass: &str| {
+    let held = |report: &rgraph_core::gpu::FrameReport, pass: &str| {
         let timing = report.passes.iter().find(|p| p.name == pass);
         timing
             .unwrap_or_else(|| panic!("no pass {pass:?}"))

@@ -21,8 +21,8 @@ use crate::plan_cache::{Compile, PlanCache, PlanKey};
 /// [`PlanCache`], so going back to one recompiles nothing.
 ///
 /// ```no_run
-/// # use graph_core::{CompileOptions, CompiledGraph, GraphBuilder};
-/// # use graph_core::gpu::{AdapterChoice, Executor, Gpu, Imports};
+/// # use rgraph_core::{CompileOptions, CompiledGraph, GraphBuilder};
+/// # use rgraph_core::gpu::{AdapterChoice, Executor, Gpu, Imports};
 /// # let gpu = Gpu::open(&AdapterChoice::from_env()).unwrap();
 /// # let mut executor = Executor::new(&gpu);
 /// let graph_a = GraphBuilder::new().build();
@@ -33,8 +33,8 @@ use crate::plan_cache::{Compile, PlanCache, PlanKey};
 /// A plan cannot be executed with another graph: there is no way to pass one.
 ///
 /// ```compile_fail
-/// # use graph_core::{CompileOptions, CompiledGraph, GraphBuilder};
-/// # use graph_core::gpu::{AdapterChoice, Executor, Gpu, Imports};
+/// # use rgraph_core::{CompileOptions, CompiledGraph, GraphBuilder};
+/// # use rgraph_core::gpu::{AdapterChoice, Executor, Gpu, Imports};
 /// # let gpu = Gpu::open(&AdapterChoice::from_env()).unwrap();
 /// # let mut executor = Executor::new(&gpu);
 /// let graph_a = GraphBuilder::new().build();
@@ -46,7 +46,7 @@ use crate::plan_cache::{Compile, PlanCache, PlanKey};
 /// Nor can another graph take the place of the one a plan was compiled from:
 ///
 /// ```compile_fail
-/// # use graph_core::{CompileOptions, CompiledGraph, GraphBuilder};
+/// # use rgraph_core::{CompileOptions, CompiledGraph, GraphBuilder};
 /// let graph_a = GraphBuilder::new().build();
 /// let graph_b = GraphBuilder::new().build();
 /// let mut compiled_a = CompiledGraph::new(graph_a, &CompileOptions::default()).unwrap();

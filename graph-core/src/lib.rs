@@ -22,8 +22,8 @@
 //! all follow from these declarations.
 //!
 //! ```
-//! use graph_core::types::{TextureFormat, TextureUsages};
-//! use graph_core::{ColorLoad, CompileOptions, GraphBuilder, Load, TextureDesc};
+//! use rgraph_core::types::{TextureFormat, TextureUsages};
+//! use rgraph_core::{ColorLoad, CompileOptions, GraphBuilder, Load, TextureDesc};
 //!
 //! let mut g = GraphBuilder::new();
 //! let hdr = g.create_texture("hdr", TextureDesc::new(TextureFormat::Rgba16Float));
@@ -54,7 +54,7 @@
 //! assert_eq!(usage, TextureUsages::RENDER_ATTACHMENT | TextureUsages::TEXTURE_BINDING);
 //! // The scene's clear is its load operation.
 //! assert!(matches!(plan.passes[0].color[0].ops.load, Load::Clear(_)));
-//! # Ok::<(), graph_core::GraphErrors>(())
+//! # Ok::<(), rgraph_core::GraphErrors>(())
 //! ```
 //!
 //! Mistakes are not panics: declaring records them and [`Graph::compile`] returns them
@@ -69,9 +69,9 @@
 //! own.
 //!
 //! ```no_run
-//! use graph_core::gpu::{read_rgba8, AdapterChoice, Executor, Gpu, Imports};
-//! use graph_core::types::TextureFormat;
-//! use graph_core::{ColorLoad, CompileOptions, CompiledGraph, GraphBuilder, TextureDesc};
+//! use rgraph_core::gpu::{read_rgba8, AdapterChoice, Executor, Gpu, Imports};
+//! use rgraph_core::types::TextureFormat;
+//! use rgraph_core::{ColorLoad, CompileOptions, CompiledGraph, GraphBuilder, TextureDesc};
 //!
 //! let gpu = Gpu::open(&AdapterChoice::from_env())?;
 //! let mut g = GraphBuilder::new();

@@ -1,11 +1,11 @@
 //! A graph bound to its plans: recompiling for another output size caches each plan, a
 //! failed recompile keeps the plan that was current, and the graph comes back unbound.
 
-use graph_core::types::TextureFormat::Rgba8Unorm;
-use graph_core::{ColorLoad, CompileOptions, CompiledGraph, Features, GraphBuilder, TextureDesc};
+use rgraph_core::types::TextureFormat::Rgba8Unorm;
+use rgraph_core::{ColorLoad, CompileOptions, CompiledGraph, Features, GraphBuilder, TextureDesc};
 
 /// One output-sized target, cleared and exported.
-fn graph() -> graph_core::Graph {
+fn graph() -> rgraph_core::Graph {
     let mut g = GraphBuilder::new();
     let target = g.create_texture("target", TextureDesc::new(Rgba8Unorm));
     let out = g

@@ -5,9 +5,9 @@
 
 use crate::ron_support;
 
-use graph_core::file::{load_str, Registry};
-use graph_core::types::{Features as DeviceFeatures, TextureFormat as F};
-use graph_core::{
+use rgraph_core::file::{load_str, Registry};
+use rgraph_core::types::{Features as DeviceFeatures, TextureFormat as F};
+use rgraph_core::{
     explain, AspectAccess, ByFormat, CompileOptions, Condition, DeviceProfile, Features,
     GraphBuilder, GraphError, Load, Plan, Size, TextureDesc,
 };
@@ -24,7 +24,7 @@ fn far(format: F) -> f32 {
 
 /// A depth prepass over a depth-stencil declared as `depth32float-stencil8` with the
 /// `depth24plus-stencil8` fallback, and `depth24plus-stencil8` where `shallow` holds.
-fn graph() -> graph_core::Graph {
+fn graph() -> rgraph_core::Graph {
     let mut g = GraphBuilder::new();
     g.declare_features(["shallow"]);
     let depth = g.create_texture(

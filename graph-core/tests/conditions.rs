@@ -4,8 +4,8 @@
 use crate::common;
 
 use common::{tex, CLEAR};
-use graph_core::types::TextureFormat::{Rgba16Float, Rgba8Unorm};
-use graph_core::{
+use rgraph_core::types::TextureFormat::{Rgba16Float, Rgba8Unorm};
+use rgraph_core::{
     explain, ColorLoad, CompileOptions, Condition, Features, Graph, GraphBuilder, GraphError, Plan,
 };
 

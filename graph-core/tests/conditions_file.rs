@@ -4,8 +4,8 @@
 
 use crate::ron_support;
 
-use graph_core::file::{load_str, validate_file, ErrorKind, FileErrors, Registry};
-use graph_core::{CompileOptions, Features, GraphError, Plan, PlanCache};
+use rgraph_core::file::{load_str, validate_file, ErrorKind, FileErrors, Registry};
+use rgraph_core::{CompileOptions, Features, GraphError, Plan, PlanCache};
 use ron_support::{assert_error, only_error};
 
 const PATH: &str = "tests/fixtures/inline.ron";
@@ -38,7 +38,7 @@ fn valid() -> String {
     graph("rings", "!night").replace(r#", when: "!night | rings""#, "")
 }
 
-fn load(text: &str) -> Result<graph_core::file::LoadedGraph, FileErrors> {
+fn load(text: &str) -> Result<rgraph_core::file::LoadedGraph, FileErrors> {
     load_str(PATH, text, &ron_support::registry())
 }
 
@@ -257,11 +257,11 @@ outputs: ["hdr"],
 }
 
 /// Each device condition, and a profile of a device that sets it.
-fn device_conditions() -> [(&'static str, graph_core::DeviceProfile); 2] {
-    let mut atomics = graph_core::DeviceProfile::webgpu();
-    atomics.features = graph_core::types::Features::SHADER_INT64
-        | graph_core::types::Features::SHADER_INT64_ATOMIC_MIN_MAX;
-    let mut cpu = graph_core::DeviceProfile::webgpu();
+fn device_conditions() -> [(&'static str, rgraph_core::DeviceProfile); 2] {
+    let mut atomics = rgraph_core::DeviceProfile::webgpu();
+    atomics.features = rgraph_core::types::Features::SHADER_INT64
+        | rgraph_core::types::Features::SHADER_INT64_ATOMIC_MIN_MAX;
+    let mut cpu = rgraph_core::DeviceProfile::webgpu();
     cpu.cpu = true;
     [("int64_atomics", atomics), ("cpu_device", cpu)]
 }

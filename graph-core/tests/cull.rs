@@ -4,8 +4,8 @@
 use crate::common;
 
 use common::{clear_pass, plan, tex, CLEAR};
-use graph_core::types::TextureFormat::Rgba8Unorm;
-use graph_core::{ColorLoad, GraphBuilder, Plan};
+use rgraph_core::types::TextureFormat::Rgba8Unorm;
+use rgraph_core::{ColorLoad, GraphBuilder, Plan};
 
 fn culled(plan: &Plan) -> Vec<(&str, &str)> {
     plan.culled

@@ -3,8 +3,8 @@
 use crate::common;
 
 use common::{plan, tex, CLEAR};
-use graph_core::types::TextureFormat::Rgba8Unorm;
-use graph_core::{ColorLoad, GraphBuilder};
+use rgraph_core::types::TextureFormat::Rgba8Unorm;
+use rgraph_core::{ColorLoad, GraphBuilder};
 
 #[test]
 fn a_resource_lives_from_its_first_to_its_last_use() {

@@ -4,8 +4,8 @@
 use crate::common;
 
 use common::{plan, tex, CLEAR};
-use graph_core::types::TextureFormat::{Depth24PlusStencil8, Depth32Float, Rgba8Unorm};
-use graph_core::{
+use rgraph_core::types::TextureFormat::{Depth24PlusStencil8, Depth32Float, Rgba8Unorm};
+use rgraph_core::{
     AspectAccess, ColorAttachment, ColorLoad, DepthStencilAttachment, GraphBuilder, Load, Ops,
     Plan, Store,
 };
@@ -193,7 +193,7 @@ fn an_overwrite_begins_a_texture_without_clearing_it() {
             store: Store::Store,
         })
     );
-    let explained = graph_core::explain::text(&plan);
+    let explained = rgraph_core::explain::text(&plan);
     assert!(
         explained.contains("depth-stencil: depth depth overwrite (not cleared) -> store"),
         "{explained}"

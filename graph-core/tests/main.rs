@@ -1,4 +1,4 @@
-//! graph-core's tests, one binary: compiling graphs built in code and loaded from RON,
+//! rgraph-core's tests, one binary: compiling graphs built in code and loaded from RON,
 //! and the properties every compiled plan keeps.
 
 mod common;

@@ -4,11 +4,11 @@
 use crate::common;
 
 use common::{plan, tex, CLEAR};
-use graph_core::types::Features;
-use graph_core::types::TextureFormat::{
+use rgraph_core::types::Features;
+use rgraph_core::types::TextureFormat::{
     Bc1RgbaUnorm, Depth24PlusStencil8, Rgba16Float, Rgba8Unorm,
 };
-use graph_core::{
+use rgraph_core::{
     BufferDesc, BufferRole, CompileOptions, DeviceProfile, GraphBuilder, MemoryReport, Plan, Size,
     TextureDesc,
 };

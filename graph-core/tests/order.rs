@@ -5,8 +5,8 @@
 use crate::common;
 
 use common::{clear_pass, errors, plan, tex, CLEAR};
-use graph_core::types::TextureFormat::Rgba8Unorm;
-use graph_core::{ColorLoad, GraphBuilder, GraphError, Plan};
+use rgraph_core::types::TextureFormat::Rgba8Unorm;
+use rgraph_core::{ColorLoad, GraphBuilder, GraphError, Plan};
 
 fn names(plan: &Plan) -> Vec<&str> {
     plan.passes.iter().map(|p| p.name.as_str()).collect()

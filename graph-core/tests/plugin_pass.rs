@@ -1,10 +1,10 @@
 //! Plugin passes declared from code go through the same slot checks as graph files and
 //! yield the versions they write.
 
-use graph_core::file::{PluginError, PluginPassError};
-use graph_core::plugins::{Blit, BlitParams, Clear, ClearParams, Fullscreen, FullscreenParams};
-use graph_core::types::TextureFormat;
-use graph_core::{CompileOptions, GraphBuilder, TextureDesc};
+use rgraph_core::file::{PluginError, PluginPassError};
+use rgraph_core::plugins::{Blit, BlitParams, Clear, ClearParams, Fullscreen, FullscreenParams};
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{CompileOptions, GraphBuilder, TextureDesc};
 
 fn clear_params() -> ClearParams {
     ron::from_str("(color: (0.25, 0.5, 0.75, 1.0))").expect("clear params")
@@ -128,25 +128,25 @@ fn a_slot_the_plugin_does_not_take_is_an_error() {
 /// Answers `Slots::modifies` for its slots as it sets up, copying `src` to `dst`.
 struct ModifiesProbe(std::sync::Mutex<Vec<(&'static str, bool)>>);
 
-impl graph_core::file::Plugin for ModifiesProbe {
+impl rgraph_core::file::Plugin for ModifiesProbe {
     const NAME: &'static str = "modifies_probe";
     type Params = ();
 
-    fn kind(&self, _: &()) -> graph_core::PassKind {
-        graph_core::PassKind::Transfer
+    fn kind(&self, _: &()) -> rgraph_core::PassKind {
+        rgraph_core::PassKind::Transfer
     }
 
     fn setup(
         &self,
         _: (),
-        pass: &mut graph_core::PassBuilder<'_>,
-        slots: &mut graph_core::file::Slots<'_>,
+        pass: &mut rgraph_core::PassBuilder<'_>,
+        slots: &mut rgraph_core::file::Slots<'_>,
     ) -> Result<(), PluginError> {
         let answers = ["src", "dst", "absent"].map(|slot| (slot, slots.modifies(slot)));
         self.0.lock().unwrap().extend(answers);
-        let src = slots.input::<graph_core::Texture>("src")?;
+        let src = slots.input::<rgraph_core::Texture>("src")?;
         pass.copy_src(src);
-        slots.write::<graph_core::Texture>("dst", |t| pass.copy_dst(t.handle))?;
+        slots.write::<rgraph_core::Texture>("dst", |t| pass.copy_dst(t.handle))?;
         Ok(())
     }
 }

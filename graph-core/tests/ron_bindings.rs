@@ -3,7 +3,7 @@
 
 use crate::ron_support;
 
-use graph_core::file::{ErrorKind, PluginError};
+use rgraph_core::file::{ErrorKind, PluginError};
 use ron_support::{assert_error, compile_str, only_error};
 
 const PATH: &str = "tests/fixtures/inline.ron";

@@ -3,8 +3,8 @@
 
 use crate::ron_support;
 
-use graph_core::file::ErrorKind;
-use graph_core::GraphError;
+use rgraph_core::file::ErrorKind;
+use rgraph_core::GraphError;
 use ron_support::{assert_error, compile_file, only_error};
 
 fn fixture(name: &str) -> String {
@@ -182,7 +182,7 @@ fn parser_messages_do_not_leak_ron_s_api() {
 #[test]
 fn a_shader_s_byte_order_mark_is_skipped() {
     let source = "\u{feff}@compute @workgroup_size(1) fn main() {}";
-    graph_core::shader::Shader::parse("bom.wgsl", source).unwrap_or_else(|e| panic!("{e}"));
+    rgraph_core::shader::Shader::parse("bom.wgsl", source).unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[cfg(unix)]
@@ -217,8 +217,8 @@ fn a_shader_path_to_a_device_or_fifo_is_refused_without_reading() {
     outputs: ["c"],
 )"#
         );
-        let registry = graph_core::file::Registry::with_builtins();
-        let errors = graph_core::file::load_str(&graph, &text, &registry)
+        let registry = rgraph_core::file::Registry::with_builtins();
+        let errors = rgraph_core::file::load_str(&graph, &text, &registry)
             .map(drop)
             .expect_err("the shader is refused");
         let error = only_error(Err(errors));

@@ -4,8 +4,8 @@
 
 use crate::ron_support;
 
-use graph_core::file::{load_str, ErrorKind, Registry};
-use graph_core::{CompileOptions, GraphError};
+use rgraph_core::file::{load_str, ErrorKind, Registry};
+use rgraph_core::{CompileOptions, GraphError};
 use ron_support::{assert_error, compile_str, only_error};
 
 const PATH: &str = "tests/fixtures/inline.ron";

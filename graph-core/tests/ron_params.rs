@@ -3,10 +3,10 @@
 //! two defaults for one name are errors at their place in the file. So do a size
 //! `Divided(Param(..))` and a `Param(..)` in a pass's plugin parameters.
 
-use graph_core::file::{
+use rgraph_core::file::{
     declared_params, load_str, load_str_with, ErrorKind, GraphParams, Registry,
 };
-use graph_core::CompileOptions;
+use rgraph_core::CompileOptions;
 
 /// A color and a depth target cleared, their sample count one parameter (line 3 holds the
 /// first use, line 4 the second), and a single-sampled "out".
@@ -34,8 +34,8 @@ fn samples(params: &GraphParams) -> Vec<(String, u32)> {
         .resources()
         .iter()
         .filter_map(|r| match &r.desc {
-            graph_core::ResourceDesc::Texture(t) => Some((r.name.clone(), t.samples)),
-            graph_core::ResourceDesc::Buffer(_) => None,
+            rgraph_core::ResourceDesc::Texture(t) => Some((r.name.clone(), t.samples)),
+            rgraph_core::ResourceDesc::Buffer(_) => None,
         })
         .collect()
 }
@@ -165,7 +165,7 @@ const DIVIDED: &str = r#"Graph(
     outputs: ["small", "depth", "third"],
 )"#;
 
-fn divided(params: &GraphParams) -> (Vec<graph_core::Size>, u32) {
+fn divided(params: &GraphParams) -> (Vec<rgraph_core::Size>, u32) {
     let loaded = load_str_with(PATH, DIVIDED, &Registry::with_builtins(), params)
         .unwrap_or_else(|e| panic!("{e}"));
     let sizes = loaded
@@ -173,16 +173,16 @@ fn divided(params: &GraphParams) -> (Vec<graph_core::Size>, u32) {
         .resources()
         .iter()
         .filter_map(|r| match &r.desc {
-            graph_core::ResourceDesc::Texture(t) => Some(t.size),
-            graph_core::ResourceDesc::Buffer(_) => None,
+            rgraph_core::ResourceDesc::Texture(t) => Some(t.size),
+            rgraph_core::ResourceDesc::Buffer(_) => None,
         })
         .collect();
     let stencil = loaded.graph.passes()[1]
         .accesses
         .iter()
         .find_map(|a| match a.role {
-            graph_core::Role::Texture(graph_core::TextureRole::DepthStencil {
-                stencil: graph_core::AspectAccess::Clear(v),
+            rgraph_core::Role::Texture(rgraph_core::TextureRole::DepthStencil {
+                stencil: rgraph_core::AspectAccess::Clear(v),
                 ..
             }) => Some(v),
             _ => None,
@@ -193,7 +193,7 @@ fn divided(params: &GraphParams) -> (Vec<graph_core::Size>, u32) {
 
 #[test]
 fn a_size_divided_by_a_parameter_and_a_plugin_parameter_take_their_values() {
-    use graph_core::Size::Relative;
+    use rgraph_core::Size::Relative;
     let (sizes, stencil) = divided(&GraphParams::new());
     assert_eq!(sizes, [Relative(0.5), Relative(1.0 / 3.0), Relative(1.0)]);
     assert_eq!(stencil, 7);
@@ -212,7 +212,7 @@ fn a_size_divided_by_a_parameter_and_a_plugin_parameter_take_their_values() {
             ..Default::default()
         })
         .unwrap_or_else(|e| panic!("{e}"));
-    let text = graph_core::explain::text(&plan);
+    let text = rgraph_core::explain::text(&plan);
     assert!(text.contains("320x180"), "{text}");
     assert!(text.contains("213x120"), "{text}");
 }

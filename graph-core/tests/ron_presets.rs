@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use graph_core::file::{declared_params, load_file, ErrorKind, GraphParams, Registry};
-use graph_core::CompileOptions;
+use rgraph_core::file::{declared_params, load_file, ErrorKind, GraphParams, Registry};
+use rgraph_core::CompileOptions;
 
 /// Two clears of "a" (the second modifies the first's version, so it reads it) and a
 /// clear of "b" of another sample count parameter.
@@ -143,6 +143,6 @@ fn a_preset_gives_the_base_s_parameters_values_that_a_loader_s_replace() {
         GraphParams::new().with("msaa", 1)
     );
     let given = GraphParams::new().with("msaa", 8);
-    let loaded = graph_core::file::load_file_with(&path, &registry, &given).unwrap();
+    let loaded = rgraph_core::file::load_file_with(&path, &registry, &given).unwrap();
     assert_eq!(loaded.params(), &given);
 }

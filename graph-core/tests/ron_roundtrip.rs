@@ -3,9 +3,9 @@
 
 use crate::ron_support;
 
-use graph_core::file::load_file;
-use graph_core::types::TextureFormat;
-use graph_core::{ColorLoad, CompileOptions, Graph, GraphBuilder, Plan, TextureDesc, Workgroup};
+use rgraph_core::file::load_file;
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{ColorLoad, CompileOptions, Graph, GraphBuilder, Plan, TextureDesc, Workgroup};
 
 fn plan_json(plan: &Plan) -> serde_json::Value {
     serde_json::to_value(plan).expect("plans serialize")

@@ -6,8 +6,8 @@
 
 use std::path::{Path, PathBuf};
 
-use graph_core::file::{load_file, load_str, validate_file, FileErrors, Registry};
-use graph_core::CompileOptions;
+use rgraph_core::file::{load_file, load_str, validate_file, FileErrors, Registry};
+use rgraph_core::CompileOptions;
 
 /// What the planted files outside the graph's folder hold: no error may show it.
 const SECRET: &str = "SECRET-7f3a";

@@ -3,7 +3,7 @@
 
 use std::time::{Duration, Instant};
 
-use graph_core::file::{load_str, Registry};
+use rgraph_core::file::{load_str, Registry};
 
 /// A chain of `n` copy passes from an imported texture through `n` more, each name on its own line, or all on
 /// one line (as a minified file would be).

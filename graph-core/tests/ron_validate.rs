@@ -1,8 +1,8 @@
 //! The validation calls build scripts and CI use: whole directories of graph files and
 //! shaders, every error of every file reported.
 
-use graph_core::file::{validate_dir, validate_shader, ErrorKind, Registry};
-use graph_core::CompileOptions;
+use rgraph_core::file::{validate_dir, validate_shader, ErrorKind, Registry};
+use rgraph_core::CompileOptions;
 
 /// The repository's own pipelines need the deferred plugins too; the root package's
 /// build script and `tests/cli_validate.rs` check those.

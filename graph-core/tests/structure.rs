@@ -1,4 +1,4 @@
-//! graph-core's structure: its modules import in one direction, from the layers of
+//! rgraph-core's structure: its modules import in one direction, from the layers of
 //! [`LAYERS`] down, and no files import each other in a loop (the check is
 //! structure_check.rs, which rgraph-scene's and rgraph-passes' tests share).
 
@@ -7,7 +7,7 @@ use std::path::Path;
 
 use crate::structure_check::{check, edges, sources, Layers};
 
-/// graph-core's top-level modules, bottom layer first. A module may import from its own
+/// rgraph-core's top-level modules, bottom layer first. A module may import from its own
 /// layer and the layers below; within a layer, files must not import each other in a
 /// loop. `lib.rs`, the crate's face, declares and re-exports them all and is not checked.
 const LAYERS: Layers<'_> = &[
@@ -64,7 +64,7 @@ fn graph_core_imports_run_down_the_layers_without_cycles() {
     let problems = check(&files, LAYERS);
     assert!(
         problems.is_empty(),
-        "graph-core's structure (graph-core/tests/structure.rs):\n{}",
+        "rgraph-core's structure (graph-core/tests/structure.rs):\n{}",
         problems.join("\n")
     );
 }

@@ -3,9 +3,9 @@
 use crate::common;
 
 use common::{plan, tex, CLEAR};
-use graph_core::types::TextureFormat::{Depth24PlusStencil8, Rgba16Float, Rgba8Unorm};
-use graph_core::types::{BufferUsages, TextureUsages};
-use graph_core::{
+use rgraph_core::types::TextureFormat::{Depth24PlusStencil8, Rgba16Float, Rgba8Unorm};
+use rgraph_core::types::{BufferUsages, TextureUsages};
+use rgraph_core::{
     AspectAccess, BufferDesc, BufferRole, ColorLoad, CompileOptions, DeviceProfile, Graph,
     GraphBuilder, Plan,
 };

@@ -3,15 +3,15 @@
 use crate::common;
 
 use common::{only_error, tex, CLEAR};
-use graph_core::types::TextureFormat::{
+use rgraph_core::types::TextureFormat::{
     Depth24PlusStencil8, Depth32Float, R32Float, R8Unorm, Rgba16Float, Rgba8Unorm,
 };
-use graph_core::{
+use rgraph_core::{
     AspectAccess, CompileOptions, DeviceProfile, GraphBuilder, GraphError, Size, TextureDesc,
 };
 
 /// A graph whose pass "gbuffer" writes one color target per format, named "rt0", "rt1", ...
-fn mrt(formats: &[graph_core::types::TextureFormat]) -> graph_core::Graph {
+fn mrt(formats: &[rgraph_core::types::TextureFormat]) -> rgraph_core::Graph {
     let mut g = GraphBuilder::new();
     let targets: Vec<_> = (0..formats.len())
         .map(|i| g.create_texture(format!("rt{i}"), tex(formats[i])))
@@ -73,7 +73,7 @@ fn color_bytes_count_alignment_padding() {
         .compile(&CompileOptions::default())
         .expect("fits");
     assert_eq!(plan.passes[0].color_bytes_per_sample, 32);
-    assert!(graph_core::explain::text(&plan).contains("color bytes per sample: 32"));
+    assert!(rgraph_core::explain::text(&plan).contains("color bytes per sample: 32"));
 
     let over = [fits.as_slice(), &[R8Unorm]].concat();
     let error = only_error(&mrt(&over));
@@ -309,7 +309,7 @@ fn a_depth_only_pass_stores_its_depth_stencil() {
         .compile(&CompileOptions::default())
         .expect("compiles");
     assert_eq!(plan.passes[0].stored_bytes_per_sample, 4);
-    let text = graph_core::explain::text(&plan);
+    let text = rgraph_core::explain::text(&plan);
     assert!(
         text.contains("stored bytes per sample: 4 (the depth-stencil)"),
         "{text}"

@@ -3,9 +3,9 @@
 use crate::common;
 
 use common::{errors, errors_with, only_error, tex, CLEAR};
-use graph_core::types::Features;
-use graph_core::types::TextureFormat::{Bc1RgbaUnorm, Rgba16Float, Rgba8Unorm};
-use graph_core::{
+use rgraph_core::types::Features;
+use rgraph_core::types::TextureFormat::{Bc1RgbaUnorm, Rgba16Float, Rgba8Unorm};
+use rgraph_core::{
     BufferDesc, BufferRole, CompileOptions, Condition, DeviceProfile, GraphBuilder, GraphError,
     Size, TextureDesc,
 };
@@ -304,7 +304,7 @@ fn exporting_a_texture_no_pass_writes_is_an_error_unless_imported() {
 /// graph compiles everywhere and gets the better format where the device has it.
 #[test]
 fn a_fallback_format_is_used_only_where_the_first_choice_is_missing() {
-    use graph_core::types::TextureFormat::{Depth24PlusStencil8, Depth32FloatStencil8};
+    use rgraph_core::types::TextureFormat::{Depth24PlusStencil8, Depth32FloatStencil8};
     let format_on = |profile: DeviceProfile| {
         let mut g = GraphBuilder::new();
         g.import_texture(
@@ -334,7 +334,7 @@ fn a_fallback_format_is_used_only_where_the_first_choice_is_missing() {
 
 #[test]
 fn a_fallback_of_another_kind_is_an_error() {
-    let error = texture_error(tex(Rgba16Float).or(graph_core::types::TextureFormat::Rgba8Uint));
+    let error = texture_error(tex(Rgba16Float).or(rgraph_core::types::TextureFormat::Rgba8Uint));
     assert_eq!(
         error.to_string(),
         r#""t": fallback rgba8uint is not the same kind of format as rgba16float (aspects and sample type must agree, since passes are written for both)"#
@@ -356,11 +356,11 @@ fn a_texture_only_dropped_passes_use_is_not_checked_against_the_device() {
     let graph = g.build();
     let options = CompileOptions::default();
     let plan = graph
-        .compile_for(&options, &graph_core::Features::new())
+        .compile_for(&options, &rgraph_core::Features::new())
         .expect("without the feature nothing makes t");
     assert!(plan.passes.is_empty());
     let errors = graph
-        .compile_for(&options, &graph_core::Features::from_iter(["elsewhere"]))
+        .compile_for(&options, &rgraph_core::Features::from_iter(["elsewhere"]))
         .expect_err("with it, t's sample count is checked")
         .0;
     assert_eq!(

@@ -4,10 +4,10 @@
 use crate::common;
 
 use common::{clear_pass, only_error, plan, tex, CLEAR};
-use graph_core::types::TextureFormat::{
+use rgraph_core::types::TextureFormat::{
     Depth24PlusStencil8, Depth32Float, R32Float, Rgba16Float, Rgba8Unorm, Rgba8UnormSrgb, Stencil8,
 };
-use graph_core::{
+use rgraph_core::{
     Aspect, AspectAccess, BufferDesc, BufferRole, GraphBuilder, GraphError, Role, TextureRole,
 };
 
@@ -124,7 +124,7 @@ fn writing_one_texture_twice_in_a_pass_is_a_usage_conflict() {
 /// A prepass clears "depth"; then pass `name` draws into the exported "out" while it
 /// samples the depth aspect of "depth" and attaches it, depth read-only and stencil
 /// with `stencil`.
-fn sample_attached_depth(name: &str, stencil: AspectAccess<u32>) -> graph_core::Graph {
+fn sample_attached_depth(name: &str, stencil: AspectAccess<u32>) -> rgraph_core::Graph {
     let mut g = GraphBuilder::new();
     let depth = g.create_texture("depth", tex(Depth24PlusStencil8));
     let out = g.create_texture("out", tex(Rgba8Unorm));
@@ -167,8 +167,8 @@ fn sampling_a_depth_stencil_attachment_read_only_in_both_aspects_is_allowed() {
 /// and returns the single error the graph reports. Validation does not depend on culling,
 /// so "p" need not be live.
 fn format_role_error(
-    format: graph_core::types::TextureFormat,
-    bind: impl FnOnce(&mut GraphBuilder, graph_core::TextureHandle),
+    format: rgraph_core::types::TextureFormat,
+    bind: impl FnOnce(&mut GraphBuilder, rgraph_core::TextureHandle),
 ) -> GraphError {
     let mut g = GraphBuilder::new();
     let t = g.import_texture("t", tex(format));

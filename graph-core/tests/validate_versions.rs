@@ -4,8 +4,8 @@
 use crate::common;
 
 use common::{clear_pass, only_error, plan, tex, CLEAR};
-use graph_core::types::TextureFormat::{Rgba16Float, Rgba8Unorm};
-use graph_core::{ColorLoad, GraphBuilder, GraphError};
+use rgraph_core::types::TextureFormat::{Rgba16Float, Rgba8Unorm};
+use rgraph_core::{ColorLoad, GraphBuilder, GraphError};
 
 #[test]
 fn sampling_a_transient_nothing_wrote_names_pass_and_resource() {

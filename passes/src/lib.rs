@@ -22,13 +22,13 @@
 //! A registry with a [`Host`] draws its scene; declaring, loading and compiling need no
 //! device (the plugins parse and reflect their WGSL with naga while loading), so an engine's
 //! build script or CI checks its graph files this way. Executing the loaded graph is
-//! graph-core's [`Executor`](graph_core::gpu::Executor), as for any graph.
+//! rgraph-core's [`Executor`](rgraph_core::gpu::Executor), as for any graph.
 //!
 //! ```
 //! use std::sync::Arc;
 //!
-//! use graph_core::file::{load_str_with, GraphParams, Registry};
-//! use graph_core::CompileOptions;
+//! use rgraph_core::file::{load_str_with, GraphParams, Registry};
+//! use rgraph_core::CompileOptions;
 //! use rgraph_passes::{Host, Overrides};
 //! use rgraph_scene::analysis::Features;
 //! use rgraph_scene::Scene;
@@ -78,7 +78,7 @@ pub mod variant;
 
 use std::sync::Arc;
 
-use graph_core::file::Registry;
+use rgraph_core::file::Registry;
 
 pub use host::{Background, Exposure, FrameInputs, FrameInputsError, Host, LightPose, Overrides};
 

@@ -36,7 +36,7 @@
 
 use std::sync::Arc;
 
-use graph_core::file::Registry;
+use rgraph_core::file::Registry;
 
 use crate::common::plugin::Shared;
 use crate::host::Host;

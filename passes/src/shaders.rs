@@ -3,8 +3,8 @@
 //! validated by naga when a graph file is loaded: shader mistakes fail `cargo build`
 //! (build.rs loads every pipeline) rather than the first frame.
 
-use graph_core::file::PluginError;
-use graph_core::shader::Shader;
+use rgraph_core::file::PluginError;
+use rgraph_core::shader::Shader;
 
 const COMMON: &str = include_str!("wgsl/common.wgsl");
 const SCENE: &str = include_str!("wgsl/scene.wgsl");

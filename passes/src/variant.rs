@@ -15,8 +15,8 @@
 
 use std::fmt;
 
-use graph_core::file::LoadedGraph;
-use graph_core::Plan;
+use rgraph_core::file::LoadedGraph;
+use rgraph_core::Plan;
 
 use rgraph_scene::analysis::Features;
 use rgraph_scene::Scene;

@@ -4,6 +4,6 @@
 
 mod extremes_normals;
 mod structure;
-// The structure check graph-core's tests run, shared.
+// The structure check rgraph-core's tests run, shared.
 #[path = "../../graph-core/tests/structure_check.rs"]
 mod structure_check;

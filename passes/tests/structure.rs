@@ -1,5 +1,5 @@
 //! rgraph-passes' structure: its modules import in one direction, from the layers
-//! of [`LAYERS`] down, and no files import each other in a loop. The check is graph-core's
+//! of [`LAYERS`] down, and no files import each other in a loop. The check is rgraph-core's
 //! (graph-core/tests/structure_check.rs, shared); code behind feature `gpu` counts, so
 //! each pass's recording, beside its declaration in `passes/`, is held to the same rules.
 

@@ -16,7 +16,7 @@ pub enum SceneError {
         file: PathBuf,
         /// The underlying error.
         #[source]
-        source: graph_core::bounded_read::ReadError,
+        source: rgraph_core::bounded_read::ReadError,
     },
 
     /// The `gltf` crate rejected the file: not JSON / GLB, or it fails glTF validation.

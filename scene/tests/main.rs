@@ -14,6 +14,6 @@ mod gltf_sandbox;
 mod robustness;
 mod scene_math;
 mod structure;
-// The structure check graph-core's tests run, shared.
+// The structure check rgraph-core's tests run, shared.
 #[path = "../../graph-core/tests/structure_check.rs"]
 mod structure_check;

@@ -1,6 +1,6 @@
 //! rgraph-scene's structure: analysis sits above the scene model and its loaders, nothing
 //! in the model reads the analysis, and no files import each other in a loop. The check is
-//! graph-core's (graph-core/tests/structure_check.rs, shared).
+//! rgraph-core's (graph-core/tests/structure_check.rs, shared).
 
 use std::path::Path;
 
@@ -62,7 +62,7 @@ fn rgraph_scene_imports_run_down_the_layers_without_cycles() {
 }
 
 /// The workspace's crates depend one way: the command line on rgraph-passes, on
-/// rgraph-scene, on graph-core. Cargo refuses a cycle between them; this keeps the order,
+/// rgraph-scene, on rgraph-core. Cargo refuses a cycle between them; this keeps the order,
 /// so that the scene never learns of passes and the graph of neither.
 #[test]
 fn the_crates_depend_one_way() {

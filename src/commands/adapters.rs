@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use graph_core::gpu::{list_adapters, AdapterChoice};
+use rgraph_core::gpu::{list_adapters, AdapterChoice};
 
 use super::{write_atomically, CommandError};
 

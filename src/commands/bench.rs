@@ -38,7 +38,7 @@ mod work;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use graph_core::gpu::AdapterChoice;
+use rgraph_core::gpu::AdapterChoice;
 
 use super::{write_atomically, CommandError};
 use crate::cli::BenchArgs;

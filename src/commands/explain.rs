@@ -7,9 +7,9 @@ mod variants;
 
 use std::path::Path;
 
-use graph_core::explain;
-use graph_core::file::{load_file_with, FileErrors, LoadedGraph};
-use graph_core::{CompileOptions, Features, Plan};
+use rgraph_core::explain;
+use rgraph_core::file::{load_file_with, FileErrors, LoadedGraph};
+use rgraph_core::{CompileOptions, Features, Plan};
 use rgraph_scene::analysis::{Analysis, Features as SceneFeatures, SHALLOW_STEP};
 use rgraph_scene::SceneError;
 

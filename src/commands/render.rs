@@ -14,8 +14,8 @@ pub(super) mod view;
 
 use std::sync::Arc;
 
-use graph_core::gpu::{resident_bytes, AdapterChoice, DeviceObjects};
 use image::RgbaImage;
+use rgraph_core::gpu::{resident_bytes, AdapterChoice, DeviceObjects};
 use rgraph_passes::{FrameInputs, Host, Overrides};
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::glam::DVec3;

@@ -2,9 +2,9 @@
 
 use std::path::Path;
 
-use graph_core::bounded_read;
-use graph_core::gpu::{AdapterChoice, Gpu};
-use graph_core::{CompileOptions, DeviceProfile};
+use rgraph_core::bounded_read;
+use rgraph_core::gpu::{AdapterChoice, Gpu};
+use rgraph_core::{CompileOptions, DeviceProfile};
 
 use super::CommandError;
 use crate::cli::Target;

@@ -2,8 +2,8 @@
 
 use std::path::PathBuf;
 
-use graph_core::file::{validate_file, validate_shader};
-use graph_core::CompileOptions;
+use rgraph_core::file::{validate_file, validate_shader};
+use rgraph_core::CompileOptions;
 
 use super::target::compile_options;
 use super::CommandError;

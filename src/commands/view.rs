@@ -16,8 +16,8 @@ mod watch;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use graph_core::file::GraphParams;
-use graph_core::gpu::{AdapterChoice, FrameReport};
+use rgraph_core::file::GraphParams;
+use rgraph_core::gpu::{AdapterChoice, FrameReport};
 use rgraph_passes::{FrameInputsError, Host, Overrides};
 use winit::event_loop::EventLoop;
 

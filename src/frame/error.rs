@@ -3,8 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use graph_core::file::{FileErrors, NotAnOutput};
-use graph_core::gpu::{DeviceError, ExecuteError, ReadbackError};
+use rgraph_core::file::{FileErrors, NotAnOutput};
+use rgraph_core::gpu::{DeviceError, ExecuteError, ReadbackError};
 use rgraph_scene::SceneError;
 
 #[derive(Debug, thiserror::Error)]

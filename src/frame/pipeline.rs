@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use graph_core::file::{
+use rgraph_core::file::{
     load_file_with, load_str_with, ErrorKind, FileErrors, GraphParams, LoadedGraph, Registry,
 };
 use rgraph_passes::variant::Variants;

@@ -2,10 +2,10 @@
 
 use std::path::PathBuf;
 
-use graph_core::file::LoadedGraph;
-use graph_core::gpu::{read_rgba8, Executor, FrameReport, Gpu, Imports};
-use graph_core::{CompiledGraph, Plan, ResourceId};
 use image::RgbaImage;
+use rgraph_core::file::LoadedGraph;
+use rgraph_core::gpu::{read_rgba8, Executor, FrameReport, Gpu, Imports};
+use rgraph_core::{CompiledGraph, Plan, ResourceId};
 use rgraph_scene::analysis::Features as SceneFeatures;
 
 use super::FrameError;

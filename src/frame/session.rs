@@ -2,10 +2,10 @@
 
 use std::path::Path;
 
-use graph_core::file::LoadedGraph;
-use graph_core::gpu::{AdapterChoice, Executor, Gpu};
-use graph_core::types::TextureFormat;
-use graph_core::{CompileOptions, CompiledGraph, DeviceProfile, Origin, Plan, ResourceId};
+use rgraph_core::file::LoadedGraph;
+use rgraph_core::gpu::{AdapterChoice, Executor, Gpu};
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{CompileOptions, CompiledGraph, DeviceProfile, Origin, Plan, ResourceId};
 
 use rgraph_passes::Background;
 
@@ -161,7 +161,7 @@ fn metered(
     pipeline: &Path,
 ) -> Result<(), FrameError> {
     let metering =
-        |p: &graph_core::PlannedPass| compiled.graph().plugin(&p.name) == Some("auto_exposure");
+        |p: &rgraph_core::PlannedPass| compiled.graph().plugin(&p.name) == Some("auto_exposure");
     match auto_exposure && !compiled.plan().passes.iter().any(metering) {
         true => Err(FrameError::NoMetering {
             pipeline: pipeline.to_path_buf(),
@@ -178,7 +178,7 @@ fn backgrounded(
     pipeline: &Path,
 ) -> Result<(), FrameError> {
     let drawing =
-        |p: &graph_core::PlannedPass| compiled.graph().plugin(&p.name) == Some("background");
+        |p: &rgraph_core::PlannedPass| compiled.graph().plugin(&p.name) == Some("background");
     match compiled.plan().passes.iter().any(drawing) {
         true => Ok(()),
         false => Err(FrameError::NoBackground {

@@ -3,8 +3,8 @@
 
 use std::sync::Once;
 
-use graph_core::gpu::{AdapterChoice, Gpu};
-use graph_core::{CompileOptions, CompiledGraph, Graph};
+use rgraph_core::gpu::{AdapterChoice, Gpu};
+use rgraph_core::{CompileOptions, CompiledGraph, Graph};
 
 /// Test textures are this size: small enough for lavapipe to run every test in a blink.
 pub const SIZE: (u32, u32) = (64, 64);

@@ -13,11 +13,11 @@ pub mod unlit;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use graph_core::file::{load_str_with, GraphParams, LoadedGraph, Registry};
-use graph_core::gpu::{
+use rgraph_core::file::{load_str_with, GraphParams, LoadedGraph, Registry};
+use rgraph_core::gpu::{
     read_rgba16f, read_rgba8, ExecuteError, Executor, FrameReport, Gpu, Imports,
 };
-use graph_core::{CompileOptions, CompiledGraph, DeviceProfile, Features, Plan};
+use rgraph_core::{CompileOptions, CompiledGraph, DeviceProfile, Features, Plan};
 use rgraph_passes::variant::Variants;
 use rgraph_passes::{FrameInputs, Host, Overrides};
 use rgraph_scene::Scene;
@@ -308,7 +308,7 @@ impl Frame {
     }
 
     /// The plans compiled so far.
-    pub fn plans(&self) -> &graph_core::PlanCache {
+    pub fn plans(&self) -> &rgraph_core::PlanCache {
         self.compiled.plans()
     }
 

@@ -3,7 +3,7 @@
 //! any float format (rgba16float, rg16float, r32float...; missing channels read as the
 //! format's defaults), multisampled or not.
 
-use graph_core::gpu::{read_buffer, Gpu};
+use rgraph_core::gpu::{read_buffer, Gpu};
 
 use super::Frame;
 

@@ -77,8 +77,8 @@ struct RecordedPass {
 /// Why a frame could not execute.
 #[derive(Debug, thiserror::Error)]
 pub enum ExecuteError {
-    /// The plan leaves out what its own graph uses: a bug in graph-core's compiler.
-    #[error("the plan does not provide what its graph uses ({0}); this is a bug in graph-core")]
+    /// The plan leaves out what its own graph uses: a bug in rgraph-core's compiler.
+    #[error("the plan does not provide what its graph uses ({0}); this is a bug in rgraph-core")]
     Inconsistent(String),
 
     /// A pass's callback could not record its work on this device ([`FrameResources::fail`]).

@@ -1,8 +1,8 @@
 //! Helpers shared by the compile tests: compiling against the WebGPU defaults and pulling
 //! out the one error a broken graph is expected to report.
 
-use graph_core::types::TextureFormat;
-use graph_core::{
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{
     ColorLoad, CompileOptions, Graph, GraphBuilder, GraphError, Plan, Size, TextureDesc,
     TextureHandle,
 };

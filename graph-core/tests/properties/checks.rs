@@ -2,8 +2,8 @@
 
 use std::collections::HashMap;
 
-use graph_core::types::TextureUsages;
-use graph_core::{Graph, Origin, PassId, Plan, ResourceId, Store};
+use rgraph_core::types::TextureUsages;
+use rgraph_core::{Graph, Origin, PassId, Plan, ResourceId, Store};
 
 /// What the declared accesses say about each version: who produced it and the last one.
 struct Versions {

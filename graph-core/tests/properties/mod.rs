@@ -6,8 +6,8 @@
 mod checks;
 mod recipe;
 
-use graph_core::CompileOptions;
 use proptest::prelude::*;
+use rgraph_core::CompileOptions;
 
 use checks::check_plan;
 use recipe::recipe;
@@ -27,7 +27,7 @@ proptest! {
 #[test]
 fn synthetic_frames_compile_to_sound_plans() {
     for passes in [1, 10, 37, 100, 1000] {
-        let graph = graph_core::synthetic::frame(passes);
+        let graph = rgraph_core::synthetic::frame(passes);
         let plan = graph
             .compile(&CompileOptions::default())
             .unwrap_or_else(|e| panic!("synthetic frame of {passes} passes:\n{e}"));

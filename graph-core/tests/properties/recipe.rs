@@ -2,12 +2,12 @@
 
 use std::collections::HashSet;
 
-use graph_core::types::TextureFormat;
-use graph_core::{
+use proptest::prelude::*;
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{
     Aspect, AspectAccess, BufferDesc, BufferHandle, BufferRole, ColorLoad, Graph, GraphBuilder,
     PassBuilder, Role, Size, TextureDesc, TextureHandle,
 };
-use proptest::prelude::*;
 
 /// A random graph. A careful recipe makes mostly valid graphs, so that plans get checked;
 /// a sloppy one also makes every kind of mistake, so that errors come out cleanly.

@@ -1,8 +1,8 @@
 //! Helpers shared by the graph-file tests: loading and compiling files against the
 //! built-in plugins and checking where each error points and what it names.
 
-use graph_core::file::{load_file, load_str, FileError, FileErrors, Registry};
-use graph_core::{CompileOptions, Plan};
+use rgraph_core::file::{load_file, load_str, FileError, FileErrors, Registry};
+use rgraph_core::{CompileOptions, Plan};
 
 /// The built-in plugins, with the workspace's folders open to graph files (the fixtures
 /// name the shipped shaders/ from tests/fixtures/).

@@ -4,9 +4,9 @@
 //! WGSL leaves the surface as it is, so the shader compiles it out and the image is the
 //! one the pass draws without SSAO, bit for bit.
 
-use graph_core::file::{PluginError, Slots};
-use graph_core::types::TextureFormat;
-use graph_core::PassBuilder;
+use rgraph_core::file::{PluginError, Slots};
+use rgraph_core::types::TextureFormat;
+use rgraph_core::PassBuilder;
 
 use super::textures::{self, Input, Want};
 

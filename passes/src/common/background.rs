@@ -8,8 +8,8 @@
 //! docs/design/compute-raster.md, run visibility-merged); the fill writes the background's
 //! samples only and depth-culls the rest.
 
-use graph_core::file::{PluginError, Slots};
-use graph_core::{PassBuilder, TextureHandle};
+use rgraph_core::file::{PluginError, Slots};
+use rgraph_core::{PassBuilder, TextureHandle};
 
 use super::textures::{self, Want};
 

@@ -12,8 +12,8 @@
 //! An explicit `reversed_z: true` or `false` is honoured whatever the format; then the
 //! passes sharing a depth buffer must say the same.
 
-use graph_core::types::TextureFormat;
-use graph_core::{AspectAccess, ByFormat, PassBuilder, TextureHandle};
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{AspectAccess, ByFormat, PassBuilder, TextureHandle};
 
 use rgraph_scene::DepthConvention;
 
@@ -108,8 +108,8 @@ pub(crate) fn far_depth(convention: DepthConvention) -> f32 {
 
 #[cfg(test)]
 mod tests {
-    use graph_core::types::TextureFormat as F;
-    use graph_core::AspectAccess;
+    use rgraph_core::types::TextureFormat as F;
+    use rgraph_core::AspectAccess;
 
     use super::DepthRule;
     use rgraph_scene::DepthConvention::{ReversedZ, Standard};

@@ -25,7 +25,7 @@
 
 use serde::Deserialize;
 
-use graph_core::file::PluginError;
+use rgraph_core::file::PluginError;
 
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]

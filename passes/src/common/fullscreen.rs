@@ -2,8 +2,8 @@
 //! transparent-composite plugins set it up, and (feature `gpu`) its recording: the edge
 //! pass marks the stencil only, the others draw into a color target.
 
-use graph_core::types::BlendState;
-use graph_core::TextureHandle;
+use rgraph_core::types::BlendState;
+use rgraph_core::TextureHandle;
 
 use super::extent::Extent;
 use super::opaque_depth::OpaqueDepth;
@@ -67,7 +67,7 @@ impl Fullscreen {
 mod gpu {
     use std::sync::Arc;
 
-    use graph_core::TextureHandle;
+    use rgraph_core::TextureHandle;
 
     use super::Fullscreen;
     use crate::common::depth::far_depth;

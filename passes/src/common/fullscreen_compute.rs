@@ -3,7 +3,7 @@
 //! its recording: the compute counterpart of [`super::fullscreen`], without the ROPs a
 //! full-screen draw pays for every pixel it writes.
 
-use graph_core::TextureHandle;
+use rgraph_core::TextureHandle;
 
 use super::opaque_depth::OpaqueDepth;
 use super::textures::Input;

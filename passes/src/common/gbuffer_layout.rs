@@ -6,8 +6,8 @@
 //! that reads them (gbuffer_read.wgsl or visibility_read.wgsl, a `load_view_depth`, an
 //! `emitted`), so the rest of the pass's shader is one source for all of them.
 
-use graph_core::file::{PluginError, Slots};
-use graph_core::{Aspect, PassBuilder, TextureHandle};
+use rgraph_core::file::{PluginError, Slots};
+use rgraph_core::{Aspect, PassBuilder, TextureHandle};
 
 use crate::common::textures::{self, Input, Texels, Want, GBUFFER_INPUTS};
 use crate::shaders;

@@ -8,8 +8,8 @@
 //! triangle; a depth buffer does not, so every sample is read), and `coverage_size()`,
 //! the pixels they cover. The particles' depth downsample and the background read it.
 
-use graph_core::file::{PluginError, Slots};
-use graph_core::{Aspect, BufferHandle, PassBuilder};
+use rgraph_core::file::{PluginError, Slots};
+use rgraph_core::{Aspect, BufferHandle, PassBuilder};
 
 use super::depth::DepthRule;
 use super::textures::{self, Input, Texels, Want};
@@ -76,7 +76,7 @@ impl OpaqueDepth {
 
 #[cfg(feature = "gpu")]
 mod gpu {
-    use graph_core::gpu::FrameResources;
+    use rgraph_core::gpu::FrameResources;
 
     use super::OpaqueDepth;
     use crate::common::gpu::GroupBuffers;

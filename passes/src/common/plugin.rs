@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use graph_core::PassBuilder;
+use rgraph_core::PassBuilder;
 
 use crate::host::{Host, Overrides};
 use crate::variant::Variants;
@@ -60,10 +60,10 @@ pub(crate) fn yes() -> bool {
 pub(crate) fn check_tile(
     tile: u32,
     allowed: std::ops::RangeInclusive<u32>,
-) -> Result<(), graph_core::file::PluginError> {
+) -> Result<(), rgraph_core::file::PluginError> {
     match allowed.contains(&tile) {
         true => Ok(()),
-        false => Err(graph_core::file::PluginError::Invalid(format!(
+        false => Err(rgraph_core::file::PluginError::Invalid(format!(
             "tile must be {} to {} pixels, got {tile}",
             allowed.start(),
             allowed.end()

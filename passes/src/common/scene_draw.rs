@@ -2,7 +2,7 @@
 //! pre-pass plugins set it up: one draw per mesh, a pipeline per material state. Its
 //! recording (feature `gpu`) is `common/gpu/scene_draw.rs`.
 
-use graph_core::TextureHandle;
+use rgraph_core::TextureHandle;
 
 use super::depth::DepthRule;
 use super::textures::Input;

@@ -1,9 +1,9 @@
 //! The textures in a deferred pass's slots: taking them through [`Slots`] and checking
 //! their formats and sample counts, with errors naming the slot and the resource.
 
-use graph_core::file::{PluginError, Slots};
-use graph_core::types::TextureFormat;
-use graph_core::{Aspect, ColorLoad, PassBuilder, Texture, TextureDesc, TextureHandle};
+use rgraph_core::file::{PluginError, Slots};
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{Aspect, ColorLoad, PassBuilder, Texture, TextureDesc, TextureHandle};
 
 /// What a slot must hold.
 #[derive(Copy, Clone, Debug)]

@@ -8,8 +8,8 @@
 //! samples per pixel: 8 bytes each, as a hardware visibility buffer's depth32float and
 //! r32uint take.
 
-use graph_core::file::{PluginError, Slots};
-use graph_core::{Buffer, BufferHandle, BufferRole, PassBuilder};
+use rgraph_core::file::{PluginError, Slots};
+use rgraph_core::{Buffer, BufferHandle, BufferRole, PassBuilder};
 
 /// Bytes of one sample's key.
 pub(crate) const KEY_BYTES: u64 = 8;

@@ -118,7 +118,7 @@ impl SceneCache {
     pub fn for_frame_if(
         &self,
         reads: bool,
-        resources: &graph_core::gpu::FrameResources<'_>,
+        resources: &rgraph_core::gpu::FrameResources<'_>,
     ) -> Option<Option<Arc<GpuScene>>> {
         match reads {
             true => self.for_frame(resources).map(Some),
@@ -139,7 +139,7 @@ impl SceneCache {
     /// and bind groups ([`GpuScene::same_upload`]).
     pub fn for_frame(
         &self,
-        resources: &graph_core::gpu::FrameResources<'_>,
+        resources: &rgraph_core::gpu::FrameResources<'_>,
     ) -> Option<Arc<GpuScene>> {
         let scene = self.get(resources.device, resources.queue)?;
         scene.prepare(resources.queue, resources.output_size());

@@ -22,9 +22,9 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::shader::Stage;
-use graph_core::{Aspect, PassBuilder, PassKind};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::shader::Stage;
+use rgraph_core::{Aspect, PassBuilder, PassKind};
 
 use crate::common::plugin::Shared;
 use crate::common::textures::{self, Input, Texels, Want};

@@ -35,9 +35,9 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::types::{BlendComponent, BlendFactor, BlendOperation, BlendState};
-use graph_core::{ColorLoad, PassBuilder, PassKind};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::types::{BlendComponent, BlendFactor, BlendOperation, BlendState};
+use rgraph_core::{ColorLoad, PassBuilder, PassKind};
 
 use crate::common::fullscreen::Fullscreen;
 use crate::common::opaque_depth::OpaqueDepth;

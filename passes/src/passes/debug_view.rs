@@ -24,8 +24,8 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{Aspect, PassBuilder, PassKind};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{Aspect, PassBuilder, PassKind};
 
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
@@ -65,7 +65,7 @@ pub enum View {
 type Read = (
     &'static str,
     &'static str,
-    &'static [graph_core::types::TextureFormat],
+    &'static [rgraph_core::types::TextureFormat],
     u32,
 );
 

@@ -29,8 +29,8 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{Aspect, PassBuilder, PassKind};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{Aspect, PassBuilder, PassKind};
 
 use crate::common::fullscreen_compute::FullscreenCompute;
 use crate::common::opaque_depth::OpaqueDepth;

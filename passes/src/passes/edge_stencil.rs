@@ -25,8 +25,8 @@
 //! per-sample shading is `light_nonedge`'s per-pixel shading. One pipeline file thus
 //! serves every sample count (bench --sweep samples) without idle passes.
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{AspectAccess, PassBuilder, PassKind};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{AspectAccess, PassBuilder, PassKind};
 
 use crate::common::edge_detection::{Detector, EdgeDetection};
 use crate::common::fullscreen::Fullscreen;

@@ -29,9 +29,9 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::types::TextureFormat;
-use graph_core::{PassBuilder, PassKind};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{PassBuilder, PassKind};
 
 use super::gbuffer::opaque_black;
 use crate::common::background::FilledTargets;

@@ -47,8 +47,8 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{PassBuilder, PassKind};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{PassBuilder, PassKind};
 
 use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
@@ -151,7 +151,7 @@ impl Plugin for GBuffer {
 struct Channel {
     slot: &'static str,
     what: &'static str,
-    formats: &'static [graph_core::types::TextureFormat],
+    formats: &'static [rgraph_core::types::TextureFormat],
     /// gbuffer.wgsl's type for it.
     wgsl: &'static str,
 }

@@ -25,8 +25,8 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{PassBuilder, PassKind, TextureHandle};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{PassBuilder, PassKind, TextureHandle};
 
 use crate::common::depth::DepthRule;
 use crate::common::plugin::Shared;

@@ -35,8 +35,8 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{BufferHandle, PassBuilder, PassKind, TextureHandle};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{BufferHandle, PassBuilder, PassKind, TextureHandle};
 
 use crate::common::depth;
 use crate::common::extent::Extent;

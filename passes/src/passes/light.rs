@@ -53,8 +53,8 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, TextureHandle};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, TextureHandle};
 
 use crate::common::ao;
 use crate::common::depth::DepthRule;

@@ -41,8 +41,8 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 
 use super::gbuffer::opaque_black;
 use crate::common::background::FilledTargets;

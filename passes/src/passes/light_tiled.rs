@@ -79,10 +79,10 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::shader::Stage;
-use graph_core::types::TextureFormat;
-use graph_core::{Aspect, BufferHandle, PassBuilder, PassKind, TextureHandle};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::shader::Stage;
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{Aspect, BufferHandle, PassBuilder, PassKind, TextureHandle};
 
 use super::resolve::{one, resolve_exposure, ResolveMode};
 use crate::common::ao;

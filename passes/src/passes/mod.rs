@@ -1,5 +1,5 @@
 //! The deferred passes, one module each: a pass's parameters, slots and `Plugin::setup`,
-//! and (feature `gpu`) its recording, as graph-core's plugins keep theirs. They import
+//! and (feature `gpu`) its recording, as rgraph-core's plugins keep theirs. They import
 //! what they share from [`crate::common`], and from each other only one way (the
 //! transparent pass draws as the forward pass does, the tiled light pass resolves as the
 //! resolve pass does); [`crate::plugins`] registers them by name.

@@ -18,8 +18,8 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{PassBuilder, PassKind};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{PassBuilder, PassKind};
 
 use super::particles::{same_size, EDGES};
 use crate::common::fullscreen::Fullscreen;

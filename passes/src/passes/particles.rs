@@ -77,10 +77,10 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::shader::Stage;
-use graph_core::types::TextureFormat;
-use graph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, TextureDesc};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::shader::Stage;
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, TextureDesc};
 
 use super::transparent::UNDER_TRANSMITTANCE;
 use crate::common::depth::DepthRule;
@@ -412,7 +412,7 @@ impl Plugin for CompositeParticles {
             pass.color_output(h, ColorLoad::Load)
         })?;
         textures::must_modify(slots, "resolved", modifies, "blends particles onto it")?;
-        if desc.size != graph_core::Size::Relative(1.0) {
+        if desc.size != rgraph_core::Size::Relative(1.0) {
             let why = format!(
                 "is {:?}: the composite upsamples onto the output size (Relative(1.0)), \
                  whose pixels the camera's viewport counts",
@@ -533,9 +533,9 @@ struct ParticleDraw {
     /// into view depth.
     depth_rule: Option<DepthRule>,
     /// `hdr`, or `color` and `additive`.
-    targets: Vec<graph_core::TextureHandle>,
+    targets: Vec<rgraph_core::TextureHandle>,
     /// Draw only where this stencil is not marked.
-    stencil: Option<graph_core::TextureHandle>,
+    stencil: Option<rgraph_core::TextureHandle>,
     constants: Vec<(&'static str, f64)>,
 }
 

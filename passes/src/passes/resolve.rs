@@ -16,8 +16,8 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{PassBuilder, PassKind};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{PassBuilder, PassKind};
 
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;

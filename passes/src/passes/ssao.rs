@@ -48,8 +48,8 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{PassBuilder, PassKind, Size, TextureDesc};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{PassBuilder, PassKind, Size, TextureDesc};
 
 use crate::common::ao::AO;
 use crate::common::fullscreen::Fullscreen;

@@ -33,9 +33,9 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::types::TextureFormat;
-use graph_core::{Aspect, PassBuilder, PassKind};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{Aspect, PassBuilder, PassKind};
 
 use super::resolve::{exposure, one};
 use crate::common::fullscreen::Fullscreen;

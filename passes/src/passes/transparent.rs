@@ -75,9 +75,9 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::types::{BlendComponent, BlendFactor, BlendOperation, BlendState};
-use graph_core::{AspectAccess, ColorLoad, PassBuilder, PassKind};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::types::{BlendComponent, BlendFactor, BlendOperation, BlendState};
+use rgraph_core::{AspectAccess, ColorLoad, PassBuilder, PassKind};
 
 use super::forward::{Shading, DEPTH};
 use super::gbuffer::opaque_black;

@@ -29,8 +29,8 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::{ColorLoad, PassBuilder, PassKind, TextureHandle};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{ColorLoad, PassBuilder, PassKind, TextureHandle};
 
 use crate::common::depth::DepthRule;
 use crate::common::plugin::Shared;

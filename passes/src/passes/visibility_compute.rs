@@ -46,9 +46,9 @@
 
 use serde::Deserialize;
 
-use graph_core::file::{Plugin, PluginError, Slots};
-use graph_core::shader::Stage;
-use graph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, PassKind};
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::shader::Stage;
+use rgraph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, PassKind};
 
 use crate::common::plugin::{check_tile, Shared};
 use crate::common::visibility_samples;

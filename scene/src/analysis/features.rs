@@ -192,7 +192,7 @@ impl Features {
     }
 
     /// The features set, by the names in [`NAMES`](Self::NAMES).
-    pub fn names(&self) -> graph_core::Features {
+    pub fn names(&self) -> rgraph_core::Features {
         let set = [
             self.point_lights,
             self.spot_lights,

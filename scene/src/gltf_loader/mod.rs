@@ -33,7 +33,7 @@ mod validate;
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
-use graph_core::bounded_read;
+use rgraph_core::bounded_read;
 
 use super::builder::SceneBuilder;
 use super::error;

@@ -3,8 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use graph_core::bounded_read;
-use graph_core::folders::{Folders, Inside};
+use rgraph_core::bounded_read;
+use rgraph_core::folders::{Folders, Inside};
 
 use super::uri_error::UriError;
 use crate::{AssetPolicy, SceneError};

@@ -3,8 +3,8 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use graph_core::embedded;
-use graph_core::file::{declared_params, load_file, GraphParams};
+use rgraph_core::embedded;
+use rgraph_core::file::{declared_params, load_file, GraphParams};
 use rgraph_passes::Host;
 use rgraph_scene::{builtin_names, BUILTIN_PREFIX};
 

@@ -6,7 +6,7 @@
 
 use std::process::{Child, Command, Stdio};
 
-use graph_core::gpu::Gpu;
+use rgraph_core::gpu::Gpu;
 use serde::Serialize;
 
 /// PCI vendor ID of NVIDIA.

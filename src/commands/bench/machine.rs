@@ -2,7 +2,7 @@
 
 use std::time::{SystemTime, UNIX_EPOCH};
 
-use graph_core::gpu::Gpu;
+use rgraph_core::gpu::Gpu;
 use serde::Serialize;
 
 /// Overrides `git rev-parse HEAD`, for machines that run a binary without its repository.

@@ -6,10 +6,10 @@
 
 use std::sync::Arc;
 
-use graph_core::explain::page::Setting;
-use graph_core::gpu::PassTiming;
-use graph_core::Plan;
 use image::RgbaImage;
+use rgraph_core::explain::page::Setting;
+use rgraph_core::gpu::PassTiming;
+use rgraph_core::Plan;
 use rgraph_passes::Host;
 use rgraph_scene::{AssetPolicy, Lighting};
 

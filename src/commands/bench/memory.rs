@@ -1,8 +1,8 @@
 //! Memory a pipeline asks for: every graph texture on its own and after pooling, the
 //! buffers its passes keep for themselves, and the G-buffer's bytes per sample.
 
-use graph_core::gpu::FrameReport;
-use graph_core::{Plan, PlannedPass};
+use rgraph_core::gpu::FrameReport;
+use rgraph_core::{Plan, PlannedPass};
 use serde::Serialize;
 
 /// The passes whose attachments are the G-buffer, in every deferred pipeline (their

@@ -4,7 +4,7 @@
 //! Counted on the CPU from the scene's particles, its camera and the plan's render sizes
 //! (lavapipe's pipeline statistics count fragments wrongly: ../shared/notes/wgpu30.md).
 
-use graph_core::Plan;
+use rgraph_core::Plan;
 use rgraph_scene::{billboard_pixels, Scene};
 use serde::Serialize;
 

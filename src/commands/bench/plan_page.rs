@@ -5,8 +5,8 @@
 
 use std::path::Path;
 
-use graph_core::explain::page::{self, Page, PassTime, Setting, Timings};
-use graph_core::Plan;
+use rgraph_core::explain::page::{self, Page, PassTime, Setting, Timings};
+use rgraph_core::Plan;
 
 use super::figures::Figures;
 use super::images::slug;

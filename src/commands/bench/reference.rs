@@ -4,8 +4,8 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use graph_core::bounded_read::MAX_GRAPH_FILE_BYTES;
-use graph_core::embedded;
+use rgraph_core::bounded_read::MAX_GRAPH_FILE_BYTES;
+use rgraph_core::embedded;
 
 use image::RgbaImage;
 use rgraph_passes::Host;

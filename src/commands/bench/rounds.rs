@@ -15,7 +15,7 @@
 use std::ops::Range;
 use std::time::{Duration, Instant};
 
-use graph_core::gpu::FrameReport;
+use rgraph_core::gpu::FrameReport;
 use serde::Serialize;
 
 use super::clocks::ClockSample;

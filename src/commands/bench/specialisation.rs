@@ -1,7 +1,7 @@
 //! What specialising a pipeline to its scene saves: the general plan (compiled as for a
 //! scene using every feature) measured beside the scene's, wherever the two differ.
 
-use graph_core::TextureShape;
+use rgraph_core::TextureShape;
 use rgraph_passes::variant::plan_shader_variants;
 use serde::Serialize;
 

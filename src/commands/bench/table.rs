@@ -3,7 +3,7 @@
 
 use std::fmt::Write;
 
-use graph_core::explain::bytes;
+use rgraph_core::explain::bytes;
 
 use super::clocks::ClockSample;
 use super::figures::Figures;

@@ -4,8 +4,8 @@
 //! A pipeline that shades an edge pixel once per fragment (adaptive shading) exports
 //! "debug.fragments" too, and its edge pixels count their fragments instead of samples.
 
-use graph_core::Plan;
 use image::RgbaImage;
+use rgraph_core::Plan;
 use serde::Serialize;
 
 /// The output every deferred pipeline with an edge pass exports.

@@ -1,12 +1,12 @@
 //! `rgraph explain --format html`: the plan as a self-contained page
-//! (`graph_core::explain::page`), with a bench's times (`--timings`) and the differences
+//! (`rgraph_core::explain::page`), with a bench's times (`--timings`) and the differences
 //! from another graph file's plan (`--compare`) or another scene's (`--compare-scene`).
 
 use std::path::Path;
 
-use graph_core::explain::page::{self, Against, Page, Parameter, Setting};
-use graph_core::file::{GraphParams, LoadedGraph};
-use graph_core::{CompileOptions, Features, Plan};
+use rgraph_core::explain::page::{self, Against, Page, Parameter, Setting};
+use rgraph_core::file::{GraphParams, LoadedGraph};
+use rgraph_core::{CompileOptions, Features, Plan};
 use rgraph_scene::analysis::Analysis;
 
 use super::{analyse, compile, load, timings};

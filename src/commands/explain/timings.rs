@@ -6,8 +6,8 @@
 
 use std::path::Path;
 
-use graph_core::bounded_read::read_text;
-use graph_core::explain::page::{PassTime, Timings};
+use rgraph_core::bounded_read::read_text;
+use rgraph_core::explain::page::{PassTime, Timings};
 use serde::Deserialize;
 
 use crate::commands::CommandError;

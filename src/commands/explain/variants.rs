@@ -2,8 +2,8 @@
 //! feature-gated code that a kept pass runs, the features compiled in for the scene, the
 //! passes using it, and the general variant it replaces.
 
-use graph_core::file::LoadedGraph;
-use graph_core::Plan;
+use rgraph_core::file::LoadedGraph;
+use rgraph_core::Plan;
 use rgraph_passes::variant::{plan_shader_variants, Variant};
 use rgraph_scene::analysis::Features;
 

@@ -1,9 +1,9 @@
 //! The table printed after a frame: each executed pass with its GPU and CPU time, the
 //! totals, the textures and memory the plan asked for, and what was culled.
 
-use graph_core::explain::bytes;
-use graph_core::gpu::{DeviceObjects, FrameReport};
-use graph_core::Plan;
+use rgraph_core::explain::bytes;
+use rgraph_core::gpu::{DeviceObjects, FrameReport};
+use rgraph_core::Plan;
 
 /// The summary, one line each, for stderr. `specialised`: the plan was compiled for the
 /// scene's features (without `--no-specialise`). The plan's features alone do not tell:
@@ -67,7 +67,7 @@ pub fn text(plan: &Plan, report: &FrameReport, specialised: bool) -> String {
         .features
         .iter()
         .map(String::as_str)
-        .partition(|f| graph_core::is_device_condition(f));
+        .partition(|f| rgraph_core::is_device_condition(f));
     if specialised && !scene.is_empty() {
         lines.push(format!(
             "specialised to the scene's features: {} (--no-specialise compiles for every \

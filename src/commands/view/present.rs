@@ -5,8 +5,8 @@
 
 use std::sync::Arc;
 
-use graph_core::gpu::{read_texture, Gpu};
 use image::RgbaImage;
+use rgraph_core::gpu::{read_texture, Gpu};
 use wgpu::util::TextureBlitter;
 use wgpu::TextureFormat;
 use winit::window::Window;

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use graph_core::gpu::FrameReport;
+use rgraph_core::gpu::FrameReport;
 
 use crate::commands::render::view::view_name;
 
@@ -64,8 +64,8 @@ pub fn cycle(current: usize, count: usize, step: isize) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use graph_core::gpu::PassTiming;
-    use graph_core::PassKind;
+    use rgraph_core::gpu::PassTiming;
+    use rgraph_core::PassKind;
 
     fn report(timed: bool) -> FrameReport {
         let pass = |name: &str, ns: u64| PassTiming {

@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
-use graph_core::bounded_read;
+use rgraph_core::bounded_read;
 
 /// What a watched file looked like when last polled: `None` when it could not be read
 /// (missing, or built in), else its modification time and length.

@@ -2,8 +2,8 @@
 //! compute), made again every frame because the pool may lend a slot different memory,
 //! with the linear sampler of any input read filtered and any storage buffers it reads.
 
-use graph_core::gpu::FrameResources;
-use graph_core::BufferHandle;
+use rgraph_core::gpu::FrameResources;
+use rgraph_core::BufferHandle;
 
 use crate::common::textures::{Input, Texels};
 

@@ -6,8 +6,8 @@
 //! group 3; and its pipelines. Built on the first frame of a device or scene upload, kept
 //! after.
 
-use graph_core::gpu::FrameResources;
-use graph_core::BufferHandle;
+use rgraph_core::gpu::FrameResources;
+use rgraph_core::BufferHandle;
 
 use super::bindings::TextureBindings;
 use super::pipeline::{module, pipeline_layout, Pipelines};

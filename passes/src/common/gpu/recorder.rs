@@ -7,8 +7,8 @@
 
 use std::sync::Arc;
 
-use graph_core::gpu::FrameResources;
-use graph_core::PassBuilder;
+use rgraph_core::gpu::FrameResources;
+use rgraph_core::PassBuilder;
 
 use crate::gpu_scene::{GpuScene, SceneCache};
 

@@ -48,7 +48,7 @@ pub(crate) struct TileBins {
 
 impl TileBins {
     /// Every buffer the bins keep, for the pass to count as its own
-    /// ([`graph_core::FrameResources::hold`]).
+    /// ([`rgraph_core::FrameResources::hold`]).
     pub fn buffers(&self) -> &[wgpu::Buffer] {
         &self.buffers
     }
