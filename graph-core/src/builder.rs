@@ -160,6 +160,13 @@ impl PassBuilder<'_> {
         self.graph.passes[self.id.index()].condition.as_ref()
     }
 
+    /// Says where the pass was written, for `explain`: a graph file's loader names the part
+    /// a pass came from and where the graph uses it.
+    pub fn origin(&mut self, origin: impl Into<String>) -> &mut Self {
+        self.node().origin = Some(origin.into());
+        self
+    }
+
     /// Leaves the pass out of every plan, as a false condition would (what it modifies
     /// passes through; explain shows `reason`), with its accesses still declared and
     /// checked. For a plugin that finds at setup that its work is empty, such as edge

@@ -73,6 +73,9 @@ pub struct PassNode {
     /// A compute pass's workgroup shape and memory for each entry point it dispatches,
     /// in the order its plugin declared them.
     pub workgroups: Vec<Workgroup>,
+    /// Where the pass was written, when not in the graph's own file: the part it came
+    /// from and where the graph uses it. `explain` shows it.
+    pub origin: Option<String>,
     #[cfg(feature = "gpu")]
     pub(crate) record: Option<crate::record::Record>,
 }
@@ -105,6 +108,7 @@ impl PassNode {
             condition: None,
             omitted: None,
             workgroups: Vec::new(),
+            origin: None,
             #[cfg(feature = "gpu")]
             record: None,
         }
@@ -118,6 +122,7 @@ impl PassNode {
             condition: self.condition.clone(),
             omitted: self.omitted.clone(),
             workgroups: self.workgroups.clone(),
+            origin: self.origin.clone(),
             ..Self::new(self.name.clone(), self.kind)
         }
     }

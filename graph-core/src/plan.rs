@@ -65,6 +65,10 @@ pub struct PlannedPass {
     pub depth_stencil: Option<DepthStencilAttachment>,
     /// A compute pass's workgroup size and memory for each entry point it dispatches.
     pub workgroups: Vec<crate::pass::Workgroup>,
+    /// Where the pass was written, when not in the graph's own file (see
+    /// [`PassBuilder::origin`](crate::PassBuilder::origin)).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub origin: Option<String>,
 }
 
 /// How an attachment aspect begins.

@@ -19,6 +19,7 @@ mod ron_bindings;
 mod ron_errors;
 mod ron_names;
 mod ron_params;
+mod ron_parts;
 mod ron_presets;
 mod ron_roundtrip;
 mod ron_sandbox;

@@ -213,6 +213,7 @@ impl Graph {
                     color: color.clone(),
                     depth_stencil: depth_stencil.clone(),
                     workgroups: pass.workgroups.clone(),
+                    origin: pass.origin.clone(),
                 }
             })
             .collect();

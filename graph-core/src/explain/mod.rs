@@ -30,6 +30,9 @@ pub fn text(plan: &Plan) -> String {
     let _ = writeln!(out, "\npasses, in execution order:");
     for (i, pass) in plan.passes.iter().enumerate() {
         let _ = writeln!(out, "  {i:>3}. {} ({})", pass.name, pass.kind);
+        if let Some(origin) = &pass.origin {
+            let _ = writeln!(out, "         from    {origin}");
+        }
         // Passes at a fraction of the output (off-screen particles, downsampling) say so.
         let area = pass
             .color

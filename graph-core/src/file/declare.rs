@@ -11,12 +11,22 @@ use super::params::GraphParams;
 use super::plugin::Prepared;
 use super::plugin_error::PluginError;
 use super::references::References;
-use super::schema::{GraphFile, PassDecl};
+use super::schema::{GraphFile, PassDecl, Used};
 use super::slots::Slots;
 use super::source::Source;
 use super::spans::Spans;
 use crate::builder::GraphBuilder;
 use crate::pass::PassKind;
+
+/// Where a pass from parts came from: `parts/a.ron (used at graph.ron:3:5), in parts/b.ron
+/// (used at parts/a.ron:9:9)`, the innermost part first.
+fn shown_uses(used: &[Used]) -> String {
+    used.iter()
+        .rev()
+        .map(|u| format!("{} (used at {})", u.part, u.at))
+        .collect::<Vec<_>>()
+        .join(", in ")
+}
 
 /// Declares `file` with passes in `order`. `prepared` holds each pass's plugin with its
 /// parameters, by file index; conditions were read and names resolved without errors.
@@ -52,7 +62,8 @@ pub(super) fn declare<'f>(
         // A pass whose inputs a failed pass should have written is skipped: the failure
         // is reported already, and its consequences would only repeat it.
         let plugin = prepared.get_mut(p).and_then(Option::take);
-        let slots = Slots::new(decl, &handles, &declared, (source.dir(), references));
+        let dir = source.dir_of(&decl.name);
+        let slots = Slots::new(decl, &handles, &declared, (dir, references));
         let (Some(plugin), Some(mut slots)) = (plugin, slots) else {
             continue;
         };
@@ -65,6 +76,9 @@ pub(super) fn declare<'f>(
         };
         if let Some(condition) = conditions.passes[p].take() {
             pass.when(condition);
+        }
+        if !decl.used.is_empty() {
+            pass.origin(shown_uses(&decl.used));
         }
         if let Err(error) = plugin.setup(&mut pass, &mut slots) {
             errors.push(plugin_error(source, decl, error));

@@ -129,6 +129,110 @@ pub enum ErrorKind {
         known: String,
     },
 
+    /// A `passes` entry that is neither a pass nor a use of a part, or mixes the two.
+    #[error("{message}")]
+    EntryShape {
+        /// What is wrong, naming the fields.
+        message: String,
+    },
+
+    /// Parts that use parts grow the graph past the limit.
+    #[error("the graph grows past {limit} passes and part uses through its parts")]
+    TooManyEntries {
+        /// The most passes and uses a graph may have.
+        limit: usize,
+    },
+
+    /// A use names a file that is not a part.
+    #[error("{part} is {kind}, not a part; a use names a `Part(..)` file")]
+    NotAPart {
+        /// The file, as the use resolves it.
+        part: String,
+        /// What it is instead: "a graph file", "a preset".
+        kind: &'static str,
+    },
+
+    /// A part that uses itself, directly or through others.
+    #[error("parts use each other in a cycle: {chain}")]
+    PartCycle {
+        /// The part files of the cycle, "a uses b uses a".
+        chain: String,
+    },
+
+    /// Two uses of one part under the same prefix: their names would collide.
+    #[error(
+        "part {part} is used again with prefix \"{prefix}\" (first at {first}); give each use \
+         a `prefix` of its own"
+    )]
+    PartTwice {
+        /// The part file.
+        part: String,
+        /// The prefix both uses give its names.
+        prefix: String,
+        /// Where the first use is.
+        first: Location,
+    },
+
+    /// A part names a feature the graph using it does not declare.
+    #[error(
+        "part {part} needs feature \"{feature}\" ({at}), which this graph does not declare \
+         (it declares: {declared})"
+    )]
+    PartFeature {
+        /// The part file.
+        part: String,
+        /// The feature.
+        feature: String,
+        /// Where the part names it.
+        at: Location,
+        /// The graph's features, comma-separated.
+        declared: String,
+    },
+
+    /// A use binds a slot the part does not have.
+    #[error("part {part} {side} no \"{slot}\" (it {side}: {known})")]
+    PartNoSlot {
+        /// The part file.
+        part: String,
+        /// "takes" (a use's inputs) or "gives" (its outputs).
+        side: &'static str,
+        /// The slot the use binds.
+        slot: String,
+        /// The part's slots on that side, comma-separated.
+        known: String,
+    },
+
+    /// A use leaves a resource the part takes unbound.
+    #[error("this use of part {part} does not bind \"{slot}\", which the part takes ({at})")]
+    PartUnbound {
+        /// The part file.
+        part: String,
+        /// The slot.
+        slot: String,
+        /// Where the part's interface declares it.
+        at: Location,
+    },
+
+    /// A use binds a slot to a resource unlike the part's interface.
+    #[error(
+        "part {part} takes \"{slot}\" as {wanted} ({at}), but this use binds it to \
+         \"{bound}\", {found}"
+    )]
+    PartBinding {
+        /// The part file.
+        part: String,
+        /// The slot.
+        slot: String,
+        /// What the interface asks for, in words.
+        wanted: String,
+        /// Where the part's interface declares the slot.
+        at: Location,
+        /// The version the use binds.
+        bound: String,
+        /// What that version is, in words.
+        found: String,
+    },
+
     /// The caller gives a value to a parameter the file does not declare.
     #[error(
         "parameter \"{name}\" is given a value ({value}), but the file declares no parameter \

@@ -3,6 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
+use typed_arena::Arena;
+
 use super::declare::declare;
 use super::error::{ErrorKind, FileError, FileErrors, Location};
 use super::loaded::LoadedGraph;
@@ -11,7 +13,8 @@ use super::params::GraphParams;
 use super::plugin::Prepared;
 use super::references::{ReferenceError, References};
 use super::registry::Registry;
-use super::schema::{self, GraphFile, PresetFile};
+use super::compose::Composer;
+use super::schema::{self, FileKind, GraphFile, Name, PresetFile};
 use super::shown::Shown;
 use super::source::Source;
 use super::{conditions, names, order, ron_message};
@@ -82,23 +85,52 @@ fn load_text(
     params: &GraphParams,
     references: &References,
 ) -> Result<LoadedGraph, FileErrors> {
-    let text = without_bom(text);
-    if !schema::is_preset(text) {
-        let source = Source::new(path, text);
-        let file = schema::parse(text).map_err(|e| FileErrors(vec![source.syntax(&e)]))?;
-        return load_graph(&source, file, registry, params, references);
-    }
-    let preset = schema::parse_preset(text)
-        .map_err(|e| FileErrors(vec![Source::new(path, text).syntax(&e)]))?;
-    let main = Source::new(path, text);
-    let (base_path, base_text) = read_base(&main, &preset, references)?;
-    let params = preset_values(&preset).overridden_by(params);
-    let base_text = without_bom(&base_text);
-    let source = Source::with_base(path, text, (&base_path, base_text));
-    let mut file = schema::parse(base_text)
-        .map_err(|e| FileErrors(vec![Source::new(&base_path, base_text).syntax(&e)]))?;
-    apply_preset(&source, preset, &base_path, &mut file)?;
-    load_graph(&source, file, registry, &params, references)
+    let arena = Arena::new();
+    let (source, file, values) = read_graph(path, without_bom(text), &arena, references)?;
+    load_graph(&source, file, registry, &values.overridden_by(params), references)
+}
+
+/// The graph the file at `path` holds, its parts written out (see [`compose`]), and the
+/// source that places its names; with a preset's values for its base's parameters. A graph
+/// file is read as written; a part as the graph that checks it alone; a preset as its
+/// base with its changes.
+fn read_graph<'a>(
+    path: &'a Path,
+    text: &'a str,
+    arena: &'a Arena<(PathBuf, String)>,
+    references: &References,
+) -> Result<(Source<'a>, GraphFile<'a>, GraphParams), FileErrors> {
+    let mut source = Source::new(path, text);
+    let syntax = |source: &Source<'_>, e| FileErrors(vec![source.syntax(&e)]);
+    let (file, composer, values) = match schema::kind(text) {
+        FileKind::Graph => {
+            let graph = schema::parse(text).map_err(|e| syntax(&source, e))?;
+            let mut composer = Composer::new(arena, references, &graph.features);
+            (composer.graph(&mut source, graph), composer, GraphParams::new())
+        }
+        FileKind::Part => {
+            let part = schema::parse_part(text).map_err(|e| syntax(&source, e))?;
+            let mut composer = Composer::new(arena, references, &part.features);
+            let file = composer.part_alone(&mut source, path, part);
+            (file, composer, GraphParams::new())
+        }
+        FileKind::Preset => {
+            let preset = schema::parse_preset(text).map_err(|e| syntax(&source, e))?;
+            let (base_path, base_text) = read_base(&source, &preset, references)?;
+            let (base_path, base_text) = arena.alloc((base_path, base_text));
+            let base_text = without_bom(base_text);
+            source = Source::with_base(path, text, (base_path, base_text));
+            let graph =
+                schema::parse(base_text).map_err(|e| syntax(&Source::new(base_path, base_text), e))?;
+            let values = preset_values(&preset);
+            let mut composer = Composer::new(arena, references, &graph.features);
+            let mut file = composer.graph(&mut source, graph);
+            apply_preset(&mut source, &mut composer, preset, base_path, &mut file);
+            (file, composer, values)
+        }
+    };
+    composer.finish(&source, &file)?;
+    Ok((source, file, values))
 }
 
 /// The values a preset gives its base's parameters.
@@ -162,7 +194,7 @@ fn read_base(
                 reason: reason.to_string(),
             }),
         })?;
-    if schema::is_preset(without_bom(&named.text)) {
+    if schema::kind(without_bom(&named.text)) == FileKind::Preset {
         return Err(error(ErrorKind::PresetOfPreset {
             base: named.path.display().to_string(),
         }));
@@ -170,42 +202,74 @@ fn read_base(
     Ok((named.path, named.text))
 }
 
-/// Replaces the parameters and inputs of the passes `preset` names in the base `file`.
+/// Applies `preset` to its base's graph `file`: the passes it names changed, those it
+/// removes left out, its passes and part uses added after the passes it names, its
+/// resources added and its outputs in place of the base's. Errors go to `composer`'s.
 fn apply_preset<'a>(
-    source: &Source<'_>,
+    source: &mut Source<'a>,
+    composer: &mut Composer<'a, '_>,
     preset: PresetFile<'a>,
     base: &Path,
     file: &mut GraphFile<'a>,
-) -> Result<(), FileErrors> {
+) {
     let mut errors = Vec::new();
     for (name, change) in preset.passes.0 {
-        let Some(pass) = file
-            .passes
-            .iter_mut()
-            .find(|p| p.name.as_str() == name.as_str())
-        else {
-            let known: Vec<&str> = file.passes.iter().map(|p| p.name.as_str()).collect();
-            errors.push(source.error(
-                &name,
-                ErrorKind::UnknownPresetPass {
-                    pass: name.as_str().to_owned(),
-                    base: base.display().to_string(),
-                    known: known.join(", "),
-                },
-            ));
+        let Some(p) = find_pass(source, file, &name, base, &mut errors) else {
             continue;
         };
+        let pass = &mut file.passes[p];
         if let Some(params) = change.params {
             pass.params = Some(params);
         }
         if let Some(inputs) = change.inputs {
             pass.inputs = inputs;
         }
+        if let Some(outputs) = change.outputs {
+            pass.outputs = outputs;
+        }
     }
-    match errors.is_empty() {
-        true => Ok(()),
-        false => Err(FileErrors::sorted(errors)),
+    for name in &preset.remove {
+        if let Some(p) = find_pass(source, file, name, base, &mut errors) {
+            file.passes.remove(p);
+        }
     }
+    for (name, entries) in preset.after.0 {
+        let Some(p) = find_pass(source, file, &name, base, &mut errors) else {
+            continue;
+        };
+        let added = composer.added(source, entries);
+        file.resources.0.extend(added.resources.0);
+        file.passes.splice(p + 1..p + 1, added.passes);
+    }
+    file.resources.0.extend(preset.resources.0);
+    if let Some(outputs) = preset.outputs {
+        file.outputs = outputs;
+    }
+    composer.errors.extend(errors);
+}
+
+/// The index of the pass a preset names in its base's graph `file`, or the error saying
+/// which passes there are.
+fn find_pass(
+    source: &Source<'_>,
+    file: &GraphFile<'_>,
+    name: &Name<'_>,
+    base: &Path,
+    errors: &mut Vec<FileError>,
+) -> Option<usize> {
+    let found = file.passes.iter().position(|p| p.name.as_str() == name.as_str());
+    if found.is_none() {
+        let known: Vec<&str> = file.passes.iter().map(|p| p.name.as_str()).collect();
+        errors.push(source.error(
+            name,
+            ErrorKind::UnknownPresetPass {
+                pass: name.as_str().to_owned(),
+                base: base.display().to_string(),
+                known: known.join(", "),
+            },
+        ));
+    }
+    found
 }
 
 /// The parameters the graph file at `path` declares, with their defaults (a preset's
@@ -220,23 +284,9 @@ pub fn declared_params(
 ) -> Result<GraphParams, FileErrors> {
     let path = path.as_ref();
     let text = read(path)?;
-    let text = without_bom(&text);
-    let main = Source::new(path, text);
-    let ((path, text), values) = match schema::is_preset(text) {
-        true => {
-            let preset =
-                schema::parse_preset(text).map_err(|e| FileErrors(vec![main.syntax(&e)]))?;
-            let references = References::of_file(path, registry.roots(), &Folders::new());
-            (
-                read_base(&main, &preset, &references)?,
-                preset_values(&preset),
-            )
-        }
-        false => ((path.to_path_buf(), text.to_owned()), GraphParams::new()),
-    };
-    let text = without_bom(&text);
-    let file =
-        schema::parse(text).map_err(|e| FileErrors(vec![Source::new(&path, text).syntax(&e)]))?;
+    let references = References::of_file(path, registry.roots(), &Folders::new());
+    let arena = Arena::new();
+    let (_, file, values) = read_graph(path, without_bom(&text), &arena, &references)?;
     Ok(param_uses::declared(&file).overridden_by(&values))
 }
 

@@ -27,6 +27,7 @@
 //! Errors read `FILE:LINE:COL: error: MESSAGE` and name the pass and the resource.
 
 mod any_handle;
+mod compose;
 mod conditions;
 mod declare;
 mod error;

@@ -15,28 +15,167 @@ use super::pairs::Pairs;
 use super::params::GraphParams;
 use crate::builder::GraphBuilder;
 use crate::condition::Condition;
-use crate::resource::{BufferDesc, Size, TextureDesc};
+use crate::resource::{format_name, BufferDesc, Size, TextureDesc};
 
-/// A whole graph file:
-/// `Graph(features: [..], resources: {..}, passes: [..], outputs: [..])`.
+/// A whole graph file as written:
+/// `Graph(features: [..], resources: {..}, passes: [..], outputs: [..])`, where a pass
+/// may be a use of a part.
 #[derive(Debug, Deserialize)]
 #[serde(rename = "Graph", deny_unknown_fields)]
-pub(crate) struct GraphFile<'a> {
+pub(crate) struct GraphText<'a> {
     /// The feature names `when` conditions may use.
     #[serde(borrow, default)]
     pub features: Vec<Name<'a>>,
     #[serde(borrow, default)]
     pub resources: Pairs<Name<'a>, ResourceDecl<'a>>,
     #[serde(borrow, default)]
-    pub passes: Vec<PassDecl<'a>>,
+    pub passes: Vec<Entry<'a>>,
     /// Names of the versions kept past the frame.
     #[serde(borrow, default)]
     pub outputs: Vec<Name<'a>>,
 }
 
+/// A graph with its parts' passes and resources written out (see `compose`): what
+/// the rest of loading reads, as if the file had been written that way.
+#[derive(Debug)]
+pub(crate) struct GraphFile<'a> {
+    pub features: Vec<Name<'a>>,
+    pub resources: Pairs<Name<'a>, ResourceDecl<'a>>,
+    pub passes: Vec<PassDecl<'a>>,
+    pub outputs: Vec<Name<'a>>,
+}
+
+/// A part: passes and resources a graph uses by the part file's name, through an
+/// interface of the resources it takes and gives:
+/// `Part(takes: { "hdr": Texture(format: "rgba16float") }, gives: { "color": Texture(format:
+/// "rgba8unorm-srgb") }, features: ["auto_exposure"], resources: {..}, passes: [..])`.
+#[derive(Debug, Deserialize)]
+#[serde(rename = "Part", deny_unknown_fields)]
+pub(crate) struct PartFile<'a> {
+    /// Slot -> what a use must bind to it: a version its passes read.
+    #[serde(borrow, default)]
+    pub takes: Pairs<Name<'a>, Interface<'a>>,
+    /// Slot -> what the part writes under that name: a resource it declares
+    /// (`Texture(..)`, `Buffer(..)`) or, `Any`, a version of one it takes.
+    #[serde(borrow, default)]
+    pub gives: Pairs<Name<'a>, Interface<'a>>,
+    /// The features its conditions use, which a graph using it must declare.
+    #[serde(borrow, default)]
+    pub features: Vec<Name<'a>>,
+    /// Resources of its own, which each use declares under its prefix.
+    #[serde(borrow, default)]
+    pub resources: Pairs<Name<'a>, ResourceDecl<'a>>,
+    #[serde(borrow, default)]
+    pub passes: Vec<Entry<'a>>,
+}
+
+/// One resource of a part's interface.
+#[derive(Debug, Clone, Deserialize)]
+pub(crate) enum Interface<'a> {
+    /// A texture; taken, the bound version's texture has this format.
+    #[serde(borrow)]
+    Texture(TextureDecl<'a>),
+    /// A buffer.
+    #[serde(borrow)]
+    Buffer(BufferDecl<'a>),
+    /// Any resource (taken), or a version of a taken one (given).
+    Any,
+}
+
+impl<'a> Interface<'a> {
+    /// What a part checked on its own reads for a slot it takes: an import of this shape
+    /// (`Any`: an `rgba16float` texture).
+    pub fn placeholder(&self) -> ResourceDecl<'a> {
+        match self {
+            Interface::Texture(t) => ResourceDecl::ImportedTexture(t.clone()),
+            Interface::Buffer(b) => ResourceDecl::ImportedBuffer(b.clone()),
+            Interface::Any => ResourceDecl::ImportedTexture(TextureDecl {
+                format: TextureFormat::Rgba16Float,
+                fallback: None,
+                format_if: Vec::new(),
+                size: SizeDecl::default(),
+                samples: Count::one(),
+                mips: Count::one(),
+                layers: Count::one(),
+                when: None,
+            }),
+        }
+    }
+
+    /// The resource a part declares for a slot it gives (none for `Any`, a version of one
+    /// it takes).
+    pub fn declaration(self) -> Option<ResourceDecl<'a>> {
+        match self {
+            Interface::Texture(t) => Some(ResourceDecl::Texture(t)),
+            Interface::Buffer(b) => Some(ResourceDecl::Buffer(b)),
+            Interface::Any => None,
+        }
+    }
+
+    /// What the interface asks for, in words.
+    pub fn shown(&self) -> String {
+        match self {
+            Interface::Texture(t) => format!("a texture of format {}", format_name(t.format)),
+            Interface::Buffer(_) => "a buffer".into(),
+            Interface::Any => "any resource".into(),
+        }
+    }
+
+    /// `found`, in words, where it is not what the interface asks for.
+    pub fn mismatch(&self, found: &ResourceDecl<'_>) -> Option<String> {
+        match (self, found) {
+            (Interface::Any, _) => None,
+            (
+                Interface::Texture(wanted),
+                ResourceDecl::Texture(t) | ResourceDecl::ImportedTexture(t),
+            ) => (wanted.format != t.format)
+                .then(|| format!("a texture of format {}", format_name(t.format))),
+            (Interface::Buffer(_), ResourceDecl::Buffer(_) | ResourceDecl::ImportedBuffer(_)) => {
+                None
+            }
+            (_, ResourceDecl::Texture(_) | ResourceDecl::ImportedTexture(_)) => {
+                Some("a texture".into())
+            }
+            (_, ResourceDecl::Buffer(_) | ResourceDecl::ImportedBuffer(_)) => {
+                Some("a buffer".into())
+            }
+        }
+    }
+}
+
+/// One entry of a `passes` list: a pass, `(name: "..", plugin: "..", ..)`, or a use of a
+/// part, `(part: "parts/fxaa.ron", inputs: {..}, outputs: {..})`. Read as one struct so
+/// that both kinds share the fields they share; `compose` tells them apart, with errors
+/// at the field at fault.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct Entry<'a> {
+    #[serde(borrow, default)]
+    pub name: Option<Name<'a>>,
+    #[serde(borrow, default)]
+    pub plugin: Option<Name<'a>>,
+    /// The part file, relative to the file that uses it.
+    #[serde(borrow, default)]
+    pub part: Option<Name<'a>>,
+    /// Put before the names of a use's passes and own resources, so that two uses of one
+    /// part have names of their own.
+    #[serde(borrow, default)]
+    pub prefix: Option<Name<'a>>,
+    #[serde(borrow, default)]
+    pub when: Option<Name<'a>>,
+    #[serde(borrow, default)]
+    pub params: Option<PluginParams<'a>>,
+    /// A pass's slots, or a use's bindings of what the part takes.
+    #[serde(borrow, default)]
+    pub inputs: Pairs<Name<'a>, Name<'a>>,
+    /// A pass's slots, or a use's bindings of what the part gives.
+    #[serde(borrow, default)]
+    pub outputs: Pairs<Name<'a>, Name<'a>>,
+}
+
 /// A preset: a graph file named by `base` (relative to the preset's folder) with some
-/// passes' parameters or inputs replaced and its parameters given other values, for files
-/// that differ from another in those only:
+/// passes' parameters, inputs or outputs replaced, passes removed or added, and its
+/// parameters given other values, for files that differ from another in those only:
 /// `Preset(base: "deferred_msaa_4x.ron", passes: { "edges": (params: (detector: centroid),
 /// inputs: { "material": "material", "depth": "depth" }) })`.
 #[derive(Debug, Deserialize)]
@@ -47,9 +186,21 @@ pub(crate) struct PresetFile<'a> {
     /// Values for the base's parameters (`{ "msaa": 1 }`), which a loader's own replace.
     #[serde(borrow, default)]
     pub values: Pairs<Name<'a>, u32>,
-    /// Pass name -> what replaces its parameters and inputs.
+    /// Resources added to the base's.
+    #[serde(borrow, default)]
+    pub resources: Pairs<Name<'a>, ResourceDecl<'a>>,
+    /// Pass name -> what replaces its parameters, inputs and outputs.
     #[serde(borrow, default)]
     pub passes: Pairs<Name<'a>, PassChange<'a>>,
+    /// Passes of the base left out.
+    #[serde(borrow, default)]
+    pub remove: Vec<Name<'a>>,
+    /// Pass name -> passes and part uses added right after it.
+    #[serde(borrow, default)]
+    pub after: Pairs<Name<'a>, Vec<Entry<'a>>>,
+    /// The graph's outputs, replacing the base's.
+    #[serde(borrow, default)]
+    pub outputs: Option<Vec<Name<'a>>>,
 }
 
 /// What a preset replaces in one pass: each part given replaces the base's whole part.
@@ -60,6 +211,8 @@ pub(crate) struct PassChange<'a> {
     pub params: Option<PluginParams<'a>>,
     #[serde(borrow, default)]
     pub inputs: Option<Pairs<Name<'a>, Name<'a>>>,
+    #[serde(borrow, default)]
+    pub outputs: Option<Pairs<Name<'a>, Name<'a>>>,
 }
 
 /// A declared resource; its name (the map key) names the version its one writer produces.
@@ -78,7 +231,7 @@ pub(crate) enum ResourceDecl<'a> {
 /// A [`TextureDesc`] as a file writes it, with its condition. The fields repeat
 /// `TextureDesc`'s because serde cannot flatten into a struct that denies unknown
 /// fields, and unknown fields must stay errors.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct TextureDecl<'a> {
     format: TextureFormat,
@@ -103,7 +256,7 @@ pub(crate) struct TextureDecl<'a> {
 /// `Divided(n)`, the output size divided by a whole number that may be a parameter
 /// (`Divided(Param(name: "scale", default: 2))`): `Relative(1 / n)`, for targets at a
 /// fraction of the output that one file serves at every fraction.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 pub(crate) enum SizeDecl<'a> {
     Absolute(u32, u32),
     Relative(f32),
@@ -135,7 +288,7 @@ impl SizeDecl<'_> {
 /// A texture's `samples`, `mips` or `layers` (or the divisor of its size) as written: a number, or a parameter whose
 /// value the loader is given (see [`GraphParams`](super::GraphParams)):
 /// `Param(name: "msaa", default: 4)`.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub(crate) enum Count<'a> {
     Value(u32),
     Param(ParamUse<'a>),
@@ -200,7 +353,7 @@ impl Count<'_> {
 }
 
 /// A [`BufferDesc`] as a file writes it, with its condition.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct BufferDecl<'a> {
     #[serde(default)]
@@ -313,6 +466,14 @@ impl<'a> ResourceDecl<'a> {
         }
     }
 
+    /// Replaces the resource's `when` condition (a use's joined to a part's).
+    pub fn set_when(&mut self, when: Option<Name<'a>>) {
+        match self {
+            ResourceDecl::Texture(t) | ResourceDecl::ImportedTexture(t) => t.when = when,
+            ResourceDecl::Buffer(b) | ResourceDecl::ImportedBuffer(b) => b.when = when,
+        }
+    }
+
     /// The resource's `when` condition, as written.
     pub fn when(&self) -> Option<&Name<'a>> {
         match self {
@@ -323,25 +484,30 @@ impl<'a> ResourceDecl<'a> {
 }
 
 /// One pass: `(name: "..", plugin: "..", params: (..), inputs: {..}, outputs: {..})`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug)]
 pub(crate) struct PassDecl<'a> {
-    #[serde(borrow)]
     pub name: Name<'a>,
-    #[serde(borrow)]
     pub plugin: Name<'a>,
     /// The features under which the pass runs: `"spot_lights & !unlit_only"`.
-    #[serde(borrow, default)]
     pub when: Option<Name<'a>>,
-    #[serde(borrow, default)]
     pub params: Option<PluginParams<'a>>,
     /// Slot name -> name of the version read.
-    #[serde(borrow, default)]
     pub inputs: Pairs<Name<'a>, Name<'a>>,
     /// Slot name -> name of the version written. A slot also in `inputs` modifies what it
     /// reads, and this names the new version.
-    #[serde(borrow, default)]
     pub outputs: Pairs<Name<'a>, Name<'a>>,
+    /// The uses of parts it came from, outermost first (none when the graph's file
+    /// writes it), for `explain` and messages.
+    pub used: Vec<Used>,
+}
+
+/// Where a pass came from: the part file and the place of its use.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Used {
+    /// The part file, as its use names it (resolved from the using file's folder).
+    pub part: String,
+    /// The `part:` of the use.
+    pub at: super::error::Location,
 }
 
 impl<'a> PassDecl<'a> {
@@ -366,21 +532,60 @@ fn find<'p, 'a>(pairs: &'p Pairs<Name<'a>, Name<'a>>, slot: &str) -> Option<&'p 
 
 /// A name as written in the file. Plain strings borrow from the file's text, which is how
 /// their position is found; a string with escapes is a copy and has no position of its own.
+/// A name made from another (a part's name under its use's prefix, a use's condition
+/// joined to its pass's) keeps the place of the one it was made from.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(transparent)]
-pub(crate) struct Name<'a>(#[serde(borrow)] Cow<'a, str>);
+pub(crate) struct Name<'a> {
+    #[serde(borrow)]
+    text: Cow<'a, str>,
+    /// The name this one was made from, and how many characters were put before it.
+    #[serde(skip)]
+    made_from: Option<(&'a str, usize)>,
+}
 
-impl Name<'_> {
+impl<'a> Name<'a> {
     pub fn as_str(&self) -> &str {
-        &self.0
+        &self.text
+    }
+
+    /// `text`, placed where `from` is written; `shift` characters of `text` come before
+    /// `from`'s (a prefix), so a column in `text` past them is that column less `shift`
+    /// in `from`.
+    pub fn made_from(text: String, from: &Name<'a>, shift: usize) -> Name<'a> {
+        let made_from = from
+            .written()
+            .map(|(written, earlier)| (written, earlier + shift));
+        Name {
+            text: Cow::Owned(text),
+            made_from,
+        }
+    }
+
+    /// The text this name was read from, if it borrows from a file, and the characters put
+    /// before it since.
+    fn written(&self) -> Option<(&'a str, usize)> {
+        match (&self.text, self.made_from) {
+            (_, Some(from)) => Some(from),
+            (Cow::Borrowed(s), None) => Some((s, 0)),
+            (Cow::Owned(_), None) => None,
+        }
     }
 
     /// Where the name's text starts in `text`, if it borrows from it.
     pub fn offset(&self, text: &str) -> Option<usize> {
-        match &self.0 {
-            Cow::Borrowed(s) => offset_in(text, s),
-            Cow::Owned(_) => None,
-        }
+        self.written().and_then(|(s, _)| offset_in(text, s))
+    }
+
+    /// The text the name was read from (see [`Name::offset`]), for finding its file.
+    pub fn written_text(&self) -> &str {
+        self.written().map_or(self.as_str(), |(s, _)| s)
+    }
+
+    /// The character of the written text at `column` of this name's, if it is in it.
+    pub fn written_column(&self, column: usize) -> Option<usize> {
+        let shift = self.written().map_or(0, |(_, shift)| shift);
+        column.checked_sub(shift)
     }
 }
 
@@ -409,7 +614,12 @@ pub(crate) fn options() -> ron::Options {
 }
 
 /// Reads a graph file.
-pub(crate) fn parse(text: &str) -> Result<GraphFile<'_>, ron::error::SpannedError> {
+pub(crate) fn parse(text: &str) -> Result<GraphText<'_>, ron::error::SpannedError> {
+    options().from_str(text)
+}
+
+/// Reads a part file.
+pub(crate) fn parse_part(text: &str) -> Result<PartFile<'_>, ron::error::SpannedError> {
     options().from_str(text)
 }
 
@@ -417,8 +627,17 @@ pub(crate) fn parse_preset(text: &str) -> Result<PresetFile<'_>, ron::error::Spa
     options().from_str(text)
 }
 
-/// Whether the file's value is a `Preset(..)`: its first word past comments and blanks.
-pub(crate) fn is_preset(text: &str) -> bool {
+/// What a file holds, by its first word past comments and blanks.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum FileKind {
+    Graph,
+    Preset,
+    Part,
+}
+
+/// Whether the file's value is a `Graph(..)` (or anything else, which parsing reports), a
+/// `Preset(..)` or a `Part(..)`.
+pub(crate) fn kind(text: &str) -> FileKind {
     let mut rest = text;
     loop {
         rest = rest.trim_start();
@@ -430,7 +649,11 @@ pub(crate) fn is_preset(text: &str) -> bool {
             let word = rest
                 .split(|c: char| !(c.is_alphanumeric() || c == '_'))
                 .next();
-            return word == Some("Preset");
+            return match word {
+                Some("Preset") => FileKind::Preset,
+                Some("Part") => FileKind::Part,
+                _ => FileKind::Graph,
+            };
         }
     }
 }

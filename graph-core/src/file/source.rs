@@ -12,9 +12,12 @@ use crate::position::Position;
 pub(crate) struct Source<'a> {
     /// The file the user named: file-level errors point here.
     main: Text<'a>,
-    /// A preset's base: names and values borrowed from it are placed in it (see
-    /// `load::apply_preset`).
-    base: Option<Text<'a>>,
+    /// The other files the graph is read from: a preset's base (see `load::apply_preset`)
+    /// and the parts it uses (see `compose`). Names and values borrowed from one of them
+    /// are placed in it.
+    others: Vec<Text<'a>>,
+    /// Whether the main file is a preset, whose graph is in `others[0]`.
+    preset: bool,
 }
 
 /// One file's path and text.
@@ -46,7 +49,8 @@ impl<'a> Source<'a> {
     pub fn new(path: &'a Path, text: &'a str) -> Self {
         Source {
             main: Text::new(path, text),
-            base: None,
+            others: Vec::new(),
+            preset: false,
         }
     }
 
@@ -55,30 +59,46 @@ impl<'a> Source<'a> {
     pub fn with_base(path: &'a Path, text: &'a str, base: (&'a Path, &'a str)) -> Self {
         Source {
             main: Text::new(path, text),
-            base: Some(Text::new(base.0, base.1)),
+            others: vec![Text::new(base.0, base.1)],
+            preset: true,
         }
     }
 
-    /// The file whose text holds `part`: the base's, or the main file's (also for text
-    /// that is in neither, such as a copied name).
+    /// Adds a file the graph reads names from: a part it uses.
+    pub fn add(&mut self, path: &'a Path, text: &'a str) {
+        self.others.push(Text::new(path, text));
+    }
+
+    /// The file whose text holds `part`: one of the others', or the main file's (also for
+    /// text that is in none, such as a copied name).
     fn text_of(&self, part: &str) -> &Text<'a> {
-        self.base
-            .as_ref()
-            .filter(|base| offset_in(base.text, part).is_some())
+        self.others
+            .iter()
+            .find(|other| offset_in(other.text, part).is_some())
             .unwrap_or(&self.main)
     }
 
     /// Whether `part` is text of a preset over a base (a change the preset makes), not
     /// the base's.
     pub fn in_preset(&self, part: &str) -> bool {
-        self.base.is_some() && offset_in(self.main.text, part).is_some()
+        self.preset && offset_in(self.main.text, part).is_some()
     }
 
     /// The directory relative paths in the graph are resolved against: the graph's file
     /// (a preset's base), where its passes are written.
     pub fn dir(&self) -> &'a Path {
-        let graph = self.base.as_ref().unwrap_or(&self.main);
+        let graph = match self.preset {
+            true => &self.others[0],
+            false => &self.main,
+        };
         graph.path.parent().unwrap_or(Path::new(""))
+    }
+
+    /// The directory relative paths written beside `name` resolve against: that of the
+    /// file `name` is written in (a part's, for its passes' shaders).
+    pub fn dir_of(&self, name: &Name<'_>) -> &'a Path {
+        let file = self.text_of(name.written_text());
+        file.path.parent().unwrap_or(Path::new(""))
     }
 
     /// A position in the file the user named.
@@ -89,7 +109,7 @@ impl<'a> Source<'a> {
     /// Where a name is written: its opening quote, in the file it is written in. A name
     /// with escapes (a copy, not a slice of the text) is placed at the start of the file.
     pub fn locate(&self, name: &Name<'_>) -> Location {
-        let file = self.text_of(name.as_str());
+        let file = self.text_of(name.written_text());
         let at = name.offset(file.text).map_or(Position::START, |offset| {
             let quote = offset
                 .checked_sub(1)
@@ -102,12 +122,15 @@ impl<'a> Source<'a> {
     /// Where the character `column` (counted from 0) of `name`'s text is, when the name
     /// borrows from a file; else where the name is.
     pub fn locate_in(&self, name: &Name<'_>, column: usize) -> Location {
-        let file = self.text_of(name.as_str());
+        let file = self.text_of(name.written_text());
+        let Some(column) = name.written_column(column) else {
+            return self.locate(name);
+        };
         let within = name
-            .as_str()
+            .written_text()
             .char_indices()
             .nth(column)
-            .map_or(name.as_str().len(), |(i, _)| i);
+            .map_or(name.written_text().len(), |(i, _)| i);
         match name.offset(file.text) {
             Some(offset) => file.location(file.lines.position(offset + within)),
             None => self.locate(name),

@@ -1,0 +1,560 @@
+//! Parts: passes and resources written once in a part file and used by graphs, each use
+//! under names of its own. Loading writes every use out into the graph here, so that the
+//! rest of loading, the plan, `explain` and specialisation see the graph as if its file
+//! had been written that way; each pass remembers the uses it came from.
+//!
+//! Inside a use, a name the part takes or gives is the name the use binds to it; any
+//! other name (the part's passes, its own resources and the versions they write) gets
+//! the use's `prefix`. A use's `when` joins the conditions of everything in it.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use typed_arena::Arena;
+
+use super::error::{ErrorKind, FileError, FileErrors, Location};
+use super::pairs::Pairs;
+use super::references::{ReferenceError, References};
+use super::schema::{
+    self, Entry, FileKind, GraphFile, GraphText, Interface, Name, PartFile, PassDecl,
+    ResourceDecl, Used,
+};
+use super::shown::Shown;
+use super::source::Source;
+use crate::bounded_read;
+
+/// The most passes and part uses parts may add to one graph: parts that use parts several
+/// times each multiply, so a few small files could otherwise ask for billions.
+pub(crate) const MAX_ENTRIES: usize = 100_000;
+
+/// Writes out the parts a graph uses. Part files are read into `arena`, so that names
+/// borrowed from them live as long as the graph's own.
+pub(super) struct Composer<'a, 'r> {
+    arena: &'a Arena<(PathBuf, String)>,
+    references: &'r References,
+    /// The graph's declared features, which every part's must be among.
+    features: Vec<Name<'a>>,
+    /// Part files on the way to the one being written out, to refuse a cycle.
+    stack: Vec<PathBuf>,
+    /// (part file, prefix) of each use so far -> where the use is.
+    instances: HashMap<(PathBuf, String), Location>,
+    /// Passes and uses written out of parts so far.
+    entries: usize,
+    /// What uses bind to what their parts take, checked once the graph is whole.
+    bindings: Vec<Binding<'a>>,
+    pub errors: Vec<FileError>,
+}
+
+/// The names of one use's inside in the graph: see the module's documentation.
+#[derive(Clone, Default)]
+struct Instance<'a> {
+    prefix: String,
+    /// Slot of the part's interface -> the name in the graph the use binds to it.
+    bound: HashMap<String, Name<'a>>,
+    /// The conditions of the uses around, joined.
+    when: Option<Name<'a>>,
+    used: Vec<Used>,
+}
+
+impl<'a> Instance<'a> {
+    /// A name of the part's inside: bound, or under the prefix.
+    fn name(&self, name: &Name<'a>) -> Name<'a> {
+        match self.bound.get(name.as_str()) {
+            Some(bound) => Name::made_from(bound.as_str().to_owned(), name, 0),
+            None => self.prefixed(name),
+        }
+    }
+
+    /// A pass's name, or a name no binding reaches.
+    fn prefixed(&self, name: &Name<'a>) -> Name<'a> {
+        match self.prefix.is_empty() {
+            true => name.clone(),
+            false => Name::made_from(
+                format!("{}{}", self.prefix, name.as_str()),
+                name,
+                self.prefix.chars().count(),
+            ),
+        }
+    }
+
+    /// `own` condition joined to the uses' around it.
+    fn when(&self, own: Option<&Name<'a>>) -> Option<Name<'a>> {
+        match (&self.when, own) {
+            (None, own) => own.cloned(),
+            (Some(outer), None) => Some(outer.clone()),
+            (Some(outer), Some(own)) => Some(Name::made_from(
+                format!("{} & {}", outer.as_str(), own.as_str()),
+                own,
+                outer.as_str().chars().count() + 3,
+            )),
+        }
+    }
+}
+
+/// A taken slot's interface and the version a use binds to it.
+struct Binding<'a> {
+    part: String,
+    slot: Name<'a>,
+    interface: Interface<'a>,
+    bound: Name<'a>,
+    /// Where the use binds it.
+    at: Name<'a>,
+}
+
+impl<'a, 'r> Composer<'a, 'r> {
+    pub fn new(
+        arena: &'a Arena<(PathBuf, String)>,
+        references: &'r References,
+        features: &[Name<'a>],
+    ) -> Self {
+        Composer {
+            arena,
+            references,
+            features: features.to_vec(),
+            stack: Vec::new(),
+            instances: HashMap::new(),
+            entries: 0,
+            bindings: Vec::new(),
+            errors: Vec::new(),
+        }
+    }
+
+    /// The graph file `graph` with its parts written out.
+    pub fn graph(&mut self, source: &mut Source<'a>, graph: GraphText<'a>) -> GraphFile<'a> {
+        let mut file = GraphFile {
+            features: graph.features,
+            resources: graph.resources,
+            passes: Vec::new(),
+            outputs: graph.outputs,
+        };
+        self.entries(source, graph.passes, &Instance::default(), &mut file);
+        file
+    }
+
+    /// The graph that checks a part on its own: the part used once, what it takes bound to
+    /// imported placeholders of its interface (`Any`: an `rgba16float` texture), every
+    /// feature it names declared and what it gives kept as outputs.
+    pub fn part_alone(&mut self, source: &mut Source<'a>, path: &Path, part: PartFile<'a>) -> GraphFile<'a> {
+        let mut file = GraphFile {
+            features: part.features.clone(),
+            resources: Pairs::default(),
+            passes: Vec::new(),
+            outputs: part.gives.0.iter().map(|(slot, _)| slot.clone()).collect(),
+        };
+        for (slot, interface) in &part.takes.0 {
+            file.resources.0.push((slot.clone(), interface.placeholder()));
+        }
+        let bound = |side: &Pairs<Name<'a>, Interface<'a>>| {
+            Pairs(side.0.iter().map(|(slot, _)| (slot.clone(), slot.clone())).collect())
+        };
+        let entry = Entry {
+            name: None,
+            plugin: None,
+            part: None,
+            prefix: None,
+            when: None,
+            params: None,
+            inputs: bound(&part.takes),
+            outputs: bound(&part.gives),
+        };
+        let used = Used {
+            part: path.display().to_string(),
+            at: source.location(crate::position::Position::START),
+        };
+        let top = Instance::default();
+        self.instance(source, part, used, &entry, &top, (String::new(), None), &mut file);
+        file
+    }
+
+    /// Passes and part uses a preset adds, written out as the graph's own.
+    pub fn added(&mut self, source: &mut Source<'a>, entries: Vec<Entry<'a>>) -> GraphFile<'a> {
+        let mut file = GraphFile {
+            features: Vec::new(),
+            resources: Pairs::default(),
+            passes: Vec::new(),
+            outputs: Vec::new(),
+        };
+        self.entries(source, entries, &Instance::default(), &mut file);
+        file
+    }
+
+    /// Checks the uses' bindings in the whole `file`; every error found.
+    pub fn finish(mut self, source: &Source<'a>, file: &GraphFile<'a>) -> Result<(), FileErrors> {
+        self.check_bindings(source, file);
+        match self.errors.is_empty() {
+            true => Ok(()),
+            false => Err(FileErrors::sorted(self.errors)),
+        }
+    }
+
+    /// Writes out `entries`, inside `instance`, into `file`.
+    fn entries(
+        &mut self,
+        source: &mut Source<'a>,
+        entries: Vec<Entry<'a>>,
+        instance: &Instance<'a>,
+        file: &mut GraphFile<'a>,
+    ) {
+        for entry in entries {
+            // The graph's own file is bounded by its size; parts' uses multiply.
+            self.entries += usize::from(!instance.used.is_empty());
+            if self.entries > MAX_ENTRIES {
+                let at = entry_name(&entry).map_or_else(
+                    || source.location(crate::position::Position::START),
+                    |name| source.locate(name),
+                );
+                self.errors.push(FileError {
+                    location: at,
+                    kind: ErrorKind::TooManyEntries { limit: MAX_ENTRIES },
+                });
+                return;
+            }
+            match &entry.part {
+                Some(_) => self.use_part(source, entry, instance, file),
+                None => self.pass(source, entry, instance, file),
+            }
+        }
+    }
+
+    /// A pass entry, its names and condition those of `instance`.
+    fn pass(
+        &mut self,
+        source: &Source<'a>,
+        entry: Entry<'a>,
+        instance: &Instance<'a>,
+        file: &mut GraphFile<'a>,
+    ) {
+        let (Some(name), Some(plugin)) = (&entry.name, &entry.plugin) else {
+            let location = entry_name(&entry).map_or_else(
+                || source.location(crate::position::Position::START),
+                |name| source.locate(name),
+            );
+            self.errors.push(FileError {
+                location,
+                kind: ErrorKind::EntryShape {
+                    message: "a pass needs a `name` and a `plugin`; a use of a part needs a \
+                              `part`"
+                        .into(),
+                },
+            });
+            return;
+        };
+        if let Some(prefix) = &entry.prefix {
+            self.errors.push(source.error(
+                prefix,
+                ErrorKind::EntryShape {
+                    message: format!(
+                        "pass \"{}\" has a `prefix`, which only a use of a part has",
+                        name.as_str()
+                    ),
+                },
+            ));
+        }
+        let names = |pairs: &Pairs<Name<'a>, Name<'a>>| {
+            Pairs(pairs.0.iter().map(|(slot, name)| (slot.clone(), instance.name(name))).collect())
+        };
+        file.passes.push(PassDecl {
+            name: instance.prefixed(name),
+            plugin: plugin.clone(),
+            when: instance.when(entry.when.as_ref()),
+            inputs: names(&entry.inputs),
+            outputs: names(&entry.outputs),
+            params: entry.params,
+            used: instance.used.clone(),
+        });
+    }
+
+    /// A use of a part: read the part, check the use against its interface, write it out.
+    fn use_part(
+        &mut self,
+        source: &mut Source<'a>,
+        entry: Entry<'a>,
+        outer: &Instance<'a>,
+        file: &mut GraphFile<'a>,
+    ) {
+        let Some(reference) = entry.part.clone() else {
+            return;
+        };
+        for (field, name) in [("name", &entry.name), ("plugin", &entry.plugin)] {
+            if let Some(name) = name {
+                self.errors.push(source.error(
+                    name,
+                    ErrorKind::EntryShape {
+                        message: format!(
+                            "a use of a part has no `{field}`: its passes are the part's, \
+                             named under the use's `prefix`"
+                        ),
+                    },
+                ));
+            }
+        }
+        if entry.params.is_some() {
+            self.errors.push(source.error(
+                &reference,
+                ErrorKind::EntryShape {
+                    message: "a use of a part has no `params`: its passes' parameters are \
+                              written in the part"
+                        .into(),
+                },
+            ));
+        }
+        let Some((path, text)) = self.read(source, &reference) else {
+            return;
+        };
+        let part = match schema::kind(text) {
+            FileKind::Part => schema::parse_part(text),
+            kind => {
+                self.errors.push(source.error(
+                    &reference,
+                    ErrorKind::NotAPart {
+                        part: path.display().to_string(),
+                        kind: match kind {
+                            FileKind::Preset => "a preset",
+                            _ => "a graph file",
+                        },
+                    },
+                ));
+                return;
+            }
+        };
+        let part = match part {
+            Ok(part) => part,
+            Err(e) => {
+                self.errors.push(Source::new(path, text).syntax(&e));
+                return;
+            }
+        };
+        if let Some(cycle) = self.stack.iter().position(|p| p == path) {
+            let chain: Vec<String> = self.stack[cycle..]
+                .iter()
+                .chain([&path.to_path_buf()])
+                .map(|p| p.display().to_string())
+                .collect();
+            self.errors.push(source.error(
+                &reference,
+                ErrorKind::PartCycle {
+                    chain: chain.join(" uses "),
+                },
+            ));
+            return;
+        }
+        let prefix = format!(
+            "{}{}",
+            outer.prefix,
+            entry.prefix.as_ref().map_or("", Name::as_str)
+        );
+        let at = source.locate(&reference);
+        let key = (path.to_path_buf(), prefix.clone());
+        if let Some(first) = self.instances.get(&key) {
+            self.errors.push(FileError {
+                location: at,
+                kind: ErrorKind::PartTwice {
+                    part: path.display().to_string(),
+                    prefix,
+                    first: first.clone(),
+                },
+            });
+            return;
+        }
+        self.instances.insert(key, at.clone());
+        self.features(source, &reference, path, &part);
+        let used = Used {
+            part: path.display().to_string(),
+            at,
+        };
+        let when = outer.when(entry.when.as_ref());
+        self.stack.push(path.to_path_buf());
+        self.instance(source, part, used, &entry, outer, (prefix, when), file);
+        self.stack.pop();
+    }
+
+    /// Reads the part file `reference` names, from the folder of the file it is written in;
+    /// its text joins `source`.
+    fn read(&mut self, source: &mut Source<'a>, reference: &Name<'a>) -> Option<(&'a Path, &'a str)> {
+        let max = bounded_read::MAX_GRAPH_FILE_BYTES;
+        let named = match self.references.read(source.dir_of(reference), reference.as_str(), max) {
+            Ok(named) => named,
+            Err(e) => {
+                let reason = match e {
+                    ReferenceError::Refused(reason) => reason,
+                    ReferenceError::Unreadable { path, reason } => {
+                        format!("({}) cannot be read: {reason}", path.display())
+                    }
+                };
+                self.errors.push(source.error(
+                    reference,
+                    ErrorKind::Reference {
+                        what: "the part",
+                        reference: Shown(reference.as_str()).to_string(),
+                        reason,
+                    },
+                ));
+                return None;
+            }
+        };
+        let (path, text) = self.arena.alloc((named.path, named.text));
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        source.add(path, text);
+        Some((path, text))
+    }
+
+    /// Checks that the graph declares every feature the part names.
+    fn features(
+        &mut self,
+        source: &Source<'a>,
+        reference: &Name<'a>,
+        path: &Path,
+        part: &PartFile<'a>,
+    ) {
+        let declared: Vec<&str> = self.features.iter().map(Name::as_str).collect();
+        for feature in &part.features {
+            if !declared.contains(&feature.as_str()) {
+                self.errors.push(source.error(
+                    reference,
+                    ErrorKind::PartFeature {
+                        part: path.display().to_string(),
+                        feature: feature.as_str().to_owned(),
+                        at: source.locate(feature),
+                        declared: match declared.is_empty() {
+                            true => "none".into(),
+                            false => declared.join(", "),
+                        },
+                    },
+                ));
+            }
+        }
+    }
+
+    /// Writes out one use of `part`, whose bindings are `entry`'s inputs and outputs (names
+    /// of `outer`'s), its other names under `prefix` and its conditions joined to `when`.
+    #[allow(clippy::too_many_arguments)]
+    fn instance(
+        &mut self,
+        source: &mut Source<'a>,
+        part: PartFile<'a>,
+        used: Used,
+        entry: &Entry<'a>,
+        outer: &Instance<'a>,
+        (prefix, when): (String, Option<Name<'a>>),
+        file: &mut GraphFile<'a>,
+    ) {
+        let name = used.part.clone();
+        let at = used.at.clone();
+        let mut inner = Instance {
+            prefix,
+            bound: HashMap::new(),
+            when,
+            used: outer.used.iter().cloned().chain([used]).collect(),
+        };
+        for (side, bindings, interface) in [
+            ("takes", &entry.inputs, &part.takes),
+            ("gives", &entry.outputs, &part.gives),
+        ] {
+            for (slot, bound) in &bindings.0 {
+                let Some((declared, wanted)) =
+                    interface.0.iter().find(|(s, _)| s.as_str() == slot.as_str())
+                else {
+                    let known: Vec<&str> = interface.0.iter().map(|(s, _)| s.as_str()).collect();
+                    self.errors.push(source.error(
+                        slot,
+                        ErrorKind::PartNoSlot {
+                            part: name.clone(),
+                            side,
+                            slot: slot.as_str().to_owned(),
+                            known: match known.is_empty() {
+                                true => "nothing".into(),
+                                false => known.join(", "),
+                            },
+                        },
+                    ));
+                    continue;
+                };
+                let bound_name = outer.name(bound);
+                if side == "takes" && !matches!(wanted, Interface::Any) {
+                    self.bindings.push(Binding {
+                        part: name.clone(),
+                        slot: declared.clone(),
+                        interface: wanted.clone(),
+                        bound: bound_name.clone(),
+                        at: bound.clone(),
+                    });
+                }
+                inner.bound.insert(slot.as_str().to_owned(), bound_name);
+            }
+        }
+        for (slot, _) in &part.takes.0 {
+            if !inner.bound.contains_key(slot.as_str()) {
+                self.errors.push(FileError {
+                    location: at.clone(),
+                    kind: ErrorKind::PartUnbound {
+                        part: name.clone(),
+                        slot: slot.as_str().to_owned(),
+                        at: source.locate(slot),
+                    },
+                });
+            }
+        }
+        let given = part
+            .gives
+            .0
+            .into_iter()
+            .filter_map(|(slot, interface)| Some((slot, interface.declaration()?)));
+        for (name, mut decl) in given.chain(part.resources.0) {
+            decl.set_when(inner.when(decl.when()));
+            file.resources.0.push((inner.name(&name), decl));
+        }
+        self.entries(source, part.passes, &inner, file);
+    }
+
+    /// Checks each use's bindings against what its part takes, in the whole `file`.
+    fn check_bindings(&mut self, source: &Source<'a>, file: &GraphFile<'a>) {
+        for binding in std::mem::take(&mut self.bindings) {
+            let Some(found) = declaration(file, binding.bound.as_str()) else {
+                // Not declared anywhere: resolving names reports it.
+                continue;
+            };
+            if let Some(found) = binding.interface.mismatch(found) {
+                self.errors.push(source.error(
+                    &binding.at,
+                    ErrorKind::PartBinding {
+                        part: binding.part,
+                        slot: binding.slot.as_str().to_owned(),
+                        wanted: binding.interface.shown(),
+                        at: source.locate(&binding.slot),
+                        bound: binding.bound.as_str().to_owned(),
+                        found,
+                    },
+                ));
+            }
+        }
+    }
+}
+
+/// The declared resource whose version `name` is: declared under that name, or written by
+/// a pass that modifies what it reads through the same slot.
+fn declaration<'f, 'a>(file: &'f GraphFile<'a>, name: &str) -> Option<&'f ResourceDecl<'a>> {
+    let mut name = name;
+    // Each step goes one pass back; more steps than passes is a cycle, which ordering
+    // reports.
+    for _ in 0..=file.passes.len() {
+        if let Some((_, decl)) = file.resources.0.iter().find(|(n, _)| n.as_str() == name) {
+            return Some(decl);
+        }
+        let (pass, slot) = file.passes.iter().find_map(|pass| {
+            let (slot, _) = pass.outputs.0.iter().find(|(_, v)| v.as_str() == name)?;
+            Some((pass, slot))
+        })?;
+        name = pass.input(slot.as_str())?.as_str();
+    }
+    None
+}
+
+/// The first name an entry holds, to place an error about the entry.
+fn entry_name<'e, 'a>(entry: &'e Entry<'a>) -> Option<&'e Name<'a>> {
+    [&entry.name, &entry.part, &entry.plugin, &entry.prefix, &entry.when]
+        .into_iter()
+        .flatten()
+        .next()
+        .or_else(|| entry.inputs.0.first().map(|(slot, _)| slot))
+        .or_else(|| entry.outputs.0.first().map(|(slot, _)| slot))
+}
