@@ -73,6 +73,7 @@ mod gpu_failures;
 mod helper_loads;
 mod light_prepass;
 mod output_files;
+mod pipeline_plans;
 mod page_browser;
 mod particles;
 mod post_fxaa;
