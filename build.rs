@@ -13,7 +13,7 @@ use rgraph_core::CompileOptions;
 /// The directories whose files the binary carries (see `rgraph_core::embedded`), so
 /// `rgraph render` works from any directory: the default pipeline, the generic demos'
 /// shaders, the bench's unique-surfaces graph.
-const EMBEDDED_DIRS: [&str; 3] = ["pipelines", "shaders", "bench/graphs"];
+const EMBEDDED_DIRS: [&str; 4] = ["pipelines", "pipelines/parts", "shaders", "bench/graphs"];
 
 fn main() {
     for dir in EMBEDDED_DIRS {

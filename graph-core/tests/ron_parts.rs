@@ -15,7 +15,10 @@ Part(
     takes: { "base": Texture(format: "rgba8unorm") },
     gives: { "out": Texture(format: "rgba8unorm") },
     features: ["tinted"],
-    resources: { "scratch": Texture(format: "rgba8unorm") },
+    resources: {
+        "scratch": Texture(format: "rgba8unorm"),
+        "out": Texture(format: "rgba8unorm"),
+    },
     passes: [
         (name: "clear", plugin: "clear", when: "tinted",
          inputs: { "target": "base" }, outputs: { "target": "cleared" }),
@@ -85,8 +88,8 @@ fn a_use_compiles_to_the_plan_of_the_graph_written_out() {
     features: ["tinted"],
     resources: {
         "a": Texture(format: "rgba8unorm"),
-        "b": Texture(format: "rgba8unorm", when: "tinted"),
         "scratch": Texture(format: "rgba8unorm", when: "tinted"),
+        "b": Texture(format: "rgba8unorm", when: "tinted"),
     },
     passes: [
         (name: "clear a", plugin: "clear", outputs: { "target": "a" }),
@@ -166,8 +169,8 @@ fn a_binding_of_the_wrong_format_names_the_part_and_the_use() {
     assert_eq!(
         found[0].1.to_string(),
         format!(
-            "part {} takes \"base\" as a texture of format rgba8unorm ({}:3:14), but this use \
-             binds it to \"a\", a texture of format rgba16float",
+            "part {} takes \"base\" as a texture of format rgba8unorm ({}:3:14), but in this \
+             use it is \"a\", a texture of format rgba16float",
             part.display(),
             part.display()
         )
@@ -273,7 +276,7 @@ fn a_part_checks_on_its_own_with_placeholders_for_what_it_takes() {
     let dir = folder(&[("parts/tint.ron", &broken)]);
     let path = dir.path().join("parts/tint.ron");
     let found = errors(&path);
-    assert_eq!(found[0].0, format!("{}:11:32", path.display()), "{found:?}");
+    assert_eq!(found[0].0, format!("{}:14:32", path.display()), "{found:?}");
 }
 
 #[test]
@@ -300,8 +303,8 @@ fn a_preset_adds_a_part_after_a_pass_removes_passes_and_rebinds_outputs() {
     resources: {
         "a": Texture(format: "rgba8unorm"),
         "c": Texture(format: "rgba8unorm"),
-        "b": Texture(format: "rgba8unorm"),
         "scratch": Texture(format: "rgba8unorm"),
+        "b": Texture(format: "rgba8unorm"),
         "d": Texture(format: "rgba8unorm"),
     },
     passes: [

@@ -91,9 +91,11 @@ impl<'a> Instance<'a> {
     }
 }
 
-/// A taken slot's interface and the version a use binds to it.
+/// A slot's interface and the name its use gives it in the graph.
 struct Binding<'a> {
     part: String,
+    /// "takes" or "gives".
+    side: &'static str,
     slot: Name<'a>,
     interface: Interface<'a>,
     bound: Name<'a>,
@@ -132,9 +134,16 @@ impl<'a, 'r> Composer<'a, 'r> {
     }
 
     /// The graph that checks a part on its own: the part used once, what it takes bound to
-    /// imported placeholders of its interface (`Any`: an `rgba16float` texture), every
-    /// feature it names declared and what it gives kept as outputs.
-    pub fn part_alone(&mut self, source: &mut Source<'a>, path: &Path, part: PartFile<'a>) -> GraphFile<'a> {
+    /// imported placeholders of its interface (`Any`: an `rgba16float` texture), what it
+    /// gives and does not declare itself declared as its interface says (`Any`: left to
+    /// be a version of what it takes), every feature it names declared, and what it gives
+    /// kept as outputs.
+    pub fn part_alone(
+        &mut self,
+        source: &mut Source<'a>,
+        path: &Path,
+        part: PartFile<'a>,
+    ) -> GraphFile<'a> {
         let mut file = GraphFile {
             features: part.features.clone(),
             resources: Pairs::default(),
@@ -142,7 +151,13 @@ impl<'a, 'r> Composer<'a, 'r> {
             outputs: part.gives.0.iter().map(|(slot, _)| slot.clone()).collect(),
         };
         for (slot, interface) in &part.takes.0 {
-            file.resources.0.push((slot.clone(), interface.placeholder()));
+            file.resources.0.push((slot.clone(), interface.placeholder(true)));
+        }
+        let own = |slot: &Name<'_>| part.resources.0.iter().any(|(n, _)| n.as_str() == slot.as_str());
+        for (slot, interface) in &part.gives.0 {
+            if !own(slot) && !matches!(interface, Interface::Any) {
+                file.resources.0.push((slot.clone(), interface.placeholder(false)));
+            }
         }
         let bound = |side: &Pairs<Name<'a>, Interface<'a>>| {
             Pairs(side.0.iter().map(|(slot, _)| (slot.clone(), slot.clone())).collect())
@@ -451,9 +466,7 @@ impl<'a, 'r> Composer<'a, 'r> {
             ("gives", &entry.outputs, &part.gives),
         ] {
             for (slot, bound) in &bindings.0 {
-                let Some((declared, wanted)) =
-                    interface.0.iter().find(|(s, _)| s.as_str() == slot.as_str())
-                else {
+                if !interface.0.iter().any(|(s, _)| s.as_str() == slot.as_str()) {
                     let known: Vec<&str> = interface.0.iter().map(|(s, _)| s.as_str()).collect();
                     self.errors.push(source.error(
                         slot,
@@ -468,18 +481,31 @@ impl<'a, 'r> Composer<'a, 'r> {
                         },
                     ));
                     continue;
-                };
-                let bound_name = outer.name(bound);
-                if side == "takes" && !matches!(wanted, Interface::Any) {
-                    self.bindings.push(Binding {
-                        part: name.clone(),
-                        slot: declared.clone(),
-                        interface: wanted.clone(),
-                        bound: bound_name.clone(),
-                        at: bound.clone(),
-                    });
                 }
+                let bound_name = outer.name(bound);
                 inner.bound.insert(slot.as_str().to_owned(), bound_name);
+            }
+        }
+        // What the interface says of each slot, checked once the graph is whole: taken
+        // slots hold what the use binds, given ones what the part writes under the name.
+        let sides = [("takes", &part.takes), ("gives", &part.gives)];
+        for (side, slot, interface) in sides
+            .into_iter()
+            .flat_map(|(side, slots)| slots.0.iter().map(move |(s, i)| (side, s, i)))
+        {
+            if !matches!(interface, Interface::Any) {
+                self.bindings.push(Binding {
+                    part: name.clone(),
+                    side,
+                    slot: slot.clone(),
+                    interface: interface.clone(),
+                    bound: inner.name(slot),
+                    at: [&entry.inputs, &entry.outputs]
+                        .into_iter()
+                        .flat_map(|pairs| &pairs.0)
+                        .find(|(s, _)| s.as_str() == slot.as_str())
+                        .map_or_else(|| slot.clone(), |(_, bound)| bound.clone()),
+                });
             }
         }
         for (slot, _) in &part.takes.0 {
@@ -494,12 +520,7 @@ impl<'a, 'r> Composer<'a, 'r> {
                 });
             }
         }
-        let given = part
-            .gives
-            .0
-            .into_iter()
-            .filter_map(|(slot, interface)| Some((slot, interface.declaration()?)));
-        for (name, mut decl) in given.chain(part.resources.0) {
+        for (name, mut decl) in part.resources.0 {
             decl.set_when(inner.when(decl.when()));
             file.resources.0.push((inner.name(&name), decl));
         }
@@ -518,6 +539,7 @@ impl<'a, 'r> Composer<'a, 'r> {
                     &binding.at,
                     ErrorKind::PartBinding {
                         part: binding.part,
+                        side: binding.side,
                         slot: binding.slot.as_str().to_owned(),
                         wanted: binding.interface.shown(),
                         at: source.locate(&binding.slot),

@@ -213,14 +213,16 @@ pub enum ErrorKind {
         at: Location,
     },
 
-    /// A use binds a slot to a resource unlike the part's interface.
+    /// A slot of a use holds a resource unlike the part's interface says.
     #[error(
-        "part {part} takes \"{slot}\" as {wanted} ({at}), but this use binds it to \
+        "part {part} {side} \"{slot}\" as {wanted} ({at}), but in this use it is \
          \"{bound}\", {found}"
     )]
     PartBinding {
         /// The part file.
         part: String,
+        /// "takes" or "gives".
+        side: &'static str,
         /// The slot.
         slot: String,
         /// What the interface asks for, in words.

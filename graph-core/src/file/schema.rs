@@ -55,8 +55,9 @@ pub(crate) struct PartFile<'a> {
     /// Slot -> what a use must bind to it: a version its passes read.
     #[serde(borrow, default)]
     pub takes: Pairs<Name<'a>, Interface<'a>>,
-    /// Slot -> what the part writes under that name: a resource it declares
-    /// (`Texture(..)`, `Buffer(..)`) or, `Any`, a version of one it takes.
+    /// Slot -> what the part writes under that name: a resource the graph declares
+    /// (`Texture(..)`, `Buffer(..)`, its shape), one the part declares in `resources`, or a
+    /// version of one it takes (`Any` for either).
     #[serde(borrow, default)]
     pub gives: Pairs<Name<'a>, Interface<'a>>,
     /// The features its conditions use, which a graph using it must declare.
@@ -72,24 +73,29 @@ pub(crate) struct PartFile<'a> {
 /// One resource of a part's interface.
 #[derive(Debug, Clone, Deserialize)]
 pub(crate) enum Interface<'a> {
-    /// A texture; taken, the bound version's texture has this format.
+    /// A texture; the bound version's texture has this format.
     #[serde(borrow)]
     Texture(TextureDecl<'a>),
     /// A buffer.
     #[serde(borrow)]
     Buffer(BufferDecl<'a>),
-    /// Any resource (taken), or a version of a taken one (given).
+    /// Any resource.
     Any,
 }
 
 impl<'a> Interface<'a> {
-    /// What a part checked on its own reads for a slot it takes: an import of this shape
-    /// (`Any`: an `rgba16float` texture).
-    pub fn placeholder(&self) -> ResourceDecl<'a> {
+    /// What a part checked on its own reads (`imported`: an import) or writes for a slot
+    /// of this shape; `Any`: an `rgba16float` texture.
+    pub fn placeholder(&self, imported: bool) -> ResourceDecl<'a> {
+        let texture = |t: TextureDecl<'a>| match imported {
+            true => ResourceDecl::ImportedTexture(t),
+            false => ResourceDecl::Texture(t),
+        };
         match self {
-            Interface::Texture(t) => ResourceDecl::ImportedTexture(t.clone()),
-            Interface::Buffer(b) => ResourceDecl::ImportedBuffer(b.clone()),
-            Interface::Any => ResourceDecl::ImportedTexture(TextureDecl {
+            Interface::Texture(t) => texture(t.clone()),
+            Interface::Buffer(b) if imported => ResourceDecl::ImportedBuffer(b.clone()),
+            Interface::Buffer(b) => ResourceDecl::Buffer(b.clone()),
+            Interface::Any => texture(TextureDecl {
                 format: TextureFormat::Rgba16Float,
                 fallback: None,
                 format_if: Vec::new(),
@@ -99,16 +105,6 @@ impl<'a> Interface<'a> {
                 layers: Count::one(),
                 when: None,
             }),
-        }
-    }
-
-    /// The resource a part declares for a slot it gives (none for `Any`, a version of one
-    /// it takes).
-    pub fn declaration(self) -> Option<ResourceDecl<'a>> {
-        match self {
-            Interface::Texture(t) => Some(ResourceDecl::Texture(t)),
-            Interface::Buffer(b) => Some(ResourceDecl::Buffer(b)),
-            Interface::Any => None,
         }
     }
 
