@@ -73,7 +73,8 @@ pub(crate) struct PartFile<'a> {
 /// One resource of a part's interface.
 #[derive(Debug, Clone, Deserialize)]
 pub(crate) enum Interface<'a> {
-    /// A texture; the bound version's texture has this format.
+    /// A texture; the bound version's texture has this format (or its `fallback`). A part
+    /// checked on its own gets one of this shape.
     #[serde(borrow)]
     Texture(TextureDecl<'a>),
     /// A buffer.
@@ -85,11 +86,15 @@ pub(crate) enum Interface<'a> {
 
 impl<'a> Interface<'a> {
     /// What a part checked on its own reads (`imported`: an import) or writes for a slot
-    /// of this shape; `Any`: an `rgba16float` texture.
+    /// of this shape, in its first format; `Any`: an `rgba16float` texture.
     pub fn placeholder(&self, imported: bool) -> ResourceDecl<'a> {
-        let texture = |t: TextureDecl<'a>| match imported {
-            true => ResourceDecl::ImportedTexture(t),
-            false => ResourceDecl::Texture(t),
+        // The interface's fallback is a format it also accepts, not one a device may need.
+        let texture = |t: TextureDecl<'a>| {
+            let t = TextureDecl { fallback: None, ..t };
+            match imported {
+                true => ResourceDecl::ImportedTexture(t),
+                false => ResourceDecl::Texture(t),
+            }
         };
         match self {
             Interface::Texture(t) => texture(t.clone()),
@@ -111,7 +116,14 @@ impl<'a> Interface<'a> {
     /// What the interface asks for, in words.
     pub fn shown(&self) -> String {
         match self {
-            Interface::Texture(t) => format!("a texture of format {}", format_name(t.format)),
+            Interface::Texture(t) => match t.fallback {
+                Some(other) => format!(
+                    "a texture of format {} or {}",
+                    format_name(t.format),
+                    format_name(other)
+                ),
+                None => format!("a texture of format {}", format_name(t.format)),
+            },
             Interface::Buffer(_) => "a buffer".into(),
             Interface::Any => "any resource".into(),
         }
@@ -124,7 +136,7 @@ impl<'a> Interface<'a> {
             (
                 Interface::Texture(wanted),
                 ResourceDecl::Texture(t) | ResourceDecl::ImportedTexture(t),
-            ) => (wanted.format != t.format)
+            ) => (wanted.format != t.format && wanted.fallback != Some(t.format))
                 .then(|| format!("a texture of format {}", format_name(t.format))),
             (Interface::Buffer(_), ResourceDecl::Buffer(_) | ResourceDecl::ImportedBuffer(_)) => {
                 None
