@@ -46,15 +46,21 @@ fn written_out(plan: &Plan) -> String {
         pass.origin = None;
     }
     let text = explain::text(&plan);
-    let (head, rest) = text.split_once("\nresources:\n").expect("a resources section");
-    let (resources, rest) = rest.split_once("\nphysical textures:\n").unwrap_or((rest, ""));
+    let (head, rest) = text
+        .split_once("\nresources:\n")
+        .expect("a resources section");
+    let (resources, rest) = rest
+        .split_once("\nphysical textures:\n")
+        .unwrap_or((rest, ""));
     let (textures, tail) = rest.split_once("\n\n").unwrap_or((rest, ""));
     // "#3 FORMAT SIZE ... holds a, b": what each number holds, and the lines unnumbered.
     let mut holds = std::collections::HashMap::new();
     let mut texture_lines: Vec<String> = Vec::new();
     for line in textures.lines() {
         let (number, description) = line.trim().split_once(' ').unwrap_or((line, ""));
-        let held = description.rsplit_once(" holds ").map_or("", |(_, held)| held);
+        let held = description
+            .rsplit_once(" holds ")
+            .map_or("", |(_, held)| held);
         holds.insert(number.to_owned(), held.to_owned());
         texture_lines.push(description.to_owned());
     }
@@ -105,7 +111,10 @@ fn plans(registry: &Registry) -> Vec<(String, String)> {
                 continue;
             };
             let features: Vec<&str> = loaded.graph.declared_features().iter().collect();
-            assert!(features.len() <= 10, "{name}: too many features to try every set");
+            assert!(
+                features.len() <= 10,
+                "{name}: too many features to try every set"
+            );
             for set in 0..1u32 << features.len() {
                 let mut on = Features::new();
                 for (i, feature) in features.iter().enumerate() {
@@ -144,7 +153,9 @@ fn every_shipped_pipeline_keeps_the_plans_it_had_written_out() {
     let mut registry = Registry::with_builtins();
     rgraph_passes::register(&mut registry, None);
     // The demo pipelines' shaders, as `rgraph` allows them.
-    registry.allow_graph_root("shaders").expect("the shaders folder");
+    registry
+        .allow_graph_root("shaders")
+        .expect("the shaders folder");
     let plans = plans(&registry);
     let found: String = plans.iter().fold(String::new(), |mut out, (line, _)| {
         let _ = writeln!(out, "{line}");
@@ -156,8 +167,10 @@ fn every_shipped_pipeline_keeps_the_plans_it_had_written_out() {
     }
     let recorded = std::fs::read_to_string(Path::new(FIXTURE)).expect("the recorded digests");
     let recorded: Vec<&str> = recorded.lines().collect();
-    let changed: Vec<&(String, String)> =
-        plans.iter().filter(|(line, _)| !recorded.contains(&line.as_str())).collect();
+    let changed: Vec<&(String, String)> = plans
+        .iter()
+        .filter(|(line, _)| !recorded.contains(&line.as_str()))
+        .collect();
     let gone: Vec<&&str> = recorded
         .iter()
         .filter(|line| !plans.iter().any(|(found, _)| found == *line))
@@ -171,7 +184,14 @@ fn every_shipped_pipeline_keeps_the_plans_it_had_written_out() {
             changed.iter().map(|(line, _)| line).collect::<Vec<_>>(),
         );
     }
-    assert!(gone.is_empty(), "recorded plans no file gives any more: {gone:?}");
+    assert!(
+        gone.is_empty(),
+        "recorded plans no file gives any more: {gone:?}"
+    );
     // Not vacuous: every shipped file, with its feature sets.
-    assert!(plans.len() >= pipelines().len() * 2, "{} plans", plans.len());
+    assert!(
+        plans.len() >= pipelines().len() * 2,
+        "{} plans",
+        plans.len()
+    );
 }

@@ -38,8 +38,7 @@ fn folder(files: &[(&str, &str)]) -> tempfile::TempDir {
 }
 
 fn plan(path: &Path, features: &[&str]) -> Plan {
-    let loaded =
-        load_file(path, &Registry::with_builtins()).unwrap_or_else(|e| panic!("{e}"));
+    let loaded = load_file(path, &Registry::with_builtins()).unwrap_or_else(|e| panic!("{e}"));
     let mut on = Features::new();
     for feature in features {
         on.insert(*feature);
@@ -102,9 +101,16 @@ fn a_use_compiles_to_the_plan_of_the_graph_written_out() {
 )"#;
     // "cleared" is the part's own name for the version it writes: unbound, it keeps it.
     let by_hand = by_hand.replace("a_cleared", "cleared");
-    let dir = folder(&[("g.ron", GRAPH), ("parts/tint.ron", TINT), ("hand.ron", &by_hand)]);
+    let dir = folder(&[
+        ("g.ron", GRAPH),
+        ("parts/tint.ron", TINT),
+        ("hand.ron", &by_hand),
+    ]);
     let used = plan(&dir.path().join("g.ron"), &["tinted"]);
-    assert_eq!(written_out(&used), written_out(&plan(&dir.path().join("hand.ron"), &["tinted"])));
+    assert_eq!(
+        written_out(&used),
+        written_out(&plan(&dir.path().join("hand.ron"), &["tinted"]))
+    );
     // Explain says where each pass of the part came from.
     let text = explain::text(&plan(&dir.path().join("g.ron"), &["tinted"]));
     let part = dir.path().join("parts/tint.ron");
@@ -135,7 +141,14 @@ fn two_uses_of_one_part_get_names_of_their_own_from_their_prefixes() {
     // ("clear a" and "clear b" are culled: the parts' clears overwrite what they wrote.)
     assert_eq!(
         names,
-        ["left clear", "left copy", "left scratch", "right clear", "right copy", "right scratch"]
+        [
+            "left clear",
+            "left copy",
+            "left scratch",
+            "right clear",
+            "right copy",
+            "right scratch"
+        ]
     );
     let resources: Vec<&str> = plan.resources.iter().map(|r| r.name.as_str()).collect();
     for own in ["left scratch", "right scratch", "left out", "right out"] {
@@ -150,7 +163,10 @@ fn two_uses_of_one_part_get_names_of_their_own_from_their_prefixes() {
     assert_eq!(found.len(), 1, "{found:?}");
     assert_eq!(found[0].0, format!("{}:7:16", path.display()));
     let message = found[0].1.to_string();
-    assert!(message.contains(&format!("(first at {}:6:16)", path.display())), "{message}");
+    assert!(
+        message.contains(&format!("(first at {}:6:16)", path.display())),
+        "{message}"
+    );
 }
 
 #[test]
@@ -234,7 +250,10 @@ fn parts_that_use_each_other_are_a_cycle() {
     assert_eq!(found.len(), 1, "{found:?}");
     // At the use that closes the cycle, in b.ron.
     let parts = dir.path().join("parts");
-    assert_eq!(found[0].0, format!("{}:1:43", parts.join("b.ron").display()));
+    assert_eq!(
+        found[0].0,
+        format!("{}:1:43", parts.join("b.ron").display())
+    );
     assert_eq!(
         found[0].1.to_string(),
         format!(
@@ -251,14 +270,26 @@ fn a_use_of_a_graph_file_or_of_a_file_outside_the_folders_is_refused() {
     let dir = folder(&[("g.ron", &graph), ("other.ron", GRAPH)]);
     let found = errors(&dir.path().join("g.ron"));
     assert!(
-        matches!(&found[0].1, ErrorKind::NotAPart { kind: "a graph file", .. }),
+        matches!(
+            &found[0].1,
+            ErrorKind::NotAPart {
+                kind: "a graph file",
+                ..
+            }
+        ),
         "{found:?}"
     );
     let graph = GRAPH.replace("parts/tint.ron", "../../etc/passwd");
     let dir = folder(&[("g.ron", &graph)]);
     let found = errors(&dir.path().join("g.ron"));
     assert!(
-        matches!(&found[0].1, ErrorKind::Reference { what: "the part", .. }),
+        matches!(
+            &found[0].1,
+            ErrorKind::Reference {
+                what: "the part",
+                ..
+            }
+        ),
         "{found:?}"
     );
 }
@@ -323,7 +354,10 @@ fn a_preset_adds_a_part_after_a_pass_removes_passes_and_rebinds_outputs() {
         ("parts/tint.ron", TINT),
     ]);
     let used = plan(&dir.path().join("p.ron"), &["tinted"]);
-    assert_eq!(written_out(&used), written_out(&plan(&dir.path().join("hand.ron"), &["tinted"])));
+    assert_eq!(
+        written_out(&used),
+        written_out(&plan(&dir.path().join("hand.ron"), &["tinted"]))
+    );
 
     // Adding after a pass the base lacks names the base's passes.
     let wrong = preset.replace("after: { \"clear a\"", "after: { \"clear b\"");

@@ -16,8 +16,8 @@ use super::error::{ErrorKind, FileError, FileErrors, Location};
 use super::pairs::Pairs;
 use super::references::{ReferenceError, References};
 use super::schema::{
-    self, Entry, FileKind, GraphFile, GraphText, Interface, Name, PartFile, PassDecl,
-    ResourceDecl, Used,
+    self, Entry, FileKind, GraphFile, GraphText, Interface, Name, PartFile, PassDecl, ResourceDecl,
+    Used,
 };
 use super::shown::Shown;
 use super::source::Source;
@@ -151,16 +151,30 @@ impl<'a, 'r> Composer<'a, 'r> {
             outputs: part.gives.0.iter().map(|(slot, _)| slot.clone()).collect(),
         };
         for (slot, interface) in &part.takes.0 {
-            file.resources.0.push((slot.clone(), interface.placeholder(true)));
+            file.resources
+                .0
+                .push((slot.clone(), interface.placeholder(true)));
         }
-        let own = |slot: &Name<'_>| part.resources.0.iter().any(|(n, _)| n.as_str() == slot.as_str());
+        let own = |slot: &Name<'_>| {
+            part.resources
+                .0
+                .iter()
+                .any(|(n, _)| n.as_str() == slot.as_str())
+        };
         for (slot, interface) in &part.gives.0 {
             if !own(slot) && !matches!(interface, Interface::Any) {
-                file.resources.0.push((slot.clone(), interface.placeholder(false)));
+                file.resources
+                    .0
+                    .push((slot.clone(), interface.placeholder(false)));
             }
         }
         let bound = |side: &Pairs<Name<'a>, Interface<'a>>| {
-            Pairs(side.0.iter().map(|(slot, _)| (slot.clone(), slot.clone())).collect())
+            Pairs(
+                side.0
+                    .iter()
+                    .map(|(slot, _)| (slot.clone(), slot.clone()))
+                    .collect(),
+            )
         };
         let entry = Entry {
             name: None,
@@ -177,7 +191,15 @@ impl<'a, 'r> Composer<'a, 'r> {
             at: source.location(crate::position::Position::START),
         };
         let top = Instance::default();
-        self.instance(source, part, used, &entry, &top, (String::new(), None), &mut file);
+        self.instance(
+            source,
+            part,
+            used,
+            &entry,
+            &top,
+            (String::new(), None),
+            &mut file,
+        );
         file
     }
 
@@ -266,7 +288,13 @@ impl<'a, 'r> Composer<'a, 'r> {
             ));
         }
         let names = |pairs: &Pairs<Name<'a>, Name<'a>>| {
-            Pairs(pairs.0.iter().map(|(slot, name)| (slot.clone(), instance.name(name))).collect())
+            Pairs(
+                pairs
+                    .0
+                    .iter()
+                    .map(|(slot, name)| (slot.clone(), instance.name(name)))
+                    .collect(),
+            )
         };
         file.passes.push(PassDecl {
             name: instance.prefixed(name),
@@ -304,14 +332,16 @@ impl<'a, 'r> Composer<'a, 'r> {
             }
         }
         if entry.params.is_some() {
-            self.errors.push(source.error(
-                &reference,
-                ErrorKind::EntryShape {
-                    message: "a use of a part has no `params`: its passes' parameters are \
+            self.errors.push(
+                source.error(
+                    &reference,
+                    ErrorKind::EntryShape {
+                        message: "a use of a part has no `params`: its passes' parameters are \
                               written in the part"
-                        .into(),
-                },
-            ));
+                            .into(),
+                    },
+                ),
+            );
         }
         let Some((path, text)) = self.read(source, &reference) else {
             return;
@@ -385,9 +415,16 @@ impl<'a, 'r> Composer<'a, 'r> {
 
     /// Reads the part file `reference` names, from the folder of the file it is written in;
     /// its text joins `source`.
-    fn read(&mut self, source: &mut Source<'a>, reference: &Name<'a>) -> Option<(&'a Path, &'a str)> {
+    fn read(
+        &mut self,
+        source: &mut Source<'a>,
+        reference: &Name<'a>,
+    ) -> Option<(&'a Path, &'a str)> {
         let max = bounded_read::MAX_GRAPH_FILE_BYTES;
-        let named = match self.references.read(source.dir_of(reference), reference.as_str(), max) {
+        let named = match self
+            .references
+            .read(source.dir_of(reference), reference.as_str(), max)
+        {
             Ok(named) => named,
             Err(e) => {
                 let reason = match e {
@@ -573,10 +610,16 @@ fn declaration<'f, 'a>(file: &'f GraphFile<'a>, name: &str) -> Option<&'f Resour
 
 /// The first name an entry holds, to place an error about the entry.
 fn entry_name<'e, 'a>(entry: &'e Entry<'a>) -> Option<&'e Name<'a>> {
-    [&entry.name, &entry.part, &entry.plugin, &entry.prefix, &entry.when]
-        .into_iter()
-        .flatten()
-        .next()
-        .or_else(|| entry.inputs.0.first().map(|(slot, _)| slot))
-        .or_else(|| entry.outputs.0.first().map(|(slot, _)| slot))
+    [
+        &entry.name,
+        &entry.part,
+        &entry.plugin,
+        &entry.prefix,
+        &entry.when,
+    ]
+    .into_iter()
+    .flatten()
+    .next()
+    .or_else(|| entry.inputs.0.first().map(|(slot, _)| slot))
+    .or_else(|| entry.outputs.0.first().map(|(slot, _)| slot))
 }

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use typed_arena::Arena;
 
+use super::compose::Composer;
 use super::declare::declare;
 use super::error::{ErrorKind, FileError, FileErrors, Location};
 use super::loaded::LoadedGraph;
@@ -13,7 +14,6 @@ use super::params::GraphParams;
 use super::plugin::Prepared;
 use super::references::{ReferenceError, References};
 use super::registry::Registry;
-use super::compose::Composer;
 use super::schema::{self, FileKind, GraphFile, Name, PresetFile};
 use super::shown::Shown;
 use super::source::Source;
@@ -87,7 +87,13 @@ fn load_text(
 ) -> Result<LoadedGraph, FileErrors> {
     let arena = Arena::new();
     let (source, file, values) = read_graph(path, without_bom(text), &arena, references)?;
-    load_graph(&source, file, registry, &values.overridden_by(params), references)
+    load_graph(
+        &source,
+        file,
+        registry,
+        &values.overridden_by(params),
+        references,
+    )
 }
 
 /// The graph the file at `path` holds, its parts written out (see [`compose`]), and the
@@ -106,7 +112,11 @@ fn read_graph<'a>(
         FileKind::Graph => {
             let graph = schema::parse(text).map_err(|e| syntax(&source, e))?;
             let mut composer = Composer::new(arena, references, &graph.features);
-            (composer.graph(&mut source, graph), composer, GraphParams::new())
+            (
+                composer.graph(&mut source, graph),
+                composer,
+                GraphParams::new(),
+            )
         }
         FileKind::Part => {
             let part = schema::parse_part(text).map_err(|e| syntax(&source, e))?;
@@ -120,8 +130,8 @@ fn read_graph<'a>(
             let (base_path, base_text) = arena.alloc((base_path, base_text));
             let base_text = without_bom(base_text);
             source = Source::with_base(path, text, (base_path, base_text));
-            let graph =
-                schema::parse(base_text).map_err(|e| syntax(&Source::new(base_path, base_text), e))?;
+            let graph = schema::parse(base_text)
+                .map_err(|e| syntax(&Source::new(base_path, base_text), e))?;
             let values = preset_values(&preset);
             let mut composer = Composer::new(arena, references, &graph.features);
             let mut file = composer.graph(&mut source, graph);
@@ -257,7 +267,10 @@ fn find_pass(
     base: &Path,
     errors: &mut Vec<FileError>,
 ) -> Option<usize> {
-    let found = file.passes.iter().position(|p| p.name.as_str() == name.as_str());
+    let found = file
+        .passes
+        .iter()
+        .position(|p| p.name.as_str() == name.as_str());
     if found.is_none() {
         let known: Vec<&str> = file.passes.iter().map(|p| p.name.as_str()).collect();
         errors.push(source.error(

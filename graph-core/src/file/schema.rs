@@ -90,7 +90,10 @@ impl<'a> Interface<'a> {
     pub fn placeholder(&self, imported: bool) -> ResourceDecl<'a> {
         // The interface's fallback is a format it also accepts, not one a device may need.
         let texture = |t: TextureDecl<'a>| {
-            let t = TextureDecl { fallback: None, ..t };
+            let t = TextureDecl {
+                fallback: None,
+                ..t
+            };
             match imported {
                 true => ResourceDecl::ImportedTexture(t),
                 false => ResourceDecl::Texture(t),
