@@ -436,7 +436,8 @@ fn bad_particle_parameters_are_errors_naming_the_pass() {
         let (from, to, expected) = edits;
         assert!(text.contains(from), "{from}");
         let edited = text.replace(from, to);
-        let error = load_str_with("particles_mixed_res.ron", &edited, &registry, &GraphParams::new())
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines").join(MIXED);
+        let error = load_str_with(&path, &edited, &registry, &GraphParams::new())
             .err()
             .expect("rejected")
             .to_string();

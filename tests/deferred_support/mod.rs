@@ -399,6 +399,13 @@ fn edited(name: &str, edits: &[(&str, &str)]) -> (PathBuf, String) {
                 std::env::temp_dir().join(format!("rgraph-preset-{}-{n}", std::process::id()));
             std::fs::create_dir_all(&dir).expect("a temporary folder");
             std::fs::write(dir.join(base_name), base).expect("a writable temporary folder");
+            // The parts the base uses, beside it as in pipelines/.
+            std::fs::create_dir_all(dir.join("parts")).expect("a temporary folder");
+            for part in std::fs::read_dir(pipelines().join("parts")).expect("pipelines/parts") {
+                let part = part.expect("a readable folder").path();
+                std::fs::copy(&part, dir.join("parts").join(part.file_name().unwrap()))
+                    .expect("a writable temporary folder");
+            }
             (dir.join(name), text)
         }
         _ => (path, text),

@@ -215,13 +215,19 @@ impl<'a, 'r> Composer<'a, 'r> {
         file
     }
 
-    /// Checks the uses' bindings in the whole `file`; every error found.
-    pub fn finish(mut self, source: &Source<'a>, file: &GraphFile<'a>) -> Result<(), FileErrors> {
-        self.check_bindings(source, file);
-        match self.errors.is_empty() {
-            true => Ok(()),
-            false => Err(FileErrors::sorted(self.errors)),
+    /// Checks the uses' bindings in the whole `file`. A graph whose parts could not all be
+    /// written out is an error; otherwise the bindings' errors are returned, to be reported
+    /// with what loading finds next (a wrong format also upsets the plugin reading it).
+    pub fn finish(
+        mut self,
+        source: &Source<'a>,
+        file: &GraphFile<'a>,
+    ) -> Result<Vec<FileError>, FileErrors> {
+        if !self.errors.is_empty() {
+            return Err(FileErrors::sorted(self.errors));
         }
+        self.check_bindings(source, file);
+        Ok(self.errors)
     }
 
     /// Writes out `entries`, inside `instance`, into `file`.

@@ -86,26 +86,35 @@ fn load_text(
     references: &References,
 ) -> Result<LoadedGraph, FileErrors> {
     let arena = Arena::new();
-    let (source, file, values) = read_graph(path, without_bom(text), &arena, references)?;
+    let (source, read) = read_graph(path, without_bom(text), &arena, references)?;
+    let values = read.values.overridden_by(params);
     load_graph(
         &source,
-        file,
+        read.file,
+        read.errors,
         registry,
-        &values.overridden_by(params),
+        &values,
         references,
     )
 }
 
+/// A graph file read, its parts written out: with a preset's values for its base's
+/// parameters and the errors in its uses' bindings.
+struct Read<'a> {
+    file: GraphFile<'a>,
+    values: GraphParams,
+    errors: Vec<FileError>,
+}
+
 /// The graph the file at `path` holds, its parts written out (see [`compose`]), and the
-/// source that places its names; with a preset's values for its base's parameters. A graph
-/// file is read as written; a part as the graph that checks it alone; a preset as its
-/// base with its changes.
+/// source that places its names. A graph file is read as written; a part as the graph that
+/// checks it alone; a preset as its base with its changes.
 fn read_graph<'a>(
     path: &'a Path,
     text: &'a str,
     arena: &'a Arena<(PathBuf, String)>,
     references: &References,
-) -> Result<(Source<'a>, GraphFile<'a>, GraphParams), FileErrors> {
+) -> Result<(Source<'a>, Read<'a>), FileErrors> {
     let mut source = Source::new(path, text);
     let syntax = |source: &Source<'_>, e| FileErrors(vec![source.syntax(&e)]);
     let (file, composer, values) = match schema::kind(text) {
@@ -139,8 +148,15 @@ fn read_graph<'a>(
             (file, composer, values)
         }
     };
-    composer.finish(&source, &file)?;
-    Ok((source, file, values))
+    let errors = composer.finish(&source, &file)?;
+    Ok((
+        source,
+        Read {
+            file,
+            values,
+            errors,
+        },
+    ))
 }
 
 /// The values a preset gives its base's parameters.
@@ -156,9 +172,12 @@ fn preset_values(preset: &PresetFile<'_>) -> GraphParams {
 
 /// Declares a parsed graph file: look up plugins and their parameters, read conditions,
 /// resolve names, order passes, declare.
+/// `bindings` are the errors in the uses' bindings, reported with what declaring finds
+/// (a plugin refusing the resource bound is the same mistake, seen from the pass).
 fn load_graph(
     source: &Source<'_>,
     file: GraphFile<'_>,
+    bindings: Vec<FileError>,
     registry: &Registry,
     params: &GraphParams,
     references: &References,
@@ -170,11 +189,20 @@ fn load_graph(
     let edges = names::resolve(source, &file, &conditions, &mut errors);
     let order = order::sort(source, &file, &edges, &mut errors);
     if !errors.is_empty() {
-        return Err(FileErrors::sorted(errors));
+        return Err(FileErrors::sorted(
+            errors.into_iter().chain(bindings).collect(),
+        ));
     }
-    declare(
+    let declared = declare(
         source, &file, prepared, conditions, &order, values, references,
-    )
+    );
+    match (declared, bindings.is_empty()) {
+        (Ok(loaded), true) => Ok(loaded),
+        (Ok(_), false) => Err(FileErrors::sorted(bindings)),
+        (Err(e), _) => Err(FileErrors::sorted(
+            e.0.into_iter().chain(bindings).collect(),
+        )),
+    }
 }
 
 /// The path and text of a preset's base (relative to the preset's folder, inside the
@@ -299,8 +327,8 @@ pub fn declared_params(
     let text = read(path)?;
     let references = References::of_file(path, registry.roots(), &Folders::new());
     let arena = Arena::new();
-    let (_, file, values) = read_graph(path, without_bom(&text), &arena, &references)?;
-    Ok(param_uses::declared(&file).overridden_by(&values))
+    let (_, read) = read_graph(path, without_bom(&text), &arena, &references)?;
+    Ok(param_uses::declared(&read.file).overridden_by(&read.values))
 }
 
 /// The text of the file at `path`, or the error saying why it cannot be read.
