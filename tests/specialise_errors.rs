@@ -96,12 +96,19 @@ fn a_misspelt_feature_in_a_conditional_format_is_an_error_at_the_feature() {
 #[test]
 fn rgraph_validate_reports_it_with_exit_status_1() {
     let text = edited(
-        "when: \"unlit_only\",",
-        "when: \"unlit_only & spot_lights\",",
+        "when: \"background\",",
+        "when: \"background & spot_lights\",",
     );
     let dir = std::env::temp_dir().join(format!("specialise-errors-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    // The deferred plugins embed their shaders, so the file may live anywhere.
+    // The deferred plugins embed their shaders, so the file may live anywhere with the
+    // parts it uses beside it.
+    let parts = dir.join("parts");
+    std::fs::create_dir_all(&parts).unwrap();
+    let shipped = format!("{}/pipelines/parts", env!("CARGO_MANIFEST_DIR"));
+    for part in std::fs::read_dir(shipped).unwrap() {
+        let part = part.unwrap().path();
+        std::fs::copy(&part, parts.join(part.file_name().unwrap())).unwrap();
+    }
     let path = dir.join("deferred_msaa_4x.ron");
     std::fs::write(&path, &text).unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_rgraph"))
@@ -115,7 +122,7 @@ fn rgraph_validate_reports_it_with_exit_status_1() {
     let column = column.trim_start_matches(PIPELINE);
     assert!(
         stdout.contains(&format!(
-            "deferred_msaa_4x.ron{column}: error: pass \"gbuffer (unlit)\": condition \"unlit_only & spot_lights\" names feature \"spot_lights\""
+            "deferred_msaa_4x.ron{column}: error: pass \"background\": condition \"background & spot_lights\" names feature \"spot_lights\""
         )),
         "{stdout}"
     );

@@ -382,34 +382,43 @@ fn edited(name: &str, edits: &[(&str, &str)]) -> (PathBuf, String) {
         .filter(|_| text.contains("\nPreset("))
         .map(|rest| rest.trim_end_matches("\",").to_owned());
     let mut base = base_name.as_ref().map(|b| read(&pipelines().join(b)));
+    // The parts the pipeline uses: an edit of a pass written in one edits the part.
+    let mut parts: Vec<(std::ffi::OsString, String)> = std::fs::read_dir(pipelines().join("parts"))
+        .expect("pipelines/parts")
+        .map(|entry| {
+            let path = entry.expect("a readable folder").path();
+            (path.file_name().unwrap().to_owned(), read(&path))
+        })
+        .collect();
+    let mut copied = false;
     for (from, to) in edits {
         if text.contains(from) {
             text = text.replace(from, to);
         } else if let Some(base) = base.as_mut().filter(|b| b.contains(from)) {
             *base = base.replace(from, to);
+            copied = true;
+        } else if let Some((_, part)) = parts.iter_mut().find(|(_, part)| part.contains(from)) {
+            *part = part.replace(from, to);
+            copied = true;
         } else {
             panic!("{name} has no \"{from}\" to edit");
         }
     }
-    match (base_name, base) {
-        (Some(base_name), Some(base)) if !edits.is_empty() => {
-            static COPIES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-            let n = COPIES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            let dir =
-                std::env::temp_dir().join(format!("rgraph-preset-{}-{n}", std::process::id()));
-            std::fs::create_dir_all(&dir).expect("a temporary folder");
-            std::fs::write(dir.join(base_name), base).expect("a writable temporary folder");
-            // The parts the base uses, beside it as in pipelines/.
-            std::fs::create_dir_all(dir.join("parts")).expect("a temporary folder");
-            for part in std::fs::read_dir(pipelines().join("parts")).expect("pipelines/parts") {
-                let part = part.expect("a readable folder").path();
-                std::fs::copy(&part, dir.join("parts").join(part.file_name().unwrap()))
-                    .expect("a writable temporary folder");
-            }
-            (dir.join(name), text)
-        }
-        _ => (path, text),
+    if !copied {
+        return (path, text);
     }
+    // An edited base or part is read from a copy of pipelines/ in a temporary folder.
+    static COPIES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = COPIES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("rgraph-edited-{}-{n}", std::process::id()));
+    std::fs::create_dir_all(dir.join("parts")).expect("a temporary folder");
+    if let (Some(base_name), Some(base)) = (base_name, base) {
+        std::fs::write(dir.join(base_name), base).expect("a writable temporary folder");
+    }
+    for (file, part) in parts {
+        std::fs::write(dir.join("parts").join(file), part).expect("a writable temporary folder");
+    }
+    (dir.join(name), text)
 }
 
 fn pipelines() -> PathBuf {
