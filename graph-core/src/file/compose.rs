@@ -42,6 +42,8 @@ pub(super) struct Composer<'a, 'r> {
     entries: usize,
     /// What uses bind to what their parts take, checked once the graph is whole.
     bindings: Vec<Binding<'a>>,
+    /// Taken slots bound by name: (part, slot, the name in the graph, where the use is).
+    by_name: Vec<(String, Name<'a>, Name<'a>, Location)>,
     pub errors: Vec<FileError>,
 }
 
@@ -117,6 +119,7 @@ impl<'a, 'r> Composer<'a, 'r> {
             instances: HashMap::new(),
             entries: 0,
             bindings: Vec::new(),
+            by_name: Vec::new(),
             errors: Vec::new(),
         }
     }
@@ -529,6 +532,15 @@ impl<'a, 'r> Composer<'a, 'r> {
                 inner.bound.insert(slot.as_str().to_owned(), bound_name);
             }
         }
+        // A taken slot the use leaves unbound is bound to the name it has in the part, in
+        // the scope of the use; the graph must have it (checked once the graph is whole).
+        for (slot, _) in &part.takes.0 {
+            if !inner.bound.contains_key(slot.as_str()) {
+                let bound = outer.name(slot);
+                self.by_name.push((name.clone(), slot.clone(), bound.clone(), at.clone()));
+                inner.bound.insert(slot.as_str().to_owned(), bound);
+            }
+        }
         // What the interface says of each slot, checked once the graph is whole: taken
         // slots hold what the use binds, given ones what the part writes under the name.
         let sides = [("takes", &part.takes), ("gives", &part.gives)];
@@ -551,18 +563,6 @@ impl<'a, 'r> Composer<'a, 'r> {
                 });
             }
         }
-        for (slot, _) in &part.takes.0 {
-            if !inner.bound.contains_key(slot.as_str()) {
-                self.errors.push(FileError {
-                    location: at.clone(),
-                    kind: ErrorKind::PartUnbound {
-                        part: name.clone(),
-                        slot: slot.as_str().to_owned(),
-                        at: source.locate(slot),
-                    },
-                });
-            }
-        }
         for (name, mut decl) in part.resources.0 {
             decl.set_when(inner.when(decl.when()));
             file.resources.0.push((inner.name(&name), decl));
@@ -572,6 +572,18 @@ impl<'a, 'r> Composer<'a, 'r> {
 
     /// Checks each use's bindings against what its part takes, in the whole `file`.
     fn check_bindings(&mut self, source: &Source<'a>, file: &GraphFile<'a>) {
+        for (part, slot, bound, at) in std::mem::take(&mut self.by_name) {
+            if declaration(file, bound.as_str()).is_none() {
+                self.errors.push(FileError {
+                    location: at,
+                    kind: ErrorKind::PartUnbound {
+                        part,
+                        slot: bound.as_str().to_owned(),
+                        at: source.locate(&slot),
+                    },
+                });
+            }
+        }
         for binding in std::mem::take(&mut self.bindings) {
             let Some(found) = declaration(file, binding.bound.as_str()) else {
                 // Not declared anywhere: resolving names reports it.

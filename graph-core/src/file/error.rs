@@ -202,8 +202,11 @@ pub enum ErrorKind {
         known: String,
     },
 
-    /// A use leaves a resource the part takes unbound.
-    #[error("this use of part {part} does not bind \"{slot}\", which the part takes ({at})")]
+    /// A use leaves a resource the part takes unbound, and the graph has none of its name.
+    #[error(
+        "this use of part {part} binds nothing to \"{slot}\", which the part takes ({at}), \
+         and the graph has no \"{slot}\" to bind by name"
+    )]
     PartUnbound {
         /// The part file.
         part: String,
