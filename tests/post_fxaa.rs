@@ -231,13 +231,15 @@ fn fxaa_refuses_unknown_presets_and_bad_parameters() {
 }
 
 /// The FXAA pipelines render the lit scene: FXAA changes some pixels (the edges) and
-/// leaves most as deferred shading without it drew them.
+/// leaves most as the pipeline without it drew them.
 #[test]
 fn fxaa_pipelines_filter_the_deferred_image() {
     let gpu = gpu();
     for (plain, with_fxaa) in [
         ("deferred_noaa.ron", "deferred_noaa_fxaa.ron"),
         ("deferred_msaa_4x.ron", "deferred_msaa_4x_fxaa.ron"),
+        // A preset: the visibility pipeline with FXAA added after its tone mappers.
+        ("visibility_msaa_4x.ron", "visibility_msaa_4x_fxaa.ron"),
     ] {
         let a = Render::new(plain, "builtin:spheres", (96, 64)).read(&gpu, &["color"]);
         let b = Render::new(with_fxaa, "builtin:spheres", (96, 64)).read(&gpu, &["color"]);

@@ -238,6 +238,15 @@ pub enum ErrorKind {
         found: String,
     },
 
+    /// A preset rebinds a name its base does not have.
+    #[error("the preset rebinds \"{name}\", which {base} neither declares nor writes")]
+    UnknownRebind {
+        /// The name.
+        name: String,
+        /// The preset's base file.
+        base: String,
+    },
+
     /// The caller gives a value to a parameter the file does not declare.
     #[error(
         "parameter \"{name}\" is given a value ({value}), but the file declares no parameter \

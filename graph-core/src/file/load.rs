@@ -240,8 +240,8 @@ fn read_base(
     Ok((named.path, named.text))
 }
 
-/// Applies `preset` to its base's graph `file`: the passes it names changed, those it
-/// removes left out, its passes and part uses added after the passes it names, its
+/// Applies `preset` to its base's graph `file`: the passes it names changed, the names it
+/// rebinds renamed, those it removes left out, its passes and part uses added after the passes it names, its
 /// resources added and its outputs in place of the base's. Errors go to `composer`'s.
 fn apply_preset<'a>(
     source: &mut Source<'a>,
@@ -266,6 +266,17 @@ fn apply_preset<'a>(
             pass.outputs = outputs;
         }
     }
+    for (from, to) in &preset.rebind.0 {
+        if !rename(file, from.as_str(), to) {
+            errors.push(source.error(
+                from,
+                ErrorKind::UnknownRebind {
+                    name: from.as_str().to_owned(),
+                    base: base.display().to_string(),
+                },
+            ));
+        }
+    }
     for name in &preset.remove {
         if let Some(p) = find_pass(source, file, name, base, &mut errors) {
             file.passes.remove(p);
@@ -284,6 +295,23 @@ fn apply_preset<'a>(
         file.outputs = outputs;
     }
     composer.errors.extend(errors);
+}
+
+/// Renames `from` to `to` in `file`'s resources and passes' slots (not its outputs);
+/// whether `file` had it.
+fn rename<'a>(file: &mut GraphFile<'a>, from: &str, to: &Name<'a>) -> bool {
+    let resources = file.resources.0.iter_mut().map(|(name, _)| name);
+    let slots = file
+        .passes
+        .iter_mut()
+        .flat_map(|pass| pass.inputs.0.iter_mut().chain(pass.outputs.0.iter_mut()))
+        .map(|(_, name)| name);
+    let mut found = false;
+    for name in resources.chain(slots).filter(|name| name.as_str() == from) {
+        *name = to.clone();
+        found = true;
+    }
+    found
 }
 
 /// The index of the pass a preset names in its base's graph `file`, or the error saying

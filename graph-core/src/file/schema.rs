@@ -185,8 +185,8 @@ pub(crate) struct Entry<'a> {
 }
 
 /// A preset: a graph file named by `base` (relative to the preset's folder) with some
-/// passes' parameters, inputs or outputs replaced, passes removed or added, and its
-/// parameters given other values, for files that differ from another in those only:
+/// passes' parameters, inputs or outputs replaced, passes removed or added, outputs
+/// rebound to new writers, and its parameters given other values, for files that differ from another in those only:
 /// `Preset(base: "deferred_msaa_4x.ron", passes: { "edges": (params: (detector: centroid),
 /// inputs: { "material": "material", "depth": "depth" }) })`.
 #[derive(Debug, Deserialize)]
@@ -206,6 +206,11 @@ pub(crate) struct PresetFile<'a> {
     /// Passes of the base left out.
     #[serde(borrow, default)]
     pub remove: Vec<Name<'a>>,
+    /// Name -> new name, in the base's resources and passes but not its outputs: what the
+    /// base wrote as an output is renamed, and the preset's passes write the output
+    /// (`{ "color": "ldr" }` before a post filter that reads "ldr" and writes "color").
+    #[serde(borrow, default)]
+    pub rebind: Pairs<Name<'a>, Name<'a>>,
     /// Pass name -> passes and part uses added right after it.
     #[serde(borrow, default)]
     pub after: Pairs<Name<'a>, Vec<Entry<'a>>>,

@@ -147,8 +147,9 @@ impl Plugin for Fxaa {
         let (mut input, desc) = textures::sampled(slots, pass, "ldr", want, 0)?;
         // The shader's luma depends on whether reads decode sRGB, fixed at setup: every
         // format the device may give the texture must agree.
-        let linear = desc.format.is_srgb();
+        // Where the pass's condition picks a conditional format, that one decides.
         let formats = desc.formats_where(pass.condition());
+        let linear = formats.first().map_or(desc.format.is_srgb(), |f| f.is_srgb());
         if formats.iter().any(|f| f.is_srgb() != linear) {
             return Err(PluginError::Slot {
                 slot: "ldr".to_owned(),
