@@ -195,3 +195,65 @@ fn every_shipped_pipeline_keeps_the_plans_it_had_written_out() {
         plans.len()
     );
 }
+
+/// The `passes` of a graph file, each as written (a preset has none of its own).
+#[derive(serde::Deserialize)]
+#[serde(rename = "Graph")]
+struct Passes<'a> {
+    #[serde(borrow, default)]
+    passes: Vec<&'a ron::value::RawValue>,
+}
+
+/// Each pass a pipeline file writes out (not a use of a part), its layout, comments and
+/// trailing commas dropped: what "the same pass" means below.
+fn written_passes(path: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(path).expect("a readable pipeline");
+    let options = ron::Options::default().with_default_extension(
+        ron::extensions::Extensions::UNWRAP_VARIANT_NEWTYPES
+            | ron::extensions::Extensions::IMPLICIT_SOME,
+    );
+    let file: Passes = match options.from_str(&text) {
+        Ok(file) => file,
+        // A preset writes no pass of its own (only changes and parts it adds).
+        Err(_) if text.contains("\nPreset(") => return Vec::new(),
+        Err(e) => panic!("{}: {e}", path.display()),
+    };
+    file.passes
+        .iter()
+        .map(|pass| {
+            let code: Vec<&str> = pass
+                .get_ron()
+                .lines()
+                .map(|line| line.split("//").next().unwrap_or(""))
+                .collect();
+            let words = code.join(" ").split_whitespace().collect::<Vec<_>>().join(" ");
+            words.replace(", )", ")").replace(", }", "}").replace(",)", ")")
+        })
+        .filter(|pass| !pass.starts_with("(part:"))
+        .collect()
+}
+
+/// What pipelines share is written once, in a part: no pass is written out, the same, in
+/// two pipeline files.
+#[test]
+fn no_pass_is_written_in_two_pipeline_files() {
+    let mut seen: std::collections::HashMap<String, PathBuf> = std::collections::HashMap::new();
+    let mut repeated = Vec::new();
+    let mut passes = 0;
+    for path in pipelines() {
+        for pass in written_passes(&path) {
+            passes += 1;
+            match seen.get(&pass) {
+                Some(first) if *first != path => {
+                    repeated.push(format!("{} and {}: {pass}", first.display(), path.display()))
+                }
+                _ => {
+                    seen.insert(pass, path.clone());
+                }
+            }
+        }
+    }
+    assert!(repeated.is_empty(), "passes written in two files:\n{}", repeated.join("\n"));
+    // Not vacuous: the files' own passes were read.
+    assert!(passes > 50, "{passes} passes read");
+}
