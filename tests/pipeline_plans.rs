@@ -226,8 +226,15 @@ fn written_passes(path: &Path) -> Vec<String> {
                 .lines()
                 .map(|line| line.split("//").next().unwrap_or(""))
                 .collect();
-            let words = code.join(" ").split_whitespace().collect::<Vec<_>>().join(" ");
-            words.replace(", )", ")").replace(", }", "}").replace(",)", ")")
+            let words = code
+                .join(" ")
+                .split_whitespace()
+                .collect::<Vec<_>>()
+                .join(" ");
+            words
+                .replace(", )", ")")
+                .replace(", }", "}")
+                .replace(",)", ")")
         })
         .filter(|pass| !pass.starts_with("(part:"))
         .collect()
@@ -244,16 +251,22 @@ fn no_pass_is_written_in_two_pipeline_files() {
         for pass in written_passes(&path) {
             passes += 1;
             match seen.get(&pass) {
-                Some(first) if *first != path => {
-                    repeated.push(format!("{} and {}: {pass}", first.display(), path.display()))
-                }
+                Some(first) if *first != path => repeated.push(format!(
+                    "{} and {}: {pass}",
+                    first.display(),
+                    path.display()
+                )),
                 _ => {
                     seen.insert(pass, path.clone());
                 }
             }
         }
     }
-    assert!(repeated.is_empty(), "passes written in two files:\n{}", repeated.join("\n"));
+    assert!(
+        repeated.is_empty(),
+        "passes written in two files:\n{}",
+        repeated.join("\n")
+    );
     // Not vacuous: the files' own passes were read.
     assert!(passes > 50, "{passes} passes read");
 }

@@ -537,7 +537,8 @@ impl<'a, 'r> Composer<'a, 'r> {
         for (slot, _) in &part.takes.0 {
             if !inner.bound.contains_key(slot.as_str()) {
                 let bound = outer.name(slot);
-                self.by_name.push((name.clone(), slot.clone(), bound.clone(), at.clone()));
+                self.by_name
+                    .push((name.clone(), slot.clone(), bound.clone(), at.clone()));
                 inner.bound.insert(slot.as_str().to_owned(), bound);
             }
         }

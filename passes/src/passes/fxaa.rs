@@ -149,7 +149,9 @@ impl Plugin for Fxaa {
         // format the device may give the texture must agree.
         // Where the pass's condition picks a conditional format, that one decides.
         let formats = desc.formats_where(pass.condition());
-        let linear = formats.first().map_or(desc.format.is_srgb(), |f| f.is_srgb());
+        let linear = formats
+            .first()
+            .map_or(desc.format.is_srgb(), |f| f.is_srgb());
         if formats.iter().any(|f| f.is_srgb() != linear) {
             return Err(PluginError::Slot {
                 slot: "ldr".to_owned(),
