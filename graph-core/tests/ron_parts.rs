@@ -369,3 +369,35 @@ fn a_preset_adds_a_part_after_a_pass_removes_passes_and_rebinds_outputs() {
         "{found:?}"
     );
 }
+
+#[test]
+fn a_use_gives_the_part_s_parameters_values_of_its_own() {
+    let part = r#"Part(
+    gives: { "target": Any },
+    resources: { "target": Texture(format: "rgba8unorm", samples: Param(name: "n", default: 1)) },
+    passes: [(name: "clear", plugin: "clear", outputs: { "target": "target" })],
+)"#;
+    let graph = r#"Graph(
+    passes: [
+        (part: "parts/p.ron", prefix: "four ", values: { "n": 4 }),
+        (part: "parts/p.ron", prefix: "one "),
+    ],
+    outputs: ["four target", "one target"],
+)"#;
+    let dir = folder(&[("g.ron", graph), ("parts/p.ron", part)]);
+    let text = explain::text(&plan(&dir.path().join("g.ron"), &[]));
+    assert!(text.contains("four target exported: rgba8unorm 1920x1080 4x MSAA\n"), "{text}");
+    assert!(text.contains("one target exported: rgba8unorm 1920x1080\n"), "{text}");
+
+    // A value for a parameter the part does not use, at the use's value.
+    let wrong = graph.replace("values: { \"n\": 4 }", "values: { \"m\": 4 }");
+    let dir = folder(&[("g.ron", &wrong), ("parts/p.ron", part)]);
+    let path = dir.path().join("g.ron");
+    let found = errors(&path);
+    assert_eq!(found[0].0, format!("{}:3:58", path.display()), "{found:?}");
+    assert!(
+        matches!(&found[0].1, ErrorKind::PartParam { name, declared, .. }
+            if name == "m" && declared == "n"),
+        "{found:?}"
+    );
+}

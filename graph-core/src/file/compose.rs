@@ -14,6 +14,8 @@ use typed_arena::Arena;
 
 use super::error::{ErrorKind, FileError, FileErrors, Location};
 use super::pairs::Pairs;
+use super::param_uses;
+use super::params::GraphParams;
 use super::references::{ReferenceError, References};
 use super::schema::{
     self, Entry, FileKind, GraphFile, GraphText, Interface, Name, PartFile, PassDecl, ResourceDecl,
@@ -186,6 +188,7 @@ impl<'a, 'r> Composer<'a, 'r> {
             prefix: None,
             when: None,
             params: None,
+            values: Pairs::default(),
             inputs: bound(&part.takes),
             outputs: bound(&part.gives),
         };
@@ -285,6 +288,18 @@ impl<'a, 'r> Composer<'a, 'r> {
             });
             return;
         };
+        if let Some((value, _)) = entry.values.0.first() {
+            self.errors.push(source.error(
+                value,
+                ErrorKind::EntryShape {
+                    message: format!(
+                        "pass \"{}\" has `values`, which only a use of a part has (a pass's \
+                         parameters are its `params`)",
+                        name.as_str()
+                    ),
+                },
+            ));
+        }
         if let Some(prefix) = &entry.prefix {
             self.errors.push(source.error(
                 prefix,
@@ -352,7 +367,7 @@ impl<'a, 'r> Composer<'a, 'r> {
                 ),
             );
         }
-        let Some((path, text)) = self.read(source, &reference) else {
+        let Some((path, text)) = self.read(source, &reference, &entry.values) else {
             return;
         };
         let part = match schema::kind(text) {
@@ -422,12 +437,14 @@ impl<'a, 'r> Composer<'a, 'r> {
         self.stack.pop();
     }
 
-    /// Reads the part file `reference` names, from the folder of the file it is written in;
-    /// its text joins `source`.
+    /// Reads the part file `reference` names, from the folder of the file it is written in,
+    /// with the parameters `values` names at those values (the text keeps its layout, so
+    /// positions in it stay the file's); its text joins `source`.
     fn read(
         &mut self,
         source: &mut Source<'a>,
         reference: &Name<'a>,
+        values: &Pairs<Name<'a>, u32>,
     ) -> Option<(&'a Path, &'a str)> {
         let max = bounded_read::MAX_GRAPH_FILE_BYTES;
         let named = match self
@@ -453,8 +470,29 @@ impl<'a, 'r> Composer<'a, 'r> {
                 return None;
             }
         };
-        let (path, text) = self.arena.alloc((named.path, named.text));
-        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let text = named.text.strip_prefix('\u{feff}').unwrap_or(&named.text);
+        let given = values
+            .0
+            .iter()
+            .fold(GraphParams::new(), |given, (name, value)| given.with(name.as_str(), *value));
+        let declared = param_uses::names(text);
+        for (name, _) in &values.0 {
+            if !declared.iter().any(|d| d == name.as_str()) {
+                self.errors.push(source.error(
+                    name,
+                    ErrorKind::PartParam {
+                        part: named.path.display().to_string(),
+                        name: name.as_str().to_owned(),
+                        declared: match declared.is_empty() {
+                            true => "none".into(),
+                            false => declared.join(", "),
+                        },
+                    },
+                ));
+            }
+        }
+        let text = param_uses::substitute_given(text, &given);
+        let (path, text) = self.arena.alloc((named.path, text));
         source.add(path, text);
         Some((path, text))
     }

@@ -202,6 +202,17 @@ pub enum ErrorKind {
         known: String,
     },
 
+    /// A use gives a value to a parameter its part does not use.
+    #[error("part {part} has no parameter \"{name}\" (its parameters: {declared})")]
+    PartParam {
+        /// The part file.
+        part: String,
+        /// The parameter the use names.
+        name: String,
+        /// The parameters the part uses, comma-separated.
+        declared: String,
+    },
+
     /// A use leaves a resource the part takes unbound, and the graph has none of its name.
     #[error(
         "this use of part {part} binds nothing to \"{slot}\", which the part takes ({at}), \

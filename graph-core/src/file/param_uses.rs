@@ -161,12 +161,35 @@ pub(super) fn in_plugin_params(text: &str) -> Vec<(Range<usize>, ParamUse<'_>)> 
 /// `values`, padded with spaces to the use's length (its line breaks kept), so the
 /// plugin's errors keep their lines and columns.
 pub(super) fn substitute(text: &str, values: &GraphParams) -> String {
+    substitute_with(text, |param| {
+        Some(values.get(param.name.as_str()).unwrap_or(param.default))
+    })
+}
+
+/// `text` (a whole part file) with the uses of the parameters `values` names replaced by
+/// their values, laid out as [`substitute`] does; other uses stay.
+pub(super) fn substitute_given(text: &str, values: &GraphParams) -> String {
+    substitute_with(text, |param| values.get(param.name.as_str()))
+}
+
+/// The names of the parameters `text` uses, sorted, each once.
+pub(super) fn names(text: &str) -> Vec<String> {
+    let mut names: Vec<String> = in_plugin_params(text)
+        .into_iter()
+        .map(|(_, param)| param.name.as_str().to_owned())
+        .collect();
+    names.sort();
+    names.dedup();
+    names
+}
+
+fn substitute_with(text: &str, value_of: impl Fn(&ParamUse<'_>) -> Option<u32>) -> String {
     let mut out = text.to_owned();
     for (range, param) in in_plugin_params(text).into_iter().rev() {
-        let value = values
-            .get(param.name.as_str())
-            .unwrap_or(param.default)
-            .to_string();
+        let Some(value) = value_of(&param) else {
+            continue;
+        };
+        let value = value.to_string();
         let padded: String = value
             .chars()
             .chain(text[range.clone()].chars().skip(value.len()).map(|c| {

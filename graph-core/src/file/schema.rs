@@ -176,6 +176,10 @@ pub(crate) struct Entry<'a> {
     pub when: Option<Name<'a>>,
     #[serde(borrow, default)]
     pub params: Option<PluginParams<'a>>,
+    /// A use's values for the part's parameters (`{ "msaa": 1 }`): its `Param` uses with
+    /// these names take them, in this use only.
+    #[serde(borrow, default)]
+    pub values: Pairs<Name<'a>, u32>,
     /// A pass's slots, or a use's bindings of what the part takes.
     #[serde(borrow, default)]
     pub inputs: Pairs<Name<'a>, Name<'a>>,
