@@ -610,3 +610,17 @@ fn a_gltf_file_without_lights_gets_the_default_lighting_with_a_warning() {
         .expect(2)
         .stderr_has("expected one of auto, file, default, both");
 }
+
+/// The graph-file guide's pipeline written from parts only renders the lit scene, as the
+/// tiled pipeline it rebuilds (plus FXAA) does.
+#[test]
+fn the_guide_s_pipeline_of_parts_renders() {
+    let dir = temp_dir();
+    let (ours, tiled) = (dir.path().join("parts.png"), dir.path().join("tiled.png"));
+    render_default(&ours, &["--pipeline", "docs/examples/tiled_fxaa.ron"]).expect(0);
+    render_tiled(&tiled, &[]).expect(0);
+    let (ours, tiled) = (read_png(&ours), read_png(&tiled));
+    assert!(distinct_colors(&ours) > 100, "{} colors", distinct_colors(&ours));
+    let (a, b) = (mean_brightness(&ours), mean_brightness(&tiled));
+    assert!((a - b).abs() < 0.02 * b, "mean brightness {a:.2} against {b:.2}");
+}
