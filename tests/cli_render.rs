@@ -620,7 +620,14 @@ fn the_guide_s_pipeline_of_parts_renders() {
     render_default(&ours, &["--pipeline", "docs/examples/tiled_fxaa.ron"]).expect(0);
     render_tiled(&tiled, &[]).expect(0);
     let (ours, tiled) = (read_png(&ours), read_png(&tiled));
-    assert!(distinct_colors(&ours) > 100, "{} colors", distinct_colors(&ours));
+    assert!(
+        distinct_colors(&ours) > 100,
+        "{} colors",
+        distinct_colors(&ours)
+    );
     let (a, b) = (mean_brightness(&ours), mean_brightness(&tiled));
-    assert!((a - b).abs() < 0.02 * b, "mean brightness {a:.2} against {b:.2}");
+    assert!(
+        (a - b).abs() < 0.02 * b,
+        "mean brightness {a:.2} against {b:.2}"
+    );
 }

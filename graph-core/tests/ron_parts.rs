@@ -257,9 +257,11 @@ fn parts_that_use_each_other_are_a_cycle() {
     assert_eq!(
         found[0].1.to_string(),
         format!(
-            "parts use each other in a cycle: {a} uses {b} uses {a}",
+            "parts use each other in a cycle: {a} uses {b} uses {a} (the cycle's first use is \
+             at {g}:3:79)",
             a = parts.join("a.ron").display(),
-            b = parts.join("b.ron").display()
+            b = parts.join("b.ron").display(),
+            g = dir.path().join("g.ron").display()
         )
     );
 }
@@ -386,8 +388,14 @@ fn a_use_gives_the_part_s_parameters_values_of_its_own() {
 )"#;
     let dir = folder(&[("g.ron", graph), ("parts/p.ron", part)]);
     let text = explain::text(&plan(&dir.path().join("g.ron"), &[]));
-    assert!(text.contains("four target exported: rgba8unorm 1920x1080 4x MSAA\n"), "{text}");
-    assert!(text.contains("one target exported: rgba8unorm 1920x1080\n"), "{text}");
+    assert!(
+        text.contains("four target exported: rgba8unorm 1920x1080 4x MSAA\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("one target exported: rgba8unorm 1920x1080\n"),
+        "{text}"
+    );
 
     // A value for a parameter the part does not use, at the use's value.
     let wrong = graph.replace("values: { \"n\": 4 }", "values: { \"m\": 4 }");

@@ -36,8 +36,9 @@ pub(super) struct Composer<'a, 'r> {
     references: &'r References,
     /// The graph's declared features, which every part's must be among.
     features: Vec<Name<'a>>,
-    /// Part files on the way to the one being written out, to refuse a cycle.
-    stack: Vec<PathBuf>,
+    /// Part files on the way to the one being written out, with where each is used, to
+    /// refuse a cycle.
+    stack: Vec<(PathBuf, Location)>,
     /// (part file, prefix) of each use so far -> where the use is.
     instances: HashMap<(PathBuf, String), Location>,
     /// Passes and uses written out of parts so far.
@@ -393,16 +394,17 @@ impl<'a, 'r> Composer<'a, 'r> {
                 return;
             }
         };
-        if let Some(cycle) = self.stack.iter().position(|p| p == path) {
+        if let Some(cycle) = self.stack.iter().position(|(p, _)| p == path) {
             let chain: Vec<String> = self.stack[cycle..]
                 .iter()
-                .chain([&path.to_path_buf()])
-                .map(|p| p.display().to_string())
+                .map(|(p, _)| p.display().to_string())
+                .chain([path.display().to_string()])
                 .collect();
             self.errors.push(source.error(
                 &reference,
                 ErrorKind::PartCycle {
                     chain: chain.join(" uses "),
+                    first: self.stack[cycle].1.clone(),
                 },
             ));
             return;
@@ -432,7 +434,7 @@ impl<'a, 'r> Composer<'a, 'r> {
             at,
         };
         let when = outer.when(entry.when.as_ref());
-        self.stack.push(path.to_path_buf());
+        self.stack.push((path.to_path_buf(), used.at.clone()));
         self.instance(source, part, used, &entry, outer, (prefix, when), file);
         self.stack.pop();
     }
@@ -474,7 +476,9 @@ impl<'a, 'r> Composer<'a, 'r> {
         let given = values
             .0
             .iter()
-            .fold(GraphParams::new(), |given, (name, value)| given.with(name.as_str(), *value));
+            .fold(GraphParams::new(), |given, (name, value)| {
+                given.with(name.as_str(), *value)
+            });
         let declared = param_uses::names(text);
         for (name, _) in &values.0 {
             if !declared.iter().any(|d| d == name.as_str()) {

@@ -153,10 +153,12 @@ pub enum ErrorKind {
     },
 
     /// A part that uses itself, directly or through others.
-    #[error("parts use each other in a cycle: {chain}")]
+    #[error("parts use each other in a cycle: {chain} (the cycle's first use is at {first})")]
     PartCycle {
         /// The part files of the cycle, "a uses b uses a".
         chain: String,
+        /// Where the first part of the cycle is used.
+        first: Location,
     },
 
     /// Two uses of one part under the same prefix: their names would collide.

@@ -216,6 +216,7 @@ fn pass_header(
             }
             div class=(tip_class(column, plan.passes.len())) role="tooltip" id=(tip) {
                 p { strong { (pass.name) } ", a " (pass.kind) " pass, " (ordinal(column)) " to run" }
+                @if let Some(origin) = &pass.origin { p.origin { "From " (origin) "." } }
                 p { "Reads " (names(plan, &pass.reads)) "; writes " (names(plan, &pass.writes)) "." }
                 @if !pass.color.is_empty() || pass.depth_stencil.is_some() {
                     ul {
