@@ -3,6 +3,7 @@
 //! contributes, adaptive shading close to per-sample shading, and workgroup memory
 //! checked when compiling.
 
+use crate::common::edited_pipeline;
 use crate::deferred_support;
 
 use deferred_support::measure::{diff, marked, Diff};
@@ -218,22 +219,27 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
          workgroup memory, more than the limit of 8192 on a device with 8 KiB of workgroup \
          memory",
     );
-    let smaller = text.replace(
-        "params: (edges: (detector: compare)),",
-        "params: (edges: (detector: compare), tile: 8),",
+    // The tiled pass and its debug views, in the parts the pipeline uses.
+    let smaller = edited_pipeline(
+        "deferred_msaa_4x_tiled.ron",
+        &[
+            (
+                "params: (edges: (detector: compare)),",
+                "params: (edges: (detector: compare), tile: 8),",
+            ),
+            (
+                "params: (edges: (detector: compare), view: edges),",
+                "params: (view: edges, tile: 8),",
+            ),
+            (
+                "params: (view: tile_lights),",
+                "params: (view: tile_lights, tile: 8),",
+            ),
+        ],
     );
-    let debug_views = smaller
-        .replace(
-            "params: (edges: (detector: compare), view: edges),",
-            "params: (view: edges, tile: 8),",
-        )
-        .replace(
-            "params: (view: tile_lights),",
-            "params: (view: tile_lights, tile: 8),",
-        );
     // Edge entries (4 + 12 bytes for each of 64 x 3), the light batch (4 x 64), the
     // four side planes (64) and four atomics (16 each).
-    let plan = load_str(&path, &debug_views, &registry)
+    let plan = load_str(&smaller.path, &smaller.text, &registry)
         .expect("the file loads")
         .compile(&options)
         .unwrap_or_else(|e| panic!("8x8 tiles fit in 8 KiB: {e}"));
@@ -249,12 +255,15 @@ fn workgroup_memory_overflow_is_a_compile_error_naming_the_pass() {
             .contains("workgroup: 8x8x1 (cs_light_tiled), 3456 bytes of workgroup memory"),
         "explain shows the workgroup"
     );
-    let huge = text.replace(
-        "params: (edges: (detector: compare)),",
-        "params: (edges: (detector: compare), tile: 32),",
+    let huge = edited_pipeline(
+        "deferred_msaa_4x_tiled.ron",
+        &[(
+            "params: (edges: (detector: compare)),",
+            "params: (edges: (detector: compare), tile: 32),",
+        )],
     );
     assert_refused(
-        &load_str(&path, &huge, &registry).expect("the file loads"),
+        &load_str(&huge.path, &huge.text, &registry).expect("the file loads"),
         &CompileOptions::default(),
         "32x32 invocations exceed WebGPU's 256",
         "pass \"light tiled\": compute entry point \"cs_light_tiled\" runs 1024 invocations \
@@ -296,12 +305,15 @@ fn every_entry_point_the_tiled_pass_dispatches_is_checked() {
 /// A tile side outside 2 to 32 is refused at load, naming the parameter.
 #[test]
 fn a_tile_of_one_pixel_is_refused() {
-    let (registry, path, text) = pipeline_file("deferred_msaa_4x_tiled.ron");
-    let text = text.replace(
-        "params: (edges: (detector: compare)),",
-        "params: (edges: (detector: compare), tile: 1),",
+    let (registry, _, _) = pipeline_file("deferred_msaa_4x_tiled.ron");
+    let edited = edited_pipeline(
+        "deferred_msaa_4x_tiled.ron",
+        &[(
+            "params: (edges: (detector: compare)),",
+            "params: (edges: (detector: compare), tile: 1),",
+        )],
     );
-    let Err(error) = load_str(&path, &text, &registry) else {
+    let Err(error) = load_str(&edited.path, &edited.text, &registry) else {
         panic!("a 1x1 tile has no room for its four side planes, but the file loaded");
     };
     let error = error.to_string();

@@ -234,18 +234,15 @@ fn display_reference<'a>() -> Render<'a> {
             "inputs: { \"src\": \"resolved_2x\" },\n            outputs: { \"dst\": \"resolved\" },",
             "inputs: { \"src\": \"color_2x\" },\n            outputs: { \"dst\": \"color\" },",
         )
+        // The tone mappers (parts/tonemap.ron: the fixed and the auto-exposure ones) map
+        // the supersampled image with Reinhard, and the blit averages what they wrote.
         .edit(
-            "params: (operator: aces, exposure: 1.0),\n            inputs: { \"hdr\": \"resolved\" },\n            outputs: { \"color\": \"color\" },",
-            "params: (operator: reinhard, exposure: 1.0),\n            inputs: { \"hdr\": \"resolved_2x\" },\n            outputs: { \"color\": \"color_2x\" },",
-        )
-        // The auto-exposure passes (dropped here) read and write what the fixed ones do.
-        .edit(
-            "inputs: { \"hdr\": \"resolved\" },\n            outputs: { \"exposure\"",
-            "inputs: { \"hdr\": \"resolved_2x\" },\n            outputs: { \"exposure\"",
+            "params: (operator: aces, exposure: 1.0),",
+            "params: (operator: reinhard, exposure: 1.0),",
         )
         .edit(
-            "inputs: { \"hdr\": \"resolved\", \"exposure\": \"exposure\" },\n            outputs: { \"color\": \"color\" },",
-            "inputs: { \"hdr\": \"resolved_2x\", \"exposure\": \"exposure\" },\n            outputs: { \"color\": \"color_2x\" },",
+            "(part: \"parts/tonemap.ron\", inputs: { \"hdr\": \"resolved\" }),",
+            "(part: \"parts/tonemap.ron\", inputs: { \"hdr\": \"resolved_2x\" }, outputs: { \"color\": \"color_2x\" }),",
         )
 }
 

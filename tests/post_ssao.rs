@@ -304,10 +304,10 @@ fn tiled_lighting_applies_ssao_as_the_fragment_passes_do() {
         .edit(
             r#""depth": "depth", "hdr": "hdr",
             },
-            outputs: { "resolved": "resolved_hdr" },"#,
+            outputs: { "resolved": "resolved" },"#,
             r#""depth": "depth", "hdr": "hdr", "ao": "ao",
             },
-            outputs: { "resolved": "resolved_hdr" },"#,
+            outputs: { "resolved": "resolved" },"#,
         )
         .read(&gpu, &["color"]);
     let fragment = Render::new(PIPELINE, "builtin:dense", SIZE).read(&gpu, &["color"]);

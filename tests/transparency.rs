@@ -330,8 +330,8 @@ fn a_second_transparent_pass_accumulates_over_the_first() {
         ),"#,
         )
         .edit(
-            r#"inputs: { "accum": "transparent", "resolved": "resolved_bg" },"#,
-            r#"inputs: { "accum": "transparent_twice", "resolved": "resolved_bg" },"#,
+            r#"inputs: { "accum": "transparent", "resolved": "opaque" },"#,
+            r#"inputs: { "accum": "transparent_twice", "resolved": "opaque" },"#,
         )
         .export_resolved()
         .run(&gpu)

@@ -614,11 +614,10 @@ fn the_compute_raster_stores_8_bytes_per_sample() {
 /// The line `rgraph validate` prints about pass `pass` for visibility_msaa_4x.ron with
 /// `from` replaced by `to`, saved as `name`; the run must fail.
 fn validate_error(from: &str, to: &str, name: &str, pass: &str) -> String {
-    let text = std::fs::read_to_string("pipelines/visibility_msaa_4x.ron").unwrap();
-    assert!(text.contains(from), "{from}");
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join(name);
-    std::fs::write(&path, text.replace(from, to)).unwrap();
+    // Beside the copies of the parts it uses.
+    let edited = crate::common::edited_pipeline("visibility_msaa_4x.ron", &[(from, to)]);
+    let path = edited.path.with_file_name(name);
+    std::fs::write(&path, &edited.text).unwrap();
     let run = crate::cli_support::rgraph(&["validate", path.to_str().unwrap()]).expect(1);
     // validate lists what it found on stdout, a line per error.
     let named = format!("pass \"{pass}\"");

@@ -150,3 +150,72 @@ pub fn bind_group(
         entries: &entries,
     })
 }
+
+/// A shipped pipeline with edits applied: see [`edited_pipeline`].
+pub struct EditedPipeline {
+    /// The pipeline to load: the shipped file when nothing was edited, else its copy.
+    pub path: std::path::PathBuf,
+    /// The pipeline's text, edited.
+    pub text: String,
+    /// The copies of pipelines/ (the pipeline, its base, the parts), removed on drop.
+    dir: Option<tempfile::TempDir>,
+}
+
+impl EditedPipeline {
+    /// The path and text of the copy of `relative` (to pipelines/, e.g. "parts/a.ron").
+    pub fn copy_of(&self, relative: &str) -> (std::path::PathBuf, String) {
+        let dir = self.dir.as_ref().expect("edited files are copies");
+        let path = dir.path().join(relative);
+        let text = std::fs::read_to_string(&path).expect("a copied file");
+        (path, text)
+    }
+}
+
+/// The shipped pipeline `name` with each `(from, to)` of `edits` applied, every
+/// occurrence, to the file that holds `from`: the pipeline itself, its preset's base or a
+/// part in pipelines/parts/ (an edit of a part reaches each of its uses). Edited, the
+/// files are copies laid out as pipelines/ is, in a temporary folder.
+pub fn edited_pipeline(name: &str, edits: &[(&str, &str)]) -> EditedPipeline {
+    use std::path::Path;
+    let pipelines = Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines");
+    let read = |path: &Path| {
+        std::fs::read_to_string(path)
+            .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
+    };
+    let path = pipelines.join(name);
+    let mut text = read(&path);
+    let base_name = text
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("base: \""))
+        .filter(|_| text.contains("\nPreset("))
+        .map(|rest| rest.trim_end_matches("\",").to_owned());
+    let mut others: Vec<(String, String)> = base_name
+        .iter()
+        .map(|base| (base.clone(), read(&pipelines.join(base))))
+        .collect();
+    for part in std::fs::read_dir(pipelines.join("parts")).expect("pipelines/parts") {
+        let part = part.expect("a readable folder").path();
+        let name = format!("parts/{}", part.file_name().unwrap().to_string_lossy());
+        others.push((name, read(&part)));
+    }
+    for (from, to) in edits {
+        if text.contains(from) {
+            text = text.replace(from, to);
+        } else if let Some((_, other)) = others.iter_mut().find(|(_, t)| t.contains(from)) {
+            *other = other.replace(from, to);
+        } else {
+            panic!("{name}, its base and the parts have no \"{from}\" to edit");
+        }
+    }
+    if edits.is_empty() {
+        return EditedPipeline { path, text, dir: None };
+    }
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    std::fs::create_dir_all(dir.path().join("parts")).expect("a temporary folder");
+    for (relative, other) in &others {
+        std::fs::write(dir.path().join(relative), other).expect("a writable temporary folder");
+    }
+    let path = dir.path().join(name);
+    std::fs::write(&path, &text).expect("a writable temporary folder");
+    EditedPipeline { path, text, dir: Some(dir) }
+}

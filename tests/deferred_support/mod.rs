@@ -222,9 +222,9 @@ impl<'a> Render<'a> {
         let host = Arc::new(Host::new(Arc::new(scene), self.overrides.clone()));
         let mut registry = Registry::with_builtins();
         rgraph_passes::register_with(&mut registry, Some(host.clone()), self.variants);
-        let (path, text) = edited(self.pipeline.name, &self.edits);
-        let loaded = load_str_with(&path, &text, &registry, &self.params)
-            .unwrap_or_else(|e| panic!("cannot load {}:\n{e}", path.display()));
+        let edited = crate::common::edited_pipeline(self.pipeline.name, &self.edits);
+        let loaded = load_str_with(&edited.path, &edited.text, &registry, &self.params)
+            .unwrap_or_else(|e| panic!("cannot load {}:\n{e}", edited.path.display()));
         let label = self.pipeline.label();
         let options = CompileOptions {
             output_size: self.size,
@@ -369,61 +369,6 @@ impl Frame {
 /// The path and text of pipeline file `name` with `edits` applied. A preset's edits apply
 /// to it where its own text has them, else to its base, which is then loaded from a copy
 /// beside an edited copy of the preset.
-fn edited(name: &str, edits: &[(&str, &str)]) -> (PathBuf, String) {
-    let read = |path: &Path| {
-        std::fs::read_to_string(path)
-            .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
-    };
-    let path = pipelines().join(name);
-    let mut text = read(&path);
-    let base_name = text
-        .lines()
-        .find_map(|l| l.trim().strip_prefix("base: \""))
-        .filter(|_| text.contains("\nPreset("))
-        .map(|rest| rest.trim_end_matches("\",").to_owned());
-    let mut base = base_name.as_ref().map(|b| read(&pipelines().join(b)));
-    // The parts the pipeline uses: an edit of a pass written in one edits the part.
-    let mut parts: Vec<(std::ffi::OsString, String)> = std::fs::read_dir(pipelines().join("parts"))
-        .expect("pipelines/parts")
-        .map(|entry| {
-            let path = entry.expect("a readable folder").path();
-            (path.file_name().unwrap().to_owned(), read(&path))
-        })
-        .collect();
-    let mut copied = false;
-    for (from, to) in edits {
-        if text.contains(from) {
-            text = text.replace(from, to);
-        } else if let Some(base) = base.as_mut().filter(|b| b.contains(from)) {
-            *base = base.replace(from, to);
-            copied = true;
-        } else if let Some((_, part)) = parts.iter_mut().find(|(_, part)| part.contains(from)) {
-            *part = part.replace(from, to);
-            copied = true;
-        } else {
-            panic!("{name} has no \"{from}\" to edit");
-        }
-    }
-    if !copied {
-        return (path, text);
-    }
-    // An edited base or part is read from a copy of pipelines/ in a temporary folder.
-    static COPIES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let n = COPIES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let dir = std::env::temp_dir().join(format!("rgraph-edited-{}-{n}", std::process::id()));
-    std::fs::create_dir_all(dir.join("parts")).expect("a temporary folder");
-    if let (Some(base_name), Some(base)) = (base_name, base) {
-        std::fs::write(dir.join(base_name), base).expect("a writable temporary folder");
-    }
-    for (file, part) in parts {
-        std::fs::write(dir.join("parts").join(file), part).expect("a writable temporary folder");
-    }
-    (dir.join(name), text)
-}
-
-fn pipelines() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines")
-}
 
 /// One line per pixel where two HDR images of `width` differ in any bit, naming each
 /// image's value by `names`.
