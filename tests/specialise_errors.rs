@@ -16,7 +16,10 @@ const PIPELINE: &str = "deferred_msaa_4x.ron";
 /// by `to`: the copies, and the path and text of the file edited.
 fn edited(from: &str, to: &str) -> (EditedPipeline, PathBuf, String) {
     let copies = edited_pipeline(PIPELINE, &[(from, to)]);
-    let dir = copies.path.parent().unwrap().to_owned();
+    let dir = match copies.copies() {
+        Some(dir) => dir.to_owned(),
+        None => copies.path.parent().unwrap().to_owned(),
+    };
     let files = std::iter::once(PIPELINE.to_owned()).chain(
         std::fs::read_dir(dir.join("parts"))
             .unwrap()

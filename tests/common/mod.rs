@@ -153,7 +153,8 @@ pub fn bind_group(
 
 /// A shipped pipeline with edits applied: see [`edited_pipeline`].
 pub struct EditedPipeline {
-    /// The pipeline to load: the shipped file when nothing was edited, else its copy.
+    /// The pipeline to load: the shipped file's path unless its base or a part was
+    /// edited, else its copy's.
     pub path: std::path::PathBuf,
     /// The pipeline's text, edited.
     pub text: String,
@@ -162,19 +163,17 @@ pub struct EditedPipeline {
 }
 
 impl EditedPipeline {
-    /// The path and text of the copy of `relative` (to pipelines/, e.g. "parts/a.ron").
-    pub fn copy_of(&self, relative: &str) -> (std::path::PathBuf, String) {
-        let dir = self.dir.as_ref().expect("edited files are copies");
-        let path = dir.path().join(relative);
-        let text = std::fs::read_to_string(&path).expect("a copied file");
-        (path, text)
+    /// The folder of the copies, if the base or a part was edited.
+    pub fn copies(&self) -> Option<&std::path::Path> {
+        self.dir.as_ref().map(|dir| dir.path())
     }
 }
 
 /// The shipped pipeline `name` with each `(from, to)` of `edits` applied, every
 /// occurrence, to the file that holds `from`: the pipeline itself, its preset's base or a
-/// part in pipelines/parts/ (an edit of a part reaches each of its uses). Edited, the
-/// files are copies laid out as pipelines/ is, in a temporary folder.
+/// part in pipelines/parts/ (an edit of a part reaches each of its uses). With the base or
+/// a part edited, the files are copies laid out as pipelines/ is, in a temporary folder;
+/// with the pipeline's own text only, it keeps the shipped file's path.
 pub fn edited_pipeline(name: &str, edits: &[(&str, &str)]) -> EditedPipeline {
     use std::path::Path;
     let pipelines = Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines");
@@ -198,16 +197,19 @@ pub fn edited_pipeline(name: &str, edits: &[(&str, &str)]) -> EditedPipeline {
         let name = format!("parts/{}", part.file_name().unwrap().to_string_lossy());
         others.push((name, read(&part)));
     }
+    let mut copied = false;
     for (from, to) in edits {
         if text.contains(from) {
             text = text.replace(from, to);
         } else if let Some((_, other)) = others.iter_mut().find(|(_, t)| t.contains(from)) {
             *other = other.replace(from, to);
+            copied = true;
         } else {
             panic!("{name}, its base and the parts have no \"{from}\" to edit");
         }
     }
-    if edits.is_empty() {
+    // Only the pipeline's own text edited: it loads as if it were the shipped file.
+    if !copied {
         return EditedPipeline { path, text, dir: None };
     }
     let dir = tempfile::tempdir().expect("a temporary folder");
