@@ -70,16 +70,16 @@ fn a_misspelt_feature_in_a_pass_condition_is_an_error_at_the_feature() {
 #[test]
 fn a_misspelt_feature_in_a_resource_condition_is_an_error_at_the_feature() {
     let (copies, path, text) = edited(
-        "\"material\": Texture(format: \"rgba8unorm\", samples: Param(name: \"msaa\", default: 4), when: \"!unlit_only\")",
-        "\"material\": Texture(format: \"rgba8unorm\", samples: Param(name: \"msaa\", default: 4), when: \"!unlit-only\")",
+        "\"transparent\": Texture(format: \"rgba16float\", samples: Param(name: \"msaa\", default: 4), when: \"blend\")",
+        "\"transparent\": Texture(format: \"rgba16float\", samples: Param(name: \"msaa\", default: 4), when: \"bl-end\")",
     );
     let errors = load(&copies);
-    // "unlit-only" is not a name: the condition stops parsing at the '-'.
+    // "bl-end" is not a name: the condition stops parsing at the '-'.
     assert_eq!(
         errors.to_string(),
         format!(
-            "{}: error: resource \"material\": condition \"!unlit-only\": expected a feature name, found '-' after a feature; conditions read `a & !b` (only `&` and `!`)",
-            at(&path, &text, "-only\")")
+            "{}: error: resource \"transparent\": condition \"bl-end\": expected a feature name, found '-' after a feature; conditions read `a & !b` (only `&` and `!`)",
+            at(&path, &text, "-end\")")
         )
     );
 }

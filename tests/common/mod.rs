@@ -201,11 +201,15 @@ pub fn edited_pipeline(name: &str, edits: &[(&str, &str)]) -> EditedPipeline {
     for (from, to) in edits {
         if text.contains(from) {
             text = text.replace(from, to);
-        } else if let Some((_, other)) = others.iter_mut().find(|(_, t)| t.contains(from)) {
+        } else {
+            let mut holding = others.iter_mut().filter(|(_, t)| t.contains(from));
+            let Some((_, other)) = holding.next() else {
+                panic!("{name}, its base and the parts have no \"{from}\" to edit");
+            };
             *other = other.replace(from, to);
             copied = true;
-        } else {
-            panic!("{name}, its base and the parts have no \"{from}\" to edit");
+            let more: Vec<&String> = holding.map(|(file, _)| &*file).collect();
+            assert!(more.is_empty(), "\"{from}\" is in more files than one: {more:?}");
         }
     }
     // Only the pipeline's own text edited: it loads as if it were the shipped file.
