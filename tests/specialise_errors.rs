@@ -16,19 +16,19 @@ const PIPELINE: &str = "deferred_msaa_4x.ron";
 /// by `to`: the copies, and the path and text of the file edited.
 fn edited(from: &str, to: &str) -> (EditedPipeline, PathBuf, String) {
     let copies = edited_pipeline(PIPELINE, &[(from, to)]);
-    let dir = match copies.copies() {
-        Some(dir) => dir.to_owned(),
-        None => copies.path.parent().unwrap().to_owned(),
+    let (path, text) = match copies.copies() {
+        // Only the pipeline's own text edited.
+        None => (copies.path.clone(), copies.text.clone()),
+        Some(dir) => std::iter::once(PIPELINE.to_owned())
+            .chain(
+                std::fs::read_dir(dir.join("parts"))
+                    .unwrap()
+                    .map(|e| format!("parts/{}", e.unwrap().file_name().to_string_lossy())),
+            )
+            .map(|file| (dir.join(&file), std::fs::read_to_string(dir.join(&file)).unwrap()))
+            .find(|(_, text)| text.contains(to))
+            .expect("an edited file"),
     };
-    let files = std::iter::once(PIPELINE.to_owned()).chain(
-        std::fs::read_dir(dir.join("parts"))
-            .unwrap()
-            .map(|e| format!("parts/{}", e.unwrap().file_name().to_string_lossy())),
-    );
-    let (path, text) = files
-        .map(|file| (dir.join(&file), std::fs::read_to_string(dir.join(&file)).unwrap()))
-        .find(|(_, text)| text.contains(to))
-        .expect("an edited file");
     assert_eq!(text.matches(to).count(), 1, "{to:?} is in {} once", path.display());
     (copies, path, text)
 }
