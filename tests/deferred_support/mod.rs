@@ -10,7 +10,7 @@ pub mod scenes;
 pub mod textured;
 pub mod unlit;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 use rgraph_core::file::{load_str_with, GraphParams, LoadedGraph, Registry};
