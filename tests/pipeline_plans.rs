@@ -6,7 +6,10 @@
 //! resources are declared where the graph uses it): the resources section is sorted, and
 //! each physical texture is named by the resources it holds, not by its number.
 //! The digests were taken from the files as they were written out by hand, before any
-//! was built from parts (commit 9e1f83d); a plan that changes on purpose is blessed with
+//! was built from parts (commit 9e1f83d), but for two: `visibility_msaa_4x_fxaa.ron` is
+//! new, and `deferred_msaa_4x_fxaa.ron`, made a preset of `deferred_msaa_4x.ron`, gained
+//! its base's feature `background` and the pass it gates. A plan that changes on purpose
+//! is blessed with
 //! `RGRAPH_BLESS_PLANS=1 ./dev test --test integration pipeline_plans::`, and the diff of
 //! the fixture shows which files and feature sets it touched.
 
