@@ -453,7 +453,10 @@ fn explain_shows_the_off_screen_passes_at_their_size() {
     for pass in ["particles (off screen)", "particle edges"] {
         let at = text.find(&format!(". {pass} (render)\n")).expect(pass);
         // After the line naming the part it came from, if it did.
-        let next = text[at..].lines().skip(1).find(|l| !l.trim_start().starts_with("from "));
+        let next = text[at..]
+            .lines()
+            .skip(1)
+            .find(|l| !l.trim_start().starts_with("from "));
         assert!(
             next == Some("         renders at 320x180, not the output's 1280x720"),
             "{pass}:\n{text}"

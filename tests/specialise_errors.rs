@@ -25,11 +25,21 @@ fn edited(from: &str, to: &str) -> (EditedPipeline, PathBuf, String) {
                     .unwrap()
                     .map(|e| format!("parts/{}", e.unwrap().file_name().to_string_lossy())),
             )
-            .map(|file| (dir.join(&file), std::fs::read_to_string(dir.join(&file)).unwrap()))
+            .map(|file| {
+                (
+                    dir.join(&file),
+                    std::fs::read_to_string(dir.join(&file)).unwrap(),
+                )
+            })
             .find(|(_, text)| text.contains(to))
             .expect("an edited file"),
     };
-    assert_eq!(text.matches(to).count(), 1, "{to:?} is in {} once", path.display());
+    assert_eq!(
+        text.matches(to).count(),
+        1,
+        "{to:?} is in {} once",
+        path.display()
+    );
     (copies, path, text)
 }
 
@@ -47,7 +57,9 @@ fn at(path: &std::path::Path, text: &str, needle: &str) -> String {
     let offset = text.find(needle).expect("the needle is in the text");
     let before = &text[..offset];
     let line = 1 + before.matches('\n').count();
-    let column = 1 + before[before.rfind('\n').map_or(0, |i| i + 1)..].chars().count();
+    let column = 1 + before[before.rfind('\n').map_or(0, |i| i + 1)..]
+        .chars()
+        .count();
     format!("{}:{line}:{column}", path.display())
 }
 
@@ -104,8 +116,10 @@ fn a_misspelt_feature_in_a_conditional_format_is_an_error_at_the_feature() {
 fn rgraph_validate_reports_it_with_exit_status_1() {
     // The deferred plugins embed their shaders, so the file may live anywhere with the
     // parts it uses beside it.
-    let (copies, path, text) =
-        edited("when: \"background\",", "when: \"background & spot_lights\",");
+    let (copies, path, text) = edited(
+        "when: \"background\",",
+        "when: \"background & spot_lights\",",
+    );
     let out = Command::new(env!("CARGO_BIN_EXE_rgraph"))
         .args(["validate", copies.path.to_str().unwrap()])
         .output()

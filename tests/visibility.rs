@@ -620,7 +620,11 @@ fn validate_error(from: &str, to: &str, name: &str, pass: &str) -> String {
     std::fs::create_dir(dir.path().join("parts")).unwrap();
     for part in std::fs::read_dir("pipelines/parts").unwrap() {
         let part = part.unwrap().path();
-        std::fs::copy(&part, dir.path().join("parts").join(part.file_name().unwrap())).unwrap();
+        std::fs::copy(
+            &part,
+            dir.path().join("parts").join(part.file_name().unwrap()),
+        )
+        .unwrap();
     }
     let path = dir.path().join(name);
     std::fs::write(&path, &edited.text).unwrap();

@@ -8,6 +8,8 @@ use std::path::Path;
 use rgraph_core::file::{load_file, ErrorKind, Registry};
 use rgraph_core::{explain, CompileOptions, Features, Plan};
 
+use crate::ron_support::{folder, located_errors};
+
 /// Clears a texture of its own and copies it into what it gives: the texture it takes
 /// is cleared first, under the part's condition.
 const TINT: &str = r#"// Clears "base" and tints what it gives.
@@ -27,16 +29,6 @@ Part(
     ],
 )"#;
 
-fn folder(files: &[(&str, &str)]) -> tempfile::TempDir {
-    let dir = tempfile::tempdir().expect("a temporary folder");
-    for (name, text) in files {
-        let path = dir.path().join(name);
-        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        std::fs::write(path, text).expect("a writable folder");
-    }
-    dir
-}
-
 fn plan(path: &Path, features: &[&str]) -> Plan {
     let loaded = load_file(path, &Registry::with_builtins()).unwrap_or_else(|e| panic!("{e}"));
     let mut on = Features::new();
@@ -55,17 +47,6 @@ fn written_out(plan: &Plan) -> String {
         pass.origin = None;
     }
     explain::text(&plan)
-}
-
-fn errors(path: &Path) -> Vec<(String, ErrorKind)> {
-    match load_file(path, &Registry::with_builtins()) {
-        Ok(_) => panic!("{} loaded", path.display()),
-        Err(errors) => errors
-            .0
-            .into_iter()
-            .map(|e| (format!("{}:{}", e.location.path, e.location.at), e.kind))
-            .collect(),
-    }
 }
 
 const GRAPH: &str = r#"Graph(
@@ -159,7 +140,7 @@ fn two_uses_of_one_part_get_names_of_their_own_from_their_prefixes() {
     let twice = graph.replace("prefix: \"right \", ", "prefix: \"left \", ");
     let dir = folder(&[("g.ron", &twice), ("parts/tint.ron", TINT)]);
     let path = dir.path().join("g.ron");
-    let found = errors(&path);
+    let found = located_errors(&path);
     assert_eq!(found.len(), 1, "{found:?}");
     assert_eq!(found[0].0, format!("{}:7:16", path.display()));
     let message = found[0].1.to_string();
@@ -177,7 +158,7 @@ fn a_binding_of_the_wrong_format_names_the_part_and_the_use() {
     );
     let dir = folder(&[("g.ron", &graph), ("parts/tint.ron", TINT)]);
     let path = dir.path().join("g.ron");
-    let found = errors(&path);
+    let found = located_errors(&path);
     assert_eq!(found.len(), 1, "{found:?}");
     // At the use's binding, naming the part's interface.
     assert_eq!(found[0].0, format!("{}:9:68", path.display()));
@@ -198,7 +179,7 @@ fn a_use_that_leaves_a_taken_resource_unbound_names_both_places() {
     let graph = GRAPH.replace("inputs: { \"base\": \"a\" }, ", "");
     let dir = folder(&[("g.ron", &graph), ("parts/tint.ron", TINT)]);
     let path = dir.path().join("g.ron");
-    let found = errors(&path);
+    let found = located_errors(&path);
     assert_eq!(found[0].0, format!("{}:9:16", path.display()), "{found:?}");
     let part = dir.path().join("parts/tint.ron");
     assert!(
@@ -210,7 +191,7 @@ fn a_use_that_leaves_a_taken_resource_unbound_names_both_places() {
     // A slot the part does not have, at the binding.
     let graph = GRAPH.replace("{ \"out\": \"b\" }", "{ \"output\": \"b\" }");
     let dir = folder(&[("g.ron", &graph), ("parts/tint.ron", TINT)]);
-    let found = errors(&dir.path().join("g.ron"));
+    let found = located_errors(&dir.path().join("g.ron"));
     assert!(
         matches!(&found[0].1, ErrorKind::PartNoSlot { slot, side: "gives", known, .. }
             if slot == "output" && known == "out"),
@@ -225,7 +206,7 @@ fn a_part_needing_a_feature_the_graph_lacks_names_both_places() {
         .replace("when: \"tinted\", ", "");
     let dir = folder(&[("g.ron", &graph), ("parts/tint.ron", TINT)]);
     let path = dir.path().join("g.ron");
-    let found = errors(&path);
+    let found = located_errors(&path);
     assert_eq!(found[0].0, format!("{}:9:16", path.display()), "{found:?}");
     let part = dir.path().join("parts/tint.ron");
     assert!(
@@ -246,7 +227,7 @@ fn parts_that_use_each_other_are_a_cycle() {
     outputs: ["t"],
 )"#;
     let dir = folder(&[("g.ron", graph), ("parts/a.ron", a), ("parts/b.ron", b)]);
-    let found = errors(&dir.path().join("g.ron"));
+    let found = located_errors(&dir.path().join("g.ron"));
     assert_eq!(found.len(), 1, "{found:?}");
     // At the use that closes the cycle, in b.ron.
     let parts = dir.path().join("parts");
@@ -270,7 +251,7 @@ fn parts_that_use_each_other_are_a_cycle() {
 fn a_use_of_a_graph_file_or_of_a_file_outside_the_folders_is_refused() {
     let graph = GRAPH.replace("parts/tint.ron", "other.ron");
     let dir = folder(&[("g.ron", &graph), ("other.ron", GRAPH)]);
-    let found = errors(&dir.path().join("g.ron"));
+    let found = located_errors(&dir.path().join("g.ron"));
     assert!(
         matches!(
             &found[0].1,
@@ -283,7 +264,7 @@ fn a_use_of_a_graph_file_or_of_a_file_outside_the_folders_is_refused() {
     );
     let graph = GRAPH.replace("parts/tint.ron", "../../etc/passwd");
     let dir = folder(&[("g.ron", &graph)]);
-    let found = errors(&dir.path().join("g.ron"));
+    let found = located_errors(&dir.path().join("g.ron"));
     assert!(
         matches!(
             &found[0].1,
@@ -308,7 +289,7 @@ fn a_part_checks_on_its_own_with_placeholders_for_what_it_takes() {
     let broken = TINT.replace("\"blit\"", "\"blitz\"");
     let dir = folder(&[("parts/tint.ron", &broken)]);
     let path = dir.path().join("parts/tint.ron");
-    let found = errors(&path);
+    let found = located_errors(&path);
     assert_eq!(found[0].0, format!("{}:14:32", path.display()), "{found:?}");
 }
 
@@ -364,7 +345,7 @@ fn a_preset_adds_a_part_after_a_pass_removes_passes_and_rebinds_outputs() {
     // Adding after a pass the base lacks names the base's passes.
     let wrong = preset.replace("after: { \"clear a\"", "after: { \"clear b\"");
     std::fs::write(dir.path().join("p.ron"), wrong).unwrap();
-    let found = errors(&dir.path().join("p.ron"));
+    let found = located_errors(&dir.path().join("p.ron"));
     assert!(
         matches!(&found[0].1, ErrorKind::UnknownPresetPass { pass, known, .. }
             if pass == "clear b" && known == "clear a"),
@@ -401,7 +382,7 @@ fn a_use_gives_the_part_s_parameters_values_of_its_own() {
     let wrong = graph.replace("values: { \"n\": 4 }", "values: { \"m\": 4 }");
     let dir = folder(&[("g.ron", &wrong), ("parts/p.ron", part)]);
     let path = dir.path().join("g.ron");
-    let found = errors(&path);
+    let found = located_errors(&path);
     assert_eq!(found[0].0, format!("{}:3:58", path.display()), "{found:?}");
     assert!(
         matches!(&found[0].1, ErrorKind::PartParam { name, declared, .. }

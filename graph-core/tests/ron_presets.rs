@@ -2,10 +2,10 @@
 //! base graph file with those passes' parameters or inputs replaced; errors name the file
 //! each part is written in.
 
-use std::path::Path;
-
 use rgraph_core::file::{declared_params, load_file, ErrorKind, GraphParams, Registry};
 use rgraph_core::CompileOptions;
+
+use crate::ron_support::{folder, located_errors};
 
 /// Two clears of "a" (the second modifies the first's version, so it reads it) and a
 /// clear of "b" of another sample count parameter.
@@ -20,25 +20,6 @@ const BASE: &str = r#"Graph(
     ],
     outputs: ["a", "b"],
 )"#;
-
-fn folder(files: &[(&str, &str)]) -> tempfile::TempDir {
-    let dir = tempfile::tempdir().expect("a temporary folder");
-    for (name, text) in files {
-        std::fs::write(dir.path().join(name), text).expect("a writable folder");
-    }
-    dir
-}
-
-fn errors(path: &Path) -> Vec<(String, ErrorKind)> {
-    match load_file(path, &Registry::with_builtins()) {
-        Ok(_) => panic!("{} loaded", path.display()),
-        Err(errors) => errors
-            .0
-            .into_iter()
-            .map(|e| (format!("{}:{}", e.location.path, e.location.at), e.kind))
-            .collect(),
-    }
-}
 
 #[test]
 fn a_preset_is_its_base_with_the_passes_it_names_changed() {
@@ -71,7 +52,7 @@ fn an_unknown_pass_is_an_error_in_the_preset_naming_the_base_s_passes() {
     let preset = "Preset(\n    base: \"base.ron\",\n    passes: { \"clear c\": (params: ()) },\n)";
     let dir = folder(&[("base.ron", BASE), ("p.ron", preset)]);
     let path = dir.path().join("p.ron");
-    let found = errors(&path);
+    let found = located_errors(&path);
     assert_eq!(found.len(), 1, "{found:?}");
     assert_eq!(found[0].0, format!("{}:3:15", path.display()));
     assert!(
@@ -86,7 +67,7 @@ fn a_bad_parameter_is_placed_in_the_preset_and_a_base_error_in_the_base() {
         "Preset(\n    base: \"base.ron\",\n    passes: { \"clear a\": (params: (colour: 1.0)) },\n)";
     let dir = folder(&[("base.ron", BASE), ("p.ron", preset)]);
     let path = dir.path().join("p.ron");
-    let found = errors(&path);
+    let found = located_errors(&path);
     assert!(
         found[0].0.starts_with(&format!("{}:3:", path.display())),
         "{found:?}"
@@ -100,7 +81,7 @@ fn a_bad_parameter_is_placed_in_the_preset_and_a_base_error_in_the_base() {
     );
     let preset = "Preset(base: \"base.ron\", passes: {})";
     let dir = folder(&[("base.ron", &broken), ("p.ron", preset)]);
-    let found = errors(&dir.path().join("p.ron"));
+    let found = located_errors(&dir.path().join("p.ron"));
     let base = dir.path().join("base.ron");
     assert!(
         found
@@ -118,7 +99,7 @@ fn a_missing_base_or_a_preset_of_a_preset_is_an_error_at_the_base() {
         ("pp.ron", "Preset(base: \"p.ron\")"),
         ("base.ron", BASE),
     ]);
-    let found = errors(&dir.path().join("missing.ron"));
+    let found = located_errors(&dir.path().join("missing.ron"));
     assert_eq!(
         found[0].0,
         format!("{}:1:14", dir.path().join("missing.ron").display())
@@ -126,7 +107,7 @@ fn a_missing_base_or_a_preset_of_a_preset_is_an_error_at_the_base() {
     assert!(
         matches!(&found[0].1, ErrorKind::PresetBase { base, .. } if base.ends_with("nowhere.ron"))
     );
-    let found = errors(&dir.path().join("pp.ron"));
+    let found = located_errors(&dir.path().join("pp.ron"));
     assert!(matches!(&found[0].1, ErrorKind::PresetOfPreset { base } if base.ends_with("p.ron")));
 }
 

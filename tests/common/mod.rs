@@ -209,12 +209,19 @@ pub fn edited_pipeline(name: &str, edits: &[(&str, &str)]) -> EditedPipeline {
             *other = other.replace(from, to);
             copied = true;
             let more: Vec<&String> = holding.map(|(file, _)| &*file).collect();
-            assert!(more.is_empty(), "\"{from}\" is in more files than one: {more:?}");
+            assert!(
+                more.is_empty(),
+                "\"{from}\" is in more files than one: {more:?}"
+            );
         }
     }
     // Only the pipeline's own text edited: it loads as if it were the shipped file.
     if !copied {
-        return EditedPipeline { path, text, dir: None };
+        return EditedPipeline {
+            path,
+            text,
+            dir: None,
+        };
     }
     let dir = tempfile::tempdir().expect("a temporary folder");
     std::fs::create_dir_all(dir.path().join("parts")).expect("a temporary folder");
@@ -223,5 +230,9 @@ pub fn edited_pipeline(name: &str, edits: &[(&str, &str)]) -> EditedPipeline {
     }
     let path = dir.path().join(name);
     std::fs::write(&path, &text).expect("a writable temporary folder");
-    EditedPipeline { path, text, dir: Some(dir) }
+    EditedPipeline {
+        path,
+        text,
+        dir: Some(dir),
+    }
 }

@@ -17,33 +17,30 @@ use crate::builder::GraphBuilder;
 use crate::condition::Condition;
 use crate::resource::{format_name, BufferDesc, Size, TextureDesc};
 
-/// A whole graph file as written:
-/// `Graph(features: [..], resources: {..}, passes: [..], outputs: [..])`, where a pass
-/// may be a use of a part.
+/// A whole graph file: `Graph(features: [..], resources: {..}, passes: [..], outputs:
+/// [..])`. As read ([`GraphText`]) a pass may be a use of a part; loading writes the parts
+/// out ([`GraphFile`], see `compose`), which the rest of loading reads as if the file had
+/// been written that way.
 #[derive(Debug, Deserialize)]
 #[serde(rename = "Graph", deny_unknown_fields)]
-pub(crate) struct GraphText<'a> {
+pub(crate) struct Graph<'a, P> {
     /// The feature names `when` conditions may use.
     #[serde(borrow, default)]
     pub features: Vec<Name<'a>>,
     #[serde(borrow, default)]
     pub resources: Pairs<Name<'a>, ResourceDecl<'a>>,
-    #[serde(borrow, default)]
-    pub passes: Vec<Entry<'a>>,
+    #[serde(default = "Vec::new")]
+    pub passes: Vec<P>,
     /// Names of the versions kept past the frame.
     #[serde(borrow, default)]
     pub outputs: Vec<Name<'a>>,
 }
 
-/// A graph with its parts' passes and resources written out (see `compose`): what
-/// the rest of loading reads, as if the file had been written that way.
-#[derive(Debug)]
-pub(crate) struct GraphFile<'a> {
-    pub features: Vec<Name<'a>>,
-    pub resources: Pairs<Name<'a>, ResourceDecl<'a>>,
-    pub passes: Vec<PassDecl<'a>>,
-    pub outputs: Vec<Name<'a>>,
-}
+/// A graph file as written: its passes may be uses of parts.
+pub(crate) type GraphText<'a> = Graph<'a, Entry<'a>>;
+
+/// A graph file with its parts written out.
+pub(crate) type GraphFile<'a> = Graph<'a, PassDecl<'a>>;
 
 /// A part: passes and resources a graph uses by the part file's name, through an
 /// interface of the resources it takes and gives:

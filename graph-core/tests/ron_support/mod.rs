@@ -1,7 +1,9 @@
 //! Helpers shared by the graph-file tests: loading and compiling files against the
 //! built-in plugins and checking where each error points and what it names.
 
-use rgraph_core::file::{load_file, load_str, FileError, FileErrors, Registry};
+use std::path::Path;
+
+use rgraph_core::file::{load_file, load_str, ErrorKind, FileError, FileErrors, Registry};
 use rgraph_core::{CompileOptions, Plan};
 
 /// The built-in plugins, with the workspace's folders open to graph files (the fixtures
@@ -47,5 +49,30 @@ pub fn assert_error(error: &FileError, path: &str, line: usize, column: usize, n
             text.contains(&format!("\"{name}\"")),
             "{text:?} does not name \"{name}\""
         );
+    }
+}
+
+/// A temporary folder holding `files` (`(path, text)`, paths relative to it; their
+/// folders are made).
+pub fn folder(files: &[(&str, &str)]) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    for (name, text) in files {
+        let path = dir.path().join(name);
+        std::fs::create_dir_all(path.parent().unwrap()).expect("a writable folder");
+        std::fs::write(path, text).expect("a writable folder");
+    }
+    dir
+}
+
+/// The errors loading `path` against the built-in plugins gives, each as `FILE:LINE:COL`
+/// and its kind; the file must not load.
+pub fn located_errors(path: &Path) -> Vec<(String, ErrorKind)> {
+    match load_file(path, &Registry::with_builtins()) {
+        Ok(_) => panic!("{} loaded", path.display()),
+        Err(errors) => errors
+            .0
+            .into_iter()
+            .map(|e| (format!("{}:{}", e.location.path, e.location.at), e.kind))
+            .collect(),
     }
 }
