@@ -366,10 +366,6 @@ impl Frame {
     }
 }
 
-/// The path and text of pipeline file `name` with `edits` applied. A preset's edits apply
-/// to it where its own text has them, else to its base, which is then loaded from a copy
-/// beside an edited copy of the preset.
-
 /// One line per pixel where two HDR images of `width` differ in any bit, naming each
 /// image's value by `names`.
 pub fn hdr_differences(
