@@ -285,6 +285,8 @@ fn a_part_checks_on_its_own_with_placeholders_for_what_it_takes() {
     // The placeholder for what it takes is an import, which the engine sees: clearing
     // it is kept.
     assert_eq!(names, ["clear", "scratch", "copy"]);
+    // Its passes are the file's own: explain names no part they came from.
+    assert!(plan.passes.iter().all(|p| p.origin.is_none()));
     // A mistake inside is placed in the part.
     let broken = TINT.replace("\"blit\"", "\"blitz\"");
     let dir = folder(&[("parts/tint.ron", &broken)]);

@@ -207,6 +207,10 @@ impl<'a, 'r> Composer<'a, 'r> {
             (String::new(), None),
             &mut file,
         );
+        // The part is the file checked: its passes are the file's own, not a use's.
+        for pass in &mut file.passes {
+            pass.used.remove(0);
+        }
         file
     }
 
