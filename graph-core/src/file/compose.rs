@@ -3,9 +3,11 @@
 //! rest of loading, the plan, `explain` and specialisation see the graph as if its file
 //! had been written that way; each pass remembers the uses it came from.
 //!
-//! Inside a use, a name the part takes or gives is the name the use binds to it; any
-//! other name (the part's passes, its own resources and the versions they write) gets
-//! the use's `prefix`. A use's `when` joins the conditions of everything in it.
+//! Inside a use, a name the part takes or gives is the name the use binds to it (a taken
+//! one the use leaves unbound: the same name, around the use); any other name (the
+//! part's passes, its own resources, the versions they write and what it gives unbound)
+//! gets the use's `prefix`. A use's `when` joins the conditions of everything in it, and
+//! its `values` replace the part's uses of those parameters in its text.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -27,7 +29,7 @@ use crate::bounded_read;
 
 /// The most passes and part uses parts may add to one graph: parts that use parts several
 /// times each multiply, so a few small files could otherwise ask for billions.
-pub(crate) const MAX_ENTRIES: usize = 100_000;
+const MAX_ENTRIES: usize = 100_000;
 
 /// Writes out the parts a graph uses. Part files are read into `arena`, so that names
 /// borrowed from them live as long as the graph's own.
@@ -47,6 +49,7 @@ pub(super) struct Composer<'a, 'r> {
     bindings: Vec<Binding<'a>>,
     /// Taken slots bound by name: (part, slot, the name in the graph, where the use is).
     by_name: Vec<(String, Name<'a>, Name<'a>, Location)>,
+    /// Every error found, reported by [`finish`](Self::finish); a preset's join them.
     pub errors: Vec<FileError>,
 }
 
