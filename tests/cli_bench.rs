@@ -306,7 +306,7 @@ fn an_unknown_pipeline_is_an_error_row_and_the_rest_are_measured() {
 }
 
 #[test]
-fn charts_images_and_the_table_are_written() {
+fn charts_images_plan_pages_and_the_table_are_written() {
     let dir = main_run().dir.path();
     let scene = dir.join("builtin_dense");
     let pngs: Vec<PathBuf> = [
@@ -330,6 +330,13 @@ fn charts_images_and_the_table_are_written() {
     let table = std::fs::read_to_string(dir.join("results.md")).unwrap();
     assert!(table.contains("| deferred_per_sample_4x |"), "{table}");
     assert!(table.contains("| no_such_pipeline | error:"), "{table}");
+    // Each measured pipeline's plan as a page beside its images, with its times, linked
+    // from the table.
+    let page = std::fs::read_to_string(scene.join("deferred_noaa.plan.html"))
+        .expect("deferred_noaa's plan page beside its images");
+    assert!(page.starts_with("<!DOCTYPE html>"), "{}", &page[..page.len().min(200)]);
+    assert!(page.contains("GPU ms"), "the page shows the measured times");
+    assert!(table.contains("(builtin_dense/deferred_noaa.plan.html)"), "{table}");
 }
 
 #[test]
