@@ -334,9 +334,16 @@ fn charts_images_plan_pages_and_the_table_are_written() {
     // from the table.
     let page = std::fs::read_to_string(scene.join("deferred_noaa.plan.html"))
         .expect("deferred_noaa's plan page beside its images");
-    assert!(page.starts_with("<!DOCTYPE html>"), "{}", &page[..page.len().min(200)]);
+    assert!(
+        page.starts_with("<!DOCTYPE html>"),
+        "{}",
+        &page[..page.len().min(200)]
+    );
     assert!(page.contains("GPU ms"), "the page shows the measured times");
-    assert!(table.contains("(builtin_dense/deferred_noaa.plan.html)"), "{table}");
+    assert!(
+        table.contains("(builtin_dense/deferred_noaa.plan.html)"),
+        "{table}"
+    );
 }
 
 #[test]

@@ -392,3 +392,32 @@ fn a_use_gives_the_part_s_parameters_values_of_its_own() {
         "{found:?}"
     );
 }
+
+#[test]
+fn a_use_s_own_condition_is_checked_where_the_use_writes_it() {
+    // A feature the graph lacks, in the use's condition, joined inside the part to the
+    // clear's own "tinted": the error is the use's, at the feature.
+    let graph = GRAPH.replace("when: \"tinted\", ", "when: \"tinted & blnd\", ");
+    let dir = folder(&[("g.ron", &graph), ("parts/tint.ron", TINT)]);
+    let path = dir.path().join("g.ron");
+    let found = located_errors(&path);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].0, format!("{}:9:50", path.display()));
+    assert!(
+        matches!(&found[0].1, ErrorKind::UseFeature { feature, .. } if feature == "blnd"),
+        "{found:?}"
+    );
+    // One that does not parse.
+    let graph = GRAPH.replace("when: \"tinted\", ", "when: \"tinted &\", ");
+    let dir = folder(&[("g.ron", &graph), ("parts/tint.ron", TINT)]);
+    let path = dir.path().join("g.ron");
+    let found = located_errors(&path);
+    assert!(
+        found[0].0.starts_with(&format!("{}:9:", path.display())),
+        "{found:?}"
+    );
+    assert!(
+        matches!(&found[0].1, ErrorKind::BadCondition { .. }),
+        "{found:?}"
+    );
+}

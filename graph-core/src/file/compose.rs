@@ -26,6 +26,7 @@ use super::schema::{
 use super::shown::Shown;
 use super::source::Source;
 use crate::bounded_read;
+use crate::condition::Condition;
 
 /// The most passes and part uses parts may add to one graph: parts that use parts several
 /// times each multiply, so a few small files could otherwise ask for billions.
@@ -436,6 +437,11 @@ impl<'a, 'r> Composer<'a, 'r> {
         }
         self.instances.insert(key, at.clone());
         self.features(source, &reference, path, &part);
+        if let Some(when) = &entry.when {
+            if !self.use_condition(source, when, path) {
+                return;
+            }
+        }
         let used = Used {
             part: path.display().to_string(),
             at,
@@ -506,6 +512,48 @@ impl<'a, 'r> Composer<'a, 'r> {
         let (path, text) = self.arena.alloc((named.path, text));
         source.add(path, text);
         Some((path, text))
+    }
+
+    /// Checks a use's own condition, before it is joined to those inside the part (where
+    /// an error in it would be placed in the part): it parses, and names only features the
+    /// graph declares. Whether it did.
+    fn use_condition(&mut self, source: &Source<'a>, when: &Name<'a>, path: &Path) -> bool {
+        let part = path.display().to_string();
+        let condition = match Condition::parse(when.as_str()) {
+            Ok(condition) => condition,
+            Err(error) => {
+                self.errors.push(FileError {
+                    location: source.locate_in(when, error.column()),
+                    kind: ErrorKind::BadCondition {
+                        owner: format!("the use of part {part}"),
+                        condition: when.as_str().to_owned(),
+                        error,
+                    },
+                });
+                return false;
+            }
+        };
+        let declared: Vec<&str> = self.features.iter().map(Name::as_str).collect();
+        let mut known = true;
+        for feature in condition.features().filter(|f| !declared.contains(f)) {
+            known = false;
+            let column = when
+                .as_str()
+                .find(feature)
+                .map_or(0, |i| when.as_str()[..i].chars().count());
+            self.errors.push(FileError {
+                location: source.locate_in(when, column),
+                kind: ErrorKind::UseFeature {
+                    part: part.clone(),
+                    feature: feature.to_owned(),
+                    declared: match declared.is_empty() {
+                        true => "none".into(),
+                        false => declared.join(", "),
+                    },
+                },
+            });
+        }
+        known
     }
 
     /// Checks that the graph declares every feature the part names.

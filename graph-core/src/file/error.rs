@@ -191,6 +191,20 @@ pub enum ErrorKind {
         declared: String,
     },
 
+    /// A use's condition names a feature the graph does not declare.
+    #[error(
+        "the use of part {part} is under feature \"{feature}\", which this graph does not \
+         declare (it declares: {declared})"
+    )]
+    UseFeature {
+        /// The part file.
+        part: String,
+        /// The feature.
+        feature: String,
+        /// The graph's features, comma-separated.
+        declared: String,
+    },
+
     /// A use binds a slot the part does not have.
     #[error("part {part} {side} no \"{slot}\" (it {side}: {known})")]
     PartNoSlot {
