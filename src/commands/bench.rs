@@ -33,6 +33,7 @@ mod stats;
 mod surfaces;
 mod sweep;
 mod table;
+mod timing;
 mod work;
 
 use std::path::{Path, PathBuf};

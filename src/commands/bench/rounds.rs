@@ -23,6 +23,7 @@ use super::flag::Created;
 use super::measure::Setup;
 use super::memory::Memory;
 use super::progress::Progress;
+use super::timing::Timing;
 use crate::frame::{FrameError, Prepared};
 
 /// The least time the warmup runs when there is one: a GPU clocks down while the bench
@@ -43,23 +44,6 @@ pub struct Timed<'s, T> {
     pub name: String,
     pub prepared: Prepared<'s>,
     pub tag: T,
-}
-
-/// What a plan's rounds measured.
-pub struct Timing {
-    /// The measured frames' reports, per round.
-    pub rounds: Vec<Vec<FrameReport>>,
-    /// Device objects created inside measured frames, per round that created any.
-    pub created: Vec<Created>,
-    /// The clock sample of each round the plan ran in.
-    pub clocks: Vec<Option<ClockSample>>,
-}
-
-impl Timing {
-    /// Every measured frame's report, round after round.
-    pub fn frames(&self) -> impl Iterator<Item = &FrameReport> {
-        self.rounds.iter().flatten()
-    }
 }
 
 /// One round in results.json's `round_log`.
