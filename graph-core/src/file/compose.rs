@@ -14,6 +14,7 @@ use std::path::{Path, PathBuf};
 
 use typed_arena::Arena;
 
+use super::conditions::column_of;
 use super::error::{ErrorKind, FileError, FileErrors, Location};
 use super::pairs::Pairs;
 use super::param_uses;
@@ -26,7 +27,7 @@ use super::schema::{
 use super::shown::Shown;
 use super::source::Source;
 use crate::bounded_read;
-use crate::condition::Condition;
+use crate::condition::{Condition, Features};
 
 /// The most passes and part uses parts may add to one graph: parts that use parts several
 /// times each multiply, so a few small files could otherwise ask for billions.
@@ -38,7 +39,7 @@ pub(super) struct Composer<'a, 'r> {
     arena: &'a Arena<(PathBuf, String)>,
     references: &'r References,
     /// The graph's declared features, which every part's must be among.
-    features: Vec<Name<'a>>,
+    features: Features,
     /// Part files on the way to the one being written out, with where each is used, to
     /// refuse a cycle.
     stack: Vec<(PathBuf, Location)>,
@@ -121,7 +122,7 @@ impl<'a, 'r> Composer<'a, 'r> {
         Composer {
             arena,
             references,
-            features: features.to_vec(),
+            features: features.iter().map(|f| f.as_str().to_owned()).collect(),
             stack: Vec::new(),
             instances: HashMap::new(),
             entries: 0,
@@ -208,13 +209,10 @@ impl<'a, 'r> Composer<'a, 'r> {
             used,
             &entry,
             &top,
-            (String::new(), None),
+            // The part is the file checked: its passes are the file's own, from no use.
+            (String::new(), None, Vec::new()),
             &mut file,
         );
-        // The part is the file checked: its passes are the file's own, not a use's.
-        for pass in &mut file.passes {
-            pass.used.remove(0);
-        }
         file
     }
 
@@ -257,12 +255,8 @@ impl<'a, 'r> Composer<'a, 'r> {
             // The graph's own file is bounded by its size; parts' uses multiply.
             self.entries += usize::from(!instance.used.is_empty());
             if self.entries > MAX_ENTRIES {
-                let at = entry_name(&entry).map_or_else(
-                    || source.location(crate::position::Position::START),
-                    |name| source.locate(name),
-                );
                 self.errors.push(FileError {
-                    location: at,
+                    location: entry_location(source, &entry),
                     kind: ErrorKind::TooManyEntries { limit: MAX_ENTRIES },
                 });
                 return;
@@ -283,12 +277,8 @@ impl<'a, 'r> Composer<'a, 'r> {
         file: &mut GraphFile<'a>,
     ) {
         let (Some(name), Some(plugin)) = (&entry.name, &entry.plugin) else {
-            let location = entry_name(&entry).map_or_else(
-                || source.location(crate::position::Position::START),
-                |name| source.locate(name),
-            );
             self.errors.push(FileError {
-                location,
+                location: entry_location(source, &entry),
                 kind: ErrorKind::EntryShape {
                     message: "a pass needs a `name` and a `plugin`; a use of a part needs a \
                               `part`"
@@ -447,8 +437,17 @@ impl<'a, 'r> Composer<'a, 'r> {
             at,
         };
         let when = outer.when(entry.when.as_ref());
+        let uses = outer.used.iter().cloned().chain([used.clone()]).collect();
         self.stack.push((path.to_path_buf(), used.at.clone()));
-        self.instance(source, part, used, &entry, outer, (prefix, when), file);
+        self.instance(
+            source,
+            part,
+            used,
+            &entry,
+            outer,
+            (prefix, when, uses),
+            file,
+        );
         self.stack.pop();
     }
 
@@ -500,10 +499,7 @@ impl<'a, 'r> Composer<'a, 'r> {
                     ErrorKind::PartParam {
                         part: named.path.display().to_string(),
                         name: name.as_str().to_owned(),
-                        declared: match declared.is_empty() {
-                            true => "none".into(),
-                            false => declared.join(", "),
-                        },
+                        declared: listed(&declared, "none"),
                     },
                 ));
             }
@@ -533,23 +529,16 @@ impl<'a, 'r> Composer<'a, 'r> {
                 return false;
             }
         };
-        let declared: Vec<&str> = self.features.iter().map(Name::as_str).collect();
         let mut known = true;
-        for feature in condition.features().filter(|f| !declared.contains(f)) {
+        for feature in condition.features().filter(|f| !self.features.contains(f)) {
             known = false;
-            let column = when
-                .as_str()
-                .find(feature)
-                .map_or(0, |i| when.as_str()[..i].chars().count());
+            let column = column_of(when.as_str(), feature);
             self.errors.push(FileError {
                 location: source.locate_in(when, column),
                 kind: ErrorKind::UseFeature {
                     part: part.clone(),
                     feature: feature.to_owned(),
-                    declared: match declared.is_empty() {
-                        true => "none".into(),
-                        false => declared.join(", "),
-                    },
+                    declared: self.features.to_string(),
                 },
             });
         }
@@ -564,27 +553,24 @@ impl<'a, 'r> Composer<'a, 'r> {
         path: &Path,
         part: &PartFile<'a>,
     ) {
-        let declared: Vec<&str> = self.features.iter().map(Name::as_str).collect();
         for feature in &part.features {
-            if !declared.contains(&feature.as_str()) {
+            if !self.features.contains(feature.as_str()) {
                 self.errors.push(source.error(
                     reference,
                     ErrorKind::PartFeature {
                         part: path.display().to_string(),
                         feature: feature.as_str().to_owned(),
                         at: source.locate(feature),
-                        declared: match declared.is_empty() {
-                            true => "none".into(),
-                            false => declared.join(", "),
-                        },
+                        declared: self.features.to_string(),
                     },
                 ));
             }
         }
     }
 
-    /// Writes out one use of `part`, whose bindings are `entry`'s inputs and outputs (names
-    /// of `outer`'s), its other names under `prefix` and its conditions joined to `when`.
+    /// Writes out one use of `part` (`used` names it in messages), whose bindings are
+    /// `entry`'s inputs and outputs (names of `outer`'s), its other names under `prefix`,
+    /// its conditions joined to `when` and its passes coming from `uses`.
     #[allow(clippy::too_many_arguments)]
     fn instance(
         &mut self,
@@ -593,16 +579,15 @@ impl<'a, 'r> Composer<'a, 'r> {
         used: Used,
         entry: &Entry<'a>,
         outer: &Instance<'a>,
-        (prefix, when): (String, Option<Name<'a>>),
+        (prefix, when, uses): (String, Option<Name<'a>>, Vec<Used>),
         file: &mut GraphFile<'a>,
     ) {
-        let name = used.part.clone();
-        let at = used.at.clone();
+        let Used { part: name, at } = used;
         let mut inner = Instance {
             prefix,
             bound: HashMap::new(),
             when,
-            used: outer.used.iter().cloned().chain([used]).collect(),
+            used: uses,
         };
         for (side, bindings, interface) in [
             ("takes", &entry.inputs, &part.takes),
@@ -617,10 +602,7 @@ impl<'a, 'r> Composer<'a, 'r> {
                             part: name.clone(),
                             side,
                             slot: slot.as_str().to_owned(),
-                            known: match known.is_empty() {
-                                true => "nothing".into(),
-                                false => known.join(", "),
-                            },
+                            known: listed(&known, "nothing"),
                         },
                     ));
                     continue;
@@ -724,8 +706,8 @@ fn declaration<'f, 'a>(file: &'f GraphFile<'a>, name: &str) -> Option<&'f Resour
     None
 }
 
-/// The first name an entry holds, to place an error about the entry.
-fn entry_name<'e, 'a>(entry: &'e Entry<'a>) -> Option<&'e Name<'a>> {
+/// Where an error about an entry goes: the first name it holds, else the file's start.
+fn entry_location(source: &Source<'_>, entry: &Entry<'_>) -> Location {
     [
         &entry.name,
         &entry.part,
@@ -738,4 +720,20 @@ fn entry_name<'e, 'a>(entry: &'e Entry<'a>) -> Option<&'e Name<'a>> {
     .next()
     .or_else(|| entry.inputs.0.first().map(|(slot, _)| slot))
     .or_else(|| entry.outputs.0.first().map(|(slot, _)| slot))
+    .map_or_else(
+        || source.location(crate::position::Position::START),
+        |name| source.locate(name),
+    )
+}
+
+/// `names` comma-separated, or `none` where there are none.
+fn listed(names: &[impl AsRef<str>], none: &str) -> String {
+    match names.is_empty() {
+        true => none.to_owned(),
+        false => names
+            .iter()
+            .map(AsRef::as_ref)
+            .collect::<Vec<_>>()
+            .join(", "),
+    }
 }

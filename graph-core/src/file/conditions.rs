@@ -183,7 +183,7 @@ fn condition(
 }
 
 /// The column (in characters) of `feature` as a whole name in `text`.
-fn column_of(text: &str, feature: &str) -> usize {
+pub(super) fn column_of(text: &str, feature: &str) -> usize {
     let name_char = |c: char| c.is_ascii_alphanumeric() || c == '_';
     text.match_indices(feature)
         .find(|&(i, _)| {
