@@ -13,27 +13,10 @@ use crate::common::{edited_pipeline, EditedPipeline};
 const PIPELINE: &str = "deferred_msaa_4x.ron";
 
 /// deferred_msaa_4x.ron with `from` (once in the pipeline or one of its parts) replaced
-/// by `to`: the copies, and the path and text of the file edited.
+/// by `to`: the edited pipeline, and the path and text of the file edited.
 fn edited(from: &str, to: &str) -> (EditedPipeline, PathBuf, String) {
     let copies = edited_pipeline(PIPELINE, &[(from, to)]);
-    let (path, text) = match copies.copies() {
-        // Only the pipeline's own text edited.
-        None => (copies.path.clone(), copies.text.clone()),
-        Some(dir) => std::iter::once(PIPELINE.to_owned())
-            .chain(
-                std::fs::read_dir(dir.join("parts"))
-                    .unwrap()
-                    .map(|e| format!("parts/{}", e.unwrap().file_name().to_string_lossy())),
-            )
-            .map(|file| {
-                (
-                    dir.join(&file),
-                    std::fs::read_to_string(dir.join(&file)).unwrap(),
-                )
-            })
-            .find(|(_, text)| text.contains(to))
-            .expect("an edited file"),
-    };
+    let (path, text) = copies.edited[0].clone();
     assert_eq!(
         text.matches(to).count(),
         1,

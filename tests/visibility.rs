@@ -614,19 +614,9 @@ fn the_compute_raster_stores_8_bytes_per_sample() {
 /// The line `rgraph validate` prints about pass `pass` for visibility_msaa_4x.ron with
 /// `from` replaced by `to`, saved as `name`; the run must fail.
 fn validate_error(from: &str, to: &str, name: &str, pass: &str) -> String {
-    let edited = crate::common::edited_pipeline("visibility_msaa_4x.ron", &[(from, to)]);
     // Beside copies of the parts it uses.
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::create_dir(dir.path().join("parts")).unwrap();
-    for part in std::fs::read_dir("pipelines/parts").unwrap() {
-        let part = part.unwrap().path();
-        std::fs::copy(
-            &part,
-            dir.path().join("parts").join(part.file_name().unwrap()),
-        )
-        .unwrap();
-    }
-    let path = dir.path().join(name);
+    let edited = crate::common::copied_pipeline("visibility_msaa_4x.ron", &[(from, to)]);
+    let path = edited.path.with_file_name(name);
     std::fs::write(&path, &edited.text).unwrap();
     let run = crate::cli_support::rgraph(&["validate", path.to_str().unwrap()]).expect(1);
     // validate lists what it found on stdout, a line per error.

@@ -153,20 +153,15 @@ pub fn bind_group(
 
 /// A shipped pipeline with edits applied: see [`edited_pipeline`].
 pub struct EditedPipeline {
-    /// The pipeline to load: the shipped file's path unless its base or a part was
-    /// edited, else its copy's.
+    /// The pipeline to load: the shipped file's path unless it was copied, else its copy's.
     pub path: std::path::PathBuf,
     /// The pipeline's text, edited.
     pub text: String,
+    /// Each file an edit landed in (the pipeline, its base or a part; the copy's path
+    /// where it was copied), with its edited text, in the order of the edits.
+    pub edited: Vec<(std::path::PathBuf, String)>,
     /// The copies of pipelines/ (the pipeline, its base, the parts), removed on drop.
-    dir: Option<tempfile::TempDir>,
-}
-
-impl EditedPipeline {
-    /// The folder of the copies, if the base or a part was edited.
-    pub fn copies(&self) -> Option<&std::path::Path> {
-        self.dir.as_ref().map(|dir| dir.path())
-    }
+    _dir: Option<tempfile::TempDir>,
 }
 
 /// The shipped pipeline `name` with each `(from, to)` of `edits` applied, every
@@ -175,64 +170,86 @@ impl EditedPipeline {
 /// a part edited, the files are copies laid out as pipelines/ is, in a temporary folder;
 /// with the pipeline's own text only, it keeps the shipped file's path.
 pub fn edited_pipeline(name: &str, edits: &[(&str, &str)]) -> EditedPipeline {
+    edit_pipeline(name, edits, false)
+}
+
+/// [`edited_pipeline`], always as copies: for a test that writes files beside them.
+pub fn copied_pipeline(name: &str, edits: &[(&str, &str)]) -> EditedPipeline {
+    edit_pipeline(name, edits, true)
+}
+
+fn edit_pipeline(name: &str, edits: &[(&str, &str)], copy: bool) -> EditedPipeline {
     use std::path::Path;
     let pipelines = Path::new(env!("CARGO_MANIFEST_DIR")).join("pipelines");
     let read = |path: &Path| {
         std::fs::read_to_string(path)
             .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
     };
-    let path = pipelines.join(name);
-    let mut text = read(&path);
-    let base_name = text
-        .lines()
-        .find_map(|l| l.trim().strip_prefix("base: \""))
-        .filter(|_| text.contains("\nPreset("))
-        .map(|rest| rest.trim_end_matches("\",").to_owned());
-    let mut others: Vec<(String, String)> = base_name
-        .iter()
-        .map(|base| (base.clone(), read(&pipelines.join(base))))
+    let base_name = {
+        let text = read(&pipelines.join(name));
+        text.lines()
+            .find_map(|l| l.trim().strip_prefix("base: \""))
+            .filter(|_| text.contains("\nPreset("))
+            .map(|rest| rest.trim_end_matches("\",").to_owned())
+    };
+    // The pipeline first, then its base and the parts, by path relative to pipelines/.
+    let mut files: Vec<(String, String)> = std::iter::once(name.to_owned())
+        .chain(base_name)
+        .map(|file| {
+            let text = read(&pipelines.join(&file));
+            (file, text)
+        })
         .collect();
     for part in std::fs::read_dir(pipelines.join("parts")).expect("pipelines/parts") {
         let part = part.expect("a readable folder").path();
-        let name = format!("parts/{}", part.file_name().unwrap().to_string_lossy());
-        others.push((name, read(&part)));
+        let file = format!("parts/{}", part.file_name().unwrap().to_string_lossy());
+        files.push((file, read(&part)));
     }
-    let mut copied = false;
+    let mut landed: Vec<usize> = Vec::new();
     for (from, to) in edits {
-        if text.contains(from) {
-            text = text.replace(from, to);
-        } else {
-            let mut holding = others.iter_mut().filter(|(_, t)| t.contains(from));
-            let Some((_, other)) = holding.next() else {
-                panic!("{name}, its base and the parts have no \"{from}\" to edit");
-            };
-            *other = other.replace(from, to);
-            copied = true;
-            let more: Vec<&String> = holding.map(|(file, _)| &*file).collect();
-            assert!(
-                more.is_empty(),
-                "\"{from}\" is in more files than one: {more:?}"
-            );
+        // The pipeline's own text first; elsewhere the edit must find one file.
+        let at = match files[0].1.contains(from) {
+            true => 0,
+            false => {
+                let holding: Vec<usize> = (1..files.len())
+                    .filter(|&i| files[i].1.contains(from))
+                    .collect();
+                let shown: Vec<&String> = holding.iter().map(|&i| &files[i].0).collect();
+                assert!(
+                    !holding.is_empty(),
+                    "{name}, its base and the parts have no \"{from}\" to edit"
+                );
+                assert!(
+                    holding.len() == 1,
+                    "\"{from}\" is in more files than one: {shown:?}"
+                );
+                holding[0]
+            }
+        };
+        files[at].1 = files[at].1.replace(from, to);
+        if !landed.contains(&at) {
+            landed.push(at);
         }
     }
     // Only the pipeline's own text edited: it loads as if it were the shipped file.
-    if !copied {
-        return EditedPipeline {
-            path,
-            text,
-            dir: None,
-        };
+    let copy = copy || landed.iter().any(|&i| i > 0);
+    let dir = copy.then(|| tempfile::tempdir().expect("a temporary folder"));
+    let root = dir
+        .as_ref()
+        .map_or(pipelines.clone(), |dir| dir.path().to_owned());
+    if let Some(dir) = &dir {
+        std::fs::create_dir_all(dir.path().join("parts")).expect("a temporary folder");
+        for (file, text) in &files {
+            std::fs::write(dir.path().join(file), text).expect("a writable temporary folder");
+        }
     }
-    let dir = tempfile::tempdir().expect("a temporary folder");
-    std::fs::create_dir_all(dir.path().join("parts")).expect("a temporary folder");
-    for (relative, other) in &others {
-        std::fs::write(dir.path().join(relative), other).expect("a writable temporary folder");
-    }
-    let path = dir.path().join(name);
-    std::fs::write(&path, &text).expect("a writable temporary folder");
     EditedPipeline {
-        path,
-        text,
-        dir: Some(dir),
+        path: root.join(name),
+        text: files[0].1.clone(),
+        edited: landed
+            .iter()
+            .map(|&i| (root.join(&files[i].0), files[i].1.clone()))
+            .collect(),
+        _dir: dir,
     }
 }
