@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
-# A GLB of one N x N grid mesh (2 N^2 triangles) without normals, so the loader flat-shades
-# it (three vertices per triangle): the load-time and memory case of issue 44 item 7.
+# A GLB of one N x N grid mesh (2 N^2 triangles) without normals, so the loader must give it
+# flat normals: the load-time and memory case of issue 44 item 7.
 #
 #   scripts/flat-grid-glb.py N OUT.glb      (N = 2237: 10,008,338 triangles, 180 MB)
-#   /usr/bin/time -f "%e s %M KB" rgraph render --scene OUT.glb \
+#   /usr/bin/time -f "%e s %M KB" rgraph render --scene OUT.glb --asset-root . \
 #       --pipeline pipelines/deferred_msaa_4x.ron --width 64 --height 36 --out x.png
 #
-# Measured (lavapipe, the 2-core development machine shared with other builds, N = 2237):
-# 3edba03 5.45-5.60 GB peak and 23.1-23.7 s of CPU; 2c4a948 3.74 GB and 19.2-20.9 s.
+# Measured (release builds, lavapipe, the 2-core development machine, N = 2237):
+# 3edba03 5.45-5.60 GB peak and 23.1-23.7 s of CPU; 2c4a948 3.74 GB and 19.2-20.9 s; 947b38e
+# 3.75 GB and 14.3-20.6 s wall (the loader wrote out three vertices a triangle, 30M, for
+# their face normals); since the renderers compute face normals themselves and the mesh keeps
+# its 5M shared vertices, 1.45-1.61 GB and 3.8-4.2 s wall (November: 3.6 GB and 7.0 s).
 import array
 import json
 import math

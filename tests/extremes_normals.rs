@@ -1,7 +1,8 @@
 //! Extreme case 4 (issue 6), normals, the GPU half (the encoding's angular error over a
 //! dense sphere is bounded on the CPU: passes/tests/extremes_normals.rs).
 //!
-//! - Extreme: vertex normals of zero length, denormal (1e-42), huge (3e38, whose squared
+//! - Extreme: vertex normals of zero length (which ask for the face normal, see
+//!   tests/face_normals.rs), denormal (1e-42), huge (3e38, whose squared
 //!   length overflows f32) and pointing away from the camera on a front face, and a floor
 //!   seen at grazing angles (out to 1000 units from a camera 0.5 above it: normal nearly
 //!   perpendicular to the view).

@@ -66,6 +66,7 @@ mod extremes_normals;
 mod extremes_sizes;
 mod extremes_thresholds;
 mod extremes_volumes;
+mod face_normals;
 mod frame_inputs;
 mod fuzz;
 mod gpu_execute;

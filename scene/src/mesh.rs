@@ -12,6 +12,9 @@ pub struct Vertex {
     pub position: [f32; 3],
     /// Object space. Unit length when generated; as stored when loaded (glTF requires unit
     /// length, quantized normals only approximate it), so shaders should renormalize.
+    /// Zero on all three corners of a triangle asks for its face normal (the counter-clockwise
+    /// one), which the renderers compute: a glTF mesh without `NORMAL` loads so, its vertices
+    /// shared as the file indexes them.
     pub normal: [f32; 3],
     /// TEXCOORD_0; `[0, 0]` when the source has none.
     pub uv: [f32; 2],

@@ -206,8 +206,44 @@ fn mirroring_transform_reverses_winding() {
     gltf.root(json!({ "mesh": mesh, "scale": [-1, 1, 1] }));
     let scene = load_embedded("mirror", &gltf);
     assert_eq!(scene.meshes[0].indices, [0, 2, 1]);
-    // The flat normal is computed before the flip, in object space: still +Z there.
-    assert_eq!(scene.meshes[0].vertices[0].normal, [0.0, 0.0, 1.0]);
+    // No NORMAL: the zero normal that asks renderers for the (flipped) face normal.
+    assert_eq!(scene.meshes[0].vertices[0].normal, [0.0; 3]);
+}
+
+/// Without NORMAL an indexed mesh keeps its shared vertices, each with the zero normal that
+/// asks renderers for the face normal; a normal texture, whose MikkTSpace tangents need a
+/// normal at every corner, writes the face normals out instead, three vertices a triangle.
+#[test]
+fn meshes_without_normals_keep_their_vertices_unless_tangents_need_them() {
+    let mut gltf = Gltf::default();
+    let uvs = gltf.floats(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+    gltf.push("images", json!({ "uri": "missing.png" }));
+    gltf.push("textures", json!({ "source": 0 }));
+    let bumpy = gltf.push("materials", json!({ "normalTexture": { "index": 0 } }));
+    for material in [None, Some(bumpy)] {
+        let positions = gltf.floats(&SQUARE);
+        let indices = gltf.indices_u16(&[0, 1, 2, 0, 2, 3]);
+        let mut primitive = json!({
+            "attributes": { "POSITION": positions, "TEXCOORD_0": uvs },
+            "indices": indices,
+        });
+        if let Some(material) = material {
+            primitive["material"] = json!(material);
+        }
+        gltf.mesh("square", primitive);
+    }
+    let dir = temp_dir("face_normals");
+    std::fs::write(dir.join("missing.png"), png_2x1()).unwrap();
+    let path = dir.join("scene.gltf");
+    gltf.write_embedded(&path);
+    let scene = Scene::from_gltf(&path).unwrap_or_else(|e| panic!("{e}"));
+    let [shared, written] = [&scene.meshes[0], &scene.meshes[1]];
+    assert_eq!(shared.indices, [0, 1, 2, 0, 2, 3]);
+    assert_eq!(shared.vertices.len(), 4);
+    assert!(shared.vertices.iter().all(|v| v.normal == [0.0; 3]));
+    assert_eq!(written.indices, [0, 1, 2, 3, 4, 5]);
+    assert_eq!(written.vertices.len(), 6);
+    assert!(written.vertices.iter().all(|v| v.normal == [0.0, 0.0, 1.0]));
 }
 
 #[test]
@@ -430,8 +466,8 @@ fn emissive_and_metallic_roughness_textures_are_loaded_in_their_color_spaces() {
 }
 
 /// COLOR_0 in each encoding the spec allows (float VEC3, normalized UNSIGNED_BYTE VEC4,
-/// normalized UNSIGNED_SHORT VEC4) becomes the vertices' 16-bit RGBA, and is kept when flat
-/// normals un-index the primitive; without COLOR_0 vertices are white.
+/// normalized UNSIGNED_SHORT VEC4) becomes the vertices' 16-bit RGBA, also on a primitive
+/// without normals; without COLOR_0 vertices are white.
 #[test]
 fn color_0_in_every_encoding_becomes_the_vertex_color() {
     let mut gltf = Gltf::default();

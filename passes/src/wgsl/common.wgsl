@@ -118,6 +118,23 @@ fn unit_normal(v: vec3<f32>) -> vec3<f32> {
     return safe_normalize(select(v / largest, vec3<f32>(0.0), largest == 0.0));
 }
 
+// The normal to shade with where a mesh gave its vertices none (scene::Vertex: a zero
+// normal asks for the triangle's face normal, glTF's "flat normals", so that such a mesh
+// keeps its shared, indexed vertices rather than three of its own per triangle).
+// `interpolated` is the vertices' normal at the fragment (zero only where all three are)
+// and `winding` the triangle's counter-clockwise normal, of any length.
+fn normal_or_face(interpolated: vec3<f32>, winding: vec3<f32>) -> vec3<f32> {
+    return select(interpolated, winding, all(interpolated == vec3<f32>(0.0)));
+}
+
+// A fragment's counter-clockwise normal from the derivatives of its position `p`: the
+// screen's x runs right and y down, so dp/dy x dp/dx points at the camera whichever way the
+// triangle winds, and a front face's winding normal is that one, a back face's the other.
+fn winding_normal(p: vec3<f32>, front: bool) -> vec3<f32> {
+    let at_camera = cross(dpdy(p), dpdx(p));
+    return select(-at_camera, at_camera, front);
+}
+
 // A heat-map colour for `t` in [0, 1]: blue through cyan, green and yellow to red.
 fn heat(t: f32) -> vec3<f32> {
     let x = clamp(t, 0.0, 1.0) * 4.0;

@@ -50,6 +50,10 @@ struct PixelVaryings {
     @location(5) @interpolate(perspective, centroid) tangent: vec4<f32>,
     @location(6) @interpolate(perspective, centroid) uv1: vec2<f32>,
     @location(7) @interpolate(perspective, center) uv_center: vec4<f32>,
+    // The position again at the pixel center, for the face normal of a mesh without vertex
+    // normals: derivatives of centroid values are not those of the triangle's plane on
+    // every device (lavapipe shaded a sphere's faces in noise from them).
+    @location(8) @interpolate(perspective, center) position_center: vec3<f32>,
 }
 
 // `shading: sample`: `sample` interpolation runs the fragment shader once per covered
@@ -76,7 +80,7 @@ fn transform(v: VertexIn, mesh_index: u32) -> Attributes {
 @vertex
 fn vs_pixel(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> PixelVaryings {
     let a = transform(v, mesh_index);
-    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent, a.uv1, a.uv_center);
+    return PixelVaryings(camera.view_proj * vec4<f32>(a.position, 1.0), a.position, a.normal, a.uv, a.material, a.color, a.tangent, a.uv1, a.uv_center, a.position);
 }
 
 @vertex
@@ -107,14 +111,18 @@ fn shade_surface(a: Attributes, front: bool) -> vec4<f32> {
     return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), m.base.a);
 }
 
-fn pixel_attributes(in: PixelVaryings) -> Attributes {
-    return Attributes(in.position, in.normal, in.uv, in.uv1, in.uv_center, in.color, in.tangent, in.material);
+// `front`: whether the triangle faces the camera, for a face normal (common.wgsl's
+// normal_or_face).
+fn pixel_attributes(in: PixelVaryings, front: bool) -> Attributes {
+    let normal = normal_or_face(in.normal, winding_normal(in.position_center, front));
+    return Attributes(in.position, normal, in.uv, in.uv1, in.uv_center, in.color, in.tangent, in.material);
 }
 
 // Per sample, derivatives come from the shaded samples' own coordinates: every
 // invocation of a quad runs at the same sample of its pixel, one pixel apart.
-fn sample_attributes(in: SampleVaryings) -> Attributes {
-    return Attributes(in.position, in.normal, in.uv, in.uv1, vec4<f32>(in.uv, in.uv1), in.color, in.tangent, in.material);
+fn sample_attributes(in: SampleVaryings, front: bool) -> Attributes {
+    let normal = normal_or_face(in.normal, winding_normal(in.position, front));
+    return Attributes(in.position, normal, in.uv, in.uv1, vec4<f32>(in.uv, in.uv1), in.color, in.tangent, in.material);
 }
 
 fn shade(a: Attributes, front: bool) -> vec4<f32> {
@@ -123,10 +131,10 @@ fn shade(a: Attributes, front: bool) -> vec4<f32> {
 
 @fragment
 fn fs_pixel(in: PixelVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade(pixel_attributes(in), front);
+    return shade(pixel_attributes(in, front), front);
 }
 
 @fragment
 fn fs_sample(in: SampleVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade(sample_attributes(in), front);
+    return shade(sample_attributes(in, front), front);
 }

@@ -48,6 +48,9 @@ struct Varyings {
     // uv and uv1 at the pixel center, for their derivatives (material_bound.wgsl's
     // fragment_uv).
     @location(9) @interpolate(perspective, center) uv_center: vec4<f32>,
+    // The camera-relative position, for the face normal of a mesh without vertex normals
+    // (common.wgsl's normal_or_face): its derivatives lie in the triangle's plane.
+    @location(10) @interpolate(perspective, center) position: vec3<f32>,
 }
 
 // Every channel the pass can write; `gbuffer_out` picks those it does.
@@ -78,14 +81,16 @@ fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
     out.material = mesh.material;
     out.at_centroid = out.clip.xy;
     out.at_center = out.clip.xy;
+    out.position = p;
     return out;
 }
 
 fn surface(in: Varyings, m: MaterialSample, front: bool, coverage: u32) -> GBuffer {
     let material = materials[in.material];
+    let normal = normal_or_face(in.normal, winding_normal(in.position, front));
     // Back faces reach here only for double-sided materials: light their other side (the
     // normal texture's perturbation turned around with it).
-    let mapped = shading_normal(in.normal, in.tangent, m.tangent_normal);
+    let mapped = shading_normal(normal, in.tangent, m.tangent_normal);
     let n = unit_normal(select(-mapped, mapped, front || !DOUBLE_SIDED));
     var edge = 0u;
     if any(in.at_centroid != in.at_center) {

@@ -30,7 +30,7 @@ fn normal_of(a: Attributes, m: MaterialSample, front: bool) -> vec3<f32> {
 
 @fragment
 fn fs_thin_gbuffer(in: PixelVaryings, @builtin(front_facing) front: bool) -> ThinGBuffer {
-    let a = pixel_attributes(in);
+    let a = pixel_attributes(in, front);
     let material = materials[a.material];
     let m = sample_material(material, fragment_uv(a.uv, a.uv1, a.uv_center), a.color);
     if MASKED && m.base.a < material.alpha_cutoff {
@@ -62,7 +62,7 @@ fn fs_apply_material(
     @builtin(front_facing) front: bool,
     @builtin(sample_index) sample: u32,
 ) -> @location(0) vec4<f32> {
-    let a = sample_attributes(in);
+    let a = sample_attributes(in, front);
     let material = materials[a.material];
     let m = sample_material(material, fragment_uv(a.uv, a.uv1, a.uv_center), a.color);
     if MASKED && m.base.a < material.alpha_cutoff {

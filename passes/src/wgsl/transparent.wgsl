@@ -5,12 +5,12 @@
 
 @fragment
 fn fs_blend_pixel(in: PixelVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade_surface(pixel_attributes(in), front);
+    return shade_surface(pixel_attributes(in, front), front);
 }
 
 @fragment
 fn fs_blend_sample(in: SampleVaryings, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return shade_surface(sample_attributes(in), front);
+    return shade_surface(sample_attributes(in, front), front);
 }
 
 // The accumulation's start where blended meshes may lie (passes/transparent.rs, `extent:

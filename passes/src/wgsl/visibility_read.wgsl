@@ -41,7 +41,8 @@ fn rebuild(id: u32, at: vec2<f32>) -> GSample {
     let front = dot(cross(e1, e2), hit.ray) < 0.0;
     let material = materials[mesh.material];
     let color = b.x * v0.color + b.y * v1.color + b.z * v2.color;
-    let normal = mesh.normal_matrix * (b.x * v0.normal + b.y * v1.normal + b.z * v2.normal);
+    let interpolated = mesh.normal_matrix * (b.x * v0.normal + b.y * v1.normal + b.z * v2.normal);
+    let normal = normal_or_face(interpolated, cross(e1, e2));
     // Tangents lie in the surface: they transform with the model matrix (gbuffer.wgsl).
     let tangent_xyz = b.x * v0.tangent.xyz + b.y * v1.tangent.xyz + b.z * v2.tangent.xyz;
     let tangent = vec4<f32>((mesh.model * vec4<f32>(tangent_xyz, 0.0)).xyz, b.x * v0.tangent.w + b.y * v1.tangent.w + b.z * v2.tangent.w);

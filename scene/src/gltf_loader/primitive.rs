@@ -64,25 +64,32 @@ impl Loader<'_> {
             colors.as_deref(),
             tangents.as_deref(),
         );
-        let (mut vertices, mut indices) = match normals {
-            Some(_) => (vertices, indices),
-            None => flat_shaded(&vertices, &indices),
-        };
-        // Only for a normal texture the material keeps (it drops those on UV sets past 1),
-        // along the UV set it is sampled with.
+        // Tangents are generated only for a normal texture the material keeps (it drops
+        // those on UV sets past 1), along the UV set it is sampled with.
         let normal_set = primitive.material().normal_texture().map(|n| n.tex_coord());
-        if let (None, Some(set @ 0..=1)) = (&tangents, normal_set) {
-            let present = [uvs.is_some(), uvs1.is_some()][set as usize];
-            match present {
-                true => generate_tangents(&mut vertices, &indices, set).map_err(|e| {
-                    site.invalid(format!("MikkTSpace cannot generate its tangents: {e:?}"))
-                })?,
-                false => self.builder.warnings.push(format!(
-                    "{} primitive {}: its material's normal texture needs TEXCOORD_{set}, which \
-                     it lacks; drawn without the normal texture",
-                    site.mesh, site.primitive
-                )),
-            }
+        let tangent_set = match (&tangents, normal_set) {
+            (None, Some(set @ 0..=1)) => Some(set),
+            _ => None,
+        };
+        let tangent_uvs = tangent_set.filter(|&set| [uvs.is_some(), uvs1.is_some()][set as usize]);
+        // Without NORMAL, glTF asks for flat normals. The renderers take a zero normal for
+        // the triangle's face normal, so the mesh keeps its shared vertices; only MikkTSpace,
+        // which needs a normal at every corner, gets them written out, three vertices a
+        // triangle.
+        let (mut vertices, mut indices) = match (&normals, tangent_uvs) {
+            (None, Some(_)) => flat_shaded(&vertices, &indices),
+            _ => (vertices, indices),
+        };
+        match (tangent_set, tangent_uvs) {
+            (_, Some(set)) => generate_tangents(&mut vertices, &indices, set).map_err(|e| {
+                site.invalid(format!("MikkTSpace cannot generate its tangents: {e:?}"))
+            })?,
+            (Some(set), None) => self.builder.warnings.push(format!(
+                "{} primitive {}: its material's normal texture needs TEXCOORD_{set}, which it \
+                 lacks; drawn without the normal texture",
+                site.mesh, site.primitive
+            )),
+            (None, None) => {}
         }
         // A mirroring transform turns counter-clockwise triangles clockwise on screen; reversing
         // them here keeps the Mesh contract (front faces CCW in world space) for renderers. It

@@ -107,8 +107,8 @@ fn drawn<'a>(mesh: &gltf::Mesh<'a>) -> impl Iterator<Item = gltf::Primitive<'a>>
 }
 
 /// What one copy of `primitive` keeps, from its accessors' counts: its vertices (one per
-/// index when flat normals are generated) and its indices (up to three per index when a
-/// strip or fan becomes a list).
+/// index when flat normals are written out for MikkTSpace, see `primitive.rs`) and its
+/// indices (up to three per index when a strip or fan becomes a list).
 fn primitive_bytes(primitive: &gltf::Primitive) -> u64 {
     let positions = primitive
         .get(&Semantic::Positions)
@@ -121,10 +121,10 @@ fn primitive_bytes(primitive: &gltf::Primitive) -> u64 {
         .indices()
         .map_or(positions, |a| a.count() as u64)
         .saturating_mul(per_index);
-    let vertices = match primitive.get(&Semantic::Normals) {
-        Some(_) => positions,
-        None => indices,
-    };
+    let written_out = primitive.get(&Semantic::Normals).is_none()
+        && primitive.get(&Semantic::Tangents).is_none()
+        && primitive.material().normal_texture().is_some();
+    let vertices = if written_out { indices } else { positions };
     let vertex_bytes = std::mem::size_of::<Vertex>() as u64;
     vertices
         .saturating_mul(vertex_bytes)
