@@ -284,7 +284,7 @@ fn explain_refuses_a_built_in_scene_parameter_beyond_its_limit_at_once() {
     assert!(
         text(&out.stderr).contains(
             "error: scene builtin:lights?count=100000000: builtin:lights: `count=100000000`: a \
-             whole number from 0 to 16384"
+             whole number from 0 to 65536"
         ),
         "{}",
         text(&out.stderr)

@@ -181,7 +181,7 @@ fn builtin_spec_errors_list_what_is_available() {
     let error = Scene::load("builtin:lights?count=-1").unwrap_err();
     assert_eq!(
         error.to_string(),
-        "builtin:lights: `count=-1`: expected a whole number from 0 to 16384"
+        "builtin:lights: `count=-1`: expected a whole number from 0 to 65536"
     );
 }
 
@@ -191,11 +191,11 @@ fn every_builtin_parameter_has_a_limit_checked_before_building() {
     let error = Scene::load("builtin:lights?count=100000000").unwrap_err();
     assert_eq!(
         error.to_string(),
-        "builtin:lights: `count=100000000`: a whole number from 0 to 16384 (total number of \
-         lights, 4/5 point and 1/5 spot (default 320, at most 16384))"
+        "builtin:lights: `count=100000000`: a whole number from 0 to 65536 (total number of \
+         lights, 4/5 point and 1/5 spot (default 320, at most 65536))"
     );
-    let error = Scene::load("builtin:lights?count=16385").unwrap_err();
-    assert!(error.to_string().contains("from 0 to 16384"), "{error}");
+    let error = Scene::load("builtin:lights?count=65537").unwrap_err();
+    assert!(error.to_string().contains("from 0 to 65536"), "{error}");
     let error = Scene::load("builtin:lights?seed=4294967296").unwrap_err();
     assert!(
         error
@@ -203,7 +203,7 @@ fn every_builtin_parameter_has_a_limit_checked_before_building() {
             .contains("`seed=4294967296`: a whole number from 0 to 4294967295"),
         "{error}"
     );
-    assert_eq!(MAX_LIGHTS, 16_384);
+    assert_eq!(MAX_LIGHTS, 65_536);
     let most = builtin(&format!("builtin:lights?count={MAX_LIGHTS}"));
     assert_eq!(most.lights.len(), MAX_LIGHTS as usize);
     for scene in builtin_names() {

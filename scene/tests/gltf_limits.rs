@@ -301,7 +301,7 @@ fn images_are_counted_against_the_scene_memory_limit_before_decoding() {
 #[test]
 fn a_light_placed_by_more_nodes_than_the_light_limit_is_an_error() {
     use rgraph_scene::MAX_LIGHTS;
-    assert_eq!(MAX_LIGHTS, 16_384);
+    assert_eq!(MAX_LIGHTS, 65_536);
     let with_lights = |count: u32| {
         let mut gltf = Gltf::default();
         gltf.triangle(None);
@@ -318,14 +318,14 @@ fn a_light_placed_by_more_nodes_than_the_light_limit_is_an_error() {
     let (path, loaded) = with_lights(MAX_LIGHTS);
     assert_eq!(
         loaded.unwrap_or_else(|e| panic!("{e}")).lights.len(),
-        16_384
+        65_536
     );
     let (path2, loaded) = with_lights(MAX_LIGHTS + 1);
     assert_eq!(path, path2);
     assert_eq!(
         loaded.expect_err("one light too many").to_string(),
         format!(
-            "{}: more than 16384 lights (the most a scene may have: each is drawn as its own \
+            "{}: more than 65536 lights (the most a scene may have: each is drawn as its own \
              volume)",
             path.display()
         )

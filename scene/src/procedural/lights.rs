@@ -27,7 +27,7 @@ use crate::{Light, SceneError, MAX_LIGHTS};
 pub(super) const PARAMS: &[BuiltinParam] = &[
     BuiltinParam {
         key: "count",
-        meaning: "total number of lights, 4/5 point and 1/5 spot (default 320, at most 16384)",
+        meaning: "total number of lights, 4/5 point and 1/5 spot (default 320, at most 65536)",
         default: 320,
         max: MAX_LIGHTS,
     },
