@@ -481,10 +481,16 @@ pub struct BenchArgs {
     /// Skip the reference: no image error, for quick time and work tables.
     #[arg(long)]
     pub no_reference: bool,
-    /// Measure how cost grows instead: lights 1..1024 (builtin:lights?count=N), resolution
-    /// 720p..2160p, or samples 1, 2, 4, 8 (those the device lacks become error rows).
+    /// Measure how cost grows instead, over decades: triangles 10^4..10^8
+    /// (builtin:terrain), meshes 1..10^5 (builtin:city), lights 1..65,536
+    /// (builtin:lights), resolution 720p..2160p, or samples 1, 2, 4, 8. A value the device
+    /// or the scene limits refuse becomes an error row.
     #[arg(long, value_enum)]
     pub sweep: Option<Sweep>,
+    /// The largest sweep value to measure (e.g. --sweep triangles --sweep-max 1000000 on
+    /// a CPU adapter, where 10^8 triangles would take hours).
+    #[arg(long, value_name = "N", requires = "sweep", value_parser = clap::value_parser!(u32).range(1..))]
+    pub sweep_max: Option<u32>,
     /// MSAA samples per pixel for every pipeline whose file has the "msaa" parameter
     /// (`samples: Param(name: "msaa", default: 4)`); the others run as written, and the
     /// results' notes name them (default: each file's; --sweep samples overrides it).
@@ -512,7 +518,12 @@ pub struct BenchArgs {
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Sweep {
-    /// builtin:lights?count=N for N = 1, 4, 16, 64, 256, 1024.
+    /// builtin:terrain?cells=N for 10^4, 10^5, 10^6, 10^7 and 10^8 triangles (one mesh).
+    Triangles,
+    /// builtin:city?blocks=K for 1, 10, 100, 1,000, 10,000 and 100,000 buildings, each
+    /// its own mesh.
+    Meshes,
+    /// builtin:lights?count=N for N = 1, 4, 16, ..., 65,536.
     Lights,
     /// 1280x720, 1920x1080, 2560x1440, 3840x2160.
     Resolution,

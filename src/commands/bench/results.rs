@@ -1,6 +1,7 @@
 //! Everything a bench measured, as written to results.json (and read by the table and the
 //! charts). Figures that could not be measured are `null`, with the reason nearby.
 
+use rgraph_scene::{Scene, Vertex};
 use serde::Serialize;
 
 use super::clocks::ClockSource;
@@ -129,6 +130,8 @@ pub fn ratios_to_baseline(rows: &mut [Row], baseline: &str) {
 #[derive(Debug, Serialize)]
 pub struct SceneSummary {
     pub scene: String,
+    /// What the scene holds; `null` when it could not be loaded.
+    pub size: Option<SceneSize>,
     /// The folder of its images; empty in sweeps, which write none.
     pub images: String,
     /// The pixels edge errors are measured on; `null` without a reference.
@@ -139,4 +142,29 @@ pub struct SceneSummary {
     pub unique_surfaces: Option<UniqueSurfaces>,
     /// Why the bound could not be measured, when it could not.
     pub unique_surfaces_error: Option<String>,
+}
+
+/// How big a scene is: what a sweep over triangles, meshes or lights varies, and the
+/// geometry every pipeline uploads before its first frame.
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneSize {
+    pub triangles: usize,
+    pub meshes: usize,
+    /// Point, spot and directional lights.
+    pub lights: usize,
+    /// Vertices and indices as uploaded: what the plan's memory figures leave out.
+    pub geometry_bytes: u64,
+}
+
+impl SceneSize {
+    pub fn of(scene: &Scene) -> SceneSize {
+        let stats = scene.stats();
+        let vertex = std::mem::size_of::<Vertex>() as u64;
+        SceneSize {
+            triangles: stats.triangles,
+            meshes: stats.meshes,
+            lights: stats.point_lights + stats.spot_lights + stats.directional_lights,
+            geometry_bytes: stats.vertices as u64 * vertex + 3 * stats.triangles as u64 * 4,
+        }
+    }
 }

@@ -16,7 +16,7 @@ use super::measure::{About, Closed, Measured, Setup};
 use super::plan_page;
 use super::progress::Progress;
 use super::reference::{Reference, SceneReference};
-use super::results::{Row, SceneSummary};
+use super::results::{Row, SceneSize, SceneSummary};
 use super::rounds::{interleave, RoundLog, Timed};
 use super::surfaces;
 use crate::frame::{host, FrameError, Prepared};
@@ -36,6 +36,7 @@ pub fn bench_scene(
 ) -> Result<(Vec<Row>, SceneSummary), BenchError> {
     let mut summary = SceneSummary {
         scene: spec.to_string(),
+        size: None,
         images: String::new(),
         edge_pixels: None,
         reference_error: None,
@@ -43,7 +44,10 @@ pub fn bench_scene(
         unique_surfaces_error: None,
     };
     let scene = match Scene::load_with(spec, &setup.assets).map(|s| s.lit(setup.lighting)) {
-        Ok(scene) => Arc::new(scene),
+        Ok(scene) => {
+            summary.size = Some(SceneSize::of(&scene));
+            Arc::new(scene)
+        }
         Err(source) => {
             let error = RowError::Scene {
                 scene: spec.to_string(),

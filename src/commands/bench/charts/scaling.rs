@@ -1,6 +1,8 @@
-//! scaling.png: how the median GPU frame time grows with the swept parameter, one panel
-//! per scene (the lights sweep's scenes differ only in their light count: one panel),
-//! one line per pipeline, both axes logarithmic (resolution in megapixels).
+//! scaling.png: how cost grows with the swept parameter. For each scene (the sweeps over a
+//! built-in scene's parameter have one: they differ only in that parameter) three panels,
+//! the median GPU frame time, the median CPU time to record the frame and the memory the
+//! plan and its passes hold, one line per pipeline, both axes logarithmic (resolution in
+//! megapixels).
 
 use plotters::prelude::*;
 
@@ -13,8 +15,40 @@ use crate::commands::bench::results::{Results, Row};
 const PANEL: (u32, u32) = (760, 520);
 const TITLE_HEIGHT: u32 = 40;
 
+/// What a panel plots against the swept parameter.
+#[derive(Clone, Copy)]
+enum Metric {
+    GpuFrame,
+    CpuRecord,
+    Memory,
+}
+
+const METRICS: [Metric; 3] = [Metric::GpuFrame, Metric::CpuRecord, Metric::Memory];
+
+impl Metric {
+    fn axis(self) -> &'static str {
+        match self {
+            Metric::GpuFrame => "GPU frame time, ms (median; log scale)",
+            Metric::CpuRecord => "CPU record time, ms (median; log scale)",
+            Metric::Memory => "plan and pass memory, MiB (log scale)",
+        }
+    }
+
+    fn of(self, row: &Row) -> Option<f64> {
+        let figures = row.figures.as_ref()?;
+        match self {
+            Metric::GpuFrame => Some(figures.gpu_frame_ms.as_ref()?.median),
+            Metric::CpuRecord => Some(figures.cpu_record_ms.as_ref()?.median),
+            Metric::Memory => {
+                let bytes = figures.memory.physical_bytes + figures.memory.pass_bytes;
+                Some(bytes as f64 / (1u64 << 20) as f64)
+            }
+        }
+    }
+}
+
 pub fn size(results: &Results) -> (u32, u32) {
-    let (rows, columns) = grid(panels(results).len());
+    let (rows, columns) = grid(panels(results).len() * METRICS.len());
     let legend = legend(results).size();
     (
         PANEL.0 * columns as u32 + legend.0,
@@ -28,12 +62,12 @@ pub fn scaling(results: &Results, sweep: Sweep, area: &Area) -> DrawResult {
         .titled(
             &match sweep {
                 Sweep::Resolution => format!(
-                    "GPU frame time vs {}: {}",
+                    "Cost vs {}: {}",
                     parameter(sweep),
                     results.adapter.name
                 ),
                 _ => format!(
-                    "GPU frame time vs {}: {} at {}x{}",
+                    "Cost vs {}: {} at {}x{}",
                     parameter(sweep),
                     results.adapter.name,
                     results.resolution[0],
@@ -47,21 +81,24 @@ pub fn scaling(results: &Results, sweep: Sweep, area: &Area) -> DrawResult {
     let (panel_area, legend_area) =
         body.split_horizontally(body.dim_in_pixel().0 - legend.size().0);
     let names = pipelines(results);
-    let panels = panels(results);
+    let panels: Vec<(&str, Metric)> = panels(results)
+        .into_iter()
+        .flat_map(|group| METRICS.map(|metric| (group, metric)))
+        .collect();
     let (rows, columns) = grid(panels.len());
-    for (group, panel) in panels.iter().zip(panel_area.split_evenly((rows, columns))) {
+    for (&(group, metric), panel) in panels.iter().zip(panel_area.split_evenly((rows, columns))) {
         let lines: Vec<Vec<(f64, f64)>> = names
             .iter()
             .map(|name| {
                 results
                     .rows
                     .iter()
-                    .filter(|r| r.pipeline == *name && scene_group(r) == *group)
-                    .filter_map(|r| Some((x(r, sweep)?, y(r)?)))
+                    .filter(|r| r.pipeline == *name && scene_group(r) == group)
+                    .filter_map(|r| Some((x(r, sweep)?, metric.of(r)?)))
                     .collect()
             })
             .collect();
-        panel_chart(&panel, group, sweep, &lines)?;
+        panel_chart(&panel, group, sweep, metric, &lines)?;
     }
     legend.draw(&legend_area)
 }
@@ -76,6 +113,8 @@ fn legend(results: &Results) -> Legend<'static> {
 
 fn parameter(sweep: Sweep) -> &'static str {
     match sweep {
+        Sweep::Triangles => "triangle count",
+        Sweep::Meshes => "mesh count",
         Sweep::Lights => "light count",
         Sweep::Resolution => "resolution",
         Sweep::Samples => "MSAA samples",
@@ -91,7 +130,7 @@ fn panels(results: &Results) -> Vec<&str> {
     distinct(results.rows.iter().map(scene_group))
 }
 
-/// Lights and samples as counts, resolution as megapixels.
+/// Triangles, meshes, lights and samples as counts, resolution as megapixels.
 fn x(row: &Row, sweep: Sweep) -> Option<f64> {
     let point = row.sweep.as_ref()?;
     Some(match sweep {
@@ -103,11 +142,13 @@ fn x(row: &Row, sweep: Sweep) -> Option<f64> {
     })
 }
 
-fn y(row: &Row) -> Option<f64> {
-    Some(row.figures.as_ref()?.gpu_frame_ms.as_ref()?.median)
-}
-
-fn panel_chart(area: &Area, group: &str, sweep: Sweep, lines: &[Vec<(f64, f64)>]) -> DrawResult {
+fn panel_chart(
+    area: &Area,
+    group: &str,
+    sweep: Sweep,
+    metric: Metric,
+    lines: &[Vec<(f64, f64)>],
+) -> DrawResult {
     let points = || lines.iter().flatten();
     if points().next().is_none() {
         area.titled(&format!("{group}: nothing measured"), font(18.0))
@@ -129,6 +170,8 @@ fn panel_chart(area: &Area, group: &str, sweep: Sweep, lines: &[Vec<(f64, f64)>]
         .build_cartesian_2d(log_axis(xs), log_axis(ys))
         .map_err(text)?;
     let x_desc = match sweep {
+        Sweep::Triangles => "triangles (log scale)",
+        Sweep::Meshes => "meshes (log scale)",
         Sweep::Lights => "lights (log scale)",
         Sweep::Resolution => "megapixels (log scale)",
         Sweep::Samples => "samples per pixel (log scale)",
@@ -136,7 +179,7 @@ fn panel_chart(area: &Area, group: &str, sweep: Sweep, lines: &[Vec<(f64, f64)>]
     chart
         .configure_mesh()
         .x_desc(x_desc)
-        .y_desc("GPU frame time, ms (median; log scale)")
+        .y_desc(metric.axis())
         .label_style(font(14.0))
         .axis_desc_style(font(15.0))
         .x_label_formatter(&|v| tick(*v))
