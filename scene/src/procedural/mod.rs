@@ -4,6 +4,7 @@
 //! constants plus, where randomness helps, a seeded [`rng::Pcg32`]. Each scene's module
 //! documents what it contains and why it exists.
 
+mod budget;
 mod dense;
 mod lights;
 mod params;
@@ -13,6 +14,7 @@ mod shapes;
 mod smoke;
 mod solid;
 mod spheres;
+mod terrain;
 mod unlit;
 
 pub use params::BuiltinParam;
@@ -65,6 +67,12 @@ const BUILTINS: &[BuiltinScene] = &[
         description: "particles: 3,500 blended smoke and 500 emissive fire particles (seeded) over the dense scene, filling most of the frame",
         params: smoke::PARAMS,
         build: smoke::build,
+    },
+    BuiltinScene {
+        name: "terrain",
+        description: "many triangles: one smooth, seeded heightfield of cells x cells (2 triangles each, 100,352 by default, up to 107 million); 1 directional + 4 point lights",
+        params: terrain::PARAMS,
+        build: terrain::build,
     },
 ];
 
