@@ -1,5 +1,5 @@
-//! The scale scenes, `builtin:terrain` (triangles): exact counts at a few sizes, one scene
-//! per spec, and sizes past the 4 GiB scene limit refused, naming the parameter and the
+//! The scale scenes, `builtin:terrain` (triangles) and `builtin:city` (meshes): exact counts
+//! at a few sizes, one scene per spec, and sizes past the 4 GiB scene limit refused, naming the parameter and the
 //! limit, before anything is built.
 
 use std::time::{Duration, Instant};
@@ -71,6 +71,35 @@ fn one_terrain_seed_is_one_landscape_at_every_size() {
 }
 
 #[test]
+fn city_has_one_mesh_per_building_on_a_ground_plane() {
+    for (spec, blocks) in [
+        ("builtin:city?blocks=1", 1),
+        ("builtin:city?blocks=3", 3),
+        ("builtin:city", 32),
+    ] {
+        let scene = builtin(spec);
+        let stats = scene.stats();
+        assert_eq!(stats.meshes, blocks * blocks + 1, "{spec}");
+        assert_eq!(stats.triangles, 12 * blocks * blocks + 2, "{spec}");
+        assert_eq!(stats.materials, 5, "{spec}");
+        assert_eq!(lights(&scene), (1, 4, 0), "{spec}");
+        assert_eq!(scene.meshes[0].name, "ground");
+        let block = 100.0 / blocks as f64;
+        for (k, building) in scene.meshes[1..].iter().enumerate() {
+            let (row, column) = (k / blocks, k % blocks);
+            assert_eq!(building.name, format!("building {row},{column}"));
+            assert_eq!(building.triangle_count(), 12);
+            // Inside its block, standing on the ground, at most 30 tall.
+            let bounds = building.world_bounds().unwrap();
+            let corner = |i: usize| -50.0 + i as f64 * block;
+            assert!(bounds.min.x > corner(column) && bounds.max.x < corner(column + 1));
+            assert!(bounds.min.z > corner(row) && bounds.max.z < corner(row + 1));
+            assert!(bounds.min.y.abs() < 1e-9 && bounds.max.y <= 30.0 + 1e-9);
+        }
+    }
+}
+
+#[test]
 fn scale_scenes_are_bit_identical_for_one_spec_and_change_with_the_seed() {
     for (spec, reseeded) in [(
         "builtin:terrain?cells=50&seed=9",
@@ -105,6 +134,14 @@ fn sizes_past_the_scene_limit_are_refused_before_anything_is_built() {
             "builtin:terrain?cells=4294967295",
             format!("builtin:terrain: `cells=4294967295`: {CELLS_RANGE}"),
         ),
+        (
+            "builtin:city?blocks=1592",
+            "builtin:city: `blocks=1592`: a whole number from 0 to 1591 (blocks per side, one \
+             building each, each building its own mesh (default 32: 1,024 buildings; at least \
+             1, at most 1591: 2,531,281 buildings in 4,293,053,032 bytes of vertices, indices \
+             and meshes, the most that fit the 4 GiB scene limit))"
+                .to_owned(),
+        ),
     ] {
         let start = Instant::now();
         let (result, bytes) = allocated_by(|| Scene::load(spec));
@@ -115,7 +152,7 @@ fn sizes_past_the_scene_limit_are_refused_before_anything_is_built() {
             "{error:?}"
         );
         assert_eq!(error.to_string(), message);
-        // The error's own strings; a terrain of 7327 cells would have asked for 4 GiB.
+        // The error's own strings; the scenes asked for would have taken 4 GiB.
         assert!(
             bytes < 16 << 10,
             "{spec}: {bytes} bytes allocated before failing"
@@ -135,4 +172,9 @@ fn a_scale_scene_of_size_zero_is_an_error_naming_the_parameter() {
         "builtin:terrain: `cells=0`: a terrain needs at least 1 cell (1 to 7326)"
     );
     assert!(message("builtin:terrain?size=3").contains("this scene takes: cells, seed"));
+    assert_eq!(
+        message("builtin:city?blocks=0&seed=2"),
+        "builtin:city: `blocks=0`: a city needs at least 1 block (1 to 1591)"
+    );
+    assert!(message("builtin:city?streets=3").contains("this scene takes: blocks, seed"));
 }

@@ -17,6 +17,24 @@ pub(super) struct Geometry {
 }
 
 impl Geometry {
+    /// `self` and `other` together.
+    pub const fn plus(self, other: Geometry) -> Geometry {
+        Geometry {
+            vertices: self.vertices + other.vertices,
+            indices: self.indices + other.indices,
+            meshes: self.meshes + other.meshes,
+        }
+    }
+
+    /// `count` copies of `self`.
+    pub const fn times(self, count: u64) -> Geometry {
+        Geometry {
+            vertices: self.vertices * count,
+            indices: self.indices * count,
+            meshes: self.meshes * count,
+        }
+    }
+
     /// What it takes in memory: a [`Vertex`] and a `u32` index each, as the glTF loader
     /// counts a primitive, and a [`Mesh`] each (not counting its name).
     pub const fn bytes(self) -> u64 {
@@ -43,16 +61,18 @@ mod tests {
             meshes: 1,
         };
         assert_eq!(quad.bytes(), 4 * 56 + 6 * 4 + 208);
+        assert_eq!(quad.times(3).plus(quad).bytes(), 4 * quad.bytes());
         let limit = Geometry {
             vertices: 0,
             indices: 1 << 30,
             meshes: 0,
         };
         assert!(limit.fits());
-        let over = Geometry {
-            indices: limit.indices + 1,
-            ..limit
+        let one = Geometry {
+            vertices: 0,
+            indices: 1,
+            meshes: 0,
         };
-        assert!(!over.fits());
+        assert!(!limit.plus(one).fits());
     }
 }

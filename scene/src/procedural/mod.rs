@@ -5,6 +5,7 @@
 //! documents what it contains and why it exists.
 
 mod budget;
+mod city;
 mod dense;
 mod lights;
 mod params;
@@ -73,6 +74,12 @@ const BUILTINS: &[BuiltinScene] = &[
         description: "many triangles: one smooth, seeded heightfield of cells x cells (2 triangles each, 100,352 by default, up to 107 million); 1 directional + 4 point lights",
         params: terrain::PARAMS,
         build: terrain::build,
+    },
+    BuiltinScene {
+        name: "city",
+        description: "many meshes: blocks x blocks seeded box buildings (1,024 by default, up to 2.5 million), each its own mesh, on a ground plane; 1 directional + 4 point lights",
+        params: city::PARAMS,
+        build: city::build,
     },
 ];
 
