@@ -14,26 +14,22 @@
 //!   is one fixed scene. The city covers the same ground at every size, its buildings
 //!   shrinking with their blocks: past a few hundred blocks it is a carpet of sub-pixel
 //!   boxes, as many meshes as asked for in the same view.
-//! - Lights: a directional "sun" (2.5 lux, from the front left) and four point lights (500
-//!   cd, range 60) at (±25, 35, ±25). Ambient 0.04.
-//! - Camera: perspective, 45° vertical FOV, eye (0, 62, 88) looking at (0, 0, -4): the whole
+//! - Lights and camera: the scale scenes' [`stage`], a sun and four point lights, the whole
 //!   city in a 16:9 frame.
 //! - `blocks` is at most 1591 (2,531,281 buildings, 30,375,374 triangles): the most whose
 //!   vertices, indices and mesh records, counted from the parameter before anything is
 //!   built, fit the 4 GiB scene limit ([`budget`](super::budget)).
 
-use glam::{DMat4, DVec3, Vec3};
+use glam::{DMat4, DVec3};
 
 use super::budget::Geometry;
 use super::params::{BuiltinParam, Params};
-use super::parts::{add_ground, add_shape, corner_lights, directional, lit, perspective_camera};
+use super::parts::{add_ground, add_shape, lit};
 use super::rng::Pcg32;
 use super::shapes::Shape;
+use super::stage::{self, EXTENT};
 use crate::builder::SceneBuilder;
 use crate::SceneError;
-
-/// Half the city's side: it spans x, z in [-EXTENT, EXTENT] at every `blocks`.
-const EXTENT: f64 = 50.0;
 
 /// The tallest building.
 const MAX_HEIGHT: f64 = 30.0;
@@ -124,28 +120,7 @@ pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), S
             add_shape(builder, &name, cube.clone(), material, transform);
         }
     }
-    builder.lights.push(directional(
-        "sun",
-        Vec3::new(0.6, -0.6, -0.5),
-        [1.0, 0.95, 0.88],
-        2.5,
-    ));
-    let colors = [
-        [1.0, 0.8, 0.55],
-        [0.6, 0.75, 1.0],
-        [1.0, 0.65, 0.8],
-        [0.75, 1.0, 0.75],
-    ];
-    builder
-        .lights
-        .extend(corner_lights(25.0, 35.0, colors, 500.0, 60.0));
-    builder.ambient = [0.04; 3];
-    builder.camera = Some(perspective_camera(
-        "city",
-        DVec3::new(0.0, 70.0, 100.0),
-        DVec3::new(0.0, 0.0, 5.0),
-        45.0,
-    ));
+    stage::light_and_frame(builder, "city");
     Ok(())
 }
 

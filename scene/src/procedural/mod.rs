@@ -15,6 +15,7 @@ mod shapes;
 mod smoke;
 mod solid;
 mod spheres;
+mod stage;
 mod terrain;
 mod unlit;
 

@@ -13,25 +13,21 @@
 //!   seed is one landscape at every `cells`, sampled finer or coarser.
 //! - Vertex colors: grass, turning to rock from height 4 to 7 and on slopes from 32° to
 //!   41°, and to snow from 9 to 10.5; one white, rough material.
-//! - Lights: a directional "sun" (2.5 lux, low from the left) and four point lights (300
-//!   cd, range 40) at (±25, 20, ±25). Ambient 0.04.
-//! - Camera: perspective, 45° vertical FOV, eye (0, 62, 88) looking at (0, 0, -4): the
+//! - Lights and camera: the scale scenes' [`stage`], a sun and four point lights, the
 //!   whole terrain in a 16:9 frame.
 //! - `cells` is at most 7326 (107,340,552 triangles): the most whose vertices, indices and
 //!   mesh, counted from the parameter before anything is built, fit the 4 GiB scene limit
 //!   ([`budget`](super::budget)).
 
-use glam::{DMat4, DVec3, Vec3};
+use glam::{DMat4, Vec3};
 
 use super::budget::Geometry;
 use super::params::{BuiltinParam, Params};
-use super::parts::{corner_lights, directional, lit, perspective_camera};
+use super::parts::lit;
 use super::rng::Pcg32;
+use super::stage::{self, EXTENT};
 use crate::builder::SceneBuilder;
 use crate::{Mesh, SceneError, Vertex};
-
-/// Half the terrain's side: it spans x, z in [-EXTENT, EXTENT] at every `cells`.
-const EXTENT: f32 = 50.0;
 
 /// Value-noise octaves: lattice cells across the terrain and amplitude.
 const OCTAVES: [(u32, f32); 5] = [(3, 8.0), (7, 3.0), (17, 1.2), (41, 0.5), (97, 0.2)];
@@ -90,28 +86,7 @@ pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), S
         material,
         transform: DMat4::IDENTITY,
     });
-    builder.lights.push(directional(
-        "sun",
-        Vec3::new(0.8, -0.45, -0.3),
-        [1.0, 0.93, 0.82],
-        2.5,
-    ));
-    let colors = [
-        [1.0, 0.75, 0.5],
-        [0.6, 0.75, 1.0],
-        [1.0, 0.6, 0.75],
-        [0.7, 1.0, 0.7],
-    ];
-    builder
-        .lights
-        .extend(corner_lights(25.0, 20.0, colors, 300.0, 40.0));
-    builder.ambient = [0.04; 3];
-    builder.camera = Some(perspective_camera(
-        "terrain",
-        DVec3::new(0.0, 70.0, 100.0),
-        DVec3::new(0.0, 0.0, 5.0),
-        45.0,
-    ));
+    stage::light_and_frame(builder, "terrain");
     Ok(())
 }
 
@@ -163,6 +138,7 @@ fn vertices(cells: u32, octaves: &[Octave]) -> Vec<Vertex> {
     let side = cells as usize + 1;
     let count = geometry(u64::from(cells)).vertices as usize;
     let coordinate = |k: usize| k as f32 / cells as f32;
+    let extent = EXTENT as f32;
     // Each column's place in every octave, computed once rather than once per row.
     let columns: Vec<Vec<(usize, f32)>> = (0..side)
         .map(|i| octaves.iter().map(|o| o.along(coordinate(i))).collect())
@@ -179,7 +155,7 @@ fn vertices(cells: u32, octaves: &[Octave]) -> Vec<Vertex> {
                 .map(|(octave, (&x, &z))| octave.at(x, z))
                 .sum();
             vertices.push(Vertex {
-                position: [EXTENT * (2.0 * u - 1.0), height, EXTENT * (2.0 * v - 1.0)],
+                position: [extent * (2.0 * u - 1.0), height, extent * (2.0 * v - 1.0)],
                 normal: [0.0, 1.0, 0.0],
                 uv: [u, v],
                 color: Vertex::WHITE,
@@ -189,7 +165,7 @@ fn vertices(cells: u32, octaves: &[Octave]) -> Vec<Vertex> {
         }
     }
     // Slopes by central differences, one-sided at the border.
-    let spacing = 2.0 * EXTENT / cells as f32;
+    let spacing = 2.0 * extent / cells as f32;
     let height = |vertices: &[Vertex], i: usize, j: usize| vertices[j * side + i].position[1];
     for j in 0..side {
         let (below, above) = (j.saturating_sub(1), (j + 1).min(side - 1));
