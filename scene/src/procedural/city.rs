@@ -98,9 +98,10 @@ pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), S
         lit("glass", [0.3, 0.38, 0.48], 0.6, 0.25),
     ]
     .map(|m| builder.add_material(m));
+    // One allocation for the buildings' records, as counted.
     builder
         .meshes
-        .reserve_exact(geometry(u64::from(blocks)).meshes as usize - 1);
+        .reserve_exact(blocks as usize * blocks as usize);
     let cube = Shape::cuboid();
     let block = 2.0 * EXTENT / f64::from(blocks);
     for row in 0..blocks {
@@ -110,7 +111,8 @@ pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), S
             let width = block * f64::from(rng.range(0.5, 0.8));
             let depth = block * f64::from(rng.range(0.5, 0.8));
             let tall = f64::from(rng.unit());
-            let downtown = (1.0 - x.hypot(z) / 70.0).max(0.0);
+            // sqrt, not hypot: IEEE rounds it exactly, the platform's libm need not.
+            let downtown = (1.0 - (x * x + z * z).sqrt() / 70.0).max(0.0);
             let height = (block * (0.6 + 1.8 * tall * tall) * (1.0 + 3.0 * downtown * downtown))
                 .min(MAX_HEIGHT);
             let material = materials[(rng.next_u32() % 4) as usize];
