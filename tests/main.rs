@@ -36,6 +36,7 @@ mod cli_compare;
 mod cli_render;
 mod cli_render_frames;
 mod cli_render_samples;
+mod cli_render_scale;
 mod cli_trust;
 mod cli_validate;
 mod cli_view;

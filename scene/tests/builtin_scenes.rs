@@ -20,7 +20,10 @@ fn mesh<'a>(scene: &'a Scene, name: &str) -> &'a Mesh {
 #[test]
 fn every_builtin_is_listed_described_and_bit_identical_across_loads() {
     let names: Vec<&str> = builtin_names().iter().map(|b| b.name).collect();
-    assert_eq!(names, ["spheres", "dense", "lights", "unlit", "smoke"]);
+    assert_eq!(
+        names,
+        ["spheres", "dense", "lights", "unlit", "smoke", "terrain", "city"]
+    );
     for scene in builtin_names() {
         assert!(!scene.description.is_empty());
         let spec = format!("builtin:{}", scene.name);
@@ -165,7 +168,8 @@ fn builtin_spec_errors_list_what_is_available() {
     let message = Scene::load("builtin:nope").unwrap_err().to_string();
     assert_eq!(
         message,
-        "unknown built-in scene `nope`; available: spheres, dense, lights, unlit, smoke"
+        "unknown built-in scene `nope`; available: spheres, dense, lights, unlit, smoke, terrain, \
+         city"
     );
     let error = Scene::load("builtin:lights?lamps=3").unwrap_err();
     assert!(matches!(error, SceneError::BuiltinParameter { .. }));

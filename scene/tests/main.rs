@@ -1,8 +1,11 @@
 //! rgraph-scene's tests, one binary: scenes from glTF and the built-ins, the glTF sandbox
 //! and limits, and the scene math the shaders share.
 
+// Counts each thread's allocations: this binary's global allocator.
+mod allocations;
 mod common;
 
+mod builtin_scale;
 mod builtin_scenes;
 mod framing;
 mod gltf_audit;

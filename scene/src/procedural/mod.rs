@@ -4,6 +4,8 @@
 //! constants plus, where randomness helps, a seeded [`rng::Pcg32`]. Each scene's module
 //! documents what it contains and why it exists.
 
+mod budget;
+mod city;
 mod dense;
 mod lights;
 mod params;
@@ -13,6 +15,8 @@ mod shapes;
 mod smoke;
 mod solid;
 mod spheres;
+mod stage;
+mod terrain;
 mod unlit;
 
 pub use params::BuiltinParam;
@@ -65,6 +69,18 @@ const BUILTINS: &[BuiltinScene] = &[
         description: "particles: 3,500 blended smoke and 500 emissive fire particles (seeded) over the dense scene, filling most of the frame",
         params: smoke::PARAMS,
         build: smoke::build,
+    },
+    BuiltinScene {
+        name: "terrain",
+        description: "many triangles: one smooth, seeded heightfield of cells x cells (2 triangles each, 100,352 by default, up to 107 million); 1 directional + 4 point lights",
+        params: terrain::PARAMS,
+        build: terrain::build,
+    },
+    BuiltinScene {
+        name: "city",
+        description: "many meshes: blocks x blocks seeded box buildings (1,024 by default, up to 2.5 million), each its own mesh, on a ground plane; 1 directional + 4 point lights",
+        params: city::PARAMS,
+        build: city::build,
     },
 ];
 
