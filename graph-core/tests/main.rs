@@ -9,6 +9,7 @@ mod conditional_formats;
 mod conditions;
 mod conditions_file;
 mod cull;
+mod history;
 mod lifetimes;
 mod load_store;
 mod memory;

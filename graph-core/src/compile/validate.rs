@@ -91,7 +91,17 @@ pub(super) fn resources(
         }
         // An import holds the engine's contents; a graph-owned resource holds nothing
         // until a pass writes it, so exporting it unwritten hands out garbage.
-        if resource.exported && resource.origin == Origin::Transient && resource.versions == 1 {
+        // A history's source unwritten is the history's error (`history::check`).
+        let carried = conditioned
+            .graph
+            .resources
+            .iter()
+            .any(|h| h.origin.history_of().is_some_and(|of| of.index() == r));
+        if resource.exported
+            && resource.origin == Origin::Transient
+            && resource.versions == 1
+            && !carried
+        {
             errors.push(invalid(
                 "is exported, but no pass writes it, so its contents would be undefined".into(),
             ));
@@ -267,8 +277,9 @@ impl PassCheck<'_> {
         let Some(v) = access.read_version() else {
             return;
         };
-        let imported = self.graph.resources[access.resource.index()].origin == Origin::Imported;
-        if versions.writer((access.resource, v)).is_none() && !(v == 0 && imported) {
+        // Version 0 of an import is the engine's contents, of a history the last frame's.
+        let given = self.graph.resources[access.resource.index()].origin != Origin::Transient;
+        if versions.writer((access.resource, v)).is_none() && !(v == 0 && given) {
             errors.push(GraphError::ReadBeforeWrite {
                 pass: self.pass.name.clone(),
                 resource: self.name(access),

@@ -391,7 +391,8 @@ impl Executor {
                 // Imported resources have no physical index; the plan's is the pool's.
                 let pooled = match planned.origin {
                     Origin::Transient => planned.physical,
-                    Origin::Imported => None,
+                    // Histories are not executed yet.
+                    Origin::Imported | Origin::History { .. } => None,
                 };
                 let bound = bound.get(&planned.id);
                 match access.role {
