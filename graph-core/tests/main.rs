@@ -10,6 +10,7 @@ mod conditions;
 mod conditions_file;
 mod cull;
 mod history;
+mod history_gpu;
 mod lifetimes;
 mod load_store;
 mod memory;
