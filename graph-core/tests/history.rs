@@ -1,11 +1,15 @@
 //! Histories without a GPU: a texture carried to the next frame, declared in code
-//! (`GraphBuilder::history_texture`); the checks that
+//! (`GraphBuilder::history_texture`) and in files (`History(of: ..)`); the checks that
 //! its source is written exactly once per frame and the history never; the plan's edge
 //! to the next frame, its pair of textures apart from the pool, and explain's text.
 
 use crate::common::{only_error, plan, tex, CLEAR};
+use crate::ron_support::{
+    assert_error, compile_str, folder, only_error as only_file_error, registry,
+};
 
 use rgraph_core::explain;
+use rgraph_core::file::ErrorKind;
 use rgraph_core::types::TextureFormat;
 use rgraph_core::{GraphBuilder, GraphError, Origin};
 
@@ -190,4 +194,176 @@ fn explain_shows_the_edge_to_the_next_frame() {
     );
     let json = explain::json(&plan);
     assert!(json.contains("\"history\": ["), "{json}");
+}
+
+/// `fade` blends the previous frame's `accum` into this frame's; `present` shows it.
+fn file(accum_writers: &str) -> String {
+    format!(
+        r#"Graph(
+    resources: {{
+        "accum": Texture(format: "rgba8unorm", size: Absolute(4, 4)),
+        "accum_prev": History(of: "accum"),
+        "shown": Texture(format: "rgba8unorm", size: Absolute(4, 4)),
+    }},
+    passes: [
+{accum_writers}
+        (name: "present", plugin: "blit", inputs: {{ "src": "accum_prev" }}, outputs: {{ "dst": "shown" }}),
+    ],
+    outputs: ["shown"],
+)"#
+    )
+}
+
+const FADE: &str = r#"        (name: "fade", plugin: "blit", inputs: { "src": "accum_prev" }, outputs: { "dst": "accum" }),"#;
+
+#[test]
+fn a_file_declares_a_history_by_the_texture_it_carries() {
+    let plan = compile_str(&file(FADE)).unwrap_or_else(|e| panic!("{e}"));
+    let edge = &plan.history[0];
+    assert_eq!(plan.resource(edge.source).name, "accum");
+    assert_eq!(plan.resource(edge.history).name, "accum_prev");
+    assert_eq!(edge.writer, "fade");
+    // Reads of the previous frame need no order against the write: both readers may run
+    // anywhere, and the file's order stands.
+    assert_eq!(edge.readers, ["fade", "present"]);
+}
+
+#[test]
+fn a_file_whose_history_source_no_pass_writes_points_at_the_history() {
+    let error = only_file_error(compile_str(&file("")));
+    assert!(
+        matches!(
+            error.kind,
+            ErrorKind::Graph(GraphError::HistoryNeverWritten { .. })
+        ),
+        "{error}"
+    );
+    assert_error(
+        &error,
+        "tests/fixtures/inline.ron",
+        4,
+        9,
+        &["accum_prev", "accum"],
+    );
+}
+
+#[test]
+fn a_file_with_two_writers_of_a_history_source_names_both() {
+    let two = format!(
+        "{FADE}\n        (name: \"fade again\", plugin: \"blit\", inputs: {{ \"src\": \"shown\" }}, \
+         outputs: {{ \"dst\": \"accum\" }}),"
+    );
+    let result = compile_str(&file(&two));
+    let errors = match result {
+        Ok(_) => panic!("two writers of a history's source compiled"),
+        Err(errors) => errors,
+    };
+    let text = errors.to_string();
+    assert!(
+        text.contains("\"fade\"") && text.contains("\"fade again\""),
+        "{text}"
+    );
+    assert!(text.contains("\"accum\""), "{text}");
+}
+
+#[test]
+fn a_file_that_writes_a_history_points_at_the_slot() {
+    let scribble = format!(
+        "{FADE}\n        (name: \"scribble\", plugin: \"clear\", outputs: {{ \"target\": \"accum_prev\" }}),"
+    );
+    let error = only_file_error(compile_str(&file(&scribble)));
+    assert!(
+        matches!(
+            error.kind,
+            ErrorKind::Graph(GraphError::HistoryWritten { .. })
+        ),
+        "{error}"
+    );
+    assert_error(
+        &error,
+        "tests/fixtures/inline.ron",
+        9,
+        66,
+        &["scribble", "accum_prev", "accum"],
+    );
+}
+
+#[test]
+fn a_file_history_of_an_unknown_name_points_at_it() {
+    let text = file(FADE).replace("History(of: \"accum\")", "History(of: \"acum\")");
+    let errors = match compile_str(&text) {
+        Ok(_) => panic!("a history of an unknown name compiled"),
+        Err(errors) => errors,
+    };
+    let error = &errors.0[0];
+    assert!(
+        matches!(&error.kind, ErrorKind::Graph(GraphError::HistorySource { why, .. })
+            if why == "no resource has that name"),
+        "{errors}"
+    );
+    assert_error(
+        error,
+        "tests/fixtures/inline.ron",
+        4,
+        35,
+        &["accum_prev", "acum"],
+    );
+}
+
+/// A part keeps a history of its own: each use's prefix names both sides.
+const ECHO: &str = r#"Part(
+    takes: { "src": Texture(format: "rgba8unorm") },
+    gives: { "out": Texture(format: "rgba8unorm") },
+    resources: {
+        "echo": Texture(format: "rgba8unorm", size: Absolute(4, 4)),
+        "echo_prev": History(of: "echo"),
+        "out": Texture(format: "rgba8unorm", size: Absolute(4, 4)),
+    },
+    passes: [
+        (name: "remember", plugin: "blit", inputs: { "src": "src" }, outputs: { "dst": "echo" }),
+        (name: "recall", plugin: "blit", inputs: { "src": "echo_prev" }, outputs: { "dst": "out" }),
+    ],
+)"#;
+
+#[test]
+fn each_use_of_a_part_has_a_history_of_its_own() {
+    let graph = r#"Graph(
+    resources: { "a": Texture(format: "rgba8unorm", size: Absolute(4, 4)) },
+    passes: [
+        (name: "clear a", plugin: "clear", outputs: { "target": "a" }),
+        (part: "parts/echo.ron", prefix: "left ", inputs: { "src": "a" }),
+        (part: "parts/echo.ron", prefix: "right ", inputs: { "src": "a" }),
+    ],
+    outputs: ["left out", "right out"],
+)"#;
+    let dir = folder(&[("g.ron", graph), ("parts/echo.ron", ECHO)]);
+    let loaded = rgraph_core::file::load_file(dir.path().join("g.ron"), &registry())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let plan = loaded
+        .compile(&rgraph_core::CompileOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut edges: Vec<(String, String, String)> = plan
+        .history
+        .iter()
+        .map(|e| {
+            let name = |id| plan.resource(id).name.clone();
+            (name(e.source), name(e.history), e.writer.clone())
+        })
+        .collect();
+    edges.sort();
+    assert_eq!(
+        edges,
+        [
+            (
+                "left echo".into(),
+                "left echo_prev".into(),
+                "left remember".into()
+            ),
+            (
+                "right echo".into(),
+                "right echo_prev".into(),
+                "right remember".into()
+            ),
+        ]
+    );
 }
