@@ -454,7 +454,8 @@ pub enum GraphError {
     },
 }
 
-fn quote_list(names: &[String]) -> String {
+/// `"a", "b"`: names quoted, comma-separated, as messages write lists.
+pub(crate) fn quote_list(names: &[String]) -> String {
     names
         .iter()
         .map(|n| format!("\"{n}\""))

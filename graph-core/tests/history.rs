@@ -74,20 +74,27 @@ fn a_history_pair_is_never_shared_with_transient_memory() {
     assert_eq!(usage, U::TEXTURE_BINDING | U::STORAGE_BINDING | U::COPY_SRC);
 }
 
-#[test]
-fn a_history_may_be_read_after_its_source_is_written_with_no_order_between_them() {
+/// `count` carried as `count_prev`, which "late reader" reads into an output; `write`,
+/// declared before it, writes `count` when `written`.
+fn late_reader(written: bool) -> GraphBuilder {
     let mut g = GraphBuilder::new();
     let count = g.create_texture("count", tex(TextureFormat::R32Float));
     let previous = g.history_texture("count_prev", count);
     let out = g.create_texture("out", tex(TextureFormat::R32Float));
-    let mut write = g.add_compute_pass("write");
-    write.storage_write(count);
+    if written {
+        g.add_compute_pass("write").storage_write(count);
+    }
     // Declared after the write, reading only the previous frame's contents.
     let mut late = g.add_compute_pass("late reader");
     late.sampled(previous);
     let out = late.storage_write(out);
     g.export(out);
-    let plan = plan(&g.build());
+    g
+}
+
+#[test]
+fn a_history_may_be_read_after_its_source_is_written_with_no_order_between_them() {
+    let plan = plan(&late_reader(true).build());
     let order: Vec<&str> = plan.passes.iter().map(|p| p.name.as_str()).collect();
     assert_eq!(order, ["write", "late reader"]);
     assert_eq!(plan.history[0].readers, ["late reader"]);
@@ -95,14 +102,7 @@ fn a_history_may_be_read_after_its_source_is_written_with_no_order_between_them(
 
 #[test]
 fn a_history_whose_source_no_pass_writes_is_an_error_naming_both() {
-    let mut g = GraphBuilder::new();
-    let count = g.create_texture("count", tex(TextureFormat::R32Float));
-    let previous = g.history_texture("count_prev", count);
-    let out = g.create_texture("out", tex(TextureFormat::R32Float));
-    let mut read = g.add_compute_pass("reader");
-    read.sampled(previous);
-    let out = read.storage_write(out);
-    g.export(out);
+    let g = late_reader(false);
     let error = only_error(&g.build());
     assert_eq!(
         error,
@@ -228,22 +228,23 @@ fn a_file_declares_a_history_by_the_texture_it_carries() {
     assert_eq!(edge.readers, ["fade", "present"]);
 }
 
+/// The one error compiling `text` gives, a graph error, checked to be at `line`:`column`
+/// of the inline file and to name each of `names`.
+fn file_error(text: &str, (line, column): (usize, usize), names: &[&str]) -> GraphError {
+    let error = only_file_error(compile_str(text));
+    assert_error(&error, "tests/fixtures/inline.ron", line, column, names);
+    match error.kind {
+        ErrorKind::Graph(error) => error,
+        kind => panic!("expected a graph error, got {kind}"),
+    }
+}
+
 #[test]
 fn a_file_whose_history_source_no_pass_writes_points_at_the_history() {
-    let error = only_file_error(compile_str(&file("")));
+    let error = file_error(&file(""), (4, 9), &["accum_prev", "accum"]);
     assert!(
-        matches!(
-            error.kind,
-            ErrorKind::Graph(GraphError::HistoryNeverWritten { .. })
-        ),
+        matches!(error, GraphError::HistoryNeverWritten { .. }),
         "{error}"
-    );
-    assert_error(
-        &error,
-        "tests/fixtures/inline.ron",
-        4,
-        9,
-        &["accum_prev", "accum"],
     );
 }
 
@@ -271,20 +272,11 @@ fn a_file_that_writes_a_history_points_at_the_slot() {
     let scribble = format!(
         "{FADE}\n        (name: \"scribble\", plugin: \"clear\", outputs: {{ \"target\": \"accum_prev\" }}),"
     );
-    let error = only_file_error(compile_str(&file(&scribble)));
+    let names = ["scribble", "accum_prev", "accum"];
+    let error = file_error(&file(&scribble), (9, 66), &names);
     assert!(
-        matches!(
-            error.kind,
-            ErrorKind::Graph(GraphError::HistoryWritten { .. })
-        ),
+        matches!(error, GraphError::HistoryWritten { .. }),
         "{error}"
-    );
-    assert_error(
-        &error,
-        "tests/fixtures/inline.ron",
-        9,
-        66,
-        &["scribble", "accum_prev", "accum"],
     );
 }
 

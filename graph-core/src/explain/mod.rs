@@ -219,7 +219,7 @@ fn history(plan: &Plan, out: &mut String) {
     for e in &plan.history {
         let readers = match e.readers.as_slice() {
             [] => "read by no pass in this plan".to_owned(),
-            names => format!("read by {}", quoted(names)),
+            names => format!("read by {}", crate::error::quote_list(names)),
         };
         let _ = writeln!(
             out,
@@ -238,14 +238,6 @@ fn history(plan: &Plan, out: &mut String) {
             texture_usages(e.usage)
         );
     }
-}
-
-fn quoted(names: &[String]) -> String {
-    names
-        .iter()
-        .map(|n| format!("\"{n}\""))
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 /// The plan as a Graphviz digraph: passes are boxes, resource versions ellipses, culled
