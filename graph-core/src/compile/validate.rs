@@ -22,6 +22,7 @@ pub(super) fn resources(
     profile: &DeviceProfile,
     errors: &mut Vec<GraphError>,
 ) {
+    let carried = super::history::carried(&conditioned.graph);
     let kept = (0..shapes.len()).filter(|&r| !conditioned.resource_dropped(r));
     for r in kept {
         let (resource, shape) = (&conditioned.graph.resources[r], &shapes[r]);
@@ -92,15 +93,10 @@ pub(super) fn resources(
         // An import holds the engine's contents; a graph-owned resource holds nothing
         // until a pass writes it, so exporting it unwritten hands out garbage.
         // A history's source unwritten is the history's error (`history::check`).
-        let carried = conditioned
-            .graph
-            .resources
-            .iter()
-            .any(|h| h.origin.history_of().is_some_and(|of| of.index() == r));
         if resource.exported
             && resource.origin == Origin::Transient
             && resource.versions == 1
-            && !carried
+            && carried[r].is_none()
         {
             errors.push(invalid(
                 "is exported, but no pass writes it, so its contents would be undefined".into(),
