@@ -48,6 +48,35 @@ impl GraphBuilder {
         self.add_resource(name.into(), ResourceDesc::Buffer(desc), Origin::Imported)
     }
 
+    /// The previous frame's contents of `of`, a graph-owned texture: a history, read-only
+    /// this frame (its version 0), with `of`'s description. `of` becomes this frame's
+    /// export and the next frame's import: the one pass that writes it each frame writes
+    /// what the next frame reads through the returned handle. Passes may read the history
+    /// anywhere in the frame, before or after `of` is written, also in the pass that
+    /// writes `of` (a temporal filter): the executor keeps the two in textures of their
+    /// own, which no other resource shares, and swaps them after each frame.
+    ///
+    /// The first frame, and the first after a resize, a change of plan or
+    /// [`Executor::reset_history`](crate::gpu::Executor::reset_history), reads zeros; a
+    /// pass asks [`FrameResources::history_reset`] whether this frame's is such a reset.
+    /// The history exists where `of` does: without a condition of its own it takes `of`'s
+    /// when the graph is built.
+    ///
+    /// Compiling checks that exactly one pass writes `of`, once (one version), that no
+    /// pass writes the history, and that `of` has no other history.
+    ///
+    /// [`FrameResources::history_reset`]: crate::gpu::FrameResources::history_reset
+    pub fn history_texture(&mut self, name: impl Into<String>, of: TextureHandle) -> TextureHandle {
+        let desc = match self.resources.get_mut(of.id.index()) {
+            Some(source) => {
+                source.exported = true;
+                source.desc.clone()
+            }
+            None => ResourceDesc::Texture(TextureDesc::new(wgpu_types::TextureFormat::R8Unorm)),
+        };
+        self.add_resource(name.into(), desc, Origin::History { of: of.id })
+    }
+
     /// Keeps the resource's final contents past the frame (readback, history): it is a
     /// culling root, its memory is never lent to another resource, and it can be copied
     /// from after execution.
@@ -98,7 +127,17 @@ impl GraphBuilder {
 
     /// Finishes declaring. The graph can then be compiled (and recompiled for other
     /// output sizes or profiles) without a GPU.
-    pub fn build(self) -> crate::graph::Graph {
+    pub fn build(mut self) -> crate::graph::Graph {
+        // A history exists where its source does, unless it says otherwise.
+        for r in 0..self.resources.len() {
+            let source = self.resources[r].origin.history_of();
+            if self.resources[r].condition.is_none() {
+                let inherited = source
+                    .and_then(|of| self.resources.get(of.index()))
+                    .and_then(|of| of.condition.clone());
+                self.resources[r].condition = inherited;
+            }
+        }
         crate::graph::Graph {
             resources: self.resources,
             passes: self.passes,

@@ -381,6 +381,65 @@ pub enum GraphError {
         why: String,
     },
 
+    /// A pass writes a history resource: it holds the previous frame's contents of its
+    /// source, which this frame only reads.
+    #[error(
+        "pass \"{pass}\" writes \"{resource}\", the previous frame's \"{of}\", which passes \
+         only read; write \"{of}\" instead, and the next frame reads it as \"{resource}\""
+    )]
+    HistoryWritten {
+        /// The pass, by name.
+        pass: String,
+        /// The history resource, by name.
+        resource: String,
+        /// Its source, by name.
+        of: String,
+    },
+
+    /// No pass that runs writes the source of a history, so the next frame would read
+    /// contents no pass made.
+    #[error(
+        "history \"{resource}\" carries \"{of}\" to the next frame, but no pass writes \
+         \"{of}\"; a history's source is written exactly once per frame"
+    )]
+    HistoryNeverWritten {
+        /// The history resource, by name.
+        resource: String,
+        /// Its source, by name.
+        of: String,
+    },
+
+    /// More than one pass writes the source of a history (two writers, or a pass that
+    /// modifies what another wrote): which version the next frame reads would depend on
+    /// their order.
+    #[error(
+        "passes \"{first}\" and \"{second}\" both write \"{of}\", which history \
+         \"{history}\" carries to the next frame; a history's source is written exactly \
+         once per frame, by one pass"
+    )]
+    HistoryWrittenTwice {
+        /// The source, by name.
+        of: String,
+        /// The history resource, by name.
+        history: String,
+        /// The first writer, in declaration order.
+        first: String,
+        /// The second writer.
+        second: String,
+    },
+
+    /// A history whose source cannot be carried: not a texture the graph owns, a history
+    /// itself, or the source of another history.
+    #[error("history \"{resource}\" of \"{of}\": {why}")]
+    HistorySource {
+        /// The history resource, by name.
+        resource: String,
+        /// Its source, by name.
+        of: String,
+        /// Why, in words.
+        why: String,
+    },
+
     /// Passes that each must run before another: their accesses order them in a loop.
     #[error(
         "cycle: passes {} must each run before the other (through {})",
@@ -395,7 +454,8 @@ pub enum GraphError {
     },
 }
 
-fn quote_list(names: &[String]) -> String {
+/// `"a", "b"`: names quoted, comma-separated, as messages write lists.
+pub(crate) fn quote_list(names: &[String]) -> String {
     names
         .iter()
         .map(|n| format!("\"{n}\""))
@@ -423,8 +483,9 @@ impl GraphError {
             | TwoDepthStencil { pass, .. }
             | UnknownPassFeature { pass, .. }
             | UsesDroppedResource { pass, .. }
-            | WorkgroupLimit { pass, .. } => Some(pass),
-            ConflictingWriters { second, .. } => Some(second),
+            | WorkgroupLimit { pass, .. }
+            | HistoryWritten { pass, .. } => Some(pass),
+            ConflictingWriters { second, .. } | HistoryWrittenTwice { second, .. } => Some(second),
             DroppedWriter { reader, .. } => Some(reader),
             Cycle { passes, .. } => passes.first().map(String::as_str),
             ZeroSize { .. }
@@ -434,7 +495,9 @@ impl GraphError {
             | UnsupportedSampleCount { .. }
             | UnknownResourceFeature { .. }
             | UnknownFormatFeature { .. }
-            | DroppedOutput { .. } => None,
+            | DroppedOutput { .. }
+            | HistoryNeverWritten { .. }
+            | HistorySource { .. } => None,
         }
     }
 
@@ -461,7 +524,11 @@ impl GraphError {
             | UnknownFormatFeature { resource, .. }
             | UsesDroppedResource { resource, .. }
             | DroppedWriter { resource, .. }
-            | DroppedOutput { resource, .. } => Some(resource),
+            | DroppedOutput { resource, .. }
+            | HistoryWritten { resource, .. }
+            | HistoryNeverWritten { resource, .. }
+            | HistorySource { resource, .. } => Some(resource),
+            HistoryWrittenTwice { of, .. } => Some(of),
             Cycle { resources, .. } => resources.first().map(String::as_str),
             TwoDepthStencil { second, .. } => Some(second),
             ColorBytesPerSample { .. }

@@ -144,8 +144,8 @@ pub use handle::{
 pub use pass::PassKind;
 pub use pass::{PassNode, Workgroup};
 pub use plan::{
-    ColorAttachment, CulledPass, DepthStencilAttachment, Load, MemoryReport, Ops, PhysicalBuffer,
-    PhysicalTexture, Plan, PlannedPass, PlannedResource, Store,
+    ColorAttachment, CulledPass, DepthStencilAttachment, HistoryEdge, Load, MemoryReport, Ops,
+    PhysicalBuffer, PhysicalTexture, Plan, PlannedPass, PlannedResource, Store,
 };
 pub use plan_cache::{Compile, PlanCache};
 pub use profile::{color_bytes_per_sample, color_target_cost, DeviceProfile};

@@ -35,6 +35,38 @@ pub struct Plan {
     pub buffers: Vec<PhysicalBuffer>,
     /// Graph-owned memory before and after resources share physical objects.
     pub memory: MemoryReport,
+    /// What this frame hands the next: one edge per history whose source runs.
+    pub history: Vec<HistoryEdge>,
+    /// A digest of the rest of the plan when it has histories (0 when it has none). The
+    /// executor keeps histories only from one frame to the next of plans with the same
+    /// fingerprint: any other plan (a resize, other features, another graph) reads the
+    /// reset value. Stable within one build of rgraph-core, not across versions.
+    pub fingerprint: u64,
+}
+
+/// A history's edge to the next frame: this frame's final version of `source`, which
+/// `writer` produces, is what `readers` read as `history` in the next frame. Both live in
+/// a pair of textures the executor keeps for the history alone (never pooled or shared),
+/// swapped after each frame.
+#[derive(Clone, Debug, Serialize)]
+pub struct HistoryEdge {
+    /// The resource carried: written this frame.
+    pub source: ResourceId,
+    /// The history resource: read this frame, holding `source` as the last frame left it.
+    pub history: ResourceId,
+    /// The version of `source` carried: the one `writer` produces.
+    pub version: u32,
+    /// The one pass that writes `source`.
+    pub writer: String,
+    /// The live passes that read the previous frame's contents, in execution order (none
+    /// when no pass reads the history in this plan; the source is still carried).
+    pub readers: Vec<String>,
+    /// The shape of both textures of the pair.
+    pub shape: TextureShape,
+    /// The usages of both textures: each is the source one frame and the history the next.
+    pub usage: TextureUsages,
+    /// Bytes of one texture of the pair.
+    pub bytes: u64,
 }
 
 /// A pass that runs, with what the compiler inferred for it.
@@ -214,9 +246,9 @@ pub struct PhysicalBuffer {
 /// Memory of graph-owned resources before and after sharing.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct MemoryReport {
-    /// Every live graph-owned resource on its own.
+    /// Every live graph-owned resource on its own (a history's pair counts twice).
     pub logical_bytes: u64,
-    /// What the executor allocates.
+    /// What the executor allocates, histories' pairs included.
     pub physical_bytes: u64,
 }
 
@@ -232,6 +264,13 @@ impl Plan {
     /// The resource called `name`.
     pub fn find(&self, name: &str) -> Option<&PlannedResource> {
         self.resources.iter().find(|r| r.name == name)
+    }
+
+    /// The edge to the next frame of the history `id`, or of the source it carries.
+    pub fn history_edge(&self, id: ResourceId) -> Option<&HistoryEdge> {
+        self.history
+            .iter()
+            .find(|e| e.history == id || e.source == id)
     }
 
     /// The planned pass called `name`, if it runs.

@@ -36,6 +36,8 @@ pub(crate) struct FrameObjects {
     /// Views the executor attaches to render passes.
     pub attachments: HashMap<ResourceId, wgpu::TextureView>,
     pub buffers: HashMap<ResourceId, wgpu::Buffer>,
+    /// The history resources that read zeros this frame rather than a frame's contents.
+    pub resets: std::collections::HashSet<ResourceId>,
 }
 
 /// The physical resources of one executing frame, as one pass sees them.
@@ -130,6 +132,28 @@ impl<'f> FrameResources<'f> {
         let needs = (aspect != Aspect::All).then_some(aspect);
         self.check(handle, "texture", needs);
         &self.objects.views[&(handle.id(), aspect)]
+    }
+
+    /// Whether the history `history` (a handle of a resource declared with
+    /// [`GraphBuilder::history_texture`](crate::GraphBuilder::history_texture) or as
+    /// `History(of: ..)` in a file) holds zeros this frame rather than the previous
+    /// frame's contents: true on the first frame, and the first after a resize, a change
+    /// of plan or [`Executor::reset_history`](crate::gpu::Executor::reset_history). A
+    /// temporal filter then takes this frame's value alone.
+    ///
+    /// # Panics
+    /// When the executing pass did not declare this version of the texture, or the
+    /// texture is not a history.
+    pub fn history_reset(&self, history: TextureHandle) -> bool {
+        self.check(history, "texture", None);
+        let resource = &self.resources[history.id().index()];
+        if resource.origin.history_of().is_none() {
+            panic!(
+                "pass \"{}\" asked whether \"{}\" was reset, but it is not a history",
+                self.pass, resource.name
+            );
+        }
+        self.objects.resets.contains(&history.id())
     }
 
     /// The buffer behind a handle.

@@ -4,6 +4,7 @@ use serde::{Deserialize, Serialize};
 use wgpu_types::{BufferUsages, TextureFormat};
 
 use crate::condition::Condition;
+use crate::handle::ResourceId;
 
 /// A texture's width and height, fixed or relative to the graph's output size.
 #[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -223,6 +224,17 @@ pub struct TextureShape {
     pub layers: u32,
 }
 
+impl TextureShape {
+    /// Bytes a texture of this shape occupies ([`TextureDesc::bytes`]).
+    pub fn bytes(&self) -> u64 {
+        TextureDesc::new(self.format)
+            .samples(self.samples)
+            .mips(self.mips)
+            .layers(self.layers)
+            .bytes((self.width, self.height))
+    }
+}
+
 /// A buffer's size and any usages the graph cannot see from pass accesses (for example
 /// `MAP_READ` on a readback buffer).
 #[derive(Copy, Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -287,6 +299,29 @@ pub enum Origin {
     /// Owned by the engine and bound at execution; version 0 holds the engine's contents
     /// and the final version is kept.
     Imported,
+    /// The previous frame's contents of the graph-owned texture `of` (its history): this
+    /// frame's final version of `of` is what the next frame reads here. Passes only read
+    /// it (version 0); it is defined anywhere in the frame, because the executor keeps it
+    /// and `of` in two textures of their own, never shared with other resources, and swaps
+    /// them after each frame. The first frame, and the first after a resize, a change of
+    /// plan or [`Executor::reset_history`](crate::gpu::Executor::reset_history), reads
+    /// zeros, and the passes can tell ([`FrameResources::history_reset`]).
+    ///
+    /// [`FrameResources::history_reset`]: crate::gpu::FrameResources::history_reset
+    History {
+        /// The resource whose previous contents this is.
+        of: ResourceId,
+    },
+}
+
+impl Origin {
+    /// The resource whose previous frame's contents a history resource holds.
+    pub fn history_of(self) -> Option<ResourceId> {
+        match self {
+            Origin::History { of } => Some(of),
+            Origin::Transient | Origin::Imported => None,
+        }
+    }
 }
 
 /// A resource's description, by kind.

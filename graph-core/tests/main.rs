@@ -9,6 +9,8 @@ mod conditional_formats;
 mod conditions;
 mod conditions_file;
 mod cull;
+mod history;
+mod history_gpu;
 mod lifetimes;
 mod load_store;
 mod memory;

@@ -4,6 +4,7 @@
 mod conditions;
 mod cull;
 mod formats;
+mod history;
 mod lifetimes;
 mod load_store;
 mod order;
@@ -16,7 +17,7 @@ use crate::condition::Features;
 use crate::error::{GraphError, GraphErrors};
 use crate::graph::Graph;
 use crate::handle::{PassId, ResourceId};
-use crate::plan::{CulledPass, MemoryReport, Plan, PlannedPass, PlannedResource};
+use crate::plan::{CulledPass, HistoryEdge, MemoryReport, Plan, PlannedPass, PlannedResource};
 use crate::profile::{color_bytes_per_sample, DeviceProfile};
 use crate::resource::{texel_bytes, ResourceDesc, TextureShape};
 
@@ -85,6 +86,7 @@ impl Graph {
         let attachments = load_store::infer(graph, &versions, &live, &shapes);
         let usages = usage::derive(graph, &versions, &live, &attachments, &options.profile);
         let physical = physical::plan(graph, &shapes, &lifetimes, &usages);
+        let history = history::edges(graph, &versions, &live, &order, &shapes, &usages);
         Ok(self.assemble(
             options,
             features,
@@ -97,6 +99,7 @@ impl Graph {
                 attachments,
                 usages,
                 physical,
+                history,
             },
         ))
     }
@@ -167,6 +170,7 @@ impl Graph {
         let mut errors: Vec<GraphError> = self.declare_errors.clone();
         errors.extend(conditioned.errors.iter().cloned());
         if errors.is_empty() {
+            history::check(conditioned, &mut errors);
             validate::resources(self, conditioned, shapes, versions, profile, &mut errors);
             validate::passes(conditioned, shapes, versions, profile, &mut errors);
         }
@@ -267,22 +271,26 @@ impl Graph {
                     .or_else(|| a.live.resource_reasons[r].clone()),
                 format_because: a.conditioned.formats[r].clone(),
                 bytes: match (a.shapes[r], node.buffer()) {
-                    (Some(shape), _) => physical::shape_bytes(&shape),
+                    (Some(shape), _) => shape.bytes(),
                     (None, Some(b)) => b.size,
                     (None, None) => 0,
                 },
             })
             .collect();
+        // A history's pair is two textures, the source's and the history's.
+        let pairs: u64 = a.history.iter().map(|e| 2 * e.bytes).sum();
         let memory = MemoryReport {
             logical_bytes: resources
                 .iter()
                 .filter(|r| r.physical.is_some())
                 .map(|r| r.bytes)
-                .sum(),
+                .sum::<u64>()
+                + pairs,
             physical_bytes: a.physical.textures.iter().map(|t| t.bytes).sum::<u64>()
-                + a.physical.buffers.iter().map(|b| b.size).sum::<u64>(),
+                + a.physical.buffers.iter().map(|b| b.size).sum::<u64>()
+                + pairs,
         };
-        Plan {
+        let mut plan = Plan {
             output_size: options.output_size,
             profile: options.profile.name.clone(),
             features: features.iter().map(str::to_owned).collect(),
@@ -292,7 +300,11 @@ impl Graph {
             textures: a.physical.textures,
             buffers: a.physical.buffers,
             memory,
-        }
+            history: a.history,
+            fingerprint: 0,
+        };
+        plan.fingerprint = history::fingerprint(&plan);
+        plan
     }
 }
 
@@ -306,4 +318,5 @@ struct Assembly {
     attachments: Vec<Attachments>,
     usages: Usages,
     physical: Physical,
+    history: Vec<HistoryEdge>,
 }

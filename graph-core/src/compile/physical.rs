@@ -1,6 +1,7 @@
 //! Physical plan: graph-owned resources with the same shape and usages share one texture
 //! or buffer when their lifetimes do not overlap. wgpu has no placed resources, so
-//! sharing by descriptor is the memory saving available (see the README).
+//! sharing by descriptor is the memory saving available (see the README). Histories and
+//! their sources are not planned here: they never share (see `history`).
 
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
@@ -28,8 +29,11 @@ pub(super) fn plan(
     lifetimes: &[Option<(usize, usize)>],
     usages: &Usages,
 ) -> Physical {
+    // A history and its source live in a pair of textures of their own (see `history`).
+    let carried = super::history::carried(graph);
     let mut by_start: Vec<usize> = (0..graph.resources.len())
         .filter(|&r| graph.resources[r].origin == Origin::Transient && lifetimes[r].is_some())
+        .filter(|&r| !super::history::in_pair(graph, &carried, r))
         .collect();
     by_start.sort_by_key(|&r| (lifetimes[r].map(|l| l.0), r));
 
@@ -59,7 +63,7 @@ pub(super) fn plan(
                     out.textures.push(PhysicalTexture {
                         shape,
                         usage: key.1,
-                        bytes: shape_bytes(&shape),
+                        bytes: shape.bytes(),
                         holds: Vec::new(),
                     });
                 }
@@ -120,12 +124,4 @@ fn assign<K: Hash + Eq>(
         free.push(Reverse((last, index)));
     }
     index
-}
-
-pub(super) fn shape_bytes(shape: &TextureShape) -> u64 {
-    crate::resource::TextureDesc::new(shape.format)
-        .samples(shape.samples)
-        .mips(shape.mips)
-        .layers(shape.layers)
-        .bytes((shape.width, shape.height))
 }

@@ -22,6 +22,7 @@ pub(super) fn resources(
     profile: &DeviceProfile,
     errors: &mut Vec<GraphError>,
 ) {
+    let carried = super::history::carried(&conditioned.graph);
     let kept = (0..shapes.len()).filter(|&r| !conditioned.resource_dropped(r));
     for r in kept {
         let (resource, shape) = (&conditioned.graph.resources[r], &shapes[r]);
@@ -91,7 +92,12 @@ pub(super) fn resources(
         }
         // An import holds the engine's contents; a graph-owned resource holds nothing
         // until a pass writes it, so exporting it unwritten hands out garbage.
-        if resource.exported && resource.origin == Origin::Transient && resource.versions == 1 {
+        // A history's source unwritten is the history's error (`history::check`).
+        if resource.exported
+            && resource.origin == Origin::Transient
+            && resource.versions == 1
+            && carried[r].is_none()
+        {
             errors.push(invalid(
                 "is exported, but no pass writes it, so its contents would be undefined".into(),
             ));
@@ -267,8 +273,9 @@ impl PassCheck<'_> {
         let Some(v) = access.read_version() else {
             return;
         };
-        let imported = self.graph.resources[access.resource.index()].origin == Origin::Imported;
-        if versions.writer((access.resource, v)).is_none() && !(v == 0 && imported) {
+        // Version 0 of an import is the engine's contents, of a history the last frame's.
+        let given = self.graph.resources[access.resource.index()].origin != Origin::Transient;
+        if versions.writer((access.resource, v)).is_none() && !(v == 0 && given) {
             errors.push(GraphError::ReadBeforeWrite {
                 pass: self.pass.name.clone(),
                 resource: self.name(access),

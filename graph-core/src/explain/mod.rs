@@ -119,9 +119,21 @@ pub fn text(plan: &Plan) -> String {
             (None, None) => String::new(),
         };
         let origin = match (r.origin, r.exported) {
-            (Origin::Imported, _) => " imported",
-            (Origin::Transient, true) => " exported",
-            (Origin::Transient, false) => "",
+            (Origin::Imported, _) => " imported".to_owned(),
+            (Origin::History { of }, _) => {
+                format!(
+                    " history of {} (the previous frame's)",
+                    plan.resource(of).name
+                )
+            }
+            (Origin::Transient, true) => match plan.history_edge(r.id) {
+                Some(e) => format!(
+                    " exported, to the next frame as {}",
+                    plan.resource(e.history).name
+                ),
+                None => " exported".to_owned(),
+            },
+            (Origin::Transient, false) => String::new(),
         };
         let _ = writeln!(out, "  {}{origin}: {what}", r.name);
         if let Some(because) = &r.format_because {
@@ -144,6 +156,9 @@ pub fn text(plan: &Plan) -> String {
             buffer_usages(r.buffer_usage)
         };
         let _ = writeln!(out, "      usage {usage}");
+        if plan.history_edge(r.id).is_some() {
+            let _ = writeln!(out, "      physical: its history's pair (below)");
+        }
         if let Some(p) = r.physical {
             let kind = if r.texture.is_some() {
                 "texture"
@@ -176,6 +191,7 @@ pub fn text(plan: &Plan) -> String {
             );
         }
     }
+    history(plan, &mut out);
     let m = &plan.memory;
     let saved = m.logical_bytes.saturating_sub(m.physical_bytes);
     let percent = if m.logical_bytes > 0 {
@@ -191,6 +207,37 @@ pub fn text(plan: &Plan) -> String {
         bytes(saved)
     );
     out
+}
+
+/// The edges to the next frame, and the pair of textures each keeps:
+/// `accum@1 (written by "counter") -> next frame's accum_prev (read by "counter")`.
+fn history(plan: &Plan, out: &mut String) {
+    if plan.history.is_empty() {
+        return;
+    }
+    let _ = writeln!(out, "\nto the next frame:");
+    for e in &plan.history {
+        let readers = match e.readers.as_slice() {
+            [] => "read by no pass in this plan".to_owned(),
+            names => format!("read by {}", crate::error::quote_list(names)),
+        };
+        let _ = writeln!(
+            out,
+            "  {}@{} (written by \"{}\") -> next frame's {} ({readers})",
+            plan.resource(e.source).name,
+            e.version,
+            e.writer,
+            plan.resource(e.history).name,
+        );
+        let _ = writeln!(
+            out,
+            "      pair of 2 textures {} {} each [{}], swapped after each frame; reset to \
+             zeros on the first frame and after a change of plan",
+            describe_shape(&e.shape),
+            bytes(e.bytes),
+            texture_usages(e.usage)
+        );
+    }
 }
 
 /// The plan as a Graphviz digraph: passes are boxes, resource versions ellipses, culled
@@ -239,6 +286,14 @@ pub fn dot(plan: &Plan) -> String {
                 );
             }
         }
+    }
+    for e in &plan.history {
+        let _ = writeln!(
+            out,
+            "  {} -> {} [style=dashed, label=\"next frame\"];",
+            version(e.source, e.version),
+            version(e.history, 0)
+        );
     }
     out.push_str("}\n");
     out

@@ -645,6 +645,9 @@ impl<'a, 'r> Composer<'a, 'r> {
         }
         for (name, mut decl) in part.resources.0 {
             decl.set_when(inner.when(decl.when()));
+            if let Some(of) = decl.history_of_mut() {
+                *of = inner.name(of);
+            }
             file.resources.0.push((inner.name(&name), decl));
         }
         self.entries(source, part.passes, &inner, file);

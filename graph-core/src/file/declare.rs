@@ -42,9 +42,21 @@ pub(super) fn declare<'f>(
     let mut graph = GraphBuilder::new();
     graph.declare_features(conditions.features.iter());
     let mut handles: HashMap<&'f str, AnyHandle> = HashMap::new();
+    let mut errors = Vec::new();
     let resources = file.resources.0.iter().zip(&mut conditions.resources);
-    for (((name, decl), condition), formats) in resources.zip(&mut conditions.formats) {
-        let handle = decl.declare(&mut graph, name.as_str(), std::mem::take(formats), &params);
+    let mut resources: Vec<_> = resources.zip(&mut conditions.formats).collect();
+    // Histories last, so each finds its source wherever the file declares it.
+    resources.sort_by_key(|(((_, decl), _), _)| decl.history_of().is_some());
+    for (((name, decl), condition), formats) in resources {
+        let taken = std::mem::take(formats);
+        let handle = match decl.declare(&mut graph, name.as_str(), taken, &params, &handles) {
+            Ok(handle) => handle,
+            Err(error) => {
+                let at = decl.history_of().unwrap_or(name);
+                errors.push(source.error(at, ErrorKind::Graph(error)));
+                continue;
+            }
+        };
         if let Some(condition) = condition.take() {
             match handle {
                 AnyHandle::Texture(h) => graph.when(h, condition),
@@ -55,7 +67,6 @@ pub(super) fn declare<'f>(
     }
     let declared = handles.clone();
     let mut spans = Spans::new(source, file);
-    let mut errors = Vec::new();
     let mut plugins = BTreeMap::new();
     for &p in order {
         let decl = &file.passes[p];

@@ -3,6 +3,7 @@
 //! the plugin named next to them deserializes them into its own type.
 
 use std::borrow::Cow;
+use std::collections::HashMap;
 
 use ron::extensions::Extensions;
 use ron::value::RawValue;
@@ -15,6 +16,7 @@ use super::pairs::Pairs;
 use super::params::GraphParams;
 use crate::builder::GraphBuilder;
 use crate::condition::Condition;
+use crate::error::GraphError;
 use crate::resource::{format_name, BufferDesc, Size, TextureDesc};
 
 /// A whole graph file: `Graph(features: [..], resources: {..}, passes: [..], outputs:
@@ -141,6 +143,9 @@ impl<'a> Interface<'a> {
             (Interface::Buffer(_), ResourceDecl::Buffer(_) | ResourceDecl::ImportedBuffer(_)) => {
                 None
             }
+            // Its source's format, which the bindings of the source are checked against.
+            (Interface::Texture(_), ResourceDecl::History(_)) => None,
+            (Interface::Buffer(_), ResourceDecl::History(_)) => Some("a history texture".into()),
             (_, ResourceDecl::Texture(_) | ResourceDecl::ImportedTexture(_)) => {
                 Some("a texture".into())
             }
@@ -243,6 +248,26 @@ pub(crate) enum ResourceDecl<'a> {
     Buffer(BufferDecl<'a>),
     #[serde(borrow)]
     ImportedBuffer(BufferDecl<'a>),
+    /// The previous frame's contents of another texture: [`HistoryDecl`].
+    #[serde(borrow)]
+    History(HistoryDecl<'a>),
+}
+
+/// `History(of: "color")`: the previous frame's contents of the graph-owned texture
+/// `of`, which passes read (and do not write) under this resource's name, while the one
+/// pass that writes `of` writes what the next frame reads here. It has `of`'s
+/// description, and exists where `of` does unless `when` says otherwise (see
+/// [`GraphBuilder::history_texture`]). Its own name, rather than a flag on `of`, because
+/// the two are different contents in different textures, read and written by different
+/// slots: every name in a file still denotes one version with one writer.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct HistoryDecl<'a> {
+    /// The texture carried to the next frame.
+    #[serde(borrow)]
+    pub of: Name<'a>,
+    #[serde(borrow, default)]
+    when: Option<Name<'a>>,
 }
 
 /// A [`TextureDesc`] as a file writes it, with its condition. The fields repeat
@@ -439,15 +464,31 @@ impl<'a> BufferDecl<'a> {
 impl<'a> ResourceDecl<'a> {
     /// Declares the resource in `graph`, returning its version-0 handle. `format_if` are
     /// a texture's conditional formats, their conditions parsed; `values` the value of
-    /// every parameter the file declares.
+    /// every parameter the file declares; `declared` the resources declared so far, by
+    /// name, where a history finds its source (so histories are declared last). A
+    /// history of what is not a declared texture is an error about the history.
     pub fn declare(
         &self,
         graph: &mut GraphBuilder,
         name: &str,
         format_if: Vec<(Condition, TextureFormat)>,
         values: &GraphParams,
-    ) -> AnyHandle {
-        match self {
+        declared: &HashMap<&str, AnyHandle>,
+    ) -> Result<AnyHandle, GraphError> {
+        Ok(match self {
+            ResourceDecl::History(h) => match declared.get(h.of.as_str()) {
+                Some(AnyHandle::Texture(of)) => graph.history_texture(name, *of).into(),
+                found => {
+                    return Err(GraphError::HistorySource {
+                        resource: name.to_owned(),
+                        of: h.of.as_str().to_owned(),
+                        why: match found {
+                            Some(_) => "it is a buffer; histories are textures".into(),
+                            None => "no resource has that name".into(),
+                        },
+                    })
+                }
+            },
             ResourceDecl::Texture(t) => {
                 graph.create_texture(name, t.desc(format_if, values)).into()
             }
@@ -456,15 +497,34 @@ impl<'a> ResourceDecl<'a> {
             }
             ResourceDecl::Buffer(b) => graph.create_buffer(name, b.desc(values)).into(),
             ResourceDecl::ImportedBuffer(b) => graph.import_buffer(name, b.desc(values)).into(),
-        }
+        })
     }
 
-    /// Whether version 0 holds the engine's contents, so reading it needs no writer.
+    /// Whether version 0 holds contents no pass of this frame writes (the engine's, or
+    /// the previous frame's), so reading it needs no writer.
     pub fn imported(&self) -> bool {
         matches!(
             self,
-            ResourceDecl::ImportedTexture(_) | ResourceDecl::ImportedBuffer(_)
+            ResourceDecl::ImportedTexture(_)
+                | ResourceDecl::ImportedBuffer(_)
+                | ResourceDecl::History(_)
         )
+    }
+
+    /// The texture a history carries, for a history.
+    pub fn history_of(&self) -> Option<&Name<'a>> {
+        match self {
+            ResourceDecl::History(h) => Some(&h.of),
+            _ => None,
+        }
+    }
+
+    /// [`history_of`](Self::history_of), to rename it.
+    pub fn history_of_mut(&mut self) -> Option<&mut Name<'a>> {
+        match self {
+            ResourceDecl::History(h) => Some(&mut h.of),
+            _ => None,
+        }
     }
 
     /// The counts a file may give as parameters, with their field names.
@@ -472,6 +532,7 @@ impl<'a> ResourceDecl<'a> {
         match self {
             ResourceDecl::Texture(t) | ResourceDecl::ImportedTexture(t) => t.counts(),
             ResourceDecl::Buffer(b) | ResourceDecl::ImportedBuffer(b) => b.counts(),
+            ResourceDecl::History(_) => Vec::new(),
         }
     }
 
@@ -479,7 +540,9 @@ impl<'a> ResourceDecl<'a> {
     pub fn format_if(&self) -> &[(Name<'a>, TextureFormat)] {
         match self {
             ResourceDecl::Texture(t) | ResourceDecl::ImportedTexture(t) => &t.format_if,
-            ResourceDecl::Buffer(_) | ResourceDecl::ImportedBuffer(_) => &[],
+            ResourceDecl::Buffer(_)
+            | ResourceDecl::ImportedBuffer(_)
+            | ResourceDecl::History(_) => &[],
         }
     }
 
@@ -488,6 +551,7 @@ impl<'a> ResourceDecl<'a> {
         match self {
             ResourceDecl::Texture(t) | ResourceDecl::ImportedTexture(t) => t.when = when,
             ResourceDecl::Buffer(b) | ResourceDecl::ImportedBuffer(b) => b.when = when,
+            ResourceDecl::History(h) => h.when = when,
         }
     }
 
@@ -496,6 +560,7 @@ impl<'a> ResourceDecl<'a> {
         match self {
             ResourceDecl::Texture(t) | ResourceDecl::ImportedTexture(t) => t.when.as_ref(),
             ResourceDecl::Buffer(b) | ResourceDecl::ImportedBuffer(b) => b.when.as_ref(),
+            ResourceDecl::History(h) => h.when.as_ref(),
         }
     }
 }

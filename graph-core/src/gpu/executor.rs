@@ -20,6 +20,7 @@ use crate::resource::{format_name, texel_bytes, Origin, TextureShape};
 
 use super::device::{DeviceLoss, ErrorLog, Gpu, LossWatch};
 use super::error_scopes::ErrorScopes;
+use super::history::{Carried, Histories};
 use super::imports::{Binding, ImportError, Imports};
 use super::pool::{make_view, Pool, PoolStats, ViewKey};
 use super::timing::Timestamps;
@@ -192,6 +193,8 @@ pub struct Executor {
     /// Pool indices of the last frame's physical textures and buffers, by plan index.
     frame_textures: Vec<usize>,
     frame_buffers: Vec<usize>,
+    /// The pairs of textures of the plan's histories, kept across frames.
+    histories: Histories,
 }
 
 impl Executor {
@@ -218,6 +221,7 @@ impl Executor {
             loss: None,
             frame_textures: Vec::new(),
             frame_buffers: Vec::new(),
+            histories: Histories::default(),
         }
     }
 
@@ -259,12 +263,15 @@ impl Executor {
         // Scopes are per thread and capture everything below: resource creation, each
         // pass (which pushes its own scopes too), the submission.
         let scopes = ErrorScopes::push(&self.device);
-        let recorded = self.acquire(graph, plan, &bound).and_then(|objects| {
-            let slots = self.timing_slots(plan);
-            let (buffers, passes) = self.record(graph, plan, &objects, &slots)?;
-            self.queue.submit(buffers);
-            Ok((slots, passes))
-        });
+        let carried = self.histories.begin(&self.device, plan);
+        let recorded = self
+            .acquire(graph, plan, &bound, &carried)
+            .and_then(|objects| {
+                let slots = self.timing_slots(plan);
+                let (buffers, passes) = self.record(graph, plan, &objects, &slots)?;
+                self.queue.submit(buffers);
+                Ok((slots, passes))
+            });
         let record_submit_ns = start.elapsed().as_nanos() as u64;
         let mut messages: Vec<String> = scopes.pop().into_iter().collect();
         let (slots, passes) = recorded?;
@@ -286,7 +293,20 @@ impl Executor {
             let at = LostAt::Frame(plan.passes.iter().map(|p| p.name.clone()).collect());
             return Err(ExecuteError::DeviceLost { at, loss });
         }
-        Ok(self.report(plan, &slots, (passes, record_submit_ns), &stamps?))
+        let stamps = stamps?;
+        // Only a frame that ran hands its histories on; after a failed one the next
+        // frame reads what the last good one wrote.
+        self.histories.end_frame();
+        Ok(self.report(plan, &slots, (passes, record_submit_ns), &stamps))
+    }
+
+    /// Forgets every history: the next frame's history resources read zeros, and their
+    /// passes are told it is a reset ([`FrameResources::history_reset`]). For what the
+    /// executor cannot see, such as a camera cut; it resets by itself on the first frame
+    /// and whenever the plan changes (a resize, other features, another graph). The
+    /// pairs of textures are made again on the next frame.
+    pub fn reset_history(&mut self) {
+        self.histories.reset();
     }
 
     /// The physical texture of an exported, graph-created texture of the last executed
@@ -294,7 +314,13 @@ impl Executor {
     /// [`CompiledGraph::plan`] it executed). `None` for
     /// resources that are not exported (their memory may hold another resource by the
     /// end of the frame), imported (the engine has them) or were not used.
+    ///
+    /// For the source of a history, the texture it was written into, which the next
+    /// frame's history resource reads (valid until the next execution, as the others).
     pub fn texture(&self, plan: &Plan, id: ResourceId) -> Option<&wgpu::Texture> {
+        if plan.history.iter().any(|e| e.source == id) {
+            return self.histories.written(plan, id);
+        }
         let physical = exported_physical(plan, id)?;
         plan.resources[id.index()].texture?;
         Some(self.pool.texture(*self.frame_textures.get(physical)?))
@@ -320,6 +346,7 @@ impl Executor {
         graph: &Graph,
         plan: &Plan,
         bound: &HashMap<ResourceId, Binding>,
+        carried: &[Carried],
     ) -> Result<FrameObjects, ExecuteError> {
         self.pool.begin_frame();
         // Labels name every resource an object holds, so wgpu's messages name them too.
@@ -378,6 +405,15 @@ impl Executor {
         self.frame_buffers = frame_buffers;
 
         let mut objects = FrameObjects::default();
+        // A history reads one texture of its pair, its source writes the other.
+        let mut paired: HashMap<ResourceId, &wgpu::Texture> = HashMap::new();
+        for c in carried {
+            paired.insert(c.source, &c.current);
+            paired.insert(c.history, &c.previous);
+            if c.reset {
+                objects.resets.insert(c.history);
+            }
+        }
         for planned_pass in &plan.passes {
             let pass = &graph.passes[planned_pass.id.index()];
             for access in &pass.accesses {
@@ -391,9 +427,10 @@ impl Executor {
                 // Imported resources have no physical index; the plan's is the pool's.
                 let pooled = match planned.origin {
                     Origin::Transient => planned.physical,
-                    Origin::Imported => None,
+                    Origin::Imported | Origin::History { .. } => None,
                 };
                 let bound = bound.get(&planned.id);
+                let paired = paired.get(&planned.id).copied();
                 match access.role {
                     Role::Buffer(_) => {
                         let buffer = match (pooled, bound) {
@@ -407,12 +444,13 @@ impl Executor {
                         objects.buffers.insert(planned.id, buffer);
                     }
                     Role::Texture(role) => {
-                        let source = match (pooled, bound) {
-                            (Some(i), _) => {
+                        let source = match (paired, pooled, bound) {
+                            (Some(t), _, _) => Source::Texture(t),
+                            (None, Some(i), _) => {
                                 Source::Pooled(*self.frame_textures.get(i).ok_or_else(mismatch)?)
                             }
-                            (None, Some(Binding::Texture(t))) => Source::Texture(t),
-                            (None, Some(Binding::View(v))) => Source::View(v),
+                            (None, None, Some(Binding::Texture(t))) => Source::Texture(t),
+                            (None, None, Some(Binding::View(v))) => Source::View(v),
                             _ => return Err(mismatch()),
                         };
                         let shape = planned.texture.ok_or_else(mismatch)?;

@@ -7,6 +7,7 @@ mod device;
 mod error_scopes;
 mod executor;
 mod footprint;
+mod history;
 mod imports;
 mod pool;
 mod readback;

@@ -284,6 +284,8 @@ fn resource_row(plan: &Plan, r: &PlannedResource, columns: usize, diff: Option<&
         .collect();
     let origin = match (r.origin, r.exported) {
         (Origin::Imported, _) => Some("imported"),
+        (Origin::History { .. }, _) => Some("previous frame"),
+        (Origin::Transient, true) if plan.history_edge(r.id).is_some() => Some("next frame"),
         (Origin::Transient, true) => Some("exported"),
         (Origin::Transient, false) => None,
     };
