@@ -25,8 +25,13 @@
 #   main-dense  `main` on builtin:dense alone, into main-dense (not in the default set)
 #   main-lights `main` on builtin:lights?count=256 alone, into main-lights (not in the
 #               default set)
-#   lights      the light sweep (1..1024) for noaa, MSAA 4x, per-sample 4x (each with its
+#   lights      the light sweep (1..1024: --sweep-max 1024) for noaa, MSAA 4x, per-sample 4x (each with its
 #               fragment light passes and its tiled compute pass) and forward MSAA
+#   scale       issue 38's cost curves for the default, lean and forward pipelines
+#               (visibility_msaa_4x, deferred_msaa_4x_lean, forward_msaa_4x), without a
+#               reference: --sweep triangles (builtin:terrain, 10^4..10^8) into
+#               scale-triangles, --sweep meshes (builtin:city, 2..99,857) into scale-meshes
+#               and --sweep lights (1..65,536) into scale-lights (not in the default set)
 #   samples     the sample-count sweep (1, 2, 4, 8) of the same pipelines on builtin:dense
 #   resolution  720p..2160p of the same pipelines on builtin:dense
 #   specialise  the same pipelines on every built-in scene without a reference: each
@@ -143,8 +148,15 @@ for part in $parts; do
         --out-dir "$out/$part" || status=$?
       ;;
     lights)
-      "$bin" bench --sweep lights "${core[@]}" --width "$width" --height "$height" "${common[@]}" \
-        --out-dir "$out/lights" || status=$?
+      "$bin" bench --sweep lights --sweep-max 1024 "${core[@]}" --width "$width" --height "$height" \
+        "${common[@]}" --out-dir "$out/lights" || status=$?
+      ;;
+    scale)
+      for sweep in triangles meshes lights; do
+        "$bin" bench --sweep "$sweep" --pipeline pipelines/visibility_msaa_4x.ron \
+          --pipeline pipelines/deferred_msaa_4x_lean.ron --pipeline pipelines/forward_msaa_4x.ron \
+          --width "$width" --height "$height" "${common[@]}" --out-dir "$out/scale-$sweep" || status=$?
+      done
       ;;
     samples)
       "$bin" bench --sweep samples --scene builtin:dense "${core[@]}" --width "$width" --height "$height" \
@@ -242,7 +254,7 @@ for part in $parts; do
         || status=$?
       ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, particles)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, scale, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, particles)" >&2
       status=2
       ;;
   esac

@@ -244,6 +244,17 @@ pub enum SceneError {
         max: u32,
     },
 
+    /// More meshes than [`MAX_MESHES`](super::MAX_MESHES), counted before any is built.
+    #[error("{scene}: {count} meshes (glTF primitives as placed by nodes), more than {max} (the most a scene may have: each keeps 128 bytes of per-mesh data in one device binding)")]
+    TooManyMeshes {
+        /// The scene, by its spec.
+        scene: String,
+        /// The meshes it would have.
+        count: u64,
+        /// The limit.
+        max: u32,
+    },
+
     /// More particles than [`MAX_PARTICLES`](super::MAX_PARTICLES) over all emitters.
     #[error("{scene}: {count} particles, more than {max} (the most a scene may have: each is an instance of one draw, 32 bytes on the device)")]
     TooManyParticles {

@@ -76,7 +76,7 @@ pub use error::SceneError;
 pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE, MAX_LIGHTS};
 pub use lighting::{Lighting, DEFAULT_ENVIRONMENT_INTENSITY, HEADLIGHT_LUX};
 pub use material::{AlphaMode, Material};
-pub use mesh::{Mesh, Vertex};
+pub use mesh::{Mesh, Vertex, MAX_MESHES};
 pub use model::Scene;
 pub use normals::flat_shaded;
 pub use particles::{billboard_pixels, check_emitters, Particle, ParticleEmitter, MAX_PARTICLES};

@@ -47,6 +47,12 @@ impl Vertex {
     }
 }
 
+/// The most meshes (glTF primitive placements) a scene may have: 1,048,576. The renderers
+/// keep 128 bytes of per-mesh data (transform, normal matrix, material) in one storage
+/// binding, and 2^20 of them fill the 128 MiB every WebGPU device binds; more failed on
+/// lavapipe with a raw validation error. A city of 1,023 x 1,023 buildings fits.
+pub const MAX_MESHES: u32 = 1 << 20;
+
 /// An indexed triangle list with one material.
 ///
 /// Vertex data stays in object space and the world transform is kept apart, in f64, so a renderer

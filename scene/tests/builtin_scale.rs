@@ -135,11 +135,11 @@ fn sizes_past_the_scene_limit_are_refused_before_anything_is_built() {
             format!("builtin:terrain: `cells=4294967295`: {CELLS_RANGE}"),
         ),
         (
-            "builtin:city?blocks=1592",
-            "builtin:city: `blocks=1592`: a whole number from 0 to 1591 (blocks per side, one \
+            "builtin:city?blocks=1024",
+            "builtin:city: `blocks=1024`: a whole number from 0 to 1023 (blocks per side, one \
              building each, each building its own mesh (default 32: 1,024 buildings; at least \
-             1, at most 1591: 2,531,281 buildings in 4,293,053,032 bytes of vertices, indices \
-             and meshes, the most that fit the 4 GiB scene limit))"
+             1, at most 1023: 1,046,529 buildings and the ground, the most within the scene \
+             limit of 1,048,576 meshes))"
                 .to_owned(),
         ),
     ] {
@@ -174,7 +174,7 @@ fn a_scale_scene_of_size_zero_is_an_error_naming_the_parameter() {
     assert!(message("builtin:terrain?size=3").contains("this scene takes: cells, seed"));
     assert_eq!(
         message("builtin:city?blocks=0&seed=2"),
-        "builtin:city: `blocks=0`: a city needs at least 1 block (1 to 1591)"
+        "builtin:city: `blocks=0`: a city needs at least 1 block (1 to 1023)"
     );
     assert!(message("builtin:city?streets=3").contains("this scene takes: blocks, seed"));
 }

@@ -397,3 +397,32 @@ fn material_factors_outside_gltf_s_ranges_are_clamped_with_a_warning() {
         ]
     );
 }
+
+/// Meshes are counted before any is built: 1,025 primitives placed by 1,024 nodes are
+/// 1,049,600 meshes, past the 1,048,576 the renderers bind per-mesh data for.
+#[test]
+fn more_meshes_than_the_mesh_limit_is_an_error_before_building() {
+    use rgraph_scene::MAX_MESHES;
+    assert_eq!(MAX_MESHES, 1 << 20);
+    let mut gltf = Gltf::default();
+    let positions = gltf.floats(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let primitives: Vec<_> = (0..1025)
+        .map(|_| json!({ "attributes": { "POSITION": positions } }))
+        .collect();
+    let mesh = gltf.push("meshes", json!({ "name": "many", "primitives": primitives }));
+    for _ in 0..1024 {
+        gltf.root(json!({ "mesh": mesh }));
+    }
+    let path = temp_dir("mesh_limit").join("scene.gltf");
+    gltf.write_embedded(&path);
+    let error = Scene::from_gltf(&path).expect_err("too many meshes");
+    assert_eq!(
+        error.to_string(),
+        format!(
+            "{}: 1049600 meshes (glTF primitives as placed by nodes), more than 1048576 (the \
+             most a scene may have: each keeps 128 bytes of per-mesh data in one device \
+             binding)",
+            path.display()
+        )
+    );
+}

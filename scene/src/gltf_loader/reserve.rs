@@ -10,7 +10,7 @@ use gltf::mesh::{Mode, Semantic};
 use super::nodes::Placed;
 use super::{material, Loader};
 use crate::error::label;
-use crate::{SceneError, Vertex};
+use crate::{SceneError, Vertex, MAX_MESHES};
 
 impl Loader<'_> {
     /// Takes from the budget what the meshes `placed` places and the images their
@@ -28,6 +28,18 @@ impl Loader<'_> {
                     meshes.push((mesh, 1));
                 }
             }
+        }
+        // Every drawn primitive of every placement is a mesh of the scene.
+        let mesh_count = meshes
+            .iter()
+            .map(|(mesh, count)| drawn(mesh).count() as u64 * count)
+            .fold(0, u64::saturating_add);
+        if mesh_count > MAX_MESHES as u64 {
+            return Err(SceneError::TooManyMeshes {
+                scene: self.file.display().to_string(),
+                count: mesh_count,
+                max: MAX_MESHES,
+            });
         }
         for (mesh, count) in &meshes {
             let copy = drawn(mesh)

@@ -1,12 +1,12 @@
 //! What a built-in scene of a given size will hold, counted from its size parameter before
-//! anything is built, against the scene limit: [`DEFAULT_MAX_SCENE_BYTES`] (4 GiB) of
-//! vertices and indices, the limit a glTF scene is held to as well (with the meshes' own
+//! anything is built, against the scene limits: [`MAX_MESHES`] and
+//! [`DEFAULT_MAX_SCENE_BYTES`] (4 GiB) of vertices and indices, the limit a glTF scene is held to as well (with the meshes' own
 //! records counted too: a scene of a million small meshes spends a fifth of its memory on
 //! them). The scale scenes
 //! (`terrain`, `city`) derive the largest value of their size parameter from it, so the
 //! parameter's range check is the memory check and fails before the first allocation.
 
-use crate::{Mesh, Vertex, DEFAULT_MAX_SCENE_BYTES};
+use crate::{Mesh, Vertex, DEFAULT_MAX_SCENE_BYTES, MAX_MESHES};
 
 /// Vertices, indices and meshes of a scene (or a part of one), counted.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,9 +43,9 @@ impl Geometry {
             + self.meshes * std::mem::size_of::<Mesh>() as u64
     }
 
-    /// Whether it fits the scene limit.
+    /// Whether it fits the scene limits: bytes and meshes.
     pub const fn fits(self) -> bool {
-        self.bytes() <= DEFAULT_MAX_SCENE_BYTES
+        self.bytes() <= DEFAULT_MAX_SCENE_BYTES && self.meshes <= MAX_MESHES as u64
     }
 }
 

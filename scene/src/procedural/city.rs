@@ -16,9 +16,10 @@
 //!   boxes, as many meshes as asked for in the same view.
 //! - Lights and camera: the scale scenes' [`stage`], a sun and four point lights, the whole
 //!   city in a 16:9 frame.
-//! - `blocks` is at most 1591 (2,531,281 buildings, 30,375,374 triangles): the most whose
-//!   vertices, indices and mesh records, counted from the parameter before anything is
-//!   built, fit the 4 GiB scene limit ([`budget`](super::budget)).
+//! - `blocks` is at most 1023 (1,046,529 buildings and the ground, 12,558,350 triangles): the most whose
+//!   meshes, counted from the parameter before anything is built, fit the scene limit of
+//!   [`MAX_MESHES`](crate::MAX_MESHES) ([`budget`](super::budget)); their memory is well
+//!   within the 4 GiB.
 
 use glam::{DMat4, DVec3};
 
@@ -67,9 +68,8 @@ pub(super) const PARAMS: &[BuiltinParam] = &[
     BuiltinParam {
         key: "blocks",
         meaning: "blocks per side, one building each, each building its own mesh (default \
-                  32: 1,024 buildings; at least 1, at most 1591: 2,531,281 buildings in \
-                  4,293,053,032 bytes of vertices, indices and meshes, the most that fit the \
-                  4 GiB scene limit)",
+                  32: 1,024 buildings; at least 1, at most 1023: 1,046,529 buildings and the \
+                  ground, the most within the scene limit of 1,048,576 meshes)",
         default: 32,
         max: MAX_BLOCKS,
     },
@@ -132,15 +132,15 @@ mod tests {
 
     #[test]
     fn the_largest_city_fits_the_scene_limit() {
-        assert_eq!(MAX_BLOCKS, 1591);
-        let most = geometry(1591);
-        assert_eq!(most.meshes, 2_531_282);
-        assert_eq!(most.indices / 3, 30_375_374);
-        assert_eq!(most.bytes(), 4_293_053_032);
-        assert!(!geometry(1592).fits());
+        assert_eq!(MAX_BLOCKS, 1023);
+        let most = geometry(1023);
+        assert_eq!(most.meshes, 1_046_530);
+        assert_eq!(most.indices / 3, 12_558_350);
+        assert!(most.bytes() < crate::DEFAULT_MAX_SCENE_BYTES);
+        assert!(!geometry(1024).fits(), "1,048,577 meshes");
         assert!(PARAMS[0]
             .meaning
-            .contains("at most 1591: 2,531,281 buildings in 4,293,053,032 bytes"));
+            .contains("at most 1023: 1,046,529 buildings and the ground"));
     }
 
     #[test]
