@@ -31,7 +31,8 @@
 #               (visibility_msaa_4x, deferred_msaa_4x_lean, forward_msaa_4x), without a
 #               reference: --sweep triangles (builtin:terrain, 10^4..10^8) into
 #               scale-triangles, --sweep meshes (builtin:city, 2..99,857) into scale-meshes
-#               and --sweep lights (1..65,536) into scale-lights (not in the default set)
+#               and --sweep lights (1..65,536) into scale-lights (not in the default set;
+#               scale-triangles, scale-meshes and scale-lights run one sweep each)
 #   samples     the sample-count sweep (1, 2, 4, 8) of the same pipelines on builtin:dense
 #   resolution  720p..2160p of the same pipelines on builtin:dense
 #   specialise  the same pipelines on every built-in scene without a reference: each
@@ -151,8 +152,10 @@ for part in $parts; do
       "$bin" bench --sweep lights --sweep-max 1024 "${core[@]}" --width "$width" --height "$height" \
         "${common[@]}" --out-dir "$out/lights" || status=$?
       ;;
-    scale)
-      for sweep in triangles meshes lights; do
+    scale|scale-triangles|scale-meshes|scale-lights)
+      sweeps="triangles meshes lights"
+      [ "$part" != scale ] && sweeps="${part#scale-}"
+      for sweep in $sweeps; do
         "$bin" bench --sweep "$sweep" --pipeline pipelines/visibility_msaa_4x.ron \
           --pipeline pipelines/deferred_msaa_4x_lean.ron --pipeline pipelines/forward_msaa_4x.ron \
           --width "$width" --height "$height" "${common[@]}" --out-dir "$out/scale-$sweep" || status=$?
@@ -254,7 +257,7 @@ for part in $parts; do
         || status=$?
       ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, scale, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, particles)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, scale, scale-SWEEP, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, particles)" >&2
       status=2
       ;;
   esac

@@ -209,7 +209,8 @@ fn measure<'a>(
                 row.sweep = step.point.clone();
                 row
             }));
-            if images.is_some() {
+            // A resolution or samples sweep measures one scene at every step: summarised once.
+            if !results.scenes.iter().any(|s| s.scene == summary.scene) {
                 results.scenes.push(summary);
             }
             results::ratios_to_baseline(&mut results.rows, BASELINE);

@@ -50,7 +50,8 @@ pub struct Results {
     pub reference: Option<Reference>,
     /// Things the reader should know: skipped files, substitutes, unmeasured figures.
     pub notes: Vec<String>,
-    /// Per scene: its images folder and its edge pixels.
+    /// Per scene: its size, its images folder and its edge pixels (in a sweep, each value's
+    /// scene once).
     pub scenes: Vec<SceneSummary>,
     /// One per scene and pipeline (and sweep value), error rows included.
     pub rows: Vec<Row>,

@@ -67,6 +67,17 @@ pub fn markdown(results: &Results) -> String {
         let rows: Vec<&Row> = r.rows.iter().filter(|row| row.scene == scene).collect();
         let _ = writeln!(md, "\n## {scene}\n");
         if let Some(summary) = r.scenes.iter().find(|s| s.scene == scene) {
+            if let Some(size) = &summary.size {
+                let _ = writeln!(
+                    md,
+                    "{} triangles, {} meshes, {} lights; {:.1} MiB of vertices and indices \
+                     uploaded.\n",
+                    size.triangles,
+                    size.meshes,
+                    size.lights,
+                    size.geometry_bytes as f64 / (1u64 << 20) as f64
+                );
+            }
             if let Some(edges) = &summary.edge_pixels {
                 let share = edges.share * 100.0;
                 let _ = writeln!(md, "Edge pixels: {share:.1}% ({}).\n", edges.definition);

@@ -1,8 +1,8 @@
 //! scaling.png: how cost grows with the swept parameter. For each scene (the sweeps over a
-//! built-in scene's parameter have one: they differ only in that parameter) three panels,
-//! the median GPU frame time, the median CPU time to record the frame and the memory the
-//! plan and its passes hold, one line per pipeline, both axes logarithmic (resolution in
-//! megapixels).
+//! built-in scene's parameter have one: they differ only in that parameter) three panels:
+//! the median GPU frame time, the median CPU time to record the frame, and the memory the
+//! plan, its passes and the scene's geometry hold; one line per pipeline, both axes
+//! logarithmic (resolution in megapixels).
 
 use plotters::prelude::*;
 
@@ -30,17 +30,24 @@ impl Metric {
         match self {
             Metric::GpuFrame => "GPU frame time, ms (median; log scale)",
             Metric::CpuRecord => "CPU record time, ms (median; log scale)",
-            Metric::Memory => "plan and pass memory, MiB (log scale)",
+            Metric::Memory => "plan, pass and geometry memory, MiB (log scale)",
         }
     }
 
-    fn of(self, row: &Row) -> Option<f64> {
+    /// The row's figure; memory adds the geometry its scene uploads (`results.scenes`).
+    fn of(self, row: &Row, results: &Results) -> Option<f64> {
         let figures = row.figures.as_ref()?;
         match self {
             Metric::GpuFrame => Some(figures.gpu_frame_ms.as_ref()?.median),
             Metric::CpuRecord => Some(figures.cpu_record_ms.as_ref()?.median),
             Metric::Memory => {
-                let bytes = figures.memory.physical_bytes + figures.memory.pass_bytes;
+                let geometry = results
+                    .scenes
+                    .iter()
+                    .find(|s| s.scene == row.scene)
+                    .and_then(|s| s.size.as_ref())
+                    .map_or(0, |size| size.geometry_bytes);
+                let bytes = figures.memory.physical_bytes + figures.memory.pass_bytes + geometry;
                 Some(bytes as f64 / (1u64 << 20) as f64)
             }
         }
@@ -94,7 +101,7 @@ pub fn scaling(results: &Results, sweep: Sweep, area: &Area) -> DrawResult {
                     .rows
                     .iter()
                     .filter(|r| r.pipeline == *name && scene_group(r) == group)
-                    .filter_map(|r| Some((x(r, sweep)?, metric.of(r)?)))
+                    .filter_map(|r| Some((x(r, sweep)?, metric.of(r, results)?)))
                     .collect()
             })
             .collect();
