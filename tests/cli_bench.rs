@@ -434,20 +434,30 @@ fn the_mesh_sweep_stops_at_sweep_max_and_records_each_scene_size() {
     .expect(0);
     let json = read_json(&dir.path().join("results.json"));
     let rows = json["rows"].as_array().unwrap();
-    let labels: Vec<&str> = rows.iter().map(|r| r["sweep"]["label"].as_str().unwrap()).collect();
+    let labels: Vec<&str> = rows
+        .iter()
+        .map(|r| r["sweep"]["label"].as_str().unwrap())
+        .collect();
     assert_eq!(labels, ["2 meshes", "10 meshes"], "{json:#}");
     let scenes: Vec<(&str, u64)> = json["scenes"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|s| (s["scene"].as_str().unwrap(), s["size"]["meshes"].as_u64().unwrap()))
+        .map(|s| {
+            (
+                s["scene"].as_str().unwrap(),
+                s["size"]["meshes"].as_u64().unwrap(),
+            )
+        })
         .collect();
     assert_eq!(
         scenes,
         [("builtin:city?blocks=1", 2), ("builtin:city?blocks=3", 10)]
     );
     // The ground (4 vertices, 6 indices) and 9 buildings (24 and 36 each) of 56 and 4 bytes.
-    let bytes = json["scenes"][1]["size"]["geometry_bytes"].as_u64().unwrap();
+    let bytes = json["scenes"][1]["size"]["geometry_bytes"]
+        .as_u64()
+        .unwrap();
     assert_eq!(bytes, (4 + 9 * 24) * 56 + (6 + 9 * 36) * 4);
     let md = std::fs::read_to_string(dir.path().join("results.md")).unwrap();
     assert!(md.contains("110 triangles, 10 meshes, 5 lights"), "{md}");

@@ -53,7 +53,12 @@ fn face_normals_shade_as_written_out_normals_on_every_path() {
         "light_prepass_msaa_4x.ron",
         "visibility_msaa_4x.ron",
     ] {
-        let share = share_within(&image(pipeline, &written), &image(pipeline, &asked), 1, None);
+        let share = share_within(
+            &image(pipeline, &written),
+            &image(pipeline, &asked),
+            1,
+            None,
+        );
         assert!(
             share >= 0.999,
             "{pipeline}: only {:.2}% of pixels within 1/255 of the written-out face normals",

@@ -409,7 +409,10 @@ fn more_meshes_than_the_mesh_limit_is_an_error_before_building() {
     let primitives: Vec<_> = (0..1025)
         .map(|_| json!({ "attributes": { "POSITION": positions } }))
         .collect();
-    let mesh = gltf.push("meshes", json!({ "name": "many", "primitives": primitives }));
+    let mesh = gltf.push(
+        "meshes",
+        json!({ "name": "many", "primitives": primitives }),
+    );
     for _ in 0..1024 {
         gltf.root(json!({ "mesh": mesh }));
     }

@@ -90,7 +90,14 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
     let session = Session::open(&AdapterChoice::resolve(args.adapter.as_deref()))
         .map_err(BenchError::Device)?;
     let size = (args.width, args.height);
-    let steps = sweep::steps(args.sweep, args.sweep_max, scenes, pipelines, size, &mut notes);
+    let steps = sweep::steps(
+        args.sweep,
+        args.sweep_max,
+        scenes,
+        pipelines,
+        size,
+        &mut notes,
+    );
     let gpu_clocks = ClockSource::for_gpu(&session.gpu);
     let group_memory_bytes = match (args.group_memory, gpu_clocks.memory_total_bytes) {
         (Some(mib), _) => mib << 20,

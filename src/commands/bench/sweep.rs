@@ -96,7 +96,11 @@ pub fn steps(
                 .iter()
                 .map(|&n| {
                     let triangles = 2 * n * n;
-                    (triangles, format!("cells={n}"), format!("{} triangles", grouped(triangles)))
+                    (
+                        triangles,
+                        format!("cells={n}"),
+                        format!("{} triangles", grouped(triangles)),
+                    )
                 })
                 .collect(),
         ),
@@ -106,7 +110,11 @@ pub fn steps(
                 .iter()
                 .map(|&k| {
                     let meshes = k * k + 1;
-                    (meshes, format!("blocks={k}"), format!("{} meshes", grouped(meshes)))
+                    (
+                        meshes,
+                        format!("blocks={k}"),
+                        format!("{} meshes", grouped(meshes)),
+                    )
                 })
                 .collect(),
         ),
@@ -144,7 +152,7 @@ fn grouped(n: u32) -> String {
     let digits = n.to_string();
     let mut out = String::new();
     for (i, digit) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
             out.push(',');
         }
         out.push(digit);
@@ -173,15 +181,24 @@ mod tests {
         assert_eq!(lights[3].scenes, ["builtin:lights?count=64"]);
         assert_eq!(lights[8].point.as_ref().unwrap().label, "65,536 lights");
         let triangles = sweep(Sweep::Triangles, None);
-        let counts: Vec<u32> = triangles.iter().map(|s| s.point.as_ref().unwrap().value).collect();
+        let counts: Vec<u32> = triangles
+            .iter()
+            .map(|s| s.point.as_ref().unwrap().value)
+            .collect();
         assert_eq!(counts, [10_082, 100_352, 999_698, 9_999_392, 99_998_082]);
         assert_eq!(triangles[4].scenes, ["builtin:terrain?cells=7071"]);
-        assert_eq!(triangles[4].point.as_ref().unwrap().label, "99,998,082 triangles");
+        assert_eq!(
+            triangles[4].point.as_ref().unwrap().label,
+            "99,998,082 triangles"
+        );
         let meshes = sweep(Sweep::Meshes, Some(10_001));
         assert_eq!(meshes.len(), 5, "the 99,857-mesh step is past --sweep-max");
         assert_eq!(meshes[4].scenes, ["builtin:city?blocks=100"]);
         let sizes = sweep(Sweep::Resolution, None);
         assert_eq!(sizes.last().map(|s| s.size), Some((3840, 2160)));
-        assert_eq!(steps(None, None, vec![], vec![], (64, 48), &mut notes).len(), 1);
+        assert_eq!(
+            steps(None, None, vec![], vec![], (64, 48), &mut notes).len(),
+            1
+        );
     }
 }

@@ -68,11 +68,9 @@ pub fn scaling(results: &Results, sweep: Sweep, area: &Area) -> DrawResult {
     title
         .titled(
             &match sweep {
-                Sweep::Resolution => format!(
-                    "Cost vs {}: {}",
-                    parameter(sweep),
-                    results.adapter.name
-                ),
+                Sweep::Resolution => {
+                    format!("Cost vs {}: {}", parameter(sweep), results.adapter.name)
+                }
                 _ => format!(
                     "Cost vs {}: {} at {}x{}",
                     parameter(sweep),
