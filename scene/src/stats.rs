@@ -42,6 +42,13 @@ pub struct SceneStats {
 }
 
 impl SceneStats {
+    /// The bytes of vertices and indices the meshes hold (a [`Vertex`](super::Vertex) each
+    /// and a `u32` per triangle corner), as a renderer uploads them.
+    pub fn geometry_bytes(&self) -> u64 {
+        let vertex = std::mem::size_of::<super::Vertex>() as u64;
+        self.vertices as u64 * vertex + 3 * self.triangles as u64 * 4
+    }
+
     /// Counts what `scene` holds.
     pub fn of(scene: &Scene) -> SceneStats {
         let lights =

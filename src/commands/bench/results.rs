@@ -1,7 +1,7 @@
 //! Everything a bench measured, as written to results.json (and read by the table and the
 //! charts). Figures that could not be measured are `null`, with the reason nearby.
 
-use rgraph_scene::{Scene, Vertex};
+use rgraph_scene::Scene;
 use serde::Serialize;
 
 use super::clocks::ClockSource;
@@ -160,12 +160,11 @@ pub struct SceneSize {
 impl SceneSize {
     pub fn of(scene: &Scene) -> SceneSize {
         let stats = scene.stats();
-        let vertex = std::mem::size_of::<Vertex>() as u64;
         SceneSize {
             triangles: stats.triangles,
             meshes: stats.meshes,
             lights: stats.point_lights + stats.spot_lights + stats.directional_lights,
-            geometry_bytes: stats.vertices as u64 * vertex + 3 * stats.triangles as u64 * 4,
+            geometry_bytes: stats.geometry_bytes(),
         }
     }
 }
