@@ -13,6 +13,7 @@ mod gltf_errors;
 mod gltf_features;
 mod gltf_fixtures;
 mod gltf_limits;
+mod gltf_quantization;
 mod gltf_sandbox;
 mod robustness;
 mod scene_math;
