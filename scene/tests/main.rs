@@ -12,6 +12,7 @@ mod gltf_audit;
 mod gltf_errors;
 mod gltf_features;
 mod gltf_fixtures;
+mod gltf_instancing;
 mod gltf_limits;
 mod gltf_quantization;
 mod gltf_sandbox;
