@@ -16,6 +16,7 @@ mod gltf_instancing;
 mod gltf_limits;
 mod gltf_quantization;
 mod gltf_sandbox;
+mod gltf_spec_gloss;
 mod robustness;
 mod scene_math;
 mod structure;

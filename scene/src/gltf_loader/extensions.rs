@@ -11,6 +11,7 @@ pub(super) const IMPLEMENTED: &[&str] = &[
     "EXT_mesh_gpu_instancing",
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
+    "KHR_materials_pbrSpecularGlossiness",
     "KHR_materials_unlit",
     "KHR_mesh_quantization",
     "KHR_texture_transform",

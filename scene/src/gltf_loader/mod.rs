@@ -5,8 +5,9 @@
 //! normals generated when missing), TEXCOORD_0 and _1, COLOR_0 and TANGENT (MikkTSpace
 //! tangents generated when a normal texture needs them; application attributes,
 //! `_`-prefixed, are ignored as the spec allows); metallic-roughness materials with their
-//! base-color, metallicRoughness, normal, occlusion and emissive textures, emission, alpha
-//! OPAQUE/MASK, double-sided and the extensions in [`extensions::IMPLEMENTED`] (KHR_texture_transform per texture,
+//! base-color, metallicRoughness, normal, occlusion and emissive textures (specular-glossiness
+//! ones converted to them, see [`spec_gloss`]), emission, alpha OPAQUE/MASK, double-sided
+//! and the extensions in [`extensions::IMPLEMENTED`] (KHR_texture_transform per texture,
 //! EXT_mesh_gpu_instancing's instances as placements, see [`instancing`]); cameras;
 //! KHR_lights_punctual lights. What is not: BLEND (drawn opaque), points and lines, skins,
 //! morph targets and animations, each with a warning in [`Scene::warnings`].
@@ -26,6 +27,7 @@ mod nodes;
 mod primitive;
 mod reserve;
 mod sandbox;
+mod spec_gloss;
 mod texture_transform;
 mod transforms;
 mod uri;

@@ -1,8 +1,8 @@
 //! What a scene will hold, counted before anything is built: every placement of every mesh
-//! (by a node, or by each instance of an instanced node; from its accessors' counts) and
-//! every image (from its header), taken from the scene's memory budget first, so that a
-//! small file asking for more than the limit fails before the memory is spent (a 20 MB GLB
-//! placing a 1M-triangle mesh 1,000 times asks for 50 GB).
+//! (by a node, or by each instance of an instanced node; from its accessors' counts), every
+//! image (from its header) and every texture baked from images, taken from the scene's
+//! memory budget first, so that a small file asking for more than the limit fails before
+//! the memory is spent (a 20 MB GLB placing a 1M-triangle mesh 1,000 times asks for 50 GB).
 
 use std::collections::{HashMap, HashSet};
 
@@ -80,6 +80,7 @@ impl Loader<'_> {
                 for (image, slot, srgb) in material::images(&material) {
                     self.reserve_image(image, srgb, slot, &name)?;
                 }
+                self.reserve_spec_gloss(&material, &name)?;
             }
         }
         Ok(())
@@ -87,16 +88,32 @@ impl Loader<'_> {
 
     /// Takes from the budget what glTF image `index` decoded as `srgb` color or linear data
     /// will hold (RGBA8 and its mips), read from its header, unless that was taken already.
-    /// Returns the header's size.
     pub(super) fn reserve_image(
         &mut self,
         index: usize,
         srgb: bool,
         slot: &'static str,
         material: &str,
+    ) -> Result<(), SceneError> {
+        let (width, height) = self.image_size(index, slot, material)?;
+        if self.reserved.insert((index, srgb)) {
+            let why = format!("decoding it ({width}x{height})");
+            if let Err(reason) = self.budget.take(texture_bytes(width, height), &why) {
+                return Err(self.image_error(index, slot, material, reason));
+            }
+        }
+        Ok(())
+    }
+
+    /// The size glTF image `index` declares in its header (only the header is read: a few
+    /// kilobytes of PNG can hold gigabytes of pixels).
+    pub(super) fn image_size(
+        &mut self,
+        index: usize,
+        slot: &'static str,
+        material: &str,
     ) -> Result<(u32, u32), SceneError> {
         let invalid = |loader: &Self, reason| loader.image_error(index, slot, material, reason);
-        // Only the header is read: a few kilobytes of PNG can hold gigabytes of pixels.
         let size = match self.encoded(index) {
             Ok(encoded) => ::image::ImageReader::new(std::io::Cursor::new(encoded))
                 .with_guessed_format()
@@ -104,17 +121,13 @@ impl Loader<'_> {
                 .and_then(|reader| reader.into_dimensions().map_err(|e| e.to_string())),
             Err(e) => return Err(e.into_named_error(|reason| invalid(self, reason))),
         };
-        let (width, height) = size.map_err(|e| invalid(self, format!("cannot decode: {e}")))?;
-        if self.reserved.insert((index, srgb)) {
-            // RGBA8, plus a third for the mip chain.
-            let bytes = u64::from(width) * u64::from(height) * 4 / 3 * 4;
-            let why = format!("decoding it ({width}x{height})");
-            if let Err(reason) = self.budget.take(bytes, &why) {
-                return Err(invalid(self, reason));
-            }
-        }
-        Ok((width, height))
+        size.map_err(|e| invalid(self, format!("cannot decode: {e}")))
     }
+}
+
+/// What an RGBA8 texture of `width` x `height` holds with its mip chain (a third more).
+pub(super) fn texture_bytes(width: u32, height: u32) -> u64 {
+    u64::from(width) * u64::from(height) * 4 / 3 * 4
 }
 
 /// What one copy of `primitive` keeps, from its accessors' counts: its vertices (one per
