@@ -132,23 +132,31 @@ fn spec_gloss_factors_equal_the_metal_rough_material_within_2_255() {
 
 /// Textures sampled alike are converted texel by texel: a dielectric texel keeps its
 /// diffuse colour and is not metal, a metal texel (black diffuse) takes its specular colour
-/// and is all metal; factors are folded in (alpha halved), the material's own are 1.
+/// and is all metal; factors are folded in (alpha halved), the material's own are 1; the
+/// metal-rough fallback is ignored.
 #[test]
 fn spec_gloss_textures_are_baked_texel_by_texel() {
     let mut gltf = spec_gloss_gltf();
     // sRGB 56 is linear 0.0395: a dielectric's specular.
     let diffuse = png_texture(&mut gltf, 2, 1, &[200, 120, 60, 255, 0, 0, 0, 255]);
     let specular = png_texture(&mut gltf, 2, 1, &[56, 56, 56, 178, 230, 180, 120, 51]);
-    spec_gloss_triangle(
-        &mut gltf,
+    // A metal-rough fallback, as exporters write beside the extension: not used, not decoded.
+    let fallback = png_texture(&mut gltf, 1, 1, &[255, 0, 255, 255]);
+    let material = gltf.push(
+        "materials",
         json!({
-            "diffuseFactor": [1.0, 1.0, 1.0, 0.5],
-            "diffuseTexture": { "index": diffuse, "texCoord": 1 },
-            "specularGlossinessTexture": { "index": specular, "texCoord": 1 },
+            "pbrMetallicRoughness": { "baseColorTexture": { "index": fallback } },
+            "extensions": { EXTENSION: {
+                "diffuseFactor": [1.0, 1.0, 1.0, 0.5],
+                "diffuseTexture": { "index": diffuse, "texCoord": 1 },
+                "specularGlossinessTexture": { "index": specular, "texCoord": 1 },
+            } },
         }),
     );
+    gltf.triangle(Some(material));
     let scene = load("spec_gloss_textures", &gltf);
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    assert_eq!(scene.textures.len(), 2, "the two baked textures only");
     let material = &scene.materials[0];
     assert_eq!(material.base_color_factor, [1.0; 4]);
     assert_eq!(
