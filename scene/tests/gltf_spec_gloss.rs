@@ -265,3 +265,29 @@ fn baked_textures_are_counted_against_the_scene_memory_limit() {
     let base = &scene.textures[material.base_color_texture.unwrap().image];
     assert_eq!((base.width, base.height), (64, 64));
 }
+
+/// The extension's texture indices are validated with the rest of the file: one past the
+/// textures is an error naming it, never a panic.
+#[test]
+fn a_spec_gloss_texture_index_out_of_range_is_a_validation_error() {
+    let mut gltf = spec_gloss_gltf();
+    spec_gloss_triangle(
+        &mut gltf,
+        json!({ "specularGlossinessTexture": { "index": 3 } }),
+    );
+    let path = temp_dir("spec_gloss_bad_index").join("scene.gltf");
+    gltf.write_embedded(&path);
+    let error = Scene::from_gltf(&path).expect_err("no texture 3");
+    assert!(
+        matches!(error, rgraph_scene::SceneError::Gltf { .. }),
+        "{error:?}"
+    );
+    assert_eq!(
+        error.to_string(),
+        format!(
+            "{}: not a valid glTF 2.0 file: invalid glTF: materials[0].extensions.\
+             pbrSpecularGlossiness.specularGlossinessTexture.index: Index out of bounds;",
+            path.display()
+        )
+    );
+}
