@@ -207,6 +207,21 @@ pub enum SceneError {
         reason: String,
     },
 
+    /// A node's EXT_mesh_gpu_instancing attribute names no accessor, or one of a type or
+    /// count the extension does not allow, or holds a value that is not finite.
+    #[error("{file}: {node}: EXT_mesh_gpu_instancing {attribute}: {reason}")]
+    InvalidInstances {
+        /// The glTF file, as given.
+        file: PathBuf,
+        /// The node, by index and name.
+        node: String,
+        /// The instance attribute: "TRANSLATION", "ROTATION", "SCALE", or "attributes" for
+        /// the extension object itself.
+        attribute: &'static str,
+        /// What is wrong, in words.
+        reason: String,
+    },
+
     /// Something of the scene lies beyond [`MAX_COORDINATE`](super::MAX_COORDINATE) from the
     /// origin, or its bounds are not finite.
     #[error(

@@ -61,7 +61,8 @@ impl TextureImage {
     }
 }
 
-fn srgb_to_linear(v: u8) -> f64 {
+/// An sRGB-encoded 8-bit value in linear light, 0 to 1.
+pub(crate) fn srgb_to_linear(v: u8) -> f64 {
     let c = f64::from(v) / 255.0;
     if c <= 0.04045 {
         c / 12.92
@@ -70,7 +71,8 @@ fn srgb_to_linear(v: u8) -> f64 {
     }
 }
 
-fn linear_to_srgb(l: f64) -> u8 {
+/// Linear light (clamped to 0..=1 after encoding) as an sRGB-encoded 8-bit value.
+pub(crate) fn linear_to_srgb(l: f64) -> u8 {
     let c = if l <= 0.0031308 {
         l * 12.92
     } else {

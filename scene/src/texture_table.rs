@@ -222,7 +222,7 @@ fn chain_bytes(width: u32, height: u32) -> u64 {
 
 /// `image` at `width` x `height`: itself at its own size, else bilinearly resampled with
 /// texel centres aligned (edges clamped), in its stored encoding.
-fn resampled(image: &TextureImage, width: u32, height: u32) -> TextureImage {
+pub(crate) fn resampled(image: &TextureImage, width: u32, height: u32) -> TextureImage {
     if (image.width, image.height) == (width, height) {
         return image.clone();
     }

@@ -115,9 +115,9 @@ fn every_placement_of_a_mesh_is_counted_before_any_is_built() {
     assert_eq!(
         error.to_string(),
         format!(
-            "{}: mesh 0 \"triangle\": placing it 1000 times (180 bytes each: every node placing \
-             a mesh gets its own copy) would take the scene past 179999 bytes of vertices, \
-             indices and textures (the scene memory limit)",
+            "{}: mesh 0 \"triangle\": placing it 1000 times (180 bytes each: every node or \
+             instance placing a mesh gets its own copy) would take the scene past 179999 \
+             bytes of vertices, indices and textures (the scene memory limit)",
             path.display()
         )
     );

@@ -262,9 +262,9 @@ fn a_mesh_placed_by_many_nodes_stops_at_the_geometry_limit() {
     assert_eq!(
         error.to_string(),
         format!(
-            "{}: mesh 0 \"triangle\": placing it 11 times (180 bytes each: every node placing \
-             a mesh gets its own copy) would take the scene past 1979 bytes of vertices, \
-             indices and textures (the scene memory limit)",
+            "{}: mesh 0 \"triangle\": placing it 11 times (180 bytes each: every node or \
+             instance placing a mesh gets its own copy) would take the scene past 1979 \
+             bytes of vertices, indices and textures (the scene memory limit)",
             path.display()
         )
     );

@@ -8,8 +8,10 @@ use crate::SceneError;
 /// KHR_mesh_quantization needs no code of its own: the accessor reader decodes every component
 /// type, normalized or not, and node transforms do the dequantization.
 pub(super) const IMPLEMENTED: &[&str] = &[
+    "EXT_mesh_gpu_instancing",
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
+    "KHR_materials_pbrSpecularGlossiness",
     "KHR_materials_unlit",
     "KHR_mesh_quantization",
     "KHR_texture_transform",

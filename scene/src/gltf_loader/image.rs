@@ -17,7 +17,7 @@ impl Loader<'_> {
     /// decoding it (PNG or JPEG, from a buffer view, a data URI or a file) on first use in
     /// that role. `slot` and `material` name the user in errors. Its memory is taken from
     /// the budget before decoding (see `reserve`), and the decoder may allocate no more than
-    /// the header's size calls for.
+    /// the header's size calls for (see [`Loader::decode`]).
     pub(super) fn image(
         &mut self,
         index: usize,
@@ -28,21 +28,8 @@ impl Loader<'_> {
         if let Some(&texture) = self.images.get(&(index, srgb)) {
             return Ok(texture);
         }
-        let (width, height) = self.reserve_image(index, srgb, slot, material)?;
-        let mut limits = ::image::Limits::default();
-        limits.max_image_width = Some(width);
-        limits.max_image_height = Some(height);
-        limits.max_alloc = Some(
-            u64::from(width) * u64::from(height) * DECODED_BYTES_PER_PIXEL + DECODER_OVERHEAD_BYTES,
-        );
-        let mut reader = ::image::ImageReader::new(std::io::Cursor::new(&self.encoded[&index]))
-            .with_guessed_format()
-            .map_err(|e| self.image_error(index, slot, material, format!("cannot decode: {e}")))?;
-        reader.limits(limits);
-        let decoded = reader
-            .decode()
-            .map_err(|e| self.image_error(index, slot, material, format!("cannot decode: {e}")))?
-            .into_rgba8();
+        self.reserve_image(index, srgb, slot, material)?;
+        let decoded = self.decode(index, slot, material)?;
         self.builder.textures.push(TextureImage {
             name: self.image_name(index),
             width: decoded.width(),
@@ -53,6 +40,31 @@ impl Loader<'_> {
         let texture = self.builder.textures.len() - 1;
         self.images.insert((index, srgb), texture);
         Ok(texture)
+    }
+
+    /// glTF image `index` decoded to RGBA8, the decoder allowed no more than its header's
+    /// size calls for. Takes nothing from the budget: the caller has (`reserve`).
+    pub(super) fn decode(
+        &mut self,
+        index: usize,
+        slot: &'static str,
+        material: &str,
+    ) -> Result<::image::RgbaImage, SceneError> {
+        let (width, height) = self.image_size(index, slot, material)?;
+        let mut limits = ::image::Limits::default();
+        limits.max_image_width = Some(width);
+        limits.max_image_height = Some(height);
+        limits.max_alloc = Some(
+            u64::from(width) * u64::from(height) * DECODED_BYTES_PER_PIXEL + DECODER_OVERHEAD_BYTES,
+        );
+        let mut reader = ::image::ImageReader::new(std::io::Cursor::new(&self.encoded[&index]))
+            .with_guessed_format()
+            .map_err(|e| self.image_error(index, slot, material, format!("cannot decode: {e}")))?;
+        reader.limits(limits);
+        Ok(reader
+            .decode()
+            .map_err(|e| self.image_error(index, slot, material, format!("cannot decode: {e}")))?
+            .into_rgba8())
     }
 
     /// The encoded bytes of glTF image `index` (from a buffer view, a data URI or a file),
@@ -102,7 +114,7 @@ impl Loader<'_> {
 
     /// glTF image `index` as messages name it: its name, else its file's (a data URI is no
     /// name: it is the whole image).
-    fn image_name(&self, index: usize) -> String {
+    pub(super) fn image_name(&self, index: usize) -> String {
         let json = &self.document.as_json().images[index];
         let file_name = json.uri.as_deref().filter(|uri| !uri.starts_with("data:"));
         label("image", index, json.name.as_deref().or(file_name))

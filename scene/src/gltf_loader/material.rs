@@ -24,15 +24,15 @@ impl Loader<'_> {
 
     fn convert_material(&mut self, material: &gltf::Material) -> Result<Material, SceneError> {
         let name = name(material);
-        let pbr = material.pbr_metallic_roughness();
+        let pbr = match material.pbr_specular_glossiness() {
+            Some(spec_gloss) => self.spec_gloss(&spec_gloss, &name)?,
+            None => self.metal_rough(&material.pbr_metallic_roughness(), &name)?,
+        };
         let (file, warnings) = (self.file, &mut self.builder.warnings);
         let mut check = |field, values: &[f32], range| {
             factors::checked(file, &name, field, values, range, warnings)
         };
         let (unit, positive) = (0.0..=1.0, 0.0..=f32::MAX);
-        let base_color = check("baseColorFactor", &pbr.base_color_factor(), unit.clone())?;
-        let metallic = check("metallicFactor", &[pbr.metallic_factor()], unit.clone())?[0];
-        let roughness = check("roughnessFactor", &[pbr.roughness_factor()], unit.clone())?[0];
         let emissive = check("emissiveFactor", &material.emissive_factor(), unit)?;
         let strength = material.emissive_strength().unwrap_or(1.0);
         let strength = check("emissiveStrength", &[strength], positive.clone())?[0];
@@ -43,18 +43,6 @@ impl Loader<'_> {
             GltfAlphaMode::Mask => AlphaMode::Mask { cutoff },
             GltfAlphaMode::Blend => AlphaMode::Blend,
         };
-        let base_color_texture = self.texture(
-            pbr.base_color_texture().as_ref().map(reference),
-            "base color",
-            true,
-            &name,
-        )?;
-        let metallic_roughness_texture = self.texture(
-            pbr.metallic_roughness_texture().as_ref().map(reference),
-            "metallicRoughness",
-            false,
-            &name,
-        )?;
         let emissive_texture = self.texture(
             material.emissive_texture().as_ref().map(reference),
             "emissive",
@@ -82,11 +70,11 @@ impl Loader<'_> {
             &name,
         )?;
         Ok(Material {
-            base_color_factor: [base_color[0], base_color[1], base_color[2], base_color[3]],
-            base_color_texture,
-            metallic_factor: metallic,
-            roughness_factor: roughness,
-            metallic_roughness_texture,
+            base_color_factor: pbr.base_color_factor,
+            base_color_texture: pbr.base_color_texture,
+            metallic_factor: pbr.metallic_factor,
+            roughness_factor: pbr.roughness_factor,
+            metallic_roughness_texture: pbr.metallic_roughness_texture,
             normal_texture,
             normal_scale: normal.map_or(1.0, |n| n.scale()),
             occlusion_texture,
@@ -101,11 +89,43 @@ impl Loader<'_> {
         })
     }
 
+    /// The core model's parameters: pbrMetallicRoughness's factors and textures.
+    fn metal_rough(
+        &mut self,
+        pbr: &gltf::material::PbrMetallicRoughness,
+        name: &str,
+    ) -> Result<Pbr, SceneError> {
+        let (file, warnings) = (self.file, &mut self.builder.warnings);
+        let mut check = |field, values: &[f32]| {
+            factors::checked(file, name, field, values, 0.0..=1.0, warnings)
+        };
+        let base_color = check("baseColorFactor", &pbr.base_color_factor())?;
+        let metallic = check("metallicFactor", &[pbr.metallic_factor()])?[0];
+        let roughness = check("roughnessFactor", &[pbr.roughness_factor()])?[0];
+        let base_color_texture = self.texture(
+            pbr.base_color_texture().as_ref().map(reference),
+            "base color",
+            true,
+            name,
+        )?;
+        let metallic_roughness_texture = self.texture(
+            pbr.metallic_roughness_texture().as_ref().map(reference),
+            "metallicRoughness",
+            false,
+            name,
+        )?;
+        Ok(Pbr {
+            base_color_factor: [base_color[0], base_color[1], base_color[2], base_color[3]],
+            base_color_texture,
+            metallic_factor: metallic,
+            roughness_factor: roughness,
+            metallic_roughness_texture,
+        })
+    }
+
     /// `texture` with its texture coordinate set and its KHR_texture_transform object, as
     /// the material's `slot` texture, its image decoded as `srgb` color or linear data;
-    /// `None` without one, or (with a warning) when it uses another set of texture
-    /// coordinates than TEXCOORD_0 and TEXCOORD_1, the ones loaded. A transform that cannot
-    /// be read is ignored with a warning.
+    /// `None` without one, or as [`Loader::sampled`] leaves it out.
     fn texture(
         &mut self,
         texture: Option<(gltf::Texture, u32, Option<&serde_json::Value>)>,
@@ -113,9 +133,24 @@ impl Loader<'_> {
         srgb: bool,
         material: &str,
     ) -> Result<Option<TextureRef>, SceneError> {
-        let Some((texture, mut tex_coord, transform)) = texture else {
+        let Some(sampled) = self.sampled(texture, slot, material) else {
             return Ok(None);
         };
+        let image = self.image(sampled.image, srgb, slot, material)?;
+        Ok(Some(sampled.with_image(image)))
+    }
+
+    /// How `texture`, with its texture coordinate set and its KHR_texture_transform object,
+    /// is sampled as the material's `slot` texture; `None` without one, or (with a warning)
+    /// when it uses another set of texture coordinates than TEXCOORD_0 and TEXCOORD_1, the
+    /// ones loaded. A transform that cannot be read is ignored with a warning.
+    pub(super) fn sampled(
+        &mut self,
+        texture: Option<(gltf::Texture, u32, Option<&serde_json::Value>)>,
+        slot: &'static str,
+        material: &str,
+    ) -> Option<Sampled> {
+        let (texture, mut tex_coord, transform) = texture?;
         let mut uv_transform = TextureRef::IDENTITY_UV;
         match transform.map(texture_transform::read) {
             None => {}
@@ -133,14 +168,50 @@ impl Loader<'_> {
                 "{material}: {slot} texture uses TEXCOORD_{tex_coord}, only TEXCOORD_0 and \
                  TEXCOORD_1 are loaded; texture ignored"
             ));
-            return Ok(None);
+            return None;
         }
-        Ok(Some(TextureRef {
-            image: self.image(texture.source().index(), srgb, slot, material)?,
+        Some(Sampled {
+            image: texture.source().index(),
             sampler: sampler(&texture.sampler()),
             tex_coord,
             uv_transform,
-        }))
+        })
+    }
+}
+
+/// A material's metallic-roughness parameters: pbrMetallicRoughness's, or those converted
+/// from KHR_materials_pbrSpecularGlossiness (see `spec_gloss`).
+pub(super) struct Pbr {
+    pub base_color_factor: [f32; 4],
+    pub base_color_texture: Option<TextureRef>,
+    pub metallic_factor: f32,
+    pub roughness_factor: f32,
+    pub metallic_roughness_texture: Option<TextureRef>,
+}
+
+/// A texture reference as the material samples it: a glTF image and how it is sampled.
+pub(super) struct Sampled {
+    /// The glTF image's index.
+    pub image: usize,
+    pub sampler: Sampler,
+    pub tex_coord: u32,
+    pub uv_transform: [[f32; 2]; 3],
+}
+
+impl Sampled {
+    /// The reference to scene texture `image`, sampled so.
+    pub(super) fn with_image(&self, image: usize) -> TextureRef {
+        TextureRef {
+            image,
+            sampler: self.sampler,
+            tex_coord: self.tex_coord,
+            uv_transform: self.uv_transform,
+        }
+    }
+
+    /// Whether `other` is sampled at the same texture coordinates (set and transform).
+    pub(super) fn same_uvs(&self, other: &Sampled) -> bool {
+        self.tex_coord == other.tex_coord && self.uv_transform == other.uv_transform
     }
 }
 
@@ -157,14 +228,22 @@ pub(super) fn name(material: &gltf::Material) -> String {
 pub(super) fn images(material: &gltf::Material) -> Vec<(usize, &'static str, bool)> {
     let pbr = material.pbr_metallic_roughness();
     let image = |texture: gltf::Texture| texture.source().index();
+    // A specular-glossiness material's diffuse and specularGlossiness images are baked
+    // into textures of its own (counted by `reserve`); its metallic-roughness fallback is
+    // not used.
+    let metal_rough = material.pbr_specular_glossiness().is_none();
     [
         (
-            pbr.base_color_texture().map(|t| image(t.texture())),
+            pbr.base_color_texture()
+                .filter(|_| metal_rough)
+                .map(|t| image(t.texture())),
             "base color",
             true,
         ),
         (
-            pbr.metallic_roughness_texture().map(|t| image(t.texture())),
+            pbr.metallic_roughness_texture()
+                .filter(|_| metal_rough)
+                .map(|t| image(t.texture())),
             "metallicRoughness",
             false,
         ),
@@ -193,7 +272,7 @@ pub(super) fn images(material: &gltf::Material) -> Vec<(usize, &'static str, boo
 const TRANSFORM: &str = "KHR_texture_transform";
 
 /// A texture reference's texture, texture coordinate set and transform extension.
-fn reference<'a>(
+pub(super) fn reference<'a>(
     info: &'a gltf::texture::Info<'a>,
 ) -> (gltf::Texture<'a>, u32, Option<&'a serde_json::Value>) {
     (

@@ -5,30 +5,35 @@
 //! normals generated when missing), TEXCOORD_0 and _1, COLOR_0 and TANGENT (MikkTSpace
 //! tangents generated when a normal texture needs them; application attributes,
 //! `_`-prefixed, are ignored as the spec allows); metallic-roughness materials with their
-//! base-color, metallicRoughness, normal, occlusion and emissive textures, emission, alpha
-//! OPAQUE/MASK, double-sided and the extensions in [`extensions::IMPLEMENTED`]
-//! (KHR_texture_transform per texture); cameras; KHR_lights_punctual lights. What is not:
-//! BLEND (drawn opaque), points and lines, skins, morph targets and animations, each with a
-//! warning in [`Scene::warnings`].
+//! base-color, metallicRoughness, normal, occlusion and emissive textures (specular-glossiness
+//! ones converted to them, see [`spec_gloss`]), emission, alpha OPAQUE/MASK, double-sided
+//! and the extensions in [`extensions::IMPLEMENTED`] (KHR_texture_transform per texture,
+//! EXT_mesh_gpu_instancing's instances as placements, see [`instancing`]); cameras;
+//! KHR_lights_punctual lights. What is not: BLEND (drawn opaque), points and lines, skins,
+//! morph targets and animations, each with a warning in [`Scene::warnings`].
 
 mod accessor;
 mod camera;
 mod document;
+mod drawn;
 mod extensions;
 mod factors;
 mod glb;
 mod image;
+mod instancing;
 mod light;
 mod material;
 mod nodes;
 mod primitive;
 mod reserve;
 mod sandbox;
+mod spec_gloss;
 mod texture_transform;
 mod transforms;
 mod uri;
 mod uri_error;
 mod validate;
+mod world;
 
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
@@ -141,12 +146,28 @@ impl Budget {
 }
 
 impl Loader<'_> {
-    /// Adds what one placed node carries: mesh primitives, its camera if no camera was found
-    /// yet, its light.
+    /// Adds what one placed node carries: mesh primitives (once, or once per instance of
+    /// EXT_mesh_gpu_instancing), its camera if no camera was found yet, its light.
     fn place(&mut self, placed: &nodes::Placed) -> Result<(), SceneError> {
         if let Some(mesh) = placed.node.mesh() {
+            // Instances are read only where they place something: what `reserve` counted.
+            let worlds = match &placed.instances {
+                Some(_) if drawn::primitives(&mesh).next().is_none() => Vec::new(),
+                Some(instances) => {
+                    instances.worlds(self.file, &self.buffers, &placed.node, placed.world)?
+                }
+                None => vec![placed.world],
+            };
             for primitive in mesh.primitives() {
-                self.primitive(&mesh, &primitive, placed.world)?;
+                match drawn::is_drawn(&primitive) {
+                    true => {
+                        for &world in &worlds {
+                            self.primitive(&mesh, &primitive, world)?;
+                        }
+                    }
+                    // Skipped with a warning, once per node rather than once per instance.
+                    false => self.primitive(&mesh, &primitive, placed.world)?,
+                }
             }
         }
         if let (None, Some(camera)) = (&self.builder.camera, placed.node.camera()) {

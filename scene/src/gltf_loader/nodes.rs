@@ -4,13 +4,17 @@ use std::path::Path;
 
 use glam::DMat4;
 
+use super::{instancing, world};
 use crate::error::label;
-use crate::{SceneError, MAX_COORDINATE};
+use crate::SceneError;
 
 /// A node reached from a scene root, with its object-to-world transform.
 pub(super) struct Placed<'a> {
     pub node: gltf::Node<'a>,
     pub world: DMat4,
+    /// Its EXT_mesh_gpu_instancing attributes, checked but not read: its mesh is placed
+    /// once per instance instead of once.
+    pub instances: Option<instancing::Instances<'a>>,
 }
 
 /// Every node of `scene`, depth first, parents before children, siblings in file order (so
@@ -19,9 +23,11 @@ pub(super) struct Placed<'a> {
 /// in f64 so large translations survive. Iterative, so deep hierarchies cannot overflow the
 /// stack.
 ///
-/// A world transform with an entry beyond ±[`MAX_COORDINATE`] (a translation or scale of
-/// 1e39, or many large scales multiplied) is an error naming the node, rather than a frame
-/// that is empty because f32 overflowed on the way to the GPU.
+/// A world transform beyond what a scene can hold is an error naming the node (see
+/// [`world::check`]).
+///
+/// A node's EXT_mesh_gpu_instancing attributes are checked here too (see
+/// [`instancing::declared`]), so that placements are counted before anything is read.
 ///
 /// glTF requires the hierarchy to be a forest; a node reached twice (a cycle or a shared child)
 /// is an error rather than an endless or duplicated traversal.
@@ -44,25 +50,15 @@ pub(super) fn flatten<'a>(
             });
         }
         let world = parent * local[node.index()];
-        let largest = world
-            .to_cols_array()
-            .into_iter()
-            .map(f64::abs)
-            .fold(0.0, f64::max);
-        // `f64::max` skips NaN, hence the finiteness test (inf * 0 composes to NaN).
-        if !world.is_finite() || largest > MAX_COORDINATE {
-            return Err(SceneError::InvalidNode {
-                file: file.to_owned(),
-                node: label("node", node.index(), node.name()),
-                reason: format!(
-                    "its world transform has an entry of {largest:e}, beyond ±{MAX_COORDINATE:e} \
-                     (the largest coordinate a scene may have)"
-                ),
-            });
-        }
+        world::check(file, &node, &world, "its")?;
+        let instances = instancing::declared(file, document, &node)?;
         let children: Vec<_> = node.children().collect();
         stack.extend(children.into_iter().rev().map(|child| (child, world)));
-        placed.push(Placed { node, world });
+        placed.push(Placed {
+            node,
+            world,
+            instances,
+        });
     }
     Ok(placed)
 }

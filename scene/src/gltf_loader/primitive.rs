@@ -3,7 +3,7 @@
 use glam::DMat4;
 use gltf::mesh::{Mode, Semantic};
 
-use super::{accessor, Loader};
+use super::{accessor, drawn, Loader};
 use crate::error::label;
 use crate::{flat_shaded, generate_tangents, Mesh, SceneError, Vertex};
 
@@ -22,10 +22,7 @@ impl Loader<'_> {
             primitive: primitive.index(),
         };
         let mode = primitive.mode();
-        if matches!(
-            mode,
-            Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip
-        ) {
+        if !drawn::is_drawn(primitive) {
             self.builder.warnings.push(format!(
                 "{} primitive {}: mode {mode:?} is not triangles; skipped",
                 site.mesh, site.primitive

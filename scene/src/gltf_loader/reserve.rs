@@ -1,5 +1,6 @@
 //! What a scene will hold, counted before anything is built: every placement of every mesh
-//! (from its accessors' counts) and every image (from its header), taken from the scene's
+//! (by a node, or by each instance of an instanced node; from its accessors' counts), every
+//! image (from its header) and every texture baked from images, taken from the scene's
 //! memory budget first, so that a small file asking for more than the limit fails before
 //! the memory is spent (a 20 MB GLB placing a 1M-triangle mesh 1,000 times asks for 50 GB).
 
@@ -8,7 +9,7 @@ use std::collections::{HashMap, HashSet};
 use gltf::mesh::{Mode, Semantic};
 
 use super::nodes::Placed;
-use super::{material, Loader};
+use super::{drawn, material, Loader};
 use crate::error::label;
 use crate::{SceneError, Vertex, MAX_MESHES};
 
@@ -17,22 +18,30 @@ impl Loader<'_> {
     /// materials name will hold, in the order they are built; fails on the first that does
     /// not fit, naming it.
     pub(super) fn reserve(&mut self, placed: &[Placed<'_>]) -> Result<(), SceneError> {
-        // Placements per mesh, in the order meshes are first placed.
+        // Placements per mesh (one per placing node, or one per instance of an instanced
+        // one), in the order meshes are first placed.
         let mut meshes: Vec<(gltf::Mesh, u64)> = Vec::new();
         let mut slot_of: HashMap<usize, usize> = HashMap::new();
-        for mesh in placed.iter().filter_map(|p| p.node.mesh()) {
+        for placed in placed {
+            let Some(mesh) = placed.node.mesh() else {
+                continue;
+            };
+            let copies = placed.instances.as_ref().map_or(1, |i| i.count as u64);
+            if copies == 0 {
+                continue;
+            }
             match slot_of.get(&mesh.index()) {
-                Some(&slot) => meshes[slot].1 += 1,
+                Some(&slot) => meshes[slot].1 += copies,
                 None => {
                     slot_of.insert(mesh.index(), meshes.len());
-                    meshes.push((mesh, 1));
+                    meshes.push((mesh, copies));
                 }
             }
         }
         // Every drawn primitive of every placement is a mesh of the scene.
         let mesh_count = meshes
             .iter()
-            .map(|(mesh, count)| drawn(mesh).count() as u64 * count)
+            .map(|(mesh, count)| drawn::primitives(mesh).count() as u64 * count)
             .fold(0, u64::saturating_add);
         if mesh_count > MAX_MESHES as u64 {
             return Err(SceneError::TooManyMeshes {
@@ -42,14 +51,14 @@ impl Loader<'_> {
             });
         }
         for (mesh, count) in &meshes {
-            let copy = drawn(mesh)
+            let copy = drawn::primitives(mesh)
                 .map(|p| primitive_bytes(&p))
                 .fold(0, u64::saturating_add);
             let why = match count {
                 1 => "building it".to_owned(),
                 n => format!(
-                    "placing it {n} times ({copy} bytes each: every node placing a mesh gets \
-                     its own copy)"
+                    "placing it {n} times ({copy} bytes each: every node or instance placing a \
+                     mesh gets its own copy)"
                 ),
             };
             self.budget
@@ -62,7 +71,7 @@ impl Loader<'_> {
         }
         let mut materials = HashSet::new();
         for (mesh, _) in &meshes {
-            for primitive in drawn(mesh) {
+            for primitive in drawn::primitives(mesh) {
                 let material = primitive.material();
                 if !materials.insert(material.index()) {
                     continue;
@@ -71,6 +80,7 @@ impl Loader<'_> {
                 for (image, slot, srgb) in material::images(&material) {
                     self.reserve_image(image, srgb, slot, &name)?;
                 }
+                self.reserve_spec_gloss(&material, &name)?;
             }
         }
         Ok(())
@@ -78,16 +88,32 @@ impl Loader<'_> {
 
     /// Takes from the budget what glTF image `index` decoded as `srgb` color or linear data
     /// will hold (RGBA8 and its mips), read from its header, unless that was taken already.
-    /// Returns the header's size.
     pub(super) fn reserve_image(
         &mut self,
         index: usize,
         srgb: bool,
         slot: &'static str,
         material: &str,
+    ) -> Result<(), SceneError> {
+        let (width, height) = self.image_size(index, slot, material)?;
+        if self.reserved.insert((index, srgb)) {
+            let why = format!("decoding it ({width}x{height})");
+            if let Err(reason) = self.budget.take(texture_bytes(width, height), &why) {
+                return Err(self.image_error(index, slot, material, reason));
+            }
+        }
+        Ok(())
+    }
+
+    /// The size glTF image `index` declares in its header (only the header is read: a few
+    /// kilobytes of PNG can hold gigabytes of pixels).
+    pub(super) fn image_size(
+        &mut self,
+        index: usize,
+        slot: &'static str,
+        material: &str,
     ) -> Result<(u32, u32), SceneError> {
         let invalid = |loader: &Self, reason| loader.image_error(index, slot, material, reason);
-        // Only the header is read: a few kilobytes of PNG can hold gigabytes of pixels.
         let size = match self.encoded(index) {
             Ok(encoded) => ::image::ImageReader::new(std::io::Cursor::new(encoded))
                 .with_guessed_format()
@@ -95,27 +121,13 @@ impl Loader<'_> {
                 .and_then(|reader| reader.into_dimensions().map_err(|e| e.to_string())),
             Err(e) => return Err(e.into_named_error(|reason| invalid(self, reason))),
         };
-        let (width, height) = size.map_err(|e| invalid(self, format!("cannot decode: {e}")))?;
-        if self.reserved.insert((index, srgb)) {
-            // RGBA8, plus a third for the mip chain.
-            let bytes = u64::from(width) * u64::from(height) * 4 / 3 * 4;
-            let why = format!("decoding it ({width}x{height})");
-            if let Err(reason) = self.budget.take(bytes, &why) {
-                return Err(invalid(self, reason));
-            }
-        }
-        Ok((width, height))
+        size.map_err(|e| invalid(self, format!("cannot decode: {e}")))
     }
 }
 
-/// The primitives of `mesh` that are drawn: triangles, strips and fans.
-fn drawn<'a>(mesh: &gltf::Mesh<'a>) -> impl Iterator<Item = gltf::Primitive<'a>> {
-    mesh.primitives().filter(|p| {
-        !matches!(
-            p.mode(),
-            Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip
-        )
-    })
+/// What an RGBA8 texture of `width` x `height` holds with its mip chain (a third more).
+pub(super) fn texture_bytes(width: u32, height: u32) -> u64 {
+    u64::from(width) * u64::from(height) * 4 / 3 * 4
 }
 
 /// What one copy of `primitive` keeps, from its accessors' counts: its vertices (one per

@@ -7,10 +7,12 @@ use base64::Engine;
 use serde_json::{json, Value};
 
 /// glTF component type codes.
-pub const FLOAT: u32 = 5126;
+pub const BYTE: u32 = 5120;
+pub const UNSIGNED_BYTE: u32 = 5121;
+pub const SHORT: u32 = 5122;
 pub const UNSIGNED_SHORT: u32 = 5123;
 pub const UNSIGNED_INT: u32 = 5125;
-pub const SHORT: u32 = 5122;
+pub const FLOAT: u32 = 5126;
 
 /// A glTF document under construction. Top-level arrays are created on first push.
 pub struct Gltf {
