@@ -80,6 +80,7 @@ mod particles;
 mod pipeline_plans;
 mod post_fxaa;
 mod post_ssao;
+mod smooth_surfaces;
 mod soak;
 mod specialise_analysis;
 mod specialise_depth;

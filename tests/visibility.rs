@@ -410,8 +410,8 @@ fn the_compute_raster_s_tile_size_does_not_change_the_image() {
 fn listed_edge_pixels_add_up_every_batch_of_lights() {
     listed_edge_pixels_agree(
         "builtin:lights?count=200",
-        ("params: (shading: adaptive, tile: 16),", "tiles of 16"),
-        ("params: (shading: adaptive, tile: 8),", "tiles of 8"),
+        ("params: (shading: surfaces, tile: 16),", "tiles of 16"),
+        ("params: (shading: surfaces, tile: 8),", "tiles of 8"),
     );
 }
 
@@ -424,8 +424,8 @@ fn listed_edge_pixels_add_up_every_batch_of_lights() {
 fn listed_edge_pixels_lit_by_every_light_match_their_runs_culling() {
     listed_edge_pixels_agree(
         "builtin:lights?count=64",
-        ("params: (shading: adaptive, cull: true),", "culled"),
-        ("params: (shading: adaptive, cull: false),", "unculled"),
+        ("params: (shading: surfaces, cull: true),", "culled"),
+        ("params: (shading: surfaces, cull: false),", "unculled"),
     );
 }
 
@@ -436,7 +436,7 @@ fn listed_edge_pixels_agree(scene: &'static str, a: (&'static str, &str), b: (&'
     let gpu = gpu();
     let frame = |params: &'static str| {
         Render::new(COMPUTE, scene, (320, 180))
-            .edit("params: (shading: adaptive),", params)
+            .edit("params: (shading: surfaces),", params)
             .read(&gpu, &["color", "debug.edges"])
     };
     let (first, second) = (frame(a.0), frame(b.0));

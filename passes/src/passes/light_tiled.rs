@@ -8,7 +8,8 @@
 //!  params: (
 //!      edges: (detector: compare),   // common/edge_detection.rs: the same
 //!                                    // detectors and thresholds as edge_stencil
-//!      shading: per_sample,          // or adaptive: each fragment once
+//!      shading: per_sample,          // or adaptive: each fragment once; or
+//!                                    // surfaces: each smooth surface once
 //!      resolve: box, exposure: 1.0,  // or resolve: tonemapped (resolve.rs)
 //!      tile: 16,                     // pixels per tile side
 //!      cull: true,                   // false: every light in every tile
@@ -40,8 +41,13 @@
 //!   scene's geometry (group 2) and their materials sampled from the scene's texture
 //!   table (group 3, made on the first frame: GpuScene::texture_table_group), edge pixels
 //!   are those whose samples show different triangles, and
-//!   `shading: adaptive` shades each triangle once, exactly (pipelines/visibility_msaa_4x.ron
-//!   on CPU adapters);
+//!   `shading: adaptive` shades each triangle once, exactly, and `shading: surfaces`
+//!   each smooth surface once: the triangles of one mesh that share a vertex with a
+//!   normal and lie within the `compare` detector's depth threshold of each other at the
+//!   pixel are one fragment, each rebuilt at its own samples and their surfaces averaged
+//!   for one lighting, so that a dense mesh's pixels are not edges for its triangles
+//!   alone (visibility_read.wgsl's smooth_join and joined_gsample;
+//!   pipelines/visibility_msaa_4x.ron on CPU adapters);
 //! - `samples` instead of `ids` and `depth`: a visibility buffer rasterised in compute
 //!   (passes/visibility_compute.rs), depth and ID per sample in one graph buffer (group 1,
 //!   binding 8), whose size gives the sample count (pipelines/visibility_msaa_4x.ron on
@@ -135,6 +141,12 @@ pub enum EdgeShading {
     /// identical are one fragment, as the G-buffer pass shades once per pixel and
     /// triangle.
     Adaptive,
+    /// As `adaptive`, and where the pass reads a visibility buffer, samples of different
+    /// triangles of one smooth surface are one fragment too (visibility_read.wgsl's
+    /// smooth_join): at most one shading per surface a pixel shows, however dense its
+    /// triangles. A G-buffer's fragments are as `adaptive` finds them (its samples hold
+    /// no triangles to join).
+    Surfaces,
 }
 
 /// What `light_tiled` writes.
@@ -346,7 +358,7 @@ impl Plugin for LightTiled {
             ("DETECTOR", detector),
             (
                 "ADAPTIVE",
-                f64::from(u8::from(params.shading == EdgeShading::Adaptive)),
+                f64::from(u8::from(params.shading != EdgeShading::PerSample)),
             ),
             ("CULL", f64::from(u8::from(params.cull))),
             ("VIEW", params.view.constant()),
@@ -356,6 +368,12 @@ impl Plugin for LightTiled {
             ),
             ("EXPOSURE", f64::from(exposure)),
         ]);
+        if layout.surfaces.visibility() {
+            constants.push((
+                "SMOOTH_SURFACES",
+                f64::from(u8::from(params.shading == EdgeShading::Surfaces)),
+            ));
+        }
         let dispatch = TiledDispatch {
             source: shader.source().to_owned(),
             entries,

@@ -34,6 +34,12 @@ fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
     return g;
 }
 
+// The surface of the fragment led by sample `s`: a G-buffer's samples of one fragment
+// hold what it wrote, so sample `s`'s (visibility_read.wgsl's joins triangles).
+fn load_fragment(pixel: vec2<i32>, s: u32, mask: u32) -> GSample {
+    return load_gsample(pixel, s);
+}
+
 // A G-buffer's samples carry no surface IDs: what one fragment wrote is found by
 // comparing values (light_tiled.wgsl's same_fragment).
 const SURFACE_IDS: bool = false;

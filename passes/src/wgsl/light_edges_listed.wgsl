@@ -9,7 +9,7 @@
 //
 // Composed after light_tiled.wgsl, a visibility buffer's reader (`one_surface`,
 // `sample_id`, `sample_depth`) and visibility_read.wgsl (`read_samples`, `leaders_of`,
-// `fragment_of`, `rebuilt`).
+// `joined_gsample`).
 
 const EDGES_LISTED: bool = true;
 
@@ -224,7 +224,7 @@ fn listed_pixel(index: u32) -> ListedPixel {
     var p: ListedPixel;
     p.pixel = vec2<i32>(vec2<u32>(packed & 0xffffu, packed >> 16u));
     p.samples = read_samples(p.pixel);
-    p.leaders = leaders_of(p.samples.ids);
+    p.leaders = leaders_of(p.pixel, p.samples);
     for (var s = 0u; s < SAMPLES; s++) {
         p.fragments |= u32(source_of(p.leaders, true, s) == s) << s;
     }
@@ -234,6 +234,6 @@ fn listed_pixel(index: u32) -> ListedPixel {
 // fragment_surface_of for listed pixel `p`: its fragment led by sample `s`, covering the
 // samples of `mask`.
 fn listed_fragment(p: ListedPixel, s: u32, mask: u32) -> EntrySurface {
-    let g = rebuilt(fragment_of(p.pixel, p.samples.ids, s));
+    let g = joined_gsample(p.pixel, p.samples.ids, s, mask);
     return entry_of(p.pixel, s, g, mean_point(p.pixel, mask, p.samples.depths));
 }

@@ -26,7 +26,8 @@
 // edge_detect.wgsl, then a generated block defining TILE (the tile's side in pixels),
 // EDGE_CAPACITY (the tile's edge-list entries: every sample of every pixel but one, or 1
 // where edge pixels are listed) and OutTex (the output's storage texture type), and
-// holding the G-buffer's layout: `load_gsample`, `fragment_leaders` and `sample_lit`
+// holding the G-buffer's layout: `load_gsample`, `load_fragment`, `fragment_leaders` and
+// `sample_lit`
 // (gbuffer_read.wgsl, or visibility_read.wgsl with geometry.wgsl), `load_view_depth`
 // (view_depth_stored.wgsl, or view_depth_from_depth.wgsl for the lean G-buffer and the
 // visibility buffer) and `emitted` (emitted_hdr.wgsl, emitted_rgb9e5.wgsl or
@@ -203,7 +204,7 @@ fn entry_surface(origin: vec2<u32>, code: u32) -> EntrySurface {
 
 // The surface of `pixel`'s fragment covering the samples of `mask`, sample `s` among them.
 fn fragment_surface_of(pixel: vec2<i32>, s: u32, mask: u32) -> EntrySurface {
-    return entry_of(pixel, s, load_gsample(pixel, s), fragment_surface(pixel, mask));
+    return entry_of(pixel, s, load_fragment(pixel, s, mask), fragment_surface(pixel, mask));
 }
 
 // Sample `s`'s fragment of `pixel`, `g`, as the surface at point `p`.
@@ -411,7 +412,7 @@ fn cs_light_tiled(
                 edge = edge || leader != 0u;
             }
         }
-        g0 = load_gsample(pixel, 0u);
+        g0 = load_fragment(pixel, 0u, source_mask(leaders, true, 0u));
         emits[0] = emitted(pixel, 0u, g0);
         lit |= u32((g0.flags & FLAG_LIT) != 0u);
     } else if inside {

@@ -15,6 +15,14 @@
 // Samples of one triangle are one fragment, exactly (light_tiled.wgsl's same_fragment).
 const SURFACE_IDS: bool = true;
 
+// Whether samples of triangles joining into one smooth surface are one fragment too
+// (smooth_join; light_tiled's `shading: surfaces`).
+override SMOOTH_SURFACES: bool = false;
+// smooth_join's thresholds: edge_detect.wgsl's defaults for a G-buffer's samples (view
+// depths within 1% of the farther; faces bending by less than acos 0.95, 18 degrees).
+const SMOOTH_DEPTH: f32 = 0.01;
+const SMOOTH_NORMAL: f32 = 0.99;
+
 // Triangle `id` (+ 1) as seen through pixel coordinate `at`: its attributes and material
 // (textures from the scene's texture table, filtered for the pixel's footprint there) as
 // the G-buffer pass computes them.
@@ -136,12 +144,80 @@ fn sample_fragment(pixel: vec2<i32>, s: u32) -> SampleFragment {
 
 // sample_fragment from the pixel's IDs, read before.
 fn fragment_of(pixel: vec2<i32>, ids: array<u32, SAMPLES>, s: u32) -> SampleFragment {
-    // ids[s], without indexing the array by a variable (which may put it in memory).
+    let id = id_at(ids, s);
+    return SampleFragment(id, mean_position(pixel, showing(ids, id)));
+}
+
+// ids[s], without indexing the array by a variable (which may put it in memory).
+fn id_at(ids: array<u32, SAMPLES>, s: u32) -> u32 {
     var id = 0u;
     for (var k = 0u; k < SAMPLES; k++) {
         id = select(id, ids[k], k == s);
     }
-    return SampleFragment(id, mean_position(pixel, showing(ids, id)));
+    return id;
+}
+
+// The surface of `pixel`'s fragment led by sample `s`, covering the samples of `mask`
+// (light_tiled.wgsl's source_mask). Without SMOOTH_SURFACES, or where the pixel shows one
+// triangle, it is sample `s`'s triangle rebuilt (load_gsample); else joined_gsample.
+fn load_fragment(pixel: vec2<i32>, s: u32, mask: u32) -> GSample {
+    if !SMOOTH_SURFACES || one_surface(pixel) {
+        return load_gsample(pixel, s);
+    }
+    return joined_gsample(pixel, pixel_ids(pixel), s, mask);
+}
+
+// load_fragment from the pixel's IDs, read before. Where smooth_join has joined other
+// triangles into the fragment, each is rebuilt at the mean position of its own samples
+// there, as it would be alone, and the surfaces are averaged, weighted by the samples each
+// covers (the normal renormalised; flags and ID the leader's): the one lighting then
+// sees what the samples showed (vertex colours and textures that vary across the
+// triangles included), and loses only the lighting's own curvature over the pixel, as a
+// pixel shaded once anywhere does.
+fn joined_gsample(pixel: vec2<i32>, ids: array<u32, SAMPLES>, s: u32, mask: u32) -> GSample {
+    let lead = id_at(ids, s);
+    var led = GSample();
+    var sum = GSample();
+    var done = 0u;
+    // One rebuild site, in the loop: a shader inlines each, and this one is large.
+    for (var k = 0u; k < SAMPLES; k++) {
+        if ((mask & ~done) & (1u << k)) != 0u {
+            let id = id_at(ids, k);
+            let covered = showing(ids, id) & mask;
+            done |= covered;
+            let g = rebuilt(SampleFragment(id, mean_position(pixel, covered)));
+            if id == lead {
+                led = g;
+            }
+            sum = weighted(sum, g, f32(countOneBits(covered)));
+        }
+    }
+    if (showing(ids, lead) & mask) == mask {
+        return led;
+    }
+    let n = f32(countOneBits(mask));
+    var mean = led;
+    mean.albedo = sum.albedo / n;
+    mean.occlusion = sum.occlusion / n;
+    mean.normal = unit_normal(sum.normal);
+    mean.metallic = sum.metallic / n;
+    mean.roughness = sum.roughness / n;
+    mean.view_depth = sum.view_depth / n;
+    mean.emission = sum.emission / n;
+    return mean;
+}
+
+// `sum` plus `w` times the blendable channels of `g` (joined_gsample's mean).
+fn weighted(sum: GSample, g: GSample, w: f32) -> GSample {
+    var out = sum;
+    out.albedo += w * g.albedo;
+    out.occlusion += w * g.occlusion;
+    out.normal += w * g.normal;
+    out.metallic += w * g.metallic;
+    out.roughness += w * g.roughness;
+    out.view_depth += w * g.view_depth;
+    out.emission += w * g.emission;
+    return out;
 }
 
 // Fragment `f` as a G-buffer sample. Nothing drawn: view depth 0, as a G-buffer's.
@@ -158,30 +234,104 @@ fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
     return rebuilt(sample_fragment(pixel, s));
 }
 
-// For each sample, the first sample showing the same triangle (itself where no earlier
-// one does), four bits per sample as light_tiled.wgsl's leader_of reads them: a pixel's
-// fragments from its IDs alone, so each triangle is rebuilt once.
+// For each sample, the first sample of the same fragment (itself where no earlier one
+// is), four bits per sample as light_tiled.wgsl's leader_of reads them: a pixel's
+// fragments from its IDs and depths alone, so each is rebuilt once. Samples of one
+// triangle are one fragment; with SMOOTH_SURFACES, so are samples of triangles that
+// join into one smooth surface (smooth_join).
 fn fragment_leaders(pixel: vec2<i32>) -> u32 {
     if one_surface(pixel) {
         return 0u;
     }
-    return leaders_of(pixel_ids(pixel));
+    return leaders_of(pixel, read_samples(pixel));
 }
 
-// fragment_leaders from the pixel's IDs, read before.
-fn leaders_of(ids: array<u32, SAMPLES>) -> u32 {
+// fragment_leaders from the pixel's samples, read before. A sample joins the fragment of
+// the first earlier sample showing its triangle, or failing that of the first earlier
+// sample whose triangle joins its own smoothly: a pixel of a dense mesh shows triangles
+// that touch only through a third, and the fragment grows along the surface.
+fn leaders_of(pixel: vec2<i32>, samples: PixelSamples) -> u32 {
+    // Each sample's view depth, for smooth_join, computed once.
+    var depths: array<f32, SAMPLES>;
+    if SMOOTH_SURFACES {
+        for (var s = 0u; s < SAMPLES; s++) {
+            depths[s] = dot(unproject(sample_position(pixel, s), samples.depths[s]), camera.forward);
+        }
+    }
     var leaders = 0u;
     for (var s = 0u; s < SAMPLES; s++) {
         var leader = s;
         for (var j = 0u; j < s; j++) {
-            if ids[j] == ids[s] {
-                leader = j;
+            let lead = (leaders >> (4u * j)) & 15u;
+            if samples.ids[j] == samples.ids[s] {
+                leader = lead;
+                break;
+            }
+            if SMOOTH_SURFACES && smooth_join(samples.ids[j], samples.ids[s], depths[j], depths[s]) {
+                leader = lead;
                 break;
             }
         }
         leaders |= leader << (4u * s);
     }
     return leaders;
+}
+
+// Whether triangles `id_a` and `id_b` (IDs + 1, different ones), seen at view depths
+// `depth_a` and `depth_b` by two samples of a pixel, are one smooth surface, so that one
+// lighting serves both (light_tiled's `shading: surfaces`; joined_gsample says how):
+// triangles of one mesh (one material) sharing a vertex whose normal is given (a zero
+// normal asks for the face normal: such triangles are facets, each its own fragment), at
+// view depths within the G-buffer edge detector's threshold of each other (1%: a fan's
+// far side seen past its shared centre is not joined), and whose faces bend by less than
+// its normal threshold (a thin box's two sides lit once with their normals averaged
+// would not light as each side does). Their interpolated normals meet at the shared
+// vertex, and a pixel of a dense mesh is then no edge for its triangles alone. Cheapest
+// test first: this runs at every pixel showing more than one triangle.
+fn smooth_join(id_a: u32, id_b: u32, depth_a: f32, depth_b: f32) -> bool {
+    if id_a == 0u || id_b == 0u {
+        return false;
+    }
+    if abs(depth_a - depth_b) > SMOOTH_DEPTH * max(depth_a, depth_b) {
+        return false;
+    }
+    let mesh_index = mesh_of_triangle(id_a - 1u);
+    if mesh_of_triangle(id_b - 1u) != mesh_index {
+        return false;
+    }
+    let base = meshes[mesh_index].base_vertex;
+    let first_a = 3u * (id_a - 1u);
+    let first_b = 3u * (id_b - 1u);
+    var shared_normal = false;
+    for (var i = 0u; i < 3u; i++) {
+        let vertex = index_words[first_a + i];
+        for (var k = 0u; k < 3u; k++) {
+            if index_words[first_b + k] == vertex && given_normal(u32(i32(vertex) + base)) {
+                shared_normal = true;
+            }
+        }
+    }
+    if !shared_normal {
+        return false;
+    }
+    let face_a = face_normal(first_a, meshes[mesh_index]);
+    let face_b = face_normal(first_b, meshes[mesh_index]);
+    return dot(face_a, face_b) >= SMOOTH_NORMAL * length(face_a) * length(face_b);
+}
+
+// The direction of the face (unnormalised, object space) of the triangle of `mesh` whose
+// indices start at `first`.
+fn face_normal(first: u32, mesh: MeshData) -> vec3<f32> {
+    let p0 = pull_position(first, mesh);
+    return cross(pull_position(first + 1u, mesh) - p0, pull_position(first + 2u, mesh) - p0);
+}
+
+// Whether vertex `v` of the scene's vertex buffer has a normal (not zero: geometry.wgsl).
+fn given_normal(v: u32) -> bool {
+    let w = v * VERTEX_WORDS + 3u;
+    let bits = vec3<u32>(vertex_words[w], vertex_words[w + 1u], vertex_words[w + 2u]);
+    // Either sign of zero.
+    return any((bits & vec3<u32>(0x7fffffffu)) != vec3<u32>(0u));
 }
 
 // Whether sample `s` shows a surface the light passes shade: its triangle's material's
