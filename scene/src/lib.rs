@@ -36,6 +36,7 @@
 #![deny(missing_docs)]
 
 pub mod analysis;
+mod animation;
 mod assets;
 mod bounds;
 mod builder;
@@ -49,6 +50,7 @@ mod material;
 mod mesh;
 mod mips;
 mod model;
+mod node_tree;
 mod normals;
 mod particles;
 mod prefilter;
@@ -64,6 +66,7 @@ use std::path::Path;
 /// building a [`Scene`] in code use the same version.
 pub use glam;
 
+pub use animation::{Animation, AnimationId, Channel, Interpolation, Keyframes};
 pub use assets::{AssetPolicy, DEFAULT_MAX_ASSET_BYTES, DEFAULT_MAX_SCENE_BYTES};
 pub use bounds::{Aabb, BoundingSphere, MAX_COORDINATE};
 pub use camera::{
@@ -78,6 +81,7 @@ pub use lighting::{Lighting, DEFAULT_ENVIRONMENT_INTENSITY, HEADLIGHT_LUX};
 pub use material::{AlphaMode, Material};
 pub use mesh::{Mesh, Vertex, MAX_MESHES};
 pub use model::Scene;
+pub use node_tree::{LocalTransform, MeshPlacement, Node, NodeId, NodeTree, Trs};
 pub use normals::flat_shaded;
 pub use particles::{billboard_pixels, check_emitters, Particle, ParticleEmitter, MAX_PARTICLES};
 pub use prefilter::{
