@@ -3,7 +3,7 @@
 
 use glam::{DVec3, Vec3};
 
-use super::clip::{Animation, AnimationId};
+use super::clip::Animation;
 use crate::{Aabb, Mesh, Scene};
 
 /// Poses sampled between two consecutive key times (the keys themselves included once):
@@ -20,23 +20,24 @@ const MAX_POSES: usize = 4096;
 /// (a fast spin can leave a box corner a little outside), conservative at them.
 pub(crate) fn swept_bounds(scene: &Scene) -> Option<Aabb> {
     let boxes: Vec<Option<Aabb>> = scene.meshes.iter().map(object_bounds).collect();
-    let ids = (0..scene.animations.len()).map(AnimationId);
-    ids.flat_map(|id| {
-        sample_times(scene.animation(id))
-            .into_iter()
-            .map(move |time| (id, time))
-    })
-    .flat_map(|(id, time)| {
-        let transforms = scene.animated_transforms(id, time);
-        let corners: Vec<DVec3> = transforms
-            .iter()
-            .zip(&boxes)
-            .filter_map(|(transform, b)| b.map(|b| (transform, b)))
-            .flat_map(|(transform, b)| b.corners().map(|c| transform.transform_point3(c)))
-            .collect();
-        Aabb::from_points(corners)
-    })
-    .reduce(|a, b| a.union(&b))
+    scene
+        .animation_ids()
+        .flat_map(|id| {
+            sample_times(scene.animation(id))
+                .into_iter()
+                .map(move |time| (id, time))
+        })
+        .flat_map(|(id, time)| {
+            let transforms = scene.animated_transforms(id, time);
+            let corners: Vec<DVec3> = transforms
+                .iter()
+                .zip(&boxes)
+                .filter_map(|(transform, b)| b.map(|b| (transform, b)))
+                .flat_map(|(transform, b)| b.corners().map(|c| transform.transform_point3(c)))
+                .collect();
+            Aabb::from_points(corners)
+        })
+        .reduce(|a, b| a.union(&b))
 }
 
 /// The mesh's object-space box.

@@ -29,6 +29,11 @@ impl Scene {
             })
     }
 
+    /// Every animation's id, in file order.
+    pub fn animation_ids(&self) -> impl Iterator<Item = AnimationId> {
+        (0..self.animations.len()).map(AnimationId)
+    }
+
     /// The animation `id` names.
     pub fn animation(&self, id: AnimationId) -> &Animation {
         &self.animations[id.0]
