@@ -121,7 +121,8 @@ pub struct FrameInputs {
     /// One pose per light of `Scene::lights`, in its order.
     pub lights: Vec<LightPose>,
     /// One object-to-world transform per mesh of `Scene::meshes` (glTF: per mesh node
-    /// primitive), in its order.
+    /// primitive), in its order: the scene's own, or an engine's, or a glTF animation's
+    /// pose at a time (`Scene::animated_transforms`).
     pub transforms: Vec<DMat4>,
     /// A factor on the exposure the pipeline tone maps with (the file's, the override's
     /// or the metered one); 1 leaves it as it is. The `tonemap` pass reads it from the
