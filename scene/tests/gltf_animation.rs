@@ -5,6 +5,7 @@
 use crate::allocations::allocated_by;
 use crate::common::{temp_dir, Gltf, FLOAT, UNSIGNED_SHORT};
 use glam::{DMat4, DVec3};
+use rgraph_scene::Interpolation::{CubicSpline, Linear};
 use rgraph_scene::{Scene, SceneError};
 use serde_json::json;
 
@@ -309,4 +310,22 @@ fn counts_beyond_the_buffer_are_refused_before_anything_is_allocated() {
         )
     );
     assert!(bytes < 1 << 20, "loading allocated {bytes} bytes");
+}
+
+#[test]
+fn the_animated_cubes_fixture_loads_one_channel_per_interpolation() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../tests/fixtures/AnimatedCubes/AnimatedCubes.gltf");
+    let scene = Scene::from_gltf(&path).expect("the fixture loads");
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let id = scene.find_animation("dance").expect("its animation");
+    let dance = scene.animation(id);
+    let kinds: Vec<_> = dance.channels.iter().map(|c| c.interpolation).collect();
+    assert_eq!(kinds, [Linear, Linear, CubicSpline]);
+    assert_eq!((dance.start, dance.end), (0.0, 2.0));
+    // The moon (mesh 2: meshes follow the nodes depth first, and it is the green cube's
+    // child) has turned with the cube by 90° about +Y at 0.5 s:
+    // from 1.5 right of the cube to 1.5 behind it.
+    let moon = scene.animated_transforms(id, 0.5)[2].w_axis.truncate();
+    assert_near(moon, DVec3::new(0.0, 0.0, -3.5), "the moon at 0.5 s");
 }
