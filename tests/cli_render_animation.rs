@@ -151,7 +151,7 @@ fn an_unknown_animation_is_an_error_listing_the_scene_s_animations() {
     let single = ["render", "--scene", scene_arg, "--animation", "0", "--time", "1", "--frames", "3", "--out", pattern_arg];
     rgraph(&single)
         .expect(2)
-        .stderr_has("--frames 3 covers a span of times, --time T0..T1");
+        .stderr_has("--frames 3 covers a span of times: give --time T0..T1");
     #[rustfmt::skip]
     let reversed = ["render", "--scene", scene_arg, "--animation", "0", "--time", "2..1", "--frames", "3", "--out", pattern_arg];
     rgraph(&reversed)

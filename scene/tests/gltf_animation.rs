@@ -310,6 +310,27 @@ fn counts_beyond_the_buffer_are_refused_before_anything_is_allocated() {
         )
     );
     assert!(bytes < 1 << 20, "loading allocated {bytes} bytes");
+
+    // A count whose triple (CUBICSPLINE's values) overflows is refused, not wrapped.
+    let mut gltf = mover();
+    gltf.animation(
+        "hop",
+        0,
+        "translation",
+        "CUBICSPLINE",
+        &[0.0],
+        &[[0.0; 3]; 3],
+    );
+    gltf.json["accessors"][1]["count"] = json!(u64::MAX / 2);
+    assert_eq!(
+        error_of("overflow", &gltf),
+        format!(
+            "animation 0 \"hop\" channel 0: output accessor 2 has 3 elements, but its input \
+             accessor 1 has {} key times and it needs three per key time (in-tangent, value, \
+             out-tangent) for CUBICSPLINE",
+            u64::MAX / 2
+        )
+    );
 }
 
 #[test]

@@ -177,8 +177,8 @@ impl Reader<'_> {
             ),
             _ => (1, "one per key time"),
         };
-        // `keys` is at most the file's size, so this cannot overflow.
-        if output.count() != keys * per_key {
+        // Declared counts, not yet checked against the buffers: the product may overflow.
+        if keys.checked_mul(per_key) != Some(output.count()) {
             return Err(format!(
                 "output accessor {} has {} elements, but its input accessor {} has {keys} key \
                  times and it needs {why}",

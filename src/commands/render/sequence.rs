@@ -30,9 +30,8 @@ pub fn check_time(args: &RenderArgs) -> Result<(), RenderError> {
              takes one time, e.g. --time {start}"
         ))),
         Some(Time::At(time)) if frames > 1 => Err(RenderError::Time(format!(
-            "--frames {frames} covers a span of times, --time T0..T1 (e.g. --time \
-             {time}..{}); --time {time} poses one frame",
-            time + 1.0
+            "--frames {frames} covers a span of times: give --time T0..T1, or no --time for \
+             the animation's first to last key time (--time {time} poses one frame)"
         ))),
         _ => Ok(()),
     }
