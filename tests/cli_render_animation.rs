@@ -13,9 +13,10 @@ use crate::gltf_writer::Gltf;
 
 const SIZE: u32 = 64;
 
-/// A unit cube centred on node 0 ("box"), whose animation "slide" moves it LINEARly from
-/// x = -3 at 0 s to x = 3 at 2 s, and a second animation "spin" (so the list has two).
-fn sliding_cube(dir: &Path) -> PathBuf {
+/// A unit cube centred on node 0 ("box", at rest at the origin), whose animation "slide"
+/// moves it with `interpolation` from x = -3 at 0 s to x = 3 at `end` s, and a second
+/// animation "spin" (so the list has two), written as `dir/cube.gltf`.
+pub fn sliding_cube(dir: &Path, interpolation: &str, end: f32) -> PathBuf {
     let mut gltf = Gltf::default();
     let corners: Vec<[f32; 3]> = (0..8)
         .map(|i| [i & 1, i >> 1 & 1, i >> 2 & 1].map(|bit| bit as f32 - 0.5))
@@ -42,7 +43,14 @@ fn sliding_cube(dir: &Path) -> PathBuf {
     );
     gltf.root(json!({ "name": "box", "mesh": 0 }));
     let slide = [[-3.0, 0.0, 0.0], [3.0, 0.0, 0.0]];
-    gltf.animation("slide", 0, "translation", "LINEAR", &[0.0, 2.0], &slide);
+    gltf.animation(
+        "slide",
+        0,
+        "translation",
+        interpolation,
+        &[0.0, end],
+        &slide,
+    );
     let spin = [[0.0, 0.0, 0.0, 1.0], [0.0, 1.0, 0.0, 0.0]];
     gltf.animation("spin", 0, "rotation", "LINEAR", &[0.0, 1.0], &spin);
     let path = dir.join("cube.gltf");
@@ -80,7 +88,7 @@ fn projected(scene: &Scene, point: DVec3) -> (f64, f64) {
 #[test]
 fn an_animated_cube_is_drawn_where_its_animation_puts_it_at_each_frame() {
     let dir = tempfile::tempdir().expect("a temporary directory");
-    let scene_path = sliding_cube(dir.path());
+    let scene_path = sliding_cube(dir.path(), "LINEAR", 2.0);
     let scene_arg = scene_path.to_str().expect("temp paths are UTF-8");
     let pattern = dir.path().join("slide-%04d.png");
     let size = SIZE.to_string();
@@ -111,7 +119,7 @@ fn an_animated_cube_is_drawn_where_its_animation_puts_it_at_each_frame() {
 #[test]
 fn an_unknown_animation_is_an_error_listing_the_scene_s_animations() {
     let dir = tempfile::tempdir().expect("a temporary directory");
-    let scene_path = sliding_cube(dir.path());
+    let scene_path = sliding_cube(dir.path(), "LINEAR", 2.0);
     let scene_arg = scene_path.to_str().expect("temp paths are UTF-8");
     let out = dir.path().join("out.png");
     let out_arg = out.to_str().expect("temp paths are UTF-8");
