@@ -2,7 +2,8 @@
 //!
 //! A [`Scene`] is plain data ready for upload: object-space vertex arrays with f64 world
 //! transforms, metallic-roughness materials, decoded RGBA8 textures, punctual lights in world
-//! space and one camera. [`Scene::load`] takes either a path to a `.gltf` / `.glb` file or
+//! space, one camera, and a glTF file's node animations ([`Scene::animated_transforms`]
+//! poses the meshes at a time). [`Scene::load`] takes either a path to a `.gltf` / `.glb` file or
 //! `builtin:NAME` (see [`builtin_names`]), optionally with parameters: `builtin:lights?count=1024`.
 //!
 //! Nothing here touches the GPU or prints: problems that still allow rendering come back as
