@@ -28,3 +28,7 @@ render alpha_blend_mode_test tests/fixtures/AlphaBlendModeTest/AlphaBlendModeTes
 render depth_of_field_exposure_1 "$models/DepthOfFieldExample/DepthOfFieldExample.glb"
 render depth_of_field_exposure_auto "$models/DepthOfFieldExample/DepthOfFieldExample.glb" \
     --exposure auto
+# An animation as a strip of frames: 0, 0.5, 1 and 1.5 s (docs/reference/scenes.md).
+./target/release/rgraph render --scene tests/fixtures/AnimatedCubes/AnimatedCubes.gltf \
+    --animation dance --time 0..1.5 --frames 4 --width 480 --height 270 \
+    --out "$out/animated_cubes_%04d.png" 2>&1 | grep -E "warning|error" >&2 || true

@@ -82,8 +82,9 @@ pub enum Command {
     /// opens the adapter, compiles for it, renders, reads back and writes the PNG
     /// atomically (never a partial file). Progress and a per-pass timing table go to
     /// stderr; stdout gets only the written path. With --frames N, the frames run through
-    /// one executor, the camera orbiting by --orbit, one PNG each (one path per line on
-    /// stdout) and one timing line each on stderr.
+    /// one executor, the camera orbiting by --orbit and the meshes posed by --animation
+    /// over --time, one PNG each (one path per line on stdout) and one timing line each on
+    /// stderr.
     ///
     /// Exit status: 0 when the PNG was written, 1 when the pipeline, scene or view is
     /// invalid or the frame fails on the device (each problem named), 2 for usage, I/O
@@ -93,7 +94,9 @@ pub enum Command {
         rgraph render --scene builtin:spheres --width 640 --height 360 --view edges --out edges.png\n  \
         rgraph render --pipeline pipelines/deferred_msaa_4x.ron --scene model.glb \\\n      \
         --tonemap aces --exposure 1.5 --adapter gpu --out model.png\n  \
-        rgraph render --frames 36 --orbit 350 --out orbit/%04d.png")]
+        rgraph render --frames 36 --orbit 350 --out orbit/%04d.png\n  \
+        rgraph render --scene walk.glb --animation walk --time 0..2 --frames 48 \\\n      \
+        --out walk/%04d.png")]
     Render(RenderArgs),
     /// Measure every pipeline on every scene: GPU time per pass and frame, memory, edge
     /// work, and image error against a supersampled reference.
@@ -274,6 +277,25 @@ pub struct RenderArgs {
     /// frames give 360 * (N - 1) / N.
     #[arg(long, value_name = "DEGREES", default_value_t = 0.0, value_parser = parse_degrees, allow_negative_numbers = true)]
     pub orbit: f64,
+    /// Pose the scene by its animation NAME (or the one at INDEX, from 0) at --time: its
+    /// meshes are drawn where the animation puts them. An unknown one is an error listing
+    /// the scene's animations.
+    #[arg(long, value_name = "NAME|INDEX")]
+    pub animation: Option<String>,
+    /// With --animation, seconds: the one frame's time (T; default the animation's start),
+    /// or with --frames N above 1 the span the frames cover evenly (T0..T1, frame 0 at T0,
+    /// the last at T1; default the animation's first to last key time).
+    #[arg(long, value_name = "T|T0..T1", requires = "animation", value_parser = parse_time, allow_negative_numbers = true)]
+    pub time: Option<Time>,
+}
+
+/// `--time`: one time, or a span of them, in seconds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Time {
+    /// One frame's time.
+    At(f64),
+    /// The first and last frames' times, in order.
+    Span(f64, f64),
 }
 
 /// What `rgraph view` shows, and how long.
@@ -663,6 +685,24 @@ fn parse_background(text: &str) -> Result<Background, String> {
     match parsed {
         Ok(c) if c.len() == 3 => Ok(Background::Color([c[0], c[1], c[2]])),
         _ => Err(format!("{expected}, got \"{text}\"")),
+    }
+}
+
+fn parse_time(text: &str) -> Result<Time, String> {
+    let seconds = |part: &str| match part.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() => Ok(t),
+        _ => Err(format!(
+            "expected seconds T or a span T0..T1, e.g. 1.5 or 0..2, got \"{text}\""
+        )),
+    };
+    match text.split_once("..") {
+        None => Ok(Time::At(seconds(text)?)),
+        Some((start, end)) => match (seconds(start)?, seconds(end)?) {
+            (start, end) if end < start => Err(format!(
+                "the span {text} ends ({end} s) before it starts ({start} s)"
+            )),
+            (start, end) => Ok(Time::Span(start, end)),
+        },
     }
 }
 

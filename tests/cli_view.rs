@@ -11,6 +11,7 @@ use std::time::{Duration, Instant};
 
 use x11rb::connection::Connection as _;
 
+use crate::cli_render_animation::sliding_cube;
 use crate::cli_support::rgraph;
 
 /// Where Debian's `xvfb` package installs the server.
@@ -174,6 +175,18 @@ fn an_orbited_camera_is_presented_as_rendered() {
         "frame_%04d.png",
         "frame_0001.png",
     );
+}
+
+/// The scene's first animation plays: a cube the animation holds at x = -3 for 1000 s
+/// (STEP; at rest it is at the origin) is presented as `render --animation 0 --time 0`
+/// draws it.
+#[test]
+fn the_first_animation_poses_the_presented_frames() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let cube = sliding_cube(dir.path(), "STEP", 1000.0);
+    let scene = ["--scene", cube.to_str().expect("temp paths are UTF-8")];
+    let posed = [&scene[..], &["--animation", "0", "--time", "0"]].concat();
+    screenshot_equals_render(&scene, &posed, "render.png", "render.png");
 }
 
 /// stderr of a running viewer, line by line, kept for failure messages.

@@ -34,6 +34,7 @@ mod cli_assets;
 mod cli_bench;
 mod cli_compare;
 mod cli_render;
+mod cli_render_animation;
 mod cli_render_frames;
 mod cli_render_samples;
 mod cli_render_scale;

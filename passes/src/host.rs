@@ -16,8 +16,9 @@
 //! invalidates nothing on the device: geometry, materials, textures and environment maps
 //! stay uploaded, plans stay compiled and pipelines stay built. The scene is drawn
 //! camera-relative, so a moved camera rewrites the per-mesh model matrices, the lights
-//! and the camera uniform, a few hundred bytes per mesh and light; a moved object
-//! rewrites the same per-mesh data; a moved light the light data; new particle emitters
+//! and the camera uniform, a few hundred bytes per mesh and light; a moved object (an
+//! animation's, say) rewrites only its own per-mesh data (the 512-byte pieces of the
+//! buffer that changed); a moved light the light data; new particle emitters
 //! (a new `Arc`), or a moved camera, make the particle passes sort and write their
 //! particles again, in a larger buffer when there are more than it holds. (The fragment light
 //! passes build a pipeline per light-volume geometry when a frame first needs it: the
@@ -120,7 +121,8 @@ pub struct FrameInputs {
     /// One pose per light of `Scene::lights`, in its order.
     pub lights: Vec<LightPose>,
     /// One object-to-world transform per mesh of `Scene::meshes` (glTF: per mesh node
-    /// primitive), in its order.
+    /// primitive), in its order: the scene's own, or an engine's, or a glTF animation's
+    /// pose at a time (`Scene::animated_transforms`).
     pub transforms: Vec<DMat4>,
     /// A factor on the exposure the pipeline tone maps with (the file's, the override's
     /// or the metered one); 1 leaves it as it is. The `tonemap` pass reads it from the

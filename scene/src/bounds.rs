@@ -57,6 +57,18 @@ impl Aabb {
         (self.min + self.max) * 0.5
     }
 
+    /// Its eight corners.
+    pub fn corners(&self) -> [DVec3; 8] {
+        let pick = |bit: bool, min: f64, max: f64| if bit { max } else { min };
+        std::array::from_fn(|i| {
+            DVec3::new(
+                pick(i & 1 != 0, self.min.x, self.max.x),
+                pick(i & 2 != 0, self.min.y, self.max.y),
+                pick(i & 4 != 0, self.min.z, self.max.z),
+            )
+        })
+    }
+
     /// Edge lengths per axis.
     pub fn size(&self) -> DVec3 {
         self.max - self.min

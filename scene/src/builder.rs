@@ -2,6 +2,8 @@
 
 use glam::DVec3;
 
+use super::animation::{swept_bounds, Animation};
+use super::node_tree::NodeTree;
 use super::{
     Aabb, BoundingSphere, Camera, Light, Material, Mesh, ParticleEmitter, Scene, SceneError,
     TextureImage, MAX_COORDINATE,
@@ -18,6 +20,10 @@ pub(crate) struct SceneBuilder {
     pub camera: Option<Camera>,
     pub emitters: Vec<ParticleEmitter>,
     pub warnings: Vec<String>,
+    /// The nodes placing the meshes, with one placement per mesh pushed, when
+    /// `animations` move them (else empty).
+    pub nodes: NodeTree,
+    pub animations: Vec<Animation>,
     /// Whether a scene without triangles is what the source asked for (a glTF scene listing
     /// no nodes) rather than a sign that everything was skipped; see [`SceneBuilder::finish`].
     pub allow_empty: bool,
@@ -35,6 +41,8 @@ impl SceneBuilder {
             camera: None,
             emitters: Vec::new(),
             warnings: Vec::new(),
+            nodes: NodeTree::default(),
+            animations: Vec::new(),
             allow_empty: false,
         }
     }
@@ -45,14 +53,23 @@ impl SceneBuilder {
         self.materials.len() - 1
     }
 
-    /// Drops meshes without triangles, computes the bounds and, when no camera was set, frames
-    /// the vertices' sphere around their center with [`Camera::framing`]. Fails with [`SceneError::EmptyScene`] when no triangle is
+    /// Drops meshes without triangles (and their placements in `nodes`), computes the
+    /// bounds (swept over the animations' poses, see [`swept_bounds`]) and, when no camera
+    /// was set, frames the vertices' sphere around their center with [`Camera::framing`],
+    /// grown to hold the swept bounds. Fails with [`SceneError::EmptyScene`] when no triangle is
     /// left, unless [`SceneBuilder::allow_empty`] is set (the loader has warned): then the
     /// bounds are the origin and the frame shows only the background. Fails with
     /// [`SceneError::TooFar`] when the bounds, a light or the camera lie beyond
     /// ±[`MAX_COORDINATE`] (or are not finite), which would otherwise render an empty frame.
     pub fn finish(mut self) -> Result<Scene, SceneError> {
-        self.meshes.retain(|m| m.triangle_count() > 0);
+        if self.nodes.meshes.is_empty() {
+            self.meshes.retain(|m| m.triangle_count() > 0);
+        } else {
+            let placed = std::mem::take(&mut self.meshes).into_iter();
+            let placed = placed.zip(std::mem::take(&mut self.nodes.meshes));
+            (self.meshes, self.nodes.meshes) =
+                placed.filter(|(m, _)| m.triangle_count() > 0).unzip();
+        }
         let bounds = self
             .meshes
             .iter()
@@ -63,16 +80,17 @@ impl SceneBuilder {
             None if self.allow_empty => Aabb::from_points([DVec3::ZERO]).expect("one point"),
             None => return Err(SceneError::EmptyScene { scene: self.name }),
         };
-        self.check_extent("the geometry", bounds.largest_coordinate())?;
+        check_extent(&self.name, "the geometry", bounds.largest_coordinate())?;
         for light in &self.lights {
             let what = format!("the position of {}", light.name);
-            self.check_extent(&what, light.position.abs().max_element())?;
+            check_extent(&self.name, &what, light.position.abs().max_element())?;
         }
         if let Some(camera) = &self.camera {
             let what = format!("the position of the camera ({})", camera.name);
-            self.check_extent(&what, camera.position.abs().max_element())?;
+            check_extent(&self.name, &what, camera.position.abs().max_element())?;
         }
-        let scene = Scene {
+        let framed = self.camera.is_none();
+        let mut scene = Scene {
             camera: self.camera.unwrap_or_else(|| {
                 let points = self.meshes.iter().flat_map(Mesh::world_positions);
                 Camera::framing(&BoundingSphere::around(bounds.center(), points))
@@ -86,22 +104,36 @@ impl SceneBuilder {
             environment: None,
             emitters: self.emitters,
             bounds,
+            nodes: self.nodes,
+            animations: self.animations,
             warnings: self.warnings,
         };
+        if let Some(swept) = swept_bounds(&scene) {
+            scene.bounds = bounds.union(&swept);
+            let what = "the geometry, as the animations move it";
+            check_extent(&scene.name, what, scene.bounds.largest_coordinate())?;
+            if framed {
+                let points = scene.meshes.iter().flat_map(Mesh::world_positions);
+                let points = points.chain(swept.corners());
+                let sphere = BoundingSphere::around(scene.bounds.center(), points);
+                scene.camera = Camera::framing(&sphere);
+            }
+        }
         scene.check_particles()?;
         Ok(scene)
     }
+}
 
-    /// Fails when `value` (a largest coordinate magnitude) is beyond [`MAX_COORDINATE`] or NaN.
-    fn check_extent(&self, what: &str, value: f64) -> Result<(), SceneError> {
-        if value <= MAX_COORDINATE {
-            return Ok(());
-        }
-        Err(SceneError::TooFar {
-            scene: self.name.clone(),
-            what: what.to_owned(),
-            value,
-            max: MAX_COORDINATE,
-        })
+/// Fails when `value` (a largest coordinate magnitude of `what` in scene `scene`) is beyond
+/// [`MAX_COORDINATE`] or NaN.
+fn check_extent(scene: &str, what: &str, value: f64) -> Result<(), SceneError> {
+    if value <= MAX_COORDINATE {
+        return Ok(());
     }
+    Err(SceneError::TooFar {
+        scene: scene.to_owned(),
+        what: what.to_owned(),
+        value,
+        max: MAX_COORDINATE,
+    })
 }

@@ -222,6 +222,31 @@ pub enum SceneError {
         reason: String,
     },
 
+    /// An animation channel or its sampler is not one glTF allows: its target, its
+    /// interpolation, or its input (key times) or output (values) accessor.
+    #[error("{file}: {animation} channel {channel}: {reason}")]
+    InvalidAnimation {
+        /// The glTF file, as given.
+        file: PathBuf,
+        /// The animation, by index and name.
+        animation: String,
+        /// The channel's index in its animation.
+        channel: usize,
+        /// What is wrong, naming the accessor where one is at fault.
+        reason: String,
+    },
+
+    /// An animation asked for by name or index that the scene does not have.
+    #[error("scene \"{scene}\" has no animation \"{given}\" (its animations: {available})")]
+    UnknownAnimation {
+        /// The scene, by name.
+        scene: String,
+        /// The name or index asked for.
+        given: String,
+        /// The scene's animations, `INDEX "NAME"` comma-separated, or why there are none.
+        available: String,
+    },
+
     /// Something of the scene lies beyond [`MAX_COORDINATE`](super::MAX_COORDINATE) from the
     /// origin, or its bounds are not finite.
     #[error(

@@ -2,7 +2,8 @@
 //!
 //! A [`Scene`] is plain data ready for upload: object-space vertex arrays with f64 world
 //! transforms, metallic-roughness materials, decoded RGBA8 textures, punctual lights in world
-//! space and one camera. [`Scene::load`] takes either a path to a `.gltf` / `.glb` file or
+//! space, one camera, and a glTF file's node animations ([`Scene::animated_transforms`]
+//! poses the meshes at a time). [`Scene::load`] takes either a path to a `.gltf` / `.glb` file or
 //! `builtin:NAME` (see [`builtin_names`]), optionally with parameters: `builtin:lights?count=1024`.
 //!
 //! Nothing here touches the GPU or prints: problems that still allow rendering come back as
@@ -36,6 +37,7 @@
 #![deny(missing_docs)]
 
 pub mod analysis;
+mod animation;
 mod assets;
 mod bounds;
 mod builder;
@@ -49,6 +51,7 @@ mod material;
 mod mesh;
 mod mips;
 mod model;
+mod node_tree;
 mod normals;
 mod particles;
 mod prefilter;
@@ -64,6 +67,7 @@ use std::path::Path;
 /// building a [`Scene`] in code use the same version.
 pub use glam;
 
+pub use animation::{Animation, AnimationId, Channel, Interpolation, Keyframes};
 pub use assets::{AssetPolicy, DEFAULT_MAX_ASSET_BYTES, DEFAULT_MAX_SCENE_BYTES};
 pub use bounds::{Aabb, BoundingSphere, MAX_COORDINATE};
 pub use camera::{
@@ -78,6 +82,7 @@ pub use lighting::{Lighting, DEFAULT_ENVIRONMENT_INTENSITY, HEADLIGHT_LUX};
 pub use material::{AlphaMode, Material};
 pub use mesh::{Mesh, Vertex, MAX_MESHES};
 pub use model::Scene;
+pub use node_tree::{LocalTransform, MeshPlacement, Node, NodeId, NodeTree, Trs};
 pub use normals::flat_shaded;
 pub use particles::{billboard_pixels, check_emitters, Particle, ParticleEmitter, MAX_PARTICLES};
 pub use prefilter::{

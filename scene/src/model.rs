@@ -2,7 +2,10 @@
 //! `Scene::load` (scene/mod.rs), from glTF files (gltf_loader/) or built-in scenes
 //! (procedural/), both through `SceneBuilder`.
 
-use super::{Aabb, Camera, Environment, Light, Material, Mesh, ParticleEmitter, TextureImage};
+use super::{
+    Aabb, Animation, Camera, Environment, Light, Material, Mesh, NodeTree, ParticleEmitter,
+    TextureImage,
+};
 
 /// Everything a renderer needs to draw one view of a scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,8 +33,17 @@ pub struct Scene {
     pub emitters: Vec<ParticleEmitter>,
     /// The file's first camera in scene order, else [`Camera::framing`] of the bounds.
     pub camera: Camera,
-    /// Exact world-space bounds of all vertices.
+    /// World-space bounds of all vertices: exact at rest, and grown to hold the meshes'
+    /// object-space boxes wherever [`Scene::animations`] move them (sampled at and between
+    /// their key times).
     pub bounds: Aabb,
+    /// The node hierarchy placing the meshes, which the animations move: a glTF file's,
+    /// when it has animations; empty otherwise.
+    pub nodes: NodeTree,
+    /// A glTF file's animations of node translations, rotations and scales (none for
+    /// built-in scenes); [`Scene::animated_transforms`] samples one into the meshes'
+    /// transforms for a frame. Skins and morph targets are not animated (the loader warns).
+    pub animations: Vec<Animation>,
     /// Things the loader ignored or changed, each naming the object concerned.
     pub warnings: Vec<String>,
 }

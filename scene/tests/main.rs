@@ -8,6 +8,7 @@ mod common;
 mod builtin_scale;
 mod builtin_scenes;
 mod framing;
+mod gltf_animation;
 mod gltf_audit;
 mod gltf_errors;
 mod gltf_features;

@@ -15,6 +15,7 @@ const LAYERS: Layers<'_> = &[
     (
         "scene",
         &[
+            "animation",
             "assets",
             "bounds",
             "builder",
@@ -28,6 +29,7 @@ const LAYERS: Layers<'_> = &[
             "mesh",
             "mips",
             "model",
+            "node_tree",
             "normals",
             "particles",
             "prefilter",

@@ -1,5 +1,6 @@
 //! `rgraph render`: one frame, headless, written as an 8-bit sRGB PNG; or `--frames N`
-//! through one executor with the camera orbiting (`--orbit`), one PNG each.
+//! through one executor with the camera orbiting (`--orbit`) and the meshes posed by an
+//! animation (`--animation`, `--time`), one PNG each.
 //!
 //! Stages, in the order that finds cheap mistakes before expensive work: the arguments,
 //! the scene, the pipeline and its view, then the device, the compile for that device,
@@ -9,6 +10,7 @@ pub(super) mod error;
 pub(super) mod output;
 mod progress;
 mod saturation;
+mod sequence;
 mod summary;
 pub(super) mod view;
 
@@ -16,9 +18,8 @@ use std::sync::Arc;
 
 use image::RgbaImage;
 use rgraph_core::gpu::{resident_bytes, AdapterChoice, DeviceObjects};
-use rgraph_passes::{FrameInputs, Host, Overrides};
+use rgraph_passes::Overrides;
 use rgraph_scene::analysis::Features as SceneFeatures;
-use rgraph_scene::glam::DVec3;
 use rgraph_scene::{AlphaMode, Scene};
 
 use super::CommandError;
@@ -26,6 +27,7 @@ use crate::cli::{AssetArgs, RenderArgs};
 use crate::frame::{host, FrameError, Pipeline, Session, Specialise};
 use error::RenderError;
 use progress::Progress;
+use sequence::Sequence;
 
 /// Renders and prints each written path on stdout (the only thing there), one a line.
 pub fn run(args: &RenderArgs) -> Result<(), CommandError> {
@@ -36,6 +38,7 @@ pub fn run(args: &RenderArgs) -> Result<(), CommandError> {
 /// no list of its frames, which grew by about 95 bytes a frame (7.8 MiB over 100,000).
 fn render(args: &RenderArgs) -> Result<(), RenderError> {
     let paths = output::FramePaths::new(&args.out, args.frames)?;
+    sequence::check_time(args)?;
     // One frame reads back and writes as stages of its own; a sequence does both per
     // frame within its render stage, with a timing line each.
     let single = args.frames == 1;
@@ -56,6 +59,7 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
         false => Specialise::ToScene,
     };
     let host = host(scene, overrides);
+    let sequence = Sequence::new(&host, args)?;
     let params = args.frame.samples.params();
     let pipeline = Pipeline::load(
         &args.frame.pipeline,
@@ -109,16 +113,13 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
 
     progress.stage(match single {
         true => "upload and render".to_string(),
-        false => format!(
-            "render {} frames, the camera orbiting {}°",
-            args.frames, args.orbit
-        ),
+        false => sequence.describe(&host, args.frames, args.orbit),
     });
-    let orbit = Orbit::new(&host, args);
     let mut first = None;
     for index in 0..args.frames {
-        if index > 0 {
-            host.set_frame(orbit.inputs(index))?;
+        // Frame 0's inputs are the scene's own unless an animation poses it.
+        if index > 0 || args.animation.is_some() {
+            host.set_frame(sequence.inputs(&host, index))?;
         }
         let report = prepared.run(1)?.remove(0);
         if single {
@@ -147,34 +148,6 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
         eprintln!("{}", summary::text(prepared.plan(), &report, specialised));
     }
     Ok(())
-}
-
-/// The camera of each frame of `--frames N --orbit DEGREES`: the scene's camera turned
-/// about the vertical axis through the scene's bounds centre, evenly from 0 (frame 0)
-/// to DEGREES (the last frame).
-struct Orbit {
-    start: FrameInputs,
-    center: DVec3,
-    /// Radians per frame.
-    step: f64,
-}
-
-impl Orbit {
-    fn new(host: &Host, args: &RenderArgs) -> Orbit {
-        let steps = f64::from(args.frames.saturating_sub(1).max(1));
-        Orbit {
-            start: FrameInputs::clone(&host.frame()),
-            center: host.scene.bounds.center(),
-            step: args.orbit.to_radians() / steps,
-        }
-    }
-
-    fn inputs(&self, index: u32) -> FrameInputs {
-        FrameInputs {
-            camera: (self.start.camera).orbited(self.center, self.step * f64::from(index)),
-            ..self.start.clone()
-        }
-    }
 }
 
 /// Warnings the first frame's image earns: a size the flags did not set, and a blown-out

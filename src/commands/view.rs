@@ -9,6 +9,7 @@
 //! graph on screen, so an invalid edit leaves the last good graph running.
 
 mod app;
+mod playback;
 mod present;
 mod title;
 mod watch;

@@ -5,7 +5,7 @@
 //! identity transform, so world positions are exactly the corners given here.
 
 use rgraph_scene::glam::{DMat4, DVec3};
-use rgraph_scene::{Aabb, Camera, Light, Material, Mesh, Scene, Vertex};
+use rgraph_scene::{Aabb, Camera, Light, Material, Mesh, NodeTree, Scene, Vertex};
 
 /// A flat convex polygon as drawn: its world corners, counter-clockwise seen from the
 /// side its normal points to (the front).
@@ -128,6 +128,8 @@ impl Parts {
             emitters: Vec::new(),
             camera,
             bounds,
+            nodes: NodeTree::default(),
+            animations: Vec::new(),
             warnings: Vec::new(),
         }
     }

@@ -26,6 +26,7 @@
 //! it or the frame's camera changed (one output size per frame and device is assumed).
 
 mod camera;
+mod changed;
 mod environment;
 mod geometry;
 mod layout;
@@ -305,9 +306,7 @@ impl GpuScene {
             ),
         ];
         for (buffer, new, old) in writes {
-            if new != old {
-                queue.write_buffer(buffer, 0, new);
-            }
+            changed::write_changed(queue, buffer, new, old);
         }
         GpuScene {
             upload: upload.clone(),

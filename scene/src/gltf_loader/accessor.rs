@@ -5,7 +5,7 @@
 //! reason instead. It converts any component type to numbers as the glTF spec says, which also
 //! covers KHR_mesh_quantization, and applies sparse substitution.
 
-use gltf::accessor::{sparse::IndexType, DataType};
+use gltf::accessor::{sparse::IndexType, DataType, Dimensions};
 
 /// Most elements an accessor without a buffer view (all zeros plus sparse values) may have.
 const MAX_VIEWLESS_ELEMENTS: usize = 1 << 24;
@@ -208,5 +208,34 @@ impl Layout {
         } else {
             value
         }
+    }
+}
+
+/// An accessor type as glTF spells it.
+pub(super) fn type_name(dimensions: Dimensions) -> &'static str {
+    match dimensions {
+        Dimensions::Scalar => "SCALAR",
+        Dimensions::Vec2 => "VEC2",
+        Dimensions::Vec3 => "VEC3",
+        Dimensions::Vec4 => "VEC4",
+        Dimensions::Mat2 => "MAT2",
+        Dimensions::Mat3 => "MAT3",
+        Dimensions::Mat4 => "MAT4",
+    }
+}
+
+/// A component type as glTF spells it, "normalized " before it when it is.
+pub(super) fn component_name(data_type: DataType, normalized: bool) -> String {
+    let name = match data_type {
+        DataType::I8 => "BYTE",
+        DataType::U8 => "UNSIGNED_BYTE",
+        DataType::I16 => "SHORT",
+        DataType::U16 => "UNSIGNED_SHORT",
+        DataType::U32 => "UNSIGNED_INT",
+        DataType::F32 => "FLOAT",
+    };
+    match normalized {
+        true => format!("normalized {name}"),
+        false => name.to_owned(),
     }
 }

@@ -14,7 +14,8 @@ use glam::{DMat4, DQuat, DVec3, DVec4};
 use gltf::accessor::{DataType, Dimensions};
 use serde_json::Value;
 
-use super::{accessor, world};
+use super::accessor::{self, component_name, type_name};
+use super::world;
 use crate::error::label;
 use crate::SceneError;
 
@@ -155,12 +156,13 @@ pub(super) fn declared<'a>(
 }
 
 impl Instances<'_> {
-    /// Each instance's world transform, `world * T * R * S`, in instance order. Fails,
+    /// Each instance's transform, `T * R * S`, in instance order: its world transform is
+    /// `world * T * R * S`. Fails,
     /// naming `node` and the attribute, on data that cannot be read and on a value that is
     /// not finite; and, as for nodes, on a world transform beyond
     /// [`MAX_COORDINATE`](crate::MAX_COORDINATE). A zero rotation (invalid) is taken as no
     /// rotation, as node rotations are.
-    pub(super) fn worlds(
+    pub(super) fn offsets(
         &self,
         file: &Path,
         buffers: &[Vec<u8>],
@@ -189,7 +191,7 @@ impl Instances<'_> {
                 );
                 let placed = world * instance;
                 world::check(file, node, &placed, &format!("instance {i}'s"))?;
-                Ok(placed)
+                Ok(instance)
             })
             .collect()
     }
@@ -232,34 +234,5 @@ fn invalid(file: &Path, node: &gltf::Node, attribute: &'static str, reason: Stri
         node: label("node", node.index(), node.name()),
         attribute,
         reason,
-    }
-}
-
-/// An accessor type as glTF spells it.
-fn type_name(dimensions: Dimensions) -> &'static str {
-    match dimensions {
-        Dimensions::Scalar => "SCALAR",
-        Dimensions::Vec2 => "VEC2",
-        Dimensions::Vec3 => "VEC3",
-        Dimensions::Vec4 => "VEC4",
-        Dimensions::Mat2 => "MAT2",
-        Dimensions::Mat3 => "MAT3",
-        Dimensions::Mat4 => "MAT4",
-    }
-}
-
-/// A component type as glTF spells it, "normalized " before it when it is.
-fn component_name(data_type: DataType, normalized: bool) -> String {
-    let name = match data_type {
-        DataType::I8 => "BYTE",
-        DataType::U8 => "UNSIGNED_BYTE",
-        DataType::I16 => "SHORT",
-        DataType::U16 => "UNSIGNED_SHORT",
-        DataType::U32 => "UNSIGNED_INT",
-        DataType::F32 => "FLOAT",
-    };
-    match normalized {
-        true => format!("normalized {name}"),
-        false => name.to_owned(),
     }
 }

@@ -9,10 +9,13 @@
 //! ones converted to them, see [`spec_gloss`]), emission, alpha OPAQUE/MASK, double-sided
 //! and the extensions in [`extensions::IMPLEMENTED`] (KHR_texture_transform per texture,
 //! EXT_mesh_gpu_instancing's instances as placements, see [`instancing`]); cameras;
-//! KHR_lights_punctual lights. What is not: BLEND (drawn opaque), points and lines, skins,
-//! morph targets and animations, each with a warning in [`Scene::warnings`].
+//! KHR_lights_punctual lights; animations of node translation, rotation and scale, with the
+//! node tree they move (see [`animation`]). What is not: BLEND (drawn opaque), points and
+//! lines, skins and morph targets (and animations of their weights), each with a warning
+//! in [`Scene::warnings`].
 
 mod accessor;
+mod animation;
 mod camera;
 mod document;
 mod drawn;
@@ -38,10 +41,12 @@ mod world;
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
+use glam::DMat4;
 use rgraph_core::bounded_read;
 
 use super::builder::SceneBuilder;
 use super::error;
+use super::node_tree::{LocalTransform, MeshPlacement, NodeId};
 use super::{AssetPolicy, Scene, SceneError, MAX_LIGHTS};
 
 /// Loads `file`, reading it and the files its URIs name as `policy` allows; see the module
@@ -89,10 +94,14 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
             loader.builder.allow_empty = true;
         }
         let local = transforms::read(file, &json, &document)?;
-        let placed = nodes::flatten(file, &document, &scene, &local)?;
+        let matrices: Vec<DMat4> = local.iter().map(LocalTransform::matrix).collect();
+        let placed = nodes::flatten(file, &document, &scene, &matrices)?;
         loader.reserve(&placed)?;
-        for placed in &placed {
-            loader.place(placed)?;
+        (loader.builder.nodes, loader.builder.animations) =
+            animation::read(file, &document, &loader.buffers, &placed, &local)?;
+        for (index, placed) in placed.iter().enumerate() {
+            // `placed` is the node tree's order: its index is the node's id.
+            loader.place(NodeId(index as u32), placed)?;
         }
     }
     loader.builder.finish()
@@ -148,21 +157,23 @@ impl Budget {
 impl Loader<'_> {
     /// Adds what one placed node carries: mesh primitives (once, or once per instance of
     /// EXT_mesh_gpu_instancing), its camera if no camera was found yet, its light.
-    fn place(&mut self, placed: &nodes::Placed) -> Result<(), SceneError> {
+    fn place(&mut self, id: NodeId, placed: &nodes::Placed) -> Result<(), SceneError> {
         if let Some(mesh) = placed.node.mesh() {
             // Instances are read only where they place something: what `reserve` counted.
-            let worlds = match &placed.instances {
+            let offsets = match &placed.instances {
                 Some(_) if drawn::primitives(&mesh).next().is_none() => Vec::new(),
                 Some(instances) => {
-                    instances.worlds(self.file, &self.buffers, &placed.node, placed.world)?
+                    instances.offsets(self.file, &self.buffers, &placed.node, placed.world)?
                 }
-                None => vec![placed.world],
+                None => vec![DMat4::IDENTITY],
             };
             for primitive in mesh.primitives() {
                 match drawn::is_drawn(&primitive) {
                     true => {
-                        for &world in &worlds {
-                            self.primitive(&mesh, &primitive, world)?;
+                        for &offset in &offsets {
+                            let added = self.builder.meshes.len();
+                            self.primitive(&mesh, &primitive, placed.world * offset)?;
+                            self.track(id, offset, added);
                         }
                     }
                     // Skipped with a warning, once per node rather than once per instance.
@@ -193,6 +204,19 @@ impl Loader<'_> {
     }
 }
 
+impl Loader<'_> {
+    /// Records where the meshes built since the first `added` hang in the node tree, when
+    /// the file has animations to move them (the tree is empty otherwise).
+    fn track(&mut self, node: NodeId, offset: DMat4, added: usize) {
+        if self.builder.nodes.nodes.is_empty() {
+            return;
+        }
+        let built = self.builder.meshes.len() - added;
+        let placement = MeshPlacement { node, offset };
+        (self.builder.nodes.meshes).extend(std::iter::repeat_n(placement, built));
+    }
+}
+
 /// Warnings for core glTF features that are present but not drawn.
 fn ignored_features(document: &gltf::Document) -> Vec<String> {
     let morph_targets = document
@@ -200,10 +224,6 @@ fn ignored_features(document: &gltf::Document) -> Vec<String> {
         .flat_map(|m| m.primitives())
         .any(|p| p.morph_targets().next().is_some());
     [
-        (
-            document.animations().next().is_some(),
-            "animations are ignored: nodes keep their static transforms",
-        ),
         (
             document.skins().next().is_some(),
             "skins are ignored: skinned meshes are drawn in their bind pose",

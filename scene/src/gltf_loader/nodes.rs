@@ -12,6 +12,8 @@ use crate::SceneError;
 pub(super) struct Placed<'a> {
     pub node: gltf::Node<'a>,
     pub world: DMat4,
+    /// Its parent's index in the list [`flatten`] returns; `None` for a scene root.
+    pub parent: Option<usize>,
     /// Its EXT_mesh_gpu_instancing attributes, checked but not read: its mesh is placed
     /// once per instance instead of once.
     pub instances: Option<instancing::Instances<'a>>,
@@ -38,25 +40,27 @@ pub(super) fn flatten<'a>(
     local: &[DMat4],
 ) -> Result<Vec<Placed<'a>>, SceneError> {
     let mut seen = vec![false; document.nodes().len()];
-    let mut stack: Vec<(gltf::Node<'a>, DMat4)> =
-        scene.nodes().map(|n| (n, DMat4::IDENTITY)).collect();
+    let mut stack: Vec<(gltf::Node<'a>, DMat4, Option<usize>)> =
+        scene.nodes().map(|n| (n, DMat4::IDENTITY, None)).collect();
     stack.reverse();
     let mut placed = Vec::new();
-    while let Some((node, parent)) = stack.pop() {
+    while let Some((node, parent_world, parent)) = stack.pop() {
         if std::mem::replace(&mut seen[node.index()], true) {
             return Err(SceneError::NodeHierarchy {
                 file: file.to_owned(),
                 node: label("node", node.index(), node.name()),
             });
         }
-        let world = parent * local[node.index()];
+        let world = parent_world * local[node.index()];
         world::check(file, &node, &world, "its")?;
         let instances = instancing::declared(file, document, &node)?;
         let children: Vec<_> = node.children().collect();
-        stack.extend(children.into_iter().rev().map(|child| (child, world)));
+        let index = Some(placed.len());
+        stack.extend(children.into_iter().rev().map(|c| (c, world, index)));
         placed.push(Placed {
             node,
             world,
+            parent,
             instances,
         });
     }

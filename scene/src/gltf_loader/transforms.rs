@@ -9,6 +9,8 @@ use std::path::Path;
 
 use glam::{DMat4, DQuat, DVec3, DVec4};
 
+use crate::node_tree::{LocalTransform, Trs};
+
 use crate::error::label;
 use crate::SceneError;
 
@@ -35,7 +37,7 @@ pub(super) fn read(
     file: &Path,
     json: &[u8],
     document: &gltf::Document,
-) -> Result<Vec<DMat4>, SceneError> {
+) -> Result<Vec<LocalTransform>, SceneError> {
     let parsed: DocumentJson = serde_json::from_slice(json).map_err(|e| {
         // `gltf` read every field already, so only a number out of f64's range gets here.
         SceneError::InvalidNode {
@@ -48,8 +50,8 @@ pub(super) fn read(
         .nodes()
         .map(|node| {
             let fields = parsed.nodes.get(node.index());
-            let transform = fields.map_or(DMat4::IDENTITY, local_transform);
-            if !transform.is_finite() {
+            let transform = fields.map_or(LocalTransform::Trs(Trs::IDENTITY), local_transform);
+            if !transform.matrix().is_finite() {
                 return Err(SceneError::InvalidNode {
                     file: file.to_owned(),
                     node: label("node", node.index(), node.name()),
@@ -63,9 +65,9 @@ pub(super) fn read(
 
 /// The node's transform relative to its parent: `matrix` when present, else translation,
 /// rotation and scale (each defaulting as glTF says).
-fn local_transform(node: &NodeJson) -> DMat4 {
+fn local_transform(node: &NodeJson) -> LocalTransform {
     if let Some(matrix) = node.matrix {
-        return DMat4::from_cols_array(&matrix);
+        return LocalTransform::Matrix(DMat4::from_cols_array(&matrix));
     }
     // Exporters write slightly unnormalized quaternions; an all-zero one (invalid) is taken
     // as no rotation rather than filling every position with NaN.
@@ -74,9 +76,9 @@ fn local_transform(node: &NodeJson) -> DMat4 {
         .map(DVec4::from_array)
         .and_then(DVec4::try_normalize)
         .map_or(DQuat::IDENTITY, DQuat::from_vec4);
-    DMat4::from_scale_rotation_translation(
-        node.scale.map_or(DVec3::ONE, DVec3::from_array),
+    LocalTransform::Trs(Trs {
+        translation: node.translation.map_or(DVec3::ZERO, DVec3::from_array),
         rotation,
-        node.translation.map_or(DVec3::ZERO, DVec3::from_array),
-    )
+        scale: node.scale.map_or(DVec3::ONE, DVec3::from_array),
+    })
 }

@@ -143,6 +143,31 @@ impl Gltf {
         self.triangle(Some(material))
     }
 
+    /// An animation `name` of one channel driving `path` ("translation", "rotation",
+    /// "scale") of `node` with an `interpolation` sampler over key `times` and FLOAT
+    /// `values` (three per key for CUBICSPLINE); returns the animation index.
+    pub fn animation<const N: usize>(
+        &mut self,
+        name: &str,
+        node: usize,
+        path: &str,
+        interpolation: &str,
+        times: &[f32],
+        values: &[[f32; N]],
+    ) -> usize {
+        let times = times.iter().map(|&t| [t]).collect::<Vec<_>>();
+        let input = self.floats(&times);
+        let output = self.floats(values);
+        self.push(
+            "animations",
+            json!({
+                "name": name,
+                "channels": [{ "sampler": 0, "target": { "node": node, "path": path } }],
+                "samplers": [{ "input": input, "output": output, "interpolation": interpolation }],
+            }),
+        )
+    }
+
     /// The JSON with `buffers[0]` pointing at `uri` (or at the GLB chunk when `None`).
     fn document(&self, uri: Option<String>) -> Value {
         let mut json = self.json.clone();

@@ -25,7 +25,11 @@ pub enum RenderError {
     #[error("{0}")]
     Output(String),
 
-    /// A frame's inputs (the orbited camera) that the scene refused.
+    /// `--time` that does not fit `--frames`.
+    #[error("{0}")]
+    Time(String),
+
+    /// A frame's inputs (the orbited camera, the posed meshes) that the scene refused.
     #[error("{0}")]
     FrameInputs(#[from] FrameInputsError),
 }
@@ -36,7 +40,7 @@ impl RenderError {
     pub fn into_command_error(self) -> CommandError {
         let usage = match &self {
             RenderError::Frame(frame) => frame.is_usage(),
-            RenderError::Output(_) => true,
+            RenderError::Output(_) | RenderError::Time(_) => true,
             RenderError::UnknownView { .. } | RenderError::FrameInputs(_) => false,
         };
         if usage {

@@ -1,5 +1,5 @@
-//! The window's event handling: frames, the orbit camera, the view picker, hot reload and
-//! the title.
+//! The window's event handling: frames, the orbit camera, the scene's animation, the view
+//! picker, hot reload and the title.
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -15,6 +15,7 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow};
 use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
+use super::playback::Playback;
 use super::present::Presenter;
 use super::title::{cycle, title};
 use super::watch::Watch;
@@ -44,6 +45,8 @@ pub struct Viewer<'s> {
     poll_every: Duration,
     polled_at: Instant,
     camera: Orbit,
+    /// The scene's first animation, posing every frame; `None` without one.
+    playback: Option<Playback>,
     /// Whether the left button is held: moving the cursor then turns the camera.
     dragging: bool,
     /// The cursor's last x in the window.
@@ -66,6 +69,7 @@ impl<'s> Viewer<'s> {
     /// `camera`: the orbit the host's frame inputs are at now.
     pub fn new(loader: Loader<'s>, shown: Shown<'s>, camera: Orbit, args: &ViewArgs) -> Viewer<'s> {
         let watch = Watch::new(&loader.path);
+        let playback = Playback::first(&loader.host.scene);
         Viewer {
             loader,
             shown,
@@ -75,6 +79,7 @@ impl<'s> Viewer<'s> {
             watch,
             poll_every: Duration::from_millis(args.poll_ms),
             polled_at: Instant::now(),
+            playback,
             camera,
             dragging: false,
             cursor_x: 0.0,
@@ -123,6 +128,11 @@ impl<'s> Viewer<'s> {
         }
         if reason.is_none() && self.loaded_size != size {
             reason = Some(format!("the window is {}x{}", size.0, size.1));
+        }
+        // Posed before a reload too, which runs the frame itself.
+        if let Some(playback) = &self.playback {
+            let host = &self.loader.host;
+            host.set_frame(playback.pose(&host.scene, self.camera.inputs()))?;
         }
         let reloaded = match reason {
             Some(reason) => self.reload(&self.shown.output.clone(), size, &reason),

@@ -1,0 +1,73 @@
+//! Bounds that hold the meshes wherever the animations take them, so that a camera framed
+//! on them (and its near plane) sees every frame.
+
+use glam::Vec3;
+
+use super::clip::Animation;
+use crate::{Aabb, Mesh, Scene};
+
+/// Poses sampled between two consecutive key times (the keys themselves included once):
+/// LINEAR motion is bounded by its keys, but rotations sweep arcs and cubic splines
+/// overshoot between them.
+const STEPS_PER_INTERVAL: usize = 4;
+
+/// The most poses sampled per animation: a long animation is sampled evenly rather than
+/// at every key.
+const MAX_POSES: usize = 4096;
+
+/// The most node and mesh transforms computed per animation: a scene of many meshes gets
+/// fewer poses (at least its first and last), so that loading stays fast.
+const MAX_TRANSFORMS: usize = 1 << 24;
+
+/// The world box of every mesh's object-space box, over poses of every animation sampled
+/// at and between its key times; `None` without animations. Approximate between samples
+/// (a fast spin can leave a box corner a little outside), conservative at them.
+pub(crate) fn swept_bounds(scene: &Scene) -> Option<Aabb> {
+    let boxes: Vec<Option<Aabb>> = scene.meshes.iter().map(object_bounds).collect();
+    let per_pose = scene.nodes.nodes.len() + scene.meshes.len();
+    let max_poses = (MAX_TRANSFORMS / per_pose.max(1)).clamp(2, MAX_POSES);
+    let poses = scene.animation_ids().flat_map(|id| {
+        let times = sample_times(scene.animation(id), max_poses);
+        times.into_iter().map(move |time| (id, time))
+    });
+    poses
+        .filter_map(|(id, time)| {
+            let transforms = scene.animated_transforms(id, time);
+            let placed = transforms.iter().zip(&boxes);
+            Aabb::from_points(placed.flat_map(|(transform, b)| {
+                let corners = b.iter().flat_map(Aabb::corners);
+                corners.map(|c| transform.transform_point3(c))
+            }))
+        })
+        .reduce(|a, b| a.union(&b))
+}
+
+/// The mesh's object-space box.
+fn object_bounds(mesh: &Mesh) -> Option<Aabb> {
+    Aabb::from_points((mesh.vertices.iter()).map(|v| Vec3::from_array(v.position).as_dvec3()))
+}
+
+/// The times an animation's poses are sampled at: its channels' key times and
+/// [`STEPS_PER_INTERVAL`] - 1 between each two, or `max_poses` (2 or more) evenly over its
+/// span when that is more.
+fn sample_times(animation: &Animation, max_poses: usize) -> Vec<f64> {
+    let mut keys: Vec<f64> = (animation.channels.iter())
+        .flat_map(|c| c.times.iter().copied())
+        .collect();
+    keys.sort_by(f64::total_cmp);
+    keys.dedup();
+    let poses = keys.len().saturating_sub(1) * STEPS_PER_INTERVAL + 1;
+    if poses > max_poses {
+        let span = animation.end - animation.start;
+        let last = (max_poses - 1) as f64;
+        return (0..max_poses)
+            .map(|i| animation.start + span * i as f64 / last)
+            .collect();
+    }
+    let between = keys.windows(2).flat_map(|pair| {
+        (0..STEPS_PER_INTERVAL).map(move |step| {
+            pair[0] + (pair[1] - pair[0]) * step as f64 / STEPS_PER_INTERVAL as f64
+        })
+    });
+    between.chain(keys.last().copied()).collect()
+}
