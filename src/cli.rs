@@ -4,7 +4,8 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use rgraph_core::file::GraphParams;
-use rgraph_passes::{Background, Exposure};
+use rgraph_passes::shadows::{DEFAULT_SHADOWED_LIGHTS, SHADOW_VIEWS};
+use rgraph_passes::{Background, Exposure, ShadowFilter, Shadows};
 use rgraph_scene::{AssetPolicy, Lighting, Scene, SceneError, DEFAULT_MAX_ASSET_BYTES};
 
 #[derive(Parser)]
@@ -218,6 +219,16 @@ pub struct FrameArgs {
     /// default does); others refuse the flag.
     #[arg(long, value_name = "environment|color:R,G,B|transparent", value_parser = parse_background)]
     pub background: Option<Background>,
+    /// How lights cast shadows: pcf (percentage-closer filtering, 3 x 3 bilinear
+    /// comparison taps), hard (one comparison) or off. Directional lights (4 cascades) and
+    /// spot lights cast them; point lights do not yet. Off drops the shadow passes.
+    #[arg(long, value_name = "off|hard|pcf", default_value = "pcf", value_parser = parse_shadow_filter)]
+    pub shadows: ShadowFilter,
+    /// The most lights given shadow maps, 0 to 16: the directional and spot lights
+    /// covering most of the screen, as many as fit the atlas's 16 maps (a directional
+    /// light takes 4).
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_SHADOWED_LIGHTS, value_parser = parse_shadowed_lights, allow_negative_numbers = true)]
+    pub shadowed_lights: u32,
     /// Adapter to render on: lavapipe, gpu, or part of an adapter's name (default:
     /// $RGRAPH_ADAPTER, else lavapipe). For `view` it must be able to present to the window.
     #[arg(long)]
@@ -234,6 +245,14 @@ impl FrameArgs {
     /// `--width` and `--height`.
     pub fn size(&self) -> (u32, u32) {
         (self.width, self.height)
+    }
+
+    /// `--shadows` and `--shadowed-lights` (each checked by its parser).
+    pub fn shadows(&self) -> Shadows {
+        Shadows {
+            filter: self.shadows,
+            lights: self.shadowed_lights,
+        }
     }
 }
 
@@ -664,6 +683,24 @@ fn parse_background(text: &str) -> Result<Background, String> {
         Ok(c) if c.len() == 3 => Ok(Background::Color([c[0], c[1], c[2]])),
         _ => Err(format!("{expected}, got \"{text}\"")),
     }
+}
+
+fn parse_shadow_filter(text: &str) -> Result<ShadowFilter, String> {
+    match text.trim() {
+        "off" => Ok(ShadowFilter::Off),
+        "hard" => Ok(ShadowFilter::Hard),
+        "pcf" => Ok(ShadowFilter::Pcf),
+        other => Err(format!("expected off, hard or pcf, got \"{other}\"")),
+    }
+}
+
+fn parse_shadowed_lights(text: &str) -> Result<u32, String> {
+    let lights = text.trim().parse::<u32>().map_err(|_| {
+        format!("expected a whole number of lights from 0 to {SHADOW_VIEWS}, got \"{text}\"")
+    })?;
+    Shadows::new(ShadowFilter::Pcf, lights)
+        .map(|s| s.lights)
+        .map_err(|e| e.to_string())
 }
 
 fn parse_degrees(text: &str) -> Result<f64, String> {

@@ -78,6 +78,7 @@ mod output_files;
 mod page_browser;
 mod particles;
 mod pipeline_plans;
+mod shadows;
 mod post_fxaa;
 mod post_ssao;
 mod soak;

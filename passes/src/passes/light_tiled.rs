@@ -21,6 +21,8 @@
 //!      "hdr": "hdr",       // emission and unlit colour, per sample
 //!      "ao": "ao",         // optional: ssao_blur's occlusion (r8unorm, 1 sample),
 //!                          // which scales the ambient and environment light only
+//!      "shadows": "shadow_atlas",  // optional: shadow_maps's atlas (depth32float),
+//!                          // which scales each shadowed light (common/shadows.rs)
 //!  },
 //!  outputs: { "resolved": "resolved" })   // 1 sample, rgba16float, storage
 //! ```
@@ -90,6 +92,7 @@ use crate::common::depth::DepthRule;
 use crate::common::edge_detection::{Detector, EdgeDetection};
 use crate::common::gbuffer_layout::{GBufferLayout, Surfaces};
 use crate::common::plugin::{check_tile, yes, Shared};
+use crate::common::shadows;
 use crate::common::textures::{self, format_name, Input, Texels, Want};
 use crate::common::visibility_samples;
 use crate::shaders;
@@ -319,7 +322,11 @@ impl Plugin for LightTiled {
         );
         let ao = ao::input(slots, pass)?;
         inputs.extend(ao);
-        let generated = generated + &ao::wgsl(ao.as_ref());
+        let shadows = shadows::input(slots, pass)?;
+        inputs.extend(shadows);
+        let filter = self.0.overrides.shadows.filter;
+        let generated =
+            generated + &ao::wgsl(ao.as_ref()) + &shadows::wgsl(shadows.as_ref(), filter);
         let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
         // The device must allow the workgroup of each.
         let entries = match listed {

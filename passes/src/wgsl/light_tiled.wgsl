@@ -244,7 +244,7 @@ fn reaching_light(s: Surface, light: LightData) -> vec3<f32> {
     if !reaches(light, s.position) {
         return vec3<f32>(0.0);
     }
-    return shade_light(s, light);
+    return direct_light(s, light);
 }
 
 // What the samples of surface `e` take, lit by `light` in all: what it emits (a visibility
