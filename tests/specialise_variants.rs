@@ -137,7 +137,8 @@ fn variants(pipeline: &str, scene: &str) -> Vec<String> {
 
 #[test]
 fn each_builtin_scene_s_variants() {
-    let light = "light edges, light the rest";
+    // Each lit scene has a directional or spot light: the light passes read shadow maps.
+    let light = "light edges (shadows), light the rest (shadows)";
     let expected: [(&str, [&str; 2], &str); 4] = [
         (
             "builtin:spheres",
