@@ -12,7 +12,7 @@ use rgraph_scene::{AlphaMode, Lighting, Scene};
 use serde_json::json;
 
 use crate::deferred_support::measure::{self, pixels_within};
-use crate::deferred_support::{self, gpu, unchanged, PipelineFile, Render};
+use crate::deferred_support::{gpu, unchanged, PipelineFile, Render};
 use crate::gltf_writer::{temp_dir, Gltf};
 
 /// The default pipeline on lavapipe: the hardware raster.

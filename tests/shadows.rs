@@ -100,7 +100,15 @@ fn a_squares_shadow_is_its_projection() {
         for filter in [ShadowFilter::Hard, ShadowFilter::Pcf] {
             let shadows = Shadows { filter, lights: 1 };
             let image = render(pipeline, &scene, (N, N), shadows);
-            let unshadowed = render(pipeline, &scene, (N, N), Shadows { filter: ShadowFilter::Off, lights: 1 });
+            let unshadowed = render(
+                pipeline,
+                &scene,
+                (N, N),
+                Shadows {
+                    filter: ShadowFilter::Off,
+                    lights: 1,
+                },
+            );
             // Lit ground, and the ground the square hides from the sun, by their centres.
             let (lit, dark) = (luma(image.at(16, 52)), luma(image.at(48, 32)));
             assert!(
@@ -122,7 +130,11 @@ fn a_squares_shadow_is_its_projection() {
                 for x in 0..N {
                     let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
                     let inside = cx > x0 && cx < x1 && cy > z0 && cy < z1;
-                    let margin = (cx - x0).abs().min((cx - x1).abs()).min((cy - z0).abs()).min((cy - z1).abs());
+                    let margin = (cx - x0)
+                        .abs()
+                        .min((cx - x1).abs())
+                        .min((cy - z0).abs())
+                        .min((cy - z1).abs());
                     let near_edge = margin <= 1.0;
                     if shadowed(x, y) {
                         count += 1;
@@ -165,9 +177,10 @@ fn a_plane_at_grazing_light_has_no_acne() {
         );
         let e = elevation.to_radians();
         // The sun's brightness on the plane is about the same at every elevation.
-        parts
-            .lights
-            .push(sun(Vec3::new(e.cos() * 0.6, -e.sin(), -e.cos() * 0.8), 2.0 / e.sin()));
+        parts.lights.push(sun(
+            Vec3::new(e.cos() * 0.6, -e.sin(), -e.cos() * 0.8),
+            2.0 / e.sin(),
+        ));
         parts.ambient = [0.02; 3];
         let camera = Camera::look_at(
             "grazing",
@@ -216,12 +229,22 @@ fn a_plane_at_grazing_light_has_no_acne() {
 fn tiled_and_gbuffer_shading_agree_on_shadows() {
     let scene = Scene::load("builtin:spheres").expect("a built-in scene");
     let size = (640, 360);
-    let gbuffer = render(PipelineFile::for_device("deferred_msaa_4x.ron"), &scene, size, Shadows::default());
+    let gbuffer = render(
+        PipelineFile::for_device("deferred_msaa_4x.ron"),
+        &scene,
+        size,
+        Shadows::default(),
+    );
     let off = Shadows {
         filter: ShadowFilter::Off,
         ..Shadows::default()
     };
-    let unshadowed = render(PipelineFile::for_device("deferred_msaa_4x.ron"), &scene, size, off);
+    let unshadowed = render(
+        PipelineFile::for_device("deferred_msaa_4x.ron"),
+        &scene,
+        size,
+        off,
+    );
     // The shadows are there: part of the image is darker with them.
     let unchanged = measure::share_within(&gbuffer, &unshadowed, 8, None);
     assert!(
@@ -232,7 +255,10 @@ fn tiled_and_gbuffer_shading_agree_on_shadows() {
     for pipeline in [DEFAULT, DEFAULT_GPU] {
         let tiled = render(pipeline, &scene, size, Shadows::default());
         let share = measure::share_within(&tiled, &gbuffer, 2, None);
-        eprintln!("{pipeline}: {:.3}% within 2/255 of deferred_msaa_4x", 100.0 * share);
+        eprintln!(
+            "{pipeline}: {:.3}% within 2/255 of deferred_msaa_4x",
+            100.0 * share
+        );
         assert!(
             share >= 0.99,
             "{pipeline} renders only {share} of pixels within 2/255 of deferred_msaa_4x"
@@ -249,14 +275,43 @@ fn bad_shadow_flags_are_usage_errors() {
     let out = out.to_str().expect("temp paths are UTF-8");
     for (flag, value, says) in [
         ("--shadows", "bogus", "expected off, hard or pcf"),
-        ("--shadowed-lights", "17", "17 shadowed lights is out of range"),
+        (
+            "--shadowed-lights",
+            "17",
+            "17 shadowed lights is out of range",
+        ),
         ("--shadowed-lights", "-1", "from 0 to 16"),
         ("--shadowed-lights", "many", "from 0 to 16"),
     ] {
-        rgraph(&["render", "--out", out, "--width", "16", "--height", "16", flag, value])
-            .expect(2)
-            .stderr_has(flag)
-            .stderr_has(says);
+        rgraph(&[
+            "render", "--out", out, "--width", "16", "--height", "16", flag, value,
+        ])
+        .expect(2)
+        .stderr_has(flag)
+        .stderr_has(says);
     }
     assert!(!dir.path().join("s.png").exists());
+}
+
+/// The default pipeline's `shadows` debug view shows the sun's visibility term:
+/// builtin:spheres' ground is white where lit and black in the spheres' shadows.
+#[test]
+fn the_shadows_view_shows_the_visibility_term() {
+    let gpu = gpu();
+    let scene = Scene::load("builtin:spheres").expect("a built-in scene");
+    let view = Render::new(DEFAULT, "builtin:spheres", (160, 90))
+        .with_scene(scene.clone())
+        .features(SceneFeatures::of(&scene).names())
+        .run(&gpu)
+        .image(&gpu, "debug.shadows");
+    let white = view.count([255, 255, 255, 255]);
+    let black_ground = (45..90)
+        .flat_map(|y| (0..160).map(move |x| (x, y)))
+        .filter(|&(x, y)| view.at(x, y) == [0, 0, 0, 255])
+        .count();
+    assert!(white > view.pixels.len() / 3, "{white} white pixels");
+    assert!(
+        black_ground > 100,
+        "{black_ground} black pixels in the lower half"
+    );
 }

@@ -62,9 +62,9 @@ fn an_unlit_scene_s_plan_says_what_it_drops_and_saves() {
 fn a_lit_scene_keeps_the_general_plan_but_the_transparent_passes() {
     let (code, stdout, _) = explain("builtin:spheres", "text");
     assert_eq!(code, Some(0));
-    assert!(
-        stdout.contains("features ambient, directional_lights, lit, point_lights, shadows, shallow_depth\n")
-    );
+    assert!(stdout.contains(
+        "features ambient, directional_lights, lit, point_lights, shadows, shallow_depth\n"
+    ));
     assert!(stdout.contains("  passes: 12 instead of 14\n    - transparent: condition \"blend\" is false\n    - composite transparent: condition \"blend\" is false\n"), "{stdout}");
     assert!(
         stdout.contains("  memory: 64.6 MiB physical instead of 64.6 MiB (0 B saved, 0%)\n"),

@@ -373,7 +373,11 @@ impl GpuScene {
             .reduce(|a, b| a.union(&b));
         let shadowed = &self.frame.lights.shadowed;
         let views = shadows::views(shadowed, camera, aspect, tile, bounds);
-        queue.write_buffer(&self.upload.shadow_maps.views, 0, bytemuck::cast_slice(&views));
+        queue.write_buffer(
+            &self.upload.shadow_maps.views,
+            0,
+            bytemuck::cast_slice(&views),
+        );
         shadows::tiles(shadowed, tile)
     }
 

@@ -69,7 +69,11 @@ fn views_of(light: &Light) -> u32 {
 /// outline of a spot light's bounding sphere, for the vertical field of view), largest
 /// first and in buffer order among equals, at most `settings.lights`, skipping any whose
 /// views no longer fit the atlas.
-pub(super) fn select(lights: &[&Light], camera: &Camera, settings: Shadows) -> Vec<(usize, Shadowed)> {
+pub(super) fn select(
+    lights: &[&Light],
+    camera: &Camera,
+    settings: Shadows,
+) -> Vec<(usize, Shadowed)> {
     if !settings.enabled() {
         return Vec::new();
     }
@@ -178,7 +182,11 @@ pub(super) fn views(
 /// The atlas tiles the views of `shadowed` take, in texels: x, y and side, for the
 /// `shadow_maps` pass's viewports, by view index.
 pub(super) fn tiles(shadowed: &[Shadowed], tile: u32) -> Vec<(u32, u32, u32)> {
-    let views = shadowed.iter().map(|s| s.first_view + s.views()).max().unwrap_or(0);
+    let views = shadowed
+        .iter()
+        .map(|s| s.first_view + s.views())
+        .max()
+        .unwrap_or(0);
     (0..views)
         .map(|v| ((v % ATLAS_GRID) * tile, (v / ATLAS_GRID) * tile, tile))
         .collect()
@@ -232,7 +240,13 @@ fn seen_depths(camera: &Camera, scene: &Sphere) -> Option<(f64, f64)> {
 }
 
 /// A directional light's cascades over the depths the camera sees of `scene`.
-fn cascades(light: &Light, camera: &Camera, aspect: f64, tile: f64, scene: &Sphere) -> Vec<ShadowView> {
+fn cascades(
+    light: &Light,
+    camera: &Camera,
+    aspect: f64,
+    tile: f64,
+    scene: &Sphere,
+) -> Vec<ShadowView> {
     let Some((near, far)) = seen_depths(camera, scene) else {
         return Vec::new();
     };
@@ -255,8 +269,7 @@ fn cascades(light: &Light, camera: &Camera, aspect: f64, tile: f64, scene: &Sphe
         .map(|c| {
             let (a, b) = (split(f64::from(c)), split(f64::from(c + 1)));
             let (along, radius) = slice_sphere(camera, aspect, a, b);
-            let center = light_view
-                .transform_point3(camera.position + camera.forward() * along);
+            let center = light_view.transform_point3(camera.position + camera.forward() * along);
             let texel = 2.0 * radius / tile;
             let snapped = DVec3::new(
                 (center.x / texel).round() * texel,
@@ -264,7 +277,10 @@ fn cascades(light: &Light, camera: &Camera, aspect: f64, tile: f64, scene: &Sphe
                 0.0,
             );
             // Light view space looks down -Z: depths are -z, the scene's within its radius.
-            let (z_near, z_far) = (-scene_center.z - scene.radius, -scene_center.z + scene.radius);
+            let (z_near, z_far) = (
+                -scene_center.z - scene.radius,
+                -scene_center.z + scene.radius,
+            );
             let projection = DMat4::orthographic_rh(
                 snapped.x - radius,
                 snapped.x + radius,
@@ -307,7 +323,12 @@ fn slice_sphere(camera: &Camera, aspect: f64, a: f64, b: f64) -> (f64, f64) {
 /// A spot light's perspective map over its cone (a little wider, for the filter's
 /// taps at its rim), from a near plane at a thousandth of its range to the range.
 fn spot(light: &Light, outer_cone: f32, camera: &Camera, tile: f64) -> ShadowView {
-    let range = f64::from(light.effective_range(DEFAULT_CUTOFF_ILLUMINANCE).unwrap_or(1.0)).max(1e-3);
+    let range = f64::from(
+        light
+            .effective_range(DEFAULT_CUTOFF_ILLUMINANCE)
+            .unwrap_or(1.0),
+    )
+    .max(1e-3);
     let fov = (2.0 * f64::from(outer_cone) * 1.05).min(170f64.to_radians());
     let direction = light.direction.as_dvec3().normalize();
     let up = match direction.y.abs() < 0.99 {
@@ -351,7 +372,11 @@ mod tests {
         for d in [2.0, 9.0] {
             let corner = DVec3::new(d * tan_y * 1.5, d * tan_y, d);
             let off = (corner - DVec3::new(0.0, 0.0, a.0)).length();
-            assert!(off <= a.1 + 1e-9, "corner at depth {d} is {off} from the centre, radius {}", a.1);
+            assert!(
+                off <= a.1 + 1e-9,
+                "corner at depth {d} is {off} from the centre, radius {}",
+                a.1
+            );
         }
     }
 }

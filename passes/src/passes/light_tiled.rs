@@ -12,7 +12,7 @@
 //!      resolve: box, exposure: 1.0,  // or resolve: tonemapped (resolve.rs)
 //!      tile: 16,                     // pixels per tile side
 //!      cull: true,                   // false: every light in every tile
-//!      view: shaded,                 // or edges | tile_lights | fragments
+//!      view: shaded,                 // or edges | tile_lights | fragments | shadows
 //!  ),                                // (these are the defaults)
 //!  inputs: {
 //!      "albedo": "albedo", "normal": "normal", "material": "material",
@@ -76,8 +76,9 @@
 //! Debug views write an `rgba8unorm` output named `color` instead of `resolved`:
 //! `edges` (red edge pixels, blue others, black without geometry, as debug_view's),
 //! `tile_lights` (lights each tile shades, directional ones included, as a heat map from
-//! blue for 1 to red for 64 or more) and `fragments` (fragments per pixel: dark
-//! grey 1, green 2, blue 3, red 4 or more).
+//! blue for 1 to red for 64 or more), `fragments` (fragments per pixel: dark
+//! grey 1, green 2, blue 3, red 4 or more) and `shadows` (the visibility term of the
+//! most important shadowed light, from the `shadows` input: white lit, black shadowed).
 
 use serde::Deserialize;
 
@@ -150,6 +151,10 @@ pub enum TiledView {
     Edges,
     TileLights,
     Fragments,
+    /// The shadow maps' visibility term of the most important shadowed light (its share
+    /// of the filter's taps that see the surface, white lit to black shadowed) at each
+    /// pixel's sample 0; needs the `shadows` input.
+    Shadows,
 }
 
 impl TiledView {
@@ -160,6 +165,7 @@ impl TiledView {
             TiledView::Edges => 1.0,
             TiledView::TileLights => 2.0,
             TiledView::Fragments => 3.0,
+            TiledView::Shadows => 4.0,
         }
     }
 
@@ -323,6 +329,13 @@ impl Plugin for LightTiled {
         let ao = ao::input(slots, pass)?;
         inputs.extend(ao);
         let shadows = shadows::input(slots, pass)?;
+        if params.view == TiledView::Shadows && shadows.is_none() {
+            return Err(PluginError::Invalid(
+                "view: shadows shows the shadow maps' visibility term: give the pass a \
+                 \"shadows\" input (the shadow_maps pass's atlas)"
+                    .into(),
+            ));
+        }
         inputs.extend(shadows);
         let filter = self.0.overrides.shadows.filter;
         let generated =

@@ -83,14 +83,14 @@ impl Plugin for ShadowMaps {
             Size::Absolute(w, h) if w == h && w >= ATLAS_GRID && w % ATLAS_GRID == 0);
         if !square {
             return Err(PluginError::Slot {
-                    slot: "atlas".to_owned(),
-                    resource: slots.resource("atlas").unwrap_or("atlas").to_owned(),
-                    why: format!(
-                        "is {:?}, but the shadow atlas must be Absolute(N, N), N a multiple \
+                slot: "atlas".to_owned(),
+                resource: slots.resource("atlas").unwrap_or("atlas").to_owned(),
+                why: format!(
+                    "is {:?}, but the shadow atlas must be Absolute(N, N), N a multiple \
                          of {ATLAS_GRID} (a grid of {ATLAS_GRID} x {ATLAS_GRID} maps)",
-                        desc.size
-                    ),
-                });
+                    desc.size
+                ),
+            });
         }
         let draw = ShadowDraw {
             source: shaders::SHADOW_RASTER.compose(1)?.source().to_owned(),
@@ -214,7 +214,8 @@ mod gpu {
             let pass = &mut *frame.pass;
             let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
             let atlas = resources.shape(self.atlas);
-            let tiles = scene.write_shadow_views(resources.queue, resources.output_size(), atlas.width);
+            let tiles =
+                scene.write_shadow_views(resources.queue, resources.output_size(), atlas.width);
             // The views take camera-relative positions; group 0's camera is not read.
             pass.set_bind_group(0, scene.bind_group(DepthConvention::Standard), &[]);
             pass.set_bind_group(2, scene.geometry_group(device)?, &[]);

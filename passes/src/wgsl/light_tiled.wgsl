@@ -47,7 +47,8 @@ override ADAPTIVE: bool = false;
 override CULL: bool = true;
 // What the pass writes: 0 the lit, resolved HDR; 1 edge pixels (red, blue elsewhere,
 // black without geometry); 2 lights per tile as a heat map; 3 fragments per pixel
-// (green 2, blue 3, red 4 or more, dark grey 1, black without geometry).
+// (green 2, blue 3, red 4 or more, dark grey 1, black without geometry); 4 the most
+// important shadowed light's visibility term (grey, black without geometry).
 override VIEW: u32 = 0u;
 // 0: box resolve. 1: each sample weighted by 1 / (1 + EXPOSURE * luminance).
 override RESOLVE: u32 = 0u;
@@ -60,6 +61,7 @@ const VIEW_SHADED: u32 = 0u;
 const VIEW_EDGES: u32 = 1u;
 const VIEW_TILE_LIGHTS: u32 = 2u;
 const VIEW_FRAGMENTS: u32 = 3u;
+const VIEW_SHADOWS: u32 = 4u;
 
 // The tile's depth bounds as order-preserving keys (depth_key): the largest key of the
 // negated depth is the nearest, the largest key of the depth the farthest. 0 (below
@@ -330,6 +332,18 @@ fn sample_is_edge(g0: GSample, gs: GSample, s: u32) -> bool {
     }
 }
 
+// The shadows view's term: the visibility of the light whose maps come first in the
+// atlas (the most important shadowed one, gpu_scene/shadows.rs) at surface `s`; 1
+// where no light has maps.
+fn first_shadow_visibility(s: Surface) -> f32 {
+    for (var i = 0u; i < light_count(); i++) {
+        if lights[i].shadow == 0u {
+            return light_visibility(s, lights[i]);
+        }
+    }
+    return 1.0;
+}
+
 // Clears the tile's shared state (invocation `local` 0), before a barrier.
 fn start_tile(local: u32) {
     if local == 0u {
@@ -541,6 +555,10 @@ fn cs_light_tiled(
         }
         case VIEW_TILE_LIGHTS: {
             let color = select(heat(f32(tile_lights - 1u) / max(HEAT_MAX - 1.0, 1.0)), vec3<f32>(0.0), tile_lights == 0u);
+            textureStore(out_tex, pixel, vec4<f32>(color, 1.0));
+        }
+        case VIEW_SHADOWS: {
+            let color = select(vec3<f32>(0.0), vec3<f32>(first_shadow_visibility(surface0)), lit0);
             textureStore(out_tex, pixel, vec4<f32>(color, 1.0));
         }
         case VIEW_FRAGMENTS: {
