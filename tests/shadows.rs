@@ -221,12 +221,13 @@ fn a_plane_at_grazing_light_has_no_acne() {
 }
 
 /// builtin:spheres (its sun casts the spheres' shadows on the ground) through the
-/// default pipeline's tiled shading, in both branches, and deferred_msaa_4x.ron's light
-/// volumes: within 2/255 on at least 99% of pixels, each with its shadows. At 640x360:
+/// default pipeline's tiled shading, in both branches, and forward_msaa_4x.ron, against
+/// deferred_msaa_4x.ron's light volumes: within 2/255 on at least 99% of pixels, each
+/// with its shadows. At 640x360:
 /// the two shade silhouette pixels differently (fragments against samples), which at
 /// 160x90 alone leaves 93.8% within 2/255, shadows or not.
 #[test]
-fn tiled_and_gbuffer_shading_agree_on_shadows() {
+fn tiled_forward_and_gbuffer_shading_agree_on_shadows() {
     let scene = Scene::load("builtin:spheres").expect("a built-in scene");
     let size = (640, 360);
     let gbuffer = render(
@@ -252,7 +253,8 @@ fn tiled_and_gbuffer_shading_agree_on_shadows() {
         "only {:.2}% of pixels change with shadows",
         100.0 * (1.0 - unchanged)
     );
-    for pipeline in [DEFAULT, DEFAULT_GPU] {
+    let forward = PipelineFile::for_device("forward_msaa_4x.ron");
+    for pipeline in [DEFAULT, DEFAULT_GPU, forward] {
         let tiled = render(pipeline, &scene, size, Shadows::default());
         let share = measure::share_within(&tiled, &gbuffer, 2, None);
         eprintln!(

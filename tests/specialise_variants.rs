@@ -146,7 +146,7 @@ fn each_builtin_scene_s_variants() {
                 "gbuffer.wgsl {}: gbuffer",
                 "light.wgsl {directional_lights, point_lights}",
             ],
-            "forward.wgsl {directional_lights, point_lights}: forward",
+            "forward.wgsl {directional_lights, point_lights}: forward (shadows)",
         ),
         (
             "builtin:dense",
@@ -154,7 +154,7 @@ fn each_builtin_scene_s_variants() {
                 "gbuffer.wgsl {double_sided}: gbuffer",
                 "light.wgsl {point_lights, spot_lights}",
             ],
-            "forward.wgsl {point_lights, spot_lights, double_sided}: forward",
+            "forward.wgsl {point_lights, spot_lights, double_sided}: forward (shadows)",
         ),
         (
             "builtin:lights",
@@ -162,7 +162,7 @@ fn each_builtin_scene_s_variants() {
                 "gbuffer.wgsl {}: gbuffer",
                 "light.wgsl {point_lights, spot_lights}",
             ],
-            "forward.wgsl {point_lights, spot_lights}: forward",
+            "forward.wgsl {point_lights, spot_lights}: forward (shadows)",
         ),
         (
             // No lights: the light passes are dropped, and the unlit G-buffer pass runs.

@@ -221,17 +221,10 @@ pub(crate) const DEBUG: Source = Source {
 };
 
 const FORWARD_WGSL: &str = include_str!("wgsl/forward.wgsl");
+/// Needs common/shadows.rs's generated block after it.
 pub(crate) const FORWARD: Source = Source {
     name: "forward.wgsl",
-    parts: &[
-        COMMON,
-        SCENE,
-        MATERIAL,
-        BRDF,
-        LIGHTING,
-        SHADOW_NONE,
-        FORWARD_WGSL,
-    ],
+    parts: &[COMMON, SCENE, MATERIAL, BRDF, LIGHTING, FORWARD_WGSL],
 };
 /// forward.wgsl's vertex stages and shading, with entry points that keep the alpha.
 pub(crate) const TRANSPARENT: Source = Source {

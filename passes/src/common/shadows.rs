@@ -15,8 +15,9 @@ use crate::shadows::ShadowFilter;
 /// The shadow atlas's format: depth written by the raster, compared by the sampler.
 pub(crate) const ATLAS: &[TextureFormat] = &[TextureFormat::Depth32Float];
 
-/// Where the light passes bind it (group 1): after every other input of theirs
-/// (light_tiled's list of edge pixels is 12).
+/// Where the passes bind it: group 1 of the light passes, after every other input of
+/// theirs (light_tiled's list of edge pixels is 12); group 2 of a pass that draws the
+/// meshes (forward), whose group 1 is the material's.
 const BINDING: u32 = 13;
 
 /// The `shadows` slot when the file gives one: declared sampled (its depth, one sample),
@@ -39,13 +40,14 @@ pub(crate) fn input(
     }))
 }
 
-/// The WGSL for [`input`]'s result, composed after the light shader: lighting.wgsl's
-/// `light_visibility`, from the atlas filtered as `filter` says, or 1 without an atlas.
-pub(crate) fn wgsl(input: Option<&Input>, filter: ShadowFilter) -> String {
+/// The WGSL for [`input`]'s result bound in `group`, composed after the light shader:
+/// lighting.wgsl's `light_visibility`, from the atlas filtered as `filter` says, or 1
+/// without an atlas.
+pub(crate) fn wgsl(input: Option<&Input>, group: u32, filter: ShadowFilter) -> String {
     match input {
         Some(input) => format!(
             "// Generated: the shadows input (common/shadows.rs).\n\
-             @group(1) @binding({}) var shadow_atlas: texture_depth_2d;\n\
+             @group({group}) @binding({}) var shadow_atlas: texture_depth_2d;\n\
              const SHADOW_FILTER: u32 = {}u;\n{}",
             input.binding,
             filter.constant(),

@@ -270,7 +270,7 @@ fn setup(
             let shadows = shadows::input(slots, pass)?;
             inputs.extend(shadows);
             let filter = shared.overrides.shadows.filter;
-            let generated = ao::wgsl(ao.as_ref()) + &shadows::wgsl(shadows.as_ref(), filter);
+            let generated = ao::wgsl(ao.as_ref()) + &shadows::wgsl(shadows.as_ref(), 1, filter);
             shaders::LIGHT.compose_with(samples, &generated)?
         }
         // Its ambient light is the material pass's, so no AO here (an "ao" slot is

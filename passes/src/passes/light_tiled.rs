@@ -339,7 +339,7 @@ impl Plugin for LightTiled {
         inputs.extend(shadows);
         let filter = self.0.overrides.shadows.filter;
         let generated =
-            generated + &ao::wgsl(ao.as_ref()) + &shadows::wgsl(shadows.as_ref(), filter);
+            generated + &ao::wgsl(ao.as_ref()) + &shadows::wgsl(shadows.as_ref(), 1, filter);
         let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
         // The device must allow the workgroup of each.
         let entries = match listed {
