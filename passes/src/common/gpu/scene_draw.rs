@@ -23,11 +23,11 @@
 use std::sync::Arc;
 
 use super::bindings::TextureBindings;
-use crate::common::textures::Input;
 use super::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
 use super::{Frame, Recorded, Recorder, Render};
 use crate::common::depth::far_depth;
 use crate::common::scene_draw::{Masked, SceneDraw};
+use crate::common::textures::Input;
 use crate::gpu_scene::{mesh, GpuScene, Layer, MaterialState};
 use crate::variant::Variant;
 use rgraph_scene::DepthConvention;
