@@ -7,8 +7,8 @@
 //! they change into the same buffers (see [`crate::host`] for the contract). A
 //! [`GpuScene`] holds:
 //! - group 0 ([`GpuScene::layout`], [`GpuScene::bind_group`]), as `scene.wgsl` declares
-//!   it: camera uniform, per-mesh data, materials, lights, light info, and lighting.wgsl's
-//!   environment maps;
+//!   it: camera uniform, per-mesh data, materials, lights, light info, lighting.wgsl's
+//!   environment maps, and the shadow maps' views and comparison sampler (shadows.rs);
 //! - the meshes ([`GpuScene::draw_meshes`], vertex layout [`mesh::VERTEX_LAYOUT`]) and a
 //!   bind group per material for group 1 ([`GpuScene::material_layout`],
 //!   [`GpuScene::material_groups`], made when a pass first draws with them);
@@ -224,11 +224,17 @@ impl Frame {
     ) -> Frame {
         let eye = inputs.camera.position;
         let previous_meshes = previous.map(|p| (&p.meshes, p.inputs.transforms.as_slice()));
-        let camera = &inputs.camera;
-        let lights = (&inputs.lights, inputs.exposure);
+        let lights = lights::LightFrame::new(
+            scene,
+            &inputs.lights,
+            &inputs.camera,
+            inputs.exposure,
+            volumes,
+            shadows,
+        );
         Frame {
             meshes: mesh::MeshFrame::new(scene, &inputs.transforms, eye, previous_meshes),
-            lights: lights::LightFrame::new(scene, lights.0, camera, lights.1, volumes, shadows),
+            lights,
             inputs,
             generation,
         }
