@@ -620,6 +620,10 @@ pub struct ExplainArgs {
     /// html: mark what differs from the plan for this scene (of --compare's file, if given).
     #[arg(long, value_name = "PATH|builtin:NAME")]
     pub compare_scene: Option<String>,
+    /// With --scene: the plan `render --shadows` would run; off drops the shadow passes
+    /// (hard and pcf plan alike).
+    #[arg(long, value_name = "off|hard|pcf", default_value = "pcf", value_parser = parse_shadow_filter)]
+    pub shadows: ShadowFilter,
 }
 
 /// A width or height: a whole number of at least 1 (the device's maximum is checked once
