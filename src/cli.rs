@@ -4,7 +4,8 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use rgraph_core::file::GraphParams;
-use rgraph_passes::{Background, Exposure};
+use rgraph_passes::shadows::{DEFAULT_SHADOWED_LIGHTS, SHADOW_VIEWS};
+use rgraph_passes::{Background, Exposure, ShadowFilter, Shadows};
 use rgraph_scene::{AssetPolicy, Lighting, Scene, SceneError, DEFAULT_MAX_ASSET_BYTES};
 
 #[derive(Parser)]
@@ -221,6 +222,16 @@ pub struct FrameArgs {
     /// default does); others refuse the flag.
     #[arg(long, value_name = "environment|color:R,G,B|transparent", value_parser = parse_background)]
     pub background: Option<Background>,
+    /// How lights cast shadows: pcf (percentage-closer filtering, 3 x 3 bilinear
+    /// comparison taps), hard (one comparison) or off. Directional lights (4 cascades) and
+    /// spot lights cast them; point lights do not yet. Off drops the shadow passes.
+    #[arg(long, value_name = "off|hard|pcf", default_value = "pcf", value_parser = parse_shadow_filter)]
+    pub shadows: ShadowFilter,
+    /// The most lights given shadow maps, 0 to 16: the directional and spot lights
+    /// covering most of the screen, as many as fit the atlas's 16 maps (a directional
+    /// light takes 4).
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_SHADOWED_LIGHTS, value_parser = parse_shadowed_lights, allow_negative_numbers = true)]
+    pub shadowed_lights: u32,
     /// Adapter to render on: lavapipe, gpu, or part of an adapter's name (default:
     /// $RGRAPH_ADAPTER, else lavapipe). For `view` it must be able to present to the window.
     #[arg(long)]
@@ -237,6 +248,14 @@ impl FrameArgs {
     /// `--width` and `--height`.
     pub fn size(&self) -> (u32, u32) {
         (self.width, self.height)
+    }
+
+    /// `--shadows` and `--shadowed-lights` (each checked by its parser).
+    pub fn shadows(&self) -> Shadows {
+        Shadows {
+            filter: self.shadows,
+            lights: self.shadowed_lights,
+        }
     }
 }
 
@@ -623,6 +642,10 @@ pub struct ExplainArgs {
     /// html: mark what differs from the plan for this scene (of --compare's file, if given).
     #[arg(long, value_name = "PATH|builtin:NAME")]
     pub compare_scene: Option<String>,
+    /// With --scene: the plan `render --shadows` would run; off drops the shadow passes
+    /// (hard and pcf plan alike).
+    #[arg(long, value_name = "off|hard|pcf", default_value = "pcf", value_parser = parse_shadow_filter)]
+    pub shadows: ShadowFilter,
 }
 
 /// A width or height: a whole number of at least 1 (the device's maximum is checked once
@@ -704,6 +727,24 @@ fn parse_time(text: &str) -> Result<Time, String> {
             (start, end) => Ok(Time::Span(start, end)),
         },
     }
+}
+
+fn parse_shadow_filter(text: &str) -> Result<ShadowFilter, String> {
+    match text.trim() {
+        "off" => Ok(ShadowFilter::Off),
+        "hard" => Ok(ShadowFilter::Hard),
+        "pcf" => Ok(ShadowFilter::Pcf),
+        other => Err(format!("expected off, hard or pcf, got \"{other}\"")),
+    }
+}
+
+fn parse_shadowed_lights(text: &str) -> Result<u32, String> {
+    let lights = text.trim().parse::<u32>().map_err(|_| {
+        format!("expected a whole number of lights from 0 to {SHADOW_VIEWS}, got \"{text}\"")
+    })?;
+    Shadows::new(ShadowFilter::Pcf, lights)
+        .map(|s| s.lights)
+        .map_err(|e| e.to_string())
 }
 
 fn parse_degrees(text: &str) -> Result<f64, String> {

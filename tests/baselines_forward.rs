@@ -163,7 +163,7 @@ fn unlit_scene_matches_deferred() {
     let linear = Overrides {
         tonemap: Some("none".into()),
         exposure: Some(Exposure::Fixed(1.0)),
-        background: None,
+        ..Overrides::default()
     };
     let scene = "builtin:unlit";
     let deferred = Render::new("deferred_msaa_4x.ron", scene, SIZE)

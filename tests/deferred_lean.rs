@@ -100,8 +100,8 @@ fn contradicting_layouts_are_errors_naming_the_pass() {
 
     let message = error(
         LEAN,
-        "when: \"emissive\",\n            params: (edges: (detector: compare)),",
-        &"when: \"emissive\",\n            params: (edges: (detector: compare)),"
+        "when: \"emissive & !shadows\",\n            params: (edges: (detector: compare)),",
+        &"when: \"emissive & !shadows\",\n            params: (edges: (detector: compare)),"
             .replace("compare)", "compare), background: (0.1, 0.2, 0.3)"),
     );
     assert_names(

@@ -34,7 +34,7 @@ fn linear() -> Overrides {
     Overrides {
         tonemap: Some("none".into()),
         exposure: Some(Exposure::Fixed(1.0)),
-        background: None,
+        ..Overrides::default()
     }
 }
 

@@ -22,7 +22,7 @@ fn overrides(tonemap: &str, exposure: f32) -> Overrides {
     Overrides {
         tonemap: Some(tonemap.into()),
         exposure: Some(Exposure::Fixed(exposure)),
-        background: None,
+        ..Overrides::default()
     }
 }
 

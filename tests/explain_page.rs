@@ -202,7 +202,7 @@ fn the_page_needs_no_gpu_and_out_writes_it() {
     let html = std::fs::read_to_string(&out).unwrap();
     let data = data(&html);
     assert_eq!(data["setting"]["scene"], "builtin:spheres");
-    assert!(html.contains("ambient, directional_lights, lit, point_lights, shallow_depth"));
+    assert!(html.contains("ambient, directional_lights, lit, point_lights, shadows, shallow_depth"));
     assert!(
         html.contains("<code>msaa = 4</code> (the file's default)"),
         "parameters"
@@ -225,6 +225,9 @@ fn timings_come_from_the_pipeline_s_row() {
         "3840x2160",
         "--timings",
         H200_TIMINGS,
+        // The timings were measured before shadows: the plan without them.
+        "--shadows",
+        "off",
     ]);
     let timings = &data(&html)["timings"];
     assert_eq!(timings["passes"][0]["name"], "gbuffer");
@@ -350,7 +353,8 @@ fn compare_scene_marks_what_the_other_scene_s_plan_runs_and_allocates() {
         .find("id=\"gone-passes\"")
         .expect("the passes run there only")..];
     assert!(gone.contains(
-        "<strong>light edges</strong>: condition &quot;!unlit_only &amp; !no_lights&quot; is false"
+        "<strong>light edges (shadows)</strong>: condition &quot;!unlit_only &amp; !no_lights \
+         &amp; shadows&quot; is false"
     ));
     let gone = &html[html
         .find("id=\"gone-resources\"")

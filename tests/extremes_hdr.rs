@@ -264,7 +264,7 @@ fn the_tonemapped_resolve_beats_box_on_high_contrast_edges() {
     let reinhard = Overrides {
         tonemap: Some("reinhard".into()),
         exposure: None,
-        background: None,
+        ..Overrides::default()
     };
     let color = |render: Render| {
         render

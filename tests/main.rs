@@ -81,6 +81,7 @@ mod particles;
 mod pipeline_plans;
 mod post_fxaa;
 mod post_ssao;
+mod shadows;
 mod smooth_surfaces;
 mod soak;
 mod specialise_analysis;

@@ -19,15 +19,15 @@ fn each_built_in_scene_names_the_features_it_uses() {
     let expected = [
         (
             "builtin:spheres",
-            "ambient, directional_lights, lit, point_lights, shallow_depth",
+            "ambient, directional_lights, lit, point_lights, shadows, shallow_depth",
         ),
         (
             "builtin:dense",
-            "ambient, double_sided, lit, point_lights, shallow_depth, spot_lights",
+            "ambient, double_sided, lit, point_lights, shadows, shallow_depth, spot_lights",
         ),
         (
             "builtin:lights",
-            "ambient, lit, point_lights, shallow_depth, spot_lights",
+            "ambient, lit, point_lights, shadows, shallow_depth, spot_lights",
         ),
         (
             "builtin:unlit",
@@ -83,7 +83,7 @@ fn lights_that_emit_nothing_and_materials_nothing_draws_do_not_count() {
     });
     assert_eq!(
         names(&spheres),
-        "ambient, directional_lights, lit, shallow_depth"
+        "ambient, directional_lights, lit, shadows, shallow_depth"
     );
 }
 

@@ -46,10 +46,11 @@ fn an_unlit_scene_s_plan_says_what_it_drops_and_saves() {
         "features: no_lights, shallow_depth, unlit_only\n",
         "    0. gbuffer (unlit) (render)",
         "dropped passes:\n  - gbuffer: condition \"!unlit_only\" is false\n",
-        "against the plan for a scene using every feature (features: blend):\n  passes: 6 instead of 13\n",
-        "    - light edges: condition \"!unlit_only & !no_lights\" is false (\"unlit_only\" is set, \"no_lights\" is set)\n",
+        "against the plan for a scene using every feature (features: blend, shadows):\n  passes: 6 instead of 14\n",
+        "    - light edges (shadows): condition \"!unlit_only & !no_lights & shadows\" is false (\"unlit_only\" is set, \"no_lights\" is set, \"shadows\" is not set)\n",
         "    not allocated: normal (64.0 KiB): condition \"!unlit_only\" is false\n",
-        "  memory: 416.0 KiB physical instead of 576.0 KiB (160.0 KiB saved, 28%)\n",
+        // The general plan draws shadow maps into a 64 MiB atlas; an unlit scene none.
+        "  memory: 416.0 KiB physical instead of 64.6 MiB (64.2 MiB saved, 99%)\n",
     ] {
         assert!(stdout.contains(expected), "no {expected:?} in:\n{stdout}");
     }
@@ -61,12 +62,12 @@ fn an_unlit_scene_s_plan_says_what_it_drops_and_saves() {
 fn a_lit_scene_keeps_the_general_plan_but_the_transparent_passes() {
     let (code, stdout, _) = explain("builtin:spheres", "text");
     assert_eq!(code, Some(0));
+    assert!(stdout.contains(
+        "features ambient, directional_lights, lit, point_lights, shadows, shallow_depth\n"
+    ));
+    assert!(stdout.contains("  passes: 12 instead of 14\n    - transparent: condition \"blend\" is false\n    - composite transparent: condition \"blend\" is false\n"), "{stdout}");
     assert!(
-        stdout.contains("features ambient, directional_lights, lit, point_lights, shallow_depth\n")
-    );
-    assert!(stdout.contains("  passes: 11 instead of 13\n    - transparent: condition \"blend\" is false\n    - composite transparent: condition \"blend\" is false\n"), "{stdout}");
-    assert!(
-        stdout.contains("  memory: 576.0 KiB physical instead of 576.0 KiB (0 B saved, 0%)\n"),
+        stdout.contains("  memory: 64.6 MiB physical instead of 64.6 MiB (0 B saved, 0%)\n"),
         "{stdout}"
     );
 }
@@ -80,7 +81,8 @@ fn a_scene_s_plan_lists_the_shader_variants_it_builds() {
         \x20 gbuffer.wgsl {} instead of {textures, emissive_textures, metal_rough_textures, \
         normal_textures, occlusion_textures, double_sided, emissive}: gbuffer\n\
         \x20 light.wgsl {directional_lights, point_lights} instead of \
-        {directional_lights, point_lights, spot_lights, environment}: light edges, light the rest\n";
+        {directional_lights, point_lights, spot_lights, environment}: light edges (shadows), light the \
+        rest (shadows)\n";
     assert!(
         stdout.ends_with(expected),
         "no {expected:?} at the end of:\n{stdout}"
@@ -118,8 +120,11 @@ fn json_carries_the_features_and_the_dropped_passes() {
         [
             "gbuffer",
             "edges",
+            "shadow maps",
             "light edges",
+            "light edges (shadows)",
             "light the rest",
+            "light the rest (shadows)",
             "background",
             "transparent",
             "composite transparent",
@@ -150,7 +155,7 @@ fn a_shallow_scene_s_plan_says_which_depth_format_it_picks_and_why() {
     for expected in [
         "    format of depth: depth24plus-stencil8 instead of depth32float-stencil8: \
          condition \"shallow_depth\" holds\n",
-        "  memory: 576.0 KiB physical instead of 640.0 KiB (64.0 KiB saved, 10%)\n",
+        "  memory: 64.6 MiB physical instead of 64.6 MiB (64.0 KiB saved, 0%)\n",
     ] {
         assert!(stdout.contains(expected), "no {expected:?} in:\n{stdout}");
     }

@@ -54,8 +54,9 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
         [
             "gbuffer",
             "edges",
-            "light edges",
-            "light the rest",
+            "shadow maps",
+            "light edges (shadows)",
+            "light the rest (shadows)",
             "resolve",
             "transparent",
             "composite transparent",
@@ -72,6 +73,10 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
     let not_lit = r#"condition "!unlit_only" is false"#;
     // builtin:unlit has no lights either.
     let no_light = r#"condition "!unlit_only & !no_lights" is false ("unlit_only" is set, "no_lights" is set)"#;
+    // The light passes and their shadowed twins, and the shadow maps (no light casts a
+    // shadow either).
+    let no_light_unshadowed = r#"condition "!unlit_only & !no_lights & !shadows" is false ("unlit_only" is set, "no_lights" is set)"#;
+    let no_shadow = r#"condition "!unlit_only & !no_lights & shadows" is false ("unlit_only" is set, "no_lights" is set, "shadows" is not set)"#;
     // Nor BLEND materials.
     let no_blend = r#"condition "blend" is false"#;
     // Nor a background (no environment, no --background).
@@ -83,8 +88,11 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
         [
             ("gbuffer", not_lit),
             ("edges", no_light),
-            ("light edges", no_light),
-            ("light the rest", no_light),
+            ("shadow maps", no_shadow),
+            ("light edges", no_light_unshadowed),
+            ("light edges (shadows)", no_shadow),
+            ("light the rest", no_light_unshadowed),
+            ("light the rest (shadows)", no_shadow),
             ("background", no_background),
             ("transparent", no_blend),
             ("composite transparent", no_blend),
@@ -100,10 +108,11 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
         assert_eq!(resource.physical, None, "{channel}");
     }
     // The G-buffer shrinks from 32 to 20 bytes per sample (normal 4 and material 4 in
-    // memory, 8 and 4 in wgpu's attachment accounting).
+    // memory, 8 and 4 in wgpu's attachment accounting), and the general plan's shadow
+    // atlas (4096 x 4096 depth32float) is not made.
     assert_eq!(special.passes[0].color_bytes_per_sample, 20);
     let saved = general.memory.physical_bytes - special.memory.physical_bytes;
-    assert_eq!(saved, u64::from(N * N) * 4 * (4 + 4));
+    assert_eq!(saved, u64::from(N * N) * 4 * (4 + 4) + 4096 * 4096 * 4);
     println!(
         "builtin:unlit at {N}x{N}: {} of {} passes, {} of {} bytes",
         special.passes.len(),

@@ -137,7 +137,8 @@ fn variants(pipeline: &str, scene: &str) -> Vec<String> {
 
 #[test]
 fn each_builtin_scene_s_variants() {
-    let light = "light edges, light the rest";
+    // Each lit scene has a directional or spot light: the light passes read shadow maps.
+    let light = "light edges (shadows), light the rest (shadows)";
     let expected: [(&str, [&str; 2], &str); 4] = [
         (
             "builtin:spheres",
@@ -145,7 +146,7 @@ fn each_builtin_scene_s_variants() {
                 "gbuffer.wgsl {}: gbuffer",
                 "light.wgsl {directional_lights, point_lights}",
             ],
-            "forward.wgsl {directional_lights, point_lights}: forward",
+            "forward.wgsl {directional_lights, point_lights}: forward (shadows)",
         ),
         (
             "builtin:dense",
@@ -153,7 +154,7 @@ fn each_builtin_scene_s_variants() {
                 "gbuffer.wgsl {double_sided}: gbuffer",
                 "light.wgsl {point_lights, spot_lights}",
             ],
-            "forward.wgsl {point_lights, spot_lights, double_sided}: forward",
+            "forward.wgsl {point_lights, spot_lights, double_sided}: forward (shadows)",
         ),
         (
             "builtin:lights",
@@ -161,7 +162,7 @@ fn each_builtin_scene_s_variants() {
                 "gbuffer.wgsl {}: gbuffer",
                 "light.wgsl {point_lights, spot_lights}",
             ],
-            "forward.wgsl {point_lights, spot_lights}: forward",
+            "forward.wgsl {point_lights, spot_lights}: forward (shadows)",
         ),
         (
             // No lights: the light passes are dropped, and the unlit G-buffer pass runs.

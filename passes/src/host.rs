@@ -71,6 +71,10 @@ pub struct Overrides {
     /// `background` (set by the host's choice, see
     /// [`rgraph_scene::analysis::Features::background`]).
     pub background: Option<Background>,
+    /// Which lights cast shadows and how they are filtered (the default: PCF, the four
+    /// most important lights). Turned off, the host unsets the scene's `shadows` feature
+    /// so that the pipelines drop their shadow passes.
+    pub shadows: crate::shadows::Shadows,
 }
 
 /// What a frame shows where its opaque passes drew nothing: behind every surface, seen

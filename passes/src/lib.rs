@@ -74,6 +74,7 @@ pub mod host;
 mod passes;
 mod plugins;
 mod shaders;
+pub mod shadows;
 pub mod variant;
 
 use std::sync::Arc;
@@ -81,6 +82,7 @@ use std::sync::Arc;
 use rgraph_core::file::Registry;
 
 pub use host::{Background, Exposure, FrameInputs, FrameInputsError, Host, LightPose, Overrides};
+pub use shadows::{ShadowFilter, Shadows};
 
 /// Adds this crate's pass plugins to `registry`, so graph files can name them. With
 /// `host: None` the plugins declare and validate passes but draw nothing (see [`host`]).

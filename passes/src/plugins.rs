@@ -15,6 +15,9 @@
 //! (pipelines/deferred_noaa_fxaa.ron, deferred_msaa_4x_fxaa.ron). `ssao` and `ssao_blur`
 //! compute screen-space ambient occlusion from the G-buffer, which the light passes take
 //! as their optional `ao` input (pipelines/deferred_msaa_4x_ssao.ron).
+//! `shadow_maps` draws the shadowed lights' depth into a shadow atlas, which the light
+//! passes (`light_tiled`, `light_edge`, `light_nonedge`) read as their optional `shadows`
+//! input, under `when: "shadows"`.
 //! `background` draws what shows where nothing is (the host's `Background`: the
 //! environment, or coverage for a colour or transparent output) under `when:
 //! "background"`, before the transparent composite.
@@ -56,6 +59,7 @@ use crate::passes::light_tiled::LightTiled;
 use crate::passes::particle_edges::ParticleEdges;
 use crate::passes::particles::{CompositeParticles, Particles};
 use crate::passes::resolve::Resolve;
+use crate::passes::shadow_maps::ShadowMaps;
 use crate::passes::ssao::{Ssao, SsaoBlur};
 use crate::passes::tonemap::Tonemap;
 use crate::passes::transparent::{CompositeTransparent, Transparent};
@@ -76,6 +80,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(VisibilityCompute(shared.clone()))
         .register(KeysDepth(shared.clone()))
         .register(Resolve(shared.clone()))
+        .register(ShadowMaps(shared.clone()))
         .register(Tonemap(shared.clone()))
         .register(AutoExposure(shared.clone()))
         .register(DebugView(shared.clone()))

@@ -64,6 +64,15 @@ pub(crate) const LIGHT_EDGES_LISTED: &str = include_str!("wgsl/light_edges_liste
 const BRDF: &str = include_str!("wgsl/brdf.wgsl");
 const SURFACE: &str = include_str!("wgsl/surface.wgsl");
 const LIGHTING: &str = include_str!("wgsl/lighting.wgsl");
+/// The shadow maps' views in group 0.
+const SHADOW_VIEWS: &str = include_str!("wgsl/shadow_views.wgsl");
+/// lighting.wgsl's `light_visibility` from the shadow atlas (common/shadows.rs binds it).
+pub(crate) const SHADOW: &str = concat!(
+    include_str!("wgsl/shadow_views.wgsl"),
+    include_str!("wgsl/shadow.wgsl")
+);
+/// lighting.wgsl's `light_visibility` without shadow maps: passes that read no atlas.
+pub(crate) const SHADOW_NONE: &str = include_str!("wgsl/shadow_none.wgsl");
 const EDGE_DETECT: &str = include_str!("wgsl/edge_detect.wgsl");
 
 /// A pass's shader: a name for messages and its own fragment, composed after the shared
@@ -89,7 +98,7 @@ pub(crate) const EDGE: Source = Source {
     ],
 };
 const LIGHT_WGSL: &str = include_str!("wgsl/light.wgsl");
-/// Needs common/ao.rs's generated block after it.
+/// Needs common/ao.rs's and common/shadows.rs's generated blocks after it.
 pub(crate) const LIGHT: Source = Source {
     name: "light.wgsl",
     parts: &[
@@ -115,6 +124,7 @@ pub(crate) const LIGHT_PREPASS: Source = Source {
         BRDF,
         LIGHTING,
         SURFACE,
+        SHADOW_NONE,
         include_str!("wgsl/light_prepass.wgsl"),
         LIGHT_WGSL,
     ],
@@ -132,6 +142,17 @@ pub(crate) const LIGHT_TILED: Source = Source {
         SURFACE,
         EDGE_DETECT,
         include_str!("wgsl/light_tiled.wgsl"),
+    ],
+};
+/// The shadow maps' depth-only raster (passes/shadow_maps.rs).
+pub(crate) const SHADOW_RASTER: Source = Source {
+    name: "shadow_raster.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        GEOMETRY,
+        SHADOW_VIEWS,
+        include_str!("wgsl/shadow_raster.wgsl"),
     ],
 };
 pub(crate) const VISIBILITY: Source = Source {
@@ -200,6 +221,7 @@ pub(crate) const DEBUG: Source = Source {
 };
 
 const FORWARD_WGSL: &str = include_str!("wgsl/forward.wgsl");
+/// Needs common/shadows.rs's generated block after it.
 pub(crate) const FORWARD: Source = Source {
     name: "forward.wgsl",
     parts: &[COMMON, SCENE, MATERIAL, BRDF, LIGHTING, FORWARD_WGSL],
@@ -213,6 +235,7 @@ pub(crate) const TRANSPARENT: Source = Source {
         MATERIAL,
         BRDF,
         LIGHTING,
+        SHADOW_NONE,
         FORWARD_WGSL,
         include_str!("wgsl/transparent.wgsl"),
     ],
@@ -227,6 +250,7 @@ pub(crate) const LIGHT_PREPASS_GEOMETRY: Source = Source {
         MATERIAL,
         BRDF,
         LIGHTING,
+        SHADOW_NONE,
         FORWARD_WGSL,
         include_str!("wgsl/light_prepass_material.wgsl"),
     ],

@@ -12,8 +12,8 @@ use crate::structure_check::{check, edges, sources, Layers};
 /// in a loop. `lib.rs`, the crate's face, is not checked.
 const LAYERS: Layers<'_> = &[
     // What the host application hands the plugins: the scene (rgraph-scene's), the
-    // overrides and the frame inputs.
-    ("host", &["host"]),
+    // overrides (the shadow settings among them) and the frame inputs.
+    ("host", &["host", "shadows"]),
     // Which shader variants a scene's features need.
     ("variant", &["variant"]),
     // The scene on the device (feature `gpu`).

@@ -10,6 +10,7 @@ use std::path::Path;
 use rgraph_core::explain;
 use rgraph_core::file::{load_file_with, FileErrors, LoadedGraph};
 use rgraph_core::{CompileOptions, Features, Plan};
+use rgraph_passes::ShadowFilter;
 use rgraph_scene::analysis::{Analysis, Features as SceneFeatures, SHALLOW_STEP};
 use rgraph_scene::SceneError;
 
@@ -30,9 +31,13 @@ pub fn run(
     page::check_flags(format, page_args)?;
     let options = compile_options(target)?;
     let loaded = load(pipeline, samples, &page_args.outputs, &options)?;
-    let analysis = scene
+    let mut analysis = scene
         .map(|spec| analyse(spec, assets, options.output_size))
         .transpose()?;
+    if let Some((_, analysis)) = &mut analysis {
+        // As `render --shadows off` compiles it.
+        analysis.features.shadows &= page_args.shadows != ShadowFilter::Off;
+    }
     let features = analysis
         .as_ref()
         .map_or_else(Features::new, |(_, a)| a.features.names());

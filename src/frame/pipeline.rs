@@ -133,6 +133,8 @@ impl Pipeline {
             });
         }
         features.background = background.is_some() || environment;
+        // Its shadow passes draw the shadows asked for; none at all drops them.
+        features.shadows &= host.overrides.shadows.enabled();
         let scene = host.scene.clone();
         let loaded = load(&registry_for(Some(host), specialise.variants()))?;
         let mut pipeline = Self::keep(path, loaded, outputs, (features, shader_features), scene)?;

@@ -37,6 +37,9 @@ pub(crate) struct SceneDraw {
     /// depth without writing it, reading these textures as group 2. The pass attaches the
     /// depth-stencil read-only.
     pub redraw: Option<Vec<Input>>,
+    /// The shadow atlas the shader reads in group 2 too (common/shadows.rs), where the
+    /// pass lights the meshes with shadows.
+    pub shadows: Option<Input>,
 }
 
 /// The entry points a pass draws meshes with.
@@ -84,6 +87,7 @@ impl SceneDraw {
             begin_blended: None,
             fill_background: false,
             redraw: None,
+            shadows: None,
         }
     }
 }

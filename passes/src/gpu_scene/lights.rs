@@ -6,8 +6,10 @@ use glam::{DMat4, DQuat, DVec3};
 use wgpu::util::DeviceExt;
 
 use super::mesh::camera_relative;
+use super::shadows::{self, Shadowed, NO_SHADOW};
 use super::volumes::{VolumeMesh, VolumeShape};
 use crate::host::LightPose;
+use crate::shadows::Shadows;
 use rgraph_scene::{
     BoundingSphere, Camera, Irradiance, Light, LightKind, LightVolume, Projection, Scene,
     CUBE_LEVELS, DEFAULT_CUTOFF_ILLUMINANCE,
@@ -32,7 +34,8 @@ struct LightData {
     spot_offset: f32,
     bound_offset: f32,
     bound_radius: f32,
-    _pad: f32,
+    /// The light's first shadow view (gpu_scene/shadows.rs), or `NO_SHADOW`.
+    shadow: u32,
 }
 
 /// `LightInfo` in scene.wgsl.
@@ -77,18 +80,23 @@ pub(super) struct LightFrame {
     /// light draw adds something.
     pub fullscreen: bool,
     pub volumes: Vec<VolumeLight>,
+    /// The lights given shadow maps, as `shadows` chose them.
+    pub shadowed: Vec<Shadowed>,
 }
 
 impl LightFrame {
-    /// The lights of `scene` placed as `poses` says (one per light), seen from `eye`,
-    /// with `exposure` for the tone mapper.
+    /// The lights of `scene` placed as `poses` says (one per light), seen from `camera`,
+    /// with `exposure` for the tone mapper, the most important of them given shadow maps
+    /// as `shadows` says.
     pub fn new(
         scene: &Scene,
         poses: &[LightPose],
-        eye: DVec3,
+        camera: &Camera,
         exposure: f32,
         (sphere, cone): (&VolumeMesh, &VolumeMesh),
+        shadows: Shadows,
     ) -> LightFrame {
+        let eye = camera.position;
         let placed: Vec<Light> = scene
             .lights
             .iter()
@@ -144,6 +152,11 @@ impl LightFrame {
             };
             data.push(light_data(light, kind, volume, eye));
         }
+        let ordered: Vec<&Light> = directional.iter().chain(&local).copied().collect();
+        let chosen = shadows::select(&ordered, camera, shadows);
+        for (index, shadowed) in &chosen {
+            data[*index].shadow = shadowed.first_view;
+        }
         let intensity = scene.environment.map_or(0.0, |e| e.intensity);
         let info = LightInfo {
             ambient: scene.ambient,
@@ -172,6 +185,7 @@ impl LightFrame {
                 || scene.ambient.iter().any(|&c| c > 0.0)
                 || intensity > 0.0,
             volumes,
+            shadowed: chosen.into_iter().map(|(_, s)| s).collect(),
         }
     }
 
@@ -252,7 +266,7 @@ fn light_data(light: &Light, kind: u32, volume: DMat4, eye: DVec3) -> LightData 
         spot_offset,
         bound_offset,
         bound_radius,
-        _pad: 0.0,
+        shadow: NO_SHADOW,
     }
 }
 

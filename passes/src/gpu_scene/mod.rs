@@ -7,8 +7,8 @@
 //! they change into the same buffers (see [`crate::host`] for the contract). A
 //! [`GpuScene`] holds:
 //! - group 0 ([`GpuScene::layout`], [`GpuScene::bind_group`]), as `scene.wgsl` declares
-//!   it: camera uniform, per-mesh data, materials, lights, light info, and lighting.wgsl's
-//!   environment maps;
+//!   it: camera uniform, per-mesh data, materials, lights, light info, lighting.wgsl's
+//!   environment maps, and the shadow maps' views and comparison sampler (shadows.rs);
 //! - the meshes ([`GpuScene::draw_meshes`], vertex layout [`mesh::VERTEX_LAYOUT`]) and a
 //!   bind group per material for group 1 ([`GpuScene::material_layout`],
 //!   [`GpuScene::material_groups`], made when a pass first draws with them);
@@ -35,6 +35,7 @@ mod materials;
 pub mod mesh;
 mod particles;
 pub(crate) mod screen_rect;
+mod shadows;
 mod texture_table;
 mod textures;
 pub(crate) mod volumes;
@@ -50,6 +51,7 @@ pub use screen_rect::PixelRect;
 pub use volumes::{VolumeMesh, VolumeShape};
 
 use crate::host::{FrameInputs, Host};
+use crate::shadows::Shadows;
 use crate::variant::{GatedShader, Variant, Variants};
 use rgraph_scene::analysis::Features;
 use rgraph_scene::{DepthConvention, Scene};
@@ -156,8 +158,14 @@ impl SceneCache {
         let at = match uploaded.iter().position(|(d, _)| d == device) {
             Some(at) => at,
             None => {
-                let scene =
-                    GpuScene::upload_with(device, queue, &host.scene, inputs.clone(), generation);
+                let shadows = host.overrides.shadows;
+                let scene = GpuScene::upload_with(
+                    device,
+                    queue,
+                    &host.scene,
+                    (inputs.clone(), generation),
+                    shadows,
+                );
                 uploaded.push((device.clone(), Arc::new(scene)));
                 uploaded.len() - 1
             }
@@ -190,6 +198,9 @@ struct Upload {
     texture_table: texture_table::TextureTableGpu,
     materials: materials::Materials,
     lights: lights::LightBuffers,
+    /// Which lights cast shadows (the host's choice).
+    shadows: Shadows,
+    shadow_maps: shadows::ShadowBuffers,
     sphere: VolumeMesh,
     cone: VolumeMesh,
 }
@@ -210,12 +221,21 @@ impl Frame {
         (inputs, generation): (Arc<FrameInputs>, u64),
         previous: Option<&Frame>,
         volumes: (&VolumeMesh, &VolumeMesh),
+        shadows: Shadows,
     ) -> Frame {
         let eye = inputs.camera.position;
         let previous_meshes = previous.map(|p| (&p.meshes, p.inputs.transforms.as_slice()));
+        let lights = lights::LightFrame::new(
+            scene,
+            &inputs.lights,
+            &inputs.camera,
+            inputs.exposure,
+            volumes,
+            shadows,
+        );
         Frame {
             meshes: mesh::MeshFrame::new(scene, &inputs.transforms, eye, previous_meshes),
-            lights: lights::LightFrame::new(scene, &inputs.lights, eye, inputs.exposure, volumes),
+            lights,
             inputs,
             generation,
         }
@@ -226,19 +246,20 @@ impl GpuScene {
     /// Uploads `scene` on `device` as loaded (its own [`FrameInputs`]).
     pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) -> GpuScene {
         let inputs = Arc::new(FrameInputs::of(scene));
-        GpuScene::upload_with(device, queue, scene, inputs, 0)
+        GpuScene::upload_with(device, queue, scene, (inputs, 0), Shadows::default())
     }
 
-    /// Uploads `scene` on `device`, placed by `inputs` (of `generation`).
+    /// Uploads `scene` on `device`, placed by `inputs` (of `generation`), its lights
+    /// given shadow maps as `shadows` says.
     fn upload_with(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         scene: &Scene,
-        inputs: Arc<FrameInputs>,
-        generation: u64,
+        inputs: (Arc<FrameInputs>, u64),
+        shadows: Shadows,
     ) -> GpuScene {
         let (sphere, cone) = (volumes::sphere(device), volumes::cone(device));
-        let frame = Frame::new(scene, (inputs, generation), None, (&sphere, &cone));
+        let frame = Frame::new(scene, inputs, None, (&sphere, &cone), shadows);
         let layout = layout::scene_layout(device);
         let material_layout = materials::layout(device);
         let cameras = camera::Cameras::new(device);
@@ -246,6 +267,7 @@ impl GpuScene {
         let materials = materials::Materials::new(device, scene);
         let lights = lights::LightBuffers::new(device, &frame.lights);
         let environment = environment::EnvironmentMaps::new(device, queue, scene);
+        let shadow_maps = shadows::ShadowBuffers::new(device);
         let group = |camera| {
             let buffers = [
                 camera,
@@ -254,7 +276,7 @@ impl GpuScene {
                 &lights.data,
                 &lights.info,
             ];
-            layout::scene_group(device, &layout, buffers, &environment)
+            layout::scene_group(device, &layout, buffers, &environment, &shadow_maps)
         };
         let upload = Upload {
             reversed_group: group(&cameras.reversed),
@@ -267,6 +289,8 @@ impl GpuScene {
             texture_table: texture_table::TextureTableGpu::new(device),
             materials,
             lights,
+            shadows,
+            shadow_maps,
             sphere,
             cone,
         };
@@ -287,7 +311,13 @@ impl GpuScene {
     ) -> GpuScene {
         let upload = &self.upload;
         let volumes = (&upload.sphere, &upload.cone);
-        let frame = Frame::new(scene, (inputs, generation), Some(&self.frame), volumes);
+        let frame = Frame::new(
+            scene,
+            (inputs, generation),
+            Some(&self.frame),
+            volumes,
+            upload.shadows,
+        );
         let writes = [
             (
                 &upload.meshes.data,
@@ -326,6 +356,34 @@ impl GpuScene {
     pub fn prepare(&self, queue: &wgpu::Queue, size: (u32, u32)) {
         let camera = (&self.frame.inputs.camera, self.frame.generation);
         self.upload.cameras.prepare(queue, camera, size);
+    }
+
+    /// Writes the shadow views of this frame's shadowed lights (gpu_scene/shadows.rs)
+    /// for an output of `size` and a shadow atlas `atlas` texels wide, and returns the
+    /// atlas tiles they take, in pixels (x, y, side). The write lands before the frame's
+    /// submission, so every pass of the frame reads the views.
+    pub fn write_shadow_views(
+        &self,
+        queue: &wgpu::Queue,
+        size: (u32, u32),
+        atlas: u32,
+    ) -> Vec<(u32, u32, u32)> {
+        let camera = &self.frame.inputs.camera;
+        let aspect = f64::from(size.0.max(1)) / f64::from(size.1.max(1));
+        let tile = atlas / crate::shadows::ATLAS_GRID;
+        let bounds = self
+            .layer_draws(Layer::Opaque)
+            .iter()
+            .map(|(draw, _)| draw.bounds)
+            .reduce(|a, b| a.union(&b));
+        let shadowed = &self.frame.lights.shadowed;
+        let views = shadows::views(shadowed, camera, aspect, tile, bounds);
+        queue.write_buffer(
+            &self.upload.shadow_maps.views,
+            0,
+            bytemuck::cast_slice(&views),
+        );
+        shadows::tiles(shadowed, tile)
     }
 
     /// The frame inputs this scene is placed by (the particle passes read the camera

@@ -9,7 +9,9 @@
 //!  outputs: {
 //!      "hdr": "hdr",       // rgba16float, the depth's sample count
 //!      "depth": "depth",   // depth24plus(-stencil8) or depth32float(-stencil8)
-//!  })
+//!  },
+//!  inputs: { "shadows": "shadow_atlas" })   // optional: shadow_maps's atlas, which
+//!                                           // scales each shadowed light (group 2)
 //! ```
 //!
 //! Shading is brdf.wgsl's, as in the deferred light passes: Lambert plus GGX
@@ -38,6 +40,7 @@ use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
 use crate::common::plugin::Shared;
 use crate::common::scene_draw::{Masked, SceneDraw, Stages};
+use crate::common::shadows;
 use crate::common::textures::{self, Want};
 use crate::shaders;
 use crate::variant::GatedShader;
@@ -120,9 +123,14 @@ impl Plugin for Forward {
         // (common/background.rs), unless the pass draws over the target it reads.
         let mut targets = FilledTargets::new(slots, &["hdr"]);
         targets.push(slots, pass, "hdr", want, ("vec4<f32>", params.background))?;
-        let source = shaders::FORWARD.compose_with(desc.samples, &targets.wgsl())?;
+        let shadows = shadows::input(slots, pass)?;
+        let filter = self.0.overrides.shadows.filter;
+        // Group 1 is the material's: the atlas is bound in group 2.
+        let generated = targets.wgsl() + &shadows::wgsl(shadows.as_ref(), 2, filter);
+        let source = shaders::FORWARD.compose_with(desc.samples, &generated)?;
         let draw = SceneDraw {
             fill_background: targets.fill(),
+            shadows,
             ..SceneDraw::new(
                 "forward",
                 GatedShader::Forward,

@@ -14,6 +14,8 @@
 //!      "hdr": "hdr",             // also an output: the pass adds to it
 //!      "ao": "ao",               // optional: ssao_blur's occlusion (r8unorm, 1 sample),
 //!                                // which scales the ambient and environment light only
+//!      "shadows": "shadow_atlas", // optional: shadow_maps's atlas (depth32float), which
+//!                                // scales each shadowed light (common/shadows.rs)
 //!  },
 //!  outputs: { "hdr": "hdr_edges" })
 //! (name: "light_nonedge", plugin: "light_nonedge",
@@ -59,6 +61,7 @@ use rgraph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, Textur
 use crate::common::ao;
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{yes, Shared, ONE_SAMPLE};
+use crate::common::shadows;
 use crate::common::textures::{self, Input, Texels, Want, GBUFFER_INPUTS};
 use crate::shaders;
 
@@ -169,6 +172,7 @@ impl Plugin for LightNonEdge {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         let (draw, _) = setup(
+            &self.0,
             Frequency::Pixel(params.samples),
             params.reversed_z,
             params.volumes,
@@ -197,6 +201,7 @@ impl Plugin for LightEdge {
     ) -> Result<(), PluginError> {
         let frequency = Frequency::Sample(params.mode);
         let (draw, samples) = setup(
+            &self.0,
             frequency,
             params.reversed_z,
             params.volumes,
@@ -213,7 +218,9 @@ impl Plugin for LightEdge {
     }
 }
 
+/// Sets up either light pass, the host's shadow filter from `shared`.
 fn setup(
+    shared: &Shared,
     frequency: Frequency,
     reversed_z: Option<bool>,
     volumes: bool,
@@ -260,10 +267,14 @@ fn setup(
         Accumulate::Shaded => {
             let ao = ao::input(slots, pass)?;
             inputs.extend(ao);
-            shaders::LIGHT.compose_with(samples, &ao::wgsl(ao.as_ref()))?
+            let shadows = shadows::input(slots, pass)?;
+            inputs.extend(shadows);
+            let filter = shared.overrides.shadows.filter;
+            let generated = ao::wgsl(ao.as_ref()) + &shadows::wgsl(shadows.as_ref(), 1, filter);
+            shaders::LIGHT.compose_with(samples, &generated)?
         }
-        // Its ambient light is the material pass's, so no AO here: an "ao" slot is
-        // left unread, which the file loader reports.
+        // Its ambient light is the material pass's, so no AO here (an "ao" slot is
+        // left unread, which the file loader reports), and no shadows yet.
         Accumulate::Light => shaders::LIGHT_PREPASS.compose(samples)?,
     };
     let draw = LightDraw {

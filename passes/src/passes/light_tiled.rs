@@ -13,7 +13,7 @@
 //!      resolve: box, exposure: 1.0,  // or resolve: tonemapped (resolve.rs)
 //!      tile: 16,                     // pixels per tile side
 //!      cull: true,                   // false: every light in every tile
-//!      view: shaded,                 // or edges | tile_lights | fragments
+//!      view: shaded,                 // or edges | tile_lights | fragments | shadows
 //!  ),                                // (these are the defaults)
 //!  inputs: {
 //!      "albedo": "albedo", "normal": "normal", "material": "material",
@@ -22,6 +22,8 @@
 //!      "hdr": "hdr",       // emission and unlit colour, per sample
 //!      "ao": "ao",         // optional: ssao_blur's occlusion (r8unorm, 1 sample),
 //!                          // which scales the ambient and environment light only
+//!      "shadows": "shadow_atlas",  // optional: shadow_maps's atlas (depth32float),
+//!                          // which scales each shadowed light (common/shadows.rs)
 //!  },
 //!  outputs: { "resolved": "resolved" })   // 1 sample, rgba16float, storage
 //! ```
@@ -80,8 +82,9 @@
 //! Debug views write an `rgba8unorm` output named `color` instead of `resolved`:
 //! `edges` (red edge pixels, blue others, black without geometry, as debug_view's),
 //! `tile_lights` (lights each tile shades, directional ones included, as a heat map from
-//! blue for 1 to red for 64 or more) and `fragments` (fragments per pixel: dark
-//! grey 1, green 2, blue 3, red 4 or more).
+//! blue for 1 to red for 64 or more), `fragments` (fragments per pixel: dark
+//! grey 1, green 2, blue 3, red 4 or more) and `shadows` (the visibility term of the
+//! most important shadowed light, from the `shadows` input: white lit, black shadowed).
 
 use serde::Deserialize;
 
@@ -96,6 +99,7 @@ use crate::common::depth::DepthRule;
 use crate::common::edge_detection::{Detector, EdgeDetection};
 use crate::common::gbuffer_layout::{GBufferLayout, Surfaces};
 use crate::common::plugin::{check_tile, yes, Shared};
+use crate::common::shadows;
 use crate::common::textures::{self, format_name, Input, Texels, Want};
 use crate::common::visibility_samples;
 use crate::shaders;
@@ -159,6 +163,10 @@ pub enum TiledView {
     Edges,
     TileLights,
     Fragments,
+    /// The shadow maps' visibility term of the most important shadowed light (its share
+    /// of the filter's taps that see the surface, white lit to black shadowed) at each
+    /// pixel's sample 0; needs the `shadows` input.
+    Shadows,
 }
 
 impl TiledView {
@@ -169,6 +177,7 @@ impl TiledView {
             TiledView::Edges => 1.0,
             TiledView::TileLights => 2.0,
             TiledView::Fragments => 3.0,
+            TiledView::Shadows => 4.0,
         }
     }
 
@@ -331,7 +340,18 @@ impl Plugin for LightTiled {
         );
         let ao = ao::input(slots, pass)?;
         inputs.extend(ao);
-        let generated = generated + &ao::wgsl(ao.as_ref());
+        let shadows = shadows::input(slots, pass)?;
+        if params.view == TiledView::Shadows && shadows.is_none() {
+            return Err(PluginError::Invalid(
+                "view: shadows shows the shadow maps' visibility term: give the pass a \
+                 \"shadows\" input (the shadow_maps pass's atlas)"
+                    .into(),
+            ));
+        }
+        inputs.extend(shadows);
+        let filter = self.0.overrides.shadows.filter;
+        let generated =
+            generated + &ao::wgsl(ao.as_ref()) + &shadows::wgsl(shadows.as_ref(), 1, filter);
         let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
         // The device must allow the workgroup of each.
         let entries = match listed {

@@ -14,7 +14,7 @@ fn shade_sample(pixel: vec2<i32>, s: u32, p: vec3<f32>, light: u32) -> vec4<f32>
         // Screen-space AO, when the pass reads it, darkens the ambient term only.
         color = ambient_and_directional(with_screen_ao(surface, pixel));
     } else {
-        color = shade_light(surface, lights[light]);
+        color = direct_light(surface, lights[light]);
     }
     return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), 0.0);
 }

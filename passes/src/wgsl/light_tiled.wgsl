@@ -48,7 +48,8 @@ override ADAPTIVE: bool = false;
 override CULL: bool = true;
 // What the pass writes: 0 the lit, resolved HDR; 1 edge pixels (red, blue elsewhere,
 // black without geometry); 2 lights per tile as a heat map; 3 fragments per pixel
-// (green 2, blue 3, red 4 or more, dark grey 1, black without geometry).
+// (green 2, blue 3, red 4 or more, dark grey 1, black without geometry); 4 the most
+// important shadowed light's visibility term (grey, black without geometry).
 override VIEW: u32 = 0u;
 // 0: box resolve. 1: each sample weighted by 1 / (1 + EXPOSURE * luminance).
 override RESOLVE: u32 = 0u;
@@ -61,6 +62,7 @@ const VIEW_SHADED: u32 = 0u;
 const VIEW_EDGES: u32 = 1u;
 const VIEW_TILE_LIGHTS: u32 = 2u;
 const VIEW_FRAGMENTS: u32 = 3u;
+const VIEW_SHADOWS: u32 = 4u;
 
 // The tile's depth bounds as order-preserving keys (depth_key): the largest key of the
 // negated depth is the nearest, the largest key of the depth the farthest. 0 (below
@@ -245,7 +247,7 @@ fn reaching_light(s: Surface, light: LightData) -> vec3<f32> {
     if !reaches(light, s.position) {
         return vec3<f32>(0.0);
     }
-    return shade_light(s, light);
+    return direct_light(s, light);
 }
 
 // What the samples of surface `e` take, lit by `light` in all: what it emits (a visibility
@@ -329,6 +331,18 @@ fn sample_is_edge(g0: GSample, gs: GSample, s: u32) -> bool {
             return false;
         }
     }
+}
+
+// The shadows view's term: the visibility of the light whose maps come first in the
+// atlas (the most important shadowed one, gpu_scene/shadows.rs) at surface `s`; 1
+// where no light has maps.
+fn first_shadow_visibility(s: Surface) -> f32 {
+    for (var i = 0u; i < light_count(); i++) {
+        if lights[i].shadow == 0u {
+            return light_visibility(s, lights[i]);
+        }
+    }
+    return 1.0;
 }
 
 // Clears the tile's shared state (invocation `local` 0), before a barrier.
@@ -542,6 +556,10 @@ fn cs_light_tiled(
         }
         case VIEW_TILE_LIGHTS: {
             let color = select(heat(f32(tile_lights - 1u) / max(HEAT_MAX - 1.0, 1.0)), vec3<f32>(0.0), tile_lights == 0u);
+            textureStore(out_tex, pixel, vec4<f32>(color, 1.0));
+        }
+        case VIEW_SHADOWS: {
+            let color = select(vec3<f32>(0.0), vec3<f32>(first_shadow_visibility(surface0)), lit0);
             textureStore(out_tex, pixel, vec4<f32>(color, 1.0));
         }
         case VIEW_FRAGMENTS: {

@@ -1,7 +1,8 @@
 // The light a lit surface receives, for every pass that shades one: the deferred light
 // passes (light.wgsl, light_tiled.wgsl) split it into what every pixel gets and the
 // point and spot lights they cull; forward passes add it all at once.
-// Composed after common.wgsl, scene.wgsl and brdf.wgsl.
+// Composed after common.wgsl, scene.wgsl and brdf.wgsl, and with shadow.wgsl or
+// shadow_none.wgsl (`light_visibility`).
 
 // Image-based lighting from scene.wgsl's environment_tex and split_sum_tex.
 
@@ -46,6 +47,16 @@ fn ambient_light(s: Surface) -> vec3<f32> {
     return color * s.occlusion;
 }
 
+// The light `light` sends surface `s`, as far as its shadow map lets it through
+// (`light_visibility`: shadow.wgsl, or shadow_none.wgsl where the pass reads no atlas).
+fn direct_light(s: Surface, light: LightData) -> vec3<f32> {
+    let color = shade_light(s, light);
+    if all(color == vec3<f32>(0.0)) {
+        return color;
+    }
+    return color * light_visibility(s, light);
+}
+
 // The light that reaches every surface: ambient plus every directional light.
 fn ambient_and_directional(s: Surface) -> vec3<f32> {
     var color = ambient_light(s);
@@ -53,7 +64,7 @@ fn ambient_and_directional(s: Surface) -> vec3<f32> {
     // would add zeros.
     if DIRECTIONAL_LIGHTS {
         for (var i = 0u; i < directional_count(); i++) {
-            color += shade_light(s, lights[i]);
+            color += direct_light(s, lights[i]);
         }
     }
     return color;
@@ -63,7 +74,7 @@ fn ambient_and_directional(s: Surface) -> vec3<f32> {
 fn every_light(s: Surface) -> vec3<f32> {
     var color = ambient_light(s);
     for (var i = 0u; i < light_count(); i++) {
-        color += shade_light(s, lights[i]);
+        color += direct_light(s, lights[i]);
     }
     return color;
 }

@@ -68,7 +68,9 @@ struct LightData {
     // (negative for a light that reaches nothing).
     bound_offset: f32,
     bound_radius: f32,
-    _pad: f32,
+    // The light's first view in shadow.wgsl's shadow_views (a directional light's
+    // cascades follow it), or NO_SHADOW.
+    shadow: u32,
 }
 
 struct LightInfo {

@@ -60,6 +60,11 @@ pub struct Features {
     /// `background` pass under this condition. [`Features::of`] and
     /// [`Features::general`] leave it unset.
     pub background: bool,
+    /// Some directional or spot light emits, so some light casts a shadow (point lights
+    /// cast none yet), and the host has not turned shadows off: the pipelines add their
+    /// shadow-map pass and shadowed light passes under `when: "shadows"`. [`Features::of`]
+    /// sets it from the scene alone; a host that turns shadows off unsets it.
+    pub shadows: bool,
     /// Not the scene's but the host's choice: expose each frame for its metered
     /// luminance (`Exposure::Auto`), which pipelines do with an `auto_exposure` pass
     /// under this condition. [`Features::of`] and [`Features::general`] leave it unset.
@@ -68,7 +73,7 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 24] = [
+    pub const NAMES: [&'static str; 25] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -91,6 +96,7 @@ impl Features {
         "double_sided",
         "shallow_depth",
         "particles",
+        "shadows",
         "background",
         "auto_exposure",
     ];
@@ -135,6 +141,7 @@ impl Features {
             shallow_depth: DepthRange::of(scene)
                 .is_some_and(|range| range.shallow(&scene.camera.projection)),
             particles: scene.particles().next().is_some(),
+            shadows: light(|k| matches!(k, LightKind::Directional | LightKind::Spot { .. })),
             background: false,
             auto_exposure: false,
         }
@@ -171,6 +178,7 @@ impl Features {
             double_sided: true,
             shallow_depth: false,
             particles: true,
+            shadows: true,
             background: false,
             auto_exposure: false,
         }
@@ -216,6 +224,7 @@ impl Features {
             self.double_sided,
             self.shallow_depth,
             self.particles,
+            self.shadows,
             self.background,
             self.auto_exposure,
         ];

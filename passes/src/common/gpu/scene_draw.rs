@@ -27,6 +27,7 @@ use super::pipeline::{module, pipeline_layout, PipelineDesc, Pipelines};
 use super::{Frame, Recorded, Recorder, Render};
 use crate::common::depth::far_depth;
 use crate::common::scene_draw::{Masked, SceneDraw};
+use crate::common::textures::Input;
 use crate::gpu_scene::{mesh, GpuScene, Layer, MaterialState};
 use crate::variant::Variant;
 use rgraph_scene::DepthConvention;
@@ -43,7 +44,7 @@ pub(crate) struct Key {
 pub(crate) struct State {
     module: wgpu::ShaderModule,
     layout: wgpu::PipelineLayout,
-    /// A redraw's group 2.
+    /// Group 2: a redraw's inputs and the shadow atlas, where the pass reads them.
     inputs: Option<TextureBindings>,
     pipelines: Pipelines<Key>,
     /// The full-screen draws' (the blended layer's beginning, the background fill): no
@@ -62,7 +63,10 @@ impl Recorder for SceneDraw {
 
     fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<State, String> {
         let (device, scene) = (frame.device, &frame.scene);
-        let inputs = (self.redraw.as_ref()).map(|r| TextureBindings::new(frame.resources, r));
+        let read: Vec<Input> = (self.redraw.iter().flatten().copied())
+            .chain(self.shadows)
+            .collect();
+        let inputs = (!read.is_empty()).then(|| TextureBindings::new(frame.resources, &read));
         let layouts = [
             Some(scene.layout()),
             Some(scene.material_layout()),
@@ -98,7 +102,7 @@ impl Recorder for SceneDraw {
             false => Layer::Opaque,
             true => Layer::Blended,
         };
-        let redraws = state.inputs.is_some();
+        let redraws = self.redraw.is_some();
         // A scene on the device has a host scene (for_frame returned it).
         let Some(host_scene) = frame.scenes.scene() else {
             return Ok(());

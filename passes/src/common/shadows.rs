@@ -1,0 +1,58 @@
+//! The light passes' optional `shadows` input: the shadow atlas the `shadow_maps` pass
+//! draws (passes/shadow_maps.rs), through which each shadowed light's direct light is
+//! scaled by the share of its shadow-map filter's taps that see the surface
+//! (shadow.wgsl). Without the slot the generated WGSL is shadow_none.wgsl: every light
+//! reaches every surface, and the image is the unshadowed pass's, bit for bit.
+
+use rgraph_core::file::{PluginError, Slots};
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{Aspect, PassBuilder};
+
+use super::textures::{self, Input, Texels, Want};
+use crate::shaders;
+use crate::shadows::ShadowFilter;
+
+/// The shadow atlas's format: depth written by the raster, compared by the sampler.
+pub(crate) const ATLAS: &[TextureFormat] = &[TextureFormat::Depth32Float];
+
+/// Where the passes bind it: group 1 of the light passes, after every other input of
+/// theirs (light_tiled's list of edge pixels is 12); group 2 of a pass that draws the
+/// meshes (forward), whose group 1 is the material's.
+const BINDING: u32 = 13;
+
+/// The `shadows` slot when the file gives one: declared sampled (its depth, one sample),
+/// bound at [`BINDING`].
+pub(crate) fn input(
+    slots: &mut Slots<'_>,
+    pass: &mut PassBuilder<'_>,
+) -> Result<Option<Input>, PluginError> {
+    if slots.kind("shadows").is_none() {
+        return Ok(None);
+    }
+    let want = Want::new("the shadow atlas", ATLAS).samples(1);
+    let (atlas, _) = textures::input(slots, pass, "shadows", want)?;
+    pass.sampled_aspect(atlas, Aspect::DepthOnly);
+    Ok(Some(Input {
+        binding: BINDING,
+        texture: atlas,
+        aspect: Aspect::DepthOnly,
+        texels: Texels::Depth,
+    }))
+}
+
+/// The WGSL for [`input`]'s result bound in `group`, composed after the light shader:
+/// lighting.wgsl's `light_visibility`, from the atlas filtered as `filter` says, or 1
+/// without an atlas.
+pub(crate) fn wgsl(input: Option<&Input>, group: u32, filter: ShadowFilter) -> String {
+    match input {
+        Some(input) => format!(
+            "// Generated: the shadows input (common/shadows.rs).\n\
+             @group({group}) @binding({}) var shadow_atlas: texture_depth_2d;\n\
+             const SHADOW_FILTER: u32 = {}u;\n{}",
+            input.binding,
+            filter.constant(),
+            shaders::SHADOW
+        ),
+        None => shaders::SHADOW_NONE.to_owned(),
+    }
+}

@@ -1,0 +1,382 @@
+//! Shadow maps' views: which lights cast shadows this frame (the most important by
+//! screen coverage, as many as [`Shadows::lights`] and the atlas allow), and for each its
+//! views into the shadow atlas, as shadow.wgsl's `ShadowView` holds them (group 0,
+//! binding 8). The light data name each shadowed light's first view
+//! (`LightData::shadow`); the `shadow_maps` pass writes the views each frame
+//! ([`GpuScene::write_shadow_views`](super::GpuScene::write_shadow_views)), since the
+//! cascades depend on the output's aspect ratio and the atlas's size.
+//!
+//! - A directional light takes [`CASCADES`] orthographic maps, splitting the view depths
+//!   the camera sees of the scene's bounds (the practical split scheme, λ = 0.75: Zhang
+//!   et al. 2006, as in Dimitrov's cascaded shadow maps). Each cascade is the sphere
+//!   around its slice of the view frustum, whose size depends only on the slice, not on
+//!   the camera's rotation, and its centre is snapped to whole texels in the light's
+//!   world-anchored view: moving or turning the camera neither resizes nor shifts the
+//!   texel grid, so shadow edges do not shimmer. Depth spans the scene's bounds along the
+//!   light, so casters outside the cascade still cast into it.
+//! - A spot light takes one perspective map over its cone, to its range.
+//! - Point lights cast no shadow yet.
+
+use glam::{DMat4, DVec3};
+
+use crate::shadows::{Shadows, ATLAS_GRID, CASCADES, SHADOW_VIEWS};
+use rgraph_scene::{Aabb, Camera, Light, LightKind, Projection, DEFAULT_CUTOFF_ILLUMINANCE};
+
+/// `LightData::shadow` of a light without a shadow map (shadow.wgsl's `NO_SHADOW`).
+pub(super) const NO_SHADOW: u32 = u32::MAX;
+
+/// The practical split scheme's weight of the logarithmic split against the uniform one.
+const SPLIT_LAMBDA: f64 = 0.75;
+
+/// `ShadowView` in shadow.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub(super) struct ShadowView {
+    clip_from_world: [[f32; 4]; 4],
+    rect: [f32; 4],
+    params: [f32; 4],
+}
+
+/// What group 0's binding 8 holds.
+pub(super) type ShadowViews = [ShadowView; SHADOW_VIEWS as usize];
+
+/// A light given shadow maps this frame.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Shadowed {
+    /// The light as the frame places it.
+    pub light: Light,
+    /// Its first view (atlas tile); a directional light's cascades follow it.
+    pub first_view: u32,
+}
+
+impl Shadowed {
+    /// Atlas tiles the light takes.
+    fn views(&self) -> u32 {
+        views_of(&self.light)
+    }
+}
+
+fn views_of(light: &Light) -> u32 {
+    match light.kind {
+        LightKind::Directional => CASCADES,
+        _ => 1,
+    }
+}
+
+/// The lights of `lights` (in the light buffer's order) given shadow maps, with the
+/// index of each in `lights`: directional and spot lights that emit, by the share of the
+/// screen they may light seen from `camera` (every pixel for a directional light; the
+/// outline of a spot light's bounding sphere, for the vertical field of view), largest
+/// first and in buffer order among equals, at most `settings.lights`, skipping any whose
+/// views no longer fit the atlas.
+pub(super) fn select(
+    lights: &[&Light],
+    camera: &Camera,
+    settings: Shadows,
+) -> Vec<(usize, Shadowed)> {
+    if !settings.enabled() {
+        return Vec::new();
+    }
+    let mut ranked: Vec<(usize, f64)> = lights
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.emits())
+        .map(|(i, l)| (i, coverage(l, camera)))
+        .filter(|&(_, c)| c > 0.0)
+        .collect();
+    ranked.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let mut chosen = Vec::new();
+    let mut next_view = 0;
+    for (index, _) in ranked {
+        if chosen.len() as u32 == settings.lights {
+            break;
+        }
+        let light = lights[index];
+        if next_view + views_of(light) > SHADOW_VIEWS {
+            continue;
+        }
+        chosen.push((
+            index,
+            Shadowed {
+                light: light.clone(),
+                first_view: next_view,
+            },
+        ));
+        next_view += views_of(light);
+    }
+    chosen
+}
+
+/// The share of the screen (0 to 1) `light` may light, roughly: what ranks lights for
+/// shadow maps. 0 for lights that cast no shadow.
+fn coverage(light: &Light, camera: &Camera) -> f64 {
+    match light.kind {
+        LightKind::Directional => 1.0,
+        LightKind::Point => 0.0,
+        LightKind::Spot { .. } => {
+            let Some(sphere) = light.bounding_sphere(DEFAULT_CUTOFF_ILLUMINANCE) else {
+                return 0.0;
+            };
+            let to = sphere.center - camera.position;
+            let distance = to.length();
+            if distance <= sphere.radius {
+                return 1.0;
+            }
+            if to.dot(camera.forward()) < -sphere.radius {
+                return 0.0;
+            }
+            let half_height = match camera.projection {
+                Projection::Perspective { yfov, .. } => f64::from(yfov * 0.5).tan(),
+                Projection::Orthographic { ymag, .. } => f64::from(ymag) / distance,
+            };
+            ((sphere.radius / distance) / half_height).powi(2).min(1.0)
+        }
+    }
+}
+
+/// Every view of the `shadowed` lights for `camera` at `aspect` (width over height), with
+/// tiles of `tile` texels, around scene geometry within `bounds` (camera-relative). Views
+/// past the last stay zero.
+pub(super) fn views(
+    shadowed: &[Shadowed],
+    camera: &Camera,
+    aspect: f64,
+    tile: u32,
+    bounds: Option<Aabb>,
+) -> ShadowViews {
+    let mut views = [bytemuck::Zeroable::zeroed(); SHADOW_VIEWS as usize];
+    let Some(bounds) = bounds else {
+        return views;
+    };
+    let scene = Sphere {
+        center: bounds.center() + camera.position,
+        radius: 0.5 * bounds.size().length(),
+    };
+    let tile = f64::from(tile.max(1));
+    for shadowed in shadowed {
+        let light = &shadowed.light;
+        let made: Vec<ShadowView> = match light.kind {
+            LightKind::Directional => cascades(light, camera, aspect, tile, &scene),
+            LightKind::Spot { outer_cone, .. } => vec![spot(light, outer_cone, camera, tile)],
+            LightKind::Point => Vec::new(),
+        };
+        for (i, mut view) in made.into_iter().enumerate() {
+            let at = shadowed.first_view + i as u32;
+            let grid = f64::from(ATLAS_GRID);
+            view.rect = [
+                (f64::from(at % ATLAS_GRID) / grid) as f32,
+                (f64::from(at / ATLAS_GRID) / grid) as f32,
+                (1.0 / grid) as f32,
+                (1.0 / grid) as f32,
+            ];
+            // A light's first view says how many it has.
+            if i == 0 {
+                view.params[3] = shadowed.views() as f32;
+            }
+            views[at as usize] = view;
+        }
+    }
+    views
+}
+
+/// The atlas tiles the views of `shadowed` take, in texels: x, y and side, for the
+/// `shadow_maps` pass's viewports, by view index.
+pub(super) fn tiles(shadowed: &[Shadowed], tile: u32) -> Vec<(u32, u32, u32)> {
+    let views = shadowed
+        .iter()
+        .map(|s| s.first_view + s.views())
+        .max()
+        .unwrap_or(0);
+    (0..views)
+        .map(|v| ((v % ATLAS_GRID) * tile, (v / ATLAS_GRID) * tile, tile))
+        .collect()
+}
+
+/// What group 0 holds for shadows: the views (binding 8), which the `shadow_maps` pass
+/// writes each frame, and the comparison sampler PCF reads the atlas through (binding 9:
+/// bilinear, each tap 2 x 2 comparisons of the reference `<=` the stored depth).
+pub(super) struct ShadowBuffers {
+    pub views: wgpu::Buffer,
+    pub sampler: wgpu::Sampler,
+}
+
+impl ShadowBuffers {
+    pub fn new(device: &wgpu::Device) -> ShadowBuffers {
+        ShadowBuffers {
+            views: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("shadow views"),
+                size: std::mem::size_of::<ShadowViews>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            sampler: device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("shadow comparison"),
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                compare: Some(wgpu::CompareFunction::LessEqual),
+                ..Default::default()
+            }),
+        }
+    }
+}
+
+/// A sphere in world space.
+struct Sphere {
+    center: DVec3,
+    radius: f64,
+}
+
+/// The view depths `[near, far]` the camera sees of geometry within `scene`: its near
+/// plane to its far plane, cut to the scene's bounds.
+fn seen_depths(camera: &Camera, scene: &Sphere) -> Option<(f64, f64)> {
+    let depth = (scene.center - camera.position).dot(camera.forward());
+    let (znear, zfar) = match camera.projection {
+        Projection::Perspective { znear, zfar, .. } => (znear, zfar.unwrap_or(f32::INFINITY)),
+        Projection::Orthographic { znear, zfar, .. } => (znear, zfar),
+    };
+    let near = (depth - scene.radius).max(f64::from(znear));
+    let far = (depth + scene.radius).min(f64::from(zfar));
+    (far > near).then_some((near, far))
+}
+
+/// A directional light's cascades over the depths the camera sees of `scene`.
+fn cascades(
+    light: &Light,
+    camera: &Camera,
+    aspect: f64,
+    tile: f64,
+    scene: &Sphere,
+) -> Vec<ShadowView> {
+    let Some((near, far)) = seen_depths(camera, scene) else {
+        return Vec::new();
+    };
+    let n = f64::from(CASCADES);
+    let split = |i: f64| {
+        let log = near * (far / near).powf(i / n);
+        let uniform = near + (far - near) * i / n;
+        SPLIT_LAMBDA * log + (1.0 - SPLIT_LAMBDA) * uniform
+    };
+    let direction = light.direction.as_dvec3().normalize();
+    let up = match direction.y.abs() < 0.99 {
+        true => DVec3::Y,
+        false => DVec3::X,
+    };
+    // Anchored at the world origin, so that snapping to its texels is the same from
+    // every camera position.
+    let light_view = DMat4::look_to_rh(DVec3::ZERO, direction, up);
+    let scene_center = light_view.transform_point3(scene.center);
+    (0..CASCADES)
+        .map(|c| {
+            let (a, b) = (split(f64::from(c)), split(f64::from(c + 1)));
+            let (along, radius) = slice_sphere(camera, aspect, a, b);
+            let center = light_view.transform_point3(camera.position + camera.forward() * along);
+            let texel = 2.0 * radius / tile;
+            let snapped = DVec3::new(
+                (center.x / texel).round() * texel,
+                (center.y / texel).round() * texel,
+                0.0,
+            );
+            // Light view space looks down -Z: depths are -z, the scene's within its radius.
+            let (z_near, z_far) = (
+                -scene_center.z - scene.radius,
+                -scene_center.z + scene.radius,
+            );
+            let projection = DMat4::orthographic_rh(
+                snapped.x - radius,
+                snapped.x + radius,
+                snapped.y - radius,
+                snapped.y + radius,
+                z_near,
+                z_far,
+            );
+            ShadowView {
+                clip_from_world: clip_from_camera_relative(projection * light_view, camera),
+                rect: [0.0; 4],
+                params: [texel as f32, b as f32, 0.0, 0.0],
+            }
+        })
+        .collect()
+}
+
+/// The sphere around the camera frustum's slice between view depths `a` and `b`: its
+/// centre's view depth and its radius. It depends on the slice alone (the projection, the
+/// aspect ratio and the two depths), so a turning camera keeps each cascade's size.
+fn slice_sphere(camera: &Camera, aspect: f64, a: f64, b: f64) -> (f64, f64) {
+    match camera.projection {
+        Projection::Perspective { yfov, .. } => {
+            let tan_y = f64::from(yfov * 0.5).tan();
+            let tan_x = tan_y * aspect;
+            // A corner at depth d lies sqrt(k) d off the axis; the centre z equidistant
+            // from the near and far corners, no farther than the far plane.
+            let k = tan_x * tan_x + tan_y * tan_y;
+            let z = (0.5 * (a + b) * (1.0 + k)).min(b);
+            (z, (b * b * k + (b - z) * (b - z)).sqrt())
+        }
+        Projection::Orthographic { ymag, .. } => {
+            let (y, x) = (f64::from(ymag), f64::from(ymag) * aspect);
+            let half = 0.5 * (b - a);
+            (0.5 * (a + b), (x * x + y * y + half * half).sqrt())
+        }
+    }
+}
+
+/// A spot light's perspective map over its cone (a little wider, for the filter's
+/// taps at its rim), from a near plane at a thousandth of its range to the range.
+fn spot(light: &Light, outer_cone: f32, camera: &Camera, tile: f64) -> ShadowView {
+    let range = f64::from(
+        light
+            .effective_range(DEFAULT_CUTOFF_ILLUMINANCE)
+            .unwrap_or(1.0),
+    )
+    .max(1e-3);
+    let fov = (2.0 * f64::from(outer_cone) * 1.05).min(170f64.to_radians());
+    let direction = light.direction.as_dvec3().normalize();
+    let up = match direction.y.abs() < 0.99 {
+        true => DVec3::Y,
+        false => DVec3::X,
+    };
+    let view = DMat4::look_to_rh(light.position, direction, up);
+    let projection = DMat4::perspective_rh(fov, 1.0, range * 1e-3, range);
+    ShadowView {
+        clip_from_world: clip_from_camera_relative(projection * view, camera),
+        rect: [0.0; 4],
+        params: [(2.0 * (0.5 * fov).tan() / tile) as f32, 0.0, 1.0, 0.0],
+    }
+}
+
+/// `clip_from_world` taking camera-relative positions, as the shaders have them.
+fn clip_from_camera_relative(clip_from_world: DMat4, camera: &Camera) -> [[f32; 4]; 4] {
+    (clip_from_world * DMat4::from_translation(camera.position))
+        .as_mat4()
+        .to_cols_array_2d()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A cascade's sphere keeps its size whichever way the camera looks.
+    #[test]
+    fn slice_spheres_depend_on_the_slice_alone() {
+        let projection = Projection::Perspective {
+            yfov: 0.8,
+            znear: 0.1,
+            zfar: None,
+        };
+        let camera = |target| Camera::look_at("c", DVec3::ZERO, target, DVec3::Y, projection);
+        let a = slice_sphere(&camera(DVec3::new(0.0, 0.0, -1.0)), 1.5, 2.0, 9.0);
+        let b = slice_sphere(&camera(DVec3::new(3.0, 1.0, 2.0)), 1.5, 2.0, 9.0);
+        assert_eq!(a, b);
+        // Every corner of the slice is inside.
+        let tan_y = 0.4f64.tan();
+        for d in [2.0, 9.0] {
+            let corner = DVec3::new(d * tan_y * 1.5, d * tan_y, d);
+            let off = (corner - DVec3::new(0.0, 0.0, a.0)).length();
+            assert!(
+                off <= a.1 + 1e-9,
+                "corner at depth {d} is {off} from the centre, radius {}",
+                a.1
+            );
+        }
+    }
+}

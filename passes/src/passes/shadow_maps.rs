@@ -1,0 +1,232 @@
+//! `shadow_maps`: the depth of the scene's opaque meshes seen from each shadowed light,
+//! drawn by the hardware raster into one atlas texture, which the light passes read
+//! through their `shadows` slot (common/shadows.rs).
+//!
+//! ```ron
+//! (name: "shadow maps", plugin: "shadow_maps",
+//!  when: "shadows",             // the scene's feature: a directional or spot light
+//!                               // emits and the host has not turned shadows off
+//!  params: (slope_bias: 2.0),   // the default: the raster's slope-scaled depth bias
+//!  outputs: { "atlas": "shadow_atlas" })   // depth32float, square, 1 sample
+//! ```
+//!
+//! The atlas is a grid of 4 x 4 tiles (`shadows::ATLAS_GRID`), one view each: the cascades
+//! of a directional light (4), a spot light's perspective map (1). Which lights get them
+//! and where each view looks is the scene's, each frame (gpu_scene/shadows.rs): this pass
+//! writes the views for the frame's output and atlas size, then draws every opaque mesh
+//! (vertices pulled from storage, as the visibility raster does) once per view into its
+//! tile, depth only, standard Z, both faces, with a slope-scaled depth bias. The atlas is
+//! cleared to the far plane; tiles without a view stay clear. Alpha MASK materials cast
+//! as if solid, and point lights cast no shadow yet; on a GPU the compute raster could
+//! draw the same maps (issue 39).
+
+use serde::Deserialize;
+
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{AspectAccess, PassBuilder, PassKind, Size, TextureHandle};
+
+use crate::common::plugin::Shared;
+use crate::common::shadows::ATLAS;
+use crate::common::textures::{self, Want};
+use crate::shaders;
+use crate::shadows::ATLAS_GRID;
+
+pub struct ShadowMaps(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShadowMapsParams {
+    /// The raster's slope-scaled depth bias (wgpu's `DepthBiasState::slope_scale`): depth
+    /// pushed away from the light in proportion to a triangle's depth slope, against the
+    /// acne of surfaces the light grazes. shadow.wgsl's normal offset does the rest.
+    #[serde(default = "slope_bias")]
+    pub slope_bias: f32,
+}
+
+fn slope_bias() -> f32 {
+    2.0
+}
+
+/// The shadow maps' pass as set up: what its `gpu` module records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct ShadowDraw {
+    pub source: String,
+    pub atlas: TextureHandle,
+    pub slope_bias: f32,
+}
+
+impl Plugin for ShadowMaps {
+    const NAME: &'static str = "shadow_maps";
+    type Params = ShadowMapsParams;
+
+    fn kind(&self, _: &ShadowMapsParams) -> PassKind {
+        PassKind::Render
+    }
+
+    fn setup(
+        &self,
+        params: ShadowMapsParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        if !params.slope_bias.is_finite() || params.slope_bias < 0.0 {
+            return Err(PluginError::Invalid(format!(
+                "slope_bias must be finite and 0 or more, got {}",
+                params.slope_bias
+            )));
+        }
+        let want = Want::new("the shadow atlas", ATLAS).samples(1);
+        let (atlas, desc) = textures::output(slots, pass, "atlas", want, |pass, h, _| {
+            pass.depth_stencil(h, AspectAccess::Clear(1.0), AspectAccess::Absent)
+        })?;
+        let square = matches!(desc.size,
+            Size::Absolute(w, h) if w == h && w >= ATLAS_GRID && w % ATLAS_GRID == 0);
+        if !square {
+            return Err(PluginError::Slot {
+                slot: "atlas".to_owned(),
+                resource: slots.resource("atlas").unwrap_or("atlas").to_owned(),
+                why: format!(
+                    "is {:?}, but the shadow atlas must be Absolute(N, N), N a multiple \
+                         of {ATLAS_GRID} (a grid of {ATLAS_GRID} x {ATLAS_GRID} maps)",
+                    desc.size
+                ),
+            });
+        }
+        let draw = ShadowDraw {
+            source: shaders::SHADOW_RASTER.compose(1)?.source().to_owned(),
+            atlas,
+            slope_bias: params.slope_bias,
+        };
+        self.0.record(pass, draw);
+        Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording the shadow maps: the frame's views written, then per view its tile as
+    //! viewport and every opaque mesh drawn, the view chosen by a dynamic offset into a
+    //! small uniform buffer of view indices the pass owns.
+
+    use std::sync::Arc;
+
+    use super::ShadowDraw;
+    use crate::common::gpu::pipeline::{module, pipeline_layout, PipelineDesc};
+    use crate::common::gpu::{Frame, Recorded, Recorder, Render};
+    use crate::gpu_scene::GpuScene;
+    use crate::shadows::SHADOW_VIEWS;
+    use rgraph_scene::DepthConvention;
+    use wgpu::util::DeviceExt;
+
+    pub(crate) struct State {
+        pipeline: wgpu::RenderPipeline,
+        /// View `v`'s index at `v * stride`, bound with that dynamic offset.
+        views: wgpu::BindGroup,
+        stride: u32,
+    }
+
+    impl Recorder for ShadowDraw {
+        type Stage = Render;
+        type Scene = Arc<GpuScene>;
+        type State = State;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<State, String> {
+            let (device, scene) = (frame.device, &frame.scene);
+            let stride = device.limits().min_uniform_buffer_offset_alignment.max(16);
+            let mut indices = vec![0u8; (stride * SHADOW_VIEWS) as usize];
+            for v in 0..SHADOW_VIEWS {
+                let at = (v * stride) as usize;
+                indices[at..at + 4].copy_from_slice(&v.to_le_bytes());
+            }
+            let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("shadow view indices"),
+                contents: &indices,
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let view_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("shadow view index"),
+                entries: &[wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::VERTEX,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: true,
+                        min_binding_size: wgpu::BufferSize::new(16),
+                    },
+                    count: None,
+                }],
+            });
+            let views = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("shadow view index"),
+                layout: &view_layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &buffer,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(16),
+                    }),
+                }],
+            });
+            let layout = pipeline_layout(
+                device,
+                &[
+                    Some(scene.layout()),
+                    Some(&view_layout),
+                    Some(scene.geometry_layout()),
+                ],
+            );
+            let module = module(device, "shadow maps", &self.source);
+            let pipeline = PipelineDesc {
+                label: "shadow maps",
+                layout: &layout,
+                module: &module,
+                vertex: "vs_shadow",
+                buffers: &[],
+                fragment: "fs_shadow",
+                constants: &[],
+                targets: &[],
+                // Both faces: open meshes (a ground plane) and closed ones cast alike.
+                cull: None,
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: wgpu::TextureFormat::Depth32Float,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: wgpu::DepthBiasState {
+                        constant: 0,
+                        slope_scale: self.slope_bias,
+                        clamp: 0.0,
+                    },
+                }),
+                samples: 1,
+                mask: !0,
+            }
+            .build(device);
+            Ok(State {
+                pipeline,
+                views,
+                stride,
+            })
+        }
+
+        fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
+            let atlas = resources.shape(self.atlas);
+            let tiles =
+                scene.write_shadow_views(resources.queue, resources.output_size(), atlas.width);
+            // The views take camera-relative positions; group 0's camera is not read.
+            pass.set_bind_group(0, scene.bind_group(DepthConvention::Standard), &[]);
+            pass.set_bind_group(2, scene.geometry_group(device)?, &[]);
+            pass.set_pipeline(&state.pipeline);
+            for (view, (x, y, side)) in (0u32..).zip(tiles) {
+                pass.set_viewport(x as f32, y as f32, side as f32, side as f32, 0.0, 1.0);
+                pass.set_scissor_rect(x, y, side, side);
+                pass.set_bind_group(1, &state.views, &[view * state.stride]);
+                scene.pull_meshes(pass, |_, _, _| true);
+            }
+            Ok(())
+        }
+    }
+}

@@ -1,0 +1,86 @@
+// Shadow maps: the fraction of a light that reaches a surface, read from the shadow atlas
+// the `shadow_maps` pass draws (passes/shadow_maps.rs). Composed after common.wgsl,
+// scene.wgsl, brdf.wgsl and shadow_views.wgsl, with a generated block binding the atlas
+// as `shadow_atlas: texture_depth_2d` and the filter as SHADOW_FILTER (common/shadows.rs).
+
+// Bilinear comparison: each tap compares 2 x 2 texels and weighs them.
+@group(0) @binding(9) var shadow_sampler: sampler_comparison;
+
+// LightData::shadow of a light without a shadow map.
+const NO_SHADOW: u32 = 0xffffffffu;
+
+// The generated SHADOW_FILTER: 0, one comparison at the nearest texel (`--shadows
+// hard`); 1, percentage-closer filtering, a 3 x 3 grid of bilinear comparison taps one
+// texel apart (`pcf`).
+
+// The normal offset (Holbert, GDC 2011), in texels: the surface point moves this far
+// along its normal before it is looked up, more as the light grazes it, so that the
+// filter's footprint (up to two texels from the centre) stays above the surface the map
+// saw. The raster's slope-scaled depth bias (shadow_raster.wgsl) covers the rest.
+const NORMAL_OFFSET_TEXELS: f32 = 1.5;
+// A depth margin, in texels of world size, for what the offset leaves.
+const DEPTH_BIAS_TEXELS: f32 = 0.5;
+
+// The fraction of `light` reaching surface `s`: 1 without a shadow map or outside its
+// views, less where the map holds something nearer the light.
+fn light_visibility(s: Surface, light: LightData) -> f32 {
+    if light.shadow == NO_SHADOW {
+        return 1.0;
+    }
+    var view = light.shadow;
+    if light.kind == LIGHT_DIRECTIONAL {
+        // The first cascade reaching past the point's view depth; past the last, lit.
+        let depth = dot(s.position, camera.forward);
+        let cascades = u32(shadow_views.views[view].params.w);
+        var c = 0u;
+        while c + 1u < cascades && depth > shadow_views.views[view + c].params.y {
+            c++;
+        }
+        view += c;
+        if depth > shadow_views.views[view].params.y {
+            return 1.0;
+        }
+    }
+    return view_visibility(shadow_views.views[view], s, light);
+}
+
+// The fraction of the light of `v` reaching `s`.
+fn view_visibility(v: ShadowView, s: Surface, light: LightData) -> f32 {
+    // A texel's world size where the point is: fixed for a cascade, growing with the
+    // distance for a spot light's perspective.
+    var texel = v.params.x;
+    var l = -light.direction;
+    if v.params.z > 0.5 {
+        let to_light = light.position - s.position;
+        texel *= length(to_light);
+        l = safe_normalize(to_light);
+    }
+    let n_l = clamp(dot(s.normal, l), 0.0, 1.0);
+    let offset = s.normal * (texel * NORMAL_OFFSET_TEXELS * (1.0 - n_l + 0.25));
+    let p = s.position + offset + l * (texel * DEPTH_BIAS_TEXELS);
+    let clip = v.clip_from_world * vec4<f32>(p, 1.0);
+    if clip.w <= 0.0 {
+        return 1.0;
+    }
+    let ndc = clip.xyz / clip.w;
+    if any(abs(ndc.xy) > vec2<f32>(1.0)) || ndc.z < 0.0 || ndc.z > 1.0 {
+        return 1.0;
+    }
+    let in_tile = vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y);
+    let size = vec2<f32>(textureDimensions(shadow_atlas));
+    let tile = v.rect.zw * size;
+    // Taps stay two texels inside the tile: its neighbours are other views.
+    let at = clamp(in_tile * tile, vec2<f32>(2.0), tile - 2.0) + v.rect.xy * size;
+    if SHADOW_FILTER == 0u {
+        let stored = textureLoad(shadow_atlas, vec2<i32>(floor(at)), 0);
+        return select(0.0, 1.0, ndc.z <= stored);
+    }
+    var lit = 0.0;
+    for (var y = -1; y <= 1; y++) {
+        for (var x = -1; x <= 1; x++) {
+            let uv = (at + vec2<f32>(f32(x), f32(y))) / size;
+            lit += textureSampleCompareLevel(shadow_atlas, shadow_sampler, uv, ndc.z);
+        }
+    }
+    return lit / 9.0;
+}

@@ -1,0 +1,319 @@
+//! Shadow maps (passes/shadow_maps.rs, shadow.wgsl) on lavapipe: a square's shadow lands
+//! where its projection does, a lit plane at grazing light shows no acne, the default
+//! pipeline's tiled shading and the G-buffer's light volumes agree on a shadowed scene,
+//! and the command line refuses shadow settings it cannot honour.
+
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::glam::{DVec3, Vec3};
+use rgraph_scene::{Camera, Light, LightKind, Projection, Scene};
+
+use crate::cli_support::rgraph;
+use crate::deferred_support::measure;
+use crate::deferred_support::scenes::Parts;
+use crate::deferred_support::{gpu, Image, PipelineFile, Render};
+use rgraph_passes::{Overrides, ShadowFilter, Shadows};
+
+/// The default pipeline on lavapipe (the hardware raster, tiled shading).
+const DEFAULT: PipelineFile = PipelineFile::for_device("visibility_msaa_4x.ron");
+/// Its branch for GPUs (the compute raster), compiled as for one.
+const DEFAULT_GPU: PipelineFile = PipelineFile::gpu_branch("visibility_msaa_4x.ron");
+
+/// Pixels per side of the analytic scene's image, which spans 4 world units.
+const N: u32 = 64;
+const SPAN: f64 = 4.0;
+
+fn sun(direction: Vec3, intensity: f32) -> Light {
+    Light {
+        name: "sun".into(),
+        kind: LightKind::Directional,
+        color: [1.0, 1.0, 1.0],
+        intensity,
+        position: DVec3::ZERO,
+        direction: direction.normalize(),
+        range: None,
+    }
+}
+
+/// An 8 x 8 ground square at y = 0 and a 1 x 1 square over its centre at y = 1, both
+/// facing up, under a sun travelling along (1, -1, 0): the square's shadow is the unit
+/// square x in [0.5, 1.5], z in [-0.5, 0.5]. Seen straight down by an orthographic camera
+/// spanning x and z in [-2, 2], image x along +x and image y along +z (16 pixels a unit).
+fn square_over_plane() -> Scene {
+    let mut parts = Parts::new();
+    let grey = parts.material("grey", [0.6, 0.6, 0.6], 0.8);
+    let square = |y: f64, half: f64| {
+        vec![
+            DVec3::new(-half, y, -half),
+            DVec3::new(-half, y, half),
+            DVec3::new(half, y, half),
+            DVec3::new(half, y, -half),
+        ]
+    };
+    parts.mesh("ground", &[square(0.0, 4.0)], grey);
+    parts.mesh("square", &[square(1.0, 0.5)], grey);
+    parts.lights.push(sun(Vec3::new(1.0, -1.0, 0.0), 3.0));
+    parts.ambient = [0.05; 3];
+    let camera = Camera::look_at(
+        "from above",
+        DVec3::new(0.0, 10.0, 0.0),
+        DVec3::ZERO,
+        DVec3::NEG_Z,
+        Projection::Orthographic {
+            xmag: (SPAN / 2.0) as f32,
+            ymag: (SPAN / 2.0) as f32,
+            znear: 1.0,
+            zfar: 20.0,
+        },
+    );
+    parts.scene("square over plane", camera)
+}
+
+/// `scene` through `pipeline` with `shadows`, compiled for its features as `rgraph
+/// render` compiles it (without `shadows` when they are off).
+fn render(pipeline: PipelineFile, scene: &Scene, size: (u32, u32), shadows: Shadows) -> Image {
+    let gpu = gpu();
+    let mut features = SceneFeatures::of(scene);
+    features.shadows &= shadows.enabled();
+    Render::new(pipeline, &scene.name, size)
+        .with_scene(scene.clone())
+        .features(features.names())
+        .overrides(Overrides {
+            shadows,
+            ..Overrides::default()
+        })
+        .run(&gpu)
+        .image(&gpu, "color")
+}
+
+fn luma(p: [u8; 4]) -> f64 {
+    0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2])
+}
+
+/// The square's shadow covers the pixels whose centres its projection covers, to within
+/// a pixel at each edge (a shadow-map texel is a third of a pixel here: the cascade
+/// holding the ground spans about 11 world units in 1024 texels), hard and filtered, in
+/// both branches of the default pipeline.
+#[test]
+fn a_squares_shadow_is_its_projection() {
+    let scene = square_over_plane();
+    for pipeline in [DEFAULT, DEFAULT_GPU] {
+        for filter in [ShadowFilter::Hard, ShadowFilter::Pcf] {
+            let shadows = Shadows { filter, lights: 1 };
+            let image = render(pipeline, &scene, (N, N), shadows);
+            let unshadowed = render(
+                pipeline,
+                &scene,
+                (N, N),
+                Shadows {
+                    filter: ShadowFilter::Off,
+                    lights: 1,
+                },
+            );
+            // Lit ground, and the ground the square hides from the sun, by their centres.
+            let (lit, dark) = (luma(image.at(16, 52)), luma(image.at(48, 32)));
+            assert!(
+                dark < 0.5 * lit,
+                "{pipeline} {filter:?}: the shadow's centre ({dark:.0}) is not darker than lit \
+                 ground ({lit:.0})"
+            );
+            assert!(
+                (luma(unshadowed.at(48, 32)) - lit).abs() <= 1.0,
+                "{pipeline}: without shadows the ground is lit alike everywhere"
+            );
+            let threshold = 0.5 * (lit + dark);
+            let shadowed = |x: u32, y: u32| luma(image.at(x, y)) < threshold;
+            let pixel_of = |world: f64| (world + SPAN / 2.0) * f64::from(N) / SPAN;
+            let (x0, x1) = (pixel_of(0.5), pixel_of(1.5));
+            let (z0, z1) = (pixel_of(-0.5), pixel_of(0.5));
+            let mut count = 0;
+            for y in 0..N {
+                for x in 0..N {
+                    let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+                    let inside = cx > x0 && cx < x1 && cy > z0 && cy < z1;
+                    let margin = (cx - x0)
+                        .abs()
+                        .min((cx - x1).abs())
+                        .min((cy - z0).abs())
+                        .min((cy - z1).abs());
+                    let near_edge = margin <= 1.0;
+                    if shadowed(x, y) {
+                        count += 1;
+                    }
+                    assert!(
+                        near_edge || shadowed(x, y) == inside,
+                        "{pipeline} {filter:?}: pixel ({x}, {y}) is {} but its centre is {} the \
+                         square's projection, more than a pixel from its edge",
+                        if shadowed(x, y) { "shadowed" } else { "lit" },
+                        if inside { "inside" } else { "outside" }
+                    );
+                }
+            }
+            let area = (x1 - x0) * (z1 - z0);
+            assert!(
+                (f64::from(count) - area).abs() <= 0.5 * 4.0 * (x1 - x0),
+                "{pipeline} {filter:?}: {count} shadowed pixels, the projection covers {area}"
+            );
+        }
+    }
+}
+
+/// A lit plane and nothing over it, the sun at 3 to 45 degrees above it and the camera
+/// looking along it: no pixel is darker with shadow maps than without by more than
+/// 2/255, so the bias keeps the plane from shadowing itself (acne).
+#[test]
+fn a_plane_at_grazing_light_has_no_acne() {
+    for elevation in [3.0f32, 10.0, 25.0, 45.0] {
+        let mut parts = Parts::new();
+        let grey = parts.material("grey", [0.7, 0.7, 0.7], 0.9);
+        parts.mesh(
+            "ground",
+            &[vec![
+                DVec3::new(-30.0, 0.0, -30.0),
+                DVec3::new(-30.0, 0.0, 30.0),
+                DVec3::new(30.0, 0.0, 30.0),
+                DVec3::new(30.0, 0.0, -30.0),
+            ]],
+            grey,
+        );
+        let e = elevation.to_radians();
+        // The sun's brightness on the plane is about the same at every elevation.
+        parts.lights.push(sun(
+            Vec3::new(e.cos() * 0.6, -e.sin(), -e.cos() * 0.8),
+            2.0 / e.sin(),
+        ));
+        parts.ambient = [0.02; 3];
+        let camera = Camera::look_at(
+            "grazing",
+            DVec3::new(0.0, 1.5, 12.0),
+            DVec3::new(0.0, 0.0, -10.0),
+            DVec3::Y,
+            Projection::Perspective {
+                yfov: 0.9,
+                znear: 0.1,
+                zfar: None,
+            },
+        );
+        let scene = parts.scene("lit plane", camera);
+        for pipeline in [DEFAULT, PipelineFile::for_device("deferred_msaa_4x.ron")] {
+            let shadowed = render(pipeline, &scene, (96, 64), Shadows::default());
+            let off = Shadows {
+                filter: ShadowFilter::Off,
+                ..Shadows::default()
+            };
+            let unshadowed = render(pipeline, &scene, (96, 64), off);
+            let darker: Vec<(usize, u8)> = (shadowed.pixels.iter().zip(&unshadowed.pixels))
+                .enumerate()
+                .filter_map(|(i, (s, u))| {
+                    let drop = (0..3).map(|c| u[c].saturating_sub(s[c])).max().unwrap_or(0);
+                    (drop > 2).then_some((i, drop))
+                })
+                .collect();
+            assert!(
+                darker.is_empty(),
+                "{pipeline}, sun {elevation} degrees up: {} pixels darker with shadows than \
+                 without, e.g. pixel {} by {}/255",
+                darker.len(),
+                darker.first().map_or(0, |d| d.0),
+                darker.first().map_or(0, |d| d.1)
+            );
+        }
+    }
+}
+
+/// builtin:spheres (its sun casts the spheres' shadows on the ground) through the
+/// default pipeline's tiled shading, in both branches, and forward_msaa_4x.ron, against
+/// deferred_msaa_4x.ron's light volumes: within 2/255 on at least 99% of pixels, each
+/// with its shadows. At 640x360:
+/// the two shade silhouette pixels differently (fragments against samples), which at
+/// 160x90 alone leaves 93.8% within 2/255, shadows or not.
+#[test]
+fn tiled_forward_and_gbuffer_shading_agree_on_shadows() {
+    let scene = Scene::load("builtin:spheres").expect("a built-in scene");
+    let size = (640, 360);
+    let gbuffer = render(
+        PipelineFile::for_device("deferred_msaa_4x.ron"),
+        &scene,
+        size,
+        Shadows::default(),
+    );
+    let off = Shadows {
+        filter: ShadowFilter::Off,
+        ..Shadows::default()
+    };
+    let unshadowed = render(
+        PipelineFile::for_device("deferred_msaa_4x.ron"),
+        &scene,
+        size,
+        off,
+    );
+    // The shadows are there: part of the image is darker with them.
+    let unchanged = measure::share_within(&gbuffer, &unshadowed, 8, None);
+    assert!(
+        unchanged < 0.99,
+        "only {:.2}% of pixels change with shadows",
+        100.0 * (1.0 - unchanged)
+    );
+    let forward = PipelineFile::for_device("forward_msaa_4x.ron");
+    for pipeline in [DEFAULT, DEFAULT_GPU, forward] {
+        let tiled = render(pipeline, &scene, size, Shadows::default());
+        let share = measure::share_within(&tiled, &gbuffer, 2, None);
+        eprintln!(
+            "{pipeline}: {:.3}% within 2/255 of deferred_msaa_4x",
+            100.0 * share
+        );
+        assert!(
+            share >= 0.99,
+            "{pipeline} renders only {share} of pixels within 2/255 of deferred_msaa_4x"
+        );
+    }
+}
+
+/// `--shadows` takes off, hard or pcf, and `--shadowed-lights` 0 to 16; anything else is
+/// a usage error naming the flag, before anything renders.
+#[test]
+fn bad_shadow_flags_are_usage_errors() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let out = dir.path().join("s.png");
+    let out = out.to_str().expect("temp paths are UTF-8");
+    for (flag, value, says) in [
+        ("--shadows", "bogus", "expected off, hard or pcf"),
+        (
+            "--shadowed-lights",
+            "17",
+            "17 shadowed lights is out of range",
+        ),
+        ("--shadowed-lights", "-1", "from 0 to 16"),
+        ("--shadowed-lights", "many", "from 0 to 16"),
+    ] {
+        rgraph(&[
+            "render", "--out", out, "--width", "16", "--height", "16", flag, value,
+        ])
+        .expect(2)
+        .stderr_has(flag)
+        .stderr_has(says);
+    }
+    assert!(!dir.path().join("s.png").exists());
+}
+
+/// The default pipeline's `shadows` debug view shows the sun's visibility term:
+/// builtin:spheres' ground is white where lit and black in the spheres' shadows.
+#[test]
+fn the_shadows_view_shows_the_visibility_term() {
+    let gpu = gpu();
+    let scene = Scene::load("builtin:spheres").expect("a built-in scene");
+    let view = Render::new(DEFAULT, "builtin:spheres", (160, 90))
+        .with_scene(scene.clone())
+        .features(SceneFeatures::of(&scene).names())
+        .run(&gpu)
+        .image(&gpu, "debug.shadows");
+    let white = view.count([255, 255, 255, 255]);
+    let black_ground = (45..90)
+        .flat_map(|y| (0..160).map(move |x| (x, y)))
+        .filter(|&(x, y)| view.at(x, y) == [0, 0, 0, 255])
+        .count();
+    assert!(white > view.pixels.len() / 3, "{white} white pixels");
+    assert!(
+        black_ground > 100,
+        "{black_ground} black pixels in the lower half"
+    );
+}
