@@ -119,16 +119,7 @@ fn masked_quads_file() -> String {
             [(40 + 25 * x) as u8, 90, (40 + 25 * y) as u8, alpha]
         })
         .collect();
-    let image = image::RgbaImage::from_raw(side, side, texels).unwrap();
-    let mut png = Vec::new();
-    image
-        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .unwrap();
-    let view = gltf.view(&png);
-    let image = gltf.push(
-        "images",
-        json!({ "bufferView": view, "mimeType": "image/png" }),
-    );
+    let image = gltf.png_image(side, side, &texels);
     // NEAREST, CLAMP_TO_EDGE.
     gltf.push(
         "samplers",

@@ -36,16 +36,7 @@ fn load(test: &str, gltf: &Gltf) -> Scene {
 
 /// An RGBA8 PNG of `width` x `height` texels, as a texture of `gltf`; returns the texture.
 fn png_texture(gltf: &mut Gltf, width: u32, height: u32, rgba8: &[u8]) -> usize {
-    let image = image::RgbaImage::from_raw(width, height, rgba8.to_vec()).unwrap();
-    let mut png = Vec::new();
-    image
-        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .unwrap();
-    let view = gltf.view(&png);
-    let image = gltf.push(
-        "images",
-        json!({ "bufferView": view, "mimeType": "image/png" }),
-    );
+    let image = gltf.png_image(width, height, rgba8);
     gltf.push("textures", json!({ "source": image }))
 }
 

@@ -127,6 +127,21 @@ impl Gltf {
         self.mesh("triangle", primitive)
     }
 
+    /// An image of `width` x `height` RGBA8 texels `rgba8`, written as a PNG into a buffer
+    /// view; returns the image index.
+    pub fn png_image(&mut self, width: u32, height: u32, rgba8: &[u8]) -> usize {
+        let image = image::RgbaImage::from_raw(width, height, rgba8.to_vec()).unwrap();
+        let mut png = Vec::new();
+        image
+            .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+            .unwrap();
+        let view = self.view(&png);
+        self.push(
+            "images",
+            json!({ "bufferView": view, "mimeType": "image/png" }),
+        )
+    }
+
     /// A root-placed triangle whose material ("painted") has the PNG `png`, in a buffer
     /// view, as its base color texture; returns the mesh index.
     pub fn textured_triangle(&mut self, png: &[u8]) -> usize {
