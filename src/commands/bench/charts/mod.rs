@@ -203,6 +203,18 @@ pub fn tick(v: f64) -> String {
         .to_owned()
 }
 
+/// A count as an axis label: 20k, 1.5M, 100M; under a thousand as [`tick`] writes it. A
+/// sweep over decades of triangles labels 1, 2 and 5 times each, and written out in full
+/// the millions ran into each other.
+pub fn count(v: f64) -> String {
+    match v.abs() {
+        a if a >= 1e9 => format!("{}G", tick(v / 1e9)),
+        a if a >= 1e6 => format!("{}M", tick(v / 1e6)),
+        a if a >= 1e3 => format!("{}k", tick(v / 1e3)),
+        _ => tick(v),
+    }
+}
+
 /// A logarithmic axis over `range` whose labels are 1, 2 and 5 times each power of ten
 /// inside it, or 1 to 9 times it where those are fewer than three: plotters labels only
 /// the powers of ten, which leaves an axis spanning less than a decade without numbers.
@@ -243,7 +255,7 @@ pub fn text<E: std::fmt::Display>(e: E) -> String {
 mod tests {
     use plotters::coord::ranged1d::{BoldPoints, Ranged};
 
-    use super::{color, log_axis, tick, Legend};
+    use super::{color, count, log_axis, tick, Legend};
 
     #[test]
     fn the_first_twenty_series_have_colors_of_their_own() {
@@ -276,6 +288,12 @@ mod tests {
         assert_eq!(tick(0.1 + 0.2), "0.3");
         assert_eq!(tick(120.0), "120");
         assert_eq!(tick(0.0126), "0.013");
+    }
+
+    #[test]
+    fn counts_read_in_thousands_millions_and_billions() {
+        let labels: Vec<String> = [5.0, 999.0, 2e4, 1.5e6, 1e8, 2e9].map(count).to_vec();
+        assert_eq!(labels, ["5", "999", "20k", "1.5M", "100M", "2G"]);
     }
 
     #[test]

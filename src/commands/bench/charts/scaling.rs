@@ -7,7 +7,7 @@
 use plotters::prelude::*;
 
 use super::{
-    color, distinct, font, grid, log_axis, pipelines, text, tick, Area, DrawResult, Legend,
+    color, count, distinct, font, grid, log_axis, pipelines, text, tick, Area, DrawResult, Legend,
 };
 use crate::cli::Sweep;
 use crate::commands::bench::results::{Results, Row};
@@ -187,7 +187,7 @@ fn panel_chart(
         .y_desc(metric.axis())
         .label_style(font(14.0))
         .axis_desc_style(font(15.0))
-        .x_label_formatter(&|v| tick(*v))
+        .x_label_formatter(&|v| count(*v))
         .y_label_formatter(&|v| tick(*v))
         .draw()
         .map_err(text)?;
