@@ -45,8 +45,8 @@
 //!   are those whose samples show different triangles, and
 //!   `shading: adaptive` shades each triangle once, exactly, and `shading: surfaces`
 //!   each smooth surface once: the triangles of one mesh that share a vertex with a
-//!   normal and lie within the `compare` detector's depth threshold of each other at the
-//!   pixel are one fragment, each rebuilt at its own samples and their surfaces averaged
+//!   normal, lie within the `compare` detector's depth threshold of each other at the
+//!   pixel and bend by less than 8 degrees are one fragment, each rebuilt at its own samples and their surfaces averaged
 //!   for one lighting, so that a dense mesh's pixels are not edges for its triangles
 //!   alone (visibility_read.wgsl's smooth_join and joined_gsample;
 //!   pipelines/visibility_msaa_4x.ron on CPU adapters);

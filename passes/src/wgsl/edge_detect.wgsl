@@ -13,9 +13,15 @@ override ALBEDO_THRESHOLD: f32 = 0.05;
 // `centroid` / `coverage`: the edge bit of the material target's alpha to look for.
 override EDGE_BIT: u32 = 0x80u;
 
+// Whether view depths `a` and `b` differ by more than DEPTH_THRESHOLD of the larger: a
+// step between surfaces, not one surface's slope across a pixel.
+fn depth_step(a: f32, b: f32) -> bool {
+    return abs(a - b) > DEPTH_THRESHOLD * max(a, b);
+}
+
 // Whether two samples hold different surfaces, by the `compare` thresholds.
 fn differ(a: GSample, b: GSample) -> bool {
-    let depth_step = abs(a.view_depth - b.view_depth) > DEPTH_THRESHOLD * max(a.view_depth, b.view_depth);
+    let depth_step = depth_step(a.view_depth, b.view_depth);
     let bend = dot(a.normal, b.normal) < NORMAL_THRESHOLD;
     let tint = any(abs(a.albedo - b.albedo) > vec3<f32>(ALBEDO_THRESHOLD));
     return depth_step || bend || tint || a.flags != b.flags;

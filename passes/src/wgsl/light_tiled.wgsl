@@ -154,7 +154,7 @@ fn same_fragment(a: GSample, b: GSample) -> bool {
     }
     var depth = a.view_depth == b.view_depth;
     if !STORED_VIEW_DEPTH {
-        depth = abs(a.view_depth - b.view_depth) <= DEPTH_THRESHOLD * max(a.view_depth, b.view_depth);
+        depth = !depth_step(a.view_depth, b.view_depth);
     }
     return all(a.albedo == b.albedo) && a.occlusion == b.occlusion && all(a.normal == b.normal)
         && a.metallic == b.metallic && a.roughness == b.roughness && a.flags == b.flags && depth;

@@ -10,7 +10,7 @@
 // computes them, textures from the scene's texture table (material_table.wgsl, group 3).
 // Composed after geometry.wgsl, material.wgsl, material_table.wgsl and plane_hit.wgsl, and with
 // view_depth_from_depth.wgsl, which the shading pass's per-pixel surface takes its depth
-// from.
+// from, and edge_detect.wgsl, whose depth_step smooth_join tests.
 
 // Samples of one triangle are one fragment, exactly (light_tiled.wgsl's same_fragment).
 const SURFACE_IDS: bool = true;
@@ -18,9 +18,10 @@ const SURFACE_IDS: bool = true;
 // Whether samples of triangles joining into one smooth surface are one fragment too
 // (smooth_join; light_tiled's `shading: surfaces`).
 override SMOOTH_SURFACES: bool = false;
-// smooth_join's thresholds: edge_detect.wgsl's defaults for a G-buffer's samples (view
-// depths within 1% of the farther; faces bending by less than acos 0.95, 18 degrees).
-const SMOOTH_DEPTH: f32 = 0.01;
+// The cosine under which smooth_join's faces bend too far to be lit as one: 8 degrees,
+// stricter than the compare detector's NORMAL_THRESHOLD (0.95, 18 degrees), because the
+// joined fragment is lit with its triangles' mean normal (at 0.95 and 0.98 builtin:lights'
+// small spheres kept under 99% of their pixels within 1/255 of their triangles lit apart).
 const SMOOTH_NORMAL: f32 = 0.99;
 
 // Triangle `id` (+ 1) as seen through pixel coordinate `at`: its attributes and material
@@ -282,17 +283,17 @@ fn leaders_of(pixel: vec2<i32>, samples: PixelSamples) -> u32 {
 // lighting serves both (light_tiled's `shading: surfaces`; joined_gsample says how):
 // triangles of one mesh (one material) sharing a vertex whose normal is given (a zero
 // normal asks for the face normal: such triangles are facets, each its own fragment), at
-// view depths within the G-buffer edge detector's threshold of each other (1%: a fan's
-// far side seen past its shared centre is not joined), and whose faces bend by less than
-// its normal threshold (a thin box's two sides lit once with their normals averaged
-// would not light as each side does). Their interpolated normals meet at the shared
+// view depths without the compare detector's depth step between them (edge_detect.wgsl's
+// depth_step, 1% by default: a fan's far side seen past its shared centre is not joined),
+// and whose faces bend by less than SMOOTH_NORMAL (a thin box's two sides lit once with
+// their normals averaged would not light as each side does). Their interpolated normals meet at the shared
 // vertex, and a pixel of a dense mesh is then no edge for its triangles alone. Cheapest
 // test first: this runs at every pixel showing more than one triangle.
 fn smooth_join(id_a: u32, id_b: u32, depth_a: f32, depth_b: f32) -> bool {
     if id_a == 0u || id_b == 0u {
         return false;
     }
-    if abs(depth_a - depth_b) > SMOOTH_DEPTH * max(depth_a, depth_b) {
+    if depth_step(depth_a, depth_b) {
         return false;
     }
     let mesh_index = mesh_of_triangle(id_a - 1u);
