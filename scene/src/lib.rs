@@ -42,6 +42,7 @@ mod assets;
 mod bounds;
 mod builder;
 mod camera;
+mod clusters;
 mod environment;
 mod error;
 mod gltf_loader;
@@ -73,6 +74,7 @@ pub use bounds::{Aabb, BoundingSphere, MAX_COORDINATE};
 pub use camera::{
     Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_FILL, FRAMING_YFOV,
 };
+pub use clusters::{cluster, Cluster, ClusteredMesh, CLUSTER_TRIANGLES};
 pub use environment::{
     irradiance_integral, radiance as environment_radiance, Environment, Irradiance,
 };

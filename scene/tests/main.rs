@@ -7,6 +7,7 @@ mod common;
 
 mod builtin_scale;
 mod builtin_scenes;
+mod clusters;
 mod framing;
 mod gltf_animation;
 mod gltf_audit;

@@ -1,0 +1,149 @@
+//! Meshes split into clusters: runs of at most [`CLUSTER_TRIANGLES`] neighbouring
+//! triangles, each with the bounds a renderer culls it by and bins it to screen tiles with
+//! (the clusters of Nanite and of Bevy's meshlets; meshoptimizer's `buildMeshlets` makes
+//! them). A renderer that culls and bins clusters instead of triangles pays its per-item
+//! costs (atomics into tile counts, records in memory) once per cluster.
+//!
+//! [`cluster`] returns the mesh's triangles in a new order, cluster after cluster, each
+//! triangle's corners in their order (so its winding) unchanged: a renderer uploads that
+//! order, so that a cluster is a range of the index buffer. The mesh itself is not changed,
+//! so the clusters are made from the mesh as it is when uploaded and cannot go stale.
+
+use crate::mesh::{Mesh, Vertex};
+
+/// The most triangles in a cluster: 64, one for each of the 64 invocations a compute
+/// rasteriser sets triangles up with at once (passes' tile_raster.wgsl).
+pub const CLUSTER_TRIANGLES: usize = 64;
+/// The most distinct vertices in a cluster: meshoptimizer's recommended 64 for clusters of
+/// this size (fewer vertices per triangle makes rounder clusters on smooth meshes).
+const CLUSTER_VERTICES: usize = 64;
+/// How much meshoptimizer favours clusters whose triangles face one way (tighter normal
+/// cones, so more back-facing clusters culled) over round ones: its suggested 0.25.
+const CONE_WEIGHT: f32 = 0.25;
+
+/// One cluster of a [`ClusteredMesh`], in the mesh's object space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cluster {
+    /// Its first triangle in [`ClusteredMesh::indices`] (an index position / 3).
+    pub first_triangle: u32,
+    /// 1 to [`CLUSTER_TRIANGLES`].
+    pub triangles: u32,
+    /// The least corner of the box holding its vertices.
+    pub min: [f32; 3],
+    /// The greatest corner of that box.
+    pub max: [f32; 3],
+    /// The centre of a sphere holding its vertices.
+    pub center: [f32; 3],
+    /// That sphere's radius.
+    pub radius: f32,
+    /// The cone holding its triangles' (counter-clockwise) normals: seen from a point `e`
+    /// with `dot(center - e, cone_axis) >= cone_cutoff * |center - e| + radius`, every
+    /// triangle shows its back (meshoptimizer's test). A `cone_cutoff` of 1 or more: no
+    /// point sees only back faces.
+    pub cone_axis: [f32; 3],
+    /// The cone's cutoff in that test.
+    pub cone_cutoff: f32,
+}
+
+/// A mesh's triangles in cluster order and its clusters, which cover them in that order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ClusteredMesh {
+    /// The mesh's indices, three per triangle, cluster after cluster.
+    pub indices: Vec<u32>,
+    /// In index order: each starts where the one before ends.
+    pub clusters: Vec<Cluster>,
+}
+
+/// `mesh` split into clusters. Every triangle of the mesh appears once in the result, with
+/// its corners in their order; degenerate triangles (two corners at one index) included.
+pub fn cluster(mesh: &Mesh) -> ClusteredMesh {
+    let adapter = vertex_adapter(mesh);
+    let meshlets = meshopt::build_meshlets(
+        &mesh.indices,
+        &adapter,
+        CLUSTER_VERTICES,
+        CLUSTER_TRIANGLES,
+        CONE_WEIGHT,
+    );
+    let mut out = ClusteredMesh {
+        indices: Vec::with_capacity(mesh.indices.len()),
+        clusters: Vec::with_capacity(meshlets.len()),
+    };
+    for meshlet in meshlets.iter() {
+        let first = out.indices.len();
+        out.indices.extend(
+            meshlet
+                .triangles
+                .iter()
+                .map(|&k| meshlet.vertices[k as usize]),
+        );
+        out.clusters.push(bounded(
+            &mesh.vertices,
+            &out.indices[first..],
+            (first / 3) as u32,
+            meshopt::compute_meshlet_bounds(meshlet, &adapter),
+        ));
+    }
+    if out.indices.len() != mesh.indices.len() {
+        // meshoptimizer leaves out no triangle it is given; should a version ever drop
+        // some (degenerate ones, say), the mesh's own order in runs keeps every triangle.
+        return in_runs(mesh);
+    }
+    out
+}
+
+/// The mesh's triangles in their own order, in runs of [`CLUSTER_TRIANGLES`].
+fn in_runs(mesh: &Mesh) -> ClusteredMesh {
+    let clusters = mesh
+        .indices
+        .chunks(3 * CLUSTER_TRIANGLES)
+        .zip((0u32..).step_by(CLUSTER_TRIANGLES))
+        .map(|(indices, first)| {
+            let bounds = meshopt::compute_cluster_bounds(indices, &vertex_adapter(mesh));
+            bounded(&mesh.vertices, indices, first, bounds)
+        })
+        .collect();
+    ClusteredMesh {
+        indices: mesh.indices.clone(),
+        clusters,
+    }
+}
+
+/// The mesh's positions as meshoptimizer reads them: the first 12 bytes of each vertex.
+fn vertex_adapter(mesh: &Mesh) -> meshopt::VertexDataAdapter<'_> {
+    let positions: &[u8] = bytemuck::cast_slice(&mesh.vertices);
+    match meshopt::VertexDataAdapter::new(positions, std::mem::size_of::<Vertex>(), 0) {
+        Ok(adapter) => adapter,
+        // Only data that is not a whole number of vertices fails, which a slice of
+        // vertices cannot be.
+        Err(_) => unreachable!("a slice of vertices is a whole number of vertices"),
+    }
+}
+
+/// The cluster of `indices` (whole triangles, the first at `first_triangle`) with
+/// meshoptimizer's sphere and cone `bounds` and the box of its vertices.
+fn bounded(
+    vertices: &[Vertex],
+    indices: &[u32],
+    first_triangle: u32,
+    bounds: meshopt::Bounds,
+) -> Cluster {
+    let (mut min, mut max) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+    for &i in indices {
+        let p = vertices[i as usize].position;
+        for k in 0..3 {
+            min[k] = min[k].min(p[k]);
+            max[k] = max[k].max(p[k]);
+        }
+    }
+    Cluster {
+        first_triangle,
+        triangles: (indices.len() / 3) as u32,
+        min,
+        max,
+        center: bounds.center,
+        radius: bounds.radius,
+        cone_axis: bounds.cone_axis,
+        cone_cutoff: bounds.cone_cutoff,
+    }
+}
