@@ -20,6 +20,7 @@ const LAYERS: Layers<'_> = &[
             "bounds",
             "builder",
             "camera",
+            "clusters",
             "environment",
             "error",
             "gltf_loader",
