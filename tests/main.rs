@@ -41,6 +41,7 @@ mod cli_render_scale;
 mod cli_trust;
 mod cli_validate;
 mod cli_view;
+mod culling;
 mod default_pipeline;
 mod deferred_detectors;
 mod deferred_environment;

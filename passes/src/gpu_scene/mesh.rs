@@ -5,7 +5,7 @@
 use glam::{DMat3, DMat4, DVec3, Vec3};
 use wgpu::util::DeviceExt;
 
-use rgraph_scene::{Aabb, Scene, Vertex};
+use rgraph_scene::{Aabb, Cluster, ClusteredMesh, Scene, Vertex};
 
 /// `MeshData` in scene.wgsl.
 #[repr(C)]
@@ -47,7 +47,11 @@ pub struct MeshDraw {
 
 pub(super) struct MeshBuffers {
     pub vertices: wgpu::Buffer,
+    /// Each mesh's triangles in cluster order (rgraph_scene::cluster): a triangle's
+    /// position here, its ID, is not its position in `Mesh::indices`.
     pub indices: wgpu::Buffer,
+    /// Each mesh's clusters, ranges of its triangles in `indices` from the mesh's first.
+    pub clusters: Vec<Vec<Cluster>>,
     /// Per-mesh [`MeshData`], rewritten when the camera or a mesh moves.
     pub data: wgpu::Buffer,
 }
@@ -149,7 +153,8 @@ impl MeshFrame {
 
 impl MeshBuffers {
     /// Uploads `scene`'s geometry and `frame`'s per-mesh data. The geometry goes up mesh by
-    /// mesh in slices (see [`UPLOAD_SLICE_BYTES`]), never gathered into one copy first.
+    /// mesh in slices (see [`UPLOAD_SLICE_BYTES`]), never gathered into one copy first;
+    /// the indices in cluster order are a copy of the scene's, held until they are up.
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -157,6 +162,10 @@ impl MeshBuffers {
         frame: &MeshFrame,
     ) -> MeshBuffers {
         let upload = Upload { device, queue };
+        // Clustered here, from the meshes as they are now, so that the clusters cannot
+        // go stale: every pipeline draws the one index buffer, in cluster order.
+        let clustered: Vec<ClusteredMesh> =
+            scene.meshes.iter().map(rgraph_scene::cluster).collect();
         MeshBuffers {
             // Storage too: visibility-buffer passes pull vertices (geometry.wgsl).
             vertices: upload.gathered(
@@ -166,9 +175,10 @@ impl MeshBuffers {
             ),
             indices: upload.gathered(
                 "scene indices",
-                scene.meshes.iter().map(|m| m.indices.as_slice()),
+                clustered.iter().map(|m| m.indices.as_slice()),
                 wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
             ),
+            clusters: clustered.into_iter().map(|m| m.clusters).collect(),
             data: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("scene meshes"),
                 contents: frame.bytes(),

@@ -519,6 +519,12 @@ impl GpuScene {
         self.upload.geometry.layout()
     }
 
+    /// The clusters of `Scene::meshes[mesh]`, ranges of its triangles from the mesh's
+    /// first in the index buffer, which holds each mesh's triangles in cluster order.
+    pub fn clusters(&self, mesh: usize) -> &[rgraph_scene::Cluster] {
+        &self.upload.meshes.clusters[mesh]
+    }
+
     /// Group 2 of the visibility passes, made on first use; an error when the device cannot
     /// bind the scene's buffers as storage.
     pub fn geometry_group(&self, device: &wgpu::Device) -> Result<&wgpu::BindGroup, &str> {

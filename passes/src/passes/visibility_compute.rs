@@ -20,6 +20,7 @@
 //!  params: (
 //!      tile: 16,                    // pixels per tile side, 4 to 16 (the default)
 //!      other_samples: everywhere,   // or at_edges: below
+//!      clusters: whole,             // or culled, or off: below
 //!  ),
 //!  outputs: { "samples": "samples" })    // Buffer(per_sample: 8, samples: 4)
 //! ```
@@ -31,6 +32,17 @@
 //! 0.42: docs/design/compute-raster.md, run visibility-runs). Elsewhere those samples hold whatever an
 //! earlier frame left: a pass reading every sample (`keys_depth`) needs `everywhere`,
 //! the default.
+//!
+//! The draws' triangles come in clusters of up to 64 (rgraph_scene::cluster, made when
+//! the scene is uploaded), which the bins cull and list before any triangle
+//! (bin_triangles.wgsl): `clusters: culled` drops those wholly outside the view volume
+//! (by their box) and those showing only back faces (by their normal cone), and bins the
+//! rest triangle by triangle; `whole`, the default, also lists a cluster within the depth
+//! planes touching at most 4 tiles once per tile, whose raster sets its triangles up
+//! itself, so that binning a dense mesh takes an atomic per cluster and tile, not per
+//! triangle and tile; `off` bins every triangle, as before clusters. The image is the same
+//! whichever is chosen (tests/culling.rs): culling drops only triangles that cover no
+//! sample.
 //!
 //! `light_tiled` with a `samples` input shades it as it shades a hardware visibility
 //! buffer's `ids` and `depth`, with the same IDs (the triangle's position in the scene's
@@ -64,6 +76,21 @@ pub struct VisibilityComputeParams {
     pub tile: u32,
     #[serde(default)]
     pub other_samples: OtherSamples,
+    #[serde(default)]
+    pub clusters: Clusters,
+}
+
+/// How `visibility_compute` culls and bins the draws' clusters.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Clusters {
+    /// Culled, and listed whole in the tiles they touch where they are small on screen.
+    #[default]
+    Whole,
+    /// Culled; every triangle of those left binned by itself.
+    Culled,
+    /// Neither: every triangle binned by itself.
+    Off,
 }
 
 /// Where `visibility_compute` stores the keys of samples other than sample 0.
@@ -91,6 +118,7 @@ pub(crate) struct RasterDispatch {
     pub raster: String,
     pub bins: String,
     pub tile: u32,
+    pub clusters: Clusters,
     pub samples: BufferHandle,
     /// raster_tiles.wgsl's OTHERS_EVERYWHERE.
     pub others_everywhere: bool,
@@ -135,6 +163,7 @@ impl Plugin for VisibilityCompute {
             raster: raster.source().to_owned(),
             bins: shaders::TILE_BINS.compose(count)?.source().to_owned(),
             tile: params.tile,
+            clusters: params.clusters,
             samples,
             others_everywhere: params.other_samples == OtherSamples::Everywhere,
         };
@@ -150,10 +179,10 @@ mod gpu {
 
     use std::sync::Arc;
 
-    use super::RasterDispatch;
+    use super::{Clusters, RasterDispatch};
     use crate::common::gpu::pipeline::{module, pipeline_layout};
     use crate::common::gpu::storage::{storage_group, storage_layout};
-    use crate::common::gpu::tile_bins::{TileBins, RASTER_BUFFERS};
+    use crate::common::gpu::tile_bins::{ClusterBinning, TileBins, RASTER_BUFFERS};
     use crate::common::gpu::{compute_pipeline, Compute, Frame, Recorded, Recorder};
     use crate::common::visibility_samples::fits_binding;
     use crate::gpu_scene::GpuScene;
@@ -223,7 +252,11 @@ mod gpu {
                 state.bins = None;
             }
             let (_, bins) = state.bins.get_or_insert_with(|| {
-                let bins = TileBins::new(device, &self.bins, scene, self.tile, size);
+                let clusters = ClusterBinning {
+                    cull: self.clusters != Clusters::Off,
+                    whole: self.clusters == Clusters::Whole,
+                };
+                let bins = TileBins::new(device, &self.bins, scene, (self.tile, clusters), size);
                 (size, bins)
             });
             let bins = bins.as_ref().map_err(String::clone)?;

@@ -3,6 +3,17 @@
 // Karras's software rasteriser ("High-Performance Software Rasterization on GPUs", HPG
 // 2011: bin, then rasterise tile by tile on chip).
 //
+// The draws' triangles come in clusters (common/gpu/raster_draws.rs), each culled first
+// (CULL_CLUSTERS): wholly outside a plane of the view volume by its box, or showing only
+// back faces by its normal cone where its draw culls them and its mesh's transform keeps
+// angles (a rotation, uniform scale and translation). A cluster that lies within the
+// depth planes and whose box touches at most CLUSTER_TILES tiles is listed whole in each
+// of those tiles' cluster lists (WHOLE_CLUSTERS): the tile sets its triangles up itself,
+// and neither their records nor one count per triangle and tile are written. Binning per
+// cluster is what keeps a dense mesh's binning cheap: at one triangle per pixel, a tile's
+// count was raised by hundreds of triangles, each an atomic on the same word. Other
+// clusters go to the `fallback` list, whose triangles are binned one by one:
+//
 // Every triangle whose pixel bounds touch a tile is listed in that tile (`tile_entries`,
 // by the `t` of the t-th triangle of all draws), but for those clipped against a depth
 // plane and those the entries have no room for: their pieces (`t << 2 | k`, piece k of
@@ -11,28 +22,38 @@
 // triangle touching at most BINNED_TILES tiles lists itself; a larger one takes room
 // for its entries from what is left after BINNED_TILES per triangle, and is listed by
 // items of up to ITEM_TILES tiles, an invocation per tile, so that a triangle across the
-// screen spreads over the GPU. Dispatches, in order:
-// 1. cs_bins_clear: every tile's count to 0, the lists emptied.
-// 2. cs_bins_count: per triangle, its tiles' counts raised (or its items listed, or its
-//    pieces added to the spanning list).
-// 3. cs_bins_count_items: the items' tiles' counts raised.
-// 4. cs_bins_offsets: one workgroup turns the counts into each tile's first entry
+// screen spreads over the GPU.
+//
+// Each tile has two lists: its triangles (count and start at the tile's index) and its
+// whole clusters (at the number of tiles plus the tile's index), both in `tile_entries`.
+// Dispatches, in order:
+// 1. cs_bins_clear: every list's count to 0, the other lists emptied.
+// 2. cs_clusters_count: per cluster, culled, or its tiles' cluster counts raised, or
+//    added to the fallback list.
+// 3. cs_clusters_args: the fallback list's workgroups, the indirect arguments of the
+//    dispatches binning its triangles (`fallback_args`).
+// 4. cs_bins_count: per triangle of a fallback cluster, its tiles' counts raised (or its
+//    items listed, or its pieces added to the spanning list).
+// 5. cs_bins_count_items: the items' tiles' counts raised.
+// 6. cs_bins_offsets: one workgroup turns the counts into each list's first entry
 //    (`tile_starts`, an exclusive prefix sum) and sets `tile_ends` there.
-// 5. cs_bins_fill and cs_bins_fill_items: each entry written by raising `tile_ends`,
-//    which ends at the tile's last entry + 1.
+// 7. cs_bins_fill, cs_bins_fill_items and cs_clusters_fill: each entry written by
+//    raising `tile_ends`, which ends at the list's last entry + 1.
 // A tile's entries are in no particular order: coverage keeps the largest key, which
-// does not depend on it. No list overflows: the entries hold BINNED_TILES per triangle
-// and the room large triangles take, the items at most one per BINNED_TILES of that
+// does not depend on it. No list overflows: the entries hold BINNED_TILES per triangle,
+// CLUSTER_TILES per cluster and the room large triangles take, the items at most one per BINNED_TILES of that
 // room, the spanning list 3 pieces per triangle. (Should the room's count still overrun,
 // a tile whose list ends past the entries walks every triangle instead: tile_raster.wgsl.)
 //
 // Composed after common.wgsl, scene.wgsl, geometry.wgsl and triangle_setup.wgsl.
 
-// The lists' lengths: the spanning pieces, the entries large triangles took, the items.
+// The lists' lengths: the spanning pieces, the entries large triangles took, the items,
+// the fallback clusters.
 struct BinCounts {
     spanning: atomic<u32>,
     large_entries: atomic<u32>,
     items: atomic<u32>,
+    fallback: atomic<u32>,
 }
 
 @group(1) @binding(0) var<storage, read> draws: array<RasterDraw>;
@@ -48,6 +69,12 @@ struct BinCounts {
 @group(1) @binding(7) var<storage, read_write> items: array<vec4<u32>>;
 // Per triangle, a binned one set up (written by cs_bins_count), as its tiles read it.
 @group(1) @binding(8) var<storage, read_write> records: array<ScreenTriangle>;
+@group(1) @binding(9) var<storage, read> clusters: array<RasterCluster>;
+// The clusters binned by triangle.
+@group(1) @binding(10) var<storage, read_write> fallback: array<u32>;
+// The workgroups of the dispatches binning them (x, y, z: one workgroup per cluster, in
+// rows of at most 65,535), bound only for cs_clusters_args, which writes them.
+@group(3) @binding(0) var<storage, read_write> fallback_args: array<u32, 3>;
 
 // The raster's tile side in pixels.
 override TILE: u32;
@@ -55,6 +82,14 @@ override TILE: u32;
 override BINNED_TILES: u32;
 // cs_bins_count_items' and cs_bins_fill_items' grid of workgroups.
 override ITEM_GROUPS: u32;
+// Whether clusters are culled, and whether those that may be are binned whole
+// (visibility_compute.rs's `clusters` parameter): without either, every triangle is
+// binned by itself, as before clusters.
+override CULL_CLUSTERS: bool = true;
+override WHOLE_CLUSTERS: bool = true;
+// The most tiles a cluster listed whole touches: each of them sets up all of the
+// cluster's triangles. common/gpu/tile_bins.rs sizes the entries by it.
+override CLUSTER_TILES: u32;
 const BIN_GROUP: u32 = 64u;
 const ITEM_TILES: u32 = 64u;
 const SCAN_GROUP: u32 = 256u;
@@ -69,6 +104,11 @@ fn tiles_across() -> u32 {
     return (output_size().x + TILE - 1u) / TILE;
 }
 
+// The tiles: the cluster lists' counts and starts follow the triangle lists'.
+fn tile_total() -> u32 {
+    return arrayLength(&tile_starts) / 2u;
+}
+
 @compute @workgroup_size(64)
 fn cs_bins_clear(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = invocation(id, groups);
@@ -76,6 +116,7 @@ fn cs_bins_clear(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_work
         atomicStore(&bin_counts.spanning, 0u);
         atomicStore(&bin_counts.large_entries, 0u);
         atomicStore(&bin_counts.items, 0u);
+        atomicStore(&bin_counts.fallback, 0u);
     }
     if i < arrayLength(&tile_ends) {
         atomicStore(&tile_ends[i], 0u);
@@ -129,10 +170,28 @@ fn add_spanning(t: u32, pieces: u32, pixels: vec4<i32>) {
     }
 }
 
+// The triangle of a fallback cluster that invocation `local` of workgroup `group` bins
+// (cs_bins_count, cs_bins_fill: a workgroup per cluster, as cs_clusters_args counts
+// them), or NO_TRIANGLE.
+const NO_TRIANGLE: u32 = 0xffffffffu;
+
+fn fallback_triangle(group: vec3<u32>, groups: vec3<u32>, local: u32) -> u32 {
+    // The last row of workgroups runs past the list.
+    let slot = group.x + group.y * groups.x;
+    if slot >= atomicLoad(&bin_counts.fallback) {
+        return NO_TRIANGLE;
+    }
+    let c = clusters[fallback[slot]];
+    if local >= c.triangles {
+        return NO_TRIANGLE;
+    }
+    return c.first + local;
+}
+
 @compute @workgroup_size(64)
-fn cs_bins_count(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let t = invocation(id, groups);
-    if t >= triangle_count() {
+fn cs_bins_count(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local: u32) {
+    let t = fallback_triangle(group, groups, local);
+    if t == NO_TRIANGLE {
         return;
     }
     let b = tiles_of(t);
@@ -167,7 +226,7 @@ fn cs_bins_count(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_work
     // Room after BINNED_TILES entries per triangle. Once it is known full, nothing more is
     // taken (so the count cannot run on towards 2^32); tile_raster.wgsl checks each
     // tile's list against the entries all the same.
-    let room = arrayLength(&tile_entries) - BINNED_TILES * triangle_count();
+    let room = arrayLength(&tile_entries) - BINNED_TILES * triangle_count() - CLUSTER_TILES * arrayLength(&clusters);
     if atomicLoad(&bin_counts.large_entries) > room {
         add_spanning(t, 1u, b.pixels);
         return;
@@ -253,9 +312,9 @@ fn add_entry(tile: u32, t: u32) {
 }
 
 @compute @workgroup_size(64)
-fn cs_bins_fill(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let t = invocation(id, groups);
-    if t >= triangle_count() {
+fn cs_bins_fill(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local: u32) {
+    let t = fallback_triangle(group, groups, local);
+    if t == NO_TRIANGLE {
         return;
     }
     let b = tiles_of(t);
@@ -276,6 +335,145 @@ fn cs_bins_fill_items(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_in
         let tile = item_tile(item, local);
         if tile != NO_TILE {
             add_entry(tile, item.x);
+        }
+    }
+}
+
+// What becomes of a cluster this frame (cluster_bins).
+const CLUSTER_CULLED: u32 = 0u;
+const CLUSTER_WHOLE: u32 = 1u;
+const CLUSTER_BY_TRIANGLE: u32 = 2u;
+
+struct ClusterBins {
+    kind: u32,
+    // A whole cluster's tiles (min and max corners, inclusive).
+    tiles: vec4<u32>,
+}
+
+// Whether `model`, a camera-relative object-to-world matrix, keeps angles and
+// orientation (a rotation, a uniform scale, a translation), under which a normal cone
+// made in object space bounds the world's normals as it bounds the object's.
+fn keeps_angles(model: mat4x4<f32>) -> bool {
+    let x = model[0].xyz;
+    let y = model[1].xyz;
+    let z = model[2].xyz;
+    let s = dot(x, x);
+    let tolerance = 1e-4 * s;
+    return abs(dot(y, y) - s) <= tolerance && abs(dot(z, z) - s) <= tolerance
+        && abs(dot(x, y)) <= tolerance && abs(dot(y, z)) <= tolerance && abs(dot(z, x)) <= tolerance
+        && dot(cross(x, y), z) > 0.0;
+}
+
+// Whether every triangle of cluster `c` of a draw that culls back faces shows its back to
+// the camera, at the origin of camera-relative space (meshoptimizer's cone test, with a
+// margin for rounding).
+fn back_facing(c: RasterCluster, model: mat4x4<f32>) -> bool {
+    if c.cone_cutoff >= 1.0 || !keeps_angles(model) {
+        return false;
+    }
+    let scale = length(model[0].xyz);
+    let center = (model * vec4<f32>(c.center, 1.0)).xyz;
+    let axis = (model * vec4<f32>(c.cone_axis, 0.0)).xyz / scale;
+    let distance = length(center);
+    return dot(center, axis) >= c.cone_cutoff * distance + c.radius * scale * 1.001 + 1e-5 * distance;
+}
+
+// Cluster `c` this frame: culled (CULL_CLUSTERS) where its box lies wholly outside one
+// plane of the view volume, with a margin for rounding, or its normal cone shows only
+// back faces; binned whole (WHOLE_CLUSTERS) where its box lies within the depth planes,
+// in front of the camera, and its pixel bounds, a pixel wider on each side than its
+// corners' for rounding, touch at most CLUSTER_TILES tiles; else binned by triangle.
+fn cluster_bins(index: u32) -> ClusterBins {
+    var out = ClusterBins(CLUSTER_BY_TRIANGLE, vec4<u32>(1u, 1u, 0u, 0u));
+    if !CULL_CLUSTERS && !WHOLE_CLUSTERS {
+        return out;
+    }
+    let c = clusters[index];
+    let draw = draws[c.draw];
+    let model = meshes[draw.mesh].model;
+    // Per plane (x >= -w, x <= w, y >= -w, y <= w, z >= 0, z <= w), whether every
+    // corner is outside it, and whether some corner is outside a depth plane.
+    var outside = vec3<bool>(true);
+    var outside_low = vec3<bool>(true);
+    var crosses = false;
+    var low = vec2<f32>(1e30);
+    var high = vec2<f32>(-1e30);
+    for (var k = 0u; k < 8u; k++) {
+        let corner = select(c.min, c.max, vec3<bool>((k & 1u) != 0u, (k & 2u) != 0u, (k & 4u) != 0u));
+        let clip = camera.view_proj * (model * vec4<f32>(corner, 1.0));
+        let margin = 1e-5 * (abs(clip.w) + abs(clip.x) + abs(clip.y) + abs(clip.z));
+        let w = vec3<f32>(clip.w, clip.w, clip.w);
+        outside = outside & (clip.xyz - w > vec3<f32>(margin));
+        outside_low = outside_low & (vec3<f32>(clip.xy, clip.z) < vec3<f32>(-clip.w, -clip.w, 0.0) - vec3<f32>(margin));
+        let planes = depth_planes(clip);
+        crosses = crosses || clip.w <= 0.0 || any(planes < vec2<f32>(margin));
+        if clip.w > 0.0 {
+            let screen = to_screen(clip).xy;
+            low = min(low, screen);
+            high = max(high, screen);
+        }
+    }
+    if CULL_CLUSTERS {
+        let cull_back = (draw.flags & CULL_BACK) != 0u;
+        if any(outside) || any(outside_low) || (cull_back && back_facing(c, model)) {
+            out.kind = CLUSTER_CULLED;
+            return out;
+        }
+    }
+    if !WHOLE_CLUSTERS || crosses {
+        return out;
+    }
+    let size = vec2<f32>(output_size());
+    let first = clamp(floor(low) - 1.0, vec2<f32>(0.0), size - 1.0);
+    let last = clamp(floor(high) + 1.0, vec2<f32>(0.0), size - 1.0);
+    let tiles = vec4<u32>(vec2<u32>(first), vec2<u32>(last)) / TILE;
+    if tile_count(tiles) <= CLUSTER_TILES {
+        out.kind = CLUSTER_WHOLE;
+        out.tiles = tiles;
+    }
+    return out;
+}
+
+@compute @workgroup_size(64)
+fn cs_clusters_count(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let c = invocation(id, groups);
+    if c >= arrayLength(&clusters) {
+        return;
+    }
+    let b = cluster_bins(c);
+    if b.kind == CLUSTER_BY_TRIANGLE {
+        let slot = atomicAdd(&bin_counts.fallback, 1u);
+        fallback[slot] = c;
+    } else if b.kind == CLUSTER_WHOLE {
+        for (var y = b.tiles.y; y <= b.tiles.w; y++) {
+            for (var x = b.tiles.x; x <= b.tiles.z; x++) {
+                atomicAdd(&tile_ends[tile_total() + y * tiles_across() + x], 1u);
+            }
+        }
+    }
+}
+
+@compute @workgroup_size(1)
+fn cs_clusters_args() {
+    let clusters = atomicLoad(&bin_counts.fallback);
+    let x = min(clusters, 65535u);
+    fallback_args[0] = x;
+    fallback_args[1] = select(0u, (clusters + x - 1u) / max(x, 1u), x > 0u);
+    fallback_args[2] = 1u;
+}
+
+@compute @workgroup_size(64)
+fn cs_clusters_fill(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let c = invocation(id, groups);
+    if c >= arrayLength(&clusters) {
+        return;
+    }
+    let b = cluster_bins(c);
+    if b.kind == CLUSTER_WHOLE {
+        for (var y = b.tiles.y; y <= b.tiles.w; y++) {
+            for (var x = b.tiles.x; x <= b.tiles.z; x++) {
+                add_entry(tile_total() + y * tiles_across() + x, c);
+            }
         }
     }
 }

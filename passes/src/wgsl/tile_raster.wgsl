@@ -1,8 +1,9 @@
 // A tile's keys covered in one workgroup, an invocation per pixel (the tile raster of
 // Laine and Karras, "High-Performance Software Rasterization on GPUs", HPG 2011): the
 // tile's triangles, binned by bin_triangles.wgsl, are set up RASTER_CHUNK at a time, one per
-// invocation (a binned triangle read from the bins' records, a spanning piece set up
-// here and tested against the tile, and the tile's blocks it may cover found), then each
+// invocation (a binned triangle read from the bins' records, a spanning piece or a
+// triangle of a cluster listed whole set up here and tested against the tile, and the
+// tile's blocks it may cover found), then each
 // invocation tests its pixel's samples against each triangle that may cover its block, as
 // the lanes of one vector, keeping the nearest key of each sample in registers
 // (triangle_setup.wgsl's keys: the order the triangles come in does not matter). A warp
@@ -10,7 +11,8 @@
 // from 1.02 to 0.81 ms at 4x and from 0.76 to 0.68 at 1x, with the strict inside test
 // in cover_lanes (docs/design/compute-raster.md, run visibility-blocks).
 //
-// Group 1 binds the draws and the bins at bindings 1 to 8 (common/gpu/tile_bins.rs), group
+// Group 1 binds the draws, the bins and the clusters at bindings 1 to 9
+// (common/gpu/tile_bins.rs), group
 // 3 the texture table, which textured alpha masks read. Composed after common.wgsl,
 // scene.wgsl, geometry.wgsl, material.wgsl, material_table.wgsl, plane_hit.wgsl,
 // mask_texture.wgsl and triangle_setup.wgsl, with a
@@ -26,9 +28,13 @@
 @group(1) @binding(6) var<storage, read> spanning_count: u32;
 @group(1) @binding(7) var<storage, read> spanning_bounds: array<vec2<u32>>;
 @group(1) @binding(8) var<storage, read> records: array<ScreenTriangle>;
+@group(1) @binding(9) var<storage, read> clusters: array<RasterCluster>;
 
 // Triangles set up a chunk at a time, one per invocation, then tested by every invocation.
 const RASTER_CHUNK: u32 = min(TILE * TILE, 64u);
+// The chunks a cluster listed whole takes: one, but for tiles of fewer than 8 x 8 pixels
+// (rgraph_scene::CLUSTER_TRIANGLES is 64).
+const CLUSTER_CHUNKS: u32 = (64u + RASTER_CHUNK - 1u) / RASTER_CHUNK;
 
 var<workgroup> chunk: array<CoverTriangle, RASTER_CHUNK>;
 // The tile's blocks each may cover (blocks_touched).
@@ -261,6 +267,19 @@ fn blocks_touched(t: CoverTriangle, bounds: vec4<i32>, origin: vec2<u32>) -> u32
     return touched;
 }
 
+// Triangle `i` of the `k`-th chunk of the tile's whole clusters, listed from `start`
+// (CLUSTER_CHUNKS chunks each), set up, with area 0 where it misses the tile's pixels
+// `tile` or the cluster has no such triangle. A whole cluster lies within the depth
+// planes: its triangles are unclipped.
+fn cluster_triangle(k: u32, i: u32, start: u32, tile: vec4<i32>) -> ScreenTriangle {
+    let c = clusters[tile_entries[start + k / CLUSTER_CHUNKS]];
+    let within = (k % CLUSTER_CHUNKS) * RASTER_CHUNK + i;
+    if within >= c.triangles {
+        return ScreenTriangle();
+    }
+    return piece_in_tile(c.first + within, 0u, tile);
+}
+
 // Covers the tile at `origin` (the workgroup's, every invocation calling with its own
 // `local` index): the keys of the invocation's pixel, all 0 outside the output.
 fn cover_tile(origin: vec2<u32>, local: u32) -> TileKeys {
@@ -270,21 +289,34 @@ fn cover_tile(origin: vec2<u32>, local: u32) -> TileKeys {
     let start = tile_starts[tile_index];
     let end = tile_ends[tile_index];
     let binned = end - start;
+    // Its whole clusters' list follows every tile's triangle list.
+    let cluster_index = arrayLength(&tile_starts) / 2u + tile_index;
+    let cluster_start = tile_starts[cluster_index];
+    let cluster_end = tile_ends[cluster_index];
     // A list past the entries (bin_triangles.wgsl never writes one): every triangle's
-    // pieces, three slots per triangle.
-    let complete = end <= arrayLength(&tile_entries) && start <= end;
+    // pieces, three slots per triangle, and no whole cluster.
+    let entries = arrayLength(&tile_entries);
+    let complete = end <= entries && start <= end && cluster_end <= entries && cluster_start <= cluster_end;
     let total = select(3u * triangle_count(), binned + spanning_count, complete);
+    let triangle_chunks = (total + RASTER_CHUNK - 1u) / RASTER_CHUNK;
+    let chunks = triangle_chunks + select(0u, (cluster_end - cluster_start) * CLUSTER_CHUNKS, complete);
     let tile = vec4<i32>(vec2<i32>(origin), vec2<i32>(origin + TILE - 1u));
     let pixel = origin + pixel_in_tile(local);
     let covers = all(pixel < output_size());
     let block = 1u << block_of(local);
-    for (var first = 0u; first < total; first += RASTER_CHUNK) {
+    for (var k = 0u; k < chunks; k++) {
         if local == 0u {
             atomicStore(&chunk_count, 0u);
         }
         workgroupBarrier();
-        if local < RASTER_CHUNK && first + local < total {
-            let t = chunk_triangle(first + local, binned, start, tile, complete);
+        let i = k * RASTER_CHUNK + local;
+        if local < RASTER_CHUNK && (k >= triangle_chunks || i < total) {
+            var t: ScreenTriangle;
+            if k < triangle_chunks {
+                t = chunk_triangle(i, binned, start, tile, complete);
+            } else {
+                t = cluster_triangle(k - triangle_chunks, local, cluster_start, tile);
+            }
             if t.area > 0.0 {
                 let slot = atomicAdd(&chunk_count, 1u);
                 let cover = cover_triangle(t);

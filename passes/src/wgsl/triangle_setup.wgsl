@@ -31,6 +31,23 @@ struct RasterDraw {
 const CULL_BACK: u32 = 1u;
 const MASKED: u32 = 2u;
 
+// A cluster of a draw's triangles (rgraph_scene::Cluster, common/gpu/raster_draws.rs):
+// `triangles` triangles from the `first`-th of all draws, of draw `draw`, its box
+// (`min`, `max`), sphere (`center`, `radius`) and normal cone (`cone_axis`,
+// `cone_cutoff`) in the mesh's object space.
+struct RasterCluster {
+    first: u32,
+    triangles: u32,
+    draw: u32,
+    _pad: u32,
+    min: vec3<f32>,
+    cone_cutoff: f32,
+    max: vec3<f32>,
+    radius: f32,
+    center: vec3<f32>,
+    cone_axis: vec3<f32>,
+}
+
 // A triangle as coverage takes it: screen-space corners (x, y in pixels, clip depth,
 // 1 / w) wound so that `area` is positive, its alpha mask (mask_of) and its ID + 1. An
 // `area` of 0: it covers no sample (edge-on, culled, or not finite).

@@ -1,7 +1,8 @@
 //! The opaque draws' triangles binned to tiles (bin_triangles.wgsl says how), so that the
 //! compute raster covers each tile in one workgroup (passes/visibility_compute.rs,
-//! tile_raster.wgsl). Made for one scene upload and output size; recorded as six
-//! dispatches just before the raster's, in the same compute pass.
+//! tile_raster.wgsl). Made for one scene upload and output size; recorded as nine
+//! dispatches just before the raster's, in the same compute pass, two of them indirect:
+//! the clusters binned by triangle are known only on the device.
 
 use super::compute_pipeline;
 use super::pipeline::{module, pipeline_layout};
@@ -20,30 +21,50 @@ const LARGE_ENTRIES_PER_TILE: u64 = 16;
 /// of its item dispatches.
 const GROUP: u32 = 64;
 const ITEM_GROUPS: u32 = 1024;
+/// bin_triangles.wgsl's CLUSTER_TILES: a cluster touching at most this many tiles is
+/// listed whole; the entries hold this many per cluster. Each such tile sets up all of the
+/// cluster's triangles, so more would trade fewer atomics for more work in the raster.
+const CLUSTER_TILES: u64 = 4;
 /// triangle_setup.wgsl's ScreenTriangle, a binned triangle set up.
 const RECORD_BYTES: u64 = 80;
 /// The spanning pieces a triangle may add: its clipped polygon's fan.
 const PIECES: u64 = 3;
 
-/// The buffers a tile's raster reads (tile_raster.wgsl's bindings 1 to 8, in this
-/// order): all but the items.
-const RASTER_BUFFER_INDICES: [usize; 8] = [0, 1, 2, 3, 4, 5, 6, 8];
+/// The buffers a tile's raster reads (tile_raster.wgsl's bindings 1 to 9, in this
+/// order): all but the items and the fallback clusters.
+const RASTER_BUFFER_INDICES: [usize; 9] = [0, 1, 2, 3, 4, 5, 6, 8, 9];
 /// How many: the raster's group binds them after its keys.
 pub(crate) const RASTER_BUFFERS: usize = RASTER_BUFFER_INDICES.len();
 
+/// Whether the bins cull clusters, and whether they list small ones whole
+/// (bin_triangles.wgsl's CULL_CLUSTERS and WHOLE_CLUSTERS).
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct ClusterBinning {
+    pub cull: bool,
+    pub whole: bool,
+}
+
 pub(crate) struct TileBins {
     clear: wgpu::ComputePipeline,
+    clusters_count: wgpu::ComputePipeline,
+    clusters_args: wgpu::ComputePipeline,
     count: wgpu::ComputePipeline,
     count_items: wgpu::ComputePipeline,
     offsets: wgpu::ComputePipeline,
     fill: wgpu::ComputePipeline,
     fill_items: wgpu::ComputePipeline,
+    clusters_fill: wgpu::ComputePipeline,
     group: wgpu::BindGroup,
+    /// The fallback list's dispatch arguments (the last buffer), bound as group 3 only
+    /// while cs_clusters_args writes them: a dispatch that reads a buffer as its
+    /// arguments may not bind it for writing too.
+    args_group: wgpu::BindGroup,
     draws: RasterDraws,
     tiles: u32,
     /// In bin_triangles.wgsl's binding order: draws, tile_ends, tile_starts, tile_entries,
-    /// spanning, bin_counts, spanning_bounds, items, records.
-    buffers: [wgpu::Buffer; 9],
+    /// spanning, bin_counts, spanning_bounds, items, records, clusters, fallback (group
+    /// 1), then fallback_args (group 3).
+    buffers: [wgpu::Buffer; 12],
 }
 
 impl TileBins {
@@ -54,20 +75,21 @@ impl TileBins {
     }
 
     /// Bins for `scene`'s opaque triangles over the tiles of side `tile` covering
-    /// `size`, with bin_triangles.wgsl composed as `source`; an error when the device cannot
-    /// bind them.
+    /// `size`, with bin_triangles.wgsl composed as `source`, its clusters culled and
+    /// listed as `clusters` says; an error when the device cannot bind them.
     pub fn new(
         device: &wgpu::Device,
         source: &str,
         scene: &GpuScene,
-        tile: u32,
+        (tile, clusters): (u32, ClusterBinning),
         size: (u32, u32),
     ) -> Result<TileBins, String> {
         let tiles = size.0.div_ceil(tile) * size.1.div_ceil(tile);
         let draws = RasterDraws::new(device, scene);
         let triangles = u64::from(draws.triangles);
+        let cluster_count = u64::from(draws.cluster_count);
         let large = LARGE_ENTRIES_PER_TILE * u64::from(tiles);
-        let entries = (BINNED_TILES * triangles + large) * 4;
+        let entries = (BINNED_TILES * triangles + CLUSTER_TILES * cluster_count + large) * 4;
         let limit = device.limits().max_storage_buffer_binding_size;
         let records = triangles * RECORD_BYTES;
         let spanning = triangles * PIECES * 4;
@@ -83,25 +105,43 @@ impl TileBins {
                  deferred_msaa_4x_lean.ron, whose raster pass is the hardware's"
             ));
         }
-        let tile_words = u64::from(tiles) * 4;
+        // A triangle list and a whole-cluster list per tile.
+        let list_words = 2 * u64::from(tiles) * 4;
         let buffers = [
             draws.buffer.clone(),
-            scratch(device, "tile bins: ends", tile_words),
-            scratch(device, "tile bins: starts", tile_words),
+            scratch(device, "tile bins: ends", list_words),
+            scratch(device, "tile bins: starts", list_words),
             scratch(device, "tile bins: entries", entries),
             scratch(device, "tile bins: spanning", spanning),
-            scratch(device, "tile bins: counts", 12),
+            scratch(device, "tile bins: counts", 16),
             scratch(device, "tile bins: spanning bounds", triangles * 8),
             scratch(device, "tile bins: items", (large / BINNED_TILES + 1) * 16),
             scratch(device, "tile bins: records", records),
+            draws.clusters.clone(),
+            scratch(device, "tile bins: fallback clusters", cluster_count * 4),
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("tile bins: fallback dispatch"),
+                size: 12,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT,
+                mapped_at_creation: false,
+            }),
         ];
-        let mut read_only = [false; 9];
+        let (bins, args) = buffers.split_at(11);
+        let args_group_layout = storage_layout(device, "tile bins: fallback dispatch", &[false]);
+        let args_group = storage_group(
+            device,
+            "tile bins: fallback dispatch",
+            &args_group_layout,
+            &[&args[0]],
+        );
+        let mut read_only = [false; 11];
         read_only[0] = true;
+        read_only[9] = true;
         let layout = storage_layout(device, "tile bins", &read_only);
-        let refs: Vec<&wgpu::Buffer> = buffers.iter().collect();
+        let refs: Vec<&wgpu::Buffer> = bins.iter().collect();
         let group = storage_group(device, "tile bins", &layout, &refs);
         let module = module(device, "tile_bins", source);
-        let pipeline_layout = pipeline_layout(
+        let bins_layout = pipeline_layout(
             device,
             &[
                 Some(scene.layout()),
@@ -109,29 +149,39 @@ impl TileBins {
                 Some(scene.geometry_layout()),
             ],
         );
+        let args_layout = pipeline_layout(
+            device,
+            &[
+                Some(scene.layout()),
+                Some(&layout),
+                Some(scene.geometry_layout()),
+                Some(&args_group_layout),
+            ],
+        );
         let constants = [
             ("TILE", f64::from(tile)),
             ("BINNED_TILES", BINNED_TILES as f64),
             ("ITEM_GROUPS", f64::from(ITEM_GROUPS)),
+            ("CLUSTER_TILES", CLUSTER_TILES as f64),
+            ("CULL_CLUSTERS", f64::from(u8::from(clusters.cull))),
+            ("WHOLE_CLUSTERS", f64::from(u8::from(clusters.whole))),
         ];
-        let pipeline = |entry: &str| {
-            compute_pipeline(
-                device,
-                "tile bins",
-                &pipeline_layout,
-                &module,
-                entry,
-                &constants,
-            )
+        let pipeline_with = |layout: &wgpu::PipelineLayout, entry: &str| {
+            compute_pipeline(device, "tile bins", layout, &module, entry, &constants)
         };
+        let pipeline = |entry: &str| pipeline_with(&bins_layout, entry);
         Ok(TileBins {
             clear: pipeline("cs_bins_clear"),
+            clusters_count: pipeline("cs_clusters_count"),
+            clusters_args: pipeline_with(&args_layout, "cs_clusters_args"),
             count: pipeline("cs_bins_count"),
             count_items: pipeline("cs_bins_count_items"),
             offsets: pipeline("cs_bins_offsets"),
             fill: pipeline("cs_bins_fill"),
             fill_items: pipeline("cs_bins_fill_items"),
+            clusters_fill: pipeline("cs_clusters_fill"),
             group,
+            args_group,
             draws,
             tiles,
             buffers,
@@ -150,24 +200,33 @@ impl TileBins {
         pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
         pass.set_bind_group(1, &self.group, &[]);
         pass.set_bind_group(2, geometry, &[]);
-        let (x, y) = grid(u64::from(self.tiles), GROUP);
+        let (x, y) = grid(2 * u64::from(self.tiles), GROUP);
         pass.set_pipeline(&self.clear);
         pass.dispatch_workgroups(x, y, 1);
         if self.draws.triangles == 0 {
-            // No entries: the tiles' counts stay 0, as their starts are.
+            // No entries: the lists' counts stay 0, as their starts are.
             return;
         }
-        let (x, y) = grid(u64::from(self.draws.triangles), GROUP);
-        pass.set_pipeline(&self.count);
+        let (x, y) = grid(u64::from(self.draws.cluster_count), GROUP);
+        let fallback_args = &self.buffers[11];
+        pass.set_pipeline(&self.clusters_count);
         pass.dispatch_workgroups(x, y, 1);
+        pass.set_pipeline(&self.clusters_args);
+        pass.set_bind_group(3, &self.args_group, &[]);
+        pass.dispatch_workgroups(1, 1, 1);
+        pass.set_bind_group(3, None, &[]);
+        pass.set_pipeline(&self.count);
+        pass.dispatch_workgroups_indirect(fallback_args, 0);
         pass.set_pipeline(&self.count_items);
         pass.dispatch_workgroups(ITEM_GROUPS, 1, 1);
         pass.set_pipeline(&self.offsets);
         pass.dispatch_workgroups(1, 1, 1);
         pass.set_pipeline(&self.fill);
-        pass.dispatch_workgroups(x, y, 1);
+        pass.dispatch_workgroups_indirect(fallback_args, 0);
         pass.set_pipeline(&self.fill_items);
         pass.dispatch_workgroups(ITEM_GROUPS, 1, 1);
+        pass.set_pipeline(&self.clusters_fill);
+        pass.dispatch_workgroups(x, y, 1);
     }
 
     /// The buffers a tile's raster reads, in tile_raster.wgsl's binding order (from 1).

@@ -1,0 +1,168 @@
+//! Cluster culling never drops a visible triangle (issue 38). The compute raster's bins
+//! cull the draws' clusters by box (outside the view volume) and normal cone (only back
+//! faces), and list small ones whole in their tiles (visibility_compute's `clusters`,
+//! bin_triangles.wgsl). Along camera paths that put objects behind the camera, cut them at
+//! the image's sides and the near plane and turn closed meshes' backs to it, and with
+//! meshes mirrored and squashed (transforms under which a normal cone no longer holds),
+//! every frame of one executor renders the same image, exactly, with `clusters: whole`
+//! (the default), `culled` and `off` (every triangle binned by itself, as before
+//! clusters). The frames run through one executor each, so they also show that a frame's
+//! lists do not keep what an earlier frame culled or listed.
+
+use rgraph_passes::FrameInputs;
+use rgraph_scene::glam::{DMat4, DVec3};
+use rgraph_scene::{Camera, Scene};
+
+use crate::deferred_support::{gpu, Image, PipelineFile, Render};
+
+/// The compute raster, as on a GPU.
+const COMPUTE: PipelineFile = PipelineFile::gpu_branch("visibility_msaa_4x.ron");
+/// The raster pass's parameters as shipped (`clusters` left at its default, `whole`).
+const SHIPPED: &str = "params: (other_samples: at_edges),";
+const MODES: [(&str, &str); 2] = [
+    (
+        "culled",
+        "params: (other_samples: at_edges, clusters: culled),",
+    ),
+    ("off", "params: (other_samples: at_edges, clusters: off),"),
+];
+/// An edge pixel in the edges view.
+const EDGE: [u8; 4] = [255, 0, 0, 255];
+/// Tiles of 16 pixels: 10 x 6 of them, so that clusters touch one tile, a few, or many.
+const SIZE: (u32, u32) = (160, 96);
+
+/// A frame's change of the scene's own inputs, and what it is called in messages.
+type Change = (&'static str, fn(&mut FrameInputs, &Scene));
+
+/// The frames: the scene's camera, then cameras and poses that cull and clip.
+const CHANGES: [Change; 6] = [
+    ("the scene's camera", |_, _| {}),
+    ("orbited 150 degrees", |inputs, scene| {
+        inputs.camera = inputs
+            .camera
+            .orbited(scene.bounds.center(), 150f64.to_radians());
+    }),
+    ("looking away", |inputs, scene| {
+        let eye = inputs.camera.position;
+        inputs.camera = look(&inputs.camera, eye, 2.0 * eye - scene.bounds.center());
+    }),
+    ("inside, across the scene", |inputs, scene| {
+        let (center, size) = (scene.bounds.center(), scene.bounds.size());
+        let eye = center + DVec3::new(0.2, 0.05, 0.3) * size;
+        inputs.camera = look(
+            &inputs.camera,
+            eye,
+            center - DVec3::new(0.3, 0.1, 0.1) * size,
+        );
+    }),
+    ("close, the centre at the image's side", |inputs, scene| {
+        let center = scene.bounds.center();
+        let eye = center.lerp(inputs.camera.position, 0.4);
+        let side = inputs.camera.orientation * DVec3::X;
+        let target = center + side * 0.3 * scene.bounds.size().length();
+        inputs.camera = look(&inputs.camera, eye, target);
+    }),
+    ("meshes mirrored and squashed", |inputs, scene| {
+        for (k, (transform, mesh)) in inputs.transforms.iter_mut().zip(&scene.meshes).enumerate() {
+            let Some(bounds) = mesh.world_bounds() else {
+                continue;
+            };
+            let scale = match k % 3 {
+                0 => DVec3::new(-1.0, 1.0, 1.0),
+                1 => DVec3::new(1.0, 0.4, 1.0),
+                _ => DVec3::ONE,
+            };
+            let about = bounds.center();
+            *transform = DMat4::from_translation(about)
+                * DMat4::from_scale(scale)
+                * DMat4::from_translation(-about)
+                * *transform;
+        }
+    }),
+];
+
+/// `camera` moved to `eye`, looking at `target`, its projection kept.
+fn look(camera: &Camera, eye: DVec3, target: DVec3) -> Camera {
+    let up = if (target - eye).normalize().y.abs() > 0.99 {
+        DVec3::Z
+    } else {
+        DVec3::Y
+    };
+    Camera::look_at(
+        camera.name.clone(),
+        eye,
+        target,
+        up,
+        camera.projection.clone(),
+    )
+}
+
+/// Each of [`CHANGES`]' frames of `scene` through one executor, with the raster pass's
+/// parameters `params`: the colour and the edges view.
+fn frames(scene: &'static str, params: &'static str) -> Vec<(Image, Image)> {
+    let gpu = gpu();
+    let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
+    let mut frame = Render::new(COMPUTE, scene, SIZE)
+        .edit(SHIPPED, params)
+        .run(&gpu);
+    let own = frame.inputs();
+    CHANGES
+        .iter()
+        .map(|(_, change)| {
+            let mut inputs = own.clone();
+            change(&mut inputs, &loaded);
+            frame.next(inputs);
+            (frame.image(&gpu, "color"), frame.image(&gpu, "debug.edges"))
+        })
+        .collect()
+}
+
+fn differing(a: &Image, b: &Image) -> usize {
+    (a.pixels.iter().zip(&b.pixels))
+        .filter(|(a, b)| a != b)
+        .count()
+}
+
+fn assert_culling_keeps_every_frame(scene: &'static str) {
+    let whole = frames(scene, SHIPPED);
+    // A frame that shows nothing would pass with anything culled: most frames show
+    // edges (red in the edges view) of the scene's triangles.
+    let shown = whole
+        .iter()
+        .filter(|(_, edges)| edges.count(EDGE) > 0)
+        .count();
+    assert!(
+        shown >= 4,
+        "{scene}: only {shown} of the frames show an edge"
+    );
+    for (mode, params) in MODES {
+        for (k, (other, (color, edges))) in frames(scene, params).iter().zip(&whole).enumerate() {
+            let (colors, edges) = (differing(&other.0, color), differing(&other.1, edges));
+            assert!(
+                colors == 0 && edges == 0,
+                "{scene}, {}: clusters {mode} and whole differ in {colors} pixels of the \
+                 colour and {edges} of the edges view",
+                CHANGES[k].0
+            );
+        }
+    }
+}
+
+/// Spheres over a floor: closed meshes whose back halves are culled by their cones.
+#[test]
+fn culling_keeps_every_visible_triangle_of_spheres() {
+    assert_culling_keeps_every_frame("builtin:spheres");
+}
+
+/// A city of separate buildings: whole meshes in and out of view.
+#[test]
+fn culling_keeps_every_visible_triangle_of_a_city() {
+    assert_culling_keeps_every_frame("builtin:city");
+}
+
+/// A heightfield of 100,352 triangles: clusters of small triangles listed whole, and
+/// clusters crossing the near plane.
+#[test]
+fn culling_keeps_every_visible_triangle_of_a_heightfield() {
+    assert_culling_keeps_every_frame("builtin:terrain");
+}
