@@ -20,6 +20,11 @@ const CLUSTER_VERTICES: usize = 64;
 /// How much meshoptimizer favours clusters whose triangles face one way (tighter normal
 /// cones, so more back-facing clusters culled) over round ones: its suggested 0.25.
 const CONE_WEIGHT: f32 = 0.25;
+/// The most triangles one vertex may share for meshoptimizer to cluster a mesh: its
+/// builder scans a vertex's triangles each time it takes one of them, so a hub's cost
+/// grows with the square of their number (a fan of a million triangles would take hours).
+/// A mesh with a busier vertex is cut into runs of its own order instead.
+const MAX_SHARED: u32 = 4096;
 
 /// One cluster of a [`ClusteredMesh`], in the mesh's object space.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,18 +60,47 @@ pub struct ClusteredMesh {
 }
 
 /// `mesh` split into clusters. Every triangle of the mesh appears once in the result, with
-/// its corners in their order; degenerate triangles (two corners at one index) included.
+/// its corners in their order; degenerate triangles (two corners at one index), which
+/// cover nothing, come last, in runs of their own order.
 pub fn cluster(mesh: &Mesh) -> ClusteredMesh {
+    let (solid, degenerate): (Vec<&[u32]>, Vec<&[u32]>) = mesh
+        .indices
+        .chunks_exact(3)
+        .partition(|t| t[0] != t[1] && t[1] != t[2] && t[2] != t[0]);
+    let (solid, degenerate) = (solid.concat(), degenerate.concat());
+    let mut out = if most_shared(&solid, mesh.vertices.len()) > MAX_SHARED {
+        in_runs(mesh, &solid, 0)
+    } else {
+        built(mesh, &solid)
+    };
+    let first = (out.indices.len() / 3) as u32;
+    let rest = in_runs(mesh, &degenerate, first);
+    out.indices.extend(rest.indices);
+    out.clusters.extend(rest.clusters);
+    out
+}
+
+/// How many triangles of `indices` the busiest of `vertices` vertices is a corner of.
+fn most_shared(indices: &[u32], vertices: usize) -> u32 {
+    let mut shared = vec![0u32; vertices];
+    for &i in indices {
+        shared[i as usize] += 1;
+    }
+    shared.into_iter().max().unwrap_or(0)
+}
+
+/// The triangles `indices` (none degenerate) of `mesh` in meshoptimizer's clusters.
+fn built(mesh: &Mesh, indices: &[u32]) -> ClusteredMesh {
     let adapter = vertex_adapter(mesh);
     let meshlets = meshopt::build_meshlets(
-        &mesh.indices,
+        indices,
         &adapter,
         CLUSTER_VERTICES,
         CLUSTER_TRIANGLES,
         CONE_WEIGHT,
     );
     let mut out = ClusteredMesh {
-        indices: Vec::with_capacity(mesh.indices.len()),
+        indices: Vec::with_capacity(indices.len()),
         clusters: Vec::with_capacity(meshlets.len()),
     };
     for meshlet in meshlets.iter() {
@@ -84,27 +118,28 @@ pub fn cluster(mesh: &Mesh) -> ClusteredMesh {
             meshopt::compute_meshlet_bounds(meshlet, &adapter),
         ));
     }
-    if out.indices.len() != mesh.indices.len() {
+    if out.indices.len() != indices.len() {
         // meshoptimizer leaves out no triangle it is given; should a version ever drop
-        // some (degenerate ones, say), the mesh's own order in runs keeps every triangle.
-        return in_runs(mesh);
+        // some, their own order in runs keeps every triangle.
+        return in_runs(mesh, indices, 0);
     }
     out
 }
 
-/// The mesh's triangles in their own order, in runs of [`CLUSTER_TRIANGLES`].
-fn in_runs(mesh: &Mesh) -> ClusteredMesh {
-    let clusters = mesh
-        .indices
+/// The triangles `indices` of `mesh` in their own order, in runs of
+/// [`CLUSTER_TRIANGLES`], the first run's first triangle numbered `first`.
+fn in_runs(mesh: &Mesh, indices: &[u32], first: u32) -> ClusteredMesh {
+    let adapter = vertex_adapter(mesh);
+    let clusters = indices
         .chunks(3 * CLUSTER_TRIANGLES)
-        .zip((0u32..).step_by(CLUSTER_TRIANGLES))
-        .map(|(indices, first)| {
-            let bounds = meshopt::compute_cluster_bounds(indices, &vertex_adapter(mesh));
-            bounded(&mesh.vertices, indices, first, bounds)
+        .zip((first..).step_by(CLUSTER_TRIANGLES))
+        .map(|(run, first)| {
+            let bounds = meshopt::compute_cluster_bounds(run, &adapter);
+            bounded(&mesh.vertices, run, first, bounds)
         })
         .collect();
     ClusteredMesh {
-        indices: mesh.indices.clone(),
+        indices: indices.to_vec(),
         clusters,
     }
 }
@@ -121,7 +156,8 @@ fn vertex_adapter(mesh: &Mesh) -> meshopt::VertexDataAdapter<'_> {
 }
 
 /// The cluster of `indices` (whole triangles, the first at `first_triangle`) with
-/// meshoptimizer's sphere and cone `bounds` and the box of its vertices.
+/// meshoptimizer's sphere and cone `bounds` and the box of its vertices. The sphere grows
+/// to hold every vertex: meshoptimizer's leaves out degenerate triangles' corners.
 fn bounded(
     vertices: &[Vertex],
     indices: &[u32],
@@ -129,12 +165,15 @@ fn bounded(
     bounds: meshopt::Bounds,
 ) -> Cluster {
     let (mut min, mut max) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+    let center = glam::Vec3::from_array(bounds.center);
+    let mut radius = bounds.radius;
     for &i in indices {
         let p = vertices[i as usize].position;
         for k in 0..3 {
             min[k] = min[k].min(p[k]);
             max[k] = max[k].max(p[k]);
         }
+        radius = radius.max(center.distance(glam::Vec3::from_array(p)));
     }
     Cluster {
         first_triangle,
@@ -142,7 +181,7 @@ fn bounded(
         min,
         max,
         center: bounds.center,
-        radius: bounds.radius,
+        radius,
         cone_axis: bounds.cone_axis,
         cone_cutoff: bounds.cone_cutoff,
     }

@@ -130,6 +130,36 @@ fn clusters_keep_degenerate_and_repeated_triangles() {
     check("degenerate", &mesh, &cluster(&mesh));
 }
 
+/// Meshes whose triangles crowd one vertex, which meshoptimizer's builder would walk once
+/// per triangle taken (hours for the visibility tests' mesh padded past 2^20 IDs): a
+/// million copies of one degenerate triangle after a heightfield's, and a fan of 20,000
+/// triangles around one vertex. Each keeps every triangle, degenerate ones last.
+#[test]
+fn crowded_vertices_keep_every_triangle() {
+    let mut padded = builtin("builtin:terrain?cells=4").meshes[0].clone();
+    let solid = padded.indices.len();
+    padded.indices.extend(std::iter::repeat_n(0, 3 << 20));
+    let clustered = cluster(&padded);
+    check("padded", &padded, &clustered);
+    assert_eq!(
+        &clustered.indices[..solid],
+        &cluster(&builtin("builtin:terrain?cells=4").meshes[0]).indices[..],
+        "the heightfield's clusters changed with degenerate triangles after it"
+    );
+    let mut fan = padded;
+    let rim = 20_000u32;
+    fan.vertices.truncate(1);
+    let hub = fan.vertices[0];
+    fan.vertices.extend((0..=rim).map(|k| {
+        let angle = k as f32 / rim as f32 * std::f32::consts::TAU;
+        let mut v = hub;
+        v.position = [angle.cos(), 0.0, -angle.sin()];
+        v
+    }));
+    fan.indices = (1..=rim).flat_map(|k| [0, k, k + 1]).collect();
+    check("fan", &fan, &cluster(&fan));
+}
+
 #[test]
 fn a_dense_mesh_makes_full_clusters() {
     let scene = builtin("builtin:terrain?cells=100");
