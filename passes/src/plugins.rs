@@ -56,6 +56,7 @@ use crate::passes::keys_depth::KeysDepth;
 use crate::passes::light::{LightEdge, LightNonEdge};
 use crate::passes::light_prepass::{LightPrepassGBuffer, LightPrepassMaterial};
 use crate::passes::light_tiled::LightTiled;
+use crate::passes::motion_vectors::MotionVectors;
 use crate::passes::particle_edges::ParticleEdges;
 use crate::passes::particles::{CompositeParticles, Particles};
 use crate::passes::resolve::Resolve;
@@ -76,6 +77,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(LightNonEdge(shared.clone()))
         .register(LightEdge(shared.clone()))
         .register(LightTiled(shared.clone()))
+        .register(MotionVectors(shared.clone()))
         .register(Visibility(shared.clone()))
         .register(VisibilityCompute(shared.clone()))
         .register(KeysDepth(shared.clone()))

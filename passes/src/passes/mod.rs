@@ -17,6 +17,7 @@ pub(crate) mod keys_depth;
 pub(crate) mod light;
 pub(crate) mod light_prepass;
 pub(crate) mod light_tiled;
+pub(crate) mod motion_vectors;
 pub(crate) mod particle_edges;
 pub(crate) mod particles;
 pub(crate) mod resolve;
