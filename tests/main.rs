@@ -93,6 +93,7 @@ mod specialise_lights;
 mod specialise_samples;
 mod specialise_unlit;
 mod specialise_variants;
+mod temporal_aa;
 mod texture_seams;
 mod transparency;
 mod visibility;

@@ -62,6 +62,7 @@ use crate::passes::particles::{CompositeParticles, Particles};
 use crate::passes::resolve::Resolve;
 use crate::passes::shadow_maps::ShadowMaps;
 use crate::passes::ssao::{Ssao, SsaoBlur};
+use crate::passes::taa::Taa;
 use crate::passes::tonemap::Tonemap;
 use crate::passes::transparent::{CompositeTransparent, Transparent};
 use crate::passes::visibility::Visibility;
@@ -89,6 +90,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(Forward(shared.clone()))
         .register(GBufferResolve(shared.clone()))
         .register(Fxaa(shared.clone()))
+        .register(Taa(shared.clone()))
         .register(Ssao(shared.clone()))
         .register(LightPrepassGBuffer(shared.clone()))
         .register(LightPrepassMaterial(shared.clone()))

@@ -272,6 +272,10 @@ pub(crate) const MOTION_OBJECTS: &str = concat!(
 pub(crate) const VISIBILITY_TEXTURES: &str = include_str!("wgsl/visibility_textures.wgsl");
 /// motion.wgsl's `pixel_motion` from a depth buffer, after common/opaque_depth.rs's block.
 pub(crate) const MOTION_DEPTH: &str = include_str!("wgsl/motion_depth.wgsl");
+pub(crate) const TAA: Source = Source {
+    name: "taa.wgsl",
+    parts: &[COMMON, include_str!("wgsl/taa.wgsl")],
+};
 pub(crate) const COMPOSITE: Source = Source {
     name: "composite.wgsl",
     parts: &[COMMON, include_str!("wgsl/composite.wgsl")],

@@ -23,6 +23,7 @@ pub(crate) mod particles;
 pub(crate) mod resolve;
 pub(crate) mod shadow_maps;
 pub(crate) mod ssao;
+pub(crate) mod taa;
 pub(crate) mod tonemap;
 pub(crate) mod transparent;
 pub(crate) mod visibility;
