@@ -2,7 +2,7 @@
 //! lavapipe: a still camera's image converges to the 16-sample reference
 //! (reference_ssaa16.ron): after 16 frames within 2/255 on average, and on the pixels
 //! one sample aliases within a quarter of one sample's error (measured: 0.17/255 and
-//! 5.2/255 against 29.4/255 for taa.ron); and a box moving 5 pixels a frame leaves no
+//! 5.0/255 against 29.4/255 for taa.ron); and a box moving 5 pixels a frame leaves no
 //! ghost beyond one frame: where it was a frame or more before (2 pixels or more from an
 //! edge) the image is within 3/255 of the reference (measured: 2/255 at worst).
 
