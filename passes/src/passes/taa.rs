@@ -1,8 +1,9 @@
 //! `taa`: temporal anti-aliasing. Each frame's camera is jittered by a point of the
 //! Halton(2, 3) sequence (16 a cycle, gpu_scene/jitter.rs), so over frames a pixel is
 //! sampled all over; this pass blends the frame into its own previous result, reprojected
-//! with the motion vectors (`motion_vectors`) and clamped to the frame's neighbourhood in
-//! YCoCg, which is what keeps a moved surface from leaving a ghost (wgsl/taa.wgsl).
+//! with the motion vectors (`motion_vectors`) through a Catmull-Rom filter and clipped to
+//! the frame's neighbourhood in YCoCg, which is what keeps a moved surface from leaving a
+//! ghost (wgsl/taa.wgsl).
 //!
 //! ```ron
 //! (name: "taa", plugin: "taa",

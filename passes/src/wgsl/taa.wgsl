@@ -2,13 +2,14 @@
 // camera, blended into the previous frame's result reprojected by the motion vectors.
 // The history is read where the pixel's surface was through a Catmull-Rom filter (five
 // bilinear taps, Jimenez's "Filmic SMAA" 2016), which a moving image's history keeps
-// sharper than a bilinear read that blurs it a little more every frame; then it is clamped to the box this
-// frame's 3 x 3 neighbourhood spans in YCoCg (Karis, "High quality temporal
-// supersampling", 2014; Salvi's YCoCg box), so what the history shows of a surface no
-// longer there (a ghost) cannot outlast one frame where its colour lies outside that
-// box; then this frame weighs `current_weight` (the pass sets it each frame: 1 after a
-// reset, 1 / n for the n-th frame since, down to 1 - the history weight). Where the
-// previous position is off screen the frame is taken alone. Composed after common.wgsl.
+// sharper than bilinear reads that blur it a little more every frame; then it is clipped
+// to the box this frame's 3 x 3 neighbourhood spans in YCoCg (Karis, "High quality
+// temporal supersampling", 2014), narrowed to GAMMA standard deviations about its mean
+// (Salvi's variance clipping), so what the history shows of a surface no longer there (a
+// ghost) cannot outlast one frame where its colour lies outside that box; then this frame
+// weighs `current_weight` (the pass sets it each frame: 1 after a reset, 1 / n for the
+// n-th frame since, down to 1 - the history weight). Where the previous position is off
+// screen the frame is taken alone. Composed after common.wgsl.
 
 @group(1) @binding(0) var current_tex: texture_2d<f32>;
 @group(1) @binding(1) var motion_tex: texture_2d<f32>;
