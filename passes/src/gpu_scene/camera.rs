@@ -8,6 +8,10 @@ use glam::{DMat4, Mat4};
 
 use rgraph_scene::{Camera, DepthConvention};
 
+/// The output size, the frame inputs' generation (see `Host::set_frame`) and the bits of
+/// the jitter a camera buffer was written for.
+type WrittenFor = ((u32, u32), u64, [u32; 2]);
+
 /// `Camera` in scene.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -26,9 +30,8 @@ struct CameraUniform {
 pub(super) struct Cameras {
     pub reversed: wgpu::Buffer,
     pub standard: wgpu::Buffer,
-    /// The output size, the frame inputs' generation (see `Host::set_frame`) and the
-    /// jitter's bits the buffers were last written for.
-    written_for: Mutex<Option<((u32, u32), u64, [u32; 2])>>,
+    /// What the buffers were last written for.
+    written_for: Mutex<Option<WrittenFor>>,
 }
 
 impl Cameras {
