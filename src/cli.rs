@@ -211,7 +211,8 @@ pub struct FrameArgs {
     pub height: u32,
     /// What to draw (for `view`, first): final (the pipeline's "color" output) or a debug
     /// view NAME (its "debug.NAME" output): edges, albedo, normals, depth or lights in the
-    /// deferred pipelines. Only the passes this view needs run.
+    /// deferred pipelines; motion (each pixel's motion since the previous frame, grey where
+    /// still: use it with --frames) in the default one. Only the passes this view needs run.
     #[arg(long, value_name = "VIEW", default_value = "final")]
     pub view: String,
     /// What shows where nothing is drawn: environment (the scene's, as a mirror reflects
@@ -396,6 +397,19 @@ impl Samples {
 }
 
 /// `NAME=VALUE`, VALUE a whole number that fits the parameter (32 bits).
+/// `--motion orbit:DEG`: the degrees, finite.
+fn parse_motion(text: &str) -> Result<f64, String> {
+    let degrees = text
+        .strip_prefix("orbit:")
+        .ok_or_else(|| format!("`{text}` is not orbit:DEG (the only motion so far)"))?;
+    match degrees.parse::<f64>() {
+        Ok(d) if d.is_finite() => Ok(d),
+        _ => Err(format!(
+            "`{degrees}` in `{text}` is not a finite number of degrees"
+        )),
+    }
+}
+
 fn parse_param(text: &str) -> Result<(String, u32), String> {
     let (name, value) = text
         .split_once('=')
@@ -528,6 +542,17 @@ pub struct BenchArgs {
     /// or the scene limits refuse becomes an error row.
     #[arg(long, value_enum)]
     pub sweep: Option<Sweep>,
+    /// Measure error over time instead (orbit:DEG): on each --scene (default
+    /// builtin:spheres), each --pipeline (default: no AA, FXAA, MSAA 4x, TAA and MSAA 4x +
+    /// TAA on the default path) and the reference draw 16 still frames, then
+    /// --motion-frames frames with the camera orbiting DEG degrees in all and the scene's
+    /// first mesh moving sideways; motion.md and motion.json give the GPU time, the still
+    /// and sequence FLIP and the instability (change beyond the reference's) per pipeline.
+    #[arg(long, value_name = "orbit:DEG", value_parser = parse_motion, conflicts_with = "sweep")]
+    pub motion: Option<f64>,
+    /// Moving frames of --motion.
+    #[arg(long, value_name = "N", default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub motion_frames: u32,
     /// The largest sweep value to measure (e.g. --sweep triangles --sweep-max 1000000 on
     /// a CPU adapter, where 10^8 triangles would take hours).
     #[arg(long, value_name = "N", requires = "sweep", value_parser = clap::value_parser!(u32).range(1..))]

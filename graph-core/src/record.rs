@@ -67,6 +67,8 @@ pub struct FrameResources<'f> {
     pub(crate) failure: &'f std::cell::RefCell<Option<String>>,
     /// Bytes of the buffers the executing pass keeps for itself ([`Self::hold`]).
     pub(crate) held: &'f std::cell::Cell<u64>,
+    /// The frame's number ([`Self::frame`]).
+    pub(crate) frame: u64,
 }
 
 impl<'f> FrameResources<'f> {
@@ -78,6 +80,14 @@ impl<'f> FrameResources<'f> {
     /// [`PassTiming::held_bytes`]: crate::gpu::PassTiming::held_bytes
     pub fn hold(&self, buffer: &wgpu::Buffer) {
         self.held.set(self.held.get() + buffer.size());
+    }
+
+    /// How many frames the executor began before this one (0 for its first): every pass
+    /// of a frame sees the same number, and each frame a greater one, so a pass can tell
+    /// a new frame from another recording of the same one (a temporal technique's
+    /// per-frame jitter, the previous frame's inputs).
+    pub fn frame(&self) -> u64 {
+        self.frame
     }
 
     /// The size relative textures were resolved against.

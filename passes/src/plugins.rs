@@ -56,11 +56,13 @@ use crate::passes::keys_depth::KeysDepth;
 use crate::passes::light::{LightEdge, LightNonEdge};
 use crate::passes::light_prepass::{LightPrepassGBuffer, LightPrepassMaterial};
 use crate::passes::light_tiled::LightTiled;
+use crate::passes::motion_vectors::MotionVectors;
 use crate::passes::particle_edges::ParticleEdges;
 use crate::passes::particles::{CompositeParticles, Particles};
 use crate::passes::resolve::Resolve;
 use crate::passes::shadow_maps::ShadowMaps;
 use crate::passes::ssao::{Ssao, SsaoBlur};
+use crate::passes::taa::Taa;
 use crate::passes::tonemap::Tonemap;
 use crate::passes::transparent::{CompositeTransparent, Transparent};
 use crate::passes::visibility::Visibility;
@@ -76,6 +78,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(LightNonEdge(shared.clone()))
         .register(LightEdge(shared.clone()))
         .register(LightTiled(shared.clone()))
+        .register(MotionVectors(shared.clone()))
         .register(Visibility(shared.clone()))
         .register(VisibilityCompute(shared.clone()))
         .register(KeysDepth(shared.clone()))
@@ -87,6 +90,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(Forward(shared.clone()))
         .register(GBufferResolve(shared.clone()))
         .register(Fxaa(shared.clone()))
+        .register(Taa(shared.clone()))
         .register(Ssao(shared.clone()))
         .register(LightPrepassGBuffer(shared.clone()))
         .register(LightPrepassMaterial(shared.clone()))

@@ -255,6 +255,27 @@ pub(crate) const LIGHT_PREPASS_GEOMETRY: Source = Source {
         include_str!("wgsl/light_prepass_material.wgsl"),
     ],
 };
+/// Needs a generated block after it: see [`crate::passes::motion_vectors::MotionVectors`].
+pub(crate) const MOTION: Source = Source {
+    name: "motion.wgsl",
+    parts: &[COMMON, SCENE, include_str!("wgsl/motion.wgsl")],
+};
+/// motion.wgsl's `pixel_motion` from a visibility buffer, whose reader follows it.
+pub(crate) const MOTION_OBJECTS: &str = concat!(
+    include_str!("wgsl/geometry.wgsl"),
+    include_str!("wgsl/material.wgsl"),
+    include_str!("wgsl/material_table.wgsl"),
+    include_str!("wgsl/plane_hit.wgsl"),
+    include_str!("wgsl/motion_objects.wgsl")
+);
+/// A raster pass's visibility buffer: its IDs (group 1, binding 0) and depth (binding 5).
+pub(crate) const VISIBILITY_TEXTURES: &str = include_str!("wgsl/visibility_textures.wgsl");
+/// motion.wgsl's `pixel_motion` from a depth buffer, after common/opaque_depth.rs's block.
+pub(crate) const MOTION_DEPTH: &str = include_str!("wgsl/motion_depth.wgsl");
+pub(crate) const TAA: Source = Source {
+    name: "taa.wgsl",
+    parts: &[COMMON, include_str!("wgsl/taa.wgsl")],
+};
 pub(crate) const COMPOSITE: Source = Source {
     name: "composite.wgsl",
     parts: &[COMMON, include_str!("wgsl/composite.wgsl")],

@@ -20,6 +20,7 @@ mod images;
 mod machine;
 mod measure;
 mod memory;
+mod motion;
 mod particle_table;
 mod particle_work;
 mod plan_page;
@@ -89,6 +90,9 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
     let pipelines = candidates::with_params(pipelines, &args.params, &mut notes);
     let session = Session::open(&AdapterChoice::resolve(args.adapter.as_deref()))
         .map_err(BenchError::Device)?;
+    if let Some(degrees) = args.motion {
+        return motion::bench(args, degrees, &session);
+    }
     let size = (args.width, args.height);
     let steps = sweep::steps(
         args.sweep,

@@ -195,6 +195,9 @@ pub struct Executor {
     frame_buffers: Vec<usize>,
     /// The pairs of textures of the plan's histories, kept across frames.
     histories: Histories,
+    /// Frames begun so far: the number the next frame's passes see
+    /// ([`FrameResources::frame`]).
+    frames: u64,
 }
 
 impl Executor {
@@ -222,6 +225,7 @@ impl Executor {
             frame_textures: Vec::new(),
             frame_buffers: Vec::new(),
             histories: Histories::default(),
+            frames: 0,
         }
     }
 
@@ -259,6 +263,7 @@ impl Executor {
         }
         let (graph, plan) = compiled.parts();
         check_records(graph, plan)?;
+        self.frames += 1;
         let bound = imports.resolve(graph, plan)?;
         // Scopes are per thread and capture everything below: resource creation, each
         // pass (which pushes its own scopes too), the submission.
@@ -572,6 +577,7 @@ impl Executor {
                 resources: &graph.resources,
                 failure: &failure,
                 held: &held,
+                frame: self.frames - 1,
             };
             let recorded = record_pass(
                 &mut encoder,

@@ -8,6 +8,10 @@ use glam::{DMat4, Mat4};
 
 use rgraph_scene::{Camera, DepthConvention};
 
+/// The output size, the frame inputs' generation (see `Host::set_frame`) and the bits of
+/// the jitter a camera buffer was written for.
+type WrittenFor = ((u32, u32), u64, [u32; 2]);
+
 /// `Camera` in scene.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -26,9 +30,8 @@ struct CameraUniform {
 pub(super) struct Cameras {
     pub reversed: wgpu::Buffer,
     pub standard: wgpu::Buffer,
-    /// The output size and the frame inputs' generation (see `Host::set_frame`) the
-    /// buffers were last written for.
-    written_for: Mutex<Option<((u32, u32), u64)>>,
+    /// What the buffers were last written for.
+    written_for: Mutex<Option<WrittenFor>>,
 }
 
 impl Cameras {
@@ -48,27 +51,29 @@ impl Cameras {
         }
     }
 
-    /// Writes both buffers for `camera` (of frame inputs `generation`) at `size` unless
-    /// they hold it already. The write lands before the next submission, i.e. before the
-    /// frame being recorded runs.
+    /// Writes both buffers for `camera` (of frame inputs `generation`) at `size`, its
+    /// projection offset by `jitter` pixels, unless they hold it already. The write lands
+    /// before the next submission, i.e. before the frame being recorded runs.
     pub fn prepare(
         &self,
         queue: &wgpu::Queue,
         (camera, generation): (&Camera, u64),
         size: (u32, u32),
+        jitter: [f32; 2],
     ) {
         let mut written = self.written_for.lock().unwrap_or_else(|e| e.into_inner());
-        if *written == Some((size, generation)) {
+        let key = (size, generation, jitter.map(f32::to_bits));
+        if *written == Some(key) {
             return;
         }
         for (buffer, convention) in [
             (&self.reversed, DepthConvention::ReversedZ),
             (&self.standard, DepthConvention::Standard),
         ] {
-            let uniform = uniform(camera, size, convention);
+            let uniform = uniform(camera, size, convention, jitter);
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(&uniform));
         }
-        *written = Some((size, generation));
+        *written = Some(key);
     }
 }
 
@@ -78,8 +83,27 @@ pub fn view_projection(camera: &Camera, size: (u32, u32), convention: DepthConve
     camera.projection_matrix(aspect, convention) * camera.view_rotation()
 }
 
-fn uniform(camera: &Camera, size: (u32, u32), convention: DepthConvention) -> CameraUniform {
-    let view_proj = view_projection(camera, size, convention);
+/// [`view_projection`] with the image moved by `jitter` pixels (x right, y down): clip
+/// x and y offset in proportion to w, so every point moves by the same pixels.
+fn jittered(
+    camera: &Camera,
+    size: (u32, u32),
+    convention: DepthConvention,
+    jitter: [f32; 2],
+) -> Mat4 {
+    let (width, height) = (size.0.max(1) as f32, size.1.max(1) as f32);
+    // Normalised device y points up, pixel y down.
+    let offset = glam::Vec3::new(2.0 * jitter[0] / width, -2.0 * jitter[1] / height, 0.0);
+    Mat4::from_translation(offset) * view_projection(camera, size, convention)
+}
+
+fn uniform(
+    camera: &Camera,
+    size: (u32, u32),
+    convention: DepthConvention,
+    jitter: [f32; 2],
+) -> CameraUniform {
+    let view_proj = jittered(camera, size, convention, jitter);
     // Inverted in f64: the projection of a small near plane is badly conditioned in f32.
     let inverse = view_proj.as_dmat4().inverse();
     CameraUniform {

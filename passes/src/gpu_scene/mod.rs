@@ -29,6 +29,7 @@ mod camera;
 mod changed;
 mod environment;
 mod geometry;
+mod jitter;
 mod layout;
 mod lights;
 mod materials;
@@ -43,6 +44,7 @@ pub(crate) mod volumes;
 use std::sync::{Arc, Mutex};
 
 pub use camera::view_projection;
+pub use jitter::{jitter, JITTER_CYCLE};
 pub use lights::{camera_may_be_inside, far_plane_may_cut, VolumeLight};
 pub use materials::MaterialState;
 pub use mesh::MeshDraw;
@@ -74,6 +76,10 @@ pub struct SceneCache {
     features: Features,
     /// Per device, the scene as the last frame drew it.
     uploaded: Mutex<Vec<(wgpu::Device, Arc<GpuScene>)>>,
+    /// The bits of the f32 span each frame's camera is offset by that frame's [`jitter`]
+    /// times, 0 for none: what a temporal filter among the passes asked for
+    /// ([`jitter_camera`](Self::jitter_camera)).
+    jitter_span: std::sync::atomic::AtomicU32,
 }
 
 impl SceneCache {
@@ -87,7 +93,25 @@ impl SceneCache {
             host,
             features,
             uploaded: Mutex::new(Vec::new()),
+            jitter_span: std::sync::atomic::AtomicU32::new(0),
         }
+    }
+
+    /// Offsets the camera of every frame drawn from now on by the frame's [`jitter`]
+    /// (numbered by the executor, `FrameResources::frame`) times `span` (1: over the
+    /// whole pixel): what a temporal filter set up among this cache's passes asks for, at
+    /// setup, so that every pass of a frame draws with one camera. Every pass sharing the
+    /// cache is jittered, those of a plan the filter is culled from too.
+    pub fn jitter_camera(&self, span: f32) {
+        self.jitter_span
+            .store(span.to_bits(), std::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// The camera's offset in frame `frame`, in pixels: [`jitter`]'s times the span asked
+    /// for, or none.
+    pub fn jitter_at(&self, frame: u64) -> [f32; 2] {
+        let span = f32::from_bits(self.jitter_span.load(std::sync::atomic::Ordering::Relaxed));
+        jitter(frame).map(|offset| offset * span)
     }
 
     /// The variant of `shader` that draws the scene: the code its features need (every
@@ -145,7 +169,8 @@ impl SceneCache {
         resources: &rgraph_core::gpu::FrameResources<'_>,
     ) -> Option<Arc<GpuScene>> {
         let scene = self.get(resources.device, resources.queue)?;
-        scene.prepare(resources.queue, resources.output_size());
+        let jitter = self.jitter_at(resources.frame());
+        scene.prepare(resources.queue, resources.output_size(), jitter);
         Some(scene)
     }
 
@@ -351,11 +376,11 @@ impl GpuScene {
         Arc::ptr_eq(&self.upload, &other.upload)
     }
 
-    /// Writes the camera for an output of `size` if it was written for another size or
-    /// another frame's camera.
-    pub fn prepare(&self, queue: &wgpu::Queue, size: (u32, u32)) {
+    /// Writes the camera for an output of `size`, offset by `jitter` pixels, if it was
+    /// written for another size, jitter or frame's camera.
+    pub fn prepare(&self, queue: &wgpu::Queue, size: (u32, u32), jitter: [f32; 2]) {
         let camera = (&self.frame.inputs.camera, self.frame.generation);
-        self.upload.cameras.prepare(queue, camera, size);
+        self.upload.cameras.prepare(queue, camera, size, jitter);
     }
 
     /// Writes the shadow views of this frame's shadowed lights (gpu_scene/shadows.rs)

@@ -34,6 +34,9 @@ pub enum BenchError {
     #[error("cannot write {path}: {reason}")]
     Write { path: PathBuf, reason: String },
 
+    #[error("--motion on {scene}: {why}")]
+    Motion { scene: String, why: String },
+
     #[error("nothing could be measured: all {rows} rows are errors (see {results})")]
     NothingMeasured { rows: usize, results: PathBuf },
 }

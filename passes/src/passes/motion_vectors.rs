@@ -1,0 +1,341 @@
+//! `motion_vectors`: per pixel, how far the surface it shows moved on screen since the
+//! previous frame, from the frame inputs (the camera and every mesh's transform) of this
+//! frame and the last one this pass recorded: what a temporal filter reprojects its
+//! history with (`taa`).
+//!
+//! ```ron
+//! (name: "motion vectors", plugin: "motion_vectors",
+//!  params: (view: false),            // true: the debug view instead (see below)
+//!  inputs: { "ids": "ids" },          // a raster pass's visibility buffer, any samples;
+//!                                     // or "samples": a compute rasteriser's keys; or
+//!                                     // "depth": a G-buffer's depth (camera motion only)
+//!  outputs: { "motion": "motion" })   // rgba16float, 1 sample; with view: "color", rgba8unorm
+//! ```
+//!
+//! The motion is this frame's position minus the previous frame's, in pixels (x right, y
+//! down), both without the jitter a temporal filter gives the camera, so a still scene
+//! has none whatever the jitter; the previous position of pixel centre `c` is `c -
+//! motion`. A compute pass, an invocation per pixel:
+//! - from a visibility buffer (`ids` or `samples`), the triangle of the pixel's sample 0
+//!   is met by the ray through the pixel's centre, and the object-space point there is
+//!   taken through its mesh's transform and the camera of each frame: a moving object's
+//!   pixels move with it, the rasteriser's own files untouched;
+//! - from a depth buffer (`depth`, a G-buffer's), the point sample 0 holds is taken to
+//!   stand still, so only the camera moves it: a G-buffer keeps no object per sample
+//!   (writing motion from the G-buffer pass itself is left to do);
+//! - where nothing was drawn, the direction of the ray, which only the camera's turn
+//!   moves (an environment at infinity).
+//!
+//! The previous frame is the last one this pass recorded (the executor runs a pass once
+//! a frame); on its first, the previous inputs are this frame's, so the motion is zero.
+//! `view: true` writes the debug view `rgraph render --view motion` shows: red and green
+//! 0.5 + motion / 32 pixels per axis (clamped), blue 0.5, so a still pixel is grey.
+
+use serde::Deserialize;
+
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
+
+use crate::common::opaque_depth::OpaqueDepth;
+use crate::common::plugin::Shared;
+use crate::common::textures::{self, format_name, Input, Texels, Want};
+use crate::shaders;
+
+pub struct MotionVectors(pub(crate) Shared);
+
+/// The motion's format: half floats (pixels to a sub-pixel precision far beyond what a
+/// filter needs), x and y in red and green; four channels because WebGPU stores no
+/// rg16float from a compute shader.
+pub(crate) const MOTION: &[TextureFormat] = &[TextureFormat::Rgba16Float];
+const VIEW: &[TextureFormat] = &[TextureFormat::Rgba8Unorm];
+
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MotionVectorsParams {
+    /// Writes the debug view (output "color") instead of the motion (output "motion").
+    pub view: bool,
+    /// Fixes the depth convention of a depth buffer; left out, it follows the depth
+    /// format the compile picks, as the opaque passes' does.
+    pub reversed_z: Option<bool>,
+}
+
+/// What the pass reads the pixels' surfaces from.
+#[derive(Copy, Clone, Debug)]
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) enum Surfaces {
+    /// A raster pass's visibility buffer's IDs (group 1, binding 0).
+    Ids(TextureHandle),
+    /// A compute rasteriser's keys (whose IDs it reads), or a depth buffer.
+    Depth(OpaqueDepth),
+}
+
+impl Surfaces {
+    /// Whether the pass rebuilds triangles from the scene's geometry (group 2).
+    #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+    fn objects(&self) -> bool {
+        !matches!(self, Surfaces::Depth(OpaqueDepth::Buffer(..)))
+    }
+}
+
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct MotionDispatch {
+    source: String,
+    view: bool,
+    surfaces: Surfaces,
+    /// Group 1's textures: the output at binding 7, and the IDs where read.
+    inputs: Vec<Input>,
+    target: TextureHandle,
+}
+
+impl Plugin for MotionVectors {
+    const NAME: &'static str = "motion_vectors";
+    type Params = MotionVectorsParams;
+
+    fn kind(&self, _: &MotionVectorsParams) -> PassKind {
+        PassKind::Compute
+    }
+
+    fn setup(
+        &self,
+        params: MotionVectorsParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let mut inputs = Vec::new();
+        let (surfaces, samples, reader) = if slots.kind("ids").is_some() {
+            let want = Want::new("the visibility buffer's triangle IDs", textures::IDS);
+            let (ids, desc) = textures::input(slots, pass, "ids", want)?;
+            pass.sampled(ids);
+            inputs.push(Input {
+                binding: 0,
+                texture: ids,
+                aspect: Aspect::All,
+                texels: Texels::Uint,
+            });
+            let reader = format!(
+                "{}{}",
+                shaders::VISIBILITY_TEXTURES,
+                shaders::MOTION_OBJECTS
+            );
+            (Surfaces::Ids(ids), desc.samples, reader)
+        } else {
+            let (depth, samples) = OpaqueDepth::read(slots, pass, params.reversed_z)?;
+            let part = match depth {
+                OpaqueDepth::Keys(_) => shaders::MOTION_OBJECTS,
+                OpaqueDepth::Buffer(..) => shaders::MOTION_DEPTH,
+            };
+            (Surfaces::Depth(depth), samples, depth.wgsl() + part)
+        };
+        let (slot, want) = match params.view {
+            true => ("color", Want::new("the motion's debug view", VIEW)),
+            false => ("motion", Want::new("the motion vectors", MOTION)),
+        };
+        let (target, out) = textures::output(slots, pass, slot, want.samples(1), |pass, h, _| {
+            pass.storage_write(h)
+        })?;
+        inputs.push(Input {
+            binding: 7,
+            texture: target,
+            aspect: Aspect::All,
+            texels: Texels::Store,
+        });
+        let generated = format!(
+            "// Generated: the output's format, then the surfaces' reader.\n\
+             alias OutTex = texture_storage_2d<{}, write>;\n{reader}",
+            format_name(out.format)
+        );
+        let source = shaders::MOTION
+            .compose_with(samples, &generated)?
+            .source()
+            .to_owned();
+        let dispatch = MotionDispatch {
+            source,
+            view: params.view,
+            surfaces,
+            inputs,
+            target,
+        };
+        self.0.record(pass, dispatch);
+        Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording: the frame's matrices written into the pass's own buffer, then one
+    //! dispatch of 8 x 8 pixels per workgroup.
+
+    use std::sync::Arc;
+
+    use glam::{DMat4, Mat4};
+
+    use super::{MotionDispatch, Surfaces};
+    use crate::common::depth::far_depth;
+    use crate::common::gpu::bindings::TextureBindings;
+    use crate::common::gpu::pipeline::{module, pipeline_layout};
+    use crate::common::gpu::{compute_pipeline, split_ids, Compute, Frame, InputPass, Recorded};
+    use crate::common::gpu::{GroupBuffers, Recorder};
+    use crate::common::opaque_depth::OpaqueDepth;
+    use crate::common::textures::Input;
+    use crate::gpu_scene::{view_projection, GpuScene};
+    use rgraph_scene::{Camera, DepthConvention};
+
+    /// motion.wgsl's binding of the matrices.
+    const MATRICES_BINDING: u32 = 9;
+
+    /// Bytes of one matrix.
+    const MATRIX: u64 = 64;
+
+    #[derive(Clone, PartialEq)]
+    pub(crate) struct Key {
+        convention: DepthConvention,
+        ids: Option<wgpu::TextureFormat>,
+    }
+
+    pub(crate) struct State {
+        pass: InputPass<Key, wgpu::ComputePipeline>,
+        /// motion.wgsl's `Motion`, rewritten each frame.
+        matrices: wgpu::Buffer,
+        /// The camera and transforms of the frame recorded last.
+        previous: Option<(Camera, Vec<DMat4>)>,
+    }
+
+    impl MotionDispatch {
+        /// Group 1's textures and buffers (the matrices among them), and the
+        /// convention of the depth read, if any (reversed-Z otherwise).
+        fn bound(
+            &self,
+            resources: &rgraph_core::gpu::FrameResources<'_>,
+        ) -> Result<(Vec<Input>, GroupBuffers, DepthConvention), String> {
+            let depth = match &self.surfaces {
+                Surfaces::Depth(depth) => Some(depth),
+                Surfaces::Ids(_) => None,
+            };
+            let bound = OpaqueDepth::bound_with(depth, &self.inputs, resources)?;
+            let buffers = GroupBuffers {
+                read: bound.buffers.read,
+                owned: vec![MATRICES_BINDING],
+            };
+            Ok((bound.inputs, buffers, bound.convention))
+        }
+    }
+
+    impl Recorder for MotionDispatch {
+        type Stage = Compute;
+        type Scene = Arc<GpuScene>;
+        type State = State;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<State, String> {
+            let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
+            let (inputs, buffers, _) = self.bound(resources)?;
+            let inputs =
+                TextureBindings::with_buffers(resources, &inputs, &buffers.read, &buffers.owned);
+            let geometry = self.surfaces.objects().then(|| scene.geometry_layout());
+            let layouts = [Some(scene.layout()), Some(&inputs.layout), geometry];
+            let meshes = scene.inputs().transforms.len().max(1) as u64;
+            Ok(State {
+                pass: InputPass {
+                    module: module(device, "motion vectors", &self.source),
+                    layout: pipeline_layout(
+                        device,
+                        &layouts[..2 + usize::from(geometry.is_some())],
+                    ),
+                    inputs,
+                    pipelines: Default::default(),
+                },
+                matrices: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("motion vectors' matrices"),
+                    size: 2 * MATRIX * (1 + meshes),
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }),
+                previous: None,
+            })
+        }
+
+        fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
+            let (_, _, convention) = self.bound(resources)?;
+            let inputs = scene.inputs();
+            let current = (inputs.camera.clone(), inputs.transforms.clone());
+            let previous = state
+                .previous
+                .replace(current.clone())
+                .unwrap_or(current.clone());
+            let size = resources.output_size();
+            let matrices = matrices(&current, &previous, size, convention);
+            resources
+                .queue
+                .write_buffer(&state.matrices, 0, bytemuck::cast_slice(&matrices));
+            let key = Key {
+                convention,
+                ids: match self.surfaces {
+                    Surfaces::Ids(ids) => Some(resources.shape(ids).format),
+                    Surfaces::Depth(_) => None,
+                },
+            };
+            let (module, layout) = (&state.pass.module, &state.pass.layout);
+            let pipeline = state.pass.pipelines.get(key, |key| {
+                let mut constants = vec![
+                    ("VIEW", f64::from(u8::from(self.view))),
+                    ("FAR_DEPTH", f64::from(far_depth(key.convention))),
+                ];
+                if let Some(ids) = key.ids {
+                    constants.push(("SPLIT_IDS", split_ids(ids)));
+                }
+                compute_pipeline(
+                    device,
+                    "motion vectors",
+                    layout,
+                    module,
+                    "cs_motion",
+                    &constants,
+                )
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, scene.bind_group(convention), &[]);
+            let group = state
+                .pass
+                .inputs
+                .bind_group_with(resources, &[&state.matrices]);
+            pass.set_bind_group(1, &group, &[]);
+            if self.surfaces.objects() {
+                pass.set_bind_group(2, scene.geometry_group(device)?, &[]);
+            }
+            let out = resources.shape(self.target);
+            pass.dispatch_workgroups(out.width.div_ceil(8), out.height.div_ceil(8), 1);
+            Ok(())
+        }
+    }
+
+    /// motion.wgsl's `Motion` for a frame of `size` drawn as `current` after `previous`
+    /// (each a camera and the meshes' transforms), composed in f64 and only then cast:
+    /// this frame's clip space from camera-relative points and the previous frame's from
+    /// the same points standing still, then per mesh both frames' clip space from its
+    /// object space. Without the jitter: gpu_scene's `view_projection`.
+    fn matrices(
+        current: &(Camera, Vec<DMat4>),
+        previous: &(Camera, Vec<DMat4>),
+        size: (u32, u32),
+        convention: DepthConvention,
+    ) -> Vec<[[f32; 4]; 4]> {
+        let clip = |camera: &Camera| view_projection(camera, size, convention).as_dmat4();
+        let (now, before) = (clip(&current.0), clip(&previous.0));
+        let (eye, eye_before) = (current.0.position, previous.0.position);
+        let mut matrices = vec![now, before * DMat4::from_translation(eye - eye_before)];
+        for (mesh, &transform) in current.1.iter().enumerate() {
+            let transform_before = previous.1.get(mesh).copied().unwrap_or(transform);
+            matrices.push(now * DMat4::from_translation(-eye) * transform);
+            matrices.push(before * DMat4::from_translation(-eye_before) * transform_before);
+        }
+        if current.1.is_empty() {
+            matrices.extend([DMat4::IDENTITY; 2]);
+        }
+        matrices
+            .iter()
+            .map(|m| Mat4::to_cols_array_2d(&m.as_mat4()))
+            .collect()
+    }
+}

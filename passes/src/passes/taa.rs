@@ -1,0 +1,219 @@
+//! `taa`: temporal anti-aliasing. Each frame's camera is jittered by a point of the
+//! Halton(2, 3) sequence (16 a cycle, gpu_scene/jitter.rs), so over frames a pixel is
+//! sampled all over; this pass blends the frame into its own previous result, reprojected
+//! with the motion vectors (`motion_vectors`) through a Catmull-Rom filter and clipped to
+//! the frame's neighbourhood in YCoCg, which is what keeps a moved surface from leaving a
+//! ghost (wgsl/taa.wgsl).
+//!
+//! ```ron
+//! (name: "taa", plugin: "taa",
+//!  params: (history_weight: 0.9,      // in [0, 1): the most the history weighs
+//!           samples: 4),              // the image's samples per pixel (default 1)
+//!  inputs: {
+//!      "hdr": "resolved",             // rgba16float, 1 sample: this frame, resolved
+//!      "motion": "motion",            // motion_vectors' output
+//!      "history": "taa_prev",         // History(of: "taa"): this pass's last output
+//!  },
+//!  outputs: { "resolved": "taa" })    // rgba16float, 1 sample: what tone mapping reads
+//! ```
+//!
+//! After a reset of the history (the first frame, a resize, a change of plan,
+//! `Executor::reset_history`) the frame is taken alone; the n-th frame after weighs 1 / n,
+//! so a still image averages its frames evenly, until 1 / n falls to 1 - `history_weight`,
+//! from which the history weighs `history_weight` (an exponential average: more keeps
+//! more of the past, smoother and slower to follow change; 0.9, the default, weighs about
+//! the last 10 frames). A still camera's image therefore converges to the average of the
+//! jittered samples, the pixel's box average, as the 16-sample reference's does.
+//!
+//! The jitter spans 1/√`samples` of a pixel: the whole pixel for one sample, half of it
+//! for 4x MSAA, whose own samples already spread over the pixel (spanning the whole
+//! pixel, 4x MSAA's footprint over frames would be a two-pixel tent, a blur).
+//! The jitter is asked of the plugins' shared scene at setup: every pass of the file
+//! draws with it, in plans that cull this pass too (a debug view of a TAA file is
+//! jittered). The blend is in linear HDR before tone mapping, as MSAA's resolve and the
+//! reference's average are.
+
+use serde::Deserialize;
+
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
+
+use crate::common::plugin::Shared;
+use crate::common::textures::{self, Input, Texels, Want};
+use crate::shaders;
+
+pub struct Taa(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TaaParams {
+    /// The most the history weighs, in [0, 1).
+    pub history_weight: f32,
+    /// Samples per pixel of the image filtered (MSAA's), which the jitter's span
+    /// follows; 1, 2, 4 or 8.
+    pub samples: u32,
+}
+
+impl Default for TaaParams {
+    fn default() -> TaaParams {
+        TaaParams {
+            history_weight: 0.9,
+            samples: 1,
+        }
+    }
+}
+
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct TaaDispatch {
+    source: String,
+    history_weight: f32,
+    history: TextureHandle,
+    /// Group 1's textures, the output at binding 7.
+    inputs: Vec<Input>,
+    target: TextureHandle,
+}
+
+impl Plugin for Taa {
+    const NAME: &'static str = "taa";
+    type Params = TaaParams;
+
+    fn kind(&self, _: &TaaParams) -> PassKind {
+        PassKind::Compute
+    }
+
+    fn setup(
+        &self,
+        params: TaaParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        if !(0.0..1.0).contains(&params.history_weight) {
+            return Err(PluginError::Invalid(format!(
+                "history_weight is {}, but must be at least 0 and below 1 (the share of the \
+                 image the history keeps each frame)",
+                params.history_weight
+            )));
+        }
+        if ![1, 2, 4, 8].contains(&params.samples) {
+            return Err(PluginError::Invalid(format!(
+                "samples is {}, but must be 1, 2, 4 or 8 (the image's samples per pixel)",
+                params.samples
+            )));
+        }
+        let one = |what| Want::new(what, textures::HDR).samples(1);
+        let (current, _) = textures::sampled(slots, pass, "hdr", one("this frame's image"), 0)?;
+        let (motion, _) = textures::sampled(slots, pass, "motion", one("the motion vectors"), 1)?;
+        let (mut history, _) = textures::sampled(
+            slots,
+            pass,
+            "history",
+            one("the history (History(of: ..) of this pass's output)"),
+            2,
+        )?;
+        history.texels = Texels::Filtered { sampler: 3 };
+        let want = one("the anti-aliased image");
+        let (target, _) = textures::output(slots, pass, "resolved", want, |pass, h, _| {
+            pass.storage_write(h)
+        })?;
+        let stored = Input {
+            binding: 7,
+            texture: target,
+            aspect: Aspect::All,
+            texels: Texels::Store,
+        };
+        let source = shaders::TAA.compose(1)?.source().to_owned();
+        #[cfg(feature = "gpu")]
+        self.0
+            .scenes
+            .jitter_camera(1.0 / (params.samples as f32).sqrt());
+        let dispatch = TaaDispatch {
+            source,
+            history_weight: params.history_weight,
+            history: history.texture,
+            inputs: vec![current, motion, history, stored],
+            target,
+        };
+        self.0.record(pass, dispatch);
+        Ok(())
+    }
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording: this frame's weight written into the pass's own buffer, then one
+    //! dispatch of 8 x 8 pixels per workgroup.
+
+    use super::TaaDispatch;
+    use crate::common::gpu::{compute_pipeline, Compute, Frame, GroupBuffers, InputPass};
+    use crate::common::gpu::{Recorded, Recorder};
+
+    /// taa.wgsl's binding of `TaaFrame`.
+    const FRAME_BINDING: u32 = 9;
+
+    pub(crate) struct State {
+        pass: InputPass<(), wgpu::ComputePipeline>,
+        /// taa.wgsl's `TaaFrame`.
+        frame: wgpu::Buffer,
+        /// Frames blended since the history was last reset.
+        frames: u32,
+    }
+
+    impl Recorder for TaaDispatch {
+        type Stage = Compute;
+        type Scene = ();
+        type State = State;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<State, String> {
+            let buffers = GroupBuffers {
+                read: Vec::new(),
+                owned: vec![FRAME_BINDING],
+            };
+            let resources = frame.resources;
+            Ok(State {
+                pass: InputPass::with_geometry(
+                    resources,
+                    "taa",
+                    &self.source,
+                    None,
+                    &self.inputs,
+                    &buffers,
+                    false,
+                ),
+                frame: frame.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("taa frame"),
+                    size: 16,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }),
+                frames: 0,
+            })
+        }
+
+        fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let (resources, device) = (frame.resources, frame.device);
+            state.frames = match resources.history_reset(self.history) {
+                true => 1,
+                false => state.frames.saturating_add(1),
+            };
+            let weight = (1.0 / state.frames as f32).max(1.0 - self.history_weight);
+            let bytes = [weight, 0.0, 0.0, 0.0];
+            resources
+                .queue
+                .write_buffer(&state.frame, 0, bytemuck::cast_slice(&bytes));
+            let (module, layout) = (&state.pass.module, &state.pass.layout);
+            let pipeline = state.pass.pipelines.get((), |_| {
+                compute_pipeline(device, "taa", layout, module, "cs_taa", &[])
+            });
+            pass.set_pipeline(pipeline);
+            let group = state
+                .pass
+                .inputs
+                .bind_group_with(resources, &[&state.frame]);
+            pass.set_bind_group(1, &group, &[]);
+            let out = resources.shape(self.target);
+            pass.dispatch_workgroups(out.width.div_ceil(8), out.height.div_ceil(8), 1);
+            Ok(())
+        }
+    }
+}

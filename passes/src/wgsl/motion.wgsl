@@ -1,0 +1,57 @@
+// Motion vectors (passes/motion_vectors.rs): per pixel, where the surface it shows was in
+// the previous frame, as this frame's position minus that one, in pixels (x right, y
+// down), both without the camera's jitter. Composed after common.wgsl and scene.wgsl,
+// then a block defining `pixel_motion(pixel)`: motion_objects.wgsl (a visibility buffer:
+// each pixel's triangle, moved by its mesh's transforms) or motion_depth.wgsl (a depth
+// buffer: static points, moved by the camera alone), with what it reads in group 1.
+
+// The frame's matrices, written by the pass before each frame (gpu_scene's camera is
+// jittered; these are not). `current` and `previous` take a point relative to this
+// frame's camera (w = 1) or a direction (w = 0) that stays put in the world to this and
+// the previous frame's clip space; per mesh, `objects[2m]` and `objects[2m + 1]` take an
+// object-space point to this and the previous frame's clip space.
+struct Motion {
+    current: mat4x4<f32>,
+    previous: mat4x4<f32>,
+    objects: array<mat4x4<f32>>,
+}
+
+@group(1) @binding(9) var<storage, read_write> motion: Motion;
+@group(1) @binding(7) var out_tex: OutTex;
+
+// 1: the debug view (rgba8unorm, 0.5 + motion / VIEW_RANGE per axis, blue 0.5); 0: the
+// motion itself (rgba16float: x, y, 0, 1).
+override VIEW: u32 = 0u;
+const VIEW_RANGE: f32 = 32.0;
+
+// The pixel coordinate of clip-space point `clip`.
+fn to_pixel(clip: vec4<f32>) -> vec2<f32> {
+    let ndc = clip.xy / clip.w;
+    return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * camera.viewport;
+}
+
+// The motion of `p`, a point (w = 1) relative to this frame's camera or a direction
+// (w = 0), that stays put in the world.
+fn static_motion(p: vec4<f32>) -> vec2<f32> {
+    return to_pixel(motion.current * p) - to_pixel(motion.previous * p);
+}
+
+// The direction of the ray through pixel coordinate `at` (either way along it: a
+// direction's clip position and its opposite's divide to the same point).
+fn ray_direction(at: vec2<f32>) -> vec3<f32> {
+    return unproject(at, 0.25) - unproject(at, 0.5);
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_motion(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(out_tex);
+    if any(id.xy >= size) {
+        return;
+    }
+    let m = pixel_motion(vec2<i32>(id.xy));
+    var out = vec4<f32>(m, 0.0, 1.0);
+    if VIEW == 1u {
+        out = vec4<f32>(clamp(0.5 + m / VIEW_RANGE, vec2<f32>(0.0), vec2<f32>(1.0)), 0.5, 1.0);
+    }
+    textureStore(out_tex, vec2<i32>(id.xy), out);
+}

@@ -1,0 +1,123 @@
+// Temporal anti-aliasing (passes/taa.rs): this frame's image, drawn with a jittered
+// camera, blended into the previous frame's result reprojected by the motion vectors.
+// The history is read where the pixel's surface was through a Catmull-Rom filter (five
+// bilinear taps, Jimenez's "Filmic SMAA" 2016), which a moving image's history keeps
+// sharper than bilinear reads that blur it a little more every frame; then it is clipped
+// to the box this frame's 3 x 3 neighbourhood spans in YCoCg (Karis, "High quality
+// temporal supersampling", 2014), narrowed to GAMMA standard deviations about its mean
+// (Salvi's variance clipping), so what the history shows of a surface no longer there (a
+// ghost) cannot outlast one frame where its colour lies outside that box; then this frame
+// weighs `current_weight` (the pass sets it each frame: 1 after a reset, 1 / n for the
+// n-th frame since, down to 1 - the history weight). Where the previous position is off
+// screen the frame is taken alone. Composed after common.wgsl.
+
+@group(1) @binding(0) var current_tex: texture_2d<f32>;
+@group(1) @binding(1) var motion_tex: texture_2d<f32>;
+@group(1) @binding(2) var history_tex: texture_2d<f32>;
+@group(1) @binding(3) var history_sampler: sampler;
+@group(1) @binding(7) var out_tex: texture_storage_2d<rgba16float, write>;
+
+struct TaaFrame {
+    current_weight: f32,
+    _pad0: f32,
+    _pad1: vec2<f32>,
+}
+
+@group(1) @binding(9) var<storage, read_write> taa: TaaFrame;
+
+const GAMMA: f32 = 1.25;
+
+fn to_ycocg(c: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(
+        0.25 * c.r + 0.5 * c.g + 0.25 * c.b,
+        0.5 * c.r - 0.5 * c.b,
+        -0.25 * c.r + 0.5 * c.g - 0.25 * c.b,
+    );
+}
+
+fn from_ycocg(c: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z);
+}
+
+// The pixel's colour in YCoCg, with its alpha (the coverage a transparent background
+// keeps).
+fn load_ycocg(pixel: vec2<i32>) -> vec4<f32> {
+    let c = textureLoad(current_tex, pixel, 0);
+    return vec4<f32>(to_ycocg(c.rgb), c.a);
+}
+
+fn history_at(uv: vec2<f32>) -> vec4<f32> {
+    return textureSampleLevel(history_tex, history_sampler, uv, 0.0);
+}
+
+// The history at `uv` through a Catmull-Rom filter: its 4 x 4 taps as five bilinear reads
+// (the corners, which weigh least, left out), normalised by the weights read. Its negative
+// lobes may overshoot; the clamp that follows bounds it.
+fn history_catmull_rom(uv: vec2<f32>, size: vec2<f32>) -> vec4<f32> {
+    let position = uv * size;
+    let centre = floor(position - 0.5) + 0.5;
+    let f = position - centre;
+    let w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
+    let w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
+    let w2 = f * (0.5 + f * (2.0 - 1.5 * f));
+    let w3 = f * f * (-0.5 + 0.5 * f);
+    let w12 = w1 + w2;
+    let t0 = (centre - 1.0) / size;
+    let t3 = (centre + 2.0) / size;
+    let t12 = (centre + w2 / w12) / size;
+    let weights = array<f32, 5>(w12.x * w0.y, w0.x * w12.y, w12.x * w12.y, w3.x * w12.y, w12.x * w3.y);
+    let taps = array<vec2<f32>, 5>(
+        vec2<f32>(t12.x, t0.y),
+        vec2<f32>(t0.x, t12.y),
+        t12,
+        vec2<f32>(t3.x, t12.y),
+        vec2<f32>(t12.x, t3.y),
+    );
+    var sum = vec4<f32>(0.0);
+    var total = 0.0;
+    for (var i = 0u; i < 5u; i++) {
+        sum += history_at(taps[i]) * weights[i];
+        total += weights[i];
+    }
+    return max(sum / total, vec4<f32>(0.0));
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_taa(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(out_tex);
+    if any(id.xy >= size) {
+        return;
+    }
+    let pixel = vec2<i32>(id.xy);
+    let last = vec2<i32>(size) - 1;
+    let current = load_ycocg(pixel);
+    var low = current;
+    var high = current;
+    var sum = vec4<f32>(0.0);
+    var squares = vec4<f32>(0.0);
+    for (var dy = -1; dy <= 1; dy++) {
+        for (var dx = -1; dx <= 1; dx++) {
+            let c = load_ycocg(clamp(pixel + vec2<i32>(dx, dy), vec2<i32>(0), last));
+            low = min(low, c);
+            high = max(high, c);
+            sum += c;
+            squares += c * c;
+        }
+    }
+    // Salvi's variance clipping: the box narrowed to GAMMA standard deviations about the
+    // neighbourhood's mean, within its min and max.
+    let mean = sum / 9.0;
+    let deviation = sqrt(max(squares / 9.0 - mean * mean, vec4<f32>(0.0)));
+    low = max(low, mean - GAMMA * deviation);
+    high = min(high, mean + GAMMA * deviation);
+    let motion = textureLoad(motion_tex, pixel, 0).xy;
+    let previous = (vec2<f32>(pixel) + 0.5 - motion) / vec2<f32>(size);
+    var weight = taa.current_weight;
+    if any(previous < vec2<f32>(0.0)) || any(previous > vec2<f32>(1.0)) {
+        weight = 1.0;
+    }
+    let h = history_catmull_rom(previous, vec2<f32>(size));
+    let history = clamp(vec4<f32>(to_ycocg(h.rgb), h.a), low, high);
+    let blended = mix(history, current, weight);
+    textureStore(out_tex, pixel, vec4<f32>(from_ycocg(blended.xyz), blended.w));
+}

@@ -1,0 +1,353 @@
+//! `rgraph bench --motion orbit:DEG`: error over time. Each scene is drawn as a short
+//! sequence by every pipeline and by the reference, frame by frame: 16 still frames (a
+//! temporal filter's history fills), then `--motion-frames` frames with the camera
+//! orbiting DEG degrees in all about the scene's centre and the scene's first mesh moving
+//! sideways (1% of the scene's size a frame). Per pipeline: the GPU time per frame
+//! (median over the moving frames), the still FLIP (the last still frame against the
+//! reference's), the sequence FLIP (the mean over the moving frames of each frame's FLIP
+//! against the reference's same frame), and the instability: per pixel and channel, how
+//! much more the pipeline's image changed from the frame before than the reference's did,
+//! `max(0, |P_i - P_i-1| - |R_i - R_i-1|)`, averaged over the moving frames, in 1/255:
+//! flicker (a jittered edge that the image does not settle) and ghosting (a change that
+//! lags or smears) both count, a change the scene makes does not.
+//!
+//! Written as motion.md (the table) and motion.json in --out-dir.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use image::RgbaImage;
+use rgraph_core::file::GraphParams;
+use rgraph_passes::{FrameInputs, Host, Overrides};
+use rgraph_scene::glam::{DMat4, DVec3};
+use serde::Serialize;
+
+use super::error::BenchError;
+use super::image_error::flip_mean;
+use crate::cli::BenchArgs;
+use crate::commands::write_atomically;
+use crate::frame::{host, FrameError, Pipeline, Prepared, Session, Specialise};
+
+/// Still frames before the moving ones: one cycle of the TAA jitter.
+const STILL_FRAMES: u32 = 16;
+/// The first mesh moves this share of the scene's bounds diagonal each moving frame.
+const MESH_STEP: f64 = 0.01;
+
+/// What a motion bench measures without `--pipeline`: no AA, FXAA, MSAA 4x, TAA and MSAA
+/// 4x + TAA, all on the default (visibility buffer) path.
+const DEFAULT_PIPELINES: [(&str, &str, Option<u32>); 5] = [
+    ("no AA", "pipelines/visibility_noaa.ron", None),
+    ("FXAA", "pipelines/visibility_msaa_4x_fxaa.ron", Some(1)),
+    ("MSAA 4x", "pipelines/visibility_msaa_4x.ron", None),
+    ("TAA", "pipelines/taa.ron", None),
+    ("MSAA 4x + TAA", "pipelines/msaa_4x_taa.ron", None),
+];
+
+/// One pipeline's figures on one scene.
+#[derive(Clone, Debug, Serialize)]
+pub struct MotionRow {
+    pub scene: String,
+    pub pipeline: String,
+    pub file: PathBuf,
+    /// Median GPU time of the moving frames, where the adapter times them.
+    pub gpu_ms: Option<f64>,
+    pub still_flip: f64,
+    pub sequence_flip: f64,
+    /// In 1/255 per channel.
+    pub instability: f64,
+}
+
+#[derive(Serialize)]
+struct MotionResults<'a> {
+    command: String,
+    adapter: String,
+    resolution: [u32; 2],
+    orbit_degrees: f64,
+    still_frames: u32,
+    moving_frames: u32,
+    rows: &'a [MotionRow],
+}
+
+/// One pipeline of the sequence: its name in the table, its file and what it drew last.
+struct Drawn<'s> {
+    name: String,
+    file: PathBuf,
+    prepared: Prepared<'s>,
+    last: Option<RgbaImage>,
+    flips: Vec<f64>,
+    unstable: Vec<f64>,
+    gpu_ns: Vec<u64>,
+    still_flip: f64,
+}
+
+/// Runs the motion bench and returns the path of motion.json.
+pub fn bench(args: &BenchArgs, degrees: f64, session: &Session) -> Result<PathBuf, BenchError> {
+    let scenes = match args.scenes.is_empty() {
+        true => vec!["builtin:spheres".to_owned()],
+        false => args.scenes.clone(),
+    };
+    let pipelines: Vec<(String, PathBuf, GraphParams)> = match args.pipelines.is_empty() {
+        true => DEFAULT_PIPELINES
+            .iter()
+            .map(|(name, file, msaa)| {
+                let params =
+                    msaa.map_or_else(GraphParams::new, |m| GraphParams::new().with("msaa", m));
+                (name.to_string(), PathBuf::from(file), params)
+            })
+            .collect(),
+        false => args
+            .pipelines
+            .iter()
+            .map(|p| (stem(p), p.clone(), GraphParams::new()))
+            .collect(),
+    };
+    let frames = args.motion_frames;
+    let mut rows = Vec::new();
+    for spec in &scenes {
+        let scene = args
+            .assets
+            .load(spec)
+            .map_err(|e| failed(spec, e.to_string()))?;
+        let host = host(Arc::new(scene), Overrides::default());
+        let load = |file: &Path, params: &GraphParams| {
+            let pipeline =
+                Pipeline::load(file, host.clone(), &["color"], Specialise::ToScene, params)?;
+            session.prepare(pipeline, (args.width, args.height))
+        };
+        let mut reference = load(&args.reference, &GraphParams::new())
+            .map_err(|e| failed(spec, format!("the reference: {e}")))?;
+        let mut drawn = Vec::new();
+        for (name, file, params) in &pipelines {
+            let prepared = load(file, params).map_err(|e| failed(spec, format!("{name}: {e}")))?;
+            drawn.push(Drawn {
+                name: name.clone(),
+                file: file.clone(),
+                prepared,
+                last: None,
+                flips: Vec::new(),
+                unstable: Vec::new(),
+                gpu_ns: Vec::new(),
+                still_flip: 0.0,
+            });
+        }
+        let start = FrameInputs::clone(&host.frame());
+        let mut reference_last = None;
+        for index in 0..STILL_FRAMES + frames {
+            let moving = index.saturating_sub(STILL_FRAMES - 1);
+            let inputs = posed(&host, &start, moving, degrees / f64::from(frames.max(1)));
+            host.set_frame(inputs)
+                .map_err(|e| failed(spec, e.to_string()))?;
+            let measured = index + 1 >= STILL_FRAMES;
+            let reference_image = match measured {
+                true => Some(
+                    frame(&mut reference)
+                        .map_err(|e| failed(spec, format!("the reference: {e}")))?
+                        .0,
+                ),
+                false => None,
+            };
+            for d in &mut drawn {
+                let (image, gpu_ns) =
+                    frame(&mut d.prepared).map_err(|e| failed(spec, format!("{}: {e}", d.name)))?;
+                if let Some(reference_image) = &reference_image {
+                    let flip = flip_mean(reference_image, &image);
+                    match index + 1 == STILL_FRAMES {
+                        true => d.still_flip = flip,
+                        false => {
+                            d.flips.push(flip);
+                            d.gpu_ns.extend(gpu_ns);
+                            if let (Some(last), Some(reference_last)) = (&d.last, &reference_last) {
+                                d.unstable.push(instability(
+                                    (last, &image),
+                                    (reference_last, reference_image),
+                                ));
+                            }
+                        }
+                    }
+                }
+                d.last = Some(image);
+            }
+            if reference_image.is_some() {
+                reference_last = reference_image;
+            }
+        }
+        for d in drawn {
+            let row = MotionRow {
+                scene: spec.clone(),
+                pipeline: d.name,
+                file: d.file,
+                gpu_ms: median(d.gpu_ns).map(|ns| ns as f64 / 1e6),
+                still_flip: d.still_flip,
+                sequence_flip: mean(&d.flips),
+                instability: mean(&d.unstable),
+            };
+            eprintln!("{}", table_line(&row));
+            rows.push(row);
+        }
+    }
+    write(args, degrees, session, &rows)
+}
+
+/// The `index`-th moving frame's inputs (0: the start): the camera orbited by `step`
+/// degrees a frame about the scene's centre, the first mesh moved sideways.
+fn posed(host: &Host, start: &FrameInputs, index: u32, step: f64) -> FrameInputs {
+    let scene = &host.scene;
+    let index = f64::from(index);
+    let mut inputs = FrameInputs {
+        camera: start
+            .camera
+            .orbited(scene.bounds.center(), (step * index).to_radians()),
+        ..start.clone()
+    };
+    if let Some(first) = inputs.transforms.first_mut() {
+        let size = (scene.bounds.max - scene.bounds.min).length();
+        let shift = DVec3::new(MESH_STEP * size * index, 0.0, 0.0);
+        *first = DMat4::from_translation(shift) * *first;
+    }
+    inputs
+}
+
+/// Runs one frame of `prepared` and reads its "color" back, with its GPU time.
+fn frame(prepared: &mut Prepared<'_>) -> Result<(RgbaImage, Option<u64>), FrameError> {
+    let report = prepared.run(1)?.remove(0);
+    Ok((prepared.read("color")?, report.gpu_total_ns))
+}
+
+/// How much more the pipeline's image changed between two frames than the reference's,
+/// per pixel and channel, in 1/255: `max(0, |P1 - P0| - |R1 - R0|)`, averaged.
+pub fn instability(
+    (before, now): (&RgbaImage, &RgbaImage),
+    (reference_before, reference_now): (&RgbaImage, &RgbaImage),
+) -> f64 {
+    let change =
+        |a: &image::Rgba<u8>, b: &image::Rgba<u8>, c: usize| f64::from(a.0[c].abs_diff(b.0[c]));
+    let pixels = before
+        .pixels()
+        .zip(now.pixels())
+        .zip(reference_before.pixels().zip(reference_now.pixels()));
+    let (mut sum, mut count) = (0.0, 0usize);
+    for ((p0, p1), (r0, r1)) in pixels {
+        for c in 0..3 {
+            sum += (change(p0, p1, c) - change(r0, r1, c)).max(0.0);
+            count += 1;
+        }
+    }
+    sum / count.max(1) as f64
+}
+
+fn mean(values: &[f64]) -> f64 {
+    values.iter().sum::<f64>() / values.len().max(1) as f64
+}
+
+fn median(mut values: Vec<u64>) -> Option<u64> {
+    values.sort_unstable();
+    values.get(values.len() / 2).copied()
+}
+
+fn stem(path: &Path) -> String {
+    path.file_stem().map_or_else(
+        || path.display().to_string(),
+        |s| s.to_string_lossy().into_owned(),
+    )
+}
+
+fn failed(scene: &str, why: String) -> BenchError {
+    BenchError::Motion {
+        scene: scene.to_owned(),
+        why,
+    }
+}
+
+const HEADER: &str =
+    "| scene | pipeline | GPU ms | still FLIP | sequence FLIP | instability (1/255) |\n\
+                      | --- | --- | --: | --: | --: | --: |";
+
+fn table_line(row: &MotionRow) -> String {
+    format!(
+        "| {} | {} | {} | {:.4} | {:.4} | {:.3} |",
+        row.scene,
+        row.pipeline,
+        row.gpu_ms.map_or("-".into(), |ms| format!("{ms:.2}")),
+        row.still_flip,
+        row.sequence_flip,
+        row.instability
+    )
+}
+
+/// motion.md and motion.json in --out-dir; returns the JSON's path.
+fn write(
+    args: &BenchArgs,
+    degrees: f64,
+    session: &Session,
+    rows: &[MotionRow],
+) -> Result<PathBuf, BenchError> {
+    let out = &args.out_dir;
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let adapter = session.profile.name.clone();
+    let lines: Vec<String> = rows.iter().map(table_line).collect();
+    let markdown = format!(
+        "# Error over time\n\n`{command}`\n\nAdapter {adapter}, {}x{}: {STILL_FRAMES} still frames, \
+         then {} frames with the camera orbiting {degrees} degrees and the first mesh moving \
+         sideways. Still FLIP: the last still frame; sequence FLIP: the mean over the moving \
+         frames; instability: how much more each frame changed than the reference's did \
+         (src/commands/bench/motion.rs).\n\n{HEADER}\n{}\n",
+        args.width,
+        args.height,
+        args.motion_frames,
+        lines.join("\n")
+    );
+    let results = MotionResults {
+        command,
+        adapter,
+        resolution: [args.width, args.height],
+        orbit_degrees: degrees,
+        still_frames: STILL_FRAMES,
+        moving_frames: args.motion_frames,
+        rows,
+    };
+    let json = serde_json::to_string_pretty(&results).unwrap_or_default();
+    let written = |path: PathBuf, bytes: &[u8]| {
+        write_atomically(&path, bytes).map_err(|e| BenchError::Write {
+            path: path.clone(),
+            reason: e.to_string(),
+        })?;
+        Ok::<_, BenchError>(path)
+    };
+    written(out.join("motion.md"), markdown.as_bytes())?;
+    written(out.join("motion.json"), json.as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grey(value: u8) -> RgbaImage {
+        RgbaImage::from_pixel(4, 4, image::Rgba([value, value, value, 255]))
+    }
+
+    /// A pipeline that flickers on purpose (alternating frames) ranks last; one that
+    /// follows the reference's own change has none; a change the scene makes is not
+    /// counted.
+    #[test]
+    fn instability_counts_only_change_beyond_the_references() {
+        let reference = [grey(100), grey(120), grey(140), grey(160)];
+        let follows = reference.clone();
+        let lags = [grey(100), grey(110), grey(125), grey(145)];
+        let flickers = [grey(100), grey(140), grey(120), grey(180)];
+        let score = |frames: &[RgbaImage; 4]| {
+            let per_frame: Vec<f64> = (1..4)
+                .map(|i| {
+                    instability(
+                        (&frames[i - 1], &frames[i]),
+                        (&reference[i - 1], &reference[i]),
+                    )
+                })
+                .collect();
+            mean(&per_frame)
+        };
+        let (follows, lags, flickers) = (score(&follows), score(&lags), score(&flickers));
+        assert_eq!(follows, 0.0);
+        assert!(lags < flickers, "lags {lags}, flickers {flickers}");
+        assert_eq!(flickers, (20.0 + 0.0 + 40.0) / 3.0);
+    }
+}

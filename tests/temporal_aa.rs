@@ -1,0 +1,240 @@
+//! Temporal anti-aliasing (passes/taa.rs; pipelines/taa.ron and msaa_4x_taa.ron) on
+//! lavapipe: a still camera's image converges to the 16-sample reference
+//! (reference_ssaa16.ron): after 16 frames within 2/255 on average, and on the pixels
+//! one sample aliases within a quarter of one sample's error (measured: 0.17/255 and
+//! 5.0/255 against 29.4/255 for taa.ron); and a box moving 5 pixels a frame leaves no
+//! ghost beyond one frame: where it was a frame or more before (2 pixels or more from an
+//! edge) the image is within 3/255 of the reference (measured: 2/255 at worst).
+
+use rgraph_scene::analysis::Features as SceneFeatures;
+use rgraph_scene::glam::{DMat4, DVec3};
+use rgraph_scene::{Camera, Projection, Scene};
+
+use crate::deferred_support::scenes::Parts;
+use crate::deferred_support::textured::sun;
+use crate::deferred_support::{gpu, Frame, Image, Render};
+
+const SIZE: (u32, u32) = (128, 80);
+const PIPELINES: [&str; 2] = ["taa.ron", "msaa_4x_taa.ron"];
+/// Frames a still camera is rendered before it is compared: one cycle of the jitter, over
+/// which the n-th frame weighs 1 / n, so the image is the mean of the cycle's 16 frames.
+const CONVERGED: u32 = 16;
+
+/// A floor, a box standing on it and a slanted slab before it, rough (no specular
+/// highlight smaller than a pixel, which one sample a frame only catches now and then),
+/// lit by a low sun; the box is mesh 1.
+fn scene() -> Scene {
+    let mut parts = Parts::new();
+    let grey = parts.material("floor", [0.6, 0.6, 0.6], 0.9);
+    let red = parts.material("box", [0.8, 0.15, 0.1], 0.8);
+    let blue = parts.material("slab", [0.1, 0.3, 0.8], 0.8);
+    let floor = [
+        DVec3::new(-4.0, 0.0, 4.0),
+        DVec3::new(4.0, 0.0, 4.0),
+        DVec3::new(4.0, 0.0, -4.0),
+        DVec3::new(-4.0, 0.0, -4.0),
+    ];
+    parts.mesh("floor", &[floor.to_vec()], grey);
+    parts.cuboid(
+        "box",
+        DVec3::new(-0.9, 0.0, -0.5),
+        DVec3::new(0.1, 1.0, 0.5),
+        red,
+    );
+    let slab = [
+        DVec3::new(0.4, 0.0, 1.2),
+        DVec3::new(1.6, 0.0, 0.9),
+        DVec3::new(1.5, 1.3, 0.7),
+        DVec3::new(0.5, 1.1, 1.0),
+    ];
+    parts.mesh("slab", &[slab.to_vec()], blue);
+    parts.lights.push(sun());
+    parts.ambient = [0.2; 3];
+    let projection = Projection::Perspective {
+        yfov: 0.8,
+        znear: 0.1,
+        zfar: None,
+    };
+    let eye = DVec3::new(0.6, 1.8, 4.5);
+    let camera = Camera::look_at("taa", eye, DVec3::new(0.2, 0.5, 0.0), DVec3::Y, projection);
+    parts.scene("taa", camera)
+}
+
+fn render<'a>(pipeline: &'a str, scene: &Scene) -> Render<'a> {
+    Render::new(pipeline, "taa", SIZE)
+        .with_scene(scene.clone())
+        .features(SceneFeatures::of(scene).names())
+}
+
+/// Runs `frame`'s next `frames` frames with its inputs as they are.
+fn run(frame: &mut Frame, frames: u32) {
+    for _ in 0..frames {
+        let inputs = frame.inputs();
+        frame.next(inputs);
+    }
+}
+
+/// The mean absolute difference per channel (RGB), in 1/255.
+fn mean_error(a: &Image, b: &Image) -> f64 {
+    let sum: u64 = (a.pixels.iter().zip(&b.pixels))
+        .flat_map(|(p, q)| (0..3).map(move |c| u64::from(p[c].abs_diff(q[c]))))
+        .sum();
+    sum as f64 / (3 * a.pixels.len()) as f64
+}
+
+/// The pixels where `a` and `b` differ by more than `tolerance` in a channel.
+fn differing(a: &Image, b: &Image, tolerance: u8) -> Vec<bool> {
+    (a.pixels.iter().zip(&b.pixels))
+        .map(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > tolerance))
+        .collect()
+}
+
+/// `mask` with every pixel within `by` pixels (a square) of a marked one marked.
+fn dilated(mask: &[bool], by: i32) -> Vec<bool> {
+    let (w, h) = (SIZE.0 as i32, SIZE.1 as i32);
+    let at = |x: i32, y: i32| x >= 0 && y >= 0 && x < w && y < h && mask[(y * w + x) as usize];
+    (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .map(|(x, y)| (-by..=by).any(|dy| (-by..=by).any(|dx| at(x + dx, y + dy))))
+        .collect()
+}
+
+/// The mean absolute difference per channel (RGB) over the pixels `mask` marks.
+fn mean_error_where(a: &Image, b: &Image, mask: &[bool]) -> f64 {
+    let (mut sum, mut n) = (0u64, 0u64);
+    for ((p, q), _) in (a.pixels.iter().zip(&b.pixels))
+        .zip(mask)
+        .filter(|(_, &m)| m)
+    {
+        sum += (0..3).map(|c| u64::from(p[c].abs_diff(q[c]))).sum::<u64>();
+        n += 3;
+    }
+    sum as f64 / n.max(1) as f64
+}
+
+#[test]
+fn a_still_camera_converges_to_the_reference() {
+    let gpu = gpu();
+    let scene = scene();
+    let reference = render("reference_ssaa16.ron", &scene).read(&gpu, &["color"]);
+    let reference = &reference[0];
+    let aliased = render("visibility_noaa.ron", &scene).read(&gpu, &["color"]);
+    let aliased = &aliased[0];
+    // The pixels one sample gets wrong: edges, mostly.
+    let edges = differing(aliased, reference, 2);
+    let edge_count = edges.iter().filter(|&&e| e).count();
+    let before = mean_error_where(aliased, reference, &edges);
+    println!(
+        "visibility_noaa.ron: mean error {:.3}/255, {:.2}/255 on its {edge_count} aliased pixels",
+        mean_error(aliased, reference),
+        before
+    );
+    assert!(
+        edge_count > 100,
+        "only {edge_count} aliased pixels: the scene shows too few edges"
+    );
+    for pipeline in PIPELINES {
+        let mut frame = render(pipeline, &scene).run(&gpu);
+        run(&mut frame, CONVERGED - 1);
+        let image = frame.image(&gpu, "color");
+        let (error, on_edges) = (
+            mean_error(&image, reference),
+            mean_error_where(&image, reference, &edges),
+        );
+        println!(
+            "{pipeline} after {CONVERGED} frames: mean error {error:.3}/255, {on_edges:.2}/255 \
+             on the aliased pixels"
+        );
+        // One sample's 16 jittered positions are not the reference's 16: an edge pixel's
+        // coverage differs by a sixteenth here and there.
+        assert!(
+            error <= 2.0 && on_edges <= before / 4.0,
+            "{pipeline}: after {CONVERGED} frames the image is {error:.3}/255 from the \
+             reference on average (at most 2/255 allowed), {on_edges:.2}/255 on the pixels \
+             one sample aliases (at most a quarter of one sample's {before:.2}/255)"
+        );
+    }
+}
+
+/// The most a pixel the moving box left a frame or more before, 2 pixels or more from an
+/// edge, may differ from the reference: a ghost is the box's colour, 100/255 and more off.
+const GHOST: u8 = 3;
+
+/// The box's transform at frame `i`: moving left by 0.2 a frame (about 5 pixels).
+fn box_at(i: u32) -> DMat4 {
+    DMat4::from_translation(DVec3::new(-0.2 * f64::from(i), 0.0, 0.0))
+}
+
+#[test]
+fn a_moving_box_leaves_no_ghost() {
+    let gpu = gpu();
+    let scene = scene();
+    const FRAMES: u32 = 8;
+    let posed = |i: u32| {
+        let mut scene = scene.clone();
+        scene.meshes[1].transform = box_at(i);
+        scene
+    };
+    // The last frame as the reference draws it, and where the box was before it (the
+    // one-sample image of each earlier frame differs from the last one's there).
+    let last = posed(FRAMES - 1);
+    let reference = render("reference_ssaa16.ron", &last).read(&gpu, &["color"]);
+    let reference = &reference[0];
+    let aliased = |i: u32| {
+        render("visibility_noaa.ron", &posed(i))
+            .read(&gpu, &["color"])
+            .remove(0)
+    };
+    let now = aliased(FRAMES - 1);
+    // Within 2 pixels of an edge of the last frame a jittered frame may show either side:
+    // an anti-aliased edge, not a ghost.
+    let near_edges = dilated(&differing(&now, reference, 2), 2);
+    for pipeline in PIPELINES {
+        let mut frame = render(pipeline, &posed(0)).run(&gpu);
+        for i in 1..FRAMES {
+            let mut inputs = frame.inputs();
+            inputs.transforms[1] = box_at(i);
+            frame.next(inputs);
+        }
+        let image = frame.image(&gpu, "color");
+        for age in 1..=4 {
+            // Pixels the box left `age` frames ago: its frame before that differs from
+            // the last one there, and every frame since shows what the last one does.
+            let since: Vec<Image> = (0..age).map(|j| aliased(FRAMES - 1 - j)).collect();
+            let left = differing(&aliased(FRAMES - 1 - age), &now, 40);
+            let settled = since.iter().map(|image| differing(image, &now, 2)).fold(
+                vec![true; left.len()],
+                |settled, changed| {
+                    settled
+                        .iter()
+                        .zip(&changed)
+                        .map(|(&s, &c)| s && !c)
+                        .collect()
+                },
+            );
+            let trail: Vec<bool> = (left.iter().zip(&settled).zip(&near_edges))
+                .map(|((&l, &s), &e)| l && s && !e)
+                .collect();
+            let count = trail.iter().filter(|&&t| t).count();
+            let error = mean_error_where(&image, reference, &trail);
+            let worst = (image.pixels.iter().zip(&reference.pixels).zip(&trail))
+                .filter(|(_, &t)| t)
+                .map(|((p, q), _)| (0..3).map(|c| p[c].abs_diff(q[c])).max().unwrap_or(0))
+                .max()
+                .unwrap_or(0);
+            println!(
+                "{pipeline}: {count} pixels the box left {age} frame(s) ago: mean error \
+                 {error:.2}/255, worst {worst}/255"
+            );
+            assert!(
+                count > 20,
+                "{pipeline}: the box left only {count} pixels {age} frames ago"
+            );
+            assert!(
+                worst <= GHOST,
+                "{pipeline}: where the box was {age} frame(s) ago the image is up to \
+                 {worst}/255 from the reference (a ghost; at most {GHOST}/255 allowed)"
+            );
+        }
+    }
+}
