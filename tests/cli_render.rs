@@ -399,9 +399,9 @@ fn an_unlit_scene_renders_with_the_specialised_plan_and_the_same_image() {
         .stderr_has("specialised to the scene's features: no_lights, shallow_depth, unlit_only")
         .stderr_has("\ngbuffer (unlit) ")
         .stderr_has(
-            "dropped by conditions: gbuffer, shadow maps, light tiled, light tiled (shadows), \
-             resolve (no lights), background, transparent, composite transparent, auto exposure, \
-             tonemap (auto exposure), debug edges, debug tile lights, debug normals, debug lights",
+            "dropped by conditions: gbuffer, shadow maps, light tiled, resolve (no lights), \
+             background, transparent, composite transparent, auto exposure, tonemap (auto \
+             exposure), debug edges, debug tile lights, debug normals, debug lights",
         );
     let run = render_unlit(&general, &["--no-specialise"]).expect(0);
     run.stderr_has("\nlight tiled ");
@@ -452,8 +452,7 @@ fn the_visibility_pipeline_rasterises_by_the_hardware_on_a_cpu_device() {
         .stderr_has("\nvisibility (hardware raster) ")
         .stderr_has("\ndevice conditions: cpu_device\n")
         .stderr_has(
-            "dropped by conditions: visibility, visibility (blend), light tiled, light tiled \
-             (shadows), keys depth, ",
+            "dropped by conditions: visibility, visibility (blend), light tiled, keys depth, ",
         );
     render_default(&out, &[&pipeline[..], &["--no-specialise"]].concat())
         .expect(0)

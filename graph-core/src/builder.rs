@@ -220,9 +220,12 @@ impl PassBuilder<'_> {
     /// ([`Entry::workgroup`](crate::shader::Entry::workgroup)), once for each it
     /// dispatches: compiling checks each against the profile's
     /// `max_compute_workgroup_storage_size`, invocations and workgroup dimensions, and
-    /// fails naming the pass and the entry point.
+    /// fails naming the pass and the entry point. Declaring one again is a no-op: a pass
+    /// set up in variants (with and without an optional input) declares each variant's.
     pub fn workgroup(&mut self, workgroup: crate::pass::Workgroup) -> &mut Self {
-        self.node().workgroups.push(workgroup);
+        if !self.node().workgroups.contains(&workgroup) {
+            self.node().workgroups.push(workgroup);
+        }
         self
     }
 

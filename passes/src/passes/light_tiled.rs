@@ -195,6 +195,7 @@ impl TiledView {
 }
 
 /// Where the pass reads its samples' depth.
+#[derive(Copy, Clone)]
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) enum Depth {
     /// A depth buffer (group 1, binding 5), in the convention its format gets.
@@ -348,24 +349,13 @@ impl Plugin for LightTiled {
                     .into(),
             ));
         }
-        inputs.extend(shadows);
         let filter = self.0.overrides.shadows.filter;
-        let generated =
-            generated + &ao::wgsl(ao.as_ref()) + &shadows::wgsl(shadows.as_ref(), 1, filter);
-        let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
+        let generated = generated + &ao::wgsl(ao.as_ref());
         // The device must allow the workgroup of each.
         let entries = match listed {
             true => vec![EDGES_RESET, PIXELS, EDGES],
             false => vec![PIXELS],
         };
-        for name in &entries {
-            let Some(entry) = shader.entry(name, Stage::Compute) else {
-                return Err(PluginError::Invalid(format!(
-                    "light_tiled.wgsl has no entry point {name}"
-                )));
-            };
-            pass.workgroup(entry.workgroup());
-        }
         let detector = match params.edges.detector {
             _ if layout.surfaces.visibility() => 4.0,
             Detector::Compare => 0.0,
@@ -394,17 +384,31 @@ impl Plugin for LightTiled {
                 f64::from(u8::from(params.shading == EdgeShading::Surfaces)),
             ));
         }
-        let dispatch = TiledDispatch {
-            source: shader.source().to_owned(),
-            entries,
-            constants,
-            view_depth_from_depth: !layout.stored_view_depth,
-            ids: visibility_ids,
-            tile: params.tile,
-            depth,
-            output,
-            inputs,
-        };
+        let dispatch = shadows::variants(slots, shadows, |shadows| {
+            let generated = generated.clone() + &shadows::wgsl(shadows, 1, filter);
+            let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
+            for name in &entries {
+                let Some(entry) = shader.entry(name, Stage::Compute) else {
+                    return Err(PluginError::Invalid(format!(
+                        "light_tiled.wgsl has no entry point {name}"
+                    )));
+                };
+                pass.workgroup(entry.workgroup());
+            }
+            let mut inputs = inputs.clone();
+            inputs.extend(shadows.copied());
+            Ok(TiledDispatch {
+                source: shader.source().to_owned(),
+                entries: entries.clone(),
+                constants: constants.clone(),
+                view_depth_from_depth: !layout.stored_view_depth,
+                ids: visibility_ids,
+                tile: params.tile,
+                depth,
+                output,
+                inputs,
+            })
+        })?;
         self.0.record(pass, dispatch);
         Ok(())
     }
