@@ -1,5 +1,6 @@
 //! Shadow maps (passes/shadow_maps.rs, shadow.wgsl) on lavapipe: a square's shadow lands
-//! where its projection does, a lit plane at grazing light shows no acne, the default
+//! where its projection does, under a sun and under a point light (across two faces of
+//! its cube), a lit plane at grazing light shows no acne, the default
 //! pipeline's tiled shading and the G-buffer's light volumes agree on a shadowed scene,
 //! and the command line refuses shadow settings it cannot honour.
 
@@ -152,6 +153,107 @@ fn a_squares_shadow_is_its_projection() {
             assert!(
                 (f64::from(count) - area).abs() <= 0.5 * 4.0 * (x1 - x0),
                 "{pipeline} {filter:?}: {count} shadowed pixels, the projection covers {area}"
+            );
+        }
+    }
+}
+
+/// A point light 0.2 over a small square (x in [0, 0.25], z in [-0.125, 0.125], at y =
+/// 1) over the ground, and the ground's shadow is the square's central projection from
+/// the light, 6 times its size: x in [0, 1.5], z in [-0.75, 0.75]. Past x = 1.2 the
+/// light sees the ground through its cube's +x face, nearer below it through -y, so the
+/// shadow crosses a seam between faces. Seen from above as [`square_over_plane`] is;
+/// the point light's falloff makes "shadowed" a pixel under half its unshadowed luma
+/// (the ambient alone is a tenth of the dimmest lit ground's). Hard and filtered, through
+/// the default pipeline's tiled shading (both branches) and the G-buffer's light volumes.
+#[test]
+fn a_point_light_s_shadow_is_the_central_projection_across_cube_faces() {
+    let mut parts = Parts::new();
+    let grey = parts.material("grey", [0.6, 0.6, 0.6], 0.8);
+    let rect = |y: f64, (x0, x1): (f64, f64), (z0, z1): (f64, f64)| {
+        vec![
+            DVec3::new(x0, y, z0),
+            DVec3::new(x0, y, z1),
+            DVec3::new(x1, y, z1),
+            DVec3::new(x1, y, z0),
+        ]
+    };
+    parts.mesh("ground", &[rect(0.0, (-4.0, 4.0), (-4.0, 4.0))], grey);
+    parts.mesh("square", &[rect(1.0, (0.0, 0.25), (-0.125, 0.125))], grey);
+    parts.lights.push(Light {
+        name: "bulb".into(),
+        kind: LightKind::Point,
+        color: [1.0, 1.0, 1.0],
+        intensity: 4.0,
+        position: DVec3::new(0.0, 1.2, 0.0),
+        direction: Vec3::NEG_Y,
+        range: None,
+    });
+    parts.ambient = [0.02; 3];
+    let camera = Camera::look_at(
+        "from above",
+        DVec3::new(0.0, 10.0, 0.0),
+        DVec3::ZERO,
+        DVec3::NEG_Z,
+        Projection::Orthographic {
+            xmag: (SPAN / 2.0) as f32,
+            ymag: (SPAN / 2.0) as f32,
+            znear: 1.0,
+            zfar: 20.0,
+        },
+    );
+    let scene = parts.scene("point light over a square", camera);
+    assert!(
+        SceneFeatures::of(&scene).shadows,
+        "a point light casts shadows"
+    );
+    let pixel_of = |world: f64| (world + SPAN / 2.0) * f64::from(N) / SPAN;
+    let (x0, x1) = (pixel_of(0.0), pixel_of(1.5));
+    let (z0, z1) = (pixel_of(-0.75), pixel_of(0.75));
+    // The square itself, lit from above, hides part of its shadow from the camera.
+    let (sx1, sz0, sz1) = (pixel_of(0.25), pixel_of(-0.125), pixel_of(0.125));
+    let gbuffer = PipelineFile::for_device("deferred_msaa_4x.ron");
+    for pipeline in [DEFAULT, DEFAULT_GPU, gbuffer] {
+        let off = Shadows {
+            filter: ShadowFilter::Off,
+            lights: 1,
+        };
+        let unshadowed = render(pipeline, &scene, (N, N), off);
+        for filter in [ShadowFilter::Hard, ShadowFilter::Pcf] {
+            let image = render(pipeline, &scene, (N, N), Shadows { filter, lights: 1 });
+            let (mut count, mut expected) = (0, 0);
+            for y in 0..N {
+                for x in 0..N {
+                    let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+                    if cx > x0 - 1.0 && cx < sx1 + 1.0 && cy > sz0 - 1.0 && cy < sz1 + 1.0 {
+                        continue;
+                    }
+                    let lit = luma(unshadowed.at(x, y));
+                    let shadowed = luma(image.at(x, y)) < 0.5 * lit;
+                    let inside = cx > x0 && cx < x1 && cy > z0 && cy < z1;
+                    let margin = (cx - x0)
+                        .abs()
+                        .min((cx - x1).abs())
+                        .min((cy - z0).abs())
+                        .min((cy - z1).abs());
+                    let near_edge = margin <= 1.0;
+                    count += u32::from(shadowed);
+                    expected += u32::from(inside);
+                    assert!(
+                        near_edge || shadowed == inside,
+                        "{pipeline} {filter:?}: pixel ({x}, {y}) is {} but its centre is {} the \
+                         square's projection, more than a pixel from its edge",
+                        if shadowed { "shadowed" } else { "lit" },
+                        if inside { "inside" } else { "outside" }
+                    );
+                }
+            }
+            // Within half the projection's perimeter in pixels, of those the square leaves
+            // in view.
+            assert!(
+                f64::from(count.abs_diff(expected)) <= (x1 - x0) + (z1 - z0),
+                "{pipeline} {filter:?}: {count} shadowed pixels, the projection covers \
+                 {expected}"
             );
         }
     }

@@ -4,20 +4,21 @@
 //!
 //! ```ron
 //! (name: "shadow maps", plugin: "shadow_maps",
-//!  when: "shadows",             // the scene's feature: a directional or spot light
-//!                               // emits and the host has not turned shadows off
+//!  when: "shadows",             // the scene's feature: a light emits and the host
+//!                               // has not turned shadows off
 //!  params: (slope_bias: 2.0),   // the default: the raster's slope-scaled depth bias
 //!  outputs: { "atlas": "shadow_atlas" })   // depth32float, square, 1 sample
 //! ```
 //!
 //! The atlas is a grid of 4 x 4 tiles (`shadows::ATLAS_GRID`), one view each: the cascades
-//! of a directional light (4), a spot light's perspective map (1). Which lights get them
+//! of a directional light (4), a point light's cube faces (6), a spot light's perspective
+//! map (1). Which lights get them
 //! and where each view looks is the scene's, each frame (gpu_scene/shadows.rs): this pass
 //! writes the views for the frame's output and atlas size, then draws every opaque mesh
 //! (vertices pulled from storage, as the visibility raster does) once per view into its
 //! tile, depth only, standard Z, both faces, with a slope-scaled depth bias. The atlas is
 //! cleared to the far plane; tiles without a view stay clear. Alpha MASK materials cast
-//! as if solid, and point lights cast no shadow yet; on a GPU the compute raster could
+//! as if solid; on a GPU the compute raster could
 //! draw the same maps (issue 39).
 
 use serde::Deserialize;

@@ -41,6 +41,19 @@ fn light_visibility(s: Surface, light: LightData) -> f32 {
             return 1.0;
         }
     }
+    if light.kind == LIGHT_POINT {
+        // The cube face the light sees the point through, by the direction's largest
+        // axis, in gpu_scene/shadows.rs's order: +x, -x, +y, -y, +z, -z.
+        let d = s.position - light.position;
+        let a = abs(d);
+        if a.x >= a.y && a.x >= a.z {
+            view += select(1u, 0u, d.x > 0.0);
+        } else if a.y >= a.z {
+            view += select(3u, 2u, d.y > 0.0);
+        } else {
+            view += select(5u, 4u, d.z > 0.0);
+        }
+    }
     return view_visibility(shadow_views.views[view], s, light);
 }
 
