@@ -331,7 +331,7 @@ fn the_defaults_render_the_spheres_through_the_visibility_buffer() {
     // Its sun casts the spheres' shadows: the shadow maps, and the tiled pass reading them.
     run.stderr_has("\nshadow maps ")
         .stderr_has("\nvisibility (hardware raster) ")
-        .stderr_has("\nlight tiled (hardware raster, shadows) ")
+        .stderr_has("\nlight tiled (hardware raster) ")
         .stderr_has("\ntonemap (cpu device) ")
         .stderr_has("culled: debug edges (hardware raster), debug fragments (hardware raster)");
 }
@@ -469,9 +469,9 @@ fn a_lit_scene_is_specialised_only_in_its_depth_format() {
     // builtin:spheres uses lights and lit materials; its depth spans 309 near planes.
     run.stderr_has("specialised to the scene's features: shadows, shallow_depth (")
         .stderr_has(
-            "dropped by conditions: gbuffer (unlit), light tiled, resolve (unlit), resolve (no \
-             lights), background, transparent, composite transparent, auto exposure, tonemap \
-             (auto exposure)\n",
+            "dropped by conditions: gbuffer (unlit), resolve (unlit), resolve (no lights), \
+             background, transparent, composite transparent, auto exposure, tonemap (auto \
+             exposure)\n",
         );
 }
 

@@ -2,6 +2,7 @@
 //! where its projection does, under a sun and under a point light (across two faces of
 //! its cube), a lit plane at grazing light shows no acne, the default
 //! pipeline's tiled shading and the G-buffer's light volumes agree on a shadowed scene,
+//! the `shadows` and `cascades` debug views show the visibility term and the cascades,
 //! and the command line refuses shadow settings it cannot honour.
 
 use rgraph_scene::analysis::Features as SceneFeatures;
@@ -418,4 +419,90 @@ fn the_shadows_view_shows_the_visibility_term() {
         black_ground > 100,
         "{black_ground} black pixels in the lower half"
     );
+}
+
+/// The default pipeline's `cascades` debug view: a long ground plane seen at a grazing
+/// angle under a sun shows the sun's cascades by colour (red, green, blue, yellow from the
+/// nearest), each pixel the cascade of its view depth: up each column of ground, from
+/// near to far, the cascade never goes back, at least three cascades show, and the sky
+/// (no geometry) is black.
+#[test]
+fn the_cascades_view_colours_each_cascade_by_depth() {
+    let gpu = gpu();
+    let mut parts = Parts::new();
+    let grey = parts.material("grey", [0.7, 0.7, 0.7], 0.9);
+    parts.mesh(
+        "ground",
+        &[vec![
+            DVec3::new(-30.0, 0.0, -60.0),
+            DVec3::new(-30.0, 0.0, 30.0),
+            DVec3::new(30.0, 0.0, 30.0),
+            DVec3::new(30.0, 0.0, -60.0),
+        ]],
+        grey,
+    );
+    parts.lights.push(sun(Vec3::new(0.3, -1.0, -0.2), 3.0));
+    parts.ambient = [0.02; 3];
+    let camera = Camera::look_at(
+        "grazing",
+        DVec3::new(0.0, 1.0, 12.0),
+        DVec3::new(0.0, 0.0, -10.0),
+        DVec3::Y,
+        Projection::Perspective {
+            yfov: 0.9,
+            znear: 0.1,
+            zfar: None,
+        },
+    );
+    let scene = parts.scene("long plane", camera);
+    let (w, h) = (48, 64);
+    let view = Render::new(DEFAULT, &scene.name, (w, h))
+        .with_scene(scene.clone())
+        .features(SceneFeatures::of(&scene).names())
+        .run(&gpu)
+        .image(&gpu, "debug.cascades");
+    // The cascade a pixel's colour names, or None for black (no geometry).
+    let cascade = |p: [u8; 4]| -> Option<usize> {
+        let [r, g, b] = [p[0], p[1], p[2]].map(f64::from);
+        if r.max(g).max(b) < 8.0 {
+            return None;
+        }
+        let tints = [
+            [1.0, 0.2, 0.2],
+            [0.2, 1.0, 0.2],
+            [0.25, 0.4, 1.0],
+            [1.0, 0.9, 0.2],
+        ];
+        let top = r.max(g).max(b);
+        let off =
+            |t: [f64; 3]| (r / top - t[0]).abs() + (g / top - t[1]).abs() + (b / top - t[2]).abs();
+        let best = (0..4).min_by(|&a, &b| off(tints[a]).total_cmp(&off(tints[b])));
+        best.filter(|&c| off(tints[c]) < 0.3)
+    };
+    let mut seen = std::collections::BTreeSet::new();
+    for x in 0..w {
+        let mut last = 0;
+        // From the bottom (nearest ground) up.
+        for y in (0..h).rev() {
+            let p = view.at(x, y);
+            match cascade(p) {
+                Some(c) => {
+                    assert!(
+                        c >= last,
+                        "column {x}: cascade {c} at row {y} above cascade {last} nearer \
+                         the camera"
+                    );
+                    last = c;
+                    seen.insert(c);
+                }
+                None => assert_eq!(
+                    p,
+                    [0, 0, 0, 255],
+                    "pixel ({x}, {y}) is neither a cascade's colour nor black"
+                ),
+            }
+        }
+    }
+    assert!(seen.len() >= 3, "cascades seen: {seen:?}");
+    assert_eq!(view.at(w / 2, 0), [0, 0, 0, 255], "the sky is black");
 }
