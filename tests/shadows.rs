@@ -7,7 +7,7 @@
 
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::glam::{DVec3, Vec3};
-use rgraph_scene::{Camera, Light, LightKind, Projection, Scene};
+use rgraph_scene::{AlphaMode, Camera, Light, LightKind, Projection, Scene};
 
 use crate::cli_support::rgraph;
 use crate::deferred_support::measure;
@@ -41,6 +41,12 @@ fn sun(direction: Vec3, intensity: f32) -> Light {
 /// square x in [0.5, 1.5], z in [-0.5, 0.5]. Seen straight down by an orthographic camera
 /// spanning x and z in [-2, 2], image x along +x and image y along +z (16 pixels a unit).
 fn square_over_plane() -> Scene {
+    square_scene(square_parts())
+}
+
+/// [`square_over_plane`]'s parts: the ground is mesh 0, the square mesh 1 (material 0,
+/// as the ground's).
+fn square_parts() -> Parts {
     let mut parts = Parts::new();
     let grey = parts.material("grey", [0.6, 0.6, 0.6], 0.8);
     let square = |y: f64, half: f64| {
@@ -55,6 +61,11 @@ fn square_over_plane() -> Scene {
     parts.mesh("square", &[square(1.0, 0.5)], grey);
     parts.lights.push(sun(Vec3::new(1.0, -1.0, 0.0), 3.0));
     parts.ambient = [0.05; 3];
+    parts
+}
+
+/// `parts` seen straight down, as [`square_over_plane`] says.
+fn square_scene(parts: Parts) -> Scene {
     let camera = Camera::look_at(
         "from above",
         DVec3::new(0.0, 10.0, 0.0),
@@ -256,6 +267,62 @@ fn a_point_light_s_shadow_is_the_central_projection_across_cube_faces() {
                 "{pipeline} {filter:?}: {count} shadowed pixels, the projection covers \
                  {expected}"
             );
+        }
+    }
+}
+
+/// An alpha MASK square (cutoff 0.5) whose vertex alpha runs from 0 at x = -0.5 to 1 at
+/// x = 0.5 casts only where it is drawn, its half x >= 0: under the sun along (1, -1, 0)
+/// the shadow is x in [1, 1.5], not [0.5, 1.5]. The masked-out half's would-be shadow
+/// (x in [0.5, 1]) is lit, the kept half's shadowed, more than a pixel from the edges,
+/// hard and filtered, in both branches of the default pipeline.
+#[test]
+fn an_alpha_mask_caster_casts_only_where_it_is_drawn() {
+    let mut parts = square_parts();
+    let mut masked = parts.materials[0].clone();
+    masked.name = "masked".into();
+    masked.alpha_mode = AlphaMode::Mask { cutoff: 0.5 };
+    parts.materials.push(masked);
+    parts.meshes[1].material = parts.materials.len() - 1;
+    for v in &mut parts.meshes[1].vertices {
+        v.color[3] = if v.position[0] < 0.0 { 0 } else { u16::MAX };
+    }
+    let scene = square_scene(parts);
+    let pixel_of = |world: f64| (world + SPAN / 2.0) * f64::from(N) / SPAN;
+    let (z0, z1) = (pixel_of(-0.5), pixel_of(0.5));
+    for pipeline in [DEFAULT, DEFAULT_GPU] {
+        for filter in [ShadowFilter::Hard, ShadowFilter::Pcf] {
+            let image = render(pipeline, &scene, (N, N), Shadows { filter, lights: 1 });
+            // Lit ground, and ground in the kept half's shadow (x = 1.28).
+            let (lit, dark) = (luma(image.at(16, 52)), luma(image.at(52, 32)));
+            assert!(
+                dark < 0.5 * lit,
+                "{pipeline} {filter:?}: no shadow ({dark:.0}, {lit:.0})"
+            );
+            let threshold = 0.5 * (lit + dark);
+            for y in 0..N {
+                let cy = f64::from(y) + 0.5;
+                if cy <= z0 + 1.0 || cy >= z1 - 1.0 {
+                    continue;
+                }
+                for x in 0..N {
+                    let cx = f64::from(x) + 0.5;
+                    let world = cx * SPAN / f64::from(N) - SPAN / 2.0;
+                    let expect = match world {
+                        w if (0.5 + 1.0 / 16.0..1.0 - 1.0 / 16.0).contains(&w) => false,
+                        w if (1.0 + 1.0 / 16.0..1.5 - 1.0 / 16.0).contains(&w) => true,
+                        _ => continue,
+                    };
+                    let shadowed = luma(image.at(x, y)) < threshold;
+                    assert_eq!(
+                        shadowed,
+                        expect,
+                        "{pipeline} {filter:?}: pixel ({x}, {y}) at x = {world:.3} should be \
+                         {} (lit ground {lit:.0}, shadowed {dark:.0})",
+                        if expect { "shadowed" } else { "lit" }
+                    );
+                }
+            }
         }
     }
 }
