@@ -170,13 +170,13 @@ fn a_squares_shadow_is_its_projection() {
     }
 }
 
-/// A point light 0.2 over a small square (x in [0, 0.25], z in [-0.125, 0.125], at y =
-/// 1) over the ground, and the ground's shadow is the square's central projection from
+/// A point light 0.2 over a small square (x in [0, 0.25], z in [-0.125, 0.125], at
+/// height 1) over the ground, and the ground's shadow is the square's central projection from
 /// the light, 6 times its size: x in [0, 1.5], z in [-0.75, 0.75]. Past x = 1.2 the
 /// light sees the ground through its cube's +x face, nearer below it through -y, so the
 /// shadow crosses a seam between faces. Seen from above as [`square_over_plane`] is;
 /// the point light's falloff makes "shadowed" a pixel under half its unshadowed luma
-/// (the ambient alone is a tenth of the dimmest lit ground's). Hard and filtered, through
+/// (the ambient alone stays under half of the dimmest lit ground's). Hard and filtered, through
 /// the default pipeline's tiled shading (both branches) and the G-buffer's light volumes.
 #[test]
 fn a_point_light_s_shadow_is_the_central_projection_across_cube_faces() {
