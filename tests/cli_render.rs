@@ -331,7 +331,7 @@ fn the_defaults_render_the_spheres_through_the_visibility_buffer() {
     // Its sun casts the spheres' shadows: the shadow maps, and the tiled pass reading them.
     run.stderr_has("\nshadow maps ")
         .stderr_has("\nvisibility (hardware raster) ")
-        .stderr_has("\nlight tiled (hardware raster, shadows) ")
+        .stderr_has("\nlight tiled (hardware raster) ")
         .stderr_has("\ntonemap (cpu device) ")
         .stderr_has("culled: debug edges (hardware raster), debug fragments (hardware raster)");
 }
@@ -399,9 +399,9 @@ fn an_unlit_scene_renders_with_the_specialised_plan_and_the_same_image() {
         .stderr_has("specialised to the scene's features: no_lights, shallow_depth, unlit_only")
         .stderr_has("\ngbuffer (unlit) ")
         .stderr_has(
-            "dropped by conditions: gbuffer, shadow maps, light tiled, light tiled (shadows), \
-             resolve (no lights), background, transparent, composite transparent, auto exposure, \
-             tonemap (auto exposure), debug edges, debug tile lights, debug normals, debug lights",
+            "dropped by conditions: gbuffer, shadow maps, light tiled, resolve (no lights), \
+             background, transparent, composite transparent, auto exposure, tonemap (auto \
+             exposure), debug edges, debug tile lights, debug normals, debug lights",
         );
     let run = render_unlit(&general, &["--no-specialise"]).expect(0);
     run.stderr_has("\nlight tiled ");
@@ -452,8 +452,7 @@ fn the_visibility_pipeline_rasterises_by_the_hardware_on_a_cpu_device() {
         .stderr_has("\nvisibility (hardware raster) ")
         .stderr_has("\ndevice conditions: cpu_device\n")
         .stderr_has(
-            "dropped by conditions: visibility, visibility (blend), light tiled, light tiled \
-             (shadows), keys depth, ",
+            "dropped by conditions: visibility, visibility (blend), light tiled, keys depth, ",
         );
     render_default(&out, &[&pipeline[..], &["--no-specialise"]].concat())
         .expect(0)
@@ -470,9 +469,9 @@ fn a_lit_scene_is_specialised_only_in_its_depth_format() {
     // builtin:spheres uses lights and lit materials; its depth spans 309 near planes.
     run.stderr_has("specialised to the scene's features: shadows, shallow_depth (")
         .stderr_has(
-            "dropped by conditions: gbuffer (unlit), light tiled, resolve (unlit), resolve (no \
-             lights), background, transparent, composite transparent, auto exposure, tonemap \
-             (auto exposure)\n",
+            "dropped by conditions: gbuffer (unlit), resolve (unlit), resolve (no lights), \
+             background, transparent, composite transparent, auto exposure, tonemap (auto \
+             exposure)\n",
         );
 }
 

@@ -84,7 +84,7 @@ fn the_lean_gbuffer_stores_16_bytes_per_sample_and_20_with_emission() {
 /// naming the pass.
 #[test]
 fn contradicting_layouts_are_errors_naming_the_pass() {
-    let tiled_inputs = "\"emission\": \"emission\", \"depth\": \"depth\",\n            },\n            outputs: { \"resolved\"";
+    let tiled_inputs = "\"emission\": \"emission\", \"depth\": \"depth\", \"shadows\"";
     let message = error(
         LEAN,
         tiled_inputs,
@@ -100,8 +100,8 @@ fn contradicting_layouts_are_errors_naming_the_pass() {
 
     let message = error(
         LEAN,
-        "when: \"emissive & !shadows\",\n            params: (edges: (detector: compare)),",
-        &"when: \"emissive & !shadows\",\n            params: (edges: (detector: compare)),"
+        "when: \"emissive\",\n            params: (edges: (detector: compare)),",
+        &"when: \"emissive\",\n            params: (edges: (detector: compare)),"
             .replace("compare)", "compare), background: (0.1, 0.2, 0.3)"),
     );
     assert_names(
@@ -114,8 +114,8 @@ fn contradicting_layouts_are_errors_naming_the_pass() {
 
     let message = error(
         LEAN,
-        "params: (edges: (detector: compare)),\n            inputs: { \"albedo\"",
-        "params: (edges: (detector: compare), background: (1.0, -1.0, 0.0)),\n            inputs: { \"albedo\"",
+        "params: (edges: (detector: compare)),\n            inputs: {\n                \"albedo\": \"albedo\", \"normal\": \"normal\", \"material\": \"material\", \"depth\"",
+        "params: (edges: (detector: compare), background: (1.0, -1.0, 0.0)),\n            inputs: {\n                \"albedo\": \"albedo\", \"normal\": \"normal\", \"material\": \"material\", \"depth\"",
     );
     assert_names(
         &message,

@@ -353,8 +353,8 @@ fn compare_scene_marks_what_the_other_scene_s_plan_runs_and_allocates() {
         .find("id=\"gone-passes\"")
         .expect("the passes run there only")..];
     assert!(gone.contains(
-        "<strong>light edges (shadows)</strong>: condition &quot;!unlit_only &amp; !no_lights \
-         &amp; shadows&quot; is false"
+        "<strong>light edges</strong>: condition &quot;!unlit_only &amp; !no_lights&quot; is \
+         false"
     ));
     let gone = &html[html
         .find("id=\"gone-resources\"")

@@ -303,11 +303,9 @@ fn tiled_lighting_applies_ssao_as_the_fragment_passes_do() {
         )
         .edit(
             r#""depth": "depth", "hdr": "hdr",
-            },
-            outputs: { "resolved": "resolved" },"#,
+                "shadows": "shadow_atlas","#,
             r#""depth": "depth", "hdr": "hdr", "ao": "ao",
-            },
-            outputs: { "resolved": "resolved" },"#,
+                "shadows": "shadow_atlas","#,
         )
         .read(&gpu, &["color"]);
     let fragment = Render::new(PIPELINE, "builtin:dense", SIZE).read(&gpu, &["color"]);

@@ -1,11 +1,13 @@
 //! Shadow maps (passes/shadow_maps.rs, shadow.wgsl) on lavapipe: a square's shadow lands
-//! where its projection does, a lit plane at grazing light shows no acne, the default
+//! where its projection does, under a sun and under a point light (across two faces of
+//! its cube), a lit plane at grazing light shows no acne, the default
 //! pipeline's tiled shading and the G-buffer's light volumes agree on a shadowed scene,
+//! the `shadows` and `cascades` debug views show the visibility term and the cascades,
 //! and the command line refuses shadow settings it cannot honour.
 
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::glam::{DVec3, Vec3};
-use rgraph_scene::{Camera, Light, LightKind, Projection, Scene};
+use rgraph_scene::{AlphaMode, Camera, Light, LightKind, Projection, Scene};
 
 use crate::cli_support::rgraph;
 use crate::deferred_support::measure;
@@ -39,6 +41,12 @@ fn sun(direction: Vec3, intensity: f32) -> Light {
 /// square x in [0.5, 1.5], z in [-0.5, 0.5]. Seen straight down by an orthographic camera
 /// spanning x and z in [-2, 2], image x along +x and image y along +z (16 pixels a unit).
 fn square_over_plane() -> Scene {
+    square_scene(square_parts())
+}
+
+/// [`square_over_plane`]'s parts: the ground is mesh 0, the square mesh 1 (material 0,
+/// as the ground's).
+fn square_parts() -> Parts {
     let mut parts = Parts::new();
     let grey = parts.material("grey", [0.6, 0.6, 0.6], 0.8);
     let square = |y: f64, half: f64| {
@@ -53,6 +61,11 @@ fn square_over_plane() -> Scene {
     parts.mesh("square", &[square(1.0, 0.5)], grey);
     parts.lights.push(sun(Vec3::new(1.0, -1.0, 0.0), 3.0));
     parts.ambient = [0.05; 3];
+    parts
+}
+
+/// `parts` seen straight down, as [`square_over_plane`] says.
+fn square_scene(parts: Parts) -> Scene {
     let camera = Camera::look_at(
         "from above",
         DVec3::new(0.0, 10.0, 0.0),
@@ -153,6 +166,163 @@ fn a_squares_shadow_is_its_projection() {
                 (f64::from(count) - area).abs() <= 0.5 * 4.0 * (x1 - x0),
                 "{pipeline} {filter:?}: {count} shadowed pixels, the projection covers {area}"
             );
+        }
+    }
+}
+
+/// A point light 0.2 over a small square (x in [0, 0.25], z in [-0.125, 0.125], at
+/// height 1) over the ground, and the ground's shadow is the square's central projection from
+/// the light, 6 times its size: x in [0, 1.5], z in [-0.75, 0.75]. Past x = 1.2 the
+/// light sees the ground through its cube's +x face, nearer below it through -y, so the
+/// shadow crosses a seam between faces. Seen from above as [`square_over_plane`] is;
+/// the point light's falloff makes "shadowed" a pixel under half its unshadowed luma
+/// (the ambient alone stays under half of the dimmest lit ground's). Hard and filtered, through
+/// the default pipeline's tiled shading (both branches) and the G-buffer's light volumes.
+#[test]
+fn a_point_light_s_shadow_is_the_central_projection_across_cube_faces() {
+    let mut parts = Parts::new();
+    let grey = parts.material("grey", [0.6, 0.6, 0.6], 0.8);
+    let rect = |y: f64, (x0, x1): (f64, f64), (z0, z1): (f64, f64)| {
+        vec![
+            DVec3::new(x0, y, z0),
+            DVec3::new(x0, y, z1),
+            DVec3::new(x1, y, z1),
+            DVec3::new(x1, y, z0),
+        ]
+    };
+    parts.mesh("ground", &[rect(0.0, (-4.0, 4.0), (-4.0, 4.0))], grey);
+    parts.mesh("square", &[rect(1.0, (0.0, 0.25), (-0.125, 0.125))], grey);
+    parts.lights.push(Light {
+        name: "bulb".into(),
+        kind: LightKind::Point,
+        color: [1.0, 1.0, 1.0],
+        intensity: 4.0,
+        position: DVec3::new(0.0, 1.2, 0.0),
+        direction: Vec3::NEG_Y,
+        range: None,
+    });
+    parts.ambient = [0.02; 3];
+    let camera = Camera::look_at(
+        "from above",
+        DVec3::new(0.0, 10.0, 0.0),
+        DVec3::ZERO,
+        DVec3::NEG_Z,
+        Projection::Orthographic {
+            xmag: (SPAN / 2.0) as f32,
+            ymag: (SPAN / 2.0) as f32,
+            znear: 1.0,
+            zfar: 20.0,
+        },
+    );
+    let scene = parts.scene("point light over a square", camera);
+    assert!(
+        SceneFeatures::of(&scene).shadows,
+        "a point light casts shadows"
+    );
+    let pixel_of = |world: f64| (world + SPAN / 2.0) * f64::from(N) / SPAN;
+    let (x0, x1) = (pixel_of(0.0), pixel_of(1.5));
+    let (z0, z1) = (pixel_of(-0.75), pixel_of(0.75));
+    // The square itself, lit from above, hides part of its shadow from the camera.
+    let (sx1, sz0, sz1) = (pixel_of(0.25), pixel_of(-0.125), pixel_of(0.125));
+    let gbuffer = PipelineFile::for_device("deferred_msaa_4x.ron");
+    for pipeline in [DEFAULT, DEFAULT_GPU, gbuffer] {
+        let off = Shadows {
+            filter: ShadowFilter::Off,
+            lights: 1,
+        };
+        let unshadowed = render(pipeline, &scene, (N, N), off);
+        for filter in [ShadowFilter::Hard, ShadowFilter::Pcf] {
+            let image = render(pipeline, &scene, (N, N), Shadows { filter, lights: 1 });
+            let (mut count, mut expected) = (0, 0);
+            for y in 0..N {
+                for x in 0..N {
+                    let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+                    if cx > x0 - 1.0 && cx < sx1 + 1.0 && cy > sz0 - 1.0 && cy < sz1 + 1.0 {
+                        continue;
+                    }
+                    let lit = luma(unshadowed.at(x, y));
+                    let shadowed = luma(image.at(x, y)) < 0.5 * lit;
+                    let inside = cx > x0 && cx < x1 && cy > z0 && cy < z1;
+                    let margin = (cx - x0)
+                        .abs()
+                        .min((cx - x1).abs())
+                        .min((cy - z0).abs())
+                        .min((cy - z1).abs());
+                    let near_edge = margin <= 1.0;
+                    count += u32::from(shadowed);
+                    expected += u32::from(inside);
+                    assert!(
+                        near_edge || shadowed == inside,
+                        "{pipeline} {filter:?}: pixel ({x}, {y}) is {} but its centre is {} the \
+                         square's projection, more than a pixel from its edge",
+                        if shadowed { "shadowed" } else { "lit" },
+                        if inside { "inside" } else { "outside" }
+                    );
+                }
+            }
+            // Within half the projection's perimeter in pixels, of those the square leaves
+            // in view.
+            assert!(
+                f64::from(count.abs_diff(expected)) <= (x1 - x0) + (z1 - z0),
+                "{pipeline} {filter:?}: {count} shadowed pixels, the projection covers \
+                 {expected}"
+            );
+        }
+    }
+}
+
+/// An alpha MASK square (cutoff 0.5) whose vertex alpha runs from 0 at x = -0.5 to 1 at
+/// x = 0.5 casts only where it is drawn, its half x >= 0: under the sun along (1, -1, 0)
+/// the shadow is x in [1, 1.5], not [0.5, 1.5]. The masked-out half's would-be shadow
+/// (x in [0.5, 1]) is lit, the kept half's shadowed, more than a pixel from the edges,
+/// hard and filtered, in both branches of the default pipeline.
+#[test]
+fn an_alpha_mask_caster_casts_only_where_it_is_drawn() {
+    let mut parts = square_parts();
+    let mut masked = parts.materials[0].clone();
+    masked.name = "masked".into();
+    masked.alpha_mode = AlphaMode::Mask { cutoff: 0.5 };
+    parts.materials.push(masked);
+    parts.meshes[1].material = parts.materials.len() - 1;
+    for v in &mut parts.meshes[1].vertices {
+        v.color[3] = if v.position[0] < 0.0 { 0 } else { u16::MAX };
+    }
+    let scene = square_scene(parts);
+    let pixel_of = |world: f64| (world + SPAN / 2.0) * f64::from(N) / SPAN;
+    let (z0, z1) = (pixel_of(-0.5), pixel_of(0.5));
+    for pipeline in [DEFAULT, DEFAULT_GPU] {
+        for filter in [ShadowFilter::Hard, ShadowFilter::Pcf] {
+            let image = render(pipeline, &scene, (N, N), Shadows { filter, lights: 1 });
+            // Lit ground, and ground in the kept half's shadow (x = 1.28).
+            let (lit, dark) = (luma(image.at(16, 52)), luma(image.at(52, 32)));
+            assert!(
+                dark < 0.5 * lit,
+                "{pipeline} {filter:?}: no shadow ({dark:.0}, {lit:.0})"
+            );
+            let threshold = 0.5 * (lit + dark);
+            for y in 0..N {
+                let cy = f64::from(y) + 0.5;
+                if cy <= z0 + 1.0 || cy >= z1 - 1.0 {
+                    continue;
+                }
+                for x in 0..N {
+                    let cx = f64::from(x) + 0.5;
+                    let world = cx * SPAN / f64::from(N) - SPAN / 2.0;
+                    let expect = match world {
+                        w if (0.5 + 1.0 / 16.0..1.0 - 1.0 / 16.0).contains(&w) => false,
+                        w if (1.0 + 1.0 / 16.0..1.5 - 1.0 / 16.0).contains(&w) => true,
+                        _ => continue,
+                    };
+                    let shadowed = luma(image.at(x, y)) < threshold;
+                    assert_eq!(
+                        shadowed,
+                        expect,
+                        "{pipeline} {filter:?}: pixel ({x}, {y}) at x = {world:.3} should be \
+                         {} (lit ground {lit:.0}, shadowed {dark:.0})",
+                        if expect { "shadowed" } else { "lit" }
+                    );
+                }
+            }
         }
     }
 }
@@ -316,4 +486,90 @@ fn the_shadows_view_shows_the_visibility_term() {
         black_ground > 100,
         "{black_ground} black pixels in the lower half"
     );
+}
+
+/// The default pipeline's `cascades` debug view: a long ground plane seen at a grazing
+/// angle under a sun shows the sun's cascades by colour (red, green, blue, yellow from the
+/// nearest), each pixel the cascade of its view depth: up each column of ground, from
+/// near to far, the cascade never goes back, at least three cascades show, and the sky
+/// (no geometry) is black.
+#[test]
+fn the_cascades_view_colours_each_cascade_by_depth() {
+    let gpu = gpu();
+    let mut parts = Parts::new();
+    let grey = parts.material("grey", [0.7, 0.7, 0.7], 0.9);
+    parts.mesh(
+        "ground",
+        &[vec![
+            DVec3::new(-30.0, 0.0, -60.0),
+            DVec3::new(-30.0, 0.0, 30.0),
+            DVec3::new(30.0, 0.0, 30.0),
+            DVec3::new(30.0, 0.0, -60.0),
+        ]],
+        grey,
+    );
+    parts.lights.push(sun(Vec3::new(0.3, -1.0, -0.2), 3.0));
+    parts.ambient = [0.02; 3];
+    let camera = Camera::look_at(
+        "grazing",
+        DVec3::new(0.0, 1.0, 12.0),
+        DVec3::new(0.0, 0.0, -10.0),
+        DVec3::Y,
+        Projection::Perspective {
+            yfov: 0.9,
+            znear: 0.1,
+            zfar: None,
+        },
+    );
+    let scene = parts.scene("long plane", camera);
+    let (w, h) = (48, 64);
+    let view = Render::new(DEFAULT, &scene.name, (w, h))
+        .with_scene(scene.clone())
+        .features(SceneFeatures::of(&scene).names())
+        .run(&gpu)
+        .image(&gpu, "debug.cascades");
+    // The cascade a pixel's colour names, or None for black (no geometry).
+    let cascade = |p: [u8; 4]| -> Option<usize> {
+        let [r, g, b] = [p[0], p[1], p[2]].map(f64::from);
+        if r.max(g).max(b) < 8.0 {
+            return None;
+        }
+        let tints = [
+            [1.0, 0.2, 0.2],
+            [0.2, 1.0, 0.2],
+            [0.25, 0.4, 1.0],
+            [1.0, 0.9, 0.2],
+        ];
+        let top = r.max(g).max(b);
+        let off =
+            |t: [f64; 3]| (r / top - t[0]).abs() + (g / top - t[1]).abs() + (b / top - t[2]).abs();
+        let best = (0..4).min_by(|&a, &b| off(tints[a]).total_cmp(&off(tints[b])));
+        best.filter(|&c| off(tints[c]) < 0.3)
+    };
+    let mut seen = std::collections::BTreeSet::new();
+    for x in 0..w {
+        let mut last = 0;
+        // From the bottom (nearest ground) up.
+        for y in (0..h).rev() {
+            let p = view.at(x, y);
+            match cascade(p) {
+                Some(c) => {
+                    assert!(
+                        c >= last,
+                        "column {x}: cascade {c} at row {y} above cascade {last} nearer \
+                         the camera"
+                    );
+                    last = c;
+                    seen.insert(c);
+                }
+                None => assert_eq!(
+                    p,
+                    [0, 0, 0, 255],
+                    "pixel ({x}, {y}) is neither a cascade's colour nor black"
+                ),
+            }
+        }
+    }
+    assert!(seen.len() >= 3, "cascades seen: {seen:?}");
+    assert_eq!(view.at(w / 2, 0), [0, 0, 0, 255], "the sky is black");
 }

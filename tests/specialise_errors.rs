@@ -48,9 +48,10 @@ fn at(path: &std::path::Path, text: &str, needle: &str) -> String {
 
 #[test]
 fn a_misspelt_feature_in_a_pass_condition_is_an_error_at_the_feature() {
+    // The edge pass's condition (the light passes' reads the same).
     let (copies, path, text) = edited(
-        "when: \"!unlit_only & !no_lights\",",
-        "when: \"!unlitonly & !no_lights\",",
+        "plugin: \"edge_stencil\",\n            when: \"!unlit_only & !no_lights\",",
+        "plugin: \"edge_stencil\",\n            when: \"!unlitonly & !no_lights\",",
     );
     let errors = load(&copies);
     assert_eq!(

@@ -47,7 +47,7 @@ fn an_unlit_scene_s_plan_says_what_it_drops_and_saves() {
         "    0. gbuffer (unlit) (render)",
         "dropped passes:\n  - gbuffer: condition \"!unlit_only\" is false\n",
         "against the plan for a scene using every feature (features: blend, shadows):\n  passes: 6 instead of 14\n",
-        "    - light edges (shadows): condition \"!unlit_only & !no_lights & shadows\" is false (\"unlit_only\" is set, \"no_lights\" is set, \"shadows\" is not set)\n",
+        "    - light edges: condition \"!unlit_only & !no_lights\" is false (\"unlit_only\" is set, \"no_lights\" is set)\n",
         "    not allocated: normal (64.0 KiB): condition \"!unlit_only\" is false\n",
         // The general plan draws shadow maps into a 64 MiB atlas; an unlit scene none.
         "  memory: 416.0 KiB physical instead of 64.6 MiB (64.2 MiB saved, 99%)\n",
@@ -81,8 +81,7 @@ fn a_scene_s_plan_lists_the_shader_variants_it_builds() {
         \x20 gbuffer.wgsl {} instead of {textures, emissive_textures, metal_rough_textures, \
         normal_textures, occlusion_textures, double_sided, emissive}: gbuffer\n\
         \x20 light.wgsl {directional_lights, point_lights} instead of \
-        {directional_lights, point_lights, spot_lights, environment}: light edges (shadows), light the \
-        rest (shadows)\n";
+        {directional_lights, point_lights, spot_lights, environment}: light edges, light the rest\n";
     assert!(
         stdout.ends_with(expected),
         "no {expected:?} at the end of:\n{stdout}"
@@ -122,9 +121,7 @@ fn json_carries_the_features_and_the_dropped_passes() {
             "edges",
             "shadow maps",
             "light edges",
-            "light edges (shadows)",
             "light the rest",
-            "light the rest (shadows)",
             "background",
             "transparent",
             "composite transparent",

@@ -55,8 +55,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
             "gbuffer",
             "edges",
             "shadow maps",
-            "light edges (shadows)",
-            "light the rest (shadows)",
+            "light edges",
+            "light the rest",
             "resolve",
             "transparent",
             "composite transparent",
@@ -73,9 +73,7 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
     let not_lit = r#"condition "!unlit_only" is false"#;
     // builtin:unlit has no lights either.
     let no_light = r#"condition "!unlit_only & !no_lights" is false ("unlit_only" is set, "no_lights" is set)"#;
-    // The light passes and their shadowed twins, and the shadow maps (no light casts a
-    // shadow either).
-    let no_light_unshadowed = r#"condition "!unlit_only & !no_lights & !shadows" is false ("unlit_only" is set, "no_lights" is set)"#;
+    // The shadow maps too (no light casts a shadow either).
     let no_shadow = r#"condition "!unlit_only & !no_lights & shadows" is false ("unlit_only" is set, "no_lights" is set, "shadows" is not set)"#;
     // Nor BLEND materials.
     let no_blend = r#"condition "blend" is false"#;
@@ -89,10 +87,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
             ("gbuffer", not_lit),
             ("edges", no_light),
             ("shadow maps", no_shadow),
-            ("light edges", no_light_unshadowed),
-            ("light edges (shadows)", no_shadow),
-            ("light the rest", no_light_unshadowed),
-            ("light the rest (shadows)", no_shadow),
+            ("light edges", no_light),
+            ("light the rest", no_light),
             ("background", no_background),
             ("transparent", no_blend),
             ("composite transparent", no_blend),

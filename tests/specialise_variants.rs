@@ -137,8 +137,7 @@ fn variants(pipeline: &str, scene: &str) -> Vec<String> {
 
 #[test]
 fn each_builtin_scene_s_variants() {
-    // Each lit scene has a directional or spot light: the light passes read shadow maps.
-    let light = "light edges (shadows), light the rest (shadows)";
+    let light = "light edges, light the rest";
     let expected: [(&str, [&str; 2], &str); 4] = [
         (
             "builtin:spheres",
@@ -146,7 +145,7 @@ fn each_builtin_scene_s_variants() {
                 "gbuffer.wgsl {}: gbuffer",
                 "light.wgsl {directional_lights, point_lights}",
             ],
-            "forward.wgsl {directional_lights, point_lights}: forward (shadows)",
+            "forward.wgsl {directional_lights, point_lights}: forward",
         ),
         (
             "builtin:dense",
@@ -154,7 +153,7 @@ fn each_builtin_scene_s_variants() {
                 "gbuffer.wgsl {double_sided}: gbuffer",
                 "light.wgsl {point_lights, spot_lights}",
             ],
-            "forward.wgsl {point_lights, spot_lights, double_sided}: forward (shadows)",
+            "forward.wgsl {point_lights, spot_lights, double_sided}: forward",
         ),
         (
             "builtin:lights",
@@ -162,7 +161,7 @@ fn each_builtin_scene_s_variants() {
                 "gbuffer.wgsl {}: gbuffer",
                 "light.wgsl {point_lights, spot_lights}",
             ],
-            "forward.wgsl {point_lights, spot_lights}: forward (shadows)",
+            "forward.wgsl {point_lights, spot_lights}: forward",
         ),
         (
             // No lights: the light passes are dropped, and the unlit G-buffer pass runs.

@@ -303,11 +303,38 @@ pub struct Access {
     pub version: u32,
     /// The version the pass produces, when the role writes.
     pub written: Option<u32>,
+    /// A read the pass can do without
+    /// ([`PassBuilder::optional`](crate::PassBuilder::optional)): where a condition drops
+    /// the resource or the pass that alone wrote the version read, the compile drops this
+    /// access rather than failing, and the plan says so
+    /// ([`PlannedPass::dropped_reads`](crate::plan::PlannedPass::dropped_reads)).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub optional: bool,
 }
 
 impl Access {
     /// The version this access depends on, if it reads.
     pub fn read_version(&self) -> Option<u32> {
         self.role.reads().then_some(self.version)
+    }
+}
+
+/// An optional read a plan leaves out of its pass, because a condition dropped what it
+/// reads.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DroppedRead {
+    /// The resource the pass would have read.
+    pub resource: ResourceId,
+    /// The version it declared.
+    pub version: u32,
+    /// Why: `"shadow_atlas" is dropped: condition "shadows" is false`, or the dropped
+    /// pass that alone writes it and that pass's reason.
+    pub why: String,
+}
+
+impl DroppedRead {
+    /// Whether `access`, one its pass declared, is this read.
+    pub fn covers(&self, access: &Access) -> bool {
+        access.optional && access.resource == self.resource && access.version == self.version
     }
 }

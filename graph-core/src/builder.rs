@@ -220,9 +220,59 @@ impl PassBuilder<'_> {
     /// ([`Entry::workgroup`](crate::shader::Entry::workgroup)), once for each it
     /// dispatches: compiling checks each against the profile's
     /// `max_compute_workgroup_storage_size`, invocations and workgroup dimensions, and
-    /// fails naming the pass and the entry point.
+    /// fails naming the pass and the entry point. Declaring one again is a no-op: a pass
+    /// set up in variants (with and without an optional input) declares each variant's.
     pub fn workgroup(&mut self, workgroup: crate::pass::Workgroup) -> &mut Self {
-        self.node().workgroups.push(workgroup);
+        if !self.node().workgroups.contains(&workgroup) {
+            self.node().workgroups.push(workgroup);
+        }
+        self
+    }
+
+    /// Makes the pass's reads of `handle` (the accesses declared so far to that version)
+    /// optional: where a condition drops the resource, or the pass that alone wrote that
+    /// version, the compile drops these accesses instead of failing with
+    /// [`GraphError::DroppedWriter`] or [`GraphError::UsesDroppedResource`], and the
+    /// plan lists them in [`PlannedPass::dropped_reads`](crate::plan::PlannedPass::dropped_reads)
+    /// with the reason (`explain` prints it). The pass runs either way: it must work
+    /// without the input, asking `FrameResources::has` (feature `gpu`) while it records,
+    /// before it builds what binds the input. Where the writer stays, the read is an
+    /// ordinary one.
+    ///
+    /// Only reads can be optional: a pass that writes a version is what later passes
+    /// read. Marking an access that writes, or a handle the pass has not declared, is
+    /// [`GraphError::OptionalAccess`] when the graph compiles.
+    pub fn optional<K: ResourceKind>(&mut self, handle: Handle<K>) -> &mut Self {
+        let (id, version) = (handle.id, handle.version);
+        let node = self.node();
+        let mut marked = node
+            .accesses
+            .iter_mut()
+            .filter(|a| a.resource == id && a.version == version)
+            .peekable();
+        let why = match marked.peek() {
+            None => Some("the pass declared no access to it"),
+            Some(_) => None,
+        };
+        let mut writes = false;
+        for access in marked {
+            writes |= access.role.writes();
+            access.optional = true;
+        }
+        let why = why.or(writes.then_some("the pass writes it: only a read can be optional"));
+        if let Some(why) = why {
+            let pass = self.node().name.clone();
+            let resource = self
+                .graph
+                .resources
+                .get(id.index())
+                .map_or_else(|| format!("{handle:?}"), |r| r.name.clone());
+            self.graph.errors.push(GraphError::OptionalAccess {
+                pass,
+                resource,
+                why: why.to_owned(),
+            });
+        }
         self
     }
 
@@ -418,6 +468,7 @@ impl PassBuilder<'_> {
             role,
             version: handle.version,
             written,
+            optional: false,
         });
         Handle::new(handle.id, written.unwrap_or(handle.version))
     }

@@ -43,6 +43,18 @@ pub enum GraphError {
         resource: String,
     },
 
+    /// [`PassBuilder::optional`](crate::PassBuilder::optional) (a file's `optional:`) marked
+    /// what cannot be an optional read: an access that writes, or none at all.
+    #[error("pass \"{pass}\" marks \"{resource}\" optional, but {why}")]
+    OptionalAccess {
+        /// The pass, by name.
+        pass: String,
+        /// The resource, by name.
+        resource: String,
+        /// What is wrong: "the pass writes it: only a read can be optional".
+        why: String,
+    },
+
     /// An access role the pass's kind cannot have: copies outside transfer passes, anything
     /// but copies in them, attachments and vertex or index buffers in compute passes.
     #[error("{kind} pass \"{pass}\" cannot use \"{resource}\" as a {role}")]
@@ -470,6 +482,7 @@ impl GraphError {
         match self {
             ReadBeforeWrite { pass, .. }
             | ForeignHandle { pass, .. }
+            | OptionalAccess { pass, .. }
             | RoleNotAllowed { pass, .. }
             | UsageConflict { pass, .. }
             | SampledWhileWritable { pass, .. }
@@ -508,6 +521,7 @@ impl GraphError {
             ReadBeforeWrite { resource, .. }
             | ConflictingWriters { resource, .. }
             | ForeignHandle { resource, .. }
+            | OptionalAccess { resource, .. }
             | RoleNotAllowed { resource, .. }
             | UsageConflict { resource, .. }
             | SampledWhileWritable { resource, .. }

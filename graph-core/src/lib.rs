@@ -127,7 +127,7 @@ pub mod shader;
 pub mod synthetic;
 
 pub use access::{
-    Access, Aspect, AspectAccess, BufferRole, ByFormat, ColorLoad, Role, TextureRole,
+    Access, Aspect, AspectAccess, BufferRole, ByFormat, ColorLoad, DroppedRead, Role, TextureRole,
 };
 pub use builder::{GraphBuilder, PassBuilder};
 pub use compile::CompileOptions;

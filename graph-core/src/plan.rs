@@ -5,6 +5,7 @@
 use serde::Serialize;
 use wgpu_types::{BufferUsages, TextureUsages};
 
+use crate::access::DroppedRead;
 use crate::handle::{Kind, PassId, ResourceId};
 use crate::pass::PassKind;
 use crate::resource::{Origin, TextureShape};
@@ -97,10 +98,23 @@ pub struct PlannedPass {
     pub depth_stencil: Option<DepthStencilAttachment>,
     /// A compute pass's workgroup size and memory for each entry point it dispatches.
     pub workgroups: Vec<crate::pass::Workgroup>,
+    /// Its optional reads ([`PassBuilder::optional`](crate::PassBuilder::optional)) this
+    /// plan leaves out, with why: the pass runs without them, and its recording finds
+    /// them missing (`FrameResources::has` is false).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub dropped_reads: Vec<DroppedRead>,
     /// Where the pass was written, when not in the graph's own file (see
     /// [`PassBuilder::origin`](crate::PassBuilder::origin)).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub origin: Option<String>,
+}
+
+impl PlannedPass {
+    /// Whether this plan leaves `access`, one the pass declared, out: an optional read in
+    /// [`dropped_reads`](Self::dropped_reads).
+    pub fn drops(&self, access: &crate::access::Access) -> bool {
+        self.dropped_reads.iter().any(|d| d.covers(access))
+    }
 }
 
 /// How an attachment aspect begins.

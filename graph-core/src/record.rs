@@ -10,7 +10,7 @@
 
 use std::collections::HashMap;
 
-use crate::access::{Access, Aspect, Role, TextureRole};
+use crate::access::{Access, Aspect, DroppedRead, Role, TextureRole};
 use crate::handle::{BufferHandle, Handle, ResourceId, ResourceKind, TextureHandle};
 use crate::resource::{ResourceNode, TextureShape};
 
@@ -42,7 +42,8 @@ pub(crate) struct FrameObjects {
 
 /// The physical resources of one executing frame, as one pass sees them.
 ///
-/// Lookups are checked against the executing pass's declared accesses, as Filament's
+/// Lookups are checked against the executing pass's declared accesses (less the optional
+/// reads its plan leaves out, see [`has`](Self::has)), as Filament's
 /// frame graph asserts: a handle the pass did not declare, or declared at another
 /// version, is a bug in the pass (the graph ordered and allocated the frame from the
 /// declarations, so an undeclared resource may hold anything, or another resource's
@@ -61,6 +62,8 @@ pub struct FrameResources<'f> {
     pub(crate) pass: &'f str,
     /// What the executing pass declared.
     pub(crate) accesses: &'f [Access],
+    /// The optional reads of the executing pass that its plan leaves out.
+    pub(crate) dropped: &'f [DroppedRead],
     /// Every resource of the graph, by id: their names, for messages.
     pub(crate) resources: &'f [ResourceNode],
     /// Why the executing pass could not record its work, when its callback said so.
@@ -166,6 +169,15 @@ impl<'f> FrameResources<'f> {
         self.objects.resets.contains(&history.id())
     }
 
+    /// Whether the executing pass can look `handle` up this frame: false for an optional
+    /// read ([`PassBuilder::optional`](crate::PassBuilder::optional)) that the plan
+    /// leaves out because a condition dropped its resource or writer, and for what the
+    /// pass never declared. A pass with an optional input asks this before it builds
+    /// pipelines that bind the input; the answer holds for every frame of one plan.
+    pub fn has<K: ResourceKind>(&self, handle: Handle<K>) -> bool {
+        self.declared(handle, "resource", None).is_ok()
+    }
+
     /// The buffer behind a handle.
     ///
     /// # Panics
@@ -195,7 +207,11 @@ impl<'f> FrameResources<'f> {
         aspect: Option<Aspect>,
     ) -> Result<(), UndeclaredAccess> {
         let (id, version) = (handle.id(), handle.version());
-        let of_resource = || self.accesses.iter().filter(move |a| a.resource == id);
+        let of_resource = || {
+            self.accesses
+                .iter()
+                .filter(move |a| a.resource == id && !self.dropped.iter().any(|d| d.covers(a)))
+        };
         let found = of_resource()
             .filter(|a| a.version == version || a.written == Some(version))
             .any(|a| match aspect {
@@ -226,11 +242,28 @@ impl<'f> FrameResources<'f> {
                 .get(id.index())
                 .map_or_else(|| format!("#{}", id.0), |r| r.name.clone()),
             version,
-            declared: match declared.is_empty() {
-                true => String::new(),
-                false => format!(" (it declared it as {})", declared.join(", ")),
+            declared: match (declared.is_empty(), self.dropped_read(id, version)) {
+                (_, Some(why)) => format!(
+                    "an optional read its plan leaves out ({why}): ask `has` before looking \
+                     it up"
+                ),
+                (true, None) => "which it did not declare".to_owned(),
+                (false, None) => format!(
+                    "which it did not declare (it declared it as {})",
+                    declared.join(", ")
+                ),
             },
         })
+    }
+
+    /// Why the plan leaves out the executing pass's optional read of this version, if it
+    /// does.
+    fn dropped_read(&self, id: ResourceId, version: u32) -> Option<&str> {
+        let dropped = self.dropped.iter();
+        dropped
+            .filter(|d| d.resource == id && d.version == version)
+            .map(|d| d.why.as_str())
+            .next()
     }
 }
 
@@ -253,17 +286,15 @@ fn describe(access: &Access) -> String {
 
 /// A record callback looked up what its pass did not declare: the message of the panic.
 #[derive(Debug, thiserror::Error)]
-#[error(
-    "pass \"{pass}\" looked up {what} \"{resource}\" (version {version}), which it did not \
-     declare{declared}"
-)]
+#[error("pass \"{pass}\" looked up {what} \"{resource}\" (version {version}), {declared}")]
 struct UndeclaredAccess {
     pass: String,
     /// "texture", "buffer", "the depth view of texture".
     what: &'static str,
     resource: String,
     version: u32,
-    /// What the pass did declare of the resource, if anything, as a parenthesis.
+    /// Why that is wrong: "which it did not declare", with what the pass did declare of
+    /// the resource, if anything, or that the plan leaves the read out.
     declared: String,
 }
 

@@ -14,6 +14,7 @@ mod history_gpu;
 mod lifetimes;
 mod load_store;
 mod memory;
+mod optional_reads;
 mod order;
 mod plugin_pass;
 mod properties;

@@ -151,6 +151,7 @@ pub(crate) const SHADOW_RASTER: Source = Source {
         COMMON,
         SCENE,
         GEOMETRY,
+        MASK_TEXTURE,
         SHADOW_VIEWS,
         include_str!("wgsl/shadow_raster.wgsl"),
     ],

@@ -35,9 +35,10 @@ impl ShadowFilter {
 pub struct Shadows {
     /// How the maps are read, or no shadows at all.
     pub filter: ShadowFilter,
-    /// The most lights given shadow maps each frame: the directional and spot lights
-    /// covering most of the screen (a directional light covers all of it), as many as
-    /// fit the atlas's [`SHADOW_VIEWS`] maps.
+    /// The most lights given shadow maps each frame: the lights covering most of the
+    /// screen (a directional light covers all of it), as many as fit the atlas's
+    /// [`SHADOW_VIEWS`] maps (a directional light takes [`CASCADES`], a point light
+    /// [`POINT_FACES`], a spot light one).
     pub lights: u32,
 }
 
@@ -48,8 +49,11 @@ pub const SHADOW_VIEWS: u32 = ATLAS_GRID * ATLAS_GRID;
 pub const ATLAS_GRID: u32 = 4;
 /// Cascades per directional light (Dimitrov's cascaded shadow maps, NVIDIA 2007).
 pub const CASCADES: u32 = 4;
+/// Maps per point light: a cube's six faces, each a tile of the atlas.
+pub const POINT_FACES: u32 = 6;
 /// The default of [`Shadows::lights`]: the sun and three spot lights, whose maps fill
-/// the 4 x 4 atlas at most (a directional light takes [`CASCADES`] tiles).
+/// the 4 x 4 atlas at most (a directional light takes [`CASCADES`] tiles, a point light
+/// [`POINT_FACES`], so a sun and two point lights fill it).
 pub const DEFAULT_SHADOWED_LIGHTS: u32 = 4;
 
 impl Default for Shadows {

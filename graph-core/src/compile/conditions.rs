@@ -13,10 +13,14 @@
 //! - a version a dropped pass wrote fresh is lost: reading it is an error naming both
 //!   passes, and writing over it writes over what the dropped pass would have.
 //!
+//! An optional read ([`PassBuilder::optional`](crate::PassBuilder::optional)) of a lost
+//! version, or of a dropped resource, is dropped from its pass instead of failing, and
+//! [`Conditioned::dropped_reads`] says why.
+//!
 //! Textures with conditional formats get the one the features pick (see
 //! [`formats`](super::formats)).
 
-use crate::access::Access;
+use crate::access::{Access, DroppedRead};
 use crate::condition::{Condition, Features};
 use crate::error::GraphError;
 use crate::graph::Graph;
@@ -32,6 +36,8 @@ pub(super) struct Conditioned {
     pub resources: Vec<Option<String>>,
     /// Why each texture's format is a conditional one, `None` where it is as declared.
     pub formats: Vec<Option<String>>,
+    /// Each pass's optional reads dropped from it, as declared, with why.
+    pub dropped_reads: Vec<Vec<DroppedRead>>,
     pub errors: Vec<GraphError>,
 }
 
@@ -71,6 +77,7 @@ pub(super) fn apply(graph: &Graph, features: &Features) -> Conditioned {
             features: graph.features.clone(),
             declare_errors: Vec::new(),
         },
+        dropped_reads: vec![Vec::new(); graph.passes.len()],
         passes,
         resources,
         formats,
@@ -201,8 +208,8 @@ fn push_new(errors: &mut Vec<GraphError>, error: GraphError) {
     }
 }
 
-/// Points every live access at the version it sees in this graph, and empties dropped
-/// passes.
+/// Points every live access at the version it sees in this graph, drops the optional
+/// reads of what is gone, and empties dropped passes.
 fn rewire(graph: &Graph, aliases: &Aliases, conditioned: &mut Conditioned) {
     for (p, pass) in conditioned.graph.passes.iter_mut().enumerate() {
         if conditioned.passes[p].is_some() {
@@ -210,31 +217,61 @@ fn rewire(graph: &Graph, aliases: &Aliases, conditioned: &mut Conditioned) {
             pass.side_effect = false;
             continue;
         }
-        for access in &mut pass.accesses {
+        let mut kept = Vec::with_capacity(pass.accesses.len());
+        for mut access in std::mem::take(&mut pass.accesses) {
             let r = access.resource.index();
             let Some(alias) = aliases.get(access.resource, access.version) else {
-                continue; // a foreign handle, which validation reports
-            };
-            if let Some(why) = &conditioned.resources[r] {
-                conditioned.errors.push(GraphError::UsesDroppedResource {
-                    pass: pass.name.clone(),
-                    resource: graph.resources[r].name.clone(),
-                    why: why.clone(),
-                });
+                kept.push(access); // a foreign handle, which validation reports
                 continue;
-            }
-            if let (true, Some(lost_by)) = (access.role.reads(), alias.lost_by) {
-                conditioned.errors.push(GraphError::DroppedWriter {
-                    reader: pass.name.clone(),
-                    dropped: graph.passes[lost_by.index()].name.clone(),
-                    resource: graph.resources[r].name.clone(),
-                    why: conditioned.passes[lost_by.index()]
-                        .clone()
-                        .unwrap_or_default(),
-                });
+            };
+            let name = &graph.resources[r].name;
+            let gone = match (&conditioned.resources[r], alias.lost_by) {
+                (Some(why), _) => Some(Gone::Resource(why)),
+                (None, Some(lost_by)) if access.role.reads() => Some(Gone::Writer(lost_by)),
+                (None, _) => None,
+            };
+            let writer_why =
+                |pass: PassId| conditioned.passes[pass.index()].clone().unwrap_or_default();
+            match gone {
+                Some(gone) if access.optional => {
+                    let why = match gone {
+                        Gone::Resource(why) => format!("\"{name}\" is dropped: {why}"),
+                        Gone::Writer(writer) => format!(
+                            "its writer \"{}\" is dropped: {}",
+                            graph.passes[writer.index()].name,
+                            writer_why(writer)
+                        ),
+                    };
+                    conditioned.dropped_reads[p].push(DroppedRead {
+                        resource: access.resource,
+                        version: access.version,
+                        why,
+                    });
+                    continue;
+                }
+                Some(Gone::Resource(why)) => {
+                    conditioned.errors.push(GraphError::UsesDroppedResource {
+                        pass: pass.name.clone(),
+                        resource: name.clone(),
+                        why: why.clone(),
+                    });
+                    kept.push(access);
+                    continue;
+                }
+                Some(Gone::Writer(lost_by)) => {
+                    conditioned.errors.push(GraphError::DroppedWriter {
+                        reader: pass.name.clone(),
+                        dropped: graph.passes[lost_by.index()].name.clone(),
+                        resource: name.clone(),
+                        why: writer_why(lost_by),
+                    });
+                }
+                None => {}
             }
             access.version = alias.version;
+            kept.push(access);
         }
+        pass.accesses = kept;
     }
     for (resource, why) in conditioned
         .graph
@@ -244,6 +281,14 @@ fn rewire(graph: &Graph, aliases: &Aliases, conditioned: &mut Conditioned) {
     {
         resource.exported &= why.is_none();
     }
+}
+
+/// What an access finds gone in the conditioned graph.
+enum Gone<'a> {
+    /// The resource, for this reason.
+    Resource(&'a String),
+    /// The pass that alone wrote the version read.
+    Writer(PassId),
 }
 
 /// An output whose final contents only a dropped pass wrote would be undefined.

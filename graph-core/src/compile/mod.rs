@@ -217,6 +217,7 @@ impl Graph {
                     color: color.clone(),
                     depth_stencil: depth_stencil.clone(),
                     workgroups: pass.workgroups.clone(),
+                    dropped_reads: a.conditioned.dropped_reads[id.index()].clone(),
                     origin: pass.origin.clone(),
                 }
             })

@@ -60,6 +60,15 @@ pub fn text(plan: &Plan) -> String {
         if !pass.writes.is_empty() {
             let _ = writeln!(out, "         writes  {}", list(&pass.writes));
         }
+        for d in &pass.dropped_reads {
+            let _ = writeln!(
+                out,
+                "         skips   {}@{} (an optional read): {}",
+                plan.resource(d.resource).name,
+                d.version,
+                d.why
+            );
+        }
         for (location, c) in pass.color.iter().enumerate() {
             let _ = writeln!(out, "         color {location}: {}", color_ops(plan, c));
         }

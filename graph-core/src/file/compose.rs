@@ -197,6 +197,7 @@ impl<'a, 'r> Composer<'a, 'r> {
             values: Pairs::default(),
             inputs: bound(&part.takes),
             outputs: bound(&part.gives),
+            optional: Vec::new(),
         };
         let used = Used {
             part: path.display().to_string(),
@@ -325,6 +326,7 @@ impl<'a, 'r> Composer<'a, 'r> {
             when: instance.when(entry.when.as_ref()),
             inputs: names(&entry.inputs),
             outputs: names(&entry.outputs),
+            optional: entry.optional,
             params: entry.params,
             used: instance.used.clone(),
         });
@@ -361,6 +363,18 @@ impl<'a, 'r> Composer<'a, 'r> {
                     ErrorKind::EntryShape {
                         message: "a use of a part has no `params`: its passes' parameters are \
                               written in the part"
+                            .into(),
+                    },
+                ),
+            );
+        }
+        if let Some(slot) = entry.optional.first() {
+            self.errors.push(
+                source.error(
+                    slot,
+                    ErrorKind::EntryShape {
+                        message: "a use of a part has no `optional`: which reads are optional is \
+                              written at the part's passes"
                             .into(),
                     },
                 ),

@@ -91,12 +91,19 @@ pub(super) fn declare<'f>(
         if !decl.used.is_empty() {
             pass.origin(shown_uses(&decl.used));
         }
+        errors.extend(optional_slots(source, decl));
         if let Err(error) = plugin.setup(&mut pass, &mut slots) {
             errors.push(plugin_error(source, decl, error));
             continue;
         }
         plugins.insert(name.to_owned(), decl.plugin.as_str().to_owned());
         let finished = slots.finish();
+        for handle in &finished.optional {
+            match *handle {
+                AnyHandle::Texture(h) => pass.optional(h),
+                AnyHandle::Buffer(h) => pass.optional(h),
+            };
+        }
         for (slot, resource) in finished.unused {
             let kind = ErrorKind::UnusedSlot {
                 pass: name.to_owned(),
@@ -132,6 +139,27 @@ pub(super) fn declare<'f>(
         plugins,
         params,
         spans,
+    })
+}
+
+/// A pass's `optional` may name only its input-only slots: an output is what later
+/// passes read.
+fn optional_slots<'s>(
+    source: &'s Source<'_>,
+    decl: &'s PassDecl<'_>,
+) -> impl Iterator<Item = FileError> + 's {
+    decl.optional.iter().filter_map(move |slot| {
+        let why = match (decl.input(slot.as_str()), decl.output(slot.as_str())) {
+            (Some(_), None) => return None,
+            (_, Some(_)) => "is one of its outputs: only a read can be optional",
+            (None, None) => "is not one of its inputs",
+        };
+        let kind = ErrorKind::OptionalSlot {
+            pass: decl.name.as_str().to_owned(),
+            slot: slot.as_str().to_owned(),
+            why: why.to_owned(),
+        };
+        Some(source.error(slot, kind))
     })
 }
 

@@ -482,6 +482,17 @@ pub enum ErrorKind {
         resource: String,
     },
 
+    /// A pass's `optional` names a slot that is not one of its input-only slots.
+    #[error("pass \"{pass}\": optional slot \"{slot}\" {why}")]
+    OptionalSlot {
+        /// The pass, by name.
+        pass: String,
+        /// The slot name.
+        slot: String,
+        /// "is not in its inputs", "is in its outputs too: only a read can be optional".
+        why: String,
+    },
+
     /// Declaration and compile errors, the same as a graph built in code reports.
     #[error(transparent)]
     Graph(GraphError),

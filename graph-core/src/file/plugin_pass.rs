@@ -105,6 +105,7 @@ impl GraphBuilder {
                     input: read.map(|(n, _)| n),
                     output: Some(out.as_str()),
                     handle: read.map_or(handle, |(_, h)| h),
+                    optional: false,
                 }
             });
         let read_only = inputs
@@ -116,6 +117,7 @@ impl GraphBuilder {
                 input: Some(read.as_str()),
                 output: None,
                 handle,
+                optional: false,
             });
         let references = References::unrestricted();
         let parts = written.chain(read_only).collect();

@@ -188,6 +188,10 @@ pub(crate) struct Entry<'a> {
     /// A pass's slots, or a use's bindings of what the part gives.
     #[serde(borrow, default)]
     pub outputs: Pairs<Name<'a>, Name<'a>>,
+    /// A pass's input slots whose reads are optional: dropped, rather than an error,
+    /// where a condition drops what they read.
+    #[serde(borrow, default)]
+    pub optional: Vec<Name<'a>>,
 }
 
 /// A preset: a graph file named by `base` (relative to the preset's folder) with some
@@ -578,6 +582,9 @@ pub(crate) struct PassDecl<'a> {
     /// Slot name -> name of the version written. A slot also in `inputs` modifies what it
     /// reads, and this names the new version.
     pub outputs: Pairs<Name<'a>, Name<'a>>,
+    /// Input slots whose reads are optional
+    /// ([`PassBuilder::optional`](crate::PassBuilder::optional)): `optional: ["shadows"]`.
+    pub optional: Vec<Name<'a>>,
     /// The uses of parts it came from, outermost first (none when the graph's file
     /// writes it), for `explain` and messages.
     pub used: Vec<Used>,

@@ -34,6 +34,8 @@ struct Slot<'s> {
     output: Option<&'s str>,
     /// What the plugin gets: the version read, or version 0 of a freshly written resource.
     handle: AnyHandle,
+    /// The file marks the read `optional`.
+    optional: bool,
     used: bool,
     written: Option<AnyHandle>,
 }
@@ -67,6 +69,8 @@ pub(crate) struct SlotPart<'s> {
     pub input: Option<&'s str>,
     pub output: Option<&'s str>,
     pub handle: AnyHandle,
+    /// The read is optional (a file's `optional:`).
+    pub optional: bool,
 }
 
 /// What a pass's setup produced, for the loader.
@@ -75,6 +79,9 @@ pub(crate) struct Finished<'s> {
     pub written: Vec<(&'s str, &'s str, AnyHandle)>,
     /// Slots the plugin never took, with the name each holds.
     pub unused: Vec<(&'s str, &'s str)>,
+    /// The handles of the optional slots the plugin took: the loader marks the pass's
+    /// reads of them optional.
+    pub optional: Vec<AnyHandle>,
 }
 
 impl<'s> Slots<'s> {
@@ -111,6 +118,7 @@ impl<'s> Slots<'s> {
                     input,
                     output,
                     handle,
+                    optional: decl.optional.iter().any(|o| o.as_str() == name),
                 })
             })
             .collect::<Option<Vec<_>>>()?;
@@ -130,6 +138,7 @@ impl<'s> Slots<'s> {
                 input: p.input,
                 output: p.output,
                 handle: p.handle,
+                optional: p.optional,
                 used: false,
                 written: None,
             })
@@ -183,6 +192,15 @@ impl<'s> Slots<'s> {
         self.get(slot).map(|s| s.handle.kind())
     }
 
+    /// Whether the file marks the slot `optional` (an input-only slot): where a condition
+    /// drops what it reads, the compile drops the read rather than failing
+    /// ([`PassBuilder::optional`](crate::PassBuilder::optional), which the loader calls).
+    /// The plugin then prepares to run without it, asking `FrameResources::has` while
+    /// recording, before it builds what binds the slot.
+    pub fn optional(&self, slot: &str) -> bool {
+        self.get(slot).is_some_and(|s| s.optional)
+    }
+
     /// Whether the file lists the slot in `outputs`.
     pub fn is_output(&self, slot: &str) -> bool {
         self.get(slot).is_some_and(|s| s.output.is_some())
@@ -234,8 +252,12 @@ impl<'s> Slots<'s> {
         let mut finished = Finished {
             written: Vec::new(),
             unused: Vec::new(),
+            optional: Vec::new(),
         };
         for s in self.slots {
+            if s.used && s.optional {
+                finished.optional.push(s.handle);
+            }
             match (s.used, s.output, s.written) {
                 (false, _, _) => finished.unused.push((s.name, s.shown())),
                 (true, Some(output), Some(handle)) => {

@@ -421,7 +421,8 @@ impl Executor {
         }
         for planned_pass in &plan.passes {
             let pass = &graph.passes[planned_pass.id.index()];
-            for access in &pass.accesses {
+            let kept = pass.accesses.iter().filter(|a| !planned_pass.drops(a));
+            for access in kept {
                 let planned = &plan.resources[access.resource.index()];
                 let mismatch = || {
                     ExecuteError::Inconsistent(format!(
@@ -574,6 +575,7 @@ impl Executor {
                 objects,
                 pass: &node.name,
                 accesses: &node.accesses,
+                dropped: &planned.dropped_reads,
                 resources: &graph.resources,
                 failure: &failure,
                 held: &held,

@@ -6,7 +6,7 @@
 
 use rgraph_core::file::{PluginError, Slots};
 use rgraph_core::types::TextureFormat;
-use rgraph_core::{Aspect, PassBuilder};
+use rgraph_core::{Aspect, PassBuilder, TextureHandle};
 
 use super::textures::{self, Input, Texels, Want};
 use crate::shaders;
@@ -55,4 +55,29 @@ pub(crate) fn wgsl(input: Option<&Input>, group: u32, filter: ShadowFilter) -> S
         ),
         None => shaders::SHADOW_NONE.to_owned(),
     }
+}
+
+/// A pass's recorder as its shadows input makes it: the pass with the atlas (or without,
+/// where it has none), and, where the file marks the slot optional, the pass without it
+/// too, which the recording picks where the plan drops the read
+/// (`FrameResources::has`, common/gpu/shadowed.rs).
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct Shadowed<R> {
+    pub with: R,
+    /// The atlas the plan may drop, and the pass without it.
+    pub without: Option<(TextureHandle, R)>,
+}
+
+/// `make`'s pass for [`input`]'s atlas, and where the slot is optional, for none too.
+pub(crate) fn variants<R>(
+    slots: &Slots<'_>,
+    input: Option<Input>,
+    mut make: impl FnMut(Option<&Input>) -> Result<R, PluginError>,
+) -> Result<Shadowed<R>, PluginError> {
+    let with = make(input.as_ref())?;
+    let without = match input {
+        Some(atlas) if slots.optional("shadows") => Some((atlas.texture, make(None)?)),
+        _ => None,
+    };
+    Ok(Shadowed { with, without })
 }

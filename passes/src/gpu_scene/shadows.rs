@@ -15,15 +15,22 @@
 //!   texel grid, so shadow edges do not shimmer. Depth spans the scene's bounds along the
 //!   light, so casters outside the cascade still cast into it.
 //! - A spot light takes one perspective map over its cone, to its range.
-//! - Point lights cast no shadow yet.
+//! - A point light takes [`POINT_FACES`] perspective maps, a cube's faces (+x, -x, +y,
+//!   -y, +z, -z, shadow.wgsl picks one by the direction's largest axis), each a little
+//!   wider than 90 degrees so that the filter's taps, kept two texels inside a tile, still
+//!   cover the whole face.
 
 use glam::{DMat4, DVec3};
 
-use crate::shadows::{Shadows, ATLAS_GRID, CASCADES, SHADOW_VIEWS};
+use crate::shadows::{Shadows, ATLAS_GRID, CASCADES, POINT_FACES, SHADOW_VIEWS};
 use rgraph_scene::{Aabb, Camera, Light, LightKind, Projection, DEFAULT_CUTOFF_ILLUMINANCE};
 
 /// `LightData::shadow` of a light without a shadow map (shadow.wgsl's `NO_SHADOW`).
 pub(super) const NO_SHADOW: u32 = u32::MAX;
+
+/// Texels around each point-light face's own quarter of directions in its tile: the
+/// filter's taps stay two texels inside a tile (shadow.wgsl), and reach two more.
+const POINT_MARGIN: u32 = 4;
 
 /// The practical split scheme's weight of the logarithmic split against the uniform one.
 const SPLIT_LAMBDA: f64 = 0.75;
@@ -59,14 +66,15 @@ impl Shadowed {
 fn views_of(light: &Light) -> u32 {
     match light.kind {
         LightKind::Directional => CASCADES,
-        _ => 1,
+        LightKind::Point => POINT_FACES,
+        LightKind::Spot { .. } => 1,
     }
 }
 
 /// The lights of `lights` (in the light buffer's order) given shadow maps, with the
-/// index of each in `lights`: directional and spot lights that emit, by the share of the
-/// screen they may light seen from `camera` (every pixel for a directional light; the
-/// outline of a spot light's bounding sphere, for the vertical field of view), largest
+/// index of each in `lights`: lights that emit, by the share of the screen they may light
+/// seen from `camera` (every pixel for a directional light; the outline of a point or
+/// spot light's bounding sphere, for the vertical field of view), largest
 /// first and in buffer order among equals, at most `settings.lights`, skipping any whose
 /// views no longer fit the atlas.
 pub(super) fn select(
@@ -108,12 +116,11 @@ pub(super) fn select(
 }
 
 /// The share of the screen (0 to 1) `light` may light, roughly: what ranks lights for
-/// shadow maps. 0 for lights that cast no shadow.
+/// shadow maps.
 fn coverage(light: &Light, camera: &Camera) -> f64 {
     match light.kind {
         LightKind::Directional => 1.0,
-        LightKind::Point => 0.0,
-        LightKind::Spot { .. } => {
+        LightKind::Point | LightKind::Spot { .. } => {
             let Some(sphere) = light.bounding_sphere(DEFAULT_CUTOFF_ILLUMINANCE) else {
                 return 0.0;
             };
@@ -158,7 +165,7 @@ pub(super) fn views(
         let made: Vec<ShadowView> = match light.kind {
             LightKind::Directional => cascades(light, camera, aspect, tile, &scene),
             LightKind::Spot { outer_cone, .. } => vec![spot(light, outer_cone, camera, tile)],
-            LightKind::Point => Vec::new(),
+            LightKind::Point => point_faces(light, camera, tile),
         };
         for (i, mut view) in made.into_iter().enumerate() {
             let at = shadowed.first_view + i as u32;
@@ -323,12 +330,7 @@ fn slice_sphere(camera: &Camera, aspect: f64, a: f64, b: f64) -> (f64, f64) {
 /// A spot light's perspective map over its cone (a little wider, for the filter's
 /// taps at its rim), from a near plane at a thousandth of its range to the range.
 fn spot(light: &Light, outer_cone: f32, camera: &Camera, tile: f64) -> ShadowView {
-    let range = f64::from(
-        light
-            .effective_range(DEFAULT_CUTOFF_ILLUMINANCE)
-            .unwrap_or(1.0),
-    )
-    .max(1e-3);
+    let range = light_range(light);
     let fov = (2.0 * f64::from(outer_cone) * 1.05).min(170f64.to_radians());
     let direction = light.direction.as_dvec3().normalize();
     let up = match direction.y.abs() < 0.99 {
@@ -344,6 +346,49 @@ fn spot(light: &Light, outer_cone: f32, camera: &Camera, tile: f64) -> ShadowVie
     }
 }
 
+/// A point light's cube of perspective maps, in shadow.wgsl's face order: +x, -x, +y,
+/// -y, +z, -z. Each face's map is `tile` texels over a little more than 90 degrees: the
+/// face's own quarter of the directions takes the `tile - 2 * POINT_MARGIN` texels in the
+/// middle, so the filter's taps, which stay two texels inside the tile, never leave it.
+fn point_faces(light: &Light, camera: &Camera, tile: f64) -> Vec<ShadowView> {
+    let range = light_range(light);
+    let margin = f64::from(POINT_MARGIN);
+    // tan of the half angle: 1 at the face's edge, `tile / 2` texels from the centre of
+    // the `tile / 2 - margin` the face itself takes.
+    let tan_half = 0.5 * tile / (0.5 * tile - margin).max(1.0);
+    let fov = 2.0 * tan_half.atan();
+    let projection = DMat4::perspective_rh(fov, 1.0, range * 1e-3, range);
+    let faces = [
+        (DVec3::X, DVec3::NEG_Y),
+        (DVec3::NEG_X, DVec3::NEG_Y),
+        (DVec3::Y, DVec3::Z),
+        (DVec3::NEG_Y, DVec3::NEG_Z),
+        (DVec3::Z, DVec3::NEG_Y),
+        (DVec3::NEG_Z, DVec3::NEG_Y),
+    ];
+    faces
+        .iter()
+        .map(|&(direction, up)| {
+            let view = DMat4::look_to_rh(light.position, direction, up);
+            ShadowView {
+                clip_from_world: clip_from_camera_relative(projection * view, camera),
+                rect: [0.0; 4],
+                params: [(2.0 * tan_half / tile) as f32, 0.0, 1.0, 0.0],
+            }
+        })
+        .collect()
+}
+
+/// How far a point or spot light's maps reach: its effective range.
+fn light_range(light: &Light) -> f64 {
+    f64::from(
+        light
+            .effective_range(DEFAULT_CUTOFF_ILLUMINANCE)
+            .unwrap_or(1.0),
+    )
+    .max(1e-3)
+}
+
 /// `clip_from_world` taking camera-relative positions, as the shaders have them.
 fn clip_from_camera_relative(clip_from_world: DMat4, camera: &Camera) -> [[f32; 4]; 4] {
     (clip_from_world * DMat4::from_translation(camera.position))
@@ -354,6 +399,79 @@ fn clip_from_camera_relative(clip_from_world: DMat4, camera: &Camera) -> [[f32; 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shadows::ShadowFilter;
+    use glam::Vec3;
+
+    /// Point lights rank with the others by the screen they may light and take a cube's
+    /// six tiles: with four lights allowed, the sun (4 tiles) and the two nearest of
+    /// three point lights fill the 16 tiles, the farthest does not fit; every face of a
+    /// point light looks out of its position.
+    #[test]
+    fn point_lights_take_six_tiles_ranked_by_coverage() {
+        let light = |name: &str, kind, position: DVec3| Light {
+            name: name.into(),
+            kind,
+            color: [1.0; 3],
+            intensity: 5.0,
+            position,
+            direction: Vec3::NEG_Y,
+            range: Some(2.0),
+        };
+        let lights = [
+            light("far", LightKind::Point, DVec3::new(0.0, 1.0, -30.0)),
+            light("sun", LightKind::Directional, DVec3::ZERO),
+            light("near", LightKind::Point, DVec3::new(0.0, 1.0, -4.0)),
+            light("mid", LightKind::Point, DVec3::new(0.0, 1.0, -10.0)),
+        ];
+        let projection = Projection::Perspective {
+            yfov: 0.8,
+            znear: 0.1,
+            zfar: None,
+        };
+        let camera = Camera::look_at("c", DVec3::ZERO, DVec3::NEG_Z, DVec3::Y, projection);
+        let settings = Shadows {
+            filter: ShadowFilter::Pcf,
+            lights: 4,
+        };
+        let refs: Vec<&Light> = lights.iter().collect();
+        let chosen = select(&refs, &camera, settings);
+        let picked: Vec<(&str, u32)> = chosen
+            .iter()
+            .map(|(_, s)| (s.light.name.as_str(), s.first_view))
+            .collect();
+        assert_eq!(picked, [("sun", 0), ("near", 4), ("mid", 10)]);
+        let shadowed: Vec<Shadowed> = chosen.into_iter().map(|(_, s)| s).collect();
+        let views = views(&shadowed, &camera, 1.5, 1024, None);
+        assert_eq!(views[4].params, [0.0; 4], "no views without scene bounds");
+        let faces = point_faces(&lights[2], &camera, 1024.0);
+        assert_eq!(faces.len() as u32, POINT_FACES);
+        for (face, axis) in faces.iter().zip([
+            DVec3::X,
+            DVec3::NEG_X,
+            DVec3::Y,
+            DVec3::NEG_Y,
+            DVec3::Z,
+            DVec3::NEG_Z,
+        ]) {
+            // A point one unit out along the face's axis (camera-relative) lands at the
+            // middle of its map.
+            let clip = glam::Mat4::from_cols_array_2d(&face.clip_from_world)
+                * (lights[2].position + axis).as_vec3().extend(1.0);
+            let ndc = clip.truncate() / clip.w;
+            assert!(ndc.x.abs() < 1e-4 && ndc.y.abs() < 1e-4, "{axis}: {ndc}");
+            assert!((0.0..1.0).contains(&ndc.z), "{axis}: depth {}", ndc.z);
+        }
+        // The face's own 90 degrees end POINT_MARGIN texels inside its 1024.
+        let edge = glam::Mat4::from_cols_array_2d(&faces[0].clip_from_world)
+            * (lights[2].position + DVec3::new(1.0, 1.0, 0.0))
+                .as_vec3()
+                .extend(1.0);
+        let texels_in = (1.0 - (edge.y / edge.w).abs()) * 512.0;
+        assert!(
+            (texels_in - POINT_MARGIN as f32).abs() < 0.01,
+            "{texels_in}"
+        );
+    }
 
     /// A cascade's sphere keeps its size whichever way the camera looks.
     #[test]

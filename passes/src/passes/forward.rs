@@ -125,22 +125,26 @@ impl Plugin for Forward {
         targets.push(slots, pass, "hdr", want, ("vec4<f32>", params.background))?;
         let shadows = shadows::input(slots, pass)?;
         let filter = self.0.overrides.shadows.filter;
-        // Group 1 is the material's: the atlas is bound in group 2.
-        let generated = targets.wgsl() + &shadows::wgsl(shadows.as_ref(), 2, filter);
-        let source = shaders::FORWARD.compose_with(desc.samples, &generated)?;
-        let draw = SceneDraw {
-            fill_background: targets.fill(),
-            shadows,
-            ..SceneDraw::new(
-                "forward",
-                GatedShader::Forward,
-                source.source().to_owned(),
-                depth_rule,
-                targets.into_handles(),
-                depth,
-                params.shading.stages(false),
-            )
-        };
+        let (fill_background, wgsl) = (targets.fill(), targets.wgsl());
+        let handles = targets.into_handles();
+        let draw = shadows::variants(slots, shadows, |shadows| {
+            // Group 1 is the material's: the atlas is bound in group 2.
+            let generated = wgsl.clone() + &shadows::wgsl(shadows, 2, filter);
+            let source = shaders::FORWARD.compose_with(desc.samples, &generated)?;
+            Ok(SceneDraw {
+                fill_background,
+                shadows: shadows.copied(),
+                ..SceneDraw::new(
+                    "forward",
+                    GatedShader::Forward,
+                    source.source().to_owned(),
+                    depth_rule,
+                    handles.clone(),
+                    depth,
+                    params.shading.stages(false),
+                )
+            })
+        })?;
         self.0.record(pass, draw);
         Ok(())
     }

@@ -61,7 +61,7 @@ use rgraph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, Textur
 use crate::common::ao;
 use crate::common::depth::DepthRule;
 use crate::common::plugin::{yes, Shared, ONE_SAMPLE};
-use crate::common::shadows;
+use crate::common::shadows::{self, Shadowed};
 use crate::common::textures::{self, Input, Texels, Want, GBUFFER_INPUTS};
 use crate::shaders;
 
@@ -227,7 +227,7 @@ fn setup(
     accumulate: Accumulate,
     pass: &mut PassBuilder<'_>,
     slots: &mut Slots<'_>,
-) -> Result<(LightDraw, u32), PluginError> {
+) -> Result<(Shadowed<LightDraw>, u32), PluginError> {
     let want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
     let (depth, desc) = textures::input(slots, pass, "depth", want)?;
     pass.depth_stencil(depth, AspectAccess::ReadOnly, AspectAccess::ReadOnly);
@@ -263,29 +263,37 @@ fn setup(
         pass.color_output(h, ColorLoad::Load)
     })?;
     textures::must_modify(slots, "hdr", modifies, "adds light to it")?;
-    let source = match accumulate {
+    // The light pre-pass's ambient light is the material pass's, so no AO there (an
+    // "ao" slot is left unread, which the file loader reports), and no shadows yet.
+    let (ao, shadows) = match accumulate {
         Accumulate::Shaded => {
             let ao = ao::input(slots, pass)?;
             inputs.extend(ao);
-            let shadows = shadows::input(slots, pass)?;
-            inputs.extend(shadows);
-            let filter = shared.overrides.shadows.filter;
-            let generated = ao::wgsl(ao.as_ref()) + &shadows::wgsl(shadows.as_ref(), 1, filter);
-            shaders::LIGHT.compose_with(samples, &generated)?
+            (ao, shadows::input(slots, pass)?)
         }
-        // Its ambient light is the material pass's, so no AO here (an "ao" slot is
-        // left unread, which the file loader reports), and no shadows yet.
-        Accumulate::Light => shaders::LIGHT_PREPASS.compose(samples)?,
+        Accumulate::Light => (None, None),
     };
-    let draw = LightDraw {
-        source: source.source().to_owned(),
-        depth_rule: DepthRule::new(reversed_z),
-        frequency,
-        volumes,
-        hdr,
-        depth,
-        inputs,
-    };
+    let filter = shared.overrides.shadows.filter;
+    let draw = shadows::variants(slots, shadows, |shadows| {
+        let source = match accumulate {
+            Accumulate::Shaded => {
+                let generated = ao::wgsl(ao.as_ref()) + &shadows::wgsl(shadows, 1, filter);
+                shaders::LIGHT.compose_with(samples, &generated)?
+            }
+            Accumulate::Light => shaders::LIGHT_PREPASS.compose(samples)?,
+        };
+        let mut inputs = inputs.clone();
+        inputs.extend(shadows.copied());
+        Ok(LightDraw {
+            source: source.source().to_owned(),
+            depth_rule: DepthRule::new(reversed_z),
+            frequency,
+            volumes,
+            hdr,
+            depth,
+            inputs,
+        })
+    })?;
     Ok((draw, samples))
 }
 

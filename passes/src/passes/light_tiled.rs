@@ -14,6 +14,7 @@
 //!      tile: 16,                     // pixels per tile side
 //!      cull: true,                   // false: every light in every tile
 //!      view: shaded,                 // or edges | tile_lights | fragments | shadows
+//!                                    // | cascades
 //!  ),                                // (these are the defaults)
 //!  inputs: {
 //!      "albedo": "albedo", "normal": "normal", "material": "material",
@@ -83,8 +84,10 @@
 //! `edges` (red edge pixels, blue others, black without geometry, as debug_view's),
 //! `tile_lights` (lights each tile shades, directional ones included, as a heat map from
 //! blue for 1 to red for 64 or more), `fragments` (fragments per pixel: dark
-//! grey 1, green 2, blue 3, red 4 or more) and `shadows` (the visibility term of the
-//! most important shadowed light, from the `shadows` input: white lit, black shadowed).
+//! grey 1, green 2, blue 3, red 4 or more), `shadows` (the visibility term of the
+//! most important shadowed light, from the `shadows` input: white lit, black shadowed)
+//! and `cascades` (the first shadowed directional light's cascade at each pixel: red,
+//! green, blue, yellow from the nearest, grey past the last, darker in its shadow).
 
 use serde::Deserialize;
 
@@ -167,6 +170,10 @@ pub enum TiledView {
     /// of the filter's taps that see the surface, white lit to black shadowed) at each
     /// pixel's sample 0; needs the `shadows` input.
     Shadows,
+    /// Which cascade of the first shadowed directional light holds each pixel's sample 0
+    /// (red, green, blue, yellow from the nearest; grey past the last or without such a
+    /// light), darker where the light is shadowed; needs the `shadows` input.
+    Cascades,
 }
 
 impl TiledView {
@@ -178,6 +185,7 @@ impl TiledView {
             TiledView::TileLights => 2.0,
             TiledView::Fragments => 3.0,
             TiledView::Shadows => 4.0,
+            TiledView::Cascades => 5.0,
         }
     }
 
@@ -195,6 +203,7 @@ impl TiledView {
 }
 
 /// Where the pass reads its samples' depth.
+#[derive(Copy, Clone)]
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) enum Depth {
     /// A depth buffer (group 1, binding 5), in the convention its format gets.
@@ -341,31 +350,23 @@ impl Plugin for LightTiled {
         let ao = ao::input(slots, pass)?;
         inputs.extend(ao);
         let shadows = shadows::input(slots, pass)?;
-        if params.view == TiledView::Shadows && shadows.is_none() {
-            return Err(PluginError::Invalid(
-                "view: shadows shows the shadow maps' visibility term: give the pass a \
-                 \"shadows\" input (the shadow_maps pass's atlas)"
-                    .into(),
-            ));
+        let needs_shadows = match params.view {
+            TiledView::Shadows => Some("view: shadows shows the shadow maps' visibility term"),
+            TiledView::Cascades => Some("view: cascades shows the directional light's cascades"),
+            _ => None,
+        };
+        if let (Some(what), None) = (needs_shadows, &shadows) {
+            return Err(PluginError::Invalid(format!(
+                "{what}: give the pass a \"shadows\" input (the shadow_maps pass's atlas)"
+            )));
         }
-        inputs.extend(shadows);
         let filter = self.0.overrides.shadows.filter;
-        let generated =
-            generated + &ao::wgsl(ao.as_ref()) + &shadows::wgsl(shadows.as_ref(), 1, filter);
-        let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
+        let generated = generated + &ao::wgsl(ao.as_ref());
         // The device must allow the workgroup of each.
         let entries = match listed {
             true => vec![EDGES_RESET, PIXELS, EDGES],
             false => vec![PIXELS],
         };
-        for name in &entries {
-            let Some(entry) = shader.entry(name, Stage::Compute) else {
-                return Err(PluginError::Invalid(format!(
-                    "light_tiled.wgsl has no entry point {name}"
-                )));
-            };
-            pass.workgroup(entry.workgroup());
-        }
         let detector = match params.edges.detector {
             _ if layout.surfaces.visibility() => 4.0,
             Detector::Compare => 0.0,
@@ -394,17 +395,31 @@ impl Plugin for LightTiled {
                 f64::from(u8::from(params.shading == EdgeShading::Surfaces)),
             ));
         }
-        let dispatch = TiledDispatch {
-            source: shader.source().to_owned(),
-            entries,
-            constants,
-            view_depth_from_depth: !layout.stored_view_depth,
-            ids: visibility_ids,
-            tile: params.tile,
-            depth,
-            output,
-            inputs,
-        };
+        let dispatch = shadows::variants(slots, shadows, |shadows| {
+            let generated = generated.clone() + &shadows::wgsl(shadows, 1, filter);
+            let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
+            for name in &entries {
+                let Some(entry) = shader.entry(name, Stage::Compute) else {
+                    return Err(PluginError::Invalid(format!(
+                        "light_tiled.wgsl has no entry point {name}"
+                    )));
+                };
+                pass.workgroup(entry.workgroup());
+            }
+            let mut inputs = inputs.clone();
+            inputs.extend(shadows.copied());
+            Ok(TiledDispatch {
+                source: shader.source().to_owned(),
+                entries: entries.clone(),
+                constants: constants.clone(),
+                view_depth_from_depth: !layout.stored_view_depth,
+                ids: visibility_ids,
+                tile: params.tile,
+                depth,
+                output,
+                inputs,
+            })
+        })?;
         self.0.record(pass, dispatch);
         Ok(())
     }

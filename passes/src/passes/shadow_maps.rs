@@ -4,20 +4,22 @@
 //!
 //! ```ron
 //! (name: "shadow maps", plugin: "shadow_maps",
-//!  when: "shadows",             // the scene's feature: a directional or spot light
-//!                               // emits and the host has not turned shadows off
+//!  when: "shadows",             // the scene's feature: a light emits and the host
+//!                               // has not turned shadows off
 //!  params: (slope_bias: 2.0),   // the default: the raster's slope-scaled depth bias
 //!  outputs: { "atlas": "shadow_atlas" })   // depth32float, square, 1 sample
 //! ```
 //!
 //! The atlas is a grid of 4 x 4 tiles (`shadows::ATLAS_GRID`), one view each: the cascades
-//! of a directional light (4), a spot light's perspective map (1). Which lights get them
+//! of a directional light (4), a point light's cube faces (6), a spot light's perspective
+//! map (1). Which lights get them
 //! and where each view looks is the scene's, each frame (gpu_scene/shadows.rs): this pass
 //! writes the views for the frame's output and atlas size, then draws every opaque mesh
 //! (vertices pulled from storage, as the visibility raster does) once per view into its
 //! tile, depth only, standard Z, both faces, with a slope-scaled depth bias. The atlas is
 //! cleared to the far plane; tiles without a view stay clear. Alpha MASK materials cast
-//! as if solid, and point lights cast no shadow yet; on a GPU the compute raster could
+//! only where their base colour alpha (factor, vertex colour and texture, from the
+//! scene's texture table) reaches the cutoff, as they draw in the other passes; on a GPU the compute raster could
 //! draw the same maps (issue 39).
 
 use serde::Deserialize;
@@ -120,6 +122,8 @@ mod gpu {
 
     pub(crate) struct State {
         pipeline: wgpu::RenderPipeline,
+        /// For alpha MASK materials: the cutoff tested per fragment.
+        masked: wgpu::RenderPipeline,
         /// View `v`'s index at `v * stride`, bound with that dynamic offset.
         views: wgpu::BindGroup,
         stride: u32,
@@ -174,37 +178,41 @@ mod gpu {
                     Some(scene.layout()),
                     Some(&view_layout),
                     Some(scene.geometry_layout()),
+                    Some(scene.texture_table_layout()),
                 ],
             );
             let module = module(device, "shadow maps", &self.source);
-            let pipeline = PipelineDesc {
-                label: "shadow maps",
-                layout: &layout,
-                module: &module,
-                vertex: "vs_shadow",
-                buffers: &[],
-                fragment: "fs_shadow",
-                constants: &[],
-                targets: &[],
-                // Both faces: open meshes (a ground plane) and closed ones cast alike.
-                cull: None,
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: wgpu::TextureFormat::Depth32Float,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: Default::default(),
-                    bias: wgpu::DepthBiasState {
-                        constant: 0,
-                        slope_scale: self.slope_bias,
-                        clamp: 0.0,
-                    },
-                }),
-                samples: 1,
-                mask: !0,
-            }
-            .build(device);
+            let pipeline = |vertex, fragment| {
+                PipelineDesc {
+                    label: "shadow maps",
+                    layout: &layout,
+                    module: &module,
+                    vertex,
+                    buffers: &[],
+                    fragment,
+                    constants: &[],
+                    targets: &[],
+                    // Both faces: open meshes (a ground plane) and closed ones cast alike.
+                    cull: None,
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: wgpu::TextureFormat::Depth32Float,
+                        depth_write_enabled: Some(true),
+                        depth_compare: Some(wgpu::CompareFunction::Less),
+                        stencil: Default::default(),
+                        bias: wgpu::DepthBiasState {
+                            constant: 0,
+                            slope_scale: self.slope_bias,
+                            clamp: 0.0,
+                        },
+                    }),
+                    samples: 1,
+                    mask: !0,
+                }
+                .build(device)
+            };
             Ok(State {
-                pipeline,
+                pipeline: pipeline("vs_shadow", "fs_shadow"),
+                masked: pipeline("vs_shadow_masked", "fs_shadow_masked"),
                 views,
                 stride,
             })
@@ -219,12 +227,20 @@ mod gpu {
             // The views take camera-relative positions; group 0's camera is not read.
             pass.set_bind_group(0, scene.bind_group(DepthConvention::Standard), &[]);
             pass.set_bind_group(2, scene.geometry_group(device)?, &[]);
-            pass.set_pipeline(&state.pipeline);
+            // Textured alpha masks read the table.
+            let table = frame.scenes.texture_table(scene, device, resources.queue)?;
+            pass.set_bind_group(3, table, &[]);
             for (view, (x, y, side)) in (0u32..).zip(tiles) {
                 pass.set_viewport(x as f32, y as f32, side as f32, side as f32, 0.0, 1.0);
                 pass.set_scissor_rect(x, y, side, side);
                 pass.set_bind_group(1, &state.views, &[view * state.stride]);
-                scene.pull_meshes(pass, |_, _, _| true);
+                scene.pull_meshes(pass, |pass, _, material| {
+                    pass.set_pipeline(match material.masked {
+                        true => &state.masked,
+                        false => &state.pipeline,
+                    });
+                    true
+                });
             }
             Ok(())
         }

@@ -63,6 +63,7 @@ const VIEW_EDGES: u32 = 1u;
 const VIEW_TILE_LIGHTS: u32 = 2u;
 const VIEW_FRAGMENTS: u32 = 3u;
 const VIEW_SHADOWS: u32 = 4u;
+const VIEW_CASCADES: u32 = 5u;
 
 // The tile's depth bounds as order-preserving keys (depth_key): the largest key of the
 // negated depth is the nearest, the largest key of the depth the farthest. 0 (below
@@ -345,6 +346,25 @@ fn first_shadow_visibility(s: Surface) -> f32 {
     return 1.0;
 }
 
+// The cascades view's colour: which cascade of the first shadowed directional light holds
+// surface `s` (red, green, blue, yellow from the nearest; grey past the last, or without
+// such a light), darker where that light is shadowed.
+fn cascade_color(s: Surface) -> vec3<f32> {
+    let tints = array<vec3<f32>, 4>(
+        vec3<f32>(1.0, 0.2, 0.2),
+        vec3<f32>(0.2, 1.0, 0.2),
+        vec3<f32>(0.25, 0.4, 1.0),
+        vec3<f32>(1.0, 0.9, 0.2),
+    );
+    for (var i = 0u; i < light_count(); i++) {
+        let c = shadow_cascade(s, lights[i]);
+        if c != NO_CASCADE {
+            return tints[min(c, 3u)] * (0.35 + 0.65 * light_visibility(s, lights[i]));
+        }
+    }
+    return vec3<f32>(0.5);
+}
+
 // Clears the tile's shared state (invocation `local` 0), before a barrier.
 fn start_tile(local: u32) {
     if local == 0u {
@@ -560,6 +580,10 @@ fn cs_light_tiled(
         }
         case VIEW_SHADOWS: {
             let color = select(vec3<f32>(0.0), vec3<f32>(first_shadow_visibility(surface0)), lit0);
+            textureStore(out_tex, pixel, vec4<f32>(color, 1.0));
+        }
+        case VIEW_CASCADES: {
+            let color = select(vec3<f32>(0.0), cascade_color(surface0), lit0);
             textureStore(out_tex, pixel, vec4<f32>(color, 1.0));
         }
         case VIEW_FRAGMENTS: {

@@ -8,6 +8,8 @@
 
 // LightData::shadow of a light without a shadow map.
 const NO_SHADOW: u32 = 0xffffffffu;
+// shadow_cascade's answer outside every cascade.
+const NO_CASCADE: u32 = 0xffffffffu;
 
 // The generated SHADOW_FILTER: 0, one comparison at the nearest texel (`--shadows
 // hard`); 1, percentage-closer filtering, a 3 x 3 grid of bilinear comparison taps one
@@ -29,19 +31,42 @@ fn light_visibility(s: Surface, light: LightData) -> f32 {
     }
     var view = light.shadow;
     if light.kind == LIGHT_DIRECTIONAL {
-        // The first cascade reaching past the point's view depth; past the last, lit.
-        let depth = dot(s.position, camera.forward);
-        let cascades = u32(shadow_views.views[view].params.w);
-        var c = 0u;
-        while c + 1u < cascades && depth > shadow_views.views[view + c].params.y {
-            c++;
+        let c = shadow_cascade(s, light);
+        if c == NO_CASCADE {
+            return 1.0;
         }
         view += c;
-        if depth > shadow_views.views[view].params.y {
-            return 1.0;
+    }
+    if light.kind == LIGHT_POINT {
+        // The cube face the light sees the point through, by the direction's largest
+        // axis, in gpu_scene/shadows.rs's order: +x, -x, +y, -y, +z, -z.
+        let d = s.position - light.position;
+        let a = abs(d);
+        if a.x >= a.y && a.x >= a.z {
+            view += select(1u, 0u, d.x > 0.0);
+        } else if a.y >= a.z {
+            view += select(3u, 2u, d.y > 0.0);
+        } else {
+            view += select(5u, 4u, d.z > 0.0);
         }
     }
     return view_visibility(shadow_views.views[view], s, light);
+}
+
+// A directional light's cascade holding `s`: the first reaching past the point's view
+// depth, or NO_CASCADE past the last (lit) and for a light without maps.
+fn shadow_cascade(s: Surface, light: LightData) -> u32 {
+    if light.shadow == NO_SHADOW || light.kind != LIGHT_DIRECTIONAL {
+        return NO_CASCADE;
+    }
+    let view = light.shadow;
+    let depth = dot(s.position, camera.forward);
+    let cascades = u32(shadow_views.views[view].params.w);
+    var c = 0u;
+    while c + 1u < cascades && depth > shadow_views.views[view + c].params.y {
+        c++;
+    }
+    return select(c, NO_CASCADE, depth > shadow_views.views[view + c].params.y);
 }
 
 // The fraction of the light of `v` reaching `s`.

@@ -3,3 +3,10 @@
 fn light_visibility(s: Surface, light: LightData) -> f32 {
     return 1.0;
 }
+
+// No cascades either (shadow.wgsl's NO_CASCADE).
+const NO_CASCADE: u32 = 0xffffffffu;
+
+fn shadow_cascade(s: Surface, light: LightData) -> u32 {
+    return NO_CASCADE;
+}

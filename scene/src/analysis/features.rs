@@ -60,9 +60,9 @@ pub struct Features {
     /// `background` pass under this condition. [`Features::of`] and
     /// [`Features::general`] leave it unset.
     pub background: bool,
-    /// Some directional or spot light emits, so some light casts a shadow (point lights
-    /// cast none yet), and the host has not turned shadows off: the pipelines add their
-    /// shadow-map pass and shadowed light passes under `when: "shadows"`. [`Features::of`]
+    /// Some light emits, so some light casts a shadow (directional, spot and point lights
+    /// all do), and the host has not turned shadows off: the pipelines add their
+    /// shadow-map pass under `when: "shadows"`, and their light passes read it. [`Features::of`]
     /// sets it from the scene alone; a host that turns shadows off unsets it.
     pub shadows: bool,
     /// Not the scene's but the host's choice: expose each frame for its metered
@@ -141,7 +141,7 @@ impl Features {
             shallow_depth: DepthRange::of(scene)
                 .is_some_and(|range| range.shallow(&scene.camera.projection)),
             particles: scene.particles().next().is_some(),
-            shadows: light(|k| matches!(k, LightKind::Directional | LightKind::Spot { .. })),
+            shadows: light(|_| true),
             background: false,
             auto_exposure: false,
         }

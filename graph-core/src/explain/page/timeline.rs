@@ -218,6 +218,9 @@ fn pass_header(
                 p { strong { (pass.name) } ", a " (pass.kind) " pass, " (ordinal(column)) " to run" }
                 @if let Some(origin) = &pass.origin { p.origin { "From " (origin) "." } }
                 p { "Reads " (names(plan, &pass.reads)) "; writes " (names(plan, &pass.writes)) "." }
+                @for d in &pass.dropped_reads {
+                    p { "Skips the optional read of " (plan.resource(d.resource).name) ": " (d.why) "." }
+                }
                 @if !pass.color.is_empty() || pass.depth_stencil.is_some() {
                     ul {
                         @for (location, c) in pass.color.iter().enumerate() {

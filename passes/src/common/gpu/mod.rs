@@ -5,7 +5,8 @@
 //! device objects of a pass that reads them ([`input_pass`]), the recording of passes
 //! that draw the scene's meshes ([`scene_draw`]), the opaque draws as compute
 //! rasterisers see them ([`raster_draws`]), their triangles binned to tiles
-//! ([`tile_bins`]), and groups of storage buffers ([`storage`]).
+//! ([`tile_bins`]), groups of storage buffers ([`storage`]), and a pass set up with and
+//! without its optional shadow atlas ([`shadowed`]).
 
 pub(crate) mod bindings;
 pub(crate) mod input_pass;
@@ -13,6 +14,7 @@ pub(crate) mod pipeline;
 pub(crate) mod raster_draws;
 pub(crate) mod recorder;
 pub(crate) mod scene_draw;
+pub(crate) mod shadowed;
 pub(crate) mod storage;
 pub(crate) mod tile_bins;
 
