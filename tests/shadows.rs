@@ -528,31 +528,13 @@ fn the_cascades_view_colours_each_cascade_by_depth() {
         .features(SceneFeatures::of(&scene).names())
         .run(&gpu)
         .image(&gpu, "debug.cascades");
-    // The cascade a pixel's colour names, or None for black (no geometry).
-    let cascade = |p: [u8; 4]| -> Option<usize> {
-        let [r, g, b] = [p[0], p[1], p[2]].map(f64::from);
-        if r.max(g).max(b) < 8.0 {
-            return None;
-        }
-        let tints = [
-            [1.0, 0.2, 0.2],
-            [0.2, 1.0, 0.2],
-            [0.25, 0.4, 1.0],
-            [1.0, 0.9, 0.2],
-        ];
-        let top = r.max(g).max(b);
-        let off =
-            |t: [f64; 3]| (r / top - t[0]).abs() + (g / top - t[1]).abs() + (b / top - t[2]).abs();
-        let best = (0..4).min_by(|&a, &b| off(tints[a]).total_cmp(&off(tints[b])));
-        best.filter(|&c| off(tints[c]) < 0.3)
-    };
     let mut seen = std::collections::BTreeSet::new();
     for x in 0..w {
         let mut last = 0;
         // From the bottom (nearest ground) up.
         for y in (0..h).rev() {
             let p = view.at(x, y);
-            match cascade(p) {
+            match cascade_of(p) {
                 Some(c) => {
                     assert!(
                         c >= last,
@@ -572,4 +554,52 @@ fn the_cascades_view_colours_each_cascade_by_depth() {
     }
     assert!(seen.len() >= 3, "cascades seen: {seen:?}");
     assert_eq!(view.at(w / 2, 0), [0, 0, 0, 255], "the sky is black");
+}
+
+/// The cascade a pixel of the `cascades` view names by its colour (red, green, blue,
+/// yellow from the nearest, darker in shadow), or None for black (no geometry).
+fn cascade_of(p: [u8; 4]) -> Option<usize> {
+    let [r, g, b] = [p[0], p[1], p[2]].map(f64::from);
+    if r.max(g).max(b) < 8.0 {
+        return None;
+    }
+    let tints = [
+        [1.0, 0.2, 0.2],
+        [0.2, 1.0, 0.2],
+        [0.25, 0.4, 1.0],
+        [1.0, 0.9, 0.2],
+    ];
+    let top = r.max(g).max(b);
+    let off =
+        |t: [f64; 3]| (r / top - t[0]).abs() + (g / top - t[1]).abs() + (b / top - t[2]).abs();
+    let best = (0..4).min_by(|&a, &b| off(tints[a]).total_cmp(&off(tints[b])));
+    best.filter(|&c| off(tints[c]) < 0.3)
+}
+
+/// The cascades are fitted to the depths the camera sees (gpu_scene/seen_depths.rs), not
+/// from its near plane: on builtin:spheres, whose ground starts several units out, every
+/// one of the four cascades covers some of the image (at least 1% of its pixels each).
+#[test]
+fn every_cascade_covers_part_of_the_spheres() {
+    let gpu = gpu();
+    let scene = Scene::load("builtin:spheres").expect("a built-in scene");
+    for pipeline in [DEFAULT] {
+        let view = Render::new(pipeline, "builtin:spheres", (160, 90))
+            .with_scene(scene.clone())
+            .features(SceneFeatures::of(&scene).names())
+            .run(&gpu)
+            .image(&gpu, "debug.cascades");
+        let mut counts = [0usize; 4];
+        for p in view.pixels.iter() {
+            if let Some(c) = cascade_of(*p) {
+                counts[c] += 1;
+            }
+        }
+        let least = view.pixels.len() / 100;
+        assert!(
+            counts.iter().all(|&n| n >= least),
+            "{pipeline}: pixels per cascade, nearest first: {counts:?} (each should have \
+             {least} or more)"
+        );
+    }
 }
