@@ -33,11 +33,13 @@ pub(super) fn seen_depths(camera: &Camera, aspect: f64, boxes: &[Aabb]) -> Optio
         .filter_map(|b| box_depths(camera, aspect, to_view, b, znear, zfar))
         .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))?;
     let round = |d: f64, step: fn(f64) -> f64| STEP.powf(step(d.ln() / STEP.ln()));
+    let far = round(far, f64::ceil).min(zfar);
     let near = match near > 0.0 {
         true => round(near, f64::floor).max(znear),
-        false => near,
+        // An orthographic camera's near plane may be at 0, where the logarithmic split
+        // would put every cascade: start the range a ten-thousandth of its far end out.
+        false => far * 1e-4,
     };
-    let far = round(far, f64::ceil).min(zfar);
     (far > near).then_some((near, far))
 }
 
@@ -201,6 +203,26 @@ mod tests {
         };
         assert_eq!(seen_depths(&cam, 1.5, &[behind, aside]), None);
         assert_eq!(seen_depths(&cam, 1.5, &[b, behind, aside]), Some(got));
+    }
+
+    /// Geometry reaching an orthographic camera's near plane at 0 gives a range that
+    /// starts past 0, which the logarithmic split can divide.
+    #[test]
+    fn an_orthographic_range_from_zero_starts_past_it() {
+        let projection = Projection::Orthographic {
+            xmag: 2.0,
+            ymag: 2.0,
+            znear: 0.0,
+            zfar: 100.0,
+        };
+        let cam = Camera::look_at("o", DVec3::ZERO, DVec3::NEG_Z, DVec3::Y, projection);
+        let b = Aabb {
+            min: DVec3::new(-1.0, -1.0, -10.0),
+            max: DVec3::new(1.0, 1.0, 3.0),
+        };
+        let (near, far) = seen_depths(&cam, 1.0, &[b]).expect("in view");
+        assert!(far >= 10.0 && far <= 10.0 * STEP, "far {far}");
+        assert_eq!(near, far * 1e-4);
     }
 
     /// A ground plane running under and behind a camera that looks down at it: the
