@@ -221,7 +221,7 @@ mod tests {
             max: DVec3::new(1.0, 1.0, 3.0),
         };
         let (near, far) = seen_depths(&cam, 1.0, &[b]).expect("in view");
-        assert!(far >= 10.0 && far <= 10.0 * STEP, "far {far}");
+        assert!((10.0..=10.0 * STEP).contains(&far), "far {far}");
         assert_eq!(near, far * 1e-4);
     }
 
