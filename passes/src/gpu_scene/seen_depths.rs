@@ -62,11 +62,22 @@ fn box_depths(
     let solid = Hexahedron(padded.corners().map(|c| to_view * c));
     let deepest = solid.0.iter().map(|c| -c.z).fold(f64::MIN, f64::max);
     let shallowest = solid.0.iter().map(|c| -c.z).fold(f64::MAX, f64::min);
-    let far = zfar.min(deepest);
-    if far <= znear || shallowest >= zfar {
+    // Most boxes are wholly in view or wholly out of it (a city seen whole, a million
+    // buildings): their corners against the frustum's six planes say so without
+    // clipping. Each side is linear in the point, so all corners outside one plane is
+    // the whole box outside it.
+    let sides = solid.0.map(|p| {
+        let d = -p.z;
+        let (x, y) = half_extent(camera, aspect, d);
+        [d - znear, zfar - d, x - p.x, x + p.x, y - p.y, y + p.y]
+    });
+    if (0..6).any(|i| sides.iter().all(|s| s[i] < 0.0)) {
         return None;
     }
-    let frustum = frustum(camera, aspect, znear, far);
+    if sides.iter().flatten().all(|&s| s >= 0.0) {
+        return Some((shallowest, deepest));
+    }
+    let frustum = frustum(camera, aspect, znear, zfar.min(deepest));
     let depths = solid
         .clipped_by(&frustum)
         .chain(frustum.clipped_by(&solid))
@@ -77,19 +88,23 @@ fn box_depths(
     })
 }
 
-/// The view frustum between depths `near` and `far`, in view space, as a hexahedron.
-fn frustum(camera: &Camera, aspect: f64, near: f64, far: f64) -> Hexahedron {
-    // Half the width and height at depth d.
-    let half = |d: f64| match camera.projection {
+/// Half the view's width and height at view depth `d` (negative behind a perspective
+/// camera, so that the sides stay linear).
+fn half_extent(camera: &Camera, aspect: f64, d: f64) -> (f64, f64) {
+    match camera.projection {
         Projection::Perspective { yfov, .. } => {
             let tan_y = f64::from(yfov * 0.5).tan();
             (d * tan_y * aspect, d * tan_y)
         }
         Projection::Orthographic { ymag, .. } => (f64::from(ymag) * aspect, f64::from(ymag)),
-    };
+    }
+}
+
+/// The view frustum between depths `near` and `far`, in view space, as a hexahedron.
+fn frustum(camera: &Camera, aspect: f64, near: f64, far: f64) -> Hexahedron {
     Hexahedron(std::array::from_fn(|i| {
         let d = if i & 4 != 0 { far } else { near };
-        let (x, y) = half(d);
+        let (x, y) = half_extent(camera, aspect, d);
         let sign = |bit: usize| if i & bit != 0 { 1.0 } else { -1.0 };
         DVec3::new(sign(1) * x, sign(2) * y, -d)
     }))
