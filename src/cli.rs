@@ -211,7 +211,8 @@ pub struct FrameArgs {
     pub height: u32,
     /// What to draw (for `view`, first): final (the pipeline's "color" output) or a debug
     /// view NAME (its "debug.NAME" output): edges, albedo, normals, depth or lights in the
-    /// deferred pipelines; edges, fragments, shadows, cascades or motion (each pixel's motion
+    /// deferred pipelines, and shadows and cascades in deferred_msaa_4x, the tiled ones and
+    /// the lean one; edges, fragments, shadows, cascades or motion (each pixel's motion
     /// since the previous frame, grey where still: use it with --frames) in the default
     /// one. Only the passes this view needs run.
     #[arg(long, value_name = "VIEW", default_value = "final")]

@@ -465,27 +465,53 @@ fn bad_shadow_flags_are_usage_errors() {
     assert!(!dir.path().join("s.png").exists());
 }
 
-/// The default pipeline's `shadows` debug view shows the sun's visibility term:
-/// builtin:spheres' ground is white where lit and black in the spheres' shadows.
+/// The pipelines with the `shadows` and `cascades` debug views: the default (the
+/// visibility buffer's tiled shading) and the G-buffer ones (the light volumes' and the
+/// tiled, parts/shadow_debug_views.ron; the lean G-buffer's own).
+const SHADOW_VIEWS: [PipelineFile; 4] = [
+    DEFAULT,
+    PipelineFile::for_device("deferred_msaa_4x.ron"),
+    PipelineFile::for_device("deferred_msaa_4x_tiled.ron"),
+    PipelineFile::for_device("deferred_msaa_4x_lean.ron"),
+];
+
+/// The `shadows` debug view shows the sun's visibility term: builtin:spheres' ground is
+/// white where lit and black in the spheres' shadows, and the G-buffer pipelines' views
+/// are the default's (within 8/255 on 97% of pixels: they sample silhouettes
+/// differently).
 #[test]
 fn the_shadows_view_shows_the_visibility_term() {
     let gpu = gpu();
     let scene = Scene::load("builtin:spheres").expect("a built-in scene");
-    let view = Render::new(DEFAULT, "builtin:spheres", (160, 90))
-        .with_scene(scene.clone())
-        .features(SceneFeatures::of(&scene).names())
-        .run(&gpu)
-        .image(&gpu, "debug.shadows");
-    let white = view.count([255, 255, 255, 255]);
-    let black_ground = (45..90)
-        .flat_map(|y| (0..160).map(move |x| (x, y)))
-        .filter(|&(x, y)| view.at(x, y) == [0, 0, 0, 255])
-        .count();
-    assert!(white > view.pixels.len() / 3, "{white} white pixels");
-    assert!(
-        black_ground > 100,
-        "{black_ground} black pixels in the lower half"
-    );
+    let render = |pipeline| {
+        Render::new(pipeline, "builtin:spheres", (160, 90))
+            .with_scene(scene.clone())
+            .features(SceneFeatures::of(&scene).names())
+            .run(&gpu)
+            .image(&gpu, "debug.shadows")
+    };
+    let default = render(DEFAULT);
+    for pipeline in SHADOW_VIEWS {
+        let view = render(pipeline);
+        let white = view.count([255, 255, 255, 255]);
+        let black_ground = (45..90)
+            .flat_map(|y| (0..160).map(move |x| (x, y)))
+            .filter(|&(x, y)| view.at(x, y) == [0, 0, 0, 255])
+            .count();
+        assert!(
+            white > view.pixels.len() / 3,
+            "{pipeline}: {white} white pixels"
+        );
+        assert!(
+            black_ground > 100,
+            "{pipeline}: {black_ground} black pixels in the lower half"
+        );
+        let share = measure::share_within(&view, &default, 8, None);
+        assert!(
+            share >= 0.97,
+            "{pipeline}: only {share} of the view within 8/255 of the default pipeline's"
+        );
+    }
 }
 
 /// The default pipeline's `cascades` debug view: a long ground plane seen at a grazing
@@ -528,31 +554,13 @@ fn the_cascades_view_colours_each_cascade_by_depth() {
         .features(SceneFeatures::of(&scene).names())
         .run(&gpu)
         .image(&gpu, "debug.cascades");
-    // The cascade a pixel's colour names, or None for black (no geometry).
-    let cascade = |p: [u8; 4]| -> Option<usize> {
-        let [r, g, b] = [p[0], p[1], p[2]].map(f64::from);
-        if r.max(g).max(b) < 8.0 {
-            return None;
-        }
-        let tints = [
-            [1.0, 0.2, 0.2],
-            [0.2, 1.0, 0.2],
-            [0.25, 0.4, 1.0],
-            [1.0, 0.9, 0.2],
-        ];
-        let top = r.max(g).max(b);
-        let off =
-            |t: [f64; 3]| (r / top - t[0]).abs() + (g / top - t[1]).abs() + (b / top - t[2]).abs();
-        let best = (0..4).min_by(|&a, &b| off(tints[a]).total_cmp(&off(tints[b])));
-        best.filter(|&c| off(tints[c]) < 0.3)
-    };
     let mut seen = std::collections::BTreeSet::new();
     for x in 0..w {
         let mut last = 0;
         // From the bottom (nearest ground) up.
         for y in (0..h).rev() {
             let p = view.at(x, y);
-            match cascade(p) {
+            match cascade_of(p) {
                 Some(c) => {
                     assert!(
                         c >= last,
@@ -572,4 +580,53 @@ fn the_cascades_view_colours_each_cascade_by_depth() {
     }
     assert!(seen.len() >= 3, "cascades seen: {seen:?}");
     assert_eq!(view.at(w / 2, 0), [0, 0, 0, 255], "the sky is black");
+}
+
+/// The cascade a pixel of the `cascades` view names by its colour (red, green, blue,
+/// yellow from the nearest, darker in shadow), or None for black (no geometry).
+fn cascade_of(p: [u8; 4]) -> Option<usize> {
+    let [r, g, b] = [p[0], p[1], p[2]].map(f64::from);
+    if r.max(g).max(b) < 8.0 {
+        return None;
+    }
+    let tints = [
+        [1.0, 0.2, 0.2],
+        [0.2, 1.0, 0.2],
+        [0.25, 0.4, 1.0],
+        [1.0, 0.9, 0.2],
+    ];
+    let top = r.max(g).max(b);
+    let off =
+        |t: [f64; 3]| (r / top - t[0]).abs() + (g / top - t[1]).abs() + (b / top - t[2]).abs();
+    let best = (0..4).min_by(|&a, &b| off(tints[a]).total_cmp(&off(tints[b])));
+    best.filter(|&c| off(tints[c]) < 0.3)
+}
+
+/// The cascades are fitted to the depths the camera sees (gpu_scene/seen_depths.rs), not
+/// from its near plane: on builtin:spheres, whose ground starts several units out, every
+/// one of the four cascades covers some of the image (at least 1% of its pixels each),
+/// in every pipeline with the view.
+#[test]
+fn every_cascade_covers_part_of_the_spheres() {
+    let gpu = gpu();
+    let scene = Scene::load("builtin:spheres").expect("a built-in scene");
+    for pipeline in SHADOW_VIEWS {
+        let view = Render::new(pipeline, "builtin:spheres", (160, 90))
+            .with_scene(scene.clone())
+            .features(SceneFeatures::of(&scene).names())
+            .run(&gpu)
+            .image(&gpu, "debug.cascades");
+        let mut counts = [0usize; 4];
+        for p in view.pixels.iter() {
+            if let Some(c) = cascade_of(*p) {
+                counts[c] += 1;
+            }
+        }
+        let least = view.pixels.len() / 100;
+        assert!(
+            counts.iter().all(|&n| n >= least),
+            "{pipeline}: pixels per cascade, nearest first: {counts:?} (each should have \
+             {least} or more)"
+        );
+    }
 }

@@ -36,6 +36,7 @@ mod materials;
 pub mod mesh;
 mod particles;
 pub(crate) mod screen_rect;
+mod seen_depths;
 mod shadows;
 mod texture_table;
 mod textures;
@@ -396,13 +397,13 @@ impl GpuScene {
         let camera = &self.frame.inputs.camera;
         let aspect = f64::from(size.0.max(1)) / f64::from(size.1.max(1));
         let tile = atlas / crate::shadows::ATLAS_GRID;
-        let bounds = self
+        let boxes: Vec<_> = self
             .layer_draws(Layer::Opaque)
             .iter()
             .map(|(draw, _)| draw.bounds)
-            .reduce(|a, b| a.union(&b));
+            .collect();
         let shadowed = &self.frame.lights.shadowed;
-        let views = shadows::views(shadowed, camera, aspect, tile, bounds);
+        let views = shadows::views(shadowed, camera, aspect, tile, &boxes);
         queue.write_buffer(
             &self.upload.shadow_maps.views,
             0,

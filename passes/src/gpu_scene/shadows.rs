@@ -7,8 +7,9 @@
 //! cascades depend on the output's aspect ratio and the atlas's size.
 //!
 //! - A directional light takes [`CASCADES`] orthographic maps, splitting the view depths
-//!   the camera sees of the scene's bounds (the practical split scheme, λ = 0.75: Zhang
-//!   et al. 2006, as in Dimitrov's cascaded shadow maps). Each cascade is the sphere
+//!   the camera sees of the opaque meshes' bounding boxes (seen_depths.rs; the practical
+//!   split scheme, λ = 0.75: Zhang et al. 2006, as in Dimitrov's cascaded shadow maps).
+//!   Each cascade is the sphere
 //!   around its slice of the view frustum, whose size depends only on the slice, not on
 //!   the camera's rotation, and its centre is snapped to whole texels in the light's
 //!   world-anchored view: moving or turning the camera neither resizes nor shifts the
@@ -22,6 +23,7 @@
 
 use glam::{DMat4, DVec3};
 
+use super::seen_depths::seen_depths;
 use crate::shadows::{Shadows, ATLAS_GRID, CASCADES, POINT_FACES, SHADOW_VIEWS};
 use rgraph_scene::{Aabb, Camera, Light, LightKind, Projection, DEFAULT_CUTOFF_ILLUMINANCE};
 
@@ -142,30 +144,36 @@ fn coverage(light: &Light, camera: &Camera) -> f64 {
 }
 
 /// Every view of the `shadowed` lights for `camera` at `aspect` (width over height), with
-/// tiles of `tile` texels, around scene geometry within `bounds` (camera-relative). Views
-/// past the last stay zero.
+/// tiles of `tile` texels, around the opaque meshes' bounding boxes `boxes`
+/// (camera-relative). Views past the last stay zero.
 pub(super) fn views(
     shadowed: &[Shadowed],
     camera: &Camera,
     aspect: f64,
     tile: u32,
-    bounds: Option<Aabb>,
+    boxes: &[Aabb],
 ) -> ShadowViews {
     let mut views = [bytemuck::Zeroable::zeroed(); SHADOW_VIEWS as usize];
-    let Some(bounds) = bounds else {
+    let Some(bounds) = boxes.iter().copied().reduce(|a, b| a.union(&b)) else {
         return views;
     };
     let scene = Sphere {
         center: bounds.center() + camera.position,
         radius: 0.5 * bounds.size().length(),
     };
+    let seen = seen_depths(camera, aspect, boxes);
     let tile = f64::from(tile.max(1));
     for shadowed in shadowed {
         let light = &shadowed.light;
-        let made: Vec<ShadowView> = match light.kind {
-            LightKind::Directional => cascades(light, camera, aspect, tile, &scene),
-            LightKind::Spot { outer_cone, .. } => vec![spot(light, outer_cone, camera, tile)],
-            LightKind::Point => point_faces(light, camera, tile),
+        let made: Vec<ShadowView> = match (light.kind, seen) {
+            (LightKind::Directional, Some(seen)) => {
+                cascades(light, camera, aspect, tile, &scene, seen)
+            }
+            (LightKind::Directional, None) => Vec::new(),
+            (LightKind::Spot { outer_cone, .. }, _) => {
+                vec![spot(light, outer_cone, camera, tile)]
+            }
+            (LightKind::Point, _) => point_faces(light, camera, tile),
         };
         for (i, mut view) in made.into_iter().enumerate() {
             let at = shadowed.first_view + i as u32;
@@ -233,30 +241,16 @@ struct Sphere {
     radius: f64,
 }
 
-/// The view depths `[near, far]` the camera sees of geometry within `scene`: its near
-/// plane to its far plane, cut to the scene's bounds.
-fn seen_depths(camera: &Camera, scene: &Sphere) -> Option<(f64, f64)> {
-    let depth = (scene.center - camera.position).dot(camera.forward());
-    let (znear, zfar) = match camera.projection {
-        Projection::Perspective { znear, zfar, .. } => (znear, zfar.unwrap_or(f32::INFINITY)),
-        Projection::Orthographic { znear, zfar, .. } => (znear, zfar),
-    };
-    let near = (depth - scene.radius).max(f64::from(znear));
-    let far = (depth + scene.radius).min(f64::from(zfar));
-    (far > near).then_some((near, far))
-}
-
-/// A directional light's cascades over the depths the camera sees of `scene`.
+/// A directional light's cascades over the view depths `(near, far)` the camera sees of
+/// the geometry within `scene`.
 fn cascades(
     light: &Light,
     camera: &Camera,
     aspect: f64,
     tile: f64,
     scene: &Sphere,
+    (near, far): (f64, f64),
 ) -> Vec<ShadowView> {
-    let Some((near, far)) = seen_depths(camera, scene) else {
-        return Vec::new();
-    };
     let n = f64::from(CASCADES);
     let split = |i: f64| {
         let log = near * (far / near).powf(i / n);
@@ -441,7 +435,7 @@ mod tests {
             .collect();
         assert_eq!(picked, [("sun", 0), ("near", 4), ("mid", 10)]);
         let shadowed: Vec<Shadowed> = chosen.into_iter().map(|(_, s)| s).collect();
-        let views = views(&shadowed, &camera, 1.5, 1024, None);
+        let views = views(&shadowed, &camera, 1.5, 1024, &[]);
         assert_eq!(views[4].params, [0.0; 4], "no views without scene bounds");
         let faces = point_faces(&lights[2], &camera, 1024.0);
         assert_eq!(faces.len() as u32, POINT_FACES);
@@ -470,6 +464,68 @@ mod tests {
         assert!(
             (texels_in - POINT_MARGIN as f32).abs() < 0.01,
             "{texels_in}"
+        );
+    }
+
+    /// The cascades split the depths the camera sees of the meshes' boxes: over a ground
+    /// plane seen from 2 units up, the first starts past the near plane, where the
+    /// ground does, and the last ends where the view leaves the ground; a camera moved
+    /// a little keeps every cascade's size (the range is rounded to steps).
+    #[test]
+    fn cascades_split_the_seen_depths_and_keep_their_size() {
+        let sun = Light {
+            name: "sun".into(),
+            kind: LightKind::Directional,
+            color: [1.0; 3],
+            intensity: 3.0,
+            position: DVec3::ZERO,
+            direction: Vec3::new(0.3, -1.0, -0.2),
+            range: None,
+        };
+        let shadowed = [Shadowed {
+            light: sun,
+            first_view: 0,
+        }];
+        let projection = Projection::Perspective {
+            yfov: 0.8,
+            znear: 0.1,
+            zfar: None,
+        };
+        let cascades_at = |eye: DVec3| {
+            let camera = Camera::look_at(
+                "c",
+                eye,
+                eye + DVec3::new(0.0, -0.5, -1.0),
+                DVec3::Y,
+                projection,
+            );
+            let ground = Aabb {
+                min: DVec3::new(-50.0, 0.0, -50.0) - eye,
+                max: DVec3::new(50.0, 0.0, 50.0) - eye,
+            };
+            let views = views(&shadowed, &camera, 1.5, 1024, &[ground]);
+            let seen = seen_depths(&camera, 1.5, &[ground]).expect("the ground is seen");
+            (std::array::from_fn::<_, 4, _>(|i| views[i].params), seen)
+        };
+        let (params, (near, far)) = cascades_at(DVec3::new(0.0, 2.0, 0.0));
+        assert!(near > 2.0, "the ground starts {near} out");
+        assert!(far < 60.0, "the ground's end within the view: {far}");
+        assert_eq!(
+            params[3][1], far as f32,
+            "the last cascade ends at the far depth"
+        );
+        for pair in params.windows(2) {
+            assert!(
+                pair[0][1] < pair[1][1] && pair[0][0] < pair[1][0],
+                "{params:?}"
+            );
+        }
+        let (moved, _) = cascades_at(DVec3::new(0.003, 2.002, -0.004));
+        let sizes = |p: [[f32; 4]; 4]| p.map(|v| v[0]);
+        assert_eq!(
+            sizes(moved),
+            sizes(params),
+            "texel sizes after a small move"
         );
     }
 
