@@ -93,7 +93,7 @@ fn look(camera: &Camera, eye: DVec3, target: DVec3) -> Camera {
         eye,
         target,
         up,
-        camera.projection.clone(),
+        camera.projection,
     )
 }
 
