@@ -8,6 +8,7 @@
 //! ```ron
 //! (name: "taa", plugin: "taa",
 //!  params: (history_weight: 0.9,      // in [0, 1): the most the history weighs
+//!           motion_weight: 0.05,      // the frame's least weight per pixel of motion
 //!           samples: 4),              // the image's samples per pixel (default 1)
 //!  inputs: {
 //!      "hdr": "resolved",             // rgba16float, 1 sample: this frame, resolved
@@ -24,6 +25,14 @@
 //! more of the past, smoother and slower to follow change; 0.9, the default, weighs about
 //! the last 10 frames). A still camera's image therefore converges to the average of the
 //! jittered samples, the pixel's box average, as the 16-sample reference's does.
+//!
+//! Where the image moves, the frame weighs at least `motion_weight` per pixel of motion
+//! (velocity-weighted feedback): a moving history is resampled every frame, each time a
+//! little blurrier, and what the clamp lets through of a moving edge lags behind it, so
+//! the faster a pixel moves the less of its past it keeps. The motion a pixel is
+//! reprojected by is the front-most surface's of its 3 x 3 neighbourhood (by the view
+//! depth `motion_vectors` keeps in the motion's blue), so the pixels about a moving
+//! silhouette, whose centres may see the surface behind, follow the edge.
 //!
 //! The jitter spans 1/√`samples` of a pixel: the whole pixel for one sample, half of it
 //! for 4x MSAA, whose own samples already spread over the pixel (spanning the whole
@@ -49,6 +58,8 @@ pub struct Taa(pub(crate) Shared);
 pub struct TaaParams {
     /// The most the history weighs, in [0, 1).
     pub history_weight: f32,
+    /// The frame's least weight per pixel of the pixel's motion, at least 0.
+    pub motion_weight: f32,
     /// Samples per pixel of the image filtered (MSAA's), which the jitter's span
     /// follows; 1, 2, 4 or 8.
     pub samples: u32,
@@ -58,6 +69,7 @@ impl Default for TaaParams {
     fn default() -> TaaParams {
         TaaParams {
             history_weight: 0.9,
+            motion_weight: 0.05,
             samples: 1,
         }
     }
@@ -67,6 +79,7 @@ impl Default for TaaParams {
 pub(crate) struct TaaDispatch {
     source: String,
     history_weight: f32,
+    motion_weight: f32,
     history: TextureHandle,
     /// Group 1's textures, the output at binding 7.
     inputs: Vec<Input>,
@@ -92,6 +105,13 @@ impl Plugin for Taa {
                 "history_weight is {}, but must be at least 0 and below 1 (the share of the \
                  image the history keeps each frame)",
                 params.history_weight
+            )));
+        }
+        if !(params.motion_weight >= 0.0 && params.motion_weight.is_finite()) {
+            return Err(PluginError::Invalid(format!(
+                "motion_weight is {}, but must be a finite number of at least 0 (the \
+                 frame's least weight per pixel of motion)",
+                params.motion_weight
             )));
         }
         if ![1, 2, 4, 8].contains(&params.samples) {
@@ -129,6 +149,7 @@ impl Plugin for Taa {
         let dispatch = TaaDispatch {
             source,
             history_weight: params.history_weight,
+            motion_weight: params.motion_weight,
             history: history.texture,
             inputs: vec![current, motion, history, stored],
             target,
@@ -197,7 +218,7 @@ mod gpu {
                 false => state.frames.saturating_add(1),
             };
             let weight = (1.0 / state.frames as f32).max(1.0 - self.history_weight);
-            let bytes = [weight, 0.0, 0.0, 0.0];
+            let bytes = [weight, self.motion_weight, 0.0, 0.0];
             resources
                 .queue
                 .write_buffer(&state.frame, 0, bytemuck::cast_slice(&bytes));

@@ -4,6 +4,9 @@
 // then a block defining `pixel_motion(pixel)`: motion_objects.wgsl (a visibility buffer:
 // each pixel's triangle, moved by its mesh's transforms) or motion_depth.wgsl (a depth
 // buffer: static points, moved by the camera alone), with what it reads in group 1.
+// `pixel_motion` also gives the surface's view depth (FAR_AWAY where nothing was drawn),
+// which the motion texture keeps in blue: a temporal filter takes the front-most motion
+// of a neighbourhood by it.
 
 // The frame's matrices, written by the pass before each frame (gpu_scene's camera is
 // jittered; these are not). `current` and `previous` take a point relative to this
@@ -20,9 +23,16 @@ struct Motion {
 @group(1) @binding(7) var out_tex: OutTex;
 
 // 1: the debug view (rgba8unorm, 0.5 + motion / VIEW_RANGE per axis, blue 0.5); 0: the
-// motion itself (rgba16float: x, y, 0, 1).
+// motion itself (rgba16float: x, y, view depth, 1).
 override VIEW: u32 = 0u;
 const VIEW_RANGE: f32 = 32.0;
+// The view depth of a pixel where nothing was drawn: the largest finite half float.
+const FAR_AWAY: f32 = 65504.0;
+
+// The view depth of `p`, a point relative to this frame's (jittered) camera.
+fn view_depth(p: vec3<f32>) -> f32 {
+    return min(dot(p, camera.forward), FAR_AWAY);
+}
 
 // The pixel coordinate of clip-space point `clip`.
 fn to_pixel(clip: vec4<f32>) -> vec2<f32> {
@@ -49,9 +59,9 @@ fn cs_motion(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let m = pixel_motion(vec2<i32>(id.xy));
-    var out = vec4<f32>(m, 0.0, 1.0);
+    var out = vec4<f32>(m, 1.0);
     if VIEW == 1u {
-        out = vec4<f32>(clamp(0.5 + m / VIEW_RANGE, vec2<f32>(0.0), vec2<f32>(1.0)), 0.5, 1.0);
+        out = vec4<f32>(clamp(0.5 + m.xy / VIEW_RANGE, vec2<f32>(0.0), vec2<f32>(1.0)), 0.5, 1.0);
     }
     textureStore(out_tex, vec2<i32>(id.xy), out);
 }

@@ -1,15 +1,17 @@
 // motion.wgsl's `pixel_motion` from a depth buffer (common/opaque_depth.rs's block,
 // group 1): the point sample 0 of the pixel holds, taken to stay put in the world, so
 // only the camera moves it (a G-buffer records no object; a moving object's pixels move
-// as if it stood still). Where nothing was drawn, the direction of the ray.
+// as if it stood still). Where nothing was drawn, the direction of the ray. The motion in
+// x and y, the point's view depth in z.
 
 // The point is unprojected where sample 0 lies, whose depth it is: at the pixel's
 // centre, a slope's depth would put it off the surface.
-fn pixel_motion(pixel: vec2<i32>) -> vec2<f32> {
+fn pixel_motion(pixel: vec2<i32>) -> vec3<f32> {
     let at = vec2<f32>(pixel) + SAMPLE_POSITIONS[0];
     let depth = sample_depth_at(pixel, 0u);
     if depth == FAR_DEPTH {
-        return static_motion(vec4<f32>(ray_direction(at), 0.0));
+        return vec3<f32>(static_motion(vec4<f32>(ray_direction(at), 0.0)), FAR_AWAY);
     }
-    return static_motion(vec4<f32>(unproject(at, depth), 1.0));
+    let p = unproject(at, depth);
+    return vec3<f32>(static_motion(vec4<f32>(p, 1.0)), view_depth(p));
 }

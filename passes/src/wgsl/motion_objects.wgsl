@@ -2,14 +2,15 @@
 // pixel shows (`sample_id`, from visibility_textures.wgsl or visibility_samples.wgsl),
 // met by the ray through the pixel's centre (plane_hit.wgsl) at an object-space point
 // that its mesh's previous transform takes to where it was. Where nothing was drawn, the
-// direction of the ray, which only the camera's turn moves. Composed after motion.wgsl,
+// direction of the ray, which only the camera's turn moves. The motion in x and y, the
+// view depth of the hit in z. Composed after motion.wgsl,
 // geometry.wgsl, plane_hit.wgsl and the visibility buffer's reader.
 
-fn pixel_motion(pixel: vec2<i32>) -> vec2<f32> {
+fn pixel_motion(pixel: vec2<i32>) -> vec3<f32> {
     let at = vec2<f32>(pixel) + 0.5;
     let id = sample_id(pixel, 0u);
     if id == 0u {
-        return static_motion(vec4<f32>(ray_direction(at), 0.0));
+        return vec3<f32>(static_motion(vec4<f32>(ray_direction(at), 0.0)), FAR_AWAY);
     }
     let triangle = id - 1u;
     let m = mesh_of_triangle(triangle);
@@ -20,7 +21,9 @@ fn pixel_motion(pixel: vec2<i32>) -> vec2<f32> {
     let p0 = (mesh.model * vec4<f32>(o0, 1.0)).xyz;
     let e1 = (mesh.model * vec4<f32>(o1, 1.0)).xyz - p0;
     let e2 = (mesh.model * vec4<f32>(o2, 1.0)).xyz - p0;
-    let b = hit_plane(at, p0, e1, e2).b;
+    let hit = hit_plane(at, p0, e1, e2);
+    let b = hit.b;
     let object = vec4<f32>(b.x * o0 + b.y * o1 + b.z * o2, 1.0);
-    return to_pixel(motion.objects[2u * m] * object) - to_pixel(motion.objects[2u * m + 1u] * object);
+    let moved = to_pixel(motion.objects[2u * m] * object) - to_pixel(motion.objects[2u * m + 1u] * object);
+    return vec3<f32>(moved, view_depth(hit.origin + hit.ray * hit.along));
 }

@@ -8,8 +8,13 @@
 // (Salvi's variance clipping), so what the history shows of a surface no longer there (a
 // ghost) cannot outlast one frame where its colour lies outside that box; then this frame
 // weighs `current_weight` (the pass sets it each frame: 1 after a reset, 1 / n for the
-// n-th frame since, down to 1 - the history weight). Where the previous position is off
-// screen the frame is taken alone. Composed after common.wgsl.
+// n-th frame since, down to 1 - the history weight), or more where the image moves:
+// `motion_weight` per pixel of motion (velocity-weighted feedback), since every frame's
+// resampling of a moving history blurs it a little more and its clamped edges lag. The
+// motion is the front-most surface's of the 3 x 3 neighbourhood (the least view depth,
+// the motion texture's blue), so a silhouette's pixels, whose centre may see the surface
+// behind, follow the edge that moves over them. Where the previous position is off screen
+// the frame is taken alone. Composed after common.wgsl.
 
 @group(1) @binding(0) var current_tex: texture_2d<f32>;
 @group(1) @binding(1) var motion_tex: texture_2d<f32>;
@@ -19,8 +24,8 @@
 
 struct TaaFrame {
     current_weight: f32,
-    _pad0: f32,
-    _pad1: vec2<f32>,
+    motion_weight: f32,
+    _pad: vec2<f32>,
 }
 
 @group(1) @binding(9) var<storage, read_write> taa: TaaFrame;
@@ -95,9 +100,16 @@ fn cs_taa(@builtin(global_invocation_id) id: vec3<u32>) {
     var high = current;
     var sum = vec4<f32>(0.0);
     var squares = vec4<f32>(0.0);
+    // x, y: motion in pixels; z: view depth.
+    var front = textureLoad(motion_tex, pixel, 0).xyz;
     for (var dy = -1; dy <= 1; dy++) {
         for (var dx = -1; dx <= 1; dx++) {
-            let c = load_ycocg(clamp(pixel + vec2<i32>(dx, dy), vec2<i32>(0), last));
+            let at = clamp(pixel + vec2<i32>(dx, dy), vec2<i32>(0), last);
+            let m = textureLoad(motion_tex, at, 0).xyz;
+            if m.z < front.z {
+                front = m;
+            }
+            let c = load_ycocg(at);
             low = min(low, c);
             high = max(high, c);
             sum += c;
@@ -110,9 +122,9 @@ fn cs_taa(@builtin(global_invocation_id) id: vec3<u32>) {
     let deviation = sqrt(max(squares / 9.0 - mean * mean, vec4<f32>(0.0)));
     low = max(low, mean - GAMMA * deviation);
     high = min(high, mean + GAMMA * deviation);
-    let motion = textureLoad(motion_tex, pixel, 0).xy;
+    let motion = front.xy;
     let previous = (vec2<f32>(pixel) + 0.5 - motion) / vec2<f32>(size);
-    var weight = taa.current_weight;
+    var weight = max(taa.current_weight, min(length(motion) * taa.motion_weight, 1.0));
     if any(previous < vec2<f32>(0.0)) || any(previous > vec2<f32>(1.0)) {
         weight = 1.0;
     }

@@ -1,8 +1,10 @@
 //! `rgraph bench --motion orbit:DEG`: error over time. Each scene is drawn as a short
 //! sequence by every pipeline and by the reference, frame by frame: 16 still frames (a
 //! temporal filter's history fills), then `--motion-frames` frames with the camera
-//! orbiting DEG degrees in all about the scene's centre and the scene's first mesh moving
-//! sideways (1% of the scene's size a frame). Per pipeline: the GPU time per frame
+//! orbiting DEG degrees in all about the scene's centre and one object moving sideways (1%
+//! of the scene's size a frame): the scene's first mesh smaller than a quarter of it
+//! ([`moving_mesh`]), not a ground plane, whose shading (the shadows on it, its lights'
+//! falloff) would stay where it was while its motion vectors said it moved. Per pipeline: the GPU time per frame
 //! (median over the moving frames), the still FLIP (the last still frame against the
 //! reference's), the sequence FLIP (the mean over the moving frames of each frame's FLIP
 //! against the reference's same frame), and the instability: per pixel and channel, how
@@ -11,7 +13,8 @@
 //! flicker (a jittered edge that the image does not settle) and ghosting (a change that
 //! lags or smears) both count, a change the scene makes does not.
 //!
-//! Written as motion.md (the table) and motion.json in --out-dir.
+//! Written as motion.md (the table), motion.json (with each frame's FLIP) and motion.png
+//! (the FLIP frame by frame, src/commands/bench/charts/motion.rs) in --out-dir.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -22,6 +25,7 @@ use rgraph_passes::{FrameInputs, Host, Overrides};
 use rgraph_scene::glam::{DMat4, DVec3};
 use serde::Serialize;
 
+use super::charts::{self, Series};
 use super::error::BenchError;
 use super::image_error::flip_mean;
 use crate::cli::BenchArgs;
@@ -30,8 +34,10 @@ use crate::frame::{host, FrameError, Pipeline, Prepared, Session, Specialise};
 
 /// Still frames before the moving ones: one cycle of the TAA jitter.
 const STILL_FRAMES: u32 = 16;
-/// The first mesh moves this share of the scene's bounds diagonal each moving frame.
+/// The moving mesh moves this share of the scene's bounds diagonal each moving frame.
 const MESH_STEP: f64 = 0.01;
+/// The largest share of the scene's bounds diagonal the moving mesh's may be.
+const MOVING_MESH_SIZE: f64 = 0.25;
 
 /// What a motion bench measures without `--pipeline`: no AA, FXAA, MSAA 4x, TAA and MSAA
 /// 4x + TAA, all on the default (visibility buffer) path.
@@ -55,6 +61,9 @@ pub struct MotionRow {
     pub sequence_flip: f64,
     /// In 1/255 per channel.
     pub instability: f64,
+    /// The FLIP of each frame against the reference's: the last still frame, then the
+    /// moving ones.
+    pub flips: Vec<f64>,
 }
 
 #[derive(Serialize)]
@@ -131,10 +140,12 @@ pub fn bench(args: &BenchArgs, degrees: f64, session: &Session) -> Result<PathBu
             });
         }
         let start = FrameInputs::clone(&host.frame());
+        let moving = moving_mesh(&host.scene);
         let mut reference_last = None;
         for index in 0..STILL_FRAMES + frames {
-            let moving = index.saturating_sub(STILL_FRAMES - 1);
-            let inputs = posed(&host, &start, moving, degrees / f64::from(frames.max(1)));
+            let moving_frame = index.saturating_sub(STILL_FRAMES - 1);
+            let step = degrees / f64::from(frames.max(1));
+            let inputs = posed(&host, &start, (moving_frame, moving), step);
             host.set_frame(inputs)
                 .map_err(|e| failed(spec, e.to_string()))?;
             let measured = index + 1 >= STILL_FRAMES;
@@ -180,6 +191,7 @@ pub fn bench(args: &BenchArgs, degrees: f64, session: &Session) -> Result<PathBu
                 still_flip: d.still_flip,
                 sequence_flip: mean(&d.flips),
                 instability: mean(&d.unstable),
+                flips: [d.still_flip].into_iter().chain(d.flips).collect(),
             };
             eprintln!("{}", table_line(&row));
             rows.push(row);
@@ -188,9 +200,24 @@ pub fn bench(args: &BenchArgs, degrees: f64, session: &Session) -> Result<PathBu
     write(args, degrees, session, &rows)
 }
 
+/// The mesh the bench moves: the first whose world bounds' diagonal is at most
+/// `MOVING_MESH_SIZE` of the scene's (so not a ground plane), or none.
+fn moving_mesh(scene: &rgraph_scene::Scene) -> Option<usize> {
+    let size = (scene.bounds.max - scene.bounds.min).length();
+    scene.meshes.iter().position(|mesh| {
+        mesh.world_bounds()
+            .is_some_and(|b| (b.max - b.min).length() <= MOVING_MESH_SIZE * size)
+    })
+}
+
 /// The `index`-th moving frame's inputs (0: the start): the camera orbited by `step`
-/// degrees a frame about the scene's centre, the first mesh moved sideways.
-fn posed(host: &Host, start: &FrameInputs, index: u32, step: f64) -> FrameInputs {
+/// degrees a frame about the scene's centre, mesh `mesh` moved sideways.
+fn posed(
+    host: &Host,
+    start: &FrameInputs,
+    (index, mesh): (u32, Option<usize>),
+    step: f64,
+) -> FrameInputs {
     let scene = &host.scene;
     let index = f64::from(index);
     let mut inputs = FrameInputs {
@@ -199,10 +226,10 @@ fn posed(host: &Host, start: &FrameInputs, index: u32, step: f64) -> FrameInputs
             .orbited(scene.bounds.center(), (step * index).to_radians()),
         ..start.clone()
     };
-    if let Some(first) = inputs.transforms.first_mut() {
+    if let Some(moved) = mesh.and_then(|m| inputs.transforms.get_mut(m)) {
         let size = (scene.bounds.max - scene.bounds.min).length();
         let shift = DVec3::new(MESH_STEP * size * index, 0.0, 0.0);
-        *first = DMat4::from_translation(shift) * *first;
+        *moved = DMat4::from_translation(shift) * *moved;
     }
     inputs
 }
@@ -287,10 +314,10 @@ fn write(
     let lines: Vec<String> = rows.iter().map(table_line).collect();
     let markdown = format!(
         "# Error over time\n\n`{command}`\n\nAdapter {adapter}, {}x{}: {STILL_FRAMES} still frames, \
-         then {} frames with the camera orbiting {degrees} degrees and the first mesh moving \
-         sideways. Still FLIP: the last still frame; sequence FLIP: the mean over the moving \
+         then {} frames with the camera orbiting {degrees} degrees and the first mesh \
+         smaller than a quarter of the scene moving sideways. Still FLIP: the last still frame; sequence FLIP: the mean over the moving \
          frames; instability: how much more each frame changed than the reference's did \
-         (src/commands/bench/motion.rs).\n\n{HEADER}\n{}\n",
+         (src/commands/bench/motion.rs).\n\n{HEADER}\n{}\n\n![FLIP per frame](motion.png)\n",
         args.width,
         args.height,
         args.motion_frames,
@@ -314,6 +341,21 @@ fn write(
         Ok::<_, BenchError>(path)
     };
     written(out.join("motion.md"), markdown.as_bytes())?;
+    let series: Vec<Series<'_>> = rows
+        .iter()
+        .map(|r| Series {
+            scene: &r.scene,
+            pipeline: &r.pipeline,
+            flips: r.flips.clone(),
+        })
+        .collect();
+    // The adapter's name up to its driver's, which would not fit one panel's width.
+    let adapter = results.adapter.split(" [").next().unwrap_or_default();
+    let title = format!(
+        "FLIP per frame: {adapter}, {}x{}, orbit {degrees} degrees over {} frames",
+        args.width, args.height, args.motion_frames
+    );
+    charts::write_motion(&series, &title, out)?;
     written(out.join("motion.json"), json.as_bytes())
 }
 

@@ -2,6 +2,7 @@
 //! PNG writer as the images. Text uses the DejaVu Sans file committed under assets/fonts,
 //! registered with plotters' ab_glyph backend, so no system font is needed.
 
+mod motion;
 mod pareto;
 mod passes;
 mod scaling;
@@ -19,6 +20,7 @@ use super::error::BenchError;
 use super::results::{Results, Row};
 use crate::commands::write_png;
 
+pub use motion::Series;
 use pareto::pareto;
 use passes::passes;
 use scaling::scaling;
@@ -47,6 +49,14 @@ pub fn write_all(results: &Results, out: &Path) -> Result<(), BenchError> {
     })?;
     draw_png(&out.join("passes.png"), passes::size(results), |area| {
         passes(results, area)
+    })
+}
+
+/// Writes motion.png (`bench --motion`) into `out`: `series`' FLIP frame by frame, under
+/// `title`.
+pub fn write_motion(series: &[Series<'_>], title: &str, out: &Path) -> Result<(), BenchError> {
+    draw_png(&out.join("motion.png"), motion::size(series), |area| {
+        motion::motion(series, title, area)
     })
 }
 
