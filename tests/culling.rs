@@ -4,8 +4,8 @@
 //! bin_triangles.wgsl). Along camera paths that put objects behind the camera, cut them at
 //! the image's sides and the near plane and turn closed meshes' backs to it, and with
 //! meshes mirrored and squashed (transforms under which a normal cone no longer holds),
-//! every frame of one executor renders the same image, exactly, with `clusters: whole`
-//! (the default), `culled` and `off` (every triangle binned by itself, as before
+//! every frame of one executor renders the same image, exactly, with `clusters: culled`
+//! (the default), `whole` and `off` (every triangle binned by itself, as before
 //! clusters). The frames run through one executor each, so they also show that a frame's
 //! lists do not keep what an earlier frame culled or listed.
 
@@ -17,12 +17,12 @@ use crate::deferred_support::{gpu, Image, PipelineFile, Render};
 
 /// The compute raster, as on a GPU.
 const COMPUTE: PipelineFile = PipelineFile::gpu_branch("visibility_msaa_4x.ron");
-/// The raster pass's parameters as shipped (`clusters` left at its default, `whole`).
+/// The raster pass's parameters as shipped (`clusters` left at its default, `culled`).
 const SHIPPED: &str = "params: (other_samples: at_edges),";
 const MODES: [(&str, &str); 2] = [
     (
-        "culled",
-        "params: (other_samples: at_edges, clusters: culled),",
+        "whole",
+        "params: (other_samples: at_edges, clusters: whole),",
     ),
     ("off", "params: (other_samples: at_edges, clusters: off),"),
 ];
@@ -88,13 +88,7 @@ fn look(camera: &Camera, eye: DVec3, target: DVec3) -> Camera {
     } else {
         DVec3::Y
     };
-    Camera::look_at(
-        camera.name.clone(),
-        eye,
-        target,
-        up,
-        camera.projection,
-    )
+    Camera::look_at(camera.name.clone(), eye, target, up, camera.projection)
 }
 
 /// Each of [`CHANGES`]' frames of `scene` through one executor, with the raster pass's
@@ -124,10 +118,10 @@ fn differing(a: &Image, b: &Image) -> usize {
 }
 
 fn assert_culling_keeps_every_frame(scene: &'static str) {
-    let whole = frames(scene, SHIPPED);
+    let shipped = frames(scene, SHIPPED);
     // A frame that shows nothing would pass with anything culled: most frames show
     // edges (red in the edges view) of the scene's triangles.
-    let shown = whole
+    let shown = shipped
         .iter()
         .filter(|(_, edges)| edges.count(EDGE) > 0)
         .count();
@@ -136,11 +130,11 @@ fn assert_culling_keeps_every_frame(scene: &'static str) {
         "{scene}: only {shown} of the frames show an edge"
     );
     for (mode, params) in MODES {
-        for (k, (other, (color, edges))) in frames(scene, params).iter().zip(&whole).enumerate() {
+        for (k, (other, (color, edges))) in frames(scene, params).iter().zip(&shipped).enumerate() {
             let (colors, edges) = (differing(&other.0, color), differing(&other.1, edges));
             assert!(
                 colors == 0 && edges == 0,
-                "{scene}, {}: clusters {mode} and whole differ in {colors} pixels of the \
+                "{scene}, {}: clusters {mode} and culled differ in {colors} pixels of the \
                  colour and {edges} of the edges view",
                 CHANGES[k].0
             );

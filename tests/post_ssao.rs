@@ -303,9 +303,13 @@ fn tiled_lighting_applies_ssao_as_the_fragment_passes_do() {
         )
         .edit(
             r#""depth": "depth", "hdr": "hdr",
-                "shadows": "shadow_atlas","#,
+                "shadows": "shadow_atlas",
+            },
+            // Without"#,
             r#""depth": "depth", "hdr": "hdr", "ao": "ao",
-                "shadows": "shadow_atlas","#,
+                "shadows": "shadow_atlas",
+            },
+            // Without"#,
         )
         .read(&gpu, &["color"]);
     let fragment = Render::new(PIPELINE, "builtin:dense", SIZE).read(&gpu, &["color"]);

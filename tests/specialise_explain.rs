@@ -46,18 +46,18 @@ fn an_unlit_scene_s_plan_says_what_it_drops_and_saves() {
         "features: no_lights, shallow_depth, unlit_only\n",
         "    0. gbuffer (unlit) (render)",
         "dropped passes:\n  - gbuffer: condition \"!unlit_only\" is false\n",
-        "against the plan for a scene using every feature (features: blend, shadows):\n  passes: 6 instead of 14\n",
+        "against the plan for a scene using every feature (features: blend, shadows):\n  passes: 6 instead of 16\n",
         "    - light edges: condition \"!unlit_only & !no_lights\" is false (\"unlit_only\" is set, \"no_lights\" is set)\n",
         "    not allocated: normal (64.0 KiB): condition \"!unlit_only\" is false\n",
         // The general plan draws shadow maps into a 64 MiB atlas; an unlit scene none.
-        "  memory: 416.0 KiB physical instead of 64.6 MiB (64.2 MiB saved, 99%)\n",
+        "  memory: 416.0 KiB physical instead of 64.7 MiB (64.3 MiB saved, 99%)\n",
     ] {
         assert!(stdout.contains(expected), "no {expected:?} in:\n{stdout}");
     }
 }
 
 /// A lit scene without BLEND materials keeps the general plan but for the transparent
-/// passes, whose accumulation target shares the lit HDR target's memory.
+/// passes and their accumulation target.
 #[test]
 fn a_lit_scene_keeps_the_general_plan_but_the_transparent_passes() {
     let (code, stdout, _) = explain("builtin:spheres", "text");
@@ -65,9 +65,9 @@ fn a_lit_scene_keeps_the_general_plan_but_the_transparent_passes() {
     assert!(stdout.contains(
         "features ambient, directional_lights, lit, point_lights, shadows, shallow_depth\n"
     ));
-    assert!(stdout.contains("  passes: 12 instead of 14\n    - transparent: condition \"blend\" is false\n    - composite transparent: condition \"blend\" is false\n"), "{stdout}");
+    assert!(stdout.contains("  passes: 14 instead of 16\n    - transparent: condition \"blend\" is false\n    - composite transparent: condition \"blend\" is false\n"), "{stdout}");
     assert!(
-        stdout.contains("  memory: 64.6 MiB physical instead of 64.6 MiB (0 B saved, 0%)\n"),
+        stdout.contains("  memory: 64.6 MiB physical instead of 64.7 MiB (128.0 KiB saved, 0%)\n"),
         "{stdout}"
     );
 }
@@ -80,6 +80,8 @@ fn a_scene_s_plan_lists_the_shader_variants_it_builds() {
     let expected = "\nshader variants built:\n\
         \x20 gbuffer.wgsl {} instead of {textures, emissive_textures, metal_rough_textures, \
         normal_textures, occlusion_textures, double_sided, emissive}: gbuffer\n\
+        \x20 light_tiled.wgsl {directional_lights, point_lights} instead of \
+        {directional_lights, point_lights, spot_lights, environment}: debug shadows, debug cascades\n\
         \x20 light.wgsl {directional_lights, point_lights} instead of \
         {directional_lights, point_lights, spot_lights, environment}: light edges, light the rest\n";
     assert!(
@@ -128,7 +130,9 @@ fn json_carries_the_features_and_the_dropped_passes() {
             "auto exposure",
             "tonemap (auto exposure)",
             "debug normals",
-            "debug lights"
+            "debug lights",
+            "debug shadows",
+            "debug cascades"
         ]
     );
 }
@@ -152,7 +156,7 @@ fn a_shallow_scene_s_plan_says_which_depth_format_it_picks_and_why() {
     for expected in [
         "    format of depth: depth24plus-stencil8 instead of depth32float-stencil8: \
          condition \"shallow_depth\" holds\n",
-        "  memory: 64.6 MiB physical instead of 64.6 MiB (64.0 KiB saved, 0%)\n",
+        "  memory: 64.6 MiB physical instead of 64.8 MiB (192.0 KiB saved, 0%)\n",
     ] {
         assert!(stdout.contains(expected), "no {expected:?} in:\n{stdout}");
     }

@@ -96,6 +96,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
             ("tonemap (auto exposure)", fixed),
             ("debug normals", not_lit),
             ("debug lights", not_lit),
+            ("debug shadows", no_shadow),
+            ("debug cascades", no_shadow),
         ]
     );
     for channel in ["normal", "material"] {

@@ -173,6 +173,10 @@ fn each_builtin_scene_s_variants() {
     for (scene, [gbuffer, lighting], forward) in expected {
         let mut deferred = vec![gbuffer.to_owned()];
         if !lighting.is_empty() {
+            // Every lit built-in scene has shadows: the shadows and cascades views take
+            // the tiled pass's shader, specialised as the light passes' is.
+            let views = lighting.replace("light.wgsl", "light_tiled.wgsl");
+            deferred.push(format!("{views}: debug shadows, debug cascades"));
             deferred.push(format!("{lighting}: {light}"));
         }
         assert_eq!(variants("deferred_msaa_4x.ron", scene), deferred, "{scene}");

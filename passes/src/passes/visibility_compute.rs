@@ -20,7 +20,7 @@
 //!  params: (
 //!      tile: 16,                    // pixels per tile side, 4 to 16 (the default)
 //!      other_samples: everywhere,   // or at_edges: below
-//!      clusters: whole,             // or culled, or off: below
+//!      clusters: culled,            // or whole, or off: below
 //!  ),
 //!  outputs: { "samples": "samples" })    // Buffer(per_sample: 8, samples: 4)
 //! ```
@@ -37,7 +37,7 @@
 //! the scene is uploaded), which the bins cull and list before any triangle
 //! (bin_triangles.wgsl): `clusters: culled` drops those wholly outside the view volume
 //! (by their box) and those showing only back faces (by their normal cone), and bins the
-//! rest triangle by triangle; `whole`, the default, also lists a cluster within the depth
+//! rest triangle by triangle (the default); `whole` also lists a cluster within the depth
 //! planes touching at most 4 tiles once per tile, whose raster sets its triangles up
 //! itself, so that binning a dense mesh takes an atomic per cluster and tile, not per
 //! triangle and tile; `off` bins every triangle, as before clusters. The image is the same
@@ -85,9 +85,10 @@ pub struct VisibilityComputeParams {
 #[serde(rename_all = "snake_case")]
 pub enum Clusters {
     /// Culled, and listed whole in the tiles they touch where they are small on screen.
-    #[default]
     Whole,
-    /// Culled; every triangle of those left binned by itself.
+    /// Culled; every triangle of those left binned by itself. The default: `whole` was
+    /// measured slower on the H100 (docs/design/compute-raster.md).
+    #[default]
     Culled,
     /// Neither: every triangle binned by itself.
     Off,
