@@ -257,6 +257,34 @@ pub fn grid(n: usize) -> (usize, usize) {
 }
 
 /// Turns a plotters error into text.
+/// Each of `lines` drawn in `chart` in the i-th colour, a mark of `radius` pixels at each
+/// point (the motion and scaling charts).
+pub fn marked_lines<'a, X, Y>(
+    chart: &mut ChartContext<'a, BitMapBackend<'a>, Cartesian2d<X, Y>>,
+    lines: &[Vec<(f64, f64)>],
+    radius: i32,
+) -> DrawResult
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    for (i, line) in lines.iter().enumerate() {
+        chart
+            .draw_series(LineSeries::new(
+                line.iter().copied(),
+                color(i).stroke_width(2),
+            ))
+            .map_err(text)?;
+        chart
+            .draw_series(
+                line.iter()
+                    .map(|&p| Circle::new(p, radius, color(i).filled())),
+            )
+            .map_err(text)?;
+    }
+    Ok(())
+}
+
 pub fn text<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }

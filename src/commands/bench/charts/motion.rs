@@ -4,7 +4,7 @@
 
 use plotters::prelude::*;
 
-use super::{color, distinct, font, grid, text, tick, Area, DrawResult, Legend};
+use super::{distinct, font, grid, marked_lines, text, tick, Area, DrawResult, Legend};
 
 const PANEL: (u32, u32) = (760, 480);
 const TITLE_HEIGHT: u32 = 40;
@@ -91,16 +91,5 @@ fn panel_chart(area: &Area, scene: &str, lines: &[Vec<(f64, f64)>]) -> DrawResul
         .y_label_formatter(&|v| tick(*v))
         .draw()
         .map_err(text)?;
-    for (i, line) in lines.iter().enumerate() {
-        chart
-            .draw_series(LineSeries::new(
-                line.iter().copied(),
-                color(i).stroke_width(2),
-            ))
-            .map_err(text)?;
-        chart
-            .draw_series(line.iter().map(|&p| Circle::new(p, 3, color(i).filled())))
-            .map_err(text)?;
-    }
-    Ok(())
+    marked_lines(&mut chart, lines, 3)
 }

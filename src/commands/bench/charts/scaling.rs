@@ -7,7 +7,8 @@
 use plotters::prelude::*;
 
 use super::{
-    color, count, distinct, font, grid, log_axis, pipelines, text, tick, Area, DrawResult, Legend,
+    count, distinct, font, grid, log_axis, marked_lines, pipelines, text, tick, Area, DrawResult,
+    Legend,
 };
 use crate::cli::Sweep;
 use crate::commands::bench::results::{Results, Row};
@@ -191,16 +192,5 @@ fn panel_chart(
         .y_label_formatter(&|v| tick(*v))
         .draw()
         .map_err(text)?;
-    for (i, line) in lines.iter().enumerate() {
-        chart
-            .draw_series(LineSeries::new(
-                line.iter().copied(),
-                color(i).stroke_width(2),
-            ))
-            .map_err(text)?;
-        chart
-            .draw_series(line.iter().map(|&p| Circle::new(p, 4, color(i).filled())))
-            .map_err(text)?;
-    }
-    Ok(())
+    marked_lines(&mut chart, lines, 4)
 }
