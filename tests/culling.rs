@@ -8,8 +8,15 @@
 //! (the default), `whole` and `off` (every triangle binned by itself, as before
 //! clusters). The frames run through one executor each, so they also show that a frame's
 //! lists do not keep what an earlier frame culled or listed.
+//!
+//! The shadow maps' views draw only the clusters they may see (`shadow_maps`'s
+//! `clusters`, gpu_scene/view_culling.rs): along the same frames, which move the cascades
+//! with the camera, the colour and the shadows view are those of drawing every mesh
+//! whole into every view.
 
+use rgraph_core::Features;
 use rgraph_passes::FrameInputs;
+use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::glam::{DMat4, DVec3};
 use rgraph_scene::{Camera, Scene};
 
@@ -30,6 +37,19 @@ const MODES: [(&str, &str); 2] = [
 const EDGE: [u8; 4] = [255, 0, 0, 255];
 /// Tiles of 16 pixels: 10 x 6 of them, so that clusters touch one tile, a few, or many.
 const SIZE: (u32, u32) = (160, 96);
+
+/// The shadow maps' pass as shipped (`clusters` left at its default, `culled`), and
+/// drawing every mesh whole.
+const SHADOWS_SHIPPED: (&str, &str) = (SHADOW_MAPS, SHADOW_MAPS);
+const SHADOWS_OFF: (&str, &str) = (
+    SHADOW_MAPS,
+    "plugin: \"shadow_maps\", params: (clusters: off),",
+);
+const SHADOW_MAPS: &str = "plugin: \"shadow_maps\",";
+/// A pixel of the shadows view in the most important light's shadow: black, or nearly.
+fn in_shadow(pixel: [u8; 4]) -> bool {
+    pixel[0] < 64
+}
 
 /// A frame's change of the scene's own inputs, and what it is called in messages.
 type Change = (&'static str, fn(&mut FrameInputs, &Scene));
@@ -94,10 +114,22 @@ fn look(camera: &Camera, eye: DVec3, target: DVec3) -> Camera {
 /// Each of [`CHANGES`]' frames of `scene` through one executor, with the raster pass's
 /// parameters `params`: the colour and the edges view.
 fn frames(scene: &'static str, params: &'static str) -> Vec<(Image, Image)> {
+    frames_of(scene, (SHIPPED, params), "debug.edges", Features::new())
+}
+
+/// Each of [`CHANGES`]' frames of `scene` through one executor, the pipeline edited by
+/// `edit` and compiled for `features`: the colour and the image `view`.
+fn frames_of(
+    scene: &'static str,
+    (from, to): (&'static str, &'static str),
+    view: &str,
+    features: Features,
+) -> Vec<(Image, Image)> {
     let gpu = gpu();
     let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
     let mut frame = Render::new(COMPUTE, scene, SIZE)
-        .edit(SHIPPED, params)
+        .edit(from, to)
+        .features(features)
         .run(&gpu);
     let own = frame.inputs();
     CHANGES
@@ -106,7 +138,7 @@ fn frames(scene: &'static str, params: &'static str) -> Vec<(Image, Image)> {
             let mut inputs = own.clone();
             change(&mut inputs, &loaded);
             frame.next(inputs);
-            (frame.image(&gpu, "color"), frame.image(&gpu, "debug.edges"))
+            (frame.image(&gpu, "color"), frame.image(&gpu, view))
         })
         .collect()
 }
@@ -159,4 +191,50 @@ fn culling_keeps_every_visible_triangle_of_a_city() {
 #[test]
 fn culling_keeps_every_visible_triangle_of_a_heightfield() {
     assert_culling_keeps_every_frame("builtin:terrain");
+}
+
+fn assert_shadow_views_keep_every_frame(scene: &'static str) {
+    // Compiled as `rgraph render` compiles it: with shadows where the scene's lights emit.
+    let features = || {
+        let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
+        SceneFeatures::of(&loaded).names()
+    };
+    let shipped = frames_of(scene, SHADOWS_SHIPPED, "debug.shadows", features());
+    // A scene whose shadows fall nowhere on screen would pass with every caster culled.
+    let shown = shipped
+        .iter()
+        .filter(|(_, shadows)| shadows.pixels.iter().any(|&p| in_shadow(p)))
+        .count();
+    assert!(
+        shown >= 4,
+        "{scene}: only {shown} of the frames show a shadow"
+    );
+    let whole = frames_of(scene, SHADOWS_OFF, "debug.shadows", features());
+    for (k, (other, (color, shadows))) in whole.iter().zip(&shipped).enumerate() {
+        let (colors, shadows) = (differing(&other.0, color), differing(&other.1, shadows));
+        assert!(
+            colors == 0 && shadows == 0,
+            "{scene}, {}: shadow maps drawn whole and culled differ in {colors} pixels of \
+             the colour and {shadows} of the shadows view",
+            CHANGES[k].0
+        );
+    }
+}
+
+/// Spheres over a floor, under a sun's cascades and two point lights' cube faces.
+#[test]
+fn shadow_views_keep_every_caster_of_spheres() {
+    assert_shadow_views_keep_every_frame("builtin:spheres");
+}
+
+/// A city: buildings in and out of each cascade.
+#[test]
+fn shadow_views_keep_every_caster_of_a_city() {
+    assert_shadow_views_keep_every_frame("builtin:city");
+}
+
+/// One heightfield mesh, of which each view sees part.
+#[test]
+fn shadow_views_keep_every_caster_of_a_heightfield() {
+    assert_shadow_views_keep_every_frame("builtin:terrain");
 }

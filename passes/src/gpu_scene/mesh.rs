@@ -5,6 +5,7 @@
 use glam::{DMat3, DMat4, DVec3, Vec3};
 use wgpu::util::DeviceExt;
 
+use super::view_culling::ClusterBoxes;
 use rgraph_scene::{Aabb, Cluster, ClusteredMesh, Scene, Vertex};
 
 /// `MeshData` in scene.wgsl.
@@ -52,6 +53,8 @@ pub(super) struct MeshBuffers {
     pub indices: wgpu::Buffer,
     /// Each mesh's clusters, ranges of its triangles in `indices` from the mesh's first.
     pub clusters: Vec<Vec<Cluster>>,
+    /// Each mesh's clusters' boxes, for the views that draw only what they see.
+    pub cluster_boxes: Vec<ClusterBoxes>,
     /// Per-mesh [`MeshData`], rewritten when the camera or a mesh moves.
     pub data: wgpu::Buffer,
 }
@@ -145,6 +148,12 @@ impl MeshFrame {
         frame
     }
 
+    /// The model matrix of `Scene::meshes[instance]`, camera-relative, as the shaders
+    /// have it.
+    pub fn model(&self, instance: u32) -> DMat4 {
+        glam::Mat4::from_cols_array_2d(&self.data[instance as usize].model).as_dmat4()
+    }
+
     /// The data buffer's contents.
     pub fn bytes(&self) -> &[u8] {
         bytemuck::cast_slice(&self.data)
@@ -178,6 +187,10 @@ impl MeshBuffers {
                 clustered.iter().map(|m| m.indices.as_slice()),
                 wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
             ),
+            cluster_boxes: clustered
+                .iter()
+                .map(|m| ClusterBoxes::new(&m.clusters))
+                .collect(),
             clusters: clustered.into_iter().map(|m| m.clusters).collect(),
             data: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("scene meshes"),

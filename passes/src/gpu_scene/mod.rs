@@ -40,6 +40,7 @@ mod seen_depths;
 mod shadows;
 mod texture_table;
 mod textures;
+mod view_culling;
 pub(crate) mod volumes;
 
 use std::sync::{Arc, Mutex};
@@ -385,15 +386,17 @@ impl GpuScene {
     }
 
     /// Writes the shadow views of this frame's shadowed lights (gpu_scene/shadows.rs)
-    /// for an output of `size` and a shadow atlas `atlas` texels wide, and returns the
-    /// atlas tiles they take, in pixels (x, y, side). The write lands before the frame's
-    /// submission, so every pass of the frame reads the views.
+    /// for an output of `size` and a shadow atlas `atlas` texels wide, and returns, per
+    /// view, the atlas tile it takes, in pixels (x, y, side), and its clip space from
+    /// camera-relative world positions (for [`pull_meshes_seen`](Self::pull_meshes_seen)).
+    /// The write lands before the frame's submission, so every pass of the frame reads
+    /// the views.
     pub fn write_shadow_views(
         &self,
         queue: &wgpu::Queue,
         size: (u32, u32),
         atlas: u32,
-    ) -> Vec<(u32, u32, u32)> {
+    ) -> Vec<((u32, u32, u32), glam::DMat4)> {
         let camera = &self.frame.inputs.camera;
         let aspect = f64::from(size.0.max(1)) / f64::from(size.1.max(1));
         let tile = atlas / crate::shadows::ATLAS_GRID;
@@ -409,7 +412,11 @@ impl GpuScene {
             0,
             bytemuck::cast_slice(&views),
         );
-        shadows::tiles(shadowed, tile)
+        let tiles = shadows::tiles(shadowed, tile);
+        tiles
+            .into_iter()
+            .zip(views.iter().map(|v| v.clip_from_world()))
+            .collect()
     }
 
     /// The frame inputs this scene is placed by (the particle passes read the camera
@@ -504,6 +511,35 @@ impl GpuScene {
         for (draw, state) in self.layer_draws(Layer::Opaque) {
             if choose(pass, draw, state) {
                 pass.draw(draw.indices.clone(), draw.instance..draw.instance + 1);
+            }
+        }
+    }
+
+    /// As [`pull_meshes`](Self::pull_meshes), into one view whose clip space is
+    /// `clip_from_world` (camera-relative world positions, as the shaders have them;
+    /// wgpu's clip volume): of each opaque mesh, only the runs of clusters that may fall
+    /// inside the view are drawn (view_culling.rs), and `choose` sees only meshes with
+    /// some. What the view shows is what `pull_meshes` draws into it.
+    pub fn pull_meshes_seen(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        clip_from_world: glam::DMat4,
+        mut choose: impl FnMut(&mut wgpu::RenderPass<'_>, &MeshDraw, MaterialState) -> bool,
+    ) {
+        for (draw, state) in self.layer_draws(Layer::Opaque) {
+            let boxes = &self.upload.meshes.cluster_boxes[draw.instance as usize];
+            let model = self.frame.meshes.model(draw.instance);
+            let seen = boxes.seen(clip_from_world, model);
+            if seen.is_empty() || !choose(pass, draw, state) {
+                continue;
+            }
+            let instances = draw.instance..draw.instance + 1;
+            for triangles in seen {
+                let first = draw.indices.start;
+                pass.draw(
+                    first + 3 * triangles.start..first + 3 * triangles.end,
+                    instances.clone(),
+                );
             }
         }
     }

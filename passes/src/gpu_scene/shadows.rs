@@ -46,6 +46,13 @@ pub(super) struct ShadowView {
     params: [f32; 4],
 }
 
+impl ShadowView {
+    /// Its clip space from camera-relative world positions, as the shaders have it.
+    pub fn clip_from_world(&self) -> DMat4 {
+        glam::Mat4::from_cols_array_2d(&self.clip_from_world).as_dmat4()
+    }
+}
+
 /// What group 0's binding 8 holds.
 pub(super) type ShadowViews = [ShadowView; SHADOW_VIEWS as usize];
 

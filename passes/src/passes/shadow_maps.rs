@@ -6,7 +6,8 @@
 //! (name: "shadow maps", plugin: "shadow_maps",
 //!  when: "shadows",             // the scene's feature: a light emits and the host
 //!                               // has not turned shadows off
-//!  params: (slope_bias: 2.0),   // the default: the raster's slope-scaled depth bias
+//!  params: (slope_bias: 2.0,    // the default: the raster's slope-scaled depth bias
+//!           clusters: culled),  // the default: each view draws the clusters it may see
 //!  outputs: { "atlas": "shadow_atlas" })   // depth32float, square, 1 sample
 //! ```
 //!
@@ -16,7 +17,7 @@
 //! and where each view looks is the scene's, each frame (gpu_scene/shadows.rs): this pass
 //! writes the views for the frame's output and atlas size, then draws every opaque mesh
 //! (vertices pulled from storage, as the visibility raster does) once per view into its
-//! tile, depth only, standard Z, both faces, with a slope-scaled depth bias. The atlas is
+//! tile, only the runs of its clusters that may fall inside the view, depth only, standard Z, both faces, with a slope-scaled depth bias. The atlas is
 //! cleared to the far plane; tiles without a view stay clear. Alpha MASK materials cast
 //! only where their base colour alpha (factor, vertex colour and texture, from the
 //! scene's texture table) reaches the cutoff, as they draw in the other passes; on a GPU the compute raster could
@@ -43,6 +44,21 @@ pub struct ShadowMapsParams {
     /// acne of surfaces the light grazes. shadow.wgsl's normal offset does the rest.
     #[serde(default = "slope_bias")]
     pub slope_bias: f32,
+    #[serde(default)]
+    pub clusters: ShadowClusters,
+}
+
+/// What each view of `shadow_maps` draws of a mesh.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShadowClusters {
+    /// The runs of its clusters whose boxes may fall inside the view (tested on the CPU
+    /// each frame, gpu_scene/view_culling.rs): a cascade over part of a terrain, or a
+    /// point light's face, draws that part. The default.
+    #[default]
+    Culled,
+    /// All of it, in every view.
+    Off,
 }
 
 fn slope_bias() -> f32 {
@@ -55,6 +71,7 @@ pub(crate) struct ShadowDraw {
     pub source: String,
     pub atlas: TextureHandle,
     pub slope_bias: f32,
+    pub clusters: ShadowClusters,
 }
 
 impl Plugin for ShadowMaps {
@@ -98,6 +115,7 @@ impl Plugin for ShadowMaps {
             source: shaders::SHADOW_RASTER.compose(1)?.source().to_owned(),
             atlas,
             slope_bias: params.slope_bias,
+            clusters: params.clusters,
         };
         self.0.record(pass, draw);
         Ok(())
@@ -112,10 +130,10 @@ mod gpu {
 
     use std::sync::Arc;
 
-    use super::ShadowDraw;
+    use super::{ShadowClusters, ShadowDraw};
     use crate::common::gpu::pipeline::{module, pipeline_layout, PipelineDesc};
     use crate::common::gpu::{Frame, Recorded, Recorder, Render};
-    use crate::gpu_scene::GpuScene;
+    use crate::gpu_scene::{GpuScene, MaterialState};
     use crate::shadows::SHADOW_VIEWS;
     use rgraph_scene::DepthConvention;
     use wgpu::util::DeviceExt;
@@ -230,17 +248,21 @@ mod gpu {
             // Textured alpha masks read the table.
             let table = frame.scenes.texture_table(scene, device, resources.queue)?;
             pass.set_bind_group(3, table, &[]);
-            for (view, (x, y, side)) in (0u32..).zip(tiles) {
+            for (view, ((x, y, side), clip_from_world)) in (0u32..).zip(tiles) {
                 pass.set_viewport(x as f32, y as f32, side as f32, side as f32, 0.0, 1.0);
                 pass.set_scissor_rect(x, y, side, side);
                 pass.set_bind_group(1, &state.views, &[view * state.stride]);
-                scene.pull_meshes(pass, |pass, _, material| {
+                let choose = |pass: &mut wgpu::RenderPass<'_>, _: &_, material: MaterialState| {
                     pass.set_pipeline(match material.masked {
                         true => &state.masked,
                         false => &state.pipeline,
                     });
                     true
-                });
+                };
+                match self.clusters {
+                    ShadowClusters::Culled => scene.pull_meshes_seen(pass, clip_from_world, choose),
+                    ShadowClusters::Off => scene.pull_meshes(pass, choose),
+                }
             }
             Ok(())
         }
