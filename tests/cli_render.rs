@@ -133,6 +133,39 @@ fn a_debug_view_runs_only_its_passes() {
     run.stderr_has("\nedges ").stderr_has("culled: sky");
 }
 
+/// A debug view of a TAA pipeline culls the TAA pass, and the history only it reads
+/// with it: the history's textures once stayed in the plan without usages, which the
+/// device refused ("Invalid usage flags").
+#[test]
+fn a_debug_view_of_a_taa_pipeline_drops_its_history() {
+    let dir = temp_dir();
+    for pipeline in ["pipelines/taa.ron", "pipelines/msaa_4x_taa.ron"] {
+        let out = dir.path().join("motion.png");
+        let out_arg = out.to_str().expect("temp paths are UTF-8");
+        let args = [
+            "render",
+            "--pipeline",
+            pipeline,
+            "--view",
+            "motion",
+            "--out",
+            out_arg,
+        ];
+        let run = rgraph(&[&args[..], &["--width", "64", "--height", "36"]].concat()).expect(0);
+        assert_eq!(read_png(&out).dimensions(), (64, 36), "{pipeline}");
+        let culled = run
+            .stderr
+            .lines()
+            .find(|l| l.contains("culled:"))
+            .unwrap_or_default();
+        assert!(
+            culled.contains("taa"),
+            "{pipeline}: the TAA pass is not culled:\n{}",
+            run.stderr
+        );
+    }
+}
+
 #[test]
 fn a_view_the_pipeline_lacks_lists_the_views_it_has() {
     let dir = temp_dir();

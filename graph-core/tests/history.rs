@@ -359,3 +359,53 @@ fn each_use_of_a_part_has_a_history_of_its_own() {
         ]
     );
 }
+
+/// [`file`] with `fade`, and a second output "other" that `other` clears.
+fn two_outputs() -> rgraph_core::file::LoadedGraph {
+    let text = file(FADE)
+        .replace(
+            r#""shown": Texture(format: "rgba8unorm", size: Absolute(4, 4)),"#,
+            r#""shown": Texture(format: "rgba8unorm", size: Absolute(4, 4)),
+        "other": Texture(format: "rgba8unorm", size: Absolute(4, 4)),"#,
+        )
+        .replace(
+            r#"    ],
+    outputs: ["shown"],"#,
+            r#"        (name: "other", plugin: "clear", outputs: { "target": "other" }),
+    ],
+    outputs: ["shown", "other"],"#,
+        );
+    rgraph_core::file::load_str("tests/fixtures/inline.ron", &text, &registry())
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Showing one output of several (`rgraph render --view`) culls the passes only the
+/// others need: where that is every reader of a history and its source's writer, the
+/// history goes with them, its pair not made (it was, without usages, which the device
+/// refused: `--view motion` of taa.ron).
+#[test]
+fn a_history_whose_readers_are_all_culled_has_no_edge_and_no_textures() {
+    let mut graph = two_outputs();
+    graph.keep_outputs(&["other"]).unwrap();
+    let plan = graph
+        .compile(&rgraph_core::CompileOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let order: Vec<&str> = plan.passes.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(order, ["other"]);
+    assert!(plan.history.is_empty(), "{:?}", plan.history);
+    assert_eq!(plan.fingerprint, 0);
+}
+
+/// A history read by a pass that stays keeps its source's writer, though the source is
+/// no longer an output: the next frame's read needs this frame's write.
+#[test]
+fn a_history_read_by_a_live_pass_keeps_its_source_s_writer() {
+    let mut graph = two_outputs();
+    graph.keep_outputs(&["shown"]).unwrap();
+    let plan = graph
+        .compile(&rgraph_core::CompileOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let order: Vec<&str> = plan.passes.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(order, ["fade", "present"]);
+    assert_eq!(plan.history[0].writer, "fade");
+}

@@ -38,7 +38,7 @@ pub(super) fn cull(graph: &Graph, versions: &Versions) -> Live {
     }
 }
 
-/// Walks back from the roots along read edges.
+/// Walks back from the roots along read edges, a history's to its source's writer.
 fn mark_live_passes(graph: &Graph, versions: &Versions) -> Vec<bool> {
     let mut live = vec![false; graph.passes.len()];
     let mut work: Vec<PassId> = graph
@@ -62,6 +62,12 @@ fn mark_live_passes(graph: &Graph, versions: &Versions) -> Vec<bool> {
         for access in &graph.passes[pass.index()].accesses {
             if let Some(v) = access.read_version() {
                 work.extend(versions.writer((access.resource, v)));
+                // A history read is of what the source's writer leaves this frame for
+                // the next: that pass lives while the history has a reader, whether or
+                // not the source is still an output (a view showing one output).
+                if let Some(of) = graph.resources[access.resource.index()].origin.history_of() {
+                    work.extend(versions.writer((of, versions.final_version(of))));
+                }
             }
         }
     }

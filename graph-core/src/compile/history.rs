@@ -154,6 +154,11 @@ pub(super) fn edges(
         else {
             continue;
         };
+        // Culled with every reader of the history (cull.rs keeps it for any): nothing
+        // carries, and the pair is not made.
+        if !live.pass(writer) {
+            continue;
+        }
         let history = ResourceId(r as u32);
         let mut readers: Vec<PassId> = versions
             .readers((history, 0))
