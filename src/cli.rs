@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use rgraph_core::file::GraphParams;
-use rgraph_passes::shadows::{DEFAULT_SHADOWED_LIGHTS, SHADOW_VIEWS};
+use rgraph_passes::shadows::{DEFAULT_SHADOWED_LIGHTS, MAX_SHADOWED_LIGHTS};
 use rgraph_passes::{Background, Exposure, ShadowFilter, Shadows};
 use rgraph_scene::{AssetPolicy, Lighting, Scene, SceneError, DEFAULT_MAX_ASSET_BYTES};
 
@@ -226,13 +226,13 @@ pub struct FrameArgs {
     #[arg(long, value_name = "environment|color:R,G,B|transparent", value_parser = parse_background)]
     pub background: Option<Background>,
     /// How lights cast shadows: pcf (percentage-closer filtering, 3 x 3 bilinear
-    /// comparison taps), hard (one comparison) or off. Directional lights (4 cascades) and
-    /// spot lights cast them; point lights do not yet. Off drops the shadow passes.
+    /// comparison taps), hard (one comparison) or off. Directional (4 cascades), point
+    /// (6 cube faces) and spot lights cast them. Off drops the shadow passes.
     #[arg(long, value_name = "off|hard|pcf", default_value = "pcf", value_parser = parse_shadow_filter)]
     pub shadows: ShadowFilter,
-    /// The most lights given shadow maps, 0 to 16: the directional and spot lights
-    /// covering most of the screen, as many as fit the atlas's 16 maps (a directional
-    /// light takes 4).
+    /// The most lights given shadow maps, 0 to 64: the lights covering most of the
+    /// screen, each map sized by its light's share of the screen (from 1024 texels down
+    /// to 128 in the 4096-texel atlas), as many as fit.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_SHADOWED_LIGHTS, value_parser = parse_shadowed_lights, allow_negative_numbers = true)]
     pub shadowed_lights: u32,
     /// Adapter to render on: lavapipe, gpu, or part of an adapter's name (default:
@@ -767,7 +767,7 @@ fn parse_shadow_filter(text: &str) -> Result<ShadowFilter, String> {
 
 fn parse_shadowed_lights(text: &str) -> Result<u32, String> {
     let lights = text.trim().parse::<u32>().map_err(|_| {
-        format!("expected a whole number of lights from 0 to {SHADOW_VIEWS}, got \"{text}\"")
+        format!("expected a whole number of lights from 0 to {MAX_SHADOWED_LIGHTS}, got \"{text}\"")
     })?;
     Shadows::new(ShadowFilter::Pcf, lights)
         .map(|s| s.lights)

@@ -438,7 +438,7 @@ fn tiled_forward_and_gbuffer_shading_agree_on_shadows() {
     }
 }
 
-/// `--shadows` takes off, hard or pcf, and `--shadowed-lights` 0 to 16; anything else is
+/// `--shadows` takes off, hard or pcf, and `--shadowed-lights` 0 to 64; anything else is
 /// a usage error naming the flag, before anything renders.
 #[test]
 fn bad_shadow_flags_are_usage_errors() {
@@ -449,11 +449,11 @@ fn bad_shadow_flags_are_usage_errors() {
         ("--shadows", "bogus", "expected off, hard or pcf"),
         (
             "--shadowed-lights",
-            "17",
-            "17 shadowed lights is out of range",
+            "65",
+            "65 shadowed lights is out of range",
         ),
-        ("--shadowed-lights", "-1", "from 0 to 16"),
-        ("--shadowed-lights", "many", "from 0 to 16"),
+        ("--shadowed-lights", "-1", "from 0 to 64"),
+        ("--shadowed-lights", "many", "from 0 to 64"),
     ] {
         rgraph(&[
             "render", "--out", out, "--width", "16", "--height", "16", flag, value,

@@ -35,25 +35,27 @@ impl ShadowFilter {
 pub struct Shadows {
     /// How the maps are read, or no shadows at all.
     pub filter: ShadowFilter,
-    /// The most lights given shadow maps each frame: the lights covering most of the
-    /// screen (a directional light covers all of it), as many as fit the atlas's
-    /// [`SHADOW_VIEWS`] maps (a directional light takes [`CASCADES`], a point light
-    /// [`POINT_FACES`], a spot light one).
+    /// The most lights given shadow maps each frame, at most [`MAX_SHADOWED_LIGHTS`]: the
+    /// lights covering most of the screen (a directional light covers all of it), as
+    /// many as fit the atlas (a directional light takes [`CASCADES`] maps, a point light
+    /// [`POINT_FACES`], a spot light one, each from a quarter of the atlas's side down
+    /// to 1/[`ATLAS_UNITS`] of it).
     pub lights: u32,
 }
 
-/// Shadow maps the atlas holds: a grid of [`ATLAS_GRID`] x [`ATLAS_GRID`] equal tiles,
-/// each one view's map.
-pub const SHADOW_VIEWS: u32 = ATLAS_GRID * ATLAS_GRID;
-/// Tiles per side of the shadow atlas.
-pub const ATLAS_GRID: u32 = 4;
+/// The atlas's side in units of the smallest map's: a map is a square of 8, 4, 2 or 1
+/// units (in a 4096-texel atlas, 1024, 512, 256 or 128 texels), placed on the units'
+/// grid.
+pub const ATLAS_UNITS: u32 = 32;
+/// The most maps (views) one frame's atlas holds: 64 point lights' faces fit.
+pub const SHADOW_VIEWS: u32 = 512;
+/// The most lights `--shadowed-lights` may ask for.
+pub const MAX_SHADOWED_LIGHTS: u32 = 64;
 /// Cascades per directional light (Dimitrov's cascaded shadow maps, NVIDIA 2007).
 pub const CASCADES: u32 = 4;
-/// Maps per point light: a cube's six faces, each a tile of the atlas.
+/// Maps per point light: a cube's six faces, each a map of the atlas.
 pub const POINT_FACES: u32 = 6;
-/// The default of [`Shadows::lights`]: the sun and three spot lights, whose maps fill
-/// the 4 x 4 atlas at most (a directional light takes [`CASCADES`] tiles, a point light
-/// [`POINT_FACES`], so a sun and two point lights fill it).
+/// The default of [`Shadows::lights`]: the sun and three more.
 pub const DEFAULT_SHADOWED_LIGHTS: u32 = 4;
 
 impl Default for Shadows {
@@ -68,10 +70,10 @@ impl Default for Shadows {
 /// A shadow setting out of range.
 #[derive(Debug, Error, PartialEq, Eq)]
 pub enum ShadowsError {
-    /// More shadowed lights than the atlas has maps.
+    /// More shadowed lights than the atlas may hold.
     #[error(
-        "{0} shadowed lights is out of range: the shadow atlas holds {SHADOW_VIEWS} maps, so \
-         at most {SHADOW_VIEWS} lights cast shadows (0: none does)"
+        "{0} shadowed lights is out of range: at most {MAX_SHADOWED_LIGHTS} lights cast \
+         shadows (0: none does)"
     )]
     TooManyLights(u32),
 }
@@ -79,7 +81,7 @@ pub enum ShadowsError {
 impl Shadows {
     /// Settings with `filter` and at most `lights` shadowed lights, checked.
     pub fn new(filter: ShadowFilter, lights: u32) -> Result<Shadows, ShadowsError> {
-        match lights <= SHADOW_VIEWS {
+        match lights <= MAX_SHADOWED_LIGHTS {
             true => Ok(Shadows { filter, lights }),
             false => Err(ShadowsError::TooManyLights(lights)),
         }

@@ -399,20 +399,19 @@ impl GpuScene {
     ) -> Vec<((u32, u32, u32), glam::DMat4)> {
         let camera = &self.frame.inputs.camera;
         let aspect = f64::from(size.0.max(1)) / f64::from(size.1.max(1));
-        let tile = atlas / crate::shadows::ATLAS_GRID;
         let boxes: Vec<_> = self
             .layer_draws(Layer::Opaque)
             .iter()
             .map(|(draw, _)| draw.bounds)
             .collect();
         let shadowed = &self.frame.lights.shadowed;
-        let views = shadows::views(shadowed, camera, aspect, tile, &boxes);
+        let views = shadows::views(shadowed, camera, aspect, atlas, &boxes);
         queue.write_buffer(
             &self.upload.shadow_maps.views,
             0,
             bytemuck::cast_slice(&views),
         );
-        let tiles = shadows::tiles(shadowed, tile);
+        let tiles = shadows::tiles(shadowed, atlas);
         tiles
             .into_iter()
             .zip(views.iter().map(|v| v.clip_from_world()))

@@ -24,7 +24,7 @@
 use glam::{DMat4, DVec3};
 
 use super::seen_depths::seen_depths;
-use crate::shadows::{Shadows, ATLAS_GRID, CASCADES, POINT_FACES, SHADOW_VIEWS};
+use crate::shadows::{Shadows, ATLAS_UNITS, CASCADES, POINT_FACES, SHADOW_VIEWS};
 use rgraph_scene::{Aabb, Camera, Light, LightKind, Projection, DEFAULT_CUTOFF_ILLUMINANCE};
 
 /// `LightData::shadow` of a light without a shadow map (shadow.wgsl's `NO_SHADOW`).
@@ -61,15 +61,34 @@ pub(super) type ShadowViews = [ShadowView; SHADOW_VIEWS as usize];
 pub(super) struct Shadowed {
     /// The light as the frame places it.
     pub light: Light,
-    /// Its first view (atlas tile); a directional light's cascades follow it.
+    /// Its first view; a directional light's cascades, a point light's faces follow it.
     pub first_view: u32,
+    /// Its maps' side, in [`ATLAS_UNITS`] of the atlas's (each view's the same).
+    pub side: u32,
 }
 
 impl Shadowed {
-    /// Atlas tiles the light takes.
+    /// Maps the light takes.
     fn views(&self) -> u32 {
         views_of(&self.light)
     }
+}
+
+/// The largest map's side in atlas units: a quarter of the atlas's.
+const LARGEST_SIDE: u32 = ATLAS_UNITS / 4;
+/// The smallest map's side: 1 unit, 1/8 of the largest (128 of 4096 texels).
+const SMALLEST_SIDE: u32 = LARGEST_SIDE / 8;
+
+/// The side a light's maps get when the atlas has room: the largest for a light that may
+/// light the whole screen (coverage 1, every directional light), and in proportion to the
+/// height of the screen it may light for others (the square root of the share of its
+/// area), a power of two no smaller than [`SMALLEST_SIDE`]: a map's texels spread over
+/// about as many pixels whatever the light's size on screen.
+fn wanted_side(coverage: f64) -> u32 {
+    let side = f64::from(LARGEST_SIDE) * coverage.clamp(0.0, 1.0).sqrt();
+    (side.max(1.0).ceil() as u32)
+        .next_power_of_two()
+        .clamp(SMALLEST_SIDE, LARGEST_SIDE)
 }
 
 fn views_of(light: &Light) -> u32 {
@@ -84,8 +103,10 @@ fn views_of(light: &Light) -> u32 {
 /// index of each in `lights`: lights that emit, by the share of the screen they may light
 /// seen from `camera` (every pixel for a directional light; the outline of a point or
 /// spot light's bounding sphere, for the vertical field of view), largest
-/// first and in buffer order among equals, at most `settings.lights`, skipping any whose
-/// views no longer fit the atlas.
+/// first and in buffer order among equals, at most `settings.lights`. Each wants maps of
+/// the side [`wanted_side`] gives it; where they do not all fit the atlas, the largest
+/// maps halve, the least important light's first, down to [`SMALLEST_SIDE`], and only
+/// when every map is that small does the least important light go without.
 pub(super) fn select(
     lights: &[&Light],
     camera: &Camera,
@@ -102,26 +123,43 @@ pub(super) fn select(
         .filter(|&(_, c)| c > 0.0)
         .collect();
     ranked.sort_by(|a, b| b.1.total_cmp(&a.1));
-    let mut chosen = Vec::new();
-    let mut next_view = 0;
-    for (index, _) in ranked {
-        if chosen.len() as u32 == settings.lights {
+    ranked.truncate(settings.lights as usize);
+    let mut sides: Vec<u32> = ranked.iter().map(|&(_, c)| wanted_side(c)).collect();
+    loop {
+        let views = |k: usize| views_of(lights[ranked[k].0]);
+        let units: u32 = (0..sides.len())
+            .map(|k| views(k) * sides[k] * sides[k])
+            .sum();
+        let count: u32 = (0..sides.len()).map(views).sum();
+        if units <= ATLAS_UNITS * ATLAS_UNITS && count <= SHADOW_VIEWS {
             break;
         }
-        let light = lights[index];
-        if next_view + views_of(light) > SHADOW_VIEWS {
-            continue;
+        // Too many maps: the largest shrink first, the least important of them first;
+        // with every map at the smallest, the least important light goes.
+        let shrinkable = (0..sides.len()).filter(|&k| sides[k] > SMALLEST_SIDE);
+        match shrinkable.max_by_key(|&k| sides[k]) {
+            Some(k) if count <= SHADOW_VIEWS => sides[k] /= 2,
+            _ => {
+                sides.pop();
+                ranked.pop();
+            }
         }
-        chosen.push((
-            index,
-            Shadowed {
-                light: light.clone(),
-                first_view: next_view,
-            },
-        ));
-        next_view += views_of(light);
     }
-    chosen
+    let mut first_view = 0;
+    ranked
+        .iter()
+        .zip(sides)
+        .map(|(&(index, _), side)| {
+            let light = lights[index];
+            let shadowed = Shadowed {
+                light: light.clone(),
+                first_view,
+                side,
+            };
+            first_view += views_of(light);
+            (index, shadowed)
+        })
+        .collect()
 }
 
 /// The share of the screen (0 to 1) `light` may light, roughly: what ranks lights for
@@ -150,14 +188,14 @@ fn coverage(light: &Light, camera: &Camera) -> f64 {
     }
 }
 
-/// Every view of the `shadowed` lights for `camera` at `aspect` (width over height), with
-/// tiles of `tile` texels, around the opaque meshes' bounding boxes `boxes`
+/// Every view of the `shadowed` lights for `camera` at `aspect` (width over height), in
+/// an atlas `atlas` texels wide, around the opaque meshes' bounding boxes `boxes`
 /// (camera-relative). Views past the last stay zero.
 pub(super) fn views(
     shadowed: &[Shadowed],
     camera: &Camera,
     aspect: f64,
-    tile: u32,
+    atlas: u32,
     boxes: &[Aabb],
 ) -> ShadowViews {
     let mut views = [bytemuck::Zeroable::zeroed(); SHADOW_VIEWS as usize];
@@ -169,9 +207,11 @@ pub(super) fn views(
         radius: 0.5 * bounds.size().length(),
     };
     let seen = seen_depths(camera, aspect, boxes);
-    let tile = f64::from(tile.max(1));
+    let placed = placements(shadowed);
+    let unit = f64::from(atlas.max(ATLAS_UNITS) / ATLAS_UNITS);
     for shadowed in shadowed {
         let light = &shadowed.light;
+        let tile = f64::from(shadowed.side) * unit;
         let made: Vec<ShadowView> = match (light.kind, seen) {
             (LightKind::Directional, Some(seen)) => {
                 cascades(light, camera, aspect, tile, &scene, seen)
@@ -184,13 +224,9 @@ pub(super) fn views(
         };
         for (i, mut view) in made.into_iter().enumerate() {
             let at = shadowed.first_view + i as u32;
-            let grid = f64::from(ATLAS_GRID);
-            view.rect = [
-                (f64::from(at % ATLAS_GRID) / grid) as f32,
-                (f64::from(at / ATLAS_GRID) / grid) as f32,
-                (1.0 / grid) as f32,
-                (1.0 / grid) as f32,
-            ];
+            let (x, y, side) = placed[at as usize];
+            let units = f64::from(ATLAS_UNITS);
+            view.rect = [x, y, side, side].map(|u| (f64::from(u) / units) as f32);
             // A light's first view says how many it has.
             if i == 0 {
                 view.params[3] = shadowed.views() as f32;
@@ -201,17 +237,48 @@ pub(super) fn views(
     views
 }
 
-/// The atlas tiles the views of `shadowed` take, in texels: x, y and side, for the
-/// `shadow_maps` pass's viewports, by view index.
-pub(super) fn tiles(shadowed: &[Shadowed], tile: u32) -> Vec<(u32, u32, u32)> {
-    let views = shadowed
-        .iter()
-        .map(|s| s.first_view + s.views())
-        .max()
-        .unwrap_or(0);
-    (0..views)
-        .map(|v| ((v % ATLAS_GRID) * tile, (v / ATLAS_GRID) * tile, tile))
+/// The atlas tiles the views of `shadowed` take in an atlas `atlas` texels wide, in
+/// texels: x, y and side, for the `shadow_maps` pass's viewports, by view index.
+pub(super) fn tiles(shadowed: &[Shadowed], atlas: u32) -> Vec<(u32, u32, u32)> {
+    let unit = atlas / ATLAS_UNITS;
+    placements(shadowed)
+        .into_iter()
+        .map(|(x, y, side)| (x * unit, y * unit, side * unit))
         .collect()
+}
+
+/// Where each view of `shadowed` lies in the atlas, in [`ATLAS_UNITS`]: x, y and side,
+/// by view index. The maps go largest first (in view order among equals) along the
+/// Z-order curve over the units: each starts at a multiple of its own area, which is a
+/// whole square of the curve, so squares of power-of-two sides placed in descending size
+/// never overlap and leave no gap (the selection checked that their areas fit).
+fn placements(shadowed: &[Shadowed]) -> Vec<(u32, u32, u32)> {
+    let mut views: Vec<(u32, u32)> = shadowed
+        .iter()
+        .flat_map(|s| (s.first_view..s.first_view + s.views()).map(|v| (v, s.side)))
+        .collect();
+    views.sort_by_key(|&(view, side)| (std::cmp::Reverse(side), view));
+    let mut placed = vec![(0, 0, 0); views.len()];
+    let mut next = 0;
+    for (view, side) in views {
+        let (x, y) = z_order(next);
+        placed[view as usize] = (x, y, side);
+        next += side * side;
+    }
+    placed
+}
+
+/// The point at position `i` of the Z-order (Morton) curve: x from the even bits, y
+/// from the odd.
+fn z_order(i: u32) -> (u32, u32) {
+    let every_other = |mut v: u32| {
+        v &= 0x5555_5555;
+        v = (v | (v >> 1)) & 0x3333_3333;
+        v = (v | (v >> 2)) & 0x0f0f_0f0f;
+        v = (v | (v >> 4)) & 0x00ff_00ff;
+        (v | (v >> 8)) & 0x0000_ffff
+    };
+    (every_other(i), every_other(i >> 1))
 }
 
 /// What group 0 holds for shadows: the views (binding 8), which the `shadow_maps` pass
@@ -404,11 +471,10 @@ mod tests {
     use glam::Vec3;
 
     /// Point lights rank with the others by the screen they may light and take a cube's
-    /// six tiles: with four lights allowed, the sun (4 tiles) and the two nearest of
-    /// three point lights fill the 16 tiles, the farthest does not fit; every face of a
-    /// point light looks out of its position.
+    /// six maps, sized by that share: the sun's cascades the largest, the nearest point
+    /// light's faces next; every face of a point light looks out of its position.
     #[test]
-    fn point_lights_take_six_tiles_ranked_by_coverage() {
+    fn point_lights_take_six_maps_ranked_and_sized_by_coverage() {
         let light = |name: &str, kind, position: DVec3| Light {
             name: name.into(),
             kind,
@@ -440,9 +506,14 @@ mod tests {
             .iter()
             .map(|(_, s)| (s.light.name.as_str(), s.first_view))
             .collect();
-        assert_eq!(picked, [("sun", 0), ("near", 4), ("mid", 10)]);
+        assert_eq!(picked, [("sun", 0), ("near", 4), ("mid", 10), ("far", 16)]);
+        let sides: Vec<u32> = chosen.iter().map(|(_, s)| s.side).collect();
+        assert!(
+            sides[0] == LARGEST_SIDE && sides.windows(2).all(|p| p[0] >= p[1]),
+            "{sides:?}"
+        );
         let shadowed: Vec<Shadowed> = chosen.into_iter().map(|(_, s)| s).collect();
-        let views = views(&shadowed, &camera, 1.5, 1024, &[]);
+        let views = views(&shadowed, &camera, 1.5, 4096, &[]);
         assert_eq!(views[4].params, [0.0; 4], "no views without scene bounds");
         let faces = point_faces(&lights[2], &camera, 1024.0);
         assert_eq!(faces.len() as u32, POINT_FACES);
@@ -492,6 +563,7 @@ mod tests {
         let shadowed = [Shadowed {
             light: sun,
             first_view: 0,
+            side: LARGEST_SIDE,
         }];
         let projection = Projection::Perspective {
             yfov: 0.8,
@@ -510,7 +582,7 @@ mod tests {
                 min: DVec3::new(-50.0, 0.0, -50.0) - eye,
                 max: DVec3::new(50.0, 0.0, 50.0) - eye,
             };
-            let views = views(&shadowed, &camera, 1.5, 1024, &[ground]);
+            let views = views(&shadowed, &camera, 1.5, 4096, &[ground]);
             let seen = seen_depths(&camera, 1.5, &[ground]).expect("the ground is seen");
             (std::array::from_fn::<_, 4, _>(|i| views[i].params), seen)
         };
@@ -559,5 +631,129 @@ mod tests {
                 a.1
             );
         }
+    }
+
+    fn light_of(kind: LightKind) -> Light {
+        Light {
+            name: "l".into(),
+            kind,
+            color: [1.0; 3],
+            intensity: 1.0,
+            position: DVec3::ZERO,
+            direction: Vec3::NEG_Y,
+            range: Some(1.0),
+        }
+    }
+
+    /// Maps of mixed sizes tile the atlas without overlapping, each inside it: a sun's
+    /// four largest, point lights' faces and spot lights' maps of every size.
+    #[test]
+    fn maps_of_every_size_fill_the_atlas_without_overlap() {
+        let mut shadowed = Vec::new();
+        let mut first_view = 0;
+        let kinds = [
+            (LightKind::Point, SMALLEST_SIDE),
+            (LightKind::Directional, LARGEST_SIDE),
+            (
+                LightKind::Spot {
+                    inner_cone: 0.1,
+                    outer_cone: 0.2,
+                },
+                2 * SMALLEST_SIDE,
+            ),
+            (LightKind::Point, LARGEST_SIDE / 2),
+            (
+                LightKind::Spot {
+                    inner_cone: 0.1,
+                    outer_cone: 0.2,
+                },
+                SMALLEST_SIDE,
+            ),
+        ];
+        for (kind, side) in kinds {
+            let light = light_of(kind);
+            let views = views_of(&light);
+            shadowed.push(Shadowed {
+                light,
+                first_view,
+                side,
+            });
+            first_view += views;
+        }
+        let placed = placements(&shadowed);
+        assert_eq!(placed.len() as u32, first_view);
+        let mut owner = vec![None; (ATLAS_UNITS * ATLAS_UNITS) as usize];
+        for (view, &(x, y, side)) in placed.iter().enumerate() {
+            assert!(
+                side > 0 && x % side == 0 && y % side == 0,
+                "view {view}: {x}, {y}, {side}"
+            );
+            for v in y..y + side {
+                for u in x..x + side {
+                    assert!(
+                        u < ATLAS_UNITS && v < ATLAS_UNITS,
+                        "view {view} leaves the atlas"
+                    );
+                    let cell = &mut owner[(v * ATLAS_UNITS + u) as usize];
+                    assert_eq!(*cell, None, "views {cell:?} and {view} overlap at {u}, {v}");
+                    *cell = Some(view);
+                }
+            }
+        }
+        // The texels' tiles are the units' at 128 texels a unit.
+        assert_eq!(
+            tiles(&shadowed, 4096)[6],
+            (0, 0, 1024),
+            "the sun's first cascade"
+        );
+    }
+
+    /// With 64 point lights allowed, each ranks, gets the size its coverage wants or a
+    /// smaller one, and every one taken fits: the units used never exceed the atlas's.
+    #[test]
+    fn many_lights_shrink_to_fit_the_atlas() {
+        let lights: Vec<Light> = (0..64)
+            .map(|i| Light {
+                position: DVec3::new(f64::from(i % 8) - 4.0, 0.0, -3.0 - f64::from(i / 8)),
+                ..light_of(LightKind::Point)
+            })
+            .collect();
+        let projection = Projection::Perspective {
+            yfov: 0.8,
+            znear: 0.1,
+            zfar: None,
+        };
+        let camera = Camera::look_at("c", DVec3::ZERO, DVec3::NEG_Z, DVec3::Y, projection);
+        let refs: Vec<&Light> = lights.iter().collect();
+        let settings = Shadows {
+            filter: ShadowFilter::Pcf,
+            lights: 64,
+        };
+        let chosen = select(&refs, &camera, settings);
+        let used: u32 = chosen
+            .iter()
+            .map(|(_, s)| s.views() * s.side * s.side)
+            .sum();
+        assert!(used <= ATLAS_UNITS * ATLAS_UNITS, "{used} units");
+        // 64 lights of 6 smallest maps take 384 of the 1024 units: every light is
+        // shadowed, the nearest with larger maps than the farthest.
+        assert_eq!(chosen.len(), 64);
+        assert!(chosen
+            .iter()
+            .all(|(_, s)| (SMALLEST_SIDE..=LARGEST_SIDE).contains(&s.side)));
+        let (first, last) = (chosen[0].1.side, chosen[63].1.side);
+        assert!(first > last, "nearest {first}, farthest {last}");
+        // Twice the views the atlas may hold: the least important go.
+        let doubled: Vec<&Light> = refs.iter().chain(&refs).copied().collect();
+        let settings = Shadows {
+            lights: 128,
+            ..settings
+        };
+        let chosen = select(&doubled, &camera, settings);
+        let views: u32 = chosen.iter().map(|(_, s)| s.views()).sum();
+        assert!(
+            views <= SHADOW_VIEWS && views + POINT_FACES > SHADOW_VIEWS,
+            "{views} views"
+        );
     }
 }

@@ -11,9 +11,10 @@
 //!  outputs: { "atlas": "shadow_atlas" })   // depth32float, square, 1 sample
 //! ```
 //!
-//! The atlas is a grid of 4 x 4 tiles (`shadows::ATLAS_GRID`), one view each: the cascades
-//! of a directional light (4), a point light's cube faces (6), a spot light's perspective
-//! map (1). Which lights get them
+//! The atlas holds one map per view: the cascades of a directional light (4), a point
+//! light's cube faces (6), a spot light's perspective map (1), each a square from a
+//! quarter of the atlas's side down to 1/32 of it, sized by its light's share of the
+//! screen (`shadows::ATLAS_UNITS`). Which lights get them, how large,
 //! and where each view looks is the scene's, each frame (gpu_scene/shadows.rs): this pass
 //! writes the views for the frame's output and atlas size, then draws every opaque mesh
 //! (vertices pulled from storage, as the visibility raster does) once per view into its
@@ -32,7 +33,7 @@ use crate::common::plugin::Shared;
 use crate::common::shadows::ATLAS;
 use crate::common::textures::{self, Want};
 use crate::shaders;
-use crate::shadows::ATLAS_GRID;
+use crate::shadows::ATLAS_UNITS;
 
 pub struct ShadowMaps(pub(crate) Shared);
 
@@ -99,14 +100,15 @@ impl Plugin for ShadowMaps {
             pass.depth_stencil(h, AspectAccess::Clear(1.0), AspectAccess::Absent)
         })?;
         let square = matches!(desc.size,
-            Size::Absolute(w, h) if w == h && w >= ATLAS_GRID && w % ATLAS_GRID == 0);
+            Size::Absolute(w, h) if w == h && w >= ATLAS_UNITS && w % ATLAS_UNITS == 0);
         if !square {
             return Err(PluginError::Slot {
                 slot: "atlas".to_owned(),
                 resource: slots.resource("atlas").unwrap_or("atlas").to_owned(),
                 why: format!(
                     "is {:?}, but the shadow atlas must be Absolute(N, N), N a multiple \
-                         of {ATLAS_GRID} (a grid of {ATLAS_GRID} x {ATLAS_GRID} maps)",
+                         of {ATLAS_UNITS} (maps are placed on a grid of {ATLAS_UNITS} x \
+                         {ATLAS_UNITS} units)",
                     desc.size
                 ),
             });

@@ -14,7 +14,7 @@ struct ShadowView {
 }
 
 struct ShadowViews {
-    views: array<ShadowView, 16>,
+    views: array<ShadowView, 512>,
 }
 
 @group(0) @binding(8) var<uniform> shadow_views: ShadowViews;
