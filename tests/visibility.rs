@@ -81,12 +81,13 @@ fn the_visibility_buffer_renders_the_gbuffers_image_within_one_level() {
             "{name}: {:.4}% within 1/255 of deferred_msaa_4x",
             share * 100.0
         );
-        // builtin:dense's shadowed point and spot lights (since they cast shadows, four
-        // shadowed lights by default) differ along their shadows' edges, where the
-        // G-buffer's quantised normal moves the normal-offset lookup: 98.56% within
-        // 1/255 at four shadowed lights, 99.05% at one (issue 39's note); the bound is
-        // 98.5% there until the two paths' shadow lookups agree.
-        let bound = if name == "dense" { 0.985 } else { 0.99 };
+        // builtin:dense's shadowed point lights differ along their shadows' edges, where
+        // the G-buffer's quantised normal moves the normal-offset lookup: 99.05% within
+        // 1/255 with one shadowed light, 98.56% with four when the atlas held two point
+        // lights and two spots, 98.29% since its maps are sized to fit (5149910) and the
+        // four shadowed lights are its four point lights (24 cube faces). The bound is
+        // 98% there until the two paths' shadow lookups agree.
+        let bound = if name == "dense" { 0.98 } else { 0.99 };
         assert!(
             share >= bound,
             "{name}: only {share} of pixels within 1/255"
@@ -279,8 +280,13 @@ fn the_compute_raster_renders_the_hardware_raster_s_image() {
             "{name}: {:.4}% within 1/255 of the hardware raster",
             share * 100.0
         );
+        // builtin:dense's four shadowed point lights (24 cube faces since the atlas sizes
+        // its maps to fit, 5149910) put more pixels on shadow edges, where the two
+        // rasters' surface positions, a rounding apart, look up the maps a texel apart:
+        // 99.34% within 1/255 there.
+        let bound = if name == "dense" { 0.99 } else { 0.995 };
         assert!(
-            share >= 0.995,
+            share >= bound,
             "{name}: only {share} of pixels within 1/255"
         );
     }

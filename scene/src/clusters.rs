@@ -7,7 +7,11 @@
 //! [`cluster`] returns the mesh's triangles in a new order, cluster after cluster, each
 //! triangle's corners in their order (so its winding) unchanged: a renderer uploads that
 //! order, so that a cluster is a range of the index buffer. The mesh itself is not changed,
-//! so the clusters are made from the mesh as it is when uploaded and cannot go stale.
+//! so the clusters are made from the mesh as it is when uploaded and cannot go stale. The
+//! clusters follow one another along a Z-order curve over their centres, so that
+//! consecutive clusters lie close together.
+
+use glam::Vec3;
 
 use crate::mesh::{Mesh, Vertex};
 
@@ -103,7 +107,14 @@ fn built(mesh: &Mesh, indices: &[u32]) -> ClusteredMesh {
         indices: Vec::with_capacity(indices.len()),
         clusters: Vec::with_capacity(meshlets.len()),
     };
-    for meshlet in meshlets.iter() {
+    let bounds: Vec<meshopt::Bounds> = meshlets
+        .iter()
+        .map(|meshlet| meshopt::compute_meshlet_bounds(meshlet, &adapter))
+        .collect();
+    for (meshlet, bounds) in spatial_order(&bounds)
+        .into_iter()
+        .map(|k| (meshlets.get(k), bounds[k]))
+    {
         let first = out.indices.len();
         out.indices.extend(
             meshlet
@@ -115,7 +126,7 @@ fn built(mesh: &Mesh, indices: &[u32]) -> ClusteredMesh {
             &mesh.vertices,
             &out.indices[first..],
             (first / 3) as u32,
-            meshopt::compute_meshlet_bounds(meshlet, &adapter),
+            bounds,
         ));
     }
     if out.indices.len() != indices.len() {
@@ -124,6 +135,41 @@ fn built(mesh: &Mesh, indices: &[u32]) -> ClusteredMesh {
         return in_runs(mesh, indices, 0);
     }
     out
+}
+
+/// The clusters whose bounding spheres are `bounds`, in the order of their centres along
+/// a Z-order (Morton) curve over the box holding the centres, 10 bits an axis (the
+/// builder's order among equals). meshoptimizer grows clusters along the index order,
+/// row after row of a grid, so consecutive clusters of its order may lie a row's length
+/// apart; along the curve they lie close, and a run of consecutive clusters is a
+/// compact region: the runs a view draws of a mesh (the shadow maps' culling, which
+/// tests boxes over consecutive clusters) are few, and those boxes tight.
+fn spatial_order(bounds: &[meshopt::Bounds]) -> Vec<usize> {
+    let centers: Vec<Vec3> = bounds.iter().map(|b| Vec3::from_array(b.center)).collect();
+    let (min, max) = centers.iter().fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(min, max), &c| (min.min(c), max.max(c)),
+    );
+    let scale = 1023.0 / (max - min).max(Vec3::splat(f32::MIN_POSITIVE));
+    let key = |c: Vec3| {
+        let q = ((c - min) * scale)
+            .round()
+            .clamp(Vec3::ZERO, Vec3::splat(1023.0));
+        spread(q.x as u32) | (spread(q.y as u32) << 1) | (spread(q.z as u32) << 2)
+    };
+    let keys: Vec<u32> = centers.iter().map(|&c| key(c)).collect();
+    let mut order: Vec<usize> = (0..bounds.len()).collect();
+    order.sort_by_key(|&k| keys[k]);
+    order
+}
+
+/// The 10 low bits of `v` two zero bits apart: bit i moves to bit 3 i.
+fn spread(v: u32) -> u32 {
+    let mut v = v & 0x3ff;
+    v = (v | (v << 16)) & 0x0300_00ff;
+    v = (v | (v << 8)) & 0x0300_f00f;
+    v = (v | (v << 4)) & 0x030c_30c3;
+    (v | (v << 2)) & 0x0924_9249
 }
 
 /// The triangles `indices` of `mesh` in their own order, in runs of

@@ -172,3 +172,27 @@ fn a_dense_mesh_makes_full_clusters() {
         clustered.clusters.len()
     );
 }
+
+/// Consecutive clusters lie close together (the Z-order over their centres): on a
+/// heightfield, whose triangles meshoptimizer takes row after row, a cluster's successor
+/// is on average within a few clusters' size, where in the builder's order it was often
+/// a row's length (100 units) away.
+#[test]
+fn consecutive_clusters_lie_close_together() {
+    let scene = builtin("builtin:terrain?cells=224");
+    let clustered = rgraph_scene::cluster(&scene.meshes[0]);
+    let centers: Vec<Vec3> = clustered
+        .clusters
+        .iter()
+        .map(|c| Vec3::from_array(c.center))
+        .collect();
+    let steps: f32 = centers.windows(2).map(|p| p[0].distance(p[1])).sum();
+    let mean_step = steps / (centers.len() - 1) as f32;
+    let mean_radius: f32 =
+        clustered.clusters.iter().map(|c| c.radius).sum::<f32>() / centers.len() as f32;
+    assert!(
+        mean_step < 4.0 * mean_radius,
+        "consecutive clusters are {mean_step} apart on average; a cluster's radius is \
+         {mean_radius}"
+    );
+}

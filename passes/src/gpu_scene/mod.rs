@@ -388,7 +388,7 @@ impl GpuScene {
     /// Writes the shadow views of this frame's shadowed lights (gpu_scene/shadows.rs)
     /// for an output of `size` and a shadow atlas `atlas` texels wide, and returns, per
     /// view, the atlas tile it takes, in pixels (x, y, side), and its clip space from
-    /// camera-relative world positions (for [`pull_meshes_seen`](Self::pull_meshes_seen)).
+    /// camera-relative world positions (for [`draw_opaque_indexed`](Self::draw_opaque_indexed)).
     /// The write lands before the frame's submission, so every pass of the frame reads
     /// the views.
     pub fn write_shadow_views(
@@ -514,29 +514,42 @@ impl GpuScene {
         }
     }
 
-    /// As [`pull_meshes`](Self::pull_meshes), into one view whose clip space is
-    /// `clip_from_world` (camera-relative world positions, as the shaders have them;
-    /// wgpu's clip volume): of each opaque mesh, only the runs of clusters that may fall
-    /// inside the view are drawn (view_culling.rs), and `choose` sees only meshes with
-    /// some. What the view shows is what `pull_meshes` draws into it.
-    pub fn pull_meshes_seen(
+    /// Binds the scene's index buffer and draws each opaque mesh `choose` accepts (in
+    /// [`pull_meshes`](Self::pull_meshes)'s order, the caller setting the pipeline)
+    /// indexed, its base vertex and instance the draw's, so that the vertex index is a
+    /// vertex of the scene's buffer and the hardware shades each vertex once for the
+    /// triangles around it. Given `view`, a clip space from camera-relative world
+    /// positions (as the shaders have them; wgpu's clip volume), only the runs of each
+    /// mesh's clusters that may fall inside it (view_culling.rs), and `choose` sees only
+    /// meshes with some: what the view shows is what drawing everything shows.
+    pub fn draw_opaque_indexed(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
-        clip_from_world: glam::DMat4,
+        view: Option<glam::DMat4>,
         mut choose: impl FnMut(&mut wgpu::RenderPass<'_>, &MeshDraw, MaterialState) -> bool,
     ) {
+        pass.set_index_buffer(
+            self.upload.meshes.indices.slice(..),
+            wgpu::IndexFormat::Uint32,
+        );
         for (draw, state) in self.layer_draws(Layer::Opaque) {
-            let boxes = &self.upload.meshes.cluster_boxes[draw.instance as usize];
-            let model = self.frame.meshes.model(draw.instance);
-            let seen = boxes.seen(clip_from_world, model);
+            let whole = 0..(draw.indices.end - draw.indices.start) / 3;
+            let seen = match view {
+                Some(clip_from_world) => {
+                    let boxes = &self.upload.meshes.cluster_boxes[draw.instance as usize];
+                    boxes.seen(clip_from_world, self.frame.meshes.model(draw.instance))
+                }
+                None => vec![whole],
+            };
             if seen.is_empty() || !choose(pass, draw, state) {
                 continue;
             }
             let instances = draw.instance..draw.instance + 1;
             for triangles in seen {
                 let first = draw.indices.start;
-                pass.draw(
+                pass.draw_indexed(
                     first + 3 * triangles.start..first + 3 * triangles.end,
+                    draw.base_vertex,
                     instances.clone(),
                 );
             }

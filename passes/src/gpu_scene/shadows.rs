@@ -106,7 +106,8 @@ fn views_of(light: &Light) -> u32 {
 /// first and in buffer order among equals, at most `settings.lights`. Each wants maps of
 /// the side [`wanted_side`] gives it; where they do not all fit the atlas, the largest
 /// maps halve, the least important light's first, down to [`SMALLEST_SIDE`], and only
-/// when every map is that small does the least important light go without.
+/// when every map is that small does the least important light go without. Where room
+/// is left, maps double, the most important light's first, up to [`LARGEST_SIDE`].
 pub(super) fn select(
     lights: &[&Light],
     camera: &Camera,
@@ -144,6 +145,19 @@ pub(super) fn select(
                 ranked.pop();
             }
         }
+    }
+    // Room left: the most important light's maps double first, while they fit, so that
+    // a few lights use the atlas whole (a sun and two point lights at 1024 texels).
+    let views = |k: usize| views_of(lights[ranked[k].0]);
+    let mut free = ATLAS_UNITS * ATLAS_UNITS
+        - (0..sides.len())
+            .map(|k| views(k) * sides[k] * sides[k])
+            .sum::<u32>();
+    while let Some(k) = (0..sides.len())
+        .find(|&k| sides[k] < LARGEST_SIDE && 3 * views(k) * sides[k] * sides[k] <= free)
+    {
+        free -= 3 * views(k) * sides[k] * sides[k];
+        sides[k] *= 2;
     }
     let mut first_view = 0;
     ranked

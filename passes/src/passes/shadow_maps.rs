@@ -261,10 +261,8 @@ mod gpu {
                     });
                     true
                 };
-                match self.clusters {
-                    ShadowClusters::Culled => scene.pull_meshes_seen(pass, clip_from_world, choose),
-                    ShadowClusters::Off => scene.pull_meshes(pass, choose),
-                }
+                let view = (self.clusters == ShadowClusters::Culled).then_some(clip_from_world);
+                scene.draw_opaque_indexed(pass, view, choose);
             }
             Ok(())
         }

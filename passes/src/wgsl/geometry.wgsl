@@ -42,7 +42,13 @@ fn vertex_f32(w: u32) -> f32 {
 
 // The object-space vertex at position `index` of the scene's index buffer, in `mesh`.
 fn pull_vertex(index: u32, mesh: MeshData) -> PulledVertex {
-    let w = u32(i32(index_words[index]) + mesh.base_vertex) * VERTEX_WORDS;
+    return vertex_at(u32(i32(index_words[index]) + mesh.base_vertex));
+}
+
+// Vertex `vertex` of the scene's vertex buffer (an indexed draw's vertex index: the
+// index plus the draw's base vertex).
+fn vertex_at(vertex: u32) -> PulledVertex {
+    let w = vertex * VERTEX_WORDS;
     var v: PulledVertex;
     v.position = vec3<f32>(vertex_f32(w), vertex_f32(w + 1u), vertex_f32(w + 2u));
     v.normal = vec3<f32>(vertex_f32(w + 3u), vertex_f32(w + 4u), vertex_f32(w + 5u));
@@ -71,6 +77,11 @@ fn mesh_of_triangle(triangle: u32) -> u32 {
 
 // Only the object-space position of pull_vertex's vertex: all a rasteriser needs.
 fn pull_position(index: u32, mesh: MeshData) -> vec3<f32> {
-    let w = u32(i32(index_words[index]) + mesh.base_vertex) * VERTEX_WORDS;
+    return position_at(u32(i32(index_words[index]) + mesh.base_vertex));
+}
+
+// The position of vertex `vertex` of the scene's vertex buffer.
+fn position_at(vertex: u32) -> vec3<f32> {
+    let w = vertex * VERTEX_WORDS;
     return vec3<f32>(vertex_f32(w), vertex_f32(w + 1u), vertex_f32(w + 2u));
 }

@@ -1,6 +1,8 @@
 // The shadow maps' raster (passes/shadow_maps.rs): each opaque mesh drawn depth only
-// into one view's tile of the atlas (the viewport), its vertices pulled from storage
-// (geometry.wgsl) and projected by that view (shadow.wgsl's shadow_views). The view is
+// into one view's tile of the atlas (the viewport), by indexed draws (the vertex index is
+// a vertex of the scene's buffer, which the hardware's vertex reuse shades once for the
+// triangles around it), its vertices read from storage (geometry.wgsl) and projected by
+// that view (shadow.wgsl's shadow_views). The view is
 // a dynamic offset into group 1. Composed after common.wgsl, scene.wgsl, geometry.wgsl,
 // material.wgsl, material_table.wgsl, plane_hit.wgsl, mask_texture.wgsl (the texture
 // table in group 3, for alpha MASK) and shadow_views.wgsl.
@@ -9,9 +11,9 @@
 @group(1) @binding(0) var<uniform> shadow_view: vec4<u32>;
 
 @vertex
-fn vs_shadow(@builtin(vertex_index) index: u32, @builtin(instance_index) mesh_index: u32) -> @builtin(position) vec4<f32> {
+fn vs_shadow(@builtin(vertex_index) vertex: u32, @builtin(instance_index) mesh_index: u32) -> @builtin(position) vec4<f32> {
     let mesh = meshes[mesh_index];
-    let world = mesh.model * vec4<f32>(pull_position(index, mesh), 1.0);
+    let world = mesh.model * vec4<f32>(position_at(vertex), 1.0);
     return shadow_views.views[shadow_view.x].clip_from_world * world;
 }
 
@@ -30,9 +32,9 @@ struct MaskedVaryings {
 }
 
 @vertex
-fn vs_shadow_masked(@builtin(vertex_index) index: u32, @builtin(instance_index) mesh_index: u32) -> MaskedVaryings {
+fn vs_shadow_masked(@builtin(vertex_index) vertex: u32, @builtin(instance_index) mesh_index: u32) -> MaskedVaryings {
     let mesh = meshes[mesh_index];
-    let v = pull_vertex(index, mesh);
+    let v = vertex_at(vertex);
     var out: MaskedVaryings;
     out.clip = shadow_views.views[shadow_view.x].clip_from_world * (mesh.model * vec4<f32>(v.position, 1.0));
     out.alpha = materials[mesh.material].base_color.a * v.color.a;
