@@ -38,14 +38,18 @@ const EDGE: [u8; 4] = [255, 0, 0, 255];
 /// Tiles of 16 pixels: 10 x 6 of them, so that clusters touch one tile, a few, or many.
 const SIZE: (u32, u32) = (160, 96);
 
-/// The shadow maps' pass as shipped (`clusters` left at its default, `culled`), and
-/// drawing every mesh whole.
-const SHADOWS_SHIPPED: (&str, &str) = (SHADOW_MAPS, SHADOW_MAPS);
-const SHADOWS_OFF: (&str, &str) = (
-    SHADOW_MAPS,
-    "plugin: \"shadow_maps\", params: (clusters: off),",
+/// The default pipeline's shadow maps drawn by the hardware alone (parts/shadow_maps.ron,
+/// the CPU adapter's way, rather than the GPU branch's compute raster of small clusters,
+/// parts/shadow_maps_compute.ron).
+const HARDWARE_SHADOWS: (&str, &str) = (
+    "(part: \"parts/shadow_maps_compute.ron\"),",
+    "(part: \"parts/shadow_maps.ron\"),",
 );
-const SHADOW_MAPS: &str = "plugin: \"shadow_maps\",";
+/// The hardware's shadow maps pass drawing every mesh whole into every view.
+const SHADOWS_WHOLE: (&str, &str) = (
+    "when: \"shadows\",\n            outputs: { \"atlas\": \"shadow_atlas\" },",
+    "when: \"shadows\",\n            params: (clusters: off),\n            outputs: { \"atlas\": \"shadow_atlas\" },",
+);
 /// A pixel of the shadows view in the most important light's shadow: black, or nearly.
 fn in_shadow(pixel: [u8; 4]) -> bool {
     pixel[0] < 64
@@ -114,23 +118,25 @@ fn look(camera: &Camera, eye: DVec3, target: DVec3) -> Camera {
 /// Each of [`CHANGES`]' frames of `scene` through one executor, with the raster pass's
 /// parameters `params`: the colour and the edges view.
 fn frames(scene: &'static str, params: &'static str) -> Vec<(Image, Image)> {
-    frames_of(scene, (SHIPPED, params), "debug.edges", Features::new())
+    frames_of(scene, &[(SHIPPED, params)], "debug.edges", Features::new())
 }
 
 /// Each of [`CHANGES`]' frames of `scene` through one executor, the pipeline edited by
-/// `edit` and compiled for `features`: the colour and the image `view`.
+/// `edits` and compiled for `features`: the colour and the image `view`.
 fn frames_of(
     scene: &'static str,
-    (from, to): (&'static str, &'static str),
+    edits: &[(&'static str, &'static str)],
     view: &str,
     features: Features,
 ) -> Vec<(Image, Image)> {
     let gpu = gpu();
     let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
-    let mut frame = Render::new(COMPUTE, scene, SIZE)
-        .edit(from, to)
-        .features(features)
-        .run(&gpu);
+    let render = edits
+        .iter()
+        .fold(Render::new(COMPUTE, scene, SIZE), |r, &(from, to)| {
+            r.edit(from, to)
+        });
+    let mut frame = render.features(features).run(&gpu);
     let own = frame.inputs();
     CHANGES
         .iter()
@@ -199,7 +205,7 @@ fn assert_shadow_views_keep_every_frame(scene: &'static str) {
         let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
         SceneFeatures::of(&loaded).names()
     };
-    let shipped = frames_of(scene, SHADOWS_SHIPPED, "debug.shadows", features());
+    let shipped = frames_of(scene, &[HARDWARE_SHADOWS], "debug.shadows", features());
     // A scene whose shadows fall nowhere on screen would pass with every caster culled.
     let shown = shipped
         .iter()
@@ -209,13 +215,76 @@ fn assert_shadow_views_keep_every_frame(scene: &'static str) {
         shown >= 4,
         "{scene}: only {shown} of the frames show a shadow"
     );
-    let whole = frames_of(scene, SHADOWS_OFF, "debug.shadows", features());
+    let whole = frames_of(
+        scene,
+        &[HARDWARE_SHADOWS, SHADOWS_WHOLE],
+        "debug.shadows",
+        features(),
+    );
     for (k, (other, (color, shadows))) in whole.iter().zip(&shipped).enumerate() {
         let (colors, shadows) = (differing(&other.0, color), differing(&other.1, shadows));
         assert!(
             colors == 0 && shadows == 0,
             "{scene}, {}: shadow maps drawn whole and culled differ in {colors} pixels of \
              the colour and {shadows} of the shadows view",
+            CHANGES[k].0
+        );
+    }
+}
+
+/// The share of pixels of `a` within `tolerance` of `b`'s in every channel.
+fn within(a: &Image, b: &Image, tolerance: u8) -> f64 {
+    let close = (a.pixels.iter().zip(&b.pixels))
+        .filter(|(a, b)| {
+            a.iter()
+                .zip(b.iter())
+                .all(|(x, y)| x.abs_diff(*y) <= tolerance)
+        })
+        .count();
+    close as f64 / a.pixels.len() as f64
+}
+
+/// The GPU branch's shadow maps, their small clusters rasterised in compute
+/// (shadow_raster.rs), against the hardware drawing them all, over the frames: a
+/// heightfield of a million triangles in an atlas of 1024 texels, whose clusters span
+/// some 16 to 32 texels in the sun's cascades, with `small_texels: 64` so that most are
+/// small. The two rasters differ where a texel centre lies on a triangle's edge (the
+/// compute raster covers both sides, the hardware one) and in the bias's rounding.
+#[test]
+fn compute_shadows_match_the_hardware_on_a_dense_heightfield() {
+    let scene = "builtin:terrain?cells=707";
+    let small_atlas = [
+        (
+            "size: Absolute(4096, 4096), when: \"shadows\"),\n        \"shadow_keys\": Buffer(size: 67108864,",
+            "size: Absolute(1024, 1024), when: \"shadows\"),\n        \"shadow_keys\": Buffer(size: 4194304,",
+        ),
+        (
+            "size: Absolute(4096, 4096), when: \"shadows\"),\n    },",
+            "size: Absolute(1024, 1024), when: \"shadows\"),\n    },",
+        ),
+        (
+            "plugin: \"shadow_raster\",",
+            "plugin: \"shadow_raster\", params: (small_texels: 64),",
+        ),
+    ];
+    let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
+    let features = || SceneFeatures::of(&loaded).names();
+    let compute = frames_of(scene, &small_atlas, "debug.shadows", features());
+    let hardware_edits = [&small_atlas[..], &[HARDWARE_SHADOWS]].concat();
+    let hardware = frames_of(scene, &hardware_edits, "debug.shadows", features());
+    for (k, (c, h)) in compute.iter().zip(&hardware).enumerate() {
+        let (colors, shadows) = (within(&c.0, &h.0, 2), within(&c.1, &h.1, 2));
+        eprintln!(
+            "{}: {colors:.5} of the colour, {shadows:.5} of the shadows view",
+            CHANGES[k].0
+        );
+        // Measured 0.984 to 1 over four runs: the same configuration rendered twice
+        // differs too, by up to 215 pixels of the 15,360 with the hardware alone, a
+        // nondeterminism not yet found (docs/design/shadows.md).
+        assert!(
+            colors >= 0.97 && shadows >= 0.97,
+            "{}: the compute raster's shadows and the hardware's agree within 2/255 on \
+             {colors} of the colour and {shadows} of the shadows view",
             CHANGES[k].0
         );
     }

@@ -61,6 +61,7 @@ use crate::passes::particle_edges::ParticleEdges;
 use crate::passes::particles::{CompositeParticles, Particles};
 use crate::passes::resolve::Resolve;
 use crate::passes::shadow_maps::ShadowMaps;
+use crate::passes::shadow_raster::ShadowRaster;
 use crate::passes::ssao::{Ssao, SsaoBlur};
 use crate::passes::taa::Taa;
 use crate::passes::tonemap::Tonemap;
@@ -84,6 +85,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(KeysDepth(shared.clone()))
         .register(Resolve(shared.clone()))
         .register(ShadowMaps(shared.clone()))
+        .register(ShadowRaster(shared.clone()))
         .register(Tonemap(shared.clone()))
         .register(AutoExposure(shared.clone()))
         .register(DebugView(shared.clone()))

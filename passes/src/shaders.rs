@@ -156,6 +156,17 @@ pub(crate) const SHADOW_RASTER: Source = Source {
         include_str!("wgsl/shadow_raster.wgsl"),
     ],
 };
+/// The shadow maps' compute raster of small clusters (passes/shadow_raster.rs).
+pub(crate) const SHADOW_COMPUTE: Source = Source {
+    name: "shadow_compute.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        GEOMETRY,
+        SHADOW_VIEWS,
+        include_str!("wgsl/shadow_compute.wgsl"),
+    ],
+};
 pub(crate) const VISIBILITY: Source = Source {
     name: "visibility.wgsl",
     parts: &[

@@ -37,6 +37,7 @@ pub mod mesh;
 mod particles;
 pub(crate) mod screen_rect;
 mod seen_depths;
+mod shadow_work;
 mod shadows;
 mod texture_table;
 mod textures;
@@ -52,6 +53,7 @@ pub use materials::MaterialState;
 pub use mesh::MeshDraw;
 pub use particles::ParticleBuffer;
 pub use screen_rect::PixelRect;
+pub use shadow_work::{MeshRuns, ShadowOptions, ShadowWork, ViewWork, ITEM_TRIANGLES};
 pub use volumes::{VolumeMesh, VolumeShape};
 
 use crate::host::{FrameInputs, Host};
@@ -210,7 +212,13 @@ impl SceneCache {
 pub struct GpuScene {
     upload: Arc<Upload>,
     frame: Frame,
+    /// This frame's shadow-map work, and the output size, atlas and options it is for.
+    shadow_work: Mutex<Option<(ShadowKey, Arc<ShadowWork>)>>,
 }
+
+/// What a frame's shadow work depends on besides the frame: output size, atlas texels,
+/// options.
+type ShadowKey = ((u32, u32), u32, ShadowOptions);
 
 /// What is uploaded once per device: everything but the frame's bytes, which later
 /// frames write into `meshes.data`, `lights` and `cameras`.
@@ -324,6 +332,7 @@ impl GpuScene {
         GpuScene {
             upload: Arc::new(upload),
             frame,
+            shadow_work: Mutex::new(None),
         }
     }
 
@@ -368,6 +377,7 @@ impl GpuScene {
         GpuScene {
             upload: upload.clone(),
             frame,
+            shadow_work: Mutex::new(None),
         }
     }
 
@@ -385,25 +395,52 @@ impl GpuScene {
         self.upload.cameras.prepare(queue, camera, size, jitter);
     }
 
-    /// Writes the shadow views of this frame's shadowed lights (gpu_scene/shadows.rs)
-    /// for an output of `size` and a shadow atlas `atlas` texels wide, and returns, per
-    /// view, the atlas tile it takes, in pixels (x, y, side), and its clip space from
-    /// camera-relative world positions (for [`draw_opaque_indexed`](Self::draw_opaque_indexed)).
-    /// The write lands before the frame's submission, so every pass of the frame reads
-    /// the views.
-    pub fn write_shadow_views(
+    /// This frame's shadow-map work for an output of `size` and a shadow atlas `atlas`
+    /// texels wide (shadow_work.rs): made by the first pass of the frame to ask, which
+    /// writes the views of this frame's shadowed lights (gpu_scene/shadows.rs) through
+    /// `queue`, and shared with the others that ask for the same. The write lands before
+    /// the frame's submission, so every pass of the frame reads the views.
+    pub fn shadow_work(
         &self,
         queue: &wgpu::Queue,
         size: (u32, u32),
         atlas: u32,
-    ) -> Vec<((u32, u32, u32), glam::DMat4)> {
+        options: ShadowOptions,
+    ) -> Arc<ShadowWork> {
+        let key = (size, atlas, options);
+        let mut cached = self.shadow_work.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((made_for, work)) = cached.as_ref() {
+            if *made_for == key {
+                return work.clone();
+            }
+        }
+        let work = Arc::new(self.make_shadow_work(queue, size, atlas, options));
+        *cached = Some((key, work.clone()));
+        work
+    }
+
+    /// The shadow work this frame made for an output of `size` and an atlas `atlas`
+    /// texels wide with a compute raster's small clusters (`ShadowOptions::small_texels`),
+    /// if a pass made it: what the pass that draws the rest after the compute raster
+    /// draws.
+    pub fn compute_shadow_work(&self, size: (u32, u32), atlas: u32) -> Option<Arc<ShadowWork>> {
+        let cached = self.shadow_work.lock().unwrap_or_else(|e| e.into_inner());
+        let ((made_size, made_atlas, options), work) = cached.as_ref()?;
+        let made = *made_size == size && *made_atlas == atlas && options.small_texels.is_some();
+        made.then(|| work.clone())
+    }
+
+    fn make_shadow_work(
+        &self,
+        queue: &wgpu::Queue,
+        size: (u32, u32),
+        atlas: u32,
+        options: ShadowOptions,
+    ) -> ShadowWork {
         let camera = &self.frame.inputs.camera;
         let aspect = f64::from(size.0.max(1)) / f64::from(size.1.max(1));
-        let boxes: Vec<_> = self
-            .layer_draws(Layer::Opaque)
-            .iter()
-            .map(|(draw, _)| draw.bounds)
-            .collect();
+        let draws = self.layer_draws(Layer::Opaque);
+        let boxes: Vec<_> = draws.iter().map(|(draw, _)| draw.bounds).collect();
         let shadowed = &self.frame.lights.shadowed;
         let views = shadows::views(shadowed, camera, aspect, atlas, &boxes);
         queue.write_buffer(
@@ -412,10 +449,51 @@ impl GpuScene {
             bytemuck::cast_slice(&views),
         );
         let tiles = shadows::tiles(shadowed, atlas);
-        tiles
+        let views = tiles
             .into_iter()
-            .zip(views.iter().map(|v| v.clip_from_world()))
-            .collect()
+            .zip(views.iter().map(|v| v.clip_from_world()));
+        let views = views
+            .map(|(tile, clip_from_world)| ViewWork {
+                tile,
+                meshes: draws
+                    .iter()
+                    .filter_map(|&(draw, state)| {
+                        let runs = match options.culled {
+                            true => {
+                                let boxes =
+                                    &self.upload.meshes.cluster_boxes[draw.instance as usize];
+                                let model = self.frame.meshes.model(draw.instance);
+                                let fine = shadow_work::fine(&options, tile.2, state.masked);
+                                boxes.seen(clip_from_world, model, fine)
+                            }
+                            false => view_culling::Runs {
+                                small: Vec::new(),
+                                large: vec![0..(draw.indices.end - draw.indices.start) / 3],
+                            },
+                        };
+                        let empty = runs.small.is_empty() && runs.large.is_empty();
+                        (!empty).then(|| MeshRuns {
+                            instance: draw.instance,
+                            first_index: draw.indices.start,
+                            base_vertex: draw.base_vertex,
+                            masked: state.masked,
+                            runs,
+                        })
+                    })
+                    .collect(),
+            })
+            .collect();
+        ShadowWork { views }
+    }
+
+    /// Binds the scene's index buffer, for indexed draws of [`ShadowWork`]'s runs: the
+    /// vertex index is then a vertex of the scene's buffer (the run's base vertex added),
+    /// which the hardware shades once for the triangles around it.
+    pub fn bind_indices(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_index_buffer(
+            self.upload.meshes.indices.slice(..),
+            wgpu::IndexFormat::Uint32,
+        );
     }
 
     /// The frame inputs this scene is placed by (the particle passes read the camera
@@ -510,48 +588,6 @@ impl GpuScene {
         for (draw, state) in self.layer_draws(Layer::Opaque) {
             if choose(pass, draw, state) {
                 pass.draw(draw.indices.clone(), draw.instance..draw.instance + 1);
-            }
-        }
-    }
-
-    /// Binds the scene's index buffer and draws each opaque mesh `choose` accepts (in
-    /// [`pull_meshes`](Self::pull_meshes)'s order, the caller setting the pipeline)
-    /// indexed, its base vertex and instance the draw's, so that the vertex index is a
-    /// vertex of the scene's buffer and the hardware shades each vertex once for the
-    /// triangles around it. Given `view`, a clip space from camera-relative world
-    /// positions (as the shaders have them; wgpu's clip volume), only the runs of each
-    /// mesh's clusters that may fall inside it (view_culling.rs), and `choose` sees only
-    /// meshes with some: what the view shows is what drawing everything shows.
-    pub fn draw_opaque_indexed(
-        &self,
-        pass: &mut wgpu::RenderPass<'_>,
-        view: Option<glam::DMat4>,
-        mut choose: impl FnMut(&mut wgpu::RenderPass<'_>, &MeshDraw, MaterialState) -> bool,
-    ) {
-        pass.set_index_buffer(
-            self.upload.meshes.indices.slice(..),
-            wgpu::IndexFormat::Uint32,
-        );
-        for (draw, state) in self.layer_draws(Layer::Opaque) {
-            let whole = 0..(draw.indices.end - draw.indices.start) / 3;
-            let seen = match view {
-                Some(clip_from_world) => {
-                    let boxes = &self.upload.meshes.cluster_boxes[draw.instance as usize];
-                    boxes.seen(clip_from_world, self.frame.meshes.model(draw.instance))
-                }
-                None => vec![whole],
-            };
-            if seen.is_empty() || !choose(pass, draw, state) {
-                continue;
-            }
-            let instances = draw.instance..draw.instance + 1;
-            for triangles in seen {
-                let first = draw.indices.start;
-                pass.draw_indexed(
-                    first + 3 * triangles.start..first + 3 * triangles.end,
-                    draw.base_vertex,
-                    instances.clone(),
-                );
             }
         }
     }

@@ -42,27 +42,66 @@ const ROUNDING: f64 = 1e-5;
 /// has one box, the mesh's.
 #[derive(Clone, Debug)]
 pub(crate) struct ClusterBoxes {
-    levels: Vec<Vec<(Vec3, Vec3)>>,
+    levels: Vec<Vec<Node>>,
     /// Where each cluster's triangles start (from the mesh's first), and after the last
     /// where the last ends: cluster range `a..b` is triangles `starts[a]..starts[b]`.
     starts: Vec<u32>,
 }
 
+/// A box of the tree.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    min: Vec3,
+    max: Vec3,
+    /// The longest diagonal of the boxes of the clusters it holds: what the widest of
+    /// them may span in a view.
+    widest: f32,
+}
+
+/// A view's runs of one mesh's triangles, from the mesh's first, in order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Runs {
+    /// Clusters that lie wholly between the view's depth planes and span at most
+    /// [`Fine::texels`] each: few texels a triangle, which the compute raster covers
+    /// one invocation a triangle.
+    pub small: Vec<Range<u32>>,
+    /// The others: for the hardware raster, which clips.
+    pub large: Vec<Range<u32>>,
+}
+
+/// What makes a cluster small in a view: its map's half side in texels (clip space
+/// spans 2 across the map), and the most texels a small cluster's box may span.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Fine {
+    pub half_side: f64,
+    pub texels: f64,
+}
+
 impl ClusterBoxes {
     /// The tree over `clusters`, which cover a mesh's triangles in order.
     pub fn new(clusters: &[Cluster]) -> ClusterBoxes {
-        let boxes: Vec<(Vec3, Vec3)> = clusters
+        let boxes: Vec<Node> = clusters
             .iter()
-            .map(|c| (Vec3::from_array(c.min), Vec3::from_array(c.max)))
+            .map(|c| {
+                let (min, max) = (Vec3::from_array(c.min), Vec3::from_array(c.max));
+                Node {
+                    min,
+                    max,
+                    widest: (max - min).length(),
+                }
+            })
             .collect();
         let mut levels = vec![boxes];
         while levels.last().is_some_and(|level| level.len() > 1) {
             let below = &levels[levels.len() - 1];
-            let above: Vec<(Vec3, Vec3)> = below
+            let above: Vec<Node> = below
                 .chunks(FAN_OUT)
                 .map(|held| {
-                    held.iter()
-                        .fold(held[0], |(min, max), b| (min.min(b.0), max.max(b.1)))
+                    held.iter().fold(held[0], |a, b| Node {
+                        min: a.min.min(b.min),
+                        max: a.max.max(b.max),
+                        widest: a.widest.max(b.widest),
+                    })
                 })
                 .collect();
             levels.push(above);
@@ -78,35 +117,61 @@ impl ClusterBoxes {
 
     /// The mesh's triangles that may show in the view `clip_from_world` (wgpu's clip
     /// volume) when the mesh is placed by `world_from_local`, both as the shader has
-    /// them (f32): ranges of triangles from the mesh's first, in order, ranges fewer
-    /// than [`MERGED_GAP`] triangles apart merged.
-    pub fn seen(&self, clip_from_world: DMat4, world_from_local: DMat4) -> Vec<Range<u32>> {
-        let mut seen = Vec::new();
+    /// them (f32), split by `fine` into small and large clusters (all large without):
+    /// runs fewer than [`MERGED_GAP`] triangles apart merged.
+    pub fn seen(
+        &self,
+        clip_from_world: DMat4,
+        world_from_local: DMat4,
+        fine: Option<Fine>,
+    ) -> Runs {
+        let mut runs = Runs::default();
         let top = self.levels.len() - 1;
-        let Some(&(min, max)) = self.levels[top].first() else {
-            return seen;
+        let Some(node) = self.levels[top].first() else {
+            return runs;
         };
-        let extent = min.abs().max(max.abs()).as_dvec3();
+        let extent = node.min.abs().max(node.max.abs()).as_dvec3();
         let view = MeshInView::new(clip_from_world, world_from_local, extent);
-        self.visit(&view, top, 0, &mut seen);
-        seen
+        self.visit(&view, fine, (top, 0), false, &mut runs);
+        runs
     }
 
-    fn visit(&self, view: &MeshInView, level: usize, at: usize, seen: &mut Vec<Range<u32>>) {
-        let (min, max) = self.levels[level][at];
-        match view.test(min.as_dvec3(), max.as_dvec3()) {
-            Seen::Outside => {}
-            Seen::Inside => {
-                let clusters = FAN_OUT.pow(level as u32);
-                let last = self.starts.len() - 1;
-                let (a, b) = (at * clusters, ((at + 1) * clusters).min(last));
-                push(seen, self.starts[a]..self.starts[b]);
-            }
-            Seen::Partly if level == 0 => push(seen, self.starts[at]..self.starts[at + 1]),
-            Seen::Partly => {
+    /// Visits box `at` of `level`, `inside` the view if a box above it was.
+    fn visit(
+        &self,
+        view: &MeshInView,
+        fine: Option<Fine>,
+        (level, at): (usize, usize),
+        inside: bool,
+        runs: &mut Runs,
+    ) {
+        let node = self.levels[level][at];
+        let (min, max) = (node.min.as_dvec3(), node.max.as_dvec3());
+        let seen = match inside {
+            true => Seen::Inside,
+            false => view.test(min, max),
+        };
+        if matches!(seen, Seen::Outside) {
+            return;
+        }
+        let small = fine.is_some_and(|fine| {
+            view.texels(min, max, f64::from(node.widest), fine.half_side)
+                .is_some_and(|t| t <= fine.texels)
+        });
+        let clusters = FAN_OUT.pow(level as u32);
+        let last = self.starts.len() - 1;
+        let (a, b) = (at * clusters, ((at + 1) * clusters).min(last));
+        let whole = self.starts[a]..self.starts[b];
+        match (seen, small, level) {
+            (Seen::Inside, true, _) | (Seen::Partly, true, 0) => push(&mut runs.small, whole),
+            (Seen::Inside, false, 0) | (Seen::Partly, false, 0) => push(&mut runs.large, whole),
+            // Without `fine` a box inside is large all through: drawn whole.
+            (Seen::Inside, false, _) if fine.is_none() => push(&mut runs.large, whole),
+            (seen, _, _) => {
+                let inside = matches!(seen, Seen::Inside);
                 let below = self.levels[level - 1].len();
                 for child in at * FAN_OUT..((at + 1) * FAN_OUT).min(below) {
-                    self.visit(view, level - 1, child, seen);
+                    self.visit(view, fine, (level - 1, child), inside, runs);
                 }
             }
         }
@@ -132,9 +197,11 @@ enum Seen {
 }
 
 /// A view's clip volume in one mesh's space: six planes `dot(n, p) + d >= 0`, each with
-/// the margin by which a box must lie outside it to be culled.
+/// the margin by which a box must lie outside it to be culled, and the clip space's x,
+/// y and w rows.
 struct MeshInView {
     planes: [(DVec4, f64); 6],
+    rows: [DVec4; 3],
 }
 
 impl MeshInView {
@@ -153,37 +220,70 @@ impl MeshInView {
             m.row(1).truncate().abs().dot(extent) + m.row(1).w.abs(),
             m.row(2).truncate().abs().dot(extent) + m.row(2).w.abs(),
         );
-        let planes = world_planes.map(|plane| {
-            let margin = ROUNDING * (plane.truncate().abs().dot(reach) + plane.w.abs());
-            // A plane's row times the model matrix: the same plane in the mesh's space.
-            let local = DVec4::new(
+        // A row times the model matrix: the same plane in the mesh's space.
+        let local = |plane: DVec4| {
+            DVec4::new(
                 plane.dot(m.x_axis),
                 plane.dot(m.y_axis),
                 plane.dot(m.z_axis),
                 plane.dot(m.w_axis),
-            );
-            (local, margin)
+            )
+        };
+        let planes = world_planes.map(|plane| {
+            let margin = ROUNDING * (plane.truncate().abs().dot(reach) + plane.w.abs());
+            (local(plane), margin)
         });
-        MeshInView { planes }
+        MeshInView {
+            planes,
+            rows: [local(x), local(y), local(w)],
+        }
     }
 
     fn test(&self, min: DVec3, max: DVec3) -> Seen {
         let mut inside = true;
         for (plane, margin) in &self.planes {
-            let n = plane.truncate();
-            // The box's corners farthest along the plane's normal and against it.
-            let far = n.max(DVec3::ZERO) * max + n.min(DVec3::ZERO) * min;
-            let near = n.max(DVec3::ZERO) * min + n.min(DVec3::ZERO) * max;
-            if far.element_sum() + plane.w < -margin {
+            let (near, far) = span(*plane, min, max);
+            if far < -margin {
                 return Seen::Outside;
             }
-            inside &= near.element_sum() + plane.w > *margin;
+            inside &= near > *margin;
         }
         match inside {
             true => Seen::Inside,
             false => Seen::Partly,
         }
     }
+
+    /// The most texels a segment of `length` in the box from `min` to `max` may span in
+    /// a map of `half_side` texels a clip unit; `None` where the box does not lie wholly
+    /// between the depth planes (the hardware clips there). Inside the box the map
+    /// position `x / w` changes by at most `(|row x| + |x| |row w| / w) / w` per unit of
+    /// length, bounded by the box's extremes.
+    fn texels(&self, min: DVec3, max: DVec3, length: f64, half_side: f64) -> Option<f64> {
+        let between = self.planes[4..]
+            .iter()
+            .all(|(plane, margin)| span(*plane, min, max).0 > *margin);
+        let [x, y, w] = self.rows;
+        let (w_min, _) = span(w, min, max);
+        if !between || w_min <= 0.0 {
+            return None;
+        }
+        let largest = |row: DVec4| {
+            let (low, high) = span(row, min, max);
+            low.abs().max(high.abs())
+        };
+        let w_slope = w.truncate().length();
+        let slope = |row: DVec4| (row.truncate().length() + largest(row) * w_slope / w_min) / w_min;
+        Some(length * slope(x).max(slope(y)) * half_side)
+    }
+}
+
+/// The least and greatest of `dot(row.xyz, p) + row.w` over the box from `min` to `max`.
+fn span(row: DVec4, min: DVec3, max: DVec3) -> (f64, f64) {
+    let n = row.truncate();
+    let high = n.max(DVec3::ZERO) * max + n.min(DVec3::ZERO) * min;
+    let low = n.max(DVec3::ZERO) * min + n.min(DVec3::ZERO) * max;
+    (low.element_sum() + row.w, high.element_sum() + row.w)
 }
 
 #[cfg(test)]
@@ -216,13 +316,13 @@ mod tests {
             [40, 3, 1]
         );
         let view = DMat4::orthographic_rh(10.5, 20.5, -5.0, 5.0, -5.0, 5.0);
-        let seen = boxes.seen(view, DMat4::IDENTITY);
+        let seen = boxes.seen(view, DMat4::IDENTITY, None).large;
         assert_eq!(seen, [20..42]);
         // Placed 100 to the left, none shows; 15 to the left, clusters 25 to 35.
         let moved = |x: f64| DMat4::from_translation(DVec3::new(x, 0.0, 0.0));
-        let seen = boxes.seen(view, moved(-100.0));
+        let seen = boxes.seen(view, moved(-100.0), None).large;
         assert_eq!(seen, []);
-        let seen = boxes.seen(view, moved(-15.0));
+        let seen = boxes.seen(view, moved(-15.0), None).large;
         assert_eq!(seen, [50..72]);
     }
 
@@ -230,7 +330,10 @@ mod tests {
     #[test]
     fn a_mesh_without_clusters_shows_nothing() {
         let view = DMat4::orthographic_rh(-1.0, 1.0, -1.0, 1.0, -1.0, 1.0);
-        assert_eq!(ClusterBoxes::new(&[]).seen(view, DMat4::IDENTITY), []);
+        assert_eq!(
+            ClusterBoxes::new(&[]).seen(view, DMat4::IDENTITY, None),
+            Runs::default()
+        );
     }
 
     /// A box that lies outside a plane by less than the rounding margin is kept.
@@ -239,8 +342,53 @@ mod tests {
         let clusters = [cluster(0, 1, [0.0; 3], [1.0; 3])];
         let boxes = ClusterBoxes::new(&clusters);
         let view = |left: f64| DMat4::orthographic_rh(left, left + 10.0, -5.0, 5.0, -5.0, 5.0);
-        let seen = |left| boxes.seen(view(left), DMat4::IDENTITY);
+        let seen = |left| boxes.seen(view(left), DMat4::IDENTITY, None).large;
         assert_eq!(seen(1.0 + 1e-7), [0..1]);
         assert_eq!(seen(1.01), []);
+    }
+
+    /// Clusters spanning at most `Fine::texels` in the map, wholly between its depth
+    /// planes, are small; the others large, whatever their size across a depth plane.
+    #[test]
+    fn clusters_spanning_few_texels_are_small() {
+        let clusters: Vec<Cluster> = (0..40)
+            .map(|i| cluster(2 * i, 2, [i as f32, 0.0, 0.0], [i as f32 + 1.0, 1.0, 1.0]))
+            .collect();
+        let boxes = ClusterBoxes::new(&clusters);
+        let fine = |texels| {
+            Some(Fine {
+                half_side: 512.0,
+                texels,
+            })
+        };
+        let runs = |small: Vec<Range<u32>>, large: Vec<Range<u32>>| Runs { small, large };
+        // A unit is 25.6 texels, a cluster's diagonal (sqrt 3 units) 44.3.
+        let view = DMat4::orthographic_rh(0.0, 40.0, -5.0, 5.0, -5.0, 5.0);
+        assert_eq!(
+            boxes.seen(view, DMat4::IDENTITY, fine(64.0)),
+            runs(vec![0..80], vec![])
+        );
+        assert_eq!(
+            boxes.seen(view, DMat4::IDENTITY, fine(32.0)),
+            runs(vec![], vec![0..80])
+        );
+        // The near plane at z = 0.5 cuts every cluster.
+        let cut = DMat4::orthographic_rh(0.0, 40.0, -5.0, 5.0, -0.5, 5.0);
+        assert_eq!(
+            boxes.seen(cut, DMat4::IDENTITY, fine(64.0)),
+            runs(vec![], vec![0..80])
+        );
+        // Seen through a perspective from 10 units away, a cluster spans more near the
+        // axis than the bound's worst case allows at 32 texels, less than 1024.
+        let eye = DMat4::look_at_rh(
+            DVec3::new(20.0, 0.5, 10.0),
+            DVec3::new(20.0, 0.5, 0.0),
+            DVec3::Y,
+        );
+        let perspective = DMat4::perspective_rh(2.5, 1.0, 1.0, 100.0) * eye;
+        let seen = boxes.seen(perspective, DMat4::IDENTITY, fine(1024.0));
+        assert!(seen.large.is_empty() && !seen.small.is_empty(), "{seen:?}");
+        let seen = boxes.seen(perspective, DMat4::IDENTITY, fine(32.0));
+        assert!(seen.small.is_empty() && !seen.large.is_empty(), "{seen:?}");
     }
 }

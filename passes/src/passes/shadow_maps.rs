@@ -27,11 +27,14 @@
 use serde::Deserialize;
 
 use rgraph_core::file::{Plugin, PluginError, Slots};
-use rgraph_core::{AspectAccess, PassBuilder, PassKind, Size, TextureHandle};
+use rgraph_core::{
+    AspectAccess, Buffer, BufferHandle, BufferRole, PassBuilder, PassKind, Size, TextureHandle,
+};
 
 use crate::common::plugin::Shared;
 use crate::common::shadows::ATLAS;
 use crate::common::textures::{self, Want};
+use crate::passes::shadow_raster::atlas_of_keys;
 use crate::shaders;
 use crate::shadows::ATLAS_UNITS;
 
@@ -45,6 +48,7 @@ pub struct ShadowMapsParams {
     /// acne of surfaces the light grazes. shadow.wgsl's normal offset does the rest.
     #[serde(default = "slope_bias")]
     pub slope_bias: f32,
+    /// Without `keys`; with them the views are culled as `shadow_raster` culled them.
     #[serde(default)]
     pub clusters: ShadowClusters,
 }
@@ -73,6 +77,9 @@ pub(crate) struct ShadowDraw {
     pub atlas: TextureHandle,
     pub slope_bias: f32,
     pub clusters: ShadowClusters,
+    /// `shadow_raster`'s keys, where the file gives them (an optional read: absent
+    /// where a condition drops that pass).
+    pub keys: Option<BufferHandle>,
 }
 
 impl Plugin for ShadowMaps {
@@ -113,15 +120,51 @@ impl Plugin for ShadowMaps {
                 ),
             });
         }
+        let keys = match slots.kind("keys") {
+            Some(_) => Some(keys(pass, slots, desc.size)?),
+            None => None,
+        };
         let draw = ShadowDraw {
             source: shaders::SHADOW_RASTER.compose(1)?.source().to_owned(),
             atlas,
             slope_bias: params.slope_bias,
             clusters: params.clusters,
+            keys,
         };
         self.0.record(pass, draw);
         Ok(())
     }
+}
+
+/// Takes the `keys` input (read-only storage), checked to hold 4 bytes a texel of the
+/// atlas of `size`.
+fn keys(
+    pass: &mut PassBuilder<'_>,
+    slots: &mut Slots<'_>,
+    size: Size,
+) -> Result<BufferHandle, PluginError> {
+    let keys = slots.input::<Buffer>("keys")?;
+    let read = BufferRole::Storage {
+        read: true,
+        write: false,
+    };
+    pass.buffer(keys, read);
+    let bytes = pass.resource(keys).buffer().map(|d| d.size);
+    let atlas = match size {
+        Size::Absolute(w, _) => Some(w),
+        _ => None,
+    };
+    if bytes.and_then(atlas_of_keys) != atlas || atlas.is_none() {
+        return Err(PluginError::Slot {
+            slot: "keys".to_owned(),
+            resource: slots.resource("keys").unwrap_or("keys").to_owned(),
+            why: format!(
+                "holds {bytes:?} bytes, but the keys of a {size:?} atlas take 4 bytes a \
+                 texel: Buffer(size: 4 N^2) for Absolute(N, N)"
+            ),
+        });
+    }
+    Ok(keys)
 }
 
 #[cfg(feature = "gpu")]
@@ -135,7 +178,7 @@ mod gpu {
     use super::{ShadowClusters, ShadowDraw};
     use crate::common::gpu::pipeline::{module, pipeline_layout, PipelineDesc};
     use crate::common::gpu::{Frame, Recorded, Recorder, Render};
-    use crate::gpu_scene::{GpuScene, MaterialState};
+    use crate::gpu_scene::{GpuScene, ShadowOptions};
     use crate::shadows::SHADOW_VIEWS;
     use rgraph_scene::DepthConvention;
     use wgpu::util::DeviceExt;
@@ -147,6 +190,11 @@ mod gpu {
         /// View `v`'s index at `v * stride`, bound with that dynamic offset.
         views: wgpu::BindGroup,
         stride: u32,
+        /// The compute raster's keys written into the atlas: the pipeline for an atlas
+        /// of the side it was made for, made on first use.
+        keys: Option<(u32, wgpu::RenderPipeline)>,
+        keys_layout: wgpu::BindGroupLayout,
+        module: wgpu::ShaderModule,
     }
 
     impl Recorder for ShadowDraw {
@@ -230,11 +278,27 @@ mod gpu {
                 }
                 .build(device)
             };
+            let keys_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("shadow keys"),
+                entries: &[wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                }],
+            });
             Ok(State {
                 pipeline: pipeline("vs_shadow", "fs_shadow"),
                 masked: pipeline("vs_shadow_masked", "fs_shadow_masked"),
                 views,
                 stride,
+                keys: None,
+                keys_layout,
+                module,
             })
         }
 
@@ -242,27 +306,94 @@ mod gpu {
             let pass = &mut *frame.pass;
             let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
             let atlas = resources.shape(self.atlas);
-            let tiles =
-                scene.write_shadow_views(resources.queue, resources.output_size(), atlas.width);
+            // With the compute raster's keys, its small clusters are drawn: the keys go
+            // into the atlas first, and the views draw the rest.
+            let keys = self.keys.filter(|keys| resources.has(*keys));
+            let (size, side) = (resources.output_size(), atlas.width);
+            let work = match keys {
+                // The work `shadow_raster` made this frame, its small clusters drawn.
+                Some(_) => scene.compute_shadow_work(size, side).ok_or(
+                    "shadow_raster, which writes the keys, made no shadow work this frame",
+                )?,
+                None => {
+                    let options = ShadowOptions {
+                        culled: self.clusters == ShadowClusters::Culled,
+                        small_texels: None,
+                    };
+                    scene.shadow_work(resources.queue, size, side, options)
+                }
+            };
+            if let Some(keys) = keys {
+                let side = atlas.width;
+                if state.keys.as_ref().is_none_or(|(made, _)| *made != side) {
+                    let layout = pipeline_layout(device, &[None, Some(&state.keys_layout)]);
+                    let pipeline = PipelineDesc {
+                        label: "shadow keys",
+                        layout: &layout,
+                        module: &state.module,
+                        vertex: "vs_keys",
+                        buffers: &[],
+                        fragment: "fs_keys",
+                        constants: &[("ATLAS", f64::from(side))],
+                        targets: &[],
+                        cull: None,
+                        depth_stencil: Some(wgpu::DepthStencilState {
+                            format: wgpu::TextureFormat::Depth32Float,
+                            depth_write_enabled: Some(true),
+                            depth_compare: Some(wgpu::CompareFunction::Less),
+                            stencil: Default::default(),
+                            bias: Default::default(),
+                        }),
+                        samples: 1,
+                        mask: !0,
+                    }
+                    .build(device);
+                    state.keys = Some((side, pipeline));
+                }
+                let keys = resources.buffer(keys);
+                let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("shadow keys"),
+                    layout: &state.keys_layout,
+                    entries: &[wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: keys.as_entire_binding(),
+                    }],
+                });
+                // Only the tiles of views with small clusters: the copy costs the ROPs a
+                // fragment a texel (1.6 ms for a whole 4096-texel atlas on an H100).
+                if let Some((_, pipeline)) = &state.keys {
+                    pass.set_pipeline(pipeline);
+                    pass.set_bind_group(1, &group, &[]);
+                    for view in work.views.iter().filter(|v| v.has_small()) {
+                        let (x, y, side) = view.tile;
+                        pass.set_viewport(x as f32, y as f32, side as f32, side as f32, 0.0, 1.0);
+                        pass.set_scissor_rect(x, y, side, side);
+                        pass.draw(0..3, 0..1);
+                    }
+                }
+            }
             // The views take camera-relative positions; group 0's camera is not read.
             pass.set_bind_group(0, scene.bind_group(DepthConvention::Standard), &[]);
             pass.set_bind_group(2, scene.geometry_group(device)?, &[]);
             // Textured alpha masks read the table.
             let table = frame.scenes.texture_table(scene, device, resources.queue)?;
             pass.set_bind_group(3, table, &[]);
-            for (view, ((x, y, side), clip_from_world)) in (0u32..).zip(tiles) {
+            scene.bind_indices(pass);
+            for (view, work) in (0u32..).zip(&work.views) {
+                let (x, y, side) = work.tile;
                 pass.set_viewport(x as f32, y as f32, side as f32, side as f32, 0.0, 1.0);
                 pass.set_scissor_rect(x, y, side, side);
                 pass.set_bind_group(1, &state.views, &[view * state.stride]);
-                let choose = |pass: &mut wgpu::RenderPass<'_>, _: &_, material: MaterialState| {
-                    pass.set_pipeline(match material.masked {
+                for mesh in work.meshes.iter().filter(|m| !m.runs.large.is_empty()) {
+                    pass.set_pipeline(match mesh.masked {
                         true => &state.masked,
                         false => &state.pipeline,
                     });
-                    true
-                };
-                let view = (self.clusters == ShadowClusters::Culled).then_some(clip_from_world);
-                scene.draw_opaque_indexed(pass, view, choose);
+                    let instances = mesh.instance..mesh.instance + 1;
+                    for run in &mesh.runs.large {
+                        pass.draw_indexed(mesh.indices(run), mesh.base_vertex, instances.clone());
+                    }
+                }
             }
             Ok(())
         }

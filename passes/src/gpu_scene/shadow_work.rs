@@ -1,0 +1,98 @@
+//! One frame's shadow-map work: for each view of the shadow atlas, its tile and, per
+//! opaque mesh, the runs of triangles it draws, split into the small clusters the compute
+//! raster covers (`shadow_raster`) and the large ones the hardware draws (`shadow_maps`).
+//! Made once per frame, output size, atlas and options by
+//! [`GpuScene::shadow_work`](super::GpuScene::shadow_work), and shared by both passes.
+
+use std::ops::Range;
+
+use super::view_culling::{Fine, Runs};
+
+/// Triangles in one compute item: one workgroup's, an invocation a triangle.
+pub const ITEM_TRIANGLES: u32 = 64;
+
+/// How the views' runs are chosen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadowOptions {
+    /// Each view draws only the clusters that may fall inside it (view_culling.rs);
+    /// otherwise every mesh whole, all large.
+    pub culled: bool,
+    /// The most texels a cluster may span to be small (compute), when a compute raster
+    /// draws them: `None` leaves every cluster large.
+    pub small_texels: Option<f64>,
+}
+
+/// The frame's shadow maps, view by view, in view order.
+#[derive(Debug, Default)]
+pub struct ShadowWork {
+    /// By view index: the views' order in the light data and the views' uniform.
+    pub views: Vec<ViewWork>,
+}
+
+/// One view: its atlas tile and what it draws.
+#[derive(Debug)]
+pub struct ViewWork {
+    /// x, y and side in texels.
+    pub tile: (u32, u32, u32),
+    /// The opaque meshes with something to draw here.
+    pub meshes: Vec<MeshRuns>,
+}
+
+/// One mesh's runs in one view.
+#[derive(Debug)]
+pub struct MeshRuns {
+    /// Its instance index (`Scene::meshes` index).
+    pub instance: u32,
+    /// Its first index in the scene's index buffer.
+    pub first_index: u32,
+    /// What its indices add to reach the scene's vertex buffer.
+    pub base_vertex: i32,
+    /// Alpha MASK: drawn by the hardware's masked pipeline, every run large.
+    pub masked: bool,
+    /// Triangle ranges from the mesh's first.
+    pub runs: Runs,
+}
+
+impl ViewWork {
+    /// Whether the compute raster covers some of this view.
+    pub fn has_small(&self) -> bool {
+        self.meshes.iter().any(|m| !m.runs.small.is_empty())
+    }
+}
+
+impl MeshRuns {
+    /// `range` of the mesh's triangles as a range of the scene's index buffer.
+    pub fn indices(&self, range: &Range<u32>) -> Range<u32> {
+        self.first_index + 3 * range.start..self.first_index + 3 * range.end
+    }
+}
+
+impl ShadowWork {
+    /// The compute raster's items: per view, per small run, chunks of at most
+    /// [`ITEM_TRIANGLES`] triangles as (view, instance, first index, triangles), in
+    /// `shadow_compute.wgsl`'s `Item` layout.
+    pub fn small_items(&self) -> Vec<[u32; 4]> {
+        let mut items = Vec::new();
+        for (view, work) in (0u32..).zip(&self.views) {
+            for mesh in &work.meshes {
+                for run in &mesh.runs.small {
+                    for start in (run.start..run.end).step_by(ITEM_TRIANGLES as usize) {
+                        let count = (run.end - start).min(ITEM_TRIANGLES);
+                        let first = mesh.indices(&(start..start + count)).start;
+                        items.push([view, mesh.instance, first, count]);
+                    }
+                }
+            }
+        }
+        items
+    }
+}
+
+/// What makes a cluster small in a view of `side` texels, given the options.
+pub(super) fn fine(options: &ShadowOptions, side: u32, masked: bool) -> Option<Fine> {
+    let texels = options.small_texels.filter(|_| !masked && options.culled)?;
+    Some(Fine {
+        half_side: 0.5 * f64::from(side),
+        texels,
+    })
+}

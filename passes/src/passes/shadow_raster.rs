@@ -1,0 +1,262 @@
+//! `shadow_raster`: the shadow maps' small clusters rasterised in compute, one invocation
+//! a triangle, into a buffer of one key per atlas texel, which `shadow_maps` writes into
+//! the atlas before the hardware draws the rest (its optional `keys` input).
+//!
+//! ```ron
+//! (name: "shadow raster", plugin: "shadow_raster",
+//!  when: "shadows & !cpu_device",
+//!  params: (slope_bias: 2.0,     // the default, as shadow_maps': the same depth bias
+//!           small_texels: 16),   // the default: the most texels a small cluster spans
+//!  outputs: { "keys": "shadow_keys" })   // Buffer(size: 4 N^2) for an N-texel atlas
+//! ```
+//!
+//! Each frame the pass clears the keys, asks the scene for the frame's shadow work
+//! (gpu_scene/shadow_work.rs: each view's runs of each opaque mesh, culled by the view
+//! and split into small and large clusters) and covers the small runs' triangles: their
+//! corners projected into the view's tile, the texels whose centres they hold tested by
+//! edge functions, the depth interpolated, the hardware's slope-scaled bias added, and
+//! the nearest kept by `atomicMax` of the depth's bits inverted. A small cluster lies
+//! wholly between the view's depth planes, so nothing is clipped; a cluster that spans
+//! more than `small_texels` texels, or crosses a depth plane, or whose material is alpha
+//! MASK, is left to the hardware. On a GPU a depth-only hardware raster of sub-texel
+//! triangles is slow (a 10M-triangle heightfield's 22 shadow views took 122 ms on an
+//! H100, docs/design/shadows.md); this is the compute raster issue 39 asks for.
+
+use serde::Deserialize;
+
+use rgraph_core::file::{Plugin, PluginError, Slots};
+use rgraph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, PassKind};
+
+use crate::common::plugin::Shared;
+use crate::shaders;
+
+pub struct ShadowRaster(pub(crate) Shared);
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShadowRasterParams {
+    /// The slope-scaled depth bias, as `shadow_maps`' (the hardware's rule: the bias is
+    /// this times the larger of the depth's changes per texel across and down).
+    #[serde(default = "slope_bias")]
+    pub slope_bias: f32,
+    /// The most texels a cluster's box may span in a view for the compute raster to
+    /// cover it (each invocation loops over its triangle's texels, at most this squared).
+    #[serde(default = "small_texels")]
+    pub small_texels: u32,
+}
+
+fn slope_bias() -> f32 {
+    2.0
+}
+
+fn small_texels() -> u32 {
+    16
+}
+
+/// The pass as set up: what its `gpu` module records.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct ShadowRasterDispatch {
+    pub source: String,
+    pub keys: BufferHandle,
+    pub slope_bias: f32,
+    pub small_texels: u32,
+}
+
+impl Plugin for ShadowRaster {
+    const NAME: &'static str = "shadow_raster";
+    type Params = ShadowRasterParams;
+
+    fn kind(&self, _: &ShadowRasterParams) -> PassKind {
+        PassKind::Compute
+    }
+
+    fn setup(
+        &self,
+        params: ShadowRasterParams,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        if !params.slope_bias.is_finite() || params.slope_bias < 0.0 {
+            return Err(PluginError::Invalid(format!(
+                "slope_bias must be finite and 0 or more, got {}",
+                params.slope_bias
+            )));
+        }
+        if !(1..=64).contains(&params.small_texels) {
+            return Err(PluginError::Invalid(format!(
+                "small_texels must be 1 to 64, got {}",
+                params.small_texels
+            )));
+        }
+        // Cleared and written each frame (atomics read what this frame wrote): nothing
+        // of an earlier version is read.
+        let role = BufferRole::Storage {
+            read: false,
+            write: true,
+        };
+        let keys = slots.write::<Buffer>("keys", |t| pass.buffer(t.handle, role))?;
+        let dispatch = ShadowRasterDispatch {
+            source: shaders::SHADOW_COMPUTE.compose(1)?.source().to_owned(),
+            keys,
+            slope_bias: params.slope_bias,
+            small_texels: params.small_texels,
+        };
+        self.0.record(pass, dispatch);
+        Ok(())
+    }
+}
+
+/// The side of the atlas whose keys fill `bytes`: 4 bytes a texel, a square.
+pub(crate) fn atlas_of_keys(bytes: u64) -> Option<u32> {
+    let texels = bytes / 4;
+    let side = (texels as f64).sqrt().round() as u64;
+    (side * side == texels && bytes % 4 == 0 && side > 0)
+        .then(|| u32::try_from(side).ok())
+        .flatten()
+}
+
+#[cfg(feature = "gpu")]
+mod gpu {
+    //! Recording: the keys cleared, the frame's items uploaded into a buffer the pass
+    //! keeps (grown as a frame needs), one workgroup an item.
+
+    use std::sync::Arc;
+
+    use super::{atlas_of_keys, ShadowRasterDispatch};
+    use crate::common::gpu::pipeline::{module, pipeline_layout};
+    use crate::common::gpu::storage::{storage_group, storage_layout};
+    use crate::common::gpu::{compute_pipeline, Compute, Frame, Recorded, Recorder};
+    use crate::gpu_scene::{GpuScene, ShadowOptions};
+    use rgraph_scene::DepthConvention;
+
+    /// Workgroups a dispatch row holds (WebGPU's least limit per dimension).
+    const ROW: u32 = 65_535;
+
+    pub(crate) struct State {
+        layout: wgpu::BindGroupLayout,
+        clear: wgpu::ComputePipeline,
+        raster: wgpu::ComputePipeline,
+        /// The items, and the parameters (`RasterParams`), rewritten each frame.
+        items: Option<wgpu::Buffer>,
+        params: wgpu::Buffer,
+    }
+
+    /// Workgroups `count` as rows of at most [`ROW`].
+    fn rows(count: u32) -> (u32, u32) {
+        (count.min(ROW), count.div_ceil(ROW))
+    }
+
+    impl Recorder for ShadowRasterDispatch {
+        type Stage = Compute;
+        type Scene = Arc<GpuScene>;
+        type State = State;
+
+        fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<State, String> {
+            let (device, scene) = (frame.device, &frame.scene);
+            let layout = storage_layout(device, "shadow_raster", &[false, true, true]);
+            let module = module(device, "shadow_raster", &self.source);
+            let pipeline_layout = pipeline_layout(
+                device,
+                &[
+                    Some(scene.layout()),
+                    Some(&layout),
+                    Some(scene.geometry_layout()),
+                ],
+            );
+            let pipeline = |entry| {
+                compute_pipeline(
+                    device,
+                    "shadow_raster",
+                    &pipeline_layout,
+                    &module,
+                    entry,
+                    &[],
+                )
+            };
+            Ok(State {
+                clear: pipeline("cs_clear"),
+                raster: pipeline("cs_shadow_raster"),
+                layout,
+                items: None,
+                params: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("shadow_raster params"),
+                    size: 16,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }),
+            })
+        }
+
+        fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+            let pass = &mut *frame.pass;
+            let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
+            let keys = resources.buffer(self.keys);
+            let atlas = atlas_of_keys(keys.size()).ok_or_else(|| {
+                format!(
+                    "the keys buffer holds {} bytes, not 4 a texel of a square atlas",
+                    keys.size()
+                )
+            })?;
+            let options = ShadowOptions {
+                culled: true,
+                small_texels: Some(f64::from(self.small_texels)),
+            };
+            let work = scene.shadow_work(resources.queue, resources.output_size(), atlas, options);
+            let items = work.small_items();
+            let count = u32::try_from(items.len()).map_err(|_| "too many shadow items")?;
+            // At least one item's room: wgpu refuses zero-sized bindings.
+            let bytes = (items.len().max(1) * 16) as u64;
+            if state.items.as_ref().is_none_or(|b| b.size() < bytes) {
+                state.items = Some(device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("shadow_raster items"),
+                    size: bytes.next_power_of_two(),
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }));
+            }
+            let Some(item_buffer) = state.items.as_ref() else {
+                return Err("the items buffer was just made".into());
+            };
+            resources
+                .queue
+                .write_buffer(item_buffer, 0, bytemuck::cast_slice(&items));
+            let params = [atlas, count, self.slope_bias.to_bits(), 0];
+            resources
+                .queue
+                .write_buffer(&state.params, 0, bytemuck::cast_slice(&params));
+            resources.hold(item_buffer);
+            resources.hold(&state.params);
+            let group = storage_group(
+                device,
+                "shadow_raster",
+                &state.layout,
+                &[keys, item_buffer, &state.params],
+            );
+            pass.set_bind_group(0, scene.bind_group(DepthConvention::Standard), &[]);
+            pass.set_bind_group(1, &group, &[]);
+            pass.set_bind_group(2, scene.geometry_group(device)?, &[]);
+            pass.set_pipeline(&state.clear);
+            let (x, y) = rows((keys.size() / 4).div_ceil(256) as u32);
+            pass.dispatch_workgroups(x, y, 1);
+            if count > 0 {
+                pass.set_pipeline(&state.raster);
+                let (x, y) = rows(count);
+                pass.dispatch_workgroups(x, y, 1);
+            }
+            Ok(())
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::atlas_of_keys;
+
+    #[test]
+    fn keys_of_a_square_atlas_give_its_side() {
+        assert_eq!(atlas_of_keys(4 * 4096 * 4096), Some(4096));
+        assert_eq!(atlas_of_keys(4 * 4096 * 2048), None);
+        assert_eq!(atlas_of_keys(6), None);
+        assert_eq!(atlas_of_keys(0), None);
+    }
+}
