@@ -485,7 +485,8 @@ fn the_visibility_pipeline_rasterises_by_the_hardware_on_a_cpu_device() {
         .stderr_has("\nvisibility (hardware raster) ")
         .stderr_has("\ndevice conditions: cpu_device\n")
         .stderr_has(
-            "dropped by conditions: visibility, visibility (blend), light tiled, keys depth, ",
+            "dropped by conditions: shadow raster, visibility, visibility (blend), light tiled, \
+             keys depth, ",
         );
     render_default(&out, &[&pipeline[..], &["--no-specialise"]].concat())
         .expect(0)

@@ -363,7 +363,7 @@ mod tests {
         };
         let runs = |small: Vec<Range<u32>>, large: Vec<Range<u32>>| Runs { small, large };
         // A unit is 25.6 texels, a cluster's diagonal (sqrt 3 units) 44.3.
-        let view = DMat4::orthographic_rh(0.0, 40.0, -5.0, 5.0, -5.0, 5.0);
+        let view = DMat4::orthographic_rh(0.0, 40.0, -20.0, 20.0, -5.0, 5.0);
         assert_eq!(
             boxes.seen(view, DMat4::IDENTITY, fine(64.0)),
             runs(vec![0..80], vec![])
@@ -373,7 +373,7 @@ mod tests {
             runs(vec![], vec![0..80])
         );
         // The near plane at z = 0.5 cuts every cluster.
-        let cut = DMat4::orthographic_rh(0.0, 40.0, -5.0, 5.0, -0.5, 5.0);
+        let cut = DMat4::orthographic_rh(0.0, 40.0, -20.0, 20.0, -0.5, 5.0);
         assert_eq!(
             boxes.seen(cut, DMat4::IDENTITY, fine(64.0)),
             runs(vec![], vec![0..80])
