@@ -468,11 +468,14 @@ impl GpuScene {
                             }
                             false => view_culling::Runs {
                                 small: Vec::new(),
-                                large: vec![0..(draw.indices.end - draw.indices.start) / 3],
+                                large: std::iter::once(
+                                    0..(draw.indices.end - draw.indices.start) / 3,
+                                )
+                                .collect(),
                             },
                         };
                         let empty = runs.small.is_empty() && runs.large.is_empty();
-                        (!empty).then(|| MeshRuns {
+                        (!empty).then_some(MeshRuns {
                             instance: draw.instance,
                             first_index: draw.indices.start,
                             base_vertex: draw.base_vertex,

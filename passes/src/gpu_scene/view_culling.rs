@@ -287,6 +287,8 @@ fn span(row: DVec4, min: DVec3, max: DVec3) -> (f64, f64) {
 }
 
 #[cfg(test)]
+// Runs are ranges of triangles: a list of one range is one run, not a range to collect.
+#[allow(clippy::single_range_in_vec_init)]
 mod tests {
     use super::*;
 

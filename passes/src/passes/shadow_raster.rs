@@ -110,7 +110,7 @@ impl Plugin for ShadowRaster {
 pub(crate) fn atlas_of_keys(bytes: u64) -> Option<u32> {
     let texels = bytes / 4;
     let side = (texels as f64).sqrt().round() as u64;
-    (side * side == texels && bytes % 4 == 0 && side > 0)
+    (side * side == texels && bytes.is_multiple_of(4) && side > 0)
         .then(|| u32::try_from(side).ok())
         .flatten()
 }
