@@ -246,13 +246,16 @@ fn within(a: &Image, b: &Image, tolerance: u8) -> f64 {
 
 /// The GPU branch's shadow maps, their small clusters rasterised in compute
 /// (shadow_raster.rs), against the hardware drawing them all, over the frames: a
-/// heightfield of a million triangles in an atlas of 1024 texels, whose clusters span
-/// some 16 to 32 texels in the sun's cascades, with `small_texels: 64` so that most are
-/// small. The two rasters differ where a texel centre lies on a triangle's edge (the
-/// compute raster covers both sides, the hardware one) and in the bias's rounding.
+/// heightfield of half a million triangles in an atlas of 1024 texels, with
+/// `small_texels: 64` so that most clusters in the sun's cascades are small. The two
+/// rasters may differ where a texel centre lies on a triangle's edge (the compute raster
+/// covers both sides, the hardware one) and in the bias's rounding; measured, every
+/// pixel of every frame is within 2/255 (with the compute raster writing depth 0, 56%).
+/// At a million triangles (cells 707) the visibility raster's own dropped triangles
+/// (docs/design/compute-raster.md) made the frames differ from run to run.
 #[test]
 fn compute_shadows_match_the_hardware_on_a_dense_heightfield() {
-    let scene = "builtin:terrain?cells=707";
+    let scene = "builtin:terrain?cells=500";
     let small_atlas = [
         (
             "size: Absolute(4096, 4096), when: \"shadows\"),\n        \"shadow_keys\": Buffer(size: 67108864,",
@@ -278,13 +281,8 @@ fn compute_shadows_match_the_hardware_on_a_dense_heightfield() {
             "{}: {colors:.5} of the colour, {shadows:.5} of the shadows view",
             CHANGES[k].0
         );
-        // Measured 0.984 to 1 over four runs: the same configuration rendered twice
-        // differs too, by up to 215 pixels of the 15,360 with the hardware shadows
-        // alone, where the visibility buffer's compute raster drops triangles of this
-        // terrain on re-execution (docs/design/compute-raster.md); with that fixed, the
-        // bound can tighten.
         assert!(
-            colors >= 0.97 && shadows >= 0.97,
+            colors >= 0.999 && shadows >= 0.999,
             "{}: the compute raster's shadows and the hardware's agree within 2/255 on \
              {colors} of the colour and {shadows} of the shadows view",
             CHANGES[k].0
