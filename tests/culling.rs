@@ -199,13 +199,21 @@ fn culling_keeps_every_visible_triangle_of_a_heightfield() {
     assert_culling_keeps_every_frame("builtin:terrain");
 }
 
+/// `scene`'s features, as `rgraph render` compiles for them: with shadows where its
+/// lights emit.
+fn features_of(scene: &str) -> Features {
+    let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
+    SceneFeatures::of(&loaded).names()
+}
+
 fn assert_shadow_views_keep_every_frame(scene: &'static str) {
-    // Compiled as `rgraph render` compiles it: with shadows where the scene's lights emit.
-    let features = || {
-        let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
-        SceneFeatures::of(&loaded).names()
-    };
-    let shipped = frames_of(scene, &[HARDWARE_SHADOWS], "debug.shadows", features());
+    let features = features_of(scene);
+    let shipped = frames_of(
+        scene,
+        &[HARDWARE_SHADOWS],
+        "debug.shadows",
+        features.clone(),
+    );
     // A scene whose shadows fall nowhere on screen would pass with every caster culled.
     let shown = shipped
         .iter()
@@ -219,7 +227,7 @@ fn assert_shadow_views_keep_every_frame(scene: &'static str) {
         scene,
         &[HARDWARE_SHADOWS, SHADOWS_WHOLE],
         "debug.shadows",
-        features(),
+        features,
     );
     for (k, (other, (color, shadows))) in whole.iter().zip(&shipped).enumerate() {
         let (colors, shadows) = (differing(&other.0, color), differing(&other.1, shadows));
@@ -270,11 +278,10 @@ fn compute_shadows_match_the_hardware_on_a_dense_heightfield() {
             "plugin: \"shadow_raster\", params: (small_texels: 64),",
         ),
     ];
-    let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
-    let features = || SceneFeatures::of(&loaded).names();
-    let compute = frames_of(scene, &small_atlas, "debug.shadows", features());
+    let features = features_of(scene);
+    let compute = frames_of(scene, &small_atlas, "debug.shadows", features.clone());
     let hardware_edits = [&small_atlas[..], &[HARDWARE_SHADOWS]].concat();
-    let hardware = frames_of(scene, &hardware_edits, "debug.shadows", features());
+    let hardware = frames_of(scene, &hardware_edits, "debug.shadows", features);
     for (k, (c, h)) in compute.iter().zip(&hardware).enumerate() {
         let (colors, shadows) = (within(&c.0, &h.0, 2), within(&c.1, &h.1, 2));
         eprintln!(

@@ -360,6 +360,15 @@ fn each_use_of_a_part_has_a_history_of_its_own() {
     );
 }
 
+/// [`two_outputs`] compiled with `output` alone kept, as `rgraph render --view` keeps it.
+fn two_outputs_keeping(output: &str) -> rgraph_core::Plan {
+    let mut graph = two_outputs();
+    graph.keep_outputs(&[output]).unwrap();
+    graph
+        .compile(&rgraph_core::CompileOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
 /// [`file`] with `fade`, and a second output "other" that `other` clears.
 fn two_outputs() -> rgraph_core::file::LoadedGraph {
     let text = file(FADE)
@@ -385,11 +394,7 @@ fn two_outputs() -> rgraph_core::file::LoadedGraph {
 /// refused: `--view motion` of taa.ron).
 #[test]
 fn a_history_whose_readers_are_all_culled_has_no_edge_and_no_textures() {
-    let mut graph = two_outputs();
-    graph.keep_outputs(&["other"]).unwrap();
-    let plan = graph
-        .compile(&rgraph_core::CompileOptions::default())
-        .unwrap_or_else(|e| panic!("{e}"));
+    let plan = two_outputs_keeping("other");
     let order: Vec<&str> = plan.passes.iter().map(|p| p.name.as_str()).collect();
     assert_eq!(order, ["other"]);
     assert!(plan.history.is_empty(), "{:?}", plan.history);
@@ -400,11 +405,7 @@ fn a_history_whose_readers_are_all_culled_has_no_edge_and_no_textures() {
 /// no longer an output: the next frame's read needs this frame's write.
 #[test]
 fn a_history_read_by_a_live_pass_keeps_its_source_s_writer() {
-    let mut graph = two_outputs();
-    graph.keep_outputs(&["shown"]).unwrap();
-    let plan = graph
-        .compile(&rgraph_core::CompileOptions::default())
-        .unwrap_or_else(|e| panic!("{e}"));
+    let plan = two_outputs_keeping("shown");
     let order: Vec<&str> = plan.passes.iter().map(|p| p.name.as_str()).collect();
     assert_eq!(order, ["fade", "present"]);
     assert_eq!(plan.history[0].writer, "fade");

@@ -24,6 +24,7 @@ pub(crate) mod opaque_depth;
 pub(crate) mod plugin;
 pub(crate) mod rgb9e5;
 pub(crate) mod scene_draw;
+pub(crate) mod shadow_depth;
 pub(crate) mod shadows;
 pub(crate) mod textures;
 pub(crate) mod visibility_samples;

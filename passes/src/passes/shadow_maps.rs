@@ -32,9 +32,9 @@ use rgraph_core::{
 };
 
 use crate::common::plugin::Shared;
+use crate::common::shadow_depth::{self, atlas_of_keys, check_slope_bias};
 use crate::common::shadows::ATLAS;
 use crate::common::textures::{self, Want};
-use crate::passes::shadow_raster::atlas_of_keys;
 use crate::shaders;
 use crate::shadows::ATLAS_UNITS;
 
@@ -46,7 +46,7 @@ pub struct ShadowMapsParams {
     /// The raster's slope-scaled depth bias (wgpu's `DepthBiasState::slope_scale`): depth
     /// pushed away from the light in proportion to a triangle's depth slope, against the
     /// acne of surfaces the light grazes. shadow.wgsl's normal offset does the rest.
-    #[serde(default = "slope_bias")]
+    #[serde(default = "shadow_depth::slope_bias")]
     pub slope_bias: f32,
     /// Without `keys`; with them the views are culled as `shadow_raster` culled them.
     #[serde(default)]
@@ -64,10 +64,6 @@ pub enum ShadowClusters {
     Culled,
     /// All of it, in every view.
     Off,
-}
-
-fn slope_bias() -> f32 {
-    2.0
 }
 
 /// The shadow maps' pass as set up: what its `gpu` module records.
@@ -96,12 +92,7 @@ impl Plugin for ShadowMaps {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        if !params.slope_bias.is_finite() || params.slope_bias < 0.0 {
-            return Err(PluginError::Invalid(format!(
-                "slope_bias must be finite and 0 or more, got {}",
-                params.slope_bias
-            )));
-        }
+        check_slope_bias(params.slope_bias)?;
         let want = Want::new("the shadow atlas", ATLAS).samples(1);
         let (atlas, desc) = textures::output(slots, pass, "atlas", want, |pass, h, _| {
             pass.depth_stencil(h, AspectAccess::Clear(1.0), AspectAccess::Absent)
@@ -183,6 +174,17 @@ mod gpu {
     use rgraph_scene::DepthConvention;
     use wgpu::util::DeviceExt;
 
+    /// The atlas's depth test and write: the nearer depth stays, `bias` added.
+    fn nearer_depth(bias: wgpu::DepthBiasState) -> wgpu::DepthStencilState {
+        wgpu::DepthStencilState {
+            format: wgpu::TextureFormat::Depth32Float,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias,
+        }
+    }
+
     pub(crate) struct State {
         pipeline: wgpu::RenderPipeline,
         /// For alpha MASK materials: the cutoff tested per fragment.
@@ -262,17 +264,11 @@ mod gpu {
                     targets: &[],
                     // Both faces: open meshes (a ground plane) and closed ones cast alike.
                     cull: None,
-                    depth_stencil: Some(wgpu::DepthStencilState {
-                        format: wgpu::TextureFormat::Depth32Float,
-                        depth_write_enabled: Some(true),
-                        depth_compare: Some(wgpu::CompareFunction::Less),
-                        stencil: Default::default(),
-                        bias: wgpu::DepthBiasState {
-                            constant: 0,
-                            slope_scale: self.slope_bias,
-                            clamp: 0.0,
-                        },
-                    }),
+                    depth_stencil: Some(nearer_depth(wgpu::DepthBiasState {
+                        constant: 0,
+                        slope_scale: self.slope_bias,
+                        clamp: 0.0,
+                    })),
                     samples: 1,
                     mask: !0,
                 }
@@ -324,7 +320,6 @@ mod gpu {
                 }
             };
             if let Some(keys) = keys {
-                let side = atlas.width;
                 if state.keys.as_ref().is_none_or(|(made, _)| *made != side) {
                     let layout = pipeline_layout(device, &[None, Some(&state.keys_layout)]);
                     let pipeline = PipelineDesc {
@@ -337,13 +332,8 @@ mod gpu {
                         constants: &[("ATLAS", f64::from(side))],
                         targets: &[],
                         cull: None,
-                        depth_stencil: Some(wgpu::DepthStencilState {
-                            format: wgpu::TextureFormat::Depth32Float,
-                            depth_write_enabled: Some(true),
-                            depth_compare: Some(wgpu::CompareFunction::Less),
-                            stencil: Default::default(),
-                            bias: Default::default(),
-                        }),
+                        // The keys hold the bias the compute raster added.
+                        depth_stencil: Some(nearer_depth(Default::default())),
                         samples: 1,
                         mask: !0,
                     }

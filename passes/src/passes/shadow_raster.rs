@@ -28,6 +28,7 @@ use rgraph_core::file::{Plugin, PluginError, Slots};
 use rgraph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, PassKind};
 
 use crate::common::plugin::Shared;
+use crate::common::shadow_depth::{self, check_slope_bias};
 use crate::shaders;
 
 pub struct ShadowRaster(pub(crate) Shared);
@@ -37,16 +38,12 @@ pub struct ShadowRaster(pub(crate) Shared);
 pub struct ShadowRasterParams {
     /// The slope-scaled depth bias, as `shadow_maps`' (the hardware's rule: the bias is
     /// this times the larger of the depth's changes per texel across and down).
-    #[serde(default = "slope_bias")]
+    #[serde(default = "shadow_depth::slope_bias")]
     pub slope_bias: f32,
     /// The most texels a cluster's box may span in a view for the compute raster to
     /// cover it (each invocation loops over its triangle's texels, at most this squared).
     #[serde(default = "small_texels")]
     pub small_texels: u32,
-}
-
-fn slope_bias() -> f32 {
-    2.0
 }
 
 fn small_texels() -> u32 {
@@ -76,12 +73,7 @@ impl Plugin for ShadowRaster {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        if !params.slope_bias.is_finite() || params.slope_bias < 0.0 {
-            return Err(PluginError::Invalid(format!(
-                "slope_bias must be finite and 0 or more, got {}",
-                params.slope_bias
-            )));
-        }
+        check_slope_bias(params.slope_bias)?;
         if !(1..=64).contains(&params.small_texels) {
             return Err(PluginError::Invalid(format!(
                 "small_texels must be 1 to 64, got {}",
@@ -106,15 +98,6 @@ impl Plugin for ShadowRaster {
     }
 }
 
-/// The side of the atlas whose keys fill `bytes`: 4 bytes a texel, a square.
-pub(crate) fn atlas_of_keys(bytes: u64) -> Option<u32> {
-    let texels = bytes / 4;
-    let side = (texels as f64).sqrt().round() as u64;
-    (side * side == texels && bytes.is_multiple_of(4) && side > 0)
-        .then(|| u32::try_from(side).ok())
-        .flatten()
-}
-
 #[cfg(feature = "gpu")]
 mod gpu {
     //! Recording: the keys cleared, the frame's items uploaded into a buffer the pass
@@ -122,10 +105,11 @@ mod gpu {
 
     use std::sync::Arc;
 
-    use super::{atlas_of_keys, ShadowRasterDispatch};
+    use super::ShadowRasterDispatch;
     use crate::common::gpu::pipeline::{module, pipeline_layout};
     use crate::common::gpu::storage::{storage_group, storage_layout};
     use crate::common::gpu::{compute_pipeline, Compute, Frame, Recorded, Recorder};
+    use crate::common::shadow_depth::atlas_of_keys;
     use crate::gpu_scene::{GpuScene, ShadowOptions};
     use rgraph_scene::DepthConvention;
 
@@ -206,17 +190,17 @@ mod gpu {
             let count = u32::try_from(items.len()).map_err(|_| "too many shadow items")?;
             // At least one item's room: wgpu refuses zero-sized bindings.
             let bytes = (items.len().max(1) * 16) as u64;
-            if state.items.as_ref().is_none_or(|b| b.size() < bytes) {
-                state.items = Some(device.create_buffer(&wgpu::BufferDescriptor {
+            if state.items.as_ref().is_some_and(|b| b.size() < bytes) {
+                state.items = None;
+            }
+            let item_buffer: &wgpu::Buffer = state.items.get_or_insert_with(|| {
+                device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("shadow_raster items"),
                     size: bytes.next_power_of_two(),
                     usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                     mapped_at_creation: false,
-                }));
-            }
-            let Some(item_buffer) = state.items.as_ref() else {
-                return Err("the items buffer was just made".into());
-            };
+                })
+            });
             resources
                 .queue
                 .write_buffer(item_buffer, 0, bytemuck::cast_slice(&items));
@@ -245,18 +229,5 @@ mod gpu {
             }
             Ok(())
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::atlas_of_keys;
-
-    #[test]
-    fn keys_of_a_square_atlas_give_its_side() {
-        assert_eq!(atlas_of_keys(4 * 4096 * 4096), Some(4096));
-        assert_eq!(atlas_of_keys(4 * 4096 * 2048), None);
-        assert_eq!(atlas_of_keys(6), None);
-        assert_eq!(atlas_of_keys(0), None);
     }
 }
