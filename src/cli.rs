@@ -225,16 +225,8 @@ pub struct FrameArgs {
     /// default does); others refuse the flag.
     #[arg(long, value_name = "environment|color:R,G,B|transparent", value_parser = parse_background)]
     pub background: Option<Background>,
-    /// How lights cast shadows: pcf (percentage-closer filtering, 3 x 3 bilinear
-    /// comparison taps), hard (one comparison) or off. Directional (4 cascades), point
-    /// (6 cube faces) and spot lights cast them. Off drops the shadow passes.
-    #[arg(long, value_name = "off|hard|pcf", default_value = "pcf", value_parser = parse_shadow_filter)]
-    pub shadows: ShadowFilter,
-    /// The most lights given shadow maps, 0 to 64: the lights covering most of the
-    /// screen, each map sized by its light's share of the screen (from 1024 texels down
-    /// to 128 in the 4096-texel atlas), as many as fit.
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_SHADOWED_LIGHTS, value_parser = parse_shadowed_lights, allow_negative_numbers = true)]
-    pub shadowed_lights: u32,
+    #[command(flatten)]
+    pub shadows: ShadowArgs,
     /// Adapter to render on: lavapipe, gpu, or part of an adapter's name (default:
     /// $RGRAPH_ADAPTER, else lavapipe). For `view` it must be able to present to the window.
     #[arg(long)]
@@ -252,11 +244,28 @@ impl FrameArgs {
     pub fn size(&self) -> (u32, u32) {
         (self.width, self.height)
     }
+}
 
+/// How lights cast shadows, for `render`, `view` and `bench`.
+#[derive(clap::Args)]
+pub struct ShadowArgs {
+    /// How lights cast shadows: pcf (percentage-closer filtering, 3 x 3 bilinear
+    /// comparison taps), hard (one comparison) or off. Directional (4 cascades), point
+    /// (6 cube faces) and spot lights cast them. Off drops the shadow passes.
+    #[arg(long = "shadows", value_name = "off|hard|pcf", default_value = "pcf", value_parser = parse_shadow_filter)]
+    pub filter: ShadowFilter,
+    /// The most lights given shadow maps, 0 to 64: the lights covering most of the
+    /// screen, each map sized by its light's share of the screen (from 1024 texels down
+    /// to 128 in the 4096-texel atlas), as many as fit.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_SHADOWED_LIGHTS, value_parser = parse_shadowed_lights, allow_negative_numbers = true)]
+    pub shadowed_lights: u32,
+}
+
+impl ShadowArgs {
     /// `--shadows` and `--shadowed-lights` (each checked by its parser).
-    pub fn shadows(&self) -> Shadows {
+    pub fn settings(&self) -> Shadows {
         Shadows {
-            filter: self.shadows,
+            filter: self.filter,
             lights: self.shadowed_lights,
         }
     }
@@ -577,6 +586,8 @@ pub struct BenchArgs {
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
     #[command(flatten)]
+    pub shadows: ShadowArgs,
+    #[command(flatten)]
     pub assets: AssetArgs,
     #[command(flatten)]
     pub roots: GraphRoots,
@@ -757,12 +768,10 @@ fn parse_time(text: &str) -> Result<Time, String> {
 }
 
 fn parse_shadow_filter(text: &str) -> Result<ShadowFilter, String> {
-    match text.trim() {
-        "off" => Ok(ShadowFilter::Off),
-        "hard" => Ok(ShadowFilter::Hard),
-        "pcf" => Ok(ShadowFilter::Pcf),
-        other => Err(format!("expected off, hard or pcf, got \"{other}\"")),
-    }
+    let text = text.trim();
+    (ShadowFilter::ALL.into_iter())
+        .find(|filter| filter.name() == text)
+        .ok_or_else(|| format!("expected off, hard or pcf, got \"{text}\""))
 }
 
 fn parse_shadowed_lights(text: &str) -> Result<u32, String> {

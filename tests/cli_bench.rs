@@ -864,3 +864,52 @@ fn a_memory_budget_splits_the_rounds_into_groups() {
     let groups = format!("in {} groups that fit --group-memory", plans.len());
     assert!(table.contains(&groups), "{table}");
 }
+
+/// The pass names of `pipeline`'s row.
+fn pass_names(json: &Value, pipeline: &str) -> Vec<String> {
+    let passes = row(json, pipeline)["figures"]["passes"].as_array().unwrap();
+    (passes.iter())
+        .map(|p| p["name"].as_str().unwrap().to_string())
+        .collect()
+}
+
+/// `--shadows` and `--shadowed-lights` set the scene's shadows as `render` does: off drops
+/// the shadow passes from the measured plan, and the notes say what was measured.
+#[test]
+fn bench_takes_the_shadow_settings_of_render() {
+    let run = |shadows: &[&str]| {
+        let dir = tempfile::tempdir().unwrap();
+        let args = [
+            &["--scene", "builtin:spheres", "--no-reference"][..],
+            shadows,
+            &["--out-dir", dir.path().to_str().unwrap()],
+        ];
+        bench(&args.concat()).expect(0);
+        read_json(&dir.path().join("results.json"))
+    };
+    let pipeline = "visibility_msaa_4x";
+    let shadowed = run(&["--pipeline", "pipelines/visibility_msaa_4x.ron"]);
+    assert!(
+        pass_names(&shadowed, pipeline).contains(&"shadow maps".to_string()),
+        "{:?}",
+        pass_names(&shadowed, pipeline)
+    );
+    let notes = shadowed["notes"].to_string();
+    assert!(!notes.contains("shadows:"), "{notes}");
+    let off = run(&[
+        "--pipeline",
+        "pipelines/visibility_msaa_4x.ron",
+        "--shadows",
+        "off",
+    ]);
+    let names = pass_names(&off, pipeline);
+    assert!(!names.iter().any(|n| n.contains("shadow")), "{names:?}");
+    let notes = off["notes"].to_string();
+    assert!(
+        notes.contains("shadows: off, at most 4 shadowed lights"),
+        "{notes}"
+    );
+    bench(&["--shadowed-lights", "65", "--out-dir", "unused"])
+        .expect(2)
+        .stderr_has("65 shadowed lights is out of range: at most 64");
+}

@@ -21,6 +21,18 @@ pub enum ShadowFilter {
 }
 
 impl ShadowFilter {
+    /// Every filter, as the command line names them.
+    pub const ALL: [ShadowFilter; 3] = [ShadowFilter::Off, ShadowFilter::Hard, ShadowFilter::Pcf];
+
+    /// Its name on the command line and in results.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShadowFilter::Off => "off",
+            ShadowFilter::Hard => "hard",
+            ShadowFilter::Pcf => "pcf",
+        }
+    }
+
     /// shadow.wgsl's `SHADOW_FILTER`.
     pub(crate) fn constant(self) -> u32 {
         match self {

@@ -41,6 +41,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use rgraph_core::gpu::AdapterChoice;
+use rgraph_passes::Shadows;
 
 use super::{write_atomically, CommandError};
 use crate::cli::BenchArgs;
@@ -118,6 +119,14 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
             rounds::FAKE_SLOW_ROUND
         ));
     }
+    let shadows = args.shadows.settings();
+    if shadows != Shadows::default() {
+        notes.push(format!(
+            "shadows: {}, at most {} shadowed lights (--shadows, --shadowed-lights)",
+            shadows.filter.name(),
+            shadows.lights
+        ));
+    }
     // Sweeps measure cost only: a reference per sweep value would dominate the run.
     let reference = match (args.sweep, args.no_reference) {
         (None, false) => Reference::choose(args, &mut notes),
@@ -163,6 +172,7 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         sweep: step.point.as_ref().map(|p| p.label.clone()),
         assets: args.assets.policy(),
         lighting: args.assets.lights,
+        shadows: args.shadows.settings(),
     };
     measure(args, &steps, setup, started, &mut results)?;
     results.elapsed_s = started.elapsed().as_secs_f64();

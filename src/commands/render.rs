@@ -50,7 +50,7 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
         tonemap: args.tonemap.map(|t| t.name().to_string()),
         exposure: args.exposure,
         background: args.frame.background,
-        shadows: args.frame.shadows(),
+        shadows: args.frame.shadows.settings(),
     };
 
     progress.stage(format!("load pipeline {}", args.frame.pipeline.display()));

@@ -108,7 +108,7 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
     }
     let overrides = Overrides {
         background: args.frame.background,
-        shadows: args.frame.shadows(),
+        shadows: args.frame.shadows.settings(),
         ..Overrides::default()
     };
     let host = host(Arc::new(scene), overrides);

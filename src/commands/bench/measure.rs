@@ -10,7 +10,7 @@ use image::RgbaImage;
 use rgraph_core::explain::page::Setting;
 use rgraph_core::gpu::PassTiming;
 use rgraph_core::Plan;
-use rgraph_passes::Host;
+use rgraph_passes::{Host, Shadows};
 use rgraph_scene::{AssetPolicy, Lighting};
 
 use super::candidates::{Candidate, COLOR};
@@ -46,6 +46,8 @@ pub struct Setup<'a> {
     pub assets: AssetPolicy,
     /// How every scene is lit (`--lights`).
     pub lighting: Lighting,
+    /// How its lights cast shadows (`--shadows`, `--shadowed-lights`).
+    pub shadows: Shadows,
 }
 
 /// The plans of one pipeline to time: the scene's, compiled for its features, and, where

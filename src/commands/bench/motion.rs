@@ -117,7 +117,11 @@ pub fn bench(args: &BenchArgs, degrees: f64, session: &Session) -> Result<PathBu
             .assets
             .load(spec)
             .map_err(|e| failed(spec, e.to_string()))?;
-        let host = host(Arc::new(scene), Overrides::default());
+        let overrides = Overrides {
+            shadows: args.shadows.settings(),
+            ..Overrides::default()
+        };
+        let host = host(Arc::new(scene), overrides);
         let load = |file: &Path, params: &GraphParams| {
             let pipeline =
                 Pipeline::load(file, host.clone(), &["color"], Specialise::ToScene, params)?;

@@ -65,7 +65,13 @@ pub fn bench_scene(
     let run = SceneRun {
         setup,
         spec,
-        host: host(scene, Overrides::default()),
+        host: host(
+            scene,
+            Overrides {
+                shadows: setup.shadows,
+                ..Overrides::default()
+            },
+        ),
         images,
     };
     let reference = match reference {
