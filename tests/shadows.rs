@@ -630,3 +630,67 @@ fn every_cascade_covers_part_of_the_spheres() {
         );
     }
 }
+
+/// Every file in `pipelines/` that lights surfaces and draws alpha BLEND ones (all but
+/// the unlit and debug files), as compiled for the tests' adapter.
+const LIT_WITH_BLEND: [&str; 15] = [
+    "visibility_msaa_4x.ron",
+    "deferred_msaa_4x.ron",
+    "deferred_msaa_4x_tiled.ron",
+    "deferred_msaa_4x_adaptive.ron",
+    "deferred_msaa_4x_lean.ron",
+    "deferred_msaa_4x_ssao.ron",
+    "deferred_noaa.ron",
+    "deferred_onthefly_resolve_4x.ron",
+    "deferred_gbuffer_resolve_4x.ron",
+    "light_prepass_msaa_4x.ron",
+    "forward_msaa_4x.ron",
+    "reference_ssaa16.ron",
+    "particles_full_res.ron",
+    "particles_low_res.ron",
+    "particles_mixed_res.ron",
+];
+
+/// Every lit pipeline draws the square's shadow on the ground (lit ground at least twice
+/// as bright as the shadow's centre, and the same without shadows), whether the ground is
+/// opaque or an alpha BLEND surface of alpha 1, which the `transparent` pass lights: a
+/// blended surface receives shadows as an opaque one does.
+#[test]
+fn every_lit_pipeline_shadows_opaque_and_blended_receivers() {
+    let opaque = square_over_plane();
+    let mut parts = square_parts();
+    let mut glass = parts.materials[0].clone();
+    glass.name = "blended".into();
+    glass.alpha_mode = AlphaMode::Blend;
+    parts.materials.push(glass);
+    parts.meshes[0].material = parts.materials.len() - 1;
+    let blended = square_scene(parts);
+    let shadows = Shadows {
+        filter: ShadowFilter::Pcf,
+        lights: 1,
+    };
+    let off = Shadows {
+        filter: ShadowFilter::Off,
+        lights: 1,
+    };
+    for name in LIT_WITH_BLEND {
+        let pipeline = PipelineFile::for_device(name);
+        for (ground, scene) in [("opaque", &opaque), ("blended", &blended)] {
+            let image = render(pipeline, scene, (N, N), shadows);
+            // Lit ground, and the ground the square hides from the sun, by their centres.
+            let (lit, dark) = (luma(image.at(16, 52)), luma(image.at(48, 32)));
+            assert!(
+                lit > 40.0 && dark < 0.5 * lit,
+                "{name}, {ground} ground: the shadow's centre ({dark:.0}) is not darker than \
+                 half the lit ground ({lit:.0})"
+            );
+            let unshadowed = render(pipeline, scene, (N, N), off);
+            let (lit, shade) = (luma(unshadowed.at(16, 52)), luma(unshadowed.at(48, 32)));
+            assert!(
+                (lit - shade).abs() <= 1.0,
+                "{name}, {ground} ground: without shadows the ground is lit alike everywhere \
+                 ({lit:.0} and {shade:.0})"
+            );
+        }
+    }
+}

@@ -439,8 +439,10 @@ impl GpuScene {
     ) -> ShadowWork {
         let camera = &self.frame.inputs.camera;
         let aspect = f64::from(size.0.max(1)) / f64::from(size.1.max(1));
+        // Opaque and masked meshes cast; blended ones receive too (the `transparent` pass
+        // reads the maps), so the cascades cover the depths of both.
         let draws = self.layer_draws(Layer::Opaque);
-        let boxes: Vec<_> = draws.iter().map(|(draw, _)| draw.bounds).collect();
+        let boxes: Vec<_> = self.mesh_draws().map(|(draw, _)| draw.bounds).collect();
         let shadowed = &self.frame.lights.shadowed;
         let views = shadows::views(shadowed, camera, aspect, atlas, &boxes);
         queue.write_buffer(

@@ -1,5 +1,5 @@
 //! The view depths the camera sees of the scene's geometry, on the CPU from the frame's
-//! inputs: for each opaque mesh's bounding box, the depths of its intersection with the
+//! inputs: for each mesh's bounding box (a shadow receiver's, blended or not), the depths of its intersection with the
 //! view frustum (exact for the box: both solids are convex hexahedra, and every vertex of
 //! their intersection is a vertex of one's faces clipped by the other's planes), united
 //! over the meshes. The directional lights' cascades split this range

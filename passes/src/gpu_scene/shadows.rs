@@ -7,7 +7,8 @@
 //! cascades depend on the output's aspect ratio and the atlas's size.
 //!
 //! - A directional light takes [`CASCADES`] orthographic maps, splitting the view depths
-//!   the camera sees of the opaque meshes' bounding boxes (seen_depths.rs; the practical
+//!   the camera sees of the meshes' bounding boxes, blended ones too, which receive
+//!   shadows though they cast none (seen_depths.rs; the practical
 //!   split scheme, λ = 0.75: Zhang et al. 2006, as in Dimitrov's cascaded shadow maps).
 //!   Each cascade is the sphere
 //!   around its slice of the view frustum, whose size depends only on the slice, not on
@@ -203,7 +204,7 @@ fn coverage(light: &Light, camera: &Camera) -> f64 {
 }
 
 /// Every view of the `shadowed` lights for `camera` at `aspect` (width over height), in
-/// an atlas `atlas` texels wide, around the opaque meshes' bounding boxes `boxes`
+/// an atlas `atlas` texels wide, around the receiving meshes' bounding boxes `boxes`
 /// (camera-relative). Views past the last stay zero.
 pub(super) fn views(
     shadowed: &[Shadowed],

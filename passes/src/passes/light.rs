@@ -264,23 +264,22 @@ fn setup(
     })?;
     textures::must_modify(slots, "hdr", modifies, "adds light to it")?;
     // The light pre-pass's ambient light is the material pass's, so no AO there (an
-    // "ao" slot is left unread, which the file loader reports), and no shadows yet.
-    let (ao, shadows) = match accumulate {
-        Accumulate::Shaded => {
-            let ao = ao::input(slots, pass)?;
-            inputs.extend(ao);
-            (ao, shadows::input(slots, pass)?)
-        }
-        Accumulate::Light => (None, None),
+    // "ao" slot is left unread, which the file loader reports).
+    let ao = match accumulate {
+        Accumulate::Shaded => ao::input(slots, pass)?,
+        Accumulate::Light => None,
     };
+    inputs.extend(ao);
+    let shadows = shadows::input(slots, pass)?;
     let filter = shared.overrides.shadows.filter;
     let draw = shadows::variants(slots, shadows, |shadows| {
+        let shadows_wgsl = shadows::wgsl(shadows, 1, filter);
         let source = match accumulate {
             Accumulate::Shaded => {
-                let generated = ao::wgsl(ao.as_ref()) + &shadows::wgsl(shadows, 1, filter);
+                let generated = ao::wgsl(ao.as_ref()) + &shadows_wgsl;
                 shaders::LIGHT.compose_with(samples, &generated)?
             }
-            Accumulate::Light => shaders::LIGHT_PREPASS.compose(samples)?,
+            Accumulate::Light => shaders::LIGHT_PREPASS.compose_with(samples, &shadows_wgsl)?,
         };
         let mut inputs = inputs.clone();
         inputs.extend(shadows.copied());

@@ -6,7 +6,10 @@
 //! (name: "transparent", plugin: "transparent",
 //!  params: (shading: pixel,      // the default; or sample (the reference); reversed_z optional
 //!           extent: blended),    // or `full` (the default): where the accumulation begins
-//!  inputs: { "depth": "depth" }, // the opaque passes' depth, any sample count: read-only
+//!  inputs: {
+//!      "depth": "depth",          // the opaque passes' depth, any sample count: read-only
+//!      "shadows": "shadow_atlas", // optional: shadow_maps's atlas, which scales each
+//!  },                             // shadowed light (group 2), as forward's does
 //!  outputs: { "accum": "transparent" }),   // rgba16float, the depth's sample count
 //! (name: "composite transparent", plugin: "composite_transparent",
 //!  inputs: { "accum": "transparent", "resolved": "resolved_hdr" }, // rgba16float, 1x, the
@@ -23,8 +26,10 @@
 //! so its own overlapping triangles blend in index order, and intersecting meshes blend
 //! in the order of their centres. Each fragment is shaded as the `forward` pass shades
 //! (forward.wgsl's vertex stages and `shade_surface`): the same material model, every
-//! light of the scene, emission added, unlit materials their base colour, double-sided
-//! back faces lit from their side. `shading: sample` shades every covered sample at its
+//! light of the scene, each shadowed light scaled by its shadow maps where the pass reads
+//! the atlas (a blended surface receives shadows as an opaque one does; it casts none:
+//! `shadow_maps` draws the opaque and masked meshes), emission added, unlit materials
+//! their base colour, double-sided back faces lit from their side. `shading: sample` shades every covered sample at its
 //! own position, as the supersampled reference needs. Depth is tested against the
 //! multisampled depth of the opaque passes, attached read-only (both aspects): a blended
 //! surface behind an opaque one is hidden per sample, and blended surfaces never hide
@@ -86,6 +91,7 @@ use crate::common::extent::Extent;
 use crate::common::fullscreen::Fullscreen;
 use crate::common::plugin::Shared;
 use crate::common::scene_draw::SceneDraw;
+use crate::common::shadows;
 use crate::common::textures::{self, Want};
 use crate::shaders;
 use crate::variant::GatedShader;
@@ -138,20 +144,27 @@ impl Plugin for Transparent {
         };
         let (accum, _) = textures::attached_output(slots, pass, "accum", want, fresh)?;
         let begin = params.extent == Extent::Blended && !slots.modifies("accum");
-        let source = shaders::TRANSPARENT.compose(desc.samples)?;
-        let draw = SceneDraw {
-            blended: true,
-            begin_blended: begin.then_some("fs_accumulation_start"),
-            ..SceneDraw::new(
-                "transparent",
-                GatedShader::Transparent,
-                source.source().to_owned(),
-                DepthRule::new(params.reversed_z),
-                vec![accum],
-                depth,
-                params.shading.stages(true),
-            )
-        };
+        let shadows = shadows::input(slots, pass)?;
+        let filter = self.0.overrides.shadows.filter;
+        let draw = shadows::variants(slots, shadows, |shadows| {
+            // Group 1 is the material's: the atlas is bound in group 2, as forward's.
+            let generated = shadows::wgsl(shadows, 2, filter);
+            let source = shaders::TRANSPARENT.compose_with(desc.samples, &generated)?;
+            Ok(SceneDraw {
+                blended: true,
+                begin_blended: begin.then_some("fs_accumulation_start"),
+                shadows: shadows.copied(),
+                ..SceneDraw::new(
+                    "transparent",
+                    GatedShader::Transparent,
+                    source.source().to_owned(),
+                    DepthRule::new(params.reversed_z),
+                    vec![accum],
+                    depth,
+                    params.shading.stages(true),
+                )
+            })
+        })?;
         self.0.record(pass, draw);
         Ok(())
     }

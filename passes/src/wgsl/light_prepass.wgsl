@@ -21,7 +21,9 @@ fn light_terms(s: Surface, light: LightData) -> vec4<f32> {
     if k.n_l <= 0.0 {
         return vec4<f32>(0.0);
     }
-    let c = light.radiance * i.attenuation * k.n_l;
+    // As far as its shadow map lets it through (shadow.wgsl, or shadow_none.wgsl where the
+    // pass reads no atlas), as lighting.wgsl's direct_light scales it.
+    let c = light.radiance * i.attenuation * k.n_l * light_visibility(s, light);
     let dielectric = k.specular * (0.04 + (1.0 - 0.04) * k.schlick);
     return vec4<f32>(c * (1.0 - k.schlick), luminance(c) * dielectric);
 }
