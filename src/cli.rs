@@ -425,7 +425,22 @@ fn parse_param(text: &str) -> Result<(String, u32), String> {
     let (name, value) = text
         .split_once('=')
         .ok_or_else(|| format!("`{text}` is not NAME=VALUE"))?;
-    let value = value
+    Ok((name.to_owned(), parse_param_value(name, value)?))
+}
+
+/// `NAME=VALUE[,VALUE..]`: a parameter and the values a bench measures it at.
+fn parse_param_values(text: &str) -> Result<(String, Vec<u32>), String> {
+    let (name, values) = text
+        .split_once('=')
+        .ok_or_else(|| format!("`{text}` is not NAME=VALUE or NAME=VALUE,VALUE,.."))?;
+    let values = (values.split(','))
+        .map(|value| parse_param_value(name, value))
+        .collect::<Result<Vec<u32>, String>>()?;
+    Ok((name.to_owned(), values))
+}
+
+fn parse_param_value(name: &str, value: &str) -> Result<u32, String> {
+    value
         .parse()
         .map_err(|e: std::num::ParseIntError| match e.kind() {
             std::num::IntErrorKind::PosOverflow => {
@@ -435,8 +450,7 @@ fn parse_param(text: &str) -> Result<(String, u32), String> {
                 )
             }
             _ => format!("`{value}` (parameter {name}) is not a whole number"),
-        })?;
-    Ok((name.to_owned(), value))
+        })
 }
 
 /// A file to write (`--out`, `--screenshot`). Text ending in a path separator names a
@@ -575,9 +589,11 @@ pub struct BenchArgs {
     pub samples: Option<u32>,
     /// A value for a graph-file parameter, repeatable (`--param scale=4`), given to every
     /// pipeline whose file declares it, whose rows' names then say so ("particles_low_res
-    /// [scale=4]"); the results' notes name the files without it.
-    #[arg(long = "param", value_name = "NAME=VALUE", value_parser = parse_param)]
-    pub params: Vec<(String, u32)>,
+    /// [scale=4]"); the results' notes name the files without it. Several values
+    /// (`--param shadow_map=1024,2048,4096`) measure such a pipeline once with each, side
+    /// by side in the same rounds: a table of the trade the parameter makes.
+    #[arg(long = "param", value_name = "NAME=VALUE[,VALUE..]", value_parser = parse_param_values)]
+    pub params: Vec<(String, Vec<u32>)>,
     /// Adapter to measure on: lavapipe, gpu, or part of an adapter's name (default:
     /// $RGRAPH_ADAPTER, else lavapipe).
     #[arg(long)]

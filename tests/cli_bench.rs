@@ -914,3 +914,45 @@ fn bench_takes_the_shadow_settings_of_render() {
         .expect(2)
         .stderr_has("65 shadowed lights is out of range: at most 64");
 }
+
+/// `--param shadow_map=512,2048` measures each pipeline declaring the parameter once with
+/// each atlas side, in the same rounds, each row named by its value and its plan's atlas
+/// that size (the shadow maps' memory grows with it); a list with a value that is not a
+/// number is a usage error naming it.
+#[test]
+fn a_parameter_with_several_values_is_measured_at_each() {
+    let dir = tempfile::tempdir().unwrap();
+    bench(&[
+        "--scene",
+        "builtin:spheres",
+        "--pipeline",
+        "pipelines/visibility_msaa_4x.ron",
+        "--pipeline",
+        NOAA,
+        "--param",
+        "shadow_map=512,2048",
+        "--no-reference",
+        "--out-dir",
+        dir.path().to_str().unwrap(),
+    ])
+    .expect(0);
+    let json = read_json(&dir.path().join("results.json"));
+    let memory = |pipeline: &str| number(&row(&json, pipeline)["figures"], "memory.physical_bytes");
+    let (small, large) = (
+        memory("visibility_msaa_4x [shadow_map=512]"),
+        memory("visibility_msaa_4x [shadow_map=2048]"),
+    );
+    // The depth32float atlas: 4 bytes a texel.
+    assert_eq!(large - small, 4.0 * (2048.0 * 2048.0 - 512.0 * 512.0));
+    let noaa = row(&json, "deferred_noaa [shadow_map=512]");
+    assert!(noaa["figures"].is_object(), "{noaa:#}");
+    assert_eq!(json["rows"].as_array().unwrap().len(), 4);
+    bench(&[
+        "--param",
+        "shadow_map=512,big",
+        "--out-dir",
+        dir.path().to_str().unwrap(),
+    ])
+    .expect(2)
+    .stderr_has("`big` (parameter shadow_map) is not a whole number");
+}

@@ -72,7 +72,7 @@ fn samples_for_a_file_without_the_parameter_is_an_error_at_its_start() {
     assert!(
         stderr.contains(
             "pipelines/deferred_noaa.ron:1:1: error: parameter \"msaa\" is given a value (4), \
-             but the file declares no parameter of that name (it declares: none)"
+             but the file declares no parameter of that name (it declares: shadow_map)"
         ),
         "{stderr}"
     );

@@ -118,14 +118,20 @@ fn look(camera: &Camera, eye: DVec3, target: DVec3) -> Camera {
 /// Each of [`CHANGES`]' frames of `scene` through one executor, with the raster pass's
 /// parameters `params`: the colour and the edges view.
 fn frames(scene: &'static str, params: &'static str) -> Vec<(Image, Image)> {
-    frames_of(scene, &[(SHIPPED, params)], "debug.edges", Features::new())
+    frames_of(
+        scene,
+        (&[(SHIPPED, params)], &[]),
+        "debug.edges",
+        Features::new(),
+    )
 }
 
 /// Each of [`CHANGES`]' frames of `scene` through one executor, the pipeline edited by
-/// `edits` and compiled for `features`: the colour and the image `view`.
+/// `edits`, loaded with the parameter values `params` and compiled for `features`: the
+/// colour and the image `view`.
 fn frames_of(
     scene: &'static str,
-    edits: &[(&'static str, &'static str)],
+    (edits, params): (&[(&'static str, &'static str)], &[(&str, u32)]),
     view: &str,
     features: Features,
 ) -> Vec<(Image, Image)> {
@@ -136,6 +142,7 @@ fn frames_of(
         .fold(Render::new(COMPUTE, scene, SIZE), |r, &(from, to)| {
             r.edit(from, to)
         });
+    let render = (params.iter()).fold(render, |r, &(name, value)| r.param(name, value));
     let mut frame = render.features(features).run(&gpu);
     let own = frame.inputs();
     CHANGES
@@ -210,7 +217,7 @@ fn assert_shadow_views_keep_every_frame(scene: &'static str) {
     let features = features_of(scene);
     let shipped = frames_of(
         scene,
-        &[HARDWARE_SHADOWS],
+        (&[HARDWARE_SHADOWS], &[]),
         "debug.shadows",
         features.clone(),
     );
@@ -225,7 +232,7 @@ fn assert_shadow_views_keep_every_frame(scene: &'static str) {
     );
     let whole = frames_of(
         scene,
-        &[HARDWARE_SHADOWS, SHADOWS_WHOLE],
+        (&[HARDWARE_SHADOWS, SHADOWS_WHOLE], &[]),
         "debug.shadows",
         features,
     );
@@ -265,24 +272,24 @@ fn within(a: &Image, b: &Image, tolerance: u8) -> f64 {
 #[test]
 fn compute_shadows_match_the_hardware_on_a_dense_heightfield() {
     let scene = "builtin:terrain?cells=500";
-    let small_atlas = [
-        (
-            "size: Absolute(4096, 4096), when: \"shadows\"),\n        \"shadow_keys\": Buffer(size: 67108864,",
-            "size: Absolute(1024, 1024), when: \"shadows\"),\n        \"shadow_keys\": Buffer(size: 4194304,",
-        ),
-        (
-            "size: Absolute(4096, 4096), when: \"shadows\"),\n    },",
-            "size: Absolute(1024, 1024), when: \"shadows\"),\n    },",
-        ),
-        (
-            "plugin: \"shadow_raster\",",
-            "plugin: \"shadow_raster\", params: (small_texels: 64),",
-        ),
-    ];
+    let small_clusters = (
+        "plugin: \"shadow_raster\",",
+        "plugin: \"shadow_raster\", params: (small_texels: 64),",
+    );
+    let small_atlas: &[(&str, u32)] = &[("shadow_map", 1024)];
     let features = features_of(scene);
-    let compute = frames_of(scene, &small_atlas, "debug.shadows", features.clone());
-    let hardware_edits = [&small_atlas[..], &[HARDWARE_SHADOWS]].concat();
-    let hardware = frames_of(scene, &hardware_edits, "debug.shadows", features);
+    let compute = frames_of(
+        scene,
+        (&[small_clusters], small_atlas),
+        "debug.shadows",
+        features.clone(),
+    );
+    let hardware = frames_of(
+        scene,
+        (&[small_clusters, HARDWARE_SHADOWS], small_atlas),
+        "debug.shadows",
+        features,
+    );
     for (k, (c, h)) in compute.iter().zip(&hardware).enumerate() {
         let (colors, shadows) = (within(&c.0, &h.0, 2), within(&c.1, &h.1, 2));
         eprintln!(

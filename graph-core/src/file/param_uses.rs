@@ -1,5 +1,6 @@
 //! Where a graph file uses its parameters, and the value each takes when it is loaded:
-//! in textures (`samples`, `mips`, `layers`, a `Divided` size) and in passes' plugin
+//! in textures (`samples`, `mips`, `layers`, an `Absolute` or `Divided` size), buffers
+//! (`samples`, `texels`) and in passes' plugin
 //! parameters, where `Param(name: "pad", default: 0)` stands for a whole number.
 
 use std::ops::Range;

@@ -298,13 +298,15 @@ pub(crate) struct TextureDecl<'a> {
     when: Option<Name<'a>>,
 }
 
-/// A texture's size as written: [`Size`]'s `Absolute(w, h)` and `Relative(scale)`, or
-/// `Divided(n)`, the output size divided by a whole number that may be a parameter
+/// A texture's size as written: [`Size`]'s `Absolute(w, h)` (each side a number or a
+/// parameter: `Absolute(Param(name: "shadow_map", default: 4096), ..)`, for a target whose
+/// resolution is the trade being measured) and `Relative(scale)`, or `Divided(n)`, the
+/// output size divided by a whole number that may be a parameter
 /// (`Divided(Param(name: "scale", default: 2))`): `Relative(1 / n)`, for targets at a
 /// fraction of the output that one file serves at every fraction.
 #[derive(Debug, Clone, Deserialize)]
 pub(crate) enum SizeDecl<'a> {
-    Absolute(u32, u32),
+    Absolute(#[serde(borrow)] Count<'a>, #[serde(borrow)] Count<'a>),
     Relative(f32),
     #[serde(borrow)]
     Divided(Count<'a>),
@@ -321,7 +323,7 @@ impl SizeDecl<'_> {
     /// zero, which validation reports.
     fn size(&self, values: &GraphParams) -> Size {
         match self {
-            SizeDecl::Absolute(w, h) => Size::Absolute(*w, *h),
+            SizeDecl::Absolute(w, h) => Size::Absolute(w.value(values), h.value(values)),
             SizeDecl::Relative(scale) => Size::Relative(*scale),
             SizeDecl::Divided(n) => match n.value(values) {
                 0 => Size::Relative(0.0),
@@ -331,7 +333,8 @@ impl SizeDecl<'_> {
     }
 }
 
-/// A texture's `samples`, `mips` or `layers` (or the divisor of its size) as written: a number, or a parameter whose
+/// A texture's `samples`, `mips` or `layers` (or the sides or divisor of its size, or a
+/// buffer's texels) as written: a number, or a parameter whose
 /// value the loader is given (see [`GraphParams`](super::GraphParams)):
 /// `Param(name: "msaa", default: 4)`.
 #[derive(Debug, Clone)]
@@ -388,6 +391,11 @@ impl Count<'_> {
         Count::Value(1)
     }
 
+    /// A buffer's `texels` when it gives none.
+    fn none() -> (Self, Self) {
+        (Count::Value(0), Count::Value(0))
+    }
+
     /// The number, or the parameter's value in `values` (which holds every declared
     /// parameter once they are resolved).
     fn value(&self, values: &GraphParams) -> u32 {
@@ -409,6 +417,15 @@ pub(crate) struct BufferDecl<'a> {
     per_sample: u64,
     #[serde(borrow, default = "Count::one")]
     samples: Count<'a>,
+    /// Bytes per texel of a grid of `texels` (width, height), added to `size`: a buffer
+    /// holding a value per texel of a texture of a size the file gives, such as the
+    /// shadow raster's keys for the atlas (`per_texel: 4, texels: (Param(name:
+    /// "shadow_map", default: 4096), Param(name: "shadow_map", default: 4096))`), so that
+    /// one parameter sizes both.
+    #[serde(default)]
+    per_texel: u64,
+    #[serde(borrow, default = "Count::none")]
+    texels: (Count<'a>, Count<'a>),
     #[serde(default = "BufferUsages::empty")]
     extra_usage: BufferUsages,
     #[serde(borrow, default)]
@@ -441,8 +458,10 @@ impl<'a> TextureDecl<'a> {
             ("mips", &self.mips),
             ("layers", &self.layers),
         ];
-        if let SizeDecl::Divided(n) = &self.size {
-            counts.push(("size divisor", n));
+        match &self.size {
+            SizeDecl::Divided(n) => counts.push(("size divisor", n)),
+            SizeDecl::Absolute(w, h) => counts.extend([("width", w), ("height", h)]),
+            SizeDecl::Relative(_) => {}
         }
         counts
     }
@@ -451,8 +470,12 @@ impl<'a> TextureDecl<'a> {
 impl<'a> BufferDecl<'a> {
     /// The description, with parameters at their `values`.
     fn desc(&self, values: &GraphParams) -> BufferDesc {
+        let (width, height) = (self.texels.0.value(values), self.texels.1.value(values));
+        let texels = u64::from(width) * u64::from(height);
         BufferDesc {
-            size: self.size,
+            size: self
+                .size
+                .saturating_add(self.per_texel.saturating_mul(texels)),
             per_sample: self.per_sample,
             samples: self.samples.value(values),
             extra_usage: self.extra_usage,
@@ -461,7 +484,11 @@ impl<'a> BufferDecl<'a> {
 
     /// The counts as written, with their field names.
     pub fn counts(&self) -> Vec<(&'static str, &Count<'a>)> {
-        vec![("samples", &self.samples)]
+        vec![
+            ("samples", &self.samples),
+            ("texels width", &self.texels.0),
+            ("texels height", &self.texels.1),
+        ]
     }
 }
 

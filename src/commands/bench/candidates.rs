@@ -146,39 +146,50 @@ pub fn at_samples(
         .collect()
 }
 
-/// `pipelines` with the `--param` values each file declares, named with them; a note for
-/// each value a file does not declare.
+/// `pipelines` with the `--param` values each file declares, named with them: a
+/// candidate for each combination of the values given (one, unless a parameter has
+/// several); a note for each parameter a file does not declare.
 pub fn with_params(
     pipelines: Vec<Candidate>,
-    given: &[(String, u32)],
+    given: &[(String, Vec<u32>)],
     notes: &mut Vec<String>,
 ) -> Vec<Candidate> {
     if given.is_empty() {
         return pipelines;
     }
-    pipelines
-        .into_iter()
-        .map(|mut candidate| {
-            let declared = declared_params(&candidate.path, &registry()).unwrap_or_default();
-            let mut applied = Vec::new();
-            for (name, value) in given {
-                match declared.get(name) {
-                    Some(_) => {
-                        candidate.params = candidate.params.clone().with(name, *value);
-                        applied.push(format!("{name}={value}"));
-                    }
-                    None => notes.push(format!(
-                        "--param {name}={value}: {} has no \"{name}\" parameter",
-                        candidate.path.display()
-                    )),
-                }
+    let mut expanded = Vec::new();
+    for candidate in pipelines {
+        let declared = declared_params(&candidate.path, &registry()).unwrap_or_default();
+        // Each combination so far: the candidate's parameters and the names applied.
+        let mut combinations = vec![(candidate.params.clone(), Vec::new())];
+        for (name, values) in given {
+            if declared.get(name).is_none() {
+                notes.push(format!(
+                    "--param {name}: {} has no \"{name}\" parameter",
+                    candidate.path.display()
+                ));
+                continue;
             }
+            combinations = (combinations.iter())
+                .flat_map(|(params, applied): &(GraphParams, Vec<String>)| {
+                    values.iter().map(move |value| {
+                        let mut applied = applied.clone();
+                        applied.push(format!("{name}={value}"));
+                        (params.clone().with(name, *value), applied)
+                    })
+                })
+                .collect();
+        }
+        for (params, applied) in combinations {
+            let mut candidate = candidate.clone();
+            candidate.params = params;
             if !applied.is_empty() {
                 candidate.name = format!("{} [{}]", candidate.name, applied.join(", "));
             }
-            candidate
-        })
-        .collect()
+            expanded.push(candidate);
+        }
+    }
+    expanded
 }
 
 fn stem(path: &Path) -> String {
