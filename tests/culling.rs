@@ -126,12 +126,15 @@ fn frames(scene: &'static str, params: &'static str) -> Vec<(Image, Image)> {
     )
 }
 
+/// The default pipeline as a test changes it: text edits (from, to) and parameter values.
+type Changed<'a> = (&'a [(&'static str, &'static str)], &'a [(&'a str, u32)]);
+
 /// Each of [`CHANGES`]' frames of `scene` through one executor, the pipeline edited by
 /// `edits`, loaded with the parameter values `params` and compiled for `features`: the
 /// colour and the image `view`.
 fn frames_of(
     scene: &'static str,
-    (edits, params): (&[(&'static str, &'static str)], &[(&str, u32)]),
+    (edits, params): Changed<'_>,
     view: &str,
     features: Features,
 ) -> Vec<(Image, Image)> {

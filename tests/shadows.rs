@@ -466,19 +466,21 @@ fn bad_shadow_flags_are_usage_errors() {
 }
 
 /// The pipelines with the `shadows` and `cascades` debug views: the default (the
-/// visibility buffer's tiled shading) and the G-buffer ones (the light volumes' and the
-/// tiled, parts/shadow_debug_views.ron; the lean G-buffer's own).
-const SHADOW_VIEWS: [PipelineFile; 4] = [
+/// visibility buffer's tiled shading), the G-buffer ones (the light volumes' and the
+/// tiled, parts/shadow_debug_views.ron; the lean G-buffer's own) and forward (its own
+/// pass's views).
+const SHADOW_VIEWS: [PipelineFile; 5] = [
     DEFAULT,
     PipelineFile::for_device("deferred_msaa_4x.ron"),
     PipelineFile::for_device("deferred_msaa_4x_tiled.ron"),
     PipelineFile::for_device("deferred_msaa_4x_lean.ron"),
+    PipelineFile::for_device("forward_msaa_4x.ron"),
 ];
 
 /// The `shadows` debug view shows the sun's visibility term: builtin:spheres' ground is
-/// white where lit and black in the spheres' shadows, and the G-buffer pipelines' views
-/// are the default's (within 8/255 on 97% of pixels: they sample silhouettes
-/// differently).
+/// white where lit and black in the spheres' shadows, and the G-buffer and forward
+/// pipelines' views are the default's (within 8/255 on 97% of pixels: they sample
+/// silhouettes differently).
 #[test]
 fn the_shadows_view_shows_the_visibility_term() {
     let gpu = gpu();
@@ -693,4 +695,56 @@ fn every_lit_pipeline_shadows_opaque_and_blended_receivers() {
             );
         }
     }
+}
+
+/// The forward pass's shadow views need the atlas: a file giving `view: shadows` no
+/// `shadows` input, or an optional one, is an error naming the pass and the slot.
+#[test]
+fn a_forward_shadow_view_without_its_atlas_is_an_error() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let write = |name: &str, inputs: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(
+            &path,
+            format!(
+                r#"Graph(
+    resources: {{
+        "view": Texture(format: "rgba8unorm"),
+        "depth": Texture(format: "depth32float"),
+        "atlas": Texture(format: "depth32float", size: Absolute(256, 256)),
+    }},
+    passes: [
+        (name: "maps", plugin: "shadow_maps", outputs: {{ "atlas": "atlas" }}),
+        (name: "view", plugin: "forward", params: (view: cascades),
+         {inputs} outputs: {{ "hdr": "view", "depth": "depth" }}),
+    ],
+    outputs: ["view"],
+)"#
+            ),
+        )
+        .expect("a file in the temporary directory");
+        path.to_str().expect("temp paths are UTF-8").to_owned()
+    };
+    let missing = write("missing.ron", "");
+    let optional = write(
+        "optional.ron",
+        r#"inputs: { "shadows": "atlas" }, optional: ["shadows"],"#,
+    );
+    for (file, says) in [
+        (
+            missing,
+            "pass \"view\" (forward): needs slot \"shadows\" in its inputs",
+        ),
+        (
+            optional,
+            "pass \"view\" (forward): slot \"shadows\": \"atlas\" is read optionally, but view \
+             cascades draws the shadow maps: the read must be required",
+        ),
+    ] {
+        // `validate` reports on stdout, with each file's verdict.
+        let run = rgraph(&["validate", &file]).expect(1);
+        assert!(run.stdout.contains(says), "{}", run.stdout);
+    }
+    let given = write("given.ron", r#"inputs: { "shadows": "atlas" },"#);
+    rgraph(&["validate", &given]).expect(0);
 }

@@ -74,6 +74,8 @@ pub(crate) const SHADOW: &str = concat!(
 /// lighting.wgsl's `light_visibility` without shadow maps: passes that read no atlas.
 pub(crate) const SHADOW_NONE: &str = include_str!("wgsl/shadow_none.wgsl");
 const EDGE_DETECT: &str = include_str!("wgsl/edge_detect.wgsl");
+/// The shadow maps' debug views' colours, after lighting.wgsl and a shadow block.
+const SHADOW_DEBUG: &str = include_str!("wgsl/shadow_debug.wgsl");
 
 /// A pass's shader: a name for messages and its own fragment, composed after the shared
 /// fragments it needs.
@@ -140,6 +142,7 @@ pub(crate) const LIGHT_TILED: Source = Source {
         LIGHTING,
         SURFACE,
         EDGE_DETECT,
+        SHADOW_DEBUG,
         include_str!("wgsl/light_tiled.wgsl"),
     ],
 };
@@ -236,6 +239,21 @@ const FORWARD_WGSL: &str = include_str!("wgsl/forward.wgsl");
 pub(crate) const FORWARD: Source = Source {
     name: "forward.wgsl",
     parts: &[COMMON, SCENE, MATERIAL, BRDF, LIGHTING, FORWARD_WGSL],
+};
+/// forward.wgsl's vertex stages and material model, with the shadow maps' debug views as
+/// fragment stages (`forward`'s `view`). Needs common/shadows.rs's generated block too.
+pub(crate) const FORWARD_VIEWS: Source = Source {
+    name: "forward_views.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        MATERIAL,
+        BRDF,
+        LIGHTING,
+        FORWARD_WGSL,
+        SHADOW_DEBUG,
+        include_str!("wgsl/forward_views.wgsl"),
+    ],
 };
 /// forward.wgsl's vertex stages and shading, with entry points that keep the alpha.
 pub(crate) const TRANSPARENT: Source = Source {

@@ -28,6 +28,13 @@
 //! G-buffer pass's interpolation, so a deferred pipeline that shades every sample gives the
 //! same image); `sample` shades every covered sample at its own position
 //! (`@interpolate(sample)`), which is supersampling: the reference uses it.
+//!
+//! `view: shadows` or `view: cascades` draws a debug view of the shadow maps instead of
+//! the lit colour, once per pixel, into a displayable target (rgba8unorm(-srgb)): the most
+//! important shadowed light's visibility term, or the sun's cascade at each fragment,
+//! darker in its shadow, as `light_tiled`'s views draw them from a G-buffer
+//! (shadow_debug.wgsl); grey where the material is unlit, black where nothing is drawn.
+//! Its `shadows` input is then required: `forward_msaa_4x.ron`'s `--view shadows`.
 
 use serde::Deserialize;
 
@@ -59,6 +66,46 @@ pub struct ForwardParams {
     /// The HDR target's value where no geometry is drawn (linear RGBA).
     #[serde(default = "opaque_black")]
     pub background: [f64; 4],
+    /// What the pass draws: the lit colour, or a debug view of the shadow maps.
+    #[serde(default)]
+    pub view: View,
+}
+
+/// What `forward` draws.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum View {
+    /// The lit colour.
+    #[default]
+    Shaded,
+    /// The most important shadowed light's visibility term, white where lit.
+    Shadows,
+    /// The sun's cascade at each fragment, darker in its shadow.
+    Cascades,
+}
+
+impl View {
+    /// The view's name in a file, where it draws the shadow maps.
+    fn of_shadow_maps(self) -> Option<&'static str> {
+        match self {
+            View::Shaded => None,
+            View::Shadows => Some("shadows"),
+            View::Cascades => Some("cascades"),
+        }
+    }
+
+    /// The view's fragment stage in forward_views.wgsl (pixel shading), or `shading`'s.
+    fn stages(self, shading: Shading) -> Stages {
+        let fragment = match self {
+            View::Shaded => return shading.stages(false),
+            View::Shadows => "fs_shadows_view",
+            View::Cascades => "fs_cascades_view",
+        };
+        Stages {
+            fragment,
+            ..Shading::Pixel.stages(false)
+        }
+    }
 }
 
 /// How often the forward pass runs its fragment shader.
@@ -118,19 +165,51 @@ impl Plugin for Forward {
         let (depth, desc) = textures::output(slots, pass, "depth", want, |pass, h, _| {
             depth_rule.start(pass, h)
         })?;
-        let want = Want::new("the HDR target", textures::HDR).samples(desc.samples);
+        let want = match params.view {
+            View::Shaded => Want::new("the HDR target", textures::HDR),
+            View::Shadows | View::Cascades => Want::new("the debug view", textures::DISPLAY),
+        };
+        let want = want.samples(desc.samples);
         // Filled with the background where no mesh draws rather than cleared first
-        // (common/background.rs), unless the pass draws over the target it reads.
+        // (common/background.rs), unless the pass draws over the target it reads. A view
+        // shows black there.
+        let background = match params.view {
+            View::Shaded => params.background,
+            View::Shadows | View::Cascades => opaque_black(),
+        };
         let mut targets = FilledTargets::new(slots, &["hdr"]);
-        targets.push(slots, pass, "hdr", want, ("vec4<f32>", params.background))?;
+        targets.push(slots, pass, "hdr", want, ("vec4<f32>", background))?;
         let shadows = shadows::input(slots, pass)?;
+        // A view of the shadow maps needs them.
+        if let Some(view) = params.view.of_shadow_maps() {
+            if shadows.is_none() {
+                return Err(PluginError::MissingSlot {
+                    slot: "shadows".to_owned(),
+                    side: "inputs",
+                });
+            }
+            if slots.optional("shadows") {
+                return Err(PluginError::Slot {
+                    slot: "shadows".to_owned(),
+                    resource: slots.resource("shadows").unwrap_or_default().to_owned(),
+                    why: format!(
+                        "is read optionally, but view {view} draws the shadow maps: the \
+                         read must be required (drop it from `optional`)"
+                    ),
+                });
+            }
+        }
+        let source = match params.view {
+            View::Shaded => shaders::FORWARD,
+            View::Shadows | View::Cascades => shaders::FORWARD_VIEWS,
+        };
         let filter = self.0.overrides.shadows.filter;
         let (fill_background, wgsl) = (targets.fill(), targets.wgsl());
         let handles = targets.into_handles();
         let draw = shadows::variants(slots, shadows, |shadows| {
             // Group 1 is the material's: the atlas is bound in group 2.
             let generated = wgsl.clone() + &shadows::wgsl(shadows, 2, filter);
-            let source = shaders::FORWARD.compose_with(desc.samples, &generated)?;
+            let source = source.compose_with(desc.samples, &generated)?;
             Ok(SceneDraw {
                 fill_background,
                 shadows: shadows.copied(),
@@ -141,7 +220,7 @@ impl Plugin for Forward {
                     depth_rule,
                     handles.clone(),
                     depth,
-                    params.shading.stages(false),
+                    params.view.stages(params.shading),
                 )
             })
         })?;

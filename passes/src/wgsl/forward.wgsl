@@ -92,23 +92,41 @@ fn vs_sample(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> SampleVar
 // The surface's colour (emission plus light, or base colour plus emission if unlit) and
 // its base alpha: what transparent.wgsl blends, and what `shade` writes opaque.
 fn shade_surface(a: Attributes, front: bool) -> vec4<f32> {
+    let f = fragment_of(a, front);
+    var color = f.m.emission;
+    if f.unlit {
+        color += f.m.base.rgb;
+    } else {
+        color += every_light(f.s);
+    }
+    return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), f.m.base.a);
+}
+
+// A fragment's material, sampled, and (unless the material is unlit) the surface the
+// lights reach. Alpha-masked fragments below the cutoff are discarded here.
+struct Fragment {
+    m: MaterialSample,
+    unlit: bool,
+    s: Surface,
+}
+
+fn fragment_of(a: Attributes, front: bool) -> Fragment {
     let material = materials[a.material];
     let m = sample_material(material, fragment_uv(a.uv, a.uv1, a.uv_center), a.color);
     if MASKED && m.base.a < material.alpha_cutoff {
         discard;
     }
-    var color = m.emission;
-    if (material.flags & FLAG_UNLIT) != 0u {
-        color += m.base.rgb;
-    } else {
+    var f: Fragment;
+    f.m = m;
+    f.unlit = (material.flags & FLAG_UNLIT) != 0u;
+    if !f.unlit {
         // Back faces reach here only for double-sided materials: light their other side (the
         // normal texture's perturbation turned around with it).
         let mapped = shading_normal(a.normal, a.tangent, m.tangent_normal);
         let n = unit_normal(select(-mapped, mapped, front || !DOUBLE_SIDED));
-        let s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness, m.occlusion);
-        color += every_light(s);
+        f.s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness, m.occlusion);
     }
-    return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), m.base.a);
+    return f;
 }
 
 // `front`: whether the triangle faces the camera, for a face normal (common.wgsl's
