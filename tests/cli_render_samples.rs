@@ -111,6 +111,9 @@ fn explain_says_which_parameter_values_it_planned_with() {
         assert_eq!(run.status.code(), Some(0));
         String::from_utf8(run.stdout).expect("UTF-8 text")
     };
-    assert!(explain(&[]).starts_with("parameters: msaa = 4 (the file's default)\n"));
-    assert!(explain(&["--samples", "1"]).starts_with("parameters: msaa = 1 (given)\n"));
+    assert!(explain(&[]).starts_with(
+        "parameters: msaa = 4 (the file's default), shadow_map = 4096 (the file's default)\n"
+    ));
+    assert!(explain(&["--samples", "1", "--param", "shadow_map=2048"])
+        .starts_with("parameters: msaa = 1 (given), shadow_map = 2048 (given)\n"));
 }

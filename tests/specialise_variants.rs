@@ -180,6 +180,11 @@ fn each_builtin_scene_s_variants() {
             deferred.push(format!("{lighting}: {light}"));
         }
         assert_eq!(variants("deferred_msaa_4x.ron", scene), deferred, "{scene}");
+        // Forward's shadow views are its own pass with the scene's variant.
+        let forward = match lighting.is_empty() {
+            true => forward.to_owned(),
+            false => format!("{forward}, debug shadows, debug cascades"),
+        };
         assert_eq!(variants("forward_msaa_4x.ron", scene), [forward], "{scene}");
     }
 }
