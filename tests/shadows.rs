@@ -748,3 +748,36 @@ fn a_forward_shadow_view_without_its_atlas_is_an_error() {
     let given = write("given.ron", r#"inputs: { "shadows": "atlas" },"#);
     rgraph(&["validate", &given]).expect(0);
 }
+
+/// The atlas's side is the graph parameter `shadow_map`, which also sizes the compute
+/// raster's keys (4 bytes a texel); a side that is not a multiple of the map grid's 32
+/// units, or 0, is an error at the part's line naming the resource.
+#[test]
+fn the_shadow_map_parameter_sizes_the_atlas_and_its_keys() {
+    let explain = |value: &str| {
+        rgraph(&[
+            "explain",
+            "--pipeline",
+            "pipelines/visibility_msaa_4x.ron",
+            "--param",
+            &format!("shadow_map={value}"),
+        ])
+    };
+    let run = explain("2048").expect(0);
+    assert!(
+        run.stdout
+            .contains("  shadow_atlas: depth32float 2048x2048\n")
+            && run.stdout.contains("  shadow_keys: buffer 16.0 MiB\n"),
+        "{}",
+        run.stdout
+    );
+    explain("1000").expect(1).stderr_has(
+        "pipelines/parts/shadow_maps_compute.ron:30:33: error: pass \"shadow maps\" \
+         (shadow_maps): slot \"atlas\": \"shadow_atlas\" is Absolute(1000, 1000), but the \
+         shadow atlas must be Absolute(N, N), N a multiple of 32",
+    );
+    explain("0").expect(1).stderr_has(
+        "pipelines/parts/shadow_maps_compute.ron:13:40: error: parameter \"shadow_map\" is 0, \
+         but the width of \"shadow_atlas\" must be 1 or more",
+    );
+}

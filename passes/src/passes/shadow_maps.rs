@@ -151,7 +151,7 @@ fn keys(
             resource: slots.resource("keys").unwrap_or("keys").to_owned(),
             why: format!(
                 "holds {bytes:?} bytes, but the keys of a {size:?} atlas take 4 bytes a \
-                 texel: Buffer(size: 4 N^2) for Absolute(N, N)"
+                 texel: Buffer(per_texel: 4, texels: (N, N)) for Absolute(N, N)"
             ),
         });
     }
