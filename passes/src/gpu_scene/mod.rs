@@ -457,38 +457,47 @@ impl GpuScene {
         let views = views
             .map(|(tile, clip_from_world)| ViewWork {
                 tile,
-                meshes: draws
-                    .iter()
+                meshes: (draws.iter())
                     .filter_map(|&(draw, state)| {
-                        let runs = match options.culled {
-                            true => {
-                                let boxes =
-                                    &self.upload.meshes.cluster_boxes[draw.instance as usize];
-                                let model = self.frame.meshes.model(draw.instance);
-                                let fine = shadow_work::fine(&options, tile.2, state.masked);
-                                boxes.seen(clip_from_world, model, fine)
-                            }
-                            false => view_culling::Runs {
-                                small: Vec::new(),
-                                large: std::iter::once(
-                                    0..(draw.indices.end - draw.indices.start) / 3,
-                                )
-                                .collect(),
-                            },
-                        };
-                        let empty = runs.small.is_empty() && runs.large.is_empty();
-                        (!empty).then_some(MeshRuns {
-                            instance: draw.instance,
-                            first_index: draw.indices.start,
-                            base_vertex: draw.base_vertex,
-                            masked: state.masked,
-                            runs,
-                        })
+                        self.mesh_runs(draw, state, (clip_from_world, tile.2), &options)
                     })
                     .collect(),
             })
             .collect();
         ShadowWork { views }
+    }
+
+    /// What the view of clip space `clip_from_world`, `side` texels wide, draws of the
+    /// opaque mesh `draw`: the runs of its clusters that may fall inside the view, split
+    /// into small and large as `options` say, or all of it, large, unculled; `None` where
+    /// it draws nothing.
+    fn mesh_runs(
+        &self,
+        draw: &MeshDraw,
+        state: MaterialState,
+        (clip_from_world, side): (glam::DMat4, u32),
+        options: &ShadowOptions,
+    ) -> Option<MeshRuns> {
+        let runs = match options.culled {
+            true => {
+                let boxes = &self.upload.meshes.cluster_boxes[draw.instance as usize];
+                let model = self.frame.meshes.model(draw.instance);
+                let fine = shadow_work::fine(options, side, state.masked);
+                boxes.seen(clip_from_world, model, fine)
+            }
+            false => view_culling::Runs {
+                small: Vec::new(),
+                large: std::iter::once(0..(draw.indices.end - draw.indices.start) / 3).collect(),
+            },
+        };
+        let empty = runs.small.is_empty() && runs.large.is_empty();
+        (!empty).then_some(MeshRuns {
+            instance: draw.instance,
+            first_index: draw.indices.start,
+            base_vertex: draw.base_vertex,
+            masked: state.masked,
+            runs,
+        })
     }
 
     /// Binds the scene's index buffer, for indexed draws of [`ShadowWork`]'s runs: the

@@ -199,6 +199,12 @@ mod gpu {
         module: wgpu::ShaderModule,
     }
 
+    /// Draws into the atlas tile `(x, y, side)` (texels) alone: viewport and scissor.
+    fn set_tile(pass: &mut wgpu::RenderPass<'_>, (x, y, side): (u32, u32, u32)) {
+        pass.set_viewport(x as f32, y as f32, side as f32, side as f32, 0.0, 1.0);
+        pass.set_scissor_rect(x, y, side, side);
+    }
+
     impl Recorder for ShadowDraw {
         type Stage = Render;
         type Scene = Arc<GpuScene>;
@@ -355,9 +361,7 @@ mod gpu {
                     pass.set_pipeline(pipeline);
                     pass.set_bind_group(1, &group, &[]);
                     for view in work.views.iter().filter(|v| v.has_small()) {
-                        let (x, y, side) = view.tile;
-                        pass.set_viewport(x as f32, y as f32, side as f32, side as f32, 0.0, 1.0);
-                        pass.set_scissor_rect(x, y, side, side);
+                        set_tile(pass, view.tile);
                         pass.draw(0..3, 0..1);
                     }
                 }
@@ -370,9 +374,7 @@ mod gpu {
             pass.set_bind_group(3, table, &[]);
             scene.bind_indices(pass);
             for (view, work) in (0u32..).zip(&work.views) {
-                let (x, y, side) = work.tile;
-                pass.set_viewport(x as f32, y as f32, side as f32, side as f32, 0.0, 1.0);
-                pass.set_scissor_rect(x, y, side, side);
+                set_tile(pass, work.tile);
                 pass.set_bind_group(1, &state.views, &[view * state.stride]);
                 for mesh in work.meshes.iter().filter(|m| !m.runs.large.is_empty()) {
                     pass.set_pipeline(match mesh.masked {

@@ -108,13 +108,12 @@ mod gpu {
     use super::ShadowRasterDispatch;
     use crate::common::gpu::pipeline::{module, pipeline_layout};
     use crate::common::gpu::storage::{storage_group, storage_layout};
-    use crate::common::gpu::{compute_pipeline, Compute, Frame, Recorded, Recorder};
+    use crate::common::gpu::{
+        compute_pipeline, workgroup_grid, Compute, Frame, Recorded, Recorder,
+    };
     use crate::common::shadow_depth::atlas_of_keys;
     use crate::gpu_scene::{GpuScene, ShadowOptions};
     use rgraph_scene::DepthConvention;
-
-    /// Workgroups a dispatch row holds (WebGPU's least limit per dimension).
-    const ROW: u32 = 65_535;
 
     pub(crate) struct State {
         layout: wgpu::BindGroupLayout,
@@ -123,11 +122,6 @@ mod gpu {
         /// The items, and the parameters (`RasterParams`), rewritten each frame.
         items: Option<wgpu::Buffer>,
         params: wgpu::Buffer,
-    }
-
-    /// Workgroups `count` as rows of at most [`ROW`].
-    fn rows(count: u32) -> (u32, u32) {
-        (count.min(ROW), count.div_ceil(ROW))
     }
 
     impl Recorder for ShadowRasterDispatch {
@@ -220,11 +214,13 @@ mod gpu {
             pass.set_bind_group(1, &group, &[]);
             pass.set_bind_group(2, scene.geometry_group(device)?, &[]);
             pass.set_pipeline(&state.clear);
-            let (x, y) = rows((keys.size() / 4).div_ceil(256) as u32);
+            // 256 keys a workgroup (shadow_compute.wgsl's cs_clear).
+            let (x, y) = workgroup_grid(keys.size() / 4, 256);
             pass.dispatch_workgroups(x, y, 1);
             if count > 0 {
                 pass.set_pipeline(&state.raster);
-                let (x, y) = rows(count);
+                // A workgroup an item.
+                let (x, y) = workgroup_grid(u64::from(count), 1);
                 pass.dispatch_workgroups(x, y, 1);
             }
             Ok(())

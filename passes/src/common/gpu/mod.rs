@@ -28,6 +28,15 @@ pub(crate) fn split_ids(format: wgpu::TextureFormat) -> f64 {
     f64::from(u8::from(format == wgpu::TextureFormat::Rg16Uint))
 }
 
+/// Workgroups of `group` invocations for `invocations`, at least one, as x by y within
+/// the 65,535 a dimension allows: the shaders flatten them back (`group.y *
+/// num_workgroups.x + group.x`; bin_triangles.wgsl, shadow_compute.wgsl).
+pub(crate) fn workgroup_grid(invocations: u64, group: u32) -> (u32, u32) {
+    let groups = invocations.div_ceil(u64::from(group)).max(1);
+    let x = groups.min(65_535);
+    (x as u32, groups.div_ceil(x) as u32)
+}
+
 /// The stencil bit edge pixels carry (seed 000's 0x80): the edge pass marks it, the light
 /// passes test it.
 pub(crate) const EDGE_STENCIL: u32 = 0x80;

@@ -4,10 +4,10 @@
 //! dispatches just before the raster's, in the same compute pass, two of them indirect:
 //! the clusters binned by triangle are known only on the device.
 
-use super::compute_pipeline;
 use super::pipeline::{module, pipeline_layout};
 use super::raster_draws::RasterDraws;
 use super::storage::{scratch, storage_group, storage_layout};
+use super::{compute_pipeline, workgroup_grid};
 use crate::gpu_scene::GpuScene;
 use rgraph_scene::DepthConvention;
 
@@ -200,14 +200,14 @@ impl TileBins {
         pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
         pass.set_bind_group(1, &self.group, &[]);
         pass.set_bind_group(2, geometry, &[]);
-        let (x, y) = grid(2 * u64::from(self.tiles), GROUP);
+        let (x, y) = workgroup_grid(2 * u64::from(self.tiles), GROUP);
         pass.set_pipeline(&self.clear);
         pass.dispatch_workgroups(x, y, 1);
         if self.draws.triangles == 0 {
             // No entries: the lists' counts stay 0, as their starts are.
             return;
         }
-        let (x, y) = grid(u64::from(self.draws.cluster_count), GROUP);
+        let (x, y) = workgroup_grid(u64::from(self.draws.cluster_count), GROUP);
         let fallback_args = &self.buffers[11];
         pass.set_pipeline(&self.clusters_count);
         pass.dispatch_workgroups(x, y, 1);
@@ -236,12 +236,4 @@ impl TileBins {
             .map(|&i| &self.buffers[i])
             .collect()
     }
-}
-
-/// Workgroups of `group` invocations for `invocations`, as x by y within the 65,535 a
-/// dimension allows (bin_triangles.wgsl flattens them back).
-fn grid(invocations: u64, group: u32) -> (u32, u32) {
-    let groups = invocations.div_ceil(u64::from(group)).max(1);
-    let x = groups.min(65_535);
-    (x as u32, groups.div_ceil(x) as u32)
 }
