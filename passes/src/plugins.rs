@@ -62,6 +62,7 @@ use crate::passes::particles::{CompositeParticles, Particles};
 use crate::passes::resolve::Resolve;
 use crate::passes::shadow_maps::ShadowMaps;
 use crate::passes::shadow_raster::ShadowRaster;
+use crate::passes::shadow_resolve::ShadowResolve;
 use crate::passes::ssao::{Ssao, SsaoBlur};
 use crate::passes::taa::Taa;
 use crate::passes::tonemap::Tonemap;
@@ -86,6 +87,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(Resolve(shared.clone()))
         .register(ShadowMaps(shared.clone()))
         .register(ShadowRaster(shared.clone()))
+        .register(ShadowResolve(shared.clone()))
         .register(Tonemap(shared.clone()))
         .register(AutoExposure(shared.clone()))
         .register(DebugView(shared.clone()))

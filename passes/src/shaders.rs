@@ -158,7 +158,7 @@ pub(crate) const SHADOW_RASTER: Source = Source {
         include_str!("wgsl/shadow_raster.wgsl"),
     ],
 };
-/// The shadow maps' compute raster of small clusters (passes/shadow_raster.rs).
+/// The shadow maps' compute raster (passes/shadow_raster.rs).
 pub(crate) const SHADOW_COMPUTE: Source = Source {
     name: "shadow_compute.wgsl",
     parts: &[
@@ -168,6 +168,11 @@ pub(crate) const SHADOW_COMPUTE: Source = Source {
         SHADOW_VIEWS,
         include_str!("wgsl/shadow_compute.wgsl"),
     ],
+};
+/// The shadow atlas from the compute raster's keys (passes/shadow_resolve.rs).
+pub(crate) const SHADOW_RESOLVE: Source = Source {
+    name: "shadow_resolve.wgsl",
+    parts: &[include_str!("wgsl/shadow_resolve.wgsl")],
 };
 pub(crate) const VISIBILITY: Source = Source {
     name: "visibility.wgsl",

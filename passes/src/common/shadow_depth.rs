@@ -1,9 +1,12 @@
-//! What the two passes that draw the shadow maps' depth share (passes/shadow_maps.rs, the
-//! hardware's; passes/shadow_raster.rs, the compute raster's small clusters): the
-//! slope-scaled depth bias both apply alike, and the keys buffer the one writes and the
-//! other reads, one word a texel of the square atlas.
+//! What the passes that make the shadow atlas share (passes/shadow_maps.rs, the
+//! hardware's raster; passes/shadow_raster.rs, the compute raster; passes/shadow_resolve.rs,
+//! the atlas from its keys): the slope-scaled depth bias both rasters apply alike, the
+//! atlas's shape, and the keys buffer, one word a texel of the square atlas.
 
-use rgraph_core::file::PluginError;
+use rgraph_core::file::{PluginError, Slots};
+use rgraph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, Size};
+
+use crate::shadows::ATLAS_UNITS;
 
 /// The default slope-scaled depth bias: depth pushed away from the light by this times
 /// the larger of a triangle's depth changes per texel across and down.
@@ -19,6 +22,54 @@ pub(crate) fn check_slope_bias(bias: f32) -> Result<(), PluginError> {
             "slope_bias must be finite and 0 or more, got {bias}"
         ))),
     }
+}
+
+/// Checks that output `slot`'s texture, of `size`, is an atlas: square, its side a
+/// multiple of [`ATLAS_UNITS`].
+pub(crate) fn check_atlas(slots: &Slots<'_>, slot: &str, size: Size) -> Result<(), PluginError> {
+    match size {
+        Size::Absolute(w, h) if w == h && w >= ATLAS_UNITS && w % ATLAS_UNITS == 0 => Ok(()),
+        _ => Err(PluginError::Slot {
+            slot: slot.to_owned(),
+            resource: slots.resource(slot).unwrap_or(slot).to_owned(),
+            why: format!(
+                "is {size:?}, but the shadow atlas must be Absolute(N, N), N a multiple of \
+                 {ATLAS_UNITS} (maps are placed on a grid of {ATLAS_UNITS} x {ATLAS_UNITS} \
+                 units)"
+            ),
+        }),
+    }
+}
+
+/// Takes the `keys` input (read-only storage), checked to hold 4 bytes a texel of the
+/// atlas of `size`.
+pub(crate) fn keys(
+    pass: &mut PassBuilder<'_>,
+    slots: &mut Slots<'_>,
+    size: Size,
+) -> Result<BufferHandle, PluginError> {
+    let keys = slots.input::<Buffer>("keys")?;
+    let read = BufferRole::Storage {
+        read: true,
+        write: false,
+    };
+    pass.buffer(keys, read);
+    let bytes = pass.resource(keys).buffer().map(|d| d.size);
+    let atlas = match size {
+        Size::Absolute(w, _) => Some(w),
+        _ => None,
+    };
+    if bytes.and_then(atlas_of_keys) != atlas || atlas.is_none() {
+        return Err(PluginError::Slot {
+            slot: "keys".to_owned(),
+            resource: slots.resource("keys").unwrap_or("keys").to_owned(),
+            why: format!(
+                "holds {bytes:?} bytes, but the keys of a {size:?} atlas take 4 bytes a \
+                 texel: Buffer(per_texel: 4, texels: (N, N)) for Absolute(N, N)"
+            ),
+        });
+    }
+    Ok(keys)
 }
 
 /// The side of the atlas whose keys fill `bytes`: 4 bytes a texel, a square.

@@ -1,5 +1,6 @@
-//! The light passes' optional `shadows` input: the shadow atlas the `shadow_maps` pass
-//! draws (passes/shadow_maps.rs), through which each shadowed light's direct light is
+//! The light passes' optional `shadows` input: the shadow atlas, the depth the
+//! `shadow_maps` pass draws (passes/shadow_maps.rs) or the r32float `shadow_resolve`
+//! writes from the compute raster's keys on a GPU (passes/shadow_resolve.rs), through which each shadowed light's direct light is
 //! scaled by the share of its shadow-map filter's taps that see the surface
 //! (shadow.wgsl). Without the slot the generated WGSL is shadow_none.wgsl: every light
 //! reaches every surface, and the image is the unshadowed pass's, bit for bit.
@@ -12,16 +13,19 @@ use super::textures::{self, Input, Texels, Want};
 use crate::shaders;
 use crate::shadows::ShadowFilter;
 
-/// The shadow atlas's format: depth written by the raster, compared by the sampler.
-pub(crate) const ATLAS: &[TextureFormat] = &[TextureFormat::Depth32Float];
+/// The shadow atlas's formats: depth the hardware raster writes, or 32-bit floats a
+/// compute pass writes (no depth format is a storage texture). Both bind as unfilterable
+/// `f32` textures, so one shader reads either: shadow.wgsl loads texels and filters them
+/// itself.
+pub(crate) const ATLAS: &[TextureFormat] = &[TextureFormat::Depth32Float, TextureFormat::R32Float];
 
 /// Where the passes bind it: group 1 of the light passes, after every other input of
 /// theirs (light_tiled's list of edge pixels is 12); group 2 of a pass that draws the
 /// meshes (forward), whose group 1 is the material's.
 const BINDING: u32 = 13;
 
-/// The `shadows` slot when the file gives one: declared sampled (its depth, one sample),
-/// bound at [`BINDING`].
+/// The `shadows` slot when the file gives one: declared sampled (one sample), bound at
+/// [`BINDING`].
 pub(crate) fn input(
     slots: &mut Slots<'_>,
     pass: &mut PassBuilder<'_>,
@@ -31,12 +35,12 @@ pub(crate) fn input(
     }
     let want = Want::new("the shadow atlas", ATLAS).samples(1);
     let (atlas, _) = textures::input(slots, pass, "shadows", want)?;
-    pass.sampled_aspect(atlas, Aspect::DepthOnly);
+    pass.sampled(atlas);
     Ok(Some(Input {
         binding: BINDING,
         texture: atlas,
-        aspect: Aspect::DepthOnly,
-        texels: Texels::Depth,
+        aspect: Aspect::All,
+        texels: Texels::Float,
     }))
 }
 
@@ -47,7 +51,7 @@ pub(crate) fn wgsl(input: Option<&Input>, group: u32, filter: ShadowFilter) -> S
     match input {
         Some(input) => format!(
             "// Generated: the shadows input (common/shadows.rs).\n\
-             @group({group}) @binding({}) var shadow_atlas: texture_depth_2d;\n\
+             @group({group}) @binding({}) var shadow_atlas: texture_2d<f32>;\n\
              const SHADOW_FILTER: u32 = {}u;\n{}",
             input.binding,
             filter.constant(),

@@ -1,8 +1,7 @@
 //! The scene's bind group (group 0 of every deferred pass that reads the scene, render
 //! or compute), as scene.wgsl and lighting.wgsl declare it: camera, meshes, materials,
 //! lights and light info at bindings 0 to 4, the environment's prefiltered cube map, its
-//! sampler and the split-sum lookup table at 5 to 7, the shadow views and the shadow
-//! maps' comparison sampler at 8 and 9 (shadow.wgsl).
+//! sampler and the split-sum lookup table at 5 to 7, the shadow views at 8 (shadow.wgsl).
 
 use super::environment::EnvironmentMaps;
 use super::shadows::ShadowBuffers;
@@ -44,10 +43,6 @@ pub(super) fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             ),
             entry(7, texture(wgpu::TextureViewDimension::D2)),
             entry(8, uniform),
-            entry(
-                9,
-                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-            ),
         ],
     })
 }
@@ -83,10 +78,6 @@ pub(super) fn scene_group(
         wgpu::BindGroupEntry {
             binding: 8,
             resource: shadows.views.as_entire_binding(),
-        },
-        wgpu::BindGroupEntry {
-            binding: 9,
-            resource: wgpu::BindingResource::Sampler(&shadows.sampler),
         },
     ]);
     device.create_bind_group(&wgpu::BindGroupDescriptor {

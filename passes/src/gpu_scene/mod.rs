@@ -8,7 +8,7 @@
 //! [`GpuScene`] holds:
 //! - group 0 ([`GpuScene::layout`], [`GpuScene::bind_group`]), as `scene.wgsl` declares
 //!   it: camera uniform, per-mesh data, materials, lights, light info, lighting.wgsl's
-//!   environment maps, and the shadow maps' views and comparison sampler (shadows.rs);
+//!   environment maps, and the shadow maps' views (shadows.rs);
 //! - the meshes ([`GpuScene::draw_meshes`], vertex layout [`mesh::VERTEX_LAYOUT`]) and a
 //!   bind group per material for group 1 ([`GpuScene::material_layout`],
 //!   [`GpuScene::material_groups`], made when a pass first draws with them);

@@ -1,6 +1,8 @@
 //! One frame's shadow-map work: for each view of the shadow atlas, its tile and, per
-//! opaque mesh, the runs of triangles it draws, split into the small clusters the compute
-//! raster covers (`shadow_raster`) and the large ones the hardware draws (`shadow_maps`).
+//! opaque mesh, the runs of triangles it draws, split into small and large clusters. On
+//! a GPU the compute raster (`shadow_raster`) covers both, but for alpha MASK meshes'
+//! clusters, which the hardware draws (`shadow_maps`); a CPU adapter's hardware draws
+//! them all.
 //! Made once per frame, output size, atlas and options by
 //! [`GpuScene::shadow_work`](super::GpuScene::shadow_work), and shared by both passes.
 
@@ -53,13 +55,6 @@ pub struct MeshRuns {
     pub runs: Runs,
 }
 
-impl ViewWork {
-    /// Whether the compute raster covers some of this view.
-    pub fn has_small(&self) -> bool {
-        self.meshes.iter().any(|m| !m.runs.small.is_empty())
-    }
-}
-
 impl MeshRuns {
     /// `range` of the mesh's triangles as a range of the scene's index buffer.
     pub fn indices(&self, range: &Range<u32>) -> Range<u32> {
@@ -68,14 +63,28 @@ impl MeshRuns {
 }
 
 impl ShadowWork {
-    /// The compute raster's items: per view, per small run, chunks of at most
-    /// [`ITEM_TRIANGLES`] triangles as (view, instance, first index, triangles), in
-    /// `shadow_compute.wgsl`'s `Item` layout.
+    /// The compute raster's items for the small clusters: per view, per small run,
+    /// chunks of at most [`ITEM_TRIANGLES`] triangles as (view, instance, first index,
+    /// triangles), in `shadow_compute.wgsl`'s `Item` layout.
     pub fn small_items(&self) -> Vec<[u32; 4]> {
+        self.items(|mesh| &mesh.runs.small)
+    }
+
+    /// The compute raster's items for the large clusters the hardware does not draw:
+    /// every large run but alpha MASK meshes', as [`small_items`](Self::small_items).
+    pub fn large_items(&self) -> Vec<[u32; 4]> {
+        const NONE: &[Range<u32>] = &[];
+        self.items(|mesh| match mesh.masked {
+            true => NONE,
+            false => &mesh.runs.large,
+        })
+    }
+
+    fn items(&self, runs: impl Fn(&MeshRuns) -> &[Range<u32>]) -> Vec<[u32; 4]> {
         let mut items = Vec::new();
         for (view, work) in (0u32..).zip(&self.views) {
             for mesh in &work.meshes {
-                for run in &mesh.runs.small {
+                for run in runs(mesh) {
                     for start in (run.start..run.end).step_by(ITEM_TRIANGLES as usize) {
                         let count = (run.end - start).min(ITEM_TRIANGLES);
                         let first = mesh.indices(&(start..start + count)).start;

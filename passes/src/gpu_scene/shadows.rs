@@ -296,12 +296,10 @@ fn z_order(i: u32) -> (u32, u32) {
     (every_other(i), every_other(i >> 1))
 }
 
-/// What group 0 holds for shadows: the views (binding 8), which the `shadow_maps` pass
-/// writes each frame, and the comparison sampler PCF reads the atlas through (binding 9:
-/// bilinear, each tap 2 x 2 comparisons of the reference `<=` the stored depth).
+/// What group 0 holds for shadows: the views (binding 8), which the first shadow pass of
+/// a frame writes.
 pub(super) struct ShadowBuffers {
     pub views: wgpu::Buffer,
-    pub sampler: wgpu::Sampler,
 }
 
 impl ShadowBuffers {
@@ -312,13 +310,6 @@ impl ShadowBuffers {
                 size: std::mem::size_of::<ShadowViews>() as u64,
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
-            }),
-            sampler: device.create_sampler(&wgpu::SamplerDescriptor {
-                label: Some("shadow comparison"),
-                mag_filter: wgpu::FilterMode::Linear,
-                min_filter: wgpu::FilterMode::Linear,
-                compare: Some(wgpu::CompareFunction::LessEqual),
-                ..Default::default()
             }),
         }
     }

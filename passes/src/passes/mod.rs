@@ -23,6 +23,7 @@ pub(crate) mod particles;
 pub(crate) mod resolve;
 pub(crate) mod shadow_maps;
 pub(crate) mod shadow_raster;
+pub(crate) mod shadow_resolve;
 pub(crate) mod ssao;
 pub(crate) mod taa;
 pub(crate) mod tonemap;

@@ -21,24 +21,28 @@
 //! tile, only the runs of its clusters that may fall inside the view, depth only, standard Z, both faces, with a slope-scaled depth bias. The atlas is
 //! cleared to the far plane; tiles without a view stay clear. Alpha MASK materials cast
 //! only where their base colour alpha (factor, vertex colour and texture, from the
-//! scene's texture table) reaches the cutoff, as they draw in the other passes; on a GPU the compute raster could
-//! draw the same maps (issue 39).
+//! scene's texture table) reaches the cutoff, as they draw in the other passes.
+//!
+//! Given `shadow_raster`'s keys (`inputs: { "keys": .. }`, parts/shadow_maps_compute.ron)
+//! the compute raster has drawn every other mesh this frame, with the views it wrote: the
+//! pass draws the alpha MASK meshes alone, into a depth texture that `shadow_resolve`
+//! merges with the keys into the atlas. The keys are read for that order, not bound.
 
 use serde::Deserialize;
 
 use rgraph_core::file::{Plugin, PluginError, Slots};
-use rgraph_core::{
-    AspectAccess, Buffer, BufferHandle, BufferRole, PassBuilder, PassKind, Size, TextureHandle,
-};
+use rgraph_core::types::TextureFormat;
+use rgraph_core::{AspectAccess, BufferHandle, PassBuilder, PassKind, TextureHandle};
 
 use crate::common::plugin::Shared;
-use crate::common::shadow_depth::{self, atlas_of_keys, check_slope_bias};
-use crate::common::shadows::ATLAS;
+use crate::common::shadow_depth::{self, check_atlas, check_slope_bias, keys};
 use crate::common::textures::{self, Want};
 use crate::shaders;
-use crate::shadows::ATLAS_UNITS;
 
 pub struct ShadowMaps(pub(crate) Shared);
+
+/// The maps' depth: the hardware's depth test keeps the nearest.
+const DEPTH: &[TextureFormat] = &[TextureFormat::Depth32Float];
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -74,7 +78,8 @@ pub(crate) struct ShadowDraw {
     pub slope_bias: f32,
     pub clusters: ShadowClusters,
     /// `shadow_raster`'s keys, where the file gives them (an optional read: absent
-    /// where a condition drops that pass).
+    /// where a condition drops that pass): with them the pass draws the alpha MASK
+    /// meshes alone.
     pub keys: Option<BufferHandle>,
 }
 
@@ -93,24 +98,11 @@ impl Plugin for ShadowMaps {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         check_slope_bias(params.slope_bias)?;
-        let want = Want::new("the shadow atlas", ATLAS).samples(1);
+        let want = Want::new("the shadow atlas", DEPTH).samples(1);
         let (atlas, desc) = textures::output(slots, pass, "atlas", want, |pass, h, _| {
             pass.depth_stencil(h, AspectAccess::Clear(1.0), AspectAccess::Absent)
         })?;
-        let square = matches!(desc.size,
-            Size::Absolute(w, h) if w == h && w >= ATLAS_UNITS && w % ATLAS_UNITS == 0);
-        if !square {
-            return Err(PluginError::Slot {
-                slot: "atlas".to_owned(),
-                resource: slots.resource("atlas").unwrap_or("atlas").to_owned(),
-                why: format!(
-                    "is {:?}, but the shadow atlas must be Absolute(N, N), N a multiple \
-                         of {ATLAS_UNITS} (maps are placed on a grid of {ATLAS_UNITS} x \
-                         {ATLAS_UNITS} units)",
-                    desc.size
-                ),
-            });
-        }
+        check_atlas(slots, "atlas", desc.size)?;
         let keys = match slots.kind("keys") {
             Some(_) => Some(keys(pass, slots, desc.size)?),
             None => None,
@@ -127,37 +119,6 @@ impl Plugin for ShadowMaps {
     }
 }
 
-/// Takes the `keys` input (read-only storage), checked to hold 4 bytes a texel of the
-/// atlas of `size`.
-fn keys(
-    pass: &mut PassBuilder<'_>,
-    slots: &mut Slots<'_>,
-    size: Size,
-) -> Result<BufferHandle, PluginError> {
-    let keys = slots.input::<Buffer>("keys")?;
-    let read = BufferRole::Storage {
-        read: true,
-        write: false,
-    };
-    pass.buffer(keys, read);
-    let bytes = pass.resource(keys).buffer().map(|d| d.size);
-    let atlas = match size {
-        Size::Absolute(w, _) => Some(w),
-        _ => None,
-    };
-    if bytes.and_then(atlas_of_keys) != atlas || atlas.is_none() {
-        return Err(PluginError::Slot {
-            slot: "keys".to_owned(),
-            resource: slots.resource("keys").unwrap_or("keys").to_owned(),
-            why: format!(
-                "holds {bytes:?} bytes, but the keys of a {size:?} atlas take 4 bytes a \
-                 texel: Buffer(per_texel: 4, texels: (N, N)) for Absolute(N, N)"
-            ),
-        });
-    }
-    Ok(keys)
-}
-
 #[cfg(feature = "gpu")]
 mod gpu {
     //! Recording the shadow maps: the frame's views written, then per view its tile as
@@ -169,7 +130,7 @@ mod gpu {
     use super::{ShadowClusters, ShadowDraw};
     use crate::common::gpu::pipeline::{module, pipeline_layout, PipelineDesc};
     use crate::common::gpu::{Frame, Recorded, Recorder, Render};
-    use crate::gpu_scene::{GpuScene, ShadowOptions};
+    use crate::gpu_scene::{GpuScene, MeshRuns, ShadowOptions};
     use crate::shadows::SHADOW_VIEWS;
     use rgraph_scene::DepthConvention;
     use wgpu::util::DeviceExt;
@@ -192,11 +153,6 @@ mod gpu {
         /// View `v`'s index at `v * stride`, bound with that dynamic offset.
         views: wgpu::BindGroup,
         stride: u32,
-        /// The compute raster's keys written into the atlas: the pipeline for an atlas
-        /// of the side it was made for, made on first use.
-        keys: Option<(u32, wgpu::RenderPipeline)>,
-        keys_layout: wgpu::BindGroupLayout,
-        module: wgpu::ShaderModule,
     }
 
     /// Draws into the atlas tile `(x, y, side)` (texels) alone: viewport and scissor.
@@ -280,27 +236,11 @@ mod gpu {
                 }
                 .build(device)
             };
-            let keys_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("shadow keys"),
-                entries: &[wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                }],
-            });
             Ok(State {
                 pipeline: pipeline("vs_shadow", "fs_shadow"),
                 masked: pipeline("vs_shadow_masked", "fs_shadow_masked"),
                 views,
                 stride,
-                keys: None,
-                keys_layout,
-                module,
             })
         }
 
@@ -308,12 +248,11 @@ mod gpu {
             let pass = &mut *frame.pass;
             let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
             let atlas = resources.shape(self.atlas);
-            // With the compute raster's keys, its small clusters are drawn: the keys go
-            // into the atlas first, and the views draw the rest.
+            // With the compute raster's keys, it drew all but the alpha MASK meshes.
             let keys = self.keys.filter(|keys| resources.has(*keys));
             let (size, side) = (resources.output_size(), atlas.width);
             let work = match keys {
-                // The work `shadow_raster` made this frame, its small clusters drawn.
+                // The work `shadow_raster` made this frame.
                 Some(_) => scene.compute_shadow_work(size, side).ok_or(
                     "shadow_raster, which writes the keys, made no shadow work this frame",
                 )?,
@@ -325,47 +264,6 @@ mod gpu {
                     scene.shadow_work(resources.queue, size, side, options)
                 }
             };
-            if let Some(keys) = keys {
-                if state.keys.as_ref().is_none_or(|(made, _)| *made != side) {
-                    let layout = pipeline_layout(device, &[None, Some(&state.keys_layout)]);
-                    let pipeline = PipelineDesc {
-                        label: "shadow keys",
-                        layout: &layout,
-                        module: &state.module,
-                        vertex: "vs_keys",
-                        buffers: &[],
-                        fragment: "fs_keys",
-                        constants: &[("ATLAS", f64::from(side))],
-                        targets: &[],
-                        cull: None,
-                        // The keys hold the bias the compute raster added.
-                        depth_stencil: Some(nearer_depth(Default::default())),
-                        samples: 1,
-                        mask: !0,
-                    }
-                    .build(device);
-                    state.keys = Some((side, pipeline));
-                }
-                let keys = resources.buffer(keys);
-                let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("shadow keys"),
-                    layout: &state.keys_layout,
-                    entries: &[wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: keys.as_entire_binding(),
-                    }],
-                });
-                // Only the tiles of views with small clusters: the copy costs the ROPs a
-                // fragment a texel (1.6 ms for a whole 4096-texel atlas on an H100).
-                if let Some((_, pipeline)) = &state.keys {
-                    pass.set_pipeline(pipeline);
-                    pass.set_bind_group(1, &group, &[]);
-                    for view in work.views.iter().filter(|v| v.has_small()) {
-                        set_tile(pass, view.tile);
-                        pass.draw(0..3, 0..1);
-                    }
-                }
-            }
             // The views take camera-relative positions; group 0's camera is not read.
             pass.set_bind_group(0, scene.bind_group(DepthConvention::Standard), &[]);
             pass.set_bind_group(2, scene.geometry_group(device)?, &[]);
@@ -376,7 +274,8 @@ mod gpu {
             for (view, work) in (0u32..).zip(&work.views) {
                 set_tile(pass, work.tile);
                 pass.set_bind_group(1, &state.views, &[view * state.stride]);
-                for mesh in work.meshes.iter().filter(|m| !m.runs.large.is_empty()) {
+                let drawn = |m: &&MeshRuns| keys.is_none() || m.masked;
+                for mesh in work.meshes.iter().filter(drawn) {
                     pass.set_pipeline(match mesh.masked {
                         true => &state.masked,
                         false => &state.pipeline,

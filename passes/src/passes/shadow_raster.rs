@@ -1,6 +1,6 @@
-//! `shadow_raster`: the shadow maps' small clusters rasterised in compute, one invocation
-//! a triangle, into a buffer of one key per atlas texel, which `shadow_maps` writes into
-//! the atlas before the hardware draws the rest (its optional `keys` input).
+//! `shadow_raster`: the shadow maps rasterised in compute into a buffer of one key per
+//! atlas texel, which `shadow_resolve` writes into the atlas with what the hardware drew
+//! of alpha MASK meshes (`shadow_maps`).
 //!
 //! ```ron
 //! (name: "shadow raster", plugin: "shadow_raster",
@@ -12,15 +12,18 @@
 //!
 //! Each frame the pass clears the keys, asks the scene for the frame's shadow work
 //! (gpu_scene/shadow_work.rs: each view's runs of each opaque mesh, culled by the view
-//! and split into small and large clusters) and covers the small runs' triangles: their
-//! corners projected into the view's tile, the texels whose centres they hold tested by
-//! edge functions, the depth interpolated, the hardware's slope-scaled bias added, and
-//! the nearest kept by `atomicMax` of the depth's bits inverted. A small cluster lies
-//! wholly between the view's depth planes, so nothing is clipped; a cluster that spans
-//! more than `small_texels` texels, or crosses a depth plane, or whose material is alpha
-//! MASK, is left to the hardware. On a GPU a depth-only hardware raster of sub-texel
-//! triangles is slow (a 10M-triangle heightfield's 22 shadow views took 122 ms on an
-//! H100, docs/design/shadows.md); this is the compute raster issue 39 asks for.
+//! and split into small and large clusters) and covers their triangles: corners
+//! projected into the view's tile, the texels whose centres they hold tested by edge
+//! functions, the depth interpolated, the hardware's slope-scaled bias added, and the
+//! nearest kept by `atomicMax` of the depth's bits inverted. A small cluster (wholly
+//! between the view's depth planes, spanning at most `small_texels` texels) takes an
+//! invocation a triangle; a large one a workgroup of 256 invocations a run of up to 64
+//! triangles, each triangle clipped to the near plane and its texels shared out, so that
+//! a ground plane filling a tile costs no one invocation more than a 256th of it. Alpha
+//! MASK meshes are left to the hardware, which tests their textures. On an H100 the
+//! hardware raster writes 7 to 9 Gtexel/s of depth (its graphics TPCs are few): a
+//! 4096-texel atlas took it 2 to 3 ms, a 10M-triangle heightfield's 22 views 122 ms
+//! (docs/design/shadows.md); this is the compute raster issue 39 asks for.
 
 use serde::Deserialize;
 
@@ -40,8 +43,8 @@ pub struct ShadowRasterParams {
     /// this times the larger of the depth's changes per texel across and down).
     #[serde(default = "shadow_depth::slope_bias")]
     pub slope_bias: f32,
-    /// The most texels a cluster's box may span in a view for the compute raster to
-    /// cover it (each invocation loops over its triangle's texels, at most this squared).
+    /// The most texels a cluster's box may span in a view to be small, an invocation a
+    /// triangle (each loops over its triangle's texels, at most this squared).
     #[serde(default = "small_texels")]
     pub small_texels: u32,
 }
@@ -119,6 +122,7 @@ mod gpu {
         layout: wgpu::BindGroupLayout,
         clear: wgpu::ComputePipeline,
         raster: wgpu::ComputePipeline,
+        large: wgpu::ComputePipeline,
         /// The items, and the parameters (`RasterParams`), rewritten each frame.
         items: Option<wgpu::Buffer>,
         params: wgpu::Buffer,
@@ -154,6 +158,7 @@ mod gpu {
             Ok(State {
                 clear: pipeline("cs_clear"),
                 raster: pipeline("cs_shadow_raster"),
+                large: pipeline("cs_shadow_raster_large"),
                 layout,
                 items: None,
                 params: device.create_buffer(&wgpu::BufferDescriptor {
@@ -180,8 +185,11 @@ mod gpu {
                 small_texels: Some(f64::from(self.small_texels)),
             };
             let work = scene.shadow_work(resources.queue, resources.output_size(), atlas, options);
-            let items = work.small_items();
+            let mut items = work.small_items();
+            let small = u32::try_from(items.len()).map_err(|_| "too many shadow items")?;
+            items.extend(work.large_items());
             let count = u32::try_from(items.len()).map_err(|_| "too many shadow items")?;
+            let large = count - small;
             // At least one item's room: wgpu refuses zero-sized bindings.
             let bytes = (items.len().max(1) * 16) as u64;
             if state.items.as_ref().is_some_and(|b| b.size() < bytes) {
@@ -198,7 +206,7 @@ mod gpu {
             resources
                 .queue
                 .write_buffer(item_buffer, 0, bytemuck::cast_slice(&items));
-            let params = [atlas, count, self.slope_bias.to_bits(), 0];
+            let params = [atlas, small, self.slope_bias.to_bits(), large];
             resources
                 .queue
                 .write_buffer(&state.params, 0, bytemuck::cast_slice(&params));
@@ -217,11 +225,13 @@ mod gpu {
             // 256 keys a workgroup (shadow_compute.wgsl's cs_clear).
             let (x, y) = workgroup_grid(keys.size() / 4, 256);
             pass.dispatch_workgroups(x, y, 1);
-            if count > 0 {
-                pass.set_pipeline(&state.raster);
-                // A workgroup an item.
-                let (x, y) = workgroup_grid(u64::from(count), 1);
-                pass.dispatch_workgroups(x, y, 1);
+            // A workgroup an item.
+            for (pipeline, items) in [(&state.raster, small), (&state.large, large)] {
+                if items > 0 {
+                    pass.set_pipeline(pipeline);
+                    let (x, y) = workgroup_grid(u64::from(items), 1);
+                    pass.dispatch_workgroups(x, y, 1);
+                }
             }
             Ok(())
         }

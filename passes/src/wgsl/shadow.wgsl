@@ -1,10 +1,8 @@
 // Shadow maps: the fraction of a light that reaches a surface, read from the shadow atlas
-// the `shadow_maps` pass draws (passes/shadow_maps.rs). Composed after common.wgsl,
-// scene.wgsl, brdf.wgsl and shadow_views.wgsl, with a generated block binding the atlas
-// as `shadow_atlas: texture_depth_2d` and the filter as SHADOW_FILTER (common/shadows.rs).
-
-// Bilinear comparison: each tap compares 2 x 2 texels and weighs them.
-@group(0) @binding(9) var shadow_sampler: sampler_comparison;
+// (the `shadow_maps` pass's depth32float, or shadow_resolve's r32float on a GPU). Composed
+// after common.wgsl, scene.wgsl, brdf.wgsl and shadow_views.wgsl, with a generated block
+// binding the atlas as `shadow_atlas: texture_2d<f32>` (either format binds so: texels
+// loaded, never filtered) and the filter as SHADOW_FILTER (common/shadows.rs).
 
 // LightData::shadow of a light without a shadow map.
 const NO_SHADOW: u32 = 0xffffffffu;
@@ -97,15 +95,30 @@ fn view_visibility(v: ShadowView, s: Surface, light: LightData) -> f32 {
     // Taps stay two texels inside the tile: its neighbours are other views.
     let at = clamp(in_tile * tile, vec2<f32>(2.0), tile - 2.0) + v.rect.xy * size;
     if SHADOW_FILTER == 0u {
-        let stored = textureLoad(shadow_atlas, vec2<i32>(floor(at)), 0);
-        return select(0.0, 1.0, ndc.z <= stored);
+        return select(0.0, 1.0, ndc.z <= shadow_depth(vec2<i32>(floor(at))));
     }
+    // Nine bilinear comparison taps one texel apart, as a comparison sampler would take
+    // them, summed texel by texel: the 4 x 4 texels from one left of and above the
+    // centre tap's, each weighed by how many taps cover it and how much (per axis
+    // 1 - f, 1, 1, f for the centre tap's bilinear fraction f; 9 in all).
+    let corner = at - 0.5;
+    let first = vec2<i32>(floor(corner)) - 1;
+    let f = fract(corner);
+    let wx = vec4<f32>(1.0 - f.x, 1.0, 1.0, f.x);
+    let wy = vec4<f32>(1.0 - f.y, 1.0, 1.0, f.y);
     var lit = 0.0;
-    for (var y = -1; y <= 1; y++) {
-        for (var x = -1; x <= 1; x++) {
-            let uv = (at + vec2<f32>(f32(x), f32(y))) / size;
-            lit += textureSampleCompareLevel(shadow_atlas, shadow_sampler, uv, ndc.z);
+    for (var y = 0; y < 4; y++) {
+        var row = 0.0;
+        for (var x = 0; x < 4; x++) {
+            let stored = shadow_depth(first + vec2<i32>(x, y));
+            row += select(0.0, wx[x], ndc.z <= stored);
         }
+        lit += wy[y] * row;
     }
     return lit / 9.0;
+}
+
+// The depth stored at atlas texel `t`.
+fn shadow_depth(t: vec2<i32>) -> f32 {
+    return textureLoad(shadow_atlas, t, 0).x;
 }

@@ -1,12 +1,14 @@
-// The shadow maps' compute raster (passes/shadow_raster.rs): the small clusters of each
-// view (gpu_scene/view_culling.rs: wholly between the view's depth planes, each spanning
-// a few texels) covered one invocation a triangle, the nearest depth of each atlas texel
-// kept by atomicMax of its bits inverted (0: nothing), which the `shadow_maps` pass
-// writes into the atlas before the hardware draws the large clusters. Composed after
-// common.wgsl, scene.wgsl, geometry.wgsl and shadow_views.wgsl.
+// The shadow maps' compute raster (passes/shadow_raster.rs): every opaque cluster of each
+// view (gpu_scene/view_culling.rs), the nearest depth of each atlas texel kept by
+// atomicMax of its bits inverted (0: nothing), which `shadow_resolve` writes into the
+// atlas. Small clusters (wholly between the view's depth planes, each spanning a few
+// texels) take an invocation a triangle; large ones a workgroup a run of triangles, its
+// invocations sharing each triangle's texels. Composed after common.wgsl, scene.wgsl,
+// geometry.wgsl and shadow_views.wgsl.
 
-// A workgroup's triangles: `count` triangles of mesh `mesh` from index `first_index`,
-// into view `view` (gpu_scene/shadow_work.rs's items).
+// A workgroup's triangles: `count` (at most 64) triangles of mesh `mesh` from index
+// `first_index`, into view `view` (gpu_scene/shadow_work.rs's items): the small
+// clusters' items first, then the large ones'.
 struct Item {
     view: u32,
     mesh: u32,
@@ -17,10 +19,12 @@ struct Item {
 struct RasterParams {
     // The atlas's side in texels.
     atlas: u32,
-    items: u32,
-    // The hardware pass's slope-scaled depth bias (shadow_raster's slope_bias).
+    // The small clusters' items.
+    small: u32,
+    // The hardware's slope-scaled depth bias (shadow_raster's slope_bias).
     slope_bias: f32,
-    _pad: u32,
+    // The large clusters' items, after the small ones.
+    large: u32,
 }
 
 @group(1) @binding(0) var<storage, read_write> shadow_keys: array<atomic<u32>>;
@@ -42,6 +46,79 @@ fn edge(a: vec2<f32>, b: vec2<f32>, p: vec2<f32>) -> f32 {
     return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
 }
 
+// A triangle projected into a view's tile: corners in atlas texels (y down), their
+// depths, the texels whose centres its bounds hold (within the tile; none where
+// high < low), its signed area (0: nothing to draw) and the hardware's slope-scaled
+// depth bias for its plane.
+struct Flat {
+    p0: vec2<f32>,
+    p1: vec2<f32>,
+    p2: vec2<f32>,
+    low: vec2<f32>,
+    high: vec2<f32>,
+    z: vec3<f32>,
+    area: f32,
+    bias: f32,
+}
+
+// The triangle of clip-space corners `c` in view `view`'s tile. Its corners lie in front
+// of the near plane (z >= 0, so w > 0): the caller clipped it.
+fn flat(c: array<vec4<f32>, 3>, view: ShadowView) -> Flat {
+    let atlas = f32(raster.atlas);
+    let origin = view.rect.xy * atlas;
+    let side = view.rect.zw * atlas;
+    var f: Flat;
+    var p: array<vec2<f32>, 3>;
+    var z: array<f32, 3>;
+    for (var i = 0u; i < 3u; i++) {
+        let ndc = c[i].xyz / c[i].w;
+        p[i] = origin + vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y) * side;
+        z[i] = ndc.z;
+    }
+    f.p0 = p[0];
+    f.p1 = p[1];
+    f.p2 = p[2];
+    f.z = vec3<f32>(z[0], z[1], z[2]);
+    f.area = edge(p[0], p[1], p[2]);
+    f.low = max(ceil(min(min(p[0], p[1]), p[2]) - 0.5), origin);
+    f.high = min(floor(max(max(p[0], p[1]), p[2]) - 0.5), origin + side - 1.0);
+    if f.area == 0.0 {
+        return f;
+    }
+    // The depth's plane: its change per texel across and down, and the slope-scaled
+    // bias the hardware adds (wgpu's DepthBiasState::slope_scale: the larger change).
+    let d1 = vec3<f32>(p[1] - p[0], z[1] - z[0]);
+    let d2 = vec3<f32>(p[2] - p[0], z[2] - z[0]);
+    let dz_dx = (d1.z * d2.y - d2.z * d1.y) / f.area;
+    let dz_dy = (d2.z * d1.x - d1.z * d2.x) / f.area;
+    f.bias = raster.slope_bias * max(abs(dz_dx), abs(dz_dy));
+    return f;
+}
+
+// Keeps `f`'s depth at texel (x, y) where the triangle holds its centre (edges included:
+// a texel on an edge both triangles share gets either's depth, which is one) and the
+// depth is not past the far plane, which clips it as the hardware does.
+fn cover(f: Flat, x: f32, y: f32) {
+    let centre = vec2<f32>(x + 0.5, y + 0.5);
+    let w0 = edge(f.p1, f.p2, centre) / f.area;
+    let w1 = edge(f.p2, f.p0, centre) / f.area;
+    let w2 = edge(f.p0, f.p1, centre) / f.area;
+    let depth = dot(vec3<f32>(w0, w1, w2), f.z);
+    if min(min(w0, w1), w2) < 0.0 || depth > 1.0 {
+        return;
+    }
+    let texel = u32(y) * raster.atlas + u32(x);
+    atomicMax(&shadow_keys[texel], ~bitcast<u32>(clamp(depth + f.bias, 0.0, 1.0)));
+}
+
+// Corner `c` of triangle `t` of `item` in its view's clip space.
+fn corner(item: Item, t: u32, c: u32, view: ShadowView) -> vec4<f32> {
+    let mesh = meshes[item.mesh];
+    let position = pull_position(item.first_index + 3u * t + c, mesh);
+    return view.clip_from_world * (mesh.model * vec4<f32>(position, 1.0));
+}
+
+// Small clusters: an invocation a triangle, looping over the texels its bounds hold.
 @compute @workgroup_size(64)
 fn cs_shadow_raster(
     @builtin(workgroup_id) group: vec3<u32>,
@@ -49,61 +126,95 @@ fn cs_shadow_raster(
     @builtin(local_invocation_index) lane: u32,
 ) {
     let k = group.y * groups.x + group.x;
-    if k >= raster.items {
+    if k >= raster.small {
         return;
     }
     let item = items[k];
     if lane >= item.count {
         return;
     }
-    let mesh = meshes[item.mesh];
     let view = shadow_views.views[item.view];
-    let atlas = f32(raster.atlas);
-    let origin = view.rect.xy * atlas;
-    let side = view.rect.zw * atlas;
-    // The corners in atlas texels (y down) and depth. The CPU kept only clusters wholly
-    // between the depth planes, so w > 0 and 0 <= z <= w: nothing to clip.
-    var p: array<vec2<f32>, 3>;
-    var z: array<f32, 3>;
-    for (var c = 0u; c < 3u; c++) {
-        let position = pull_position(item.first_index + 3u * lane + c, mesh);
-        let clip = view.clip_from_world * (mesh.model * vec4<f32>(position, 1.0));
-        let ndc = clip.xyz / clip.w;
-        p[c] = origin + vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y) * side;
-        z[c] = ndc.z;
-    }
-    let area = edge(p[0], p[1], p[2]);
-    if area == 0.0 {
+    // The CPU kept only clusters wholly between the depth planes: nothing to clip.
+    let f = flat(array(corner(item, lane, 0u, view), corner(item, lane, 1u, view), corner(item, lane, 2u, view)), view);
+    if f.area == 0.0 {
         return;
     }
-    // Texels whose centres the bounds hold, within the view's tile.
-    let low = max(ceil(min(min(p[0], p[1]), p[2]) - 0.5), origin);
-    let high = min(floor(max(max(p[0], p[1]), p[2]) - 0.5), origin + side - 1.0);
-    if any(high < low) {
-        return;
-    }
-    // The depth's plane: its change per texel across and down, and the slope-scaled
-    // bias the hardware adds (wgpu's DepthBiasState::slope_scale: the larger change).
-    let d1 = vec3<f32>(p[1] - p[0], z[1] - z[0]);
-    let d2 = vec3<f32>(p[2] - p[0], z[2] - z[0]);
-    let dz_dx = (d1.z * d2.y - d2.z * d1.y) / area;
-    let dz_dy = (d2.z * d1.x - d1.z * d2.x) / area;
-    let bias = raster.slope_bias * max(abs(dz_dx), abs(dz_dy));
-    let width = raster.atlas;
-    for (var y = low.y; y <= high.y; y += 1.0) {
-        for (var x = low.x; x <= high.x; x += 1.0) {
-            let centre = vec2<f32>(x + 0.5, y + 0.5);
-            // Barycentric weights, each of the area's sign inside (edges included: a
-            // texel on an edge both triangles share gets either's depth, which is one).
-            let w0 = edge(p[1], p[2], centre) / area;
-            let w1 = edge(p[2], p[0], centre) / area;
-            let w2 = edge(p[0], p[1], centre) / area;
-            if min(min(w0, w1), w2) < 0.0 {
-                continue;
-            }
-            let depth = clamp(w0 * z[0] + w1 * z[1] + w2 * z[2] + bias, 0.0, 1.0);
-            let texel = u32(y) * width + u32(x);
-            atomicMax(&shadow_keys[texel], ~bitcast<u32>(depth));
+    for (var y = f.low.y; y <= f.high.y; y += 1.0) {
+        for (var x = f.low.x; x <= f.high.x; x += 1.0) {
+            cover(f, x, y);
         }
+    }
+}
+
+// Invocations of a large cluster's workgroup: they share each triangle's texels.
+const LARGE_GROUP: u32 = 256u;
+
+// A large item's triangles, set up once: triangle t's at 2t and 2t + 1 (clipping to the
+// near plane leaves a triangle or a quadrilateral, two triangles).
+var<workgroup> flats: array<Flat, 128>;
+
+// Large clusters: a workgroup an item. Each of its first invocations clips one triangle
+// to the near plane and projects it; then all of them cover each triangle's texels
+// together, so that a triangle over a whole tile is split 256 ways.
+@compute @workgroup_size(256)
+fn cs_shadow_raster_large(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let k = group.y * groups.x + group.x;
+    // The dispatch's last row may run past the items: those groups set up nothing and
+    // cover nothing, but reach the barrier as the others do.
+    let item = items[raster.small + min(k, raster.large - 1u)];
+    let count = select(0u, item.count, k < raster.large);
+    let view = shadow_views.views[item.view];
+    if lane < 64u {
+        var none: Flat;
+        flats[2u * lane] = none;
+        flats[2u * lane + 1u] = none;
+        if lane < count {
+            set_up(item, lane, view);
+        }
+    }
+    workgroupBarrier();
+    for (var t = 0u; t < 2u * count; t++) {
+        let f = flats[t];
+        if f.area == 0.0 || any(f.high < f.low) {
+            continue;
+        }
+        let width = u32(f.high.x - f.low.x) + 1u;
+        let texels = width * (u32(f.high.y - f.low.y) + 1u);
+        for (var i = lane; i < texels; i += LARGE_GROUP) {
+            cover(f, f.low.x + f32(i % width), f.low.y + f32(i / width));
+        }
+    }
+}
+
+// Triangle `t` of `item` clipped to the near plane (z >= 0; Sutherland and Hodgman's
+// polygon clipping against that one plane) and projected, into flats 2t and 2t + 1.
+fn set_up(item: Item, t: u32, view: ShadowView) {
+    var c: array<vec4<f32>, 3>;
+    for (var i = 0u; i < 3u; i++) {
+        c[i] = corner(item, t, i, view);
+    }
+    var polygon: array<vec4<f32>, 4>;
+    var n = 0u;
+    for (var i = 0u; i < 3u; i++) {
+        let a = c[i];
+        let b = c[(i + 1u) % 3u];
+        if a.z >= 0.0 {
+            polygon[n] = a;
+            n++;
+        }
+        if (a.z >= 0.0) != (b.z >= 0.0) {
+            polygon[n] = mix(a, b, a.z / (a.z - b.z));
+            n++;
+        }
+    }
+    if n >= 3u {
+        flats[2u * t] = flat(array(polygon[0], polygon[1], polygon[2]), view);
+    }
+    if n == 4u {
+        flats[2u * t + 1u] = flat(array(polygon[0], polygon[2], polygon[3]), view);
     }
 }

@@ -63,25 +63,3 @@ fn fs_shadow_masked(in: MaskedVaryings) {
         discard;
     }
 }
-
-// The compute raster's keys (shadow_compute.wgsl), written into the atlas before the
-// hardware draws: a triangle over a view's tile (the viewport), each texel's nearest
-// depth where the compute raster covered it. `ATLAS` is the atlas's side in texels.
-@group(1) @binding(1) var<storage, read> shadow_keys_read: array<u32>;
-override ATLAS: u32 = 1u;
-
-@vertex
-fn vs_keys(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
-
-@fragment
-fn fs_keys(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) f32 {
-    let texel = vec2<u32>(position.xy);
-    let key = shadow_keys_read[texel.y * ATLAS + texel.x];
-    if key == 0u {
-        discard;
-    }
-    return bitcast<f32>(~key);
-}
