@@ -5,8 +5,8 @@ use glam::DVec3;
 use super::animation::{swept_bounds, Animation};
 use super::node_tree::NodeTree;
 use super::{
-    Aabb, BoundingSphere, Camera, Light, Material, Mesh, ParticleEmitter, Scene, SceneError,
-    TextureImage, MAX_COORDINATE,
+    Aabb, BoundingSphere, Camera, Deformation, Light, Material, Mesh, ParticleEmitter, Scene,
+    SceneError, Skin, TextureImage, MAX_COORDINATE,
 };
 
 /// A scene under construction: loaders push parts, [`SceneBuilder::finish`] derives the rest.
@@ -21,8 +21,11 @@ pub(crate) struct SceneBuilder {
     pub emitters: Vec<ParticleEmitter>,
     pub warnings: Vec<String>,
     /// The nodes placing the meshes, with one placement per mesh pushed, when
-    /// `animations` move them (else empty).
+    /// `animations` move them or `skins` hang on them (else empty).
     pub nodes: NodeTree,
+    pub skins: Vec<Skin>,
+    /// By index into `meshes` as pushed; `finish` renumbers them as it drops meshes.
+    pub deformations: Vec<Deformation>,
     pub animations: Vec<Animation>,
     /// Whether a scene without triangles is what the source asked for (a glTF scene listing
     /// no nodes) rather than a sign that everything was skipped; see [`SceneBuilder::finish`].
@@ -42,6 +45,8 @@ impl SceneBuilder {
             emitters: Vec::new(),
             warnings: Vec::new(),
             nodes: NodeTree::default(),
+            skins: Vec::new(),
+            deformations: Vec::new(),
             animations: Vec::new(),
             allow_empty: false,
         }
@@ -62,6 +67,16 @@ impl SceneBuilder {
     /// [`SceneError::TooFar`] when the bounds, a light or the camera lie beyond
     /// ±[`MAX_COORDINATE`] (or are not finite), which would otherwise render an empty frame.
     pub fn finish(mut self) -> Result<Scene, SceneError> {
+        // Each mesh's index once those without triangles are dropped.
+        let kept: Vec<Option<usize>> = (self.meshes.iter())
+            .scan(0, |next, m| {
+                let kept = (m.triangle_count() > 0).then_some(*next);
+                *next += usize::from(kept.is_some());
+                Some(kept)
+            })
+            .collect();
+        self.deformations
+            .retain_mut(|d| kept[d.mesh].map(|mesh| d.mesh = mesh).is_some());
         if self.nodes.meshes.is_empty() {
             self.meshes.retain(|m| m.triangle_count() > 0);
         } else {
@@ -105,6 +120,8 @@ impl SceneBuilder {
             emitters: self.emitters,
             bounds,
             nodes: self.nodes,
+            skins: self.skins,
+            deformations: self.deformations,
             animations: self.animations,
             warnings: self.warnings,
         };
