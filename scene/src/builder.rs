@@ -85,14 +85,22 @@ impl SceneBuilder {
             (self.meshes, self.nodes.meshes) =
                 placed.filter(|(m, _)| m.triangle_count() > 0).unzip();
         }
-        let bounds = self
-            .meshes
-            .iter()
-            .filter_map(Mesh::world_bounds)
+        // A deformed mesh is where its deformation puts it, not where its rest vertices
+        // are (a skinned mesh's node transform is ignored): the swept bounds below hold
+        // it, from the rest pose on.
+        let mut deformed = vec![false; self.meshes.len()];
+        for d in &self.deformations {
+            deformed[d.mesh] = true;
+        }
+        let still: Vec<usize> = (0..self.meshes.len()).filter(|&i| !deformed[i]).collect();
+        let still_bounds = (still.iter())
+            .filter_map(|&i| self.meshes[i].world_bounds())
             .reduce(|a, b| a.union(&b));
-        let bounds = match bounds {
+        let bounds = match still_bounds {
             Some(bounds) => bounds,
-            None if self.allow_empty => Aabb::from_points([DVec3::ZERO]).expect("one point"),
+            None if self.allow_empty || !self.deformations.is_empty() => {
+                Aabb::from_points([DVec3::ZERO]).expect("one point")
+            }
             None => return Err(SceneError::EmptyScene { scene: self.name }),
         };
         check_extent(&self.name, "the geometry", bounds.largest_coordinate())?;
@@ -107,7 +115,7 @@ impl SceneBuilder {
         let framed = self.camera.is_none();
         let mut scene = Scene {
             camera: self.camera.unwrap_or_else(|| {
-                let points = self.meshes.iter().flat_map(Mesh::world_positions);
+                let points = still.iter().flat_map(|&i| self.meshes[i].world_positions());
                 Camera::framing(&BoundingSphere::around(bounds.center(), points))
             }),
             name: self.name,
@@ -126,11 +134,13 @@ impl SceneBuilder {
             warnings: self.warnings,
         };
         if let Some(swept) = swept_bounds(&scene) {
-            scene.bounds = bounds.union(&swept);
-            let what = "the geometry, as the animations move it";
+            scene.bounds = still_bounds.map_or(swept, |b| b.union(&swept));
+            let what = "the geometry, as the animations and deformations move it";
             check_extent(&scene.name, what, scene.bounds.largest_coordinate())?;
             if framed {
-                let points = scene.meshes.iter().flat_map(Mesh::world_positions);
+                let points = still
+                    .iter()
+                    .flat_map(|&i| scene.meshes[i].world_positions());
                 let points = points.chain(swept.corners());
                 let sphere = BoundingSphere::around(scene.bounds.center(), points);
                 scene.camera = Camera::framing(&sphere);
