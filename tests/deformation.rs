@@ -108,3 +108,38 @@ fn a_morphed_mesh_renders_as_its_cpu_deformed_copy_at_rest_and_animated() {
     let pose = scene.animated_pose(id, 0.8);
     assert_matches_cpu(&scene, Some(&pose), "the quad at 0.8 s");
 }
+
+#[test]
+fn frame_inputs_whose_joints_or_weights_do_not_fit_the_scene_are_refused() {
+    use rgraph_passes::{FrameInputsError, Host, Overrides};
+    let scene = load(&bent_strip());
+    let host = Host::new(std::sync::Arc::new(scene.clone()), Overrides::default());
+    let mut inputs = FrameInputs::of(&scene);
+    inputs.skins[0].pop();
+    assert_eq!(
+        host.set_frame(inputs).unwrap_err(),
+        FrameInputsError::PoseCount {
+            scene: scene.name.clone(),
+            what: "joint matrices for skin 0 \"arm\"".to_owned(),
+            given: 1,
+            expected: 2,
+        }
+    );
+    let mut inputs = FrameInputs::of(&scene);
+    inputs.morph_weights[0].push(0.5);
+    let error = host.set_frame(inputs).unwrap_err().to_string();
+    assert_eq!(
+        error,
+        format!(
+            "frame inputs give 1 morph weights for mesh 0 \"strip\" primitive 0, but scene \
+             \"{}\" has 0",
+            scene.name
+        )
+    );
+    let mut inputs = FrameInputs::of(&scene);
+    inputs.skins[0][1].w_axis.x = f64::NAN;
+    assert!(matches!(
+        host.set_frame(inputs),
+        Err(FrameInputsError::NotFinite { what, .. }) if what == "a joint matrix of skin 0 \"arm\""
+    ));
+}

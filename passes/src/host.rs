@@ -359,10 +359,7 @@ impl Host {
         .chain(
             (inputs.morph_weights.iter().zip(&self.scene.deformations)).map(|(weights, d)| {
                 (
-                    format!(
-                        "a morph weight of mesh \"{}\"",
-                        self.scene.meshes[d.mesh].name
-                    ),
+                    format!("a morph weight of {}", self.scene.meshes[d.mesh].name),
                     weights.iter().all(|w| w.is_finite()),
                 )
             }),
@@ -403,7 +400,8 @@ impl Host {
         )?;
         for (weights, d) in inputs.morph_weights.iter().zip(&scene.deformations) {
             let targets = d.morph.as_ref().map_or(0, |m| m.targets.len());
-            let what = format!("morph weights for mesh \"{}\"", scene.meshes[d.mesh].name);
+            // Deformed meshes are glTF's, named `mesh N "NAME" primitive P`.
+            let what = format!("morph weights for {}", scene.meshes[d.mesh].name);
             count(what, weights.len(), targets)?;
         }
         Ok(())
