@@ -100,7 +100,9 @@ impl Animation {
                 .collect();
             let placed = |d: &crate::Deformation| scene.nodes.meshes.get(d.mesh).map(|p| p.node);
             for (deformation, weights) in scene.deformations.iter().zip(&mut weights) {
-                if placed(deformation) == Some(channel.node) && !weights.is_empty() {
+                // glTF gives every primitive of a mesh as many targets; one that has
+                // other than the channel's keeps its defaults rather than a misfit list.
+                if placed(deformation) == Some(channel.node) && weights.len() == sampled.len() {
                     weights.clone_from(&sampled);
                 }
             }
