@@ -57,6 +57,7 @@ mod deferred_unlit;
 mod deferred_views;
 mod deferred_volumes;
 mod deferred_volumes_gpu;
+mod deformation;
 mod engine_example;
 mod explain_page;
 mod extremes_depth;

@@ -35,7 +35,7 @@ use std::sync::{Arc, Mutex};
 
 use glam::{DMat4, DVec3, Vec3};
 
-use rgraph_scene::{check_emitters, Camera, ParticleEmitter, Scene};
+use rgraph_scene::{check_emitters, Camera, ParticleEmitter, Pose, Scene};
 
 /// The scene and overrides every deferred plugin of one registry shares, and the current
 /// [`FrameInputs`] (see the module documentation for the contract).
@@ -114,8 +114,8 @@ impl Exposure {
 }
 
 /// What an engine may change from one frame to the next without reloading: the camera,
-/// the pose of every light and the transform of every mesh, in the scene's order, and the
-/// particles.
+/// the pose of every light, the transform of every mesh, in the scene's order, the skins'
+/// joints and the morph weights, and the particles.
 /// [`FrameInputs::of`] gives the scene's own; an engine keeps one, changes its fields and
 /// hands it to [`Host::set_frame`].
 #[derive(Clone, Debug, PartialEq)]
@@ -126,8 +126,19 @@ pub struct FrameInputs {
     pub lights: Vec<LightPose>,
     /// One object-to-world transform per mesh of `Scene::meshes` (glTF: per mesh node
     /// primitive), in its order: the scene's own, or an engine's, or a glTF animation's
-    /// pose at a time (`Scene::animated_transforms`).
+    /// pose at a time (`Scene::animated_pose`, see [`FrameInputs::set_pose`]).
     pub transforms: Vec<DMat4>,
+    /// One list per skin of `Scene::skins`, each with one skin matrix per joint: the
+    /// joint's world transform times its inverse bind matrix (`Pose::skins`). The host
+    /// owns them once set; the scene upload takes each skinned mesh's joints into its
+    /// object space (`joints_in_object_space`, with the mesh's transform above) and the
+    /// deformation pass moves its vertices by them before any pass of the frame draws.
+    /// Empty for a scene without skins.
+    pub skins: Vec<Vec<DMat4>>,
+    /// One list per deformation of `Scene::deformations`, each with one weight per morph
+    /// target (empty for a deformation without targets): the scene's defaults, or an
+    /// animation's (`Pose::morph_weights`). Read as the skins are.
+    pub morph_weights: Vec<Vec<f32>>,
     /// A factor on the exposure the pipeline tone maps with (the file's, the override's
     /// or the metered one); 1 leaves it as it is. The `tonemap` pass reads it from the
     /// scene's light data each frame, so changing it builds no pipeline.
@@ -143,6 +154,16 @@ pub struct FrameInputs {
     pub emitters: Arc<Vec<ParticleEmitter>>,
 }
 
+impl FrameInputs {
+    /// Takes `pose`'s mesh transforms, skin matrices and morph weights (an animation's at
+    /// a time, say), leaving the camera, lights, exposure, time and particles.
+    pub fn set_pose(&mut self, pose: Pose) {
+        self.transforms = pose.transforms;
+        self.skins = pose.skins;
+        self.morph_weights = pose.morph_weights;
+    }
+}
+
 /// Where a light is and where it points, in world space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightPose {
@@ -153,8 +174,14 @@ pub struct LightPose {
 }
 
 impl FrameInputs {
-    /// The scene as loaded: its camera, lights and transforms, exposure 1, at time 0.
+    /// The scene as loaded: its camera, lights, transforms, joints and morph weights
+    /// (`Scene::rest_pose`), exposure 1, at time 0.
     pub fn of(scene: &Scene) -> FrameInputs {
+        let Pose {
+            transforms,
+            skins,
+            morph_weights,
+        } = scene.rest_pose();
         FrameInputs {
             camera: scene.camera.clone(),
             lights: scene
@@ -165,7 +192,9 @@ impl FrameInputs {
                     direction: l.direction,
                 })
                 .collect(),
-            transforms: scene.meshes.iter().map(|m| m.transform).collect(),
+            transforms,
+            skins,
+            morph_weights,
             exposure: 1.0,
             time: 0.0,
             emitters: Arc::new(scene.emitters.clone()),
@@ -199,7 +228,22 @@ pub enum FrameInputsError {
         /// The scene's meshes.
         expected: usize,
     },
-    /// A camera, light pose or mesh transform holds NaN or infinity.
+    /// The skin matrices or morph weights are not one list per skin or deformation of
+    /// the scene, or a list's length is not the skin's joints' or the deformation's
+    /// targets'.
+    #[error("frame inputs give {given} {what}, but scene \"{scene}\" has {expected}")]
+    PoseCount {
+        /// The scene, by name.
+        scene: String,
+        /// What was counted: "skins", "joint matrices for skin 0 \"arm\"", ...
+        what: String,
+        /// How many were given.
+        given: usize,
+        /// How many the scene has.
+        expected: usize,
+    },
+    /// A camera, light pose, mesh transform, skin matrix or morph weight holds NaN or
+    /// infinity.
     #[error("frame inputs: {what} of scene \"{scene}\" is not finite")]
     NotFinite {
         /// The scene, by name.
@@ -271,6 +315,7 @@ impl Host {
                 expected: self.scene.meshes.len(),
             });
         }
+        self.check_deformation(inputs)?;
         if !(inputs.exposure.is_finite() && inputs.exposure > 0.0) {
             return Err(FrameInputsError::Exposure(inputs.exposure));
         }
@@ -299,6 +344,26 @@ impl Host {
                     )
                 }),
         )
+        .chain(
+            inputs
+                .skins
+                .iter()
+                .zip(&self.scene.skins)
+                .map(|(joints, skin)| {
+                    (
+                        format!("a joint matrix of {}", skin.name),
+                        joints.iter().all(DMat4::is_finite),
+                    )
+                }),
+        )
+        .chain(
+            (inputs.morph_weights.iter().zip(&self.scene.deformations)).map(|(weights, d)| {
+                (
+                    format!("a morph weight of {}", self.scene.meshes[d.mesh].name),
+                    weights.iter().all(|w| w.is_finite()),
+                )
+            }),
+        )
         .find(|(_, finite)| !finite);
         match not_finite {
             Some((what, _)) => Err(FrameInputsError::NotFinite {
@@ -307,5 +372,38 @@ impl Host {
             }),
             None => Ok(()),
         }
+    }
+
+    /// Fails unless the skin matrices and morph weights are shaped as the scene's skins
+    /// and deformations.
+    fn check_deformation(&self, inputs: &FrameInputs) -> Result<(), FrameInputsError> {
+        let scene = &self.scene;
+        let count = |what: String, given: usize, expected: usize| match given == expected {
+            true => Ok(()),
+            false => Err(FrameInputsError::PoseCount {
+                scene: scene.name.clone(),
+                what,
+                given,
+                expected,
+            }),
+        };
+        count("skins".to_owned(), inputs.skins.len(), scene.skins.len())?;
+        for (joints, skin) in inputs.skins.iter().zip(&scene.skins) {
+            let what = format!("joint matrices for {}", skin.name);
+            count(what, joints.len(), skin.joints.len())?;
+        }
+        let (given, expected) = (inputs.morph_weights.len(), scene.deformations.len());
+        count(
+            "morph weight lists (one per deformed mesh)".to_owned(),
+            given,
+            expected,
+        )?;
+        for (weights, d) in inputs.morph_weights.iter().zip(&scene.deformations) {
+            let targets = d.morph.as_ref().map_or(0, |m| m.targets.len());
+            // Deformed meshes are glTF's, named `mesh N "NAME" primitive P`.
+            let what = format!("morph weights for {}", scene.meshes[d.mesh].name);
+            count(what, weights.len(), targets)?;
+        }
+        Ok(())
     }
 }

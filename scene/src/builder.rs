@@ -5,8 +5,8 @@ use glam::DVec3;
 use super::animation::{swept_bounds, Animation};
 use super::node_tree::NodeTree;
 use super::{
-    Aabb, BoundingSphere, Camera, Light, Material, Mesh, ParticleEmitter, Scene, SceneError,
-    TextureImage, MAX_COORDINATE,
+    Aabb, BoundingSphere, Camera, Deformation, Light, Material, Mesh, ParticleEmitter, Scene,
+    SceneError, Skin, TextureImage, MAX_COORDINATE,
 };
 
 /// A scene under construction: loaders push parts, [`SceneBuilder::finish`] derives the rest.
@@ -21,8 +21,11 @@ pub(crate) struct SceneBuilder {
     pub emitters: Vec<ParticleEmitter>,
     pub warnings: Vec<String>,
     /// The nodes placing the meshes, with one placement per mesh pushed, when
-    /// `animations` move them (else empty).
+    /// `animations` move them or `skins` hang on them (else empty).
     pub nodes: NodeTree,
+    pub skins: Vec<Skin>,
+    /// By index into `meshes` as pushed; `finish` renumbers them as it drops meshes.
+    pub deformations: Vec<Deformation>,
     pub animations: Vec<Animation>,
     /// Whether a scene without triangles is what the source asked for (a glTF scene listing
     /// no nodes) rather than a sign that everything was skipped; see [`SceneBuilder::finish`].
@@ -42,6 +45,8 @@ impl SceneBuilder {
             emitters: Vec::new(),
             warnings: Vec::new(),
             nodes: NodeTree::default(),
+            skins: Vec::new(),
+            deformations: Vec::new(),
             animations: Vec::new(),
             allow_empty: false,
         }
@@ -62,6 +67,16 @@ impl SceneBuilder {
     /// [`SceneError::TooFar`] when the bounds, a light or the camera lie beyond
     /// ±[`MAX_COORDINATE`] (or are not finite), which would otherwise render an empty frame.
     pub fn finish(mut self) -> Result<Scene, SceneError> {
+        // Each mesh's index once those without triangles are dropped.
+        let kept: Vec<Option<usize>> = (self.meshes.iter())
+            .scan(0, |next, m| {
+                let kept = (m.triangle_count() > 0).then_some(*next);
+                *next += usize::from(kept.is_some());
+                Some(kept)
+            })
+            .collect();
+        self.deformations
+            .retain_mut(|d| kept[d.mesh].map(|mesh| d.mesh = mesh).is_some());
         if self.nodes.meshes.is_empty() {
             self.meshes.retain(|m| m.triangle_count() > 0);
         } else {
@@ -70,14 +85,22 @@ impl SceneBuilder {
             (self.meshes, self.nodes.meshes) =
                 placed.filter(|(m, _)| m.triangle_count() > 0).unzip();
         }
-        let bounds = self
-            .meshes
-            .iter()
-            .filter_map(Mesh::world_bounds)
+        // A deformed mesh is where its deformation puts it, not where its rest vertices
+        // are (a skinned mesh's node transform is ignored): the swept bounds below hold
+        // it, from the rest pose on.
+        let mut deformed = vec![false; self.meshes.len()];
+        for d in &self.deformations {
+            deformed[d.mesh] = true;
+        }
+        let still: Vec<usize> = (0..self.meshes.len()).filter(|&i| !deformed[i]).collect();
+        let still_bounds = (still.iter())
+            .filter_map(|&i| self.meshes[i].world_bounds())
             .reduce(|a, b| a.union(&b));
-        let bounds = match bounds {
+        let bounds = match still_bounds {
             Some(bounds) => bounds,
-            None if self.allow_empty => Aabb::from_points([DVec3::ZERO]).expect("one point"),
+            None if self.allow_empty || !self.deformations.is_empty() => {
+                Aabb::from_points([DVec3::ZERO]).expect("one point")
+            }
             None => return Err(SceneError::EmptyScene { scene: self.name }),
         };
         check_extent(&self.name, "the geometry", bounds.largest_coordinate())?;
@@ -92,7 +115,7 @@ impl SceneBuilder {
         let framed = self.camera.is_none();
         let mut scene = Scene {
             camera: self.camera.unwrap_or_else(|| {
-                let points = self.meshes.iter().flat_map(Mesh::world_positions);
+                let points = still.iter().flat_map(|&i| self.meshes[i].world_positions());
                 Camera::framing(&BoundingSphere::around(bounds.center(), points))
             }),
             name: self.name,
@@ -105,15 +128,19 @@ impl SceneBuilder {
             emitters: self.emitters,
             bounds,
             nodes: self.nodes,
+            skins: self.skins,
+            deformations: self.deformations,
             animations: self.animations,
             warnings: self.warnings,
         };
         if let Some(swept) = swept_bounds(&scene) {
-            scene.bounds = bounds.union(&swept);
-            let what = "the geometry, as the animations move it";
+            scene.bounds = still_bounds.map_or(swept, |b| b.union(&swept));
+            let what = "the geometry, as the animations and deformations move it";
             check_extent(&scene.name, what, scene.bounds.largest_coordinate())?;
             if framed {
-                let points = scene.meshes.iter().flat_map(Mesh::world_positions);
+                let points = still
+                    .iter()
+                    .flat_map(|&i| scene.meshes[i].world_positions());
                 let points = points.chain(swept.corners());
                 let sphere = BoundingSphere::around(scene.bounds.center(), points);
                 scene.camera = Camera::framing(&sphere);

@@ -82,6 +82,41 @@ pub enum SceneError {
         reason: String,
     },
 
+    /// A morph target's attribute accessor is not one glTF allows: not VEC3, not one
+    /// element per vertex of its primitive, or holding a value that is not finite.
+    #[error(
+        "{file}: {mesh} primitive {primitive}: morph target {target} {attribute} accessor \
+         {accessor}: {reason}"
+    )]
+    InvalidMorphTarget {
+        /// The glTF file, as given.
+        file: PathBuf,
+        /// The glTF mesh, by index and name.
+        mesh: String,
+        /// The primitive's index in its mesh.
+        primitive: usize,
+        /// The target's index in the primitive.
+        target: usize,
+        /// What the accessor holds: "POSITION", "NORMAL" or "TANGENT".
+        attribute: &'static str,
+        /// The accessor's index.
+        accessor: usize,
+        /// What is wrong, in words.
+        reason: String,
+    },
+
+    /// A skin is not one glTF allows: no joints or too many, a joint outside the loaded
+    /// scene, or an inverseBindMatrices accessor of the wrong type, count or values.
+    #[error("{file}: {skin}: {reason}")]
+    InvalidSkin {
+        /// The glTF file, as given.
+        file: PathBuf,
+        /// The skin, by index and name.
+        skin: String,
+        /// What is wrong, naming the accessor or node where one is at fault.
+        reason: String,
+    },
+
     /// A vertex attribute holds NaN or infinity.
     #[error(
         "{file}: {mesh} primitive {primitive}: vertex {vertex} has a non-finite {attribute} \

@@ -2,8 +2,8 @@
 //!
 //! A [`Scene`] is plain data ready for upload: object-space vertex arrays with f64 world
 //! transforms, metallic-roughness materials, decoded RGBA8 textures, punctual lights in world
-//! space, one camera, and a glTF file's node animations ([`Scene::animated_transforms`]
-//! poses the meshes at a time). [`Scene::load`] takes either a path to a `.gltf` / `.glb` file or
+//! space, one camera, and a glTF file's animations, skins and morph targets
+//! ([`Scene::animated_pose`] poses the meshes at a time). [`Scene::load`] takes either a path to a `.gltf` / `.glb` file or
 //! `builtin:NAME` (see [`builtin_names`]), optionally with parameters: `builtin:lights?count=1024`.
 //!
 //! Nothing here touches the GPU or prints: problems that still allow rendering come back as
@@ -43,6 +43,7 @@ mod bounds;
 mod builder;
 mod camera;
 mod clusters;
+mod deform;
 mod environment;
 mod error;
 mod gltf_loader;
@@ -75,6 +76,10 @@ pub use camera::{
     Camera, DepthConvention, Projection, FRAMING_DIRECTION, FRAMING_FILL, FRAMING_YFOV,
 };
 pub use clusters::{cluster, Cluster, ClusteredMesh, CLUSTER_TRIANGLES};
+pub use deform::{
+    joints_in_object_space, Deformation, MorphTarget, MorphTargets, Pose, Reach, Skin, SkinWeights,
+    MAX_JOINTS,
+};
 pub use environment::{
     irradiance_integral, radiance as environment_radiance, Environment, Irradiance,
 };

@@ -3,8 +3,8 @@
 //! (procedural/), both through `SceneBuilder`.
 
 use super::{
-    Aabb, Animation, Camera, Environment, Light, Material, Mesh, NodeTree, ParticleEmitter,
-    TextureImage,
+    Aabb, Animation, Camera, Deformation, Environment, Light, Material, Mesh, NodeTree,
+    ParticleEmitter, Skin, TextureImage,
 };
 
 /// Everything a renderer needs to draw one view of a scene.
@@ -37,12 +37,19 @@ pub struct Scene {
     /// object-space boxes wherever [`Scene::animations`] move them (sampled at and between
     /// their key times).
     pub bounds: Aabb,
-    /// The node hierarchy placing the meshes, which the animations move: a glTF file's,
-    /// when it has animations; empty otherwise.
+    /// The node hierarchy placing the meshes and the skins' joints, which the animations
+    /// move: a glTF file's, when it has animations or skins; empty otherwise.
     pub nodes: NodeTree,
-    /// A glTF file's animations of node translations, rotations and scales (none for
-    /// built-in scenes); [`Scene::animated_transforms`] samples one into the meshes'
-    /// transforms for a frame. Skins and morph targets are not animated (the loader warns).
+    /// A glTF file's skins (none for built-in scenes): joints of [`Scene::nodes`] that
+    /// deform the meshes bound to them.
+    pub skins: Vec<Skin>,
+    /// The meshes that skins or morph targets deform, in the order of their meshes, each
+    /// mesh at most once; [`Mesh::vertices`] hold their rest shape. Empty for scenes
+    /// without (built-in ones), whose renders pay nothing for deformation.
+    pub deformations: Vec<Deformation>,
+    /// A glTF file's animations of node translations, rotations, scales and morph
+    /// weights (none for built-in scenes); [`Scene::animated_pose`] samples one into a
+    /// frame's [`Pose`](crate::Pose).
     pub animations: Vec<Animation>,
     /// Things the loader ignored or changed, each naming the object concerned.
     pub warnings: Vec<String>,

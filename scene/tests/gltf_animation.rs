@@ -33,7 +33,7 @@ fn transforms_at(scene: &Scene, name: &str, times: &[f64]) -> Vec<DMat4> {
     let id = scene.find_animation(name).expect("the animation");
     times
         .iter()
-        .map(|&t| scene.animated_transforms(id, t)[0])
+        .map(|&t| scene.animated_pose(id, t).transforms[0])
         .collect()
 }
 
@@ -163,13 +163,13 @@ fn a_child_moves_with_its_animated_parent_and_the_bounds_hold_the_motion() {
     let id = scene.find_animation("carry").expect("by name");
     assert_eq!(scene.find_animation("0").expect("by index"), id);
     assert_eq!(scene.animation(id).end, 1.0);
-    let moved = scene.animated_transforms(id, 0.5);
+    let moved = scene.animated_pose(id, 0.5).transforms;
     assert_near(
         moved[1].w_axis.truncate(),
         DVec3::new(5.0, 5.0, 0.0),
         "the child",
     );
-    let rest = scene.animated_transforms(id, 0.0);
+    let rest = scene.animated_pose(id, 0.0).transforms;
     let loaded: Vec<DMat4> = scene.meshes.iter().map(|m| m.transform).collect();
     assert_eq!(
         rest, loaded,
@@ -347,6 +347,6 @@ fn the_animated_cubes_fixture_loads_one_channel_per_interpolation() {
     // The moon (mesh 2: meshes follow the nodes depth first, and it is the green cube's
     // child) has turned with the cube by 90° about +Y at 0.5 s:
     // from 1.5 right of the cube to 1.5 behind it.
-    let moon = scene.animated_transforms(id, 0.5)[2].w_axis.truncate();
+    let moon = scene.animated_pose(id, 0.5).transforms[2].w_axis.truncate();
     assert_near(moon, DVec3::new(0.0, 0.0, -3.5), "the moon at 0.5 s");
 }

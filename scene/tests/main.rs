@@ -11,6 +11,7 @@ mod clusters;
 mod framing;
 mod gltf_animation;
 mod gltf_audit;
+mod gltf_deform;
 mod gltf_errors;
 mod gltf_features;
 mod gltf_fixtures;

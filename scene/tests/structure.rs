@@ -21,6 +21,7 @@ const LAYERS: Layers<'_> = &[
             "builder",
             "camera",
             "clusters",
+            "deform",
             "environment",
             "error",
             "gltf_loader",

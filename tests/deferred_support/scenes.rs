@@ -129,6 +129,8 @@ impl Parts {
             camera,
             bounds,
             nodes: NodeTree::default(),
+            skins: Vec::new(),
+            deformations: Vec::new(),
             animations: Vec::new(),
             warnings: Vec::new(),
         }

@@ -81,12 +81,14 @@ pub(super) struct MeshFrame {
 }
 
 impl MeshFrame {
-    /// The meshes of `scene` placed by `transforms` (one per mesh) and seen from `eye`.
-    /// `previous` is the frame before, whose bounds are reused for the meshes
-    /// `transforms` does not move.
+    /// The meshes of `scene` placed by `transforms` (one per mesh) and seen from `eye`,
+    /// the deformed ones within their object-space box of `deformed` (one per mesh, or
+    /// none for a scene without deformations; see deform.rs). `previous` is the frame
+    /// before, whose bounds are reused for the undeformed meshes `transforms` does not
+    /// move.
     pub fn new(
         scene: &Scene,
-        transforms: &[DMat4],
+        (transforms, deformed): (&[DMat4], &[Option<Aabb>]),
         eye: DVec3,
         previous: Option<(&MeshFrame, &[DMat4])>,
     ) -> MeshFrame {
@@ -97,16 +99,23 @@ impl MeshFrame {
             world_bounds: Vec::new(),
         };
         for ((mesh, &transform), instance) in scene.meshes.iter().zip(transforms).zip(0u32..) {
-            let kept = previous.and_then(|(frame, transforms)| {
-                (transforms.get(instance as usize) == Some(&transform))
-                    .then(|| frame.world_bounds[instance as usize])
-            });
+            let object_box = deformed.get(instance as usize).copied().flatten();
+            let kept = previous
+                .filter(|_| object_box.is_none())
+                .and_then(|(frame, transforms)| {
+                    (transforms.get(instance as usize) == Some(&transform))
+                        .then(|| frame.world_bounds[instance as usize])
+                });
             let world_bounds = kept.unwrap_or_else(|| {
-                let positions = mesh
-                    .vertices
-                    .iter()
-                    .map(|v| transform.transform_point3(Vec3::from_array(v.position).as_dvec3()));
-                Aabb::from_points(positions).unwrap_or_else(|| {
+                let place = |p: DVec3| transform.transform_point3(p);
+                let placed = match object_box {
+                    Some(b) => Aabb::from_points(b.corners().map(place)),
+                    None => Aabb::from_points(
+                        (mesh.vertices.iter())
+                            .map(|v| place(Vec3::from_array(v.position).as_dvec3())),
+                    ),
+                };
+                placed.unwrap_or_else(|| {
                     let origin = transform.w_axis.truncate();
                     Aabb {
                         min: origin,

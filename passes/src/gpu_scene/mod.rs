@@ -27,6 +27,7 @@
 
 mod camera;
 mod changed;
+mod deform;
 mod environment;
 mod geometry;
 mod jitter;
@@ -201,7 +202,7 @@ impl SceneCache {
         };
         let scene = &mut uploaded[at].1;
         if scene.frame.generation != generation {
-            *scene = Arc::new(scene.next_frame(queue, &host.scene, inputs, generation));
+            *scene = Arc::new(scene.next_frame(device, queue, &host.scene, inputs, generation));
         }
         Some(scene.clone())
     }
@@ -229,6 +230,11 @@ struct Upload {
     reversed_group: wgpu::BindGroup,
     standard_group: wgpu::BindGroup,
     meshes: mesh::MeshBuffers,
+    /// Each deformation's reach, which bounds its mesh in a frame's pose (empty without
+    /// deformations).
+    reaches: Vec<Option<rgraph_scene::Reach>>,
+    /// The deformation pass, for a scene with deformed meshes.
+    deformer: Option<deform::Deformer>,
     geometry: geometry::Geometry,
     texture_table: texture_table::TextureTableGpu,
     materials: materials::Materials,
@@ -247,18 +253,21 @@ struct Frame {
     generation: u64,
     meshes: mesh::MeshFrame,
     lights: lights::LightFrame,
+    deform: deform::DeformFrame,
 }
 
 impl Frame {
-    /// `scene` placed by `inputs`; `previous` lends what `inputs` did not change.
+    /// `scene` placed by `inputs`, its deformed meshes bounded by `reaches`; `previous`
+    /// lends what `inputs` did not change.
     fn new(
         scene: &Scene,
         (inputs, generation): (Arc<FrameInputs>, u64),
-        previous: Option<&Frame>,
+        (previous, reaches): (Option<&Frame>, &[Option<rgraph_scene::Reach>]),
         volumes: (&VolumeMesh, &VolumeMesh),
         shadows: Shadows,
     ) -> Frame {
         let eye = inputs.camera.position;
+        let deform = deform::DeformFrame::new(scene, &inputs, reaches);
         let previous_meshes = previous.map(|p| (&p.meshes, p.inputs.transforms.as_slice()));
         let lights = lights::LightFrame::new(
             scene,
@@ -269,8 +278,14 @@ impl Frame {
             shadows,
         );
         Frame {
-            meshes: mesh::MeshFrame::new(scene, &inputs.transforms, eye, previous_meshes),
+            meshes: mesh::MeshFrame::new(
+                scene,
+                (&inputs.transforms, &deform.boxes),
+                eye,
+                previous_meshes,
+            ),
             lights,
+            deform,
             inputs,
             generation,
         }
@@ -294,7 +309,8 @@ impl GpuScene {
         shadows: Shadows,
     ) -> GpuScene {
         let (sphere, cone) = (volumes::sphere(device), volumes::cone(device));
-        let frame = Frame::new(scene, inputs, None, (&sphere, &cone), shadows);
+        let reaches = deform::reaches(scene);
+        let frame = Frame::new(scene, inputs, (None, &reaches), (&sphere, &cone), shadows);
         let layout = layout::scene_layout(device);
         let material_layout = materials::layout(device);
         let cameras = camera::Cameras::new(device);
@@ -303,6 +319,10 @@ impl GpuScene {
         let lights = lights::LightBuffers::new(device, &frame.lights);
         let environment = environment::EnvironmentMaps::new(device, queue, scene);
         let shadow_maps = shadows::ShadowBuffers::new(device);
+        let deformer = deform::Deformer::new(device, scene, &meshes.vertices);
+        if let Some(deformer) = &deformer {
+            deformer.run(device, queue, &frame.deform);
+        }
         let group = |camera| {
             let buffers = [
                 camera,
@@ -320,6 +340,8 @@ impl GpuScene {
             material_layout,
             cameras,
             meshes,
+            reaches,
+            deformer,
             geometry: geometry::Geometry::new(device),
             texture_table: texture_table::TextureTableGpu::new(device),
             materials,
@@ -337,9 +359,11 @@ impl GpuScene {
     }
 
     /// This upload placed by `inputs` (of `generation`): writes through `queue` the
-    /// buffers whose contents the inputs change, and shares every device object.
+    /// buffers whose contents the inputs change, deforms the vertices again on `device`
+    /// when the pose of a deformed mesh changed, and shares every device object.
     fn next_frame(
         &self,
+        device: &wgpu::Device,
         queue: &wgpu::Queue,
         scene: &Scene,
         inputs: Arc<FrameInputs>,
@@ -350,10 +374,15 @@ impl GpuScene {
         let frame = Frame::new(
             scene,
             (inputs, generation),
-            Some(&self.frame),
+            (Some(&self.frame), &upload.reaches),
             volumes,
             upload.shadows,
         );
+        if let Some(deformer) = &upload.deformer {
+            if frame.deform != self.frame.deform {
+                deformer.run(device, queue, &frame.deform);
+            }
+        }
         let writes = [
             (
                 &upload.meshes.data,
@@ -478,7 +507,9 @@ impl GpuScene {
         (clip_from_world, side): (glam::DMat4, u32),
         options: &ShadowOptions,
     ) -> Option<MeshRuns> {
-        let runs = match options.culled {
+        // A deformed mesh's clusters' boxes are its rest shape's: it is drawn whole.
+        let culled = options.culled && self.deformed_box(draw.instance).is_none();
+        let runs = match culled {
             true => {
                 let boxes = &self.upload.meshes.cluster_boxes[draw.instance as usize];
                 let model = self.frame.meshes.model(draw.instance);
@@ -641,6 +672,20 @@ impl GpuScene {
     /// read-only storage (geometry.wgsl).
     pub fn geometry_layout(&self) -> &wgpu::BindGroupLayout {
         self.upload.geometry.layout()
+    }
+
+    /// The object-space box `Scene::meshes[mesh]` lies within this frame if skins or morph
+    /// targets deform it (its [`rgraph_scene::Reach`] in the frame's pose), `None` if
+    /// they do not. A deformed mesh's clusters keep their rest shape's boxes and normal
+    /// cones, which the deformed vertices leave: culling takes this box for each of them
+    /// instead, and no normal cone.
+    pub fn deformed_box(&self, mesh: u32) -> Option<rgraph_scene::Aabb> {
+        self.frame
+            .deform
+            .boxes
+            .get(mesh as usize)
+            .copied()
+            .flatten()
     }
 
     /// The clusters of `Scene::meshes[mesh]`, ranges of its triangles from the mesh's

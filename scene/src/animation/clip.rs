@@ -21,8 +21,8 @@ pub struct Animation {
     /// The file's name for it, else `animation INDEX`.
     pub name: String,
     /// Channels targeting the nodes of [`Scene::nodes`](crate::Scene::nodes), in file order (a later channel on
-    /// the same node and property wins). Channels of nodes outside the loaded scene, and
-    /// morph target weights, are left out.
+    /// the same node and property wins): their transforms, and the morph weights of the
+    /// meshes they place. Channels of nodes outside the loaded scene are left out.
     pub channels: Vec<Channel>,
     /// The first key time of all channels, seconds (0 without channels).
     pub start: f64,
@@ -65,4 +65,7 @@ pub enum Keyframes {
     Rotation(Vec<DQuat>),
     /// Scales.
     Scale(Vec<DVec3>),
+    /// Morph target weights of the meshes the node places: per target, one weight per
+    /// key (three for [`Interpolation::CubicSpline`]).
+    Weights(Vec<Vec<f64>>),
 }

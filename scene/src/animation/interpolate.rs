@@ -16,6 +16,16 @@ pub(super) trait Value: Copy + Add<Output = Self> + Mul<f64, Output = Self> {
     fn finish_cubic(self) -> Self;
 }
 
+impl Value for f64 {
+    fn linear(a: Self, b: Self, s: f64) -> Self {
+        a + (b - a) * s
+    }
+
+    fn finish_cubic(self) -> Self {
+        self
+    }
+}
+
 impl Value for glam::DVec3 {
     fn linear(a: Self, b: Self, s: f64) -> Self {
         a.lerp(b, s)

@@ -4,7 +4,7 @@
 use glam::Vec3;
 
 use super::clip::Animation;
-use crate::{Aabb, Mesh, Scene};
+use crate::{joints_in_object_space, Aabb, Mesh, Pose, Reach, Scene};
 
 /// Poses sampled between two consecutive key times (the keys themselves included once):
 /// LINEAR motion is bounded by its keys, but rotations sweep arcs and cubic splines
@@ -19,27 +19,54 @@ const MAX_POSES: usize = 4096;
 /// fewer poses (at least its first and last), so that loading stays fast.
 const MAX_TRANSFORMS: usize = 1 << 24;
 
-/// The world box of every mesh's object-space box, over poses of every animation sampled
-/// at and between its key times; `None` without animations. Approximate between samples
-/// (a fast spin can leave a box corner a little outside), conservative at them.
+/// The world box of every mesh's object-space box (a deformed mesh's [`Reach`] in the
+/// pose), over the rest pose of a scene with deformed meshes and poses of every animation
+/// sampled at and between its key times; `None` without either. Approximate between
+/// samples (a fast spin can leave a box corner a little outside), conservative at them.
 pub(crate) fn swept_bounds(scene: &Scene) -> Option<Aabb> {
     let boxes: Vec<Option<Aabb>> = scene.meshes.iter().map(object_bounds).collect();
+    let reaches: Vec<Option<Reach>> = (scene.deformations.iter())
+        .map(|d| Reach::new(d, &scene.meshes[d.mesh].vertices))
+        .collect();
     let per_pose = scene.nodes.nodes.len() + scene.meshes.len();
     let max_poses = (MAX_TRANSFORMS / per_pose.max(1)).clamp(2, MAX_POSES);
-    let poses = scene.animation_ids().flat_map(|id| {
+    let rest = (!scene.deformations.is_empty()).then(|| scene.rest_pose());
+    let animated = scene.animation_ids().flat_map(|id| {
         let times = sample_times(scene.animation(id), max_poses);
-        times.into_iter().map(move |time| (id, time))
+        times
+            .into_iter()
+            .map(move |time| scene.animated_pose(id, time))
     });
-    poses
-        .filter_map(|(id, time)| {
-            let transforms = scene.animated_transforms(id, time);
-            let placed = transforms.iter().zip(&boxes);
-            Aabb::from_points(placed.flat_map(|(transform, b)| {
-                let corners = b.iter().flat_map(Aabb::corners);
-                corners.map(|c| transform.transform_point3(c))
-            }))
-        })
+    rest.into_iter()
+        .chain(animated)
+        .filter_map(|pose| posed_bounds(scene, &pose, &boxes, &reaches))
         .reduce(|a, b| a.union(&b))
+}
+
+/// The world box of the meshes in `pose`: each mesh's object-space box in `boxes`, or its
+/// deformation's reach in `reaches` (one per deformation of the scene), transformed.
+fn posed_bounds(
+    scene: &Scene,
+    pose: &Pose,
+    boxes: &[Option<Aabb>],
+    reaches: &[Option<Reach>],
+) -> Option<Aabb> {
+    let mut boxes = boxes.to_vec();
+    for ((deformation, reach), weights) in
+        (scene.deformations.iter().zip(reaches)).zip(&pose.morph_weights)
+    {
+        let transform = pose.transforms[deformation.mesh];
+        let joints = match &deformation.skin {
+            Some(skin) => joints_in_object_space(transform, &pose.skins[skin.skin]),
+            None => Vec::new(),
+        };
+        boxes[deformation.mesh] = reach.as_ref().map(|r| r.object_box(&joints, weights));
+    }
+    let placed = pose.transforms.iter().zip(&boxes);
+    Aabb::from_points(placed.flat_map(|(transform, b)| {
+        let corners = b.iter().flat_map(Aabb::corners);
+        corners.map(|c| transform.transform_point3(c))
+    }))
 }
 
 /// The mesh's object-space box.

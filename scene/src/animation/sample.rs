@@ -5,7 +5,7 @@ use glam::DMat4;
 use super::clip::{Animation, AnimationId, Keyframes};
 use super::interpolate;
 use crate::node_tree::LocalTransform;
-use crate::{Scene, SceneError};
+use crate::{Pose, Scene, SceneError};
 
 impl Scene {
     /// The animation `spec` names: an animation's name, else its index. Fails with the
@@ -39,14 +39,24 @@ impl Scene {
         &self.animations[id.0]
     }
 
-    /// Each mesh's object-to-world transform with `animation` at `time` seconds, in the
-    /// order of [`Scene::meshes`]: what `FrameInputs::transforms` takes. Nodes no channel
-    /// drives keep their rest transforms, so at a time where every channel is at its rest
-    /// value the result equals the meshes' own transforms.
-    pub fn animated_transforms(&self, animation: AnimationId, time: f64) -> Vec<DMat4> {
-        let locals = self.animation(animation).locals(self, time);
-        let worlds = self.nodes.worlds(&locals);
-        self.nodes.mesh_transforms(&worlds)
+    /// The scene with `animation` at `time` seconds: each mesh's object-to-world
+    /// transform, each skin's joints and each morphed mesh's weights, what a renderer's
+    /// frame inputs take. Nodes and weights no channel drives keep their rest values, so
+    /// at a time where every channel is at its rest value the result is
+    /// [`Scene::rest_pose`].
+    pub fn animated_pose(&self, animation: AnimationId, time: f64) -> Pose {
+        let animation = self.animation(animation);
+        let worlds = self.nodes.worlds(&animation.locals(self, time));
+        let transforms = match self.nodes.meshes.is_empty() {
+            // A tree without placements (no meshes) places nothing.
+            true => self.meshes.iter().map(|m| m.transform).collect(),
+            false => self.nodes.mesh_transforms(&worlds),
+        };
+        Pose {
+            transforms,
+            skins: self.skin_matrices(&worlds),
+            morph_weights: animation.weights(self, time),
+        }
     }
 }
 
@@ -69,9 +79,34 @@ impl Animation {
                     Keyframes::Scale(values) => {
                         trs.scale = interpolate::sample(how, times, values, time)
                     }
+                    Keyframes::Weights(_) => {}
                 }
             }
         }
         locals.iter().map(LocalTransform::matrix).collect()
+    }
+
+    /// Each deformation's morph weights at `time`: its defaults, replaced by the sampled
+    /// weights of the channels driving the node that places its mesh.
+    fn weights(&self, scene: &Scene, time: f64) -> Vec<Vec<f32>> {
+        let mut weights = scene.default_weights();
+        for channel in &self.channels {
+            let Keyframes::Weights(targets) = &channel.values else {
+                continue;
+            };
+            let (how, times) = (channel.interpolation, channel.times.as_slice());
+            let sampled: Vec<f32> = (targets.iter())
+                .map(|values| interpolate::sample(how, times, values, time) as f32)
+                .collect();
+            let placed = |d: &crate::Deformation| scene.nodes.meshes.get(d.mesh).map(|p| p.node);
+            for (deformation, weights) in scene.deformations.iter().zip(&mut weights) {
+                // glTF gives every primitive of a mesh as many targets; one that has
+                // other than the channel's keeps its defaults rather than a misfit list.
+                if placed(deformation) == Some(channel.node) && weights.len() == sampled.len() {
+                    weights.clone_from(&sampled);
+                }
+            }
+        }
+        weights
     }
 }

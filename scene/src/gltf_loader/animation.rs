@@ -7,8 +7,8 @@
 //! CUBICSPLINE). Counts are compared as declared, and the accessor reader checks them
 //! against the buffer views before allocating, so a bad file costs no more memory than
 //! its bytes. Then key times must be finite and strictly increasing, and values finite.
-//! Morph target weights channels are not read (morph targets are not drawn, and the
-//! loader warns about them).
+//! A morph target weights channel's output is SCALAR (FLOAT or a normalized integer type)
+//! with one element per morph target of the node's mesh per key (three for CUBICSPLINE).
 
 use std::path::Path;
 
@@ -17,14 +17,32 @@ use gltf::accessor::{DataType, Dimensions};
 use gltf::animation::{Interpolation as GltfInterpolation, Property};
 
 use super::accessor::{self, component_name, type_name};
-use super::nodes::Placed;
+use super::nodes::{self, Placed};
 use crate::animation::{Animation, Channel, Interpolation, Keyframes};
 use crate::error::label;
 use crate::node_tree::{LocalTransform, Node, NodeId, NodeTree};
 use crate::SceneError;
 
-/// The component types a rotation's output may have, as (type, normalized).
-const ROTATION_COMPONENTS: [(DataType, bool); 5] = [
+/// How many morph targets the mesh of `node` has (its primitives have as many each, as
+/// the primitives' loading checks), which a weights channel drives; an error when it has
+/// none.
+fn morph_targets(node: &gltf::Node) -> Result<usize, String> {
+    let targets = (node.mesh().iter().flat_map(|m| m.primitives()))
+        .map(|p| p.morph_targets().len())
+        .max()
+        .unwrap_or(0);
+    match targets {
+        0 => Err(format!(
+            "animates the morph weights of {}, whose mesh has no morph targets",
+            label("node", node.index(), node.name())
+        )),
+        targets => Ok(targets),
+    }
+}
+
+/// The component types a rotation's or a morph weight's output may have, as (type,
+/// normalized).
+const FLOAT_OR_NORMALIZED: [(DataType, bool); 5] = [
     (DataType::F32, false),
     (DataType::I8, true),
     (DataType::U8, true),
@@ -32,9 +50,10 @@ const ROTATION_COMPONENTS: [(DataType, bool); 5] = [
     (DataType::U16, true),
 ];
 
-/// The file's animations, and the tree of `placed` nodes they move (with no mesh
-/// placements yet: the loader adds one per mesh it builds). Both empty when the file has
-/// no animations. `locals` is every glTF node's transform, by index.
+/// The file's animations, and the tree of `placed` nodes they move and skins hang on (with
+/// no mesh placements yet: the loader adds one per mesh it builds). Both empty when the
+/// file has neither animations nor skins. `locals` is every glTF node's transform, by
+/// index.
 pub(super) fn read(
     file: &Path,
     document: &gltf::Document,
@@ -42,21 +61,16 @@ pub(super) fn read(
     placed: &[Placed],
     locals: &[LocalTransform],
 ) -> Result<(NodeTree, Vec<Animation>), SceneError> {
-    if document.animations().len() == 0 {
+    if document.animations().len() == 0 && document.skins().len() == 0 {
         return Ok((NodeTree::default(), Vec::new()));
     }
-    let mut ids = vec![None; document.nodes().len()];
+    let ids = nodes::ids(document, placed);
     let nodes = placed
         .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            // At most MAX_MESHES placements and a few more nodes: u32 holds them.
-            ids[p.node.index()] = Some(NodeId(i as u32));
-            Node {
-                name: label("node", p.node.index(), p.node.name()),
-                parent: p.parent.map(|parent| NodeId(parent as u32)),
-                rest: locals[p.node.index()],
-            }
+        .map(|p| Node {
+            name: label("node", p.node.index(), p.node.name()),
+            parent: p.parent.map(|parent| NodeId(parent as u32)),
+            rest: locals[p.node.index()],
         })
         .collect();
     let animations = document
@@ -71,11 +85,13 @@ pub(super) fn read(
             for channel in animation.channels() {
                 let target = channel.target().node();
                 let property = channel.target().property();
-                if property == Property::MorphTargetWeights {
-                    continue;
-                }
                 let error = |reason| reader.error(channel.index(), reason);
-                if let LocalTransform::Matrix(_) = locals[target.index()] {
+                let targets = match property {
+                    Property::MorphTargetWeights => morph_targets(&target).map_err(error)?,
+                    _ => 0,
+                };
+                let moves_node = property != Property::MorphTargetWeights;
+                if let (true, LocalTransform::Matrix(_)) = (moves_node, locals[target.index()]) {
                     return Err(error(format!(
                         "targets {}, whose transform is a matrix: glTF animates only nodes \
                          with translation, rotation and scale",
@@ -83,7 +99,7 @@ pub(super) fn read(
                     )));
                 }
                 let (interpolation, times, values) = reader
-                    .sampler(&channel.sampler(), property)
+                    .sampler(&channel.sampler(), property, targets)
                     .map_err(error)?;
                 // Channels of nodes the loaded scene does not place move nothing drawn.
                 if let Some(node) = ids[target.index()] {
@@ -137,12 +153,14 @@ impl Reader<'_> {
         }
     }
 
-    /// A channel's sampler driving `property`, checked, read and converted. Errors are
-    /// the reason, naming the accessor.
+    /// A channel's sampler driving `property` (of a node whose mesh has `targets` morph
+    /// targets, for weights), checked, read and converted. Errors are the reason, naming
+    /// the accessor.
     fn sampler(
         &self,
         sampler: &gltf::animation::Sampler,
         property: Property,
+        targets: usize,
     ) -> Result<(Interpolation, Vec<f64>, Keyframes), String> {
         let (input, output) = (sampler.input(), sampler.output());
         let interpolation = match sampler.interpolation() {
@@ -153,7 +171,10 @@ impl Reader<'_> {
         let (dimensions, allowed, what): (_, &[_], _) = match property {
             Property::Translation => (Dimensions::Vec3, &[(DataType::F32, false)], "a translation"),
             Property::Scale => (Dimensions::Vec3, &[(DataType::F32, false)], "a scale"),
-            _ => (Dimensions::Vec4, &ROTATION_COMPONENTS, "a rotation"),
+            Property::Rotation => (Dimensions::Vec4, &FLOAT_OR_NORMALIZED, "a rotation"),
+            Property::MorphTargetWeights => {
+                (Dimensions::Scalar, &FLOAT_OR_NORMALIZED, "a morph weight")
+            }
         };
         check_type(
             &input,
@@ -177,6 +198,13 @@ impl Reader<'_> {
             ),
             _ => (1, "one per key time"),
         };
+        let (per_key, why) = match property {
+            Property::MorphTargetWeights => (
+                per_key * targets,
+                format!("{why}, times the mesh's {targets} morph targets"),
+            ),
+            _ => (per_key, why.to_owned()),
+        };
         // Declared counts, not yet checked against the buffers: the product may overflow.
         if keys.checked_mul(per_key) != Some(output.count()) {
             return Err(format!(
@@ -191,7 +219,16 @@ impl Reader<'_> {
         let values = match property {
             Property::Translation => Keyframes::Translation(self.vectors(&output)?),
             Property::Scale => Keyframes::Scale(self.vectors(&output)?),
-            _ => Keyframes::Rotation(self.rotations(&output, interpolation)?),
+            Property::Rotation => Keyframes::Rotation(self.rotations(&output, interpolation)?),
+            Property::MorphTargetWeights => {
+                let values = self.finite::<1>(&output)?;
+                // Stored per target: the keys' values of one weight together.
+                let per_target = (0..targets).map(|target| {
+                    let values = values.iter().skip(target).step_by(targets);
+                    values.map(|[w]| f64::from(*w)).collect()
+                });
+                Keyframes::Weights(per_target.collect())
+            }
         };
         Ok((interpolation, times, values))
     }

@@ -9,14 +9,16 @@
 //! ones converted to them, see [`spec_gloss`]), emission, alpha OPAQUE/MASK, double-sided
 //! and the extensions in [`extensions::IMPLEMENTED`] (KHR_texture_transform per texture,
 //! EXT_mesh_gpu_instancing's instances as placements, see [`instancing`]); cameras;
-//! KHR_lights_punctual lights; animations of node translation, rotation and scale, with the
-//! node tree they move (see [`animation`]). What is not: BLEND (drawn opaque), points and
-//! lines, skins and morph targets (and animations of their weights), each with a warning
-//! in [`Scene::warnings`].
+//! KHR_lights_punctual lights; animations of node translation, rotation, scale and morph
+//! weights, with the node tree they move (see [`animation`]); skins (see [`skin`]) and
+//! their JOINTS_0/WEIGHTS_0, and morph targets' POSITION, NORMAL and TANGENT offsets (see
+//! [`deform`]). What is not: BLEND (drawn opaque), points and lines, and a skinned
+//! vertex's influences past four (JOINTS_1), each with a warning in [`Scene::warnings`].
 
 mod accessor;
 mod animation;
 mod camera;
+mod deform;
 mod document;
 mod drawn;
 mod extensions;
@@ -30,6 +32,8 @@ mod nodes;
 mod primitive;
 mod reserve;
 mod sandbox;
+mod site;
+mod skin;
 mod spec_gloss;
 mod texture_transform;
 mod transforms;
@@ -81,7 +85,6 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         reserved: HashSet::new(),
     };
     loader.builder.warnings = warnings;
-    loader.builder.warnings.extend(ignored_features(&document));
     if let Some(scene) = document
         .default_scene()
         .or_else(|| document.scenes().next())
@@ -99,6 +102,8 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         loader.reserve(&placed)?;
         (loader.builder.nodes, loader.builder.animations) =
             animation::read(file, &document, &loader.buffers, &placed, &local)?;
+        let ids = nodes::ids(&document, &placed);
+        loader.builder.skins = skin::read(file, &document, &loader.buffers, &ids)?;
         for (index, placed) in placed.iter().enumerate() {
             // `placed` is the node tree's order: its index is the node's id.
             loader.place(NodeId(index as u32), placed)?;
@@ -172,12 +177,13 @@ impl Loader<'_> {
                     true => {
                         for &offset in &offsets {
                             let added = self.builder.meshes.len();
-                            self.primitive(&mesh, &primitive, placed.world * offset)?;
+                            let world = placed.world * offset;
+                            self.primitive(&mesh, &primitive, world, &placed.node)?;
                             self.track(id, offset, added);
                         }
                     }
                     // Skipped with a warning, once per node rather than once per instance.
-                    false => self.primitive(&mesh, &primitive, placed.world)?,
+                    false => self.primitive(&mesh, &primitive, placed.world, &placed.node)?,
                 }
             }
         }
@@ -215,26 +221,4 @@ impl Loader<'_> {
         let placement = MeshPlacement { node, offset };
         (self.builder.nodes.meshes).extend(std::iter::repeat_n(placement, built));
     }
-}
-
-/// Warnings for core glTF features that are present but not drawn.
-fn ignored_features(document: &gltf::Document) -> Vec<String> {
-    let morph_targets = document
-        .meshes()
-        .flat_map(|m| m.primitives())
-        .any(|p| p.morph_targets().next().is_some());
-    [
-        (
-            document.skins().next().is_some(),
-            "skins are ignored: skinned meshes are drawn in their bind pose",
-        ),
-        (
-            morph_targets,
-            "morph targets are ignored: meshes are drawn with their base shape",
-        ),
-    ]
-    .into_iter()
-    .filter(|(present, _)| *present)
-    .map(|(_, warning)| warning.to_owned())
-    .collect()
 }

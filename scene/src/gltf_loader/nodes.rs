@@ -6,6 +6,7 @@ use glam::DMat4;
 
 use super::{instancing, world};
 use crate::error::label;
+use crate::node_tree::NodeId;
 use crate::SceneError;
 
 /// A node reached from a scene root, with its object-to-world transform.
@@ -65,4 +66,15 @@ pub(super) fn flatten<'a>(
         });
     }
     Ok(placed)
+}
+
+/// Each glTF node's id in the loaded scene's node tree, which numbers `placed` in order;
+/// `None` for nodes the scene does not reach.
+pub(super) fn ids(document: &gltf::Document, placed: &[Placed]) -> Vec<Option<NodeId>> {
+    let mut ids = vec![None; document.nodes().len()];
+    for (i, p) in placed.iter().enumerate() {
+        // At most MAX_MESHES placements and a few more nodes: u32 holds them.
+        ids[p.node.index()] = Some(NodeId(i as u32));
+    }
+    ids
 }

@@ -3,18 +3,23 @@
 use glam::DMat4;
 use gltf::mesh::{Mode, Semantic};
 
+use super::deform::{per_corner, NodeDeform};
+use super::site::Site;
 use super::{accessor, drawn, Loader};
 use crate::error::label;
-use crate::{flat_shaded, generate_tangents, Mesh, SceneError, Vertex};
+use crate::{flat_shaded, generate_tangents, Deformation, Mesh, SceneError, Vertex};
 
 impl Loader<'_> {
-    /// Converts one primitive of a mesh placed at `world` and adds it to the scene. Points and
-    /// lines are skipped with a warning; strips and fans become triangle lists.
+    /// Converts one primitive of a mesh placed at `world` by `node` and adds it to the
+    /// scene, with its deformation (the node's skin, the primitive's morph targets) if it
+    /// has one. Points and lines are skipped with a warning; strips and fans become
+    /// triangle lists.
     pub(super) fn primitive(
         &mut self,
         mesh: &gltf::Mesh,
         primitive: &gltf::Primitive,
         world: DMat4,
+        node: &gltf::Node,
     ) -> Result<(), SceneError> {
         let site = Site {
             file: self.file,
@@ -73,9 +78,19 @@ impl Loader<'_> {
         // the triangle's face normal, so the mesh keeps its shared vertices; only MikkTSpace,
         // which needs a normal at every corner, gets them written out, three vertices a
         // triangle.
-        let (mut vertices, mut indices) = match (&normals, tangent_uvs) {
-            (None, Some(_)) => flat_shaded(&vertices, &indices),
-            _ => (vertices, indices),
+        let node = NodeDeform {
+            skin: (node.skin()).map(|skin| (skin.index(), skin.joints().len())),
+            weights: node.weights(),
+        };
+        let deformation = self.deformation(&site, (mesh, primitive), &node, positions.len())?;
+        let (mut vertices, mut indices, deformation) = match (&normals, tangent_uvs) {
+            (None, Some(_)) => {
+                // Flat shading writes each corner out: vertex k is the file's `indices[k]`.
+                let (flat, flat_indices) = flat_shaded(&vertices, &indices);
+                let deformation = deformation.map(|parts| per_corner(parts, &indices));
+                (flat, flat_indices, deformation)
+            }
+            _ => (vertices, indices, deformation),
         };
         match (tangent_set, tangent_uvs) {
             (_, Some(set)) => generate_tangents(&mut vertices, &indices, set).map_err(|e| {
@@ -99,6 +114,13 @@ impl Loader<'_> {
                 .for_each(|v| v.tangent[3] = -v.tangent[3]);
         }
         let material = self.material(&primitive.material())?;
+        if let Some((skin, morph)) = deformation {
+            self.builder.deformations.push(Deformation {
+                mesh: self.builder.meshes.len(),
+                skin,
+                morph,
+            });
+        }
         self.builder.meshes.push(Mesh {
             name: format!("{} primitive {}", site.mesh, site.primitive),
             vertices,
@@ -150,39 +172,7 @@ impl Loader<'_> {
     }
 }
 
-/// Where in the file a primitive is, for error messages.
-struct Site<'a> {
-    file: &'a std::path::Path,
-    mesh: String,
-    primitive: usize,
-}
-
 impl Site<'_> {
-    fn invalid(&self, reason: String) -> SceneError {
-        SceneError::InvalidPrimitive {
-            file: self.file.to_owned(),
-            mesh: self.mesh.clone(),
-            primitive: self.primitive,
-            reason,
-        }
-    }
-
-    fn accessor_error(
-        &self,
-        attribute: &'static str,
-        accessor: &gltf::Accessor,
-        reason: String,
-    ) -> SceneError {
-        SceneError::InvalidAccessor {
-            file: self.file.to_owned(),
-            mesh: self.mesh.clone(),
-            primitive: self.primitive,
-            attribute,
-            accessor: accessor.index(),
-            reason,
-        }
-    }
-
     /// Fails on attribute arrays of different lengths, and on the lowest-numbered vertex with a
     /// NaN or infinite component (NaN would silently poison bounds, normals and depth tests).
     fn check_finite(

@@ -131,8 +131,9 @@ pub(super) fn texture_bytes(width: u32, height: u32) -> u64 {
 }
 
 /// What one copy of `primitive` keeps, from its accessors' counts: its vertices (one per
-/// index when flat normals are written out for MikkTSpace, see `primitive.rs`) and its
-/// indices (up to three per index when a strip or fan becomes a list).
+/// index when flat normals are written out for MikkTSpace, see `primitive.rs`), their
+/// skin joints and weights and morph target offsets where it has them, and its indices
+/// (up to three per index when a strip or fan becomes a list).
 fn primitive_bytes(primitive: &gltf::Primitive) -> u64 {
     let positions = primitive
         .get(&Semantic::Positions)
@@ -149,7 +150,14 @@ fn primitive_bytes(primitive: &gltf::Primitive) -> u64 {
         && primitive.get(&Semantic::Tangents).is_none()
         && primitive.material().normal_texture().is_some();
     let vertices = if written_out { indices } else { positions };
-    let vertex_bytes = std::mem::size_of::<Vertex>() as u64;
+    // JOINTS_0 as [u16; 4] and WEIGHTS_0 as [f32; 4]; each target's three offsets
+    // [f32; 3] (counted whether present or not: a bound, not a tally).
+    let skin_bytes = match primitive.get(&Semantic::Joints(0)) {
+        Some(_) => 8 + 16,
+        None => 0,
+    };
+    let morph_bytes = primitive.morph_targets().len() as u64 * 3 * 12;
+    let vertex_bytes = std::mem::size_of::<Vertex>() as u64 + skin_bytes + morph_bytes;
     vertices
         .saturating_mul(vertex_bytes)
         .saturating_add(indices.saturating_mul(4))

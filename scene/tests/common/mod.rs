@@ -1,6 +1,8 @@
 //! A tiny glTF writer for tests: builds the JSON and one binary buffer, then writes the asset
 //! as `.gltf` with an embedded data URI, `.gltf` with an external `.bin`, or `.glb`.
 
+pub mod deformed;
+
 use std::path::{Path, PathBuf};
 
 use base64::Engine;

@@ -84,7 +84,7 @@ impl Sequence {
         };
         if let Some((id, start, step)) = self.animation {
             inputs.time = start + step * index;
-            inputs.transforms = host.scene.animated_transforms(id, inputs.time);
+            inputs.set_pose(host.scene.animated_pose(id, inputs.time));
         }
         inputs
     }

@@ -21,9 +21,10 @@ impl Playback {
         })
     }
 
-    /// `inputs` with the meshes where the animation puts them now: its start plus the
-    /// seconds since it started, wrapped to its span so that it loops.
-    pub fn pose(&self, scene: &Scene, inputs: FrameInputs) -> FrameInputs {
+    /// `inputs` with the meshes, joints and morph weights where the animation puts them
+    /// now: its start plus the seconds since it started, wrapped to its span so that it
+    /// loops.
+    pub fn pose(&self, scene: &Scene, mut inputs: FrameInputs) -> FrameInputs {
         let clip = scene.animation(self.animation);
         let span = clip.end - clip.start;
         let elapsed = self.started.elapsed().as_secs_f64();
@@ -31,10 +32,8 @@ impl Playback {
             true => clip.start + elapsed % span,
             false => clip.start,
         };
-        FrameInputs {
-            transforms: scene.animated_transforms(self.animation, time),
-            time,
-            ..inputs
-        }
+        inputs.set_pose(scene.animated_pose(self.animation, time));
+        inputs.time = time;
+        inputs
     }
 }

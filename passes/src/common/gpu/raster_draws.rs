@@ -65,7 +65,9 @@ impl RasterDraws {
             .zip(0u32..)
             .map(|((draw, state), index)| {
                 let triangles = (draw.indices.end - draw.indices.start) / 3;
+                let deformed = scene.deformed_box(draw.instance);
                 clusters.extend(scene.clusters(draw.instance as usize).iter().map(|c| {
+                    let c = deformed.map_or(*c, |b| deformed_cluster(c, &b));
                     RasterCluster {
                         first: start + c.first_triangle,
                         triangles: c.triangles,
@@ -118,5 +120,22 @@ impl RasterDraws {
             clusters: table("raster clusters", bytemuck::cast_slice(&clusters)),
             cluster_count,
         }
+    }
+}
+
+/// Cluster `c` of a mesh deformed within the object-space box `reach` this frame
+/// (`GpuScene::deformed_box`): that box instead of the rest shape's, and no normal cone
+/// (a cutoff of 1 culls nothing by facing).
+fn deformed_cluster(
+    c: &rgraph_scene::Cluster,
+    reach: &rgraph_scene::Aabb,
+) -> rgraph_scene::Cluster {
+    rgraph_scene::Cluster {
+        min: reach.min.as_vec3().to_array(),
+        max: reach.max.as_vec3().to_array(),
+        center: reach.center().as_vec3().to_array(),
+        radius: (reach.size().length() * 0.5) as f32,
+        cone_cutoff: 1.0,
+        ..*c
     }
 }

@@ -1,0 +1,107 @@
+// Skinning and morphing (gpu_scene/deform.rs): one invocation per vertex of a deformed
+// mesh writes its deformed position, normal and tangent over the scene's vertex buffer,
+// from its rest vertex, its morph targets' offsets and its joints, before any pass of the
+// frame reads the buffer. Morph targets first, then the skin, as glTF orders them and as
+// rgraph_scene::Deformation::deform does on the CPU.
+
+// A vertex of a deformed mesh: its four joints (16 bits each), its deformation, and its
+// joints' weights (zero for a mesh without a skin).
+struct Influence {
+    joints: vec2<u32>,
+    deformation: u32,
+    _pad: u32,
+    weights: vec4<f32>,
+}
+
+// One deformed mesh: where its vertices are in `rest` and `influences` (first_vertex on),
+// where they go in `vertices` (word base_word on), and where its joints, weights and
+// morph offsets start.
+struct Deformation {
+    first_vertex: u32,
+    base_word: u32,
+    vertex_count: u32,
+    first_joint: u32,
+    first_offset: u32,
+    first_weight: u32,
+    targets: u32,
+    skinned: u32,
+}
+
+// The scene's vertices (rgraph_scene::Vertex, 14 words each) from the first deformed
+// mesh's on.
+@group(0) @binding(0) var<storage, read_write> vertices: array<u32>;
+// The deformed meshes' rest vertices, one after another.
+@group(0) @binding(1) var<storage, read> rest: array<u32>;
+@group(0) @binding(2) var<storage, read> influences: array<Influence>;
+@group(0) @binding(3) var<storage, read> deformations: array<Deformation>;
+// Per morph target per vertex, nine floats: position, normal and tangent offsets.
+@group(0) @binding(4) var<storage, read> offsets: array<f32>;
+// This frame's joints, each in the object space of its mesh.
+@group(0) @binding(5) var<storage, read> joints: array<mat4x4<f32>>;
+// This frame's morph weights.
+@group(0) @binding(6) var<storage, read> weights: array<f32>;
+
+const WORDS: u32 = 14u;
+
+fn rest_vec3(word: u32) -> vec3<f32> {
+    return vec3<f32>(bitcast<f32>(rest[word]), bitcast<f32>(rest[word + 1u]), bitcast<f32>(rest[word + 2u]));
+}
+
+fn offset(at: u32) -> vec3<f32> {
+    return vec3<f32>(offsets[at], offsets[at + 1u], offsets[at + 2u]);
+}
+
+fn write_vec3(word: u32, v: vec3<f32>) {
+    vertices[word] = bitcast<u32>(v.x);
+    vertices[word + 1u] = bitcast<u32>(v.y);
+    vertices[word + 2u] = bitcast<u32>(v.z);
+}
+
+// `v` at unit length, or zero where it is zero: a zero normal asks for the face normal,
+// a zero tangent for none.
+fn unit_or_zero(v: vec3<f32>) -> vec3<f32> {
+    let length_squared = dot(v, v);
+    return select(vec3<f32>(0.0), v * inverseSqrt(length_squared), length_squared > 0.0);
+}
+
+@compute @workgroup_size(64)
+fn cs_deform(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = id.x + id.y * groups.x * 64u;
+    if i >= arrayLength(&influences) {
+        return;
+    }
+    let influence = influences[i];
+    let d = deformations[influence.deformation];
+    let local = i - d.first_vertex;
+    let r = i * WORDS;
+    var position = rest_vec3(r);
+    var normal = rest_vec3(r + 3u);
+    let tangent_xy = unpack2x16snorm(rest[r + 10u]);
+    let tangent_zw = unpack2x16snorm(rest[r + 11u]);
+    var tangent = vec3<f32>(tangent_xy, tangent_zw.x);
+    for (var t = 0u; t < d.targets; t++) {
+        let w = weights[d.first_weight + t];
+        let at = (d.first_offset + t * d.vertex_count + local) * 9u;
+        position += w * offset(at);
+        normal += w * offset(at + 3u);
+        tangent += w * offset(at + 6u);
+    }
+    if d.skinned != 0u {
+        let ids = vec4<u32>(influence.joints.x & 0xffffu, influence.joints.x >> 16u,
+                            influence.joints.y & 0xffffu, influence.joints.y >> 16u) + d.first_joint;
+        let w = influence.weights;
+        let m = joints[ids.x] * w.x + joints[ids.y] * w.y + joints[ids.z] * w.z + joints[ids.w] * w.w;
+        let linear = mat3x3<f32>(m[0].xyz, m[1].xyz, m[2].xyz);
+        // The cofactor matrix: normals move by the inverse transpose, up to length.
+        let cofactor = mat3x3<f32>(cross(linear[1], linear[2]), cross(linear[2], linear[0]), cross(linear[0], linear[1]));
+        position = (m * vec4<f32>(position, 1.0)).xyz;
+        normal = cofactor * normal;
+        tangent = linear * tangent;
+    }
+    let out = d.base_word + local * WORDS;
+    write_vec3(out, position);
+    write_vec3(out + 3u, unit_or_zero(normal));
+    let unit_tangent = unit_or_zero(tangent);
+    vertices[out + 10u] = pack2x16snorm(unit_tangent.xy);
+    vertices[out + 11u] = pack2x16snorm(vec2<f32>(unit_tangent.z, tangent_zw.y));
+}
