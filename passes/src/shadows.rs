@@ -14,8 +14,9 @@ pub enum ShadowFilter {
     /// One depth comparison at the nearest texel: hard, aliased edges.
     Hard,
     /// Percentage-closer filtering: a 3 x 3 grid of taps one texel apart, each a
-    /// hardware comparison sampler's bilinear 2 x 2 comparison, averaged (a 4 x 4 texel
-    /// footprint with tent-like weights).
+    /// bilinear 2 x 2 comparison, averaged (a 4 x 4 texel footprint with tent-like
+    /// weights), summed texel by texel in the shader (shadow.wgsl), which reads an atlas
+    /// of either format.
     #[default]
     Pcf,
 }
