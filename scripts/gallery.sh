@@ -32,3 +32,8 @@ render depth_of_field_exposure_auto "$models/DepthOfFieldExample/DepthOfFieldExa
 ./target/release/rgraph render --scene tests/fixtures/AnimatedCubes/AnimatedCubes.gltf \
     --animation dance --time 0..1.5 --frames 4 --width 480 --height 270 \
     --out "$out/animated_cubes_%04d.png" 2>&1 | grep -E "warning|error" >&2 || true
+# A skinned walk turning about the fox: 0, 0.2, 0.4 and 0.6 s seen from 0, 90, 180 and
+# 270 degrees.
+./target/release/rgraph render --scene "$models/animated/Fox.glb" --animation Walk \
+    --time 0..0.6 --frames 4 --orbit 270 --width 480 --height 270 \
+    --out "$out/fox_walk_%04d.png" 2>&1 | grep -E "warning|error" >&2 || true
