@@ -59,6 +59,7 @@ use crate::passes::light_tiled::LightTiled;
 use crate::passes::motion_vectors::MotionVectors;
 use crate::passes::particle_edges::ParticleEdges;
 use crate::passes::particles::{CompositeParticles, Particles};
+use crate::passes::points_lines::PointsLinesPass;
 use crate::passes::resolve::Resolve;
 use crate::passes::shadow_maps::ShadowMaps;
 use crate::passes::shadow_raster::ShadowRaster;
@@ -101,6 +102,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(SsaoBlur(shared.clone()))
         .register(Transparent(shared.clone()))
         .register(CompositeTransparent(shared.clone()))
+        .register(PointsLinesPass(shared.clone()))
         .register(Background(shared.clone()))
         .register(Particles(shared.clone()))
         .register(CompositeParticles(shared.clone()))
