@@ -501,14 +501,14 @@ fn a_specialised_plan_is_measured_beside_the_general_one() {
         "{special:#}"
     );
     // The unlit G-buffer pass and the tone mapping, instead of the shadow maps, the light
-    // and the transparent passes too.
+    // and the transparent and points and lines passes too.
     assert_eq!(
         (number(special, "passes"), number(special, "general_passes")),
-        (2.0, 6.0)
+        (2.0, 8.0)
     );
     assert_eq!(figures["passes"].as_array().unwrap().len(), 2);
-    // Normal and material (4 bytes each) and the transparent accumulation (rgba16float, 8)
-    // are not allocated at 64x48, and the depth-stencil is depth24plus-stencil8 (4 bytes)
+    // Normal and material (4 bytes each) and the transparent accumulation (rgba16float, 8;
+    // the points and lines' shares its memory in the general plan) are not allocated at 64x48, and the depth-stencil is depth24plus-stencil8 (4 bytes)
     // instead of depth32float-stencil8 (8, padded); nor is the 4096 x 4096 depth32float
     // shadow atlas.
     assert_eq!(
@@ -523,7 +523,7 @@ fn a_specialised_plan_is_measured_beside_the_general_one() {
     );
     let table = std::fs::read_to_string(dir.path().join("results.md")).unwrap();
     assert!(
-        table.contains("| deferred_noaa | no_lights, shallow_depth, unlit_only | gbuffer.wgsl {double_sided} | 6 → 2 |"),
+        table.contains("| deferred_noaa | no_lights, shallow_depth, unlit_only | gbuffer.wgsl {double_sided} | 8 → 2 |"),
         "{table}"
     );
     let row = table

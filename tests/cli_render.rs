@@ -433,8 +433,8 @@ fn an_unlit_scene_renders_with_the_specialised_plan_and_the_same_image() {
         .stderr_has("\ngbuffer (unlit) ")
         .stderr_has(
             "dropped by conditions: gbuffer, shadow maps, light tiled, resolve (no lights), \
-             background, transparent, composite transparent, auto exposure, tonemap (auto \
-             exposure), debug edges, debug tile lights, debug normals, debug lights",
+             background, transparent, composite transparent, points lines, composite points \
+             lines, auto exposure, tonemap (auto exposure), debug edges, debug tile lights, debug normals, debug lights",
         );
     let run = render_unlit(&general, &["--no-specialise"]).expect(0);
     run.stderr_has("\nlight tiled ");
@@ -485,8 +485,9 @@ fn the_visibility_pipeline_rasterises_by_the_hardware_on_a_cpu_device() {
         .stderr_has("\nvisibility (hardware raster) ")
         .stderr_has("\ndevice conditions: cpu_device\n")
         .stderr_has(
-            "dropped by conditions: shadow raster, visibility, visibility (blend), light tiled, \
-             keys depth, ",
+            "dropped by conditions: shadow raster, shadow maps (alpha mask), visibility, \
+             visibility (blend), visibility (points lines), light tiled, keys depth, keys depth \
+             (points lines), ",
         );
     render_default(&out, &[&pipeline[..], &["--no-specialise"]].concat())
         .expect(0)
@@ -504,8 +505,8 @@ fn a_lit_scene_is_specialised_only_in_its_depth_format() {
     run.stderr_has("specialised to the scene's features: shadows, shallow_depth (")
         .stderr_has(
             "dropped by conditions: gbuffer (unlit), resolve (unlit), resolve (no lights), \
-             background, transparent, composite transparent, auto exposure, tonemap (auto \
-             exposure)\n",
+             background, transparent, composite transparent, points lines, composite points \
+             lines, auto exposure, tonemap (auto exposure)\n",
         );
 }
 

@@ -82,6 +82,7 @@ mod output_files;
 mod page_browser;
 mod particles;
 mod pipeline_plans;
+mod points_lines;
 mod post_fxaa;
 mod post_ssao;
 mod shadows;

@@ -46,11 +46,11 @@ fn an_unlit_scene_s_plan_says_what_it_drops_and_saves() {
         "features: no_lights, shallow_depth, unlit_only\n",
         "    0. gbuffer (unlit) (render)",
         "dropped passes:\n  - gbuffer: condition \"!unlit_only\" is false\n",
-        "against the plan for a scene using every feature (features: blend, shadows):\n  passes: 6 instead of 16\n",
+        "against the plan for a scene using every feature (features: blend, points_lines, shadows):\n  passes: 6 instead of 18\n",
         "    - light edges: condition \"!unlit_only & !no_lights\" is false (\"unlit_only\" is set, \"no_lights\" is set)\n",
         "    not allocated: normal (64.0 KiB): condition \"!unlit_only\" is false\n",
         // The general plan draws shadow maps into a 64 MiB atlas; an unlit scene none.
-        "  memory: 416.0 KiB physical instead of 64.7 MiB (64.3 MiB saved, 99%)\n",
+        "  memory: 416.0 KiB physical instead of 64.8 MiB (64.4 MiB saved, 99%)\n",
     ] {
         assert!(stdout.contains(expected), "no {expected:?} in:\n{stdout}");
     }
@@ -65,9 +65,9 @@ fn a_lit_scene_keeps_the_general_plan_but_the_transparent_passes() {
     assert!(stdout.contains(
         "features ambient, directional_lights, lit, point_lights, shadows, shallow_depth\n"
     ));
-    assert!(stdout.contains("  passes: 14 instead of 16\n    - transparent: condition \"blend\" is false\n    - composite transparent: condition \"blend\" is false\n"), "{stdout}");
+    assert!(stdout.contains("  passes: 14 instead of 18\n    - transparent: condition \"blend\" is false\n    - points lines: condition \"points_lines\" is false\n    - composite transparent: condition \"blend\" is false\n    - composite points lines: condition \"points_lines\" is false\n"), "{stdout}");
     assert!(
-        stdout.contains("  memory: 64.6 MiB physical instead of 64.7 MiB (128.0 KiB saved, 0%)\n"),
+        stdout.contains("  memory: 64.6 MiB physical instead of 64.8 MiB (256.0 KiB saved, 0%)\n"),
         "{stdout}"
     );
 }
@@ -127,6 +127,8 @@ fn json_carries_the_features_and_the_dropped_passes() {
             "background",
             "transparent",
             "composite transparent",
+            "points lines",
+            "composite points lines",
             "auto exposure",
             "tonemap (auto exposure)",
             "debug normals",
@@ -156,7 +158,7 @@ fn a_shallow_scene_s_plan_says_which_depth_format_it_picks_and_why() {
     for expected in [
         "    format of depth: depth24plus-stencil8 instead of depth32float-stencil8: \
          condition \"shallow_depth\" holds\n",
-        "  memory: 64.6 MiB physical instead of 64.8 MiB (192.0 KiB saved, 0%)\n",
+        "  memory: 64.6 MiB physical instead of 64.9 MiB (320.0 KiB saved, 0%)\n",
     ] {
         assert!(stdout.contains(expected), "no {expected:?} in:\n{stdout}");
     }

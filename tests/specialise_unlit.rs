@@ -60,6 +60,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
             "resolve",
             "transparent",
             "composite transparent",
+            "points lines",
+            "composite points lines",
             "tonemap"
         ]
     );
@@ -81,6 +83,7 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
     let no_background = r#"condition "background" is false"#;
     // And a fixed exposure, as every render without --exposure auto.
     let fixed = r#"condition "auto_exposure" is false"#;
+    let no_points_lines = r#"condition "points_lines" is false"#;
     assert_eq!(
         dropped,
         [
@@ -92,6 +95,8 @@ fn an_unlit_scene_drops_lighting_and_its_g_buffer_channels() {
             ("background", no_background),
             ("transparent", no_blend),
             ("composite transparent", no_blend),
+            ("points lines", no_points_lines),
+            ("composite points lines", no_points_lines),
             ("auto exposure", fixed),
             ("tonemap (auto exposure)", fixed),
             ("debug normals", not_lit),

@@ -771,7 +771,7 @@ fn bad_transparent_slots_are_errors_naming_pass_slot_and_resource() {
             r#""transparent": Texture(format: "rgba16float", size: Relative(0.5), samples: Param(name: "msaa", default: 4), when: "blend"),"#,
             &[
                 "pass \"composite transparent\"",
-                "slot \"resolved\": \"resolved\" is Relative(1.0), but the accumulation it \
+                "slot \"resolved\": \"blended_hdr\" is Relative(1.0), but the accumulation it \
                  composites (\"transparent\") is Relative(0.5)",
             ][..],
         ),

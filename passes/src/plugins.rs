@@ -11,7 +11,9 @@
 //! lighting, pipelines/deferred_gbuffer_resolve_4x.ron). Every pipeline that renders the
 //! lit scene adds `transparent` and `composite_transparent` under `when: "blend"`: alpha
 //! BLEND meshes, which the opaque passes skip, drawn after lighting and composited onto
-//! the resolved image. `fxaa` is a post filter on the tone-mapped image
+//! the resolved image; and `points_lines` under `when: "points_lines"`, glTF points
+//! and lines, unlit, composited after them by `composite_transparent`. `fxaa` is a post
+//! filter on the tone-mapped image
 //! (pipelines/deferred_noaa_fxaa.ron, deferred_msaa_4x_fxaa.ron). `ssao` and `ssao_blur`
 //! compute screen-space ambient occlusion from the G-buffer, which the light passes take
 //! as their optional `ao` input (pipelines/deferred_msaa_4x_ssao.ron).
@@ -59,6 +61,7 @@ use crate::passes::light_tiled::LightTiled;
 use crate::passes::motion_vectors::MotionVectors;
 use crate::passes::particle_edges::ParticleEdges;
 use crate::passes::particles::{CompositeParticles, Particles};
+use crate::passes::points_lines::PointsLinesPass;
 use crate::passes::resolve::Resolve;
 use crate::passes::shadow_maps::ShadowMaps;
 use crate::passes::shadow_raster::ShadowRaster;
@@ -101,6 +104,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(SsaoBlur(shared.clone()))
         .register(Transparent(shared.clone()))
         .register(CompositeTransparent(shared.clone()))
+        .register(PointsLinesPass(shared.clone()))
         .register(Background(shared.clone()))
         .register(Particles(shared.clone()))
         .register(CompositeParticles(shared.clone()))

@@ -309,6 +309,11 @@ pub(crate) const TAA: Source = Source {
     name: "taa.wgsl",
     parts: &[COMMON, include_str!("wgsl/taa.wgsl")],
 };
+/// Points and lines, unlit, with the camera of scene.wgsl.
+pub(crate) const POINTS_LINES: Source = Source {
+    name: "points_lines.wgsl",
+    parts: &[COMMON, SCENE, include_str!("wgsl/points_lines.wgsl")],
+};
 pub(crate) const COMPOSITE: Source = Source {
     name: "composite.wgsl",
     parts: &[COMMON, include_str!("wgsl/composite.wgsl")],

@@ -5,14 +5,15 @@ use glam::DVec3;
 use super::animation::{swept_bounds, Animation};
 use super::node_tree::NodeTree;
 use super::{
-    Aabb, BoundingSphere, Camera, Deformation, Light, Material, Mesh, ParticleEmitter, Scene,
-    SceneError, Skin, TextureImage, MAX_COORDINATE,
+    Aabb, BoundingSphere, Camera, Deformation, Light, Material, Mesh, ParticleEmitter, PointsLines,
+    Scene, SceneError, Skin, TextureImage, MAX_COORDINATE,
 };
 
 /// A scene under construction: loaders push parts, [`SceneBuilder::finish`] derives the rest.
 pub(crate) struct SceneBuilder {
     pub name: String,
     pub meshes: Vec<Mesh>,
+    pub points_lines: Vec<PointsLines>,
     pub materials: Vec<Material>,
     pub textures: Vec<TextureImage>,
     pub lights: Vec<Light>,
@@ -37,6 +38,7 @@ impl SceneBuilder {
         SceneBuilder {
             name: name.into(),
             meshes: Vec::new(),
+            points_lines: Vec::new(),
             materials: Vec::new(),
             textures: Vec::new(),
             lights: Vec::new(),
@@ -58,11 +60,12 @@ impl SceneBuilder {
         self.materials.len() - 1
     }
 
-    /// Drops meshes without triangles (and their placements in `nodes`), computes the
+    /// Drops meshes without triangles (and their placements in `nodes`) and points and
+    /// lines without a point or segment, computes the
     /// bounds (swept over the animations' poses, see [`swept_bounds`]) and, when no camera
     /// was set, frames the vertices' sphere around their center with [`Camera::framing`],
-    /// grown to hold the swept bounds. Fails with [`SceneError::EmptyScene`] when no triangle is
-    /// left, unless [`SceneBuilder::allow_empty`] is set (the loader has warned): then the
+    /// grown to hold the swept bounds; the points and lines count as still geometry. Fails with
+    /// [`SceneError::EmptyScene`] when no triangle, point or segment is left, unless [`SceneBuilder::allow_empty`] is set (the loader has warned): then the
     /// bounds are the origin and the frame shows only the background. Fails with
     /// [`SceneError::TooFar`] when the bounds, a light or the camera lie beyond
     /// ±[`MAX_COORDINATE`] (or are not finite), which would otherwise render an empty frame.
@@ -85,6 +88,7 @@ impl SceneBuilder {
             (self.meshes, self.nodes.meshes) =
                 placed.filter(|(m, _)| m.triangle_count() > 0).unzip();
         }
+        self.points_lines.retain(|p| p.count() > 0);
         // A deformed mesh is where its deformation puts it, not where its rest vertices
         // are (a skinned mesh's node transform is ignored): the swept bounds below hold
         // it, from the rest pose on.
@@ -95,6 +99,11 @@ impl SceneBuilder {
         let still: Vec<usize> = (0..self.meshes.len()).filter(|&i| !deformed[i]).collect();
         let still_bounds = (still.iter())
             .filter_map(|&i| self.meshes[i].world_bounds())
+            .chain(
+                self.points_lines
+                    .iter()
+                    .filter_map(PointsLines::world_bounds),
+            )
             .reduce(|a, b| a.union(&b));
         let bounds = match still_bounds {
             Some(bounds) => bounds,
@@ -116,10 +125,13 @@ impl SceneBuilder {
         let mut scene = Scene {
             camera: self.camera.unwrap_or_else(|| {
                 let points = still.iter().flat_map(|&i| self.meshes[i].world_positions());
+                let points =
+                    points.chain(self.points_lines.iter().flat_map(|p| p.world_positions()));
                 Camera::framing(&BoundingSphere::around(bounds.center(), points))
             }),
             name: self.name,
             meshes: self.meshes,
+            points_lines: self.points_lines,
             materials: self.materials,
             textures: self.textures,
             lights: self.lights,
@@ -141,7 +153,8 @@ impl SceneBuilder {
                 let points = still
                     .iter()
                     .flat_map(|&i| scene.meshes[i].world_positions());
-                let points = points.chain(swept.corners());
+                let strokes = scene.points_lines.iter().flat_map(|p| p.world_positions());
+                let points = points.chain(strokes).chain(swept.corners());
                 let sphere = BoundingSphere::around(scene.bounds.center(), points);
                 scene.camera = Camera::framing(&sphere);
             }

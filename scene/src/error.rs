@@ -354,8 +354,8 @@ pub enum SceneError {
         reason: String,
     },
 
-    /// Nothing to draw: no triangle survived loading.
-    #[error("{scene}: the scene contains no triangles")]
+    /// Nothing to draw: no triangle, point or line segment survived loading.
+    #[error("{scene}: the scene contains no triangles, points or lines")]
     EmptyScene {
         /// The scene, by its spec.
         scene: String,

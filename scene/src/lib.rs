@@ -56,6 +56,7 @@ mod model;
 mod node_tree;
 mod normals;
 mod particles;
+mod points_lines;
 mod prefilter;
 mod procedural;
 mod stats;
@@ -92,6 +93,7 @@ pub use model::Scene;
 pub use node_tree::{LocalTransform, MeshPlacement, Node, NodeId, NodeTree, Trs};
 pub use normals::flat_shaded;
 pub use particles::{billboard_pixels, check_emitters, Particle, ParticleEmitter, MAX_PARTICLES};
+pub use points_lines::{PointsLines, Topology};
 pub use prefilter::{
     cube_direction, prefilter, prefiltered_cube, split_sum, split_sum_lut, CUBE_LEVELS, CUBE_SIZE,
     LUT_SIZE,

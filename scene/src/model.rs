@@ -4,7 +4,7 @@
 
 use super::{
     Aabb, Animation, Camera, Deformation, Environment, Light, Material, Mesh, NodeTree,
-    ParticleEmitter, Skin, TextureImage,
+    ParticleEmitter, PointsLines, Skin, TextureImage,
 };
 
 /// Everything a renderer needs to draw one view of a scene.
@@ -13,8 +13,13 @@ pub struct Scene {
     /// The spec it was loaded from: the file path or `builtin:NAME[?params]`.
     pub name: String,
     /// Each with at least one triangle; at least one, except for a glTF scene that lists no
-    /// nodes, which loads empty with a warning (the frame shows only the background).
+    /// nodes, which loads empty with a warning (the frame shows only the background), and
+    /// a scene of points and lines only.
     pub meshes: Vec<Mesh>,
+    /// glTF points and lines (modes POINTS, LINES, LINE_LOOP, LINE_STRIP), each with at
+    /// least one point or segment, placed where the file's nodes place them at rest (the
+    /// animations do not move them). Built-in scenes have none.
+    pub points_lines: Vec<PointsLines>,
     /// Indexed by `Mesh::material`.
     pub materials: Vec<Material>,
     /// Indexed by `TextureRef::image`.

@@ -130,18 +130,96 @@ fn scene_without_triangles_is_an_error() {
     let (error, message) = load_error("empty", &gltf);
     assert!(matches!(error, SceneError::EmptyScene { .. }), "{error:?}");
     assert!(
-        message.ends_with("the scene contains no triangles"),
+        message.ends_with("the scene contains no triangles, points or lines"),
         "{message}"
     );
 
-    let mut lines_only = Gltf::default();
-    let positions = lines_only.floats(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]);
-    lines_only.mesh(
+    // A LINE_STRIP of one vertex has no segment: nothing is left to draw.
+    let mut lone_vertex = Gltf::default();
+    let positions = lone_vertex.floats(&[[0.0, 0.0, 0.0]]);
+    lone_vertex.mesh(
         "line",
+        json!({ "attributes": { "POSITION": positions }, "mode": 3 }),
+    );
+    let (error, _) = load_error("lone_vertex", &lone_vertex);
+    assert!(matches!(error, SceneError::EmptyScene { .. }), "{error:?}");
+}
+
+/// LINES needs two indices per segment: an odd count is an error naming the file, mesh,
+/// primitive and the accessor it was read from (the indices, or POSITION without them).
+#[test]
+fn odd_line_counts_name_the_accessor() {
+    let mut indexed = Gltf::default();
+    let positions = indexed.floats(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    let indices = indexed.indices_u16(&[0, 1, 2]);
+    indexed.mesh(
+        "wires",
+        json!({ "attributes": { "POSITION": positions }, "indices": indices, "mode": 1 }),
+    );
+    let (error, message) = load_error("odd_lines", &indexed);
+    assert!(
+        matches!(
+            error,
+            SceneError::InvalidAccessor {
+                attribute: "indices",
+                accessor: 1,
+                ..
+            }
+        ),
+        "{error:?}"
+    );
+    assert!(
+        message.contains("odd_lines")
+            && message.contains("mesh 0 \"wires\" primitive 0")
+            && message.contains("LINES needs an even number of indices (two per segment), has 3"),
+        "{message}"
+    );
+
+    let mut unindexed = Gltf::default();
+    let positions = unindexed.floats(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    unindexed.mesh(
+        "wires",
         json!({ "attributes": { "POSITION": positions }, "mode": 1 }),
     );
-    let (error, _) = load_error("lines_only", &lines_only);
-    assert!(matches!(error, SceneError::EmptyScene { .. }), "{error:?}");
+    let (error, _) = load_error("odd_lines_unindexed", &unindexed);
+    assert!(
+        matches!(
+            error,
+            SceneError::InvalidAccessor {
+                attribute: "POSITION",
+                accessor: 0,
+                ..
+            }
+        ),
+        "{error:?}"
+    );
+}
+
+/// A point or line index past the vertices is the error a triangle's is, naming the
+/// file, mesh, primitive and index.
+#[test]
+fn point_index_out_of_range() {
+    let mut gltf = Gltf::default();
+    let positions = gltf.floats(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]);
+    let indices = gltf.indices_u16(&[0, 1, 2]);
+    gltf.mesh(
+        "dots",
+        json!({ "attributes": { "POSITION": positions }, "indices": indices, "mode": 0 }),
+    );
+    let (error, message) = load_error("point_range", &gltf);
+    assert!(
+        matches!(
+            error,
+            SceneError::IndexOutOfRange {
+                position: 2,
+                index: 2,
+                vertex_count: 2,
+                ..
+            }
+        ),
+        "{error:?}"
+    );
+    assert!(message.contains("mesh 0 \"dots\" primitive 0"), "{message}");
 }
 
 #[test]

@@ -349,10 +349,10 @@ fn unsupported_features_are_warnings_naming_them() {
             "glTF extension KHR_materials_clearcoat is not implemented; its effect is ignored",
             "mesh 1 \"triangle\" primitive 0: its material's normal texture needs TEXCOORD_0, \
              which it lacks; drawn without the normal texture",
-            "mesh 2 \"dots\" primitive 0: mode Points is not triangles; skipped",
         ]
     );
-    assert_eq!(scene.meshes.len(), 2, "the POINTS primitive is skipped");
+    assert_eq!(scene.meshes.len(), 2);
+    assert_eq!(scene.points_lines.len(), 1, "the POINTS primitive is kept");
     // BLEND is implemented (the transparent pass): kept, without a warning.
     assert_eq!(
         scene.materials[0].alpha_mode,
@@ -673,4 +673,42 @@ fn texture_transform_becomes_the_uv_matrix() {
         (emissive.tex_coord, emissive.uv_transform),
         (1, TextureRef::IDENTITY_UV)
     );
+}
+
+/// Points and lines load as `PointsLines`: a LINE_LOOP as its segment list, COLOR_0
+/// (VEC3 given alpha 1), the material, and a scene of nothing else loads, its bounds and
+/// framing those of the lines.
+#[test]
+fn points_and_lines_load_and_a_scene_of_only_them_loads() {
+    let mut gltf = Gltf::default();
+    let positions = gltf.floats(&[[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 1.0, 0.0]]);
+    let colors = gltf.floats(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+    let material = gltf.push(
+        "materials",
+        json!({ "name": "wire", "emissiveFactor": [0.5, 0.0, 0.0] }),
+    );
+    gltf.mesh(
+        "outline",
+        json!({ "attributes": { "POSITION": positions, "COLOR_0": colors }, "mode": 2,
+                "material": material }),
+    );
+    let dir = temp_dir("points_lines_load");
+    let path = dir.join("scene.gltf");
+    gltf.write_embedded(&path);
+    let scene = Scene::from_gltf(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    assert!(scene.meshes.is_empty());
+    let [lines] = &scene.points_lines[..] else {
+        panic!("{:?}", scene.points_lines);
+    };
+    assert_eq!(lines.topology, rgraph_scene::Topology::Lines);
+    assert_eq!(lines.indices, [0, 1, 1, 2, 2, 0]);
+    assert_eq!(lines.colors[2], [0.0, 0.0, 1.0, 1.0]);
+    assert_eq!(
+        scene.materials[lines.material].emissive_factor,
+        [0.5, 0.0, 0.0]
+    );
+    assert_eq!(scene.bounds.max.x, 2.0);
+    assert_eq!(scene.bounds.max.y, 1.0);
+    assert!(rgraph_scene::analysis::Features::of(&scene).points_lines);
 }

@@ -34,6 +34,7 @@ const LAYERS: Layers<'_> = &[
             "node_tree",
             "normals",
             "particles",
+            "points_lines",
             "prefilter",
             "procedural",
             "stats",

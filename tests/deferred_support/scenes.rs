@@ -120,6 +120,7 @@ impl Parts {
         Scene {
             name: name.to_owned(),
             meshes: self.meshes.clone(),
+            points_lines: Vec::new(),
             materials: self.materials.clone(),
             textures: Vec::new(),
             lights: self.lights.clone(),

@@ -244,6 +244,9 @@ struct Upload {
     shadow_maps: shadows::ShadowBuffers,
     sphere: VolumeMesh,
     cone: VolumeMesh,
+    /// The world-space bounds of each of the scene's points and lines, which
+    /// [`GpuScene::blended_rect`] holds.
+    points_lines: Vec<rgraph_scene::Aabb>,
 }
 
 /// The CPU side of one frame's inputs: what the buffers hold for it.
@@ -350,6 +353,9 @@ impl GpuScene {
             shadow_maps,
             sphere,
             cone,
+            points_lines: (scene.points_lines.iter())
+                .filter_map(rgraph_scene::PointsLines::world_bounds)
+                .collect(),
         };
         GpuScene {
             upload: Arc::new(upload),
@@ -658,13 +664,23 @@ impl GpuScene {
         draws
     }
 
-    /// The pixels of an output of `size` the blended meshes may cover (the screen
-    /// rectangle of their camera-relative bounds): `None` where none is in view.
+    /// The pixels of an output of `size` that what is drawn after the opaque scene may
+    /// cover: the blended meshes and the points and lines (the screen rectangle of their
+    /// camera-relative bounds); `None` where none is in view. One rectangle for both, so
+    /// that one depth made from a compute raster's keys (`keys_depth`) serves both passes.
     pub fn blended_rect(&self, size: (u32, u32)) -> Option<PixelRect> {
+        let eye = self.frame.inputs.camera.position;
+        let points_lines: Vec<rgraph_scene::Aabb> = (self.upload.points_lines.iter())
+            .map(|b| rgraph_scene::Aabb {
+                min: b.min - eye,
+                max: b.max - eye,
+            })
+            .collect();
         let blended = self
             .mesh_draws()
             .filter(|(_, state)| state.blended)
-            .map(|(draw, _)| &draw.bounds);
+            .map(|(draw, _)| &draw.bounds)
+            .chain(&points_lines);
         screen_rect::screen_rect(&self.frame.inputs.camera, size, blended)
     }
 

@@ -20,6 +20,7 @@ pub(crate) mod light_tiled;
 pub(crate) mod motion_vectors;
 pub(crate) mod particle_edges;
 pub(crate) mod particles;
+pub(crate) mod points_lines;
 pub(crate) mod resolve;
 pub(crate) mod shadow_maps;
 pub(crate) mod shadow_raster;

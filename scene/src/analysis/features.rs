@@ -55,6 +55,10 @@ pub struct Features {
     /// The scene has particles (`builtin:smoke`, or emitters an engine adds to it): the
     /// pipelines add their particle passes under `when: "particles"`.
     pub particles: bool,
+    /// The scene has points or lines (glTF modes 0 to 3): the pipelines add their
+    /// `points_lines` passes under `when: "points_lines"`. Their materials count for no
+    /// other feature: they are drawn unlit and untextured.
+    pub points_lines: bool,
     /// Not the scene's but the host's choice: draw a background where nothing is (the
     /// environment, a colour, or transparency: `Background`), which pipelines do with a
     /// `background` pass under this condition. [`Features::of`] and
@@ -73,7 +77,7 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 25] = [
+    pub const NAMES: [&'static str; 26] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -96,6 +100,7 @@ impl Features {
         "double_sided",
         "shallow_depth",
         "particles",
+        "points_lines",
         "shadows",
         "background",
         "auto_exposure",
@@ -141,6 +146,7 @@ impl Features {
             shallow_depth: DepthRange::of(scene)
                 .is_some_and(|range| range.shallow(&scene.camera.projection)),
             particles: scene.particles().next().is_some(),
+            points_lines: !scene.points_lines.is_empty(),
             shadows: light(|_| true),
             background: false,
             auto_exposure: false,
@@ -155,7 +161,8 @@ impl Features {
     /// pipeline is the general one too. The one exception among scene features is `blend`: the transparent
     /// passes are added under it, so that every scene without BLEND materials keeps
     /// exactly the plan it had before they existed; compiled for no features, a
-    /// pipeline draws no blended meshes (the opaque passes skip them regardless).
+    /// pipeline draws no blended meshes (the opaque passes skip them regardless); and so is
+    /// `points_lines`, for the same reason.
     pub fn general() -> Features {
         Features {
             point_lights: true,
@@ -178,6 +185,7 @@ impl Features {
             double_sided: true,
             shallow_depth: false,
             particles: true,
+            points_lines: true,
             shadows: true,
             background: false,
             auto_exposure: false,
@@ -224,6 +232,7 @@ impl Features {
             self.double_sided,
             self.shallow_depth,
             self.particles,
+            self.points_lines,
             self.shadows,
             self.background,
             self.auto_exposure,

@@ -1,17 +1,13 @@
-//! Which primitives are drawn: triangles, strips and fans. Points and lines are skipped
-//! with a warning (see `primitive`).
+//! Which primitives become triangle meshes (triangles, strips and fans, see `primitive`)
+//! and which points or lines (see `points_lines`). Every primitive is drawn.
 
 use gltf::mesh::Mode;
 
-/// The primitives of `mesh` that are drawn.
-pub(super) fn primitives<'a>(mesh: &gltf::Mesh<'a>) -> impl Iterator<Item = gltf::Primitive<'a>> {
-    mesh.primitives().filter(is_drawn)
-}
-
-/// Whether `primitive` is drawn.
-pub(super) fn is_drawn(primitive: &gltf::Primitive) -> bool {
-    !matches!(
+/// Whether `primitive` is of a triangle mode: a [`Mesh`](crate::Mesh), not a
+/// [`PointsLines`](crate::PointsLines).
+pub(super) fn is_triangles(primitive: &gltf::Primitive) -> bool {
+    matches!(
         primitive.mode(),
-        Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip
+        Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
     )
 }

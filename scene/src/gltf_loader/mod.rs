@@ -12,8 +12,10 @@
 //! KHR_lights_punctual lights; animations of node translation, rotation, scale and morph
 //! weights, with the node tree they move (see [`animation`]); skins (see [`skin`]) and
 //! their JOINTS_0/WEIGHTS_0, and morph targets' POSITION, NORMAL and TANGENT offsets (see
-//! [`deform`]). What is not: BLEND (drawn opaque), points and lines, and a skinned
-//! vertex's influences past four (JOINTS_1), each with a warning in [`Scene::warnings`].
+//! [`deform`]); points and lines (POINTS, LINES, and loops and strips converted to lists)
+//! with POSITION and COLOR_0 and their material's base colour and emission (see
+//! [`points_lines`]), placed at rest. What is not: a skinned vertex's influences past four
+//! (JOINTS_1), with a warning in [`Scene::warnings`].
 
 mod accessor;
 mod animation;
@@ -29,6 +31,7 @@ mod instancing;
 mod light;
 mod material;
 mod nodes;
+mod points_lines;
 mod primitive;
 mod reserve;
 mod sandbox;
@@ -166,24 +169,24 @@ impl Loader<'_> {
         if let Some(mesh) = placed.node.mesh() {
             // Instances are read only where they place something: what `reserve` counted.
             let offsets = match &placed.instances {
-                Some(_) if drawn::primitives(&mesh).next().is_none() => Vec::new(),
+                Some(_) if mesh.primitives().next().is_none() => Vec::new(),
                 Some(instances) => {
                     instances.offsets(self.file, &self.buffers, &placed.node, placed.world)?
                 }
                 None => vec![DMat4::IDENTITY],
             };
             for primitive in mesh.primitives() {
-                match drawn::is_drawn(&primitive) {
-                    true => {
-                        for &offset in &offsets {
+                for &offset in &offsets {
+                    let world = placed.world * offset;
+                    match drawn::is_triangles(&primitive) {
+                        true => {
                             let added = self.builder.meshes.len();
-                            let world = placed.world * offset;
                             self.primitive(&mesh, &primitive, world, &placed.node)?;
                             self.track(id, offset, added);
                         }
+                        // Placed at rest: the node tree moves meshes only.
+                        false => self.points_lines(&mesh, &primitive, world)?,
                     }
-                    // Skipped with a warning, once per node rather than once per instance.
-                    false => self.primitive(&mesh, &primitive, placed.world, &placed.node)?,
                 }
             }
         }

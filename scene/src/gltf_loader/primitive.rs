@@ -5,15 +5,15 @@ use gltf::mesh::{Mode, Semantic};
 
 use super::deform::{per_corner, NodeDeform};
 use super::site::Site;
-use super::{accessor, drawn, Loader};
+use super::{accessor, Loader};
 use crate::error::label;
 use crate::{flat_shaded, generate_tangents, Deformation, Mesh, SceneError, Vertex};
 
 impl Loader<'_> {
     /// Converts one primitive of a mesh placed at `world` by `node` and adds it to the
     /// scene, with its deformation (the node's skin, the primitive's morph targets) if it
-    /// has one. Points and lines are skipped with a warning; strips and fans become
-    /// triangle lists.
+    /// has one. Strips and fans become triangle lists; points and lines are
+    /// [`points_lines`](Self::points_lines)'.
     pub(super) fn primitive(
         &mut self,
         mesh: &gltf::Mesh,
@@ -27,13 +27,6 @@ impl Loader<'_> {
             primitive: primitive.index(),
         };
         let mode = primitive.mode();
-        if !drawn::is_drawn(primitive) {
-            self.builder.warnings.push(format!(
-                "{} primitive {}: mode {mode:?} is not triangles; skipped",
-                site.mesh, site.primitive
-            ));
-            return Ok(());
-        }
         let positions = self
             .attribute::<3>(&site, primitive, Semantic::Positions, "POSITION")?
             .ok_or_else(|| site.invalid("has no POSITION attribute".to_owned()))?;
@@ -133,7 +126,7 @@ impl Loader<'_> {
 
     /// Reads an optional vertex attribute (`None` when the primitive has none). Its length is
     /// compared with POSITION's in `Site::check_finite`.
-    fn attribute<const N: usize>(
+    pub(super) fn attribute<const N: usize>(
         &self,
         site: &Site,
         primitive: &gltf::Primitive,
@@ -151,7 +144,7 @@ impl Loader<'_> {
 
     /// COLOR_0 as RGBA (`None` when the primitive has none): VEC3 gets alpha 1; float,
     /// normalized UNSIGNED_BYTE and UNSIGNED_SHORT as the spec allows.
-    fn colors(
+    pub(super) fn colors(
         &self,
         site: &Site,
         primitive: &gltf::Primitive,
@@ -175,7 +168,7 @@ impl Loader<'_> {
 impl Site<'_> {
     /// Fails on attribute arrays of different lengths, and on the lowest-numbered vertex with a
     /// NaN or infinite component (NaN would silently poison bounds, normals and depth tests).
-    fn check_finite(
+    pub(super) fn check_finite(
         &self,
         positions: &[[f32; 3]],
         normals: Option<&[[f32; 3]]>,
@@ -231,7 +224,11 @@ impl Site<'_> {
         }
     }
 
-    fn check_indices(&self, indices: &[u32], vertex_count: usize) -> Result<(), SceneError> {
+    pub(super) fn check_indices(
+        &self,
+        indices: &[u32],
+        vertex_count: usize,
+    ) -> Result<(), SceneError> {
         match indices.iter().position(|&i| i as usize >= vertex_count) {
             None => Ok(()),
             Some(position) => Err(SceneError::IndexOutOfRange {

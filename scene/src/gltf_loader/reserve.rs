@@ -9,7 +9,7 @@ use std::collections::{HashMap, HashSet};
 use gltf::mesh::{Mode, Semantic};
 
 use super::nodes::Placed;
-use super::{drawn, material, Loader};
+use super::{material, Loader};
 use crate::error::label;
 use crate::{SceneError, Vertex, MAX_MESHES};
 
@@ -38,10 +38,11 @@ impl Loader<'_> {
                 }
             }
         }
-        // Every drawn primitive of every placement is a mesh of the scene.
+        // Every primitive of every placement is a mesh of the scene, or points or lines
+        // (counted alike: a bound on both).
         let mesh_count = meshes
             .iter()
-            .map(|(mesh, count)| drawn::primitives(mesh).count() as u64 * count)
+            .map(|(mesh, count)| mesh.primitives().count() as u64 * count)
             .fold(0, u64::saturating_add);
         if mesh_count > MAX_MESHES as u64 {
             return Err(SceneError::TooManyMeshes {
@@ -51,7 +52,8 @@ impl Loader<'_> {
             });
         }
         for (mesh, count) in &meshes {
-            let copy = drawn::primitives(mesh)
+            let copy = mesh
+                .primitives()
                 .map(|p| primitive_bytes(&p))
                 .fold(0, u64::saturating_add);
             let why = match count {
@@ -71,7 +73,7 @@ impl Loader<'_> {
         }
         let mut materials = HashSet::new();
         for (mesh, _) in &meshes {
-            for primitive in drawn::primitives(mesh) {
+            for primitive in mesh.primitives() {
                 let material = primitive.material();
                 if !materials.insert(material.index()) {
                     continue;
@@ -133,7 +135,9 @@ pub(super) fn texture_bytes(width: u32, height: u32) -> u64 {
 /// What one copy of `primitive` keeps, from its accessors' counts: its vertices (one per
 /// index when flat normals are written out for MikkTSpace, see `primitive.rs`), their
 /// skin joints and weights and morph target offsets where it has them, and its indices
-/// (up to three per index when a strip or fan becomes a list).
+/// (up to three per index when a strip or fan becomes a list). Points and lines are
+/// bounded by the same count: a [`PointsLines`](crate::PointsLines) keeps 28 bytes a vertex
+/// (under a [`Vertex`]'s 56) and at most two indices per index (a loop or strip as a list).
 fn primitive_bytes(primitive: &gltf::Primitive) -> u64 {
     let positions = primitive
         .get(&Semantic::Positions)

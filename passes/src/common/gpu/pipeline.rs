@@ -39,7 +39,17 @@ pub(crate) struct PipelineDesc<'a> {
 }
 
 impl PipelineDesc<'_> {
+    /// The pipeline, drawing triangle lists.
     pub fn build(&self, device: &wgpu::Device) -> wgpu::RenderPipeline {
+        self.build_as(device, wgpu::PrimitiveTopology::TriangleList)
+    }
+
+    /// The pipeline, drawing `topology` (the points and lines pass draws line lists).
+    pub fn build_as(
+        &self,
+        device: &wgpu::Device,
+        topology: wgpu::PrimitiveTopology,
+    ) -> wgpu::RenderPipeline {
         let options = wgpu::PipelineCompilationOptions {
             constants: self.constants,
             zero_initialize_workgroup_memory: false,
@@ -54,6 +64,7 @@ impl PipelineDesc<'_> {
                 buffers: self.buffers,
             },
             primitive: wgpu::PrimitiveState {
+                topology,
                 cull_mode: self.cull,
                 ..Default::default()
             },
