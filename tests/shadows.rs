@@ -834,20 +834,21 @@ fn the_shadow_map_parameter_sizes_the_atlas_and_its_keys() {
     };
     let run = explain("2048").expect(0);
     assert!(
-        run.stdout
-            .contains("  shadow_atlas: r32float 2048x2048\n")
+        run.stdout.contains("  shadow_atlas: r32float 2048x2048\n")
             && run.stdout.contains("  shadow_keys: buffer 16.0 MiB\n")
-            && run.stdout.contains("  shadow_depth: depth32float 2048x2048\n"),
+            && run
+                .stdout
+                .contains("  shadow_depth: depth32float 2048x2048\n"),
         "{}",
         run.stdout
     );
     explain("1000").expect(1).stderr_has(
-        "pipelines/parts/shadow_maps_compute.ron:49:33: error: pass \"shadow resolve\" \
+        "pipelines/parts/shadow_maps_compute.ron:50:33: error: pass \"shadow resolve\" \
          (shadow_resolve): slot \"atlas\": \"shadow_atlas\" is Absolute(1000, 1000), but \
          the shadow atlas must be Absolute(N, N), N a multiple of 32",
     );
     explain("0").expect(1).stderr_has(
-        "pipelines/parts/shadow_maps_compute.ron:15:40: error: parameter \"shadow_map\" is 0, \
+        "pipelines/parts/shadow_maps_compute.ron:16:40: error: parameter \"shadow_map\" is 0, \
          but the width of \"shadow_atlas\" must be 1 or more",
     );
 }

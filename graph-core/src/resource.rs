@@ -59,8 +59,10 @@ pub struct TextureDesc {
     /// holds replaces `format` and `fallback`. A pipeline states what its passes need
     /// (`depth32float-stencil8` with reversed-Z for any scene) and what suffices where
     /// the scene allows it (`depth24plus-stencil8` under `shallow_depth`); the plan says
-    /// which was chosen and why. Each must be the same kind of format as `format`, as a
-    /// fallback must.
+    /// which was chosen and why. Unlike a fallback, it may be another kind of format
+    /// (a depth format where a raster writes the texture, a color one where a compute
+    /// pass stores it): each pass accepts the formats it may meet where it runs
+    /// ([`formats_where`](Self::formats_where)), or is an error naming them.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub format_if: Vec<(Condition, TextureFormat)>,
     /// Width and height, fixed or relative to the output size compiled for.

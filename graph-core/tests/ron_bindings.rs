@@ -100,6 +100,37 @@ outputs: ["out"],
     .unwrap_or_else(|e| panic!("{e}"));
 }
 
+/// A texture whose format is a color one where a feature holds and a depth one otherwise
+/// binds one way for all of them: a full-screen pass reading it as depth, which the
+/// conditional color format cannot give, is an error naming the slot.
+#[test]
+fn a_texture_whose_conditional_format_binds_otherwise_is_an_error() {
+    let text = r#"Graph(
+features: ["compute"],
+resources: {
+    "depth": Texture(format: "depth32float", format_if: [("compute", "r32float")]),
+    "out": Texture(format: "rgba8unorm"),
+},
+passes: [
+    (name: "clear", plugin: "clear", outputs: { "target": "depth" }),
+    (name: "show", plugin: "fullscreen",
+     params: (shader: "shaders/bindings.wgsl", entry: "sample_depth",
+              bindings: [Slot(binding: 1, slot: "depth")]),
+     inputs: { "depth": "depth" },
+     outputs: { "color": "out" }),
+],
+outputs: ["out"],
+)"#;
+    let error = only_error(compile_str(text));
+    assert!(binding_error(&error.kind), "{error}");
+    assert!(
+        error
+            .to_string()
+            .contains("slot \"depth\" binds \"depth\" (depth32float"),
+        "{error}"
+    );
+}
+
 /// A compute pass running `store` (a write-only rgba8unorm storage texture at binding 2)
 /// with slot "dst" declared as `slots`.
 fn store(resources: &str, slots: &str) -> String {

@@ -56,7 +56,6 @@ pub(super) fn apply(graph: &Graph, features: &Features) -> Conditioned {
     let mut errors = Vec::new();
     undeclared_features(graph, &mut errors);
     alternatives_exclusive(graph, &mut errors);
-    super::formats::check(graph, &mut errors);
     let why = |c: &Option<Condition>| c.as_ref().and_then(|c| c.why_false(features));
     let passes: Vec<Option<String>> = graph
         .passes

@@ -1,15 +1,16 @@
 //! Conditional formats ([`TextureDesc::format_if`]), part of the conditions phase: each
 //! texture gets the format its first holding condition names, and the plan keeps why.
 //!
-//! Checked on the declared graph, like the other conditions, so that every feature set
-//! reports the same mistakes: a conditional format is the same kind of format as the one
-//! it replaces (passes are written for both). That it names declared features only is
-//! checked with every other condition's features (`conditions::undeclared_features`).
+//! A conditional format may be another kind of format than the one it replaces (a
+//! depth32float written by a raster where `cpu_device` holds, an r32float a compute pass
+//! stores otherwise): each pass checks the formats it may meet where it runs
+//! ([`TextureDesc::formats_where`] of its condition), and a pass that binds both kinds
+//! alike says so by accepting them, as the generic plugins' bindings do not. That a
+//! conditional format names declared features only is checked with every other
+//! condition's features (`conditions::undeclared_features`).
 
 use crate::condition::Features;
-use crate::error::GraphError;
-use crate::graph::Graph;
-use crate::resource::{format_name, same_kind, ResourceDesc, ResourceNode, TextureDesc};
+use crate::resource::{format_name, ResourceDesc, ResourceNode};
 
 /// Gives `resource` the format its conditions pick for `features`, leaving no
 /// conditional formats behind. Returns why the format changed (`None` where none holds
@@ -30,32 +31,6 @@ pub(super) fn choose(resource: &mut ResourceNode, features: &Features) -> Option
     texture.format = format;
     texture.fallback = None;
     Some(why)
-}
-
-/// The checks of the module documentation, on the declared graph.
-pub(super) fn check(graph: &Graph, errors: &mut Vec<GraphError>) {
-    for resource in &graph.resources {
-        let Some(texture) = resource.texture() else {
-            continue;
-        };
-        for (_, format) in &texture.format_if {
-            if !same_kind(*format, texture.format) {
-                errors.push(misfit(&resource.name, texture, *format));
-            }
-        }
-    }
-}
-
-fn misfit(resource: &str, texture: &TextureDesc, format: wgpu_types::TextureFormat) -> GraphError {
-    GraphError::InvalidResource {
-        resource: resource.to_owned(),
-        what: format!(
-            "conditional format {} is not the same kind of format as {} (aspects and \
-             sample type must agree, since passes are written for both)",
-            format_name(format),
-            format_name(texture.format)
-        ),
-    }
 }
 
 #[cfg(test)]
@@ -155,7 +130,7 @@ mod tests {
     }
 
     #[test]
-    fn undeclared_features_and_other_kinds_of_format_are_errors() {
+    fn undeclared_features_are_errors_and_other_kinds_of_format_are_not() {
         let mut graph = GraphBuilder::new();
         graph.declare_features(["shallow"]);
         graph.create_texture(
@@ -174,12 +149,6 @@ mod tests {
                 declared: "shallow".into(),
             }
         );
-        assert_eq!(
-            errors[1].to_string(),
-            "\"depth\": conditional format depth32float is not the same kind of \
-             format as depth32float-stencil8 (aspects and sample type must agree, since \
-             passes are written for both)"
-        );
-        assert_eq!(errors.len(), 2);
+        assert_eq!(errors.len(), 1);
     }
 }

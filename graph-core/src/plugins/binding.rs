@@ -255,7 +255,14 @@ fn bind_slot(
         } => {
             let handle = slots.input::<Texture>(slot)?;
             let desc = texture_desc(pass, handle)?;
-            let fits = sampled(desc.format, sample).filter(|_| multisampled == (desc.samples > 1));
+            // One binding for every format the texture may have where the pass runs.
+            let formats = desc.formats_where(pass.condition());
+            let mut bindings = formats.iter().map(|&format| sampled(format, sample));
+            let fits = bindings
+                .next()
+                .flatten()
+                .filter(|&first| bindings.all(|other| other == Some(first)))
+                .filter(|_| multisampled == (desc.samples > 1));
             let Some((aspect, sample_type)) = fits else {
                 return Err(SlotMisfit::Shape(describe(&resource, &desc)));
             };
@@ -292,7 +299,8 @@ fn bind_slot(
                 pass.storage_read(handle)
             };
             let desc = texture_desc(pass, handle)?;
-            if desc.format != format || desc.samples > 1 {
+            let formats = desc.formats_where(pass.condition());
+            if formats.iter().any(|&f| f != format) || desc.samples > 1 {
                 return Err(SlotMisfit::Shape(describe(&resource, &desc)));
             }
             let access = match (read, write) {

@@ -1,13 +1,13 @@
 //! `shadow_resolve`: the shadow atlas the light passes read, from the compute raster's
-//! keys (`shadow_raster`), the depth the hardware drew (`shadow_maps`: on a GPU the alpha
-//! MASK meshes alone, on a CPU adapter all of them), or the nearer of both at each texel.
+//! keys (`shadow_raster`) and, where the hardware drew the alpha MASK meshes
+//! (`shadow_maps`), the nearer of both at each texel.
 //!
 //! ```ron
 //! (name: "shadow resolve", plugin: "shadow_resolve",
 //!  when: "shadows",
 //!  inputs: { "keys": "shadow_keys",       // 4 bytes a texel of the atlas
-//!            "depth": "shadow_depth" },   // depth32float, the atlas's size
-//!  optional: ["keys", "depth"],           // at least one of them each frame
+//!            "depth": "shadow_depth" },   // optional: depth32float, the atlas's size
+//!  optional: ["depth"],
 //!  outputs: { "atlas": "shadow_atlas" })  // r32float, Absolute(N, N)
 //! ```
 //!
@@ -38,10 +38,9 @@ pub struct ShadowResolveParams {}
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 pub(crate) struct ShadowResolveDispatch {
     pub source: String,
-    /// The compute raster's keys, and the hardware's depth: each where the file gives
-    /// it, and may be dropped by the plan (the keys on a CPU adapter, the depth in a
-    /// GPU's scene without alpha MASK meshes).
-    pub keys: Option<BufferHandle>,
+    pub keys: BufferHandle,
+    /// The hardware's depth of the alpha MASK meshes, where the file gives it (an
+    /// optional read: dropped in scenes without them).
     pub depth: Option<TextureHandle>,
     pub atlas: TextureHandle,
 }
@@ -65,21 +64,11 @@ impl Plugin for ShadowResolve {
             pass.storage_write(h)
         })?;
         check_atlas(slots, "atlas", desc.size)?;
-        let keys = match slots.kind("keys") {
-            Some(_) => Some(keys(pass, slots, desc.size)?),
-            None => None,
-        };
+        let keys = keys(pass, slots, desc.size)?;
         let depth = match slots.kind("depth") {
             Some(_) => Some(depth(pass, slots, desc.size)?),
             None => None,
         };
-        if keys.is_none() && depth.is_none() {
-            return Err(PluginError::Invalid(
-                "the pass resolves nothing: give it \"keys\" (shadow_raster's), \"depth\" \
-                 (shadow_maps' atlas) or both"
-                    .to_owned(),
-            ));
-        }
         let dispatch = ShadowResolveDispatch {
             source: shaders::SHADOW_RESOLVE.compose(1)?.source().to_owned(),
             keys,
@@ -114,8 +103,8 @@ fn depth(
 
 #[cfg(feature = "gpu")]
 mod gpu {
-    //! Recording: the pipeline for what the plan gives (keys, depth or both), each made
-    //! the first time it records.
+    //! Recording: the pipeline with the depth or without, as the plan gives it, each
+    //! made the first time it records.
 
     use super::ShadowResolveDispatch;
     use crate::common::gpu::bindings::TextureBindings;
@@ -133,28 +122,23 @@ mod gpu {
     impl Recorder for ShadowResolveDispatch {
         type Stage = Compute;
         type Scene = ();
-        /// By what the plan gives: the keys, the depth, both.
-        type State = [Option<Variant>; 3];
+        /// Without the depth, and with it.
+        type State = [Option<Variant>; 2];
 
         fn reads_scene(&self) -> bool {
             false
         }
 
         fn build(&self, _: &Frame<'_, '_, Self>) -> Result<Self::State, String> {
-            Ok([None, None, None])
+            Ok([None, None])
         }
 
         fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
             let resources = frame.resources;
-            let keys = self.keys.filter(|k| resources.has(*k));
             let depth = self.depth.filter(|d| resources.has(*d));
-            let (index, entry) = match (keys, depth) {
-                (Some(_), None) => (0, "cs_resolve_keys"),
-                (None, Some(_)) => (1, "cs_resolve_depth"),
-                (Some(_), Some(_)) => (2, "cs_resolve_both"),
-                (None, None) => {
-                    return Err("shadow resolve: the plan gives neither keys nor depth".into())
-                }
+            let (index, entry) = match depth {
+                None => (0, "cs_resolve_keys"),
+                Some(_) => (1, "cs_resolve_both"),
             };
             let variant = state[index].get_or_insert_with(|| {
                 let mut inputs = vec![Input {
@@ -169,7 +153,7 @@ mod gpu {
                     aspect: Aspect::All,
                     texels: Texels::Float,
                 }));
-                let keys: Vec<_> = keys.map(|keys| (0, keys)).into_iter().collect();
+                let keys = [(0, self.keys)];
                 let bindings = TextureBindings::with_buffers(resources, &inputs, &keys, &[]);
                 let device = frame.device;
                 let layout = pipeline_layout(device, &[Some(&bindings.layout)]);

@@ -1,6 +1,6 @@
 // The shadow atlas as the light passes read it (passes/shadow_resolve.rs): each texel's
-// depth from the compute raster's keys, the hardware's depth, or the nearer of both; the
-// far plane (1) where neither drew.
+// depth from the compute raster's keys, or the nearer of it and the hardware's depth of
+// the alpha MASK meshes; the far plane (1) where nothing was drawn.
 
 @group(0) @binding(0) var<storage, read> shadow_keys: array<u32>;
 @group(0) @binding(1) var drawn: texture_2d<f32>;
@@ -22,14 +22,6 @@ fn drawn_depth(t: vec2<u32>) -> f32 {
 fn cs_resolve_keys(@builtin(global_invocation_id) id: vec3<u32>) {
     if all(id.xy < textureDimensions(atlas)) {
         textureStore(atlas, id.xy, vec4<f32>(key_depth(id.xy), 0.0, 0.0, 1.0));
-    }
-}
-
-// The hardware's depth alone.
-@compute @workgroup_size(8, 8)
-fn cs_resolve_depth(@builtin(global_invocation_id) id: vec3<u32>) {
-    if all(id.xy < textureDimensions(atlas)) {
-        textureStore(atlas, id.xy, vec4<f32>(drawn_depth(id.xy), 0.0, 0.0, 1.0));
     }
 }
 
