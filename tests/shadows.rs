@@ -66,6 +66,12 @@ fn square_parts() -> Parts {
 
 /// `parts` seen straight down, as [`square_over_plane`] says.
 fn square_scene(parts: Parts) -> Scene {
+    seen_from_above(parts, "square over plane")
+}
+
+/// `parts` as the scene `name`, seen straight down by an orthographic camera spanning x
+/// and z in [-2, 2], image x along +x and image y along +z.
+fn seen_from_above(parts: Parts, name: &str) -> Scene {
     let camera = Camera::look_at(
         "from above",
         DVec3::new(0.0, 10.0, 0.0),
@@ -78,7 +84,20 @@ fn square_scene(parts: Parts) -> Scene {
             zfar: 20.0,
         },
     );
-    parts.scene("square over plane", camera)
+    parts.scene(name, camera)
+}
+
+/// A point light 1.2 above the origin.
+fn bulb() -> Light {
+    Light {
+        name: "bulb".into(),
+        kind: LightKind::Point,
+        color: [1.0, 1.0, 1.0],
+        intensity: 4.0,
+        position: DVec3::new(0.0, 1.2, 0.0),
+        direction: Vec3::NEG_Y,
+        range: None,
+    }
 }
 
 /// `scene` through `pipeline` with `shadows`, compiled for its features as `rgraph
@@ -192,29 +211,9 @@ fn a_point_light_s_shadow_is_the_central_projection_across_cube_faces() {
     };
     parts.mesh("ground", &[rect(0.0, (-4.0, 4.0), (-4.0, 4.0))], grey);
     parts.mesh("square", &[rect(1.0, (0.0, 0.25), (-0.125, 0.125))], grey);
-    parts.lights.push(Light {
-        name: "bulb".into(),
-        kind: LightKind::Point,
-        color: [1.0, 1.0, 1.0],
-        intensity: 4.0,
-        position: DVec3::new(0.0, 1.2, 0.0),
-        direction: Vec3::NEG_Y,
-        range: None,
-    });
+    parts.lights.push(bulb());
     parts.ambient = [0.02; 3];
-    let camera = Camera::look_at(
-        "from above",
-        DVec3::new(0.0, 10.0, 0.0),
-        DVec3::ZERO,
-        DVec3::NEG_Z,
-        Projection::Orthographic {
-            xmag: (SPAN / 2.0) as f32,
-            ymag: (SPAN / 2.0) as f32,
-            znear: 1.0,
-            zfar: 20.0,
-        },
-    );
-    let scene = parts.scene("point light over a square", camera);
+    let scene = seen_from_above(parts, "point light over a square");
     assert!(
         SceneFeatures::of(&scene).shadows,
         "a point light casts shadows"
@@ -295,29 +294,9 @@ fn the_compute_raster_clips_casters_at_a_light_s_near_plane() {
     ];
     parts.mesh("ground", &[ground], grey);
     parts.mesh("wall", &[wall], grey);
-    parts.lights.push(Light {
-        name: "bulb".into(),
-        kind: LightKind::Point,
-        color: [1.0, 1.0, 1.0],
-        intensity: 4.0,
-        position: DVec3::new(0.0, 1.2, 0.0),
-        direction: Vec3::NEG_Y,
-        range: None,
-    });
+    parts.lights.push(bulb());
     parts.ambient = [0.02; 3];
-    let camera = Camera::look_at(
-        "from above",
-        DVec3::new(0.0, 10.0, 0.0),
-        DVec3::ZERO,
-        DVec3::NEG_Z,
-        Projection::Orthographic {
-            xmag: (SPAN / 2.0) as f32,
-            ymag: (SPAN / 2.0) as f32,
-            znear: 1.0,
-            zfar: 20.0,
-        },
-    );
-    let scene = parts.scene("point light beside a wall", camera);
+    let scene = seen_from_above(parts, "point light beside a wall");
     for filter in [ShadowFilter::Hard, ShadowFilter::Pcf] {
         let shadows = Shadows { filter, lights: 1 };
         let hardware = render(DEFAULT, &scene, (N, N), shadows);
