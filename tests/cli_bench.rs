@@ -744,7 +744,7 @@ fn warmup_frames_keep_pipeline_creation_out_of_the_rounds() {
     assert_eq!(number(&json, "warmup"), 1.0);
 }
 
-/// A round made slow through the bench's test hook (its GPU times three times as long)
+/// A round made slow through the bench's test hook (its GPU times ten times as long)
 /// flags every row it slowed, in results.json and results.md, and the notes say that
 /// the figures were changed.
 #[test]
@@ -792,7 +792,7 @@ fn a_fake_slow_round_is_flagged() {
         .iter()
         .map(|v| v.as_f64().unwrap())
         .collect();
-    // Round 2 is the slowest by far: three times as long as its real frames.
+    // Round 2 is the slowest by far: ten times as long as its real frames.
     let slowest = (0..rounds.len()).max_by(|a, b| rounds[*a].total_cmp(&rounds[*b]));
     assert_eq!(slowest, Some(1), "{rounds:?}");
     let flag = &figures["flag"];
