@@ -20,7 +20,7 @@ use image::RgbaImage;
 use rgraph_core::gpu::{resident_bytes, AdapterChoice, DeviceObjects};
 use rgraph_passes::Overrides;
 use rgraph_scene::analysis::Features as SceneFeatures;
-use rgraph_scene::{AlphaMode, Scene};
+use rgraph_scene::{AlphaMode, Scene, Topology};
 
 use super::CommandError;
 use crate::cli::{AssetArgs, RenderArgs};
@@ -79,6 +79,7 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     let blended = draws_blended(&pipeline.scene);
     let environment = SceneFeatures::of(&pipeline.scene).environment;
     let particles = pipeline.scene.particles().count();
+    let points_lines = points_and_segments(&pipeline.scene);
     let mut prepared = session.prepare(pipeline, args.frame.size())?;
 
     // The opaque passes skip BLEND meshes and only a `transparent` pass draws them; debug
@@ -108,6 +109,20 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
         progress.note(format!(
             "warning: the scene has {particles} particles, but {} has no `particles` pass \
              to draw them: they are left out (pipelines/particles_*.ron draw them)",
+            args.frame.pipeline.display()
+        ));
+    }
+
+    // And glTF points and lines: only a `points_lines` pass draws them.
+    if args.frame.view == view::FINAL && points_lines != (0, 0) && !prepared.runs("points_lines") {
+        let what = match points_lines {
+            (points, 0) => format!("{points} points"),
+            (0, segments) => format!("{segments} line segments"),
+            (points, segments) => format!("{points} points and {segments} line segments"),
+        };
+        progress.note(format!(
+            "warning: the scene has {what}, but {} has no `points_lines` pass to draw them: \
+             they are left out (pipelines/parts/points_lines.ron draws them)",
             args.frame.pipeline.display()
         ));
     }
@@ -198,4 +213,15 @@ fn load_scene(
         progress.note(format!("warning: {warning}"));
     }
     Ok(Arc::new(scene))
+}
+
+/// How many points and line segments `scene` holds.
+fn points_and_segments(scene: &Scene) -> (usize, usize) {
+    scene
+        .points_lines
+        .iter()
+        .fold((0, 0), |(points, segments), p| match p.topology {
+            Topology::Points => (points + p.indices.len(), segments),
+            Topology::Lines => (points, segments + p.indices.len() / 2),
+        })
 }
