@@ -67,6 +67,13 @@
 #   variants    FXAA, SSAO and the light pre-pass against deferred and forward MSAA on every
 #               built-in scene, with the reference (issue 16's rows; not in the default set:
 #               BENCH_PARTS=variants)
+#   shadows     issue 39's shadow budgets: the default pipeline (its maps rasterised in
+#               compute) beside the same file with the hardware drawing them
+#               (parts/shadow_maps.ron, a copy made for the run), without the reference, on
+#               builtin:dense with every light shadowed into shadow-budget-dense and on
+#               builtin:lights?count=256 with 64 into shadow-budget-lights; then the atlas
+#               side 512..8192 on builtin:spheres and builtin:dense with the reference into
+#               shadow-resolution (not in the default set)
 #   particles   seed 001's tables on builtin:smoke, the three particle pipelines
 #               (full, low and mixed resolution), FLIP against particles_full_res:
 #               particles-scaleS (Table 23-1 at off-screen scales 2x2 and 4x4, the depth
@@ -232,6 +239,22 @@ for part in $parts; do
       "$bin" bench "${variants[@]}" --width "$width" --height "$height" "${common[@]}" \
         --out-dir "$out/variants" || status=$?
       ;;
+    shadows)
+      hardware=pipelines/visibility_hw_shadows.ron
+      sed 's#parts/shadow_maps_compute.ron#parts/shadow_maps.ron#' pipelines/visibility_msaa_4x.ron \
+        > "$hardware"
+      for budget in dense:builtin:dense:9 'lights:builtin:lights?count=256:64'; do
+        name=${budget%%:*} rest=${budget#*:}
+        scene=${rest%:*} lights=${rest##*:}
+        "$bin" bench --pipeline pipelines/visibility_msaa_4x.ron --pipeline "$hardware" \
+          --scene "$scene" --shadowed-lights "$lights" --no-reference --width "$width" \
+          --height "$height" "${common[@]}" --out-dir "$out/shadow-budget-$name" || status=$?
+      done
+      rm -f "$hardware"
+      "$bin" bench --pipeline pipelines/visibility_msaa_4x.ron --scene builtin:spheres \
+        --scene builtin:dense --param shadow_map=512,1024,2048,4096,8192 --width "$width" \
+        --height "$height" "${common[@]}" --out-dir "$out/shadow-resolution" || status=$?
+      ;;
     particles)
       particles=(--pipeline pipelines/particles_full_res.ron --pipeline pipelines/particles_low_res.ron
                  --pipeline pipelines/particles_mixed_res.ron)
@@ -257,7 +280,7 @@ for part in $parts; do
         || status=$?
       ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, scale, scale-SWEEP, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, particles)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, scale, scale-SWEEP, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, shadows, particles)" >&2
       status=2
       ;;
   esac
