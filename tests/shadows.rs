@@ -797,6 +797,56 @@ fn a_forward_shadow_view_without_its_atlas_is_an_error() {
     rgraph(&["validate", &given]).expect(0);
 }
 
+/// `shadow_resolve`'s slots are checked against its atlas: the keys must hold 4 bytes a
+/// texel of it and the alpha MASK depth must be its size, each an error naming the pass,
+/// the slot and the resource (`rgraph validate`, no GPU); the right sizes validate.
+#[test]
+fn shadow_resolve_s_inputs_must_fit_its_atlas() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let write = |name: &str, keys: u32, depth: u32| {
+        let path = dir.path().join(name);
+        std::fs::write(
+            &path,
+            format!(
+                r#"Graph(
+    resources: {{
+        "keys": Buffer(per_texel: 4, texels: ({keys}, {keys})),
+        "masked": Texture(format: "depth32float", size: Absolute({depth}, {depth})),
+        "atlas": Texture(format: "r32float", size: Absolute(256, 256)),
+    }},
+    passes: [
+        (name: "raster", plugin: "shadow_raster", outputs: {{ "keys": "keys" }}),
+        (name: "maps", plugin: "shadow_maps", inputs: {{ "keys": "keys" }},
+         outputs: {{ "atlas": "masked" }}),
+        (name: "resolve", plugin: "shadow_resolve",
+         inputs: {{ "keys": "keys", "depth": "masked" }}, outputs: {{ "atlas": "atlas" }}),
+    ],
+    outputs: ["atlas"],
+)"#
+            ),
+        )
+        .expect("a file in the temporary directory");
+        path.to_str().expect("temp paths are UTF-8").to_owned()
+    };
+    let (keys, depth) = (write("keys.ron", 128, 256), write("depth.ron", 256, 128));
+    for (file, says) in [
+        (
+            keys,
+            "pass \"resolve\" (shadow_resolve): slot \"keys\": \"keys\" holds 65536 bytes, \
+             but the keys of a Absolute(256, 256) atlas take 4 bytes a texel",
+        ),
+        (
+            depth,
+            "pass \"resolve\" (shadow_resolve): slot \"depth\": \"masked\" is \
+             Absolute(128, 128), but it must be the atlas's size, Absolute(256, 256)",
+        ),
+    ] {
+        let run = rgraph(&["validate", &file]).expect(1);
+        assert!(run.stdout.contains(says), "{}", run.stdout);
+    }
+    rgraph(&["validate", &write("fits.ron", 256, 256)]).expect(0);
+}
+
 /// The atlas's side is the graph parameter `shadow_map`, which also sizes the compute
 /// raster's keys (4 bytes a texel); a side that is not a multiple of the map grid's 32
 /// units, or 0, is an error at the part's line naming the resource.

@@ -54,17 +54,18 @@ pub(crate) fn keys(
         write: false,
     };
     pass.buffer(keys, read);
-    let bytes = pass.resource(keys).buffer().map(|d| d.size);
+    // A slot that takes a buffer holds one: its description is there.
+    let bytes = pass.resource(keys).buffer().map_or(0, |d| d.size);
     let atlas = match size {
         Size::Absolute(w, _) => Some(w),
         _ => None,
     };
-    if bytes.and_then(atlas_of_keys) != atlas || atlas.is_none() {
+    if atlas_of_keys(bytes) != atlas || atlas.is_none() {
         return Err(PluginError::Slot {
             slot: "keys".to_owned(),
             resource: slots.resource("keys").unwrap_or("keys").to_owned(),
             why: format!(
-                "holds {bytes:?} bytes, but the keys of a {size:?} atlas take 4 bytes a \
+                "holds {bytes} bytes, but the keys of a {size:?} atlas take 4 bytes a \
                  texel: Buffer(per_texel: 4, texels: (N, N)) for Absolute(N, N)"
             ),
         });
