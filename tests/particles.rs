@@ -503,21 +503,7 @@ fn render_warns_when_the_pipeline_leaves_the_scenes_particles_out() {
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("frame.png");
     let render = |pipeline: &str| {
-        crate::cli_support::rgraph(&[
-            "render",
-            "--pipeline",
-            pipeline,
-            "--scene",
-            "builtin:smoke?count=40",
-            "--width",
-            "64",
-            "--height",
-            "36",
-            "--out",
-            out.to_str().unwrap(),
-        ])
-        .expect(0)
-        .stderr
+        crate::cli_support::render_stderr(pipeline, "builtin:smoke?count=40", (64, 36), &out)
     };
     let warning = "warning: the scene has 40 particles, but pipelines/deferred_msaa_4x_tiled.ron \
                    has no `particles` pass to draw them";

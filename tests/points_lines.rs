@@ -8,6 +8,7 @@
 
 use serde_json::{json, Value};
 
+use crate::cli_support::{render_stderr, FORWARD_OPAQUE_ONLY};
 use crate::deferred_support::{gpu, PipelineFile, Render};
 use crate::gltf_writer::{temp_dir, Gltf};
 use rgraph_core::file::{load_file, Registry};
@@ -379,44 +380,10 @@ fn pipelines_add_the_points_lines_passes_for_such_scenes_only() {
 fn render_warns_when_the_pipeline_leaves_the_scenes_lines_out() {
     let dir = temp_dir("points_lines_warning");
     let without = dir.join("forward_without_points_lines.ron");
-    std::fs::write(
-        &without,
-        r#"Graph(
-    resources: {
-        "hdr": Texture(format: "rgba16float", samples: 4),
-        "depth": Texture(format: "depth24plus-stencil8", samples: 4),
-        "resolved": Texture(format: "rgba16float"),
-        "color": Texture(format: "rgba8unorm-srgb"),
-    },
-    passes: [
-        (name: "forward", plugin: "forward", outputs: { "hdr": "hdr", "depth": "depth" }),
-        (name: "resolve", plugin: "resolve", inputs: { "hdr": "hdr" },
-         outputs: { "resolved": "resolved" }),
-        (name: "tonemap", plugin: "tonemap", inputs: { "hdr": "resolved" },
-         outputs: { "color": "color" }),
-    ],
-    outputs: ["color"],
-)"#,
-    )
-    .unwrap();
-    let render = |pipeline: &str| {
-        let out = dir.join("frame.png");
-        crate::cli_support::rgraph(&[
-            "render",
-            "--pipeline",
-            pipeline,
-            "--scene",
-            "tests/fixtures/points_lines/mixed.gltf",
-            "--width",
-            "32",
-            "--height",
-            "32",
-            "--out",
-            out.to_str().unwrap(),
-        ])
-        .expect(0)
-        .stderr
-    };
+    std::fs::write(&without, FORWARD_OPAQUE_ONLY).unwrap();
+    let out = dir.join("frame.png");
+    let scene = "tests/fixtures/points_lines/mixed.gltf";
+    let render = |pipeline: &str| render_stderr(pipeline, scene, (32, 32), &out);
     let stderr = render(without.to_str().unwrap());
     assert!(
         stderr.contains("warning: the scene has 4 line segments, but")

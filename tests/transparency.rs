@@ -9,6 +9,7 @@ use std::f32::consts::FRAC_PI_8;
 
 use serde_json::json;
 
+use crate::cli_support::{render_stderr, FORWARD_OPAQUE_ONLY};
 use crate::deferred_support::measure::{pixel_diff, pixels_within};
 use crate::deferred_support::{gpu, PipelineFile, Render};
 use crate::gltf_writer::{fixture, temp_dir, Gltf};
@@ -818,45 +819,10 @@ fn render_warns_when_the_pipeline_leaves_blend_meshes_out() {
     );
     let dir = temp_dir("blend_warning_pipeline");
     let opaque_only = dir.join("forward_opaque_only.ron");
-    std::fs::write(
-        &opaque_only,
-        r#"Graph(
-    resources: {
-        "hdr": Texture(format: "rgba16float", samples: 4),
-        "depth": Texture(format: "depth24plus-stencil8", samples: 4),
-        "resolved": Texture(format: "rgba16float"),
-        "color": Texture(format: "rgba8unorm-srgb"),
-    },
-    passes: [
-        (name: "forward", plugin: "forward", outputs: { "hdr": "hdr", "depth": "depth" }),
-        (name: "resolve", plugin: "resolve", inputs: { "hdr": "hdr" },
-         outputs: { "resolved": "resolved" }),
-        (name: "tonemap", plugin: "tonemap", inputs: { "hdr": "resolved" },
-         outputs: { "color": "color" }),
-    ],
-    outputs: ["color"],
-)"#,
-    )
-    .unwrap();
+    std::fs::write(&opaque_only, FORWARD_OPAQUE_ONLY).unwrap();
     let warning = "warning: the scene has alpha BLEND materials, but";
-    let render = |pipeline: &str| {
-        let out = dir.join("frame.png");
-        crate::cli_support::rgraph(&[
-            "render",
-            "--pipeline",
-            pipeline,
-            "--scene",
-            &file,
-            "--width",
-            "64",
-            "--height",
-            "64",
-            "--out",
-            out.to_str().unwrap(),
-        ])
-        .expect(0)
-        .stderr
-    };
+    let out = dir.join("frame.png");
+    let render = |pipeline: &str| render_stderr(pipeline, &file, (64, 64), &out);
     let stderr = render(opaque_only.to_str().unwrap());
     assert!(
         stderr.contains(warning) && stderr.contains("has no `transparent` pass"),

@@ -50,3 +50,49 @@ impl Run {
         self
     }
 }
+
+/// A forward MSAA graph file of the opaque scene alone: no pass draws alpha BLEND
+/// materials, points or lines, for the tests of `rgraph render`'s warnings that a
+/// pipeline leaves part of a scene out.
+pub const FORWARD_OPAQUE_ONLY: &str = r#"Graph(
+    resources: {
+        "hdr": Texture(format: "rgba16float", samples: 4),
+        "depth": Texture(format: "depth24plus-stencil8", samples: 4),
+        "resolved": Texture(format: "rgba16float"),
+        "color": Texture(format: "rgba8unorm-srgb"),
+    },
+    passes: [
+        (name: "forward", plugin: "forward", outputs: { "hdr": "hdr", "depth": "depth" }),
+        (name: "resolve", plugin: "resolve", inputs: { "hdr": "hdr" },
+         outputs: { "resolved": "resolved" }),
+        (name: "tonemap", plugin: "tonemap", inputs: { "hdr": "resolved" },
+         outputs: { "color": "color" }),
+    ],
+    outputs: ["color"],
+)"#;
+
+/// What `rgraph render` of `scene` through `pipeline` at `size` says on stderr, the
+/// frame written to `out`; fails unless it succeeds.
+pub fn render_stderr(
+    pipeline: &str,
+    scene: &str,
+    (width, height): (u32, u32),
+    out: &Path,
+) -> String {
+    let (width, height) = (width.to_string(), height.to_string());
+    rgraph(&[
+        "render",
+        "--pipeline",
+        pipeline,
+        "--scene",
+        scene,
+        "--width",
+        &width,
+        "--height",
+        &height,
+        "--out",
+        out.to_str().expect("temp paths are UTF-8"),
+    ])
+    .expect(0)
+    .stderr
+}
