@@ -1,8 +1,8 @@
 //! The light passes' optional `shadows` input: the shadow atlas, the depth the
 //! `shadow_maps` pass draws (passes/shadow_maps.rs) or the r32float `shadow_resolve`
-//! writes from the compute raster's keys on a GPU (passes/shadow_resolve.rs), through which each shadowed light's direct light is
-//! scaled by the share of its shadow-map filter's taps that see the surface
-//! (shadow.wgsl). Without the slot the generated WGSL is shadow_none.wgsl: every light
+//! writes from the compute raster's keys on a GPU (passes/shadow_resolve.rs), through
+//! which each shadowed light's direct light is scaled by the share of its shadow-map
+//! filter's taps that see the surface (shadow.wgsl). Without the slot the generated WGSL is shadow_none.wgsl: every light
 //! reaches every surface, and the image is the unshadowed pass's, bit for bit.
 
 use rgraph_core::file::{PluginError, Slots};
