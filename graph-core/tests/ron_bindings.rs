@@ -81,23 +81,30 @@ fn a_float_texture_where_the_shader_wants_depth_is_an_error() {
     ));
 }
 
-#[test]
-fn a_depth_texture_binds_as_texture_depth_2d() {
-    compile_str(
+/// A graph declaring `features`, whose texture "depth" (`depth`, its declaration) is
+/// cleared and then read by a full-screen pass as `texture_depth_2d`.
+fn show_depth(features: &str, depth: &str) -> String {
+    format!(
         r#"Graph(
-resources: { "depth": Texture(format: "depth32float"), "out": Texture(format: "rgba8unorm") },
+features: [{features}],
+resources: {{ "depth": {depth}, "out": Texture(format: "rgba8unorm") }},
 passes: [
-    (name: "clear", plugin: "clear", outputs: { "target": "depth" }),
+    (name: "clear", plugin: "clear", outputs: {{ "target": "depth" }}),
     (name: "show", plugin: "fullscreen",
      params: (shader: "shaders/bindings.wgsl", entry: "sample_depth",
               bindings: [Slot(binding: 1, slot: "depth")]),
-     inputs: { "depth": "depth" },
-     outputs: { "color": "out" }),
+     inputs: {{ "depth": "depth" }},
+     outputs: {{ "color": "out" }}),
 ],
 outputs: ["out"],
-)"#,
+)"#
     )
-    .unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn a_depth_texture_binds_as_texture_depth_2d() {
+    compile_str(&show_depth("", r#"Texture(format: "depth32float")"#))
+        .unwrap_or_else(|e| panic!("{e}"));
 }
 
 /// A texture whose format is a color one where a feature holds and a depth one otherwise
@@ -105,23 +112,11 @@ outputs: ["out"],
 /// conditional color format cannot give, is an error naming the slot.
 #[test]
 fn a_texture_whose_conditional_format_binds_otherwise_is_an_error() {
-    let text = r#"Graph(
-features: ["compute"],
-resources: {
-    "depth": Texture(format: "depth32float", format_if: [("compute", "r32float")]),
-    "out": Texture(format: "rgba8unorm"),
-},
-passes: [
-    (name: "clear", plugin: "clear", outputs: { "target": "depth" }),
-    (name: "show", plugin: "fullscreen",
-     params: (shader: "shaders/bindings.wgsl", entry: "sample_depth",
-              bindings: [Slot(binding: 1, slot: "depth")]),
-     inputs: { "depth": "depth" },
-     outputs: { "color": "out" }),
-],
-outputs: ["out"],
-)"#;
-    let error = only_error(compile_str(text));
+    let text = show_depth(
+        r#""compute""#,
+        r#"Texture(format: "depth32float", format_if: [("compute", "r32float")])"#,
+    );
+    let error = only_error(compile_str(&text));
     assert!(binding_error(&error.kind), "{error}");
     assert!(
         error
