@@ -5,6 +5,8 @@
 //! the `shadows` and `cascades` debug views show the visibility term and the cascades,
 //! and the command line refuses shadow settings it cannot honour.
 
+use std::path::Path;
+
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::glam::{DVec3, Vec3};
 use rgraph_scene::{AlphaMode, Camera, Light, LightKind, Projection, Scene};
@@ -751,10 +753,10 @@ fn every_lit_pipeline_shadows_opaque_and_blended_receivers() {
 fn a_forward_shadow_view_without_its_atlas_is_an_error() {
     let dir = tempfile::tempdir().expect("a temporary directory");
     let write = |name: &str, inputs: &str| {
-        let path = dir.path().join(name);
-        std::fs::write(
-            &path,
-            format!(
+        write_graph(
+            dir.path(),
+            name,
+            &format!(
                 r#"Graph(
     resources: {{
         "view": Texture(format: "rgba8unorm"),
@@ -770,8 +772,6 @@ fn a_forward_shadow_view_without_its_atlas_is_an_error() {
 )"#
             ),
         )
-        .expect("a file in the temporary directory");
-        path.to_str().expect("temp paths are UTF-8").to_owned()
     };
     let missing = write("missing.ron", "");
     let optional = write(
@@ -789,9 +789,7 @@ fn a_forward_shadow_view_without_its_atlas_is_an_error() {
              cascades draws the shadow maps: the read must be required",
         ),
     ] {
-        // `validate` reports on stdout, with each file's verdict.
-        let run = rgraph(&["validate", &file]).expect(1);
-        assert!(run.stdout.contains(says), "{}", run.stdout);
+        assert_invalid(&file, says);
     }
     let given = write("given.ron", r#"inputs: { "shadows": "atlas" },"#);
     rgraph(&["validate", &given]).expect(0);
@@ -804,10 +802,10 @@ fn a_forward_shadow_view_without_its_atlas_is_an_error() {
 fn shadow_resolve_s_inputs_must_fit_its_atlas() {
     let dir = tempfile::tempdir().expect("a temporary directory");
     let write = |name: &str, keys: u32, depth: u32| {
-        let path = dir.path().join(name);
-        std::fs::write(
-            &path,
-            format!(
+        write_graph(
+            dir.path(),
+            name,
+            &format!(
                 r#"Graph(
     resources: {{
         "keys": Buffer(per_texel: 4, texels: ({keys}, {keys})),
@@ -825,8 +823,6 @@ fn shadow_resolve_s_inputs_must_fit_its_atlas() {
 )"#
             ),
         )
-        .expect("a file in the temporary directory");
-        path.to_str().expect("temp paths are UTF-8").to_owned()
     };
     let (keys, depth) = (write("keys.ron", 128, 256), write("depth.ron", 256, 128));
     for (file, says) in [
@@ -841,10 +837,23 @@ fn shadow_resolve_s_inputs_must_fit_its_atlas() {
              Absolute(128, 128), but it must be the atlas's size, Absolute(256, 256)",
         ),
     ] {
-        let run = rgraph(&["validate", &file]).expect(1);
-        assert!(run.stdout.contains(says), "{}", run.stdout);
+        assert_invalid(&file, says);
     }
     rgraph(&["validate", &write("fits.ron", 256, 256)]).expect(0);
+}
+
+/// Writes graph file `name` holding `text` into `dir`, returning its path.
+fn write_graph(dir: &Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("a file in the temporary directory");
+    path.to_str().expect("temp paths are UTF-8").to_owned()
+}
+
+/// `rgraph validate FILE` fails, saying `says`: it reports on stdout, with each file's
+/// verdict.
+fn assert_invalid(file: &str, says: &str) {
+    let run = rgraph(&["validate", file]).expect(1);
+    assert!(run.stdout.contains(says), "{}", run.stdout);
 }
 
 /// The atlas's side is the graph parameter `shadow_map`, which also sizes the compute
