@@ -5,10 +5,12 @@
 //! pass takes), within [`TOLERANCE`] pixels, for a camera orbit and a moving object, in
 //! the default pipeline's three ways of reading surfaces: a raster pass's IDs (lavapipe's
 //! branch), a compute rasteriser's keys (the GPU branch), and a G-buffer's depth (feature
-//! `untabled_textures`), which moves points with the camera alone, so it is checked on the
-//! orbit only.
+//! `untabled_textures`): with its mesh channel (the TAA preset's G-buffer), whose points
+//! move with their meshes, and without (the default pipeline's), whose points move with the
+//! camera alone, so it is checked on the orbit only.
 
 use rgraph_core::Features;
+use rgraph_passes::gpu_scene::jitter;
 use rgraph_scene::glam::{DMat4, DVec2, DVec3, DVec4};
 use rgraph_scene::{Camera, DepthConvention, Projection, Scene};
 
@@ -21,6 +23,8 @@ const SIZE: (u32, u32) = (96, 64);
 const TOLERANCE: f64 = 0.05;
 const DEFAULT: PipelineFile = PipelineFile::for_device("visibility_msaa_4x.ron");
 const DEFAULT_GPU: PipelineFile = PipelineFile::gpu_branch("visibility_msaa_4x.ron");
+/// The default pipeline with TAA, whose G-buffer (untabled textures) records meshes.
+const TAA: PipelineFile = PipelineFile::for_device("msaa_4x_taa.ron");
 /// Sample 0 of 4 within the pixel (WebGPU's standard positions).
 const SAMPLE_0: DVec2 = DVec2::new(0.375, 0.125);
 
@@ -150,10 +154,16 @@ fn check(pipeline: PipelineFile, features: Features, moves: (&Camera, &Camera, D
     frame.next(inputs);
     let motion = frame.hdr(&gpu, "motion");
     // A visibility buffer's motion is its triangle's at the pixel's centre; a depth
-    // buffer's the point sample 0 holds (motion_depth.wgsl).
+    // buffer's the point sample 0 holds (motion_depth.wgsl), which a jittered frame
+    // (TAA's: the second frame is frame 1, jittered by half a pixel's span at 4x) shows
+    // moved by the jitter.
     let within = match features.contains("untabled_textures") {
         true => SAMPLE_0,
         false => DVec2::splat(0.5),
+    };
+    let within = match pipeline == TAA {
+        true => within - DVec2::from(jitter(1).map(f64::from)) * 0.5,
+        false => within,
     };
     let checked = expected(now, before, box_before, within);
     let mut worst = (0.0, (0, 0), DVec2::ZERO, DVec2::ZERO);
@@ -201,8 +211,13 @@ fn an_orbit_moves_every_pixel_as_the_camera_turns() {
     for pipeline in [DEFAULT, DEFAULT_GPU] {
         check(pipeline, Features::new(), (&now, &before, box_before));
     }
-    let gbuffer: Features = ["untabled_textures".to_string()].into_iter().collect();
-    check(DEFAULT, gbuffer, (&now, &before, box_before));
+    check(DEFAULT, gbuffer(), (&now, &before, box_before));
+    check(TAA, gbuffer(), (&now, &before, box_before));
+}
+
+/// The features that make the default pipeline take its G-buffer.
+fn gbuffer() -> Features {
+    ["untabled_textures".to_string()].into_iter().collect()
 }
 
 #[test]
@@ -211,6 +226,15 @@ fn a_moving_object_moves_its_own_pixels() {
     for pipeline in [DEFAULT, DEFAULT_GPU] {
         check(pipeline, Features::new(), (&now, &before, box_before));
     }
+    check(TAA, gbuffer(), (&now, &before, box_before));
+}
+
+/// A G-buffer's mesh channel composes a mesh's motion with the camera's.
+#[test]
+fn a_moving_object_seen_by_an_orbiting_camera_moves_by_both() {
+    let (now, before, _) = orbit();
+    let (_, _, box_before) = moving_box();
+    check(TAA, gbuffer(), (&now, &before, box_before));
 }
 
 #[test]
@@ -223,4 +247,22 @@ fn a_first_frame_has_no_motion() {
     let motion = frame.hdr(&gpu, "motion");
     let moved = motion.iter().filter(|m| m[0] != 0.0 || m[1] != 0.0).count();
     assert_eq!(moved, 0, "{moved} pixels of a first frame have motion");
+}
+
+/// A mesh channel is for a depth buffer's points: a compute rasteriser's keys hold their
+/// triangles already, and `rgraph validate` says so, naming the pass.
+#[test]
+fn a_mesh_channel_beside_keys_is_refused() {
+    let edited = crate::common::copied_pipeline(
+        "msaa_4x_taa.ron",
+        &[(
+            "\"motion vectors (untabled textures)\": (inputs: { \"depth\": \"depth\", \"mesh\": \"mesh\" }),",
+            "\"motion vectors\": (inputs: { \"samples\": \"samples\", \"mesh\": \"mesh\" }),",
+        )],
+    );
+    let path = edited.path.to_str().expect("temp paths are UTF-8");
+    let run = crate::cli_support::rgraph(&["validate", path]).expect(1);
+    let says = "pass \"motion vectors\" (motion_vectors): input \"mesh\" names a G-buffer's \
+                meshes, but the keys of input \"samples\" hold their triangles already";
+    assert!(run.stdout.contains(says), "{}", run.stdout);
 }

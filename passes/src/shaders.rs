@@ -303,8 +303,18 @@ pub(crate) const MOTION_OBJECTS: &str = concat!(
 );
 /// A raster pass's visibility buffer: its IDs (group 1, binding 0) and depth (binding 5).
 pub(crate) const VISIBILITY_TEXTURES: &str = include_str!("wgsl/visibility_textures.wgsl");
-/// motion.wgsl's `pixel_motion` from a depth buffer, after common/opaque_depth.rs's block.
-pub(crate) const MOTION_DEPTH: &str = include_str!("wgsl/motion_depth.wgsl");
+/// motion.wgsl's `pixel_motion` from a depth buffer, after common/opaque_depth.rs's block,
+/// its points standing still.
+pub(crate) const MOTION_DEPTH: &str = concat!(
+    include_str!("wgsl/motion_depth.wgsl"),
+    include_str!("wgsl/motion_still.wgsl")
+);
+/// motion.wgsl's `pixel_motion` from a depth buffer, after common/opaque_depth.rs's block,
+/// its points moved by the meshes a G-buffer's mesh channel names.
+pub(crate) const MOTION_DEPTH_MESHES: &str = concat!(
+    include_str!("wgsl/motion_depth.wgsl"),
+    include_str!("wgsl/motion_meshes.wgsl")
+);
 pub(crate) const TAA: Source = Source {
     name: "taa.wgsl",
     parts: &[COMMON, include_str!("wgsl/taa.wgsl")],

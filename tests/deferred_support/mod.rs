@@ -25,7 +25,7 @@ use rgraph_scene::Scene;
 pub use crate::common::gpu;
 
 /// A file in `pipelines/` and the device it is compiled for.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PipelineFile<'a> {
     pub name: &'a str,
     /// Compiled as for a GPU adapter, with the device condition `cpu_device` unset: the

@@ -24,6 +24,9 @@ pub(crate) const HDR: &[TextureFormat] = &[F::Rgba16Float];
 /// The lean G-buffer's emission, RGB9E5 (common.wgsl's `pack_rgb9e5`) low half in red:
 /// WebGPU multisamples rg16uint, not r32uint.
 pub(crate) const EMISSION: &[TextureFormat] = &[F::Rg16Uint];
+/// A G-buffer's mesh index + 1 per sample (0 where no mesh drew), low half in red: two
+/// halves, since WebGPU multisamples rg16uint everywhere and r32uint only on some devices.
+pub(crate) const MESH: &[TextureFormat] = &[F::Rg16Uint];
 /// A visibility buffer's triangle IDs + 1: whole, or split low half in red where the
 /// device does not multisample r32uint (geometry.wgsl's `SPLIT_IDS`).
 pub(crate) const IDS: &[TextureFormat] = &[F::R32Uint, F::Rg16Uint];

@@ -10,6 +10,7 @@
 //!      "view_depth": "view_depth",  // r32float: linear view depth, 0 where nothing was drawn
 //!      "hdr": "hdr",                // rgba16float: emission and unlit color, else background
 //!      "depth": "depth",            // depth24plus-stencil8 or depth32float-stencil8
+//!      "mesh": "mesh",              // rg16uint: the mesh index + 1 (optional, see below)
 //!  })
 //! ```
 //!
@@ -26,6 +27,11 @@
 //!   the 8 of rgba16float), which holds only the emission: the tiled pass takes an unlit
 //!   surface's color from albedo and the background from its own parameter. A scene
 //!   without emission needs neither.
+//! - `mesh`, optional: which mesh each sample shows, so that
+//!   [`motion_vectors`](super::motion_vectors) moves a moving object's pixels with it (a
+//!   G-buffer holds no object otherwise). Its index + 1 split over rg16uint (low half in
+//!   red), 0 where no mesh drew: 4 bytes per sample, which only a pipeline with a temporal
+//!   filter pays (pipelines/msaa_4x_taa.ron).
 //!
 //! The lean G-buffer (pipelines/deferred_msaa_4x_lean.ron) is albedo, normal, material
 //! and a `depth32float` depth without stencil: 16 bytes per sample, 20 with emission.
@@ -157,7 +163,7 @@ struct Channel {
 }
 
 /// In attachment order. Only `albedo` is required (see the module docs).
-const CHANNELS: [Channel; 6] = [
+const CHANNELS: [Channel; 7] = [
     Channel {
         slot: "albedo",
         what: "the G-buffer's albedo",
@@ -192,6 +198,12 @@ const CHANNELS: [Channel; 6] = [
         slot: "emission",
         what: "the G-buffer's emission",
         formats: textures::EMISSION,
+        wgsl: "vec2<u32>",
+    },
+    Channel {
+        slot: "mesh",
+        what: "the G-buffer's mesh index",
+        formats: textures::MESH,
         wgsl: "vec2<u32>",
     },
 ];

@@ -8,7 +8,8 @@
 //!  params: (view: false),            // true: the debug view instead (see below)
 //!  inputs: { "ids": "ids" },          // a raster pass's visibility buffer, any samples;
 //!                                     // or "samples": a compute rasteriser's keys; or
-//!                                     // "depth": a G-buffer's depth (camera motion only)
+//!                                     // "depth": a G-buffer's depth, with
+//!                                     // "mesh" its mesh channel where it has one
 //!  outputs: { "motion": "motion" })   // rgba16float, 1 sample; with view: "color", rgba8unorm
 //! ```
 //!
@@ -20,9 +21,10 @@
 //!   is met by the ray through the pixel's centre, and the object-space point there is
 //!   taken through its mesh's transform and the camera of each frame: a moving object's
 //!   pixels move with it, the rasteriser's own files untouched;
-//! - from a depth buffer (`depth`, a G-buffer's), the point sample 0 holds is taken to
-//!   stand still, so only the camera moves it: a G-buffer keeps no object per sample
-//!   (writing motion from the G-buffer pass itself is left to do);
+//! - from a depth buffer (`depth`, a G-buffer's), the point sample 0 holds, moved with the
+//!   mesh the G-buffer's `mesh` channel says sample 0 shows (its transform's change
+//!   composed with the camera's, as one matrix per mesh); without that channel the point
+//!   is taken to stand still, so only the camera moves it;
 //! - where nothing was drawn, the direction of the ray, which only the camera's turn
 //!   moves (an environment at infinity).
 //!
@@ -68,13 +70,29 @@ pub(crate) enum Surfaces {
     Ids(TextureHandle),
     /// A compute rasteriser's keys (whose IDs it reads), or a depth buffer.
     Depth(OpaqueDepth),
+    /// A G-buffer's depth and its mesh channel (an input at group 1, binding 1).
+    Meshes(OpaqueDepth),
 }
 
 impl Surfaces {
-    /// Whether the pass rebuilds triangles from the scene's geometry (group 2).
+    /// Whether the pass rebuilds triangles from the scene's geometry (group 2), and so
+    /// takes object-space points through the per-mesh matrices; the mesh channel's pass
+    /// takes points relative to this frame's camera through them instead.
     #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
     fn objects(&self) -> bool {
-        !matches!(self, Surfaces::Depth(OpaqueDepth::Buffer(..)))
+        matches!(
+            self,
+            Surfaces::Ids(_) | Surfaces::Depth(OpaqueDepth::Keys(_))
+        )
+    }
+
+    /// The opaque depth the pass reads, if any.
+    #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+    fn depth(&self) -> Option<&OpaqueDepth> {
+        match self {
+            Surfaces::Depth(depth) | Surfaces::Meshes(depth) => Some(depth),
+            Surfaces::Ids(_) => None,
+        }
     }
 }
 
@@ -121,11 +139,34 @@ impl Plugin for MotionVectors {
             (Surfaces::Ids(ids), desc.samples, reader)
         } else {
             let (depth, samples) = OpaqueDepth::read(slots, pass, params.reversed_z)?;
-            let part = match depth {
-                OpaqueDepth::Keys(_) => shaders::MOTION_OBJECTS,
-                OpaqueDepth::Buffer(..) => shaders::MOTION_DEPTH,
+            let surfaces = match (depth, slots.kind("mesh").is_some()) {
+                (OpaqueDepth::Buffer(..), true) => {
+                    let want = Want::new("the G-buffer's mesh index", textures::MESH);
+                    let (mesh, _) = textures::input(slots, pass, "mesh", want.samples(samples))?;
+                    pass.sampled(mesh);
+                    inputs.push(Input {
+                        binding: 1,
+                        texture: mesh,
+                        aspect: Aspect::All,
+                        texels: Texels::Uint,
+                    });
+                    Surfaces::Meshes(depth)
+                }
+                (OpaqueDepth::Keys(_), true) => {
+                    return Err(PluginError::Invalid(
+                        "input \"mesh\" names a G-buffer's meshes, but the keys of input \
+                         \"samples\" hold their triangles already: leave it out"
+                            .into(),
+                    ))
+                }
+                (_, false) => Surfaces::Depth(depth),
             };
-            (Surfaces::Depth(depth), samples, depth.wgsl() + part)
+            let part = match surfaces {
+                Surfaces::Meshes(..) => shaders::MOTION_DEPTH_MESHES,
+                Surfaces::Depth(OpaqueDepth::Buffer(..)) => shaders::MOTION_DEPTH,
+                _ => shaders::MOTION_OBJECTS,
+            };
+            (surfaces, samples, depth.wgsl() + part)
         };
         let (slot, want) = match params.view {
             true => ("color", Want::new("the motion's debug view", VIEW)),
@@ -208,11 +249,7 @@ mod gpu {
             &self,
             resources: &rgraph_core::gpu::FrameResources<'_>,
         ) -> Result<(Vec<Input>, GroupBuffers, DepthConvention), String> {
-            let depth = match &self.surfaces {
-                Surfaces::Depth(depth) => Some(depth),
-                Surfaces::Ids(_) => None,
-            };
-            let bound = OpaqueDepth::bound_with(depth, &self.inputs, resources)?;
+            let bound = OpaqueDepth::bound_with(self.surfaces.depth(), &self.inputs, resources)?;
             let buffers = GroupBuffers {
                 read: bound.buffers.read,
                 owned: vec![MATRICES_BINDING],
@@ -265,7 +302,11 @@ mod gpu {
                 .replace(current.clone())
                 .unwrap_or(current.clone());
             let size = resources.output_size();
-            let matrices = matrices(&current, &previous, size, convention);
+            let space = match self.surfaces.objects() {
+                true => MeshSpace::Object,
+                false => MeshSpace::CameraRelative,
+            };
+            let matrices = matrices(&current, &previous, size, convention, space);
             resources
                 .queue
                 .write_buffer(&state.matrices, 0, bytemuck::cast_slice(&matrices));
@@ -273,7 +314,7 @@ mod gpu {
                 convention,
                 ids: match self.surfaces {
                     Surfaces::Ids(ids) => Some(resources.shape(ids).format),
-                    Surfaces::Depth(_) => None,
+                    Surfaces::Depth(_) | Surfaces::Meshes(..) => None,
                 },
             };
             let (module, layout) = (&state.pass.module, &state.pass.layout);
@@ -310,25 +351,54 @@ mod gpu {
         }
     }
 
+    /// What the per-mesh matrices of motion.wgsl's `Motion` take points from.
+    #[derive(Copy, Clone)]
+    enum MeshSpace {
+        /// The mesh's object space: a triangle rebuilt from the scene's geometry.
+        Object,
+        /// This frame's camera-relative space: a point a depth buffer holds.
+        CameraRelative,
+    }
+
     /// motion.wgsl's `Motion` for a frame of `size` drawn as `current` after `previous`
     /// (each a camera and the meshes' transforms), composed in f64 and only then cast:
     /// this frame's clip space from camera-relative points and the previous frame's from
-    /// the same points standing still, then per mesh both frames' clip space from its
-    /// object space. Without the jitter: gpu_scene's `view_projection`.
+    /// the same points standing still, then per mesh both frames' clip space from points
+    /// in `space`. Without the jitter: gpu_scene's `view_projection`. From camera-relative
+    /// space a point goes back to its mesh's object space through the inverse of this
+    /// frame's transform; a mesh whose transform has no inverse (scaled to nothing) draws
+    /// no pixel, and its points are taken to stand still.
     fn matrices(
         current: &(Camera, Vec<DMat4>),
         previous: &(Camera, Vec<DMat4>),
         size: (u32, u32),
         convention: DepthConvention,
+        space: MeshSpace,
     ) -> Vec<[[f32; 4]; 4]> {
         let clip = |camera: &Camera| view_projection(camera, size, convention).as_dmat4();
         let (now, before) = (clip(&current.0), clip(&previous.0));
         let (eye, eye_before) = (current.0.position, previous.0.position);
-        let mut matrices = vec![now, before * DMat4::from_translation(eye - eye_before)];
+        let still = before * DMat4::from_translation(eye - eye_before);
+        let mut matrices = vec![now, still];
         for (mesh, &transform) in current.1.iter().enumerate() {
             let transform_before = previous.1.get(mesh).copied().unwrap_or(transform);
-            matrices.push(now * DMat4::from_translation(-eye) * transform);
-            matrices.push(before * DMat4::from_translation(-eye_before) * transform_before);
+            let was = before * DMat4::from_translation(-eye_before) * transform_before;
+            match space {
+                MeshSpace::Object => {
+                    matrices.push(now * DMat4::from_translation(-eye) * transform);
+                    matrices.push(was);
+                }
+                MeshSpace::CameraRelative => {
+                    // This frame's camera-relative space from the object's.
+                    let placed = DMat4::from_translation(-eye) * transform;
+                    let back = placed.inverse();
+                    let moved = match placed.determinant() != 0.0 && back.is_finite() {
+                        true => was * back,
+                        false => still,
+                    };
+                    matrices.extend([now, moved]);
+                }
+            }
         }
         if current.1.is_empty() {
             matrices.extend([DMat4::IDENTITY; 2]);

@@ -9,7 +9,8 @@
 // alpha (otherwise unused, so occlusion costs no byte); normal = octahedral shading normal
 // (after the normal texture);
 // material = metallic and roughness after their texture, flags, edge bits; view depth;
-// HDR = emission after its texture (or the whole unlit color). The lean G-buffer has
+// HDR = emission after its texture (or the whole unlit color); mesh = the mesh index + 1
+// in two halves (optional: a temporal filter's motion vectors read it). The lean G-buffer has
 // neither view depth (later passes take it from the depth buffer) nor HDR: its emission
 // channel holds only the emission, in RGB9E5 (common.wgsl) split over an rg16uint, and the light pass takes an
 // unlit surface's color from albedo. Textures change what the channels hold, not how
@@ -51,6 +52,8 @@ struct Varyings {
     // The camera-relative position, for the face normal of a mesh without vertex normals
     // (common.wgsl's normal_or_face): its derivatives lie in the triangle's plane.
     @location(10) @interpolate(perspective, center) position: vec3<f32>,
+    // The mesh index, for the optional mesh channel (motion vectors of moving objects).
+    @location(11) @interpolate(flat) mesh: u32,
 }
 
 // Every channel the pass can write; `gbuffer_out` picks those it does.
@@ -61,6 +64,7 @@ struct GBuffer {
     view_depth: vec4<f32>,
     hdr: vec4<f32>,
     emission: vec2<u32>,
+    mesh: vec2<u32>,
 }
 
 @vertex
@@ -82,6 +86,7 @@ fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
     out.at_centroid = out.clip.xy;
     out.at_center = out.clip.xy;
     out.position = p;
+    out.mesh = mesh_index;
     return out;
 }
 
@@ -109,6 +114,8 @@ fn surface(in: Varyings, m: MaterialSample, front: bool, coverage: u32) -> GBuff
     out.hdr = vec4<f32>(min(emitted, vec3<f32>(HALF_MAX)), 1.0);
     let emission = pack_rgb9e5(m.emission);
     out.emission = vec2<u32>(emission & 0xffffu, emission >> 16u);
+    let mesh = in.mesh + 1u;
+    out.mesh = vec2<u32>(mesh & 0xffffu, mesh >> 16u);
     return out;
 }
 

@@ -1,8 +1,9 @@
 // motion.wgsl's `pixel_motion` from a depth buffer (common/opaque_depth.rs's block,
-// group 1): the point sample 0 of the pixel holds, taken to stay put in the world, so
-// only the camera moves it (a G-buffer records no object; a moving object's pixels move
-// as if it stood still). Where nothing was drawn, the direction of the ray. The motion in
-// x and y, the point's view depth in z.
+// group 1): the point sample 0 of the pixel holds, moved by `point_motion`, which the
+// block after this one defines: motion_still.wgsl (it stays put in the world, so only the
+// camera moves it) or, where a G-buffer records each sample's mesh, motion_meshes.wgsl
+// (it moves with its mesh). Where nothing was drawn, the direction of the ray. The motion
+// in x and y, the point's view depth in z.
 
 // The point is unprojected where sample 0 lies, whose depth it is: at the pixel's
 // centre, a slope's depth would put it off the surface.
@@ -13,5 +14,5 @@ fn pixel_motion(pixel: vec2<i32>) -> vec3<f32> {
         return vec3<f32>(static_motion(vec4<f32>(ray_direction(at), 0.0)), FAR_AWAY);
     }
     let p = unproject(at, depth);
-    return vec3<f32>(static_motion(vec4<f32>(p, 1.0)), view_depth(p));
+    return vec3<f32>(point_motion(pixel, vec4<f32>(p, 1.0)), view_depth(p));
 }
