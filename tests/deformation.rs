@@ -23,7 +23,7 @@ const PIPELINES: [PipelineFile; 4] = [
 
 /// `gltf` loaded and lit as `rgraph render` lights a file without lights (the studio
 /// environment and a headlight, which casts shadows: the shadow maps draw it too).
-fn load(gltf: &Gltf) -> Scene {
+pub(crate) fn load(gltf: &Gltf) -> Scene {
     let dir = tempfile::tempdir().expect("a temporary directory");
     let path = dir.path().join("deformed.gltf");
     gltf.write_embedded(&path);

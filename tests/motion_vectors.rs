@@ -266,3 +266,94 @@ fn a_mesh_channel_beside_keys_is_refused() {
                 meshes, but the keys of input \"samples\" hold their triangles already";
     assert!(run.stdout.contains(says), "{}", run.stdout);
 }
+
+/// A morph target that stretches a quad moves its pixels though no transform changes:
+/// the visibility buffer's point is taken back to where the deformation found the
+/// triangle's vertices (both raster branches); in the next frame, whose pose stays, they
+/// stand still. The quad (x 0..1, y 0..h in the plane
+/// z = 0) has its top edge at h = 1 + 0.5 w for morph weight w, so a point at height y
+/// was at y h_before / h_now.
+#[test]
+fn a_morph_target_moves_its_pixels() {
+    let mut scene = crate::deformation::load(&crate::gltf_writer::deformed::morphed_quad("LINEAR"));
+    assert_eq!(
+        scene.meshes[0].transform,
+        DMat4::IDENTITY,
+        "the quad is placed by an identity transform"
+    );
+    let projection = Projection::Perspective {
+        yfov: 0.9,
+        znear: 0.1,
+        zfar: None,
+    };
+    let eye = DVec3::new(0.5, 0.75, 2.2);
+    scene.camera = Camera::look_at(
+        "quad",
+        eye,
+        DVec3::new(0.5, 0.75, 0.0),
+        DVec3::Y,
+        projection,
+    );
+    let (weight_before, weight_now) = (0.25, 1.0);
+    let (h_before, h_now) = (1.0 + 0.5 * weight_before, 1.0 + 0.5 * weight_now);
+    let clip_now = clip(&scene.camera);
+    // The point of the quad's plane a pixel coordinate sees, if the quad is there now.
+    let on_quad = |at: DVec2| {
+        let d = ray(&scene.camera, at);
+        let p = eye + d * (-eye.z / d.z);
+        (p.x > 0.0 && p.x < 1.0 && p.y > 0.0 && p.y < h_now).then_some(p)
+    };
+    let gpu = gpu();
+    let features = rgraph_scene::analysis::Features::of(&scene).names();
+    for pipeline in [DEFAULT, DEFAULT_GPU] {
+        let mut frame = Render::new(pipeline, "quad", SIZE)
+            .with_scene(scene.clone())
+            .features(features.clone())
+            .edit("outputs: [\"color\", ", "outputs: [\"motion\", \"color\", ")
+            .run(&gpu);
+        let mut inputs = frame.inputs();
+        assert_eq!(inputs.morph_weights, vec![vec![weight_before as f32]]);
+        inputs.morph_weights[0][0] = weight_now as f32;
+        frame.next(inputs);
+        let motion = frame.hdr(&gpu, "motion");
+        let (mut checked, mut moving, mut worst) = (0, 0, (0.0, (0, 0), DVec2::ZERO, DVec2::ZERO));
+        for y in 0..SIZE.1 {
+            for x in 0..SIZE.0 {
+                let corner = DVec2::new(x as f64, y as f64);
+                let (Some(p), Some(_)) = (on_quad(corner + 0.5), on_quad(corner + SAMPLE_0)) else {
+                    continue;
+                };
+                let before = DVec3::new(p.x, p.y * h_before / h_now, 0.0);
+                let want =
+                    pixel_of(clip_now, p.extend(1.0)) - pixel_of(clip_now, before.extend(1.0));
+                let got = motion[(y * SIZE.0 + x) as usize];
+                let got = DVec2::new(f64::from(got[0]), f64::from(got[1]));
+                let error = (got - want).length();
+                if error > worst.0 {
+                    worst = (error, (x, y), got, want);
+                }
+                checked += 1;
+                moving += usize::from(want.length() > 1.0);
+            }
+        }
+        assert!(
+            moving >= 100,
+            "{pipeline}: only {moving} of {checked} pixels moved over a pixel"
+        );
+        let (error, at, got, want) = worst;
+        println!("{pipeline}: {checked} pixels, worst error {error:.4} px at {at:?}");
+        assert!(
+            error <= TOLERANCE,
+            "{pipeline}: motion {got:?} at {at:?}, expected {want:?} ({error:.4} px off)"
+        );
+        // A frame whose pose stays: nothing moves.
+        let inputs = frame.inputs();
+        frame.next(inputs);
+        let motion = frame.hdr(&gpu, "motion");
+        let moved = motion.iter().filter(|m| m[0] != 0.0 || m[1] != 0.0).count();
+        assert_eq!(
+            moved, 0,
+            "{pipeline}: {moved} pixels moved in a frame whose pose stayed"
+        );
+    }
+}

@@ -5,11 +5,15 @@
 //! pass reading the buffer (hardware and compute rasters, G-buffer, forward, shadow maps,
 //! visibility shading, motion vectors) draws the deformed shape without knowing of it.
 //!
+//! Each dispatch first keeps the positions it replaces ([`Deformer::previous`]): where the
+//! last pose had the vertices, which motion vectors move a deformed surface from.
+//!
 //! A scene without deformations ([`rgraph_scene::Scene::deformations`] empty) gets no
 //! [`Deformer`]: no buffer, no pipeline, no dispatch. One with them keeps, per deformed
 //! vertex, its rest vertex (56 bytes) and its influence (32 bytes), per morph target and
-//! vertex 36 bytes of offsets, and per frame 64 bytes per joint of each skinned mesh and 4
-//! per morph weight.
+//! vertex 36 bytes of offsets, per vertex from the first deformed mesh's to the last's its
+//! previous position (12 bytes), and per frame 64 bytes per joint of each skinned mesh and
+//! 4 per morph weight.
 
 use glam::DMat4;
 use wgpu::util::DeviceExt;
@@ -39,6 +43,8 @@ struct DeformationData {
     first_weight: u32,
     targets: u32,
     skinned: u32,
+    /// Its first vertex in `previous`.
+    first_previous: u32,
 }
 
 /// The workgroup size of `cs_deform`.
@@ -106,6 +112,19 @@ pub(super) struct Deformer {
     weights: wgpu::Buffer,
     /// Deformed vertices: one invocation each.
     vertex_count: u32,
+    previous: PreviousPositions,
+}
+
+/// Where the scene's vertices were before the last deformation, as the dispatch found
+/// them before writing the pose over them.
+pub struct PreviousPositions {
+    /// The object-space positions, 3 f32 each, of vertices `first..end`.
+    pub buffer: wgpu::Buffer,
+    /// The scene's first vertex held: the first deformed mesh's first.
+    pub first: u32,
+    /// The vertex after the last held: the last deformed mesh's last, plus one. The
+    /// meshes between that do not deform hold their rest positions throughout.
+    pub end: u32,
 }
 
 impl Deformer {
@@ -126,6 +145,10 @@ impl Deformer {
         let alignment = u64::from(device.limits().min_storage_buffer_offset_alignment);
         let first_mesh = scene.deformations[0].mesh;
         let last_mesh = scene.deformations.last().map_or(0, |d| d.mesh);
+        let in_range = &scene.meshes[first_mesh..=last_mesh];
+        let previous: Vec<[f32; 3]> = (in_range.iter())
+            .flat_map(|mesh| mesh.vertices.iter().map(|v| v.position))
+            .collect();
         let start = (first_vertex[first_mesh] * WORDS * 4) / alignment * alignment;
         let end = first_vertex[last_mesh + 1] * WORDS * 4;
         let (mut rest, mut influences, mut data, mut offsets) =
@@ -144,6 +167,7 @@ impl Deformer {
                 first_weight: weights,
                 targets,
                 skinned: u32::from(deformation.skin.is_some()),
+                first_previous: (first_vertex[deformation.mesh] - first_vertex[first_mesh]) as u32,
             });
             rest.extend_from_slice(&mesh.vertices);
             let skin = deformation.skin.as_ref();
@@ -203,6 +227,11 @@ impl Deformer {
             bytemuck::cast_slice(&offsets),
             constant,
         );
+        let previous_buffer = storage(
+            "deformed vertices' previous positions",
+            bytemuck::cast_slice(&previous),
+            constant,
+        );
         let per_frame = |label, bytes: u64| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -241,6 +270,7 @@ impl Deformer {
             whole(&offsets),
             whole(&joints),
             whole(&weights),
+            whole(&previous_buffer),
         ];
         let entries: Vec<wgpu::BindGroupEntry> = (resources.into_iter().zip(0..))
             .map(|(resource, binding)| wgpu::BindGroupEntry { binding, resource })
@@ -256,7 +286,17 @@ impl Deformer {
             joints,
             weights,
             vertex_count: influences.len() as u32,
+            previous: PreviousPositions {
+                buffer: previous_buffer,
+                first: first_vertex[first_mesh] as u32,
+                end: first_vertex[last_mesh + 1] as u32,
+            },
         })
+    }
+
+    /// The positions the last dispatch replaced.
+    pub fn previous(&self) -> &PreviousPositions {
+        &self.previous
     }
 
     /// Writes `frame`'s joints and weights and deforms the vertices, in a submission of

@@ -48,6 +48,7 @@ pub(crate) mod volumes;
 use std::sync::{Arc, Mutex};
 
 pub use camera::view_projection;
+pub use deform::PreviousPositions;
 pub use jitter::{jitter, JITTER_CYCLE};
 pub use lights::{camera_may_be_inside, far_plane_may_cut, VolumeLight};
 pub use materials::MaterialState;
@@ -257,6 +258,9 @@ struct Frame {
     meshes: mesh::MeshFrame,
     lights: lights::LightFrame,
     deform: deform::DeformFrame,
+    /// Whether the deformation ran for this frame (its pose differs from the last
+    /// frame's, or this is the upload's).
+    deformed: bool,
 }
 
 impl Frame {
@@ -289,6 +293,7 @@ impl Frame {
             ),
             lights,
             deform,
+            deformed: false,
             inputs,
             generation,
         }
@@ -313,7 +318,7 @@ impl GpuScene {
     ) -> GpuScene {
         let (sphere, cone) = (volumes::sphere(device), volumes::cone(device));
         let reaches = deform::reaches(scene);
-        let frame = Frame::new(scene, inputs, (None, &reaches), (&sphere, &cone), shadows);
+        let mut frame = Frame::new(scene, inputs, (None, &reaches), (&sphere, &cone), shadows);
         let layout = layout::scene_layout(device);
         let material_layout = materials::layout(device);
         let cameras = camera::Cameras::new(device);
@@ -325,6 +330,7 @@ impl GpuScene {
         let deformer = deform::Deformer::new(device, scene, &meshes.vertices);
         if let Some(deformer) = &deformer {
             deformer.run(device, queue, &frame.deform);
+            frame.deformed = true;
         }
         let group = |camera| {
             let buffers = [
@@ -377,7 +383,7 @@ impl GpuScene {
     ) -> GpuScene {
         let upload = &self.upload;
         let volumes = (&upload.sphere, &upload.cone);
-        let frame = Frame::new(
+        let mut frame = Frame::new(
             scene,
             (inputs, generation),
             (Some(&self.frame), &upload.reaches),
@@ -387,6 +393,7 @@ impl GpuScene {
         if let Some(deformer) = &upload.deformer {
             if frame.deform != self.frame.deform {
                 deformer.run(device, queue, &frame.deform);
+                frame.deformed = true;
             }
         }
         let writes = [
@@ -702,6 +709,21 @@ impl GpuScene {
             .get(mesh as usize)
             .copied()
             .flatten()
+    }
+
+    /// Where this frame's deformation found the deformed meshes' vertices: their
+    /// positions in the last frame whose pose differed, `None` where nothing deforms or
+    /// this frame's pose is the last one's (the vertices stayed). A pass comparing frames
+    /// (motion vectors) takes them once per [`generation`](Self::generation): the next
+    /// frame's inputs replace them.
+    pub fn replaced_positions(&self) -> Option<&PreviousPositions> {
+        let deformer = self.upload.deformer.as_ref()?;
+        self.frame.deformed.then(|| deformer.previous())
+    }
+
+    /// The host's count of frame inputs (`set_frame` calls) this frame's came with.
+    pub fn generation(&self) -> u64 {
+        self.frame.generation
     }
 
     /// The clusters of `Scene::meshes[mesh]`, ranges of its triangles from the mesh's

@@ -20,11 +20,16 @@
 //! - from a visibility buffer (`ids` or `samples`), the triangle of the pixel's sample 0
 //!   is met by the ray through the pixel's centre, and the object-space point there is
 //!   taken through its mesh's transform and the camera of each frame: a moving object's
-//!   pixels move with it, the rasteriser's own files untouched;
+//!   pixels move with it, the rasteriser's own files untouched. Where skins or morph
+//!   targets moved the triangle's vertices since the last frame, the point is taken from
+//!   where the deformation found them (the scene's replaced positions), so a waving arm
+//!   moves too;
 //! - from a depth buffer (`depth`, a G-buffer's), the point sample 0 holds, moved with the
 //!   mesh the G-buffer's `mesh` channel says sample 0 shows (its transform's change
 //!   composed with the camera's, as one matrix per mesh); without that channel the point
-//!   is taken to stand still, so only the camera moves it;
+//!   is taken to stand still, so only the camera moves it. Either way a deformed mesh's
+//!   point moves with its transform, not its vertices: a depth buffer's point has no
+//!   triangle to take back to the last pose;
 //! - where nothing was drawn, the direction of the ray, which only the camera's turn
 //!   moves (an environment at infinity).
 //!
@@ -224,9 +229,13 @@ mod gpu {
 
     /// motion.wgsl's binding of the matrices.
     const MATRICES_BINDING: u32 = 9;
+    /// motion_objects.wgsl's binding of the deformed vertices' replaced positions.
+    const REPLACED_BINDING: u32 = 10;
 
     /// Bytes of one matrix.
     const MATRIX: u64 = 64;
+    /// Bytes of `Motion`'s header: two matrices and `deformed`.
+    const HEADER: u64 = 2 * MATRIX + 16;
 
     #[derive(Clone, PartialEq)]
     pub(crate) struct Key {
@@ -240,6 +249,10 @@ mod gpu {
         matrices: wgpu::Buffer,
         /// The camera and transforms of the frame recorded last.
         previous: Option<(Camera, Vec<DMat4>)>,
+        /// The scene's generation (frame inputs) recorded last.
+        generation: Option<u64>,
+        /// Bound in place of the replaced positions where this frame has none.
+        no_positions: wgpu::Buffer,
     }
 
     impl MotionDispatch {
@@ -250,9 +263,13 @@ mod gpu {
             resources: &rgraph_core::gpu::FrameResources<'_>,
         ) -> Result<(Vec<Input>, GroupBuffers, DepthConvention), String> {
             let bound = OpaqueDepth::bound_with(self.surfaces.depth(), &self.inputs, resources)?;
+            let owned = match self.surfaces.objects() {
+                true => vec![MATRICES_BINDING, REPLACED_BINDING],
+                false => vec![MATRICES_BINDING],
+            };
             let buffers = GroupBuffers {
                 read: bound.buffers.read,
-                owned: vec![MATRICES_BINDING],
+                owned,
             };
             Ok((bound.inputs, buffers, bound.convention))
         }
@@ -283,11 +300,18 @@ mod gpu {
                 },
                 matrices: device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("motion vectors' matrices"),
-                    size: 2 * MATRIX * (1 + meshes),
+                    size: HEADER + 2 * MATRIX * meshes,
                     usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                     mapped_at_creation: false,
                 }),
                 previous: None,
+                generation: None,
+                no_positions: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("motion vectors' no replaced positions"),
+                    size: 16,
+                    usage: wgpu::BufferUsages::STORAGE,
+                    mapped_at_creation: false,
+                }),
             })
         }
 
@@ -297,19 +321,29 @@ mod gpu {
             let (_, _, convention) = self.bound(resources)?;
             let inputs = scene.inputs();
             let current = (inputs.camera.clone(), inputs.transforms.clone());
-            let previous = state
-                .previous
-                .replace(current.clone())
-                .unwrap_or(current.clone());
+            let previous = state.previous.replace(current.clone());
+            // The deformation's replaced positions are the last pose's once per frame
+            // inputs, and only where this pass recorded a frame before.
+            let generation = state.generation.replace(scene.generation());
+            let replaced = scene
+                .replaced_positions()
+                .filter(|_| previous.is_some() && generation != Some(scene.generation()));
+            let previous = previous.unwrap_or(current.clone());
             let size = resources.output_size();
             let space = match self.surfaces.objects() {
                 true => MeshSpace::Object,
                 false => MeshSpace::CameraRelative,
             };
             let matrices = matrices(&current, &previous, size, convention, space);
-            resources
-                .queue
-                .write_buffer(&state.matrices, 0, bytemuck::cast_slice(&matrices));
+            let deformed: [u32; 4] = match replaced {
+                Some(positions) => [positions.first, positions.end, 1, 0],
+                None => [0; 4],
+            };
+            let mut bytes = Vec::with_capacity(HEADER as usize + 64 * matrices.len());
+            bytes.extend_from_slice(bytemuck::cast_slice(&matrices[..2]));
+            bytes.extend_from_slice(bytemuck::cast_slice(&deformed));
+            bytes.extend_from_slice(bytemuck::cast_slice(&matrices[2..]));
+            resources.queue.write_buffer(&state.matrices, 0, &bytes);
             let key = Key {
                 convention,
                 ids: match self.surfaces {
@@ -337,10 +371,12 @@ mod gpu {
             });
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, scene.bind_group(convention), &[]);
-            let group = state
-                .pass
-                .inputs
-                .bind_group_with(resources, &[&state.matrices]);
+            let positions = replaced.map_or(&state.no_positions, |p| &p.buffer);
+            let owned: &[&wgpu::Buffer] = match self.surfaces.objects() {
+                true => &[&state.matrices, positions],
+                false => &[&state.matrices],
+            };
+            let group = state.pass.inputs.bind_group_with(resources, owned);
             pass.set_bind_group(1, &group, &[]);
             if self.surfaces.objects() {
                 pass.set_bind_group(2, scene.geometry_group(device)?, &[]);

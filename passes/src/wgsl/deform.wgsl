@@ -2,7 +2,8 @@
 // mesh writes its deformed position, normal and tangent over the scene's vertex buffer,
 // from its rest vertex, its morph targets' offsets and its joints, before any pass of the
 // frame reads the buffer. Morph targets first, then the skin, as glTF orders them and as
-// rgraph_scene::Deformation::deform does on the CPU.
+// rgraph_scene::Deformation::deform does on the CPU. The position a vertex had is kept in
+// `previous` first, for motion vectors.
 
 // A vertex of a deformed mesh: its four joints (16 bits each), its deformation, and its
 // joints' weights (zero for a mesh without a skin).
@@ -25,6 +26,7 @@ struct Deformation {
     first_weight: u32,
     targets: u32,
     skinned: u32,
+    first_previous: u32,
 }
 
 // The scene's vertices (rgraph_scene::Vertex, 14 words each) from the first deformed
@@ -40,6 +42,9 @@ struct Deformation {
 @group(0) @binding(5) var<storage, read> joints: array<mat4x4<f32>>;
 // This frame's morph weights.
 @group(0) @binding(6) var<storage, read> weights: array<f32>;
+// The positions the vertices had before this dispatch (3 f32 each), from the first
+// deformed mesh's first vertex on.
+@group(0) @binding(7) var<storage, read_write> previous: array<f32>;
 
 const WORDS: u32 = 14u;
 
@@ -99,6 +104,10 @@ fn cs_deform(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgrou
         tangent = linear * tangent;
     }
     let out = d.base_word + local * WORDS;
+    let kept = (d.first_previous + local) * 3u;
+    for (var c = 0u; c < 3u; c++) {
+        previous[kept + c] = bitcast<f32>(vertices[out + c]);
+    }
     write_vec3(out, position);
     write_vec3(out + 3u, unit_or_zero(normal));
     let unit_tangent = unit_or_zero(tangent);
