@@ -3,8 +3,10 @@
 // atomicMax of its bits inverted (0: nothing), which `shadow_resolve` writes into the
 // atlas. Small clusters (wholly between the view's depth planes, each spanning a few
 // texels) take an invocation a triangle; large ones a workgroup a run of triangles, its
-// invocations sharing each triangle's texels. Composed after common.wgsl, scene.wgsl,
-// geometry.wgsl and shadow_views.wgsl.
+// invocations sharing each triangle's texels; a triangle of more than HUGE_CHUNK texels
+// (a ground plane across a view) is handed on in chunks that workgroups across the GPU
+// cover (cs_shadow_raster_huge), so that no workgroup covers a whole view alone.
+// Composed after common.wgsl, scene.wgsl, geometry.wgsl and shadow_views.wgsl.
 
 // A workgroup's triangles: `count` (at most 64) triangles of mesh `mesh` from index
 // `first_index`, into view `view` (gpu_scene/shadow_work.rs's items): the small
@@ -27,9 +29,19 @@ struct RasterParams {
     large: u32,
 }
 
+// The huge triangles handed on: their set-ups, and per chunk of HUGE_CHUNK texels the
+// triangle's index and the chunk's (counts cleared with the keys).
+struct HugeFlats {
+    count: atomic<u32>,
+    chunks: atomic<u32>,
+    flats: array<Flat>,
+}
+
 @group(1) @binding(0) var<storage, read_write> shadow_keys: array<atomic<u32>>;
 @group(1) @binding(1) var<storage, read> items: array<Item>;
 @group(1) @binding(2) var<storage, read> raster: RasterParams;
+@group(1) @binding(3) var<storage, read_write> huge: HugeFlats;
+@group(1) @binding(4) var<storage, read_write> huge_chunks: array<vec2<u32>>;
 
 // Clears the keys: 256 a workgroup, the workgroups in rows of num_workgroups.x.
 @compute @workgroup_size(256)
@@ -37,6 +49,10 @@ fn cs_clear(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroup
     let i = id.y * groups.x * 256u + id.x;
     if i < arrayLength(&shadow_keys) {
         atomicStore(&shadow_keys[i], 0u);
+    }
+    if i == 0u {
+        atomicStore(&huge.count, 0u);
+        atomicStore(&huge.chunks, 0u);
     }
 }
 
@@ -148,10 +164,14 @@ fn cs_shadow_raster(
 
 // Invocations of a large cluster's workgroup: they share each triangle's texels.
 const LARGE_GROUP: u32 = 256u;
+// Texels of a huge triangle's chunk: 16 a lane of a workgroup of LARGE_GROUP.
+const HUGE_CHUNK: u32 = 4096u;
 
 // A large item's triangles, set up once: triangle t's at 2t and 2t + 1 (clipping to the
 // near plane leaves a triangle or a quadrilateral, two triangles).
 var<workgroup> flats: array<Flat, 128>;
+// 1 where flat t was handed on to cs_shadow_raster_huge.
+var<workgroup> handed: array<u32, 128>;
 
 // Large clusters: a workgroup an item. Each of its first invocations clips one triangle
 // to the near plane and projects it; then all of them cover each triangle's texels
@@ -177,14 +197,77 @@ fn cs_shadow_raster_large(
         }
     }
     workgroupBarrier();
+    // Each huge triangle is handed on by the invocation of its flat, all at once.
+    if lane < 2u * count {
+        let texels = texels_of(flats[lane]);
+        handed[lane] = u32(texels > HUGE_CHUNK && hand_on(flats[lane], texels));
+    }
+    workgroupBarrier();
     for (var t = 0u; t < 2u * count; t++) {
         let f = flats[t];
-        if f.area == 0.0 || any(f.high < f.low) {
+        // A huge triangle the buffers had no room for is covered here, more slowly.
+        if handed[t] != 0u || f.area == 0.0 {
             continue;
         }
         let width = u32(f.high.x - f.low.x) + 1u;
-        let texels = width * (u32(f.high.y - f.low.y) + 1u);
-        for (var i = lane; i < texels; i += LARGE_GROUP) {
+        for (var i = lane; i < texels_of(f); i += LARGE_GROUP) {
+            cover(f, f.low.x + f32(i % width), f.low.y + f32(i / width));
+        }
+    }
+}
+
+// The texels whose centres `f`'s bounds hold (0 where none do).
+fn texels_of(f: Flat) -> u32 {
+    if any(f.high < f.low) {
+        return 0u;
+    }
+    return (u32(f.high.x - f.low.x) + 1u) * (u32(f.high.y - f.low.y) + 1u);
+}
+
+// Hands huge triangle `f`, of `texels` texels in its bounds, on to cs_shadow_raster_huge
+// in chunks; false where the buffers have no room for it. Every chunk reserved within the
+// buffer is written, pointing nowhere where the triangle has no room, so that the huge
+// pass reads no chunk of an earlier frame.
+fn hand_on(f: Flat, texels: u32) -> bool {
+    let chunks = (texels + HUGE_CHUNK - 1u) / HUGE_CHUNK;
+    let first = atomicAdd(&huge.chunks, chunks);
+    let room = arrayLength(&huge_chunks);
+    var index = NOWHERE;
+    if first + chunks <= room {
+        let reserved = atomicAdd(&huge.count, 1u);
+        if reserved < arrayLength(&huge.flats) {
+            huge.flats[reserved] = f;
+            index = reserved;
+        }
+    }
+    for (var k = first; k < min(first + chunks, room); k++) {
+        huge_chunks[k] = vec2<u32>(index, k - first);
+    }
+    return index != NOWHERE;
+}
+
+// A chunk of no triangle.
+const NOWHERE: u32 = 0xffffffffu;
+
+// Huge triangles' chunks: a workgroup a chunk, the workgroups of the dispatch taking
+// every (number of workgroups)-th chunk from their own.
+@compute @workgroup_size(256)
+fn cs_shadow_raster_huge(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let chunks = min(atomicLoad(&huge.chunks), arrayLength(&huge_chunks));
+    let stride = groups.x * groups.y;
+    for (var k = group.y * groups.x + group.x; k < chunks; k += stride) {
+        let chunk = huge_chunks[k];
+        if chunk.x == NOWHERE {
+            continue;
+        }
+        let f = huge.flats[chunk.x];
+        let width = u32(f.high.x - f.low.x) + 1u;
+        let end = min(texels_of(f), (chunk.y + 1u) * HUGE_CHUNK);
+        for (var i = chunk.y * HUGE_CHUNK + lane; i < end; i += LARGE_GROUP) {
             cover(f, f.low.x + f32(i % width), f.low.y + f32(i / width));
         }
     }
