@@ -401,15 +401,15 @@ fn the_compute_raster_s_tile_size_does_not_change_the_image() {
     let gpu = gpu();
     let image = |tile: &'static str| {
         Render::new(COMPUTE, "builtin:dense", (333, 217))
-            .edit("params: (other_samples: at_edges),", tile)
+            .edit("params: (other_samples: at_edges,", tile)
             .run(&gpu)
             .image(&gpu, "color")
     };
-    let sixteen = image("params: (other_samples: at_edges, tile: 16),");
+    let sixteen = image("params: (other_samples: at_edges, tile: 16,");
     for tile in [
-        "params: (other_samples: at_edges, tile: 4),",
-        "params: (other_samples: at_edges, tile: 8),",
-        "params: (other_samples: at_edges, tile: 12),",
+        "params: (other_samples: at_edges, tile: 4,",
+        "params: (other_samples: at_edges, tile: 8,",
+        "params: (other_samples: at_edges, tile: 12,",
     ] {
         let other = image(tile);
         assert!(sixteen.pixels == other.pixels, "{tile}: the image changed");
@@ -664,8 +664,8 @@ fn a_compute_visibility_buffer_of_another_size_is_an_error() {
 #[test]
 fn a_compute_raster_tile_outside_4_to_16_is_an_error() {
     let line = validate_error(
-        "params: (other_samples: at_edges),",
-        "params: (other_samples: at_edges, tile: 32),",
+        "params: (other_samples: at_edges,",
+        "params: (other_samples: at_edges, tile: 32,",
         "big_tiles.ron",
         "visibility",
     );

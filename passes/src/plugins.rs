@@ -49,6 +49,7 @@ use crate::passes::auto_exposure::AutoExposure;
 use crate::passes::background::Background;
 use crate::passes::debug_view::DebugView;
 use crate::passes::depth_downsample::DepthDownsample;
+use crate::passes::depth_pyramid::DepthPyramid;
 use crate::passes::edge_stencil::EdgeStencil;
 use crate::passes::forward::Forward;
 use crate::passes::fxaa::Fxaa;
@@ -87,6 +88,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(Visibility(shared.clone()))
         .register(VisibilityCompute(shared.clone()))
         .register(KeysDepth(shared.clone()))
+        .register(DepthPyramid(shared.clone()))
         .register(Resolve(shared.clone()))
         .register(ShadowMaps(shared.clone()))
         .register(ShadowRaster(shared.clone()))
