@@ -451,12 +451,13 @@ struct Counted {
     revealed: u32,
 }
 
-/// [`HIDING`]'s frames through one executor, with the graph parameter `occlusion` at
-/// `occlusion`.
-fn hiding_frames(scene: &Scene, occlusion: u32) -> Vec<Counted> {
+/// [`HIDING`]'s frames through one executor, with the graph parameters `msaa` and
+/// `occlusion` at `msaa` and `occlusion`.
+fn hiding_frames(scene: &Scene, (msaa, occlusion): (u32, u32)) -> Vec<Counted> {
     let gpu = gpu();
     let mut frame = Render::new(COMPUTE, "hiding", SIZE)
         .with_scene(scene.clone())
+        .param("msaa", msaa)
         .param("occlusion", occlusion)
         .edit(
             "outputs: [\"color\"",
@@ -485,29 +486,36 @@ fn hiding_frames(scene: &Scene, occlusion: u32) -> Vec<Counted> {
         .collect()
 }
 
-/// Every frame of the hiding scene with occlusion culling is the frame without it, and
-/// occlusion culling works there: with the wall before it, the crowd's clusters are
-/// listed by the first phase and not drawn by the second; when the wall moves away, or
-/// a cube steps out, the second phase draws what the previous frame's pyramid hid.
+/// Every frame of the hiding scene with occlusion culling is the frame without it, at 4
+/// samples per pixel and at 1 (visibility_noaa.ron), and occlusion culling works there:
+/// with the wall before it, the crowd's clusters are listed by the first phase and not
+/// drawn by the second; when the wall moves away, or the camera moves past it, the second
+/// phase draws what the previous frame's pyramid hid.
 #[test]
 fn occlusion_culling_keeps_every_frame_of_a_scene_that_hides_and_reveals() {
     let scene = hiding_scene();
-    let culled = hiding_frames(&scene, 1);
-    let whole = hiding_frames(&scene, 0);
-    for (k, (on, off)) in culled.iter().zip(&whole).enumerate() {
-        let (colors, edges) = (
-            differing(&on.color, &off.color),
-            differing(&on.edges, &off.edges),
-        );
+    for msaa in [4, 1] {
+        let culled = hiding_frames(&scene, (msaa, 1));
+        let whole = hiding_frames(&scene, (msaa, 0));
+        assert_hiding_frames(&scene, msaa, &culled, &whole);
+    }
+}
+
+/// The assertions of the test above, at `msaa` samples per pixel, on the frames with
+/// occlusion culling (`culled`) and without (`whole`).
+fn assert_hiding_frames(scene: &Scene, msaa: u32, culled: &[Counted], whole: &[Counted]) {
+    for (k, (on, off)) in culled.iter().zip(whole).enumerate() {
+        let colors = differing(&on.color, &off.color);
+        let edges = differing(&on.edges, &off.edges);
         eprintln!(
-            "{}: {} listed, {} revealed; {colors} pixels of the colour and {edges} of the \
-             edges differ",
+            "{msaa}x, {}: {} listed, {} revealed; {colors} pixels of the colour and {edges} \
+             of the edges differ",
             HIDING[k].0, on.listed, on.revealed
         );
         assert!(
             colors == 0 && edges == 0,
-            "{}: with occlusion culling {colors} pixels of the colour and {edges} of the \
-             edges view differ from the frame without",
+            "{msaa}x, {}: with occlusion culling {colors} pixels of the colour and {edges} \
+             of the edges view differ from the frame without",
             HIDING[k].0
         );
     }
@@ -518,12 +526,12 @@ fn occlusion_culling_keeps_every_frame_of_a_scene_that_hides_and_reveals() {
         culled[k].color.pixels.iter().filter(reddish).count()
     };
     for k in [1, 4, 7] {
-        assert_eq!(red(k), 0, "{}: the crowd shows", HIDING[k].0);
+        assert_eq!(red(k), 0, "{msaa}x, {}: the crowd shows", HIDING[k].0);
     }
     for k in [2, 6, 8] {
         assert!(
             red(k) > 100,
-            "{}: the crowd shows in {} pixels",
+            "{msaa}x, {}: the crowd shows in {} pixels",
             HIDING[k].0,
             red(k)
         );
@@ -532,13 +540,18 @@ fn occlusion_culling_keeps_every_frame_of_a_scene_that_hides_and_reveals() {
     assert!(crowd >= 4, "the crowd is {crowd} clusters");
     let counts = |k: usize| (culled[k].listed, culled[k].revealed);
     // The first frame's pyramid holds no frame: nothing is listed.
-    assert_eq!(counts(0), (0, 0), "{}: clusters listed, drawn", HIDING[0].0);
+    assert_eq!(
+        counts(0),
+        (0, 0),
+        "{msaa}x, {}: clusters listed, drawn",
+        HIDING[0].0
+    );
     // Hidden: every crowd cluster and the cube listed, and none drawn.
     for k in [1, 4] {
         let (listed, revealed) = counts(k);
         assert!(
             listed > crowd && revealed == 0,
-            "{}: {listed} clusters listed, {revealed} of them drawn; the crowd is {crowd}",
+            "{msaa}x, {}: {listed} clusters listed, {revealed} of them drawn; the crowd is {crowd}",
             HIDING[k].0
         );
     }
@@ -546,7 +559,7 @@ fn occlusion_culling_keeps_every_frame_of_a_scene_that_hides_and_reveals() {
     // wall: drawn by the first phase.
     assert!(
         counts(5).0 < counts(4).0,
-        "{}: {} clusters listed, {} before",
+        "{msaa}x, {}: {} clusters listed, {} before",
         HIDING[5].0,
         counts(5).0,
         counts(4).0
@@ -557,9 +570,56 @@ fn occlusion_culling_keeps_every_frame_of_a_scene_that_hides_and_reveals() {
         let (listed, revealed) = counts(k);
         assert!(
             revealed > 0,
-            "{}: {revealed} of {listed} listed clusters drawn",
+            "{msaa}x, {}: {revealed} of {listed} listed clusters drawn",
             HIDING[k].0
         );
     }
-    assert!(counts(2).1 >= crowd, "{}: {:?}", HIDING[2].0, counts(2));
+    let (listed, revealed) = counts(2);
+    assert!(
+        revealed >= crowd,
+        "{msaa}x, {}: {revealed} of {listed} listed clusters drawn; the crowd is {crowd}",
+        HIDING[2].0
+    );
+}
+
+/// Occlusion culling's slots wired wrongly are errors naming the pass, the slot and the
+/// resource, found without a GPU (`rgraph validate`): each edit to visibility_msaa_4x.ron,
+/// the pass it breaks, and what its error says.
+#[test]
+fn occlusion_culling_wired_wrongly_is_an_error() {
+    let cases = [
+        (
+            "inputs: { \"pyramid\": \"depth_pyramid_prev\" },",
+            "inputs: { \"pyramid\": \"shadow_atlas\" },",
+            "visibility",
+            "slot \"pyramid\": \"shadow_atlas\" is not a history",
+        ),
+        (
+            "params: (occlusion: Param(name: \"occlusion\", default: 1)),\n            \
+             when: \"!untabled_textures & !cpu_device & blend\",\n            \
+             inputs: { \"pyramid\": \"depth_pyramid_prev\" },\n            \
+             outputs: { \"samples\": \"samples\", \"occluded\": \"occluded\" },",
+            "params: (occlusion: true),\n            \
+             when: \"!untabled_textures & !cpu_device & blend\",\n            \
+             outputs: { \"samples\": \"samples\" },",
+            "visibility (blend)",
+            "occlusion culling needs a \"pyramid\" input",
+        ),
+        (
+            "\"occluded\": Buffer(size: 4194320,",
+            "\"occluded\": Buffer(size: 16,",
+            "visibility",
+            "is not a buffer of a fixed size of at least 20 bytes",
+        ),
+        (
+            "\"first_pyramid\": Texture(format: \"r32float\",",
+            "\"first_pyramid\": Texture(format: \"rgba16float\",",
+            "depth pyramid (first phase)",
+            "is rgba16float, but the depth pyramid must be r32float",
+        ),
+    ];
+    for (from, to, pass, says) in cases {
+        let line = crate::visibility::validate_error(from, to, "wired.ron", pass);
+        assert!(line.contains(says), "{pass}: {line}");
+    }
 }

@@ -628,7 +628,7 @@ fn the_compute_raster_stores_8_bytes_per_sample() {
 
 /// The line `rgraph validate` prints about pass `pass` for visibility_msaa_4x.ron with
 /// `from` replaced by `to`, saved as `name`; the run must fail.
-fn validate_error(from: &str, to: &str, name: &str, pass: &str) -> String {
+pub(crate) fn validate_error(from: &str, to: &str, name: &str, pass: &str) -> String {
     // Beside copies of the parts it uses.
     let edited = crate::common::copied_pipeline("visibility_msaa_4x.ron", &[(from, to)]);
     let path = edited.path.with_file_name(name);

@@ -2,7 +2,8 @@
 //! `gbuffer` → `edge_stencil` → `light_edge` + `light_nonedge` → `resolve` → `tonemap`
 //! (the seeds' fragment path), or `gbuffer` → `light_tiled` → `tonemap` (lighting and
 //! resolve in one compute pass), or `visibility` (or `visibility_compute`, rasterising in
-//! compute, with `keys_depth` for the transparent pass) → `light_tiled` → `tonemap` (a
+//! compute, with `keys_depth` for the transparent pass and `depth_pyramid` for culling
+//! its clusters by occlusion) → `light_tiled` → `tonemap` (a
 //! visibility buffer, whose triangles the compute pass rebuilds and shades),
 //! with `debug_view` passes reading the G-buffer beside them; `pipelines/deferred_*.ron`
 //! are complete examples. Each plugin's module documents its parameters and slots.

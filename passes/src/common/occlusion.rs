@@ -31,7 +31,7 @@
 //!
 //! A `visibility_compute` pass with a `pyramid` input is a phase: the second where it
 //! modifies `samples` (and `occluded`, whose counts it completes), else the first, whose
-//! `pyramid` must be a history. With `occlusion: off` (or 0: the shipped files give the
+//! `pyramid` must be a history. With `occlusion: false` (or 0: the shipped files give the
 //! graph parameter `occlusion`) the first phase lists nothing and stores its keys as
 //! `other_samples` says, the second records nothing, and so does `depth_pyramid`: the
 //! raster of before, but for three empty passes. When the list is full, the first phase

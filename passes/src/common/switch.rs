@@ -1,5 +1,5 @@
-//! A pass parameter that turns work on or off, written `on` or `off` in a graph file, or
-//! as a graph parameter's value, 1 or 0 (`occlusion: Param(name: "occlusion", default:
+//! A pass parameter that turns work on or off, written `true` or `false` in a graph file,
+//! or as a graph parameter's value, 1 or 0 (`occlusion: Param(name: "occlusion", default:
 //! 1)`, which `rgraph render --param occlusion=0` sets: parameters are numbers).
 
 use serde::de::{self, Deserializer, Visitor};
@@ -11,23 +11,25 @@ pub enum Switch {
     Off,
 }
 
-/// By hand: `on` and `off` reach a visitor as an enum's unit variants or as identifiers,
-/// a parameter's value as a number.
+/// By hand: a boolean, or a number that is 1 or 0.
 impl<'de> Deserialize<'de> for Switch {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         struct SwitchVisitor;
 
-        impl<'de> Visitor<'de> for SwitchVisitor {
+        impl Visitor<'_> for SwitchVisitor {
             type Value = Switch;
 
             fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-                f.write_str("on or off (or 1 or 0, a parameter's value)")
+                f.write_str("true or false (or 1 or 0, a parameter's value)")
+            }
+
+            fn visit_bool<E: de::Error>(self, value: bool) -> Result<Switch, E> {
+                Ok(if value { Switch::On } else { Switch::Off })
             }
 
             fn visit_u64<E: de::Error>(self, value: u64) -> Result<Switch, E> {
                 match value {
-                    1 => Ok(Switch::On),
-                    0 => Ok(Switch::Off),
+                    0 | 1 => self.visit_bool(value == 1),
                     _ => Err(E::invalid_value(de::Unexpected::Unsigned(value), &self)),
                 }
             }
@@ -37,21 +39,6 @@ impl<'de> Deserialize<'de> for Switch {
                     Ok(value) => self.visit_u64(value),
                     Err(_) => Err(E::invalid_value(de::Unexpected::Signed(value), &self)),
                 }
-            }
-
-            fn visit_str<E: de::Error>(self, value: &str) -> Result<Switch, E> {
-                match value {
-                    "on" => Ok(Switch::On),
-                    "off" => Ok(Switch::Off),
-                    _ => Err(E::invalid_value(de::Unexpected::Str(value), &self)),
-                }
-            }
-
-            fn visit_enum<A: de::EnumAccess<'de>>(self, data: A) -> Result<Switch, A::Error> {
-                use de::VariantAccess;
-                let (name, variant): (String, _) = data.variant()?;
-                variant.unit_variant()?;
-                self.visit_str(&name)
             }
         }
 
@@ -68,13 +55,17 @@ mod tests {
     }
 
     #[test]
-    fn a_switch_reads_as_a_word_or_a_parameter_s_value() {
-        assert_eq!(read("on").unwrap(), Switch::On);
-        assert_eq!(read("off").unwrap(), Switch::Off);
+    fn a_switch_reads_as_a_boolean_or_a_parameter_s_value() {
+        assert_eq!(read("true").unwrap(), Switch::On);
+        assert_eq!(read("false").unwrap(), Switch::Off);
         assert_eq!(read("1").unwrap(), Switch::On);
         assert_eq!(read("0").unwrap(), Switch::Off);
-        for wrong in ["2", "-1", "yes"] {
-            assert!(read(wrong).is_err(), "{wrong} read as a switch");
+        for wrong in ["2", "-1", "on", "\"true\""] {
+            let error = read(wrong).expect_err(wrong).to_string();
+            assert!(
+                error.contains("true or false (or 1 or 0"),
+                "{wrong}: {error}"
+            );
         }
     }
 }

@@ -5,7 +5,7 @@
 //!
 //! ```ron
 //! (name: "depth pyramid", plugin: "depth_pyramid",
-//!  params: (occlusion: on),                  // off (or 0): records nothing
+//!  params: (occlusion: true),                // false (or 0): records nothing
 //!  inputs: { "samples": "keys" },            // Buffer(per_sample: 8, samples: N), every
 //!                                            // sample's key stored
 //!  outputs: { "pyramid": "depth_pyramid" })  // r32float, 1 sample, any size and mips
@@ -19,7 +19,7 @@
 //! file's mip count is a number. Every sample is read: a sloped triangle's samples lie at
 //! different depths, and occlusion culling's test must hold for each (the keys of samples
 //! other than 0 must be stored everywhere: `visibility_compute` does where it culls by
-//! occlusion). With `occlusion: off` it records nothing, and the pyramid is whatever the
+//! occlusion). With `occlusion: false` it records nothing, and the pyramid is whatever the
 //! texture held: occlusion culling, off too, reads none of it.
 
 use serde::Deserialize;
@@ -38,7 +38,7 @@ pub struct DepthPyramid(pub(crate) Shared);
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DepthPyramidParams {
-    /// Whether the pyramid is built: on unless occlusion culling is off.
+    /// Whether the pyramid is built: yes unless occlusion culling is off.
     #[serde(default = "on")]
     pub occlusion: Switch,
 }

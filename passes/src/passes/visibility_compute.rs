@@ -21,7 +21,7 @@
 //!      tile: 16,                    // pixels per tile side, 4 to 16 (the default)
 //!      other_samples: everywhere,   // or at_edges: below
 //!      clusters: culled,            // or whole, or off: below
-//!      occlusion: on,               // or off, with the slots below
+//!      occlusion: true,             // or false, with the slots below
 //!  ),
 //!  inputs: { "pyramid": "depth_pyramid_prev" },     // occlusion culling only: below
 //!  outputs: { "samples": "samples",                 // Buffer(per_sample: 8, samples: 4)
@@ -54,7 +54,7 @@
 //! both) bins those of the listed clusters that the pyramid of what the first drew does not
 //! hide, and adds their keys to the first's at the pixels it covers. The first then
 //! stores every sample's key whatever `other_samples` says, which the second reads, and
-//! the second stores every sample's too. `occlusion: off` (or 0) turns it off (the first
+//! the second stores every sample's too. `occlusion: false` (or 0) turns it off (the first
 //! lists nothing, the second records nothing); `clusters: off` leaves every cluster to the
 //! first. The image is the same as without it (tests/culling.rs).
 //!
@@ -94,7 +94,7 @@ pub struct VisibilityComputeParams {
     pub other_samples: OtherSamples,
     #[serde(default)]
     pub clusters: Clusters,
-    /// Occlusion culling, where the slots ask for it: on unless `off`.
+    /// Occlusion culling, where the slots ask for it: on unless `false`.
     #[serde(default)]
     pub occlusion: Option<Switch>,
 }
@@ -175,7 +175,8 @@ impl Plugin for VisibilityCompute {
             return Err(PluginError::Slot {
                 slot: "samples".into(),
                 resource: slots.resource("samples").unwrap_or("samples").to_owned(),
-                why: "is in inputs, but only the second phase of occlusion culling (with a                       \"pyramid\" input) adds to the keys it reads: list it in outputs only"
+                why: "is in inputs, but only the second phase of occlusion culling (with a \
+                      \"pyramid\" input) adds to the keys it reads: list it in outputs only"
                     .into(),
             });
         }
