@@ -498,7 +498,8 @@ fn the_compute_raster_follows_a_resize() {
 /// A frame's report counts the buffers its passes keep for themselves, which the plan
 /// does not know of: at 4x the tiled pass's list of edge pixels (4 bytes a pixel of the
 /// output and a count, made anew for a resized output), and the compute raster's bins,
-/// which grow with the scene's triangles; at 1x nothing is listed.
+/// which grow with the scene's triangles, in each phase of occlusion culling (the first
+/// also keeps the previous frame's camera, 80 bytes); at 1x nothing is listed.
 #[test]
 fn a_frame_reports_the_buffers_its_passes_keep() {
     let gpu = gpu();
@@ -519,9 +520,14 @@ fn a_frame_reports_the_buffers_its_passes_keep() {
         bins.0 > bins.1 && bins.1 > 0,
         "bins of dense and spheres: {bins:?}"
     );
+    let (first, second) = (
+        held(&dense, "visibility"),
+        held(&dense, "visibility (second phase)"),
+    );
+    assert_eq!(first, second + 80, "the two phases' bins");
     assert_eq!(
         dense.held_bytes(),
-        held(&dense, "visibility") + held(&dense, "light tiled")
+        first + second + held(&dense, "light tiled")
     );
     let mut frame = Render::new(COMPUTE, "builtin:dense", (160, 90))
         .param("msaa", 1)

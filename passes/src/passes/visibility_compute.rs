@@ -338,6 +338,7 @@ mod gpu {
             let bins = bins.as_ref().map_err(String::clone)?;
             bins.buffers()
                 .iter()
+                .chain(state.occlusion.as_ref().and_then(OcclusionGroup::buffer))
                 .for_each(|buffer| resources.hold(buffer));
             let geometry = scene.geometry_group(device)?;
             // Textured alpha masks read the table.

@@ -77,6 +77,12 @@ impl OcclusionGroup {
         OcclusionGroup { layout, first }
     }
 
+    /// The buffer the group keeps for itself (the first phase's camera), for the pass to
+    /// count ([`rgraph_core::gpu::FrameResources::hold`]).
+    pub fn buffer(&self) -> Option<&wgpu::Buffer> {
+        self.first.as_ref().map(|first| &first.buffer)
+    }
+
     /// This frame's group: `pyramid` (every level) and the list `occluded`; for the first
     /// phase, frame `frame` seen through `camera` at `size`, tested only where `test`
     /// (occlusion culling on, and the pyramid holding the previous frame's depths).
