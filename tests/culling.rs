@@ -14,7 +14,8 @@
 //! `whole` with it, `off` without any culling), and in a scene built to hide and reveal
 //! (a wall moving away from a crowd behind it, an object stepping out from behind the
 //! wall, the camera turning fast), every frame is the image without it, exactly; and it
-//! does cull there, and does draw what a frame reveals (the counts its list keeps).
+//! does cull there, and does draw what a frame reveals (the counts its list keeps). The
+//! depth pyramid it tests against holds the farthest depth of every sample it covers.
 //!
 //! The shadow maps' views draw only the clusters they may see (`shadow_maps`'s
 //! `clusters`, gpu_scene/view_culling.rs): along the same frames, which move the cascades
@@ -622,4 +623,57 @@ fn occlusion_culling_wired_wrongly_is_an_error() {
         let line = crate::visibility::validate_error(from, to, "wired.ron", pass);
         assert!(line.contains(says), "{pass}: {line}");
     }
+}
+
+/// The depth pyramid's level 0 holds, at each of its 512 x 512 texels, the least
+/// reversed-Z depth (the farthest) of every sample of every pixel the texel covers
+/// (depth_pyramid.wgsl: from floor(i W / 512) to ceil((i + 1) W / 512) - 1 across, and
+/// down), exactly: read back against the keys it was built from, at 4x, where a
+/// sphere's samples lie at other depths than sample 0's.
+#[test]
+fn the_depth_pyramid_holds_the_farthest_depth_of_every_sample_it_covers() {
+    let gpu = gpu();
+    let frame = Render::new(COMPUTE, "builtin:spheres", SIZE)
+        .edit("outputs: [\"color\"", "outputs: [\"keys\", \"color\"")
+        .run(&gpu);
+    let words = |bytes: Vec<u8>| -> Vec<u32> {
+        (bytes.chunks_exact(4))
+            .map(|w| u32::from_le_bytes(w.try_into().unwrap()))
+            .collect()
+    };
+    let keys = words(frame.buffer(&gpu, "keys"));
+    let pyramid: Vec<f32> = (words(frame.texels(&gpu, "depth_pyramid")).into_iter())
+        .map(f32::from_bits)
+        .collect();
+    let (width, height, samples, side) = (SIZE.0 as usize, SIZE.1 as usize, 4, 512);
+    assert_eq!(pyramid.len(), side * side);
+    // A sample's depth: the high word of its key, the several-triangles flag cleared.
+    let depth = |x: usize, y: usize, s: usize| {
+        f32::from_bits(keys[2 * ((s * height + y) * width + x) + 1] & 0x7fff_ffff)
+    };
+    let covered = |i: usize, pixels: usize| i * pixels / side..((i + 1) * pixels).div_ceil(side);
+    let mut wrong = Vec::new();
+    for j in 0..side {
+        for i in 0..side {
+            let farthest = (covered(j, height))
+                .flat_map(|y| {
+                    covered(i, width).flat_map(move |x| (0..samples).map(move |s| (x, y, s)))
+                })
+                .map(|(x, y, s)| depth(x, y, s))
+                .fold(f32::INFINITY, f32::min);
+            if pyramid[j * side + i] != farthest {
+                wrong.push((i, j, pyramid[j * side + i], farthest));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "{} texels differ, the first {:?}",
+        wrong.len(),
+        &wrong[..wrong.len().min(4)]
+    );
+    // Not vacuous: the spheres and floor leave depths above 0 (nothing drawn) in most
+    // texels, and several of them.
+    let drawn = pyramid.iter().filter(|&&d| d > 0.0).count();
+    assert!(drawn > side * side / 4, "{drawn} texels hold a depth");
 }
