@@ -77,9 +77,10 @@ fn pyramid_hides(c: RasterCluster, model: mat4x4<f32>, clip_from_relative: mat4x
         // A pyramid of too few levels for these bounds.
         return false;
     }
-    // Read at a level every invocation agrees on, each at its own: llvmpipe takes one
-    // invocation's level for all of them in a query or a load given levels that differ
-    // (textureDimensions(pyramid, level) did, measured), which reads other texels.
+    // Each invocation reads at its own level, in the turn of a loop over the levels where
+    // every invocation's `at` is that level: given levels that differ, llvmpipe answered
+    // textureDimensions(pyramid, level) with one invocation's for all of them (measured),
+    // and a load may do the same, which would read other texels.
     var farthest = 0.0;
     for (var at = 0u; at < levels; at++) {
         if at == level {
