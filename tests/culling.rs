@@ -9,6 +9,14 @@
 //! clusters). The frames run through one executor each, so they also show that a frame's
 //! lists do not keep what an earlier frame culled or listed.
 //!
+//! Occlusion culling (the compute raster's two phases, passes/common/occlusion.rs) never
+//! drops a visible triangle either: along the same frames (`clusters: culled` and
+//! `whole` with it, `off` without any culling), and in a scene built to hide and reveal
+//! (a wall moving away from a crowd behind it, an object stepping out from behind the
+//! wall, the camera turning fast), every frame is the image without it, exactly; and it
+//! does cull there, and does draw what a frame reveals (the counts its list keeps). The
+//! depth pyramid it tests against holds the farthest depth of every sample it covers.
+//!
 //! The shadow maps' views draw only the clusters they may see (`shadow_maps`'s
 //! `clusters`, gpu_scene/view_culling.rs): along the same frames, which move the cascades
 //! with the camera, the colour and the shadows view are those of drawing every mesh
@@ -17,21 +25,24 @@
 use rgraph_core::Features;
 use rgraph_passes::FrameInputs;
 use rgraph_scene::analysis::Features as SceneFeatures;
-use rgraph_scene::glam::{DMat4, DVec3};
-use rgraph_scene::{Camera, Scene};
+use rgraph_scene::glam::{DMat4, DVec3, Vec3};
+use rgraph_scene::{Camera, Light, LightKind, Projection, Scene};
 
+use crate::deferred_support::scenes::Parts;
 use crate::deferred_support::{gpu, Image, PipelineFile, Render};
 
 /// The compute raster, as on a GPU.
 const COMPUTE: PipelineFile = PipelineFile::gpu_branch("visibility_msaa_4x.ron");
-/// The raster pass's parameters as shipped (`clusters` left at its default, `culled`).
-const SHIPPED: &str = "params: (other_samples: at_edges),";
+/// The first raster pass's parameters as shipped, as far as they are edited
+/// (`clusters` left at its default, `culled`; occlusion culling on, by the file's
+/// parameter `occlusion`).
+const SHIPPED: &str = "params: (other_samples: at_edges,";
 const MODES: [(&str, &str); 2] = [
     (
         "whole",
-        "params: (other_samples: at_edges, clusters: whole),",
+        "params: (other_samples: at_edges, clusters: whole,",
     ),
-    ("off", "params: (other_samples: at_edges, clusters: off),"),
+    ("off", "params: (other_samples: at_edges, clusters: off,"),
 ];
 /// An edge pixel in the edges view.
 const EDGE: [u8; 4] = [255, 0, 0, 255];
@@ -334,4 +345,335 @@ fn shadow_views_keep_every_caster_of_a_city() {
 #[test]
 fn shadow_views_keep_every_caster_of_a_heightfield() {
     assert_shadow_views_keep_every_frame("builtin:terrain");
+}
+
+/// The hiding scene's meshes: a wall, a crowd of cubes behind it (one mesh of several
+/// clusters), one more cube behind it that steps out, and the floor.
+const WALL: usize = 0;
+const CROWD: usize = 1;
+const RUNNER: usize = 2;
+
+/// A wall before a crowd of 40 cubes, seen from in front, lit by a sun.
+fn hiding_scene() -> Scene {
+    let mut parts = Parts::new();
+    let grey = parts.material("grey", [0.6, 0.6, 0.6], 0.6);
+    let red = parts.material("red", [0.8, 0.15, 0.1], 0.4);
+    let blue = parts.material("blue", [0.1, 0.3, 0.8], 0.4);
+    let (min, max) = (DVec3::new(-3.0, 0.0, -0.25), DVec3::new(3.0, 3.5, 0.25));
+    assert_eq!(parts.cuboid("wall", min, max, grey), WALL);
+    let mut crowd = Parts::new();
+    for (i, j, k) in (0..5).flat_map(|i| (0..4).flat_map(move |j| (0..2).map(move |k| (i, j, k)))) {
+        let corner = DVec3::new(
+            -1.5 + 0.65 * f64::from(i),
+            0.6 + 0.5 * f64::from(j),
+            -3.5 + f64::from(k),
+        );
+        crowd.cuboid("cube", corner, corner + DVec3::splat(0.35), 0);
+    }
+    let cubes: Vec<Vec<DVec3>> = crowd.polygons.iter().map(|p| p.corners.clone()).collect();
+    assert_eq!(parts.mesh("crowd", &cubes, red), CROWD);
+    let (min, max) = (DVec3::new(-0.4, 0.8, -1.5), DVec3::new(0.4, 1.6, -0.7));
+    assert_eq!(parts.cuboid("runner", min, max, blue), RUNNER);
+    let floor = vec![
+        DVec3::new(-20.0, 0.0, 20.0),
+        DVec3::new(20.0, 0.0, 20.0),
+        DVec3::new(20.0, 0.0, -20.0),
+        DVec3::new(-20.0, 0.0, -20.0),
+    ];
+    parts.mesh("floor", &[floor], grey);
+    parts.lights.push(Light {
+        name: "sun".into(),
+        kind: LightKind::Directional,
+        color: [1.0, 1.0, 1.0],
+        intensity: 3.0,
+        position: DVec3::ZERO,
+        direction: Vec3::new(0.3, -0.8, -0.5).normalize(),
+        range: None,
+    });
+    parts.ambient = [0.05; 3];
+    let projection = Projection::Perspective {
+        yfov: 0.8,
+        znear: 0.1,
+        zfar: Some(100.0),
+    };
+    let eye = DVec3::new(0.0, 1.5, 8.0);
+    let camera = Camera::look_at(
+        "front",
+        eye,
+        DVec3::new(0.0, 1.5, 0.0),
+        DVec3::Y,
+        projection,
+    );
+    parts.scene("hiding", camera)
+}
+
+/// `inputs` with mesh `mesh` moved by `by`.
+fn moved(inputs: &mut FrameInputs, mesh: usize, by: DVec3) {
+    inputs.transforms[mesh] = DMat4::from_translation(by) * inputs.transforms[mesh];
+}
+
+/// The hiding scene's frames, each a change of its own inputs; the first is the
+/// executor's first frame (a reset of the depth pyramid's history).
+const HIDING: [Change; 10] = [
+    ("the first frame", |_, _| {}),
+    ("the wall hides the crowd", |_, _| {}),
+    ("the wall moves away", |inputs, _| {
+        moved(inputs, WALL, DVec3::new(9.0, 0.0, 0.0))
+    }),
+    ("the wall is back", |_, _| {}),
+    ("the wall hides the crowd again", |_, _| {}),
+    ("a cube steps out from behind the wall", |inputs, _| {
+        moved(inputs, RUNNER, DVec3::new(4.5, 0.0, 0.0))
+    }),
+    ("the camera turns 70 degrees", |inputs, _| {
+        let about = DVec3::new(0.0, 1.5, -1.5);
+        inputs.camera = inputs.camera.orbited(about, 70f64.to_radians());
+    }),
+    ("the camera is back", |_, _| {}),
+    (
+        "the camera jumps aside, past the wall's edge",
+        |inputs, _| {
+            let (eye, target) = (DVec3::new(12.0, 1.5, 6.0), DVec3::new(0.0, 1.5, -2.5));
+            inputs.camera = look(&inputs.camera, eye, target);
+        },
+    ),
+    ("the camera behind the crowd", |inputs, _| {
+        let about = DVec3::new(0.0, 1.5, -1.5);
+        inputs.camera = inputs.camera.orbited(about, 180f64.to_radians());
+    }),
+];
+
+/// What a frame of the hiding scene shows and counts: its colour, its edges, and the
+/// clusters the first phase of occlusion culling listed and the second drew of them.
+struct Counted {
+    color: Image,
+    edges: Image,
+    listed: u32,
+    revealed: u32,
+}
+
+/// [`HIDING`]'s frames through one executor, with the graph parameters `msaa` and
+/// `occlusion` at `msaa` and `occlusion`.
+fn hiding_frames(scene: &Scene, (msaa, occlusion): (u32, u32)) -> Vec<Counted> {
+    let gpu = gpu();
+    let mut frame = Render::new(COMPUTE, "hiding", SIZE)
+        .with_scene(scene.clone())
+        .param("msaa", msaa)
+        .param("occlusion", occlusion)
+        .edit(
+            "outputs: [\"color\"",
+            "outputs: [\"occlusion_counts\", \"color\"",
+        )
+        .run(&gpu);
+    let own = frame.inputs();
+    HIDING
+        .iter()
+        .enumerate()
+        .map(|(k, (_, change))| {
+            if k > 0 {
+                let mut inputs = own.clone();
+                change(&mut inputs, scene);
+                frame.next(inputs);
+            }
+            let counts = frame.buffer(&gpu, "occlusion_counts");
+            let word = |k: usize| u32::from_le_bytes(counts[4 * k..4 * k + 4].try_into().unwrap());
+            Counted {
+                color: frame.image(&gpu, "color"),
+                edges: frame.image(&gpu, "debug.edges"),
+                listed: word(0),
+                revealed: word(1),
+            }
+        })
+        .collect()
+}
+
+/// Every frame of the hiding scene with occlusion culling is the frame without it, at 4
+/// samples per pixel and at 1 (visibility_noaa.ron), and occlusion culling works there:
+/// with the wall before it, the crowd's clusters are listed by the first phase and not
+/// drawn by the second; when the wall moves away, or the camera moves past it, the second
+/// phase draws what the previous frame's pyramid hid.
+#[test]
+fn occlusion_culling_keeps_every_frame_of_a_scene_that_hides_and_reveals() {
+    let scene = hiding_scene();
+    for msaa in [4, 1] {
+        let culled = hiding_frames(&scene, (msaa, 1));
+        let whole = hiding_frames(&scene, (msaa, 0));
+        assert_hiding_frames(&scene, msaa, &culled, &whole);
+    }
+}
+
+/// The assertions of the test above, at `msaa` samples per pixel, on the frames with
+/// occlusion culling (`culled`) and without (`whole`).
+fn assert_hiding_frames(scene: &Scene, msaa: u32, culled: &[Counted], whole: &[Counted]) {
+    for (k, (on, off)) in culled.iter().zip(whole).enumerate() {
+        let colors = differing(&on.color, &off.color);
+        let edges = differing(&on.edges, &off.edges);
+        eprintln!(
+            "{msaa}x, {}: {} listed, {} revealed; {colors} pixels of the colour and {edges} \
+             of the edges differ",
+            HIDING[k].0, on.listed, on.revealed
+        );
+        assert!(
+            colors == 0 && edges == 0,
+            "{msaa}x, {}: with occlusion culling {colors} pixels of the colour and {edges} \
+             of the edges view differ from the frame without",
+            HIDING[k].0
+        );
+    }
+    // The crowd (red) shows where it is revealed, and not where the wall hides it: frames
+    // that showed nothing would pass with anything culled.
+    let red = |k: usize| {
+        let reddish = |p: &&[u8; 4]| i32::from(p[0]) > 40 + i32::from(p[1].max(p[2]));
+        culled[k].color.pixels.iter().filter(reddish).count()
+    };
+    for k in [1, 4, 7] {
+        assert_eq!(red(k), 0, "{msaa}x, {}: the crowd shows", HIDING[k].0);
+    }
+    for k in [2, 6, 8] {
+        assert!(
+            red(k) > 100,
+            "{msaa}x, {}: the crowd shows in {} pixels",
+            HIDING[k].0,
+            red(k)
+        );
+    }
+    let crowd = rgraph_scene::cluster(&scene.meshes[CROWD]).clusters.len() as u32;
+    assert!(crowd >= 4, "the crowd is {crowd} clusters");
+    let counts = |k: usize| (culled[k].listed, culled[k].revealed);
+    // The first frame's pyramid holds no frame: nothing is listed.
+    assert_eq!(
+        counts(0),
+        (0, 0),
+        "{msaa}x, {}: clusters listed, drawn",
+        HIDING[0].0
+    );
+    // Hidden: every crowd cluster and the cube listed, and none drawn.
+    for k in [1, 4] {
+        let (listed, revealed) = counts(k);
+        assert!(
+            listed > crowd && revealed == 0,
+            "{msaa}x, {}: {listed} clusters listed, {revealed} of them drawn; the crowd is {crowd}",
+            HIDING[k].0
+        );
+    }
+    // The cube stepped out where the previous frame's pyramid shows the floor beside the
+    // wall: drawn by the first phase.
+    assert!(
+        counts(5).0 < counts(4).0,
+        "{msaa}x, {}: {} clusters listed, {} before",
+        HIDING[5].0,
+        counts(5).0,
+        counts(4).0
+    );
+    // Revealed, by the wall moving away and by the camera moving: clusters the previous
+    // frame's pyramid hid, drawn by the second phase.
+    for k in [2, 6, 8] {
+        let (listed, revealed) = counts(k);
+        assert!(
+            revealed > 0,
+            "{msaa}x, {}: {revealed} of {listed} listed clusters drawn",
+            HIDING[k].0
+        );
+    }
+    let (listed, revealed) = counts(2);
+    assert!(
+        revealed >= crowd,
+        "{msaa}x, {}: {revealed} of {listed} listed clusters drawn; the crowd is {crowd}",
+        HIDING[2].0
+    );
+}
+
+/// Occlusion culling's slots wired wrongly are errors naming the pass, the slot and the
+/// resource, found without a GPU (`rgraph validate`): each edit to visibility_msaa_4x.ron,
+/// the pass it breaks, and what its error says.
+#[test]
+fn occlusion_culling_wired_wrongly_is_an_error() {
+    let cases = [
+        (
+            "inputs: { \"pyramid\": \"depth_pyramid_prev\" },",
+            "inputs: { \"pyramid\": \"shadow_atlas\" },",
+            "visibility",
+            "slot \"pyramid\": \"shadow_atlas\" is not a history",
+        ),
+        (
+            "params: (occlusion: Param(name: \"occlusion\", default: 1)),\n            \
+             when: \"!untabled_textures & !cpu_device & blend\",\n            \
+             inputs: { \"pyramid\": \"depth_pyramid_prev\" },\n            \
+             outputs: { \"samples\": \"samples\", \"occluded\": \"occluded\" },",
+            "params: (occlusion: true),\n            \
+             when: \"!untabled_textures & !cpu_device & blend\",\n            \
+             outputs: { \"samples\": \"samples\" },",
+            "visibility (blend)",
+            "occlusion culling needs a \"pyramid\" input",
+        ),
+        (
+            "\"occluded\": Buffer(size: 4194320,",
+            "\"occluded\": Buffer(size: 16,",
+            "visibility",
+            "is not a buffer of a fixed size of at least 20 bytes",
+        ),
+        (
+            "\"first_pyramid\": Texture(format: \"r32float\",",
+            "\"first_pyramid\": Texture(format: \"rgba16float\",",
+            "depth pyramid (first phase)",
+            "is rgba16float, but the depth pyramid must be r32float",
+        ),
+    ];
+    for (from, to, pass, says) in cases {
+        let line = crate::visibility::validate_error(from, to, "wired.ron", pass);
+        assert!(line.contains(says), "{pass}: {line}");
+    }
+}
+
+/// The depth pyramid's level 0 holds, at each of its 512 x 512 texels, the least
+/// reversed-Z depth (the farthest) of every sample of every pixel the texel covers
+/// (depth_pyramid.wgsl: from floor(i W / 512) to ceil((i + 1) W / 512) - 1 across, and
+/// down), exactly: read back against the keys it was built from, at 4x, where a
+/// sphere's samples lie at other depths than sample 0's.
+#[test]
+fn the_depth_pyramid_holds_the_farthest_depth_of_every_sample_it_covers() {
+    let gpu = gpu();
+    let frame = Render::new(COMPUTE, "builtin:spheres", SIZE)
+        .edit("outputs: [\"color\"", "outputs: [\"keys\", \"color\"")
+        .run(&gpu);
+    let words = |bytes: Vec<u8>| -> Vec<u32> {
+        (bytes.chunks_exact(4))
+            .map(|w| u32::from_le_bytes(w.try_into().unwrap()))
+            .collect()
+    };
+    let keys = words(frame.buffer(&gpu, "keys"));
+    let pyramid: Vec<f32> = (words(frame.texels(&gpu, "depth_pyramid")).into_iter())
+        .map(f32::from_bits)
+        .collect();
+    let (width, height, samples, side) = (SIZE.0 as usize, SIZE.1 as usize, 4, 512);
+    assert_eq!(pyramid.len(), side * side);
+    // A sample's depth: the high word of its key, the several-triangles flag cleared.
+    let depth = |x: usize, y: usize, s: usize| {
+        f32::from_bits(keys[2 * ((s * height + y) * width + x) + 1] & 0x7fff_ffff)
+    };
+    let covered = |i: usize, pixels: usize| i * pixels / side..((i + 1) * pixels).div_ceil(side);
+    let mut wrong = Vec::new();
+    for j in 0..side {
+        for i in 0..side {
+            let farthest = (covered(j, height))
+                .flat_map(|y| {
+                    covered(i, width).flat_map(move |x| (0..samples).map(move |s| (x, y, s)))
+                })
+                .map(|(x, y, s)| depth(x, y, s))
+                .fold(f32::INFINITY, f32::min);
+            if pyramid[j * side + i] != farthest {
+                wrong.push((i, j, pyramid[j * side + i], farthest));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "{} texels differ, the first {:?}",
+        wrong.len(),
+        &wrong[..wrong.len().min(4)]
+    );
+    // Not vacuous: the spheres and floor leave depths above 0 (nothing drawn) in most
+    // texels, and several of them.
+    let drawn = pyramid.iter().filter(|&&d| d > 0.0).count();
+    assert!(drawn > side * side / 4, "{drawn} texels hold a depth");
 }

@@ -401,15 +401,15 @@ fn the_compute_raster_s_tile_size_does_not_change_the_image() {
     let gpu = gpu();
     let image = |tile: &'static str| {
         Render::new(COMPUTE, "builtin:dense", (333, 217))
-            .edit("params: (other_samples: at_edges),", tile)
+            .edit("params: (other_samples: at_edges,", tile)
             .run(&gpu)
             .image(&gpu, "color")
     };
-    let sixteen = image("params: (other_samples: at_edges, tile: 16),");
+    let sixteen = image("params: (other_samples: at_edges, tile: 16,");
     for tile in [
-        "params: (other_samples: at_edges, tile: 4),",
-        "params: (other_samples: at_edges, tile: 8),",
-        "params: (other_samples: at_edges, tile: 12),",
+        "params: (other_samples: at_edges, tile: 4,",
+        "params: (other_samples: at_edges, tile: 8,",
+        "params: (other_samples: at_edges, tile: 12,",
     ] {
         let other = image(tile);
         assert!(sixteen.pixels == other.pixels, "{tile}: the image changed");
@@ -498,7 +498,8 @@ fn the_compute_raster_follows_a_resize() {
 /// A frame's report counts the buffers its passes keep for themselves, which the plan
 /// does not know of: at 4x the tiled pass's list of edge pixels (4 bytes a pixel of the
 /// output and a count, made anew for a resized output), and the compute raster's bins,
-/// which grow with the scene's triangles; at 1x nothing is listed.
+/// which grow with the scene's triangles, in each phase of occlusion culling (the first
+/// also keeps the previous frame's camera, 80 bytes); at 1x nothing is listed.
 #[test]
 fn a_frame_reports_the_buffers_its_passes_keep() {
     let gpu = gpu();
@@ -519,9 +520,14 @@ fn a_frame_reports_the_buffers_its_passes_keep() {
         bins.0 > bins.1 && bins.1 > 0,
         "bins of dense and spheres: {bins:?}"
     );
+    let (first, second) = (
+        held(&dense, "visibility"),
+        held(&dense, "visibility (second phase)"),
+    );
+    assert_eq!(first, second + 80, "the two phases' bins");
     assert_eq!(
         dense.held_bytes(),
-        held(&dense, "visibility") + held(&dense, "light tiled")
+        first + second + held(&dense, "light tiled")
     );
     let mut frame = Render::new(COMPUTE, "builtin:dense", (160, 90))
         .param("msaa", 1)
@@ -628,7 +634,7 @@ fn the_compute_raster_stores_8_bytes_per_sample() {
 
 /// The line `rgraph validate` prints about pass `pass` for visibility_msaa_4x.ron with
 /// `from` replaced by `to`, saved as `name`; the run must fail.
-fn validate_error(from: &str, to: &str, name: &str, pass: &str) -> String {
+pub(crate) fn validate_error(from: &str, to: &str, name: &str, pass: &str) -> String {
     // Beside copies of the parts it uses.
     let edited = crate::common::copied_pipeline("visibility_msaa_4x.ron", &[(from, to)]);
     let path = edited.path.with_file_name(name);
@@ -664,8 +670,8 @@ fn a_compute_visibility_buffer_of_another_size_is_an_error() {
 #[test]
 fn a_compute_raster_tile_outside_4_to_16_is_an_error() {
     let line = validate_error(
-        "params: (other_samples: at_edges),",
-        "params: (other_samples: at_edges, tile: 32),",
+        "params: (other_samples: at_edges,",
+        "params: (other_samples: at_edges, tile: 32,",
         "big_tiles.ron",
         "visibility",
     );

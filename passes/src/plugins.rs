@@ -2,7 +2,8 @@
 //! `gbuffer` → `edge_stencil` → `light_edge` + `light_nonedge` → `resolve` → `tonemap`
 //! (the seeds' fragment path), or `gbuffer` → `light_tiled` → `tonemap` (lighting and
 //! resolve in one compute pass), or `visibility` (or `visibility_compute`, rasterising in
-//! compute, with `keys_depth` for the transparent pass) → `light_tiled` → `tonemap` (a
+//! compute, with `keys_depth` for the transparent pass and `depth_pyramid` for culling
+//! its clusters by occlusion) → `light_tiled` → `tonemap` (a
 //! visibility buffer, whose triangles the compute pass rebuilds and shades),
 //! with `debug_view` passes reading the G-buffer beside them; `pipelines/deferred_*.ron`
 //! are complete examples. Each plugin's module documents its parameters and slots.
@@ -49,6 +50,7 @@ use crate::passes::auto_exposure::AutoExposure;
 use crate::passes::background::Background;
 use crate::passes::debug_view::DebugView;
 use crate::passes::depth_downsample::DepthDownsample;
+use crate::passes::depth_pyramid::DepthPyramid;
 use crate::passes::edge_stencil::EdgeStencil;
 use crate::passes::forward::Forward;
 use crate::passes::fxaa::Fxaa;
@@ -87,6 +89,7 @@ pub(crate) fn register(registry: &mut Registry, host: Option<Arc<Host>>, variant
         .register(Visibility(shared.clone()))
         .register(VisibilityCompute(shared.clone()))
         .register(KeysDepth(shared.clone()))
+        .register(DepthPyramid(shared.clone()))
         .register(Resolve(shared.clone()))
         .register(ShadowMaps(shared.clone()))
         .register(ShadowRaster(shared.clone()))

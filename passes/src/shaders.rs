@@ -207,6 +207,21 @@ pub(crate) const TILE_BINS: Source = Source {
         include_str!("wgsl/bin_triangles.wgsl"),
     ],
 };
+/// How bin_triangles.wgsl culls clusters by occlusion (visibility_compute.rs): not at
+/// all, or in the first or the second of its two phases.
+pub(crate) const OCCLUSION_NONE: &str = include_str!("wgsl/occlusion_none.wgsl");
+pub(crate) const OCCLUSION_FIRST: &str = concat!(
+    include_str!("wgsl/cluster_occlusion.wgsl"),
+    include_str!("wgsl/occlusion_first.wgsl")
+);
+pub(crate) const OCCLUSION_SECOND: &str = concat!(
+    include_str!("wgsl/cluster_occlusion.wgsl"),
+    include_str!("wgsl/occlusion_second.wgsl")
+);
+pub(crate) const DEPTH_PYRAMID: Source = Source {
+    name: "depth_pyramid.wgsl",
+    parts: &[COMMON, SCENE, KEYS, include_str!("wgsl/depth_pyramid.wgsl")],
+};
 pub(crate) const RESOLVE: Source = Source {
     name: "resolve.wgsl",
     parts: &[COMMON, include_str!("wgsl/resolve.wgsl")],

@@ -15,7 +15,8 @@ use std::sync::Arc;
 
 use rgraph_core::file::{load_str_with, GraphParams, LoadedGraph, Registry};
 use rgraph_core::gpu::{
-    read_rgba16f, read_rgba8, ExecuteError, Executor, FrameReport, Gpu, Imports,
+    read_buffer, read_rgba16f, read_rgba8, read_texture, ExecuteError, Executor, FrameReport, Gpu,
+    Imports,
 };
 use rgraph_core::{CompileOptions, CompiledGraph, DeviceProfile, Features, Plan};
 use rgraph_passes::variant::Variants;
@@ -357,6 +358,29 @@ impl Frame {
             .unwrap_or_else(|e| panic!("cannot write {}: {e}", file.display()));
         }
         image
+    }
+
+    /// The texels of mip 0 of the exported single-sampled texture `name`, as bytes, rows
+    /// top first.
+    pub fn texels(&self, gpu: &Gpu, name: &str) -> Vec<u8> {
+        read_texture(&gpu.device, &gpu.queue, self.texture(name))
+            .unwrap_or_else(|e| panic!("cannot read {name} back: {e}"))
+    }
+
+    /// The bytes of the exported buffer `name`.
+    pub fn buffer(&self, gpu: &Gpu, name: &str) -> Vec<u8> {
+        let handle = self
+            .compiled
+            .graph()
+            .names
+            .buffer(name)
+            .unwrap_or_else(|| panic!("{} has no buffer named {name}", self.label));
+        let buffer = self
+            .executor
+            .buffer(self.compiled.plan(), handle.id())
+            .unwrap_or_else(|| panic!("{name} is not an exported buffer of {}", self.label));
+        read_buffer(&gpu.device, &gpu.queue, buffer)
+            .unwrap_or_else(|e| panic!("cannot read {name} back: {e}"))
     }
 
     /// An exported RGBA16Float texture, widened to f32.

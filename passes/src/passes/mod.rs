@@ -8,6 +8,7 @@ pub(crate) mod auto_exposure;
 pub(crate) mod background;
 pub(crate) mod debug_view;
 pub(crate) mod depth_downsample;
+pub(crate) mod depth_pyramid;
 pub(crate) mod edge_stencil;
 pub(crate) mod forward;
 pub(crate) mod fxaa;

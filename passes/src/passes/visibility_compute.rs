@@ -21,8 +21,11 @@
 //!      tile: 16,                    // pixels per tile side, 4 to 16 (the default)
 //!      other_samples: everywhere,   // or at_edges: below
 //!      clusters: culled,            // or whole, or off: below
+//!      occlusion: true,             // or false, with the slots below
 //!  ),
-//!  outputs: { "samples": "samples" })    // Buffer(per_sample: 8, samples: 4)
+//!  inputs: { "pyramid": "depth_pyramid_prev" },     // occlusion culling only: below
+//!  outputs: { "samples": "samples",                 // Buffer(per_sample: 8, samples: 4)
+//!             "occluded": "occluded" })             // occlusion culling only
 //! ```
 //!
 //! `other_samples: at_edges` stores the keys of samples other than 0 only at pixels whose
@@ -44,6 +47,17 @@
 //! whichever is chosen (tests/culling.rs): culling drops only triangles that cover no
 //! sample.
 //!
+//! With a `pyramid` input, clusters are culled by occlusion too, in two phases of two
+//! passes (common/occlusion.rs says how a file writes them): the first (this slot a
+//! history) bins the clusters the previous frame's depth pyramid does not hide and lists
+//! the others in `occluded`; the second (`samples` and `occluded` in inputs and outputs
+//! both) bins those of the listed clusters that the pyramid of what the first drew does not
+//! hide, and adds their keys to the first's at the pixels it covers. The first then
+//! stores every sample's key whatever `other_samples` says, which the second reads, and
+//! the second stores every sample's too. `occlusion: false` (or 0) turns it off (the first
+//! lists nothing, the second records nothing); `clusters: off` leaves every cluster to the
+//! first. The image is the same as without it (tests/culling.rs).
+//!
 //! `light_tiled` with a `samples` input shades it as it shades a hardware visibility
 //! buffer's `ids` and `depth`, with the same IDs (the triangle's position in the scene's
 //! index buffer / 3, + 1) and the same sample positions; triangle_setup.wgsl gives the
@@ -62,7 +76,9 @@ use rgraph_core::file::{Plugin, PluginError, Slots};
 use rgraph_core::shader::Stage;
 use rgraph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, PassKind};
 
+use crate::common::occlusion::{self, OcclusionSlots, Phase};
 use crate::common::plugin::{check_tile, Shared};
+use crate::common::switch::Switch;
 use crate::common::visibility_samples;
 use crate::shaders;
 
@@ -78,6 +94,9 @@ pub struct VisibilityComputeParams {
     pub other_samples: OtherSamples,
     #[serde(default)]
     pub clusters: Clusters,
+    /// Occlusion culling, where the slots ask for it: on unless `false`.
+    #[serde(default)]
+    pub occlusion: Option<Switch>,
 }
 
 /// How `visibility_compute` culls and bins the draws' clusters.
@@ -123,6 +142,8 @@ pub(crate) struct RasterDispatch {
     pub samples: BufferHandle,
     /// raster_tiles.wgsl's OTHERS_EVERYWHERE.
     pub others_everywhere: bool,
+    /// The phase of occlusion culling the pass is, if any.
+    pub occlusion: Option<OcclusionSlots>,
 }
 
 impl Plugin for VisibilityCompute {
@@ -140,13 +161,26 @@ impl Plugin for VisibilityCompute {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         check_tile(params.tile, TILES)?;
-        // Every key is stored each frame: nothing of an earlier version is read.
+        // Every key is stored each frame (nothing of an earlier version is read), but by
+        // the second phase of occlusion culling, which adds to the first's.
+        let modified = slots.modifies("samples");
         let role = BufferRole::Storage {
-            read: false,
+            read: modified,
             write: true,
         };
         let samples = slots.write::<Buffer>("samples", |t| pass.buffer(t.handle, role))?;
         let count = visibility_samples::sample_count(pass, slots, "samples", samples)?;
+        let occlusion = occlusion::take(params.occlusion, modified, pass, slots)?;
+        if modified && occlusion.is_none() {
+            return Err(PluginError::Slot {
+                slot: "samples".into(),
+                resource: slots.resource("samples").unwrap_or("samples").to_owned(),
+                why: "is in inputs, but only the second phase of occlusion culling (with a \
+                      \"pyramid\" input) adds to the keys it reads: list it in outputs only"
+                    .into(),
+            });
+        }
+        let culling = occlusion.filter(|o| o.on).map(|o| o.phase);
         let generated = format!(
             "// Generated: the tile's side in pixels, then the sample lanes.\n\
              const TILE: u32 = {}u;\n{}",
@@ -160,13 +194,27 @@ impl Plugin for VisibilityCompute {
             ));
         };
         pass.workgroup(entry.workgroup());
+        // The bins' culling by occlusion: the first phase lists nothing where it is off,
+        // but clears the list the second reads.
+        let culls_by = match occlusion.map(|o| o.phase) {
+            None => shaders::OCCLUSION_NONE,
+            Some(Phase::First) => shaders::OCCLUSION_FIRST,
+            Some(Phase::Second) => shaders::OCCLUSION_SECOND,
+        };
         let dispatch = RasterDispatch {
             raster: raster.source().to_owned(),
-            bins: shaders::TILE_BINS.compose(count)?.source().to_owned(),
+            bins: shaders::TILE_BINS
+                .compose_with(count, culls_by)?
+                .source()
+                .to_owned(),
             tile: params.tile,
             clusters: params.clusters,
             samples,
-            others_everywhere: params.other_samples == OtherSamples::Everywhere,
+            // Both phases store every sample's key: the second reads them, and adds to
+            // them where it covers a pixel.
+            others_everywhere: params.other_samples == OtherSamples::Everywhere
+                || culling.is_some(),
+            occlusion,
         };
         self.0.record(pass, dispatch);
         Ok(())
@@ -181,10 +229,12 @@ mod gpu {
     use std::sync::Arc;
 
     use super::{Clusters, RasterDispatch};
+    use crate::common::gpu::occlusion::OcclusionGroup;
     use crate::common::gpu::pipeline::{module, pipeline_layout};
     use crate::common::gpu::storage::{storage_group, storage_layout};
     use crate::common::gpu::tile_bins::{ClusterBinning, TileBins, RASTER_BUFFERS};
     use crate::common::gpu::{compute_pipeline, Compute, Frame, Recorded, Recorder};
+    use crate::common::occlusion::Phase;
     use crate::common::visibility_samples::fits_binding;
     use crate::gpu_scene::GpuScene;
     use crate::variant::GatedShader;
@@ -196,6 +246,8 @@ mod gpu {
         /// The bins and the output size they were made for (or why the device cannot
         /// hold them).
         bins: Option<((u32, u32), Result<TileBins, String>)>,
+        /// The bins' group 3, for a phase of occlusion culling.
+        occlusion: Option<OcclusionGroup>,
     }
 
     impl Recorder for RasterDispatch {
@@ -219,10 +271,14 @@ mod gpu {
                     Some(scene.texture_table_layout()),
                 ],
             );
-            let mut constants = vec![(
-                "OTHERS_EVERYWHERE",
-                f64::from(u8::from(self.others_everywhere)),
-            )];
+            let second = self.occlusion.is_some_and(|o| o.phase == Phase::Second);
+            let mut constants = vec![
+                (
+                    "OTHERS_EVERYWHERE",
+                    f64::from(u8::from(self.others_everywhere)),
+                ),
+                ("MERGE", f64::from(u8::from(second))),
+            ];
             constants.extend(
                 frame
                     .scenes
@@ -241,28 +297,48 @@ mod gpu {
                 layout,
                 raster,
                 bins: None,
+                occlusion: self.occlusion.map(|o| OcclusionGroup::new(device, o.phase)),
             })
         }
 
         fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
             let pass = &mut *frame.pass;
             let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
-            // The bins are made for one output size: a resized graph gets new ones.
             let size = resources.output_size();
+            let occlusion = match (self.occlusion, state.occlusion.as_mut()) {
+                // Off: the first phase listed nothing.
+                (Some(o), _) if o.phase == Phase::Second && !o.on => return Ok(()),
+                (Some(o), Some(group)) => {
+                    // The first phase tests where culling is on and the previous frame's
+                    // pyramid holds a frame.
+                    let test = o.on
+                        && self.clusters != Clusters::Off
+                        && !(o.phase == Phase::First && resources.history_reset(o.pyramid));
+                    let bound = (resources.view(o.pyramid), resources.buffer(o.occluded));
+                    let camera = &scene.inputs().camera;
+                    let seen = (resources.frame(), camera, size);
+                    Some(group.group(device, resources.queue, bound, seen, test))
+                }
+                _ => None,
+            };
+            // The bins are made for one output size: a resized graph gets new ones.
             if state.bins.as_ref().is_some_and(|(made, _)| *made != size) {
                 state.bins = None;
             }
+            let layout = state.occlusion.as_ref().map(|o| &o.layout);
             let (_, bins) = state.bins.get_or_insert_with(|| {
                 let clusters = ClusterBinning {
                     cull: self.clusters != Clusters::Off,
                     whole: self.clusters == Clusters::Whole,
                 };
-                let bins = TileBins::new(device, &self.bins, scene, (self.tile, clusters), size);
+                let binning = (self.tile, clusters, layout);
+                let bins = TileBins::new(device, &self.bins, scene, binning, size);
                 (size, bins)
             });
             let bins = bins.as_ref().map_err(String::clone)?;
             bins.buffers()
                 .iter()
+                .chain(state.occlusion.as_ref().and_then(OcclusionGroup::buffer))
                 .for_each(|buffer| resources.hold(buffer));
             let geometry = scene.geometry_group(device)?;
             // Textured alpha masks read the table.
@@ -272,7 +348,7 @@ mod gpu {
             let mut buffers = vec![keys];
             buffers.extend(bins.raster_buffers());
             let group = storage_group(device, "visibility_compute", &state.layout, &buffers);
-            bins.record(pass, scene, geometry);
+            bins.record(pass, scene, geometry, occlusion.as_ref());
             pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
             pass.set_bind_group(1, &group, &[]);
             pass.set_bind_group(2, geometry, &[]);

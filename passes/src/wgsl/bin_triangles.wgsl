@@ -29,7 +29,10 @@
 // Dispatches, in order:
 // 1. cs_bins_clear: every list's count to 0, the other lists emptied.
 // 2. cs_clusters_count: per cluster, culled, or its tiles' cluster counts raised, or
-//    added to the fallback list.
+//    added to the fallback list; what became of it kept in `cluster_kinds`. With occlusion
+//    culling (cluster_occlusion.wgsl), the first phase also lists those the previous
+//    frame's pyramid hides, and the second phase takes the clusters listed rather than
+//    every cluster (each phase's listed_cluster and occlusion_kind).
 // 3. cs_clusters_args: the fallback list's workgroups, the indirect arguments of the
 //    dispatches binning its triangles (`fallback_args`).
 // 4. cs_bins_count: per triangle of a fallback cluster, its tiles' counts raised (or its
@@ -45,7 +48,9 @@
 // room, the spanning list 3 pieces per triangle. (Should the room's count still overrun,
 // a tile whose list ends past the entries walks every triangle instead: tile_raster.wgsl.)
 //
-// Composed after common.wgsl, scene.wgsl, geometry.wgsl and triangle_setup.wgsl.
+// Composed after common.wgsl, scene.wgsl, geometry.wgsl and triangle_setup.wgsl, and
+// before a block saying how clusters are culled by occlusion: occlusion_none.wgsl, or
+// cluster_occlusion.wgsl with occlusion_first.wgsl or occlusion_second.wgsl.
 
 // The lists' lengths: the spanning pieces, the entries large triangles took, the items,
 // the fallback clusters.
@@ -72,6 +77,9 @@ struct BinCounts {
 @group(1) @binding(9) var<storage, read> clusters: array<RasterCluster>;
 // The clusters binned by triangle.
 @group(1) @binding(10) var<storage, read_write> fallback: array<u32>;
+// What became of the cluster each invocation of cs_clusters_count took (CLUSTER_CULLED,
+// ...), for cs_clusters_fill: an occlusion test listing a cluster is made once.
+@group(1) @binding(11) var<storage, read_write> cluster_kinds: array<u32>;
 // The workgroups of the dispatches binning them (x, y, z: one workgroup per cluster, in
 // rows of at most 65,535), bound only for cs_clusters_args, which writes them.
 @group(3) @binding(0) var<storage, read_write> fallback_args: array<u32, 3>;
@@ -113,6 +121,7 @@ fn tile_total() -> u32 {
 fn cs_bins_clear(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = invocation(id, groups);
     if i == 0u {
+        occlusion_clear();
         atomicStore(&bin_counts.spanning, 0u);
         atomicStore(&bin_counts.large_entries, 0u);
         atomicStore(&bin_counts.items, 0u);
@@ -434,13 +443,24 @@ fn cluster_bins(index: u32) -> ClusterBins {
     return out;
 }
 
+// The cluster invocation `i` of cs_clusters_count and cs_clusters_fill takes, or
+// NO_CLUSTER: without occlusion culling and in its first phase, the i-th.
+const NO_CLUSTER: u32 = 0xffffffffu;
+
+fn every_cluster(i: u32) -> u32 {
+    return select(NO_CLUSTER, i, i < arrayLength(&clusters));
+}
+
 @compute @workgroup_size(64)
 fn cs_clusters_count(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let c = invocation(id, groups);
-    if c >= arrayLength(&clusters) {
+    let i = invocation(id, groups);
+    let c = listed_cluster(i);
+    if c == NO_CLUSTER {
         return;
     }
-    let b = cluster_bins(c);
+    var b = cluster_bins(c);
+    b.kind = occlusion_kind(c, b.kind);
+    cluster_kinds[i] = b.kind;
     if b.kind == CLUSTER_BY_TRIANGLE {
         let slot = atomicAdd(&bin_counts.fallback, 1u);
         fallback[slot] = c;
@@ -464,8 +484,9 @@ fn cs_clusters_args() {
 
 @compute @workgroup_size(64)
 fn cs_clusters_fill(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let c = invocation(id, groups);
-    if c >= arrayLength(&clusters) {
+    let i = invocation(id, groups);
+    let c = listed_cluster(i);
+    if c == NO_CLUSTER || cluster_kinds[i] != CLUSTER_WHOLE {
         return;
     }
     let b = cluster_bins(c);

@@ -5,11 +5,13 @@
 //! device objects of a pass that reads them ([`input_pass`]), the recording of passes
 //! that draw the scene's meshes ([`scene_draw`]), the opaque draws as compute
 //! rasterisers see them ([`raster_draws`]), their triangles binned to tiles
-//! ([`tile_bins`]), groups of storage buffers ([`storage`]), and a pass set up with and
-//! without its optional shadow atlas ([`shadowed`]).
+//! ([`tile_bins`]) and culled by occlusion ([`occlusion`]), groups of storage buffers
+//! ([`storage`]), and a pass set up with and without its optional shadow atlas
+//! ([`shadowed`]).
 
 pub(crate) mod bindings;
 pub(crate) mod input_pass;
+pub(crate) mod occlusion;
 pub(crate) mod pipeline;
 pub(crate) mod raster_draws;
 pub(crate) mod recorder;

@@ -2,7 +2,9 @@
 //! compute raster covers each tile in one workgroup (passes/visibility_compute.rs,
 //! tile_raster.wgsl). Made for one scene upload and output size; recorded as nine
 //! dispatches just before the raster's, in the same compute pass, two of them indirect:
-//! the clusters binned by triangle are known only on the device.
+//! the clusters binned by triangle are known only on the device. With occlusion culling
+//! (cluster_occlusion.wgsl), the source composed for one of its phases, every dispatch
+//! but the fallback list's arguments takes its group 3.
 
 use super::pipeline::{module, pipeline_layout};
 use super::raster_draws::RasterDraws;
@@ -62,9 +64,9 @@ pub(crate) struct TileBins {
     draws: RasterDraws,
     tiles: u32,
     /// In bin_triangles.wgsl's binding order: draws, tile_ends, tile_starts, tile_entries,
-    /// spanning, bin_counts, spanning_bounds, items, records, clusters, fallback (group
-    /// 1), then fallback_args (group 3).
-    buffers: [wgpu::Buffer; 12],
+    /// spanning, bin_counts, spanning_bounds, items, records, clusters, fallback,
+    /// cluster_kinds (group 1), then fallback_args (group 3).
+    buffers: [wgpu::Buffer; 13],
 }
 
 impl TileBins {
@@ -76,12 +78,14 @@ impl TileBins {
 
     /// Bins for `scene`'s opaque triangles over the tiles of side `tile` covering
     /// `size`, with bin_triangles.wgsl composed as `source`, its clusters culled and
-    /// listed as `clusters` says; an error when the device cannot bind them.
+    /// listed as `clusters` says, by occlusion too with `occlusion`'s group 3 where it is
+    /// composed for a phase of occlusion culling; an error when the device cannot bind
+    /// them.
     pub fn new(
         device: &wgpu::Device,
         source: &str,
         scene: &GpuScene,
-        (tile, clusters): (u32, ClusterBinning),
+        (tile, clusters, occlusion): (u32, ClusterBinning, Option<&wgpu::BindGroupLayout>),
         size: (u32, u32),
     ) -> Result<TileBins, String> {
         let tiles = size.0.div_ceil(tile) * size.1.div_ceil(tile);
@@ -119,6 +123,7 @@ impl TileBins {
             scratch(device, "tile bins: records", records),
             draws.clusters.clone(),
             scratch(device, "tile bins: fallback clusters", cluster_count * 4),
+            scratch(device, "tile bins: cluster kinds", cluster_count * 4),
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("tile bins: fallback dispatch"),
                 size: 12,
@@ -126,7 +131,7 @@ impl TileBins {
                 mapped_at_creation: false,
             }),
         ];
-        let (bins, args) = buffers.split_at(11);
+        let (bins, args) = buffers.split_at(12);
         let args_group_layout = storage_layout(device, "tile bins: fallback dispatch", &[false]);
         let args_group = storage_group(
             device,
@@ -134,7 +139,7 @@ impl TileBins {
             &args_group_layout,
             &[&args[0]],
         );
-        let mut read_only = [false; 11];
+        let mut read_only = [false; 12];
         read_only[0] = true;
         read_only[9] = true;
         let layout = storage_layout(device, "tile bins", &read_only);
@@ -147,6 +152,7 @@ impl TileBins {
                 Some(scene.layout()),
                 Some(&layout),
                 Some(scene.geometry_layout()),
+                occlusion,
             ],
         );
         let args_layout = pipeline_layout(
@@ -189,17 +195,20 @@ impl TileBins {
     }
 
     /// Records the binning into `pass`, with `scene`'s groups 0 (reversed-Z, as the
-    /// shading covers the tiles) and 2 (`geometry`); the pass's later dispatches set
-    /// their own groups.
+    /// shading covers the tiles) and 2 (`geometry`), and this frame's `occlusion` group
+    /// where the bins were made with its layout; the pass's later dispatches set their
+    /// own groups.
     pub fn record(
         &self,
         pass: &mut wgpu::ComputePass<'_>,
         scene: &GpuScene,
         geometry: &wgpu::BindGroup,
+        occlusion: Option<&wgpu::BindGroup>,
     ) {
         pass.set_bind_group(0, scene.bind_group(DepthConvention::ReversedZ), &[]);
         pass.set_bind_group(1, &self.group, &[]);
         pass.set_bind_group(2, geometry, &[]);
+        pass.set_bind_group(3, occlusion, &[]);
         let (x, y) = workgroup_grid(2 * u64::from(self.tiles), GROUP);
         pass.set_pipeline(&self.clear);
         pass.dispatch_workgroups(x, y, 1);
@@ -208,13 +217,13 @@ impl TileBins {
             return;
         }
         let (x, y) = workgroup_grid(u64::from(self.draws.cluster_count), GROUP);
-        let fallback_args = &self.buffers[11];
+        let fallback_args = &self.buffers[12];
         pass.set_pipeline(&self.clusters_count);
         pass.dispatch_workgroups(x, y, 1);
         pass.set_pipeline(&self.clusters_args);
         pass.set_bind_group(3, &self.args_group, &[]);
         pass.dispatch_workgroups(1, 1, 1);
-        pass.set_bind_group(3, None, &[]);
+        pass.set_bind_group(3, occlusion, &[]);
         pass.set_pipeline(&self.count);
         pass.dispatch_workgroups_indirect(fallback_args, 0);
         pass.set_pipeline(&self.count_items);
