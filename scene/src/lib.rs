@@ -50,6 +50,7 @@ mod gltf_loader;
 mod light;
 mod lighting;
 mod material;
+mod material_layers;
 mod mesh;
 mod mips;
 mod model;
@@ -87,7 +88,8 @@ pub use environment::{
 pub use error::SceneError;
 pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE, MAX_LIGHTS};
 pub use lighting::{Lighting, DEFAULT_ENVIRONMENT_INTENSITY, HEADLIGHT_LUX};
-pub use material::{AlphaMode, Material};
+pub use material::{AlphaMode, Material, TEXTURE_SLOTS};
+pub use material_layers::{dielectric_f0, Clearcoat, Sheen, Specular, DEFAULT_IOR};
 pub use mesh::{Mesh, Vertex, MAX_MESHES};
 pub use model::Scene;
 pub use node_tree::{LocalTransform, MeshPlacement, Node, NodeId, NodeTree, Trs};

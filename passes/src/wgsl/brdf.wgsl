@@ -13,6 +13,8 @@ struct Surface {
     // Ambient occlusion: scales the ambient term (light from everywhere, which crevices
     // block), never a punctual light's.
     occlusion: f32,
+    // What the material's extensions add (common.wgsl).
+    layers: Layers,
 }
 
 // The parts of the BRDF that depend on the geometry and roughness only, not on the

@@ -124,7 +124,8 @@ fn fragment_of(a: Attributes, front: bool) -> Fragment {
         // normal texture's perturbation turned around with it).
         let mapped = shading_normal(a.normal, a.tangent, m.tangent_normal);
         let n = unit_normal(select(-mapped, mapped, front || !DOUBLE_SIDED));
-        f.s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness, m.occlusion);
+        let layers = surface_layers(m, a.normal, a.tangent, front || !DOUBLE_SIDED);
+        f.s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness, m.occlusion, layers);
     }
     return f;
 }

@@ -79,7 +79,7 @@ impl Loader<'_> {
                     continue;
                 }
                 let name = material::name(&material);
-                for (image, slot, srgb) in material::images(&material) {
+                for (image, slot, srgb) in material::images(self.document, &material) {
                     self.reserve_image(image, srgb, slot, &name)?;
                 }
                 self.reserve_spec_gloss(&material, &name)?;
