@@ -145,6 +145,22 @@ impl Material {
         !self.unlit && self.sheen.is_used()
     }
 
+    /// The extensions among KHR_materials_ior, _specular, _clearcoat and _sheen that
+    /// change how the material shades: what a renderer storing only the core model (a
+    /// G-buffer) leaves out.
+    pub fn layer_extensions(&self) -> Vec<&'static str> {
+        let lit = !self.unlit;
+        [
+            (lit && self.ior != DEFAULT_IOR, "KHR_materials_ior"),
+            (lit && !self.specular.is_default(), "KHR_materials_specular"),
+            (self.has_clearcoat(), "KHR_materials_clearcoat"),
+            (self.has_sheen(), "KHR_materials_sheen"),
+        ]
+        .into_iter()
+        .filter_map(|(used, name)| used.then_some(name))
+        .collect()
+    }
+
     /// Whether the material emits light at all.
     pub fn is_emissive(&self) -> bool {
         self.emission().iter().any(|&c| c > 0.0)

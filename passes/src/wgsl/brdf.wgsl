@@ -1,6 +1,7 @@
 // Lambert diffuse plus GGX / height-correlated Smith / Schlick specular (glTF
-// metallic-roughness), and the KHR_lights_punctual falloffs. Every denominator is kept
-// positive, so no input produces NaN or Inf.
+// metallic-roughness) with the layers of KHR_materials_ior and _specular (the dielectric
+// specular's F0 and weight), and the KHR_lights_punctual falloffs. Every denominator is
+// kept positive, so no input produces NaN or Inf.
 
 struct Surface {
     // Camera-relative world position; the camera is at the origin.
@@ -46,15 +47,40 @@ fn lobe(s: Surface, l: vec3<f32>) -> Lobe {
     return Lobe(n_l, distribution * visibility, pow(1.0 - v_h, 5.0));
 }
 
+// A surface's specular reflectance facing the viewer (F0) and at grazing angles (F90):
+// glTF's mix by metalness of a dielectric's (F0 0.04, F90 1 in the core model) and a
+// metal's (its albedo, 1). KHR_materials_ior and _specular give the dielectric another F0
+// (layers.specular_f0) and scale its F0 and F90 by their weight (layers.specular), as
+// the glTF sample viewer's dielectric Fresnel does. Without them (no SPECULAR) the
+// arithmetic is the core model's exactly.
+struct Reflectance {
+    f0: vec3<f32>,
+    f90: f32,
+}
+
+fn reflectance(s: Surface) -> Reflectance {
+    var f0 = vec3<f32>(0.04);
+    var weight = 1.0;
+    if SPECULAR {
+        f0 = s.layers.specular_f0;
+        weight = s.layers.specular;
+    }
+    return Reflectance(mix(f0 * weight, s.albedo, s.metallic), weight + (1.0 - weight) * s.metallic);
+}
+
+// Schlick's Fresnel of `r` for the weight `schlick` (Lobe's).
+fn fresnel(r: Reflectance, schlick: f32) -> vec3<f32> {
+    return r.f0 + (r.f90 - r.f0) * schlick;
+}
+
 fn brdf_times_cosine(s: Surface, l: vec3<f32>) -> vec3<f32> {
     let k = lobe(s, l);
     if k.n_l <= 0.0 {
         return vec3<f32>(0.0);
     }
-    let f0 = mix(vec3<f32>(0.04), s.albedo, s.metallic);
-    let fresnel = f0 + (1.0 - f0) * k.schlick;
-    let diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo / PI;
-    return (diffuse + k.specular * fresnel) * k.n_l;
+    let f = fresnel(reflectance(s), k.schlick);
+    let diffuse = (1.0 - f) * (1.0 - s.metallic) * s.albedo / PI;
+    return (diffuse + k.specular * f) * k.n_l;
 }
 
 // Which light kinds the scene has (variant.rs): a pipeline for a scene without

@@ -28,8 +28,8 @@ fn environment_irradiance(n: vec3<f32>) -> vec3<f32> {
 fn environment_light(s: Surface) -> vec3<f32> {
     let n_v = clamp(dot(s.normal, s.view), 1e-4, 1.0);
     let split = textureSampleLevel(split_sum_tex, environment_sampler, vec2<f32>(n_v, s.roughness), 0.0).rg;
-    let f0 = mix(vec3<f32>(0.04), s.albedo, s.metallic);
-    let specular_albedo = f0 * split.x + split.y;
+    let reflected = reflectance(s);
+    let specular_albedo = reflected.f0 * split.x + reflected.f90 * split.y;
     let r = reflect(-s.view, s.normal);
     let level = clamp(s.roughness, 0.0, 1.0) * light_info.environment_max_level;
     let prefiltered = textureSampleLevel(environment_tex, environment_sampler, r, level).rgb * light_info.environment_intensity;
