@@ -240,6 +240,65 @@ fn specular_factor_0_is_lambert_and_specular_color_tints_the_highlight() {
     }
 }
 
+/// KHR_materials_clearcoat: factor 0 is no coat (the general shaders, which run the
+/// coat's code, render the core model's image bit for bit). A full coat of roughness 0.2
+/// over the base adds its own sharper highlight (the peak more than 1.5 times the core
+/// model's), and elsewhere takes from the base what it reflects: between 0.45 and 0.6 of
+/// the radius, where its lobe adds less than 0.1%, each pixel is the core model's times
+/// 1 - F, with F the coat's Fresnel (F0 0.04) at the angle between the normal and the
+/// view, within 0.5%.
+#[test]
+fn a_clear_coat_adds_its_highlight_and_dims_the_base_by_its_fresnel() {
+    let core = sphere_file("layers_coat_core", json!({}));
+    let none = sphere_file(
+        "layers_coat_0",
+        json!({ "KHR_materials_clearcoat": { "clearcoatFactor": 0.0, "clearcoatRoughnessFactor": 0.5 } }),
+    );
+    let coat = sphere_file(
+        "layers_coat_1",
+        json!({ "KHR_materials_clearcoat": { "clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.2 } }),
+    );
+    for pipeline in SHADING {
+        let core = resolved(pipeline, &core, Variants::Scene);
+        let general = resolved(pipeline, &none, Variants::General);
+        let differ = core.iter().zip(&general).filter(|(a, b)| a != b).count();
+        assert_eq!(
+            differ, 0,
+            "{pipeline}: clearcoat 0 differs from the core model"
+        );
+        let coated = resolved(pipeline, &coat, Variants::Scene);
+        for (x, y) in centre() {
+            let (bare, peak) = (at(&core, x, y)[0], at(&coated, x, y)[0]);
+            assert!(
+                peak > 1.5 * bare,
+                "{pipeline}: the coat's peak at ({x}, {y}): {peak}, without the coat {bare}"
+            );
+        }
+        for (x, y) in disc(0.6).filter(|&(x, y)| on_sphere(x, y).0 > 0.45) {
+            let want = at(&core, x, y)[0] * (1.0 - coat_fresnel(x, y));
+            let got = at(&coated, x, y)[0];
+            assert!(
+                (got - want).abs() <= 0.005 * want,
+                "{pipeline}: coated at ({x}, {y}): {got}, the base through the coat {want}"
+            );
+        }
+    }
+}
+
+/// The Fresnel of a clear coat (F0 0.04) on the sphere at pixel (x, y), toward the camera
+/// 3 units in front of the centre (the shaders' view: toward the camera's position).
+fn coat_fresnel(x: u32, y: u32) -> f32 {
+    let (dx, dy) = (
+        (x as f32 + 0.5 - 32.0) / RADIUS_PX,
+        -(y as f32 + 0.5 - 32.0) / RADIUS_PX,
+    );
+    let n = [dx, dy, on_sphere(x, y).1];
+    let to_camera = [-n[0], -n[1], 3.0 - n[2]];
+    let length = to_camera.iter().map(|c| c * c).sum::<f32>().sqrt();
+    let n_v = n.iter().zip(to_camera).map(|(a, b)| a * b).sum::<f32>() / length;
+    0.04 + 0.96 * (1.0 - n_v).powi(5)
+}
+
 /// `rgraph render` says which extensions a G-buffer pipeline leaves out of the opaque
 /// surfaces it shades, naming the material and the pipeline, and says nothing with the
 /// pipelines that shade them.

@@ -144,6 +144,10 @@ fn material_data(material: &Material) -> MaterialData {
         AlphaMode::Mask { cutoff } => cutoff,
         AlphaMode::Opaque | AlphaMode::Blend => 0.0,
     };
+    // An unlit material's layers would shade nothing: the core model's keep the
+    // features (Material::has_clearcoat, ...) and the data in step.
+    let plain = Material::gltf_default();
+    let layered = if material.unlit { &plain } else { material };
     MaterialData {
         base_color: material.base_color_factor,
         emission: material.emission(),
@@ -164,17 +168,17 @@ fn material_data(material: &Material) -> MaterialData {
             .filter(|(_, t)| t.is_some_and(|t| t.tex_coord == 1))
             .fold(0, |bits, (slot, _)| bits | 1 << slot),
         _pad: [0; 2],
-        specular_f0: material
+        specular_f0: layered
             .specular
             .color_factor
-            .map(|c| dielectric_f0(material.ior) * c),
-        specular: material.specular.factor,
-        sheen_color: material.sheen.color_factor,
-        sheen_roughness: material.sheen.roughness_factor,
-        clearcoat: material.clearcoat.factor,
-        clearcoat_roughness: material.clearcoat.roughness_factor,
-        clearcoat_normal_scale: match material.clearcoat.normal_texture {
-            Some(_) => material.clearcoat.normal_scale,
+            .map(|c| dielectric_f0(layered.ior) * c),
+        specular: layered.specular.factor,
+        sheen_color: layered.sheen.color_factor,
+        sheen_roughness: layered.sheen.roughness_factor,
+        clearcoat: layered.clearcoat.factor,
+        clearcoat_roughness: layered.clearcoat.roughness_factor,
+        clearcoat_normal_scale: match layered.clearcoat.normal_texture {
+            Some(_) => layered.clearcoat.normal_scale,
             None => 0.0,
         },
         _pad2: 0,

@@ -1,7 +1,8 @@
 // Lambert diffuse plus GGX / height-correlated Smith / Schlick specular (glTF
 // metallic-roughness) with the layers of KHR_materials_ior and _specular (the dielectric
-// specular's F0 and weight), and the KHR_lights_punctual falloffs. Every denominator is
-// kept positive, so no input produces NaN or Inf.
+// specular's F0 and weight) and _clearcoat (a second GGX lobe over it), and the
+// KHR_lights_punctual falloffs. Every denominator is kept positive, so no input produces
+// NaN or Inf.
 
 struct Surface {
     // Camera-relative world position; the camera is at the origin.
@@ -31,15 +32,20 @@ struct Lobe {
 }
 
 fn lobe(s: Surface, l: vec3<f32>) -> Lobe {
-    let n_l = dot(s.normal, l);
+    return lobe_at(s.normal, s.view, s.roughness, l);
+}
+
+// The lobe of a surface of unit `normal` and perceptual `roughness` seen from `view`.
+fn lobe_at(normal: vec3<f32>, view: vec3<f32>, roughness: f32, l: vec3<f32>) -> Lobe {
+    let n_l = dot(normal, l);
     if n_l <= 0.0 {
         return Lobe(n_l, 0.0, 0.0);
     }
-    let h = safe_normalize(l + s.view);
-    let n_v = max(dot(s.normal, s.view), 1e-4);
-    let n_h = clamp(dot(s.normal, h), 0.0, 1.0);
-    let v_h = clamp(dot(s.view, h), 0.0, 1.0);
-    let alpha = max(s.roughness, 0.045);
+    let h = safe_normalize(l + view);
+    let n_v = max(dot(normal, view), 1e-4);
+    let n_h = clamp(dot(normal, h), 0.0, 1.0);
+    let v_h = clamp(dot(view, h), 0.0, 1.0);
+    let alpha = max(roughness, 0.045);
     let a2 = alpha * alpha * alpha * alpha;
     let d_denominator = n_h * n_h * (a2 - 1.0) + 1.0;
     let distribution = a2 / (PI * d_denominator * d_denominator);
@@ -75,12 +81,37 @@ fn fresnel(r: Reflectance, schlick: f32) -> vec3<f32> {
 
 fn brdf_times_cosine(s: Surface, l: vec3<f32>) -> vec3<f32> {
     let k = lobe(s, l);
-    if k.n_l <= 0.0 {
-        return vec3<f32>(0.0);
+    var color = vec3<f32>(0.0);
+    if k.n_l > 0.0 {
+        let f = fresnel(reflectance(s), k.schlick);
+        let diffuse = (1.0 - f) * (1.0 - s.metallic) * s.albedo / PI;
+        color = (diffuse + k.specular * f) * k.n_l;
     }
-    let f = fresnel(reflectance(s), k.schlick);
-    let diffuse = (1.0 - f) * (1.0 - s.metallic) * s.albedo / PI;
-    return (diffuse + k.specular * f) * k.n_l;
+    if CLEARCOAT && s.layers.clearcoat > 0.0 {
+        let coat = lobe_at(s.layers.clearcoat_normal, s.view, s.layers.clearcoat_roughness, l);
+        color = coated(s, color, vec3<f32>(coat.specular * max(coat.n_l, 0.0)));
+    }
+    return color;
+}
+
+// KHR_materials_clearcoat: how much of the light the coat of `layers` reflects toward
+// `view`: its strength times its Fresnel, a dielectric of index 1.5 (F0 0.04) at its own
+// normal's angle to the view (the extension's fresnel_coat, which has no half vector).
+// 0 without a coat.
+fn coat_weight(layers: Layers, view: vec3<f32>) -> f32 {
+    if !CLEARCOAT || layers.clearcoat <= 0.0 {
+        return 0.0;
+    }
+    let n_v = clamp(dot(layers.clearcoat_normal, view), 0.0, 1.0);
+    return layers.clearcoat * (0.04 + 0.96 * pow(1.0 - n_v, 5.0));
+}
+
+// `base`, the light surface `s` reflects under its coat, with the coat's `reflected` on
+// top (its GGX lobe times the cosine, for light; or its split sum, for the environment):
+// mix(base, reflected, coat_weight), so the coat takes from the base what it reflects.
+fn coated(s: Surface, base: vec3<f32>, reflected: vec3<f32>) -> vec3<f32> {
+    let weight = coat_weight(s.layers, s.view);
+    return base * (1.0 - weight) + reflected * weight;
 }
 
 // Which light kinds the scene has (variant.rs): a pipeline for a scene without

@@ -97,7 +97,8 @@ fn shade_surface(a: Attributes, front: bool) -> vec4<f32> {
     if f.unlit {
         color += f.m.base.rgb;
     } else {
-        color += every_light(f.s);
+        // A clear coat dims what the surface emits as it dims the light it reflects.
+        color = color * (1.0 - coat_weight(f.s.layers, f.s.view)) + every_light(f.s);
     }
     return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), f.m.base.a);
 }

@@ -34,7 +34,26 @@ fn environment_light(s: Surface) -> vec3<f32> {
     let level = clamp(s.roughness, 0.0, 1.0) * light_info.environment_max_level;
     let prefiltered = textureSampleLevel(environment_tex, environment_sampler, r, level).rgb * light_info.environment_intensity;
     let diffuse = environment_irradiance(s.normal) / PI * s.albedo * (1.0 - s.metallic) * (1.0 - specular_albedo);
-    return diffuse + prefiltered * specular_albedo;
+    let base = diffuse + prefiltered * specular_albedo;
+    if CLEARCOAT && s.layers.clearcoat > 0.0 {
+        return coated_environment(s, base);
+    }
+    return base;
+}
+
+// `base`, the environment's light on surface `s`, under its clear coat: the coat's
+// prefiltered radiance around its own reflection, times its lobe's directional albedo
+// without Fresnel (the split sum's scale plus bias: coated() weighs it by the coat's
+// Fresnel).
+fn coated_environment(s: Surface, base: vec3<f32>) -> vec3<f32> {
+    let n = s.layers.clearcoat_normal;
+    let roughness = s.layers.clearcoat_roughness;
+    let n_v = clamp(dot(n, s.view), 1e-4, 1.0);
+    let split = textureSampleLevel(split_sum_tex, environment_sampler, vec2<f32>(n_v, roughness), 0.0).rg;
+    let r = reflect(-s.view, n);
+    let level = clamp(roughness, 0.0, 1.0) * light_info.environment_max_level;
+    let prefiltered = textureSampleLevel(environment_tex, environment_sampler, r, level).rgb * light_info.environment_intensity;
+    return coated(s, base, prefiltered * (split.x + split.y));
 }
 
 // Light from everywhere: the ambient term and the environment, scaled by the material's

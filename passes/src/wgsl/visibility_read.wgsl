@@ -74,11 +74,13 @@ fn rebuild(id: u32, at: vec2<f32>) -> GSample {
     g.roughness = m.roughness;
     g.flags = material.flags;
     g.id = id;
-    g.emission = m.emission;
     g.layers = surface_layers(m, normal, tangent, front);
+    let position = hit.origin + hit.along * hit.ray;
+    // A clear coat dims what the surface emits as it dims the light it reflects.
+    g.emission = m.emission * (1.0 - coat_weight(g.layers, safe_normalize(-position)));
     // The fragment's view depth where it is rebuilt, as a G-buffer stores it: one per
     // triangle and pixel.
-    g.view_depth = dot(hit.origin + hit.along * hit.ray, camera.forward);
+    g.view_depth = dot(position, camera.forward);
     return g;
 }
 

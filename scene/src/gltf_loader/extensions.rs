@@ -10,6 +10,7 @@ use crate::SceneError;
 pub(super) const IMPLEMENTED: &[&str] = &[
     "EXT_mesh_gpu_instancing",
     "KHR_lights_punctual",
+    "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
     "KHR_materials_pbrSpecularGlossiness",
