@@ -60,6 +60,7 @@ mod particles;
 mod points_lines;
 mod prefilter;
 mod procedural;
+mod sheen;
 mod stats;
 mod tangents;
 mod texture;
@@ -101,6 +102,7 @@ pub use prefilter::{
     LUT_SIZE,
 };
 pub use procedural::{builtin_names, BuiltinParam, BuiltinScene, BUILTIN_PREFIX};
+pub use sheen::{charlie, sheen_albedo, sheen_albedo_lut, sheen_visibility};
 pub use stats::SceneStats;
 pub use tangents::generate_tangents;
 pub use texture::{FilterMode, Sampler, TextureImage, TextureRef, WrapMode};

@@ -1,7 +1,7 @@
 // Lambert diffuse plus GGX / height-correlated Smith / Schlick specular (glTF
 // metallic-roughness) with the layers of KHR_materials_ior and _specular (the dielectric
-// specular's F0 and weight) and _clearcoat (a second GGX lobe over it), and the
-// KHR_lights_punctual falloffs. Every denominator is kept positive, so no input produces
+// specular's F0 and weight), _sheen (a Charlie lobe over the base) and _clearcoat (a
+// second GGX lobe over both), and the KHR_lights_punctual falloffs. Every denominator is kept positive, so no input produces
 // NaN or Inf.
 
 struct Surface {
@@ -86,12 +86,71 @@ fn brdf_times_cosine(s: Surface, l: vec3<f32>) -> vec3<f32> {
         let f = fresnel(reflectance(s), k.schlick);
         let diffuse = (1.0 - f) * (1.0 - s.metallic) * s.albedo / PI;
         color = (diffuse + k.specular * f) * k.n_l;
+        if has_sheen(s) {
+            color = color * sheen_scaling(s, k.n_l) + sheen_lobe(s, l) * k.n_l;
+        }
     }
     if CLEARCOAT && s.layers.clearcoat > 0.0 {
         let coat = lobe_at(s.layers.clearcoat_normal, s.view, s.layers.clearcoat_roughness, l);
         color = coated(s, color, vec3<f32>(coat.specular * max(coat.n_l, 0.0)));
     }
     return color;
+}
+
+// KHR_materials_sheen: whether surface `s` has a sheen (its colour is not black).
+fn has_sheen(s: Surface) -> bool {
+    let c = s.layers.sheen_color;
+    return SHEEN && max(c.r, max(c.g, c.b)) > 0.0;
+}
+
+// The sheen lobe of `s` toward light `l`: Estevez and Kulla's Charlie distribution with
+// the visibility term of their fitted Λ (the glTF sample viewer's), times the sheen
+// colour; scene/src/sheen.rs evaluates the same functions for sheen_albedo's table.
+fn sheen_lobe(s: Surface, l: vec3<f32>) -> vec3<f32> {
+    let n_l = clamp(dot(s.normal, l), 0.0, 1.0);
+    let n_v = clamp(dot(s.normal, s.view), 1e-4, 1.0);
+    let n_h = clamp(dot(s.normal, safe_normalize(l + s.view)), 0.0, 1.0);
+    let roughness = max(s.layers.sheen_roughness, 1e-6);
+    let alpha = roughness * roughness;
+    let sin2 = 1.0 - n_h * n_h;
+    let distribution = (2.0 + 1.0 / alpha) * pow(sin2, 0.5 / alpha) / (2.0 * PI);
+    let visibility = clamp(1.0 / ((1.0 + sheen_lambda(n_v, alpha) + sheen_lambda(n_l, alpha)) * 4.0 * n_v * max(n_l, 1e-4)), 0.0, 1.0);
+    return s.layers.sheen_color * distribution * visibility;
+}
+
+// Estevez and Kulla's Λ of the sheen's masking at cosine `cos` for α `alpha`.
+fn sheen_lambda(cos: f32, alpha: f32) -> f32 {
+    if cos < 0.5 {
+        return exp(sheen_lambda_exponent(cos, alpha));
+    }
+    return exp(2.0 * sheen_lambda_exponent(0.5, alpha) - sheen_lambda_exponent(1.0 - cos, alpha));
+}
+
+fn sheen_lambda_exponent(x: f32, alpha: f32) -> f32 {
+    let t = (1.0 - alpha) * (1.0 - alpha);
+    let a = mix(21.5473, 25.3245, t);
+    let b = mix(3.82987, 3.32435, t);
+    let c = mix(0.19823, 0.16801, t);
+    let d = mix(-1.97760, -1.27393, t);
+    let e = mix(-4.32054, -4.85967, t);
+    return a / (1.0 + b * pow(x, c)) + d * x + e;
+}
+
+// The directional albedo of the sheen lobe of colour 1 seen or lit at cosine `cos`
+// (scene/src/sheen.rs's table, in the split-sum lookup table's blue channel).
+fn sheen_albedo(cos: f32, roughness: f32) -> f32 {
+    return textureSampleLevel(split_sum_tex, environment_sampler, vec2<f32>(cos, roughness), 0.0).b;
+}
+
+// What the sheen of `s` leaves of the base lit from `n_l`: the extension's albedo
+// scaling, 1 - max(colour) E, with E the sheen's albedo toward the viewer or the light,
+// whichever takes more.
+fn sheen_scaling(s: Surface, n_l: f32) -> f32 {
+    let c = s.layers.sheen_color;
+    let strongest = max(c.r, max(c.g, c.b));
+    let r = s.layers.sheen_roughness;
+    let n_v = clamp(dot(s.normal, s.view), 0.0, 1.0);
+    return 1.0 - strongest * max(sheen_albedo(n_v, r), sheen_albedo(n_l, r));
 }
 
 // KHR_materials_clearcoat: how much of the light the coat of `layers` reflects toward

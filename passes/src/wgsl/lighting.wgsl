@@ -34,11 +34,28 @@ fn environment_light(s: Surface) -> vec3<f32> {
     let level = clamp(s.roughness, 0.0, 1.0) * light_info.environment_max_level;
     let prefiltered = textureSampleLevel(environment_tex, environment_sampler, r, level).rgb * light_info.environment_intensity;
     let diffuse = environment_irradiance(s.normal) / PI * s.albedo * (1.0 - s.metallic) * (1.0 - specular_albedo);
-    let base = diffuse + prefiltered * specular_albedo;
+    var base = diffuse + prefiltered * specular_albedo;
+    if has_sheen(s) {
+        base = sheen_environment(s, base, n_v);
+    }
     if CLEARCOAT && s.layers.clearcoat > 0.0 {
         return coated_environment(s, base);
     }
     return base;
+}
+
+// `base`, the environment's light on surface `s`, under its sheen seen at `n_v`: scaled by
+// what the sheen leaves, plus the sheen's reflection: its albedo times the prefiltered
+// radiance around the reflection at the sheen's roughness (the GGX-prefiltered map
+// standing in for the sample viewer's Charlie-prefiltered one).
+fn sheen_environment(s: Surface, base: vec3<f32>, n_v: f32) -> vec3<f32> {
+    let c = s.layers.sheen_color;
+    let roughness = s.layers.sheen_roughness;
+    let albedo = sheen_albedo(n_v, roughness);
+    let r = reflect(-s.view, s.normal);
+    let level = clamp(roughness, 0.0, 1.0) * light_info.environment_max_level;
+    let prefiltered = textureSampleLevel(environment_tex, environment_sampler, r, level).rgb * light_info.environment_intensity;
+    return base * (1.0 - max(c.r, max(c.g, c.b)) * albedo) + prefiltered * c * albedo;
 }
 
 // `base`, the environment's light on surface `s`, under its clear coat: the coat's

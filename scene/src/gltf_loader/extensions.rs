@@ -14,6 +14,7 @@ pub(super) const IMPLEMENTED: &[&str] = &[
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
     "KHR_materials_pbrSpecularGlossiness",
+    "KHR_materials_sheen",
     "KHR_materials_specular",
     "KHR_materials_unlit",
     "KHR_mesh_quantization",
