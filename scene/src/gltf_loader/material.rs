@@ -3,7 +3,7 @@
 use gltf::material::AlphaMode as GltfAlphaMode;
 use gltf::texture::{MagFilter, MinFilter, WrappingMode};
 
-use super::{factors, material_layers, texture_transform, Loader};
+use super::{factors, texture_transform, Loader};
 use crate::error::label;
 use crate::{AlphaMode, FilterMode, Material, Sampler, SceneError, TextureRef, WrapMode};
 
@@ -231,13 +231,10 @@ pub(super) fn name(material: &gltf::Material) -> String {
     )
 }
 
-/// The images `material`'s textures name in `document`, each with its slot and whether it
-/// is decoded as sRGB color (as `convert_material` decodes them): what it may ask the
-/// scene to hold.
-pub(super) fn images(
-    document: &gltf::Document,
-    material: &gltf::Material,
-) -> Vec<(usize, &'static str, bool)> {
+/// The images `material`'s core textures name, each with its slot and whether it is
+/// decoded as sRGB color (as `convert_material` decodes them): what it may ask the scene to
+/// hold, with its extensions' (`material_layers::images`).
+pub(super) fn images(material: &gltf::Material) -> Vec<(usize, &'static str, bool)> {
     let pbr = material.pbr_metallic_roughness();
     let image = |texture: gltf::Texture| texture.source().index();
     // A specular-glossiness material's diffuse and specularGlossiness images are baked
@@ -277,7 +274,6 @@ pub(super) fn images(
     ]
     .into_iter()
     .filter_map(|(index, slot, srgb)| Some((index?, slot, srgb)))
-    .chain(material_layers::images(document, material))
     .collect()
 }
 
