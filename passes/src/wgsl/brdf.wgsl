@@ -1,8 +1,8 @@
 // Lambert diffuse plus GGX / height-correlated Smith / Schlick specular (glTF
 // metallic-roughness) with the layers of KHR_materials_ior and _specular (the dielectric
 // specular's F0 and weight), _sheen (a Charlie lobe over the base) and _clearcoat (a
-// second GGX lobe over both), and the KHR_lights_punctual falloffs. Every denominator is kept positive, so no input produces
-// NaN or Inf.
+// second GGX lobe over both), and the KHR_lights_punctual falloffs. Every denominator is
+// kept positive, so no input produces NaN or Inf.
 
 struct Surface {
     // Camera-relative world position; the camera is at the origin.

@@ -30,9 +30,7 @@ fn environment_light(s: Surface) -> vec3<f32> {
     let split = textureSampleLevel(split_sum_tex, environment_sampler, vec2<f32>(n_v, s.roughness), 0.0).rg;
     let reflected = reflectance(s);
     let specular_albedo = reflected.f0 * split.x + reflected.f90 * split.y;
-    let r = reflect(-s.view, s.normal);
-    let level = clamp(s.roughness, 0.0, 1.0) * light_info.environment_max_level;
-    let prefiltered = textureSampleLevel(environment_tex, environment_sampler, r, level).rgb * light_info.environment_intensity;
+    let prefiltered = prefiltered_radiance(reflect(-s.view, s.normal), s.roughness);
     let diffuse = environment_irradiance(s.normal) / PI * s.albedo * (1.0 - s.metallic) * (1.0 - specular_albedo);
     var base = diffuse + prefiltered * specular_albedo;
     if has_sheen(s) {
@@ -52,9 +50,7 @@ fn sheen_environment(s: Surface, base: vec3<f32>, n_v: f32) -> vec3<f32> {
     let c = s.layers.sheen_color;
     let roughness = s.layers.sheen_roughness;
     let albedo = sheen_albedo(n_v, roughness);
-    let r = reflect(-s.view, s.normal);
-    let level = clamp(roughness, 0.0, 1.0) * light_info.environment_max_level;
-    let prefiltered = textureSampleLevel(environment_tex, environment_sampler, r, level).rgb * light_info.environment_intensity;
+    let prefiltered = prefiltered_radiance(reflect(-s.view, s.normal), roughness);
     return base * (1.0 - max(c.r, max(c.g, c.b)) * albedo) + prefiltered * c * albedo;
 }
 
@@ -67,10 +63,15 @@ fn coated_environment(s: Surface, base: vec3<f32>) -> vec3<f32> {
     let roughness = s.layers.clearcoat_roughness;
     let n_v = clamp(dot(n, s.view), 1e-4, 1.0);
     let split = textureSampleLevel(split_sum_tex, environment_sampler, vec2<f32>(n_v, roughness), 0.0).rg;
-    let r = reflect(-s.view, n);
-    let level = clamp(roughness, 0.0, 1.0) * light_info.environment_max_level;
-    let prefiltered = textureSampleLevel(environment_tex, environment_sampler, r, level).rgb * light_info.environment_intensity;
+    let prefiltered = prefiltered_radiance(reflect(-s.view, n), roughness);
     return coated(s, base, prefiltered * (split.x + split.y));
+}
+
+// The environment's radiance around `direction`, prefiltered with the GGX lobe of
+// `roughness` (the cube map's mip level for it).
+fn prefiltered_radiance(direction: vec3<f32>, roughness: f32) -> vec3<f32> {
+    let level = clamp(roughness, 0.0, 1.0) * light_info.environment_max_level;
+    return textureSampleLevel(environment_tex, environment_sampler, direction, level).rgb * light_info.environment_intensity;
 }
 
 // Light from everywhere: the ambient term and the environment, scaled by the material's

@@ -152,14 +152,9 @@ impl Loader<'_> {
         pbr: &Pbr,
         name: &str,
     ) -> Result<Layers, SceneError> {
-        let invalid = |reason: String| SceneError::InvalidMaterial {
-            file: self.file.to_owned(),
-            material: name.to_owned(),
-            reason,
-        };
         let mut layers = Layers::default();
-        let extensions =
-            [IOR, SPECULAR, CLEARCOAT, SHEEN].map(|e| Extension::of(material, e).map_err(invalid));
+        let extensions = [IOR, SPECULAR, CLEARCOAT, SHEEN]
+            .map(|e| Extension::of(material, e).map_err(|r| self.invalid(name, r)));
         let [ior, specular, clearcoat, sheen] = extensions;
         let (ior, specular, clearcoat, sheen) = (ior?, specular?, clearcoat?, sheen?);
         if pbr.from_spec_gloss {
