@@ -77,14 +77,16 @@ pub fn sheen_albedo(n_v: f32, roughness: f32) -> f32 {
 }
 
 /// [`sheen_albedo`] on the split-sum table's grid (prefilter.rs): row `j` is roughness
-/// `(j + 0.5) / LUT_SIZE`, column `i` is `n·v = (i + 0.5) / LUT_SIZE`. Computed once per
-/// process.
+/// `(j + 0.5) / LUT_SIZE`, column `i` is `n·v = (i + 0.5) / LUT_SIZE`; at most 1, which it
+/// exceeds at grazing angles and low roughness (1.46 at n·v 1/64, roughness 0.05), where
+/// the visibility term is clamped rather than fitted: the base it scales by `1 - E` never
+/// turns negative. Computed once per process.
 pub fn sheen_albedo_lut() -> &'static [f32] {
     static LUT: OnceLock<Vec<f32>> = OnceLock::new();
     LUT.get_or_init(|| {
         let at = |k: u32| (k as f32 + 0.5) / LUT_SIZE as f32;
         (0..LUT_SIZE)
-            .flat_map(|j| (0..LUT_SIZE).map(move |i| sheen_albedo(at(i), at(j))))
+            .flat_map(|j| (0..LUT_SIZE).map(move |i| sheen_albedo(at(i), at(j)).min(1.0)))
             .collect()
     })
 }
@@ -143,6 +145,8 @@ mod tests {
                 "n.v {n_v} roughness {roughness}: sampled {sampled}, integral {brute}"
             );
         }
-        assert_eq!(sheen_albedo_lut().len(), (LUT_SIZE * LUT_SIZE) as usize);
+        let lut = sheen_albedo_lut();
+        assert_eq!(lut.len(), (LUT_SIZE * LUT_SIZE) as usize);
+        assert!(lut.iter().all(|e| (0.0..=1.0).contains(e)));
     }
 }
