@@ -77,6 +77,7 @@ mod gpu_execute;
 mod gpu_failures;
 mod helper_loads;
 mod light_prepass;
+mod material_layers;
 mod motion_vectors;
 mod output_files;
 mod page_browser;

@@ -50,6 +50,13 @@ pub enum Gate {
     /// Reading alpha MASK materials' base colour texels in a visibility raster (without
     /// such a material every masked texel is white).
     MaskTextures,
+    /// KHR_materials_ior and _specular: a dielectric F0 and specular weight of the
+    /// material's (without them, the core model's 0.04 and 1).
+    Specular,
+    /// KHR_materials_clearcoat's coat (without it, no coat).
+    Clearcoat,
+    /// KHR_materials_sheen's sheen (without it, no sheen).
+    Sheen,
 }
 
 impl Gate {
@@ -68,6 +75,9 @@ impl Gate {
             Gate::Emissive => "emissive",
             Gate::Environment => "environment",
             Gate::MaskTextures => "mask_textures",
+            Gate::Specular => "specular",
+            Gate::Clearcoat => "clearcoat",
+            Gate::Sheen => "sheen",
         }
     }
 
@@ -86,6 +96,9 @@ impl Gate {
             Gate::Emissive => "EMISSIVE",
             Gate::Environment => "ENVIRONMENT",
             Gate::MaskTextures => "MASK_TEXTURES",
+            Gate::Specular => "SPECULAR",
+            Gate::Clearcoat => "CLEARCOAT",
+            Gate::Sheen => "SHEEN",
         }
     }
 
@@ -104,6 +117,9 @@ impl Gate {
             Gate::Emissive => features.emissive,
             Gate::Environment => features.environment,
             Gate::MaskTextures => features.mask_textures,
+            Gate::Specular => features.specular,
+            Gate::Clearcoat => features.clearcoat,
+            Gate::Sheen => features.sheen,
         }
     }
 }
@@ -183,6 +199,9 @@ impl GatedShader {
                 NormalTextures,
                 OcclusionTextures,
                 Environment,
+                Specular,
+                Clearcoat,
+                Sheen,
             ],
             GatedShader::Forward | GatedShader::Transparent => &[
                 DirectionalLights,
@@ -196,8 +215,23 @@ impl GatedShader {
                 DoubleSided,
                 Emissive,
                 Environment,
+                Specular,
+                Clearcoat,
+                Sheen,
             ],
             GatedShader::VisibilityRaster => &[MaskTextures],
+        }
+    }
+
+    /// Constants the shader always takes, whatever the scene: a G-buffer stores no
+    /// material layers (KHR_materials_ior, _specular, _clearcoat, _sheen), so the G-buffer
+    /// pass never samples their textures and the passes reading it never shade them
+    /// (`rgraph render` warns where a scene has them).
+    pub fn fixed_constants(self) -> &'static [(&'static str, f64)] {
+        const NO_LAYERS: &[(&str, f64)] = &[("SPECULAR", 0.0), ("CLEARCOAT", 0.0), ("SHEEN", 0.0)];
+        match self {
+            GatedShader::GBuffer | GatedShader::Light | GatedShader::LightTiled => NO_LAYERS,
+            _ => &[],
         }
     }
 }
@@ -236,12 +270,13 @@ impl Variant {
     }
 
     /// The pipeline-overridable constants that select it, one per gate (1 compiled in,
-    /// 0 compiled out).
+    /// 0 compiled out), and the shader's [fixed ones](GatedShader::fixed_constants).
     pub fn constants(&self) -> Vec<(&'static str, f64)> {
         self.shader
             .gates()
             .iter()
             .map(|g| (g.constant(), f64::from(u8::from(self.compiled.contains(g)))))
+            .chain(self.shader.fixed_constants().iter().copied())
             .collect()
     }
 
@@ -333,7 +368,7 @@ mod tests {
         let general = Variant::general(GatedShader::Forward);
         assert!(general.is_general());
         assert!(general.constants().iter().all(|&(_, v)| v == 1.0));
-        assert_eq!(general.constants().len(), 11);
+        assert_eq!(general.constants().len(), 14);
     }
 
     #[test]
@@ -351,7 +386,10 @@ mod tests {
                 ("DIRECTIONAL_LIGHTS", 0.0),
                 ("POINT_LIGHTS", 1.0),
                 ("SPOT_LIGHTS", 1.0),
-                ("ENVIRONMENT", 0.0)
+                ("ENVIRONMENT", 0.0),
+                ("SPECULAR", 0.0),
+                ("CLEARCOAT", 0.0),
+                ("SHEEN", 0.0)
             ]
         );
         let gbuffer = Variant::of(GatedShader::GBuffer, &features);

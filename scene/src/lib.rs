@@ -50,6 +50,7 @@ mod gltf_loader;
 mod light;
 mod lighting;
 mod material;
+mod material_layers;
 mod mesh;
 mod mips;
 mod model;
@@ -59,6 +60,7 @@ mod particles;
 mod points_lines;
 mod prefilter;
 mod procedural;
+mod sheen;
 mod stats;
 mod tangents;
 mod texture;
@@ -87,7 +89,8 @@ pub use environment::{
 pub use error::SceneError;
 pub use light::{Light, LightKind, LightVolume, DEFAULT_CUTOFF_ILLUMINANCE, MAX_LIGHTS};
 pub use lighting::{Lighting, DEFAULT_ENVIRONMENT_INTENSITY, HEADLIGHT_LUX};
-pub use material::{AlphaMode, Material};
+pub use material::{AlphaMode, Material, TEXTURE_SLOTS};
+pub use material_layers::{dielectric_f0, Clearcoat, Sheen, Specular, DEFAULT_IOR};
 pub use mesh::{Mesh, Vertex, MAX_MESHES};
 pub use model::Scene;
 pub use node_tree::{LocalTransform, MeshPlacement, Node, NodeId, NodeTree, Trs};
@@ -99,6 +102,7 @@ pub use prefilter::{
     LUT_SIZE,
 };
 pub use procedural::{builtin_names, BuiltinParam, BuiltinScene, BUILTIN_PREFIX};
+pub use sheen::{charlie, sheen_albedo, sheen_albedo_lut, sheen_visibility};
 pub use stats::SceneStats;
 pub use tangents::generate_tangents;
 pub use texture::{FilterMode, Sampler, TextureImage, TextureRef, WrapMode};

@@ -1,6 +1,10 @@
 //! Metallic-roughness materials as the G-buffer pass consumes them.
 
+use super::material_layers::{Clearcoat, Sheen, Specular, DEFAULT_IOR};
 use super::texture::TextureRef;
+
+/// How many textures a material may have: [`Material::texture_slots`].
+pub const TEXTURE_SLOTS: usize = 12;
 
 /// How alpha affects coverage.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -59,6 +63,15 @@ pub struct Material {
     pub double_sided: bool,
     /// KHR_materials_unlit: output is `base color`, no lighting.
     pub unlit: bool,
+    /// KHR_materials_ior: the index of refraction of the dielectric part, 1.5 without the
+    /// extension; 0 (the extension's special value) or at least 1.
+    pub ior: f32,
+    /// KHR_materials_specular.
+    pub specular: Specular,
+    /// KHR_materials_clearcoat.
+    pub clearcoat: Clearcoat,
+    /// KHR_materials_sheen.
+    pub sheen: Sheen,
 }
 
 impl Material {
@@ -82,6 +95,10 @@ impl Material {
             alpha_mode: AlphaMode::Opaque,
             double_sided: false,
             unlit: false,
+            ior: DEFAULT_IOR,
+            specular: Specular::default(),
+            clearcoat: Clearcoat::default(),
+            sheen: Sheen::default(),
         }
     }
 
@@ -92,15 +109,56 @@ impl Material {
     }
 
     /// The material's textures in the shaders' slot order (material.wgsl's `slot_uv`):
-    /// base color, emissive, metallicRoughness, normal, occlusion.
-    pub fn texture_slots(&self) -> [Option<TextureRef>; 5] {
+    /// base color, emissive, metallicRoughness, normal, occlusion, then the extensions':
+    /// specular, specular colour, clearcoat, clearcoat roughness, clearcoat normal, sheen
+    /// colour, sheen roughness.
+    pub fn texture_slots(&self) -> [Option<TextureRef>; TEXTURE_SLOTS] {
         [
             self.base_color_texture,
             self.emissive_texture,
             self.metallic_roughness_texture,
             self.normal_texture,
             self.occlusion_texture,
+            self.specular.texture,
+            self.specular.color_texture,
+            self.clearcoat.texture,
+            self.clearcoat.roughness_texture,
+            self.clearcoat.normal_texture,
+            self.sheen.color_texture,
+            self.sheen.roughness_texture,
         ]
+    }
+
+    /// Whether KHR_materials_ior or KHR_materials_specular change its dielectric specular
+    /// from the core model's (F0 0.04, weight 1).
+    pub fn has_specular(&self) -> bool {
+        !self.unlit && (self.ior != DEFAULT_IOR || !self.specular.is_default())
+    }
+
+    /// Whether a KHR_materials_clearcoat layer shows.
+    pub fn has_clearcoat(&self) -> bool {
+        !self.unlit && self.clearcoat.is_used()
+    }
+
+    /// Whether a KHR_materials_sheen layer shows.
+    pub fn has_sheen(&self) -> bool {
+        !self.unlit && self.sheen.is_used()
+    }
+
+    /// The extensions among KHR_materials_ior, _specular, _clearcoat and _sheen that
+    /// change how the material shades: what a renderer storing only the core model (a
+    /// G-buffer) leaves out.
+    pub fn layer_extensions(&self) -> Vec<&'static str> {
+        let lit = !self.unlit;
+        [
+            (lit && self.ior != DEFAULT_IOR, "KHR_materials_ior"),
+            (lit && !self.specular.is_default(), "KHR_materials_specular"),
+            (self.has_clearcoat(), "KHR_materials_clearcoat"),
+            (self.has_sheen(), "KHR_materials_sheen"),
+        ]
+        .into_iter()
+        .filter_map(|(used, name)| used.then_some(name))
+        .collect()
     }
 
     /// Whether the material emits light at all.

@@ -3,8 +3,10 @@
 //! not have, and lavapipe does not support). The scene's images become layers of two 2D
 //! array textures, one per encoding (material_table.wgsl reads them):
 //!
-//! - `color`: rgba8unorm-srgb, the sRGB images (base colour, emissive);
-//! - `data`: rgba8unorm, the linear ones (normal, metallicRoughness, occlusion).
+//! - `color`: rgba8unorm-srgb, the sRGB images (base colour, emissive, specular and sheen
+//!   colours);
+//! - `data`: rgba8unorm, the linear ones (normal, metallicRoughness, occlusion, specular,
+//!   clearcoat, its roughness and normals, sheen roughness).
 //!
 //! All layers of an array have one size, the largest width and the largest height among
 //! its images, and a full mip chain (scene/src/mips.rs). An image of that size is its layer as

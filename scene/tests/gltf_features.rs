@@ -309,7 +309,7 @@ fn sparse_accessor_substitutes_values() {
 #[test]
 fn unsupported_features_are_warnings_naming_them() {
     let mut gltf = Gltf::default();
-    gltf.json["extensionsUsed"] = json!(["KHR_materials_clearcoat", "KHR_materials_unlit"]);
+    gltf.json["extensionsUsed"] = json!(["KHR_materials_transmission", "KHR_materials_unlit"]);
     // The image file does not exist: textures no material uses are never decoded.
     gltf.push("images", json!({ "uri": "missing.png" }));
     gltf.push("textures", json!({ "source": 0 }));
@@ -346,7 +346,7 @@ fn unsupported_features_are_warnings_naming_them() {
     assert_eq!(
         scene.warnings,
         [
-            "glTF extension KHR_materials_clearcoat is not implemented; its effect is ignored",
+            "glTF extension KHR_materials_transmission is not implemented; its effect is ignored",
             "mesh 1 \"triangle\" primitive 0: its material's normal texture needs TEXCOORD_0, \
              which it lacks; drawn without the normal texture",
         ]

@@ -17,6 +17,7 @@ mod gltf_features;
 mod gltf_fixtures;
 mod gltf_instancing;
 mod gltf_limits;
+mod gltf_material_layers;
 mod gltf_quantization;
 mod gltf_sandbox;
 mod gltf_spec_gloss;

@@ -7,6 +7,7 @@
 //! the frame, the readback and the PNG.
 
 pub(super) mod error;
+mod layers;
 pub(super) mod output;
 mod progress;
 mod saturation;
@@ -80,6 +81,7 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     let environment = SceneFeatures::of(&pipeline.scene).environment;
     let particles = pipeline.scene.particles().count();
     let points_lines = points_and_segments(&pipeline.scene);
+    let unshaded_layers = layers::unshaded(&pipeline.scene, &args.frame.pipeline);
     let mut prepared = session.prepare(pipeline, args.frame.size())?;
 
     // The opaque passes skip BLEND meshes and only a `transparent` pass draws them; debug
@@ -111,6 +113,16 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
              to draw them: they are left out (pipelines/particles_*.ron draw them)",
             args.frame.pipeline.display()
         ));
+    }
+
+    // A G-buffer stores the core material model only: the material layers' extensions
+    // are left out of the opaque surfaces it shades.
+    if args.frame.view == view::FINAL
+        && (prepared.runs("gbuffer") || prepared.runs("light_prepass_material"))
+    {
+        for warning in unshaded_layers {
+            progress.note(warning);
+        }
     }
 
     // And glTF points and lines: only a `points_lines` pass draws them.

@@ -1,12 +1,17 @@
 //! Image-based lighting on the device: the prefiltered cube map and the split-sum lookup
 //! table (scene/src/prefilter.rs) and their sampler, group 0 bindings 5 to 7 (lighting.wgsl).
-//! A scene without an environment binds one black texel of each: its shaders compile the
-//! environment out (the `ENVIRONMENT` gate), but the layout is the same for every scene.
+//! The table's blue channel holds the sheen lobe's albedo (scene/src/sheen.rs), which
+//! brdf.wgsl scales KHR_materials_sheen's base by under any light. A scene without an
+//! environment binds one black texel for the cube map, and for the table too unless it
+//! has a sheen: its shaders compile the environment out (the `ENVIRONMENT` gate), but the
+//! layout is the same for every scene.
 
 use wgpu::TextureViewDimension::{Cube, D2};
 
 use super::textures::create;
-use rgraph_scene::{prefiltered_cube, split_sum_lut, Scene, CUBE_LEVELS, CUBE_SIZE, LUT_SIZE};
+use rgraph_scene::{
+    prefiltered_cube, sheen_albedo_lut, split_sum_lut, Scene, CUBE_LEVELS, CUBE_SIZE, LUT_SIZE,
+};
 
 pub(super) struct EnvironmentMaps {
     pub cube: wgpu::TextureView,
@@ -22,47 +27,51 @@ impl EnvironmentMaps {
                 .flat_map(|v| half::f16::from_f32(v).to_le_bytes())
                 .collect()
         };
-        let (cube, lut) = match scene.environment {
-            Some(_) => {
-                let cube = halves(&mut prefiltered_cube().iter().flatten().copied());
-                let lut = halves(&mut split_sum_lut().iter().flat_map(|&[a, b]| [a, b, 0.0, 1.0]));
-                let cube_size = (CUBE_SIZE, CUBE_SIZE, CUBE_LEVELS);
-                (
-                    create(device, queue, "environment", cube_size, format, Cube, &cube),
-                    create(
-                        device,
-                        queue,
-                        "split-sum LUT",
-                        (LUT_SIZE, LUT_SIZE, 1),
-                        format,
-                        D2,
-                        &lut,
-                    ),
+        let black = [0u8; 8];
+        let cube = match scene.environment {
+            Some(_) => create(
+                device,
+                queue,
+                "environment",
+                (CUBE_SIZE, CUBE_SIZE, CUBE_LEVELS),
+                format,
+                Cube,
+                &halves(&mut prefiltered_cube().iter().flatten().copied()),
+            ),
+            None => create(
+                device,
+                queue,
+                "no environment",
+                (1, 1, 1),
+                format,
+                Cube,
+                &black.repeat(6),
+            ),
+        };
+        let sheen = scene.materials.iter().any(|m| m.has_sheen());
+        let lut = match scene.environment.is_some() || sheen {
+            true => {
+                let texels = split_sum_lut().iter().zip(sheen_albedo_lut());
+                let lut = halves(&mut texels.flat_map(|(&[a, b], &e)| [a, b, e, 1.0]));
+                create(
+                    device,
+                    queue,
+                    "split-sum LUT",
+                    (LUT_SIZE, LUT_SIZE, 1),
+                    format,
+                    D2,
+                    &lut,
                 )
             }
-            None => {
-                let black = [0u8; 8];
-                (
-                    create(
-                        device,
-                        queue,
-                        "no environment",
-                        (1, 1, 1),
-                        format,
-                        Cube,
-                        &black.repeat(6),
-                    ),
-                    create(
-                        device,
-                        queue,
-                        "no split-sum LUT",
-                        (1, 1, 1),
-                        format,
-                        D2,
-                        &black,
-                    ),
-                )
-            }
+            false => create(
+                device,
+                queue,
+                "no split-sum LUT",
+                (1, 1, 1),
+                format,
+                D2,
+                &black,
+            ),
         };
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("environment"),

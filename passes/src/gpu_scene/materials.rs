@@ -8,7 +8,7 @@ use std::sync::OnceLock;
 use wgpu::util::DeviceExt;
 
 use super::textures;
-use rgraph_scene::{AlphaMode, Material, Sampler, Scene, TextureRef};
+use rgraph_scene::{dielectric_f0, AlphaMode, Material, Sampler, Scene, TextureRef};
 
 /// `FLAG_LIT` and `FLAG_UNLIT` in common.wgsl.
 const FLAG_LIT: u32 = 1;
@@ -29,10 +29,16 @@ struct MaterialData {
     /// Bit `slot` set: the texture of that slot samples TEXCOORD_1.
     uv_sets: u32,
     _pad: [u32; 2],
+    specular_f0: [f32; 3],
+    specular: f32,
+    sheen_color: [f32; 3],
+    sheen_roughness: f32,
+    clearcoat: f32,
+    clearcoat_roughness: f32,
+    clearcoat_normal_scale: f32,
+    _pad2: u32,
     /// Per slot, KHR_texture_transform's matrix (`mat3x2<f32>`, three columns).
     uv_transforms: [[[f32; 2]; 3]; TEXTURE_SLOTS as usize],
-    /// WGSL rounds the struct's size up to its alignment, 16.
-    _tail: [u32; 2],
 }
 
 /// What a scene-drawing pass needs to pick a pipeline for a material, and which pass
@@ -55,7 +61,7 @@ pub(super) struct Materials {
 
 /// A material's textures in binding order (material_bound.wgsl):
 /// [`rgraph_scene::Material::texture_slots`].
-const TEXTURE_SLOTS: u32 = 5;
+const TEXTURE_SLOTS: u32 = rgraph_scene::TEXTURE_SLOTS as u32;
 
 /// The layout of a material's bind group: per texture of [`TEXTURE_SLOTS`], the texture
 /// (binding `2 * slot`) and its sampler (binding `2 * slot + 1`).
@@ -138,6 +144,10 @@ fn material_data(material: &Material) -> MaterialData {
         AlphaMode::Mask { cutoff } => cutoff,
         AlphaMode::Opaque | AlphaMode::Blend => 0.0,
     };
+    // An unlit material's layers would shade nothing: the core model's keep the
+    // features (Material::has_clearcoat, ...) and the data in step.
+    let plain = Material::gltf_default();
+    let layered = if material.unlit { &plain } else { material };
     MaterialData {
         base_color: material.base_color_factor,
         emission: material.emission(),
@@ -158,10 +168,23 @@ fn material_data(material: &Material) -> MaterialData {
             .filter(|(_, t)| t.is_some_and(|t| t.tex_coord == 1))
             .fold(0, |bits, (slot, _)| bits | 1 << slot),
         _pad: [0; 2],
+        specular_f0: layered
+            .specular
+            .color_factor
+            .map(|c| dielectric_f0(layered.ior) * c),
+        specular: layered.specular.factor,
+        sheen_color: layered.sheen.color_factor,
+        sheen_roughness: layered.sheen.roughness_factor,
+        clearcoat: layered.clearcoat.factor,
+        clearcoat_roughness: layered.clearcoat.roughness_factor,
+        clearcoat_normal_scale: match layered.clearcoat.normal_texture {
+            Some(_) => layered.clearcoat.normal_scale,
+            None => 0.0,
+        },
+        _pad2: 0,
         uv_transforms: material
             .texture_slots()
             .map(|t| t.map_or(TextureRef::IDENTITY_UV, |t| t.uv_transform)),
-        _tail: [0; 2],
     }
 }
 

@@ -12,7 +12,7 @@ use wgpu::util::DeviceExt;
 
 use super::textures;
 use rgraph_scene::texture_table::{TableArray, TextureTable};
-use rgraph_scene::{FilterMode, Scene, TextureRef, WrapMode};
+use rgraph_scene::{FilterMode, Scene, TextureRef, WrapMode, TEXTURE_SLOTS};
 
 /// material_table.wgsl's `NO_LAYER`.
 const NO_LAYER: u32 = 0xffff;
@@ -128,14 +128,14 @@ impl TextureTableGpu {
             &table.data,
             wgpu::TextureFormat::Rgba8Unorm,
         );
-        let mut words: Vec<[u32; 5]> = scene
+        let mut words: Vec<[u32; TEXTURE_SLOTS]> = scene
             .materials
             .iter()
             .map(|m| m.texture_slots().map(|t| slot_word(&table, t)))
             .collect();
         // Storage bindings cannot be empty.
         if words.is_empty() {
-            words.push([NO_LAYER; 5]);
+            words.push([NO_LAYER; TEXTURE_SLOTS]);
         }
         let slots = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("texture table: material slots"),

@@ -181,6 +181,38 @@ fn vs_fullscreen_far(@builtin(vertex_index) index: u32) -> Fullscreen {
     return Fullscreen(fullscreen_position(index, FAR_DEPTH));
 }
 
+// Which material layers the scene has (variant.rs; the defaults are the general shader):
+// KHR_materials_ior and _specular (a dielectric F0 or specular weight other than the core
+// model's), _clearcoat and _sheen. Without one its code is compiled out: plain_layers()
+// are what a material without the extension has, and the gated code would change nothing.
+// Shaders that read a G-buffer, which stores no layers, set all three false.
+override SPECULAR: bool = true;
+override CLEARCOAT: bool = true;
+override SHEEN: bool = true;
+
+// What KHR_materials_ior, _specular, _clearcoat and _sheen add to a surface point
+// (material.wgsl computes them, brdf.wgsl shades them).
+struct Layers {
+    // The dielectric reflectance at normal incidence, ((ior - 1) / (ior + 1))^2 times the
+    // specular colour, at most 1; and the specular weight that scales it and the grazing
+    // reflectance (KHR_materials_specular's specularFactor).
+    specular_f0: vec3<f32>,
+    specular: f32,
+    // The clear coat's strength, perceptual roughness and unit world-space normal
+    // (tangent-space in a MaterialSample, material.wgsl's surface_layers).
+    clearcoat: f32,
+    clearcoat_roughness: f32,
+    clearcoat_normal: vec3<f32>,
+    // The sheen's linear colour (black: none) and perceptual roughness.
+    sheen_color: vec3<f32>,
+    sheen_roughness: f32,
+}
+
+// The core metallic-roughness model's: F0 0.04 (ior 1.5), weight 1, no coat, no sheen.
+fn plain_layers() -> Layers {
+    return Layers(vec3<f32>(0.04), 1.0, 0.0, 0.0, vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(0.0), 0.0);
+}
+
 // A sample's surface as the light passes read it: from a G-buffer (gbuffer_read.wgsl) or
 // rebuilt from a visibility buffer (visibility_read.wgsl).
 struct GSample {
@@ -199,4 +231,6 @@ struct GSample {
     // own: emitted_*.wgsl).
     id: u32,
     emission: vec3<f32>,
+    // A G-buffer's samples are plain_layers(): it has no bytes for them.
+    layers: Layers,
 }

@@ -97,7 +97,8 @@ fn shade_surface(a: Attributes, front: bool) -> vec4<f32> {
     if f.unlit {
         color += f.m.base.rgb;
     } else {
-        color += every_light(f.s);
+        // A clear coat dims what the surface emits as it dims the light it reflects.
+        color = color * (1.0 - coat_weight(f.s.layers, f.s.view)) + every_light(f.s);
     }
     return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), f.m.base.a);
 }
@@ -124,7 +125,8 @@ fn fragment_of(a: Attributes, front: bool) -> Fragment {
         // normal texture's perturbation turned around with it).
         let mapped = shading_normal(a.normal, a.tangent, m.tangent_normal);
         let n = unit_normal(select(-mapped, mapped, front || !DOUBLE_SIDED));
-        f.s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness, m.occlusion);
+        let layers = surface_layers(m, a.normal, a.tangent, front || !DOUBLE_SIDED);
+        f.s = Surface(a.position, n, safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness, m.occlusion, layers);
     }
     return f;
 }

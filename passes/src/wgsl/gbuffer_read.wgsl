@@ -31,6 +31,7 @@ fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
     g.flags = unorm8(m.b);
     g.edge_bits = unorm8(m.a);
     g.view_depth = load_view_depth(pixel, s);
+    g.layers = plain_layers();
     return g;
 }
 

@@ -37,7 +37,7 @@ fn shade_sample(pixel: vec2<i32>, s: u32, p: vec3<f32>, light: u32) -> vec4<f32>
     let n = oct_decode(textureLoad(normal_tex, pixel, s).xy);
     // Only the geometry and roughness matter to light_terms: albedo and metalness are the
     // material pass's.
-    let surface = Surface(p, n, safe_normalize(-p), vec3<f32>(1.0), 0.0, m.g, 1.0);
+    let surface = Surface(p, n, safe_normalize(-p), vec3<f32>(1.0), 0.0, m.g, 1.0, plain_layers());
     var sum = vec4<f32>(0.0);
     if light == ALL_DIRECTIONAL {
         // Ambient and environment light need the albedo: the material pass adds them.

@@ -72,7 +72,8 @@ fn fs_apply_material(
     if (material.flags & FLAG_UNLIT) != 0u {
         color += m.base.rgb;
     } else {
-        let s = Surface(a.position, normal_of(a, m, front), safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness, m.occlusion);
+        // The light buffer holds the core model's lobes only: no layers.
+        let s = Surface(a.position, normal_of(a, m, front), safe_normalize(-a.position), m.base.rgb, m.metallic, m.roughness, m.occlusion, plain_layers());
         let light = textureLoad(light_tex, pixel_of(in.clip), sample);
         color += ambient_light(s) + received(s, light);
     }

@@ -28,13 +28,50 @@ fn environment_irradiance(n: vec3<f32>) -> vec3<f32> {
 fn environment_light(s: Surface) -> vec3<f32> {
     let n_v = clamp(dot(s.normal, s.view), 1e-4, 1.0);
     let split = textureSampleLevel(split_sum_tex, environment_sampler, vec2<f32>(n_v, s.roughness), 0.0).rg;
-    let f0 = mix(vec3<f32>(0.04), s.albedo, s.metallic);
-    let specular_albedo = f0 * split.x + split.y;
-    let r = reflect(-s.view, s.normal);
-    let level = clamp(s.roughness, 0.0, 1.0) * light_info.environment_max_level;
-    let prefiltered = textureSampleLevel(environment_tex, environment_sampler, r, level).rgb * light_info.environment_intensity;
+    let reflected = reflectance(s);
+    let specular_albedo = reflected.f0 * split.x + reflected.f90 * split.y;
+    let prefiltered = prefiltered_radiance(reflect(-s.view, s.normal), s.roughness);
     let diffuse = environment_irradiance(s.normal) / PI * s.albedo * (1.0 - s.metallic) * (1.0 - specular_albedo);
-    return diffuse + prefiltered * specular_albedo;
+    var base = diffuse + prefiltered * specular_albedo;
+    if has_sheen(s) {
+        base = sheen_environment(s, base, n_v);
+    }
+    if CLEARCOAT && s.layers.clearcoat > 0.0 {
+        return coated_environment(s, base);
+    }
+    return base;
+}
+
+// `base`, the environment's light on surface `s`, under its sheen seen at `n_v`: scaled by
+// what the sheen leaves, plus the sheen's reflection: its albedo times the prefiltered
+// radiance around the reflection at the sheen's roughness (the GGX-prefiltered map
+// standing in for the sample viewer's Charlie-prefiltered one).
+fn sheen_environment(s: Surface, base: vec3<f32>, n_v: f32) -> vec3<f32> {
+    let c = s.layers.sheen_color;
+    let roughness = s.layers.sheen_roughness;
+    let albedo = sheen_albedo(n_v, roughness);
+    let prefiltered = prefiltered_radiance(reflect(-s.view, s.normal), roughness);
+    return base * (1.0 - max(c.r, max(c.g, c.b)) * albedo) + prefiltered * c * albedo;
+}
+
+// `base`, the environment's light on surface `s`, under its clear coat: the coat's
+// prefiltered radiance around its own reflection, times its lobe's directional albedo
+// without Fresnel (the split sum's scale plus bias: coated() weighs it by the coat's
+// Fresnel).
+fn coated_environment(s: Surface, base: vec3<f32>) -> vec3<f32> {
+    let n = s.layers.clearcoat_normal;
+    let roughness = s.layers.clearcoat_roughness;
+    let n_v = clamp(dot(n, s.view), 1e-4, 1.0);
+    let split = textureSampleLevel(split_sum_tex, environment_sampler, vec2<f32>(n_v, roughness), 0.0).rg;
+    let prefiltered = prefiltered_radiance(reflect(-s.view, n), roughness);
+    return coated(s, base, prefiltered * (split.x + split.y));
+}
+
+// The environment's radiance around `direction`, prefiltered with the GGX lobe of
+// `roughness` (the cube map's mip level for it).
+fn prefiltered_radiance(direction: vec3<f32>, roughness: f32) -> vec3<f32> {
+    let level = clamp(roughness, 0.0, 1.0) * light_info.environment_max_level;
+    return textureSampleLevel(environment_tex, environment_sampler, direction, level).rgb * light_info.environment_intensity;
 }
 
 // Light from everywhere: the ambient term and the environment, scaled by the material's

@@ -16,6 +16,21 @@
 // Linear data: red is ambient occlusion.
 @group(1) @binding(8) var occlusion_tex: texture_2d<f32>;
 @group(1) @binding(9) var occlusion_sampler: sampler;
+// The extensions' textures (material.wgsl's MaterialTexels says which channels count).
+@group(1) @binding(10) var specular_tex: texture_2d<f32>;
+@group(1) @binding(11) var specular_sampler: sampler;
+@group(1) @binding(12) var specular_color_tex: texture_2d<f32>;
+@group(1) @binding(13) var specular_color_sampler: sampler;
+@group(1) @binding(14) var clearcoat_tex: texture_2d<f32>;
+@group(1) @binding(15) var clearcoat_sampler: sampler;
+@group(1) @binding(16) var clearcoat_roughness_tex: texture_2d<f32>;
+@group(1) @binding(17) var clearcoat_roughness_sampler: sampler;
+@group(1) @binding(18) var clearcoat_normal_tex: texture_2d<f32>;
+@group(1) @binding(19) var clearcoat_normal_sampler: sampler;
+@group(1) @binding(20) var sheen_color_tex: texture_2d<f32>;
+@group(1) @binding(21) var sheen_color_sampler: sampler;
+@group(1) @binding(22) var sheen_roughness_tex: texture_2d<f32>;
+@group(1) @binding(23) var sheen_roughness_sampler: sampler;
 
 // The texture coordinates TEXCOORD_0 and TEXCOORD_1 at a fragment (interpolated where
 // it is shaded: the centroid of the covered samples, or a sample) and their changes one
@@ -78,6 +93,19 @@ fn sample_material(m: MaterialData, at: FragmentUv, color: vec4<f32>) -> Materia
     }
     if OCCLUSION_TEXTURES {
         t.occlusion = sample_slot(occlusion_tex, occlusion_sampler, m, 4u, at);
+    }
+    if SPECULAR {
+        t.specular = sample_slot(specular_tex, specular_sampler, m, 5u, at);
+        t.specular_color = sample_slot(specular_color_tex, specular_color_sampler, m, 6u, at);
+    }
+    if CLEARCOAT {
+        t.clearcoat = sample_slot(clearcoat_tex, clearcoat_sampler, m, 7u, at);
+        t.clearcoat_roughness = sample_slot(clearcoat_roughness_tex, clearcoat_roughness_sampler, m, 8u, at);
+        t.clearcoat_normal = sample_slot(clearcoat_normal_tex, clearcoat_normal_sampler, m, 9u, at);
+    }
+    if SHEEN {
+        t.sheen_color = sample_slot(sheen_color_tex, sheen_color_sampler, m, 10u, at);
+        t.sheen_roughness = sample_slot(sheen_roughness_tex, sheen_roughness_sampler, m, 11u, at);
     }
     return material_from_texels(m, color, t);
 }

@@ -12,7 +12,7 @@
 // bits 0-15 the layer (NO_LAYER: no texture, white), bit 16 set for color_layers, bits
 // 17-18 and 19-20 the U and V wrap modes (WRAP_*), bit 21 magnification and bit 22
 // minification linear (else nearest), bits 23-24 the mipmap filter (MIP_*).
-@group(3) @binding(0) var<storage, read> material_slots: array<array<u32, 5>>;
+@group(3) @binding(0) var<storage, read> material_slots: array<array<u32, TEXTURE_SLOTS>>;
 @group(3) @binding(1) var color_layers: texture_2d_array<f32>;
 @group(3) @binding(2) var data_layers: texture_2d_array<f32>;
 // Address mode x texel filter x mipmap filter (binding 3 + 4 * clamp + 2 * linear texels +
@@ -143,7 +143,7 @@ fn table_texel(word: u32, m: MaterialData, slot: u32, point: TexCoords, right: T
 fn material_textured(index: u32) -> bool {
     var slots = material_slots[index];
     var textured = false;
-    for (var slot = 0u; slot < 5u; slot++) {
+    for (var slot = 0u; slot < TEXTURE_SLOTS; slot++) {
         textured = textured || (slots[slot] & NO_LAYER) != NO_LAYER;
     }
     return textured;
@@ -169,6 +169,19 @@ fn sample_material_table(index: u32, m: MaterialData, color: vec4<f32>, at: TexC
     }
     if OCCLUSION_TEXTURES {
         t.occlusion = table_texel(slots[4], m, 4u, at, right, down);
+    }
+    if SPECULAR {
+        t.specular = table_texel(slots[5], m, 5u, at, right, down);
+        t.specular_color = table_texel(slots[6], m, 6u, at, right, down);
+    }
+    if CLEARCOAT {
+        t.clearcoat = table_texel(slots[7], m, 7u, at, right, down);
+        t.clearcoat_roughness = table_texel(slots[8], m, 8u, at, right, down);
+        t.clearcoat_normal = table_texel(slots[9], m, 9u, at, right, down);
+    }
+    if SHEEN {
+        t.sheen_color = table_texel(slots[10], m, 10u, at, right, down);
+        t.sheen_roughness = table_texel(slots[11], m, 11u, at, right, down);
     }
     return material_from_texels(m, color, t);
 }

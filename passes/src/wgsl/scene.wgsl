@@ -41,8 +41,22 @@ struct MaterialData {
     uv_sets: u32,
     _pad0: u32,
     _pad1: u32,
+    // KHR_materials_ior and _specular: the dielectric F0, ((ior - 1) / (ior + 1))^2 times
+    // specularColorFactor (clamped to 1 after the specular colour texture), and
+    // specularFactor.
+    specular_f0: vec3<f32>,
+    specular: f32,
+    // KHR_materials_sheen: sheenColorFactor and sheenRoughnessFactor.
+    sheen_color: vec3<f32>,
+    sheen_roughness: f32,
+    // KHR_materials_clearcoat: clearcoatFactor, clearcoatRoughnessFactor, and the scale
+    // of clearcoatNormalTexture's X and Y (0 without one, as normal_scale).
+    clearcoat: f32,
+    clearcoat_roughness: f32,
+    clearcoat_normal_scale: f32,
+    _pad2: u32,
     // Per slot, KHR_texture_transform: a texture samples uv_transforms[slot] * (uv, 1).
-    uv_transforms: array<mat3x2<f32>, 5>,
+    uv_transforms: array<mat3x2<f32>, 12>,
 }
 
 const LIGHT_DIRECTIONAL: u32 = 0u;

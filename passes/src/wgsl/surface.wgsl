@@ -17,5 +17,5 @@ fn center_surface(pixel: vec2<i32>, s: u32) -> vec3<f32> {
 
 // G-buffer sample `g` as the surface point `p` (camera-relative) seen from the camera.
 fn surface_of(g: GSample, p: vec3<f32>) -> Surface {
-    return Surface(p, g.normal, safe_normalize(-p), g.albedo, g.metallic, g.roughness, g.occlusion);
+    return Surface(p, g.normal, safe_normalize(-p), g.albedo, g.metallic, g.roughness, g.occlusion, g.layers);
 }

@@ -74,10 +74,13 @@ fn rebuild(id: u32, at: vec2<f32>) -> GSample {
     g.roughness = m.roughness;
     g.flags = material.flags;
     g.id = id;
-    g.emission = m.emission;
+    g.layers = surface_layers(m, normal, tangent, front);
+    let position = hit.origin + hit.along * hit.ray;
+    // A clear coat dims what the surface emits as it dims the light it reflects.
+    g.emission = m.emission * (1.0 - coat_weight(g.layers, safe_normalize(-position)));
     // The fragment's view depth where it is rebuilt, as a G-buffer stores it: one per
     // triangle and pixel.
-    g.view_depth = dot(hit.origin + hit.along * hit.ray, camera.forward);
+    g.view_depth = dot(position, camera.forward);
     return g;
 }
 
@@ -205,6 +208,7 @@ fn joined_gsample(pixel: vec2<i32>, ids: array<u32, SAMPLES>, s: u32, mask: u32)
     mean.roughness = sum.roughness / n;
     mean.view_depth = sum.view_depth / n;
     mean.emission = sum.emission / n;
+    mean.layers = mean_layers(sum.layers, n);
     return mean;
 }
 
@@ -218,7 +222,46 @@ fn weighted(sum: GSample, g: GSample, w: f32) -> GSample {
     out.roughness += w * g.roughness;
     out.view_depth += w * g.view_depth;
     out.emission += w * g.emission;
+    out.layers = weighted_layers(sum.layers, g.layers, w);
     return out;
+}
+
+// `sum` plus `w` times the layers the scene has (weighted's part).
+fn weighted_layers(sum: Layers, l: Layers, w: f32) -> Layers {
+    var out = sum;
+    if SPECULAR {
+        out.specular_f0 += w * l.specular_f0;
+        out.specular += w * l.specular;
+    }
+    if CLEARCOAT {
+        out.clearcoat += w * l.clearcoat;
+        out.clearcoat_roughness += w * l.clearcoat_roughness;
+        out.clearcoat_normal += w * l.clearcoat_normal;
+    }
+    if SHEEN {
+        out.sheen_color += w * l.sheen_color;
+        out.sheen_roughness += w * l.sheen_roughness;
+    }
+    return out;
+}
+
+// The mean of `n` samples' layers whose weighted sum is `sum` (joined_gsample's mean).
+fn mean_layers(sum: Layers, n: f32) -> Layers {
+    var mean = plain_layers();
+    if SPECULAR {
+        mean.specular_f0 = sum.specular_f0 / n;
+        mean.specular = sum.specular / n;
+    }
+    if CLEARCOAT {
+        mean.clearcoat = sum.clearcoat / n;
+        mean.clearcoat_roughness = sum.clearcoat_roughness / n;
+        mean.clearcoat_normal = unit_normal(sum.clearcoat_normal);
+    }
+    if SHEEN {
+        mean.sheen_color = sum.sheen_color / n;
+        mean.sheen_roughness = sum.sheen_roughness / n;
+    }
+    return mean;
 }
 
 // Fragment `f` as a G-buffer sample. Nothing drawn: view depth 0, as a G-buffer's.

@@ -48,6 +48,13 @@ pub struct Features {
     pub untabled_textures: bool,
     /// Some mesh is drawn with a double-sided material.
     pub double_sided: bool,
+    /// Some mesh's lit material has a dielectric specular other than the core model's
+    /// (KHR_materials_ior, KHR_materials_specular).
+    pub specular: bool,
+    /// Some mesh's lit material has a clear coat (KHR_materials_clearcoat).
+    pub clearcoat: bool,
+    /// Some mesh's lit material has a sheen (KHR_materials_sheen).
+    pub sheen: bool,
     /// A 24-bit unorm depth buffer with standard Z resolves the geometry's depth range
     /// as finely as [`DepthRange::shallow`] asks. A reduction, like `unlit_only`: only a
     /// scene that is measured gets it.
@@ -77,7 +84,7 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 26] = [
+    pub const NAMES: [&'static str; 29] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -98,6 +105,9 @@ impl Features {
         "mask_textures",
         "untabled_textures",
         "double_sided",
+        "specular",
+        "clearcoat",
+        "sheen",
         "shallow_depth",
         "particles",
         "points_lines",
@@ -141,6 +151,9 @@ impl Features {
                     .check(scene, WEBGPU_MAX_LAYERS, WEBGPU_MAX_SIDE)
                     .is_err(),
             double_sided: material(|m| m.double_sided),
+            specular: material(Material::has_specular),
+            clearcoat: material(Material::has_clearcoat),
+            sheen: material(Material::has_sheen),
             // With no geometry between the planes nothing is depth-tested: the general
             // pipeline is as good as any.
             shallow_depth: DepthRange::of(scene)
@@ -183,6 +196,9 @@ impl Features {
             mask_textures: true,
             untabled_textures: true,
             double_sided: true,
+            specular: true,
+            clearcoat: true,
+            sheen: true,
             shallow_depth: false,
             particles: true,
             points_lines: true,
@@ -230,6 +246,9 @@ impl Features {
             self.mask_textures,
             self.untabled_textures,
             self.double_sided,
+            self.specular,
+            self.clearcoat,
+            self.sheen,
             self.shallow_depth,
             self.particles,
             self.points_lines,

@@ -10,8 +10,12 @@ use crate::SceneError;
 pub(super) const IMPLEMENTED: &[&str] = &[
     "EXT_mesh_gpu_instancing",
     "KHR_lights_punctual",
+    "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
+    "KHR_materials_ior",
     "KHR_materials_pbrSpecularGlossiness",
+    "KHR_materials_sheen",
+    "KHR_materials_specular",
     "KHR_materials_unlit",
     "KHR_mesh_quantization",
     "KHR_texture_transform",

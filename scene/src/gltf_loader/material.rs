@@ -28,6 +28,7 @@ impl Loader<'_> {
             Some(spec_gloss) => self.spec_gloss(&spec_gloss, &name)?,
             None => self.metal_rough(&material.pbr_metallic_roughness(), &name)?,
         };
+        let layers = self.layers(material, &pbr, &name)?;
         let (file, warnings) = (self.file, &mut self.builder.warnings);
         let mut check = |field, values: &[f32], range| {
             factors::checked(file, &name, field, values, range, warnings)
@@ -85,6 +86,10 @@ impl Loader<'_> {
             alpha_mode,
             double_sided: material.double_sided(),
             unlit: material.unlit(),
+            ior: layers.ior,
+            specular: layers.specular,
+            clearcoat: layers.clearcoat,
+            sheen: layers.sheen,
             name,
         })
     }
@@ -120,13 +125,14 @@ impl Loader<'_> {
             metallic_factor: metallic,
             roughness_factor: roughness,
             metallic_roughness_texture,
+            from_spec_gloss: false,
         })
     }
 
     /// `texture` with its texture coordinate set and its KHR_texture_transform object, as
     /// the material's `slot` texture, its image decoded as `srgb` color or linear data;
     /// `None` without one, or as [`Loader::sampled`] leaves it out.
-    fn texture(
+    pub(super) fn texture(
         &mut self,
         texture: Option<(gltf::Texture, u32, Option<&serde_json::Value>)>,
         slot: &'static str,
@@ -187,6 +193,8 @@ pub(super) struct Pbr {
     pub metallic_factor: f32,
     pub roughness_factor: f32,
     pub metallic_roughness_texture: Option<TextureRef>,
+    /// Converted from KHR_materials_pbrSpecularGlossiness.
+    pub from_spec_gloss: bool,
 }
 
 /// A texture reference as the material samples it: a glTF image and how it is sampled.
@@ -223,8 +231,9 @@ pub(super) fn name(material: &gltf::Material) -> String {
     )
 }
 
-/// The images `material`'s textures name, each with its slot and whether it is decoded as
-/// sRGB color (as `convert_material` decodes them): what it may ask the scene to hold.
+/// The images `material`'s core textures name, each with its slot and whether it is
+/// decoded as sRGB color (as `convert_material` decodes them): what it may ask the scene to
+/// hold, with its extensions' (`material_layers::images`).
 pub(super) fn images(material: &gltf::Material) -> Vec<(usize, &'static str, bool)> {
     let pbr = material.pbr_metallic_roughness();
     let image = |texture: gltf::Texture| texture.source().index();

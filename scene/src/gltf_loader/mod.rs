@@ -30,6 +30,7 @@ mod image;
 mod instancing;
 mod light;
 mod material;
+mod material_layers;
 mod nodes;
 mod points_lines;
 mod primitive;

@@ -9,7 +9,7 @@ use std::collections::{HashMap, HashSet};
 use gltf::mesh::{Mode, Semantic};
 
 use super::nodes::Placed;
-use super::{material, Loader};
+use super::{material, material_layers, Loader};
 use crate::error::label;
 use crate::{SceneError, Vertex, MAX_MESHES};
 
@@ -79,7 +79,9 @@ impl Loader<'_> {
                     continue;
                 }
                 let name = material::name(&material);
-                for (image, slot, srgb) in material::images(&material) {
+                let core = material::images(&material);
+                let layers = material_layers::images(self.document, &material);
+                for (image, slot, srgb) in core.into_iter().chain(layers) {
                     self.reserve_image(image, srgb, slot, &name)?;
                 }
                 self.reserve_spec_gloss(&material, &name)?;

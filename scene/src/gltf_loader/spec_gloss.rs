@@ -247,6 +247,7 @@ impl Loader<'_> {
                 metallic_factor: converted.metallic as f32,
                 roughness_factor: converted.roughness as f32,
                 metallic_roughness_texture: None,
+                from_spec_gloss: true,
             });
         }
         let diffuse_input = self.input(diffuse_texture.as_ref(), diffuse, "diffuse", name)?;
@@ -298,6 +299,7 @@ impl Loader<'_> {
             metallic_factor: 1.0,
             roughness_factor: 1.0,
             metallic_roughness_texture: metal_rough_sampling.map(|s| s.with_image(metal_rough)),
+            from_spec_gloss: true,
         })
     }
 
