@@ -47,7 +47,7 @@ export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq >&2
 $sudo apt-get install -y -qq $packages >&2
 if ! icd_present || ! command -v c++ >/dev/null 2>&1 || ! test_tools_present; then
-  echo "rgraph: installed$packages but the lavapipe ICD (/usr/share/vulkan/icd.d), c++, /usr/bin/Xvfb, /usr/bin/xwininfo or chromium is still missing" >&2
+  echo "rgraph: installed ${packages# } but the lavapipe ICD (/usr/share/vulkan/icd.d), c++, /usr/bin/Xvfb, /usr/bin/xwininfo or chromium is still missing" >&2
   exit 1
 fi
-echo "rgraph: installed$packages" >&2
+echo "rgraph: installed ${packages# }" >&2

@@ -486,8 +486,8 @@ fn the_visibility_pipeline_rasterises_by_the_hardware_on_a_cpu_device() {
         .stderr_has("\ndevice conditions: cpu_device\n")
         .stderr_has(
             "dropped by conditions: shadow raster, shadow maps (alpha mask), shadow resolve, \
-             visibility, visibility (blend), visibility (points lines), light tiled, keys \
-             depth, keys depth (points lines), ",
+             visibility, visibility (blend), visibility (points lines), depth pyramid (first phase), visibility \
+             (second phase), depth pyramid, light tiled, keys depth, keys depth (points lines), ",
         );
     render_default(&out, &[&pipeline[..], &["--no-specialise"]].concat())
         .expect(0)
