@@ -648,6 +648,32 @@ fn a_gltf_file_without_lights_gets_the_default_lighting_with_a_warning() {
         .stderr_has("expected one of auto, file, default, both");
 }
 
+/// `explain` plans what `render` runs: a file without lights, lit by the default lighting's
+/// environment, shows that environment behind it, so its plan has the background pass
+/// (before, explain dropped it: the H200 plan pages of FlightHelmet left out the background
+/// their timings had).
+#[test]
+fn explain_plans_the_environment_background_render_draws() {
+    let scene = "scene/tests/fixtures/hierarchy_embedded.gltf";
+    let explained = |extra: &[&str]| {
+        let pipeline = ["explain", "--pipeline", "pipelines/visibility_msaa_4x.ron"];
+        rgraph(&[&pipeline[..], &["--scene", scene], extra].concat())
+            .expect(0)
+            .stdout
+    };
+    let plan = explained(&[]);
+    assert!(
+        plan.contains("\nfeatures: alpha_mask, background, "),
+        "{plan}"
+    );
+    assert!(plan.contains(". background (render)\n"), "{plan}");
+    let on_lavapipe = explained(&["--profile", "adapter"]);
+    assert!(
+        on_lavapipe.contains(". background (hardware raster) (render)\n"),
+        "{on_lavapipe}"
+    );
+}
+
 /// The graph-file guide's pipeline written from parts only renders the lit scene, as the
 /// tiled pipeline it rebuilds (plus FXAA) does.
 #[test]

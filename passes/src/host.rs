@@ -35,6 +35,7 @@ use std::sync::{Arc, Mutex};
 
 use glam::{DMat4, DVec3, Vec3};
 
+use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::{check_emitters, Camera, ParticleEmitter, Pose, Scene};
 
 /// The scene and overrides every deferred plugin of one registry shares, and the current
@@ -75,6 +76,21 @@ pub struct Overrides {
     /// most important lights). Turned off, the host unsets the scene's `shadows` feature
     /// so that the pipelines drop their shadow passes.
     pub shadows: crate::shadows::Shadows,
+}
+
+impl Overrides {
+    /// `features` (a scene's, or the general set) with what these overrides ask of a
+    /// frame: the `auto_exposure` passes for a metered exposure; the `background` passes
+    /// for the background asked for or, unasked, for the environment of a scene lit by one
+    /// (`environment`: what a viewer expects behind a model its surroundings light); the
+    /// shadow passes only while shadows are on. `rgraph render`, `view` and `bench` compile
+    /// their plans with it, and `explain` plans what they run with it.
+    pub fn applied_to(&self, mut features: SceneFeatures, environment: bool) -> SceneFeatures {
+        features.auto_exposure = self.exposure == Some(Exposure::Auto);
+        features.background = self.background.is_some() || environment;
+        features.shadows &= self.shadows.enabled();
+        features
+    }
 }
 
 /// What a frame shows where its opaque passes drew nothing: behind every surface, seen

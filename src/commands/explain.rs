@@ -10,7 +10,7 @@ use std::path::Path;
 use rgraph_core::explain;
 use rgraph_core::file::{load_file_with, FileErrors, LoadedGraph};
 use rgraph_core::{CompileOptions, Features, Plan};
-use rgraph_passes::ShadowFilter;
+use rgraph_passes::{Overrides, Shadows};
 use rgraph_scene::analysis::{Analysis, Features as SceneFeatures, SHALLOW_STEP};
 use rgraph_scene::SceneError;
 
@@ -35,8 +35,17 @@ pub fn run(
         .map(|spec| analyse(spec, assets, options.output_size))
         .transpose()?;
     if let Some((_, analysis)) = &mut analysis {
-        // As `render --shadows off` compiles it.
-        analysis.features.shadows &= page_args.shadows != ShadowFilter::Off;
+        // What `render` runs with no override but --shadows: under an environment, the
+        // background passes too.
+        let overrides = Overrides {
+            shadows: Shadows {
+                filter: page_args.shadows,
+                ..Shadows::default()
+            },
+            ..Overrides::default()
+        };
+        let environment = analysis.features.environment;
+        analysis.features = overrides.applied_to(analysis.features, environment);
     }
     let features = analysis
         .as_ref()

@@ -8,7 +8,7 @@ use rgraph_core::file::{
     load_file_with, load_str_with, ErrorKind, FileErrors, GraphParams, LoadedGraph, Registry,
 };
 use rgraph_passes::variant::Variants;
-use rgraph_passes::{Background, Exposure, Host, Overrides};
+use rgraph_passes::{Background, Host, Overrides};
 use rgraph_scene::analysis::Features as SceneFeatures;
 use rgraph_scene::Scene;
 
@@ -120,11 +120,7 @@ impl Pipeline {
         specialise: Specialise,
         load: impl FnOnce(&Registry) -> Result<LoadedGraph, FrameError>,
     ) -> Result<Self, FrameError> {
-        let (mut features, shader_features) = specialise.features(&host.scene);
-        // The file's `auto_exposure` passes stand in for its fixed-exposure tone mapping.
-        features.auto_exposure = host.overrides.exposure == Some(Exposure::Auto);
-        // Its `background` passes draw the one asked for, and under the default lighting
-        // (an environment) that environment unasked.
+        let (features, shader_features) = specialise.features(&host.scene);
         let background = host.overrides.background;
         let environment = SceneFeatures::of(&host.scene).environment;
         if background == Some(Background::Environment) && !environment {
@@ -132,9 +128,7 @@ impl Pipeline {
                 scene: host.scene.name.clone(),
             });
         }
-        features.background = background.is_some() || environment;
-        // Its shadow passes draw the shadows asked for; none at all drops them.
-        features.shadows &= host.overrides.shadows.enabled();
+        let features = host.overrides.applied_to(features, environment);
         let scene = host.scene.clone();
         let loaded = load(&registry_for(Some(host), specialise.variants()))?;
         let mut pipeline = Self::keep(path, loaded, outputs, (features, shader_features), scene)?;
