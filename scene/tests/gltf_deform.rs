@@ -118,6 +118,37 @@ fn a_morph_weight_animation_is_sampled_at_three_times() {
     );
 }
 
+/// Points and lines are not deformed: the strip drawn as POINTS, under its skinned node,
+/// warns that the skin is ignored and keeps the node's transform; with a morph target
+/// too, the warning names both.
+#[test]
+fn skinned_or_morphed_points_warn_that_they_are_not_deformed() {
+    let mut gltf = bent_strip();
+    gltf.json["meshes"][0]["primitives"][0]["mode"] = json!(0);
+    let scene = load("skinned-points", &gltf).expect("loads");
+    assert_eq!(
+        scene.warnings,
+        [
+            "mesh 0 \"strip\" primitive 0: points and lines are not deformed: skin 0 \"arm\" \
+          (its JOINTS_0 and WEIGHTS_0) is ignored, and they follow the transform of node 2 \
+          \"strip\""
+        ]
+    );
+    assert!(scene.deformations.is_empty());
+    let moved = DVec3::new(5.0, 0.0, 0.0);
+    assert_eq!(scene.points_lines[0].transform.w_axis.truncate(), moved);
+    let lift = gltf.floats(&[[0.0, 1.0, 0.0]; 6]);
+    gltf.json["meshes"][0]["primitives"][0]["targets"] = json!([{ "POSITION": lift }]);
+    let scene = load("skinned-morphed-points", &gltf).expect("loads");
+    assert!(
+        scene.warnings[0].contains(
+            "skin 0 \"arm\" (its JOINTS_0 and WEIGHTS_0) and its 1 morph targets are ignored"
+        ),
+        "{:?}",
+        scene.warnings
+    );
+}
+
 fn expect_error(test: &str, gltf: &Gltf, expected: &str) {
     let path = temp_dir(test).join("scene.gltf");
     gltf.write_embedded(&path);
