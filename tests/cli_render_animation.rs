@@ -116,6 +116,87 @@ fn an_animated_cube_is_drawn_where_its_animation_puts_it_at_each_frame() {
     }
 }
 
+/// A point of the default 3 pixels at node 0 ("dot", at rest at the origin), which
+/// animation "slide" moves LINEAR from x = -3 at 0 s to x = 3 at 2 s, over a still
+/// point at (0, 1, 0) that frames the view with it; written as `dir/dot.gltf`.
+fn sliding_point(dir: &Path) -> PathBuf {
+    let mut gltf = Gltf::default();
+    let moving = gltf.floats(&[[0.0, 0.0, 0.0]]);
+    let still = gltf.floats(&[[0.0, 1.0, 0.0]]);
+    let points = |positions| json!({ "attributes": { "POSITION": positions }, "mode": 0 });
+    gltf.push(
+        "meshes",
+        json!({ "name": "dot", "primitives": [points(moving)] }),
+    );
+    gltf.push(
+        "meshes",
+        json!({ "name": "mark", "primitives": [points(still)] }),
+    );
+    gltf.root(json!({ "name": "dot", "mesh": 0 }));
+    gltf.root(json!({ "name": "mark", "mesh": 1 }));
+    let slide = [[-3.0, 0.0, 0.0], [3.0, 0.0, 0.0]];
+    gltf.animation("slide", 0, "translation", "LINEAR", &[0.0, 2.0], &slide);
+    let path = dir.join("dot.gltf");
+    gltf.write_embedded(&path);
+    path
+}
+
+/// The alpha-weighted centroid of the image's coverage in the rows `rows` (pixels from
+/// the top left).
+fn centroid_in_rows(path: &Path, rows: std::ops::Range<u32>) -> (f64, f64) {
+    let image = image::open(path)
+        .unwrap_or_else(|e| panic!("{} is not a readable PNG: {e}", path.display()))
+        .into_rgba8();
+    let (mut sum, mut x, mut y) = (0.0, 0.0, 0.0);
+    for (px, py, pixel) in image.enumerate_pixels() {
+        if rows.contains(&py) {
+            let alpha = f64::from(pixel[3]) / 255.0;
+            sum += alpha;
+            x += (f64::from(px) + 0.5) * alpha;
+            y += (f64::from(py) + 0.5) * alpha;
+        }
+    }
+    assert!(
+        sum > 4.0,
+        "{}: nothing drawn in rows {rows:?}",
+        path.display()
+    );
+    (x / sum, y / sum)
+}
+
+/// `rgraph render --animation` moves points with their nodes: the sliding point's 3 x 3
+/// pixels are centred where the animation puts its node at each frame's time.
+#[test]
+fn an_animated_point_is_drawn_where_its_animation_puts_it_at_each_frame() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let scene_path = sliding_point(dir.path());
+    let scene_arg = scene_path.to_str().expect("temp paths are UTF-8");
+    let pattern = dir.path().join("dot-%04d.png");
+    let size = SIZE.to_string();
+    #[rustfmt::skip]
+    let args = [
+        "render", "--scene", scene_arg, "--animation", "slide", "--time", "0.5..1.5",
+        "--frames", "3", "--width", &size, "--height", &size, "--background", "transparent",
+        "--out", pattern.to_str().expect("temp paths are UTF-8"),
+    ];
+    rgraph(&args).expect(0);
+    let scene = Scene::load(scene_arg).expect("the points load");
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    // The moving point's row, well below the still one's.
+    let (_, row) = projected(&scene, DVec3::ZERO);
+    let rows = (row - 4.0) as u32..(row + 4.0) as u32;
+    for (frame, x) in [(0, -1.5), (1, 0.0), (2, 1.5)] {
+        let path = dir.path().join(format!("dot-{frame:04}.png"));
+        let (cx, cy) = centroid_in_rows(&path, rows.clone());
+        let (px, py) = projected(&scene, DVec3::new(x, 0.0, 0.0));
+        assert!(
+            (cx - px).abs() <= 0.5 && (cy - py).abs() <= 0.5,
+            "frame {frame}: the point's centroid ({cx:.2}, {cy:.2}) is not within half a \
+             pixel of where the animation puts it ({px:.2}, {py:.2})"
+        );
+    }
+}
+
 #[test]
 fn an_unknown_animation_is_an_error_listing_the_scene_s_animations() {
     let dir = tempfile::tempdir().expect("a temporary directory");

@@ -1,5 +1,5 @@
-//! Skinning and morphing on the GPU: a skinned strip and a morphed quad render, in every
-//! raster path (hardware and compute visibility rasters, G-buffer, forward), as their
+//! Skinning and morphing on the GPU: a skinned strip, a strip whose vertices hang on eight
+//! joints each (JOINTS_0 and JOINTS_1) and a morphed quad render, in every raster path (hardware and compute visibility rasters, G-buffer, forward), as their
 //! copies deformed on the CPU (`Deformation::deform`) and drawn as static meshes do,
 //! within 1/255, at rest and in an animation's pose set through the frame inputs.
 
@@ -8,7 +8,7 @@ use rgraph_scene::{joints_in_object_space, Lighting, Pose, Scene};
 
 use crate::deferred_support::measure::share_within;
 use crate::deferred_support::{gpu, Image, PipelineFile, Render};
-use crate::gltf_writer::deformed::{bent_strip, morphed_quad};
+use crate::gltf_writer::deformed::{bent_strip, eight_joint_strip, morphed_quad};
 use crate::gltf_writer::Gltf;
 
 const SIZE: (u32, u32) = (96, 64);
@@ -81,6 +81,16 @@ fn assert_matches_cpu(scene: &Scene, pose: Option<&Pose>, what: &str) {
             "{what} through {pipeline}: only {drawn} pixels drawn"
         );
         let share = share_within(&on_gpu, &on_cpu, 1, None);
+        for (i, (p, q)) in on_gpu.pixels.iter().zip(&on_cpu.pixels).enumerate() {
+            if p != q {
+                eprintln!(
+                    "DEBUG {what} {pipeline} ({}, {}) gpu {p:?} cpu {q:?}",
+                    i % 96,
+                    i / 96
+                );
+            }
+        }
+
         assert_eq!(
             share,
             1.0,
@@ -98,6 +108,23 @@ fn a_skinned_mesh_renders_as_its_cpu_deformed_copy_at_rest_and_animated() {
     let id = scene.find_animation("bend").expect("the animation");
     let pose = scene.animated_pose(id, 0.3);
     assert_matches_cpu(&scene, Some(&pose), "the strip at 0.3 s");
+}
+
+/// Eight influences per vertex, half the weight on JOINTS_1's joints (one of which the
+/// animation turns): the GPU blends all eight as the CPU does.
+#[test]
+fn a_mesh_with_eight_influences_renders_as_its_cpu_deformed_copy_at_rest_and_animated() {
+    let scene = load(&eight_joint_strip());
+    assert!(scene.deformations[0]
+        .skin
+        .as_ref()
+        .unwrap()
+        .second
+        .is_some());
+    assert_matches_cpu(&scene, None, "the eight-joint strip at rest");
+    let id = scene.find_animation("sway").expect("the animation");
+    let pose = scene.animated_pose(id, 0.5);
+    assert_matches_cpu(&scene, Some(&pose), "the eight-joint strip at 0.5 s");
 }
 
 #[test]

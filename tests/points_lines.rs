@@ -229,6 +229,116 @@ fn points_and_lines_cover_their_pixels_in_every_pipeline() {
     }
 }
 
+/// A red line across the view and a point (as in the analytic scene), each placed by a
+/// node of its own that animation "drift" moves (LINEAR, keys at 0 and 2 s): the line's
+/// node down from row 10's centre to row 70's, the point's node right from column 10's
+/// to column 50's, on row [`POINT_AT`]'s. At rest they are on row 5 and column 5.
+fn drifting_file(test: &str) -> String {
+    let mut gltf = Gltf::default();
+    view(&mut gltf, true);
+    let line = json!({ "pbrMetallicRoughness": { "baseColorFactor": [1.0, 0.0, 0.0, 1.0] } });
+    strokes(
+        &mut gltf,
+        1,
+        &[[-2.0, 0.0, 0.0], [2.0, 0.0, 0.0]],
+        None,
+        line,
+    );
+    let point = json!({ "pbrMetallicRoughness": { "baseColorFactor": [0.5, 0.5, 0.5, 1.0] },
+                        "emissiveFactor": [0.25, 0.0, 0.0] });
+    strokes(&mut gltf, 0, &[[0.0; 3]], Some(&[[0.0, 1.0, 0.0]]), point);
+    // `view` placed the background and the camera as nodes 0 and 1.
+    let (line_node, point_node) = (2, 3);
+    let y = world_y(POINT_AT.1);
+    gltf.json["nodes"][line_node]["translation"] = json!([0.0, world_y(5), 0.0]);
+    gltf.json["nodes"][point_node]["translation"] = json!([world_x(5), y, 0.0]);
+    let times = gltf.floats(&[[0.0], [2.0]]);
+    let down = gltf.floats(&[[0.0, world_y(10), 0.0], [0.0, world_y(70), 0.0]]);
+    let right = gltf.floats(&[[world_x(10), y, 0.0], [world_x(50), y, 0.0]]);
+    let channel = |sampler, node| json!({ "sampler": sampler, "target": { "node": node, "path": "translation" } });
+    let sampler = |output| json!({ "input": times, "output": output, "interpolation": "LINEAR" });
+    gltf.push(
+        "animations",
+        json!({ "name": "drift",
+                "channels": [channel(0, line_node), channel(1, point_node)],
+                "samplers": [sampler(down), sampler(right)] }),
+    );
+    let path = temp_dir(test).join("scene.gltf");
+    gltf.write_embedded(&path);
+    path.to_str().unwrap().to_owned()
+}
+
+/// Points and lines move with their animated nodes: at 0.5, 1 and 1.5 s of "drift" (set
+/// as the frame inputs' pose, frame after frame) the line covers exactly row 10 + 30 t
+/// (25, 40, 55) and the point exactly the 3 x 3 pixels around column 10 + 20 t (20, 30,
+/// 40), each in its colour, everything else the blue background, in every pipeline. The
+/// last line lies below the rectangle the rest pose covers, which the composite would
+/// clip it to if that rectangle did not follow the pose.
+#[test]
+fn animated_points_and_lines_are_where_the_pose_puts_them() {
+    let file = drifting_file("points_lines_animated");
+    let scene = load(&file);
+    let id = scene.find_animation("drift").expect("the animation");
+    let features = SceneFeatures::of(&scene).names();
+    for (pipeline, image) in PIPELINES {
+        let gpu = gpu();
+        let export = format!("outputs: [\"{image}\", \"color\"");
+        let mut frame = Render::new(pipeline, &file, SIZE)
+            .with_scene(scene.clone())
+            .features(features.clone())
+            .edit("outputs: [\"color\"", &export)
+            .run(&gpu);
+        for time in [0.5, 1.0, 1.5] {
+            let mut inputs = frame.inputs();
+            inputs.set_pose(scene.animated_pose(id, time));
+            frame.next(inputs);
+            let hdr = frame.hdr(&gpu, image);
+            let (row, column) = ((10.0 + 30.0 * time) as u32, (10.0 + 20.0 * time) as u32);
+            let expected = |x: u32, y: u32| match () {
+                _ if column.abs_diff(x) <= 1 && POINT_AT.1.abs_diff(y) <= 1 => POINT,
+                _ if y == row => RED,
+                _ => BLUE,
+            };
+            let wrong: Vec<_> = (0..SIZE.1)
+                .flat_map(|y| (0..SIZE.0).map(move |x| (x, y)))
+                .filter(|&(x, y)| rgb(&hdr, x, y) != expected(x, y))
+                .map(|(x, y)| ((x, y), rgb(&hdr, x, y), expected(x, y)))
+                .collect();
+            assert!(
+                wrong.is_empty(),
+                "{pipeline} at {time} s: {} pixels differ, first (pixel, got, want): {:?}",
+                wrong.len(),
+                &wrong[..wrong.len().min(8)]
+            );
+        }
+    }
+}
+
+/// Frame inputs without one finite transform per points-and-lines primitive are refused,
+/// naming what is wrong.
+#[test]
+fn points_lines_transforms_that_do_not_fit_the_scene_are_refused() {
+    use rgraph_passes::{FrameInputs, FrameInputsError, Host, Overrides};
+    let file = drifting_file("points_lines_refused");
+    let scene = std::sync::Arc::new(load(&file));
+    let host = Host::new(scene.clone(), Overrides::default());
+    let mut inputs = FrameInputs::of(&scene);
+    inputs.points_lines.pop();
+    assert_eq!(
+        host.set_frame(inputs).unwrap_err().to_string(),
+        format!("frame inputs give 1 points-and-lines transforms, but scene \"{file}\" has 2")
+    );
+    let mut inputs = FrameInputs::of(&scene);
+    inputs.points_lines[1].w_axis.y = f64::INFINITY;
+    assert_eq!(
+        host.set_frame(inputs).unwrap_err(),
+        FrameInputsError::NotFinite {
+            scene: file.clone(),
+            what: "the transform of points and lines \"mesh 2 \"strokes\" primitive 0\"".to_owned(),
+        }
+    );
+}
+
 /// MSAA anti-aliases lines: a horizontal line whose centre lies a quarter pixel below
 /// row 30's centre covers, with 4x MSAA's standard sample positions (one sample in each
 /// quarter of a pixel's height), three of row 30's samples and one of row 31's, so the

@@ -18,7 +18,8 @@
 //! camera-relative, so a moved camera rewrites the per-mesh model matrices, the lights
 //! and the camera uniform, a few hundred bytes per mesh and light; a moved object (an
 //! animation's, say) rewrites only its own per-mesh data (the 512-byte pieces of the
-//! buffer that changed); a moved light the light data; new particle emitters
+//! buffer that changed); moved points and lines the `points_lines` pass's matrices, 64
+//! bytes per primitive; a moved light the light data; new particle emitters
 //! (a new `Arc`), or a moved camera, make the particle passes sort and write their
 //! particles again, in a larger buffer when there are more than it holds. (The fragment light
 //! passes build a pipeline per light-volume geometry when a frame first needs it: the
@@ -130,8 +131,9 @@ impl Exposure {
 }
 
 /// What an engine may change from one frame to the next without reloading: the camera,
-/// the pose of every light, the transform of every mesh, in the scene's order, the skins'
-/// joints and the morph weights, and the particles.
+/// the pose of every light, the transform of every mesh and of every points-and-lines
+/// primitive, in the scene's order, the skins' joints and the morph weights, and the
+/// particles.
 /// [`FrameInputs::of`] gives the scene's own; an engine keeps one, changes its fields and
 /// hands it to [`Host::set_frame`].
 #[derive(Clone, Debug, PartialEq)]
@@ -144,6 +146,11 @@ pub struct FrameInputs {
     /// primitive), in its order: the scene's own, or an engine's, or a glTF animation's
     /// pose at a time (`Scene::animated_pose`, see [`FrameInputs::set_pose`]).
     pub transforms: Vec<DMat4>,
+    /// One object-to-world transform per primitive of `Scene::points_lines`, in its
+    /// order: the scene's own, an engine's or an animation's (`Pose::points_lines`). The
+    /// `points_lines` pass rewrites its per-primitive matrices (64 bytes each) in a frame
+    /// where they differ from the last it drew; its vertices stay uploaded.
+    pub points_lines: Vec<DMat4>,
     /// One list per skin of `Scene::skins`, each with one skin matrix per joint: the
     /// joint's world transform times its inverse bind matrix (`Pose::skins`). The host
     /// owns them once set; the scene upload takes each skinned mesh's joints into its
@@ -171,10 +178,12 @@ pub struct FrameInputs {
 }
 
 impl FrameInputs {
-    /// Takes `pose`'s mesh transforms, skin matrices and morph weights (an animation's at
-    /// a time, say), leaving the camera, lights, exposure, time and particles.
+    /// Takes `pose`'s mesh and points-and-lines transforms, skin matrices and morph
+    /// weights (an animation's at a time, say), leaving the camera, lights, exposure, time
+    /// and particles.
     pub fn set_pose(&mut self, pose: Pose) {
         self.transforms = pose.transforms;
+        self.points_lines = pose.points_lines;
         self.skins = pose.skins;
         self.morph_weights = pose.morph_weights;
     }
@@ -195,6 +204,7 @@ impl FrameInputs {
     pub fn of(scene: &Scene) -> FrameInputs {
         let Pose {
             transforms,
+            points_lines,
             skins,
             morph_weights,
         } = scene.rest_pose();
@@ -209,6 +219,7 @@ impl FrameInputs {
                 })
                 .collect(),
             transforms,
+            points_lines,
             skins,
             morph_weights,
             exposure: 1.0,
@@ -244,22 +255,24 @@ pub enum FrameInputsError {
         /// The scene's meshes.
         expected: usize,
     },
-    /// The skin matrices or morph weights are not one list per skin or deformation of
-    /// the scene, or a list's length is not the skin's joints' or the deformation's
-    /// targets'.
+    /// The points-and-lines transforms are not one per primitive of the scene's points
+    /// and lines, the skin matrices or morph weights are not one list per skin or
+    /// deformation of the scene, or a list's length is not the skin's joints' or the
+    /// deformation's targets'.
     #[error("frame inputs give {given} {what}, but scene \"{scene}\" has {expected}")]
     PoseCount {
         /// The scene, by name.
         scene: String,
-        /// What was counted: "skins", "joint matrices for skin 0 \"arm\"", ...
+        /// What was counted: "points-and-lines transforms", "skins", "joint matrices for
+        /// skin 0 \"arm\"", ...
         what: String,
         /// How many were given.
         given: usize,
         /// How many the scene has.
         expected: usize,
     },
-    /// A camera, light pose, mesh transform, skin matrix or morph weight holds NaN or
-    /// infinity.
+    /// A camera, light pose, mesh or points-and-lines transform, skin matrix or morph
+    /// weight holds NaN or infinity.
     #[error("frame inputs: {what} of scene \"{scene}\" is not finite")]
     NotFinite {
         /// The scene, by name.
@@ -294,7 +307,8 @@ impl Host {
     /// Makes `inputs` what the next execution draws. Call it between executions: passes
     /// recorded after the call see the new inputs, so a call during an execution could
     /// draw one frame with two. Checked against the scene (one pose per light, one
-    /// transform per mesh, finite values); on error the previous inputs stay.
+    /// transform per mesh and per points-and-lines primitive, finite values); on error the
+    /// previous inputs stay.
     pub fn set_frame(&self, inputs: FrameInputs) -> Result<(), FrameInputsError> {
         self.check(&inputs)?;
         let mut frame = self.frame.lock().unwrap_or_else(|e| e.into_inner());
@@ -331,7 +345,7 @@ impl Host {
                 expected: self.scene.meshes.len(),
             });
         }
-        self.check_deformation(inputs)?;
+        self.check_pose(inputs)?;
         if !(inputs.exposure.is_finite() && inputs.exposure > 0.0) {
             return Err(FrameInputsError::Exposure(inputs.exposure));
         }
@@ -359,6 +373,14 @@ impl Host {
                         t.is_finite(),
                     )
                 }),
+        )
+        .chain(
+            (inputs.points_lines.iter().zip(&self.scene.points_lines)).map(|(t, p)| {
+                (
+                    format!("the transform of points and lines \"{}\"", p.name),
+                    t.is_finite(),
+                )
+            }),
         )
         .chain(
             inputs
@@ -390,9 +412,9 @@ impl Host {
         }
     }
 
-    /// Fails unless the skin matrices and morph weights are shaped as the scene's skins
-    /// and deformations.
-    fn check_deformation(&self, inputs: &FrameInputs) -> Result<(), FrameInputsError> {
+    /// Fails unless the points-and-lines transforms, skin matrices and morph weights are
+    /// shaped as the scene's points and lines, skins and deformations.
+    fn check_pose(&self, inputs: &FrameInputs) -> Result<(), FrameInputsError> {
         let scene = &self.scene;
         let count = |what: String, given: usize, expected: usize| match given == expected {
             true => Ok(()),
@@ -403,6 +425,11 @@ impl Host {
                 expected,
             }),
         };
+        count(
+            "points-and-lines transforms".to_owned(),
+            inputs.points_lines.len(),
+            scene.points_lines.len(),
+        )?;
         count("skins".to_owned(), inputs.skins.len(), scene.skins.len())?;
         for (joints, skin) in inputs.skins.iter().zip(&scene.skins) {
             let what = format!("joint matrices for {}", skin.name);

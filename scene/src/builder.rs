@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use super::animation::{swept_bounds, Animation};
-use super::node_tree::NodeTree;
+use super::node_tree::{MeshPlacement, NodeTree};
 use super::{
     Aabb, BoundingSphere, Camera, Deformation, Light, Material, Mesh, ParticleEmitter, PointsLines,
     Scene, SceneError, Skin, TextureImage, MAX_COORDINATE,
@@ -21,8 +21,9 @@ pub(crate) struct SceneBuilder {
     pub camera: Option<Camera>,
     pub emitters: Vec<ParticleEmitter>,
     pub warnings: Vec<String>,
-    /// The nodes placing the meshes, with one placement per mesh pushed, when
-    /// `animations` move them or `skins` hang on them (else empty).
+    /// The nodes placing the meshes and the points and lines, with one placement per
+    /// mesh and per points-and-lines primitive pushed, when `animations` move them or
+    /// `skins` hang on them (else empty).
     pub nodes: NodeTree,
     pub skins: Vec<Skin>,
     /// By index into `meshes` as pushed; `finish` renumbers them as it drops meshes.
@@ -60,11 +61,12 @@ impl SceneBuilder {
         self.materials.len() - 1
     }
 
-    /// Drops meshes without triangles (and their placements in `nodes`) and points and
-    /// lines without a point or segment, computes the
+    /// Drops meshes without triangles and points and lines without a point or segment
+    /// (and their placements in `nodes`), computes the
     /// bounds (swept over the animations' poses, see [`swept_bounds`]) and, when no camera
     /// was set, frames the vertices' sphere around their center with [`Camera::framing`],
-    /// grown to hold the swept bounds; the points and lines count as still geometry. Fails with
+    /// grown to hold the swept bounds; the points and lines at rest count as still
+    /// geometry (the swept bounds hold them where the animations take them). Fails with
     /// [`SceneError::EmptyScene`] when no triangle, point or segment is left, unless [`SceneBuilder::allow_empty`] is set (the loader has warned): then the
     /// bounds are the origin and the frame shows only the background. Fails with
     /// [`SceneError::TooFar`] when the bounds, a light or the camera lie beyond
@@ -80,15 +82,12 @@ impl SceneBuilder {
             .collect();
         self.deformations
             .retain_mut(|d| kept[d.mesh].map(|mesh| d.mesh = mesh).is_some());
-        if self.nodes.meshes.is_empty() {
-            self.meshes.retain(|m| m.triangle_count() > 0);
-        } else {
-            let placed = std::mem::take(&mut self.meshes).into_iter();
-            let placed = placed.zip(std::mem::take(&mut self.nodes.meshes));
-            (self.meshes, self.nodes.meshes) =
-                placed.filter(|(m, _)| m.triangle_count() > 0).unzip();
-        }
-        self.points_lines.retain(|p| p.count() > 0);
+        retain_placed(&mut self.meshes, &mut self.nodes.meshes, |m| {
+            m.triangle_count() > 0
+        });
+        retain_placed(&mut self.points_lines, &mut self.nodes.points_lines, |p| {
+            p.count() > 0
+        });
         // A deformed mesh is where its deformation puts it, not where its rest vertices
         // are (a skinned mesh's node transform is ignored): the swept bounds below hold
         // it, from the rest pose on.
@@ -162,6 +161,23 @@ impl SceneBuilder {
         scene.check_particles()?;
         Ok(scene)
     }
+}
+
+/// Keeps the `items` that `keep` accepts and, when `placements` has one per item (it is
+/// empty otherwise), their placements.
+fn retain_placed<T>(
+    items: &mut Vec<T>,
+    placements: &mut Vec<MeshPlacement>,
+    keep: impl Fn(&T) -> bool,
+) {
+    if placements.is_empty() {
+        items.retain(keep);
+        return;
+    }
+    let placed = std::mem::take(items)
+        .into_iter()
+        .zip(std::mem::take(placements));
+    (*items, *placements) = placed.filter(|(item, _)| keep(item)).unzip();
 }
 
 /// Fails when `value` (a largest coordinate magnitude of `what` in scene `scene`) is beyond

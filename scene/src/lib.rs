@@ -80,8 +80,8 @@ pub use camera::{
 };
 pub use clusters::{cluster, Cluster, ClusteredMesh, CLUSTER_TRIANGLES};
 pub use deform::{
-    joints_in_object_space, Deformation, MorphTarget, MorphTargets, Pose, Reach, Skin, SkinWeights,
-    MAX_JOINTS,
+    joints_in_object_space, Deformation, Influences, MorphTarget, MorphTargets, Pose, Reach, Skin,
+    SkinWeights, MAX_JOINTS,
 };
 pub use environment::{
     irradiance_integral, radiance as environment_radiance, Environment, Irradiance,

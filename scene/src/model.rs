@@ -17,8 +17,9 @@ pub struct Scene {
     /// a scene of points and lines only.
     pub meshes: Vec<Mesh>,
     /// glTF points and lines (modes POINTS, LINES, LINE_LOOP, LINE_STRIP), each with at
-    /// least one point or segment, placed where the file's nodes place them at rest (the
-    /// animations do not move them). Built-in scenes have none.
+    /// least one point or segment, placed at rest where the file's nodes place them, and
+    /// in a frame where its pose's `points_lines` do (the animations move them with their
+    /// nodes). Built-in scenes have none.
     pub points_lines: Vec<PointsLines>,
     /// Indexed by `Mesh::material`.
     pub materials: Vec<Material>,
@@ -39,8 +40,8 @@ pub struct Scene {
     /// The file's first camera in scene order, else [`Camera::framing`] of the bounds.
     pub camera: Camera,
     /// World-space bounds of all vertices: exact at rest, and grown to hold the meshes'
-    /// object-space boxes wherever [`Scene::animations`] move them (sampled at and between
-    /// their key times).
+    /// and the points' and lines' object-space boxes wherever [`Scene::animations`] move
+    /// them (sampled at and between their key times).
     pub bounds: Aabb,
     /// The node hierarchy placing the meshes and the skins' joints, which the animations
     /// move: a glTF file's, when it has animations or skins; empty otherwise.

@@ -69,7 +69,7 @@ pub struct Node {
     pub rest: LocalTransform,
 }
 
-/// Where a mesh of the scene hangs in the tree.
+/// Where a mesh, or a primitive of points or lines, of the scene hangs in the tree.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshPlacement {
     /// The node placing it.
@@ -79,19 +79,29 @@ pub struct MeshPlacement {
     pub offset: DMat4,
 }
 
+impl MeshPlacement {
+    /// Its object-to-world transform given each node's world transform.
+    pub fn world(&self, worlds: &[DMat4]) -> DMat4 {
+        worlds[self.node.index()] * self.offset
+    }
+}
+
 /// The nodes reached from the loaded glTF scene, parents before children, and where each
-/// mesh of `Scene::meshes` hangs. Empty for built-in scenes and for files without
-/// animations, which have nothing to move.
+/// mesh of `Scene::meshes` and each primitive of `Scene::points_lines` hangs. Empty for
+/// built-in scenes and for files without animations or skins, which have nothing to move.
 ///
 /// Contract: every `parent` precedes its child; `meshes` is empty or has one placement per
-/// mesh of the scene, in its order, and at rest `world(node) * offset` is the mesh's
-/// `transform` exactly (the loader composes it the same way).
+/// mesh of the scene, in its order, and `points_lines` likewise per points-and-lines
+/// primitive; at rest `world(node) * offset` is the placed one's `transform` exactly (the
+/// loader composes it the same way).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct NodeTree {
     /// Parents before children.
     pub nodes: Vec<Node>,
     /// One per mesh of the scene, or none.
     pub meshes: Vec<MeshPlacement>,
+    /// One per primitive of `Scene::points_lines`, or none.
+    pub points_lines: Vec<MeshPlacement>,
 }
 
 impl NodeTree {
@@ -107,13 +117,5 @@ impl NodeTree {
             worlds.push(world);
         }
         worlds
-    }
-
-    /// Each mesh's object-to-world transform given each node's world transform.
-    pub fn mesh_transforms(&self, worlds: &[DMat4]) -> Vec<DMat4> {
-        self.meshes
-            .iter()
-            .map(|m| worlds[m.node.index()] * m.offset)
-            .collect()
     }
 }

@@ -20,7 +20,9 @@ pub enum Topology {
 ///
 /// Contract: `colors` is as long as `positions`, every index is `< positions.len()`, and
 /// [`Topology::Lines`] has an even number of indices. Like [`Mesh`](crate::Mesh), vertex
-/// data stays in object space and `transform` (f64) places it.
+/// data stays in object space and `transform` (f64) places it at rest; in a frame, the
+/// pose's transform for it ([`Pose::points_lines`](crate::Pose::points_lines): where the
+/// animations put the node placing it) does. Skins and morph targets do not deform it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PointsLines {
     /// `mesh name/primitive index` for glTF.
@@ -35,12 +37,12 @@ pub struct PointsLines {
     pub indices: Vec<u32>,
     /// Index into `Scene::materials`.
     pub material: usize,
-    /// Object space to world space.
+    /// Object space to world space at rest.
     pub transform: DMat4,
 }
 
 impl PointsLines {
-    /// World-space positions of the vertices the indices use.
+    /// World-space positions at rest of the vertices the indices use.
     pub fn world_positions(&self) -> impl Iterator<Item = DVec3> + '_ {
         self.indices.iter().map(|&i| {
             let position = Vec3::from_array(self.positions[i as usize]).as_dvec3();
@@ -48,9 +50,19 @@ impl PointsLines {
         })
     }
 
-    /// Exact world-space bounds of the points or segments, `None` without indices.
+    /// Exact world-space bounds of the points or segments at rest, `None` without
+    /// indices.
     pub fn world_bounds(&self) -> Option<Aabb> {
         Aabb::from_points(self.world_positions())
+    }
+
+    /// Object-space bounds of the points or segments, `None` without indices: what any
+    /// transform of a pose (`Pose::points_lines`) places.
+    pub fn object_bounds(&self) -> Option<Aabb> {
+        let positions = self.indices.iter();
+        Aabb::from_points(
+            positions.map(|&i| Vec3::from_array(self.positions[i as usize]).as_dvec3()),
+        )
     }
 
     /// Points, or segments: what one draw of them rasterises.

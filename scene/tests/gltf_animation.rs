@@ -182,6 +182,60 @@ fn a_child_moves_with_its_animated_parent_and_the_bounds_hold_the_motion() {
     );
 }
 
+/// Points and lines hang in the node tree as meshes do: a POINTS primitive placed by a
+/// child of the animated node moves with it, the pose's transform for it at rest is the
+/// loaded one, and the bounds hold it wherever the animation takes it. A LINE_STRIP of one
+/// vertex (no segment, dropped) comes first, so that the placements must be dropped with
+/// the primitives they place.
+#[test]
+fn points_move_with_their_animated_node_and_the_bounds_hold_them() {
+    let mut gltf = mover();
+    let lone = gltf.floats(&[[0.0, 0.0, 0.0]]);
+    let positions = gltf.floats(&[[0.0, 0.0, 0.0], [2.0, 0.0, 2.0]]);
+    let points = gltf.push(
+        "meshes",
+        json!({ "name": "dots", "primitives": [
+            { "attributes": { "POSITION": lone }, "mode": 3 },
+            { "attributes": { "POSITION": positions }, "mode": 0 },
+        ] }),
+    );
+    let child = gltf.push(
+        "nodes",
+        json!({ "name": "child", "mesh": points, "translation": [0.0, 5.0, 0.0] }),
+    );
+    gltf.json["nodes"][0]["children"] = json!([child]);
+    let values = [[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]];
+    gltf.animation("carry", 0, "translation", "LINEAR", &[0.0, 1.0], &values);
+    let scene = load("points-animated", &gltf).1.expect("loads");
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    assert_eq!(scene.points_lines.len(), 1);
+    assert_eq!(scene.points_lines[0].name, "mesh 1 \"dots\" primitive 1");
+    assert_eq!(
+        scene.rest_pose().points_lines,
+        [scene.points_lines[0].transform]
+    );
+    let id = scene.find_animation("carry").expect("the animation");
+    for (time, x) in [(0.25, 4.5), (0.5, 7.0), (1.0, 12.0)] {
+        let moved = scene.animated_pose(id, time).points_lines;
+        assert_eq!(moved.len(), 1);
+        let far = moved[0].transform_point3(DVec3::new(2.0, 0.0, 2.0));
+        assert_near(
+            far,
+            DVec3::new(x, 5.0, 2.0),
+            &format!("the point at {time} s"),
+        );
+    }
+    assert_eq!(
+        scene.animated_pose(id, 0.0).points_lines,
+        scene.rest_pose().points_lines
+    );
+    assert_eq!(
+        (scene.bounds.min, scene.bounds.max),
+        (DVec3::ZERO, DVec3::new(12.0, 5.0, 2.0)),
+        "the swept bounds"
+    );
+}
+
 #[test]
 fn an_unknown_animation_lists_the_scene_s_animations() {
     let mut gltf = mover();

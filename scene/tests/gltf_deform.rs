@@ -4,9 +4,11 @@
 //! skins and morph targets refused with errors naming the file, the mesh or skin and the
 //! accessor.
 
-use crate::common::deformed::{bent_strip, morphed_quad};
+use crate::common::deformed::{
+    bent_strip, eight_joint_strip, eight_weights, morphed_quad, EIGHT_JOINTS,
+};
 use crate::common::{temp_dir, Gltf, UNSIGNED_SHORT};
-use glam::{DVec3, Vec3};
+use glam::{DMat4, DQuat, DVec3, Vec3};
 use rgraph_scene::{joints_in_object_space, Pose, Scene, SceneError};
 use serde_json::json;
 
@@ -86,6 +88,95 @@ fn a_skinned_strip_bends_where_its_joints_put_it_at_rest_and_animated() {
     }
 }
 
+/// Eight influences per vertex: JOINTS_1 and WEIGHTS_1 load as the second set, and the
+/// CPU deformation blends all eight joints, each vertex at the sum of its weights times
+/// its joints' transforms of its rest position (joints 4 to 7 carry half the weight), at
+/// rest and with joint 5 turned from 10° to 20° (0.5 s).
+#[test]
+fn eight_influences_load_from_both_sets_and_all_eight_deform() {
+    let scene = load("eight-joints", &eight_joint_strip()).expect("loads");
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let skin = scene.deformations[0].skin.as_ref().expect("skinned");
+    let second = skin
+        .second
+        .as_ref()
+        .expect("JOINTS_1 and WEIGHTS_1 are read");
+    assert_eq!(
+        (skin.first.joints[0], second.joints[0]),
+        ([0, 1, 2, 3], [4, 5, 6, 7])
+    );
+    let id = scene.find_animation("sway").expect("the animation");
+    for (time, degrees) in [(None, 10.0f64), (Some(0.5), 20.0)] {
+        let pose = time.map_or_else(|| scene.rest_pose(), |t| scene.animated_pose(id, t));
+        let got = deformed(&scene, &pose);
+        let joint = |k: usize| {
+            let (translation, rotation) = EIGHT_JOINTS[k];
+            let rotation = match k {
+                5 => DQuat::from_rotation_z(degrees.to_radians()),
+                _ => DQuat::from_array(rotation.map(f64::from)),
+            };
+            DMat4::from_rotation_translation(rotation, Vec3::from_array(translation).as_dvec3())
+        };
+        for (v, vertex) in scene.meshes[0].vertices.iter().enumerate() {
+            let p = Vec3::from_array(vertex.position).as_dvec3();
+            let expected: DVec3 = (eight_weights(v / 2).iter().enumerate())
+                .map(|(k, &w)| joint(k).transform_point3(p) * f64::from(w))
+                .sum();
+            assert_near(got[v].0, expected, &format!("vertex {v} at {degrees}°"));
+        }
+    }
+}
+
+/// Sets past the second (JOINTS_2) are a warning naming the mesh and primitive; a set
+/// with joints but no weights is an error; and weights of both sets not summing to 1
+/// are an error showing both.
+#[test]
+fn a_third_influence_set_warns_and_a_half_set_or_a_bad_sum_is_refused() {
+    let mut gltf = eight_joint_strip();
+    let attributes = &mut gltf.json["meshes"][0]["primitives"][0]["attributes"];
+    attributes["JOINTS_2"] = attributes["JOINTS_1"].clone();
+    attributes["WEIGHTS_2"] = attributes["WEIGHTS_1"].clone();
+    let scene = load("third-set", &gltf).expect("loads");
+    assert_eq!(
+        scene.warnings,
+        [
+            "mesh 0 \"eight\" primitive 0: JOINTS_2 and WEIGHTS_2 are ignored: each vertex \
+          keeps its first eight joints, their weights renormalised"
+        ]
+    );
+    assert!(scene.deformations[0]
+        .skin
+        .as_ref()
+        .unwrap()
+        .second
+        .is_some());
+
+    let mut gltf = eight_joint_strip();
+    let attributes = &mut gltf.json["meshes"][0]["primitives"][0]["attributes"];
+    attributes.as_object_mut().unwrap().remove("WEIGHTS_1");
+    expect_error(
+        "half-set",
+        &gltf,
+        "mesh 0 \"eight\" primitive 0: has only one of JOINTS_1 and WEIGHTS_1: a set of \
+         joints needs its weights",
+    );
+
+    let mut gltf = eight_joint_strip();
+    let zeros = gltf.floats(&[[0.0f32; 4]; 18]);
+    gltf.json["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_1"] = json!(zeros);
+    let weights_0 = &gltf.json["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"];
+    expect_error(
+        "eight-sum",
+        &gltf,
+        &format!(
+            "mesh 0 \"eight\" primitive 0: WEIGHTS_0 accessor {weights_0}: vertex 0 has \
+             weights [0.05, 0.1, 0.15, 0.2] and [0.0, 0.0, 0.0, 0.0] (WEIGHTS_1 accessor \
+             {zeros}), summing to 0.5: a vertex's weights are non-negative and sum to 1 \
+             (within 0.05)"
+        ),
+    );
+}
+
 #[test]
 fn a_morph_weight_animation_is_sampled_at_three_times() {
     let scene = load("morph-linear", &morphed_quad("LINEAR")).expect("loads");
@@ -115,6 +206,37 @@ fn a_morph_weight_animation_is_sampled_at_three_times() {
     assert!(
         (eased - 0.15625).abs() < 1e-6,
         "CUBICSPLINE at 0.25 s: {eased}"
+    );
+}
+
+/// Points and lines are not deformed: the strip drawn as POINTS, under its skinned node,
+/// warns that the skin is ignored and keeps the node's transform; with a morph target
+/// too, the warning names both.
+#[test]
+fn skinned_or_morphed_points_warn_that_they_are_not_deformed() {
+    let mut gltf = bent_strip();
+    gltf.json["meshes"][0]["primitives"][0]["mode"] = json!(0);
+    let scene = load("skinned-points", &gltf).expect("loads");
+    assert_eq!(
+        scene.warnings,
+        [
+            "mesh 0 \"strip\" primitive 0: points and lines are not deformed: skin 0 \"arm\" \
+          (its JOINTS_0 and WEIGHTS_0) is ignored, and they follow the transform of node 2 \
+          \"strip\""
+        ]
+    );
+    assert!(scene.deformations.is_empty());
+    let moved = DVec3::new(5.0, 0.0, 0.0);
+    assert_eq!(scene.points_lines[0].transform.w_axis.truncate(), moved);
+    let lift = gltf.floats(&[[0.0, 1.0, 0.0]; 6]);
+    gltf.json["meshes"][0]["primitives"][0]["targets"] = json!([{ "POSITION": lift }]);
+    let scene = load("skinned-morphed-points", &gltf).expect("loads");
+    assert!(
+        scene.warnings[0].contains(
+            "skin 0 \"arm\" (its JOINTS_0 and WEIGHTS_0) and its 1 morph targets are ignored"
+        ),
+        "{:?}",
+        scene.warnings
     );
 }
 

@@ -10,8 +10,10 @@
 //!
 //! A scene without deformations ([`rgraph_scene::Scene::deformations`] empty) gets no
 //! [`Deformer`]: no buffer, no pipeline, no dispatch. One with them keeps, per deformed
-//! vertex, its rest vertex (56 bytes) and its influence (32 bytes), per morph target and
-//! vertex 36 bytes of offsets, per vertex from the first deformed mesh's to the last's its
+//! vertex, its rest vertex (56 bytes) and its influence (32 bytes: four joints and
+//! weights), 32 bytes more for a vertex of a mesh with eight influences (glTF's JOINTS_1
+//! and WEIGHTS_1, an entry of its own that the first one points to, so that meshes of four
+//! pay nothing for it), per morph target and vertex 36 bytes of offsets, per vertex from the first deformed mesh's to the last's its
 //! previous position (12 bytes), and per frame 64 bytes per joint of each skinned mesh and
 //! 4 per morph weight.
 
@@ -19,7 +21,7 @@ use glam::DMat4;
 use wgpu::util::DeviceExt;
 
 use crate::host::FrameInputs;
-use rgraph_scene::{joints_in_object_space, Aabb, Reach, Scene, Vertex};
+use rgraph_scene::{joints_in_object_space, Aabb, Influences, Reach, Scene, Vertex};
 
 /// deform.wgsl's `Influence`.
 #[repr(C)]
@@ -27,8 +29,22 @@ use rgraph_scene::{joints_in_object_space, Aabb, Reach, Scene, Vertex};
 struct Influence {
     joints: [u32; 2],
     deformation: u32,
-    _pad: u32,
+    second: u32,
     weights: [f32; 4],
+}
+
+impl Influence {
+    /// Vertex `vertex`'s joints and weights of `set` (none without a skin) in
+    /// `deformation`, whose fifth to eighth are at `second` (0 for none).
+    fn new(set: Option<&Influences>, vertex: usize, deformation: u32, second: u32) -> Influence {
+        let ids = set.map_or([0; 4], |s| s.joints[vertex]).map(u32::from);
+        Influence {
+            joints: [ids[0] | ids[1] << 16, ids[2] | ids[3] << 16],
+            deformation,
+            second,
+            weights: set.map_or([0.0; 4], |s| s.weights[vertex]),
+        }
+    }
 }
 
 /// deform.wgsl's `Deformation`.
@@ -153,6 +169,11 @@ impl Deformer {
         let end = first_vertex[last_mesh + 1] * WORDS * 4;
         let (mut rest, mut influences, mut data, mut offsets) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        // Second sets (JOINTS_1) follow the deformed vertices' entries in `influences`.
+        let deformed: usize = (scene.deformations.iter())
+            .map(|d| scene.meshes[d.mesh].vertices.len())
+            .sum();
+        let mut seconds = Vec::new();
         let (mut joints, mut weights) = (0u32, 0u32);
         for (index, deformation) in scene.deformations.iter().enumerate() {
             let mesh = &scene.meshes[deformation.mesh];
@@ -171,14 +192,13 @@ impl Deformer {
             });
             rest.extend_from_slice(&mesh.vertices);
             let skin = deformation.skin.as_ref();
+            let second = skin.and_then(|s| s.second.as_ref());
             influences.extend((0..mesh.vertices.len()).map(|v| {
-                let ids = skin.map_or([0; 4], |s| s.joints[v]).map(u32::from);
-                Influence {
-                    joints: [ids[0] | ids[1] << 16, ids[2] | ids[3] << 16],
-                    deformation: index as u32,
-                    _pad: 0,
-                    weights: skin.map_or([0.0; 4], |s| s.weights[v]),
-                }
+                let at = second.map_or(0, |_| (deformed + seconds.len() + v) as u32);
+                Influence::new(skin.map(|s| &s.first), v, index as u32, at)
+            }));
+            seconds.extend((second.iter()).flat_map(|set| {
+                (0..mesh.vertices.len()).map(|v| Influence::new(Some(set), v, index as u32, 0))
             }));
             for target in morph.iter().flat_map(|m| &m.targets) {
                 let at = |list: &[[f32; 3]], v: usize| list.get(v).copied().unwrap_or([0.0; 3]);
@@ -195,6 +215,7 @@ impl Deformer {
             joints += skin.map_or(0, |s| scene.skins[s.skin].joints.len() as u32);
             weights += targets;
         }
+        influences.extend(seconds);
         let storage = |label, contents: &[u8], usage| {
             // wgpu refuses storage bindings smaller than one element: an empty list holds
             // one zeroed (64 bytes: a joint, the largest element here).
@@ -285,7 +306,7 @@ impl Deformer {
             group,
             joints,
             weights,
-            vertex_count: influences.len() as u32,
+            vertex_count: deformed as u32,
             previous: PreviousPositions {
                 buffer: previous_buffer,
                 first: first_vertex[first_mesh] as u32,

@@ -47,6 +47,8 @@ pub(crate) mod volumes;
 
 use std::sync::{Arc, Mutex};
 
+use glam::DMat4;
+
 pub use camera::view_projection;
 pub use deform::PreviousPositions;
 pub use jitter::{jitter, JITTER_CYCLE};
@@ -245,9 +247,9 @@ struct Upload {
     shadow_maps: shadows::ShadowBuffers,
     sphere: VolumeMesh,
     cone: VolumeMesh,
-    /// The world-space bounds of each of the scene's points and lines, which
-    /// [`GpuScene::blended_rect`] holds.
-    points_lines: Vec<rgraph_scene::Aabb>,
+    /// The object-space bounds of each of the scene's points and lines, in its order,
+    /// which [`GpuScene::blended_rect`] places by the frame's transforms.
+    points_lines: Vec<Option<rgraph_scene::Aabb>>,
 }
 
 /// The CPU side of one frame's inputs: what the buffers hold for it.
@@ -360,7 +362,7 @@ impl GpuScene {
             sphere,
             cone,
             points_lines: (scene.points_lines.iter())
-                .filter_map(rgraph_scene::PointsLines::world_bounds)
+                .map(rgraph_scene::PointsLines::object_bounds)
                 .collect(),
         };
         GpuScene {
@@ -672,15 +674,19 @@ impl GpuScene {
     }
 
     /// The pixels of an output of `size` that what is drawn after the opaque scene may
-    /// cover: the blended meshes and the points and lines (the screen rectangle of their
-    /// camera-relative bounds); `None` where none is in view. One rectangle for both, so
-    /// that one depth made from a compute raster's keys (`keys_depth`) serves both passes.
+    /// cover: the blended meshes and the points and lines where the frame's transforms
+    /// put them (the screen rectangle of their camera-relative bounds); `None` where none
+    /// is in view. One rectangle for both, so that one depth made from a compute raster's
+    /// keys (`keys_depth`) serves both passes.
     pub fn blended_rect(&self, size: (u32, u32)) -> Option<PixelRect> {
-        let eye = self.frame.inputs.camera.position;
-        let points_lines: Vec<rgraph_scene::Aabb> = (self.upload.points_lines.iter())
-            .map(|b| rgraph_scene::Aabb {
-                min: b.min - eye,
-                max: b.max - eye,
+        let inputs = &self.frame.inputs;
+        let placed = self.upload.points_lines.iter().zip(&inputs.points_lines);
+        let points_lines: Vec<rgraph_scene::Aabb> = placed
+            .filter_map(|(bounds, transform)| {
+                // Camera-relative in f64, as the meshes' bounds are.
+                let relative = DMat4::from_translation(-inputs.camera.position) * *transform;
+                let corners = bounds.as_ref()?.corners();
+                rgraph_scene::Aabb::from_points(corners.map(|c| relative.transform_point3(c)))
             })
             .collect();
         let blended = self

@@ -29,10 +29,17 @@
 //! base colour factor times COLOR_0, plus its emission. Textures are not sampled (points
 //! and lines have no texture coordinates worth a lookup in glTF practice) and alpha is
 //! ignored. Each vertex's colour is computed once, on the CPU, when the pass is first
-//! recorded on a device, with its world position (minus an anchor at the centre of the
-//! scene's bounds, so f32 keeps its precision): 24 bytes a drawn vertex (a point takes
-//! one, a segment two), kept by the pass. They are where the loader placed them: the
-//! animations do not move them.
+//! recorded on a device, and kept with its object-space position and its primitive's
+//! index: 28 bytes a drawn vertex (a point takes one, a segment two).
+//!
+//! **Placement.** Each primitive is where the frame inputs put it
+//! ([`FrameInputs::points_lines`]: the scene's rest transforms, or an animation's pose,
+//! or an engine's): the vertex shader applies its primitive's matrix, object space to
+//! world space minus an anchor at the centre of the scene's bounds (composed in f64, so
+//! that f32 keeps its precision near the scene), then the anchor's camera-relative
+//! position. The pass rewrites the matrices (64 bytes a primitive) in a frame whose
+//! transforms differ from those it last wrote, and only then; the vertices are never
+//! rewritten. Skins and morph targets do not deform points and lines (the loader warns).
 //!
 //! **The accumulation** begins as (0, 0, 0, 1) (a clear) and each covered sample
 //! becomes (colour, 0): colour over black and transmittance 0, as the transparent pass
@@ -41,6 +48,7 @@
 //! points and lines may cover ([`GpuScene::blended_rect`]).
 //!
 //! [`GpuScene::blended_rect`]: crate::gpu_scene::GpuScene::blended_rect
+//! [`FrameInputs::points_lines`]: crate::FrameInputs::points_lines
 
 use serde::Deserialize;
 
@@ -131,7 +139,7 @@ impl Plugin for PointsLinesPass {
 mod gpu {
     use std::sync::Arc;
 
-    use glam::{DVec3, Vec3};
+    use glam::{DMat4, DVec3, Vec3};
     use rgraph_scene::{DepthConvention, Scene, Topology};
     use wgpu::util::DeviceExt;
 
@@ -141,12 +149,14 @@ mod gpu {
     use crate::common::gpu::{Frame, Recorded, Recorder, Render};
     use crate::gpu_scene::{GpuScene, Layer};
 
-    /// One drawn vertex: world position minus the anchor, and final linear colour.
+    /// One drawn vertex: object-space position, final linear colour, and the index of its
+    /// primitive in `Scene::points_lines` (which picks its matrix).
     #[repr(C)]
     #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
     struct StrokeVertex {
         position: [f32; 3],
         color: [f32; 3],
+        primitive: u32,
     }
 
     /// `Placement` in points_lines.wgsl.
@@ -161,8 +171,8 @@ mod gpu {
 
     /// The vertices' layout: per vertex for lines, per instance for points.
     fn vertex_layout(step_mode: wgpu::VertexStepMode) -> wgpu::VertexBufferLayout<'static> {
-        const ATTRIBUTES: [wgpu::VertexAttribute; 2] =
-            wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
+        const ATTRIBUTES: [wgpu::VertexAttribute; 3] =
+            wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32];
         wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<StrokeVertex>() as u64,
             step_mode,
@@ -170,13 +180,12 @@ mod gpu {
         }
     }
 
-    /// The scene's points, then its segments' ends, as drawn vertices; the anchor they
-    /// are relative to; and how many are points.
-    fn strokes(scene: &Scene) -> (Vec<StrokeVertex>, DVec3, u32) {
-        let anchor = scene.bounds.center();
+    /// The scene's points, then its segments' ends, as drawn vertices, and how many are
+    /// points.
+    fn strokes(scene: &Scene) -> (Vec<StrokeVertex>, u32) {
         let mut points = Vec::new();
         let mut lines = Vec::new();
-        for item in &scene.points_lines {
+        for (primitive, item) in (0..).zip(&scene.points_lines) {
             let material = &scene.materials[item.material];
             let base = Vec3::from_slice(&material.base_color_factor[..3]);
             let emission = Vec3::from_array(material.emission());
@@ -185,18 +194,26 @@ mod gpu {
                 Topology::Lines => &mut lines,
             };
             list.extend(item.indices.iter().map(|&i| {
-                let local = Vec3::from_array(item.positions[i as usize]).as_dvec3();
-                let world = item.transform.transform_point3(local);
                 let color = Vec3::from_slice(&item.colors[i as usize][..3]);
                 StrokeVertex {
-                    position: (world - anchor).as_vec3().to_array(),
+                    position: item.positions[i as usize],
                     color: (base * color + emission).to_array(),
+                    primitive,
                 }
             }));
         }
         let point_count = points.len() as u32;
         points.extend(lines);
-        (points, anchor, point_count)
+        (points, point_count)
+    }
+
+    /// Each primitive's matrix for the shader: `transforms[i]`, then minus `anchor`,
+    /// composed in f64.
+    fn matrices(transforms: &[DMat4], anchor: DVec3) -> Vec<[[f32; 4]; 4]> {
+        let to_anchor = DMat4::from_translation(-anchor);
+        (transforms.iter())
+            .map(|t| (to_anchor * *t).as_mat4().to_cols_array_2d())
+            .collect()
     }
 
     #[derive(Clone, PartialEq)]
@@ -218,6 +235,10 @@ mod gpu {
         /// Points and segment ends.
         total: u32,
         placement: wgpu::Buffer,
+        /// One matrix per primitive (points_lines.wgsl's `models`).
+        models: wgpu::Buffer,
+        /// The transforms `models` holds (empty before the first frame writes them).
+        placed: Vec<DMat4>,
         group: wgpu::BindGroup,
         pipelines: Pipelines<Key>,
     }
@@ -230,7 +251,7 @@ mod gpu {
         fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<State, String> {
             let device = frame.device;
             let host = frame.scenes.scene().ok_or("points and lines: no scene")?;
-            let (vertices, anchor, points) = strokes(host);
+            let (vertices, points) = strokes(host);
             let total = vertices.len() as u32;
             let vertices = (!vertices.is_empty()).then(|| {
                 device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -239,42 +260,68 @@ mod gpu {
                     usage: wgpu::BufferUsages::VERTEX,
                 })
             });
-            let placement = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("points and lines placement"),
-                size: std::mem::size_of::<Placement>() as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
+            let buffer = |label, size: usize, usage| {
+                device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(label),
+                    size: size as u64,
+                    usage: usage | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                })
+            };
+            let placement = buffer(
+                "points and lines placement",
+                std::mem::size_of::<Placement>(),
+                wgpu::BufferUsages::UNIFORM,
+            );
+            // wgpu refuses an empty storage binding: a scene without points or lines
+            // (which draws nothing) binds one matrix.
+            let models = buffer(
+                "points and lines matrices",
+                host.points_lines.len().max(1) * 64,
+                wgpu::BufferUsages::STORAGE,
+            );
+            let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility: wgpu::ShaderStages::VERTEX,
+                ty: wgpu::BindingType::Buffer {
+                    ty,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            };
             let group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("points and lines placement"),
-                entries: &[wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::VERTEX,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                }],
+                entries: &[
+                    entry(0, wgpu::BufferBindingType::Uniform),
+                    entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
+                ],
             });
             let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("points and lines placement"),
                 layout: &group_layout,
-                entries: &[wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: placement.as_entire_binding(),
-                }],
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: placement.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: models.as_entire_binding(),
+                    },
+                ],
             });
             let layouts = [Some(frame.scene.layout()), Some(&group_layout)];
             Ok(State {
                 module: module(device, "points and lines", &self.source),
                 layout: pipeline_layout(device, &layouts),
                 vertices,
-                anchor,
+                anchor: host.bounds.center(),
                 points,
                 total,
                 placement,
+                models,
+                placed: Vec::new(),
                 group,
                 pipelines: Pipelines::default(),
             })
@@ -288,15 +335,21 @@ mod gpu {
             let accum = resources.shape(self.accum);
             let depth = resources.shape(self.depth);
             let convention = self.depth_rule.convention(depth.format);
+            let queue = resources.queue;
+            let inputs = scene.inputs();
+            if inputs.points_lines != state.placed {
+                let models = matrices(&inputs.points_lines, state.anchor);
+                queue.write_buffer(&state.models, 0, bytemuck::cast_slice(&models));
+                state.placed.clone_from(&inputs.points_lines);
+            }
             // Camera-relative, in f64 before the cast, as the scene's model matrices are.
-            let anchor = state.anchor - scene.inputs().camera.position;
+            let anchor = state.anchor - inputs.camera.position;
             let placement = Placement {
                 anchor: anchor.as_vec3().to_array(),
                 point_size: self.point_size,
                 target_size: [accum.width as f32, accum.height as f32],
                 _pad: [0.0; 2],
             };
-            let queue = resources.queue;
             queue.write_buffer(&state.placement, 0, bytemuck::bytes_of(&placement));
             pass.set_bind_group(0, scene.bind_group(convention), &[]);
             pass.set_bind_group(1, &state.group, &[]);

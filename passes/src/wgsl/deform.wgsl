@@ -5,12 +5,14 @@
 // rgraph_scene::Deformation::deform does on the CPU. The position a vertex had is kept in
 // `previous` first, for motion vectors.
 
-// A vertex of a deformed mesh: its four joints (16 bits each), its deformation, and its
+// A vertex of a deformed mesh: its four joints (16 bits each), its deformation, where its
+// fifth to eighth joints are (glTF's JOINTS_1 and WEIGHTS_1: an entry of `influences` past
+// the deformed vertices' own, whose joints and weights are read; 0 for none), and its
 // joints' weights (zero for a mesh without a skin).
 struct Influence {
     joints: vec2<u32>,
     deformation: u32,
-    _pad: u32,
+    second: u32,
     weights: vec4<f32>,
 }
 
@@ -34,6 +36,7 @@ struct Deformation {
 @group(0) @binding(0) var<storage, read_write> vertices: array<u32>;
 // The deformed meshes' rest vertices, one after another.
 @group(0) @binding(1) var<storage, read> rest: array<u32>;
+// One per deformed vertex, then the second sets of those with eight influences.
 @group(0) @binding(2) var<storage, read> influences: array<Influence>;
 @group(0) @binding(3) var<storage, read> deformations: array<Deformation>;
 // Per morph target per vertex, nine floats: position, normal and tangent offsets.
@@ -62,6 +65,12 @@ fn write_vec3(word: u32, v: vec3<f32>) {
     vertices[word + 2u] = bitcast<u32>(v.z);
 }
 
+// The blend of four joints (packed two per word, numbered from `first_joint`) by `w`.
+fn blend(packed: vec2<u32>, w: vec4<f32>, first_joint: u32) -> mat4x4<f32> {
+    let ids = vec4<u32>(packed.x & 0xffffu, packed.x >> 16u, packed.y & 0xffffu, packed.y >> 16u) + first_joint;
+    return joints[ids.x] * w.x + joints[ids.y] * w.y + joints[ids.z] * w.z + joints[ids.w] * w.w;
+}
+
 // `v` at unit length, or zero where it is zero: a zero normal asks for the face normal,
 // a zero tangent for none.
 fn unit_or_zero(v: vec3<f32>) -> vec3<f32> {
@@ -72,7 +81,9 @@ fn unit_or_zero(v: vec3<f32>) -> vec3<f32> {
 @compute @workgroup_size(64)
 fn cs_deform(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = id.x + id.y * groups.x * 64u;
-    if i >= arrayLength(&influences) {
+    // The deformed vertices end where the last deformation's do (second sets follow).
+    let last = deformations[arrayLength(&deformations) - 1u];
+    if i >= last.first_vertex + last.vertex_count {
         return;
     }
     let influence = influences[i];
@@ -92,10 +103,11 @@ fn cs_deform(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgrou
         tangent += w * offset(at + 6u);
     }
     if d.skinned != 0u {
-        let ids = vec4<u32>(influence.joints.x & 0xffffu, influence.joints.x >> 16u,
-                            influence.joints.y & 0xffffu, influence.joints.y >> 16u) + d.first_joint;
-        let w = influence.weights;
-        let m = joints[ids.x] * w.x + joints[ids.y] * w.y + joints[ids.z] * w.z + joints[ids.w] * w.w;
+        var m = blend(influence.joints, influence.weights, d.first_joint);
+        if influence.second != 0u {
+            let more = influences[influence.second];
+            m += blend(more.joints, more.weights, d.first_joint);
+        }
         let linear = mat3x3<f32>(m[0].xyz, m[1].xyz, m[2].xyz);
         // The cofactor matrix: normals move by the inverse transpose, up to length.
         let cofactor = mat3x3<f32>(cross(linear[1], linear[2]), cross(linear[2], linear[0]), cross(linear[0], linear[1]));

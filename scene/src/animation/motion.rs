@@ -1,10 +1,10 @@
-//! Bounds that hold the meshes wherever the animations take them, so that a camera framed
+//! Bounds that hold the meshes and the points and lines wherever the animations take them, so that a camera framed
 //! on them (and its near plane) sees every frame.
 
 use glam::Vec3;
 
 use super::clip::Animation;
-use crate::{joints_in_object_space, Aabb, Mesh, Pose, Reach, Scene};
+use crate::{joints_in_object_space, Aabb, Mesh, PointsLines, Pose, Reach, Scene};
 
 /// Poses sampled between two consecutive key times (the keys themselves included once):
 /// LINEAR motion is bounded by its keys, but rotations sweep arcs and cubic splines
@@ -20,15 +20,19 @@ const MAX_POSES: usize = 4096;
 const MAX_TRANSFORMS: usize = 1 << 24;
 
 /// The world box of every mesh's object-space box (a deformed mesh's [`Reach`] in the
-/// pose), over the rest pose of a scene with deformed meshes and poses of every animation
-/// sampled at and between its key times; `None` without either. Approximate between
-/// samples (a fast spin can leave a box corner a little outside), conservative at them.
+/// pose) and every points-and-lines primitive's, over the rest pose of a scene with
+/// deformed meshes and poses of every animation sampled at and between its key times;
+/// `None` without either. Approximate between samples (a fast spin can leave a box corner
+/// a little outside), conservative at them.
 pub(crate) fn swept_bounds(scene: &Scene) -> Option<Aabb> {
     let boxes: Vec<Option<Aabb>> = scene.meshes.iter().map(object_bounds).collect();
+    let strokes: Vec<Option<Aabb>> = (scene.points_lines.iter())
+        .map(PointsLines::object_bounds)
+        .collect();
     let reaches: Vec<Option<Reach>> = (scene.deformations.iter())
         .map(|d| Reach::new(d, &scene.meshes[d.mesh].vertices))
         .collect();
-    let per_pose = scene.nodes.nodes.len() + scene.meshes.len();
+    let per_pose = scene.nodes.nodes.len() + scene.meshes.len() + scene.points_lines.len();
     let max_poses = (MAX_TRANSFORMS / per_pose.max(1)).clamp(2, MAX_POSES);
     let rest = (!scene.deformations.is_empty()).then(|| scene.rest_pose());
     let animated = scene.animation_ids().flat_map(|id| {
@@ -39,16 +43,18 @@ pub(crate) fn swept_bounds(scene: &Scene) -> Option<Aabb> {
     });
     rest.into_iter()
         .chain(animated)
-        .filter_map(|pose| posed_bounds(scene, &pose, &boxes, &reaches))
+        .filter_map(|pose| posed_bounds(scene, &pose, (&boxes, &strokes), &reaches))
         .reduce(|a, b| a.union(&b))
 }
 
-/// The world box of the meshes in `pose`: each mesh's object-space box in `boxes`, or its
-/// deformation's reach in `reaches` (one per deformation of the scene), transformed.
+/// The world box of the meshes and the points and lines in `pose`: each mesh's
+/// object-space box in `boxes`, or its deformation's reach in `reaches` (one per
+/// deformation of the scene), and each points-and-lines primitive's in `strokes`,
+/// transformed.
 fn posed_bounds(
     scene: &Scene,
     pose: &Pose,
-    boxes: &[Option<Aabb>],
+    (boxes, strokes): (&[Option<Aabb>], &[Option<Aabb>]),
     reaches: &[Option<Reach>],
 ) -> Option<Aabb> {
     let mut boxes = boxes.to_vec();
@@ -62,7 +68,7 @@ fn posed_bounds(
         };
         boxes[deformation.mesh] = reach.as_ref().map(|r| r.object_box(&joints, weights));
     }
-    let placed = pose.transforms.iter().zip(&boxes);
+    let placed = (pose.transforms.iter().zip(&boxes)).chain(pose.points_lines.iter().zip(strokes));
     Aabb::from_points(placed.flat_map(|(transform, b)| {
         let corners = b.iter().flat_map(Aabb::corners);
         corners.map(|c| transform.transform_point3(c))

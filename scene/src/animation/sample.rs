@@ -4,7 +4,7 @@ use glam::DMat4;
 
 use super::clip::{Animation, AnimationId, Keyframes};
 use super::interpolate;
-use crate::node_tree::LocalTransform;
+use crate::node_tree::{LocalTransform, MeshPlacement};
 use crate::{Pose, Scene, SceneError};
 
 impl Scene {
@@ -39,24 +39,35 @@ impl Scene {
         &self.animations[id.0]
     }
 
-    /// The scene with `animation` at `time` seconds: each mesh's object-to-world
-    /// transform, each skin's joints and each morphed mesh's weights, what a renderer's
-    /// frame inputs take. Nodes and weights no channel drives keep their rest values, so
-    /// at a time where every channel is at its rest value the result is
-    /// [`Scene::rest_pose`].
+    /// The scene with `animation` at `time` seconds: each mesh's and each points-and-lines
+    /// primitive's object-to-world transform, each skin's joints and each morphed mesh's
+    /// weights, what a renderer's frame inputs take. Nodes and weights no channel drives
+    /// keep their rest values, so at a time where every channel is at its rest value the
+    /// result is [`Scene::rest_pose`].
     pub fn animated_pose(&self, animation: AnimationId, time: f64) -> Pose {
         let animation = self.animation(animation);
         let worlds = self.nodes.worlds(&animation.locals(self, time));
-        let transforms = match self.nodes.meshes.is_empty() {
-            // A tree without placements (no meshes) places nothing.
-            true => self.meshes.iter().map(|m| m.transform).collect(),
-            false => self.nodes.mesh_transforms(&worlds),
-        };
+        let meshes = self.meshes.iter().map(|m| m.transform);
+        let points_lines = self.points_lines.iter().map(|p| p.transform);
         Pose {
-            transforms,
+            transforms: placed(&self.nodes.meshes, &worlds, meshes),
+            points_lines: placed(&self.nodes.points_lines, &worlds, points_lines),
             skins: self.skin_matrices(&worlds),
             morph_weights: animation.weights(self, time),
         }
+    }
+}
+
+/// The object-to-world transforms `placements` give in the nodes' `worlds`, or `rest`
+/// where the tree has no placements (the loader keeps none without animations or skins).
+fn placed(
+    placements: &[MeshPlacement],
+    worlds: &[DMat4],
+    rest: impl Iterator<Item = DMat4>,
+) -> Vec<DMat4> {
+    match placements.is_empty() {
+        true => rest.collect(),
+        false => placements.iter().map(|p| p.world(worlds)).collect(),
     }
 }
 

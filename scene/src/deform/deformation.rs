@@ -62,8 +62,8 @@ impl Deformation {
                     tangent_xyz += offset(&target.tangents);
                 }
                 if let Some(skin) = &self.skin {
-                    let blended: DMat4 = (skin.joints[i].iter().zip(skin.weights[i]))
-                        .map(|(&joint, weight)| joints[joint as usize] * f64::from(weight))
+                    let blended: DMat4 = (skin.influences(i))
+                        .map(|(joint, weight)| joints[joint as usize] * f64::from(weight))
                         .fold(DMat4::ZERO, |sum, m| sum + m);
                     let linear = DMat3::from_mat4(blended);
                     position = blended.transform_point3(position);

@@ -1,5 +1,5 @@
 //! Meshes whose vertices move between frames: glTF skins (each vertex blended from up to
-//! four joints' transforms) and morph targets (each vertex offset by weighted deltas).
+//! eight joints' transforms) and morph targets (each vertex offset by weighted deltas).
 //!
 //! The scene keeps each deformed mesh's rest vertices ([`Mesh::vertices`](crate::Mesh)) and
 //! what deforms them ([`Deformation`]); a [`Pose`] says where the joints are and what the
@@ -19,4 +19,4 @@ pub use deformation::{joints_in_object_space, Deformation};
 pub use morph::{MorphTarget, MorphTargets};
 pub use pose::Pose;
 pub use reach::Reach;
-pub use skin::{Skin, SkinWeights, MAX_JOINTS};
+pub use skin::{Influences, Skin, SkinWeights, MAX_JOINTS};

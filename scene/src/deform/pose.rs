@@ -4,13 +4,16 @@ use glam::DMat4;
 
 use crate::Scene;
 
-/// Where a scene's meshes, joints and morph weights are in one frame: the scene at rest
-/// ([`Scene::rest_pose`]) or an animation at a time ([`Scene::animated_pose`]). A
-/// renderer's frame inputs take the three lists as they are.
+/// Where a scene's meshes, points and lines, joints and morph weights are in one frame: the
+/// scene at rest ([`Scene::rest_pose`]) or an animation at a time
+/// ([`Scene::animated_pose`]). A renderer's frame inputs take the four lists as they are.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pose {
     /// One object-to-world transform per mesh of [`Scene::meshes`], in its order.
     pub transforms: Vec<DMat4>,
+    /// One object-to-world transform per primitive of [`Scene::points_lines`], in its
+    /// order: where the nodes placing them are (points and lines are not deformed).
+    pub points_lines: Vec<DMat4>,
     /// One list per skin of [`Scene::skins`], in its order: each joint's skin matrix, its
     /// world transform times its inverse bind matrix (world space; a mesh's skinning
     /// takes them into its object space with [`joints_in_object_space`](super::joints_in_object_space)).
@@ -21,12 +24,13 @@ pub struct Pose {
 }
 
 impl Scene {
-    /// The scene as loaded: the meshes' own transforms, the joints at their nodes' rest
-    /// transforms, the morph targets' default weights.
+    /// The scene as loaded: the meshes' and the points' and lines' own transforms, the
+    /// joints at their nodes' rest transforms, the morph targets' default weights.
     pub fn rest_pose(&self) -> Pose {
         let locals: Vec<DMat4> = self.nodes.nodes.iter().map(|n| n.rest.matrix()).collect();
         Pose {
             transforms: self.meshes.iter().map(|m| m.transform).collect(),
+            points_lines: self.points_lines.iter().map(|p| p.transform).collect(),
             skins: self.skin_matrices(&self.nodes.worlds(&locals)),
             morph_weights: self.default_weights(),
         }

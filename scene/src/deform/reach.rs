@@ -41,8 +41,8 @@ impl Reach {
             .collect();
         let mut joints: Vec<Option<Aabb>> = Vec::new();
         if let Some(skin) = &deformation.skin {
-            for ((vertex, ids), weights) in vertices.iter().zip(&skin.joints).zip(&skin.weights) {
-                for (&joint, &weight) in ids.iter().zip(weights) {
+            for (i, vertex) in vertices.iter().enumerate() {
+                for (joint, weight) in skin.influences(i) {
                     if weight <= 0.0 {
                         continue;
                     }

@@ -130,6 +130,7 @@ pub(super) fn read(
         NodeTree {
             nodes,
             meshes: Vec::new(),
+            points_lines: Vec::new(),
         },
         animations,
     ))

@@ -1,12 +1,12 @@
-//! A primitive's skin binding (JOINTS_0, WEIGHTS_0) and morph targets, read and checked
-//! against its vertices.
+//! A primitive's skin binding (JOINTS_0 and WEIGHTS_0, and JOINTS_1 and WEIGHTS_1 where it
+//! has them) and morph targets, read and checked against its vertices.
 //!
-//! JOINTS_0 is VEC4 of UNSIGNED_BYTE or UNSIGNED_SHORT, each joint below the skin's joint
-//! count; WEIGHTS_0 is VEC4 of FLOAT or normalized UNSIGNED_BYTE or UNSIGNED_SHORT, each
-//! weight finite and non-negative, a vertex's four summing to 1 within
-//! [`WEIGHT_SUM_TOLERANCE`] (then renormalised: exporters quantise them). A primitive with
-//! JOINTS_1 has more than four influences per vertex: only the first four are kept,
-//! renormalised, with a warning. Each morph target's POSITION, NORMAL and TANGENT are VEC3
+//! JOINTS_n is VEC4 of UNSIGNED_BYTE or UNSIGNED_SHORT, each joint below the skin's joint
+//! count; WEIGHTS_n is VEC4 of FLOAT or normalized UNSIGNED_BYTE or UNSIGNED_SHORT, each
+//! weight finite and non-negative, a vertex's four (eight with a second set) summing to 1
+//! within [`WEIGHT_SUM_TOLERANCE`] (then renormalised: exporters quantise them); a set
+//! needs both. A primitive with JOINTS_2 has more than eight influences per vertex: only
+//! the first eight are kept, renormalised, with a warning. Each morph target's POSITION, NORMAL and TANGENT are VEC3
 //! with one finite element per vertex; the weights (the node's, else the mesh's, else 0)
 //! are one per target. Every count is compared before the data is read.
 
@@ -16,7 +16,7 @@ use gltf::mesh::Semantic;
 use super::accessor::{self, component_name, type_name};
 use super::site::Site;
 use super::Loader;
-use crate::{MorphTarget, MorphTargets, SceneError, SkinWeights};
+use crate::{Influences, MorphTarget, MorphTargets, SceneError, SkinWeights};
 
 /// How far a vertex's four weights may sum from 1 before the file is refused: a few
 /// quantisation steps of 8-bit weights, where exporters round each weight apart.
@@ -31,6 +31,9 @@ const OFFSET_TYPES: [(DataType, bool); 5] = [
     (DataType::I8, false),
     (DataType::I16, false),
 ];
+
+/// The attribute names of the influence sets read: JOINTS_n and WEIGHTS_n for n = 0, 1.
+const SET_NAMES: [(&str, &str); 2] = [("JOINTS_0", "WEIGHTS_0"), ("JOINTS_1", "WEIGHTS_1")];
 
 /// A primitive's skin binding and morph targets, at least one of them.
 pub(super) type Parts = (Option<SkinWeights>, Option<MorphTargets>);
@@ -69,14 +72,90 @@ impl Loader<'_> {
         (skin, joint_count): (usize, usize),
         vertices: usize,
     ) -> Result<SkinWeights, SceneError> {
-        let (Some(joints), Some(weights)) = (
-            primitive.get(&Semantic::Joints(0)),
-            primitive.get(&Semantic::Weights(0)),
-        ) else {
+        let set = |n| self.influences(site, primitive, (skin, joint_count), vertices, n);
+        let Some((mut first, weights_0)) = set(0)? else {
             return Err(site.invalid(format!(
                 "is placed by a node with skin {skin}, but has no JOINTS_0 and WEIGHTS_0 \
                  to bind its vertices to the joints"
             )));
+        };
+        let mut second = set(1)?;
+        // Influences past the eighth are dropped: the first eight no longer sum to 1.
+        let beyond = (2..)
+            .take_while(|&n| primitive.get(&Semantic::Joints(n)).is_some())
+            .count();
+        if beyond > 0 {
+            let sets = match beyond {
+                1 => "JOINTS_2 and WEIGHTS_2 are".to_owned(),
+                n => format!("JOINTS_2 to JOINTS_{} and their weights are", n + 1),
+            };
+            self.builder.warnings.push(format!(
+                "{} primitive {}: {sets} ignored: each vertex keeps its first eight joints, \
+                 their weights renormalised",
+                site.mesh, site.primitive
+            ));
+        }
+        for vertex in 0..vertices {
+            let w0 = &mut first.weights[vertex];
+            let w1 = second.as_mut().map(|(s, _)| &mut s.weights[vertex]);
+            let all = || w0.iter().chain(w1.iter().flat_map(|w| w.iter()));
+            let sum: f32 = all().sum();
+            let valid = all().all(|c| c.is_finite() && *c >= 0.0) && sum > 0.0;
+            if !valid || (beyond == 0 && (sum - 1.0).abs() > WEIGHT_SUM_TOLERANCE) {
+                let second_set = match &second {
+                    Some((s, accessor)) => format!(
+                        " and {:?} (WEIGHTS_1 accessor {})",
+                        s.weights[vertex],
+                        accessor.index()
+                    ),
+                    None => String::new(),
+                };
+                return Err(site.accessor_error(
+                    "WEIGHTS_0",
+                    &weights_0,
+                    format!(
+                        "vertex {vertex} has weights {w0:?}{second_set}, summing to {sum}: a \
+                         vertex's weights are non-negative and sum to 1 (within \
+                         {WEIGHT_SUM_TOLERANCE})"
+                    ),
+                ));
+            }
+            *w0 = w0.map(|c| c / sum);
+            if let Some(w1) = w1 {
+                *w1 = w1.map(|c| c / sum);
+            }
+        }
+        Ok(SkinWeights {
+            skin,
+            first,
+            second: second.map(|(s, _)| s),
+        })
+    }
+
+    /// Set `n` of `primitive`'s influences (JOINTS_n and WEIGHTS_n, checked: types, counts,
+    /// joints below the skin's `joint_count`), with its weights' accessor; `None` when the
+    /// primitive has neither. Fails when it has one without the other.
+    fn influences<'d>(
+        &self,
+        site: &Site,
+        primitive: &gltf::Primitive<'d>,
+        (skin, joint_count): (usize, usize),
+        vertices: usize,
+        n: usize,
+    ) -> Result<Option<(Influences, gltf::Accessor<'d>)>, SceneError> {
+        let (joints_name, weights_name) = SET_NAMES[n];
+        let (joints, weights) = match (
+            primitive.get(&Semantic::Joints(n as u32)),
+            primitive.get(&Semantic::Weights(n as u32)),
+        ) {
+            (None, None) => return Ok(None),
+            (Some(joints), Some(weights)) => (joints, weights),
+            (Some(_), None) | (None, Some(_)) => {
+                return Err(site.invalid(format!(
+                    "has only one of {joints_name} and {weights_name}: a set of joints \
+                     needs its weights"
+                )))
+            }
         };
         let unsigned: &[(DataType, bool)] = &[(DataType::U8, false), (DataType::U16, false)];
         let weight_types: &[(DataType, bool)] = &[
@@ -85,61 +164,37 @@ impl Loader<'_> {
             (DataType::U16, true),
         ];
         for (name, accessor, allowed) in [
-            ("JOINTS_0", &joints, unsigned),
-            ("WEIGHTS_0", &weights, weight_types),
+            (joints_name, &joints, unsigned),
+            (weights_name, &weights, weight_types),
         ] {
             check(accessor, (Dimensions::Vec4, allowed), vertices)
                 .map_err(|reason| site.accessor_error(name, accessor, reason))?;
         }
         let joint_values = accessor::read_vectors::<4>(&self.buffers, &joints)
-            .map_err(|reason| site.accessor_error("JOINTS_0", &joints, reason))?;
-        let mut weight_values = accessor::read_vectors::<4>(&self.buffers, &weights)
-            .map_err(|reason| site.accessor_error("WEIGHTS_0", &weights, reason))?;
+            .map_err(|reason| site.accessor_error(joints_name, &joints, reason))?;
+        let weight_values = accessor::read_vectors::<4>(&self.buffers, &weights)
+            .map_err(|reason| site.accessor_error(weights_name, &weights, reason))?;
         let beyond = joint_values.iter().enumerate().find_map(|(vertex, ids)| {
             let joint = ids.iter().find(|&&j| j as usize >= joint_count)?;
             Some((vertex, *joint))
         });
         if let Some((vertex, joint)) = beyond {
             return Err(site.accessor_error(
-                "JOINTS_0",
+                joints_name,
                 &joints,
                 format!(
                     "vertex {vertex} names joint {joint}, but skin {skin} has {joint_count} joints"
                 ),
             ));
         }
-        // Influences past the first four are dropped: the first four no longer sum to 1.
-        let more = primitive.get(&Semantic::Joints(1)).is_some();
-        if more {
-            self.builder.warnings.push(format!(
-                "{} primitive {}: JOINTS_1 and WEIGHTS_1 are ignored: each vertex keeps its \
-                 first four joints, their weights renormalised",
-                site.mesh, site.primitive
-            ));
-        }
-        for (vertex, w) in weight_values.iter_mut().enumerate() {
-            let sum: f32 = w.iter().sum();
-            let valid = w.iter().all(|c| c.is_finite() && *c >= 0.0) && sum > 0.0;
-            if !valid || (!more && (sum - 1.0).abs() > WEIGHT_SUM_TOLERANCE) {
-                return Err(site.accessor_error(
-                    "WEIGHTS_0",
-                    &weights,
-                    format!(
-                        "vertex {vertex} has weights {w:?}, summing to {sum}: a vertex's \
-                         weights are non-negative and sum to 1 (within {WEIGHT_SUM_TOLERANCE})"
-                    ),
-                ));
-            }
-            *w = w.map(|c| c / sum);
-        }
-        Ok(SkinWeights {
-            skin,
+        let influences = Influences {
             joints: joint_values
                 .iter()
                 .map(|ids| ids.map(|j| j as u16))
                 .collect(),
             weights: weight_values,
-        })
+        };
+        Ok(Some((influences, weights)))
     }
 
     fn morph_targets(
@@ -218,10 +273,14 @@ fn check(
 /// `parts` for a mesh whose vertices were written out per corner (flat shading for
 /// MikkTSpace): its vertex `k` is the file's vertex `sources[k]`.
 pub(super) fn per_corner((skin, morph): Parts, sources: &[u32]) -> Parts {
-    let skin = skin.map(|s| SkinWeights {
-        skin: s.skin,
+    let set = |s: &Influences| Influences {
         joints: gather(&s.joints, sources),
         weights: gather(&s.weights, sources),
+    };
+    let skin = skin.map(|s| SkinWeights {
+        skin: s.skin,
+        first: set(&s.first),
+        second: s.second.as_ref().map(set),
     });
     let morph = morph.map(|m| MorphTargets {
         targets: (m.targets.iter())

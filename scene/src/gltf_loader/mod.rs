@@ -11,11 +11,13 @@
 //! EXT_mesh_gpu_instancing's instances as placements, see [`instancing`]); cameras;
 //! KHR_lights_punctual lights; animations of node translation, rotation, scale and morph
 //! weights, with the node tree they move (see [`animation`]); skins (see [`skin`]) and
-//! their JOINTS_0/WEIGHTS_0, and morph targets' POSITION, NORMAL and TANGENT offsets (see
+//! their JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1, and morph targets' POSITION, NORMAL and
+//! TANGENT offsets (see
 //! [`deform`]); points and lines (POINTS, LINES, and loops and strips converted to lists)
 //! with POSITION and COLOR_0 and their material's base colour and emission (see
-//! [`points_lines`]), placed at rest. What is not: a skinned vertex's influences past four
-//! (JOINTS_1), with a warning in [`Scene::warnings`].
+//! [`points_lines`]), placed by the node tree as meshes are. What is not: a skinned vertex's
+//! influences past eight (JOINTS_2 on), and the skins and morph targets of points and
+//! lines, each with a warning in [`Scene::warnings`].
 
 mod accessor;
 mod animation;
@@ -177,17 +179,18 @@ impl Loader<'_> {
                 None => vec![DMat4::IDENTITY],
             };
             for primitive in mesh.primitives() {
+                let triangles = drawn::is_triangles(&primitive);
+                if !triangles {
+                    self.undeformed_points_lines(&mesh, &primitive, &placed.node);
+                }
                 for &offset in &offsets {
                     let world = placed.world * offset;
-                    match drawn::is_triangles(&primitive) {
-                        true => {
-                            let added = self.builder.meshes.len();
-                            self.primitive(&mesh, &primitive, world, &placed.node)?;
-                            self.track(id, offset, added);
-                        }
-                        // Placed at rest: the node tree moves meshes only.
+                    let added = (self.builder.meshes.len(), self.builder.points_lines.len());
+                    match triangles {
+                        true => self.primitive(&mesh, &primitive, world, &placed.node)?,
                         false => self.points_lines(&mesh, &primitive, world)?,
                     }
+                    self.track(id, offset, added);
                 }
             }
         }
@@ -215,14 +218,17 @@ impl Loader<'_> {
 }
 
 impl Loader<'_> {
-    /// Records where the meshes built since the first `added` hang in the node tree, when
-    /// the file has animations to move them (the tree is empty otherwise).
-    fn track(&mut self, node: NodeId, offset: DMat4, added: usize) {
-        if self.builder.nodes.nodes.is_empty() {
+    /// Records where the meshes and the points and lines built since there were `added`
+    /// of each hang in the node tree, when the file has animations or skins to move them
+    /// (the tree is empty otherwise).
+    fn track(&mut self, node: NodeId, offset: DMat4, (meshes, points_lines): (usize, usize)) {
+        let builder = &mut self.builder;
+        if builder.nodes.nodes.is_empty() {
             return;
         }
-        let built = self.builder.meshes.len() - added;
         let placement = MeshPlacement { node, offset };
-        (self.builder.nodes.meshes).extend(std::iter::repeat_n(placement, built));
+        let built = |now: usize, before| std::iter::repeat_n(placement, now - before);
+        (builder.nodes.meshes).extend(built(builder.meshes.len(), meshes));
+        (builder.nodes.points_lines).extend(built(builder.points_lines.len(), points_lines));
     }
 }

@@ -1,6 +1,12 @@
 //! Point and line primitives (modes POINTS, LINES, LINE_LOOP, LINE_STRIP) to
 //! [`PointsLines`]: POSITION and COLOR_0 (every other attribute is ignored: they are drawn
 //! unlit and untextured), with loops and strips converted to segment lists.
+//!
+//! They move with the nodes placing them (the node tree places them as it places meshes),
+//! but are not deformed: a skin on their node and their morph targets are ignored with a
+//! warning. Skinned or morphed point clouds are rare, and deforming them would take a
+//! deformation pass of their own (the scene's moves the triangle meshes' shared vertex
+//! buffer, which they are not in).
 
 use glam::DMat4;
 use gltf::mesh::{Mode, Semantic};
@@ -60,6 +66,41 @@ impl Loader<'_> {
             transform: world,
         });
         Ok(())
+    }
+}
+
+impl Loader<'_> {
+    /// Warns, once per primitive and node, when `primitive` (of points or lines) of `mesh` would be
+    /// deformed: `node` places it with a skin, or it has morph targets. It is drawn
+    /// undeformed where `node` puts it.
+    pub(super) fn undeformed_points_lines(
+        &mut self,
+        mesh: &gltf::Mesh,
+        primitive: &gltf::Primitive,
+        node: &gltf::Node,
+    ) {
+        let skin = node
+            .skin()
+            .map(|skin| label("skin", skin.index(), skin.name()));
+        let targets = primitive.morph_targets().len();
+        let ignored = match (skin, targets) {
+            (None, 0) => return,
+            (Some(skin), 0) => format!("{skin} (its JOINTS_0 and WEIGHTS_0) is"),
+            (None, n) => format!("its {n} morph targets are"),
+            (Some(skin), n) => {
+                format!("{skin} (its JOINTS_0 and WEIGHTS_0) and its {n} morph targets are")
+            }
+        };
+        let warning = format!(
+            "{} primitive {}: points and lines are not deformed: {ignored} ignored, and they \
+             follow the transform of {}",
+            label("mesh", mesh.index(), mesh.name()),
+            primitive.index(),
+            label("node", node.index(), node.name()),
+        );
+        if !self.builder.warnings.contains(&warning) {
+            self.builder.warnings.push(warning);
+        }
     }
 }
 

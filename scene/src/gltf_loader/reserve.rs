@@ -156,12 +156,13 @@ fn primitive_bytes(primitive: &gltf::Primitive) -> u64 {
         && primitive.get(&Semantic::Tangents).is_none()
         && primitive.material().normal_texture().is_some();
     let vertices = if written_out { indices } else { positions };
-    // JOINTS_0 as [u16; 4] and WEIGHTS_0 as [f32; 4]; each target's three offsets
-    // [f32; 3] (counted whether present or not: a bound, not a tally).
-    let skin_bytes = match primitive.get(&Semantic::Joints(0)) {
-        Some(_) => 8 + 16,
-        None => 0,
-    };
+    // JOINTS_0 and _1 as [u16; 4] and WEIGHTS_0 and _1 as [f32; 4], each set where the
+    // primitive has it; each target's three offsets [f32; 3] (counted whether present or
+    // not: a bound, not a tally).
+    let sets = (0..2)
+        .filter(|&n| primitive.get(&Semantic::Joints(n)).is_some())
+        .count() as u64;
+    let skin_bytes = sets * (8 + 16);
     let morph_bytes = primitive.morph_targets().len() as u64 * 3 * 12;
     let vertex_bytes = std::mem::size_of::<Vertex>() as u64 + skin_bytes + morph_bytes;
     vertices
