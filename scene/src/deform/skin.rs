@@ -16,7 +16,7 @@ pub const MAX_JOINTS: usize = 1 << 16;
 pub struct Skin {
     /// `skin INDEX "NAME"`, as errors and warnings name glTF skins.
     pub name: String,
-    /// Its joints, in the order [`SkinWeights::joints`] numbers them.
+    /// Its joints, in the order [`Influences::joints`] numbers them.
     pub joints: Vec<NodeId>,
     /// Per joint, from the bind pose's space (where the mesh's vertices are) to the
     /// joint's: glTF's inverseBindMatrices, the identity where the file gives none. A
