@@ -74,6 +74,9 @@
 #               builtin:lights?count=256 with 64 into shadow-budget-lights; then the atlas
 #               side 512..8192 on builtin:spheres and builtin:dense with the reference into
 #               shadow-resolution (not in the default set)
+#   occlusion   issue 38's two-phase occlusion culling off and on (`--param occlusion=0,1`)
+#               in the default pipeline on 10M- and 100k-triangle terrains and builtin:dense,
+#               without the reference, into occlusion (not in the default set)
 #   particles   seed 001's tables on builtin:smoke, the three particle pipelines
 #               (full, low and mixed resolution), FLIP against particles_full_res:
 #               particles-scaleS (Table 23-1 at off-screen scales 2x2 and 4x4, the depth
@@ -255,6 +258,12 @@ for part in $parts; do
         --scene builtin:dense --param shadow_map=512,1024,2048,4096,8192 --width "$width" \
         --height "$height" "${common[@]}" --out-dir "$out/shadow-resolution" || status=$?
       ;;
+    occlusion)
+      "$bin" bench --pipeline pipelines/visibility_msaa_4x.ron --scene 'builtin:terrain?cells=2236' \
+        --scene 'builtin:terrain?cells=224' --scene builtin:dense --param occlusion=0,1 \
+        --no-reference --width "$width" --height "$height" "${common[@]}" \
+        --out-dir "$out/occlusion" || status=$?
+      ;;
     particles)
       particles=(--pipeline pipelines/particles_full_res.ron --pipeline pipelines/particles_low_res.ron
                  --pipeline pipelines/particles_mixed_res.ron)
@@ -280,7 +289,7 @@ for part in $parts; do
         || status=$?
       ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, scale, scale-SWEEP, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, shadows, particles)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, scale, scale-SWEEP, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, shadows, occlusion, particles)" >&2
       status=2
       ;;
   esac
