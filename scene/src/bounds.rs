@@ -1,6 +1,6 @@
 //! World-space bounding volumes.
 
-use glam::DVec3;
+use glam::{DMat4, DVec3};
 
 /// The largest world coordinate a scene may have, in magnitude: vertex positions, node
 /// transform entries, light and camera positions. f64 still resolves 1/8000 unit at 1e12, and
@@ -55,6 +55,13 @@ impl Aabb {
     /// The box's center.
     pub fn center(&self) -> DVec3 {
         (self.min + self.max) * 0.5
+    }
+
+    /// The smallest box holding this one's corners moved by `transform` (an affine
+    /// transform: the box of a placed object-space box).
+    pub fn transformed(&self, transform: &DMat4) -> Aabb {
+        let corners = self.corners().map(|c| transform.transform_point3(c));
+        Aabb::from_points(corners).expect("a box has corners")
     }
 
     /// Its eight corners.

@@ -13,9 +13,9 @@
 //! vertex, its rest vertex (56 bytes) and its influence (32 bytes: four joints and
 //! weights), 32 bytes more for a vertex of a mesh with eight influences (glTF's JOINTS_1
 //! and WEIGHTS_1, an entry of its own that the first one points to, so that meshes of four
-//! pay nothing for it), per morph target and vertex 36 bytes of offsets, per vertex from the first deformed mesh's to the last's its
-//! previous position (12 bytes), and per frame 64 bytes per joint of each skinned mesh and
-//! 4 per morph weight.
+//! pay nothing for it), per morph target and vertex 36 bytes of offsets, per vertex from
+//! the first deformed mesh's to the last's its previous position (12 bytes), and per frame
+//! 64 bytes per joint of each skinned mesh and 4 per morph weight.
 
 use glam::DMat4;
 use wgpu::util::DeviceExt;

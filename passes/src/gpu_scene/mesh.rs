@@ -109,7 +109,7 @@ impl MeshFrame {
             let world_bounds = kept.unwrap_or_else(|| {
                 let place = |p: DVec3| transform.transform_point3(p);
                 let placed = match object_box {
-                    Some(b) => Aabb::from_points(b.corners().map(place)),
+                    Some(b) => Some(b.transformed(&transform)),
                     None => Aabb::from_points(
                         (mesh.vertices.iter())
                             .map(|v| place(Vec3::from_array(v.position).as_dvec3())),

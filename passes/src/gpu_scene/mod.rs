@@ -685,8 +685,7 @@ impl GpuScene {
             .filter_map(|(bounds, transform)| {
                 // Camera-relative in f64, as the meshes' bounds are.
                 let relative = DMat4::from_translation(-inputs.camera.position) * *transform;
-                let corners = bounds.as_ref()?.corners();
-                rgraph_scene::Aabb::from_points(corners.map(|c| relative.transform_point3(c)))
+                Some(bounds.as_ref()?.transformed(&relative))
             })
             .collect();
         let blended = self

@@ -1,5 +1,5 @@
-//! Bounds that hold the meshes and the points and lines wherever the animations take them, so that a camera framed
-//! on them (and its near plane) sees every frame.
+//! Bounds that hold the meshes and the points and lines wherever the animations take
+//! them, so that a camera framed on them (and its near plane) sees every frame.
 
 use glam::Vec3;
 

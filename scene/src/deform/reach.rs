@@ -84,10 +84,8 @@ impl Reach {
         if self.joints.is_empty() {
             return widen(&self.rest);
         }
-        let moved = (self.joints.iter().zip(joints)).filter_map(|(b, joint)| {
-            let corners = widen(b.as_ref()?).corners();
-            Aabb::from_points(corners.map(|c| joint.transform_point3(c)))
-        });
+        let moved = (self.joints.iter().zip(joints))
+            .filter_map(|(b, joint)| Some(widen(b.as_ref()?).transformed(joint)));
         moved
             .reduce(|a, b| a.union(&b))
             .unwrap_or_else(|| widen(&self.rest))

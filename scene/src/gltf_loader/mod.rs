@@ -11,13 +11,12 @@
 //! EXT_mesh_gpu_instancing's instances as placements, see [`instancing`]); cameras;
 //! KHR_lights_punctual lights; animations of node translation, rotation, scale and morph
 //! weights, with the node tree they move (see [`animation`]); skins (see [`skin`]) and
-//! their JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1, and morph targets' POSITION, NORMAL and
-//! TANGENT offsets (see
-//! [`deform`]); points and lines (POINTS, LINES, and loops and strips converted to lists)
-//! with POSITION and COLOR_0 and their material's base colour and emission (see
-//! [`points_lines`]), placed by the node tree as meshes are. What is not: a skinned vertex's
-//! influences past eight (JOINTS_2 on), and the skins and morph targets of points and
-//! lines, each with a warning in [`Scene::warnings`].
+//! their JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1, and morph targets' POSITION, NORMAL
+//! and TANGENT offsets (see [`deform`]); points and lines (POINTS, LINES, and loops and
+//! strips converted to lists) with POSITION and COLOR_0 and their material's base colour
+//! and emission (see [`points_lines`]), placed by the node tree as meshes are. What is
+//! not: a skinned vertex's influences past eight (JOINTS_2 on), and the skins and morph
+//! targets of points and lines, each with a warning in [`Scene::warnings`].
 
 mod accessor;
 mod animation;

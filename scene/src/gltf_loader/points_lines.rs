@@ -70,9 +70,9 @@ impl Loader<'_> {
 }
 
 impl Loader<'_> {
-    /// Warns, once per primitive and node, when `primitive` (of points or lines) of `mesh` would be
-    /// deformed: `node` places it with a skin, or it has morph targets. It is drawn
-    /// undeformed where `node` puts it.
+    /// Warns, once per primitive and node, when `primitive` (of points or lines) of `mesh`
+    /// would be deformed: `node` places it with a skin, or it has morph targets. It is
+    /// drawn undeformed where `node` puts it.
     pub(super) fn undeformed_points_lines(
         &mut self,
         mesh: &gltf::Mesh,
