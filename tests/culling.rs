@@ -34,8 +34,8 @@ use crate::deferred_support::{gpu, Image, PipelineFile, Render};
 /// The compute raster, as on a GPU.
 const COMPUTE: PipelineFile = PipelineFile::gpu_branch("visibility_msaa_4x.ron");
 /// The first raster pass's parameters as shipped, as far as they are edited
-/// (`clusters` left at its default, `culled`; occlusion culling on, by the file's
-/// parameter `occlusion`).
+/// (`clusters` left at its default, `culled`); [`frames`] turns occlusion culling on (the
+/// file's parameter `occlusion`, off by default) so that the camera paths exercise it too.
 const SHIPPED: &str = "params: (other_samples: at_edges,";
 const MODES: [(&str, &str); 2] = [
     (
@@ -127,11 +127,11 @@ fn look(camera: &Camera, eye: DVec3, target: DVec3) -> Camera {
 }
 
 /// Each of [`CHANGES`]' frames of `scene` through one executor, with the raster pass's
-/// parameters `params`: the colour and the edges view.
+/// parameters `params` and occlusion culling on: the colour and the edges view.
 fn frames(scene: &'static str, params: &'static str) -> Vec<(Image, Image)> {
     frames_of(
         scene,
-        (&[(SHIPPED, params)], &[]),
+        (&[(SHIPPED, params)], &[("occlusion", 1)]),
         "debug.edges",
         Features::new(),
     )
@@ -596,7 +596,7 @@ fn occlusion_culling_wired_wrongly_is_an_error() {
             "slot \"pyramid\": \"shadow_atlas\" is not a history",
         ),
         (
-            "params: (occlusion: Param(name: \"occlusion\", default: 1)),\n            \
+            "params: (occlusion: Param(name: \"occlusion\", default: 0)),\n            \
              when: \"!untabled_textures & !cpu_device & blend\",\n            \
              inputs: { \"pyramid\": \"depth_pyramid_prev\" },\n            \
              outputs: { \"samples\": \"samples\", \"occluded\": \"occluded\" },",
@@ -635,6 +635,7 @@ fn the_depth_pyramid_holds_the_farthest_depth_of_every_sample_it_covers() {
     let gpu = gpu();
     let frame = Render::new(COMPUTE, "builtin:spheres", SIZE)
         .edit("outputs: [\"color\"", "outputs: [\"keys\", \"color\"")
+        .param("occlusion", 1)
         .run(&gpu);
     let words = |bytes: Vec<u8>| -> Vec<u32> {
         (bytes.chunks_exact(4))

@@ -498,8 +498,9 @@ fn the_compute_raster_follows_a_resize() {
 /// A frame's report counts the buffers its passes keep for themselves, which the plan
 /// does not know of: at 4x the tiled pass's list of edge pixels (4 bytes a pixel of the
 /// output and a count, made anew for a resized output), and the compute raster's bins,
-/// which grow with the scene's triangles, in each phase of occlusion culling (the first
-/// also keeps the previous frame's camera, 80 bytes); at 1x nothing is listed.
+/// which grow with the scene's triangles, in each phase of occlusion culling where it is
+/// on (the first also keeps the previous frame's camera, 80 bytes); at 1x nothing is
+/// listed.
 #[test]
 fn a_frame_reports_the_buffers_its_passes_keep() {
     let gpu = gpu();
@@ -509,7 +510,9 @@ fn a_frame_reports_the_buffers_its_passes_keep() {
             .unwrap_or_else(|| panic!("no pass {pass:?}"))
             .held_bytes
     };
-    let mut frame = Render::new(COMPUTE, "builtin:dense", (160, 90)).run(&gpu);
+    let mut frame = Render::new(COMPUTE, "builtin:dense", (160, 90))
+        .param("occlusion", 1)
+        .run(&gpu);
     let dense = frame.resize((320, 180));
     assert_eq!(held(&dense, "light tiled"), 4 + 4 * 320 * 180);
     assert_eq!(held(&dense, "tonemap"), 0);
