@@ -71,7 +71,10 @@
 #               compute) beside the same file with the hardware drawing them
 #               (parts/shadow_maps.ron, a copy made for the run), without the reference, on
 #               builtin:dense with every light shadowed into shadow-budget-dense and on
-#               builtin:lights?count=256 with 64 into shadow-budget-lights; then the atlas
+#               builtin:lights?count=256 with 64 into shadow-budget-lights, the default's
+#               maps drawn every frame and kept while nothing moves (--param
+#               shadow_cache=0,1; the bench's frames are still, so kept after the first)
+#               beside the hardware's, drawn every frame; then the atlas
 #               side 512..8192 on builtin:spheres and builtin:dense with the reference into
 #               shadow-resolution (not in the default set)
 #   occlusion   issue 38's two-phase occlusion culling off and on (`--param occlusion=0,1`)
@@ -250,8 +253,9 @@ for part in $parts; do
         name=${budget%%:*} rest=${budget#*:}
         scene=${rest%:*} lights=${rest##*:}
         "$bin" bench --pipeline pipelines/visibility_msaa_4x.ron --pipeline "$hardware" \
-          --scene "$scene" --shadowed-lights "$lights" --no-reference --width "$width" \
-          --height "$height" "${common[@]}" --out-dir "$out/shadow-budget-$name" || status=$?
+          --scene "$scene" --shadowed-lights "$lights" --param shadow_cache=0,1 --no-reference \
+          --width "$width" --height "$height" "${common[@]}" --out-dir "$out/shadow-budget-$name" \
+          || status=$?
       done
       rm -f "$hardware"
       "$bin" bench --pipeline pipelines/visibility_msaa_4x.ron --scene builtin:spheres \

@@ -875,7 +875,8 @@ fn pass_names(json: &Value, pipeline: &str) -> Vec<String> {
 }
 
 /// `--shadows` and `--shadowed-lights` set the scene's shadows as `render` does: off drops
-/// the shadow passes from the measured plan, and the notes say what was measured.
+/// the shadow passes from the measured plan, and the notes say what was measured: among
+/// it, maps drawn every frame (the bench's frames are still, which would keep them).
 #[test]
 fn bench_takes_the_shadow_settings_of_render() {
     let run = |shadows: &[&str]| {
@@ -897,6 +898,12 @@ fn bench_takes_the_shadow_settings_of_render() {
     );
     let notes = shadowed["notes"].to_string();
     assert!(!notes.contains("shadows:"), "{notes}");
+    assert!(
+        notes.contains(
+            "shadow maps drawn every frame (shadow_cache=0 for pipelines/visibility_msaa_4x.ron)"
+        ),
+        "{notes}"
+    );
     let off = run(&[
         "--pipeline",
         "pipelines/visibility_msaa_4x.ron",

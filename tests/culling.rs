@@ -279,8 +279,12 @@ fn within(a: &Image, b: &Image, tolerance: u8) -> f64 {
 /// triangle's edge (the compute raster covers both sides, the hardware one) and in the
 /// bias's rounding: every pixel of 99.9% of each frame is to be within 2/255.
 fn assert_compute_shadows_match_the_hardware(scene: &'static str, small_texels: u32) {
-    let with_texels = format!("plugin: \"shadow_raster\", params: (small_texels: {small_texels}),");
-    let small_clusters: (&str, &str) = ("plugin: \"shadow_raster\",", with_texels.leak());
+    let with_texels =
+        format!("plugin: \"shadow_raster\",\n            params: (small_texels: {small_texels}, ");
+    let small_clusters: (&str, &str) = (
+        "plugin: \"shadow_raster\",\n            params: (",
+        with_texels.leak(),
+    );
     let small_atlas: &[(&str, u32)] = &[("shadow_map", 1024)];
     let features = features_of(scene);
     let compute = frames_of(

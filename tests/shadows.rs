@@ -881,12 +881,125 @@ fn the_shadow_map_parameter_sizes_the_atlas_and_its_keys() {
         run.stdout
     );
     explain("1000").expect(1).stderr_has(
-        "pipelines/parts/shadow_maps_compute.ron:50:33: error: pass \"shadow resolve\" \
+        "pipelines/parts/shadow_maps_compute.ron:59:33: error: pass \"shadow resolve\" \
          (shadow_resolve): slot \"atlas\": \"shadow_atlas\" is Absolute(1000, 1000), but \
          the shadow atlas must be Absolute(N, N), N a multiple of 32",
     );
     explain("0").expect(1).stderr_has(
-        "pipelines/parts/shadow_maps_compute.ron:16:40: error: parameter \"shadow_map\" is 0, \
+        "pipelines/parts/shadow_maps_compute.ron:21:40: error: parameter \"shadow_map\" is 0, \
          but the width of \"shadow_atlas\" must be 1 or more",
     );
+}
+
+/// While nothing the maps show moves, the GPU branch keeps the last frame's atlas: its
+/// compute raster draws nothing (it holds no buffer that frame) and the image is the one
+/// drawn every frame (`shadow_cache=0`), exactly. A moved caster, a turned light and a
+/// moved camera each draw the maps again, and each such frame is the image of maps drawn
+/// for it; a still frame after them keeps again.
+#[test]
+fn the_atlas_is_kept_while_nothing_moves() {
+    let gpu = gpu();
+    let scene = square_over_plane();
+    let render = |cache: u32| {
+        Render::new(DEFAULT_GPU, &scene.name, (N, N))
+            .with_scene(scene.clone())
+            .features(SceneFeatures::of(&scene).names())
+            .param("shadow_cache", cache)
+            .run(&gpu)
+    };
+    let (mut kept, mut drawn) = (render(1), render(0));
+    let still = kept.inputs();
+    let mut moved_caster = still.clone();
+    moved_caster.transforms[1] =
+        rgraph_scene::glam::DMat4::from_translation(DVec3::new(0.5, 0.0, 0.25));
+    let mut turned_light = moved_caster.clone();
+    turned_light.lights[0].direction = Vec3::new(1.0, -1.5, 0.5).normalize();
+    let mut moved_camera = turned_light.clone();
+    moved_camera.camera = Camera::look_at(
+        "from above, moved",
+        DVec3::new(0.5, 10.0, 0.0),
+        DVec3::new(0.5, 0.0, 0.0),
+        DVec3::NEG_Z,
+        still.camera.projection,
+    );
+    let frames = [
+        ("the first frame again", still, false),
+        ("a moved caster", moved_caster, true),
+        ("a turned light", turned_light.clone(), true),
+        ("the turned light again", turned_light, false),
+        ("a moved camera", moved_camera.clone(), true),
+        ("the moved camera again", moved_camera, false),
+    ];
+    let mut images = vec![kept.image(&gpu, "color")];
+    for (what, inputs, draws) in frames {
+        let report = kept.next(inputs.clone());
+        drawn.next(inputs);
+        let raster = (report.passes.iter())
+            .find(|p| p.name == "shadow raster")
+            .expect("a shadow raster pass");
+        assert_eq!(
+            raster.held_bytes > 0,
+            draws,
+            "{what}: the raster held {} bytes",
+            raster.held_bytes
+        );
+        let (image, expected) = (kept.image(&gpu, "color"), drawn.image(&gpu, "color"));
+        assert!(
+            image.pixels == expected.pixels,
+            "{what}: the kept atlas's image differs"
+        );
+        images.push(image);
+    }
+    // Not vacuous: the moved caster's shadow moved, and the turned light's too.
+    for (k, what) in [(2, "the caster"), (3, "the light")] {
+        let changed = (images[k - 1].pixels.iter().zip(&images[k].pixels))
+            .filter(|(a, b)| a != b)
+            .count();
+        assert!(changed > 100, "moving {what} changed {changed} pixels");
+    }
+}
+
+/// A kept atlas's slot is checked without a GPU (`rgraph validate`): `previous` must be a
+/// history, and `cache: true` needs the slot, each an error naming the pass.
+#[test]
+fn a_kept_atlas_must_be_a_history() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let write = |name: &str, previous: &str, params: &str| {
+        write_graph(
+            dir.path(),
+            name,
+            &format!(
+                r#"Graph(
+    resources: {{
+        "keys": Buffer(per_texel: 4, texels: (256, 256)),
+        "atlas": Texture(format: "r32float", size: Absolute(256, 256)),
+        "atlas_prev": History(of: "atlas"),
+        "other": Texture(format: "r32float", size: Absolute(256, 256)),
+    }},
+    passes: [
+        (name: "raster", plugin: "shadow_raster", outputs: {{ "keys": "keys" }}),
+        (name: "other", plugin: "clear", outputs: {{ "target": "other" }}),
+        (name: "resolve", plugin: "shadow_resolve", params: ({params}),
+         inputs: {{ "keys": "keys"{previous} }}, outputs: {{ "atlas": "atlas" }}),
+    ],
+    outputs: ["atlas", "other"],
+)"#
+            ),
+        )
+    };
+    assert_invalid(
+        &write("plain.ron", ", \"previous\": \"other\"", ""),
+        "pass \"resolve\" (shadow_resolve): slot \"previous\": \"other\" is not a history",
+    );
+    assert_invalid(
+        &write("missing.ron", "", "cache: true"),
+        "pass \"resolve\" (shadow_resolve): keeping the shadow atlas (cache: true) needs a \
+         \"previous\" input",
+    );
+    rgraph(&[
+        "validate",
+        &write("history.ron", ", \"previous\": \"atlas_prev\"", ""),
+    ])
+    .expect(0);
+    rgraph(&["validate", &write("off.ron", "", "cache: false")]).expect(0);
 }

@@ -89,6 +89,7 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         None => pipelines,
     };
     let pipelines = candidates::with_params(pipelines, &args.params, &mut notes);
+    let pipelines = candidates::drawing_shadow_maps(pipelines, &args.params, &mut notes);
     let session = Session::open(&AdapterChoice::resolve(args.adapter.as_deref()))
         .map_err(BenchError::Device)?;
     if let Some(degrees) = args.motion {

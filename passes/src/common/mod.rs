@@ -7,8 +7,9 @@
 //! ([`fullscreen_compute`]), the passes that draw the scene's meshes ([`scene_draw`]),
 //! the G-buffer layouts a lighting pass reads ([`gbuffer_layout`]), the opaque depth the
 //! passes after them read ([`opaque_depth`]), the lean G-buffer's emission encoding
-//! ([`rgb9e5`]), the compute raster's occlusion culling slots ([`occlusion`]), a pass
-//! parameter that turns work on or off ([`switch`]) and, with feature `gpu`, the device
+//! ([`rgb9e5`]), the compute raster's occlusion culling slots ([`occlusion`]), the slot of
+//! a shadow atlas kept while nothing moves ([`shadow_cache`]), a pass parameter that turns
+//! work on or off ([`switch`]) and, with feature `gpu`, the device
 //! helpers of their recordings ([`gpu`]). Nothing here imports a pass.
 
 pub(crate) mod ao;
@@ -26,6 +27,7 @@ pub(crate) mod opaque_depth;
 pub(crate) mod plugin;
 pub(crate) mod rgb9e5;
 pub(crate) mod scene_draw;
+pub(crate) mod shadow_cache;
 pub(crate) mod shadow_depth;
 pub(crate) mod shadows;
 pub(crate) mod switch;

@@ -57,7 +57,7 @@ pub use materials::MaterialState;
 pub use mesh::MeshDraw;
 pub use particles::ParticleBuffer;
 pub use screen_rect::PixelRect;
-pub use shadow_work::{MeshRuns, ShadowOptions, ShadowWork, ViewWork, ITEM_TRIANGLES};
+pub use shadow_work::{MeshRuns, ShadowOptions, ShadowStamp, ShadowWork, ViewWork, ITEM_TRIANGLES};
 pub use volumes::{VolumeMesh, VolumeShape};
 
 use crate::host::{FrameInputs, Host};
@@ -263,6 +263,9 @@ struct Frame {
     /// Whether the deformation ran for this frame (its pose differs from the last
     /// frame's, or this is the upload's).
     deformed: bool,
+    /// How many frames since the upload's moved a shadow caster: changed a mesh's
+    /// transform or the deformation's pose ([`ShadowStamp`]).
+    casters_moved: u64,
 }
 
 impl Frame {
@@ -278,6 +281,13 @@ impl Frame {
         let eye = inputs.camera.position;
         let deform = deform::DeformFrame::new(scene, &inputs, reaches);
         let previous_meshes = previous.map(|p| (&p.meshes, p.inputs.transforms.as_slice()));
+        let casters_moved = match previous {
+            None => 0,
+            Some(p) if p.inputs.transforms == inputs.transforms && p.deform == deform => {
+                p.casters_moved
+            }
+            Some(p) => p.casters_moved + 1,
+        };
         let lights = lights::LightFrame::new(
             scene,
             &inputs.lights,
@@ -296,6 +306,7 @@ impl Frame {
             lights,
             deform,
             deformed: false,
+            casters_moved,
             inputs,
             generation,
         }
@@ -489,11 +500,14 @@ impl GpuScene {
         let boxes: Vec<_> = self.mesh_draws().map(|(draw, _)| draw.bounds).collect();
         let shadowed = &self.frame.lights.shadowed;
         let views = shadows::views(shadowed, camera, aspect, atlas, &boxes);
-        queue.write_buffer(
-            &self.upload.shadow_maps.views,
-            0,
-            bytemuck::cast_slice(&views),
-        );
+        let bytes: &[u8] = bytemuck::cast_slice(&views);
+        queue.write_buffer(&self.upload.shadow_maps.views, 0, bytes);
+        let stamp = ShadowStamp {
+            views: bytes.to_vec(),
+            atlas,
+            options,
+            casters_moved: self.frame.casters_moved,
+        };
         let tiles = shadows::tiles(shadowed, atlas);
         let views = tiles
             .into_iter()
@@ -508,7 +522,7 @@ impl GpuScene {
                     .collect(),
             })
             .collect();
-        ShadowWork { views }
+        ShadowWork { views, stamp }
     }
 
     /// What the view of clip space `clip_from_world`, `side` texels wide, draws of the

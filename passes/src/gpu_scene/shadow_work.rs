@@ -25,10 +25,27 @@ pub struct ShadowOptions {
 }
 
 /// The frame's shadow maps, view by view, in view order.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct ShadowWork {
     /// By view index: the views' order in the light data and the views' uniform.
     pub views: Vec<ViewWork>,
+    /// What the maps show: two frames' works with equal stamps draw the same atlas.
+    pub stamp: ShadowStamp,
+}
+
+/// Everything a frame's shadow atlas is drawn from, to tell whether the last frame's
+/// atlas still holds this frame's maps (`shadow_raster` and `shadow_resolve` keep it
+/// then): the views as the GPU reads them (each one's clip space, tile in the atlas and
+/// parameters, which follow the camera, the lights and the casters' bounds), the atlas's
+/// side and the options, and the count of frames whose casters moved
+/// ([`GpuScene`](super::GpuScene)'s frames count a change of any mesh's transform or of
+/// the deformation's pose). The scene's geometry is the upload's, the same every frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShadowStamp {
+    pub(super) views: Vec<u8>,
+    pub(super) atlas: u32,
+    pub(super) options: ShadowOptions,
+    pub(super) casters_moved: u64,
 }
 
 /// One view: its atlas tile and what it draws.
@@ -63,6 +80,12 @@ impl MeshRuns {
 }
 
 impl ShadowWork {
+    /// Whether a view draws an alpha MASK mesh: the hardware draws those every frame
+    /// (`shadow_maps`), so such a frame's atlas is never kept.
+    pub fn draws_masked(&self) -> bool {
+        (self.views.iter()).any(|view| view.meshes.iter().any(|mesh| mesh.masked))
+    }
+
     /// The compute raster's items for the small clusters: per view, per small run,
     /// chunks of at most [`ITEM_TRIANGLES`] triangles as (view, instance, first index,
     /// triangles), in `shadow_compute.wgsl`'s `Item` layout.

@@ -6,9 +6,15 @@
 //! (name: "shadow raster", plugin: "shadow_raster",
 //!  when: "shadows & !cpu_device",
 //!  params: (slope_bias: 2.0,     // the default, as shadow_maps': the same depth bias
-//!           small_texels: 16),   // the default: the most texels a small cluster spans
+//!           small_texels: 16,    // the default: the most texels a small cluster spans
+//!           cache: true),        // the default with `previous`: nothing drawn while nothing moved
+//!  inputs: { "previous": "shadow_atlas_prev" },  // History(of: "shadow_atlas"), with cache
 //!  outputs: { "keys": "shadow_keys" })   // Buffer(size: 4 N^2) for an N-texel atlas
 //! ```
+//!
+//! With `cache`, a frame whose shadow work has the stamp of the last one drawn, and whose
+//! `previous` atlas was not reset, draws nothing: `shadow_resolve` copies that atlas
+//! (common/shadow_cache.rs says when, and why the raster reads the history).
 //!
 //! Each frame the pass clears the keys, asks the scene for the frame's shadow work
 //! (gpu_scene/shadow_work.rs: each view's runs of each opaque mesh, culled by the view
@@ -31,10 +37,12 @@
 use serde::Deserialize;
 
 use rgraph_core::file::{Plugin, PluginError, Slots};
-use rgraph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, PassKind};
+use rgraph_core::{Buffer, BufferHandle, BufferRole, PassBuilder, PassKind, TextureHandle};
 
 use crate::common::plugin::Shared;
+use crate::common::shadow_cache;
 use crate::common::shadow_depth::{self, check_slope_bias};
+use crate::common::switch::Switch;
 use crate::shaders;
 
 pub struct ShadowRaster(pub(crate) Shared);
@@ -50,6 +58,10 @@ pub struct ShadowRasterParams {
     /// triangle (each loops over its triangle's texels, at most this squared).
     #[serde(default = "small_texels")]
     pub small_texels: u32,
+    /// Whether the last frame's atlas is kept while nothing it shows moved: by default
+    /// where the file gives a `previous` input.
+    #[serde(default)]
+    pub cache: Option<Switch>,
 }
 
 fn small_texels() -> u32 {
@@ -63,6 +75,8 @@ pub(crate) struct ShadowRasterDispatch {
     pub keys: BufferHandle,
     pub slope_bias: f32,
     pub small_texels: u32,
+    /// The last frame's atlas, whose reset the pass asks about, where it is kept.
+    pub previous: Option<TextureHandle>,
 }
 
 impl Plugin for ShadowRaster {
@@ -93,11 +107,13 @@ impl Plugin for ShadowRaster {
             write: true,
         };
         let keys = slots.write::<Buffer>("keys", |t| pass.buffer(t.handle, role))?;
+        let previous = shadow_cache::previous(params.cache, pass, slots)?;
         let dispatch = ShadowRasterDispatch {
             source: shaders::SHADOW_COMPUTE.compose(1)?.source().to_owned(),
             keys,
             slope_bias: params.slope_bias,
             small_texels: params.small_texels,
+            previous,
         };
         self.0.record(pass, dispatch);
         Ok(())
@@ -113,6 +129,7 @@ mod gpu {
 
     use super::ShadowRasterDispatch;
     use crate::common::gpu::pipeline::{module, pipeline_layout};
+    use crate::common::gpu::shadow_cache::Kept;
     use crate::common::gpu::storage::{storage_group, storage_layout};
     use crate::common::gpu::{
         compute_pipeline, workgroup_grid, Compute, Frame, Recorded, Recorder,
@@ -132,6 +149,7 @@ mod gpu {
         params: wgpu::Buffer,
         /// The huge triangles handed on and their chunks, for an atlas of this side.
         handed_on: Option<(u32, [wgpu::Buffer; 2])>,
+        kept: Kept,
     }
 
     /// Texels of a huge triangle's chunk (shadow_compute.wgsl's `HUGE_CHUNK`).
@@ -198,6 +216,7 @@ mod gpu {
                 layout,
                 items: None,
                 handed_on: None,
+                kept: Kept::default(),
                 params: device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("shadow_raster params"),
                     size: 16,
@@ -222,6 +241,12 @@ mod gpu {
                 small_texels: Some(f64::from(self.small_texels)),
             };
             let work = scene.shadow_work(resources.queue, resources.output_size(), atlas, options);
+            if let Some(previous) = self.previous {
+                // The keys are left as they are: shadow_resolve copies the kept atlas.
+                if state.kept.keeps(&work, resources.history_reset(previous)) {
+                    return Ok(());
+                }
+            }
             let mut items = work.small_items();
             let small = u32::try_from(items.len()).map_err(|_| "too many shadow items")?;
             items.extend(work.large_items());

@@ -5,11 +5,17 @@
 //! ```ron
 //! (name: "shadow resolve", plugin: "shadow_resolve",
 //!  when: "shadows",
+//!  params: (cache: true),                 // the default with `previous`: below
 //!  inputs: { "keys": "shadow_keys",       // 4 bytes a texel of the atlas
-//!            "depth": "shadow_depth" },   // optional: depth32float, the atlas's size
+//!            "depth": "shadow_depth",     // optional: depth32float, the atlas's size
+//!            "previous": "shadow_atlas_prev" },  // History(of: "shadow_atlas"), with cache
 //!  optional: ["depth"],
 //!  outputs: { "atlas": "shadow_atlas" })  // r32float, Absolute(N, N)
 //! ```
+//!
+//! With `cache`, a frame whose shadow work has the stamp of the last one drawn copies
+//! `previous`, the last frame's atlas, and reads no key: `shadow_raster` drew nothing
+//! (common/shadow_cache.rs).
 //!
 //! A compute pass, an invocation a texel, which stores the atlas rather than drawing it:
 //! no depth format is a storage texture, and the hardware's depth writes are what the
@@ -24,15 +30,22 @@ use rgraph_core::types::TextureFormat;
 use rgraph_core::{BufferHandle, PassBuilder, PassKind, Size, TextureHandle};
 
 use crate::common::plugin::Shared;
+use crate::common::shadow_cache;
 use crate::common::shadow_depth::{check_atlas, keys};
+use crate::common::switch::Switch;
 use crate::common::textures::{self, Want};
 use crate::shaders;
 
 pub struct ShadowResolve(pub(crate) Shared);
 
-#[derive(Clone, Debug, Default, Deserialize)]
+#[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct ShadowResolveParams {}
+pub struct ShadowResolveParams {
+    /// Whether the last frame's atlas is copied while nothing it shows moved, as
+    /// `shadow_raster`'s `cache`: by default where the file gives a `previous` input.
+    #[serde(default)]
+    pub cache: Option<Switch>,
+}
 
 /// The pass as set up: what its `gpu` module records.
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
@@ -43,6 +56,8 @@ pub(crate) struct ShadowResolveDispatch {
     /// optional read: dropped in scenes without them).
     pub depth: Option<TextureHandle>,
     pub atlas: TextureHandle,
+    /// The last frame's atlas, copied where it is kept.
+    pub previous: Option<TextureHandle>,
 }
 
 impl Plugin for ShadowResolve {
@@ -55,7 +70,7 @@ impl Plugin for ShadowResolve {
 
     fn setup(
         &self,
-        _: ShadowResolveParams,
+        params: ShadowResolveParams,
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
@@ -69,11 +84,13 @@ impl Plugin for ShadowResolve {
             Some(_) => Some(depth(pass, slots, desc.size)?),
             None => None,
         };
+        let previous = shadow_cache::previous(params.cache, pass, slots)?;
         let dispatch = ShadowResolveDispatch {
             source: shaders::SHADOW_RESOLVE.compose(1)?.source().to_owned(),
             keys,
             depth,
             atlas,
+            previous,
         };
         self.0.record(pass, dispatch);
         Ok(())
@@ -103,14 +120,18 @@ fn depth(
 
 #[cfg(feature = "gpu")]
 mod gpu {
-    //! Recording: the pipeline with the depth or without, as the plan gives it, each
-    //! made the first time it records.
+    //! Recording: the pipeline with the depth, without it, or copying the kept atlas,
+    //! as the plan and the frame give it, each made the first time it records.
+
+    use std::sync::Arc;
 
     use super::ShadowResolveDispatch;
     use crate::common::gpu::bindings::TextureBindings;
     use crate::common::gpu::pipeline::{module, pipeline_layout};
+    use crate::common::gpu::shadow_cache::Kept;
     use crate::common::gpu::{compute_pipeline, Compute, Frame, Recorded, Recorder};
     use crate::common::textures::{Input, Texels};
+    use crate::gpu_scene::GpuScene;
     use rgraph_core::Aspect;
 
     /// A variant's bindings and pipeline.
@@ -119,42 +140,67 @@ mod gpu {
         pipeline: wgpu::ComputePipeline,
     }
 
+    pub(crate) struct State {
+        /// From the keys, from the keys and the depth, and the kept atlas copied.
+        variants: [Option<Variant>; 3],
+        kept: Kept,
+    }
+
     impl Recorder for ShadowResolveDispatch {
         type Stage = Compute;
-        type Scene = ();
-        /// Without the depth, and with it.
-        type State = [Option<Variant>; 2];
+        // The frame's shadow work, whose stamp says whether the atlas is kept.
+        type Scene = Arc<GpuScene>;
+        type State = State;
 
-        fn reads_scene(&self) -> bool {
-            false
+        fn build(&self, _: &Frame<'_, '_, Self>) -> Result<State, String> {
+            Ok(State {
+                variants: [None, None, None],
+                kept: Kept::default(),
+            })
         }
 
-        fn build(&self, _: &Frame<'_, '_, Self>) -> Result<Self::State, String> {
-            Ok([None, None])
-        }
-
-        fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
+        fn record(&self, state: &mut State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
             let resources = frame.resources;
-            let depth = self.depth.filter(|d| resources.has(*d));
-            let (index, entry) = match depth {
-                None => (0, "cs_resolve_keys"),
-                Some(_) => (1, "cs_resolve_both"),
+            let side = resources.shape(self.atlas).width;
+            let work = frame
+                .scene
+                .compute_shadow_work(resources.output_size(), side);
+            let kept = match (self.previous, work) {
+                (Some(previous), Some(work)) => {
+                    state.kept.keeps(&work, resources.history_reset(previous))
+                }
+                _ => false,
             };
-            let variant = state[index].get_or_insert_with(|| {
+            let depth = self.depth.filter(|d| resources.has(*d));
+            let (index, entry) = match (kept, depth) {
+                (true, _) => (2, "cs_keep"),
+                (false, None) => (0, "cs_resolve_keys"),
+                (false, Some(_)) => (1, "cs_resolve_both"),
+            };
+            let variant = state.variants[index].get_or_insert_with(|| {
                 let mut inputs = vec![Input {
                     binding: 2,
                     texture: self.atlas,
                     aspect: Aspect::All,
                     texels: Texels::Store,
                 }];
-                inputs.extend(depth.map(|texture| Input {
-                    binding: 1,
+                let read = |binding, texture| Input {
+                    binding,
                     texture,
                     aspect: Aspect::All,
                     texels: Texels::Float,
-                }));
-                let keys = [(0, self.keys)];
-                let bindings = TextureBindings::with_buffers(resources, &inputs, &keys, &[]);
+                };
+                let keys: &[_] = match kept {
+                    true => {
+                        inputs.extend(self.previous.map(|texture| read(3, texture)));
+                        &[]
+                    }
+                    false => {
+                        inputs.extend(depth.map(|texture| read(1, texture)));
+                        &[(0, self.keys)]
+                    }
+                };
+                let bindings = TextureBindings::with_buffers(resources, &inputs, keys, &[]);
                 let device = frame.device;
                 let layout = pipeline_layout(device, &[Some(&bindings.layout)]);
                 let module = module(device, "shadow resolve", &self.source);
@@ -165,7 +211,6 @@ mod gpu {
             let pass = &mut *frame.pass;
             pass.set_pipeline(&variant.pipeline);
             pass.set_bind_group(0, &variant.bindings.bind_group(resources), &[]);
-            let side = resources.shape(self.atlas).width;
             pass.dispatch_workgroups(side.div_ceil(8), side.div_ceil(8), 1);
             Ok(())
         }

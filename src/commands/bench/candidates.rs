@@ -192,6 +192,46 @@ pub fn with_params(
     expanded
 }
 
+/// The graph parameter that keeps a shadow atlas while nothing moves
+/// (pipelines/parts/shadow_maps_compute.ron).
+const SHADOW_CACHE: &str = "shadow_cache";
+
+/// `pipelines` drawing their shadow maps every frame, unless `--param` gave
+/// [`SHADOW_CACHE`]: the bench's frames are still, so a kept atlas would leave the maps'
+/// cost out of every frame but the first, and out of the comparison with pipelines that
+/// draw theirs each frame. A note names the files so measured.
+pub fn drawing_shadow_maps(
+    pipelines: Vec<Candidate>,
+    given: &[(String, Vec<u32>)],
+    notes: &mut Vec<String>,
+) -> Vec<Candidate> {
+    if given.iter().any(|(name, _)| name == SHADOW_CACHE) {
+        return pipelines;
+    }
+    let mut files = Vec::new();
+    let pipelines = (pipelines.into_iter())
+        .map(|mut candidate| {
+            let declared = declared_params(&candidate.path, &registry()).unwrap_or_default();
+            if declared.get(SHADOW_CACHE).is_some() {
+                candidate.params = candidate.params.clone().with(SHADOW_CACHE, 0);
+                let file = candidate.path.display().to_string();
+                if !files.contains(&file) {
+                    files.push(file);
+                }
+            }
+            candidate
+        })
+        .collect();
+    if !files.is_empty() {
+        notes.push(format!(
+            "shadow maps drawn every frame ({SHADOW_CACHE}=0 for {}): still frames would keep \
+             the last frame's atlas; --param {SHADOW_CACHE}=0,1 measures both",
+            files.join(", ")
+        ));
+    }
+    pipelines
+}
+
 fn stem(path: &Path) -> String {
     path.file_stem().map_or_else(
         || path.display().to_string(),

@@ -6,8 +6,8 @@
 //! that draw the scene's meshes ([`scene_draw`]), the opaque draws as compute
 //! rasterisers see them ([`raster_draws`]), their triangles binned to tiles
 //! ([`tile_bins`]) and culled by occlusion ([`occlusion`]), groups of storage buffers
-//! ([`storage`]), and a pass set up with and without its optional shadow atlas
-//! ([`shadowed`]).
+//! ([`storage`]), a pass set up with and without its optional shadow atlas
+//! ([`shadowed`]), and what the atlas's passes remember to keep it ([`shadow_cache`]).
 
 pub(crate) mod bindings;
 pub(crate) mod input_pass;
@@ -16,6 +16,7 @@ pub(crate) mod pipeline;
 pub(crate) mod raster_draws;
 pub(crate) mod recorder;
 pub(crate) mod scene_draw;
+pub(crate) mod shadow_cache;
 pub(crate) mod shadowed;
 pub(crate) mod storage;
 pub(crate) mod tile_bins;
