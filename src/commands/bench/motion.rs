@@ -161,9 +161,15 @@ pub fn bench(args: &BenchArgs, degrees: f64, session: &Session) -> Result<PathBu
                 ),
                 false => None,
             };
-            for d in &mut drawn {
-                let (image, gpu_ns) =
-                    frame(&mut d.prepared).map_err(|e| failed(spec, format!("{}: {e}", d.name)))?;
+            // Every pipeline's frame first, back to back after the reference's, then the
+            // images compared: a GPU left idle while the CPU computes FLIP lowers its
+            // clocks, and the frame after would be timed at them.
+            let images = (drawn.iter_mut())
+                .map(|d| {
+                    frame(&mut d.prepared).map_err(|e| failed(spec, format!("{}: {e}", d.name)))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            for (d, (image, gpu_ns)) in drawn.iter_mut().zip(images) {
                 if let Some(reference_image) = &reference_image {
                     let flip = flip_mean(reference_image, &image);
                     match index + 1 == STILL_FRAMES {
