@@ -1,6 +1,7 @@
 //! What a glTF scene may read, from the command line: `--asset-root` widens the folder its
-//! URIs may reach, `--max-asset-bytes` caps each file read. Checked through `explain
-//! --scene`, which loads the scene without a GPU.
+//! URIs may reach, `--max-asset-bytes` caps each file read; and what the loader warns of,
+//! after the file's name. Checked through `explain --scene`, which loads the scene without
+//! a GPU.
 
 use crate::cli_support;
 
@@ -103,4 +104,21 @@ fn bench_takes_the_same_asset_flags() {
         .stderr_has("URI `../lights_cameras.bin` points to ");
     let root = dir.path().to_str().unwrap();
     bench(&["--asset-root", root]).expect(0);
+}
+
+/// A loader's warning names the file it is about, as a compiler's do (`FILE: warning:
+/// ...`): here an extension the file uses that the renderer does not implement.
+#[test]
+fn a_loader_warning_names_its_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string("tests/fixtures/points_lines/mixed.gltf").unwrap();
+    let used = "\"KHR_materials_unlit\"";
+    assert!(text.contains(used));
+    let text = text.replacen(used, "\"KHR_materials_unlit\", \"KHR_materials_volume\"", 1);
+    let gltf = dir.path().join("volume.gltf");
+    std::fs::write(&gltf, text).unwrap();
+    explain(&gltf, &[]).expect(0).stderr_has(&format!(
+        "{}: warning: glTF extension KHR_materials_volume is not implemented",
+        gltf.display()
+    ));
 }

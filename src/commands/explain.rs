@@ -171,6 +171,9 @@ fn analyse(
             _ => CommandError::Invalid(message),
         }
     })?;
+    for warning in &scene.warnings {
+        eprintln!("{spec}: warning: {warning}");
+    }
     Ok((spec.to_owned(), Analysis::of(&scene, output)))
 }
 

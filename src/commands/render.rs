@@ -213,7 +213,8 @@ fn draws_blended(scene: &Scene) -> bool {
     })
 }
 
-/// The scene; its statistics and the loader's warnings go to stderr.
+/// The scene; its statistics and the loader's warnings go to stderr, each warning after
+/// the file's name as a compiler's do (`FILE: warning: ...`).
 fn load_scene(
     spec: &str,
     assets: &AssetArgs,
@@ -222,7 +223,7 @@ fn load_scene(
     let scene = assets.load(spec).map_err(FrameError::Scene)?;
     progress.note(format!("scene {spec}: {}", scene.stats()));
     for warning in &scene.warnings {
-        progress.note(format!("warning: {warning}"));
+        progress.note(format!("{spec}: warning: {warning}"));
     }
     Ok(Arc::new(scene))
 }

@@ -104,7 +104,7 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
         .load(&args.frame.scene)
         .map_err(|e| RenderError::Frame(FrameError::Scene(e)))?;
     for warning in &scene.warnings {
-        eprintln!("warning: {warning}");
+        eprintln!("{}: warning: {warning}", args.frame.scene);
     }
     let overrides = Overrides {
         background: args.frame.background,
