@@ -21,11 +21,13 @@ pub(crate) const ATLAS: &[TextureFormat] = &[TextureFormat::Depth32Float, Textur
 
 /// Where the passes bind it: group 1 of the light passes, after every other input of
 /// theirs (light_tiled's list of edge pixels is 12); group 2 of a pass that draws the
-/// meshes (forward), whose group 1 is the material's.
+/// meshes (forward), whose group 1 is the material's. Its nearest sampler, for
+/// `textureGather`, follows it.
 const BINDING: u32 = 13;
+const SAMPLER: u32 = 14;
 
 /// The `shadows` slot when the file gives one: declared sampled (one sample), bound at
-/// [`BINDING`].
+/// [`BINDING`] and gathered through a nearest sampler at [`SAMPLER`].
 pub(crate) fn input(
     slots: &mut Slots<'_>,
     pass: &mut PassBuilder<'_>,
@@ -40,7 +42,7 @@ pub(crate) fn input(
         binding: BINDING,
         texture: atlas,
         aspect: Aspect::All,
-        texels: Texels::Float,
+        texels: Texels::Gathered { sampler: SAMPLER },
     }))
 }
 
@@ -52,6 +54,7 @@ pub(crate) fn wgsl(input: Option<&Input>, group: u32, filter: ShadowFilter) -> S
         Some(input) => format!(
             "// Generated: the shadows input (common/shadows.rs).\n\
              @group({group}) @binding({}) var shadow_atlas: texture_2d<f32>;\n\
+             @group({group}) @binding({SAMPLER}) var shadow_texels: sampler;\n\
              const SHADOW_FILTER: u32 = {}u;\n{}",
             input.binding,
             filter.constant(),

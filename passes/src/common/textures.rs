@@ -215,6 +215,10 @@ pub(crate) enum Texels {
     /// clamp-to-edge linear sampler bound at `sampler` (post filters such as FXAA, whose
     /// taps between texels rely on the filtering hardware).
     Filtered { sampler: u32 },
+    /// `f32` of a single-sampled format, filterable or not, read four texels at a time by
+    /// `textureGather` through a clamp-to-edge nearest sampler bound at `sampler` (the
+    /// shadow atlas's percentage-closer filter, which compares each texel itself).
+    Gathered { sampler: u32 },
     /// `u32` (`GTexU`): the stencil aspect.
     Uint,
     /// The depth aspect (`GTexD`).

@@ -2,7 +2,8 @@
 // (the `shadow_maps` pass's depth32float, or shadow_resolve's r32float on a GPU). Composed
 // after common.wgsl, scene.wgsl, brdf.wgsl and shadow_views.wgsl, with a generated block
 // binding the atlas as `shadow_atlas: texture_2d<f32>` (either format binds so: texels
-// loaded, never filtered) and the filter as SHADOW_FILTER (common/shadows.rs).
+// loaded or gathered, never filtered), its nearest sampler `shadow_texels`, and the filter
+// as SHADOW_FILTER (common/shadows.rs).
 
 // LightData::shadow of a light without a shadow map.
 const NO_SHADOW: u32 = 0xffffffffu;
@@ -100,20 +101,28 @@ fn view_visibility(v: ShadowView, s: Surface, light: LightData) -> f32 {
     // Nine bilinear comparison taps one texel apart, as a comparison sampler would take
     // them, summed texel by texel: the 4 x 4 texels from one left of and above the
     // centre tap's, each weighed by how many taps cover it and how much (per axis
-    // 1 - f, 1, 1, f for the centre tap's bilinear fraction f; 9 in all).
+    // 1 - f, 1, 1, f for the centre tap's bilinear fraction f; 9 in all), read as four
+    // gathers of 2 x 2 texels rather than sixteen loads.
     let corner = at - 0.5;
     let first = vec2<i32>(floor(corner)) - 1;
     let f = fract(corner);
     let wx = vec4<f32>(1.0 - f.x, 1.0, 1.0, f.x);
     let wy = vec4<f32>(1.0 - f.y, 1.0, 1.0, f.y);
+    let z = vec4<f32>(ndc.z);
     var lit = 0.0;
-    for (var y = 0; y < 4; y++) {
-        var row = 0.0;
-        for (var x = 0; x < 4; x++) {
-            let stored = shadow_depth(first + vec2<i32>(x, y));
-            row += select(0.0, wx[x], ndc.z <= stored);
+    for (var qy = 0; qy < 2; qy++) {
+        for (var qx = 0; qx < 2; qx++) {
+            // The corner shared by the quad's four texels: its gather reads them, as
+            // (left, bottom), (right, bottom), (right, top), (left, top), the top being
+            // the lesser row.
+            let quad = first + 2 * vec2<i32>(qx, qy);
+            let stored = textureGather(0, shadow_atlas, shadow_texels, vec2<f32>(quad + 1) / size);
+            let seen = select(vec4<f32>(0.0), vec4<f32>(1.0), z <= stored);
+            let left = wx[2 * qx];
+            let right = wx[2 * qx + 1];
+            let top = wy[2 * qy] * (left * seen.w + right * seen.z);
+            lit += top + wy[2 * qy + 1] * (left * seen.x + right * seen.y);
         }
-        lit += wy[y] * row;
     }
     return lit / 9.0;
 }

@@ -1,6 +1,7 @@
 //! A pass's textures as one bind group (group 1 of the deferred shaders, render or
 //! compute), made again every frame because the pool may lend a slot different memory,
-//! with the linear sampler of any input read filtered and any storage buffers it reads.
+//! with the sampler of any input read filtered (linear) or gathered (nearest) and any
+//! storage buffers it reads.
 
 use rgraph_core::gpu::FrameResources;
 use rgraph_core::BufferHandle;
@@ -15,9 +16,18 @@ pub(crate) struct TextureBindings {
     /// Bindings of read-write storage buffers the pass owns (given to
     /// [`bind_group_with`](Self::bind_group_with)).
     owned: Vec<u32>,
-    /// The clamp-to-edge linear sampler `Texels::Filtered` inputs are read through; made
-    /// only for passes that have one.
-    sampler: Option<wgpu::Sampler>,
+    /// The clamp-to-edge samplers the inputs are read through, with their bindings:
+    /// linear for `Texels::Filtered`, nearest for `Texels::Gathered`.
+    samplers: Vec<(u32, wgpu::Sampler)>,
+}
+
+/// A sampler binding of `bindings`' inputs: its binding, and whether it filters.
+fn samplers(bindings: &[Input]) -> impl Iterator<Item = (u32, bool)> + '_ {
+    bindings.iter().filter_map(|b| match b.texels {
+        Texels::Filtered { sampler } => Some((sampler, true)),
+        Texels::Gathered { sampler } => Some((sampler, false)),
+        _ => None,
+    })
 }
 
 impl TextureBindings {
@@ -50,7 +60,7 @@ impl TextureBindings {
                     ty: match b.texels {
                         // textureLoad only: nothing is filtered, and r32float is not
                         // filterable.
-                        Texels::Float => {
+                        Texels::Float | Texels::Gathered { .. } => {
                             sampled(wgpu::TextureSampleType::Float { filterable: false })
                         }
                         Texels::Filtered { .. } => {
@@ -84,21 +94,31 @@ impl TextureBindings {
             }),
         );
         entries.extend(
-            samplers(bindings).map(|binding| wgpu::BindGroupLayoutEntry {
+            samplers(bindings).map(|(binding, filtering)| wgpu::BindGroupLayoutEntry {
                 binding,
                 visibility,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                ty: wgpu::BindingType::Sampler(match filtering {
+                    true => wgpu::SamplerBindingType::Filtering,
+                    false => wgpu::SamplerBindingType::NonFiltering,
+                }),
                 count: None,
             }),
         );
-        let sampler = (samplers(bindings).next().is_some()).then(|| {
-            resources.device.create_sampler(&wgpu::SamplerDescriptor {
-                label: Some("deferred pass inputs (linear)"),
-                mag_filter: wgpu::FilterMode::Linear,
-                min_filter: wgpu::FilterMode::Linear,
-                ..Default::default()
+        let samplers = samplers(bindings)
+            .map(|(binding, filtering)| {
+                let (label, filter) = match filtering {
+                    true => ("deferred pass inputs (linear)", wgpu::FilterMode::Linear),
+                    false => ("deferred pass inputs (gathered)", wgpu::FilterMode::Nearest),
+                };
+                let sampler = resources.device.create_sampler(&wgpu::SamplerDescriptor {
+                    label: Some(label),
+                    mag_filter: filter,
+                    min_filter: filter,
+                    ..Default::default()
+                });
+                (binding, sampler)
             })
-        });
+            .collect();
         let layout = resources
             .device
             .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -110,7 +130,7 @@ impl TextureBindings {
             bindings: bindings.to_vec(),
             buffers: buffers.to_vec(),
             owned: owned.to_vec(),
-            sampler,
+            samplers,
         }
     }
 
@@ -149,14 +169,12 @@ impl TextureBindings {
                 resource: buffer.as_entire_binding(),
             }
         }));
-        if let Some(sampler) = &self.sampler {
-            entries.extend(
-                samplers(&self.bindings).map(|binding| wgpu::BindGroupEntry {
-                    binding,
-                    resource: wgpu::BindingResource::Sampler(sampler),
-                }),
-            );
-        }
+        entries.extend(
+            (self.samplers.iter()).map(|(binding, sampler)| wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: wgpu::BindingResource::Sampler(sampler),
+            }),
+        );
         resources
             .device
             .create_bind_group(&wgpu::BindGroupDescriptor {
@@ -165,12 +183,4 @@ impl TextureBindings {
                 entries: &entries,
             })
     }
-}
-
-/// The sampler bindings of `bindings`' filtered inputs.
-fn samplers(bindings: &[Input]) -> impl Iterator<Item = u32> + '_ {
-    bindings.iter().filter_map(|b| match b.texels {
-        Texels::Filtered { sampler } => Some(sampler),
-        _ => None,
-    })
 }
