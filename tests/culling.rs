@@ -682,7 +682,8 @@ fn occlusion_culling_wired_wrongly_is_an_error() {
         ),
         (
             "params: (occlusion: Param(name: \"occlusion\", default: 0), micro: Param(name: \
-             \"micro\", default: 1)),\n            \
+             \"micro\", default: 1),\n                     \
+             micro_pixels: Param(name: \"micro_pixels\", default: 4)),\n            \
              when: \"!untabled_textures & !cpu_device & blend\",\n            \
              inputs: { \"pyramid\": \"depth_pyramid_prev\" },\n            \
              outputs: { \"samples\": \"samples\", \"occluded\": \"occluded\" },",
@@ -780,9 +781,9 @@ fn micro_clusters_asked_for_wrongly_are_errors() {
             "micro: true is for a first raster pass",
         ),
         (
-            "micro: Param(name: \"micro\", default: 1)),\n            \
+            "micro_pixels: Param(name: \"micro_pixels\", default: 4)),\n            \
              when: \"!untabled_textures & !cpu_device & !blend & !points_lines\",",
-            "micro: true, micro_pixels: 17),\n            \
+            "micro_pixels: 17),\n            \
              when: \"!untabled_textures & !cpu_device & !blend & !points_lines\",",
             "visibility",
             "micro_pixels must be 1 to 16, got 17",
