@@ -778,7 +778,8 @@ fn micro_clusters_asked_for_wrongly_are_errors() {
             "default: 0), micro: true),\n            when: \"!untabled_textures & !cpu_device\",\n            \
              inputs: { \"samples\": \"samples\", \"pyramid\"",
             "visibility (second phase)",
-            "micro: true is for a first raster pass",
+            "micro: true is for a first raster pass: the second phase of occlusion culling \
+             adds to keys already flagged",
         ),
         (
             "micro_pixels: Param(name: \"micro_pixels\", default: 4)),\n            \

@@ -231,7 +231,8 @@ impl Plugin for VisibilityCompute {
         }
         if micro && modified {
             return Err(PluginError::Invalid(
-                "micro: true is for a first raster pass: the second phase of occlusion                  culling adds to keys already flagged, which 64-bit atomics cannot"
+                "micro: true is for a first raster pass: the second phase of occlusion \
+                 culling adds to keys already flagged, which 64-bit atomics cannot"
                     .into(),
             ));
         }
