@@ -9,14 +9,14 @@
 // angles (a rotation, uniform scale and translation). A cluster that lies within the
 // depth planes and whose box touches at most CLUSTER_TILES tiles is listed whole in each
 // of those tiles' cluster lists (WHOLE_CLUSTERS): the tile sets its triangles up itself,
-// and neither their records nor one count per triangle and tile are written. A cluster
-// within the depth planes whose pixel bounds hold at most MICRO_PIXELS pixels per
-// triangle is micro: listed in `micro` for micro_raster.wgsl, a triangle an invocation,
-// and its tiles marked in `micro_tiles` (whose keys that pass clears and the tile raster
-// merges with its own). Binning per
+// and neither their records nor one count per triangle and tile are written. Binning per
 // cluster is what keeps a dense mesh's binning cheap: at one triangle per pixel, a tile's
-// count was raised by hundreds of triangles, each an atomic on the same word. Other
-// clusters go to the `fallback` list, whose triangles are binned one by one:
+// count was raised by hundreds of triangles, each an atomic on the same word. Before
+// that test, a cluster within the depth planes whose pixel bounds hold at most
+// MICRO_PIXELS pixels per triangle is micro: listed in `micro` for micro_raster.wgsl, a
+// triangle an invocation, and its tiles marked in `micro_tiles` (whose keys that pass
+// clears and the tile raster merges with its own). Other clusters go to the `fallback`
+// list, whose triangles are binned one by one:
 //
 // Every triangle whose pixel bounds touch a tile is listed in that tile (`tile_entries`,
 // by the `t` of the t-th triangle of all draws), but for those clipped against a depth
