@@ -80,6 +80,10 @@
 #   occlusion   issue 38's two-phase occlusion culling off and on (`--param occlusion=0,1`)
 #               in the default pipeline on 10M- and 100k-triangle terrains and builtin:dense,
 #               without the reference, into occlusion (not in the default set)
+#   micro       issue 38's micro clusters off and on (`--param micro=0,1`: the tile raster
+#               alone, then clusters of tiny triangles a triangle an invocation first) in
+#               the default pipeline on the same scenes, without the reference, into micro
+#               (not in the default set)
 #   particles   seed 001's tables on builtin:smoke, the three particle pipelines
 #               (full, low and mixed resolution), FLIP against particles_full_res:
 #               particles-scaleS (Table 23-1 at off-screen scales 2x2 and 4x4, the depth
@@ -268,6 +272,12 @@ for part in $parts; do
         --no-reference --width "$width" --height "$height" "${common[@]}" \
         --out-dir "$out/occlusion" || status=$?
       ;;
+    micro)
+      "$bin" bench --pipeline pipelines/visibility_msaa_4x.ron --scene 'builtin:terrain?cells=2236' \
+        --scene 'builtin:terrain?cells=224' --scene builtin:dense --param micro=0,1 \
+        --no-reference --width "$width" --height "$height" "${common[@]}" \
+        --out-dir "$out/micro" || status=$?
+      ;;
     particles)
       particles=(--pipeline pipelines/particles_full_res.ron --pipeline pipelines/particles_low_res.ron
                  --pipeline pipelines/particles_mixed_res.ron)
@@ -293,7 +303,7 @@ for part in $parts; do
         || status=$?
       ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, scale, scale-SWEEP, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, shadows, occlusion, particles)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, scale, scale-SWEEP, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, shadows, occlusion, micro, particles)" >&2
       status=2
       ;;
   esac

@@ -17,6 +17,15 @@
 //! does cull there, and does draw what a frame reveals (the counts its list keeps). The
 //! depth pyramid it tests against holds the farthest depth of every sample it covers.
 //!
+//! Micro clusters (visibility_compute's `micro`, on in the shipped file where the device
+//! has 64-bit atomic max, as lavapipe does): the clusters small on screen, rasterised a
+//! triangle an invocation by `atomicMax` before the tile raster covers the rest
+//! (micro_raster.wgsl), give every frame the image of the tile raster alone, exactly,
+//! colour and edges view (sample 0's flag) and triangles per pixel, at 4x and 1x, with and
+//! without occlusion culling: on a heightfield dense enough that nearly every cluster is
+//! micro, and along the camera paths above, which mix micro clusters with large and
+//! clipped ones.
+//!
 //! The shadow maps' views draw only the clusters they may see (`shadow_maps`'s
 //! `clusters`, gpu_scene/view_culling.rs): along the same frames, which move the cascades
 //! with the camera, the colour and the shadows view are those of drawing every mesh
@@ -127,11 +136,12 @@ fn look(camera: &Camera, eye: DVec3, target: DVec3) -> Camera {
 }
 
 /// Each of [`CHANGES`]' frames of `scene` through one executor, with the raster pass's
-/// parameters `params` and occlusion culling on: the colour and the edges view.
-fn frames(scene: &'static str, params: &'static str) -> Vec<(Image, Image)> {
+/// parameters `params`, occlusion culling on and micro clusters on or off (`micro`): the
+/// colour and the edges view.
+fn frames(scene: &'static str, params: &'static str, micro: u32) -> Vec<(Image, Image)> {
     frames_of(
         scene,
-        (&[(SHIPPED, params)], &[("occlusion", 1)]),
+        (&[(SHIPPED, params)], &[("occlusion", 1), ("micro", micro)]),
         "debug.edges",
         Features::new(),
     )
@@ -177,7 +187,7 @@ fn differing(a: &Image, b: &Image) -> usize {
 }
 
 fn assert_culling_keeps_every_frame(scene: &'static str) {
-    let shipped = frames(scene, SHIPPED);
+    let shipped = frames(scene, SHIPPED, 1);
     // A frame that shows nothing would pass with anything culled: most frames show
     // edges (red in the edges view) of the scene's triangles.
     let shown = shipped
@@ -188,8 +198,12 @@ fn assert_culling_keeps_every_frame(scene: &'static str) {
         shown >= 4,
         "{scene}: only {shown} of the frames show an edge"
     );
-    for (mode, params) in MODES {
-        for (k, (other, (color, edges))) in frames(scene, params).iter().zip(&shipped).enumerate() {
+    // Each mode with micro clusters (`clusters: off` has none: nothing decides them), and
+    // the shipped one without.
+    let modes = MODES.iter().map(|&(mode, params)| (mode, params, 1));
+    for (mode, params, micro) in modes.chain([("culled, micro off", SHIPPED, 0)]) {
+        let other = frames(scene, params, micro);
+        for (k, (other, (color, edges))) in other.iter().zip(&shipped).enumerate() {
             let (colors, edges) = (differing(&other.0, color), differing(&other.1, edges));
             assert!(
                 colors == 0 && edges == 0,
@@ -199,6 +213,77 @@ fn assert_culling_keeps_every_frame(scene: &'static str) {
             );
         }
     }
+}
+
+/// Each of [`CHANGES`]' frames of `scene` through one executor, at `msaa` samples per
+/// pixel, with the graph parameters `occlusion` and `micro` at the values given: the
+/// colour, the edges view and the fragments view (triangles per pixel).
+fn micro_frames(scene: &'static str, (msaa, occlusion, micro): (u32, u32, u32)) -> Vec<[Image; 3]> {
+    let gpu = gpu();
+    let loaded = Scene::load(scene).unwrap_or_else(|e| panic!("cannot load {scene}: {e}"));
+    let mut frame = Render::new(COMPUTE, scene, SIZE)
+        .param("msaa", msaa)
+        .param("occlusion", occlusion)
+        .param("micro", micro)
+        .run(&gpu);
+    let own = frame.inputs();
+    CHANGES
+        .iter()
+        .map(|(_, change)| {
+            let mut inputs = own.clone();
+            change(&mut inputs, &loaded);
+            frame.next(inputs);
+            ["color", "debug.edges", "debug.fragments"].map(|view| frame.image(&gpu, view))
+        })
+        .collect()
+}
+
+/// With micro clusters every frame of `scene` is the frame of the tile raster alone,
+/// exactly (colour, edges, fragments), at 4x and 1x, without occlusion culling (where
+/// samples 1 to 3 are stored at edge pixels only) and with it (every sample stored, and a
+/// second phase after the micro clusters' first).
+fn assert_micro_keeps_every_frame(scene: &'static str) {
+    const VIEWS: [&str; 3] = ["colour", "edges view", "fragments view"];
+    for (msaa, occlusion) in [(4, 0), (1, 0), (4, 1)] {
+        let tiles = micro_frames(scene, (msaa, occlusion, 0));
+        let micro = micro_frames(scene, (msaa, occlusion, 1));
+        // Frames of nothing would pass with anything lost: most show edges (at 4x; a
+        // pixel of one sample shows one triangle).
+        let shown = (tiles.iter())
+            .filter(|[_, edges, _]| edges.count(EDGE) > 0)
+            .count();
+        assert!(
+            msaa == 1 || shown >= 4,
+            "{scene}: only {shown} of the frames show an edge"
+        );
+        for (k, (m, t)) in micro.iter().zip(&tiles).enumerate() {
+            for (view, (m, t)) in VIEWS.iter().zip(m.iter().zip(t)) {
+                let differ = differing(m, t);
+                assert!(
+                    differ == 0,
+                    "{scene}, {msaa}x, occlusion {occlusion}, {}: with micro clusters {differ} \
+                     pixels of the {view} differ from the tile raster's",
+                    CHANGES[k].0
+                );
+            }
+        }
+    }
+}
+
+/// A heightfield of half a million triangles at 160 x 96, some 30 a pixel: nearly every
+/// cluster in view is micro (its bounds hold well under 4 pixels a triangle), so nearly
+/// every pixel's keys are the micro raster's, flags and all.
+#[test]
+fn micro_clusters_keep_every_frame_of_a_dense_heightfield() {
+    assert_micro_keeps_every_frame("builtin:terrain?cells=500");
+}
+
+/// Spheres over a floor: micro clusters (the far spheres' at 160 x 96) beside large ones
+/// (the floor's, and the spheres' in the close frames) and clipped ones, sharing edges and
+/// pixels.
+#[test]
+fn micro_clusters_keep_every_frame_of_spheres() {
+    assert_micro_keeps_every_frame("builtin:spheres");
 }
 
 /// Spheres over a floor: closed meshes whose back halves are culled by their cones.
@@ -600,7 +685,9 @@ fn occlusion_culling_wired_wrongly_is_an_error() {
             "slot \"pyramid\": \"shadow_atlas\" is not a history",
         ),
         (
-            "params: (occlusion: Param(name: \"occlusion\", default: 0)),\n            \
+            "params: (occlusion: Param(name: \"occlusion\", default: 0), micro: Param(name: \
+             \"micro\", default: 1),\n                     \
+             micro_pixels: Param(name: \"micro_pixels\", default: 4)),\n            \
              when: \"!untabled_textures & !cpu_device & blend\",\n            \
              inputs: { \"pyramid\": \"depth_pyramid_prev\" },\n            \
              outputs: { \"samples\": \"samples\", \"occluded\": \"occluded\" },",
@@ -681,4 +768,34 @@ fn the_depth_pyramid_holds_the_farthest_depth_of_every_sample_it_covers() {
     // texels, and several of them.
     let drawn = pyramid.iter().filter(|&&d| d > 0.0).count();
     assert!(drawn > side * side / 4, "{drawn} texels hold a depth");
+}
+
+/// Micro clusters asked for where they cannot be are errors naming the pass, found
+/// without a GPU: on the second phase of occlusion culling, whose keys are flagged before
+/// it adds to them, and with bounds of more pixels a triangle than an invocation scans.
+#[test]
+fn micro_clusters_asked_for_wrongly_are_errors() {
+    let cases = [
+        (
+            "default: 0)),\n            when: \"!untabled_textures & !cpu_device\",\n            \
+             inputs: { \"samples\": \"samples\", \"pyramid\"",
+            "default: 0), micro: true),\n            when: \"!untabled_textures & !cpu_device\",\n            \
+             inputs: { \"samples\": \"samples\", \"pyramid\"",
+            "visibility (second phase)",
+            "micro: true is for a first raster pass: the second phase of occlusion culling \
+             adds to keys already flagged",
+        ),
+        (
+            "micro_pixels: Param(name: \"micro_pixels\", default: 4)),\n            \
+             when: \"!untabled_textures & !cpu_device & !blend & !points_lines\",",
+            "micro_pixels: 17),\n            \
+             when: \"!untabled_textures & !cpu_device & !blend & !points_lines\",",
+            "visibility",
+            "micro_pixels must be 1 to 16, got 17",
+        ),
+    ];
+    for (from, to, pass, says) in cases {
+        let line = crate::visibility::validate_error(from, to, "micro.ron", pass);
+        assert!(line.contains(says), "{pass}: {line}");
+    }
 }

@@ -5,6 +5,7 @@
 
 use rgraph_core::file::PluginError;
 use rgraph_core::shader::Shader;
+use rgraph_core::types::Features;
 
 const COMMON: &str = include_str!("wgsl/common.wgsl");
 const SCENE: &str = include_str!("wgsl/scene.wgsl");
@@ -197,6 +198,26 @@ pub(crate) const VISIBILITY_COMPUTE: Source = Source {
         include_str!("wgsl/raster_tiles.wgsl"),
     ],
 };
+/// Micro clusters rasterised a triangle an invocation by 64-bit atomics, before the tile
+/// raster (visibility_compute.rs): compose it with [`Source::compose_for`] and
+/// [`INT64_ATOMICS`].
+pub(crate) const MICRO_RASTER: Source = Source {
+    name: "micro_raster.wgsl",
+    parts: &[
+        COMMON,
+        SCENE,
+        GEOMETRY,
+        MASK_TEXTURE,
+        TRIANGLE_SETUP,
+        include_str!("wgsl/tile_raster.wgsl"),
+        KEY_LAYOUT,
+        include_str!("wgsl/micro_raster.wgsl"),
+    ],
+};
+/// The device features a shader with 64-bit atomic max needs (graph-core's device
+/// condition `int64_atomics`).
+pub(crate) const INT64_ATOMICS: Features =
+    Features::SHADER_INT64.union(Features::SHADER_INT64_ATOMIC_MIN_MAX);
 pub(crate) const TILE_BINS: Source = Source {
     name: "bin_triangles.wgsl",
     parts: &[
@@ -498,6 +519,18 @@ impl Source {
     /// [`compose`](Self::compose) with generated WGSL after the fragments: the part of a
     /// shader that varies with the pass's slots.
     pub fn compose_with(self, samples: u32, generated: &str) -> Result<Shader, PluginError> {
+        self.compose_for(samples, generated, Features::empty())
+    }
+
+    /// As [`Self::compose_with`], for a shader that may use what the optional device
+    /// `features` allow (64-bit integers and their atomics): a pass may create it only on
+    /// a device that has them.
+    pub fn compose_for(
+        self,
+        samples: u32,
+        generated: &str,
+        features: Features,
+    ) -> Result<Shader, PluginError> {
         let (textures, depth) = if samples > 1 {
             ("texture_multisampled_2d", "texture_depth_multisampled_2d")
         } else {
@@ -528,6 +561,6 @@ impl Source {
         }
         text.push_str(generated);
         let name = format!("rgraph-passes {} ({samples} sample(s))", self.name);
-        Ok(Shader::parse(name, text)?)
+        Ok(Shader::parse_for(name, text, features)?)
     }
 }

@@ -22,6 +22,8 @@
 //!      other_samples: everywhere,   // or at_edges: below
 //!      clusters: culled,            // or whole, or off: below
 //!      occlusion: true,             // or false, with the slots below
+//!      micro: true,                 // or false (the default): below
+//!      micro_pixels: 4,             // 1 to 16 (the default 4): below
 //!  ),
 //!  inputs: { "pyramid": "depth_pyramid_prev" },     // occlusion culling only: below
 //!  outputs: { "samples": "samples",                 // Buffer(per_sample: 8, samples: 4)
@@ -57,6 +59,17 @@
 //! the second stores every sample's too. `occlusion: false` (or 0) turns it off (the first
 //! lists nothing, the second records nothing); `clusters: off` leaves every cluster to the
 //! first. The image is the same as without it (tests/culling.rs).
+//!
+//! `micro: true` rasterises micro clusters a triangle an invocation, Nanite's way
+//! (micro_raster.wgsl), on a device with 64-bit atomic max (wgpu's SHADER_INT64 and
+//! SHADER_INT64_ATOMIC_MIN_MAX; elsewhere it is off, and every cluster takes the tile
+//! raster): the bins call a cluster micro where it lies within the depth planes and its
+//! pixel bounds hold at most `micro_pixels` pixels per triangle, list it for a dispatch
+//! that keeps each covered sample's key by `atomicMax`, and mark its tiles, whose keys
+//! that dispatch clears first and the tile raster then merges its own triangles' into,
+//! flagging pixels of several triangles. Coverage and depths are the tile raster's, so the
+//! image is the same, exactly (tests/culling.rs). Needs `clusters: culled` or `whole`; not
+//! for the second phase of occlusion culling, which adds to flagged keys (an error).
 //!
 //! `light_tiled` with a `samples` input shades it as it shades a hardware visibility
 //! buffer's `ids` and `depth`, with the same IDs (the triangle's position in the scene's
@@ -97,6 +110,13 @@ pub struct VisibilityComputeParams {
     /// Occlusion culling, where the slots ask for it: on unless `false`.
     #[serde(default)]
     pub occlusion: Option<Switch>,
+    /// Micro clusters rasterised a triangle an invocation, where the device can: off unless
+    /// `true`.
+    #[serde(default)]
+    pub micro: Option<Switch>,
+    /// The most pixels per triangle a micro cluster's pixel bounds hold.
+    #[serde(default = "micro_pixels")]
+    pub micro_pixels: u32,
 }
 
 /// How `visibility_compute` culls and bins the draws' clusters.
@@ -129,6 +149,15 @@ fn tile() -> u32 {
     16
 }
 
+fn micro_pixels() -> u32 {
+    4
+}
+
+/// `micro_pixels` allowed: a micro triangle's invocation scans at most its cluster's
+/// bounds, 64 triangles' worth of them, which stays far under lavapipe's 65,535 loop
+/// iterations an invocation.
+const MICRO_PIXELS: std::ops::RangeInclusive<u32> = 1..=16;
+
 /// Tile sides allowed: a workgroup of 16 x 16 invocations is WebGPU's largest.
 const TILES: std::ops::RangeInclusive<u32> = 4..=16;
 
@@ -144,6 +173,16 @@ pub(crate) struct RasterDispatch {
     pub others_everywhere: bool,
     /// The phase of occlusion culling the pass is, if any.
     pub occlusion: Option<OcclusionSlots>,
+    /// The micro raster, where the pass asks for it: made where the device can run it.
+    pub micro: Option<MicroRaster>,
+}
+
+/// The micro clusters' raster as set up: micro_raster.wgsl composed, and the most pixels
+/// per triangle of a micro cluster's bounds (bin_triangles.wgsl's MICRO_PIXELS).
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+pub(crate) struct MicroRaster {
+    pub source: String,
+    pub pixels: u32,
 }
 
 impl Plugin for VisibilityCompute {
@@ -181,6 +220,22 @@ impl Plugin for VisibilityCompute {
             });
         }
         let culling = occlusion.filter(|o| o.on).map(|o| o.phase);
+        let micro = params.micro == Some(Switch::On);
+        if micro && !MICRO_PIXELS.contains(&params.micro_pixels) {
+            return Err(PluginError::Invalid(format!(
+                "micro_pixels must be {} to {}, got {}",
+                MICRO_PIXELS.start(),
+                MICRO_PIXELS.end(),
+                params.micro_pixels
+            )));
+        }
+        if micro && modified {
+            return Err(PluginError::Invalid(
+                "micro: true is for a first raster pass: the second phase of occlusion \
+                 culling adds to keys already flagged, which 64-bit atomics cannot"
+                    .into(),
+            ));
+        }
         let generated = format!(
             "// Generated: the tile's side in pixels, then the sample lanes.\n\
              const TILE: u32 = {}u;\n{}",
@@ -188,6 +243,17 @@ impl Plugin for VisibilityCompute {
             shaders::sample_lanes(count)
         );
         let raster = shaders::VISIBILITY_COMPUTE.compose_with(count, &generated)?;
+        let micro = match micro {
+            true => {
+                let shader =
+                    shaders::MICRO_RASTER.compose_for(count, &generated, shaders::INT64_ATOMICS)?;
+                Some(MicroRaster {
+                    source: shader.source().to_owned(),
+                    pixels: params.micro_pixels,
+                })
+            }
+            false => None,
+        };
         let Some(entry) = raster.entry("cs_raster_tiles", Stage::Compute) else {
             return Err(PluginError::Invalid(
                 "raster_tiles.wgsl has no entry point cs_raster_tiles".into(),
@@ -215,6 +281,7 @@ impl Plugin for VisibilityCompute {
             others_everywhere: params.other_samples == OtherSamples::Everywhere
                 || culling.is_some(),
             occlusion,
+            micro,
         };
         self.0.record(pass, dispatch);
         Ok(())
@@ -232,11 +299,14 @@ mod gpu {
     use crate::common::gpu::occlusion::OcclusionGroup;
     use crate::common::gpu::pipeline::{module, pipeline_layout};
     use crate::common::gpu::storage::{storage_group, storage_layout};
-    use crate::common::gpu::tile_bins::{ClusterBinning, TileBins, RASTER_BUFFERS};
+    use crate::common::gpu::tile_bins::{
+        ClusterBinning, TileBins, MICRO_ARGS_OFFSET, RASTER_BUFFERS,
+    };
     use crate::common::gpu::{compute_pipeline, Compute, Frame, Recorded, Recorder};
     use crate::common::occlusion::Phase;
     use crate::common::visibility_samples::fits_binding;
     use crate::gpu_scene::GpuScene;
+    use crate::shaders::INT64_ATOMICS;
     use crate::variant::GatedShader;
     use rgraph_scene::DepthConvention;
 
@@ -248,6 +318,16 @@ mod gpu {
         bins: Option<((u32, u32), Result<TileBins, String>)>,
         /// The bins' group 3, for a phase of occlusion culling.
         occlusion: Option<OcclusionGroup>,
+        /// The micro raster's clear and raster, where the pass asks for it and the device
+        /// has 64-bit atomic max.
+        micro: Option<MicroPipelines>,
+    }
+
+    struct MicroPipelines {
+        clear: wgpu::ComputePipeline,
+        raster: wgpu::ComputePipeline,
+        /// The most pixels per triangle of a micro cluster's bounds.
+        pixels: u32,
     }
 
     impl Recorder for RasterDispatch {
@@ -261,7 +341,7 @@ mod gpu {
             let mut read_only = vec![false];
             read_only.extend([true; RASTER_BUFFERS]);
             let layout = storage_layout(device, "visibility_compute", &read_only);
-            let module = module(device, "visibility_compute", &self.raster);
+            let raster_module = module(device, "visibility_compute", &self.raster);
             let pipeline_layout = pipeline_layout(
                 device,
                 &[
@@ -272,24 +352,46 @@ mod gpu {
                 ],
             );
             let second = self.occlusion.is_some_and(|o| o.phase == Phase::Second);
+            let variant = frame
+                .scenes
+                .variant(GatedShader::VisibilityRaster)
+                .constants();
+            // Off where the device cannot: every cluster takes the tile raster.
+            let micro = (self.micro.as_ref())
+                .filter(|_| device.features().contains(INT64_ATOMICS))
+                .map(|micro| {
+                    let micro_module = module(device, "visibility_compute: micro", &micro.source);
+                    let pipeline = |entry: &str| {
+                        let label = "visibility_compute: micro";
+                        compute_pipeline(
+                            device,
+                            label,
+                            &pipeline_layout,
+                            &micro_module,
+                            entry,
+                            &variant,
+                        )
+                    };
+                    MicroPipelines {
+                        clear: pipeline("cs_micro_clear"),
+                        raster: pipeline("cs_micro_raster"),
+                        pixels: micro.pixels,
+                    }
+                });
             let mut constants = vec![
                 (
                     "OTHERS_EVERYWHERE",
                     f64::from(u8::from(self.others_everywhere)),
                 ),
                 ("MERGE", f64::from(u8::from(second))),
+                ("MICRO", f64::from(u8::from(micro.is_some()))),
             ];
-            constants.extend(
-                frame
-                    .scenes
-                    .variant(GatedShader::VisibilityRaster)
-                    .constants(),
-            );
+            constants.extend(variant);
             let raster = compute_pipeline(
                 device,
                 "visibility_compute",
                 &pipeline_layout,
-                &module,
+                &raster_module,
                 "cs_raster_tiles",
                 &constants,
             );
@@ -298,6 +400,7 @@ mod gpu {
                 raster,
                 bins: None,
                 occlusion: self.occlusion.map(|o| OcclusionGroup::new(device, o.phase)),
+                micro,
             })
         }
 
@@ -330,6 +433,7 @@ mod gpu {
                 let clusters = ClusterBinning {
                     cull: self.clusters != Clusters::Off,
                     whole: self.clusters == Clusters::Whole,
+                    micro: state.micro.as_ref().map_or(0, |m| m.pixels),
                 };
                 let binning = (self.tile, clusters, layout);
                 let bins = TileBins::new(device, &self.bins, scene, binning, size);
@@ -353,8 +457,15 @@ mod gpu {
             pass.set_bind_group(1, &group, &[]);
             pass.set_bind_group(2, geometry, &[]);
             pass.set_bind_group(3, table, &[]);
+            let tiles = (size.0.div_ceil(self.tile), size.1.div_ceil(self.tile));
+            if let Some(micro) = &state.micro {
+                pass.set_pipeline(&micro.clear);
+                pass.dispatch_workgroups(tiles.0, tiles.1, 1);
+                pass.set_pipeline(&micro.raster);
+                pass.dispatch_workgroups_indirect(bins.dispatch_args(), MICRO_ARGS_OFFSET);
+            }
             pass.set_pipeline(&state.raster);
-            pass.dispatch_workgroups(size.0.div_ceil(self.tile), size.1.div_ceil(self.tile), 1);
+            pass.dispatch_workgroups(tiles.0, tiles.1, 1);
             Ok(())
         }
     }

@@ -11,8 +11,12 @@
 // of those tiles' cluster lists (WHOLE_CLUSTERS): the tile sets its triangles up itself,
 // and neither their records nor one count per triangle and tile are written. Binning per
 // cluster is what keeps a dense mesh's binning cheap: at one triangle per pixel, a tile's
-// count was raised by hundreds of triangles, each an atomic on the same word. Other
-// clusters go to the `fallback` list, whose triangles are binned one by one:
+// count was raised by hundreds of triangles, each an atomic on the same word. Before
+// that test, a cluster within the depth planes whose pixel bounds hold at most
+// MICRO_PIXELS pixels per triangle is micro: listed in `micro` for micro_raster.wgsl, a
+// triangle an invocation, and its tiles marked in `micro_tiles` (whose keys that pass
+// clears and the tile raster merges with its own). Other clusters go to the `fallback`
+// list, whose triangles are binned one by one:
 //
 // Every triangle whose pixel bounds touch a tile is listed in that tile (`tile_entries`,
 // by the `t` of the t-th triangle of all draws), but for those clipped against a depth
@@ -34,7 +38,8 @@
 //    frame's pyramid hides, and the second phase takes the clusters listed rather than
 //    every cluster (each phase's listed_cluster and occlusion_kind).
 // 3. cs_clusters_args: the fallback list's workgroups, the indirect arguments of the
-//    dispatches binning its triangles (`fallback_args`).
+//    dispatches binning its triangles (`fallback_args`), then the micro list's, those of
+//    micro_raster.wgsl's dispatch.
 // 4. cs_bins_count: per triangle of a fallback cluster, its tiles' counts raised (or its
 //    items listed, or its pieces added to the spanning list).
 // 5. cs_bins_count_items: the items' tiles' counts raised.
@@ -80,9 +85,19 @@ struct BinCounts {
 // What became of the cluster each invocation of cs_clusters_count took (CLUSTER_CULLED,
 // ...), for cs_clusters_fill: an occlusion test listing a cluster is made once.
 @group(1) @binding(11) var<storage, read_write> cluster_kinds: array<u32>;
-// The workgroups of the dispatches binning them (x, y, z: one workgroup per cluster, in
-// rows of at most 65,535), bound only for cs_clusters_args, which writes them.
-@group(3) @binding(0) var<storage, read_write> fallback_args: array<u32, 3>;
+// Per tile, 1 where a micro cluster's pixel bounds touch it (its keys are cleared before
+// micro_raster.wgsl's atomics, and merged by the tile raster), else 0.
+@group(1) @binding(12) var<storage, read_write> micro_tiles: array<atomic<u32>>;
+// The micro clusters, each rasterised a triangle an invocation (micro_raster.wgsl).
+struct MicroClusters {
+    count: atomic<u32>,
+    ids: array<u32>,
+}
+@group(1) @binding(13) var<storage, read_write> micro: MicroClusters;
+// The workgroups of the dispatches binning the fallback clusters (x, y, z: one workgroup
+// per cluster, in rows of at most 65,535), then those of the micro raster's (the same,
+// per micro cluster), bound only for cs_clusters_args, which writes them.
+@group(3) @binding(0) var<storage, read_write> fallback_args: array<u32, 6>;
 
 // The raster's tile side in pixels.
 override TILE: u32;
@@ -98,6 +113,11 @@ override WHOLE_CLUSTERS: bool = true;
 // The most tiles a cluster listed whole touches: each of them sets up all of the
 // cluster's triangles. common/gpu/tile_bins.rs sizes the entries by it.
 override CLUSTER_TILES: u32;
+// The most pixels per triangle a cluster's pixel bounds (a pixel wider on each side than
+// its corners') may hold for the cluster to be micro (visibility_compute.rs's `micro`):
+// its triangles are then about a pixel or two, and each invocation of micro_raster.wgsl
+// scans at most its cluster's bounds. 0: no cluster is micro.
+override MICRO_PIXELS: u32 = 0u;
 const BIN_GROUP: u32 = 64u;
 const ITEM_TILES: u32 = 64u;
 const SCAN_GROUP: u32 = 256u;
@@ -126,9 +146,13 @@ fn cs_bins_clear(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_work
         atomicStore(&bin_counts.large_entries, 0u);
         atomicStore(&bin_counts.items, 0u);
         atomicStore(&bin_counts.fallback, 0u);
+        atomicStore(&micro.count, 0u);
     }
     if i < arrayLength(&tile_ends) {
         atomicStore(&tile_ends[i], 0u);
+    }
+    if i < arrayLength(&micro_tiles) {
+        atomicStore(&micro_tiles[i], 0u);
     }
 }
 
@@ -352,10 +376,11 @@ fn cs_bins_fill_items(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_in
 const CLUSTER_CULLED: u32 = 0u;
 const CLUSTER_WHOLE: u32 = 1u;
 const CLUSTER_BY_TRIANGLE: u32 = 2u;
+const CLUSTER_MICRO: u32 = 3u;
 
 struct ClusterBins {
     kind: u32,
-    // A whole cluster's tiles (min and max corners, inclusive).
+    // A whole or micro cluster's tiles (min and max corners, inclusive).
     tiles: vec4<u32>,
 }
 
@@ -389,9 +414,10 @@ fn back_facing(c: RasterCluster, model: mat4x4<f32>) -> bool {
 
 // Cluster `c` this frame: culled (CULL_CLUSTERS) where its box lies wholly outside one
 // plane of the view volume, with a margin for rounding, or its normal cone shows only
-// back faces; binned whole (WHOLE_CLUSTERS) where its box lies within the depth planes,
-// in front of the camera, and its pixel bounds, a pixel wider on each side than its
-// corners' for rounding, touch at most CLUSTER_TILES tiles; else binned by triangle.
+// back faces; where its box lies within the depth planes, in front of the camera, micro
+// (MICRO_PIXELS) where its pixel bounds, a pixel wider on each side than its corners'
+// for rounding, hold at most MICRO_PIXELS pixels per triangle, or binned whole
+// (WHOLE_CLUSTERS) where they touch at most CLUSTER_TILES tiles; else binned by triangle.
 fn cluster_bins(index: u32) -> ClusterBins {
     var out = ClusterBins(CLUSTER_BY_TRIANGLE, vec4<u32>(1u, 1u, 0u, 0u));
     if !CULL_CLUSTERS && !WHOLE_CLUSTERS {
@@ -429,14 +455,20 @@ fn cluster_bins(index: u32) -> ClusterBins {
             return out;
         }
     }
-    if !WHOLE_CLUSTERS || crosses {
+    if (!WHOLE_CLUSTERS && MICRO_PIXELS == 0u) || crosses {
         return out;
     }
     let size = vec2<f32>(output_size());
     let first = clamp(floor(low) - 1.0, vec2<f32>(0.0), size - 1.0);
     let last = clamp(floor(high) + 1.0, vec2<f32>(0.0), size - 1.0);
     let tiles = vec4<u32>(vec2<u32>(first), vec2<u32>(last)) / TILE;
-    if tile_count(tiles) <= CLUSTER_TILES {
+    let extent = last - first + 1.0;
+    if extent.x * extent.y <= f32(MICRO_PIXELS * c.triangles) {
+        out.kind = CLUSTER_MICRO;
+        out.tiles = tiles;
+        return out;
+    }
+    if WHOLE_CLUSTERS && tile_count(tiles) <= CLUSTER_TILES {
         out.kind = CLUSTER_WHOLE;
         out.tiles = tiles;
     }
@@ -470,16 +502,29 @@ fn cs_clusters_count(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_
                 atomicAdd(&tile_ends[tile_total() + y * tiles_across() + x], 1u);
             }
         }
+    } else if b.kind == CLUSTER_MICRO {
+        micro.ids[atomicAdd(&micro.count, 1u)] = c;
+        for (var y = b.tiles.y; y <= b.tiles.w; y++) {
+            for (var x = b.tiles.x; x <= b.tiles.z; x++) {
+                atomicStore(&micro_tiles[y * tiles_across() + x], 1u);
+            }
+        }
     }
+}
+
+// The indirect arguments of a dispatch of one workgroup per entry of a list `count` long,
+// from `at` in `fallback_args`: rows of at most 65,535 workgroups.
+fn list_args(count: u32, at: u32) {
+    let x = min(count, 65535u);
+    fallback_args[at] = x;
+    fallback_args[at + 1u] = select(0u, (count + x - 1u) / max(x, 1u), x > 0u);
+    fallback_args[at + 2u] = 1u;
 }
 
 @compute @workgroup_size(1)
 fn cs_clusters_args() {
-    let clusters = atomicLoad(&bin_counts.fallback);
-    let x = min(clusters, 65535u);
-    fallback_args[0] = x;
-    fallback_args[1] = select(0u, (clusters + x - 1u) / max(x, 1u), x > 0u);
-    fallback_args[2] = 1u;
+    list_args(atomicLoad(&bin_counts.fallback), 0u);
+    list_args(atomicLoad(&micro.count), 3u);
 }
 
 @compute @workgroup_size(64)

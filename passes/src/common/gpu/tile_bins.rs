@@ -2,7 +2,9 @@
 //! compute raster covers each tile in one workgroup (passes/visibility_compute.rs,
 //! tile_raster.wgsl). Made for one scene upload and output size; recorded as nine
 //! dispatches just before the raster's, in the same compute pass, two of them indirect:
-//! the clusters binned by triangle are known only on the device. With occlusion culling
+//! the clusters binned by triangle are known only on the device (as are the micro
+//! clusters, whose raster's indirect arguments follow: [`TileBins::dispatch_args`]). With
+//! occlusion culling
 //! (cluster_occlusion.wgsl), the source composed for one of its phases, every dispatch
 //! but the fallback list's arguments takes its group 3.
 
@@ -32,19 +34,26 @@ const RECORD_BYTES: u64 = 80;
 /// The spanning pieces a triangle may add: its clipped polygon's fan.
 const PIECES: u64 = 3;
 
-/// The buffers a tile's raster reads (tile_raster.wgsl's bindings 1 to 9, in this
-/// order): all but the items and the fallback clusters.
-const RASTER_BUFFER_INDICES: [usize; 9] = [0, 1, 2, 3, 4, 5, 6, 8, 9];
+/// The buffers a tile's raster reads (tile_raster.wgsl's bindings 1 to 9, then
+/// raster_tiles.wgsl's and micro_raster.wgsl's 10 and 11, in this order): all but the
+/// items, the fallback clusters and the cluster kinds.
+const RASTER_BUFFER_INDICES: [usize; 11] = [0, 1, 2, 3, 4, 5, 6, 8, 9, 12, 13];
 /// How many: the raster's group binds them after its keys.
 pub(crate) const RASTER_BUFFERS: usize = RASTER_BUFFER_INDICES.len();
 
-/// Whether the bins cull clusters, and whether they list small ones whole
-/// (bin_triangles.wgsl's CULL_CLUSTERS and WHOLE_CLUSTERS).
+/// Whether the bins cull clusters, whether they list small ones whole, and the most
+/// pixels per triangle of a micro cluster's bounds, 0 for none (bin_triangles.wgsl's
+/// CULL_CLUSTERS, WHOLE_CLUSTERS and MICRO_PIXELS).
 #[derive(Copy, Clone, Debug)]
 pub(crate) struct ClusterBinning {
     pub cull: bool,
     pub whole: bool,
+    pub micro: u32,
 }
+
+/// Where in [`TileBins::dispatch_args`] the micro raster's dispatch arguments start, after
+/// the fallback list's.
+pub(crate) const MICRO_ARGS_OFFSET: u64 = 12;
 
 pub(crate) struct TileBins {
     clear: wgpu::ComputePipeline,
@@ -65,8 +74,8 @@ pub(crate) struct TileBins {
     tiles: u32,
     /// In bin_triangles.wgsl's binding order: draws, tile_ends, tile_starts, tile_entries,
     /// spanning, bin_counts, spanning_bounds, items, records, clusters, fallback,
-    /// cluster_kinds (group 1), then fallback_args (group 3).
-    buffers: [wgpu::Buffer; 13],
+    /// cluster_kinds, micro_tiles, micro (group 1), then fallback_args (group 3).
+    buffers: [wgpu::Buffer; 15],
 }
 
 impl TileBins {
@@ -124,14 +133,16 @@ impl TileBins {
             draws.clusters.clone(),
             scratch(device, "tile bins: fallback clusters", cluster_count * 4),
             scratch(device, "tile bins: cluster kinds", cluster_count * 4),
+            scratch(device, "tile bins: micro tiles", u64::from(tiles) * 4),
+            scratch(device, "tile bins: micro clusters", (cluster_count + 1) * 4),
             device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("tile bins: fallback dispatch"),
-                size: 12,
+                label: Some("tile bins: fallback and micro dispatches"),
+                size: 2 * MICRO_ARGS_OFFSET,
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT,
                 mapped_at_creation: false,
             }),
         ];
-        let (bins, args) = buffers.split_at(12);
+        let (bins, args) = buffers.split_at(14);
         let args_group_layout = storage_layout(device, "tile bins: fallback dispatch", &[false]);
         let args_group = storage_group(
             device,
@@ -139,7 +150,7 @@ impl TileBins {
             &args_group_layout,
             &[&args[0]],
         );
-        let mut read_only = [false; 12];
+        let mut read_only = [false; 14];
         read_only[0] = true;
         read_only[9] = true;
         let layout = storage_layout(device, "tile bins", &read_only);
@@ -171,6 +182,7 @@ impl TileBins {
             ("CLUSTER_TILES", CLUSTER_TILES as f64),
             ("CULL_CLUSTERS", f64::from(u8::from(clusters.cull))),
             ("WHOLE_CLUSTERS", f64::from(u8::from(clusters.whole))),
+            ("MICRO_PIXELS", f64::from(clusters.micro)),
         ];
         let pipeline_with = |layout: &wgpu::PipelineLayout, entry: &str| {
             compute_pipeline(device, "tile bins", layout, &module, entry, &constants)
@@ -217,7 +229,7 @@ impl TileBins {
             return;
         }
         let (x, y) = workgroup_grid(u64::from(self.draws.cluster_count), GROUP);
-        let fallback_args = &self.buffers[12];
+        let fallback_args = self.dispatch_args();
         pass.set_pipeline(&self.clusters_count);
         pass.dispatch_workgroups(x, y, 1);
         pass.set_pipeline(&self.clusters_args);
@@ -236,6 +248,13 @@ impl TileBins {
         pass.dispatch_workgroups(ITEM_GROUPS, 1, 1);
         pass.set_pipeline(&self.clusters_fill);
         pass.dispatch_workgroups(x, y, 1);
+    }
+
+    /// The indirect arguments of the dispatches binning the fallback clusters (from 0), then
+    /// of the micro raster's (from [`MICRO_ARGS_OFFSET`]): a workgroup per micro cluster,
+    /// written by [`Self::record`].
+    pub fn dispatch_args(&self) -> &wgpu::Buffer {
+        &self.buffers[14]
     }
 
     /// The buffers a tile's raster reads, in tile_raster.wgsl's binding order (from 1).
