@@ -7,7 +7,7 @@
 //! rasterisers see them ([`raster_draws`]), their triangles binned to tiles
 //! ([`tile_bins`]) and culled by occlusion ([`occlusion`]), groups of storage buffers
 //! ([`storage`]), and a pass set up with and without its optional shadow atlas
-//! ([`shadowed`]).
+//! ([`shadowed`]). Layouts, modules and pipelines are created through [`crate::kept`].
 
 pub(crate) mod bindings;
 pub(crate) mod input_pass;
