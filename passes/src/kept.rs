@@ -16,8 +16,10 @@
 //! - **Owner.** The process: one store per device, behind a lock, shared by every graph
 //!   and thread. A device keeps its objects while it is among the [`DEVICES`] devices
 //!   used last; the next device after those drops the objects of the one used least
-//!   recently (and with them the store's hold on that device). Callers get clones of the
-//!   handles, which stay valid however long they keep them.
+//!   recently (and with them the store's hold on that device). Of each kind of object a
+//!   device keeps the [`OBJECTS`] used last. Callers get clones of the handles, which
+//!   stay valid however long they keep them; a dropped object is built again when next
+//!   asked for.
 //! - **Keys.** A key holds everything the object is built from: the label, the entries
 //!   of a bind group layout, the WGSL after composition, entry points, overridable
 //!   constants (by their bits), vertex buffers, targets, formats, topology, cull mode,
@@ -43,14 +45,53 @@ use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 /// device loss).
 pub(crate) const DEVICES: usize = 8;
 
+/// How many objects of each kind (bind group layouts, pipeline layouts, modules, render
+/// and compute pipelines) a device keeps: the ones used last, which bounds what a process
+/// that builds ever new variants holds (a test process builds hundreds).
+pub(crate) const OBJECTS: usize = 128;
+
 /// One device's objects, by key.
 #[derive(Default)]
 struct Kept {
-    group_layouts: HashMap<GroupLayoutKey, wgpu::BindGroupLayout>,
-    pipeline_layouts: HashMap<PipelineLayoutKey, wgpu::PipelineLayout>,
-    modules: HashMap<ModuleKey, wgpu::ShaderModule>,
-    render: HashMap<RenderKey, wgpu::RenderPipeline>,
-    compute: HashMap<ComputeKey, wgpu::ComputePipeline>,
+    group_layouts: Recent<GroupLayoutKey, wgpu::BindGroupLayout>,
+    pipeline_layouts: Recent<PipelineLayoutKey, wgpu::PipelineLayout>,
+    modules: Recent<ModuleKey, wgpu::ShaderModule>,
+    render: Recent<RenderKey, wgpu::RenderPipeline>,
+    compute: Recent<ComputeKey, wgpu::ComputePipeline>,
+}
+
+/// Objects of one kind by key, each with the number of its last use; past [`OBJECTS`],
+/// the least recently used is dropped.
+struct Recent<K, V> {
+    uses: u64,
+    objects: HashMap<K, (V, u64)>,
+}
+
+impl<K, V> Default for Recent<K, V> {
+    fn default() -> Self {
+        Recent {
+            uses: 0,
+            objects: HashMap::new(),
+        }
+    }
+}
+
+impl<K: Hash + Eq, V: Clone> Recent<K, V> {
+    fn find_or_build(&mut self, key: K, build: impl FnOnce() -> V) -> V {
+        self.uses += 1;
+        let now = self.uses;
+        if let Some((object, used)) = self.objects.get_mut(&key) {
+            *used = now;
+            return object.clone();
+        }
+        if self.objects.len() >= OBJECTS {
+            let oldest = self.objects.values().map(|&(_, used)| used).min();
+            self.objects.retain(|_, (_, used)| Some(*used) != oldest);
+        }
+        let object = build();
+        self.objects.insert(key, (object.clone(), now));
+        object
+    }
 }
 
 /// The devices with objects kept, each with the number of its last use.
@@ -96,13 +137,13 @@ fn kept(device: &wgpu::Device) -> Arc<Mutex<Kept>> {
 /// and `build` must not come back here.
 fn find_or_build<K: Hash + Eq, V: Clone>(
     device: &wgpu::Device,
-    map: fn(&mut Kept) -> &mut HashMap<K, V>,
+    map: fn(&mut Kept) -> &mut Recent<K, V>,
     key: K,
     build: impl FnOnce() -> V,
 ) -> V {
     let kept = kept(device);
     let mut kept = lock(&kept);
-    map(&mut kept).entry(key).or_insert_with(build).clone()
+    map(&mut kept).find_or_build(key, build)
 }
 
 #[derive(PartialEq, Eq, Hash)]
