@@ -16,9 +16,12 @@ fn frames_after_the_first_allocate_nothing_and_create_no_pipelines() {
         let image =
             animate(&gpu, frames, SIZE, |_, frame| stats.push(*frame)).expect("the example runs");
         let first = &stats[0];
+        // Pipelines are kept per device for every graph on it (rgraph-passes' kept.rs):
+        // the second run, or an earlier test's on this device, may have built them all.
+        // The scene's buffers are the graph's own.
         assert!(
-            first.created.render_pipelines > 0 && first.textures_allocated > 0,
-            "the first frame builds the pipelines and allocates the targets (counted: {}); \
+            first.created.buffers > 0 && first.textures_allocated > 0,
+            "the first frame uploads the scene and allocates the targets (counted: {}); \
              is wgpu's counters feature off?",
             first.created
         );

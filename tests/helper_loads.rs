@@ -183,7 +183,7 @@ fn off_level(pixels: &[[u8; 4]]) -> usize {
 /// transformed coordinates are reported, per driver.
 #[test]
 fn derivatives_of_interpolated_coordinates_never_read_a_helper_lane_s_loads() {
-    let driver = gpu().info.driver_info;
+    let driver = gpu().info.driver_info.clone();
     for samples in [1, 4] {
         let explicit = off_level(&draw(EXPLICIT, samples));
         assert_eq!(

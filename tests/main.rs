@@ -76,6 +76,7 @@ mod fuzz;
 mod gpu_execute;
 mod gpu_failures;
 mod helper_loads;
+mod kept_pipelines;
 mod light_prepass;
 mod material_layers;
 mod motion_vectors;

@@ -71,6 +71,8 @@ mod common;
 #[cfg(feature = "gpu")]
 pub mod gpu_scene;
 pub mod host;
+#[cfg(feature = "gpu")]
+mod kept;
 mod passes;
 mod plugins;
 mod shaders;

@@ -16,6 +16,9 @@ const LAYERS: Layers<'_> = &[
     ("host", &["host", "shadows"]),
     // Which shader variants a scene's features need.
     ("variant", &["variant"]),
+    // Layouts, shader modules and pipelines kept per device by their description, for
+    // every graph recorded on it (feature `gpu`).
+    ("kept", &["kept"]),
     // The scene on the device (feature `gpu`).
     ("gpu_scene", &["gpu_scene"]),
     // What the passes share and no pass: `Shared` and `Recording`, slot textures, the

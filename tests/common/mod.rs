@@ -1,7 +1,8 @@
 //! Helpers shared by the GPU tests: the one way they open a device, compile against it,
 //! and build the small pipelines their passes draw with.
 
-use std::sync::Once;
+use std::ops::Deref;
+use std::sync::{Mutex, Once, PoisonError};
 
 use rgraph_core::gpu::{AdapterChoice, Gpu};
 use rgraph_core::{CompileOptions, CompiledGraph, Graph};
@@ -9,12 +10,52 @@ use rgraph_core::{CompileOptions, CompiledGraph, Graph};
 /// Test textures are this size: small enough for lavapipe to run every test in a blink.
 pub const SIZE: (u32, u32) = (64, 64);
 
-/// Opens the adapter `RGRAPH_ADAPTER` names (lavapipe when unset). A machine without one
-/// fails the test with the reason and the fix: GPU tests never skip silently.
-pub fn gpu() -> Gpu {
-    let choice = AdapterChoice::from_env();
-    prepare_environment(&choice);
-    Gpu::open(&choice).unwrap_or_else(|e| panic!("this test needs a Vulkan adapter: {e}"))
+/// A device of the adapter `RGRAPH_ADAPTER` names (lavapipe when unset): one an earlier
+/// test of this process gave back, or a new one. A machine without the adapter fails the
+/// test with the reason and the fix: GPU tests never skip silently.
+///
+/// The deferred plugins keep the pipelines they build per device, for every graph
+/// recorded on it (rgraph-passes' `kept.rs`); on lavapipe building them is most of a small
+/// render's time, so tests share devices: each test has its device to itself until the
+/// [`PooledGpu`] drops, and the next test to ask gets it with what it built.
+pub fn gpu() -> PooledGpu {
+    let given_back = POOL.lock().unwrap_or_else(PoisonError::into_inner).pop();
+    let gpu = given_back.unwrap_or_else(|| {
+        let choice = AdapterChoice::from_env();
+        prepare_environment(&choice);
+        Gpu::open(&choice).unwrap_or_else(|e| panic!("this test needs a Vulkan adapter: {e}"))
+    });
+    PooledGpu(Some(gpu))
+}
+
+/// Devices the tests gave back, for the next ones.
+static POOL: Mutex<Vec<Gpu>> = Mutex::new(Vec::new());
+
+/// A device from [`gpu`], the test's alone while it lives. Dropped, it goes back to the
+/// pool, its unread device errors discarded (as closing it would), unless it was lost:
+/// a test that destroys its device leaves it to no other.
+pub struct PooledGpu(Option<Gpu>);
+
+impl Deref for PooledGpu {
+    type Target = Gpu;
+
+    fn deref(&self) -> &Gpu {
+        self.0
+            .as_ref()
+            .expect("a pooled device is only taken when dropped")
+    }
+}
+
+impl Drop for PooledGpu {
+    fn drop(&mut self) {
+        let Some(gpu) = self.0.take() else { return };
+        if gpu.loss.lost().is_none() {
+            gpu.take_errors();
+            POOL.lock()
+                .unwrap_or_else(PoisonError::into_inner)
+                .push(gpu);
+        }
+    }
 }
 
 /// Where Mesa installs lavapipe's driver manifest on x86-64 Linux.

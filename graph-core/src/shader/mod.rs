@@ -2,6 +2,7 @@
 //! entry points and bindings that pass plugins check their declarations against.
 
 mod error;
+mod parsed;
 mod reflect;
 mod wgsl;
 

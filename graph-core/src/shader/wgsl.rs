@@ -2,18 +2,25 @@
 //! result at graph-load time and compile the same source on the device at execution.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 use wgpu_types::Features;
 
 use super::error::ShaderError;
+use super::parsed::Parsed;
 use crate::position::Position;
 use crate::{bounded_read, embedded};
 
 /// A WGSL module that naga parsed and validated with its default capabilities (those of
 /// WebGPU plus multisampled shading), which is what wgpu checks again at pipeline creation.
+/// Immutable: clones share the parse, and parsing a text parsed before in the process
+/// returns that parse (`parsed.rs`).
+#[derive(Clone, Debug)]
+pub struct Shader(Arc<Parse>);
+
 #[derive(Debug)]
-pub struct Shader {
+struct Parse {
     path: String,
     source: String,
     module: naga::Module,
@@ -52,13 +59,24 @@ impl Shader {
         source: impl Into<String>,
         features: Features,
     ) -> Result<Shader, ShaderError> {
-        let path = path.into();
         let source: String = source.into();
         // A byte-order mark from a Windows editor is invisible there, and not WGSL.
         let source = match source.strip_prefix('\u{feff}') {
             Some(rest) => rest.to_owned(),
             None => source,
         };
+        static PARSED: Parsed<Shader> = Parsed::new();
+        PARSED.get(path.into(), source, features, |path, source| {
+            Self::parse_and_validate(path, source, features)
+        })
+    }
+
+    /// Parses and validates `source`, as [`parse_for`](Self::parse_for) says.
+    fn parse_and_validate(
+        path: String,
+        source: String,
+        features: Features,
+    ) -> Result<Shader, ShaderError> {
         let module = naga::front::wgsl::parse_str(&source).map_err(|e| {
             invalid(
                 &path,
@@ -79,32 +97,32 @@ impl Shader {
                     e.emit_to_string_with_path(&source, &path),
                 )
             })?;
-        Ok(Shader {
+        Ok(Shader(Arc::new(Parse {
             path,
             source,
             module,
             info,
-        })
+        })))
     }
 
     /// The path the shader was loaded from, as given.
     pub fn path(&self) -> &str {
-        &self.path
+        &self.0.path
     }
 
     /// The WGSL text, for creating the device's shader module.
     pub fn source(&self) -> &str {
-        &self.source
+        &self.0.source
     }
 
     /// naga's module, validated: what reflection reads.
     pub fn module(&self) -> &naga::Module {
-        &self.module
+        &self.0.module
     }
 
     /// naga's validation results, which say what each entry point uses.
     pub fn info(&self) -> &ModuleInfo {
-        &self.info
+        &self.0.info
     }
 }
 

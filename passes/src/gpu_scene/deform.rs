@@ -263,18 +263,18 @@ impl Deformer {
         };
         let joints = per_frame("deform joints", u64::from(joints) * 64);
         let weights = per_frame("deform weights", u64::from(weights) * 4);
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("deform"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../wgsl/deform.wgsl").into()),
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("deform"),
-            layout: None,
-            module: &module,
-            entry_point: Some("cs_deform"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let module = crate::kept::module(device, "deform", include_str!("../wgsl/deform.wgsl"));
+        let pipeline = crate::kept::compute_pipeline(
+            device,
+            &wgpu::ComputePipelineDescriptor {
+                label: Some("deform"),
+                layout: None,
+                module: &module,
+                entry_point: Some("cs_deform"),
+                compilation_options: Default::default(),
+                cache: None,
+            },
+        );
         fn whole(buffer: &wgpu::Buffer) -> wgpu::BindingResource<'_> {
             buffer.as_entire_binding()
         }

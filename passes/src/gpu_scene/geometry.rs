@@ -30,10 +30,7 @@ impl Geometry {
             count: None,
         };
         Geometry {
-            layout: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("scene geometry"),
-                entries: &[entry(0), entry(1)],
-            }),
+            layout: crate::kept::bind_group_layout(device, "scene geometry", &[entry(0), entry(1)]),
             group: OnceLock::new(),
         }
     }

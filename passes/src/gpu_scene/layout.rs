@@ -28,9 +28,10 @@ pub(super) fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         view_dimension,
         multisampled: false,
     };
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("deferred scene"),
-        entries: &[
+    crate::kept::bind_group_layout(
+        device,
+        "deferred scene",
+        &[
             entry(0, uniform),
             entry(1, storage),
             entry(2, storage),
@@ -44,7 +45,7 @@ pub(super) fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             entry(7, texture(wgpu::TextureViewDimension::D2)),
             entry(8, uniform),
         ],
-    })
+    )
 }
 
 pub(super) fn scene_group(

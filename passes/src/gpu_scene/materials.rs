@@ -88,10 +88,7 @@ pub(super) fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             ]
         })
         .collect();
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("deferred material"),
-        entries: &entries,
-    })
+    crate::kept::bind_group_layout(device, "deferred material", &entries)
 }
 
 impl Materials {

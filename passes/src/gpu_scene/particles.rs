@@ -58,13 +58,14 @@ impl ParticleBuffer {
             },
             count: None,
         };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("particles"),
-            entries: &[
+        let layout = crate::kept::bind_group_layout(
+            device,
+            "particles",
+            &[
                 entry(0, wgpu::BufferBindingType::Storage { read_only: true }),
                 entry(1, wgpu::BufferBindingType::Uniform),
             ],
-        });
+        );
         let counts = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("particle counts"),
             size: 16,

@@ -74,10 +74,7 @@ impl TextureTableGpu {
             )
         }));
         TextureTableGpu {
-            layout: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("scene texture table"),
-                entries: &entries,
-            }),
+            layout: crate::kept::bind_group_layout(device, "scene texture table", &entries),
             group: OnceLock::new(),
         }
     }

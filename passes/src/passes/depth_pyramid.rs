@@ -144,12 +144,8 @@ mod gpu {
 
         fn build(&self, frame: &Frame<'_, '_, Self>) -> Result<State, String> {
             let (device, scene) = (frame.device, &frame.scene);
-            let layout = |label, entries: &[wgpu::BindGroupLayoutEntry]| {
-                device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                    label: Some(label),
-                    entries,
-                })
-            };
+            let layout =
+                |label, entries: &[_]| crate::kept::bind_group_layout(device, label, entries);
             let keys_entry = wgpu::BindGroupLayoutEntry {
                 binding: KEYS_BINDING,
                 visibility: wgpu::ShaderStages::COMPUTE,

@@ -290,13 +290,14 @@ mod gpu {
                 },
                 count: None,
             };
-            let group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("points and lines placement"),
-                entries: &[
+            let group_layout = crate::kept::bind_group_layout(
+                device,
+                "points and lines placement",
+                &[
                     entry(0, wgpu::BufferBindingType::Uniform),
                     entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
                 ],
-            });
+            );
             let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("points and lines placement"),
                 layout: &group_layout,

@@ -179,9 +179,10 @@ mod gpu {
                 contents: &indices,
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let view_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("shadow view index"),
-                entries: &[wgpu::BindGroupLayoutEntry {
+            let view_layout = crate::kept::bind_group_layout(
+                device,
+                "shadow view index",
+                &[wgpu::BindGroupLayoutEntry {
                     binding: 0,
                     visibility: wgpu::ShaderStages::VERTEX,
                     ty: wgpu::BindingType::Buffer {
@@ -191,7 +192,7 @@ mod gpu {
                     },
                     count: None,
                 }],
-            });
+            );
             let views = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("shadow view index"),
                 layout: &view_layout,

@@ -119,12 +119,8 @@ impl TextureBindings {
                 (binding, sampler)
             })
             .collect();
-        let layout = resources
-            .device
-            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("deferred pass inputs"),
-                entries: &entries,
-            });
+        let layout =
+            crate::kept::bind_group_layout(resources.device, "deferred pass inputs", &entries);
         TextureBindings {
             layout,
             bindings: bindings.to_vec(),

@@ -8,6 +8,7 @@
 //! ([`tile_bins`]) and culled by occlusion ([`occlusion`]), groups of storage buffers
 //! ([`storage`]), a pass set up with and without its optional shadow atlas
 //! ([`shadowed`]), and what the atlas's passes remember to keep it ([`shadow_cache`]).
+//! Layouts, modules and pipelines are created through [`crate::kept`].
 
 pub(crate) mod bindings;
 pub(crate) mod input_pass;

@@ -70,10 +70,7 @@ impl OcclusionGroup {
                 cameras: None,
             }
         });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("occlusion culling"),
-            entries: &entries,
-        });
+        let layout = crate::kept::bind_group_layout(device, "occlusion culling", &entries);
         OcclusionGroup { layout, first }
     }
 

@@ -1,24 +1,9 @@
 //! Building render pipelines from the deferred shaders (shader modules, pipeline layouts,
-//! the pipelines), and keeping pipelines (render or compute).
+//! the pipelines), and keeping pipelines (render or compute). Every object is created
+//! through [`crate::kept`], which returns the one built before on the device for the same
+//! description, whatever graph built it.
 
-pub(crate) fn module(device: &wgpu::Device, label: &str, wgsl: &str) -> wgpu::ShaderModule {
-    device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(wgsl.into()),
-    })
-}
-
-/// A pipeline layout of `groups` in order; `None` leaves a group unused.
-pub(crate) fn pipeline_layout(
-    device: &wgpu::Device,
-    groups: &[Option<&wgpu::BindGroupLayout>],
-) -> wgpu::PipelineLayout {
-    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: None,
-        bind_group_layouts: groups,
-        immediate_size: 0,
-    })
-}
+pub(crate) use crate::kept::{module, pipeline_layout};
 
 /// Everything that varies between the deferred passes' pipelines.
 pub(crate) struct PipelineDesc<'a> {
@@ -54,7 +39,7 @@ impl PipelineDesc<'_> {
             constants: self.constants,
             zero_initialize_workgroup_memory: false,
         };
-        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        let descriptor = wgpu::RenderPipelineDescriptor {
             label: Some(self.label),
             layout: Some(self.layout),
             vertex: wgpu::VertexState {
@@ -82,7 +67,8 @@ impl PipelineDesc<'_> {
             }),
             multiview_mask: None,
             cache: None,
-        })
+        };
+        crate::kept::render_pipeline(device, &descriptor)
     }
 }
 
@@ -97,7 +83,7 @@ pub(crate) fn compute_pipeline(
     entry: &str,
     constants: &[(&str, f64)],
 ) -> wgpu::ComputePipeline {
-    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+    let descriptor = wgpu::ComputePipelineDescriptor {
         label: Some(label),
         layout: Some(layout),
         module,
@@ -107,7 +93,8 @@ pub(crate) fn compute_pipeline(
             zero_initialize_workgroup_memory: false,
         },
         cache: None,
-    })
+    };
+    crate::kept::compute_pipeline(device, &descriptor)
 }
 
 /// Adds color and alpha: how light contributions accumulate in the HDR target.

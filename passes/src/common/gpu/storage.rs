@@ -21,10 +21,7 @@ pub(crate) fn storage_layout(
             count: None,
         })
         .collect();
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(label),
-        entries: &entries,
-    })
+    crate::kept::bind_group_layout(device, label, &entries)
 }
 
 /// `buffers` bound whole at bindings 0, 1, ... of `layout`.
