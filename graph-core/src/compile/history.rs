@@ -38,12 +38,6 @@ pub(super) fn carried(graph: &Graph) -> Vec<Option<ResourceId>> {
     carried
 }
 
-/// Whether the resource lives in a history's pair of textures rather than the pool: a
-/// history, or the source one carries.
-pub(super) fn in_pair(graph: &Graph, carried: &[Option<ResourceId>], r: usize) -> bool {
-    matches!(graph.resources[r].origin, Origin::History { .. }) || carried[r].is_some()
-}
-
 /// Checks every history the conditioned graph keeps: its source is a graph-owned texture
 /// that it alone carries, which exactly one pass writes, once, and no pass writes the
 /// history itself.
@@ -131,9 +125,12 @@ fn writes_once(conditioned: &Conditioned, r: usize, of: ResourceId, errors: &mut
     }
 }
 
-/// The edge to the next frame of every history whose source a live pass writes, for a
-/// valid graph: who writes the version carried, who reads the previous one (in execution
-/// order), and the pair's shape and usages (both textures serve both roles).
+/// The edge to the next frame of every history whose source a live pass writes and a
+/// live pass reads, for a valid graph: who writes the version carried, who reads the
+/// previous one (in execution order), and the pair's shape and usages (both textures
+/// serve both roles). A history no live pass reads carries nothing: its source stays a
+/// transient texture (the default pipeline's CPU branch, whose shadow atlas's history
+/// only the GPU branch's passes read).
 pub(super) fn edges(
     graph: &Graph,
     versions: &Versions,
@@ -166,6 +163,9 @@ pub(super) fn edges(
             .copied()
             .filter(|&p| live.pass(p))
             .collect();
+        if readers.is_empty() {
+            continue;
+        }
         readers.sort_by_key(position);
         edges.push(HistoryEdge {
             source: of,

@@ -85,8 +85,8 @@ impl Graph {
         let lifetimes = lifetimes::lifetimes(graph, &order);
         let attachments = load_store::infer(graph, &versions, &live, &shapes);
         let usages = usage::derive(graph, &versions, &live, &attachments, &options.profile);
-        let physical = physical::plan(graph, &shapes, &lifetimes, &usages);
         let history = history::edges(graph, &versions, &live, &order, &shapes, &usages);
+        let physical = physical::plan(graph, &shapes, &lifetimes, &usages, &history);
         Ok(self.assemble(
             options,
             features,

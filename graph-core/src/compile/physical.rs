@@ -10,7 +10,7 @@ use std::hash::Hash;
 use wgpu_types::{BufferUsages, TextureUsages};
 
 use crate::graph::Graph;
-use crate::plan::{PhysicalBuffer, PhysicalTexture};
+use crate::plan::{HistoryEdge, PhysicalBuffer, PhysicalTexture};
 use crate::resource::Origin;
 use crate::resource::TextureShape;
 
@@ -28,12 +28,14 @@ pub(super) fn plan(
     shapes: &[Option<TextureShape>],
     lifetimes: &[Option<(usize, usize)>],
     usages: &Usages,
+    history: &[HistoryEdge],
 ) -> Physical {
-    // A history and its source live in a pair of textures of their own (see `history`).
-    let carried = super::history::carried(graph);
+    // A history's source lives in a pair of textures of its own (see `history`), where an
+    // edge carries it; a history is never transient.
+    let in_pair = |r: usize| history.iter().any(|e| e.source.index() == r);
     let mut by_start: Vec<usize> = (0..graph.resources.len())
         .filter(|&r| graph.resources[r].origin == Origin::Transient && lifetimes[r].is_some())
-        .filter(|&r| !super::history::in_pair(graph, &carried, r))
+        .filter(|&r| !in_pair(r))
         .collect();
     by_start.sort_by_key(|&r| (lifetimes[r].map(|l| l.0), r));
 
