@@ -500,6 +500,12 @@ impl AssetArgs {
         Ok(Scene::load_with(spec, &self.policy())?.lit(self.lights))
     }
 
+    /// The loader's warnings about `scene`, loaded from `spec`, each after the file's name
+    /// as a compiler's are (`FILE: warning: ...`), for the commands to print.
+    pub fn warnings<'a>(spec: &'a str, scene: &'a Scene) -> impl Iterator<Item = String> + 'a {
+        (scene.warnings.iter()).map(move |warning| format!("{spec}: warning: {warning}"))
+    }
+
     /// The loader's policy these flags ask for.
     pub fn policy(&self) -> AssetPolicy {
         AssetPolicy {

@@ -171,8 +171,8 @@ fn analyse(
             _ => CommandError::Invalid(message),
         }
     })?;
-    for warning in &scene.warnings {
-        eprintln!("{spec}: warning: {warning}");
+    for warning in AssetArgs::warnings(spec, &scene) {
+        eprintln!("{warning}");
     }
     Ok((spec.to_owned(), Analysis::of(&scene, output)))
 }

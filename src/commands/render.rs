@@ -222,8 +222,8 @@ fn load_scene(
 ) -> Result<Arc<Scene>, FrameError> {
     let scene = assets.load(spec).map_err(FrameError::Scene)?;
     progress.note(format!("scene {spec}: {}", scene.stats()));
-    for warning in &scene.warnings {
-        progress.note(format!("{spec}: warning: {warning}"));
+    for warning in AssetArgs::warnings(spec, &scene) {
+        progress.note(warning);
     }
     Ok(Arc::new(scene))
 }

@@ -25,7 +25,7 @@ use winit::event_loop::EventLoop;
 use super::render::error::RenderError;
 use super::render::{output, view};
 use super::CommandError;
-use crate::cli::ViewArgs;
+use crate::cli::{AssetArgs, ViewArgs};
 use crate::frame::{host, FrameError, Pipeline, Prepared, Session, Specialise};
 
 /// Why the viewer could not start or stopped.
@@ -103,8 +103,8 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
     let scene = (args.frame.assets)
         .load(&args.frame.scene)
         .map_err(|e| RenderError::Frame(FrameError::Scene(e)))?;
-    for warning in &scene.warnings {
-        eprintln!("{}: warning: {warning}", args.frame.scene);
+    for warning in AssetArgs::warnings(&args.frame.scene, &scene) {
+        eprintln!("{warning}");
     }
     let overrides = Overrides {
         background: args.frame.background,

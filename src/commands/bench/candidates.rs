@@ -43,9 +43,15 @@ impl Candidate {
     /// (`samples: Param(name: "msaa", default: 4)`); `None` when it has none, or cannot be
     /// read (loading it then reports why, in its row).
     pub fn at_samples(&self, samples: u32) -> Option<Candidate> {
-        declared_params(&self.path, &registry()).ok()?.get(MSAA)?;
+        self.with_param(MSAA, samples)
+    }
+
+    /// This pipeline with its file's parameter `name` at `value`, named as before; `None`
+    /// when the file does not declare it, or cannot be read.
+    fn with_param(&self, name: &str, value: u32) -> Option<Candidate> {
+        declared_params(&self.path, &registry()).ok()?.get(name)?;
         Some(Candidate {
-            params: self.params.clone().with(MSAA, samples),
+            params: self.params.clone().with(name, value),
             ..self.clone()
         })
     }
@@ -210,16 +216,15 @@ pub fn drawing_shadow_maps(
     }
     let mut files = Vec::new();
     let pipelines = (pipelines.into_iter())
-        .map(|mut candidate| {
-            let declared = declared_params(&candidate.path, &registry()).unwrap_or_default();
-            if declared.get(SHADOW_CACHE).is_some() {
-                candidate.params = candidate.params.clone().with(SHADOW_CACHE, 0);
-                let file = candidate.path.display().to_string();
+        .map(|candidate| match candidate.with_param(SHADOW_CACHE, 0) {
+            Some(drawing) => {
+                let file = drawing.path.display().to_string();
                 if !files.contains(&file) {
                     files.push(file);
                 }
+                drawing
             }
-            candidate
+            None => candidate,
         })
         .collect();
     if !files.is_empty() {

@@ -58,8 +58,8 @@ impl TextureBindings {
                     binding: b.binding,
                     visibility,
                     ty: match b.texels {
-                        // textureLoad only: nothing is filtered, and r32float is not
-                        // filterable.
+                        // textureLoad or textureGather: nothing is filtered, and
+                        // r32float is not filterable.
                         Texels::Float | Texels::Gathered { .. } => {
                             sampled(wgpu::TextureSampleType::Float { filterable: false })
                         }
