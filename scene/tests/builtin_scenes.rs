@@ -2,7 +2,8 @@
 
 use glam::{DVec3, Vec3};
 use rgraph_scene::{
-    builtin_names, DepthConvention, LightKind, Mesh, Projection, Scene, SceneError, MAX_LIGHTS,
+    analysis::Features, builtin_names, DepthConvention, LightKind, Mesh, Projection, Scene,
+    SceneError, MAX_LIGHTS,
 };
 
 fn builtin(spec: &str) -> Scene {
@@ -61,6 +62,34 @@ fn spheres_has_few_large_smooth_objects() {
         red.max.abs_diff_eq(DVec3::new(1.5, 3.0, 1.5), 1e-6),
         "{red:?}"
     );
+}
+
+#[test]
+fn spheres_layers_puts_one_layer_on_each_of_three_spheres() {
+    let core = builtin("builtin:spheres?layers=0");
+    assert!(core.materials == builtin("builtin:spheres").materials);
+    let layered = builtin("builtin:spheres?layers=1");
+    let features = |scene: &Scene| {
+        let f = Features::of(scene);
+        (f.specular, f.clearcoat, f.sheen)
+    };
+    assert_eq!(features(&core), (false, false, false));
+    assert_eq!(features(&layered), (true, true, true));
+    let material = |name: &str| {
+        let mesh = mesh(&layered, name);
+        &layered.materials[mesh.material]
+    };
+    assert_eq!(material("red sphere").clearcoat.factor, 1.0);
+    assert_eq!(material("green sphere").sheen.color_factor, [1.0; 3]);
+    assert_eq!(material("blue sphere").ior, 1.8);
+    // The layers change materials only: the geometry is the core scene's.
+    assert!(core.meshes == layered.meshes);
+    for name in ["gold sphere", "white sphere", "ground"] {
+        assert!(
+            material(name) == &core.materials[mesh(&core, name).material],
+            "{name}"
+        );
+    }
 }
 
 /// Whether some points of `a`'s surface (an 8 x 8 barycentric grid per triangle) lie inside
@@ -178,6 +207,11 @@ fn builtin_spec_errors_list_what_is_available() {
         "{error}"
     );
     let error = Scene::load("builtin:spheres?count=3").unwrap_err();
+    assert!(
+        error.to_string().contains("this scene takes: layers"),
+        "{error}"
+    );
+    let error = Scene::load("builtin:unlit?count=3").unwrap_err();
     assert!(
         error.to_string().contains("this scene takes: none"),
         "{error}"

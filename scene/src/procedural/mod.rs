@@ -42,8 +42,8 @@ pub struct BuiltinScene {
 const BUILTINS: &[BuiltinScene] = &[
     BuiltinScene {
         name: "spheres",
-        description: "few edges: five large smooth spheres on a ground plane, 1 directional + 4 point lights",
-        params: &[],
+        description: "few edges: five large smooth spheres on a ground plane, 1 directional + 4 point lights; layers=1 adds a clear coat, a sheen and a tinted specular",
+        params: spheres::PARAMS,
         build: spheres::build,
     },
     BuiltinScene {

@@ -68,8 +68,9 @@ impl Solid {
         }
     }
 
-    /// Adds the solid and its material; `sphere` is the unit sphere tessellation to use.
-    pub fn add_to(&self, builder: &mut SceneBuilder, sphere: &Shape) {
+    /// Adds the solid and its material, returning the material's index; `sphere` is the
+    /// unit sphere tessellation to use.
+    pub fn add_to(&self, builder: &mut SceneBuilder, sphere: &Shape) -> usize {
         let material =
             builder.add_material(lit(self.name, self.color, self.metallic, self.roughness));
         let shape = match self.kind {
@@ -82,5 +83,6 @@ impl Solid {
             DVec3::from_array(self.center),
         );
         add_shape(builder, self.name, shape, material, transform);
+        material
     }
 }

@@ -10,15 +10,30 @@
 //!   (15 cd, range 10) at (±4, 2.5, ±4).
 //! - Camera: perspective, 45° vertical FOV, eye (0, 4.5, 11) looking at (0, 1, 0), near 0.1,
 //!   infinite far. Ambient 0.03.
+//! - `layers=1`: three spheres wear glTF's material layers (scene/src/material_layers.rs),
+//!   one each, so that a pipeline's cost of shading them can be measured beside the core
+//!   model's (`rgraph bench --scene builtin:spheres?layers=0 --scene
+//!   builtin:spheres?layers=1`): the red sphere a clear coat (roughness 0.05), the green a
+//!   white sheen (roughness 0.5), the blue a warm specular colour at index of refraction 1.8.
 
 use glam::{DVec3, Vec3};
 
-use super::params::Params;
+use super::params::{BuiltinParam, Params};
 use super::parts::{add_ground, corner_lights, directional, perspective_camera};
 use super::shapes::Shape;
 use super::solid::Solid;
 use crate::builder::SceneBuilder;
+use crate::material_layers::{Clearcoat, Sheen, Specular};
 use crate::SceneError;
+
+/// The parameters `builtin:spheres?...` takes.
+pub(super) const PARAMS: &[BuiltinParam] = &[BuiltinParam {
+    key: "layers",
+    meaning: "1 gives the red, green and blue spheres a clear coat, a sheen and a tinted \
+              specular (default 0: the core metallic-roughness model; at most 1)",
+    default: 0,
+    max: 1,
+}];
 
 const SPHERES: [Solid; 5] = [
     Solid::sphere(
@@ -63,11 +78,15 @@ const SPHERES: [Solid; 5] = [
     ),
 ];
 
-pub(super) fn build(_: &Params, builder: &mut SceneBuilder) -> Result<(), SceneError> {
+pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), SceneError> {
+    let layered = params.u32("layers")? == 1;
     add_ground(builder, "ground", 40.0, [0.5, 0.5, 0.5], 0.9);
     let sphere = Shape::uv_sphere(48, 24);
     for solid in &SPHERES {
-        solid.add_to(builder, &sphere);
+        let material = solid.add_to(builder, &sphere);
+        if layered {
+            wear_layers(&mut builder.materials[material]);
+        }
     }
     builder.lights.push(directional(
         "sun",
@@ -92,4 +111,32 @@ pub(super) fn build(_: &Params, builder: &mut SceneBuilder) -> Result<(), SceneE
         45.0,
     ));
     Ok(())
+}
+
+/// `layers=1`'s layers, by the sphere's material name; the others keep the core model.
+fn wear_layers(material: &mut crate::Material) {
+    match material.name.as_str() {
+        "red sphere" => {
+            material.clearcoat = Clearcoat {
+                factor: 1.0,
+                roughness_factor: 0.05,
+                ..Clearcoat::default()
+            }
+        }
+        "green sphere" => {
+            material.sheen = Sheen {
+                color_factor: [1.0; 3],
+                roughness_factor: 0.5,
+                ..Sheen::default()
+            }
+        }
+        "blue sphere" => {
+            material.ior = 1.8;
+            material.specular = Specular {
+                color_factor: [1.0, 0.8, 0.5],
+                ..Specular::default()
+            };
+        }
+        _ => {}
+    }
 }
