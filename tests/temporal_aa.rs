@@ -306,7 +306,7 @@ const SHIFT: f64 = 0.15;
 /// Where a moving image sits: the square scene moving for 8 frames after 16 still ones
 /// (the square sliding right 1.75 pixels a frame before an orthographic camera; a
 /// perspective camera orbiting a point 5 behind the backdrop, 1.25 degrees a frame, the
-/// square and the backdrop moving about 1 and 0.7 pixels a frame apart), the square's
+/// square moving about 1.1 pixels a frame and the backdrop 0.7), the square's
 /// coverage centroid in the last frame against the reference's. A reprojection that
 /// missed by 0.08 pixel a frame would leave the image about half a pixel behind (the
 /// history keeps 0.9 of it), as a measure of `builtin:spheres` once suggested (a motion
