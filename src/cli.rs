@@ -577,8 +577,10 @@ pub struct BenchArgs {
     /// builtin:spheres), each --pipeline (default: no AA, FXAA, MSAA 4x, TAA and MSAA 4x +
     /// TAA on the default path) and the reference draw 16 still frames, then
     /// --motion-frames frames with the camera orbiting DEG degrees in all and the scene's
-    /// first mesh smaller than a quarter of it (not the ground) moving sideways; motion.md and motion.json give the GPU time, the still
-    /// and sequence FLIP and the instability (change beyond the reference's) per pipeline.
+    /// first mesh smaller than a quarter of it (not the ground) moving sideways; motion.md
+    /// and motion.json give the still and sequence FLIP, the instability (change beyond the
+    /// reference's) and the GPU time of the last frame, timed in rounds as without --motion
+    /// (--frames, --rounds, --warmup), per pipeline.
     #[arg(long, value_name = "orbit:DEG", value_parser = parse_motion, conflicts_with = "sweep")]
     pub motion: Option<f64>,
     /// Moving frames of --motion.

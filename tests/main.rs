@@ -32,6 +32,7 @@ mod builder_example;
 mod cli_anywhere;
 mod cli_assets;
 mod cli_bench;
+mod cli_bench_motion;
 mod cli_compare;
 mod cli_render;
 mod cli_render_animation;

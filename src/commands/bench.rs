@@ -92,18 +92,7 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
     let pipelines = candidates::drawing_shadow_maps(pipelines, &args.params, &mut notes);
     let session = Session::open(&AdapterChoice::resolve(args.adapter.as_deref()))
         .map_err(BenchError::Device)?;
-    if let Some(degrees) = args.motion {
-        return motion::bench(args, degrees, &session);
-    }
     let size = (args.width, args.height);
-    let steps = sweep::steps(
-        args.sweep,
-        args.sweep_max,
-        scenes,
-        pipelines,
-        size,
-        &mut notes,
-    );
     let gpu_clocks = ClockSource::for_gpu(&session.gpu);
     let group_memory_bytes = match (args.group_memory, gpu_clocks.memory_total_bytes) {
         (Some(mib), _) => mib << 20,
@@ -113,6 +102,32 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
     let fake_slow_round = std::env::var(rounds::FAKE_SLOW_ROUND)
         .ok()
         .and_then(|v| v.parse().ok());
+    // What every timing of the run shares, for one size and sweep value.
+    let setup = |size: (u32, u32), sweep: Option<String>| Setup {
+        session: &session,
+        size,
+        frames: args.frames,
+        rounds: args.rounds,
+        warmup: args.warmup,
+        group_bytes: group_memory_bytes,
+        clocks: &gpu_clocks,
+        fake_slow_round,
+        sweep,
+        assets: args.assets.policy(),
+        lighting: args.assets.lights,
+        shadows: args.shadows.settings(),
+    };
+    if let Some(degrees) = args.motion {
+        return motion::bench(args, degrees, &setup(size, None));
+    }
+    let steps = sweep::steps(
+        args.sweep,
+        args.sweep_max,
+        scenes,
+        pipelines,
+        size,
+        &mut notes,
+    );
     if let Some(round) = fake_slow_round {
         notes.push(format!(
             "{}={round}: a test hook made round {round}'s GPU times three times as long; \
@@ -153,29 +168,15 @@ fn bench(args: &BenchArgs) -> Result<PathBuf, BenchError> {
         warmup: args.warmup,
         spread_limit: SPREAD_LIMIT,
         group_memory_bytes,
-        gpu_clocks,
+        gpu_clocks: gpu_clocks.clone(),
         reference,
         notes,
         scenes: Vec::new(),
         rows: Vec::new(),
         round_log: Vec::new(),
     };
-    let clocks = results.gpu_clocks.clone();
-    let setup = |step: &Step| Setup {
-        session: &session,
-        size: step.size,
-        frames: args.frames,
-        rounds: args.rounds,
-        warmup: args.warmup,
-        group_bytes: group_memory_bytes,
-        clocks: &clocks,
-        fake_slow_round,
-        sweep: step.point.as_ref().map(|p| p.label.clone()),
-        assets: args.assets.policy(),
-        lighting: args.assets.lights,
-        shadows: args.shadows.settings(),
-    };
-    measure(args, &steps, setup, started, &mut results)?;
+    let step_setup = |step: &Step| setup(step.size, step.point.as_ref().map(|p| p.label.clone()));
+    measure(args, &steps, step_setup, started, &mut results)?;
     results.elapsed_s = started.elapsed().as_secs_f64();
     let json_path = write_results(&results, out)?;
     eprintln!("{}", table::markdown(&results));

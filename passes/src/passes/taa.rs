@@ -24,7 +24,10 @@
 //! from which the history weighs `history_weight` (an exponential average: more keeps
 //! more of the past, smoother and slower to follow change; 0.9, the default, weighs about
 //! the last 10 frames). A still camera's image therefore converges to the average of the
-//! jittered samples, the pixel's box average, as the 16-sample reference's does.
+//! frame read at the pixel's centre over the jitter's cycle: the scene filtered by the
+//! Catmull-Rom kernel (below) rather than by the pixel's box, as the 16-sample
+//! reference's is, which on lavapipe's test scene brings the edges closer to the
+//! reference and the flat shading a little further (tests/temporal_aa.rs).
 //!
 //! Where the image moves, the frame weighs at least `motion_weight` per pixel of motion
 //! (velocity-weighted feedback): a moving history is resampled every frame, each time a
@@ -33,6 +36,12 @@
 //! reprojected by is the front-most surface's of its 3 x 3 neighbourhood (by the view
 //! depth `motion_vectors` keeps in the motion's blue), so the pixels about a moving
 //! silhouette, whose centres may see the surface behind, follow the edge.
+//!
+//! This frame's pixel is read where the output pixel's centre lies in the jittered image
+//! (the jitter undone, through a Catmull-Rom filter): blended as drawn, a sample offset by
+//! the jitter would displace a moving image by the weighted mean of the last few frames'
+//! offsets, which a still image's even average over the cycle cancels but motion, where
+//! the latest frames weigh most, does not.
 //!
 //! The jitter spans 1/√`samples` of a pixel: the whole pixel for one sample, half of it
 //! for 4x MSAA, whose own samples already spread over the pixel (spanning the whole
@@ -161,8 +170,8 @@ impl Plugin for Taa {
 
 #[cfg(feature = "gpu")]
 mod gpu {
-    //! Recording: this frame's weight written into the pass's own buffer, then one
-    //! dispatch of 8 x 8 pixels per workgroup.
+    //! Recording: this frame's weights and jitter written into the pass's own buffer,
+    //! then one dispatch of 8 x 8 pixels per workgroup.
 
     use super::TaaDispatch;
     use crate::common::gpu::{compute_pipeline, Compute, Frame, GroupBuffers, InputPass};
@@ -218,7 +227,9 @@ mod gpu {
                 false => state.frames.saturating_add(1),
             };
             let weight = (1.0 / state.frames as f32).max(1.0 - self.history_weight);
-            let bytes = [weight, self.motion_weight, 0.0, 0.0];
+            // The offset the scene's camera drew this frame with (SceneCache::for_frame).
+            let jitter = frame.scenes.jitter_at(resources.frame());
+            let bytes = [weight, self.motion_weight, jitter[0], jitter[1]];
             resources
                 .queue
                 .write_buffer(&state.frame, 0, bytemuck::cast_slice(&bytes));

@@ -14,7 +14,12 @@
 // motion is the front-most surface's of the 3 x 3 neighbourhood (the least view depth,
 // the motion texture's blue), so a silhouette's pixels, whose centre may see the surface
 // behind, follow the edge that moves over them. Where the previous position is off screen
-// the frame is taken alone. Composed after common.wgsl.
+// the frame is taken alone. This frame's own pixel is read where the output pixel's centre
+// lies in it (the camera's jitter moved the frame's image by `taa.jitter` pixels) through
+// a Catmull-Rom filter: blended as it was drawn, the jittered sample would displace a
+// moving image by the weighted mean of the last few frames' jitters (a still image's
+// average over the cycle is the pixel's box, but in motion the few frames that weigh most
+// sit off its centre). Composed after common.wgsl.
 
 @group(1) @binding(0) var current_tex: texture_2d<f32>;
 @group(1) @binding(1) var motion_tex: texture_2d<f32>;
@@ -25,7 +30,8 @@
 struct TaaFrame {
     current_weight: f32,
     motion_weight: f32,
-    _pad: vec2<f32>,
+    // This frame's camera offset, in pixels (x right, y down).
+    jitter: vec2<f32>,
 }
 
 @group(1) @binding(9) var<storage, read_write> taa: TaaFrame;
@@ -55,21 +61,30 @@ fn history_at(uv: vec2<f32>) -> vec4<f32> {
     return textureSampleLevel(history_tex, history_sampler, uv, 0.0);
 }
 
+// The Catmull-Rom weights, per axis, of the four texels about a point `f` (0 to 1) past
+// the centre of the second.
+fn catmull_rom_weights(f: vec2<f32>) -> array<vec2<f32>, 4> {
+    return array<vec2<f32>, 4>(
+        f * (-0.5 + f * (1.0 - 0.5 * f)),
+        1.0 + f * f * (-2.5 + 1.5 * f),
+        f * (0.5 + f * (2.0 - 1.5 * f)),
+        f * f * (-0.5 + 0.5 * f),
+    );
+}
+
 // The history at `uv` through a Catmull-Rom filter: its 4 x 4 taps as five bilinear reads
 // (the corners, which weigh least, left out), normalised by the weights read. Its negative
 // lobes may overshoot; the clamp that follows bounds it.
 fn history_catmull_rom(uv: vec2<f32>, size: vec2<f32>) -> vec4<f32> {
     let position = uv * size;
     let centre = floor(position - 0.5) + 0.5;
-    let f = position - centre;
-    let w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
-    let w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
-    let w2 = f * (0.5 + f * (2.0 - 1.5 * f));
-    let w3 = f * f * (-0.5 + 0.5 * f);
-    let w12 = w1 + w2;
+    let w = catmull_rom_weights(position - centre);
+    let w0 = w[0];
+    let w3 = w[3];
+    let w12 = w[1] + w[2];
     let t0 = (centre - 1.0) / size;
     let t3 = (centre + 2.0) / size;
-    let t12 = (centre + w2 / w12) / size;
+    let t12 = (centre + w[2] / w12) / size;
     let weights = array<f32, 5>(w12.x * w0.y, w0.x * w12.y, w12.x * w12.y, w3.x * w12.y, w12.x * w3.y);
     let taps = array<vec2<f32>, 5>(
         vec2<f32>(t12.x, t0.y),
@@ -85,6 +100,25 @@ fn history_catmull_rom(uv: vec2<f32>, size: vec2<f32>) -> vec4<f32> {
         total += weights[i];
     }
     return max(sum / total, vec4<f32>(0.0));
+}
+
+// This frame's colour where the output pixel's centre lies in it, in YCoCg with its alpha:
+// `centre + jitter` among its pixels, through a Catmull-Rom filter (4 x 4 loads, edges
+// clamped), its negative lobes' overshoot cut at 0.
+fn current_unjittered(pixel: vec2<i32>) -> vec4<f32> {
+    let last = vec2<i32>(textureDimensions(current_tex)) - 1;
+    let position = vec2<f32>(pixel) + 0.5 + taa.jitter;
+    let first = floor(position - 0.5);
+    let w = catmull_rom_weights(position - (first + 0.5));
+    var sum = vec4<f32>(0.0);
+    for (var y = 0; y < 4; y++) {
+        for (var x = 0; x < 4; x++) {
+            let at = clamp(vec2<i32>(first) + vec2<i32>(x - 1, y - 1), vec2<i32>(0), last);
+            sum += textureLoad(current_tex, at, 0) * (w[x].x * w[y].y);
+        }
+    }
+    let c = max(sum, vec4<f32>(0.0));
+    return vec4<f32>(to_ycocg(c.rgb), c.a);
 }
 
 @compute @workgroup_size(8, 8)
@@ -130,6 +164,6 @@ fn cs_taa(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let h = history_catmull_rom(previous, vec2<f32>(size));
     let history = clamp(vec4<f32>(to_ycocg(h.rgb), h.a), low, high);
-    let blended = mix(history, current, weight);
+    let blended = mix(history, current_unjittered(pixel), weight);
     textureStore(out_tex, pixel, vec4<f32>(from_ycocg(blended.xyz), blended.w));
 }

@@ -8,20 +8,17 @@ use std::sync::Arc;
 
 use image::RgbaImage;
 use rgraph_core::explain::page::Setting;
-use rgraph_core::gpu::PassTiming;
 use rgraph_core::Plan;
 use rgraph_passes::{Host, Shadows};
 use rgraph_scene::{AssetPolicy, Lighting};
 
 use super::candidates::{Candidate, COLOR};
 use super::clocks::ClockSource;
-use super::figures::{Figures, PassFigures};
-use super::flag::{judge, Evidence};
+use super::figures::Figures;
 use super::memory::Memory;
 use super::particle_work::{ParticleWork, PARTICLE_EDGES_OUTPUT};
 use super::specialisation::{PlanShape, Specialisation};
-use super::stats::Spread;
-use super::timing::Timing;
+use super::timing::{Times, Timing};
 use super::work::{edge_share, sampling, Work, EDGES_OUTPUT, FRAGMENTS_OUTPUT};
 use crate::commands::explain::page::parameters;
 use crate::frame::{FrameError, Prepared, Session, Specialise};
@@ -285,66 +282,26 @@ fn specialisation(
         passes: about.special.passes(),
         general_passes: general_shape.passes(),
         general_memory: Memory::of(&general.plan, &general_reports),
-        general_gpu_frame_ms: frame_ms(&general.timing),
-        plan_only_gpu_frame_ms: plan_only.and_then(|p| frame_ms(&p.timing)),
+        general_gpu_frame_ms: general.timing.frame_ms(),
+        plan_only_gpu_frame_ms: plan_only.and_then(|p| p.timing.frame_ms()),
     }
 }
 
-/// The GPU frame time over `timing`'s rounds, `None` without timestamps.
-fn frame_ms(timing: &Timing) -> Option<Spread> {
-    Spread::of_rounds(
-        timing
-            .rounds
-            .iter()
-            .map(|round| round.iter().filter_map(|r| r.gpu_total_ns)),
-    )
-}
-
-/// Per-frame and per-pass times over the rounds, and the flag when the frame time's
-/// rounds disagree.
+/// The row's figures: the times over the rounds, and what else was measured.
 fn figures(timing: &Timing, samples: u32, memory: Memory, work: Work) -> Figures {
-    let rounds = &timing.rounds;
-    let first = rounds.iter().flatten().next();
-    let passes = first.map_or(Vec::new(), |first| {
-        first
-            .passes
-            .iter()
-            .enumerate()
-            .map(|(i, pass)| {
-                let per_round = |value: fn(&PassTiming) -> Option<u64>| {
-                    Spread::of_rounds(
-                        rounds
-                            .iter()
-                            .map(|round| round.iter().filter_map(move |r| value(r.passes.get(i)?))),
-                    )
-                };
-                PassFigures {
-                    name: pass.name.clone(),
-                    kind: pass.kind.to_string(),
-                    gpu_ms: per_round(|t| t.gpu_ns),
-                    cpu_ms: per_round(|t| Some(t.cpu_ns)),
-                }
-            })
-            .collect()
-    });
-    let gpu_frame_ms = frame_ms(timing);
-    let flag = gpu_frame_ms.as_ref().and_then(|time| {
-        judge(&Evidence {
-            time,
-            created: &timing.created,
-            clocks: &timing.clocks,
-        })
-    });
+    let Times {
+        gpu_frame_ms,
+        flag,
+        created_while_measured,
+        cpu_record_ms,
+        passes,
+    } = timing.times();
     Figures {
         samples,
         gpu_frame_ms,
         flag,
-        created_while_measured: timing.created.clone(),
-        cpu_record_ms: Spread::of_rounds(rounds.iter().map(|round| {
-            round
-                .iter()
-                .map(|r| r.passes.iter().map(|p| p.cpu_ns).sum::<u64>())
-        })),
+        created_while_measured,
+        cpu_record_ms,
         ratio_to_noaa: None,
         passes,
         memory,

@@ -4,14 +4,22 @@
 //! orbiting DEG degrees in all about the scene's centre and one object moving sideways (1%
 //! of the scene's size a frame): the scene's first mesh smaller than a quarter of it
 //! ([`moving_mesh`]), not a ground plane, whose shading (the shadows on it, its lights'
-//! falloff) would stay where it was while its motion vectors said it moved. Per pipeline: the GPU time per frame
-//! (median over the moving frames), the still FLIP (the last still frame against the
+//! falloff) would stay where it was while its motion vectors said it moved. Per pipeline: the
+//! GPU time of the sequence's last frame, the still FLIP (the last still frame against the
 //! reference's), the sequence FLIP (the mean over the moving frames of each frame's FLIP
 //! against the reference's same frame), and the instability: per pixel and channel, how
 //! much more the pipeline's image changed from the frame before than the reference's did,
 //! `max(0, |P_i - P_i-1| - |R_i - R_i-1|)`, averaged over the moving frames, in 1/255:
 //! flicker (a jittered edge that the image does not settle) and ghosting (a change that
 //! lags or smears) both count, a change the scene makes does not.
+//!
+//! The times are the still bench's (rounds.rs, timing.rs): after the sequence, with the
+//! camera and objects held where its last frame put them and each pipeline's temporal
+//! passes going on from the history the sequence left, the pipelines are timed together
+//! in `--rounds` interleaved rounds of `--frames` frames after `--warmup` frames: the
+//! median of the round medians, p10–p90, the spread and its flag, and each pass's time.
+//! (A median of single frames each read back before the next, as this bench measured
+//! before, disagreed with the still bench's rounds by up to 2.8 times on an H100.)
 //!
 //! Written as motion.md (the table), motion.json (with each frame's FLIP) and motion.png
 //! (the FLIP frame by frame, src/commands/bench/charts/motion.rs) in --out-dir.
@@ -27,10 +35,16 @@ use serde::Serialize;
 
 use super::charts::{self, Series};
 use super::error::BenchError;
+use super::flag::SPREAD_LIMIT;
 use super::image_error::flip_mean;
+use super::measure::Setup;
+use super::progress::Progress;
+use super::rounds::{interleave, RoundLog, Timed};
+use super::table;
+use super::timing::Times;
 use crate::cli::BenchArgs;
 use crate::commands::write_atomically;
-use crate::frame::{host, FrameError, Pipeline, Prepared, Session, Specialise};
+use crate::frame::{host, FrameError, Pipeline, Prepared, Specialise};
 
 /// Still frames before the moving ones: one cycle of the TAA jitter.
 const STILL_FRAMES: u32 = 16;
@@ -50,13 +64,14 @@ const DEFAULT_PIPELINES: [(&str, &str, Option<u32>); 5] = [
 ];
 
 /// One pipeline's figures on one scene.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Debug, Serialize)]
 pub struct MotionRow {
     pub scene: String,
     pub pipeline: String,
     pub file: PathBuf,
-    /// Median GPU time of the moving frames, where the adapter times them.
-    pub gpu_ms: Option<f64>,
+    /// The sequence's last frame timed in interleaved rounds, as results.json's rows.
+    #[serde(flatten)]
+    pub times: Times,
     pub still_flip: f64,
     pub sequence_flip: f64,
     /// In 1/255 per channel.
@@ -74,23 +89,28 @@ struct MotionResults<'a> {
     orbit_degrees: f64,
     still_frames: u32,
     moving_frames: u32,
+    /// Measured frames of each pipeline per round, rounds and warmup frames.
+    frames: u32,
+    rounds: u32,
+    warmup: u32,
+    spread_limit: f64,
     rows: &'a [MotionRow],
+    round_log: &'a [RoundLog],
 }
 
-/// One pipeline of the sequence: its name in the table, its file and what it drew last.
-struct Drawn<'s> {
+/// What one pipeline of the sequence measured: its name in the table, its file, what it
+/// drew last and its figures so far.
+struct Drawn {
     name: String,
     file: PathBuf,
-    prepared: Prepared<'s>,
     last: Option<RgbaImage>,
     flips: Vec<f64>,
     unstable: Vec<f64>,
-    gpu_ns: Vec<u64>,
     still_flip: f64,
 }
 
-/// Runs the motion bench and returns the path of motion.json.
-pub fn bench(args: &BenchArgs, degrees: f64, session: &Session) -> Result<PathBuf, BenchError> {
+/// Runs the motion bench, timing as `setup` says, and returns the path of motion.json.
+pub fn bench(args: &BenchArgs, degrees: f64, setup: &Setup) -> Result<PathBuf, BenchError> {
     let scenes = match args.scenes.is_empty() {
         true => vec!["builtin:spheres".to_owned()],
         false => args.scenes.clone(),
@@ -112,7 +132,11 @@ pub fn bench(args: &BenchArgs, degrees: f64, session: &Session) -> Result<PathBu
     };
     let frames = args.motion_frames;
     let mut rows = Vec::new();
+    let mut log = Vec::new();
+    // Per scene its sequence, warmup and rounds (rounds.rs adds further memory groups').
+    let mut progress = Progress::new(scenes.len() * (2 + args.rounds as usize));
     for spec in &scenes {
+        progress.item(format!("{spec}: the sequence"));
         let scene = args
             .assets
             .load(spec)
@@ -125,21 +149,19 @@ pub fn bench(args: &BenchArgs, degrees: f64, session: &Session) -> Result<PathBu
         let load = |file: &Path, params: &GraphParams| {
             let pipeline =
                 Pipeline::load(file, host.clone(), &["color"], Specialise::ToScene, params)?;
-            session.prepare(pipeline, (args.width, args.height))
+            setup.session.prepare(pipeline, setup.size)
         };
         let mut reference = load(&args.reference, &GraphParams::new())
             .map_err(|e| failed(spec, format!("the reference: {e}")))?;
-        let mut drawn = Vec::new();
+        let (mut drawn, mut plans) = (Vec::new(), Vec::new());
         for (name, file, params) in &pipelines {
-            let prepared = load(file, params).map_err(|e| failed(spec, format!("{name}: {e}")))?;
+            plans.push(load(file, params).map_err(|e| failed(spec, format!("{name}: {e}")))?);
             drawn.push(Drawn {
                 name: name.clone(),
                 file: file.clone(),
-                prepared,
                 last: None,
                 flips: Vec::new(),
                 unstable: Vec::new(),
-                gpu_ns: Vec::new(),
                 still_flip: 0.0,
             });
         }
@@ -156,27 +178,20 @@ pub fn bench(args: &BenchArgs, degrees: f64, session: &Session) -> Result<PathBu
             let reference_image = match measured {
                 true => Some(
                     frame(&mut reference)
-                        .map_err(|e| failed(spec, format!("the reference: {e}")))?
-                        .0,
+                        .map_err(|e| failed(spec, format!("the reference: {e}")))?,
                 ),
                 false => None,
             };
-            // Every pipeline's frame first, back to back after the reference's, then the
-            // images compared: a GPU left idle while the CPU computes FLIP lowers its
-            // clocks, and the frame after would be timed at them.
-            let images = (drawn.iter_mut())
-                .map(|d| {
-                    frame(&mut d.prepared).map_err(|e| failed(spec, format!("{}: {e}", d.name)))
-                })
+            let images = (plans.iter_mut().zip(&drawn))
+                .map(|(plan, d)| frame(plan).map_err(|e| failed(spec, format!("{}: {e}", d.name))))
                 .collect::<Result<Vec<_>, _>>()?;
-            for (d, (image, gpu_ns)) in drawn.iter_mut().zip(images) {
+            for (d, image) in drawn.iter_mut().zip(images) {
                 if let Some(reference_image) = &reference_image {
                     let flip = flip_mean(reference_image, &image);
                     match index + 1 == STILL_FRAMES {
                         true => d.still_flip = flip,
                         false => {
                             d.flips.push(flip);
-                            d.gpu_ns.extend(gpu_ns);
                             if let (Some(last), Some(reference_last)) = (&d.last, &reference_last) {
                                 d.unstable.push(instability(
                                     (last, &image),
@@ -192,22 +207,49 @@ pub fn bench(args: &BenchArgs, degrees: f64, session: &Session) -> Result<PathBu
                 reference_last = reference_image;
             }
         }
-        for d in drawn {
+        // The last frame timed as the still bench times, the reference's memory given
+        // back first.
+        drop(reference);
+        let timed = (plans.into_iter().zip(&drawn).enumerate())
+            .map(|(index, (prepared, d))| Timed {
+                name: d.name.clone(),
+                prepared,
+                tag: index,
+            })
+            .collect();
+        let mut times: Vec<Option<Result<Times, FrameError>>> =
+            drawn.iter().map(|_| None).collect();
+        let closed = interleave(
+            setup,
+            spec,
+            timed,
+            &mut progress,
+            &mut log,
+            |plan, timing| (plan.tag, timing.map(|t| t.times())),
+        );
+        for (index, timing) in closed {
+            times[index] = Some(timing);
+        }
+        for (d, timing) in drawn.into_iter().zip(times) {
+            // interleave closes every plan it is given.
+            let times = timing
+                .expect("every plan was timed")
+                .map_err(|e| failed(spec, format!("{}, timed: {e}", d.name)))?;
             let row = MotionRow {
                 scene: spec.clone(),
                 pipeline: d.name,
                 file: d.file,
-                gpu_ms: median(d.gpu_ns).map(|ns| ns as f64 / 1e6),
+                times,
                 still_flip: d.still_flip,
                 sequence_flip: mean(&d.flips),
                 instability: mean(&d.unstable),
                 flips: [d.still_flip].into_iter().chain(d.flips).collect(),
             };
-            eprintln!("{}", table_line(&row));
+            progress.note(table_line(&row));
             rows.push(row);
         }
     }
-    write(args, degrees, session, &rows)
+    write(args, degrees, setup, &rows, &log)
 }
 
 /// The mesh the bench moves: the first whose world bounds' diagonal is at most
@@ -244,10 +286,10 @@ fn posed(
     inputs
 }
 
-/// Runs one frame of `prepared` and reads its "color" back, with its GPU time.
-fn frame(prepared: &mut Prepared<'_>) -> Result<(RgbaImage, Option<u64>), FrameError> {
-    let report = prepared.run(1)?.remove(0);
-    Ok((prepared.read("color")?, report.gpu_total_ns))
+/// Runs one frame of `prepared` and reads its "color" back.
+fn frame(prepared: &mut Prepared<'_>) -> Result<RgbaImage, FrameError> {
+    prepared.run(1)?;
+    prepared.read("color")
 }
 
 /// How much more the pipeline's image changed between two frames than the reference's,
@@ -276,11 +318,6 @@ fn mean(values: &[f64]) -> f64 {
     values.iter().sum::<f64>() / values.len().max(1) as f64
 }
 
-fn median(mut values: Vec<u64>) -> Option<u64> {
-    values.sort_unstable();
-    values.get(values.len() / 2).copied()
-}
-
 fn stem(path: &Path) -> String {
     path.file_stem().map_or_else(
         || path.display().to_string(),
@@ -295,43 +332,70 @@ fn failed(scene: &str, why: String) -> BenchError {
     }
 }
 
-const HEADER: &str =
-    "| scene | pipeline | GPU ms | still FLIP | sequence FLIP | instability (1/255) |\n\
-                      | --- | --- | --: | --: | --: | --: |";
+const HEADER: &str = "| scene | pipeline | GPU ms | p10–p90 | spread | still FLIP | \
+                      sequence FLIP | instability (1/255) |\n\
+                      | --- | --- | --: | --: | --: | --: | --: | --: |";
 
 fn table_line(row: &MotionRow) -> String {
+    let times = &row.times;
     format!(
         "| {} | {} | {} | {:.4} | {:.4} | {:.3} |",
         row.scene,
         row.pipeline,
-        row.gpu_ms.map_or("-".into(), |ms| format!("{ms:.2}")),
+        table::time_cells(times.gpu_frame_ms.as_ref(), times.flag.is_some()).join(" | "),
         row.still_flip,
         row.sequence_flip,
         row.instability
     )
 }
 
+/// A row's name under the table: its scene and pipeline.
+fn row_name(row: &MotionRow) -> String {
+    format!("{}: {}", row.scene, row.pipeline)
+}
+
 /// motion.md and motion.json in --out-dir; returns the JSON's path.
 fn write(
     args: &BenchArgs,
     degrees: f64,
-    session: &Session,
+    setup: &Setup,
     rows: &[MotionRow],
+    log: &[RoundLog],
 ) -> Result<PathBuf, BenchError> {
     let out = &args.out_dir;
     let command = std::env::args().collect::<Vec<_>>().join(" ");
-    let adapter = session.profile.name.clone();
+    let adapter = setup.session.profile.name.clone();
     let lines: Vec<String> = rows.iter().map(table_line).collect();
+    let mut scenes: Vec<&str> = rows.iter().map(|r| r.scene.as_str()).collect();
+    scenes.dedup();
+    let rounds: String = scenes
+        .iter()
+        .map(|s| table::rounds_line(log, s, "motion.json"))
+        .collect();
+    let flags = (rows.iter()).filter_map(|r| Some((row_name(r), r.times.flag.as_ref()?)));
+    let passes = table::pass_table(rows.iter().map(|r| (row_name(r), &r.times.passes[..])));
     let markdown = format!(
         "# Error over time\n\n`{command}`\n\nAdapter {adapter}, {}x{}: {STILL_FRAMES} still frames, \
          then {} frames with the camera orbiting {degrees} degrees and the first mesh \
          smaller than a quarter of the scene moving sideways. Still FLIP: the last still frame; sequence FLIP: the mean over the moving \
          frames; instability: how much more each frame changed than the reference's did \
-         (src/commands/bench/motion.rs).\n\n{HEADER}\n{}\n\n![FLIP per frame](motion.png)\n",
+         (src/commands/bench/motion.rs). GPU ms: the sequence's last frame (camera and \
+         objects held there, temporal passes going on from their history), the pipelines \
+         timed together in {} interleaved rounds of {} frames each after {} warmup frames{}, \
+         as `rgraph bench` times them: the median of the round medians, p10–p90 of the \
+         round medians, spread (p90 − p10) / median; a time whose spread exceeds {} is \
+         flagged {}.\n\n{rounds}{HEADER}\n{}\n{}{passes}\n![FLIP per frame](motion.png)\n",
         args.width,
         args.height,
         args.motion_frames,
-        lines.join("\n")
+        setup.rounds,
+        setup.frames,
+        setup.warmup,
+        table::warmup_span(setup.warmup),
+        table::percent(SPREAD_LIMIT),
+        table::FLAG,
+        lines.join("\n"),
+        table::flagged(flags, SPREAD_LIMIT),
     );
     let results = MotionResults {
         command,
@@ -340,7 +404,12 @@ fn write(
         orbit_degrees: degrees,
         still_frames: STILL_FRAMES,
         moving_frames: args.motion_frames,
+        frames: setup.frames,
+        rounds: setup.rounds,
+        warmup: setup.warmup,
+        spread_limit: SPREAD_LIMIT,
         rows,
+        round_log: log,
     };
     let json = serde_json::to_string_pretty(&results).unwrap_or_default();
     let written = |path: PathBuf, bytes: &[u8]| {

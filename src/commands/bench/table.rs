@@ -6,7 +6,7 @@ use std::fmt::Write;
 use rgraph_core::explain::bytes;
 
 use super::clocks::ClockSample;
-use super::figures::Figures;
+use super::figures::{Figures, PassFigures};
 use super::flag::Flag;
 use super::images::slug;
 use super::particle_table;
@@ -14,6 +14,7 @@ use super::plan_page;
 use super::results::{Results, Row};
 use super::rounds::RoundLog;
 use super::specialisation::Specialisation;
+use super::stats::Spread;
 
 pub fn markdown(results: &Results) -> String {
     let mut md = String::new();
@@ -39,10 +40,7 @@ pub fn markdown(results: &Results) -> String {
         r.rounds,
         r.frames,
         r.warmup,
-        match r.warmup {
-            0 => "",
-            _ => " (for 0.5 s at least)",
-        },
+        warmup_span(r.warmup),
         r.gpu_clocks.detail,
         r.git_commit,
         r.timestamp,
@@ -97,7 +95,7 @@ pub fn markdown(results: &Results) -> String {
                 let _ = writeln!(md, "Reference failed: {error}\n");
             }
         }
-        md.push_str(&rounds_line(&r.round_log, scene));
+        md.push_str(&rounds_line(&r.round_log, scene, "results.json"));
         md.push_str(&scene_table(&rows));
         if r.scenes
             .iter()
@@ -105,9 +103,16 @@ pub fn markdown(results: &Results) -> String {
         {
             md.push_str(&plan_links(scene, &rows));
         }
-        md.push_str(&flagged(&rows, r.spread_limit));
-        if rows.iter().any(|row| row.figures.is_some()) {
-            md.push_str(&pass_table(&rows));
+        let flags = rows
+            .iter()
+            .filter_map(|row| Some((name(row), row.figures.as_ref()?.flag.as_ref()?)));
+        md.push_str(&flagged(flags, r.spread_limit));
+        let passes: Vec<(String, &[PassFigures])> = rows
+            .iter()
+            .filter_map(|row| Some((name(row), &row.figures.as_ref()?.passes[..])))
+            .collect();
+        if !passes.is_empty() {
+            md.push_str(&pass_table(passes));
         }
         md.push_str(&specialisation_table(&rows));
         md.push_str(&particle_table::per_scene(&rows));
@@ -126,7 +131,7 @@ const HEADER: &str = "| pipeline | GPU ms | p10–p90 | spread | × noaa | CPU r
                       PSNR dB | edge PSNR dB |\n\
                       |---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
 /// After a flagged row's GPU time.
-const FLAG: &str = "⚑";
+pub const FLAG: &str = "⚑";
 
 fn scene_table(rows: &[&Row]) -> String {
     let mut md = String::from(HEADER);
@@ -157,13 +162,20 @@ fn plan_links(scene: &str, rows: &[&Row]) -> String {
     }
 }
 
-fn figure_cells(f: &Figures) -> Vec<String> {
-    let gpu = f.gpu_frame_ms.as_ref();
-    let flag = if f.flag.is_some() { FLAG } else { "" };
-    let mut cells = vec![
+/// The GPU ms (flagged where `flagged`), p10–p90 and spread cells of a time measured in
+/// rounds, "-" without one.
+pub fn time_cells(gpu: Option<&Spread>, flagged: bool) -> [String; 3] {
+    let flag = if flagged { FLAG } else { "" };
+    [
         gpu.map_or("-".into(), |s| format!("{}{flag}", ms(s.median))),
         gpu.map_or("-".into(), |s| format!("{}–{}", ms(s.p10), ms(s.p90))),
         gpu.map_or("-".into(), |s| percent(s.spread)),
+    ]
+}
+
+fn figure_cells(f: &Figures) -> Vec<String> {
+    let mut cells = time_cells(f.gpu_frame_ms.as_ref(), f.flag.is_some()).to_vec();
+    cells.extend([
         f.ratio_to_noaa.map_or("-".into(), |r| format!("{r:.2}")),
         f.cpu_record_ms
             .as_ref()
@@ -183,7 +195,7 @@ fn figure_cells(f: &Figures) -> Vec<String> {
         f.work
             .shaded_samples_per_pixel
             .map_or("-".into(), |s| format!("{s:.2}")),
-    ];
+    ]);
     let e = f.image_error.as_ref();
     cells.extend([
         e.map_or("-".into(), |e| format!("{:.4}", e.flip_mean)),
@@ -196,9 +208,9 @@ fn figure_cells(f: &Figures) -> Vec<String> {
     cells
 }
 
-/// How `scene`'s rounds ran: how many, in how many memory groups, and the GPU's clocks
-/// over them where reported.
-fn rounds_line(log: &[RoundLog], scene: &str) -> String {
+/// How `scene`'s rounds ran: how many (`json`, the results file, logs them), in how many
+/// memory groups, and the GPU's clocks over them where reported.
+pub fn rounds_line(log: &[RoundLog], scene: &str, json: &str) -> String {
     let rounds: Vec<&RoundLog> = log.iter().filter(|l| l.scene == scene).collect();
     if rounds.is_empty() {
         return String::new();
@@ -206,7 +218,7 @@ fn rounds_line(log: &[RoundLog], scene: &str) -> String {
     let groups = rounds.iter().map(|l| l.group).max().unwrap_or(1);
     let plans = rounds.iter().map(|l| l.order.len()).max().unwrap_or(0);
     let mut line = format!(
-        "Timed in {} rounds (round_log in results.json), up to {plans} plans a round",
+        "Timed in {} rounds (round_log in {json}), up to {plans} plans a round",
         rounds.len()
     );
     if groups > 1 {
@@ -249,12 +261,9 @@ fn rounds_line(log: &[RoundLog], scene: &str) -> String {
     line
 }
 
-/// The flagged rows under a scene's table, each with its spread and reasons.
-fn flagged(rows: &[&Row], limit: f64) -> String {
-    let flagged: Vec<(&Row, &Flag)> = rows
-        .iter()
-        .filter_map(|row| Some((*row, row.figures.as_ref()?.flag.as_ref()?)))
-        .collect();
+/// The flagged rows under a table, each named with its spread and reasons.
+pub fn flagged<'a>(rows: impl IntoIterator<Item = (String, &'a Flag)>, limit: f64) -> String {
+    let flagged: Vec<(String, &Flag)> = rows.into_iter().collect();
     if flagged.is_empty() {
         return String::new();
     }
@@ -269,12 +278,20 @@ fn flagged(rows: &[&Row], limit: f64) -> String {
             true => "reason unknown".to_string(),
             false => reasons.join("; "),
         };
-        let _ = writeln!(md, "- {}: {}, {why}", name(row), percent(flag.spread));
+        let _ = writeln!(md, "- {row}: {}, {why}", percent(flag.spread));
     }
     md
 }
 
-fn percent(share: f64) -> String {
+/// What the warmup adds to its frames: a GPU at speed again (rounds.rs).
+pub fn warmup_span(warmup: u32) -> &'static str {
+    match warmup {
+        0 => "",
+        _ => " (for 0.5 s at least)",
+    }
+}
+
+pub fn percent(share: f64) -> String {
     format!("{:.1}%", share * 100.0)
 }
 
@@ -283,20 +300,18 @@ fn psnr(db: Option<f64>) -> String {
     db.map_or("∞".into(), |db| format!("{db:.1}"))
 }
 
-/// Median GPU ms of each pass, one line per pipeline.
-fn pass_table(rows: &[&Row]) -> String {
+/// Median GPU ms of each pass, one line per named pipeline.
+pub fn pass_table<'a>(rows: impl IntoIterator<Item = (String, &'a [PassFigures])>) -> String {
     let mut md = String::from("\n| pipeline | GPU ms per pass (median) |\n|---|---|\n");
-    for row in rows {
-        let Some(f) = &row.figures else { continue };
-        let passes: Vec<String> = f
-            .passes
+    for (row, passes) in rows {
+        let passes: Vec<String> = passes
             .iter()
             .map(|p| {
                 let t = p.gpu_ms.as_ref().map_or("-".into(), |s| ms(s.median));
                 format!("{} {t}", p.name)
             })
             .collect();
-        let _ = writeln!(md, "| {} | {} |", name(row), passes.join(", "));
+        let _ = writeln!(md, "| {row} | {} |", passes.join(", "));
     }
     md
 }
