@@ -20,6 +20,7 @@ use rgraph_core::file::{PluginError, Slots};
 use rgraph_core::types::TextureFormat;
 use rgraph_core::{PassBuilder, TextureHandle};
 
+use super::background::FilledTargets;
 use super::textures::{self, Input, Want};
 use crate::layers::Layer;
 use crate::shaders;
@@ -112,6 +113,12 @@ impl LayerSet {
             .is_none_or(|&(layer, _)| self.has(layer))
     }
 
+    /// For each of a pass's attachments `handles`, in order, whether this set keeps it
+    /// (every one that is not a layer's of `targets`): [`FilledTargets::only`]'s flags.
+    pub fn kept_attachments(self, targets: &LayerTargets, handles: &[TextureHandle]) -> Vec<bool> {
+        handles.iter().map(|&h| self.keeps(targets, h)).collect()
+    }
+
     /// `inputs` without the layer textures this set does not hold.
     pub fn inputs(self, targets: &LayerTargets, inputs: &[Input]) -> Vec<Input> {
         let kept = inputs.iter().filter(|i| self.keeps(targets, i.texture));
@@ -140,9 +147,29 @@ pub(crate) fn inputs(
     Ok(targets)
 }
 
-/// What a pass that writes a G-buffer of `samples` asks of a layer's target.
-pub(crate) fn target_want(layer: Layer, samples: u32) -> Want {
-    Want::new(layer.what(), layer.formats()).samples(samples)
+/// The WGSL type a pass writing a G-buffer writes each layer's target as
+/// (gbuffer_layers.wgsl's encodings).
+pub(crate) const TARGET_WGSL: &str = "vec4<f32>";
+
+/// Declares the layer slots the file gives a pass that writes a G-buffer of `samples` as
+/// the next attachments of `targets`, after the pass's others, holding zeros where no
+/// mesh draws.
+pub(crate) fn push_targets(
+    slots: &mut Slots<'_>,
+    pass: &mut PassBuilder<'_>,
+    samples: u32,
+    targets: &mut FilledTargets,
+) -> Result<LayerTargets, PluginError> {
+    let mut layers = Vec::new();
+    for layer in Layer::ALL {
+        if !slots.is_output(layer.slot()) {
+            continue;
+        }
+        let want = Want::new(layer.what(), layer.formats()).samples(samples);
+        let target = targets.push(slots, pass, layer.slot(), want, (TARGET_WGSL, [0.0; 4]))?;
+        layers.push((layer, target));
+    }
+    Ok(layers)
 }
 
 /// The WGSL after gbuffer_read.wgsl that reads the layers of `set` (group 1, at their

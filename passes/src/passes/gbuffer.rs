@@ -150,28 +150,18 @@ impl Plugin for GBuffer {
             targets.push(slots, pass, channel.slot, want, (channel.wgsl, clear))?;
             written.push((channel.slot, channel.wgsl));
         }
-        let mut layers = Vec::new();
-        for layer in Layer::ALL {
-            if !slots.is_output(layer.slot()) {
-                continue;
-            }
-            let want = gbuffer_layers::target_want(layer, samples);
-            let target = (LAYER_WGSL, [0.0; 4]);
-            layers.push((
-                layer,
-                targets.push(slots, pass, layer.slot(), want, target)?,
-            ));
-            written.push((layer.slot(), LAYER_WGSL));
-        }
+        let layers = gbuffer_layers::push_targets(slots, pass, samples, &mut targets)?;
+        written.extend(
+            layers
+                .iter()
+                .map(|&(l, _)| (l.slot(), gbuffer_layers::TARGET_WGSL)),
+        );
         let handles = targets.handles().to_vec();
         let layer_targets = layers.clone();
         // The pass for the layers a frame keeps: their channels only, at consecutive
         // locations after the others.
         let make = move |set: LayerSet| {
-            let kept: Vec<bool> = handles
-                .iter()
-                .map(|&h| set.keeps(&layer_targets, h))
-                .collect();
+            let kept = set.kept_attachments(&layer_targets, &handles);
             let channels: Vec<(&str, &str)> = written
                 .iter()
                 .zip(&kept)
@@ -203,9 +193,6 @@ impl Plugin for GBuffer {
         self.0.record_layered(pass, layers, make)
     }
 }
-
-/// gbuffer.wgsl's type for a material layer's target.
-const LAYER_WGSL: &str = "vec4<f32>";
 
 /// A color target the pass can write, at the next location when the file lists it.
 struct Channel {

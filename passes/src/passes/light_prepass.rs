@@ -209,20 +209,12 @@ impl Plugin for LightPrepassGBuffer {
             let want = Want::new(what, formats).samples(samples);
             targets.push(slots, pass, slot, want, ("vec4<f32>", [0.0; 4]))?;
         }
-        let mut layers = Vec::new();
-        for layer in Layer::ALL {
-            if !slots.is_output(layer.slot()) {
-                continue;
-            }
-            let want = gbuffer_layers::target_want(layer, samples);
-            let target = targets.push(slots, pass, layer.slot(), want, ("vec4<f32>", [0.0; 4]))?;
-            layers.push((layer, target));
-        }
+        let layers = gbuffer_layers::push_targets(slots, pass, samples, &mut targets)?;
         let handles = targets.handles().to_vec();
         let listed = layers.clone();
         // The pass for the layers a frame keeps, at consecutive locations after the rest.
         let make = move |set: LayerSet| {
-            let kept: Vec<bool> = handles.iter().map(|&h| set.keeps(&listed, h)).collect();
+            let kept = set.kept_attachments(&listed, &handles);
             let written: Vec<Layer> = listed
                 .iter()
                 .map(|&(layer, _)| layer)
