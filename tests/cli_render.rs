@@ -463,7 +463,8 @@ fn a_view_the_scene_does_not_need_is_refused_with_the_reason() {
         .expect(1)
         .stderr_has(
             "output \"debug.normals\" of pipelines/deferred_msaa_4x_tiled.ron is not made for this \
-             scene: condition \"!unlit_only\" is false (features: no_lights, shallow_depth, unlit_only); \
+             scene: condition \"!unlit_only\" is false (features: color_bytes_64, no_lights, shallow_depth, \
+             unlit_only); \
              --no-specialise",
         );
     assert_nothing_written(&dir);
@@ -483,7 +484,7 @@ fn the_visibility_pipeline_rasterises_by_the_hardware_on_a_cpu_device() {
     render_default(&out, &pipeline)
         .expect(0)
         .stderr_has("\nvisibility (hardware raster) ")
-        .stderr_has("\ndevice conditions: cpu_device\n")
+        .stderr_has("\ndevice conditions: color_bytes_64, cpu_device\n")
         .stderr_has(
             "dropped by conditions: shadow raster, shadow maps (alpha mask), shadow resolve, \
              visibility, visibility (blend), visibility (points lines), depth pyramid (first phase), visibility \
@@ -494,7 +495,7 @@ fn the_visibility_pipeline_rasterises_by_the_hardware_on_a_cpu_device() {
         .stderr_has("\ngbuffer (untabled textures, emissive) ")
         .stderr_has("\nparticles (off screen) ")
         .stderr_has("\ntonemap (cpu device, particles) ")
-        .stderr_has("\ndevice conditions: cpu_device\n");
+        .stderr_has("\ndevice conditions: color_bytes_64, cpu_device\n");
 }
 
 #[test]

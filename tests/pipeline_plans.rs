@@ -8,7 +8,11 @@
 //! The digests were taken from the files as they were written out by hand, before any
 //! was built from parts (commit 9e1f83d), but for two: `visibility_msaa_4x_fxaa.ron` is
 //! new, and `deferred_msaa_4x_fxaa.ron`, made a preset of `deferred_msaa_4x.ron`, gained
-//! its base's feature `background` and the pass it gates. A plan that changes on purpose
+//! its base's feature `background` and the pass it gates. The material layers' features
+//! (`LAYERS`, which the G-buffer pipelines declare beside their own) add their targets
+//! apart from the rest: they are tried all off with every set of the file's other
+//! features, and each combination of `LAYER_SETS` with none and with all of them, so a
+//! file of ten other features stays near 2^10 plans. A plan that changes on purpose
 //! is blessed with
 //! `RGRAPH_BLESS_PLANS=1 ./dev test --test integration pipeline_plans::`, and the diff of
 //! the fixture shows which files and feature sets it touched.
@@ -20,6 +24,34 @@ use rgraph_core::file::{declared_params, load_file_with, GraphParams, Registry};
 use rgraph_core::{explain, CompileOptions, Features, Plan};
 
 const FIXTURE: &str = "tests/fixtures/pipeline_plans.txt";
+
+/// The material layers' features (a scene's, and the device condition the G-buffer's
+/// layers need), tried apart from a file's others.
+const LAYERS: [&str; 6] = [
+    "specular",
+    "clearcoat",
+    "clearcoat_normal",
+    "sheen",
+    "layer_lobes",
+    "color_bytes_64",
+];
+
+/// The combinations of [`LAYERS`] tried (less those a file does not declare): none, each
+/// layer alone, the coat with its own normal, and all of them, each on a device that
+/// holds them.
+const LAYER_SETS: [&[&str]; 6] = [
+    &[],
+    &["specular", "color_bytes_64"],
+    &["clearcoat", "layer_lobes", "color_bytes_64"],
+    &[
+        "clearcoat",
+        "clearcoat_normal",
+        "layer_lobes",
+        "color_bytes_64",
+    ],
+    &["sheen", "layer_lobes", "color_bytes_64"],
+    &LAYERS,
+];
 
 /// The shipped graph files (not the parts they use), sorted.
 fn pipelines() -> Vec<PathBuf> {
@@ -113,17 +145,35 @@ fn plans(registry: &Registry) -> Vec<(String, String)> {
                 lines.push((format!("{name} {shown_params} refused"), String::new()));
                 continue;
             };
-            let features: Vec<&str> = loaded.graph.declared_features().iter().collect();
+            let declared: Vec<&str> = loaded.graph.declared_features().iter().collect();
+            let (layers, features): (Vec<&str>, Vec<&str>) =
+                declared.iter().partition(|f| LAYERS.contains(f));
             assert!(
                 features.len() <= 10,
                 "{name}: too many features to try every set"
             );
-            for set in 0..1u32 << features.len() {
+            let all_others = (1u32 << features.len()) - 1;
+            let mut sets: Vec<(u32, &[&str])> =
+                (0..=all_others).map(|set| (set, &[][..])).collect();
+            if !layers.is_empty() {
+                for combination in &LAYER_SETS[1..] {
+                    sets.extend([(0, *combination), (all_others, *combination)]);
+                }
+            }
+            let mut tried = std::collections::HashSet::new();
+            for (set, layer_set) in sets {
                 let mut on = Features::new();
                 for (i, feature) in features.iter().enumerate() {
                     if set & (1 << i) != 0 {
                         on.insert(*feature);
                     }
+                }
+                for feature in layer_set.iter().filter(|f| layers.contains(f)) {
+                    on.insert(*feature);
+                }
+                // A combination whose layers the file does not declare is a set tried.
+                if !tried.insert(on.to_string()) {
+                    continue;
                 }
                 let defaults = CompileOptions::default();
                 let options = CompileOptions {

@@ -303,13 +303,9 @@ fn tiled_lighting_applies_ssao_as_the_fragment_passes_do() {
         )
         .edit(
             r#""depth": "depth", "hdr": "hdr",
-                "shadows": "shadow_atlas",
-            },
-            // Without"#,
+                "shadows": "shadow_atlas", "specular""#,
             r#""depth": "depth", "hdr": "hdr", "ao": "ao",
-                "shadows": "shadow_atlas",
-            },
-            // Without"#,
+                "shadows": "shadow_atlas", "specular""#,
         )
         .read(&gpu, &["color"]);
     let fragment = Render::new(PIPELINE, "builtin:dense", SIZE).read(&gpu, &["color"]);

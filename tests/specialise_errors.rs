@@ -57,7 +57,7 @@ fn a_misspelt_feature_in_a_pass_condition_is_an_error_at_the_feature() {
     assert_eq!(
         errors.to_string(),
         format!(
-            "{}: error: pass \"edges\": condition \"!unlitonly & !no_lights\" names feature \"unlitonly\", which the graph does not declare (declared: auto_exposure, background, blend, no_lights, points_lines, shadows, shallow_depth, unlit_only)",
+            "{}: error: pass \"edges\": condition \"!unlitonly & !no_lights\" names feature \"unlitonly\", which the graph does not declare (declared: auto_exposure, background, blend, clearcoat, clearcoat_normal, color_bytes_64, no_lights, points_lines, shadows, shallow_depth, sheen, specular, unlit_only)",
             at(&path, &text, "unlitonly &")
         )
     );
@@ -90,7 +90,7 @@ fn a_misspelt_feature_in_a_conditional_format_is_an_error_at_the_feature() {
     assert_eq!(
         errors.to_string(),
         format!(
-            "{}: error: resource \"depth\": the condition \"shallow_dept\" of a conditional format names feature \"shallow_dept\", which the graph does not declare (declared: auto_exposure, background, blend, no_lights, points_lines, shadows, shallow_depth, unlit_only)",
+            "{}: error: resource \"depth\": the condition \"shallow_dept\" of a conditional format names feature \"shallow_dept\", which the graph does not declare (declared: auto_exposure, background, blend, clearcoat, clearcoat_normal, color_bytes_64, no_lights, points_lines, shadows, shallow_depth, sheen, specular, unlit_only)",
             at(&path, &text, "shallow_dept\"")
         )
     );

@@ -319,17 +319,20 @@ impl Access {
     }
 }
 
-/// An optional read a plan leaves out of its pass, because a condition dropped what it
-/// reads.
+/// An optional access a plan leaves out of its pass, because a condition dropped what it
+/// reads (or, for a fresh write, the resource it writes).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DroppedRead {
-    /// The resource the pass would have read.
+    /// The resource the pass would have read or written.
     pub resource: ResourceId,
     /// The version it declared.
     pub version: u32,
     /// Why: `"shadow_atlas" is dropped: condition "shadows" is false`, or the dropped
     /// pass that alone writes it and that pass's reason.
     pub why: String,
+    /// The access was a fresh write (an output the plan does without), not a read.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub writes: bool,
 }
 
 impl DroppedRead {

@@ -239,9 +239,13 @@ impl PassBuilder<'_> {
     /// before it builds what binds the input. Where the writer stays, the read is an
     /// ordinary one.
     ///
-    /// Only reads can be optional: a pass that writes a version is what later passes
-    /// read. Marking an access that writes, or a handle the pass has not declared, is
-    /// [`GraphError::OptionalAccess`] when the graph compiles.
+    /// A fresh write (one that reads nothing of the version it writes over: a color
+    /// attachment cleared or covered, a storage write) may be optional too: where a
+    /// condition drops the resource, the compile drops the write, and the pass runs
+    /// without that output (a G-buffer pass writes a target only scenes that need it
+    /// keep). Its readers mark their reads optional in turn. A modification cannot be
+    /// optional: what it reads must be there. Marking one, or a handle the pass has not
+    /// declared, is [`GraphError::OptionalAccess`] when the graph compiles.
     pub fn optional<K: ResourceKind>(&mut self, handle: Handle<K>) -> &mut Self {
         let (id, version) = (handle.id, handle.version);
         let node = self.node();
@@ -254,12 +258,15 @@ impl PassBuilder<'_> {
             None => Some("the pass declared no access to it"),
             Some(_) => None,
         };
-        let mut writes = false;
+        let (mut reads, mut writes) = (false, false);
         for access in marked {
+            reads |= access.role.reads();
             writes |= access.role.writes();
             access.optional = true;
         }
-        let why = why.or(writes.then_some("the pass writes it: only a read can be optional"));
+        let modifies = reads && writes;
+        let why = why.or(modifies
+            .then_some("the pass modifies it: only a read or a fresh write can be optional"));
         if let Some(why) = why {
             let pass = self.node().name.clone();
             let resource = self

@@ -44,14 +44,16 @@ pub enum GraphError {
     },
 
     /// [`PassBuilder::optional`](crate::PassBuilder::optional) (a file's `optional:`) marked
-    /// what cannot be an optional read: an access that writes, or none at all.
+    /// what cannot be optional: a modification (an access that reads and writes the
+    /// version), or none at all.
     #[error("pass \"{pass}\" marks \"{resource}\" optional, but {why}")]
     OptionalAccess {
         /// The pass, by name.
         pass: String,
         /// The resource, by name.
         resource: String,
-        /// What is wrong: "the pass writes it: only a read can be optional".
+        /// What is wrong: "the pass modifies it: only a read or a fresh write can be
+        /// optional".
         why: String,
     },
 

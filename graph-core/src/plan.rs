@@ -98,9 +98,10 @@ pub struct PlannedPass {
     pub depth_stencil: Option<DepthStencilAttachment>,
     /// A compute pass's workgroup size and memory for each entry point it dispatches.
     pub workgroups: Vec<crate::pass::Workgroup>,
-    /// Its optional reads ([`PassBuilder::optional`](crate::PassBuilder::optional)) this
-    /// plan leaves out, with why: the pass runs without them, and its recording finds
-    /// them missing (`FrameResources::has` is false).
+    /// Its optional reads and fresh writes
+    /// ([`PassBuilder::optional`](crate::PassBuilder::optional)) this plan leaves out,
+    /// with why: the pass runs without them, and its recording finds them missing
+    /// (`FrameResources::has` is false).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub dropped_reads: Vec<DroppedRead>,
     /// Where the pass was written, when not in the graph's own file (see
@@ -110,8 +111,8 @@ pub struct PlannedPass {
 }
 
 impl PlannedPass {
-    /// Whether this plan leaves `access`, one the pass declared, out: an optional read in
-    /// [`dropped_reads`](Self::dropped_reads).
+    /// Whether this plan leaves `access`, one the pass declared, out: an optional read or
+    /// write in [`dropped_reads`](Self::dropped_reads).
     pub fn drops(&self, access: &crate::access::Access) -> bool {
         self.dropped_reads.iter().any(|d| d.covers(access))
     }

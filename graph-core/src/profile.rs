@@ -50,6 +50,9 @@ impl DeviceProfile {
         match condition {
             DeviceTrait::Features(needs) => self.features.contains(needs),
             DeviceTrait::Cpu => self.cpu,
+            DeviceTrait::ColorBytesPerSample(bytes) => {
+                self.limits.max_color_attachment_bytes_per_sample >= bytes
+            }
         }
     }
 
@@ -76,6 +79,10 @@ impl DeviceProfile {
                 match condition {
                     DeviceTrait::Features(needs) => profile.features |= needs,
                     DeviceTrait::Cpu => profile.cpu = true,
+                    DeviceTrait::ColorBytesPerSample(bytes) => {
+                        let limit = &mut profile.limits.max_color_attachment_bytes_per_sample;
+                        *limit = (*limit).max(bytes);
+                    }
                 }
                 profile.name = format!("{} with {name}", profile.name);
             }
@@ -163,6 +170,26 @@ pub fn color_target_cost(format: TextureFormat) -> (u32, u32) {
 #[cfg(test)]
 mod tests {
     use super::DeviceProfile;
+    use crate::condition::{DeviceTrait, Features};
+
+    /// `color_bytes_64` holds where the device allows 64 bytes per sample of color
+    /// targets, and validating its branch on a profile without it raises the limit.
+    #[test]
+    fn wide_color_targets_are_a_limit_the_profile_has_or_is_granted() {
+        let wide = DeviceTrait::ColorBytesPerSample(64);
+        let webgpu = DeviceProfile::webgpu();
+        assert!(!webgpu.has(wide));
+        let granted = webgpu.granting(&Features::from_iter(["color_bytes_64"]));
+        assert!(granted.has(wide));
+        assert_eq!(granted.limits.max_color_attachment_bytes_per_sample, 64);
+        assert_eq!(granted.name, "webgpu defaults with color_bytes_64");
+        let mut vulkan = DeviceProfile::webgpu();
+        vulkan.limits.max_color_attachment_bytes_per_sample = 128;
+        let conditions = vulkan.conditions(&Features::new());
+        assert!(conditions.contains("color_bytes_64"));
+        let kept = vulkan.granting(&Features::from_iter(["color_bytes_64"]));
+        assert_eq!(kept.limits.max_color_attachment_bytes_per_sample, 128);
+    }
 
     /// A profile file saved before `cpu` existed (`rgraph adapters --save-profile`) reads as
     /// a GPU's, and a CPU adapter's keeps the flag through a save and load.

@@ -62,7 +62,8 @@ pub struct FrameResources<'f> {
     pub(crate) pass: &'f str,
     /// What the executing pass declared.
     pub(crate) accesses: &'f [Access],
-    /// The optional reads of the executing pass that its plan leaves out.
+    /// The optional reads (and fresh writes) of the executing pass that its plan leaves
+    /// out.
     pub(crate) dropped: &'f [DroppedRead],
     /// Every resource of the graph, by id: their names, for messages.
     pub(crate) resources: &'f [ResourceNode],
@@ -244,8 +245,8 @@ impl<'f> FrameResources<'f> {
             version,
             declared: match (declared.is_empty(), self.dropped_read(id, version)) {
                 (_, Some(why)) => format!(
-                    "an optional read its plan leaves out ({why}): ask `has` before looking \
-                     it up"
+                    "an optional access its plan leaves out ({why}): ask `has` before \
+                     looking it up"
                 ),
                 (true, None) => "which it did not declare".to_owned(),
                 (false, None) => format!(

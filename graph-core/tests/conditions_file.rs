@@ -257,13 +257,19 @@ outputs: ["hdr"],
 }
 
 /// Each device condition, and a profile of a device that sets it.
-fn device_conditions() -> [(&'static str, rgraph_core::DeviceProfile); 2] {
+fn device_conditions() -> [(&'static str, rgraph_core::DeviceProfile); 3] {
     let mut atomics = rgraph_core::DeviceProfile::webgpu();
     atomics.features = rgraph_core::types::Features::SHADER_INT64
         | rgraph_core::types::Features::SHADER_INT64_ATOMIC_MIN_MAX;
     let mut cpu = rgraph_core::DeviceProfile::webgpu();
     cpu.cpu = true;
-    [("int64_atomics", atomics), ("cpu_device", cpu)]
+    let mut wide = rgraph_core::DeviceProfile::webgpu();
+    wide.limits.max_color_attachment_bytes_per_sample = 128;
+    [
+        ("int64_atomics", atomics),
+        ("cpu_device", cpu),
+        ("color_bytes_64", wide),
+    ]
 }
 
 #[test]

@@ -3,7 +3,9 @@
 //! (`optional: ["slot"]`). Where a condition drops the resource or the pass that alone
 //! writes it, the compile drops the read, the plan and `explain` say why, and on a
 //! device the pass runs and finds the input missing (`FrameResources::has`); where the
-//! writer stays, the read is an ordinary one. Only reads can be optional.
+//! writer stays, the read is an ordinary one. A fresh write can be optional too (a
+//! G-buffer target only some scenes keep): where a condition drops the resource, the
+//! compile drops the write. A modification cannot be optional.
 
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -85,6 +87,7 @@ fn where_its_writer_is_dropped_the_read_is_dropped_and_the_plan_says_why() {
             resource: ResourceId(0),
             version: 1,
             why: why.to_owned(),
+            writes: false,
         }]
     );
     // Nothing reads the atlas, so nothing allocates it.
@@ -166,7 +169,7 @@ fn an_optional_read_of_a_dropped_modification_reads_through_it() {
 }
 
 #[test]
-fn only_a_read_the_pass_declared_can_be_optional() {
+fn only_a_read_or_a_fresh_write_the_pass_declared_can_be_optional() {
     let mut g = GraphBuilder::new();
     let color = g.create_texture("color", tex(Rgba8Unorm));
     let other = g.create_texture("other", tex(Rgba8Unorm));
@@ -175,19 +178,72 @@ fn only_a_read_the_pass_declared_can_be_optional() {
     let written = pass.color_output(color, CLEAR);
     pass.optional(color);
     pass.optional(other);
-    g.export(written);
+    let mut blend = g.add_render_pass("blend");
+    let blended = blend.color_output(written, ColorLoad::Load);
+    blend.optional(written);
+    g.export(blended);
     let errors = g
         .build()
         .compile(&CompileOptions::default())
-        .expect_err("optional writes are refused");
+        .expect_err("optional modifications are refused");
     let messages: Vec<String> = errors.0.iter().map(ToString::to_string).collect();
     assert_eq!(
         messages,
         [
             r#"pass "draw" marks "color" optional, but the pass declared no access to it"#,
-            r#"pass "draw" marks "color" optional, but the pass writes it: only a read can be optional"#,
             r#"pass "draw" marks "other" optional, but the pass declared no access to it"#,
+            r#"pass "blend" marks "color" optional, but the pass modifies it: only a read or a fresh write can be optional"#,
         ]
+    );
+}
+
+/// "gbuffer" writes "albedo" and, optionally, "layers" (which exists where `layers` is
+/// set); "light" reads both, "layers" optionally, and writes the exported "color".
+fn optional_target() -> Graph {
+    let mut g = GraphBuilder::new();
+    g.declare_features(["layers"]);
+    let albedo = g.create_texture("albedo", tex(Rgba8Unorm));
+    let layers = g.create_texture("layers", tex(Rgba8Unorm));
+    g.when(layers, Condition::feature("layers"));
+    let color = g.create_texture("color", tex(Rgba8Unorm));
+    let mut gbuffer = g.add_render_pass("gbuffer");
+    let albedo = gbuffer.color_output(albedo, CLEAR);
+    let written = gbuffer.color_output(layers, CLEAR);
+    gbuffer.optional(layers);
+    let mut light = g.add_render_pass("light");
+    light.sampled(albedo);
+    light.sampled(written);
+    light.optional(written);
+    let color = light.color_output(color, CLEAR);
+    g.export(color);
+    g.build()
+}
+
+#[test]
+fn an_optional_write_is_dropped_with_its_resource_and_kept_with_it() {
+    let with = compile(&optional_target(), &["layers"]);
+    let gbuffer = pass(&with, "gbuffer");
+    assert_eq!(gbuffer.color.len(), 2);
+    assert!(gbuffer.dropped_reads.is_empty());
+    assert_eq!(pass(&with, "light").reads.len(), 2);
+    let without = compile(&optional_target(), &[]);
+    let gbuffer = pass(&without, "gbuffer");
+    assert_eq!(gbuffer.color.len(), 1, "the dropped target is not attached");
+    let why = r#""layers" is dropped: condition "layers" is false"#;
+    assert_eq!(
+        gbuffer.dropped_reads,
+        [DroppedRead {
+            resource: ResourceId(1),
+            version: 0,
+            why: why.to_owned(),
+            writes: true,
+        }]
+    );
+    assert_eq!(pass(&without, "light").reads, [(ResourceId(0), 1)]);
+    let text = explain::text(&without);
+    assert!(
+        text.contains(&format!("skips   layers@0 (an optional write): {why}\n")),
+        "{text}"
     );
 }
 
@@ -237,12 +293,30 @@ fn a_file_marks_a_slot_optional() {
 }
 
 #[test]
-fn a_file_s_optional_slot_must_be_an_input_only_slot() {
-    for (slot, why) in [
-        ("dst", "is one of its outputs: only a read can be optional"),
-        ("sky", "is not one of its inputs"),
+fn a_file_s_optional_slot_must_be_an_input_only_or_an_output_only_slot() {
+    // "present" blits over a cleared "base", so its `dst` modifies it.
+    let modified = file(r#""dst""#)
+        .replace(r#""color": Texture"#, r#""base": Texture"#)
+        .replace(
+            r#"inputs: { "src": "hdr" }"#,
+            r#"inputs: { "src": "hdr", "dst": "base" }"#,
+        )
+        .replace(
+            "    (name: \"present\"",
+            "    (name: \"base\", plugin: \"clear\", outputs: { \"target\": \"base\" }),\n    (name: \"present\"",
+        );
+    for (text, slot, why) in [
+        (
+            modified,
+            "dst",
+            "is in its inputs and outputs: a modification cannot be optional",
+        ),
+        (
+            file(r#""sky""#),
+            "sky",
+            "is not one of its inputs or outputs",
+        ),
     ] {
-        let text = file(&format!("\"{slot}\""));
         let error = only_error(compile_str(&text));
         assert!(
             matches!(&error.kind, ErrorKind::OptionalSlot { why: w, .. } if w == why),
@@ -253,6 +327,10 @@ fn a_file_s_optional_slot_must_be_an_input_only_slot() {
         let column = at - text[..at].rfind('\n').unwrap();
         assert_error(&error, PATH, line, column, &["present", slot]);
     }
+    // An output-only slot may be optional.
+    let loaded = load(&file(r#""src", "dst""#)).unwrap_or_else(|e| panic!("{e}"));
+    assert!(loaded.slot("present", "dst").is_some());
+    assert!(loaded.slot("present", "nothing").is_none());
 }
 
 #[test]

@@ -9,6 +9,8 @@
 //!   interface: each plugin's slots and parameters are in the pass catalogue,
 //!   `docs/reference/passes.md`.
 //! - [`variant`]: which shader variants a plan builds for a scene's features.
+//! - [`layers`]: the material layers a G-buffer stores, and which a plan's G-buffer
+//!   lighting leaves out.
 //! - [`host`]: what the host application hands the plugins (the scene, overrides, frame
 //!   inputs).
 //! - [`gpu_scene`] (feature `gpu`): the scene on the device, shared by the plugins and
@@ -73,6 +75,7 @@ pub mod gpu_scene;
 pub mod host;
 #[cfg(feature = "gpu")]
 mod kept;
+pub mod layers;
 mod passes;
 mod plugins;
 mod shaders;

@@ -185,10 +185,19 @@ impl GatedShader {
                 OcclusionTextures,
                 DoubleSided,
                 Emissive,
+                Specular,
+                Clearcoat,
+                Sheen,
             ],
-            GatedShader::Light | GatedShader::LightTiled => {
-                &[DirectionalLights, PointLights, SpotLights, Environment]
-            }
+            GatedShader::Light | GatedShader::LightTiled => &[
+                DirectionalLights,
+                PointLights,
+                SpotLights,
+                Environment,
+                Specular,
+                Clearcoat,
+                Sheen,
+            ],
             GatedShader::LightTiledVisibility => &[
                 DirectionalLights,
                 PointLights,
@@ -220,18 +229,6 @@ impl GatedShader {
                 Sheen,
             ],
             GatedShader::VisibilityRaster => &[MaskTextures],
-        }
-    }
-
-    /// Constants the shader always takes, whatever the scene: a G-buffer stores no
-    /// material layers (KHR_materials_ior, _specular, _clearcoat, _sheen), so the G-buffer
-    /// pass never samples their textures and the passes reading it never shade them
-    /// (`rgraph render` warns where a scene has them).
-    pub fn fixed_constants(self) -> &'static [(&'static str, f64)] {
-        const NO_LAYERS: &[(&str, f64)] = &[("SPECULAR", 0.0), ("CLEARCOAT", 0.0), ("SHEEN", 0.0)];
-        match self {
-            GatedShader::GBuffer | GatedShader::Light | GatedShader::LightTiled => NO_LAYERS,
-            _ => &[],
         }
     }
 }
@@ -270,13 +267,12 @@ impl Variant {
     }
 
     /// The pipeline-overridable constants that select it, one per gate (1 compiled in,
-    /// 0 compiled out), and the shader's [fixed ones](GatedShader::fixed_constants).
+    /// 0 compiled out).
     pub fn constants(&self) -> Vec<(&'static str, f64)> {
         self.shader
             .gates()
             .iter()
             .map(|g| (g.constant(), f64::from(u8::from(self.compiled.contains(g)))))
-            .chain(self.shader.fixed_constants().iter().copied())
             .collect()
     }
 
@@ -416,12 +412,14 @@ mod tests {
             [
                 (
                     "gbuffer.wgsl {textures, emissive_textures, metal_rough_textures, \
-                     normal_textures, occlusion_textures, double_sided, emissive}"
+                     normal_textures, occlusion_textures, double_sided, emissive, specular, \
+                     clearcoat, sheen}"
                         .to_owned(),
                     vec!["gbuffer".to_owned()]
                 ),
                 (
-                    "light.wgsl {directional_lights, point_lights, spot_lights, environment}"
+                    "light.wgsl {directional_lights, point_lights, spot_lights, environment, \
+                     specular, clearcoat, sheen}"
                         .to_owned(),
                     vec!["light edges".to_owned(), "light the rest".to_owned()]
                 ),

@@ -140,6 +140,13 @@ impl Material {
         !self.unlit && self.clearcoat.is_used()
     }
 
+    /// Whether its clear coat shows and bends apart from its base: the coat has a normal
+    /// texture, or the base has one, which does not bend the coat (glTF).
+    pub fn has_clearcoat_normal(&self) -> bool {
+        self.has_clearcoat()
+            && (self.clearcoat.normal_texture.is_some() || self.normal_texture.is_some())
+    }
+
     /// Whether a KHR_materials_sheen layer shows.
     pub fn has_sheen(&self) -> bool {
         !self.unlit && self.sheen.is_used()

@@ -81,7 +81,7 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
     let environment = SceneFeatures::of(&pipeline.scene).environment;
     let particles = pipeline.scene.particles().count();
     let points_lines = points_and_segments(&pipeline.scene);
-    let unshaded_layers = layers::unshaded(&pipeline.scene, &args.frame.pipeline);
+    let scene = pipeline.scene.clone();
     let mut prepared = session.prepare(pipeline, args.frame.size())?;
 
     // The opaque passes skip BLEND meshes and only a `transparent` pass draws them; debug
@@ -115,12 +115,16 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
         ));
     }
 
-    // A G-buffer stores the core material model only: the material layers' extensions
-    // are left out of the opaque surfaces it shades.
-    if args.frame.view == view::FINAL
-        && (prepared.runs("gbuffer") || prepared.runs("light_prepass_material"))
-    {
-        for warning in unshaded_layers {
+    // A G-buffer stores the material layers only where its plan keeps their targets:
+    // elsewhere they are left out of the opaque surfaces it shades.
+    if args.frame.view == view::FINAL {
+        let warnings = layers::unshaded(
+            &scene,
+            prepared.plan(),
+            prepared.loaded(),
+            &args.frame.pipeline,
+        );
+        for warning in warnings {
             progress.note(warning);
         }
     }

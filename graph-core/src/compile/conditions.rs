@@ -15,7 +15,8 @@
 //!
 //! An optional read ([`PassBuilder::optional`](crate::PassBuilder::optional)) of a lost
 //! version, or of a dropped resource, is dropped from its pass instead of failing, and
-//! [`Conditioned::dropped_reads`] says why.
+//! [`Conditioned::dropped_reads`] says why; so is an optional fresh write of a dropped
+//! resource.
 //!
 //! Textures with conditional formats get the one the features pick (see
 //! [`formats`](super::formats)).
@@ -245,6 +246,7 @@ fn rewire(graph: &Graph, aliases: &Aliases, conditioned: &mut Conditioned) {
                         resource: access.resource,
                         version: access.version,
                         why,
+                        writes: access.role.writes(),
                     });
                     continue;
                 }

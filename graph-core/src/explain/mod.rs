@@ -63,9 +63,10 @@ pub fn text(plan: &Plan) -> String {
         for d in &pass.dropped_reads {
             let _ = writeln!(
                 out,
-                "         skips   {}@{} (an optional read): {}",
+                "         skips   {}@{} (an optional {}): {}",
                 plan.resource(d.resource).name,
                 d.version,
+                if d.writes { "write" } else { "read" },
                 d.why
             );
         }

@@ -68,6 +68,7 @@ pub(super) fn declare<'f>(
     let declared = handles.clone();
     let mut spans = Spans::new(source, file);
     let mut plugins = BTreeMap::new();
+    let mut slots_taken = BTreeMap::new();
     for &p in order {
         let decl = &file.passes[p];
         // A pass whose inputs a failed pass should have written is skipped: the failure
@@ -98,6 +99,8 @@ pub(super) fn declare<'f>(
         }
         plugins.insert(name.to_owned(), decl.plugin.as_str().to_owned());
         let finished = slots.finish();
+        let taken = finished.taken.iter().map(|&(slot, h)| (slot.to_owned(), h));
+        slots_taken.insert(name.to_owned(), taken.collect());
         for handle in &finished.optional {
             match *handle {
                 AnyHandle::Texture(h) => pass.optional(h),
@@ -137,22 +140,23 @@ pub(super) fn declare<'f>(
                 .collect(),
         ),
         plugins,
+        slots: slots_taken,
         params,
         spans,
     })
 }
 
-/// A pass's `optional` may name only its input-only slots: an output is what later
-/// passes read.
+/// A pass's `optional` may name only its input-only slots and its output-only slots (a
+/// fresh write, dropped with its resource): a modification must find what it reads.
 fn optional_slots<'s>(
     source: &'s Source<'_>,
     decl: &'s PassDecl<'_>,
 ) -> impl Iterator<Item = FileError> + 's {
     decl.optional.iter().filter_map(move |slot| {
         let why = match (decl.input(slot.as_str()), decl.output(slot.as_str())) {
-            (Some(_), None) => return None,
-            (_, Some(_)) => "is one of its outputs: only a read can be optional",
-            (None, None) => "is not one of its inputs",
+            (Some(_), None) | (None, Some(_)) => return None,
+            (Some(_), Some(_)) => "is in its inputs and outputs: a modification cannot be optional",
+            (None, None) => "is not one of its inputs or outputs",
         };
         let kind = ErrorKind::OptionalSlot {
             pass: decl.name.as_str().to_owned(),

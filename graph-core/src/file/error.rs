@@ -482,14 +482,16 @@ pub enum ErrorKind {
         resource: String,
     },
 
-    /// A pass's `optional` names a slot that is not one of its input-only slots.
+    /// A pass's `optional` names a slot that is neither one of its input-only slots nor
+    /// one of its output-only slots.
     #[error("pass \"{pass}\": optional slot \"{slot}\" {why}")]
     OptionalSlot {
         /// The pass, by name.
         pass: String,
         /// The slot name.
         slot: String,
-        /// "is not in its inputs", "is in its outputs too: only a read can be optional".
+        /// "is not one of its inputs or outputs", "is in its inputs and outputs: a
+        /// modification cannot be optional".
         why: String,
     },
 

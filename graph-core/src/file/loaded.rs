@@ -24,6 +24,8 @@ pub struct LoadedGraph {
     pub names: Names,
     /// The plugin each declared pass names, by pass name.
     pub(crate) plugins: BTreeMap<String, String>,
+    /// Each declared pass's slots, by pass name: the version each names.
+    pub(crate) slots: BTreeMap<String, BTreeMap<String, AnyHandle>>,
     /// Every parameter the file declares, with the value it was loaded with.
     pub(crate) params: GraphParams,
     pub(crate) spans: Spans,
@@ -87,6 +89,14 @@ impl LoadedGraph {
     /// their names): what tools that know the plugins say about a plan's passes.
     pub fn plugin(&self, pass: &str) -> Option<&str> {
         self.plugins.get(pass).map(String::as_str)
+    }
+
+    /// The version the slot `slot` of the pass called `pass` names: the one it writes for
+    /// an output, else the one it reads; `None` where the file gives the pass no such
+    /// slot. With [`plugin`](Self::plugin), what tools that know a plugin's slots say
+    /// about a plan's pass (which of its optional accesses the plan keeps, say).
+    pub fn slot(&self, pass: &str, slot: &str) -> Option<AnyHandle> {
+        self.slots.get(pass)?.get(slot).copied()
     }
 
     /// The file's outputs, sorted: for each exported resource, the name of the version it

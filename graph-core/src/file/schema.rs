@@ -188,8 +188,9 @@ pub(crate) struct Entry<'a> {
     /// A pass's slots, or a use's bindings of what the part gives.
     #[serde(borrow, default)]
     pub outputs: Pairs<Name<'a>, Name<'a>>,
-    /// A pass's input slots whose reads are optional: dropped, rather than an error,
-    /// where a condition drops what they read.
+    /// A pass's input slots whose reads are optional, and output slots whose fresh writes
+    /// are: dropped, rather than an error, where a condition drops what they read (or the
+    /// resource they write).
     #[serde(borrow, default)]
     pub optional: Vec<Name<'a>>,
 }
@@ -609,7 +610,7 @@ pub(crate) struct PassDecl<'a> {
     /// Slot name -> name of the version written. A slot also in `inputs` modifies what it
     /// reads, and this names the new version.
     pub outputs: Pairs<Name<'a>, Name<'a>>,
-    /// Input slots whose reads are optional
+    /// Input slots whose reads are optional, and output-only slots whose writes are
     /// ([`PassBuilder::optional`](crate::PassBuilder::optional)): `optional: ["shadows"]`.
     pub optional: Vec<Name<'a>>,
     /// The uses of parts it came from, outermost first (none when the graph's file

@@ -34,7 +34,7 @@ struct Slot<'s> {
     output: Option<&'s str>,
     /// What the plugin gets: the version read, or version 0 of a freshly written resource.
     handle: AnyHandle,
-    /// The file marks the read `optional`.
+    /// The file marks the read (or the fresh write) `optional`.
     optional: bool,
     used: bool,
     written: Option<AnyHandle>,
@@ -80,8 +80,11 @@ pub(crate) struct Finished<'s> {
     /// Slots the plugin never took, with the name each holds.
     pub unused: Vec<(&'s str, &'s str)>,
     /// The handles of the optional slots the plugin took: the loader marks the pass's
-    /// reads of them optional.
+    /// reads (or fresh writes) of them optional.
     pub optional: Vec<AnyHandle>,
+    /// Every slot the plugin took, with the version it names: the one written for an
+    /// output, else the one read.
+    pub taken: Vec<(&'s str, AnyHandle)>,
 }
 
 impl<'s> Slots<'s> {
@@ -192,11 +195,12 @@ impl<'s> Slots<'s> {
         self.get(slot).map(|s| s.handle.kind())
     }
 
-    /// Whether the file marks the slot `optional` (an input-only slot): where a condition
-    /// drops what it reads, the compile drops the read rather than failing
+    /// Whether the file marks the slot `optional` (an input-only or an output-only slot):
+    /// where a condition drops what it reads (or the resource it writes), the compile
+    /// drops the access rather than failing
     /// ([`PassBuilder::optional`](crate::PassBuilder::optional), which the loader calls).
     /// The plugin then prepares to run without it, asking `FrameResources::has` while
-    /// recording, before it builds what binds the slot.
+    /// recording, before it builds what binds or attaches the slot.
     pub fn optional(&self, slot: &str) -> bool {
         self.get(slot).is_some_and(|s| s.optional)
     }
@@ -253,10 +257,14 @@ impl<'s> Slots<'s> {
             written: Vec::new(),
             unused: Vec::new(),
             optional: Vec::new(),
+            taken: Vec::new(),
         };
         for s in self.slots {
             if s.used && s.optional {
                 finished.optional.push(s.handle);
+            }
+            if s.used {
+                finished.taken.push((s.name, s.written.unwrap_or(s.handle)));
             }
             match (s.used, s.output, s.written) {
                 (false, _, _) => finished.unused.push((s.name, s.shown())),

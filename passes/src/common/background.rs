@@ -33,7 +33,7 @@ impl FilledTargets {
     }
 
     /// Declares `slot` as the next color attachment: of WGSL type `ty` in the fill's
-    /// output, holding `clear` where no mesh draws.
+    /// output, holding `clear` where no mesh draws. Returns its handle.
     pub fn push(
         &mut self,
         slots: &mut Slots<'_>,
@@ -41,14 +41,36 @@ impl FilledTargets {
         slot: &str,
         want: Want,
         (ty, clear): (&'static str, [f64; 4]),
-    ) -> Result<(), PluginError> {
+    ) -> Result<TextureHandle, PluginError> {
         let (target, _) = match self.fill {
             true => textures::covered_output(slots, pass, slot, want)?,
             false => textures::color_output(slots, pass, slot, want, clear)?,
         };
         self.handles.push(target);
         self.values.push((ty, clear));
-        Ok(())
+        Ok(target)
+    }
+
+    /// The attachments declared, in location order.
+    pub fn handles(&self) -> &[TextureHandle] {
+        &self.handles
+    }
+
+    /// Only the attachments `kept` marks (one flag per attachment, in order): those a
+    /// frame's plan keeps of a pass whose writes may be dropped, at consecutive locations.
+    pub fn only(&self, kept: &[bool]) -> FilledTargets {
+        let keep = |i: &usize| kept.get(*i).copied().unwrap_or(true);
+        FilledTargets {
+            fill: self.fill,
+            handles: (0..self.handles.len())
+                .filter(keep)
+                .map(|i| self.handles[i])
+                .collect(),
+            values: (0..self.values.len())
+                .filter(keep)
+                .map(|i| self.values[i])
+                .collect(),
+        }
     }
 
     /// Whether the pass fills its targets (`SceneDraw::fill_background`).

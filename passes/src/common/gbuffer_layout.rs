@@ -4,12 +4,16 @@
 //! `depth`, or `samples`: a compute rasteriser's buffer of depth and ID per sample), whose
 //! triangles the pass rebuilds. For each, the textures to bind (group 1) and the WGSL
 //! that reads them (gbuffer_read.wgsl or visibility_read.wgsl, a `load_view_depth`, an
-//! `emitted`), so the rest of the pass's shader is one source for all of them.
+//! `emitted`, and a G-buffer's `load_layers` for the material layers it holds:
+//! common/gbuffer_layers.rs), so the rest of the pass's shader is one source for all of
+//! them.
 
 use rgraph_core::file::{PluginError, Slots};
 use rgraph_core::{Aspect, PassBuilder, TextureHandle};
 
+use crate::common::gbuffer_layers::{self, LayerSet, LayerTargets};
 use crate::common::textures::{self, Input, Texels, Want, GBUFFER_INPUTS};
+use crate::layers::Layer;
 use crate::shaders;
 
 /// Which G-buffer a pass reads (see the module documentation).
@@ -90,16 +94,18 @@ impl GBufferLayout {
             (false, false) => Surfaces::GBuffer,
         };
         if surfaces.visibility() {
-            if let Some(slot) = [
+            let gbuffer = [
                 "albedo",
                 "normal",
                 "material",
                 "view_depth",
                 "hdr",
                 "emission",
-            ]
-            .into_iter()
-            .find(|&slot| listed(slot))
+            ];
+            if let Some(slot) = gbuffer
+                .into_iter()
+                .chain(Layer::ALL.map(Layer::slot))
+                .find(|&slot| listed(slot))
             {
                 return Err(PluginError::Invalid(format!(
                     "a visibility buffer's input and \"{slot}\" (a G-buffer's) are two ways \
@@ -114,8 +120,9 @@ impl GBufferLayout {
         })
     }
 
-    /// The shader fragments that read this layout.
-    pub fn wgsl(&self) -> String {
+    /// The shader fragments that read this layout, a G-buffer with the material layers of
+    /// `layers` (a visibility buffer rebuilds every layer from the material table).
+    pub fn wgsl(&self, layers: LayerSet) -> String {
         let reader = match self.surfaces {
             Surfaces::GBuffer => shaders::GBUFFER_READ,
             Surfaces::VisibilityTextures => shaders::VISIBILITY_READ_TEXTURES,
@@ -133,20 +140,25 @@ impl GBufferLayout {
                 shaders::EMITTED_SURFACE
             ),
         };
-        format!("{reader}\n{view_depth}\n{emitted}")
+        let layers = match self.surfaces {
+            Surfaces::GBuffer => gbuffer_layers::read_wgsl(layers),
+            Surfaces::VisibilityTextures | Surfaces::VisibilitySamples => String::new(),
+        };
+        format!("{reader}\n{view_depth}\n{emitted}\n{layers}")
     }
 
     /// Declares the layout's textures sampled and adds them to `inputs` at
     /// gbuffer_read.wgsl's and visibility_textures.wgsl's bindings, each checked to have
     /// `samples`. Returns a raster pass's visibility buffer's IDs, if it is one (a
-    /// compute rasteriser's buffer is the pass's own to bind: it is no texture).
+    /// compute rasteriser's buffer is the pass's own to bind: it is no texture), and a
+    /// G-buffer's material-layer targets the file lists.
     pub fn bind(
         &self,
         slots: &mut Slots<'_>,
         pass: &mut PassBuilder<'_>,
         samples: u32,
         inputs: &mut Vec<Input>,
-    ) -> Result<Option<TextureHandle>, PluginError> {
+    ) -> Result<(Option<TextureHandle>, LayerTargets), PluginError> {
         let mut sampled = |slot, what, formats, binding, texels| {
             let want = Want::new(what, formats).samples(samples);
             let (handle, _) = textures::input(slots, pass, slot, want)?;
@@ -160,11 +172,12 @@ impl GBufferLayout {
             Ok::<_, PluginError>(handle)
         };
         if self.surfaces == Surfaces::VisibilitySamples {
-            return Ok(None);
+            return Ok((None, Vec::new()));
         }
         if self.surfaces == Surfaces::VisibilityTextures {
             let what = "the visibility buffer's triangle IDs";
-            return sampled("ids", what, textures::IDS, 0, Texels::Uint).map(Some);
+            let ids = sampled("ids", what, textures::IDS, 0, Texels::Uint)?;
+            return Ok((Some(ids), Vec::new()));
         }
         for (slot, what, formats, binding) in GBUFFER_INPUTS {
             if slot != "view_depth" || self.stored_view_depth {
@@ -192,6 +205,7 @@ impl GBufferLayout {
             }
             Emitted::Surface(_) => {}
         }
-        Ok(None)
+        let layers = gbuffer_layers::inputs(slots, pass, samples, inputs)?;
+        Ok((None, layers))
     }
 }

@@ -5,7 +5,8 @@
 //! pass draws ([`extent`]), the edge detectors two passes use ([`edge_detection`]), the
 //! full-screen draw five passes set up ([`fullscreen`]) and its compute counterpart
 //! ([`fullscreen_compute`]), the passes that draw the scene's meshes ([`scene_draw`]),
-//! the G-buffer layouts a lighting pass reads ([`gbuffer_layout`]), the opaque depth the
+//! the G-buffer layouts a lighting pass reads ([`gbuffer_layout`]) and the material layers'
+//! targets in them ([`gbuffer_layers`]), the opaque depth the
 //! passes after them read ([`opaque_depth`]), the lean G-buffer's emission encoding
 //! ([`rgb9e5`]), the compute raster's occlusion culling slots ([`occlusion`]), the slot of
 //! a shadow atlas kept while nothing moves ([`shadow_cache`]), a pass parameter that turns
@@ -19,6 +20,7 @@ pub(crate) mod edge_detection;
 pub(crate) mod extent;
 pub(crate) mod fullscreen;
 pub(crate) mod fullscreen_compute;
+pub(crate) mod gbuffer_layers;
 pub(crate) mod gbuffer_layout;
 #[cfg(feature = "gpu")]
 pub(crate) mod gpu;

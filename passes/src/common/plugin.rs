@@ -3,8 +3,10 @@
 
 use std::sync::Arc;
 
+use rgraph_core::file::PluginError;
 use rgraph_core::PassBuilder;
 
+use super::gbuffer_layers::{LayerSet, LayerTargets, Layered};
 use crate::host::{Host, Overrides};
 use crate::variant::Variants;
 
@@ -43,7 +45,36 @@ impl Shared {
 
     #[cfg(not(feature = "gpu"))]
     pub fn record<R>(&self, _: &mut PassBuilder<'_>, _: R) {}
+
+    /// Gives the pass the callback of `make`'s recorder for the material-layer `targets`
+    /// its file lists: made once for no layers where the file lists none, else per set
+    /// of them a frame's plan keeps ([`Layered`], which checks `make` for all of them
+    /// now).
+    pub fn record_layered<R: Recordable>(
+        &self,
+        pass: &mut PassBuilder<'_>,
+        targets: LayerTargets,
+        make: impl Fn(LayerSet) -> Result<R, PluginError> + 'static,
+    ) -> Result<(), PluginError> {
+        if targets.is_empty() {
+            self.record(pass, make(LayerSet::default())?);
+        } else {
+            self.record(pass, Layered::new(targets, Box::new(make))?);
+        }
+        Ok(())
+    }
 }
+
+/// What [`Shared::record`] takes, [`Layered`] around it included: a recorder of the
+/// scene (feature `gpu`), else anything.
+#[cfg(feature = "gpu")]
+pub(crate) trait Recordable: crate::common::gpu::Recorder<Scene: Clone> {}
+#[cfg(feature = "gpu")]
+impl<R: crate::common::gpu::Recorder<Scene: Clone>> Recordable for R {}
+#[cfg(not(feature = "gpu"))]
+pub(crate) trait Recordable: 'static {}
+#[cfg(not(feature = "gpu"))]
+impl<R: 'static> Recordable for R {}
 
 /// Why `edge_stencil` and `light_edge` leave themselves out of plans with one sample
 /// per pixel (`PassBuilder::omit`).

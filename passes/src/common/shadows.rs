@@ -75,16 +75,22 @@ pub(crate) struct Shadowed<R> {
     pub without: Option<(TextureHandle, R)>,
 }
 
-/// `make`'s pass for [`input`]'s atlas, and where the slot is optional, for none too.
+/// `make`'s pass for [`input`]'s atlas, and where the slot is `optional` ([`optional`]),
+/// for none too.
 pub(crate) fn variants<R>(
-    slots: &Slots<'_>,
+    optional: bool,
     input: Option<Input>,
     mut make: impl FnMut(Option<&Input>) -> Result<R, PluginError>,
 ) -> Result<Shadowed<R>, PluginError> {
     let with = make(input.as_ref())?;
     let without = match input {
-        Some(atlas) if slots.optional("shadows") => Some((atlas.texture, make(None)?)),
+        Some(atlas) if optional => Some((atlas.texture, make(None)?)),
         _ => None,
     };
     Ok(Shadowed { with, without })
+}
+
+/// Whether the file marks the `shadows` slot optional: the plan may drop the atlas.
+pub(crate) fn optional(slots: &Slots<'_>) -> bool {
+    slots.optional("shadows")
 }

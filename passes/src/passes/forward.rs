@@ -206,7 +206,7 @@ impl Plugin for Forward {
         let filter = self.0.overrides.shadows.filter;
         let (fill_background, wgsl) = (targets.fill(), targets.wgsl());
         let handles = targets.into_handles();
-        let draw = shadows::variants(slots, shadows, |shadows| {
+        let draw = shadows::variants(shadows::optional(slots), shadows, |shadows| {
             // Group 1 is the material's: the atlas is bound in group 2.
             let generated = wgsl.clone() + &shadows::wgsl(shadows, 2, filter);
             let source = source.compose_with(desc.samples, &generated)?;

@@ -11,7 +11,11 @@
 //!      "hdr": "hdr",                // rgba16float: emission and unlit color, else background
 //!      "depth": "depth",            // depth24plus-stencil8 or depth32float-stencil8
 //!      "mesh": "mesh",              // rg16uint: the mesh index + 1 (optional, see below)
-//!  })
+//!      "specular": "specular",      // the material layers (optional, see below):
+//!      "clearcoat": "clearcoat",    //   rgba8unorm, rg8unorm or rgba16float,
+//!      "sheen": "sheen",            //   rgba8unorm
+//!  },
+//!  optional: ["specular", "clearcoat", "sheen"])
 //! ```
 //!
 //! All must have the depth's sample count; 1 works too. The full G-buffer's color
@@ -32,6 +36,14 @@
 //!   G-buffer holds no object otherwise). Its index + 1 split over rg16uint (low half in
 //!   red), 0 where no mesh drew: 4 bytes per sample, which only a pipeline with a temporal
 //!   filter pays (pipelines/msaa_4x_taa.ron).
+//! - `specular`, `clearcoat`, `sheen`: KHR_materials_ior and _specular's F0 and weight, the
+//!   clear coat's strength, roughness and (rgba16float) normal, the sheen's colour and
+//!   roughness (common/gbuffer_layers.rs has the formats, gbuffer_layers.wgsl the
+//!   encodings), after every other channel. The shipped pipelines declare each under its
+//!   scene feature and list the slots `optional`, so that only a scene whose materials
+//!   use a layer pays its 2 to 8 bytes per sample; the pass writes the ones its plan
+//!   keeps (`FrameResources::has`), composing its shader for them on first use. A coat
+//!   the pass stores dims the emission under it, as it dims the light.
 //!
 //! The lean G-buffer (pipelines/deferred_msaa_4x_lean.ron) is albedo, normal, material
 //! and a `depth32float` depth without stencil: 16 bytes per sample, 20 with emission.
@@ -58,10 +70,12 @@ use rgraph_core::{PassBuilder, PassKind};
 
 use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
+use crate::common::gbuffer_layers::{self, LayerSet};
 use crate::common::plugin::Shared;
 use crate::common::rgb9e5;
 use crate::common::scene_draw::{Masked, SceneDraw, Stages};
 use crate::common::textures::{self, Want};
+use crate::layers::Layer;
 use crate::shaders;
 use crate::variant::GatedShader;
 
@@ -112,8 +126,14 @@ impl Plugin for GBuffer {
         }
         // Filled where no mesh draws rather than cleared first (common/background.rs),
         // unless the pass draws over a target it reads.
-        let mut targets = FilledTargets::new(slots, &CHANNELS.map(|c| c.slot));
-        let mut written = Vec::with_capacity(CHANNELS.len());
+        let named: Vec<&str> = CHANNELS
+            .iter()
+            .map(|c| c.slot)
+            .chain(Layer::ALL.map(Layer::slot))
+            .collect();
+        let mut targets = FilledTargets::new(slots, &named);
+        // Each written channel's slot and WGSL type, in attachment order.
+        let mut written: Vec<(&'static str, &'static str)> = Vec::with_capacity(named.len());
         for channel in &CHANNELS {
             if channel.slot != "albedo" && !slots.is_output(channel.slot) {
                 continue;
@@ -128,28 +148,49 @@ impl Plugin for GBuffer {
             };
             let want = Want::new(channel.what, channel.formats).samples(samples);
             targets.push(slots, pass, channel.slot, want, (channel.wgsl, clear))?;
-            written.push(channel);
+            written.push((channel.slot, channel.wgsl));
         }
-        let outputs = outputs_wgsl(&written) + &targets.wgsl();
-        let fill_background = targets.fill();
-        let source = shaders::GBUFFER
-            .compose_with(samples, &outputs)?
-            .source()
-            .to_owned();
-        let stages = Stages {
-            vertex: "vs_main",
-            fragment: "fs_opaque",
-            masked: Masked::Entry("fs_masked"),
+        let layers = gbuffer_layers::push_targets(slots, pass, samples, &mut targets)?;
+        written.extend(
+            layers
+                .iter()
+                .map(|&(l, _)| (l.slot(), gbuffer_layers::TARGET_WGSL)),
+        );
+        let handles = targets.handles().to_vec();
+        let layer_targets = layers.clone();
+        // The pass for the layers a frame keeps: their channels only, at consecutive
+        // locations after the others.
+        let make = move |set: LayerSet| {
+            let kept = set.kept_attachments(&layer_targets, &handles);
+            let channels: Vec<(&str, &str)> = written
+                .iter()
+                .zip(&kept)
+                .filter_map(|(&c, &k)| k.then_some(c))
+                .collect();
+            let targets = targets.only(&kept);
+            let outputs = outputs_wgsl(&channels, set.has(Layer::Clearcoat)) + &targets.wgsl();
+            let source = shaders::GBUFFER.compose_with(samples, &outputs)?;
+            let stages = Stages {
+                vertex: "vs_main",
+                fragment: "fs_opaque",
+                masked: Masked::Entry("fs_masked"),
+            };
+            let fill_background = targets.fill();
+            let (targets, shader) = (targets.into_handles(), GatedShader::GBuffer);
+            Ok(SceneDraw {
+                fill_background,
+                ..SceneDraw::new(
+                    "gbuffer",
+                    shader,
+                    source.source().to_owned(),
+                    depth_rule,
+                    targets,
+                    depth,
+                    stages,
+                )
+            })
         };
-        let (targets, shader) = (targets.into_handles(), GatedShader::GBuffer);
-        let draw = SceneDraw {
-            fill_background,
-            ..SceneDraw::new(
-                "gbuffer", shader, source, depth_rule, targets, depth, stages,
-            )
-        };
-        self.0.record(pass, draw);
-        Ok(())
+        self.0.record_layered(pass, layers, make)
     }
 }
 
@@ -213,17 +254,22 @@ fn background_rgb(background: [f64; 4]) -> [f32; 3] {
     [background[0], background[1], background[2]].map(|c| c as f32)
 }
 
-/// `gbuffer.wgsl`'s fragment output: the `channels` written, at locations counting up
-/// from 0 as the pass attaches them.
-fn outputs_wgsl(channels: &[&Channel]) -> String {
+/// `gbuffer.wgsl`'s fragment output: the `channels` written (slot and WGSL type), at
+/// locations counting up from 0 as the pass attaches them, and whether it holds the clear
+/// coat (`HOLDS_CLEARCOAT`: the coat then dims the emission).
+fn outputs_wgsl(channels: &[(&str, &str)], holds_clearcoat: bool) -> String {
     let fields: String = channels
         .iter()
         .enumerate()
-        .map(|(location, c)| format!("    @location({location}) {}: {},\n", c.slot, c.wgsl))
+        .map(|(location, (slot, ty))| format!("    @location({location}) {slot}: {ty},\n"))
         .collect();
-    let values: Vec<String> = channels.iter().map(|c| format!("g.{}", c.slot)).collect();
+    let values: Vec<String> = channels
+        .iter()
+        .map(|(slot, _)| format!("g.{slot}"))
+        .collect();
     format!(
         "// Generated: the channels this G-buffer pass writes.\n\
+         const HOLDS_CLEARCOAT: bool = {holds_clearcoat};\n\
          struct GBufferOut {{\n{fields}}}\n\n\
          fn gbuffer_out(g: GBuffer) -> GBufferOut {{\n    return GBufferOut({});\n}}\n",
         values.join(", ")

@@ -16,12 +16,17 @@
 //!                                // which scales the ambient and environment light only
 //!      "shadows": "shadow_atlas", // optional: shadow_maps's atlas (depth32float), which
 //!                                // scales each shadowed light (common/shadows.rs)
+//!      "specular": "specular", "clearcoat": "clearcoat", "sheen": "sheen",
+//!                                // the G-buffer's material layers, where it has them
+//!                                // (common/gbuffer_layers.rs), usually `optional`
 //!  },
 //!  outputs: { "hdr": "hdr_edges" })
 //! (name: "light_nonedge", plugin: "light_nonedge",
 //!  params: (volumes: true, samples: first),   // or samples: average; reversed_z
 //!  //  both take `accumulate: shaded` (the default) or `light`: the light pre-pass's
-//!  //  light buffer in "hdr", from the thin G-buffer without "albedo" (light_prepass.rs)
+//!  //  light buffer in "hdr", from the thin G-buffer without "albedo" (light_prepass.rs),
+//!  //  and with it an optional "lobes" slot (in inputs and outputs): the lobes buffer
+//!  //  its material layers' clear coat and sheen add to
 //!  inputs: { /* the same slots */ "hdr": "hdr_edges" },
 //!  outputs: { "hdr": "hdr_lit" })
 //! ```
@@ -37,8 +42,9 @@
 //! case). With `volumes: false` every light is a full-screen triangle instead: slower,
 //! and the reference the volumes must match (the falloff window is exactly zero outside
 //! a volume: shaded per sample the two are bit-identical, tests/deferred_lit.rs). Shading
-//! is Lambert plus GGX metallic-roughness; unlit pixels are skipped (the G-buffer put
-//! their color in `hdr`). Every contribution is finite and at most the
+//! is Lambert plus GGX metallic-roughness, with the material layers the G-buffer holds
+//! (each decoded by gbuffer_layers.wgsl, as every G-buffer lighting pass decodes it);
+//! unlit pixels are skipped (the G-buffer put their color in `hdr`). Every contribution is finite and at most the
 //! half-float maximum.
 //!
 //! `light_nonedge` shades from sample 0 at the pixel center and writes every sample the
@@ -60,8 +66,9 @@ use rgraph_core::{Aspect, AspectAccess, ColorLoad, PassBuilder, PassKind, Textur
 
 use crate::common::ao;
 use crate::common::depth::DepthRule;
+use crate::common::gbuffer_layers::{self, LayerSet};
 use crate::common::plugin::{yes, Shared, ONE_SAMPLE};
-use crate::common::shadows::{self, Shadowed};
+use crate::common::shadows;
 use crate::common::textures::{self, Input, Texels, Want, GBUFFER_INPUTS};
 use crate::shaders;
 
@@ -153,6 +160,8 @@ pub(crate) struct LightDraw {
     pub frequency: Frequency,
     pub volumes: bool,
     pub hdr: TextureHandle,
+    /// The light pre-pass's lobes buffer, the second target, where the pass adds to it.
+    pub lobes: Option<TextureHandle>,
     pub depth: TextureHandle,
     pub inputs: Vec<Input>,
 }
@@ -171,17 +180,13 @@ impl Plugin for LightNonEdge {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        let (draw, _) = setup(
-            &self.0,
-            Frequency::Pixel(params.samples),
-            params.reversed_z,
-            params.volumes,
-            params.accumulate,
-            pass,
-            slots,
-        )?;
-        self.0.record(pass, draw);
-        Ok(())
+        let light = LightPass {
+            frequency: Frequency::Pixel(params.samples),
+            reversed_z: params.reversed_z,
+            volumes: params.volumes,
+            accumulate: params.accumulate,
+        };
+        light.setup(&self.0, pass, slots)
     }
 }
 
@@ -199,101 +204,152 @@ impl Plugin for LightEdge {
         pass: &mut PassBuilder<'_>,
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
-        let frequency = Frequency::Sample(params.mode);
-        let (draw, samples) = setup(
-            &self.0,
-            frequency,
-            params.reversed_z,
-            params.volumes,
-            params.accumulate,
-            pass,
-            slots,
-        )?;
-        if samples == 1 {
-            pass.omit(ONE_SAMPLE);
-            return Ok(());
-        }
-        self.0.record(pass, draw);
-        Ok(())
+        let light = LightPass {
+            frequency: Frequency::Sample(params.mode),
+            reversed_z: params.reversed_z,
+            volumes: params.volumes,
+            accumulate: params.accumulate,
+        };
+        light.setup(&self.0, pass, slots)
     }
 }
 
-/// Sets up either light pass, the host's shadow filter from `shared`.
-fn setup(
-    shared: &Shared,
+/// Either light pass's parameters.
+struct LightPass {
     frequency: Frequency,
     reversed_z: Option<bool>,
     volumes: bool,
     accumulate: Accumulate,
-    pass: &mut PassBuilder<'_>,
-    slots: &mut Slots<'_>,
-) -> Result<(Shadowed<LightDraw>, u32), PluginError> {
-    let want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
-    let (depth, desc) = textures::input(slots, pass, "depth", want)?;
-    pass.depth_stencil(depth, AspectAccess::ReadOnly, AspectAccess::ReadOnly);
-    let samples = desc.samples;
-    let mut inputs = Vec::new();
-    if let Frequency::Sample(_) = frequency {
-        // Per-sample shading reads each sample's depth, which the read-only attachment
-        // allows in the same pass (notes/wgpu30.md).
-        pass.sampled_aspect(depth, Aspect::DepthOnly);
-        inputs.push(Input {
-            binding: 5,
-            texture: depth,
-            aspect: Aspect::DepthOnly,
-            texels: Texels::Depth,
-        });
-    }
-    // The light pre-pass's thin G-buffer has no albedo.
-    let reads = GBUFFER_INPUTS
-        .into_iter()
-        .filter(|(slot, ..)| accumulate == Accumulate::Shaded || *slot != "albedo");
-    for (slot, what, formats, binding) in reads {
-        let want = Want::new(what, formats).samples(samples);
-        inputs.push(textures::sampled(slots, pass, slot, want, binding)?.0);
-    }
-    let want = match accumulate {
-        Accumulate::Shaded => Want::new("the HDR target", textures::HDR),
-        Accumulate::Light => Want::new("the light buffer", textures::HDR),
-    };
-    let want = want.samples(samples);
-    let mut modifies = true;
-    let (hdr, _) = textures::output(slots, pass, "hdr", want, |pass, h, m| {
-        modifies = m;
-        pass.color_output(h, ColorLoad::Load)
-    })?;
-    textures::must_modify(slots, "hdr", modifies, "adds light to it")?;
-    // The light pre-pass's ambient light is the material pass's, so no AO there (an
-    // "ao" slot is left unread, which the file loader reports).
-    let ao = match accumulate {
-        Accumulate::Shaded => ao::input(slots, pass)?,
-        Accumulate::Light => None,
-    };
-    inputs.extend(ao);
-    let shadows = shadows::input(slots, pass)?;
-    let filter = shared.overrides.shadows.filter;
-    let draw = shadows::variants(slots, shadows, |shadows| {
-        let shadows_wgsl = shadows::wgsl(shadows, 1, filter);
-        let source = match accumulate {
-            Accumulate::Shaded => {
-                let generated = ao::wgsl(ao.as_ref()) + &shadows_wgsl;
-                shaders::LIGHT.compose_with(samples, &generated)?
-            }
-            Accumulate::Light => shaders::LIGHT_PREPASS.compose_with(samples, &shadows_wgsl)?,
-        };
-        let mut inputs = inputs.clone();
-        inputs.extend(shadows.copied());
-        Ok(LightDraw {
-            source: source.source().to_owned(),
-            depth_rule: DepthRule::new(reversed_z),
+}
+
+impl LightPass {
+    /// Sets up the pass and gives it its recording (the host's shadow filter from
+    /// `shared`): per set of material layers the plan keeps, and with and without an
+    /// optional shadow atlas. `light_edge` omits itself at one sample per pixel instead.
+    fn setup(
+        self,
+        shared: &Shared,
+        pass: &mut PassBuilder<'_>,
+        slots: &mut Slots<'_>,
+    ) -> Result<(), PluginError> {
+        let LightPass {
             frequency,
+            reversed_z,
             volumes,
-            hdr,
-            depth,
-            inputs,
-        })
-    })?;
-    Ok((draw, samples))
+            accumulate,
+        } = self;
+        let want = Want::new("the G-buffer's depth-stencil", textures::DEPTH_STENCIL);
+        let (depth, desc) = textures::input(slots, pass, "depth", want)?;
+        pass.depth_stencil(depth, AspectAccess::ReadOnly, AspectAccess::ReadOnly);
+        let samples = desc.samples;
+        let mut inputs = Vec::new();
+        if let Frequency::Sample(_) = frequency {
+            // Per-sample shading reads each sample's depth, which the read-only attachment
+            // allows in the same pass (notes/wgpu30.md).
+            pass.sampled_aspect(depth, Aspect::DepthOnly);
+            inputs.push(Input {
+                binding: 5,
+                texture: depth,
+                aspect: Aspect::DepthOnly,
+                texels: Texels::Depth,
+            });
+        }
+        // The light pre-pass's thin G-buffer has no albedo.
+        let reads = GBUFFER_INPUTS
+            .into_iter()
+            .filter(|(slot, ..)| accumulate == Accumulate::Shaded || *slot != "albedo");
+        for (slot, what, formats, binding) in reads {
+            let want = Want::new(what, formats).samples(samples);
+            inputs.push(textures::sampled(slots, pass, slot, want, binding)?.0);
+        }
+        let layers = gbuffer_layers::inputs(slots, pass, samples, &mut inputs)?;
+        let want = match accumulate {
+            Accumulate::Shaded => Want::new("the HDR target", textures::HDR),
+            Accumulate::Light => Want::new("the light buffer", textures::HDR),
+        };
+        let want = want.samples(samples);
+        let mut modifies = true;
+        let (hdr, _) = textures::output(slots, pass, "hdr", want, |pass, h, m| {
+            modifies = m;
+            pass.color_output(h, ColorLoad::Load)
+        })?;
+        textures::must_modify(slots, "hdr", modifies, "adds light to it")?;
+        let lobes = match (slots.kind("lobes"), accumulate) {
+            (None, _) => None,
+            (Some(_), Accumulate::Shaded) => {
+                return Err(PluginError::Invalid(
+                    "\"lobes\" is the light pre-pass's lobes buffer, which only \
+                     `accumulate: light` adds to"
+                        .into(),
+                ))
+            }
+            (Some(_), Accumulate::Light) => {
+                let want = Want::new("the lobes buffer", textures::HDR).samples(samples);
+                let mut modifies = true;
+                let (lobes, _) = textures::output(slots, pass, "lobes", want, |pass, h, m| {
+                    modifies = m;
+                    pass.color_output(h, ColorLoad::Load)
+                })?;
+                textures::must_modify(slots, "lobes", modifies, "adds light to it")?;
+                Some(lobes)
+            }
+        };
+        // The light pre-pass's ambient light is the material pass's, so no AO there (an
+        // "ao" slot is left unread, which the file loader reports).
+        let ao = match accumulate {
+            Accumulate::Shaded => ao::input(slots, pass)?,
+            Accumulate::Light => None,
+        };
+        inputs.extend(ao);
+        let generated = ao::wgsl(ao.as_ref()) + &outputs_wgsl(lobes.is_some());
+        let shadows = shadows::input(slots, pass)?;
+        if matches!(frequency, Frequency::Sample(_)) && samples == 1 {
+            pass.omit(ONE_SAMPLE);
+            return Ok(());
+        }
+        let (optional_atlas, filter) = (shadows::optional(slots), shared.overrides.shadows.filter);
+        let targets = layers.clone();
+        let make = move |set: LayerSet| {
+            shadows::variants(optional_atlas, shadows, |atlas| {
+                let generated = generated.clone()
+                    + &shadows::wgsl(atlas, 1, filter)
+                    + &gbuffer_layers::read_wgsl(set);
+                let source = match accumulate {
+                    Accumulate::Shaded => shaders::LIGHT.compose_with(samples, &generated)?,
+                    Accumulate::Light => {
+                        shaders::LIGHT_PREPASS.compose_with(samples, &generated)?
+                    }
+                };
+                let mut inputs = set.inputs(&targets, &inputs);
+                inputs.extend(atlas.copied());
+                Ok(LightDraw {
+                    source: source.source().to_owned(),
+                    depth_rule: DepthRule::new(reversed_z),
+                    frequency,
+                    volumes,
+                    hdr,
+                    lobes,
+                    depth,
+                    inputs,
+                })
+            })
+        };
+        shared.record_layered(pass, layers, make)
+    }
+}
+
+/// light.wgsl's `LightOut` and `light_out`: the light or lit colour at location 0, and
+/// where the pass has `lobes` (the light pre-pass's lobes buffer), the lobes at 1.
+fn outputs_wgsl(lobes: bool) -> String {
+    let (field, value) = match lobes {
+        true => ("    @location(1) lobes: vec4<f32>,\n", ", s.lobes"),
+        false => ("", ""),
+    };
+    format!(
+        "// Generated: the targets this light pass adds to.\n\
+         struct LightOut {{\n    @location(0) light: vec4<f32>,\n{field}}}\n\n\
+         fn light_out(s: SampleLight) -> LightOut {{\n    return LightOut(s.light{value});\n}}\n"
+    )
 }
 
 #[cfg(feature = "gpu")]
@@ -336,6 +392,7 @@ mod gpu {
     #[derive(Clone, PartialEq)]
     pub(crate) struct Key {
         hdr: wgpu::TextureFormat,
+        lobes: Option<wgpu::TextureFormat>,
         depth: wgpu::TextureFormat,
         samples: u32,
         geometry: Geometry,
@@ -365,6 +422,7 @@ mod gpu {
             let (resources, device, scene) = (frame.resources, frame.device, &frame.scene);
             let size = resources.output_size();
             let (hdr, depth) = (resources.shape(self.hdr), resources.shape(self.depth));
+            let lobes = self.lobes.map(|h| resources.shape(h).format);
             let passes: Vec<Option<u32>> = match self.frequency {
                 Frequency::Sample(EdgeMode::SampleMask) => (0..hdr.samples).map(Some).collect(),
                 Frequency::Pixel(_) | Frequency::Sample(EdgeMode::SampleIndex) => vec![None],
@@ -378,6 +436,7 @@ mod gpu {
             let mut use_pipeline = |pass: &mut wgpu::RenderPass<'_>, geometry, sample| {
                 let key = Key {
                     hdr: hdr.format,
+                    lobes,
                     depth: depth.format,
                     samples: hdr.samples,
                     geometry,
@@ -385,6 +444,11 @@ mod gpu {
                     variant: variant.clone(),
                 };
                 let pipeline = state.pipelines.get(key, |key| {
+                    let targets: Vec<_> = [Some(key.hdr), key.lobes]
+                        .into_iter()
+                        .flatten()
+                        .map(|format| Some(additive(format)))
+                        .collect();
                     let mut constants = vec![
                         ("FAR_DEPTH", f64::from(far_depth(convention))),
                         ("SAMPLE", f64::from(key.sample.unwrap_or(0))),
@@ -411,7 +475,7 @@ mod gpu {
                             (Frequency::Sample(_), Some(_)) => "fs_one_sample",
                         },
                         constants: &constants,
-                        targets: &[Some(additive(key.hdr))],
+                        targets: &targets,
                         cull: match key.geometry {
                             Geometry::FarPlane { .. } => None,
                             Geometry::FrontFaces => Some(wgpu::Face::Back),

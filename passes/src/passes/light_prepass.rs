@@ -10,10 +10,14 @@
 //!      "material": "material",      // rgba8unorm: gbuffer's layout; roughness and flags are read
 //!      "view_depth": "view_depth",  // r32float
 //!      "depth": "depth",            // the depth-stencil, written
-//!  })
+//!      "clearcoat": "clearcoat",    // optional: the material layers the light passes
+//!      "sheen": "sheen",            //   need, as gbuffer writes them
+//!  },
+//!  optional: ["clearcoat", "sheen"])
 //! (name: "material", plugin: "light_prepass_material",
 //!  params: (background: (0.0, 0.0, 0.0, 1.0)),               // the default; reversed_z
 //!  inputs: { "light": "light", "depth": "depth_edges" },     // the light buffer; depth read-only
+//!                                  // and "lobes": the lobes buffer, where the scene has one
 //!  outputs: { "hdr": "hdr" })                                 // rgba16float, the same samples
 //! ```
 //!
@@ -38,6 +42,19 @@
 //! comes out as deferred shading computes it; a metal's coloured specular is the
 //! dielectric's scaled by a Fresnel ratio taken at n.v rather than at each light's v.h,
 //! and under lights of different colours specular takes the mix of their colours.
+//!
+//! The material layers: KHR_materials_ior and _specular need nothing of the light
+//! passes (the material pass scales the specular's Fresnel to the layer's F0 and weight,
+//! as for metals, and leaves out the weight's own (1 - F90) share of the diffuse at each
+//! light's grazing angle). A clear coat and a sheen are lobes of their own, with their own
+//! roughness (and the coat its own normal): for a scene with them (`layer_lobes`) the
+//! thin G-buffer stores the `clearcoat` and `sheen` targets (gbuffer.rs's layers, 2 or 8
+//! and 4 bytes a sample; the pass writes those its plan keeps), the light passes add the
+//! coat's lobe, the sheen's and the sheen's share of the base into a second
+//! `rgba16float` buffer, `lobes` (8 bytes a sample; light_prepass.wgsl), and the material
+//! pass layers them over the base as brdf.wgsl does, coloured by the diffuse light's
+//! chroma; the base under a sheen is dimmed by the mean of the sheen's E over the lights,
+//! weighed by their diffuse light (exact for one light).
 
 use serde::Deserialize;
 
@@ -47,9 +64,11 @@ use rgraph_core::{AspectAccess, PassBuilder, PassKind, TextureHandle};
 use super::gbuffer::opaque_black;
 use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
+use crate::common::gbuffer_layers::{self, LayerSet};
 use crate::common::plugin::Shared;
 use crate::common::scene_draw::{Masked, SceneDraw, Stages};
 use crate::common::textures::{self, Want};
+use crate::layers::Layer;
 use crate::shaders;
 use crate::variant::GatedShader;
 
@@ -84,10 +103,11 @@ fn geometry_draw(
     (vertex, fragment): (&'static str, &'static str),
     samples: u32,
     depth_rule: DepthRule,
-    targets: FilledTargets,
+    (targets, generated): (FilledTargets, String),
     depth: TextureHandle,
 ) -> Result<SceneDraw, PluginError> {
-    let source = shaders::LIGHT_PREPASS_GEOMETRY.compose_with(samples, &targets.wgsl())?;
+    let generated = generated + &targets.wgsl();
+    let source = shaders::LIGHT_PREPASS_GEOMETRY.compose_with(samples, &generated)?;
     let stages = Stages {
         vertex,
         fragment,
@@ -105,6 +125,45 @@ fn geometry_draw(
             stages,
         )
     })
+}
+
+/// light_prepass_material.wgsl's generated block: the thin G-buffer's `ThinGBuffer` and
+/// `thin_gbuffer`, its core targets and then the material `layers` the thin pass writes
+/// (gbuffer_layers.wgsl's encodings), and `LOBES` and `load_lobes`, the material pass's
+/// lobes buffer (group 2, binding 1) where it reads one.
+fn generated_wgsl(layers: &[Layer], lobes: bool) -> String {
+    let fields: String = layers
+        .iter()
+        .enumerate()
+        .map(|(i, layer)| format!("    @location({}) {}: vec4<f32>,\n", 3 + i, layer.slot()))
+        .collect();
+    let values: String = layers
+        .iter()
+        .map(|layer| format!(", encode_{}(layers)", layer.slot()))
+        .collect();
+    let lobes = match lobes {
+        true => {
+            "const LOBES: bool = true;\n\
+                 @group(2) @binding(1) var lobes_tex: GTexF;\n\
+                 fn load_lobes(pixel: vec2<i32>, s: u32) -> vec4<f32> {\n\
+                 \x20   return textureLoad(lobes_tex, pixel, s);\n}\n"
+        }
+        false => {
+            "const LOBES: bool = false;\n\
+                  fn load_lobes(pixel: vec2<i32>, s: u32) -> vec4<f32> {\n\
+                  \x20   return vec4<f32>(0.0);\n}\n"
+        }
+    };
+    format!(
+        "// Generated: the thin G-buffer's targets and the lobes buffer (light_prepass.rs).\n\
+         struct ThinGBuffer {{\n\
+         \x20   @location(0) normal: vec4<f32>,\n\
+         \x20   @location(1) material: vec4<f32>,\n\
+         \x20   @location(2) view_depth: vec4<f32>,\n{fields}}}\n\n\
+         fn thin_gbuffer(normal: vec4<f32>, material: vec4<f32>, view_depth: vec4<f32>, \
+         layers: Layers) -> ThinGBuffer {{\n\
+         \x20   return ThinGBuffer(normal, material, view_depth{values});\n}}\n\n{lobes}"
+    )
 }
 
 impl Plugin for LightPrepassGBuffer {
@@ -129,7 +188,11 @@ impl Plugin for LightPrepassGBuffer {
         let samples = desc.samples;
         // Filled where no mesh draws rather than cleared first (common/background.rs),
         // unless the pass draws over a target it reads.
-        let mut targets = FilledTargets::new(slots, &["normal", "material", "view_depth"]);
+        let named: Vec<&str> = ["normal", "material", "view_depth"]
+            .into_iter()
+            .chain(Layer::ALL.map(Layer::slot))
+            .collect();
+        let mut targets = FilledTargets::new(slots, &named);
         for (slot, what, formats) in [
             ("normal", "the thin G-buffer's normals", textures::NORMAL),
             (
@@ -146,11 +209,30 @@ impl Plugin for LightPrepassGBuffer {
             let want = Want::new(what, formats).samples(samples);
             targets.push(slots, pass, slot, want, ("vec4<f32>", [0.0; 4]))?;
         }
-        let stages = ("vs_pixel", "fs_thin_gbuffer");
-        let label = "light_prepass_gbuffer";
-        let draw = geometry_draw(label, stages, samples, depth_rule, targets, depth)?;
-        self.0.record(pass, draw);
-        Ok(())
+        let layers = gbuffer_layers::push_targets(slots, pass, samples, &mut targets)?;
+        let handles = targets.handles().to_vec();
+        let listed = layers.clone();
+        // The pass for the layers a frame keeps, at consecutive locations after the rest.
+        let make = move |set: LayerSet| {
+            let kept = set.kept_attachments(&listed, &handles);
+            let written: Vec<Layer> = listed
+                .iter()
+                .map(|&(layer, _)| layer)
+                .filter(|&layer| set.has(layer))
+                .collect();
+            let generated = generated_wgsl(&written, false);
+            let stages = ("vs_pixel", "fs_thin_gbuffer");
+            let targets = (targets.only(&kept), generated);
+            geometry_draw(
+                "light_prepass_gbuffer",
+                stages,
+                samples,
+                depth_rule,
+                targets,
+                depth,
+            )
+        };
+        self.0.record_layered(pass, layers, make)
     }
 }
 
@@ -174,15 +256,21 @@ impl Plugin for LightPrepassMaterial {
         let samples = desc.samples;
         let want = Want::new("the light buffer", textures::HDR).samples(samples);
         let (light, _) = textures::sampled(slots, pass, "light", want, 0)?;
+        let mut read = vec![light];
+        if slots.kind("lobes").is_some() {
+            let want = Want::new("the lobes buffer", textures::HDR).samples(samples);
+            read.push(textures::sampled(slots, pass, "lobes", want, 1)?.0);
+        }
         let want = Want::new("the HDR target", textures::HDR).samples(samples);
         // Filled with the background where no mesh draws, as forward's is.
         let mut targets = FilledTargets::new(slots, &["hdr"]);
         targets.push(slots, pass, "hdr", want, ("vec4<f32>", params.background))?;
         let stages = ("vs_sample", "fs_apply_material");
         let (label, rule) = ("light_prepass_material", DepthRule::new(params.reversed_z));
+        let generated = generated_wgsl(&[], read.len() > 1);
         let draw = SceneDraw {
-            redraw: Some(vec![light]),
-            ..geometry_draw(label, stages, samples, rule, targets, depth)?
+            redraw: Some(read),
+            ..geometry_draw(label, stages, samples, rule, (targets, generated), depth)?
         };
         self.0.record(pass, draw);
         Ok(())

@@ -92,7 +92,7 @@
 use serde::Deserialize;
 
 use rgraph_core::file::{Plugin, PluginError, Slots};
-use rgraph_core::shader::Stage;
+use rgraph_core::shader::{Shader, Stage};
 use rgraph_core::types::TextureFormat;
 use rgraph_core::{Aspect, BufferHandle, PassBuilder, PassKind, TextureHandle};
 
@@ -100,12 +100,14 @@ use super::resolve::{one, resolve_exposure, ResolveMode};
 use crate::common::ao;
 use crate::common::depth::DepthRule;
 use crate::common::edge_detection::{Detector, EdgeDetection};
+use crate::common::gbuffer_layers::LayerSet;
 use crate::common::gbuffer_layout::{GBufferLayout, Surfaces};
 use crate::common::plugin::{check_tile, yes, Shared};
 use crate::common::shadows;
 use crate::common::textures::{self, format_name, Input, Texels, Want};
 use crate::common::visibility_samples;
 use crate::shaders;
+use crate::shadows::ShadowFilter;
 
 pub struct LightTiled(pub(crate) Shared);
 
@@ -308,7 +310,7 @@ impl Plugin for LightTiled {
                     .into(),
             ));
         }
-        let visibility_ids = layout.bind(slots, pass, samples, &mut inputs)?;
+        let (visibility_ids, layers) = layout.bind(slots, pass, samples, &mut inputs)?;
         let (slot, want) = params.view.output();
         let (output, out) = textures::output(slots, pass, slot, want.samples(1), |pass, h, _| {
             pass.storage_write(h)
@@ -333,20 +335,19 @@ impl Plugin for LightTiled {
         };
         // The shader's sizes are constants, so the workgroup memory the compile checks
         // is the memory this tile and sample count use.
-        let generated = format!(
+        let head = format!(
             "// Generated: the tile, its edge-list entries, the output, then the G-buffer's\n\
              // layout and where edge pixels are lit.\n\
              const TILE: u32 = {}u;\n\
              const EDGE_CAPACITY: u32 = {capacity}u;\n\
-             alias OutTex = texture_storage_2d<{}, write>;\n{}{}",
+             alias OutTex = texture_storage_2d<{}, write>;\n",
             params.tile,
             format_name(out.format),
-            layout.wgsl(),
-            match listed {
-                true => shaders::LIGHT_EDGES_LISTED,
-                false => shaders::EDGES_IN_TILES,
-            },
         );
+        let edges = match listed {
+            true => shaders::LIGHT_EDGES_LISTED,
+            false => shaders::EDGES_IN_TILES,
+        };
         let ao = ao::input(slots, pass)?;
         inputs.extend(ao);
         let shadows = shadows::input(slots, pass)?;
@@ -360,9 +361,6 @@ impl Plugin for LightTiled {
                 "{what}: give the pass a \"shadows\" input (the shadow_maps pass's atlas)"
             )));
         }
-        let filter = self.0.overrides.shadows.filter;
-        let generated = generated + &ao::wgsl(ao.as_ref());
-        // The device must allow the workgroup of each.
         let entries = match listed {
             true => vec![EDGES_RESET, PIXELS, EDGES],
             false => vec![PIXELS],
@@ -395,9 +393,19 @@ impl Plugin for LightTiled {
                 f64::from(u8::from(params.shading == EdgeShading::Surfaces)),
             ));
         }
-        let dispatch = shadows::variants(slots, shadows, |shadows| {
-            let generated = generated.clone() + &shadows::wgsl(shadows, 1, filter);
-            let shader = shaders::LIGHT_TILED.compose_with(samples, &generated)?;
+        let view_depth_from_depth = !layout.stored_view_depth;
+        let source = TiledSource {
+            head,
+            layout,
+            tail: edges.to_owned() + &ao::wgsl(ao.as_ref()),
+            filter: self.0.overrides.shadows.filter,
+            samples,
+        };
+        // The device must allow each entry point's workgroup: the same with or without
+        // the atlas and the layers, whose textures take no workgroup memory.
+        let all = LayerSet::all(&layers);
+        for atlas in [shadows.as_ref(), None] {
+            let shader = source.compose(all, atlas)?;
             for name in &entries {
                 let Some(entry) = shader.entry(name, Stage::Compute) else {
                     return Err(PluginError::Invalid(format!(
@@ -406,22 +414,51 @@ impl Plugin for LightTiled {
                 };
                 pass.workgroup(entry.workgroup());
             }
-            let mut inputs = inputs.clone();
-            inputs.extend(shadows.copied());
-            Ok(TiledDispatch {
-                source: shader.source().to_owned(),
-                entries: entries.clone(),
-                constants: constants.clone(),
-                view_depth_from_depth: !layout.stored_view_depth,
-                ids: visibility_ids,
-                tile: params.tile,
-                depth,
-                output,
-                inputs,
+        }
+        let optional_atlas = shadows::optional(slots);
+        let targets = layers.clone();
+        let make = move |set: LayerSet| {
+            shadows::variants(optional_atlas, shadows, |atlas| {
+                let mut inputs = set.inputs(&targets, &inputs);
+                inputs.extend(atlas.copied());
+                Ok(TiledDispatch {
+                    source: source.compose(set, atlas)?.source().to_owned(),
+                    entries: entries.clone(),
+                    constants: constants.clone(),
+                    view_depth_from_depth,
+                    ids: visibility_ids,
+                    tile: params.tile,
+                    depth,
+                    output,
+                    inputs,
+                })
             })
-        })?;
-        self.0.record(pass, dispatch);
-        Ok(())
+        };
+        self.0.record_layered(pass, layers, make)
+    }
+}
+
+/// The tiled pass's shader but for the material layers its G-buffer holds in a frame and
+/// the shadow atlas: the generated block's head (tile, edge list, output), the G-buffer's
+/// layout and its tail (where edge pixels are lit, the ambient occlusion).
+struct TiledSource {
+    head: String,
+    layout: GBufferLayout,
+    tail: String,
+    filter: ShadowFilter,
+    samples: u32,
+}
+
+impl TiledSource {
+    fn compose(&self, layers: LayerSet, atlas: Option<&Input>) -> Result<Shader, PluginError> {
+        let generated = format!(
+            "{}{}{}{}",
+            self.head,
+            self.layout.wgsl(layers),
+            self.tail,
+            shadows::wgsl(atlas, 1, self.filter)
+        );
+        shaders::LIGHT_TILED.compose_with(self.samples, &generated)
     }
 }
 

@@ -146,7 +146,7 @@ impl Plugin for Transparent {
         let begin = params.extent == Extent::Blended && !slots.modifies("accum");
         let shadows = shadows::input(slots, pass)?;
         let filter = self.0.overrides.shadows.filter;
-        let draw = shadows::variants(slots, shadows, |shadows| {
+        let draw = shadows::variants(shadows::optional(slots), shadows, |shadows| {
             // Group 1 is the material's: the atlas is bound in group 2, as forward's.
             let generated = shadows::wgsl(shadows, 2, filter);
             let source = shaders::TRANSPARENT.compose_with(desc.samples, &generated)?;

@@ -143,14 +143,18 @@ fn sheen_albedo(cos: f32, roughness: f32) -> f32 {
 }
 
 // What the sheen of `s` leaves of the base lit from `n_l`: the extension's albedo
-// scaling, 1 - max(colour) E, with E the sheen's albedo toward the viewer or the light,
-// whichever takes more.
+// scaling, 1 - max(colour) E (sheen_taken's E).
 fn sheen_scaling(s: Surface, n_l: f32) -> f32 {
     let c = s.layers.sheen_color;
-    let strongest = max(c.r, max(c.g, c.b));
+    return 1.0 - max(c.r, max(c.g, c.b)) * sheen_taken(s, n_l);
+}
+
+// E of the albedo scaling of the sheen of `s` lit from `n_l`: the albedo of its lobe of
+// colour 1 toward the viewer or the light, whichever takes more.
+fn sheen_taken(s: Surface, n_l: f32) -> f32 {
     let r = s.layers.sheen_roughness;
     let n_v = clamp(dot(s.normal, s.view), 0.0, 1.0);
-    return 1.0 - strongest * max(sheen_albedo(n_v, r), sheen_albedo(n_l, r));
+    return max(sheen_albedo(n_v, r), sheen_albedo(n_l, r));
 }
 
 // KHR_materials_clearcoat: how much of the light the coat of `layers` reflects toward

@@ -185,7 +185,8 @@ fn vs_fullscreen_far(@builtin(vertex_index) index: u32) -> Fullscreen {
 // KHR_materials_ior and _specular (a dielectric F0 or specular weight other than the core
 // model's), _clearcoat and _sheen. Without one its code is compiled out: plain_layers()
 // are what a material without the extension has, and the gated code would change nothing.
-// Shaders that read a G-buffer, which stores no layers, set all three false.
+// A G-buffer holds a layer only where its plan keeps the layer's target
+// (gbuffer_layers.wgsl); elsewhere its samples' layers are plain_layers().
 override SPECULAR: bool = true;
 override CLEARCOAT: bool = true;
 override SHEEN: bool = true;
@@ -231,6 +232,7 @@ struct GSample {
     // own: emitted_*.wgsl).
     id: u32,
     emission: vec3<f32>,
-    // A G-buffer's samples are plain_layers(): it has no bytes for them.
+    // A G-buffer's samples: the layers it holds (gbuffer_read.wgsl's load_layers), the
+    // core model's elsewhere.
     layers: Layers,
 }

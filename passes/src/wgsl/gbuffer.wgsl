@@ -1,7 +1,8 @@
 // The G-buffer pass: one draw per mesh (instance index = mesh index), writing
 // albedo, octahedral normal, material, linear view depth and the HDR target (emission,
 // or the whole color of unlit materials, so that it is added exactly once).
-// Composed after common.wgsl, scene.wgsl and material.wgsl, and before the generated
+// Composed after common.wgsl, scene.wgsl, material.wgsl, brdf.wgsl (coat_weight) and
+// gbuffer_layers.wgsl, and before the generated
 // `GBufferOut` and `gbuffer_out`, which keep the channels the pass writes (an unlit-only
 // scene's G-buffer has no normal or material) at consecutive locations.
 //
@@ -14,7 +15,10 @@
 // neither view depth (later passes take it from the depth buffer) nor HDR: its emission
 // channel holds only the emission, in RGB9E5 (common.wgsl) split over an rg16uint, and the light pass takes an
 // unlit surface's color from albedo. Textures change what the channels hold, not how
-// many there are.
+// many there are. The material layers' targets (specular, clearcoat, sheen), where the
+// pass has them, hold gbuffer_layers.wgsl's encodings; a coat the G-buffer holds dims the
+// emission under it, as it dims the light (`HOLDS_CLEARCOAT`, generated with the
+// outputs).
 
 // Whether the scene has double-sided materials (variant.rs; the default is the
 // general shader): without them back faces are culled and the flip changes nothing.
@@ -65,6 +69,9 @@ struct GBuffer {
     hdr: vec4<f32>,
     emission: vec2<u32>,
     mesh: vec2<u32>,
+    specular: vec4<f32>,
+    clearcoat: vec4<f32>,
+    sheen: vec4<f32>,
 }
 
 @vertex
@@ -105,17 +112,25 @@ fn surface(in: Varyings, m: MaterialSample, front: bool, coverage: u32) -> GBuff
         edge |= EDGE_COVERAGE;
     }
     let unlit = (material.flags & FLAG_UNLIT) != 0u;
+    let layers = surface_layers(m, normal, in.tangent, front || !DOUBLE_SIDED);
+    var emission = m.emission;
+    if HOLDS_CLEARCOAT && !unlit {
+        emission *= 1.0 - coat_weight(layers, safe_normalize(-in.position));
+    }
     var out: GBuffer;
     out.albedo = vec4<f32>(m.base.rgb, m.occlusion);
     out.normal = vec4<f32>(oct_encode(n), 0.0, 0.0);
     out.material = vec4<f32>(m.metallic, m.roughness, f32(material.flags), f32(edge)) / vec4<f32>(1.0, 1.0, 255.0, 255.0);
     out.view_depth = vec4<f32>(in.view_depth, 0.0, 0.0, 0.0);
-    let emitted = select(m.emission, m.base.rgb + m.emission, unlit);
+    let emitted = select(emission, m.base.rgb + emission, unlit);
     out.hdr = vec4<f32>(min(emitted, vec3<f32>(HALF_MAX)), 1.0);
-    let emission = pack_rgb9e5(m.emission);
-    out.emission = vec2<u32>(emission & 0xffffu, emission >> 16u);
+    let packed = pack_rgb9e5(emission);
+    out.emission = vec2<u32>(packed & 0xffffu, packed >> 16u);
     let mesh = in.mesh + 1u;
     out.mesh = vec2<u32>(mesh & 0xffffu, mesh >> 16u);
+    out.specular = encode_specular(layers);
+    out.clearcoat = encode_clearcoat(layers);
+    out.sheen = encode_sheen(layers);
     return out;
 }
 

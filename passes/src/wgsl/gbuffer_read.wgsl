@@ -1,6 +1,9 @@
 // The multisampled G-buffer as the passes after the G-buffer pass read it (group 1).
-// A pass binds only the textures its entry points use. Composed with one of
-// view_depth_stored.wgsl and view_depth_from_depth.wgsl, which define `load_view_depth`.
+// A pass binds only the textures its entry points use. Composed after
+// gbuffer_layers.wgsl, and with one of view_depth_stored.wgsl and
+// view_depth_from_depth.wgsl, which define `load_view_depth`, and a `load_layers` (the
+// material layers the G-buffer holds: common/gbuffer_layers.rs generates it, or
+// gbuffer_core_layers.wgsl).
 
 @group(1) @binding(0) var albedo_tex: GTexF;
 @group(1) @binding(1) var normal_tex: GTexF;
@@ -31,7 +34,7 @@ fn load_gsample(pixel: vec2<i32>, s: u32) -> GSample {
     g.flags = unorm8(m.b);
     g.edge_bits = unorm8(m.a);
     g.view_depth = load_view_depth(pixel, s);
-    g.layers = plain_layers();
+    g.layers = load_layers(pixel, s, g.normal);
     return g;
 }
 

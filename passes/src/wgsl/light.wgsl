@@ -6,7 +6,15 @@
 // surface.wgsl and what one sample accumulates, `shade_sample(pixel, s, p, light)`: the
 // lit colour (light_shade.wgsl, into the HDR target, then common/ao.rs's generated
 // `with_screen_ao`) or the light pre-pass's light (light_prepass.wgsl, into the light
-// buffer).
+// buffer, and its layers' lobes into a second one), and before the generated `LightOut`
+// and `light_out` (passes/light.rs), which keep the targets the pass writes.
+
+// What one sample adds to the pass's targets: the lit colour or the light, and the light
+// pre-pass's layer lobes (zero where the pass has no target for them).
+struct SampleLight {
+    light: vec4<f32>,
+    lobes: vec4<f32>,
+}
 
 // `fs_one_sample`: the sample this pipeline shades (its multisample mask is 1 << SAMPLE).
 override SAMPLE: u32 = 0u;
@@ -40,9 +48,9 @@ fn vs_volume(@location(0) position: vec3<f32>, @builtin(instance_index) light: u
 }
 
 @fragment
-fn fs_pixel(in: LightVaryings) -> @location(0) vec4<f32> {
+fn fs_pixel(in: LightVaryings) -> LightOut {
     let pixel = pixel_of(in.clip);
-    return shade_sample(pixel, 0u, center_surface(pixel, 0u), in.light);
+    return light_out(shade_sample(pixel, 0u, center_surface(pixel, 0u), in.light));
 }
 
 // `light_nonedge` with `samples: average`: Killzone 2's on-the-fly resolve (seed 004).
@@ -50,25 +58,28 @@ fn fs_pixel(in: LightVaryings) -> @location(0) vec4<f32> {
 // draw covers; samples of no surface (or one the light misses) count as black, so edge
 // pixels darken. A baseline to measure, not a way to shade.
 @fragment
-fn fs_pixel_average(in: LightVaryings) -> @location(0) vec4<f32> {
+fn fs_pixel_average(in: LightVaryings) -> LightOut {
     let pixel = pixel_of(in.clip);
-    var sum = vec4<f32>(0.0);
+    var sum = SampleLight(vec4<f32>(0.0), vec4<f32>(0.0));
     for (var s = 0u; s < SAMPLES; s++) {
-        sum += shade_sample(pixel, s, center_surface(pixel, s), in.light);
+        let shaded = shade_sample(pixel, s, center_surface(pixel, s), in.light);
+        sum.light += shaded.light;
+        sum.lobes += shaded.lobes;
     }
-    return sum / f32(SAMPLES);
+    let n = f32(SAMPLES);
+    return light_out(SampleLight(sum.light / n, sum.lobes / n));
 }
 
 // Per-sample shading at the sample's own position and depth (surface.wgsl). Both modes
 // take the position from the same table, so they agree bit for bit.
 @fragment
-fn fs_sample(in: LightVaryings, @builtin(sample_index) s: u32) -> @location(0) vec4<f32> {
+fn fs_sample(in: LightVaryings, @builtin(sample_index) s: u32) -> LightOut {
     let pixel = pixel_of(in.clip);
-    return shade_sample(pixel, s, sample_surface(pixel, s), in.light);
+    return light_out(shade_sample(pixel, s, sample_surface(pixel, s), in.light));
 }
 
 @fragment
-fn fs_one_sample(in: LightVaryings) -> @location(0) vec4<f32> {
+fn fs_one_sample(in: LightVaryings) -> LightOut {
     let pixel = pixel_of(in.clip);
-    return shade_sample(pixel, SAMPLE, sample_surface(pixel, SAMPLE), in.light);
+    return light_out(shade_sample(pixel, SAMPLE, sample_surface(pixel, SAMPLE), in.light));
 }

@@ -3,10 +3,11 @@
 // light.wgsl's ALL_DIRECTIONAL.
 
 // Shades G-buffer sample `s` of `pixel` as the surface point `p` (camera-relative).
-fn shade_sample(pixel: vec2<i32>, s: u32, p: vec3<f32>, light: u32) -> vec4<f32> {
+fn shade_sample(pixel: vec2<i32>, s: u32, p: vec3<f32>, light: u32) -> SampleLight {
+    let none = vec4<f32>(0.0);
     let g = load_gsample(pixel, s);
     if (g.flags & FLAG_LIT) == 0u {
-        return vec4<f32>(0.0);
+        return SampleLight(none, none);
     }
     let surface = surface_of(g, p);
     var color = vec3<f32>(0.0);
@@ -16,5 +17,5 @@ fn shade_sample(pixel: vec2<i32>, s: u32, p: vec3<f32>, light: u32) -> vec4<f32>
     } else {
         color = direct_light(surface, lights[light]);
     }
-    return vec4<f32>(min(color, vec3<f32>(HALF_MAX)), 0.0);
+    return SampleLight(vec4<f32>(min(color, vec3<f32>(HALF_MAX)), 0.0), none);
 }

@@ -53,6 +53,10 @@ pub struct Features {
     pub specular: bool,
     /// Some mesh's lit material has a clear coat (KHR_materials_clearcoat).
     pub clearcoat: bool,
+    /// Some mesh's lit material has a clear coat that bends apart from its base: the coat
+    /// has a normal texture of its own, or the base has one (which bends the base only).
+    /// Without one every coat's normal is its base's, and a G-buffer need not store it.
+    pub clearcoat_normal: bool,
     /// Some mesh's lit material has a sheen (KHR_materials_sheen).
     pub sheen: bool,
     /// A 24-bit unorm depth buffer with standard Z resolves the geometry's depth range
@@ -84,7 +88,7 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 29] = [
+    pub const NAMES: [&'static str; 31] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -107,7 +111,9 @@ impl Features {
         "double_sided",
         "specular",
         "clearcoat",
+        "clearcoat_normal",
         "sheen",
+        "layer_lobes",
         "shallow_depth",
         "particles",
         "points_lines",
@@ -153,6 +159,7 @@ impl Features {
             double_sided: material(|m| m.double_sided),
             specular: material(Material::has_specular),
             clearcoat: material(Material::has_clearcoat),
+            clearcoat_normal: material(Material::has_clearcoat_normal),
             sheen: material(Material::has_sheen),
             // With no geometry between the planes nothing is depth-tested: the general
             // pipeline is as good as any.
@@ -198,6 +205,7 @@ impl Features {
             double_sided: true,
             specular: true,
             clearcoat: true,
+            clearcoat_normal: true,
             sheen: true,
             shallow_depth: false,
             particles: true,
@@ -215,6 +223,12 @@ impl Features {
             || self.directional_lights
             || self.ambient
             || self.environment)
+    }
+
+    /// Some lit material adds a lobe of its own over its base, a clear coat or a sheen:
+    /// the light pre-pass accumulates their light apart from the base's.
+    pub fn layer_lobes(&self) -> bool {
+        self.clearcoat || self.sheen
     }
 
     /// Every material drawn is unlit: nothing needs normals, material parameters or
@@ -248,7 +262,9 @@ impl Features {
             self.double_sided,
             self.specular,
             self.clearcoat,
+            self.clearcoat_normal,
             self.sheen,
+            self.layer_lobes(),
             self.shallow_depth,
             self.particles,
             self.points_lines,

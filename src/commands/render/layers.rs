@@ -1,19 +1,32 @@
-//! What a G-buffer leaves out: it stores the core metallic-roughness model only (no bytes
-//! per sample are free for more, docs/design/lighting-real-content.md says what each
-//! extension would cost), so a pipeline that shades opaque surfaces from one, or from a
-//! light pre-pass's thin one, leaves out the layers of KHR_materials_ior, _specular,
-//! _clearcoat and _sheen there. The visibility buffer and forward pipelines shade them,
-//! and so does every pipeline's transparent pass (forward shading) for BLEND materials.
+//! What a G-buffer leaves out: a pipeline's G-buffer stores the material layers of
+//! KHR_materials_ior, _specular, _clearcoat and _sheen only where its plan keeps their
+//! targets (the scene uses them, and the device's render passes hold more than WebGPU's
+//! 32 bytes per sample of colour targets: docs/design/lighting-real-content.md, "Material
+//! layers"), and a pipeline whose lighting reads no such target (the G-buffer resolve's,
+//! say) leaves the layer out of the opaque surfaces it shades. The visibility buffer and
+//! forward pipelines shade every layer, and so does every pipeline's transparent pass
+//! (forward shading) for BLEND materials.
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use rgraph_core::file::LoadedGraph;
+use rgraph_core::Plan;
+use rgraph_passes::layers::{self, Layer};
 use rgraph_scene::{AlphaMode, Scene};
 
-/// One warning per extension whose layer opaque meshes of `scene` use, for a pipeline
-/// (`pipeline`, for the message) that shades them from a G-buffer: the first material
-/// using it by name, and how many others do.
-pub(super) fn unshaded(scene: &Scene, pipeline: &Path) -> Vec<String> {
+/// One warning per extension whose layer opaque meshes of `scene` use and some pass of
+/// `plan` (compiled from `loaded`, the file `pipeline`) lights from a G-buffer without:
+/// the first material using it by name, how many others do, the first such pass, and
+/// why where the device is the reason.
+pub(super) fn unshaded(
+    scene: &Scene,
+    plan: &Plan,
+    loaded: &LoadedGraph,
+    pipeline: &Path,
+) -> Vec<String> {
+    let left_out = layers::unshaded(plan, loaded);
+    let pass_without = |layer: Layer| left_out.iter().find(|u| u.layer == layer);
     let mut users: BTreeMap<&str, Vec<&str>> = BTreeMap::new();
     let mut seen = vec![false; scene.materials.len()];
     for mesh in &scene.meshes {
@@ -29,21 +42,37 @@ pub(super) fn unshaded(scene: &Scene, pipeline: &Path) -> Vec<String> {
             users.entry(extension).or_default().push(&material.name);
         }
     }
+    // The shipped files store the layers only where the device allows it.
+    let device = match loaded.graph.declared_features().contains(DEVICE_CONDITION)
+        && !plan.features.iter().any(|f| f == DEVICE_CONDITION)
+    {
+        true => format!(
+            " (it holds the layers only where the device's render passes allow 64 bytes per \
+             sample of colour targets, `{DEVICE_CONDITION}`, which {} does not)",
+            plan.profile
+        ),
+        false => String::new(),
+    };
     users
         .into_iter()
-        .map(|(extension, materials)| {
+        .filter_map(|(extension, materials)| {
+            let unshaded = pass_without(Layer::of_extension(extension)?)?;
             let others = match materials.len() - 1 {
                 0 => String::new(),
                 1 => " and 1 other material".to_owned(),
                 n => format!(" and {n} other materials"),
             };
-            format!(
-                "warning: {}{others} uses {extension}, but {} shades opaque surfaces from a \
-                 G-buffer, which does not store it: its effect is left out there \
+            Some(format!(
+                "warning: {}{others} uses {extension}, but pass \"{}\" of {} shades opaque \
+                 surfaces from a G-buffer without it{device}: its effect is left out there \
                  (pipelines/visibility_msaa_4x.ron and forward_msaa_4x.ron shade it)",
                 materials[0],
+                unshaded.pass,
                 pipeline.display()
-            )
+            ))
         })
         .collect()
 }
+
+/// The device condition under which the shipped pipelines store the layers.
+const DEVICE_CONDITION: &str = "color_bytes_64";

@@ -219,7 +219,7 @@ fn pass_header(
                 @if let Some(origin) = &pass.origin { p.origin { "From " (origin) "." } }
                 p { "Reads " (names(plan, &pass.reads)) "; writes " (names(plan, &pass.writes)) "." }
                 @for d in &pass.dropped_reads {
-                    p { "Skips the optional read of " (plan.resource(d.resource).name) ": " (d.why) "." }
+                    p { "Skips the optional " (if d.writes { "write" } else { "read" }) " of " (plan.resource(d.resource).name) ": " (d.why) "." }
                 }
                 @if !pass.color.is_empty() || pass.depth_stencil.is_some() {
                     ul {
