@@ -57,7 +57,10 @@ pub use materials::MaterialState;
 pub use mesh::MeshDraw;
 pub use particles::ParticleBuffer;
 pub use screen_rect::PixelRect;
-pub use shadow_work::{MeshRuns, ShadowOptions, ShadowStamp, ShadowWork, ViewWork, ITEM_TRIANGLES};
+pub use shadow_work::{
+    MeshRuns, RasterRun, RasterRuns, ShadowOptions, ShadowStamp, ShadowWork, ViewWork,
+    ITEM_TRIANGLES,
+};
 pub use volumes::{VolumeMesh, VolumeShape};
 
 use crate::host::{FrameInputs, Host};
