@@ -7,6 +7,7 @@
 //! [`GpuScene::shadow_work`](super::GpuScene::shadow_work), and shared by both passes.
 
 use std::ops::Range;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::view_culling::{Fine, Runs};
 
@@ -164,6 +165,54 @@ pub struct RasterRun {
     pub first_chunk: u32,
 }
 
+/// Clusters times views past which a frame's views are culled on several threads
+/// ([`per_view`]): the 10M-triangle heightfield's 156,000 clusters in 22 views, not the
+/// 1M one's 15,600 (1.6 ms on one core here, which two threads on this busy 2-core
+/// machine did not make faster: each thread costs some 20 µs to start and needs a core).
+pub(super) const PARALLEL_CLUSTERS: usize = 1 << 20;
+
+/// `f` of each view, in order: where `parallel`, on scoped threads (std's: nothing is
+/// kept between frames), one a core, each taking the next view not taken; the views'
+/// culling is independent. A 10M-triangle heightfield's 22 views took 8 ms to cull on
+/// one core of this 2-core machine (`builtin:terrain?cells=2236`, release).
+pub(super) fn per_view<V: Sync, W: Send>(
+    views: &[V],
+    parallel: bool,
+    f: impl Fn(&V) -> W + Sync,
+) -> Vec<W> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let workers = if parallel { cores.min(views.len()) } else { 1 };
+    if workers <= 1 {
+        return views.iter().map(f).collect();
+    }
+    let next = AtomicUsize::new(0);
+    let worker = || {
+        let mut done = Vec::new();
+        loop {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            let Some(view) = views.get(i) else {
+                return done;
+            };
+            done.push((i, f(view)));
+        }
+    };
+    let mut done: Vec<(usize, W)> = std::thread::scope(|scope| {
+        // The calling thread is one of the workers.
+        let others: Vec<_> = (1..workers).map(|_| scope.spawn(worker)).collect();
+        let mut done = worker();
+        for other in others {
+            done.extend(
+                other
+                    .join()
+                    .unwrap_or_else(|e| std::panic::resume_unwind(e)),
+            );
+        }
+        done
+    });
+    done.sort_by_key(|(i, _)| *i);
+    done.into_iter().map(|(_, work)| work).collect()
+}
+
 /// What makes a cluster small in a view of `side` texels, given the options.
 pub(super) fn fine(options: &ShadowOptions, side: u32, masked: bool) -> Option<Fine> {
     let texels = options.small_texels.filter(|_| !masked && options.culled)?;
@@ -235,5 +284,20 @@ mod tests {
             ]
         );
         assert_eq!((raster.small, raster.chunks), (2, [4, 4]));
+    }
+
+    /// Views culled on several threads (each taking a while, so that every thread
+    /// takes some) come back in their order, each once.
+    #[test]
+    fn views_culled_in_parallel_keep_their_order() {
+        let views: Vec<u32> = (0..100).collect();
+        let expected: Vec<u32> = views.iter().map(|v| 3 * v).collect();
+        let cull = |v: &u32| {
+            std::thread::sleep(std::time::Duration::from_micros(200));
+            3 * v
+        };
+        for parallel in [false, true] {
+            assert_eq!(per_view(&views, parallel, cull), expected);
+        }
     }
 }
