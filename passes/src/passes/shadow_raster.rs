@@ -18,17 +18,21 @@
 //!
 //! Each frame the pass clears the keys, asks the scene for the frame's shadow work
 //! (gpu_scene/shadow_work.rs: each view's runs of each opaque mesh, culled by the view
-//! and split into small and large clusters) and covers their triangles: corners
-//! projected into the view's tile, the texels whose centres they hold tested by edge
-//! functions, the depth interpolated, the hardware's slope-scaled bias added, and the
-//! nearest kept by `atomicMax` of the depth's bits inverted. A small cluster (wholly
-//! between the view's depth planes, spanning at most `small_texels` texels) takes an
-//! invocation a triangle; a large one a workgroup of 256 invocations a run of up to 64
-//! triangles, each triangle clipped to the near plane and its texels shared out; and a
-//! triangle whose bounds hold more than 4096 texels (a ground plane across a view) is
-//! handed on in chunks of 4096 to a third dispatch, whose workgroups spread over the GPU:
-//! on an H100 a workgroup covering each view's ground alone took the 4096-texel atlas of
-//! `builtin:dense` with 9 shadowed lights 5.4 ms against the hardware's 3.0. Alpha
+//! and split into small and large clusters), uploads its runs where the work is not the
+//! last uploaded (20 bytes a run, whatever its length: each dispatch's workgroups take
+//! chunks of 64 triangles, and find their run by a binary search of the runs' first
+//! chunks) and covers their triangles: corners projected into the view's tile, the
+//! texels of each row's span (the columns the triangle's edges leave of its bounds)
+//! tested by edge functions, the depth interpolated, the hardware's slope-scaled bias
+//! added, and the nearest kept by `atomicMax` of the depth's bits inverted. A small
+//! cluster (wholly between the view's depth planes, spanning at most `small_texels`
+//! texels) takes an invocation a triangle; a large one a workgroup of 256 invocations a
+//! chunk, each triangle clipped to the near plane, and the chunk's rows' texels shared
+//! out evenly (a prefix sum over each 256 rows' spans); and a triangle whose bounds hold
+//! more than 4096 texels (a ground plane across a view) is handed on in chunks of 4096 to
+//! a third dispatch, whose workgroups spread over the GPU: on an H100 a workgroup
+//! covering each view's ground alone took the 4096-texel atlas of `builtin:dense` with 9
+//! shadowed lights 5.4 ms against the hardware's 3.0. Alpha
 //! MASK meshes are left to the hardware, which tests their textures. On an H100 the
 //! hardware raster writes 7 to 9 Gtexel/s of depth (its graphics TPCs are few): a
 //! 4096-texel atlas took it 2 to 3 ms, a 10M-triangle heightfield's 22 views 122 ms
@@ -122,8 +126,8 @@ impl Plugin for ShadowRaster {
 
 #[cfg(feature = "gpu")]
 mod gpu {
-    //! Recording: the keys cleared, the frame's items uploaded into a buffer the pass
-    //! keeps (grown as a frame needs), one workgroup an item.
+    //! Recording: the keys cleared, the frame's runs uploaded into a buffer the pass
+    //! keeps (grown as a frame needs), one workgroup a chunk of a run.
 
     use std::sync::Arc;
 
@@ -348,7 +352,7 @@ mod gpu {
                     pass.dispatch_workgroups(x, y, 1);
                 }
             }
-            // The large items' huge triangles: as many chunks as the large dispatch
+            // The large chunks' huge triangles: as many chunks as the large dispatch
             // handed on, which only the GPU knows, so a fixed grid that loops.
             if large > 0 {
                 pass.set_pipeline(&state.huge);
