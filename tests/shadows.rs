@@ -51,19 +51,21 @@ fn square_over_plane() -> Scene {
 fn square_parts() -> Parts {
     let mut parts = Parts::new();
     let grey = parts.material("grey", [0.6, 0.6, 0.6], 0.8);
-    let square = |y: f64, half: f64| {
-        vec![
-            DVec3::new(-half, y, -half),
-            DVec3::new(-half, y, half),
-            DVec3::new(half, y, half),
-            DVec3::new(half, y, -half),
-        ]
-    };
-    parts.mesh("ground", &[square(0.0, 4.0)], grey);
-    parts.mesh("square", &[square(1.0, 0.5)], grey);
+    parts.mesh("ground", &[square_at(0.0, 4.0)], grey);
+    parts.mesh("square", &[square_at(1.0, 0.5)], grey);
     parts.lights.push(sun(Vec3::new(1.0, -1.0, 0.0), 3.0));
     parts.ambient = [0.05; 3];
     parts
+}
+
+/// A square of half side `half` at height `y` centred over the origin, facing up.
+fn square_at(y: f64, half: f64) -> Vec<DVec3> {
+    vec![
+        DVec3::new(-half, y, -half),
+        DVec3::new(-half, y, half),
+        DVec3::new(half, y, half),
+        DVec3::new(half, y, -half),
+    ]
 }
 
 /// `parts` seen straight down, as [`square_over_plane`] says.
@@ -105,10 +107,23 @@ fn bulb() -> Light {
 /// `scene` through `pipeline` with `shadows`, compiled for its features as `rgraph
 /// render` compiles it (without `shadows` when they are off).
 fn render(pipeline: PipelineFile, scene: &Scene, size: (u32, u32), shadows: Shadows) -> Image {
+    render_edited(pipeline, &[], scene, size, shadows)
+}
+
+/// [`render`] through `pipeline` with its text edited by `edits` (from, to).
+fn render_edited(
+    pipeline: PipelineFile,
+    edits: &[(&str, &str)],
+    scene: &Scene,
+    size: (u32, u32),
+    shadows: Shadows,
+) -> Image {
     let gpu = gpu();
     let mut features = SceneFeatures::of(scene);
     features.shadows &= shadows.enabled();
-    Render::new(pipeline, &scene.name, size)
+    let render = Render::new(pipeline, &scene.name, size);
+    (edits.iter())
+        .fold(render, |render, &(from, to)| render.edit(from, to))
         .with_scene(scene.clone())
         .features(features.names())
         .overrides(Overrides {
@@ -319,6 +334,86 @@ fn the_compute_raster_clips_casters_at_a_light_s_near_plane() {
              on {share} of the pixels"
         );
     }
+}
+
+/// Thin blades at every angle, flat at heights 0.6 to 1 over the ground, under the sun
+/// along (1, -1, 0): long thin triangles running diagonally through the sun's map, whose
+/// bounds are mostly empty (the compute raster walks each row's span instead). Long ones
+/// (1.5 by 0.03 units, some 150 by 3 texels) are large clusters, short ones (0.15 by
+/// 0.015) small ones with `small_texels: 64`. The compute raster's shadows, hard, are the
+/// hardware's within 2/255 on 99.9% of the pixels, with every cluster large
+/// (`small_texels: 1`) and with the short ones small; and the two are one image, exactly:
+/// the workgroups' rows keep the texels an invocation a triangle keeps.
+#[test]
+fn thin_diagonal_casters_cast_the_hardware_s_shadows_in_compute() {
+    let mut parts = Parts::new();
+    let grey = parts.material("grey", [0.6, 0.6, 0.6], 0.8);
+    parts.mesh("ground", &[square_at(0.0, 4.0)], grey);
+    let blade = |centre: DVec3, angle: f64, (length, width): (f64, f64)| {
+        let along = DVec3::new(angle.cos(), 0.0, angle.sin()) * (0.5 * length);
+        let across = DVec3::new(-angle.sin(), 0.0, angle.cos()) * (0.5 * width);
+        vec![
+            centre - along - across,
+            centre - along + across,
+            centre + along + across,
+            centre + along - across,
+        ]
+    };
+    for i in 0..8 {
+        let k = f64::from(i);
+        let centre = DVec3::new(-1.2 + 0.15 * k, 1.0 - 0.05 * k, -1.5 + 0.4 * k);
+        let angle = (10.0 + 20.0 * k).to_radians();
+        parts.mesh("long blade", &[blade(centre, angle, (1.5, 0.03))], grey);
+    }
+    for i in 0..36 {
+        let (x, z) = (f64::from(i % 6), f64::from(i / 6));
+        let centre = DVec3::new(-2.2 + 0.45 * x, 0.6 + 0.05 * x, -1.6 + 0.6 * z);
+        let angle = (37.0 * f64::from(i)).to_radians();
+        parts.mesh("short blade", &[blade(centre, angle, (0.15, 0.015))], grey);
+    }
+    parts.lights.push(sun(Vec3::new(1.0, -1.0, 0.0), 3.0));
+    parts.ambient = [0.05; 3];
+    let scene = seen_from_above(parts, "thin blades");
+    let hard = Shadows {
+        filter: ShadowFilter::Hard,
+        lights: 1,
+    };
+    let size = (2 * N, 2 * N);
+    let hardware = render(DEFAULT, &scene, size, hard);
+    let lit = luma(hardware.at(0, 0));
+    let shadowed = (hardware.pixels.iter())
+        .filter(|&&p| luma(p) < 0.5 * lit)
+        .count();
+    assert!(
+        shadowed > 300,
+        "the blades shadow {shadowed} pixels: too few to compare"
+    );
+    let raster = "plugin: \"shadow_raster\",\n            params: (";
+    let mut images = Vec::new();
+    for (clusters, edit) in [
+        ("every cluster large", "small_texels: 1, "),
+        ("short blades small", "small_texels: 64, "),
+    ] {
+        let edited = format!("{raster}{edit}");
+        let compute = render_edited(DEFAULT_GPU, &[(raster, &edited)], &scene, size, hard);
+        let close = (hardware.pixels.iter().zip(&compute.pixels))
+            .filter(|(h, c)| h.iter().zip(c.iter()).all(|(h, c)| h.abs_diff(*c) <= 2))
+            .count();
+        let share = close as f64 / hardware.pixels.len() as f64;
+        assert!(
+            share >= 0.999,
+            "{clusters}: the compute raster's shadows agree with the hardware's within \
+             2/255 on {share} of the pixels"
+        );
+        images.push(compute);
+    }
+    let differing = (images[0].pixels.iter().zip(&images[1].pixels))
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(
+        differing, 0,
+        "the short blades' shadows drawn as small and as large clusters differ"
+    );
 }
 
 /// An alpha MASK square (cutoff 0.5) whose vertex alpha runs from 0 at x = -0.5 to 1 at

@@ -57,7 +57,10 @@ pub use materials::MaterialState;
 pub use mesh::MeshDraw;
 pub use particles::ParticleBuffer;
 pub use screen_rect::PixelRect;
-pub use shadow_work::{MeshRuns, ShadowOptions, ShadowStamp, ShadowWork, ViewWork, ITEM_TRIANGLES};
+pub use shadow_work::{
+    MeshRuns, RasterRun, RasterRuns, ShadowOptions, ShadowStamp, ShadowWork, ViewWork,
+    ITEM_TRIANGLES,
+};
 pub use volumes::{VolumeMesh, VolumeShape};
 
 use crate::host::{FrameInputs, Host};
@@ -216,13 +219,23 @@ impl SceneCache {
 pub struct GpuScene {
     upload: Arc<Upload>,
     frame: Frame,
-    /// This frame's shadow-map work, and the output size, atlas and options it is for.
-    shadow_work: Mutex<Option<(ShadowKey, Arc<ShadowWork>)>>,
+    /// The shadow-map work made last: this frame's, or until a pass asks, the last
+    /// frame's (which this frame reuses where nothing it depends on changed).
+    shadow_work: Mutex<Option<MadeWork>>,
 }
 
 /// What a frame's shadow work depends on besides the frame: output size, atlas texels,
 /// options.
 type ShadowKey = ((u32, u32), u32, ShadowOptions);
+
+/// Shadow work and what it was made for.
+#[derive(Clone)]
+struct MadeWork {
+    key: ShadowKey,
+    work: Arc<ShadowWork>,
+    /// Made for this frame, not carried from the last.
+    this_frame: bool,
+}
 
 /// What is uploaded once per device: everything but the frame's bytes, which later
 /// frames write into `meshes.data`, `lights` and `cameras`.
@@ -429,10 +442,15 @@ impl GpuScene {
         for (buffer, new, old) in writes {
             changed::write_changed(queue, buffer, new, old);
         }
+        let made = self.shadow_work.lock().unwrap_or_else(|e| e.into_inner());
+        let carried = made.as_ref().map(|made| MadeWork {
+            this_frame: false,
+            ..made.clone()
+        });
         GpuScene {
             upload: upload.clone(),
             frame,
-            shadow_work: Mutex::new(None),
+            shadow_work: Mutex::new(carried),
         }
     }
 
@@ -454,7 +472,9 @@ impl GpuScene {
     /// texels wide (shadow_work.rs): made by the first pass of the frame to ask, which
     /// writes the views of this frame's shadowed lights (gpu_scene/shadows.rs) through
     /// `queue`, and shared with the others that ask for the same. The write lands before
-    /// the frame's submission, so every pass of the frame reads the views.
+    /// the frame's submission, so every pass of the frame reads the views. Where the last
+    /// frame's work has this one's stamp (nothing it was made from changed), it is this
+    /// frame's too, the same `Arc`: only the views are computed again, not the culling.
     pub fn shadow_work(
         &self,
         queue: &wgpu::Queue,
@@ -463,14 +483,17 @@ impl GpuScene {
         options: ShadowOptions,
     ) -> Arc<ShadowWork> {
         let key = (size, atlas, options);
-        let mut cached = self.shadow_work.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((made_for, work)) = cached.as_ref() {
-            if *made_for == key {
-                return work.clone();
-            }
+        let mut made = self.shadow_work.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(made) = made.as_ref().filter(|m| m.key == key && m.this_frame) {
+            return made.work.clone();
         }
-        let work = Arc::new(self.make_shadow_work(queue, size, atlas, options));
-        *cached = Some((key, work.clone()));
+        let last = made.take().filter(|m| m.key == key).map(|m| m.work);
+        let work = self.make_shadow_work(queue, (size, atlas, options), last);
+        *made = Some(MadeWork {
+            key,
+            work: work.clone(),
+            this_frame: true,
+        });
         work
     }
 
@@ -479,19 +502,20 @@ impl GpuScene {
     /// if a pass made it: what the pass that draws the rest after the compute raster
     /// draws.
     pub fn compute_shadow_work(&self, size: (u32, u32), atlas: u32) -> Option<Arc<ShadowWork>> {
-        let cached = self.shadow_work.lock().unwrap_or_else(|e| e.into_inner());
-        let ((made_size, made_atlas, options), work) = cached.as_ref()?;
-        let made = *made_size == size && *made_atlas == atlas && options.small_texels.is_some();
-        made.then(|| work.clone())
+        let made = self.shadow_work.lock().unwrap_or_else(|e| e.into_inner());
+        let made = made.as_ref().filter(|m| m.this_frame)?;
+        let (made_size, made_atlas, options) = made.key;
+        let fits = made_size == size && made_atlas == atlas && options.small_texels.is_some();
+        fits.then(|| made.work.clone())
     }
 
+    /// The work for `key`: `last` where it has this frame's stamp, else made anew.
     fn make_shadow_work(
         &self,
         queue: &wgpu::Queue,
-        size: (u32, u32),
-        atlas: u32,
-        options: ShadowOptions,
-    ) -> ShadowWork {
+        (size, atlas, options): ShadowKey,
+        last: Option<Arc<ShadowWork>>,
+    ) -> Arc<ShadowWork> {
         let camera = &self.frame.inputs.camera;
         let aspect = f64::from(size.0.max(1)) / f64::from(size.1.max(1));
         // Opaque and masked meshes cast; blended ones receive too (the `transparent` pass
@@ -508,21 +532,26 @@ impl GpuScene {
             options,
             casters_moved: self.frame.casters_moved,
         };
+        if let Some(last) = last.filter(|last| last.stamp == stamp) {
+            return last;
+        }
         let tiles = shadows::tiles(shadowed, atlas);
-        let views = tiles
-            .into_iter()
-            .zip(views.iter().map(|v| v.clip_from_world()));
-        let views = views
-            .map(|(tile, clip_from_world)| ViewWork {
-                tile,
-                meshes: (draws.iter())
-                    .filter_map(|&(draw, state)| {
-                        self.mesh_runs(draw, state, (clip_from_world, tile.2), &options)
-                    })
-                    .collect(),
-            })
+        let views: Vec<_> = (tiles.into_iter())
+            .zip(views.iter().map(|v| v.clip_from_world()))
             .collect();
-        ShadowWork { views, stamp }
+        let clusters: usize = (draws.iter())
+            .map(|(draw, _)| self.upload.meshes.cluster_boxes[draw.instance as usize].clusters())
+            .sum();
+        let parallel = options.culled && clusters * views.len() >= shadow_work::PARALLEL_CLUSTERS;
+        let views = shadow_work::per_view(&views, parallel, |&(tile, clip_from_world)| ViewWork {
+            tile,
+            meshes: (draws.iter())
+                .filter_map(|&(draw, state)| {
+                    self.mesh_runs(draw, state, (clip_from_world, tile.2), &options)
+                })
+                .collect(),
+        });
+        Arc::new(ShadowWork { views, stamp })
     }
 
     /// What the view of clip space `clip_from_world`, `side` texels wide, draws of the

@@ -115,6 +115,11 @@ impl ClusterBoxes {
         ClusterBoxes { levels, starts }
     }
 
+    /// How many clusters the tree is over.
+    pub fn clusters(&self) -> usize {
+        self.starts.len() - 1
+    }
+
     /// The mesh's triangles that may show in the view `clip_from_world` (wgpu's clip
     /// volume) when the mesh is placed by `world_from_local`, both as the shader has
     /// them (f32), split by `fine` into small and large clusters (all large without):
@@ -151,29 +156,33 @@ impl ClusterBoxes {
             true => Seen::Inside,
             false => view.test(min, max),
         };
-        if matches!(seen, Seen::Outside) {
-            return;
-        }
-        let small = fine.is_some_and(|fine| {
-            view.texels(min, max, f64::from(node.widest), fine.half_side)
-                .is_some_and(|t| t <= fine.texels)
-        });
-        let clusters = FAN_OUT.pow(level as u32);
-        let last = self.starts.len() - 1;
-        let (a, b) = (at * clusters, ((at + 1) * clusters).min(last));
-        let whole = self.starts[a]..self.starts[b];
-        match (seen, small, level) {
-            (Seen::Inside, true, _) | (Seen::Partly, true, 0) => push(&mut runs.small, whole),
-            (Seen::Inside, false, 0) | (Seen::Partly, false, 0) => push(&mut runs.large, whole),
-            // Without `fine` a box inside is large all through: drawn whole.
-            (Seen::Inside, false, _) if fine.is_none() => push(&mut runs.large, whole),
-            (seen, _, _) => {
-                let inside = matches!(seen, Seen::Inside);
-                let below = self.levels[level - 1].len();
-                for child in at * FAN_OUT..((at + 1) * FAN_OUT).min(below) {
-                    self.visit(view, fine, (level - 1, child), inside, runs);
-                }
+        let inside = match seen {
+            Seen::Outside => return,
+            Seen::Inside => true,
+            Seen::Partly => false,
+        };
+        // A box partly in view is split down to its clusters, whatever their sizes; one
+        // inside is drawn whole where its widest cluster is small, or where there is no
+        // telling small ones (`fine`), and split otherwise, its clusters' sizes differing.
+        if inside || level == 0 {
+            let clusters = FAN_OUT.pow(level as u32);
+            let last = self.starts.len() - 1;
+            let (a, b) = (at * clusters, ((at + 1) * clusters).min(last));
+            let whole = self.starts[a]..self.starts[b];
+            let small = fine.is_some_and(|fine| {
+                view.texels(min, max, f64::from(node.widest), fine.half_side)
+                    .is_some_and(|t| t <= fine.texels)
+            });
+            if small {
+                return push(&mut runs.small, whole);
             }
+            if level == 0 || fine.is_none() {
+                return push(&mut runs.large, whole);
+            }
+        }
+        let below = self.levels[level - 1].len();
+        for child in at * FAN_OUT..((at + 1) * FAN_OUT).min(below) {
+            self.visit(view, fine, (level - 1, child), inside, runs);
         }
     }
 }
@@ -198,10 +207,11 @@ enum Seen {
 
 /// A view's clip volume in one mesh's space: six planes `dot(n, p) + d >= 0`, each with
 /// the margin by which a box must lie outside it to be culled, and the clip space's x,
-/// y and w rows.
+/// y and w rows, with the lengths of their first three components.
 struct MeshInView {
     planes: [(DVec4, f64); 6],
     rows: [DVec4; 3],
+    lengths: [f64; 3],
 }
 
 impl MeshInView {
@@ -233,9 +243,11 @@ impl MeshInView {
             let margin = ROUNDING * (plane.truncate().abs().dot(reach) + plane.w.abs());
             (local(plane), margin)
         });
+        let rows = [local(x), local(y), local(w)];
         MeshInView {
             planes,
-            rows: [local(x), local(y), local(w)],
+            rows,
+            lengths: rows.map(|row| row.truncate().length()),
         }
     }
 
@@ -272,9 +284,10 @@ impl MeshInView {
             let (low, high) = span(row, min, max);
             low.abs().max(high.abs())
         };
-        let w_slope = w.truncate().length();
-        let slope = |row: DVec4| (row.truncate().length() + largest(row) * w_slope / w_min) / w_min;
-        Some(length * slope(x).max(slope(y)) * half_side)
+        let [x_slope, y_slope, w_slope] = self.lengths;
+        let slope =
+            |row: DVec4, row_slope: f64| (row_slope + largest(row) * w_slope / w_min) / w_min;
+        Some(length * slope(x, x_slope).max(slope(y, y_slope)) * half_side)
     }
 }
 
@@ -392,5 +405,72 @@ mod tests {
         assert!(seen.large.is_empty() && !seen.small.is_empty(), "{seen:?}");
         let seen = boxes.seen(perspective, DMat4::IDENTITY, fine(32.0));
         assert!(seen.small.is_empty() && !seen.large.is_empty(), "{seen:?}");
+    }
+
+    /// The tree's runs are those of deciding every cluster by itself (seen or not,
+    /// small or large by its own box), merged alike, though it decides whole boxes at
+    /// once: a grid of clusters of two sizes, mixed so that most boxes of the tree hold
+    /// both, seen in perspective from above at several places and angles, with several
+    /// small sizes, so that some boxes inside the view are small and some split.
+    #[test]
+    fn the_tree_decides_as_the_clusters_one_by_one() {
+        let side = 64;
+        let clusters: Vec<Cluster> = (0..side * side)
+            .map(|i| {
+                let (x, z) = ((i % side) as f32, (i / side) as f32);
+                let size = if (i % side + 3 * (i / side)) % 5 == 0 {
+                    0.1
+                } else {
+                    0.9
+                };
+                cluster(8 * i as u32, 8, [x, 0.0, z], [x + size, 0.1, z + size])
+            })
+            .collect();
+        let boxes = ClusterBoxes::new(&clusters);
+        let top = boxes.levels.last().unwrap()[0];
+        let extent = top.min.abs().max(top.max.abs()).as_dvec3();
+        let one_by_one = |clip_from_world: DMat4, fine: Fine| {
+            let view = MeshInView::new(clip_from_world, DMat4::IDENTITY, extent);
+            let mut runs = Runs::default();
+            for c in &clusters {
+                let (min, max) = (Vec3::from_array(c.min), Vec3::from_array(c.max));
+                let (low, high) = (min.as_dvec3(), max.as_dvec3());
+                if matches!(view.test(low, high), Seen::Outside) {
+                    continue;
+                }
+                let length = f64::from((max - min).length());
+                let small = (view.texels(low, high, length, fine.half_side))
+                    .is_some_and(|t| t <= fine.texels);
+                let runs = if small {
+                    &mut runs.small
+                } else {
+                    &mut runs.large
+                };
+                push(runs, c.first_triangle..c.first_triangle + c.triangles);
+            }
+            runs
+        };
+        let mut decided = [0; 3];
+        for (eye, target) in [
+            (DVec3::new(32.0, 20.0, 32.0), DVec3::new(32.0, 0.0, 31.0)),
+            (DVec3::new(0.0, 6.0, 0.0), DVec3::new(20.0, 0.0, 30.0)),
+            (DVec3::new(70.0, 3.0, 20.0), DVec3::new(30.0, 0.0, 40.0)),
+        ] {
+            let look = DMat4::look_at_rh(eye, target, DVec3::Y);
+            let view = DMat4::perspective_rh(1.2, 1.0, 0.5, 200.0) * look;
+            for texels in [4.0, 16.0, 64.0] {
+                let fine = Fine {
+                    half_side: 512.0,
+                    texels,
+                };
+                let tree = boxes.seen(view, DMat4::IDENTITY, Some(fine));
+                assert_eq!(tree, one_by_one(view, fine), "from {eye}, {texels} texels");
+                decided
+                    [usize::from(!tree.small.is_empty()) + usize::from(!tree.large.is_empty())] +=
+                    1;
+            }
+        }
+        // Not vacuous: views with both kinds of runs.
+        assert!(decided[2] >= 3, "{decided:?}");
     }
 }

@@ -18,17 +18,21 @@
 //!
 //! Each frame the pass clears the keys, asks the scene for the frame's shadow work
 //! (gpu_scene/shadow_work.rs: each view's runs of each opaque mesh, culled by the view
-//! and split into small and large clusters) and covers their triangles: corners
-//! projected into the view's tile, the texels whose centres they hold tested by edge
-//! functions, the depth interpolated, the hardware's slope-scaled bias added, and the
-//! nearest kept by `atomicMax` of the depth's bits inverted. A small cluster (wholly
-//! between the view's depth planes, spanning at most `small_texels` texels) takes an
-//! invocation a triangle; a large one a workgroup of 256 invocations a run of up to 64
-//! triangles, each triangle clipped to the near plane and its texels shared out; and a
-//! triangle whose bounds hold more than 4096 texels (a ground plane across a view) is
-//! handed on in chunks of 4096 to a third dispatch, whose workgroups spread over the GPU:
-//! on an H100 a workgroup covering each view's ground alone took the 4096-texel atlas of
-//! `builtin:dense` with 9 shadowed lights 5.4 ms against the hardware's 3.0. Alpha
+//! and split into small and large clusters), uploads its runs where the work is not the
+//! last uploaded (20 bytes a run, whatever its length: each dispatch's workgroups take
+//! chunks of 64 triangles, and find their run by a binary search of the runs' first
+//! chunks) and covers their triangles: corners projected into the view's tile, the
+//! texels of each row's span (the columns the triangle's edges leave of its bounds)
+//! tested by edge functions, the depth interpolated, the hardware's slope-scaled bias
+//! added, and the nearest kept by `atomicMax` of the depth's bits inverted. A small
+//! cluster (wholly between the view's depth planes, spanning at most `small_texels`
+//! texels) takes an invocation a triangle; a large one a workgroup of 256 invocations a
+//! chunk, each triangle clipped to the near plane, and the chunk's rows' texels shared
+//! out evenly (a prefix sum over each 256 rows' spans); and a triangle whose bounds hold
+//! more than 4096 texels (a ground plane across a view) is handed on in chunks of 4096 to
+//! a third dispatch, whose workgroups spread over the GPU: on an H100 a workgroup
+//! covering each view's ground alone took the 4096-texel atlas of `builtin:dense` with 9
+//! shadowed lights 5.4 ms against the hardware's 3.0. Alpha
 //! MASK meshes are left to the hardware, which tests their textures. On an H100 the
 //! hardware raster writes 7 to 9 Gtexel/s of depth (its graphics TPCs are few): a
 //! 4096-texel atlas took it 2 to 3 ms, a 10M-triangle heightfield's 22 views 122 ms
@@ -122,8 +126,8 @@ impl Plugin for ShadowRaster {
 
 #[cfg(feature = "gpu")]
 mod gpu {
-    //! Recording: the keys cleared, the frame's items uploaded into a buffer the pass
-    //! keeps (grown as a frame needs), one workgroup an item.
+    //! Recording: the keys cleared, the frame's runs uploaded into a buffer the pass
+    //! keeps (grown as a frame needs), one workgroup a chunk of a run.
 
     use std::sync::Arc;
 
@@ -135,7 +139,7 @@ mod gpu {
         compute_pipeline, workgroup_grid, Compute, Frame, Recorded, Recorder,
     };
     use crate::common::shadow_depth::atlas_of_keys;
-    use crate::gpu_scene::{GpuScene, ShadowOptions};
+    use crate::gpu_scene::{GpuScene, RasterRun, ShadowOptions, ShadowWork};
     use rgraph_scene::DepthConvention;
 
     pub(crate) struct State {
@@ -144,12 +148,59 @@ mod gpu {
         raster: wgpu::ComputePipeline,
         large: wgpu::ComputePipeline,
         huge: wgpu::ComputePipeline,
-        /// The items, and the parameters (`RasterParams`), rewritten each frame.
-        items: Option<wgpu::Buffer>,
+        /// The runs and the parameters (`RasterParams`), and the work they were written
+        /// from with those parameters.
+        runs: Option<wgpu::Buffer>,
         params: wgpu::Buffer,
+        uploaded: Option<(Arc<ShadowWork>, Params)>,
         /// The huge triangles handed on and their chunks, for an atlas of this side.
         handed_on: Option<(u32, [wgpu::Buffer; 2])>,
         kept: Kept,
+    }
+
+    /// shadow_compute.wgsl's `RasterParams`: the atlas's side, the slope bias's bits, the
+    /// small and large runs, the small and large chunks.
+    type Params = [u32; 6];
+
+    /// Writes `work`'s runs into `state.runs` (grown as needed) and its parameters for an
+    /// atlas of `atlas` texels and `slope_bias`; the parameters.
+    fn upload(
+        state: &mut State,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        work: &ShadowWork,
+        atlas: u32,
+        slope_bias: f32,
+    ) -> Result<Params, String> {
+        let runs = work.raster_runs();
+        let count = |n: usize| u32::try_from(n).map_err(|_| "too many shadow runs".to_owned());
+        let (small, large) = (count(runs.small)?, count(runs.runs.len() - runs.small)?);
+        let [small_chunks, large_chunks] = runs.chunks;
+        // At least one run's room: wgpu refuses zero-sized bindings.
+        let run = std::mem::size_of::<RasterRun>();
+        let bytes = (runs.runs.len().max(1) * run) as u64;
+        if state.runs.as_ref().is_some_and(|b| b.size() < bytes) {
+            state.runs = None;
+        }
+        let buffer = state.runs.get_or_insert_with(|| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("shadow_raster runs"),
+                size: bytes.next_power_of_two(),
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        });
+        queue.write_buffer(buffer, 0, bytemuck::cast_slice(&runs.runs));
+        let params = [
+            atlas,
+            slope_bias.to_bits(),
+            small,
+            large,
+            small_chunks,
+            large_chunks,
+        ];
+        queue.write_buffer(&state.params, 0, bytemuck::cast_slice(&params));
+        Ok(params)
     }
 
     /// Texels of a huge triangle's chunk (shadow_compute.wgsl's `HUGE_CHUNK`).
@@ -214,12 +265,13 @@ mod gpu {
                 large: pipeline("cs_shadow_raster_large"),
                 huge: pipeline("cs_shadow_raster_huge"),
                 layout,
-                items: None,
+                runs: None,
+                uploaded: None,
                 handed_on: None,
                 kept: Kept::default(),
                 params: device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("shadow_raster params"),
-                    size: 16,
+                    size: std::mem::size_of::<Params>() as u64,
                     usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                     mapped_at_creation: false,
                 }),
@@ -247,31 +299,25 @@ mod gpu {
                     return Ok(());
                 }
             }
-            let mut items = work.small_items();
-            let small = u32::try_from(items.len()).map_err(|_| "too many shadow items")?;
-            items.extend(work.large_items());
-            let count = u32::try_from(items.len()).map_err(|_| "too many shadow items")?;
-            let large = count - small;
-            // At least one item's room: wgpu refuses zero-sized bindings.
-            let bytes = (items.len().max(1) * 16) as u64;
-            if state.items.as_ref().is_some_and(|b| b.size() < bytes) {
-                state.items = None;
-            }
-            let item_buffer: &wgpu::Buffer = state.items.get_or_insert_with(|| {
-                device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("shadow_raster items"),
-                    size: bytes.next_power_of_two(),
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                })
-            });
-            resources
-                .queue
-                .write_buffer(item_buffer, 0, bytemuck::cast_slice(&items));
-            let params = [atlas, small, self.slope_bias.to_bits(), large];
-            resources
-                .queue
-                .write_buffer(&state.params, 0, bytemuck::cast_slice(&params));
+            // The buffers hold the last work uploaded: the same work (a frame whose
+            // shadow inputs did not change, GpuScene::shadow_work) is not uploaded again.
+            let params = match &state.uploaded {
+                Some((uploaded, params)) if Arc::ptr_eq(uploaded, &work) => *params,
+                _ => {
+                    let params = upload(
+                        state,
+                        device,
+                        resources.queue,
+                        &work,
+                        atlas,
+                        self.slope_bias,
+                    )?;
+                    state.uploaded = Some((work.clone(), params));
+                    params
+                }
+            };
+            let [.., small, large] = params;
+            let run_buffer = state.runs.as_ref().ok_or("no shadow runs")?;
             if state
                 .handed_on
                 .as_ref()
@@ -282,14 +328,14 @@ mod gpu {
             let (_, [flats, chunks]) = state
                 .handed_on
                 .get_or_insert_with(|| (atlas, handed_on(device, atlas)));
-            for buffer in [item_buffer, &state.params, flats, chunks] {
+            for buffer in [run_buffer, &state.params, flats, chunks] {
                 resources.hold(buffer);
             }
             let group = storage_group(
                 device,
                 "shadow_raster",
                 &state.layout,
-                &[keys, item_buffer, &state.params, flats, chunks],
+                &[keys, run_buffer, &state.params, flats, chunks],
             );
             pass.set_bind_group(0, scene.bind_group(DepthConvention::Standard), &[]);
             pass.set_bind_group(1, &group, &[]);
@@ -298,15 +344,15 @@ mod gpu {
             // 256 keys a workgroup (shadow_compute.wgsl's cs_clear).
             let (x, y) = workgroup_grid(keys.size() / 4, 256);
             pass.dispatch_workgroups(x, y, 1);
-            // A workgroup an item.
-            for (pipeline, items) in [(&state.raster, small), (&state.large, large)] {
-                if items > 0 {
+            // A workgroup a chunk.
+            for (pipeline, chunks) in [(&state.raster, small), (&state.large, large)] {
+                if chunks > 0 {
                     pass.set_pipeline(pipeline);
-                    let (x, y) = workgroup_grid(u64::from(items), 1);
+                    let (x, y) = workgroup_grid(u64::from(chunks), 1);
                     pass.dispatch_workgroups(x, y, 1);
                 }
             }
-            // The large items' huge triangles: as many chunks as the large dispatch
+            // The large chunks' huge triangles: as many chunks as the large dispatch
             // handed on, which only the GPU knows, so a fixed grid that loops.
             if large > 0 {
                 pass.set_pipeline(&state.huge);
