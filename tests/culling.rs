@@ -17,6 +17,11 @@
 //! does cull there, and does draw what a frame reveals (the counts its list keeps). The
 //! depth pyramid it tests against holds the farthest depth of every sample it covers.
 //!
+//! The bins' slots (visibility_compute's `binned_triangles`, the triangles a frame may bin
+//! one by one) never change a frame either: with too few of them for what the frames
+//! bin, the clusters past them take the slower paths, and every frame is the image with
+//! room for all, exactly.
+//!
 //! Micro clusters (visibility_compute's `micro`, on in the shipped file where the device
 //! has 64-bit atomic max, as lavapipe does): the clusters small on screen, rasterised a
 //! triangle an invocation by `atomicMax` before the tile raster covers the rest
@@ -303,6 +308,75 @@ fn culling_keeps_every_visible_triangle_of_a_city() {
 #[test]
 fn culling_keeps_every_visible_triangle_of_a_heightfield() {
     assert_culling_keeps_every_frame("builtin:terrain");
+}
+
+/// `params` (the first raster pass's, as [`SHIPPED`] and [`MODES`] give them) with the
+/// parameters `more` added.
+fn with_params(params: &'static str, more: &str) -> &'static str {
+    params
+        .replace("at_edges,", &format!("at_edges, {more}"))
+        .leak()
+}
+
+/// With fewer slots than a frame bins triangles one by one (visibility_compute's
+/// `binned_triangles`), the clusters past them are listed whole in the tiles they touch,
+/// or read by every tile, which tests their bounds (bin_triangles.wgsl), and every frame
+/// of `scene` is the frame with a slot for every triangle, exactly, colour and edges
+/// view: with one slot (every cluster of more than one triangle past them) and with 3000
+/// (some clusters binned by triangle, the rest past them, which ones depending on the
+/// order of the atomics), micro clusters on and off, clusters culled and not (`off`:
+/// every cluster binned by triangle, those in front of the camera, behind it and across
+/// its planes), and in tiles of 4 pixels (chunks of 16 triangles, not 64).
+fn assert_overflowing_slots_keep_every_frame(scene: &'static str) {
+    let off = MODES[1].1;
+    let cases = [
+        ((SHIPPED, 1), "binned_triangles: 1,"),
+        ((SHIPPED, 0), "binned_triangles: 1,"),
+        ((SHIPPED, 0), "binned_triangles: 3000,"),
+        ((SHIPPED, 0), "binned_triangles: 1, tile: 4,"),
+        ((off, 0), "binned_triangles: 3000,"),
+    ];
+    let mut roomy = std::collections::HashMap::new();
+    for ((params, micro), more) in cases {
+        let full = (roomy.entry((params, micro))).or_insert_with(|| frames(scene, params, micro));
+        let tight = frames(scene, with_params(params, more), micro);
+        for (k, (tight, (color, edges))) in tight.iter().zip(full.iter()).enumerate() {
+            let (colors, edges) = (differing(&tight.0, color), differing(&tight.1, edges));
+            assert!(
+                colors == 0 && edges == 0,
+                "{scene}, {}, {params} micro {micro}: with {more} {colors} pixels of the \
+                 colour and {edges} of the edges view differ from the frame with room",
+                CHANGES[k].0
+            );
+        }
+    }
+}
+
+/// Spheres over a floor: large clusters and clipped ones past the slots, read by every
+/// tile.
+#[test]
+fn overflowing_slots_keep_every_frame_of_spheres() {
+    assert_overflowing_slots_keep_every_frame("builtin:spheres");
+}
+
+/// A heightfield of 100,352 triangles: small clusters past the slots, listed whole, and
+/// clusters across the near plane, read by every tile.
+#[test]
+fn overflowing_slots_keep_every_frame_of_a_heightfield() {
+    assert_overflowing_slots_keep_every_frame("builtin:terrain");
+}
+
+/// Bins of no slots are an error naming the pass, found without a GPU.
+#[test]
+fn bins_of_no_slots_are_an_error() {
+    let line = crate::visibility::validate_error(
+        SHIPPED,
+        "params: (other_samples: at_edges, binned_triangles: 0,",
+        "slots.ron",
+        "visibility",
+    );
+    let says = "binned_triangles must be at least 1, got 0";
+    assert!(line.contains(says), "{line}");
 }
 
 /// `scene`'s features, as `rgraph render` compiles for them: with shadows where its

@@ -24,6 +24,7 @@
 //!      occlusion: true,             // or false, with the slots below
 //!      micro: true,                 // or false (the default): below
 //!      micro_pixels: 4,             // 1 to 16 (the default 4): below
+//!      binned_triangles: 100000,    // at least 1 (the default from the output): below
 //!  ),
 //!  inputs: { "pyramid": "depth_pyramid_prev" },     // occlusion culling only: below
 //!  outputs: { "samples": "samples",                 // Buffer(per_sample: 8, samples: 4)
@@ -71,6 +72,16 @@
 //! image is the same, exactly (tests/culling.rs). Needs `clusters: culled` or `whole`; not
 //! for the second phase of occlusion culling, which adds to flagged keys (an error).
 //!
+//! The bins hold a number of slots, the triangles a frame bins one by one (those of the
+//! clusters neither culled, micro nor listed whole): by default the scene's opaque
+//! triangles up to half a slot per output pixel, at least 2^20
+//! (common/gpu/bin_sizes.rs), 168 bytes each, so that their memory follows the output
+//! rather than the scene; `binned_triangles` sets the slots (to the scene's count). A
+//! frame that needs more takes slower paths for the clusters past them, to the same image
+//! (bin_triangles.wgsl): each is listed whole in the tiles it touches where it lies
+//! within the depth planes and touches at most 4, else read by every tile, which tests
+//! its bounds first.
+//!
 //! `light_tiled` with a `samples` input shades it as it shades a hardware visibility
 //! buffer's `ids` and `depth`, with the same IDs (the triangle's position in the scene's
 //! index buffer / 3, + 1) and the same sample positions; triangle_setup.wgsl gives the
@@ -117,6 +128,9 @@ pub struct VisibilityComputeParams {
     /// The most pixels per triangle a micro cluster's pixel bounds hold.
     #[serde(default = "micro_pixels")]
     pub micro_pixels: u32,
+    /// The bins' slots, where not the default from the output.
+    #[serde(default)]
+    pub binned_triangles: Option<u32>,
 }
 
 /// How `visibility_compute` culls and bins the draws' clusters.
@@ -175,6 +189,8 @@ pub(crate) struct RasterDispatch {
     pub occlusion: Option<OcclusionSlots>,
     /// The micro raster, where the pass asks for it: made where the device can run it.
     pub micro: Option<MicroRaster>,
+    /// The bins' slots the pass asks for.
+    pub slots: Option<u32>,
 }
 
 /// The micro clusters' raster as set up: micro_raster.wgsl composed, and the most pixels
@@ -229,6 +245,11 @@ impl Plugin for VisibilityCompute {
                 params.micro_pixels
             )));
         }
+        if params.binned_triangles == Some(0) {
+            return Err(PluginError::Invalid(
+                "binned_triangles must be at least 1, got 0".into(),
+            ));
+        }
         if micro && modified {
             return Err(PluginError::Invalid(
                 "micro: true is for a first raster pass: the second phase of occlusion \
@@ -282,6 +303,7 @@ impl Plugin for VisibilityCompute {
                 || culling.is_some(),
             occlusion,
             micro,
+            slots: params.binned_triangles,
         };
         self.0.record(pass, dispatch);
         Ok(())
@@ -300,7 +322,7 @@ mod gpu {
     use crate::common::gpu::pipeline::{module, pipeline_layout};
     use crate::common::gpu::storage::{storage_group, storage_layout};
     use crate::common::gpu::tile_bins::{
-        ClusterBinning, TileBins, MICRO_ARGS_OFFSET, RASTER_BUFFERS,
+        Binning, ClusterBinning, TileBins, MICRO_ARGS_OFFSET, RASTER_BUFFERS,
     };
     use crate::common::gpu::{compute_pipeline, Compute, Frame, Recorded, Recorder};
     use crate::common::occlusion::Phase;
@@ -428,15 +450,18 @@ mod gpu {
             if state.bins.as_ref().is_some_and(|(made, _)| *made != size) {
                 state.bins = None;
             }
-            let layout = state.occlusion.as_ref().map(|o| &o.layout);
             let (_, bins) = state.bins.get_or_insert_with(|| {
-                let clusters = ClusterBinning {
-                    cull: self.clusters != Clusters::Off,
-                    whole: self.clusters == Clusters::Whole,
-                    micro: state.micro.as_ref().map_or(0, |m| m.pixels),
+                let binning = Binning {
+                    tile: self.tile,
+                    clusters: ClusterBinning {
+                        cull: self.clusters != Clusters::Off,
+                        whole: self.clusters == Clusters::Whole,
+                        micro: state.micro.as_ref().map_or(0, |m| m.pixels),
+                    },
+                    slots: self.slots,
+                    occlusion: state.occlusion.as_ref().map(|o| &o.layout),
                 };
-                let binning = (self.tile, clusters, layout);
-                let bins = TileBins::new(device, &self.bins, scene, binning, size);
+                let bins = TileBins::new(device, &self.bins, scene, &binning, size);
                 (size, bins)
             });
             let bins = bins.as_ref().map_err(String::clone)?;

@@ -1,9 +1,9 @@
 // A tile's keys covered in one workgroup, an invocation per pixel (the tile raster of
 // Laine and Karras, "High-Performance Software Rasterization on GPUs", HPG 2011): the
 // tile's triangles, binned by bin_triangles.wgsl, are set up RASTER_CHUNK at a time, one per
-// invocation (a binned triangle read from the bins' records, a spanning piece or a
-// triangle of a cluster listed whole set up here and tested against the tile, and the
-// tile's blocks it may cover found), then each
+// invocation (a binned triangle read from the bins' records, a spanning piece, a
+// triangle of a cluster listed whole or a piece of a spanning cluster's set up here and
+// tested against the tile, and the tile's blocks it may cover found), then each
 // invocation tests its pixel's samples against each triangle that may cover its block, as
 // the lanes of one vector, keeping the nearest key of each sample in registers
 // (triangle_setup.wgsl's keys: the order the triangles come in does not matter). A warp
@@ -11,7 +11,7 @@
 // from 1.02 to 0.81 ms at 4x and from 0.76 to 0.68 at 1x, with the strict inside test
 // in cover_lanes (docs/design/compute-raster.md, run visibility-blocks).
 //
-// Group 1 binds the draws, the bins and the clusters at bindings 1 to 9
+// Group 1 binds the draws, the bins and the clusters at bindings 1 to 9 and 12
 // (common/gpu/tile_bins.rs), group
 // 3 the texture table, which textured alpha masks read. Composed after common.wgsl,
 // scene.wgsl, geometry.wgsl, material.wgsl, material_table.wgsl, plane_hit.wgsl,
@@ -24,22 +24,34 @@
 @group(1) @binding(3) var<storage, read> tile_starts: array<u32>;
 @group(1) @binding(4) var<storage, read> tile_entries: array<u32>;
 @group(1) @binding(5) var<storage, read> spanning: array<u32>;
-// bin_triangles.wgsl's BinCounts, read after it is done: the spanning pieces first.
-@group(1) @binding(6) var<storage, read> spanning_count: u32;
-@group(1) @binding(7) var<storage, read> spanning_bounds: array<vec2<u32>>;
+// bin_triangles.wgsl's BinCounts, read after it is done: its first two counts.
+struct SpanningCounts {
+    pieces: u32,
+    clusters: u32,
+}
+@group(1) @binding(6) var<storage, read> spanning_counts: SpanningCounts;
+@group(1) @binding(7) var<storage, read> spanning_triangles: array<Spanning>;
 @group(1) @binding(8) var<storage, read> records: array<ScreenTriangle>;
 @group(1) @binding(9) var<storage, read> clusters: array<RasterCluster>;
+@group(1) @binding(12) var<storage, read> spanning_clusters: array<Spanning>;
 
 // Triangles set up a chunk at a time, one per invocation, then tested by every invocation.
 const RASTER_CHUNK: u32 = min(TILE * TILE, 64u);
 // The chunks a cluster listed whole takes: one, but for tiles of fewer than 8 x 8 pixels
 // (rgraph_scene::CLUSTER_TRIANGLES is 64).
 const CLUSTER_CHUNKS: u32 = (64u + RASTER_CHUNK - 1u) / RASTER_CHUNK;
+// The chunks a spanning cluster takes: every piece of each triangle (a clipped one's fan
+// has up to 3).
+const SPANNING_CLUSTER_CHUNKS: u32 = (3u * 64u + RASTER_CHUNK - 1u) / RASTER_CHUNK;
 
 var<workgroup> chunk: array<CoverTriangle, RASTER_CHUNK>;
 // The tile's blocks each may cover (blocks_touched).
 var<workgroup> chunk_blocks: array<u32, RASTER_CHUNK>;
 var<workgroup> chunk_count: atomic<u32>;
+// Of RASTER_CHUNK spanning clusters, those whose bounds meet the tile's (clusters_met).
+var<workgroup> met: array<u32, RASTER_CHUNK>;
+var<workgroup> met_count: atomic<u32>;
+var<workgroup> met_total: u32;
 
 // Whether pixel bounds `a` and `b` (min and max corners, inclusive) overlap.
 fn overlap(a: vec4<i32>, b: vec4<i32>) -> bool {
@@ -76,12 +88,11 @@ fn chunk_triangle(i: u32, binned: u32, start: u32, tile: vec4<i32>, complete: bo
         return records[tile_entries[start + i]];
     }
     let piece = spanning[i - binned];
-    let packed = spanning_bounds[piece >> 2u];
-    let bounds = vec4<i32>(vec2<i32>(unpack(packed.x)), vec2<i32>(unpack(packed.y)));
-    if !overlap(bounds, tile) {
+    let triangle = spanning_triangles[piece >> 2u];
+    if !overlap(spanning_pixels(triangle), tile) {
         return ScreenTriangle();
     }
-    return piece_in_tile(piece >> 2u, piece & 3u, tile);
+    return piece_in_tile(triangle.index, piece & 3u, tile);
 }
 
 // A triangle set up for covering: its three edge functions (b -> c, c -> a, a -> b:
@@ -267,17 +278,85 @@ fn blocks_touched(t: CoverTriangle, bounds: vec4<i32>, origin: vec2<u32>) -> u32
     return touched;
 }
 
-// Triangle `i` of the `k`-th chunk of the tile's whole clusters, listed from `start`
-// (CLUSTER_CHUNKS chunks each), set up, with area 0 where it misses the tile's pixels
-// `tile` or the cluster has no such triangle. A whole cluster lies within the depth
-// planes: its triangles are unclipped.
-fn cluster_triangle(k: u32, i: u32, start: u32, tile: vec4<i32>) -> ScreenTriangle {
-    let c = clusters[tile_entries[start + k / CLUSTER_CHUNKS]];
-    let within = (k % CLUSTER_CHUNKS) * RASTER_CHUNK + i;
-    if within >= c.triangles {
+// Piece `p` of cluster `c`, whose triangles are taken `pieces` pieces each (1 for a
+// cluster within the depth planes, whose triangles are whole; 3 for every piece of a
+// clipped fan), set up, with area 0 where it misses the tile's pixels `tile` or the
+// cluster has no such piece.
+fn cluster_piece(c: RasterCluster, p: u32, pieces: u32, tile: vec4<i32>) -> ScreenTriangle {
+    if p / pieces >= c.triangles {
         return ScreenTriangle();
     }
-    return piece_in_tile(c.first + within, 0u, tile);
+    return piece_in_tile(c.first + p / pieces, p % pieces, tile);
+}
+
+// Triangle `i` of the `k`-th chunk of the tile's whole clusters, listed from `start`
+// (CLUSTER_CHUNKS chunks each), set up. A whole cluster lies within the depth planes.
+fn cluster_triangle(k: u32, i: u32, start: u32, tile: vec4<i32>) -> ScreenTriangle {
+    let c = clusters[tile_entries[start + k / CLUSTER_CHUNKS]];
+    return cluster_piece(c, (k % CLUSTER_CHUNKS) * RASTER_CHUNK + i, 1u, tile);
+}
+
+// Piece `i` of the `k`-th chunk of the spanning clusters the tile met (clusters_met,
+// SPANNING_CLUSTER_CHUNKS chunks each), set up: every piece, as a spanning cluster may
+// cross a depth plane.
+fn spanning_cluster_piece(k: u32, i: u32, tile: vec4<i32>) -> ScreenTriangle {
+    let c = clusters[met[k / SPANNING_CLUSTER_CHUNKS]];
+    return cluster_piece(c, (k % SPANNING_CLUSTER_CHUNKS) * RASTER_CHUNK + i, 3u, tile);
+}
+
+// Of the spanning clusters from `first` to `first + RASTER_CHUNK` (but not past `count`),
+// those whose bounds meet the tile's pixels `tile` listed in `met` (the workgroup's
+// invocations calling together, each with its `local` index), and how many: the same
+// for every invocation.
+fn clusters_met(first: u32, count: u32, tile: vec4<i32>, local: u32) -> u32 {
+    if local == 0u {
+        atomicStore(&met_count, 0u);
+    }
+    workgroupBarrier();
+    if local < RASTER_CHUNK && first + local < count {
+        let s = spanning_clusters[first + local];
+        if overlap(spanning_pixels(s), tile) {
+            met[atomicAdd(&met_count, 1u)] = s.index;
+        }
+    }
+    workgroupBarrier();
+    if local == 0u {
+        met_total = atomicLoad(&met_count);
+    }
+    return workgroupUniformLoad(&met_total);
+}
+
+// Covers a chunk of triangles (the workgroup's invocations calling together, each with
+// its `local` index and its triangle `t` to set up, area 0 for none) into the keys
+// `depths` and `ids` of the invocation's pixel of the tile at `origin`: the triangles set
+// up in workgroup memory, then each tested by the warps of the blocks it may cover.
+fn cover_chunk(t: ScreenTriangle, origin: vec2<u32>, local: u32, depths: ptr<function, array<LaneU, LANE_GROUPS>>, ids: ptr<function, array<LaneU, LANE_GROUPS>>) {
+    if local == 0u {
+        atomicStore(&chunk_count, 0u);
+    }
+    workgroupBarrier();
+    if t.area > 0.0 {
+        let slot = atomicAdd(&chunk_count, 1u);
+        let cover = cover_triangle(t);
+        chunk[slot] = cover;
+        chunk_blocks[slot] = blocks_touched(cover, pixel_bounds(t), origin);
+    }
+    workgroupBarrier();
+    let count = atomicLoad(&chunk_count);
+    let pixel = origin + pixel_in_tile(local);
+    let covers = all(pixel < output_size());
+    let block = 1u << block_of(local);
+    for (var j = 0u; j < count && covers; j++) {
+        if (chunk_blocks[j] & block) == 0u {
+            continue;
+        }
+        let c = chunk[j];
+        let corner = edges_at_pixel(c, pixel);
+        if mask_passes(c, corner, pixel) {
+            cover_lanes(corner, c, depths, ids);
+        }
+    }
+    workgroupBarrier();
 }
 
 // Covers the tile at `origin` (the workgroup's, every invocation calling with its own
@@ -294,49 +373,37 @@ fn cover_tile(origin: vec2<u32>, local: u32) -> TileKeys {
     let cluster_start = tile_starts[cluster_index];
     let cluster_end = tile_ends[cluster_index];
     // A list past the entries (bin_triangles.wgsl never writes one): every triangle's
-    // pieces, three slots per triangle, and no whole cluster.
+    // pieces, three slots per triangle, and no cluster.
     let entries = arrayLength(&tile_entries);
     let complete = end <= entries && start <= end && cluster_end <= entries && cluster_start <= cluster_end;
-    let total = select(3u * triangle_count(), binned + spanning_count, complete);
+    let total = select(3u * triangle_count(), binned + spanning_counts.pieces, complete);
     let triangle_chunks = (total + RASTER_CHUNK - 1u) / RASTER_CHUNK;
     let chunks = triangle_chunks + select(0u, (cluster_end - cluster_start) * CLUSTER_CHUNKS, complete);
     let tile = vec4<i32>(vec2<i32>(origin), vec2<i32>(origin + TILE - 1u));
-    let pixel = origin + pixel_in_tile(local);
-    let covers = all(pixel < output_size());
-    let block = 1u << block_of(local);
     for (var k = 0u; k < chunks; k++) {
-        if local == 0u {
-            atomicStore(&chunk_count, 0u);
-        }
-        workgroupBarrier();
+        var t: ScreenTriangle;
         let i = k * RASTER_CHUNK + local;
         if local < RASTER_CHUNK && (k >= triangle_chunks || i < total) {
-            var t: ScreenTriangle;
             if k < triangle_chunks {
                 t = chunk_triangle(i, binned, start, tile, complete);
             } else {
                 t = cluster_triangle(k - triangle_chunks, local, cluster_start, tile);
             }
-            if t.area > 0.0 {
-                let slot = atomicAdd(&chunk_count, 1u);
-                let cover = cover_triangle(t);
-                chunk[slot] = cover;
-                chunk_blocks[slot] = blocks_touched(cover, pixel_bounds(t), origin);
-            }
         }
-        workgroupBarrier();
-        let count = atomicLoad(&chunk_count);
-        for (var j = 0u; j < count && covers; j++) {
-            if (chunk_blocks[j] & block) == 0u {
-                continue;
+        cover_chunk(t, origin, local, &depths, &ids);
+    }
+    // The spanning clusters (whose slots overflowed), RASTER_CHUNK at a time: those whose
+    // bounds meet the tile's, each piece of their triangles.
+    let spanning_count = select(0u, min(spanning_counts.clusters, arrayLength(&spanning_clusters)), complete);
+    for (var first = 0u; first < spanning_count; first += RASTER_CHUNK) {
+        let chunks = clusters_met(first, spanning_count, tile, local) * SPANNING_CLUSTER_CHUNKS;
+        for (var k = 0u; k < chunks; k++) {
+            var t: ScreenTriangle;
+            if local < RASTER_CHUNK {
+                t = spanning_cluster_piece(k, local, tile);
             }
-            let t = chunk[j];
-            let corner = edges_at_pixel(t, pixel);
-            if mask_passes(t, corner, pixel) {
-                cover_lanes(corner, t, &depths, &ids);
-            }
+            cover_chunk(t, origin, local, &depths, &ids);
         }
-        workgroupBarrier();
     }
     return TileKeys(depths, ids);
 }

@@ -76,13 +76,26 @@ fn output_size() -> vec2<u32> {
 }
 
 // Pixel or tile coordinates (under 2^16 each, as every output is) packed in one word,
-// x | y << 16: the bins' items and spanning bounds hold them so.
+// x | y << 16: the bins' items and spanning entries hold them so.
 fn pack(v: vec2<u32>) -> u32 {
     return v.x | (v.y << 16u);
 }
 
 fn unpack(v: u32) -> vec2<u32> {
     return vec2<u32>(v & 0xffffu, v >> 16u);
+}
+
+// A triangle or a cluster every tile reads (bin_triangles.wgsl's spanning lists): the
+// triangle's `t` or the cluster's index, and pixel bounds that hold its pixels (min and
+// max corners, inclusive, each packed), which a tile tests against its own first.
+struct Spanning {
+    index: u32,
+    low: u32,
+    high: u32,
+}
+
+fn spanning_pixels(s: Spanning) -> vec4<i32> {
+    return vec4<i32>(vec2<i32>(unpack(s.low)), vec2<i32>(unpack(s.high)));
 }
 
 // Edge function of u -> v at p: positive on its right in pixel coordinates (y down),

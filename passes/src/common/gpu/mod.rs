@@ -5,12 +5,13 @@
 //! device objects of a pass that reads them ([`input_pass`]), the recording of passes
 //! that draw the scene's meshes ([`scene_draw`]), the opaque draws as compute
 //! rasterisers see them ([`raster_draws`]), their triangles binned to tiles
-//! ([`tile_bins`]) and culled by occlusion ([`occlusion`]), groups of storage buffers
+//! ([`tile_bins`], sized by [`bin_sizes`]) and culled by occlusion ([`occlusion`]), groups of storage buffers
 //! ([`storage`]), a pass set up with and without its optional shadow atlas
 //! ([`shadowed`]) and for the material layers its plan keeps ([`layered`]), and what the
 //! atlas's passes remember to keep it ([`shadow_cache`]).
 //! Layouts, modules and pipelines are created through [`crate::kept`].
 
+pub(crate) mod bin_sizes;
 pub(crate) mod bindings;
 pub(crate) mod input_pass;
 pub(crate) mod layered;

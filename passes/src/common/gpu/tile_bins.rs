@@ -4,10 +4,13 @@
 //! dispatches just before the raster's, in the same compute pass, two of them indirect:
 //! the clusters binned by triangle are known only on the device (as are the micro
 //! clusters, whose raster's indirect arguments follow: [`TileBins::dispatch_args`]). With
-//! occlusion culling
-//! (cluster_occlusion.wgsl), the source composed for one of its phases, every dispatch
-//! but the fallback list's arguments takes its group 3.
+//! occlusion culling (cluster_occlusion.wgsl), the source composed for one of its
+//! phases, every dispatch but the fallback list's arguments takes its group 3. Their
+//! sizes (common/gpu/bin_sizes.rs) follow the output, not the scene alone: a frame binning
+//! more triangles one by one than they have slots for sends the clusters past them by
+//! slower paths, to the same image.
 
+use super::bin_sizes::{BinSizes, BinsFor, BINNED_TILES, CLUSTER_TILES};
 use super::pipeline::{module, pipeline_layout};
 use super::raster_draws::RasterDraws;
 use super::storage::{scratch, storage_group, storage_layout};
@@ -15,31 +18,21 @@ use super::{compute_pipeline, workgroup_grid};
 use crate::gpu_scene::GpuScene;
 use rgraph_scene::DepthConvention;
 
-/// bin_triangles.wgsl's BINNED_TILES: a triangle touching at most this many tiles lists
-/// itself; the entries hold this many per triangle.
-const BINNED_TILES: u64 = 16;
-/// Room in the entries for larger triangles, per tile: beyond it they are spanning, read
-/// by every tile (slower, never wrong).
-const LARGE_ENTRIES_PER_TILE: u64 = 16;
 /// bin_triangles.wgsl's workgroup of its per-tile and per-triangle dispatches, and the grid
 /// of its item dispatches.
 const GROUP: u32 = 64;
 const ITEM_GROUPS: u32 = 1024;
-/// bin_triangles.wgsl's CLUSTER_TILES: a cluster touching at most this many tiles is
-/// listed whole; the entries hold this many per cluster. Each such tile sets up all of the
-/// cluster's triangles, so more would trade fewer atomics for more work in the raster.
-const CLUSTER_TILES: u64 = 4;
-/// triangle_setup.wgsl's ScreenTriangle, a binned triangle set up.
-const RECORD_BYTES: u64 = 80;
-/// The spanning pieces a triangle may add: its clipped polygon's fan.
-const PIECES: u64 = 3;
+/// bin_triangles.wgsl's BinCounts: six words.
+const COUNTS_BYTES: u64 = 24;
 
 /// The buffers a tile's raster reads (tile_raster.wgsl's bindings 1 to 9, then
-/// raster_tiles.wgsl's and micro_raster.wgsl's 10 and 11, in this order): all but the
-/// items, the fallback clusters and the cluster kinds.
-const RASTER_BUFFER_INDICES: [usize; 11] = [0, 1, 2, 3, 4, 5, 6, 8, 9, 12, 13];
+/// raster_tiles.wgsl's and micro_raster.wgsl's 10 and 11, then tile_raster.wgsl's 12, in
+/// this order): all but the items, the fallback clusters and the cluster kinds.
+const RASTER_BUFFER_INDICES: [usize; 12] = [0, 1, 2, 3, 4, 5, 6, 8, 9, 12, 13, 14];
 /// How many: the raster's group binds them after its keys.
 pub(crate) const RASTER_BUFFERS: usize = RASTER_BUFFER_INDICES.len();
+/// The bins' group 1, then the dispatch arguments (group 3 of cs_clusters_args).
+const BIN_BUFFERS: usize = 15;
 
 /// Whether the bins cull clusters, whether they list small ones whole, and the most
 /// pixels per triangle of a micro cluster's bounds, 0 for none (bin_triangles.wgsl's
@@ -49,6 +42,16 @@ pub(crate) struct ClusterBinning {
     pub cull: bool,
     pub whole: bool,
     pub micro: u32,
+}
+
+/// How the bins are made: the raster's tile side, how clusters are binned, the slots
+/// the pass asks for ([`BinsFor::asked`]), and occlusion culling's group 3 layout where
+/// bin_triangles.wgsl is composed for a phase of it.
+pub(crate) struct Binning<'a> {
+    pub tile: u32,
+    pub clusters: ClusterBinning,
+    pub slots: Option<u32>,
+    pub occlusion: Option<&'a wgpu::BindGroupLayout>,
 }
 
 /// Where in [`TileBins::dispatch_args`] the micro raster's dispatch arguments start, after
@@ -73,9 +76,10 @@ pub(crate) struct TileBins {
     draws: RasterDraws,
     tiles: u32,
     /// In bin_triangles.wgsl's binding order: draws, tile_ends, tile_starts, tile_entries,
-    /// spanning, bin_counts, spanning_bounds, items, records, clusters, fallback,
-    /// cluster_kinds, micro_tiles, micro (group 1), then fallback_args (group 3).
-    buffers: [wgpu::Buffer; 15],
+    /// spanning, bin_counts, spanning_triangles, items, records, clusters, fallback,
+    /// cluster_kinds, micro_tiles, micro, spanning_clusters (group 1), then fallback_args
+    /// (group 3).
+    buffers: [wgpu::Buffer; BIN_BUFFERS + 1],
 }
 
 impl TileBins {
@@ -85,56 +89,51 @@ impl TileBins {
         &self.buffers
     }
 
-    /// Bins for `scene`'s opaque triangles over the tiles of side `tile` covering
-    /// `size`, with bin_triangles.wgsl composed as `source`, its clusters culled and
-    /// listed as `clusters` says, by occlusion too with `occlusion`'s group 3 where it is
-    /// composed for a phase of occlusion culling; an error when the device cannot bind
-    /// them.
+    /// Bins for `scene`'s opaque triangles over the tiles covering `size`, with
+    /// bin_triangles.wgsl composed as `source`, made as `binning` says and sized by
+    /// [`BinSizes`]; an error when the device cannot bind them.
     pub fn new(
         device: &wgpu::Device,
         source: &str,
         scene: &GpuScene,
-        (tile, clusters, occlusion): (u32, ClusterBinning, Option<&wgpu::BindGroupLayout>),
+        binning: &Binning<'_>,
         size: (u32, u32),
     ) -> Result<TileBins, String> {
+        let tile = binning.tile;
         let tiles = size.0.div_ceil(tile) * size.1.div_ceil(tile);
         let draws = RasterDraws::new(device, scene);
-        let triangles = u64::from(draws.triangles);
-        let cluster_count = u64::from(draws.cluster_count);
-        let large = LARGE_ENTRIES_PER_TILE * u64::from(tiles);
-        let entries = (BINNED_TILES * triangles + CLUSTER_TILES * cluster_count + large) * 4;
-        let limit = device.limits().max_storage_buffer_binding_size;
-        let records = triangles * RECORD_BYTES;
-        let spanning = triangles * PIECES * 4;
-        let per_triangle = [
-            ("entries", entries),
-            ("records", records),
-            ("spanning list", spanning),
-        ];
-        if let Some((what, bytes)) = per_triangle.iter().find(|(_, bytes)| *bytes > limit) {
-            return Err(format!(
-                "the scene's {triangles} opaque triangles need {bytes} bytes of tile-bin \
-                 {what}; this device binds at most {limit}: render with \
-                 deferred_msaa_4x_lean.ron, whose raster pass is the hardware's"
-            ));
-        }
-        // A triangle list and a whole-cluster list per tile.
-        let list_words = 2 * u64::from(tiles) * 4;
+        let sizes = BinSizes::new(BinsFor {
+            triangles: draws.triangles,
+            clusters: draws.cluster_count,
+            pixels: size,
+            tiles,
+            asked: binning.slots,
+            limit: device.limits().max_storage_buffer_binding_size,
+        })?;
         let buffers = [
             draws.buffer.clone(),
-            scratch(device, "tile bins: ends", list_words),
-            scratch(device, "tile bins: starts", list_words),
-            scratch(device, "tile bins: entries", entries),
-            scratch(device, "tile bins: spanning", spanning),
-            scratch(device, "tile bins: counts", 16),
-            scratch(device, "tile bins: spanning bounds", triangles * 8),
-            scratch(device, "tile bins: items", (large / BINNED_TILES + 1) * 16),
-            scratch(device, "tile bins: records", records),
+            scratch(device, "tile bins: ends", sizes.lists),
+            scratch(device, "tile bins: starts", sizes.lists),
+            scratch(device, "tile bins: entries", sizes.entries),
+            scratch(device, "tile bins: spanning", sizes.spanning),
+            scratch(device, "tile bins: counts", COUNTS_BYTES),
+            scratch(
+                device,
+                "tile bins: spanning triangles",
+                sizes.spanning_triangles,
+            ),
+            scratch(device, "tile bins: items", sizes.items),
+            scratch(device, "tile bins: records", sizes.records),
             draws.clusters.clone(),
-            scratch(device, "tile bins: fallback clusters", cluster_count * 4),
-            scratch(device, "tile bins: cluster kinds", cluster_count * 4),
-            scratch(device, "tile bins: micro tiles", u64::from(tiles) * 4),
-            scratch(device, "tile bins: micro clusters", (cluster_count + 1) * 4),
+            scratch(device, "tile bins: fallback clusters", sizes.fallback),
+            scratch(device, "tile bins: cluster kinds", sizes.cluster_words),
+            scratch(device, "tile bins: micro tiles", sizes.micro_tiles),
+            scratch(device, "tile bins: micro clusters", sizes.micro),
+            scratch(
+                device,
+                "tile bins: spanning clusters",
+                sizes.spanning_clusters,
+            ),
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("tile bins: fallback and micro dispatches"),
                 size: 2 * MICRO_ARGS_OFFSET,
@@ -142,7 +141,7 @@ impl TileBins {
                 mapped_at_creation: false,
             }),
         ];
-        let (bins, args) = buffers.split_at(14);
+        let (bins, args) = buffers.split_at(BIN_BUFFERS);
         let args_group_layout = storage_layout(device, "tile bins: fallback dispatch", &[false]);
         let args_group = storage_group(
             device,
@@ -150,7 +149,7 @@ impl TileBins {
             &args_group_layout,
             &[&args[0]],
         );
-        let mut read_only = [false; 14];
+        let mut read_only = [false; BIN_BUFFERS];
         read_only[0] = true;
         read_only[9] = true;
         let layout = storage_layout(device, "tile bins", &read_only);
@@ -163,7 +162,7 @@ impl TileBins {
                 Some(scene.layout()),
                 Some(&layout),
                 Some(scene.geometry_layout()),
-                occlusion,
+                binning.occlusion,
             ],
         );
         let args_layout = pipeline_layout(
@@ -175,6 +174,7 @@ impl TileBins {
                 Some(&args_group_layout),
             ],
         );
+        let clusters = binning.clusters;
         let constants = [
             ("TILE", f64::from(tile)),
             ("BINNED_TILES", BINNED_TILES as f64),
@@ -254,7 +254,7 @@ impl TileBins {
     /// of the micro raster's (from [`MICRO_ARGS_OFFSET`]): a workgroup per micro cluster,
     /// written by [`Self::record`].
     pub fn dispatch_args(&self) -> &wgpu::Buffer {
-        &self.buffers[14]
+        &self.buffers[BIN_BUFFERS]
     }
 
     /// The buffers a tile's raster reads, in tile_raster.wgsl's binding order (from 1).
