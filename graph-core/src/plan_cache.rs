@@ -64,7 +64,8 @@ impl Compile for Graph {
 
 /// What a plan depends on besides its graph. Profiles are told apart by name, as
 /// [`DeviceProfile`](crate::DeviceProfile)s are made for one device each; features are
-/// the graph's relevant ones, so undeclared features do not split the cache.
+/// the graph's relevant ones with the profile's device conditions, so undeclared
+/// features do not split the cache and a plan's features find it again.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub(crate) struct PlanKey {
     pub features: Features,
@@ -108,8 +109,10 @@ impl PlanCache {
         options: &CompileOptions,
         features: &Features,
     ) -> Result<PlanKey, G::Error> {
+        // The features the compile reads: the device's conditions replace the caller's
+        // (as `compile_for` has them), so a plan's own features ask for its key again.
         let key = PlanKey {
-            features: graph.relevant(features),
+            features: graph.relevant(&options.profile.conditions(features)),
             output_size: options.output_size,
             profile: options.profile.name.clone(),
         };

@@ -293,6 +293,30 @@ fn device_conditions_come_from_the_profile_not_the_caller() {
     }
 }
 
+/// A plan compiled from the caller's features, and asked for again with its own (which
+/// hold the device's conditions, as a resize does), is the same cached plan.
+#[test]
+fn a_plan_s_own_features_find_it_in_the_cache() {
+    for (condition, profile) in device_conditions() {
+        let loaded = load(&device_branches(condition, "rgba8unorm")).unwrap();
+        let options = CompileOptions {
+            profile,
+            ..CompileOptions::default()
+        };
+        let mut cache = PlanCache::new();
+        let features = Features::from_iter(
+            (cache.get_or_compile(&loaded, &options, &Features::new()))
+                .unwrap()
+                .features
+                .iter()
+                .map(String::as_str),
+        );
+        assert!(features.contains(condition), "{condition}");
+        cache.get_or_compile(&loaded, &options, &features).unwrap();
+        assert_eq!((cache.hits(), cache.misses()), (1, 1), "{condition}");
+    }
+}
+
 #[test]
 fn validation_checks_a_device_branch_on_a_profile_without_the_device_condition() {
     let dir = std::env::temp_dir().join(format!("device-conditions-{}", std::process::id()));
