@@ -422,7 +422,7 @@ fn normal_texture_tilts_the_normal_in_the_gltf_tangent_frame() {
             .map(|&normal| {
                 let mut plain = scene.clone();
                 plain.materials[0].normal_texture = None;
-                for vertex in &mut plain.meshes[0].vertices {
+                for vertex in std::sync::Arc::make_mut(&mut plain.meshes[0].vertices) {
                     vertex.normal = normal;
                 }
                 resolved(pipeline, &file, plain)

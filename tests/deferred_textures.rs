@@ -31,11 +31,10 @@ fn checker_quad(sampler: Sampler) -> Scene {
         &[vec![d(-1.0, -1.0), d(1.0, -1.0), d(1.0, 1.0), d(-1.0, 1.0)]],
         material,
     );
-    for (vertex, uv) in
-        parts.meshes[quad]
-            .vertices
-            .iter_mut()
-            .zip([[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]])
+    let vertices = std::sync::Arc::make_mut(&mut parts.meshes[quad].vertices);
+    for (vertex, uv) in vertices
+        .iter_mut()
+        .zip([[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]])
     {
         vertex.uv = uv;
     }

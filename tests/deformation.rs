@@ -42,7 +42,8 @@ fn deformed_on_the_cpu(scene: &Scene, pose: &Pose) -> Scene {
             Some(skin) => joints_in_object_space(transform, &pose.skins[skin.skin]),
             None => Vec::new(),
         };
-        copy.meshes[d.mesh].vertices = d.deform(&scene.meshes[d.mesh].vertices, &joints, weights);
+        let deformed = d.deform(&scene.meshes[d.mesh].vertices, &joints, weights);
+        copy.meshes[d.mesh].vertices = deformed.into();
     }
     for (mesh, transform) in copy.meshes.iter_mut().zip(&pose.transforms) {
         mesh.transform = *transform;

@@ -66,8 +66,9 @@ fn triangle(parts: &mut Parts, name: &str, corners: [DVec3; 3], material: usize)
                 tangent: Vertex::NO_TANGENT,
                 uv1: [0.0; 2],
             })
-            .collect(),
-        indices: vec![0, 1, 2],
+            .collect::<Vec<_>>()
+            .into(),
+        indices: vec![0, 1, 2].into(),
         material,
         transform: DMat4::IDENTITY,
     });
@@ -261,8 +262,8 @@ fn a_million_triangles_render_at_16x16() {
     assert_eq!(indices.len() / 3, 1_000_000);
     parts.meshes.push(Mesh {
         name: "grid".into(),
-        vertices,
-        indices,
+        vertices: vertices.into(),
+        indices: indices.into(),
         material: grey,
         transform: DMat4::IDENTITY,
     });

@@ -42,7 +42,7 @@ fn odd_normals() -> Scene {
             d(x, 1.0, 0.0),
         ];
         let mesh = parts.mesh(&format!("normal {normal:?}"), &[quad], grey);
-        for v in &mut parts.meshes[mesh].vertices {
+        for v in std::sync::Arc::make_mut(&mut parts.meshes[mesh].vertices) {
             v.normal = *normal;
         }
     }

@@ -19,13 +19,18 @@ const SIZE: (u32, u32) = (160, 90);
 /// Every triangle its own three vertices, each with the face normal.
 fn written_out(scene: &mut Scene) {
     for mesh in &mut scene.meshes {
-        (mesh.vertices, mesh.indices) = flat_shaded(&mesh.vertices, &mesh.indices);
+        let (vertices, indices) = flat_shaded(&mesh.vertices, &mesh.indices);
+        (mesh.vertices, mesh.indices) = (vertices.into(), indices.into());
     }
 }
 
 /// The shared vertices kept, their normals zero.
 fn asked_for(scene: &mut Scene) {
-    for vertex in scene.meshes.iter_mut().flat_map(|m| &mut m.vertices) {
+    for vertex in scene
+        .meshes
+        .iter_mut()
+        .flat_map(|m| std::sync::Arc::make_mut(&mut m.vertices))
+    {
         vertex.normal = [0.0; 3];
     }
 }

@@ -77,6 +77,7 @@ mod fuzz;
 mod gpu_execute;
 mod gpu_failures;
 mod helper_loads;
+mod instancing;
 mod kept_pipelines;
 mod light_prepass;
 mod material_layers;

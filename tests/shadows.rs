@@ -429,7 +429,7 @@ fn an_alpha_mask_caster_casts_only_where_it_is_drawn() {
     masked.alpha_mode = AlphaMode::Mask { cutoff: 0.5 };
     parts.materials.push(masked);
     parts.meshes[1].material = parts.materials.len() - 1;
-    for v in &mut parts.meshes[1].vertices {
+    for v in std::sync::Arc::make_mut(&mut parts.meshes[1].vertices) {
         v.color[3] = if v.position[0] < 0.0 { 0 } else { u16::MAX };
     }
     let scene = square_scene(parts);

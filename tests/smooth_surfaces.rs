@@ -67,7 +67,11 @@ fn facets_are_not_joined() {
     let views = |shading: &'static str| {
         Render::new(VISIBILITY, "builtin:terrain", SIZE)
             .scene_edit(|scene| {
-                for vertex in scene.meshes.iter_mut().flat_map(|m| m.vertices.iter_mut()) {
+                for vertex in scene
+                    .meshes
+                    .iter_mut()
+                    .flat_map(|m| std::sync::Arc::make_mut(&mut m.vertices).iter_mut())
+                {
                     vertex.normal = [0.0; 3];
                 }
             })

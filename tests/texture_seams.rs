@@ -225,8 +225,8 @@ fn sphere(rings: u32, segments: u32, material: usize) -> Mesh {
         .collect();
     Mesh {
         name: "sphere".into(),
-        vertices,
-        indices,
+        vertices: vertices.into(),
+        indices: std::sync::Arc::new(indices),
         material,
         transform: DMat4::IDENTITY,
     }

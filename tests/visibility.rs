@@ -46,8 +46,8 @@ fn past_a_million_triangles(scene: &mut Scene) {
     let first = &scene.meshes[0];
     let padding = Mesh {
         name: "padding".into(),
-        vertices: first.vertices[..1].to_vec(),
-        indices: vec![0; 3 * ((1 << 20) + 5)],
+        vertices: first.vertices[..1].to_vec().into(),
+        indices: vec![0; 3 * ((1 << 20) + 5)].into(),
         material: first.material,
         transform: first.transform,
     };
@@ -117,7 +117,7 @@ fn masked_by_height(scene: &mut Scene) {
         let heights = mesh.vertices.iter().map(|v| v.position[1]);
         let low = heights.clone().fold(f32::INFINITY, f32::min);
         let high = heights.fold(f32::NEG_INFINITY, f32::max);
-        for vertex in &mut mesh.vertices {
+        for vertex in std::sync::Arc::make_mut(&mut mesh.vertices) {
             let rise = (vertex.position[1] - low) / (high - low).max(1e-6);
             vertex.color[3] = (rise * 65535.0).round() as u16;
         }
@@ -318,8 +318,8 @@ fn stacked_squares(scene: &mut Scene) {
     }
     let square = Mesh {
         name: "stacked squares".into(),
-        vertices,
-        indices,
+        vertices: vertices.into(),
+        indices: indices.into(),
         material: first.material,
         transform: DMat4::IDENTITY,
     };
@@ -349,8 +349,8 @@ fn fan_over_the_view(scene: &mut Scene) {
     let indices = (1..=corners).flat_map(|k| [0, k, k + 1]).collect();
     let fan = Mesh {
         name: "fan".into(),
-        vertices,
-        indices,
+        vertices: std::sync::Arc::new(vertices),
+        indices: std::sync::Arc::new(indices),
         material: first.material,
         transform: DMat4::IDENTITY,
     };

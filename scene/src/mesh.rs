@@ -1,5 +1,7 @@
 //! Triangle meshes: object-space vertex data plus a world transform.
 
+use std::sync::Arc;
+
 use glam::{DMat3, DMat4, DVec3, Vec3};
 
 use super::bounds::Aabb;
@@ -61,14 +63,26 @@ pub const MAX_MESHES: u32 = 1 << 20;
 /// are counter-clockwise when seen from their front side *after* `transform`, and tangent
 /// signs are those of the world-space frame (loaders reverse the winding and the signs of
 /// mirroring transforms so renderers need not).
+///
+/// Shared geometry: `vertices` and `indices` are reference-counted so that meshes placing
+/// one geometry many times (glTF nodes and EXT_mesh_gpu_instancing instances placing one
+/// primitive, built-in scenes of copies) hold it once; cloning a mesh shares them. Sharing
+/// means equal contents, never aliasing writes: whoever mutates a mesh's geometry does so
+/// through [`Arc::make_mut`], which copies it first when another mesh shares it, so no
+/// mutation reaches another mesh. Renderers may upload a shared array once (it is the same
+/// array when [`Arc::ptr_eq`] says so). Geometry that differs per placement is not shared:
+/// the glTF loader gives the mirrored placements of a primitive one copy of their own (it
+/// reverses their winding and tangent signs, above), and every deformed (skinned or morphed)
+/// placement its own (the deformation writes the placement's vertices on the device).
+/// Memory limits count a shared array once.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mesh {
     /// `mesh name/primitive index` for glTF, a description for built-in scenes.
     pub name: String,
-    /// Object-space vertices.
-    pub vertices: Vec<Vertex>,
-    /// Triangle list, three indices per triangle.
-    pub indices: Vec<u32>,
+    /// Object-space vertices, perhaps shared with other meshes (see above).
+    pub vertices: Arc<Vec<Vertex>>,
+    /// Triangle list, three indices per triangle, perhaps shared with other meshes.
+    pub indices: Arc<Vec<u32>>,
     /// Index into `Scene::materials`.
     pub material: usize,
     /// Object space to world space.

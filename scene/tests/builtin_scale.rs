@@ -39,12 +39,12 @@ fn terrain_has_two_triangles_per_cell_on_shared_vertices() {
         assert_eq!(terrain.name, "terrain");
         // Every vertex is a corner of its neighbours' triangles too: one smooth surface.
         let mut uses = vec![0u32; terrain.vertices.len()];
-        for &index in &terrain.indices {
+        for &index in terrain.indices.iter() {
             uses[index as usize] += 1;
         }
         let interior = (cells - 1) * (cells - 1);
         assert_eq!(uses.iter().filter(|&&n| n == 6).count(), interior, "{spec}");
-        for vertex in &terrain.vertices {
+        for vertex in terrain.vertices.iter() {
             let [x, y, z] = vertex.normal;
             assert!(((x * x + y * y + z * z).sqrt() - 1.0).abs() < 1e-5 && y > 0.0);
         }
@@ -120,7 +120,7 @@ fn scale_scenes_are_bit_identical_for_one_spec_and_change_with_the_seed() {
 /// What `cells` past the scene limit is told.
 const CELLS_RANGE: &str = "a whole number from 0 to 7326 (cells per side of the heightfield, 2 \
      triangles each (default 224: 100,352 triangles; at least 1, at most 7326: 107,340,552 \
-     triangles in 4,294,442,856 bytes of vertices, indices and mesh, the most that fit the 4 \
+     triangles in 4,294,442,824 bytes of vertices, indices and mesh, the most that fit the 4 \
      GiB scene limit))";
 
 #[test]

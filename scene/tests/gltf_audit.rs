@@ -106,19 +106,23 @@ fn every_placement_of_a_mesh_is_counted_before_any_is_built() {
     }
     let path = temp_dir("placements").join("scene.glb");
     gltf.write_glb(&path);
-    // 1,000 placements of 180 bytes (3 flat-shaded vertices of 56 bytes, 3 indices).
+    // 1,000 placements of a mesh record each, sharing 180 bytes of geometry (3 vertices
+    // of 56 bytes, 3 indices).
+    let record = std::mem::size_of::<rgraph_scene::Mesh>() as u64;
     let policy = AssetPolicy {
-        max_scene_bytes: 1_000 * 180 - 1,
+        max_scene_bytes: 180 + 1_000 * record - 1,
         ..AssetPolicy::default()
     };
     let error = Scene::from_gltf_with(&path, &policy).expect_err("one byte short");
     assert_eq!(
         error.to_string(),
         format!(
-            "{}: mesh 0 \"triangle\": placing it 1000 times (180 bytes each: every node or \
-             instance placing a mesh gets its own copy) would take the scene past 179999 \
-             bytes of vertices, indices and textures (the scene memory limit)",
-            path.display()
+            "{}: mesh 0 \"triangle\": placing it 1000 times (180 bytes of geometry, which its \
+             undeformed placements share, and {record} bytes a primitive placed) would take \
+             the scene past {} bytes of vertices, indices and textures (the scene memory \
+             limit)",
+            path.display(),
+            policy.max_scene_bytes
         )
     );
 }

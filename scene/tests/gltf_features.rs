@@ -180,8 +180,8 @@ fn strips_and_fans_become_counter_clockwise_lists() {
         json!({ "attributes": { "POSITION": fan, "NORMAL": normals }, "mode": 6 }),
     );
     let scene = load_embedded("strip_fan", &gltf);
-    assert_eq!(scene.meshes[0].indices, [0, 1, 2, 2, 1, 3]);
-    assert_eq!(scene.meshes[1].indices, [0, 1, 2, 0, 2, 3]);
+    assert_eq!(*scene.meshes[0].indices, [0, 1, 2, 2, 1, 3]);
+    assert_eq!(*scene.meshes[1].indices, [0, 1, 2, 0, 2, 3]);
     for mesh in &scene.meshes {
         for tri in mesh.indices.chunks(3) {
             let [a, b, c] =
@@ -205,7 +205,7 @@ fn mirroring_transform_reverses_winding() {
     );
     gltf.root(json!({ "mesh": mesh, "scale": [-1, 1, 1] }));
     let scene = load_embedded("mirror", &gltf);
-    assert_eq!(scene.meshes[0].indices, [0, 2, 1]);
+    assert_eq!(*scene.meshes[0].indices, [0, 2, 1]);
     // No NORMAL: the zero normal that asks renderers for the (flipped) face normal.
     assert_eq!(scene.meshes[0].vertices[0].normal, [0.0; 3]);
 }
@@ -238,10 +238,10 @@ fn meshes_without_normals_keep_their_vertices_unless_tangents_need_them() {
     gltf.write_embedded(&path);
     let scene = Scene::from_gltf(&path).unwrap_or_else(|e| panic!("{e}"));
     let [shared, written] = [&scene.meshes[0], &scene.meshes[1]];
-    assert_eq!(shared.indices, [0, 1, 2, 0, 2, 3]);
+    assert_eq!(*shared.indices, [0, 1, 2, 0, 2, 3]);
     assert_eq!(shared.vertices.len(), 4);
     assert!(shared.vertices.iter().all(|v| v.normal == [0.0; 3]));
-    assert_eq!(written.indices, [0, 1, 2, 3, 4, 5]);
+    assert_eq!(*written.indices, [0, 1, 2, 3, 4, 5]);
     assert_eq!(written.vertices.len(), 6);
     assert!(written.vertices.iter().all(|v| v.normal == [0.0, 0.0, 1.0]));
 }
@@ -702,7 +702,7 @@ fn points_and_lines_load_and_a_scene_of_only_them_loads() {
         panic!("{:?}", scene.points_lines);
     };
     assert_eq!(lines.topology, rgraph_scene::Topology::Lines);
-    assert_eq!(lines.indices, [0, 1, 1, 2, 2, 0]);
+    assert_eq!(*lines.indices, [0, 1, 1, 2, 2, 0]);
     assert_eq!(lines.colors[2], [0.0, 0.0, 1.0, 1.0]);
     assert_eq!(
         scene.materials[lines.material].emissive_factor,

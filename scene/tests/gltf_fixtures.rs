@@ -44,7 +44,7 @@ fn child_of_translated_scaled_parent_lands_at_exact_world_positions() {
 fn missing_normals_ask_for_face_normals() {
     let scene = load("hierarchy_embedded.gltf");
     let mesh = &scene.meshes[0];
-    assert_eq!(mesh.indices, [0, 1, 2]);
+    assert_eq!(*mesh.indices, [0, 1, 2]);
     assert!(mesh.vertices.iter().all(|v| v.normal == [0.0; 3]));
     assert!(mesh.vertices.iter().all(|v| v.uv == [0.0, 0.0]));
     let world_normal = mesh.normal_matrix() * DVec3::Z;
@@ -105,7 +105,7 @@ fn scene_without_camera_gets_the_framing_camera() {
 fn external_buffer_indices_normals_uvs_and_unlit() {
     let scene = load("external/lights_cameras.gltf");
     let mesh = &scene.meshes[0];
-    assert_eq!(mesh.indices, [0, 1, 2, 0, 2, 3]);
+    assert_eq!(*mesh.indices, [0, 1, 2, 0, 2, 3]);
     assert_eq!(mesh.vertices[2].position, [1.0, 0.0, -1.0]);
     assert_eq!(mesh.vertices[2].normal, [0.0, 1.0, 0.0]);
     assert_eq!(mesh.vertices[2].uv, [1.0, 0.0]);

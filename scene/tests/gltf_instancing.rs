@@ -6,6 +6,8 @@ use crate::allocations::allocated_by;
 use crate::common;
 
 use common::{temp_dir, Gltf, SHORT};
+use std::sync::Arc;
+
 use glam::{DMat4, DQuat, DVec3};
 use rgraph_scene::{Scene, SceneError, MAX_MESHES};
 use serde_json::{json, Value};
@@ -109,6 +111,18 @@ fn three_instances_are_placed_where_their_transforms_say() {
             "{got:?} vs {min:?}..{max:?}"
         );
     }
+    // The instances of a primitive share its geometry: one array, not three copies. The
+    // two primitives, equal in the file, are two geometries.
+    for instances in scene.meshes.chunks(3) {
+        for mesh in &instances[1..] {
+            assert!(Arc::ptr_eq(&mesh.vertices, &instances[0].vertices));
+            assert!(Arc::ptr_eq(&mesh.indices, &instances[0].indices));
+        }
+    }
+    assert!(!Arc::ptr_eq(
+        &scene.meshes[0].vertices,
+        &scene.meshes[3].vertices
+    ));
 }
 
 #[test]

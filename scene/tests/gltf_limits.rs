@@ -240,32 +240,46 @@ fn an_image_uri_outside_the_folder_names_the_image_and_the_material() {
 }
 
 #[test]
-fn a_mesh_placed_by_many_nodes_stops_at_the_geometry_limit() {
-    use rgraph_scene::{AssetPolicy, DEFAULT_MAX_SCENE_BYTES};
+fn a_mesh_placed_by_many_nodes_counts_its_geometry_once_per_handedness() {
+    use rgraph_scene::{AssetPolicy, Mesh, DEFAULT_MAX_SCENE_BYTES};
+    use std::sync::Arc;
     assert_eq!(DEFAULT_MAX_SCENE_BYTES, 4 << 30);
     let mut gltf = Gltf::default();
     let mesh = gltf.triangle(None);
-    // One triangle without normals: 3 flat-shaded vertices of 56 bytes and 3 indices of 4,
-    // 180 bytes a placement; ten more nodes place it again.
-    for _ in 0..10 {
+    // One triangle without normals: 3 vertices of 56 bytes and 3 indices of 4, 180 bytes,
+    // which the unmirrored placements share, and the mirrored ones a reversed copy; ten
+    // more nodes place it again, one of them mirrored.
+    for _ in 0..9 {
         gltf.root(json!({ "mesh": mesh }));
     }
+    gltf.root(json!({ "mesh": mesh, "scale": [-1, 1, 1] }));
     let path = temp_dir("geometry_limit").join("scene.gltf");
     gltf.write_embedded(&path);
     let policy = |max_scene_bytes| AssetPolicy {
         max_scene_bytes,
         ..AssetPolicy::default()
     };
-    let scene = Scene::from_gltf_with(&path, &policy(11 * 180)).unwrap_or_else(|e| panic!("{e}"));
+    let record = std::mem::size_of::<Mesh>();
+    let needed = 2 * 180 + 11 * record as u64;
+    let scene = Scene::from_gltf_with(&path, &policy(needed)).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(scene.meshes.len(), 11);
-    let error = Scene::from_gltf_with(&path, &policy(11 * 180 - 1)).expect_err("one too many");
+    let (first, mirrored) = (&scene.meshes[0], &scene.meshes[10]);
+    assert!(scene.meshes[1..10]
+        .iter()
+        .all(|m| Arc::ptr_eq(&m.vertices, &first.vertices)
+            && Arc::ptr_eq(&m.indices, &first.indices)));
+    assert!(!Arc::ptr_eq(&mirrored.indices, &first.indices));
+    assert_eq!(*mirrored.indices, [0, 2, 1]);
+    let error = Scene::from_gltf_with(&path, &policy(needed - 1)).expect_err("one byte short");
     assert_eq!(
         error.to_string(),
         format!(
-            "{}: mesh 0 \"triangle\": placing it 11 times (180 bytes each: every node or \
-             instance placing a mesh gets its own copy) would take the scene past 1979 \
-             bytes of vertices, indices and textures (the scene memory limit)",
-            path.display()
+            "{}: mesh 0 \"triangle\": placing it 11 times (360 bytes of geometry, which its \
+             undeformed placements share, and {record} bytes a primitive placed) would take \
+             the scene past {} bytes of vertices, indices and textures (the scene memory \
+             limit)",
+            path.display(),
+            needed - 1
         )
     );
 }

@@ -265,7 +265,7 @@ fn quantized_attributes_load_as_their_float_version_within_a_step() {
         let (uv_max, _) = range(encoding.uv.0);
         // Unnormalized UVs are the stored integers; KHR_texture_transform scales them back.
         let uv_scale = if encoding.uv.1 { 1.0 } else { uv_max as f32 };
-        for (got, want) in mesh.vertices.iter().zip(&reference.vertices) {
+        for (got, want) in mesh.vertices.iter().zip(reference.vertices.iter()) {
             for (g, w) in got.normal.iter().zip(want.normal) {
                 assert!(((g - w).abs() as f64) <= 1.0 / direction_max, "{what}");
             }

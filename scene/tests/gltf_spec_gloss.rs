@@ -234,24 +234,26 @@ fn baked_textures_are_counted_against_the_scene_memory_limit() {
     );
     let path = temp_dir("spec_gloss_budget").join("scene.gltf");
     gltf.write_embedded(&path);
-    // The triangle takes 180 bytes (3 vertices of 56, 3 indices of 4).
+    // The triangle takes 180 bytes (3 vertices of 56, 3 indices of 4) and its mesh record.
     let policy = |max_scene_bytes| AssetPolicy {
         max_scene_bytes,
         ..AssetPolicy::default()
     };
-    let error = Scene::from_gltf_with(&path, &policy(180 + 2 * 21_844 - 1))
+    let triangle = 180 + std::mem::size_of::<rgraph_scene::Mesh>() as u64;
+    let error = Scene::from_gltf_with(&path, &policy(triangle + 2 * 21_844 - 1))
         .expect_err("the baked textures are over the limit");
     assert_eq!(
         error.to_string(),
         format!(
             "{}: material 0: baking its specular-glossiness textures as metallic-roughness \
-             (two of 64x64) would take the scene past 43867 bytes of vertices, indices and \
+             (two of 64x64) would take the scene past {} bytes of vertices, indices and \
              textures (the scene memory limit)",
-            path.display()
+            path.display(),
+            triangle + 2 * 21_844 - 1
         )
     );
-    let scene =
-        Scene::from_gltf_with(&path, &policy(180 + 2 * 21_844)).unwrap_or_else(|e| panic!("{e}"));
+    let scene = Scene::from_gltf_with(&path, &policy(triangle + 2 * 21_844))
+        .unwrap_or_else(|e| panic!("{e}"));
     let material = &scene.materials[0];
     let base = &scene.textures[material.base_color_texture.unwrap().image];
     assert_eq!((base.width, base.height), (64, 64));

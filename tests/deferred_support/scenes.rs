@@ -83,8 +83,8 @@ impl Parts {
         }
         self.meshes.push(Mesh {
             name: name.to_owned(),
-            vertices,
-            indices,
+            vertices: vertices.into(),
+            indices: indices.into(),
             material,
             transform: DMat4::IDENTITY,
         });

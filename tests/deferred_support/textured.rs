@@ -119,7 +119,10 @@ pub fn material(parts: &mut Parts, name: &str, sampler: Sampler) -> usize {
 fn quad(parts: &mut Parts, name: &str, corners: [DVec3; 4], uvs: [[f32; 2]; 4], material: usize) {
     let mesh = parts.mesh(name, &[corners.to_vec()], material);
     let along = (corners[1] - corners[0]).normalize().as_vec3();
-    for (vertex, uv) in parts.meshes[mesh].vertices.iter_mut().zip(uvs) {
+    for (vertex, uv) in std::sync::Arc::make_mut(&mut parts.meshes[mesh].vertices)
+        .iter_mut()
+        .zip(uvs)
+    {
         vertex.uv = uv;
         vertex.uv1 = [uv[1] * 0.5, uv[0] * 0.5];
         vertex.tangent = Vertex::tangent_from([along.x, along.y, along.z, 1.0]);

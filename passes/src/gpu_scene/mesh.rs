@@ -1,10 +1,13 @@
-//! Scene geometry on the device: every mesh's vertices and indices in one buffer each, and
-//! per-mesh data (camera-relative model matrix, normal matrix, material) in a storage
+//! Scene geometry on the device: every mesh's vertices and indices in one buffer each (the
+//! vertices meshes share held once, see shared_geometry.rs), and per-mesh data (camera-relative model matrix, normal matrix, material) in a storage
 //! buffer the G-buffer vertex shader indexes with the instance index.
+
+use std::sync::Arc;
 
 use glam::{DMat3, DMat4, DVec3, Vec3};
 use wgpu::util::DeviceExt;
 
+use super::shared_geometry::GeometryLayout;
 use super::view_culling::ClusterBoxes;
 use rgraph_scene::{Aabb, Cluster, ClusteredMesh, Scene, Vertex};
 
@@ -51,10 +54,11 @@ pub(super) struct MeshBuffers {
     /// Each mesh's triangles in cluster order (rgraph_scene::cluster): a triangle's
     /// position here, its ID, is not its position in `Mesh::indices`.
     pub indices: wgpu::Buffer,
-    /// Each mesh's clusters, ranges of its triangles in `indices` from the mesh's first.
-    pub clusters: Vec<Vec<Cluster>>,
-    /// Each mesh's clusters' boxes, for the views that draw only what they see.
-    pub cluster_boxes: Vec<ClusterBoxes>,
+    /// Each distinct geometry's clusters, ranges of its triangles from a placing mesh's
+    /// first in `indices`, and their boxes, for the views that draw only what they see.
+    shapes: Vec<(Vec<Cluster>, ClusterBoxes)>,
+    /// Each mesh's geometry in `shapes`.
+    shape_of: Vec<u32>,
     /// Per-mesh [`MeshData`], rewritten when the camera or a mesh moves.
     pub data: wgpu::Buffer,
 }
@@ -78,6 +82,8 @@ pub(super) struct MeshFrame {
     /// Each mesh's world bounds, kept so that a frame moving the camera but not the mesh
     /// does not transform its vertices again.
     world_bounds: Vec<Aabb>,
+    /// Where each mesh's geometry lies in the scene's buffers: the first frame's, kept.
+    pub layout: Arc<GeometryLayout>,
 }
 
 impl MeshFrame {
@@ -92,13 +98,18 @@ impl MeshFrame {
         eye: DVec3,
         previous: Option<(&MeshFrame, &[DMat4])>,
     ) -> MeshFrame {
-        let (mut index_count, mut vertex_count) = (0u32, 0i32);
+        let layout = previous.map_or_else(
+            || Arc::new(GeometryLayout::new(scene)),
+            |(frame, _)| frame.layout.clone(),
+        );
         let mut frame = MeshFrame {
             data: Vec::new(),
             draws: Vec::new(),
             world_bounds: Vec::new(),
+            layout: layout.clone(),
         };
-        for ((mesh, &transform), instance) in scene.meshes.iter().zip(transforms).zip(0u32..) {
+        let placed = scene.meshes.iter().zip(&layout.placements);
+        for (((mesh, placement), &transform), instance) in placed.zip(transforms).zip(0u32..) {
             let object_box = deformed.get(instance as usize).copied().flatten();
             let kept = previous
                 .filter(|_| object_box.is_none())
@@ -124,9 +135,10 @@ impl MeshFrame {
                 })
             });
             frame.world_bounds.push(world_bounds);
+            let first_index = placement.first_index;
             frame.draws.push(MeshDraw {
-                indices: index_count..index_count + mesh.indices.len() as u32,
-                base_vertex: vertex_count,
+                indices: first_index..first_index + mesh.indices.len() as u32,
+                base_vertex: placement.base_vertex,
                 instance,
                 material: mesh.material,
                 center: world_bounds.center() - eye,
@@ -135,8 +147,6 @@ impl MeshFrame {
                     max: world_bounds.max - eye,
                 },
             });
-            index_count += mesh.indices.len() as u32;
-            vertex_count += mesh.vertices.len() as i32;
             // Mesh::normal_matrix of the placed mesh.
             let normal = DMat3::from_mat4(transform).inverse().transpose().as_mat3();
             frame.data.push(MeshData {
@@ -144,8 +154,8 @@ impl MeshFrame {
                 normal_matrix: [normal.x_axis, normal.y_axis, normal.z_axis]
                     .map(|c| c.extend(0.0).to_array()),
                 material: mesh.material as u32,
-                first_index: index_count - mesh.indices.len() as u32,
-                base_vertex: vertex_count - mesh.vertices.len() as i32,
+                first_index,
+                base_vertex: placement.base_vertex,
                 _pad: 0,
             });
         }
@@ -170,9 +180,10 @@ impl MeshFrame {
 }
 
 impl MeshBuffers {
-    /// Uploads `scene`'s geometry and `frame`'s per-mesh data. The geometry goes up mesh by
-    /// mesh in slices (see [`UPLOAD_SLICE_BYTES`]), never gathered into one copy first;
-    /// the indices in cluster order are a copy of the scene's, held until they are up.
+    /// Uploads `scene`'s geometry as `frame`'s layout places it, and `frame`'s per-mesh
+    /// data. The geometry goes up array by array in slices (see [`UPLOAD_SLICE_BYTES`]),
+    /// never gathered into one copy first; the indices in cluster order are a copy of each
+    /// distinct geometry's, held until they are up.
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -182,31 +193,48 @@ impl MeshBuffers {
         let upload = Upload { device, queue };
         // Clustered here, from the meshes as they are now, so that the clusters cannot
         // go stale: every pipeline draws the one index buffer, in cluster order.
-        let clustered: Vec<ClusteredMesh> =
-            scene.meshes.iter().map(rgraph_scene::cluster).collect();
+        let layout = &frame.layout;
+        let clustered: Vec<ClusteredMesh> = (layout.shape_owners.iter())
+            .map(|&mesh| rgraph_scene::cluster(&scene.meshes[mesh]))
+            .collect();
+        let placements = layout.placements.iter();
         MeshBuffers {
             // Storage too: visibility-buffer passes pull vertices (geometry.wgsl).
             vertices: upload.gathered(
                 "scene vertices",
-                scene.meshes.iter().map(|m| m.vertices.as_slice()),
+                (layout.vertex_owners.iter()).map(|&mesh| scene.meshes[mesh].vertices.as_slice()),
                 wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
             ),
             indices: upload.gathered(
                 "scene indices",
-                clustered.iter().map(|m| m.indices.as_slice()),
+                placements.map(|p| clustered[p.shape as usize].indices.as_slice()),
                 wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
             ),
-            cluster_boxes: clustered
-                .iter()
-                .map(|m| ClusterBoxes::new(&m.clusters))
+            shape_of: layout.placements.iter().map(|p| p.shape).collect(),
+            shapes: (clustered.into_iter())
+                .map(|m| {
+                    let boxes = ClusterBoxes::new(&m.clusters);
+                    (m.clusters, boxes)
+                })
                 .collect(),
-            clusters: clustered.into_iter().map(|m| m.clusters).collect(),
             data: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("scene meshes"),
                 contents: frame.bytes(),
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             }),
         }
+    }
+}
+
+impl MeshBuffers {
+    /// The clusters of `Scene::meshes[mesh]`, ranges of its triangles from its first.
+    pub fn clusters(&self, mesh: usize) -> &[Cluster] {
+        &self.shapes[self.shape_of[mesh] as usize].0
+    }
+
+    /// The boxes of `Scene::meshes[mesh]`'s clusters, in its own space.
+    pub fn cluster_boxes(&self, mesh: usize) -> &ClusterBoxes {
+        &self.shapes[self.shape_of[mesh] as usize].1
     }
 }
 

@@ -40,6 +40,7 @@ pub(crate) mod screen_rect;
 mod seen_depths;
 mod shadow_work;
 mod shadows;
+mod shared_geometry;
 mod texture_table;
 mod textures;
 mod view_culling;
@@ -540,7 +541,12 @@ impl GpuScene {
             .zip(views.iter().map(|v| v.clip_from_world()))
             .collect();
         let clusters: usize = (draws.iter())
-            .map(|(draw, _)| self.upload.meshes.cluster_boxes[draw.instance as usize].clusters())
+            .map(|(draw, _)| {
+                self.upload
+                    .meshes
+                    .cluster_boxes(draw.instance as usize)
+                    .clusters()
+            })
             .sum();
         let parallel = options.culled && clusters * views.len() >= shadow_work::PARALLEL_CLUSTERS;
         let views = shadow_work::per_view(&views, parallel, |&(tile, clip_from_world)| ViewWork {
@@ -569,7 +575,7 @@ impl GpuScene {
         let culled = options.culled && self.deformed_box(draw.instance).is_none();
         let runs = match culled {
             true => {
-                let boxes = &self.upload.meshes.cluster_boxes[draw.instance as usize];
+                let boxes = self.upload.meshes.cluster_boxes(draw.instance as usize);
                 let model = self.frame.meshes.model(draw.instance);
                 let fine = shadow_work::fine(options, side, state.masked);
                 boxes.seen(clip_from_world, model, fine)
@@ -777,7 +783,14 @@ impl GpuScene {
     /// The clusters of `Scene::meshes[mesh]`, ranges of its triangles from the mesh's
     /// first in the index buffer, which holds each mesh's triangles in cluster order.
     pub fn clusters(&self, mesh: usize) -> &[rgraph_scene::Cluster] {
-        &self.upload.meshes.clusters[mesh]
+        self.upload.meshes.clusters(mesh)
+    }
+
+    /// The sizes in bytes of the scene's vertex and index buffers: vertex arrays that
+    /// meshes share are held once, indices once per mesh (see shared_geometry.rs).
+    pub fn geometry_bytes(&self) -> (u64, u64) {
+        let meshes = &self.upload.meshes;
+        (meshes.vertices.size(), meshes.indices.size())
     }
 
     /// Group 2 of the visibility passes, made on first use; an error when the device cannot

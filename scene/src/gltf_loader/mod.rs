@@ -14,7 +14,8 @@
 //! their JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1, and morph targets' POSITION, NORMAL
 //! and TANGENT offsets (see [`deform`]); points and lines (POINTS, LINES, and loops and
 //! strips converted to lists) with POSITION and COLOR_0 and their material's base colour
-//! and emission (see [`points_lines`]), placed by the node tree as meshes are. What is
+//! and emission (see [`points_lines`]), placed by the node tree as meshes are. Meshes
+//! placing one primitive share its geometry (see [`Mesh`](crate::Mesh)). What is
 //! not: a skinned vertex's influences past eight (JOINTS_2 on), and the skins and morph
 //! targets of points and lines, each with a warning in [`Scene::warnings`].
 
@@ -49,6 +50,7 @@ mod world;
 
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
+use std::sync::Arc;
 
 use glam::DMat4;
 use rgraph_core::bounded_read;
@@ -56,7 +58,7 @@ use rgraph_core::bounded_read;
 use super::builder::SceneBuilder;
 use super::error;
 use super::node_tree::{LocalTransform, MeshPlacement, NodeId};
-use super::{AssetPolicy, Scene, SceneError, MAX_LIGHTS};
+use super::{AssetPolicy, Scene, SceneError, Vertex, MAX_LIGHTS};
 
 /// Loads `file`, reading it and the files its URIs name as `policy` allows; see the module
 /// documentation for what is kept.
@@ -88,6 +90,7 @@ pub(crate) fn load(file: &Path, policy: &AssetPolicy) -> Result<Scene, SceneErro
         images: HashMap::new(),
         encoded: HashMap::new(),
         reserved: HashSet::new(),
+        shared: HashMap::new(),
     };
     loader.builder.warnings = warnings;
     if let Some(scene) = document
@@ -135,9 +138,15 @@ struct Loader<'a> {
     encoded: HashMap<usize, Vec<u8>>,
     /// The images, by glTF index and role, whose memory the budget holds.
     reserved: HashSet<(usize, bool)>,
+    /// The geometry of each undeformed primitive placed so far, by glTF mesh index,
+    /// primitive index and whether the placement mirrors: what its next placements share.
+    shared: HashMap<(usize, usize, bool), SharedGeometry>,
     /// What is left of [`AssetPolicy::max_scene_bytes`], taken before anything is built.
     budget: Budget,
 }
+
+/// A [`Mesh`](crate::Mesh)'s vertices and indices, as meshes share them.
+type SharedGeometry = (Arc<Vec<Vertex>>, Arc<Vec<u32>>);
 
 /// The bytes of vertices, indices and textures a scene may still build.
 struct Budget {

@@ -1,9 +1,11 @@
 //! Mesh primitives to [`Mesh`]es.
 
+use std::sync::Arc;
+
 use glam::DMat4;
 use gltf::mesh::{Mode, Semantic};
 
-use super::deform::{per_corner, NodeDeform};
+use super::deform::{per_corner, NodeDeform, Parts};
 use super::site::Site;
 use super::{accessor, Loader};
 use crate::error::label;
@@ -14,6 +16,10 @@ impl Loader<'_> {
     /// scene, with its deformation (the node's skin, the primitive's morph targets) if it
     /// has one. Strips and fans become triangle lists; points and lines are
     /// [`points_lines`](Self::points_lines)'.
+    ///
+    /// Undeformed placements of one primitive share its geometry (see [`Mesh`]): it is
+    /// read and built at its first placement of each handedness, mirrored or not, and later
+    /// placements of that handedness take the same arrays. Deformed ones build their own.
     pub(super) fn primitive(
         &mut self,
         mesh: &gltf::Mesh,
@@ -26,15 +32,57 @@ impl Loader<'_> {
             mesh: label("mesh", mesh.index(), mesh.name()),
             primitive: primitive.index(),
         };
+        let mirrored = world.determinant() < 0.0;
+        let key = (mesh.index(), primitive.index(), mirrored);
+        let shared = (self.shared.get(&key)).filter(|_| !deformed(node, primitive));
+        let (vertices, indices, deformation) = match shared {
+            Some((vertices, indices)) => (vertices.clone(), indices.clone(), None),
+            None => {
+                let (vertices, indices, deformation) =
+                    self.geometry(&site, (mesh, primitive), mirrored, node)?;
+                let (vertices, indices) = (Arc::new(vertices), Arc::new(indices));
+                if deformation.is_none() {
+                    self.shared.insert(key, (vertices.clone(), indices.clone()));
+                }
+                (vertices, indices, deformation)
+            }
+        };
+        let material = self.material(&primitive.material())?;
+        if let Some((skin, morph)) = deformation {
+            self.builder.deformations.push(Deformation {
+                mesh: self.builder.meshes.len(),
+                skin,
+                morph,
+            });
+        }
+        self.builder.meshes.push(Mesh {
+            name: format!("{} primitive {}", site.mesh, site.primitive),
+            vertices,
+            indices,
+            material,
+            transform: world,
+        });
+        Ok(())
+    }
+
+    /// One placement's vertices, indices (counter-clockwise after a transform that is
+    /// `mirrored` or not) and deformation, read from the file.
+    fn geometry(
+        &mut self,
+        site: &Site,
+        (mesh, primitive): (&gltf::Mesh, &gltf::Primitive),
+        mirrored: bool,
+        node: &gltf::Node,
+    ) -> Result<Built, SceneError> {
         let mode = primitive.mode();
         let positions = self
-            .attribute::<3>(&site, primitive, Semantic::Positions, "POSITION")?
+            .attribute::<3>(site, primitive, Semantic::Positions, "POSITION")?
             .ok_or_else(|| site.invalid("has no POSITION attribute".to_owned()))?;
-        let normals = self.attribute::<3>(&site, primitive, Semantic::Normals, "NORMAL")?;
-        let uvs = self.attribute::<2>(&site, primitive, Semantic::TexCoords(0), "TEXCOORD_0")?;
-        let uvs1 = self.attribute::<2>(&site, primitive, Semantic::TexCoords(1), "TEXCOORD_1")?;
-        let colors = self.colors(&site, primitive)?;
-        let tangents = self.attribute::<4>(&site, primitive, Semantic::Tangents, "TANGENT")?;
+        let normals = self.attribute::<3>(site, primitive, Semantic::Normals, "NORMAL")?;
+        let uvs = self.attribute::<2>(site, primitive, Semantic::TexCoords(0), "TEXCOORD_0")?;
+        let uvs1 = self.attribute::<2>(site, primitive, Semantic::TexCoords(1), "TEXCOORD_1")?;
+        let colors = self.colors(site, primitive)?;
+        let tangents = self.attribute::<4>(site, primitive, Semantic::Tangents, "TANGENT")?;
         site.check_finite(
             &positions,
             normals.as_deref(),
@@ -75,7 +123,7 @@ impl Loader<'_> {
             skin: (node.skin()).map(|skin| (skin.index(), skin.joints().len())),
             weights: node.weights(),
         };
-        let deformation = self.deformation(&site, (mesh, primitive), &node, positions.len())?;
+        let deformation = self.deformation(site, (mesh, primitive), &node, positions.len())?;
         let (mut vertices, mut indices, deformation) = match (&normals, tangent_uvs) {
             (None, Some(_)) => {
                 // Flat shading writes each corner out: vertex k is the file's `indices[k]`.
@@ -100,28 +148,13 @@ impl Loader<'_> {
         // them here keeps the Mesh contract (front faces CCW in world space) for renderers. It
         // also turns the bitangent `normal x tangent` around: the sign keeps it on the side
         // the normal texture was baked for.
-        if world.determinant() < 0.0 {
+        if mirrored {
             indices.chunks_exact_mut(3).for_each(|tri| tri.swap(1, 2));
             vertices
                 .iter_mut()
                 .for_each(|v| v.tangent[3] = -v.tangent[3]);
         }
-        let material = self.material(&primitive.material())?;
-        if let Some((skin, morph)) = deformation {
-            self.builder.deformations.push(Deformation {
-                mesh: self.builder.meshes.len(),
-                skin,
-                morph,
-            });
-        }
-        self.builder.meshes.push(Mesh {
-            name: format!("{} primitive {}", site.mesh, site.primitive),
-            vertices,
-            indices,
-            material,
-            transform: world,
-        });
-        Ok(())
+        Ok((vertices, indices, deformation))
     }
 
     /// Reads an optional vertex attribute (`None` when the primitive has none). Its length is
@@ -283,4 +316,13 @@ fn interleave(
             tangent: tangents.map_or(Vertex::NO_TANGENT, |t| Vertex::tangent_from(t[i])),
         })
         .collect()
+}
+
+/// A placement's vertices, indices and deformation as read.
+type Built = (Vec<Vertex>, Vec<u32>, Option<Parts>);
+
+/// Whether `node`'s placement of `primitive` deforms: a skin on the node, or morph targets
+/// on the primitive (see `deform.rs`). Such a placement gets geometry of its own.
+pub(super) fn deformed(node: &gltf::Node, primitive: &gltf::Primitive) -> bool {
+    node.skin().is_some() || primitive.morph_targets().len() > 0
 }

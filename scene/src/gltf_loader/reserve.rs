@@ -2,39 +2,56 @@
 //! (by a node, or by each instance of an instanced node; from its accessors' counts), every
 //! image (from its header) and every texture baked from images, taken from the scene's
 //! memory budget first, so that a small file asking for more than the limit fails before
-//! the memory is spent (a 20 MB GLB placing a 1M-triangle mesh 1,000 times asks for 50 GB).
+//! the memory is spent (a 20 MB GLB placing a skinned 1M-triangle mesh 1,000 times asks for
+//! 50 GB). Geometry that placements share (see [`Mesh`]) is counted once, each placement's
+//! own [`Mesh`] record every time.
 
 use std::collections::{HashMap, HashSet};
 
 use gltf::mesh::{Mode, Semantic};
 
 use super::nodes::Placed;
-use super::{material, material_layers, Loader};
+use super::{drawn, material, material_layers, primitive, Loader};
 use crate::error::label;
-use crate::{SceneError, Vertex, MAX_MESHES};
+use crate::{Mesh, SceneError, Vertex, MAX_MESHES};
 
 impl Loader<'_> {
     /// Takes from the budget what the meshes `placed` places and the images their
     /// materials name will hold, in the order they are built; fails on the first that does
     /// not fit, naming it.
     pub(super) fn reserve(&mut self, placed: &[Placed<'_>]) -> Result<(), SceneError> {
-        // Placements per mesh (one per placing node, or one per instance of an instanced
-        // one), in the order meshes are first placed.
-        let mut meshes: Vec<(gltf::Mesh, u64)> = Vec::new();
+        // Placements per mesh, in the order meshes are first placed: one per placing node,
+        // or one per instance of an instanced one; and the copies of its geometry they
+        // take, per primitive (see `primitive.rs`): one per handedness its undeformed
+        // placements have (both for an instanced node, whose instances' scales are not read
+        // yet: a bound), one per deformed placement and per placement of points or lines.
+        let mut meshes: Vec<(gltf::Mesh, u64, Vec<Copies>)> = Vec::new();
         let mut slot_of: HashMap<usize, usize> = HashMap::new();
         for placed in placed {
             let Some(mesh) = placed.node.mesh() else {
                 continue;
             };
-            let copies = placed.instances.as_ref().map_or(1, |i| i.count as u64);
-            if copies == 0 {
+            let count = placed.instances.as_ref().map_or(1, |i| i.count as u64);
+            if count == 0 {
                 continue;
             }
-            match slot_of.get(&mesh.index()) {
-                Some(&slot) => meshes[slot].1 += copies,
-                None => {
-                    slot_of.insert(mesh.index(), meshes.len());
-                    meshes.push((mesh, copies));
+            let slot = *slot_of.entry(mesh.index()).or_insert_with(|| {
+                let copies = vec![Copies::default(); mesh.primitives().len()];
+                meshes.push((mesh.clone(), 0, copies));
+                meshes.len() - 1
+            });
+            let (_, placements, copies) = &mut meshes[slot];
+            *placements += count;
+            let mirrored = placed.world.determinant() < 0.0;
+            for (primitive, copies) in mesh.primitives().zip(copies) {
+                let own = !drawn::is_triangles(&primitive)
+                    || primitive::deformed(&placed.node, &primitive);
+                if own {
+                    copies.deformed += count;
+                } else if placed.instances.is_some() {
+                    copies.handedness = [true; 2];
+                } else {
+                    copies.handedness[usize::from(mirrored)] = true;
                 }
             }
         }
@@ -42,7 +59,7 @@ impl Loader<'_> {
         // (counted alike: a bound on both).
         let mesh_count = meshes
             .iter()
-            .map(|(mesh, count)| mesh.primitives().count() as u64 * count)
+            .map(|(mesh, count, _)| mesh.primitives().count() as u64 * count)
             .fold(0, u64::saturating_add);
         if mesh_count > MAX_MESHES as u64 {
             return Err(SceneError::TooManyMeshes {
@@ -51,20 +68,21 @@ impl Loader<'_> {
                 max: MAX_MESHES,
             });
         }
-        for (mesh, count) in &meshes {
-            let copy = mesh
-                .primitives()
-                .map(|p| primitive_bytes(&p))
+        for (mesh, count, copies) in &meshes {
+            let geometry = (mesh.primitives().zip(copies))
+                .map(|(p, copies)| primitive_bytes(&p).saturating_mul(copies.count()))
                 .fold(0, u64::saturating_add);
+            let record = std::mem::size_of::<Mesh>() as u64;
+            let records = record.saturating_mul(mesh.primitives().len() as u64 * count);
             let why = match count {
                 1 => "building it".to_owned(),
                 n => format!(
-                    "placing it {n} times ({copy} bytes each: every node or instance placing a \
-                     mesh gets its own copy)"
+                    "placing it {n} times ({geometry} bytes of geometry, which its undeformed \
+                     placements share, and {record} bytes a primitive placed)"
                 ),
             };
             self.budget
-                .take(copy.saturating_mul(*count), &why)
+                .take(geometry.saturating_add(records), &why)
                 .map_err(|reason| SceneError::InvalidMesh {
                     file: self.file.to_owned(),
                     mesh: label("mesh", mesh.index(), mesh.name()),
@@ -72,7 +90,7 @@ impl Loader<'_> {
                 })?;
         }
         let mut materials = HashSet::new();
-        for (mesh, _) in &meshes {
+        for (mesh, _, _) in &meshes {
             for primitive in mesh.primitives() {
                 let material = primitive.material();
                 if !materials.insert(material.index()) {
@@ -126,6 +144,21 @@ impl Loader<'_> {
             Err(e) => return Err(e.into_named_error(|reason| invalid(self, reason))),
         };
         size.map_err(|e| invalid(self, format!("cannot decode: {e}")))
+    }
+}
+
+/// The copies of one primitive's geometry a mesh's placements take.
+#[derive(Clone, Copy, Default)]
+struct Copies {
+    /// Whether undeformed placements place it unmirrored, mirrored: one shared copy each.
+    handedness: [bool; 2],
+    /// Deformed placements, and placements of points or lines: a copy each.
+    deformed: u64,
+}
+
+impl Copies {
+    fn count(&self) -> u64 {
+        self.handedness.iter().filter(|&&h| h).count() as u64 + self.deformed
     }
 }
 

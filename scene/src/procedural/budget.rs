@@ -54,13 +54,13 @@ mod tests {
     use super::Geometry;
 
     #[test]
-    fn bytes_are_56_per_vertex_4_per_index_and_208_per_mesh() {
+    fn bytes_are_56_per_vertex_4_per_index_and_176_per_mesh() {
         let quad = Geometry {
             vertices: 4,
             indices: 6,
             meshes: 1,
         };
-        assert_eq!(quad.bytes(), 4 * 56 + 6 * 4 + 208);
+        assert_eq!(quad.bytes(), 4 * 56 + 6 * 4 + 176);
         assert_eq!(quad.times(3).plus(quad).bytes(), 4 * quad.bytes());
         let limit = Geometry {
             vertices: 0,

@@ -27,8 +27,8 @@ pub(super) fn add_shape(
 ) {
     builder.meshes.push(Mesh {
         name: name.to_owned(),
-        vertices: shape.vertices,
-        indices: shape.indices,
+        vertices: shape.vertices.into(),
+        indices: shape.indices.into(),
         material,
         transform,
     });

@@ -55,7 +55,7 @@ pub(super) const PARAMS: &[BuiltinParam] = &[
     BuiltinParam {
         key: "cells",
         meaning: "cells per side of the heightfield, 2 triangles each (default 224: 100,352 \
-                  triangles; at least 1, at most 7326: 107,340,552 triangles in 4,294,442,856 \
+                  triangles; at least 1, at most 7326: 107,340,552 triangles in 4,294,442,824 \
                   bytes of vertices, indices and mesh, the most that fit the 4 GiB scene \
                   limit)",
         default: 224,
@@ -81,8 +81,8 @@ pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), S
     let material = builder.add_material(lit("terrain", [1.0; 3], 0.0, 0.9));
     builder.meshes.push(Mesh {
         name: "terrain".to_owned(),
-        vertices: vertices(cells, &octaves),
-        indices: indices(cells),
+        vertices: vertices(cells, &octaves).into(),
+        indices: indices(cells).into(),
         material,
         transform: DMat4::IDENTITY,
     });
@@ -227,12 +227,12 @@ mod tests {
         let triangles = |cells: u64| geometry(cells).indices / 3;
         assert_eq!(MAX_CELLS, 7326);
         assert_eq!(triangles(7326), 107_340_552);
-        assert_eq!(geometry(7326).bytes(), 4_294_442_856);
+        assert_eq!(geometry(7326).bytes(), 4_294_442_824);
         assert!(!geometry(7327).fits());
         assert!(triangles(7072) > 100_000_000);
         assert!(PARAMS[0]
             .meaning
-            .contains("at most 7326: 107,340,552 triangles in 4,294,442,856 bytes"));
+            .contains("at most 7326: 107,340,552 triangles in 4,294,442,824 bytes"));
     }
 
     #[test]
