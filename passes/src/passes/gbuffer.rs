@@ -71,6 +71,7 @@ use rgraph_core::{PassBuilder, PassKind};
 use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
 use crate::common::gbuffer_layers::{self, LayerSet};
+use crate::common::optional_targets::OptionalTargets;
 use crate::common::plugin::Shared;
 use crate::common::rgb9e5;
 use crate::common::scene_draw::{Masked, SceneDraw, Stages};
@@ -161,7 +162,7 @@ impl Plugin for GBuffer {
         // The pass for the layers a frame keeps: their channels only, at consecutive
         // locations after the others.
         let make = move |set: LayerSet| {
-            let kept = set.kept_attachments(&layer_targets, &handles);
+            let kept = layer_targets.kept_attachments(set, &handles);
             let channels: Vec<(&str, &str)> = written
                 .iter()
                 .zip(&kept)
@@ -190,7 +191,7 @@ impl Plugin for GBuffer {
                 )
             })
         };
-        self.0.record_layered(pass, layers, make)
+        self.0.record_kept(pass, layers, make)
     }
 }
 
