@@ -256,7 +256,9 @@ fn a_mesh_channel_beside_keys_is_refused() {
     let edited = crate::common::copied_pipeline(
         "msaa_4x_taa.ron",
         &[(
-            "\"motion vectors (untabled textures)\": (inputs: { \"depth\": \"depth\", \"mesh\": \"mesh\" }),",
+            "\"motion vectors (untabled textures)\": (inputs: {\n            \"depth\": \"depth\", \
+             \"mesh\": \"mesh\", \"pose_offset\": \"pose_offset\",\n        }, optional: \
+             [\"pose_offset\"]),",
             "\"motion vectors\": (inputs: { \"samples\": \"samples\", \"mesh\": \"mesh\" }),",
         )],
     );
@@ -267,14 +269,30 @@ fn a_mesh_channel_beside_keys_is_refused() {
     assert!(run.stdout.contains(says), "{}", run.stdout);
 }
 
-/// A morph target that stretches a quad moves its pixels though no transform changes:
-/// the visibility buffer's point is taken back to where the deformation found the
-/// triangle's vertices (both raster branches); in the next frame, whose pose stays, they
-/// stand still. The quad (x 0..1, y 0..h in the plane
-/// z = 0) has its top edge at h = 1 + 0.5 w for morph weight w, so a point at height y
-/// was at y h_before / h_now.
+/// A pose offset moves a point with its mesh: without the G-buffer's mesh channel beside
+/// it, `rgraph validate` refuses it, naming the pass.
 #[test]
-fn a_morph_target_moves_its_pixels() {
+fn a_pose_offset_without_a_mesh_channel_is_refused() {
+    let edited = crate::common::copied_pipeline(
+        "msaa_4x_taa.ron",
+        &[(
+            "\"debug motion (untabled textures)\": (inputs: {\n            \"depth\": \"depth\", \
+             \"mesh\": \"mesh\",",
+            "\"debug motion (untabled textures)\": (inputs: {\n            \"depth\": \"depth\",",
+        )],
+    );
+    let path = edited.path.to_str().expect("temp paths are UTF-8");
+    let run = crate::cli_support::rgraph(&["validate", path]).expect(1);
+    let says = "pass \"debug motion (untabled textures)\" (motion_vectors): input \"pose_offset\" \
+                moves a G-buffer's point with its mesh's vertices: give it with the G-buffer's \
+                \"depth\" and \"mesh\"";
+    assert!(run.stdout.contains(says), "{}", run.stdout);
+}
+
+/// The quad of [`crate::gltf_writer::deformed::morphed_quad`] (x 0..1, y 0..h in the
+/// plane z = 0, placed by an identity transform), whose top edge is at h = 1 + 0.5 w for
+/// morph weight w, loaded at weight [`WEIGHT_BEFORE`] and seen from in front.
+fn morphed_quad() -> Scene {
     let mut scene = crate::deformation::load(&crate::gltf_writer::deformed::morphed_quad("LINEAR"));
     assert_eq!(
         scene.meshes[0].transform,
@@ -286,17 +304,49 @@ fn a_morph_target_moves_its_pixels() {
         znear: 0.1,
         zfar: None,
     };
-    let eye = DVec3::new(0.5, 0.75, 2.2);
     scene.camera = Camera::look_at(
         "quad",
-        eye,
+        DVec3::new(0.5, 0.75, 2.2),
         DVec3::new(0.5, 0.75, 0.0),
         DVec3::Y,
         projection,
     );
-    let (weight_before, weight_now) = (0.25, 1.0);
-    let (h_before, h_now) = (1.0 + 0.5 * weight_before, 1.0 + 0.5 * weight_now);
+    scene
+}
+
+/// The quad's morph weight in the first frame, and in the second.
+const WEIGHT_BEFORE: f64 = 0.25;
+const WEIGHT_NOW: f64 = 1.0;
+
+/// How the quad's motion compared with the CPU's in the second frame, and how many pixels
+/// moved in a third whose pose stayed.
+struct QuadMotion {
+    /// Pixels checked, and those that moved over a pixel.
+    checked: usize,
+    moving: usize,
+    /// The worst error in pixels, where, and the motion found and expected there.
+    worst: (f64, (u32, u32), DVec2, DVec2),
+    /// Pixels of the third frame with motion over 1/1000 pixel.
+    still_moved: usize,
+}
+
+/// Where a pass takes a pixel's motion from, within the pixel: `at`, and where the
+/// second frame's sample 0 lies (jittered in TAA's frames), whose surface it takes.
+#[derive(Copy, Clone)]
+struct Within {
+    at: DVec2,
+    sample_0: DVec2,
+}
+
+/// Renders [`morphed_quad`] through `pipeline` compiled for `features` at weight
+/// [`WEIGHT_BEFORE`], then [`WEIGHT_NOW`], then again, and compares the second frame's
+/// motion with the CPU's at `within.at` each pixel whose centre and sample 0 see the
+/// quad: a point at height y was at y h_before / h_now, no transform or camera moving.
+fn quad_motion(pipeline: PipelineFile, features: Features, within: Within) -> QuadMotion {
+    let scene = morphed_quad();
+    let (h_before, h_now) = (1.0 + 0.5 * WEIGHT_BEFORE, 1.0 + 0.5 * WEIGHT_NOW);
     let clip_now = clip(&scene.camera);
+    let eye = scene.camera.position;
     // The point of the quad's plane a pixel coordinate sees, if the quad is there now.
     let on_quad = |at: DVec2| {
         let d = ray(&scene.camera, at);
@@ -304,56 +354,228 @@ fn a_morph_target_moves_its_pixels() {
         (p.x > 0.0 && p.x < 1.0 && p.y > 0.0 && p.y < h_now).then_some(p)
     };
     let gpu = gpu();
-    let features = rgraph_scene::analysis::Features::of(&scene).names();
+    let mut frame = Render::new(pipeline, "quad", SIZE)
+        .with_scene(scene.clone())
+        .features(features)
+        .edit("outputs: [\"color\", ", "outputs: [\"motion\", \"color\", ")
+        .run(&gpu);
+    let mut inputs = frame.inputs();
+    assert_eq!(inputs.morph_weights, vec![vec![WEIGHT_BEFORE as f32]]);
+    inputs.morph_weights[0][0] = WEIGHT_NOW as f32;
+    frame.next(inputs);
+    let motion = frame.hdr(&gpu, "motion");
+    let mut found = QuadMotion {
+        checked: 0,
+        moving: 0,
+        worst: (0.0, (0, 0), DVec2::ZERO, DVec2::ZERO),
+        still_moved: 0,
+    };
+    for y in 0..SIZE.1 {
+        for x in 0..SIZE.0 {
+            let corner = DVec2::new(x as f64, y as f64);
+            let seen = on_quad(corner + 0.5).and(on_quad(corner + within.sample_0));
+            let (Some(_), Some(p)) = (seen, on_quad(corner + within.at)) else {
+                continue;
+            };
+            let before = DVec3::new(p.x, p.y * h_before / h_now, 0.0);
+            let want = pixel_of(clip_now, p.extend(1.0)) - pixel_of(clip_now, before.extend(1.0));
+            let got = motion[(y * SIZE.0 + x) as usize];
+            let got = DVec2::new(f64::from(got[0]), f64::from(got[1]));
+            let error = (got - want).length();
+            if error > found.worst.0 {
+                found.worst = (error, (x, y), got, want);
+            }
+            found.checked += 1;
+            found.moving += usize::from(want.length() > 1.0);
+        }
+    }
+    // A frame whose pose stays: nothing moves.
+    let inputs = frame.inputs();
+    frame.next(inputs);
+    let motion = frame.hdr(&gpu, "motion");
+    found.still_moved = (motion.iter())
+        .filter(|m| DVec2::new(f64::from(m[0]), f64::from(m[1])).length() > 1e-3)
+        .count();
+    found
+}
+
+/// [`quad_motion`] within [`TOLERANCE`] of the CPU's, over at least 100 pixels that moved
+/// over a pixel, and still in the frame whose pose stayed.
+fn check_quad(pipeline: PipelineFile, features: Features, within: Within) {
+    let found = quad_motion(pipeline, features.clone(), within);
+    let (checked, moving) = (found.checked, found.moving);
+    assert!(
+        moving >= 100,
+        "{pipeline}: only {moving} of {checked} pixels moved over a pixel"
+    );
+    let (error, at, got, want) = found.worst;
+    println!("{pipeline} {features:?}: {checked} pixels, worst error {error:.4} px at {at:?}");
+    assert!(
+        error <= TOLERANCE,
+        "{pipeline} {features:?}: motion {got:?} at {at:?}, expected {want:?} ({error:.4} px off)"
+    );
+    assert_eq!(
+        found.still_moved, 0,
+        "{pipeline}: {} pixels moved in a frame whose pose stayed",
+        found.still_moved
+    );
+}
+
+/// A morph target that stretches a quad moves its pixels though no transform changes:
+/// the visibility buffer's point is taken back to where the deformation found the
+/// triangle's vertices (both raster branches); in the next frame, whose pose stays, they
+/// stand still.
+#[test]
+fn a_morph_target_moves_its_pixels() {
+    let features = rgraph_scene::analysis::Features::of(&morphed_quad()).names();
     for pipeline in [DEFAULT, DEFAULT_GPU] {
-        let mut frame = Render::new(pipeline, "quad", SIZE)
-            .with_scene(scene.clone())
-            .features(features.clone())
-            .edit("outputs: [\"color\", ", "outputs: [\"motion\", \"color\", ")
-            .run(&gpu);
-        let mut inputs = frame.inputs();
-        assert_eq!(inputs.morph_weights, vec![vec![weight_before as f32]]);
-        inputs.morph_weights[0][0] = weight_now as f32;
-        frame.next(inputs);
-        let motion = frame.hdr(&gpu, "motion");
-        let (mut checked, mut moving, mut worst) = (0, 0, (0.0, (0, 0), DVec2::ZERO, DVec2::ZERO));
-        for y in 0..SIZE.1 {
-            for x in 0..SIZE.0 {
-                let corner = DVec2::new(x as f64, y as f64);
-                let (Some(p), Some(_)) = (on_quad(corner + 0.5), on_quad(corner + SAMPLE_0)) else {
-                    continue;
-                };
-                let before = DVec3::new(p.x, p.y * h_before / h_now, 0.0);
-                let want =
-                    pixel_of(clip_now, p.extend(1.0)) - pixel_of(clip_now, before.extend(1.0));
-                let got = motion[(y * SIZE.0 + x) as usize];
-                let got = DVec2::new(f64::from(got[0]), f64::from(got[1]));
-                let error = (got - want).length();
-                if error > worst.0 {
-                    worst = (error, (x, y), got, want);
-                }
-                checked += 1;
-                moving += usize::from(want.length() > 1.0);
+        let within = Within {
+            at: DVec2::splat(0.5),
+            sample_0: SAMPLE_0,
+        };
+        check_quad(pipeline, features.clone(), within);
+    }
+}
+
+/// In the TAA preset's G-buffer (4x MSAA, as `deferred_msaa_4x_lean.ron`'s, with the mesh
+/// channel) the morphed quad's points move with its vertices too: the G-buffer pass
+/// writes each sample's pose offset (common/pose_offset.rs) for the scene with
+/// deformations, and the motion vectors add it to sample 0's point. Checked at sample 0,
+/// jittered as TAA's second frame is; without the offset (the scene's features less
+/// `deformed`, whose plan has no such target) the same frames are pixels off.
+#[test]
+fn a_morph_target_moves_its_pixels_in_a_gbuffer() {
+    let mut features = rgraph_scene::analysis::Features::of(&morphed_quad()).names();
+    assert!(features.contains("deformed"), "{features:?}");
+    features.insert("untabled_textures");
+    let sample_0 = SAMPLE_0 - DVec2::from(jitter(1).map(f64::from)) * 0.5;
+    let within = Within {
+        at: sample_0,
+        sample_0,
+    };
+    check_quad(TAA, features.clone(), within);
+    let without: Features = features.iter().filter(|&f| f != "deformed").collect();
+    let found = quad_motion(TAA, without, within);
+    let (error, at, got, want) = found.worst;
+    println!("{TAA} without the pose offset: worst error {error:.4} px at {at:?}");
+    assert!(
+        error > 2.0,
+        "without the pose offset the quad's motion {got:?} at {at:?} is within {error:.4} px \
+         of {want:?}: the test cannot tell the offset's work"
+    );
+}
+
+/// The pose offset costs a scene without deformations nothing: the TAA preset compiled
+/// for a G-buffer scene without them (with and without emission, on a device allowing 64
+/// bytes per sample) plans what the preset with every mention of the pose offset taken
+/// out plans (passes, resources, physical textures, bytes), but for the notes that the
+/// G-buffer and motion passes skip their optional slot; with `deformed` the G-buffer
+/// passes attach it, 8 bytes per sample more, and the motion vectors read it.
+#[test]
+fn the_pose_offset_costs_a_scene_without_deformations_nothing() {
+    use rgraph_core::file::{load_str_with, GraphParams, Registry};
+    use rgraph_core::{explain, CompileOptions, Plan};
+
+    let mut registry = Registry::with_builtins();
+    rgraph_passes::register(&mut registry, None);
+    let shipped = crate::common::edited_pipeline("msaa_4x_taa.ron", &[]);
+    let stripped = crate::common::edited_pipeline(
+        "msaa_4x_taa.ron",
+        &[
+            ("    features: [\"deformed\"],\n", ""),
+            (
+                "        \"pose_offset\": Texture(format: \"rgba16float\", samples: Param(name: \
+                 \"msaa\", default: 4),\n                               when: \
+                 \"untabled_textures & deformed & color_bytes_64\"),\n",
+                "",
+            ),
+            (" \"pose_offset\": \"pose_offset\",", ""),
+            (", optional: [\"pose_offset\"]", ""),
+            ("optional: [\"pose_offset\", ", "optional: ["),
+        ],
+    );
+    assert!(
+        !stripped.text.contains("\"pose_offset\""),
+        "{}",
+        stripped.text
+    );
+    let plan = |file: &crate::common::EditedPipeline, features: &[&str]| -> Plan {
+        let params = GraphParams::new();
+        let loaded = load_str_with(&file.path, &file.text, &registry, &params)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let features: Features = features.iter().copied().collect();
+        let options = CompileOptions {
+            output_size: (1280, 720),
+            profile: CompileOptions::default().profile.granting(&features),
+        };
+        let mut plan = loaded.compile_for(&options, &features).unwrap();
+        // Where a part is used moves with the preset's lines.
+        for pass in &mut plan.passes {
+            pass.origin = None;
+        }
+        plan
+    };
+    let gbuffer = |plan: &Plan, emissive: bool| {
+        let name = match emissive {
+            true => "gbuffer (untabled textures, emissive)",
+            false => "gbuffer (untabled textures)",
+        };
+        let pass = plan.passes.iter().find(|p| p.name == name);
+        pass.unwrap_or_else(|| panic!("{name} runs")).clone()
+    };
+    for emissive in [false, true] {
+        let mut core = vec!["untabled_textures", "color_bytes_64"];
+        if emissive {
+            core.push("emissive");
+        }
+        let (with, without) = (plan(&shipped, &core), plan(&stripped, &core));
+        // The lines naming the pose offset: the passes' skipped slots, and its resource's
+        // block (its name, and more indented, that it is not allocated).
+        let text = explain::text(&with);
+        let (mut notes, mut rest, mut in_block) = (Vec::new(), Vec::new(), false);
+        for line in text.lines() {
+            in_block = line.starts_with("  pose_offset:") || in_block && line.starts_with("    ");
+            match in_block || line.contains("pose_offset") {
+                true => notes.push(line),
+                false => rest.push(line),
             }
         }
-        assert!(
-            moving >= 100,
-            "{pipeline}: only {moving} of {checked} pixels moved over a pixel"
-        );
-        let (error, at, got, want) = worst;
-        println!("{pipeline}: {checked} pixels, worst error {error:.4} px at {at:?}");
-        assert!(
-            error <= TOLERANCE,
-            "{pipeline}: motion {got:?} at {at:?}, expected {want:?} ({error:.4} px off)"
-        );
-        // A frame whose pose stays: nothing moves.
-        let inputs = frame.inputs();
-        frame.next(inputs);
-        let motion = frame.hdr(&gpu, "motion");
-        let moved = motion.iter().filter(|m| m[0] != 0.0 || m[1] != 0.0).count();
+        let optional = notes.iter().filter(|l| l.contains("(an optional")).count();
+        let unallocated = notes.iter().filter(|l| l.contains("not allocated")).count();
         assert_eq!(
-            moved, 0,
-            "{pipeline}: {moved} pixels moved in a frame whose pose stayed"
+            (optional, unallocated, notes.len()),
+            (3, 1, 5),
+            "a core scene's plan holds the pose offset: the G-buffer's and two motion \
+             passes' skipped slots and the resource unallocated, no more: {notes:#?}"
+        );
+        let before = explain::text(&without);
+        assert_eq!(
+            rest,
+            before.lines().collect::<Vec<_>>(),
+            "emissive: {emissive}"
+        );
+        let core_bytes = gbuffer(&with, emissive).color_bytes_per_sample;
+        assert_eq!(core_bytes, if emissive { 28 } else { 24 });
+        let deformed = plan(&shipped, &[core.as_slice(), &["deformed"]].concat());
+        let pass = gbuffer(&deformed, emissive);
+        assert_eq!(pass.color_bytes_per_sample, core_bytes + 8);
+        let pose = deformed
+            .resources
+            .iter()
+            .position(|r| r.name == "pose_offset");
+        let pose = pose.expect("a deformed scene's plan keeps the pose offset");
+        assert!(
+            pass.writes.iter().any(|&(r, _)| r.0 as usize == pose),
+            "{pass:?}"
+        );
+        let motion = deformed
+            .passes
+            .iter()
+            .find(|p| p.name == "motion vectors (untabled textures)");
+        let motion = motion.expect("the motion vectors run");
+        assert!(
+            motion.reads.iter().any(|&(r, _)| r.0 as usize == pose),
+            "{motion:?}"
         );
     }
 }

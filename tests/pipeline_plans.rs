@@ -12,7 +12,10 @@
 //! (`LAYERS`, which the G-buffer pipelines declare beside their own) add their targets
 //! apart from the rest: they are tried all off with every set of the file's other
 //! features, and each combination of `LAYER_SETS` with none and with all of them, so a
-//! file of ten other features stays near 2^10 plans. A plan that changes on purpose
+//! file of ten other features stays near 2^10 plans. So is `deformed` (declared by the
+//! TAA presets, for their G-buffer's pose offset): tried off with every set, and on with
+//! none and with all of the others, alone, on a device holding 64 bytes per sample, and
+//! with every layer. A plan that changes on purpose
 //! is blessed with
 //! `RGRAPH_BLESS_PLANS=1 ./dev test --test integration pipeline_plans::`, and the diff of
 //! the fixture shows which files and feature sets it touched.
@@ -51,6 +54,25 @@ const LAYER_SETS: [&[&str]; 6] = [
     ],
     &["sheen", "layer_lobes", "color_bytes_64"],
     &LAYERS,
+];
+
+/// A scene with skins or morph targets, tried apart as [`LAYERS`] are.
+const DEFORMED: &str = "deformed";
+
+/// The combinations with [`DEFORMED`] tried, where a file declares it (less the layers
+/// it does not declare).
+const DEFORMED_SETS: [&[&str]; 3] = [
+    &[DEFORMED],
+    &[DEFORMED, "color_bytes_64"],
+    &[
+        DEFORMED,
+        "specular",
+        "clearcoat",
+        "clearcoat_normal",
+        "sheen",
+        "layer_lobes",
+        "color_bytes_64",
+    ],
 ];
 
 /// The shipped graph files (not the parts they use), sorted.
@@ -146,8 +168,9 @@ fn plans(registry: &Registry) -> Vec<(String, String)> {
                 continue;
             };
             let declared: Vec<&str> = loaded.graph.declared_features().iter().collect();
-            let (layers, features): (Vec<&str>, Vec<&str>) =
-                declared.iter().partition(|f| LAYERS.contains(f));
+            let (apart, features): (Vec<&str>, Vec<&str>) = declared
+                .iter()
+                .partition(|f| LAYERS.contains(f) || **f == DEFORMED);
             assert!(
                 features.len() <= 10,
                 "{name}: too many features to try every set"
@@ -155,10 +178,12 @@ fn plans(registry: &Registry) -> Vec<(String, String)> {
             let all_others = (1u32 << features.len()) - 1;
             let mut sets: Vec<(u32, &[&str])> =
                 (0..=all_others).map(|set| (set, &[][..])).collect();
-            if !layers.is_empty() {
-                for combination in &LAYER_SETS[1..] {
-                    sets.extend([(0, *combination), (all_others, *combination)]);
-                }
+            let layers = apart.iter().any(|f| LAYERS.contains(f));
+            let deformed = apart.contains(&DEFORMED);
+            let combinations = (LAYER_SETS[1..].iter().filter(|_| layers))
+                .chain(DEFORMED_SETS.iter().filter(|_| deformed));
+            for combination in combinations {
+                sets.extend([(0, *combination), (all_others, *combination)]);
             }
             let mut tried = std::collections::HashSet::new();
             for (set, layer_set) in sets {
@@ -168,7 +193,7 @@ fn plans(registry: &Registry) -> Vec<(String, String)> {
                         on.insert(*feature);
                     }
                 }
-                for feature in layer_set.iter().filter(|f| layers.contains(f)) {
+                for feature in layer_set.iter().filter(|f| apart.contains(f)) {
                     on.insert(*feature);
                 }
                 // A combination whose layers the file does not declare is a set tried.

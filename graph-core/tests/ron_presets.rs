@@ -127,3 +127,59 @@ fn a_preset_gives_the_base_s_parameters_values_that_a_loader_s_replace() {
     let loaded = rgraph_core::file::load_file_with(&path, &registry, &given).unwrap();
     assert_eq!(loaded.params(), &given);
 }
+
+/// A preset may declare features of its own and mark the slots its changes add optional:
+/// here a sky, cleared only where `sky` is set, that "present" blits where the plan keeps
+/// it (`optional: ["src"]`), and nothing where it does not; the base never tests `sky`.
+#[test]
+fn a_preset_declares_features_and_optional_slots_for_what_it_adds() {
+    let base = r#"Graph(
+    resources: { "hdr": Texture(format: "rgba8unorm"), "color": Texture(format: "rgba8unorm") },
+    passes: [
+        (name: "clear", plugin: "clear", outputs: { "target": "hdr" }),
+        (name: "present", plugin: "blit", inputs: { "src": "hdr" }, outputs: { "dst": "color" }),
+    ],
+    outputs: ["color"],
+)"#;
+    let preset = |optional: &str| {
+        format!(
+            r#"Preset(
+    base: "base.ron",
+    features: ["sky"],
+    resources: {{ "sky": Texture(format: "rgba8unorm", when: "sky") }},
+    passes: {{ "present": (inputs: {{ "src": "sky" }}{optional}) }},
+    after: {{ "clear": [(name: "sky", plugin: "clear", when: "sky", outputs: {{ "target": "sky" }})] }},
+)"#
+        )
+    };
+    let dir = folder(&[
+        ("base.ron", base),
+        ("sky.ron", &preset(r#", optional: ["src"]"#)),
+        ("required.ron", &preset("")),
+    ]);
+    let registry = Registry::with_builtins();
+    let options = CompileOptions::default();
+    let loaded = load_file(dir.path().join("sky.ron"), &registry).unwrap_or_else(|e| panic!("{e}"));
+    assert!(loaded.graph.declared_features().contains("sky"));
+    let present = |plan: &rgraph_core::Plan| {
+        let pass = plan.passes.iter().find(|p| p.name == "present");
+        pass.expect("present runs").clone()
+    };
+    let with = loaded
+        .compile_for(&options, &rgraph_core::Features::from_iter(["sky"]))
+        .unwrap();
+    assert_eq!(present(&with).reads.len(), 1);
+    let without = loaded
+        .compile_for(&options, &rgraph_core::Features::new())
+        .unwrap();
+    assert!(present(&without).reads.is_empty());
+    assert_eq!(
+        present(&without).dropped_reads[0].why,
+        r#""sky" is dropped: condition "sky" is false"#
+    );
+    // Without the preset's `optional` the read of the dropped sky is refused.
+    let required = load_file(dir.path().join("required.ron"), &registry).unwrap();
+    assert!(required
+        .compile_for(&options, &rgraph_core::Features::new())
+        .is_err());
+}

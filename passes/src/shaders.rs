@@ -371,6 +371,10 @@ pub(crate) const MOTION_DEPTH_MESHES: &str = concat!(
     include_str!("wgsl/motion_depth.wgsl"),
     include_str!("wgsl/motion_meshes.wgsl")
 );
+/// motion_meshes.wgsl's `last_pose_offset` from a G-buffer's pose offset.
+pub(crate) const MOTION_POSE: &str = include_str!("wgsl/motion_pose.wgsl");
+/// gbuffer.wgsl's `last_pose` from the deformation's replaced positions.
+pub(crate) const GBUFFER_LAST_POSE: &str = include_str!("wgsl/gbuffer_last_pose.wgsl");
 pub(crate) const TAA: Source = Source {
     name: "taa.wgsl",
     parts: &[COMMON, include_str!("wgsl/taa.wgsl")],

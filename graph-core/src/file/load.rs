@@ -139,9 +139,18 @@ fn read_graph<'a>(
             let (base_path, base_text) = arena.alloc((base_path, base_text));
             let base_text = without_bom(base_text);
             source = Source::with_base(path, text, (base_path, base_text));
-            let graph = schema::parse(base_text)
+            let mut graph = schema::parse(base_text)
                 .map_err(|e| syntax(&Source::new(base_path, base_text), e))?;
             let values = preset_values(&preset);
+            for feature in &preset.features {
+                if !graph
+                    .features
+                    .iter()
+                    .any(|f| f.as_str() == feature.as_str())
+                {
+                    graph.features.push(feature.clone());
+                }
+            }
             let mut composer = Composer::new(arena, references, &graph.features);
             let mut file = composer.graph(&mut source, graph);
             apply_preset(&mut source, &mut composer, preset, base_path, &mut file);
@@ -264,6 +273,9 @@ fn apply_preset<'a>(
         }
         if let Some(outputs) = change.outputs {
             pass.outputs = outputs;
+        }
+        if let Some(optional) = change.optional {
+            pass.optional = optional;
         }
     }
     for (from, to) in &preset.rebind.0 {

@@ -196,8 +196,9 @@ pub(crate) struct Entry<'a> {
 }
 
 /// A preset: a graph file named by `base` (relative to the preset's folder) with some
-/// passes' parameters, inputs or outputs replaced, passes removed or added, outputs
-/// rebound to new writers, and its parameters given other values, for files that differ from another in those only:
+/// passes' parameters, inputs, outputs or optional slots replaced, passes removed or
+/// added, outputs rebound to new writers, features declared beside the base's, and its
+/// parameters given other values, for files that differ from another in those only:
 /// `Preset(base: "deferred_msaa_4x.ron", passes: { "edges": (params: (detector: centroid),
 /// inputs: { "material": "material", "depth": "depth" }) })`.
 #[derive(Debug, Deserialize)]
@@ -208,6 +209,10 @@ pub(crate) struct PresetFile<'a> {
     /// Values for the base's parameters (`{ "msaa": 1 }`), which a loader's own replace.
     #[serde(borrow, default)]
     pub values: Pairs<Name<'a>, u32>,
+    /// Features declared beside the base's, for the conditions of what the preset adds:
+    /// the base's own plans do not test them.
+    #[serde(borrow, default)]
+    pub features: Vec<Name<'a>>,
     /// Resources added to the base's.
     #[serde(borrow, default)]
     pub resources: Pairs<Name<'a>, ResourceDecl<'a>>,
@@ -240,6 +245,10 @@ pub(crate) struct PassChange<'a> {
     pub inputs: Option<Pairs<Name<'a>, Name<'a>>>,
     #[serde(borrow, default)]
     pub outputs: Option<Pairs<Name<'a>, Name<'a>>>,
+    /// The pass's optional slots (a pass's `optional`), replacing the base's list: what
+    /// a change that adds a slot the preset's conditions may drop marks.
+    #[serde(borrow, default)]
+    pub optional: Option<Vec<Name<'a>>>,
 }
 
 /// A declared resource; its name (the map key) names the version its one writer produces.

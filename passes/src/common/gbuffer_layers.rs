@@ -12,15 +12,16 @@
 //!
 //! A file lists the slots `optional` and declares each target under its layer's feature,
 //! so which layers a frame has is the plan's to say and is known only when recording: a
-//! pass set up with layer slots records through [`Layered`], which makes the pass for
-//! the layers the plan keeps (composing its shader for them) the first time a frame
-//! needs them.
+//! pass set up with layer slots records through `PerKept` (common/optional_targets.rs),
+//! which makes the pass for the layers the plan keeps (composing its shader for them) the
+//! first time a frame needs them.
 
 use rgraph_core::file::{PluginError, Slots};
 use rgraph_core::types::TextureFormat;
 use rgraph_core::{PassBuilder, TextureHandle};
 
 use super::background::FilledTargets;
+use super::optional_targets::OptionalTargets;
 use super::textures::{self, Input, Want};
 use crate::layers::Layer;
 use crate::shaders;
@@ -113,12 +114,6 @@ impl LayerSet {
             .is_none_or(|&(layer, _)| self.has(layer))
     }
 
-    /// For each of a pass's attachments `handles`, in order, whether this set keeps it
-    /// (every one that is not a layer's of `targets`): [`FilledTargets::only`]'s flags.
-    pub fn kept_attachments(self, targets: &LayerTargets, handles: &[TextureHandle]) -> Vec<bool> {
-        handles.iter().map(|&h| self.keeps(targets, h)).collect()
-    }
-
     /// `inputs` without the layer textures this set does not hold.
     pub fn inputs(self, targets: &LayerTargets, inputs: &[Input]) -> Vec<Input> {
         let kept = inputs.iter().filter(|i| self.keeps(targets, i.texture));
@@ -204,23 +199,29 @@ pub(crate) fn read_wgsl(set: LayerSet) -> String {
     )
 }
 
-/// A pass with layer targets as [`Layered`] records it: made for a set of layers.
-pub(crate) type MakeLayered<R> = Box<dyn Fn(LayerSet) -> Result<R, PluginError>>;
+/// The layer targets a pass's file lists, kept as a frame's plan says: every one (the
+/// coat with its normal) at most.
+impl OptionalTargets for LayerTargets {
+    type Set = LayerSet;
 
-/// A pass set up with the layer `targets` its file lists, made for the set of them each
-/// frame's plan keeps (common/gpu/layered.rs records it): `make` composes the pass for a
-/// set. Setup makes it once for every target (the coat with its normal), so that what
-/// would fail fails there, naming the pass.
-#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-pub(crate) struct Layered<R> {
-    pub targets: LayerTargets,
-    pub make: MakeLayered<R>,
-}
+    fn is_empty(&self) -> bool {
+        Vec::is_empty(self)
+    }
 
-impl<R> Layered<R> {
-    pub fn new(targets: LayerTargets, make: MakeLayered<R>) -> Result<Layered<R>, PluginError> {
-        make(LayerSet::all(&targets))?;
-        Ok(Layered { targets, make })
+    fn all(&self) -> LayerSet {
+        LayerSet::all(self)
+    }
+
+    fn kept(
+        &self,
+        has: &dyn Fn(TextureHandle) -> bool,
+        format: &dyn Fn(TextureHandle) -> TextureFormat,
+    ) -> LayerSet {
+        LayerSet::kept(self, has, format)
+    }
+
+    fn keeps(&self, set: LayerSet, handle: TextureHandle) -> bool {
+        set.keeps(self, handle)
     }
 }
 

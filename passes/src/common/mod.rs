@@ -6,7 +6,9 @@
 //! full-screen draw five passes set up ([`fullscreen`]) and its compute counterpart
 //! ([`fullscreen_compute`]), the passes that draw the scene's meshes ([`scene_draw`]),
 //! the G-buffer layouts a lighting pass reads ([`gbuffer_layout`]) and the material layers'
-//! targets in them ([`gbuffer_layers`]), the opaque depth the
+//! targets in them ([`gbuffer_layers`]), a pass made for the optional textures its plan
+//! keeps ([`optional_targets`]), the G-buffer's pose offset ([`pose_offset`]), the opaque
+//! depth the
 //! passes after them read ([`opaque_depth`]), the lean G-buffer's emission encoding
 //! ([`rgb9e5`]), the compute raster's occlusion culling slots ([`occlusion`]), the slot of
 //! a shadow atlas kept while nothing moves ([`shadow_cache`]), a pass parameter that turns
@@ -26,7 +28,9 @@ pub(crate) mod gbuffer_layout;
 pub(crate) mod gpu;
 pub(crate) mod occlusion;
 pub(crate) mod opaque_depth;
+pub(crate) mod optional_targets;
 pub(crate) mod plugin;
+pub(crate) mod pose_offset;
 pub(crate) mod rgb9e5;
 pub(crate) mod scene_draw;
 pub(crate) mod shadow_cache;

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use rgraph_core::file::PluginError;
 use rgraph_core::PassBuilder;
 
-use super::gbuffer_layers::{LayerSet, LayerTargets, Layered};
+use super::optional_targets::{OptionalTargets, PerKept};
 use crate::host::{Host, Overrides};
 use crate::variant::Variants;
 
@@ -46,26 +46,26 @@ impl Shared {
     #[cfg(not(feature = "gpu"))]
     pub fn record<R>(&self, _: &mut PassBuilder<'_>, _: R) {}
 
-    /// Gives the pass the callback of `make`'s recorder for the material-layer `targets`
-    /// its file lists: made once for no layers where the file lists none, else per set
-    /// of them a frame's plan keeps ([`Layered`], which checks `make` for all of them
-    /// now).
-    pub fn record_layered<R: Recordable>(
+    /// Gives the pass the callback of `make`'s recorder for the optional `targets` its
+    /// file gives it (material layers, a pose offset): made once where the file gives
+    /// none, else per set of them a frame's plan keeps ([`PerKept`], which checks `make`
+    /// for all of them now).
+    pub fn record_kept<T: OptionalTargets, R: Recordable>(
         &self,
         pass: &mut PassBuilder<'_>,
-        targets: LayerTargets,
-        make: impl Fn(LayerSet) -> Result<R, PluginError> + 'static,
+        targets: T,
+        make: impl Fn(T::Set) -> Result<R, PluginError> + 'static,
     ) -> Result<(), PluginError> {
         if targets.is_empty() {
-            self.record(pass, make(LayerSet::default())?);
+            self.record(pass, make(targets.all())?);
         } else {
-            self.record(pass, Layered::new(targets, Box::new(make))?);
+            self.record(pass, PerKept::new(targets, Box::new(make))?);
         }
         Ok(())
     }
 }
 
-/// What [`Shared::record`] takes, [`Layered`] around it included: a recorder of the
+/// What [`Shared::record`] takes, [`PerKept`] around it included: a recorder of the
 /// scene (feature `gpu`), else anything.
 #[cfg(feature = "gpu")]
 pub(crate) trait Recordable: crate::common::gpu::Recorder<Scene: Clone> {}

@@ -40,6 +40,9 @@ pub(crate) struct SceneDraw {
     /// The shadow atlas the shader reads in group 2 too (common/shadows.rs), where the
     /// pass lights the meshes with shadows.
     pub shadows: Option<Input>,
+    /// The vertex stage reads where the deformation had the vertices in the last pose,
+    /// as group 3 (`GpuScene::last_pose_group`): the G-buffer's pose offset.
+    pub last_pose: bool,
 }
 
 /// The entry points a pass draws meshes with.
@@ -88,6 +91,7 @@ impl SceneDraw {
             fill_background: false,
             redraw: None,
             shadows: None,
+            last_pose: false,
         }
     }
 }

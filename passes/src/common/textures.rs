@@ -27,6 +27,10 @@ pub(crate) const EMISSION: &[TextureFormat] = &[F::Rg16Uint];
 /// A G-buffer's mesh index + 1 per sample (0 where no mesh drew), low half in red: two
 /// halves, since WebGPU multisamples rg16uint everywhere and r32uint only on some devices.
 pub(crate) const MESH: &[TextureFormat] = &[F::Rg16Uint];
+/// A G-buffer's pose offset per sample (common/pose_offset.rs): where a deformed mesh's
+/// point was in the last pose, from where it is, in world space; alpha unused (WebGPU
+/// renders no three-channel half floats).
+pub(crate) const POSE_OFFSET: &[TextureFormat] = &[F::Rgba16Float];
 /// A visibility buffer's triangle IDs + 1: whole, or split low half in red where the
 /// device does not multisample r32uint (geometry.wgsl's `SPLIT_IDS`).
 pub(crate) const IDS: &[TextureFormat] = &[F::R32Uint, F::Rg16Uint];

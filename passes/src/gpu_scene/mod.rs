@@ -16,6 +16,8 @@
 //!   ([`GpuScene::geometry_layout`], [`GpuScene::geometry_group`], [`GpuScene::pull_meshes`]),
 //!   and every material's textures as one table for their shading
 //!   ([`GpuScene::texture_table_layout`], [`GpuScene::texture_table_group`]);
+//! - where the deformation had the vertices in the last pose, for a G-buffer's pose
+//!   offset ([`GpuScene::last_pose_group`], last_pose.rs);
 //! - the light volumes ([`GpuScene::volume_lights`], [`GpuScene::volume_mesh`]);
 //! - where on screen the blended meshes may be ([`GpuScene::blended_rect`]).
 //!
@@ -31,6 +33,7 @@ mod deform;
 mod environment;
 mod geometry;
 mod jitter;
+pub(crate) mod last_pose;
 mod layout;
 mod lights;
 mod materials;
@@ -252,6 +255,8 @@ struct Upload {
     reaches: Vec<Option<rgraph_scene::Reach>>,
     /// The deformation pass, for a scene with deformed meshes.
     deformer: Option<deform::Deformer>,
+    /// Its replaced positions as a G-buffer's vertex stage reads them, made on first use.
+    last_pose: last_pose::LastPose,
     geometry: geometry::Geometry,
     texture_table: texture_table::TextureTableGpu,
     materials: materials::Materials,
@@ -378,6 +383,7 @@ impl GpuScene {
             meshes,
             reaches,
             deformer,
+            last_pose: Default::default(),
             geometry: geometry::Geometry::new(device),
             texture_table: texture_table::TextureTableGpu::new(device),
             materials,
@@ -773,6 +779,16 @@ impl GpuScene {
     pub fn replaced_positions(&self) -> Option<&PreviousPositions> {
         let deformer = self.upload.deformer.as_ref()?;
         self.frame.deformed.then(|| deformer.previous())
+    }
+
+    /// Group 3 of a pass whose vertex stage reads where the deformation had the vertices
+    /// in the last pose (last_pose.rs: the positions its last dispatch replaced, whatever
+    /// frame that was, which [`replaced_positions`](Self::replaced_positions) says), made
+    /// on first use; for a scene without deformations, an empty range.
+    pub fn last_pose_group(&self, device: &wgpu::Device) -> &wgpu::BindGroup {
+        let upload = &self.upload;
+        let previous = upload.deformer.as_ref().map(deform::Deformer::previous);
+        upload.last_pose.group(device, previous)
     }
 
     /// The host's count of frame inputs (`set_frame` calls) this frame's came with.

@@ -11,11 +11,12 @@
 //!      "hdr": "hdr",                // rgba16float: emission and unlit color, else background
 //!      "depth": "depth",            // depth24plus-stencil8 or depth32float-stencil8
 //!      "mesh": "mesh",              // rg16uint: the mesh index + 1 (optional, see below)
+//!      "pose_offset": "pose_offset",// rgba16float: a deformed point's last pose (see below)
 //!      "specular": "specular",      // the material layers (optional, see below):
 //!      "clearcoat": "clearcoat",    //   rgba8unorm, rg8unorm or rgba16float,
 //!      "sheen": "sheen",            //   rgba8unorm
 //!  },
-//!  optional: ["specular", "clearcoat", "sheen"])
+//!  optional: ["specular", "clearcoat", "sheen", "pose_offset"])
 //! ```
 //!
 //! All must have the depth's sample count; 1 works too. The full G-buffer's color
@@ -36,6 +37,13 @@
 //!   G-buffer holds no object otherwise). Its index + 1 split over rg16uint (low half in
 //!   red), 0 where no mesh drew: 4 bytes per sample, which only a pipeline with a temporal
 //!   filter pays (pipelines/msaa_4x_taa.ron).
+//! - `pose_offset`, optional: where the point each sample holds was in the last pose of
+//!   its mesh's skin or morph targets, from where it is, so that the motion vectors move
+//!   a deformed surface with its vertices ([`pose_offset`](crate::common::pose_offset)):
+//!   8 bytes per sample, which the TAA presets pay only for a scene with deformations
+//!   (feature `deformed`) on a device allowing more than 32 bytes per sample, the slot
+//!   listed `optional`. Where the plan keeps it, the vertex stage reads the deformation's
+//!   replaced positions (group 3).
 //! - `specular`, `clearcoat`, `sheen`: KHR_materials_ior and _specular's F0 and weight, the
 //!   clear coat's strength, roughness and (rgba16float) normal, the sheen's colour and
 //!   roughness (common/gbuffer_layers.rs has the formats, gbuffer_layers.wgsl the
@@ -71,7 +79,9 @@ use rgraph_core::{PassBuilder, PassKind};
 use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
 use crate::common::gbuffer_layers::{self, LayerSet};
+use crate::common::optional_targets::OptionalTargets;
 use crate::common::plugin::Shared;
+use crate::common::pose_offset;
 use crate::common::rgb9e5;
 use crate::common::scene_draw::{Masked, SceneDraw, Stages};
 use crate::common::textures::{self, Want};
@@ -134,6 +144,7 @@ impl Plugin for GBuffer {
         let mut targets = FilledTargets::new(slots, &named);
         // Each written channel's slot and WGSL type, in attachment order.
         let mut written: Vec<(&'static str, &'static str)> = Vec::with_capacity(named.len());
+        let mut pose = None;
         for channel in &CHANNELS {
             if channel.slot != "albedo" && !slots.is_output(channel.slot) {
                 continue;
@@ -147,8 +158,11 @@ impl Plugin for GBuffer {
                 _ => [0.0; 4],
             };
             let want = Want::new(channel.what, channel.formats).samples(samples);
-            targets.push(slots, pass, channel.slot, want, (channel.wgsl, clear))?;
+            let target = targets.push(slots, pass, channel.slot, want, (channel.wgsl, clear))?;
             written.push((channel.slot, channel.wgsl));
+            if channel.slot == pose_offset::SLOT {
+                pose = Some(target);
+            }
         }
         let layers = gbuffer_layers::push_targets(slots, pass, samples, &mut targets)?;
         written.extend(
@@ -157,18 +171,21 @@ impl Plugin for GBuffer {
                 .map(|&(l, _)| (l.slot(), gbuffer_layers::TARGET_WGSL)),
         );
         let handles = targets.handles().to_vec();
-        let layer_targets = layers.clone();
-        // The pass for the layers a frame keeps: their channels only, at consecutive
-        // locations after the others.
-        let make = move |set: LayerSet| {
-            let kept = set.kept_attachments(&layer_targets, &handles);
+        let optional = (layers, pose);
+        let listed = optional.clone();
+        // The pass for the layers and pose offset a frame keeps: their channels only, at
+        // consecutive locations.
+        let make = move |(set, posed): (LayerSet, bool)| {
+            let kept = listed.kept_attachments((set, posed), &handles);
             let channels: Vec<(&str, &str)> = written
                 .iter()
                 .zip(&kept)
                 .filter_map(|(&c, &k)| k.then_some(c))
                 .collect();
             let targets = targets.only(&kept);
-            let outputs = outputs_wgsl(&channels, set.has(Layer::Clearcoat)) + &targets.wgsl();
+            let outputs = outputs_wgsl(&channels, set.has(Layer::Clearcoat))
+                + &targets.wgsl()
+                + pose_offset::last_pose_wgsl(posed);
             let source = shaders::GBUFFER.compose_with(samples, &outputs)?;
             let stages = Stages {
                 vertex: "vs_main",
@@ -179,6 +196,7 @@ impl Plugin for GBuffer {
             let (targets, shader) = (targets.into_handles(), GatedShader::GBuffer);
             Ok(SceneDraw {
                 fill_background,
+                last_pose: posed,
                 ..SceneDraw::new(
                     "gbuffer",
                     shader,
@@ -190,7 +208,7 @@ impl Plugin for GBuffer {
                 )
             })
         };
-        self.0.record_layered(pass, layers, make)
+        self.0.record_kept(pass, optional, make)
     }
 }
 
@@ -204,7 +222,7 @@ struct Channel {
 }
 
 /// In attachment order. Only `albedo` is required (see the module docs).
-const CHANNELS: [Channel; 7] = [
+const CHANNELS: [Channel; 8] = [
     Channel {
         slot: "albedo",
         what: "the G-buffer's albedo",
@@ -246,6 +264,12 @@ const CHANNELS: [Channel; 7] = [
         what: "the G-buffer's mesh index",
         formats: textures::MESH,
         wgsl: "vec2<u32>",
+    },
+    Channel {
+        slot: pose_offset::SLOT,
+        what: pose_offset::WHAT,
+        formats: textures::POSE_OFFSET,
+        wgsl: "vec4<f32>",
     },
 ];
 

@@ -334,7 +334,7 @@ impl LightPass {
                 })
             })
         };
-        shared.record_layered(pass, layers, make)
+        shared.record_kept(pass, layers, make)
     }
 }
 

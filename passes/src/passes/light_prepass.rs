@@ -65,6 +65,7 @@ use super::gbuffer::opaque_black;
 use crate::common::background::FilledTargets;
 use crate::common::depth::DepthRule;
 use crate::common::gbuffer_layers::{self, LayerSet};
+use crate::common::optional_targets::OptionalTargets;
 use crate::common::plugin::Shared;
 use crate::common::scene_draw::{Masked, SceneDraw, Stages};
 use crate::common::textures::{self, Want};
@@ -214,7 +215,7 @@ impl Plugin for LightPrepassGBuffer {
         let listed = layers.clone();
         // The pass for the layers a frame keeps, at consecutive locations after the rest.
         let make = move |set: LayerSet| {
-            let kept = set.kept_attachments(&listed, &handles);
+            let kept = listed.kept_attachments(set, &handles);
             let written: Vec<Layer> = listed
                 .iter()
                 .map(|&(layer, _)| layer)
@@ -232,7 +233,7 @@ impl Plugin for LightPrepassGBuffer {
                 depth,
             )
         };
-        self.0.record_layered(pass, layers, make)
+        self.0.record_kept(pass, layers, make)
     }
 }
 

@@ -434,7 +434,7 @@ impl Plugin for LightTiled {
                 })
             })
         };
-        self.0.record_layered(pass, layers, make)
+        self.0.record_kept(pass, layers, make)
     }
 }
 

@@ -9,7 +9,8 @@
 //!  inputs: { "ids": "ids" },          // a raster pass's visibility buffer, any samples;
 //!                                     // or "samples": a compute rasteriser's keys; or
 //!                                     // "depth": a G-buffer's depth, with
-//!                                     // "mesh" its mesh channel where it has one
+//!                                     // "mesh" its mesh channel where it has one, and
+//!                                     // "pose_offset" its pose offset (optional)
 //!  outputs: { "motion": "motion" })   // rgba16float, 1 sample; with view: "color", rgba8unorm
 //! ```
 //!
@@ -27,9 +28,12 @@
 //! - from a depth buffer (`depth`, a G-buffer's), the point sample 0 holds, moved with the
 //!   mesh the G-buffer's `mesh` channel says sample 0 shows (its transform's change
 //!   composed with the camera's, as one matrix per mesh); without that channel the point
-//!   is taken to stand still, so only the camera moves it. Either way a deformed mesh's
-//!   point moves with its transform, not its vertices: a depth buffer's point has no
-//!   triangle to take back to the last pose;
+//!   is taken to stand still, so only the camera moves it. A depth buffer's point has no
+//!   triangle to take back to the last pose of a skin or morph targets: where the
+//!   G-buffer holds a pose offset ([`pose_offset`](crate::common::pose_offset), written
+//!   from its triangle's vertices), the point is first moved by it, in a frame whose pose
+//!   changed, so a deformed mesh's point moves with its vertices; without one, with its
+//!   transform alone;
 //! - where nothing was drawn, the direction of the ray, which only the camera's turn
 //!   moves (an environment at infinity).
 //!
@@ -45,7 +49,9 @@ use rgraph_core::types::TextureFormat;
 use rgraph_core::{Aspect, PassBuilder, PassKind, TextureHandle};
 
 use crate::common::opaque_depth::OpaqueDepth;
+use crate::common::optional_targets::OptionalTargets;
 use crate::common::plugin::Shared;
+use crate::common::pose_offset;
 use crate::common::textures::{self, format_name, Input, Texels, Want};
 use crate::shaders;
 
@@ -75,7 +81,8 @@ pub(crate) enum Surfaces {
     Ids(TextureHandle),
     /// A compute rasteriser's keys (whose IDs it reads), or a depth buffer.
     Depth(OpaqueDepth),
-    /// A G-buffer's depth and its mesh channel (an input at group 1, binding 1).
+    /// A G-buffer's depth and its mesh channel (an input at group 1, binding 1), and its
+    /// pose offset where the file gives it (binding 2).
     Meshes(OpaqueDepth),
 }
 
@@ -126,6 +133,7 @@ impl Plugin for MotionVectors {
         slots: &mut Slots<'_>,
     ) -> Result<(), PluginError> {
         let mut inputs = Vec::new();
+        let mut pose = None;
         let (surfaces, samples, reader) = if slots.kind("ids").is_some() {
             let want = Want::new("the visibility buffer's triangle IDs", textures::IDS);
             let (ids, desc) = textures::input(slots, pass, "ids", want)?;
@@ -155,6 +163,7 @@ impl Plugin for MotionVectors {
                         aspect: Aspect::All,
                         texels: Texels::Uint,
                     });
+                    pose = pose_offset::input(slots, pass, samples, &mut inputs)?;
                     Surfaces::Meshes(depth)
                 }
                 (OpaqueDepth::Keys(_), true) => {
@@ -173,6 +182,13 @@ impl Plugin for MotionVectors {
             };
             (surfaces, samples, depth.wgsl() + part)
         };
+        if pose.is_none() && slots.kind(pose_offset::SLOT).is_some() {
+            return Err(PluginError::Invalid(
+                "input \"pose_offset\" moves a G-buffer's point with its mesh's vertices: \
+                 give it with the G-buffer's \"depth\" and \"mesh\""
+                    .into(),
+            ));
+        }
         let (slot, want) = match params.view {
             true => ("color", Want::new("the motion's debug view", VIEW)),
             false => ("motion", Want::new("the motion vectors", MOTION)),
@@ -186,24 +202,32 @@ impl Plugin for MotionVectors {
             aspect: Aspect::All,
             texels: Texels::Store,
         });
-        let generated = format!(
-            "// Generated: the output's format, then the surfaces' reader.\n\
-             alias OutTex = texture_storage_2d<{}, write>;\n{reader}",
-            format_name(out.format)
-        );
-        let source = shaders::MOTION
-            .compose_with(samples, &generated)?
-            .source()
-            .to_owned();
-        let dispatch = MotionDispatch {
-            source,
-            view: params.view,
-            surfaces,
-            inputs,
-            target,
+        let format = format_name(out.format);
+        // The pass for whether a frame's plan keeps the pose offset: a mesh channel's
+        // reader takes its offsets from it, or none.
+        let make = move |posed: bool| {
+            let offsets = match surfaces {
+                Surfaces::Meshes(..) => pose_offset::offset_wgsl(posed),
+                Surfaces::Ids(_) | Surfaces::Depth(_) => "",
+            };
+            let generated = format!(
+                "// Generated: the output's format, then the surfaces' reader.\n\
+                 alias OutTex = texture_storage_2d<{format}, write>;\n{reader}{offsets}"
+            );
+            let source = shaders::MOTION
+                .compose_with(samples, &generated)?
+                .source()
+                .to_owned();
+            let kept = inputs.iter().filter(|i| pose.keeps(posed, i.texture));
+            Ok(MotionDispatch {
+                source,
+                view: params.view,
+                surfaces,
+                inputs: kept.copied().collect(),
+                target,
+            })
         };
-        self.0.record(pass, dispatch);
-        Ok(())
+        self.0.record_kept(pass, pose, make)
     }
 }
 

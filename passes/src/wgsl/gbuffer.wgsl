@@ -4,14 +4,17 @@
 // Composed after common.wgsl, scene.wgsl, material.wgsl, brdf.wgsl (coat_weight) and
 // gbuffer_layers.wgsl, and before the generated
 // `GBufferOut` and `gbuffer_out`, which keep the channels the pass writes (an unlit-only
-// scene's G-buffer has no normal or material) at consecutive locations.
+// scene's G-buffer has no normal or material) at consecutive locations, and `last_pose`
+// (common/pose_offset.rs: gbuffer_last_pose.wgsl where the pass writes a pose offset).
 //
 // Channels: albedo = base color RGB (textured, times COLOR_0) and ambient occlusion in
 // alpha (otherwise unused, so occlusion costs no byte); normal = octahedral shading normal
 // (after the normal texture);
 // material = metallic and roughness after their texture, flags, edge bits; view depth;
 // HDR = emission after its texture (or the whole unlit color); mesh = the mesh index + 1
-// in two halves (optional: a temporal filter's motion vectors read it). The lean G-buffer has
+// in two halves (optional: a temporal filter's motion vectors read it); pose offset = where
+// a deformed mesh's point was in its last pose, from where it is, in world space (optional:
+// the same motion vectors read it in scenes with skins or morph targets). The lean G-buffer has
 // neither view depth (later passes take it from the depth buffer) nor HDR: its emission
 // channel holds only the emission, in RGB9E5 (common.wgsl) split over an rg16uint, and the light pass takes an
 // unlit surface's color from albedo. Textures change what the channels hold, not how
@@ -58,6 +61,9 @@ struct Varyings {
     @location(10) @interpolate(perspective, center) position: vec3<f32>,
     // The mesh index, for the optional mesh channel (motion vectors of moving objects).
     @location(11) @interpolate(flat) mesh: u32,
+    // The pose offset (see above) at the pixel centre, for the optional pose offset
+    // channel, which the fragment stage moves to sample 0 (`pose_offset_at_sample_0`).
+    @location(12) @interpolate(perspective, center) pose_offset: vec3<f32>,
 }
 
 // Every channel the pass can write; `gbuffer_out` picks those it does.
@@ -69,13 +75,19 @@ struct GBuffer {
     hdr: vec4<f32>,
     emission: vec2<u32>,
     mesh: vec2<u32>,
+    pose_offset: vec4<f32>,
     specular: vec4<f32>,
     clearcoat: vec4<f32>,
     sheen: vec4<f32>,
 }
 
+// `index` is the vertex's in the scene's vertex buffer (draw_meshes' base vertex added).
 @vertex
-fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
+fn vs_main(
+    v: VertexIn,
+    @builtin(instance_index) mesh_index: u32,
+    @builtin(vertex_index) index: u32,
+) -> Varyings {
     let mesh = meshes[mesh_index];
     let p = (mesh.model * vec4<f32>(v.position, 1.0)).xyz;
     var out: Varyings;
@@ -94,10 +106,20 @@ fn vs_main(v: VertexIn, @builtin(instance_index) mesh_index: u32) -> Varyings {
     out.at_center = out.clip.xy;
     out.position = p;
     out.mesh = mesh_index;
+    out.pose_offset = (mesh.model * vec4<f32>(last_pose(index, v.position) - v.position, 0.0)).xyz;
     return out;
 }
 
-fn surface(in: Varyings, m: MaterialSample, front: bool, coverage: u32) -> GBuffer {
+// The pose offset at sample 0's position within the pixel, where the motion vectors take
+// its point from the depth, from `at_centre`'s: linear over the pixel, so the derivatives
+// (taken before any discard) move it there. A pixel whose centre misses the triangle
+// extrapolates, as its centre-interpolated value already does.
+fn pose_offset_at_sample_0(at_centre: vec3<f32>) -> vec3<f32> {
+    let d = SAMPLE_POSITIONS[0] - vec2<f32>(0.5);
+    return at_centre + dpdxFine(at_centre) * d.x + dpdyFine(at_centre) * d.y;
+}
+
+fn surface(in: Varyings, m: MaterialSample, front: bool, coverage: u32, pose_offset: vec3<f32>) -> GBuffer {
     let material = materials[in.material];
     let normal = normal_or_face(in.normal, winding_normal(in.position, front));
     // Back faces reach here only for double-sided materials: light their other side (the
@@ -128,6 +150,7 @@ fn surface(in: Varyings, m: MaterialSample, front: bool, coverage: u32) -> GBuff
     out.emission = vec2<u32>(packed & 0xffffu, packed >> 16u);
     let mesh = in.mesh + 1u;
     out.mesh = vec2<u32>(mesh & 0xffffu, mesh >> 16u);
+    out.pose_offset = vec4<f32>(pose_offset, 0.0);
     out.specular = encode_specular(layers);
     out.clearcoat = encode_clearcoat(layers);
     out.sheen = encode_sheen(layers);
@@ -141,7 +164,8 @@ fn fs_opaque(
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
     let m = sample_material(materials[in.material], fragment_uv(in.uv, in.uv1, in.uv_center), in.color);
-    return gbuffer_out(surface(in, m, front, coverage));
+    let pose_offset = pose_offset_at_sample_0(in.pose_offset);
+    return gbuffer_out(surface(in, m, front, coverage, pose_offset));
 }
 
 // Alpha MASK: coverage is decided per pixel by the base color's alpha.
@@ -152,8 +176,9 @@ fn fs_masked(
     @builtin(sample_mask) coverage: u32,
 ) -> GBufferOut {
     let m = sample_material(materials[in.material], fragment_uv(in.uv, in.uv1, in.uv_center), in.color);
+    let pose_offset = pose_offset_at_sample_0(in.pose_offset);
     if m.base.a < materials[in.material].alpha_cutoff {
         discard;
     }
-    return gbuffer_out(surface(in, m, front, coverage));
+    return gbuffer_out(surface(in, m, front, coverage, pose_offset));
 }

@@ -12,9 +12,11 @@
 // jittered; these are not). `current` and `previous` take a point relative to this
 // frame's camera (w = 1) or a direction (w = 0) that stays put in the world to this and
 // the previous frame's clip space; per mesh, `objects[2m]` and `objects[2m + 1]` take an
-// object-space point to this and the previous frame's clip space. `deformed`: where this
-// frame's skins and morph targets moved vertices (z = 1), the scene's vertices x..y have
-// their previous positions in motion_objects.wgsl's `replaced`.
+// object-space point to this and the previous frame's clip space (from a depth buffer:
+// this frame's camera-relative point). `deformed`: where this frame's skins and morph
+// targets moved vertices (z = 1), the scene's vertices x..y have their previous positions
+// in motion_objects.wgsl's `replaced`, and a G-buffer's pose offset holds the last pose
+// (motion_pose.wgsl).
 struct Motion {
     current: mat4x4<f32>,
     previous: mat4x4<f32>,

@@ -70,6 +70,10 @@ pub struct Features {
     /// `points_lines` passes under `when: "points_lines"`. Their materials count for no
     /// other feature: they are drawn unlit and untextured.
     pub points_lines: bool,
+    /// Some mesh is deformed by a skin or morph targets ([`Scene::deformations`]): the
+    /// TAA presets' G-buffer keeps, under `when: "deformed"`, where each sample's point was
+    /// in the last pose, so that its motion follows the vertices.
+    pub deformed: bool,
     /// Not the scene's but the host's choice: draw a background where nothing is (the
     /// environment, a colour, or transparency: `Background`), which pipelines do with a
     /// `background` pass under this condition. [`Features::of`] and
@@ -88,7 +92,7 @@ pub struct Features {
 
 impl Features {
     /// Every name [`names`](Self::names) can yield, for a graph file's `features` list.
-    pub const NAMES: [&'static str; 31] = [
+    pub const NAMES: [&'static str; 32] = [
         "point_lights",
         "spot_lights",
         "directional_lights",
@@ -117,6 +121,7 @@ impl Features {
         "shallow_depth",
         "particles",
         "points_lines",
+        "deformed",
         "shadows",
         "background",
         "auto_exposure",
@@ -167,6 +172,7 @@ impl Features {
                 .is_some_and(|range| range.shallow(&scene.camera.projection)),
             particles: scene.particles().next().is_some(),
             points_lines: !scene.points_lines.is_empty(),
+            deformed: !scene.deformations.is_empty(),
             shadows: light(|_| true),
             background: false,
             auto_exposure: false,
@@ -210,6 +216,7 @@ impl Features {
             shallow_depth: false,
             particles: true,
             points_lines: true,
+            deformed: true,
             shadows: true,
             background: false,
             auto_exposure: false,
@@ -268,6 +275,7 @@ impl Features {
             self.shallow_depth,
             self.particles,
             self.points_lines,
+            self.deformed,
             self.shadows,
             self.background,
             self.auto_exposure,

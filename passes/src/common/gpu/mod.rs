@@ -7,15 +7,15 @@
 //! rasterisers see them ([`raster_draws`]), their triangles binned to tiles
 //! ([`tile_bins`], sized by [`bin_sizes`]) and culled by occlusion ([`occlusion`]), groups of storage buffers
 //! ([`storage`]), a pass set up with and without its optional shadow atlas
-//! ([`shadowed`]) and for the material layers its plan keeps ([`layered`]), and what the
+//! ([`shadowed`]) and for the optional textures its plan keeps ([`per_kept`]), and what the
 //! atlas's passes remember to keep it ([`shadow_cache`]).
 //! Layouts, modules and pipelines are created through [`crate::kept`].
 
 pub(crate) mod bin_sizes;
 pub(crate) mod bindings;
 pub(crate) mod input_pass;
-pub(crate) mod layered;
 pub(crate) mod occlusion;
+pub(crate) mod per_kept;
 pub(crate) mod pipeline;
 pub(crate) mod raster_draws;
 pub(crate) mod recorder;

@@ -28,7 +28,7 @@ use super::{Frame, Recorded, Recorder, Render};
 use crate::common::depth::far_depth;
 use crate::common::scene_draw::{Masked, SceneDraw};
 use crate::common::textures::Input;
-use crate::gpu_scene::{mesh, GpuScene, Layer, MaterialState};
+use crate::gpu_scene::{last_pose, mesh, GpuScene, Layer, MaterialState};
 use crate::variant::Variant;
 use rgraph_scene::DepthConvention;
 
@@ -67,14 +67,20 @@ impl Recorder for SceneDraw {
             .chain(self.shadows)
             .collect();
         let inputs = (!read.is_empty()).then(|| TextureBindings::new(frame.resources, &read));
+        let last_pose = self.last_pose.then(|| last_pose::layout(device));
         let layouts = [
             Some(scene.layout()),
             Some(scene.material_layout()),
             inputs.as_ref().map(|i| &i.layout),
+            last_pose.as_ref(),
         ];
+        let groups = match self.last_pose {
+            true => &layouts[..],
+            false => &layouts[..3],
+        };
         Ok(State {
             module: module(device, self.label, &self.source),
-            layout: pipeline_layout(device, &layouts),
+            layout: pipeline_layout(device, groups),
             inputs,
             pipelines: Pipelines::default(),
             fullscreen_layout: pipeline_layout(device, &[]),
@@ -97,6 +103,9 @@ impl Recorder for SceneDraw {
         pass.set_bind_group(0, scene.bind_group(convention), &[]);
         if let Some(inputs) = &state.inputs {
             pass.set_bind_group(2, &inputs.bind_group(resources), &[]);
+        }
+        if self.last_pose {
+            pass.set_bind_group(3, scene.last_pose_group(device), &[]);
         }
         let layer = match self.blended {
             false => Layer::Opaque,

@@ -1,22 +1,22 @@
-//! Recording a pass set up with material-layer targets ([`Layered`],
-//! common/gbuffer_layers.rs): each frame records the pass made for the layers its plan
-//! keeps (`FrameResources::has`; the clear coat's normal as its target's format says),
-//! made and built the first time a frame keeps that set on a device.
+//! Recording a pass set up with optional textures ([`PerKept`],
+//! common/optional_targets.rs): each frame records the pass made for the set of them its
+//! plan keeps (`FrameResources::has`; a format where the set depends on it, as the clear
+//! coat's normal does), made and built the first time a frame keeps that set on a device.
 
 use super::{Frame, Recorded, Recorder};
-use crate::common::gbuffer_layers::{LayerSet, Layered};
+use crate::common::optional_targets::{OptionalTargets, PerKept};
 
-impl<R: Recorder> Recorder for Layered<R>
+impl<T: OptionalTargets, R: Recorder> Recorder for PerKept<T, R>
 where
     R::Scene: Clone,
 {
     type Stage = R::Stage;
     type Scene = R::Scene;
     /// Each set met, with its pass and what that pass built.
-    type State = Vec<(LayerSet, R, R::State)>;
+    type State = Vec<(T::Set, R, R::State)>;
 
-    /// The passes set up with layer targets light or draw the scene (their `Scene` is
-    /// the scene's upload, which they always read).
+    /// The passes set up with optional textures light, draw or move the scene (their
+    /// `Scene` is the scene's upload, which they always read).
     fn reads_scene(&self) -> bool {
         true
     }
@@ -27,11 +27,9 @@ where
 
     fn record(&self, state: &mut Self::State, frame: &mut Frame<'_, '_, Self>) -> Recorded {
         let resources = frame.resources;
-        let set = LayerSet::kept(
-            &self.targets,
-            |h| resources.has(h),
-            |h| resources.shape(h).format,
-        );
+        let set = self
+            .targets
+            .kept(&|h| resources.has(h), &|h| resources.shape(h).format);
         let mut frame = Frame {
             pass: &mut *frame.pass,
             resources,
