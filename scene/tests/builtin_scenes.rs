@@ -23,7 +23,7 @@ fn every_builtin_is_listed_described_and_bit_identical_across_loads() {
     let names: Vec<&str> = builtin_names().iter().map(|b| b.name).collect();
     assert_eq!(
         names,
-        ["spheres", "dense", "lights", "unlit", "smoke", "terrain", "city"]
+        ["spheres", "dense", "lights", "unlit", "smoke", "terrain", "city", "rocks"]
     );
     for scene in builtin_names() {
         assert!(!scene.description.is_empty());
@@ -89,6 +89,47 @@ fn spheres_layers_puts_one_layer_on_each_of_three_spheres() {
             material(name) == &core.materials[mesh(&core, name).material],
             "{name}"
         );
+    }
+}
+
+#[test]
+fn rocks_share_one_geometry_and_check_their_limits_first() {
+    let scene = builtin("builtin:rocks?copies=50&detail=16");
+    let rocks: Vec<&Mesh> = (scene.meshes.iter())
+        .filter(|m| m.name.starts_with("rock "))
+        .collect();
+    assert_eq!(rocks.len(), 50);
+    assert_eq!(scene.stats().triangles, 2 + 50 * 2 * 16 * 7);
+    for rock in &rocks {
+        assert!(std::sync::Arc::ptr_eq(&rock.vertices, &rocks[0].vertices));
+        assert!(std::sync::Arc::ptr_eq(&rock.indices, &rocks[0].indices));
+    }
+    // Scattered: no two copies at one place.
+    let origin = |m: &Mesh| m.transform.w_axis.truncate();
+    assert!(rocks[1..]
+        .iter()
+        .all(|m| origin(m).distance(origin(rocks[0])) > 1e-3));
+    assert_ne!(
+        origin(rocks[0]),
+        origin(mesh(
+            &builtin("builtin:rocks?copies=50&detail=16&seed=2"),
+            "rock 0"
+        ))
+    );
+    // 100M triangles pass the limits; one copy more than the indices allow does not.
+    let over = Scene::load("builtin:rocks?copies=45101&detail=64").unwrap_err();
+    assert!(
+        over.to_string()
+            .contains("178960768 triangles in all, more than 178956970"),
+        "{over}"
+    );
+    for (spec, says) in [
+        ("builtin:rocks?copies=0", "at least 1 rock"),
+        ("builtin:rocks?detail=3", "at least 4 segments"),
+        ("builtin:rocks?copies=1048576", "from 0 to 1048575"),
+    ] {
+        let error = Scene::load(spec).unwrap_err();
+        assert!(error.to_string().contains(says), "{spec}: {error}");
     }
 }
 
@@ -198,7 +239,7 @@ fn builtin_spec_errors_list_what_is_available() {
     assert_eq!(
         message,
         "unknown built-in scene `nope`; available: spheres, dense, lights, unlit, smoke, terrain, \
-         city"
+         city, rocks"
     );
     let error = Scene::load("builtin:lights?lamps=3").unwrap_err();
     assert!(matches!(error, SceneError::BuiltinParameter { .. }));

@@ -11,6 +11,7 @@ mod lights;
 mod params;
 mod parts;
 mod rng;
+mod rocks;
 mod shapes;
 mod smoke;
 mod solid;
@@ -81,6 +82,12 @@ const BUILTINS: &[BuiltinScene] = &[
         description: "many meshes: blocks x blocks seeded box buildings (1,024 by default, up to 2.5 million), each its own mesh, on a ground plane; 1 directional + 4 point lights",
         params: city::PARAMS,
         build: city::build,
+    },
+    BuiltinScene {
+        name: "rocks",
+        description: "instanced: copies x one rock (3,968 triangles by default, detail up to 2048), every copy its own mesh sharing the rock's geometry (256 by default, up to 1,048,575; 178,956,970 triangles in all at most), scattered on a ground plane; 1 directional + 4 point lights",
+        params: rocks::PARAMS,
+        build: rocks::build,
     },
 ];
 
