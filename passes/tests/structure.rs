@@ -14,8 +14,9 @@ const LAYERS: Layers<'_> = &[
     // What the host application hands the plugins: the scene (rgraph-scene's), the
     // overrides (the shadow settings among them) and the frame inputs.
     ("host", &["host", "shadows"]),
-    // Which shader variants a scene's features need.
-    ("variant", &["variant"]),
+    // Which shader variants a scene's features need, and which material layers a
+    // G-buffer stores in targets of their own.
+    ("variant", &["variant", "layers"]),
     // Layouts, shader modules and pipelines kept per device by their description, for
     // every graph recorded on it (feature `gpu`).
     ("kept", &["kept"]),
