@@ -152,6 +152,26 @@ struct GroupLayoutKey {
     entries: Vec<wgpu::BindGroupLayoutEntry>,
 }
 
+/// A layout entry for a buffer of kind `ty` at `binding`, seen by `visibility`, with no
+/// dynamic offset or least size: what the scene's and the passes' own groups of whole
+/// buffers are made of.
+pub(crate) fn buffer_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    ty: wgpu::BufferBindingType,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
 /// The bind group layout of `entries`.
 pub(crate) fn bind_group_layout(
     device: &wgpu::Device,

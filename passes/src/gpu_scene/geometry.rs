@@ -16,19 +16,11 @@ pub(super) struct Geometry {
 
 impl Geometry {
     pub fn new(device: &wgpu::Device) -> Geometry {
-        let entry = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            // The hardware raster's alpha MASK reads them in its fragment stage.
-            visibility: wgpu::ShaderStages::VERTEX
-                | wgpu::ShaderStages::FRAGMENT
-                | wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: true },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
+        // The hardware raster's alpha MASK reads them in its fragment stage.
+        let visibility =
+            wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
+        let storage = wgpu::BufferBindingType::Storage { read_only: true };
+        let entry = |binding| crate::kept::buffer_entry(binding, visibility, storage);
         Geometry {
             layout: crate::kept::bind_group_layout(device, "scene geometry", &[entry(0), entry(1)]),
             group: OnceLock::new(),

@@ -14,16 +14,7 @@ use super::deform::PreviousPositions;
 
 /// The layout of group 3 (the same object on a device for every caller: crate::kept).
 pub fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::VERTEX,
-        ty: wgpu::BindingType::Buffer {
-            ty,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
+    let entry = |binding, ty| crate::kept::buffer_entry(binding, wgpu::ShaderStages::VERTEX, ty);
     let storage = wgpu::BufferBindingType::Storage { read_only: true };
     let entries = [
         entry(0, storage),

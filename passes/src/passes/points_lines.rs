@@ -280,16 +280,8 @@ mod gpu {
                 host.points_lines.len().max(1) * 64,
                 wgpu::BufferUsages::STORAGE,
             );
-            let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
-                binding,
-                visibility: wgpu::ShaderStages::VERTEX,
-                ty: wgpu::BindingType::Buffer {
-                    ty,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            };
+            let entry =
+                |binding, ty| crate::kept::buffer_entry(binding, wgpu::ShaderStages::VERTEX, ty);
             let group_layout = crate::kept::bind_group_layout(
                 device,
                 "points and lines placement",
