@@ -85,7 +85,7 @@ const BUILTINS: &[BuiltinScene] = &[
     },
     BuiltinScene {
         name: "rocks",
-        description: "instanced: copies x one rock (3,968 triangles by default, detail up to 2048), every copy its own mesh sharing the rock's geometry (256 by default, up to 1,048,575; 178,956,970 triangles in all at most), scattered on a ground plane; 1 directional + 4 point lights",
+        description: "instanced: copies x one rock (3,968 triangles by default, detail up to 2048), every copy its own mesh sharing the rock's geometry (25 by default: 99,200 triangles; up to 1,048,575; 178,956,970 triangles in all at most), scattered on a ground plane; 1 directional + 4 point lights",
         params: rocks::PARAMS,
         build: rocks::build,
     },

@@ -5,9 +5,10 @@
 //!
 //! - A 110 x 110 ground plane at y = 0 (mesh "ground").
 //! - One rock: a unit UV sphere of `detail` segments and `detail / 2` rings (2 · detail ·
-//!   (detail / 2 - 1) triangles: 3,968 at the default 64, 199,808 at 448; `copies=25202` of the default
-//!   rock make 100,001,536).
-//! - `copies` copies (default 256) scattered over x, z in [-50, 50], each an ellipsoid:
+//!   (detail / 2 - 1) triangles: 3,968 at the default 64, 199,808 at 448; `copies=25202`
+//!   of the default rock make 100,001,536).
+//! - `copies` copies (default 25: 99,200 triangles, about the default terrain's) scattered
+//!   over x, z in [-50, 50], each an ellipsoid:
 //!   a base radius from the ground each copy has (0.35 √(10,000 / copies), at most 3),
 //!   scaled 0.6 to 1.3 per axis, turned about +Y and tilted up to 20°, sunk to 40% of its
 //!   height. Three stone materials, one per copy at random. Every draw comes from [`Pcg32`]
@@ -43,10 +44,10 @@ const MAX_TRIANGLES: u64 = (1 << 31) / 12;
 pub(super) const PARAMS: &[BuiltinParam] = &[
     BuiltinParam {
         key: "copies",
-        meaning: "copies of the rock, each its own mesh sharing its geometry (default 256; \
+        meaning: "copies of the rock, each its own mesh sharing its geometry (default 25; \
                   at least 1, at most 1048575: with the ground, the scene limit of 1,048,576 \
                   meshes)",
-        default: 256,
+        default: 25,
         max: MAX_COPIES,
     },
     BuiltinParam {
