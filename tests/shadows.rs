@@ -324,10 +324,7 @@ fn the_compute_raster_clips_casters_at_a_light_s_near_plane() {
             luma(hardware.at(x, y)) < 0.5 * luma(hardware.at(N - 1 - x, y)),
             "{filter:?}: the ground behind the wall is not in its shadow"
         );
-        let close = (hardware.pixels.iter().zip(&compute.pixels))
-            .filter(|(h, c)| h.iter().zip(c.iter()).all(|(h, c)| h.abs_diff(*c) <= 2))
-            .count();
-        let share = close as f64 / hardware.pixels.len() as f64;
+        let share = share_within_2(&hardware, &compute);
         assert!(
             share >= 0.999,
             "{filter:?}: the compute raster's shadows agree with the hardware's within 2/255 \
@@ -396,10 +393,7 @@ fn thin_diagonal_casters_cast_the_hardware_s_shadows_in_compute() {
     ] {
         let edited = format!("{raster}{edit}");
         let compute = render_edited(DEFAULT_GPU, &[(raster, &edited)], &scene, size, hard);
-        let close = (hardware.pixels.iter().zip(&compute.pixels))
-            .filter(|(h, c)| h.iter().zip(c.iter()).all(|(h, c)| h.abs_diff(*c) <= 2))
-            .count();
-        let share = close as f64 / hardware.pixels.len() as f64;
+        let share = share_within_2(&hardware, &compute);
         assert!(
             share >= 0.999,
             "{clusters}: the compute raster's shadows agree with the hardware's within \
@@ -1097,4 +1091,13 @@ fn a_kept_atlas_must_be_a_history() {
     ])
     .expect(0);
     rgraph(&["validate", &write("off.ron", "", "cache: false")]).expect(0);
+}
+
+/// The share of pixels whose four channels (alpha too) differ by at most 2/255 between
+/// the hardware's shadows and the compute raster's.
+fn share_within_2(hardware: &Image, compute: &Image) -> f64 {
+    let close = (hardware.pixels.iter().zip(&compute.pixels))
+        .filter(|(h, c)| h.iter().zip(c.iter()).all(|(h, c)| h.abs_diff(*c) <= 2))
+        .count();
+    close as f64 / hardware.pixels.len() as f64
 }
