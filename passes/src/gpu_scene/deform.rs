@@ -20,6 +20,7 @@
 use glam::DMat4;
 use wgpu::util::DeviceExt;
 
+use super::shared_geometry::GeometryLayout;
 use crate::host::FrameInputs;
 use rgraph_scene::{joints_in_object_space, Aabb, Influences, Reach, Scene, Vertex};
 
@@ -144,17 +145,24 @@ pub struct PreviousPositions {
 }
 
 impl Deformer {
-    /// The pass for `scene`'s deformations over `vertices`, the scene's vertex buffer
-    /// (each mesh's vertices after the ones before it), or `None` when nothing deforms.
-    pub fn new(device: &wgpu::Device, scene: &Scene, vertices: &wgpu::Buffer) -> Option<Deformer> {
+    /// The pass for `scene`'s deformations over `vertices`, the scene's vertex buffer laid
+    /// out as `layout` says (a deforming scene shares no vertices, so each mesh's follow
+    /// the ones before it), or `None` when nothing deforms.
+    pub fn new(
+        device: &wgpu::Device,
+        scene: &Scene,
+        (vertices, layout): (&wgpu::Buffer, &GeometryLayout),
+    ) -> Option<Deformer> {
         if scene.deformations.is_empty() {
             return None;
         }
-        let mut first_vertex = Vec::with_capacity(scene.meshes.len() + 1);
-        first_vertex.push(0u64);
-        for mesh in &scene.meshes {
-            first_vertex.push(first_vertex.last().unwrap() + mesh.vertices.len() as u64);
-        }
+        // Where each mesh's vertices start, and after the last mesh where it ends.
+        let last = scene.meshes.len() - 1;
+        let first_vertex: Vec<u64> = (layout.placements.iter())
+            .map(|p| p.base_vertex as u64)
+            .chain([layout.placements[last].base_vertex as u64
+                + scene.meshes[last].vertices.len() as u64])
+            .collect();
         // The vertex buffer is bound from the first deformed vertex (rounded down to the
         // storage offset alignment), so a scene larger than one storage binding can
         // still deform a few meshes.

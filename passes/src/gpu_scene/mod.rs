@@ -359,7 +359,8 @@ impl GpuScene {
         let lights = lights::LightBuffers::new(device, &frame.lights);
         let environment = environment::EnvironmentMaps::new(device, queue, scene);
         let shadow_maps = shadows::ShadowBuffers::new(device);
-        let deformer = deform::Deformer::new(device, scene, &meshes.vertices);
+        let deformer =
+            deform::Deformer::new(device, scene, (&meshes.vertices, &frame.meshes.layout));
         if let Some(deformer) = &deformer {
             deformer.run(device, queue, &frame.deform);
             frame.deformed = true;

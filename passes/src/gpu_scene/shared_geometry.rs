@@ -9,8 +9,9 @@
 //! and must name one placement: with one range shared, every instance's triangles would
 //! carry one ID, and shading could not tell which transform drew them.
 //!
-//! A scene that deforms shares no vertices: the deformation pass finds each mesh's
-//! vertices after all the meshes before it (deform.rs), and writes the deformed ones.
+//! A scene that deforms shares no vertices: the deformation pass (deform.rs) binds the
+//! range from the first deformed mesh's vertices to the last's, taking the meshes' places
+//! from this layout, and writes the deformed ones over their own.
 
 use std::collections::HashMap;
 
