@@ -7,6 +7,8 @@
 //! them, so a black-and-white checker minifies to 188 in sRGB, the encoding of 0.5, not
 //! to 128; alpha and linear images are averaged as stored.
 
+use std::sync::LazyLock;
+
 use super::TextureImage;
 
 impl TextureImage {
@@ -61,14 +63,21 @@ impl TextureImage {
     }
 }
 
-/// An sRGB-encoded 8-bit value in linear light, 0 to 1.
+/// An sRGB-encoded 8-bit value in linear light, 0 to 1: read from a table of the 256
+/// decodings, made once (mip-mapping a model's textures decoded each texel four times,
+/// a `powf` each, most of a textured model's load).
 pub(crate) fn srgb_to_linear(v: u8) -> f64 {
-    let c = f64::from(v) / 255.0;
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
+    static DECODED: LazyLock<[f64; 256]> = LazyLock::new(|| {
+        std::array::from_fn(|v| {
+            let c = v as f64 / 255.0;
+            if c <= 0.04045 {
+                c / 12.92
+            } else {
+                ((c + 0.055) / 1.055).powf(2.4)
+            }
+        })
+    });
+    DECODED[usize::from(v)]
 }
 
 /// Linear light (clamped to 0..=1 after encoding) as an sRGB-encoded 8-bit value.
