@@ -379,7 +379,7 @@ fn run_cases(cases: &[Case]) -> Vec<String> {
         let name = case.name;
         let label = format!("volumes-{}", name.replace([' ', ',', '°', '.'], "_"));
 
-        let uploaded = GpuScene::upload(&gpu.device, &gpu.queue, &scene);
+        let uploaded = GpuScene::upload(&gpu.device, &gpu.queue, &scene).expect("the scene fits");
         let [volume] = uploaded.volume_lights() else {
             failures.push(format!(
                 "{name}: expected one light volume, got {}",

@@ -36,7 +36,11 @@ fn with_copies(shared: bool) -> Scene {
 #[test]
 fn shared_vertices_are_uploaded_once_and_indices_once_per_mesh() {
     let gpu = gpu();
-    let bytes = |scene: &Scene| GpuScene::upload(&gpu.device, &gpu.queue, scene).geometry_bytes();
+    let bytes = |scene: &Scene| {
+        GpuScene::upload(&gpu.device, &gpu.queue, scene)
+            .expect("the scene fits the device")
+            .geometry_bytes()
+    };
     let (one_vertices, one_indices) = bytes(&Scene::load("builtin:spheres").unwrap());
     let (shared_vertices, shared_indices) = bytes(&with_copies(true));
     let (own_vertices, own_indices) = bytes(&with_copies(false));

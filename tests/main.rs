@@ -103,4 +103,5 @@ mod specialise_variants;
 mod temporal_aa;
 mod texture_seams;
 mod transparency;
+mod vertex_ranges;
 mod visibility;

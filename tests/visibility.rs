@@ -109,7 +109,7 @@ fn unlit_pixels_through_the_visibility_buffer_are_the_average_of_their_covered_s
 /// Every material alpha MASK at a cutoff of 0.5, each mesh's vertex alpha rising from 0 at
 /// its lowest vertex to 1 at its highest: the lower half of everything is cut away, along
 /// curves the alpha's perspective-correct interpolation draws.
-fn masked_by_height(scene: &mut Scene) {
+pub(crate) fn masked_by_height(scene: &mut Scene) {
     for material in &mut scene.materials {
         material.alpha_mode = AlphaMode::Mask { cutoff: 0.5 };
     }

@@ -49,9 +49,8 @@ impl<'a> PipelineFile<'a> {
         PipelineFile { name, as_gpu: true }
     }
 
-    /// The profile of `gpu` the file is compiled for.
-    fn profile(&self, gpu: &Gpu) -> DeviceProfile {
-        let mut profile = gpu.profile();
+    /// The profile the file is compiled for on a device of `profile`.
+    fn profile(&self, mut profile: DeviceProfile) -> DeviceProfile {
         profile.cpu &= !self.as_gpu;
         profile
     }
@@ -212,6 +211,22 @@ impl<'a> Render<'a> {
 
     /// Loads, compiles for `gpu` and executes one frame.
     pub fn run(&self, gpu: &Gpu) -> Frame {
+        self.run_with(gpu.profile(), Executor::new(gpu))
+            .unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// Loads, compiles for `profile` and executes one frame on an engine's own device
+    /// (`device` and `queue`, whose errors and loss the engine handles), as
+    /// `Executor::from_device` runs it; what the device said if the frame failed.
+    pub fn try_run_on(
+        &self,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
+        profile: DeviceProfile,
+    ) -> Result<Frame, String> {
+        self.run_with(profile, Executor::from_device(device, queue))
+    }
+
+    fn run_with(&self, profile: DeviceProfile, mut executor: Executor) -> Result<Frame, String> {
         let mut scene = match &self.given_scene {
             Some(scene) => scene.clone(),
             None => Scene::load(self.scene)
@@ -229,14 +244,13 @@ impl<'a> Render<'a> {
         let label = self.pipeline.label();
         let options = CompileOptions {
             output_size: self.size,
-            profile: self.pipeline.profile(gpu),
+            profile: self.pipeline.profile(profile),
         };
         let mut compiled = CompiledGraph::new_for(loaded, &options, &self.features)
             .unwrap_or_else(|e| panic!("cannot compile {label}:\n{e}"));
-        let mut executor = Executor::new(gpu);
         executor
             .execute(&mut compiled, &Imports::new())
-            .unwrap_or_else(|e| panic!("{label} failed on the device: {e}"));
+            .map_err(|e| format!("{label} failed on the device: {e}"))?;
         let edited = if self.edits.is_empty() && self.scene_edit.is_none() {
             String::new()
         } else {
@@ -247,7 +261,7 @@ impl<'a> Render<'a> {
             .iter()
             .map(|(name, value)| format!("-{name}{value}"))
             .collect();
-        Frame {
+        Ok(Frame {
             label: format!(
                 "{label}{params}{edited}-{}",
                 self.scene.replace([':', '?', '/', '=', '&'], "_")
@@ -256,7 +270,7 @@ impl<'a> Render<'a> {
             host,
             compiled,
             executor,
-        }
+        })
     }
 
     /// Runs one frame and reads back each of `outputs`.
@@ -337,8 +351,13 @@ impl Frame {
 
     /// An exported RGBA8 texture.
     pub fn image(&self, gpu: &Gpu, name: &str) -> Image {
+        self.image_from((&gpu.device, &gpu.queue), name)
+    }
+
+    /// An exported RGBA8 texture of a frame on an engine's device ([`Render::run_on`]).
+    pub fn image_from(&self, (device, queue): (&wgpu::Device, &wgpu::Queue), name: &str) -> Image {
         let texture = self.texture(name);
-        let pixels = read_rgba8(&gpu.device, &gpu.queue, texture)
+        let pixels = read_rgba8(device, queue, texture)
             .unwrap_or_else(|e| panic!("cannot read {name} back: {e}"));
         let image = Image {
             width: texture.width(),

@@ -116,7 +116,7 @@ mod gpu {
             let pass = &mut *frame.pass;
             let resources = frame.resources;
             if self.extent == Extent::Blended {
-                let Some(rect_scene) = frame.scenes.for_frame(resources) else {
+                let Some(rect_scene) = frame.scenes.for_frame(resources)? else {
                     return Ok(());
                 };
                 let target = self.target.or(self.stencil_mark);

@@ -183,22 +183,34 @@ impl MeshBuffers {
     /// Uploads `scene`'s geometry as `frame`'s layout places it, and `frame`'s per-mesh
     /// data. The geometry goes up array by array in slices (see [`UPLOAD_SLICE_BYTES`]),
     /// never gathered into one copy first; the indices in cluster order are a copy of each
-    /// distinct geometry's, held until they are up.
+    /// distinct geometry's, held until they are up. An error, before anything is
+    /// allocated, when the vertices or indices are more than the device holds in one
+    /// buffer.
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         scene: &Scene,
         frame: &MeshFrame,
-    ) -> MeshBuffers {
+    ) -> Result<MeshBuffers, String> {
+        let layout = &frame.layout;
+        let max = device.limits().max_buffer_size;
+        for (what, bytes) in layout.buffer_bytes(scene) {
+            if bytes > max {
+                return Err(format!(
+                    "the scene's {what} take {bytes} bytes, more than the {max} bytes this \
+                     device holds in one buffer (max_buffer_size): no pipeline can draw them \
+                     on it"
+                ));
+            }
+        }
         let upload = Upload { device, queue };
         // Clustered here, from the meshes as they are now, so that the clusters cannot
         // go stale: every pipeline draws the one index buffer, in cluster order.
-        let layout = &frame.layout;
         let clustered: Vec<ClusteredMesh> = (layout.shape_owners.iter())
             .map(|&mesh| rgraph_scene::cluster(&scene.meshes[mesh]))
             .collect();
         let placements = layout.placements.iter();
-        MeshBuffers {
+        Ok(MeshBuffers {
             // Storage too: visibility-buffer passes pull vertices (geometry.wgsl).
             vertices: upload.gathered(
                 "scene vertices",
@@ -222,7 +234,7 @@ impl MeshBuffers {
                 contents: frame.bytes(),
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             }),
-        }
+        })
     }
 }
 

@@ -46,6 +46,7 @@ mod shadows;
 mod shared_geometry;
 mod texture_table;
 mod textures;
+mod vertex_ranges;
 mod view_culling;
 pub(crate) mod volumes;
 
@@ -84,13 +85,17 @@ pub enum Layer {
     Blended,
 }
 
+/// A scene on a device, or why the device cannot hold it.
+type Uploaded = Result<Arc<GpuScene>, String>;
+
 /// Uploads of one host's scene, one per device, made on first use, and brought up to the
 /// host's [`FrameInputs`] when they change.
 pub struct SceneCache {
     host: Option<Arc<Host>>,
     features: Features,
-    /// Per device, the scene as the last frame drew it.
-    uploaded: Mutex<Vec<(wgpu::Device, Arc<GpuScene>)>>,
+    /// Per device, the scene as the last frame drew it, or why the device cannot hold
+    /// it (kept: the upload is not tried again).
+    uploaded: Mutex<Vec<(wgpu::Device, Uploaded)>>,
     /// The bits of the f32 span each frame's camera is offset by that frame's [`jitter`]
     /// times, 0 for none: what a temporal filter among the passes asked for
     /// ([`jitter_camera`](Self::jitter_camera)).
@@ -99,7 +104,7 @@ pub struct SceneCache {
 
 impl SceneCache {
     /// A cache for `host`'s scene, whose shaders compile as `variants` says; without a
-    /// host, [`get`](Self::get) returns `None` and plugins draw nothing.
+    /// host, [`get`](Self::get) returns `Ok(None)` and plugins draw nothing.
     pub fn new(host: Option<Arc<Host>>, variants: Variants) -> SceneCache {
         let features = host
             .as_ref()
@@ -161,10 +166,10 @@ impl SceneCache {
         &self,
         reads: bool,
         resources: &rgraph_core::gpu::FrameResources<'_>,
-    ) -> Option<Option<Arc<GpuScene>>> {
+    ) -> Result<Option<Option<Arc<GpuScene>>>, String> {
         match reads {
-            true => self.for_frame(resources).map(Some),
-            false => Some(None),
+            true => Ok(self.for_frame(resources)?.map(Some)),
+            false => Ok(Some(None)),
         }
     }
 
@@ -172,7 +177,8 @@ impl SceneCache {
     /// the host's current [`FrameInputs`] say, with its camera set for the output size.
     /// The camera depends only on the aspect ratio, and the shaders never read the
     /// viewport, so a target at a multiple of the output size (the reference) is fine.
-    /// `None` without a host: the pass records nothing.
+    /// `None` without a host: the pass records nothing. An error when the device cannot
+    /// hold the scene's geometry ([`GpuScene::upload`]).
     ///
     /// Every pass of a frame calls it; the first after [`Host::set_frame`] writes what the
     /// new inputs changed (per-mesh data, lights, camera: queue writes, which land before
@@ -182,17 +188,26 @@ impl SceneCache {
     pub fn for_frame(
         &self,
         resources: &rgraph_core::gpu::FrameResources<'_>,
-    ) -> Option<Arc<GpuScene>> {
-        let scene = self.get(resources.device, resources.queue)?;
+    ) -> Result<Option<Arc<GpuScene>>, String> {
+        let Some(scene) = self.get(resources.device, resources.queue)? else {
+            return Ok(None);
+        };
         let jitter = self.jitter_at(resources.frame());
         scene.prepare(resources.queue, resources.output_size(), jitter);
-        Some(scene)
+        Ok(Some(scene))
     }
 
     /// The scene on `device` as the host's current frame inputs place it, uploaded
-    /// through `queue` the first time and updated through it when the inputs changed.
-    pub fn get(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Option<Arc<GpuScene>> {
-        let host = self.host.as_ref()?;
+    /// through `queue` the first time and updated through it when the inputs changed;
+    /// `None` without a host, an error when the device cannot hold its geometry.
+    pub fn get(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<Option<Arc<GpuScene>>, String> {
+        let Some(host) = self.host.as_ref() else {
+            return Ok(None);
+        };
         let (inputs, generation) = host.current();
         let mut uploaded = self.uploaded.lock().unwrap_or_else(|e| e.into_inner());
         let at = match uploaded.iter().position(|(d, _)| d == device) {
@@ -206,15 +221,15 @@ impl SceneCache {
                     (inputs.clone(), generation),
                     shadows,
                 );
-                uploaded.push((device.clone(), Arc::new(scene)));
+                uploaded.push((device.clone(), scene.map(Arc::new)));
                 uploaded.len() - 1
             }
         };
-        let scene = &mut uploaded[at].1;
+        let scene = uploaded[at].1.as_mut().map_err(|why| why.clone())?;
         if scene.frame.generation != generation {
             *scene = Arc::new(scene.next_frame(device, queue, &host.scene, inputs, generation));
         }
-        Some(scene.clone())
+        Ok(Some(scene.clone()))
     }
 }
 
@@ -333,8 +348,14 @@ impl Frame {
 }
 
 impl GpuScene {
-    /// Uploads `scene` on `device` as loaded (its own [`FrameInputs`]).
-    pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) -> GpuScene {
+    /// Uploads `scene` on `device` as loaded (its own [`FrameInputs`]); an error, before
+    /// its geometry is allocated, when its vertices or indices are more than the device
+    /// holds in one buffer (`max_buffer_size`).
+    pub fn upload(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+    ) -> Result<GpuScene, String> {
         let inputs = Arc::new(FrameInputs::of(scene));
         GpuScene::upload_with(device, queue, scene, (inputs, 0), Shadows::default())
     }
@@ -347,14 +368,14 @@ impl GpuScene {
         scene: &Scene,
         inputs: (Arc<FrameInputs>, u64),
         shadows: Shadows,
-    ) -> GpuScene {
+    ) -> Result<GpuScene, String> {
         let (sphere, cone) = (volumes::sphere(device), volumes::cone(device));
         let reaches = deform::reaches(scene);
         let mut frame = Frame::new(scene, inputs, (None, &reaches), (&sphere, &cone), shadows);
         let layout = layout::scene_layout(device);
         let material_layout = materials::layout(device);
         let cameras = camera::Cameras::new(device);
-        let meshes = mesh::MeshBuffers::new(device, queue, scene, &frame.meshes);
+        let meshes = mesh::MeshBuffers::new(device, queue, scene, &frame.meshes)?;
         let materials = materials::Materials::new(device, scene);
         let lights = lights::LightBuffers::new(device, &frame.lights);
         let environment = environment::EnvironmentMaps::new(device, queue, scene);
@@ -397,11 +418,11 @@ impl GpuScene {
                 .map(rgraph_scene::PointsLines::object_bounds)
                 .collect(),
         };
-        GpuScene {
+        Ok(GpuScene {
             upload: Arc::new(upload),
             frame,
             shadow_work: Mutex::new(None),
-        }
+        })
     }
 
     /// This upload placed by `inputs` (of `generation`): writes through `queue` the
@@ -752,8 +773,8 @@ impl GpuScene {
         screen_rect::screen_rect(&self.frame.inputs.camera, size, blended)
     }
 
-    /// The layout of the visibility passes' group 2: the scene's vertices and indices as
-    /// read-only storage (geometry.wgsl).
+    /// The layout of the visibility passes' group 2: the scene's vertices (in ranges,
+    /// vertex_ranges.rs) and indices as read-only storage (geometry.wgsl).
     pub fn geometry_layout(&self) -> &wgpu::BindGroupLayout {
         self.upload.geometry.layout()
     }

@@ -82,4 +82,19 @@ impl GeometryLayout {
         }
         layout
     }
+
+    /// The bytes of the scene's vertex and index buffers as laid out, named: the
+    /// distinct vertex arrays once, every mesh's indices.
+    pub fn buffer_bytes(&self, scene: &Scene) -> [(&'static str, u64); 2] {
+        let vertices: u64 = (self.vertex_owners.iter())
+            .map(|&mesh| scene.meshes[mesh].vertices.len() as u64)
+            .sum();
+        let indices: u64 = (scene.meshes.iter())
+            .map(|mesh| mesh.indices.len() as u64)
+            .sum();
+        [
+            ("vertices", vertices * std::mem::size_of::<Vertex>() as u64),
+            ("indices", indices * std::mem::size_of::<u32>() as u64),
+        ]
+    }
 }

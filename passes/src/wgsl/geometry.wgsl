@@ -3,11 +3,52 @@
 //
 // A vertex is scene::Vertex, 14 words: position (3 f32), normal (3 f32), uv (2 f32),
 // color (4 unorm16), tangent (4 snorm16), uv1 (2 f32).
+//
+// The vertex buffer is bound in up to four ranges (gpu_scene/vertex_ranges.rs), so that
+// a scene may hold more vertices than one storage binding does: range k holds the
+// vertices from k times range 0's count on, and every range but the last as many as
+// range 0. A scene one binding holds has range 0 alone (the others bind it again and are
+// never read).
 
-@group(2) @binding(0) var<storage, read> vertex_words: array<u32>;
+@group(2) @binding(0) var<storage, read> vertex_range_0: array<u32>;
 @group(2) @binding(1) var<storage, read> index_words: array<u32>;
+@group(2) @binding(2) var<storage, read> vertex_range_1: array<u32>;
+@group(2) @binding(3) var<storage, read> vertex_range_2: array<u32>;
+@group(2) @binding(4) var<storage, read> vertex_range_3: array<u32>;
 
 const VERTEX_WORDS: u32 = 14u;
+
+// Where a vertex's words are: the range binding them and its first word there.
+struct VertexWords {
+    range: u32,
+    first: u32,
+}
+
+fn vertex_words(vertex: u32) -> VertexWords {
+    let per_range = arrayLength(&vertex_range_0) / VERTEX_WORDS;
+    let range = u32(vertex >= per_range) + u32(vertex >= 2u * per_range) + u32(vertex >= 3u * per_range);
+    return VertexWords(range, (vertex - range * per_range) * VERTEX_WORDS);
+}
+
+// Word `k` of the vertex at `at`. Where one range holds the scene every invocation takes
+// the same branch.
+fn vertex_word(at: VertexWords, k: u32) -> u32 {
+    let w = at.first + k;
+    switch at.range {
+        case 1u: {
+            return vertex_range_1[w];
+        }
+        case 2u: {
+            return vertex_range_2[w];
+        }
+        case 3u: {
+            return vertex_range_3[w];
+        }
+        default: {
+            return vertex_range_0[w];
+        }
+    }
+}
 
 // How a visibility buffer holds a triangle's ID + 1: in r32uint where the device
 // multisamples it, else split over rg16uint (low half in red), which WebGPU multisamples.
@@ -36,8 +77,8 @@ struct PulledVertex {
     uv1: vec2<f32>,
 }
 
-fn vertex_f32(w: u32) -> f32 {
-    return bitcast<f32>(vertex_words[w]);
+fn vertex_f32(at: VertexWords, k: u32) -> f32 {
+    return bitcast<f32>(vertex_word(at, k));
 }
 
 // The object-space vertex at position `index` of the scene's index buffer, in `mesh`.
@@ -48,14 +89,14 @@ fn pull_vertex(index: u32, mesh: MeshData) -> PulledVertex {
 // Vertex `vertex` of the scene's vertex buffer (an indexed draw's vertex index: the
 // index plus the draw's base vertex).
 fn vertex_at(vertex: u32) -> PulledVertex {
-    let w = vertex * VERTEX_WORDS;
+    let w = vertex_words(vertex);
     var v: PulledVertex;
-    v.position = vec3<f32>(vertex_f32(w), vertex_f32(w + 1u), vertex_f32(w + 2u));
-    v.normal = vec3<f32>(vertex_f32(w + 3u), vertex_f32(w + 4u), vertex_f32(w + 5u));
-    v.uv = vec2<f32>(vertex_f32(w + 6u), vertex_f32(w + 7u));
-    v.color = vec4<f32>(unpack2x16unorm(vertex_words[w + 8u]), unpack2x16unorm(vertex_words[w + 9u]));
-    v.tangent = vec4<f32>(unpack2x16snorm(vertex_words[w + 10u]), unpack2x16snorm(vertex_words[w + 11u]));
-    v.uv1 = vec2<f32>(vertex_f32(w + 12u), vertex_f32(w + 13u));
+    v.position = vec3<f32>(vertex_f32(w, 0u), vertex_f32(w, 1u), vertex_f32(w, 2u));
+    v.normal = vec3<f32>(vertex_f32(w, 3u), vertex_f32(w, 4u), vertex_f32(w, 5u));
+    v.uv = vec2<f32>(vertex_f32(w, 6u), vertex_f32(w, 7u));
+    v.color = vec4<f32>(unpack2x16unorm(vertex_word(w, 8u)), unpack2x16unorm(vertex_word(w, 9u)));
+    v.tangent = vec4<f32>(unpack2x16snorm(vertex_word(w, 10u)), unpack2x16snorm(vertex_word(w, 11u)));
+    v.uv1 = vec2<f32>(vertex_f32(w, 12u), vertex_f32(w, 13u));
     return v;
 }
 
@@ -82,6 +123,6 @@ fn pull_position(index: u32, mesh: MeshData) -> vec3<f32> {
 
 // The position of vertex `vertex` of the scene's vertex buffer.
 fn position_at(vertex: u32) -> vec3<f32> {
-    let w = vertex * VERTEX_WORDS;
-    return vec3<f32>(vertex_f32(w), vertex_f32(w + 1u), vertex_f32(w + 2u));
+    let w = vertex_words(vertex);
+    return vec3<f32>(vertex_f32(w, 0u), vertex_f32(w, 1u), vertex_f32(w, 2u));
 }

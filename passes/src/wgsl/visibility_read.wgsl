@@ -372,8 +372,8 @@ fn face_normal(first: u32, mesh: MeshData) -> vec3<f32> {
 
 // Whether vertex `v` of the scene's vertex buffer has a normal (not zero: geometry.wgsl).
 fn given_normal(v: u32) -> bool {
-    let w = v * VERTEX_WORDS + 3u;
-    let bits = vec3<u32>(vertex_words[w], vertex_words[w + 1u], vertex_words[w + 2u]);
+    let w = vertex_words(v);
+    let bits = vec3<u32>(vertex_word(w, 3u), vertex_word(w, 4u), vertex_word(w, 5u));
     // Either sign of zero.
     return any((bits & vec3<u32>(0x7fffffffu)) != vec3<u32>(0u));
 }

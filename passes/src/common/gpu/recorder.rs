@@ -86,25 +86,38 @@ impl Stage for Compute {
 /// records nothing without a host), `Option<Arc<GpuScene>>` (the scene where
 /// [`Recorder::reads_scene`]) or `()` (nothing).
 pub(crate) trait FrameScene: Sized {
-    /// This frame's, or `None` for a frame the pass records nothing in.
-    fn fetch(scenes: &SceneCache, resources: &FrameResources<'_>, reads: bool) -> Option<Self>;
+    /// This frame's, `None` for a frame the pass records nothing in, or why the device
+    /// cannot hold the scene.
+    fn fetch(
+        scenes: &SceneCache,
+        resources: &FrameResources<'_>,
+        reads: bool,
+    ) -> Result<Option<Self>, String>;
 }
 
 impl FrameScene for Arc<GpuScene> {
-    fn fetch(scenes: &SceneCache, resources: &FrameResources<'_>, _: bool) -> Option<Self> {
+    fn fetch(
+        scenes: &SceneCache,
+        resources: &FrameResources<'_>,
+        _: bool,
+    ) -> Result<Option<Self>, String> {
         scenes.for_frame(resources)
     }
 }
 
 impl FrameScene for Option<Arc<GpuScene>> {
-    fn fetch(scenes: &SceneCache, resources: &FrameResources<'_>, reads: bool) -> Option<Self> {
+    fn fetch(
+        scenes: &SceneCache,
+        resources: &FrameResources<'_>,
+        reads: bool,
+    ) -> Result<Option<Self>, String> {
         scenes.for_frame_if(reads, resources)
     }
 }
 
 impl FrameScene for () {
-    fn fetch(_: &SceneCache, _: &FrameResources<'_>, _: bool) -> Option<Self> {
-        Some(())
+    fn fetch(_: &SceneCache, _: &FrameResources<'_>, _: bool) -> Result<Option<Self>, String> {
+        Ok(Some(()))
     }
 }
 
@@ -116,8 +129,10 @@ pub(crate) fn declare<R: Recorder>(
 ) {
     let mut built = None;
     R::Stage::declare(pass, move |pass, resources| {
-        let Some(scene) = R::Scene::fetch(&scenes, resources, recorder.reads_scene()) else {
-            return;
+        let scene = match R::Scene::fetch(&scenes, resources, recorder.reads_scene()) {
+            Ok(Some(scene)) => scene,
+            Ok(None) => return,
+            Err(why) => return resources.fail(why),
         };
         let device = resources.device;
         let mut frame = Frame {
