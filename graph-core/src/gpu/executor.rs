@@ -214,6 +214,11 @@ impl Executor {
     /// outside the frame's error scopes, and the device's loss: without
     /// [`watching`](Self::watching), frames on a lost device fail with the device errors
     /// wgpu raises instead of [`ExecuteError::DeviceLost`].
+    ///
+    /// One process's devices must come from one `wgpu::Instance`: the plugins keep
+    /// pipelines and scene buffers per device, and wgpu 30 tells devices apart by an ID
+    /// each instance numbers from one, so a device of a second instance would be handed
+    /// the first's objects (wgpu then panics on an unknown ID).
     pub fn from_device(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
         Self {
             device: device.clone(),
