@@ -275,12 +275,14 @@ fn assert_micro_keeps_every_frame(scene: &'static str) {
     }
 }
 
-/// A heightfield of half a million triangles at 160 x 96, some 30 a pixel: nearly every
-/// cluster in view is micro (its bounds hold well under 4 pixels a triangle), so nearly
-/// every pixel's keys are the micro raster's, flags and all.
+/// A heightfield of 125,000 triangles at 160 x 96, some 8 a pixel: nearly every cluster
+/// in view is micro (its bounds hold well under 4 pixels a triangle), so nearly every
+/// pixel's keys are the micro raster's, flags and all. (Half a million, cells=500, took
+/// twice the time and lost no power: sample 0's atomics dropped, both differ in the same
+/// 6612 pixels of the first frame.)
 #[test]
 fn micro_clusters_keep_every_frame_of_a_dense_heightfield() {
-    assert_micro_keeps_every_frame("builtin:terrain?cells=500");
+    assert_micro_keeps_every_frame("builtin:terrain?cells=250");
 }
 
 /// Spheres over a floor: micro clusters (the far spheres' at 160 x 96) beside large ones
