@@ -184,7 +184,7 @@ fn a_textured_alpha_mask_model_renders_the_lean_gbuffers_image() {
         .lit(Lighting::Auto);
     let features = SceneFeatures::of(&scene);
     assert!(features.mask_textures && !features.untabled_textures);
-    let size = (480, 360);
+    let size = (240, 180);
     let gpu = gpu();
     let render = |pipeline, edit: fn(&mut Scene)| {
         let mut scene = scene.clone();

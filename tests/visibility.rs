@@ -212,7 +212,7 @@ fn the_compute_raster_cuts_alpha_masked_pixels_away() {
 }
 
 /// The compute raster renders the hardware raster's image within 1/255 on at least 99.5%
-/// of pixels at 960x540, at 4x and at 1x: where they differ, a sample lies within float
+/// of pixels at 480x270, at 4x and at 1x: where they differ, a sample lies within float
 /// rounding of a triangle's edge, or two triangles meet at one depth (grass blades
 /// crossing), and the two rasterisers pick differently. builtin:dense's ground and
 /// grass reach behind the camera, so its triangles are clipped against the near plane.
@@ -275,7 +275,7 @@ fn the_compute_raster_renders_the_hardware_raster_s_image() {
             "dense at 1x",
         ),
     ] {
-        let share = deferred_support::agreement(pipelines, scene, edit, (960, 540));
+        let share = deferred_support::agreement(pipelines, scene, edit, (480, 270));
         eprintln!(
             "{name}: {:.4}% within 1/255 of the hardware raster",
             share * 100.0
@@ -283,8 +283,11 @@ fn the_compute_raster_renders_the_hardware_raster_s_image() {
         // builtin:dense's four shadowed point lights (24 cube faces since the atlas sizes
         // its maps to fit, 5149910) put more pixels on shadow edges, where the two
         // rasters' surface positions, a rounding apart, look up the maps a texel apart:
-        // 99.34% within 1/255 there.
-        let bound = if name == "dense" { 0.99 } else { 0.995 };
+        // 99.34% within 1/255 there. At 480x270 (960x540 took half as long again) edges
+        // and shadow edges cover more of the pixels: 98.93% there against 99.23% at
+        // 960x540 on the same build, so the bound keeps the margin it had (a third of the
+        // pixels that differ) at the lower resolution. The others moved by at most 0.07%.
+        let bound = if name == "dense" { 0.986 } else { 0.995 };
         assert!(
             share >= bound,
             "{name}: only {share} of pixels within 1/255"
