@@ -39,14 +39,17 @@
 //! silhouette, whose centres may see the surface behind, follow the edge.
 //!
 //! Where the file gives `motion_history`, the previous frame's motion, the history is
-//! rejected (the frame taken alone) where the previous frame showed a surface more than
-//! 2% nearer than the view depth the pixel's point had then (the motion's alpha): the
-//! point was hidden, and the history shows what hid it (a moving object uncovering what
-//! is behind), which the neighbourhood's clamp lets through wherever this frame's
-//! neighbourhood spans a wide box (a shaded or textured surface). Its cost is the
-//! history's pair of motion textures (8 bytes a pixel each, kept between frames rather
-//! than transient) and four texel loads a pixel; no pass or target is added. Without it,
-//! the clamp alone deals with uncovered surfaces.
+//! rejected where it shows a surface that hid the pixel's point (a moving object
+//! uncovering what is behind), which the neighbourhood's clamp lets through wherever
+//! this frame's neighbourhood spans a wide box (a shaded or textured surface): of the
+//! texels the reprojected point's bilinear footprint weighs, those whose surface was
+//! more than 2% (plus the surface's slope over a pixel) nearer than the point was then
+//! (the motion's alpha) and moved more than 2 pixels apart from it; the frame weighs at
+//! least their share, all of it where the footprint lies wholly on the hiding surface
+//! (wgsl/taa_disocclusion.wgsl). Its cost is the motion's history (one more rgba16float
+//! texture, 8 bytes a pixel, and the motion kept apart from transient memory) and four
+//! texel loads a pixel; no pass or target written is added. Without it, the clamp alone
+//! deals with uncovered surfaces.
 //!
 //! This frame's pixel is read where the output pixel's centre lies in the jittered image
 //! (the jitter undone, through a Catmull-Rom filter): blended as drawn, a sample offset by
@@ -73,10 +76,11 @@ use crate::shaders;
 
 pub struct Taa(pub(crate) Shared);
 
-/// taa.wgsl's `disoccluded` where the pass is given no history of the motion.
+/// taa.wgsl's `hidden_share` where the pass is given no history of the motion.
 const NO_DISOCCLUSION: &str = "// Generated: no history of the motion is read.\n\
-    fn disoccluded(previous: vec2<f32>, depth_before: f32, slope: f32) -> bool {\n\
-    \x20   return false;\n}\n";
+    fn hidden_share(previous: vec2<f32>, depth_before: f32, slope: f32, motion: vec2<f32>) \
+    -> f32 {\n\
+    \x20   return 0.0;\n}\n";
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(default, deny_unknown_fields)]
