@@ -459,7 +459,7 @@ fn uncovering_at(scene: &Scene, i: u32) -> FrameInputs {
 const UNCOVERED: u8 = 3;
 
 /// Where a moving object uncovers a surface whose neighbourhood spans a wide box of
-/// colours (a ramp of up to 0.08 a pixel), the history shows the object, and clamped to
+/// colours (a ramp of up to 0.09 a pixel), the history shows the object, and clamped to
 /// that box much of it comes through; taa rejects it there, by the previous frame's view
 /// depth in the motion's history (nearer than where the pixel's point was), and takes the
 /// frame alone. On the pixels the square left a frame before (away from the edges of
