@@ -7,7 +7,9 @@
 //! branch), a compute rasteriser's keys (the GPU branch), and a G-buffer's depth (feature
 //! `untabled_textures`): with its mesh channel (the TAA preset's G-buffer), whose points
 //! move with their meshes, and without (the default pipeline's), whose points move with the
-//! camera alone, so it is checked on the orbit only.
+//! camera alone, so it is checked on the orbit only. The texture's blue and alpha, the
+//! point's view depth in this frame and in the previous one, within [`DEPTH_TOLERANCE`]
+//! of theirs.
 
 use rgraph_core::Features;
 use rgraph_passes::gpu_scene::jitter;
@@ -21,6 +23,9 @@ const SIZE: (u32, u32) = (96, 64);
 /// Pixels: the half floats the motion is stored in hold these values to 1/128 pixel, and
 /// the pass's f32 ray-plane hit is as close.
 const TOLERANCE: f64 = 0.05;
+/// The share of a view depth the motion's blue (this frame's) and alpha (the previous
+/// frame's, of the same point) may be off: half floats round to 1/2048 of a value.
+const DEPTH_TOLERANCE: f64 = 0.002;
 const DEFAULT: PipelineFile = PipelineFile::for_device("visibility_msaa_4x.ron");
 const DEFAULT_GPU: PipelineFile = PipelineFile::gpu_branch("visibility_msaa_4x.ron");
 /// The default pipeline with TAA, whose G-buffer (untabled textures) records meshes.
@@ -93,15 +98,26 @@ fn ray(camera: &Camera, at: DVec2) -> DVec3 {
     (point(0.5) - point(0.25)).normalize()
 }
 
+/// The view depth of world point `p` seen by `camera`.
+fn view_depth(camera: &Camera, p: DVec4) -> f64 {
+    (p.truncate() - camera.position).dot(camera.forward())
+}
+
+/// What the motion texture holds where nothing was drawn, in both frames' depth.
+const FAR_AWAY: f64 = 65504.0;
+
+/// What one checked pixel's motion should be: the motion in pixels, and the view depth
+/// of its point in this frame and the previous one.
+struct Expected {
+    at: (u32, u32),
+    motion: DVec2,
+    depths: [f64; 2],
+}
+
 /// The motion expected at each checked pixel of a frame drawn with `now` after one drawn
 /// with `before` (the box's previous transform `box_before`, its current the identity),
 /// of the point seen at `within` the pixel.
-fn expected(
-    now: &Camera,
-    before: &Camera,
-    box_before: DMat4,
-    within: DVec2,
-) -> Vec<((u32, u32), DVec2)> {
+fn expected(now: &Camera, before: &Camera, box_before: DMat4, within: DVec2) -> Vec<Expected> {
     let parts = parts();
     let box_faces = 1..7;
     let (clip_now, clip_before) = (clip(now), clip(before));
@@ -115,10 +131,11 @@ fn expected(
             if hit.map(|h| h.polygon) != at_sample.map(|h| h.polygon) {
                 continue;
             }
-            let (here, there) = match hit {
+            let (here, there, depths) = match hit {
                 None => {
                     let d = ray(now, centre).extend(0.0);
-                    (pixel_of(clip_now, d), pixel_of(clip_before, d))
+                    let far = [FAR_AWAY; 2];
+                    (pixel_of(clip_now, d), pixel_of(clip_before, d), far)
                 }
                 Some(hit) => {
                     let p = hit.point.extend(1.0);
@@ -126,10 +143,15 @@ fn expected(
                         true => box_before * p,
                         false => p,
                     };
-                    (pixel_of(clip_now, p), pixel_of(clip_before, moved))
+                    let depths = [view_depth(now, p), view_depth(before, moved)];
+                    (pixel_of(clip_now, p), pixel_of(clip_before, moved), depths)
                 }
             };
-            checked.push(((x, y), here - there));
+            checked.push(Expected {
+                at: (x, y),
+                motion: here - there,
+                depths,
+            });
         }
     }
     checked
@@ -167,15 +189,28 @@ fn check(pipeline: PipelineFile, features: Features, moves: (&Camera, &Camera, D
     };
     let checked = expected(now, before, box_before, within);
     let mut worst = (0.0, (0, 0), DVec2::ZERO, DVec2::ZERO);
-    for &((x, y), want) in &checked {
-        let got = motion[(y * SIZE.0 + x) as usize];
-        let got = DVec2::new(f64::from(got[0]), f64::from(got[1]));
-        let error = (got - want).length();
+    let mut worst_depth = (0.0, (0, 0), [0.0; 2], [0.0; 2]);
+    for Expected {
+        at,
+        motion: want,
+        depths,
+    } in &checked
+    {
+        let texel = motion[(at.1 * SIZE.0 + at.0) as usize];
+        let got = DVec2::new(f64::from(texel[0]), f64::from(texel[1]));
+        let error = (got - *want).length();
         if error > worst.0 {
-            worst = (error, (x, y), got, want);
+            worst = (error, *at, got, *want);
+        }
+        let got_depths = [f64::from(texel[2]), f64::from(texel[3])];
+        for (got, want) in got_depths.iter().zip(depths) {
+            let error = (got / want - 1.0).abs();
+            if error > worst_depth.0 {
+                worst_depth = (error, *at, got_depths, *depths);
+            }
         }
     }
-    let moving = checked.iter().filter(|(_, m)| m.length() > 1.0).count();
+    let moving = checked.iter().filter(|e| e.motion.length() > 1.0).count();
     assert!(
         moving >= 15,
         "{pipeline}: only {moving} of {} pixels moved over a pixel: the test moves too little",
@@ -189,6 +224,13 @@ fn check(pipeline: PipelineFile, features: Features, moves: (&Camera, &Camera, D
     assert!(
         error <= TOLERANCE,
         "{pipeline} {features:?}: motion {got:?} at {at:?}, expected {want:?} ({error:.4} px off)"
+    );
+    let (error, at, got, want) = worst_depth;
+    println!("{pipeline} {features:?}: view depths now and before within {error:.5} of theirs");
+    assert!(
+        error <= DEPTH_TOLERANCE,
+        "{pipeline} {features:?}: view depths {got:?} (now, before) at {at:?}, expected \
+         {want:?} ({error:.5} of them off)"
     );
 }
 

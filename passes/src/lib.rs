@@ -78,6 +78,7 @@ mod kept;
 pub mod layers;
 mod passes;
 mod plugins;
+pub mod pose;
 mod shaders;
 pub mod shadows;
 pub mod variant;

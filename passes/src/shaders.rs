@@ -375,10 +375,13 @@ pub(crate) const MOTION_DEPTH_MESHES: &str = concat!(
 pub(crate) const MOTION_POSE: &str = include_str!("wgsl/motion_pose.wgsl");
 /// gbuffer.wgsl's `last_pose` from the deformation's replaced positions.
 pub(crate) const GBUFFER_LAST_POSE: &str = include_str!("wgsl/gbuffer_last_pose.wgsl");
+/// Needs a generated block after it: see [`crate::passes::taa::Taa`].
 pub(crate) const TAA: Source = Source {
     name: "taa.wgsl",
     parts: &[COMMON, include_str!("wgsl/taa.wgsl")],
 };
+/// taa.wgsl's `disoccluded` from a history of the motion texture.
+pub(crate) const TAA_DISOCCLUSION: &str = include_str!("wgsl/taa_disocclusion.wgsl");
 /// Points and lines, unlit, with the camera of scene.wgsl.
 pub(crate) const POINTS_LINES: Source = Source {
     name: "points_lines.wgsl",

@@ -26,6 +26,9 @@ const LAYERS: Layers<'_> = &[
     // depth rule, edge detection, the full-screen draw, the device helpers under
     // `common/gpu` (pipelines, bindings, input-pass state, scene draws), the WGSL.
     ("shared helpers", &["common", "shaders"]),
+    // What tools ask of a plan through the shared helpers' slot names: whether it moves
+    // a deformed scene's G-buffer points without their pose offset.
+    ("plan queries", &["pose"]),
     // One module per pass: parameters, slots, `Plugin::setup` and its recording.
     ("passes", &["passes"]),
     // The plugins by name: what graph files and `register` see.

@@ -6,9 +6,11 @@
 //! the scene, the pipeline and its view, then the device, the compile for that device,
 //! the frame, the readback and the PNG.
 
+mod color_bytes;
 pub(super) mod error;
 mod layers;
 pub(super) mod output;
+mod pose_offset;
 mod progress;
 mod saturation;
 mod sequence;
@@ -127,6 +129,12 @@ fn render(args: &RenderArgs) -> Result<(), RenderError> {
         for warning in warnings {
             progress.note(warning);
         }
+    }
+    // Likewise a deformed scene's pose offset, in any view that moves its points.
+    if let Some(warning) =
+        pose_offset::unposed(prepared.plan(), prepared.loaded(), &args.frame.pipeline)
+    {
+        progress.note(warning);
     }
 
     // And glTF points and lines: only a `points_lines` pass draws them.

@@ -17,7 +17,11 @@
 //! The motion is this frame's position minus the previous frame's, in pixels (x right, y
 //! down), both without the jitter a temporal filter gives the camera, so a still scene
 //! has none whatever the jitter; the previous position of pixel centre `c` is `c -
-//! motion`. A compute pass, an invocation per pixel:
+//! motion`. Blue holds the surface's view depth (65504, the largest half float, where
+//! nothing was drawn), alpha the view depth the same point had in the previous frame: a
+//! temporal filter keeping this texture's history finds there, at `c - motion`, what the
+//! previous frame showed, and a nearer surface means this point was hidden then (`taa`).
+//! A compute pass, an invocation per pixel:
 //! - from a visibility buffer (`ids` or `samples`), the triangle of the pixel's sample 0
 //!   is met by the ray through the pixel's centre, and the object-space point there is
 //!   taken through its mesh's transform and the camera of each frame: a moving object's
@@ -238,7 +242,7 @@ mod gpu {
 
     use std::sync::Arc;
 
-    use glam::{DMat4, Mat4};
+    use glam::{DMat4, DVec4, Mat4};
 
     use super::{MotionDispatch, Surfaces};
     use crate::common::depth::far_depth;
@@ -258,8 +262,9 @@ mod gpu {
 
     /// Bytes of one matrix.
     const MATRIX: u64 = 64;
-    /// Bytes of `Motion`'s header: two matrices and `deformed`.
-    const HEADER: u64 = 2 * MATRIX + 16;
+    /// Bytes of `Motion`'s header: two matrices, `deformed`, `depth_before` and
+    /// `w_before`.
+    const HEADER: u64 = 2 * MATRIX + 3 * 16;
 
     #[derive(Clone, PartialEq)]
     pub(crate) struct Key {
@@ -366,6 +371,8 @@ mod gpu {
             let mut bytes = Vec::with_capacity(HEADER as usize + 64 * matrices.len());
             bytes.extend_from_slice(bytemuck::cast_slice(&matrices[..2]));
             bytes.extend_from_slice(bytemuck::cast_slice(&deformed));
+            let depth_rows = depth_before(&previous.0, size, convention);
+            bytes.extend_from_slice(bytemuck::cast_slice(&depth_rows));
             bytes.extend_from_slice(bytemuck::cast_slice(&matrices[2..]));
             resources.queue.write_buffer(&state.matrices, 0, &bytes);
             let key = Key {
@@ -409,6 +416,23 @@ mod gpu {
             pass.dispatch_workgroups(out.width.div_ceil(8), out.height.div_ceil(8), 1);
             Ok(())
         }
+    }
+
+    /// motion.wgsl's `depth_before` and `w_before`: the rows of the inverse of
+    /// `previous`'s clip matrix (for camera-relative points) whose products with a point
+    /// in its clip space divide to the point's view depth along `previous`'s forward, in
+    /// f64 as [`matrices`] are.
+    fn depth_before(
+        previous: &Camera,
+        size: (u32, u32),
+        convention: DepthConvention,
+    ) -> [[f32; 4]; 2] {
+        let back = view_projection(previous, size, convention)
+            .as_dmat4()
+            .inverse()
+            .transpose();
+        let forward = previous.forward().extend(0.0);
+        [back * forward, back * DVec4::W].map(|row| row.as_vec4().to_array())
     }
 
     /// What the per-mesh matrices of motion.wgsl's `Motion` take points from.

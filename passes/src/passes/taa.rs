@@ -14,6 +14,7 @@
 //!      "hdr": "resolved",             // rgba16float, 1 sample: this frame, resolved
 //!      "motion": "motion",            // motion_vectors' output
 //!      "history": "taa_prev",         // History(of: "taa"): this pass's last output
+//!      "motion_history": "motion_prev", // History(of: "motion"), optional
 //!  },
 //!  outputs: { "resolved": "taa" })    // rgba16float, 1 sample: what tone mapping reads
 //! ```
@@ -36,6 +37,19 @@
 //! reprojected by is the front-most surface's of its 3 x 3 neighbourhood (by the view
 //! depth `motion_vectors` keeps in the motion's blue), so the pixels about a moving
 //! silhouette, whose centres may see the surface behind, follow the edge.
+//!
+//! Where the file gives `motion_history`, the previous frame's motion, the history is
+//! rejected where it shows a surface that hid the pixel's point (a moving object
+//! uncovering what is behind), which the neighbourhood's clamp lets through wherever
+//! this frame's neighbourhood spans a wide box (a shaded or textured surface): of the
+//! texels the reprojected point's bilinear footprint weighs, those whose surface was
+//! more than 2% (plus the surface's slope over a pixel) nearer than the point was then
+//! (the motion's alpha) and moved more than 2 pixels apart from it; the frame weighs at
+//! least their share, all of it where the footprint lies wholly on the hiding surface
+//! (wgsl/taa_disocclusion.wgsl). Its cost is the motion's history (one more rgba16float
+//! texture, 8 bytes a pixel, and the motion kept apart from transient memory) and four
+//! texel loads a pixel; no pass or target written is added. Without it, the clamp alone
+//! deals with uncovered surfaces.
 //!
 //! This frame's pixel is read where the output pixel's centre lies in the jittered image
 //! (the jitter undone, through a Catmull-Rom filter): blended as drawn, a sample offset by
@@ -61,6 +75,12 @@ use crate::common::textures::{self, Input, Texels, Want};
 use crate::shaders;
 
 pub struct Taa(pub(crate) Shared);
+
+/// taa.wgsl's `hidden_share` where the pass is given no history of the motion.
+const NO_DISOCCLUSION: &str = "// Generated: no history of the motion is read.\n\
+    fn hidden_share(previous: vec2<f32>, depth_before: f32, slope: f32, motion: vec2<f32>) \
+    -> f32 {\n\
+    \x20   return 0.0;\n}\n";
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -90,7 +110,8 @@ pub(crate) struct TaaDispatch {
     history_weight: f32,
     motion_weight: f32,
     history: TextureHandle,
-    /// Group 1's textures, the output at binding 7.
+    /// Group 1's textures (the motion's history at binding 4 where given), the output
+    /// at binding 7.
     inputs: Vec<Input>,
     target: TextureHandle,
 }
@@ -140,17 +161,31 @@ impl Plugin for Taa {
             2,
         )?;
         history.texels = Texels::Filtered { sampler: 3 };
+        let mut inputs = vec![current, motion, history];
+        let disocclusion = match slots.kind("motion_history").is_some() {
+            true => {
+                let want = one("the motion's history (History(of: ..) of input \"motion\")");
+                let (motion_history, _) =
+                    textures::sampled(slots, pass, "motion_history", want, 4)?;
+                inputs.push(motion_history);
+                shaders::TAA_DISOCCLUSION
+            }
+            false => NO_DISOCCLUSION,
+        };
         let want = one("the anti-aliased image");
         let (target, _) = textures::output(slots, pass, "resolved", want, |pass, h, _| {
             pass.storage_write(h)
         })?;
-        let stored = Input {
+        inputs.push(Input {
             binding: 7,
             texture: target,
             aspect: Aspect::All,
             texels: Texels::Store,
-        };
-        let source = shaders::TAA.compose(1)?.source().to_owned();
+        });
+        let source = shaders::TAA
+            .compose_with(1, disocclusion)?
+            .source()
+            .to_owned();
         #[cfg(feature = "gpu")]
         self.0
             .scenes
@@ -160,7 +195,7 @@ impl Plugin for Taa {
             history_weight: params.history_weight,
             motion_weight: params.motion_weight,
             history: history.texture,
-            inputs: vec![current, motion, history, stored],
+            inputs,
             target,
         };
         self.0.record(pass, dispatch);

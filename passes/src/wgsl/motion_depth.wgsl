@@ -3,16 +3,17 @@
 // block after this one defines: motion_still.wgsl (it stays put in the world, so only the
 // camera moves it) or, where a G-buffer records each sample's mesh, motion_meshes.wgsl
 // (it moves with its mesh). Where nothing was drawn, the direction of the ray. The motion
-// in x and y, the point's view depth in z.
+// in x and y, the point's view depth in z, its previous one in w.
 
 // The point is unprojected where sample 0 lies, whose depth it is: at the pixel's
 // centre, a slope's depth would put it off the surface.
-fn pixel_motion(pixel: vec2<i32>) -> vec3<f32> {
+fn pixel_motion(pixel: vec2<i32>) -> vec4<f32> {
     let at = vec2<f32>(pixel) + SAMPLE_POSITIONS[0];
     let depth = sample_depth_at(pixel, 0u);
     if depth == FAR_DEPTH {
-        return vec3<f32>(static_motion(vec4<f32>(ray_direction(at), 0.0)), FAR_AWAY);
+        return sky_motion(at);
     }
     let p = unproject(at, depth);
-    return vec3<f32>(point_motion(pixel, vec4<f32>(p, 1.0)), view_depth(p));
+    let m = point_motion(pixel, vec4<f32>(p, 1.0));
+    return vec4<f32>(m.xy, view_depth(p), m.z);
 }

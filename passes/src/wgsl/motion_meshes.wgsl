@@ -9,7 +9,7 @@
 
 @group(1) @binding(1) var mesh_tex: GTexU;
 
-fn point_motion(pixel: vec2<i32>, p: vec4<f32>) -> vec2<f32> {
+fn point_motion(pixel: vec2<i32>, p: vec4<f32>) -> vec3<f32> {
     let texel = textureLoad(mesh_tex, pixel, 0);
     let mesh = texel.r | (texel.g << 16u);
     if mesh == 0u {
@@ -17,5 +17,5 @@ fn point_motion(pixel: vec2<i32>, p: vec4<f32>) -> vec2<f32> {
     }
     let m = mesh - 1u;
     let before = p + vec4<f32>(last_pose_offset(pixel), 0.0);
-    return to_pixel(motion.objects[2u * m] * p) - to_pixel(motion.objects[2u * m + 1u] * before);
+    return moved(motion.objects[2u * m] * p, motion.objects[2u * m + 1u] * before);
 }

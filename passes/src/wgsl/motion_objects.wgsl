@@ -4,8 +4,9 @@
 // that its mesh's previous transform takes to where it was (from where the triangle's
 // vertices were, where a deformation moved them). Where nothing was drawn, the
 // direction of the ray, which only the camera's turn moves. The motion in x and y, the
-// view depth of the hit in z. Composed after motion.wgsl,
-// geometry.wgsl, plane_hit.wgsl and the visibility buffer's reader.
+// view depth of the hit in z, and in w the point's view depth in the previous frame.
+// Composed after motion.wgsl, geometry.wgsl, plane_hit.wgsl and the visibility buffer's
+// reader.
 
 // The previous positions (3 f32 each) of the scene's vertices Motion.deformed.x.., which
 // the deformation replaced this frame (gpu_scene/deform.rs); read only.
@@ -23,11 +24,11 @@ fn previous_position(index: u32, mesh: MeshData, now: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(replaced[at], replaced[at + 1u], replaced[at + 2u]);
 }
 
-fn pixel_motion(pixel: vec2<i32>) -> vec3<f32> {
+fn pixel_motion(pixel: vec2<i32>) -> vec4<f32> {
     let at = vec2<f32>(pixel) + 0.5;
     let id = sample_id(pixel, 0u);
     if id == 0u {
-        return vec3<f32>(static_motion(vec4<f32>(ray_direction(at), 0.0)), FAR_AWAY);
+        return sky_motion(at);
     }
     let triangle = id - 1u;
     let m = mesh_of_triangle(triangle);
@@ -45,6 +46,6 @@ fn pixel_motion(pixel: vec2<i32>) -> vec3<f32> {
     let q1 = previous_position(3u * triangle + 1u, mesh, o1);
     let q2 = previous_position(3u * triangle + 2u, mesh, o2);
     let before = vec4<f32>(b.x * q0 + b.y * q1 + b.z * q2, 1.0);
-    let moved = to_pixel(motion.objects[2u * m] * object) - to_pixel(motion.objects[2u * m + 1u] * before);
-    return vec3<f32>(moved, view_depth(hit.origin + hit.ray * hit.along));
+    let went = moved(motion.objects[2u * m] * object, motion.objects[2u * m + 1u] * before);
+    return vec4<f32>(went.xy, view_depth(hit.origin + hit.ray * hit.along), went.z);
 }

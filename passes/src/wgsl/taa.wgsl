@@ -14,12 +14,21 @@
 // motion is the front-most surface's of the 3 x 3 neighbourhood (the least view depth,
 // the motion texture's blue), so a silhouette's pixels, whose centre may see the surface
 // behind, follow the edge that moves over them. Where the previous position is off screen
-// the frame is taken alone. This frame's own pixel is read where the output pixel's centre
+// the frame is taken alone; where the previous frame showed there a surface that moved
+// across this pixel's point and hid it, the frame weighs at least the share of the
+// history that shows it (`hidden_share`: the generated block after this file defines
+// it, from a history of the motion, taa_disocclusion.wgsl, or 0 where the pass has
+// none): that history shows what hid this pixel's surface, which the box of a shaded or
+// textured surface's neighbourhood is too wide to clamp away. This frame's own pixel is read where the output pixel's centre
 // lies in it (the camera's jitter moved the frame's image by `taa.jitter` pixels) through
 // a Catmull-Rom filter: blended as it was drawn, the jittered sample would displace a
 // moving image by the weighted mean of the last few frames' jitters (a still image's
 // average over the cycle is the pixel's box, but in motion the few frames that weigh most
-// sit off its centre). Composed after common.wgsl.
+// sit off its centre). Composed after common.wgsl, before the block defining
+// `hidden_share(previous, depth_before, slope, motion)`: the share of the history at
+// pixel coordinate `previous` that shows a surface nearer than `depth_before` (the view
+// depth the pixel's point had in the previous frame, on a surface whose view depth
+// changes by `slope` a pixel) and moving otherwise than `motion`.
 
 @group(1) @binding(0) var current_tex: texture_2d<f32>;
 @group(1) @binding(1) var motion_tex: texture_2d<f32>;
@@ -134,12 +143,15 @@ fn cs_taa(@builtin(global_invocation_id) id: vec3<u32>) {
     var high = current;
     var sum = vec4<f32>(0.0);
     var squares = vec4<f32>(0.0);
-    // x, y: motion in pixels; z: view depth.
-    var front = textureLoad(motion_tex, pixel, 0).xyz;
+    // x, y: motion in pixels; z: view depth; w: the point's view depth a frame before.
+    var front = textureLoad(motion_tex, pixel, 0);
+    // The neighbourhood's view depths, row by row.
+    var depths: array<f32, 9>;
     for (var dy = -1; dy <= 1; dy++) {
         for (var dx = -1; dx <= 1; dx++) {
             let at = clamp(pixel + vec2<i32>(dx, dy), vec2<i32>(0), last);
-            let m = textureLoad(motion_tex, at, 0).xyz;
+            let m = textureLoad(motion_tex, at, 0);
+            depths[(dy + 1) * 3 + dx + 1] = m.z;
             if m.z < front.z {
                 front = m;
             }
@@ -159,9 +171,15 @@ fn cs_taa(@builtin(global_invocation_id) id: vec3<u32>) {
     let motion = front.xy;
     let previous = (vec2<f32>(pixel) + 0.5 - motion) / vec2<f32>(size);
     var weight = max(taa.current_weight, min(length(motion) * taa.motion_weight, 1.0));
-    if any(previous < vec2<f32>(0.0)) || any(previous > vec2<f32>(1.0)) {
+    // The pixel's surface's change of view depth per pixel, along x plus along y: the
+    // lesser step to either side, so that a silhouette beside the pixel adds nothing.
+    let d = depths[4];
+    let slope = min(abs(depths[5] - d), abs(d - depths[3])) + min(abs(depths[7] - d), abs(d - depths[1]));
+    let off_screen = any(previous < vec2<f32>(0.0)) || any(previous > vec2<f32>(1.0));
+    if off_screen {
         weight = 1.0;
     }
+    weight = max(weight, hidden_share(previous * vec2<f32>(size), front.w, slope, motion));
     let h = history_catmull_rom(previous, vec2<f32>(size));
     let history = clamp(vec4<f32>(to_ycocg(h.rgb), h.a), low, high);
     let blended = mix(history, current_unjittered(pixel), weight);

@@ -15,6 +15,8 @@ use rgraph_core::Plan;
 use rgraph_passes::layers::{self, Layer};
 use rgraph_scene::{AlphaMode, Scene};
 
+use super::color_bytes;
+
 /// One warning per extension whose layer opaque meshes of `scene` use and some pass of
 /// `plan` (compiled from `loaded`, the file `pipeline`) lights from a G-buffer without:
 /// the first material using it by name, how many others do, the first such pass, and
@@ -43,16 +45,7 @@ pub(super) fn unshaded(
         }
     }
     // The shipped files store the layers only where the device allows it.
-    let device = match loaded.graph.declared_features().contains(DEVICE_CONDITION)
-        && !plan.features.iter().any(|f| f == DEVICE_CONDITION)
-    {
-        true => format!(
-            " (it holds the layers only where the device's render passes allow 64 bytes per \
-             sample of colour targets, `{DEVICE_CONDITION}`, which {} does not)",
-            plan.profile
-        ),
-        false => String::new(),
-    };
+    let device = color_bytes::lacking(plan, loaded, "the layers");
     users
         .into_iter()
         .filter_map(|(extension, materials)| {
@@ -73,6 +66,3 @@ pub(super) fn unshaded(
         })
         .collect()
 }
-
-/// The device condition under which the shipped pipelines store the layers.
-const DEVICE_CONDITION: &str = "color_bytes_64";
