@@ -84,6 +84,11 @@
 #               alone, then clusters of tiny triangles a triangle an invocation first) in
 #               the default pipeline on the same scenes, without the reference, into micro
 #               (not in the default set)
+#   targets     issue 38's named frames in the default pipeline without shadow maps
+#               (`--shadows off`, as the issue measured them), without the reference: the
+#               10M- and 100M-triangle terrains, 99,856 meshes (builtin:city?blocks=316)
+#               and 100M instanced triangles (builtin:rocks?copies=25202), into targets
+#               (not in the default set)
 #   particles   seed 001's tables on builtin:smoke, the three particle pipelines
 #               (full, low and mixed resolution), FLIP against particles_full_res:
 #               particles-scaleS (Table 23-1 at off-screen scales 2x2 and 4x4, the depth
@@ -278,6 +283,13 @@ for part in $parts; do
         --no-reference --width "$width" --height "$height" "${common[@]}" \
         --out-dir "$out/micro" || status=$?
       ;;
+    targets)
+      "$bin" bench --pipeline pipelines/visibility_msaa_4x.ron --scene 'builtin:terrain?cells=2236' \
+        --scene 'builtin:terrain?cells=7071' --scene 'builtin:city?blocks=316' \
+        --scene 'builtin:rocks?copies=25202' --shadows off \
+        --no-reference --width "$width" --height "$height" "${common[@]}" \
+        --out-dir "$out/targets" || status=$?
+      ;;
     particles)
       particles=(--pipeline pipelines/particles_full_res.ron --pipeline pipelines/particles_low_res.ron
                  --pipeline pipelines/particles_mixed_res.ron)
@@ -303,7 +315,7 @@ for part in $parts; do
         || status=$?
       ;;
     *)
-      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, scale, scale-SWEEP, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, shadows, occlusion, micro, particles)" >&2
+      echo "bench-gpu: unknown part \"$part\" (main, main-dense, main-lights, default, lights, scale, scale-SWEEP, samples, resolution, specialise, gbuffer, every-4x, visibility, solo, variants, shadows, occlusion, micro, targets, particles)" >&2
       status=2
       ;;
   esac
