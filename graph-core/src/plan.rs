@@ -116,6 +116,17 @@ impl PlannedPass {
     pub fn drops(&self, access: &crate::access::Access) -> bool {
         self.dropped_reads.iter().any(|d| d.covers(access))
     }
+
+    /// Whether the pass reads some version of `resource` in this plan (an optional read
+    /// the plan drops is not one).
+    pub fn reads_resource(&self, resource: ResourceId) -> bool {
+        self.reads.iter().any(|&(r, _)| r == resource)
+    }
+
+    /// Whether the pass writes some version of `resource` in this plan.
+    pub fn writes_resource(&self, resource: ResourceId) -> bool {
+        self.writes.iter().any(|&(r, _)| r == resource)
+    }
 }
 
 /// How an attachment aspect begins.

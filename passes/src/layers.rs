@@ -92,8 +92,7 @@ pub fn unshaded(plan: &Plan, loaded: &LoadedGraph) -> Vec<Unshaded> {
             if prepass && layer == Layer::Specular {
                 continue;
             }
-            let read =
-                slot(layer.slot()).is_some_and(|h| pass.reads.iter().any(|&(r, _)| r == h.id()));
+            let read = slot(layer.slot()).is_some_and(|h| pass.reads_resource(h.id()));
             if !read {
                 left_out.push(Unshaded {
                     layer,

@@ -30,7 +30,7 @@ pub fn unposed<'p>(plan: &'p Plan, loaded: &LoadedGraph) -> Option<&'p str> {
         .find_map(|(pass, name)| {
             let motion = loaded.plugin(name) == Some("motion_vectors");
             let slot = loaded.slot(name, SLOT)?;
-            let read = pass.reads.iter().any(|&(r, _)| r == slot.id());
+            let read = pass.reads_resource(slot.id());
             (motion && !read).then_some(name)
         })
 }

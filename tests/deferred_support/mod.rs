@@ -354,7 +354,7 @@ impl Frame {
         self.image_from((&gpu.device, &gpu.queue), name)
     }
 
-    /// An exported RGBA8 texture of a frame on an engine's device ([`Render::run_on`]).
+    /// An exported RGBA8 texture of a frame on an engine's device ([`Render::try_run_on`]).
     pub fn image_from(&self, (device, queue): (&wgpu::Device, &wgpu::Queue), name: &str) -> Image {
         let texture = self.texture(name);
         let pixels = read_rgba8(device, queue, texture)

@@ -344,8 +344,8 @@ fn resource_row(plan: &Plan, r: &PlannedResource, columns: usize, diff: Option<&
                                 }
                             }
                             @for (i, pass) in plan.passes.iter().enumerate() {
-                                @let reads = pass.reads.iter().any(|(id, _)| *id == r.id);
-                                @let writes = pass.writes.iter().any(|(id, _)| *id == r.id);
+                                @let reads = pass.reads_resource(r.id);
+                                @let writes = pass.writes_resource(r.id);
                                 @if reads || writes {
                                     span.acc style=(format!("grid-column:{}", i + 1)) {
                                         span aria-hidden="true" {
