@@ -91,6 +91,8 @@ mod post_fxaa;
 mod post_ssao;
 mod shadows;
 mod smooth_surfaces;
+// Resident memory from /proc, glibc's live heap and its malloc arenas: Linux and glibc only.
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
 mod soak;
 mod specialise_analysis;
 mod specialise_depth;

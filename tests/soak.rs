@@ -1,32 +1,59 @@
-//! Long runs hold their memory. Every shipped pipeline runs 200 frames after 100 of
-//! settling with the camera orbiting, and the engine example and `rgraph render --frames`
-//! run 1,000 with moving inputs: after the first frame the device objects alive and the
-//! device memory they hold never change, and resident memory grows by less than 1 MiB.
-//! Issue 44's leak (lavapipe compiled the light shaders again at every bind and kept
-//! each copy: 1.2 MB a frame in the tiled light pass, 2.6 MB in the fragment light passes)
-//! fails it by hundreds of MiB.
+//! Long runs hold their memory. Every shipped pipeline and the engine example run 80
+//! frames after 20 of settling, `rgraph render --frames` 1,000, the camera orbiting or the
+//! example's inputs moving: after the first frame the device objects alive and the
+//! device memory they hold never change, resident memory grows by less than 2 MiB, and in
+//! this test binary's own runs the live heap by less than 64 KiB. Issue 44's leak
+//! (lavapipe compiled the light shaders again at every bind and kept each copy: 1.2 MB a
+//! frame in the tiled light pass, 2.6 MB in the fragment light passes) fails it by tens
+//! of MiB.
 //!
-//! Each run is a process of its own, so its resident memory is its own and no other test
-//! moves it: `rgraph render`, or this test binary run again (`soak::child`) for the
-//! engine example and for the shipped pipelines, which run one after the other in two
-//! such processes, each measured over its own frames (a pipeline's device objects are
-//! gone before the next one starts). Frames are 8x8 (16x16 for the engine example's
-//! scene) on a scene of four triangles and three lights, which keeps them cheap on
-//! lavapipe.
+//! Each run is a process of its own, so its memory is its own and no other test moves
+//! it: `rgraph render`, or this test binary run again (`soak::child`) for the engine
+//! example and for the shipped pipelines, which run one after the other in two such
+//! processes, each measured over its own frames (a pipeline's device objects are gone
+//! before the next one starts). Frames are 8x8 (16x16 for the engine example's scene) on
+//! a scene of four triangles and three lights, which keeps them cheap on lavapipe.
 //!
-//! Settling takes 100 frames because glibc's malloc arenas warm up that long: the arenas
-//! of lavapipe's rasteriser and queue threads grow by up to 8 MiB over the first 20 to 100
-//! frames of `particles_low_res` and `particles_mixed_res`, then hold for good (measured
-//! on 5 December: /proc/PID/smaps puts the growth in two 64 MiB-aligned anonymous
-//! mappings, heaptrack shows live heap flat over those frames, and with
-//! `MALLOC_ARENA_MAX=1` the same run is flat from frame 1). That is where glibc places the
-//! driver's allocations, not memory the program keeps; a leak grows every frame and still
-//! shows over the 200 after.
+//! The processes run with `MALLOC_ARENA_MAX=1`. With glibc's default, each of lavapipe's
+//! rasteriser and queue threads gets a malloc arena of its own, and those arenas grow by
+//! up to 8 MiB over the first 20 to 100 frames of `particles_low_res` and
+//! `particles_mixed_res`, then hold for good (measured on 5 December: /proc/PID/smaps puts
+//! the growth in two 64 MiB-aligned anonymous mappings, heaptrack shows live heap flat over
+//! those frames): that is where glibc places the driver's allocations, not memory the
+//! program keeps, and it took 100 settling frames before 200 measured ones. In one arena
+//! the lowest resident memory of every 10 frames is flat from frame 1 (8 December: every
+//! shipped pipeline over 150 frames and the engine example over 300; the most any moved
+//! after frame 1 was `msaa_4x_taa`'s 24 KiB between frames 10 and 20), so 20 frames
+//! settle it.
+//!
+//! Resident memory is slow to show a small leak: the leaked blocks first fill the free
+//! space the arena already holds resident, megabytes on lavapipe. A leak of 16 KiB a frame
+//! (a `vec![1u8; 16 * 1024]` forgotten after each frame) raised the resident floor of only
+//! 3 of the 30 pipelines by 1 MiB or more over their 80 frames; and one pipeline's floor
+//! rose 0.94 MiB in a run without a leak, hence [`GROWTH_LIMIT`]'s 2 MiB. So the child
+//! also reports the live heap (glibc's `mallinfo2`: [`live_heap_bytes`]), which counts a
+//! leaked block at once: its lowest of 10 frames moved by at most 6 KiB after frame 20 in
+//! any pipeline or the engine example, while a leak of 2 KiB a frame moved it by 0.14 MiB
+//! in every pipeline and in the engine example. `rgraph render` tells resident memory
+//! only, hence its 1,000 frames: 8 KiB a frame fails it (by 4.7 MiB), 4 KiB does not.
+//! Resident memory is still checked in the child: a leak that bypasses malloc (the
+//! driver's own mappings, its JIT code) shows only there. The resident checks before this
+//! (default arenas, 1 MiB over 200 measured frames) caught the 16 KiB leak in 8 of the 30
+//! pipelines, not in the engine example over 1,000 frames, and in `rgraph render` by
+//! 10.5 MiB.
+//!
+//! What that bought (8 December, `time cargo test --test integration -- soak::
+//! --test-threads=1` on the 2-core machine, nothing else running): 238.6 s before (each
+//! shipped pipeline 100 settling frames and 200 measured, the engine example and `rgraph
+//! render` 1,000 frames, the default arenas, resident memory only), 79.9 s after (the
+//! shipped pipelines about 45 s, `rgraph render` 23 s, the engine example 10 s); all three
+//! at once (`--test-threads=3`) took 62.9 s and held.
 //!
 //! `RGRAPH_SOAK_FRAMES=N` runs the engine example and `rgraph render` for N frames instead
-//! of 1,000 (the long run: `RGRAPH_SOAK_FRAMES=100000 cargo test --release --test
-//! integration soak::`).
+//! (the long run: `RGRAPH_SOAK_FRAMES=100000 cargo test --release --test integration
+//! soak::`).
 
+use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
@@ -43,18 +70,28 @@ use crate::deferred_support::gpu;
 use crate::engine_integration::animate;
 use crate::gltf_writer::{temp_dir, Gltf};
 
-/// Frames every shipped pipeline runs: 100 to settle (resident memory may still grow while
-/// the driver's threads' malloc arenas warm up), then the 200 whose growth is measured.
-/// The device objects are compared exactly, so a leaked object fails at any length; the
-/// resident memory's 1 MiB over 200 frames catches 5 KiB a frame, issue 44's 1.2 MB a
-/// frame by some 240 MiB. (500 and 2,000 frames made this module a fifth of the suite's
-/// test time.)
-const SETTLE: usize = 100;
-const PIPELINE_FRAMES: usize = SETTLE + 200;
-/// The soak's frames without `RGRAPH_SOAK_FRAMES`.
-const SOAK_FRAMES: usize = 1000;
-/// The most resident memory may grow over a run's measured frames.
-const GROWTH_LIMIT: f64 = 1.0 * MIB;
+/// Frames every shipped pipeline and the engine example run: 20 to settle (frame 0 builds
+/// everything; the one arena's lowest may still move by some KiB up to frame 20), then
+/// the 80 whose growth is measured. The device objects are compared exactly, so a leaked
+/// object fails at any length. Memory is compared between the lowest of frames 20 to 29,
+/// 55 to 64 and 90 to 99 (see [`holds`]), 35 frames apart: [`HEAP_GROWTH_LIMIT`] catches
+/// a leak of 1 KiB a frame, issue 44's 1.2 MB a frame by some 80 MiB. (300 frames for each
+/// pipeline, 100 of them settling, and 1,000 for the engine example made this module a
+/// fifth of the suite's test time.)
+const SETTLE: usize = 20;
+const CHILD_FRAMES: usize = SETTLE + 80;
+/// `rgraph render`'s frames without `RGRAPH_SOAK_FRAMES`: only its resident memory tells
+/// a leak (see the module's doc), and over 1,000 frames [`GROWTH_LIMIT`] catches 8 KiB a
+/// frame.
+const RENDER_FRAMES: usize = 1000;
+/// The most resident memory may grow over a run's measured frames: twice the most seen
+/// without a leak (`deferred_msaa_4x_ssao`'s floor rose 0.94 MiB in one run, its live heap
+/// flat: where the one arena placed a block).
+const GROWTH_LIMIT: f64 = 2.0 * MIB;
+/// The most the live heap ([`live_heap_bytes`]) may grow in each half of a run's measured
+/// frames: 8 times the most a floor crept over 80 frames without a leak
+/// (`visibility_msaa_4x`'s 8 KiB).
+const HEAP_GROWTH_LIMIT: f64 = 32.0 * 1024.0;
 const MIB: f64 = 1024.0 * 1024.0;
 
 /// What a process held after one frame.
@@ -66,10 +103,13 @@ struct Sample {
     /// bytes in tenths of a MiB).
     objects: i64,
     device_bytes: f64,
+    /// The heap's live bytes, where the process tells ([`live_heap_bytes`]; `rgraph
+    /// render` does not).
+    heap: Option<f64>,
 }
 
 #[test]
-fn every_shipped_pipeline_holds_its_memory_over_200_frames() {
+fn every_shipped_pipeline_holds_its_memory() {
     let scene = tiny_scene("soak-pipelines");
     let mut files: Vec<String> = std::fs::read_dir(repo().join("pipelines"))
         .expect("pipelines/ lists")
@@ -90,7 +130,7 @@ fn every_shipped_pipeline_holds_its_memory_over_200_frames() {
             .map(|half| {
                 let run = format!("pipelines:{}", half.join(","));
                 let scene = &scene;
-                threads.spawn(move || run_child(&run, PIPELINE_FRAMES, Some(scene)))
+                threads.spawn(move || run_child(&run, CHILD_FRAMES, Some(scene)))
             })
             .collect();
         started
@@ -113,7 +153,7 @@ fn every_shipped_pipeline_holds_its_memory_over_200_frames() {
         "{} of {} pipelines did not hold their memory over {} frames:\n{}",
         failures.len(),
         files.len(),
-        PIPELINE_FRAMES - SETTLE,
+        CHILD_FRAMES - SETTLE,
         failures.join("\n")
     );
 }
@@ -122,7 +162,7 @@ fn every_shipped_pipeline_holds_its_memory_over_200_frames() {
 fn rgraph_render_frames_soak_holds_its_memory() {
     let scene = tiny_scene("soak-render");
     let dir = scene.parent().expect("the scene's folder").to_path_buf();
-    let frames = soak_frames();
+    let frames = soak_frames(RENDER_FRAMES);
     let samples = render_frames("deferred_msaa_4x_tiled.ron", &scene, &dir, frames);
     if let Err(why) = holds(&samples, SETTLE) {
         panic!("rgraph render --frames {frames}: {why}");
@@ -131,7 +171,7 @@ fn rgraph_render_frames_soak_holds_its_memory() {
 
 #[test]
 fn engine_example_soak_holds_its_memory() {
-    let frames = soak_frames();
+    let frames = soak_frames(CHILD_FRAMES);
     let samples = run_child("engine", frames, None).remove(0).1;
     if let Err(why) = holds(&samples, SETTLE) {
         panic!("the engine example over {frames} frames: {why}");
@@ -157,9 +197,10 @@ fn child() {
         let device = DeviceObjects::alive(&gpu.device);
         let resident = resident_bytes().expect("/proc/self/status tells resident memory");
         println!(
-            "SOAK {label} {index} {resident} {} {}",
+            "SOAK {label} {index} {resident} {} {} {}",
             device.objects(),
-            device.bytes()
+            device.bytes(),
+            live_heap_bytes()
         );
     };
     match run.split_once(':') {
@@ -255,12 +296,19 @@ fn run_pipeline(gpu: &Gpu, file: &str, scene: &Arc<Scene>, frames: u32, each: im
 /// Whether `samples` hold: device objects and their memory the same after every frame
 /// from the second on (a pass that builds a pipeline on first need, for a light volume
 /// the camera enters, would add one later: these scenes and camera paths need none after
-/// the first frame), and the lowest resident memory of the last tenth of the frames
-/// (50 at least) within [`GROWTH_LIMIT`] of the lowest of as many frames from `settle`
-/// on. Lowest, because on lavapipe a frame's resident memory moves by a few MiB with
-/// what the driver's threads hold at that moment, where a leak raises the floor.
+/// the first frame), and the floors of three windows of a tenth of the frames (10 at
+/// least: the first from `settle`, the last at the end, one halfway between) rising
+/// little: resident memory's by less than [`GROWTH_LIMIT`] from the first to the last,
+/// the live heap's (where told) by less than [`HEAP_GROWTH_LIMIT`] in either half. A
+/// floor is a window's lowest, because on lavapipe a frame's resident memory moves by up
+/// to 3 MiB, and its live heap by up to 8 MiB, with what the driver's threads hold at
+/// that moment, where a leak raises the floor. The heap's halves, because a leak raises
+/// it in both, where a queue or pool that grows once to a new high (`msaa_4x_taa`'s heap
+/// rose 130 KiB once, at frame 5 in one run and after frame 29 in another) raises it in
+/// one; resident memory shows a small leak only once the arena's free space is used up
+/// (see the module's doc), so it is held over the whole run.
 fn holds(samples: &[Sample], settle: usize) -> Result<(), String> {
-    let window = (samples.len() / 10).max(50);
+    let window = (samples.len() / 10).max(10);
     if samples.len() < settle + 2 * window {
         return Err(format!(
             "{} frames reported; expected at least {}",
@@ -279,20 +327,39 @@ fn holds(samples: &[Sample], settle: usize) -> Result<(), String> {
             samples[1].device_bytes / MIB
         ));
     }
-    let lowest = |range: &[Sample]| range.iter().map(|s| s.resident).fold(f64::MAX, f64::min);
-    let early = lowest(&samples[settle..settle + window]);
-    let late = lowest(&samples[samples.len() - window..]);
-    match late - early < GROWTH_LIMIT {
-        true => Ok(()),
-        false => Err(format!(
-            "resident memory grew by {:.1} MiB, from {:.1} MiB (lowest of frames {settle} to \
-             {}) to {:.1} MiB (lowest of the last {window})",
-            (late - early) / MIB,
-            early / MIB,
-            settle + window - 1,
-            late / MIB
-        )),
+    let starts = [
+        settle,
+        (settle + samples.len() - window) / 2,
+        samples.len() - window,
+    ];
+    let floors = |amount: fn(&Sample) -> Option<f64>| -> Option<[f64; 3]> {
+        let floor = |start: usize| {
+            (samples[start..start + window].iter().map(amount))
+                .try_fold(f64::MAX, |low, a| Some(low.min(a?)))
+        };
+        Some([floor(starts[0])?, floor(starts[1])?, floor(starts[2])?])
+    };
+    let tell = |what: &str, floors: [f64; 3]| {
+        let [first, half, last] = floors.map(|f| f / MIB);
+        let [from, mid, to] = starts;
+        format!(
+            "{what} grew by {:.2} MiB, then {:.2} MiB (lowest of {window} frames from frame \
+             {from}: {first:.2} MiB, from {mid}: {half:.2} MiB, from {to}: {last:.2} MiB)",
+            half - first,
+            last - half
+        )
+    };
+    if let Some(resident @ [first, _, last]) = floors(|s| Some(s.resident)) {
+        if last - first >= GROWTH_LIMIT {
+            return Err(tell("resident memory", resident));
+        }
     }
+    if let Some(heap @ [first, half, last]) = floors(|s| s.heap) {
+        if half - first >= HEAP_GROWTH_LIMIT && last - half >= HEAP_GROWTH_LIMIT {
+            return Err(tell("the live heap", heap));
+        }
+    }
+    Ok(())
 }
 
 /// `rgraph render --frames FRAMES` of `pipeline` (a file in `pipelines/`) on `scene`, the
@@ -302,7 +369,7 @@ fn render_frames(pipeline: &str, scene: &Path, dir: &Path, frames: usize) -> Vec
     let stem = pipeline.trim_end_matches(".ron");
     let frames_dir = dir.join(stem);
     std::fs::create_dir_all(&frames_dir).expect("a folder for the frames");
-    let output = Command::new(env!("CARGO_BIN_EXE_rgraph"))
+    let output = soak_process(env!("CARGO_BIN_EXE_rgraph"))
         .current_dir(repo())
         .args(["render", "--pipeline", &format!("pipelines/{pipeline}")])
         .args(["--scene", scene.to_str().expect("temp paths are UTF-8")])
@@ -340,13 +407,14 @@ fn frame_line(line: &str) -> Option<Sample> {
         resident: resident.parse::<f64>().ok()? * MIB,
         objects: objects.parse().ok()?,
         device_bytes: bytes.strip_suffix(" MiB")?.parse::<f64>().ok()? * MIB,
+        heap: None,
     })
 }
 
 /// Runs [`child`] in a process of its own for `run` over `frames` frames; its `SOAK`
 /// lines by label, in the order the labels first appear.
 fn run_child(run: &str, frames: usize, scene: Option<&Path>) -> Vec<(String, Vec<Sample>)> {
-    let mut command = Command::new(std::env::current_exe().expect("the test binary's path"));
+    let mut command = soak_process(std::env::current_exe().expect("the test binary's path"));
     command
         .args(["soak::child", "--exact", "--ignored", "--nocapture"])
         .args(["--test-threads", "1"])
@@ -378,6 +446,7 @@ fn run_child(run: &str, frames: usize, scene: Option<&Path>) -> Vec<(String, Vec
             resident: number(2) as f64,
             objects: number(3),
             device_bytes: number(4) as f64,
+            heap: Some(number(5) as f64),
         };
         let label = fields[0];
         match runs.iter_mut().find(|(l, _)| l == label) {
@@ -395,14 +464,35 @@ fn run_child(run: &str, frames: usize, scene: Option<&Path>) -> Vec<(String, Vec
     runs
 }
 
-fn soak_frames() -> usize {
+/// The bytes glibc's malloc has handed out and not had back, in every arena and in
+/// chunks of their own mappings (`mallinfo2`'s `uordblks` and `hblkhd`). Unlike resident
+/// memory it counts a leaked allocation at once: a leak first fills the free space the
+/// arena holds resident (megabytes on lavapipe), which resident memory shows only when
+/// it runs out.
+fn live_heap_bytes() -> usize {
+    // SAFETY: mallinfo2 only reads malloc's own counters, under its locks.
+    let info = unsafe { libc::mallinfo2() };
+    info.uordblks + info.hblkhd
+}
+
+/// A soak's process running `program`, in one malloc arena: see the module's doc.
+fn soak_process(program: impl AsRef<OsStr>) -> Command {
+    let mut command = Command::new(program);
+    command.env("MALLOC_ARENA_MAX", "1");
+    command
+}
+
+/// `RGRAPH_SOAK_FRAMES`, else `default`.
+fn soak_frames(default: usize) -> usize {
     match std::env::var("RGRAPH_SOAK_FRAMES") {
-        Ok(text) => {
-            text.parse().ok().filter(|&n| n >= 200).unwrap_or_else(|| {
-                panic!("RGRAPH_SOAK_FRAMES={text}: a frame count of 200 or more")
-            })
-        }
-        Err(_) => SOAK_FRAMES,
+        Ok(text) => text
+            .parse()
+            .ok()
+            .filter(|&n| n >= CHILD_FRAMES)
+            .unwrap_or_else(|| {
+                panic!("RGRAPH_SOAK_FRAMES={text}: a frame count of {CHILD_FRAMES} or more")
+            }),
+        Err(_) => default,
     }
 }
 
