@@ -124,9 +124,15 @@ fn rocks_share_one_geometry_and_check_their_limits_first() {
         "{over}"
     );
     for (spec, says) in [
-        ("builtin:rocks?copies=0", "at least 1 rock"),
-        ("builtin:rocks?detail=3", "at least 4 segments"),
-        ("builtin:rocks?copies=1048576", "from 0 to 1048575"),
+        (
+            "builtin:rocks?copies=0",
+            "`copies=0`: a whole number from 1 to 1048575",
+        ),
+        (
+            "builtin:rocks?detail=3",
+            "`detail=3`: a whole number from 4 to 2048",
+        ),
+        ("builtin:rocks?copies=1048576", "from 1 to 1048575"),
     ] {
         let error = Scene::load(spec).unwrap_err();
         assert!(error.to_string().contains(says), "{spec}: {error}");
@@ -428,11 +434,9 @@ fn smoke_parameters_out_of_range_are_errors_not_allocations() {
         "builtin:smoke: `count=1048577`: a whole number from 0 to 1048576 (total number of \
          particles, 7/8 smoke and 1/8 fire (default 4000, at most 1048576))"
     );
-    assert!(message("builtin:smoke?size=0").contains("`size=0`: a particle needs a positive size"));
-    assert!(message("builtin:smoke?size=10001").contains("`size=10001`"));
-    assert!(
-        message("builtin:smoke?extent=0").contains("`extent=0`: a particle needs a positive size")
-    );
+    assert!(message("builtin:smoke?size=0").contains("`size=0`: a whole number from 1 to 10000"));
+    assert!(message("builtin:smoke?size=10001").contains("`size=10001`: a whole number from 1"));
+    assert!(message("builtin:smoke?extent=0").contains("`extent=0`: a whole number from 1 to 1000"));
     assert!(
         message("builtin:smoke?speed=3").contains("this scene takes: count, size, seed, extent")
     );

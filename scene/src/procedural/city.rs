@@ -68,27 +68,23 @@ pub(super) const PARAMS: &[BuiltinParam] = &[
     BuiltinParam {
         key: "blocks",
         meaning: "blocks per side, one building each, each building its own mesh (default \
-                  32: 1,024 buildings; at least 1, at most 1023: 1,046,529 buildings and the \
+                  32: 1,024 buildings; at most 1023: 1,046,529 buildings and the \
                   ground, the most within the scene limit of 1,048,576 meshes)",
         default: 32,
+        min: 1,
         max: MAX_BLOCKS,
     },
     BuiltinParam {
         key: "seed",
         meaning: "PCG32 seed for the buildings (default 1, any u32)",
         default: 1,
+        min: 0,
         max: u32::MAX,
     },
 ];
 
 pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), SceneError> {
     let blocks = params.u32("blocks")?;
-    if blocks == 0 {
-        return Err(SceneError::BuiltinParameter {
-            scene: "city".to_owned(),
-            reason: format!("`blocks=0`: a city needs at least 1 block (1 to {MAX_BLOCKS})"),
-        });
-    }
     let mut rng = Pcg32::new(u64::from(params.u32("seed")?));
     add_ground(builder, "ground", 110.0, [0.2, 0.2, 0.22], 0.9);
     let materials = [

@@ -29,12 +29,14 @@ pub(super) const PARAMS: &[BuiltinParam] = &[
         key: "count",
         meaning: "total number of lights, 4/5 point and 1/5 spot (default 320, at most 65536)",
         default: 320,
+        min: 0,
         max: MAX_LIGHTS,
     },
     BuiltinParam {
         key: "seed",
         meaning: "PCG32 seed for light placement (default 1, any u32)",
         default: 1,
+        min: 0,
         max: u32::MAX,
     },
 ];

@@ -3,7 +3,7 @@
 use crate::SceneError;
 
 /// One parameter a built-in scene takes: a whole number with a default and a documented
-/// range, checked before the scene allocates anything.
+/// range, `min..=max`, checked before the scene allocates anything.
 pub struct BuiltinParam {
     /// The `key` of `?key=value`.
     pub key: &'static str,
@@ -11,7 +11,9 @@ pub struct BuiltinParam {
     pub meaning: &'static str,
     /// The value used when the spec leaves it out.
     pub default: u32,
-    /// The largest value accepted (the smallest is 0).
+    /// The smallest value accepted.
+    pub min: u32,
+    /// The largest value accepted.
     pub max: u32,
 }
 
@@ -64,7 +66,7 @@ impl<'a> Params<'a> {
     }
 
     /// The last value given for `key` (one of the scene's declared parameters), or its
-    /// default. Fails on anything but a whole number from 0 to the parameter's `max`.
+    /// default. Fails on anything but a whole number from the parameter's `min` to its `max`.
     pub fn u32(&self, key: &str) -> Result<u32, SceneError> {
         let spec = self
             .known
@@ -78,10 +80,10 @@ impl<'a> Params<'a> {
             scene: self.scene.to_owned(),
             reason: format!("`{key}={value}`: {reason}"),
         };
-        let range = format!("a whole number from 0 to {}", spec.max);
+        let range = format!("a whole number from {} to {}", spec.min, spec.max);
         // Parsed as u64 so a number just past u32 still gets the range, not "not a number".
         match value.parse::<u64>() {
-            Ok(v) if v <= u64::from(spec.max) => Ok(v as u32),
+            Ok(v) if (u64::from(spec.min)..=u64::from(spec.max)).contains(&v) => Ok(v as u32),
             Ok(_) => Err(error(format!("{range} ({})", spec.meaning))),
             Err(_) => Err(error(format!("expected {range}"))),
         }

@@ -45,23 +45,25 @@ pub(super) const PARAMS: &[BuiltinParam] = &[
     BuiltinParam {
         key: "copies",
         meaning: "copies of the rock, each its own mesh sharing its geometry (default 25; \
-                  at least 1, at most 1048575: with the ground, the scene limit of 1,048,576 \
-                  meshes)",
+                  at most 1048575: with the ground, the scene limit of 1,048,576 meshes)",
         default: 25,
+        min: 1,
         max: MAX_COPIES,
     },
     BuiltinParam {
         key: "detail",
         meaning: "segments around the rock, half as many rings: 2 detail (detail / 2 - 1) \
-                  triangles (default 64: 3,968; at least 4, at most 2048; copies times \
-                  triangles at most 178,956,970)",
+                  triangles (default 64: 3,968; at most 2048; copies times triangles at most \
+                  178,956,970)",
         default: 64,
+        min: 4,
         max: MAX_DETAIL,
     },
     BuiltinParam {
         key: "seed",
         meaning: "PCG32 seed for the placements (default 1, any u32)",
         default: 1,
+        min: 0,
         max: u32::MAX,
     },
 ];
@@ -97,16 +99,6 @@ pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), S
         scene: "rocks".to_owned(),
         reason,
     };
-    if copies == 0 {
-        return Err(error(format!(
-            "`copies=0`: a field needs at least 1 rock (1 to {MAX_COPIES})"
-        )));
-    }
-    if detail < 4 {
-        return Err(error(format!(
-            "`detail={detail}`: a rock needs at least 4 segments (4 to {MAX_DETAIL})"
-        )));
-    }
     let triangles = u64::from(copies) * rock_triangles(u64::from(detail));
     if triangles > MAX_TRIANGLES {
         return Err(error(format!(

@@ -33,25 +33,28 @@ pub(super) const PARAMS: &[BuiltinParam] = &[
         meaning:
             "total number of particles, 7/8 smoke and 1/8 fire (default 4000, at most 1048576)",
         default: 4000,
+        min: 0,
         max: MAX_PARTICLES as u32,
     },
     BuiltinParam {
         key: "size",
-        meaning:
-            "nominal particle diameter in centimetres (default 120, at least 1, at most 10000)",
+        meaning: "nominal particle diameter in centimetres (default 120, at most 10000)",
         default: 120,
+        min: 1,
         max: 10_000,
     },
     BuiltinParam {
         key: "seed",
         meaning: "PCG32 seed for particle placement (default 1, any u32)",
         default: 1,
+        min: 0,
         max: u32::MAX,
     },
     BuiltinParam {
         key: "extent",
-        meaning: "the effect's scale in percent, positions and sizes (default 100, at least 1, at most 1000)",
+        meaning: "the effect's scale in percent, positions and sizes (default 100, at most 1000)",
         default: 100,
+        min: 1,
         max: 1000,
     },
 ];
@@ -60,17 +63,6 @@ pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), S
     let count = params.u32("count")?;
     let size = params.u32("size")?;
     let extent = params.u32("extent")?;
-    for (key, value, range) in [
-        ("size", size, "1 to 10000 centimetres"),
-        ("extent", extent, "1 to 1000 percent"),
-    ] {
-        if value == 0 {
-            return Err(SceneError::BuiltinParameter {
-                scene: "smoke".to_owned(),
-                reason: format!("`{key}=0`: a particle needs a positive size ({range})"),
-            });
-        }
-    }
     let mut rng = Pcg32::new(u64::from(params.u32("seed")?));
     super::dense::build(params, builder)?;
     builder.ambient = [0.25; 3];

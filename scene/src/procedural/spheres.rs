@@ -32,6 +32,7 @@ pub(super) const PARAMS: &[BuiltinParam] = &[BuiltinParam {
     meaning: "1 gives the red, green and blue spheres a clear coat, a sheen and a tinted \
               specular (default 0: the core metallic-roughness model; at most 1)",
     default: 0,
+    min: 0,
     max: 1,
 }];
 

@@ -55,28 +55,24 @@ pub(super) const PARAMS: &[BuiltinParam] = &[
     BuiltinParam {
         key: "cells",
         meaning: "cells per side of the heightfield, 2 triangles each (default 224: 100,352 \
-                  triangles; at least 1, at most 7326: 107,340,552 triangles in 4,294,442,824 \
+                  triangles; at most 7326: 107,340,552 triangles in 4,294,442,824 \
                   bytes of vertices, indices and mesh, the most that fit the 4 GiB scene \
                   limit)",
         default: 224,
+        min: 1,
         max: MAX_CELLS,
     },
     BuiltinParam {
         key: "seed",
         meaning: "PCG32 seed for the heights (default 1, any u32)",
         default: 1,
+        min: 0,
         max: u32::MAX,
     },
 ];
 
 pub(super) fn build(params: &Params, builder: &mut SceneBuilder) -> Result<(), SceneError> {
     let cells = params.u32("cells")?;
-    if cells == 0 {
-        return Err(SceneError::BuiltinParameter {
-            scene: "terrain".to_owned(),
-            reason: format!("`cells=0`: a terrain needs at least 1 cell (1 to {MAX_CELLS})"),
-        });
-    }
     let octaves = Octave::draw(&mut Pcg32::new(u64::from(params.u32("seed")?)));
     let material = builder.add_material(lit("terrain", [1.0; 3], 0.0, 0.9));
     builder.meshes.push(Mesh {
