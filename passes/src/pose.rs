@@ -9,7 +9,7 @@
 //! with their mesh's transform alone.
 
 use rgraph_core::file::LoadedGraph;
-use rgraph_core::Plan;
+use rgraph_core::{Plan, PlannedPass};
 
 use crate::common::pose_offset::SLOT;
 
@@ -24,13 +24,14 @@ pub fn unposed<'p>(plan: &'p Plan, loaded: &LoadedGraph) -> Option<&'p str> {
     if !plan.features.iter().any(|f| f == DEFORMED) {
         return None;
     }
+    let unposed = |pass: &&PlannedPass| {
+        loaded.plugin(&pass.name) == Some("motion_vectors")
+            && loaded
+                .slot(&pass.name, SLOT)
+                .is_some_and(|slot| !pass.reads_resource(slot.id()))
+    };
     plan.passes
         .iter()
-        .map(|p| (p, p.name.as_str()))
-        .find_map(|(pass, name)| {
-            let motion = loaded.plugin(name) == Some("motion_vectors");
-            let slot = loaded.slot(name, SLOT)?;
-            let read = pass.reads_resource(slot.id());
-            (motion && !read).then_some(name)
-        })
+        .find(unposed)
+        .map(|pass| pass.name.as_str())
 }
